@@ -1,0 +1,4 @@
+//! # tvf-spectral
+//!
+//! Fourier basis of tangent fields, coefficients, filters and compression.
+#![warn(missing_docs)]

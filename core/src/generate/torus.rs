@@ -1,0 +1,40 @@
+//! A torus of revolution around the z axis.
+
+use crate::SurfaceMesh;
+use std::f64::consts::TAU;
+
+/// Torus with major radius `major` (centre to tube centre) and minor radius `minor` (tube),
+/// `around` segments along the major circle and `tube` along the minor one
+/// (`2·around·tube` faces, genus 1, outward normals).
+///
+/// Returns `None` unless `0 < minor < major` and both resolutions are at least 3.
+pub fn torus(major: f64, minor: f64, around: usize, tube: usize) -> Option<SurfaceMesh> {
+    let valid = minor > 0.0 && minor < major && around >= 3 && tube >= 3;
+    if !valid || !major.is_finite() {
+        return None;
+    }
+    let mut positions = Vec::with_capacity(around * tube);
+    for i in 0..around {
+        let u = TAU * i as f64 / around as f64;
+        for j in 0..tube {
+            let v = TAU * j as f64 / tube as f64;
+            let radius = major + minor * v.cos();
+            positions.push([radius * u.cos(), radius * u.sin(), minor * v.sin()]);
+        }
+    }
+    let index = |i: usize, j: usize| (i % around) * tube + (j % tube);
+    let mut faces = Vec::with_capacity(2 * around * tube);
+    for i in 0..around {
+        for j in 0..tube {
+            let (a, b, c, d) = (
+                index(i, j),
+                index(i + 1, j),
+                index(i + 1, j + 1),
+                index(i, j + 1),
+            );
+            faces.push([a, b, c]);
+            faces.push([a, c, d]);
+        }
+    }
+    SurfaceMesh::new(positions, faces).ok()
+}

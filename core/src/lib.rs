@@ -1,0 +1,18 @@
+//! # tvf-core
+//!
+//! The vocabulary every tvf crate speaks: closed (or bounded) oriented triangle meshes with the
+//! topology the discrete operators need, and meshes generated in code for tests and demos.
+//!
+//! ```
+//! use tvf_core::generate::icosphere;
+//! let mesh = icosphere(1);
+//! assert_eq!(mesh.face_count(), 80);
+//! assert_eq!(mesh.genus(), 0);
+//! ```
+#![warn(missing_docs)]
+
+pub mod generate;
+pub mod geometry;
+pub mod mesh;
+
+pub use mesh::{MeshError, SurfaceMesh, NO_FACE};

@@ -1,0 +1,249 @@
+//! The [`SurfaceMesh`] type: an oriented, edge-manifold triangle mesh with its topology.
+
+use super::error::MeshError;
+use super::topology::build_topology;
+use crate::geometry::{cross, norm, sub};
+
+/// Marker in [`SurfaceMesh::edge_faces`] for the missing face of a boundary edge.
+pub const NO_FACE: usize = usize::MAX;
+
+/// An oriented, edge-manifold triangle mesh and the topology the discrete operators need.
+///
+/// Conventions (see `shared/docs/MATH.md`):
+/// - faces are counter-clockwise seen from the outside, normal `(p1−p0)×(p2−p0)/|…|`;
+/// - edge `e` is `(a, b)` with `a < b`, and edges are numbered in **lexicographic order of
+///   `(a, b)`** (tools outside tvf rely on this);
+/// - in face `t = (i0, i1, i2)`, corner `c` is opposite the edge `{i_{c+1}, i_{c+2}}`, and
+///   [`SurfaceMesh::face_edges`]`[t][c]` is that edge.
+#[derive(Debug, Clone)]
+pub struct SurfaceMesh {
+    positions: Vec<[f64; 3]>,
+    faces: Vec<[usize; 3]>,
+    edges: Vec<[usize; 2]>,
+    face_edges: Vec<[usize; 3]>,
+    edge_faces: Vec<[usize; 2]>,
+    face_component: Vec<usize>,
+    component_count: usize,
+}
+
+impl SurfaceMesh {
+    /// Builds a mesh from vertex positions and counter-clockwise faces (0-based indices).
+    ///
+    /// Fails on non-finite coordinates, out-of-range or repeated indices, non-manifold edges and
+    /// inconsistently oriented neighbours. Geometric quality (zero areas, slivers) and vertex
+    /// manifoldness are checked by the validation layer, not here.
+    pub fn new(positions: Vec<[f64; 3]>, faces: Vec<[usize; 3]>) -> Result<Self, MeshError> {
+        if let Some(vertex) = positions
+            .iter()
+            .position(|p| p.iter().any(|x| !x.is_finite()))
+        {
+            return Err(MeshError::NonFiniteCoordinate { vertex });
+        }
+        let topology = build_topology(positions.len(), &faces)?;
+        Ok(Self {
+            positions,
+            faces,
+            edges: topology.edges,
+            face_edges: topology.face_edges,
+            edge_faces: topology.edge_faces,
+            face_component: topology.face_component,
+            component_count: topology.component_count,
+        })
+    }
+
+    /// Number of vertices `V`.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of edges `E`.
+    pub fn edge_count(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Number of faces `F`.
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// Vertex positions, `V` entries.
+    pub fn positions(&self) -> &[[f64; 3]] {
+        &self.positions
+    }
+
+    /// Faces as counter-clockwise vertex triples, `F` entries.
+    pub fn faces(&self) -> &[[usize; 3]] {
+        &self.faces
+    }
+
+    /// Edges `(a, b)`, `a < b`, in lexicographic order, `E` entries.
+    pub fn edges(&self) -> &[[usize; 2]] {
+        &self.edges
+    }
+
+    /// `face_edges()[t][c]`: the edge opposite corner `c` of face `t`.
+    pub fn face_edges(&self) -> &[[usize; 3]] {
+        &self.face_edges
+    }
+
+    /// `edge_faces()[e] = [left, right]`: `left` traverses edge `(a, b)` as `a → b`, `right` as
+    /// `b → a`; [`NO_FACE`] on the missing side of a boundary edge.
+    pub fn edge_faces(&self) -> &[[usize; 2]] {
+        &self.edge_faces
+    }
+
+    /// Position of corner `c` of face `t`.
+    pub fn corner(&self, t: usize, c: usize) -> [f64; 3] {
+        self.positions[self.faces[t][c]]
+    }
+
+    /// Non-normalised normal `(p1−p0)×(p2−p0)` of face `t`; its length is twice the area.
+    pub fn face_normal_scaled(&self, t: usize) -> [f64; 3] {
+        let [p0, p1, p2] = self.faces[t].map(|i| self.positions[i]);
+        cross(sub(p1, p0), sub(p2, p0))
+    }
+
+    /// Unit normal of face `t` (counter-clockwise orientation).
+    pub fn face_normal(&self, t: usize) -> [f64; 3] {
+        let n = self.face_normal_scaled(t);
+        let len = norm(n);
+        [n[0] / len, n[1] / len, n[2] / len]
+    }
+
+    /// Area of face `t` (units of length²).
+    pub fn face_area(&self, t: usize) -> f64 {
+        0.5 * norm(self.face_normal_scaled(t))
+    }
+
+    /// Areas of all faces, `F` entries.
+    pub fn face_areas(&self) -> Vec<f64> {
+        (0..self.face_count()).map(|t| self.face_area(t)).collect()
+    }
+
+    /// Total surface area.
+    pub fn total_area(&self) -> f64 {
+        self.face_areas().iter().sum()
+    }
+
+    /// Whether edge `e` has only one face.
+    pub fn is_boundary_edge(&self, e: usize) -> bool {
+        self.edge_faces[e].contains(&NO_FACE)
+    }
+
+    /// Indices of the boundary edges, ascending.
+    pub fn boundary_edges(&self) -> Vec<usize> {
+        (0..self.edge_count())
+            .filter(|&e| self.is_boundary_edge(e))
+            .collect()
+    }
+
+    /// Whether the mesh has no boundary edge.
+    pub fn is_closed(&self) -> bool {
+        self.edge_faces.iter().all(|f| !f.contains(&NO_FACE))
+    }
+
+    /// Boundary loops as closed vertex cycles, each following the boundary orientation
+    /// (the surface on the left).
+    pub fn boundary_loops(&self) -> Vec<Vec<usize>> {
+        // The next boundary vertex after `v` along the orientation of the boundary face.
+        let mut next = std::collections::BTreeMap::new();
+        for (e, &[a, b]) in self.edges.iter().enumerate() {
+            match self.edge_faces[e] {
+                [left, NO_FACE] if left != NO_FACE => {
+                    next.entry(a).or_insert_with(Vec::new).push(b);
+                }
+                [NO_FACE, right] if right != NO_FACE => {
+                    next.entry(b).or_insert_with(Vec::new).push(a);
+                }
+                _ => {}
+            }
+        }
+        let mut loops = Vec::new();
+        while let Some((&start, _)) = next.iter().find(|(_, v)| !v.is_empty()) {
+            let mut cycle = vec![start];
+            let mut v = start;
+            while let Some(w) = next.get_mut(&v).and_then(|list| list.pop()) {
+                if w == start {
+                    break;
+                }
+                cycle.push(w);
+                v = w;
+            }
+            loops.push(cycle);
+        }
+        loops
+    }
+
+    /// Number of edge-connected components.
+    pub fn component_count(&self) -> usize {
+        self.component_count
+    }
+
+    /// Component id of every face, `F` entries, in `0..component_count()`.
+    pub fn face_components(&self) -> &[usize] {
+        &self.face_component
+    }
+
+    /// Component id of every vertex (`usize::MAX` for a vertex no face uses), `V` entries.
+    pub fn vertex_components(&self) -> Vec<usize> {
+        let mut component = vec![usize::MAX; self.vertex_count()];
+        for (t, face) in self.faces.iter().enumerate() {
+            for &v in face {
+                component[v] = self.face_component[t];
+            }
+        }
+        component
+    }
+
+    /// Component id of every edge, `E` entries.
+    pub fn edge_components(&self) -> Vec<usize> {
+        self.edge_faces
+            .iter()
+            .map(|f| {
+                let t = if f[0] != NO_FACE { f[0] } else { f[1] };
+                self.face_component[t]
+            })
+            .collect()
+    }
+
+    /// Euler characteristic `V − E + F` over referenced vertices.
+    pub fn euler_characteristic(&self) -> i64 {
+        self.component_euler_characteristics().iter().sum()
+    }
+
+    /// Euler characteristic of every component.
+    pub fn component_euler_characteristics(&self) -> Vec<i64> {
+        let mut chi = vec![0i64; self.component_count];
+        for c in self.vertex_components() {
+            if c != usize::MAX {
+                chi[c] += 1;
+            }
+        }
+        for c in self.edge_components() {
+            chi[c] -= 1;
+        }
+        for &c in &self.face_component {
+            chi[c] += 1;
+        }
+        chi
+    }
+
+    /// Genus of every component, `(2 − b − χ)/2` with `b` its boundary loops.
+    pub fn component_genera(&self) -> Vec<usize> {
+        let mut loops = vec![0i64; self.component_count];
+        let vertex_component = self.vertex_components();
+        for cycle in self.boundary_loops() {
+            loops[vertex_component[cycle[0]]] += 1;
+        }
+        self.component_euler_characteristics()
+            .iter()
+            .zip(&loops)
+            .map(|(&chi, &b)| ((2 - b - chi) / 2).max(0) as usize)
+            .collect()
+    }
+
+    /// Total genus, summed over components. On a closed mesh the harmonic fields number `2·genus()`.
+    pub fn genus(&self) -> usize {
+        self.component_genera().iter().sum()
+    }
+}

@@ -1,0 +1,4 @@
+//! # tvf-tests
+//!
+//! The conformance suite every discretization gets.
+#![warn(missing_docs)]
