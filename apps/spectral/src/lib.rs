@@ -1,4 +1,9 @@
 //! # tvf-spectral
 //!
-//! Fourier basis of tangent fields, coefficients, filters and compression.
+//! The Fourier basis of tangent fields (Section 6 of the paper) and what is built on it:
+//! coefficients, reconstruction, filters and compression.
 #![warn(missing_docs)]
+
+mod basis;
+
+pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};

@@ -1,0 +1,187 @@
+//! [`SpectralBasis`]: an `M_X`-orthonormal set of eigenfields of the Hodge–Laplacian.
+
+use faer::{Col, Mat, MatRef};
+use rayon::prelude::*;
+use thiserror::Error;
+
+/// The family a basis field belongs to in the Hodge decomposition.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FieldFamily {
+    /// In the kernel of the Hodge–Laplacian (eigenvalue 0); `2g` of them on a closed mesh.
+    Harmonic,
+    /// A normalised gradient of a potential eigenfunction, `Φ = d0 φ / √λ` (curl-free).
+    Integrable,
+    /// A normalised co-gradient of a co-potential eigenfunction, `Ψ = J G ψ / √μ` (divergence-free).
+    Cointegrable,
+}
+
+impl FieldFamily {
+    /// Lower-case name used in files and JSON: `harmonic`, `integrable`, `cointegrable`.
+    pub fn name(self) -> &'static str {
+        match self {
+            FieldFamily::Harmonic => "harmonic",
+            FieldFamily::Integrable => "integrable",
+            FieldFamily::Cointegrable => "cointegrable",
+        }
+    }
+}
+
+/// Inconsistent data handed to [`SpectralBasis::new`] or to its methods.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SpectralBasisError {
+    /// Two lengths that must agree do not.
+    #[error("{what}: expected length {expected}, got {actual}")]
+    LengthMismatch {
+        /// What was being checked.
+        what: &'static str,
+        /// Expected length.
+        expected: usize,
+        /// Actual length.
+        actual: usize,
+    },
+    /// Eigenvalues must be finite, non-negative and ascending.
+    #[error(
+        "eigenvalue {index} is {value}: eigenvalues must be finite, non-negative and ascending"
+    )]
+    BadEigenvalue {
+        /// Position in the basis.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+}
+
+/// `d` eigenfields of the Hodge–Laplacian `L` of one discretization, `M_X`-orthonormal.
+///
+/// Shapes: `fields` is `2F × d` (column `i` is field `i` in face-frame coordinates, face `t` at
+/// rows `2t, 2t+1`), `eigenvalues` and `families` have `d` entries, ascending in eigenvalue,
+/// `field_mass` is the diagonal of `M_X` (`2F` entries, face areas twice).
+/// `L U = U Λ` and `Uᵀ M_X U = I` hold to solver accuracy.
+#[derive(Debug, Clone)]
+pub struct SpectralBasis {
+    eigenvalues: Vec<f64>,
+    families: Vec<FieldFamily>,
+    fields: Mat<f64>,
+    field_mass: Vec<f64>,
+}
+
+impl SpectralBasis {
+    /// Assembles a basis from its parts, checking shapes and the ordering of eigenvalues.
+    pub fn new(
+        eigenvalues: Vec<f64>,
+        families: Vec<FieldFamily>,
+        fields: Mat<f64>,
+        field_mass: Vec<f64>,
+    ) -> Result<Self, SpectralBasisError> {
+        let d = eigenvalues.len();
+        check_length("families", d, families.len())?;
+        check_length("basis columns", d, fields.ncols())?;
+        check_length("field mass", fields.nrows(), field_mass.len())?;
+        for (index, &value) in eigenvalues.iter().enumerate() {
+            let ascending = index == 0 || value >= eigenvalues[index - 1];
+            if !value.is_finite() || value < 0.0 || !ascending {
+                return Err(SpectralBasisError::BadEigenvalue { index, value });
+            }
+        }
+        Ok(Self {
+            eigenvalues,
+            families,
+            fields,
+            field_mass,
+        })
+    }
+
+    /// Number of basis fields `d`.
+    pub fn len(&self) -> usize {
+        self.eigenvalues.len()
+    }
+
+    /// Whether the basis has no field.
+    pub fn is_empty(&self) -> bool {
+        self.eigenvalues.is_empty()
+    }
+
+    /// Dimension `2F` of the field space.
+    pub fn field_dimension(&self) -> usize {
+        self.fields.nrows()
+    }
+
+    /// Eigenvalues `λ_i` of `L`, ascending, `d` entries (units 1/length²).
+    pub fn eigenvalues(&self) -> &[f64] {
+        &self.eigenvalues
+    }
+
+    /// Frequencies `√λ_i`, `d` entries.
+    pub fn frequencies(&self) -> Vec<f64> {
+        self.eigenvalues.iter().map(|l| l.sqrt()).collect()
+    }
+
+    /// Family of each basis field, `d` entries.
+    pub fn families(&self) -> &[FieldFamily] {
+        &self.families
+    }
+
+    /// The fields `U`, `2F × d`.
+    pub fn fields(&self) -> MatRef<'_, f64> {
+        self.fields.as_ref()
+    }
+
+    /// Diagonal of `M_X`, `2F` entries.
+    pub fn field_mass(&self) -> &[f64] {
+        &self.field_mass
+    }
+
+    /// Fourier coefficients `Uᵀ M_X v` of a field `v` (`2F` entries), `d` entries.
+    pub fn coefficients(&self, field: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        check_length("field", self.field_dimension(), field.len())?;
+        let weighted = Col::from_fn(field.len(), |r| self.field_mass[r] * field[r]);
+        let coefficients = self.fields.transpose() * &weighted;
+        Ok((0..self.len()).map(|i| coefficients[i]).collect())
+    }
+
+    /// The field `U c` for coefficients `c` (`d` entries), `2F` entries.
+    pub fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        check_length("coefficients", self.len(), coefficients.len())?;
+        let mut field = vec![0.0; self.field_dimension()];
+        field
+            .par_chunks_mut(4096)
+            .enumerate()
+            .for_each(|(chunk, out)| {
+                let start = chunk * 4096;
+                for (i, &c) in coefficients.iter().enumerate() {
+                    if c != 0.0 {
+                        let column = self.fields.col(i);
+                        for (k, value) in out.iter_mut().enumerate() {
+                            *value += c * column[start + k];
+                        }
+                    }
+                }
+            });
+        Ok(field)
+    }
+
+    /// `M_X` inner product `aᵀ M_X b` of two fields (`2F` entries each).
+    pub fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
+        a.iter()
+            .zip(b)
+            .zip(&self.field_mass)
+            .map(|((x, y), m)| x * m * y)
+            .sum()
+    }
+}
+
+fn check_length(
+    what: &'static str,
+    expected: usize,
+    actual: usize,
+) -> Result<(), SpectralBasisError> {
+    if expected == actual {
+        Ok(())
+    } else {
+        Err(SpectralBasisError::LengthMismatch {
+            what,
+            expected,
+            actual,
+        })
+    }
+}
