@@ -1,4 +1,21 @@
 //! # tvf-solvers
 //!
 //! Sparse Cholesky, generalized symmetric eigensolvers and dense updates (knows matrices, not meshes).
+//!
+//! - [`SparseCholesky`]: supernodal sparse Cholesky (faer) with symbolic reuse and blocked solves.
+//! - [`SparseLdlt`]: the underlying `LDLᵀ` factorization of indefinite shifted matrices, with
+//!   [`Inertia`] (Sylvester's law) for eigenvalue counting.
+//! - [`dense_generalized_eigen`]: dense reference eigensolver (test oracle, small problems).
+//! - [`convert`]: `sprs → faer` conversions.
 #![warn(missing_docs)]
+
+pub mod convert;
+mod dense_eigen;
+mod error;
+mod sparse_cholesky;
+mod sparse_ldlt;
+
+pub use dense_eigen::dense_generalized_eigen;
+pub use error::SolverError;
+pub use sparse_cholesky::SparseCholesky;
+pub use sparse_ldlt::{Inertia, SparseLdlt};

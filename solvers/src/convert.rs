@@ -1,0 +1,131 @@
+//! Conversions between `sprs` and `faer` sparse matrices.
+//!
+//! faer's sparse Cholesky works on compressed-sparse-column matrices with `usize` indices;
+//! the rest of the project assembles matrices with `sprs`. These helpers do the conversion,
+//! reject non-finite values and extract one triangle of a symmetric matrix.
+
+use crate::error::SolverError;
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+
+/// Checks that `matrix` is square and returns its dimension.
+pub fn square_dimension(matrix: &sprs::CsMat<f64>) -> Result<usize, SolverError> {
+    let (rows, cols) = matrix.shape();
+    if rows != cols {
+        return Err(SolverError::NotSquare { rows, cols });
+    }
+    Ok(rows)
+}
+
+/// Upper triangle (row ≤ column, diagonal included) of a square `sprs` matrix, CSC or CSR,
+/// as a faer CSC matrix with sorted row indices.
+///
+/// Entries of the strict lower triangle are ignored, so a symmetric matrix may be given in
+/// full storage or upper-triangular storage (not lower-only). Explicitly stored zeros are kept,
+/// so the result's pattern depends only on the input's pattern.
+/// Errors: [`SolverError::NotSquare`], [`SolverError::NonFinite`].
+pub fn upper_triangle_csc(matrix: &sprs::CsMat<f64>) -> Result<SparseColMat<usize, f64>, SolverError> {
+    let n = square_dimension(matrix)?;
+    let mut count = vec![0usize; n + 1];
+    for (value, (row, col)) in matrix.iter() {
+        if !value.is_finite() {
+            return Err(SolverError::NonFinite { context: "sparse matrix", row, col, value: *value });
+        }
+        if row <= col {
+            count[col + 1] += 1;
+        }
+    }
+    for j in 0..n {
+        count[j + 1] += count[j];
+    }
+    let col_ptr = count.clone();
+    let nnz = col_ptr[n];
+    let mut next = count;
+    let mut row_idx = vec![0usize; nnz];
+    let mut values = vec![0.0f64; nnz];
+    // CSC iteration is column-major with sorted rows; CSR iteration is row-major, so within a
+    // column rows also arrive in increasing order. Either way each column ends up sorted.
+    for (value, (row, col)) in matrix.iter() {
+        if row <= col {
+            let slot = next[col];
+            row_idx[slot] = row;
+            values[slot] = *value;
+            next[col] += 1;
+        }
+    }
+    let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    Ok(SparseColMat::new(symbolic, values))
+}
+
+/// Full copy of a `sprs` matrix (any shape, CSC or CSR) as a faer CSC matrix.
+///
+/// Errors: [`SolverError::NonFinite`].
+pub fn to_faer_csc(matrix: &sprs::CsMat<f64>) -> Result<SparseColMat<usize, f64>, SolverError> {
+    let (rows, cols) = matrix.shape();
+    let mut count = vec![0usize; cols + 1];
+    for (value, (row, col)) in matrix.iter() {
+        if !value.is_finite() {
+            return Err(SolverError::NonFinite { context: "sparse matrix", row, col, value: *value });
+        }
+        count[col + 1] += 1;
+    }
+    for j in 0..cols {
+        count[j + 1] += count[j];
+    }
+    let col_ptr = count.clone();
+    let mut next = count;
+    let mut row_idx = vec![0usize; col_ptr[cols]];
+    let mut values = vec![0.0f64; col_ptr[cols]];
+    for (value, (row, col)) in matrix.iter() {
+        let slot = next[col];
+        row_idx[slot] = row;
+        values[slot] = *value;
+        next[col] += 1;
+    }
+    let symbolic = SymbolicSparseColMat::new_checked(rows, cols, col_ptr, None, row_idx);
+    Ok(SparseColMat::new(symbolic, values))
+}
+
+/// `A − shift · diag(mass)` restricted to the upper triangle, as a faer CSC matrix.
+///
+/// Every diagonal position is present in the result (added as an explicit entry if `matrix`
+/// lacks it), so the pattern does not depend on `shift`.
+/// Errors: [`SolverError::NotSquare`], [`SolverError::NonFinite`], [`SolverError::DimensionMismatch`].
+pub fn shifted_upper_triangle(
+    matrix: &sprs::CsMat<f64>,
+    mass_diagonal: &[f64],
+    shift: f64,
+) -> Result<SparseColMat<usize, f64>, SolverError> {
+    let upper = upper_triangle_csc(matrix)?;
+    let n = upper.nrows();
+    if mass_diagonal.len() != n {
+        return Err(SolverError::DimensionMismatch { context: "mass diagonal length", expected: n, actual: mass_diagonal.len() });
+    }
+    let col_ptr = upper.symbolic().col_ptr();
+    let row_idx = upper.symbolic().row_idx();
+    let values = upper.val();
+    let mut new_ptr = Vec::with_capacity(n + 1);
+    let mut new_rows = Vec::with_capacity(values.len() + n);
+    let mut new_vals = Vec::with_capacity(values.len() + n);
+    new_ptr.push(0);
+    for j in 0..n {
+        let mut has_diagonal = false;
+        for p in col_ptr[j]..col_ptr[j + 1] {
+            let i = row_idx[p];
+            new_rows.push(i);
+            if i == j {
+                has_diagonal = true;
+                new_vals.push(values[p] - shift * mass_diagonal[j]);
+            } else {
+                new_vals.push(values[p]);
+            }
+        }
+        if !has_diagonal {
+            // rows are sorted and all ≤ j, so the diagonal goes last
+            new_rows.push(j);
+            new_vals.push(-shift * mass_diagonal[j]);
+        }
+        new_ptr.push(new_rows.len());
+    }
+    let symbolic = SymbolicSparseColMat::new_checked(n, n, new_ptr, None, new_rows);
+    Ok(SparseColMat::new(symbolic, new_vals))
+}
