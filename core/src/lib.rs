@@ -11,6 +11,7 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod discretization;
 pub mod generate;
 pub mod geometry;
 pub mod mesh;

@@ -1,0 +1,123 @@
+//! Small helpers on `sprs::CsMat<f64>` (CSR) and diagonal matrices stored as slices, used by the
+//! derived operators. All matrices returned here are in CSR storage with sorted indices.
+
+use sprs::{CsMat, TriMat};
+
+/// The diagonal matrix `diag(d)` (n×n, CSR).
+pub fn diagonal(d: &[f64]) -> CsMat<f64> {
+    let n = d.len();
+    CsMat::new((n, n), (0..=n).collect(), (0..n).collect(), d.to_vec())
+}
+
+/// Entry-wise reciprocal `1/d_i` of a diagonal; a zero entry (e.g. the mass of a vertex no face
+/// uses) maps to zero, so that the node stays decoupled instead of producing infinities.
+pub fn reciprocal(d: &[f64]) -> Vec<f64> {
+    d.iter()
+        .map(|&x| if x == 0.0 { 0.0 } else { 1.0 / x })
+        .collect()
+}
+
+/// `diag(d) · a`: scales row `i` of `a` by `d[i]`.
+pub fn scale_rows(d: &[f64], a: &CsMat<f64>) -> CsMat<f64> {
+    let mut out = to_csr(a);
+    let indptr = out.indptr().to_proper().into_owned();
+    let data = out.data_mut();
+    for (row, window) in indptr.windows(2).enumerate() {
+        for value in &mut data[window[0]..window[1]] {
+            *value *= d[row];
+        }
+    }
+    out
+}
+
+/// `a · diag(d)`: scales column `j` of `a` by `d[j]`.
+pub fn scale_cols(a: &CsMat<f64>, d: &[f64]) -> CsMat<f64> {
+    let mut out = to_csr(a);
+    let indices = out.indices().to_vec();
+    for (value, &col) in out.data_mut().iter_mut().zip(&indices) {
+        *value *= d[col];
+    }
+    out
+}
+
+/// `aᵀ` in CSR storage.
+pub fn transpose(a: &CsMat<f64>) -> CsMat<f64> {
+    a.transpose_view().to_csr()
+}
+
+/// The product `a · b` (CSR).
+pub fn product(a: &CsMat<f64>, b: &CsMat<f64>) -> CsMat<f64> {
+    let a = as_csr(a);
+    let b = as_csr(b);
+    &*a * &*b
+}
+
+/// The sum `α·a + β·b` (CSR); shapes must agree.
+pub fn linear_combination(alpha: f64, a: &CsMat<f64>, beta: f64, b: &CsMat<f64>) -> CsMat<f64> {
+    let a = to_csr(a).map(|x| alpha * x);
+    let b = to_csr(b).map(|x| beta * x);
+    &a + &b
+}
+
+/// `a · x` for a dense vector `x` (length `a.cols()`).
+pub fn mul_vec(a: &CsMat<f64>, x: &[f64]) -> Vec<f64> {
+    debug_assert_eq!(a.cols(), x.len());
+    if a.is_csr() {
+        a.outer_iterator()
+            .map(|row| row.iter().map(|(j, v)| v * x[j]).sum())
+            .collect()
+    } else {
+        let mut y = vec![0.0; a.rows()];
+        for (col, column) in a.outer_iterator().enumerate() {
+            for (i, v) in column.iter() {
+                y[i] += v * x[col];
+            }
+        }
+        y
+    }
+}
+
+/// `aᵀ · x` for a dense vector `x` (length `a.rows()`), without forming `aᵀ`.
+pub fn mul_transpose_vec(a: &CsMat<f64>, x: &[f64]) -> Vec<f64> {
+    let t = a.transpose_view();
+    let mut y = vec![0.0; a.cols()];
+    for (outer, lane) in t.outer_iterator().enumerate() {
+        for (inner, v) in lane.iter() {
+            if t.is_csr() {
+                y[outer] += v * x[inner];
+            } else {
+                y[inner] += v * x[outer];
+            }
+        }
+    }
+    y
+}
+
+/// Assembles an `rows × cols` CSR matrix from triplets, summing duplicates.
+pub fn from_triplets(
+    rows: usize,
+    cols: usize,
+    row_indices: Vec<usize>,
+    col_indices: Vec<usize>,
+    values: Vec<f64>,
+) -> CsMat<f64> {
+    TriMat::from_triplets((rows, cols), row_indices, col_indices, values).to_csr()
+}
+
+/// Borrows `a` if it is CSR, converts otherwise.
+fn as_csr(a: &CsMat<f64>) -> std::borrow::Cow<'_, CsMat<f64>> {
+    if a.is_csr() {
+        std::borrow::Cow::Borrowed(a)
+    } else {
+        std::borrow::Cow::Owned(a.to_csr())
+    }
+}
+
+/// The same matrix in CSR storage (a copy if it already is).
+pub fn to_csr(a: &CsMat<f64>) -> CsMat<f64> {
+    if a.is_csr() {
+        a.clone()
+    } else {
+        a.to_csr()
+    }
+}

@@ -1,0 +1,93 @@
+//! Per-face geometry shared by every space: frames, normals, areas and the corners in 2D frame
+//! coordinates, computed once per mesh.
+
+use tvf_core::discretization::DiscretizationError;
+use tvf_core::geometry::{cross, dot, normalize, sub};
+use tvf_core::SurfaceMesh;
+
+/// Frames and 2D corner coordinates of every face (the frame convention of `MATH.md`:
+/// `e1 = normalize(p_{i1} − p_{i0})`, `e2 = n × e1`).
+#[derive(Debug, Clone)]
+pub struct FaceGeometry {
+    /// `[e1, e2]` per face.
+    pub frames: Vec<[[f64; 3]; 2]>,
+    /// Unit normal per face.
+    pub normals: Vec<[f64; 3]>,
+    /// Area per face.
+    pub areas: Vec<f64>,
+    /// Corners of each face in its frame, relative to corner 0 (so `corners[t][0] = (0, 0)`).
+    pub corners: Vec<[[f64; 2]; 3]>,
+}
+
+impl FaceGeometry {
+    /// Computes the geometry of every face; fails on a face of zero or non-finite area.
+    pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+        let face_count = mesh.face_count();
+        let mut frames = Vec::with_capacity(face_count);
+        let mut normals = Vec::with_capacity(face_count);
+        let mut areas = Vec::with_capacity(face_count);
+        let mut corners = Vec::with_capacity(face_count);
+        for (t, face) in mesh.faces().iter().enumerate() {
+            let [p0, p1, p2] = face.map(|i| mesh.positions()[i]);
+            let scaled = cross(sub(p1, p0), sub(p2, p0));
+            let area = 0.5 * dot(scaled, scaled).sqrt();
+            if !(area > 0.0 && area.is_finite()) {
+                return Err(DiscretizationError::DegenerateFace { face: t, area });
+            }
+            let n = normalize(scaled);
+            let e1 = normalize(sub(p1, p0));
+            let e2 = cross(n, e1);
+            let local = |p: [f64; 3]| {
+                let d = sub(p, p0);
+                [dot(d, e1), dot(d, e2)]
+            };
+            frames.push([e1, e2]);
+            normals.push(n);
+            areas.push(area);
+            corners.push([[0.0, 0.0], local(p1), local(p2)]);
+        }
+        Ok(Self {
+            frames,
+            normals,
+            areas,
+            corners,
+        })
+    }
+
+    /// Gradients of the three P1 hat functions of face `t` in its frame (pointwise, 1/length):
+    /// `grad φ_c = J (p_{c+2} − p_{c+1}) / (2 A_t)`.
+    pub fn hat_gradients(&self, t: usize) -> [[f64; 2]; 3] {
+        let p = &self.corners[t];
+        let two_area = 2.0 * self.areas[t];
+        std::array::from_fn(|c| {
+            let a = p[(c + 1) % 3];
+            let b = p[(c + 2) % 3];
+            let e = [b[0] - a[0], b[1] - a[1]];
+            [-e[1] / two_area, e[0] / two_area]
+        })
+    }
+
+    /// Cotangent of the interior angle at every corner of face `t`.
+    pub fn cotangents(&self, t: usize) -> [f64; 3] {
+        let p = &self.corners[t];
+        let two_area = 2.0 * self.areas[t];
+        std::array::from_fn(|c| {
+            let a = p[(c + 1) % 3];
+            let b = p[(c + 2) % 3];
+            let o = p[c];
+            let u = [a[0] - o[0], a[1] - o[1]];
+            let v = [b[0] - o[0], b[1] - o[1]];
+            (u[0] * v[0] + u[1] * v[1]) / two_area
+        })
+    }
+
+    /// Squared length of the edge opposite every corner of face `t`.
+    pub fn squared_edge_lengths(&self, t: usize) -> [f64; 3] {
+        let p = &self.corners[t];
+        std::array::from_fn(|c| {
+            let a = p[(c + 1) % 3];
+            let b = p[(c + 2) % 3];
+            (b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)
+        })
+    }
+}

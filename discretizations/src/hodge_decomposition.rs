@@ -1,0 +1,141 @@
+//! The discrete Hodge decomposition `v = d0 f + J G_co g + h` of a field, for any
+//! [`HodgeComplex`], and a basis of the harmonic fields.
+
+use crate::pinned_poisson::PinnedPoisson;
+use crate::DecompositionError;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
+use tvf_core::discretization::{DiscretizationError, FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+
+/// The three `M1`-orthogonal parts of a field and their potentials.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HodgeParts {
+    /// Potential `f` (`n0` pointwise values, zero mean per component): `integrable = d0 f`.
+    pub potential: Vec<f64>,
+    /// Co-potential `g` (`n2` pointwise values, zero mean per component):
+    /// `co_integrable = J G_co g`.
+    pub co_potential: Vec<f64>,
+    /// Integrable (curl-free) part `d0 f` (`2F`, pointwise).
+    pub integrable: Vec<f64>,
+    /// Co-integrable (divergence-free) part `J G_co g` (`2F`, pointwise).
+    pub co_integrable: Vec<f64>,
+    /// Harmonic part `h = v − d0 f − J G_co g` (`2F`, pointwise): in the kernel of the Hodge–Laplacian.
+    pub harmonic: Vec<f64>,
+}
+
+/// Prefactored Hodge decomposition of one complex: both singular Poisson systems
+/// `(d0ᵀ M1 d0) f = d0ᵀ M1 v` and `(d1 M1⁻¹ d1ᵀ) g = −d1 v` are factored once (one node pinned per
+/// connected component), so decomposing many fields costs two triangular solves each.
+#[derive(Debug)]
+pub struct HodgeDecomposer<'a, H: HodgeComplex> {
+    complex: &'a H,
+    exact: PinnedPoisson,
+    co_exact: PinnedPoisson,
+}
+
+impl<'a, H: HodgeComplex> HodgeDecomposer<'a, H> {
+    /// Factors the two Poisson systems of `complex`. Fails on a mesh with boundary
+    /// ([`DecompositionError::Boundary`]) or if a factorization fails.
+    pub fn new(complex: &'a H) -> Result<Self, DecompositionError> {
+        if complex.has_boundary() {
+            return Err(DecompositionError::Boundary);
+        }
+        let p = complex.potentials();
+        let q = complex.co_potentials();
+        let exact = PinnedPoisson::new(
+            &complex.potential_stiffness(),
+            p.node_components(),
+            p.component_count(),
+            p.mass(),
+        )?;
+        let co_exact = PinnedPoisson::new(
+            &complex.co_potential_stiffness(),
+            q.node_components(),
+            q.component_count(),
+            q.mass(),
+        )?;
+        Ok(Self {
+            complex,
+            exact,
+            co_exact,
+        })
+    }
+
+    /// The complex this decomposer belongs to.
+    pub fn complex(&self) -> &'a H {
+        self.complex
+    }
+
+    /// Decomposes `field` (`2F` pointwise coefficients) into its integrable, co-integrable and
+    /// harmonic parts, per connected component.
+    pub fn decompose(&self, field: &[f64]) -> Result<HodgeParts, DecompositionError> {
+        let c = self.complex;
+        let dimension = c.fields().dimension();
+        if field.len() != dimension {
+            return Err(DiscretizationError::DimensionMismatch {
+                what: "field to decompose",
+                expected: dimension,
+                found: field.len(),
+            }
+            .into());
+        }
+        if let Some(index) = field.iter().position(|x| !x.is_finite()) {
+            return Err(DiscretizationError::NonFinite {
+                what: "field to decompose",
+                index,
+            }
+            .into());
+        }
+        let weighted: Vec<f64> = field.iter().zip(c.m1()).map(|(v, m)| v * m).collect();
+        let potential = self.exact.solve(&mul_transpose_vec(c.d0(), &weighted));
+        let curl: Vec<f64> = mul_vec(c.d1(), field).iter().map(|x| -x).collect();
+        let co_potential = self.co_exact.solve(&curl);
+        let integrable = c.gradient_field(&potential);
+        let co_integrable = c.co_gradient_field(&co_potential);
+        let harmonic = field
+            .iter()
+            .zip(&integrable)
+            .zip(&co_integrable)
+            .map(|((v, a), b)| v - a - b)
+            .collect();
+        Ok(HodgeParts {
+            potential,
+            co_potential,
+            integrable,
+            co_integrable,
+            harmonic,
+        })
+    }
+
+    /// The harmonic part of `field` alone.
+    pub fn harmonic_part(&self, field: &[f64]) -> Result<Vec<f64>, DecompositionError> {
+        Ok(self.decompose(field)?.harmonic)
+    }
+
+    /// An `M1`-orthonormal basis of the harmonic fields (`harmonic_dimension()` fields of length
+    /// `2F`): random fields (seeded) projected onto `H`, Gram–Schmidt in `M1`, each re-projected once
+    /// after orthogonalisation for accuracy (`shared/docs/MATH.md`).
+    pub fn harmonic_basis(&self, seed: u64) -> Result<Vec<Vec<f64>>, DecompositionError> {
+        let c = self.complex;
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut basis: Vec<Vec<f64>> = Vec::with_capacity(c.harmonic_dimension());
+        for _ in 0..c.harmonic_dimension() {
+            let random: Vec<f64> = (0..c.fields().dimension())
+                .map(|_| rng.random_range(-1.0..1.0))
+                .collect();
+            let mut h = self.harmonic_part(&random)?;
+            for _pass in 0..2 {
+                for b in &basis {
+                    let coefficient = c.field_inner(&h, b);
+                    h.iter_mut().zip(b).for_each(|(x, y)| *x -= coefficient * y);
+                }
+                h = self.harmonic_part(&h)?;
+            }
+            let norm = c.field_inner(&h, &h).sqrt();
+            h.iter_mut().for_each(|x| *x /= norm);
+            basis.push(h);
+        }
+        Ok(basis)
+    }
+}
