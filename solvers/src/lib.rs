@@ -5,17 +5,21 @@
 //! - [`SparseCholesky`]: supernodal sparse Cholesky (faer) with symbolic reuse and blocked solves.
 //! - [`SparseLdlt`]: the underlying `LDLᵀ` factorization of indefinite shifted matrices, with
 //!   [`Inertia`] (Sylvester's law) for eigenvalue counting.
+//! - [`lowest_eigenpairs`]: lowest k eigenpairs of `A x = λ M x` (shift-and-invert block
+//!   Krylov–Schur, spectrum slicing, inertia-verified completeness).
 //! - [`dense_generalized_eigen`]: dense reference eigensolver (test oracle, small problems).
 //! - [`convert`]: `sprs → faer` conversions.
 #![warn(missing_docs)]
 
 pub mod convert;
 mod dense_eigen;
+mod eigen;
 mod error;
 mod sparse_cholesky;
 mod sparse_ldlt;
 
 pub use dense_eigen::dense_generalized_eigen;
+pub use eigen::{lowest_eigenpairs, EigenOptions, EigenProgress, Eigenpairs};
 pub use error::SolverError;
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_ldlt::{Inertia, SparseLdlt};

@@ -1,0 +1,259 @@
+//! One spectrum slice: block Krylov–Schur (thick-restart block Lanczos with full
+//! reorthogonalisation) on the shift-inverted operator `OP = (A − σM)⁻¹ M`, which is
+//! self-adjoint in the M inner product. Eigenvalues λ of `(A, M)` near σ become the
+//! largest-magnitude eigenvalues `θ = 1/(λ − σ)` of `OP`.
+//!
+//! State (all M-orthonormal, mutually M-orthogonal):
+//! - `deflation`: eigenvectors found by earlier slices near this window (never re-found);
+//! - `locked`: converged eigenvectors of this slice;
+//! - `V` (`n × m`, "expanded"): `OP V = V H + U G` with symmetric `H` (`m × m`);
+//! - `U` (`n × r`, "unexpanded"): the next block to which `OP` is applied.
+//!
+//! Expanding applies `OP` to `U` with one blocked solve, orthogonalises the result against
+//! everything (two passes of BLAS-3 Gram–Schmidt), and appends `U` to `V`. At a restart the
+//! Rayleigh–Ritz pairs of `H` are sorted by `|θ|`; converged wanted ones are locked (their
+//! couplings `‖G y‖ ≤ tol·|θ|` are dropped), the best unconverged ones are kept
+//! (`V ← V Y`, `H ← Θ`, `G ← G Y`), and the rest is purged.
+
+use super::mass_orthogonal::{
+    mass_column_norms, mass_times, orthonormalize_block, project_out, random_orthonormal_block,
+};
+use crate::dense_eigen::symmetric_eigen;
+use crate::error::SolverError;
+use crate::sparse_ldlt::SparseLdlt;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, MatRef, Par};
+use rand_chacha::ChaCha8Rng;
+
+/// What one slice must find.
+pub(crate) struct SliceProblem<'a> {
+    /// `LDLᵀ` factorization of `A − σM`.
+    pub factor: &'a SparseLdlt,
+    /// Diagonal of `M`.
+    pub mass: &'a [f64],
+    /// The shift σ.
+    pub sigma: f64,
+    /// All eigenvalues `≤ lower_bound` are already known: nothing there is ever locked.
+    pub lower_bound: f64,
+    /// `n × q` known eigenvectors (M-orthonormal) to deflate.
+    pub deflation: MatRef<'a, f64>,
+    /// Number of not-yet-known eigenvalues in `(lower_bound, σ)` (from the inertia count).
+    pub lower_needed: usize,
+    /// Number of new eigenvalues above σ to find (nearest first).
+    pub upper_target: usize,
+}
+
+/// Algorithm parameters of a slice.
+pub(crate) struct SliceSettings {
+    pub block_size: usize,
+    pub tolerance: f64,
+    pub max_restarts: usize,
+    pub max_basis: usize,
+    pub parallelism: Par,
+}
+
+/// Converged eigenpairs of one slice (unsorted).
+pub(crate) struct SliceOutcome {
+    pub values: Vec<f64>,
+    pub vectors: Mat<f64>,
+    pub solves: usize,
+}
+
+/// Growable `n × count` column store with amortised appends.
+pub(crate) struct ColumnStore {
+    data: Mat<f64>,
+    count: usize,
+}
+
+impl ColumnStore {
+    pub(crate) fn new(n: usize, capacity: usize) -> Self {
+        Self { data: Mat::zeros(n, capacity.max(1)), count: 0 }
+    }
+    pub(crate) fn view(&self) -> MatRef<'_, f64> {
+        self.data.as_ref().subcols(0, self.count)
+    }
+    pub(crate) fn append(&mut self, block: MatRef<'_, f64>) {
+        let need = self.count + block.ncols();
+        if need > self.data.ncols() {
+            let mut bigger = Mat::zeros(self.data.nrows(), need.max(2 * self.data.ncols()));
+            bigger.as_mut().subcols_mut(0, self.count).copy_from(self.view());
+            self.data = bigger;
+        }
+        self.data.as_mut().subcols_mut(self.count, block.ncols()).copy_from(block);
+        self.count = need;
+    }
+}
+
+/// Runs block Krylov–Schur until `lower_needed` eigenvalues in `(lower_bound, σ)` and
+/// `upper_target` eigenvalues above σ are locked. `on_restart(locked, solves)` is called
+/// after every restart.
+pub(crate) fn run_slice(
+    problem: &SliceProblem<'_>,
+    settings: &SliceSettings,
+    rng: &mut ChaCha8Rng,
+    on_restart: &mut dyn FnMut(usize, usize),
+) -> Result<SliceOutcome, SolverError> {
+    let mass = problem.mass;
+    let n = mass.len();
+    let par = settings.parallelism;
+    let block = settings.block_size.max(1);
+    let sigma = problem.sigma;
+    let wanted = problem.lower_needed + problem.upper_target;
+    let room = n.saturating_sub(problem.deflation.ncols() + wanted + 3 * block);
+    let max_basis = settings.max_basis.min(room);
+    if max_basis < 2 * block {
+        return Err(SolverError::NoConvergence {
+            reason: format!("problem too small for the Krylov basis (n = {n}); use the dense solver"),
+        });
+    }
+    let mut locked = ColumnStore::new(n, wanted + 2 * block);
+    let mut locked_values: Vec<f64> = Vec::new();
+    let (mut lower_found, mut upper_found) = (0usize, 0usize);
+    let mut solves = 0usize;
+
+    let mut basis = Mat::<f64>::zeros(n, max_basis + 3 * block);
+    let start = random_orthonormal_block(n, block, &[problem.deflation], mass, rng, par)?;
+    basis.as_mut().subcols_mut(0, block).copy_from(&start);
+    let (mut mv, mut mu) = (0usize, block);
+    let mut h = Mat::<f64>::zeros(0, 0);
+    let mut g = Mat::<f64>::zeros(block, 0);
+
+    if wanted == 0 {
+        return Ok(SliceOutcome { values: Vec::new(), vectors: Mat::zeros(n, 0), solves });
+    }
+    for _restart in 0..settings.max_restarts {
+        // ---- expansion ----
+        while mv + mu <= max_basis {
+            let mut z = mass_times(mass, basis.as_ref().subcols(mv, mu));
+            problem.factor.solve_in_place(z.as_mut());
+            solves += mu;
+            let reference = mass_column_norms(mass, z.as_ref());
+            let m_new = mv + mu;
+            let current = basis.as_ref().subcols(0, m_new);
+            let bases = [problem.deflation, locked.view(), current];
+            let coefficients = project_out(z.as_mut(), &bases, mass, par);
+            let c = &coefficients[2];
+            let next = orthonormalize_block(z, &reference, &bases, mass, rng, par)?;
+            let mut h_new = Mat::<f64>::zeros(m_new, m_new);
+            h_new.as_mut().submatrix_mut(0, 0, mv, mv).copy_from(&h);
+            for j in 0..mu {
+                for i in 0..mv {
+                    let value = 0.5 * (c[(i, j)] + g[(j, i)]);
+                    h_new[(i, mv + j)] = value;
+                    h_new[(mv + j, i)] = value;
+                }
+                for i in 0..mu {
+                    h_new[(mv + i, mv + j)] = 0.5 * (c[(mv + i, j)] + c[(mv + j, i)]);
+                }
+            }
+            let mu_new = next.block.ncols();
+            let mut g_new = Mat::<f64>::zeros(mu_new, m_new);
+            g_new.as_mut().submatrix_mut(0, mv, mu_new, mu).copy_from(&next.coefficients);
+            basis.as_mut().subcols_mut(m_new, mu_new).copy_from(&next.block);
+            h = h_new;
+            g = g_new;
+            mv = m_new;
+            mu = mu_new;
+        }
+
+        // ---- Rayleigh–Ritz ----
+        let (theta, y) = symmetric_eigen(h.as_ref())?;
+        let mut gy = Mat::<f64>::zeros(mu, mv);
+        matmul(gy.as_mut(), Accum::Replace, g.as_ref(), y.as_ref(), 1.0, Par::Seq);
+        let residual: Vec<f64> = (0..mv).map(|j| (0..mu).map(|i| gy[(i, j)] * gy[(i, j)]).sum::<f64>().sqrt()).collect();
+        let mut order: Vec<usize> = (0..mv).collect();
+        order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+
+        let remaining = (problem.lower_needed - lower_found) + problem.upper_target.saturating_sub(upper_found);
+        let window = remaining + block;
+        let mut lock = Vec::new();
+        let mut keep = Vec::new();
+        for (rank, &i) in order.iter().enumerate() {
+            if theta[i] == 0.0 {
+                continue;
+            }
+            let lambda = sigma + 1.0 / theta[i];
+            if lambda <= problem.lower_bound {
+                continue; // already known (outside the deflation window): purge
+            }
+            let converged = residual[i] <= settings.tolerance * theta[i].abs();
+            if converged && rank < window {
+                lock.push(i);
+            } else if !converged {
+                keep.push(i);
+            }
+        }
+        let mut new_lower = 0;
+        if !lock.is_empty() {
+            let y_lock = Mat::from_fn(mv, lock.len(), |i, j| y[(i, lock[j])]);
+            let mut x = Mat::<f64>::zeros(n, lock.len());
+            matmul(x.as_mut(), Accum::Replace, basis.as_ref().subcols(0, mv), y_lock.as_ref(), 1.0, par);
+            locked.append(x.as_ref());
+            for &i in &lock {
+                let lambda = sigma + 1.0 / theta[i];
+                locked_values.push(lambda);
+                if lambda < sigma {
+                    lower_found += 1;
+                    new_lower += 1;
+                } else {
+                    upper_found += 1;
+                }
+            }
+        }
+        on_restart(locked_values.len(), solves);
+        if lower_found > problem.lower_needed {
+            return Err(SolverError::NoConvergence {
+                reason: format!(
+                    "inertia mismatch at shift {sigma:e}: found {lower_found} new eigenvalues below it, inertia allows {}",
+                    problem.lower_needed
+                ),
+            });
+        }
+        if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
+            return Ok(SliceOutcome { values: locked_values, vectors: locked.view().to_owned(), solves });
+        }
+
+        // ---- thick restart ----
+        let keep_target = window.max(max_basis / 2).min(max_basis.saturating_sub(mu + block));
+        keep.truncate(keep_target);
+        let p = keep.len();
+        let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
+        let mut v_new = Mat::<f64>::zeros(n, p);
+        matmul(v_new.as_mut(), Accum::Replace, basis.as_ref().subcols(0, mv), y_keep.as_ref(), 1.0, par);
+        let u_old = basis.as_ref().subcols(mv, mu).to_owned();
+        basis.as_mut().subcols_mut(0, p).copy_from(&v_new);
+        basis.as_mut().subcols_mut(p, mu).copy_from(&u_old);
+        h = Mat::from_fn(p, p, |i, j| if i == j { theta[keep[i]] } else { 0.0 });
+        g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);
+        mv = p;
+
+        // Missing eigenvalues below σ without any Ritz approximation in the basis (e.g. a
+        // multiplicity larger than the block size): bring in fresh random directions.
+        let lower_missing = problem.lower_needed - lower_found;
+        let lower_candidates = keep
+            .iter()
+            .filter(|&&i| {
+                let lambda = sigma + 1.0 / theta[i];
+                lambda < sigma && lambda > problem.lower_bound
+            })
+            .count();
+        if lower_missing > 0 && new_lower == 0 && lower_candidates < lower_missing && mu + block <= 3 * block {
+            let current = basis.as_ref().subcols(0, mv + mu);
+            let fresh =
+                random_orthonormal_block(n, block, &[problem.deflation, locked.view(), current], mass, rng, par)?;
+            basis.as_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
+            let mut g_new = Mat::<f64>::zeros(mu + block, mv);
+            g_new.as_mut().subrows_mut(0, mu).copy_from(&g);
+            g = g_new;
+            mu += block;
+        }
+    }
+    Err(SolverError::NoConvergence {
+        reason: format!(
+            "slice at shift {sigma:e} did not converge in {} restarts ({} of {} eigenpairs locked)",
+            settings.max_restarts,
+            locked_values.len(),
+            wanted
+        ),
+    })
+}

@@ -1,0 +1,221 @@
+//! Block Gram–Schmidt in the inner product `⟨x, y⟩_M = xᵀ M y` with a diagonal `M`,
+//! written with dense matrix products (BLAS-3) so that orthogonalising a block of `r`
+//! vectors against a basis of `p` vectors costs two `p × n × r` products per pass.
+
+use crate::error::SolverError;
+use faer::linalg::matmul::matmul;
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+
+/// Relative norm below which a column is treated as linearly dependent on the basis.
+const DEPENDENCE_THRESHOLD: f64 = 1e-10;
+
+/// `M Z` for a diagonal `M` (row scaling).
+pub(crate) fn mass_times(mass: &[f64], z: MatRef<'_, f64>) -> Mat<f64> {
+    Mat::from_fn(z.nrows(), z.ncols(), |i, j| mass[i] * z[(i, j)])
+}
+
+/// `Bᵀ M Z` (`p × r` for `B: n × p`, `Z: n × r`).
+pub(crate) fn mass_inner(b: MatRef<'_, f64>, mass: &[f64], z: MatRef<'_, f64>, par: Par) -> Mat<f64> {
+    let mz = mass_times(mass, z);
+    let mut c = Mat::zeros(b.ncols(), z.ncols());
+    matmul(c.as_mut(), Accum::Replace, b.transpose(), mz.as_ref(), 1.0, par);
+    c
+}
+
+/// Removes from `z` its `M`-projection onto each (M-orthonormal) basis in `bases`, with two
+/// passes of block classical Gram–Schmidt. Returns, per basis, the summed coefficients
+/// `Bᵀ M z` (`p × r`).
+pub(crate) fn project_out(mut z: MatMut<'_, f64>, bases: &[MatRef<'_, f64>], mass: &[f64], par: Par) -> Vec<Mat<f64>> {
+    let mut total: Vec<Mat<f64>> = bases.iter().map(|b| Mat::zeros(b.ncols(), z.ncols())).collect();
+    for _pass in 0..2 {
+        for (b, sum) in bases.iter().zip(total.iter_mut()) {
+            if b.ncols() == 0 {
+                continue;
+            }
+            let c = mass_inner(*b, mass, z.rb(), par);
+            matmul(z.rb_mut(), Accum::Add, *b, c.as_ref(), -1.0, par);
+            *sum += &c;
+        }
+    }
+    total
+}
+
+/// M-norms of the columns of `z`.
+pub(crate) fn mass_column_norms(mass: &[f64], z: MatRef<'_, f64>) -> Vec<f64> {
+    (0..z.ncols())
+        .map(|j| (0..z.nrows()).map(|i| mass[i] * z[(i, j)] * z[(i, j)]).sum::<f64>().sqrt())
+        .collect()
+}
+
+/// Fills `z` with uniform random entries in `[-1, 1)`.
+pub(crate) fn fill_random(mut z: MatMut<'_, f64>, rng: &mut ChaCha8Rng) {
+    for j in 0..z.ncols() {
+        for i in 0..z.nrows() {
+            z[(i, j)] = rng.random_range(-1.0..1.0);
+        }
+    }
+}
+
+/// Upper-triangular Cholesky factor `R` (`SᵀS`-style: `S = RᵀR`) of a small SPD matrix, or
+/// `None` if a pivot is not positive or the factor is too ill-conditioned for CholeskyQR.
+fn small_cholesky(s: MatRef<'_, f64>) -> Option<Mat<f64>> {
+    let r = s.nrows();
+    let mut u = Mat::<f64>::zeros(r, r);
+    for j in 0..r {
+        for i in 0..=j {
+            let mut sum = s[(i, j)];
+            for p in 0..i {
+                sum -= u[(p, i)] * u[(p, j)];
+            }
+            if i == j {
+                if sum <= 0.0 || !sum.is_finite() {
+                    return None;
+                }
+                u[(j, j)] = sum.sqrt();
+            } else {
+                u[(i, j)] = sum / u[(i, i)];
+            }
+        }
+    }
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for j in 0..r {
+        lo = lo.min(u[(j, j)]);
+        hi = hi.max(u[(j, j)]);
+    }
+    (lo > 1e-6 * hi).then_some(u)
+}
+
+/// Inverse of a small nonsingular upper-triangular matrix.
+fn upper_inverse(u: MatRef<'_, f64>) -> Mat<f64> {
+    let r = u.nrows();
+    let mut inv = Mat::<f64>::zeros(r, r);
+    for j in 0..r {
+        inv[(j, j)] = 1.0 / u[(j, j)];
+        for i in (0..j).rev() {
+            let mut sum = 0.0;
+            for p in i + 1..=j {
+                sum += u[(i, p)] * inv[(p, j)];
+            }
+            inv[(i, j)] = -sum / u[(i, i)];
+        }
+    }
+    inv
+}
+
+/// Result of [`orthonormalize_block`].
+pub(crate) struct OrthonormalBlock {
+    /// `n × r` block with M-orthonormal columns, M-orthogonal to the bases.
+    pub block: Mat<f64>,
+    /// `r × r` upper-triangular `B` with `Z_in = block · B` (up to the parts removed);
+    /// columns that were replaced by random vectors have zero entries in `B`.
+    pub coefficients: Mat<f64>,
+}
+
+/// M-orthonormalises the columns of `z` (already M-orthogonal to `bases`): CholeskyQR2 when
+/// the block is well conditioned, column-wise Gram–Schmidt otherwise. Columns that are
+/// numerically dependent (norm below `1e-10` of `reference_norms`) are replaced by random
+/// vectors orthogonalised against `bases` and the previous columns; their coefficient rows
+/// are zero, so the Krylov relation is unaffected.
+///
+/// Errors: [`SolverError::NoConvergence`] if no independent direction is left (the bases span
+/// the whole space).
+pub(crate) fn orthonormalize_block(
+    z: Mat<f64>,
+    reference_norms: &[f64],
+    bases: &[MatRef<'_, f64>],
+    mass: &[f64],
+    rng: &mut ChaCha8Rng,
+    par: Par,
+) -> Result<OrthonormalBlock, SolverError> {
+    let norms = mass_column_norms(mass, z.as_ref());
+    let well_scaled = norms.iter().zip(reference_norms).all(|(n, r)| *n > 1e-4 * r.max(f64::MIN_POSITIVE));
+    if well_scaled {
+        if let Some(result) = cholesky_qr2(&z, mass, par) {
+            return Ok(result);
+        }
+    }
+    column_gram_schmidt(z, reference_norms, bases, mass, rng, par)
+}
+
+fn cholesky_qr2(z: &Mat<f64>, mass: &[f64], par: Par) -> Option<OrthonormalBlock> {
+    let r = z.ncols();
+    let mut q = z.clone();
+    let mut total = Mat::<f64>::identity(r, r);
+    for _pass in 0..2 {
+        let s = mass_inner(q.as_ref(), mass, q.as_ref(), par);
+        let sym = Mat::from_fn(r, r, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
+        let u = small_cholesky(sym.as_ref())?;
+        let inv = upper_inverse(u.as_ref());
+        let mut next = Mat::zeros(q.nrows(), r);
+        matmul(next.as_mut(), Accum::Replace, q.as_ref(), inv.as_ref(), 1.0, par);
+        q = next;
+        let mut t = Mat::zeros(r, r);
+        matmul(t.as_mut(), Accum::Replace, u.as_ref(), total.as_ref(), 1.0, Par::Seq);
+        total = t;
+    }
+    Some(OrthonormalBlock { block: q, coefficients: total })
+}
+
+fn column_gram_schmidt(
+    mut z: Mat<f64>,
+    reference_norms: &[f64],
+    bases: &[MatRef<'_, f64>],
+    mass: &[f64],
+    rng: &mut ChaCha8Rng,
+    par: Par,
+) -> Result<OrthonormalBlock, SolverError> {
+    let (n, r) = (z.nrows(), z.ncols());
+    let mut coefficients = Mat::<f64>::zeros(r, r);
+    for j in 0..r {
+        let mut replaced = false;
+        for attempt in 0..4 {
+            let (done, mut rest) = z.as_mut().split_at_col_mut(j);
+            let mut col = rest.rb_mut().subcols_mut(0, 1);
+            let before = if replaced { mass_column_norms(mass, col.rb())[0] } else { reference_norms[j] };
+            if replaced {
+                project_out(col.rb_mut(), bases, mass, par);
+            }
+            let c = project_out(col.rb_mut(), &[done.rb()], mass, par);
+            let norm = mass_column_norms(mass, col.rb())[0];
+            if norm > DEPENDENCE_THRESHOLD * before.max(f64::MIN_POSITIVE) && norm > 0.0 {
+                if !replaced {
+                    for i in 0..j {
+                        coefficients[(i, j)] = c[0][(i, 0)];
+                    }
+                    coefficients[(j, j)] = norm;
+                }
+                for i in 0..n {
+                    col[(i, 0)] /= norm;
+                }
+                break;
+            }
+            if attempt == 3 {
+                return Err(SolverError::NoConvergence {
+                    reason: "Krylov basis spans the whole space; no independent direction left".into(),
+                });
+            }
+            replaced = true;
+            fill_random(col.rb_mut(), rng);
+        }
+    }
+    Ok(OrthonormalBlock { block: z, coefficients })
+}
+
+/// A fresh `n × r` random block, M-orthonormal and M-orthogonal to `bases`.
+pub(crate) fn random_orthonormal_block(
+    n: usize,
+    r: usize,
+    bases: &[MatRef<'_, f64>],
+    mass: &[f64],
+    rng: &mut ChaCha8Rng,
+    par: Par,
+) -> Result<Mat<f64>, SolverError> {
+    let mut z = Mat::zeros(n, r);
+    fill_random(z.as_mut(), rng);
+    let reference = mass_column_norms(mass, z.as_ref());
+    project_out(z.as_mut(), bases, mass, par);
+    Ok(orthonormalize_block(z, &reference, bases, mass, rng, par)?.block)
+}

@@ -1,0 +1,9 @@
+//! Generalized symmetric eigensolver for the lowest eigenpairs of `A x = λ M x`.
+
+mod krylov_slice;
+mod lowest;
+mod mass_orthogonal;
+mod types;
+
+pub use lowest::lowest_eigenpairs;
+pub use types::{EigenOptions, EigenProgress, Eigenpairs};

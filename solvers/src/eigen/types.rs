@@ -1,0 +1,85 @@
+//! Options, progress reports and results of [`crate::lowest_eigenpairs`].
+
+use faer::Mat;
+use std::fmt;
+
+/// Progress of [`crate::lowest_eigenpairs`], reported after every restart of every slice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EigenProgress {
+    /// Eigenpairs found so far (confirmed by an inertia count or still tentative).
+    pub found: usize,
+    /// Eigenpairs whose completeness has been confirmed by an inertia count.
+    pub confirmed: usize,
+    /// Number of eigenpairs requested.
+    pub wanted: usize,
+    /// Shifts (spectrum slices) used so far.
+    pub slices: usize,
+    /// Sparse factorizations computed so far.
+    pub factorizations: usize,
+    /// Single-vector solves with a factorization so far (a block of `r` counts `r`).
+    pub solves: usize,
+}
+
+/// Tuning knobs of [`crate::lowest_eigenpairs`]. `Default` gives the recommended values.
+#[derive(Clone, Copy)]
+pub struct EigenOptions<'a> {
+    /// Seed of the random start blocks; equal seeds give identical results.
+    pub seed: u64,
+    /// Convergence tolerance: a Ritz pair `(θ, u)` of the shift-inverted operator
+    /// `(A − σM)⁻¹M` is accepted when `‖OP u − θ u‖_M ≤ tolerance · |θ|`. Default `1e-12`.
+    pub tolerance: f64,
+    /// Number of vectors per Krylov block (and per blocked solve). Default 16.
+    pub block_size: usize,
+    /// Target number of new eigenpairs per spectrum slice (one factorization each). Default 128.
+    pub slice_size: usize,
+    /// Maximum number of restarts per slice before giving up. Default 1000.
+    pub max_restarts: usize,
+    /// Problems with `n ≤ dense_threshold` (or `3k ≥ n`) use the dense solver. Default 400.
+    pub dense_threshold: usize,
+    /// Called with a progress report after every restart; `None` for silence.
+    pub progress: Option<&'a dyn Fn(&EigenProgress)>,
+}
+
+impl Default for EigenOptions<'_> {
+    fn default() -> Self {
+        Self {
+            seed: 0x7466_7665_6967_656e,
+            tolerance: 1e-12,
+            block_size: 16,
+            slice_size: 128,
+            max_restarts: 1000,
+            dense_threshold: 400,
+            progress: None,
+        }
+    }
+}
+
+impl fmt::Debug for EigenOptions<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("EigenOptions")
+            .field("seed", &self.seed)
+            .field("tolerance", &self.tolerance)
+            .field("block_size", &self.block_size)
+            .field("slice_size", &self.slice_size)
+            .field("max_restarts", &self.max_restarts)
+            .field("dense_threshold", &self.dense_threshold)
+            .field("progress", &self.progress.map(|_| "callback"))
+            .finish()
+    }
+}
+
+/// Lowest eigenpairs of `A x = λ M x`.
+#[derive(Debug, Clone)]
+pub struct Eigenpairs {
+    /// Eigenvalues in ascending order (length `k`).
+    pub values: Vec<f64>,
+    /// `n × k` eigenvectors, column `j` for `values[j]`, M-orthonormal: `Xᵀ M X = I`.
+    pub vectors: Mat<f64>,
+    /// Relative residuals `‖A x_j − λ_j M x_j‖₂ / (‖A‖₁ ‖x_j‖₂)`, where `‖A‖₁` is the
+    /// maximum absolute column sum (an upper bound of `‖A‖₂`).
+    pub residuals: Vec<f64>,
+    /// Sparse factorizations computed (one per shift, plus retries).
+    pub factorizations: usize,
+    /// Single-vector solves (a block solve of `r` right-hand sides counts `r`).
+    pub solves: usize,
+}
