@@ -1,0 +1,33 @@
+//! Dense eigenvalues (faer) for the checks on small meshes.
+
+use faer::{Mat, Side};
+use sprs::CsMat;
+
+/// Eigenvalues (ascending) of the generalized problem `A x = λ diag(mass) x`, computed densely as
+/// the eigenvalues of `D^{-1/2} A D^{-1/2}` (symmetric). `A` must be symmetric, `mass > 0`.
+pub fn generalized_eigenvalues(a: &CsMat<f64>, mass: &[f64]) -> Vec<f64> {
+    let n = a.rows();
+    let scale: Vec<f64> = mass.iter().map(|m| 1.0 / m.sqrt()).collect();
+    let mut dense = Mat::<f64>::zeros(n, n);
+    for (value, (i, j)) in a.iter() {
+        dense[(i, j)] += value * scale[i] * scale[j];
+    }
+    dense
+        .self_adjoint_eigenvalues(Side::Lower)
+        .expect("dense symmetric eigenvalues converge")
+}
+
+/// Splits ascending eigenvalues into (count of those `≤ tolerance · max`, the rest).
+pub fn split_zeros(eigenvalues: &[f64], relative_tolerance: f64) -> (usize, Vec<f64>) {
+    let max = eigenvalues.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let zeros = eigenvalues
+        .iter()
+        .filter(|x| x.abs() <= relative_tolerance * max)
+        .count();
+    let rest = eigenvalues
+        .iter()
+        .copied()
+        .filter(|x| x.abs() > relative_tolerance * max)
+        .collect();
+    (zeros, rest)
+}

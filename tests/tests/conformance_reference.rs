@@ -1,0 +1,54 @@
+//! Cross-discretization facts of `shared/docs/MATH.md` that the per-discretization suite cannot
+//! state alone: the published icosphere eigenvalues, and the nonconforming Hodge–Laplacian having
+//! the spectrum of the conforming one.
+
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::generate::{genus_surface, icosphere, torus};
+use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
+use tvf_tests::dense::{generalized_eigenvalues, split_zeros};
+use tvf_tests::spectral_checks::check_same_spectrum;
+
+/// MATH.md: on the 320-face icosphere (barycentric lumping) the lowest three nonzero P1
+/// eigenvalues are ≈ 2.000 and the lowest three Crouzeix–Raviart ones ≈ 2.046 (verified there
+/// against libigl), so the lowest six of `L` are these.
+#[test]
+fn icosphere_320_lowest_eigenvalues_match_math_md() {
+    let mesh = icosphere(2);
+    assert_eq!(mesh.face_count(), 320);
+    let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("builds");
+    let exact = complex.exact_eigenproblem();
+    let co_exact = complex.co_exact_eigenproblem();
+    let (_, p1) = split_zeros(&generalized_eigenvalues(&exact.stiffness, &exact.mass), 1e-9);
+    let (_, cr) = split_zeros(&generalized_eigenvalues(&co_exact.stiffness, &co_exact.mass), 1e-9);
+    eprintln!("P1 lowest {:?}, CR lowest {:?}", &p1[..4], &cr[..4]);
+    for &lambda in &p1[..3] {
+        assert!((lambda - 2.000).abs() < 5e-4, "P1: {:?}", &p1[..3]);
+    }
+    for &lambda in &cr[..3] {
+        assert!((lambda - 2.046).abs() < 5e-4, "CR: {:?}", &cr[..3]);
+    }
+    let (zeros, l) = split_zeros(&generalized_eigenvalues(&complex.dirichlet_energy(), complex.m1()), 1e-9);
+    assert_eq!(zeros, 0);
+    let mut six: Vec<f64> = p1[..3].iter().chain(&cr[..3]).copied().collect();
+    six.sort_by(f64::total_cmp);
+    for (a, b) in l[..6].iter().zip(&six) {
+        assert!((a - b).abs() < 1e-9, "L lowest {:?} vs {six:?}", &l[..6]);
+    }
+}
+
+/// The nonconforming Hodge–Laplacian has the same spectrum as the conforming one (same lumping):
+/// both are the union of the P1 and CR spectra plus `2g` zeros.
+#[test]
+fn nonconforming_spectrum_equals_conforming_spectrum() {
+    for mesh in [
+        icosphere(2),
+        torus(1.0, 0.4, 16, 8).expect("valid torus"),
+        genus_surface(2, 2),
+    ] {
+        for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
+            let a = Conforming::new(&mesh, lumping).expect("builds");
+            let b = Nonconforming::new(&mesh, lumping).expect("builds");
+            check_same_spectrum(&a, &b);
+        }
+    }
+}
