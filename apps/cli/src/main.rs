@@ -19,12 +19,15 @@ struct Cli {
 enum Command {
     /// Report a mesh's counts, topology, angles and validation findings.
     Info(commands::info::InfoArgs),
+    /// Write the paper's matrices (G, G*, M, M*, M_X, J, cotan, CR, S, B) as Matrix Market files.
+    Operators(commands::operators::OperatorsArgs),
 }
 
 fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Info(args) => commands::info::run(args),
+        Command::Operators(args) => commands::operators::run(args),
     };
     if let Err(error) = result {
         eprintln!("error: {error:#}");

@@ -1,0 +1,171 @@
+//! `tvf operators`: writes the paper's matrices of a mesh as Matrix Market files.
+
+use crate::examples::example_mesh;
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use serde_json::json;
+use sprs::CsMat;
+use std::fs;
+use std::path::{Path, PathBuf};
+use tvf_core::discretization::sparse::diagonal;
+use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
+
+/// Which discrete Hodge decomposition the field matrices `S` and `B` belong to.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Decomposition {
+    /// `X_h = grad S_h ⊕ J grad S*_h ⊕ H_h` (the paper's choice).
+    Conforming,
+    /// `X_h = grad S*_h ⊕ J grad S_h ⊕ H*_h`.
+    Nonconforming,
+}
+
+/// Mass lumping of the function spaces.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Mass {
+    /// A third of each adjacent triangle's area (the paper's default).
+    Barycentric,
+    /// Mixed Voronoi areas (vertices) and midpoint Voronoi cells (edges).
+    Voronoi,
+}
+
+/// Arguments of `tvf operators`.
+#[derive(Args)]
+pub struct OperatorsArgs {
+    /// Mesh file (OBJ, OFF, PLY); omit when using --example.
+    mesh: Option<PathBuf>,
+    /// A built-in example mesh instead of a file.
+    #[arg(long, conflicts_with = "mesh")]
+    example: Option<String>,
+    /// The Hodge decomposition whose field matrices (S, B) are written.
+    #[arg(long, value_enum)]
+    decomposition: Decomposition,
+    /// Mass lumping of M and Mstar.
+    #[arg(long, value_enum, default_value = "barycentric")]
+    mass: Mass,
+    /// Output directory (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+/// Writes G, Gstar, M, Mstar, MX, J, Sc, Sstar, S, B (Matrix Market) and info.json.
+pub fn run(args: OperatorsArgs) -> Result<()> {
+    let mesh = match (&args.mesh, &args.example) {
+        (Some(path), None) => {
+            tvf_core::io::load_mesh(path)
+                .with_context(|| format!("cannot load mesh {}", path.display()))?
+                .mesh
+        }
+        (None, Some(name)) => example_mesh(name)?,
+        _ => bail!("give a mesh file or --example NAME"),
+    };
+    let lumping = match args.mass {
+        Mass::Barycentric => MassLumping::Barycentric,
+        Mass::Voronoi => MassLumping::Voronoi,
+    };
+    fs::create_dir_all(&args.out)
+        .with_context(|| format!("cannot create output directory {}", args.out.display()))?;
+    match args.decomposition {
+        Decomposition::Conforming => {
+            let complex = Conforming::new(&mesh, lumping).context("cannot build the operators")?;
+            write_all(&complex, &mesh, true, &args.out, lumping)
+        }
+        Decomposition::Nonconforming => {
+            let complex =
+                Nonconforming::new(&mesh, lumping).context("cannot build the operators")?;
+            write_all(&complex, &mesh, false, &args.out, lumping)
+        }
+    }
+}
+
+/// Writes every file; `p1_is_potential` says whether the complex's potential space is P1
+/// (conforming) or Crouzeix–Raviart (nonconforming).
+fn write_all<H: HodgeComplex>(
+    complex: &H,
+    mesh: &SurfaceMesh,
+    p1_is_potential: bool,
+    out: &Path,
+    lumping: MassLumping,
+) -> Result<()> {
+    let (g, gstar) = (complex.potentials().gradient(), complex.co_potentials().gradient());
+    let (m, mstar) = (complex.potentials().mass(), complex.co_potentials().mass());
+    let (sc, sstar) = (complex.potential_stiffness(), complex.co_potential_stiffness());
+    let (g, gstar, m, mstar, sc, sstar) = if p1_is_potential {
+        (g, gstar, m, mstar, sc, sstar)
+    } else {
+        (gstar, g, mstar, m, sstar, sc)
+    };
+    let matrices: [(&str, CsMat<f64>); 10] = [
+        ("G", g.clone()),
+        ("Gstar", gstar.clone()),
+        ("M", diagonal(m)),
+        ("Mstar", diagonal(mstar)),
+        ("MX", diagonal(complex.m1())),
+        ("J", complex.fields().rotation().clone()),
+        ("Sc", sc),
+        ("Sstar", sstar),
+        ("S", complex.dirichlet_energy()),
+        ("B", complex.biharmonic_energy()),
+    ];
+    for (name, matrix) in &matrices {
+        write_atomically(&out.join(format!("{name}.mtx")), |path| {
+            sprs::io::write_matrix_market(path, matrix)
+        })?;
+    }
+    let info = json!({
+        "vertices": mesh.vertex_count(),
+        "edges": mesh.edge_count(),
+        "faces": mesh.face_count(),
+        "components": mesh.component_count(),
+        "genus": mesh.genus(),
+        "harmonic_dimension": complex.harmonic_dimension(),
+        "closed": mesh.is_closed(),
+        "decomposition": if p1_is_potential { "conforming" } else { "nonconforming" },
+        "mass_lumping": lumping.name(),
+        "matrices": {
+            "G": "2F x V, gradient of P1 hat functions, pointwise, face frames",
+            "Gstar": "2F x E, gradient of Crouzeix-Raviart basis functions (1 - 2 phi_c), pointwise",
+            "M": "V x V diagonal, lumped P1 mass (integrated, area)",
+            "Mstar": "E x E diagonal, lumped CR mass (integrated, area)",
+            "MX": "2F x 2F diagonal, face area twice per face",
+            "J": "2F x 2F, +pi/2 rotation per face, (a, b) -> (-b, a)",
+            "Sc": "V x V cotan matrix G^T MX G",
+            "Sstar": "E x E CR stiffness Gstar^T MX Gstar",
+            "S": "2F x 2F field Dirichlet energy of the chosen decomposition; conforming: MX (G M^-1 G^T - J Gstar Mstar^-1 Gstar^T J) MX, nonconforming: (G, M) and (Gstar, Mstar) exchanged",
+            "B": "2F x 2F biharmonic energy S MX^-1 S",
+        },
+        "conventions": {
+            "indices": "0-based in this file; Matrix Market files are 1-based",
+            "field_layout": "face t stored at rows 2t, 2t+1 in the frame e1 = normalize(p_i1 - p_i0), e2 = n x e1",
+            "vertex_order": "as in the input mesh",
+            "edge_order": "edges (a, b) with a < b in lexicographic order",
+            "face_orientation": "counter-clockwise seen from outside, n = (p1 - p0) x (p2 - p0) normalized",
+        },
+    });
+    write_atomically(&out.join("info.json"), |path| {
+        fs::write(path, serde_json::to_string_pretty(&info)? + "\n")
+    })?;
+    println!(
+        "wrote 10 matrices and info.json to {} ({} decomposition, {} mass)",
+        out.display(),
+        if p1_is_potential { "conforming" } else { "nonconforming" },
+        lumping.name()
+    );
+    Ok(())
+}
+
+/// Writes `path` through a temporary file in the same directory and renames it into place.
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&Path) -> std::io::Result<()>,
+) -> Result<()> {
+    let file_name = path
+        .file_name()
+        .and_then(|n| n.to_str())
+        .context("output path has no file name")?;
+    let temporary = path.with_file_name(format!(".{file_name}.tmp"));
+    write(&temporary).with_context(|| format!("cannot write {}", temporary.display()))?;
+    fs::rename(&temporary, path)
+        .with_context(|| format!("cannot move {} to {}", temporary.display(), path.display()))
+}
