@@ -1,4 +1,50 @@
 //! # tvf-design
 //!
-//! Tangential vector field splines and soft-constrained design.
+//! Tangential vector field splines (hard constraints, Section 7 of the paper) and
+//! soft-constrained design (Fisher et al. 2007, Section 8.4), full and reduced.
+//!
+//! - [`Constraint`]: a vector in a face, a divergence or a curl value at a node or a point;
+//!   [`ConstraintSet`] reads the JSON format; [`ConstraintAssembler`] turns constraints into rows
+//!   `C̃` of any [`HodgeComplex`](tvf_core::discretization::HodgeComplex).
+//! - [`ReducedBasis`]: the eigenfields `U` row-major, with `x = U v` in `f64` and `f32`.
+//! - [`SplineSession`]: the reduced spline editor (bordered dense Cholesky of `C D⁻¹ Cᵀ`);
+//!   [`reference_spline`]: the full-resolution spline for checking it.
+//! - [`FullSoftDesign`] (sparse Cholesky, symbolic reuse, iterative refinement) and
+//!   [`ReducedSoftDesign`] (dense Cholesky with low-rank updates).
+//!
+//! ```
+//! use tvf_core::generate::icosphere;
+//! use tvf_design::{Constraint, ConstraintAssembler, Location, Target};
+//! use tvf_discretizations::{Conforming, MassLumping};
+//!
+//! let mesh = icosphere(1);
+//! let complex = Conforming::new(&mesh, MassLumping::Barycentric)?;
+//! let assembler = ConstraintAssembler::new(&complex, &mesh);
+//! let source = Constraint::new("source", Target::Divergence(2.0), Location::Vertex(5));
+//! let compiled = assembler.compile(&source)?;
+//! assert_eq!(compiled.rows.len(), 1); // one row of div_h
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![warn(missing_docs)]
+
+mod assembler;
+mod bordered_cholesky;
+mod constraint;
+mod constraint_file;
+mod error;
+mod reduced_basis;
+mod reference_spline;
+mod soft_full;
+mod soft_reduced;
+mod sparse_pattern;
+mod spline;
+
+pub use assembler::ConstraintAssembler;
+pub use constraint::{CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target};
+pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
+pub use error::{ConstraintError, ConstraintFileError, DesignError};
+pub use reduced_basis::{ReducedBasis, ReducedBasisF32};
+pub use reference_spline::{reference_spline, ReferenceSpline};
+pub use soft_full::{default_regularization, FullSoftDesign, SoftOptions, SolveReport};
+pub use soft_reduced::ReducedSoftDesign;
+pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};

@@ -1,0 +1,149 @@
+//! The constraint model: what a user prescribes (a vector, a divergence or a curl value), where,
+//! and in which operator family.
+
+/// What a constraint prescribes. All values are **pointwise** (MATH.md): a tangent vector, or the
+/// pointwise divergence / curl of the field (units 1/length times the field's units).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Target {
+    /// A vector in a face, given in 3D; only its projection onto the face plane is prescribed
+    /// (2 constraint rows: the identity in the face frame).
+    Vector([f64; 3]),
+    /// A divergence value (a source for positive values, a sink for negative ones); 1 row.
+    Divergence(f64),
+    /// A curl value (a vortex, counter-clockwise seen from outside for positive values); 1 row.
+    Curl(f64),
+}
+
+impl Target {
+    /// Lower-case name used in JSON: `vector`, `divergence`, `curl`.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Target::Vector(_) => "vector",
+            Target::Divergence(_) => "divergence",
+            Target::Curl(_) => "curl",
+        }
+    }
+}
+
+/// Where a constraint applies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Location {
+    /// Face `face`, optionally at the point with barycentric coordinates `barycentric` (w.r.t. the
+    /// face's corners `i0, i1, i2`; non-negative, summing to 1). A vector constraint is the same
+    /// at every point of its face (fields are piecewise constant); a divergence or curl at a point
+    /// mixes the nodal rows with the interpolation weights of the family's function space
+    /// (face centroid when `barycentric` is absent).
+    Face {
+        /// Face index.
+        face: usize,
+        /// Barycentric coordinates of the point, if any.
+        barycentric: Option<[f64; 3]>,
+    },
+    /// A mesh vertex: a node of the Lagrange P1 space.
+    Vertex(usize),
+    /// A mesh edge (numbered as in [`tvf_core::SurfaceMesh::edges`]): a node of the
+    /// Crouzeix–Raviart space.
+    Edge(usize),
+}
+
+/// Which divergence / curl operator a scalar constraint uses.
+///
+/// The decomposition's own pair vanishes on the harmonic fields: divergence in the potential
+/// space (`potential_divergence`), curl in the co-potential space (`co_potential_curl`). For the
+/// conforming complex that is divergence at vertices (P1) and curl at edges (CR); for the
+/// nonconforming complex the other way round. [`OperatorFamily::Other`] selects the other pair
+/// (`co_potential_divergence`, `potential_curl`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum OperatorFamily {
+    /// The decomposition's own divergence and curl (the default).
+    #[default]
+    Decomposition,
+    /// The other family.
+    Other,
+}
+
+impl OperatorFamily {
+    /// Name used in JSON: `decomposition` or `other`.
+    pub fn name(self) -> &'static str {
+        match self {
+            OperatorFamily::Decomposition => "decomposition",
+            OperatorFamily::Other => "other",
+        }
+    }
+}
+
+/// One user constraint: an id (unique within a set), a target, a location, the operator family
+/// (for divergence and curl) and a weight (used by soft design only; hard splines ignore it).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Constraint {
+    /// Unique name, used in every error and report.
+    pub id: String,
+    /// The prescribed value.
+    pub target: Target,
+    /// Where it applies.
+    pub location: Location,
+    /// Operator family of a divergence or curl constraint (ignored for vectors).
+    pub family: OperatorFamily,
+    /// Soft-design weight `w > 0`: the constraint's rows enter `C̃` scaled by `√w`. Default 1.
+    pub weight: f64,
+}
+
+impl Constraint {
+    /// A constraint with the default family and weight 1.
+    pub fn new(id: impl Into<String>, target: Target, location: Location) -> Self {
+        Self {
+            id: id.into(),
+            target,
+            location,
+            family: OperatorFamily::Decomposition,
+            weight: 1.0,
+        }
+    }
+
+    /// The same constraint with another operator family.
+    pub fn with_family(mut self, family: OperatorFamily) -> Self {
+        self.family = family;
+        self
+    }
+
+    /// The same constraint with another soft-design weight.
+    pub fn with_weight(mut self, weight: f64) -> Self {
+        self.weight = weight;
+        self
+    }
+}
+
+/// A sparse row over the field coefficients (`2F` columns): `(column, value)` pairs.
+pub type SparseRow = Vec<(usize, f64)>;
+
+/// A constraint turned into linear rows over the field coefficients: `rows[k] · x = values[k]`.
+///
+/// Rows are **pointwise** (a row of the pointwise divergence, curl or identity), so residuals are
+/// in the units of the prescribed values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompiledConstraint {
+    /// The constraint's id.
+    pub id: String,
+    /// 2 rows for a vector, 1 for a divergence or curl.
+    pub rows: Vec<SparseRow>,
+    /// Prescribed values, one per row.
+    pub values: Vec<f64>,
+    /// Soft-design weight (rows are scaled by `√weight` in soft design only).
+    pub weight: f64,
+}
+
+impl CompiledConstraint {
+    /// Residuals `rows[k] · x − values[k]` for a field `x` (`2F` coefficients).
+    pub fn residuals(&self, field: &[f64]) -> Vec<f64> {
+        self.rows
+            .iter()
+            .zip(&self.values)
+            .map(|(row, value)| row.iter().map(|&(j, a)| a * field[j]).sum::<f64>() - value)
+            .collect()
+    }
+
+    /// Scale of the prescribed values (Euclidean norm), for relative residuals.
+    pub fn value_scale(&self) -> f64 {
+        self.values.iter().map(|v| v * v).sum::<f64>().sqrt()
+    }
+}
