@@ -14,6 +14,8 @@
 pub mod discretization;
 pub mod generate;
 pub mod geometry;
+pub mod io;
 pub mod mesh;
 
 pub use mesh::{MeshError, SurfaceMesh, NO_FACE};
+pub use mesh::{ValidationReport, ValidationWarning};

@@ -56,4 +56,30 @@ pub enum MeshError {
         /// Larger vertex index of the shared edge.
         b: usize,
     },
+    /// The faces around a vertex form more than one edge-connected fan (e.g. two cones
+    /// touching at their tips, a "bowtie").
+    #[error("vertex {vertex} is non-manifold: its faces form {fans} separate fans")]
+    NonManifoldVertex {
+        /// Vertex index.
+        vertex: usize,
+        /// Number of edge-connected fans of faces around the vertex (at least 2).
+        fans: usize,
+    },
+    /// No choice of face orientations makes all neighbours consistent (e.g. a Möbius strip).
+    ///
+    /// Distinguished from [`MeshError::InconsistentOrientation`], which is reported when a
+    /// consistent orientation exists but the file does not use it.
+    #[error("the surface is non-orientable: reorienting from face {face_a} conflicts at face {face_b}")]
+    NonOrientable {
+        /// Face where the reorientation started (first face of its component).
+        face_a: usize,
+        /// Face whose required orientation contradicts itself.
+        face_b: usize,
+    },
+    /// A face has zero area (collinear or coincident corners).
+    #[error("face {face} has zero area")]
+    ZeroAreaFace {
+        /// Face index.
+        face: usize,
+    },
 }

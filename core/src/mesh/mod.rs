@@ -1,8 +1,14 @@
 //! Triangle meshes: the [`SurfaceMesh`] type, its topology and its errors.
 
 mod error;
+mod quality;
 mod surface_mesh;
 mod topology;
+mod validate;
+mod validation_report;
 
 pub use error::MeshError;
+pub use quality::triangle_angles;
 pub use surface_mesh::{SurfaceMesh, NO_FACE};
+pub use validate::check_faces;
+pub use validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};

@@ -1,0 +1,76 @@
+//! What a reader produces before validation, and the step from it to a [`LoadedMesh`].
+
+use super::error::{LoadError, LoadErrorKind};
+use crate::mesh::ValidationReport;
+use crate::{MeshError, SurfaceMesh};
+use std::path::Path;
+
+/// A problem found by a reader, with the 1-based line where one applies.
+pub(crate) type Located = (Option<usize>, LoadErrorKind);
+
+/// Builds a [`Located`] error at `line`.
+pub(crate) fn at(line: usize, kind: LoadErrorKind) -> Located {
+    (Some(line), kind)
+}
+
+/// Builds a [`Located`] parse error at `line`.
+pub(crate) fn parse_error(line: usize, message: impl Into<String>) -> Located {
+    at(
+        line,
+        LoadErrorKind::Parse {
+            message: message.into(),
+        },
+    )
+}
+
+/// Positions and triangles exactly as a file lists them (0-based, polygons fan-triangulated).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct RawMesh {
+    pub positions: Vec<[f64; 3]>,
+    pub faces: Vec<[usize; 3]>,
+    /// 1-based line of every vertex, or empty for binary files.
+    pub vertex_lines: Vec<usize>,
+    /// 1-based line of every triangle, or empty for binary files.
+    pub face_lines: Vec<usize>,
+}
+
+/// A mesh read from a file: the valid [`SurfaceMesh`] and what validation reported.
+#[derive(Debug, Clone)]
+pub struct LoadedMesh {
+    /// The mesh (unreferenced vertices dropped).
+    pub mesh: SurfaceMesh,
+    /// Warnings, angle range and the map back to the file's vertex numbers.
+    pub report: ValidationReport,
+}
+
+impl RawMesh {
+    /// Validates the raw data; errors name `path` and, for text files, the line of the
+    /// offending vertex or face.
+    pub(crate) fn into_loaded(self, path: &Path) -> Result<LoadedMesh, LoadError> {
+        let RawMesh {
+            positions,
+            faces,
+            vertex_lines,
+            face_lines,
+        } = self;
+        SurfaceMesh::validated(positions, faces)
+            .map(|(mesh, report)| LoadedMesh { mesh, report })
+            .map_err(|error| {
+                let line = match &error {
+                    MeshError::NonFiniteCoordinate { vertex }
+                    | MeshError::NonManifoldVertex { vertex, .. } => vertex_lines.get(*vertex),
+                    MeshError::IndexOutOfRange { face, .. }
+                    | MeshError::RepeatedVertexInFace { face, .. }
+                    | MeshError::ZeroAreaFace { face } => face_lines.get(*face),
+                    MeshError::InconsistentOrientation { face_b, .. }
+                    | MeshError::NonOrientable { face_b, .. } => face_lines.get(*face_b),
+                    _ => None,
+                };
+                LoadError {
+                    path: path.to_path_buf(),
+                    line: line.copied(),
+                    kind: LoadErrorKind::Mesh(error),
+                }
+            })
+    }
+}

@@ -1,0 +1,119 @@
+//! Writers: OBJ (text) and PLY (binary little-endian), always written atomically.
+
+use crate::SurfaceMesh;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// A mesh could not be written.
+#[derive(Debug, Error)]
+pub enum SaveError {
+    /// The extension is neither `obj` nor `ply`.
+    #[error("{}: unknown output format (expected .obj or .ply)", path.display())]
+    UnknownFormat {
+        /// The requested output path.
+        path: PathBuf,
+    },
+    /// Creating, writing or renaming the file failed.
+    #[error("{}: cannot write: {source}", path.display())]
+    Io {
+        /// The requested output path.
+        path: PathBuf,
+        /// The operating system's error.
+        source: std::io::Error,
+    },
+}
+
+/// Writes `mesh` to `path` as OBJ or PLY, chosen by the extension (case-insensitive).
+pub fn save_mesh(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveError> {
+    let path = path.as_ref();
+    let extension = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match extension.as_deref() {
+        Some("obj") => write_obj(path, mesh),
+        Some("ply") => write_ply(path, mesh),
+        _ => Err(SaveError::UnknownFormat {
+            path: path.to_path_buf(),
+        }),
+    }
+}
+
+/// Writes Wavefront OBJ: `v x y z` (shortest decimal that reads back to the same `f64`) and
+/// 1-based `f i j k` lines, vertex and face order kept.
+pub fn write_obj(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveError> {
+    write_atomically(path.as_ref(), |out| {
+        writeln!(
+            out,
+            "# tvf: {} vertices, {} faces",
+            mesh.vertex_count(),
+            mesh.face_count()
+        )?;
+        for p in mesh.positions() {
+            writeln!(out, "v {} {} {}", p[0], p[1], p[2])?;
+        }
+        for f in mesh.faces() {
+            writeln!(out, "f {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1)?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes binary little-endian PLY: `double x, y, z` per vertex and a `uchar`-counted `uint`
+/// index list per face.
+pub fn write_ply(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveError> {
+    write_atomically(path.as_ref(), |out| {
+        write!(
+            out,
+            "ply\nformat binary_little_endian 1.0\ncomment written by tvf\n\
+             element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
+             element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
+            mesh.vertex_count(),
+            mesh.face_count()
+        )?;
+        for p in mesh.positions() {
+            for x in p {
+                out.write_all(&x.to_le_bytes())?;
+            }
+        }
+        for f in mesh.faces() {
+            out.write_all(&[3])?;
+            for &v in f {
+                let v = u32::try_from(v).map_err(|_| {
+                    std::io::Error::new(
+                        std::io::ErrorKind::InvalidInput,
+                        "vertex index does not fit PLY's uint",
+                    )
+                })?;
+                out.write_all(&v.to_le_bytes())?;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// Writes through `fill` into a temporary file in the target's directory, then renames it over
+/// `path`, so readers never see a half-written file.
+fn write_atomically(
+    path: &Path,
+    fill: impl FnOnce(&mut BufWriter<&mut std::fs::File>) -> std::io::Result<()>,
+) -> Result<(), SaveError> {
+    let io = |source| SaveError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let directory = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut temporary = tempfile::NamedTempFile::new_in(directory).map_err(io)?;
+    {
+        let mut out = BufWriter::new(temporary.as_file_mut());
+        fill(&mut out).map_err(io)?;
+        out.flush().map_err(io)?;
+    }
+    temporary.as_file().sync_all().map_err(io)?;
+    temporary.persist(path).map_err(|e| io(e.error))?;
+    Ok(())
+}

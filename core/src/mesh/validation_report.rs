@@ -1,0 +1,111 @@
+//! What validation found that does not stop a mesh from being used: warnings and measures.
+
+use std::fmt;
+
+/// A finding that does not make the mesh unusable.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ValidationWarning {
+    /// Vertices that no face uses; they were dropped (indices renumbered, order kept).
+    UnreferencedVertices {
+        /// How many were dropped.
+        count: usize,
+        /// The first one (0-based index in the input).
+        first: usize,
+    },
+    /// Referenced vertices with exactly the same position as an earlier referenced vertex.
+    /// They are kept (the faces decide the topology), but they usually mean an unwelded seam.
+    DuplicateVertices {
+        /// How many vertices repeat an earlier position.
+        count: usize,
+        /// The first repeating vertex (input index).
+        first: usize,
+        /// The earlier vertex it repeats (input index).
+        duplicate_of: usize,
+    },
+    /// The mesh is closed but encloses a negative volume: the normals point inward.
+    InwardNormals {
+        /// The signed volume (units of length³).
+        signed_volume: f64,
+    },
+    /// Faces with an interior angle below [`SMALL_ANGLE_DEG`] degrees (slivers).
+    SmallAngles {
+        /// Number of such faces.
+        faces: usize,
+    },
+}
+
+/// Threshold (degrees) below which an angle is reported by [`ValidationWarning::SmallAngles`].
+pub const SMALL_ANGLE_DEG: f64 = 1.0;
+
+impl ValidationWarning {
+    /// A short stable name for machine-readable output, e.g. `"unreferenced_vertices"`.
+    pub fn code(&self) -> &'static str {
+        match self {
+            Self::UnreferencedVertices { .. } => "unreferenced_vertices",
+            Self::DuplicateVertices { .. } => "duplicate_vertices",
+            Self::InwardNormals { .. } => "inward_normals",
+            Self::SmallAngles { .. } => "small_angles",
+        }
+    }
+}
+
+impl fmt::Display for ValidationWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::UnreferencedVertices { count, first } => write!(
+                f,
+                "{count} unreferenced vertices dropped (first: vertex {first})"
+            ),
+            Self::DuplicateVertices {
+                count,
+                first,
+                duplicate_of,
+            } => write!(
+                f,
+                "{count} vertices repeat an earlier position exactly \
+                 (first: vertex {first} = vertex {duplicate_of})"
+            ),
+            Self::InwardNormals { signed_volume } => write!(
+                f,
+                "closed mesh with negative signed volume {signed_volume:e}: normals point inward"
+            ),
+            Self::SmallAngles { faces } => {
+                write!(f, "{faces} faces have an angle below {SMALL_ANGLE_DEG}°")
+            }
+        }
+    }
+}
+
+/// What [`crate::SurfaceMesh::validated`] found besides errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValidationReport {
+    /// Every non-fatal finding, in a fixed order (unreferenced, duplicates, normals, angles).
+    pub warnings: Vec<ValidationWarning>,
+    /// `original_vertex[v]`: the input index of mesh vertex `v` (differs from `v` once
+    /// unreferenced vertices were dropped), `V` entries.
+    pub original_vertex: Vec<usize>,
+    /// Number of input vertices (referenced or not).
+    pub input_vertex_count: usize,
+    /// Smallest interior angle, degrees.
+    pub min_angle_deg: f64,
+    /// Largest interior angle, degrees.
+    pub max_angle_deg: f64,
+}
+
+impl ValidationReport {
+    /// Number of unreferenced input vertices that were dropped.
+    pub fn unreferenced_vertices(&self) -> usize {
+        self.input_vertex_count - self.original_vertex.len()
+    }
+
+    /// Number of referenced vertices that repeat an earlier position exactly.
+    pub fn duplicate_vertices(&self) -> usize {
+        self.warnings
+            .iter()
+            .map(|w| match w {
+                ValidationWarning::DuplicateVertices { count, .. } => *count,
+                _ => 0,
+            })
+            .sum()
+    }
+}

@@ -1,0 +1,172 @@
+//! Readers and writers: round trips, the three formats agree, errors name file and line.
+
+use std::path::Path;
+use tvf_core::generate::{genus_surface, icosphere};
+use tvf_core::io::{
+    load_mesh, parse_mesh_bytes, save_mesh, write_obj, write_ply, LoadErrorKind, MeshFormat,
+};
+use tvf_core::{MeshError, ValidationWarning};
+
+const SQUARE_OFF: &str = "OFF\n# a unit square\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n\
+                          3 0 1 2\n3 0 2 3\n";
+
+#[test]
+fn obj_and_ply_round_trips_are_exact() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = genus_surface(2, 6);
+    for name in ["out.obj", "out.ply", "OUT.PLY"] {
+        let path = dir.path().join(name);
+        save_mesh(&path, &mesh).unwrap();
+        let loaded = load_mesh(&path).unwrap();
+        assert_eq!(loaded.mesh.positions(), mesh.positions(), "{name}");
+        assert_eq!(loaded.mesh.faces(), mesh.faces(), "{name}");
+        assert!(loaded.report.warnings.is_empty());
+    }
+    // Only the final files exist: no temporary files are left behind.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 3);
+}
+
+#[test]
+fn overwriting_replaces_the_whole_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("mesh.obj");
+    write_obj(&path, &icosphere(3)).unwrap();
+    write_obj(&path, &icosphere(0)).unwrap();
+    assert_eq!(load_mesh(&path).unwrap().mesh.face_count(), 20);
+    let ply = dir.path().join("mesh.ply");
+    write_ply(&ply, &icosphere(2)).unwrap();
+    write_ply(&ply, &icosphere(1)).unwrap();
+    assert_eq!(load_mesh(&ply).unwrap().mesh.face_count(), 80);
+}
+
+#[test]
+fn writing_to_a_missing_directory_or_unknown_extension_fails_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("no/such/dir/mesh.obj");
+    let error = save_mesh(&missing, &icosphere(0)).unwrap_err().to_string();
+    assert!(error.contains("mesh.obj"), "{error}");
+    let error = save_mesh(dir.path().join("mesh.stl"), &icosphere(0)).unwrap_err();
+    assert!(error.to_string().contains("mesh.stl"));
+}
+
+#[test]
+fn off_ascii_ply_binary_ply_and_obj_agree() {
+    let off = parse_mesh_bytes(SQUARE_OFF.as_bytes(), MeshFormat::Off, "square.off").unwrap();
+    let ascii_ply = "ply\nformat ascii 1.0\ncomment square\nelement vertex 4\n\
+                     property float x\nproperty float y\nproperty float z\nproperty uchar red\n\
+                     element face 1\nproperty list uchar int vertex_indices\nend_header\n\
+                     0 0 0 255\n1 0 0 255\n1 1 0 255\n0 1 0 255\n4 0 1 2 3\n";
+    let ply = parse_mesh_bytes(ascii_ply.as_bytes(), MeshFormat::Ply, "square.ply").unwrap();
+    let obj = parse_mesh_bytes(
+        b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n",
+        MeshFormat::Obj,
+        "square.obj",
+    )
+    .unwrap();
+    let mut binary = b"ply\nformat binary_little_endian 1.0\nelement vertex 4\n\
+                       property double x\nproperty double y\nproperty double z\n\
+                       element edge 1\nproperty list uchar ushort vertex_pair\n\
+                       element face 2\nproperty list int uint vertex_indices\n\
+                       property short flags\nend_header\n"
+        .to_vec();
+    for p in off.mesh.positions() {
+        for x in p {
+            binary.extend(x.to_le_bytes());
+        }
+    }
+    binary.extend([2, 0, 0, 1, 0]);
+    for face in [[0u32, 1, 2], [0, 2, 3]] {
+        binary.extend(3i32.to_le_bytes());
+        for v in face {
+            binary.extend(v.to_le_bytes());
+        }
+        binary.extend(7i16.to_le_bytes());
+    }
+    let binary = parse_mesh_bytes(&binary, MeshFormat::Ply, "square_bin.ply").unwrap();
+    for other in [&ply, &obj, &binary] {
+        assert_eq!(other.mesh.positions(), off.mesh.positions());
+        assert_eq!(other.mesh.faces(), off.mesh.faces());
+    }
+    assert_eq!(off.mesh.boundary_loops().len(), 1);
+    assert!((off.report.max_angle_deg - 90.0).abs() < 1e-12);
+}
+
+#[test]
+fn unreferenced_and_duplicate_vertices_are_reported() {
+    let text = b"v 9 9 9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 0\nv 1 0 0\nv 0 -1 0\n\
+                 f 2 3 4\nf 5 7 6\n";
+    let loaded = parse_mesh_bytes(text, MeshFormat::Obj, "seam.obj").unwrap();
+    assert_eq!(loaded.mesh.vertex_count(), 6);
+    assert_eq!(loaded.mesh.component_count(), 2);
+    assert_eq!(loaded.report.unreferenced_vertices(), 1);
+    assert_eq!(loaded.report.duplicate_vertices(), 2);
+    assert_eq!(loaded.report.original_vertex, vec![1, 2, 3, 4, 5, 6]);
+    assert_eq!(
+        loaded.report.warnings[1],
+        ValidationWarning::DuplicateVertices {
+            count: 2,
+            first: 4,
+            duplicate_of: 1
+        }
+    );
+}
+
+#[test]
+fn inward_closed_mesh_gets_a_warning() {
+    let mesh = icosphere(1);
+    let flipped: String = mesh
+        .positions()
+        .iter()
+        .map(|p| format!("v {} {} {}\n", p[0], p[1], p[2]))
+        .chain(
+            mesh.faces()
+                .iter()
+                .map(|f| format!("f {} {} {}\n", f[0] + 1, f[2] + 1, f[1] + 1)),
+        )
+        .collect();
+    let loaded = parse_mesh_bytes(flipped.as_bytes(), MeshFormat::Obj, "inward.obj").unwrap();
+    assert!(matches!(
+        loaded.report.warnings.as_slice(),
+        [ValidationWarning::InwardNormals { signed_volume }] if *signed_volume < 0.0
+    ));
+}
+
+#[test]
+fn errors_name_the_file_and_line() {
+    let text = b"v 0 0 0\nv 1 0 0\nv 0 1 0\n# comment\nf 1 2 3\nf 1 2 7\n";
+    let error = parse_mesh_bytes(text, MeshFormat::Obj, Path::new("dir/bad.obj")).unwrap_err();
+    assert_eq!(error.line, Some(6));
+    assert_eq!(
+        error.kind,
+        LoadErrorKind::IndexOutOfRange {
+            index: 7,
+            vertex_count: 3
+        }
+    );
+    assert_eq!(
+        error.to_string(),
+        "dir/bad.obj:6: vertex index 7 is out of range: the file has 3 vertices"
+    );
+    // A validation error is located at the offending face's line.
+    let text = b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 4 3\n";
+    let error = parse_mesh_bytes(text, MeshFormat::Obj, "flip.obj").unwrap_err();
+    assert_eq!(error.line, Some(6));
+    assert!(matches!(
+        error.kind,
+        LoadErrorKind::Mesh(MeshError::InconsistentOrientation { .. })
+    ));
+}
+
+#[test]
+fn missing_file_and_unknown_extension() {
+    let error = load_mesh("/nonexistent/dir/mesh.obj").unwrap_err();
+    assert!(matches!(error.kind, LoadErrorKind::Unreadable { .. }));
+    assert!(error.to_string().starts_with("/nonexistent/dir/mesh.obj: "));
+    let error = load_mesh("mesh.stl").unwrap_err();
+    assert_eq!(
+        error.kind,
+        LoadErrorKind::UnknownFormat {
+            extension: "stl".into()
+        }
+    );
+}
