@@ -1,5 +1,6 @@
 //! [`SpectralBasis`]: an `M_X`-orthonormal set of eigenfields of the Hodge–Laplacian.
 
+use crate::{BasisReport, EigenfunctionBasis};
 use faer::{Col, Mat, MatRef};
 use rayon::prelude::*;
 use thiserror::Error;
@@ -63,6 +64,12 @@ pub struct SpectralBasis {
     families: Vec<FieldFamily>,
     fields: Mat<f64>,
     field_mass: Vec<f64>,
+    /// Optional `f32` copy of `fields` (same shape) for fast reconstruction.
+    fields_f32: Option<Mat<f32>>,
+    /// Optional compact form (eigenfunctions) of the same basis.
+    eigenfunctions: Option<EigenfunctionBasis>,
+    /// How the basis was computed (absent for a basis loaded from a file or built by hand).
+    report: Option<BasisReport>,
 }
 
 impl SpectralBasis {
@@ -88,6 +95,9 @@ impl SpectralBasis {
             families,
             fields,
             field_mass,
+            fields_f32: None,
+            eigenfunctions: None,
+            report: None,
         })
     }
 
@@ -158,6 +168,70 @@ impl SpectralBasis {
                 }
             });
         Ok(field)
+    }
+
+    /// Number of basis fields of one family.
+    pub fn count(&self, family: FieldFamily) -> usize {
+        self.families.iter().filter(|&&f| f == family).count()
+    }
+
+    /// Stores an `f32` copy of the fields (`2F × d`, rounded to nearest), used by
+    /// [`reconstruct_f32`](Self::reconstruct_f32). Costs half the memory of the fields.
+    pub fn store_single_precision_copy(&mut self) {
+        let f = &self.fields;
+        self.fields_f32 = Some(Mat::from_fn(f.nrows(), f.ncols(), |i, j| f[(i, j)] as f32));
+    }
+
+    /// The `f32` copy of the fields, if stored.
+    pub fn fields_f32(&self) -> Option<MatRef<'_, f32>> {
+        self.fields_f32.as_ref().map(|m| m.as_ref())
+    }
+
+    /// The field `U c` (`2F` entries) computed from the `f32` copy of `U` (accumulated in `f64`):
+    /// half the memory traffic of [`reconstruct`](Self::reconstruct), relative error about
+    /// `1e-7`. Falls back to the `f64` fields if no copy is stored.
+    pub fn reconstruct_f32(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        let Some(single) = &self.fields_f32 else {
+            return self.reconstruct(coefficients);
+        };
+        check_length("coefficients", self.len(), coefficients.len())?;
+        let mut field = vec![0.0; self.field_dimension()];
+        field
+            .par_chunks_mut(4096)
+            .enumerate()
+            .for_each(|(chunk, out)| {
+                let start = chunk * 4096;
+                for (i, &c) in coefficients.iter().enumerate() {
+                    if c != 0.0 {
+                        let column = single.col(i);
+                        for (k, value) in out.iter_mut().enumerate() {
+                            *value += c * column[start + k] as f64;
+                        }
+                    }
+                }
+            });
+        Ok(field)
+    }
+
+    /// The compact form of this basis (eigenfunctions), if it was kept
+    /// ([`crate::BasisRequest::keep_eigenfunctions`]).
+    pub fn eigenfunctions(&self) -> Option<&EigenfunctionBasis> {
+        self.eigenfunctions.as_ref()
+    }
+
+    /// Attaches the compact form of the same basis (same order and eigenvalues).
+    pub fn attach_eigenfunctions(&mut self, eigenfunctions: EigenfunctionBasis) {
+        self.eigenfunctions = Some(eigenfunctions);
+    }
+
+    /// How the basis was computed, if it was computed by [`crate::compute_basis`].
+    pub fn report(&self) -> Option<&BasisReport> {
+        self.report.as_ref()
+    }
+
+    /// Attaches a computation report.
+    pub fn attach_report(&mut self, report: BasisReport) {
+        self.report = Some(report);
     }
 
     /// `M_X` inner product `aᵀ M_X b` of two fields (`2F` entries each).

@@ -1,0 +1,123 @@
+//! Spectral analysis of a field: its Fourier coefficients against frequency (the paper's
+//! Figure 8) and how its energy splits over the Hodge decomposition.
+
+use crate::basis::{FieldFamily, SpectralBasis, SpectralBasisError};
+use tvf_discretizations::HodgeParts;
+
+/// One basis field's coefficient.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoefficientEntry {
+    /// Position in the basis (ascending eigenvalue).
+    pub index: usize,
+    /// Family of the basis field.
+    pub family: FieldFamily,
+    /// Eigenvalue `λ` (1/length²).
+    pub eigenvalue: f64,
+    /// Frequency `√λ` (1/length).
+    pub frequency: f64,
+    /// Coefficient `u_iᵀ M_X v` (integrated: field × length).
+    pub coefficient: f64,
+}
+
+/// Squared `M_X` norms (integrated, field² × area) of the parts of a field.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EnergySplit {
+    /// Integrable (curl-free) part.
+    pub integrable: f64,
+    /// Co-integrable (divergence-free) part.
+    pub cointegrable: f64,
+    /// Harmonic part.
+    pub harmonic: f64,
+    /// Rest field (what a truncated basis cannot represent; 0 for an exact decomposition).
+    pub rest: f64,
+}
+
+impl EnergySplit {
+    /// Sum of the four parts (equals `‖v‖²_{M_X}` since the parts are `M_X`-orthogonal).
+    pub fn total(&self) -> f64 {
+        self.integrable + self.cointegrable + self.harmonic + self.rest
+    }
+
+    /// The squared norms of the three parts of an exact Hodge decomposition, with the mass
+    /// diagonal `M_X` (`2F` entries); `rest` is 0.
+    pub fn of_hodge_parts(parts: &HodgeParts, field_mass: &[f64]) -> Self {
+        let norm2 = |x: &[f64]| -> f64 { x.iter().zip(field_mass).map(|(a, m)| a * a * m).sum() };
+        Self {
+            integrable: norm2(&parts.integrable),
+            cointegrable: norm2(&parts.co_integrable),
+            harmonic: norm2(&parts.harmonic),
+            rest: 0.0,
+        }
+    }
+}
+
+/// The spectral analysis of one field in one basis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpectralAnalysis {
+    /// One entry per basis field, ascending frequency.
+    pub entries: Vec<CoefficientEntry>,
+    /// Energy of the represented families (`Σ c_i²` per family) and of the rest field `‖v_r‖²`.
+    pub energy: EnergySplit,
+    /// `‖v‖²_{M_X}` of the field.
+    pub field_energy: f64,
+    /// Dirichlet energy `Σ λ_i c_i²` of the represented part (integrated, field²); equals
+    /// `vᵀ S v` when the basis is complete.
+    pub represented_dirichlet_energy: f64,
+}
+
+impl SpectralAnalysis {
+    /// Analyses `field` (`2F` pointwise coefficients) in `basis`.
+    pub fn new(basis: &SpectralBasis, field: &[f64]) -> Result<Self, SpectralBasisError> {
+        let coefficients = basis.coefficients(field)?;
+        let represented = basis.reconstruct(&coefficients)?;
+        let rest: Vec<f64> = field.iter().zip(&represented).map(|(v, u)| v - u).collect();
+        let mut energy = EnergySplit {
+            rest: basis.inner_product(&rest, &rest),
+            ..EnergySplit::default()
+        };
+        let mut represented_dirichlet_energy = 0.0;
+        let mut entries = Vec::with_capacity(basis.len());
+        for (index, ((&family, &eigenvalue), &coefficient)) in basis
+            .families()
+            .iter()
+            .zip(basis.eigenvalues())
+            .zip(&coefficients)
+            .enumerate()
+        {
+            let c2 = coefficient * coefficient;
+            match family {
+                FieldFamily::Harmonic => energy.harmonic += c2,
+                FieldFamily::Integrable => energy.integrable += c2,
+                FieldFamily::Cointegrable => energy.cointegrable += c2,
+            }
+            represented_dirichlet_energy += eigenvalue * c2;
+            entries.push(CoefficientEntry {
+                index,
+                family,
+                eigenvalue,
+                frequency: eigenvalue.sqrt(),
+                coefficient,
+            });
+        }
+        Ok(Self {
+            entries,
+            energy,
+            field_energy: basis.inner_product(field, field),
+            represented_dirichlet_energy,
+        })
+    }
+
+    /// The entries of one family, ascending frequency.
+    pub fn family(&self, family: FieldFamily) -> impl Iterator<Item = &CoefficientEntry> + '_ {
+        self.entries.iter().filter(move |e| e.family == family)
+    }
+
+    /// Relative size of the rest field, `‖v_r‖ / ‖v‖` (0 for a zero field).
+    pub fn relative_rest_norm(&self) -> f64 {
+        if self.field_energy > 0.0 {
+            (self.energy.rest.max(0.0) / self.field_energy).sqrt()
+        } else {
+            0.0
+        }
+    }
+}

@@ -1,0 +1,55 @@
+//! [`basis_id`]: a 64-bit fingerprint of a [`SpectralBasis`], stored in compressed files so that
+//! coefficients are never decoded with another basis.
+
+use crate::basis::{FieldFamily, SpectralBasis};
+use rayon::prelude::*;
+
+/// Multiplier of the word mixing (a 64-bit odd constant from the golden ratio).
+const MIX: u64 = 0x9E37_79B9_7F4A_7C15;
+
+fn absorb(state: u64, word: u64) -> u64 {
+    (state.rotate_left(23) ^ word).wrapping_mul(MIX)
+}
+
+/// The splitmix64 finaliser: every input bit affects every output bit.
+fn finalize(mut x: u64) -> u64 {
+    x ^= x >> 30;
+    x = x.wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x ^= x >> 27;
+    x = x.wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^ (x >> 31)
+}
+
+/// A fingerprint of everything that decoding depends on: the shape `2F × d`, the eigenvalues,
+/// the families, the mass `M_X` and every entry of the fields (bit patterns, so two bases that
+/// differ only in the sign of one eigenfield get different ids). Columns are hashed in parallel.
+pub fn basis_id(basis: &SpectralBasis) -> u64 {
+    let fields = basis.fields();
+    let column_hashes: Vec<u64> = (0..basis.len())
+        .into_par_iter()
+        .map(|j| {
+            let column = fields.col(j);
+            let mut state = absorb(MIX, j as u64);
+            for i in 0..column.nrows() {
+                state = absorb(state, column[i].to_bits());
+            }
+            finalize(state)
+        })
+        .collect();
+    let mut state = absorb(absorb(0, basis.field_dimension() as u64), basis.len() as u64);
+    for (&lambda, &family) in basis.eigenvalues().iter().zip(basis.families()) {
+        let tag = match family {
+            FieldFamily::Harmonic => 1,
+            FieldFamily::Integrable => 2,
+            FieldFamily::Cointegrable => 3,
+        };
+        state = absorb(absorb(state, lambda.to_bits()), tag);
+    }
+    for &m in basis.field_mass() {
+        state = absorb(state, m.to_bits());
+    }
+    for h in column_hashes {
+        state = absorb(state, h);
+    }
+    finalize(state)
+}

@@ -1,0 +1,238 @@
+//! [`EigenfunctionBasis`]: the Fourier basis stored as eigenfunctions (half the memory of the
+//! dense fields), turned into fields through the complex's sparse gradients.
+
+use crate::{FieldFamily, SpectralBasisError};
+use faer::{Col, Mat, MatRef};
+use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
+use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+
+/// The basis of [`crate::compute_basis`] in compact form: integrable fields as potentials,
+/// co-integrable fields as co-potentials, harmonic fields as fields.
+///
+/// With `φ̃_i` the columns of [`potentials`](Self::potentials) (`n0 × a`) and `ψ̃_j` those of
+/// [`co_potentials`](Self::co_potentials) (`n2 × b`), the fields are
+/// `Φ_i = d0 φ̃_i` and `Ψ_j = J G_co ψ̃_j`, `M1`-unit: each stored function is the
+/// `M0`-normalised eigenfunction divided by `√λ` (so `φ̃ = φ / √λ`). The harmonic fields are
+/// stored densely (`2F × h`, `h = 2g`). An integrable field costs `n0` numbers, a co-integrable one
+/// `n2`; on a closed mesh `n0 + n2 = V + E ≈ 2F`, half of the `4F` of a dense pair.
+///
+/// All methods that produce or consume fields need the complex the basis was computed for.
+#[derive(Debug, Clone)]
+pub struct EigenfunctionBasis {
+    eigenvalues: Vec<f64>,
+    families: Vec<FieldFamily>,
+    /// Column of each basis field inside its family's matrix.
+    slots: Vec<usize>,
+    potentials: Mat<f64>,
+    co_potentials: Mat<f64>,
+    harmonic: Mat<f64>,
+}
+
+impl EigenfunctionBasis {
+    /// Assembles a compact basis. `entries` lists, in basis order (ascending eigenvalue), each
+    /// field's eigenvalue, family and column in that family's matrix.
+    pub(crate) fn new(
+        entries: Vec<(f64, FieldFamily, usize)>,
+        potentials: Mat<f64>,
+        co_potentials: Mat<f64>,
+        harmonic: Mat<f64>,
+    ) -> Self {
+        Self {
+            eigenvalues: entries.iter().map(|e| e.0).collect(),
+            families: entries.iter().map(|e| e.1).collect(),
+            slots: entries.iter().map(|e| e.2).collect(),
+            potentials,
+            co_potentials,
+            harmonic,
+        }
+    }
+
+    /// Number of basis fields `d`.
+    pub fn len(&self) -> usize {
+        self.eigenvalues.len()
+    }
+
+    /// Whether the basis has no field.
+    pub fn is_empty(&self) -> bool {
+        self.eigenvalues.is_empty()
+    }
+
+    /// Eigenvalues, ascending (`d` entries, 1/length²).
+    pub fn eigenvalues(&self) -> &[f64] {
+        &self.eigenvalues
+    }
+
+    /// Family of each basis field (`d` entries).
+    pub fn families(&self) -> &[FieldFamily] {
+        &self.families
+    }
+
+    /// Scaled potential eigenfunctions `φ̃` (`n0 × a`, pointwise nodal values), columns in
+    /// ascending eigenvalue.
+    pub fn potentials(&self) -> MatRef<'_, f64> {
+        self.potentials.as_ref()
+    }
+
+    /// Scaled co-potential eigenfunctions `ψ̃` (`n2 × b`), columns in ascending eigenvalue.
+    pub fn co_potentials(&self) -> MatRef<'_, f64> {
+        self.co_potentials.as_ref()
+    }
+
+    /// Harmonic fields (`2F × h`, `M1`-orthonormal).
+    pub fn harmonic_fields(&self) -> MatRef<'_, f64> {
+        self.harmonic.as_ref()
+    }
+
+    /// Bytes held by the three matrices.
+    pub fn memory_bytes(&self) -> usize {
+        8 * (self.potentials.nrows() * self.potentials.ncols()
+            + self.co_potentials.nrows() * self.co_potentials.ncols()
+            + self.harmonic.nrows() * self.harmonic.ncols())
+    }
+
+    /// Checks that `complex` has the shapes this basis was computed with.
+    fn check_complex<H: HodgeComplex>(&self, complex: &H) -> Result<(), SpectralBasisError> {
+        check("harmonic field rows (2F)", complex.fields().dimension(), self.harmonic.nrows())?;
+        check("potential rows (n0)", complex.potentials().dimension(), self.potentials.nrows())?;
+        check(
+            "co-potential rows (n2)",
+            complex.co_potentials().dimension(),
+            self.co_potentials.nrows(),
+        )
+    }
+
+    /// Basis field `index` as a dense field (`2F` pointwise coefficients).
+    pub fn field<H: HodgeComplex>(&self, complex: &H, index: usize) -> Vec<f64> {
+        let slot = self.slots[index];
+        match self.families[index] {
+            FieldFamily::Integrable => {
+                complex.gradient_field(&column(self.potentials.as_ref(), slot))
+            }
+            FieldFamily::Cointegrable => {
+                complex.co_gradient_field(&column(self.co_potentials.as_ref(), slot))
+            }
+            FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
+        }
+    }
+
+    /// Fourier coefficients `Uᵀ M1 v` of a field `v` (`2F` entries) by sparse products:
+    /// `α = φ̃ᵀ d0ᵀ M1 v`, `β = −ψ̃ᵀ d1 v` (since `J G_co = −M1⁻¹ d1ᵀ`), `γ = Γᵀ M1 v`.
+    /// Returns `d` coefficients in basis order.
+    pub fn coefficients<H: HodgeComplex>(
+        &self,
+        complex: &H,
+        field: &[f64],
+    ) -> Result<Vec<f64>, SpectralBasisError> {
+        check("field", complex.fields().dimension(), field.len())?;
+        self.check_complex(complex)?;
+        let weighted: Vec<f64> = field.iter().zip(complex.m1()).map(|(v, m)| v * m).collect();
+        let divergence = mul_transpose_vec(complex.d0(), &weighted);
+        let curl: Vec<f64> = mul_vec(complex.d1(), field).iter().map(|x| -x).collect();
+        let alpha = transpose_times(self.potentials.as_ref(), &divergence);
+        let beta = transpose_times(self.co_potentials.as_ref(), &curl);
+        let gamma = transpose_times(self.harmonic.as_ref(), &weighted);
+        Ok((0..self.len())
+            .map(|i| match self.families[i] {
+                FieldFamily::Integrable => alpha[self.slots[i]],
+                FieldFamily::Cointegrable => beta[self.slots[i]],
+                FieldFamily::Harmonic => gamma[self.slots[i]],
+            })
+            .collect())
+    }
+
+    /// The field `Σ c_i U_i` (`2F` entries) from `d` coefficients, by sparse products:
+    /// `d0 (φ̃ α) + J G_co (ψ̃ β) + Γ γ`.
+    pub fn reconstruct<H: HodgeComplex>(
+        &self,
+        complex: &H,
+        coefficients: &[f64],
+    ) -> Result<Vec<f64>, SpectralBasisError> {
+        check("coefficients", self.len(), coefficients.len())?;
+        self.check_complex(complex)?;
+        let mut alpha = Col::<f64>::zeros(self.potentials.ncols());
+        let mut beta = Col::<f64>::zeros(self.co_potentials.ncols());
+        let mut gamma = Col::<f64>::zeros(self.harmonic.ncols());
+        for (i, &c) in coefficients.iter().enumerate() {
+            match self.families[i] {
+                FieldFamily::Integrable => alpha[self.slots[i]] = c,
+                FieldFamily::Cointegrable => beta[self.slots[i]] = c,
+                FieldFamily::Harmonic => gamma[self.slots[i]] = c,
+            }
+        }
+        let potential = &self.potentials * &alpha;
+        let co_potential = &self.co_potentials * &beta;
+        let harmonic = &self.harmonic * &gamma;
+        let exact = complex.gradient_field(&col_vec(&potential));
+        let co_exact = complex.co_gradient_field(&col_vec(&co_potential));
+        Ok(exact
+            .iter()
+            .zip(&co_exact)
+            .enumerate()
+            .map(|(r, (a, b))| a + b + harmonic[r])
+            .collect())
+    }
+
+    /// The dense fields `U` (`2F × d`), column `i` = [`field`](Self::field)`(i)`, built in
+    /// parallel from the sparse gradients `d0` and `J G_co`.
+    pub fn dense_fields<H: HodgeComplex>(&self, complex: &H) -> Mat<f64> {
+        use rayon::prelude::*;
+        let rows = complex.fields().dimension();
+        let d0 = complex.d0();
+        let co_gradient = complex.co_gradient();
+        let mut fields = Mat::zeros(rows, self.len());
+        const CHUNK: usize = 64;
+        for start in (0..self.len()).step_by(CHUNK) {
+            let end = (start + CHUNK).min(self.len());
+            let columns: Vec<Vec<f64>> = (start..end)
+                .into_par_iter()
+                .map(|i| {
+                    let slot = self.slots[i];
+                    match self.families[i] {
+                        FieldFamily::Integrable => {
+                            mul_vec(d0, &column(self.potentials.as_ref(), slot))
+                        }
+                        FieldFamily::Cointegrable => {
+                            mul_vec(&co_gradient, &column(self.co_potentials.as_ref(), slot))
+                        }
+                        FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
+                    }
+                })
+                .collect();
+            for (j, values) in columns.iter().enumerate() {
+                for (r, &v) in values.iter().enumerate() {
+                    fields[(r, start + j)] = v;
+                }
+            }
+        }
+        fields
+    }
+}
+
+fn column(m: MatRef<'_, f64>, j: usize) -> Vec<f64> {
+    (0..m.nrows()).map(|i| m[(i, j)]).collect()
+}
+
+fn col_vec(c: &Col<f64>) -> Vec<f64> {
+    (0..c.nrows()).map(|i| c[i]).collect()
+}
+
+/// `mᵀ x` for a dense `m` (`n × k`) and `x` (`n` entries).
+fn transpose_times(m: MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
+    if m.ncols() == 0 {
+        return Vec::new();
+    }
+    let x = Col::from_fn(x.len(), |i| x[i]);
+    col_vec(&(m.transpose() * &x))
+}
+
+fn check(what: &'static str, expected: usize, actual: usize) -> Result<(), SpectralBasisError> {
+    if expected == actual {
+        Ok(())
+    } else {
+        Err(SpectralBasisError::LengthMismatch {
+            what,
+            expected,
+            actual,
+        })
+    }
+}

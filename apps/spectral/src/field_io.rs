@@ -1,0 +1,361 @@
+//! Field files: one 3D vector per face, as `.npy` (`F × 3`, `f32` or `f64`) or as text
+//! (`x y z` per line, `#` starts a comment), plus sequences (`F × 3 × T` `.npy`) and plain
+//! `.npy` arrays of any shape.
+//!
+//! The format is chosen by the extension: `.npy` is NumPy, anything else is text. Every write is
+//! atomic ([`crate::write_atomically`]); every error names the file.
+//!
+//! Vectors in files are 3D and **pointwise** (one vector per face, in the mesh's coordinates).
+//! [`read_tangent_field`] turns them into a tangent field of `2F` face-frame coefficients by
+//! projecting each onto its face's plane, and reports the dropped normal components.
+
+use crate::atomic_write::write_atomically;
+use crate::npy::{NpyArray, NpyDtype, NpyError};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+use tvf_core::discretization::{FieldSpace, TangentProjection};
+
+/// What can go wrong reading or writing a field file (every variant names the file).
+#[derive(Debug, Error)]
+pub enum FieldIoError {
+    /// The operating system refused (missing file, permissions, disk full, ...).
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// The `.npy` file is damaged or of a kind tvf does not read.
+    #[error("{}: {source}", path.display())]
+    Npy {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        source: NpyError,
+    },
+    /// The array has the wrong shape.
+    #[error("{}: array of shape {found:?}, expected {expected}", path.display())]
+    Shape {
+        /// The file.
+        path: PathBuf,
+        /// The shape that was expected, in words (e.g. "(F, 3)").
+        expected: String,
+        /// The shape in the file.
+        found: Vec<usize>,
+    },
+    /// A line of a text field file is not three numbers.
+    #[error("{}, line {line}: {message}", path.display())]
+    Text {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file holds a different number of vectors than the mesh has faces.
+    #[error("{}: {found} vectors, but the mesh has {expected} faces", path.display())]
+    FaceCount {
+        /// The file.
+        path: PathBuf,
+        /// Faces of the mesh.
+        expected: usize,
+        /// Vectors in the file.
+        found: usize,
+    },
+    /// A vector component is NaN or infinite.
+    #[error("{}: vector {index} has a non-finite component", path.display())]
+    NonFinite {
+        /// The file.
+        path: PathBuf,
+        /// Index of the first offending vector (face).
+        index: usize,
+    },
+    /// The data to write are inconsistent (ragged frames, shape not matching the data).
+    #[error("{}: cannot write: {message}", path.display())]
+    Inconsistent {
+        /// The file.
+        path: PathBuf,
+        /// What is inconsistent.
+        message: String,
+    },
+}
+
+/// How to store one vector per face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldFileFormat {
+    /// NumPy `.npy`, `F × 3`, with the given element type.
+    Npy(NpyDtype),
+    /// Text, one `x y z` line per face (shortest decimal that round-trips each `f64`).
+    Text,
+}
+
+impl FieldFileFormat {
+    /// `.npy` (`f64`) for a path ending in `.npy` (any case), text otherwise.
+    pub fn from_path(path: &Path) -> Self {
+        if is_npy(path) {
+            FieldFileFormat::Npy(NpyDtype::F64)
+        } else {
+            FieldFileFormat::Text
+        }
+    }
+}
+
+fn is_npy(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> FieldIoError + '_ {
+    move |source| FieldIoError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
+}
+
+/// Reads any `.npy` array of `f32`/`f64` (C order).
+pub fn read_npy(path: &Path) -> Result<NpyArray, FieldIoError> {
+    let bytes = std::fs::read(path).map_err(io_error(path))?;
+    NpyArray::from_bytes(&bytes).map_err(|source| FieldIoError::Npy {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Writes an `.npy` array atomically. Fails with [`FieldIoError::Inconsistent`] if the number of
+/// elements does not match the shape.
+pub fn write_npy(path: &Path, array: &NpyArray) -> Result<(), FieldIoError> {
+    let count: usize = array.shape.iter().product();
+    if count != array.data.len() {
+        return Err(FieldIoError::Inconsistent {
+            path: path.to_path_buf(),
+            message: format!(
+                "shape {:?} has {count} elements, data has {}",
+                array.shape,
+                array.data.len()
+            ),
+        });
+    }
+    write_atomically(path, &array.to_bytes()).map_err(io_error(path))
+}
+
+/// Reads one 3D vector per face from `path` (`.npy` `F × 3` of `f32`/`f64`, or text). Rejects
+/// non-finite components.
+pub fn read_face_vectors(path: &Path) -> Result<Vec<[f64; 3]>, FieldIoError> {
+    let vectors = if is_npy(path) {
+        let array = read_npy(path)?;
+        if array.shape.len() != 2 || array.shape[1] != 3 {
+            return Err(FieldIoError::Shape {
+                path: path.to_path_buf(),
+                expected: "(F, 3): one 3D vector per face".into(),
+                found: array.shape,
+            });
+        }
+        array
+            .data
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect()
+    } else {
+        let text = std::fs::read_to_string(path).map_err(io_error(path))?;
+        parse_text(path, &text)?
+    };
+    if let Some(index) = vectors
+        .iter()
+        .position(|v: &[f64; 3]| v.iter().any(|x| !x.is_finite()))
+    {
+        return Err(FieldIoError::NonFinite {
+            path: path.to_path_buf(),
+            index,
+        });
+    }
+    Ok(vectors)
+}
+
+fn parse_text(path: &Path, text: &str) -> Result<Vec<[f64; 3]>, FieldIoError> {
+    let mut vectors = Vec::new();
+    for (number, raw) in text.lines().enumerate() {
+        let content = raw.split('#').next().unwrap_or("").trim();
+        if content.is_empty() {
+            continue;
+        }
+        let error = |message: String| FieldIoError::Text {
+            path: path.to_path_buf(),
+            line: number + 1,
+            message,
+        };
+        let tokens: Vec<&str> = content
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|t| !t.is_empty())
+            .collect();
+        if tokens.len() != 3 {
+            return Err(error(format!(
+                "expected 3 numbers `x y z`, found {}",
+                tokens.len()
+            )));
+        }
+        let mut v = [0.0; 3];
+        for (slot, token) in v.iter_mut().zip(&tokens) {
+            *slot = token
+                .parse()
+                .map_err(|_| error(format!("{token:?} is not a number")))?;
+        }
+        vectors.push(v);
+    }
+    Ok(vectors)
+}
+
+/// Writes one 3D vector per face, in the format given by the extension (`.npy` → `f64`).
+pub fn write_face_vectors(path: &Path, vectors: &[[f64; 3]]) -> Result<(), FieldIoError> {
+    write_face_vectors_as(path, vectors, FieldFileFormat::from_path(path))
+}
+
+/// Writes one 3D vector per face in an explicit format (atomic).
+pub fn write_face_vectors_as(
+    path: &Path,
+    vectors: &[[f64; 3]],
+    format: FieldFileFormat,
+) -> Result<(), FieldIoError> {
+    match format {
+        FieldFileFormat::Npy(dtype) => write_npy(
+            path,
+            &NpyArray {
+                shape: vec![vectors.len(), 3],
+                data: vectors.iter().flatten().copied().collect(),
+                dtype,
+            },
+        ),
+        FieldFileFormat::Text => {
+            let mut text = String::with_capacity(vectors.len() * 64);
+            text.push_str("# one 3D vector per face: x y z\n");
+            for v in vectors {
+                // `{}` on f64 prints the shortest decimal that parses back to the same bits.
+                let _ = writeln!(text, "{} {} {}", v[0], v[1], v[2]);
+            }
+            write_atomically(path, text.as_bytes()).map_err(io_error(path))
+        }
+    }
+}
+
+/// Reads a sequence of fields stored as one `.npy` array `F × 3 × T` (element `[t][c][k]` is
+/// component `c` of face `t` in frame `k`). Returns `T` frames of `F` vectors.
+pub fn read_face_vector_sequence(path: &Path) -> Result<Vec<Vec<[f64; 3]>>, FieldIoError> {
+    let array = read_npy(path)?;
+    if array.shape.len() != 3 || array.shape[1] != 3 {
+        return Err(FieldIoError::Shape {
+            path: path.to_path_buf(),
+            expected: "(F, 3, T): T frames of one 3D vector per face".into(),
+            found: array.shape,
+        });
+    }
+    let (faces, frames) = (array.shape[0], array.shape[2]);
+    if let Some(position) = array.data.iter().position(|x| !x.is_finite()) {
+        return Err(FieldIoError::NonFinite {
+            path: path.to_path_buf(),
+            index: position / (3 * frames),
+        });
+    }
+    Ok((0..frames)
+        .map(|k| {
+            (0..faces)
+                .map(|t| std::array::from_fn(|c| array.data[(t * 3 + c) * frames + k]))
+                .collect()
+        })
+        .collect())
+}
+
+/// Writes `T` frames of `F` vectors as one `.npy` array `F × 3 × T` (atomic). All frames must
+/// have the same length.
+pub fn write_face_vector_sequence(
+    path: &Path,
+    frames: &[Vec<[f64; 3]>],
+    dtype: NpyDtype,
+) -> Result<(), FieldIoError> {
+    let faces = frames.first().map_or(0, Vec::len);
+    if let Some(k) = frames.iter().position(|f| f.len() != faces) {
+        return Err(FieldIoError::Inconsistent {
+            path: path.to_path_buf(),
+            message: format!(
+                "frame {k} has {} vectors, frame 0 has {faces}",
+                frames[k].len()
+            ),
+        });
+    }
+    let count = frames.len();
+    let mut data = vec![0.0; faces * 3 * count];
+    for (k, frame) in frames.iter().enumerate() {
+        for (t, v) in frame.iter().enumerate() {
+            for c in 0..3 {
+                data[(t * 3 + c) * count + k] = v[c];
+            }
+        }
+    }
+    write_npy(
+        path,
+        &NpyArray {
+            shape: vec![faces, 3, count],
+            data,
+            dtype,
+        },
+    )
+}
+
+/// Reads a field file for a mesh and projects it onto the tangent planes of `space`.
+///
+/// Returns the tangent field (`2F` pointwise face-frame coefficients) and the dropped normal
+/// component of every vector (`F` entries, see [`TangentProjection`]). Fails with
+/// [`FieldIoError::FaceCount`] if the file does not hold exactly one vector per face.
+pub fn read_tangent_field<S: FieldSpace + ?Sized>(
+    path: &Path,
+    space: &S,
+) -> Result<TangentProjection, FieldIoError> {
+    let vectors = read_face_vectors(path)?;
+    if vectors.len() != space.face_count() {
+        return Err(FieldIoError::FaceCount {
+            path: path.to_path_buf(),
+            expected: space.face_count(),
+            found: vectors.len(),
+        });
+    }
+    space
+        .from_vectors(&vectors)
+        .map_err(|e| FieldIoError::Inconsistent {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+}
+
+/// Writes a tangent field (`2F` face-frame coefficients of `space`) as one 3D vector per face,
+/// format by extension.
+pub fn write_tangent_field<S: FieldSpace + ?Sized>(
+    path: &Path,
+    space: &S,
+    field: &[f64],
+) -> Result<(), FieldIoError> {
+    let vectors = space
+        .to_vectors(field)
+        .map_err(|e| FieldIoError::Inconsistent {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+    write_face_vectors(path, &vectors)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_parsing_skips_comments_and_reports_lines() {
+        let path = Path::new("f.txt");
+        let v = parse_text(path, "# header\n1 2 3\n\n4,5,6 # trailing\n  -1e-3\t0 7\n").unwrap();
+        assert_eq!(v, vec![[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [-1e-3, 0.0, 7.0]]);
+        let error = parse_text(path, "1 2 3\n1 2\n").unwrap_err();
+        assert!(matches!(error, FieldIoError::Text { line: 2, .. }));
+        assert!(error.to_string().contains("f.txt, line 2"));
+        let error = parse_text(path, "1 2 x\n").unwrap_err();
+        assert!(error.to_string().contains("\"x\" is not a number"));
+    }
+}

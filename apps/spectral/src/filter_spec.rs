@@ -1,0 +1,279 @@
+//! The textual SPEC grammar of a [`FrequencyResponse`], as typed on the command line.
+//!
+//! ```text
+//! SPEC   := identity
+//!         | lowpass:t=NUM                 gain e^{−tλ}          (t ≥ 0, length²)
+//!         | highpass:t=NUM                gain 2 − e^{−tλ}      (t ≥ 0)
+//!         | bandpass:lo=NUM,hi=NUM        gain 1 on lo ≤ √λ ≤ hi, else 0
+//!         | cutoff:f=NUM                  gain 1 for √λ ≤ f, else 0
+//!         | curve:F,G;F,G;...             piecewise linear through (frequency, gain) points
+//!         | @PATH                         a curve in a JSON file
+//! ```
+//!
+//! Frequencies are `√λ` (1/length). A curve's frequencies must increase strictly; gains are
+//! finite and ≥ 0; beyond its ends the curve is constant (so `curve:0,0.5` is a constant gain
+//! of one half). The JSON file holds `{"points": [[F, G], ...]}` or just `[[F, G], ...]`.
+//!
+//! ```
+//! use tvf_spectral::FrequencyResponse;
+//! let low: FrequencyResponse = "lowpass:t=0.01".parse()?;
+//! assert_eq!(low, FrequencyResponse::LowPass { t: 0.01 });
+//! let drawn: FrequencyResponse = "curve:0,1;5,0.5;10,0".parse()?;
+//! assert_eq!(drawn.gain(7.5), 0.25);
+//! assert!("lowpass:s=1".parse::<FrequencyResponse>().is_err());
+//! # Ok::<(), tvf_spectral::FilterSpecError>(())
+//! ```
+
+use crate::filter_response::{FrequencyResponse, PiecewiseLinear};
+use std::path::Path;
+use std::str::FromStr;
+use thiserror::Error;
+
+/// Why a filter SPEC was refused.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum FilterSpecError {
+    /// The SPEC was empty.
+    #[error("empty filter spec (expected identity, lowpass:t=.., highpass:t=.., bandpass:lo=..,hi=.., cutoff:f=.., curve:F,G;.. or @FILE.json)")]
+    Empty,
+    /// The part before `:` names no filter.
+    #[error("unknown filter '{kind}' (expected identity, lowpass, highpass, bandpass, cutoff, curve or @FILE.json)")]
+    UnknownKind {
+        /// The unknown name.
+        kind: String,
+    },
+    /// A required `name=value` parameter is missing.
+    #[error("filter '{kind}' needs the parameter '{name}=' (e.g. {example})")]
+    MissingParameter {
+        /// Filter name.
+        kind: &'static str,
+        /// Parameter name.
+        name: &'static str,
+        /// A correct example.
+        example: &'static str,
+    },
+    /// A parameter the filter does not take, or a part without `=`.
+    #[error("filter '{kind}' does not take '{text}' (e.g. {example})")]
+    UnexpectedParameter {
+        /// Filter name.
+        kind: &'static str,
+        /// The offending text.
+        text: String,
+        /// A correct example.
+        example: &'static str,
+    },
+    /// A value is not a finite number ≥ 0.
+    #[error("{what}: '{text}' is not a finite number ≥ 0")]
+    BadNumber {
+        /// Which value.
+        what: String,
+        /// The text that failed.
+        text: String,
+    },
+    /// `bandpass` with `lo > hi`.
+    #[error("bandpass: lo = {lo} is above hi = {hi}")]
+    BandOrder {
+        /// Lower bound.
+        lo: f64,
+        /// Upper bound.
+        hi: f64,
+    },
+    /// A curve point is not `FREQUENCY,GAIN`.
+    #[error("curve point {index} '{text}' is not FREQUENCY,GAIN (e.g. curve:0,1;5,0.5;10,0)")]
+    BadPoint {
+        /// Position of the point (0-based).
+        index: usize,
+        /// Its text.
+        text: String,
+    },
+    /// A curve with no control point.
+    #[error("a curve needs at least one control point (e.g. curve:0,1;5,0.5;10,0)")]
+    EmptyCurve,
+    /// A control point with a negative or non-finite coordinate.
+    #[error("curve point {index} ({frequency}, {gain}): frequency and gain must be finite and ≥ 0")]
+    BadControlPoint {
+        /// Position of the point.
+        index: usize,
+        /// Its frequency.
+        frequency: f64,
+        /// Its gain.
+        gain: f64,
+    },
+    /// Control points whose frequencies do not increase strictly.
+    #[error("curve point {index}: frequency {frequency} does not increase (previous point at {previous})")]
+    UnsortedControlPoints {
+        /// Position of the point.
+        index: usize,
+        /// Frequency of the previous point.
+        previous: f64,
+        /// Frequency of this point.
+        frequency: f64,
+    },
+    /// The `@FILE` could not be read.
+    #[error("cannot read filter file {path}: {message}")]
+    FileRead {
+        /// The file.
+        path: String,
+        /// The I/O error.
+        message: String,
+    },
+    /// The `@FILE` is not a curve in JSON.
+    #[error("filter file {path}: {message} (expected {{\"points\": [[frequency, gain], ...]}})")]
+    Json {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+impl FromStr for FrequencyResponse {
+    type Err = FilterSpecError;
+
+    /// Parses a SPEC (see the module docs); `@PATH` reads the JSON file at `PATH`.
+    fn from_str(spec: &str) -> Result<Self, FilterSpecError> {
+        let spec = spec.trim();
+        if spec.is_empty() {
+            return Err(FilterSpecError::Empty);
+        }
+        if let Some(path) = spec.strip_prefix('@') {
+            return read_curve_file(Path::new(path)).map(FrequencyResponse::Curve);
+        }
+        let (kind, arguments) = spec.split_once(':').unwrap_or((spec, ""));
+        match kind.trim().to_ascii_lowercase().as_str() {
+            "identity" => {
+                if arguments.trim().is_empty() {
+                    Ok(FrequencyResponse::Identity)
+                } else {
+                    Err(FilterSpecError::UnexpectedParameter {
+                        kind: "identity",
+                        text: arguments.to_string(),
+                        example: "identity",
+                    })
+                }
+            }
+            "lowpass" => {
+                let [t] = named_parameters("lowpass", arguments, ["t"], "lowpass:t=0.01")?;
+                Ok(FrequencyResponse::LowPass { t })
+            }
+            "highpass" => {
+                let [t] = named_parameters("highpass", arguments, ["t"], "highpass:t=0.01")?;
+                Ok(FrequencyResponse::HighPass { t })
+            }
+            "bandpass" => {
+                let [lo, hi] =
+                    named_parameters("bandpass", arguments, ["lo", "hi"], "bandpass:lo=2,hi=8")?;
+                if lo > hi {
+                    return Err(FilterSpecError::BandOrder { lo, hi });
+                }
+                Ok(FrequencyResponse::BandPass { lo, hi })
+            }
+            "cutoff" => {
+                let [f] = named_parameters("cutoff", arguments, ["f"], "cutoff:f=10")?;
+                Ok(FrequencyResponse::Cutoff { f })
+            }
+            "curve" => parse_curve_points(arguments).map(FrequencyResponse::Curve),
+            other => Err(FilterSpecError::UnknownKind {
+                kind: other.to_string(),
+            }),
+        }
+    }
+}
+
+/// Parses `name=value` pairs separated by commas; every name in `names` exactly once.
+fn named_parameters<const N: usize>(
+    kind: &'static str,
+    arguments: &str,
+    names: [&'static str; N],
+    example: &'static str,
+) -> Result<[f64; N], FilterSpecError> {
+    let mut values = [None; N];
+    for part in arguments.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let unexpected = || FilterSpecError::UnexpectedParameter {
+            kind,
+            text: part.to_string(),
+            example,
+        };
+        let (name, value) = part.split_once('=').ok_or_else(unexpected)?;
+        let slot = names
+            .iter()
+            .position(|n| *n == name.trim())
+            .ok_or_else(unexpected)?;
+        if values[slot].is_some() {
+            return Err(unexpected());
+        }
+        values[slot] = Some(parse_non_negative(&format!("{kind}: {}", names[slot]), value)?);
+    }
+    let mut out = [0.0; N];
+    for (slot, value) in values.iter().enumerate() {
+        out[slot] = value.ok_or(FilterSpecError::MissingParameter {
+            kind,
+            name: names[slot],
+            example,
+        })?;
+    }
+    Ok(out)
+}
+
+fn parse_non_negative(what: &str, text: &str) -> Result<f64, FilterSpecError> {
+    match text.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(FilterSpecError::BadNumber {
+            what: what.to_string(),
+            text: text.trim().to_string(),
+        }),
+    }
+}
+
+/// `F,G;F,G;...` (a trailing `;` is allowed).
+fn parse_curve_points(arguments: &str) -> Result<PiecewiseLinear, FilterSpecError> {
+    let mut points = Vec::new();
+    for (index, text) in arguments
+        .split(';')
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
+        .enumerate()
+    {
+        let bad = || FilterSpecError::BadPoint {
+            index,
+            text: text.to_string(),
+        };
+        let (f, g) = text.split_once(',').ok_or_else(bad)?;
+        let frequency = f.trim().parse::<f64>().map_err(|_| bad())?;
+        let gain = g.trim().parse::<f64>().map_err(|_| bad())?;
+        points.push((frequency, gain));
+    }
+    PiecewiseLinear::new(points)
+}
+
+/// Reads a curve from a JSON file: `{"points": [[F, G], ...]}` or `[[F, G], ...]`.
+pub fn read_curve_file(path: &Path) -> Result<PiecewiseLinear, FilterSpecError> {
+    let shown = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| FilterSpecError::FileRead {
+        path: shown.clone(),
+        message: e.to_string(),
+    })?;
+    let json_error = |message: String| FilterSpecError::Json {
+        path: shown.clone(),
+        message,
+    };
+    let value: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| json_error(e.to_string()))?;
+    let list = match &value {
+        serde_json::Value::Array(list) => list,
+        serde_json::Value::Object(map) => match map.get("points") {
+            Some(serde_json::Value::Array(list)) => list,
+            _ => return Err(json_error("no array \"points\"".to_string())),
+        },
+        _ => return Err(json_error("top level is neither an object nor an array".to_string())),
+    };
+    let mut points = Vec::with_capacity(list.len());
+    for (index, entry) in list.iter().enumerate() {
+        let pair = entry
+            .as_array()
+            .filter(|p| p.len() == 2)
+            .and_then(|p| Some((p[0].as_f64()?, p[1].as_f64()?)))
+            .ok_or_else(|| json_error(format!("point {index} is not [frequency, gain]: {entry}")))?;
+        points.push(pair);
+    }
+    PiecewiseLinear::new(points)
+}

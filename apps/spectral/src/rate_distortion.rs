@@ -1,0 +1,97 @@
+//! Rate–distortion curves (the paper's Figure 9): relative `M_X` error against bits per vertex,
+//! for several numbers of pairs and coefficient codings. Every point is a real file: its size is
+//! the serialised `.tvfc` length and its error is measured on the decoded field.
+
+use crate::basis::SpectralBasis;
+use crate::compress::FieldCodec;
+use crate::compressed_file::{CoefficientCoding, CompressedFields};
+use crate::compression_error::CompressionError;
+use crate::sequence::relative_l2_error;
+use rayon::prelude::*;
+
+/// One compressed file of the curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RatePoint {
+    /// How the coefficients were stored.
+    pub coding: CoefficientCoding,
+    /// Pairs `k` kept.
+    pub pairs: usize,
+    /// File size in bytes (header and checksum included).
+    pub bytes: usize,
+    /// `8 · bytes / V`.
+    pub bits_per_vertex: f64,
+    /// `‖v − ṽ‖_{M_X} / ‖v‖_{M_X}`.
+    pub relative_error: f64,
+}
+
+/// What one mesh and basis are identified by in the files.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FileStamp {
+    /// Fingerprint of the mesh.
+    pub mesh_fingerprint: u64,
+    /// [`basis_id`](crate::basis_id) of the basis.
+    pub basis_id: u64,
+    /// Vertices of the mesh (for bits per vertex).
+    pub vertex_count: usize,
+}
+
+/// Compresses `field` (`2F` pointwise coefficients) once for every `(pairs, coding)` combination
+/// and measures size and error; points in parallel, ordered by coding then pairs as given.
+pub fn rate_distortion(
+    basis: &SpectralBasis,
+    field: &[f64],
+    stamp: FileStamp,
+    pairs: &[usize],
+    codings: &[CoefficientCoding],
+) -> Result<Vec<RatePoint>, CompressionError> {
+    if let Some(index) = field.iter().position(|x| !x.is_finite()) {
+        return Err(CompressionError::NonFinite {
+            what: "field",
+            index,
+        });
+    }
+    let coefficients = basis.coefficients(field)?;
+    let jobs: Vec<(CoefficientCoding, usize)> = codings
+        .iter()
+        .flat_map(|&coding| pairs.iter().map(move |&k| (coding, k)))
+        .collect();
+    jobs.par_iter()
+        .map(|&(coding, k)| {
+            let codec = FieldCodec::new(basis, stamp.mesh_fingerprint, stamp.basis_id, k, coding)?;
+            let frame = codec.encode_coefficients(&coefficients)?;
+            let decoded = codec.decode(&frame)?;
+            let file = CompressedFields {
+                header: *codec.header(),
+                frames: vec![frame],
+            };
+            let bytes = file.to_bytes().len();
+            Ok(RatePoint {
+                coding,
+                pairs: k,
+                bytes,
+                bits_per_vertex: 8.0 * bytes as f64 / stamp.vertex_count.max(1) as f64,
+                relative_error: relative_l2_error(basis.field_mass(), field, &decoded),
+            })
+        })
+        .collect()
+}
+
+/// For every `f64` point, the smallest quantised file with an error at most as large:
+/// `(f64 point, quantised point)` pairs (the saving is the ratio of their sizes). `f64` points
+/// no quantised point matches are left out.
+pub fn equal_error_comparison(points: &[RatePoint]) -> Vec<(RatePoint, RatePoint)> {
+    points
+        .iter()
+        .filter(|p| p.coding == CoefficientCoding::Float64)
+        .filter_map(|exact| {
+            points
+                .iter()
+                .filter(|q| {
+                    matches!(q.coding, CoefficientCoding::Quantized { .. })
+                        && q.relative_error <= exact.relative_error
+                })
+                .min_by_key(|q| q.bytes)
+                .map(|q| (*exact, *q))
+        })
+        .collect()
+}

@@ -1,0 +1,154 @@
+//! The lowest non-zero eigenpairs of one scalar Laplacian `(A, M)` of a Hodge complex (the
+//! potential or the co-potential eigenproblem), with its kernel removed by count.
+
+use crate::BasisError;
+use faer::Mat;
+use sprs::CsMat;
+use tvf_core::discretization::sparse::from_triplets;
+use tvf_core::discretization::{Eigenproblem, NO_COMPONENT};
+use tvf_solvers::{lowest_eigenpairs, EigenOptions, EigenProgress};
+
+/// The eigenproblem `A x = λ M x` of one function space, restricted to the nodes some face uses
+/// (unused nodes have zero mass and are decoupled; the solver needs a positive mass).
+pub(crate) struct ScalarSpectrum {
+    /// Which problem, for messages: "potential" or "co-potential".
+    pub name: &'static str,
+    stiffness: CsMat<f64>,
+    mass: Vec<f64>,
+    /// Map restricted index → full index, `None` if every node is used.
+    used: Option<Vec<usize>>,
+    full_dimension: usize,
+    /// Kernel dimension: one constant per connected component.
+    components: usize,
+}
+
+/// Eigenpairs found by [`ScalarSpectrum::lowest_nonzero`].
+pub(crate) struct ScalarEigenpairs {
+    /// Non-zero eigenvalues, ascending.
+    pub values: Vec<f64>,
+    /// `n × k` eigenvectors in the full node numbering (zero on unused nodes), `M`-orthonormal.
+    pub vectors: Mat<f64>,
+    /// The dropped kernel eigenvalues (one per component), for the report.
+    pub kernel_values: Vec<f64>,
+    /// Largest relative residual reported by the solver.
+    pub max_residual: f64,
+    /// Factorizations and single solves the solver used.
+    pub factorizations: usize,
+    /// Single-vector solves.
+    pub solves: usize,
+}
+
+impl ScalarSpectrum {
+    pub fn new(
+        name: &'static str,
+        problem: Eigenproblem,
+        node_components: &[usize],
+        components: usize,
+    ) -> Self {
+        let full_dimension = problem.mass.len();
+        if node_components.iter().all(|&c| c != NO_COMPONENT) {
+            return Self {
+                name,
+                stiffness: problem.stiffness,
+                mass: problem.mass,
+                used: None,
+                full_dimension,
+                components,
+            };
+        }
+        let used: Vec<usize> = (0..full_dimension)
+            .filter(|&i| node_components[i] != NO_COMPONENT)
+            .collect();
+        let mut restricted = vec![usize::MAX; full_dimension];
+        for (r, &i) in used.iter().enumerate() {
+            restricted[i] = r;
+        }
+        let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
+        for (&value, (i, j)) in problem.stiffness.iter() {
+            if restricted[i] != usize::MAX && restricted[j] != usize::MAX {
+                rows.push(restricted[i]);
+                cols.push(restricted[j]);
+                values.push(value);
+            }
+        }
+        let n = used.len();
+        Self {
+            name,
+            stiffness: from_triplets(n, n, rows, cols, values),
+            mass: used.iter().map(|&i| problem.mass[i]).collect(),
+            used: Some(used),
+            full_dimension,
+            components,
+        }
+    }
+
+    /// Number of non-zero eigenvalues the problem has: used nodes minus components.
+    pub fn available(&self) -> usize {
+        self.mass.len().saturating_sub(self.components)
+    }
+
+    /// The lowest `count ≤ available()` non-zero eigenpairs. The `components` lowest eigenpairs
+    /// are the kernel (constants per component) and are dropped by count; they are checked to be
+    /// small against the first kept eigenvalue.
+    pub fn lowest_nonzero(
+        &self,
+        count: usize,
+        seed: u64,
+        progress: &dyn Fn(&EigenProgress),
+    ) -> Result<ScalarEigenpairs, BasisError> {
+        let count = count.min(self.available());
+        let total = count + self.components;
+        let options = EigenOptions {
+            seed,
+            progress: Some(progress),
+            ..EigenOptions::default()
+        };
+        let pairs = lowest_eigenpairs(&self.stiffness, &self.mass, total, &options).map_err(
+            |source| BasisError::Eigen {
+                problem: self.name,
+                source,
+            },
+        )?;
+        let kernel_values = pairs.values[..self.components].to_vec();
+        let values = pairs.values[self.components..].to_vec();
+        if let Some(&first_nonzero) = values.first() {
+            // Kernel eigenvalues are round-off (~1e-15 relative); a genuine eigenvalue is not.
+            if let Some(&value) = kernel_values
+                .iter()
+                .find(|v| v.abs() > 1e-6 * first_nonzero)
+            {
+                return Err(BasisError::KernelMismatch {
+                    problem: self.name,
+                    components: self.components,
+                    value,
+                    first_nonzero,
+                });
+            }
+        }
+        let n = self.full_dimension;
+        let vectors = match &self.used {
+            None => pairs
+                .vectors
+                .as_ref()
+                .subcols(self.components, count)
+                .to_owned(),
+            Some(used) => {
+                let mut full = Mat::zeros(n, count);
+                for j in 0..count {
+                    for (r, &i) in used.iter().enumerate() {
+                        full[(i, j)] = pairs.vectors[(r, self.components + j)];
+                    }
+                }
+                full
+            }
+        };
+        Ok(ScalarEigenpairs {
+            values,
+            vectors,
+            kernel_values,
+            max_residual: pairs.residuals.iter().fold(0.0, |m, &r| m.max(r)),
+            factorizations: pairs.factorizations,
+            solves: pairs.solves,
+        })
+    }
+}
