@@ -1,0 +1,293 @@
+//! Line and scatter plots with linear or logarithmic axes, tick labels, axis labels and a
+//! legend, drawn with the crate's own rasteriser and embedded font (no system fonts).
+//! Used for coefficient spectra (paper Figure 8) and rate–distortion curves (Figure 9).
+
+use image::{Rgba, RgbaImage};
+
+use crate::canvas::{blend, draw_line, fill_disc, fill_rect, stroke_rect};
+use crate::error::RenderError;
+use crate::text::{draw_text, draw_text_vertical, format_number, text_width, HAlign, TextSize, TextStyle, VAlign};
+pub use crate::ticks::AxisScale;
+use crate::ticks::ticks;
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SeriesStyle {
+    /// Connected line.
+    Line,
+    /// Dots only.
+    Scatter,
+    /// Connected line with a dot at each point.
+    LineAndMarkers,
+}
+
+/// One named data series.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Series {
+    /// Name shown in the legend (empty: not listed).
+    pub name: String,
+    /// `(x, y)` points in data units, drawn in the given order.
+    pub points: Vec<(f64, f64)>,
+    /// Drawing style.
+    pub style: SeriesStyle,
+    /// Colour; `None` picks the next colour of the built-in palette.
+    pub color: Option<[u8; 3]>,
+}
+
+impl Series {
+    /// A series with the palette colour.
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, style: SeriesStyle) -> Self {
+        Series {
+            name: name.into(),
+            points,
+            style,
+            color: None,
+        }
+    }
+}
+
+/// One axis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// Axis label.
+    pub label: String,
+    /// Linear or logarithmic.
+    pub scale: AxisScale,
+    /// Fixed range in data units; `None` fits the data.
+    pub range: Option<(f64, f64)>,
+}
+
+impl Axis {
+    /// An axis fitted to the data.
+    pub fn new(label: impl Into<String>, scale: AxisScale) -> Self {
+        Axis {
+            label: label.into(),
+            scale,
+            range: None,
+        }
+    }
+}
+
+/// A plot: axes, series, title and size.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plot {
+    /// Title at the top.
+    pub title: String,
+    /// Horizontal axis.
+    pub x: Axis,
+    /// Vertical axis.
+    pub y: Axis,
+    /// Data.
+    pub series: Vec<Series>,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+const PALETTE: [[u8; 3]; 8] = [
+    [31, 119, 180],
+    [214, 39, 40],
+    [44, 160, 44],
+    [255, 127, 14],
+    [148, 103, 189],
+    [140, 86, 75],
+    [227, 119, 194],
+    [23, 190, 207],
+];
+
+/// The range of the axis: fixed, or fitted to the drawable values with a margin.
+fn axis_range(axis: &Axis, values: &[f64], name: &str) -> Result<(f64, f64), RenderError> {
+    if let Some((a, b)) = axis.range {
+        if !(axis.scale.accepts(a) && axis.scale.accepts(b) && a < b) {
+            return Err(RenderError::InvalidOption {
+                name: "plot axis range",
+                value: format!("{a}..{b}"),
+                reason: "must be increasing, finite, and positive on a log axis",
+            });
+        }
+        return Ok((a, b));
+    }
+    let usable: Vec<f64> = values.iter().copied().filter(|&v| axis.scale.accepts(v)).collect();
+    if usable.is_empty() {
+        return Err(RenderError::NoPlotData(format!(
+            "no {name} value can be drawn on a {:?} axis",
+            axis.scale
+        )));
+    }
+    let lo = usable.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = usable.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    Ok(match axis.scale {
+        AxisScale::Linear => {
+            let pad = if hi > lo { 0.04 * (hi - lo) } else { 0.5 * lo.abs().max(1.0) };
+            (lo - pad, hi + pad)
+        }
+        AxisScale::Log10 => {
+            let (a, b) = (lo.log10(), hi.log10());
+            let pad = if b > a { 0.04 * (b - a) } else { 0.5 };
+            (10f64.powf(a - pad), 10f64.powf(b + pad))
+        }
+    })
+}
+
+impl Plot {
+    /// Draws the plot. Points that cannot be drawn (non-finite, or non-positive on a log
+    /// axis) are skipped, and a line is broken there. Fails when no point at all can be
+    /// drawn, on a size below 200×150 or above 16384, or on an invalid fixed range.
+    pub fn render(&self) -> Result<RgbaImage, RenderError> {
+        if !(200..=16384).contains(&self.width) || !(150..=16384).contains(&self.height) {
+            return Err(RenderError::InvalidSize {
+                width: self.width,
+                height: self.height,
+            });
+        }
+        let xs: Vec<f64> = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)).collect();
+        let ys: Vec<f64> = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).collect();
+        let (x0, x1) = axis_range(&self.x, &xs, "x")?;
+        let (y0, y1) = axis_range(&self.y, &ys, "y")?;
+        let (w, h) = (self.width as f64, self.height as f64);
+        let size = TextSize::for_height((h / 32.0).clamp(16.0, 32.0));
+        let small = TextSize::for_height(size.height() as f64 * 0.8);
+        let th = size.height() as f64;
+        let tick_style = TextStyle::new(small);
+        let (y_major, y_minor) = ticks(self.y.scale, y0, y1);
+        let (x_major, x_minor) = ticks(self.x.scale, x0, x1);
+        let y_label_width = y_major
+            .iter()
+            .map(|&v| text_width(&format_number(v, 3), &tick_style))
+            .max()
+            .unwrap_or(0) as f64;
+        let left = (th + 14.0 + y_label_width + 10.0).round();
+        let right = 24.0;
+        let top = (th * 2.0).round();
+        let bottom = (small.height() as f64 + th + 24.0).round();
+        let (pw, ph) = (w - left - right, h - top - bottom);
+        if pw < 40.0 || ph < 40.0 {
+            return Err(RenderError::InvalidSize {
+                width: self.width,
+                height: self.height,
+            });
+        }
+        let (fx0, fx1) = (self.x.scale.forward(x0), self.x.scale.forward(x1));
+        let (fy0, fy1) = (self.y.scale.forward(y0), self.y.scale.forward(y1));
+        let to_px = |x: f64| (self.x.scale.forward(x) - fx0) / (fx1 - fx0) * pw;
+        let to_py = |y: f64| ph - (self.y.scale.forward(y) - fy0) / (fy1 - fy0) * ph;
+
+        let mut image = RgbaImage::from_pixel(self.width, self.height, Rgba([255, 255, 255, 255]));
+        // Grid on the plot layer (clipped to the plot area).
+        let mut layer = RgbaImage::new(pw as u32, ph as u32);
+        for &v in &x_minor {
+            draw_line(&mut layer, [to_px(v), 0.0], [to_px(v), ph], 1.0, [238, 238, 238]);
+        }
+        for &v in &y_minor {
+            draw_line(&mut layer, [0.0, to_py(v)], [pw, to_py(v)], 1.0, [238, 238, 238]);
+        }
+        for &v in &x_major {
+            draw_line(&mut layer, [to_px(v), 0.0], [to_px(v), ph], 1.0, [215, 215, 215]);
+        }
+        for &v in &y_major {
+            draw_line(&mut layer, [0.0, to_py(v)], [pw, to_py(v)], 1.0, [215, 215, 215]);
+        }
+        let line_width = (h / 300.0).clamp(1.5, 4.0);
+        let mut legend = Vec::new();
+        for (k, s) in self.series.iter().enumerate() {
+            let color = s.color.unwrap_or(PALETTE[k % PALETTE.len()]);
+            let mut previous: Option<[f64; 2]> = None;
+            for &(x, y) in &s.points {
+                if !(self.x.scale.accepts(x) && self.y.scale.accepts(y)) {
+                    previous = None;
+                    continue;
+                }
+                let p = [to_px(x), to_py(y)];
+                if let (Some(q), SeriesStyle::Line | SeriesStyle::LineAndMarkers) = (previous, s.style) {
+                    draw_line(&mut layer, q, p, line_width, color);
+                }
+                if matches!(s.style, SeriesStyle::Scatter | SeriesStyle::LineAndMarkers) {
+                    fill_disc(&mut layer, p, 1.6 * line_width, color);
+                }
+                previous = Some(p);
+            }
+            if !s.name.is_empty() {
+                legend.push((s.name.as_str(), color, s.style));
+            }
+        }
+        overlay(&mut image, &layer, left as i64, top as i64);
+        stroke_rect(&mut image, left as i64 - 1, top as i64 - 1, (left + pw) as i64, (top + ph) as i64, [60, 60, 60]);
+
+        // Ticks and tick labels.
+        for &v in &x_major {
+            let x = left + to_px(v);
+            draw_line(&mut image, [x, top + ph], [x, top + ph + 5.0], 1.0, [60, 60, 60]);
+            let style = tick_style.aligned(HAlign::Center, VAlign::Top);
+            draw_text(&mut image, x, top + ph + 7.0, &format_number(v, 3), &style);
+        }
+        for &v in &y_major {
+            let y = top + to_py(v);
+            draw_line(&mut image, [left - 5.0, y], [left, y], 1.0, [60, 60, 60]);
+            let style = tick_style.aligned(HAlign::Right, VAlign::Middle);
+            draw_text(&mut image, left - 8.0, y, &format_number(v, 3), &style);
+        }
+        let label_style = TextStyle::new(size);
+        draw_text(
+            &mut image,
+            left + 0.5 * pw,
+            h - 6.0,
+            &self.x.label,
+            &label_style.aligned(HAlign::Center, VAlign::Bottom),
+        );
+        draw_text_vertical(&mut image, 6.0 + 0.5 * th, top + 0.5 * ph, &self.y.label, &label_style);
+        draw_text(
+            &mut image,
+            0.5 * w,
+            0.5 * top,
+            &self.title,
+            &label_style.bold().aligned(HAlign::Center, VAlign::Middle),
+        );
+        draw_legend(&mut image, &legend, left + pw - 10.0, top + 10.0, small, line_width);
+        Ok(image)
+    }
+}
+
+fn overlay(image: &mut RgbaImage, layer: &RgbaImage, left: i64, top: i64) {
+    for (x, y, p) in layer.enumerate_pixels() {
+        if p.0[3] > 0 {
+            let c = [p.0[0], p.0[1], p.0[2]];
+            blend(image, left + x as i64, top + y as i64, c, p.0[3] as f32 / 255.0);
+        }
+    }
+}
+
+/// Legend box anchored at its top-right corner `(right, top)`.
+fn draw_legend(
+    image: &mut RgbaImage,
+    entries: &[(&str, [u8; 3], SeriesStyle)],
+    right: f64,
+    top: f64,
+    size: TextSize,
+    line_width: f64,
+) {
+    if entries.is_empty() {
+        return;
+    }
+    let style = TextStyle::new(size).aligned(HAlign::Left, VAlign::Middle);
+    let row = size.height() as f64 + 6.0;
+    let sample = 28.0;
+    let widest = entries.iter().map(|e| text_width(e.0, &style)).max().unwrap_or(0) as f64;
+    let bw = widest + sample + 26.0;
+    let bh = row * entries.len() as f64 + 10.0;
+    let x0 = right - bw;
+    fill_rect(image, x0 as i64, top as i64, right as i64, (top + bh) as i64, [255, 255, 255]);
+    stroke_rect(image, x0 as i64, top as i64, right as i64, (top + bh) as i64, [150, 150, 150]);
+    for (i, (name, color, s)) in entries.iter().enumerate() {
+        let y = top + 5.0 + row * (i as f64 + 0.5);
+        let a = [x0 + 8.0, y];
+        let b = [x0 + 8.0 + sample, y];
+        if matches!(s, SeriesStyle::Line | SeriesStyle::LineAndMarkers) {
+            draw_line(image, a, b, line_width, *color);
+        }
+        if matches!(s, SeriesStyle::Scatter | SeriesStyle::LineAndMarkers) {
+            fill_disc(image, [0.5 * (a[0] + b[0]), y], 1.6 * line_width, *color);
+        }
+        draw_text(image, b[0] + 8.0, y, name, &style);
+    }
+}
