@@ -4,6 +4,7 @@
 
 mod commands;
 mod examples;
+mod mesh_input;
 
 use clap::{Parser, Subcommand};
 

@@ -1,26 +1,70 @@
-//! `tvf info`: a mesh report.
+//! `tvf info`: a mesh report (counts, topology, angles, validation findings).
 
-use crate::examples::example_mesh;
+use crate::mesh_input::MeshInput;
 use anyhow::Result;
 use clap::Args;
+use serde_json::json;
 
 /// Arguments of `tvf info`.
 #[derive(Args)]
 pub struct InfoArgs {
-    /// A built-in example mesh instead of a file.
+    #[command(flatten)]
+    input: MeshInput,
+    /// Print the report as one JSON object instead of text.
     #[arg(long)]
-    example: String,
+    json: bool,
 }
 
-/// Prints the report.
+/// Prints the report. JSON keys: `vertices` (referenced vertices, after dropping unreferenced
+/// ones), `edges`, `faces`, `components`, `boundary_loops`, `genus`, `closed`, `min_angle_deg`,
+/// `max_angle_deg`, `warnings` (messages), plus `source`, `file_vertices` (all vertices the
+/// file lists), `unreferenced_vertices`, `duplicate_vertices`, `euler_characteristic`,
+/// `component_genera`, `total_area` and `signed_volume`.
 pub fn run(args: InfoArgs) -> Result<()> {
-    let mesh = example_mesh(&args.example)?;
+    let loaded = args.input.load()?;
+    let (mesh, report) = (&loaded.mesh, &loaded.report);
+    let warnings: Vec<String> = report.warnings.iter().map(|w| w.to_string()).collect();
+    if args.json {
+        let value = json!({
+            "source": args.input.label(),
+            "vertices": mesh.vertex_count(),
+            "edges": mesh.edge_count(),
+            "faces": mesh.face_count(),
+            "components": mesh.component_count(),
+            "boundary_loops": mesh.boundary_loops().len(),
+            "genus": mesh.genus(),
+            "closed": mesh.is_closed(),
+            "min_angle_deg": report.min_angle_deg,
+            "max_angle_deg": report.max_angle_deg,
+            "warnings": warnings,
+            "file_vertices": report.input_vertex_count,
+            "unreferenced_vertices": report.unreferenced_vertices(),
+            "duplicate_vertices": report.duplicate_vertices(),
+            "euler_characteristic": mesh.euler_characteristic(),
+            "component_genera": mesh.component_genera(),
+            "total_area": mesh.total_area(),
+            "signed_volume": mesh.signed_volume(),
+        });
+        println!("{}", serde_json::to_string_pretty(&value)?);
+        return Ok(());
+    }
+    println!("mesh           {}", args.input.label());
     println!("vertices       {}", mesh.vertex_count());
     println!("edges          {}", mesh.edge_count());
     println!("faces          {}", mesh.face_count());
     println!("components     {}", mesh.component_count());
     println!("boundary loops {}", mesh.boundary_loops().len());
     println!("genus          {}", mesh.genus());
-    println!("closed         {}", mesh.is_closed());
+    println!("closed         {}", if mesh.is_closed() { "yes" } else { "no" });
+    println!(
+        "angles         {:.3}° .. {:.3}°",
+        report.min_angle_deg, report.max_angle_deg
+    );
+    if warnings.is_empty() {
+        println!("warnings       none");
+    }
+    for warning in &warnings {
+        println!("warning        {warning}");
+    }
     Ok(())
 }
