@@ -20,10 +20,12 @@ mod symbol_coder;
 mod atomic_write;
 mod basis;
 mod basis_error;
+mod basis_file;
 mod basis_request;
 mod compute_basis;
 mod eigenfunction_basis;
 mod field_io;
+mod fingerprint;
 mod fourier;
 mod harmonic_fields;
 mod laplacian_apply;
@@ -33,9 +35,14 @@ mod scalar_spectrum;
 pub use atomic_write::{write_atomically, write_atomically_with};
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_error::BasisError;
+pub use basis_file::{
+    load_basis, read_basis_file, read_basis_header, save_basis, BasisFileError, BasisFileHeader,
+    BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
+};
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
 pub use eigenfunction_basis::EigenfunctionBasis;
+pub use fingerprint::{mesh_fingerprint, Hash64};
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
