@@ -56,7 +56,8 @@ impl SolveReport {
 /// numerically with the symbolic analysis (AMD ordering, supernodes) reused, unless a new
 /// constraint couples entries outside the pattern; then the pattern grows and one new symbolic
 /// analysis is done. With `ω > 0` the pattern of `B` already holds every `C̃ᵀC̃` block of
-/// vector, vertex, edge and point constraints, so this happens only for `ω = 0`.
+/// vector, vertex, edge and point constraints, so this happens only for `ω = 0` (and there only
+/// for point constraints whose nodes' supports do not share a vertex: S couples faces that do).
 #[derive(Debug)]
 pub struct FullSoftDesign {
     base: CsMat<f64>,
