@@ -1,0 +1,120 @@
+//! [`EditorError`]: everything the editor can refuse or fail at, with the HTTP status it maps to.
+
+use thiserror::Error;
+use tvf_design::{ConstraintError, ConstraintFileError, DesignError};
+
+/// An error of the editor: a bad request (4xx) or a failure of the server (5xx).
+#[derive(Debug, Error)]
+pub enum EditorError {
+    /// The request is malformed (bad JSON, unknown operation, missing field).
+    #[error("bad request: {reason}")]
+    BadRequest {
+        /// What is wrong.
+        reason: String,
+    },
+    /// No such page or endpoint.
+    #[error("not found: {path}")]
+    NotFound {
+        /// The requested path.
+        path: String,
+    },
+    /// The endpoint exists but not for this HTTP method.
+    #[error("method {method} not allowed for {path}")]
+    MethodNotAllowed {
+        /// The method used.
+        method: String,
+        /// The path.
+        path: String,
+    },
+    /// A constraint record that does not fit the mesh (index out of range, bad barycentric
+    /// coordinates, ...).
+    #[error(transparent)]
+    Constraint(#[from] ConstraintError),
+    /// A constraint set that does not parse or validate.
+    #[error(transparent)]
+    ConstraintFile(#[from] ConstraintFileError),
+    /// The spline session refused the edit (a dependent or conflicting constraint, an unknown
+    /// or duplicate id, a bad ω); the state is unchanged.
+    #[error(transparent)]
+    Design(#[from] DesignError),
+    /// Undo with an empty history.
+    #[error("nothing to undo")]
+    NothingToUndo,
+    /// A basis size outside `1..=d`.
+    #[error("basis size {requested} is out of range: choose 1 to {available}")]
+    BadBasisSize {
+        /// The size asked for.
+        requested: usize,
+        /// The size of the loaded basis.
+        available: usize,
+    },
+    /// A count that does not fit the binary format.
+    #[error("too many {what} for the binary format: {count}")]
+    TooLarge {
+        /// What was counted.
+        what: &'static str,
+        /// The count.
+        count: usize,
+    },
+    /// A malformed binary payload (decoding on the client side).
+    #[error("malformed payload: {reason}")]
+    BadPayload {
+        /// What is wrong.
+        reason: String,
+    },
+    /// Rendering or exporting fur failed.
+    #[error(transparent)]
+    Render(#[from] tvf_render::RenderError),
+    /// The mesh's discretization could not be built (a degenerate face).
+    #[error("cannot build the operators of the mesh: {0}")]
+    Discretization(String),
+    /// The server could not listen or an I/O operation failed.
+    #[error("{what}: {source}")]
+    Io {
+        /// What was being done.
+        what: String,
+        /// The cause.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The editing engine thread has stopped (after a panic or at shutdown).
+    #[error("the editing engine has stopped")]
+    EngineStopped,
+}
+
+impl EditorError {
+    /// The HTTP status code for this error: 400 for malformed input, 404/405 for unknown
+    /// endpoints or ids, 409 for edits the current state refuses, 500 otherwise.
+    pub fn status_code(&self) -> u16 {
+        match self {
+            EditorError::BadRequest { .. }
+            | EditorError::Constraint(_)
+            | EditorError::ConstraintFile(_)
+            | EditorError::BadBasisSize { .. }
+            | EditorError::BadPayload { .. } => 400,
+            EditorError::NotFound { .. } => 404,
+            EditorError::MethodNotAllowed { .. } => 405,
+            EditorError::Design(DesignError::UnknownId { .. }) => 404,
+            EditorError::Design(DesignError::BadParameter { .. }) => 400,
+            EditorError::Design(DesignError::Dependent { .. } | DesignError::DuplicateId { .. })
+            | EditorError::NothingToUndo => 409,
+            EditorError::TooLarge { .. } => 413,
+            EditorError::Design(_)
+            | EditorError::Render(_)
+            | EditorError::Discretization(_)
+            | EditorError::Io { .. }
+            | EditorError::EngineStopped => 500,
+        }
+    }
+
+    /// Ids of the constraints involved, for a dependent or conflicting constraint (shown on the
+    /// page next to the message).
+    pub fn involved_ids(&self) -> Vec<String> {
+        match self {
+            EditorError::Design(DesignError::Dependent { id, involved, .. }) => {
+                std::iter::once(id.clone()).chain(involved.iter().cloned()).collect()
+            }
+            _ => Vec::new(),
+        }
+    }
+}

@@ -1,0 +1,112 @@
+//! Shared set-up of the editor's integration tests: an editor on an icosphere with a real
+//! spectral basis, served on a free loopback port, and a small HTTP client.
+
+#![allow(dead_code)] // each test binary uses a different part of this module
+
+use std::io::Read;
+use std::sync::OnceLock;
+
+use tvf_core::generate::icosphere;
+use tvf_design::ReducedBasis;
+use tvf_discretizations::{Conforming, MassLumping};
+use tvf_editor::{Editor, EditorServer, EditorSetup};
+use tvf_spectral::{compute_basis, BasisRequest};
+
+/// Faces of `icosphere(3)`.
+pub const FACES: usize = 1280;
+
+/// The 100 lowest eigenfields of `icosphere(3)` (computed once per test binary).
+pub fn icosphere_basis() -> ReducedBasis {
+    static BASIS: OnceLock<ReducedBasis> = OnceLock::new();
+    BASIS
+        .get_or_init(|| {
+            let mesh = icosphere(3);
+            let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("icosphere operators");
+            // The complete basis by the dense eigensolvers (exact, about 2 s here), of which the
+            // first 100 columns are the 100 lowest eigenfields.
+            let spectral = compute_basis(&complex, &BasisRequest::complete()).expect("icosphere basis");
+            let full = ReducedBasis::from_spectral(&spectral).expect("reduced basis");
+            let d = 100;
+            let n = full.field_dimension();
+            let rows = (0..n).flat_map(|r| full.row(r)[..d].to_vec()).collect();
+            ReducedBasis::from_row_major(rows, n, full.eigenvalues()[..d].to_vec(), full.harmonic()[..d].to_vec())
+                .expect("truncated basis")
+        })
+        .clone()
+}
+
+/// The editor on `icosphere(3)` with the 100 lowest eigenfields, served on 127.0.0.1.
+pub fn icosphere_server() -> EditorServer {
+    let editor = Editor::start(EditorSetup {
+        mesh: icosphere(3),
+        basis: icosphere_basis(),
+        constraints: None,
+        basis_size: None,
+    })
+    .expect("editor starts");
+    EditorServer::start(editor, 0).expect("server starts")
+}
+
+/// A blocking HTTP client for one server that returns every status (no error on 4xx).
+pub struct Client {
+    agent: ureq::Agent,
+    base: String,
+}
+
+impl Client {
+    pub fn new(server: &EditorServer) -> Self {
+        let agent = ureq::Agent::config_builder()
+            .http_status_as_error(false)
+            .build()
+            .into();
+        Self {
+            agent,
+            base: format!("http://{}", server.address()),
+        }
+    }
+
+    fn read(response: ureq::http::Response<ureq::Body>) -> (u16, Vec<u8>) {
+        let status = response.status().as_u16();
+        let mut body = Vec::new();
+        response
+            .into_body()
+            .into_reader()
+            .read_to_end(&mut body)
+            .expect("response body");
+        (status, body)
+    }
+
+    /// `GET path` → (status, body).
+    pub fn get(&self, path: &str) -> (u16, Vec<u8>) {
+        Self::read(self.agent.get(format!("{}{path}", self.base)).call().expect("GET"))
+    }
+
+    /// `POST path` with a body → (status, body).
+    pub fn post(&self, path: &str, body: &str) -> (u16, Vec<u8>) {
+        let response = self
+            .agent
+            .post(format!("{}{path}", self.base))
+            .header("Content-Type", "application/json")
+            .send(body.as_bytes())
+            .expect("POST");
+        Self::read(response)
+    }
+
+    /// `POST /api/edit` with an edit as JSON.
+    pub fn edit(&self, op: serde_json::Value) -> (u16, Vec<u8>) {
+        self.post("/api/edit", &op.to_string())
+    }
+
+    /// `GET /api/check`, parsed.
+    pub fn check(&self) -> serde_json::Value {
+        let (status, body) = self.get("/api/check");
+        assert_eq!(status, 200, "{}", String::from_utf8_lossy(&body));
+        serde_json::from_slice(&body).expect("check JSON")
+    }
+}
+
+/// The error message of a JSON error body.
+pub fn error_message(body: &[u8]) -> String {
+    let v: serde_json::Value = serde_json::from_slice(body).expect("error body is JSON");
+    v["error"].as_str().expect("error field").to_string()
+}
