@@ -1,7 +1,9 @@
 //! Spectral analysis of a field: its Fourier coefficients against frequency (the paper's
-//! Figure 8) and how its energy splits over the Hodge decomposition.
+//! Figure 8) and how its energy splits over the Hodge decomposition (built on
+//! [`FourierAnalysis`]).
 
 use crate::basis::{FieldFamily, SpectralBasis, SpectralBasisError};
+use crate::fourier::FourierAnalysis;
 use tvf_discretizations::HodgeParts;
 
 /// One basis field's coefficient.
@@ -68,41 +70,35 @@ pub struct SpectralAnalysis {
 impl SpectralAnalysis {
     /// Analyses `field` (`2F` pointwise coefficients) in `basis`.
     pub fn new(basis: &SpectralBasis, field: &[f64]) -> Result<Self, SpectralBasisError> {
-        let coefficients = basis.coefficients(field)?;
-        let represented = basis.reconstruct(&coefficients)?;
-        let rest: Vec<f64> = field.iter().zip(&represented).map(|(v, u)| v - u).collect();
-        let mut energy = EnergySplit {
-            rest: basis.inner_product(&rest, &rest),
-            ..EnergySplit::default()
+        let fourier = FourierAnalysis::new(basis, field)?;
+        let energy = EnergySplit {
+            integrable: fourier.family_energy(FieldFamily::Integrable),
+            cointegrable: fourier.family_energy(FieldFamily::Cointegrable),
+            harmonic: fourier.family_energy(FieldFamily::Harmonic),
+            rest: basis.inner_product(&fourier.rest, &fourier.rest),
         };
-        let mut represented_dirichlet_energy = 0.0;
-        let mut entries = Vec::with_capacity(basis.len());
-        for (index, ((&family, &eigenvalue), &coefficient)) in basis
-            .families()
+        let entries: Vec<CoefficientEntry> = fourier
+            .coefficients
             .iter()
             .zip(basis.eigenvalues())
-            .zip(&coefficients)
+            .zip(basis.families())
             .enumerate()
-        {
-            let c2 = coefficient * coefficient;
-            match family {
-                FieldFamily::Harmonic => energy.harmonic += c2,
-                FieldFamily::Integrable => energy.integrable += c2,
-                FieldFamily::Cointegrable => energy.cointegrable += c2,
-            }
-            represented_dirichlet_energy += eigenvalue * c2;
-            entries.push(CoefficientEntry {
+            .map(|(index, ((&coefficient, &eigenvalue), &family))| CoefficientEntry {
                 index,
                 family,
                 eigenvalue,
                 frequency: eigenvalue.sqrt(),
                 coefficient,
-            });
-        }
+            })
+            .collect();
+        let represented_dirichlet_energy = entries
+            .iter()
+            .map(|e| e.eigenvalue * e.coefficient * e.coefficient)
+            .sum();
         Ok(Self {
             entries,
             energy,
-            field_energy: basis.inner_product(field, field),
+            field_energy: fourier.norm * fourier.norm,
             represented_dirichlet_energy,
         })
     }
