@@ -22,6 +22,16 @@ enum Command {
     Info(commands::info::InfoArgs),
     /// Write the paper's matrices (G, G*, M, M*, M_X, J, cotan, CR, S, B) as Matrix Market files.
     Operators(commands::operators::OperatorsArgs),
+    /// Filter a field in its spectral basis (low-pass, high-pass, band-pass, cut-off, drawn curves).
+    Filter(commands::filter::FilterArgs),
+    /// Spectral analysis of a field: coefficients against frequency (CSV, PNG) and Hodge energies.
+    Analyze(commands::analyze::AnalyzeArgs),
+    /// Compress a field or a sequence of fields into a .tvfc file (64-bit or quantised coefficients).
+    Compress(commands::compress::CompressArgs),
+    /// Decompress a .tvfc file into fields.
+    Decompress(commands::decompress::DecompressArgs),
+    /// Rate–distortion curves of spectral compression (CSV and PNG plot).
+    RateDistortion(commands::rate_distortion::RateDistortionArgs),
 }
 
 fn main() {
@@ -29,6 +39,11 @@ fn main() {
     let result = match cli.command {
         Command::Info(args) => commands::info::run(args),
         Command::Operators(args) => commands::operators::run(args),
+        Command::Filter(args) => commands::filter::run(args),
+        Command::Analyze(args) => commands::analyze::run(args),
+        Command::Compress(args) => commands::compress::run(args),
+        Command::Decompress(args) => commands::decompress::run(args),
+        Command::RateDistortion(args) => commands::rate_distortion::run(args),
     };
     if let Err(error) = result {
         eprintln!("error: {error:#}");

@@ -1,0 +1,134 @@
+//! `tvf rate-distortion`: relative L2 error against bits per vertex for several numbers of
+//! pairs, with 64-bit and with quantised, range-coded coefficients (the paper's Figure 9).
+
+use super::spectral_inputs::{create_output_dir, load_setup, read_field};
+use crate::mesh_input::MeshInput;
+use anyhow::{Context, Result};
+use clap::Args;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
+use tvf_spectral::{
+    basis_id, equal_error_comparison, rate_distortion, write_atomically, CoefficientCoding,
+    FileStamp, RatePoint,
+};
+
+/// Arguments of `tvf rate-distortion`.
+#[derive(Args)]
+#[command(after_help = "Every point is a real .tvfc file (size with header and checksum; error measured on \
+the decoded field). Writes DIR/rate_distortion.csv and DIR/rate_distortion.png (log–log), and prints, for \
+every 64-bit point, the smallest quantised file with an error at most as large.")]
+pub struct RateDistortionArgs {
+    #[command(flatten)]
+    input: MeshInput,
+    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
+    #[arg(value_name = "FIELD")]
+    field: PathBuf,
+    /// The basis file (.tvfb) of the mesh (`tvf basis`).
+    #[arg(long, value_name = "FILE")]
+    basis: PathBuf,
+    /// Numbers of pairs K to try, comma-separated.
+    #[arg(long, value_name = "K,K,...", value_delimiter = ',', required = true)]
+    ks: Vec<usize>,
+    /// Symbol sizes Q of the quantised coder, comma-separated.
+    #[arg(long, value_name = "Q,Q,...", value_delimiter = ',', default_value = "8,12,16",
+          value_parser = clap::value_parser!(u32).range(2..=32))]
+    bits: Vec<u32>,
+    /// Output folder (created if missing).
+    #[arg(short, long, value_name = "DIR")]
+    output: PathBuf,
+}
+
+fn coding_label(coding: CoefficientCoding) -> String {
+    match coding {
+        CoefficientCoding::Float64 => "64-bit coefficients".to_string(),
+        CoefficientCoding::Quantized { bits } => format!("{bits}-bit quantised, range-coded"),
+    }
+}
+
+/// Measures every point and writes the CSV and the plot.
+pub fn run(args: RateDistortionArgs) -> Result<()> {
+    let setup = load_setup(&args.input, &args.basis)?;
+    let field = read_field(&args.field, &setup.fields)?;
+    let stamp = FileStamp {
+        mesh_fingerprint: setup.mesh_fingerprint,
+        basis_id: basis_id(&setup.basis),
+        vertex_count: setup.mesh.vertex_count(),
+    };
+    let mut codings = vec![CoefficientCoding::Float64];
+    codings.extend(args.bits.iter().map(|&bits| CoefficientCoding::Quantized { bits }));
+    let points = rate_distortion(&setup.basis, &field, stamp, &args.ks, &codings)?;
+    create_output_dir(&args.output)?;
+
+    let mut csv = String::from("coding,bits,pairs,bytes,bits_per_vertex,relative_error\n");
+    for p in &points {
+        let (name, bits) = match p.coding {
+            CoefficientCoding::Float64 => ("f64", 64),
+            CoefficientCoding::Quantized { bits } => ("quantized", bits),
+        };
+        writeln!(
+            csv,
+            "{name},{bits},{},{},{:.6},{:e}",
+            p.pairs, p.bytes, p.bits_per_vertex, p.relative_error
+        )?;
+    }
+    let csv_path = args.output.join("rate_distortion.csv");
+    write_atomically(&csv_path, csv.as_bytes())
+        .with_context(|| format!("cannot write {}", csv_path.display()))?;
+    let png_path = args.output.join("rate_distortion.png");
+    plot(&points, &codings, &png_path, &args.input.label())?;
+
+    println!("{:>6} {:>34} {:>10} {:>12} {:>14}", "pairs", "coding", "bytes", "bits/vertex", "rel. L2 error");
+    for p in &points {
+        println!(
+            "{:>6} {:>34} {:>10} {:>12.3} {:>14.4e}",
+            p.pairs,
+            coding_label(p.coding),
+            p.bytes,
+            p.bits_per_vertex,
+            p.relative_error
+        );
+    }
+    println!("at equal or lower error (smallest quantised file per 64-bit point):");
+    for (exact, quantised) in equal_error_comparison(&points) {
+        println!(
+            "  k = {:>5}: 64-bit {:>9} bytes (error {:.3e})  vs  {} k = {} {:>8} bytes (error {:.3e}): {:.1}× smaller",
+            exact.pairs,
+            exact.bytes,
+            exact.relative_error,
+            coding_label(quantised.coding),
+            quantised.pairs,
+            quantised.bytes,
+            quantised.relative_error,
+            exact.bytes as f64 / quantised.bytes as f64
+        );
+    }
+    println!("wrote {}, {}", csv_path.display(), png_path.display());
+    Ok(())
+}
+
+/// Relative error against bits per vertex, one line per coding (log–log).
+fn plot(points: &[RatePoint], codings: &[CoefficientCoding], path: &Path, mesh: &str) -> Result<()> {
+    let series = codings
+        .iter()
+        .map(|&coding| {
+            let mut line: Vec<(f64, f64)> = points
+                .iter()
+                .filter(|p| p.coding == coding)
+                .map(|p| (p.bits_per_vertex, p.relative_error))
+                .collect();
+            line.sort_by(|a, b| a.0.total_cmp(&b.0));
+            Series::new(coding_label(coding), line, SeriesStyle::LineAndMarkers)
+        })
+        .collect();
+    let plot = Plot {
+        title: format!("Rate–distortion on {mesh}"),
+        x: Axis::new("bits per vertex", AxisScale::Log10),
+        y: Axis::new("relative L2 error", AxisScale::Log10),
+        series,
+        width: 1000,
+        height: 650,
+    };
+    save_png(&plot.render()?, path)?;
+    Ok(())
+}

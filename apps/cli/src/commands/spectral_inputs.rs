@@ -1,0 +1,185 @@
+//! What `filter`, `analyze`, `compress`, `decompress` and `rate-distortion` share: a mesh with
+//! its basis file (checked to belong to the mesh), and field files (one field, or a sequence of
+//! frames) read as tangent fields.
+
+use crate::mesh_input::MeshInput;
+use anyhow::{bail, Context, Result};
+use std::path::{Path, PathBuf};
+use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::{Conforming, FaceFields, HodgeDecomposer, MassLumping, Nonconforming};
+use tvf_spectral::{
+    load_basis, mesh_fingerprint, read_basis_header, read_face_vector_sequence,
+    read_tangent_field, write_face_vector_sequence, write_tangent_field, BasisFileKey,
+    EnergySplit, FieldIoError, NpyDtype, SpectralBasis,
+};
+
+/// A mesh, its face fields and a basis that belongs to it.
+pub struct SpectralSetup {
+    /// The mesh.
+    pub mesh: SurfaceMesh,
+    /// The tangent field space (frames, `M_X`, 3D conversion).
+    pub fields: FaceFields,
+    /// The basis read from the `--basis` file.
+    pub basis: SpectralBasis,
+    /// The discretization the basis was computed with (its file's id).
+    pub discretization: String,
+    /// [`mesh_fingerprint`] of the mesh.
+    pub mesh_fingerprint: u64,
+}
+
+/// Loads the mesh and the basis file, refusing a basis computed for another mesh.
+pub fn load_setup(input: &MeshInput, basis_path: &Path) -> Result<SpectralSetup> {
+    let mesh = input.load()?.mesh;
+    let fields = FaceFields::new(&mesh)
+        .with_context(|| format!("{}: cannot build the tangent fields", input.label()))?;
+    let header = read_basis_header(basis_path)?;
+    let fingerprint = mesh_fingerprint(&mesh);
+    let key = BasisFileKey {
+        discretization: header.key.discretization.clone(),
+        mesh_fingerprint: fingerprint,
+        face_count: mesh.face_count(),
+    };
+    let basis = load_basis(basis_path, &key)?;
+    Ok(SpectralSetup {
+        mesh,
+        fields,
+        basis,
+        discretization: header.key.discretization,
+        mesh_fingerprint: fingerprint,
+    })
+}
+
+/// Reads one field file (`.npy` `F × 3` or text) as a tangent field (`2F` coefficients); notes
+/// on stderr how large the dropped normal components were.
+pub fn read_field(path: &Path, fields: &FaceFields) -> Result<Vec<f64>> {
+    let projection = read_tangent_field(path, fields)?;
+    let normal = projection.max_normal_part();
+    if normal > 0.0 {
+        eprintln!(
+            "note: {}: normal components up to {normal:.3e} were dropped (fields are tangent)",
+            path.display()
+        );
+    }
+    Ok(projection.field)
+}
+
+/// Where a sequence of frames came from (and how decompression writes it back by default).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrameSource {
+    /// One field file.
+    Single,
+    /// One `.npy` array `F × 3 × T`.
+    Array,
+    /// A folder of field files, one per frame, in file-name order.
+    Folder,
+}
+
+/// Reads a field or a sequence: a folder of field files (`.npy` or `.txt`, sorted by name), an
+/// `.npy` array `F × 3 × T`, or one field file.
+pub fn read_frames(path: &Path, fields: &FaceFields) -> Result<(Vec<Vec<f64>>, FrameSource)> {
+    if path.is_dir() {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(path)
+            .with_context(|| format!("cannot list the frame folder {}", path.display()))?
+            .filter_map(|entry| entry.ok().map(|e| e.path()))
+            .filter(|p| {
+                p.is_file()
+                    && matches!(
+                        p.extension().and_then(|e| e.to_str()),
+                        Some("npy" | "txt")
+                    )
+            })
+            .collect();
+        files.sort();
+        if files.is_empty() {
+            bail!("{}: the folder holds no .npy or .txt frame", path.display());
+        }
+        let frames = files
+            .iter()
+            .map(|file| read_field(file, fields))
+            .collect::<Result<Vec<_>>>()?;
+        return Ok((frames, FrameSource::Folder));
+    }
+    let is_npy = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    if is_npy {
+        match read_face_vector_sequence(path) {
+            Ok(sequence) => {
+                let mut frames = Vec::with_capacity(sequence.len());
+                for (k, vectors) in sequence.iter().enumerate() {
+                    if vectors.len() != fields.face_count() {
+                        bail!(
+                            "{}: frames have {} vectors, the mesh has {} faces",
+                            path.display(),
+                            vectors.len(),
+                            fields.face_count()
+                        );
+                    }
+                    let projection = fields
+                        .from_vectors(vectors)
+                        .with_context(|| format!("{}: frame {k}", path.display()))?;
+                    frames.push(projection.field);
+                }
+                return Ok((frames, FrameSource::Array));
+            }
+            Err(FieldIoError::Shape { found, .. }) if found.len() == 2 => {}
+            Err(error) => return Err(error.into()),
+        }
+    }
+    Ok((vec![read_field(path, fields)?], FrameSource::Single))
+}
+
+/// Writes frames: one frame to the file `out` (format by extension); several to one `.npy`
+/// array `F × 3 × T` if `out` ends in `.npy`, otherwise into the folder `out` as
+/// `frame_00000.npy`, `frame_00001.npy`, ...
+pub fn write_frames(out: &Path, fields: &FaceFields, frames: &[Vec<f64>]) -> Result<()> {
+    if let [single] = frames {
+        write_tangent_field(out, fields, single)?;
+        return Ok(());
+    }
+    let vectors = frames
+        .iter()
+        .map(|f| fields.to_vectors(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    if out.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")) {
+        write_face_vector_sequence(out, &vectors, NpyDtype::F64)?;
+    } else {
+        std::fs::create_dir_all(out)
+            .with_context(|| format!("cannot create the folder {}", out.display()))?;
+        for (k, frame) in frames.iter().enumerate() {
+            write_tangent_field(&out.join(format!("frame_{k:05}.npy")), fields, frame)?;
+        }
+    }
+    Ok(())
+}
+
+/// Energies of the exact Hodge decomposition of `field` with the discretization called
+/// `discretization` (the basis file's id), or `None` if no built-in discretization has that name.
+pub fn exact_hodge_energies(
+    mesh: &SurfaceMesh,
+    discretization: &str,
+    field: &[f64],
+) -> Result<Option<EnergySplit>> {
+    for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
+        let conforming = Conforming::new(mesh, lumping)?;
+        if conforming.name() == discretization {
+            return energies(&conforming, field).map(Some);
+        }
+        let nonconforming = Nonconforming::new(mesh, lumping)?;
+        if nonconforming.name() == discretization {
+            return energies(&nonconforming, field).map(Some);
+        }
+    }
+    Ok(None)
+}
+
+fn energies<H: HodgeComplex>(complex: &H, field: &[f64]) -> Result<EnergySplit> {
+    let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
+    Ok(EnergySplit::of_hodge_parts(&parts, complex.m1()))
+}
+
+/// Creates the output folder `dir` (and its parents).
+pub fn create_output_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create the folder {}", dir.display()))
+}
