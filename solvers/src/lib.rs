@@ -8,16 +8,19 @@
 //! - [`lowest_eigenpairs`]: lowest k eigenpairs of `A x = λ M x` (shift-and-invert block
 //!   Krylov–Schur, spectrum slicing, inertia-verified completeness).
 //! - [`dense_generalized_eigen`]: dense reference eigensolver (test oracle, small problems).
+//! - [`DenseCholesky`]: dense Cholesky with rank-one update/downdate and bordered updates.
 //! - [`convert`]: `sprs → faer` conversions.
 #![warn(missing_docs)]
 
 pub mod convert;
+mod dense_cholesky;
 mod dense_eigen;
 mod eigen;
 mod error;
 mod sparse_cholesky;
 mod sparse_ldlt;
 
+pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::dense_generalized_eigen;
 pub use eigen::{lowest_eigenpairs, EigenOptions, EigenProgress, Eigenpairs};
 pub use error::SolverError;

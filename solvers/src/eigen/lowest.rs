@@ -173,7 +173,7 @@ fn sliced(
         let lower_needed = nu - known_below;
         let upper_target = if nu >= k { 0 } else { slice_size.min((k + margin).saturating_sub(nu + known_above)) };
         if lower_needed > 0 || upper_target > 0 {
-            let window_floor = if lower_bound.is_finite() { sigma - 1.5 * (sigma - lower_bound) } else { f64::NEG_INFINITY };
+            let window_floor = if lower_bound.is_finite() { lower_bound - 0.25 * (sigma - lower_bound) } else { f64::NEG_INFINITY };
             let window: Vec<usize> = (0..found_values.len()).filter(|&i| found_values[i] > window_floor).collect();
             let all = found_vectors.view();
             let deflation = Mat::from_fn(n, window.len(), |i, j| all[(i, window[j])]);

@@ -1,0 +1,125 @@
+//! Self-contained OBJ reader and P1 (cotan) / Crouzeix–Raviart stiffness–mass assembly for
+//! the solver benchmarks (tvf-solvers cannot depend on the mesh crates).
+//! Conventions follow MATH.md: `S_ij = −(cot α + cot β)/2`, `M_ii = Σ A_t/3`,
+//! CR basis `1 − 2φ_c` on the edge opposite corner `c`, `M*_ee = Σ A_t/3`.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// A sparse stiffness matrix with its lumped (diagonal) mass.
+pub struct StiffnessMass {
+    pub stiffness: sprs::CsMat<f64>,
+    pub mass: Vec<f64>,
+}
+
+/// `../shared/meshes/NAME` relative to the repository root, if it exists.
+pub fn shared_mesh(name: &str) -> Option<PathBuf> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/meshes").join(name);
+    path.exists().then_some(path)
+}
+
+/// Vertex positions and triangles of an OBJ file (`v` and `f` lines, 1-based indices).
+pub fn read_obj(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<[usize; 3]>), String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for (number, line) in text.lines().enumerate() {
+        let mut parts = line.split_whitespace();
+        match parts.next() {
+            Some("v") => {
+                let coords: Vec<f64> = parts.take(3).map(|s| s.parse().map_err(|_| format!("{}:{}: bad vertex", path.display(), number + 1))).collect::<Result<_, _>>()?;
+                if coords.len() != 3 {
+                    return Err(format!("{}:{}: vertex needs 3 coordinates", path.display(), number + 1));
+                }
+                positions.push([coords[0], coords[1], coords[2]]);
+            }
+            Some("f") => {
+                let ids: Vec<usize> = parts
+                    .map(|s| s.split('/').next().unwrap_or("").parse::<usize>().map_err(|_| format!("{}:{}: bad face", path.display(), number + 1)))
+                    .collect::<Result<_, _>>()?;
+                if ids.len() != 3 || ids.iter().any(|&i| i == 0) {
+                    return Err(format!("{}:{}: only 1-based triangles are supported", path.display(), number + 1));
+                }
+                faces.push([ids[0] - 1, ids[1] - 1, ids[2] - 1]);
+            }
+            _ => {}
+        }
+    }
+    Ok((positions, faces))
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Area and the cotangents of the three corner angles of a triangle.
+fn face_geometry(p: [[f64; 3]; 3]) -> (f64, [f64; 3]) {
+    let double_area = dot(cross(sub(p[1], p[0]), sub(p[2], p[0])), cross(sub(p[1], p[0]), sub(p[2], p[0]))).sqrt();
+    let mut cot = [0.0; 3];
+    for c in 0..3 {
+        let u = sub(p[(c + 1) % 3], p[c]);
+        let v = sub(p[(c + 2) % 3], p[c]);
+        cot[c] = dot(u, v) / double_area;
+    }
+    (0.5 * double_area, cot)
+}
+
+/// Cotan stiffness `S_c` (V × V) and barycentric lumped mass.
+pub fn cotan(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> StiffnessMass {
+    let n = positions.len();
+    let mut t = sprs::TriMat::new((n, n));
+    let mut mass = vec![0.0; n];
+    for f in faces {
+        let (area, cot) = face_geometry([positions[f[0]], positions[f[1]], positions[f[2]]]);
+        for c in 0..3 {
+            let (i, j) = (f[(c + 1) % 3], f[(c + 2) % 3]);
+            let w = 0.5 * cot[c];
+            t.add_triplet(i, j, -w);
+            t.add_triplet(j, i, -w);
+            t.add_triplet(i, i, w);
+            t.add_triplet(j, j, w);
+            mass[f[c]] += area / 3.0;
+        }
+    }
+    StiffnessMass { stiffness: t.to_csc(), mass }
+}
+
+/// Crouzeix–Raviart stiffness `S*_c` (E × E) and lumped mass `M*_ee = Σ A_t/3`.
+pub fn crouzeix_raviart(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> StiffnessMass {
+    let mut edge_index: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut face_edges = Vec::with_capacity(faces.len());
+    for f in faces {
+        let mut e = [0usize; 3];
+        for c in 0..3 {
+            let (a, b) = (f[(c + 1) % 3], f[(c + 2) % 3]);
+            let key = (a.min(b), a.max(b));
+            let next = edge_index.len();
+            e[c] = *edge_index.entry(key).or_insert(next);
+        }
+        face_edges.push(e);
+    }
+    let m = edge_index.len();
+    let mut t = sprs::TriMat::new((m, m));
+    let mut mass = vec![0.0; m];
+    for (f, e) in faces.iter().zip(&face_edges) {
+        let (area, cot) = face_geometry([positions[f[0]], positions[f[1]], positions[f[2]]]);
+        for c in 0..3 {
+            // 4 A ∇φ_c·∇φ_d = −2 cot(θ_k) for c ≠ d, k the third corner
+            let d = (c + 1) % 3;
+            let k = (c + 2) % 3;
+            let w = 2.0 * cot[k];
+            t.add_triplet(e[c], e[d], -w);
+            t.add_triplet(e[d], e[c], -w);
+            t.add_triplet(e[c], e[c], w);
+            t.add_triplet(e[d], e[d], w);
+            mass[e[c]] += area / 3.0;
+        }
+    }
+    StiffnessMass { stiffness: t.to_csc(), mass }
+}

@@ -1,0 +1,76 @@
+//! Plain timed run of the eigensolver on the benchmark meshes (numbers for the report).
+//!
+//! `cargo run --release -p tvf-solvers --example eigen_bench -- [MESH.obj ...] [--k K] [--kind cotan|cr|both]`
+//! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes.
+
+#[path = "../benches/mesh_matrices/mod.rs"]
+mod mesh_matrices;
+
+use std::path::PathBuf;
+use std::time::Instant;
+use tvf_solvers::{convert::shifted_upper_triangle, lowest_eigenpairs, EigenOptions, SparseLdlt};
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let mut meshes: Vec<PathBuf> = Vec::new();
+    let mut k = 500;
+    let mut kind = String::from("both");
+    let mut options = EigenOptions::default();
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--k" => k = args.next().and_then(|s| s.parse().ok()).unwrap_or(k),
+            "--kind" => kind = args.next().unwrap_or(kind),
+            "--block" => options.block_size = args.next().and_then(|s| s.parse().ok()).unwrap_or(options.block_size),
+            "--seq" => faer::set_global_parallelism(faer::Par::Seq),
+            "--slice" => options.slice_size = args.next().and_then(|s| s.parse().ok()).unwrap_or(options.slice_size),
+            other => meshes.push(PathBuf::from(other)),
+        }
+    }
+    if meshes.is_empty() {
+        meshes = ["bunny-closed.obj", "armadillo-x4.obj"].iter().filter_map(|m| mesh_matrices::shared_mesh(m)).collect();
+        if meshes.is_empty() {
+            println!("eigen_bench: ../shared/meshes not found, nothing to do");
+            return;
+        }
+    }
+    for mesh in &meshes {
+        let (positions, faces) = match mesh_matrices::read_obj(mesh) {
+            Ok(m) => m,
+            Err(e) => {
+                eprintln!("eigen_bench: {e}");
+                continue;
+            }
+        };
+        let mut pairs = Vec::new();
+        if kind == "cotan" || kind == "both" {
+            pairs.push(("cotan", mesh_matrices::cotan(&positions, &faces)));
+        }
+        if kind == "cr" || kind == "both" {
+            pairs.push(("crouzeix-raviart", mesh_matrices::crouzeix_raviart(&positions, &faces)));
+        }
+        for (name, pair) in pairs {
+            let n = pair.mass.len();
+            let upper = shifted_upper_triangle(&pair.stiffness, &pair.mass, -1e-6).expect("assembled matrix is valid");
+            let start = Instant::now();
+            let ldlt = SparseLdlt::new(upper.as_ref()).expect("shifted Laplacian factors");
+            let analyse = start.elapsed().as_secs_f64();
+            let mut ldlt = ldlt;
+            let start = Instant::now();
+            ldlt.refactor(upper.as_ref()).expect("refactor");
+            let numeric = start.elapsed().as_secs_f64();
+            let start = Instant::now();
+            let result = lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &options).expect("eigensolver");
+            let seconds = start.elapsed().as_secs_f64();
+            let worst = result.residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+            println!(
+                "{} {name}: n = {n}, nnz(L) = {}, analyse+factor {analyse:.3} s, refactor {numeric:.3} s | k = {k}: {seconds:.2} s, {} factorizations, {} solves, λ ∈ [{:.3e}, {:.3e}], max residual {worst:.1e}",
+                mesh.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+                ldlt.factor_len(),
+                result.factorizations,
+                result.solves,
+                result.values.first().copied().unwrap_or(0.0),
+                result.values.last().copied().unwrap_or(0.0),
+            );
+        }
+    }
+}
