@@ -9,10 +9,11 @@ use rand_chacha::ChaCha8Rng;
 /// `amplitude × (shortest edge at that vertex)`; the same `seed` gives the same mesh on every
 /// machine (ChaCha8). Faces are unchanged.
 ///
-/// Because each move is a fraction of the local edge length, `amplitude ≤ 0.2` keeps a mesh
-/// with reasonable angles (above ~20°) valid: no face can collapse or flip. Larger amplitudes
-/// may produce degenerate faces; the result is not re-validated. Fails only if `amplitude` is not
-/// finite.
+/// Each move is a fraction of the local edge length, so small amplitudes keep a mesh valid:
+/// `amplitude = 0.2` keeps every face of a mesh with angles above ~20° from collapsing or
+/// flipping (checked by the tests on icosphere, torus and genus surfaces). Larger amplitudes
+/// may produce degenerate or flipped faces; the result is not re-validated. Fails only if
+/// `amplitude` is not finite.
 pub fn jitter(mesh: &SurfaceMesh, amplitude: f64, seed: u64) -> Result<SurfaceMesh, MeshError> {
     let positions = mesh.positions();
     let mut shortest = vec![f64::INFINITY; positions.len()];

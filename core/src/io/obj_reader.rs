@@ -160,6 +160,9 @@ fn face_corner(token: &str, seen: usize, line: usize) -> Result<i64, Located> {
 
 /// Runs tobj on the rewritten file and maps its vertices back to file vertex numbers.
 fn faces_through_tobj(for_tobj: &str) -> Result<Vec<[usize; 3]>, Located> {
+    // `..Default::default()` keeps this compiling (and those options off) if another crate
+    // turns on tobj's `merging` or `reordering` features, which add fields.
+    #[allow(clippy::needless_update)]
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: false,
