@@ -89,7 +89,7 @@ fn shared_meshes_match_stats_json() {
 }
 
 #[test]
-fn paper_scale_copies_load() {
+fn shared_meshes_paper_scale_copies_load() {
     let Some(dir) = shared_meshes() else {
         eprintln!("skipping: ../shared/meshes not found");
         return;
