@@ -28,7 +28,6 @@
 #![warn(missing_docs)]
 
 mod assembler;
-mod bordered_cholesky;
 mod constraint;
 mod constraint_file;
 mod error;

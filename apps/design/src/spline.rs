@@ -1,10 +1,10 @@
 //! [`SplineSession`]: tangential vector field splines with hard constraints in a reduced basis
 //! (Section 7), as an editing session.
 
-use crate::bordered_cholesky::{Append, BorderedCholesky};
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use crate::reduced_basis::{dot, ReducedBasis};
+use tvf_solvers::DenseCholesky;
 
 /// Default threshold on the relative pivot `(γ − |l|²)/γ` below which an appended constraint row
 /// counts as linearly dependent on the active ones.
@@ -36,8 +36,9 @@ pub struct ConstraintResidual {
 /// `min E_B(x) + ω E_D(x)  s.t.  C̃ x = c`, restricted to `x = U v`:
 /// `min vᵀ D v` with `D = Λ² + ωΛ` (harmonic eigenvalues replaced by a tenth of the lowest
 /// non-zero one), `C v = c` with `C = C̃ U`. The Schur complement `K = C D⁻¹ Cᵀ` (`n_c × n_c`) is
-/// kept as a dense Cholesky factor: [`add`](Self::add) borders it (`O(n_c² + n_c d)`),
-/// [`remove`](Self::remove) downdates it (rank-one update of the trailing block), and
+/// kept as a dense Cholesky factor ([`tvf_solvers::DenseCholesky`]): [`add`](Self::add) borders
+/// it (`O(n_c² + n_c d)`), [`remove`](Self::remove) shrinks it (rank-one update of the trailing
+/// block), and
 /// [`set_values`](Self::set_values) touches only the right-hand side. [`solve`](Self::solve)
 /// returns `v = D⁻¹ Cᵀ K⁻¹ c` (`d` values); map it to the field with [`ReducedBasis::map`].
 ///
@@ -49,7 +50,7 @@ pub struct SplineSession<'a> {
     basis: &'a ReducedBasis,
     inverse_energy: Vec<f64>,
     active: Vec<Active>,
-    factor: BorderedCholesky,
+    factor: DenseCholesky,
     tolerance: f64,
 }
 
@@ -65,7 +66,7 @@ impl<'a> SplineSession<'a> {
             basis,
             inverse_energy,
             active: Vec::new(),
-            factor: BorderedCholesky::default(),
+            factor: DenseCholesky::new(faer::Mat::<f64>::zeros(0, 0).as_ref())?,
             tolerance: DEFAULT_DEPENDENCY_TOLERANCE,
         })
     }
@@ -89,7 +90,7 @@ impl<'a> SplineSession<'a> {
 
     /// Number of active constraint rows `n_c`.
     pub fn row_count(&self) -> usize {
-        self.factor.len()
+        self.factor.dimension()
     }
 
     /// The diagonal `D⁻¹` (`d` values) of the inverse reduced energy.
@@ -118,18 +119,19 @@ impl<'a> SplineSession<'a> {
             let mut b: Vec<f64> = self.reduced_rows().map(|r| dot(r, &weighted)).collect();
             b.extend(reduced[..k].iter().map(|r| dot(r, &weighted)));
             let gamma = dot(row, &weighted);
-            match self.factor.append(&b, gamma, self.tolerance) {
-                Append::Added => appended += 1,
-                Append::Dependent {
-                    coefficients,
-                    relative_pivot,
-                } => {
-                    for _ in 0..appended {
-                        self.factor.remove(self.factor.len() - 1);
-                    }
-                    return Err(self.dependency_error(&constraint, k, &coefficients, relative_pivot));
+            // Bordered append `[[K, b], [bᵀ, γ]]`: the new pivot² is `γ − bᵀK⁻¹b`; a small one
+            // relative to `γ` means the row is (nearly) a combination of the active rows.
+            let coefficients = self.factor.solve(&b)?;
+            let relative_pivot = (gamma - dot(&b, &coefficients)) / gamma;
+            if !(gamma > 0.0 && relative_pivot > self.tolerance) {
+                for _ in 0..appended {
+                    self.factor.remove(self.factor.dimension() - 1)?;
                 }
+                return Err(self.dependency_error(&constraint, k, &coefficients, relative_pivot.max(0.0)));
             }
+            b.push(gamma);
+            self.factor.append(&b)?;
+            appended += 1;
         }
         self.active.push(Active {
             id: constraint.id.clone(),
@@ -145,7 +147,7 @@ impl<'a> SplineSession<'a> {
         let first: usize = self.active[..index].iter().map(|a| a.reduced.len()).sum();
         let count = self.active[index].reduced.len();
         for k in (0..count).rev() {
-            self.factor.remove(first + k);
+            self.factor.remove(first + k)?;
         }
         Ok(self.active.remove(index).compiled)
     }
@@ -191,7 +193,8 @@ impl<'a> SplineSession<'a> {
     /// `v = 0`.
     pub fn solve(&self) -> Vec<f64> {
         let mut mu: Vec<f64> = self.active.iter().flat_map(|a| a.compiled.values.iter().copied()).collect();
-        self.factor.solve(&mut mu);
+        // `mu` has one value per factored row, so the solve cannot fail.
+        let _ = self.factor.solve_in_place(&mut mu);
         let mut v = vec![0.0; self.basis.len()];
         for (row, m) in self.reduced_rows().zip(&mu) {
             for (vi, c) in v.iter_mut().zip(row) {
