@@ -151,13 +151,12 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
         eprintln!("{label}: full soft design skipped (set TVF_BENCH_FULL=1)");
         return;
     }
-    let biharmonic = complex.biharmonic_energy();
     let mut group = c.benchmark_group(format!("full soft/{name}"));
     group.sample_size(10).warm_up_time(Duration::from_millis(100)).measurement_time(Duration::from_secs(5));
     group.bench_function("factor", |b| {
-        b.iter(|| black_box(FullSoftDesign::from_matrices(&dirichlet, &biharmonic, complex.m1(), options, compiled.clone()).unwrap()))
+        b.iter(|| black_box(FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone()).unwrap()))
     });
-    let mut full = FullSoftDesign::from_matrices(&dirichlet, &biharmonic, complex.m1(), options, compiled.clone()).unwrap();
+    let mut full = FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone()).unwrap();
     let mut flip = false;
     group.bench_function("refactor (symbolic reused)", |b| {
         b.iter(|| {

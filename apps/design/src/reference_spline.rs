@@ -7,7 +7,7 @@ use crate::soft_full::{refined_solve, SolveReport};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 use sprs::CsMat;
-use tvf_core::discretization::sparse::{diagonal, linear_combination};
+use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_solvers::SparseCholesky;
 
@@ -65,7 +65,7 @@ pub fn reference_spline<H: HodgeComplex>(
             }
             rhs[j] += a;
         }
-        let (column, report) = refined_solve(&matrix, &rhs, |r| factor.solve(r));
+        let (column, report) = refined_solve(|x| mul_vec(&matrix, x), &rhs, |r| factor.solve(r));
         z.push(column);
         solve_reports.push(report);
     }

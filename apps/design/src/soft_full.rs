@@ -1,13 +1,16 @@
 //! [`FullSoftDesign`]: Fisher et al. (2007) soft-constrained design at full resolution,
-//! `(S + ωB + εM_X + C̃ᵀ W C̃) x = C̃ᵀ W c`, with a sparse Cholesky and iterative refinement.
+//! `(S + ωB + εM_X + C̃ᵀ W C̃) x = C̃ᵀ W c`, factored through a quasi-definite augmented system
+//! (sparse `LDLᵀ`) with iterative refinement.
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use crate::sparse_pattern::{constraint_gram_entries, position, with_extra_entries};
+use faer::Mat;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_solvers::SparseCholesky;
+use tvf_solvers::convert::upper_triangle_csc;
+use tvf_solvers::{SolverError, SparseLdlt};
 
 /// Stop refining once the relative residual is below this.
 const REFINEMENT_TARGET: f64 = 1e-12;
@@ -49,68 +52,79 @@ impl SolveReport {
     }
 }
 
-/// The full soft-design system and its sparse Cholesky factorization.
+/// The full soft-design system and its sparse factorization.
 ///
-/// The matrix keeps the **union** of the patterns of `S + ωB` and of every `C̃ᵀC̃` it has seen
-/// (as explicit zeros where a constraint left), so changing the constraints refactors
-/// numerically with the symbolic analysis (AMD ordering, supernodes) reused, unless a new
-/// constraint couples entries outside the pattern; then the pattern grows and one new symbolic
-/// analysis is done. With `ω > 0` the pattern of `B` already holds every `C̃ᵀC̃` block of
-/// vector, vertex, edge and point constraints, so this happens only for `ω = 0` (and there only
-/// for point constraints whose nodes' supports do not share a vertex: S couples faces that do).
+/// `B = S M_X⁻¹ S` is much denser than `S` (faces two rings apart couple), so instead of factoring
+/// `A = S + εM_X + C̃ᵀWC̃ + ωB` this factors the **augmented** system (`4F × 4F`)
+///
+/// ```text
+/// [ S + εM_X + C̃ᵀWC̃   √ω S ] [x]   [C̃ᵀWc]
+/// [ √ω S              −M_X ] [y] = [  0  ]      (y = √ω M_X⁻¹ S x)
+/// ```
+///
+/// whose elimination of `y` gives back `A x = C̃ᵀWc`. It has only the sparsity of `S`, and it is
+/// quasi-definite (positive definite top-left block, negative definite bottom-right block), so a
+/// sparse `LDLᵀ` without pivoting exists for every symmetric ordering (AMD here); its inertia
+/// (`2F` positive, `2F` negative pivots) is checked. Every solve is refined on the original
+/// system `A` (applied as `S x + ω S M_X⁻¹ S x + ...`, `B` is never formed).
+///
+/// The top-left block keeps the **union** of the patterns of `S` and of every `C̃ᵀC̃` it has seen
+/// (explicit zeros where a constraint left), so changing the constraints refactors numerically
+/// with the symbolic analysis reused, unless a new constraint couples faces that `S` does not
+/// (a P1 divergence at a point mixes three vertex one-rings); then the pattern grows and one new
+/// symbolic analysis is done.
 #[derive(Debug)]
 pub struct FullSoftDesign {
+    dirichlet: CsMat<f64>,
+    mass: Vec<f64>,
+    omega: f64,
     base: CsMat<f64>,
-    system: CsMat<f64>,
-    factor: SparseCholesky,
+    top: CsMat<f64>,
+    factor: SparseLdlt,
     constraints: Vec<CompiledConstraint>,
     symbolic_analyses: usize,
 }
 
 impl FullSoftDesign {
-    /// Assembles `S`, `B` and `M_X` of `complex` and factors the system for `constraints`.
+    /// Assembles `S` and `M_X` of `complex` and factors the system for `constraints`.
     pub fn new<H: HodgeComplex>(
         complex: &H,
         options: SoftOptions,
         constraints: Vec<CompiledConstraint>,
     ) -> Result<Self, DesignError> {
-        Self::from_matrices(
-            &complex.dirichlet_energy(),
-            &complex.biharmonic_energy(),
-            complex.m1(),
-            options,
-            constraints,
-        )
+        Self::from_matrices(&complex.dirichlet_energy(), complex.m1(), options, constraints)
     }
 
-    /// The same from the matrices: Dirichlet energy `S` and biharmonic energy `B` (`2F × 2F`,
-    /// integrated, symmetric) and the diagonal of `M_X`.
+    /// The same from the Dirichlet energy `S` (`2F × 2F`, integrated, symmetric) and the diagonal
+    /// of `M_X`.
     pub fn from_matrices(
         dirichlet: &CsMat<f64>,
-        biharmonic: &CsMat<f64>,
         mass: &[f64],
         options: SoftOptions,
         constraints: Vec<CompiledConstraint>,
     ) -> Result<Self, DesignError> {
         check_options(options)?;
         let n = dirichlet.rows();
-        if biharmonic.rows() != n || mass.len() != n {
+        if mass.len() != n {
             return Err(DesignError::DimensionMismatch {
-                what: "biharmonic energy / mass (must match S)",
+                what: "mass (must match S)",
                 expected: n,
-                actual: if biharmonic.rows() != n { biharmonic.rows() } else { mass.len() },
+                actual: mass.len(),
             });
         }
         check_columns(&constraints, n)?;
-        let energy = linear_combination(1.0, dirichlet, options.omega, biharmonic);
+        let dirichlet = if dirichlet.is_csr() { dirichlet.clone() } else { dirichlet.to_csr() };
         let screened: Vec<f64> = mass.iter().map(|m| options.regularization * m).collect();
-        let base = linear_combination(1.0, &energy, 1.0, &diagonal(&screened));
+        let base = linear_combination(1.0, &dirichlet, 1.0, &diagonal(&screened));
         let base = grow_pattern(&base, &constraints);
-        let system = add_constraints(&base, &constraints);
-        let factor = SparseCholesky::new(&system)?;
+        let top = add_constraints(&base, &constraints);
+        let factor = factor_augmented(&top, &dirichlet, options.omega, mass)?;
         Ok(Self {
+            dirichlet,
+            mass: mass.to_vec(),
+            omega: options.omega,
             base,
-            system,
+            top,
             factor,
             constraints,
             symbolic_analyses: 1,
@@ -125,15 +139,17 @@ impl FullSoftDesign {
             .iter()
             .all(|&(i, j, _)| position(&self.base, i, j).is_some());
         if fits {
-            let system = add_constraints(&self.base, &constraints);
-            self.factor.refactor(&system)?;
-            self.system = system;
+            let top = add_constraints(&self.base, &constraints);
+            let augmented = augmented_upper(&top, &self.dirichlet, self.omega, &self.mass)?;
+            self.factor.refactor(augmented.as_ref())?;
+            check_inertia(&self.factor)?;
+            self.top = top;
         } else {
             let base = grow_pattern(&self.base, &constraints);
-            let system = add_constraints(&base, &constraints);
-            self.factor = SparseCholesky::new(&system)?;
+            let top = add_constraints(&base, &constraints);
+            self.factor = factor_augmented(&top, &self.dirichlet, self.omega, &self.mass)?;
             self.base = base;
-            self.system = system;
+            self.top = top;
             self.symbolic_analyses += 1;
         }
         self.constraints = constraints;
@@ -145,9 +161,9 @@ impl FullSoftDesign {
         self.symbolic_analyses
     }
 
-    /// The current system matrix `S + ωB + εM_X + C̃ᵀ W C̃` (`2F × 2F`, CSR, both triangles).
-    pub fn system(&self) -> &CsMat<f64> {
-        &self.system
+    /// Stored entries of the factor `L` of the augmented system (a measure of fill-in).
+    pub fn factor_entries(&self) -> usize {
+        self.factor.factor_len()
     }
 
     /// The active constraints.
@@ -168,17 +184,94 @@ impl FullSoftDesign {
         b
     }
 
+    /// `A x = (S + εM_X + C̃ᵀWC̃) x + ω S M_X⁻¹ S x` (`2F` values), without forming `B`.
+    pub fn apply(&self, x: &[f64]) -> Vec<f64> {
+        let mut y = mul_vec(&self.top, x);
+        if self.omega > 0.0 {
+            let sx: Vec<f64> = mul_vec(&self.dirichlet, x).iter().zip(&self.mass).map(|(v, m)| v / m).collect();
+            for (yi, v) in y.iter_mut().zip(mul_vec(&self.dirichlet, &sx)) {
+                *yi += self.omega * v;
+            }
+        }
+        y
+    }
+
     /// Solves for the field `x` (`2F` values) with iterative refinement until the relative
-    /// residual is below 1e-12 (or stops decreasing), and reports the residual history.
+    /// residual `‖b − A x‖/‖b‖` is below 1e-12 (or stops decreasing), and reports its history.
     pub fn solve(&self) -> (Vec<f64>, SolveReport) {
         let b = self.right_hand_side();
-        refined_solve(&self.system, &b, |r| self.factor.solve(r))
+        let n = b.len();
+        refined_solve(|x| self.apply(x), &b, |r| {
+            let mut rhs = Mat::from_fn(2 * n, 1, |i, _| if i < n { r[i] } else { 0.0 });
+            self.factor.solve_in_place(rhs.as_mut());
+            (0..n).map(|i| rhs[(i, 0)]).collect()
+        })
+    }
+}
+
+/// Upper triangle (CSC) of the augmented matrix `[[top, √ω S], [√ω S, −M]]`; its pattern depends
+/// only on the patterns of `top` and `S`.
+fn augmented_upper(
+    top: &CsMat<f64>,
+    dirichlet: &CsMat<f64>,
+    omega: f64,
+    mass: &[f64],
+) -> Result<faer::sparse::SparseColMat<usize, f64>, DesignError> {
+    let n = top.rows();
+    let root = omega.sqrt();
+    let mut indptr = Vec::with_capacity(2 * n + 1);
+    let mut indices = Vec::new();
+    let mut data = Vec::new();
+    indptr.push(0);
+    for i in 0..n {
+        if let Some(row) = top.outer_view(i) {
+            for (j, &v) in row.iter().filter(|(j, _)| *j >= i) {
+                indices.push(j);
+                data.push(v);
+            }
+        }
+        if let Some(row) = dirichlet.outer_view(i) {
+            for (j, &v) in row.iter() {
+                indices.push(n + j);
+                data.push(root * v);
+            }
+        }
+        indptr.push(indices.len());
+    }
+    for (i, m) in mass.iter().enumerate() {
+        indices.push(n + i);
+        data.push(-m);
+        indptr.push(indices.len());
+    }
+    let csr = CsMat::new((2 * n, 2 * n), indptr, indices, data);
+    Ok(upper_triangle_csc(&csr)?)
+}
+
+fn factor_augmented(top: &CsMat<f64>, dirichlet: &CsMat<f64>, omega: f64, mass: &[f64]) -> Result<SparseLdlt, DesignError> {
+    let augmented = augmented_upper(top, dirichlet, omega, mass)?;
+    let factor = SparseLdlt::new(augmented.as_ref())?;
+    check_inertia(&factor)?;
+    Ok(factor)
+}
+
+/// The augmented matrix must have `2F` positive and `2F` negative pivots (quasi-definite);
+/// otherwise the top-left block was not positive definite.
+fn check_inertia(factor: &SparseLdlt) -> Result<(), DesignError> {
+    let inertia = factor.inertia();
+    let half = factor.dimension() / 2;
+    if inertia.positive == half && inertia.negative == half {
+        Ok(())
+    } else {
+        Err(DesignError::Solver(SolverError::Factorization(format!(
+            "the soft-design system is not positive definite (inertia {} positive, {} negative, {} zero pivots);              use a positive regularization",
+            inertia.positive, inertia.negative, inertia.zero
+        ))))
     }
 }
 
 /// `x = A⁻¹ b` by a direct solve followed by iterative refinement with the same factorization.
 pub(crate) fn refined_solve(
-    matrix: &CsMat<f64>,
+    apply: impl Fn(&[f64]) -> Vec<f64>,
     b: &[f64],
     solve: impl Fn(&[f64]) -> Vec<f64>,
 ) -> (Vec<f64>, SolveReport) {
@@ -187,7 +280,7 @@ pub(crate) fn refined_solve(
         return (vec![0.0; b.len()], SolveReport { residuals: vec![0.0] });
     }
     let residual = |x: &[f64]| -> (Vec<f64>, f64) {
-        let ax = mul_vec(matrix, x);
+        let ax = apply(x);
         let r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
         let norm = r.iter().map(|v| v * v).sum::<f64>().sqrt() / norm_b;
         (r, norm)
