@@ -17,19 +17,32 @@ fn assembly(c: &mut Criterion) {
         });
     }
     group.bench_function("nonconforming_new/barycentric", |b| {
-        b.iter(|| black_box(Nonconforming::new(&mesh, MassLumping::Barycentric).expect("valid mesh")))
+        b.iter(|| {
+            black_box(Nonconforming::new(&mesh, MassLumping::Barycentric).expect("valid mesh"))
+        })
     });
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("valid mesh");
     group.bench_function("cotan_and_cr_stiffness", |b| {
-        b.iter(|| black_box((complex.potential_stiffness(), complex.co_potential_stiffness())))
+        b.iter(|| {
+            black_box((
+                complex.potential_stiffness(),
+                complex.co_potential_stiffness(),
+            ))
+        })
     });
-    group.bench_function("dirichlet_energy_S", |b| b.iter(|| black_box(complex.dirichlet_energy())));
-    group.bench_function("biharmonic_energy_B", |b| b.iter(|| black_box(complex.biharmonic_energy())));
+    group.bench_function("dirichlet_energy_S", |b| {
+        b.iter(|| black_box(complex.dirichlet_energy()))
+    });
+    group.bench_function("biharmonic_energy_B", |b| {
+        b.iter(|| black_box(complex.biharmonic_energy()))
+    });
     group.bench_function("hodge_decomposer_factor", |b| {
         b.iter(|| black_box(HodgeDecomposer::new(&complex).expect("closed mesh")))
     });
     let decomposer = HodgeDecomposer::new(&complex).expect("closed mesh");
-    let field: Vec<f64> = (0..2 * mesh.face_count()).map(|i| (i as f64 * 0.37).sin()).collect();
+    let field: Vec<f64> = (0..2 * mesh.face_count())
+        .map(|i| (i as f64 * 0.37).sin())
+        .collect();
     group.bench_function("hodge_decompose_one_field", |b| {
         b.iter(|| black_box(decomposer.decompose(&field).expect("valid field")))
     });

@@ -25,11 +25,19 @@ pub struct CrouzeixRaviart {
 impl CrouzeixRaviart {
     /// Builds `S*_h` on `mesh`; fails on a degenerate face.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Ok(Self::from_geometry(mesh, &FaceGeometry::new(mesh)?, lumping))
+        Ok(Self::from_geometry(
+            mesh,
+            &FaceGeometry::new(mesh)?,
+            lumping,
+        ))
     }
 
     /// Builds `S*_h` from precomputed face geometry.
-    pub fn from_geometry(mesh: &SurfaceMesh, geometry: &FaceGeometry, lumping: MassLumping) -> Self {
+    pub fn from_geometry(
+        mesh: &SurfaceMesh,
+        geometry: &FaceGeometry,
+        lumping: MassLumping,
+    ) -> Self {
         let gradient = assemble_gradient(
             mesh.edge_count(),
             mesh.face_edges().iter().copied(),

@@ -16,11 +16,9 @@ pub fn assemble_gradient(
     for (face_nodes, grads) in nodes.zip(gradients) {
         let mut order = [0usize, 1, 2];
         order.sort_unstable_by_key(|&c| face_nodes[c]);
-        for component in 0..2 {
-            for &c in &order {
-                indices.push(face_nodes[c]);
-                data.push(grads[c][component]);
-            }
+        for component in [0, 1] {
+            indices.extend(order.iter().map(|&c| face_nodes[c]));
+            data.extend(order.iter().map(|&c| grads[c][component]));
             indptr.push(indices.len());
         }
     }

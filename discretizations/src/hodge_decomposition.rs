@@ -6,7 +6,9 @@ use crate::DecompositionError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
-use tvf_core::discretization::{DiscretizationError, FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{
+    DiscretizationError, FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators,
+};
 
 /// The three `M1`-orthogonal parts of a field and their potentials.
 #[derive(Debug, Clone, PartialEq)]

@@ -24,11 +24,19 @@ pub struct LagrangeP1 {
 impl LagrangeP1 {
     /// Builds `S_h` on `mesh`; fails on a degenerate face.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Ok(Self::from_geometry(mesh, &FaceGeometry::new(mesh)?, lumping))
+        Ok(Self::from_geometry(
+            mesh,
+            &FaceGeometry::new(mesh)?,
+            lumping,
+        ))
     }
 
     /// Builds `S_h` from precomputed face geometry.
-    pub fn from_geometry(mesh: &SurfaceMesh, geometry: &FaceGeometry, lumping: MassLumping) -> Self {
+    pub fn from_geometry(
+        mesh: &SurfaceMesh,
+        geometry: &FaceGeometry,
+        lumping: MassLumping,
+    ) -> Self {
         let gradient = assemble_gradient(
             mesh.vertex_count(),
             mesh.faces().iter().copied(),

@@ -45,13 +45,9 @@ impl MassLumping {
                 let cot = geometry.cotangents(t);
                 let len2 = geometry.squared_edge_lengths(t);
                 match (0..3).find(|&c| cot[c] < 0.0) {
-                    Some(obtuse) => std::array::from_fn(|c| {
-                        if c == obtuse {
-                            area / 2.0
-                        } else {
-                            area / 4.0
-                        }
-                    }),
+                    Some(obtuse) => {
+                        std::array::from_fn(|c| if c == obtuse { area / 2.0 } else { area / 4.0 })
+                    }
                     None => std::array::from_fn(|c| {
                         // Edge opposite corner c+1 joins c and c+2; opposite c+2 joins c and c+1.
                         let (j, k) = ((c + 1) % 3, (c + 2) % 3);

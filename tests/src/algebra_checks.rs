@@ -46,7 +46,11 @@ pub fn check_psd_operators<H: HodgeComplex>(complex: &H) {
     let exact = complex.exact_eigenproblem();
     check_psd("potential stiffness", &exact.stiffness, &exact.mass);
     let co_exact = complex.co_exact_eigenproblem();
-    check_psd("co-potential stiffness", &co_exact.stiffness, &co_exact.mass);
+    check_psd(
+        "co-potential stiffness",
+        &co_exact.stiffness,
+        &co_exact.mass,
+    );
 }
 
 /// All masses positive, each space's masses sum to the total area, `M2 = M_co⁻¹`, and the
@@ -72,7 +76,10 @@ pub fn check_masses<H: HodgeComplex>(complex: &H, total_area: f64) {
         );
     }
     for (m2, m) in complex.m2().iter().zip(q.mass()) {
-        assert!((m2 * m - 1.0).abs() < 1e-14, "M2 is not the inverse co-potential mass");
+        assert!(
+            (m2 * m - 1.0).abs() < 1e-14,
+            "M2 is not the inverse co-potential mass"
+        );
     }
 }
 
@@ -81,7 +88,10 @@ pub fn check_d1_d0_zero<H: HodgeComplex>(complex: &H) {
     let composed = product(complex.d1(), complex.d0());
     let scale = max_abs(complex.d1()) * max_abs(complex.d0());
     let error = max_abs(&composed);
-    assert!(error <= 1e-12 * scale, "|d1 d0| = {error:e}, scale {scale:e}");
+    assert!(
+        error <= 1e-12 * scale,
+        "|d1 d0| = {error:e}, scale {scale:e}"
+    );
 }
 
 /// Integrable ⟂ co-integrable: `(J G_co)ᵀ M1 d0 = 0` (conforming: `G*ᵀ J M_X G = 0`), computed
@@ -92,7 +102,10 @@ pub fn check_integrable_orthogonal_to_cointegrable<H: HodgeComplex>(complex: &H)
     let cross = product(&transpose(&co_gradient), &weighted);
     let scale = max_abs(&co_gradient) * max_abs(&weighted);
     let error = max_abs(&cross);
-    assert!(error <= 1e-12 * scale, "|(J G_co)ᵀ M1 d0| = {error:e}, scale {scale:e}");
+    assert!(
+        error <= 1e-12 * scale,
+        "|(J G_co)ᵀ M1 d0| = {error:e}, scale {scale:e}"
+    );
 }
 
 /// `J² = −I`, `Jᵀ M1 J = M1`, and the frames are orthonormal, positively oriented, tangent.
@@ -116,13 +129,19 @@ pub fn check_field_space<H: HodgeComplex>(complex: &H) {
             (dot(e1, n), 0.0),
             (dot(e2, n), 0.0),
         ] {
-            assert!((value - expected).abs() < 1e-12, "frame of face {t} not orthonormal");
+            assert!(
+                (value - expected).abs() < 1e-12,
+                "frame of face {t} not orthonormal"
+            );
         }
         let c = [
             e1[1] * e2[2] - e1[2] * e2[1],
             e1[2] * e2[0] - e1[0] * e2[2],
             e1[0] * e2[1] - e1[1] * e2[0],
         ];
-        assert!((dot(c, n) - 1.0).abs() < 1e-12, "frame of face {t} negatively oriented");
+        assert!(
+            (dot(c, n) - 1.0).abs() < 1e-12,
+            "frame of face {t} negatively oriented"
+        );
     }
 }

@@ -32,7 +32,9 @@ fn max_abs(x: &[f64]) -> f64 {
 pub fn check_hodge_decomposition<H: HodgeComplex>(complex: &H, seed: u64) {
     let decomposer = HodgeDecomposer::new(complex).expect("decomposer factors");
     let field = random_field(complex, seed);
-    let parts = decomposer.decompose(&field).expect("decomposition succeeds");
+    let parts = decomposer
+        .decompose(&field)
+        .expect("decomposition succeeds");
     let norm = m1_norm(complex, &field);
     let named = [
         ("integrable", &parts.integrable),
@@ -53,60 +55,110 @@ pub fn check_hodge_decomposition<H: HodgeComplex>(complex: &H, seed: u64) {
     }
     for (i, &v) in field.iter().enumerate() {
         let sum = parts.integrable[i] + parts.co_integrable[i] + parts.harmonic[i];
-        assert!((sum - v).abs() <= 1e-12 * (1.0 + v.abs()), "parts do not sum to the input");
+        assert!(
+            (sum - v).abs() <= 1e-12 * (1.0 + v.abs()),
+            "parts do not sum to the input"
+        );
     }
     let curl = complex.co_potential_curl();
     let divergence = complex.potential_divergence();
     let laplacian = complex.hodge_laplacian();
     // Operator scale: how large div/curl/L of a unit-size field can be.
-    let scale = |matrix: &sprs::CsMat<f64>, x: &[f64]| max_abs(&mul_vec(matrix, &field)) + max_abs(&mul_vec(matrix, x));
+    let scale = |matrix: &sprs::CsMat<f64>, x: &[f64]| {
+        max_abs(&mul_vec(matrix, &field)) + max_abs(&mul_vec(matrix, x))
+    };
     for (what, matrix, part) in [
         ("curl of the integrable part", &curl, &parts.integrable),
-        ("divergence of the co-integrable part", &divergence, &parts.co_integrable),
+        (
+            "divergence of the co-integrable part",
+            &divergence,
+            &parts.co_integrable,
+        ),
         ("curl of the harmonic part", &curl, &parts.harmonic),
-        ("divergence of the harmonic part", &divergence, &parts.harmonic),
-        ("Hodge-Laplacian of the harmonic part", &laplacian, &parts.harmonic),
+        (
+            "divergence of the harmonic part",
+            &divergence,
+            &parts.harmonic,
+        ),
+        (
+            "Hodge-Laplacian of the harmonic part",
+            &laplacian,
+            &parts.harmonic,
+        ),
     ] {
         let value = max_abs(&mul_vec(matrix, part));
         let reference = scale(matrix, part);
-        assert!(value <= 1e-9 * reference, "{what}: {value:e} (scale {reference:e})");
+        assert!(
+            value <= 1e-9 * reference,
+            "{what}: {value:e} (scale {reference:e})"
+        );
     }
     // Known parts: v = d0 f + J G_co g (+ harmonic h from the random field) is recovered.
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
-    let f: Vec<f64> = parts.potential.iter().map(|_| rng.random_range(-1.0..1.0)).collect();
-    let g: Vec<f64> = parts.co_potential.iter().map(|_| rng.random_range(-1.0..1.0)).collect();
+    let f: Vec<f64> = parts
+        .potential
+        .iter()
+        .map(|_| rng.random_range(-1.0..1.0))
+        .collect();
+    let g: Vec<f64> = parts
+        .co_potential
+        .iter()
+        .map(|_| rng.random_range(-1.0..1.0))
+        .collect();
     let grad = complex.gradient_field(&f);
     let cograd = complex.co_gradient_field(&g);
     let composed: Vec<f64> = (0..field.len())
         .map(|i| grad[i] + cograd[i] + parts.harmonic[i])
         .collect();
-    let again = decomposer.decompose(&composed).expect("decomposition succeeds");
+    let again = decomposer
+        .decompose(&composed)
+        .expect("decomposition succeeds");
     let scale = m1_norm(complex, &composed);
     for (what, got, expected) in [
         ("integrable", &again.integrable, &grad),
         ("co-integrable", &again.co_integrable, &cograd),
         ("harmonic", &again.harmonic, &parts.harmonic),
     ] {
-        let difference: Vec<f64> = got.iter().zip(expected.iter()).map(|(a, b)| a - b).collect();
+        let difference: Vec<f64> = got
+            .iter()
+            .zip(expected.iter())
+            .map(|(a, b)| a - b)
+            .collect();
         let error = m1_norm(complex, &difference);
-        assert!(error <= 1e-9 * scale, "{what} part not recovered: error {error:e}");
+        assert!(
+            error <= 1e-9 * scale,
+            "{what} part not recovered: error {error:e}"
+        );
     }
 }
 
 /// `dim ker L = 2g` by dense eigenvalues of `(S, M1)` (small meshes), and the complex reports
 /// the same harmonic dimension.
 pub fn check_kernel_is_2g_dense<H: HodgeComplex>(complex: &H, genus: usize) {
-    assert_eq!(complex.harmonic_dimension(), 2 * genus, "reported harmonic dimension");
+    assert_eq!(
+        complex.harmonic_dimension(),
+        2 * genus,
+        "reported harmonic dimension"
+    );
     let eigenvalues = generalized_eigenvalues(&complex.dirichlet_energy(), complex.m1());
     let (zeros, _) = split_zeros(&eigenvalues, 1e-9);
-    assert_eq!(zeros, 2 * genus, "dim ker L (lowest eigenvalues {:?})", &eigenvalues[..(2 * genus + 3).min(eigenvalues.len())]);
+    assert_eq!(
+        zeros,
+        2 * genus,
+        "dim ker L (lowest eigenvalues {:?})",
+        &eigenvalues[..(2 * genus + 3).min(eigenvalues.len())]
+    );
 }
 
 /// `dim H = 2g` without dense eigenvalues (any size): the harmonic parts of `2g + 3` random
 /// fields span a space whose `M1`-Gram matrix has exactly `2g` eigenvalues above
 /// `1e-12 · |v|²`; the harmonic basis is `M1`-orthonormal and harmonic.
 pub fn check_kernel_is_2g_sparse<H: HodgeComplex>(complex: &H, genus: usize, seed: u64) {
-    assert_eq!(complex.harmonic_dimension(), 2 * genus, "reported harmonic dimension");
+    assert_eq!(
+        complex.harmonic_dimension(),
+        2 * genus,
+        "reported harmonic dimension"
+    );
     let decomposer = HodgeDecomposer::new(complex).expect("decomposer factors");
     let samples = 2 * genus + 3;
     let mut harmonic = Vec::new();
@@ -114,7 +166,11 @@ pub fn check_kernel_is_2g_sparse<H: HodgeComplex>(complex: &H, genus: usize, see
     for k in 0..samples {
         let field = random_field(complex, seed + k as u64);
         size = size.max(complex.field_inner(&field, &field));
-        harmonic.push(decomposer.harmonic_part(&field).expect("decomposition succeeds"));
+        harmonic.push(
+            decomposer
+                .harmonic_part(&field)
+                .expect("decomposition succeeds"),
+        );
     }
     let gram = Mat::<f64>::from_fn(samples, samples, |i, j| {
         complex.field_inner(&harmonic[i], &harmonic[j])
@@ -123,7 +179,11 @@ pub fn check_kernel_is_2g_sparse<H: HodgeComplex>(complex: &H, genus: usize, see
         .self_adjoint_eigenvalues(Side::Lower)
         .expect("small dense eigenvalues");
     let rank = eigenvalues.iter().filter(|&&x| x > 1e-12 * size).count();
-    assert_eq!(rank, 2 * genus, "rank of harmonic projections (Gram eigenvalues {eigenvalues:?})");
+    assert_eq!(
+        rank,
+        2 * genus,
+        "rank of harmonic projections (Gram eigenvalues {eigenvalues:?})"
+    );
     let basis = decomposer.harmonic_basis(seed).expect("harmonic basis");
     assert_eq!(basis.len(), 2 * genus);
     let laplacian = complex.hodge_laplacian();
@@ -131,11 +191,17 @@ pub fn check_kernel_is_2g_sparse<H: HodgeComplex>(complex: &H, genus: usize, see
         for (j, b) in basis.iter().enumerate() {
             let expected = if i == j { 1.0 } else { 0.0 };
             let inner = complex.field_inner(a, b);
-            assert!((inner - expected).abs() < 1e-10, "harmonic basis Gram ({i},{j}) = {inner}");
+            assert!(
+                (inner - expected).abs() < 1e-10,
+                "harmonic basis Gram ({i},{j}) = {inner}"
+            );
         }
         let la = mul_vec(&laplacian, a);
         let random = random_field(complex, seed);
         let reference = max_abs(&mul_vec(&laplacian, &random)) / m1_norm(complex, &random);
-        assert!(max_abs(&la) <= 1e-9 * reference, "harmonic basis field {i} not in ker L");
+        assert!(
+            max_abs(&la) <= 1e-9 * reference,
+            "harmonic basis field {i} not in ker L"
+        );
     }
 }

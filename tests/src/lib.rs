@@ -4,10 +4,13 @@
 //! traits of [`tvf_core::discretization`]; the macro [`conformance_suite!`] instantiates all of
 //! them for one discretization, over the corpus of [`corpus`], in one line:
 //!
-//! ```ignore
+//! ```
+//! use tvf_discretizations::{Conforming, MassLumping};
+//!
 //! tvf_tests::conformance_suite!(conforming_barycentric, |mesh| {
 //!     Conforming::new(mesh, MassLumping::Barycentric)
 //! });
+//! # fn main() {}
 //! ```
 //!
 //! The constructor is any `Fn(&SurfaceMesh) -> Result<H, E>` with `H: HodgeComplex` and

@@ -69,7 +69,10 @@ pub fn assert_matrices_close(what: &str, a: &CsMat<f64>, b: &CsMat<f64>) {
     let difference = &a.to_csr() - &b.to_csr();
     let error = difference.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let scale = b.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    assert!(error <= 1e-10 * scale, "{what}: differs by {error:e} (max entry {scale:e})");
+    assert!(
+        error <= 1e-10 * scale,
+        "{what}: differs by {error:e} (max entry {scale:e})"
+    );
 }
 
 /// The stiffness of whichever space is P1 (dimension `V`) equals the cotan matrix and that of
@@ -79,8 +82,16 @@ pub fn check_cotan_formula<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) {
     let cotan = cotan_matrix(mesh);
     let cr = crouzeix_raviart_matrix(mesh);
     for (which, dimension, stiffness) in [
-        ("potential", complex.potentials().dimension(), complex.potential_stiffness()),
-        ("co-potential", complex.co_potentials().dimension(), complex.co_potential_stiffness()),
+        (
+            "potential",
+            complex.potentials().dimension(),
+            complex.potential_stiffness(),
+        ),
+        (
+            "co-potential",
+            complex.co_potentials().dimension(),
+            complex.co_potential_stiffness(),
+        ),
     ] {
         if dimension == mesh.vertex_count() {
             assert_matrices_close(&format!("{which} stiffness vs cotan"), &stiffness, &cotan);

@@ -15,9 +15,14 @@ pub fn check_spectrum_union<H: HodgeComplex>(complex: &H, genus: usize) {
     let (l_zeros, l_rest) = split_zeros(&hodge_spectrum(complex), 1e-9);
     let exact = complex.exact_eigenproblem();
     let co_exact = complex.co_exact_eigenproblem();
-    let (e_zeros, e_rest) = split_zeros(&generalized_eigenvalues(&exact.stiffness, &exact.mass), 1e-9);
-    let (c_zeros, c_rest) =
-        split_zeros(&generalized_eigenvalues(&co_exact.stiffness, &co_exact.mass), 1e-9);
+    let (e_zeros, e_rest) = split_zeros(
+        &generalized_eigenvalues(&exact.stiffness, &exact.mass),
+        1e-9,
+    );
+    let (c_zeros, c_rest) = split_zeros(
+        &generalized_eigenvalues(&co_exact.stiffness, &co_exact.mass),
+        1e-9,
+    );
     let components = complex.component_count();
     assert_eq!(l_zeros, 2 * genus, "zeros of L");
     assert_eq!(e_zeros, components, "zeros of the exact pair");
@@ -27,7 +32,10 @@ pub fn check_spectrum_union<H: HodgeComplex>(complex: &H, genus: usize) {
     assert_eq!(union.len(), l_rest.len(), "number of nonzero eigenvalues");
     let max = l_rest.last().copied().unwrap_or(0.0);
     for (k, (a, b)) in l_rest.iter().zip(&union).enumerate() {
-        assert!((a - b).abs() <= 1e-9 * max, "eigenvalue {k}: L has {a}, the union {b}");
+        assert!(
+            (a - b).abs() <= 1e-9 * max,
+            "eigenvalue {k}: L has {a}, the union {b}"
+        );
     }
 }
 
@@ -39,7 +47,12 @@ pub fn check_same_spectrum<A: HodgeComplex, B: HodgeComplex>(a: &A, b: &B) {
     assert_eq!(sa.len(), sb.len());
     let max = sa.last().copied().unwrap_or(0.0);
     for (k, (x, y)) in sa.iter().zip(&sb).enumerate() {
-        assert!((x - y).abs() <= 1e-9 * max, "eigenvalue {k}: {} has {x}, {} has {y}", a.name(), b.name());
+        assert!(
+            (x - y).abs() <= 1e-9 * max,
+            "eigenvalue {k}: {} has {x}, {} has {y}",
+            a.name(),
+            b.name()
+        );
     }
 }
 
@@ -49,7 +62,10 @@ pub fn check_sphere_spectrum<H: HodgeComplex>(complex: &H) {
     let spectrum = hodge_spectrum(complex);
     let low = &spectrum[..7];
     for &lambda in &low[..6] {
-        assert!((1.9..=2.1).contains(&lambda), "lowest six should be ≈ 2: {low:?}");
+        assert!(
+            (1.9..=2.1).contains(&lambda),
+            "lowest six should be ≈ 2: {low:?}"
+        );
     }
     assert!(low[6] > 5.0, "seventh should be ≈ 6: {low:?}");
 }
@@ -70,10 +86,17 @@ pub fn check_rigid_motion_invariance<H: HodgeComplex>(original: &H, moved: &H, d
     for (what, a, b) in [
         ("M0", moved.m0(), original.m0()),
         ("M1", moved.m1(), original.m1()),
-        ("M_co", moved.co_potentials().mass(), original.co_potentials().mass()),
+        (
+            "M_co",
+            moved.co_potentials().mass(),
+            original.co_potentials().mass(),
+        ),
     ] {
         for (x, y) in a.iter().zip(b) {
-            assert!((x - y).abs() <= 1e-10 * y.abs(), "{what} changed under a rigid motion");
+            assert!(
+                (x - y).abs() <= 1e-10 * y.abs(),
+                "{what} changed under a rigid motion"
+            );
         }
     }
     if dense {

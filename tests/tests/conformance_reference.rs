@@ -18,8 +18,14 @@ fn icosphere_320_lowest_eigenvalues_match_math_md() {
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("builds");
     let exact = complex.exact_eigenproblem();
     let co_exact = complex.co_exact_eigenproblem();
-    let (_, p1) = split_zeros(&generalized_eigenvalues(&exact.stiffness, &exact.mass), 1e-9);
-    let (_, cr) = split_zeros(&generalized_eigenvalues(&co_exact.stiffness, &co_exact.mass), 1e-9);
+    let (_, p1) = split_zeros(
+        &generalized_eigenvalues(&exact.stiffness, &exact.mass),
+        1e-9,
+    );
+    let (_, cr) = split_zeros(
+        &generalized_eigenvalues(&co_exact.stiffness, &co_exact.mass),
+        1e-9,
+    );
     eprintln!("P1 lowest {:?}, CR lowest {:?}", &p1[..4], &cr[..4]);
     for &lambda in &p1[..3] {
         assert!((lambda - 2.000).abs() < 5e-4, "P1: {:?}", &p1[..3]);
@@ -27,7 +33,10 @@ fn icosphere_320_lowest_eigenvalues_match_math_md() {
     for &lambda in &cr[..3] {
         assert!((lambda - 2.046).abs() < 5e-4, "CR: {:?}", &cr[..3]);
     }
-    let (zeros, l) = split_zeros(&generalized_eigenvalues(&complex.dirichlet_energy(), complex.m1()), 1e-9);
+    let (zeros, l) = split_zeros(
+        &generalized_eigenvalues(&complex.dirichlet_energy(), complex.m1()),
+        1e-9,
+    );
     assert_eq!(zeros, 0);
     let mut six: Vec<f64> = p1[..3].iter().chain(&cr[..3]).copied().collect();
     six.sort_by(f64::total_cmp);

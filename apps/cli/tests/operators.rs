@@ -37,7 +37,16 @@ fn read_market(path: &Path) -> Market {
 
 fn run(decomposition: &str, mass: &str, out: &Path) {
     let status = Command::new(env!("CARGO_BIN_EXE_tvf"))
-        .args(["operators", "--example", "torus", "--decomposition", decomposition, "--mass", mass, "--out"])
+        .args([
+            "operators",
+            "--example",
+            "torus",
+            "--decomposition",
+            decomposition,
+            "--mass",
+            mass,
+            "--out",
+        ])
         .arg(out)
         .status()
         .expect("tvf runs");
@@ -49,7 +58,8 @@ fn writes_every_matrix_with_consistent_entries() {
     let dir = tempfile::tempdir().expect("temporary directory");
     run("conforming", "barycentric", dir.path());
     let info: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("info.json")).unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("info.json")).unwrap())
+            .unwrap();
     let (v, e, f) = (
         info["vertices"].as_u64().unwrap() as usize,
         info["edges"].as_u64().unwrap() as usize,
@@ -58,10 +68,12 @@ fn writes_every_matrix_with_consistent_entries() {
     assert_eq!(info["genus"], 1);
     assert_eq!(info["harmonic_dimension"], 2);
     assert_eq!(v + f, e, "torus: V − E + F = 0");
-    let m: HashMap<&str, Market> = ["G", "Gstar", "M", "Mstar", "MX", "J", "Sc", "Sstar", "S", "B"]
-        .into_iter()
-        .map(|name| (name, read_market(&dir.path().join(format!("{name}.mtx")))))
-        .collect();
+    let m: HashMap<&str, Market> = [
+        "G", "Gstar", "M", "Mstar", "MX", "J", "Sc", "Sstar", "S", "B",
+    ]
+    .into_iter()
+    .map(|name| (name, read_market(&dir.path().join(format!("{name}.mtx")))))
+    .collect();
     for (name, shape) in [
         ("G", (2 * f, v)),
         ("Gstar", (2 * f, e)),
@@ -92,7 +104,10 @@ fn writes_every_matrix_with_consistent_entries() {
     let scale = m["S"].entries.values().fold(0.0f64, |a, x| a.max(x.abs()));
     for (&(i, j), &value) in &m["S"].entries {
         let mirror = m["S"].entries.get(&(j, i)).copied().unwrap_or(0.0);
-        assert!((value - mirror).abs() <= 1e-12 * scale, "S not symmetric at ({i},{j})");
+        assert!(
+            (value - mirror).abs() <= 1e-12 * scale,
+            "S not symmetric at ({i},{j})"
+        );
     }
     let mut row_sums = vec![0.0; v];
     for (&(i, _), &value) in &m["Sc"].entries {
@@ -102,8 +117,13 @@ fn writes_every_matrix_with_consistent_entries() {
     assert!(row_sums.iter().all(|s| s.abs() < 1e-12 * sc_scale));
     for row in 0..2 * f {
         let g: f64 = (0..v).filter_map(|c| m["G"].entries.get(&(row, c))).sum();
-        let gs: f64 = (0..e).filter_map(|c| m["Gstar"].entries.get(&(row, c))).sum();
-        assert!(g.abs() < 1e-9 && gs.abs() < 1e-9, "gradient of a constant is not zero");
+        let gs: f64 = (0..e)
+            .filter_map(|c| m["Gstar"].entries.get(&(row, c)))
+            .sum();
+        assert!(
+            g.abs() < 1e-9 && gs.abs() < 1e-9,
+            "gradient of a constant is not zero"
+        );
     }
 }
 
@@ -120,7 +140,10 @@ fn nonconforming_differs_only_in_field_matrices() {
     }
     let s_conforming = std::fs::read_to_string(a.path().join("S.mtx")).unwrap();
     let s_nonconforming = std::fs::read_to_string(b.path().join("S.mtx")).unwrap();
-    assert_ne!(s_conforming, s_nonconforming, "S differs between the decompositions");
+    assert_ne!(
+        s_conforming, s_nonconforming,
+        "S differs between the decompositions"
+    );
     let info = std::fs::read_to_string(b.path().join("info.json")).unwrap();
     assert!(info.contains("\"nonconforming\"") && info.contains("\"voronoi\""));
     // No temporary files left behind.
@@ -136,7 +159,13 @@ fn nonconforming_differs_only_in_field_matrices() {
 fn bad_mesh_path_is_a_clear_error() {
     let dir = tempfile::tempdir().expect("temporary directory");
     let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
-        .args(["operators", "/nonexistent/mesh.obj", "--decomposition", "conforming", "--out"])
+        .args([
+            "operators",
+            "/nonexistent/mesh.obj",
+            "--decomposition",
+            "conforming",
+            "--out",
+        ])
         .arg(dir.path())
         .output()
         .expect("tvf runs");

@@ -84,6 +84,8 @@ pub trait FieldSpace {
 
     /// A tangent field from one 3D vector per face (`F` entries): each vector is projected onto
     /// its face's plane; the dropped normal components are returned alongside.
+    // Named as the inverse of `to_vectors`; it needs `self` for the frames.
+    #[allow(clippy::wrong_self_convention)]
     fn from_vectors(&self, vectors: &[[f64; 3]]) -> Result<TangentProjection, DiscretizationError> {
         if vectors.len() != self.face_count() {
             return Err(DiscretizationError::DimensionMismatch {

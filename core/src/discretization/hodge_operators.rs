@@ -1,9 +1,7 @@
 //! The [`HodgeOperators`] extension: every operator of `shared/docs/MATH.md`, derived once from a
 //! [`HodgeComplex`].
 
-use super::sparse::{
-    diagonal, mul_vec, product, reciprocal, scale_cols, scale_rows, transpose,
-};
+use super::sparse::{diagonal, mul_vec, product, reciprocal, scale_cols, scale_rows, transpose};
 use super::{FieldSpace, FunctionSpace, HodgeComplex};
 use sprs::CsMat;
 

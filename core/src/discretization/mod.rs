@@ -24,6 +24,52 @@
 //! are interchangeable. `tvf-discretizations` holds the implementations and shows, in its crate
 //! docs, how to add a third one.
 //!
+//! # Adding a discretization
+//! Implement [`HodgeComplex`] (usually by assembling spaces, see
+//! `tvf_discretizations::FiniteElementComplex::from_spaces`, whose crate docs run a complete
+//! example) and every operator of [`HodgeOperators`] follows. The smallest possible variant wraps
+//! an existing complex and changes one ingredient, here the co-potential mass `M2`:
+//!
+//! ```
+//! use sprs::CsMat;
+//! use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+//!
+//! /// Any complex with its co-potential inner product scaled by `factor` (so `M2` by 1/factor).
+//! struct ScaledCoPotentials<H> {
+//!     inner: H,
+//!     m2: Vec<f64>,
+//! }
+//!
+//! impl<H: HodgeComplex> ScaledCoPotentials<H> {
+//!     fn new(inner: H, factor: f64) -> Self {
+//!         let m2 = inner.m2().iter().map(|m| m / factor).collect();
+//!         Self { inner, m2 }
+//!     }
+//! }
+//!
+//! impl<H: HodgeComplex> HodgeComplex for ScaledCoPotentials<H> {
+//!     type Potentials = H::Potentials;
+//!     type CoPotentials = H::CoPotentials;
+//!     type Fields = H::Fields;
+//!     fn name(&self) -> String { format!("{} (scaled co-potentials)", self.inner.name()) }
+//!     fn potentials(&self) -> &H::Potentials { self.inner.potentials() }
+//!     fn co_potentials(&self) -> &H::CoPotentials { self.inner.co_potentials() }
+//!     fn fields(&self) -> &H::Fields { self.inner.fields() }
+//!     fn d1(&self) -> &CsMat<f64> { self.inner.d1() }
+//!     fn m2(&self) -> &[f64] { &self.m2 }
+//!     fn harmonic_dimension(&self) -> usize { self.inner.harmonic_dimension() }
+//!     fn has_boundary(&self) -> bool { self.inner.has_boundary() }
+//! }
+//!
+//! /// Written once against the traits: works for the wrapper as for any other complex.
+//! fn laplacian_size<H: HodgeComplex>(complex: &H) -> (usize, usize) {
+//!     complex.hodge_laplacian().shape()
+//! }
+//! # fn _compiles<H: HodgeComplex>(h: H) -> (usize, usize) {
+//! #     laplacian_size(&ScaledCoPotentials::new(h, 2.0))
+//! # }
+//! ```
+//!
 //! # Units
 //! Field coefficients are *pointwise* (a tangent vector per face). Function coefficients are
 //! *pointwise* nodal values. A matrix called "integrated" returns values that are integrals over

@@ -88,9 +88,15 @@ fn write_all<H: HodgeComplex>(
     out: &Path,
     lumping: MassLumping,
 ) -> Result<()> {
-    let (g, gstar) = (complex.potentials().gradient(), complex.co_potentials().gradient());
+    let (g, gstar) = (
+        complex.potentials().gradient(),
+        complex.co_potentials().gradient(),
+    );
     let (m, mstar) = (complex.potentials().mass(), complex.co_potentials().mass());
-    let (sc, sstar) = (complex.potential_stiffness(), complex.co_potential_stiffness());
+    let (sc, sstar) = (
+        complex.potential_stiffness(),
+        complex.co_potential_stiffness(),
+    );
     let (g, gstar, m, mstar, sc, sstar) = if p1_is_potential {
         (g, gstar, m, mstar, sc, sstar)
     } else {
@@ -149,17 +155,18 @@ fn write_all<H: HodgeComplex>(
     println!(
         "wrote 10 matrices and info.json to {} ({} decomposition, {} mass)",
         out.display(),
-        if p1_is_potential { "conforming" } else { "nonconforming" },
+        if p1_is_potential {
+            "conforming"
+        } else {
+            "nonconforming"
+        },
         lumping.name()
     );
     Ok(())
 }
 
 /// Writes `path` through a temporary file in the same directory and renames it into place.
-fn write_atomically(
-    path: &Path,
-    write: impl FnOnce(&Path) -> std::io::Result<()>,
-) -> Result<()> {
+fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> std::io::Result<()>) -> Result<()> {
     let file_name = path
         .file_name()
         .and_then(|n| n.to_str())
