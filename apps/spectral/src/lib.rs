@@ -23,6 +23,7 @@ mod basis_error;
 mod basis_file;
 mod basis_request;
 mod compute_basis;
+mod eigen_refinement;
 mod eigenfunction_basis;
 mod field_io;
 mod fingerprint;

@@ -1,6 +1,7 @@
 //! The lowest non-zero eigenpairs of one scalar Laplacian `(A, M)` of a Hodge complex (the
 //! potential or the co-potential eigenproblem), with its kernel removed by count.
 
+use crate::eigen_refinement::refine_eigenpairs;
 use crate::BasisError;
 use faer::Mat;
 use sprs::CsMat;
@@ -109,8 +110,26 @@ impl ScalarSpectrum {
                 source,
             },
         )?;
-        let kernel_values = pairs.values[..self.components].to_vec();
-        let values = pairs.values[self.components..].to_vec();
+        let iterative = pairs.factorizations > 0;
+        let max_residual = pairs.residuals.iter().fold(0.0, |m: f64, &r| m.max(r));
+        let (all_values, all_vectors) = if iterative && total > 0 {
+            let first_nonzero = pairs.values.get(self.components).copied().unwrap_or(1.0);
+            refine_eigenpairs(
+                &self.stiffness,
+                &self.mass,
+                &pairs.values,
+                &pairs.vectors,
+                first_nonzero,
+            )
+            .map_err(|source| BasisError::Eigen {
+                problem: self.name,
+                source,
+            })?
+        } else {
+            (pairs.values, pairs.vectors)
+        };
+        let kernel_values = all_values[..self.components].to_vec();
+        let values = all_values[self.components..].to_vec();
         if let Some(&first_nonzero) = values.first() {
             // Kernel eigenvalues are round-off (~1e-15 relative); a genuine eigenvalue is not.
             if let Some(&value) = kernel_values
@@ -127,8 +146,7 @@ impl ScalarSpectrum {
         }
         let n = self.full_dimension;
         let vectors = match &self.used {
-            None => pairs
-                .vectors
+            None => all_vectors
                 .as_ref()
                 .subcols(self.components, count)
                 .to_owned(),
@@ -136,7 +154,7 @@ impl ScalarSpectrum {
                 let mut full = Mat::zeros(n, count);
                 for j in 0..count {
                     for (r, &i) in used.iter().enumerate() {
-                        full[(i, j)] = pairs.vectors[(r, self.components + j)];
+                        full[(i, j)] = all_vectors[(r, self.components + j)];
                     }
                 }
                 full
@@ -146,7 +164,7 @@ impl ScalarSpectrum {
             values,
             vectors,
             kernel_values,
-            max_residual: pairs.residuals.iter().fold(0.0, |m, &r| m.max(r)),
+            max_residual,
             factorizations: pairs.factorizations,
             solves: pairs.solves,
         })
