@@ -26,9 +26,13 @@ pub struct ArrowGlyph {
 /// The arrows drawn for `vectors` (one per face): at evenly spread faces, centred at the
 /// face centroid, in the face plane, the longest `length_scale × spacing` long. Arrows of
 /// vanishing vectors are left out.
-pub fn arrow_glyphs(mesh: &SurfaceMesh, vectors: &[[f64; 3]], options: &ArrowOptions) -> Vec<ArrowGlyph> {
-    let spacing = mean_edge_length(mesh)
-        .max((mesh.total_area() / options.max_count.max(1) as f64).sqrt());
+pub fn arrow_glyphs(
+    mesh: &SurfaceMesh,
+    vectors: &[[f64; 3]],
+    options: &ArrowOptions,
+) -> Vec<ArrowGlyph> {
+    let spacing =
+        mean_edge_length(mesh).max((mesh.total_area() / options.max_count.max(1) as f64).sqrt());
     let centroids: Vec<[f64; 3]> = (0..mesh.face_count()).map(|t| centroid(mesh, t)).collect();
     let tangent: Vec<[f64; 3]> = vectors
         .iter()
@@ -79,7 +83,14 @@ pub(crate) fn draw_arrow(
     let head = 0.35 * length;
     let side = normalize(cross(side_axis, d));
     let neck = sub(tip, scale(d, head));
-    segment(frame, camera, tail, add(neck, scale(d, 0.3 * head)), width, ink);
+    segment(
+        frame,
+        camera,
+        tail,
+        add(neck, scale(d, 0.3 * head)),
+        width,
+        ink,
+    );
     let half = scale(side, 0.45 * head);
     triangle(frame, camera, [tip, add(neck, half), sub(neck, half)], ink);
 }

@@ -22,9 +22,11 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// Fits a camera to `points` so that the sphere around their bounding-box centre that
-    /// holds them all fills the viewport `[x0, x0 + width] × [y0, y0 + height]` (pixels)
-    /// divided by `zoom`.
+    /// Fits a camera to `points`: the eye looks at their bounding-box centre from a distance
+    /// at which the enclosing sphere just fits the 30° field of view, and the image scale and
+    /// offset are chosen so that the projected points fill 94 % of the viewport
+    /// `[x0, x0 + width] × [y0, y0 + height]` (pixels), centred; `zoom` magnifies about the
+    /// viewport centre.
     ///
     /// With `yaw = pitch = 0` the camera looks along `−z` with `+y` up. `yaw_degrees` turns
     /// the camera about the vertical axis (positive: the camera moves towards `+x`), and
@@ -56,20 +58,36 @@ impl Camera {
         let right = normalize(cross(forward, [0.0, 1.0, 0.0]));
         let up = cross(right, forward);
         let half_fov = 0.5 * FIELD_OF_VIEW_DEGREES.to_radians();
-        let focal = 0.5 * height / half_fov.tan();
-        // The sphere must fit in the smaller of the two half-extents of the viewport.
-        let half_extent = 0.5 * width.min(height);
-        let tan_needed = half_extent / focal;
-        let zoom = if zoom.is_finite() && zoom > 0.0 { zoom } else { 1.0 };
-        let distance = radius / (tan_needed.atan().sin()) / zoom;
-        let eye = add(center_world, scale(to_eye, distance.max(1.01 * radius)));
+        let eye = add(center_world, scale(to_eye, radius / half_fov.sin()));
+        // Extents of the points on the image plane at unit distance.
+        let (mut umin, mut umax, mut vmin, mut vmax) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+        for &p in points {
+            let d = sub(p, eye);
+            let z = dot(d, forward).max(1e-12 * radius);
+            let (u, v) = (dot(d, right) / z, dot(d, up) / z);
+            umin = umin.min(u);
+            umax = umax.max(u);
+            vmin = vmin.min(v);
+            vmax = vmax.max(v);
+        }
+        let zoom = if zoom.is_finite() && zoom > 0.0 {
+            zoom
+        } else {
+            1.0
+        };
+        let fit_u = width / (umax - umin).max(1e-12);
+        let fit_v = height / (vmax - vmin).max(1e-12);
+        let focal = 0.94 * fit_u.min(fit_v) * zoom;
         Camera {
             eye,
             right,
             up,
             forward,
             focal,
-            center: [x0 + 0.5 * width, y0 + 0.5 * height],
+            center: [
+                x0 + 0.5 * width - focal * 0.5 * (umin + umax),
+                y0 + 0.5 * height + focal * 0.5 * (vmin + vmax),
+            ],
             radius,
         }
     }
@@ -143,20 +161,23 @@ mod tests {
         let corners: Vec<[f64; 3]> = (0..8)
             .map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 1 { 1.0 } else { -1.0 }))
             .collect();
-        let cam = Camera::fit(
-            &corners,
-            30.0,
-            20.0,
-            [0.0, 0.0, 400.0, 300.0],
-            1.0,
-        );
-        let r = 3f64.sqrt();
-        for p in [[r, 0.0, 0.0], [0.0, r, 0.0], [0.0, 0.0, -r], [-r, 0.0, 0.0]] {
+        let cam = Camera::fit(&corners, 30.0, 20.0, [0.0, 0.0, 400.0, 300.0], 1.0);
+        for &p in &corners {
             let q = cam.project(p);
             assert!(q[2] > cam.near());
-            assert!((0.0..=400.0).contains(&q[0]) && (0.0..=300.0).contains(&q[1]), "{q:?}");
+            assert!(
+                (0.0..=400.0).contains(&q[0]) && (0.0..=300.0).contains(&q[1]),
+                "{q:?}"
+            );
         }
-        let c = cam.project([0.0; 3]);
+        // Symmetric about the viewing axis: the centre projects to the viewport centre.
+        let front = Camera::fit(&corners, 0.0, 0.0, [0.0, 0.0, 400.0, 300.0], 1.0);
+        let c = front.project([0.0; 3]);
         assert!((c[0] - 200.0).abs() < 1e-9 && (c[1] - 150.0).abs() < 1e-9);
+        // The projected points fill 94 % of the height (the limiting extent).
+        let ys: Vec<f64> = corners.iter().map(|&p| front.project(p)[1]).collect();
+        let span = ys.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+            - ys.iter().cloned().fold(f64::INFINITY, f64::min);
+        assert!((span - 0.94 * 300.0).abs() < 1e-6, "{span}");
     }
 }

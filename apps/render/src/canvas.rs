@@ -6,17 +6,16 @@ use image::RgbaImage;
 /// Blends `color` with coverage `alpha ∈ [0, 1]` over pixel `(x, y)`; pixels outside the
 /// image are ignored (straight-alpha "over" compositing).
 pub fn blend(image: &mut RgbaImage, x: i64, y: i64, color: [u8; 3], alpha: f32) {
-    if x < 0 || y < 0 || x >= image.width() as i64 || y >= image.height() as i64 || alpha <= 0.0
-    {
+    if x < 0 || y < 0 || x >= image.width() as i64 || y >= image.height() as i64 || alpha <= 0.0 {
         return;
     }
     let a = alpha.min(1.0);
     let p = image.get_pixel_mut(x as u32, y as u32);
     let old = p.0[3] as f32 / 255.0;
     let out = a + old * (1.0 - a);
-    for k in 0..3 {
-        let mixed = (color[k] as f32 * a + p.0[k] as f32 * old * (1.0 - a)) / out;
-        p.0[k] = mixed.round().clamp(0.0, 255.0) as u8;
+    for (channel, &c) in p.0.iter_mut().zip(&color) {
+        let mixed = (c as f32 * a + *channel as f32 * old * (1.0 - a)) / out;
+        *channel = mixed.round().clamp(0.0, 255.0) as u8;
     }
     p.0[3] = (out * 255.0).round() as u8;
 }

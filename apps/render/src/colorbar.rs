@@ -10,7 +10,11 @@ use crate::text::{draw_text, format_number, text_width, HAlign, TextSize, TextSt
 pub(crate) fn colorbar_margin(scale: &ColorScale, label: &str, size: TextSize) -> u32 {
     let style = TextStyle::new(size);
     let labels = [format_number(scale.min, 3), format_number(scale.max, 3)];
-    let widest = labels.iter().map(|s| text_width(s, &style)).max().unwrap_or(0);
+    let widest = labels
+        .iter()
+        .map(|s| text_width(s, &style))
+        .max()
+        .unwrap_or(0);
     let bar = bar_width(size);
     let label_width = text_width(label, &style);
     (bar + 12 + widest).max(label_width) + 24
@@ -22,7 +26,12 @@ fn bar_width(size: TextSize) -> u32 {
 
 /// Draws the vertical colour bar at the right edge: `max` at the top, `min` at the bottom
 /// (and `0` in the middle for a diverging map), with `label` above it.
-pub(crate) fn draw_colorbar(image: &mut RgbaImage, scale: &ColorScale, label: &str, size: TextSize) {
+pub(crate) fn draw_colorbar(
+    image: &mut RgbaImage,
+    scale: &ColorScale,
+    label: &str,
+    size: TextSize,
+) {
     let (w, h) = (image.width() as i64, image.height() as i64);
     let margin = colorbar_margin(scale, label, size) as i64;
     let bar = bar_width(size) as i64;
@@ -72,6 +81,8 @@ pub(crate) fn draw_colorbar(image: &mut RgbaImage, scale: &ColorScale, label: &s
 
 /// Draws `title` centred at the top.
 pub(crate) fn draw_title(image: &mut RgbaImage, title: &str, size: TextSize) {
-    let style = TextStyle::new(size).bold().aligned(HAlign::Center, VAlign::Top);
+    let style = TextStyle::new(size)
+        .bold()
+        .aligned(HAlign::Center, VAlign::Top);
     draw_text(image, 0.5 * image.width() as f64, 6.0, title, &style);
 }

@@ -78,17 +78,33 @@ impl ColorScale {
         });
         if lo > hi {
             return if map.is_diverging() {
-                ColorScale { map, min: -1.0, max: 1.0 }
+                ColorScale {
+                    map,
+                    min: -1.0,
+                    max: 1.0,
+                }
             } else {
-                ColorScale { map, min: 0.0, max: 1.0 }
+                ColorScale {
+                    map,
+                    min: 0.0,
+                    max: 1.0,
+                }
             };
         }
         if map.is_diverging() {
             let m = lo.abs().max(hi.abs());
             let m = if m > 0.0 { m } else { 1.0 };
-            ColorScale { map, min: -m, max: m }
+            ColorScale {
+                map,
+                min: -m,
+                max: m,
+            }
         } else if hi > lo {
-            ColorScale { map, min: lo, max: hi }
+            ColorScale {
+                map,
+                min: lo,
+                max: hi,
+            }
         } else {
             ColorScale {
                 map,

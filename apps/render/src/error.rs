@@ -25,7 +25,9 @@ pub enum RenderError {
         index: usize,
     },
     /// An image size that cannot be rendered.
-    #[error("image size {width}x{height} is invalid (each side must be between 16 and 16384 pixels)")]
+    #[error(
+        "image size {width}x{height} is invalid (each side must be between 16 and 16384 pixels)"
+    )]
     InvalidSize {
         /// Requested width in pixels.
         width: u32,

@@ -6,17 +6,18 @@ use rand_chacha::ChaCha8Rng;
 use tvf_core::geometry::{add, norm, scale, sub};
 use tvf_core::SurfaceMesh;
 
+use crate::camera::bounding_box;
 use crate::error::{check_face_count, check_finite_vectors, RenderError};
 use crate::streamlines::FaceWalker;
-use crate::surface::{mean_edge_length, point_at, tangential};
+use crate::surface::{point_at, tangential};
 
 /// How many strands, how long and how steep.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FurOptions {
     /// Number of strands; roots are spread over the surface proportionally to face area.
     pub strand_count: usize,
-    /// Length of a strand where the field is strongest, in mean edge lengths; elsewhere
-    /// proportional to the field's tangential magnitude.
+    /// Length of a strand where the field is strongest, as a fraction of the bounding-box
+    /// diagonal; elsewhere proportional to the field's tangential magnitude.
     pub length: f64,
     /// Height gained over the whole strand, as a fraction of its length; the lift grows
     /// quadratically along the strand, so strands leave the surface tangentially.
@@ -31,7 +32,7 @@ impl Default for FurOptions {
     fn default() -> Self {
         FurOptions {
             strand_count: 20_000,
-            length: 3.0,
+            length: 0.04,
             lift: 0.35,
             points_per_strand: 8,
             seed: 5,
@@ -51,10 +52,17 @@ pub fn grow_fur(
 ) -> Result<Vec<Vec<[f64; 3]>>, RenderError> {
     check_face_count("fur field", mesh.face_count(), face_vectors.len())?;
     check_finite_vectors("fur field", face_vectors)?;
-    if options.points_per_strand < 2 || !(options.length > 0.0) || !options.lift.is_finite() {
+    if options.points_per_strand < 2
+        || options.length.is_nan()
+        || options.length <= 0.0
+        || !options.lift.is_finite()
+    {
         return Err(RenderError::InvalidOption {
             name: "fur points_per_strand / length / lift",
-            value: format!("{} / {} / {}", options.points_per_strand, options.length, options.lift),
+            value: format!(
+                "{} / {} / {}",
+                options.points_per_strand, options.length, options.lift
+            ),
             reason: "need at least 2 points per strand, a positive length and a finite lift",
         });
     }
@@ -67,7 +75,8 @@ pub fn grow_fur(
     if largest <= 0.0 {
         return Ok(Vec::new());
     }
-    let full_length = options.length * mean_edge_length(mesh);
+    let (lo, hi) = bounding_box(mesh.positions());
+    let full_length = options.length * norm(sub(hi, lo));
     let walker = FaceWalker::new(mesh, face_vectors);
     let mut cumulative = Vec::with_capacity(mesh.face_count());
     let mut total = 0.0;
@@ -79,9 +88,15 @@ pub fn grow_fur(
     let mut strands = Vec::with_capacity(options.strand_count);
     for _ in 0..options.strand_count {
         let target = rng.random::<f64>() * total;
-        let t = cumulative.partition_point(|&c| c < target).min(mesh.face_count() - 1);
+        let t = cumulative
+            .partition_point(|&c| c < target)
+            .min(mesh.face_count() - 1);
         let (a, b): (f64, f64) = (rng.random(), rng.random());
-        let (a, b) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
+        let (a, b) = if a + b > 1.0 {
+            (1.0 - a, 1.0 - b)
+        } else {
+            (a, b)
+        };
         let length = full_length * magnitudes[t] / largest;
         if length <= 1e-9 * full_length {
             continue;
@@ -121,10 +136,16 @@ fn lift_resampled(
         } else {
             0.0
         };
-        let on_surface = add(points[segment], scale(sub(points[segment + 1], points[segment]), f));
+        let on_surface = add(
+            points[segment],
+            scale(sub(points[segment + 1], points[segment]), f),
+        );
         let u = if total > 0.0 { s / total } else { 0.0 };
         let height = options.lift * total * u * u;
-        out.push(add(on_surface, scale(mesh.face_normal(faces[segment]), height)));
+        out.push(add(
+            on_surface,
+            scale(mesh.face_normal(faces[segment]), height),
+        ));
     }
     out
 }

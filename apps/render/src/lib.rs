@@ -67,7 +67,10 @@ pub use fur::{grow_fur, FurOptions};
 pub use lic::LicOptions;
 pub use plot::{Axis, AxisScale, Plot, Series, SeriesStyle};
 pub use render::render;
-pub use scene::{ArrowOptions, FaceScalar, FieldLayer, FieldStyle, Marker, Polyline, RenderOptions, Scene, Shading};
+pub use scene::{
+    ArrowOptions, FaceScalar, FieldLayer, FieldStyle, Marker, Polyline, RenderOptions, Scene,
+    Shading,
+};
 pub use streamlines::{trace_streamlines, Streamline, StreamlineOptions};
 pub use surface::{mean_edge_length, vertex_normals};
 pub use text::{draw_text, format_number, text_width, HAlign, TextSize, TextStyle, VAlign};

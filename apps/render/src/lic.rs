@@ -28,7 +28,7 @@ impl Default for LicOptions {
             length_px: 14.0,
             grain_px: 1.4,
             contrast: 1.0,
-            strength: 0.8,
+            strength: 0.65,
             seed: 11,
         }
     }
@@ -66,8 +66,7 @@ impl PixelFaces {
 }
 
 fn hash(x: i64, y: i64, seed: u64) -> f32 {
-    let mut z = (x as u64)
-        .wrapping_mul(0x9E37_79B9_7F4A_7C15)
+    let mut z = (x as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15)
         ^ (y as u64).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
         ^ seed.wrapping_mul(0x1656_67B1_9E37_79F9);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -76,15 +75,44 @@ fn hash(x: i64, y: i64, seed: u64) -> f32 {
     (z >> 40) as f32 / (1u64 << 24) as f32
 }
 
-/// Value noise with lattice spacing `grain`, bilinearly interpolated.
-fn noise(x: f64, y: f64, grain: f64, seed: u64) -> f32 {
-    let u = x / grain;
-    let v = y / grain;
-    let (i, j) = (u.floor() as i64, v.floor() as i64);
-    let (fu, fv) = ((u - i as f64) as f32, (v - j as f64) as f32);
-    let a = hash(i, j, seed) * (1.0 - fu) + hash(i + 1, j, seed) * fu;
-    let b = hash(i, j + 1, seed) * (1.0 - fu) + hash(i + 1, j + 1, seed) * fu;
-    a * (1.0 - fv) + b * fv
+/// Value noise on a lattice of spacing `grain` pixels, bilinearly interpolated.
+struct Noise {
+    columns: usize,
+    rows: usize,
+    inverse_grain: f64,
+    values: Vec<f32>,
+}
+
+impl Noise {
+    fn new(width: usize, height: usize, grain: f64, seed: u64) -> Self {
+        let columns = (width as f64 / grain).ceil() as usize + 2;
+        let rows = (height as f64 / grain).ceil() as usize + 2;
+        let mut values = Vec::with_capacity(columns * rows);
+        for j in 0..rows {
+            for i in 0..columns {
+                values.push(hash(i as i64, j as i64, seed));
+            }
+        }
+        Noise {
+            columns,
+            rows,
+            inverse_grain: 1.0 / grain,
+            values,
+        }
+    }
+
+    #[inline]
+    fn at(&self, x: f64, y: f64) -> f32 {
+        let u = (x * self.inverse_grain).max(0.0);
+        let v = (y * self.inverse_grain).max(0.0);
+        let i = (u as usize).min(self.columns - 2);
+        let j = (v as usize).min(self.rows - 2);
+        let (fu, fv) = ((u - i as f64) as f32, (v - j as f64) as f32);
+        let k = j * self.columns + i;
+        let a = self.values[k] * (1.0 - fu) + self.values[k + 1] * fu;
+        let b = self.values[k + self.columns] * (1.0 - fu) + self.values[k + self.columns + 1] * fu;
+        a * (1.0 - fv) + b * fv
+    }
 }
 
 /// The LIC texture per output pixel, in `[0, 1]` (background pixels get 1).
@@ -97,9 +125,16 @@ pub(crate) fn lic_texture(
     options: &LicOptions,
 ) -> Vec<f32> {
     let (w, h) = (pixels.width, pixels.height);
-    let step = 0.7f64;
+    let step = 0.8f64;
     let steps = (options.length_px / step).ceil().max(1.0) as usize;
-    let grain = options.grain_px.max(0.5);
+    let noise = Noise::new(w, h, options.grain_px.max(0.5), options.seed);
+    // Hann window over the kernel's half-length.
+    let kernel: Vec<f32> = (0..=steps)
+        .map(|k| {
+            let s = k as f32 / (steps as f32 + 1.0);
+            0.5 * (1.0 + (std::f32::consts::PI * s).cos())
+        })
+        .collect();
     let mut raw = vec![f32::NAN; w * h];
     raw.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
         for (x, out) in row.iter_mut().enumerate() {
@@ -109,7 +144,7 @@ pub(crate) fn lic_texture(
             }
             let x0 = x as f64 + 0.5;
             let y0 = y as f64 + 0.5;
-            let mut sum = noise(x0, y0, grain, options.seed);
+            let mut sum = noise.at(x0, y0);
             let mut weights = 1.0f32;
             for sign in [1.0f32, -1.0] {
                 let (mut px, mut py) = (x0, y0);
@@ -117,7 +152,7 @@ pub(crate) fn lic_texture(
                 let mut depth = pixels.depth[y * w + x];
                 let d0 = directions[face as usize];
                 let mut prev = [d0[0] * sign, d0[1] * sign];
-                for k in 1..=steps {
+                for &weight in &kernel[1..=steps] {
                     let d = directions[face as usize];
                     let d = [d[0] * sign, d[1] * sign];
                     if d == [0.0, 0.0] || d[0] * prev[0] + d[1] * prev[1] < 0.0 {
@@ -136,9 +171,7 @@ pub(crate) fn lic_texture(
                     }
                     face = f;
                     depth = pixels.depth[i];
-                    let s = k as f32 / (steps as f32 + 1.0);
-                    let weight = 0.5 * (1.0 + (std::f32::consts::PI * s).cos());
-                    sum += weight * noise(px, py, grain, options.seed);
+                    sum += weight * noise.at(px, py);
                     weights += weight;
                 }
             }
@@ -146,7 +179,11 @@ pub(crate) fn lic_texture(
         }
     });
     // Contrast stretch: the averaging shrinks the noise's spread; restore it.
-    let values: Vec<f64> = raw.iter().filter(|v| !v.is_nan()).map(|&v| v as f64).collect();
+    let values: Vec<f64> = raw
+        .iter()
+        .filter(|v| !v.is_nan())
+        .map(|&v| v as f64)
+        .collect();
     let n = values.len().max(1) as f64;
     let mean = values.iter().sum::<f64>() / n;
     let std = (values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / n)

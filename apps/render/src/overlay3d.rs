@@ -26,7 +26,14 @@ fn put(frame: &mut Frame, i: usize, color: [f32; 3], alpha: f32) {
 }
 
 /// Draws the segment `[a, b]` with `width` samples, round caps, perspective-correct depth.
-pub(crate) fn segment(frame: &mut Frame, camera: &Camera, a: [f64; 3], b: [f64; 3], width: f64, ink: &Ink) {
+pub(crate) fn segment(
+    frame: &mut Frame,
+    camera: &Camera,
+    a: [f64; 3],
+    b: [f64; 3],
+    width: f64,
+    ink: &Ink,
+) {
     let pa = camera.project(a);
     let pb = camera.project(b);
     if pa[2] <= camera.near() || pb[2] <= camera.near() {
@@ -35,8 +42,12 @@ pub(crate) fn segment(frame: &mut Frame, camera: &Camera, a: [f64; 3], b: [f64; 
     let half = 0.5 * width;
     let x0 = (pa[0].min(pb[0]) - half - 1.0).floor().max(0.0);
     let y0 = (pa[1].min(pb[1]) - half - 1.0).floor().max(0.0);
-    let x1 = (pa[0].max(pb[0]) + half + 1.0).ceil().min(frame.width as f64 - 1.0);
-    let y1 = (pa[1].max(pb[1]) + half + 1.0).ceil().min(frame.height as f64 - 1.0);
+    let x1 = (pa[0].max(pb[0]) + half + 1.0)
+        .ceil()
+        .min(frame.width as f64 - 1.0);
+    let y1 = (pa[1].max(pb[1]) + half + 1.0)
+        .ceil()
+        .min(frame.height as f64 - 1.0);
     if x1 < x0 || y1 < y0 {
         return;
     }
@@ -86,10 +97,30 @@ pub(crate) fn triangle(frame: &mut Frame, camera: &Camera, tri: [[f64; 3]; 3], i
     if area == 0.0 || !area.is_finite() {
         return;
     }
-    let x0 = q.iter().map(|v| v[0]).fold(f64::INFINITY, f64::min).floor().max(0.0);
-    let x1 = q.iter().map(|v| v[0]).fold(f64::NEG_INFINITY, f64::max).ceil().min(frame.width as f64 - 1.0);
-    let y0 = q.iter().map(|v| v[1]).fold(f64::INFINITY, f64::min).floor().max(0.0);
-    let y1 = q.iter().map(|v| v[1]).fold(f64::NEG_INFINITY, f64::max).ceil().min(frame.height as f64 - 1.0);
+    let x0 = q
+        .iter()
+        .map(|v| v[0])
+        .fold(f64::INFINITY, f64::min)
+        .floor()
+        .max(0.0);
+    let x1 = q
+        .iter()
+        .map(|v| v[0])
+        .fold(f64::NEG_INFINITY, f64::max)
+        .ceil()
+        .min(frame.width as f64 - 1.0);
+    let y0 = q
+        .iter()
+        .map(|v| v[1])
+        .fold(f64::INFINITY, f64::min)
+        .floor()
+        .max(0.0);
+    let y1 = q
+        .iter()
+        .map(|v| v[1])
+        .fold(f64::NEG_INFINITY, f64::max)
+        .ceil()
+        .min(frame.height as f64 - 1.0);
     if x1 < x0 || y1 < y0 {
         return;
     }
@@ -115,7 +146,14 @@ pub(crate) fn triangle(frame: &mut Frame, camera: &Camera, tri: [[f64; 3]; 3], i
 /// Draws a disc of `radius` samples facing the viewer at `center`, with an outline of
 /// `outline` samples in the end colour of `ink`; drawn entirely if its centre passes the
 /// depth test.
-pub(crate) fn disc(frame: &mut Frame, camera: &Camera, center: [f64; 3], radius: f64, outline: f64, ink: &Ink) {
+pub(crate) fn disc(
+    frame: &mut Frame,
+    camera: &Camera,
+    center: [f64; 3],
+    radius: f64,
+    outline: f64,
+    ink: &Ink,
+) {
     let c = camera.project(center);
     if c[2] <= camera.near() {
         return;

@@ -6,9 +6,11 @@ use image::{Rgba, RgbaImage};
 
 use crate::canvas::{blend, draw_line, fill_disc, fill_rect, stroke_rect};
 use crate::error::RenderError;
-use crate::text::{draw_text, draw_text_vertical, format_number, text_width, HAlign, TextSize, TextStyle, VAlign};
-pub use crate::ticks::AxisScale;
+use crate::text::{
+    draw_text, draw_text_vertical, format_number, text_width, HAlign, TextSize, TextStyle, VAlign,
+};
 use crate::ticks::ticks;
+pub use crate::ticks::AxisScale;
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -108,7 +110,11 @@ fn axis_range(axis: &Axis, values: &[f64], name: &str) -> Result<(f64, f64), Ren
         }
         return Ok((a, b));
     }
-    let usable: Vec<f64> = values.iter().copied().filter(|&v| axis.scale.accepts(v)).collect();
+    let usable: Vec<f64> = values
+        .iter()
+        .copied()
+        .filter(|&v| axis.scale.accepts(v))
+        .collect();
     if usable.is_empty() {
         return Err(RenderError::NoPlotData(format!(
             "no {name} value can be drawn on a {:?} axis",
@@ -119,7 +125,11 @@ fn axis_range(axis: &Axis, values: &[f64], name: &str) -> Result<(f64, f64), Ren
     let hi = usable.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     Ok(match axis.scale {
         AxisScale::Linear => {
-            let pad = if hi > lo { 0.04 * (hi - lo) } else { 0.5 * lo.abs().max(1.0) };
+            let pad = if hi > lo {
+                0.04 * (hi - lo)
+            } else {
+                0.5 * lo.abs().max(1.0)
+            };
             (lo - pad, hi + pad)
         }
         AxisScale::Log10 => {
@@ -141,8 +151,16 @@ impl Plot {
                 height: self.height,
             });
         }
-        let xs: Vec<f64> = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.0)).collect();
-        let ys: Vec<f64> = self.series.iter().flat_map(|s| s.points.iter().map(|p| p.1)).collect();
+        let xs: Vec<f64> = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.0))
+            .collect();
+        let ys: Vec<f64> = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|p| p.1))
+            .collect();
         let (x0, x1) = axis_range(&self.x, &xs, "x")?;
         let (y0, y1) = axis_range(&self.y, &ys, "y")?;
         let (w, h) = (self.width as f64, self.height as f64);
@@ -177,16 +195,40 @@ impl Plot {
         // Grid on the plot layer (clipped to the plot area).
         let mut layer = RgbaImage::new(pw as u32, ph as u32);
         for &v in &x_minor {
-            draw_line(&mut layer, [to_px(v), 0.0], [to_px(v), ph], 1.0, [238, 238, 238]);
+            draw_line(
+                &mut layer,
+                [to_px(v), 0.0],
+                [to_px(v), ph],
+                1.0,
+                [238, 238, 238],
+            );
         }
         for &v in &y_minor {
-            draw_line(&mut layer, [0.0, to_py(v)], [pw, to_py(v)], 1.0, [238, 238, 238]);
+            draw_line(
+                &mut layer,
+                [0.0, to_py(v)],
+                [pw, to_py(v)],
+                1.0,
+                [238, 238, 238],
+            );
         }
         for &v in &x_major {
-            draw_line(&mut layer, [to_px(v), 0.0], [to_px(v), ph], 1.0, [215, 215, 215]);
+            draw_line(
+                &mut layer,
+                [to_px(v), 0.0],
+                [to_px(v), ph],
+                1.0,
+                [215, 215, 215],
+            );
         }
         for &v in &y_major {
-            draw_line(&mut layer, [0.0, to_py(v)], [pw, to_py(v)], 1.0, [215, 215, 215]);
+            draw_line(
+                &mut layer,
+                [0.0, to_py(v)],
+                [pw, to_py(v)],
+                1.0,
+                [215, 215, 215],
+            );
         }
         let line_width = (h / 300.0).clamp(1.5, 4.0);
         let mut legend = Vec::new();
@@ -199,7 +241,9 @@ impl Plot {
                     continue;
                 }
                 let p = [to_px(x), to_py(y)];
-                if let (Some(q), SeriesStyle::Line | SeriesStyle::LineAndMarkers) = (previous, s.style) {
+                if let (Some(q), SeriesStyle::Line | SeriesStyle::LineAndMarkers) =
+                    (previous, s.style)
+                {
                     draw_line(&mut layer, q, p, line_width, color);
                 }
                 if matches!(s.style, SeriesStyle::Scatter | SeriesStyle::LineAndMarkers) {
@@ -212,12 +256,25 @@ impl Plot {
             }
         }
         overlay(&mut image, &layer, left as i64, top as i64);
-        stroke_rect(&mut image, left as i64 - 1, top as i64 - 1, (left + pw) as i64, (top + ph) as i64, [60, 60, 60]);
+        stroke_rect(
+            &mut image,
+            left as i64 - 1,
+            top as i64 - 1,
+            (left + pw) as i64,
+            (top + ph) as i64,
+            [60, 60, 60],
+        );
 
         // Ticks and tick labels.
         for &v in &x_major {
             let x = left + to_px(v);
-            draw_line(&mut image, [x, top + ph], [x, top + ph + 5.0], 1.0, [60, 60, 60]);
+            draw_line(
+                &mut image,
+                [x, top + ph],
+                [x, top + ph + 5.0],
+                1.0,
+                [60, 60, 60],
+            );
             let style = tick_style.aligned(HAlign::Center, VAlign::Top);
             draw_text(&mut image, x, top + ph + 7.0, &format_number(v, 3), &style);
         }
@@ -235,7 +292,13 @@ impl Plot {
             &self.x.label,
             &label_style.aligned(HAlign::Center, VAlign::Bottom),
         );
-        draw_text_vertical(&mut image, 6.0 + 0.5 * th, top + 0.5 * ph, &self.y.label, &label_style);
+        draw_text_vertical(
+            &mut image,
+            6.0 + 0.5 * th,
+            top + 0.5 * ph,
+            &self.y.label,
+            &label_style,
+        );
         draw_text(
             &mut image,
             0.5 * w,
@@ -243,7 +306,14 @@ impl Plot {
             &self.title,
             &label_style.bold().aligned(HAlign::Center, VAlign::Middle),
         );
-        draw_legend(&mut image, &legend, left + pw - 10.0, top + 10.0, small, line_width);
+        draw_legend(
+            &mut image,
+            &legend,
+            left + pw - 10.0,
+            top + 10.0,
+            small,
+            line_width,
+        );
         Ok(image)
     }
 }
@@ -252,7 +322,13 @@ fn overlay(image: &mut RgbaImage, layer: &RgbaImage, left: i64, top: i64) {
     for (x, y, p) in layer.enumerate_pixels() {
         if p.0[3] > 0 {
             let c = [p.0[0], p.0[1], p.0[2]];
-            blend(image, left + x as i64, top + y as i64, c, p.0[3] as f32 / 255.0);
+            blend(
+                image,
+                left + x as i64,
+                top + y as i64,
+                c,
+                p.0[3] as f32 / 255.0,
+            );
         }
     }
 }
@@ -272,12 +348,30 @@ fn draw_legend(
     let style = TextStyle::new(size).aligned(HAlign::Left, VAlign::Middle);
     let row = size.height() as f64 + 6.0;
     let sample = 28.0;
-    let widest = entries.iter().map(|e| text_width(e.0, &style)).max().unwrap_or(0) as f64;
+    let widest = entries
+        .iter()
+        .map(|e| text_width(e.0, &style))
+        .max()
+        .unwrap_or(0) as f64;
     let bw = widest + sample + 26.0;
     let bh = row * entries.len() as f64 + 10.0;
     let x0 = right - bw;
-    fill_rect(image, x0 as i64, top as i64, right as i64, (top + bh) as i64, [255, 255, 255]);
-    stroke_rect(image, x0 as i64, top as i64, right as i64, (top + bh) as i64, [150, 150, 150]);
+    fill_rect(
+        image,
+        x0 as i64,
+        top as i64,
+        right as i64,
+        (top + bh) as i64,
+        [255, 255, 255],
+    );
+    stroke_rect(
+        image,
+        x0 as i64,
+        top as i64,
+        right as i64,
+        (top + bh) as i64,
+        [150, 150, 150],
+    );
     for (i, (name, color, s)) in entries.iter().enumerate() {
         let y = top + 5.0 + row * (i as f64 + 0.5);
         let a = [x0 + 8.0, y];

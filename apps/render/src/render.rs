@@ -37,7 +37,12 @@ fn validate(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Resul
             reason: "must be 1, 2, 3 or 4",
         });
     }
-    let finite = [options.yaw_degrees, options.pitch_degrees, options.zoom, options.ambient];
+    let finite = [
+        options.yaw_degrees,
+        options.pitch_degrees,
+        options.zoom,
+        options.ambient,
+    ];
     if finite.iter().any(|v| !v.is_finite()) || options.zoom <= 0.0 {
         return Err(RenderError::InvalidOption {
             name: "view / zoom / ambient",
@@ -62,7 +67,11 @@ fn validate(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Resul
 /// the surface is shaded with ambient light plus a headlight (Lambert, two-sided), and
 /// everything is supersampled `options.supersample²` times. Errors on per-face arrays of
 /// the wrong length, non-finite values and invalid options.
-pub fn render(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Result<RgbaImage, RenderError> {
+pub fn render(
+    mesh: &SurfaceMesh,
+    scene: &Scene,
+    options: &RenderOptions,
+) -> Result<RgbaImage, RenderError> {
     validate(mesh, scene, options)?;
     let (w, h) = (options.width as usize, options.height as usize);
     let text = TextSize::for_height(h as f64 / 40.0);
@@ -70,9 +79,19 @@ pub fn render(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Res
         .face_scalar
         .as_ref()
         .map_or(0, |s| colorbar_margin(&s.scale, &s.label, text)) as f64;
-    let top = if scene.title.is_some() { text.height() as f64 + 12.0 } else { 0.0 };
+    let top = if scene.title.is_some() {
+        text.height() as f64 + 12.0
+    } else {
+        0.0
+    };
     let viewport = [0.0, top, (w as f64 - right).max(8.0), h as f64 - top];
-    let camera = Camera::fit(mesh.positions(), options.yaw_degrees, options.pitch_degrees, viewport, options.zoom);
+    let camera = Camera::fit(
+        mesh.positions(),
+        options.yaw_degrees,
+        options.pitch_degrees,
+        viewport,
+        options.zoom,
+    );
     let ss = options.supersample as usize;
     let sample_camera = camera.scaled(ss as f64);
     let mut frame = rasterize(mesh, &sample_camera, w * ss, h * ss);
@@ -87,24 +106,49 @@ pub fn render(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Res
             let jump = (0.05 * camera.scene_radius()) as f32;
             let tex = lic_texture(&pixels, &dirs, jump, lic);
             let strength = lic.strength.clamp(0.0, 1.0) as f32;
-            let tex: Vec<f32> = tex.into_iter().map(|v| 1.0 - strength + strength * v).collect();
+            let tex: Vec<f32> = tex
+                .into_iter()
+                .map(|v| 1.0 - strength + strength * v)
+                .collect();
             texture = Some(match texture {
                 None => tex,
                 Some(old) => old.iter().zip(&tex).map(|(a, b)| a * b).collect(),
             });
         }
     }
-    shade(mesh, scene, options, &camera, &mut frame, texture.as_deref(), w);
+    shade(
+        mesh,
+        scene,
+        options,
+        &camera,
+        &mut frame,
+        texture.as_deref(),
+        w,
+    );
 
     for layer in &scene.fields {
         match &layer.style {
             FieldStyle::Arrows(opts) => {
                 let glyphs = arrow_glyphs(mesh, &layer.vectors, opts);
-                draw_glyphs(&mut frame, &sample_camera, &glyphs, opts.width_px * ss as f64, unit(opts.color));
+                draw_glyphs(
+                    &mut frame,
+                    &sample_camera,
+                    &glyphs,
+                    opts.width_px * ss as f64,
+                    unit(opts.color),
+                );
             }
             FieldStyle::Streamlines(opts) => {
                 let lines = trace_streamlines(mesh, &layer.vectors, opts)?;
-                draw_streamlines(&mut frame, &sample_camera, mesh, &lines, opts.width_px * ss as f64, unit(opts.color), edge);
+                draw_streamlines(
+                    &mut frame,
+                    &sample_camera,
+                    mesh,
+                    &lines,
+                    opts.width_px * ss as f64,
+                    unit(opts.color),
+                    edge,
+                );
             }
             FieldStyle::Lic(_) => {}
         }
@@ -121,7 +165,14 @@ pub fn render(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Res
                 alpha: [1.0; 2],
                 depth_offset: 0.5 * edge,
             };
-            segment(&mut frame, &sample_camera, seg[0], seg[1], line.width_px * ss as f64, &ink);
+            segment(
+                &mut frame,
+                &sample_camera,
+                seg[0],
+                seg[1],
+                line.width_px * ss as f64,
+                &ink,
+            );
         }
     }
     let arrow_length = 0.16 * camera.scene_radius();
@@ -138,11 +189,37 @@ pub fn render(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Res
                 color: [[0.1, 0.1, 0.1]; 2],
                 ..ink
             };
-            draw_arrow(&mut frame, &sample_camera, m.position, tip, side_axis, 3.5 * ss as f64, &dark);
-            let fill = Ink { depth_offset: arrow_length, ..ink };
-            draw_arrow(&mut frame, &sample_camera, m.position, tip, side_axis, 2.0 * ss as f64, &fill);
+            draw_arrow(
+                &mut frame,
+                &sample_camera,
+                m.position,
+                tip,
+                side_axis,
+                3.5 * ss as f64,
+                &dark,
+            );
+            let fill = Ink {
+                depth_offset: arrow_length,
+                ..ink
+            };
+            draw_arrow(
+                &mut frame,
+                &sample_camera,
+                m.position,
+                tip,
+                side_axis,
+                2.0 * ss as f64,
+                &fill,
+            );
         }
-        disc(&mut frame, &sample_camera, m.position, m.radius_px * ss as f64, 1.5 * ss as f64, &ink);
+        disc(
+            &mut frame,
+            &sample_camera,
+            m.position,
+            m.radius_px * ss as f64,
+            1.5 * ss as f64,
+            &ink,
+        );
     }
 
     let mut image = downsample(&frame, ss, options.background);
@@ -157,7 +234,12 @@ pub fn render(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Res
 
 /// Each face's unit field direction in output-image coordinates (zero where the field
 /// vanishes or points at the viewer).
-fn screen_directions(mesh: &SurfaceMesh, vectors: &[[f64; 3]], camera: &Camera, edge: f64) -> Vec<[f32; 2]> {
+fn screen_directions(
+    mesh: &SurfaceMesh,
+    vectors: &[[f64; 3]],
+    camera: &Camera,
+    edge: f64,
+) -> Vec<[f32; 2]> {
     (0..mesh.face_count())
         .into_par_iter()
         .map(|t| {
@@ -198,7 +280,11 @@ fn shade(
         None => Vec::new(),
     };
     let surface = unit(options.surface_color);
-    let background = unit([options.background[0], options.background[1], options.background[2]]);
+    let background = unit([
+        options.background[0],
+        options.background[1],
+        options.background[2],
+    ]);
     let bg_alpha = options.background[3] as f32 / 255.0;
     let ambient = options.ambient.clamp(0.0, 1.0) as f32;
     let light = scale(camera.forward(), -1.0);
@@ -225,13 +311,18 @@ fn shade(
                         let f = mesh.faces()[t];
                         let [b1, b2] = bary[i].map(|b| b as f64);
                         let b0 = 1.0 - b1 - b2;
-                        let s = [0, 1, 2].map(|k| b0 * vn[f[0]][k] + b1 * vn[f[1]][k] + b2 * vn[f[2]][k]);
+                        let s = [0, 1, 2]
+                            .map(|k| b0 * vn[f[0]][k] + b1 * vn[f[1]][k] + b2 * vn[f[2]][k]);
                         normalize(s)
                     }
                 };
                 let lambert = dot(n, light).abs() as f32;
                 let intensity = ambient + (1.0 - ambient) * lambert;
-                let base = if face_colors.is_empty() { surface } else { face_colors[t] };
+                let base = if face_colors.is_empty() {
+                    surface
+                } else {
+                    face_colors[t]
+                };
                 let tex = texture.map_or(1.0, |tx| tx[(y / ss) * out_width + x / ss]);
                 colors[x] = base.map(|c| (c * intensity * tex).min(1.0));
                 alphas[x] = 1.0;
@@ -277,30 +368,33 @@ fn downsample(frame: &Frame, ss: usize, background: [u8; 4]) -> RgbaImage {
     let mut image = RgbaImage::new(w as u32, h as u32);
     let n = (ss * ss) as f32;
     let buffer: &mut [u8] = &mut image;
-    buffer.par_chunks_mut(4 * w).enumerate().for_each(|(y, row)| {
-        for x in 0..w {
-            let mut c = [0f32; 3];
-            let mut a = 0f32;
-            for sy in 0..ss {
-                for sx in 0..ss {
-                    let i = frame.index(x * ss + sx, y * ss + sy);
-                    let al = frame.alpha[i];
-                    for k in 0..3 {
-                        c[k] += frame.color[i][k] * al;
+    buffer
+        .par_chunks_mut(4 * w)
+        .enumerate()
+        .for_each(|(y, row)| {
+            for x in 0..w {
+                let mut c = [0f32; 3];
+                let mut a = 0f32;
+                for sy in 0..ss {
+                    for sx in 0..ss {
+                        let i = frame.index(x * ss + sx, y * ss + sy);
+                        let al = frame.alpha[i];
+                        for (sum, &v) in c.iter_mut().zip(&frame.color[i]) {
+                            *sum += v * al;
+                        }
+                        a += al;
                     }
-                    a += al;
                 }
-            }
-            let px = &mut row[4 * x..4 * x + 4];
-            if a > 0.0 {
-                for k in 0..3 {
-                    px[k] = ((c[k] / a).clamp(0.0, 1.0) * 255.0).round() as u8;
+                let px = &mut row[4 * x..4 * x + 4];
+                if a > 0.0 {
+                    for k in 0..3 {
+                        px[k] = ((c[k] / a).clamp(0.0, 1.0) * 255.0).round() as u8;
+                    }
+                } else {
+                    px[..3].copy_from_slice(&background[..3]);
                 }
-            } else {
-                px[..3].copy_from_slice(&background[..3]);
+                px[3] = ((a / n).clamp(0.0, 1.0) * 255.0).round() as u8;
             }
-            px[3] = ((a / n).clamp(0.0, 1.0) * 255.0).round() as u8;
-        }
-    });
+        });
     image
 }

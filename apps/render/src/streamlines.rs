@@ -34,7 +34,8 @@ impl Streamline {
 /// How many streamlines, how far apart and how long.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StreamlineOptions {
-    /// Target number of lines: the separation is `√(total area / count)`.
+    /// Density of lines: they are spaced `√(total area / count)` apart (the number of lines
+    /// is smaller, as each line is many separations long).
     pub count: usize,
     /// Maximal arc length of one line in units of the separation.
     pub max_length: f64,
@@ -51,7 +52,7 @@ pub struct StreamlineOptions {
 impl Default for StreamlineOptions {
     fn default() -> Self {
         StreamlineOptions {
-            count: 800,
+            count: 2000,
             max_length: 12.0,
             stop_distance: 0.5,
             seed: 7,
@@ -140,7 +141,11 @@ impl<'a> FaceWalker<'a> {
                 }
             }
             let Some(c) = exit else { break };
-            let (s, ends_inside) = if s_exit > left { (left, true) } else { (s_exit, false) };
+            let (s, ends_inside) = if s_exit > left {
+                (left, true)
+            } else {
+                (s_exit, false)
+            };
             // The end point, snapped onto the exit edge when leaving the face.
             let mut y = add(x, scale(d, s));
             if !ends_inside {
@@ -238,7 +243,11 @@ pub fn trace_streamlines(
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     for t in shuffled(mesh.face_count(), options.seed) {
         let (a, b): (f64, f64) = (rng.random(), rng.random());
-        let (a, b) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
+        let (a, b) = if a + b > 1.0 {
+            (1.0 - a, 1.0 - b)
+        } else {
+            (a, b)
+        };
         let seed_point = point_at(mesh, t, [1.0 - a - b, a, b]);
         if grid.near(seed_point, separation, None) {
             continue;
@@ -258,7 +267,10 @@ pub fn trace_streamlines(
         for w in line.points.windows(2) {
             let pieces = (norm(sub(w[1], w[0])) / probe).ceil().max(1.0) as usize;
             for k in 0..=pieces {
-                grid.insert(owner, add(w[0], scale(sub(w[1], w[0]), k as f64 / pieces as f64)));
+                grid.insert(
+                    owner,
+                    add(w[0], scale(sub(w[1], w[0]), k as f64 / pieces as f64)),
+                );
             }
         }
         lines.push(line);

@@ -12,7 +12,11 @@ pub fn mean_edge_length(mesh: &SurfaceMesh) -> f64 {
     if edges.is_empty() {
         return 0.0;
     }
-    edges.iter().map(|e| norm(sub(p[e[1]], p[e[0]]))).sum::<f64>() / edges.len() as f64
+    edges
+        .iter()
+        .map(|e| norm(sub(p[e[1]], p[e[0]])))
+        .sum::<f64>()
+        / edges.len() as f64
 }
 
 /// Unit vertex normals: area-weighted averages of the adjacent face normals (`V` entries).

@@ -36,14 +36,19 @@ impl TextSize {
 
     /// The size whose height is closest to `pixels`.
     pub fn for_height(pixels: f64) -> TextSize {
-        [TextSize::Small, TextSize::Medium, TextSize::Large, TextSize::Huge]
-            .into_iter()
-            .min_by(|a, b| {
-                let da = (a.height() as f64 - pixels).abs();
-                let db = (b.height() as f64 - pixels).abs();
-                da.total_cmp(&db)
-            })
-            .unwrap_or(TextSize::Small)
+        [
+            TextSize::Small,
+            TextSize::Medium,
+            TextSize::Large,
+            TextSize::Huge,
+        ]
+        .into_iter()
+        .min_by(|a, b| {
+            let da = (a.height() as f64 - pixels).abs();
+            let db = (b.height() as f64 - pixels).abs();
+            da.total_cmp(&db)
+        })
+        .unwrap_or(TextSize::Small)
     }
 }
 
@@ -167,7 +172,13 @@ pub fn draw_text_vertical(image: &mut RgbaImage, x: f64, y: f64, text: &str, sty
             for (col, &a) in line.iter().enumerate() {
                 if a > 0 {
                     let u = i as i64 * advance + col as i64;
-                    blend(image, x0 + row as i64, y0 - u, style.color, a as f32 / 255.0);
+                    blend(
+                        image,
+                        x0 + row as i64,
+                        y0 - u,
+                        style.color,
+                        a as f32 / 255.0,
+                    );
                 }
             }
         }

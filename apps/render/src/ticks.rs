@@ -79,7 +79,7 @@ pub fn ticks(scale: AxisScale, lo: f64, hi: f64) -> (Vec<f64>, Vec<f64>) {
 
 fn linear_ticks(lo: f64, hi: f64) -> Vec<f64> {
     let step = nice_step((hi - lo) / 6.0);
-    if !(step > 0.0) || !step.is_finite() {
+    if step.is_nan() || step <= 0.0 || !step.is_finite() {
         return vec![lo];
     }
     let first = (lo / step).ceil() as i64;

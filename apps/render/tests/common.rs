@@ -20,7 +20,10 @@ pub fn centroids(mesh: &SurfaceMesh) -> Vec<[f64; 3]> {
 
 /// The rotation field `ω × c` at each face centroid `c`.
 pub fn rotation_field(mesh: &SurfaceMesh, omega: [f64; 3]) -> Vec<[f64; 3]> {
-    centroids(mesh).into_iter().map(|c| cross(omega, c)).collect()
+    centroids(mesh)
+        .into_iter()
+        .map(|c| cross(omega, c))
+        .collect()
 }
 
 /// The coordinate field `∂/∂v` around the tube of a torus of revolution about z

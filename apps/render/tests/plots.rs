@@ -6,8 +6,12 @@ use common::{keep, rgb};
 use tvf_render::{Axis, AxisScale, Plot, RenderError, Series, SeriesStyle};
 
 fn spectrum_plot() -> Plot {
-    let integrable: Vec<(f64, f64)> = (1..200).map(|k| (k as f64 * 0.1, (-0.03 * k as f64).exp() + 1e-4)).collect();
-    let cointegrable: Vec<(f64, f64)> = (1..200).map(|k| (k as f64 * 0.1, 0.3 / (k as f64).powi(2))).collect();
+    let integrable: Vec<(f64, f64)> = (1..200)
+        .map(|k| (k as f64 * 0.1, (-0.03 * k as f64).exp() + 1e-4))
+        .collect();
+    let cointegrable: Vec<(f64, f64)> = (1..200)
+        .map(|k| (k as f64 * 0.1, 0.3 / (k as f64).powi(2)))
+        .collect();
     Plot {
         title: "Fourier coefficients".into(),
         x: Axis::new("frequency sqrt(lambda)", AxisScale::Linear),
@@ -44,7 +48,11 @@ fn spectrum_plot_has_data_in_the_plot_area() {
 fn rate_distortion_plot_with_lines_and_legend() {
     let dir = tempfile::tempdir().unwrap();
     let bits: [f64; 6] = [0.5, 1.0, 2.0, 4.0, 8.0, 16.0];
-    let curve = |s: f64| bits.iter().map(|&b| (b, s * (-0.4 * b).exp())).collect::<Vec<_>>();
+    let curve = |s: f64| {
+        bits.iter()
+            .map(|&b| (b, s * (-0.4 * b).exp()))
+            .collect::<Vec<_>>()
+    };
     let plot = Plot {
         title: "rate-distortion".into(),
         x: Axis::new("bits per vertex", AxisScale::Log10),
@@ -59,7 +67,10 @@ fn rate_distortion_plot_with_lines_and_legend() {
     };
     let image = plot.render().unwrap();
     keep(&image, dir.path(), "plot_rate_distortion.png");
-    let non_white = image.pixels().filter(|p| p.0[..3] != [255, 255, 255]).count();
+    let non_white = image
+        .pixels()
+        .filter(|p| p.0[..3] != [255, 255, 255])
+        .count();
     assert!(non_white > 10_000, "{non_white}");
 }
 
@@ -74,7 +85,10 @@ fn plots_refuse_what_they_cannot_draw() {
     assert!(matches!(plot.render(), Err(RenderError::NoPlotData(_))));
     let mut small = spectrum_plot();
     small.width = 20;
-    assert!(matches!(small.render(), Err(RenderError::InvalidSize { .. })));
+    assert!(matches!(
+        small.render(),
+        Err(RenderError::InvalidSize { .. })
+    ));
     let mut bad_range = spectrum_plot();
     bad_range.y.range = Some((0.0, 1.0));
     assert!(bad_range.render().is_err());

@@ -39,7 +39,11 @@ fn check_name(name: &str, format: &'static str) -> Result<(), RenderError> {
     Ok(())
 }
 
-fn check_data(mesh: &SurfaceMesh, data: &FaceData, format: &'static str) -> Result<(), RenderError> {
+fn check_data(
+    mesh: &SurfaceMesh,
+    data: &FaceData,
+    format: &'static str,
+) -> Result<(), RenderError> {
     for (name, values) in &data.vectors {
         check_name(name, format)?;
         check_face_count(name, mesh.face_count(), values.len())?;
@@ -57,7 +61,10 @@ fn check_data(mesh: &SurfaceMesh, data: &FaceData, format: &'static str) -> Resu
 pub fn save_png(image: &RgbaImage, path: &Path) -> Result<(), RenderError> {
     let mut bytes = Vec::new();
     image
-        .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
+        .write_to(
+            &mut std::io::Cursor::new(&mut bytes),
+            image::ImageFormat::Png,
+        )
         .map_err(|e| RenderError::Png {
             path: path.to_path_buf(),
             message: e.to_string(),

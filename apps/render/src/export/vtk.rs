@@ -25,7 +25,12 @@ pub fn write_vtk(path: &Path, mesh: &SurfaceMesh, data: &FaceData) -> Result<(),
         for p in mesh.positions() {
             writeln!(w, "{} {} {}", p[0], p[1], p[2])?;
         }
-        writeln!(w, "POLYGONS {} {}", mesh.face_count(), 4 * mesh.face_count())?;
+        writeln!(
+            w,
+            "POLYGONS {} {}",
+            mesh.face_count(),
+            4 * mesh.face_count()
+        )?;
         for f in mesh.faces() {
             writeln!(w, "3 {} {} {}", f[0], f[1], f[2])?;
         }
