@@ -1,7 +1,7 @@
 //! `tvf operators`: writes the paper's matrices of a mesh as Matrix Market files.
 
-use crate::examples::example_mesh;
-use anyhow::{bail, Context, Result};
+use crate::mesh_input::MeshInput;
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use serde_json::json;
 use sprs::CsMat;
@@ -33,11 +33,8 @@ pub enum Mass {
 /// Arguments of `tvf operators`.
 #[derive(Args)]
 pub struct OperatorsArgs {
-    /// Mesh file (OBJ, OFF, PLY); omit when using --example.
-    mesh: Option<PathBuf>,
-    /// A built-in example mesh instead of a file.
-    #[arg(long, conflicts_with = "mesh")]
-    example: Option<String>,
+    #[command(flatten)]
+    input: MeshInput,
     /// The Hodge decomposition whose field matrices (S, B) are written.
     #[arg(long, value_enum)]
     decomposition: Decomposition,
@@ -51,15 +48,7 @@ pub struct OperatorsArgs {
 
 /// Writes G, Gstar, M, Mstar, MX, J, Sc, Sstar, S, B (Matrix Market) and info.json.
 pub fn run(args: OperatorsArgs) -> Result<()> {
-    let mesh = match (&args.mesh, &args.example) {
-        (Some(path), None) => {
-            tvf_core::io::load_mesh(path)
-                .with_context(|| format!("cannot load mesh {}", path.display()))?
-                .mesh
-        }
-        (None, Some(name)) => example_mesh(name)?,
-        _ => bail!("give a mesh file or --example NAME"),
-    };
+    let mesh = args.input.load()?.mesh;
     let lumping = match args.mass {
         Mass::Barycentric => MassLumping::Barycentric,
         Mass::Voronoi => MassLumping::Voronoi,
