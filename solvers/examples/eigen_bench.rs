@@ -21,7 +21,10 @@ fn main() {
             "--k" => k = args.next().and_then(|s| s.parse().ok()).unwrap_or(k),
             "--kind" => kind = args.next().unwrap_or(kind),
             "--block" => options.block_size = args.next().and_then(|s| s.parse().ok()).unwrap_or(options.block_size),
-            "--seq" => faer::set_global_parallelism(faer::Par::Seq),
+            "--threads" => {
+                let threads: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(1);
+                options.parallelism = if threads > 1 { faer::Par::rayon(threads) } else { faer::Par::Seq };
+            }
             "--slice" => options.slice_size = args.next().and_then(|s| s.parse().ok()).unwrap_or(options.slice_size),
             other => meshes.push(PathBuf::from(other)),
         }

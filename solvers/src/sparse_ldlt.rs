@@ -76,6 +76,12 @@ impl SparseLdlt {
         self.symbolic.nrows()
     }
 
+    /// Sets the parallelism of later factorizations and solves (default: faer's global setting).
+    /// For many small supernodes (2D meshes) `Par::Seq` solves are faster than parallel ones.
+    pub fn set_parallelism(&mut self, parallelism: Par) {
+        self.parallelism = parallelism;
+    }
+
     /// Number of stored values of the factor `L` (a measure of fill-in).
     pub fn factor_len(&self) -> usize {
         self.values.len()

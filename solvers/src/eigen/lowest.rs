@@ -122,7 +122,7 @@ fn sliced(
     options: &EigenOptions<'_>,
 ) -> Result<SlicedResult, SolverError> {
     let n = mass.len();
-    let par = faer::get_global_parallelism();
+    let par = options.parallelism;
     let block = options.block_size.clamp(1, n / 8 + 1);
     let slice_size = options.slice_size.max(block);
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
@@ -149,11 +149,17 @@ fn sliced(
             let shifted = shifted_upper_triangle(a, mass, sigma)?;
             let result = match factor.take() {
                 None => SparseLdlt::new(shifted.as_ref()),
-                Some(mut f) => f.refactor(shifted.as_ref()).map(|_| f),
+                Some(mut f) => {
+                    f.set_parallelism(par);
+                    f.refactor(shifted.as_ref()).map(|_| f)
+                }
             };
             factorizations += 1;
             match result {
-                Ok(f) => break f,
+                Ok(mut f) => {
+                    f.set_parallelism(Par::Seq);
+                    break f;
+                }
                 Err(SolverError::Singular { .. }) if attempts < 5 => {
                     attempts += 1;
                     sigma += 1e-7 * scale.max(sigma.abs()) * attempts as f64;

@@ -1,6 +1,6 @@
 //! Options, progress reports and results of [`crate::lowest_eigenpairs`].
 
-use faer::Mat;
+use faer::{Mat, Par};
 use std::fmt;
 
 /// Progress of [`crate::lowest_eigenpairs`], reported after every restart of every slice.
@@ -28,7 +28,7 @@ pub struct EigenOptions<'a> {
     /// Convergence tolerance: a Ritz pair `(θ, u)` of the shift-inverted operator
     /// `(A − σM)⁻¹M` is accepted when `‖OP u − θ u‖_M ≤ tolerance · |θ|`. Default `1e-12`.
     pub tolerance: f64,
-    /// Number of vectors per Krylov block (and per blocked solve). Default 16.
+    /// Number of vectors per Krylov block (and per blocked solve). Default 8.
     pub block_size: usize,
     /// Target number of new eigenpairs per spectrum slice (one factorization each). Default 128.
     pub slice_size: usize,
@@ -36,6 +36,11 @@ pub struct EigenOptions<'a> {
     pub max_restarts: usize,
     /// Problems with `n ≤ dense_threshold` (or `3k ≥ n`) use the dense solver. Default 400.
     pub dense_threshold: usize,
+    /// Parallelism of the dense block operations (Gram–Schmidt, restarts) and of the
+    /// factorizations. Sparse triangular solves always run sequentially: faer's supernodal solve
+    /// synchronises threads per supernode, which costs more than it gains on surface meshes.
+    /// Default `Par::Seq`.
+    pub parallelism: Par,
     /// Called with a progress report after every restart; `None` for silence.
     pub progress: Option<&'a dyn Fn(&EigenProgress)>,
 }
@@ -45,10 +50,11 @@ impl Default for EigenOptions<'_> {
         Self {
             seed: 0x7466_7665_6967_656e,
             tolerance: 1e-12,
-            block_size: 16,
+            block_size: 8,
             slice_size: 128,
             max_restarts: 1000,
             dense_threshold: 400,
+            parallelism: Par::Seq,
             progress: None,
         }
     }
@@ -63,6 +69,7 @@ impl fmt::Debug for EigenOptions<'_> {
             .field("slice_size", &self.slice_size)
             .field("max_restarts", &self.max_restarts)
             .field("dense_threshold", &self.dense_threshold)
+            .field("parallelism", &self.parallelism)
             .field("progress", &self.progress.map(|_| "callback"))
             .finish()
     }
