@@ -103,20 +103,23 @@ pub fn run(args: AnalyzeArgs) -> Result<()> {
 
 /// The paper's Figure 8: |coefficient| against frequency for both families (log scale).
 fn plot_spectrum(analysis: &SpectralAnalysis, path: &Path) -> Result<()> {
+    // Coefficients below round-off of the largest (e.g. harmonic ones of a field without a
+    // harmonic part) would only stretch the log axis.
+    let largest = analysis.entries.iter().fold(0.0f64, |m, e| m.max(e.coefficient.abs()));
     let points = |family| -> Vec<(f64, f64)> {
         analysis
             .family(family)
             .map(|e| (e.frequency, e.coefficient.abs()))
-            .filter(|&(_, c)| c > 0.0)
+            .filter(|&(_, c)| c > 1e-12 * largest)
             .collect()
     };
     let mut series = vec![
-        Series::new("integrable |α|", points(FieldFamily::Integrable), SeriesStyle::Line),
-        Series::new("co-integrable |β|", points(FieldFamily::Cointegrable), SeriesStyle::Line),
+        Series::new("integrable |alpha|", points(FieldFamily::Integrable), SeriesStyle::Line),
+        Series::new("co-integrable |beta|", points(FieldFamily::Cointegrable), SeriesStyle::Line),
     ];
     let harmonic = points(FieldFamily::Harmonic);
     if !harmonic.is_empty() {
-        series.push(Series::new("harmonic |γ|", harmonic, SeriesStyle::Scatter));
+        series.push(Series::new("harmonic |gamma|", harmonic, SeriesStyle::Scatter));
     }
     series.retain(|s| !s.points.is_empty());
     if series.is_empty() {
@@ -124,7 +127,7 @@ fn plot_spectrum(analysis: &SpectralAnalysis, path: &Path) -> Result<()> {
     }
     let plot = Plot {
         title: "Spectral analysis: coefficient magnitudes".to_string(),
-        x: Axis::new("frequency √λ", AxisScale::Linear),
+        x: Axis::new("frequency sqrt(lambda)", AxisScale::Linear),
         y: Axis::new("|coefficient|", AxisScale::Log10),
         series,
         width: 1000,

@@ -76,7 +76,11 @@ pub fn run(args: RateDistortionArgs) -> Result<()> {
     write_atomically(&csv_path, csv.as_bytes())
         .with_context(|| format!("cannot write {}", csv_path.display()))?;
     let png_path = args.output.join("rate_distortion.png");
-    plot(&points, &codings, &png_path, &args.input.label())?;
+    let label = args.input.label();
+    let mesh_name = Path::new(&label)
+        .file_name()
+        .map_or(label.clone(), |n| n.to_string_lossy().into_owned());
+    plot(&points, &codings, &png_path, &mesh_name)?;
 
     println!("{:>6} {:>34} {:>10} {:>12} {:>14}", "pairs", "coding", "bytes", "bits/vertex", "rel. L2 error");
     for p in &points {
@@ -122,7 +126,7 @@ fn plot(points: &[RatePoint], codings: &[CoefficientCoding], path: &Path, mesh: 
         })
         .collect();
     let plot = Plot {
-        title: format!("Rate–distortion on {mesh}"),
+        title: format!("Rate-distortion on {mesh}"),
         x: Axis::new("bits per vertex", AxisScale::Log10),
         y: Axis::new("relative L2 error", AxisScale::Log10),
         series,
