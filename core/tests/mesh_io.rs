@@ -170,3 +170,14 @@ fn missing_file_and_unknown_extension() {
         }
     );
 }
+
+#[test]
+fn huge_counts_of_empty_elements_do_not_hang() {
+    // Found by cargo fuzz: an element without properties and a count near 2^64 used to be
+    // iterated instance by instance. It stores no data, so the file is a valid triangle.
+    let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+                property float z\nelement padding 18000000000000000000\nelement face 1\n\
+                property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let loaded = parse_mesh_bytes(text.as_bytes(), MeshFormat::Ply, "padding.ply").unwrap();
+    assert_eq!(loaded.mesh.face_count(), 1);
+}

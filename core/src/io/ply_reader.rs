@@ -33,6 +33,11 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
     let mut raw = RawMesh::default();
     for element in &header.elements {
         let role = Role::of(element, header.header_lines)?;
+        if element.properties.is_empty() {
+            // Nothing is stored per instance: no data to read, however large the count
+            // (iterating a count of 10^18 would hang).
+            continue;
+        }
         for instance in 0..element.count {
             let line = source.line();
             let fail = |error: Option<Located>| {
