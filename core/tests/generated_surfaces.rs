@@ -43,7 +43,10 @@ fn genus_surface_default_sizes_are_small() {
     assert_eq!(fine.genus(), 2);
     // Odd and tiny resolutions are rounded up, not rejected.
     assert_eq!(genus_surface(1, 0).genus(), 1);
-    assert_eq!(genus_surface(3, 5).face_count(), genus_surface(3, 6).face_count());
+    assert_eq!(
+        genus_surface(3, 5).face_count(),
+        genus_surface(3, 6).face_count()
+    );
 }
 
 #[test]
@@ -53,7 +56,10 @@ fn genus_surface_has_no_slivers_and_fairly_uniform_areas() {
     let mean = mesh.total_area() / areas.len() as f64;
     let smallest = areas.iter().cloned().fold(f64::INFINITY, f64::min);
     let largest = areas.iter().cloned().fold(0.0, f64::max);
-    assert!(smallest > 0.1 * mean && largest < 5.0 * mean, "{smallest} {mean} {largest}");
+    assert!(
+        smallest > 0.1 * mean && largest < 5.0 * mean,
+        "{smallest} {mean} {largest}"
+    );
 }
 
 #[test]
@@ -71,7 +77,10 @@ fn bumpy_torus_is_a_bumpy_genus_one_surface() {
     let (lo, hi) = radii
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
-    assert!((0.5..0.51).contains(&lo) && hi > 0.65 && hi <= 0.7 + 1e-9, "{lo} {hi}");
+    assert!(
+        (0.5..0.51).contains(&lo) && hi > 0.65 && hi <= 0.7 + 1e-9,
+        "{lo} {hi}"
+    );
     // Deterministic.
     let again = bumpy_torus(2.0, 0.5, 64, 32, 12, 0.4).unwrap();
     assert_eq!(mesh.positions(), again.positions());
@@ -87,10 +96,9 @@ fn rigid_motion_preserves_lengths_volume_and_topology() {
     assert_eq!(moved.faces(), mesh.faces());
     assert!((moved.signed_volume() - mesh.signed_volume()).abs() < 1e-9);
     for (&[a, b], _) in mesh.edges().iter().zip(0..) {
-        let length = |m: &SurfaceMesh| tvf_core::geometry::norm(tvf_core::geometry::sub(
-            m.positions()[a],
-            m.positions()[b],
-        ));
+        let length = |m: &SurfaceMesh| {
+            tvf_core::geometry::norm(tvf_core::geometry::sub(m.positions()[a], m.positions()[b]))
+        };
         assert!((length(&mesh) - length(&moved)).abs() < 1e-12);
     }
     // Zero axis: pure translation.
@@ -101,14 +109,21 @@ fn rigid_motion_preserves_lengths_volume_and_topology() {
 
 #[test]
 fn jitter_is_seeded_small_and_keeps_meshes_valid() {
-    let meshes = [icosphere(2), genus_surface(2, 6), torus(2.0, 0.5, 24, 12).unwrap()];
+    let meshes = [
+        icosphere(2),
+        genus_surface(2, 6),
+        torus(2.0, 0.5, 24, 12).unwrap(),
+    ];
     for mesh in &meshes {
         for seed in 0..5 {
             let jittered = jitter(mesh, 0.2, seed).unwrap();
             assert_valid_closed_outward(&jittered);
             assert_eq!(jittered.genus(), mesh.genus());
             assert_ne!(jittered.positions(), mesh.positions());
-            assert_eq!(jitter(mesh, 0.2, seed).unwrap().positions(), jittered.positions());
+            assert_eq!(
+                jitter(mesh, 0.2, seed).unwrap().positions(),
+                jittered.positions()
+            );
         }
     }
     assert_ne!(

@@ -29,7 +29,11 @@ fn parse_and_check(bytes: &[u8], format: MeshFormat) {
         Ok(loaded) => {
             let mesh = &loaded.mesh;
             assert!(mesh.face_count() > 0);
-            assert!(mesh.faces().iter().flatten().all(|&v| v < mesh.vertex_count()));
+            assert!(mesh
+                .faces()
+                .iter()
+                .flatten()
+                .all(|&v| v < mesh.vertex_count()));
             assert!(mesh.positions().iter().flatten().all(|x| x.is_finite()));
             assert_eq!(loaded.report.original_vertex.len(), mesh.vertex_count());
             assert!(loaded.report.min_angle_deg > 0.0);
@@ -109,8 +113,25 @@ enum Mutation {
 }
 
 const TOKENS: &[&str] = &[
-    "0", "-1", "nan", "inf", "-0", "1e308", "4294967295", "18446744073709551616", " ", "\n",
-    "f", "v", "#", "/", "//", "3", "255", "end_header\n", "element face 99999999999\n",
+    "0",
+    "-1",
+    "nan",
+    "inf",
+    "-0",
+    "1e308",
+    "4294967295",
+    "18446744073709551616",
+    " ",
+    "\n",
+    "f",
+    "v",
+    "#",
+    "/",
+    "//",
+    "3",
+    "255",
+    "end_header\n",
+    "element face 99999999999\n",
 ];
 
 fn mutation() -> impl Strategy<Value = Mutation> {

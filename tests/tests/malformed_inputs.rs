@@ -19,20 +19,72 @@ const EXPECTED: &[Expectation] = &[
     ("comments_only.obj", |k| *k == K::Empty, None),
     ("binary_garbage.obj", |k| *k == K::NotText, Some(1)),
     ("binary_garbage.off", |k| *k == K::NotText, Some(3)),
-    ("binary_garbage.ply", |k| matches!(k, K::Parse { .. }), Some(1)),
-    ("truncated_vertex.obj", |k| matches!(k, K::Parse { .. }), Some(3)),
-    ("truncated_faces.off", |k| matches!(k, K::Truncated { .. }), Some(8)),
-    ("truncated_vertices.off", |k| matches!(k, K::Truncated { .. }), Some(7)),
-    ("truncated_binary.ply", |k| matches!(k, K::Truncated { .. }), None),
-    ("truncated_header.ply", |k| matches!(k, K::Truncated { .. }), Some(5)),
-    ("bad_header_type.ply", |k| matches!(k, K::Parse { .. }), Some(4)),
-    ("bad_header_format.ply", |k| matches!(k, K::Parse { .. }), Some(2)),
-    ("big_endian.ply", |k| matches!(k, K::Unsupported { .. }), Some(2)),
-    ("wrong_counts_trailing.off", |k| matches!(k, K::TrailingData { .. }), Some(7)),
+    (
+        "binary_garbage.ply",
+        |k| matches!(k, K::Parse { .. }),
+        Some(1),
+    ),
+    (
+        "truncated_vertex.obj",
+        |k| matches!(k, K::Parse { .. }),
+        Some(3),
+    ),
+    (
+        "truncated_faces.off",
+        |k| matches!(k, K::Truncated { .. }),
+        Some(8),
+    ),
+    (
+        "truncated_vertices.off",
+        |k| matches!(k, K::Truncated { .. }),
+        Some(7),
+    ),
+    (
+        "truncated_binary.ply",
+        |k| matches!(k, K::Truncated { .. }),
+        None,
+    ),
+    (
+        "truncated_header.ply",
+        |k| matches!(k, K::Truncated { .. }),
+        Some(5),
+    ),
+    (
+        "bad_header_type.ply",
+        |k| matches!(k, K::Parse { .. }),
+        Some(4),
+    ),
+    (
+        "bad_header_format.ply",
+        |k| matches!(k, K::Parse { .. }),
+        Some(2),
+    ),
+    (
+        "big_endian.ply",
+        |k| matches!(k, K::Unsupported { .. }),
+        Some(2),
+    ),
+    (
+        "wrong_counts_trailing.off",
+        |k| matches!(k, K::TrailingData { .. }),
+        Some(7),
+    ),
     ("bad_counts.off", |k| matches!(k, K::Parse { .. }), Some(2)),
-    ("not_off_header.off", |k| matches!(k, K::Parse { .. }), Some(1)),
-    ("huge_counts.off", |k| matches!(k, K::Truncated { .. }), Some(4)),
-    ("huge_counts.ply", |k| matches!(k, K::Truncated { .. }), None),
+    (
+        "not_off_header.off",
+        |k| matches!(k, K::Parse { .. }),
+        Some(1),
+    ),
+    (
+        "huge_counts.off",
+        |k| matches!(k, K::Truncated { .. }),
+        Some(4),
+    ),
+    (
+        "huge_counts.ply",
+        |k| matches!(k, K::Truncated { .. }),
+        None,
+    ),
     ("huge_list.ply", |k| matches!(k, K::Truncated { .. }), None),
     (
         "zero_index.obj",
@@ -41,17 +93,41 @@ const EXPECTED: &[Expectation] = &[
     ),
     (
         "negative_index_out_of_range.obj",
-        |k| matches!(k, K::IndexOutOfRange { index: -4, vertex_count: 3 }),
+        |k| {
+            matches!(
+                k,
+                K::IndexOutOfRange {
+                    index: -4,
+                    vertex_count: 3
+                }
+            )
+        },
         Some(4),
     ),
     (
         "index_out_of_range.obj",
-        |k| matches!(k, K::IndexOutOfRange { index: 9, vertex_count: 3 }),
+        |k| {
+            matches!(
+                k,
+                K::IndexOutOfRange {
+                    index: 9,
+                    vertex_count: 3
+                }
+            )
+        },
         Some(4),
     ),
     (
         "index_out_of_range.off",
-        |k| matches!(k, K::IndexOutOfRange { index: 3, vertex_count: 3 }),
+        |k| {
+            matches!(
+                k,
+                K::IndexOutOfRange {
+                    index: 3,
+                    vertex_count: 3
+                }
+            )
+        },
         Some(6),
     ),
     (
@@ -61,7 +137,15 @@ const EXPECTED: &[Expectation] = &[
     ),
     (
         "index_out_of_range.ply",
-        |k| matches!(k, K::IndexOutOfRange { index: 5, vertex_count: 3 }),
+        |k| {
+            matches!(
+                k,
+                K::IndexOutOfRange {
+                    index: 5,
+                    vertex_count: 3
+                }
+            )
+        },
         Some(13),
     ),
     (
@@ -81,7 +165,16 @@ const EXPECTED: &[Expectation] = &[
     ),
     (
         "non_manifold_edge.obj",
-        |k| matches!(k, K::Mesh(M::NonManifoldEdge { a: 0, b: 1, face_count: 3 })),
+        |k| {
+            matches!(
+                k,
+                K::Mesh(M::NonManifoldEdge {
+                    a: 0,
+                    b: 1,
+                    face_count: 3
+                })
+            )
+        },
         None,
     ),
     (
@@ -132,7 +225,11 @@ const EXPECTED: &[Expectation] = &[
         Some(6),
     ),
     ("bad_number.obj", |k| matches!(k, K::Parse { .. }), Some(2)),
-    ("bad_face_token.obj", |k| matches!(k, K::Parse { .. }), Some(4)),
+    (
+        "bad_face_token.obj",
+        |k| matches!(k, K::Parse { .. }),
+        Some(4),
+    ),
     ("zero_weight.obj", |k| matches!(k, K::Parse { .. }), Some(1)),
     (
         "mesh.stl",
@@ -190,7 +287,10 @@ fn the_corpus_is_complete_and_covered() {
     files.sort();
     let mut listed: Vec<String> = EXPECTED.iter().map(|e| e.0.to_string()).collect();
     listed.sort();
-    assert_eq!(files, listed, "every corpus file has exactly one expectation");
+    assert_eq!(
+        files, listed,
+        "every corpus file has exactly one expectation"
+    );
     assert!(files.len() >= 25);
 }
 
@@ -200,5 +300,8 @@ fn errors_of_different_kinds_are_distinguished() {
     let moebius = load_mesh(corpus().join("moebius.obj")).unwrap_err();
     let mixed = load_mesh(corpus().join("mixed_orientation.obj")).unwrap_err();
     assert!(moebius.to_string().contains("non-orientable"), "{moebius}");
-    assert!(mixed.to_string().contains("inconsistently oriented"), "{mixed}");
+    assert!(
+        mixed.to_string().contains("inconsistently oriented"),
+        "{mixed}"
+    );
 }

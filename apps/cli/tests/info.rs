@@ -60,7 +60,11 @@ fn file_report_in_text_lists_warnings() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("open.obj");
     // A square with an unreferenced vertex: one boundary loop, one warning.
-    std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 1 2 3 4\n").unwrap();
+    std::fs::write(
+        &path,
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 5 5 5\nf 1 2 3 4\n",
+    )
+    .unwrap();
     let output = tvf(&["info", path.to_str().unwrap()]);
     assert!(output.status.success());
     let text = String::from_utf8(output.stdout).unwrap();
@@ -92,7 +96,9 @@ fn bad_input_exits_1_with_the_file_named_on_stderr() {
         assert_eq!(output.status.code(), Some(1), "{args:?}");
         assert!(output.stdout.is_empty());
         let stderr = String::from_utf8(output.stderr).unwrap();
-        let file = std::path::Path::new(args.last().unwrap()).file_name().unwrap();
+        let file = std::path::Path::new(args.last().unwrap())
+            .file_name()
+            .unwrap();
         assert!(stderr.contains(file.to_str().unwrap()), "{stderr}");
     }
     let stderr = String::from_utf8(tvf(&["info", path.to_str().unwrap()]).stderr).unwrap();

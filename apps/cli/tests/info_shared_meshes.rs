@@ -56,7 +56,10 @@ fn shared_meshes_match_stats_json() {
                 })
             })
             .collect();
-        handles.into_iter().flat_map(|h| h.join().unwrap()).collect()
+        handles
+            .into_iter()
+            .flat_map(|h| h.join().unwrap())
+            .collect()
     });
     for (name, report) in reports {
         let expected = &stats[&name];
@@ -74,14 +77,22 @@ fn shared_meshes_match_stats_json() {
             "{name}"
         );
         for key in ["min_angle_deg", "max_angle_deg"] {
-            let (ours, theirs) = (report[key].as_f64().unwrap(), expected[key].as_f64().unwrap());
-            assert!((ours - theirs).abs() < 1e-6, "{name}: {key} {ours} vs {theirs}");
+            let (ours, theirs) = (
+                report[key].as_f64().unwrap(),
+                expected[key].as_f64().unwrap(),
+            );
+            assert!(
+                (ours - theirs).abs() < 1e-6,
+                "{name}: {key} {ours} vs {theirs}"
+            );
         }
         let slivers = expected["faces_with_angle_below_1deg"].as_u64().unwrap();
         let warnings = report["warnings"].as_array().unwrap();
         let sliver_warning = format!("{slivers} faces have an angle below 1°");
         assert_eq!(
-            warnings.iter().any(|w| w.as_str() == Some(sliver_warning.as_str())),
+            warnings
+                .iter()
+                .any(|w| w.as_str() == Some(sliver_warning.as_str())),
             slivers > 0,
             "{name}: {warnings:?}"
         );

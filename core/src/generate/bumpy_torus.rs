@@ -32,7 +32,10 @@ pub fn bumpy_torus(
     let centres: Vec<(f64, f64)> = (0..bump_count)
         .map(|k| {
             let k = k as f64 + 1.0;
-            (TAU * (k * golden).fract(), TAU * (k * golden * golden).fract())
+            (
+                TAU * (k * golden).fract(),
+                TAU * (k * golden * golden).fract(),
+            )
         })
         .collect();
     // Bump width in radians: a fraction of the spacing of the bump centres on the torus.

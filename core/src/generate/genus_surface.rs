@@ -49,7 +49,12 @@ fn square_sheet(k: usize) -> Sheet {
     let mut triangles = Vec::with_capacity(2 * k * k);
     for b in 0..k {
         for a in 0..k {
-            let (p, q, r, s) = (index(a, b), index(a + 1, b), index(a + 1, b + 1), index(a, b + 1));
+            let (p, q, r, s) = (
+                index(a, b),
+                index(a + 1, b),
+                index(a + 1, b + 1),
+                index(a, b + 1),
+            );
             if (a + b) % 2 == 0 {
                 triangles.extend([[p, q, r], [p, r, s]]);
             } else {
@@ -116,7 +121,12 @@ fn perforated_sheet(genus: usize, k: usize) -> Sheet {
         for l in 0..layers {
             for j in 0..4 * k {
                 let next = (j + 1) % (4 * k);
-                let quad = [rings[l][j], rings[l + 1][j], rings[l + 1][next], rings[l][next]];
+                let quad = [
+                    rings[l][j],
+                    rings[l + 1][j],
+                    rings[l + 1][next],
+                    rings[l][next],
+                ];
                 triangles.extend(split_quad(&points, quad));
             }
         }
@@ -183,7 +193,10 @@ fn soften_corners(sheet: &mut Sheet) {
                 let turn = (u[0] * w[1] - u[1] * w[0]).atan2(u[0] * w[0] + u[1] * w[1]);
                 (turn > PI / 3.0).then(|| {
                     let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-                    (cycle[i], [p[0] + 0.6 * (mid[0] - p[0]), p[1] + 0.6 * (mid[1] - p[1])])
+                    (
+                        cycle[i],
+                        [p[0] + 0.6 * (mid[0] - p[0]), p[1] + 0.6 * (mid[1] - p[1])],
+                    )
                 })
             })
             .collect();
@@ -202,13 +215,21 @@ fn thicken(sheet: &Sheet, wall_layers: usize) -> SurfaceMesh {
     let mut positions: Vec<[f64; 3]> = sheet.points.iter().map(|p| [p[0], p[1], h]).collect();
     positions.extend(sheet.points.iter().map(|p| [p[0], p[1], -h]));
     let mut faces: Vec<[usize; 3]> = sheet.triangles.clone();
-    faces.extend(sheet.triangles.iter().map(|&[a, b, c]| [a + n, c + n, b + n]));
+    faces.extend(
+        sheet
+            .triangles
+            .iter()
+            .map(|&[a, b, c]| [a + n, c + n, b + n]),
+    );
 
     for cycle in boundary_loops(sheet) {
         let len = cycle.len();
         // Outward (right-hand) normal of the segment from cycle[i] to cycle[i + 1].
         let segment_normal = |i: usize| {
-            let (p, q) = (sheet.points[cycle[i % len]], sheet.points[cycle[(i + 1) % len]]);
+            let (p, q) = (
+                sheet.points[cycle[i % len]],
+                sheet.points[cycle[(i + 1) % len]],
+            );
             let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
             let length = (dx * dx + dy * dy).sqrt();
             [dy / length, -dx / length]
@@ -238,7 +259,8 @@ fn thicken(sheet: &Sheet, wall_layers: usize) -> SurfaceMesh {
             for i in 0..len {
                 let j = (i + 1) % len;
                 // The top sheet traverses cycle[i] → cycle[j]; the wall goes the other way.
-                let (a, b, a_down, b_down) = (ring[r][i], ring[r][j], ring[r + 1][i], ring[r + 1][j]);
+                let (a, b, a_down, b_down) =
+                    (ring[r][i], ring[r][j], ring[r + 1][i], ring[r + 1][j]);
                 let distance = |p: usize, q: usize| {
                     let d = crate::geometry::sub(positions[p], positions[q]);
                     crate::geometry::dot(d, d)

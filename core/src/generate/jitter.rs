@@ -34,7 +34,11 @@ pub fn jitter(mesh: &SurfaceMesh, amplitude: f64, seed: u64) -> Result<SurfaceMe
                     break d;
                 }
             };
-            let radius = if local.is_finite() { amplitude * local } else { 0.0 };
+            let radius = if local.is_finite() {
+                amplitude * local
+            } else {
+                0.0
+            };
             add(p, scale(offset, radius))
         })
         .collect();

@@ -128,7 +128,10 @@ fn face_corner(token: &str, seen: usize, line: usize) -> Result<i64, Located> {
     for part in parts {
         extra += 1;
         if extra > 2 || (!part.is_empty() && part.parse::<i64>().is_err()) {
-            return Err(parse_error(line, format!("malformed face corner '{token}'")));
+            return Err(parse_error(
+                line,
+                format!("malformed face corner '{token}'"),
+            ));
         }
     }
     match index {

@@ -50,7 +50,10 @@ impl ScalarType {
 /// One property of an element: a scalar, or a list with a count type and an item type.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Property {
-    Scalar { name: String, ty: ScalarType },
+    Scalar {
+        name: String,
+        ty: ScalarType,
+    },
     List {
         name: String,
         count: ScalarType,

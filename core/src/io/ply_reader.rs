@@ -92,7 +92,12 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
                         return Err((line, LoadErrorKind::FaceTooSmall { corners }));
                     }
                     let before = raw.face_lines.len();
-                    push_fan(&corners, line.unwrap_or(0), &mut raw.faces, &mut raw.face_lines);
+                    push_fan(
+                        &corners,
+                        line.unwrap_or(0),
+                        &mut raw.faces,
+                        &mut raw.face_lines,
+                    );
                     if line.is_none() {
                         raw.face_lines.truncate(before);
                     }
@@ -180,7 +185,10 @@ impl Source<'_> {
                     token.parse::<f64>().ok()
                 };
                 value.ok_or_else(|| {
-                    Some(parse_error(line, format!("'{token}' is not a valid {ty:?}")))
+                    Some(parse_error(
+                        line,
+                        format!("'{token}' is not a valid {ty:?}"),
+                    ))
                 })
             }
             Source::Binary { body, offset } => {

@@ -69,7 +69,9 @@ pub enum MeshError {
     ///
     /// Distinguished from [`MeshError::InconsistentOrientation`], which is reported when a
     /// consistent orientation exists but the file does not use it.
-    #[error("the surface is non-orientable: reorienting from face {face_a} conflicts at face {face_b}")]
+    #[error(
+        "the surface is non-orientable: reorienting from face {face_a} conflicts at face {face_b}"
+    )]
     NonOrientable {
         /// Face where the reorientation started (first face of its component).
         face_a: usize,

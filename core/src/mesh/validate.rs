@@ -313,11 +313,13 @@ fn duplicate_vertices(positions: &[[f64; 3]], referenced: &[bool]) -> Option<Val
             }
         }
     }
-    first.map(|(first, duplicate_of)| ValidationWarning::DuplicateVertices {
-        count,
-        first,
-        duplicate_of,
-    })
+    first.map(
+        |(first, duplicate_of)| ValidationWarning::DuplicateVertices {
+            count,
+            first,
+            duplicate_of,
+        },
+    )
 }
 
 #[cfg(test)]

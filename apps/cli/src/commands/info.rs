@@ -55,7 +55,10 @@ pub fn run(args: InfoArgs) -> Result<()> {
     println!("components     {}", mesh.component_count());
     println!("boundary loops {}", mesh.boundary_loops().len());
     println!("genus          {}", mesh.genus());
-    println!("closed         {}", if mesh.is_closed() { "yes" } else { "no" });
+    println!(
+        "closed         {}",
+        if mesh.is_closed() { "yes" } else { "no" }
+    );
     println!(
         "angles         {:.3}° .. {:.3}°",
         report.min_angle_deg, report.max_angle_deg
