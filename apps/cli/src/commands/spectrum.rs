@@ -1,0 +1,76 @@
+//! `tvf spectrum`: the lowest eigenvalues of the Hodge–Laplacian on tangent fields, labelled by
+//! family.
+
+use crate::basis_source::{Decomposition, Discretization, Mass};
+use crate::mesh_input::MeshInput;
+use crate::progress::{set_quiet, Progress};
+use crate::with_complex;
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use serde_json::json;
+use std::time::Instant;
+use tvf_spectral::{compute_eigenfunction_basis, BasisRequest};
+
+/// Arguments of `tvf spectrum`.
+#[derive(Args)]
+#[command(after_help = "With --json, prints {\"eigenvalues\": [...ascending], \"labels\": \
+[\"harmonic\"|\"integrable\"|\"cointegrable\", ...], \"seconds\": ...} (plus the mesh and the \
+discretization) to stdout. Eigenvalues are in 1/length² (frequencies are their square roots).")]
+pub struct SpectrumArgs {
+    #[command(flatten)]
+    input: MeshInput,
+    /// Number of eigenvalues (the K lowest, harmonic zeros included).
+    #[arg(short = 'k', value_name = "K")]
+    count: usize,
+    /// Hodge decomposition.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
+    decomposition: Decomposition,
+    /// Mass lumping.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
+    mass: Mass,
+    /// Print JSON to stdout instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// No progress output.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// Computes and prints the spectrum.
+pub fn run(args: SpectrumArgs) -> Result<()> {
+    set_quiet(args.quiet);
+    if args.count == 0 {
+        bail!("-k 0: ask for at least one eigenvalue");
+    }
+    let start = Instant::now();
+    let mesh = args.input.load()?.mesh;
+    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
+        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
+    let progress = Progress::new("spectrum");
+    let (basis, _) = {
+        let callback = progress.basis_callback();
+        let request = BasisRequest::fields(args.count).with_progress(&callback);
+        with_complex!(&discretization, c => compute_eigenfunction_basis(c, &request))
+            .with_context(|| format!("{}: cannot compute the spectrum", args.input.label()))?
+    };
+    let seconds = start.elapsed().as_secs_f64();
+    progress.finish(format!("{} eigenvalues in {seconds:.2} s", basis.len()));
+    let labels: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
+    if args.json {
+        let out = json!({
+            "mesh": args.input.label(),
+            "discretization": discretization.name(),
+            "faces": mesh.face_count(),
+            "eigenvalues": basis.eigenvalues(),
+            "labels": labels,
+            "seconds": seconds,
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        println!("{:>6}  {:>22}  {:>14}  family", "index", "eigenvalue", "frequency");
+        for (i, (&lambda, label)) in basis.eigenvalues().iter().zip(&labels).enumerate() {
+            println!("{i:>6}  {lambda:>22.15e}  {:>14.6e}  {label}", lambda.sqrt());
+        }
+    }
+    Ok(())
+}
