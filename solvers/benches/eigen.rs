@@ -10,7 +10,10 @@ use std::time::Duration;
 use tvf_solvers::{convert::shifted_upper_triangle, lowest_eigenpairs, EigenOptions, SparseLdlt};
 
 fn solver_benches(c: &mut Criterion) {
-    let k: usize = std::env::var("TVF_BENCH_K").ok().and_then(|s| s.parse().ok()).unwrap_or(500);
+    let k: usize = std::env::var("TVF_BENCH_K")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(500);
     for mesh in ["bunny-closed.obj", "armadillo-x4.obj"] {
         let Some(path) = mesh_matrices::shared_mesh(mesh) else {
             println!("skipping {mesh}: ../shared/meshes/{mesh} not found");
@@ -25,11 +28,17 @@ fn solver_benches(c: &mut Criterion) {
         };
         let pairs = [
             ("cotan", mesh_matrices::cotan(&positions, &faces)),
-            ("crouzeix-raviart", mesh_matrices::crouzeix_raviart(&positions, &faces)),
+            (
+                "crouzeix-raviart",
+                mesh_matrices::crouzeix_raviart(&positions, &faces),
+            ),
         ];
         for (kind, pair) in &pairs {
             let mut group = c.benchmark_group(format!("{mesh}/{kind}"));
-            group.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(3));
+            group
+                .sample_size(10)
+                .warm_up_time(Duration::from_millis(500))
+                .measurement_time(Duration::from_secs(3));
             let Ok(upper) = shifted_upper_triangle(&pair.stiffness, &pair.mass, -1e-6) else {
                 println!("skipping {mesh}/{kind}: invalid matrix");
                 continue;
@@ -38,11 +47,16 @@ fn solver_benches(c: &mut Criterion) {
                 b.iter(|| SparseLdlt::new(upper.as_ref()).map(|f| f.factor_len()))
             });
             if let Ok(mut ldlt) = SparseLdlt::new(upper.as_ref()) {
-                group.bench_function("numeric refactorization", |b| b.iter(|| ldlt.refactor(upper.as_ref())));
+                group.bench_function("numeric refactorization", |b| {
+                    b.iter(|| ldlt.refactor(upper.as_ref()))
+                });
             }
             group.measurement_time(Duration::from_secs(20));
             group.bench_function(format!("{k} lowest eigenpairs"), |b| {
-                b.iter(|| lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &EigenOptions::default()).map(|r| r.solves))
+                b.iter(|| {
+                    lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &EigenOptions::default())
+                        .map(|r| r.solves)
+                })
             });
             group.finish();
         }

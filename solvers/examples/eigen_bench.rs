@@ -20,17 +20,34 @@ fn main() {
         match arg.as_str() {
             "--k" => k = args.next().and_then(|s| s.parse().ok()).unwrap_or(k),
             "--kind" => kind = args.next().unwrap_or(kind),
-            "--block" => options.block_size = args.next().and_then(|s| s.parse().ok()).unwrap_or(options.block_size),
+            "--block" => {
+                options.block_size = args
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or(options.block_size)
+            }
             "--threads" => {
                 let threads: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(1);
-                options.parallelism = if threads > 1 { faer::Par::rayon(threads) } else { faer::Par::Seq };
+                options.parallelism = if threads > 1 {
+                    faer::Par::rayon(threads)
+                } else {
+                    faer::Par::Seq
+                };
             }
-            "--slice" => options.slice_size = args.next().and_then(|s| s.parse().ok()).unwrap_or(options.slice_size),
+            "--slice" => {
+                options.slice_size = args
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or(options.slice_size)
+            }
             other => meshes.push(PathBuf::from(other)),
         }
     }
     if meshes.is_empty() {
-        meshes = ["bunny-closed.obj", "armadillo-x4.obj"].iter().filter_map(|m| mesh_matrices::shared_mesh(m)).collect();
+        meshes = ["bunny-closed.obj", "armadillo-x4.obj"]
+            .iter()
+            .filter_map(|m| mesh_matrices::shared_mesh(m))
+            .collect();
         if meshes.is_empty() {
             println!("eigen_bench: ../shared/meshes not found, nothing to do");
             return;
@@ -49,11 +66,15 @@ fn main() {
             pairs.push(("cotan", mesh_matrices::cotan(&positions, &faces)));
         }
         if kind == "cr" || kind == "both" {
-            pairs.push(("crouzeix-raviart", mesh_matrices::crouzeix_raviart(&positions, &faces)));
+            pairs.push((
+                "crouzeix-raviart",
+                mesh_matrices::crouzeix_raviart(&positions, &faces),
+            ));
         }
         for (name, pair) in pairs {
             let n = pair.mass.len();
-            let upper = shifted_upper_triangle(&pair.stiffness, &pair.mass, -1e-6).expect("assembled matrix is valid");
+            let upper = shifted_upper_triangle(&pair.stiffness, &pair.mass, -1e-6)
+                .expect("assembled matrix is valid");
             let start = Instant::now();
             let ldlt = SparseLdlt::new(upper.as_ref()).expect("shifted Laplacian factors");
             let analyse = start.elapsed().as_secs_f64();
@@ -62,7 +83,8 @@ fn main() {
             ldlt.refactor(upper.as_ref()).expect("refactor");
             let numeric = start.elapsed().as_secs_f64();
             let start = Instant::now();
-            let result = lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &options).expect("eigensolver");
+            let result =
+                lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &options).expect("eigensolver");
             let seconds = start.elapsed().as_secs_f64();
             let worst = result.residuals.iter().fold(0.0f64, |m, r| m.max(*r));
             println!(

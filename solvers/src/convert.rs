@@ -23,12 +23,19 @@ pub fn square_dimension(matrix: &sprs::CsMat<f64>) -> Result<usize, SolverError>
 /// full storage or upper-triangular storage (not lower-only). Explicitly stored zeros are kept,
 /// so the result's pattern depends only on the input's pattern.
 /// Errors: [`SolverError::NotSquare`], [`SolverError::NonFinite`].
-pub fn upper_triangle_csc(matrix: &sprs::CsMat<f64>) -> Result<SparseColMat<usize, f64>, SolverError> {
+pub fn upper_triangle_csc(
+    matrix: &sprs::CsMat<f64>,
+) -> Result<SparseColMat<usize, f64>, SolverError> {
     let n = square_dimension(matrix)?;
     let mut count = vec![0usize; n + 1];
     for (value, (row, col)) in matrix.iter() {
         if !value.is_finite() {
-            return Err(SolverError::NonFinite { context: "sparse matrix", row, col, value: *value });
+            return Err(SolverError::NonFinite {
+                context: "sparse matrix",
+                row,
+                col,
+                value: *value,
+            });
         }
         if row <= col {
             count[col + 1] += 1;
@@ -64,7 +71,12 @@ pub fn to_faer_csc(matrix: &sprs::CsMat<f64>) -> Result<SparseColMat<usize, f64>
     let mut count = vec![0usize; cols + 1];
     for (value, (row, col)) in matrix.iter() {
         if !value.is_finite() {
-            return Err(SolverError::NonFinite { context: "sparse matrix", row, col, value: *value });
+            return Err(SolverError::NonFinite {
+                context: "sparse matrix",
+                row,
+                col,
+                value: *value,
+            });
         }
         count[col + 1] += 1;
     }
@@ -98,7 +110,11 @@ pub fn shifted_upper_triangle(
     let upper = upper_triangle_csc(matrix)?;
     let n = upper.nrows();
     if mass_diagonal.len() != n {
-        return Err(SolverError::DimensionMismatch { context: "mass diagonal length", expected: n, actual: mass_diagonal.len() });
+        return Err(SolverError::DimensionMismatch {
+            context: "mass diagonal length",
+            expected: n,
+            actual: mass_diagonal.len(),
+        });
     }
     let col_ptr = upper.symbolic().col_ptr();
     let row_idx = upper.symbolic().row_idx();

@@ -15,13 +15,22 @@ fn check_len(context: &'static str, expected: usize, actual: usize) -> Result<()
     if expected == actual {
         Ok(())
     } else {
-        Err(SolverError::DimensionMismatch { context, expected, actual })
+        Err(SolverError::DimensionMismatch {
+            context,
+            expected,
+            actual,
+        })
     }
 }
 
 fn check_finite(context: &'static str, v: &[f64]) -> Result<(), SolverError> {
     match v.iter().position(|x| !x.is_finite()) {
-        Some(row) => Err(SolverError::NonFinite { context, row, col: 0, value: v[row] }),
+        Some(row) => Err(SolverError::NonFinite {
+            context,
+            row,
+            col: 0,
+            value: v[row],
+        }),
         None => Ok(()),
     }
 }
@@ -34,24 +43,39 @@ impl DenseCholesky {
     pub fn new(a: MatRef<'_, f64>) -> Result<Self, SolverError> {
         let n = a.nrows();
         if a.ncols() != n {
-            return Err(SolverError::NotSquare { rows: n, cols: a.ncols() });
+            return Err(SolverError::NotSquare {
+                rows: n,
+                cols: a.ncols(),
+            });
         }
         for j in 0..n {
             for i in j..n {
                 if !a[(i, j)].is_finite() {
-                    return Err(SolverError::NonFinite { context: "dense matrix", row: i, col: j, value: a[(i, j)] });
+                    return Err(SolverError::NonFinite {
+                        context: "dense matrix",
+                        row: i,
+                        col: j,
+                        value: a[(i, j)],
+                    });
                 }
             }
         }
         if n == 0 {
-            return Ok(Self { l: Mat::zeros(0, 0) });
+            return Ok(Self {
+                l: Mat::zeros(0, 0),
+            });
         }
         let llt = a.llt(Side::Lower).map_err(|e| match e {
             faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
-                SolverError::NotPositiveDefinite { pivot: index, value: f64::NAN }
+                SolverError::NotPositiveDefinite {
+                    pivot: index,
+                    value: f64::NAN,
+                }
             }
         })?;
-        Ok(Self { l: llt.L().to_owned() })
+        Ok(Self {
+            l: llt.L().to_owned(),
+        })
     }
 
     /// Dimension `n`.
@@ -87,7 +111,10 @@ impl DenseCholesky {
         self.forward_substitute(&mut p);
         let norm2: f64 = p.iter().map(|x| x * x).sum();
         if norm2 >= 1.0 - 1e-14 {
-            return Err(SolverError::NotPositiveDefinite { pivot: n.saturating_sub(1), value: 1.0 - norm2 });
+            return Err(SolverError::NotPositiveDefinite {
+                pivot: n.saturating_sub(1),
+                value: 1.0 - norm2,
+            });
         }
         let mut x = v.to_vec();
         for k in 0..n {
@@ -95,7 +122,10 @@ impl DenseCholesky {
             let r2 = lkk * lkk - x[k] * x[k];
             if r2 <= 0.0 {
                 // excluded by the check above except for rounding at the very edge
-                return Err(SolverError::NotPositiveDefinite { pivot: k, value: r2 });
+                return Err(SolverError::NotPositiveDefinite {
+                    pivot: k,
+                    value: r2,
+                });
             }
             let r = r2.sqrt();
             let c = r / lkk;
@@ -123,7 +153,10 @@ impl DenseCholesky {
         self.forward_substitute(&mut row);
         let d2 = column[n] - row.iter().map(|x| x * x).sum::<f64>();
         if d2 <= 0.0 {
-            return Err(SolverError::NotPositiveDefinite { pivot: n, value: d2 });
+            return Err(SolverError::NotPositiveDefinite {
+                pivot: n,
+                value: d2,
+            });
         }
         let mut l = Mat::<f64>::zeros(n + 1, n + 1);
         l.as_mut().submatrix_mut(0, 0, n, n).copy_from(&self.l);
@@ -142,7 +175,11 @@ impl DenseCholesky {
     pub fn remove(&mut self, index: usize) -> Result<(), SolverError> {
         let n = self.dimension();
         if index >= n {
-            return Err(SolverError::DimensionMismatch { context: "remove index (must be < n)", expected: n, actual: index });
+            return Err(SolverError::DimensionMismatch {
+                context: "remove index (must be < n)",
+                expected: n,
+                actual: index,
+            });
         }
         let keep = |i: usize| if i < index { i } else { i + 1 };
         let mut l = Mat::from_fn(n - 1, n - 1, |i, j| self.l[(keep(i), keep(j))]);

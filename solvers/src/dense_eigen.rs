@@ -15,25 +15,42 @@ use faer::{Mat, MatRef, Side};
 /// Errors: [`SolverError::NotSquare`], [`SolverError::DimensionMismatch`],
 /// [`SolverError::MassNotPositive`], [`SolverError::NonFinite`],
 /// [`SolverError::NoConvergence`] if faer's QR iteration fails.
-pub fn dense_generalized_eigen(a: MatRef<'_, f64>, mass_diagonal: &[f64]) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
+pub fn dense_generalized_eigen(
+    a: MatRef<'_, f64>,
+    mass_diagonal: &[f64],
+) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
     let n = a.nrows();
     if a.ncols() != n {
-        return Err(SolverError::NotSquare { rows: n, cols: a.ncols() });
+        return Err(SolverError::NotSquare {
+            rows: n,
+            cols: a.ncols(),
+        });
     }
     if mass_diagonal.len() != n {
-        return Err(SolverError::DimensionMismatch { context: "mass diagonal length", expected: n, actual: mass_diagonal.len() });
+        return Err(SolverError::DimensionMismatch {
+            context: "mass diagonal length",
+            expected: n,
+            actual: mass_diagonal.len(),
+        });
     }
     check_mass(mass_diagonal)?;
     for j in 0..n {
         for i in 0..n {
             let value = a[(i, j)];
             if !value.is_finite() {
-                return Err(SolverError::NonFinite { context: "dense matrix", row: i, col: j, value });
+                return Err(SolverError::NonFinite {
+                    context: "dense matrix",
+                    row: i,
+                    col: j,
+                    value,
+                });
             }
         }
     }
     let inv_sqrt: Vec<f64> = mass_diagonal.iter().map(|m| 1.0 / m.sqrt()).collect();
-    let scaled = Mat::from_fn(n, n, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]) * inv_sqrt[i] * inv_sqrt[j]);
+    let scaled = Mat::from_fn(n, n, |i, j| {
+        0.5 * (a[(i, j)] + a[(j, i)]) * inv_sqrt[i] * inv_sqrt[j]
+    });
     let (values, vectors) = symmetric_eigen(scaled.as_ref())?;
     let x = Mat::from_fn(n, n, |i, j| vectors[(i, j)] * inv_sqrt[i]);
     Ok((values, x))
@@ -48,7 +65,9 @@ pub(crate) fn symmetric_eigen(a: MatRef<'_, f64>) -> Result<(Vec<f64>, Mat<f64>)
     }
     let evd = a
         .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| SolverError::NoConvergence { reason: format!("dense self-adjoint eigensolver failed: {e:?}") })?;
+        .map_err(|e| SolverError::NoConvergence {
+            reason: format!("dense self-adjoint eigensolver failed: {e:?}"),
+        })?;
     let s = evd.S().column_vector();
     let values: Vec<f64> = (0..n).map(|i| s[i]).collect();
     Ok((values, evd.U().to_owned()))
@@ -58,7 +77,12 @@ pub(crate) fn symmetric_eigen(a: MatRef<'_, f64>) -> Result<(Vec<f64>, Mat<f64>)
 pub(crate) fn check_mass(mass_diagonal: &[f64]) -> Result<(), SolverError> {
     for (index, &value) in mass_diagonal.iter().enumerate() {
         if !value.is_finite() {
-            return Err(SolverError::NonFinite { context: "mass diagonal", row: index, col: 0, value });
+            return Err(SolverError::NonFinite {
+                context: "mass diagonal",
+                row: index,
+                col: 0,
+                value,
+            });
         }
         if value <= 0.0 {
             return Err(SolverError::MassNotPositive { index, value });

@@ -39,7 +39,9 @@ pub enum SolverError {
     ///
     /// `pivot` is the row/column of the input matrix (original numbering) whose pivot was
     /// not positive during the elimination.
-    #[error("matrix is not positive definite (non-positive pivot {value:e} at row/column {pivot})")]
+    #[error(
+        "matrix is not positive definite (non-positive pivot {value:e} at row/column {pivot})"
+    )]
     NotPositiveDefinite {
         /// Row/column (original numbering) where the elimination met a non-positive pivot.
         pivot: usize,

@@ -11,6 +11,8 @@
 //! - [`DenseCholesky`]: dense Cholesky with rank-one update/downdate and bordered updates.
 //! - [`convert`]: `sprs → faer` conversions.
 #![warn(missing_docs)]
+// Index loops mirror the matrix formulas (L[i][k], x[i]) in the numeric kernels.
+#![allow(clippy::needless_range_loop)]
 
 pub mod convert;
 mod dense_cholesky;

@@ -52,7 +52,11 @@ impl SparseCholesky {
     /// # Panics
     /// If `rhs.len() != self.dimension()` (a programming error, not an input error).
     pub fn solve(&self, rhs: &[f64]) -> Vec<f64> {
-        assert_eq!(rhs.len(), self.dimension(), "SparseCholesky::solve: rhs length must equal the dimension");
+        assert_eq!(
+            rhs.len(),
+            self.dimension(),
+            "SparseCholesky::solve: rhs length must equal the dimension"
+        );
         let mut x = Mat::from_fn(rhs.len(), 1, |i, _| rhs[i]);
         self.ldlt.solve_in_place(x.as_mut());
         (0..rhs.len()).map(|i| x[(i, 0)]).collect()
@@ -63,7 +67,11 @@ impl SparseCholesky {
     /// # Panics
     /// If `rhs.nrows() != self.dimension()`.
     pub fn solve_many(&self, rhs: MatRef<'_, f64>) -> Mat<f64> {
-        assert_eq!(rhs.nrows(), self.dimension(), "SparseCholesky::solve_many: rhs must have n rows");
+        assert_eq!(
+            rhs.nrows(),
+            self.dimension(),
+            "SparseCholesky::solve_many: rhs must have n rows"
+        );
         let mut x = rhs.to_owned();
         self.ldlt.solve_in_place(x.as_mut());
         x
@@ -86,17 +94,26 @@ impl SparseCholesky {
     pub fn refactor(&mut self, matrix: &sprs::CsMat<f64>) -> Result<(), SolverError> {
         let (rows, cols) = matrix.shape();
         if rows != self.dimension() || cols != self.dimension() {
-            return Err(SolverError::DimensionMismatch { context: "SparseCholesky::refactor", expected: self.dimension(), actual: rows.max(cols) });
+            return Err(SolverError::DimensionMismatch {
+                context: "SparseCholesky::refactor",
+                expected: self.dimension(),
+                actual: rows.max(cols),
+            });
         }
         let upper = upper_triangle_csc(matrix)?;
-        self.ldlt.refactor(upper.as_ref()).map_err(singular_to_not_pd)?;
+        self.ldlt
+            .refactor(upper.as_ref())
+            .map_err(singular_to_not_pd)?;
         self.check_positive()
     }
 
     fn check_positive(&self) -> Result<(), SolverError> {
         let pivots = self.ldlt.pivots();
         match pivots.iter().position(|&d| d <= 0.0 || !d.is_finite()) {
-            Some(k) => Err(SolverError::NotPositiveDefinite { pivot: self.ldlt.original_index(k), value: pivots[k] }),
+            Some(k) => Err(SolverError::NotPositiveDefinite {
+                pivot: self.ldlt.original_index(k),
+                value: pivots[k],
+            }),
             None => Ok(()),
         }
     }

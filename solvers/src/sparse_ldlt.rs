@@ -15,8 +15,8 @@ use crate::error::SolverError;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw,
-    SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
+    SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMatRef;
@@ -58,8 +58,13 @@ impl SparseLdlt {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
             ..Default::default()
         };
-        let symbolic = factorize_symbolic_cholesky(upper.symbolic(), Side::Upper, SymmetricOrdering::Amd, params)
-            .map_err(|e| SolverError::Factorization(format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(
+            upper.symbolic(),
+            Side::Upper,
+            SymmetricOrdering::Amd,
+            params,
+        )
+        .map_err(|e| SolverError::Factorization(format!("{e:?}")))?;
         let mut this = Self {
             values: vec![0.0; symbolic.len_val()],
             symbolic,
@@ -104,10 +109,16 @@ impl SparseLdlt {
         self.factor_numeric(upper)
     }
 
-    fn factor_numeric(&mut self, upper: SparseColMatRef<'_, usize, f64>) -> Result<(), SolverError> {
+    fn factor_numeric(
+        &mut self,
+        upper: SparseColMatRef<'_, usize, f64>,
+    ) -> Result<(), SolverError> {
         let par = self.parallelism;
-        let req = self.symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
-        let mut buffer = MemBuffer::try_new(req).map_err(|_| SolverError::Factorization("out of memory".into()))?;
+        let req = self
+            .symbolic
+            .factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
+        let mut buffer = MemBuffer::try_new(req)
+            .map_err(|_| SolverError::Factorization("out of memory".into()))?;
         let result = self.symbolic.factorize_numeric_ldlt::<f64>(
             &mut self.values,
             upper,
@@ -119,7 +130,9 @@ impl SparseLdlt {
         );
         match result {
             Ok(_) => Ok(()),
-            Err(LdltError::ZeroPivot { index }) => Err(SolverError::Singular { pivot: self.original_index(index) }),
+            Err(LdltError::ZeroPivot { index }) => Err(SolverError::Singular {
+                pivot: self.original_index(index),
+            }),
         }
     }
 
@@ -153,7 +166,11 @@ impl SparseLdlt {
 
     /// Signs of the pivots: the inertia of the factored matrix.
     pub fn inertia(&self) -> Inertia {
-        let mut inertia = Inertia { negative: 0, zero: 0, positive: 0 };
+        let mut inertia = Inertia {
+            negative: 0,
+            zero: 0,
+            positive: 0,
+        };
         for d in self.pivots() {
             if d < 0.0 {
                 inertia.negative += 1;
@@ -172,9 +189,15 @@ impl SparseLdlt {
     /// # Panics
     /// If `rhs.nrows() != self.dimension()` (a programming error).
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
-        assert_eq!(rhs.nrows(), self.dimension(), "right-hand side has the wrong number of rows");
+        assert_eq!(
+            rhs.nrows(),
+            self.dimension(),
+            "right-hand side has the wrong number of rows"
+        );
         let par = self.parallelism;
-        let req = self.symbolic.solve_in_place_scratch::<f64>(rhs.ncols(), par);
+        let req = self
+            .symbolic
+            .solve_in_place_scratch::<f64>(rhs.ncols(), par);
         let mut buffer = MemBuffer::new(req);
         LdltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
             Conj::No,

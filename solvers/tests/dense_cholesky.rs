@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix formulas
 use faer::Mat;
 use tvf_solvers::{DenseCholesky, SolverError};
 
@@ -6,7 +7,8 @@ fn spd(n: usize, salt: f64) -> Mat<f64> {
     let mut a = Mat::zeros(n, n);
     for i in 0..n {
         for j in 0..n {
-            a[(i, j)] = (0..n).map(|k| b[(i, k)] * b[(j, k)]).sum::<f64>() + if i == j { 1.0 } else { 0.0 };
+            a[(i, j)] =
+                (0..n).map(|k| b[(i, k)] * b[(j, k)]).sum::<f64>() + if i == j { 1.0 } else { 0.0 };
         }
     }
     a
@@ -18,7 +20,12 @@ fn assert_factor_matches(chol: &DenseCholesky, a: &Mat<f64>) {
     assert_eq!(l.nrows(), f.nrows());
     for i in 0..l.nrows() {
         for j in 0..=i {
-            assert!((l[(i, j)] - f[(i, j)]).abs() < 1e-10, "L[{i},{j}] {} vs {}", l[(i, j)], f[(i, j)]);
+            assert!(
+                (l[(i, j)] - f[(i, j)]).abs() < 1e-10,
+                "L[{i},{j}] {} vs {}",
+                l[(i, j)],
+                f[(i, j)]
+            );
         }
     }
 }
@@ -47,7 +54,10 @@ fn downdate_to_indefinite_fails_and_leaves_factor_unchanged() {
     let a = Mat::<f64>::identity(4, 4);
     let mut chol = DenseCholesky::new(a.as_ref()).unwrap();
     let v = [0.0, 1.5, 0.0, 0.0];
-    assert!(matches!(chol.rank_one_downdate(&v), Err(SolverError::NotPositiveDefinite { .. })));
+    assert!(matches!(
+        chol.rank_one_downdate(&v),
+        Err(SolverError::NotPositiveDefinite { .. })
+    ));
     assert_factor_matches(&chol, &a);
 }
 
@@ -67,19 +77,34 @@ fn bordered_append_and_remove_match_refactorization() {
         let reduced = Mat::from_fn(n, n, |i, j| big[(keep[i], keep[j])]);
         assert_factor_matches(&c, &reduced);
     }
-    assert!(matches!(chol.remove(n + 1), Err(SolverError::DimensionMismatch { .. })));
+    assert!(matches!(
+        chol.remove(n + 1),
+        Err(SolverError::DimensionMismatch { .. })
+    ));
     // appending a column that makes the matrix indefinite is refused
     let mut bad: Vec<f64> = (0..=n).map(|i| big[(i, n)]).collect();
     bad.push(0.0);
-    assert!(matches!(chol.append(&bad), Err(SolverError::NotPositiveDefinite { .. })));
+    assert!(matches!(
+        chol.append(&bad),
+        Err(SolverError::NotPositiveDefinite { .. })
+    ));
     assert_eq!(chol.dimension(), n + 1);
 }
 
 #[test]
 fn invalid_input_is_reported() {
     let a = Mat::from_fn(3, 3, |i, j| if i == j { -1.0 } else { 0.0 });
-    assert!(matches!(DenseCholesky::new(a.as_ref()), Err(SolverError::NotPositiveDefinite { pivot: 0, .. })));
+    assert!(matches!(
+        DenseCholesky::new(a.as_ref()),
+        Err(SolverError::NotPositiveDefinite { pivot: 0, .. })
+    ));
     let mut chol = DenseCholesky::new(Mat::<f64>::identity(3, 3).as_ref()).unwrap();
-    assert!(matches!(chol.rank_one_update(&[1.0]), Err(SolverError::DimensionMismatch { .. })));
-    assert!(matches!(chol.solve(&[1.0, 2.0]), Err(SolverError::DimensionMismatch { .. })));
+    assert!(matches!(
+        chol.rank_one_update(&[1.0]),
+        Err(SolverError::DimensionMismatch { .. })
+    ));
+    assert!(matches!(
+        chol.solve(&[1.0, 2.0]),
+        Err(SolverError::DimensionMismatch { .. })
+    ));
 }

@@ -1,10 +1,13 @@
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix formulas
 mod common;
 
 use common::*;
 use faer::Mat;
 use std::cell::Cell;
 use tvf_solvers::convert::shifted_upper_triangle;
-use tvf_solvers::{dense_generalized_eigen, lowest_eigenpairs, EigenOptions, Eigenpairs, SolverError, SparseLdlt};
+use tvf_solvers::{
+    dense_generalized_eigen, lowest_eigenpairs, EigenOptions, Eigenpairs, SolverError, SparseLdlt,
+};
 
 fn dense(a: &sprs::CsMat<f64>) -> Mat<f64> {
     let mut d = Mat::zeros(a.rows(), a.cols());
@@ -43,23 +46,39 @@ fn check_against_oracle(a: &sprs::CsMat<f64>, mass: &[f64], k: usize, result: &E
     for j in 0..k {
         let x: Vec<f64> = (0..n).map(|i| result.vectors[(i, j)]).collect();
         let ax = matvec(a, &x);
-        let r: f64 = (0..n).map(|i| (ax[i] - result.values[j] * mass[i] * x[i]).powi(2)).sum::<f64>().sqrt();
+        let r: f64 = (0..n)
+            .map(|i| (ax[i] - result.values[j] * mass[i] * x[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
         let xn: f64 = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-        assert!(r <= 1e-9 * norm_a * xn, "residual {j}: {:e}", r / (norm_a * xn));
-        assert!(result.residuals[j] <= 1e-9, "reported residual {j}: {:e}", result.residuals[j]);
+        assert!(
+            r <= 1e-9 * norm_a * xn,
+            "residual {j}: {:e}",
+            r / (norm_a * xn)
+        );
+        assert!(
+            result.residuals[j] <= 1e-9,
+            "reported residual {j}: {:e}",
+            result.residuals[j]
+        );
     }
     // XᵀMX = I
     let mut worst = 0.0f64;
     for p in 0..k {
         for q in 0..=p {
-            let dot: f64 = (0..n).map(|i| result.vectors[(i, p)] * mass[i] * result.vectors[(i, q)]).sum();
+            let dot: f64 = (0..n)
+                .map(|i| result.vectors[(i, p)] * mass[i] * result.vectors[(i, q)])
+                .sum();
             let expected = if p == q { 1.0 } else { 0.0 };
             worst = worst.max((dot - expected).abs());
         }
     }
     assert!(worst <= 1e-10, "XᵀMX deviates from I by {worst:e}");
     // Sylvester inertia just above the top returned eigenvalue (tests pick k at a gap)
-    assert!(reference[k] - reference[k - 1] > 1e-8 * top, "test must choose k at a spectral gap");
+    assert!(
+        reference[k] - reference[k - 1] > 1e-8 * top,
+        "test must choose k at a spectral gap"
+    );
     let sigma = 0.5 * (reference[k - 1] + reference[k]);
     let upper = shifted_upper_triangle(a, mass, sigma).unwrap();
     let inertia = SparseLdlt::new(upper.as_ref()).unwrap().inertia();
@@ -71,16 +90,27 @@ fn check_against_oracle(a: &sprs::CsMat<f64>, mass: &[f64], k: usize, result: &E
 fn grid_laplacian_with_irregular_masses() {
     let a = grid_laplacian(40, 38, false);
     let mass = irregular_masses(a.rows(), 11);
-    let options = EigenOptions { slice_size: 40, ..Default::default() };
+    let options = EigenOptions {
+        slice_size: 40,
+        ..Default::default()
+    };
     let result = lowest_eigenpairs(&a, &mass, 100, &options).unwrap();
     check_against_oracle(&a, &mass, 100, &result);
-    assert!(result.factorizations >= 2, "several slices expected, got {}", result.factorizations);
+    assert!(
+        result.factorizations >= 2,
+        "several slices expected, got {}",
+        result.factorizations
+    );
     assert!(result.residuals.iter().all(|r| r.is_finite()));
 }
 
 #[test]
 fn three_components_give_three_zero_eigenvalues() {
-    let a = direct_sum(&[grid_laplacian(20, 20, false), grid_laplacian(15, 25, false), path_laplacian(300)]);
+    let a = direct_sum(&[
+        grid_laplacian(20, 20, false),
+        grid_laplacian(15, 25, false),
+        path_laplacian(300),
+    ]);
     let mass = irregular_masses(a.rows(), 5);
     let result = lowest_eigenpairs(&a, &mass, 41, &EigenOptions::default()).unwrap();
     check_against_oracle(&a, &mass, 41, &result);
@@ -94,11 +124,17 @@ fn periodic_grid_multiplicities_are_complete() {
     // torus grid with unit mass: eigenvalues 4 sin²(πa/n) + 4 sin²(πb/n), multiplicities 1, 2, 4, 8
     let a = grid_laplacian(30, 30, true);
     let mass = vec![1.0; a.rows()];
-    let options = EigenOptions { slice_size: 48, block_size: 8, ..Default::default() };
+    let options = EigenOptions {
+        slice_size: 48,
+        block_size: 8,
+        ..Default::default()
+    };
     // k = 137 ends a multiplet: count of eigenvalues below the 138th distinct level
     let ad = dense(&a);
     let (reference, _) = dense_generalized_eigen(ad.as_ref(), &mass).unwrap();
-    let k = (120..200).find(|&k| reference[k] - reference[k - 1] > 1e-6).unwrap();
+    let k = (120..200)
+        .find(|&k| reference[k] - reference[k - 1] > 1e-6)
+        .unwrap();
     let result = lowest_eigenpairs(&a, &mass, k, &options).unwrap();
     check_against_oracle(&a, &mass, k, &result);
 }
@@ -111,7 +147,11 @@ fn multiplicity_larger_than_block_size_is_found() {
     let a = direct_sum(&copies);
     let base = irregular_masses(block.rows(), 9);
     let mass: Vec<f64> = (0..5).flat_map(|_| base.iter().copied()).collect();
-    let options = EigenOptions { block_size: 2, slice_size: 20, ..Default::default() };
+    let options = EigenOptions {
+        block_size: 2,
+        slice_size: 20,
+        ..Default::default()
+    };
     let result = lowest_eigenpairs(&a, &mass, 50, &options).unwrap();
     check_against_oracle(&a, &mass, 50, &result);
     let zeros = result.values.iter().filter(|v| v.abs() < 1e-10).count();
@@ -127,7 +167,11 @@ fn seeded_runs_are_deterministic_and_report_progress() {
         assert_eq!(p.wanted, 30);
         calls.set(calls.get() + 1);
     };
-    let options = EigenOptions { seed: 42, progress: Some(&callback), ..Default::default() };
+    let options = EigenOptions {
+        seed: 42,
+        progress: Some(&callback),
+        ..Default::default()
+    };
     let first = lowest_eigenpairs(&a, &mass, 30, &options).unwrap();
     let second = lowest_eigenpairs(&a, &mass, 30, &options).unwrap();
     assert_eq!(first.values, second.values);
@@ -156,12 +200,21 @@ fn invalid_requests_are_errors() {
     let mass = vec![1.0; 10];
     assert_eq!(
         lowest_eigenpairs(&a, &mass, 11, &EigenOptions::default()).unwrap_err(),
-        SolverError::TooManyEigenpairs { requested: 11, dimension: 10 }
+        SolverError::TooManyEigenpairs {
+            requested: 11,
+            dimension: 10
+        }
     );
     let mut bad = mass.clone();
     bad[3] = 0.0;
-    assert!(matches!(lowest_eigenpairs(&a, &bad, 2, &EigenOptions::default()), Err(SolverError::MassNotPositive { index: 3, .. })));
-    assert!(matches!(lowest_eigenpairs(&a, &mass[..9], 2, &EigenOptions::default()), Err(SolverError::DimensionMismatch { .. })));
+    assert!(matches!(
+        lowest_eigenpairs(&a, &bad, 2, &EigenOptions::default()),
+        Err(SolverError::MassNotPositive { index: 3, .. })
+    ));
+    assert!(matches!(
+        lowest_eigenpairs(&a, &mass[..9], 2, &EigenOptions::default()),
+        Err(SolverError::DimensionMismatch { .. })
+    ));
     let empty = lowest_eigenpairs(&a, &mass, 0, &EigenOptions::default()).unwrap();
     assert!(empty.values.is_empty());
 }

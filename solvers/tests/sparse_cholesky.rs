@@ -1,3 +1,4 @@
+#![allow(clippy::needless_range_loop)] // index loops mirror the matrix formulas
 mod common;
 
 use common::*;
@@ -15,7 +16,11 @@ fn solves_shifted_grid_laplacian_full_and_upper_storage() {
     let chol = SparseCholesky::new(&shifted).unwrap();
     assert_eq!(chol.dimension(), 750);
     let x = chol.solve(&b);
-    assert!(max_abs_diff(&x, &x_true) < 1e-10, "full storage error {}", max_abs_diff(&x, &x_true));
+    assert!(
+        max_abs_diff(&x, &x_true) < 1e-10,
+        "full storage error {}",
+        max_abs_diff(&x, &x_true)
+    );
 
     // upper-triangular storage, CSR
     let mut t = sprs::TriMat::new(shifted.shape());
@@ -75,17 +80,26 @@ fn semidefinite_laplacian_is_not_positive_definite() {
     let mass = irregular_masses(100, 4);
     assert!(SparseCholesky::new(&add_diagonal(&a, &mass, 1e-6)).is_ok());
     // an indefinite matrix is rejected
-    assert!(matches!(SparseCholesky::new(&add_diagonal(&a, &mass, -1.0)), Err(SolverError::NotPositiveDefinite { .. })));
+    assert!(matches!(
+        SparseCholesky::new(&add_diagonal(&a, &mass, -1.0)),
+        Err(SolverError::NotPositiveDefinite { .. })
+    ));
 }
 
 #[test]
 fn bad_input_is_reported() {
     let rect: sprs::CsMat<f64> = sprs::TriMat::<f64>::new((3, 4)).to_csc();
-    assert_eq!(SparseCholesky::new(&rect).unwrap_err(), SolverError::NotSquare { rows: 3, cols: 4 });
+    assert_eq!(
+        SparseCholesky::new(&rect).unwrap_err(),
+        SolverError::NotSquare { rows: 3, cols: 4 }
+    );
     let mut t = sprs::TriMat::new((2, 2));
     t.add_triplet(0, 0, 1.0);
     t.add_triplet(1, 1, f64::NAN);
-    assert!(matches!(SparseCholesky::new(&t.to_csc()), Err(SolverError::NonFinite { row: 1, col: 1, .. })));
+    assert!(matches!(
+        SparseCholesky::new(&t.to_csc()),
+        Err(SolverError::NonFinite { row: 1, col: 1, .. })
+    ));
 }
 
 #[test]
@@ -97,7 +111,9 @@ fn inertia_counts_eigenvalues_below_shift() {
     for &sigma in &[0.5, 1.3, 2.7, 3.9] {
         let upper = tvf_solvers::convert::shifted_upper_triangle(&a, &ones, sigma).unwrap();
         let ldlt = SparseLdlt::new(upper.as_ref()).unwrap();
-        let expected = (0..n).filter(|&k| 2.0 - 2.0 * (std::f64::consts::PI * k as f64 / n as f64).cos() < sigma).count();
+        let expected = (0..n)
+            .filter(|&k| 2.0 - 2.0 * (std::f64::consts::PI * k as f64 / n as f64).cos() < sigma)
+            .count();
         let inertia = ldlt.inertia();
         assert_eq!(inertia.negative, expected, "sigma = {sigma}");
         assert_eq!(inertia.negative + inertia.positive, n);

@@ -14,12 +14,17 @@ pub struct StiffnessMass {
 
 /// `../shared/meshes/NAME` relative to the repository root, if it exists.
 pub fn shared_mesh(name: &str) -> Option<PathBuf> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/meshes").join(name);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../shared/meshes")
+        .join(name);
     path.exists().then_some(path)
 }
 
+/// Vertex positions and triangles.
+pub type Triangles = (Vec<[f64; 3]>, Vec<[usize; 3]>);
+
 /// Vertex positions and triangles of an OBJ file (`v` and `f` lines, 1-based indices).
-pub fn read_obj(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<[usize; 3]>), String> {
+pub fn read_obj(path: &Path) -> Result<Triangles, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let mut positions = Vec::new();
     let mut faces = Vec::new();
@@ -27,18 +32,38 @@ pub fn read_obj(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<[usize; 3]>), String>
         let mut parts = line.split_whitespace();
         match parts.next() {
             Some("v") => {
-                let coords: Vec<f64> = parts.take(3).map(|s| s.parse().map_err(|_| format!("{}:{}: bad vertex", path.display(), number + 1))).collect::<Result<_, _>>()?;
+                let coords: Vec<f64> = parts
+                    .take(3)
+                    .map(|s| {
+                        s.parse()
+                            .map_err(|_| format!("{}:{}: bad vertex", path.display(), number + 1))
+                    })
+                    .collect::<Result<_, _>>()?;
                 if coords.len() != 3 {
-                    return Err(format!("{}:{}: vertex needs 3 coordinates", path.display(), number + 1));
+                    return Err(format!(
+                        "{}:{}: vertex needs 3 coordinates",
+                        path.display(),
+                        number + 1
+                    ));
                 }
                 positions.push([coords[0], coords[1], coords[2]]);
             }
             Some("f") => {
                 let ids: Vec<usize> = parts
-                    .map(|s| s.split('/').next().unwrap_or("").parse::<usize>().map_err(|_| format!("{}:{}: bad face", path.display(), number + 1)))
+                    .map(|s| {
+                        s.split('/')
+                            .next()
+                            .unwrap_or("")
+                            .parse::<usize>()
+                            .map_err(|_| format!("{}:{}: bad face", path.display(), number + 1))
+                    })
                     .collect::<Result<_, _>>()?;
-                if ids.len() != 3 || ids.iter().any(|&i| i == 0) {
-                    return Err(format!("{}:{}: only 1-based triangles are supported", path.display(), number + 1));
+                if ids.len() != 3 || ids.contains(&0) {
+                    return Err(format!(
+                        "{}:{}: only 1-based triangles are supported",
+                        path.display(),
+                        number + 1
+                    ));
                 }
                 faces.push([ids[0] - 1, ids[1] - 1, ids[2] - 1]);
             }
@@ -55,12 +80,20 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// Area and the cotangents of the three corner angles of a triangle.
 fn face_geometry(p: [[f64; 3]; 3]) -> (f64, [f64; 3]) {
-    let double_area = dot(cross(sub(p[1], p[0]), sub(p[2], p[0])), cross(sub(p[1], p[0]), sub(p[2], p[0]))).sqrt();
+    let double_area = dot(
+        cross(sub(p[1], p[0]), sub(p[2], p[0])),
+        cross(sub(p[1], p[0]), sub(p[2], p[0])),
+    )
+    .sqrt();
     let mut cot = [0.0; 3];
     for c in 0..3 {
         let u = sub(p[(c + 1) % 3], p[c]);
@@ -87,7 +120,10 @@ pub fn cotan(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> StiffnessMass {
             mass[f[c]] += area / 3.0;
         }
     }
-    StiffnessMass { stiffness: t.to_csc(), mass }
+    StiffnessMass {
+        stiffness: t.to_csc(),
+        mass,
+    }
 }
 
 /// Crouzeix–Raviart stiffness `S*_c` (E × E) and lumped mass `M*_ee = Σ A_t/3`.
@@ -121,5 +157,8 @@ pub fn crouzeix_raviart(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Stiffne
             mass[e[c]] += area / 3.0;
         }
     }
-    StiffnessMass { stiffness: t.to_csc(), mass }
+    StiffnessMass {
+        stiffness: t.to_csc(),
+        mass,
+    }
 }

@@ -67,7 +67,10 @@ pub(crate) struct ColumnStore {
 
 impl ColumnStore {
     pub(crate) fn new(n: usize, capacity: usize) -> Self {
-        Self { data: Mat::zeros(n, capacity.max(1)), count: 0 }
+        Self {
+            data: Mat::zeros(n, capacity.max(1)),
+            count: 0,
+        }
     }
     pub(crate) fn view(&self) -> MatRef<'_, f64> {
         self.data.as_ref().subcols(0, self.count)
@@ -76,10 +79,16 @@ impl ColumnStore {
         let need = self.count + block.ncols();
         if need > self.data.ncols() {
             let mut bigger = Mat::zeros(self.data.nrows(), need.max(2 * self.data.ncols()));
-            bigger.as_mut().subcols_mut(0, self.count).copy_from(self.view());
+            bigger
+                .as_mut()
+                .subcols_mut(0, self.count)
+                .copy_from(self.view());
             self.data = bigger;
         }
-        self.data.as_mut().subcols_mut(self.count, block.ncols()).copy_from(block);
+        self.data
+            .as_mut()
+            .subcols_mut(self.count, block.ncols())
+            .copy_from(block);
         self.count = need;
     }
 }
@@ -103,7 +112,9 @@ pub(crate) fn run_slice(
     let max_basis = settings.max_basis.min(room);
     if max_basis < 2 * block {
         return Err(SolverError::NoConvergence {
-            reason: format!("problem too small for the Krylov basis (n = {n}); use the dense solver"),
+            reason: format!(
+                "problem too small for the Krylov basis (n = {n}); use the dense solver"
+            ),
         });
     }
     let mut locked = ColumnStore::new(n, wanted + 2 * block);
@@ -119,7 +130,11 @@ pub(crate) fn run_slice(
     let mut g = Mat::<f64>::zeros(block, 0);
 
     if wanted == 0 {
-        return Ok(SliceOutcome { values: Vec::new(), vectors: Mat::zeros(n, 0), solves });
+        return Ok(SliceOutcome {
+            values: Vec::new(),
+            vectors: Mat::zeros(n, 0),
+            solves,
+        });
     }
     for _restart in 0..settings.max_restarts {
         // ---- expansion ----
@@ -148,8 +163,14 @@ pub(crate) fn run_slice(
             }
             let mu_new = next.block.ncols();
             let mut g_new = Mat::<f64>::zeros(mu_new, m_new);
-            g_new.as_mut().submatrix_mut(0, mv, mu_new, mu).copy_from(&next.coefficients);
-            basis.as_mut().subcols_mut(m_new, mu_new).copy_from(&next.block);
+            g_new
+                .as_mut()
+                .submatrix_mut(0, mv, mu_new, mu)
+                .copy_from(&next.coefficients);
+            basis
+                .as_mut()
+                .subcols_mut(m_new, mu_new)
+                .copy_from(&next.block);
             h = h_new;
             g = g_new;
             mv = m_new;
@@ -159,12 +180,22 @@ pub(crate) fn run_slice(
         // ---- Rayleigh–Ritz ----
         let (theta, y) = symmetric_eigen(h.as_ref())?;
         let mut gy = Mat::<f64>::zeros(mu, mv);
-        matmul(gy.as_mut(), Accum::Replace, g.as_ref(), y.as_ref(), 1.0, Par::Seq);
-        let residual: Vec<f64> = (0..mv).map(|j| (0..mu).map(|i| gy[(i, j)] * gy[(i, j)]).sum::<f64>().sqrt()).collect();
+        matmul(
+            gy.as_mut(),
+            Accum::Replace,
+            g.as_ref(),
+            y.as_ref(),
+            1.0,
+            Par::Seq,
+        );
+        let residual: Vec<f64> = (0..mv)
+            .map(|j| (0..mu).map(|i| gy[(i, j)] * gy[(i, j)]).sum::<f64>().sqrt())
+            .collect();
         let mut order: Vec<usize> = (0..mv).collect();
         order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
 
-        let remaining = (problem.lower_needed - lower_found) + problem.upper_target.saturating_sub(upper_found);
+        let remaining =
+            (problem.lower_needed - lower_found) + problem.upper_target.saturating_sub(upper_found);
         let window = remaining + block;
         let mut lock = Vec::new();
         let mut keep = Vec::new();
@@ -187,7 +218,14 @@ pub(crate) fn run_slice(
         if !lock.is_empty() {
             let y_lock = Mat::from_fn(mv, lock.len(), |i, j| y[(i, lock[j])]);
             let mut x = Mat::<f64>::zeros(n, lock.len());
-            matmul(x.as_mut(), Accum::Replace, basis.as_ref().subcols(0, mv), y_lock.as_ref(), 1.0, par);
+            matmul(
+                x.as_mut(),
+                Accum::Replace,
+                basis.as_ref().subcols(0, mv),
+                y_lock.as_ref(),
+                1.0,
+                par,
+            );
             locked.append(x.as_ref());
             for &i in &lock {
                 let lambda = sigma + 1.0 / theta[i];
@@ -210,16 +248,29 @@ pub(crate) fn run_slice(
             });
         }
         if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
-            return Ok(SliceOutcome { values: locked_values, vectors: locked.view().to_owned(), solves });
+            return Ok(SliceOutcome {
+                values: locked_values,
+                vectors: locked.view().to_owned(),
+                solves,
+            });
         }
 
         // ---- thick restart ----
-        let keep_target = window.max(max_basis / 2).min(max_basis.saturating_sub(mu + block));
+        let keep_target = window
+            .max(max_basis / 2)
+            .min(max_basis.saturating_sub(mu + block));
         keep.truncate(keep_target);
         let p = keep.len();
         let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
         let mut v_new = Mat::<f64>::zeros(n, p);
-        matmul(v_new.as_mut(), Accum::Replace, basis.as_ref().subcols(0, mv), y_keep.as_ref(), 1.0, par);
+        matmul(
+            v_new.as_mut(),
+            Accum::Replace,
+            basis.as_ref().subcols(0, mv),
+            y_keep.as_ref(),
+            1.0,
+            par,
+        );
         let u_old = basis.as_ref().subcols(mv, mu).to_owned();
         basis.as_mut().subcols_mut(0, p).copy_from(&v_new);
         basis.as_mut().subcols_mut(p, mu).copy_from(&u_old);
@@ -237,10 +288,20 @@ pub(crate) fn run_slice(
                 lambda < sigma && lambda > problem.lower_bound
             })
             .count();
-        if lower_missing > 0 && new_lower == 0 && lower_candidates < lower_missing && mu + block <= 3 * block {
+        if lower_missing > 0
+            && new_lower == 0
+            && lower_candidates < lower_missing
+            && mu + block <= 3 * block
+        {
             let current = basis.as_ref().subcols(0, mv + mu);
-            let fresh =
-                random_orthonormal_block(n, block, &[problem.deflation, locked.view(), current], mass, rng, par)?;
+            let fresh = random_orthonormal_block(
+                n,
+                block,
+                &[problem.deflation, locked.view(), current],
+                mass,
+                rng,
+                par,
+            )?;
             basis.as_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
             let mut g_new = Mat::<f64>::zeros(mu + block, mv);
             g_new.as_mut().subrows_mut(0, mu).copy_from(&g);

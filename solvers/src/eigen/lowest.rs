@@ -47,29 +47,55 @@ pub fn lowest_eigenpairs(
 ) -> Result<Eigenpairs, SolverError> {
     let n = square_dimension(a)?;
     if mass_diagonal.len() != n {
-        return Err(SolverError::DimensionMismatch { context: "mass diagonal length", expected: n, actual: mass_diagonal.len() });
+        return Err(SolverError::DimensionMismatch {
+            context: "mass diagonal length",
+            expected: n,
+            actual: mass_diagonal.len(),
+        });
     }
     check_mass(mass_diagonal)?;
     if k > n {
-        return Err(SolverError::TooManyEigenpairs { requested: k, dimension: n });
+        return Err(SolverError::TooManyEigenpairs {
+            requested: k,
+            dimension: n,
+        });
     }
     let full = symmetric_full(&upper_triangle_csc(a)?)?;
     if k == 0 {
-        return Ok(Eigenpairs { values: Vec::new(), vectors: Mat::zeros(n, 0), residuals: Vec::new(), factorizations: 0, solves: 0 });
+        return Ok(Eigenpairs {
+            values: Vec::new(),
+            vectors: Mat::zeros(n, 0),
+            residuals: Vec::new(),
+            factorizations: 0,
+            solves: 0,
+        });
     }
     let (values, vectors, factorizations, solves) = if n <= options.dense_threshold || 3 * k >= n {
         let dense = full.to_dense();
         let (values, vectors) = dense_generalized_eigen(dense.as_ref(), mass_diagonal)?;
-        (values[..k].to_vec(), vectors.as_ref().subcols(0, k).to_owned(), 0, 0)
+        (
+            values[..k].to_vec(),
+            vectors.as_ref().subcols(0, k).to_owned(),
+            0,
+            0,
+        )
     } else {
         sliced(a, &full, mass_diagonal, k, options)?
     };
     let residuals = relative_residuals(&full, mass_diagonal, &values, &vectors);
-    Ok(Eigenpairs { values, vectors, residuals, factorizations, solves })
+    Ok(Eigenpairs {
+        values,
+        vectors,
+        residuals,
+        factorizations,
+        solves,
+    })
 }
 
 /// Full symmetric storage of the matrix whose upper triangle is `upper`.
-fn symmetric_full(upper: &SparseColMat<usize, f64>) -> Result<SparseColMat<usize, f64>, SolverError> {
+fn symmetric_full(
+    upper: &SparseColMat<usize, f64>,
+) -> Result<SparseColMat<usize, f64>, SolverError> {
     let n = upper.nrows();
     let mut triplets = Vec::with_capacity(2 * upper.val().len());
     let col_ptr = upper.symbolic().col_ptr();
@@ -83,18 +109,36 @@ fn symmetric_full(upper: &SparseColMat<usize, f64>) -> Result<SparseColMat<usize
             }
         }
     }
-    SparseColMat::try_new_from_triplets(n, n, &triplets).map_err(|e| SolverError::Factorization(format!("{e:?}")))
+    SparseColMat::try_new_from_triplets(n, n, &triplets)
+        .map_err(|e| SolverError::Factorization(format!("{e:?}")))
 }
 
 /// `‖A x − λ M x‖₂ / (‖A‖₁ ‖x‖₂)` per column.
-fn relative_residuals(full: &SparseColMat<usize, f64>, mass: &[f64], values: &[f64], vectors: &Mat<f64>) -> Vec<f64> {
+fn relative_residuals(
+    full: &SparseColMat<usize, f64>,
+    mass: &[f64],
+    values: &[f64],
+    vectors: &Mat<f64>,
+) -> Vec<f64> {
     let n = full.nrows();
     let k = values.len();
     let mut ax = Mat::<f64>::zeros(n, k);
-    faer::sparse::linalg::matmul::sparse_dense_matmul(ax.as_mut(), Accum::Replace, full.as_ref(), vectors.as_ref(), 1.0, Par::Seq);
+    faer::sparse::linalg::matmul::sparse_dense_matmul(
+        ax.as_mut(),
+        Accum::Replace,
+        full.as_ref(),
+        vectors.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     let col_ptr = full.symbolic().col_ptr();
     let norm_a = (0..n)
-        .map(|j| full.val()[col_ptr[j]..col_ptr[j + 1]].iter().map(|v| v.abs()).sum::<f64>())
+        .map(|j| {
+            full.val()[col_ptr[j]..col_ptr[j + 1]]
+                .iter()
+                .map(|v| v.abs())
+                .sum::<f64>()
+        })
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     (0..k)
@@ -129,7 +173,13 @@ fn sliced(
     // Gershgorin bound of the spectrum of M⁻¹A: the scale for shifts.
     let col_ptr = full.symbolic().col_ptr();
     let rho = (0..n)
-        .map(|j| full.val()[col_ptr[j]..col_ptr[j + 1]].iter().map(|v| v.abs()).sum::<f64>() / mass[j])
+        .map(|j| {
+            full.val()[col_ptr[j]..col_ptr[j + 1]]
+                .iter()
+                .map(|v| v.abs())
+                .sum::<f64>()
+                / mass[j]
+        })
         .fold(0.0, f64::max);
     let scale = if rho > 0.0 { rho } else { 1.0 };
     let margin = block.max(k / 64);
@@ -177,10 +227,20 @@ fn sliced(
             });
         }
         let lower_needed = nu - known_below;
-        let upper_target = if nu >= k { 0 } else { slice_size.min((k + margin).saturating_sub(nu + known_above)) };
+        let upper_target = if nu >= k {
+            0
+        } else {
+            slice_size.min((k + margin).saturating_sub(nu + known_above))
+        };
         if lower_needed > 0 || upper_target > 0 {
-            let window_floor = if lower_bound.is_finite() { lower_bound - 0.25 * (sigma - lower_bound) } else { f64::NEG_INFINITY };
-            let window: Vec<usize> = (0..found_values.len()).filter(|&i| found_values[i] > window_floor).collect();
+            let window_floor = if lower_bound.is_finite() {
+                lower_bound - 0.25 * (sigma - lower_bound)
+            } else {
+                f64::NEG_INFINITY
+            };
+            let window: Vec<usize> = (0..found_values.len())
+                .filter(|&i| found_values[i] > window_floor)
+                .collect();
             let all = found_vectors.view();
             let deflation = Mat::from_fn(n, window.len(), |i, j| all[(i, window[j])]);
             let problem = SliceProblem {
@@ -223,7 +283,14 @@ fn sliced(
         lower_bound = sigma;
         factor = Some(ldlt);
         if let Some(callback) = options.progress {
-            callback(&EigenProgress { found: found_values.len(), confirmed, wanted: k, slices, factorizations, solves });
+            callback(&EigenProgress {
+                found: found_values.len(),
+                confirmed,
+                wanted: k,
+                slices,
+                factorizations,
+                solves,
+            });
         }
         if confirmed >= k {
             break;
@@ -256,8 +323,18 @@ fn next_shift(found: &[f64], sigma: f64, k: usize, scale: f64) -> f64 {
     }
     let top = sorted.last().copied().unwrap_or(sigma).max(sigma);
     let count = above.len().max(1);
-    let bottom = sorted.iter().rev().nth(count.min(sorted.len()).saturating_sub(1)).copied().unwrap_or(sigma).min(top);
-    let spacing = if count > 1 { (top - bottom) / (count - 1) as f64 } else { 0.0 };
+    let bottom = sorted
+        .iter()
+        .rev()
+        .nth(count.min(sorted.len()).saturating_sub(1))
+        .copied()
+        .unwrap_or(sigma)
+        .min(top);
+    let spacing = if count > 1 {
+        (top - bottom) / (count - 1) as f64
+    } else {
+        0.0
+    };
     let spacing = spacing.max(top - sigma).max(2.0 * separation(top));
     top + 0.5 * spacing
 }

@@ -21,10 +21,22 @@ pub(crate) fn mass_times(mass: &[f64], z: MatRef<'_, f64>) -> Mat<f64> {
 }
 
 /// `Bᵀ M Z` (`p × r` for `B: n × p`, `Z: n × r`).
-pub(crate) fn mass_inner(b: MatRef<'_, f64>, mass: &[f64], z: MatRef<'_, f64>, par: Par) -> Mat<f64> {
+pub(crate) fn mass_inner(
+    b: MatRef<'_, f64>,
+    mass: &[f64],
+    z: MatRef<'_, f64>,
+    par: Par,
+) -> Mat<f64> {
     let mz = mass_times(mass, z);
     let mut c = Mat::zeros(b.ncols(), z.ncols());
-    matmul(c.as_mut(), Accum::Replace, b.transpose(), mz.as_ref(), 1.0, par);
+    matmul(
+        c.as_mut(),
+        Accum::Replace,
+        b.transpose(),
+        mz.as_ref(),
+        1.0,
+        par,
+    );
     c
 }
 
@@ -35,8 +47,16 @@ pub(crate) fn mass_inner(b: MatRef<'_, f64>, mass: &[f64], z: MatRef<'_, f64>, p
 /// made unless every column kept 70% of its norm (Daniel–Gragg–Kaufman–Stewart criterion).
 /// A relaxed criterion (second pass only for `κ > 1000`) was tried and stalls convergence.
 /// Returns, per basis, the summed coefficients `Bᵀ M z` (`p × r`).
-pub(crate) fn project_out(mut z: MatMut<'_, f64>, bases: &[MatRef<'_, f64>], mass: &[f64], par: Par) -> Vec<Mat<f64>> {
-    let mut total: Vec<Mat<f64>> = bases.iter().map(|b| Mat::zeros(b.ncols(), z.ncols())).collect();
+pub(crate) fn project_out(
+    mut z: MatMut<'_, f64>,
+    bases: &[MatRef<'_, f64>],
+    mass: &[f64],
+    par: Par,
+) -> Vec<Mat<f64>> {
+    let mut total: Vec<Mat<f64>> = bases
+        .iter()
+        .map(|b| Mat::zeros(b.ncols(), z.ncols()))
+        .collect();
     let mut before = mass_column_norms(mass, z.rb());
     for _pass in 0..2 {
         for (b, sum) in bases.iter().zip(total.iter_mut()) {
@@ -48,7 +68,11 @@ pub(crate) fn project_out(mut z: MatMut<'_, f64>, bases: &[MatRef<'_, f64>], mas
             *sum += &c;
         }
         let after = mass_column_norms(mass, z.rb());
-        if after.iter().zip(&before).all(|(a, b)| *a > SECOND_PASS_RATIO * *b) {
+        if after
+            .iter()
+            .zip(&before)
+            .all(|(a, b)| *a > SECOND_PASS_RATIO * *b)
+        {
             break;
         }
         before = after;
@@ -59,7 +83,12 @@ pub(crate) fn project_out(mut z: MatMut<'_, f64>, bases: &[MatRef<'_, f64>], mas
 /// M-norms of the columns of `z`.
 pub(crate) fn mass_column_norms(mass: &[f64], z: MatRef<'_, f64>) -> Vec<f64> {
     (0..z.ncols())
-        .map(|j| (0..z.nrows()).map(|i| mass[i] * z[(i, j)] * z[(i, j)]).sum::<f64>().sqrt())
+        .map(|j| {
+            (0..z.nrows())
+                .map(|i| mass[i] * z[(i, j)] * z[(i, j)])
+                .sum::<f64>()
+                .sqrt()
+        })
         .collect()
 }
 
@@ -144,7 +173,10 @@ pub(crate) fn orthonormalize_block(
     par: Par,
 ) -> Result<OrthonormalBlock, SolverError> {
     let norms = mass_column_norms(mass, z.as_ref());
-    let well_scaled = norms.iter().zip(reference_norms).all(|(n, r)| *n > 1e-4 * r.max(f64::MIN_POSITIVE));
+    let well_scaled = norms
+        .iter()
+        .zip(reference_norms)
+        .all(|(n, r)| *n > 1e-4 * r.max(f64::MIN_POSITIVE));
     if well_scaled {
         if let Some(result) = cholesky_qr2(&z, mass, par) {
             return Ok(result);
@@ -163,13 +195,30 @@ fn cholesky_qr2(z: &Mat<f64>, mass: &[f64], par: Par) -> Option<OrthonormalBlock
         let u = small_cholesky(sym.as_ref())?;
         let inv = upper_inverse(u.as_ref());
         let mut next = Mat::zeros(q.nrows(), r);
-        matmul(next.as_mut(), Accum::Replace, q.as_ref(), inv.as_ref(), 1.0, par);
+        matmul(
+            next.as_mut(),
+            Accum::Replace,
+            q.as_ref(),
+            inv.as_ref(),
+            1.0,
+            par,
+        );
         q = next;
         let mut t = Mat::zeros(r, r);
-        matmul(t.as_mut(), Accum::Replace, u.as_ref(), total.as_ref(), 1.0, Par::Seq);
+        matmul(
+            t.as_mut(),
+            Accum::Replace,
+            u.as_ref(),
+            total.as_ref(),
+            1.0,
+            Par::Seq,
+        );
         total = t;
     }
-    Some(OrthonormalBlock { block: q, coefficients: total })
+    Some(OrthonormalBlock {
+        block: q,
+        coefficients: total,
+    })
 }
 
 fn column_gram_schmidt(
@@ -187,7 +236,11 @@ fn column_gram_schmidt(
         for attempt in 0..4 {
             let (done, mut rest) = z.as_mut().split_at_col_mut(j);
             let mut col = rest.rb_mut().subcols_mut(0, 1);
-            let before = if replaced { mass_column_norms(mass, col.rb())[0] } else { reference_norms[j] };
+            let before = if replaced {
+                mass_column_norms(mass, col.rb())[0]
+            } else {
+                reference_norms[j]
+            };
             if replaced {
                 project_out(col.rb_mut(), bases, mass, par);
             }
@@ -207,14 +260,18 @@ fn column_gram_schmidt(
             }
             if attempt == 3 {
                 return Err(SolverError::NoConvergence {
-                    reason: "Krylov basis spans the whole space; no independent direction left".into(),
+                    reason: "Krylov basis spans the whole space; no independent direction left"
+                        .into(),
                 });
             }
             replaced = true;
             fill_random(col.rb_mut(), rng);
         }
     }
-    Ok(OrthonormalBlock { block: z, coefficients })
+    Ok(OrthonormalBlock {
+        block: z,
+        coefficients,
+    })
 }
 
 /// A fresh `n × r` random block, M-orthonormal and M-orthogonal to `bases`.

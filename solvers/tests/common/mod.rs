@@ -7,7 +7,9 @@ use sprs::{CsMat, TriMat};
 pub fn irregular_masses(n: usize, salt: u64) -> Vec<f64> {
     (0..n)
         .map(|i| {
-            let mut x = (i as u64).wrapping_mul(6364136223846793005).wrapping_add(salt.wrapping_mul(1442695040888963407));
+            let mut x = (i as u64)
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(salt.wrapping_mul(1442695040888963407));
             x ^= x >> 33;
             x = x.wrapping_mul(0xff51afd7ed558ccd);
             x ^= x >> 33;
@@ -96,5 +98,8 @@ pub fn matvec(a: &CsMat<f64>, x: &[f64]) -> Vec<f64> {
 
 /// Largest absolute difference between two slices.
 pub fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max)
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
