@@ -126,15 +126,16 @@ fn face_components(face_count: usize, edge_faces: &[[usize; 2]]) -> (Vec<usize>,
         }
     }
     let mut label = vec![usize::MAX; face_count];
-    let mut component = vec![0; face_count];
     let mut count = 0;
-    for t in 0..face_count {
-        let r = root(&mut parent, t);
-        if label[r] == usize::MAX {
-            label[r] = count;
-            count += 1;
-        }
-        component[t] = label[r];
-    }
+    let component = (0..face_count)
+        .map(|t| {
+            let r = root(&mut parent, t);
+            if label[r] == usize::MAX {
+                label[r] = count;
+                count += 1;
+            }
+            label[r]
+        })
+        .collect();
     (component, count)
 }
