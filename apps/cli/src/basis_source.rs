@@ -1,0 +1,347 @@
+//! Where a subcommand's spectral basis comes from: a given `.tvfb` file, or computed once and
+//! cached.
+//!
+//! Flags (the same in every subcommand that takes a basis):
+//! - `--basis FILE`: load this basis file; it must belong to the mesh (fingerprint) and, if
+//!   `--decomposition` / `--mass` are given, to that discretization;
+//! - `-k K`: otherwise compute `K` integrable + `K` co-integrable eigenfields plus the `2g`
+//!   harmonic ones ([`DEFAULT_PAIRS`] if not given);
+//! - `--decomposition conforming|nonconforming`, `--mass barycentric|voronoi`: the
+//!   discretization (default conforming, barycentric);
+//! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
+//!
+//! The cache: a computed basis is saved as `{fingerprint}-{decomposition}-{mass}-k{K}.tvfb` in
+//! `--cache-dir`, else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in
+//! `--example` mesh (no file to sit next to) in `tvf-cache/` under the system temporary folder.
+//! The key is the mesh fingerprint (vertices and faces), the discretization, the mass lumping and
+//! `K` (the seed is fixed, so equal keys mean bit-identical bases). A cached basis is reused and
+//! stderr says so; a damaged or mismatching cache file is recomputed with a warning.
+
+use crate::mesh_input::MeshInput;
+use crate::progress::{note, warn, Progress};
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use tvf_core::discretization::HodgeComplex;
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::{Conforming, FaceFields, MassLumping, Nonconforming};
+use tvf_spectral::{
+    compute_basis, load_basis, mesh_fingerprint, read_basis_header, save_basis, BasisFileKey,
+    BasisRequest, SpectralBasis,
+};
+
+/// Pairs computed when neither `--basis` nor `-k` is given.
+pub const DEFAULT_PAIRS: usize = 100;
+
+/// Environment variable naming the basis cache folder.
+pub const CACHE_DIR_VARIABLE: &str = "TVF_CACHE_DIR";
+
+/// Which Hodge decomposition (MATH.md).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Decomposition {
+    /// `X_h = grad S_h ⊕ J grad S*_h ⊕ H_h` (divergence at vertices, curl at edges).
+    Conforming,
+    /// `X_h = grad S*_h ⊕ J grad S_h ⊕ H*_h` (divergence at edges, curl at vertices).
+    Nonconforming,
+}
+
+impl Decomposition {
+    /// Lower-case name as on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Decomposition::Conforming => "conforming",
+            Decomposition::Nonconforming => "nonconforming",
+        }
+    }
+}
+
+/// Which mass lumping.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Mass {
+    /// A third of each adjacent triangle's area per node (the paper's default).
+    Barycentric,
+    /// Voronoi-type areas.
+    Voronoi,
+}
+
+impl Mass {
+    /// The library's lumping rule.
+    pub fn lumping(self) -> MassLumping {
+        match self {
+            Mass::Barycentric => MassLumping::Barycentric,
+            Mass::Voronoi => MassLumping::Voronoi,
+        }
+    }
+}
+
+/// A discretization chosen at run time; [`with_complex!`](crate::with_complex) runs generic code
+/// on it.
+pub enum Discretization {
+    /// The conforming complex.
+    Conforming(Conforming),
+    /// The nonconforming complex.
+    Nonconforming(Nonconforming),
+}
+
+/// Runs `$body` with `$c` bound to the concrete complex inside a [`Discretization`].
+#[macro_export]
+macro_rules! with_complex {
+    ($discretization:expr, $c:ident => $body:expr) => {
+        match $discretization {
+            $crate::basis_source::Discretization::Conforming($c) => $body,
+            $crate::basis_source::Discretization::Nonconforming($c) => $body,
+        }
+    };
+}
+
+impl Discretization {
+    /// Builds the complex of `decomposition` with `mass` on `mesh`.
+    pub fn new(mesh: &SurfaceMesh, decomposition: Decomposition, mass: Mass) -> Result<Self> {
+        Ok(match decomposition {
+            Decomposition::Conforming => {
+                Discretization::Conforming(Conforming::new(mesh, mass.lumping())?)
+            }
+            Decomposition::Nonconforming => {
+                Discretization::Nonconforming(Nonconforming::new(mesh, mass.lumping())?)
+            }
+        })
+    }
+
+    /// The complex's id (as stored in basis files), e.g. `conforming (barycentric)`.
+    pub fn name(&self) -> String {
+        with_complex!(self, c => c.name())
+    }
+
+    /// The tangent field space (face frames, `M_X`).
+    pub fn fields(&self) -> &FaceFields {
+        with_complex!(self, c => c.fields())
+    }
+}
+
+/// Basis flags without `-k` (for subcommands where `-k` means something related, e.g. the
+/// pairs kept by `compress`); see the module documentation.
+#[derive(Args, Debug, Clone, Default)]
+pub struct BasisOptions {
+    /// A basis file (.tvfb, `tvf basis`) of this mesh; without it a basis is computed once and
+    /// cached.
+    #[arg(long, value_name = "FILE")]
+    pub basis: Option<PathBuf>,
+    /// Hodge decomposition [default: conforming, or the basis file's].
+    #[arg(long, value_enum, value_name = "NAME")]
+    pub decomposition: Option<Decomposition>,
+    /// Mass lumping [default: barycentric, or the basis file's].
+    #[arg(long, value_enum, value_name = "NAME")]
+    pub mass: Option<Mass>,
+    /// Folder of cached bases [default: $TVF_CACHE_DIR, else .tvf-cache/ next to the mesh, else
+    /// tvf-cache/ in the temporary folder for --example meshes].
+    #[arg(long, value_name = "DIR", conflicts_with = "basis")]
+    pub cache_dir: Option<PathBuf>,
+    /// Compute the basis without reading or writing the cache.
+    #[arg(long, conflicts_with_all = ["basis", "cache_dir"])]
+    pub no_cache: bool,
+}
+
+/// Basis flags: [`BasisOptions`] plus `-k` (pairs to compute).
+#[derive(Args, Debug, Clone, Default)]
+pub struct BasisSource {
+    #[command(flatten)]
+    pub options: BasisOptions,
+    /// Compute K integrable + K co-integrable eigenfields (plus the harmonic ones) when no
+    /// --basis is given [default: 100].
+    #[arg(short = 'k', value_name = "K", conflicts_with = "basis")]
+    pub pairs: Option<usize>,
+}
+
+/// A basis ready for use, with the discretization it belongs to.
+pub struct ResolvedBasis {
+    /// The discretization (named by the basis file, or chosen by the flags).
+    pub discretization: Discretization,
+    /// The basis.
+    pub basis: SpectralBasis,
+    /// [`mesh_fingerprint`] of the mesh.
+    pub mesh_fingerprint: u64,
+}
+
+impl BasisSource {
+    /// The basis for `mesh` (read from `input`): see [`BasisOptions::resolve`].
+    pub fn resolve(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<ResolvedBasis> {
+        self.options.resolve(mesh, input, self.pairs)
+    }
+}
+
+impl BasisOptions {
+    /// The basis for `mesh`: loads `--basis` (checking mesh and discretization) or computes
+    /// `pairs` pairs ([`DEFAULT_PAIRS`] if `None`), through the cache unless `--no-cache`.
+    pub fn resolve(
+        &self,
+        mesh: &SurfaceMesh,
+        input: &MeshInput,
+        pairs: Option<usize>,
+    ) -> Result<ResolvedBasis> {
+        let fingerprint = mesh_fingerprint(mesh);
+        if let Some(path) = &self.basis {
+            return self.load_file(mesh, path, fingerprint);
+        }
+        let decomposition = self.decomposition.unwrap_or(Decomposition::Conforming);
+        let mass = self.mass.unwrap_or(Mass::Barycentric);
+        let pairs = pairs.unwrap_or(DEFAULT_PAIRS);
+        if pairs == 0 {
+            bail!("-k 0: ask for at least one pair of eigenfields");
+        }
+        let discretization = Discretization::new(mesh, decomposition, mass)
+            .with_context(|| format!("{}: cannot build the discretization", input.label()))?;
+        let key = BasisFileKey {
+            discretization: discretization.name(),
+            mesh_fingerprint: fingerprint,
+            face_count: mesh.face_count(),
+        };
+        let cache_file = if self.no_cache {
+            None
+        } else {
+            let name = format!(
+                "{fingerprint:016x}-{}-{}-k{pairs}.tvfb",
+                decomposition.name(),
+                mass.lumping().name()
+            );
+            Some(self.cache_folder(input).join(name))
+        };
+        if let Some(file) = cache_file.as_ref().filter(|f| f.exists()) {
+            let start = Instant::now();
+            match load_basis(file, &key) {
+                Ok(basis) => {
+                    note(format!(
+                        "using cached basis {} ({} fields, {}, loaded in {:.2} s)",
+                        file.display(),
+                        basis.len(),
+                        key.discretization,
+                        start.elapsed().as_secs_f64()
+                    ));
+                    return Ok(ResolvedBasis {
+                        discretization,
+                        basis,
+                        mesh_fingerprint: fingerprint,
+                    });
+                }
+                Err(error) => warn(format!("cached basis is unusable ({error}); recomputing")),
+            }
+        }
+        let basis = compute_pairs(&discretization, pairs)
+            .with_context(|| format!("{}: cannot compute the basis", input.label()))?;
+        if let Some(file) = &cache_file {
+            let saved = file
+                .parent()
+                .map_or(Ok(()), std::fs::create_dir_all)
+                .map_err(anyhow::Error::from)
+                .and_then(|()| save_basis(file, &basis, &key).map_err(anyhow::Error::from));
+            match saved {
+                Ok(()) => note(format!("cached basis in {}", file.display())),
+                Err(error) => warn(format!(
+                    "cannot cache the basis in {} ({error}); continuing without the cache",
+                    file.display()
+                )),
+            }
+        }
+        Ok(ResolvedBasis {
+            discretization,
+            basis,
+            mesh_fingerprint: fingerprint,
+        })
+    }
+
+    /// The cache folder for `input`: `--cache-dir`, `$TVF_CACHE_DIR`, `.tvf-cache/` next to the
+    /// mesh file, or `tvf-cache/` in the temporary folder for built-in examples.
+    pub fn cache_folder(&self, input: &MeshInput) -> PathBuf {
+        if let Some(dir) = &self.cache_dir {
+            return dir.clone();
+        }
+        if let Some(dir) = std::env::var_os(CACHE_DIR_VARIABLE).filter(|d| !d.is_empty()) {
+            return PathBuf::from(dir);
+        }
+        match &input.mesh {
+            Some(path) => path
+                .parent()
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or(Path::new("."))
+                .join(".tvf-cache"),
+            None => std::env::temp_dir().join("tvf-cache"),
+        }
+    }
+
+    fn load_file(
+        &self,
+        mesh: &SurfaceMesh,
+        path: &Path,
+        fingerprint: u64,
+    ) -> Result<ResolvedBasis> {
+        let start = Instant::now();
+        let header = read_basis_header(path)?;
+        let stored = header.key.discretization.clone();
+        let mut found = None;
+        for decomposition in [Decomposition::Conforming, Decomposition::Nonconforming] {
+            for mass in [Mass::Barycentric, Mass::Voronoi] {
+                let name = Discretization::new(mesh, decomposition, mass)?.name();
+                if name == stored {
+                    found = Some((decomposition, mass));
+                }
+            }
+        }
+        let Some((decomposition, mass)) = found else {
+            bail!(
+                "{}: the basis file's discretization '{stored}' is not one tvf knows",
+                path.display()
+            );
+        };
+        if let Some(wanted) = self.decomposition.filter(|&d| d != decomposition) {
+            bail!(
+                "{}: the basis was computed with the {} decomposition, but --decomposition {} was given",
+                path.display(),
+                decomposition.name(),
+                wanted.name()
+            );
+        }
+        if let Some(wanted) = self.mass.filter(|&m| m != mass) {
+            bail!(
+                "{}: the basis was computed with {} mass lumping, but --mass {} was given",
+                path.display(),
+                mass.lumping().name(),
+                wanted.lumping().name()
+            );
+        }
+        let discretization = Discretization::new(mesh, decomposition, mass)?;
+        let key = BasisFileKey {
+            discretization: stored,
+            mesh_fingerprint: fingerprint,
+            face_count: mesh.face_count(),
+        };
+        let basis = load_basis(path, &key)?;
+        note(format!(
+            "using basis {} ({} fields, {}, loaded in {:.2} s)",
+            path.display(),
+            basis.len(),
+            key.discretization,
+            start.elapsed().as_secs_f64()
+        ));
+        Ok(ResolvedBasis {
+            discretization,
+            basis,
+            mesh_fingerprint: fingerprint,
+        })
+    }
+}
+
+/// Computes the harmonic fields plus `pairs` eigenfields of each family, with a progress bar.
+pub fn compute_pairs(discretization: &Discretization, pairs: usize) -> Result<SpectralBasis> {
+    let progress = Progress::new("basis");
+    let callback = progress.basis_callback();
+    let request = BasisRequest::pairs(pairs).with_progress(&callback);
+    let basis = with_complex!(discretization, c => compute_basis(c, &request))?;
+    progress.finish(format!(
+        "{} fields ({} pairs, {}) computed in {:.2} s",
+        basis.len(),
+        pairs,
+        discretization.name(),
+        basis.report().map_or(0.0, |r| r.seconds)
+    ));
+    Ok(basis)
+}

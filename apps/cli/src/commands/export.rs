@@ -1,0 +1,136 @@
+//! `tvf export`: a mesh and a field for other tools: VTK (ParaView), PLY (MeshLab, Polyscope)
+//! with per-face vectors and scalars, or OBJ with the field's streamlines as polylines.
+
+use super::spectral_inputs::read_field;
+use crate::basis_source::{Decomposition, Discretization, Mass};
+use crate::face_quantities::{face_scalar, ColorBy};
+use crate::mesh_input::MeshInput;
+use crate::with_complex;
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use std::path::{Path, PathBuf};
+use tvf_core::discretization::FieldSpace;
+use tvf_render::{trace_streamlines, write_obj, write_ply, write_vtk, FaceData, StreamlineOptions};
+
+const EXAMPLES: &str = "Examples:
+  tvf export bunny.obj field.npy --format vtk -o field.vtk     (open in ParaView: cell data)
+  tvf export bunny.obj field.npy -o field.ply                  (format from the extension)
+  tvf export bunny.obj field.npy --format obj -o lines.obj     (mesh + streamlines as `l` polylines)
+
+VTK and PLY carry per face: the vector `field` and the scalars `magnitude`, `divergence`, `curl`
+and `energy` (as in `tvf render --color`).";
+
+/// Export formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// VTK legacy ASCII polydata with cell data.
+    Vtk,
+    /// ASCII PLY with face properties.
+    Ply,
+    /// OBJ: the mesh and the field's streamlines as polylines.
+    Obj,
+}
+
+/// Arguments of `tvf export`.
+#[derive(Args)]
+#[command(after_help = EXAMPLES)]
+pub struct ExportArgs {
+    #[command(flatten)]
+    input: MeshInput,
+    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
+    #[arg(value_name = "FIELD")]
+    field: PathBuf,
+    /// Output format [default: from the output file's extension].
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    format: Option<Format>,
+    /// Output file.
+    #[arg(short, long, value_name = "OUT")]
+    output: PathBuf,
+    /// Streamline density for OBJ (about this many separations² fit the surface).
+    #[arg(long, value_name = "N", default_value_t = 2000)]
+    streamlines: usize,
+    /// Hodge decomposition whose divergence and curl are written.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
+    decomposition: Decomposition,
+    /// Mass lumping of that decomposition.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
+    mass: Mass,
+}
+
+fn format_of(path: &Path) -> Option<Format> {
+    let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+    match extension.as_str() {
+        "vtk" => Some(Format::Vtk),
+        "ply" => Some(Format::Ply),
+        "obj" => Some(Format::Obj),
+        _ => None,
+    }
+}
+
+/// Writes the export.
+pub fn run(args: ExportArgs) -> Result<()> {
+    let Some(format) = args.format.or_else(|| format_of(&args.output)) else {
+        bail!(
+            "{}: cannot tell the format from the extension; give --format vtk|ply|obj",
+            args.output.display()
+        );
+    };
+    let mesh = args.input.load()?.mesh;
+    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
+        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
+    let field = read_field(&args.field, discretization.fields())?;
+    let vectors = discretization.fields().to_vectors(&field)?;
+    match format {
+        Format::Vtk | Format::Ply => {
+            let mut data = FaceData {
+                vectors: vec![("field".to_string(), vectors.clone())],
+                scalars: Vec::new(),
+            };
+            for kind in [
+                ColorBy::Magnitude,
+                ColorBy::Divergence,
+                ColorBy::Curl,
+                ColorBy::Energy,
+            ] {
+                let values =
+                    with_complex!(&discretization, c => face_scalar(c, kind, &field, &vectors));
+                data.scalars
+                    .extend(values.map(|v| (kind.label().to_string(), v)));
+            }
+            if format == Format::Vtk {
+                write_vtk(&args.output, &mesh, &data)?;
+            } else {
+                write_ply(&args.output, &mesh, &data)?;
+            }
+            println!(
+                "wrote {} ({} vertices, {} faces, per-face field + {} scalars)",
+                args.output.display(),
+                mesh.vertex_count(),
+                mesh.face_count(),
+                data.scalars.len()
+            );
+        }
+        Format::Obj => {
+            if args.streamlines == 0 {
+                bail!("--streamlines 0: ask for at least one streamline");
+            }
+            let options = StreamlineOptions {
+                count: args.streamlines,
+                ..Default::default()
+            };
+            let lines: Vec<Vec<[f64; 3]>> = trace_streamlines(&mesh, &vectors, &options)?
+                .into_iter()
+                .map(|l| l.points)
+                .collect();
+            write_obj(&args.output, Some(&mesh), &lines)?;
+            println!(
+                "wrote {} ({} vertices, {} faces, {} streamlines)",
+                args.output.display(),
+                mesh.vertex_count(),
+                mesh.face_count(),
+                lines.iter().filter(|l| l.len() >= 2).count()
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,184 @@
+//! `tvf render`: a picture of a mesh and (optionally) a tangent field, in software.
+
+use super::spectral_inputs::read_field;
+use crate::basis_source::{Decomposition, Discretization, Mass};
+use crate::face_quantities::ColorBy;
+use crate::mesh_input::MeshInput;
+use crate::picture::{
+    constraint_markers, draw, grid, parse_size, parse_view, Overlays, Style, View,
+};
+use crate::progress::note;
+use crate::with_complex;
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use std::path::PathBuf;
+use std::time::Instant;
+use tvf_design::ConstraintSet;
+use tvf_discretizations::HodgeDecomposer;
+use tvf_render::save_png;
+
+const EXAMPLES: &str = "Examples:
+  tvf render bunny.obj field.npy -o field.png --color curl --style streamlines
+  tvf render --example bumpy-torus -o torus.png --view 60,35 --size 1200x900
+  tvf render mesh.obj spline.npy -o spline.png --constraints constraints.json --style lic
+  tvf render mesh.obj field.npy -o parts.png --parts   (field and its three Hodge parts)
+
+Colours: magnitude and energy use a sequential map, divergence and curl a blue–white–red map
+symmetric about 0. Divergence and curl are the decomposition's own pointwise operators at the
+face centroid (conforming: div at vertices, curl at edge midpoints, averaged over the face's
+three nodes); energy is the Dirichlet energy density (mean of div² over the face's nodes plus
+mean of curl²), which integrates to xᵀSx. Constraint markers: vector orange (with its
+direction), source red, sink blue, vortex green.";
+
+fn view_arg(text: &str) -> Result<(f64, f64), String> {
+    parse_view(text).map_err(|e| e.to_string())
+}
+
+fn size_arg(text: &str) -> Result<(u32, u32), String> {
+    parse_size(text).map_err(|e| e.to_string())
+}
+
+/// Arguments of `tvf render`.
+#[derive(Args)]
+#[command(after_help = EXAMPLES)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    input: MeshInput,
+    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line); omit to render
+    /// the mesh alone.
+    #[arg(value_name = "FIELD")]
+    field: Option<PathBuf>,
+    /// Output PNG file.
+    #[arg(short, long, value_name = "OUT.png")]
+    output: PathBuf,
+    /// Per-face colour map [default: magnitude with a field, none without].
+    #[arg(long, value_enum, value_name = "QUANTITY")]
+    color: Option<ColorBy>,
+    /// How the field is drawn.
+    #[arg(long, value_enum, value_name = "STYLE", default_value = "streamlines")]
+    style: Style,
+    /// Camera turn and elevation in degrees.
+    #[arg(long, value_name = "YAW,PITCH", default_value = "30,20", value_parser = view_arg, allow_hyphen_values = true)]
+    view: (f64, f64),
+    /// Magnification over the automatic fit.
+    #[arg(long, value_name = "FACTOR", default_value_t = 1.0)]
+    zoom: f64,
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", default_value = "1024x768", value_parser = size_arg)]
+    size: (u32, u32),
+    /// Overlay the constraints of this constraint file (JSON, see README).
+    #[arg(long, value_name = "C.json")]
+    constraints: Option<PathBuf>,
+    /// Draw the field and its integrable, co-integrable and harmonic parts as a 2×2 grid.
+    #[arg(long, requires = "field")]
+    parts: bool,
+    /// Hodge decomposition whose divergence, curl and parts are shown.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
+    decomposition: Decomposition,
+    /// Mass lumping of that decomposition.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
+    mass: Mass,
+    /// Title printed at the top of the picture.
+    #[arg(long, value_name = "TEXT")]
+    title: Option<String>,
+}
+
+/// Renders the picture and writes the PNG.
+pub fn run(args: RenderArgs) -> Result<()> {
+    if !(args.zoom.is_finite() && args.zoom > 0.0) {
+        bail!("--zoom {}: must be a positive number", args.zoom);
+    }
+    let start = Instant::now();
+    let mesh = args.input.load()?.mesh;
+    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
+        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
+    let field = match &args.field {
+        Some(path) => Some(read_field(path, discretization.fields())?),
+        None => None,
+    };
+    let color = args.color.unwrap_or(if field.is_some() {
+        ColorBy::Magnitude
+    } else {
+        ColorBy::None
+    });
+    let mut markers = Vec::new();
+    if let Some(path) = &args.constraints {
+        let set = ConstraintSet::load(path)?;
+        markers = constraint_markers(&mesh, &set.constraints, 6.0 * args.size.1 as f64 / 768.0);
+        if markers.len() < set.constraints.len() {
+            bail!(
+                "{}: {} constraint(s) refer to vertices, edges or faces this mesh does not have",
+                path.display(),
+                set.constraints.len() - markers.len()
+            );
+        }
+    }
+    let (width, height) = args.size;
+    let view = |width, height| View {
+        width,
+        height,
+        yaw: args.view.0,
+        pitch: args.view.1,
+        zoom: args.zoom,
+    };
+    let image = match (&field, args.parts) {
+        (Some(field), true) => {
+            let parts =
+                with_complex!(&discretization, c => HodgeDecomposer::new(c)?.decompose(field))?;
+            let panels = [
+                ("field", field.as_slice()),
+                ("integrable (curl-free)", &parts.integrable),
+                ("co-integrable (divergence-free)", &parts.co_integrable),
+                ("harmonic", &parts.harmonic),
+            ];
+            let mut images = Vec::new();
+            for (name, part) in panels {
+                let overlays = Overlays {
+                    markers: markers.clone(),
+                    title: Some(name.to_string()),
+                    ..Default::default()
+                };
+                let view = view((width / 2).max(16), (height / 2).max(16));
+                images.push(draw(
+                    &mesh,
+                    &discretization,
+                    Some(part),
+                    color,
+                    args.style,
+                    overlays,
+                    view,
+                )?);
+            }
+            grid(&images, 2)
+        }
+        _ => {
+            let overlays = Overlays {
+                markers,
+                title: args.title.clone(),
+                ..Default::default()
+            };
+            draw(
+                &mesh,
+                &discretization,
+                field.as_deref(),
+                color,
+                args.style,
+                overlays,
+                view(width, height),
+            )?
+        }
+    };
+    save_png(&image, &args.output)?;
+    note(format!(
+        "rendered {} faces in {:.2} s",
+        mesh.face_count(),
+        start.elapsed().as_secs_f64()
+    ));
+    println!(
+        "wrote {} ({}x{})",
+        args.output.display(),
+        image.width(),
+        image.height()
+    );
+    Ok(())
+}

@@ -1,0 +1,208 @@
+//! `tvf demo`: the tour of tvf on one mesh, as a web page of pictures and numbers.
+//!
+//! Steps, one file each: the basis ([`basis`]), the eigenfields (paper Figure 1,
+//! [`eigenfields`]), the Hodge decomposition of a field ([`hodge`]), filtering a noisy field
+//! and its spectrum (Figures 7, 8, [`filtering`]), rate–distortion (Figure 9,
+//! [`compression`]), a spline beside soft design (Figure 4, [`design`]) and fur along the
+//! spline (Figure 5, also [`design`]). Every step is timed (page and stderr); every file is
+//! written atomically.
+
+mod basis;
+mod compression;
+mod design;
+mod eigenfields;
+mod filtering;
+mod hodge;
+mod page;
+mod test_fields;
+
+use crate::basis_source::Discretization;
+use crate::picture::View;
+use crate::progress::note;
+use anyhow::{Context as _, Result};
+use image::RgbaImage;
+use page::Section;
+use std::path::PathBuf;
+use std::time::Instant;
+use tvf_core::SurfaceMesh;
+use tvf_render::save_png;
+use tvf_spectral::SpectralBasis;
+
+/// What the demo runs on and how large it draws.
+pub struct DemoConfig {
+    /// Output folder.
+    pub output: PathBuf,
+    /// The mesh and its name for the page.
+    pub mesh: SurfaceMesh,
+    /// Name of the mesh on the page.
+    pub mesh_name: String,
+    /// Eigenfield pairs of the basis.
+    pub pairs: usize,
+    /// Size of a full-width picture (panels of grids are half of it each way).
+    pub width: u32,
+    /// Height of a full-width picture.
+    pub height: u32,
+    /// Fur strands.
+    pub fur_strands: usize,
+}
+
+/// What every step can use: the mesh, the discretization, the basis, the output folder.
+pub struct Context<'a> {
+    /// The mesh.
+    pub mesh: &'a SurfaceMesh,
+    /// The (conforming, barycentric) discretization.
+    pub discretization: &'a Discretization,
+    /// The basis.
+    pub basis: &'a SpectralBasis,
+    /// The configuration.
+    pub config: &'a DemoConfig,
+}
+
+impl Context<'_> {
+    /// The view of a full-size picture.
+    pub fn view(&self) -> View {
+        View {
+            width: self.config.width,
+            height: self.config.height,
+            yaw: 30.0,
+            pitch: 35.0,
+            zoom: 1.0,
+        }
+    }
+
+    /// Unit vector from the centre of the pictures towards the camera (as in
+    /// `tvf_render::Camera::fit`).
+    pub fn to_eye(&self) -> [f64; 3] {
+        let view = self.view();
+        let (yaw, pitch) = (view.yaw.to_radians(), view.pitch.to_radians());
+        [
+            yaw.sin() * pitch.cos(),
+            pitch.sin(),
+            yaw.cos() * pitch.cos(),
+        ]
+    }
+
+    /// The view of one panel of a two-column grid.
+    pub fn panel_view(&self) -> View {
+        View {
+            width: (self.config.width / 2).max(16),
+            height: (self.config.height / 2).max(16),
+            ..self.view()
+        }
+    }
+
+    /// Saves `image` as `name` in the output folder.
+    pub fn save(&self, image: &RgbaImage, name: &str) -> Result<()> {
+        Ok(save_png(image, &self.config.output.join(name))?)
+    }
+}
+
+/// Runs one step: times it, reports it on stderr, and records the time in its section.
+fn timed(
+    number: usize,
+    total: usize,
+    title: &str,
+    step: impl FnOnce() -> Result<Section>,
+) -> Result<Section> {
+    note(format!("demo [{number}/{total}] {title} ..."));
+    let start = Instant::now();
+    let mut section = step().with_context(|| format!("demo step '{title}'"))?;
+    section.seconds = start.elapsed().as_secs_f64();
+    note(format!(
+        "demo [{number}/{total}] {title}: {:.2} s",
+        section.seconds
+    ));
+    Ok(section)
+}
+
+/// Runs the whole demo and writes `index.html`; returns the page's path.
+pub fn run(config: &DemoConfig) -> Result<PathBuf> {
+    let start = Instant::now();
+    std::fs::create_dir_all(&config.output)
+        .with_context(|| format!("cannot create the folder {}", config.output.display()))?;
+    const STEPS: usize = 7;
+    let mut sections = Vec::new();
+    let mut computed = None;
+    sections.push(timed(1, STEPS, "Mesh and Fourier basis", || {
+        let (section, discretization, basis) = basis::run(config)?;
+        computed = Some((discretization, basis));
+        Ok(section)
+    })?);
+    let Some((discretization, basis)) = computed else {
+        anyhow::bail!("the basis step produced no basis");
+    };
+    let cx = Context {
+        mesh: &config.mesh,
+        discretization: &discretization,
+        basis: &basis,
+        config,
+    };
+    sections.push(timed(2, STEPS, "Eigenfields (Figure 1)", || {
+        eigenfields::run(&cx)
+    })?);
+    let mut test_field = Vec::new();
+    sections.push(timed(3, STEPS, "Hodge decomposition", || {
+        let (section, field) = hodge::run(&cx)?;
+        test_field = field;
+        Ok(section)
+    })?);
+    sections.push(timed(
+        4,
+        STEPS,
+        "Filtering a noisy field (Figures 7 and 8)",
+        || filtering::run(&cx, &test_field),
+    )?);
+    sections.push(timed(
+        5,
+        STEPS,
+        "Compression: rate and distortion (Figure 9)",
+        || compression::run(&cx, &test_field),
+    )?);
+    let mut spline = Vec::new();
+    sections.push(timed(
+        6,
+        STEPS,
+        "Spline and soft design (Figure 4)",
+        || {
+            let (section, field) = design::run(&cx)?;
+            spline = field;
+            Ok(section)
+        },
+    )?);
+    sections.push(timed(
+        7,
+        STEPS,
+        "Fur along the spline field (Figure 5)",
+        || design::fur(&cx, &spline),
+    )?);
+    let total = start.elapsed().as_secs_f64();
+    let intro = vec![
+        ("mesh".to_string(), config.mesh_name.clone()),
+        (
+            "size".to_string(),
+            format!(
+                "{} vertices, {} edges, {} faces, genus {}",
+                config.mesh.vertex_count(),
+                config.mesh.edge_count(),
+                config.mesh.face_count(),
+                config.mesh.genus()
+            ),
+        ),
+        ("discretization".to_string(), discretization.name()),
+        (
+            "basis".to_string(),
+            format!("{} fields ({} pairs + harmonic)", basis.len(), config.pairs),
+        ),
+        ("total time".to_string(), format!("{total:.1} s")),
+    ];
+    let html = page::html(
+        "tvf: spectral processing of tangential vector fields",
+        &intro,
+        &sections,
+        total,
+    );
+    page::write_page(&config.output, &html)?;
+    let index = config.output.join("index.html");
+    note(format!("demo finished in {total:.1} s"));
+    Ok(index)
+}
