@@ -26,7 +26,10 @@ const FIELDS: usize = 2000;
 fn hand_mesh() -> Option<tvf_core::SurfaceMesh> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/hand.obj");
     if !path.exists() {
-        eprintln!("skipping projection benchmark: {} not found", path.display());
+        eprintln!(
+            "skipping projection benchmark: {} not found",
+            path.display()
+        );
         return None;
     }
     match tvf_core::io::load_mesh(&path) {
@@ -47,7 +50,13 @@ fn orthonormal_stand_in(mass: &[f64]) -> SpectralBasis {
     let fields = Mat::from_fn(rows, FIELDS, |i, j| q[(i, j)] / mass[i].sqrt());
     let eigenvalues: Vec<f64> = (0..FIELDS).map(|j| (j / 2 + 1) as f64).collect();
     let families = (0..FIELDS)
-        .map(|j| if j % 2 == 0 { FieldFamily::Integrable } else { FieldFamily::Cointegrable })
+        .map(|j| {
+            if j % 2 == 0 {
+                FieldFamily::Integrable
+            } else {
+                FieldFamily::Cointegrable
+            }
+        })
         .collect();
     let mut basis = SpectralBasis::new(eigenvalues, families, fields, mass.to_vec())
         .expect("consistent stand-in basis");
@@ -57,11 +66,14 @@ fn orthonormal_stand_in(mass: &[f64]) -> SpectralBasis {
 
 fn projection(c: &mut Criterion) {
     let Some(mesh) = hand_mesh() else { return };
-    let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("hand.obj is a valid closed mesh");
+    let complex =
+        Conforming::new(&mesh, MassLumping::Barycentric).expect("hand.obj is a valid closed mesh");
     let mass = complex.fields().mass().to_vec();
     let basis = orthonormal_stand_in(&mass);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let field: Vec<f64> = (0..mass.len()).map(|_| rng.random_range(-1.0..1.0)).collect();
+    let field: Vec<f64> = (0..mass.len())
+        .map(|_| rng.random_range(-1.0..1.0))
+        .collect();
     let coefficients = basis.coefficients(&field).expect("field fits");
     eprintln!(
         "hand: {} faces, basis 2F × d = {} × {}; paper: projection 0.67 s, reconstruction 0.06 s",
@@ -70,15 +82,25 @@ fn projection(c: &mut Criterion) {
         basis.len()
     );
     let mut group = c.benchmark_group("hand_2x1000");
-    group.sample_size(20).measurement_time(Duration::from_secs(8));
+    group
+        .sample_size(20)
+        .measurement_time(Duration::from_secs(8));
     group.bench_function("projection (paper 0.67 s)", |b| {
         b.iter(|| basis.coefficients(black_box(&field)).expect("field fits"))
     });
     group.bench_function("reconstruction f64 (paper 0.06 s)", |b| {
-        b.iter(|| basis.reconstruct(black_box(&coefficients)).expect("coefficients fit"))
+        b.iter(|| {
+            basis
+                .reconstruct(black_box(&coefficients))
+                .expect("coefficients fit")
+        })
     });
     group.bench_function("reconstruction f32 copy (paper 0.06 s)", |b| {
-        b.iter(|| basis.reconstruct_f32(black_box(&coefficients)).expect("coefficients fit"))
+        b.iter(|| {
+            basis
+                .reconstruct_f32(black_box(&coefficients))
+                .expect("coefficients fit")
+        })
     });
     group.finish();
 }

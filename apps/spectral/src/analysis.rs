@@ -83,13 +83,15 @@ impl SpectralAnalysis {
             .zip(basis.eigenvalues())
             .zip(basis.families())
             .enumerate()
-            .map(|(index, ((&coefficient, &eigenvalue), &family))| CoefficientEntry {
-                index,
-                family,
-                eigenvalue,
-                frequency: eigenvalue.sqrt(),
-                coefficient,
-            })
+            .map(
+                |(index, ((&coefficient, &eigenvalue), &family))| CoefficientEntry {
+                    index,
+                    family,
+                    eigenvalue,
+                    frequency: eigenvalue.sqrt(),
+                    coefficient,
+                },
+            )
             .collect();
         let represented_dirichlet_energy = entries
             .iter()

@@ -36,7 +36,10 @@ pub fn basis_id(basis: &SpectralBasis) -> u64 {
             finalize(state)
         })
         .collect();
-    let mut state = absorb(absorb(0, basis.field_dimension() as u64), basis.len() as u64);
+    let mut state = absorb(
+        absorb(0, basis.field_dimension() as u64),
+        basis.len() as u64,
+    );
     for (&lambda, &family) in basis.eigenvalues().iter().zip(basis.families()) {
         let tag = match family {
             FieldFamily::Harmonic => 1,

@@ -116,7 +116,13 @@ impl<'a> FieldCodec<'a> {
                 basis: basis_id,
             });
         }
-        let codec = Self::new(basis, mesh_fingerprint, basis_id, file.pairs as usize, file.coding)?;
+        let codec = Self::new(
+            basis,
+            mesh_fingerprint,
+            basis_id,
+            file.pairs as usize,
+            file.coding,
+        )?;
         if codec.header != *file {
             return Err(CompressionError::InvalidHeader(format!(
                 "header {file:?} does not fit the basis (expected {:?})",
@@ -137,7 +143,10 @@ impl<'a> FieldCodec<'a> {
     }
 
     /// Encodes a field given all `d` of its basis coefficients (`Uᵀ M_X v`).
-    pub fn encode_coefficients(&self, coefficients: &[f64]) -> Result<FramePayload, CompressionError> {
+    pub fn encode_coefficients(
+        &self,
+        coefficients: &[f64],
+    ) -> Result<FramePayload, CompressionError> {
         if coefficients.len() != self.basis.len() {
             return Err(crate::SpectralBasisError::LengthMismatch {
                 what: "coefficients",
@@ -178,7 +187,10 @@ impl<'a> FieldCodec<'a> {
     }
 
     /// The decoded coefficients of all `d` basis fields (zero outside the selection).
-    pub fn decode_coefficients(&self, payload: &FramePayload) -> Result<Vec<f64>, CompressionError> {
+    pub fn decode_coefficients(
+        &self,
+        payload: &FramePayload,
+    ) -> Result<Vec<f64>, CompressionError> {
         let n = self.selection.len();
         let kept = match (payload, self.header.coding) {
             (FramePayload::Float64(values), CoefficientCoding::Float64) if values.len() == n => {
@@ -186,7 +198,9 @@ impl<'a> FieldCodec<'a> {
             }
             (FramePayload::Quantized { step, bytes }, CoefficientCoding::Quantized { bits }) => {
                 let quantizer = UniformQuantizer::with_step(*step, bits).ok_or_else(|| {
-                    CompressionError::InvalidHeader(format!("quantisation step {step} is not a positive number"))
+                    CompressionError::InvalidHeader(format!(
+                        "quantisation step {step} is not a positive number"
+                    ))
                 })?;
                 quantizer.dequantize(&decode_symbols(bytes, n, bits)?)
             }
@@ -205,7 +219,9 @@ impl<'a> FieldCodec<'a> {
 
     /// Decodes one frame into a field (`2F` pointwise coefficients).
     pub fn decode(&self, payload: &FramePayload) -> Result<Vec<f64>, CompressionError> {
-        Ok(self.basis.reconstruct(&self.decode_coefficients(payload)?)?)
+        Ok(self
+            .basis
+            .reconstruct(&self.decode_coefficients(payload)?)?)
     }
 
     /// Compresses every field (frames in parallel).
@@ -230,6 +246,9 @@ impl<'a> FieldCodec<'a> {
                 "file header does not match the codec (use FieldCodec::for_file)".to_string(),
             ));
         }
-        file.frames.par_iter().map(|frame| self.decode(frame)).collect()
+        file.frames
+            .par_iter()
+            .map(|frame| self.decode(frame))
+            .collect()
     }
 }

@@ -18,8 +18,8 @@
 //! | 56 | … | `T` frames: `f64` mode `n` doubles; quantised mode the step (`f64`), the coded length (`u32`) and the range-coded symbols |
 //! | end − 4 | 4 | CRC-32 of every byte before it |
 
-use crate::compression_error::CompressionError;
 use crate::atomic_write::write_atomically;
+use crate::compression_error::CompressionError;
 use std::path::Path;
 
 /// The magic bytes at the start of every `.tvfc` file.
@@ -111,9 +111,9 @@ impl CompressedFields {
         out.extend_from_slice(&(total as u64).to_le_bytes());
         for frame in &self.frames {
             match frame {
-                FramePayload::Float64(values) => {
-                    values.iter().for_each(|v| out.extend_from_slice(&v.to_le_bytes()))
-                }
+                FramePayload::Float64(values) => values
+                    .iter()
+                    .for_each(|v| out.extend_from_slice(&v.to_le_bytes())),
                 FramePayload::Quantized { step, bytes } => {
                     out.extend_from_slice(&step.to_le_bytes());
                     out.extend_from_slice(&(bytes.len() as u32).to_le_bytes());
@@ -267,7 +267,10 @@ struct Reader<'a> {
 
 impl<'a> Reader<'a> {
     fn slice(&mut self, length: usize) -> Result<&'a [u8], CompressionError> {
-        let end = self.position.checked_add(length).filter(|&e| e <= self.bytes.len());
+        let end = self
+            .position
+            .checked_add(length)
+            .filter(|&e| e <= self.bytes.len());
         let end = end.ok_or(CompressionError::Truncated {
             needed: self.position.saturating_add(length).saturating_add(4),
             actual: self.bytes.len() + 4,

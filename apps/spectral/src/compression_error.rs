@@ -44,7 +44,9 @@ pub enum CompressionError {
     #[error("invalid header: {0}")]
     InvalidHeader(String),
     /// The file was made for another mesh.
-    #[error("file was compressed on another mesh (mesh fingerprint {file:016x}, this mesh {mesh:016x})")]
+    #[error(
+        "file was compressed on another mesh (mesh fingerprint {file:016x}, this mesh {mesh:016x})"
+    )]
     MeshMismatch {
         /// Fingerprint in the file.
         file: u64,

@@ -124,8 +124,11 @@ impl SpectralFilter {
         let rest: Vec<f64> = field.iter().zip(&represented).map(|(v, u)| v - u).collect();
         let rest_norm = basis.inner_product(&rest, &rest).max(0.0).sqrt();
         let gains = self.gains(basis);
-        let filtered_coefficients: Vec<f64> =
-            coefficients.iter().zip(&gains).map(|(c, g)| g * c).collect();
+        let filtered_coefficients: Vec<f64> = coefficients
+            .iter()
+            .zip(&gains)
+            .map(|(c, g)| g * c)
+            .collect();
         let delta: Vec<f64> = coefficients
             .iter()
             .zip(&gains)

@@ -166,7 +166,15 @@ mod tests {
         assert!((high.gain(2.0) - (2.0 - (-2.0f64).exp())).abs() < 1e-15);
         assert_eq!(high.gain(0.0), 1.0);
         let band = FrequencyResponse::BandPass { lo: 1.0, hi: 2.0 };
-        assert_eq!((band.gain(0.5), band.gain(1.0), band.gain(2.0), band.gain(2.1)), (0.0, 1.0, 1.0, 0.0));
+        assert_eq!(
+            (
+                band.gain(0.5),
+                band.gain(1.0),
+                band.gain(2.0),
+                band.gain(2.1)
+            ),
+            (0.0, 1.0, 1.0, 0.0)
+        );
         let cut = FrequencyResponse::Cutoff { f: 1.0 };
         assert_eq!((cut.gain(1.0), cut.gain(1.0 + 1e-12)), (1.0, 0.0));
         assert!(low.is_contraction() && !high.is_contraction());

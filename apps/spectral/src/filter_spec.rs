@@ -89,7 +89,9 @@ pub enum FilterSpecError {
     #[error("a curve needs at least one control point (e.g. curve:0,1;5,0.5;10,0)")]
     EmptyCurve,
     /// A control point with a negative or non-finite coordinate.
-    #[error("curve point {index} ({frequency}, {gain}): frequency and gain must be finite and ≥ 0")]
+    #[error(
+        "curve point {index} ({frequency}, {gain}): frequency and gain must be finite and ≥ 0"
+    )]
     BadControlPoint {
         /// Position of the point.
         index: usize,
@@ -187,7 +189,11 @@ fn named_parameters<const N: usize>(
     example: &'static str,
 ) -> Result<[f64; N], FilterSpecError> {
     let mut values = [None; N];
-    for part in arguments.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+    for part in arguments
+        .split(',')
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
+    {
         let unexpected = || FilterSpecError::UnexpectedParameter {
             kind,
             text: part.to_string(),
@@ -201,7 +207,10 @@ fn named_parameters<const N: usize>(
         if values[slot].is_some() {
             return Err(unexpected());
         }
-        values[slot] = Some(parse_non_negative(&format!("{kind}: {}", names[slot]), value)?);
+        values[slot] = Some(parse_non_negative(
+            &format!("{kind}: {}", names[slot]),
+            value,
+        )?);
     }
     let mut out = [0.0; N];
     for (slot, value) in values.iter().enumerate() {
@@ -264,7 +273,11 @@ pub fn read_curve_file(path: &Path) -> Result<PiecewiseLinear, FilterSpecError> 
             Some(serde_json::Value::Array(list)) => list,
             _ => return Err(json_error("no array \"points\"".to_string())),
         },
-        _ => return Err(json_error("top level is neither an object nor an array".to_string())),
+        _ => {
+            return Err(json_error(
+                "top level is neither an object nor an array".to_string(),
+            ))
+        }
     };
     let mut points = Vec::with_capacity(list.len());
     for (index, entry) in list.iter().enumerate() {
@@ -272,7 +285,9 @@ pub fn read_curve_file(path: &Path) -> Result<PiecewiseLinear, FilterSpecError> 
             .as_array()
             .filter(|p| p.len() == 2)
             .and_then(|p| Some((p[0].as_f64()?, p[1].as_f64()?)))
-            .ok_or_else(|| json_error(format!("point {index} is not [frequency, gain]: {entry}")))?;
+            .ok_or_else(|| {
+                json_error(format!("point {index} is not [frequency, gain]: {entry}"))
+            })?;
         points.push(pair);
     }
     PiecewiseLinear::new(points)

@@ -37,7 +37,8 @@ impl BitModel {
         if bit {
             self.probability_of_zero -= self.probability_of_zero >> ADAPTATION_SHIFT;
         } else {
-            self.probability_of_zero += (PROBABILITY_ONE - self.probability_of_zero) >> ADAPTATION_SHIFT;
+            self.probability_of_zero +=
+                (PROBABILITY_ONE - self.probability_of_zero) >> ADAPTATION_SHIFT;
         }
     }
 }

@@ -127,7 +127,11 @@ pub fn encode_symbols(symbols: &[i64], bits: u32) -> Result<Vec<u8>, SymbolCodin
 
 /// Decodes `count` symbols of `bits` bits from `bytes` (written by [`encode_symbols`]).
 /// A stream that is cut short or has bytes left over is [`SymbolCodingError::Damaged`].
-pub fn decode_symbols(bytes: &[u8], count: usize, bits: u32) -> Result<Vec<i64>, SymbolCodingError> {
+pub fn decode_symbols(
+    bytes: &[u8],
+    count: usize,
+    bits: u32,
+) -> Result<Vec<i64>, SymbolCodingError> {
     let mut models = Models::new(bits)?;
     let mut decoder = RangeDecoder::new(bytes);
     let mut symbols = Vec::with_capacity(count.min(bytes.len().saturating_mul(8)));
@@ -152,7 +156,11 @@ pub fn decode_symbols(bytes: &[u8], count: usize, bits: u32) -> Result<Vec<i64>,
                 let bit = decoder.decode(&mut models.mantissa[length * m + j]);
                 magnitude = (magnitude << 1) | u64::from(bit);
             }
-            value = if negative { -(magnitude as i64) } else { magnitude as i64 };
+            value = if negative {
+                -(magnitude as i64)
+            } else {
+                magnitude as i64
+            };
         }
         symbols.push(value);
         previous = [length, previous[0]];

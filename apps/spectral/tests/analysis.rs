@@ -11,7 +11,9 @@ use tvf_spectral::{compute_basis, BasisRequest, EnergySplit, FieldFamily, Spectr
 
 fn random_field(dimension: usize, seed: u64) -> Vec<f64> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..dimension).map(|_| rng.random_range(-1.0..1.0)).collect()
+    (0..dimension)
+        .map(|_| rng.random_range(-1.0..1.0))
+        .collect()
 }
 
 #[test]
@@ -24,7 +26,8 @@ fn family_energies_match_the_hodge_decomposition_with_a_complete_basis() {
     for seed in 0..3 {
         let field = random_field(basis.field_dimension(), seed);
         let analysis = SpectralAnalysis::new(&basis, &field).unwrap();
-        let exact = EnergySplit::of_hodge_parts(&decomposer.decompose(&field).unwrap(), basis.field_mass());
+        let exact =
+            EnergySplit::of_hodge_parts(&decomposer.decompose(&field).unwrap(), basis.field_mass());
         let total = analysis.field_energy;
         assert!((analysis.energy.total() - total).abs() < 1e-10 * total);
         assert!(analysis.energy.rest < 1e-10 * total);
@@ -32,10 +35,17 @@ fn family_energies_match_the_hodge_decomposition_with_a_complete_basis() {
         assert!((analysis.energy.cointegrable - exact.cointegrable).abs() < 1e-9 * total);
         assert!((analysis.energy.harmonic - exact.harmonic).abs() < 1e-9 * total);
         assert!(analysis.energy.harmonic > 0.0);
-        let dirichlet: f64 = mul_vec(&s, &field).iter().zip(&field).map(|(a, b)| a * b).sum();
+        let dirichlet: f64 = mul_vec(&s, &field)
+            .iter()
+            .zip(&field)
+            .map(|(a, b)| a * b)
+            .sum();
         assert!((analysis.represented_dirichlet_energy - dirichlet).abs() < 1e-9 * dirichlet);
         assert_eq!(analysis.entries.len(), basis.len());
-        assert!(analysis.entries.windows(2).all(|w| w[0].frequency <= w[1].frequency));
+        assert!(analysis
+            .entries
+            .windows(2)
+            .all(|w| w[0].frequency <= w[1].frequency));
         assert_eq!(
             analysis.family(FieldFamily::Integrable).count(),
             mesh.vertex_count() - 1
@@ -58,7 +68,10 @@ fn a_truncated_basis_puts_the_remainder_into_the_rest_field() {
     assert!((analysis.energy.total() - total).abs() < 1e-10 * total);
     assert!(analysis.relative_rest_norm() > 0.5);
     let exact = EnergySplit::of_hodge_parts(
-        &HodgeDecomposer::new(&complex).unwrap().decompose(&field).unwrap(),
+        &HodgeDecomposer::new(&complex)
+            .unwrap()
+            .decompose(&field)
+            .unwrap(),
         basis.field_mass(),
     );
     // The represented part of each family is at most its exact energy; the harmonic part is

@@ -14,7 +14,9 @@ const MESH: u64 = 0x1234_5678_9abc_def0;
 
 fn random_field(dimension: usize, seed: u64) -> Vec<f64> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..dimension).map(|_| rng.random_range(-1.0..1.0)).collect()
+    (0..dimension)
+        .map(|_| rng.random_range(-1.0..1.0))
+        .collect()
 }
 
 fn complete_basis() -> (tvf_core::SurfaceMesh, SpectralBasis) {
@@ -44,7 +46,11 @@ fn float64_mode_is_lossless() {
     let decoded = decoder.decode_coefficients(&parsed.frames[0]).unwrap();
     for (i, value) in decoded.iter().enumerate() {
         if codec.selection().binary_search(&i).is_ok() {
-            assert_eq!(value.to_bits(), coefficients[i].to_bits(), "coefficient {i} changed");
+            assert_eq!(
+                value.to_bits(),
+                coefficients[i].to_bits(),
+                "coefficient {i} changed"
+            );
         } else {
             assert_eq!(*value, 0.0);
         }
@@ -81,7 +87,9 @@ fn quantised_mode_stays_within_the_quantisation_bound() {
     let field = random_field(basis.field_dimension(), 2);
     let coefficients = basis.coefficients(&field).unwrap();
     let exact_codec = FieldCodec::new(&basis, MESH, id, pairs, CoefficientCoding::Float64).unwrap();
-    let projection = exact_codec.decode(&exact_codec.encode(&field).unwrap()).unwrap();
+    let projection = exact_codec
+        .decode(&exact_codec.encode(&field).unwrap())
+        .unwrap();
     let mut previous_size = usize::MAX;
     for bits in [32, 24, 16, 12, 8, 6, 4, 2] {
         let coding = CoefficientCoding::Quantized { bits };
@@ -103,15 +111,34 @@ fn quantised_mode_stays_within_the_quantisation_bound() {
             );
         }
         let field_out = codec.decode(&parsed.frames[0]).unwrap();
-        let difference: Vec<f64> = field_out.iter().zip(&projection).map(|(a, b)| a - b).collect();
+        let difference: Vec<f64> = field_out
+            .iter()
+            .zip(&projection)
+            .map(|(a, b)| a - b)
+            .collect();
         let bound = quantizer.max_error() * (codec.selection().len() as f64).sqrt();
         let error = basis.inner_product(&difference, &difference).sqrt();
-        assert!(error <= bound * (1.0 + 1e-9), "{bits} bits: error {error} above bound {bound}");
-        assert!(bytes.len() <= previous_size, "{bits} bits: file grew to {}", bytes.len());
+        assert!(
+            error <= bound * (1.0 + 1e-9),
+            "{bits} bits: error {error} above bound {bound}"
+        );
+        assert!(
+            bytes.len() <= previous_size,
+            "{bits} bits: file grew to {}",
+            bytes.len()
+        );
         previous_size = bytes.len();
         if bits <= 16 {
-            let f64_size = exact_codec.compress(std::slice::from_ref(&field)).unwrap().to_bytes().len();
-            assert!(bytes.len() * 3 < f64_size, "{bits} bits: {} bytes vs {f64_size}", bytes.len());
+            let f64_size = exact_codec
+                .compress(std::slice::from_ref(&field))
+                .unwrap()
+                .to_bytes()
+                .len();
+            assert!(
+                bytes.len() * 3 < f64_size,
+                "{bits} bits: {} bytes vs {f64_size}",
+                bytes.len()
+            );
         }
     }
 }
@@ -120,8 +147,17 @@ fn quantised_mode_stays_within_the_quantisation_bound() {
 fn files_round_trip_through_the_file_system() {
     let (_, basis) = complete_basis();
     let id = basis_id(&basis);
-    let codec = FieldCodec::new(&basis, MESH, id, 20, CoefficientCoding::Quantized { bits: 10 }).unwrap();
-    let fields: Vec<Vec<f64>> = (0..3).map(|s| random_field(basis.field_dimension(), s)).collect();
+    let codec = FieldCodec::new(
+        &basis,
+        MESH,
+        id,
+        20,
+        CoefficientCoding::Quantized { bits: 10 },
+    )
+    .unwrap();
+    let fields: Vec<Vec<f64>> = (0..3)
+        .map(|s| random_field(basis.field_dimension(), s))
+        .collect();
     let file = codec.compress(&fields).unwrap();
     let folder = tempfile::tempdir().unwrap();
     let path = folder.path().join("field.tvfc");
@@ -138,9 +174,14 @@ fn files_for_another_mesh_or_basis_are_refused() {
     let (mesh, basis) = complete_basis();
     let id = basis_id(&basis);
     let codec = FieldCodec::new(&basis, MESH, id, 15, CoefficientCoding::Float64).unwrap();
-    let file = codec.compress(&[random_field(basis.field_dimension(), 3)]).unwrap();
+    let file = codec
+        .compress(&[random_field(basis.field_dimension(), 3)])
+        .unwrap();
     let error = FieldCodec::for_file(&basis, MESH ^ 1, id, &file.header).unwrap_err();
-    assert!(matches!(error, CompressionError::MeshMismatch { .. }), "{error}");
+    assert!(
+        matches!(error, CompressionError::MeshMismatch { .. }),
+        "{error}"
+    );
     assert!(error.to_string().contains("another mesh"));
 
     // The other decomposition's basis on the same mesh has another id.
@@ -149,7 +190,10 @@ fn files_for_another_mesh_or_basis_are_refused() {
     let other_id = basis_id(&other);
     assert_ne!(other_id, id);
     let error = FieldCodec::for_file(&other, MESH, other_id, &file.header).unwrap_err();
-    assert!(matches!(error, CompressionError::BasisMismatch { .. }), "{error}");
+    assert!(
+        matches!(error, CompressionError::BasisMismatch { .. }),
+        "{error}"
+    );
 
     // Flipping the sign of one eigenfield (an equally valid basis) changes the id too.
     let mut fields = basis.fields().to_owned();
@@ -166,17 +210,32 @@ fn files_for_another_mesh_or_basis_are_refused() {
     assert_ne!(basis_id(&flipped), id);
 
     // Too few fields for the pairs asked for.
-    let error = FieldCodec::new(&basis, MESH, id, mesh.edge_count(), CoefficientCoding::Float64).unwrap_err();
-    assert!(matches!(error, CompressionError::NotEnoughFields { .. }), "{error}");
+    let error = FieldCodec::new(
+        &basis,
+        MESH,
+        id,
+        mesh.edge_count(),
+        CoefficientCoding::Float64,
+    )
+    .unwrap_err();
+    assert!(
+        matches!(error, CompressionError::NotEnoughFields { .. }),
+        "{error}"
+    );
 }
 
 #[test]
 fn damaged_and_truncated_files_are_refused() {
     let (_, basis) = complete_basis();
     let id = basis_id(&basis);
-    for coding in [CoefficientCoding::Float64, CoefficientCoding::Quantized { bits: 12 }] {
+    for coding in [
+        CoefficientCoding::Float64,
+        CoefficientCoding::Quantized { bits: 12 },
+    ] {
         let codec = FieldCodec::new(&basis, MESH, id, 12, coding).unwrap();
-        let file = codec.compress(&[random_field(basis.field_dimension(), 4)]).unwrap();
+        let file = codec
+            .compress(&[random_field(basis.field_dimension(), 4)])
+            .unwrap();
         let bytes = file.to_bytes();
         for position in 0..bytes.len() {
             for flip in [0x01u8, 0x80] {
@@ -197,7 +256,10 @@ fn damaged_and_truncated_files_are_refused() {
         for length in 0..bytes.len() {
             let error = CompressedFields::from_bytes(&bytes[..length]).expect_err("truncated");
             assert!(
-                matches!(error, CompressionError::NotTvfc | CompressionError::Truncated { .. }),
+                matches!(
+                    error,
+                    CompressionError::NotTvfc | CompressionError::Truncated { .. }
+                ),
                 "length {length}: {error}"
             );
         }

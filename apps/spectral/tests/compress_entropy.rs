@@ -56,16 +56,26 @@ fn decaying_coefficients_cost_far_less_than_their_bit_budget() {
     let bytes = encode_symbols(&symbols, bits).unwrap();
     let bits_per_symbol = 8.0 * bytes.len() as f64 / symbols.len() as f64;
     assert!(bits_per_symbol < 3.5, "{bits_per_symbol} bits per symbol");
-    assert_eq!(decode_symbols(&bytes, symbols.len(), bits).unwrap(), symbols);
+    assert_eq!(
+        decode_symbols(&bytes, symbols.len(), bits).unwrap(),
+        symbols
+    );
 }
 
 #[test]
 fn out_of_range_symbols_and_cut_streams_are_refused() {
     assert!(matches!(
         encode_symbols(&[0, 8], 4),
-        Err(SymbolCodingError::SymbolTooLarge { index: 1, value: 8, bits: 4 })
+        Err(SymbolCodingError::SymbolTooLarge {
+            index: 1,
+            value: 8,
+            bits: 4
+        })
     ));
-    assert!(matches!(encode_symbols(&[0], 1), Err(SymbolCodingError::UnsupportedBits(1))));
+    assert!(matches!(
+        encode_symbols(&[0], 1),
+        Err(SymbolCodingError::UnsupportedBits(1))
+    ));
     let symbols: Vec<i64> = (0..500).map(|i| (i % 37) - 18).collect();
     let bytes = encode_symbols(&symbols, 8).unwrap();
     assert!(matches!(

@@ -4,8 +4,8 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::discretization::sparse::mul_vec;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::torus;
 use tvf_discretizations::{Conforming, HodgeDecomposer, MassLumping, Nonconforming};
 use tvf_spectral::{
@@ -19,7 +19,9 @@ fn small_torus() -> tvf_core::SurfaceMesh {
 
 fn random_field(dimension: usize, seed: u64) -> Vec<f64> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..dimension).map(|_| rng.random_range(-1.0..1.0)).collect()
+    (0..dimension)
+        .map(|_| rng.random_range(-1.0..1.0))
+        .collect()
 }
 
 /// The first `d` fields of a basis (a truncated basis).
@@ -67,7 +69,10 @@ fn identity_filter_returns_the_field_with_a_complete_basis() {
 fn identity_filter_with_unit_rest_gain_keeps_what_a_truncated_basis_cannot_represent() {
     let mesh = small_torus();
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    let basis = truncated(&compute_basis(&complex, &BasisRequest::complete()).unwrap(), 40);
+    let basis = truncated(
+        &compute_basis(&complex, &BasisRequest::complete()).unwrap(),
+        40,
+    );
     let field = random_field(basis.field_dimension(), 7);
     let out = SpectralFilter::identity().apply(&basis, &field).unwrap();
     assert!(out.rest_norm > 0.1 * basis.inner_product(&field, &field).sqrt());
@@ -79,9 +84,15 @@ fn identity_filter_with_unit_rest_gain_keeps_what_a_truncated_basis_cannot_repre
     }
     .apply(&basis, &field)
     .unwrap();
-    let again = SpectralFilter::identity().apply(&basis, &projection.field).unwrap();
+    let again = SpectralFilter::identity()
+        .apply(&basis, &projection.field)
+        .unwrap();
     assert!(again.rest_norm < 1e-10 * out.rest_norm);
-    let removed: Vec<f64> = field.iter().zip(&projection.field).map(|(a, b)| a - b).collect();
+    let removed: Vec<f64> = field
+        .iter()
+        .zip(&projection.field)
+        .map(|(a, b)| a - b)
+        .collect();
     assert!((basis.inner_product(&removed, &removed).sqrt() - out.rest_norm).abs() < 1e-10);
 }
 
@@ -150,7 +161,11 @@ fn filtering_the_integrable_family_leaves_the_other_parts_unchanged() {
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let basis = compute_basis(&complex, &BasisRequest::complete()).unwrap();
     assert_eq!(
-        basis.families().iter().filter(|f| **f == FieldFamily::Harmonic).count(),
+        basis
+            .families()
+            .iter()
+            .filter(|f| **f == FieldFamily::Harmonic)
+            .count(),
         2
     );
     let decomposer = HodgeDecomposer::new(&complex).unwrap();
@@ -174,7 +189,10 @@ fn filtering_the_integrable_family_leaves_the_other_parts_unchanged() {
         assert!(max_abs_difference(&before.co_integrable, &after.co_integrable) < 1e-10 * scale);
         assert!(max_abs_difference(&before.harmonic, &after.harmonic) < 1e-10 * scale);
         let change = max_abs_difference(&before.integrable, &after.integrable);
-        assert!(change > 1e-3 * scale, "{response:?} did not change the integrable part");
+        assert!(
+            change > 1e-3 * scale,
+            "{response:?} did not change the integrable part"
+        );
     }
 }
 
@@ -184,7 +202,10 @@ fn filter_specs_parse_and_refuse_clearly() {
     assert_eq!(ok("identity"), FrequencyResponse::Identity);
     assert_eq!(ok(" LowPass:t=0.5 "), FrequencyResponse::LowPass { t: 0.5 });
     assert_eq!(ok("highpass:t=2"), FrequencyResponse::HighPass { t: 2.0 });
-    assert_eq!(ok("bandpass:hi=3,lo=1"), FrequencyResponse::BandPass { lo: 1.0, hi: 3.0 });
+    assert_eq!(
+        ok("bandpass:hi=3,lo=1"),
+        FrequencyResponse::BandPass { lo: 1.0, hi: 3.0 }
+    );
     assert_eq!(ok("cutoff:f=4"), FrequencyResponse::Cutoff { f: 4.0 });
     let curve = ok("curve:0,1;5,0.5;10,0;");
     assert_eq!(curve.gain(2.5), 0.75);
@@ -192,18 +213,51 @@ fn filter_specs_parse_and_refuse_clearly() {
 
     let err = |s: &str| s.parse::<FrequencyResponse>().unwrap_err();
     assert!(matches!(err(""), FilterSpecError::Empty));
-    assert!(matches!(err("blur:t=1"), FilterSpecError::UnknownKind { .. }));
-    assert!(matches!(err("lowpass"), FilterSpecError::MissingParameter { name: "t", .. }));
-    assert!(matches!(err("lowpass:s=1"), FilterSpecError::UnexpectedParameter { .. }));
-    assert!(matches!(err("lowpass:t=1,t=2"), FilterSpecError::UnexpectedParameter { .. }));
-    assert!(matches!(err("lowpass:t=-1"), FilterSpecError::BadNumber { .. }));
-    assert!(matches!(err("lowpass:t=nan"), FilterSpecError::BadNumber { .. }));
-    assert!(matches!(err("bandpass:lo=3,hi=1"), FilterSpecError::BandOrder { .. }));
-    assert!(matches!(err("identity:x"), FilterSpecError::UnexpectedParameter { .. }));
+    assert!(matches!(
+        err("blur:t=1"),
+        FilterSpecError::UnknownKind { .. }
+    ));
+    assert!(matches!(
+        err("lowpass"),
+        FilterSpecError::MissingParameter { name: "t", .. }
+    ));
+    assert!(matches!(
+        err("lowpass:s=1"),
+        FilterSpecError::UnexpectedParameter { .. }
+    ));
+    assert!(matches!(
+        err("lowpass:t=1,t=2"),
+        FilterSpecError::UnexpectedParameter { .. }
+    ));
+    assert!(matches!(
+        err("lowpass:t=-1"),
+        FilterSpecError::BadNumber { .. }
+    ));
+    assert!(matches!(
+        err("lowpass:t=nan"),
+        FilterSpecError::BadNumber { .. }
+    ));
+    assert!(matches!(
+        err("bandpass:lo=3,hi=1"),
+        FilterSpecError::BandOrder { .. }
+    ));
+    assert!(matches!(
+        err("identity:x"),
+        FilterSpecError::UnexpectedParameter { .. }
+    ));
     assert!(matches!(err("curve:"), FilterSpecError::EmptyCurve));
-    assert!(matches!(err("curve:0,1;x,2"), FilterSpecError::BadPoint { index: 1, .. }));
-    assert!(matches!(err("curve:0,1;0,2"), FilterSpecError::UnsortedControlPoints { .. }));
-    assert!(matches!(err("curve:0,-1"), FilterSpecError::BadControlPoint { .. }));
+    assert!(matches!(
+        err("curve:0,1;x,2"),
+        FilterSpecError::BadPoint { index: 1, .. }
+    ));
+    assert!(matches!(
+        err("curve:0,1;0,2"),
+        FilterSpecError::UnsortedControlPoints { .. }
+    ));
+    assert!(matches!(
+        err("curve:0,-1"),
+        FilterSpecError::BadControlPoint { .. }
+    ));
     let message = err("lowpass:s=1").to_string();
     assert!(message.contains("lowpass:t="), "{message}");
 }
@@ -223,11 +277,15 @@ fn drawn_curves_load_from_json_files() {
 
     let broken = folder.path().join("broken.json");
     std::fs::write(&broken, r#"{"points": [[0, 1], [4]]}"#).unwrap();
-    let error = format!("@{}", broken.display()).parse::<FrequencyResponse>().unwrap_err();
+    let error = format!("@{}", broken.display())
+        .parse::<FrequencyResponse>()
+        .unwrap_err();
     assert!(matches!(error, FilterSpecError::Json { .. }));
     assert!(error.to_string().contains("broken.json"), "{error}");
     let missing = folder.path().join("missing.json");
-    let error = format!("@{}", missing.display()).parse::<FrequencyResponse>().unwrap_err();
+    let error = format!("@{}", missing.display())
+        .parse::<FrequencyResponse>()
+        .unwrap_err();
     assert!(matches!(error, FilterSpecError::FileRead { .. }));
 }
 
@@ -235,14 +293,19 @@ fn drawn_curves_load_from_json_files() {
 fn bad_gains_and_fields_are_refused() {
     let mesh = small_torus();
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    let basis = truncated(&compute_basis(&complex, &BasisRequest::complete()).unwrap(), 10);
+    let basis = truncated(
+        &compute_basis(&complex, &BasisRequest::complete()).unwrap(),
+        10,
+    );
     let field = random_field(basis.field_dimension(), 1);
     let negative = SpectralFilter {
         rest_gain: -1.0,
         ..SpectralFilter::identity()
     };
     assert!(negative.apply(&basis, &field).is_err());
-    assert!(SpectralFilter::identity().apply(&basis, &field[1..]).is_err());
+    assert!(SpectralFilter::identity()
+        .apply(&basis, &field[1..])
+        .is_err());
     let mut bad = field.clone();
     bad[3] = f64::NAN;
     assert!(SpectralFilter::identity().apply(&basis, &bad).is_err());

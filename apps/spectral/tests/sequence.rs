@@ -10,7 +10,11 @@ use tvf_spectral::{
 
 /// A time-dependent field: a rotating swirl around an axis, one frame per time step (3D vectors
 /// projected onto the faces).
-fn frames<H: HodgeComplex>(complex: &H, mesh: &tvf_core::SurfaceMesh, count: usize) -> Vec<Vec<f64>> {
+fn frames<H: HodgeComplex>(
+    complex: &H,
+    mesh: &tvf_core::SurfaceMesh,
+    count: usize,
+) -> Vec<Vec<f64>> {
     (0..count)
         .map(|k| {
             let angle = 0.3 * k as f64;
@@ -20,7 +24,8 @@ fn frames<H: HodgeComplex>(complex: &H, mesh: &tvf_core::SurfaceMesh, count: usi
                 .iter()
                 .map(|f| {
                     let p = mesh.positions();
-                    let c: [f64; 3] = std::array::from_fn(|i| (p[f[0]][i] + p[f[1]][i] + p[f[2]][i]) / 3.0);
+                    let c: [f64; 3] =
+                        std::array::from_fn(|i| (p[f[0]][i] + p[f[1]][i] + p[f[2]][i]) / 3.0);
                     let wave = (3.0 * c[0] + k as f64 * 0.2).sin();
                     [
                         axis[1] * c[2] - axis[2] * c[1] + wave,
@@ -41,7 +46,10 @@ fn a_sequence_compresses_like_its_frames_one_by_one() {
     let basis = compute_basis(&complex, &BasisRequest::pairs(60)).unwrap();
     let id = basis_id(&basis);
     let fields = frames(&complex, &mesh, 12);
-    for coding in [CoefficientCoding::Float64, CoefficientCoding::Quantized { bits: 12 }] {
+    for coding in [
+        CoefficientCoding::Float64,
+        CoefficientCoding::Quantized { bits: 12 },
+    ] {
         let codec = FieldCodec::new(&basis, 77, id, 60, coding).unwrap();
         let (file, report) =
             compress_with_report(&codec, basis.field_mass(), &fields, mesh.vertex_count()).unwrap();
@@ -55,7 +63,10 @@ fn a_sequence_compresses_like_its_frames_one_by_one() {
         assert_eq!(decoded.len(), fields.len());
         for (k, field) in fields.iter().enumerate() {
             let single = codec.encode(field).unwrap();
-            assert_eq!(single, file.frames[k], "frame {k} differs from its single compression");
+            assert_eq!(
+                single, file.frames[k],
+                "frame {k} differs from its single compression"
+            );
             let error = relative_l2_error(basis.field_mass(), field, &decoded[k]);
             assert_eq!(error, report.relative_errors[k]);
             assert!(error < 0.5, "frame {k}: relative error {error}");
@@ -64,6 +75,10 @@ fn a_sequence_compresses_like_its_frames_one_by_one() {
         let mean = report.relative_errors.iter().sum::<f64>() / 12.0;
         assert!((report.mean_error() - mean).abs() < 1e-15);
         // Against two doubles per face the rate is large, since 2·60+2 ≪ 2F coefficients.
-        assert!(report.rate_against_two_doubles() > 2.0, "{}", report.rate_against_two_doubles());
+        assert!(
+            report.rate_against_two_doubles() > 2.0,
+            "{}",
+            report.rate_against_two_doubles()
+        );
     }
 }

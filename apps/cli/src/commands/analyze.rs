@@ -13,10 +13,12 @@ use tvf_spectral::{write_atomically, EnergySplit, FieldFamily, SpectralAnalysis}
 
 /// Arguments of `tvf analyze`.
 #[derive(Args)]
-#[command(after_help = "Writes DIR/coefficients.csv (index, family, eigenvalue, frequency, coefficient), \
+#[command(
+    after_help = "Writes DIR/coefficients.csv (index, family, eigenvalue, frequency, coefficient), \
 DIR/spectrum.png (|coefficient| against frequency √λ, integrable and co-integrable) and DIR/energy.json \
 (squared M_X norms of the integrable, co-integrable, harmonic and rest parts, in the basis and in the exact \
-Hodge decomposition).")]
+Hodge decomposition)."
+)]
 pub struct AnalyzeArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -79,8 +81,11 @@ pub fn run(args: AnalyzeArgs) -> Result<()> {
         report["hodge"] = split_json(exact);
     }
     let json_path = args.output.join("energy.json");
-    write_atomically(&json_path, serde_json::to_string_pretty(&report)?.as_bytes())
-        .with_context(|| format!("cannot write {}", json_path.display()))?;
+    write_atomically(
+        &json_path,
+        serde_json::to_string_pretty(&report)?.as_bytes(),
+    )
+    .with_context(|| format!("cannot write {}", json_path.display()))?;
 
     let png_path = args.output.join("spectrum.png");
     plot_spectrum(&analysis, &png_path)?;
@@ -97,7 +102,12 @@ pub fn run(args: AnalyzeArgs) -> Result<()> {
             x.integrable, x.cointegrable, x.harmonic
         );
     }
-    println!("wrote                 {}, {}, {}", csv_path.display(), png_path.display(), json_path.display());
+    println!(
+        "wrote                 {}, {}, {}",
+        csv_path.display(),
+        png_path.display(),
+        json_path.display()
+    );
     Ok(())
 }
 
@@ -105,7 +115,10 @@ pub fn run(args: AnalyzeArgs) -> Result<()> {
 fn plot_spectrum(analysis: &SpectralAnalysis, path: &Path) -> Result<()> {
     // Coefficients below round-off of the largest (e.g. harmonic ones of a field without a
     // harmonic part) would only stretch the log axis.
-    let largest = analysis.entries.iter().fold(0.0f64, |m, e| m.max(e.coefficient.abs()));
+    let largest = analysis
+        .entries
+        .iter()
+        .fold(0.0f64, |m, e| m.max(e.coefficient.abs()));
     let points = |family| -> Vec<(f64, f64)> {
         analysis
             .family(family)
@@ -114,12 +127,24 @@ fn plot_spectrum(analysis: &SpectralAnalysis, path: &Path) -> Result<()> {
             .collect()
     };
     let mut series = vec![
-        Series::new("integrable |alpha|", points(FieldFamily::Integrable), SeriesStyle::Line),
-        Series::new("co-integrable |beta|", points(FieldFamily::Cointegrable), SeriesStyle::Line),
+        Series::new(
+            "integrable |alpha|",
+            points(FieldFamily::Integrable),
+            SeriesStyle::Line,
+        ),
+        Series::new(
+            "co-integrable |beta|",
+            points(FieldFamily::Cointegrable),
+            SeriesStyle::Line,
+        ),
     ];
     let harmonic = points(FieldFamily::Harmonic);
     if !harmonic.is_empty() {
-        series.push(Series::new("harmonic |gamma|", harmonic, SeriesStyle::Scatter));
+        series.push(Series::new(
+            "harmonic |gamma|",
+            harmonic,
+            SeriesStyle::Scatter,
+        ));
     }
     series.retain(|s| !s.points.is_empty());
     if series.is_empty() {

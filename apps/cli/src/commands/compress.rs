@@ -11,13 +11,15 @@ use tvf_spectral::{basis_id, compress_with_report, CoefficientCoding, FieldCodec
 
 /// Arguments of `tvf compress`.
 #[derive(Args)]
-#[command(after_help = "FIELD is one field file (.npy F×3 or text `x y z` per line), or a sequence: an .npy \
+#[command(
+    after_help = "FIELD is one field file (.npy F×3 or text `x y z` per line), or a sequence: an .npy \
 array F×3×T, or a folder of .npy/.txt frames (taken in file-name order). All frames go into one .tvfc file \
 (compressed in parallel) and the report gives the mean and worst per-frame error.\n\n\
 Kept fields: the lowest K integrable and the lowest K co-integrable fields of the basis plus every harmonic \
 field (a family with fewer than K fields is kept whole). Without --bits the coefficients are stored as 64-bit \
 floats (the paper's rate, 2·64·K/V bits per vertex); with --bits Q they are quantised uniformly to Q-bit \
-symbols (step = largest |coefficient| / (2^(Q-1) - 1) per frame) and range-coded.")]
+symbols (step = largest |coefficient| / (2^(Q-1) - 1) per frame) and range-coded."
+)]
 pub struct CompressArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -81,12 +83,28 @@ pub fn run(args: CompressArgs) -> Result<()> {
         println!("{}", serde_json::to_string_pretty(&value)?);
     } else {
         println!("frames                {}", report.frames);
-        println!("coefficients/frame    {} ({} pairs, {coding_name})", report.coefficients_per_frame, args.pairs);
+        println!(
+            "coefficients/frame    {} ({} pairs, {coding_name})",
+            report.coefficients_per_frame, args.pairs
+        );
         println!("file size             {} bytes", report.bytes);
-        println!("bits per vertex       {:.3} (per frame)", report.bits_per_vertex());
-        println!("rate vs 2 doubles/face {:.2}", report.rate_against_two_doubles());
-        println!("rate vs 2 floats/face {:.2}", report.rate_against_two_floats());
-        println!("relative L2 error     mean {:.4e}, worst {:.4e}", report.mean_error(), report.worst_error());
+        println!(
+            "bits per vertex       {:.3} (per frame)",
+            report.bits_per_vertex()
+        );
+        println!(
+            "rate vs 2 doubles/face {:.2}",
+            report.rate_against_two_doubles()
+        );
+        println!(
+            "rate vs 2 floats/face {:.2}",
+            report.rate_against_two_floats()
+        );
+        println!(
+            "relative L2 error     mean {:.4e}, worst {:.4e}",
+            report.mean_error(),
+            report.worst_error()
+        );
         println!("wrote                 {}", args.output.display());
     }
     Ok(())

@@ -9,9 +9,11 @@ use tvf_spectral::{basis_id, CompressedFields, FieldCodec};
 
 /// Arguments of `tvf decompress`.
 #[derive(Args)]
-#[command(after_help = "A file with one frame is written to OUT (.npy or text by extension). A sequence is \
+#[command(
+    after_help = "A file with one frame is written to OUT (.npy or text by extension). A sequence is \
 written as one .npy array F×3×T if OUT ends in .npy, otherwise into the folder OUT as frame_00000.npy, ... \
-The mesh and the basis must be the ones the file was compressed with (checked by fingerprint and basis id).")]
+The mesh and the basis must be the ones the file was compressed with (checked by fingerprint and basis id)."
+)]
 pub struct DecompressArgs {
     #[command(flatten)]
     input: MeshInput,

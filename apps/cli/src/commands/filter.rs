@@ -58,7 +58,11 @@ pub fn run(args: FilterArgs) -> Result<()> {
     let filtered = filter.apply(&setup.basis, &field)?;
     write_tangent_field(&args.output, &setup.fields, &filtered.field)?;
     let norm = |v: &[f64]| setup.basis.inner_product(v, v).sqrt();
-    println!("basis          {} fields ({})", setup.basis.len(), setup.discretization);
+    println!(
+        "basis          {} fields ({})",
+        setup.basis.len(),
+        setup.discretization
+    );
     println!("input norm     {:.6e}", norm(&field));
     println!("rest norm      {:.6e}", filtered.rest_norm);
     println!("output norm    {:.6e}", norm(&filtered.field));

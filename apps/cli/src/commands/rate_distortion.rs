@@ -15,9 +15,11 @@ use tvf_spectral::{
 
 /// Arguments of `tvf rate-distortion`.
 #[derive(Args)]
-#[command(after_help = "Every point is a real .tvfc file (size with header and checksum; error measured on \
+#[command(
+    after_help = "Every point is a real .tvfc file (size with header and checksum; error measured on \
 the decoded field). Writes DIR/rate_distortion.csv and DIR/rate_distortion.png (log–log), and prints, for \
-every 64-bit point, the smallest quantised file with an error at most as large.")]
+every 64-bit point, the smallest quantised file with an error at most as large."
+)]
 pub struct RateDistortionArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -56,7 +58,11 @@ pub fn run(args: RateDistortionArgs) -> Result<()> {
         vertex_count: setup.mesh.vertex_count(),
     };
     let mut codings = vec![CoefficientCoding::Float64];
-    codings.extend(args.bits.iter().map(|&bits| CoefficientCoding::Quantized { bits }));
+    codings.extend(
+        args.bits
+            .iter()
+            .map(|&bits| CoefficientCoding::Quantized { bits }),
+    );
     let points = rate_distortion(&setup.basis, &field, stamp, &args.ks, &codings)?;
     create_output_dir(&args.output)?;
 
@@ -82,7 +88,10 @@ pub fn run(args: RateDistortionArgs) -> Result<()> {
         .map_or(label.clone(), |n| n.to_string_lossy().into_owned());
     plot(&points, &codings, &png_path, &mesh_name)?;
 
-    println!("{:>6} {:>34} {:>10} {:>12} {:>14}", "pairs", "coding", "bytes", "bits/vertex", "rel. L2 error");
+    println!(
+        "{:>6} {:>34} {:>10} {:>12} {:>14}",
+        "pairs", "coding", "bytes", "bits/vertex", "rel. L2 error"
+    );
     for p in &points {
         println!(
             "{:>6} {:>34} {:>10} {:>12.3} {:>14.4e}",
@@ -112,7 +121,12 @@ pub fn run(args: RateDistortionArgs) -> Result<()> {
 }
 
 /// Relative error against bits per vertex, one line per coding (log–log).
-fn plot(points: &[RatePoint], codings: &[CoefficientCoding], path: &Path, mesh: &str) -> Result<()> {
+fn plot(
+    points: &[RatePoint],
+    codings: &[CoefficientCoding],
+    path: &Path,
+    mesh: &str,
+) -> Result<()> {
     let series = codings
         .iter()
         .map(|&coding| {

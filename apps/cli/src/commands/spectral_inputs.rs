@@ -9,9 +9,9 @@ use tvf_core::discretization::{FieldSpace, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{Conforming, FaceFields, HodgeDecomposer, MassLumping, Nonconforming};
 use tvf_spectral::{
-    load_basis, mesh_fingerprint, read_basis_header, read_face_vector_sequence,
-    read_tangent_field, write_face_vector_sequence, write_tangent_field, BasisFileKey,
-    EnergySplit, FieldIoError, NpyDtype, SpectralBasis,
+    load_basis, mesh_fingerprint, read_basis_header, read_face_vector_sequence, read_tangent_field,
+    write_face_vector_sequence, write_tangent_field, BasisFileKey, EnergySplit, FieldIoError,
+    NpyDtype, SpectralBasis,
 };
 
 /// A mesh, its face fields and a basis that belongs to it.
@@ -83,11 +83,7 @@ pub fn read_frames(path: &Path, fields: &FaceFields) -> Result<(Vec<Vec<f64>>, F
             .with_context(|| format!("cannot list the frame folder {}", path.display()))?
             .filter_map(|entry| entry.ok().map(|e| e.path()))
             .filter(|p| {
-                p.is_file()
-                    && matches!(
-                        p.extension().and_then(|e| e.to_str()),
-                        Some("npy" | "txt")
-                    )
+                p.is_file() && matches!(p.extension().and_then(|e| e.to_str()), Some("npy" | "txt"))
             })
             .collect();
         files.sort();
@@ -142,7 +138,10 @@ pub fn write_frames(out: &Path, fields: &FaceFields, frames: &[Vec<f64>]) -> Res
         .iter()
         .map(|f| fields.to_vectors(f))
         .collect::<Result<Vec<_>, _>>()?;
-    if out.extension().is_some_and(|e| e.eq_ignore_ascii_case("npy")) {
+    if out
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"))
+    {
         write_face_vector_sequence(out, &vectors, NpyDtype::F64)?;
     } else {
         std::fs::create_dir_all(out)
@@ -181,5 +180,6 @@ fn energies<H: HodgeComplex>(complex: &H, field: &[f64]) -> Result<EnergySplit> 
 
 /// Creates the output folder `dir` (and its parents).
 pub fn create_output_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot create the folder {}", dir.display()))
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("cannot create the folder {}", dir.display()))
 }
