@@ -8,7 +8,10 @@ use tvf_core::io::write_obj;
 use tvf_spectral::read_face_vectors;
 
 fn tvf(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_tvf")).args(args).output().expect("the tvf binary runs")
+    Command::new(env!("CARGO_BIN_EXE_tvf"))
+        .args(args)
+        .output()
+        .expect("the tvf binary runs")
 }
 
 const CONSTRAINTS: &str = r#"{"omega": 0.1, "constraints": [
@@ -19,12 +22,16 @@ const CONSTRAINTS: &str = r#"{"omega": 0.1, "constraints": [
   {"id": "swirl", "kind": "curl", "face": 150, "barycentric": [0.3, 0.3, 0.4], "value": 1.0}]}"#;
 
 fn setup(dir: &Path) -> (String, String, usize) {
-    let mesh = genus_surface(1, 6);
+    let mesh = genus_surface(1, 4);
     let mesh_path = dir.join("ring.obj");
     write_obj(&mesh_path, &mesh).expect("write mesh");
     let constraints = dir.join("c.json");
     std::fs::write(&constraints, CONSTRAINTS).expect("write constraints");
-    (mesh_path.display().to_string(), constraints.display().to_string(), mesh.face_count())
+    (
+        mesh_path.display().to_string(),
+        constraints.display().to_string(),
+        mesh.face_count(),
+    )
 }
 
 /// The relative residual printed for constraint `id`.
@@ -33,7 +40,10 @@ fn printed_residual(stdout: &str, id: &str) -> f64 {
         .lines()
         .find(|l| l.split_whitespace().next() == Some(id))
         .unwrap_or_else(|| panic!("no residual line for {id} in:\n{stdout}"));
-    line.split_whitespace().nth(2).and_then(|v| v.parse().ok()).expect("relative residual")
+    line.split_whitespace()
+        .nth(2)
+        .and_then(|v| v.parse().ok())
+        .expect("relative residual")
 }
 
 #[test]
@@ -41,10 +51,26 @@ fn spline_meets_the_constraints_and_writes_a_field() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, constraints, faces) = setup(dir.path());
     let out = dir.path().join("spline.npy");
-    let output = tvf(&["spline", &mesh, "--constraints", &constraints, "-k", "150", "-o", out.to_str().unwrap()]);
+    let output = tvf(&[
+        "spline",
+        &mesh,
+        "--constraints",
+        &constraints,
+        "-k",
+        "400",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(output.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&output.stderr));
-    assert!(stdout.contains("spline setup") && stdout.contains("spline solve"), "{stdout}");
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        stdout.contains("spline setup") && stdout.contains("spline solve"),
+        "{stdout}"
+    );
     for id in ["east", "north", "source", "vortex", "swirl"] {
         assert!(printed_residual(&stdout, id) < 1e-9, "{id}: {stdout}");
     }
@@ -60,21 +86,58 @@ fn design_full_and_reduced_write_fields_and_report_residuals() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, constraints, faces) = setup(dir.path());
     let full = dir.path().join("full.npy");
-    let output = tvf(&["design", &mesh, "--constraints", &constraints, "--full", "-o", full.to_str().unwrap()]);
+    let output = tvf(&[
+        "design",
+        &mesh,
+        "--constraints",
+        &constraints,
+        "--full",
+        "-o",
+        full.to_str().unwrap(),
+    ]);
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(output.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&output.stderr));
-    assert!(stdout.contains("full factor") && stdout.contains("system residual"), "{stdout}");
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        stdout.contains("full factor") && stdout.contains("system residual"),
+        "{stdout}"
+    );
     // Soft constraints: finite residuals, not all met exactly.
-    let soft: Vec<f64> = ["east", "north", "vortex"].iter().map(|id| printed_residual(&stdout, id)).collect();
-    assert!(soft.iter().all(|r| r.is_finite()) && soft.iter().any(|&r| r > 1e-4), "{stdout}");
+    let soft: Vec<f64> = ["east", "north", "vortex"]
+        .iter()
+        .map(|id| printed_residual(&stdout, id))
+        .collect();
+    assert!(
+        soft.iter().all(|r| r.is_finite()) && soft.iter().any(|&r| r > 1e-4),
+        "{stdout}"
+    );
     assert_eq!(read_face_vectors(&full).unwrap().len(), faces);
 
     let reduced = dir.path().join("reduced.txt");
-    let output =
-        tvf(&["design", &mesh, "--constraints", &constraints, "--reduced", "-k", "150", "-o", reduced.to_str().unwrap()]);
+    let output = tvf(&[
+        "design",
+        &mesh,
+        "--constraints",
+        &constraints,
+        "--reduced",
+        "-k",
+        "400",
+        "-o",
+        reduced.to_str().unwrap(),
+    ]);
     let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(output.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&output.stderr));
-    assert!(stdout.contains("reduced factor") && stdout.contains("reduced solve"), "{stdout}");
+    assert!(
+        output.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(
+        stdout.contains("reduced factor") && stdout.contains("reduced solve"),
+        "{stdout}"
+    );
     assert_eq!(read_face_vectors(&reduced).unwrap().len(), faces);
 }
 
@@ -83,13 +146,28 @@ fn bad_constraint_files_are_reported_with_file_and_id() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, _, _) = setup(dir.path());
     let bad = dir.path().join("bad.json");
-    std::fs::write(&bad, r#"{"constraints": [{"id": "far", "kind": "vector", "face": 999999, "value": [1, 0, 0]}]}"#)
-        .unwrap();
+    std::fs::write(
+        &bad,
+        r#"{"constraints": [{"id": "far", "kind": "vector", "face": 999999, "value": [1, 0, 0]}]}"#,
+    )
+    .unwrap();
     let out = dir.path().join("x.npy");
-    let output = tvf(&["spline", &mesh, "--constraints", bad.to_str().unwrap(), "-k", "20", "-o", out.to_str().unwrap()]);
+    let output = tvf(&[
+        "spline",
+        &mesh,
+        "--constraints",
+        bad.to_str().unwrap(),
+        "-k",
+        "400",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(1));
-    assert!(stderr.contains("bad.json") && stderr.contains("'far'") && stderr.contains("out of range"), "{stderr}");
+    assert!(
+        stderr.contains("bad.json") && stderr.contains("'far'") && stderr.contains("out of range"),
+        "{stderr}"
+    );
     assert!(!out.exists());
 
     let twice = dir.path().join("twice.json");
@@ -99,8 +177,20 @@ fn bad_constraint_files_are_reported_with_file_and_id() {
                             {"id": "b", "kind": "vector", "face": 3, "value": [0, 1, 0]}]}"#,
     )
     .unwrap();
-    let output = tvf(&["spline", &mesh, "--constraints", twice.to_str().unwrap(), "-k", "60", "-o", out.to_str().unwrap()]);
+    let output = tvf(&[
+        "spline",
+        &mesh,
+        "--constraints",
+        twice.to_str().unwrap(),
+        "-k",
+        "400",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(1));
-    assert!(stderr.contains("'b'") && stderr.contains("conflicting") && stderr.contains("\"a\""), "{stderr}");
+    assert!(
+        stderr.contains("'b'") && stderr.contains("conflicting") && stderr.contains("\"a\""),
+        "{stderr}"
+    );
 }

@@ -25,12 +25,18 @@ use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::load_mesh;
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    default_regularization, CompiledConstraint, Constraint, ConstraintAssembler, FullSoftDesign, Location,
-    ReducedBasis, ReducedSoftDesign, SoftOptions, SplineSession, Target,
+    default_regularization, CompiledConstraint, Constraint, ConstraintAssembler, FullSoftDesign,
+    Location, ReducedBasis, ReducedSoftDesign, SoftOptions, SplineSession, Target,
 };
 use tvf_discretizations::{Conforming, MassLumping};
 
-const MESHES: [&str; 5] = ["hand", "rocker-arm", "bunny-closed", "bumpy-torus-x4", "armadillo-x4"];
+const MESHES: [&str; 5] = [
+    "hand",
+    "rocker-arm",
+    "bunny-closed",
+    "bumpy-torus-x4",
+    "armadillo-x4",
+];
 const FIELDS: usize = 1000;
 const OMEGA: f64 = 0.1;
 const FULL_DESIGN_FACE_LIMIT: usize = 100_000;
@@ -45,14 +51,29 @@ fn constraints(mesh: &SurfaceMesh, seed: u64) -> Vec<Constraint> {
     let mut out = Vec::new();
     for k in 0..30 {
         let face = rng.random_range(0..mesh.face_count());
-        let location = Location::Face { face, barycentric: None };
+        let location = Location::Face {
+            face,
+            barycentric: None,
+        };
         let c = match k {
             0..24 => {
-                let v = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
+                let v = [
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                    rng.random_range(-1.0..1.0),
+                ];
                 Constraint::new(format!("v{k}"), Target::Vector(v), location)
             }
-            24..27 => Constraint::new(format!("d{k}"), Target::Divergence(1.0), Location::Vertex(mesh.faces()[face][0])),
-            _ => Constraint::new(format!("c{k}"), Target::Curl(-1.0), Location::Edge(mesh.face_edges()[face][0])),
+            24..27 => Constraint::new(
+                format!("d{k}"),
+                Target::Divergence(1.0),
+                Location::Vertex(mesh.faces()[face][0]),
+            ),
+            _ => Constraint::new(
+                format!("c{k}"),
+                Target::Curl(-1.0),
+                Location::Edge(mesh.face_edges()[face][0]),
+            ),
         };
         out.push(c);
     }
@@ -63,17 +84,19 @@ fn constraints(mesh: &SurfaceMesh, seed: u64) -> Vec<Constraint> {
 fn random_basis(mass: &[f64], d: usize) -> ReducedBasis {
     let n = mass.len();
     let mut rows = vec![0.0; n * d];
-    rows.par_chunks_mut(d * 1024).enumerate().for_each(|(block, chunk)| {
-        let mut rng = ChaCha8Rng::seed_from_u64(block as u64);
-        for (k, row) in chunk.chunks_mut(d).enumerate() {
-            let scale = 1.0 / ((n as f64) * mass[block * 1024 + k]).sqrt();
-            for x in row.iter_mut() {
-                // Sum of uniforms: cheap, zero mean, unit variance, generic enough for timing.
-                let u: f64 = (0..3).map(|_| rng.random::<f64>()).sum::<f64>() - 1.5;
-                *x = 2.0 * u * scale;
+    rows.par_chunks_mut(d * 1024)
+        .enumerate()
+        .for_each(|(block, chunk)| {
+            let mut rng = ChaCha8Rng::seed_from_u64(block as u64);
+            for (k, row) in chunk.chunks_mut(d).enumerate() {
+                let scale = 1.0 / ((n as f64) * mass[block * 1024 + k]).sqrt();
+                for x in row.iter_mut() {
+                    // Sum of uniforms: cheap, zero mean, unit variance, generic enough for timing.
+                    let u: f64 = (0..3).map(|_| rng.random::<f64>()).sum::<f64>() - 1.5;
+                    *x = 2.0 * u * scale;
+                }
             }
-        }
-    });
+        });
     let eigenvalues = (0..d).map(|i| 1.0 + i as f64).collect();
     ReducedBasis::from_row_major(rows, n, eigenvalues, vec![false; d]).expect("valid random basis")
 }
@@ -86,17 +109,25 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     };
     let mesh = loaded.mesh;
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
-    let compiled: Vec<CompiledConstraint> =
-        ConstraintAssembler::new(&complex, &mesh).compile_all(&constraints(&mesh, 1)).expect("constraints");
-    let other: Vec<CompiledConstraint> =
-        ConstraintAssembler::new(&complex, &mesh).compile_all(&constraints(&mesh, 2)).expect("constraints");
+    let compiled: Vec<CompiledConstraint> = ConstraintAssembler::new(&complex, &mesh)
+        .compile_all(&constraints(&mesh, 1))
+        .expect("constraints");
+    let other: Vec<CompiledConstraint> = ConstraintAssembler::new(&complex, &mesh)
+        .compile_all(&constraints(&mesh, 2))
+        .expect("constraints");
     let basis = random_basis(complex.m1(), FIELDS);
     let dirichlet = complex.dirichlet_energy();
-    let options = SoftOptions { omega: OMEGA, regularization: default_regularization(&dirichlet, complex.m1()) };
+    let options = SoftOptions {
+        omega: OMEGA,
+        regularization: default_regularization(&dirichlet, complex.m1()),
+    };
     let label = format!("{name} ({} faces)", mesh.face_count());
 
     let mut group = c.benchmark_group(format!("spline/{name}"));
-    group.sample_size(20).warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_secs(2));
+    group
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
     group.bench_function("setup", |b| {
         b.iter(|| {
             let mut session = SplineSession::new(&basis, OMEGA).unwrap();
@@ -113,18 +144,27 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     group.bench_function("solve (reduced)", |b| b.iter(|| black_box(session.solve())));
     let v = session.solve();
     let mut x = vec![0.0; basis.field_dimension()];
-    group.bench_function("map f64", |b| b.iter(|| basis.map(black_box(&v), &mut x).unwrap()));
+    group.bench_function("map f64", |b| {
+        b.iter(|| basis.map(black_box(&v), &mut x).unwrap())
+    });
     group.bench_function("stream U f64", |b| b.iter(|| black_box(basis.stream_sum())));
     let single = basis.to_f32();
     let v32: Vec<f32> = v.iter().map(|&a| a as f32).collect();
     let mut x32 = vec![0.0f32; basis.field_dimension()];
-    group.bench_function("map f32", |b| b.iter(|| single.map(black_box(&v32), &mut x32).unwrap()));
-    group.bench_function("stream U f32", |b| b.iter(|| black_box(single.stream_sum())));
+    group.bench_function("map f32", |b| {
+        b.iter(|| single.map(black_box(&v32), &mut x32).unwrap())
+    });
+    group.bench_function("stream U f32", |b| {
+        b.iter(|| black_box(single.stream_sum()))
+    });
     drop(single);
     group.finish();
 
     let mut group = c.benchmark_group(format!("reduced soft/{name}"));
-    group.sample_size(10).warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_secs(3));
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(3));
     group.bench_function("factor", |b| {
         b.iter(|| {
             let mut design = ReducedSoftDesign::new(&basis, options).unwrap();
@@ -137,7 +177,12 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     group.bench_function("solve (reduced)", |b| b.iter(|| black_box(design.solve())));
     group.bench_function("add + remove one vector constraint", |b| {
         b.iter(|| {
-            design.add(CompiledConstraint { id: "extra".into(), ..other[0].clone() }).unwrap();
+            design
+                .add(CompiledConstraint {
+                    id: "extra".into(),
+                    ..other[0].clone()
+                })
+                .unwrap();
             design.remove("extra").unwrap();
         })
     });
@@ -152,22 +197,42 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
         return;
     }
     let mut group = c.benchmark_group(format!("full soft/{name}"));
-    group.sample_size(10).warm_up_time(Duration::from_millis(100)).measurement_time(Duration::from_secs(5));
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(100))
+        .measurement_time(Duration::from_secs(5));
     group.bench_function("factor", |b| {
-        b.iter(|| black_box(FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone()).unwrap()))
+        b.iter(|| {
+            black_box(
+                FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone())
+                    .unwrap(),
+            )
+        })
     });
-    let mut full = FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone()).unwrap();
+    let mut full =
+        FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone()).unwrap();
     let mut flip = false;
     group.bench_function("refactor (symbolic reused)", |b| {
         b.iter(|| {
             flip = !flip;
-            assert!(full.set_constraints(if flip { other.clone() } else { compiled.clone() }).unwrap());
+            assert!(full
+                .set_constraints(if flip {
+                    other.clone()
+                } else {
+                    compiled.clone()
+                })
+                .unwrap());
         })
     });
     full.set_constraints(compiled.clone()).unwrap();
-    group.bench_function("solve (with refinement)", |b| b.iter(|| black_box(full.solve())));
+    group.bench_function("solve (with refinement)", |b| {
+        b.iter(|| black_box(full.solve()))
+    });
     let (_, report) = full.solve();
-    eprintln!("{label}: full soft design, relative residuals {:?}", report.residuals);
+    eprintln!(
+        "{label}: full soft design, relative residuals {:?}",
+        report.residuals
+    );
     group.finish();
 }
 

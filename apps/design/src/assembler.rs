@@ -1,7 +1,9 @@
 //! [`ConstraintAssembler`]: turns [`Constraint`]s into rows `C̃` over the field coefficients, for
 //! any [`HodgeComplex`].
 
-use crate::constraint::{CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target};
+use crate::constraint::{
+    CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target,
+};
 use crate::error::ConstraintError;
 use sprs::CsMat;
 use std::collections::{BTreeMap, HashSet};
@@ -118,7 +120,10 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
     }
 
     /// Compiles a whole list, rejecting duplicate ids.
-    pub fn compile_all(&self, constraints: &[Constraint]) -> Result<Vec<CompiledConstraint>, ConstraintError> {
+    pub fn compile_all(
+        &self,
+        constraints: &[Constraint],
+    ) -> Result<Vec<CompiledConstraint>, ConstraintError> {
         let mut seen = HashSet::new();
         constraints
             .iter()
@@ -166,7 +171,8 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
         let Location::Face { face, .. } = location else {
             return Err(ConstraintError::BadLocation {
                 id: id.to_string(),
-                problem: "a vector constraint needs a \"face\" (vectors are constant per face)".into(),
+                problem: "a vector constraint needs a \"face\" (vectors are constant per face)"
+                    .into(),
             });
         };
         let [e1, e2] = self.complex.fields().frame(face);
@@ -208,7 +214,9 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
                 let b = barycentric.unwrap_or([1.0 / 3.0; 3]);
                 match space {
                     Space::Potentials => self.complex.potentials().interpolation_weights(face, b),
-                    Space::CoPotentials => self.complex.co_potentials().interpolation_weights(face, b),
+                    Space::CoPotentials => {
+                        self.complex.co_potentials().interpolation_weights(face, b)
+                    }
                 }
             }
             Location::Vertex(node) => {
@@ -252,20 +260,20 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
         match expected {
             Some((key, _)) if key == given => Ok(()),
             _ => {
-                let (nodes_key, nodes) = expected.unwrap_or(("face", "nodes that are neither vertices nor edges"));
+                let (nodes_key, nodes) =
+                    expected.unwrap_or(("face", "nodes that are neither vertices nor edges"));
                 let other_family = match constraint.family {
                     OperatorFamily::Decomposition => OperatorFamily::Other,
                     OperatorFamily::Other => OperatorFamily::Decomposition,
                 };
                 Err(ConstraintError::NodeKindMismatch {
                     id: constraint.id.clone(),
-                    kind,
-                    family: constraint.family.name(),
-                    space: space_name.to_string(),
-                    nodes,
-                    nodes_key,
-                    other_family: other_family.name(),
-                    given,
+                    detail: format!(
+                        "the {} {kind} lives on the nodes of {space_name} ({nodes}), not on {given}s; \
+                         use \"{nodes_key}\" (or \"family\": \"{}\")",
+                        constraint.family.name(),
+                        other_family.name()
+                    ),
                 })
             }
         }
@@ -274,7 +282,8 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
 
 /// Checks that `b` is finite, non-negative and sums to 1 (to 1e-9).
 pub(crate) fn check_barycentric(id: &str, b: [f64; 3]) -> Result<(), ConstraintError> {
-    let ok = b.iter().all(|x| x.is_finite() && *x >= 0.0) && (b.iter().sum::<f64>() - 1.0).abs() <= BARYCENTRIC_TOLERANCE;
+    let ok = b.iter().all(|x| x.is_finite() && *x >= 0.0)
+        && (b.iter().sum::<f64>() - 1.0).abs() <= BARYCENTRIC_TOLERANCE;
     if ok {
         Ok(())
     } else {

@@ -89,10 +89,11 @@ impl ConstraintSet {
 
     /// Parses and validates JSON text; `origin` names the source in errors.
     pub fn parse(text: &str, origin: &Path) -> Result<Self, ConstraintFileError> {
-        let record: SetRecord = serde_json::from_str(text).map_err(|source| ConstraintFileError::Json {
-            path: origin.to_path_buf(),
-            source,
-        })?;
+        let record: SetRecord =
+            serde_json::from_str(text).map_err(|source| ConstraintFileError::Json {
+                path: origin.to_path_buf(),
+                source,
+            })?;
         let omega = record.omega.unwrap_or(DEFAULT_OMEGA);
         if !(omega.is_finite() && omega >= 0.0) {
             return Err(ConstraintFileError::BadOmega {
@@ -120,7 +121,11 @@ impl ConstraintSet {
     }
 
     /// Checks the file's fingerprint (if any) against the mesh's; `origin` names the file.
-    pub fn check_fingerprint(&self, actual: &str, origin: &Path) -> Result<(), ConstraintFileError> {
+    pub fn check_fingerprint(
+        &self,
+        actual: &str,
+        origin: &Path,
+    ) -> Result<(), ConstraintFileError> {
         match &self.mesh_fingerprint {
             Some(expected) if expected != actual => Err(ConstraintFileError::FingerprintMismatch {
                 path: PathBuf::from(origin),

@@ -29,7 +29,9 @@ pub enum ConstraintError {
         count: usize,
     },
     /// Barycentric coordinates that are negative, non-finite or do not sum to 1.
-    #[error("constraint '{id}': barycentric coordinates {values:?} must be non-negative and sum to 1")]
+    #[error(
+        "constraint '{id}': barycentric coordinates {values:?} must be non-negative and sum to 1"
+    )]
     BadBarycentric {
         /// Constraint id.
         id: String,
@@ -71,28 +73,14 @@ pub enum ConstraintError {
         /// What is wrong.
         problem: String,
     },
-    /// A `vertex` or `edge` key addresses nodes of a space the requested operator does not live in.
-    #[error(
-        "constraint '{id}': the {family} {kind} lives on the nodes of {space} ({nodes}), not on {given}s; \
-         use \"{nodes_key}\" (or \"family\": \"{other_family}\")"
-    )]
+    /// A `vertex` or `edge` key addresses nodes of a space the requested operator does not live
+    /// in; `detail` says which key (or family) to use instead.
+    #[error("constraint '{id}': {detail}")]
     NodeKindMismatch {
         /// Constraint id.
         id: String,
-        /// `divergence` or `curl`.
-        kind: &'static str,
-        /// `decomposition` or `other`.
-        family: &'static str,
-        /// Name of the function space the operator maps into.
-        space: String,
-        /// What its nodes are (`vertices`, `edges`).
-        nodes: &'static str,
-        /// The JSON key to use instead.
-        nodes_key: &'static str,
-        /// The family that would accept the given key.
-        other_family: &'static str,
-        /// The key that was given (`vertex` or `edge`).
-        given: &'static str,
+        /// What the operator's nodes are and which key fits.
+        detail: String,
     },
     /// The constraint's row is identically zero (e.g. a node no face uses).
     #[error("constraint '{id}': its row is zero (the node is not used by any face)")]
@@ -146,7 +134,9 @@ pub enum ConstraintFileError {
         omega: f64,
     },
     /// The file names a mesh fingerprint that differs from the mesh's.
-    #[error("{path}: written for mesh fingerprint {expected}, but the mesh has fingerprint {actual}")]
+    #[error(
+        "{path}: written for mesh fingerprint {expected}, but the mesh has fingerprint {actual}"
+    )]
     FingerprintMismatch {
         /// The file.
         path: PathBuf,

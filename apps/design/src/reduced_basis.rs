@@ -37,15 +37,21 @@ impl ReducedBasis {
         let u = basis.fields();
         let (n, d) = (u.nrows(), u.ncols());
         let mut rows = vec![0.0; n * d];
-        rows.par_chunks_mut(d.max(1) * 256).enumerate().for_each(|(block, out)| {
-            let first = block * 256;
-            for (k, row) in out.chunks_mut(d.max(1)).enumerate() {
-                for (j, value) in row.iter_mut().enumerate() {
-                    *value = u[(first + k, j)];
+        rows.par_chunks_mut(d.max(1) * 256)
+            .enumerate()
+            .for_each(|(block, out)| {
+                let first = block * 256;
+                for (k, row) in out.chunks_mut(d.max(1)).enumerate() {
+                    for (j, value) in row.iter_mut().enumerate() {
+                        *value = u[(first + k, j)];
+                    }
                 }
-            }
-        });
-        let harmonic = basis.families().iter().map(|f| *f == FieldFamily::Harmonic).collect();
+            });
+        let harmonic = basis
+            .families()
+            .iter()
+            .map(|f| *f == FieldFamily::Harmonic)
+            .collect();
         Self::from_row_major(rows, n, basis.eigenvalues().to_vec(), harmonic)
     }
 
@@ -133,7 +139,9 @@ impl ReducedBasis {
             .map(|(l, _)| *l)
             .fold(f64::INFINITY, f64::min);
         if !lowest.is_finite() {
-            return Err(DesignError::BadBasis("no non-harmonic field to scale the harmonic ones".into()));
+            return Err(DesignError::BadBasis(
+                "no non-harmonic field to scale the harmonic ones".into(),
+            ));
         }
         Ok(self
             .eigenvalues
@@ -172,7 +180,10 @@ impl ReducedBasis {
     /// Sum of all entries of `U`, multithreaded: reads `U` once, the memory-streaming reference
     /// the map `x = U v` is measured against.
     pub fn stream_sum(&self) -> f64 {
-        self.rows.par_chunks(ROWS_PER_TASK * self.len().max(1)).map(lane_sum).sum()
+        self.rows
+            .par_chunks(ROWS_PER_TASK * self.len().max(1))
+            .map(lane_sum)
+            .sum()
     }
 
     /// A single-precision copy of `U` for [`ReducedBasisF32::map`].
@@ -203,7 +214,12 @@ impl ReducedBasisF32 {
     /// terms, relative error about `d · 6e-8` of `Σ|U_rk v_k|`).
     pub fn map(&self, coefficients: &[f32], field: &mut [f32]) -> Result<(), DesignError> {
         let d = self.len;
-        check_map(d, self.rows.len() / d.max(1), coefficients.len(), field.len())?;
+        check_map(
+            d,
+            self.rows.len() / d.max(1),
+            coefficients.len(),
+            field.len(),
+        )?;
         field
             .par_chunks_mut(ROWS_PER_TASK)
             .zip(self.rows.par_chunks(ROWS_PER_TASK * d.max(1)))

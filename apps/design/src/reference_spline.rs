@@ -42,7 +42,8 @@ pub fn reference_spline<H: HodgeComplex>(
         }
     }
     let dirichlet = complex.dirichlet_energy();
-    let energy: CsMat<f64> = linear_combination(1.0, &complex.biharmonic_energy(), omega, &dirichlet);
+    let energy: CsMat<f64> =
+        linear_combination(1.0, &complex.biharmonic_energy(), omega, &dirichlet);
     let screened: Vec<f64> = complex.m1().iter().map(|m| epsilon * m).collect();
     let matrix = linear_combination(1.0, &energy, 1.0, &diagonal(&screened));
     let factor = SparseCholesky::new(&matrix)?;
@@ -70,11 +71,15 @@ pub fn reference_spline<H: HodgeComplex>(
         solve_reports.push(report);
     }
     let nc = rows.len();
-    let schur = Mat::from_fn(nc, nc, |i, j| rows[i].0.iter().map(|&(k, a)| a * z[j][k]).sum::<f64>());
+    let schur = Mat::from_fn(nc, nc, |i, j| {
+        rows[i].0.iter().map(|&(k, a)| a * z[j][k]).sum::<f64>()
+    });
     let schur = Mat::from_fn(nc, nc, |i, j| 0.5 * (schur[(i, j)] + schur[(j, i)]));
-    let llt = schur
-        .llt(Side::Lower)
-        .map_err(|_| DesignError::NotPositiveDefinite("the full-resolution Schur complement C̃ A⁻¹ C̃ᵀ (dependent constraints?)".into()))?;
+    let llt = schur.llt(Side::Lower).map_err(|_| {
+        DesignError::NotPositiveDefinite(
+            "the full-resolution Schur complement C̃ A⁻¹ C̃ᵀ (dependent constraints?)".into(),
+        )
+    })?;
     let c = Mat::from_fn(nc, 1, |i, _| rows[i].1);
     let mu = llt.solve(&c);
     let mut field = vec![0.0; n];

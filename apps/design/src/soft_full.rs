@@ -12,10 +12,10 @@ use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_solvers::convert::upper_triangle_csc;
 use tvf_solvers::{SolverError, SparseLdlt};
 
-/// Stop refining once the relative residual is below this.
+/// Stop refining once the relative residual `‖b − Ax‖/‖b‖` is below this.
 const REFINEMENT_TARGET: f64 = 1e-12;
 /// At most this many refinement steps.
-const MAX_REFINEMENT_STEPS: usize = 20;
+const MAX_REFINEMENT_STEPS: usize = 50;
 
 /// Parameters of soft design (full and reduced use the same ones, so that they agree).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -38,7 +38,7 @@ pub fn default_regularization(dirichlet: &CsMat<f64>, mass: &[f64]) -> f64 {
 }
 
 /// What a full solve did: the relative residual `‖b − A x‖₂ / ‖b‖₂` after the direct solve and
-/// after every refinement step (`x ← x + A⁻¹(b − A x)`, with the same factorization).
+/// after every refinement step (preconditioned conjugate gradients with the factorization).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolveReport {
     /// Residual history; the last entry is the residual of the returned field.
@@ -92,7 +92,12 @@ impl FullSoftDesign {
         options: SoftOptions,
         constraints: Vec<CompiledConstraint>,
     ) -> Result<Self, DesignError> {
-        Self::from_matrices(&complex.dirichlet_energy(), complex.m1(), options, constraints)
+        Self::from_matrices(
+            &complex.dirichlet_energy(),
+            complex.m1(),
+            options,
+            constraints,
+        )
     }
 
     /// The same from the Dirichlet energy `S` (`2F × 2F`, integrated, symmetric) and the diagonal
@@ -113,7 +118,11 @@ impl FullSoftDesign {
             });
         }
         check_columns(&constraints, n)?;
-        let dirichlet = if dirichlet.is_csr() { dirichlet.clone() } else { dirichlet.to_csr() };
+        let dirichlet = if dirichlet.is_csr() {
+            dirichlet.clone()
+        } else {
+            dirichlet.to_csr()
+        };
         let screened: Vec<f64> = mass.iter().map(|m| options.regularization * m).collect();
         let base = linear_combination(1.0, &dirichlet, 1.0, &diagonal(&screened));
         let base = grow_pattern(&base, &constraints);
@@ -133,7 +142,10 @@ impl FullSoftDesign {
 
     /// Replaces the constraints and refactors (numerically only when the pattern holds them).
     /// Returns whether the symbolic analysis was reused.
-    pub fn set_constraints(&mut self, constraints: Vec<CompiledConstraint>) -> Result<bool, DesignError> {
+    pub fn set_constraints(
+        &mut self,
+        constraints: Vec<CompiledConstraint>,
+    ) -> Result<bool, DesignError> {
         check_columns(&constraints, self.base.rows())?;
         let fits = constraint_gram_entries(&constraints)
             .iter()
@@ -188,7 +200,11 @@ impl FullSoftDesign {
     pub fn apply(&self, x: &[f64]) -> Vec<f64> {
         let mut y = mul_vec(&self.top, x);
         if self.omega > 0.0 {
-            let sx: Vec<f64> = mul_vec(&self.dirichlet, x).iter().zip(&self.mass).map(|(v, m)| v / m).collect();
+            let sx: Vec<f64> = mul_vec(&self.dirichlet, x)
+                .iter()
+                .zip(&self.mass)
+                .map(|(v, m)| v / m)
+                .collect();
             for (yi, v) in y.iter_mut().zip(mul_vec(&self.dirichlet, &sx)) {
                 *yi += self.omega * v;
             }
@@ -201,11 +217,15 @@ impl FullSoftDesign {
     pub fn solve(&self) -> (Vec<f64>, SolveReport) {
         let b = self.right_hand_side();
         let n = b.len();
-        refined_solve(|x| self.apply(x), &b, |r| {
-            let mut rhs = Mat::from_fn(2 * n, 1, |i, _| if i < n { r[i] } else { 0.0 });
-            self.factor.solve_in_place(rhs.as_mut());
-            (0..n).map(|i| rhs[(i, 0)]).collect()
-        })
+        refined_solve(
+            |x| self.apply(x),
+            &b,
+            |r| {
+                let mut rhs = Mat::from_fn(2 * n, 1, |i, _| if i < n { r[i] } else { 0.0 });
+                self.factor.solve_in_place(rhs.as_mut());
+                (0..n).map(|i| rhs[(i, 0)]).collect()
+            },
+        )
     }
 }
 
@@ -247,7 +267,12 @@ fn augmented_upper(
     Ok(upper_triangle_csc(&csr)?)
 }
 
-fn factor_augmented(top: &CsMat<f64>, dirichlet: &CsMat<f64>, omega: f64, mass: &[f64]) -> Result<SparseLdlt, DesignError> {
+fn factor_augmented(
+    top: &CsMat<f64>,
+    dirichlet: &CsMat<f64>,
+    omega: f64,
+    mass: &[f64],
+) -> Result<SparseLdlt, DesignError> {
     let augmented = augmented_upper(top, dirichlet, omega, mass)?;
     let factor = SparseLdlt::new(augmented.as_ref())?;
     check_inertia(&factor)?;
@@ -269,45 +294,65 @@ fn check_inertia(factor: &SparseLdlt) -> Result<(), DesignError> {
     }
 }
 
-/// `x = A⁻¹ b` by a direct solve followed by iterative refinement with the same factorization.
+/// `x = A⁻¹ b` for a symmetric positive-definite `A`: a direct solve with the factorization, then
+/// flexible preconditioned conjugate gradients with the factorization as preconditioner (plain
+/// iterative refinement stalls when the factorization is inaccurate, e.g. on meshes with slivers;
+/// PCG converges in a few steps whenever the preconditioned operator is close to `I`).
 pub(crate) fn refined_solve(
     apply: impl Fn(&[f64]) -> Vec<f64>,
     b: &[f64],
     solve: impl Fn(&[f64]) -> Vec<f64>,
 ) -> (Vec<f64>, SolveReport) {
-    let norm_b = b.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let dot = |a: &[f64], c: &[f64]| a.iter().zip(c).map(|(x, y)| x * y).sum::<f64>();
+    let norm_b = dot(b, b).sqrt();
     if norm_b == 0.0 {
-        return (vec![0.0; b.len()], SolveReport { residuals: vec![0.0] });
+        return (
+            vec![0.0; b.len()],
+            SolveReport {
+                residuals: vec![0.0],
+            },
+        );
     }
-    let residual = |x: &[f64]| -> (Vec<f64>, f64) {
-        let ax = apply(x);
-        let r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
-        let norm = r.iter().map(|v| v * v).sum::<f64>().sqrt() / norm_b;
-        (r, norm)
-    };
     let mut x = solve(b);
-    let (mut r, mut norm) = residual(&x);
-    let mut residuals = vec![norm];
+    let ax = apply(&x);
+    let mut r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
+    let mut residuals = vec![dot(&r, &r).sqrt() / norm_b];
+    let mut z = solve(&r);
+    let mut p = z.clone();
+    let mut rz = dot(&r, &z);
     for _ in 0..MAX_REFINEMENT_STEPS {
-        if norm <= REFINEMENT_TARGET || !norm.is_finite() {
+        let last = residuals[residuals.len() - 1];
+        if last <= REFINEMENT_TARGET || !last.is_finite() {
             break;
         }
-        let dx = solve(&r);
-        let candidate: Vec<f64> = x.iter().zip(&dx).map(|(a, d)| a + d).collect();
-        let (r_new, norm_new) = residual(&candidate);
-        if !(norm_new < 0.5 * norm) {
+        let ap = apply(&p);
+        let pap = dot(&p, &ap);
+        if !(pap > 0.0) {
             break;
         }
-        x = candidate;
-        r = r_new;
-        norm = norm_new;
-        residuals.push(norm);
+        let alpha = rz / pap;
+        for ((xi, pi), (ri, api)) in x.iter_mut().zip(&p).zip(r.iter_mut().zip(&ap)) {
+            *xi += alpha * pi;
+            *ri -= alpha * api;
+        }
+        residuals.push(dot(&r, &r).sqrt() / norm_b);
+        let z_new = solve(&r);
+        // Flexible (Polak–Ribière) β: robust to a slightly inexact, non-symmetric preconditioner.
+        let beta = (dot(&r, &z_new) - dot(&r, &z)) / rz;
+        rz = dot(&r, &z_new);
+        z = z_new;
+        for (pi, zi) in p.iter_mut().zip(&z) {
+            *pi = zi + beta.max(0.0) * *pi;
+        }
     }
     (x, SolveReport { residuals })
 }
 
 fn check_options(options: SoftOptions) -> Result<(), DesignError> {
-    for (what, value) in [("omega", options.omega), ("regularization", options.regularization)] {
+    for (what, value) in [
+        ("omega", options.omega),
+        ("regularization", options.regularization),
+    ] {
         if !(value.is_finite() && value >= 0.0) {
             return Err(DesignError::BadParameter { what, value });
         }
@@ -316,7 +361,11 @@ fn check_options(options: SoftOptions) -> Result<(), DesignError> {
 }
 
 fn check_columns(constraints: &[CompiledConstraint], n: usize) -> Result<(), DesignError> {
-    match constraints.iter().flat_map(|c| c.rows.iter().flatten()).find(|(j, _)| *j >= n) {
+    match constraints
+        .iter()
+        .flat_map(|c| c.rows.iter().flatten())
+        .find(|(j, _)| *j >= n)
+    {
         Some(&(j, _)) => Err(DesignError::DimensionMismatch {
             what: "constraint row column (must be < 2F)",
             expected: n,

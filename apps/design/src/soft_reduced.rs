@@ -7,7 +7,9 @@ use crate::error::DesignError;
 use crate::reduced_basis::ReducedBasis;
 use crate::soft_full::SoftOptions;
 use faer::linalg::cholesky::llt::update::rank_r_update_clobber;
-use faer::linalg::triangular_solve::{solve_lower_triangular_in_place, solve_upper_triangular_in_place};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
 use faer::{Col, Mat, Par};
 
 /// One active soft constraint and its reduced rows `C̃_row U`.
@@ -36,7 +38,10 @@ pub struct ReducedSoftDesign<'a> {
 impl<'a> ReducedSoftDesign<'a> {
     /// The system without constraints.
     pub fn new(basis: &'a ReducedBasis, options: SoftOptions) -> Result<Self, DesignError> {
-        for (what, value) in [("omega", options.omega), ("regularization", options.regularization)] {
+        for (what, value) in [
+            ("omega", options.omega),
+            ("regularization", options.regularization),
+        ] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(DesignError::BadParameter { what, value });
             }
@@ -77,7 +82,11 @@ impl<'a> ReducedSoftDesign<'a> {
                 actual: j,
             });
         }
-        let reduced: Vec<Vec<f64>> = constraint.rows.iter().map(|r| self.basis.reduce_row(r)).collect();
+        let reduced: Vec<Vec<f64>> = constraint
+            .rows
+            .iter()
+            .map(|r| self.basis.reduce_row(r))
+            .collect();
         self.update(&reduced, constraint.weight)?;
         self.active.push(Active {
             compiled: constraint,
@@ -87,7 +96,10 @@ impl<'a> ReducedSoftDesign<'a> {
     }
 
     /// Adds several constraints (one rank-`r` update each).
-    pub fn add_all(&mut self, constraints: impl IntoIterator<Item = CompiledConstraint>) -> Result<(), DesignError> {
+    pub fn add_all(
+        &mut self,
+        constraints: impl IntoIterator<Item = CompiledConstraint>,
+    ) -> Result<(), DesignError> {
         constraints.into_iter().try_for_each(|c| self.add(c))
     }
 
@@ -150,8 +162,15 @@ impl<'a> ReducedSoftDesign<'a> {
         let d = self.basis.len();
         let mut w = Mat::from_fn(d, reduced.len(), |i, j| reduced[j][i]);
         let mut alpha = Col::from_fn(reduced.len(), |_| weight);
-        rank_r_update_clobber(self.factor.as_mut(), w.as_mut(), alpha.as_mut().as_diagonal_mut()).map_err(|_| {
-            DesignError::NotPositiveDefinite("the updated reduced soft-design system (its factor is no longer usable)".into())
+        rank_r_update_clobber(
+            self.factor.as_mut(),
+            w.as_mut(),
+            alpha.as_mut().as_diagonal_mut(),
+        )
+        .map_err(|_| {
+            DesignError::NotPositiveDefinite(
+                "the updated reduced soft-design system (its factor is no longer usable)".into(),
+            )
         })
     }
 

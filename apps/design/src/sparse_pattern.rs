@@ -6,7 +6,9 @@ use crate::constraint::CompiledConstraint;
 use sprs::CsMat;
 
 /// The entries `(i, j)` (both triangles) of `C̃ᵀ W C̃` for a set of constraints.
-pub(crate) fn constraint_gram_entries(constraints: &[CompiledConstraint]) -> Vec<(usize, usize, f64)> {
+pub(crate) fn constraint_gram_entries(
+    constraints: &[CompiledConstraint],
+) -> Vec<(usize, usize, f64)> {
     let mut entries = Vec::new();
     for c in constraints {
         for row in &c.rows {
@@ -24,7 +26,10 @@ pub(crate) fn constraint_gram_entries(constraints: &[CompiledConstraint]) -> Vec
 pub(crate) fn position(matrix: &CsMat<f64>, row: usize, col: usize) -> Option<usize> {
     let start = matrix.indptr().index(row);
     let end = matrix.indptr().index(row + 1);
-    matrix.indices()[start..end].binary_search(&col).ok().map(|k| start + k)
+    matrix.indices()[start..end]
+        .binary_search(&col)
+        .ok()
+        .map(|k| start + k)
 }
 
 /// `matrix` (CSR, sorted) with its pattern extended by `extra` positions, stored as explicit zeros.
@@ -32,7 +37,10 @@ pub(crate) fn with_extra_entries(matrix: &CsMat<f64>, extra: &[(usize, usize)]) 
     let n = matrix.rows();
     let mut per_row: Vec<Vec<(usize, f64)>> = (0..n)
         .map(|r| {
-            let lane = matrix.outer_view(r).map(|v| v.iter().map(|(c, &x)| (c, x)).collect()).unwrap_or_default();
+            let lane = matrix
+                .outer_view(r)
+                .map(|v| v.iter().map(|(c, &x)| (c, x)).collect())
+                .unwrap_or_default();
             lane
         })
         .collect();

@@ -58,7 +58,10 @@ impl<'a> SplineSession<'a> {
     /// A session without constraints for weight `ω ≥ 0`.
     pub fn new(basis: &'a ReducedBasis, omega: f64) -> Result<Self, DesignError> {
         if !(omega.is_finite() && omega >= 0.0) {
-            return Err(DesignError::BadParameter { what: "omega", value: omega });
+            return Err(DesignError::BadParameter {
+                what: "omega",
+                value: omega,
+            });
         }
         let lambda = basis.regularised_eigenvalues()?;
         let inverse_energy = lambda.iter().map(|&l| 1.0 / (l * l + omega * l)).collect();
@@ -112,10 +115,17 @@ impl<'a> SplineSession<'a> {
                 actual: j,
             });
         }
-        let reduced: Vec<Vec<f64>> = constraint.rows.iter().map(|r| self.basis.reduce_row(r)).collect();
-        let mut appended = 0;
+        let reduced: Vec<Vec<f64>> = constraint
+            .rows
+            .iter()
+            .map(|r| self.basis.reduce_row(r))
+            .collect();
         for (k, row) in reduced.iter().enumerate() {
-            let weighted: Vec<f64> = row.iter().zip(&self.inverse_energy).map(|(c, w)| c * w).collect();
+            let weighted: Vec<f64> = row
+                .iter()
+                .zip(&self.inverse_energy)
+                .map(|(c, w)| c * w)
+                .collect();
             let mut b: Vec<f64> = self.reduced_rows().map(|r| dot(r, &weighted)).collect();
             b.extend(reduced[..k].iter().map(|r| dot(r, &weighted)));
             let gamma = dot(row, &weighted);
@@ -124,14 +134,18 @@ impl<'a> SplineSession<'a> {
             let coefficients = self.factor.solve(&b)?;
             let relative_pivot = (gamma - dot(&b, &coefficients)) / gamma;
             if !(gamma > 0.0 && relative_pivot > self.tolerance) {
-                for _ in 0..appended {
+                for _ in 0..k {
                     self.factor.remove(self.factor.dimension() - 1)?;
                 }
-                return Err(self.dependency_error(&constraint, k, &coefficients, relative_pivot.max(0.0)));
+                return Err(self.dependency_error(
+                    &constraint,
+                    k,
+                    &coefficients,
+                    relative_pivot.max(0.0),
+                ));
             }
             b.push(gamma);
             self.factor.append(&b)?;
-            appended += 1;
         }
         self.active.push(Active {
             id: constraint.id.clone(),
@@ -166,7 +180,11 @@ impl<'a> SplineSession<'a> {
         if values.iter().any(|v| !v.is_finite()) {
             return Err(DesignError::BadParameter {
                 what: "constraint value",
-                value: values.iter().copied().find(|v| !v.is_finite()).unwrap_or(f64::NAN),
+                value: values
+                    .iter()
+                    .copied()
+                    .find(|v| !v.is_finite())
+                    .unwrap_or(f64::NAN),
             });
         }
         current.copy_from_slice(values);
@@ -192,7 +210,11 @@ impl<'a> SplineSession<'a> {
     /// The reduced coefficients `v = D⁻¹ Cᵀ μ`, `K μ = c` (`d` values). Without constraints,
     /// `v = 0`.
     pub fn solve(&self) -> Vec<f64> {
-        let mut mu: Vec<f64> = self.active.iter().flat_map(|a| a.compiled.values.iter().copied()).collect();
+        let mut mu: Vec<f64> = self
+            .active
+            .iter()
+            .flat_map(|a| a.compiled.values.iter().copied())
+            .collect();
         // `mu` has one value per factored row, so the solve cannot fail.
         let _ = self.factor.solve_in_place(&mut mu);
         let mut v = vec![0.0; self.basis.len()];
@@ -218,7 +240,10 @@ impl<'a> SplineSession<'a> {
 
     /// Residuals of every active constraint for a full field `x` (`2F` values).
     pub fn residuals(&self, field: &[f64]) -> Vec<ConstraintResidual> {
-        self.active.iter().map(|a| residual(&a.compiled, field)).collect()
+        self.active
+            .iter()
+            .map(|a| residual(&a.compiled, field))
+            .collect()
     }
 
     fn reduced_rows(&self) -> impl Iterator<Item = &Vec<f64>> {
@@ -267,9 +292,14 @@ impl<'a> SplineSession<'a> {
             }
         }
         let implied: f64 = coefficients.iter().zip(&values).map(|(y, c)| y * c).sum();
-        let scale: f64 = coefficients.iter().zip(&values).map(|(y, c)| (y * c).abs()).sum::<f64>()
+        let scale: f64 = coefficients
+            .iter()
+            .zip(&values)
+            .map(|(y, c)| (y * c).abs())
+            .sum::<f64>()
             + constraint.values[row].abs();
-        let conflicting = (implied - constraint.values[row]).abs() > 1e-8 * scale.max(f64::MIN_POSITIVE);
+        let conflicting =
+            (implied - constraint.values[row]).abs() > 1e-8 * scale.max(f64::MIN_POSITIVE);
         DesignError::Dependent {
             id: constraint.id.clone(),
             involved,
@@ -286,7 +316,12 @@ pub fn residual(constraint: &CompiledConstraint, field: &[f64]) -> ConstraintRes
     let terms = constraint
         .rows
         .iter()
-        .map(|row| row.iter().map(|&(j, a)| (a * field[j]).abs()).sum::<f64>().powi(2))
+        .map(|row| {
+            row.iter()
+                .map(|&(j, a)| (a * field[j]).abs())
+                .sum::<f64>()
+                .powi(2)
+        })
         .sum::<f64>()
         .sqrt();
     let scale = constraint.value_scale().max(terms).max(f64::MIN_POSITIVE);

@@ -3,8 +3,8 @@
 use std::path::Path;
 use tvf_core::generate::icosphere;
 use tvf_design::{
-    Constraint, ConstraintAssembler, ConstraintError, ConstraintFileError, ConstraintSet, Location, OperatorFamily,
-    Target,
+    Constraint, ConstraintAssembler, ConstraintError, ConstraintFileError, ConstraintSet, Location,
+    OperatorFamily, Target,
 };
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 
@@ -29,10 +29,18 @@ fn the_documented_example_compiles_on_an_icosphere() {
     assert_eq!(set.constraints.len(), 6);
     assert_eq!(set.constraints[2].weight, 10.0);
     assert_eq!(set.constraints[5].family, OperatorFamily::Other);
-    assert_eq!(set.constraints[1].location, Location::Face { face: 30, barycentric: Some([0.2, 0.3, 0.5]) });
+    assert_eq!(
+        set.constraints[1].location,
+        Location::Face {
+            face: 30,
+            barycentric: Some([0.2, 0.3, 0.5])
+        }
+    );
     let mesh = icosphere(2);
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    let compiled = ConstraintAssembler::new(&complex, &mesh).compile_all(&set.constraints).expect("fits the mesh");
+    let compiled = ConstraintAssembler::new(&complex, &mesh)
+        .compile_all(&set.constraints)
+        .expect("fits the mesh");
     let rows: Vec<usize> = compiled.iter().map(|c| c.rows.len()).collect();
     assert_eq!(rows, vec![2, 2, 1, 1, 1, 1]);
     // The vector value is projected onto the face plane: |projection| ≤ |value|.
@@ -56,30 +64,71 @@ fn the_issue_format_is_accepted_and_round_trips() {
 #[test]
 fn parse_errors_name_the_file_and_the_constraint() {
     let cases = [
-        (r#"{"id": "k", "kind": "swirl", "face": 1, "value": 1.0}"#, "unknown kind 'swirl'"),
-        (r#"{"id": "k", "kind": "vector", "face": -1, "value": [1, 0, 0]}"#, "face -1 is out of range"),
-        (r#"{"id": "k", "kind": "curl", "face": 1, "barycentric": [0.5, 0.5, 0.5], "value": 1.0}"#, "sum to 1"),
-        (r#"{"id": "k", "kind": "curl", "face": 1, "barycentric": [1.5, -0.5, 0.0], "value": 1.0}"#, "non-negative"),
-        (r#"{"id": "k", "kind": "vector", "vertex": 1, "value": [1, 0, 0]}"#, "needs a \"face\""),
-        (r#"{"id": "k", "kind": "vector", "face": 1, "value": 1.0}"#, "value [x, y, z]"),
-        (r#"{"id": "k", "kind": "curl", "face": 1, "edge": 2, "value": 1.0}"#, "exactly one"),
-        (r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0, "weight": 0}"#, "weight must be finite and positive"),
-        (r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0, "family": "mine"}"#, "unknown family"),
-        (r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0}, {"id": "k", "kind": "curl", "edge": 3, "value": 1.0}"#, "used twice"),
+        (
+            r#"{"id": "k", "kind": "swirl", "face": 1, "value": 1.0}"#,
+            "unknown kind 'swirl'",
+        ),
+        (
+            r#"{"id": "k", "kind": "vector", "face": -1, "value": [1, 0, 0]}"#,
+            "face -1 is out of range",
+        ),
+        (
+            r#"{"id": "k", "kind": "curl", "face": 1, "barycentric": [0.5, 0.5, 0.5], "value": 1.0}"#,
+            "sum to 1",
+        ),
+        (
+            r#"{"id": "k", "kind": "curl", "face": 1, "barycentric": [1.5, -0.5, 0.0], "value": 1.0}"#,
+            "non-negative",
+        ),
+        (
+            r#"{"id": "k", "kind": "vector", "vertex": 1, "value": [1, 0, 0]}"#,
+            "needs a \"face\"",
+        ),
+        (
+            r#"{"id": "k", "kind": "vector", "face": 1, "value": 1.0}"#,
+            "value [x, y, z]",
+        ),
+        (
+            r#"{"id": "k", "kind": "curl", "face": 1, "edge": 2, "value": 1.0}"#,
+            "exactly one",
+        ),
+        (
+            r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0, "weight": 0}"#,
+            "weight must be finite and positive",
+        ),
+        (
+            r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0, "family": "mine"}"#,
+            "unknown family",
+        ),
+        (
+            r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0}, {"id": "k", "kind": "curl", "edge": 3, "value": 1.0}"#,
+            "used twice",
+        ),
     ];
     for (constraint, expected) in cases {
         let message = error_of(constraint);
         assert!(message.starts_with("set.json: "), "{message}");
         assert!(message.contains("'k'"), "{message}");
-        assert!(message.contains(expected), "expected '{expected}' in: {message}");
+        assert!(
+            message.contains(expected),
+            "expected '{expected}' in: {message}"
+        );
     }
     let syntax = parse("{\"constraints\": [}").unwrap_err().to_string();
-    assert!(syntax.starts_with("set.json: ") && syntax.contains("line 1"), "{syntax}");
-    let unknown_field = error_of(r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0, "colour": 1}"#);
+    assert!(
+        syntax.starts_with("set.json: ") && syntax.contains("line 1"),
+        "{syntax}"
+    );
+    let unknown_field =
+        error_of(r#"{"id": "k", "kind": "curl", "edge": 2, "value": 1.0, "colour": 1}"#);
     assert!(unknown_field.contains("colour"), "{unknown_field}");
-    let omega = parse(r#"{"omega": -1, "constraints": []}"#).unwrap_err().to_string();
+    let omega = parse(r#"{"omega": -1, "constraints": []}"#)
+        .unwrap_err()
+        .to_string();
     assert!(omega.contains("omega"), "{omega}");
-    let missing = ConstraintSet::load("/nonexistent/c.json").unwrap_err().to_string();
+    let missing = ConstraintSet::load("/nonexistent/c.json")
+        .unwrap_err()
+        .to_string();
     assert!(missing.contains("/nonexistent/c.json"), "{missing}");
 }
 
@@ -87,10 +136,18 @@ fn parse_errors_name_the_file_and_the_constraint() {
 fn fingerprints_are_checked_when_present() {
     let set = parse(r#"{"mesh_fingerprint": "abc", "constraints": []}"#).unwrap();
     assert!(set.check_fingerprint("abc", Path::new("set.json")).is_ok());
-    let error = set.check_fingerprint("xyz", Path::new("set.json")).unwrap_err().to_string();
-    assert!(error.contains("abc") && error.contains("xyz") && error.contains("set.json"), "{error}");
+    let error = set
+        .check_fingerprint("xyz", Path::new("set.json"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        error.contains("abc") && error.contains("xyz") && error.contains("set.json"),
+        "{error}"
+    );
     let unstamped = parse(r#"{"constraints": []}"#).unwrap();
-    assert!(unstamped.check_fingerprint("anything", Path::new("set.json")).is_ok());
+    assert!(unstamped
+        .check_fingerprint("anything", Path::new("set.json"))
+        .is_ok());
 }
 
 #[test]
@@ -98,29 +155,93 @@ fn mesh_checks_and_node_kinds() {
     let mesh = icosphere(1);
     let conforming = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let assembler = ConstraintAssembler::new(&conforming, &mesh);
-    let face = |f| Location::Face { face: f, barycentric: None };
-    let out_of_range = assembler.compile(&Constraint::new("far", Target::Vector([1.0, 0.0, 0.0]), face(80)));
-    assert!(matches!(out_of_range, Err(ConstraintError::OutOfRange { what: "face", count: 80, .. })));
-    let vertex = assembler.compile(&Constraint::new("v", Target::Divergence(1.0), Location::Vertex(42)));
-    assert!(matches!(vertex, Err(ConstraintError::OutOfRange { what: "vertex", .. })));
-    let nan = assembler.compile(&Constraint::new("nan", Target::Curl(f64::NAN), Location::Edge(0)));
-    assert!(matches!(nan, Err(ConstraintError::NotFinite { what: "value", .. })));
+    let face = |f| Location::Face {
+        face: f,
+        barycentric: None,
+    };
+    let out_of_range = assembler.compile(&Constraint::new(
+        "far",
+        Target::Vector([1.0, 0.0, 0.0]),
+        face(80),
+    ));
+    assert!(matches!(
+        out_of_range,
+        Err(ConstraintError::OutOfRange {
+            what: "face",
+            count: 80,
+            ..
+        })
+    ));
+    let vertex = assembler.compile(&Constraint::new(
+        "v",
+        Target::Divergence(1.0),
+        Location::Vertex(42),
+    ));
+    assert!(matches!(
+        vertex,
+        Err(ConstraintError::OutOfRange { what: "vertex", .. })
+    ));
+    let nan = assembler.compile(&Constraint::new(
+        "nan",
+        Target::Curl(f64::NAN),
+        Location::Edge(0),
+    ));
+    assert!(matches!(
+        nan,
+        Err(ConstraintError::NotFinite { what: "value", .. })
+    ));
     // Conforming: curl lives on edges (CR); a vertex key needs the other family.
-    let wrong = assembler.compile(&Constraint::new("w", Target::Curl(1.0), Location::Vertex(3))).unwrap_err();
+    let wrong = assembler
+        .compile(&Constraint::new(
+            "w",
+            Target::Curl(1.0),
+            Location::Vertex(3),
+        ))
+        .unwrap_err();
     assert!(matches!(wrong, ConstraintError::NodeKindMismatch { .. }));
     assert!(wrong.to_string().contains("\"edge\""), "{wrong}");
-    let other = Constraint::new("w", Target::Curl(1.0), Location::Vertex(3)).with_family(OperatorFamily::Other);
+    let other = Constraint::new("w", Target::Curl(1.0), Location::Vertex(3))
+        .with_family(OperatorFamily::Other);
     assert_eq!(assembler.compile(&other).unwrap().rows.len(), 1);
     // Nonconforming: divergence on edges, curl on vertices.
     let nonconforming = Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let swapped = ConstraintAssembler::new(&nonconforming, &mesh);
-    assert!(swapped.compile(&Constraint::new("d", Target::Divergence(1.0), Location::Edge(3))).is_ok());
-    assert!(swapped.compile(&Constraint::new("d", Target::Divergence(1.0), Location::Vertex(3))).is_err());
-    assert!(swapped.compile(&Constraint::new("c", Target::Curl(1.0), Location::Vertex(3))).is_ok());
+    assert!(swapped
+        .compile(&Constraint::new(
+            "d",
+            Target::Divergence(1.0),
+            Location::Edge(3)
+        ))
+        .is_ok());
+    assert!(swapped
+        .compile(&Constraint::new(
+            "d",
+            Target::Divergence(1.0),
+            Location::Vertex(3)
+        ))
+        .is_err());
+    assert!(swapped
+        .compile(&Constraint::new(
+            "c",
+            Target::Curl(1.0),
+            Location::Vertex(3)
+        ))
+        .is_ok());
     // A point value is the interpolation-weighted mix of nodal rows: at a corner it is the node's row.
     let corner = mesh.faces()[5][1];
-    let at_corner = Location::Face { face: 5, barycentric: Some([0.0, 1.0, 0.0]) };
-    let point = assembler.compile(&Constraint::new("p", Target::Divergence(1.0), at_corner)).unwrap();
-    let node = assembler.compile(&Constraint::new("n", Target::Divergence(1.0), Location::Vertex(corner))).unwrap();
+    let at_corner = Location::Face {
+        face: 5,
+        barycentric: Some([0.0, 1.0, 0.0]),
+    };
+    let point = assembler
+        .compile(&Constraint::new("p", Target::Divergence(1.0), at_corner))
+        .unwrap();
+    let node = assembler
+        .compile(&Constraint::new(
+            "n",
+            Target::Divergence(1.0),
+            Location::Vertex(corner),
+        ))
+        .unwrap();
     assert_eq!(point.rows, node.rows);
 }

@@ -7,23 +7,32 @@ use common::{mixed_constraints, relative_difference, spectral_basis, truncated};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{icosphere, jitter, torus};
 use tvf_design::{
-    default_regularization, CompiledConstraint, ConstraintAssembler, FullSoftDesign, ReducedSoftDesign,
-    SoftOptions, SplineSession,
+    default_regularization, CompiledConstraint, ConstraintAssembler, FullSoftDesign,
+    ReducedSoftDesign, SoftOptions, SplineSession,
 };
 use tvf_discretizations::{Conforming, MassLumping};
 
 fn options(complex: &Conforming, omega: f64) -> SoftOptions {
-    SoftOptions { omega, regularization: default_regularization(&complex.dirichlet_energy(), complex.m1()) }
+    SoftOptions {
+        omega,
+        regularization: default_regularization(&complex.dirichlet_energy(), complex.m1()),
+    }
 }
 
 fn full_vs_reduced(mesh: &tvf_core::SurfaceMesh, sizes: &[usize]) -> Vec<f64> {
     let complex = Conforming::new(mesh, MassLumping::Barycentric).expect("complex");
     let opts = options(&complex, 0.01);
     let assembler = ConstraintAssembler::new(&complex, mesh);
-    let constraints = assembler.compile_all(&mixed_constraints(mesh, 6, 21)).expect("constraints");
+    let constraints = assembler
+        .compile_all(&mixed_constraints(mesh, 6, 21))
+        .expect("constraints");
     let full = FullSoftDesign::new(&complex, opts, constraints.clone()).expect("full design");
     let (x_full, report) = full.solve();
-    assert!(report.final_residual() < 1e-8, "full residual {:?}", report.residuals);
+    assert!(
+        report.final_residual() < 1e-8,
+        "full residual {:?}",
+        report.residuals
+    );
     let complete = spectral_basis(&complex, None);
     let mut errors = Vec::new();
     for &d in sizes {
@@ -31,7 +40,10 @@ fn full_vs_reduced(mesh: &tvf_core::SurfaceMesh, sizes: &[usize]) -> Vec<f64> {
         let mut reduced = ReducedSoftDesign::new(&basis, opts).expect("reduced design");
         reduced.add_all(constraints.clone()).expect("updates");
         let error = relative_difference(&reduced.field(), &x_full, complex.m1());
-        println!("  genus {}  d = {d:4}  relative difference {error:.3e}", mesh.genus());
+        println!(
+            "  genus {}  d = {d:4}  relative difference {error:.3e}",
+            mesh.genus()
+        );
         errors.push(error);
     }
     errors
@@ -55,31 +67,54 @@ fn soft_constraints_trade_off_while_hard_ones_hold() {
     let mesh = jitter(&icosphere(2), 0.2, 8).expect("mesh");
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
     let assembler = ConstraintAssembler::new(&complex, &mesh);
-    let constraints = assembler.compile_all(&mixed_constraints(&mesh, 6, 2)).expect("constraints");
+    let constraints = assembler
+        .compile_all(&mixed_constraints(&mesh, 6, 2))
+        .expect("constraints");
     let complete = spectral_basis(&complex, None);
     let basis = truncated(&complete, 640);
 
     let full = FullSoftDesign::new(&complex, options(&complex, 0.1), constraints.clone()).unwrap();
     let (soft, _) = full.solve();
-    let soft_worst = constraints.iter().map(|c| tvf_design::residual(c, &soft).relative).fold(0.0, f64::max);
+    let soft_worst = constraints
+        .iter()
+        .map(|c| tvf_design::residual(c, &soft).relative)
+        .fold(0.0, f64::max);
 
     let mut spline = SplineSession::new(&basis, 0.1).unwrap();
     for c in constraints.clone() {
         spline.add(c).unwrap();
     }
     let hard = spline.field();
-    let hard_worst = spline.residuals(&hard).iter().map(|r| r.relative).fold(0.0, f64::max);
+    let hard_worst = spline
+        .residuals(&hard)
+        .iter()
+        .map(|r| r.relative)
+        .fold(0.0, f64::max);
     println!("worst relative residual: soft {soft_worst:.3e}, hard {hard_worst:.3e}");
-    assert!(soft_worst > 1e-2, "soft design should not meet every constraint exactly: {soft_worst:e}");
+    assert!(
+        soft_worst > 1e-2,
+        "soft design should not meet every constraint exactly: {soft_worst:e}"
+    );
     assert!(hard_worst < 1e-9, "{hard_worst:e}");
 
     // Raising the weight of every constraint pulls the soft design towards the constraints.
-    let heavy: Vec<CompiledConstraint> = constraints.iter().cloned().map(|c| CompiledConstraint { weight: 1e4, ..c }).collect();
-    let heavy_design = FullSoftDesign::new(&complex, options(&complex, 0.1), heavy.clone()).unwrap();
+    let heavy: Vec<CompiledConstraint> = constraints
+        .iter()
+        .cloned()
+        .map(|c| CompiledConstraint { weight: 1e4, ..c })
+        .collect();
+    let heavy_design =
+        FullSoftDesign::new(&complex, options(&complex, 0.1), heavy.clone()).unwrap();
     let (x, report) = heavy_design.solve();
     assert!(report.final_residual() < 1e-8);
-    let heavy_worst = heavy.iter().map(|c| tvf_design::residual(c, &x).relative).fold(0.0, f64::max);
-    assert!(heavy_worst < 0.1 * soft_worst, "heavy {heavy_worst:e} vs {soft_worst:e}");
+    let heavy_worst = heavy
+        .iter()
+        .map(|c| tvf_design::residual(c, &x).relative)
+        .fold(0.0, f64::max);
+    assert!(
+        heavy_worst < 0.1 * soft_worst,
+        "heavy {heavy_worst:e} vs {soft_worst:e}"
+    );
 }
 
 #[test]
@@ -87,8 +122,12 @@ fn changing_constraints_reuses_the_symbolic_factorization() {
     let mesh = icosphere(2);
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
     let assembler = ConstraintAssembler::new(&complex, &mesh);
-    let first = assembler.compile_all(&mixed_constraints(&mesh, 5, 1)).unwrap();
-    let second = assembler.compile_all(&mixed_constraints(&mesh, 7, 2)).unwrap();
+    let first = assembler
+        .compile_all(&mixed_constraints(&mesh, 5, 1))
+        .unwrap();
+    let second = assembler
+        .compile_all(&mixed_constraints(&mesh, 7, 2))
+        .unwrap();
     // ω > 0: B's pattern holds every constraint block.
     let mut design = FullSoftDesign::new(&complex, options(&complex, 0.1), first.clone()).unwrap();
     assert!(design.set_constraints(second.clone()).unwrap());
@@ -104,10 +143,14 @@ fn changing_constraints_reuses_the_symbolic_factorization() {
     let point = tvf_design::Constraint::new(
         "div-point",
         tvf_design::Target::Divergence(1.0),
-        tvf_design::Location::Face { face: 7, barycentric: Some([0.3, 0.3, 0.4]) },
+        tvf_design::Location::Face {
+            face: 7,
+            barycentric: Some([0.3, 0.3, 0.4]),
+        },
     );
     let first = vec![assembler.compile(&point).unwrap()];
-    let mut dirichlet_only = FullSoftDesign::new(&complex, options(&complex, 0.0), Vec::new()).unwrap();
+    let mut dirichlet_only =
+        FullSoftDesign::new(&complex, options(&complex, 0.0), Vec::new()).unwrap();
     assert!(!dirichlet_only.set_constraints(first.clone()).unwrap());
     assert_eq!(dirichlet_only.symbolic_analyses(), 2);
     assert!(dirichlet_only.set_constraints(Vec::new()).unwrap());
@@ -121,7 +164,9 @@ fn reduced_soft_design_updates_match_a_fresh_factorization() {
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
     let basis = truncated(&spectral_basis(&complex, None), 120);
     let assembler = ConstraintAssembler::new(&complex, &mesh);
-    let all = assembler.compile_all(&mixed_constraints(&mesh, 6, 3)).unwrap();
+    let all = assembler
+        .compile_all(&mixed_constraints(&mesh, 6, 3))
+        .unwrap();
     let opts = options(&complex, 0.1);
     let mut edited = ReducedSoftDesign::new(&basis, opts).unwrap();
     edited.add_all(all.clone()).unwrap();
@@ -137,7 +182,12 @@ fn reduced_soft_design_updates_match_a_fresh_factorization() {
         fresh.add(c).unwrap();
     }
     let (a, b) = (edited.solve(), fresh.solve());
-    let difference = a.iter().zip(&b).map(|(x, y)| (x - y).powi(2)).sum::<f64>().sqrt()
+    let difference = a
+        .iter()
+        .zip(&b)
+        .map(|(x, y)| (x - y).powi(2))
+        .sum::<f64>()
+        .sqrt()
         / b.iter().map(|y| y * y).sum::<f64>().sqrt();
     assert!(difference < 1e-10, "{difference:e}");
 }

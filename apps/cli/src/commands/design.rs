@@ -1,14 +1,19 @@
 //! `tvf design`: soft-constrained vector field design (Fisher et al. 2007, Section 8.4), full
 //! (sparse Cholesky) or reduced (dense Cholesky in the eigenbasis).
 
-use super::spline::{compile, load_inputs, print_residuals, reduced_basis, select_complex, AnyComplex, BasisChoice, DesignInputs};
+use super::spline::{
+    compile, load_inputs, print_residuals, reduced_basis, select_complex, AnyComplex, BasisChoice,
+    DesignInputs,
+};
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_design::{default_regularization, residual, FullSoftDesign, ReducedSoftDesign, SoftOptions};
+use tvf_design::{
+    default_regularization, residual, FullSoftDesign, ReducedSoftDesign, SoftOptions,
+};
 use tvf_spectral::{write_tangent_field, SpectralBasis};
 
 /// Arguments of `tvf design`.
@@ -58,7 +63,8 @@ fn design_with<H: HodgeComplex>(
     let field = if args.full {
         let assembly = start.elapsed();
         let start = Instant::now();
-        let design = FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, constraints.clone())?;
+        let design =
+            FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, constraints.clone())?;
         let factor = start.elapsed();
         let start = Instant::now();
         let (field, report) = design.solve();
@@ -75,10 +81,17 @@ fn design_with<H: HodgeComplex>(
             solve.as_secs_f64() * 1e3,
             report.residuals.len() - 1
         );
-        let history: Vec<String> = report.residuals.iter().map(|r| format!("{r:.1e}")).collect();
+        let history: Vec<String> = report
+            .residuals
+            .iter()
+            .map(|r| format!("{r:.1e}"))
+            .collect();
         println!("system residual ‖b − Ax‖/‖b‖: {}", history.join(" → "));
         if report.final_residual() > 1e-8 {
-            bail!("the full solve reached only a relative residual of {:.1e}", report.final_residual());
+            bail!(
+                "the full solve reached only a relative residual of {:.1e}",
+                report.final_residual()
+            );
         }
         field
     } else {
@@ -94,7 +107,11 @@ fn design_with<H: HodgeComplex>(
         let mut field = vec![0.0; basis.field_dimension()];
         basis.map(&v, &mut field)?;
         let map = start.elapsed();
-        println!("reduced factor  {:.3} ms (d = {})", factor.as_secs_f64() * 1e3, basis.len());
+        println!(
+            "reduced factor  {:.3} ms (d = {})",
+            factor.as_secs_f64() * 1e3,
+            basis.len()
+        );
         println!(
             "reduced solve   {:.3} ms + {:.3} ms mapping to the full field",
             solve.as_secs_f64() * 1e3,

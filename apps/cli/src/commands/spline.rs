@@ -6,15 +6,16 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tvf_core::discretization::HodgeComplex;
+use tvf_core::discretization::{FieldSpace, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, ReducedBasis, SplineSession,
+    CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, ReducedBasis,
+    SplineSession,
 };
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{
-    compute_basis, load_basis, mesh_fingerprint, read_basis_header, write_tangent_field, BasisFileKey, BasisRequest,
-    SpectralBasis,
+    compute_basis, load_basis, mesh_fingerprint, read_basis_header, write_tangent_field,
+    BasisFileKey, BasisRequest, SpectralBasis,
 };
 
 /// Basis size used when neither `--basis` nor `-k` is given.
@@ -26,8 +27,8 @@ pub struct BasisChoice {
     /// A basis file (.tvfb, `tvf basis`) of this mesh; its discretization is used.
     #[arg(long, value_name = "FILE", conflicts_with = "fields")]
     basis: Option<PathBuf>,
-    /// Compute the K lowest eigenfields (harmonic ones included) instead of loading a basis
-    /// [default: 200].
+    /// Compute the K lowest eigenfields (harmonic ones included) instead of loading a basis;
+    /// K ≥ 2F gives the complete basis [default: 200].
     #[arg(short = 'k', value_name = "K")]
     fields: Option<usize>,
     /// Discretization when no basis file is given.
@@ -93,7 +94,10 @@ pub enum AnyComplex {
 }
 
 /// The discretization and (loaded) basis selected by `choice`.
-pub fn select_complex(mesh: &SurfaceMesh, choice: &BasisChoice) -> Result<(AnyComplex, Option<SpectralBasis>)> {
+pub fn select_complex(
+    mesh: &SurfaceMesh,
+    choice: &BasisChoice,
+) -> Result<(AnyComplex, Option<SpectralBasis>)> {
     let Some(path) = &choice.basis else {
         let complex = if choice.discretization == "nonconforming" {
             AnyComplex::Nonconforming(Nonconforming::new(mesh, MassLumping::Barycentric)?)
@@ -144,7 +148,13 @@ pub fn reduced_basis<H: HodgeComplex>(
         None => {
             let start = Instant::now();
             let fields = choice.fields.unwrap_or(DEFAULT_FIELDS);
-            let basis = compute_basis(complex, &BasisRequest::fields(fields))
+            // K ≥ 2F asks for every field: the complete basis (dense eigensolvers).
+            let request = if fields >= complex.fields().dimension() {
+                BasisRequest::complete()
+            } else {
+                BasisRequest::fields(fields)
+            };
+            let basis = compute_basis(complex, &request)
                 .with_context(|| format!("cannot compute {fields} eigenfields"))?;
             println!(
                 "basis           {} fields of {} computed in {:.3} s",
@@ -159,7 +169,10 @@ pub fn reduced_basis<H: HodgeComplex>(
 }
 
 /// Compiles the set's constraints for `complex`; errors name the constraint file.
-pub fn compile<H: HodgeComplex>(complex: &H, inputs: &DesignInputs) -> Result<Vec<CompiledConstraint>> {
+pub fn compile<H: HodgeComplex>(
+    complex: &H,
+    inputs: &DesignInputs,
+) -> Result<Vec<CompiledConstraint>> {
     ConstraintAssembler::new(complex, &inputs.mesh)
         .compile_all(&inputs.set.constraints)
         .with_context(|| format!("{}", inputs.constraints_path.display()))
@@ -191,8 +204,8 @@ fn spline_with<H: HodgeComplex>(
     loaded: Option<SpectralBasis>,
     args: &SplineArgs,
 ) -> Result<()> {
-    let basis = reduced_basis(complex, loaded, &args.basis)?;
     let constraints = compile(complex, inputs)?;
+    let basis = reduced_basis(complex, loaded, &args.basis)?;
     let start = Instant::now();
     let mut session = SplineSession::new(&basis, inputs.set.omega)?;
     for c in constraints {

@@ -21,12 +21,15 @@ pub fn spectral_basis<H: HodgeComplex>(complex: &H, d: Option<usize>) -> Spectra
 pub fn truncated(basis: &SpectralBasis, d: usize) -> ReducedBasis {
     let u = basis.fields();
     let n = u.nrows();
-    let rows: Vec<f64> = (0..n).flat_map(|r| (0..d).map(move |j| u[(r, j)])).collect();
+    let rows: Vec<f64> = (0..n)
+        .flat_map(|r| (0..d).map(move |j| u[(r, j)]))
+        .collect();
     let harmonic = basis.families()[..d]
         .iter()
         .map(|f| *f == tvf_spectral::FieldFamily::Harmonic)
         .collect();
-    ReducedBasis::from_row_major(rows, n, basis.eigenvalues()[..d].to_vec(), harmonic).expect("valid basis")
+    ReducedBasis::from_row_major(rows, n, basis.eigenvalues()[..d].to_vec(), harmonic)
+        .expect("valid basis")
 }
 
 /// Seeded constraints of every kind, at well-separated random faces / vertices / edges of the
@@ -43,22 +46,52 @@ pub fn mixed_constraints(mesh: &SurfaceMesh, vectors: usize, seed: u64) -> Vec<C
         }
     }
     for (k, &f) in faces[..vectors].iter().enumerate() {
-        let v = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
-        out.push(Constraint::new(format!("v{k}"), Target::Vector(v), Location::Face { face: f, barycentric: None }));
+        let v = [
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        ];
+        out.push(Constraint::new(
+            format!("v{k}"),
+            Target::Vector(v),
+            Location::Face {
+                face: f,
+                barycentric: None,
+            },
+        ));
     }
     let vertex = mesh.faces()[faces[vectors]][0];
-    out.push(Constraint::new("source", Target::Divergence(2.0), Location::Vertex(vertex)));
+    out.push(Constraint::new(
+        "source",
+        Target::Divergence(2.0),
+        Location::Vertex(vertex),
+    ));
     let edge = mesh.face_edges()[faces[vectors + 1]][0];
-    out.push(Constraint::new("vortex", Target::Curl(-1.5), Location::Edge(edge)));
-    let point = Location::Face { face: faces[vectors + 2], barycentric: Some([0.2, 0.3, 0.5]) };
+    out.push(Constraint::new(
+        "vortex",
+        Target::Curl(-1.5),
+        Location::Edge(edge),
+    ));
+    let point = Location::Face {
+        face: faces[vectors + 2],
+        barycentric: Some([0.2, 0.3, 0.5]),
+    };
     out.push(Constraint::new("curl-point", Target::Curl(1.0), point));
-    out.push(Constraint::new("div-other", Target::Divergence(-0.5), point).with_family(OperatorFamily::Other));
+    out.push(
+        Constraint::new("div-other", Target::Divergence(-0.5), point)
+            .with_family(OperatorFamily::Other),
+    );
     out
 }
 
 /// `‖a − b‖_{M_X} / ‖b‖_{M_X}`.
 pub fn relative_difference(a: &[f64], b: &[f64], mass: &[f64]) -> f64 {
-    let diff: f64 = a.iter().zip(b).zip(mass).map(|((x, y), m)| m * (x - y) * (x - y)).sum();
+    let diff: f64 = a
+        .iter()
+        .zip(b)
+        .zip(mass)
+        .map(|((x, y), m)| m * (x - y) * (x - y))
+        .sum();
     let norm: f64 = b.iter().zip(mass).map(|(y, m)| m * y * y).sum();
     (diff / norm).sqrt()
 }
