@@ -23,7 +23,11 @@ fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
         .arg(&out)
         .output()
         .unwrap();
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     // Not a terminal: plain progress lines and a summary on stderr.
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("26 fields"), "{stderr}");
@@ -48,7 +52,11 @@ fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
         .output()
         .unwrap();
     assert!(quiet.status.success());
-    assert!(quiet.stderr.is_empty(), "{}", String::from_utf8_lossy(&quiet.stderr));
+    assert!(
+        quiet.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&quiet.stderr)
+    );
 }
 
 #[test]

@@ -29,7 +29,9 @@ fn coefficients_of_a_combination_of_basis_fields() {
     let (_, basis) = read_basis_file(&basis_path).unwrap();
     let mesh = load_mesh(&mesh_path).unwrap().mesh;
     let space = FaceFields::new(&mesh).unwrap();
-    let wanted: Vec<f64> = (0..basis.len()).map(|i| if i % 3 == 0 { 0.0 } else { i as f64 - 4.5 }).collect();
+    let wanted: Vec<f64> = (0..basis.len())
+        .map(|i| if i % 3 == 0 { 0.0 } else { i as f64 - 4.5 })
+        .collect();
     let field = basis.reconstruct(&wanted).unwrap();
     let field_path = dir.path().join("field.npy");
     write_face_vectors(&field_path, &space.to_vectors(&field).unwrap()).unwrap();
@@ -42,12 +44,19 @@ fn coefficients_of_a_combination_of_basis_fields() {
         .arg("--json")
         .output()
         .unwrap();
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     let entries = json["coefficients"].as_array().unwrap();
     assert_eq!(entries.len(), basis.len());
     for (entry, &w) in entries.iter().zip(&wanted) {
-        assert!((entry["coefficient"].as_f64().unwrap() - w).abs() < 1e-10, "{entry}");
+        assert!(
+            (entry["coefficient"].as_f64().unwrap() - w).abs() < 1e-10,
+            "{entry}"
+        );
     }
     assert_eq!(json["gamma"].as_array().unwrap().len(), 2);
     assert_eq!(json["alpha"].as_array().unwrap().len(), 8);

@@ -16,7 +16,9 @@ fn parts_sum_to_the_field_and_are_orthogonal() {
     let mesh = load_mesh(&mesh_path).unwrap().mesh;
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let space = complex.fields();
-    let field: Vec<f64> = (0..space.dimension()).map(|i| ((i * 7919) % 1000) as f64 / 500.0 - 1.0).collect();
+    let field: Vec<f64> = (0..space.dimension())
+        .map(|i| ((i * 7919) % 1000) as f64 / 500.0 - 1.0)
+        .collect();
     let vectors = space.to_vectors(&field).unwrap();
     let field_path = dir.path().join("field.txt");
     write_face_vectors(&field_path, &vectors).unwrap();
@@ -29,7 +31,11 @@ fn parts_sum_to_the_field_and_are_orthogonal() {
         .arg(&out)
         .output()
         .unwrap();
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let read = |name: &str| {
         space
             .from_vectors(&read_face_vectors(&out.join(format!("{name}.npy"))).unwrap())
@@ -44,9 +50,18 @@ fn parts_sum_to_the_field_and_are_orthogonal() {
     assert!(complex.field_inner(&a, &b).abs() < 1e-10 * norm);
     assert!(complex.field_inner(&a, &h).abs() < 1e-10 * norm);
     assert!(complex.field_inner(&b, &h).abs() < 1e-10 * norm);
-    assert!(complex.field_inner(&h, &h) > 1e-6 * norm, "genus 2 has harmonic fields");
-    assert_eq!(read_npy(&out.join("potential.npy")).unwrap().shape, vec![mesh.vertex_count()]);
-    assert_eq!(read_npy(&out.join("co_potential.npy")).unwrap().shape, vec![mesh.edge_count()]);
+    assert!(
+        complex.field_inner(&h, &h) > 1e-6 * norm,
+        "genus 2 has harmonic fields"
+    );
+    assert_eq!(
+        read_npy(&out.join("potential.npy")).unwrap().shape,
+        vec![mesh.vertex_count()]
+    );
+    assert_eq!(
+        read_npy(&out.join("co_potential.npy")).unwrap().shape,
+        vec![mesh.edge_count()]
+    );
     // the integrable part is the gradient of the potential
     let potential = read_npy(&out.join("potential.npy")).unwrap().data;
     let gradient = complex.gradient_field(&potential);

@@ -15,18 +15,33 @@ fn spectrum_json(mesh: &Path, k: usize, decomposition: &str) -> serde_json::Valu
     let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
         .arg("spectrum")
         .arg(mesh)
-        .args(["-k", &k.to_string(), "--decomposition", decomposition, "--json", "--quiet"])
+        .args([
+            "-k",
+            &k.to_string(),
+            "--decomposition",
+            decomposition,
+            "--json",
+            "--quiet",
+        ])
         .output()
         .unwrap();
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     serde_json::from_slice(&output.stdout).unwrap()
 }
 
 /// Cotan stiffness (vertices) and CR stiffness (edges) with barycentric masses, from angles.
 fn independent_problems(mesh: &SurfaceMesh) -> [(sprs::CsMat<f64>, Vec<f64>); 2] {
     let p = mesh.positions();
-    let edge_index: std::collections::HashMap<(usize, usize), usize> =
-        mesh.edges().iter().enumerate().map(|(i, e)| ((e[0], e[1]), i)).collect();
+    let edge_index: std::collections::HashMap<(usize, usize), usize> = mesh
+        .edges()
+        .iter()
+        .enumerate()
+        .map(|(i, e)| ((e[0], e[1]), i))
+        .collect();
     let mut cotan = sprs::TriMat::new((mesh.vertex_count(), mesh.vertex_count()));
     let mut cr = sprs::TriMat::new((mesh.edge_count(), mesh.edge_count()));
     let mut vertex_mass = vec![0.0; mesh.vertex_count()];
@@ -35,13 +50,25 @@ fn independent_problems(mesh: &SurfaceMesh) -> [(sprs::CsMat<f64>, Vec<f64>); 2]
         let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let cross = |a: [f64; 3], b: [f64; 3]| {
-            [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
         };
-        let area = dot(cross(sub(p[face[1]], p[face[0]]), sub(p[face[2]], p[face[0]])), cross(sub(p[face[1]], p[face[0]]), sub(p[face[2]], p[face[0]]))).sqrt() / 2.0;
+        let area = dot(
+            cross(sub(p[face[1]], p[face[0]]), sub(p[face[2]], p[face[0]])),
+            cross(sub(p[face[1]], p[face[0]]), sub(p[face[2]], p[face[0]])),
+        )
+        .sqrt()
+            / 2.0;
         // cot of the angle at corner c
         let cot: Vec<f64> = (0..3)
             .map(|c| {
-                let (u, v) = (sub(p[face[(c + 1) % 3]], p[face[c]]), sub(p[face[(c + 2) % 3]], p[face[c]]));
+                let (u, v) = (
+                    sub(p[face[(c + 1) % 3]], p[face[c]]),
+                    sub(p[face[(c + 2) % 3]], p[face[c]]),
+                );
                 dot(u, v) / (2.0 * area)
             })
             .collect();
@@ -82,15 +109,27 @@ fn check_mesh(path: &Path, genus: usize, k: usize) {
     let scale = expected[k - 1];
     for decomposition in ["conforming", "nonconforming"] {
         let json = spectrum_json(path, k, decomposition);
-        let values: Vec<f64> = json["eigenvalues"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let values: Vec<f64> = json["eigenvalues"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
         let labels = json["labels"].as_array().unwrap();
         assert_eq!(values.len(), k);
         assert_eq!(labels.len(), k);
-        assert_eq!(labels.iter().filter(|l| *l == "harmonic").count(), 2 * genus);
+        assert_eq!(
+            labels.iter().filter(|l| *l == "harmonic").count(),
+            2 * genus
+        );
         assert!(values.windows(2).all(|w| w[0] <= w[1]), "ascending");
         for (i, (a, b)) in values.iter().zip(&expected).enumerate() {
             // relative 1e-8; harmonic zeros are exactly 0 in both
-            assert!((a - b).abs() <= 1e-8 * b.abs().max(1e-3 * scale), "{} {decomposition} #{i}: {a} vs {b}", path.display());
+            assert!(
+                (a - b).abs() <= 1e-8 * b.abs().max(1e-3 * scale),
+                "{} {decomposition} #{i}: {a} vs {b}",
+                path.display()
+            );
         }
         println!(
             "{} {decomposition}: {k} eigenvalues in {:.2} s (reference {reference_seconds:.2} s)",
@@ -128,14 +167,33 @@ fn spectrum_equals_the_union_of_the_cotan_and_cr_spectra() {
 #[test]
 fn spectrum_json_on_a_generated_mesh_and_bad_input() {
     let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
-        .args(["spectrum", "--example", "genus2", "-k", "12", "--json", "--quiet"])
+        .args([
+            "spectrum",
+            "--example",
+            "genus2",
+            "-k",
+            "12",
+            "--json",
+            "--quiet",
+        ])
         .output()
         .unwrap();
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
-    let labels: Vec<&str> = json["labels"].as_array().unwrap().iter().map(|l| l.as_str().unwrap()).collect();
+    let labels: Vec<&str> = json["labels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
     assert_eq!(&labels[..4], ["harmonic"; 4]);
-    assert!(labels[4..].iter().all(|l| *l == "integrable" || *l == "cointegrable"));
+    assert!(labels[4..]
+        .iter()
+        .all(|l| *l == "integrable" || *l == "cointegrable"));
     assert!(json["seconds"].as_f64().unwrap() >= 0.0);
     let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
         .args(["spectrum", "nowhere.off", "-k", "5"])

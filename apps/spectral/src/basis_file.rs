@@ -162,12 +162,19 @@ fn family_code(family: FieldFamily) -> u8 {
 }
 
 /// Saves `basis` for the mesh and discretization of `key`, atomically.
-pub fn save_basis(path: &Path, basis: &SpectralBasis, key: &BasisFileKey) -> Result<(), BasisFileError> {
+pub fn save_basis(
+    path: &Path,
+    basis: &SpectralBasis,
+    key: &BasisFileKey,
+) -> Result<(), BasisFileError> {
     let n = basis.field_dimension();
     if n != 2 * key.face_count {
         return Err(BasisFileError::Invalid {
             path: path.to_path_buf(),
-            reason: format!("basis fields have {n} rows, the mesh has {} faces", key.face_count),
+            reason: format!(
+                "basis fields have {n} rows, the mesh has {} faces",
+                key.face_count
+            ),
         });
     }
     let header = encode_header(&BasisFileHeader {
@@ -180,7 +187,10 @@ pub fn save_basis(path: &Path, basis: &SpectralBasis, key: &BasisFileKey) -> Res
     });
     write_atomically_with(path, |w| {
         w.write_all(&header)?;
-        let mut out = HashingWriter { inner: w, hash: Hash64::new() };
+        let mut out = HashingWriter {
+            inner: w,
+            hash: Hash64::new(),
+        };
         let mut buffer = Vec::with_capacity(8 * n.max(basis.len()) + 8);
         buffer.extend(basis.eigenvalues().iter().flat_map(|x| x.to_le_bytes()));
         out.write_all(&buffer)?;
@@ -201,7 +211,10 @@ pub fn save_basis(path: &Path, basis: &SpectralBasis, key: &BasisFileKey) -> Res
         let checksum = out.hash.finish();
         w.write_all(&checksum.to_le_bytes())
     })
-    .map_err(|source| BasisFileError::Io { path: path.to_path_buf(), source })
+    .map_err(|source| BasisFileError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Loads a basis and checks that it belongs to `expected` (mesh and discretization).
@@ -223,7 +236,10 @@ pub fn read_basis_header(path: &Path) -> Result<BasisFileHeader, BasisFileError>
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> BasisFileError + '_ {
-    move |source| BasisFileError::Io { path: path.to_path_buf(), source }
+    move |source| BasisFileError::Io {
+        path: path.to_path_buf(),
+        source,
+    }
 }
 
 fn encode_header(h: &BasisFileHeader) -> Vec<u8> {
@@ -252,17 +268,24 @@ fn encode_header(h: &BasisFileHeader) -> Vec<u8> {
 }
 
 /// Reads and checks the header; returns it with its length in bytes.
-fn read_header(path: &Path, reader: &mut impl Read) -> Result<(BasisFileHeader, u64), BasisFileError> {
+fn read_header(
+    path: &Path,
+    reader: &mut impl Read,
+) -> Result<(BasisFileHeader, u64), BasisFileError> {
     let mut fixed = [0u8; 16];
     match reader.read_exact(&mut fixed) {
         Ok(()) => {}
         Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
-            return Err(BasisFileError::NotABasisFile { path: path.to_path_buf() })
+            return Err(BasisFileError::NotABasisFile {
+                path: path.to_path_buf(),
+            })
         }
         Err(e) => return Err(io(path)(e)),
     }
     if &fixed[..8] != BASIS_FILE_MAGIC {
-        return Err(BasisFileError::NotABasisFile { path: path.to_path_buf() });
+        return Err(BasisFileError::NotABasisFile {
+            path: path.to_path_buf(),
+        });
     }
     let version = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
     if version > BASIS_FILE_VERSION {
@@ -273,7 +296,10 @@ fn read_header(path: &Path, reader: &mut impl Read) -> Result<(BasisFileHeader, 
         });
     }
     let length = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]) as usize;
-    let damaged = || BasisFileError::Checksum { path: path.to_path_buf(), part: "header" };
+    let damaged = || BasisFileError::Checksum {
+        path: path.to_path_buf(),
+        part: "header",
+    };
     if version == 0 || !(16 + 8 + 48 + 4 + 8..=1 << 20).contains(&length) {
         return Err(damaged());
     }
@@ -281,7 +307,11 @@ fn read_header(path: &Path, reader: &mut impl Read) -> Result<(BasisFileHeader, 
     bytes.resize(length, 0);
     reader.read_exact(&mut bytes[16..]).map_err(|e| {
         if e.kind() == std::io::ErrorKind::UnexpectedEof {
-            BasisFileError::Truncated { path: path.to_path_buf(), expected: length as u64, found: 0 }
+            BasisFileError::Truncated {
+                path: path.to_path_buf(),
+                expected: length as u64,
+                found: 0,
+            }
         } else {
             io(path)(e)
         }
@@ -298,15 +328,24 @@ fn read_header(path: &Path, reader: &mut impl Read) -> Result<(BasisFileHeader, 
     };
     let counts: Vec<usize> = (0..6).map(|i| u64_at(24 + 8 * i) as usize).collect();
     let name_length = u32::from_le_bytes([bytes[72], bytes[73], bytes[74], bytes[75]]) as usize;
-    let invalid = |reason: String| BasisFileError::Invalid { path: path.to_path_buf(), reason };
+    let invalid = |reason: String| BasisFileError::Invalid {
+        path: path.to_path_buf(),
+        reason,
+    };
     if 76 + name_length != body {
-        return Err(invalid("header length does not match the discretization id".into()));
+        return Err(invalid(
+            "header length does not match the discretization id".into(),
+        ));
     }
     let discretization = String::from_utf8(bytes[76..body].to_vec())
         .map_err(|_| invalid("discretization id is not UTF-8".into()))?;
     let header = BasisFileHeader {
         version,
-        key: BasisFileKey { discretization, mesh_fingerprint: u64_at(16), face_count: counts[0] },
+        key: BasisFileKey {
+            discretization,
+            mesh_fingerprint: u64_at(16),
+            face_count: counts[0],
+        },
         field_count: counts[2],
         harmonic_count: counts[3],
         integrable_count: counts[4],
@@ -334,7 +373,9 @@ fn read_basis(
                 expected: key.discretization.clone(),
             });
         }
-        if key.mesh_fingerprint != header.key.mesh_fingerprint || key.face_count != header.key.face_count {
+        if key.mesh_fingerprint != header.key.mesh_fingerprint
+            || key.face_count != header.key.face_count
+        {
             return Err(BasisFileError::WrongMesh {
                 path: path.to_path_buf(),
                 found: header.key.mesh_fingerprint,
@@ -354,9 +395,16 @@ fn read_basis(
             .checked_add(fields)?
             .checked_add(8)
     })()
-    .ok_or_else(|| BasisFileError::Invalid { path: path.to_path_buf(), reason: "sizes overflow".into() })?;
+    .ok_or_else(|| BasisFileError::Invalid {
+        path: path.to_path_buf(),
+        reason: "sizes overflow".into(),
+    })?;
     if size < promised {
-        return Err(BasisFileError::Truncated { path: path.to_path_buf(), expected: promised, found: size });
+        return Err(BasisFileError::Truncated {
+            path: path.to_path_buf(),
+            expected: promised,
+            found: size,
+        });
     }
     if size > promised {
         return Err(BasisFileError::Invalid {
@@ -365,7 +413,10 @@ fn read_basis(
         });
     }
     let (n, d) = (n as usize, d as usize);
-    let mut input = HashingReader { inner: reader, hash: Hash64::new() };
+    let mut input = HashingReader {
+        inner: reader,
+        hash: Hash64::new(),
+    };
     let read_err = io(path);
     let eigenvalues = input.f64s(d).map_err(read_err)?;
     let mut codes = vec![0u8; d.div_ceil(8) * 8];
@@ -384,9 +435,15 @@ fn read_basis(
     let mut stored = [0u8; 8];
     input.inner.read_exact(&mut stored).map_err(io(path))?;
     if u64::from_le_bytes(stored) != computed {
-        return Err(BasisFileError::Checksum { path: path.to_path_buf(), part: "payload" });
+        return Err(BasisFileError::Checksum {
+            path: path.to_path_buf(),
+            part: "payload",
+        });
     }
-    let invalid = |reason: String| BasisFileError::Invalid { path: path.to_path_buf(), reason };
+    let invalid = |reason: String| BasisFileError::Invalid {
+        path: path.to_path_buf(),
+        reason,
+    };
     let families = codes[..d]
         .iter()
         .map(|&c| match c {

@@ -104,7 +104,13 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
     );
     let h = complex.harmonic_dimension();
     let area: f64 = complex.m1().iter().sum::<f64>() / 2.0;
-    let (mut ka, mut kb) = initial_counts(request.size, h, exact.available(), co_exact.available(), area)?;
+    let (mut ka, mut kb) = initial_counts(
+        request.size,
+        h,
+        exact.available(),
+        co_exact.available(),
+        area,
+    )?;
 
     request.report(BasisStage::Harmonic, 0, h);
     let harmonic = harmonic_fields(complex, request.seed)?;
@@ -116,19 +122,20 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
         harmonic_kernel_residual: harmonic.kernel_residual,
         ..BasisReport::default()
     };
-    let solve = |side: &ScalarSpectrum, count: usize, stage: BasisStage, report: &mut BasisReport| {
-        let progress = |p: &tvf_solvers::EigenProgress| {
-            request.report(stage, p.found.saturating_sub(components).min(count), count)
+    let solve =
+        |side: &ScalarSpectrum, count: usize, stage: BasisStage, report: &mut BasisReport| {
+            let progress = |p: &tvf_solvers::EigenProgress| {
+                request.report(stage, p.found.saturating_sub(components).min(count), count)
+            };
+            let seed = request.seed ^ (stage as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+            request.report(stage, 0, count);
+            let pairs = side.lowest_nonzero(count, seed, &progress)?;
+            request.report(stage, pairs.values.len(), count);
+            report.factorizations += pairs.factorizations;
+            report.solves += pairs.solves;
+            report.eigensolver_calls += 1;
+            Ok::<ScalarEigenpairs, BasisError>(pairs)
         };
-        let seed = request.seed ^ (stage as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        request.report(stage, 0, count);
-        let pairs = side.lowest_nonzero(count, seed, &progress)?;
-        request.report(stage, pairs.values.len(), count);
-        report.factorizations += pairs.factorizations;
-        report.solves += pairs.solves;
-        report.eigensolver_calls += 1;
-        Ok::<ScalarEigenpairs, BasisError>(pairs)
-    };
     let mut a = solve(&exact, ka, BasisStage::Integrable, &mut report)?;
     let mut b = solve(&co_exact, kb, BasisStage::Cointegrable, &mut report)?;
     // Fields(d) and MaxEigenvalue guess each family's share; grow a family while the requested
@@ -150,10 +157,16 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
         let inclusive = matches!(request.size, BasisSize::MaxEigenvalue(_));
         let short = |pairs: &ScalarEigenpairs, side: &ScalarSpectrum| {
             let last = pairs.values.last().copied().unwrap_or(0.0);
-            pairs.values.len() < side.available() && (last < target || (inclusive && last == target))
+            pairs.values.len() < side.available()
+                && (last < target || (inclusive && last == target))
         };
         let grow = |k: usize, pairs: &ScalarEigenpairs, side: &ScalarSpectrum| {
-            let last = pairs.values.last().copied().unwrap_or(0.0).max(f64::MIN_POSITIVE);
+            let last = pairs
+                .values
+                .last()
+                .copied()
+                .unwrap_or(0.0)
+                .max(f64::MIN_POSITIVE);
             let estimate = (k as f64 * (target / last) * 1.15).ceil() as usize + 8;
             estimate.max(k + 8).min(side.available())
         };
@@ -174,8 +187,18 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
     // Merge, sort by eigenvalue (stable: harmonic first), select.
     let mut entries: Vec<(f64, FieldFamily, usize)> = (0..harmonic.fields.ncols())
         .map(|i| (0.0, FieldFamily::Harmonic, i))
-        .chain(a.values.iter().enumerate().map(|(i, &l)| (l, FieldFamily::Integrable, i)))
-        .chain(b.values.iter().enumerate().map(|(i, &l)| (l, FieldFamily::Cointegrable, i)))
+        .chain(
+            a.values
+                .iter()
+                .enumerate()
+                .map(|(i, &l)| (l, FieldFamily::Integrable, i)),
+        )
+        .chain(
+            b.values
+                .iter()
+                .enumerate()
+                .map(|(i, &l)| (l, FieldFamily::Cointegrable, i)),
+        )
         .collect();
     entries.sort_by(|x, y| x.0.total_cmp(&y.0));
     match request.size {
@@ -242,7 +265,11 @@ fn initial_counts(
             }
             // Weyl's law: a scalar Laplacian has about area·λ/(4π) eigenvalues below λ.
             let weyl = (area * bound / (4.0 * std::f64::consts::PI) * 1.2).ceil();
-            let guess = if weyl.is_finite() { weyl as usize + 8 } else { usize::MAX };
+            let guess = if weyl.is_finite() {
+                weyl as usize + 8
+            } else {
+                usize::MAX
+            };
             Ok((guess.min(available_a), guess.min(available_b)))
         }
     }

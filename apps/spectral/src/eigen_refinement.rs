@@ -30,14 +30,19 @@ pub(crate) fn refine_eigenpairs(
     if t == 0 {
         return Ok((Vec::new(), Mat::zeros(n, 0)));
     }
-    let shift = 0.1 * if first_nonzero > 0.0 { first_nonzero } else { 1.0 };
+    let shift = 0.1
+        * if first_nonzero > 0.0 {
+            first_nonzero
+        } else {
+            1.0
+        };
     let shifted = linear_combination(1.0, stiffness, shift, &diagonal(mass));
     let cholesky = SparseCholesky::new(&shifted)?;
     // Z = (A + s M)⁻¹ M X, column j scaled by (λ_j + s) so that Z ≈ X.
     let mx = Mat::from_fn(n, t, |i, j| mass[i] * vectors[(i, j)]);
     let mut z = cholesky.solve_many(mx.as_ref());
-    for j in 0..t {
-        let scale = values[j].max(0.0) + shift;
+    for (j, &value) in values.iter().enumerate().take(t) {
+        let scale = value.max(0.0) + shift;
         z.col_mut(j).iter_mut().for_each(|x| *x *= scale);
     }
     // Projected pencil (Zᵀ A Z, Zᵀ M Z), both t × t.

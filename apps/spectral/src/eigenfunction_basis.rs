@@ -92,8 +92,16 @@ impl EigenfunctionBasis {
 
     /// Checks that `complex` has the shapes this basis was computed with.
     fn check_complex<H: HodgeComplex>(&self, complex: &H) -> Result<(), SpectralBasisError> {
-        check("harmonic field rows (2F)", complex.fields().dimension(), self.harmonic.nrows())?;
-        check("potential rows (n0)", complex.potentials().dimension(), self.potentials.nrows())?;
+        check(
+            "harmonic field rows (2F)",
+            complex.fields().dimension(),
+            self.harmonic.nrows(),
+        )?;
+        check(
+            "potential rows (n0)",
+            complex.potentials().dimension(),
+            self.potentials.nrows(),
+        )?;
         check(
             "co-potential rows (n2)",
             complex.co_potentials().dimension(),

@@ -40,7 +40,11 @@ pub fn field_norm<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> f64 {
 }
 
 /// `‖L u − λ u‖_{M1}`: how far `(λ, u)` is from an eigenpair of the Hodge–Laplacian.
-pub fn eigen_residual<H: HodgeComplex + ?Sized>(complex: &H, eigenvalue: f64, field: &[f64]) -> f64 {
+pub fn eigen_residual<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    eigenvalue: f64,
+    field: &[f64],
+) -> f64 {
     let lu = apply_hodge_laplacian(complex, field);
     let residual: Vec<f64> = lu
         .iter()

@@ -2,6 +2,27 @@
 //!
 //! The Fourier basis of tangent fields (Section 6 of the paper) and what is built on it:
 //! coefficients, reconstruction, filters and compression.
+//!
+//! ```
+//! use tvf_core::generate::torus;
+//! use tvf_discretizations::{Conforming, MassLumping};
+//! use tvf_spectral::{compute_basis, BasisRequest, FieldFamily, FourierAnalysis};
+//!
+//! let mesh = torus(1.0, 0.4, 16, 8).unwrap(); // genus 1: two harmonic fields
+//! let complex = Conforming::new(&mesh, MassLumping::Barycentric)?;
+//! // 2g harmonic fields + 10 integrable + 10 co-integrable eigenfields, sorted by eigenvalue
+//! let basis = compute_basis(&complex, &BasisRequest::pairs(10))?;
+//! assert_eq!(basis.len(), 22);
+//! assert_eq!(basis.families()[..2], [FieldFamily::Harmonic; 2]);
+//! assert_eq!(basis.fields().nrows(), 2 * mesh.face_count()); // U: 2F × d, Uᵀ M_X U = I
+//!
+//! // Fourier coefficients of a basis field: 1 at its own index, 0 elsewhere.
+//! let u5: Vec<f64> = (0..basis.field_dimension()).map(|i| basis.fields()[(i, 5)]).collect();
+//! let analysis = FourierAnalysis::new(&basis, &u5)?;
+//! assert!((analysis.coefficients[5] - 1.0).abs() < 1e-9);
+//! assert!(analysis.relative_rest_norm < 1e-9);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![warn(missing_docs)]
 
 mod analysis;

@@ -62,7 +62,9 @@ pub enum NpyError {
     #[error("unsupported dtype {0:?} (only little-endian float32 '<f4' and float64 '<f8')")]
     Dtype(String),
     /// `fortran_order: True`.
-    #[error("Fortran-order arrays are not supported (save with C order, e.g. np.ascontiguousarray)")]
+    #[error(
+        "Fortran-order arrays are not supported (save with C order, e.g. np.ascontiguousarray)"
+    )]
     FortranOrder,
     /// The data section is longer than the shape says.
     #[error("{extra} bytes of trailing data after the array")]
@@ -102,7 +104,9 @@ impl NpyArray {
         };
         let start = 8 + length_size;
         if bytes.len() < start {
-            return Err(NpyError::Truncated("file ends inside the header length".into()));
+            return Err(NpyError::Truncated(
+                "file ends inside the header length".into(),
+            ));
         }
         let header_len = if length_size == 2 {
             u16::from_le_bytes([bytes[8], bytes[9]]) as usize
@@ -337,7 +341,9 @@ impl Parser<'_> {
             self.i += 5;
             Ok(false)
         } else {
-            Err(NpyError::Header("fortran_order must be True or False".into()))
+            Err(NpyError::Header(
+                "fortran_order must be True or False".into(),
+            ))
         }
     }
 
@@ -355,9 +361,9 @@ impl Parser<'_> {
             }
             // Python 2 era writers append 'L' to long integers.
             let digits = std::str::from_utf8(&self.s[start..self.i]).unwrap_or("");
-            let value: usize = digits.parse().map_err(|_| {
-                NpyError::Header(format!("bad dimension in shape at byte {start}"))
-            })?;
+            let value: usize = digits
+                .parse()
+                .map_err(|_| NpyError::Header(format!("bad dimension in shape at byte {start}")))?;
             self.eat(b'L');
             dims.push(value);
             self.skip_space();
@@ -402,10 +408,16 @@ mod tests {
         let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (4,), }";
         let h = parse_header(header).unwrap();
         assert_eq!(h.shape, vec![4]);
-        let h = parse_header("{\"shape\":(2L, 3L),\"fortran_order\":True,\"descr\":\"<f4\"}").unwrap();
+        let h =
+            parse_header("{\"shape\":(2L, 3L),\"fortran_order\":True,\"descr\":\"<f4\"}").unwrap();
         assert_eq!(h.shape, vec![2, 3]);
         assert!(h.fortran_order);
-        assert_eq!(parse_header("{'descr': '<f8', 'fortran_order': False, 'shape': (), }").unwrap().shape, Vec::<usize>::new());
+        assert_eq!(
+            parse_header("{'descr': '<f8', 'fortran_order': False, 'shape': (), }")
+                .unwrap()
+                .shape,
+            Vec::<usize>::new()
+        );
         assert!(parse_header("{'descr': '<f8', 'shape': (1,)}").is_err());
         assert!(parse_header("{'descr': '<f8', 'fortran_order': False, 'shape': (a,)}").is_err());
     }
@@ -432,10 +444,7 @@ mod tests {
         let mut fortran = good.clone();
         let pos = fortran.windows(5).position(|w| w == b"False").unwrap();
         fortran[pos..pos + 5].copy_from_slice(b"True ");
-        assert_eq!(
-            NpyArray::from_bytes(&fortran),
-            Err(NpyError::FortranOrder)
-        );
+        assert_eq!(NpyArray::from_bytes(&fortran), Err(NpyError::FortranOrder));
         let mut big_endian = good.clone();
         let pos = big_endian.windows(3).position(|w| w == b"<f8").unwrap();
         big_endian[pos] = b'>';

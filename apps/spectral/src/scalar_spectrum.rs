@@ -104,12 +104,13 @@ impl ScalarSpectrum {
             progress: Some(progress),
             ..EigenOptions::default()
         };
-        let pairs = lowest_eigenpairs(&self.stiffness, &self.mass, total, &options).map_err(
-            |source| BasisError::Eigen {
-                problem: self.name,
-                source,
-            },
-        )?;
+        let pairs =
+            lowest_eigenpairs(&self.stiffness, &self.mass, total, &options).map_err(|source| {
+                BasisError::Eigen {
+                    problem: self.name,
+                    source,
+                }
+            })?;
         let iterative = pairs.factorizations > 0;
         let max_residual = pairs.residuals.iter().fold(0.0, |m: f64, &r| m.max(r));
         let (all_values, all_vectors) = if iterative && total > 0 {

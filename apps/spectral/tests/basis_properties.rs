@@ -19,7 +19,11 @@ fn column(basis: &SpectralBasis, j: usize) -> Vec<f64> {
 
 /// Every field an eigenfield to 1e-8·max(1, λ); `Uᵀ M_X U = I` to 1e-9; harmonic count = 2g.
 fn check_basis<H: HodgeComplex>(complex: &H, basis: &SpectralBasis, genus: usize, what: &str) {
-    assert_eq!(basis.count(FieldFamily::Harmonic), 2 * genus, "{what}: harmonic count");
+    assert_eq!(
+        basis.count(FieldFamily::Harmonic),
+        2 * genus,
+        "{what}: harmonic count"
+    );
     let fields: Vec<Vec<f64>> = (0..basis.len()).map(|j| column(basis, j)).collect();
     for (j, u) in fields.iter().enumerate() {
         let lambda = basis.eigenvalues()[j];
@@ -32,7 +36,10 @@ fn check_basis<H: HodgeComplex>(complex: &H, basis: &SpectralBasis, genus: usize
         if basis.families()[j] == FieldFamily::Harmonic {
             assert_eq!(lambda, 0.0);
         } else {
-            assert!(lambda > 1e-6, "{what}: non-harmonic field {j} with λ = {lambda}");
+            assert!(
+                lambda > 1e-6,
+                "{what}: non-harmonic field {j} with λ = {lambda}"
+            );
         }
     }
     let mut worst = 0.0f64;
@@ -45,8 +52,14 @@ fn check_basis<H: HodgeComplex>(complex: &H, basis: &SpectralBasis, genus: usize
     assert!(worst <= 1e-9, "{what}: orthonormality error {worst:e}");
     let report = basis.report().expect("computed bases carry a report");
     assert_eq!(report.harmonic_dimension, 2 * genus);
-    assert!(report.harmonic_orthonormality_error <= 1e-9, "{what}: {report:?}");
-    assert!(report.harmonic_kernel_residual <= 1e-8, "{what}: {report:?}");
+    assert!(
+        report.harmonic_orthonormality_error <= 1e-9,
+        "{what}: {report:?}"
+    );
+    assert!(
+        report.harmonic_kernel_residual <= 1e-8,
+        "{what}: {report:?}"
+    );
 }
 
 #[test]
@@ -58,10 +71,20 @@ fn generated_surfaces_of_genus_0_to_3_both_decompositions() {
         let conforming = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
         let basis = compute_basis(&conforming, &request).unwrap();
         assert_eq!(basis.len(), 2 * genus + 24);
-        check_basis(&conforming, &basis, genus, &format!("conforming genus {genus}"));
+        check_basis(
+            &conforming,
+            &basis,
+            genus,
+            &format!("conforming genus {genus}"),
+        );
         let nonconforming = Nonconforming::new(&mesh, MassLumping::Voronoi).unwrap();
         let basis = compute_basis(&nonconforming, &request).unwrap();
-        check_basis(&nonconforming, &basis, genus, &format!("nonconforming genus {genus}"));
+        check_basis(
+            &nonconforming,
+            &basis,
+            genus,
+            &format!("nonconforming genus {genus}"),
+        );
     }
 }
 
@@ -74,13 +97,24 @@ fn check_complete<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh, what: &str) 
     let basis = compute_basis(complex, &BasisRequest::complete()).unwrap();
     let faces = mesh.face_count();
     assert_eq!(basis.len(), 2 * faces, "{what}: complete basis size");
-    assert_eq!(basis.count(FieldFamily::Integrable), complex.potentials_dimension() - 1);
+    assert_eq!(
+        basis.count(FieldFamily::Integrable),
+        complex.potentials_dimension() - 1
+    );
     check_basis(complex, &basis, mesh.genus(), what);
     let v = random_field(2 * faces, 7);
     let analysis = FourierAnalysis::new(&basis, &v).unwrap();
-    assert!(analysis.relative_rest_norm < 1e-12, "{what}: rest {}", analysis.relative_rest_norm);
+    assert!(
+        analysis.relative_rest_norm < 1e-12,
+        "{what}: rest {}",
+        analysis.relative_rest_norm
+    );
     let back = basis.reconstruct(&analysis.coefficients).unwrap();
-    let error: f64 = v.iter().zip(&back).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+    let error: f64 = v
+        .iter()
+        .zip(&back)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
     assert!(error < 1e-12, "{what}: reconstruction error {error:e}");
     // Parseval: Σ c² = ‖v‖²
     let energy: f64 = analysis.coefficients.iter().map(|c| c * c).sum();
@@ -100,11 +134,27 @@ impl<H: HodgeComplex> PotentialsDimension for H {
 #[test]
 fn complete_basis_has_2f_fields_and_reconstructs_a_random_field() {
     let sphere = icosphere(1);
-    check_complete(&Conforming::new(&sphere, MassLumping::Barycentric).unwrap(), &sphere, "sphere conforming");
-    check_complete(&Nonconforming::new(&sphere, MassLumping::Barycentric).unwrap(), &sphere, "sphere nonconforming");
+    check_complete(
+        &Conforming::new(&sphere, MassLumping::Barycentric).unwrap(),
+        &sphere,
+        "sphere conforming",
+    );
+    check_complete(
+        &Nonconforming::new(&sphere, MassLumping::Barycentric).unwrap(),
+        &sphere,
+        "sphere nonconforming",
+    );
     let ring = torus(2.0, 0.7, 12, 8).unwrap();
-    check_complete(&Conforming::new(&ring, MassLumping::Voronoi).unwrap(), &ring, "torus conforming");
-    check_complete(&Nonconforming::new(&ring, MassLumping::Barycentric).unwrap(), &ring, "torus nonconforming");
+    check_complete(
+        &Conforming::new(&ring, MassLumping::Voronoi).unwrap(),
+        &ring,
+        "torus conforming",
+    );
+    check_complete(
+        &Nonconforming::new(&ring, MassLumping::Barycentric).unwrap(),
+        &ring,
+        "torus nonconforming",
+    );
 }
 
 #[test]
@@ -123,7 +173,11 @@ fn size_requests_select_the_lowest_eigenfields() {
     let bound = all[60];
     let basis = compute_basis(&complex, &BasisRequest::max_eigenvalue(bound)).unwrap();
     let expected = all.iter().filter(|&&l| l <= bound * (1.0 + 1e-9)).count();
-    assert!(basis.len() == expected || basis.len() + 1 == expected, "{} vs {expected}", basis.len());
+    assert!(
+        basis.len() == expected || basis.len() + 1 == expected,
+        "{} vs {expected}",
+        basis.len()
+    );
     assert!(basis.eigenvalues().iter().all(|&l| l <= bound));
     let basis = compute_basis(&complex, &BasisRequest::max_frequency(0.0)).unwrap();
     assert_eq!(basis.len(), 2);
@@ -138,7 +192,9 @@ fn size_requests_select_the_lowest_eigenfields() {
 fn eigenfunction_form_matches_the_dense_fields() {
     let mesh = genus_surface(2, 4);
     let complex = Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    let request = BasisRequest::pairs(20).keeping_eigenfunctions().with_single_precision_copy();
+    let request = BasisRequest::pairs(20)
+        .keeping_eigenfunctions()
+        .with_single_precision_copy();
     let basis = compute_basis(&complex, &request).unwrap();
     let compact = basis.eigenfunctions().unwrap();
     let (same, _) = compute_eigenfunction_basis(&complex, &request).unwrap();
@@ -168,7 +224,12 @@ fn eigenfunction_form_matches_the_dense_fields() {
 #[test]
 fn boundary_meshes_are_rejected() {
     let mesh = SurfaceMesh::new(
-        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]],
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ],
         vec![[0, 1, 2], [1, 3, 2]],
     )
     .unwrap();

@@ -22,7 +22,10 @@ fn check<H: HodgeComplex>(complex: &H, basis: &SpectralBasis, harmonic: usize, w
     for (j, field) in fields.iter().enumerate() {
         let lambda = basis.eigenvalues()[j];
         let residual = eigen_residual(complex, lambda, field);
-        assert!(residual <= 1e-8 * lambda.max(1.0), "{what}: field {j} λ = {lambda:e}: residual {residual:e}");
+        assert!(
+            residual <= 1e-8 * lambda.max(1.0),
+            "{what}: field {j} λ = {lambda:e}: residual {residual:e}"
+        );
     }
     let mut worst = 0.0f64;
     for i in 0..fields.len() {
@@ -60,9 +63,19 @@ fn harmonic_fields_number_2g_on_the_real_meshes() {
         let request = BasisRequest::pairs(10).with_seed(11);
         let conforming = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
         let basis = compute_basis(&conforming, &request).unwrap();
-        check(&conforming, &basis, 2 * genus, &format!("{name} conforming"));
+        check(
+            &conforming,
+            &basis,
+            2 * genus,
+            &format!("{name} conforming"),
+        );
         let nonconforming = Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap();
         let basis = compute_basis(&nonconforming, &request).unwrap();
-        check(&nonconforming, &basis, 2 * genus, &format!("{name} nonconforming"));
+        check(
+            &nonconforming,
+            &basis,
+            2 * genus,
+            &format!("{name} nonconforming"),
+        );
     }
 }

@@ -24,7 +24,10 @@ fn band_errors<H: HodgeComplex>(complex: &H) -> [[f64; 2]; 3] {
         let multiplicity = 2 * (2 * l + 1);
         let exact = (l * (l + 1)) as f64;
         let range = start..start + multiplicity;
-        for (k, family) in [FieldFamily::Integrable, FieldFamily::Cointegrable].into_iter().enumerate() {
+        for (k, family) in [FieldFamily::Integrable, FieldFamily::Cointegrable]
+            .into_iter()
+            .enumerate()
+        {
             let members: Vec<f64> = basis.eigenvalues()[range.clone()]
                 .iter()
                 .zip(&basis.families()[range.clone()])
@@ -32,7 +35,10 @@ fn band_errors<H: HodgeComplex>(complex: &H) -> [[f64; 2]; 3] {
                 .map(|(&x, _)| x)
                 .collect();
             assert_eq!(members.len(), 2 * l + 1, "band l = {l}, {family:?}");
-            errors[b][k] = members.iter().map(|x| (x - exact).abs() / exact).fold(0.0, f64::max);
+            errors[b][k] = members
+                .iter()
+                .map(|x| (x - exact).abs() / exact)
+                .fold(0.0, f64::max);
         }
         start += multiplicity;
     }
@@ -77,10 +83,14 @@ fn lowest_eigenvalues_converge_to_l_times_l_plus_one() {
         previous = Some(errors);
     }
     let last = previous.unwrap();
-    assert!(last.iter().flatten().flatten().all(|&e| e < 0.01), "level 4 errors {last:?}");
+    assert!(
+        last.iter().flatten().flatten().all(|&e| e < 0.01),
+        "level 4 errors {last:?}"
+    );
     // The spectra of the two decompositions coincide with the families swapped (P1 ↔ CR).
-    for b in 0..3 {
-        assert!((last[0][b][0] - last[1][b][1]).abs() < 1e-9);
-        assert!((last[0][b][1] - last[1][b][0]).abs() < 1e-9);
+    let [conforming, nonconforming] = last;
+    for (c, n) in conforming.iter().zip(&nonconforming) {
+        assert!((c[0] - n[1]).abs() < 1e-9);
+        assert!((c[1] - n[0]).abs() < 1e-9);
     }
 }

@@ -51,7 +51,10 @@ fn round_trip_is_bit_exact() {
 fn damaged(path: &Path, bytes: &[u8], key: &BasisFileKey) -> BasisFileError {
     std::fs::write(path, bytes).unwrap();
     let error = load_basis(path, key).unwrap_err();
-    assert!(error.to_string().contains(&path.display().to_string()), "{error}");
+    assert!(
+        error.to_string().contains(&path.display().to_string()),
+        "{error}"
+    );
     error
 }
 
@@ -66,42 +69,80 @@ fn every_bad_file_gets_its_error() {
 
     // another mesh: the same sphere rigidly moved (same counts, other coordinates)
     let moved = rigid_motion(&mesh, [0.3, -0.2, 0.9], 0.7, [1.0, 2.0, 3.0]).unwrap();
-    let moved_key = BasisFileKey::new(&moved, &Conforming::new(&moved, MassLumping::Barycentric).unwrap());
-    assert!(matches!(load_basis(&path, &moved_key), Err(BasisFileError::WrongMesh { .. })));
+    let moved_key = BasisFileKey::new(
+        &moved,
+        &Conforming::new(&moved, MassLumping::Barycentric).unwrap(),
+    );
+    assert!(matches!(
+        load_basis(&path, &moved_key),
+        Err(BasisFileError::WrongMesh { .. })
+    ));
     let finer = icosphere(2);
-    let finer_key = BasisFileKey::new(&finer, &Conforming::new(&finer, MassLumping::Barycentric).unwrap());
+    let finer_key = BasisFileKey::new(
+        &finer,
+        &Conforming::new(&finer, MassLumping::Barycentric).unwrap(),
+    );
     assert!(matches!(
         load_basis(&path, &finer_key),
-        Err(BasisFileError::WrongMesh { found_faces: 80, expected_faces: 320, .. })
+        Err(BasisFileError::WrongMesh {
+            found_faces: 80,
+            expected_faces: 320,
+            ..
+        })
     ));
     // another discretization, another mass lumping
     for other in [
-        BasisFileKey::new(&mesh, &Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap()),
-        BasisFileKey::new(&mesh, &Conforming::new(&mesh, MassLumping::Voronoi).unwrap()),
+        BasisFileKey::new(
+            &mesh,
+            &Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap(),
+        ),
+        BasisFileKey::new(
+            &mesh,
+            &Conforming::new(&mesh, MassLumping::Voronoi).unwrap(),
+        ),
     ] {
         let error = load_basis(&path, &other).unwrap_err();
-        assert!(matches!(error, BasisFileError::WrongDiscretization { .. }), "{error}");
+        assert!(
+            matches!(error, BasisFileError::WrongDiscretization { .. }),
+            "{error}"
+        );
     }
     // a newer format
     let mut newer = good.clone();
     newer[8..12].copy_from_slice(&2u32.to_le_bytes());
     assert!(matches!(
         damaged(&bad, &newer, &key),
-        BasisFileError::NewerFormat { found: 2, supported: 1, .. }
+        BasisFileError::NewerFormat {
+            found: 2,
+            supported: 1,
+            ..
+        }
     ));
     // not a basis file at all
-    assert!(matches!(damaged(&bad, b"v 0 0 0\n", &key), BasisFileError::NotABasisFile { .. }));
-    assert!(matches!(damaged(&bad, &[], &key), BasisFileError::NotABasisFile { .. }));
+    assert!(matches!(
+        damaged(&bad, b"v 0 0 0\n", &key),
+        BasisFileError::NotABasisFile { .. }
+    ));
+    assert!(matches!(
+        damaged(&bad, &[], &key),
+        BasisFileError::NotABasisFile { .. }
+    ));
     // truncated in the payload, in the header
     assert!(matches!(
         damaged(&bad, &good[..good.len() - 100], &key),
         BasisFileError::Truncated { .. }
     ));
-    assert!(matches!(damaged(&bad, &good[..40], &key), BasisFileError::Truncated { .. }));
+    assert!(matches!(
+        damaged(&bad, &good[..40], &key),
+        BasisFileError::Truncated { .. }
+    ));
     // trailing garbage
     let mut longer = good.clone();
     longer.extend_from_slice(&[0; 8]);
-    assert!(matches!(damaged(&bad, &longer, &key), BasisFileError::Invalid { .. }));
+    assert!(matches!(
+        damaged(&bad, &longer, &key),
+        BasisFileError::Invalid { .. }
+    ));
     // one flipped bit in the header, in the eigenvalues, in the fields, in the checksum
     let header_length = u32::from_le_bytes(good[12..16].try_into().unwrap()) as usize;
     let mut flip = good.clone();
@@ -110,11 +151,22 @@ fn every_bad_file_gets_its_error() {
         damaged(&bad, &flip, &key),
         BasisFileError::Checksum { part: "header", .. }
     ));
-    for position in [header_length + 3, good.len() / 2, good.len() - 9, good.len() - 1] {
+    for position in [
+        header_length + 3,
+        good.len() / 2,
+        good.len() - 9,
+        good.len() - 1,
+    ] {
         let mut flip = good.clone();
         flip[position] ^= 0x80;
         assert!(
-            matches!(damaged(&bad, &flip, &key), BasisFileError::Checksum { part: "payload", .. }),
+            matches!(
+                damaged(&bad, &flip, &key),
+                BasisFileError::Checksum {
+                    part: "payload",
+                    ..
+                }
+            ),
             "flip at {position}"
         );
     }

@@ -42,7 +42,9 @@ fn npy_and_text_round_trips_are_exact() {
 #[test]
 fn reads_files_written_by_numpy() {
     // np.save of np.array([[1.5, -2, 3], [0.25, 5, 6e-3]], dtype='<f4') (numpy 2.4).
-    let mut bytes = b"\x93NUMPY\x01\x00v\x00{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }".to_vec();
+    let mut bytes =
+        b"\x93NUMPY\x01\x00v\x00{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }"
+            .to_vec();
     bytes.resize(127, b' ');
     bytes.push(b'\n');
     for x in [1.5f32, -2.0, 3.0, 0.25, 5.0, 6e-3] {
@@ -94,19 +96,38 @@ fn bad_files_are_rejected_with_the_path() {
     let at = fortran.windows(5).position(|w| w == b"False").unwrap();
     fortran[at..at + 5].copy_from_slice(b"True ");
     expect_error(&write("fortran.npy", &fortran), |e| {
-        matches!(e, FieldIoError::Npy { source: NpyError::FortranOrder, .. })
+        matches!(
+            e,
+            FieldIoError::Npy {
+                source: NpyError::FortranOrder,
+                ..
+            }
+        )
     });
     let mut integer = good.clone();
     let at = integer.windows(3).position(|w| w == b"<f8").unwrap();
     integer[at..at + 3].copy_from_slice(b"<i8");
-    expect_error(&write("int.npy", &integer), |e| {
-        matches!(e, FieldIoError::Npy { source: NpyError::Dtype(d), .. } if d == "<i8")
-    });
+    expect_error(
+        &write("int.npy", &integer),
+        |e| matches!(e, FieldIoError::Npy { source: NpyError::Dtype(d), .. } if d == "<i8"),
+    );
     expect_error(&write("short.npy", &good[..good.len() - 3]), |e| {
-        matches!(e, FieldIoError::Npy { source: NpyError::Truncated(_), .. })
+        matches!(
+            e,
+            FieldIoError::Npy {
+                source: NpyError::Truncated(_),
+                ..
+            }
+        )
     });
     expect_error(&write("text.npy", b"1 2 3\n"), |e| {
-        matches!(e, FieldIoError::Npy { source: NpyError::NotNpy, .. })
+        matches!(
+            e,
+            FieldIoError::Npy {
+                source: NpyError::NotNpy,
+                ..
+            }
+        )
     });
     let wrong_shape = NpyArray {
         shape: vec![3, 2],
@@ -114,9 +135,10 @@ fn bad_files_are_rejected_with_the_path() {
         dtype: NpyDtype::F64,
     };
     write_npy(&p("shape.npy"), &wrong_shape).unwrap();
-    expect_error(&p("shape.npy"), |e| {
-        matches!(e, FieldIoError::Shape { found, .. } if found == &vec![3, 2])
-    });
+    expect_error(
+        &p("shape.npy"),
+        |e| matches!(e, FieldIoError::Shape { found, .. } if found == &vec![3, 2]),
+    );
     let nan = NpyArray {
         shape: vec![2, 3],
         data: vec![1.0, 2.0, 3.0, 4.0, f64::NAN, 6.0],
@@ -148,7 +170,11 @@ fn sequences_round_trip_in_c_order() {
     let frames: Vec<Vec<[f64; 3]>> = frames
         .into_iter()
         .enumerate()
-        .map(|(k, f)| f.into_iter().map(|v| [v[0] + k as f64, v[1], v[2]]).collect())
+        .map(|(k, f)| {
+            f.into_iter()
+                .map(|v| [v[0] + k as f64, v[1], v[2]])
+                .collect()
+        })
         .collect();
     write_face_vector_sequence(&path, &frames, NpyDtype::F64).unwrap();
     let array = read_npy(&path).unwrap();
@@ -172,7 +198,9 @@ fn tangent_fields_are_projected_and_the_normal_part_reported() {
     let mesh = icosphere(1);
     let space = FaceFields::new(&mesh).unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let field: Vec<f64> = (0..space.dimension()).map(|i| (i as f64 * 0.41).sin()).collect();
+    let field: Vec<f64> = (0..space.dimension())
+        .map(|i| (i as f64 * 0.41).sin())
+        .collect();
     let path = dir.path().join("tangent.npy");
     write_tangent_field(&path, &space, &field).unwrap();
     let back = read_tangent_field(&path, &space).unwrap();
@@ -201,6 +229,13 @@ fn tangent_fields_are_projected_and_the_normal_part_reported() {
     let short = dir.path().join("short.txt");
     write_face_vectors(&short, &vectors[1..]).unwrap();
     let error = read_tangent_field(&short, &space).unwrap_err();
-    assert!(matches!(error, FieldIoError::FaceCount { expected: 80, found: 79, .. }));
+    assert!(matches!(
+        error,
+        FieldIoError::FaceCount {
+            expected: 80,
+            found: 79,
+            ..
+        }
+    ));
     assert!(error.to_string().contains("short.txt"));
 }

@@ -2,7 +2,7 @@
 
 use crate::basis_source::{Decomposition, Discretization, Mass};
 use crate::mesh_input::MeshInput;
-use crate::progress::{note, set_quiet, Progress};
+use crate::progress::{note, Progress};
 use crate::with_complex;
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -13,9 +13,11 @@ use tvf_spectral::{
 
 /// Arguments of `tvf basis`.
 #[derive(Args)]
-#[command(after_help = "The basis holds the 2g harmonic fields plus K integrable and K \
+#[command(
+    after_help = "The basis holds the 2g harmonic fields plus K integrable and K \
 co-integrable eigenfields of the Hodge–Laplacian, sorted by eigenvalue. The file is tied to the mesh \
-(fingerprint of its vertices and faces) and to the discretization; other commands take it with --basis.")]
+(fingerprint of its vertices and faces) and to the discretization; other commands take it with --basis."
+)]
 pub struct BasisArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -34,14 +36,10 @@ pub struct BasisArgs {
     /// Output basis file (.tvfb).
     #[arg(short, long, value_name = "FILE")]
     output: PathBuf,
-    /// No progress bar and no summary.
-    #[arg(short, long)]
-    quiet: bool,
 }
 
 /// Computes and saves the basis.
 pub fn run(args: BasisArgs) -> Result<()> {
-    set_quiet(args.quiet);
     if args.pairs == 0 {
         bail!("-k 0: ask for at least one pair of eigenfields");
     }

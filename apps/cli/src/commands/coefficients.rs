@@ -11,10 +11,12 @@ use tvf_spectral::{FieldFamily, FourierAnalysis};
 
 /// Arguments of `tvf coefficients`.
 #[derive(Args)]
-#[command(after_help = "Coefficients are M_X inner products with the M_X-orthonormal basis fields \
+#[command(
+    after_help = "Coefficients are M_X inner products with the M_X-orthonormal basis fields \
 (α: integrable, β: co-integrable, γ: harmonic). With --json, prints {\"coefficients\": [{index, \
 family, eigenvalue, frequency, coefficient}...], \"alpha\", \"beta\", \"gamma\", \"norm\", \
-\"relative_rest_norm\"} to stdout.")]
+\"relative_rest_norm\"} to stdout."
+)]
 pub struct CoefficientsArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -65,7 +67,10 @@ pub fn run(args: CoefficientsArgs) -> Result<()> {
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        println!("{:>6}  {:<12}  {:>14}  {:>14}  {:>22}", "index", "family", "eigenvalue", "frequency", "coefficient");
+        println!(
+            "{:>6}  {:<12}  {:>14}  {:>14}  {:>22}",
+            "index", "family", "eigenvalue", "frequency", "coefficient"
+        );
         for (index, ((&c, &lambda), family)) in analysis
             .coefficients
             .iter()
@@ -73,18 +78,33 @@ pub fn run(args: CoefficientsArgs) -> Result<()> {
             .zip(basis.families())
             .enumerate()
         {
-            println!("{index:>6}  {:<12}  {lambda:>14.6e}  {:>14.6e}  {c:>22.15e}", family.name(), lambda.sqrt());
+            println!(
+                "{index:>6}  {:<12}  {lambda:>14.6e}  {:>14.6e}  {c:>22.15e}",
+                family.name(),
+                lambda.sqrt()
+            );
         }
         let norm2 = analysis.norm * analysis.norm;
-        for family in [FieldFamily::Integrable, FieldFamily::Cointegrable, FieldFamily::Harmonic] {
+        for family in [
+            FieldFamily::Integrable,
+            FieldFamily::Cointegrable,
+            FieldFamily::Harmonic,
+        ] {
             let energy = analysis.family_energy(family);
             println!(
                 "{:<12} energy {energy:.6e} ({:.2} %)",
                 family.name(),
-                if norm2 > 0.0 { 100.0 * energy / norm2 } else { 0.0 }
+                if norm2 > 0.0 {
+                    100.0 * energy / norm2
+                } else {
+                    0.0
+                }
             );
         }
-        println!("rest field: relative L2 norm {:.6e}", analysis.relative_rest_norm);
+        println!(
+            "rest field: relative L2 norm {:.6e}",
+            analysis.relative_rest_norm
+        );
     }
     Ok(())
 }

@@ -14,9 +14,11 @@ use tvf_spectral::{write_face_vectors, write_npy, NpyArray, NpyDtype};
 
 /// Arguments of `tvf decompose`.
 #[derive(Args)]
-#[command(after_help = "Writes DIR/integrable.npy, DIR/cointegrable.npy, DIR/harmonic.npy (F×3: one \
+#[command(
+    after_help = "Writes DIR/integrable.npy, DIR/cointegrable.npy, DIR/harmonic.npy (F×3: one \
 3D vector per face) and DIR/potential.npy, DIR/co_potential.npy (one value per node: vertices and \
-edges for the conforming decomposition, edges and vertices for the nonconforming one; zero mean).")]
+edges for the conforming decomposition, edges and vertices for the nonconforming one; zero mean)."
+)]
 pub struct DecomposeArgs {
     #[command(flatten)]
     input: MeshInput,

@@ -3,7 +3,7 @@
 
 use crate::basis_source::{Decomposition, Discretization, Mass};
 use crate::mesh_input::MeshInput;
-use crate::progress::{set_quiet, Progress};
+use crate::progress::Progress;
 use crate::with_complex;
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -13,9 +13,11 @@ use tvf_spectral::{compute_eigenfunction_basis, BasisRequest};
 
 /// Arguments of `tvf spectrum`.
 #[derive(Args)]
-#[command(after_help = "With --json, prints {\"eigenvalues\": [...ascending], \"labels\": \
+#[command(
+    after_help = "With --json, prints {\"eigenvalues\": [...ascending], \"labels\": \
 [\"harmonic\"|\"integrable\"|\"cointegrable\", ...], \"seconds\": ...} (plus the mesh and the \
-discretization) to stdout. Eigenvalues are in 1/length² (frequencies are their square roots).")]
+discretization) to stdout. Eigenvalues are in 1/length² (frequencies are their square roots)."
+)]
 pub struct SpectrumArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -31,14 +33,10 @@ pub struct SpectrumArgs {
     /// Print JSON to stdout instead of a table.
     #[arg(long)]
     json: bool,
-    /// No progress output.
-    #[arg(short, long)]
-    quiet: bool,
 }
 
 /// Computes and prints the spectrum.
 pub fn run(args: SpectrumArgs) -> Result<()> {
-    set_quiet(args.quiet);
     if args.count == 0 {
         bail!("-k 0: ask for at least one eigenvalue");
     }
@@ -67,9 +65,15 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        println!("{:>6}  {:>22}  {:>14}  family", "index", "eigenvalue", "frequency");
+        println!(
+            "{:>6}  {:>22}  {:>14}  family",
+            "index", "eigenvalue", "frequency"
+        );
         for (i, (&lambda, label)) in basis.eigenvalues().iter().zip(&labels).enumerate() {
-            println!("{i:>6}  {lambda:>22.15e}  {:>14.6e}  {label}", lambda.sqrt());
+            println!(
+                "{i:>6}  {lambda:>22.15e}  {:>14.6e}  {label}",
+                lambda.sqrt()
+            );
         }
     }
     Ok(())
