@@ -327,7 +327,7 @@ pub(crate) fn refined_solve(
         }
         let ap = apply(&p);
         let pap = dot(&p, &ap);
-        if !(pap > 0.0) {
+        if pap.is_nan() || pap <= 0.0 {
             break;
         }
         let alpha = rz / pap;
