@@ -32,6 +32,8 @@ enum Command {
     Decompress(commands::decompress::DecompressArgs),
     /// Rate–distortion curves of spectral compression (CSV and PNG plot).
     RateDistortion(commands::rate_distortion::RateDistortionArgs),
+    /// The interactive spline editor in the browser: a local server on 127.0.0.1 serving a WebGL2 page.
+    Edit(commands::edit::EditArgs),
 }
 
 fn main() {
@@ -44,6 +46,7 @@ fn main() {
         Command::Compress(args) => commands::compress::run(args),
         Command::Decompress(args) => commands::decompress::run(args),
         Command::RateDistortion(args) => commands::rate_distortion::run(args),
+        Command::Edit(args) => commands::edit::run(args),
     };
     if let Err(error) = result {
         eprintln!("error: {error:#}");

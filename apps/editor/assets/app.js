@@ -48,7 +48,9 @@ function updateFieldLayers() {
   const { mesh, renderer, vectors } = app;
   if (!vectors) return;
   const mode = $('color-mode').value;
-  if (mode === 'none') {
+  let largestValue = 0;
+  for (let k = 0; k < vectors.length; k++) largestValue = Math.max(largestValue, Math.abs(vectors[k]));
+  if (mode === 'none' || largestValue === 0) {
     renderer.setFaceColors(new Float32Array(3 * mesh.faceCount).fill(0.82));
     $('color-range').textContent = '–';
   } else {
@@ -163,7 +165,13 @@ function acceptField({ status, coords }, milliseconds) {
 
 const edits = new EditQueue(
   (frame, ms) => { clearError(); acceptField(frame, ms); },
-  (message) => { showError(message); if (!app.drag) app.pending = null; updateConstraintLayers(); requestRedraw(); },
+  (message, op) => {
+    showError(message);
+    if (op && op.op === 'add' && app.drag && app.drag.id === op.constraint.id) app.drag = { kind: 'none' };
+    if (!app.drag || app.drag.kind === 'none') app.pending = null;
+    updateConstraintLayers();
+    requestRedraw();
+  },
   () => {},
 );
 
@@ -185,6 +193,7 @@ async function requestFur() {
       }
     }
     app.renderer.setLayer('fur', new Float32Array(pos), new Float32Array(col));
+    window.__furStrands = count;
     app.renderer.setVisible('fur', $('fur').checked);
     requestRedraw();
   } catch (e) { showError(`fur: ${e.message}`); }
@@ -391,6 +400,8 @@ async function start() {
     $('mesh-info').textContent = `${app.mesh.vertexCount} V, ${app.mesh.faceCount} F`;
     acceptField(parseFieldFrame(await getBinary('/api/field')));
     redraw();
+    // For scripting the page (the browser test uses it): the state and the projection.
+    window.tvfEditor = { app, screenOf, requestRedraw };
     document.body.dataset.ready = 'true';
   } catch (e) {
     showError(`could not start the editor: ${e.message}`);

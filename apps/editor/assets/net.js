@@ -27,7 +27,7 @@ export async function getBinary(path) {
 }
 
 export class EditQueue {
-  // onField({status, coords}, milliseconds) after every accepted edit; onError(message) on a
+  // onField({status, coords}, milliseconds) after every accepted edit; onError(message, op) on a
   // rejected edit or a lost connection; onIdle() when the queue runs empty.
   constructor(onField, onError, onIdle) {
     this.queue = [];
@@ -58,7 +58,12 @@ export class EditQueue {
       if (response.ok) {
         this.onField(parseFieldFrame(await response.arrayBuffer()), performance.now() - started);
       } else {
-        this.onError(`${op.op} rejected (${response.status}): ${await errorText(response)}`);
+        const message = `${op.op} rejected (${response.status}): ${await errorText(response)}`;
+        if (op.op === 'add') {
+          // Edits queued for a constraint that was never added would only fail too.
+          this.queue = this.queue.filter((o) => !(o.constraint && o.constraint.id === op.constraint.id));
+        }
+        this.onError(message, op);
       }
     } catch (e) {
       this.onError(`lost connection to the tvf server (${e.message})`);

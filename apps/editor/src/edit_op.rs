@@ -45,9 +45,10 @@ enum OpRecord {
 impl EditOp {
     /// Parses an edit from the JSON body of a request.
     pub fn parse(body: &[u8]) -> Result<Self, EditorError> {
-        let record: OpRecord = serde_json::from_slice(body).map_err(|e| EditorError::BadRequest {
-            reason: format!("edit JSON: {e}"),
-        })?;
+        let record: OpRecord =
+            serde_json::from_slice(body).map_err(|e| EditorError::BadRequest {
+                reason: format!("edit JSON: {e}"),
+            })?;
         Ok(match record {
             OpRecord::Add { constraint } => EditOp::Add(parse_constraint(constraint)?),
             OpRecord::Set { constraint } => EditOp::Set(parse_constraint(constraint)?),
@@ -79,7 +80,9 @@ impl EditOp {
 fn parse_constraint(record: serde_json::Value) -> Result<Constraint, EditorError> {
     let text = serde_json::json!({ "constraints": [record] }).to_string();
     let mut set = ConstraintSet::parse(&text, Path::new("edit request"))?;
-    set.constraints.pop().ok_or_else(|| EditorError::BadRequest {
-        reason: "missing constraint".into(),
-    })
+    set.constraints
+        .pop()
+        .ok_or_else(|| EditorError::BadRequest {
+            reason: "missing constraint".into(),
+        })
 }

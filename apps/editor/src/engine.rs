@@ -1,5 +1,5 @@
-//! [`Editor`]: the editing engine. One thread owns the basis, the operators and the
-//! [`SplineSession`]; requests from the HTTP threads reach it over a channel, so edits are
+//! The editing engine behind [`crate::Editor`]: one thread owns the basis, the operators and
+//! the [`SplineSession`]; requests from the HTTP threads reach it over a channel, so edits are
 //! applied one at a time, in order.
 //!
 //! A value change (`set` of a constraint at the same place) only re-solves the session
@@ -7,28 +7,27 @@
 //! borders or downdates the factorisation; ω rebuilds it (the energy changes) and a new basis
 //! size rebuilds it on the first `d` fields.
 
-use std::sync::mpsc::{channel, Receiver, Sender};
-use std::sync::Arc;
+use std::sync::mpsc::{Receiver, Sender};
 use std::time::Instant;
 
 use tvf_core::discretization::{FieldSpace, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet, ReducedBasis,
-    ReducedBasisF32, SplineSession,
+    CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet, ReducedBasis, SplineSession,
 };
 use tvf_discretizations::{Conforming, MassLumping};
 
 use crate::edit_op::EditOp;
 use crate::error::EditorError;
+use crate::field_mapper::FieldMapper;
 use crate::payload::encode_field_frame;
 use crate::status::{
     constraint_records, reduced_residual, Anchors, CheckReport, CheckedConstraint, Status,
 };
 
-type Reply<T> = Sender<Result<T, EditorError>>;
+pub(crate) type Reply<T> = Sender<Result<T, EditorError>>;
 
-enum Request {
+pub(crate) enum Request {
     Edit(EditOp, Reply<Vec<u8>>),
     Frame(Reply<Vec<u8>>),
     ConstraintSet(Reply<String>),
@@ -36,123 +35,11 @@ enum Request {
     FaceVectors(Reply<Vec<[f64; 3]>>),
 }
 
-/// Handle to the editing engine (cheap to clone; the engine stops when every handle is gone).
-#[derive(Clone)]
-pub struct Editor {
-    requests: Sender<Request>,
-    mesh: Arc<SurfaceMesh>,
-}
-
-/// What the engine starts from.
-pub struct EditorSetup {
-    /// The mesh.
-    pub mesh: SurfaceMesh,
-    /// The basis `U` (`2F × d`) with its eigenvalues.
-    pub basis: ReducedBasis,
-    /// Constraints and ω to start with (none and ω = 0.1 if `None`).
-    pub constraints: Option<ConstraintSet>,
-    /// Number of basis fields to use at first (all if `None`).
-    pub basis_size: Option<usize>,
-}
-
 #[derive(Debug, Clone, PartialEq)]
-struct Snapshot {
-    constraints: Vec<Constraint>,
-    omega: f64,
-    basis_size: usize,
-}
-
-impl Editor {
-    /// Starts the engine thread: builds the conforming operators of the mesh, the session and
-    /// the first field. Fails on a degenerate mesh, a bad basis size or constraints that do not
-    /// fit the mesh or are dependent.
-    pub fn start(setup: EditorSetup) -> Result<Self, EditorError> {
-        let EditorSetup {
-            mesh,
-            basis,
-            constraints,
-            basis_size,
-        } = setup;
-        if basis.field_dimension() != 2 * mesh.face_count() {
-            return Err(EditorError::BadRequest {
-                reason: format!(
-                    "the basis has {} rows but the mesh has {} faces (2F = {})",
-                    basis.field_dimension(),
-                    mesh.face_count(),
-                    2 * mesh.face_count()
-                ),
-            });
-        }
-        let d = basis_size.unwrap_or(basis.len());
-        if d == 0 || d > basis.len() {
-            return Err(EditorError::BadBasisSize {
-                requested: d,
-                available: basis.len(),
-            });
-        }
-        let set = constraints.unwrap_or(ConstraintSet {
-            omega: tvf_design::DEFAULT_OMEGA,
-            constraints: Vec::new(),
-            mesh_fingerprint: None,
-        });
-        let initial = Snapshot {
-            constraints: set.constraints,
-            omega: set.omega,
-            basis_size: d,
-        };
-        let mesh = Arc::new(mesh);
-        let (requests, inbox) = channel();
-        let (started, started_rx) = channel();
-        let engine_mesh = Arc::clone(&mesh);
-        std::thread::Builder::new()
-            .name("tvf-editor-engine".into())
-            .spawn(move || run_engine(&engine_mesh, basis, initial, inbox, started))
-            .map_err(|source| EditorError::Io {
-                what: "starting the editing engine thread".into(),
-                source,
-            })?;
-        started_rx.recv().map_err(|_| EditorError::EngineStopped)??;
-        Ok(Self { requests, mesh })
-    }
-
-    /// The mesh being edited.
-    pub fn mesh(&self) -> &SurfaceMesh {
-        &self.mesh
-    }
-
-    fn ask<T>(&self, make: impl FnOnce(Reply<T>) -> Request) -> Result<T, EditorError> {
-        let (tx, rx) = channel();
-        self.requests
-            .send(make(tx))
-            .map_err(|_| EditorError::EngineStopped)?;
-        rx.recv().map_err(|_| EditorError::EngineStopped)?
-    }
-
-    /// Applies an edit and returns the new field frame (see [`crate::payload`]). A refused
-    /// edit leaves the state unchanged.
-    pub fn edit(&self, op: EditOp) -> Result<Vec<u8>, EditorError> {
-        self.ask(|r| Request::Edit(op, r))
-    }
-
-    /// The current field frame.
-    pub fn field_frame(&self) -> Result<Vec<u8>, EditorError> {
-        self.ask(Request::Frame)
-    }
-
-    /// The current constraints and ω as constraint-file JSON.
-    pub fn constraint_set_json(&self) -> Result<String, EditorError> {
-        self.ask(Request::ConstraintSet)
-    }
-
-    /// Checks the held field at full precision against every constraint.
-    pub fn check(&self) -> Result<CheckReport, EditorError> {
-        self.ask(Request::Check)
-    }
-
-    /// The held field as one 3D vector per face (`F` entries).
-    pub fn face_vectors(&self) -> Result<Vec<[f64; 3]>, EditorError> {
-        self.ask(Request::FaceVectors)
-    }
+pub(crate) struct Snapshot {
+    pub(crate) constraints: Vec<Constraint>,
+    pub(crate) omega: f64,
+    pub(crate) basis_size: usize,
 }
 
 /// Most undo steps kept.
@@ -174,6 +61,7 @@ struct State<'c> {
     field32: Vec<f32>,
     solve_ms: f64,
     map_ms: f64,
+    update: &'static str,
 }
 
 /// A change that needs another basis: the state to reach, and (for an edit) the state to fall
@@ -189,7 +77,7 @@ struct PendingEdit {
     reply: Reply<Vec<u8>>,
 }
 
-fn run_engine(
+pub(crate) fn run_engine(
     mesh: &SurfaceMesh,
     full: ReducedBasis,
     initial: Snapshot,
@@ -218,6 +106,7 @@ fn run_engine(
         field32: vec![0.0; 2 * mesh.face_count()],
         solve_ms: 0.0,
         map_ms: 0.0,
+        update: "mapped",
     };
     let mut started = Some(started);
     let mut rebuild = Rebuild {
@@ -241,9 +130,9 @@ fn run_engine(
         };
         let basis = truncated.as_ref().unwrap_or(&full);
         match serve(&mut state, basis, rebuild, &inbox, &mut started) {
-            Ok(Some(next)) => rebuild = next,
-            Ok(None) => return,
-            Err((error, edit)) => {
+            Served::Rebuild(next) => rebuild = next,
+            Served::Closed => return,
+            Served::Failed(error, edit) => {
                 rebuild = Rebuild {
                     target: state.current.clone(),
                     edit: None,
@@ -309,7 +198,13 @@ fn build_session<'b>(
     Ok(session)
 }
 
-type ServeResult = Result<Option<Rebuild>, (EditorError, Option<PendingEdit>)>;
+/// How [`serve`] ended: every handle is gone, the basis size changes, or building the session
+/// for the new state failed (with the edit waiting for the answer, if any).
+enum Served {
+    Closed,
+    Rebuild(Rebuild),
+    Failed(EditorError, Option<PendingEdit>),
+}
 
 /// Serves requests with one basis until the basis size changes (returns the rebuild) or every
 /// handle is gone (returns `None`).
@@ -319,20 +214,20 @@ fn serve(
     rebuild: Rebuild,
     inbox: &Receiver<Request>,
     started: &mut Option<Sender<Result<(), EditorError>>>,
-) -> ServeResult {
+) -> Served {
     let Rebuild { target, edit } = rebuild;
-    let basis32 = basis.to_f32();
+    let mut mapper = FieldMapper::new(basis);
     let compiled = match compile_all(state, &target.constraints) {
         Ok(c) => c,
-        Err(e) => return Err((e, edit)),
+        Err(e) => return Served::Failed(e, edit),
     };
     let mut session = match build_session(basis, target.omega, &compiled) {
         Ok(s) => s,
-        Err(e) => return Err((e, edit)),
+        Err(e) => return Served::Failed(e, edit),
     };
     state.current = target;
     state.compiled = compiled;
-    refresh(state, &session, &basis32);
+    refresh(state, &mut session, &mut mapper, None);
     if let Some(edit) = edit {
         if edit.record {
             push_history(state, edit.previous);
@@ -361,25 +256,41 @@ fn serve(
                             basis_size: d,
                             ..state.current.clone()
                         };
-                        return Ok(Some(rebuild_to(state, target, record, reply)));
+                        return Served::Rebuild(rebuild_to(state, target, record, reply));
                     }
                     EditOp::Undo => match state.history.pop() {
                         None => {
                             let _ = reply.send(Err(EditorError::NothingToUndo));
                         }
                         Some(previous) if previous.basis_size != state.current.basis_size => {
-                            return Ok(Some(rebuild_to(state, previous, false, reply)));
+                            return Served::Rebuild(rebuild_to(state, previous, false, reply));
                         }
                         Some(previous) => {
                             let outcome = sync(state, &mut session, basis, previous);
-                            answer(state, &mut session, basis, &basis32, outcome, None, reply);
+                            answer(
+                                state,
+                                &mut session,
+                                basis,
+                                &mut mapper,
+                                outcome,
+                                None,
+                                reply,
+                            );
                         }
                     },
                     op => {
                         let before = state.current.clone();
                         let outcome = apply(state, &mut session, basis, op);
                         let record = record.then_some(before);
-                        answer(state, &mut session, basis, &basis32, outcome, record, reply);
+                        answer(
+                            state,
+                            &mut session,
+                            basis,
+                            &mut mapper,
+                            outcome,
+                            record,
+                            reply,
+                        );
                     }
                 }
             }
@@ -408,7 +319,7 @@ fn serve(
             }
         }
     }
-    Ok(None)
+    Served::Closed
 }
 
 fn rebuild_to(state: &State, target: Snapshot, record: bool, reply: Reply<Vec<u8>>) -> Rebuild {
@@ -436,17 +347,17 @@ fn answer<'b>(
     state: &mut State,
     session: &mut SplineSession<'b>,
     basis: &'b ReducedBasis,
-    basis32: &ReducedBasisF32,
-    outcome: Result<(), EditorError>,
+    mapper: &mut FieldMapper,
+    outcome: Result<Option<usize>, EditorError>,
     record: Option<Snapshot>,
     reply: Reply<Vec<u8>>,
 ) {
     match outcome {
-        Ok(()) => {
+        Ok(values_of) => {
             if let Some(previous) = record {
                 push_history(state, previous);
             }
-            refresh(state, session, basis32);
+            refresh(state, session, mapper, values_of);
             let _ = reply.send(Ok(frame(state, basis)));
         }
         Err(error) => {
@@ -461,7 +372,10 @@ fn answer<'b>(
     }
 }
 
-fn compile_all(state: &State, constraints: &[Constraint]) -> Result<Vec<CompiledConstraint>, EditorError> {
+fn compile_all(
+    state: &State,
+    constraints: &[Constraint],
+) -> Result<Vec<CompiledConstraint>, EditorError> {
     constraints
         .iter()
         .map(|c| state.assembler.compile(c).map_err(EditorError::from))
@@ -478,12 +392,13 @@ fn index_of(state: &State, id: &str) -> Result<usize, EditorError> {
 }
 
 /// Applies an edit that keeps the basis. The state changes only if the session accepted it.
+/// Returns the index of the constraint if only its values changed.
 fn apply<'b>(
     state: &mut State,
     session: &mut SplineSession<'b>,
     basis: &'b ReducedBasis,
     op: EditOp,
-) -> Result<(), EditorError> {
+) -> Result<Option<usize>, EditorError> {
     match op {
         EditOp::Add(c) => {
             let compiled = state.assembler.compile(&c)?;
@@ -494,9 +409,11 @@ fn apply<'b>(
         EditOp::Set(c) => {
             let i = index_of(state, &c.id)?;
             let compiled = state.assembler.compile(&c)?;
+            let values_only = state.compiled[i].rows == compiled.rows;
             session.modify(compiled.clone())?;
             state.current.constraints[i] = c;
             state.compiled[i] = compiled;
+            return Ok(values_only.then_some(i));
         }
         EditOp::Remove(id) => {
             let i = index_of(state, &id)?;
@@ -522,7 +439,7 @@ fn apply<'b>(
         }
         EditOp::BasisSize(_) | EditOp::Undo => {}
     }
-    Ok(())
+    Ok(None)
 }
 
 /// Brings the session to `target` (same basis size) with as little work as possible: value
@@ -533,7 +450,7 @@ fn sync<'b>(
     session: &mut SplineSession<'b>,
     basis: &'b ReducedBasis,
     target: Snapshot,
-) -> Result<(), EditorError> {
+) -> Result<Option<usize>, EditorError> {
     let compiled = compile_all(state, &target.constraints)?;
     if target.omega != state.current.omega {
         *session = build_session(basis, target.omega, &compiled)?;
@@ -553,19 +470,45 @@ fn sync<'b>(
     }
     state.current = target;
     state.compiled = compiled;
-    Ok(())
+    Ok(None)
 }
 
-/// Solves the session and maps the coefficients to the `f32` field.
-fn refresh(state: &mut State, session: &SplineSession, basis32: &ReducedBasisF32) {
+/// Solves the session and maps the coefficients to the `f32` field: through the drag cache
+/// when only the values of constraint `values_of` changed, otherwise by a full pass over `U`.
+fn refresh(
+    state: &mut State,
+    session: &mut SplineSession,
+    mapper: &mut FieldMapper,
+    values_of: Option<usize>,
+) {
     let start = Instant::now();
     state.coefficients = session.solve();
-    let mapped = Instant::now();
-    let v32: Vec<f32> = state.coefficients.iter().map(|&x| x as f32).collect();
-    // Both lengths come from the same basis and mesh, so the map cannot fail.
-    let _ = basis32.map(&v32, &mut state.field32);
-    state.solve_ms = (mapped - start).as_secs_f64() * 1e3;
-    state.map_ms = mapped.elapsed().as_secs_f64() * 1e3;
+    let solved = Instant::now();
+    state.update = match values_of {
+        Some(i) => {
+            let c = &state.compiled[i];
+            match mapper.update_values(
+                session,
+                &c.id,
+                &c.values,
+                &state.coefficients,
+                &mut state.field32,
+            ) {
+                Ok(true) => "cached",
+                Ok(false) => "cache built",
+                Err(_) => {
+                    mapper.map(&state.coefficients, &mut state.field32);
+                    "mapped"
+                }
+            }
+        }
+        None => {
+            mapper.map(&state.coefficients, &mut state.field32);
+            "mapped"
+        }
+    };
+    state.solve_ms = (solved - start).as_secs_f64() * 1e3;
+    state.map_ms = solved.elapsed().as_secs_f64() * 1e3;
     state.version += 1;
 }
 
@@ -577,10 +520,16 @@ fn status(state: &State, basis: &ReducedBasis) -> Status {
         max_basis_size: state.max_basis_size,
         faces: state.face_count,
         constraints: constraint_records(&state.current.constraints, state.current.omega),
-        anchors: state.current.constraints.iter().map(|c| state.anchors.of(c)).collect(),
+        anchors: state
+            .current
+            .constraints
+            .iter()
+            .map(|c| state.anchors.of(c))
+            .collect(),
         residual: reduced_residual(basis, &state.coefficients, &state.compiled),
         solve_ms: state.solve_ms,
         map_ms: state.map_ms,
+        update: state.update,
         undo_depth: state.history.len(),
     }
 }
@@ -591,7 +540,11 @@ fn frame(state: &State, basis: &ReducedBasis) -> Vec<u8> {
     encode_field_frame(&json, &state.field32)
 }
 
-fn check(state: &State, session: &SplineSession, basis: &ReducedBasis) -> Result<CheckReport, EditorError> {
+fn check(
+    state: &State,
+    session: &SplineSession,
+    basis: &ReducedBasis,
+) -> Result<CheckReport, EditorError> {
     let mut field = vec![0.0; basis.field_dimension()];
     basis.map(&state.coefficients, &mut field)?;
     let constraints: Vec<CheckedConstraint> = session
@@ -613,6 +566,10 @@ fn check(state: &State, session: &SplineSession, basis: &ReducedBasis) -> Result
         version: state.version,
         constraints,
         max_relative,
-        f32_deviation: if largest > 0.0 { deviation / largest } else { 0.0 },
+        f32_deviation: if largest > 0.0 {
+            deviation / largest
+        } else {
+            0.0
+        },
     })
 }

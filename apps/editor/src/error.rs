@@ -96,7 +96,9 @@ impl EditorError {
             EditorError::MethodNotAllowed { .. } => 405,
             EditorError::Design(DesignError::UnknownId { .. }) => 404,
             EditorError::Design(DesignError::BadParameter { .. }) => 400,
-            EditorError::Design(DesignError::Dependent { .. } | DesignError::DuplicateId { .. })
+            EditorError::Design(
+                DesignError::Dependent { .. } | DesignError::DuplicateId { .. },
+            )
             | EditorError::NothingToUndo => 409,
             EditorError::TooLarge { .. } => 413,
             EditorError::Design(_)
@@ -112,7 +114,9 @@ impl EditorError {
     pub fn involved_ids(&self) -> Vec<String> {
         match self {
             EditorError::Design(DesignError::Dependent { id, involved, .. }) => {
-                std::iter::once(id.clone()).chain(involved.iter().cloned()).collect()
+                std::iter::once(id.clone())
+                    .chain(involved.iter().cloned())
+                    .collect()
             }
             _ => Vec::new(),
         }

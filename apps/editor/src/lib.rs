@@ -33,14 +33,16 @@
 
 pub mod assets;
 mod edit_op;
+mod editor;
 mod engine;
 mod error;
+mod field_mapper;
 pub mod payload;
 pub mod server;
 mod status;
 
 pub use edit_op::EditOp;
-pub use engine::{Editor, EditorSetup};
+pub use editor::{Editor, EditorSetup};
 pub use error::EditorError;
 pub use payload::{decode_field_frame, FieldFrame};
 pub use server::EditorServer;

@@ -87,15 +87,23 @@ pub fn decode_field_frame(bytes: &[u8]) -> Result<FieldFrame, EditorError> {
         .ok_or_else(|| bad(format!("status JSON of {n} bytes is truncated")))?;
     let status = serde_json::from_slice(text).map_err(|e| bad(format!("status JSON: {e}")))?;
     let start = 8 + n.div_ceil(4) * 4;
-    let body = bytes.get(start..).ok_or_else(|| bad("missing field data".into()))?;
+    let body = bytes
+        .get(start..)
+        .ok_or_else(|| bad("missing field data".into()))?;
     if body.len() % 4 != 0 {
-        return Err(bad(format!("field data of {} bytes is not whole f32s", body.len())));
+        return Err(bad(format!(
+            "field data of {} bytes is not whole f32s",
+            body.len()
+        )));
     }
     let coefficients = body
         .chunks_exact(4)
         .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         .collect();
-    Ok(FieldFrame { status, coefficients })
+    Ok(FieldFrame {
+        status,
+        coefficients,
+    })
 }
 
 /// The fur payload: strands of equal point count (shorter strands are not produced by

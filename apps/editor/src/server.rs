@@ -24,7 +24,7 @@ use tvf_render::{grow_fur, write_obj, FurOptions};
 
 use crate::assets::asset;
 use crate::edit_op::EditOp;
-use crate::engine::Editor;
+use crate::editor::Editor;
 use crate::error::EditorError;
 use crate::payload::{encode_fur, encode_mesh};
 
@@ -55,10 +55,13 @@ impl EditorServer {
             what: format!("listening on 127.0.0.1:{port}"),
             source: std::io::Error::other(e.to_string()),
         })?;
-        let address = server.server_addr().to_ip().ok_or_else(|| EditorError::Io {
-            what: "reading the server's address".into(),
-            source: std::io::Error::other("not an IP socket"),
-        })?;
+        let address = server
+            .server_addr()
+            .to_ip()
+            .ok_or_else(|| EditorError::Io {
+                what: "reading the server's address".into(),
+                source: std::io::Error::other("not an IP socket"),
+            })?;
         let shared = Arc::new(Shared {
             mesh_payload: encode_mesh(editor.mesh())?,
             editor,
@@ -147,7 +150,8 @@ fn handle(shared: &Shared, mut request: Request) {
             r
         }
         Err(error) => {
-            let body = serde_json::json!({ "error": error.to_string(), "ids": error.involved_ids() });
+            let body =
+                serde_json::json!({ "error": error.to_string(), "ids": error.involved_ids() });
             Response::from_data(body.to_string().into_bytes())
                 .with_status_code(error.status_code())
                 .with_header(header("Content-Type", "application/json"))
@@ -157,7 +161,13 @@ fn handle(shared: &Shared, mut request: Request) {
     let _ = request.respond(response);
 }
 
-fn route(shared: &Shared, method: &Method, path: &str, query: &str, request: &mut Request) -> Answer {
+fn route(
+    shared: &Shared,
+    method: &Method,
+    path: &str,
+    query: &str,
+    request: &mut Request,
+) -> Answer {
     let not_allowed = || EditorError::MethodNotAllowed {
         method: method.to_string(),
         path: path.to_string(),
@@ -239,7 +249,11 @@ fn query_number(query: &str, name: &str) -> Result<Option<f64>, EditorError> {
 
 /// Fur along the current field, with `strands` (default `default_strands`, at most
 /// [`MAX_STRANDS`]) and `length` (mean edge lengths) from the query.
-fn fur(shared: &Shared, query: &str, default_strands: usize) -> Result<Vec<Vec<[f64; 3]>>, EditorError> {
+fn fur(
+    shared: &Shared,
+    query: &str,
+    default_strands: usize,
+) -> Result<Vec<Vec<[f64; 3]>>, EditorError> {
     let strands = query_number(query, "strands")?.unwrap_or(default_strands as f64);
     if !(1.0..=MAX_STRANDS as f64).contains(&strands) {
         return Err(EditorError::BadRequest {

@@ -41,7 +41,10 @@ impl Anchors {
                 (t, f.map(|i| if i == a || i == b { 0.5 } else { 0.0 }))
             })
             .collect();
-        Self { vertex_face, edge_face }
+        Self {
+            vertex_face,
+            edge_face,
+        }
     }
 
     /// Where `constraint` is drawn (the face centroid for a face without barycentric point).
@@ -88,6 +91,9 @@ pub struct Status {
     pub solve_ms: f64,
     /// Time of the map to the full field (`f32`), milliseconds.
     pub map_ms: f64,
+    /// How the field was updated: `mapped` (a pass over `U`), `cache built` (a pass over `U`
+    /// that also prepared the drag cache) or `cached` (a value change through the cache).
+    pub update: &'static str,
     /// Number of edits that can be undone.
     pub undo_depth: usize,
 }

@@ -35,8 +35,18 @@ fn serves_the_page_and_the_mesh() {
     assert_eq!(status, 200);
     let page = String::from_utf8(page).unwrap();
     assert!(page.contains("<canvas id=\"view\""));
-    assert!(!page.contains("http://") && !page.contains("https://"), "the page must not load anything from elsewhere");
-    for script in ["/app.js", "/mesh.js", "/camera.js", "/gl.js", "/net.js", "/style.css"] {
+    assert!(
+        !page.contains("http://") && !page.contains("https://"),
+        "the page must not load anything from elsewhere"
+    );
+    for script in [
+        "/app.js",
+        "/mesh.js",
+        "/camera.js",
+        "/gl.js",
+        "/net.js",
+        "/style.css",
+    ] {
         let (status, body) = client.get(script);
         assert_eq!(status, 200, "{script}");
         assert!(body.len() > 100, "{script}");
@@ -49,9 +59,15 @@ fn serves_the_page_and_the_mesh() {
     assert_eq!(mesh.len(), 12 + 12 * 642 + 12 * FACES);
     let (status, field) = client.get("/api/field");
     let initial = frame(status, &field);
-    assert_eq!(u32::from_le_bytes(field[..4].try_into().unwrap()), FIELD_MAGIC);
+    assert_eq!(
+        u32::from_le_bytes(field[..4].try_into().unwrap()),
+        FIELD_MAGIC
+    );
     assert_eq!(initial.coefficients.len(), 2 * FACES);
-    assert!(initial.coefficients.iter().all(|&x| x == 0.0), "no constraint: zero field");
+    assert!(
+        initial.coefficients.iter().all(|&x| x == 0.0),
+        "no constraint: zero field"
+    );
     assert_eq!(initial.status["max_basis_size"], 100);
     server.shutdown();
 }
@@ -60,7 +76,8 @@ fn serves_the_page_and_the_mesh() {
 fn edits_keep_the_constraints_satisfied() {
     let server = icosphere_server();
     let client = Client::new(&server);
-    let (s, b) = client.edit(json!({"op": "add", "constraint": vector("a", 17, [1.0, 0.5, -0.25])}));
+    let (s, b) =
+        client.edit(json!({"op": "add", "constraint": vector("a", 17, [1.0, 0.5, -0.25])}));
     let first = frame(s, &b);
     assert_eq!(first.status["constraints"].as_array().unwrap().len(), 1);
     assert!(first.status["residual"].as_f64().unwrap() < 1e-9);
@@ -69,7 +86,10 @@ fn edits_keep_the_constraints_satisfied() {
     let (a, c) = (first.coefficients[34] as f64, first.coefficients[35] as f64);
     let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
     let value = [1.0, 0.5, -0.25];
-    assert!((a - dot(value, e1)).abs() < 1e-5 && (c - dot(value, e2)).abs() < 1e-5, "{a} {c}");
+    assert!(
+        (a - dot(value, e1)).abs() < 1e-5 && (c - dot(value, e2)).abs() < 1e-5,
+        "{a} {c}"
+    );
     let check = client.check();
     assert!(check["max_relative"].as_f64().unwrap() < 1e-9, "{check}");
 
@@ -94,9 +114,17 @@ fn edits_keep_the_constraints_satisfied() {
     // Dragging: value changes of "a", then moving it to another face.
     for k in 0..10 {
         let angle = k as f64 * 0.3;
-        let (s, b) = client.edit(json!({"op": "set", "constraint": vector("a", 17, [angle.cos(), angle.sin(), 0.0])}));
-        frame(s, &b);
-        assert!(client.check()["max_relative"].as_f64().unwrap() < 1e-9);
+        let (s, b) = client.edit(
+            json!({"op": "set", "constraint": vector("a", 17, [angle.cos(), angle.sin(), 0.0])}),
+        );
+        let dragged = frame(s, &b);
+        // The first value change prepares the drag cache, the others use it; either way the
+        // f32 field sent is U v for the exact coefficients v.
+        let expected = if k == 0 { "cache built" } else { "cached" };
+        assert_eq!(dragged.status["update"], expected);
+        let check = client.check();
+        assert!(check["max_relative"].as_f64().unwrap() < 1e-9, "{check}");
+        assert!(check["f32_deviation"].as_f64().unwrap() < 1e-5, "{check}");
     }
     let (s, b) = client.edit(json!({"op": "set", "constraint": vector("a", 640, [0.0, 1.0, 0.0])}));
     let moved = frame(s, &b);
@@ -110,13 +138,26 @@ fn edits_keep_the_constraints_satisfied() {
     assert!(client.check()["max_relative"].as_f64().unwrap() < 1e-9);
 
     // Undo walks back: basis size, then ω, then the move.
-    assert_eq!(frame_ok(client.edit(json!({"op": "undo"}))).status["basis_size"], 100);
-    assert_eq!(frame_ok(client.edit(json!({"op": "undo"}))).status["omega"], 0.1);
+    assert_eq!(
+        frame_ok(client.edit(json!({"op": "undo"}))).status["basis_size"],
+        100
+    );
+    assert_eq!(
+        frame_ok(client.edit(json!({"op": "undo"}))).status["omega"],
+        0.1
+    );
     let back = frame_ok(client.edit(json!({"op": "undo"})));
-    assert_eq!(back.status["anchors"][0]["face"], 17, "the drag is one undo step");
+    assert_eq!(
+        back.status["anchors"][0]["face"], 17,
+        "the drag is one undo step"
+    );
     let back = frame_ok(client.edit(json!({"op": "undo"})));
     assert_eq!(back.status["anchors"][0]["face"], 17);
-    assert_eq!(back.status["constraints"][0]["value"], json!([1.0, 0.5, -0.25]), "the whole drag is one undo step");
+    assert_eq!(
+        back.status["constraints"][0]["value"],
+        json!([1.0, 0.5, -0.25]),
+        "the whole drag is one undo step"
+    );
     assert!(client.check()["max_relative"].as_f64().unwrap() < 1e-9);
 
     // Save, clear, load: the same field comes back.
@@ -154,11 +195,31 @@ fn refused_edits_answer_4xx_and_change_nothing() {
     frame_ok(client.edit(json!({"op": "add", "constraint": vector("a", 5, [1.0, 0.0, 0.0])})));
     let cases: Vec<(serde_json::Value, u16, &str)> = vec![
         // the same face again with another value: conflicting, names both ids
-        (json!({"op": "add", "constraint": vector("b", 5, [0.0, 1.0, 0.0])}), 409, "conflicting"),
-        (json!({"op": "add", "constraint": vector("a", 9, [0.0, 1.0, 0.0])}), 409, "already active"),
-        (json!({"op": "add", "constraint": vector("c", 99999, [0.0, 1.0, 0.0])}), 400, "99999"),
-        (json!({"op": "add", "constraint": {"id": "d", "kind": "vortex", "face": 1, "value": 1.0}}), 400, "vortex"),
-        (json!({"op": "set", "constraint": vector("nope", 5, [1.0, 0.0, 0.0])}), 404, "nope"),
+        (
+            json!({"op": "add", "constraint": vector("b", 5, [0.0, 1.0, 0.0])}),
+            409,
+            "conflicting",
+        ),
+        (
+            json!({"op": "add", "constraint": vector("a", 9, [0.0, 1.0, 0.0])}),
+            409,
+            "already active",
+        ),
+        (
+            json!({"op": "add", "constraint": vector("c", 99999, [0.0, 1.0, 0.0])}),
+            400,
+            "99999",
+        ),
+        (
+            json!({"op": "add", "constraint": {"id": "d", "kind": "vortex", "face": 1, "value": 1.0}}),
+            400,
+            "vortex",
+        ),
+        (
+            json!({"op": "set", "constraint": vector("nope", 5, [1.0, 0.0, 0.0])}),
+            404,
+            "nope",
+        ),
         (json!({"op": "remove", "id": "nope"}), 404, "nope"),
         (json!({"op": "omega", "value": -1.0}), 400, "omega"),
         (json!({"op": "basis_size", "value": 0}), 400, "basis size"),
@@ -171,7 +232,8 @@ fn refused_edits_answer_4xx_and_change_nothing() {
         let message = error_message(&body);
         assert!(message.contains(needle), "{op}: {message}");
     }
-    let (status, body) = client.edit(json!({"op": "add", "constraint": vector("b", 5, [0.0, 1.0, 0.0])}));
+    let (status, body) =
+        client.edit(json!({"op": "add", "constraint": vector("b", 5, [0.0, 1.0, 0.0])}));
     assert_eq!(status, 409);
     let ids: serde_json::Value = serde_json::from_slice(&body).unwrap();
     assert_eq!(ids["ids"], json!(["b", "a"]));
@@ -209,24 +271,34 @@ fn fur_follows_the_field_and_exports_as_obj() {
     // Strands rise off the unit sphere: the tips lie outside it, the roots on it.
     let point = |s: usize, i: usize| {
         let at = 8 + 12 * (s * per + i);
-        let x = |k: usize| f32::from_le_bytes(fur[at + 4 * k..at + 4 * k + 4].try_into().unwrap()) as f64;
+        let x = |k: usize| {
+            f32::from_le_bytes(fur[at + 4 * k..at + 4 * k + 4].try_into().unwrap()) as f64
+        };
         (x(0) * x(0) + x(1) * x(1) + x(2) * x(2)).sqrt()
     };
-    let lifted = (0..count).filter(|&s| point(s, per - 1) > point(s, 0) + 1e-4).count();
+    let lifted = (0..count)
+        .filter(|&s| point(s, per - 1) > point(s, 0) + 1e-4)
+        .count();
     assert!(lifted > count / 2, "{lifted} of {count} strands are lifted");
     let (status, obj) = client.get("/api/fur.obj?strands=300");
     assert_eq!(status, 200);
     let obj = String::from_utf8(obj).unwrap();
     let lines = obj.lines().filter(|l| l.starts_with("l ")).count();
     assert!(lines > 50 && lines <= 300, "{lines}");
-    assert_eq!(obj.lines().filter(|l| l.starts_with("v ")).count(), lines * 8);
+    assert_eq!(
+        obj.lines().filter(|l| l.starts_with("v ")).count(),
+        lines * 8
+    );
     server.shutdown();
 }
 
 #[test]
 fn many_concurrent_requests_are_all_answered() {
     let server = icosphere_server();
-    frame_ok(Client::new(&server).edit(json!({"op": "add", "constraint": vector("a", 5, [1.0, 0.0, 0.0])})));
+    frame_ok(
+        Client::new(&server)
+            .edit(json!({"op": "add", "constraint": vector("a", 5, [1.0, 0.0, 0.0])})),
+    );
     std::thread::scope(|scope| {
         for thread in 0..4 {
             let server = &server;
@@ -245,6 +317,11 @@ fn many_concurrent_requests_are_all_answered() {
             });
         }
     });
-    assert!(Client::new(&server).check()["max_relative"].as_f64().unwrap() < 1e-9);
+    assert!(
+        Client::new(&server).check()["max_relative"]
+            .as_f64()
+            .unwrap()
+            < 1e-9
+    );
     server.shutdown();
 }

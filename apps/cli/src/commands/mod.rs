@@ -8,3 +8,4 @@ pub mod decompress;
 pub mod filter;
 pub mod rate_distortion;
 mod spectral_inputs;
+pub mod edit;

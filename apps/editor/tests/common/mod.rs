@@ -21,16 +21,23 @@ pub fn icosphere_basis() -> ReducedBasis {
     BASIS
         .get_or_init(|| {
             let mesh = icosphere(3);
-            let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("icosphere operators");
+            let complex =
+                Conforming::new(&mesh, MassLumping::Barycentric).expect("icosphere operators");
             // The complete basis by the dense eigensolvers (exact, about 2 s here), of which the
             // first 100 columns are the 100 lowest eigenfields.
-            let spectral = compute_basis(&complex, &BasisRequest::complete()).expect("icosphere basis");
+            let spectral =
+                compute_basis(&complex, &BasisRequest::complete()).expect("icosphere basis");
             let full = ReducedBasis::from_spectral(&spectral).expect("reduced basis");
             let d = 100;
             let n = full.field_dimension();
             let rows = (0..n).flat_map(|r| full.row(r)[..d].to_vec()).collect();
-            ReducedBasis::from_row_major(rows, n, full.eigenvalues()[..d].to_vec(), full.harmonic()[..d].to_vec())
-                .expect("truncated basis")
+            ReducedBasis::from_row_major(
+                rows,
+                n,
+                full.eigenvalues()[..d].to_vec(),
+                full.harmonic()[..d].to_vec(),
+            )
+            .expect("truncated basis")
         })
         .clone()
 }
@@ -78,7 +85,12 @@ impl Client {
 
     /// `GET path` → (status, body).
     pub fn get(&self, path: &str) -> (u16, Vec<u8>) {
-        Self::read(self.agent.get(format!("{}{path}", self.base)).call().expect("GET"))
+        Self::read(
+            self.agent
+                .get(format!("{}{path}", self.base))
+                .call()
+                .expect("GET"),
+        )
     }
 
     /// `POST path` with a body → (status, body).

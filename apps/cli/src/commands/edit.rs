@@ -1,0 +1,70 @@
+//! `tvf edit`: the interactive spline editor in the browser (a local server on 127.0.0.1).
+
+use crate::commands::spline::{reduced_basis, select_complex, AnyComplex, BasisChoice};
+use crate::mesh_input::MeshInput;
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use std::path::PathBuf;
+use tvf_design::ConstraintSet;
+use tvf_editor::{Editor, EditorServer, EditorSetup};
+use tvf_spectral::mesh_fingerprint;
+
+/// Arguments of `tvf edit`.
+#[derive(Args)]
+pub struct EditArgs {
+    #[command(flatten)]
+    input: MeshInput,
+    #[command(flatten)]
+    basis: BasisChoice,
+    /// Constraints (and ω) to start from (JSON, see README "Constraint files").
+    #[arg(long, value_name = "C.json")]
+    constraints: Option<PathBuf>,
+    /// Port on 127.0.0.1 (0: any free port).
+    #[arg(long, default_value_t = 0)]
+    port: u16,
+}
+
+/// Runs `tvf edit` until the process is stopped.
+pub fn run(args: EditArgs) -> Result<()> {
+    let mesh = args.input.load()?.mesh;
+    let constraints = match &args.constraints {
+        Some(path) => {
+            let set = ConstraintSet::load(path)?;
+            set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), path)?;
+            Some(set)
+        }
+        None => None,
+    };
+    let (complex, loaded) = select_complex(&mesh, &args.basis)?;
+    let basis = match &complex {
+        AnyComplex::Conforming(c) => reduced_basis(c, loaded, &args.basis)?,
+        AnyComplex::Nonconforming(_) => bail!(
+            "the editor works with the conforming decomposition (divergence at vertices, curl at \
+             edges); give a conforming basis or --discretization conforming"
+        ),
+    };
+    drop(complex);
+    println!(
+        "mesh            {} ({} faces), basis of {} fields",
+        args.input.label(),
+        mesh.face_count(),
+        basis.len()
+    );
+    let editor = Editor::start(EditorSetup {
+        mesh,
+        basis,
+        constraints,
+        basis_size: None,
+    })
+    .with_context(|| match &args.constraints {
+        Some(path) => format!("starting the editor with {}", path.display()),
+        None => "starting the editor".to_string(),
+    })?;
+    let server = EditorServer::start(editor, args.port)?;
+    println!(
+        "tvf edit: open {} in a browser (Ctrl+C stops the server)",
+        server.url()
+    );
+    server.join();
+    Ok(())
+}
