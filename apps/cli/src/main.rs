@@ -2,9 +2,14 @@
 //!
 //! Exit codes: 0 success, 1 bad input or failed computation, 2 usage error (clap).
 
+mod basis_source;
 mod commands;
+mod demo;
 mod examples;
+mod face_quantities;
 mod mesh_input;
+mod picture;
+mod progress;
 
 use clap::{Parser, Subcommand};
 
@@ -12,6 +17,9 @@ use clap::{Parser, Subcommand};
 #[derive(Parser)]
 #[command(name = "tvf", version, about, long_about = None)]
 struct Cli {
+    /// No progress bars and no notes on stderr (warnings and errors are still shown).
+    #[arg(short, long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -20,6 +28,14 @@ struct Cli {
 enum Command {
     /// Report a mesh's counts, topology, angles and validation findings.
     Info(commands::info::InfoArgs),
+    /// Compute the Fourier basis (harmonic fields + K pairs of eigenfields) and save it (.tvfb).
+    Basis(commands::basis::BasisArgs),
+    /// The lowest K eigenvalues of the Hodge–Laplacian on tangent fields, labelled by family.
+    Spectrum(commands::spectrum::SpectrumArgs),
+    /// Hodge decomposition of a field: integrable, co-integrable and harmonic parts, potentials.
+    Decompose(commands::decompose::DecomposeArgs),
+    /// Fourier coefficients of a field in a basis file, and the rest field's share.
+    Coefficients(commands::coefficients::CoefficientsArgs),
     /// Write the paper's matrices (G, G*, M, M*, M_X, J, cotan, CR, S, B) as Matrix Market files.
     Operators(commands::operators::OperatorsArgs),
     /// Filter a field in its spectral basis (low-pass, high-pass, band-pass, cut-off, drawn curves).
@@ -32,20 +48,40 @@ enum Command {
     Decompress(commands::decompress::DecompressArgs),
     /// Rate–distortion curves of spectral compression (CSV and PNG plot).
     RateDistortion(commands::rate_distortion::RateDistortionArgs),
+    /// A tangential vector field spline (hard constraints) from a JSON constraint file.
+    Spline(commands::spline::SplineArgs),
+    /// Soft-constrained field design (Fisher et al.), full or reduced, from a JSON constraint file.
+    Design(commands::design::DesignArgs),
+    /// Render a mesh and a field to PNG (colour map, arrows, streamlines or LIC, constraints).
+    Render(commands::render::RenderArgs),
+    /// Export a mesh and a field as VTK, PLY (per-face data) or OBJ (streamlines as polylines).
+    Export(commands::export::ExportArgs),
+    /// The tour: a web page of pictures and numbers on a generated bumpy torus (no input needed).
+    Demo(commands::demo::DemoArgs),
     /// The interactive spline editor in the browser: a local server on 127.0.0.1 serving a WebGL2 page.
     Edit(commands::edit::EditArgs),
 }
 
 fn main() {
     let cli = Cli::parse();
+    progress::set_quiet(cli.quiet);
     let result = match cli.command {
         Command::Info(args) => commands::info::run(args),
+        Command::Basis(args) => commands::basis::run(args),
+        Command::Spectrum(args) => commands::spectrum::run(args),
+        Command::Decompose(args) => commands::decompose::run(args),
+        Command::Coefficients(args) => commands::coefficients::run(args),
         Command::Operators(args) => commands::operators::run(args),
         Command::Filter(args) => commands::filter::run(args),
         Command::Analyze(args) => commands::analyze::run(args),
         Command::Compress(args) => commands::compress::run(args),
         Command::Decompress(args) => commands::decompress::run(args),
         Command::RateDistortion(args) => commands::rate_distortion::run(args),
+        Command::Spline(args) => commands::spline::run(args),
+        Command::Design(args) => commands::design::run(args),
+        Command::Render(args) => commands::render::run(args),
+        Command::Export(args) => commands::export::run(args),
+        Command::Demo(args) => commands::demo::run(args),
         Command::Edit(args) => commands::edit::run(args),
     };
     if let Err(error) = result {
