@@ -100,7 +100,7 @@ function updateConstraintLayers() {
   for (const c of shownConstraints()) {
     const n = mesh.normal(c.face);
     const p = constraintPoint(c).map((x, k) => x + lift * n[k]);
-    const color = c.id === app.selected ? [1, 0.85, 0] : KIND_COLORS[constraintLook(c)];
+    const color = c.id === app.selected ? [0.95, 0.1, 0.85] : KIND_COLORS[constraintLook(c)];
     points.push(...p);
     pointColors.push(...color);
     if (c.kind === 'vector') {
@@ -116,7 +116,7 @@ function updateConstraintLayers() {
       for (let i = 0; i < 10; i++) lineColors.push(...color);
     }
   }
-  renderer.setLayer('markers', new Float32Array(points), new Float32Array(pointColors), 'points', 12);
+  renderer.setLayer('markers', new Float32Array(points), new Float32Array(pointColors), 'points', 14);
   renderer.setLayer('constraint-arrows', new Float32Array(lines), new Float32Array(lineColors));
 }
 
