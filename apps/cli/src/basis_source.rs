@@ -137,8 +137,8 @@ pub struct BasisOptions {
     /// tvf-cache/ in the temporary folder for --example meshes].
     #[arg(long, value_name = "DIR", conflicts_with = "basis")]
     pub cache_dir: Option<PathBuf>,
-    /// Compute the basis without reading or writing the cache.
-    #[arg(long, conflicts_with_all = ["basis", "cache_dir"])]
+    /// Compute the basis without reading or writing the cache (overrides --cache-dir).
+    #[arg(long, conflicts_with = "basis")]
     pub no_cache: bool,
 }
 

@@ -2,6 +2,7 @@
 //! the energy of each part of its Hodge decomposition.
 
 use super::spectral_inputs::{create_output_dir, exact_hodge_energies, load_setup, read_field};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -14,7 +15,7 @@ use tvf_spectral::{write_atomically, EnergySplit, FieldFamily, SpectralAnalysis}
 /// Arguments of `tvf analyze`.
 #[derive(Args)]
 #[command(
-    after_help = "Writes DIR/coefficients.csv (index, family, eigenvalue, frequency, coefficient), \
+    after_help = "Examples:\n  tvf analyze bunny.obj field.npy --basis bunny.tvfb -o analysis/\n  tvf analyze bunny.obj field.npy -k 200 -o analysis/ --json   (basis computed once, then cached)\n\nWrites DIR/coefficients.csv (index, family, eigenvalue, frequency, coefficient), \
 DIR/spectrum.png (|coefficient| against frequency √λ, integrable and co-integrable) and DIR/energy.json \
 (squared M_X norms of the integrable, co-integrable, harmonic and rest parts, in the basis and in the exact \
 Hodge decomposition)."
@@ -25,9 +26,8 @@ pub struct AnalyzeArgs {
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
     #[arg(value_name = "FIELD")]
     field: PathBuf,
-    /// The basis file (.tvfb) of the mesh (`tvf basis`).
-    #[arg(long, value_name = "FILE")]
-    basis: PathBuf,
+    #[command(flatten)]
+    basis: BasisSource,
     /// Output folder (created if missing).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
@@ -45,7 +45,7 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 
 /// Runs the analysis and writes the three files.
 pub fn run(args: AnalyzeArgs) -> Result<()> {
-    let setup = load_setup(&args.input, &args.basis)?;
+    let setup = load_setup(&args.input, &args.basis.options, args.basis.pairs)?;
     let field = read_field(&args.field, &setup.fields)?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
     let exact = exact_hodge_energies(&setup.mesh, &setup.discretization, &field)?;

@@ -14,7 +14,7 @@ use tvf_spectral::{
 /// Arguments of `tvf basis`.
 #[derive(Args)]
 #[command(
-    after_help = "The basis holds the 2g harmonic fields plus K integrable and K \
+    after_help = "Examples:\n  tvf basis bunny.obj -k 500 -o bunny.tvfb\n  tvf basis --example genus2 -k 100 --decomposition nonconforming --mass voronoi -o g2.tvfb\n\nThe basis holds the 2g harmonic fields plus K integrable and K \
 co-integrable eigenfields of the Hodge–Laplacian, sorted by eigenvalue. The file is tied to the mesh \
 (fingerprint of its vertices and faces) and to the discretization; other commands take it with --basis."
 )]

@@ -2,6 +2,7 @@
 //! field's share.
 
 use super::spectral_inputs::{load_setup, read_field};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use anyhow::Result;
 use clap::Args;
@@ -12,7 +13,7 @@ use tvf_spectral::{FieldFamily, FourierAnalysis};
 /// Arguments of `tvf coefficients`.
 #[derive(Args)]
 #[command(
-    after_help = "Coefficients are M_X inner products with the M_X-orthonormal basis fields \
+    after_help = "Examples:\n  tvf coefficients bunny.obj field.npy --basis bunny.tvfb --json\n  tvf coefficients bunny.obj field.npy -k 100\n\nCoefficients are M_X inner products with the M_X-orthonormal basis fields \
 (α: integrable, β: co-integrable, γ: harmonic). With --json, prints {\"coefficients\": [{index, \
 family, eigenvalue, frequency, coefficient}...], \"alpha\", \"beta\", \"gamma\", \"norm\", \
 \"relative_rest_norm\"} to stdout."
@@ -23,9 +24,8 @@ pub struct CoefficientsArgs {
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
     #[arg(value_name = "FIELD")]
     field: PathBuf,
-    /// The basis file (.tvfb) of the mesh (`tvf basis`).
-    #[arg(long, value_name = "FILE")]
-    basis: PathBuf,
+    #[command(flatten)]
+    basis: BasisSource,
     /// Print JSON to stdout instead of a table.
     #[arg(long)]
     json: bool,
@@ -33,7 +33,7 @@ pub struct CoefficientsArgs {
 
 /// Computes and prints the coefficients.
 pub fn run(args: CoefficientsArgs) -> Result<()> {
-    let setup = load_setup(&args.input, &args.basis)?;
+    let setup = load_setup(&args.input, &args.basis.options, args.basis.pairs)?;
     let field = read_field(&args.field, &setup.fields)?;
     let analysis = FourierAnalysis::new(&setup.basis, &field)?;
     let basis = &setup.basis;

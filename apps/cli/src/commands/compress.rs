@@ -2,6 +2,7 @@
 //! Fourier coefficients in a `.tvfc` file.
 
 use super::spectral_inputs::{load_setup, read_frames, FrameSource};
+use crate::basis_source::BasisOptions;
 use crate::mesh_input::MeshInput;
 use anyhow::Result;
 use clap::Args;
@@ -12,7 +13,7 @@ use tvf_spectral::{basis_id, compress_with_report, CoefficientCoding, FieldCodec
 /// Arguments of `tvf compress`.
 #[derive(Args)]
 #[command(
-    after_help = "FIELD is one field file (.npy F×3 or text `x y z` per line), or a sequence: an .npy \
+    after_help = "Examples:\n  tvf compress bunny.obj field.npy --basis bunny.tvfb -k 300 --bits 12 -o field.tvfc\n  tvf compress torus.obj frames/ -k 200 -o sequence.tvfc   (basis computed once, then cached)\n\nFIELD is one field file (.npy F×3 or text `x y z` per line), or a sequence: an .npy \
 array F×3×T, or a folder of .npy/.txt frames (taken in file-name order). All frames go into one .tvfc file \
 (compressed in parallel) and the report gives the mean and worst per-frame error.\n\n\
 Kept fields: the lowest K integrable and the lowest K co-integrable fields of the basis plus every harmonic \
@@ -26,9 +27,8 @@ pub struct CompressArgs {
     /// The field or sequence (see below).
     #[arg(value_name = "FIELD")]
     field: PathBuf,
-    /// The basis file (.tvfb) of the mesh (`tvf basis`).
-    #[arg(long, value_name = "FILE")]
-    basis: PathBuf,
+    #[command(flatten)]
+    basis: BasisOptions,
     /// Pairs of eigenfields kept (K integrable + K co-integrable, plus the harmonic fields).
     #[arg(short = 'k', long = "pairs", value_name = "K")]
     pairs: usize,
@@ -45,7 +45,7 @@ pub struct CompressArgs {
 
 /// Compresses the frames, writes the file and reports size and error.
 pub fn run(args: CompressArgs) -> Result<()> {
-    let setup = load_setup(&args.input, &args.basis)?;
+    let setup = load_setup(&args.input, &args.basis, Some(args.pairs))?;
     let (frames, source) = read_frames(&args.field, &setup.fields)?;
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },

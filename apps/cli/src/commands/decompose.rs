@@ -15,7 +15,7 @@ use tvf_spectral::{write_face_vectors, write_npy, NpyArray, NpyDtype};
 /// Arguments of `tvf decompose`.
 #[derive(Args)]
 #[command(
-    after_help = "Writes DIR/integrable.npy, DIR/cointegrable.npy, DIR/harmonic.npy (F×3: one \
+    after_help = "Examples:\n  tvf decompose bunny.obj field.npy -o parts/\n  tvf decompose bunny.obj field.txt --decomposition nonconforming -o parts/\n\nWrites DIR/integrable.npy, DIR/cointegrable.npy, DIR/harmonic.npy (F×3: one \
 3D vector per face) and DIR/potential.npy, DIR/co_potential.npy (one value per node: vertices and \
 edges for the conforming decomposition, edges and vertices for the nonconforming one; zero mean)."
 )]
@@ -26,7 +26,7 @@ pub struct DecomposeArgs {
     #[arg(value_name = "FIELD")]
     field: PathBuf,
     /// Output folder (created if missing).
-    #[arg(long, value_name = "DIR")]
+    #[arg(short = 'o', long, value_name = "DIR", visible_alias = "output")]
     out: PathBuf,
     /// Hodge decomposition.
     #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]

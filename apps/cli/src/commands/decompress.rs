@@ -1,6 +1,7 @@
 //! `tvf decompress`: the fields of a `.tvfc` file.
 
 use super::spectral_inputs::{load_setup, write_frames};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use anyhow::Result;
 use clap::Args;
@@ -10,7 +11,7 @@ use tvf_spectral::{basis_id, CompressedFields, FieldCodec};
 /// Arguments of `tvf decompress`.
 #[derive(Args)]
 #[command(
-    after_help = "A file with one frame is written to OUT (.npy or text by extension). A sequence is \
+    after_help = "Examples:\n  tvf decompress bunny.obj field.tvfc --basis bunny.tvfb -o field.npy\n\nA file with one frame is written to OUT (.npy or text by extension). A sequence is \
 written as one .npy array F×3×T if OUT ends in .npy, otherwise into the folder OUT as frame_00000.npy, ... \
 The mesh and the basis must be the ones the file was compressed with (checked by fingerprint and basis id)."
 )]
@@ -20,9 +21,8 @@ pub struct DecompressArgs {
     /// The compressed file (.tvfc).
     #[arg(value_name = "FILE.tvfc")]
     compressed: PathBuf,
-    /// The basis file (.tvfb) the field was compressed with.
-    #[arg(long, value_name = "FILE")]
-    basis: PathBuf,
+    #[command(flatten)]
+    basis: BasisSource,
     /// Output field file, array or folder (see below).
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
@@ -31,7 +31,9 @@ pub struct DecompressArgs {
 /// Decodes every frame and writes them.
 pub fn run(args: DecompressArgs) -> Result<()> {
     let file = CompressedFields::read(&args.compressed)?;
-    let setup = load_setup(&args.input, &args.basis)?;
+    // Without --basis or -k, compute the basis of as many pairs as the file keeps.
+    let pairs = args.basis.pairs.or(Some(file.header.pairs as usize));
+    let setup = load_setup(&args.input, &args.basis.options, pairs)?;
     let id = basis_id(&setup.basis);
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", args.compressed.display()))?;

@@ -69,13 +69,13 @@ fn format_of(path: &Path) -> Option<Format> {
 
 /// Writes the export.
 pub fn run(args: ExportArgs) -> Result<()> {
+    let mesh = args.input.load()?.mesh;
     let Some(format) = args.format.or_else(|| format_of(&args.output)) else {
         bail!(
             "{}: cannot tell the format from the extension; give --format vtk|ply|obj",
             args.output.display()
         );
     };
-    let mesh = args.input.load()?.mesh;
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
         .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
     let field = read_field(&args.field, discretization.fields())?;

@@ -1,13 +1,14 @@
 //! `tvf filter`: scale a field's Fourier coefficients by functions of frequency.
 
 use super::spectral_inputs::{load_setup, read_field};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_spectral::{write_tangent_field, FrequencyResponse, SpectralFilter};
 
-const SPEC_HELP: &str = "SPEC: identity | lowpass:t=T (gain e^(-t·λ)) | highpass:t=T (2 - e^(-t·λ)) | \
+const SPEC_HELP: &str = "Examples:\n  tvf filter bunny.obj noisy.npy --basis bunny.tvfb --integrable lowpass:t=0.01 --cointegrable lowpass:t=0.01 -o smooth.npy\n  tvf filter bunny.obj field.npy -k 200 --cointegrable cutoff:f=8 --rest 0 -o filtered.npy\n\nSPEC: identity | lowpass:t=T (gain e^(-t·λ)) | highpass:t=T (2 - e^(-t·λ)) | \
 bandpass:lo=A,hi=B (1 for A ≤ √λ ≤ B) | cutoff:f=F (1 for √λ ≤ F) | curve:F,G;F,G;... (piecewise linear \
 gain G at frequency F = √λ, constant beyond the ends) | @FILE.json ({\"points\": [[F, G], ...]})";
 
@@ -20,9 +21,8 @@ pub struct FilterArgs {
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
     #[arg(value_name = "FIELD")]
     field: PathBuf,
-    /// The basis file (.tvfb) of the mesh (`tvf basis`).
-    #[arg(long, value_name = "FILE")]
-    basis: PathBuf,
+    #[command(flatten)]
+    basis: BasisSource,
     /// Gain of the integrable (curl-free) coefficients against frequency √λ.
     #[arg(long, value_name = "SPEC", default_value = "identity")]
     integrable: FrequencyResponse,
@@ -47,7 +47,7 @@ pub fn run(args: FilterArgs) -> Result<()> {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");
         }
     }
-    let setup = load_setup(&args.input, &args.basis)?;
+    let setup = load_setup(&args.input, &args.basis.options, args.basis.pairs)?;
     let field = read_field(&args.field, &setup.fields)?;
     let filter = SpectralFilter {
         integrable: args.integrable,

@@ -7,6 +7,7 @@ use serde_json::json;
 
 /// Arguments of `tvf info`.
 #[derive(Args)]
+#[command(after_help = "Examples:\n  tvf info bunny.obj\n  tvf info --example genus2 --json")]
 pub struct InfoArgs {
     #[command(flatten)]
     input: MeshInput,

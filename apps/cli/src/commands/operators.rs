@@ -32,6 +32,9 @@ pub enum Mass {
 
 /// Arguments of `tvf operators`.
 #[derive(Args)]
+#[command(
+    after_help = "Examples:\n  tvf operators bunny.obj --decomposition conforming -o matrices/\n  tvf operators --example torus --decomposition nonconforming --out matrices/"
+)]
 pub struct OperatorsArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -42,7 +45,7 @@ pub struct OperatorsArgs {
     #[arg(long, value_enum, default_value = "barycentric")]
     mass: Mass,
     /// Output directory (created if missing).
-    #[arg(long)]
+    #[arg(short = 'o', long, visible_alias = "output")]
     out: PathBuf,
 }
 

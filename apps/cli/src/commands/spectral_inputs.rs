@@ -1,7 +1,9 @@
-//! What `filter`, `analyze`, `compress`, `decompress` and `rate-distortion` share: a mesh with
-//! its basis file (checked to belong to the mesh), and field files (one field, or a sequence of
+//! What `filter`, `analyze`, `compress`, `decompress`, `rate-distortion` and `coefficients`
+//! share: a mesh with its basis (a basis file checked to belong to the mesh, or a cached or
+//! computed basis, see [`crate::basis_source`]), and field files (one field, or a sequence of
 //! frames) read as tangent fields.
 
+use crate::basis_source::BasisOptions;
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -9,9 +11,8 @@ use tvf_core::discretization::{FieldSpace, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{Conforming, FaceFields, HodgeDecomposer, MassLumping, Nonconforming};
 use tvf_spectral::{
-    load_basis, mesh_fingerprint, read_basis_header, read_face_vector_sequence, read_tangent_field,
-    write_face_vector_sequence, write_tangent_field, BasisFileKey, EnergySplit, FieldIoError,
-    NpyDtype, SpectralBasis,
+    read_face_vector_sequence, read_tangent_field, write_face_vector_sequence, write_tangent_field,
+    EnergySplit, FieldIoError, NpyDtype, SpectralBasis,
 };
 
 /// A mesh, its face fields and a basis that belongs to it.
@@ -20,33 +21,29 @@ pub struct SpectralSetup {
     pub mesh: SurfaceMesh,
     /// The tangent field space (frames, `M_X`, 3D conversion).
     pub fields: FaceFields,
-    /// The basis read from the `--basis` file.
+    /// The basis (from `--basis`, the cache, or computed).
     pub basis: SpectralBasis,
-    /// The discretization the basis was computed with (its file's id).
+    /// The discretization the basis was computed with (its id, as in basis files).
     pub discretization: String,
     /// [`mesh_fingerprint`] of the mesh.
     pub mesh_fingerprint: u64,
 }
 
-/// Loads the mesh and the basis file, refusing a basis computed for another mesh.
-pub fn load_setup(input: &MeshInput, basis_path: &Path) -> Result<SpectralSetup> {
+/// Loads the mesh and its basis: the `--basis` file (refused if computed for another mesh or
+/// discretization) or `pairs` pairs computed once and cached (see [`BasisOptions`]).
+pub fn load_setup(
+    input: &MeshInput,
+    source: &BasisOptions,
+    pairs: Option<usize>,
+) -> Result<SpectralSetup> {
     let mesh = input.load()?.mesh;
-    let fields = FaceFields::new(&mesh)
-        .with_context(|| format!("{}: cannot build the tangent fields", input.label()))?;
-    let header = read_basis_header(basis_path)?;
-    let fingerprint = mesh_fingerprint(&mesh);
-    let key = BasisFileKey {
-        discretization: header.key.discretization.clone(),
-        mesh_fingerprint: fingerprint,
-        face_count: mesh.face_count(),
-    };
-    let basis = load_basis(basis_path, &key)?;
+    let resolved = source.resolve(&mesh, input, pairs)?;
     Ok(SpectralSetup {
+        fields: resolved.discretization.fields().clone(),
+        discretization: resolved.discretization.name(),
+        mesh_fingerprint: resolved.mesh_fingerprint,
+        basis: resolved.basis,
         mesh,
-        fields,
-        basis,
-        discretization: header.key.discretization,
-        mesh_fingerprint: fingerprint,
     })
 }
 
@@ -56,10 +53,10 @@ pub fn read_field(path: &Path, fields: &FaceFields) -> Result<Vec<f64>> {
     let projection = read_tangent_field(path, fields)?;
     let normal = projection.max_normal_part();
     if normal > 0.0 {
-        eprintln!(
+        crate::progress::note(format!(
             "note: {}: normal components up to {normal:.3e} were dropped (fields are tangent)",
             path.display()
-        );
+        ));
     }
     Ok(projection.field)
 }

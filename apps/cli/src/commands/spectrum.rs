@@ -14,7 +14,7 @@ use tvf_spectral::{compute_eigenfunction_basis, BasisRequest};
 /// Arguments of `tvf spectrum`.
 #[derive(Args)]
 #[command(
-    after_help = "With --json, prints {\"eigenvalues\": [...ascending], \"labels\": \
+    after_help = "Examples:\n  tvf spectrum bunny.obj -k 100\n  tvf spectrum --example genus3 -k 50 --decomposition nonconforming --json\n\nWith --json, prints {\"eigenvalues\": [...ascending], \"labels\": \
 [\"harmonic\"|\"integrable\"|\"cointegrable\", ...], \"seconds\": ...} (plus the mesh and the \
 discretization) to stdout. Eigenvalues are in 1/length² (frequencies are their square roots)."
 )]

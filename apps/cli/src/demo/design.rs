@@ -3,7 +3,7 @@
 //! et al., and fur grown along the spline field.
 
 use super::page::Section;
-use super::test_fields::spread_faces;
+use super::test_fields::faces_at_screen_points;
 use super::Context;
 use crate::face_quantities::ColorBy;
 use crate::picture::{constraint_markers, draw, grid, Overlays, Style};
@@ -11,7 +11,7 @@ use crate::with_complex;
 use anyhow::Result;
 use std::time::Instant;
 use tvf_core::discretization::{FieldSpace, HodgeComplex, HodgeOperators};
-use tvf_core::geometry::{add, scale};
+use tvf_core::geometry::{add, norm, scale};
 use tvf_design::{
     default_regularization, residual, Constraint, ConstraintAssembler, Location, ReducedBasis,
     ReducedSoftDesign, SoftOptions, SplineSession, Target, DEFAULT_OMEGA,
@@ -21,12 +21,21 @@ use tvf_render::{grow_fur, FurOptions, Polyline};
 /// Soft-design weight of every constraint (soft constraints trade accuracy for smoothness).
 const SOFT_WEIGHT: f64 = 10.0;
 
-/// Three vectors, a source, a sink and a vortex on faces spread over the surface (and turned
-/// towards the camera). Divergence and curl values are `±8/r` with `r = √(area / 6π)`: a point
+/// Three vectors, a source, a sink and a vortex on faces spread over the visible surface. Divergence and curl values are `±8/r` with `r = √(area / 6π)`: a point
 /// constraint spreads over a small disc only, so it needs this strength to show beside unit
 /// vectors.
 fn constraints<S: FieldSpace>(cx: &Context, fields: &S) -> Vec<Constraint> {
-    let faces = spread_faces(cx.mesh, 6, cx.to_eye());
+    // Image-plane targets: left, right and front for the vectors; then the source (front left),
+    // the sink (front right) and the vortex (at the back).
+    let targets = [
+        [-0.8, 0.1],
+        [0.8, 0.1],
+        [0.0, -0.85],
+        [-0.45, -0.55],
+        [0.45, -0.55],
+        [0.0, 0.75],
+    ];
+    let faces = faces_at_screen_points(cx.mesh, cx.to_eye(), &targets);
     let r = (cx.mesh.total_area() / (6.0 * std::f64::consts::PI)).sqrt();
     let strength = 8.0 / r.max(1e-300);
     let at = |face| Location::Face {
@@ -153,9 +162,24 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
 
 /// Grows fur along `field` and draws it.
 pub fn fur(cx: &Context, field: &[f64]) -> Result<Section> {
-    let vectors = cx.discretization.fields().to_vectors(field)?;
+    // Unit directions: strands of even length that follow the field's direction.
+    let vectors: Vec<[f64; 3]> = cx
+        .discretization
+        .fields()
+        .to_vectors(field)?
+        .into_iter()
+        .map(|v| {
+            let length = norm(v);
+            if length > 0.0 {
+                scale(v, 1.0 / length)
+            } else {
+                v
+            }
+        })
+        .collect();
     let options = FurOptions {
         strand_count: cx.config.fur_strands,
+        length: 0.035,
         ..Default::default()
     };
     let strands = grow_fur(cx.mesh, &vectors, &options)?;
@@ -186,8 +210,9 @@ pub fn fur(cx: &Context, field: &[f64]) -> Result<Section> {
     cx.save(&image, "fur.png")?;
     let mut section = Section::new(
         "Fur along the spline field (Figure 5)",
-        "Hair strands rooted on the surface follow the spline field's streamlines, with a length \
-         proportional to the field's magnitude, and rise off the surface as they grow.",
+        "Hair strands rooted on the surface follow the direction of the spline field (normalised \
+         to unit length, so that all strands are equally long) along its streamlines and rise \
+         off the surface as they grow.",
     );
     section.figure(
         "fur.png",

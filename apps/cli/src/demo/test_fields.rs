@@ -5,7 +5,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
-use tvf_core::geometry::{dot, norm, sub};
+use tvf_core::geometry::{cross, dot, normalize};
 use tvf_core::SurfaceMesh;
 use tvf_render::bounding_box;
 
@@ -87,42 +87,56 @@ pub fn noise(dimension: usize, amplitude: f64, seed: u64) -> Vec<f64> {
         .collect()
 }
 
-/// `count` faces spread over the surface by farthest-point sampling of face centroids, among the
-/// faces turned towards `to_eye` (normal · to_eye > 0.5, so that they are seen in pictures; all
-/// faces if too few are), starting at the candidate with the largest x coordinate.
-pub fn spread_faces(mesh: &SurfaceMesh, count: usize, to_eye: [f64; 3]) -> Vec<usize> {
+/// Faces seen near the given points of the picture: `targets` are positions in the image plane
+/// of a camera looking along `−to_eye` (with world +y up), in units of the half-extent of the
+/// faces turned towards the camera (normal · to_eye > 0.5) about their centre. For each target
+/// the facing face whose centroid projects closest is chosen (ties go to the face nearer the
+/// camera), without repeating faces.
+pub fn faces_at_screen_points(
+    mesh: &SurfaceMesh,
+    to_eye: [f64; 3],
+    targets: &[[f64; 2]],
+) -> Vec<usize> {
     let p = mesh.positions();
-    let centroids: Vec<[f64; 3]> = mesh
+    let right = normalize(cross([0.0, 1.0, 0.0], to_eye));
+    let up = cross(to_eye, right);
+    let facing: Vec<(usize, [f64; 3])> = mesh
         .faces()
         .iter()
-        .map(|f| std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0))
+        .enumerate()
+        .filter(|&(t, _)| dot(mesh.face_normal(t), to_eye) > 0.5)
+        .map(|(t, f)| {
+            let c = std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0);
+            (t, [dot(c, right), dot(c, up), dot(c, to_eye)])
+        })
         .collect();
-    let mut candidates: Vec<usize> = (0..centroids.len())
-        .filter(|&t| dot(mesh.face_normal(t), to_eye) > 0.5)
-        .collect();
-    if candidates.len() < count {
-        candidates = (0..centroids.len()).collect();
-    }
-    let Some(&first) = candidates
-        .iter()
-        .max_by(|&&a, &&b| centroids[a][0].total_cmp(&centroids[b][0]))
-    else {
+    if facing.is_empty() {
         return Vec::new();
+    }
+    let range = |k: usize| {
+        let lo = facing.iter().map(|f| f.1[k]).fold(f64::INFINITY, f64::min);
+        let hi = facing
+            .iter()
+            .map(|f| f.1[k])
+            .fold(f64::NEG_INFINITY, f64::max);
+        (0.5 * (lo + hi), (0.5 * (hi - lo)).max(1e-300))
     };
-    let mut chosen = vec![first];
-    let mut distance: Vec<f64> = candidates
-        .iter()
-        .map(|&t| norm(sub(centroids[t], centroids[first])))
-        .collect();
-    while chosen.len() < count.min(candidates.len()) {
-        let Some(next) = (0..candidates.len()).max_by(|&a, &b| distance[a].total_cmp(&distance[b]))
-        else {
-            break;
-        };
-        let face = candidates[next];
-        chosen.push(face);
-        for (d, &t) in distance.iter_mut().zip(&candidates) {
-            *d = d.min(norm(sub(centroids[t], centroids[face])));
+    let (x, y, z) = (range(0), range(1), range(2));
+    let mut chosen: Vec<usize> = Vec::new();
+    for target in targets {
+        let best = facing
+            .iter()
+            .filter(|(t, _)| !chosen.contains(t))
+            .map(|&(t, q)| {
+                let dx = (q[0] - x.0) / x.1 - target[0];
+                let dy = (q[1] - y.0) / y.1 - target[1];
+                // Nearer the camera is better (z grows towards the eye).
+                let depth = 0.05 * (1.0 - (q[2] - z.0) / z.1);
+                (t, (dx * dx + dy * dy).sqrt() + depth)
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((t, _)) = best {
+            chosen.push(t);
         }
     }
     chosen
@@ -134,25 +148,26 @@ mod tests {
     use tvf_core::generate::torus;
 
     #[test]
-    fn spread_faces_are_distinct_and_far_apart() {
+    fn screen_points_pick_distinct_facing_faces_in_the_right_places() {
         let mesh = torus(1.0, 0.4, 24, 12).unwrap();
-        let up = [0.0, 0.0, 1.0];
-        let faces = spread_faces(&mesh, 6, up);
-        assert_eq!(faces.len(), 6);
-        assert!(faces.iter().all(|&t| dot(mesh.face_normal(t), up) > 0.5));
-        let mut sorted = faces.clone();
-        sorted.sort_unstable();
-        sorted.dedup();
-        assert_eq!(sorted.len(), 6);
-        let c = |t: usize| {
+        // Looking down the z axis (to_eye = +z): right = y × z = +x and up = z × x = +y.
+        let to_eye = [0.0, 0.0, 1.0];
+        let targets = [[-0.9, 0.0], [0.9, 0.0], [0.0, 0.9], [0.0, -0.9]];
+        let faces = faces_at_screen_points(&mesh, to_eye, &targets);
+        assert_eq!(faces.len(), 4);
+        let centroid = |t: usize| {
             let f = mesh.faces()[t];
             let p = mesh.positions();
             std::array::from_fn::<f64, 3, _>(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0)
         };
-        for (i, &a) in faces.iter().enumerate() {
-            for &b in &faces[i + 1..] {
-                assert!(norm(sub(c(a), c(b))) > 0.5, "faces {a} and {b} are close");
-            }
+        for (&t, target) in faces.iter().zip(&targets) {
+            assert!(dot(mesh.face_normal(t), to_eye) > 0.5);
+            let c = centroid(t);
+            assert!(
+                c[0] * target[0] >= 0.0 && c[1] * target[1] >= 0.0,
+                "face {t} at {c:?}"
+            );
+            assert!((c[0] * c[0] + c[1] * c[1]).sqrt() > 0.8);
         }
     }
 
