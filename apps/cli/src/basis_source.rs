@@ -142,7 +142,8 @@ pub struct BasisOptions {
     pub no_cache: bool,
 }
 
-/// Basis flags: [`BasisOptions`] plus `-k` (pairs to compute).
+/// Basis flags: [`BasisOptions`] plus `-k` (pairs to compute); pass both to
+/// [`BasisOptions::resolve`].
 #[derive(Args, Debug, Clone, Default)]
 pub struct BasisSource {
     #[command(flatten)]
@@ -161,13 +162,6 @@ pub struct ResolvedBasis {
     pub basis: SpectralBasis,
     /// [`mesh_fingerprint`] of the mesh.
     pub mesh_fingerprint: u64,
-}
-
-impl BasisSource {
-    /// The basis for `mesh` (read from `input`): see [`BasisOptions::resolve`].
-    pub fn resolve(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<ResolvedBasis> {
-        self.options.resolve(mesh, input, self.pairs)
-    }
 }
 
 impl BasisOptions {

@@ -100,11 +100,7 @@ impl Progress {
             }
             Sink::Lines(state) => {
                 let Ok(mut state) = state.lock() else { return };
-                let quarter = if wanted == 0 {
-                    4
-                } else {
-                    4 * done.min(wanted) / wanted
-                };
+                let quarter = (4 * done.min(wanted)).checked_div(wanted).unwrap_or(4);
                 if state.stage != stage || state.quarter != quarter {
                     eprintln!("{}: {stage} {done}/{wanted}", self.task);
                     state.stage = stage.to_string();

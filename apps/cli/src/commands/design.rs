@@ -18,6 +18,10 @@ use tvf_spectral::{write_tangent_field, SpectralBasis};
 
 /// Arguments of `tvf design`.
 #[derive(Args)]
+#[command(
+    after_help = "Examples:\n  tvf design bunny.obj --constraints constraints.json --full -o design.npy\n  \
+tvf design bunny.obj --constraints constraints.json --reduced -k 300 -o design.npy"
+)]
 pub struct DesignArgs {
     #[command(flatten)]
     input: MeshInput,

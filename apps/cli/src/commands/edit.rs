@@ -11,6 +11,10 @@ use tvf_spectral::mesh_fingerprint;
 
 /// Arguments of `tvf edit`.
 #[derive(Args)]
+#[command(
+    after_help = "Examples:\n  tvf edit bunny.obj   (then open the printed http://127.0.0.1:PORT address)\n  \
+tvf edit --example bumpy-torus --constraints constraints.json --port 8080"
+)]
 pub struct EditArgs {
     #[command(flatten)]
     input: MeshInput,

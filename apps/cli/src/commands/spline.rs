@@ -1,7 +1,9 @@
 //! `tvf spline`: a tangential vector field spline (hard constraints, Section 7) from a JSON
 //! constraint file, in a loaded or freshly computed eigenbasis.
 
+use crate::basis_source::{Decomposition, Mass};
 use crate::mesh_input::MeshInput;
+use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -31,13 +33,27 @@ pub struct BasisChoice {
     /// K ≥ 2F gives the complete basis [default: 200].
     #[arg(short = 'k', value_name = "K")]
     fields: Option<usize>,
-    /// Discretization when no basis file is given.
-    #[arg(long, value_name = "NAME", default_value = "conforming", value_parser = ["conforming", "nonconforming"])]
-    discretization: String,
+    /// Hodge decomposition when no basis file is given (alias: --discretization).
+    #[arg(
+        long,
+        alias = "discretization",
+        value_enum,
+        value_name = "NAME",
+        default_value = "conforming"
+    )]
+    decomposition: Decomposition,
+    /// Mass lumping when no basis file is given.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
+    mass: Mass,
 }
 
 /// Arguments of `tvf spline`.
 #[derive(Args)]
+#[command(
+    after_help = "Examples:\n  tvf spline bunny.obj --constraints constraints.json -k 300 -o spline.npy\n  \
+tvf spline bunny.obj --constraints constraints.json --basis bunny.tvfb -o spline.npy\n  \
+tvf render bunny.obj spline.npy --constraints constraints.json -o spline.png   (look at it)"
+)]
 pub struct SplineArgs {
     #[command(flatten)]
     input: MeshInput,
@@ -85,7 +101,7 @@ pub fn load_inputs(input: &MeshInput, constraints: &Path) -> Result<DesignInputs
     })
 }
 
-/// The complex named by a basis file, or by `--discretization` (barycentric lumping).
+/// The complex named by a basis file, or by `--decomposition` and `--mass`.
 pub enum AnyComplex {
     /// The conforming decomposition.
     Conforming(Conforming),
@@ -99,10 +115,12 @@ pub fn select_complex(
     choice: &BasisChoice,
 ) -> Result<(AnyComplex, Option<SpectralBasis>)> {
     let Some(path) = &choice.basis else {
-        let complex = if choice.discretization == "nonconforming" {
-            AnyComplex::Nonconforming(Nonconforming::new(mesh, MassLumping::Barycentric)?)
-        } else {
-            AnyComplex::Conforming(Conforming::new(mesh, MassLumping::Barycentric)?)
+        let lumping = choice.mass.lumping();
+        let complex = match choice.decomposition {
+            Decomposition::Nonconforming => {
+                AnyComplex::Nonconforming(Nonconforming::new(mesh, lumping)?)
+            }
+            Decomposition::Conforming => AnyComplex::Conforming(Conforming::new(mesh, lumping)?),
         };
         return Ok((complex, None));
     };
@@ -154,8 +172,11 @@ pub fn reduced_basis<H: HodgeComplex>(
             } else {
                 BasisRequest::fields(fields)
             };
-            let basis = compute_basis(complex, &request)
+            let progress = Progress::new("basis");
+            let callback = progress.basis_callback();
+            let basis = compute_basis(complex, &request.with_progress(&callback))
                 .with_context(|| format!("cannot compute {fields} eigenfields"))?;
+            progress.finish(format!("{} fields", basis.len()));
             println!(
                 "basis           {} fields of {} computed in {:.3} s",
                 basis.len(),
