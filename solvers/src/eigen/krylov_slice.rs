@@ -191,27 +191,40 @@ pub(crate) fn run_slice(
         let residual: Vec<f64> = (0..mv)
             .map(|j| (0..mu).map(|i| gy[(i, j)] * gy[(i, j)]).sum::<f64>().sqrt())
             .collect();
-        let mut order: Vec<usize> = (0..mv).collect();
-        order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+        // Ritz pairs in (lower_bound, σ) are the most negative θ: all of them are wanted (the
+        // inertia count says exactly `lower_needed` eigenvalues lie there), however far below σ
+        // they are. They come first, then the pairs above σ by decreasing θ (nearest first).
+        // Ranking both sides together by |θ| would let the many eigenvalues just above σ push
+        // a missing one far below σ out of the locking window and out of the restart basis.
+        let lambda_of = |i: usize| sigma + 1.0 / theta[i];
+        let mut lower_order: Vec<usize> = (0..mv)
+            .filter(|&i| theta[i] < 0.0 && lambda_of(i) > problem.lower_bound)
+            .collect();
+        lower_order.sort_by(|&a, &b| theta[a].total_cmp(&theta[b]));
+        let mut upper_order: Vec<usize> = (0..mv).filter(|&i| theta[i] > 0.0).collect();
+        upper_order.sort_by(|&a, &b| theta[b].total_cmp(&theta[a]));
+        // Pairs at or below lower_bound (known, outside the deflation window) and θ = 0 are
+        // purged.
 
-        let remaining =
-            (problem.lower_needed - lower_found) + problem.upper_target.saturating_sub(upper_found);
-        let window = remaining + block;
+        let lower_remaining = problem.lower_needed - lower_found;
+        let upper_remaining = problem.upper_target.saturating_sub(upper_found);
+        let window = lower_remaining + upper_remaining + block;
+        let upper_window = upper_remaining + block;
+        let converged = |i: usize| residual[i] <= settings.tolerance * theta[i].abs();
         let mut lock = Vec::new();
         let mut keep = Vec::new();
-        for (rank, &i) in order.iter().enumerate() {
-            if theta[i] == 0.0 {
-                continue;
-            }
-            let lambda = sigma + 1.0 / theta[i];
-            if lambda <= problem.lower_bound {
-                continue; // already known (outside the deflation window): purge
-            }
-            let converged = residual[i] <= settings.tolerance * theta[i].abs();
-            if converged && rank < window {
+        for &i in &lower_order {
+            if converged(i) {
                 lock.push(i);
-            } else if !converged {
+            } else {
                 keep.push(i);
+            }
+        }
+        for (rank, &i) in upper_order.iter().enumerate() {
+            if !converged(i) {
+                keep.push(i);
+            } else if rank < upper_window {
+                lock.push(i);
             }
         }
         let mut new_lower = 0;
@@ -311,10 +324,10 @@ pub(crate) fn run_slice(
     }
     Err(SolverError::NoConvergence {
         reason: format!(
-            "slice at shift {sigma:e} did not converge in {} restarts ({} of {} eigenpairs locked)",
+            "slice at shift {sigma:e} did not converge in {} restarts (locked {lower_found} of {} eigenpairs below the shift, {upper_found} of {} above)",
             settings.max_restarts,
-            locked_values.len(),
-            wanted
+            problem.lower_needed,
+            problem.upper_target
         ),
     })
 }

@@ -177,12 +177,39 @@ pub(crate) fn orthonormalize_block(
         .iter()
         .zip(reference_norms)
         .all(|(n, r)| *n > 1e-4 * r.max(f64::MIN_POSITIVE));
-    if well_scaled {
-        if let Some(result) = cholesky_qr2(&z, mass, par) {
-            return Ok(result);
+    let first = match well_scaled.then(|| cholesky_qr2(&z, mass, par)).flatten() {
+        Some(result) => result,
+        None => column_gram_schmidt(z, reference_norms, bases, mass, rng, par)?,
+    };
+    // Normalising a nearly dependent block (Q = Z R⁻¹ with ill-conditioned R) amplifies the
+    // rounding-level components that Z kept along `bases` by up to ‖R⁻¹‖‖Z‖. Left there,
+    // they break the Krylov relation and let the next expansion re-find a locked eigenvector
+    // as a "ghost" near a multiple eigenvalue with a falsely tiny residual estimate. So the
+    // components are removed once more (they are rounding noise, not part of the relation)
+    // and the block re-normalised; the extra triangular factor is folded into R.
+    let mut block = first.block;
+    project_out(block.as_mut(), bases, mass, par);
+    match cholesky_qr2(&block, mass, par) {
+        Some(second) => {
+            let mut coefficients =
+                Mat::zeros(second.coefficients.nrows(), first.coefficients.ncols());
+            matmul(
+                coefficients.as_mut(),
+                Accum::Replace,
+                second.coefficients.as_ref(),
+                first.coefficients.as_ref(),
+                1.0,
+                Par::Seq,
+            );
+            Ok(OrthonormalBlock {
+                block: second.block,
+                coefficients,
+            })
         }
+        None => Err(SolverError::NoConvergence {
+            reason: "Krylov block lost its rank during reorthogonalisation".into(),
+        }),
     }
-    column_gram_schmidt(z, reference_norms, bases, mass, rng, par)
 }
 
 fn cholesky_qr2(z: &Mat<f64>, mass: &[f64], par: Par) -> Option<OrthonormalBlock> {
