@@ -13,7 +13,6 @@ use tvf_spectral::{
     BasisRequest, NpyDtype,
 };
 
-
 struct Fixture {
     dir: tempfile::TempDir,
     mesh: PathBuf,

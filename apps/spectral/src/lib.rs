@@ -26,34 +26,35 @@
 #![warn(missing_docs)]
 
 mod analysis;
-mod basis_id;
-mod compress;
-mod compressed_file;
-mod compression_error;
-mod filter;
-mod filter_response;
-mod filter_spec;
-mod quantization;
-pub mod range_coder;
-mod rate_distortion;
-mod sequence;
-mod symbol_coder;
 mod atomic_write;
 mod basis;
 mod basis_error;
 mod basis_file;
+mod basis_id;
 mod basis_request;
+mod compress;
+mod compressed_file;
+mod compression_error;
 mod compute_basis;
 mod eigen_refinement;
 mod eigenfunction_basis;
 mod field_io;
+mod filter;
+mod filter_response;
+mod filter_spec;
 mod fingerprint;
 mod fourier;
 mod harmonic_fields;
 mod laplacian_apply;
 mod npy;
+mod quantization;
+pub mod range_coder;
+mod rate_distortion;
 mod scalar_spectrum;
+mod sequence;
+mod symbol_coder;
 
+pub use analysis::{CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use atomic_write::{write_atomically, write_atomically_with};
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_error::BasisError;
@@ -61,30 +62,29 @@ pub use basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, BasisFileError, BasisFileHeader,
     BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
-pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
-pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
-pub use eigenfunction_basis::EigenfunctionBasis;
-pub use fingerprint::{mesh_fingerprint, Hash64};
-pub use fourier::{reconstruct_with_rest, FourierAnalysis};
-pub use harmonic_fields::{harmonic_fields, HarmonicFields};
-pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
-pub use field_io::{
-    read_face_vector_sequence, read_face_vectors, read_npy, read_tangent_field,
-    write_face_vector_sequence, write_face_vectors, write_face_vectors_as, write_npy,
-    write_tangent_field, FieldFileFormat, FieldIoError,
-};
-pub use npy::{NpyArray, NpyDtype, NpyError};
-pub use analysis::{CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use basis_id::basis_id;
+pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use compress::{pair_selection, FieldCodec};
 pub use compressed_file::{
     CoefficientCoding, CompressedFields, FramePayload, TvfcHeader, TVFC_HEADER_BYTES, TVFC_MAGIC,
     TVFC_VERSION,
 };
 pub use compression_error::CompressionError;
+pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
+pub use eigenfunction_basis::EigenfunctionBasis;
+pub use field_io::{
+    read_face_vector_sequence, read_face_vectors, read_npy, read_tangent_field,
+    write_face_vector_sequence, write_face_vectors, write_face_vectors_as, write_npy,
+    write_tangent_field, FieldFileFormat, FieldIoError,
+};
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
+pub use fingerprint::{mesh_fingerprint, Hash64};
+pub use fourier::{reconstruct_with_rest, FourierAnalysis};
+pub use harmonic_fields::{harmonic_fields, HarmonicFields};
+pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
+pub use npy::{NpyArray, NpyDtype, NpyError};
 pub use quantization::UniformQuantizer;
 pub use rate_distortion::{equal_error_comparison, rate_distortion, FileStamp, RatePoint};
 pub use sequence::{compress_with_report, relative_l2_error, CompressionReport};
