@@ -1,5 +1,6 @@
 //! A torus with smooth bumps on its tube, placed deterministically.
 
+use super::torus::torus_of_revolution;
 use crate::SurfaceMesh;
 use std::f64::consts::TAU;
 
@@ -54,29 +55,7 @@ pub fn bumpy_torus(
             .sum::<f64>()
             .min(1.0)
     };
-    let mut positions = Vec::with_capacity(around * tube);
-    for i in 0..around {
-        let u = TAU * i as f64 / around as f64;
-        for j in 0..tube {
-            let v = TAU * j as f64 / tube as f64;
-            let r = minor * (1.0 + bump_height * bump(u, v));
-            let radius = major + r * v.cos();
-            positions.push([radius * u.cos(), radius * u.sin(), r * v.sin()]);
-        }
-    }
-    let index = |i: usize, j: usize| (i % around) * tube + (j % tube);
-    let mut faces = Vec::with_capacity(2 * around * tube);
-    for i in 0..around {
-        for j in 0..tube {
-            let (a, b, c, d) = (
-                index(i, j),
-                index(i + 1, j),
-                index(i + 1, j + 1),
-                index(i, j + 1),
-            );
-            faces.push([a, b, c]);
-            faces.push([a, c, d]);
-        }
-    }
-    SurfaceMesh::new(positions, faces).ok()
+    torus_of_revolution(major, around, tube, |u, v| {
+        minor * (1.0 + bump_height * bump(u, v))
+    })
 }

@@ -13,13 +13,26 @@ pub fn torus(major: f64, minor: f64, around: usize, tube: usize) -> Option<Surfa
     if !valid || !major.is_finite() {
         return None;
     }
+    torus_of_revolution(major, around, tube, |_, _| minor)
+}
+
+/// The `around × tube` grid of a torus of revolution around the z axis whose tube radius at
+/// angles `(u, v)` (around the z axis, around the tube; radians) is `tube_radius(u, v)`:
+/// `2·around·tube` counter-clockwise faces, outward normals while `0 < tube_radius < major`.
+pub(crate) fn torus_of_revolution(
+    major: f64,
+    around: usize,
+    tube: usize,
+    tube_radius: impl Fn(f64, f64) -> f64,
+) -> Option<SurfaceMesh> {
     let mut positions = Vec::with_capacity(around * tube);
     for i in 0..around {
         let u = TAU * i as f64 / around as f64;
         for j in 0..tube {
             let v = TAU * j as f64 / tube as f64;
-            let radius = major + minor * v.cos();
-            positions.push([radius * u.cos(), radius * u.sin(), minor * v.sin()]);
+            let r = tube_radius(u, v);
+            let radius = major + r * v.cos();
+            positions.push([radius * u.cos(), radius * u.sin(), r * v.sin()]);
         }
     }
     let index = |i: usize, j: usize| (i % around) * tube + (j % tube);
