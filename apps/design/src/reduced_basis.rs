@@ -1,6 +1,7 @@
 //! [`ReducedBasis`]: the eigenfields `U` stored row by row, with the eigenvalues, for the reduced
 //! solvers; and the multithreaded maps `x = U v` in `f64` and `f32`.
 
+use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use rayon::prelude::*;
 use tvf_spectral::{FieldFamily, SpectralBasis};
@@ -160,6 +161,23 @@ impl ReducedBasis {
             }
         }
         out
+    }
+
+    /// The rows of `constraint` in reduced coordinates, `C̃_i U` (one `d`-vector per row);
+    /// fails if a row addresses a field coefficient `≥ 2F`.
+    pub fn reduce_constraint(
+        &self,
+        constraint: &CompiledConstraint,
+    ) -> Result<Vec<Vec<f64>>, DesignError> {
+        let n = self.field_dimension();
+        if let Some(&(j, _)) = constraint.rows.iter().flatten().find(|(j, _)| *j >= n) {
+            return Err(DesignError::DimensionMismatch {
+                what: "constraint row column (must be < 2F)",
+                expected: n,
+                actual: j,
+            });
+        }
+        Ok(constraint.rows.iter().map(|r| self.reduce_row(r)).collect())
     }
 
     /// `x = U v` (`2F` values, multithreaded): one dot product per coefficient.

@@ -74,19 +74,7 @@ impl<'a> ReducedSoftDesign<'a> {
         if self.active.iter().any(|a| a.compiled.id == constraint.id) {
             return Err(DesignError::DuplicateId { id: constraint.id });
         }
-        let n = self.basis.field_dimension();
-        if let Some(&(j, _)) = constraint.rows.iter().flatten().find(|(j, _)| *j >= n) {
-            return Err(DesignError::DimensionMismatch {
-                what: "constraint row column (must be < 2F)",
-                expected: n,
-                actual: j,
-            });
-        }
-        let reduced: Vec<Vec<f64>> = constraint
-            .rows
-            .iter()
-            .map(|r| self.basis.reduce_row(r))
-            .collect();
+        let reduced = self.basis.reduce_constraint(&constraint)?;
         self.update(&reduced, constraint.weight)?;
         self.active.push(Active {
             compiled: constraint,

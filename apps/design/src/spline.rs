@@ -107,19 +107,7 @@ impl<'a> SplineSession<'a> {
         if self.active.iter().any(|a| a.id == constraint.id) {
             return Err(DesignError::DuplicateId { id: constraint.id });
         }
-        let n = self.basis.field_dimension();
-        if let Some(&(j, _)) = constraint.rows.iter().flatten().find(|(j, _)| *j >= n) {
-            return Err(DesignError::DimensionMismatch {
-                what: "constraint row column (must be < 2F)",
-                expected: n,
-                actual: j,
-            });
-        }
-        let reduced: Vec<Vec<f64>> = constraint
-            .rows
-            .iter()
-            .map(|r| self.basis.reduce_row(r))
-            .collect();
+        let reduced = self.basis.reduce_constraint(&constraint)?;
         for (k, row) in reduced.iter().enumerate() {
             let weighted: Vec<f64> = row
                 .iter()

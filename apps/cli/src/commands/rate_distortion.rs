@@ -41,7 +41,8 @@ pub struct RateDistortionArgs {
     output: PathBuf,
 }
 
-fn coding_label(coding: CoefficientCoding) -> String {
+/// Legend label of a coefficient coding.
+pub fn coding_label(coding: CoefficientCoding) -> String {
     match coding {
         CoefficientCoding::Float64 => "64-bit coefficients".to_string(),
         CoefficientCoding::Quantized { bits } => format!("{bits}-bit quantised, range-coded"),
@@ -88,7 +89,13 @@ pub fn run(args: RateDistortionArgs) -> Result<()> {
     let mesh_name = Path::new(&label)
         .file_name()
         .map_or(label.clone(), |n| n.to_string_lossy().into_owned());
-    plot(&points, &codings, &png_path, &mesh_name)?;
+    let plot = rate_distortion_plot(
+        &points,
+        &codings,
+        format!("Rate-distortion on {mesh_name}"),
+        (1000, 650),
+    );
+    save_png(&plot.render()?, &png_path)?;
 
     println!(
         "{:>6} {:>34} {:>10} {:>12} {:>14}",
@@ -122,13 +129,13 @@ pub fn run(args: RateDistortionArgs) -> Result<()> {
     Ok(())
 }
 
-/// Relative error against bits per vertex, one line per coding (log–log).
-fn plot(
+/// Relative error against bits per vertex, one line per coding (log–log), `size` in pixels.
+pub fn rate_distortion_plot(
     points: &[RatePoint],
     codings: &[CoefficientCoding],
-    path: &Path,
-    mesh: &str,
-) -> Result<()> {
+    title: String,
+    (width, height): (u32, u32),
+) -> Plot {
     let series = codings
         .iter()
         .map(|&coding| {
@@ -141,14 +148,12 @@ fn plot(
             Series::new(coding_label(coding), line, SeriesStyle::LineAndMarkers)
         })
         .collect();
-    let plot = Plot {
-        title: format!("Rate-distortion on {mesh}"),
+    Plot {
+        title,
         x: Axis::new("bits per vertex", AxisScale::Log10),
         y: Axis::new("relative L2 error", AxisScale::Log10),
         series,
-        width: 1000,
-        height: 650,
-    };
-    save_png(&plot.render()?, path)?;
-    Ok(())
+        width,
+        height,
+    }
 }

@@ -3,8 +3,8 @@
 
 use super::page::Section;
 use super::Context;
+use crate::commands::rate_distortion::{coding_label, rate_distortion_plot};
 use anyhow::Result;
-use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
     basis_id, equal_error_comparison, mesh_fingerprint, rate_distortion, CoefficientCoding,
     FileStamp,
@@ -12,13 +12,6 @@ use tvf_spectral::{
 
 /// Quantiser symbol sizes shown.
 const BITS: [u32; 2] = [8, 12];
-
-fn label(coding: CoefficientCoding) -> String {
-    match coding {
-        CoefficientCoding::Float64 => "64-bit coefficients".to_string(),
-        CoefficientCoding::Quantized { bits } => format!("{bits}-bit quantised, range-coded"),
-    }
-}
 
 /// Compresses `field` at several numbers of pairs and plots the curves.
 pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
@@ -38,26 +31,15 @@ pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
             .map(|&bits| CoefficientCoding::Quantized { bits }),
     );
     let points = rate_distortion(cx.basis, field, stamp, &ks, &codings)?;
-    let series = codings
-        .iter()
-        .map(|&coding| {
-            let mut line: Vec<(f64, f64)> = points
-                .iter()
-                .filter(|p| p.coding == coding)
-                .map(|p| (p.bits_per_vertex, p.relative_error))
-                .collect();
-            line.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series::new(label(coding), line, SeriesStyle::LineAndMarkers)
-        })
-        .collect();
-    let plot = Plot {
-        title: "Rate-distortion of spectral compression".to_string(),
-        x: Axis::new("bits per vertex", AxisScale::Log10),
-        y: Axis::new("relative L2 error", AxisScale::Log10),
-        series,
-        width: cx.config.width.max(200),
-        height: (cx.config.height * 3 / 4).max(150),
-    };
+    let plot = rate_distortion_plot(
+        &points,
+        &codings,
+        "Rate-distortion of spectral compression".to_string(),
+        (
+            cx.config.width.max(200),
+            (cx.config.height * 3 / 4).max(150),
+        ),
+    );
     cx.save(&plot.render()?, "rate_distortion.png")?;
     let mut section = Section::new(
         "Compression: rate and distortion (Figure 9)",
@@ -86,7 +68,7 @@ pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
             format!("at k = {} the same error or less", exact.pairs),
             format!(
                 "{} ({} pairs): {} bytes instead of {} ({:.1}× smaller)",
-                label(quantised.coding),
+                coding_label(quantised.coding),
                 quantised.pairs,
                 quantised.bytes,
                 exact.bytes,
