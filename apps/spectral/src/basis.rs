@@ -152,22 +152,7 @@ impl SpectralBasis {
     /// The field `U c` for coefficients `c` (`d` entries), `2F` entries.
     pub fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
         check_length("coefficients", self.len(), coefficients.len())?;
-        let mut field = vec![0.0; self.field_dimension()];
-        field
-            .par_chunks_mut(4096)
-            .enumerate()
-            .for_each(|(chunk, out)| {
-                let start = chunk * 4096;
-                for (i, &c) in coefficients.iter().enumerate() {
-                    if c != 0.0 {
-                        let column = self.fields.col(i);
-                        for (k, value) in out.iter_mut().enumerate() {
-                            *value += c * column[start + k];
-                        }
-                    }
-                }
-            });
-        Ok(field)
+        Ok(combine_columns(self.fields.as_ref(), coefficients))
     }
 
     /// Number of basis fields of one family.
@@ -195,22 +180,7 @@ impl SpectralBasis {
             return self.reconstruct(coefficients);
         };
         check_length("coefficients", self.len(), coefficients.len())?;
-        let mut field = vec![0.0; self.field_dimension()];
-        field
-            .par_chunks_mut(4096)
-            .enumerate()
-            .for_each(|(chunk, out)| {
-                let start = chunk * 4096;
-                for (i, &c) in coefficients.iter().enumerate() {
-                    if c != 0.0 {
-                        let column = single.col(i);
-                        for (k, value) in out.iter_mut().enumerate() {
-                            *value += c * column[start + k] as f64;
-                        }
-                    }
-                }
-            });
-        Ok(field)
+        Ok(combine_columns(single.as_ref(), coefficients))
     }
 
     /// The compact form of this basis (eigenfunctions), if it was kept
@@ -244,7 +214,36 @@ impl SpectralBasis {
     }
 }
 
-fn check_length(
+/// Rows of a matrix processed together by one thread in [`combine_columns`]: 4096 rows of `f64`
+/// (32 KiB) stay in the L1/L2 cache while every column adds its slice.
+const ROW_CHUNK: usize = 4096;
+
+/// `Σ_i c_i U[:, i]` accumulated in `f64` (`U` is `n × d`, `c` has `d` entries, the result `n`),
+/// split into row chunks over threads so that `U` is streamed once; zero coefficients are skipped.
+fn combine_columns<T: Copy + Into<f64> + Sync>(
+    columns: MatRef<'_, T>,
+    coefficients: &[f64],
+) -> Vec<f64> {
+    let mut field = vec![0.0; columns.nrows()];
+    field
+        .par_chunks_mut(ROW_CHUNK)
+        .enumerate()
+        .for_each(|(chunk, out)| {
+            let start = chunk * ROW_CHUNK;
+            for (i, &c) in coefficients.iter().enumerate() {
+                if c != 0.0 {
+                    let column = columns.col(i);
+                    for (k, value) in out.iter_mut().enumerate() {
+                        *value += c * column[start + k].into();
+                    }
+                }
+            }
+        });
+    field
+}
+
+/// `Ok` when `actual == expected`, else a [`SpectralBasisError::LengthMismatch`] naming `what`.
+pub(crate) fn check_length(
     what: &'static str,
     expected: usize,
     actual: usize,

@@ -1,6 +1,7 @@
 //! [`EigenfunctionBasis`]: the Fourier basis stored as eigenfunctions (half the memory of the
 //! dense fields), turned into fields through the complex's sparse gradients.
 
+use crate::basis::check_length;
 use crate::{FieldFamily, SpectralBasisError};
 use faer::{Col, Mat, MatRef};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
@@ -92,17 +93,17 @@ impl EigenfunctionBasis {
 
     /// Checks that `complex` has the shapes this basis was computed with.
     fn check_complex<H: HodgeComplex>(&self, complex: &H) -> Result<(), SpectralBasisError> {
-        check(
+        check_length(
             "harmonic field rows (2F)",
             complex.fields().dimension(),
             self.harmonic.nrows(),
         )?;
-        check(
+        check_length(
             "potential rows (n0)",
             complex.potentials().dimension(),
             self.potentials.nrows(),
         )?;
-        check(
+        check_length(
             "co-potential rows (n2)",
             complex.co_potentials().dimension(),
             self.co_potentials.nrows(),
@@ -131,7 +132,7 @@ impl EigenfunctionBasis {
         complex: &H,
         field: &[f64],
     ) -> Result<Vec<f64>, SpectralBasisError> {
-        check("field", complex.fields().dimension(), field.len())?;
+        check_length("field", complex.fields().dimension(), field.len())?;
         self.check_complex(complex)?;
         let weighted: Vec<f64> = field.iter().zip(complex.m1()).map(|(v, m)| v * m).collect();
         let divergence = mul_transpose_vec(complex.d0(), &weighted);
@@ -155,7 +156,7 @@ impl EigenfunctionBasis {
         complex: &H,
         coefficients: &[f64],
     ) -> Result<Vec<f64>, SpectralBasisError> {
-        check("coefficients", self.len(), coefficients.len())?;
+        check_length("coefficients", self.len(), coefficients.len())?;
         self.check_complex(complex)?;
         let mut alpha = Col::<f64>::zeros(self.potentials.ncols());
         let mut beta = Col::<f64>::zeros(self.co_potentials.ncols());
@@ -231,16 +232,4 @@ fn transpose_times(m: MatRef<'_, f64>, x: &[f64]) -> Vec<f64> {
     }
     let x = Col::from_fn(x.len(), |i| x[i]);
     col_vec(&(m.transpose() * &x))
-}
-
-fn check(what: &'static str, expected: usize, actual: usize) -> Result<(), SpectralBasisError> {
-    if expected == actual {
-        Ok(())
-    } else {
-        Err(SpectralBasisError::LengthMismatch {
-            what,
-            expected,
-            actual,
-        })
-    }
 }
