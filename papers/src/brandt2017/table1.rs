@@ -1,0 +1,258 @@
+//! Table 1 of the paper: time to compute the basis (500 + 500 eigenfields), and setup / solve
+//! of the reduced spline, the reduced soft design and the full soft design with 30 seeded
+//! constraints, beside the paper's numbers (Java + MUMPS on a 2015 laptop).
+
+use crate::error::PaperError;
+use crate::markdown::{ratio, seconds, thousands, Table};
+use crate::timing::{median_time, Repetitions, Timing};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::SurfaceMesh;
+use tvf_design::{
+    default_regularization, Constraint, ConstraintAssembler, FullSoftDesign, Location,
+    ReducedBasis, ReducedSoftDesign, SoftOptions, SplineSession, Target, DEFAULT_OMEGA,
+};
+use tvf_spectral::SpectralBasis;
+
+/// The paper's timings of one mesh (seconds).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PaperTimings {
+    /// Bases setup.
+    pub bases: f64,
+    /// Spline editing setup and solve.
+    pub spline: (f64, f64),
+    /// Reduced soft design factor and solve.
+    pub reduced: (f64, f64),
+    /// Full soft design factor and solve.
+    pub full: (f64, f64),
+}
+
+/// How often the timed operations are repeated (medians are reported).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Table1Repetitions {
+    /// The fast operations (spline, reduced soft design, full solve).
+    pub fast: Repetitions,
+    /// The full soft-design factorization.
+    pub full_factor: Repetitions,
+}
+
+/// One row of Table 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table1Row {
+    /// Mesh name.
+    pub mesh: String,
+    /// Vertices.
+    pub vertices: usize,
+    /// Faces.
+    pub faces: usize,
+    /// The paper's face count for this mesh (if it is one of the paper's).
+    pub paper_faces: Option<usize>,
+    /// Fields in the basis (harmonic included).
+    pub basis_fields: usize,
+    /// Seconds to assemble the complex and compute the basis (one run).
+    pub bases: f64,
+    /// Number of constraints.
+    pub constraints: usize,
+    /// Spline session with every constraint added.
+    pub spline_setup: Timing,
+    /// Reduced spline solve (coefficients).
+    pub spline_solve: Timing,
+    /// Mapping the coefficients to the full field, `x = U v` (in the paper's solve, on the GPU).
+    pub map: Timing,
+    /// Largest constraint residual of the spline field (hard constraints: ≈ 0).
+    pub spline_residual: f64,
+    /// Reduced soft design: system with every constraint (dense Cholesky, rank updates).
+    pub reduced_factor: Timing,
+    /// Reduced soft design solve.
+    pub reduced_solve: Timing,
+    /// Full soft design: assembly and sparse factorization (given `S`).
+    pub full_factor: Timing,
+    /// Full soft design solve (with iterative refinement).
+    pub full_solve: Timing,
+    /// Relative residual of the full solve.
+    pub full_residual: f64,
+    /// The paper's numbers.
+    pub paper: Option<PaperTimings>,
+}
+
+/// `count` seeded constraints spread over `mesh` (conforming node kinds): 80 % vectors in
+/// random faces with random directions, then alternately divergences at vertices and curls at
+/// edges (for 30: 24 vectors, 3 sources/sinks, 3 vortices).
+pub fn seeded_constraints(mesh: &SurfaceMesh, count: usize, seed: u64) -> Vec<Constraint> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let vectors = count * 4 / 5;
+    (0..count)
+        .map(|k| {
+            let face = rng.random_range(0..mesh.face_count().max(1));
+            if k < vectors {
+                let v = [(); 3].map(|_| rng.random_range(-1.0..1.0));
+                let location = Location::Face {
+                    face,
+                    barycentric: None,
+                };
+                Constraint::new(format!("v{k}"), Target::Vector(v), location)
+            } else if (k - vectors) % 2 == 0 {
+                let vertex = mesh.faces()[face][0];
+                let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                Constraint::new(
+                    format!("d{k}"),
+                    Target::Divergence(sign),
+                    Location::Vertex(vertex),
+                )
+            } else {
+                let edge = mesh.face_edges()[face][0];
+                Constraint::new(format!("c{k}"), Target::Curl(1.0), Location::Edge(edge))
+            }
+        })
+        .collect()
+}
+
+/// Measures the design columns of Table 1 on `mesh` with the `basis` computed on `complex`
+/// (whose time, `bases_seconds`, was measured by the caller).
+#[allow(clippy::too_many_arguments)]
+pub fn measure<H: HodgeComplex>(
+    name: &str,
+    mesh: &SurfaceMesh,
+    complex: &H,
+    basis: &SpectralBasis,
+    bases_seconds: f64,
+    constraint_count: usize,
+    repetitions: Table1Repetitions,
+    paper: Option<(usize, PaperTimings)>,
+) -> Result<Table1Row, PaperError> {
+    let constraints = seeded_constraints(mesh, constraint_count, 30);
+    let compiled = ConstraintAssembler::new(complex, mesh).compile_all(&constraints)?;
+    let reduced = ReducedBasis::from_spectral(basis)?;
+    let fast = repetitions.fast;
+
+    let (spline_setup, session) = median_time(fast, || {
+        let mut session = SplineSession::new(&reduced, DEFAULT_OMEGA)?;
+        for c in &compiled {
+            session.add(c.clone())?;
+        }
+        Ok::<_, PaperError>(session)
+    })?;
+    let (spline_solve, v) = median_time(fast, || Ok::<_, PaperError>(session.solve()))?;
+    let mut field = vec![0.0; reduced.field_dimension()];
+    let (map, ()) = median_time(fast, || reduced.map(&v, &mut field))?;
+    let spline_residual = session
+        .residuals(&field)
+        .iter()
+        .map(|r| r.relative)
+        .fold(0.0, f64::max);
+    drop(session);
+
+    let dirichlet = complex.dirichlet_energy();
+    let options = SoftOptions {
+        omega: DEFAULT_OMEGA,
+        regularization: default_regularization(&dirichlet, complex.m1()),
+    };
+    let (reduced_factor, design) = median_time(fast, || {
+        let mut design = ReducedSoftDesign::new(&reduced, options)?;
+        design.add_all(compiled.iter().cloned())?;
+        Ok::<_, PaperError>(design)
+    })?;
+    let (reduced_solve, _) = median_time(fast, || Ok::<_, PaperError>(design.solve()))?;
+    drop(design);
+    drop(reduced);
+
+    let (full_factor, full) = median_time(repetitions.full_factor, || {
+        FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone())
+    })?;
+    let (full_solve, (_, report)) = median_time(fast, || Ok::<_, PaperError>(full.solve()))?;
+
+    Ok(Table1Row {
+        mesh: name.to_string(),
+        vertices: mesh.vertex_count(),
+        faces: mesh.face_count(),
+        paper_faces: paper.map(|p| p.0),
+        basis_fields: basis.len(),
+        bases: bases_seconds,
+        constraints: compiled.len(),
+        spline_setup,
+        spline_solve,
+        map,
+        spline_residual,
+        reduced_factor,
+        reduced_solve,
+        full_factor,
+        full_solve,
+        full_residual: report.final_residual(),
+        paper: paper.map(|p| p.1),
+    })
+}
+
+/// `ours (paper, ×paper/ours)` for one cell.
+fn cell(ours: f64, paper: Option<f64>) -> String {
+    match paper {
+        Some(p) => format!(
+            "{} ({}, {})",
+            seconds(ours),
+            seconds(p),
+            ratio(Some(p), Some(ours))
+        ),
+        None => seconds(ours),
+    }
+}
+
+/// Table 1 as Markdown: every timing as `ours (paper, ×paper/ours)`; a second table with the
+/// extra measurements (map time, residuals, repetitions).
+pub fn markdown(rows: &[Table1Row]) -> String {
+    let mut table = Table::new([
+        "mesh",
+        "#V / #F (paper #F)",
+        "bases setup",
+        "spline setup",
+        "spline solve",
+        "reduced soft factor",
+        "reduced soft solve",
+        "full soft factor",
+        "full soft solve",
+    ]);
+    for r in rows {
+        let p = r.paper;
+        table.row([
+            r.mesh.clone(),
+            format!(
+                "{} / {} ({})",
+                thousands(r.vertices),
+                thousands(r.faces),
+                r.paper_faces.map_or("–".to_string(), thousands)
+            ),
+            cell(r.bases, p.map(|p| p.bases)),
+            cell(r.spline_setup.median, p.map(|p| p.spline.0)),
+            cell(r.spline_solve.median, p.map(|p| p.spline.1)),
+            cell(r.reduced_factor.median, p.map(|p| p.reduced.0)),
+            cell(r.reduced_solve.median, p.map(|p| p.reduced.1)),
+            cell(r.full_factor.median, p.map(|p| p.full.0)),
+            cell(r.full_solve.median, p.map(|p| p.full.1)),
+        ]);
+    }
+    let mut extra = Table::new([
+        "mesh",
+        "basis fields",
+        "constraints",
+        "map x = U v",
+        "spline max relative constraint residual",
+        "full solve relative residual",
+        "runs (fast / full factor)",
+    ]);
+    for r in rows {
+        extra.row([
+            r.mesh.clone(),
+            r.basis_fields.to_string(),
+            r.constraints.to_string(),
+            seconds(r.map.median),
+            format!("{:.1e}", r.spline_residual),
+            format!("{:.1e}", r.full_residual),
+            format!("{} / {}", r.spline_setup.runs, r.full_factor.runs),
+        ]);
+    }
+    format!(
+        "{}\nEach cell: ours (paper, paper / ours). Medians of the runs in the second table; the \
+         basis is one run.\n\n{}",
+        table.to_markdown(),
+        extra.to_markdown()
+    )
+}
