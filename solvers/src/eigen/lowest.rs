@@ -6,11 +6,16 @@
 //! below σ (so that the count matches ν(σ): everything below σ is *confirmed*) plus the
 //! next `slice_size` eigenvalues above σ (tentative until the next shift confirms them).
 //! Eigenvectors found earlier near the window are deflated, so nothing is found twice.
+//! Each slice's locked vectors then go through a Rayleigh–Ritz with `A` itself
+//! ([`super::rayleigh_ritz`]): the Krylov iteration resolves small `|θ|` only to `ε·max|θ|`,
+//! which near a zero eigenvalue (first slice) is 10⁻¹⁰ relative and produced "ghost" copies in
+//! degenerate clusters; the Rayleigh–Ritz against `A` restores full accuracy.
 //! The next shift is placed just above the highest tentative eigenvalue; the last one in a
 //! gap right above the k-th eigenvalue, where a factorization alone usually confirms
 //! everything.
 
 use super::krylov_slice::{run_slice, ColumnStore, SliceProblem, SliceSettings};
+use super::rayleigh_ritz::rayleigh_ritz;
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
 use crate::convert::{shifted_upper_triangle, square_dimension, upper_triangle_csc};
 use crate::dense_eigen::{check_mass, dense_generalized_eigen};
@@ -293,8 +298,10 @@ fn sliced(
             };
             let outcome = run_slice(&problem, &settings, &mut rng, &mut report)?;
             solves += outcome.solves;
-            found_values.extend_from_slice(&outcome.values);
-            found_vectors.append(outcome.vectors.as_ref());
+            let (values, vectors) =
+                rayleigh_ritz(full.as_ref(), mass, outcome.vectors.as_ref(), par)?;
+            found_values.extend_from_slice(&values);
+            found_vectors.append(vectors.as_ref());
         }
         confirmed = nu;
         lower_bound = sigma;

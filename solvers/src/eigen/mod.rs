@@ -3,6 +3,7 @@
 mod krylov_slice;
 mod lowest;
 mod mass_orthogonal;
+mod rayleigh_ritz;
 mod types;
 
 pub use lowest::lowest_eigenpairs;
