@@ -4,18 +4,23 @@
 //! Flags (the same in every subcommand that takes a basis):
 //! - `--basis FILE`: load this basis file; it must belong to the mesh (fingerprint) and, if
 //!   `--decomposition` / `--mass` are given, to that discretization;
-//! - `-k K`: otherwise compute `K` integrable + `K` co-integrable eigenfields plus the `2g`
-//!   harmonic ones ([`DEFAULT_PAIRS`] if not given);
+//! - `-k K`: otherwise compute the basis of the `K` eigenfields of lowest eigenvalue of the
+//!   Hodge–Laplacian, harmonic ones included, whichever family they belong to (the paper's `d`;
+//!   [`DEFAULT_FIELDS`] if not given). `K ≥ 2F` asks for the complete basis (dense
+//!   eigensolvers, small meshes only). `-k` means this in every subcommand (`tvf spectrum -k K`
+//!   lists the same `K` eigenvalues);
 //! - `--decomposition conforming|nonconforming`, `--mass barycentric|voronoi`: the
 //!   discretization (default conforming, barycentric);
 //! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
 //!
-//! The cache: a computed basis is saved as `{fingerprint}-{decomposition}-{mass}-k{K}.tvfb` in
+//! The cache: a computed basis is saved as `{fingerprint}-{decomposition}-{mass}-{size}.tvfb` in
 //! `--cache-dir`, else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in
 //! `--example` mesh (no file to sit next to) in `tvf-cache/` under the system temporary folder.
-//! The key is the mesh fingerprint (vertices and faces), the discretization, the mass lumping and
-//! `K` (the seed is fixed, so equal keys mean bit-identical bases). A cached basis is reused and
-//! stderr says so; a damaged or mismatching cache file is recomputed with a warning.
+//! `{size}` is `d{K}` for `K` fields, `p{P}` for the `P` pairs a compressed file needs when no
+//! `-k` is given, `complete` for the complete basis. The key is the mesh fingerprint (vertices
+//! and faces), the discretization, the mass lumping and the size (the seed is fixed, so equal
+//! keys mean bit-identical bases). A cached basis is reused and stderr says so; a damaged or
+//! mismatching cache file is recomputed with a warning.
 
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
@@ -23,16 +28,27 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tvf_core::discretization::HodgeComplex;
+use tvf_core::discretization::{FieldSpace, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{Conforming, FaceFields, MassLumping, Nonconforming};
 use tvf_spectral::{
     compute_basis, load_basis, mesh_fingerprint, read_basis_header, save_basis, BasisFileKey,
-    BasisRequest, SpectralBasis,
+    BasisRequest, FieldFamily, SpectralBasis,
 };
 
-/// Pairs computed when neither `--basis` nor `-k` is given.
-pub const DEFAULT_PAIRS: usize = 100;
+/// Eigenfields computed when neither `--basis` nor `-k` is given.
+pub const DEFAULT_FIELDS: usize = 200;
+
+/// The size of a computed basis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BasisSize {
+    /// The `K` eigenfields of lowest eigenvalue, harmonic ones included (`-k K`); `K ≥ 2F`
+    /// means the complete basis.
+    Fields(usize),
+    /// The harmonic fields plus `P` integrable and `P` co-integrable eigenfields: what a
+    /// compressed file keeping `P` pairs needs (used only when no `-k` is given).
+    Pairs(usize),
+}
 
 /// Environment variable naming the basis cache folder.
 pub const CACHE_DIR_VARIABLE: &str = "TVF_CACHE_DIR";
@@ -119,8 +135,7 @@ impl Discretization {
     }
 }
 
-/// Basis flags without `-k` (for subcommands where `-k` means something related, e.g. the
-/// pairs kept by `compress`); see the module documentation.
+/// Basis flags without `-k`; see the module documentation.
 #[derive(Args, Debug, Clone, Default)]
 pub struct BasisOptions {
     /// A basis file (.tvfb, `tvf basis`) of this mesh; without it a basis is computed once and
@@ -128,7 +143,7 @@ pub struct BasisOptions {
     #[arg(long, value_name = "FILE")]
     pub basis: Option<PathBuf>,
     /// Hodge decomposition [default: conforming, or the basis file's].
-    #[arg(long, value_enum, value_name = "NAME")]
+    #[arg(long, alias = "discretization", value_enum, value_name = "NAME")]
     pub decomposition: Option<Decomposition>,
     /// Mass lumping [default: barycentric, or the basis file's].
     #[arg(long, value_enum, value_name = "NAME")]
@@ -142,16 +157,33 @@ pub struct BasisOptions {
     pub no_cache: bool,
 }
 
-/// Basis flags: [`BasisOptions`] plus `-k` (pairs to compute); pass both to
-/// [`BasisOptions::resolve`].
+/// Basis flags: [`BasisOptions`] plus `-k` (the number of eigenfields to compute).
 #[derive(Args, Debug, Clone, Default)]
 pub struct BasisSource {
     #[command(flatten)]
     pub options: BasisOptions,
-    /// Compute K integrable + K co-integrable eigenfields (plus the harmonic ones) when no
-    /// --basis is given [default: 100].
+    /// Basis size: compute the K lowest eigenfields of the Hodge–Laplacian, harmonic ones
+    /// included (the paper's d), when no --basis is given; K ≥ 2F gives the complete basis
+    /// [default: 200].
     #[arg(short = 'k', value_name = "K", conflicts_with = "basis")]
-    pub pairs: Option<usize>,
+    pub fields: Option<usize>,
+}
+
+impl BasisSource {
+    /// The size to compute: `-k K` fields, else `default`.
+    pub fn size_or(&self, default: BasisSize) -> BasisSize {
+        self.fields.map_or(default, BasisSize::Fields)
+    }
+
+    /// The size to compute: `-k K` fields, else [`DEFAULT_FIELDS`].
+    pub fn size(&self) -> BasisSize {
+        self.size_or(BasisSize::Fields(DEFAULT_FIELDS))
+    }
+
+    /// The basis for `mesh` (see [`BasisOptions::resolve`]) of [`BasisSource::size`].
+    pub fn resolve(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<ResolvedBasis> {
+        self.options.resolve(mesh, input, self.size())
+    }
 }
 
 /// A basis ready for use, with the discretization it belongs to.
@@ -165,13 +197,13 @@ pub struct ResolvedBasis {
 }
 
 impl BasisOptions {
-    /// The basis for `mesh`: loads `--basis` (checking mesh and discretization) or computes
-    /// `pairs` pairs ([`DEFAULT_PAIRS`] if `None`), through the cache unless `--no-cache`.
+    /// The basis for `mesh`: loads `--basis` (checking mesh and discretization) or computes a
+    /// basis of `size`, through the cache unless `--no-cache`.
     pub fn resolve(
         &self,
         mesh: &SurfaceMesh,
         input: &MeshInput,
-        pairs: Option<usize>,
+        size: BasisSize,
     ) -> Result<ResolvedBasis> {
         let fingerprint = mesh_fingerprint(mesh);
         if let Some(path) = &self.basis {
@@ -179,12 +211,20 @@ impl BasisOptions {
         }
         let decomposition = self.decomposition.unwrap_or(Decomposition::Conforming);
         let mass = self.mass.unwrap_or(Mass::Barycentric);
-        let pairs = pairs.unwrap_or(DEFAULT_PAIRS);
-        if pairs == 0 {
-            bail!("-k 0: ask for at least one pair of eigenfields");
+        match size {
+            BasisSize::Fields(0) => bail!("-k 0: ask for at least one eigenfield"),
+            BasisSize::Pairs(0) => bail!("0 pairs: ask for at least one pair of eigenfields"),
+            _ => {}
         }
         let discretization = Discretization::new(mesh, decomposition, mass)
             .with_context(|| format!("{}: cannot build the discretization", input.label()))?;
+        let size_name = match size {
+            BasisSize::Fields(k) if k >= discretization.fields().dimension() => {
+                "complete".to_string()
+            }
+            BasisSize::Fields(k) => format!("d{k}"),
+            BasisSize::Pairs(p) => format!("p{p}"),
+        };
         let key = BasisFileKey {
             discretization: discretization.name(),
             mesh_fingerprint: fingerprint,
@@ -194,7 +234,7 @@ impl BasisOptions {
             None
         } else {
             let name = format!(
-                "{fingerprint:016x}-{}-{}-k{pairs}.tvfb",
+                "{fingerprint:016x}-{}-{}-{size_name}.tvfb",
                 decomposition.name(),
                 mass.lumping().name()
             );
@@ -220,7 +260,7 @@ impl BasisOptions {
                 Err(error) => warn(format!("cached basis is unusable ({error}); recomputing")),
             }
         }
-        let basis = compute_pairs(&discretization, pairs)
+        let basis = compute(&discretization, size)
             .with_context(|| format!("{}: cannot compute the basis", input.label()))?;
         if let Some(file) = &cache_file {
             let saved = file
@@ -262,15 +302,30 @@ impl BasisOptions {
         }
     }
 
-    fn load_file(
+    /// The discretization a basis would use, without computing or loading the basis: the
+    /// `--basis` file's (read from its header, checked against `--decomposition` / `--mass`),
+    /// else the flags' (default conforming, barycentric).
+    pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<Discretization> {
+        let (decomposition, mass) = match &self.basis {
+            Some(path) => self.file_discretization(mesh, path)?,
+            None => (
+                self.decomposition.unwrap_or(Decomposition::Conforming),
+                self.mass.unwrap_or(Mass::Barycentric),
+            ),
+        };
+        Discretization::new(mesh, decomposition, mass)
+            .with_context(|| format!("{}: cannot build the discretization", input.label()))
+    }
+
+    /// The decomposition and mass lumping named by the header of the basis file `path`,
+    /// refused if they contradict `--decomposition` / `--mass`.
+    fn file_discretization(
         &self,
         mesh: &SurfaceMesh,
         path: &Path,
-        fingerprint: u64,
-    ) -> Result<ResolvedBasis> {
-        let start = Instant::now();
+    ) -> Result<(Decomposition, Mass)> {
         let header = read_basis_header(path)?;
-        let stored = header.key.discretization.clone();
+        let stored = header.key.discretization;
         let mut found = None;
         for decomposition in [Decomposition::Conforming, Decomposition::Nonconforming] {
             for mass in [Mass::Barycentric, Mass::Voronoi] {
@@ -302,9 +357,20 @@ impl BasisOptions {
                 wanted.lumping().name()
             );
         }
+        Ok((decomposition, mass))
+    }
+
+    fn load_file(
+        &self,
+        mesh: &SurfaceMesh,
+        path: &Path,
+        fingerprint: u64,
+    ) -> Result<ResolvedBasis> {
+        let start = Instant::now();
+        let (decomposition, mass) = self.file_discretization(mesh, path)?;
         let discretization = Discretization::new(mesh, decomposition, mass)?;
         let key = BasisFileKey {
-            discretization: stored,
+            discretization: discretization.name(),
             mesh_fingerprint: fingerprint,
             face_count: mesh.face_count(),
         };
@@ -324,16 +390,28 @@ impl BasisOptions {
     }
 }
 
-/// Computes the harmonic fields plus `pairs` eigenfields of each family, with a progress bar.
-pub fn compute_pairs(discretization: &Discretization, pairs: usize) -> Result<SpectralBasis> {
+/// Computes a basis of `size` with a progress bar: `K` fields (the complete basis if
+/// `K ≥ 2F`) or `P` pairs plus the harmonic fields.
+pub fn compute(discretization: &Discretization, size: BasisSize) -> Result<SpectralBasis> {
     let progress = Progress::new("basis");
     let callback = progress.basis_callback();
-    let request = BasisRequest::pairs(pairs).with_progress(&callback);
-    let basis = with_complex!(discretization, c => compute_basis(c, &request))?;
+    let dimension = discretization.fields().dimension();
+    let (request, asked) = match size {
+        BasisSize::Fields(k) if k >= dimension => (
+            BasisRequest::complete(),
+            format!("-k {k} ≥ 2F = {dimension}: the complete basis"),
+        ),
+        BasisSize::Fields(k) => (BasisRequest::fields(k), format!("-k {k}")),
+        BasisSize::Pairs(p) => (BasisRequest::pairs(p), format!("{p} pairs + harmonic")),
+    };
+    let basis =
+        with_complex!(discretization, c => compute_basis(c, &request.with_progress(&callback)))?;
     progress.finish(format!(
-        "{} fields ({} pairs, {}) computed in {:.2} s",
+        "{} fields ({asked}; {} harmonic, {} integrable, {} co-integrable; {}) computed in {:.2} s",
         basis.len(),
-        pairs,
+        basis.count(FieldFamily::Harmonic),
+        basis.count(FieldFamily::Integrable),
+        basis.count(FieldFamily::Cointegrable),
         discretization.name(),
         basis.report().map_or(0.0, |r| r.seconds)
     ));

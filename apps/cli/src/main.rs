@@ -85,7 +85,24 @@ fn main() {
         Command::Edit(args) => commands::edit::run(args),
     };
     if let Err(error) = result {
-        eprintln!("error: {error:#}");
+        eprintln!("error: {}", error_message(&error));
         std::process::exit(1);
     }
+}
+
+/// The error and its causes, joined by `": "`, leaving out a cause whose text the message
+/// already holds (typed errors often print their source themselves).
+fn error_message(error: &anyhow::Error) -> String {
+    let mut message = String::new();
+    for cause in error.chain() {
+        let text = cause.to_string();
+        if message.contains(&text) {
+            continue;
+        }
+        if !message.is_empty() {
+            message.push_str(": ");
+        }
+        message.push_str(&text);
+    }
+    message
 }

@@ -10,11 +10,19 @@
 //! }
 //! let loaded = args.input.load()?; // loaded.mesh, loaded.report
 //! ```
+//!
+//! A subcommand with a second positional (`MESH FIELD`) declares it optional, required unless
+//! `--example` is given, and takes it through [`MeshInput::required_second`] (or
+//! [`MeshInput::optional_second`]) before loading: with `--example NAME` clap puts the only
+//! positional into `MESH`, and these move it to where it belongs, so
+//! `tvf render --example bumpy-torus field.npy -o out.png` works like
+//! `tvf render torus.obj field.npy -o out.png`.
 
 use crate::examples::{example_mesh, EXAMPLE_NAMES};
 use anyhow::{Context, Result};
 use clap::builder::PossibleValuesParser;
-use clap::Args;
+use clap::error::ErrorKind;
+use clap::{Args, CommandFactory};
 use std::path::PathBuf;
 use tvf_core::io::{load_mesh, LoadedMesh};
 use tvf_core::SurfaceMesh;
@@ -29,7 +37,6 @@ pub struct MeshInput {
     #[arg(
         long,
         value_name = "NAME",
-        conflicts_with = "mesh",
         value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
     )]
     pub example: Option<String>,
@@ -38,7 +45,18 @@ pub struct MeshInput {
 impl MeshInput {
     /// Loads and validates the mesh. File errors name the file, the line where one applies,
     /// and the problem; examples are validated like files (their report has no warnings).
+    ///
+    /// Both a mesh file and `--example` is a usage error (exit code 2).
     pub fn load(&self) -> Result<LoadedMesh> {
+        if let (Some(path), Some(name)) = (&self.mesh, &self.example) {
+            usage_error(
+                ErrorKind::ArgumentConflict,
+                format!(
+                    "give a mesh file or --example NAME, not both ('{}' and --example {name})",
+                    path.display()
+                ),
+            );
+        }
         match (&self.mesh, &self.example) {
             (Some(path), _) => Ok(load_mesh(path)?),
             (None, Some(name)) => {
@@ -59,5 +77,52 @@ impl MeshInput {
             (None, Some(name)) => format!("example:{name}"),
             (None, None) => String::new(),
         }
+    }
+
+    /// The subcommand's second positional (e.g. `FIELD`) when it is optional: with `--example`
+    /// the one positional clap put into `MESH` is moved here. Two positionals with `--example`
+    /// are a usage error (exit code 2).
+    pub fn optional_second(&mut self, second: Option<PathBuf>, name: &str) -> Option<PathBuf> {
+        if self.example.is_none() {
+            return second;
+        }
+        match (self.mesh.take(), second) {
+            (Some(first), Some(second)) => usage_error(
+                ErrorKind::ArgumentConflict,
+                format!(
+                    "--example replaces MESH: give only {name} ('{}' and '{}' were given)",
+                    first.display(),
+                    second.display()
+                ),
+            ),
+            (first, second) => first.or(second),
+        }
+    }
+
+    /// Like [`MeshInput::optional_second`] for a required positional: missing is a usage error
+    /// (exit code 2).
+    pub fn required_second(&mut self, second: Option<PathBuf>, name: &str) -> PathBuf {
+        match self.optional_second(second, name) {
+            Some(path) => path,
+            None => usage_error(
+                ErrorKind::MissingRequiredArgument,
+                format!("the required argument <{name}> was not provided"),
+            ),
+        }
+    }
+}
+
+/// Reports a usage error the way clap does (on stderr with the subcommand's usage line, exit
+/// code 2) and exits.
+pub fn usage_error(kind: ErrorKind, message: String) -> ! {
+    let mut command = crate::Cli::command();
+    command.build();
+    let name = std::env::args().skip(1).find(|a| !a.starts_with('-'));
+    match name.and_then(|n| command.find_subcommand(&n).cloned()) {
+        Some(sub) => {
+            let bin_name = format!("tvf {}", sub.get_name());
+            sub.bin_name(bin_name).error(kind, message).exit()
+        }
+        None => command.error(kind, message).exit(),
     }
 }

@@ -1,5 +1,7 @@
 //! Progress reporting shared by every subcommand: a global `--quiet` switch, progress bars
-//! (indicatif) on a terminal and plain, throttled lines when stderr is redirected.
+//! (indicatif) on a terminal and plain, throttled lines when stderr is redirected. Used by
+//! basis computations and by sequence compression and decompression (one step per frame;
+//! [`Progress::update`] may be called from several threads).
 //!
 //! ```ignore
 //! let progress = Progress::new("basis");
@@ -101,7 +103,9 @@ impl Progress {
             Sink::Lines(state) => {
                 let Ok(mut state) = state.lock() else { return };
                 let quarter = (4 * done.min(wanted)).checked_div(wanted).unwrap_or(4);
-                if state.stage != stage || state.quarter != quarter {
+                // Parallel workers may report out of order: print only progress beyond the last
+                // line of the same stage.
+                if state.stage != stage || state.quarter == usize::MAX || quarter > state.quarter {
                     eprintln!("{}: {stage} {done}/{wanted}", self.task);
                     state.stage = stage.to_string();
                     state.quarter = quarter;

@@ -64,6 +64,30 @@ fn usage_errors_exit_with_2() {
         vec!["export", "mesh.obj"],
         vec!["demo"],
         vec!["spectrum", "mesh.obj", "-k", "ten"],
+        vec![
+            "compress", "mesh.obj", "f.npy", "--pairs", "5", "--bits", "40", "-o", "x.tvfc",
+        ],
+        vec![
+            "design",
+            "mesh.obj",
+            "--constraints",
+            "c.json",
+            "--full",
+            "-k",
+            "5",
+            "-o",
+            "x.npy",
+        ],
+        vec![
+            "design",
+            "mesh.obj",
+            "--constraints",
+            "c.json",
+            "-o",
+            "x.npy",
+        ],
+        vec!["spline", "mesh.obj", "-o", "x.npy"],
+        vec!["operators", "mesh.obj", "-o", "m", "--mass", "heavy"],
         vec!["render", "mesh.obj", "-o", "x.png", "--color", "purple"],
         vec![
             "filter", "mesh.obj", "f.npy", "-o", "x.npy", "--basis", "b.tvfb", "-k", "5",
@@ -105,8 +129,11 @@ fn a_missing_mesh_exits_with_1_and_names_the_file() {
         vec!["coefficients", m, f, "-k", "5"],
         vec!["filter", m, f, "-o", o],
         vec!["analyze", m, f, "-o", o],
-        vec!["compress", m, f, "-k", "5", "-o", o],
-        vec!["rate-distortion", m, f, "--ks", "5", "-o", o],
+        vec!["compress", m, f, "--pairs", "5", "-o", o],
+        vec!["rate-distortion", m, f, "--pairs", "5", "-o", o],
+        vec!["spline", m, "--constraints", f, "-o", o],
+        vec!["design", m, "--constraints", f, "--full", "-o", o],
+        vec!["edit", m],
         vec!["render", m, "-o", o],
         vec!["export", m, f, "-o", o],
         vec!["demo", "--mesh", m, "-o", o],
@@ -189,7 +216,7 @@ fn a_computed_basis_is_cached_reused_and_recomputed_when_damaged() {
         .collect();
     assert_eq!(files.len(), 1, "{files:?}");
     let name = files[0].file_name().unwrap().to_string_lossy().into_owned();
-    assert!(name.ends_with("-conforming-barycentric-k6.tvfb"), "{name}");
+    assert!(name.ends_with("-conforming-barycentric-d6.tvfb"), "{name}");
 
     let (second, stderr) = coefficients(&[]);
     assert!(stderr.contains("using cached basis"), "{stderr}");

@@ -148,7 +148,7 @@ fn demo_refuses_meshes_it_cannot_use() {
     write_obj(&path, &genus_surface(2, 4)).unwrap();
     let out = dir.path().join("g2");
     let output = tvf()
-        .args(["demo", "--quick", "--quiet", "-k", "10", "-o"])
+        .args(["demo", "--quick", "--quiet", "-k", "24", "-o"])
         .arg(&out)
         .arg("--mesh")
         .arg(&path)

@@ -211,11 +211,11 @@ fn compress_and_decompress_a_field() {
     let input = tangent(&fields, &fx.field);
     let exact = fx.path("exact.tvfc");
     let exact_report = compress_json(&[
-        &fx.mesh, &fx.field, &"--basis", &fx.basis, &"-k", &"80", &"-o", &exact,
+        &fx.mesh, &fx.field, &"--basis", &fx.basis, &"--pairs", &"80", &"-o", &exact,
     ]);
     let quantised = fx.path("quantised.tvfc");
     let quantised_report = compress_json(&[
-        &fx.mesh, &fx.field, &"--basis", &fx.basis, &"-k", &"80", &"--bits", &"12", &"-o",
+        &fx.mesh, &fx.field, &"--basis", &fx.basis, &"--pairs", &"80", &"--bits", &"12", &"-o",
         &quantised,
     ]);
     let exact_bytes = exact_report["bytes"].as_u64().unwrap();
@@ -264,7 +264,8 @@ fn compress_a_sequence_from_a_folder_and_from_an_array() {
     ] {
         let file = fx.path("sequence.tvfc");
         let report = compress_json(&[
-            &fx.mesh, source, &"--basis", &fx.basis, &"-k", &"60", &"--bits", &"10", &"-o", &file,
+            &fx.mesh, source, &"--basis", &fx.basis, &"--pairs", &"60", &"--bits", &"10", &"-o",
+            &file,
         ]);
         assert_eq!(report["frames"], 4);
         assert_eq!(report["sequence"], true);
@@ -307,7 +308,7 @@ fn decompress_refuses_another_basis_and_damaged_files() {
     let fx = fixture();
     let file = fx.path("field.tvfc");
     compress_json(&[
-        &fx.mesh, &fx.field, &"--basis", &fx.basis, &"-k", &"40", &"-o", &file,
+        &fx.mesh, &fx.field, &"--basis", &fx.basis, &"--pairs", &"40", &"-o", &file,
     ]);
     let out = fx.path("out.npy");
 
@@ -384,7 +385,7 @@ fn decompress_refuses_another_basis_and_damaged_files() {
         &fx.field,
         &"--basis",
         &fx.basis,
-        &"-k",
+        &"--pairs",
         &"5000",
         &"-o",
         &file,
@@ -402,7 +403,7 @@ fn rate_distortion_writes_csv_and_plot() {
         &fx.field,
         &"--basis",
         &fx.basis,
-        &"--ks",
+        &"--pairs",
         &"10,20,40,80",
         &"--bits",
         &"8,12",

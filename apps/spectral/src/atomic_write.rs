@@ -6,7 +6,8 @@ use std::path::Path;
 /// Writes `bytes` to `path` atomically: readers see the old file or the complete new one, never a
 /// partial write. The data go to a temporary file in the same directory (same file system), are
 /// flushed to disk, and the temporary file is renamed to `path`. On error the temporary file is
-/// removed and `path` is untouched.
+/// removed and `path` is untouched. The file gets ordinary permissions (`0o666` minus the
+/// umask), see [`tvf_core::io::write_atomically`].
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     write_atomically_with(path, |w| w.write_all(bytes))
 }
@@ -17,21 +18,8 @@ pub fn write_atomically_with(
     path: &Path,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
-    let directory = match path.parent() {
-        Some(parent) if !parent.as_os_str().is_empty() => parent,
-        _ => Path::new("."),
-    };
-    let temporary = tempfile::Builder::new()
-        .prefix(".tvf-write-")
-        .tempfile_in(directory)?;
-    {
-        let mut writer = std::io::BufWriter::new(temporary.as_file());
-        fill(&mut writer)?;
-        writer.flush()?;
-    }
-    temporary.as_file().sync_all()?;
-    temporary.persist(path).map_err(|e| e.error)?;
-    Ok(())
+    // One helper for the whole workspace (temporary file with ordinary permissions, rename).
+    tvf_core::io::write_atomically(path, |writer| fill(writer))
 }
 
 #[cfg(test)]

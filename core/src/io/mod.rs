@@ -13,6 +13,7 @@
 //! assert!(loaded.report.warnings.is_empty());
 //! ```
 
+mod atomic_write;
 mod error;
 mod obj_reader;
 mod off_reader;
@@ -22,6 +23,7 @@ mod raw_mesh;
 mod text;
 mod writers;
 
+pub use atomic_write::write_atomically;
 pub use error::{LoadError, LoadErrorKind};
 pub use raw_mesh::LoadedMesh;
 pub use writers::{save_mesh, write_obj, write_ply, SaveError};

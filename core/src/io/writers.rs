@@ -94,26 +94,13 @@ pub fn write_ply(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveE
 }
 
 /// Writes through `fill` into a temporary file in the target's directory, then renames it over
-/// `path`, so readers never see a half-written file.
+/// `path`, so readers never see a half-written file ([`super::write_atomically`]).
 fn write_atomically(
     path: &Path,
     fill: impl FnOnce(&mut BufWriter<&mut std::fs::File>) -> std::io::Result<()>,
 ) -> Result<(), SaveError> {
-    let io = |source| SaveError::Io {
+    super::write_atomically(path, fill).map_err(|source| SaveError::Io {
         path: path.to_path_buf(),
         source,
-    };
-    let directory = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let mut temporary = tempfile::NamedTempFile::new_in(directory).map_err(io)?;
-    {
-        let mut out = BufWriter::new(temporary.as_file_mut());
-        fill(&mut out).map_err(io)?;
-        out.flush().map_err(io)?;
-    }
-    temporary.as_file().sync_all().map_err(io)?;
-    temporary.persist(path).map_err(|e| io(e.error))?;
-    Ok(())
+    })
 }

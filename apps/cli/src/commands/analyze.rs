@@ -24,13 +24,17 @@ pub struct AnalyzeArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD")]
-    field: PathBuf,
+    #[arg(value_name = "FIELD", required_unless_present = "example")]
+    field: Option<PathBuf>,
     #[command(flatten)]
     basis: BasisSource,
     /// Output folder (created if missing).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
+    /// Print the energy report (the content of DIR/energy.json) to stdout as JSON instead of
+    /// text.
+    #[arg(long)]
+    json: bool,
 }
 
 fn split_json(split: &EnergySplit) -> serde_json::Value {
@@ -44,9 +48,10 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 }
 
 /// Runs the analysis and writes the three files.
-pub fn run(args: AnalyzeArgs) -> Result<()> {
-    let setup = load_setup(&args.input, &args.basis.options, args.basis.pairs)?;
-    let field = read_field(&args.field, &setup.fields)?;
+pub fn run(mut args: AnalyzeArgs) -> Result<()> {
+    let field_path = args.input.required_second(args.field.take(), "FIELD");
+    let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
+    let field = read_field(&field_path, &setup.fields)?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
     let exact = exact_hodge_energies(&setup.mesh, &setup.discretization, &field)?;
     create_output_dir(&args.output)?;
@@ -69,7 +74,7 @@ pub fn run(args: AnalyzeArgs) -> Result<()> {
 
     let mut report = json!({
         "mesh": args.input.label(),
-        "field": args.field.display().to_string(),
+        "field": field_path.display().to_string(),
         "discretization": setup.discretization,
         "basis_fields": setup.basis.len(),
         "field_energy": analysis.field_energy,
@@ -90,6 +95,10 @@ pub fn run(args: AnalyzeArgs) -> Result<()> {
     let png_path = args.output.join("spectrum.png");
     plot_spectrum(&analysis, &png_path)?;
 
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+        return Ok(());
+    }
     let e = &analysis.energy;
     println!("field energy ‖v‖²     {:.6e}", analysis.field_energy);
     println!(

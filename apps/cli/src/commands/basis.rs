@@ -7,6 +7,7 @@ use crate::with_complex;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
+use tvf_core::discretization::FieldSpace;
 use tvf_spectral::{
     compute_basis, mesh_fingerprint, save_basis, BasisFileKey, BasisRequest, FieldFamily,
 };
@@ -14,16 +15,18 @@ use tvf_spectral::{
 /// Arguments of `tvf basis`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf basis bunny.obj -k 500 -o bunny.tvfb\n  tvf basis --example genus2 -k 100 --decomposition nonconforming --mass voronoi -o g2.tvfb\n\nThe basis holds the 2g harmonic fields plus K integrable and K \
-co-integrable eigenfields of the Hodge–Laplacian, sorted by eigenvalue. The file is tied to the mesh \
+    after_help = "Examples:\n  tvf basis bunny.obj -k 1000 -o bunny.tvfb\n  tvf basis --example genus2 -k 200 --decomposition nonconforming --mass voronoi -o g2.tvfb\n\nThe basis holds the K eigenfields of lowest eigenvalue of the Hodge–Laplacian (the paper's d): \
+the 2g harmonic fields first, then integrable and co-integrable eigenfields mixed as their eigenvalues come, \
+sorted by eigenvalue (`tvf spectrum -k K` lists the same K eigenvalues). K ≥ 2F gives the complete basis. The file is tied to the mesh \
 (fingerprint of its vertices and faces) and to the discretization; other commands take it with --basis."
 )]
 pub struct BasisArgs {
     #[command(flatten)]
     input: MeshInput,
-    /// Number of pairs: K integrable + K co-integrable eigenfields.
+    /// Basis size: the K lowest eigenfields of the Hodge–Laplacian, harmonic ones included (the
+    /// paper's d); K ≥ 2F gives the complete basis.
     #[arg(short = 'k', value_name = "K")]
-    pairs: usize,
+    fields: usize,
     /// Hodge decomposition.
     #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
     decomposition: Decomposition,
@@ -40,8 +43,8 @@ pub struct BasisArgs {
 
 /// Computes and saves the basis.
 pub fn run(args: BasisArgs) -> Result<()> {
-    if args.pairs == 0 {
-        bail!("-k 0: ask for at least one pair of eigenfields");
+    if args.fields == 0 {
+        bail!("-k 0: ask for at least one eigenfield");
     }
     let mesh = args.input.load()?.mesh;
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
@@ -49,9 +52,12 @@ pub fn run(args: BasisArgs) -> Result<()> {
     let progress = Progress::new("basis");
     let basis = {
         let callback = progress.basis_callback();
-        let request = BasisRequest::pairs(args.pairs)
-            .with_seed(args.seed)
-            .with_progress(&callback);
+        let request = if args.fields >= discretization.fields().dimension() {
+            BasisRequest::complete()
+        } else {
+            BasisRequest::fields(args.fields)
+        };
+        let request = request.with_seed(args.seed).with_progress(&callback);
         with_complex!(&discretization, c => compute_basis(c, &request))
             .with_context(|| format!("{}: cannot compute the basis", args.input.label()))?
     };

@@ -22,8 +22,8 @@ pub struct CoefficientsArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD")]
-    field: PathBuf,
+    #[arg(value_name = "FIELD", required_unless_present = "example")]
+    field: Option<PathBuf>,
     #[command(flatten)]
     basis: BasisSource,
     /// Print JSON to stdout instead of a table.
@@ -32,9 +32,10 @@ pub struct CoefficientsArgs {
 }
 
 /// Computes and prints the coefficients.
-pub fn run(args: CoefficientsArgs) -> Result<()> {
-    let setup = load_setup(&args.input, &args.basis.options, args.basis.pairs)?;
-    let field = read_field(&args.field, &setup.fields)?;
+pub fn run(mut args: CoefficientsArgs) -> Result<()> {
+    let field = args.input.required_second(args.field.take(), "FIELD");
+    let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
+    let field = read_field(&field, &setup.fields)?;
     let analysis = FourierAnalysis::new(&setup.basis, &field)?;
     let basis = &setup.basis;
     if args.json {

@@ -23,10 +23,10 @@ pub struct DecomposeArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD")]
-    field: PathBuf,
+    #[arg(value_name = "FIELD", required_unless_present = "example")]
+    field: Option<PathBuf>,
     /// Output folder (created if missing).
-    #[arg(short = 'o', long, value_name = "DIR", visible_alias = "output")]
+    #[arg(short, long = "output", value_name = "DIR", visible_alias = "out")]
     out: PathBuf,
     /// Hodge decomposition.
     #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
@@ -37,11 +37,12 @@ pub struct DecomposeArgs {
 }
 
 /// Decomposes the field and writes the parts.
-pub fn run(args: DecomposeArgs) -> Result<()> {
+pub fn run(mut args: DecomposeArgs) -> Result<()> {
+    let field = args.input.required_second(args.field.take(), "FIELD");
     let mesh = args.input.load()?.mesh;
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
         .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
-    let field = read_field(&args.field, discretization.fields())?;
+    let field = read_field(&field, discretization.fields())?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create the folder {}", args.out.display()))?;
     with_complex!(&discretization, c => {

@@ -1,12 +1,15 @@
 //! `tvf decompress`: the fields of a `.tvfc` file.
 
 use super::spectral_inputs::{load_setup, write_frames};
-use crate::basis_source::BasisSource;
+use crate::basis_source::{BasisSize, BasisSource};
 use crate::mesh_input::MeshInput;
+use crate::progress::Progress;
 use anyhow::Result;
 use clap::Args;
+use rayon::prelude::*;
 use std::path::PathBuf;
-use tvf_spectral::{basis_id, CompressedFields, FieldCodec};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use tvf_spectral::{basis_id, CompressedFields, CompressionError, FieldCodec};
 
 /// Arguments of `tvf decompress`.
 #[derive(Args)]
@@ -19,8 +22,8 @@ pub struct DecompressArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The compressed file (.tvfc).
-    #[arg(value_name = "FILE.tvfc")]
-    compressed: PathBuf,
+    #[arg(value_name = "FILE.tvfc", required_unless_present = "example")]
+    compressed: Option<PathBuf>,
     #[command(flatten)]
     basis: BasisSource,
     /// Output field file, array or folder (see below).
@@ -29,17 +32,46 @@ pub struct DecompressArgs {
 }
 
 /// Decodes every frame and writes them.
-pub fn run(args: DecompressArgs) -> Result<()> {
-    let file = CompressedFields::read(&args.compressed)?;
+pub fn run(mut args: DecompressArgs) -> Result<()> {
+    let compressed = args
+        .input
+        .required_second(args.compressed.take(), "FILE.tvfc");
+    let file = CompressedFields::read(&compressed)?;
     // Without --basis or -k, compute the basis of as many pairs as the file keeps.
-    let pairs = args.basis.pairs.or(Some(file.header.pairs as usize));
-    let setup = load_setup(&args.input, &args.basis.options, pairs)?;
+    let size = args
+        .basis
+        .size_or(BasisSize::Pairs(file.header.pairs as usize));
+    let setup = load_setup(&args.input, &args.basis.options, size)?;
     let id = basis_id(&setup.basis);
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.compressed.display()))?;
-    let frames = codec.decompress(&file)?;
+        .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;
+    let frames = decode_frames(&codec, &file)?;
     write_frames(&args.output, &setup.fields, &frames)?;
     println!("frames    {}", frames.len());
     println!("wrote     {}", args.output.display());
     Ok(())
+}
+
+/// Decodes every frame (in parallel), with a progress bar for sequences (plain lines off a
+/// terminal, nothing with `--quiet`).
+fn decode_frames(codec: &FieldCodec<'_>, file: &CompressedFields) -> Result<Vec<Vec<f64>>> {
+    let count = file.frames.len();
+    let progress = (count > 1).then(|| Progress::new("decompress"));
+    let done = AtomicUsize::new(0);
+    let frames = file
+        .frames
+        .par_iter()
+        .map(|payload| {
+            let field = codec.decode(payload)?;
+            let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
+            if let Some(progress) = &progress {
+                progress.update("frames", finished, count);
+            }
+            Ok(field)
+        })
+        .collect::<Result<Vec<_>, CompressionError>>()?;
+    if let Some(progress) = &progress {
+        progress.finish(format!("{count} frames decoded"));
+    }
+    Ok(frames)
 }

@@ -12,16 +12,23 @@ use tvf_core::SurfaceMesh;
 
 const EXAMPLES: &str = "Examples:
   tvf demo -o demo-out                  (then open demo-out/index.html)
-  tvf demo -o demo-bunny --mesh bunny-closed.obj -k 150
+  tvf demo -o demo-bunny --mesh bunny-closed.obj -k 300
 
-The default mesh is a bumpy torus with 14,400 faces and the basis has 2 harmonic fields plus
-200 pairs of eigenfields; the whole demo takes well under two minutes on two cores.";
+The default mesh is a bumpy torus with 14,400 faces and the basis has its 400 lowest
+eigenfields (-k 400: 2 harmonic fields, then integrable and co-integrable ones, about 200 of
+each); the whole demo takes well under two minutes on two cores.";
+
+/// Eigenfields of the default basis (`-k`).
+const DEFAULT_FIELDS: usize = 400;
+
+/// Eigenfields of the `--quick` basis.
+const QUICK_FIELDS: usize = 60;
+
+/// Fewest eigenfields the demo accepts: three pairs to show plus the harmonic fields.
+const MIN_FIELDS: usize = 10;
 
 /// Resolution of the default bumpy torus: vertices around the axis and around the tube
 /// (`2 · around · tube` faces).
-/// Eigenfield pairs of the default basis.
-const DEFAULT_PAIRS: usize = 200;
-
 const TORUS_AROUND: usize = 120;
 const TORUS_TUBE: usize = 60;
 
@@ -47,9 +54,10 @@ pub struct DemoArgs {
     /// A closed mesh file instead of the generated bumpy torus.
     #[arg(long, value_name = "MESH")]
     mesh: Option<PathBuf>,
-    /// Eigenfield pairs of the basis [default: 200; 30 with --quick].
+    /// Basis size: the K lowest eigenfields, harmonic ones included (the paper's d)
+    /// [default: 400; 60 with --quick].
     #[arg(short = 'k', value_name = "K")]
-    pairs: Option<usize>,
+    fields: Option<usize>,
     /// Size of a full-width picture (grid panels are half of it each way).
     #[arg(long, value_name = "WxH", default_value = "800x600")]
     size: String,
@@ -92,17 +100,19 @@ pub fn run(args: DemoArgs) -> Result<()> {
             mesh.boundary_edges().len()
         );
     }
-    let pairs = args
-        .pairs
-        .unwrap_or(if args.quick { 30 } else { DEFAULT_PAIRS });
-    if pairs < 4 {
-        bail!("-k {pairs}: the demo needs at least 4 pairs");
+    let fields = args.fields.unwrap_or(if args.quick {
+        QUICK_FIELDS
+    } else {
+        DEFAULT_FIELDS
+    });
+    if fields < MIN_FIELDS {
+        bail!("-k {fields}: the demo needs at least {MIN_FIELDS} eigenfields");
     }
     let config = DemoConfig {
         output: args.output,
         mesh,
         mesh_name,
-        pairs,
+        fields,
         width,
         height,
         fur_strands: if args.quick { 1500 } else { 25_000 },

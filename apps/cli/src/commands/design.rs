@@ -2,10 +2,11 @@
 //! (sparse Cholesky) or reduced (dense Cholesky in the eigenbasis).
 
 use super::spline::{
-    compile, load_inputs, print_residuals, reduced_basis, select_complex, AnyComplex, BasisChoice,
-    DesignInputs,
+    compile, discretization, load_inputs, print_residuals, reduced_basis, DesignInputs,
 };
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
+use crate::with_complex;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -14,13 +15,16 @@ use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_design::{
     default_regularization, residual, FullSoftDesign, ReducedSoftDesign, SoftOptions,
 };
-use tvf_spectral::{write_tangent_field, SpectralBasis};
+use tvf_spectral::write_tangent_field;
 
 /// Arguments of `tvf design`.
 #[derive(Args)]
 #[command(
     after_help = "Examples:\n  tvf design bunny.obj --constraints constraints.json --full -o design.npy\n  \
-tvf design bunny.obj --constraints constraints.json --reduced -k 300 -o design.npy"
+tvf design bunny.obj --constraints constraints.json --reduced -k 1000 -o design.npy\n\n\
+--reduced works in the basis of the K lowest eigenfields (-k K, the paper's d; computed once and cached) or \
+of a --basis file. --full needs no basis (-k is refused); --decomposition, --mass or a --basis file choose \
+its discretization."
 )]
 pub struct DesignArgs {
     #[command(flatten)]
@@ -29,13 +33,17 @@ pub struct DesignArgs {
     #[arg(long, value_name = "C.json")]
     constraints: PathBuf,
     /// Solve the full system `(S + ωB + C̃ᵀWC̃) x = C̃ᵀWc` (sparse LDLᵀ of an augmented system).
-    #[arg(long, conflicts_with = "reduced", required_unless_present = "reduced")]
+    #[arg(
+        long,
+        conflicts_with_all = ["reduced", "fields"],
+        required_unless_present = "reduced"
+    )]
     full: bool,
     /// Solve the reduced system `(Λ + ωΛ² + CᵀWC) v = CᵀWc` in the eigenbasis.
     #[arg(long)]
     reduced: bool,
     #[command(flatten)]
-    basis: BasisChoice,
+    basis: BasisSource,
     /// Output field: one 3D vector per face (.npy F×3, or text by extension).
     #[arg(short, long, value_name = "FIELD")]
     output: PathBuf,
@@ -44,17 +52,13 @@ pub struct DesignArgs {
 /// Runs `tvf design`.
 pub fn run(args: DesignArgs) -> Result<()> {
     let inputs = load_inputs(&args.input, &args.constraints)?;
-    let (complex, loaded) = select_complex(&inputs.mesh, &args.basis)?;
-    match &complex {
-        AnyComplex::Conforming(c) => design_with(c, &inputs, loaded, &args),
-        AnyComplex::Nonconforming(c) => design_with(c, &inputs, loaded, &args),
-    }
+    let discretization = discretization(&inputs, &args.input, &args.basis)?;
+    with_complex!(&discretization, c => design_with(c, &inputs, &args))
 }
 
 fn design_with<H: HodgeComplex>(
     complex: &H,
     inputs: &DesignInputs,
-    loaded: Option<SpectralBasis>,
     args: &DesignArgs,
 ) -> Result<()> {
     let constraints = compile(complex, inputs)?;
@@ -99,7 +103,7 @@ fn design_with<H: HodgeComplex>(
         }
         field
     } else {
-        let basis = reduced_basis(complex, loaded, &args.basis)?;
+        let basis = reduced_basis(inputs, &args.input, &args.basis)?;
         let start = Instant::now();
         let mut design = ReducedSoftDesign::new(&basis, options)?;
         design.add_all(constraints.clone())?;

@@ -1,11 +1,12 @@
 //! `tvf edit`: the interactive spline editor in the browser (a local server on 127.0.0.1).
 
-use crate::commands::spline::{reduced_basis, select_complex, AnyComplex, BasisChoice};
+use crate::basis_source::{BasisSource, Discretization};
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_design::ConstraintSet;
+use tvf_design::ReducedBasis;
 use tvf_editor::{Editor, EditorServer, EditorSetup};
 use tvf_spectral::mesh_fingerprint;
 
@@ -13,13 +14,15 @@ use tvf_spectral::mesh_fingerprint;
 #[derive(Args)]
 #[command(
     after_help = "Examples:\n  tvf edit bunny.obj   (then open the printed http://127.0.0.1:PORT address)\n  \
-tvf edit --example bumpy-torus --constraints constraints.json --port 8080"
+tvf edit --example bumpy-torus -k 300 --constraints constraints.json --port 8080\n\n\
+The editor works in the basis of the K lowest eigenfields (-k K, the paper's d; computed once and cached, \
+K ≥ 2F: the complete basis) or of a --basis file, with the conforming decomposition."
 )]
 pub struct EditArgs {
     #[command(flatten)]
     input: MeshInput,
     #[command(flatten)]
-    basis: BasisChoice,
+    basis: BasisSource,
     /// Constraints (and ω) to start from (JSON, see README "Constraint files").
     #[arg(long, value_name = "C.json")]
     constraints: Option<PathBuf>,
@@ -39,15 +42,15 @@ pub fn run(args: EditArgs) -> Result<()> {
         }
         None => None,
     };
-    let (complex, loaded) = select_complex(&mesh, &args.basis)?;
-    let basis = match &complex {
-        AnyComplex::Conforming(c) => reduced_basis(c, loaded, &args.basis)?,
-        AnyComplex::Nonconforming(_) => bail!(
+    if let Discretization::Nonconforming(_) =
+        args.basis.options.discretization(&mesh, &args.input)?
+    {
+        bail!(
             "the editor works with the conforming decomposition (divergence at vertices, curl at \
-             edges); give a conforming basis or --discretization conforming"
-        ),
-    };
-    drop(complex);
+             edges); give a conforming basis or --decomposition conforming"
+        );
+    }
+    let basis = ReducedBasis::from_spectral(&args.basis.resolve(&mesh, &args.input)?.basis)?;
     println!(
         "mesh            {} ({} faces), basis of {} fields",
         args.input.label(),

@@ -38,8 +38,8 @@ pub struct ExportArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD")]
-    field: PathBuf,
+    #[arg(value_name = "FIELD", required_unless_present = "example")]
+    field: Option<PathBuf>,
     /// Output format [default: from the output file's extension].
     #[arg(long, value_enum, value_name = "FORMAT")]
     format: Option<Format>,
@@ -68,7 +68,8 @@ fn format_of(path: &Path) -> Option<Format> {
 }
 
 /// Writes the export.
-pub fn run(args: ExportArgs) -> Result<()> {
+pub fn run(mut args: ExportArgs) -> Result<()> {
+    let field = args.input.required_second(args.field.take(), "FIELD");
     let mesh = args.input.load()?.mesh;
     let Some(format) = args.format.or_else(|| format_of(&args.output)) else {
         bail!(
@@ -78,7 +79,7 @@ pub fn run(args: ExportArgs) -> Result<()> {
     };
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
         .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
-    let field = read_field(&args.field, discretization.fields())?;
+    let field = read_field(&field, discretization.fields())?;
     let vectors = discretization.fields().to_vectors(&field)?;
     match format {
         Format::Vtk | Format::Ply => {

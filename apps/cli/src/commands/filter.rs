@@ -19,8 +19,8 @@ pub struct FilterArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD")]
-    field: PathBuf,
+    #[arg(value_name = "FIELD", required_unless_present = "example")]
+    field: Option<PathBuf>,
     #[command(flatten)]
     basis: BasisSource,
     /// Gain of the integrable (curl-free) coefficients against frequency √λ.
@@ -41,14 +41,15 @@ pub struct FilterArgs {
 }
 
 /// Filters the field and writes the result.
-pub fn run(args: FilterArgs) -> Result<()> {
+pub fn run(mut args: FilterArgs) -> Result<()> {
+    let field = args.input.required_second(args.field.take(), "FIELD");
     for (name, gain) in [("--harmonic", args.harmonic), ("--rest", args.rest)] {
         if !gain.is_finite() || gain < 0.0 {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");
         }
     }
-    let setup = load_setup(&args.input, &args.basis.options, args.basis.pairs)?;
-    let field = read_field(&args.field, &setup.fields)?;
+    let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
+    let field = read_field(&field, &setup.fields)?;
     let filter = SpectralFilter {
         integrable: args.integrable,
         cointegrable: args.cointegrable,

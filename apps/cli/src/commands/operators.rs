@@ -1,61 +1,43 @@
 //! `tvf operators`: writes the paper's matrices of a mesh as Matrix Market files.
 
+use crate::basis_source::{Decomposition, Mass};
 use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use serde_json::json;
 use sprs::CsMat;
 use std::fs;
+use std::fs::File;
+use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::sparse::diagonal;
 use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 
-/// Which discrete Hodge decomposition the field matrices `S` and `B` belong to.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Decomposition {
-    /// `X_h = grad S_h ⊕ J grad S*_h ⊕ H_h` (the paper's choice).
-    Conforming,
-    /// `X_h = grad S*_h ⊕ J grad S_h ⊕ H*_h`.
-    Nonconforming,
-}
-
-/// Mass lumping of the function spaces.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum Mass {
-    /// A third of each adjacent triangle's area (the paper's default).
-    Barycentric,
-    /// Mixed Voronoi areas (vertices) and midpoint Voronoi cells (edges).
-    Voronoi,
-}
-
 /// Arguments of `tvf operators`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf operators bunny.obj --decomposition conforming -o matrices/\n  tvf operators --example torus --decomposition nonconforming --out matrices/"
+    after_help = "Examples:\n  tvf operators bunny.obj -o matrices/\n  tvf operators --example torus --decomposition nonconforming --mass voronoi -o matrices/"
 )]
 pub struct OperatorsArgs {
     #[command(flatten)]
     input: MeshInput,
-    /// The Hodge decomposition whose field matrices (S, B) are written.
-    #[arg(long, value_enum)]
+    /// Hodge decomposition whose field matrices (S, B) are written.
+    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
     decomposition: Decomposition,
     /// Mass lumping of M and Mstar.
-    #[arg(long, value_enum, default_value = "barycentric")]
+    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
     mass: Mass,
-    /// Output directory (created if missing).
-    #[arg(short = 'o', long, visible_alias = "output")]
+    /// Output folder (created if missing).
+    #[arg(short, long = "output", visible_alias = "out", value_name = "DIR")]
     out: PathBuf,
 }
 
 /// Writes G, Gstar, M, Mstar, MX, J, Sc, Sstar, S, B (Matrix Market) and info.json.
 pub fn run(args: OperatorsArgs) -> Result<()> {
     let mesh = args.input.load()?.mesh;
-    let lumping = match args.mass {
-        Mass::Barycentric => MassLumping::Barycentric,
-        Mass::Voronoi => MassLumping::Voronoi,
-    };
+    let lumping = args.mass.lumping();
     fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create output directory {}", args.out.display()))?;
     match args.decomposition {
@@ -107,8 +89,8 @@ fn write_all<H: HodgeComplex>(
         ("B", complex.biharmonic_energy()),
     ];
     for (name, matrix) in &matrices {
-        write_atomically(&out.join(format!("{name}.mtx")), |path| {
-            sprs::io::write_matrix_market(path, matrix)
+        write_atomically(&out.join(format!("{name}.mtx")), |w| {
+            sprs::io::write_matrix_market_to_bufwrite(w, matrix)
         })?;
     }
     let info = json!({
@@ -141,9 +123,8 @@ fn write_all<H: HodgeComplex>(
             "face_orientation": "counter-clockwise seen from outside, n = (p1 - p0) x (p2 - p0) normalized",
         },
     });
-    write_atomically(&out.join("info.json"), |path| {
-        fs::write(path, serde_json::to_string_pretty(&info)? + "\n")
-    })?;
+    let text = serde_json::to_string_pretty(&info)? + "\n";
+    write_atomically(&out.join("info.json"), |w| w.write_all(text.as_bytes()))?;
     println!(
         "wrote 10 matrices and info.json to {} ({} decomposition, {} mass)",
         out.display(),
@@ -157,14 +138,11 @@ fn write_all<H: HodgeComplex>(
     Ok(())
 }
 
-/// Writes `path` through a temporary file in the same directory and renames it into place.
-fn write_atomically(path: &Path, write: impl FnOnce(&Path) -> std::io::Result<()>) -> Result<()> {
-    let file_name = path
-        .file_name()
-        .and_then(|n| n.to_str())
-        .context("output path has no file name")?;
-    let temporary = path.with_file_name(format!(".{file_name}.tmp"));
-    write(&temporary).with_context(|| format!("cannot write {}", temporary.display()))?;
-    fs::rename(&temporary, path)
-        .with_context(|| format!("cannot move {} to {}", temporary.display(), path.display()))
+/// Writes `path` atomically ([`tvf_core::io::write_atomically`]); errors name the file.
+fn write_atomically(
+    path: &Path,
+    fill: impl FnOnce(&mut BufWriter<&mut File>) -> std::io::Result<()>,
+) -> Result<()> {
+    tvf_core::io::write_atomically(path, fill)
+        .with_context(|| format!("cannot write {}", path.display()))
 }

@@ -2,7 +2,7 @@
 //! pairs, with 64-bit and with quantised, range-coded coefficients (the paper's Figure 9).
 
 use super::spectral_inputs::{create_output_dir, load_setup, read_field};
-use crate::basis_source::BasisSource;
+use crate::basis_source::{BasisSize, BasisSource};
 use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -17,7 +17,7 @@ use tvf_spectral::{
 /// Arguments of `tvf rate-distortion`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf rate-distortion bunny.obj field.npy --basis bunny.tvfb --ks 50,100,200,400 -o rd/\n  tvf rate-distortion bunny.obj field.npy --ks 25,50,100 --bits 8,12 -o rd/\n\nEvery point is a real .tvfc file (size with header and checksum; error measured on \
+    after_help = "Examples:\n  tvf rate-distortion bunny.obj field.npy --basis bunny.tvfb --pairs 50,100,200,400 -o rd/\n  tvf rate-distortion bunny.obj field.npy --pairs 25,50,100 --bits 8,12 -o rd/\n\nEvery point is a real .tvfc file (size with header and checksum; error measured on \
 the decoded field). Writes DIR/rate_distortion.csv and DIR/rate_distortion.png (log–log), and prints, for \
 every 64-bit point, the smallest quantised file with an error at most as large."
 )]
@@ -25,12 +25,19 @@ pub struct RateDistortionArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD")]
-    field: PathBuf,
+    #[arg(value_name = "FIELD", required_unless_present = "example")]
+    field: Option<PathBuf>,
     #[command(flatten)]
     basis: BasisSource,
-    /// Numbers of pairs K to try, comma-separated.
-    #[arg(long, value_name = "K,K,...", value_delimiter = ',', required = true)]
+    /// Numbers of coefficient pairs P to keep, comma-separated (each point keeps the lowest P
+    /// integrable and P co-integrable coefficients plus the harmonic ones).
+    #[arg(
+        long = "pairs",
+        visible_alias = "ks",
+        value_name = "P,P,...",
+        value_delimiter = ',',
+        required = true
+    )]
     ks: Vec<usize>,
     /// Symbol sizes Q of the quantised coder, comma-separated.
     #[arg(long, value_name = "Q,Q,...", value_delimiter = ',', default_value = "8,12,16",
@@ -50,11 +57,13 @@ pub fn coding_label(coding: CoefficientCoding) -> String {
 }
 
 /// Measures every point and writes the CSV and the plot.
-pub fn run(args: RateDistortionArgs) -> Result<()> {
-    // Without --basis or -k, compute as many pairs as the largest K tried.
-    let pairs = args.basis.pairs.or(args.ks.iter().max().copied());
-    let setup = load_setup(&args.input, &args.basis.options, pairs)?;
-    let field = read_field(&args.field, &setup.fields)?;
+pub fn run(mut args: RateDistortionArgs) -> Result<()> {
+    let field = args.input.required_second(args.field.take(), "FIELD");
+    // Without --basis or -k, compute as many pairs as the largest P tried.
+    let largest = args.ks.iter().max().copied().unwrap_or(0);
+    let size = args.basis.size_or(BasisSize::Pairs(largest));
+    let setup = load_setup(&args.input, &args.basis.options, size)?;
+    let field = read_field(&field, &setup.fields)?;
     let stamp = FileStamp {
         mesh_fingerprint: setup.mesh_fingerprint,
         basis_id: basis_id(&setup.basis),

@@ -3,19 +3,21 @@
 use super::spectral_inputs::read_field;
 use crate::basis_source::{Decomposition, Discretization, Mass};
 use crate::face_quantities::ColorBy;
-use crate::mesh_input::MeshInput;
+use crate::mesh_input::{usage_error, MeshInput};
 use crate::picture::{
     constraint_markers, draw, grid, parse_size, parse_view, Overlays, Style, View,
 };
 use crate::progress::note;
 use crate::with_complex;
 use anyhow::{bail, Context, Result};
+use clap::error::ErrorKind;
 use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
-use tvf_design::ConstraintSet;
+use tvf_design::{ConstraintAssembler, ConstraintSet};
 use tvf_discretizations::HodgeDecomposer;
 use tvf_render::save_png;
+use tvf_spectral::mesh_fingerprint;
 
 const EXAMPLES: &str = "Examples:
   tvf render bunny.obj field.npy -o field.png --color curl --style streamlines
@@ -69,8 +71,9 @@ pub struct RenderArgs {
     /// Overlay the constraints of this constraint file (JSON, see README).
     #[arg(long, value_name = "C.json")]
     constraints: Option<PathBuf>,
-    /// Draw the field and its integrable, co-integrable and harmonic parts as a 2×2 grid.
-    #[arg(long, requires = "field")]
+    /// Draw the field and its integrable, co-integrable and harmonic parts as a 2×2 grid (needs
+    /// FIELD).
+    #[arg(long)]
     parts: bool,
     /// Hodge decomposition whose divergence, curl and parts are shown.
     #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
@@ -84,7 +87,14 @@ pub struct RenderArgs {
 }
 
 /// Renders the picture and writes the PNG.
-pub fn run(args: RenderArgs) -> Result<()> {
+pub fn run(mut args: RenderArgs) -> Result<()> {
+    let field_path = args.input.optional_second(args.field.take(), "FIELD");
+    if args.parts && field_path.is_none() {
+        usage_error(
+            ErrorKind::MissingRequiredArgument,
+            "--parts needs a FIELD to decompose".to_string(),
+        );
+    }
     if !(args.zoom.is_finite() && args.zoom > 0.0) {
         bail!("--zoom {}: must be a positive number", args.zoom);
     }
@@ -92,7 +102,7 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let mesh = args.input.load()?.mesh;
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
         .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
-    let field = match &args.field {
+    let field = match &field_path {
         Some(path) => Some(read_field(path, discretization.fields())?),
         None => None,
     };
@@ -104,6 +114,11 @@ pub fn run(args: RenderArgs) -> Result<()> {
     let mut markers = Vec::new();
     if let Some(path) = &args.constraints {
         let set = ConstraintSet::load(path)?;
+        set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), path)?;
+        // The same checks as for splines: every index in range, values finite (errors name
+        // the file and the constraint's id).
+        with_complex!(&discretization, c => ConstraintAssembler::new(c, &mesh).compile_all(&set.constraints))
+            .with_context(|| format!("{}", path.display()))?;
         markers = constraint_markers(&mesh, &set.constraints, 6.0 * args.size.1 as f64 / 768.0);
         if markers.len() < set.constraints.len() {
             bail!(

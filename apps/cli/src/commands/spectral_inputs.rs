@@ -3,7 +3,7 @@
 //! computed basis, see [`crate::basis_source`]), and field files (one field, or a sequence of
 //! frames) read as tangent fields.
 
-use crate::basis_source::BasisOptions;
+use crate::basis_source::{BasisOptions, BasisSize};
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -30,14 +30,14 @@ pub struct SpectralSetup {
 }
 
 /// Loads the mesh and its basis: the `--basis` file (refused if computed for another mesh or
-/// discretization) or `pairs` pairs computed once and cached (see [`BasisOptions`]).
+/// discretization) or a basis of `size` computed once and cached (see [`BasisOptions`]).
 pub fn load_setup(
     input: &MeshInput,
     source: &BasisOptions,
-    pairs: Option<usize>,
+    size: BasisSize,
 ) -> Result<SpectralSetup> {
     let mesh = input.load()?.mesh;
-    let resolved = source.resolve(&mesh, input, pairs)?;
+    let resolved = source.resolve(&mesh, input, size)?;
     Ok(SpectralSetup {
         fields: resolved.discretization.fields().clone(),
         discretization: resolved.discretization.name(),

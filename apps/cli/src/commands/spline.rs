@@ -1,58 +1,29 @@
 //! `tvf spline`: a tangential vector field spline (hard constraints, Section 7) from a JSON
 //! constraint file, in a loaded or freshly computed eigenbasis.
 
-use crate::basis_source::{Decomposition, Mass};
+use crate::basis_source::{BasisSource, Discretization};
 use crate::mesh_input::MeshInput;
-use crate::progress::Progress;
-use anyhow::{bail, Context, Result};
+use crate::with_complex;
+use anyhow::{Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
 use tvf_design::{
     CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, ReducedBasis,
     SplineSession,
 };
-use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
-use tvf_spectral::{
-    compute_basis, load_basis, mesh_fingerprint, read_basis_header, write_tangent_field,
-    BasisFileKey, BasisRequest, SpectralBasis,
-};
-
-/// Basis size used when neither `--basis` nor `-k` is given.
-const DEFAULT_FIELDS: usize = 200;
-
-/// Where the eigenbasis comes from (shared by `tvf spline` and `tvf design`).
-#[derive(Args, Debug, Clone)]
-pub struct BasisChoice {
-    /// A basis file (.tvfb, `tvf basis`) of this mesh; its discretization is used.
-    #[arg(long, value_name = "FILE", conflicts_with = "fields")]
-    basis: Option<PathBuf>,
-    /// Compute the K lowest eigenfields (harmonic ones included) instead of loading a basis;
-    /// K ≥ 2F gives the complete basis [default: 200].
-    #[arg(short = 'k', value_name = "K")]
-    fields: Option<usize>,
-    /// Hodge decomposition when no basis file is given (alias: --discretization).
-    #[arg(
-        long,
-        alias = "discretization",
-        value_enum,
-        value_name = "NAME",
-        default_value = "conforming"
-    )]
-    decomposition: Decomposition,
-    /// Mass lumping when no basis file is given.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
-    mass: Mass,
-}
+use tvf_spectral::{mesh_fingerprint, write_tangent_field};
 
 /// Arguments of `tvf spline`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf spline bunny.obj --constraints constraints.json -k 300 -o spline.npy\n  \
+    after_help = "Examples:\n  tvf spline bunny.obj --constraints constraints.json -k 1000 -o spline.npy\n  \
 tvf spline bunny.obj --constraints constraints.json --basis bunny.tvfb -o spline.npy\n  \
-tvf render bunny.obj spline.npy --constraints constraints.json -o spline.png   (look at it)"
+tvf render bunny.obj spline.npy --constraints constraints.json -o spline.png   (look at it)\n\n\
+The spline lives in the basis of the K lowest eigenfields (-k K, the paper's d; computed once and cached, \
+K ≥ 2F: the complete basis) or of a --basis file; constraints are met exactly in that basis."
 )]
 pub struct SplineArgs {
     #[command(flatten)]
@@ -61,7 +32,7 @@ pub struct SplineArgs {
     #[arg(long, value_name = "C.json")]
     constraints: PathBuf,
     #[command(flatten)]
-    basis: BasisChoice,
+    basis: BasisSource,
     /// Output field: one 3D vector per face (.npy F×3, or text by extension).
     #[arg(short, long, value_name = "FIELD")]
     output: PathBuf,
@@ -101,92 +72,32 @@ pub fn load_inputs(input: &MeshInput, constraints: &Path) -> Result<DesignInputs
     })
 }
 
-/// The complex named by a basis file, or by `--decomposition` and `--mass`.
-pub enum AnyComplex {
-    /// The conforming decomposition.
-    Conforming(Conforming),
-    /// The nonconforming decomposition.
-    Nonconforming(Nonconforming),
+/// The discretization of `source` (the basis file's, or the flags'), without the basis: for
+/// checking the constraints before an expensive basis computation.
+pub fn discretization(
+    inputs: &DesignInputs,
+    input: &MeshInput,
+    source: &BasisSource,
+) -> Result<Discretization> {
+    source.options.discretization(&inputs.mesh, input)
 }
 
-/// The discretization and (loaded) basis selected by `choice`.
-pub fn select_complex(
-    mesh: &SurfaceMesh,
-    choice: &BasisChoice,
-) -> Result<(AnyComplex, Option<SpectralBasis>)> {
-    let Some(path) = &choice.basis else {
-        let lumping = choice.mass.lumping();
-        let complex = match choice.decomposition {
-            Decomposition::Nonconforming => {
-                AnyComplex::Nonconforming(Nonconforming::new(mesh, lumping)?)
-            }
-            Decomposition::Conforming => AnyComplex::Conforming(Conforming::new(mesh, lumping)?),
-        };
-        return Ok((complex, None));
-    };
+/// The basis of `source` (loaded, cached or computed; see [`crate::basis_source`]), row-major
+/// for the solvers.
+pub fn reduced_basis(
+    inputs: &DesignInputs,
+    input: &MeshInput,
+    source: &BasisSource,
+) -> Result<ReducedBasis> {
     let start = Instant::now();
-    let header = read_basis_header(path)?;
-    let key = BasisFileKey {
-        discretization: header.key.discretization.clone(),
-        mesh_fingerprint: mesh_fingerprint(mesh),
-        face_count: mesh.face_count(),
-    };
-    let basis = load_basis(path, &key)?;
+    let resolved = source.resolve(&inputs.mesh, input)?;
     println!(
-        "basis           {} fields loaded from {} in {:.3} s",
-        basis.len(),
-        path.display(),
+        "basis           {} fields of {} ready in {:.3} s",
+        resolved.basis.len(),
+        resolved.discretization.name(),
         start.elapsed().as_secs_f64()
     );
-    for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
-        let conforming = Conforming::new(mesh, lumping)?;
-        if conforming.name() == header.key.discretization {
-            return Ok((AnyComplex::Conforming(conforming), Some(basis)));
-        }
-        let nonconforming = Nonconforming::new(mesh, lumping)?;
-        if nonconforming.name() == header.key.discretization {
-            return Ok((AnyComplex::Nonconforming(nonconforming), Some(basis)));
-        }
-    }
-    bail!(
-        "{}: unknown discretization '{}' in the basis file",
-        path.display(),
-        header.key.discretization
-    )
-}
-
-/// The loaded basis, or the `-k` lowest eigenfields of `complex`, row-major for the solvers.
-pub fn reduced_basis<H: HodgeComplex>(
-    complex: &H,
-    loaded: Option<SpectralBasis>,
-    choice: &BasisChoice,
-) -> Result<ReducedBasis> {
-    let basis = match loaded {
-        Some(basis) => basis,
-        None => {
-            let start = Instant::now();
-            let fields = choice.fields.unwrap_or(DEFAULT_FIELDS);
-            // K ≥ 2F asks for every field: the complete basis (dense eigensolvers).
-            let request = if fields >= complex.fields().dimension() {
-                BasisRequest::complete()
-            } else {
-                BasisRequest::fields(fields)
-            };
-            let progress = Progress::new("basis");
-            let callback = progress.basis_callback();
-            let basis = compute_basis(complex, &request.with_progress(&callback))
-                .with_context(|| format!("cannot compute {fields} eigenfields"))?;
-            progress.finish(format!("{} fields", basis.len()));
-            println!(
-                "basis           {} fields of {} computed in {:.3} s",
-                basis.len(),
-                complex.name(),
-                start.elapsed().as_secs_f64()
-            );
-            basis
-        }
-    };
-    Ok(ReducedBasis::from_spectral(&basis)?)
+    Ok(ReducedBasis::from_spectral(&resolved.basis)?)
 }
 
 /// Compiles the set's constraints for `complex`; errors name the constraint file.
@@ -212,21 +123,17 @@ pub fn print_residuals(residuals: &[ConstraintResidual]) {
 /// Runs `tvf spline`.
 pub fn run(args: SplineArgs) -> Result<()> {
     let inputs = load_inputs(&args.input, &args.constraints)?;
-    let (complex, loaded) = select_complex(&inputs.mesh, &args.basis)?;
-    match &complex {
-        AnyComplex::Conforming(c) => spline_with(c, &inputs, loaded, &args),
-        AnyComplex::Nonconforming(c) => spline_with(c, &inputs, loaded, &args),
-    }
+    let discretization = discretization(&inputs, &args.input, &args.basis)?;
+    with_complex!(&discretization, c => spline_with(c, &inputs, &args))
 }
 
 fn spline_with<H: HodgeComplex>(
     complex: &H,
     inputs: &DesignInputs,
-    loaded: Option<SpectralBasis>,
     args: &SplineArgs,
 ) -> Result<()> {
     let constraints = compile(complex, inputs)?;
-    let basis = reduced_basis(complex, loaded, &args.basis)?;
+    let basis = reduced_basis(inputs, &args.input, &args.basis)?;
     let start = Instant::now();
     let mut session = SplineSession::new(&basis, inputs.set.omega)?;
     for c in constraints {

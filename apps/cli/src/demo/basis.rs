@@ -2,7 +2,7 @@
 
 use super::page::Section;
 use super::DemoConfig;
-use crate::basis_source::{compute_pairs, Decomposition, Discretization, Mass};
+use crate::basis_source::{compute, BasisSize, Decomposition, Discretization, Mass};
 use crate::face_quantities::ColorBy;
 use crate::picture::{draw, Overlays, Style, View};
 use crate::with_complex;
@@ -14,7 +14,17 @@ use tvf_spectral::{eigen_residual, FieldFamily, SpectralBasis};
 pub fn run(config: &DemoConfig) -> Result<(Section, Discretization, SpectralBasis)> {
     let mesh = &config.mesh;
     let discretization = Discretization::new(mesh, Decomposition::Conforming, Mass::Barycentric)?;
-    let basis = compute_pairs(&discretization, config.pairs)?;
+    let basis = compute(&discretization, BasisSize::Fields(config.fields))?;
+    let fewest = basis
+        .count(FieldFamily::Integrable)
+        .min(basis.count(FieldFamily::Cointegrable));
+    if fewest < 3 {
+        anyhow::bail!(
+            "-k {}: the basis holds only {fewest} fields of one family; the demo shows three \
+             pairs, ask for more eigenfields",
+            config.fields
+        );
+    }
     let mut section = Section::new(
         "Mesh and Fourier basis",
         "The surface and its Fourier basis of tangent fields (Section 6): the 2g harmonic fields \

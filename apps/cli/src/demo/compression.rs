@@ -7,7 +7,7 @@ use crate::commands::rate_distortion::{coding_label, rate_distortion_plot};
 use anyhow::Result;
 use tvf_spectral::{
     basis_id, equal_error_comparison, mesh_fingerprint, rate_distortion, CoefficientCoding,
-    FileStamp,
+    FieldFamily, FileStamp,
 };
 
 /// Quantiser symbol sizes shown.
@@ -15,7 +15,11 @@ const BITS: [u32; 2] = [8, 12];
 
 /// Compresses `field` at several numbers of pairs and plots the curves.
 pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
-    let pairs_available = cx.config.pairs;
+    // Pairs the basis can keep: the smaller family decides.
+    let pairs_available = cx
+        .basis
+        .count(FieldFamily::Integrable)
+        .min(cx.basis.count(FieldFamily::Cointegrable));
     let mut ks: Vec<usize> = std::iter::successors(Some(2usize), |k| Some(k * 2))
         .take_while(|&k| k < pairs_available)
         .collect();

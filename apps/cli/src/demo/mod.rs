@@ -36,8 +36,8 @@ pub struct DemoConfig {
     pub mesh: SurfaceMesh,
     /// Name of the mesh on the page.
     pub mesh_name: String,
-    /// Eigenfield pairs of the basis.
-    pub pairs: usize,
+    /// Eigenfields of the basis (`-k`, harmonic ones included).
+    pub fields: usize,
     /// Size of a full-width picture (panels of grids are half of it each way).
     pub width: u32,
     /// Height of a full-width picture.
@@ -191,7 +191,13 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
         ("discretization".to_string(), discretization.name()),
         (
             "basis".to_string(),
-            format!("{} fields ({} pairs + harmonic)", basis.len(), config.pairs),
+            format!(
+                "{} lowest eigenfields ({} harmonic, {} integrable, {} co-integrable)",
+                basis.len(),
+                basis.count(tvf_spectral::FieldFamily::Harmonic),
+                basis.count(tvf_spectral::FieldFamily::Integrable),
+                basis.count(tvf_spectral::FieldFamily::Cointegrable)
+            ),
         ),
         ("total time".to_string(), format!("{total:.1} s")),
     ];
