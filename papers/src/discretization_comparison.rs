@@ -229,10 +229,24 @@ pub fn plot(results: &[DiscretizationResult], width: u32, height: u32) -> Plot {
             ));
         }
     }
+    // Room above the data for the legend (drawn in the top-right corner).
+    let errors = results
+        .iter()
+        .flat_map(|r| &r.levels)
+        .flat_map(|l| [l.integrable_error, l.cointegrable_error]);
+    let (lo, hi) = errors
+        .filter(|e| *e > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), e| {
+            (lo.min(e), hi.max(e))
+        });
+    let mut y = Axis::new("max relative eigenvalue error", AxisScale::Log10);
+    if lo <= hi {
+        y.range = Some((lo / 2.0, hi * 100.0));
+    }
     Plot {
         title: "Eigenvalue error on icospheres against l(l+1)".to_string(),
         x: Axis::new("mean edge length h", AxisScale::Log10),
-        y: Axis::new("max relative eigenvalue error", AxisScale::Log10),
+        y,
         series,
         width,
         height,

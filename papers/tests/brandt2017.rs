@@ -51,7 +51,11 @@ fn every_experiment_runs_on_a_generated_mesh_and_the_reports_list_every_result()
     let paper = MESHES[0].paper;
     entry.paper = paper;
     run_mesh(&entry, &mesh, &config, &progress, &mut results, &mut curves).unwrap();
-    assert_eq!(curves.len(), 2, "smooth and vortex rate-distortion curves");
+    assert_eq!(
+        curves.len(),
+        3,
+        "designed, analytic and vortex rate-distortion curves"
+    );
     for curve in &curves {
         // The error of a truncated Fourier series cannot grow with more pairs.
         for w in curve.points.windows(2) {

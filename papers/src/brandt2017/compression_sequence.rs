@@ -1,6 +1,7 @@
 //! The time-dependent compression experiment (Section 8.6, Figure 11): a sequence of fields on
 //! the bumpy torus compressed with one basis; file sizes and the mean relative error per frame.
 
+use super::compression::available_pairs;
 use super::finding::{Experiment, Finding};
 use super::test_fields::MovingFeatures;
 use crate::error::PaperError;
@@ -59,18 +60,26 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, PaperError> {
     let mut mean_error = 0.0;
     let mut kept = 0;
     let mut codec64 = None;
-    for coding in [
-        CoefficientCoding::Float64,
-        CoefficientCoding::Quantized { bits: 16 },
-    ] {
-        let codec = FieldCodec::new(x.basis, fingerprint, id, size.pairs, coding)?;
+    // The paper's size (64-bit and 16-bit quantised), then twice the pairs if the basis has them.
+    let larger = 2 * size.pairs;
+    let mut runs = vec![
+        (size.pairs, CoefficientCoding::Float64),
+        (size.pairs, CoefficientCoding::Quantized { bits: 16 }),
+    ];
+    if larger <= available_pairs(x) {
+        runs.push((larger, CoefficientCoding::Float64));
+    }
+    let mut larger_error = None;
+    for (pairs, coding) in runs {
+        let codec = FieldCodec::new(x.basis, fingerprint, id, pairs, coding)?;
         let start = Instant::now();
         let (_, report) = compress_with_report(&codec, mass, &frames, x.mesh.vertex_count())?;
         let elapsed = start.elapsed().as_secs_f64();
-        kept = report.coefficients_per_frame;
         let label = match coding {
-            CoefficientCoding::Float64 => "64-bit coefficients".to_string(),
-            CoefficientCoding::Quantized { bits } => format!("{bits}-bit quantised, range-coded"),
+            CoefficientCoding::Float64 => format!("{pairs} pairs, 64-bit coefficients"),
+            CoefficientCoding::Quantized { bits } => {
+                format!("{pairs} pairs, {bits}-bit quantised, range-coded")
+            }
         };
         finding.number(
             format!("{label}: file size, rate against two f32 per face"),
@@ -89,7 +98,10 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, PaperError> {
             format!("{label}: compress + decode + measure, all frames"),
             seconds(elapsed),
         );
-        if coding == CoefficientCoding::Float64 {
+        if pairs == larger {
+            larger_error = Some(report.mean_error());
+        } else if coding == CoefficientCoding::Float64 {
+            kept = report.coefficients_per_frame;
             mean_error = report.mean_error();
             codec64 = Some(codec);
         }
@@ -138,5 +150,11 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, PaperError> {
         megabytes(f32_bytes),
         100.0 * mean_error
     );
+    if let Some(e) = larger_error {
+        finding.comparison.push_str(&format!(
+            " With twice the pairs ({larger}) the mean error drops to {:.1} %.",
+            100.0 * e
+        ));
+    }
     Ok(finding)
 }

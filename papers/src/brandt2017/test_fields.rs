@@ -1,14 +1,19 @@
 //! The input fields of the experiments, made from the mesh alone (the paper's "custom" fields
-//! are not published): a smooth field with all three Hodge parts, seeded noise, a field of many
+//! are not published): a smooth field with all three Hodge parts, a designed (soft-constrained)
+//! field, seeded noise, a field of many
 //! small vortices (Figure 10) and a time-dependent field of moving sources and vortices (the
 //! bumpy-torus sequence). All are `2F` pointwise face-frame coefficients of the given complex.
 
+use super::table1::seeded_constraints;
+use crate::error::PaperError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
 use tvf_core::geometry::{dot, norm, sub};
 use tvf_core::SurfaceMesh;
+use tvf_design::{default_regularization, ConstraintAssembler, FullSoftDesign, SoftOptions};
+use tvf_discretizations::Conforming;
 use tvf_render::bounding_box;
 
 /// Centre of the bounding box and its largest half-extent.
@@ -97,6 +102,33 @@ pub fn smooth_field<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64
     (0..parts[0].len())
         .map(|k| parts[0][k] + parts[1][k] + parts[2][k])
         .collect()
+}
+
+/// A designed field, as the paper's "custom" fields were made with its design tools: the full
+/// soft design (Fisher et al.) with `constraints` seeded constraints (see
+/// [`seeded_constraints`](super::table1::seeded_constraints)) and the biharmonic weight
+/// `omega`, so that it is as smooth as the constraints allow; unit RMS.
+pub fn designed_field(
+    complex: &Conforming,
+    mesh: &SurfaceMesh,
+    constraints: usize,
+    omega: f64,
+    seed: u64,
+) -> Result<Vec<f64>, PaperError> {
+    let compiled = ConstraintAssembler::new(complex, mesh).compile_all(&seeded_constraints(
+        mesh,
+        constraints,
+        seed,
+    ))?;
+    let dirichlet = complex.dirichlet_energy();
+    let options = SoftOptions {
+        omega,
+        regularization: default_regularization(&dirichlet, complex.m1()),
+    };
+    let design = FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled)?;
+    let (mut field, _) = design.solve();
+    unit_rms(complex, mesh.total_area(), &mut field);
+    Ok(field)
 }
 
 /// Seeded noise: every face-frame coordinate uniform in `[−amplitude, amplitude]`.
@@ -302,6 +334,8 @@ mod tests {
         let (a, b) = (moving.frame(&complex, 0.0), moving.frame(&complex, 0.1));
         assert_eq!(a.len(), 2 * mesh.face_count());
         assert!(a.iter().zip(&b).any(|(x, y)| (x - y).abs() > 1e-6));
+        let d = designed_field(&complex, &mesh, 6, 1.0, 2).unwrap();
+        assert!((complex.field_inner(&d, &d) / area - 1.0).abs() < 1e-9);
         assert_eq!(noise(5, 0.5, 1), noise(5, 0.5, 1));
         assert!(noise(100, 0.5, 2).iter().all(|x| x.abs() <= 0.5));
     }
