@@ -10,6 +10,7 @@ mod face_quantities;
 mod mesh_input;
 mod picture;
 mod progress;
+mod report;
 
 use clap::{Parser, Subcommand};
 

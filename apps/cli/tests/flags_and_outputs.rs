@@ -389,3 +389,206 @@ fn sequence_compression_shows_progress_unless_quiet() {
     );
     assert!(stderr.contains("decompress: frames 8/8"), "{stderr}");
 }
+
+/// Every subcommand that prints a report takes `--json` and then prints exactly one JSON
+/// object on stdout (progress and notes stay on stderr).
+#[test]
+fn json_reports_are_one_object_on_stdout() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mesh, m) = write_mesh(dir.path());
+    let field = dir.path().join("field.txt");
+    std::fs::write(&field, swirl_text(&mesh, 0.0)).unwrap();
+    let f = field.to_str().unwrap().to_string();
+    let d = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let constraints = d("c.json");
+    std::fs::write(
+        &constraints,
+        r#"{"constraints": [{"id": "a", "kind": "vector", "face": 5, "value": [1, 0, 0]},
+                            {"id": "s", "kind": "divergence", "vertex": 40, "value": 1.0}]}"#,
+    )
+    .unwrap();
+    let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<String>>();
+    let b = d("b.tvfb");
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (s(&["info", &m]), "genus"),
+        (s(&["spectrum", &m, "-k", "8"]), "eigenvalues"),
+        (s(&["basis", &m, "-k", "20", "-o", &b]), "eigenvalues"),
+        (
+            s(&["decompose", &m, &f, "-o", &d("parts")]),
+            "harmonic_energy",
+        ),
+        (s(&["coefficients", &m, &f, "--basis", &b]), "coefficients"),
+        (
+            s(&["filter", &m, &f, "--basis", &b, "-o", &d("x.npy")]),
+            "rest_norm",
+        ),
+        (
+            s(&["analyze", &m, &f, "--basis", &b, "-o", &d("an")]),
+            "relative_rest_norm",
+        ),
+        (
+            s(&[
+                "compress",
+                &m,
+                &f,
+                "--basis",
+                &b,
+                "--pairs",
+                "4",
+                "-o",
+                &d("x.tvfc"),
+            ]),
+            "bytes",
+        ),
+        (
+            s(&[
+                "rate-distortion",
+                &m,
+                &f,
+                "--basis",
+                &b,
+                "--pairs",
+                "2,4",
+                "-o",
+                &d("rd"),
+            ]),
+            "points",
+        ),
+        (
+            s(&[
+                "spline",
+                &m,
+                "--constraints",
+                &constraints,
+                "--basis",
+                &b,
+                "-o",
+                &d("s.npy"),
+            ]),
+            "worst_relative_residual",
+        ),
+        (
+            s(&[
+                "design",
+                &m,
+                "--constraints",
+                &constraints,
+                "--reduced",
+                "--basis",
+                &b,
+                "-o",
+                &d("r.npy"),
+            ]),
+            "worst_relative_residual",
+        ),
+        (
+            s(&[
+                "design",
+                &m,
+                "--constraints",
+                &constraints,
+                "--full",
+                "-o",
+                &d("f.npy"),
+            ]),
+            "system_residuals",
+        ),
+    ];
+    for (mut args, key) in cases {
+        args.push("--json".to_string());
+        let (stdout, _) = succeeded(&tvf(&args), &args[0]);
+        let value: serde_json::Value = serde_json::from_str(&stdout)
+            .unwrap_or_else(|e| panic!("{args:?}: not one JSON object ({e}): {stdout}"));
+        assert!(value.get(key).is_some(), "{args:?}: no '{key}' in {stdout}");
+    }
+}
+
+/// The shared flags are spelled the same in every subcommand's help: `-o, --output`,
+/// `--decomposition`, `--mass`, `-k` meaning eigenfields, `--basis FILE`.
+#[test]
+fn shared_flags_are_spelled_the_same_everywhere() {
+    let help = |sub: &str| {
+        let output = tvf(&[sub, "--help"]);
+        String::from_utf8_lossy(&output.stdout).into_owned()
+    };
+    for sub in [
+        "operators",
+        "basis",
+        "decompose",
+        "filter",
+        "analyze",
+        "compress",
+        "decompress",
+        "rate-distortion",
+        "spline",
+        "design",
+        "render",
+        "export",
+        "demo",
+    ] {
+        let text = help(sub);
+        assert!(text.contains("-o, --output <"), "{sub}: no `-o, --output`");
+    }
+    for sub in [
+        "operators",
+        "basis",
+        "spectrum",
+        "decompose",
+        "coefficients",
+        "filter",
+        "analyze",
+        "compress",
+        "decompress",
+        "rate-distortion",
+        "spline",
+        "design",
+        "render",
+        "export",
+        "edit",
+    ] {
+        let text = help(sub);
+        assert!(text.contains("--decomposition <NAME>"), "{sub}");
+        assert!(text.contains("--mass <NAME>"), "{sub}");
+    }
+    for sub in [
+        "basis",
+        "spectrum",
+        "coefficients",
+        "filter",
+        "analyze",
+        "compress",
+        "decompress",
+        "rate-distortion",
+        "spline",
+        "design",
+        "edit",
+        "demo",
+    ] {
+        let text = help(sub);
+        // The -k line and the next (short help keeps the text on the flag's line).
+        let line: String = text
+            .lines()
+            .skip_while(|l| !l.trim_start().starts_with("-k <K>"))
+            .take(2)
+            .collect();
+        assert!(
+            text.contains("-k <K>")
+                && (line.contains("eigenfields") || line.contains("eigenvalues")),
+            "{sub}: -k is not the number of eigenfields:\n{text}"
+        );
+    }
+    for sub in [
+        "coefficients",
+        "filter",
+        "analyze",
+        "compress",
+        "decompress",
+        "rate-distortion",
+        "spline",
+        "design",
+        "edit",
+    ] {
+        assert!(help(sub).contains("--basis <FILE>"), "{sub}");
+        assert!(help(sub).contains("--cache-dir <DIR>"), "{sub}");
+    }
+}

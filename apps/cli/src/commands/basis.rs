@@ -39,6 +39,9 @@ pub struct BasisArgs {
     /// Output basis file (.tvfb).
     #[arg(short, long, value_name = "FILE")]
     output: PathBuf,
+    /// Print a summary (counts, eigenvalues, labels, seconds) as one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Computes and saves the basis.
@@ -85,6 +88,22 @@ pub fn run(args: BasisArgs) -> Result<()> {
             report.harmonic_orthonormality_error,
             report.harmonic_kernel_residual
         ));
+    }
+    if args.json {
+        let labels: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
+        let summary = serde_json::json!({
+            "mesh": args.input.label(),
+            "discretization": key.discretization,
+            "fields": basis.len(),
+            "harmonic": basis.count(FieldFamily::Harmonic),
+            "integrable": basis.count(FieldFamily::Integrable),
+            "cointegrable": basis.count(FieldFamily::Cointegrable),
+            "eigenvalues": basis.eigenvalues(),
+            "labels": labels,
+            "seconds": report.seconds,
+            "output": args.output.display().to_string(),
+        });
+        println!("{}", serde_json::to_string_pretty(&summary)?);
     }
     Ok(())
 }

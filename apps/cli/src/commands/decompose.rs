@@ -4,6 +4,7 @@
 use super::spectral_inputs::read_field;
 use crate::basis_source::{Decomposition, Discretization, Mass};
 use crate::mesh_input::MeshInput;
+use crate::report::Report;
 use crate::with_complex;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -34,6 +35,9 @@ pub struct DecomposeArgs {
     /// Mass lumping.
     #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
     mass: Mass,
+    /// Print the energies of the parts as one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Decomposes the field and writes the parts.
@@ -45,11 +49,14 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
     let field = read_field(&field, discretization.fields())?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create the folder {}", args.out.display()))?;
+    let mut report = Report::new(args.json);
+    report.set("discretization", discretization.name());
     with_complex!(&discretization, c => {
         let parts = HodgeDecomposer::new(c)
             .and_then(|d| d.decompose(&field))
             .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
         let total = c.field_inner(&field, &field);
+        report.set("field_energy", total);
         for (name, part) in [
             ("integrable", &parts.integrable),
             ("cointegrable", &parts.co_integrable),
@@ -57,10 +64,11 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
         ] {
             write_face_vectors(&args.out.join(format!("{name}.npy")), &c.fields().to_vectors(part)?)?;
             let energy = c.field_inner(part, part);
-            println!(
+            report.line(format!(
                 "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
                 if total > 0.0 { 100.0 * energy / total } else { 0.0 }
-            );
+            ));
+            report.set(&format!("{name}_energy"), energy);
         }
         for (name, values) in [("potential", &parts.potential), ("co_potential", &parts.co_potential)] {
             write_npy(
@@ -70,6 +78,10 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
         }
         Ok::<(), anyhow::Error>(())
     })?;
-    println!("wrote the parts and potentials to {}", args.out.display());
-    Ok(())
+    report.line(format!(
+        "wrote the parts and potentials to {}",
+        args.out.display()
+    ));
+    report.set("output", args.out.display().to_string());
+    report.finish()
 }

@@ -2,10 +2,11 @@
 //! (sparse Cholesky) or reduced (dense Cholesky in the eigenbasis).
 
 use super::spline::{
-    compile, discretization, load_inputs, print_residuals, reduced_basis, DesignInputs,
+    compile, discretization, load_inputs, reduced_basis, report_residuals, DesignInputs,
 };
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
+use crate::report::Report;
 use crate::with_complex;
 use anyhow::{bail, Result};
 use clap::Args;
@@ -47,19 +48,25 @@ pub struct DesignArgs {
     /// Output field: one 3D vector per face (.npy F×3, or text by extension).
     #[arg(short, long, value_name = "FIELD")]
     output: PathBuf,
+    /// Print the report (sizes, times in ms, residuals) as one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Runs `tvf design`.
 pub fn run(args: DesignArgs) -> Result<()> {
-    let inputs = load_inputs(&args.input, &args.constraints)?;
+    let mut report = Report::new(args.json);
+    let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
-    with_complex!(&discretization, c => design_with(c, &inputs, &args))
+    with_complex!(&discretization, c => design_with(c, &inputs, &args, &mut report))?;
+    report.finish()
 }
 
 fn design_with<H: HodgeComplex>(
     complex: &H,
     inputs: &DesignInputs,
     args: &DesignArgs,
+    out: &mut Report,
 ) -> Result<()> {
     let constraints = compile(complex, inputs)?;
     let start = Instant::now();
@@ -77,24 +84,36 @@ fn design_with<H: HodgeComplex>(
         let start = Instant::now();
         let (field, report) = design.solve();
         let solve = start.elapsed();
-        println!("assembly        {:.3} ms (S)", assembly.as_secs_f64() * 1e3);
-        println!(
-            "full factor     {:.3} ms (2F = {}, augmented LDLᵀ with {} factor entries)",
+        let (assembly_ms, factor_ms, solve_ms) = (
+            assembly.as_secs_f64() * 1e3,
             factor.as_secs_f64() * 1e3,
+            solve.as_secs_f64() * 1e3,
+        );
+        out.line(format!("assembly        {assembly_ms:.3} ms (S)"));
+        out.line(format!(
+            "full factor     {factor_ms:.3} ms (2F = {}, augmented LDLᵀ with {} factor entries)",
             field.len(),
             design.factor_entries()
-        );
-        println!(
-            "full solve      {:.3} ms ({} refinement steps)",
-            solve.as_secs_f64() * 1e3,
+        ));
+        out.line(format!(
+            "full solve      {solve_ms:.3} ms ({} refinement steps)",
             report.residuals.len() - 1
-        );
+        ));
         let history: Vec<String> = report
             .residuals
             .iter()
             .map(|r| format!("{r:.1e}"))
             .collect();
-        println!("system residual ‖b − Ax‖/‖b‖: {}", history.join(" → "));
+        out.line(format!(
+            "system residual ‖b − Ax‖/‖b‖: {}",
+            history.join(" → ")
+        ));
+        out.set("solver", "full");
+        out.set("assembly_ms", assembly_ms);
+        out.set("factor_ms", factor_ms);
+        out.set("solve_ms", solve_ms);
+        out.set("factor_entries", design.factor_entries());
+        out.set("system_residuals", &report.residuals);
         if report.final_residual() > 1e-8 {
             bail!(
                 "the full solve reached only a relative residual of {:.1e}",
@@ -103,7 +122,7 @@ fn design_with<H: HodgeComplex>(
         }
         field
     } else {
-        let basis = reduced_basis(inputs, &args.input, &args.basis)?;
+        let basis = reduced_basis(inputs, &args.input, &args.basis, out)?;
         let start = Instant::now();
         let mut design = ReducedSoftDesign::new(&basis, options)?;
         design.add_all(constraints.clone())?;
@@ -115,21 +134,28 @@ fn design_with<H: HodgeComplex>(
         let mut field = vec![0.0; basis.field_dimension()];
         basis.map(&v, &mut field)?;
         let map = start.elapsed();
-        println!(
-            "reduced factor  {:.3} ms (d = {})",
+        let (factor_ms, solve_ms, map_ms) = (
             factor.as_secs_f64() * 1e3,
-            basis.len()
-        );
-        println!(
-            "reduced solve   {:.3} ms + {:.3} ms mapping to the full field",
             solve.as_secs_f64() * 1e3,
-            map.as_secs_f64() * 1e3
+            map.as_secs_f64() * 1e3,
         );
+        out.line(format!(
+            "reduced factor  {factor_ms:.3} ms (d = {})",
+            basis.len()
+        ));
+        out.line(format!(
+            "reduced solve   {solve_ms:.3} ms + {map_ms:.3} ms mapping to the full field"
+        ));
+        out.set("solver", "reduced");
+        out.set("factor_ms", factor_ms);
+        out.set("solve_ms", solve_ms);
+        out.set("map_ms", map_ms);
         field
     };
     let residuals: Vec<_> = constraints.iter().map(|c| residual(c, &field)).collect();
-    print_residuals(&residuals);
+    report_residuals(&residuals, out);
     write_tangent_field(&args.output, complex.fields(), &field)?;
-    println!("wrote {}", args.output.display());
+    out.line(format!("wrote {}", args.output.display()));
+    out.set("output", args.output.display().to_string());
     Ok(())
 }

@@ -3,6 +3,7 @@
 use super::spectral_inputs::{load_setup, read_field};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
+use crate::report::Report;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -38,6 +39,9 @@ pub struct FilterArgs {
     /// Output field file (.npy or text, by extension).
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
+    /// Print the report (basis size, norms) as one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Filters the field and writes the result.
@@ -59,14 +63,21 @@ pub fn run(mut args: FilterArgs) -> Result<()> {
     let filtered = filter.apply(&setup.basis, &field)?;
     write_tangent_field(&args.output, &setup.fields, &filtered.field)?;
     let norm = |v: &[f64]| setup.basis.inner_product(v, v).sqrt();
-    println!(
+    let mut report = Report::new(args.json);
+    report.line(format!(
         "basis          {} fields ({})",
         setup.basis.len(),
         setup.discretization
-    );
-    println!("input norm     {:.6e}", norm(&field));
-    println!("rest norm      {:.6e}", filtered.rest_norm);
-    println!("output norm    {:.6e}", norm(&filtered.field));
-    println!("wrote          {}", args.output.display());
-    Ok(())
+    ));
+    report.line(format!("input norm     {:.6e}", norm(&field)));
+    report.line(format!("rest norm      {:.6e}", filtered.rest_norm));
+    report.line(format!("output norm    {:.6e}", norm(&filtered.field)));
+    report.line(format!("wrote          {}", args.output.display()));
+    report.set("basis_fields", setup.basis.len());
+    report.set("discretization", &setup.discretization);
+    report.set("input_norm", norm(&field));
+    report.set("rest_norm", filtered.rest_norm);
+    report.set("output_norm", norm(&filtered.field));
+    report.set("output", args.output.display().to_string());
+    report.finish()
 }

@@ -4,6 +4,7 @@
 use super::spectral_inputs::{create_output_dir, load_setup, read_field};
 use crate::basis_source::{BasisSize, BasisSource};
 use crate::mesh_input::MeshInput;
+use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::fmt::Write as _;
@@ -46,6 +47,10 @@ pub struct RateDistortionArgs {
     /// Output folder (created if missing).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
+    /// Print the points (the CSV's rows) and the equal-error comparison as one JSON object on
+    /// stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Legend label of a coefficient coding.
@@ -106,24 +111,44 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
     );
     save_png(&plot.render()?, &png_path)?;
 
-    println!(
+    let mut report = Report::new(args.json);
+    report.line(format!(
         "{:>6} {:>34} {:>10} {:>12} {:>14}",
         "pairs", "coding", "bytes", "bits/vertex", "rel. L2 error"
-    );
+    ));
+    let mut rows = Vec::new();
     for p in &points {
-        println!(
+        report.line(format!(
             "{:>6} {:>34} {:>10} {:>12.3} {:>14.4e}",
             p.pairs,
             coding_label(p.coding),
             p.bytes,
             p.bits_per_vertex,
             p.relative_error
-        );
+        ));
+        rows.push(serde_json::json!({
+            "pairs": p.pairs,
+            "coding": coding_label(p.coding),
+            "bytes": p.bytes,
+            "bits_per_vertex": p.bits_per_vertex,
+            "relative_error": p.relative_error,
+        }));
     }
-    println!("at equal or lower error (smallest quantised file per 64-bit point):");
+    report.set("basis_fields", setup.basis.len());
+    report.set("points", rows);
+    report.line("at equal or lower error (smallest quantised file per 64-bit point):");
+    let mut comparisons = Vec::new();
     for (exact, quantised) in equal_error_comparison(&points) {
-        println!(
-            "  k = {:>5}: 64-bit {:>9} bytes (error {:.3e})  vs  {} k = {} {:>8} bytes (error {:.3e}): {:.1}× smaller",
+        comparisons.push(serde_json::json!({
+            "pairs": exact.pairs,
+            "bytes": exact.bytes,
+            "quantised_coding": coding_label(quantised.coding),
+            "quantised_pairs": quantised.pairs,
+            "quantised_bytes": quantised.bytes,
+            "ratio": exact.bytes as f64 / quantised.bytes as f64,
+        }));
+        report.line(format!(
+            "  P = {:>5}: 64-bit {:>9} bytes (error {:.3e})  vs  {} P = {} {:>8} bytes (error {:.3e}): {:.1}× smaller",
             exact.pairs,
             exact.bytes,
             exact.relative_error,
@@ -132,10 +157,17 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
             quantised.bytes,
             quantised.relative_error,
             exact.bytes as f64 / quantised.bytes as f64
-        );
+        ));
     }
-    println!("wrote {}, {}", csv_path.display(), png_path.display());
-    Ok(())
+    report.set("equal_error", comparisons);
+    report.line(format!(
+        "wrote {}, {}",
+        csv_path.display(),
+        png_path.display()
+    ));
+    report.set("csv", csv_path.display().to_string());
+    report.set("plot", png_path.display().to_string());
+    report.finish()
 }
 
 /// Relative error against bits per vertex, one line per coding (log–log), `size` in pixels.

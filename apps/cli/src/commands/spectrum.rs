@@ -21,7 +21,8 @@ discretization) to stdout. Eigenvalues are in 1/length² (frequencies are their 
 pub struct SpectrumArgs {
     #[command(flatten)]
     input: MeshInput,
-    /// Number of eigenvalues (the K lowest, harmonic zeros included).
+    /// The K lowest eigenvalues, harmonic zeros included: those of the basis of K eigenfields
+    /// (`tvf basis -k K`, the paper's d).
     #[arg(short = 'k', value_name = "K")]
     count: usize,
     /// Hodge decomposition.

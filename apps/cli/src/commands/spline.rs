@@ -3,6 +3,7 @@
 
 use crate::basis_source::{BasisSource, Discretization};
 use crate::mesh_input::MeshInput;
+use crate::report::Report;
 use crate::with_complex;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -36,6 +37,9 @@ pub struct SplineArgs {
     /// Output field: one 3D vector per face (.npy F×3, or text by extension).
     #[arg(short, long, value_name = "FIELD")]
     output: PathBuf,
+    /// Print the report (sizes, times in ms, residuals) as one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Everything a design command needs before it starts solving.
@@ -49,22 +53,31 @@ pub struct DesignInputs {
 }
 
 /// Loads the mesh and the constraint file (checking its mesh fingerprint, if any).
-pub fn load_inputs(input: &MeshInput, constraints: &Path) -> Result<DesignInputs> {
+pub fn load_inputs(
+    input: &MeshInput,
+    constraints: &Path,
+    report: &mut Report,
+) -> Result<DesignInputs> {
     let mesh = input.load()?.mesh;
     let set = ConstraintSet::load(constraints)?;
     set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), constraints)?;
-    println!(
+    report.line(format!(
         "mesh            {} ({} faces, genus {})",
         input.label(),
         mesh.face_count(),
         mesh.genus()
-    );
-    println!(
+    ));
+    report.line(format!(
         "constraints     {} from {} (omega {})",
         set.constraints.len(),
         constraints.display(),
         set.omega
-    );
+    ));
+    report.set("mesh", input.label());
+    report.set("faces", mesh.face_count());
+    report.set("genus", mesh.genus());
+    report.set("constraints_file", constraints.display().to_string());
+    report.set("omega", set.omega);
     Ok(DesignInputs {
         mesh,
         set,
@@ -88,15 +101,19 @@ pub fn reduced_basis(
     inputs: &DesignInputs,
     input: &MeshInput,
     source: &BasisSource,
+    report: &mut Report,
 ) -> Result<ReducedBasis> {
     let start = Instant::now();
     let resolved = source.resolve(&inputs.mesh, input)?;
-    println!(
-        "basis           {} fields of {} ready in {:.3} s",
+    let seconds = start.elapsed().as_secs_f64();
+    report.line(format!(
+        "basis           {} fields of {} ready in {seconds:.3} s",
         resolved.basis.len(),
         resolved.discretization.name(),
-        start.elapsed().as_secs_f64()
-    );
+    ));
+    report.set("basis_fields", resolved.basis.len());
+    report.set("discretization", resolved.discretization.name());
+    report.set("basis_seconds", seconds);
     Ok(ReducedBasis::from_spectral(&resolved.basis)?)
 }
 
@@ -110,30 +127,43 @@ pub fn compile<H: HodgeComplex>(
         .with_context(|| format!("{}", inputs.constraints_path.display()))
 }
 
-/// Prints one line per constraint residual and the worst relative one.
-pub fn print_residuals(residuals: &[ConstraintResidual]) {
-    println!("constraint residuals (|C̃x − c|, relative):");
+/// Reports one line per constraint residual and the worst relative one (JSON: `residuals`
+/// as `[{id, absolute, relative}]` and `worst_relative_residual`).
+pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
+    report.line("constraint residuals (|C̃x − c|, relative):");
     for r in residuals {
-        println!("  {:<16} {:.3e}  {:.3e}", r.id, r.absolute, r.relative);
+        report.line(format!(
+            "  {:<16} {:.3e}  {:.3e}",
+            r.id, r.absolute, r.relative
+        ));
     }
     let worst = residuals.iter().map(|r| r.relative).fold(0.0, f64::max);
-    println!("worst relative residual {worst:.3e}");
+    report.line(format!("worst relative residual {worst:.3e}"));
+    let list: Vec<_> = residuals
+        .iter()
+        .map(|r| serde_json::json!({"id": r.id, "absolute": r.absolute, "relative": r.relative}))
+        .collect();
+    report.set("residuals", list);
+    report.set("worst_relative_residual", worst);
 }
 
 /// Runs `tvf spline`.
 pub fn run(args: SplineArgs) -> Result<()> {
-    let inputs = load_inputs(&args.input, &args.constraints)?;
+    let mut report = Report::new(args.json);
+    let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
-    with_complex!(&discretization, c => spline_with(c, &inputs, &args))
+    with_complex!(&discretization, c => spline_with(c, &inputs, &args, &mut report))?;
+    report.finish()
 }
 
 fn spline_with<H: HodgeComplex>(
     complex: &H,
     inputs: &DesignInputs,
     args: &SplineArgs,
+    report: &mut Report,
 ) -> Result<()> {
     let constraints = compile(complex, inputs)?;
-    let basis = reduced_basis(inputs, &args.input, &args.basis)?;
+    let basis = reduced_basis(inputs, &args.input, &args.basis, report)?;
     let start = Instant::now();
     let mut session = SplineSession::new(&basis, inputs.set.omega)?;
     for c in constraints {
@@ -149,20 +179,27 @@ fn spline_with<H: HodgeComplex>(
     let mut field = vec![0.0; basis.field_dimension()];
     basis.map(&v, &mut field)?;
     let map = start.elapsed();
-    println!(
-        "spline setup    {:.3} ms ({} constraints, {} rows, d = {})",
+    let (setup_ms, solve_ms, map_ms) = (
         setup.as_secs_f64() * 1e3,
+        solve.as_secs_f64() * 1e3,
+        map.as_secs_f64() * 1e3,
+    );
+    report.line(format!(
+        "spline setup    {setup_ms:.3} ms ({} constraints, {} rows, d = {})",
         session.ids().len(),
         session.row_count(),
         basis.len()
-    );
-    println!(
-        "spline solve    {:.3} ms reduced + {:.3} ms mapping to the full field",
-        solve.as_secs_f64() * 1e3,
-        map.as_secs_f64() * 1e3
-    );
-    print_residuals(&session.residuals(&field));
+    ));
+    report.line(format!(
+        "spline solve    {solve_ms:.3} ms reduced + {map_ms:.3} ms mapping to the full field"
+    ));
+    report.set("rows", session.row_count());
+    report.set("setup_ms", setup_ms);
+    report.set("solve_ms", solve_ms);
+    report.set("map_ms", map_ms);
+    report_residuals(&session.residuals(&field), report);
     write_tangent_field(&args.output, complex.fields(), &field)?;
-    println!("wrote {}", args.output.display());
+    report.line(format!("wrote {}", args.output.display()));
+    report.set("output", args.output.display().to_string());
     Ok(())
 }
