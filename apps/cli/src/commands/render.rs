@@ -22,6 +22,7 @@ use tvf_spectral::mesh_fingerprint;
 const EXAMPLES: &str = "Examples:
   tvf render bunny.obj field.npy -o field.png --color curl --style streamlines
   tvf render --example bumpy-torus -o torus.png --view 60,35 --size 1200x900
+  tvf render --example bumpy-torus field.npy -o field.png   (an example mesh in place of MESH)
   tvf render mesh.obj spline.npy -o spline.png --constraints constraints.json --style lic
   tvf render mesh.obj field.npy -o parts.png --parts   (field and its three Hodge parts)
 

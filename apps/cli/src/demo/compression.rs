@@ -47,7 +47,7 @@ pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
     cx.save(&plot.render()?, "rate_distortion.png")?;
     let mut section = Section::new(
         "Compression: rate and distortion (Figure 9)",
-        "The test field stored as its lowest k coefficient pairs in a .tvfc file: as 64-bit \
+        "The test field stored as its lowest P coefficient pairs in a .tvfc file: as 64-bit \
          numbers (the paper's rate) or quantised and range-coded. Every point is a real file \
          (size with header and checksum) and its error is measured on the decoded field.",
     );
@@ -60,7 +60,7 @@ pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
         .filter(|p| p.coding == CoefficientCoding::Float64)
     {
         section.number(
-            format!("k = {} pairs, 64-bit", p.pairs),
+            format!("P = {} pairs, 64-bit", p.pairs),
             format!(
                 "{} bytes, {:.2} bits/vertex, error {:.3e}",
                 p.bytes, p.bits_per_vertex, p.relative_error
@@ -69,7 +69,7 @@ pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
     }
     if let Some((exact, quantised)) = equal_error_comparison(&points).last() {
         section.number(
-            format!("at k = {} the same error or less", exact.pairs),
+            format!("at P = {} pairs the same error or less", exact.pairs),
             format!(
                 "{} ({} pairs): {} bytes instead of {} ({:.1}× smaller)",
                 coding_label(quantised.coding),
