@@ -10,6 +10,7 @@
 //! - [`dense_generalized_eigen`]: dense reference eigensolver (test oracle, small problems).
 //! - [`DenseCholesky`]: dense Cholesky with rank-one update/downdate and bordered updates.
 //! - [`convert`]: `sprs → faer` conversions.
+//! - [`ordering`]: fill-reducing orderings ([`FillOrdering`]: AMD or METIS nested dissection).
 #![warn(missing_docs)]
 // Index loops mirror the matrix formulas (L[i][k], x[i]) in the numeric kernels.
 #![allow(clippy::needless_range_loop)]
@@ -19,6 +20,7 @@ mod dense_cholesky;
 mod dense_eigen;
 mod eigen;
 mod error;
+pub mod ordering;
 mod sparse_cholesky;
 mod sparse_ldlt;
 
@@ -26,5 +28,6 @@ pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::dense_generalized_eigen;
 pub use eigen::{lowest_eigenpairs, EigenOptions, EigenProgress, Eigenpairs};
 pub use error::SolverError;
+pub use ordering::FillOrdering;
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_ldlt::{Inertia, SparseLdlt};

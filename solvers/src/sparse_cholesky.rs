@@ -13,13 +13,15 @@
 
 use crate::convert::{square_dimension, upper_triangle_csc};
 use crate::error::SolverError;
+use crate::ordering::FillOrdering;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::{Mat, MatRef};
 
 /// Sparse `LDLᵀ = A` factorization of a symmetric positive-definite matrix, with all pivots
 /// checked to be positive (so it is a Cholesky factorization `A = (L D^½)(L D^½)ᵀ`).
 ///
-/// Supernodal, AMD-ordered (faer). The symbolic analysis is kept so that
+/// Supernodal (faer), AMD-ordered unless another [`FillOrdering`] is chosen with
+/// [`SparseCholesky::with_ordering`]. The symbolic analysis is kept so that
 /// [`SparseCholesky::refactor`] only redoes the numeric part.
 #[derive(Debug)]
 pub struct SparseCholesky {
@@ -34,12 +36,35 @@ impl SparseCholesky {
     /// Errors: [`SolverError::NotSquare`], [`SolverError::NonFinite`],
     /// [`SolverError::NotPositiveDefinite`] (with the offending row/column in input numbering).
     pub fn new(matrix: &sprs::CsMat<f64>) -> Result<Self, SolverError> {
+        Self::with_ordering(matrix, FillOrdering::Amd)
+    }
+
+    /// The same as [`SparseCholesky::new`] with the fill-reducing `ordering` of choice
+    /// (nested dissection pays off for large or dense-ish matrices from meshes).
+    ///
+    /// Errors: those of [`SparseCholesky::new`], and [`SolverError::Factorization`] if the
+    /// nested-dissection ordering fails.
+    pub fn with_ordering(
+        matrix: &sprs::CsMat<f64>,
+        ordering: FillOrdering,
+    ) -> Result<Self, SolverError> {
         square_dimension(matrix)?;
         let upper = upper_triangle_csc(matrix)?;
-        let ldlt = SparseLdlt::new(upper.as_ref()).map_err(singular_to_not_pd)?;
+        let ldlt =
+            SparseLdlt::with_ordering(upper.as_ref(), ordering).map_err(singular_to_not_pd)?;
         let this = Self { ldlt };
         this.check_positive()?;
         Ok(this)
+    }
+
+    /// Number of stored values of the factor `L` (a measure of fill-in).
+    pub fn factor_len(&self) -> usize {
+        self.ldlt.factor_len()
+    }
+
+    /// The fill-reducing ordering this factorization was analysed with.
+    pub fn ordering(&self) -> FillOrdering {
+        self.ldlt.ordering()
     }
 
     /// Dimension `n` of the factored matrix.

@@ -1,5 +1,5 @@
-//! Supernodal sparse `LDLᵀ` factorization (no pivoting) with a fill-reducing AMD ordering,
-//! reusable symbolic analysis, blocked solves and the inertia of the factored matrix.
+//! Supernodal sparse `LDLᵀ` factorization (no pivoting) with a fill-reducing ordering (AMD by
+//! default, nested dissection on request: [`FillOrdering`]), reusable symbolic analysis, blocked solves and the inertia of the factored matrix.
 //!
 //! This is the workhorse behind [`crate::SparseCholesky`] (which additionally insists on
 //! positive pivots) and the shift-and-invert eigensolver (which factors the indefinite
@@ -12,8 +12,10 @@
 //! and by never placing a shift closer than a safe relative distance to a known eigenvalue.
 
 use crate::error::SolverError;
+use crate::ordering::{inverse_permutation, is_permutation, nested_dissection, FillOrdering};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
     SymbolicCholeskyRaw, SymmetricOrdering,
@@ -45,6 +47,7 @@ pub struct SparseLdlt {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     parallelism: Par,
+    ordering: FillOrdering,
 }
 
 impl SparseLdlt {
@@ -54,26 +57,83 @@ impl SparseLdlt {
     /// Errors: [`SolverError::Singular`] on an exactly zero pivot, [`SolverError::Factorization`]
     /// if faer runs out of memory or indices.
     pub fn new(upper: SparseColMatRef<'_, usize, f64>) -> Result<Self, SolverError> {
+        Self::with_ordering(upper, FillOrdering::Amd)
+    }
+
+    /// The same as [`SparseLdlt::new`] with the fill-reducing `ordering` of choice.
+    ///
+    /// Errors: those of [`SparseLdlt::new`], and [`SolverError::Factorization`] if the
+    /// nested-dissection ordering fails.
+    pub fn with_ordering(
+        upper: SparseColMatRef<'_, usize, f64>,
+        ordering: FillOrdering,
+    ) -> Result<Self, SolverError> {
+        match ordering {
+            FillOrdering::Amd => Self::analyse_and_factor(upper, SymmetricOrdering::Amd, ordering),
+            FillOrdering::NestedDissection => {
+                let forward = nested_dissection(upper.symbolic())?;
+                Self::with_permutation_of(upper, &forward, ordering)
+            }
+        }
+    }
+
+    /// The same as [`SparseLdlt::new`] with a fill-reducing permutation computed by the caller:
+    /// `permutation[k]` is the original row/column eliminated `k`-th (e.g. a nested dissection
+    /// of a smaller graph the matrix is built on, expanded to its unknowns).
+    /// [`SparseLdlt::ordering`] then reports [`FillOrdering::NestedDissection`].
+    ///
+    /// Errors: those of [`SparseLdlt::new`], and [`SolverError::Factorization`] if `permutation`
+    /// is not a permutation of `0..n`.
+    pub fn with_permutation(
+        upper: SparseColMatRef<'_, usize, f64>,
+        permutation: &[usize],
+    ) -> Result<Self, SolverError> {
+        Self::with_permutation_of(upper, permutation, FillOrdering::NestedDissection)
+    }
+
+    fn with_permutation_of(
+        upper: SparseColMatRef<'_, usize, f64>,
+        forward: &[usize],
+        ordering: FillOrdering,
+    ) -> Result<Self, SolverError> {
+        let n = upper.ncols();
+        if !is_permutation(forward, n) {
+            return Err(SolverError::Factorization(format!(
+                "the fill-reducing ordering is not a permutation of 0..{n}"
+            )));
+        }
+        let inverse = inverse_permutation(forward);
+        let custom = SymmetricOrdering::Custom(PermRef::new_checked(forward, &inverse, n));
+        Self::analyse_and_factor(upper, custom, ordering)
+    }
+
+    fn analyse_and_factor(
+        upper: SparseColMatRef<'_, usize, f64>,
+        symmetric_ordering: SymmetricOrdering<'_, usize>,
+        ordering: FillOrdering,
+    ) -> Result<Self, SolverError> {
         let params = CholeskySymbolicParams {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
             ..Default::default()
         };
-        let symbolic = factorize_symbolic_cholesky(
-            upper.symbolic(),
-            Side::Upper,
-            SymmetricOrdering::Amd,
-            params,
-        )
-        .map_err(|e| SolverError::Factorization(format!("{e:?}")))?;
+        let symbolic =
+            factorize_symbolic_cholesky(upper.symbolic(), Side::Upper, symmetric_ordering, params)
+                .map_err(|e| SolverError::Factorization(format!("{e:?}")))?;
         let mut this = Self {
             values: vec![0.0; symbolic.len_val()],
             symbolic,
             col_ptr: upper.symbolic().col_ptr().to_vec(),
             row_idx: upper.symbolic().row_idx().to_vec(),
             parallelism: faer::get_global_parallelism(),
+            ordering,
         };
         this.factor_numeric(upper)?;
         Ok(this)
+    }
+
+    /// The fill-reducing ordering this factorization was analysed with.
+    pub fn ordering(&self) -> FillOrdering {
+        self.ordering
     }
 
     /// Dimension `n` of the factored matrix.
@@ -90,6 +150,27 @@ impl SparseLdlt {
     /// Number of stored values of the factor `L` (a measure of fill-in).
     pub fn factor_len(&self) -> usize {
         self.values.len()
+    }
+
+    /// Floating-point operations of one numeric factorization, `Σ_j c_j²` over the columns `j` of
+    /// `L` with `c_j` stored entries on and below the diagonal (a deterministic measure of the
+    /// numeric cost of an ordering, independent of the machine's load).
+    pub fn factor_flop_count(&self) -> f64 {
+        let mut flops = 0.0;
+        if let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() {
+            let col_ptr_val = sym.col_ptr_for_val();
+            let begin = sym.supernode_begin();
+            let end = sym.supernode_end();
+            for s in 0..sym.n_supernodes() {
+                let ncols = end[s] - begin[s];
+                let nrows = (col_ptr_val[s + 1] - col_ptr_val[s]) / ncols.max(1);
+                for c in 0..ncols {
+                    let count = (nrows - c) as f64;
+                    flops += count * count;
+                }
+            }
+        }
+        flops
     }
 
     /// Whether `upper` has exactly the sparsity pattern analysed in [`SparseLdlt::new`].

@@ -44,6 +44,10 @@ pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
 pub use error::{ConstraintError, ConstraintFileError, DesignError};
 pub use reduced_basis::{ReducedBasis, ReducedBasisF32};
 pub use reference_spline::{reference_spline, ReferenceSpline};
-pub use soft_full::{default_regularization, FullSoftDesign, SoftOptions, SolveReport};
+pub use soft_full::{
+    default_full_ordering, default_regularization, FactorTimings, FullSoftDesign, SoftOptions,
+    SolveReport, NESTED_DISSECTION_MIN_FACES,
+};
 pub use soft_reduced::ReducedSoftDesign;
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};
+pub use tvf_solvers::FillOrdering;

@@ -1,0 +1,118 @@
+//! AMD against nested dissection for the full soft-design system on the Table 1 meshes:
+//! fill (`nnz(L)` of the augmented `4F × 4F` factor), ordering + symbolic analysis, numeric
+//! factorization, assembly, solve (with PCG refinement) and the final relative residual.
+//! Medians over `--runs N` (default 3).
+//!
+//! ```text
+//! cargo run --release -p tvf-design --example full_soft_orderings -- [--runs N] [MESH ...]
+//! ```
+//! MESH names a file `../shared/meshes/MESH.obj` (default: the five Table 1 meshes).
+
+#[path = "../benches/common/mod.rs"]
+mod common;
+
+use std::time::{Duration, Instant};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::io::load_mesh;
+use tvf_design::{
+    default_regularization, CompiledConstraint, ConstraintAssembler, FillOrdering, FullSoftDesign,
+    SoftOptions,
+};
+use tvf_discretizations::{Conforming, MassLumping};
+
+const OMEGA: f64 = 0.1;
+
+fn median(mut values: Vec<Duration>) -> f64 {
+    values.sort();
+    values[values.len() / 2].as_secs_f64()
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut runs = 3usize;
+    let mut names = Vec::new();
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        if arg == "--runs" {
+            runs = args.next().ok_or("--runs needs a number")?.parse()?;
+        } else {
+            names.push(arg);
+        }
+    }
+    if names.is_empty() {
+        names = common::MESHES.iter().map(|s| s.to_string()).collect();
+    }
+    println!(
+        "| mesh | faces | ordering | nnz(L) | flops | assembly S | assembly aug. | ordering+symbolic | numeric | factor total | solve | steps | residual |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for name in names {
+        let path = common::mesh_dir().join(format!("{name}.obj"));
+        let mesh = match load_mesh(&path) {
+            Ok(loaded) => loaded.mesh,
+            Err(e) => {
+                eprintln!("skipping {name}: {e}");
+                continue;
+            }
+        };
+        let complex = Conforming::new(&mesh, MassLumping::Barycentric)?;
+        let start = Instant::now();
+        let dirichlet = complex.dirichlet_energy();
+        let assembly_s = start.elapsed().as_secs_f64();
+        let assembler = ConstraintAssembler::new(&complex, &mesh);
+        let compiled: Vec<CompiledConstraint> =
+            assembler.compile_all(&common::constraints(&mesh, 1))?;
+        let other: Vec<CompiledConstraint> =
+            assembler.compile_all(&common::constraints(&mesh, 2))?;
+        let options = SoftOptions {
+            omega: OMEGA,
+            regularization: default_regularization(&dirichlet, complex.m1()),
+        };
+        for ordering in [FillOrdering::Amd, FillOrdering::NestedDissection] {
+            let (mut total, mut assembly, mut first, mut numeric, mut solve) =
+                (vec![], vec![], vec![], vec![], vec![]);
+            let mut entries = 0;
+            let mut flops = 0.0;
+            let mut report = None;
+            for _ in 0..runs {
+                let start = Instant::now();
+                let mut design = FullSoftDesign::from_matrices_with_ordering(
+                    &dirichlet,
+                    complex.m1(),
+                    options,
+                    compiled.clone(),
+                    ordering,
+                )?;
+                total.push(start.elapsed());
+                assembly.push(design.timings().assembly);
+                first.push(design.timings().factorization);
+                entries = design.factor_entries();
+                flops = design.factor_flop_count();
+                design.set_constraints(other.clone())?;
+                numeric.push(design.timings().factorization);
+                design.set_constraints(compiled.clone())?;
+                let start = Instant::now();
+                let (_, r) = design.solve();
+                solve.push(start.elapsed());
+                report = Some(r);
+            }
+            let report = report.ok_or("no runs")?;
+            let numeric_s = median(numeric);
+            println!(
+                "| {name} | {} | {} | {:.1}M | {:.1} G | {:.3} s | {:.3} s | {:.3} s | {:.3} s | {:.3} s | {:.0} ms | {} | {:.1e} |",
+                mesh.face_count(),
+                ordering.name(),
+                entries as f64 / 1e6,
+                flops / 1e9,
+                assembly_s,
+                median(assembly),
+                median(first) - numeric_s,
+                numeric_s,
+                median(total),
+                median(solve) * 1e3,
+                report.residuals.len() - 1,
+                report.final_residual(),
+            );
+        }
+    }
+    Ok(())
+}
