@@ -287,19 +287,6 @@ pub fn run_mesh(
             Ok::<_, PaperError>((complex, basis))
         },
     )?;
-    let (row, _) = progress.step(&format!("{name}: Table 1 design timings"), || {
-        table1::measure(
-            name,
-            mesh,
-            &complex,
-            &basis,
-            bases_seconds,
-            sizes.constraints,
-            sizes.table1,
-            entry.paper,
-        )
-    })?;
-    results.table1.push(row);
     let x = Experiment {
         name,
         mesh,
@@ -314,6 +301,16 @@ pub fn run_mesh(
             zoom: 1.0,
         },
     };
+    let (row, _) = progress.step(&format!("{name}: Table 1 design timings"), || {
+        table1::measure(
+            &x,
+            bases_seconds,
+            sizes.constraints,
+            sizes.table1,
+            entry.paper,
+        )
+    })?;
+    results.table1.push(row);
     for role in entry.roles {
         run_role(*role, &x, sizes, progress, results, curves)?;
     }

@@ -2,6 +2,7 @@
 //! of the reduced spline, the reduced soft design and the full soft design with 30 seeded
 //! constraints, beside the paper's numbers (Java + MUMPS on a 2015 laptop).
 
+use super::finding::Experiment;
 use crate::error::PaperError;
 use crate::markdown::{ratio, seconds, thousands, Table};
 use crate::timing::{median_time, Repetitions, Timing};
@@ -13,7 +14,6 @@ use tvf_design::{
     default_regularization, Constraint, ConstraintAssembler, FullSoftDesign, Location,
     ReducedBasis, ReducedSoftDesign, SoftOptions, SplineSession, Target, DEFAULT_OMEGA,
 };
-use tvf_spectral::SpectralBasis;
 
 /// The paper's timings of one mesh (seconds).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -108,19 +108,16 @@ pub fn seeded_constraints(mesh: &SurfaceMesh, count: usize, seed: u64) -> Vec<Co
         .collect()
 }
 
-/// Measures the design columns of Table 1 on `mesh` with the `basis` computed on `complex`
-/// (whose time, `bases_seconds`, was measured by the caller).
-#[allow(clippy::too_many_arguments)]
-pub fn measure<H: HodgeComplex>(
-    name: &str,
-    mesh: &SurfaceMesh,
-    complex: &H,
-    basis: &SpectralBasis,
+/// Measures the design columns of Table 1 on the mesh of `x` with its basis (whose time,
+/// `bases_seconds`, the caller measured), with `constraint_count` seeded constraints.
+pub fn measure(
+    x: &Experiment,
     bases_seconds: f64,
     constraint_count: usize,
     repetitions: Table1Repetitions,
     paper: Option<(usize, PaperTimings)>,
 ) -> Result<Table1Row, PaperError> {
+    let (mesh, complex, basis) = (x.mesh, x.complex, x.basis);
     let constraints = seeded_constraints(mesh, constraint_count, 30);
     let compiled = ConstraintAssembler::new(complex, mesh).compile_all(&constraints)?;
     let reduced = ReducedBasis::from_spectral(basis)?;
@@ -163,7 +160,7 @@ pub fn measure<H: HodgeComplex>(
     let (full_solve, (_, report)) = median_time(fast, || Ok::<_, PaperError>(full.solve()))?;
 
     Ok(Table1Row {
-        mesh: name.to_string(),
+        mesh: x.name.to_string(),
         vertices: mesh.vertex_count(),
         faces: mesh.face_count(),
         paper_faces: paper.map(|p| p.0),
