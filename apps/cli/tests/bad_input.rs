@@ -331,6 +331,58 @@ fn bad_sequences_name_the_file_and_the_problem() {
     assert_refused(&output, &["garbage.tvfc", "wrong magic"], "garbage .tvfc");
 }
 
+/// Issue 6: a filter curve file that is missing or malformed is bad input (exit 1, file named);
+/// a malformed SPEC on the command line is a usage error (exit 2).
+#[test]
+fn bad_filter_specs_name_the_file_or_the_spec() {
+    let fx = fixture();
+    let m = fx.mesh_file.as_str();
+    let f = fx.field.as_str();
+    let o = fx.out("x.npy");
+    let output = tvf(&[
+        "filter",
+        m,
+        f,
+        "-k",
+        "4",
+        "--integrable",
+        "@missing-curve.json",
+        "-o",
+        &o,
+    ]);
+    assert_refused(
+        &output,
+        &["missing-curve.json", "--integrable"],
+        "missing curve",
+    );
+    let bad = fx.file("curve.json", r#"{"points": [[0, 1], [1]]}"#);
+    let output = tvf(&[
+        "filter",
+        m,
+        f,
+        "-k",
+        "4",
+        "--cointegrable",
+        &format!("@{bad}"),
+        "-o",
+        &o,
+    ]);
+    assert_refused(&output, &["curve.json", "--cointegrable"], "bad curve");
+    let output = tvf(&[
+        "filter",
+        m,
+        f,
+        "-k",
+        "4",
+        "--integrable",
+        "lowpass:s=1",
+        "-o",
+        &o,
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("lowpass:t="));
+}
+
 /// Issue 5: basis files that are damaged, truncated, of a newer format, not basis files, or
 /// made for another mesh.
 #[test]
@@ -428,6 +480,16 @@ fn bad_constraint_files_name_the_file_the_constraint_and_the_problem() {
             "bary.json",
             r#"{"constraints": [{"id": "p", "kind": "vector", "face": 2, "barycentric": [0.5, 0.6, 0.1], "value": [1, 0, 0]}]}"#.into(),
             vec!["bary.json".into(), "'p'".into(), "barycentric".into()],
+        ),
+        (
+            "key.json",
+            r#"{"constraints": [{"id": "w", "kind": "curl", "vertex": 3, "value": 1}]}"#.into(),
+            vec!["key.json".into(), "'w'".into(), "use \"edge\"".into()],
+        ),
+        (
+            "weight.json",
+            r#"{"constraints": [{"id": "z", "kind": "vector", "face": 3, "value": [1, 0, 0], "weight": 0}]}"#.into(),
+            vec!["weight.json".into(), "'z'".into(), "weight must be finite and positive".into()],
         ),
         (
             "twice.json",

@@ -25,11 +25,11 @@ pub struct FilterArgs {
     #[command(flatten)]
     basis: BasisSource,
     /// Gain of the integrable (curl-free) coefficients against frequency √λ.
-    #[arg(long, value_name = "SPEC", default_value = "identity")]
-    integrable: FrequencyResponse,
+    #[arg(long, value_name = "SPEC", default_value = "identity", value_parser = spec_syntax)]
+    integrable: String,
     /// Gain of the co-integrable (divergence-free) coefficients against frequency √λ.
-    #[arg(long, value_name = "SPEC", default_value = "identity")]
-    cointegrable: FrequencyResponse,
+    #[arg(long, value_name = "SPEC", default_value = "identity", value_parser = spec_syntax)]
+    cointegrable: String,
     /// Gain of the harmonic part.
     #[arg(long, value_name = "GAIN", default_value_t = 1.0)]
     harmonic: f64,
@@ -44,6 +44,23 @@ pub struct FilterArgs {
     json: bool,
 }
 
+/// Checks a SPEC's syntax while parsing the command line (a malformed SPEC is a usage error);
+/// `@FILE.json` is read later, so that a missing or bad file is bad input (exit code 1).
+fn spec_syntax(spec: &str) -> Result<String, String> {
+    if spec.starts_with('@') {
+        return Ok(spec.to_string());
+    }
+    spec.parse::<FrequencyResponse>()
+        .map(|_| spec.to_string())
+        .map_err(|e| e.to_string())
+}
+
+/// The response of `--{flag} SPEC`; errors name the flag (and the file of `@FILE.json`).
+fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
+    spec.parse::<FrequencyResponse>()
+        .map_err(|e| anyhow::anyhow!("--{flag} {spec}: {e}"))
+}
+
 /// Filters the field and writes the result.
 pub fn run(mut args: FilterArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
@@ -52,11 +69,13 @@ pub fn run(mut args: FilterArgs) -> Result<()> {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");
         }
     }
+    let integrable = response("integrable", &args.integrable)?;
+    let cointegrable = response("cointegrable", &args.cointegrable)?;
     let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
     let field = read_field(&field, &setup.fields)?;
     let filter = SpectralFilter {
-        integrable: args.integrable,
-        cointegrable: args.cointegrable,
+        integrable,
+        cointegrable,
         harmonic_gain: args.harmonic,
         rest_gain: args.rest,
     };
