@@ -15,6 +15,10 @@ const SECOND_PASS_RATIO: f64 = 0.7;
 /// Relative norm below which a column is treated as linearly dependent on the basis.
 const DEPENDENCE_THRESHOLD: f64 = 1e-10;
 
+/// Largest `‖Z‖ / min R_jj` (growth of rounding-level components along the bases when a block is
+/// normalised) for which the block is accepted without a further Gram–Schmidt pass.
+const AMPLIFICATION_LIMIT: f64 = 1e3;
+
 /// `M Z` for a diagonal `M` (row scaling).
 pub(crate) fn mass_times(mass: &[f64], z: MatRef<'_, f64>) -> Mat<f64> {
     Mat::from_fn(z.nrows(), z.ncols(), |i, j| mass[i] * z[(i, j)])
@@ -44,7 +48,8 @@ pub(crate) fn mass_inner(
 /// classical Gram–Schmidt. One pass leaves components of relative size `ε·κ` along the bases,
 /// where `κ = ‖z_before‖/‖z_after‖` is the cancellation factor; in shift-invert those are
 /// amplified by `θ_max/θ` in the next step (huge near a zero eigenvalue), so a second pass is
-/// made unless every column kept 70% of its norm (Daniel–Gragg–Kaufman–Stewart criterion).
+/// made unless every column kept 70% of its norm (Daniel–Gragg–Kaufman–Stewart criterion),
+/// and a third one if the second pass cancelled that much again (rare: a nearly dependent block).
 /// A relaxed criterion (second pass only for `κ > 1000`) was tried and stalls convergence.
 /// Returns, per basis, the summed coefficients `Bᵀ M z` (`p × r`).
 pub(crate) fn project_out(
@@ -58,7 +63,7 @@ pub(crate) fn project_out(
         .map(|b| Mat::zeros(b.ncols(), z.ncols()))
         .collect();
     let mut before = mass_column_norms(mass, z.rb());
-    for _pass in 0..2 {
+    for _pass in 0..3 {
         for (b, sum) in bases.iter().zip(total.iter_mut()) {
             if b.ncols() == 0 {
                 continue;
@@ -182,11 +187,20 @@ pub(crate) fn orthonormalize_block(
         None => column_gram_schmidt(z, reference_norms, bases, mass, rng, par)?,
     };
     // Normalising a nearly dependent block (Q = Z R⁻¹ with ill-conditioned R) amplifies the
-    // rounding-level components that Z kept along `bases` by up to ‖R⁻¹‖‖Z‖. Left there,
-    // they break the Krylov relation and let the next expansion re-find a locked eigenvector
-    // as a "ghost" near a multiple eigenvalue with a falsely tiny residual estimate. So the
-    // components are removed once more (they are rounding noise, not part of the relation)
-    // and the block re-normalised; the extra triangular factor is folded into R.
+    // rounding-level components that Z kept along `bases` by up to ‖R⁻¹‖‖Z‖ ≈ growth below.
+    // Left there, they break the Krylov relation. When the growth is large (or a column was
+    // replaced by a random one, which has a zero diagonal in R), the components are removed once
+    // more (they are rounding noise, not part of the relation) and the block re-normalised; the
+    // extra triangular factor is folded into R. For a well-conditioned block (the usual case)
+    // this third Gram–Schmidt pass over all bases would cost a third of the orthogonalisation
+    // for nothing, so it is skipped.
+    let largest_reference = reference_norms.iter().copied().fold(0.0f64, f64::max);
+    let smallest_pivot = (0..first.coefficients.ncols())
+        .map(|j| first.coefficients[(j, j)].abs())
+        .fold(f64::INFINITY, f64::min);
+    if smallest_pivot > 0.0 && largest_reference <= AMPLIFICATION_LIMIT * smallest_pivot {
+        return Ok(first);
+    }
     let mut block = first.block;
     project_out(block.as_mut(), bases, mass, par);
     match cholesky_qr2(&block, mass, par) {
