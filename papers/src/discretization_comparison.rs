@@ -241,7 +241,7 @@ pub fn plot(results: &[DiscretizationResult], width: u32, height: u32) -> Plot {
         });
     let mut y = Axis::new("max relative eigenvalue error", AxisScale::Log10);
     if lo <= hi {
-        y.range = Some((lo / 2.0, hi * 100.0));
+        y.range = Some((lo / 2.0, hi * 1000.0));
     }
     Plot {
         title: "Eigenvalue error on icospheres against l(l+1)".to_string(),

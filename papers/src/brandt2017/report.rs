@@ -241,9 +241,10 @@ const DIFFERENCES: &str = "## Differences from the paper, and why\n\n\
   run as `armadillo-x4` (345,928 faces, paper 331,904) behind `--large`. Rocker arm and bunny \
   match the paper's face counts.\n\
 - **Fields.** The paper's custom fields are not published; ours are generated from the mesh \
-  (`papers/src/brandt2017/test_fields.rs`): a smooth field with all three Hodge parts, seeded \
-  noise, 120 small vortices, moving sources and vortices. Errors therefore compare in trend, \
-  not digit for digit.\n\
+  (`papers/src/brandt2017/test_fields.rs`): designed fields (full soft design with 12 seeded \
+  constraints, as the paper's were made with its design tools), an analytic field with all \
+  three Hodge parts, seeded noise, 120 small vortices, moving sources and vortices. Errors \
+  therefore compare in trend, not digit for digit.\n\
 - **Basis size.** Every basis has 500 + 500 eigenfields (Table 1's size); the paper's \
   rate–distortion curves go to 2000 pairs and Figure 10 uses 1000 pairs, so our curves stop at \
   k = 500.\n\

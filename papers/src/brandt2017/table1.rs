@@ -92,7 +92,7 @@ pub fn seeded_constraints(mesh: &SurfaceMesh, count: usize, seed: u64) -> Vec<Co
                     barycentric: None,
                 };
                 Constraint::new(format!("v{k}"), Target::Vector(v), location)
-            } else if (k - vectors) % 2 == 0 {
+            } else if (k - vectors).is_multiple_of(2) {
                 let vertex = mesh.faces()[face][0];
                 let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
                 Constraint::new(
