@@ -175,6 +175,14 @@ fn k_is_the_number_of_eigenfields_in_every_subcommand() {
         stderr.contains(&format!("{} fields", 2 * mesh.face_count())),
         "{stderr}"
     );
+    let (all, _) = succeeded(
+        &tvf(&["spectrum", &m, "-k", "100000", "--json"]),
+        "spectrum complete",
+    );
+    assert_eq!(
+        json(&all)["eigenvalues"].as_array().unwrap().len(),
+        2 * mesh.face_count()
+    );
 }
 
 /// The mode a new file gets from `File::create` in this process (and its children): `0o666`

@@ -9,6 +9,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde_json::json;
 use std::time::Instant;
+use tvf_core::discretization::FieldSpace;
 use tvf_spectral::{compute_eigenfunction_basis, BasisRequest};
 
 /// Arguments of `tvf spectrum`.
@@ -22,7 +23,7 @@ pub struct SpectrumArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The K lowest eigenvalues, harmonic zeros included: those of the basis of K eigenfields
-    /// (`tvf basis -k K`, the paper's d).
+    /// (`tvf basis -k K`, the paper's d); K ≥ 2F gives all of them.
     #[arg(short = 'k', value_name = "K")]
     count: usize,
     /// Hodge decomposition.
@@ -48,7 +49,13 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
     let progress = Progress::new("spectrum");
     let (basis, _) = {
         let callback = progress.basis_callback();
-        let request = BasisRequest::fields(args.count).with_progress(&callback);
+        // K ≥ 2F: every eigenvalue (the complete basis), as for `tvf basis -k K`.
+        let request = if args.count >= discretization.fields().dimension() {
+            BasisRequest::complete()
+        } else {
+            BasisRequest::fields(args.count)
+        };
+        let request = request.with_progress(&callback);
         with_complex!(&discretization, c => compute_eigenfunction_basis(c, &request))
             .with_context(|| format!("{}: cannot compute the spectrum", args.input.label()))?
     };
