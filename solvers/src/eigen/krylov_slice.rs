@@ -53,9 +53,9 @@ pub(crate) struct SliceSettings {
     pub parallelism: Par,
 }
 
-/// Converged eigenpairs of one slice (unsorted).
+/// Converged eigenvectors of one slice (unsorted; their eigenvalues are recomputed by the
+/// driver's final Rayleigh–Ritz against `A`, which is more accurate than the Ritz values `θ`).
 pub(crate) struct SliceOutcome {
-    pub values: Vec<f64>,
     pub vectors: Mat<f64>,
     pub solves: usize,
 }
@@ -132,7 +132,6 @@ pub(crate) fn run_slice(
 
     if wanted == 0 {
         return Ok(SliceOutcome {
-            values: Vec::new(),
             vectors: Mat::zeros(n, 0),
             solves,
         });
@@ -278,7 +277,6 @@ pub(crate) fn run_slice(
         }
         if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
             return Ok(SliceOutcome {
-                values: locked_values,
                 vectors: locked.view().to_owned(),
                 solves,
             });
