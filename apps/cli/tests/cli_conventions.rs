@@ -130,6 +130,7 @@ fn a_missing_mesh_exits_with_1_and_names_the_file() {
         vec!["filter", m, f, "-o", o],
         vec!["analyze", m, f, "-o", o],
         vec!["compress", m, f, "--pairs", "5", "-o", o],
+        vec!["decompress", m, f, "-o", o],
         vec!["rate-distortion", m, f, "--pairs", "5", "-o", o],
         vec!["spline", m, "--constraints", f, "-o", o],
         vec!["design", m, "--constraints", f, "--full", "-o", o],

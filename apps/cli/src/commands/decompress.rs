@@ -1,6 +1,6 @@
 //! `tvf decompress`: the fields of a `.tvfc` file.
 
-use super::spectral_inputs::{load_setup, write_frames};
+use super::spectral_inputs::{setup_for_mesh, write_frames};
 use crate::basis_source::{BasisSize, BasisSource};
 use crate::mesh_input::MeshInput;
 use crate::progress::Progress;
@@ -36,12 +36,14 @@ pub fn run(mut args: DecompressArgs) -> Result<()> {
     let compressed = args
         .input
         .required_second(args.compressed.take(), "FILE.tvfc");
+    // The mesh first: a bad mesh is reported before a bad file.
+    let mesh = args.input.load()?.mesh;
     let file = CompressedFields::read(&compressed)?;
     // Without --basis or -k, compute the basis of as many pairs as the file keeps.
     let size = args
         .basis
         .size_or(BasisSize::Pairs(file.header.pairs as usize));
-    let setup = load_setup(&args.input, &args.basis.options, size)?;
+    let setup = setup_for_mesh(mesh, &args.input, &args.basis.options, size)?;
     let id = basis_id(&setup.basis);
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;

@@ -36,7 +36,16 @@ pub fn load_setup(
     source: &BasisOptions,
     size: BasisSize,
 ) -> Result<SpectralSetup> {
-    let mesh = input.load()?.mesh;
+    setup_for_mesh(input.load()?.mesh, input, source, size)
+}
+
+/// [`load_setup`] for a mesh already loaded from `input`.
+pub fn setup_for_mesh(
+    mesh: SurfaceMesh,
+    input: &MeshInput,
+    source: &BasisOptions,
+    size: BasisSize,
+) -> Result<SpectralSetup> {
     let resolved = source.resolve(&mesh, input, size)?;
     Ok(SpectralSetup {
         fields: resolved.discretization.fields().clone(),
