@@ -60,10 +60,10 @@ pub fn write(out: &Path, results: &Results, info: &RunInfo) -> Result<(), PaperE
 }
 
 /// Paper / ours ratios of one Table 1 column over the rows with paper numbers.
-fn ratio_range(rows: &[Table1Row], column: impl Fn(&Table1Row) -> Option<(f64, f64)>) -> String {
+fn ratio_range(rows: &[Table1Row], column: Column) -> String {
     let ratios: Vec<f64> = rows
         .iter()
-        .filter_map(&column)
+        .filter_map(column)
         .filter(|(_, ours)| *ours > 0.0)
         .map(|(paper, ours)| paper / ours)
         .collect();
@@ -82,6 +82,30 @@ fn ratio_range(rows: &[Table1Row], column: impl Fn(&Table1Row) -> Option<(f64, f
         "**mixed**, beyond ×2 on some meshes"
     };
     format!("×{lo:.2} … ×{hi:.2}: {verdict}")
+}
+
+/// `(paper, ours)` seconds of one Table 1 column of a row, if the paper lists the mesh.
+type Column = fn(&Table1Row) -> Option<(f64, f64)>;
+
+/// Table 1's timing columns: name, `(paper, ours)`, index into [`TABLE1_REASONS`].
+#[rustfmt::skip]
+const COLUMNS: [(&str, Column, usize); 7] = [
+    ("bases setup", |r| r.paper.map(|p| (p.bases, r.bases)), 0),
+    ("spline setup", |r| r.paper.map(|p| (p.spline.0, r.spline_setup.median)), 1),
+    ("spline solve", |r| r.paper.map(|p| (p.spline.1, r.spline_solve.median)), 1),
+    ("reduced soft factor", |r| r.paper.map(|p| (p.reduced.0, r.reduced_factor.median)), 1),
+    ("reduced soft solve", |r| r.paper.map(|p| (p.reduced.1, r.reduced_solve.median)), 1),
+    ("full soft factor", |r| r.paper.map(|p| (p.full.0, r.full_factor.median)), 2),
+    ("full soft solve", |r| r.paper.map(|p| (p.full.1, r.full_solve.median)), 2),
+];
+
+/// The ratio ranges of Table 1's columns in one line.
+fn table1_summary(rows: &[Table1Row]) -> String {
+    COLUMNS
+        .iter()
+        .map(|(what, column, _)| format!("{what} {}", ratio_range(rows, *column)))
+        .collect::<Vec<_>>()
+        .join("; ")
 }
 
 /// The Table 1 section: table, load, and the ratio ranges with their reasons.
@@ -103,21 +127,10 @@ fn table1_section(results: &Results) -> String {
     s.push_str(". A load above the core count means other processes shared the machine and our times are inflated.\n\n");
     let mut ranges = Table::new(["column", "paper / ours over the meshes", "why (below)"]);
     ranges.right_aligned = vec![false, true, false];
-    let pick = |f: fn(&Table1Row) -> Option<(f64, f64)>| ratio_range(rows, f);
-    #[rustfmt::skip]
-    let entries: [(&str, String, usize); 7] = [
-        ("bases setup", pick(|r| r.paper.map(|p| (p.bases, r.bases))), 0),
-        ("spline setup", pick(|r| r.paper.map(|p| (p.spline.0, r.spline_setup.median))), 1),
-        ("spline solve", pick(|r| r.paper.map(|p| (p.spline.1, r.spline_solve.median))), 1),
-        ("reduced soft factor", pick(|r| r.paper.map(|p| (p.reduced.0, r.reduced_factor.median))), 1),
-        ("reduced soft solve", pick(|r| r.paper.map(|p| (p.reduced.1, r.reduced_solve.median))), 1),
-        ("full soft factor", pick(|r| r.paper.map(|p| (p.full.0, r.full_factor.median))), 2),
-        ("full soft solve", pick(|r| r.paper.map(|p| (p.full.1, r.full_solve.median))), 2),
-    ];
-    for (column, range, reason) in entries {
+    for (column, values, reason) in COLUMNS {
         ranges.row([
             column.to_string(),
-            range,
+            ratio_range(rows, values),
             TABLE1_REASONS[reason].0.to_string(),
         ]);
     }
@@ -265,7 +278,10 @@ pub fn readme_markdown(results: &Results, info: &RunInfo) -> String {
             "Table 1 (timings)".to_string(),
             meshes.join(", "),
             "RESULTS.md".to_string(),
-            "ours beside the paper's with paper / ours ratios; see RESULTS.md".to_string(),
+            format!(
+                "paper / ours (above 1: tvf faster): {}",
+                table1_summary(&results.table1)
+            ),
         ]);
     }
     for f in &results.findings {
