@@ -62,7 +62,7 @@ pub enum CompressionError {
         basis: u64,
     },
     /// Neither family of the basis has as many fields as pairs were requested.
-    #[error("the basis has at most {available} {family} fields, {requested} pairs requested (compute a larger basis or lower -k)")]
+    #[error("the basis has at most {available} {family} fields, {requested} pairs requested (compute a larger basis with a larger -k, or lower --pairs)")]
     NotEnoughFields {
         /// The larger family, `integrable` or `cointegrable`.
         family: &'static str,
