@@ -11,74 +11,30 @@
 //! soft design uses the real `S` and `B` of the conforming discretization.
 //!
 //! Also measured: the map `x = U v` (f64 and f32) against streaming `U` once (a parallel sum of
-//! its entries), and a full soft-design refactorisation with the symbolic analysis reused.
+//! its entries), the full soft-design factorization under AMD and nested dissection (with
+//! `nnz(L)`, flops and residuals printed), and a refactorisation with the symbolic analysis reused.
 //! The full soft design runs on meshes up to 100,000 faces unless `TVF_BENCH_FULL=1`.
 
+mod common;
+
+use common::{constraints, mesh_dir, MESHES};
 use criterion::{criterion_group, criterion_main, Criterion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::load_mesh;
-use tvf_core::SurfaceMesh;
 use tvf_design::{
-    default_regularization, CompiledConstraint, Constraint, ConstraintAssembler, FullSoftDesign,
-    Location, ReducedBasis, ReducedSoftDesign, SoftOptions, SplineSession, Target,
+    default_regularization, CompiledConstraint, ConstraintAssembler, FillOrdering, FullSoftDesign,
+    ReducedBasis, ReducedSoftDesign, SoftOptions, SplineSession,
 };
 use tvf_discretizations::{Conforming, MassLumping};
 
-const MESHES: [&str; 5] = [
-    "hand",
-    "rocker-arm",
-    "bunny-closed",
-    "bumpy-torus-x4",
-    "armadillo-x4",
-];
 const FIELDS: usize = 1000;
 const OMEGA: f64 = 0.1;
 const FULL_DESIGN_FACE_LIMIT: usize = 100_000;
-
-fn mesh_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes")
-}
-
-/// 30 seeded constraints: 24 vectors, 3 divergences at vertices, 3 curls at edges.
-fn constraints(mesh: &SurfaceMesh, seed: u64) -> Vec<Constraint> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut out = Vec::new();
-    for k in 0..30 {
-        let face = rng.random_range(0..mesh.face_count());
-        let location = Location::Face {
-            face,
-            barycentric: None,
-        };
-        let c = match k {
-            0..24 => {
-                let v = [
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                    rng.random_range(-1.0..1.0),
-                ];
-                Constraint::new(format!("v{k}"), Target::Vector(v), location)
-            }
-            24..27 => Constraint::new(
-                format!("d{k}"),
-                Target::Divergence(1.0),
-                Location::Vertex(mesh.faces()[face][0]),
-            ),
-            _ => Constraint::new(
-                format!("c{k}"),
-                Target::Curl(-1.0),
-                Location::Edge(mesh.face_edges()[face][0]),
-            ),
-        };
-        out.push(c);
-    }
-    out
-}
 
 /// Random rows `U_r ~ N(0, 1) / √(2F · M_r)` (row-major), eigenvalues ascending from 1.
 fn random_basis(mass: &[f64], d: usize) -> ReducedBasis {
@@ -201,7 +157,32 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
         .sample_size(10)
         .warm_up_time(Duration::from_millis(100))
         .measurement_time(Duration::from_secs(5));
-    group.bench_function("factor", |b| {
+    for ordering in [FillOrdering::Amd, FillOrdering::NestedDissection] {
+        let factor = || {
+            FullSoftDesign::from_matrices_with_ordering(
+                &dirichlet,
+                complex.m1(),
+                options,
+                compiled.clone(),
+                ordering,
+            )
+            .unwrap()
+        };
+        group.bench_function(format!("factor ({})", ordering.name()), |b| {
+            b.iter(|| black_box(factor()))
+        });
+        let design = factor();
+        let (_, report) = design.solve();
+        eprintln!(
+            "{label}: {} nnz(L) = {:.1}M, {:.1} Gflop, assembly {:.3} s, relative residual {:.1e}",
+            ordering.name(),
+            design.factor_entries() as f64 / 1e6,
+            design.factor_flop_count() / 1e9,
+            design.timings().assembly.as_secs_f64(),
+            report.final_residual()
+        );
+    }
+    group.bench_function("factor (default ordering)", |b| {
         b.iter(|| {
             black_box(
                 FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone())

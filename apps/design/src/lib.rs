@@ -33,6 +33,7 @@ mod constraint_file;
 mod error;
 mod reduced_basis;
 mod reference_spline;
+mod refinement;
 mod soft_full;
 mod soft_reduced;
 mod sparse_pattern;
@@ -44,9 +45,9 @@ pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
 pub use error::{ConstraintError, ConstraintFileError, DesignError};
 pub use reduced_basis::{ReducedBasis, ReducedBasisF32};
 pub use reference_spline::{reference_spline, ReferenceSpline};
+pub use refinement::SolveReport;
 pub use soft_full::{
-    default_full_ordering, default_regularization, FactorTimings, FullSoftDesign, SoftOptions,
-    SolveReport, NESTED_DISSECTION_MIN_FACES,
+    default_regularization, FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING,
 };
 pub use soft_reduced::ReducedSoftDesign;
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};

@@ -3,7 +3,7 @@
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
-use crate::soft_full::{refined_solve, SolveReport};
+use crate::refinement::{accurate_residual, refined_solve, SolveReport};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 use sprs::CsMat;
@@ -66,7 +66,12 @@ pub fn reference_spline<H: HodgeComplex>(
             }
             rhs[j] += a;
         }
-        let (column, report) = refined_solve(|x| mul_vec(&matrix, x), &rhs, |r| factor.solve(r));
+        let (column, report) = refined_solve(
+            |x| mul_vec(&matrix, x),
+            |x| accurate_residual(&matrix, x, &rhs),
+            &rhs,
+            |r| factor.solve(r),
+        );
         z.push(column);
         solve_reports.push(report);
     }
