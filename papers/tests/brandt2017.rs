@@ -141,15 +141,23 @@ fn every_experiment_runs_on_a_generated_mesh_and_the_reports_list_every_result()
 }
 
 #[test]
-fn missing_meshes_are_skipped_and_the_comparison_still_runs() {
+fn missing_and_failing_meshes_are_skipped_and_the_comparison_still_runs() {
     let dir = tempfile::tempdir().unwrap();
+    // A hand that loads but has a boundary: its basis fails, the run goes on.
+    let meshes = dir.path().join("meshes");
+    std::fs::create_dir_all(&meshes).unwrap();
+    std::fs::write(
+        meshes.join("hand.obj"),
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
     let mut sizes = Sizes::quick();
     sizes.comparison = ComparisonConfig {
         levels: vec![1, 2],
         max_degree: 2,
     };
     let config = Config {
-        meshes: dir.path().join("no-such-folder"),
+        meshes,
         out: dir.path().join("out"),
         large: false,
         sizes,
@@ -157,6 +165,9 @@ fn missing_meshes_are_skipped_and_the_comparison_still_runs() {
     let results = run(&config, &Progress::new(true)).unwrap();
     let default_meshes = MESHES.iter().filter(|m| !m.large).count();
     assert_eq!(results.skipped.len(), default_meshes);
+    let (mesh, reason) = &results.skipped[0];
+    assert_eq!(mesh, "hand");
+    assert!(reason.starts_with("failed:"), "{reason}");
     assert!(results.table1.is_empty() && results.findings.is_empty());
     assert_eq!(results.comparison.len(), DISCRETIZATIONS.len());
     write(&config.out, &results, &info()).unwrap();

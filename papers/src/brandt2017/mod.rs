@@ -200,7 +200,7 @@ pub struct Results {
     pub comparison: Vec<DiscretizationResult>,
     /// Pictures of the comparison.
     pub comparison_files: Vec<String>,
-    /// Meshes not run: `(file, reason)`.
+    /// Meshes not run or not finished: `(file, reason)`.
     pub skipped: Vec<(String, String)>,
     /// Machine load (`/proc/loadavg`) when each mesh started: `(what, load)`.
     pub load: Vec<(String, String)>,
@@ -236,7 +236,13 @@ pub fn run(config: &Config, progress: &Progress) -> Result<Results, PaperError> 
                 continue;
             }
         };
-        run_mesh(entry, &mesh, config, progress, &mut results, &mut curves)?;
+        // One mesh failing (e.g. a solver error) is reported, not fatal: the others still run.
+        if let Err(error) = run_mesh(entry, &mesh, config, progress, &mut results, &mut curves) {
+            progress.note(format!("{} failed: {error}", entry.file));
+            results
+                .skipped
+                .push((entry.file.to_string(), format!("failed: {error}")));
+        }
     }
     if !curves.is_empty() {
         let (finding, _) = progress.step("Figure 9", || {

@@ -231,7 +231,7 @@ pub fn results_markdown(results: &Results, info: &RunInfo) -> String {
         info.threads
     ));
     if !results.skipped.is_empty() {
-        s.push_str("Meshes not run:\n\n");
+        s.push_str("Meshes not run or not finished:\n\n");
         for (mesh, reason) in &results.skipped {
             s.push_str(&format!("- `{mesh}`: {reason}\n"));
         }
@@ -311,7 +311,7 @@ pub fn readme_markdown(results: &Results, info: &RunInfo) -> String {
     if !results.skipped.is_empty() {
         let skipped: Vec<&str> = results.skipped.iter().map(|(m, _)| m.as_str()).collect();
         s.push_str(&format!(
-            "\nNot run (missing or unreadable): {}.\n",
+            "\nNot run or not finished (see RESULTS.md): {}.\n",
             skipped.join(", ")
         ));
     }
