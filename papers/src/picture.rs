@@ -126,8 +126,8 @@ pub fn grid(panels: &[RgbaImage], columns: usize) -> RgbaImage {
     out
 }
 
-/// Bits kept per colour channel in saved pictures: 6 of 8 is visually the same and makes the
-/// noisy line-integral-convolution textures compress about half as well again.
+/// Bits kept per colour channel in saved pictures: 6 of 8 looks the same and halves the size of
+/// the noisy line-integral-convolution textures.
 const CHANNEL_BITS: u32 = 6;
 
 /// Saves `image` as an RGB PNG at `path` (atomically), alpha dropped (the pictures are opaque),
