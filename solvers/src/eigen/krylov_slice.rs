@@ -9,9 +9,14 @@
 //! - `V` (`n × m`, "expanded"): `OP V = V H + U G` with symmetric `H` (`m × m`);
 //! - `U` (`n × r`, "unexpanded"): the next block to which `OP` is applied.
 //!
-//! Expanding applies `OP` to `U` with one blocked solve, orthogonalises the result against
-//! everything (two passes of BLAS-3 Gram–Schmidt), and appends `U` to `V`. At a restart the
-//! Rayleigh–Ritz pairs of `H` are sorted by `|θ|`; converged wanted ones are locked (their
+//! Expanding applies `OP` to `U` with one blocked solve, orthogonalises the result with BLAS-3
+//! block Gram–Schmidt (one classical pass against `V`, where the cancellation is, then
+//! DGKS-checked passes against deflation, locked and `V` together, usually one), and appends
+//! `U` to `V`. The locked vectors' eigenvalues are recomputed afterwards by the driver's
+//! Rayleigh–Ritz against `A` (see `rayleigh_ritz.rs` for why the Ritz values `θ` alone are not
+//! accurate enough).
+//!
+//! At a restart the Rayleigh–Ritz pairs of `H` are sorted by `|θ|`; converged wanted ones are locked (their
 //! couplings `‖G y‖ ≤ tol·|θ|` are dropped), the best unconverged ones are kept
 //! (`V ← V Y`, `H ← Θ`, `G ← G Y`), and the rest is purged.
 
