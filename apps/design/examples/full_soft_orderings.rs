@@ -4,9 +4,11 @@
 //! Medians over `--runs N` (default 3).
 //!
 //! ```text
-//! cargo run --release -p tvf-design --example full_soft_orderings -- [--runs N] [MESH ...]
+//! cargo run --release -p tvf-design --example full_soft_orderings -- [--runs N] [--seq] [MESH ...]
 //! ```
-//! MESH names a file `../shared/meshes/MESH.obj` (default: the five Table 1 meshes).
+//! MESH names a file `../shared/meshes/MESH.obj` (default: the five Table 1 meshes); `--seq`
+//! runs faer sequentially (its default is all threads), which pays on small meshes and on a
+//! loaded machine.
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -54,7 +56,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut names = Vec::new();
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
-        if arg == "--runs" {
+        if arg == "--seq" {
+            faer::set_global_parallelism(faer::Par::Seq);
+        } else if arg == "--runs" {
             runs = args.next().ok_or("--runs needs a number")?.parse()?;
         } else {
             names.push(arg);

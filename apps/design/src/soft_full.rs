@@ -47,9 +47,10 @@ pub struct FactorTimings {
 }
 
 /// The fill-reducing ordering [`FullSoftDesign::from_matrices`] uses: nested dissection of the
-/// faces. On all five Table 1 meshes (12.7k … 346k faces) it needs fewer flops than AMD (hand
-/// 4.5 vs 5.1 Gflop, bunny-closed 60 vs 106, bumpy-torus-x4 ≈ 0.4×, armadillo-x4 ≈ 0.4×) and its
-/// ordering is faster than faer's AMD from bunny size up (`examples/full_soft_orderings.rs`).
+/// faces. On all five Table 1 meshes it needs fewer flops in the numeric factorization than AMD
+/// (Gflop, ND vs AMD: hand 4.5 vs 5.1, rocker-arm 6.5 vs 9.2, bunny-closed 60 vs 106,
+/// bumpy-torus-x4 107 vs 221, armadillo-x4 329 vs 439) and the whole factorization was faster
+/// on each (`examples/full_soft_orderings.rs`, `benches/table1.rs`).
 pub const DEFAULT_FULL_ORDERING: FillOrdering = FillOrdering::NestedDissection;
 
 /// The full soft-design system and its sparse factorization.
@@ -379,10 +380,9 @@ fn augmented_upper(
 /// eliminates each face's four unknowns `x_2t, x_2t+1, y_2t, y_2t+1` together. A face separator,
 /// with all four unknowns of its faces, separates the augmented graph (`y_i` couples only to
 /// `x_j` with `S_ij ≠ 0`), so this is a nested dissection of the augmented system computed on a
-/// graph with a quarter of its vertices. Measured on bunny-closed against METIS on the `2F`
-/// graph of `x` (each `y_i` right after its `x_i`): 16 % more flops in the numeric factorization
-/// but a 4–5× faster ordering, which wins from bunny size up (bumpy-torus-x4: METIS on the `2F`
-/// graph alone took 5 s).
+/// graph with a quarter of its vertices. Measured against METIS on the `2F` graph of `x` (each
+/// `y_i` right after its `x_i`): 16 % more flops on bunny-closed, but ordering plus symbolic
+/// analysis took 2.1 s instead of 6.5 s on bumpy-torus-x4, which wins from bunny size up.
 fn factor_augmented(
     augmented: &SparseColMat<usize, f64>,
     n: usize,
