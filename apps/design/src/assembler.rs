@@ -269,7 +269,7 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
                 Err(ConstraintError::NodeKindMismatch {
                     id: constraint.id.clone(),
                     detail: format!(
-                        "the {} {kind} lives on the nodes of {space_name} ({nodes}), not on {given}s; \
+                        "the {} {kind} lives on the nodes of {space_name} ({nodes}), not on the {given} given; \
                          use \"{nodes_key}\" (or \"family\": \"{}\")",
                         constraint.family.name(),
                         other_family.name()

@@ -17,7 +17,7 @@ pub enum ConstraintError {
         kind: String,
     },
     /// A face, vertex or edge index is out of range (or negative).
-    #[error("constraint '{id}': {what} {index} is out of range (the mesh has {count} {what}s)")]
+    #[error("constraint '{id}': {what} {index} is out of range (the mesh has {count} of them)")]
     OutOfRange {
         /// Constraint id.
         id: String,
