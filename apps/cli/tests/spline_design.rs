@@ -142,6 +142,53 @@ fn design_full_and_reduced_write_fields_and_report_residuals() {
 }
 
 #[test]
+fn full_design_orderings_give_the_same_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mesh, constraints, _) = setup(dir.path());
+    let mut fields = Vec::new();
+    for ordering in ["amd", "nd"] {
+        let path = dir.path().join(format!("{ordering}.npy"));
+        let output = tvf(&[
+            "design",
+            &mesh,
+            "--constraints",
+            &constraints,
+            "--full",
+            "--ordering",
+            ordering,
+            "-o",
+            path.to_str().unwrap(),
+        ]);
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert!(output.status.success(), "{stdout}");
+        assert!(
+            stdout.contains(&format!("{ordering} ordering")) && stdout.contains("rounding floor"),
+            "{stdout}"
+        );
+        fields.push(read_face_vectors(&path).unwrap());
+    }
+    let scale = fields[1]
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    for (a, b) in fields[0].iter().flatten().zip(fields[1].iter().flatten()) {
+        assert!((a - b).abs() <= 1e-9 * scale, "{a} vs {b}");
+    }
+    for bad in [
+        vec!["--full", "--ordering", "colamd"],
+        vec!["--reduced", "--ordering", "amd"],
+    ] {
+        let out = dir.path().join("bad.npy");
+        let mut args = vec!["design", &mesh, "--constraints", &constraints];
+        args.extend(bad.iter().copied());
+        args.extend(["-o", out.to_str().unwrap()]);
+        let output = tvf(&args);
+        assert_eq!(output.status.code(), Some(2), "{bad:?}");
+        assert!(String::from_utf8_lossy(&output.stderr).contains("--ordering"));
+    }
+}
+
+#[test]
 fn bad_constraint_files_are_reported_with_file_and_id() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, _, _) = setup(dir.path());
