@@ -252,7 +252,15 @@ fn sliced(
         let upper_target = if nu >= k {
             0
         } else {
-            slice_size.min((k + margin).saturating_sub(nu + known_above))
+            // The first slice's shift sits just below the (zero) bottom of the spectrum, so its
+            // far Ritz values θ = 1/(λ − σ) crowd together and converge slowly; it only finds a
+            // few blocks, and the next shift, placed from their spacing, centres a full slice.
+            let budget = if lower_bound.is_finite() {
+                slice_size
+            } else {
+                slice_size.min(4 * block)
+            };
+            budget.min((k + margin).saturating_sub(nu + known_above))
         };
         if lower_needed > 0 || upper_target > 0 {
             let window_floor = if lower_bound.is_finite() {
