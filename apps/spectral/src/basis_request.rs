@@ -30,6 +30,9 @@ pub enum BasisStage {
     Integrable,
     /// Eigenpairs of the co-potential (co-exact) Laplacian: the co-integrable fields.
     Cointegrable,
+    /// Eigenpairs of both Laplacians, computed at the same time (the first round of
+    /// [`crate::compute_basis`]; `done` and `wanted` count both families).
+    Eigenpairs,
     /// Turning eigenfunctions into fields and sorting them.
     Assembling,
 }
@@ -41,6 +44,7 @@ impl BasisStage {
             BasisStage::Harmonic => "harmonic fields",
             BasisStage::Integrable => "integrable eigenfields",
             BasisStage::Cointegrable => "co-integrable eigenfields",
+            BasisStage::Eigenpairs => "eigenfields of both families",
             BasisStage::Assembling => "assembling",
         }
     }

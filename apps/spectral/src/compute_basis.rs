@@ -8,6 +8,8 @@ use crate::scalar_spectrum::{ScalarEigenpairs, ScalarSpectrum};
 use crate::{BasisError, FieldFamily, SpectralBasis};
 use faer::Mat;
 use rayon::prelude::*;
+use std::cell::Cell;
+use std::sync::mpsc;
 use std::time::Instant;
 use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{FunctionSpace, HodgeComplex, HodgeOperators};
@@ -39,6 +41,15 @@ pub struct BasisReport {
     pub eigensolver_calls: usize,
     /// Wall-clock seconds of the whole computation.
     pub seconds: f64,
+}
+
+impl BasisReport {
+    /// Adds one eigensolver call's factorizations and solves.
+    fn add_solver_counts(&mut self, pairs: &ScalarEigenpairs) {
+        self.factorizations += pairs.factorizations;
+        self.solves += pairs.solves;
+        self.eigensolver_calls += 1;
+    }
 }
 
 /// The Fourier basis of `complex` as requested, with dense `2F × d` fields (the eigenfunctions
@@ -122,22 +133,28 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
         harmonic_kernel_residual: harmonic.kernel_residual,
         ..BasisReport::default()
     };
+    let family_seed =
+        |stage: BasisStage| request.seed ^ (stage as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
     let solve =
         |side: &ScalarSpectrum, count: usize, stage: BasisStage, report: &mut BasisReport| {
             let progress = |p: &tvf_solvers::EigenProgress| {
                 request.report(stage, p.found.saturating_sub(components).min(count), count)
             };
-            let seed = request.seed ^ (stage as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
             request.report(stage, 0, count);
-            let pairs = side.lowest_nonzero(count, seed, &progress)?;
+            let pairs = side.lowest_nonzero(count, family_seed(stage), &progress)?;
             request.report(stage, pairs.values.len(), count);
-            report.factorizations += pairs.factorizations;
-            report.solves += pairs.solves;
-            report.eigensolver_calls += 1;
+            report.add_solver_counts(&pairs);
             Ok::<ScalarEigenpairs, BasisError>(pairs)
         };
-    let mut a = solve(&exact, ka, BasisStage::Integrable, &mut report)?;
-    let mut b = solve(&co_exact, kb, BasisStage::Cointegrable, &mut report)?;
+    let (first_a, first_b) = solve_both_families(
+        (&exact, ka, family_seed(BasisStage::Integrable)),
+        (&co_exact, kb, family_seed(BasisStage::Cointegrable)),
+        components,
+        request,
+    );
+    let (mut a, mut b) = (first_a?, first_b?);
+    report.add_solver_counts(&a);
+    report.add_solver_counts(&b);
     // Fields(d) and MaxEigenvalue guess each family's share; grow a family while the requested
     // range may hold eigenvalues it has not computed yet.
     loop {
@@ -227,6 +244,68 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
         EigenfunctionBasis::new(entries, potentials, co_potentials, harmonic),
         report,
     ))
+}
+
+/// Both scalar eigenproblems at once: the co-potential one on a second thread, the potential one
+/// on this thread (each solver runs sequentially, so two cores are used without any
+/// synchronisation inside the solvers; results are bit-identical to solving one after the other).
+/// Progress of both is reported from this thread as one [`BasisStage::Eigenpairs`] stage with
+/// `done` = eigenpairs found in both and `wanted = ka + kb` (the callback need not be `Sync`).
+///
+/// Each family is `(problem, count, seed)`; returns the potential and the co-potential eigenpairs.
+fn solve_both_families(
+    potential: (&ScalarSpectrum, usize, u64),
+    co_potential: (&ScalarSpectrum, usize, u64),
+    components: usize,
+    request: &BasisRequest<'_>,
+) -> (
+    Result<ScalarEigenpairs, BasisError>,
+    Result<ScalarEigenpairs, BasisError>,
+) {
+    let (exact, ka, seed_a) = potential;
+    let (co_exact, kb, seed_b) = co_potential;
+    let wanted = ka + kb;
+    let found = |p: &tvf_solvers::EigenProgress, count: usize| {
+        p.found.saturating_sub(components).min(count)
+    };
+    let done_a = Cell::new(0);
+    let done_b = Cell::new(0);
+    let report = || request.report(BasisStage::Eigenpairs, done_a.get() + done_b.get(), wanted);
+    request.report(BasisStage::Eigenpairs, 0, wanted);
+    let (sender, receiver) = mpsc::channel::<usize>();
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(move || {
+            let progress = |p: &tvf_solvers::EigenProgress| {
+                // The receiver outlives this thread; a failed send only loses a progress line.
+                let _ = sender.send(found(p, kb));
+            };
+            co_exact.lowest_nonzero(kb, seed_b, &progress)
+        });
+        let progress = |p: &tvf_solvers::EigenProgress| {
+            done_a.set(found(p, ka));
+            while let Ok(done) = receiver.try_recv() {
+                done_b.set(done);
+            }
+            report();
+        };
+        let a = exact.lowest_nonzero(ka, seed_a, &progress);
+        if let Ok(pairs) = &a {
+            done_a.set(pairs.values.len());
+        }
+        // Forward the other family's progress until its thread ends (and drops the sender).
+        while let Ok(done) = receiver.recv() {
+            done_b.set(done);
+            report();
+        }
+        let b = worker
+            .join()
+            .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+        if let Ok(pairs) = &b {
+            done_b.set(pairs.values.len());
+        }
+        report();
+        (a, b)
+    })
 }
 
 /// How many non-zero eigenpairs of each family to compute first.
