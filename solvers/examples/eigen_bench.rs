@@ -34,6 +34,12 @@ fn main() {
                     faer::Par::Seq
                 };
             }
+            "--concurrent" => {
+                options.concurrent_slices = args
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or(options.concurrent_slices)
+            }
             "--slice" => {
                 options.slice_size = args
                     .next()

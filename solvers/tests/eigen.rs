@@ -124,9 +124,10 @@ fn periodic_grid_multiplicities_are_complete() {
     // torus grid with unit mass: eigenvalues 4 sin²(πa/n) + 4 sin²(πb/n), multiplicities 1, 2, 4, 8
     let a = grid_laplacian(30, 30, true);
     let mass = vec![1.0; a.rows()];
-    let options = EigenOptions {
+    let options = |concurrent_slices| EigenOptions {
         slice_size: 48,
         block_size: 8,
+        concurrent_slices,
         ..Default::default()
     };
     // k = 137 ends a multiplet: count of eigenvalues below the 138th distinct level
@@ -135,8 +136,11 @@ fn periodic_grid_multiplicities_are_complete() {
     let k = (120..200)
         .find(|&k| reference[k] - reference[k - 1] > 1e-6)
         .unwrap();
-    let result = lowest_eigenpairs(&a, &mass, k, &options).unwrap();
-    check_against_oracle(&a, &mass, k, &result);
+    // both drivers: independent intervals (default) and sequential shifts
+    for concurrent_slices in [2, 0] {
+        let result = lowest_eigenpairs(&a, &mass, k, &options(concurrent_slices)).unwrap();
+        check_against_oracle(&a, &mass, k, &result);
+    }
 }
 
 #[test]
@@ -147,15 +151,45 @@ fn multiplicity_larger_than_block_size_is_found() {
     let a = direct_sum(&copies);
     let base = irregular_masses(block.rows(), 9);
     let mass: Vec<f64> = (0..5).flat_map(|_| base.iter().copied()).collect();
-    let options = EigenOptions {
-        block_size: 2,
-        slice_size: 20,
-        ..Default::default()
+    for concurrent_slices in [2, 0] {
+        let options = EigenOptions {
+            block_size: 2,
+            slice_size: 20,
+            concurrent_slices,
+            ..Default::default()
+        };
+        let result = lowest_eigenpairs(&a, &mass, 50, &options).unwrap();
+        check_against_oracle(&a, &mass, 50, &result);
+        let zeros = result.values.iter().filter(|v| v.abs() < 1e-10).count();
+        assert_eq!(zeros, 5);
+    }
+}
+
+#[test]
+fn interval_results_do_not_depend_on_the_thread_count() {
+    let a = grid_laplacian(40, 38, false);
+    let mass = irregular_masses(a.rows(), 7);
+    let run = |concurrent_slices| {
+        let options = EigenOptions {
+            slice_size: 30,
+            concurrent_slices,
+            ..Default::default()
+        };
+        lowest_eigenpairs(&a, &mass, 120, &options).unwrap()
     };
-    let result = lowest_eigenpairs(&a, &mass, 50, &options).unwrap();
-    check_against_oracle(&a, &mass, 50, &result);
-    let zeros = result.values.iter().filter(|v| v.abs() < 1e-10).count();
-    assert_eq!(zeros, 5);
+    let one = run(1);
+    check_against_oracle(&a, &mass, 120, &one);
+    assert!(
+        one.factorizations >= 5,
+        "several intervals expected, got {} factorizations",
+        one.factorizations
+    );
+    let three = run(3);
+    assert_eq!(one.values, three.values);
+    assert_eq!(one.solves, three.solves);
+    assert_eq!(one.vectors, three.vectors);
+    let sequential = run(0);
+    check_against_oracle(&a, &mass, 120, &sequential);
 }
 
 #[test]

@@ -45,8 +45,13 @@ pub(crate) struct SliceProblem<'a> {
     pub deflation: MatRef<'a, f64>,
     /// Number of not-yet-known eigenvalues in `(lower_bound, σ)` (from the inertia count).
     pub lower_needed: usize,
-    /// Number of new eigenvalues above σ to find (nearest first).
+    /// Number of new eigenvalues in `[σ, upper_bound)` to find (nearest first).
     pub upper_target: usize,
+    /// Only eigenvalues below it count towards `upper_target` (`+∞` in the sequential driver;
+    /// an interval's upper end, with an exact `upper_target` from inertia counts, in the
+    /// independent-interval driver). Converged pairs just above it may still be locked (they
+    /// deflate the slice) and are discarded by the caller.
+    pub upper_bound: f64,
 }
 
 /// Algorithm parameters of a slice.
@@ -233,21 +238,37 @@ pub(crate) fn run_slice(
         let converged = |i: usize| residual[i] <= settings.tolerance * theta[i].abs();
         let mut lock = Vec::new();
         let mut keep = Vec::new();
-        for &i in &lower_order {
-            if converged(i) {
-                lock.push(i);
-            } else {
-                keep.push(i);
+        let exact_upper = problem.upper_bound.is_finite();
+        if exact_upper {
+            // An interval with exact counts on both sides of a central shift: the wanted pairs
+            // are (about) the largest |θ|, and converged pairs just outside the interval are
+            // locked too (they deflate the slice instead of returning after every restart).
+            let mut order: Vec<usize> = (0..mv).filter(|&i| theta[i] != 0.0).collect();
+            order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+            for (rank, &i) in order.iter().enumerate() {
+                if !converged(i) {
+                    keep.push(i);
+                } else if rank < window {
+                    lock.push(i);
+                }
+            }
+        } else {
+            for &i in &lower_order {
+                if converged(i) {
+                    lock.push(i);
+                } else {
+                    keep.push(i);
+                }
+            }
+            for (rank, &i) in upper_order.iter().enumerate() {
+                if !converged(i) {
+                    keep.push(i);
+                } else if rank < upper_window {
+                    lock.push(i);
+                }
             }
         }
-        for (rank, &i) in upper_order.iter().enumerate() {
-            if !converged(i) {
-                keep.push(i);
-            } else if rank < upper_window {
-                lock.push(i);
-            }
-        }
-        let mut new_lower = 0;
+        let (mut new_lower, mut new_upper) = (0, 0);
         if !lock.is_empty() {
             let y_lock = Mat::from_fn(mv, lock.len(), |i, j| y[(i, lock[j])]);
             let mut x = Mat::<f64>::zeros(n, lock.len());
@@ -264,10 +285,14 @@ pub(crate) fn run_slice(
                 let lambda = sigma + 1.0 / theta[i];
                 locked_values.push(lambda);
                 if lambda < sigma {
+                    if lambda <= problem.lower_bound {
+                        continue;
+                    }
                     lower_found += 1;
                     new_lower += 1;
-                } else {
+                } else if lambda < problem.upper_bound {
                     upper_found += 1;
+                    new_upper += 1;
                 }
             }
         }
@@ -310,21 +335,29 @@ pub(crate) fn run_slice(
         g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);
         mv = p;
 
-        // Missing eigenvalues below σ without any Ritz approximation in the basis (e.g. a
-        // multiplicity larger than the block size): bring in fresh random directions.
-        let lower_missing = problem.lower_needed - lower_found;
-        let lower_candidates = keep
+        // Missing eigenvalues counted by inertia (below σ; above σ too when the upper end is
+        // an exact count) without any Ritz approximation in the basis (e.g. a multiplicity
+        // larger than the block size): bring in fresh random directions.
+        let missing = problem.lower_needed - lower_found
+            + if exact_upper {
+                problem.upper_target.saturating_sub(upper_found)
+            } else {
+                0
+            };
+        let candidates = keep
             .iter()
             .filter(|&&i| {
                 let lambda = sigma + 1.0 / theta[i];
-                lambda < sigma && lambda > problem.lower_bound
+                let upper_end = if exact_upper {
+                    problem.upper_bound
+                } else {
+                    sigma
+                };
+                lambda < upper_end && lambda > problem.lower_bound
             })
             .count();
-        if lower_missing > 0
-            && new_lower == 0
-            && lower_candidates < lower_missing
-            && mu + block <= 3 * block
-        {
+        let newly_locked = new_lower + if exact_upper { new_upper } else { 0 };
+        if missing > 0 && newly_locked == 0 && candidates < missing && mu + block <= 3 * block {
             let current = basis.as_ref().subcols(0, mv + mu);
             let fresh = random_orthonormal_block(
                 n,

@@ -14,10 +14,11 @@
 //! gap right above the k-th eigenvalue, where a factorization alone usually confirms
 //! everything.
 
+use super::interval_slicing::{factor_shifted, interval_sliced, SlicedResult, SpectrumScale};
 use super::krylov_slice::{run_slice, ColumnStore, SliceProblem, SliceSettings};
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
-use crate::convert::{shifted_upper_triangle, square_dimension, upper_triangle_csc};
+use crate::convert::{square_dimension, upper_triangle_csc};
 use crate::dense_eigen::{check_mass, dense_generalized_eigen};
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
@@ -161,8 +162,6 @@ fn relative_residuals(
         .collect()
 }
 
-type SlicedResult = (Vec<f64>, Mat<f64>, usize, usize);
-
 fn sliced(
     a: &sprs::CsMat<f64>,
     full: &SparseColMat<usize, f64>,
@@ -207,6 +206,15 @@ fn sliced(
         })
         .sum();
     let mean_eigenvalue = trace_a / mass.iter().sum::<f64>();
+    if options.concurrent_slices > 0 {
+        let spectrum = SpectrumScale {
+            mean_eigenvalue,
+            scale,
+        };
+        if let Some(result) = interval_sliced(a, full, mass, k, options, &spectrum)? {
+            return Ok(result);
+        }
+    }
     let mut sigma = -1e-7
         * if mean_eigenvalue > 0.0 {
             mean_eigenvalue
@@ -216,29 +224,9 @@ fn sliced(
 
     loop {
         // factor A − σM, nudging σ upwards if it hits an eigenvalue exactly
-        let mut attempts = 0;
-        let ldlt = loop {
-            let shifted = shifted_upper_triangle(a, mass, sigma)?;
-            let result = match factor.take() {
-                None => SparseLdlt::new(shifted.as_ref()),
-                Some(mut f) => {
-                    f.set_parallelism(par);
-                    f.refactor(shifted.as_ref()).map(|_| f)
-                }
-            };
-            factorizations += 1;
-            match result {
-                Ok(mut f) => {
-                    f.set_parallelism(Par::Seq);
-                    break f;
-                }
-                Err(SolverError::Singular { .. }) if attempts < 5 => {
-                    attempts += 1;
-                    sigma += 1e-7 * scale.max(sigma.abs()) * attempts as f64;
-                }
-                Err(e) => return Err(e),
-            }
-        };
+        let (ldlt, used, count) = factor_shifted(a, mass, sigma, factor.take(), scale, par)?;
+        sigma = used;
+        factorizations += count;
         slices += 1;
         let nu = ldlt.inertia().negative;
         let known_below = found_values.iter().filter(|&&v| v < sigma).count();
@@ -281,6 +269,7 @@ fn sliced(
                 deflation: deflation.as_ref(),
                 lower_needed,
                 upper_target,
+                upper_bound: f64::INFINITY,
             };
             let wanted = (lower_needed + upper_target).min(2 * slice_size);
             let settings = SliceSettings {

@@ -1,5 +1,6 @@
 //! Generalized symmetric eigensolver for the lowest eigenpairs of `A x = λ M x`.
 
+mod interval_slicing;
 mod krylov_slice;
 mod lowest;
 mod mass_orthogonal;

@@ -30,7 +30,8 @@ pub struct EigenOptions<'a> {
     pub tolerance: f64,
     /// Number of vectors per Krylov block (and per blocked solve). Default 8.
     pub block_size: usize,
-    /// Target number of new eigenpairs per spectrum slice (one factorization each). Default 128.
+    /// Target number of new eigenpairs per spectrum slice or interval (one factorization
+    /// each). Default 96.
     pub slice_size: usize,
     /// Maximum number of restarts per slice before giving up. Default 1000.
     pub max_restarts: usize,
@@ -41,6 +42,12 @@ pub struct EigenOptions<'a> {
     /// synchronises threads per supernode, which costs more than it gains on surface meshes.
     /// Default `Par::Seq`.
     pub parallelism: Par,
+    /// Number of spectrum intervals solved concurrently, each on its own thread with its own
+    /// factorization. `0` selects the sequential driver (shift after shift, each placed from
+    /// what the previous one found); `≥ 1` cuts the spectrum into intervals with exact
+    /// eigenvalue counts (inertia) first and solves them independently on that many threads
+    /// (the result is the same for every thread count). Default 2.
+    pub concurrent_slices: usize,
     /// Called with a progress report after every restart; `None` for silence.
     pub progress: Option<&'a dyn Fn(&EigenProgress)>,
 }
@@ -51,10 +58,11 @@ impl Default for EigenOptions<'_> {
             seed: 0x7466_7665_6967_656e,
             tolerance: 1e-12,
             block_size: 8,
-            slice_size: 128,
+            slice_size: 96,
             max_restarts: 1000,
             dense_threshold: 400,
             parallelism: Par::Seq,
+            concurrent_slices: 2,
             progress: None,
         }
     }
@@ -70,6 +78,7 @@ impl fmt::Debug for EigenOptions<'_> {
             .field("max_restarts", &self.max_restarts)
             .field("dense_threshold", &self.dense_threshold)
             .field("parallelism", &self.parallelism)
+            .field("concurrent_slices", &self.concurrent_slices)
             .field("progress", &self.progress.map(|_| "callback"))
             .finish()
     }
