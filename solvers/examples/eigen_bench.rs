@@ -1,6 +1,7 @@
 //! Plain timed run of the eigensolver on the benchmark meshes (numbers for the report).
 //!
 //! `cargo run --release -p tvf-solvers --example eigen_bench -- [MESH.obj ...] [--k K] [--kind cotan|cr|both]`
+//! `[--block B] [--slice S] [--interval I] [--concurrent C (0 = sequential driver)] [--threads T]`
 //! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes.
 
 #[path = "../benches/mesh_matrices/mod.rs"]
@@ -39,6 +40,12 @@ fn main() {
                     .next()
                     .and_then(|s| s.parse().ok())
                     .unwrap_or(options.concurrent_slices)
+            }
+            "--interval" => {
+                options.interval_size = args
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or(options.interval_size)
             }
             "--slice" => {
                 options.slice_size = args

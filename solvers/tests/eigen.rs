@@ -92,6 +92,7 @@ fn grid_laplacian_with_irregular_masses() {
     let mass = irregular_masses(a.rows(), 11);
     let options = EigenOptions {
         slice_size: 40,
+        interval_size: 40,
         ..Default::default()
     };
     let result = lowest_eigenpairs(&a, &mass, 100, &options).unwrap();
@@ -126,6 +127,7 @@ fn periodic_grid_multiplicities_are_complete() {
     let mass = vec![1.0; a.rows()];
     let options = |concurrent_slices| EigenOptions {
         slice_size: 48,
+        interval_size: 48,
         block_size: 8,
         concurrent_slices,
         ..Default::default()
@@ -155,6 +157,7 @@ fn multiplicity_larger_than_block_size_is_found() {
         let options = EigenOptions {
             block_size: 2,
             slice_size: 20,
+            interval_size: 20,
             concurrent_slices,
             ..Default::default()
         };
@@ -172,6 +175,7 @@ fn interval_results_do_not_depend_on_the_thread_count() {
     let run = |concurrent_slices| {
         let options = EigenOptions {
             slice_size: 30,
+            interval_size: 30,
             concurrent_slices,
             ..Default::default()
         };

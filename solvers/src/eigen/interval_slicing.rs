@@ -6,7 +6,7 @@
 //!    from Weyl's law for surfaces (`ν(σ)` grows linearly in σ) anchored at the mean eigenvalue
 //!    `trace(A)/trace(M)`, and rescaling by `k/ν` until the count is at least `k` and not
 //!    much more.
-//! 2. *Boundaries.* `m = ⌈ν(σ_top)/slice_size⌉` intervals `(b_i, b_{i+1})` with `b_0 = −∞`,
+//! 2. *Boundaries.* `m = ⌈ν(σ_top)/interval_size⌉` intervals `(b_i, b_{i+1})` with `b_0 = −∞`,
 //!    `b_m = σ_top` and `b_i = σ_top·i/m` in between (equal counts under Weyl's law); the
 //!    counts `c_i = ν(b_{i+1}) − ν(b_i)` are exact (one factorization per boundary).
 //! 3. *Intervals.* Each interval is factored at its midpoint σ (so the eigenvalues at both ends
@@ -193,7 +193,7 @@ pub(crate) fn interval_sliced(
     let n = mass.len();
     let par = options.parallelism;
     let block = options.block_size.clamp(1, n / 8 + 1);
-    let slice_size = options.slice_size.max(2 * block);
+    let interval_size = options.interval_size.max(2 * block);
     let scale = spectrum.scale;
     if spectrum.mean_eigenvalue <= 0.0 {
         return Ok(None);
@@ -241,7 +241,7 @@ pub(crate) fn interval_sliced(
     };
 
     // ---- 2. boundaries with exact counts ----
-    let intervals = nu_top.div_ceil(slice_size).max(1);
+    let intervals = nu_top.div_ceil(interval_size).max(1);
     let mut bounds: Vec<f64> = (0..=intervals)
         .map(|i| sigma_top * i as f64 / intervals as f64)
         .collect();

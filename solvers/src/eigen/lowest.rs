@@ -1,5 +1,10 @@
 //! Driver of the generalized eigensolver: spectrum slicing with Sylvester inertia checks.
 //!
+//! By default (`EigenOptions::concurrent_slices ≥ 1`) the spectrum is cut into intervals with
+//! exact counts and solved concurrently ([`super::interval_slicing`]); if those intervals do not
+//! add up (an eigenvalue within rounding of a boundary), or with `concurrent_slices = 0`, the
+//! sequential driver below is used:
+//!
 //! Shifts σ₀ < σ₁ < … are visited from the bottom of the spectrum. At each shift, `A − σM`
 //! is factored once (`LDLᵀ`); its negative-pivot count ν(σ) is the exact number of
 //! eigenvalues below σ. The Krylov–Schur slice then finds every not-yet-known eigenvalue

@@ -30,8 +30,8 @@ pub struct EigenOptions<'a> {
     pub tolerance: f64,
     /// Number of vectors per Krylov block (and per blocked solve). Default 8.
     pub block_size: usize,
-    /// Target number of new eigenpairs per spectrum slice or interval (one factorization
-    /// each). Default 96.
+    /// Target number of new eigenpairs per spectrum slice of the sequential driver
+    /// (`concurrent_slices = 0`; one factorization each). Default 128.
     pub slice_size: usize,
     /// Maximum number of restarts per slice before giving up. Default 1000.
     pub max_restarts: usize,
@@ -48,6 +48,11 @@ pub struct EigenOptions<'a> {
     /// eigenvalue counts (inertia) first and solves them independently on that many threads
     /// (the result is the same for every thread count). Default 2.
     pub concurrent_slices: usize,
+    /// Target number of eigenpairs per interval of the independent-interval driver
+    /// (`concurrent_slices ≥ 1`; two factorizations each, one at its midpoint and one at its
+    /// upper end). Smaller intervals mean smaller Krylov bases (dense work grows with the
+    /// square of the basis) but more factorizations and more work at interval ends. Default 96.
+    pub interval_size: usize,
     /// Called with a progress report after every restart; `None` for silence.
     pub progress: Option<&'a dyn Fn(&EigenProgress)>,
 }
@@ -58,11 +63,12 @@ impl Default for EigenOptions<'_> {
             seed: 0x7466_7665_6967_656e,
             tolerance: 1e-12,
             block_size: 8,
-            slice_size: 96,
+            slice_size: 128,
             max_restarts: 1000,
             dense_threshold: 400,
             parallelism: Par::Seq,
             concurrent_slices: 2,
+            interval_size: 96,
             progress: None,
         }
     }
@@ -79,6 +85,7 @@ impl fmt::Debug for EigenOptions<'_> {
             .field("dense_threshold", &self.dense_threshold)
             .field("parallelism", &self.parallelism)
             .field("concurrent_slices", &self.concurrent_slices)
+            .field("interval_size", &self.interval_size)
             .field("progress", &self.progress.map(|_| "callback"))
             .finish()
     }
