@@ -100,8 +100,19 @@ fn main() {
                 lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &options).expect("eigensolver");
             let seconds = start.elapsed().as_secs_f64();
             let worst = result.residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+            // M-orthonormality across slices/intervals (outside the timed region)
+            let x = &result.vectors;
+            let mx = faer::Mat::from_fn(n, x.ncols(), |i, j| pair.mass[i] * x[(i, j)]);
+            let gram = x.transpose() * &mx;
+            let mut gram_error = 0.0f64;
+            for j in 0..gram.ncols() {
+                for i in 0..gram.nrows() {
+                    let target = if i == j { 1.0 } else { 0.0 };
+                    gram_error = gram_error.max((gram[(i, j)] - target).abs());
+                }
+            }
             println!(
-                "{} {name}: n = {n}, nnz(L) = {}, analyse+factor {analyse:.3} s, refactor {numeric:.3} s | k = {k}: {seconds:.2} s, {} factorizations, {} solves, λ ∈ [{:.3e}, {:.3e}], max residual {worst:.1e}",
+                "{} {name}: n = {n}, nnz(L) = {}, analyse+factor {analyse:.3} s, refactor {numeric:.3} s | k = {k}: {seconds:.2} s, {} factorizations, {} solves, λ ∈ [{:.3e}, {:.3e}], max residual {worst:.1e}, max |XᵀMX − I| {gram_error:.1e}",
                 mesh.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
                 ldlt.factor_len(),
                 result.factorizations,

@@ -26,13 +26,15 @@
 //! least the distance across a boundary, which lies in a gap with overwhelming probability).
 
 use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
+use super::mass_orthogonal::mass_inner;
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::types::{EigenOptions, EigenProgress};
 use crate::convert::shifted_upper_triangle;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
+use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMat;
-use faer::{Mat, Par};
+use faer::{Accum, Mat, Par};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -362,12 +364,13 @@ pub(crate) fn interval_sliced(
             });
         }
     };
-    let solved = match run_jobs(intervals, threads, &solve_interval, &mut on_message) {
+    let mut solved = match run_jobs(intervals, threads, &solve_interval, &mut on_message) {
         Ok(solved) => solved,
         Err(SolverError::NoConvergence { .. }) => return Ok(None),
         Err(e) => return Err(e),
     };
 
+    orthogonalize_neighbours(&mut solved, mass, par);
     let mut values = Vec::with_capacity(nu_top);
     let mut vectors = Mat::<f64>::zeros(n, k);
     let mut solves = 0;
@@ -390,6 +393,37 @@ pub(crate) fn interval_sliced(
     }
     values.truncate(k);
     Ok(Some((values, vectors, factorizations, solves)))
+}
+
+/// Restores M-orthogonality across interval boundaries: `X_i ← X_i − X_p (X_pᵀ M X_i)` with
+/// `p` the previous non-empty interval. Eigenvectors of different intervals are orthogonal
+/// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (measured:
+/// `|XᵀMX − I|` of 3·10⁻¹⁰ for the Crouzeix–Raviart bunny at k = 500 without this, 2·10⁻¹² with
+/// the sequential driver, which deflates). Intervals further apart are separated by at least
+/// an interval's width. Costs two `n × s × s` products per boundary; the change of each vector
+/// is of the size of that error, so residuals and in-interval orthonormality stay as they were.
+fn orthogonalize_neighbours(parts: &mut [IntervalResult], mass: &[f64], par: Par) {
+    let mut previous: Option<usize> = None;
+    for i in 0..parts.len() {
+        if parts[i].values.is_empty() {
+            continue;
+        }
+        if let Some(p) = previous {
+            let (before, after) = parts.split_at_mut(i);
+            let earlier = before[p].vectors.as_ref();
+            let current = &mut after[0].vectors;
+            let overlap = mass_inner(earlier, mass, current.as_ref(), par);
+            matmul(
+                current.as_mut(),
+                Accum::Add,
+                earlier,
+                overlap.as_ref(),
+                -1.0,
+                par,
+            );
+        }
+        previous = Some(i);
+    }
 }
 
 fn misclassified(job: usize) -> SolverError {
