@@ -26,14 +26,14 @@ enum Paper {
     /// Example: tvf-papers brandt2017 --meshes ../shared/meshes --out papers/brandt2017
     Brandt2017 {
         /// Folder with the paper's meshes (hand.obj, rocker-arm.obj, bunny-closed.obj,
-        /// bumpy-torus.obj; with --large also bumpy-torus-x4.obj and armadillo-x4.obj).
+        /// bumpy-torus.obj, bumpy-torus-x4.obj; with --large also armadillo-x4.obj).
         /// Missing meshes are reported and skipped.
         #[arg(long)]
         meshes: PathBuf,
         /// Output folder for RESULTS.md, README.md and the pictures.
         #[arg(long)]
         out: PathBuf,
-        /// Also run the paper-scale meshes (bumpy-torus-x4, armadillo-x4): Table 1 only, long.
+        /// Also run the largest paper-scale mesh (armadillo-x4): Table 1 only, long.
         #[arg(long)]
         large: bool,
         /// No progress lines on stderr.
