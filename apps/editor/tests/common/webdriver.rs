@@ -87,8 +87,13 @@ impl Browser {
             format!("--window-size={width},{height}"),
             format!("--user-data-dir={}", browser._profile.path().display()),
         ];
+        // Page load strategy "none": navigation returns at once and the tests wait for the page's
+        // own readiness flag (`document.body.dataset.ready`). With the default strategy,
+        // chromedriver 156.0.8078.79 never finished navigating to the editor in a 1200×800
+        // window (the page itself was loaded and ready within a second).
         let capabilities = json!({"capabilities": {"alwaysMatch": {
             "browserName": "chrome",
+            "pageLoadStrategy": "none",
             "goog:chromeOptions": {"binary": chromium.display().to_string(), "args": args}
         }}});
         let session = browser.request("POST", "/session", Some(capabilities))?;
