@@ -21,4 +21,3 @@ pub fn write_atomically_with(
     // One helper for the whole workspace (temporary file with ordinary permissions, rename).
     tvf_core::io::write_atomically(path, |writer| fill(writer))
 }
-
