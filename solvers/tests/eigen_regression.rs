@@ -11,118 +11,14 @@
 //!   exactly double.
 use faer::Mat;
 use sprs::{CsMat, TriMat};
-use std::collections::HashMap;
+use tvf_core::generate::{icosphere, torus};
+use tvf_core::geometry::{cross, dot, sub};
+use tvf_core::SurfaceMesh;
 use tvf_solvers::{dense_generalized_eigen, lowest_eigenpairs, EigenOptions};
 
-type Vec3 = [f64; 3];
-
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn unit(a: Vec3) -> Vec3 {
-    let l = dot(a, a).sqrt();
-    [a[0] / l, a[1] / l, a[2] / l]
-}
-
-/// Unit icosphere: icosahedron subdivided `level` times (midpoints projected to the sphere).
-fn icosphere(level: usize) -> (Vec<Vec3>, Vec<[usize; 3]>) {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut positions: Vec<Vec3> = [
-        [-1.0, t, 0.0],
-        [1.0, t, 0.0],
-        [-1.0, -t, 0.0],
-        [1.0, -t, 0.0],
-        [0.0, -1.0, t],
-        [0.0, 1.0, t],
-        [0.0, -1.0, -t],
-        [0.0, 1.0, -t],
-        [t, 0.0, -1.0],
-        [t, 0.0, 1.0],
-        [-t, 0.0, -1.0],
-        [-t, 0.0, 1.0],
-    ]
-    .iter()
-    .map(|&p| unit(p))
-    .collect();
-    let mut faces: Vec<[usize; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..level {
-        let mut midpoint: HashMap<(usize, usize), usize> = HashMap::new();
-        let mut mid = |a: usize, b: usize, positions: &mut Vec<Vec3>| {
-            *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
-                let (p, q) = (positions[a], positions[b]);
-                positions.push(unit([p[0] + q[0], p[1] + q[1], p[2] + q[2]]));
-                positions.len() - 1
-            })
-        };
-        let mut next = Vec::with_capacity(4 * faces.len());
-        for &[a, b, c] in &faces {
-            let ab = mid(a, b, &mut positions);
-            let bc = mid(b, c, &mut positions);
-            let ca = mid(c, a, &mut positions);
-            next.extend_from_slice(&[[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        faces = next;
-    }
-    (positions, faces)
-}
-
-/// Torus of revolution (major radius `r_major`, tube radius `r_minor`), `around × tube` grid,
-/// each quad split into two triangles. Genus 1, closed.
-fn torus(r_major: f64, r_minor: f64, around: usize, tube: usize) -> (Vec<Vec3>, Vec<[usize; 3]>) {
-    let mut positions = Vec::with_capacity(around * tube);
-    for i in 0..around {
-        let u = 2.0 * std::f64::consts::PI * i as f64 / around as f64;
-        for j in 0..tube {
-            let v = 2.0 * std::f64::consts::PI * j as f64 / tube as f64;
-            let ring = r_major + r_minor * v.cos();
-            positions.push([ring * u.cos(), ring * u.sin(), r_minor * v.sin()]);
-        }
-    }
-    let id = |i: usize, j: usize| (i % around) * tube + (j % tube);
-    let mut faces = Vec::with_capacity(2 * around * tube);
-    for i in 0..around {
-        for j in 0..tube {
-            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-            faces.push([a, b, c]);
-            faces.push([a, c, d]);
-        }
-    }
-    (positions, faces)
-}
-
 /// Cotan stiffness (integrated, positive semidefinite) and barycentric lumped masses.
-fn cotan_laplacian(positions: &[Vec3], faces: &[[usize; 3]]) -> (CsMat<f64>, Vec<f64>) {
+fn cotan_laplacian(mesh: &SurfaceMesh) -> (CsMat<f64>, Vec<f64>) {
+    let (positions, faces) = (mesh.positions(), mesh.faces());
     let n = positions.len();
     let mut stiffness = TriMat::new((n, n));
     let mut mass = vec![0.0; n];
@@ -229,8 +125,7 @@ fn multiplicities(values: &[f64], count: usize) -> Vec<usize> {
 
 #[test]
 fn icosphere_clusters_straddling_slices_converge() {
-    let (positions, faces) = icosphere(3);
-    let (a, mass) = cotan_laplacian(&positions, &faces);
+    let (a, mass) = cotan_laplacian(&icosphere(3));
     assert_eq!(mass.len(), 642);
     // the test exercises exact degeneracy: the l = 1 cluster is an exact triple
     let (oracle, _) = dense_generalized_eigen(dense(&a).as_ref(), &mass).expect("dense oracle");
@@ -243,8 +138,8 @@ fn icosphere_clusters_straddling_slices_converge() {
 
 #[test]
 fn torus_double_eigenvalues_are_complete() {
-    let (positions, faces) = torus(1.0, 0.4, 36, 18);
-    let (a, mass) = cotan_laplacian(&positions, &faces);
+    let mesh = torus(1.0, 0.4, 36, 18).expect("valid torus parameters");
+    let (a, mass) = cotan_laplacian(&mesh);
     assert_eq!(mass.len(), 648);
     let (oracle, _) = dense_generalized_eigen(dense(&a).as_ref(), &mass).expect("dense oracle");
     let levels = multiplicities(&oracle, 60);
