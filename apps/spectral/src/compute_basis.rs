@@ -3,6 +3,7 @@
 
 use crate::basis_request::{BasisRequest, BasisSize, BasisStage};
 use crate::eigenfunction_basis::EigenfunctionBasis;
+use crate::family_split::split_families;
 use crate::harmonic_fields::harmonic_fields;
 use crate::scalar_spectrum::{ScalarEigenpairs, ScalarSpectrum};
 use crate::{BasisError, FieldFamily, SpectralBasis};
@@ -37,8 +38,23 @@ pub struct BasisReport {
     pub factorizations: usize,
     /// Single-vector solves used by the eigensolver.
     pub solves: usize,
-    /// Eigensolver calls (more than two when a family needed more eigenpairs than estimated).
+    /// Eigensolver calls: one per family, each with its exact count.
     pub eigensolver_calls: usize,
+    /// For [`BasisSize::Fields`] and [`BasisSize::MaxEigenvalue`] split by inertia counts: the
+    /// threshold `t` (units of λ, 1/length²) such that exactly the non-zero eigenvalues of both
+    /// families strictly below `t` were computed. `None` when the request fixed the counts
+    /// (pairs, complete, tiny meshes solved densely).
+    pub split_threshold: Option<f64>,
+    /// Sparse `LDLᵀ` factorizations spent counting eigenvalues below candidate thresholds.
+    pub counting_factorizations: usize,
+    /// Wall-clock seconds spent counting (included in [`BasisReport::seconds`]).
+    pub counting_seconds: f64,
+    /// Non-zero eigenpairs of the potential problem the eigensolver computed (at least
+    /// [`BasisReport::integrable_count`]; the difference was computed in vain).
+    pub integrable_computed: usize,
+    /// Non-zero eigenpairs of the co-potential problem the eigensolver computed (at least
+    /// [`BasisReport::cointegrable_count`]).
+    pub cointegrable_computed: usize,
     /// Wall-clock seconds of the whole computation.
     pub seconds: f64,
 }
@@ -57,8 +73,11 @@ impl BasisReport {
 ///
 /// Steps (Section 6): the `2g` harmonic fields by projecting seeded random fields; the lowest
 /// eigenpairs `(λ, φ)` of `(d0ᵀ M1 d0, M0)` and `(μ, ψ)` of `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` (sparse
-/// spectrum-slicing Lanczos, dense for small problems), the constant eigenfunctions (one per
-/// connected component, found by count) dropped; by Lemma 1 `Φ = d0 φ / ‖d0 φ‖` and
+/// spectrum-slicing Lanczos, dense for small problems, both at once), the constant
+/// eigenfunctions (one per connected component, found by count) dropped; for `Fields` and
+/// `MaxEigenvalue` requests each family's number of eigenpairs is counted exactly beforehand by
+/// Sylvester's law of inertia (every eigenvalue of both below one threshold), so each family is
+/// solved once and the selection is provably the lowest of the union; by Lemma 1 `Φ = d0 φ / ‖d0 φ‖` and
 /// `Ψ = J G_co ψ / ‖J G_co ψ‖` are eigenfields of `L` with eigenvalues `λ`, `μ`.
 ///
 /// Errors: [`BasisError::Boundary`] on a mesh with boundary, [`BasisError::InvalidRequest`],
@@ -115,13 +134,9 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
     );
     let h = complex.harmonic_dimension();
     let area: f64 = complex.m1().iter().sum::<f64>() / 2.0;
-    let (mut ka, mut kb) = initial_counts(
-        request.size,
-        h,
-        exact.available(),
-        co_exact.available(),
-        area,
-    )?;
+    // Exact counts per family up front (inertia), so each family is solved once.
+    let split = split_families(request.size, h, &exact, &co_exact, area)?;
+    let (ka, kb) = (split.potential, split.co_potential);
 
     request.report(BasisStage::Harmonic, 0, h);
     let harmonic = harmonic_fields(complex, request.seed)?;
@@ -131,75 +146,27 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
         harmonic_dimension: h,
         harmonic_orthonormality_error: harmonic.orthonormality_error,
         harmonic_kernel_residual: harmonic.kernel_residual,
+        split_threshold: split.threshold,
+        counting_factorizations: split.factorizations,
+        counting_seconds: split.seconds,
         ..BasisReport::default()
     };
     let family_seed =
         |stage: BasisStage| request.seed ^ (stage as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    let solve =
-        |side: &ScalarSpectrum, count: usize, stage: BasisStage, report: &mut BasisReport| {
-            let progress = |p: &tvf_solvers::EigenProgress| {
-                request.report(stage, p.found.saturating_sub(components).min(count), count)
-            };
-            request.report(stage, 0, count);
-            let pairs = side.lowest_nonzero(count, family_seed(stage), &progress)?;
-            request.report(stage, pairs.values.len(), count);
-            report.add_solver_counts(&pairs);
-            Ok::<ScalarEigenpairs, BasisError>(pairs)
-        };
-    let (first_a, first_b) = solve_both_families(
+    let (a, b) = solve_both_families(
         (&exact, ka, family_seed(BasisStage::Integrable)),
         (&co_exact, kb, family_seed(BasisStage::Cointegrable)),
         components,
         request,
     );
-    let (mut a, mut b) = (first_a?, first_b?);
+    let (a, b) = (a?, b?);
     report.add_solver_counts(&a);
     report.add_solver_counts(&b);
-    // Fields(d) and MaxEigenvalue guess each family's share; grow a family while the requested
-    // range may hold eigenvalues it has not computed yet.
-    loop {
-        let target = match request.size {
-            BasisSize::Fields(d) => {
-                let m = d.saturating_sub(h);
-                let mut merged: Vec<f64> = a.values.iter().chain(&b.values).copied().collect();
-                merged.sort_by(f64::total_cmp);
-                if m == 0 {
-                    break;
-                }
-                merged[m - 1]
-            }
-            BasisSize::MaxEigenvalue(bound) => bound,
-            BasisSize::Pairs(_) | BasisSize::Complete => break,
-        };
-        let inclusive = matches!(request.size, BasisSize::MaxEigenvalue(_));
-        let short = |pairs: &ScalarEigenpairs, side: &ScalarSpectrum| {
-            let last = pairs.values.last().copied().unwrap_or(0.0);
-            pairs.values.len() < side.available()
-                && (last < target || (inclusive && last == target))
-        };
-        let grow = |k: usize, pairs: &ScalarEigenpairs, side: &ScalarSpectrum| {
-            let last = pairs
-                .values
-                .last()
-                .copied()
-                .unwrap_or(0.0)
-                .max(f64::MIN_POSITIVE);
-            let estimate = (k as f64 * (target / last) * 1.15).ceil() as usize + 8;
-            estimate.max(k + 8).min(side.available())
-        };
-        let (short_a, short_b) = (short(&a, &exact), short(&b, &co_exact));
-        if !short_a && !short_b {
-            break;
-        }
-        if short_a {
-            ka = grow(ka, &a, &exact);
-            a = solve(&exact, ka, BasisStage::Integrable, &mut report)?;
-        }
-        if short_b {
-            kb = grow(kb, &b, &co_exact);
-            b = solve(&co_exact, kb, BasisStage::Cointegrable, &mut report)?;
-        }
-    }
+    // Fails loudly if the eigensolver disagrees with the counts the selection below relies on.
+    split.check(&exact, &a.values, ka)?;
+    split.check(&co_exact, &b.values, kb)?;
+    report.integrable_computed = a.values.len();
+    report.cointegrable_computed = b.values.len();
 
     // Merge, sort by eigenvalue (stable: harmonic first), select.
     let mut entries: Vec<(f64, FieldFamily, usize)> = (0..harmonic.fields.ncols())
@@ -306,52 +273,6 @@ fn solve_both_families(
         report();
         (a, b)
     })
-}
-
-/// How many non-zero eigenpairs of each family to compute first.
-fn initial_counts(
-    size: BasisSize,
-    harmonic: usize,
-    available_a: usize,
-    available_b: usize,
-    area: f64,
-) -> Result<(usize, usize), BasisError> {
-    let total = harmonic + available_a + available_b;
-    match size {
-        BasisSize::Pairs(k) => Ok((k.min(available_a), k.min(available_b))),
-        BasisSize::Complete => Ok((available_a, available_b)),
-        BasisSize::Fields(d) => {
-            if d > total {
-                return Err(BasisError::InvalidRequest(format!(
-                    "{d} fields requested, but the field space has only {total} eigenfields"
-                )));
-            }
-            let m = d.saturating_sub(harmonic);
-            if m == 0 {
-                return Ok((0, 0));
-            }
-            let guess = m.div_ceil(2) + (m / 10).max(8);
-            Ok((
-                guess.max(m.saturating_sub(available_b)).min(available_a),
-                guess.max(m.saturating_sub(available_a)).min(available_b),
-            ))
-        }
-        BasisSize::MaxEigenvalue(bound) => {
-            if !bound.is_finite() || bound < 0.0 {
-                return Err(BasisError::InvalidRequest(format!(
-                    "eigenvalue bound {bound} must be finite and non-negative"
-                )));
-            }
-            // Weyl's law: a scalar Laplacian has about area·λ/(4π) eigenvalues below λ.
-            let weyl = (area * bound / (4.0 * std::f64::consts::PI) * 1.2).ceil();
-            let guess = if weyl.is_finite() {
-                weyl as usize + 8
-            } else {
-                usize::MAX
-            };
-            Ok((guess.min(available_a), guess.min(available_b)))
-        }
-    }
 }
 
 /// The first `count` columns of `functions`, each divided by the `M1` norm of `gradient · φ`,

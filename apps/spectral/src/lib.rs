@@ -38,6 +38,7 @@ mod compression_error;
 mod compute_basis;
 mod eigen_refinement;
 mod eigenfunction_basis;
+mod family_split;
 mod field_io;
 mod filter;
 mod filter_response;

@@ -3,10 +3,12 @@
 
 use crate::eigen_refinement::refine_eigenpairs;
 use crate::BasisError;
+use faer::sparse::SparseColMat;
 use faer::Mat;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{Eigenproblem, NO_COMPONENT};
+use tvf_solvers::convert::shifted_upper_triangle;
 use tvf_solvers::{lowest_eigenpairs, EigenOptions, EigenProgress};
 
 /// The eigenproblem `A x = λ M x` of one function space, restricted to the nodes some face uses
@@ -86,6 +88,41 @@ impl ScalarSpectrum {
     /// Number of non-zero eigenvalues the problem has: used nodes minus components.
     pub fn available(&self) -> usize {
         self.mass.len().saturating_sub(self.components)
+    }
+
+    /// Dimension `n` of `A` and `M` (the used nodes).
+    pub fn dimension(&self) -> usize {
+        self.mass.len()
+    }
+
+    /// Dimension of the kernel of `A`: one constant per connected component.
+    pub fn components(&self) -> usize {
+        self.components
+    }
+
+    /// The upper triangle of the `n × n` matrix `A − shift · M` (faer CSC, every diagonal entry
+    /// stored, so the pattern does not depend on `shift`), for inertia counts: its negative
+    /// pivots are the eigenvalues of `(A, M)` strictly below `shift`.
+    pub fn shifted_upper(&self, shift: f64) -> Result<SparseColMat<usize, f64>, BasisError> {
+        shifted_upper_triangle(&self.stiffness, &self.mass, shift).map_err(|source| {
+            BasisError::Eigen {
+                problem: self.name,
+                source,
+            }
+        })
+    }
+
+    /// An upper bound of every eigenvalue of `(A, M)` (units of `λ`, 1/length²): Gershgorin's
+    /// bound `max_i Σ_j |A_ij| / M_ii` on `M⁻¹A`, which has the same eigenvalues.
+    pub fn eigenvalue_upper_bound(&self) -> f64 {
+        let mut row_sums = vec![0.0; self.mass.len()];
+        for (&value, (i, _)) in self.stiffness.iter() {
+            row_sums[i] += value.abs();
+        }
+        row_sums
+            .iter()
+            .zip(&self.mass)
+            .fold(0.0, |bound: f64, (sum, mass)| bound.max(sum / mass))
     }
 
     /// The lowest `count ≤ available()` non-zero eigenpairs. The `components` lowest eigenpairs

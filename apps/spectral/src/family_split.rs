@@ -1,0 +1,333 @@
+//! [`split_families`]: how many non-zero eigenpairs of the potential and of the co-potential
+//! Laplacian a basis request needs, counted exactly up front by Sylvester's law of inertia.
+//!
+//! The number of eigenvalues of `(A, M)` strictly below `t` equals the number of negative pivots
+//! of an `LDLᵀ` factorization of `A − tM`. If the two families together have at least `m`
+//! non-zero eigenvalues below `t`, solving each family for exactly its own count computes every
+//! eigenvalue of both below `t`, hence provably the `m` lowest of their union: no family has to
+//! be guessed generously or solved a second time.
+
+use crate::basis_request::BasisSize;
+use crate::scalar_spectrum::ScalarSpectrum;
+use crate::BasisError;
+use faer::sparse::SparseColMatRef;
+use faer::Par;
+use std::f64::consts::PI;
+use std::time::Instant;
+use tvf_solvers::{EigenOptions, SolverError, SparseLdlt};
+
+/// Relative margin above a [`BasisSize::MaxEigenvalue`] bound at which eigenvalues are counted,
+/// so that an eigenvalue equal to the bound up to round-off is computed (and then kept, the
+/// bound being inclusive, if its computed value is `≤ bound`).
+const INCLUSIVE_MARGIN: f64 = 1e-9;
+/// Relative tolerance of [`FamilySplit::check`]: a computed eigenvalue counted below `t` may come
+/// out of the eigensolver this much above `t` (eigenvalues are accurate to ~1e-12 relative).
+const COVERAGE_TOLERANCE: f64 = 1e-8;
+/// Inertia counts (each one factorization per family) the threshold search may spend.
+const MAX_EVALUATIONS: usize = 12;
+/// Evaluations after which the search bisects instead of interpolating (interpolation on a
+/// staircase can stall at a cluster of eigenvalues).
+const BISECT_AFTER: usize = 7;
+/// Upward nudges of a shift that lands on an eigenvalue (a zero pivot) before giving up.
+const MAX_NUDGES: i32 = 8;
+
+/// How many non-zero eigenpairs of each family to compute, and what counting them cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct FamilySplit {
+    /// Non-zero eigenpairs of the potential problem `(d0ᵀ M1 d0, M0)`.
+    pub potential: usize,
+    /// Non-zero eigenpairs of the co-potential problem `(d1 M1⁻¹ d1ᵀ, M2⁻¹)`.
+    pub co_potential: usize,
+    /// When the counts come from inertia: the threshold `t` (units of λ, 1/length²) such that the
+    /// counts are exactly the non-zero eigenvalues of each family strictly below `t`. `None` for
+    /// counts fixed by the request (pairs, complete, tiny problems solved densely).
+    pub threshold: Option<f64>,
+    /// Numeric `LDLᵀ` factorizations spent counting (both families).
+    pub factorizations: usize,
+    /// Wall-clock seconds spent counting.
+    pub seconds: f64,
+}
+
+impl FamilySplit {
+    fn fixed(potential: usize, co_potential: usize) -> Self {
+        Self {
+            potential,
+            co_potential,
+            threshold: None,
+            factorizations: 0,
+            seconds: 0.0,
+        }
+    }
+
+    /// Checks that the eigensolver's non-zero eigenvalues `values` (ascending) of `family` are
+    /// the `requested` ones this split counted: as many as requested and, for inertia counts,
+    /// all below the threshold. Any other outcome means the request is not covered.
+    ///
+    /// Errors: [`BasisError::Eigen`] (with [`SolverError::NoConvergence`]) describing the gap.
+    pub fn check(
+        &self,
+        family: &ScalarSpectrum,
+        values: &[f64],
+        requested: usize,
+    ) -> Result<(), BasisError> {
+        let uncovered = |reason: String| BasisError::Eigen {
+            problem: family.name,
+            source: SolverError::NoConvergence { reason },
+        };
+        if values.len() != requested {
+            return Err(uncovered(format!(
+                "{requested} eigenpairs were needed to cover the request, but {} were computed",
+                values.len()
+            )));
+        }
+        if let (Some(t), Some(&last)) = (self.threshold, values.last()) {
+            if last > t * (1.0 + COVERAGE_TOLERANCE) {
+                return Err(uncovered(format!(
+                    "the inertia count put {requested} non-zero eigenvalues below {t:e}, but the \
+                     eigensolver's {requested}-th is {last:e}: eigenvalues below it are missing"
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The number of non-zero eigenpairs of each family that `size` needs (`harmonic` = `2g`
+/// harmonic fields come first; `area` = total surface area, for Weyl's law).
+///
+/// - `Pairs(k)`: `k` of each (fewer if a family has fewer); `Complete`: all of both.
+/// - `Fields(d)`, `m = d − 2g`: a threshold `t` with at least `m` non-zero eigenvalues of the
+///   two families below it, found by inertia counts (both families factored in parallel) from
+///   Weyl's estimate `t ≈ 2πm / area` by secant steps and bisection, aiming at an excess of at
+///   most `max(1, m/250)` eigenpairs and stopping early once the bracket around the `m`-th
+///   eigenvalue is about one eigenvalue wide (Weyl), when a cluster straddles position `m`;
+///   each family's count below `t`.
+/// - `MaxEigenvalue(bound)`: each family's count of non-zero eigenvalues below
+///   `bound · (1 + 1e-9)` (one count).
+///
+/// Tiny problems (both at most the eigensolver's dense threshold) are solved completely: a dense
+/// eigensolver finds all eigenpairs at the cost of a few, so counting would only add time.
+///
+/// Errors: [`BasisError::InvalidRequest`] for more fields than the space has or a negative or
+/// non-finite bound; [`BasisError::Eigen`] if a factorization fails.
+pub(crate) fn split_families(
+    size: BasisSize,
+    harmonic: usize,
+    potential: &ScalarSpectrum,
+    co_potential: &ScalarSpectrum,
+    area: f64,
+) -> Result<FamilySplit, BasisError> {
+    let start = Instant::now();
+    let (available_a, available_b) = (potential.available(), co_potential.available());
+    let dense_threshold = EigenOptions::default().dense_threshold;
+    let tiny =
+        potential.dimension() <= dense_threshold && co_potential.dimension() <= dense_threshold;
+    let mut counter = PairCounter {
+        potential: InertiaCounter::new(potential),
+        co_potential: InertiaCounter::new(co_potential),
+        factorizations: 0,
+    };
+    // Above every eigenvalue of both families: all eigenvalues are below it, uncounted.
+    let ceiling = || {
+        potential
+            .eigenvalue_upper_bound()
+            .max(co_potential.eigenvalue_upper_bound())
+            * (1.0 + INCLUSIVE_MARGIN)
+    };
+    let (threshold, counts) = match size {
+        BasisSize::Pairs(k) => {
+            return Ok(FamilySplit::fixed(k.min(available_a), k.min(available_b)))
+        }
+        BasisSize::Complete => return Ok(FamilySplit::fixed(available_a, available_b)),
+        BasisSize::Fields(d) => {
+            let total = harmonic + available_a + available_b;
+            if d > total {
+                return Err(BasisError::InvalidRequest(format!(
+                    "{d} fields requested, but the field space has only {total} eigenfields"
+                )));
+            }
+            let m = d.saturating_sub(harmonic);
+            if m == 0 {
+                return Ok(FamilySplit::fixed(0, 0));
+            }
+            if tiny || m >= available_a + available_b {
+                return Ok(FamilySplit::fixed(available_a, available_b));
+            }
+            counter.threshold_for(m, area, ceiling())?
+        }
+        BasisSize::MaxEigenvalue(bound) => {
+            if !bound.is_finite() || bound < 0.0 {
+                return Err(BasisError::InvalidRequest(format!(
+                    "eigenvalue bound {bound} must be finite and non-negative"
+                )));
+            }
+            if bound == 0.0 {
+                // Every non-zero eigenvalue of a positive semidefinite problem is positive.
+                return Ok(FamilySplit::fixed(0, 0));
+            }
+            let t = bound * (1.0 + INCLUSIVE_MARGIN);
+            if tiny || t >= ceiling() {
+                return Ok(FamilySplit::fixed(available_a, available_b));
+            }
+            let (shift, a, b) = counter.nonzero_below(t)?;
+            (shift, (a, b))
+        }
+    };
+    Ok(FamilySplit {
+        potential: counts.0,
+        co_potential: counts.1,
+        threshold: Some(threshold),
+        factorizations: counter.factorizations,
+        seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Eigenvalue counts of one family by the inertia of `A − tM`, the symbolic analysis of the
+/// first factorization reused for every later shift.
+struct InertiaCounter<'a> {
+    spectrum: &'a ScalarSpectrum,
+    factorization: Option<SparseLdlt>,
+}
+
+impl<'a> InertiaCounter<'a> {
+    fn new(spectrum: &'a ScalarSpectrum) -> Self {
+        Self {
+            spectrum,
+            factorization: None,
+        }
+    }
+
+    /// Eigenvalues of `(A, M)` strictly below `shift`, kernel included; `None` if `shift` is an
+    /// eigenvalue to working precision (a zero pivot).
+    fn below(&mut self, shift: f64) -> Result<Option<usize>, BasisError> {
+        let upper = self.spectrum.shifted_upper(shift)?;
+        match self.factor(upper.as_ref()) {
+            Ok(factorization) => {
+                let inertia = factorization.inertia();
+                Ok((inertia.zero == 0).then_some(inertia.negative))
+            }
+            Err(SolverError::Singular { .. }) => Ok(None),
+            Err(source) => Err(BasisError::Eigen {
+                problem: self.spectrum.name,
+                source,
+            }),
+        }
+    }
+
+    /// `LDLᵀ` of `upper`: a numeric refactorization after the first time.
+    fn factor(
+        &mut self,
+        upper: SparseColMatRef<'_, usize, f64>,
+    ) -> Result<&SparseLdlt, SolverError> {
+        let factorization = match self.factorization.take() {
+            Some(mut factorization) => match factorization.refactor(upper) {
+                Ok(()) => factorization,
+                Err(error) => {
+                    self.factorization = Some(factorization);
+                    return Err(error);
+                }
+            },
+            None => {
+                let mut factorization = SparseLdlt::new(upper)?;
+                // The two families are counted on two threads already.
+                factorization.set_parallelism(Par::Seq);
+                factorization
+            }
+        };
+        Ok(self.factorization.insert(factorization))
+    }
+}
+
+/// Counts of both families at the same shift, computed in parallel.
+struct PairCounter<'a> {
+    potential: InertiaCounter<'a>,
+    co_potential: InertiaCounter<'a>,
+    /// Numeric factorizations so far (both families).
+    factorizations: usize,
+}
+
+impl PairCounter<'_> {
+    /// `(shift, a, b)`: the non-zero eigenvalues `a` of the potential and `b` of the
+    /// co-potential problem strictly below `shift`, where `shift ≥ t` is `t`, nudged upward by
+    /// growing relative steps from 1e-12 while it is an eigenvalue to working precision.
+    fn nonzero_below(&mut self, t: f64) -> Result<(f64, usize, usize), BasisError> {
+        let mut shift = t;
+        for attempt in 0..MAX_NUDGES {
+            let (potential, co_potential) = (&mut self.potential, &mut self.co_potential);
+            let (a, b) = rayon::join(|| potential.below(shift), || co_potential.below(shift));
+            self.factorizations += 2;
+            if let (Some(a), Some(b)) = (a?, b?) {
+                return Ok((
+                    shift,
+                    a.saturating_sub(self.potential.spectrum.components()),
+                    b.saturating_sub(self.co_potential.spectrum.components()),
+                ));
+            }
+            shift += shift.abs() * 1e-12 * 16f64.powi(attempt);
+        }
+        Err(BasisError::Eigen {
+            problem: self.potential.spectrum.name,
+            source: SolverError::NoConvergence {
+                reason: format!(
+                    "every shift tried near {t:e} is an eigenvalue to working precision (zero \
+                     pivots), so the eigenvalues below it cannot be counted"
+                ),
+            },
+        })
+    }
+
+    /// `(t, (a, b))` with `a + b ≥ m` non-zero eigenvalues of the two families below `t` and
+    /// `a + b − m` small (see [`split_families`]). `ceiling` is above every eigenvalue of both.
+    fn threshold_for(
+        &mut self,
+        m: usize,
+        area: f64,
+        ceiling: f64,
+    ) -> Result<(f64, (usize, usize)), BasisError> {
+        let all = (
+            self.potential.spectrum.available(),
+            self.co_potential.spectrum.available(),
+        );
+        let slack = (m / 250).max(1);
+        let goal = m as f64 + slack as f64 / 2.0;
+        // Lowest shift with at least m below it (the ceiling has all), highest with fewer.
+        let mut high = (ceiling, all);
+        let mut low: Option<(f64, usize)> = None;
+        // Weyl's law on a closed surface: each family has about area·t/(4π) eigenvalues below t.
+        let mut t = (goal * 2.0 * PI / area).min(0.5 * ceiling);
+        for evaluation in 0..MAX_EVALUATIONS {
+            let (shift, a, b) = self.nonzero_below(t)?;
+            let count = a + b;
+            if count >= m {
+                if shift < high.0 {
+                    high = (shift, (a, b));
+                }
+                if count <= m + slack {
+                    break;
+                }
+            } else if low.is_none_or(|(l, _)| shift > l) {
+                low = Some((shift, count));
+            }
+            let high_count = high.1 .0 + high.1 .1;
+            let floor = low.map_or(0.0, |(l, _)| l);
+            if (high.0 - floor) * goal <= high.0 {
+                // By Weyl's law the bracket holds about one eigenvalue: a narrower one would
+                // not remove excess (a cluster of close eigenvalues straddles position m).
+                break;
+            }
+            t = match low {
+                // Secant step between the bracket's ends (the count is nearly linear in t).
+                Some((l, lc)) if high.0 < ceiling => {
+                    l + (goal - lc as f64) * (high.0 - l) / (high_count - lc) as f64
+                }
+                // Counts grow about in proportion to t (Weyl): rescale the last shift.
+                _ if count > 0 => shift * goal / count as f64,
+                _ => 4.0 * shift,
+            };
+            if evaluation + 1 >= BISECT_AFTER || !(t > floor && t < high.0) {
+                t = 0.5 * (floor + high.0);
+            }
+        }
+        Ok((high.0, high.1))
+    }
+}
