@@ -1,7 +1,7 @@
 //! Plain timed run of the eigensolver on the benchmark meshes (numbers for the report).
 //!
 //! `cargo run --release -p tvf-solvers --example eigen_bench -- [MESH.obj ...] [--k K] [--kind cotan|cr|both]`
-//! `[--block B] [--slice S] [--interval I] [--concurrent C (0 = sequential driver)] [--threads T]`
+//! `[--block B] [--slice S] [--tol T] [--interval I] [--concurrent C (0 = sequential driver)] [--threads T]`
 //! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes.
 
 #[path = "../benches/mesh_matrices/mod.rs"]
@@ -46,6 +46,12 @@ fn main() {
                     .next()
                     .and_then(|s| s.parse().ok())
                     .unwrap_or(options.interval_size)
+            }
+            "--tol" => {
+                options.tolerance = args
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .unwrap_or(options.tolerance)
             }
             "--slice" => {
                 options.slice_size = args

@@ -9,7 +9,7 @@
 //!   were only resolved to `ε·max|θ|` (see `eigen/rayleigh_ritz.rs`).
 //! - Torus of revolution (genus 1): rotational symmetry makes every non-axisymmetric eigenvalue
 //!   exactly double.
-use faer::Mat;
+use faer::{Mat, Par};
 use sprs::{CsMat, TriMat};
 use tvf_core::generate::{icosphere, torus};
 use tvf_core::geometry::{cross, dot, sub};
@@ -150,4 +150,50 @@ fn torus_double_eigenvalues_are_complete() {
     for k in [2, 25, 61, 120, 180] {
         check(&a, &mass, k);
     }
+}
+
+/// The row-split products and column-split solves (`parallelism = Par::rayon(2)`) on a problem
+/// large enough to be split (`n = 10,242 > 2 × 4096` rows): the same spectrum as the
+/// single-threaded run, complete sphere levels of `2l + 1` eigenvalues for `l ≤ 5`, `XᵀMX = I`.
+#[test]
+fn threaded_products_give_the_sequential_spectrum() {
+    let (a, mass) = cotan_laplacian(&icosphere(5));
+    let n = mass.len();
+    assert_eq!(n, 10_242);
+    let k = 36; // l = 0..=5
+    let run = |parallelism: Par| {
+        let options = EigenOptions {
+            parallelism,
+            ..EigenOptions::default()
+        };
+        lowest_eigenpairs(&a, &mass, k, &options).expect("eigensolver")
+    };
+    let sequential = run(Par::Seq);
+    let threaded = run(Par::rayon(2));
+    let top = sequential.values[k - 1];
+    for (j, (s, t)) in sequential.values.iter().zip(&threaded.values).enumerate() {
+        assert!(
+            (s - t).abs() <= 1e-10 * s.abs() + 1e-12 * top,
+            "eigenvalue {j}: sequential {s}, threaded {t}"
+        );
+    }
+    // Levels l of the sphere, split by the icosahedral symmetry by less than 1e-3 relative.
+    let mut levels = vec![1usize];
+    for j in 1..k {
+        let (low, high) = (threaded.values[j - 1], threaded.values[j]);
+        if high - low <= 1e-3 * high {
+            *levels.last_mut().expect("non-empty") += 1;
+        } else {
+            levels.push(1);
+        }
+    }
+    assert_eq!(levels, vec![1, 3, 5, 7, 9, 11], "{:?}", threaded.values);
+    let x = &threaded.vectors;
+    let mx = Mat::from_fn(n, k, |i, j| mass[i] * x[(i, j)]);
+    let gram = x.transpose() * &mx;
+    let identity = Mat::<f64>::identity(k, k);
+    let deviation = (&gram - &identity).norm_max();
+    assert!(deviation <= 1e-10, "XᵀMX deviates from I by {deviation:e}");
+    let worst = threaded.residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+    assert!(worst <= 1e-9, "residual {worst:e}");
 }

@@ -26,8 +26,8 @@
 //! least the distance across a boundary, which lies in a gap with overwhelming probability).
 
 use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
-use super::mass_orthogonal::mass_inner;
 use super::rayleigh_ritz::rayleigh_ritz;
+use super::tall_products::mass_inner;
 use super::types::{EigenOptions, EigenProgress};
 use crate::convert::shifted_upper_triangle;
 use crate::error::SolverError;

@@ -21,14 +21,14 @@
 //! (`V ← V Y`, `H ← Θ`, `G ← G Y`), and the rest is purged.
 
 use super::mass_orthogonal::{
-    mass_column_norms, mass_inner, mass_times, orthonormalize_block, project_out,
-    random_orthonormal_block,
+    mass_column_norms, mass_times, orthonormalize_block, project_out, random_orthonormal_block,
 };
+use super::tall_products::{mass_inner, tall_times};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, MatRef, Par};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 use rand_chacha::ChaCha8Rng;
 
 /// What one slice must find.
@@ -150,7 +150,7 @@ pub(crate) fn run_slice(
         // ---- expansion ----
         while mv + mu <= max_basis {
             let mut z = mass_times(mass, basis.as_ref().subcols(mv, mu));
-            problem.factor.solve_in_place(z.as_mut());
+            solve_split_by_columns(problem.factor, z.as_mut(), par);
             solves += mu;
             let reference = mass_column_norms(mass, z.as_ref());
             let m_new = mv + mu;
@@ -161,8 +161,17 @@ pub(crate) fn run_slice(
             // arithmetic. So the big cancellation is against V alone: one classical pass against
             // V first, then the full (DGKS-checked) passes against everything, which mostly stop
             // after one pass. Two full passes over [D, L, V] cost twice the dominant term.
-            let first_pass = mass_inner(current, mass, z.as_ref(), par);
-            matmul(
+            // Coefficients along V are known from the Krylov relation (OP V = V H + U G, OP
+            // M-self-adjoint, so Vᵀ M OP U = Gᵀ); only the block's own ones are computed.
+            let mut first_pass = Mat::<f64>::zeros(m_new, mu);
+            for j in 0..mu {
+                for i in 0..mv {
+                    first_pass[(i, j)] = g[(j, i)];
+                }
+            }
+            let own = mass_inner(basis.as_ref().subcols(mv, mu), mass, z.as_ref(), par);
+            first_pass.as_mut().subrows_mut(mv, mu).copy_from(&own);
+            tall_times(
                 z.as_mut(),
                 Accum::Add,
                 current,
@@ -272,7 +281,7 @@ pub(crate) fn run_slice(
         if !lock.is_empty() {
             let y_lock = Mat::from_fn(mv, lock.len(), |i, j| y[(i, lock[j])]);
             let mut x = Mat::<f64>::zeros(n, lock.len());
-            matmul(
+            tall_times(
                 x.as_mut(),
                 Accum::Replace,
                 basis.as_ref().subcols(0, mv),
@@ -320,7 +329,7 @@ pub(crate) fn run_slice(
         let p = keep.len();
         let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
         let mut v_new = Mat::<f64>::zeros(n, p);
-        matmul(
+        tall_times(
             v_new.as_mut(),
             Accum::Replace,
             basis.as_ref().subcols(0, mv),
@@ -382,4 +391,25 @@ pub(crate) fn run_slice(
             problem.upper_target
         ),
     })
+}
+
+/// `Z ← (A − σM)⁻¹ Z`, the columns split into `par.degree()` groups solved concurrently, each
+/// with a sequential supernodal solve (faer's own parallel solve synchronises per supernode,
+/// which costs more than it gains on surface meshes; independent columns need no
+/// synchronisation). The result does not depend on the split.
+fn solve_split_by_columns(factor: &SparseLdlt, z: MatMut<'_, f64>, par: Par) {
+    let parts = par.degree().min(z.ncols()).max(1);
+    if parts <= 1 {
+        factor.solve_in_place(z);
+        return;
+    }
+    let left_parts = parts / 2;
+    let split = z.ncols() * left_parts / parts;
+    let (left, right) = z.split_at_col_mut(split);
+    let left_par = Par::rayon(left_parts);
+    let right_par = Par::rayon(parts - left_parts);
+    rayon::join(
+        || solve_split_by_columns(factor, left, left_par),
+        || solve_split_by_columns(factor, right, right_par),
+    );
 }

@@ -1,9 +1,10 @@
 //! Driver of the generalized eigensolver: spectrum slicing with Sylvester inertia checks.
 //!
-//! By default (`EigenOptions::concurrent_slices ≥ 1`) the spectrum is cut into intervals with
-//! exact counts and solved concurrently ([`super::interval_slicing`]); if those intervals do not
-//! add up (an eigenvalue within rounding of a boundary), or with `concurrent_slices = 0`, the
-//! sequential driver below is used:
+//! With `EigenOptions::concurrent_slices ≥ 1` the spectrum is cut into intervals with exact
+//! counts and solved concurrently ([`super::interval_slicing`]); if those intervals do not add
+//! up (an eigenvalue within rounding of a boundary), or with `concurrent_slices = 0` (the
+//! default), the sequential driver below is used (its dense products and blocked solves are
+//! spread over `EigenOptions::parallelism` threads, see [`super::tall_products`]):
 //!
 //! Shifts σ₀ < σ₁ < … are visited from the bottom of the spectrum. At each shift, `A − σM`
 //! is factored once (`LDLᵀ`); its negative-pivot count ν(σ) is the exact number of

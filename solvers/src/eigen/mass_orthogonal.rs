@@ -2,6 +2,7 @@
 //! written with dense matrix products (BLAS-3) so that orthogonalising a block of `r`
 //! vectors against a basis of `p` vectors costs two `p × n × r` products per pass.
 
+use super::tall_products::{mass_inner, tall_times};
 use crate::error::SolverError;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -22,26 +23,6 @@ const AMPLIFICATION_LIMIT: f64 = 1e3;
 /// `M Z` for a diagonal `M` (row scaling).
 pub(crate) fn mass_times(mass: &[f64], z: MatRef<'_, f64>) -> Mat<f64> {
     Mat::from_fn(z.nrows(), z.ncols(), |i, j| mass[i] * z[(i, j)])
-}
-
-/// `Bᵀ M Z` (`p × r` for `B: n × p`, `Z: n × r`).
-pub(crate) fn mass_inner(
-    b: MatRef<'_, f64>,
-    mass: &[f64],
-    z: MatRef<'_, f64>,
-    par: Par,
-) -> Mat<f64> {
-    let mz = mass_times(mass, z);
-    let mut c = Mat::zeros(b.ncols(), z.ncols());
-    matmul(
-        c.as_mut(),
-        Accum::Replace,
-        b.transpose(),
-        mz.as_ref(),
-        1.0,
-        par,
-    );
-    c
 }
 
 /// Removes from `z` its `M`-projection onto each (M-orthonormal) basis in `bases` with block
@@ -69,7 +50,7 @@ pub(crate) fn project_out(
                 continue;
             }
             let c = mass_inner(*b, mass, z.rb(), par);
-            matmul(z.rb_mut(), Accum::Add, *b, c.as_ref(), -1.0, par);
+            tall_times(z.rb_mut(), Accum::Add, *b, c.as_ref(), -1.0, par);
             *sum += &c;
         }
         let after = mass_column_norms(mass, z.rb());
@@ -236,7 +217,7 @@ fn cholesky_qr2(z: &Mat<f64>, mass: &[f64], par: Par) -> Option<OrthonormalBlock
         let u = small_cholesky(sym.as_ref())?;
         let inv = upper_inverse(u.as_ref());
         let mut next = Mat::zeros(q.nrows(), r);
-        matmul(
+        tall_times(
             next.as_mut(),
             Accum::Replace,
             q.as_ref(),

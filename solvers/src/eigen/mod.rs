@@ -5,6 +5,7 @@ mod krylov_slice;
 mod lowest;
 mod mass_orthogonal;
 mod rayleigh_ritz;
+mod tall_products;
 mod types;
 
 pub use lowest::lowest_eigenpairs;

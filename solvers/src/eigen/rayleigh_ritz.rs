@@ -21,10 +21,9 @@
 //! diagonalises `A` exactly, so degenerate eigenvalues come out equal to rounding. Its cost is one
 //! sparse product `A Q` and two `n × s × s` dense products per slice.
 
-use super::mass_orthogonal::mass_inner;
+use super::tall_products::{mass_inner, tall_inner, tall_times};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
-use faer::linalg::matmul::matmul;
 use faer::sparse::SparseColMatRef;
 use faer::{Accum, Mat, MatRef, Par};
 
@@ -69,19 +68,11 @@ pub(crate) fn rayleigh_ritz(
         1.0,
         par,
     );
-    let mut t = Mat::<f64>::zeros(s, s);
-    matmul(
-        t.as_mut(),
-        Accum::Replace,
-        q.transpose(),
-        aq.as_ref(),
-        1.0,
-        par,
-    );
+    let t = tall_inner(q.as_ref(), aq.as_ref(), par);
     let t = Mat::from_fn(s, s, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
     let (values, w) = symmetric_eigen(t.as_ref())?;
     let mut vectors = Mat::<f64>::zeros(n, s);
-    matmul(
+    tall_times(
         vectors.as_mut(),
         Accum::Replace,
         q.as_ref(),

@@ -1,0 +1,188 @@
+//! Dense products with tall matrices (`n` rows, a few hundred columns at most), split by rows
+//! across threads.
+//!
+//! The Krylov bases of the eigensolver are `n × m` with `n` up to 10⁶ and `m` a few hundred,
+//! and they are multiplied with blocks of `r ≈ 8` columns: `Bᵀ M Z` (`m × r`) and `Z − B C`.
+//! Such products are bound by streaming `B` from memory. faer's parallel `matmul` splits the
+//! small output into tiles and synchronises per tile, which on two cores was slower than one
+//! thread. Here each thread instead takes a contiguous range of rows of `B` (and of `Z`) and runs
+//! a sequential product on it, so every thread streams its own part of `B` exactly once; the
+//! `m × r` partial inner products are summed at the end (one small reduction).
+
+use faer::linalg::matmul::matmul;
+use faer::reborrow::ReborrowMut;
+use faer::{Accum, Mat, MatMut, MatRef, Par};
+
+/// Fewest rows a thread gets; smaller products run on one thread.
+const MIN_ROWS_PER_THREAD: usize = 4096;
+
+/// Number of row ranges for `n` rows under `par`.
+fn row_parts(n: usize, par: Par) -> usize {
+    par.degree().min(n / MIN_ROWS_PER_THREAD).max(1)
+}
+
+/// `out ← out + alpha · lhs · rhs` (`accum = Add`) or `out ← alpha · lhs · rhs` (`Replace`) for
+/// `lhs: n × m`, `rhs: m × c`, `out: n × c`, rows split across `par.degree()` threads.
+pub(crate) fn tall_times(
+    out: MatMut<'_, f64>,
+    accum: Accum,
+    lhs: MatRef<'_, f64>,
+    rhs: MatRef<'_, f64>,
+    alpha: f64,
+    par: Par,
+) {
+    split_times(out, accum, lhs, rhs, alpha, row_parts(lhs.nrows(), par));
+}
+
+fn split_times(
+    mut out: MatMut<'_, f64>,
+    accum: Accum,
+    lhs: MatRef<'_, f64>,
+    rhs: MatRef<'_, f64>,
+    alpha: f64,
+    parts: usize,
+) {
+    if parts <= 1 {
+        matmul(out.rb_mut(), accum, lhs, rhs, alpha, Par::Seq);
+        return;
+    }
+    let left_parts = parts / 2;
+    let split = lhs.nrows() * left_parts / parts;
+    let (out_top, out_bottom) = out.split_at_row_mut(split);
+    let (lhs_top, lhs_bottom) = lhs.split_at_row(split);
+    rayon::join(
+        || split_times(out_top, accum, lhs_top, rhs, alpha, left_parts),
+        || {
+            split_times(
+                out_bottom,
+                accum,
+                lhs_bottom,
+                rhs,
+                alpha,
+                parts - left_parts,
+            )
+        },
+    );
+}
+
+/// `Bᵀ M Z` (`p × r`) for `B: n × p`, `Z: n × r` and the diagonal `mass` of `M`, rows split
+/// across `par.degree()` threads (partial products summed).
+pub(crate) fn mass_inner(
+    b: MatRef<'_, f64>,
+    mass: &[f64],
+    z: MatRef<'_, f64>,
+    par: Par,
+) -> Mat<f64> {
+    split_inner(b, Some(mass), z, row_parts(b.nrows(), par))
+}
+
+/// `Bᵀ Z` (`p × r`) for `B: n × p`, `Z: n × r`, rows split as in [`mass_inner`].
+pub(crate) fn tall_inner(b: MatRef<'_, f64>, z: MatRef<'_, f64>, par: Par) -> Mat<f64> {
+    split_inner(b, None, z, row_parts(b.nrows(), par))
+}
+
+/// `Bᵀ W Z` with `W = diag(weight)` (identity for `None`) on `parts` row ranges.
+fn split_inner(
+    b: MatRef<'_, f64>,
+    weight: Option<&[f64]>,
+    z: MatRef<'_, f64>,
+    parts: usize,
+) -> Mat<f64> {
+    if parts <= 1 {
+        let mut c = Mat::zeros(b.ncols(), z.ncols());
+        let mut product = |rhs: MatRef<'_, f64>| {
+            matmul(
+                c.as_mut(),
+                Accum::Replace,
+                b.transpose(),
+                rhs,
+                1.0,
+                Par::Seq,
+            )
+        };
+        match weight {
+            Some(w) => {
+                product(Mat::from_fn(z.nrows(), z.ncols(), |i, j| w[i] * z[(i, j)]).as_ref())
+            }
+            None => product(z),
+        }
+        return c;
+    }
+    let left_parts = parts / 2;
+    let split = b.nrows() * left_parts / parts;
+    let (b_top, b_bottom) = b.split_at_row(split);
+    let (z_top, z_bottom) = z.split_at_row(split);
+    let (w_top, w_bottom) = match weight {
+        Some(w) => {
+            let (top, bottom) = w.split_at(split);
+            (Some(top), Some(bottom))
+        }
+        None => (None, None),
+    };
+    let (mut top, bottom) = rayon::join(
+        || split_inner(b_top, w_top, z_top, left_parts),
+        || split_inner(b_bottom, w_bottom, z_bottom, parts - left_parts),
+    );
+    top += &bottom;
+    top
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::num::NonZeroUsize;
+
+    fn sample(n: usize, c: usize, seed: usize) -> Mat<f64> {
+        Mat::from_fn(n, c, |i, j| {
+            ((i * 31 + j * 17 + seed) % 101) as f64 / 50.0 - 1.0
+        })
+    }
+
+    #[test]
+    fn split_products_match_sequential_ones() {
+        let n = 3 * MIN_ROWS_PER_THREAD + 5;
+        let (b, z, c) = (sample(n, 13, 1), sample(n, 4, 2), sample(13, 4, 3));
+        let mass: Vec<f64> = (0..n).map(|i| 0.5 + (i % 7) as f64).collect();
+        let par = Par::Rayon(NonZeroUsize::new(3).expect("non-zero"));
+
+        let sequential = mass_inner(b.as_ref(), &mass, z.as_ref(), Par::Seq);
+        let split = mass_inner(b.as_ref(), &mass, z.as_ref(), par);
+        let scale = sequential.norm_max();
+        assert!((&sequential - &split).norm_max() <= 1e-13 * scale);
+        let plain = tall_inner(b.as_ref(), z.as_ref(), par);
+        let mut expected_plain = Mat::<f64>::zeros(13, 4);
+        for j in 0..4 {
+            for i in 0..13 {
+                expected_plain[(i, j)] = (0..n).map(|r| b[(r, i)] * z[(r, j)]).sum::<f64>();
+            }
+        }
+        assert!((&expected_plain - &plain).norm_max() <= 1e-12 * expected_plain.norm_max());
+
+        let mut out_sequential = z.clone();
+        let mut out_split = z.clone();
+        tall_times(
+            out_sequential.as_mut(),
+            Accum::Add,
+            b.as_ref(),
+            c.as_ref(),
+            -1.0,
+            Par::Seq,
+        );
+        tall_times(
+            out_split.as_mut(),
+            Accum::Add,
+            b.as_ref(),
+            c.as_ref(),
+            -1.0,
+            par,
+        );
+        assert_eq!(out_sequential, out_split, "row-split updates are exact");
+        let mut expected = z.clone();
+        for j in 0..4 {
+            for i in 0..n {
+                expected[(i, j)] -= (0..13).map(|p| b[(i, p)] * c[(p, j)]).sum::<f64>();
+            }
+        }
+        assert!((&expected - &out_split).norm_max() <= 1e-12 * expected.norm_max());
+    }
+}
