@@ -331,3 +331,109 @@ impl PairCounter<'_> {
         Ok((high.0, high.1))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tvf_core::discretization::sparse::from_triplets;
+    use tvf_core::discretization::Eigenproblem;
+
+    /// The graph Laplacian of a path with `n` nodes and unit masses: eigenvalues
+    /// `2 − 2 cos(kπ/n)`, `k = 0..n`, one zero (one component).
+    fn path(n: usize) -> ScalarSpectrum {
+        let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..n - 1 {
+            for (r, c, v) in [
+                (i, i, 1.0),
+                (i + 1, i + 1, 1.0),
+                (i, i + 1, -1.0),
+                (i + 1, i, -1.0),
+            ] {
+                rows.push(r);
+                cols.push(c);
+                values.push(v);
+            }
+        }
+        let problem = Eigenproblem {
+            stiffness: from_triplets(n, n, rows, cols, values),
+            mass: vec![1.0; n],
+        };
+        ScalarSpectrum::new("path", problem, &vec![0; n], 1)
+    }
+
+    fn nonzero_eigenvalues_below(n: usize, t: f64) -> usize {
+        (1..n)
+            .filter(|&k| 2.0 - 2.0 * (k as f64 * PI / n as f64).cos() < t)
+            .count()
+    }
+
+    #[test]
+    fn counts_match_the_closed_form_spectrum_and_shifts_on_eigenvalues_are_nudged() {
+        let (a, b) = (path(40), path(63));
+        let mut counter = PairCounter {
+            potential: InertiaCounter::new(&a),
+            co_potential: InertiaCounter::new(&b),
+            factorizations: 0,
+        };
+        for t in [0.01, 0.5, 1.3, 3.9] {
+            assert_eq!(
+                counter.nonzero_below(t).unwrap(),
+                (
+                    t,
+                    nonzero_eigenvalues_below(40, t),
+                    nonzero_eigenvalues_below(63, t)
+                )
+            );
+        }
+        // 2 is an eigenvalue of the 40-node path (k = 20): its LDLᵀ has an exactly zero pivot
+        // (integer arithmetic on a tree), so the shift moves up and the eigenvalue counts.
+        let (shift, below_a, below_b) = counter.nonzero_below(2.0).unwrap();
+        assert!(shift > 2.0 && shift < 2.0 + 1e-6, "{shift}");
+        assert_eq!(below_a, 20);
+        assert_eq!(below_b, nonzero_eigenvalues_below(63, shift));
+        assert!(counter.factorizations > 10);
+    }
+
+    #[test]
+    fn thresholds_cover_the_request_with_little_excess() {
+        let (a, b) = (path(120), path(300));
+        let ceiling = a.eigenvalue_upper_bound().max(b.eigenvalue_upper_bound());
+        assert!(ceiling >= 4.0);
+        for m in [1, 7, 100, 250, 418] {
+            let mut counter = PairCounter {
+                potential: InertiaCounter::new(&a),
+                co_potential: InertiaCounter::new(&b),
+                factorizations: 0,
+            };
+            // Weyl's law does not hold for paths: the search must still get there.
+            let (t, (below_a, below_b)) = counter.threshold_for(m, 1.0, ceiling).unwrap();
+            assert_eq!(below_a, nonzero_eigenvalues_below(120, t), "m = {m}");
+            assert_eq!(below_b, nonzero_eigenvalues_below(300, t), "m = {m}");
+            assert!(below_a + below_b >= m, "m = {m}");
+            assert!(below_a + below_b <= m + 3, "m = {m}: {below_a} + {below_b}");
+            // At most MAX_EVALUATIONS counts, plus a nudge or two where bisection lands on
+            // eigenvalues with simple closed forms (1, 2, 3 are eigenvalues of both paths).
+            assert!(
+                counter.factorizations <= 2 * (MAX_EVALUATIONS + 2),
+                "m = {m}"
+            );
+        }
+    }
+
+    #[test]
+    fn checks_reject_missing_eigenpairs() {
+        let spectrum = path(10);
+        let split = FamilySplit {
+            potential: 3,
+            co_potential: 0,
+            threshold: Some(1.0),
+            factorizations: 2,
+            seconds: 0.0,
+        };
+        assert!(split.check(&spectrum, &[0.1, 0.4, 0.9], 3).is_ok());
+        assert!(split.check(&spectrum, &[0.1, 0.4], 3).is_err());
+        assert!(split.check(&spectrum, &[0.1, 0.4, 1.5], 3).is_err());
+        let fixed = FamilySplit::fixed(3, 3);
+        assert!(fixed.check(&spectrum, &[0.1, 0.4, 1.5], 3).is_ok());
+    }
+}
