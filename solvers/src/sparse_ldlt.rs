@@ -91,11 +91,72 @@ impl SparseLdlt {
         Self::with_permutation_of(upper, permutation, FillOrdering::NestedDissection)
     }
 
+    /// The same as [`SparseLdlt::with_permutation`], with the parallelism of the numeric
+    /// factorizations and solves chosen by `choose` from the flop count of one numeric
+    /// factorization ([`SparseLdlt::factor_flop_count`], known after the symbolic analysis and
+    /// before any numeric work). Small factors are faster sequentially (thread synchronisation
+    /// costs more than the small supernodes gain), large ones in parallel; faer's global
+    /// setting is left alone. The factor's values are also zeroed by all available threads
+    /// before the numeric factorization, so the page faults of a fresh (often 100 MB or larger)
+    /// allocation are taken in parallel instead of one by one inside the sequential sweep.
+    ///
+    /// Errors: those of [`SparseLdlt::with_permutation`].
+    pub fn with_permutation_and_parallelism(
+        upper: SparseColMatRef<'_, usize, f64>,
+        permutation: &[usize],
+        choose: impl FnOnce(f64) -> Par,
+    ) -> Result<Self, SolverError> {
+        let symbolic = Self::analyse_permuted(upper, permutation)?;
+        let parallelism = choose(flop_count(&symbolic));
+        Self::factor_analysed(
+            upper,
+            symbolic,
+            FillOrdering::NestedDissection,
+            parallelism,
+            zeroed_by_all_threads,
+        )
+    }
+
+    /// The same as [`SparseLdlt::with_ordering`], with the parallelism chosen as in
+    /// [`SparseLdlt::with_permutation_and_parallelism`].
+    ///
+    /// Errors: those of [`SparseLdlt::with_ordering`].
+    pub fn with_ordering_and_parallelism(
+        upper: SparseColMatRef<'_, usize, f64>,
+        ordering: FillOrdering,
+        choose: impl FnOnce(f64) -> Par,
+    ) -> Result<Self, SolverError> {
+        let symbolic = match ordering {
+            FillOrdering::Amd => analyse(upper, SymmetricOrdering::Amd)?,
+            FillOrdering::NestedDissection => {
+                let forward = nested_dissection(upper.symbolic())?;
+                Self::analyse_permuted(upper, &forward)?
+            }
+        };
+        let parallelism = choose(flop_count(&symbolic));
+        Self::factor_analysed(
+            upper,
+            symbolic,
+            ordering,
+            parallelism,
+            zeroed_by_all_threads,
+        )
+    }
+
     fn with_permutation_of(
         upper: SparseColMatRef<'_, usize, f64>,
         forward: &[usize],
         ordering: FillOrdering,
     ) -> Result<Self, SolverError> {
+        let symbolic = Self::analyse_permuted(upper, forward)?;
+        let parallelism = faer::get_global_parallelism();
+        Self::factor_analysed(upper, symbolic, ordering, parallelism, |len| vec![0.0; len])
+    }
+
+    fn analyse_permuted(
+        upper: SparseColMatRef<'_, usize, f64>,
+        forward: &[usize],
+    ) -> Result<SymbolicCholesky<usize>, SolverError> {
         let n = upper.ncols();
         if !is_permutation(forward, n) {
             return Err(SolverError::Factorization(format!(
@@ -103,8 +164,10 @@ impl SparseLdlt {
             )));
         }
         let inverse = inverse_permutation(forward);
-        let custom = SymmetricOrdering::Custom(PermRef::new_checked(forward, &inverse, n));
-        Self::analyse_and_factor(upper, custom, ordering)
+        analyse(
+            upper,
+            SymmetricOrdering::Custom(PermRef::new_checked(forward, &inverse, n)),
+        )
     }
 
     fn analyse_and_factor(
@@ -112,19 +175,24 @@ impl SparseLdlt {
         symmetric_ordering: SymmetricOrdering<'_, usize>,
         ordering: FillOrdering,
     ) -> Result<Self, SolverError> {
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        let symbolic =
-            factorize_symbolic_cholesky(upper.symbolic(), Side::Upper, symmetric_ordering, params)
-                .map_err(|e| SolverError::Factorization(format!("{e:?}")))?;
+        let symbolic = analyse(upper, symmetric_ordering)?;
+        let parallelism = faer::get_global_parallelism();
+        Self::factor_analysed(upper, symbolic, ordering, parallelism, |len| vec![0.0; len])
+    }
+
+    fn factor_analysed(
+        upper: SparseColMatRef<'_, usize, f64>,
+        symbolic: SymbolicCholesky<usize>,
+        ordering: FillOrdering,
+        parallelism: Par,
+        zeroed: impl FnOnce(usize) -> Vec<f64>,
+    ) -> Result<Self, SolverError> {
         let mut this = Self {
-            values: vec![0.0; symbolic.len_val()],
+            values: zeroed(symbolic.len_val()),
             symbolic,
             col_ptr: upper.symbolic().col_ptr().to_vec(),
             row_idx: upper.symbolic().row_idx().to_vec(),
-            parallelism: faer::get_global_parallelism(),
+            parallelism,
             ordering,
         };
         this.factor_numeric(upper)?;
@@ -147,6 +215,12 @@ impl SparseLdlt {
         self.parallelism = parallelism;
     }
 
+    /// The parallelism of numeric factorizations and solves (faer's global setting at
+    /// construction, unless chosen otherwise).
+    pub fn parallelism(&self) -> Par {
+        self.parallelism
+    }
+
     /// Number of stored values of the factor `L` (a measure of fill-in).
     pub fn factor_len(&self) -> usize {
         self.values.len()
@@ -156,21 +230,7 @@ impl SparseLdlt {
     /// `L` with `c_j` stored entries on and below the diagonal (a deterministic measure of the
     /// numeric cost of an ordering, independent of the machine's load).
     pub fn factor_flop_count(&self) -> f64 {
-        let mut flops = 0.0;
-        if let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() {
-            let col_ptr_val = sym.col_ptr_for_val();
-            let begin = sym.supernode_begin();
-            let end = sym.supernode_end();
-            for s in 0..sym.n_supernodes() {
-                let ncols = end[s] - begin[s];
-                let nrows = (col_ptr_val[s + 1] - col_ptr_val[s]) / ncols.max(1);
-                for c in 0..ncols {
-                    let count = (nrows - c) as f64;
-                    flops += count * count;
-                }
-            }
-        }
-        flops
+        flop_count(&self.symbolic)
     }
 
     /// Whether `upper` has exactly the sparsity pattern analysed in [`SparseLdlt::new`].
@@ -287,4 +347,56 @@ impl SparseLdlt {
             MemStack::new(&mut buffer),
         );
     }
+}
+
+/// Symbolic analysis (supernodal) of the symmetric matrix with upper triangle `upper`.
+fn analyse(
+    upper: SparseColMatRef<'_, usize, f64>,
+    symmetric_ordering: SymmetricOrdering<'_, usize>,
+) -> Result<SymbolicCholesky<usize>, SolverError> {
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(upper.symbolic(), Side::Upper, symmetric_ordering, params)
+        .map_err(|e| SolverError::Factorization(format!("{e:?}")))
+}
+
+/// `Σ_j c_j²` over the columns of the supernodal factor (see [`SparseLdlt::factor_flop_count`]).
+fn flop_count(symbolic: &SymbolicCholesky<usize>) -> f64 {
+    let mut flops = 0.0;
+    if let SymbolicCholeskyRaw::Supernodal(sym) = symbolic.raw() {
+        let col_ptr_val = sym.col_ptr_for_val();
+        let begin = sym.supernode_begin();
+        let end = sym.supernode_end();
+        for s in 0..sym.n_supernodes() {
+            let ncols = end[s] - begin[s];
+            let nrows = (col_ptr_val[s + 1] - col_ptr_val[s]) / ncols.max(1);
+            for c in 0..ncols {
+                let count = (nrows - c) as f64;
+                flops += count * count;
+            }
+        }
+    }
+    flops
+}
+
+/// Below this many values (8 MB) one thread zeroes faster than spawning others.
+const PARALLEL_ZEROING_MIN_LEN: usize = 1 << 20;
+
+/// `len` zeros, written once more by all available threads (one contiguous slice each): a
+/// large `vec![0.0; len]` is fresh zero pages mapped lazily, so this write takes the
+/// first-touch page faults in parallel instead of inside the (possibly sequential) numeric
+/// factorization.
+fn zeroed_by_all_threads(len: usize) -> Vec<f64> {
+    let mut values = vec![0.0; len];
+    let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
+    if threads > 1 && len >= PARALLEL_ZEROING_MIN_LEN {
+        std::thread::scope(|scope| {
+            for part in values.chunks_mut(len.div_ceil(threads)) {
+                scope.spawn(move || part.fill(0.0));
+            }
+        });
+    }
+    values
 }

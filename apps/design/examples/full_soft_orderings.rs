@@ -4,11 +4,12 @@
 //! Medians over `--runs N` (default 3).
 //!
 //! ```text
-//! cargo run --release -p tvf-design --example full_soft_orderings -- [--runs N] [--seq] [MESH ...]
+//! cargo run --release -p tvf-design --example full_soft_orderings -- [--runs N] [--seq] [--parallelism auto|seq|par] [--ordering amd|nd] [MESH ...]
 //! ```
 //! MESH names a file `../shared/meshes/MESH.obj` (default: the five Table 1 meshes); `--seq`
-//! runs faer sequentially (its default is all threads), which pays on small meshes and on a
-//! loaded machine.
+//! sets faer's global parallelism to one thread (its default is all threads); `--parallelism`
+//! chooses the design's own [`FactorParallelism`] (default `auto`: one thread for small
+//! factors). The `threads` column says which the factorization used.
 
 #[path = "../benches/common/mod.rs"]
 mod common;
@@ -17,8 +18,8 @@ use std::time::{Duration, Instant};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::load_mesh;
 use tvf_design::{
-    default_regularization, CompiledConstraint, ConstraintAssembler, FillOrdering, FullSoftDesign,
-    SoftOptions,
+    default_regularization, CompiledConstraint, ConstraintAssembler, FactorParallelism,
+    FillOrdering, FullSoftDesign, SoftOptions,
 };
 use tvf_discretizations::{Conforming, MassLumping};
 
@@ -32,10 +33,22 @@ fn median(mut values: Vec<Duration>) -> f64 {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut runs = 3usize;
     let mut names = Vec::new();
+    let mut parallelism = FactorParallelism::Auto;
+    let mut orderings = vec![FillOrdering::Amd, FillOrdering::NestedDissection];
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         if arg == "--seq" {
             faer::set_global_parallelism(faer::Par::Seq);
+        } else if arg == "--parallelism" {
+            parallelism = match args.next().as_deref() {
+                Some("auto") => FactorParallelism::Auto,
+                Some("seq") => FactorParallelism::Sequential,
+                Some("par") => FactorParallelism::Parallel,
+                _ => return Err("--parallelism: auto, seq or par".into()),
+            };
+        } else if arg == "--ordering" {
+            let name = args.next().ok_or("--ordering needs amd or nd")?;
+            orderings = vec![FillOrdering::from_name(&name).ok_or("--ordering: amd or nd")?];
         } else if arg == "--runs" {
             runs = args.next().ok_or("--runs needs a number")?.parse()?;
         } else {
@@ -46,9 +59,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         names = common::MESHES.iter().map(|s| s.to_string()).collect();
     }
     println!(
-        "| mesh | faces | ordering | nnz(L) | flops | assembly S | assembly aug. | ordering+symbolic | numeric | factor total | solve | steps | residual | floor |"
+        "| mesh | faces | ordering | threads | nnz(L) | flops | assembly S | assembly aug. | ordering+symbolic | numeric | factor total | solve | steps | residual | floor |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for name in names {
         let path = common::mesh_dir().join(format!("{name}.obj"));
         let mesh = match load_mesh(&path) {
@@ -71,21 +84,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             omega: OMEGA,
             regularization: default_regularization(&dirichlet, complex.m1()),
         };
-        for ordering in [FillOrdering::Amd, FillOrdering::NestedDissection] {
+        for &ordering in &orderings {
             let (mut total, mut assembly, mut first, mut numeric, mut solve) =
                 (vec![], vec![], vec![], vec![], vec![]);
             let mut entries = 0;
+            let mut threads = "";
             let mut flops = 0.0;
             let mut report = None;
             for _ in 0..runs {
                 let start = Instant::now();
-                let mut design = FullSoftDesign::from_matrices_with_ordering(
+                let mut design = FullSoftDesign::from_matrices_with(
                     &dirichlet,
                     complex.m1(),
                     options,
                     compiled.clone(),
                     ordering,
+                    parallelism,
                 )?;
+                threads = if design.is_parallel() { "all" } else { "one" };
                 total.push(start.elapsed());
                 assembly.push(design.timings().assembly);
                 first.push(design.timings().factorization);
@@ -102,7 +118,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let report = report.ok_or("no runs")?;
             let numeric_s = median(numeric);
             println!(
-                "| {name} | {} | {} | {:.1}M | {:.1} G | {:.3} s | {:.3} s | {:.3} s | {:.3} s | {:.3} s | {:.0} ms | {} | {:.1e} | {:.1e} |",
+                "| {name} | {} | {} | {threads} | {:.1}M | {:.1} G | {:.3} s | {:.3} s | {:.3} s | {:.3} s | {:.3} s | {:.0} ms | {} | {:.1e} | {:.1e} |",
                 mesh.face_count(),
                 ordering.name(),
                 entries as f64 / 1e6,

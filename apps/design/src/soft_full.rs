@@ -4,10 +4,11 @@
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
+use crate::factor_parallelism::FactorParallelism;
 use crate::refinement::{exact, refined_solve, symmetric_product, DoubleDouble, SolveReport};
 use crate::sparse_pattern::{constraint_gram_entries, position, with_extra_entries};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
-use faer::Mat;
+use faer::{Mat, Par};
 use sprs::CsMat;
 use std::time::{Duration, Instant};
 use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
@@ -84,6 +85,7 @@ pub struct FullSoftDesign {
     top: CsMat<f64>,
     factor: SparseLdlt,
     ordering: FillOrdering,
+    parallelism: FactorParallelism,
     constraints: Vec<CompiledConstraint>,
     symbolic_analyses: usize,
     timings: FactorTimings,
@@ -130,6 +132,27 @@ impl FullSoftDesign {
         constraints: Vec<CompiledConstraint>,
         ordering: FillOrdering,
     ) -> Result<Self, DesignError> {
+        Self::from_matrices_with(
+            dirichlet,
+            mass,
+            options,
+            constraints,
+            ordering,
+            FactorParallelism::Auto,
+        )
+    }
+
+    /// The same as [`FullSoftDesign::from_matrices_with_ordering`] with the threading of the
+    /// factorizations and solves chosen by the caller (kept for later factorizations);
+    /// the other constructors use [`FactorParallelism::Auto`].
+    pub fn from_matrices_with(
+        dirichlet: &CsMat<f64>,
+        mass: &[f64],
+        options: SoftOptions,
+        constraints: Vec<CompiledConstraint>,
+        ordering: FillOrdering,
+        parallelism: FactorParallelism,
+    ) -> Result<Self, DesignError> {
         let start = Instant::now();
         check_options(options)?;
         let n = dirichlet.rows();
@@ -152,7 +175,7 @@ impl FullSoftDesign {
         let top = add_constraints(&base, &constraints);
         let augmented = augmented_upper(&top, &dirichlet, options.omega, mass)?;
         let assembled = Instant::now();
-        let factor = factor_augmented(&augmented, n, ordering)?;
+        let factor = factor_augmented(&augmented, n, ordering, parallelism)?;
         let timings = FactorTimings {
             assembly: assembled - start,
             factorization: assembled.elapsed(),
@@ -166,6 +189,7 @@ impl FullSoftDesign {
             top,
             factor,
             ordering,
+            parallelism,
             constraints,
             symbolic_analyses: 1,
             timings,
@@ -196,7 +220,12 @@ impl FullSoftDesign {
             let top = add_constraints(&base, &constraints);
             let augmented = augmented_upper(&top, &self.dirichlet, self.omega, &self.mass)?;
             assembled = Instant::now();
-            self.factor = factor_augmented(&augmented, self.base.rows(), self.ordering)?;
+            self.factor = factor_augmented(
+                &augmented,
+                self.base.rows(),
+                self.ordering,
+                self.parallelism,
+            )?;
             self.base = base;
             self.top = top;
             self.symbolic_analyses += 1;
@@ -223,6 +252,12 @@ impl FullSoftDesign {
     /// The fill-reducing ordering of the augmented system.
     pub fn ordering(&self) -> FillOrdering {
         self.ordering
+    }
+
+    /// Whether the factorizations and solves run on all threads (`false`: one thread), as
+    /// chosen by the [`FactorParallelism`] policy for this system.
+    pub fn is_parallel(&self) -> bool {
+        self.factor.parallelism() != Par::Seq
     }
 
     /// Stored entries of the factor `L` of the augmented system (a measure of fill-in).
@@ -387,9 +422,13 @@ fn factor_augmented(
     augmented: &SparseColMat<usize, f64>,
     n: usize,
     ordering: FillOrdering,
+    parallelism: FactorParallelism,
 ) -> Result<SparseLdlt, DesignError> {
+    let choose = |flops| parallelism.choose(flops);
     let factor = match ordering {
-        FillOrdering::Amd => SparseLdlt::with_ordering(augmented.as_ref(), ordering)?,
+        FillOrdering::Amd => {
+            SparseLdlt::with_ordering_and_parallelism(augmented.as_ref(), ordering, choose)?
+        }
         FillOrdering::NestedDissection => {
             let faces = n.div_ceil(2);
             let face_of: Vec<usize> = (0..2 * n).map(|i| (i % n) / 2).collect();
@@ -401,7 +440,7 @@ fn factor_augmented(
                         unknowns.clone().chain(unknowns.map(|i| n + i))
                     })
                     .collect();
-            SparseLdlt::with_permutation(augmented.as_ref(), &permutation)?
+            SparseLdlt::with_permutation_and_parallelism(augmented.as_ref(), &permutation, choose)?
         }
     };
     check_inertia(&factor)?;

@@ -85,35 +85,51 @@ impl AdjacencyGraph {
         group_count: usize,
     ) -> Self {
         assert_eq!(group.len(), pattern.ncols(), "one group per row/column");
-        let graph = Self::from_symmetric_pattern(pattern);
-        // Members of every group (counting sort).
-        let mut member_ptr = vec![0usize; group_count + 1];
-        for &g in group {
-            member_ptr[g + 1] += 1;
+        let n = pattern.ncols();
+        let col_ptr = pattern.col_ptr();
+        let row_idx = pattern.row_idx();
+        let col_end = |j: usize| match pattern.col_nnz() {
+            Some(nnz) => col_ptr[j] + nnz[j],
+            None => col_ptr[j + 1],
+        };
+        // Straight from the entries to the groups (no graph of the n unknowns): every entry
+        // coupling two groups lists each in the other's bucket, repeats included.
+        let mut bucket_ptr = vec![0usize; group_count + 1];
+        for j in 0..n {
+            for &i in &row_idx[col_ptr[j]..col_end(j)] {
+                if group[i] != group[j] {
+                    bucket_ptr[group[i] + 1] += 1;
+                    bucket_ptr[group[j] + 1] += 1;
+                }
+            }
         }
         for g in 0..group_count {
-            member_ptr[g + 1] += member_ptr[g];
+            bucket_ptr[g + 1] += bucket_ptr[g];
         }
-        let mut fill = member_ptr[..group_count].to_vec();
-        let mut members = vec![0usize; group.len()];
-        for (v, &g) in group.iter().enumerate() {
-            members[fill[g]] = v;
-            fill[g] += 1;
+        let mut fill = bucket_ptr[..group_count].to_vec();
+        let mut bucket = vec![0usize; bucket_ptr[group_count]];
+        for j in 0..n {
+            for &i in &row_idx[col_ptr[j]..col_end(j)] {
+                let (gi, gj) = (group[i], group[j]);
+                if gi != gj {
+                    bucket[fill[gi]] = gj;
+                    fill[gi] += 1;
+                    bucket[fill[gj]] = gi;
+                    fill[gj] += 1;
+                }
+            }
         }
+        // Drop the repeats with a marker, then sort each (short) list.
         let mut marker = vec![usize::MAX; group_count];
         let mut offsets = Vec::with_capacity(group_count + 1);
         let mut neighbours = Vec::new();
         offsets.push(0);
         for g in 0..group_count {
-            marker[g] = g;
             let start = neighbours.len();
-            for &v in &members[member_ptr[g]..member_ptr[g + 1]] {
-                for &w in graph.neighbours_of(v) {
-                    let h = group[w];
-                    if marker[h] != g {
-                        marker[h] = g;
-                        neighbours.push(h);
-                    }
+            for &h in &bucket[bucket_ptr[g]..bucket_ptr[g + 1]] {
+                if marker[h] != g {
+                    marker[h] = g;
+                    neighbours.push(h);
                 }
             }
             neighbours[start..].sort_unstable();

@@ -1,0 +1,104 @@
+//! The threading of the full soft-design factorization: sequential and parallel factors give the
+//! same field to round-off, the automatic choice is sequential for small systems, and the choice
+//! survives a change of constraints.
+
+mod common;
+
+use common::mixed_constraints;
+use faer::Par;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::generate::{icosphere, jitter};
+use tvf_design::{
+    default_regularization, ConstraintAssembler, FactorParallelism, FillOrdering, FullSoftDesign,
+    SoftOptions, SEQUENTIAL_FLOP_LIMIT,
+};
+use tvf_discretizations::{Conforming, MassLumping};
+
+#[test]
+fn the_policy_maps_flops_to_threads() {
+    assert_eq!(FactorParallelism::default(), FactorParallelism::Auto);
+    assert_eq!(
+        FactorParallelism::Auto.choose(0.5 * SEQUENTIAL_FLOP_LIMIT),
+        Par::Seq
+    );
+    assert_eq!(
+        FactorParallelism::Auto.choose(2.0 * SEQUENTIAL_FLOP_LIMIT),
+        faer::get_global_parallelism()
+    );
+    assert_eq!(FactorParallelism::Sequential.choose(1e15), Par::Seq);
+    assert_eq!(FactorParallelism::Parallel.choose(1.0), Par::rayon(0));
+}
+
+#[test]
+fn sequential_and_parallel_factors_give_the_same_field() {
+    let mesh = jitter(&icosphere(4), 0.2, 11).expect("sphere");
+    let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
+    let dirichlet = complex.dirichlet_energy();
+    let options = SoftOptions {
+        omega: 0.1,
+        regularization: default_regularization(&dirichlet, complex.m1()),
+    };
+    let assembler = ConstraintAssembler::new(&complex, &mesh);
+    let first = assembler
+        .compile_all(&mixed_constraints(&mesh, 10, 1))
+        .expect("constraints");
+    let second = assembler
+        .compile_all(&mixed_constraints(&mesh, 10, 2))
+        .expect("constraints");
+    let design = |parallelism| {
+        FullSoftDesign::from_matrices_with(
+            &dirichlet,
+            complex.m1(),
+            options,
+            first.clone(),
+            FillOrdering::NestedDissection,
+            parallelism,
+        )
+        .expect("full design")
+    };
+    let automatic = design(FactorParallelism::Auto);
+    let mut sequential = design(FactorParallelism::Sequential);
+    let mut parallel = design(FactorParallelism::Parallel);
+    // Large enough that the factor's values are zeroed by several threads (≥ 2^20 values).
+    assert!(sequential.factor_entries() >= 1 << 20);
+    assert!(automatic.factor_flop_count() < SEQUENTIAL_FLOP_LIMIT);
+    assert!(!automatic.is_parallel());
+    assert!(!sequential.is_parallel());
+    assert!(parallel.is_parallel());
+    assert_eq!(
+        sequential.factor_entries(),
+        parallel.factor_entries(),
+        "threading must not change the analysis"
+    );
+
+    let compare = |a: &FullSoftDesign, b: &FullSoftDesign| {
+        let (x, report_a) = a.solve();
+        let (y, report_b) = b.solve();
+        for report in [&report_a, &report_b] {
+            assert!(report.final_residual() < 1e-8, "{:?}", report.residuals);
+        }
+        let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let difference = x
+            .iter()
+            .zip(&y)
+            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
+        // Round-off: both are refined to the same residual; the factors differ only in the
+        // order of floating-point sums.
+        assert!(
+            difference <= 1e-10 * scale,
+            "sequential and parallel fields differ by {:e} (max |x| {scale:e})",
+            difference
+        );
+    };
+    compare(&sequential, &parallel);
+    compare(&automatic, &sequential);
+
+    // The choice is kept by refactorizations.
+    sequential
+        .set_constraints(second.clone())
+        .expect("refactor");
+    parallel.set_constraints(second).expect("refactor");
+    assert!(!sequential.is_parallel());
+    assert!(parallel.is_parallel());
+    compare(&sequential, &parallel);
+}
