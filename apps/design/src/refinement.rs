@@ -181,12 +181,18 @@ pub(crate) fn refined_solve(
     let mut residuals = vec![true_residual];
     let mut best = true_residual;
     let mut best_x = x.clone();
-    let mut z = solve(&r);
+    // The first correction is only needed (one more solve) when the direct solve missed.
+    let converged = |residual: f64| residual <= REFINEMENT_TARGET || !residual.is_finite();
+    let mut z = if converged(true_residual) {
+        Vec::new()
+    } else {
+        solve(&r)
+    };
     let mut p = z.clone();
     let mut rz = dot(&r, &z);
     let mut since_replacement = 0;
     for _ in 0..MAX_REFINEMENT_STEPS {
-        if true_residual <= REFINEMENT_TARGET || !true_residual.is_finite() {
+        if converged(true_residual) {
             break;
         }
         let ap = apply(&p);
