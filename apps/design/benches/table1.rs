@@ -11,9 +11,11 @@
 //! soft design uses the real `S` and `B` of the conforming discretization.
 //!
 //! Also measured: the map `x = U v` (f64 and f32) against streaming `U` once (a parallel sum of
-//! its entries), the full soft-design factorization under AMD and nested dissection (with
-//! `nnz(L)`, flops and residuals printed), and a refactorisation with the symbolic analysis reused.
-//! The full soft design runs on meshes up to 100,000 faces unless `TVF_BENCH_FULL=1`.
+//! its entries), `nnz(L)`, flops, threading and residuals of the full soft design (printed), and
+//! its refactorisation with the symbolic analysis reused (what a constraint edit costs).
+//! The full soft design runs on meshes up to 100,000 faces unless `TVF_BENCH_FULL=1`; its
+//! factorization is timed with the default ordering (nested dissection), and with AMD too when
+//! `TVF_BENCH_AMD=1`. `TVF_BENCH_MESHES=hand,bunny-closed` restricts the meshes.
 
 mod common;
 
@@ -157,27 +159,47 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
         .sample_size(10)
         .warm_up_time(Duration::from_millis(100))
         .measurement_time(Duration::from_secs(5));
-    for ordering in [FillOrdering::Amd, FillOrdering::NestedDissection] {
-        let factor = || {
-            FullSoftDesign::from_matrices_with_ordering(
-                &dirichlet,
-                complex.m1(),
-                options,
-                compiled.clone(),
-                ordering,
-            )
-            .unwrap()
-        };
-        group.bench_function(format!("factor ({})", ordering.name()), |b| {
-            b.iter(|| black_box(factor()))
-        });
-        let design = factor();
+    // AMD for comparison only on request: nested dissection is the default and needs fewer
+    // flops on every Table 1 mesh (see `DEFAULT_FULL_ORDERING`), and AMD costs minutes per mesh
+    // on the two large ones.
+    let with_amd = std::env::var("TVF_BENCH_AMD").is_ok_and(|v| v == "1");
+    let orderings: &[FillOrdering] = if with_amd {
+        &[FillOrdering::Amd, FillOrdering::NestedDissection]
+    } else {
+        &[FillOrdering::NestedDissection]
+    };
+    for &ordering in orderings {
+        let design = FullSoftDesign::from_matrices_with_ordering(
+            &dirichlet,
+            complex.m1(),
+            options,
+            compiled.clone(),
+            ordering,
+        )
+        .unwrap();
+        if ordering == FillOrdering::Amd {
+            group.bench_function("factor (amd)", |b| {
+                b.iter(|| {
+                    black_box(
+                        FullSoftDesign::from_matrices_with_ordering(
+                            &dirichlet,
+                            complex.m1(),
+                            options,
+                            compiled.clone(),
+                            ordering,
+                        )
+                        .unwrap(),
+                    )
+                })
+            });
+        }
         let (_, report) = design.solve();
         eprintln!(
-            "{label}: {} nnz(L) = {:.1}M, {:.1} Gflop, assembly {:.3} s, relative residual {:.1e}",
+            "{label}: {} nnz(L) = {:.1}M, {:.1} Gflop, {} thread(s), assembly {:.3} s, relative residual {:.1e}",
             ordering.name(),
             design.factor_entries() as f64 / 1e6,
             design.factor_flop_count() / 1e9,
+            if design.is_parallel() { "all" } else { "one" },
             design.timings().assembly.as_secs_f64(),
             report.final_residual()
         );
@@ -217,9 +239,16 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     group.finish();
 }
 
+/// `TVF_BENCH_MESHES=hand,rocker-arm` runs only the named meshes (default: all of [`MESHES`]).
 fn table1(c: &mut Criterion) {
+    let chosen = std::env::var("TVF_BENCH_MESHES").ok();
     for name in MESHES {
-        bench_mesh(c, name);
+        if chosen
+            .as_deref()
+            .is_none_or(|list| list.split(',').any(|m| m.trim() == name))
+        {
+            bench_mesh(c, name);
+        }
     }
 }
 

@@ -5,7 +5,8 @@ use faer::Par;
 
 /// Below this many flops of one numeric factorization (`Σ_j c_j²`, see
 /// [`crate::FullSoftDesign::factor_flop_count`]) [`FactorParallelism::Auto`] factors and solves
-/// sequentially.
+/// sequentially, unless the environment variable [`SEQUENTIAL_FLOP_LIMIT_VARIABLE`] gives
+/// another limit (the crossover depends on the machine's cores and memory bandwidth).
 ///
 /// Measured on the 2-core test machine (`examples/full_soft_orderings.rs`, nested dissection;
 /// numeric factorization, sequential vs faer's parallel): see `SEQUENTIAL_FLOP_LIMIT` in the
@@ -13,11 +14,24 @@ use faer::Par;
 /// small supernodes, where faer's task synchronisation costs more than the second core gains.
 pub const SEQUENTIAL_FLOP_LIMIT: f64 = 2.0e10;
 
+/// Environment variable overriding [`SEQUENTIAL_FLOP_LIMIT`] (a number of flops, e.g. `1e11`).
+pub const SEQUENTIAL_FLOP_LIMIT_VARIABLE: &str = "TVF_SEQUENTIAL_FLOP_LIMIT";
+
+/// [`SEQUENTIAL_FLOP_LIMIT`], or the value of [`SEQUENTIAL_FLOP_LIMIT_VARIABLE`] when that is a
+/// non-negative number.
+pub fn sequential_flop_limit() -> f64 {
+    std::env::var(SEQUENTIAL_FLOP_LIMIT_VARIABLE)
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .filter(|v| *v >= 0.0)
+        .unwrap_or(SEQUENTIAL_FLOP_LIMIT)
+}
+
 /// How [`crate::FullSoftDesign`] parallelises its numeric factorizations and solves. faer's
 /// global parallelism setting is never changed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum FactorParallelism {
-    /// Sequential when the factorization needs fewer than [`SEQUENTIAL_FLOP_LIMIT`] flops
+    /// Sequential when the factorization needs fewer than [`sequential_flop_limit`] flops
     /// (decided after the symbolic analysis, before any numeric work), otherwise faer's global
     /// parallelism.
     #[default]
@@ -32,7 +46,7 @@ impl FactorParallelism {
     /// The faer parallelism for a factorization of `flops` flops.
     pub fn choose(self, flops: f64) -> Par {
         match self {
-            FactorParallelism::Auto if flops < SEQUENTIAL_FLOP_LIMIT => Par::Seq,
+            FactorParallelism::Auto if flops < sequential_flop_limit() => Par::Seq,
             FactorParallelism::Auto => faer::get_global_parallelism(),
             FactorParallelism::Sequential => Par::Seq,
             FactorParallelism::Parallel => Par::rayon(0),

@@ -44,7 +44,9 @@ pub use assembler::ConstraintAssembler;
 pub use constraint::{CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target};
 pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
 pub use error::{ConstraintError, ConstraintFileError, DesignError};
-pub use factor_parallelism::{FactorParallelism, SEQUENTIAL_FLOP_LIMIT};
+pub use factor_parallelism::{
+    sequential_flop_limit, FactorParallelism, SEQUENTIAL_FLOP_LIMIT, SEQUENTIAL_FLOP_LIMIT_VARIABLE,
+};
 pub use reduced_basis::{ReducedBasis, ReducedBasisF32};
 pub use reference_spline::{reference_spline, ReferenceSpline};
 pub use refinement::SolveReport;

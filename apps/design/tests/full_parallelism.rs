@@ -9,14 +9,18 @@ use faer::Par;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{icosphere, jitter};
 use tvf_design::{
-    default_regularization, ConstraintAssembler, FactorParallelism, FillOrdering, FullSoftDesign,
-    SoftOptions, SEQUENTIAL_FLOP_LIMIT,
+    default_regularization, sequential_flop_limit, ConstraintAssembler, FactorParallelism,
+    FillOrdering, FullSoftDesign, SoftOptions, SEQUENTIAL_FLOP_LIMIT,
+    SEQUENTIAL_FLOP_LIMIT_VARIABLE,
 };
 use tvf_discretizations::{Conforming, MassLumping};
 
 #[test]
 fn the_policy_maps_flops_to_threads() {
     assert_eq!(FactorParallelism::default(), FactorParallelism::Auto);
+    // No test sets the override variable, so the limit is the constant.
+    assert!(std::env::var_os(SEQUENTIAL_FLOP_LIMIT_VARIABLE).is_none());
+    assert_eq!(sequential_flop_limit(), SEQUENTIAL_FLOP_LIMIT);
     assert_eq!(
         FactorParallelism::Auto.choose(0.5 * SEQUENTIAL_FLOP_LIMIT),
         Par::Seq
