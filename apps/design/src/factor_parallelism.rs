@@ -8,11 +8,13 @@ use faer::Par;
 /// sequentially, unless the environment variable [`SEQUENTIAL_FLOP_LIMIT_VARIABLE`] gives
 /// another limit (the crossover depends on the machine's cores and memory bandwidth).
 ///
-/// Measured on the 2-core test machine (`examples/full_soft_orderings.rs`, nested dissection;
-/// numeric factorization, sequential vs faer's parallel): see `SEQUENTIAL_FLOP_LIMIT` in the
-/// session note of issue 7. Small factors (hand: 4.5 Gflop, rocker-arm: 6.5 Gflop) have many
-/// small supernodes, where faer's task synchronisation costs more than the second core gains.
-pub const SEQUENTIAL_FLOP_LIMIT: f64 = 2.0e10;
+/// Measured on the 2-core test machine (`examples/full_soft_orderings.rs`, nested dissection,
+/// whole first factorization, sequential vs faer's parallel, 2026-11-21): hand (4.5 Gflop)
+/// 0.36 vs 0.40 s, rocker-arm (6.5 Gflop) 0.51 vs 0.64 s, bunny-closed (60 Gflop) 3.1 vs 4.5 s,
+/// bumpy-torus-x4 (107 Gflop) 7.1 vs 5.7 s, armadillo-x4 (329 Gflop) 22.5 vs 20.9 s. Below
+/// about 1e11 flops the supernodes are too small for faer's task synchronisation to pay off;
+/// the limit sits between bunny-closed and bumpy-torus-x4.
+pub const SEQUENTIAL_FLOP_LIMIT: f64 = 8.0e10;
 
 /// Environment variable overriding [`SEQUENTIAL_FLOP_LIMIT`] (a number of flops, e.g. `1e11`).
 pub const SEQUENTIAL_FLOP_LIMIT_VARIABLE: &str = "TVF_SEQUENTIAL_FLOP_LIMIT";
