@@ -76,6 +76,10 @@ pub const DEFAULT_FULL_ORDERING: FillOrdering = FillOrdering::NestedDissection;
 /// with the symbolic analysis reused, unless a new constraint couples faces that `S` does not
 /// (a P1 divergence at a point mixes three vertex one-rings); then the pattern grows and one new
 /// symbolic analysis is done.
+///
+/// Factorizations and solves run on one thread or on all of them, chosen per system by a
+/// [`FactorParallelism`] policy (default [`FactorParallelism::Auto`]: one thread below
+/// [`crate::SEQUENTIAL_FLOP_LIMIT`] flops, where faer's parallel factorization is slower).
 #[derive(Debug)]
 pub struct FullSoftDesign {
     dirichlet: CsMat<f64>,
