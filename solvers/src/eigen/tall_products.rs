@@ -9,6 +9,7 @@
 //! a sequential product on it, so every thread streams its own part of `B` exactly once; the
 //! `m × r` partial inner products are summed at the end (one small reduction).
 
+use super::mass_orthogonal::mass_times;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::ReborrowMut;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -101,9 +102,7 @@ fn split_inner(
             )
         };
         match weight {
-            Some(w) => {
-                product(Mat::from_fn(z.nrows(), z.ncols(), |i, j| w[i] * z[(i, j)]).as_ref())
-            }
+            Some(w) => product(mass_times(w, z).as_ref()),
             None => product(z),
         }
         return c;
