@@ -9,7 +9,8 @@
 //! `(λ − σ)/(λ_m − σ)` (tiny for high frequencies), and Rayleigh–Ritz on `span Z` then restores
 //! `A`- and `M`-orthogonality inside clusters of close eigenvalues.
 
-use faer::Mat;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
+use faer::{Accum, Mat};
 use rayon::prelude::*;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
@@ -48,8 +49,8 @@ pub(crate) fn refine_eigenpairs(
     // Projected pencil (Zᵀ A Z, Zᵀ M Z), both t × t.
     let az = sparse_times(stiffness, &z);
     let mz = Mat::from_fn(n, t, |i, j| mass[i] * z[(i, j)]);
-    let a_small = z.transpose() * &az;
-    let m_small = z.transpose() * &mz;
+    let a_small = symmetric_inner(&z, &az);
+    let m_small = symmetric_inner(&z, &mz);
     // M-orthonormalise: Zᵀ M Z = V D Vᵀ, W = V D^{-1/2} (Z W is M-orthonormal).
     let ones = vec![1.0; t];
     let (d, v) = dense_generalized_eigen(m_small.as_ref(), &ones)?;
@@ -66,6 +67,30 @@ pub(crate) fn refine_eigenpairs(
     Ok((theta, refined))
 }
 
+/// `Zᵀ Y` (`t × t`) for `Z, Y: n × t` when it is symmetric (`Y = S Z` with symmetric `S`): only
+/// the lower triangle is multiplied (half the flops of a full product), then mirrored.
+fn symmetric_inner(z: &Mat<f64>, y: &Mat<f64>) -> Mat<f64> {
+    let t = z.ncols();
+    let mut product = Mat::<f64>::zeros(t, t);
+    triangular::matmul(
+        product.as_mut(),
+        BlockStructure::TriangularLower,
+        Accum::Replace,
+        z.transpose(),
+        BlockStructure::Rectangular,
+        y.as_ref(),
+        BlockStructure::Rectangular,
+        1.0,
+        faer::get_global_parallelism(),
+    );
+    for j in 0..t {
+        for i in 0..j {
+            product[(i, j)] = product[(j, i)];
+        }
+    }
+    product
+}
+
 /// `A X` for a sparse CSR/CSC `A` and dense `X`, column by column in parallel.
 fn sparse_times(a: &CsMat<f64>, x: &Mat<f64>) -> Mat<f64> {
     let (n, t) = (x.nrows(), x.ncols());
@@ -77,4 +102,31 @@ fn sparse_times(a: &CsMat<f64>, x: &Mat<f64>) -> Mat<f64> {
         })
         .collect();
     Mat::from_fn(a.rows(), t, |i, j| columns[j][i])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn symmetric_inner_matches_the_full_product() {
+        let (n, t) = (300, 41);
+        let z = Mat::from_fn(n, t, |i, j| ((i * 7 + j * 13) % 29) as f64 / 14.0 - 1.0);
+        // Y = S Z with S = diag(1..n) + (shift by one, both ways): symmetric.
+        let y = Mat::from_fn(n, t, |i, j| {
+            let mut v = (1 + i) as f64 * z[(i, j)];
+            if i > 0 {
+                v += 0.5 * z[(i - 1, j)];
+            }
+            if i + 1 < n {
+                v += 0.5 * z[(i + 1, j)];
+            }
+            v
+        });
+        let full = z.transpose() * &y;
+        let half = symmetric_inner(&z, &y);
+        let scale = full.norm_max();
+        assert!((&full - &half).norm_max() <= 1e-12 * scale);
+        assert_eq!(half, half.transpose().to_owned());
+    }
 }
