@@ -3,22 +3,13 @@
 
 mod common;
 
-use common::mixed_constraints;
+use common::{max_relative_difference, FullDesignInputs};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{icosphere, jitter, torus};
 use tvf_design::{
-    default_regularization, ConstraintAssembler, FillOrdering, FullSoftDesign, SoftOptions,
-    DEFAULT_FULL_ORDERING,
+    default_regularization, FillOrdering, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING,
 };
 use tvf_discretizations::{Conforming, MassLumping};
-
-fn max_relative_difference(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-        / scale
-}
 
 #[test]
 fn amd_and_nested_dissection_give_the_same_field() {
@@ -26,23 +17,17 @@ fn amd_and_nested_dissection_give_the_same_field() {
         jitter(&icosphere(3), 0.25, 3).expect("sphere"),
         torus(1.0, 0.4, 40, 16).expect("torus"),
     ] {
-        let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
-        let dirichlet = complex.dirichlet_energy();
-        let options = SoftOptions {
-            omega: 0.1,
-            regularization: default_regularization(&dirichlet, complex.m1()),
-        };
-        let assembler = ConstraintAssembler::new(&complex, &mesh);
-        let first = assembler
-            .compile_all(&mixed_constraints(&mesh, 8, 5))
-            .expect("constraints");
-        let second = assembler
-            .compile_all(&mixed_constraints(&mesh, 8, 6))
-            .expect("constraints");
+        let FullDesignInputs {
+            dirichlet,
+            mass,
+            options,
+            first,
+            second,
+        } = FullDesignInputs::new(&mesh, 8, (5, 6));
         let design = |ordering| {
             FullSoftDesign::from_matrices_with_ordering(
                 &dirichlet,
-                complex.m1(),
+                &mass,
                 options,
                 first.clone(),
                 ordering,
@@ -75,7 +60,7 @@ fn amd_and_nested_dissection_give_the_same_field() {
         assert!(report.final_residual() < 1e-8, "{:?}", report.residuals);
         let fresh = FullSoftDesign::from_matrices_with_ordering(
             &dirichlet,
-            complex.m1(),
+            &mass,
             options,
             second.clone(),
             FillOrdering::NestedDissection,

@@ -4,16 +4,13 @@
 
 mod common;
 
-use common::mixed_constraints;
+use common::{max_relative_difference, FullDesignInputs};
 use faer::Par;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{icosphere, jitter};
 use tvf_design::{
-    default_regularization, sequential_flop_limit, ConstraintAssembler, FactorParallelism,
-    FillOrdering, FullSoftDesign, SoftOptions, SEQUENTIAL_FLOP_LIMIT,
+    sequential_flop_limit, FactorParallelism, FillOrdering, FullSoftDesign, SEQUENTIAL_FLOP_LIMIT,
     SEQUENTIAL_FLOP_LIMIT_VARIABLE,
 };
-use tvf_discretizations::{Conforming, MassLumping};
 
 #[test]
 fn the_policy_maps_flops_to_threads() {
@@ -36,23 +33,17 @@ fn the_policy_maps_flops_to_threads() {
 #[test]
 fn sequential_and_parallel_factors_give_the_same_field() {
     let mesh = jitter(&icosphere(4), 0.2, 11).expect("sphere");
-    let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
-    let dirichlet = complex.dirichlet_energy();
-    let options = SoftOptions {
-        omega: 0.1,
-        regularization: default_regularization(&dirichlet, complex.m1()),
-    };
-    let assembler = ConstraintAssembler::new(&complex, &mesh);
-    let first = assembler
-        .compile_all(&mixed_constraints(&mesh, 10, 1))
-        .expect("constraints");
-    let second = assembler
-        .compile_all(&mixed_constraints(&mesh, 10, 2))
-        .expect("constraints");
+    let FullDesignInputs {
+        dirichlet,
+        mass,
+        options,
+        first,
+        second,
+    } = FullDesignInputs::new(&mesh, 10, (1, 2));
     let design = |parallelism| {
         FullSoftDesign::from_matrices_with(
             &dirichlet,
-            complex.m1(),
+            &mass,
             options,
             first.clone(),
             FillOrdering::NestedDissection,
@@ -81,17 +72,12 @@ fn sequential_and_parallel_factors_give_the_same_field() {
         for report in [&report_a, &report_b] {
             assert!(report.final_residual() < 1e-8, "{:?}", report.residuals);
         }
-        let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let difference = x
-            .iter()
-            .zip(&y)
-            .fold(0.0f64, |m, (p, q)| m.max((p - q).abs()));
         // Round-off: both are refined to the same residual; the factors differ only in the
         // order of floating-point sums.
+        let difference = max_relative_difference(&x, &y);
         assert!(
-            difference <= 1e-10 * scale,
-            "sequential and parallel fields differ by {:e} (max |x| {scale:e})",
-            difference
+            difference <= 1e-10,
+            "sequential and parallel fields differ by {difference:e} relative"
         );
     };
     compare(&sequential, &parallel);

@@ -19,15 +19,9 @@ impl AdjacencyGraph {
     /// `i–j`. Duplicate and unsorted entries are allowed.
     pub fn from_symmetric_pattern(pattern: SymbolicSparseColMatRef<'_, usize>) -> Self {
         let n = pattern.ncols();
-        let col_ptr = pattern.col_ptr();
-        let row_idx = pattern.row_idx();
-        let col_end = |j: usize| match pattern.col_nnz() {
-            Some(nnz) => col_ptr[j] + nnz[j],
-            None => col_ptr[j + 1],
-        };
         let mut degree = vec![0usize; n];
         for j in 0..n {
-            for &i in &row_idx[col_ptr[j]..col_end(j)] {
+            for &i in column_rows(pattern, j) {
                 if i != j {
                     degree[i] += 1;
                     degree[j] += 1;
@@ -42,7 +36,7 @@ impl AdjacencyGraph {
         let mut fill = offsets[..n].to_vec();
         let mut neighbours = vec![0usize; offsets[n]];
         for j in 0..n {
-            for &i in &row_idx[col_ptr[j]..col_end(j)] {
+            for &i in column_rows(pattern, j) {
                 if i != j {
                     neighbours[fill[i]] = j;
                     fill[i] += 1;
@@ -86,17 +80,11 @@ impl AdjacencyGraph {
     ) -> Self {
         assert_eq!(group.len(), pattern.ncols(), "one group per row/column");
         let n = pattern.ncols();
-        let col_ptr = pattern.col_ptr();
-        let row_idx = pattern.row_idx();
-        let col_end = |j: usize| match pattern.col_nnz() {
-            Some(nnz) => col_ptr[j] + nnz[j],
-            None => col_ptr[j + 1],
-        };
         // Straight from the entries to the groups (no graph of the n unknowns): every entry
         // coupling two groups lists each in the other's bucket, repeats included.
         let mut bucket_ptr = vec![0usize; group_count + 1];
         for j in 0..n {
-            for &i in &row_idx[col_ptr[j]..col_end(j)] {
+            for &i in column_rows(pattern, j) {
                 if group[i] != group[j] {
                     bucket_ptr[group[i] + 1] += 1;
                     bucket_ptr[group[j] + 1] += 1;
@@ -109,7 +97,7 @@ impl AdjacencyGraph {
         let mut fill = bucket_ptr[..group_count].to_vec();
         let mut bucket = vec![0usize; bucket_ptr[group_count]];
         for j in 0..n {
-            for &i in &row_idx[col_ptr[j]..col_end(j)] {
+            for &i in column_rows(pattern, j) {
                 let (gi, gj) = (group[i], group[j]);
                 if gi != gj {
                     bucket[fill[gi]] = gj;
@@ -150,4 +138,15 @@ impl AdjacencyGraph {
     pub fn neighbours_of(&self, v: usize) -> &[usize] {
         &self.neighbours[self.offsets[v]..self.offsets[v + 1]]
     }
+}
+
+/// Row indices of the stored entries of column `j` of `pattern` (honouring `col_nnz` when the
+/// columns are not packed).
+fn column_rows(pattern: SymbolicSparseColMatRef<'_, usize>, j: usize) -> &[usize] {
+    let start = pattern.col_ptr()[j];
+    let end = match pattern.col_nnz() {
+        Some(nnz) => start + nnz[j],
+        None => pattern.col_ptr()[j + 1],
+    };
+    &pattern.row_idx()[start..end]
 }

@@ -3,9 +3,13 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::HodgeComplex;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::SurfaceMesh;
-use tvf_design::{Constraint, Location, OperatorFamily, ReducedBasis, Target};
+use tvf_design::{
+    default_regularization, CompiledConstraint, Constraint, ConstraintAssembler, Location,
+    OperatorFamily, ReducedBasis, SoftOptions, Target,
+};
+use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{compute_basis, BasisRequest, SpectralBasis};
 
 /// The `d` lowest eigenfields (`None`: the complete basis).
@@ -94,4 +98,48 @@ pub fn relative_difference(a: &[f64], b: &[f64], mass: &[f64]) -> f64 {
         .sum();
     let norm: f64 = b.iter().zip(mass).map(|(y, m)| m * y * y).sum();
     (diff / norm).sqrt()
+}
+
+/// The inputs of a full soft design on `mesh` (conforming, barycentric, ω = 0.1): the Dirichlet
+/// energy `S`, the diagonal of `M_X`, the options, and two seeded constraint sets with `vectors`
+/// vector constraints each (seeds `seeds.0` and `seeds.1`).
+pub struct FullDesignInputs {
+    pub dirichlet: sprs::CsMat<f64>,
+    pub mass: Vec<f64>,
+    pub options: SoftOptions,
+    pub first: Vec<CompiledConstraint>,
+    pub second: Vec<CompiledConstraint>,
+}
+
+impl FullDesignInputs {
+    pub fn new(mesh: &SurfaceMesh, vectors: usize, seeds: (u64, u64)) -> Self {
+        let complex = Conforming::new(mesh, MassLumping::Barycentric).expect("complex");
+        let dirichlet = complex.dirichlet_energy();
+        let options = SoftOptions {
+            omega: 0.1,
+            regularization: default_regularization(&dirichlet, complex.m1()),
+        };
+        let assembler = ConstraintAssembler::new(&complex, mesh);
+        let compile = |seed| {
+            assembler
+                .compile_all(&mixed_constraints(mesh, vectors, seed))
+                .expect("constraints")
+        };
+        Self {
+            first: compile(seeds.0),
+            second: compile(seeds.1),
+            mass: complex.m1().to_vec(),
+            dirichlet,
+            options,
+        }
+    }
+}
+
+/// `max |a − b| / max |b|`.
+pub fn max_relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / scale
 }
