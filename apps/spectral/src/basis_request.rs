@@ -26,12 +26,8 @@ pub enum BasisSize {
 pub enum BasisStage {
     /// Projecting random fields onto the harmonic space.
     Harmonic,
-    /// Eigenpairs of the potential (exact) Laplacian: the integrable fields.
-    Integrable,
-    /// Eigenpairs of the co-potential (co-exact) Laplacian: the co-integrable fields.
-    Cointegrable,
-    /// Eigenpairs of both Laplacians, computed at the same time (the first round of
-    /// [`crate::compute_basis`]; `done` and `wanted` count both families).
+    /// Eigenpairs of both Laplacians (potential and co-potential), computed at the same time;
+    /// `done` and `wanted` count both families.
     Eigenpairs,
     /// Turning eigenfunctions into fields and sorting them.
     Assembling,
@@ -42,8 +38,6 @@ impl BasisStage {
     pub fn name(self) -> &'static str {
         match self {
             BasisStage::Harmonic => "harmonic fields",
-            BasisStage::Integrable => "integrable eigenfields",
-            BasisStage::Cointegrable => "co-integrable eigenfields",
             BasisStage::Eigenpairs => "eigenfields of both families",
             BasisStage::Assembling => "assembling",
         }
@@ -57,7 +51,7 @@ pub struct BasisProgress {
     pub stage: BasisStage,
     /// Items of this stage done so far (fields or eigenpairs).
     pub done: usize,
-    /// Items this stage is after (may grow when a family turns out to need more eigenpairs).
+    /// Items this stage is after.
     pub wanted: usize,
 }
 
