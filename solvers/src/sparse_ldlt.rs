@@ -325,7 +325,12 @@ impl SparseLdlt {
     }
 
     /// Overwrites the `n × r` block `rhs` with the solution `X` of `(L D Lᵀ) X = rhs`.
-    /// All `r` right-hand sides go through the supernodal triangular solves together.
+    /// All `r` right-hand sides go through the supernodal triangular solves together. With a
+    /// parallelism of `t > 1` threads and `r ≥ 2`, the columns are split into `min(t, r)` groups
+    /// solved concurrently, each by a sequential supernodal solve: faer's parallel solve
+    /// synchronises its threads at every supernode, which on surface meshes costs more than it
+    /// gains, while independent columns need no synchronisation (the result does not depend on the
+    /// split). A single right-hand side uses faer's parallel solve.
     ///
     /// # Panics
     /// If `rhs.nrows() != self.dimension()` (a programming error).
@@ -335,7 +340,31 @@ impl SparseLdlt {
             self.dimension(),
             "right-hand side has the wrong number of rows"
         );
-        let par = self.parallelism;
+        let groups = self.parallelism.degree().min(rhs.ncols());
+        if groups >= 2 {
+            self.solve_column_groups(rhs, groups);
+        } else {
+            self.solve_with(rhs, self.parallelism);
+        }
+    }
+
+    /// Solves the columns of `rhs` in `groups` concurrent groups, each sequentially.
+    fn solve_column_groups(&self, rhs: MatMut<'_, f64>, groups: usize) {
+        if groups <= 1 {
+            self.solve_with(rhs, Par::Seq);
+            return;
+        }
+        let left_groups = groups / 2;
+        let split = rhs.ncols() * left_groups / groups;
+        let (left, right) = rhs.split_at_col_mut(split);
+        rayon::join(
+            || self.solve_column_groups(left, left_groups),
+            || self.solve_column_groups(right, groups - left_groups),
+        );
+    }
+
+    /// One supernodal solve of all columns of `rhs` with faer's parallelism `par`.
+    fn solve_with(&self, rhs: MatMut<'_, f64>, par: Par) {
         let req = self
             .symbolic
             .solve_in_place_scratch::<f64>(rhs.ncols(), par);

@@ -74,7 +74,7 @@ pub(crate) fn factor_shifted(
         attempts += 1;
         match result {
             Ok(mut f) => {
-                f.set_parallelism(Par::Seq);
+                f.set_parallelism(par);
                 return Ok((f, sigma, attempts));
             }
             Err(SolverError::Singular { .. }) if attempts <= 5 => {

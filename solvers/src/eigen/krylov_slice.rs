@@ -28,7 +28,7 @@ use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, MatMut, MatRef, Par};
+use faer::{Accum, Mat, MatRef, Par};
 use rand_chacha::ChaCha8Rng;
 
 /// What one slice must find.
@@ -150,7 +150,7 @@ pub(crate) fn run_slice(
         // ---- expansion ----
         while mv + mu <= max_basis {
             let mut z = mass_times(mass, basis.as_ref().subcols(mv, mu));
-            solve_split_by_columns(problem.factor, z.as_mut(), par);
+            problem.factor.solve_in_place(z.as_mut());
             solves += mu;
             let reference = mass_column_norms(mass, z.as_ref());
             let m_new = mv + mu;
@@ -391,25 +391,4 @@ pub(crate) fn run_slice(
             problem.upper_target
         ),
     })
-}
-
-/// `Z ← (A − σM)⁻¹ Z`, the columns split into `par.degree()` groups solved concurrently, each
-/// with a sequential supernodal solve (faer's own parallel solve synchronises per supernode,
-/// which costs more than it gains on surface meshes; independent columns need no
-/// synchronisation). The result does not depend on the split.
-fn solve_split_by_columns(factor: &SparseLdlt, z: MatMut<'_, f64>, par: Par) {
-    let parts = par.degree().min(z.ncols()).max(1);
-    if parts <= 1 {
-        factor.solve_in_place(z);
-        return;
-    }
-    let left_parts = parts / 2;
-    let split = z.ncols() * left_parts / parts;
-    let (left, right) = z.split_at_col_mut(split);
-    let left_par = Par::rayon(left_parts);
-    let right_par = Par::rayon(parts - left_parts);
-    rayon::join(
-        || solve_split_by_columns(factor, left, left_par),
-        || solve_split_by_columns(factor, right, right_par),
-    );
 }
