@@ -19,16 +19,11 @@ fn main() {
     let mut options = EigenOptions::default();
     while let Some(arg) = args.next() {
         match arg.as_str() {
-            "--k" => k = args.next().and_then(|s| s.parse().ok()).unwrap_or(k),
+            "--k" => k = next_value(&mut args, k),
             "--kind" => kind = args.next().unwrap_or(kind),
-            "--block" => {
-                options.block_size = args
-                    .next()
-                    .and_then(|s| s.parse().ok())
-                    .unwrap_or(options.block_size)
-            }
+            "--block" => options.block_size = next_value(&mut args, options.block_size),
             "--threads" => {
-                let threads: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(1);
+                let threads: usize = next_value(&mut args, 1);
                 options.parallelism = if threads > 1 {
                     faer::Par::rayon(threads)
                 } else {
@@ -36,29 +31,11 @@ fn main() {
                 };
             }
             "--concurrent" => {
-                options.concurrent_slices = args
-                    .next()
-                    .and_then(|s| s.parse().ok())
-                    .unwrap_or(options.concurrent_slices)
+                options.concurrent_slices = next_value(&mut args, options.concurrent_slices)
             }
-            "--interval" => {
-                options.interval_size = args
-                    .next()
-                    .and_then(|s| s.parse().ok())
-                    .unwrap_or(options.interval_size)
-            }
-            "--tol" => {
-                options.tolerance = args
-                    .next()
-                    .and_then(|s| s.parse().ok())
-                    .unwrap_or(options.tolerance)
-            }
-            "--slice" => {
-                options.slice_size = args
-                    .next()
-                    .and_then(|s| s.parse().ok())
-                    .unwrap_or(options.slice_size)
-            }
+            "--interval" => options.interval_size = next_value(&mut args, options.interval_size),
+            "--tol" => options.tolerance = next_value(&mut args, options.tolerance),
+            "--slice" => options.slice_size = next_value(&mut args, options.slice_size),
             other => meshes.push(PathBuf::from(other)),
         }
     }
@@ -128,4 +105,9 @@ fn main() {
             );
         }
     }
+}
+
+/// The next argument parsed as a `T`, or `current` if it is missing or does not parse.
+fn next_value<T: std::str::FromStr>(args: &mut impl Iterator<Item = String>, current: T) -> T {
+    args.next().and_then(|s| s.parse().ok()).unwrap_or(current)
 }
