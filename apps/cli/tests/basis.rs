@@ -88,3 +88,44 @@ fn bad_input_exits_with_code_1_and_a_clear_message() {
     assert_eq!(output.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&output.stderr).contains("x.tvfb"));
 }
+
+/// The exact family split is reported: the eigenpairs computed per family cover the kept ones,
+/// and every kept eigenvalue lies below the counted threshold.
+#[test]
+fn basis_reports_the_counted_family_split() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = tvf()
+        .args([
+            "basis",
+            "--example",
+            "bumpy-torus",
+            "-k",
+            "120",
+            "--json",
+            "-o",
+        ])
+        .arg(dir.path().join("b.tvfb"))
+        .output()
+        .unwrap();
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("eigenpairs computed:"), "{stderr}");
+    let summary: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let count = |key: &str| summary[key].as_u64().unwrap();
+    let computed = |key: &str| summary["computed"][key].as_u64().unwrap();
+    assert_eq!(count("fields"), 120);
+    assert!(computed("integrable") >= count("integrable"));
+    assert!(computed("cointegrable") >= count("cointegrable"));
+    assert!(
+        computed("integrable") + computed("cointegrable")
+            <= count("fields") - count("harmonic") + 3,
+        "{summary}"
+    );
+    let threshold = summary["split_threshold"].as_f64().unwrap();
+    let eigenvalues = summary["eigenvalues"].as_array().unwrap();
+    assert!(eigenvalues.iter().all(|v| v.as_f64().unwrap() < threshold));
+}

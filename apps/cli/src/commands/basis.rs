@@ -81,6 +81,16 @@ pub fn run(args: BasisArgs) -> Result<()> {
         report.seconds,
         args.output.display()
     ));
+    if let Some(threshold) = report.split_threshold {
+        note(format!(
+            "eigenpairs computed: {} integrable + {} co-integrable, all below λ = {threshold:.6e} \
+             (split counted by {} inertia factorizations in {:.2} s)",
+            report.integrable_computed,
+            report.cointegrable_computed,
+            report.counting_factorizations,
+            report.counting_seconds
+        ));
+    }
     if report.harmonic_dimension > 0 {
         note(format!(
             "harmonic fields: dimension {}, orthonormality error {:.1e}, ‖L Γ‖ ≤ {:.1e}",
@@ -101,6 +111,12 @@ pub fn run(args: BasisArgs) -> Result<()> {
             "eigenvalues": basis.eigenvalues(),
             "labels": labels,
             "seconds": report.seconds,
+            "computed": {
+                "integrable": report.integrable_computed,
+                "cointegrable": report.cointegrable_computed,
+            },
+            "split_threshold": report.split_threshold,
+            "counting_seconds": report.counting_seconds,
             "output": args.output.display().to_string(),
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
