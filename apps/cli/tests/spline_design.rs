@@ -241,3 +241,30 @@ fn bad_constraint_files_are_reported_with_file_and_id() {
         "{stderr}"
     );
 }
+
+#[test]
+fn a_malformed_thread_limit_variable_is_an_error_naming_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let (mesh, constraints, _) = setup(dir.path());
+    let out = dir.path().join("full.npy");
+    let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
+        .args([
+            "design",
+            &mesh,
+            "--constraints",
+            &constraints,
+            "--full",
+            "-o",
+        ])
+        .arg(&out)
+        .env("TVF_SEQUENTIAL_FLOP_LIMIT", "1e11x")
+        .output()
+        .expect("the tvf binary runs");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("TVF_SEQUENTIAL_FLOP_LIMIT") && stderr.contains("1e11x"),
+        "{stderr}"
+    );
+    assert!(!out.exists(), "no field is written");
+}

@@ -199,6 +199,16 @@ pub enum DesignError {
         /// Value given.
         value: f64,
     },
+    /// An environment variable that tunes the solvers holds something unusable.
+    #[error("environment variable {variable} = '{value}': {expected}")]
+    BadEnvironment {
+        /// The variable's name.
+        variable: &'static str,
+        /// Its value.
+        value: String,
+        /// What it must be.
+        expected: &'static str,
+    },
     /// A dense system that must be positive definite is not (numerically).
     #[error("{0} is not positive definite")]
     NotPositiveDefinite(String),

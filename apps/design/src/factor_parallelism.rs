@@ -1,6 +1,7 @@
 //! [`FactorParallelism`]: whether the full soft design's sparse factorization runs on one
 //! thread or on all of them.
 
+use crate::DesignError;
 use faer::Par;
 
 /// Below this many flops of one numeric factorization (`Σ_j c_j²`, see
@@ -19,14 +20,23 @@ pub const SEQUENTIAL_FLOP_LIMIT: f64 = 8.0e10;
 /// Environment variable overriding [`SEQUENTIAL_FLOP_LIMIT`] (a number of flops, e.g. `1e11`).
 pub const SEQUENTIAL_FLOP_LIMIT_VARIABLE: &str = "TVF_SEQUENTIAL_FLOP_LIMIT";
 
-/// [`SEQUENTIAL_FLOP_LIMIT`], or the value of [`SEQUENTIAL_FLOP_LIMIT_VARIABLE`] when that is a
-/// non-negative number.
-pub fn sequential_flop_limit() -> f64 {
-    std::env::var(SEQUENTIAL_FLOP_LIMIT_VARIABLE)
-        .ok()
-        .and_then(|v| v.trim().parse::<f64>().ok())
-        .filter(|v| *v >= 0.0)
-        .unwrap_or(SEQUENTIAL_FLOP_LIMIT)
+/// [`SEQUENTIAL_FLOP_LIMIT`], or the value of [`SEQUENTIAL_FLOP_LIMIT_VARIABLE`] when it is set.
+///
+/// Errors: [`DesignError::BadEnvironment`] if the variable is set but is not a non-negative
+/// number (a typo would otherwise silently change which factorizations are threaded).
+pub fn sequential_flop_limit() -> Result<f64, DesignError> {
+    let Some(raw) = std::env::var_os(SEQUENTIAL_FLOP_LIMIT_VARIABLE) else {
+        return Ok(SEQUENTIAL_FLOP_LIMIT);
+    };
+    let value = raw.to_string_lossy().into_owned();
+    match value.trim().parse::<f64>() {
+        Ok(limit) if limit >= 0.0 => Ok(limit),
+        _ => Err(DesignError::BadEnvironment {
+            variable: SEQUENTIAL_FLOP_LIMIT_VARIABLE,
+            value,
+            expected: "a non-negative number of flops, e.g. 1e11",
+        }),
+    }
 }
 
 /// How [`crate::FullSoftDesign`] parallelises its numeric factorizations and solves. faer's
@@ -45,10 +55,11 @@ pub enum FactorParallelism {
 }
 
 impl FactorParallelism {
-    /// The faer parallelism for a factorization of `flops` flops.
-    pub fn choose(self, flops: f64) -> Par {
+    /// The faer parallelism for a factorization of `flops` flops, with `limit` the
+    /// [`sequential_flop_limit`] (only [`FactorParallelism::Auto`] reads it).
+    pub fn choose(self, flops: f64, limit: f64) -> Par {
         match self {
-            FactorParallelism::Auto if flops < sequential_flop_limit() => Par::Seq,
+            FactorParallelism::Auto if flops < limit => Par::Seq,
             FactorParallelism::Auto => faer::get_global_parallelism(),
             FactorParallelism::Sequential => Par::Seq,
             FactorParallelism::Parallel => Par::rayon(0),

@@ -4,7 +4,7 @@
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
-use crate::factor_parallelism::FactorParallelism;
+use crate::factor_parallelism::{sequential_flop_limit, FactorParallelism, SEQUENTIAL_FLOP_LIMIT};
 use crate::refinement::{exact, refined_solve, symmetric_product, DoubleDouble, SolveReport};
 use crate::sparse_pattern::{constraint_gram_entries, position, with_extra_entries};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
@@ -428,7 +428,11 @@ fn factor_augmented(
     ordering: FillOrdering,
     parallelism: FactorParallelism,
 ) -> Result<SparseLdlt, DesignError> {
-    let choose = |flops| parallelism.choose(flops);
+    let limit = match parallelism {
+        FactorParallelism::Auto => sequential_flop_limit()?,
+        FactorParallelism::Sequential | FactorParallelism::Parallel => SEQUENTIAL_FLOP_LIMIT,
+    };
+    let choose = |flops| parallelism.choose(flops, limit);
     let factor = match ordering {
         FillOrdering::Amd => {
             SparseLdlt::with_ordering_and_parallelism(augmented.as_ref(), ordering, choose)?

@@ -17,17 +17,26 @@ fn the_policy_maps_flops_to_threads() {
     assert_eq!(FactorParallelism::default(), FactorParallelism::Auto);
     // No test sets the override variable, so the limit is the constant.
     assert!(std::env::var_os(SEQUENTIAL_FLOP_LIMIT_VARIABLE).is_none());
-    assert_eq!(sequential_flop_limit(), SEQUENTIAL_FLOP_LIMIT);
     assert_eq!(
-        FactorParallelism::Auto.choose(0.5 * SEQUENTIAL_FLOP_LIMIT),
+        sequential_flop_limit().expect("unset: the constant"),
+        SEQUENTIAL_FLOP_LIMIT
+    );
+    assert_eq!(
+        FactorParallelism::Auto.choose(0.5 * SEQUENTIAL_FLOP_LIMIT, SEQUENTIAL_FLOP_LIMIT),
         Par::Seq
     );
     assert_eq!(
-        FactorParallelism::Auto.choose(2.0 * SEQUENTIAL_FLOP_LIMIT),
+        FactorParallelism::Auto.choose(2.0 * SEQUENTIAL_FLOP_LIMIT, SEQUENTIAL_FLOP_LIMIT),
         faer::get_global_parallelism()
     );
-    assert_eq!(FactorParallelism::Sequential.choose(1e15), Par::Seq);
-    assert_eq!(FactorParallelism::Parallel.choose(1.0), Par::rayon(0));
+    assert_eq!(
+        FactorParallelism::Sequential.choose(1e15, SEQUENTIAL_FLOP_LIMIT),
+        Par::Seq
+    );
+    assert_eq!(
+        FactorParallelism::Parallel.choose(1.0, SEQUENTIAL_FLOP_LIMIT),
+        Par::rayon(0)
+    );
 }
 
 #[test]
