@@ -1,14 +1,12 @@
 //! End-to-end: `tvf basis` writes a basis file that loads for its mesh and matches the library.
 
-use std::process::Command;
+mod common;
+
+use common::{assert_success, tvf};
 use tvf_core::generate::genus_surface;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{compute_basis, load_basis, BasisFileKey, BasisRequest, FieldFamily};
-
-fn tvf() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tvf"))
-}
 
 #[test]
 fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
@@ -23,11 +21,7 @@ fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
         .arg(&out)
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     // Not a terminal: plain progress lines and a summary on stderr.
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("26 fields"), "{stderr}");
@@ -107,11 +101,7 @@ fn basis_reports_the_counted_family_split() {
         .arg(dir.path().join("b.tvfb"))
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("eigenpairs computed:"), "{stderr}");
     let summary: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();

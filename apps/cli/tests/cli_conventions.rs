@@ -2,14 +2,13 @@
 //! bad input (a missing file) exits with 1 and names the file; the basis cache is reused and
 //! says so; a damaged cache file is recomputed with a warning.
 
+mod common;
+
+use common::{assert_success, tvf};
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 use tvf_core::generate::torus;
 use tvf_core::io::write_obj;
-
-fn tvf() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tvf"))
-}
 
 const SUBCOMMANDS: [&str; 17] = [
     "info",
@@ -199,11 +198,7 @@ fn a_computed_basis_is_cached_reused_and_recomputed_when_damaged() {
             .args(extra)
             .output()
             .unwrap();
-        assert!(
-            output.status.success(),
-            "{}",
-            String::from_utf8_lossy(&output.stderr)
-        );
+        assert_success(&output);
         (
             String::from_utf8_lossy(&output.stdout).into_owned(),
             String::from_utf8_lossy(&output.stderr).into_owned(),
@@ -287,10 +282,6 @@ fn a_basis_file_must_match_the_requested_discretization() {
         .arg(&basis)
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     assert!(String::from_utf8_lossy(&output.stderr).contains("using basis"));
 }

@@ -1,16 +1,14 @@
 //! End-to-end: `tvf coefficients` recovers the coefficients of a known combination of basis
 //! fields and refuses a basis of another mesh.
 
-use std::process::Command;
+mod common;
+
+use common::{assert_success, tvf};
 use tvf_core::discretization::FieldSpace;
 use tvf_core::generate::{genus_surface, torus};
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_discretizations::FaceFields;
 use tvf_spectral::{read_basis_file, write_face_vectors};
-
-fn tvf() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tvf"))
-}
 
 #[test]
 fn coefficients_of_a_combination_of_basis_fields() {
@@ -44,11 +42,7 @@ fn coefficients_of_a_combination_of_basis_fields() {
         .arg("--json")
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     let entries = json["coefficients"].as_array().unwrap();
     assert_eq!(entries.len(), basis.len());

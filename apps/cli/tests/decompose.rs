@@ -1,6 +1,9 @@
 //! End-to-end: `tvf decompose` writes three M_X-orthogonal parts that sum to the field, and the
 //! potentials.
 
+mod common;
+
+use common::assert_success;
 use std::process::Command;
 use tvf_core::discretization::{FieldSpace, HodgeComplex, HodgeOperators};
 use tvf_core::generate::genus_surface;
@@ -31,11 +34,7 @@ fn parts_sum_to_the_field_and_are_orthogonal() {
         .arg(&out)
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     let read = |name: &str| {
         space
             .from_vectors(&read_face_vectors(&out.join(format!("{name}.npy"))).unwrap())

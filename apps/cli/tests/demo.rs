@@ -1,14 +1,12 @@
 //! End-to-end test of `tvf demo` in its reduced-size mode (`--quick`): the page references
 //! pictures that exist, reports every step with its time, and bad meshes are refused.
 
-use std::process::Command;
+mod common;
+
+use common::{assert_success, tvf};
 use tvf_core::generate::genus_surface;
 use tvf_core::io::write_obj;
 use tvf_core::SurfaceMesh;
-
-fn tvf() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tvf"))
-}
 
 /// The `src` attributes of every `<img>` in `page`.
 fn image_sources(page: &str) -> Vec<String> {
@@ -154,11 +152,7 @@ fn demo_refuses_meshes_it_cannot_use() {
         .arg(&path)
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     assert!(
         output.stderr.is_empty(),
         "{}",

@@ -1,5 +1,8 @@
 //! End-to-end: `tvf info` on built-in examples and files, text and JSON, and its errors.
 
+mod common;
+
+use common::assert_success;
 use serde_json::Value;
 use std::process::{Command, Output};
 
@@ -14,11 +17,7 @@ fn info_json(args: &[&str]) -> Value {
     let mut all = vec!["info", "--json"];
     all.extend_from_slice(args);
     let output = tvf(&all);
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     serde_json::from_slice(&output.stdout).expect("info --json prints JSON")
 }
 

@@ -1,15 +1,14 @@
 //! End-to-end tests of `tvf render` and `tvf export`: the real binary on a generated torus
 //! (written as OBJ) with a rotation field, checking the files it writes.
 
+mod common;
+
+use common::tvf;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 use tvf_core::generate::torus;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_core::SurfaceMesh;
-
-fn tvf() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tvf"))
-}
 
 fn run(args: &[&std::ffi::OsStr]) -> Output {
     tvf().args(args).output().unwrap()

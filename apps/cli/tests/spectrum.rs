@@ -4,6 +4,9 @@
 //! The real meshes come from `../shared/meshes` (skipped when absent): kitten and 3holes always;
 //! eight and hand too when `TVF_LONG_TESTS` is set (they take longer).
 
+mod common;
+
+use common::assert_success;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -25,11 +28,7 @@ fn spectrum_json(mesh: &Path, k: usize, decomposition: &str) -> serde_json::Valu
         ])
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     serde_json::from_slice(&output.stdout).unwrap()
 }
 
@@ -178,11 +177,7 @@ fn spectrum_json_on_a_generated_mesh_and_bad_input() {
         ])
         .output()
         .unwrap();
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
+    assert_success(&output);
     let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     let labels: Vec<&str> = json["labels"]
         .as_array()
