@@ -75,6 +75,17 @@ pub(crate) struct DoubleDouble {
 }
 
 impl DoubleDouble {
+    /// `b − t` for a plain `b`, with the rounding error of the difference kept.
+    #[inline]
+    pub fn difference(b: f64, t: DoubleDouble) -> DoubleDouble {
+        let mut r = DoubleDouble { hi: b, lo: 0.0 };
+        r.add(DoubleDouble {
+            hi: -t.hi,
+            lo: -t.lo,
+        });
+        r
+    }
+
     /// Adds `a · (x.hi + x.lo)` with the product's rounding error kept.
     #[inline]
     pub fn add_product(&mut self, a: f64, x: DoubleDouble) {
@@ -137,11 +148,7 @@ pub(crate) fn accurate_residual(matrix: &CsMat<f64>, x: &[f64], b: &[f64]) -> Ve
         .into_iter()
         .zip(b)
         .map(|(ax, &bi)| {
-            let mut r = DoubleDouble { hi: bi, lo: 0.0 };
-            r.add(DoubleDouble {
-                hi: -ax.hi,
-                lo: -ax.lo,
-            });
+            let r = DoubleDouble::difference(bi, ax);
             r.hi + r.lo
         })
         .collect()

@@ -317,14 +317,7 @@ impl FullSoftDesign {
         let mut r: Vec<DoubleDouble> = symmetric_product(&self.top, &x_exact)
             .into_iter()
             .zip(b)
-            .map(|(t, &bi)| {
-                let mut ri = DoubleDouble { hi: bi, lo: 0.0 };
-                ri.add(DoubleDouble {
-                    hi: -t.hi,
-                    lo: -t.lo,
-                });
-                ri
-            })
+            .map(|(t, &bi)| DoubleDouble::difference(bi, t))
             .collect();
         if self.omega > 0.0 {
             let scaled: Vec<DoubleDouble> = symmetric_product(&self.dirichlet, &x_exact)
