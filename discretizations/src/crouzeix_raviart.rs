@@ -4,7 +4,8 @@ use crate::face_geometry::FaceGeometry;
 use crate::gradient_assembly::assemble_gradient;
 use crate::MassLumping;
 use sprs::CsMat;
-use tvf_core::discretization::{DiscretizationError, FunctionSpace};
+use crate::FunctionSpace;
+use tvf_core::discretization::{DiscretizationError, NodeKind};
 use tvf_core::SurfaceMesh;
 
 /// The nonconforming space `S*_h`: nodal values at the `E` edge midpoints (edges numbered as in
@@ -67,6 +68,10 @@ impl CrouzeixRaviart {
 impl FunctionSpace for CrouzeixRaviart {
     fn name(&self) -> &str {
         "Crouzeix-Raviart"
+    }
+
+    fn node_kind(&self) -> NodeKind {
+        NodeKind::Edges
     }
 
     fn dimension(&self) -> usize {

@@ -1,30 +1,34 @@
-//! [`FaceFields`]: the space `X_h` of piecewise constant tangent fields.
+//! [`FaceFields`]: the space `X_h` of piecewise constant tangent fields, one vector per face.
 
 use crate::face_geometry::FaceGeometry;
 use sprs::CsMat;
-use tvf_core::discretization::{DiscretizationError, FieldSpace};
+use tvf_core::discretization::{
+    check_length, DiscretizationError, FieldRotation, FieldSampling, TangentProjection,
+};
+use tvf_core::geometry::dot;
 use tvf_core::SurfaceMesh;
 
-/// Piecewise constant tangent fields, one vector per face in the frame
-/// `e1 = normalize(p_{i1} − p_{i0})`, `e2 = n × e1`; `M_X = diag(A_t, A_t)`, `J` the +π/2 rotation.
+/// Piecewise constant tangent fields, one vector per face stored as `(x[2t], x[2t+1])` in the
+/// frame `e1 = normalize(p_{i1} − p_{i0})`, `e2 = n × e1` (pointwise coefficients);
+/// `M_X = diag(A_t, A_t)`, `J` the +π/2 rotation. Sampling is exact (the field is constant on
+/// each face); per-face vectors become fields by projection onto the face plane.
 #[derive(Debug, Clone)]
 pub struct FaceFields {
     frames: Vec<[[f64; 3]; 2]>,
     normals: Vec<[f64; 3]>,
     mass: Vec<f64>,
     rotation: CsMat<f64>,
-    face_components: Vec<usize>,
 }
 
 impl FaceFields {
     /// Builds the field space of `mesh`; fails on a degenerate face.
     pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
-        Ok(Self::from_geometry(mesh, &FaceGeometry::new(mesh)?))
+        Ok(Self::from_geometry(&FaceGeometry::new(mesh)?))
     }
 
     /// Builds the field space from precomputed face geometry.
-    pub fn from_geometry(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Self {
-        let face_count = mesh.face_count();
+    pub fn from_geometry(geometry: &FaceGeometry) -> Self {
+        let face_count = geometry.areas.len();
         let mass = geometry.areas.iter().flat_map(|&a| [a, a]).collect();
         // Row 2t: (−1 at column 2t+1); row 2t+1: (+1 at column 2t).
         let indptr = (0..=2 * face_count).collect();
@@ -36,22 +40,22 @@ impl FaceFields {
             normals: geometry.normals.clone(),
             mass,
             rotation,
-            face_components: mesh.face_components().to_vec(),
         }
+    }
+
+    /// Diagonal of `M_X` (`2F` entries: the face area `A_t` twice per face, units of area).
+    pub fn mass(&self) -> &[f64] {
+        &self.mass
     }
 }
 
-impl FieldSpace for FaceFields {
+impl FieldSampling for FaceFields {
     fn face_count(&self) -> usize {
         self.frames.len()
     }
 
-    fn mass(&self) -> &[f64] {
-        &self.mass
-    }
-
-    fn rotation(&self) -> &CsMat<f64> {
-        &self.rotation
+    fn field_dimension(&self) -> usize {
+        2 * self.frames.len()
     }
 
     fn frame(&self, face: usize) -> [[f64; 3]; 2] {
@@ -62,7 +66,64 @@ impl FieldSpace for FaceFields {
         self.normals[face]
     }
 
-    fn face_components(&self) -> &[usize] {
-        &self.face_components
+    /// `v = x[2t] e1 + x[2t+1] e2` anywhere in face `t`.
+    fn sample_weights(&self, face: usize, _barycentric: [f64; 3]) -> Vec<(usize, [f64; 3])> {
+        let [e1, e2] = self.frames[face];
+        vec![(2 * face, e1), (2 * face + 1, e2)]
+    }
+
+    /// Exactly `(1, 0)` at `2t` and `(0, 1)` at `2t + 1`.
+    fn sample_frame_weights(&self, face: usize, _barycentric: [f64; 3]) -> Vec<(usize, [f64; 2])> {
+        vec![(2 * face, [1.0, 0.0]), (2 * face + 1, [0.0, 1.0])]
+    }
+
+    /// `(x[2t], x[2t+1]) = (v·e1, v·e2)`: the orthogonal projection onto the face plane.
+    fn from_face_vectors(
+        &self,
+        vectors: &[[f64; 3]],
+    ) -> Result<TangentProjection, DiscretizationError> {
+        check_length("per-face vectors", self.face_count(), vectors.len())?;
+        if let Some(index) = vectors
+            .iter()
+            .position(|v| v.iter().any(|x| !x.is_finite()))
+        {
+            return Err(DiscretizationError::NonFinite {
+                what: "per-face vectors",
+                index,
+            });
+        }
+        let mut field = Vec::with_capacity(self.field_dimension());
+        let mut normal_parts = Vec::with_capacity(self.face_count());
+        for (t, &v) in vectors.iter().enumerate() {
+            let [e1, e2] = self.frames[t];
+            field.push(dot(v, e1));
+            field.push(dot(v, e2));
+            normal_parts.push(dot(v, self.normals[t]));
+        }
+        Ok(TangentProjection {
+            field,
+            normal_parts,
+        })
+    }
+
+    fn to_face_vectors(&self, field: &[f64]) -> Result<Vec<[f64; 3]>, DiscretizationError> {
+        check_length(
+            "tangent field coefficients",
+            self.field_dimension(),
+            field.len(),
+        )?;
+        Ok(self
+            .frames
+            .iter()
+            .zip(field.chunks_exact(2))
+            .map(|([e1, e2], ab)| std::array::from_fn(|k| ab[0] * e1[k] + ab[1] * e2[k]))
+            .collect())
+    }
+}
+
+impl FieldRotation for FaceFields {
+    /// Block diagonal with blocks `[[0, −1], [1, 0]]`, i.e. `(a, b) ↦ (−b, a)`.
+    fn rotation(&self) -> &CsMat<f64> {
+        &self.rotation
     }
 }

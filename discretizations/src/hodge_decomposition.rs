@@ -1,4 +1,4 @@
-//! The discrete Hodge decomposition `v = d0 f + J G_co g + h` of a field, for any
+//! The discrete Hodge decomposition `v = d0 f − M1⁻¹ d1ᵀ g + h` of a field, for any
 //! [`HodgeComplex`], and a basis of the harmonic fields.
 
 use crate::pinned_poisson::PinnedPoisson;
@@ -6,9 +6,7 @@ use crate::DecompositionError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
-use tvf_core::discretization::{
-    DiscretizationError, FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators,
-};
+use tvf_core::discretization::{DiscretizationError, HodgeComplex, HodgeOperators};
 
 /// The three `M1`-orthogonal parts of a field and their potentials.
 #[derive(Debug, Clone, PartialEq)]
@@ -16,13 +14,13 @@ pub struct HodgeParts {
     /// Potential `f` (`n0` pointwise values, zero mean per component): `integrable = d0 f`.
     pub potential: Vec<f64>,
     /// Co-potential `g` (`n2` pointwise values, zero mean per component):
-    /// `co_integrable = J G_co g`.
+    /// `co_integrable = −M1⁻¹ d1ᵀ g` (finite elements: `J G_co g`).
     pub co_potential: Vec<f64>,
     /// Integrable (curl-free) part `d0 f` (`2F`, pointwise).
     pub integrable: Vec<f64>,
-    /// Co-integrable (divergence-free) part `J G_co g` (`2F`, pointwise).
+    /// Co-integrable (divergence-free) part `−M1⁻¹ d1ᵀ g` (`n1`).
     pub co_integrable: Vec<f64>,
-    /// Harmonic part `h = v − d0 f − J G_co g` (`2F`, pointwise): in the kernel of the Hodge–Laplacian.
+    /// Harmonic part `h = v − d0 f + M1⁻¹ d1ᵀ g` (`n1`): in the kernel of the Hodge–Laplacian.
     pub harmonic: Vec<f64>,
 }
 
@@ -30,32 +28,31 @@ pub struct HodgeParts {
 /// `(d0ᵀ M1 d0) f = d0ᵀ M1 v` and `(d1 M1⁻¹ d1ᵀ) g = −d1 v` are factored once (one node pinned per
 /// connected component), so decomposing many fields costs two triangular solves each.
 #[derive(Debug)]
-pub struct HodgeDecomposer<'a, H: HodgeComplex> {
+pub struct HodgeDecomposer<'a, H: HodgeComplex + ?Sized> {
     complex: &'a H,
     exact: PinnedPoisson,
     co_exact: PinnedPoisson,
 }
 
-impl<'a, H: HodgeComplex> HodgeDecomposer<'a, H> {
+impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
     /// Factors the two Poisson systems of `complex`. Fails on a mesh with boundary
     /// ([`DecompositionError::Boundary`]) or if a factorization fails.
     pub fn new(complex: &'a H) -> Result<Self, DecompositionError> {
-        if complex.has_boundary() {
+        if complex.topology().has_boundary {
             return Err(DecompositionError::Boundary);
         }
-        let p = complex.potentials();
-        let q = complex.co_potentials();
+        let components = complex.topology().component_count;
         let exact = PinnedPoisson::new(
-            &complex.potential_stiffness(),
-            p.node_components(),
-            p.component_count(),
-            p.mass(),
+            complex.potential_stiffness(),
+            &complex.potential_nodes().components,
+            components,
+            complex.m0().values(),
         )?;
         let co_exact = PinnedPoisson::new(
-            &complex.co_potential_stiffness(),
-            q.node_components(),
-            q.component_count(),
-            q.mass(),
+            complex.co_potential_stiffness(),
+            &complex.co_potential_nodes().components,
+            components,
+            &complex.m2().inverse(),
         )?;
         Ok(Self {
             complex,
@@ -73,7 +70,7 @@ impl<'a, H: HodgeComplex> HodgeDecomposer<'a, H> {
     /// harmonic parts, per connected component.
     pub fn decompose(&self, field: &[f64]) -> Result<HodgeParts, DecompositionError> {
         let c = self.complex;
-        let dimension = c.fields().dimension();
+        let dimension = c.field_dimension();
         if field.len() != dimension {
             return Err(DiscretizationError::DimensionMismatch {
                 what: "field to decompose",
@@ -89,7 +86,7 @@ impl<'a, H: HodgeComplex> HodgeDecomposer<'a, H> {
             }
             .into());
         }
-        let weighted: Vec<f64> = field.iter().zip(c.m1()).map(|(v, m)| v * m).collect();
+        let weighted = c.m1().apply(field);
         let potential = self.exact.solve(&mul_transpose_vec(c.d0(), &weighted));
         let curl: Vec<f64> = mul_vec(c.d1(), field).iter().map(|x| -x).collect();
         let co_potential = self.co_exact.solve(&curl);
@@ -121,9 +118,10 @@ impl<'a, H: HodgeComplex> HodgeDecomposer<'a, H> {
     pub fn harmonic_basis(&self, seed: u64) -> Result<Vec<Vec<f64>>, DecompositionError> {
         let c = self.complex;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        let mut basis: Vec<Vec<f64>> = Vec::with_capacity(c.harmonic_dimension());
-        for _ in 0..c.harmonic_dimension() {
-            let random: Vec<f64> = (0..c.fields().dimension())
+        let harmonic_dimension = c.topology().harmonic_dimension;
+        let mut basis: Vec<Vec<f64>> = Vec::with_capacity(harmonic_dimension);
+        for _ in 0..harmonic_dimension {
+            let random: Vec<f64> = (0..c.field_dimension())
                 .map(|_| rng.random_range(-1.0..1.0))
                 .collect();
             let mut h = self.harmonic_part(&random)?;

@@ -4,7 +4,8 @@ use crate::face_geometry::FaceGeometry;
 use crate::gradient_assembly::assemble_gradient;
 use crate::MassLumping;
 use sprs::CsMat;
-use tvf_core::discretization::{DiscretizationError, FunctionSpace};
+use crate::FunctionSpace;
+use tvf_core::discretization::{DiscretizationError, NodeKind};
 use tvf_core::SurfaceMesh;
 
 /// The conforming space `S_h`: nodal values at the `V` vertices, hat-function basis.
@@ -56,6 +57,10 @@ impl LagrangeP1 {
 impl FunctionSpace for LagrangeP1 {
     fn name(&self) -> &str {
         "Lagrange P1"
+    }
+
+    fn node_kind(&self) -> NodeKind {
+        NodeKind::Vertices
     }
 
     fn dimension(&self) -> usize {

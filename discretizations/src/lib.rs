@@ -1,47 +1,52 @@
 //! # tvf-discretizations
 //!
-//! The two discretizations of the paper behind the traits of
-//! [`tvf_core::discretization`]: the function spaces [`LagrangeP1`] (`S_h`, vertices) and
-//! [`CrouzeixRaviart`] (`S*_h`, edge midpoints), the face fields [`FaceFields`] (`X_h`), the
-//! mass lumpings [`MassLumping`], the Hodge complexes [`Conforming`] and [`Nonconforming`], and
-//! the Hodge decomposition [`HodgeDecomposer`] for any complex.
+//! Every discretization tvf ships, behind the seam of [`tvf_core::discretization`], and the
+//! [`catalog`] that lists them:
+//!
+//! - the finite-element complexes of the paper, [`Conforming`] and [`Nonconforming`]
+//!   ([`FiniteElementComplex`] over the function spaces [`LagrangeP1`] (`S_h`, vertices) and
+//!   [`CrouzeixRaviart`] (`S*_h`, edge midpoints) and the face fields [`FaceFields`] (`X_h`),
+//!   with a [`MassLumping`]);
+//! - discrete exterior calculus on primal 1-forms, [`DecComplex`], sampled by Whitney
+//!   interpolation ([`WhitneySampling`]);
+//! - the Hodge decomposition [`HodgeDecomposer`] of any complex.
 //!
 //! ```
-//! use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+//! use tvf_core::discretization::HodgeOperators;
 //! use tvf_core::generate::icosphere;
-//! use tvf_discretizations::{Conforming, HodgeDecomposer, MassLumping};
+//! use tvf_discretizations::{catalog_entry, HodgeDecomposer};
 //!
 //! let mesh = icosphere(1); // 42 vertices, 120 edges, 80 faces
-//! let complex = Conforming::new(&mesh, MassLumping::Barycentric)?;
+//! let complex = (catalog_entry("conforming-barycentric")?.build)(&mesh)?;
 //! assert_eq!(complex.d0().shape(), (160, 42));   // G: 2F × V
 //! assert_eq!(complex.d1().shape(), (120, 160));  // G*ᵀ J M_X: E × 2F
-//! let laplacian = complex.hodge_laplacian();     // L = M_X⁻¹ S, 2F × 2F
-//! assert_eq!(laplacian.shape(), (160, 160));
+//! assert_eq!(complex.hodge_laplacian().shape(), (160, 160)); // L = M_X⁻¹ S
+//!
+//! // The same code on DEC 1-forms: fields are edge values.
+//! let dec = (catalog_entry("dec-circumcentric")?.build)(&mesh)?;
+//! assert_eq!(dec.d0().shape(), (120, 42));       // E × V incidence
 //!
 //! // Decompose a field: on a sphere there are no harmonic fields.
 //! let field: Vec<f64> = (0..160).map(|i| (i as f64 * 0.37).sin()).collect();
-//! let parts = HodgeDecomposer::new(&complex)?.decompose(&field)?;
+//! let parts = HodgeDecomposer::new(complex.as_ref())?.decompose(&field)?;
 //! let harmonic_norm = complex.field_inner(&parts.harmonic, &parts.harmonic).sqrt();
 //! assert!(harmonic_norm < 1e-10);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
-//! # Adding a third discretization
-//! A discretization is one implementation of [`HodgeComplex`] (or of [`FunctionSpace`] /
-//! [`FieldSpace`](tvf_core::discretization::FieldSpace), assembled with
-//! [`FiniteElementComplex::from_spaces`]); every operator then comes from the blanket
-//! [`HodgeOperators`](tvf_core::discretization::HodgeOperators), and the conformance suite in
-//! `tests/` checks it with one line, `conformance_suite!(my_name, |mesh| MyComplex::new(mesh));`.
-//!
-//! Example: the conforming complex with a different P1 mass, here lumped by *uniform* weights
-//! (every vertex gets the mean vertex area): a new potential space wrapping [`LagrangeP1`].
+//! # Adding a discretization
+//! Build the five matrices and implement [`HodgeComplex`](tvf_core::discretization::HodgeComplex)
+//! (see [`DecComplex`] for a complete example, 230 lines with its Whitney sampling), then add one
+//! [`CatalogEntry`] to [`catalog`]. Every command, the editor and papers/ read the catalog, and
+//! the conformance suite in `tests/` fails until the entry has its suite line. Finite-element
+//! variants can reuse [`FiniteElementComplex::from_spaces`] with a new [`FunctionSpace`]:
 //!
 //! ```
 //! use sprs::CsMat;
-//! use tvf_core::discretization::{FunctionSpace, HodgeComplex, HodgeOperators};
+//! use tvf_core::discretization::{HodgeOperators, NodeKind};
 //! use tvf_core::generate::icosphere;
 //! use tvf_discretizations::{
-//!     CrouzeixRaviart, FaceFields, FiniteElementComplex, LagrangeP1, MassLumping, Topology,
+//!     CrouzeixRaviart, FaceFields, FiniteElementComplex, FunctionSpace, LagrangeP1, MassLumping,
 //! };
 //!
 //! /// P1 with every vertex weighted by the mean vertex area.
@@ -60,6 +65,7 @@
 //!
 //! impl FunctionSpace for UniformP1 {
 //!     fn name(&self) -> &str { "P1, uniform mass" }
+//!     fn node_kind(&self) -> NodeKind { NodeKind::Vertices }
 //!     fn dimension(&self) -> usize { self.inner.dimension() }
 //!     fn mass(&self) -> &[f64] { &self.mass }
 //!     fn gradient(&self) -> &CsMat<f64> { self.inner.gradient() }
@@ -74,37 +80,47 @@
 //! let mesh = icosphere(2);
 //! let lumping = MassLumping::Barycentric;
 //! let complex = FiniteElementComplex::from_spaces(
-//!     "conforming, uniform P1 mass",
+//!     "conforming-uniform-p1",
+//!     &mesh,
 //!     UniformP1::new(LagrangeP1::new(&mesh, lumping)?),
 //!     CrouzeixRaviart::new(&mesh, lumping)?,
 //!     FaceFields::new(&mesh)?,
-//!     Topology::of(&mesh),
 //! )?;
 //! // Every derived operator is available; d1 · d0 = 0 still holds (it does not involve M0).
 //! let d1d0 = &*complex.d1() * &*complex.d0();
 //! assert!(d1d0.data().iter().all(|x| x.abs() < 1e-12));
-//! let s = complex.dirichlet_energy();
-//! assert_eq!(s.shape(), (640, 640));
+//! assert_eq!(complex.dirichlet_energy().shape(), (640, 640));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 #![warn(missing_docs)]
 
+mod catalog;
 mod crouzeix_raviart;
+mod dec_complex;
 mod error;
 mod face_fields;
 pub mod face_geometry;
 mod finite_element_complex;
+mod function_space;
 mod gradient_assembly;
 mod hodge_decomposition;
 mod lagrange_p1;
 mod mass_lumping;
 mod pinned_poisson;
+mod whitney_sampling;
 
+pub use catalog::{
+    catalog, catalog_entry, BoxedComplex, CatalogEntry, UnknownDiscretization,
+    DEFAULT_DISCRETIZATION,
+};
 pub use crouzeix_raviart::CrouzeixRaviart;
+pub use dec_complex::{edge_hodge_star, DecComplex};
 pub use error::DecompositionError;
 pub use face_fields::FaceFields;
-pub use finite_element_complex::{Conforming, FiniteElementComplex, Nonconforming, Topology};
+pub use finite_element_complex::{mesh_topology, Conforming, FiniteElementComplex, Nonconforming};
+pub use function_space::FunctionSpace;
 pub use hodge_decomposition::{HodgeDecomposer, HodgeParts};
 pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use pinned_poisson::PinnedPoisson;
+pub use whitney_sampling::WhitneySampling;

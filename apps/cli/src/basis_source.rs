@@ -9,28 +9,28 @@
 //!   [`DEFAULT_FIELDS`] if not given). `K ≥ 2F` asks for the complete basis (dense
 //!   eigensolvers, small meshes only). `-k` means this in every subcommand (`tvf spectrum -k K`
 //!   lists the same `K` eigenvalues);
-//! - `--decomposition conforming|nonconforming`, `--mass barycentric|voronoi`: the
-//!   discretization (default conforming, barycentric);
+//! - `--discretization ID` (a catalog id; shorthands `--decomposition NAME`, `--mass NAME`): the
+//!   discretization (default conforming-barycentric);
 //! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
 //!
-//! The cache: a computed basis is saved as `{fingerprint}-{decomposition}-{mass}-{size}.tvfb` in
+//! The cache: a computed basis is saved as `{fingerprint}-{discretization id}-{size}.tvfb` in
 //! `--cache-dir`, else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in
 //! `--example` mesh (no file to sit next to) in `tvf-cache/` under the system temporary folder.
 //! `{size}` is `d{K}` for `K` fields, `p{P}` for the `P` pairs a compressed file needs when no
 //! `-k` is given, `complete` for the complete basis. The key is the mesh fingerprint (vertices
-//! and faces), the discretization, the mass lumping and the size (the seed is fixed, so equal
+//! and faces), the discretization's catalog id and the size (the seed is fixed, so equal
 //! keys mean bit-identical bases). A cached basis is reused and stderr says so; a damaged or
 //! mismatching cache file is recomputed with a warning.
 
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
 use anyhow::{bail, Context, Result};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use crate::discretization_flags::{build_discretization, Discretization, DiscretizationFlags};
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{Conforming, FaceFields, MassLumping, Nonconforming};
 use tvf_spectral::{
     compute_basis, load_basis, mesh_fingerprint, read_basis_header, save_basis, BasisFileKey,
     BasisRequest, FieldFamily, SpectralBasis,
@@ -53,88 +53,6 @@ pub enum BasisSize {
 /// Environment variable naming the basis cache folder.
 pub const CACHE_DIR_VARIABLE: &str = "TVF_CACHE_DIR";
 
-/// Which Hodge decomposition (MATH.md).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Decomposition {
-    /// `X_h = grad S_h ⊕ J grad S*_h ⊕ H_h` (divergence at vertices, curl at edges).
-    Conforming,
-    /// `X_h = grad S*_h ⊕ J grad S_h ⊕ H*_h` (divergence at edges, curl at vertices).
-    Nonconforming,
-}
-
-impl Decomposition {
-    /// Lower-case name as on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            Decomposition::Conforming => "conforming",
-            Decomposition::Nonconforming => "nonconforming",
-        }
-    }
-}
-
-/// Which mass lumping.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Mass {
-    /// A third of each adjacent triangle's area per node (the paper's default).
-    Barycentric,
-    /// Voronoi-type areas.
-    Voronoi,
-}
-
-impl Mass {
-    /// The library's lumping rule.
-    pub fn lumping(self) -> MassLumping {
-        match self {
-            Mass::Barycentric => MassLumping::Barycentric,
-            Mass::Voronoi => MassLumping::Voronoi,
-        }
-    }
-}
-
-/// A discretization chosen at run time; [`with_complex!`](crate::with_complex) runs generic code
-/// on it.
-pub enum Discretization {
-    /// The conforming complex.
-    Conforming(Conforming),
-    /// The nonconforming complex.
-    Nonconforming(Nonconforming),
-}
-
-/// Runs `$body` with `$c` bound to the concrete complex inside a [`Discretization`].
-#[macro_export]
-macro_rules! with_complex {
-    ($discretization:expr, $c:ident => $body:expr) => {
-        match $discretization {
-            $crate::basis_source::Discretization::Conforming($c) => $body,
-            $crate::basis_source::Discretization::Nonconforming($c) => $body,
-        }
-    };
-}
-
-impl Discretization {
-    /// Builds the complex of `decomposition` with `mass` on `mesh`.
-    pub fn new(mesh: &SurfaceMesh, decomposition: Decomposition, mass: Mass) -> Result<Self> {
-        Ok(match decomposition {
-            Decomposition::Conforming => {
-                Discretization::Conforming(Conforming::new(mesh, mass.lumping())?)
-            }
-            Decomposition::Nonconforming => {
-                Discretization::Nonconforming(Nonconforming::new(mesh, mass.lumping())?)
-            }
-        })
-    }
-
-    /// The complex's id (as stored in basis files), e.g. `conforming (barycentric)`.
-    pub fn name(&self) -> String {
-        with_complex!(self, c => c.name())
-    }
-
-    /// The tangent field space (face frames, `M_X`).
-    pub fn fields(&self) -> &FaceFields {
-        with_complex!(self, c => c.fields())
-    }
-}
-
 /// Basis flags without `-k`; see the module documentation.
 #[derive(Args, Debug, Clone, Default)]
 pub struct BasisOptions {
@@ -142,12 +60,8 @@ pub struct BasisOptions {
     /// cached.
     #[arg(long, value_name = "FILE")]
     pub basis: Option<PathBuf>,
-    /// Hodge decomposition [default: conforming, or the basis file's].
-    #[arg(long, alias = "discretization", value_enum, value_name = "NAME")]
-    pub decomposition: Option<Decomposition>,
-    /// Mass lumping [default: barycentric, or the basis file's].
-    #[arg(long, value_enum, value_name = "NAME")]
-    pub mass: Option<Mass>,
+    #[command(flatten)]
+    pub discretization: DiscretizationFlags,
     /// Folder of cached bases [default: $TVF_CACHE_DIR, else .tvf-cache/ next to the mesh, else
     /// tvf-cache/ in the temporary folder for --example meshes].
     #[arg(long, value_name = "DIR", conflicts_with = "basis")]
@@ -209,35 +123,28 @@ impl BasisOptions {
         if let Some(path) = &self.basis {
             return self.load_file(mesh, path, fingerprint);
         }
-        let decomposition = self.decomposition.unwrap_or(Decomposition::Conforming);
-        let mass = self.mass.unwrap_or(Mass::Barycentric);
         match size {
             BasisSize::Fields(0) => bail!("-k 0: ask for at least one eigenfield"),
             BasisSize::Pairs(0) => bail!("0 pairs: ask for at least one pair of eigenfields"),
             _ => {}
         }
-        let discretization = Discretization::new(mesh, decomposition, mass)
-            .with_context(|| format!("{}: cannot build the discretization", input.label()))?;
+        let discretization = self.discretization.build(mesh, &input.label())?;
         let size_name = match size {
-            BasisSize::Fields(k) if k >= discretization.fields().dimension() => {
+            BasisSize::Fields(k) if k >= discretization.field_dimension() => {
                 "complete".to_string()
             }
             BasisSize::Fields(k) => format!("d{k}"),
             BasisSize::Pairs(p) => format!("p{p}"),
         };
         let key = BasisFileKey {
-            discretization: discretization.name(),
+            discretization: discretization.id().to_string(),
             mesh_fingerprint: fingerprint,
             face_count: mesh.face_count(),
         };
         let cache_file = if self.no_cache {
             None
         } else {
-            let name = format!(
-                "{fingerprint:016x}-{}-{}-{size_name}.tvfb",
-                decomposition.name(),
-                mass.lumping().name()
-            );
+            let name = format!("{fingerprint:016x}-{}-{size_name}.tvfb", discretization.id());
             Some(self.cache_folder(input).join(name))
         };
         if let Some(file) = cache_file.as_ref().filter(|f| f.exists()) {
@@ -303,61 +210,27 @@ impl BasisOptions {
     }
 
     /// The discretization a basis would use, without computing or loading the basis: the
-    /// `--basis` file's (read from its header, checked against `--decomposition` / `--mass`),
-    /// else the flags' (default conforming, barycentric).
+    /// `--basis` file's (read from its header, checked against the discretization flags), else
+    /// the flags' (default conforming-barycentric).
     pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<Discretization> {
-        let (decomposition, mass) = match &self.basis {
-            Some(path) => self.file_discretization(mesh, path)?,
-            None => (
-                self.decomposition.unwrap_or(Decomposition::Conforming),
-                self.mass.unwrap_or(Mass::Barycentric),
-            ),
+        let id = match &self.basis {
+            Some(path) => self.file_discretization(path)?,
+            None => self.discretization.id(),
         };
-        Discretization::new(mesh, decomposition, mass)
-            .with_context(|| format!("{}: cannot build the discretization", input.label()))
+        build_discretization(&id, mesh, &input.label())
     }
 
-    /// The decomposition and mass lumping named by the header of the basis file `path`,
-    /// refused if they contradict `--decomposition` / `--mass`.
-    fn file_discretization(
-        &self,
-        mesh: &SurfaceMesh,
-        path: &Path,
-    ) -> Result<(Decomposition, Mass)> {
-        let header = read_basis_header(path)?;
-        let stored = header.key.discretization;
-        let mut found = None;
-        for decomposition in [Decomposition::Conforming, Decomposition::Nonconforming] {
-            for mass in [Mass::Barycentric, Mass::Voronoi] {
-                let name = Discretization::new(mesh, decomposition, mass)?.name();
-                if name == stored {
-                    found = Some((decomposition, mass));
-                }
-            }
-        }
-        let Some((decomposition, mass)) = found else {
+    /// The catalog id named by the header of the basis file `path`, refused if it contradicts
+    /// the discretization flags.
+    fn file_discretization(&self, path: &Path) -> Result<String> {
+        let stored = read_basis_header(path)?.key.discretization;
+        if let Some(wanted) = self.discretization.requested_id().filter(|w| *w != stored) {
             bail!(
-                "{}: the basis file's discretization '{stored}' is not one tvf knows",
+                "{}: the basis was computed with the discretization '{stored}', but '{wanted}' was asked for",
                 path.display()
             );
-        };
-        if let Some(wanted) = self.decomposition.filter(|&d| d != decomposition) {
-            bail!(
-                "{}: the basis was computed with the {} decomposition, but --decomposition {} was given",
-                path.display(),
-                decomposition.name(),
-                wanted.name()
-            );
         }
-        if let Some(wanted) = self.mass.filter(|&m| m != mass) {
-            bail!(
-                "{}: the basis was computed with {} mass lumping, but --mass {} was given",
-                path.display(),
-                mass.lumping().name(),
-                wanted.lumping().name()
-            );
-        }
-        Ok((decomposition, mass))
+        Ok(stored)
     }
 
     fn load_file(
@@ -367,10 +240,10 @@ impl BasisOptions {
         fingerprint: u64,
     ) -> Result<ResolvedBasis> {
         let start = Instant::now();
-        let (decomposition, mass) = self.file_discretization(mesh, path)?;
-        let discretization = Discretization::new(mesh, decomposition, mass)?;
+        let id = self.file_discretization(path)?;
+        let discretization = build_discretization(&id, mesh, &path.display().to_string())?;
         let key = BasisFileKey {
-            discretization: discretization.name(),
+            discretization: discretization.id().to_string(),
             mesh_fingerprint: fingerprint,
             face_count: mesh.face_count(),
         };
@@ -395,7 +268,7 @@ impl BasisOptions {
 pub fn compute(discretization: &Discretization, size: BasisSize) -> Result<SpectralBasis> {
     let progress = Progress::new("basis");
     let callback = progress.basis_callback();
-    let dimension = discretization.fields().dimension();
+    let dimension = discretization.field_dimension();
     let (request, asked) = match size {
         BasisSize::Fields(k) if k >= dimension => (
             BasisRequest::complete(),
@@ -404,15 +277,14 @@ pub fn compute(discretization: &Discretization, size: BasisSize) -> Result<Spect
         BasisSize::Fields(k) => (BasisRequest::fields(k), format!("-k {k}")),
         BasisSize::Pairs(p) => (BasisRequest::pairs(p), format!("{p} pairs + harmonic")),
     };
-    let basis =
-        with_complex!(discretization, c => compute_basis(c, &request.with_progress(&callback)))?;
+    let basis = compute_basis(discretization.as_ref(), &request.with_progress(&callback))?;
     progress.finish(format!(
         "{} fields ({asked}; {} harmonic, {} integrable, {} co-integrable; {}) computed in {:.2} s",
         basis.len(),
         basis.count(FieldFamily::Harmonic),
         basis.count(FieldFamily::Integrable),
         basis.count(FieldFamily::Cointegrable),
-        discretization.name(),
+        discretization.id(),
         basis.report().map_or(0.0, |r| r.seconds)
     ));
     Ok(basis)

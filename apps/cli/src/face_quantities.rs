@@ -15,7 +15,7 @@
 
 use clap::ValueEnum;
 use tvf_core::discretization::sparse::mul_vec;
-use tvf_core::discretization::{FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{DiscretizationError, HodgeComplex, HodgeOperators, PointEvaluation};
 use tvf_core::geometry::norm;
 
 /// Which per-face scalar colours the surface.
@@ -51,12 +51,27 @@ impl ColorBy {
     }
 }
 
+/// Which space a nodal function lives in.
+#[derive(Clone, Copy)]
+enum Space {
+    Potentials,
+    CoPotentials,
+}
+
 /// Values at each face's centroid of a nodal function of `space` (`F` entries).
-fn at_centroids<S: FunctionSpace + ?Sized>(space: &S, nodal: &[f64], faces: usize) -> Vec<f64> {
+fn at_centroids(
+    evaluation: &dyn PointEvaluation,
+    space: Space,
+    nodal: &[f64],
+    faces: usize,
+) -> Vec<f64> {
     (0..faces)
         .map(|t| {
-            space
-                .interpolation_weights(t, [1.0 / 3.0; 3])
+            let weights = match space {
+                Space::Potentials => evaluation.potential_weights(t, [1.0 / 3.0; 3]),
+                Space::CoPotentials => evaluation.co_potential_weights(t, [1.0 / 3.0; 3]),
+            };
+            weights
                 .iter()
                 .map(|&(i, w)| w * nodal[i])
                 .sum()
@@ -65,51 +80,59 @@ fn at_centroids<S: FunctionSpace + ?Sized>(space: &S, nodal: &[f64], faces: usiz
 }
 
 /// Nodal pointwise divergence of `field` in the potential space (`n0` values).
-fn nodal_divergence<H: HodgeComplex>(complex: &H, field: &[f64]) -> Vec<f64> {
-    mul_vec(&complex.potential_divergence(), field)
+fn nodal_divergence<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> Vec<f64> {
+    mul_vec(complex.potential_divergence(), field)
 }
 
 /// Nodal pointwise curl of `field` in the co-potential space (`n2` values).
-fn nodal_curl<H: HodgeComplex>(complex: &H, field: &[f64]) -> Vec<f64> {
-    mul_vec(&complex.co_potential_curl(), field)
+fn nodal_curl<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> Vec<f64> {
+    mul_vec(complex.co_potential_curl(), field)
 }
 
-/// The per-face scalar `kind` of `field` (`2F` pointwise face-frame coefficients) whose 3D
-/// vectors are `vectors`; `None` for [`ColorBy::None`].
-pub fn face_scalar<H: HodgeComplex>(
+/// The per-face scalar `kind` of `field` (`n1` coefficients of the complex) whose 3D vectors at
+/// the face centroids are `vectors`; `None` for [`ColorBy::None`]. Divergence, curl and energy
+/// need the complex's point evaluation.
+pub fn face_scalar<H: HodgeComplex + ?Sized>(
     complex: &H,
     kind: ColorBy,
     field: &[f64],
     vectors: &[[f64; 3]],
-) -> Option<Vec<f64>> {
+) -> Result<Option<Vec<f64>>, DiscretizationError> {
     let faces = vectors.len();
-    match kind {
+    Ok(match kind {
         ColorBy::Magnitude => Some(vectors.iter().map(|&v| norm(v)).collect()),
         ColorBy::Divergence => Some(at_centroids(
-            complex.potentials(),
+            complex.require_point_evaluation()?,
+            Space::Potentials,
             &nodal_divergence(complex, field),
             faces,
         )),
         ColorBy::Curl => Some(at_centroids(
-            complex.co_potentials(),
+            complex.require_point_evaluation()?,
+            Space::CoPotentials,
             &nodal_curl(complex, field),
             faces,
         )),
-        ColorBy::Energy => Some(energy_density(complex, field, faces)),
+        ColorBy::Energy => Some(energy_density(complex, field, faces)?),
         ColorBy::None => None,
-    }
+    })
 }
 
 /// Dirichlet energy density per face (see the module documentation).
-pub fn energy_density<H: HodgeComplex>(complex: &H, field: &[f64], faces: usize) -> Vec<f64> {
+pub fn energy_density<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    field: &[f64],
+    faces: usize,
+) -> Result<Vec<f64>, DiscretizationError> {
+    let evaluation = complex.require_point_evaluation()?;
     let div2: Vec<f64> = nodal_divergence(complex, field)
         .iter()
         .map(|x| x * x)
         .collect();
     let curl2: Vec<f64> = nodal_curl(complex, field).iter().map(|x| x * x).collect();
-    let a = at_centroids(complex.potentials(), &div2, faces);
-    let b = at_centroids(complex.co_potentials(), &curl2, faces);
-    a.iter().zip(&b).map(|(x, y)| x + y).collect()
+    let a = at_centroids(evaluation, Space::Potentials, &div2, faces);
+    let b = at_centroids(evaluation, Space::CoPotentials, &curl2, faces);
+    Ok(a.iter().zip(&b).map(|(x, y)| x + y).collect())
 }
 
 #[cfg(test)]
@@ -117,8 +140,7 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-    use tvf_core::discretization::FieldSpace;
-    use tvf_core::generate::torus;
+        use tvf_core::generate::torus;
     use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 
     fn random_field(n: usize) -> Vec<f64> {
@@ -126,8 +148,8 @@ mod tests {
         (0..n).map(|_| rng.random_range(-1.0..1.0)).collect()
     }
 
-    fn check_energy<H: HodgeComplex>(complex: &H, mesh: &tvf_core::SurfaceMesh) {
-        let field = random_field(complex.fields().dimension());
+    fn check_energy<H: HodgeComplex + ?Sized>(complex: &H, mesh: &tvf_core::SurfaceMesh) {
+        let field = random_field(complex.field_dimension());
         let density = energy_density(complex, &field, mesh.face_count());
         let integrated: f64 = density
             .iter()
@@ -143,7 +165,7 @@ mod tests {
         assert!(
             (integrated - exact).abs() <= 1e-9 * exact,
             "{}: Σ A ρ = {integrated}, xᵀSx = {exact}",
-            complex.name()
+            complex.id().to_string()
         );
     }
 
@@ -166,7 +188,7 @@ mod tests {
         let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
         let potential: Vec<f64> = mesh.positions().iter().map(|p| p[0] * p[2]).collect();
         let gradient = complex.gradient_field(&potential);
-        let vectors = complex.fields().to_vectors(&gradient).unwrap();
+        let vectors = complex.require_sampling()?.to_face_vectors(&gradient).unwrap();
         let curl = face_scalar(&complex, ColorBy::Curl, &gradient, &vectors).unwrap();
         let div = face_scalar(&complex, ColorBy::Divergence, &gradient, &vectors).unwrap();
         let largest = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -180,7 +202,7 @@ mod tests {
             .map(|p| p[0] * p[2])
             .collect();
         let rotated = complex.co_gradient_field(&co_potential);
-        let vectors = complex.fields().to_vectors(&rotated).unwrap();
+        let vectors = complex.require_sampling()?.to_face_vectors(&rotated).unwrap();
         let div = face_scalar(&complex, ColorBy::Divergence, &rotated, &vectors).unwrap();
         let curl = face_scalar(&complex, ColorBy::Curl, &rotated, &vectors).unwrap();
         let largest = curl.iter().fold(0.0f64, |m, x| m.max(x.abs()));

@@ -5,6 +5,7 @@
 mod basis_source;
 mod commands;
 mod demo;
+mod discretization_flags;
 mod examples;
 mod face_quantities;
 mod mesh_input;

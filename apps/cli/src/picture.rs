@@ -2,6 +2,7 @@
 //! colour scalars, constraint markers, view and size parsing, and panel grids.
 
 use anyhow::{bail, Result};
+use tvf_core::discretization::HodgeOperators;
 use clap::ValueEnum;
 use image::RgbaImage;
 use tvf_core::geometry::{add, scale};
@@ -12,10 +13,8 @@ use tvf_render::{
     StreamlineOptions,
 };
 
-use crate::basis_source::Discretization;
+use crate::discretization_flags::Discretization;
 use crate::face_quantities::{face_scalar, ColorBy};
-use crate::with_complex;
-use tvf_core::discretization::FieldSpace;
 use tvf_render::{render, Polyline, RenderOptions, Scene};
 
 /// Image size and camera.
@@ -62,8 +61,8 @@ pub fn draw(
         ..Default::default()
     };
     if let Some(field) = field {
-        let vectors = discretization.fields().to_vectors(field)?;
-        let values = with_complex!(discretization, c => face_scalar(c, color, field, &vectors));
+        let vectors = discretization.require_sampling()?.to_face_vectors(field)?;
+        let values = face_scalar(discretization.as_ref(), color, field, &vectors)?;
         scene.face_scalar = values.map(|v| colored(color, v));
         scene.fields.extend(field_layer(vectors, style, view.width));
     }

@@ -7,13 +7,15 @@ use crate::constraint::{
 use crate::error::ConstraintError;
 use sprs::CsMat;
 use std::collections::{BTreeMap, HashSet};
-use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{
+    HodgeComplex, HodgeOperators, NodeKind, NodeSpace, PointEvaluation,
+};
 use tvf_core::SurfaceMesh;
 
 /// Tolerance on `|Σ b − 1|` for barycentric coordinates.
 const BARYCENTRIC_TOLERANCE: f64 = 1e-9;
 
-/// Which function space a scalar operator maps into.
+/// Which space of the complex a scalar operator maps into.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Space {
     Potentials,
@@ -22,42 +24,36 @@ enum Space {
 
 /// Builds constraint rows for one mesh and one discretization.
 ///
-/// Rows (all **pointwise**, `2F` columns):
-/// - vector in face `t`: the two rows `e_{2t}`, `e_{2t+1}` (identity in the face frame); the 3D
-///   value is projected onto the face plane (`(v·e1, v·e2)`).
-/// - divergence at a node: the node's row of `potential_divergence` (`−M0⁻¹ d0ᵀ M1`; conforming
-///   `div_h`, nodes = vertices), or of `co_potential_divergence` for [`OperatorFamily::Other`].
-/// - curl at a node: the node's row of `co_potential_curl` (`M2 d1`; conforming `curl*_h`, nodes =
-///   edges), or of `potential_curl` for [`OperatorFamily::Other`].
-/// - divergence / curl at a point of a face: the nodal rows mixed with the interpolation weights of
-///   that space at the point ([`FunctionSpace::interpolation_weights`]).
+/// Rows (all **pointwise**, over the `n1` field coefficients):
+/// - vector at a point of face `t` (the centroid without `barycentric`): the two rows of the
+///   sampled vector in the face frame ([`tvf_core::discretization::FieldSampling::sample_frame_weights`]; face fields: the
+///   identity on `x[2t], x[2t+1]`); the 3D value is projected onto the face plane
+///   (`(v·e1, v·e2)`).
+/// - divergence at a node: the node's row of `potential_divergence` (`−M0⁻¹ d0ᵀ M1`), or of
+///   `other_divergence` for [`OperatorFamily::Other`].
+/// - curl at a node: the node's row of `co_potential_curl` (`M2 d1`), or of `other_curl` for
+///   [`OperatorFamily::Other`].
+/// - divergence / curl at a point of a face: the nodal rows mixed with the space's interpolation
+///   weights at the point ([`PointEvaluation`]).
 ///
-/// `vertex` / `edge` locations address nodes of the P1 / Crouzeix–Raviart space; which space an
-/// operator lives in is read off its dimension (`V` or `E` of `mesh`), so a key that does not fit
-/// the requested family is rejected with [`ConstraintError::NodeKindMismatch`].
-pub struct ConstraintAssembler<'a, H: HodgeComplex> {
+/// `vertex` / `edge` locations address nodes of a space whose nodes are vertices / edges (read
+/// off [`NodeSpace::kind`]); a key that does not fit the requested family's space is rejected with
+/// [`ConstraintError::NodeKindMismatch`].
+pub struct ConstraintAssembler<'a, H: HodgeComplex + ?Sized> {
     complex: &'a H,
     vertex_count: usize,
     edge_count: usize,
     face_count: usize,
-    potential_divergence: CsMat<f64>,
-    co_potential_curl: CsMat<f64>,
-    co_potential_divergence: CsMat<f64>,
-    potential_curl: CsMat<f64>,
 }
 
-impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
-    /// Precomputes the four pointwise divergence / curl operators of `complex` (built on `mesh`).
+impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
+    /// An assembler for `complex` (built on `mesh`); operators come from the complex's cache.
     pub fn new(complex: &'a H, mesh: &SurfaceMesh) -> Self {
         Self {
             complex,
             vertex_count: mesh.vertex_count(),
             edge_count: mesh.edge_count(),
             face_count: mesh.face_count(),
-            potential_divergence: complex.potential_divergence(),
-            co_potential_curl: complex.co_potential_curl(),
-            co_potential_divergence: complex.co_potential_divergence(),
-            potential_curl: complex.potential_curl(),
         }
     }
 
@@ -168,17 +164,55 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
         location: Location,
         value: [f64; 3],
     ) -> Result<(Vec<SparseRow>, Vec<f64>), ConstraintError> {
-        let Location::Face { face, .. } = location else {
+        let Location::Face { face, barycentric } = location else {
             return Err(ConstraintError::BadLocation {
                 id: id.to_string(),
-                problem: "a vector constraint needs a \"face\" (vectors are constant per face)"
+                problem: "a vector constraint needs a \"face\" (the field is sampled at a point of it)"
                     .into(),
             });
         };
-        let [e1, e2] = self.complex.fields().frame(face);
+        let sampling = self
+            .complex
+            .require_sampling()
+            .map_err(|e| unsupported(id, e))?;
+        let weights = sampling.sample_frame_weights(face, barycentric.unwrap_or([1.0 / 3.0; 3]));
+        let [e1, e2] = sampling.frame(face);
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        let rows = vec![vec![(2 * face, 1.0)], vec![(2 * face + 1, 1.0)]];
-        Ok((rows, vec![dot(value, e1), dot(value, e2)]))
+        let row = |k: usize| -> SparseRow {
+            let mut row = BTreeMap::new();
+            for &(i, w) in &weights {
+                *row.entry(i).or_insert(0.0) += w[k];
+            }
+            row.into_iter().filter(|&(_, a)| a != 0.0).collect()
+        };
+        Ok((vec![row(0), row(1)], vec![dot(value, e1), dot(value, e2)]))
+    }
+
+    /// The pointwise operator of `kind` in `space`, and that space's nodes.
+    fn operator(
+        &self,
+        constraint: &Constraint,
+        kind: &'static str,
+        space: Space,
+    ) -> Result<(&'a CsMat<f64>, &'a NodeSpace), ConstraintError> {
+        let complex = self.complex;
+        let other = |matrix: Option<&'a CsMat<f64>>| {
+            matrix.ok_or_else(|| ConstraintError::Unsupported {
+                id: constraint.id.clone(),
+                detail: format!(
+                    "the discretization '{}' has no other family of divergence and curl; drop \"family\": \"other\"",
+                    complex.id()
+                ),
+            })
+        };
+        Ok(match (kind, space) {
+            ("divergence", Space::Potentials) => {
+                (complex.potential_divergence(), complex.potential_nodes())
+            }
+            ("divergence", _) => (other(complex.other_divergence())?, complex.co_potential_nodes()),
+            (_, Space::CoPotentials) => (complex.co_potential_curl(), complex.co_potential_nodes()),
+            _ => (other(complex.other_curl())?, complex.potential_nodes()),
+        })
     }
 
     fn scalar_row(
@@ -187,44 +221,25 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
         kind: &'static str,
         space: Space,
     ) -> Result<SparseRow, ConstraintError> {
-        let (matrix, dimension, name) = match (kind, space) {
-            ("divergence", Space::Potentials) => (
-                &self.potential_divergence,
-                self.complex.potentials().dimension(),
-                self.complex.potentials().name(),
-            ),
-            ("divergence", _) => (
-                &self.co_potential_divergence,
-                self.complex.co_potentials().dimension(),
-                self.complex.co_potentials().name(),
-            ),
-            (_, Space::CoPotentials) => (
-                &self.co_potential_curl,
-                self.complex.co_potentials().dimension(),
-                self.complex.co_potentials().name(),
-            ),
-            _ => (
-                &self.potential_curl,
-                self.complex.potentials().dimension(),
-                self.complex.potentials().name(),
-            ),
-        };
+        let (matrix, nodes) = self.operator(constraint, kind, space)?;
         let weights: Vec<(usize, f64)> = match constraint.location {
             Location::Face { face, barycentric } => {
+                let evaluation: &dyn PointEvaluation = self
+                    .complex
+                    .require_point_evaluation()
+                    .map_err(|e| unsupported(&constraint.id, e))?;
                 let b = barycentric.unwrap_or([1.0 / 3.0; 3]);
                 match space {
-                    Space::Potentials => self.complex.potentials().interpolation_weights(face, b),
-                    Space::CoPotentials => {
-                        self.complex.co_potentials().interpolation_weights(face, b)
-                    }
+                    Space::Potentials => evaluation.potential_weights(face, b),
+                    Space::CoPotentials => evaluation.co_potential_weights(face, b),
                 }
             }
             Location::Vertex(node) => {
-                self.check_node_kind(constraint, kind, name, dimension, "vertex")?;
+                self.check_node_kind(constraint, kind, nodes.kind, NodeKind::Vertices)?;
                 vec![(node, 1.0)]
             }
             Location::Edge(node) => {
-                self.check_node_kind(constraint, kind, name, dimension, "edge")?;
+                self.check_node_kind(constraint, kind, nodes.kind, NodeKind::Edges)?;
                 vec![(node, 1.0)]
             }
         };
@@ -246,37 +261,40 @@ impl<'a, H: HodgeComplex> ConstraintAssembler<'a, H> {
         &self,
         constraint: &Constraint,
         kind: &'static str,
-        space_name: &str,
-        dimension: usize,
-        given: &'static str,
+        nodes: NodeKind,
+        given: NodeKind,
     ) -> Result<(), ConstraintError> {
-        let expected = if dimension == self.vertex_count {
-            Some(("vertex", "vertices"))
-        } else if dimension == self.edge_count {
-            Some(("edge", "edges"))
-        } else {
-            None
-        };
-        match expected {
-            Some((key, _)) if key == given => Ok(()),
-            _ => {
-                let (nodes_key, nodes) =
-                    expected.unwrap_or(("face", "nodes that are neither vertices nor edges"));
-                let other_family = match constraint.family {
-                    OperatorFamily::Decomposition => OperatorFamily::Other,
-                    OperatorFamily::Other => OperatorFamily::Decomposition,
-                };
-                Err(ConstraintError::NodeKindMismatch {
-                    id: constraint.id.clone(),
-                    detail: format!(
-                        "the {} {kind} lives on the nodes of {space_name} ({nodes}), not on the {given} given; \
-                         use \"{nodes_key}\" (or \"family\": \"{}\")",
-                        constraint.family.name(),
-                        other_family.name()
-                    ),
-                })
-            }
+        if nodes == given {
+            return Ok(());
         }
+        let key = |k: NodeKind| match k {
+            NodeKind::Vertices => "vertex",
+            NodeKind::Edges => "edge",
+            NodeKind::Faces | NodeKind::FaceFrames => "face",
+        };
+        let other_family = match constraint.family {
+            OperatorFamily::Decomposition => OperatorFamily::Other,
+            OperatorFamily::Other => OperatorFamily::Decomposition,
+        };
+        Err(ConstraintError::NodeKindMismatch {
+            id: constraint.id.clone(),
+            detail: format!(
+                "the {} {kind} of '{}' lives on {}, not on the {} given; use \"{}\" (or \"family\": \"{}\")",
+                constraint.family.name(),
+                self.complex.id(),
+                nodes.name(),
+                key(given),
+                key(nodes),
+                other_family.name()
+            ),
+        })
+    }
+}
+
+fn unsupported(id: &str, error: impl std::fmt::Display) -> ConstraintError {
+    ConstraintError::Unsupported {
+        id: id.to_string(),
+        detail: error.to_string(),
     }
 }
 

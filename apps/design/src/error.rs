@@ -82,6 +82,15 @@ pub enum ConstraintError {
         /// What the operator's nodes are and which key fits.
         detail: String,
     },
+    /// The discretization lacks what the constraint needs (sampling, point evaluation, the other
+    /// family).
+    #[error("constraint '{id}': {detail}")]
+    Unsupported {
+        /// Constraint id.
+        id: String,
+        /// What is missing.
+        detail: String,
+    },
     /// The constraint's row is identically zero (e.g. a node no face uses).
     #[error("constraint '{id}': its row is zero (the node is not used by any face)")]
     EmptyRow {

@@ -30,7 +30,7 @@ pub struct ReferenceSpline {
 /// On a genus-0 mesh `ε = 0` gives exactly the spline of Section 7; on genus > 0 `A` is singular
 /// on the harmonic fields and `ε > 0` is needed (the reduced solver instead replaces the harmonic
 /// eigenvalues, so the two agree only approximately there). `O(n_c)` sparse solves: small meshes.
-pub fn reference_spline<H: HodgeComplex>(
+pub fn reference_spline<H: HodgeComplex + ?Sized>(
     complex: &H,
     omega: f64,
     epsilon: f64,
@@ -44,7 +44,7 @@ pub fn reference_spline<H: HodgeComplex>(
     let dirichlet = complex.dirichlet_energy();
     let energy: CsMat<f64> =
         linear_combination(1.0, &complex.biharmonic_energy(), omega, &dirichlet);
-    let screened: Vec<f64> = complex.m1().iter().map(|m| epsilon * m).collect();
+    let screened: Vec<f64> = complex.m1().values().iter().map(|m| epsilon * m).collect();
     let matrix = linear_combination(1.0, &energy, 1.0, &diagonal(&screened));
     let factor = SparseCholesky::new(&matrix)?;
     let n = matrix.rows();

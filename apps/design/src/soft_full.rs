@@ -97,14 +97,14 @@ pub struct FullSoftDesign {
 
 impl FullSoftDesign {
     /// Assembles `S` and `M_X` of `complex` and factors the system for `constraints`.
-    pub fn new<H: HodgeComplex>(
+    pub fn new<H: HodgeComplex + ?Sized>(
         complex: &H,
         options: SoftOptions,
         constraints: Vec<CompiledConstraint>,
     ) -> Result<Self, DesignError> {
         Self::from_matrices(
             &complex.dirichlet_energy(),
-            complex.m1(),
+            complex.m1().values(),
             options,
             constraints,
         )

@@ -14,7 +14,7 @@ use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 
 const OMEGA: f64 = 0.1;
 
-fn check_hard_constraints<H: HodgeComplex>(
+fn check_hard_constraints<H: HodgeComplex + ?Sized>(
     name: &str,
     complex: &H,
     mesh: &tvf_core::SurfaceMesh,

@@ -3,7 +3,9 @@
 use std::sync::mpsc::{channel, Sender};
 use std::sync::Arc;
 
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::catalog_entry;
 use tvf_design::{ConstraintSet, ReducedBasis};
 
 use crate::edit_op::EditOp;
@@ -28,10 +30,12 @@ pub struct EditorSetup {
     pub constraints: Option<ConstraintSet>,
     /// Number of basis fields to use at first (all if `None`).
     pub basis_size: Option<usize>,
+    /// Catalog id of the discretization the basis belongs to (`conforming-barycentric`, ...).
+    pub discretization: String,
 }
 
 impl Editor {
-    /// Starts the engine thread: builds the conforming operators of the mesh, the session and
+    /// Starts the engine thread: builds the discretization's operators on the mesh, the session and
     /// the first field. Fails on a degenerate mesh, a bad basis size or constraints that do not
     /// fit the mesh or are dependent.
     pub fn start(setup: EditorSetup) -> Result<Self, EditorError> {
@@ -40,14 +44,21 @@ impl Editor {
             basis,
             constraints,
             basis_size,
+            discretization,
         } = setup;
-        if basis.field_dimension() != 2 * mesh.face_count() {
+        let entry = catalog_entry(&discretization)
+            .map_err(|e| EditorError::Discretization(e.to_string()))?;
+        let complex =
+            (entry.build)(&mesh).map_err(|e| EditorError::Discretization(e.to_string()))?;
+        complex
+            .require_sampling()
+            .map_err(|e| EditorError::Discretization(e.to_string()))?;
+        if basis.field_dimension() != complex.field_dimension() {
             return Err(EditorError::BadRequest {
                 reason: format!(
-                    "the basis has {} rows but the mesh has {} faces (2F = {})",
+                    "the basis has {} rows but the fields of '{discretization}' on this mesh have {}",
                     basis.field_dimension(),
-                    mesh.face_count(),
-                    2 * mesh.face_count()
+                    complex.field_dimension(),
                 ),
             });
         }
@@ -74,7 +85,7 @@ impl Editor {
         let engine_mesh = Arc::clone(&mesh);
         std::thread::Builder::new()
             .name("tvf-editor-engine".into())
-            .spawn(move || run_engine(&engine_mesh, basis, initial, inbox, started))
+            .spawn(move || run_engine(&engine_mesh, complex.as_ref(), basis, initial, inbox, started))
             .map_err(|source| EditorError::Io {
                 what: "starting the editing engine thread".into(),
                 source,

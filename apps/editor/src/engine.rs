@@ -10,12 +10,13 @@
 use std::sync::mpsc::{Receiver, Sender};
 use std::time::Instant;
 
-use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use sprs::CsMat;
+use tvf_core::discretization::sparse::{from_triplets, mul_vec};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::SurfaceMesh;
 use tvf_design::{
     CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet, ReducedBasis, SplineSession,
 };
-use tvf_discretizations::{Conforming, MassLumping};
 
 use crate::edit_op::EditOp;
 use crate::error::EditorError;
@@ -47,8 +48,12 @@ const HISTORY_LIMIT: usize = 500;
 
 /// The engine's state that outlives a basis size.
 struct State<'c> {
-    complex: &'c Conforming,
-    assembler: ConstraintAssembler<'c, Conforming>,
+    complex: &'c dyn HodgeComplex,
+    assembler: ConstraintAssembler<'c, dyn HodgeComplex + 'c>,
+    /// Face-frame coefficients (`2F × n1`) of the field sampled at the face centroids, for
+    /// discretizations whose coefficients are not already that (the page draws `2F` values).
+    display: Option<CsMat<f64>>,
+    display32: Vec<f32>,
     anchors: Anchors,
     max_basis_size: usize,
     face_count: usize,
@@ -79,21 +84,17 @@ struct PendingEdit {
 
 pub(crate) fn run_engine(
     mesh: &SurfaceMesh,
+    complex: &dyn HodgeComplex,
     full: ReducedBasis,
     initial: Snapshot,
     inbox: Receiver<Request>,
     started: Sender<Result<(), EditorError>>,
 ) {
-    let complex = match Conforming::new(mesh, MassLumping::Barycentric) {
-        Ok(c) => c,
-        Err(e) => {
-            let _ = started.send(Err(EditorError::Discretization(e.to_string())));
-            return;
-        }
-    };
     let mut state = State {
-        complex: &complex,
-        assembler: ConstraintAssembler::new(&complex, mesh),
+        complex,
+        assembler: ConstraintAssembler::new(complex, mesh),
+        display: display_map(complex),
+        display32: vec![0.0; 2 * mesh.face_count()],
         anchors: Anchors::new(mesh),
         max_basis_size: full.len(),
         face_count: mesh.face_count(),
@@ -103,7 +104,7 @@ pub(crate) fn run_engine(
         last_gesture: None,
         version: 0,
         coefficients: vec![0.0; full.len()],
-        field32: vec![0.0; 2 * mesh.face_count()],
+        field32: vec![0.0; complex.field_dimension()],
         solve_ms: 0.0,
         map_ms: 0.0,
         update: "mapped",
@@ -312,8 +313,8 @@ fn serve(
                 let field: Vec<f64> = state.field32.iter().map(|&x| f64::from(x)).collect();
                 let vectors = state
                     .complex
-                    .fields()
-                    .to_vectors(&field)
+                    .require_sampling()
+                    .and_then(|sampling| sampling.to_face_vectors(&field))
                     .map_err(|e| EditorError::Discretization(e.to_string()));
                 let _ = reply.send(vectors);
             }
@@ -507,6 +508,11 @@ fn refresh(
             "mapped"
         }
     };
+    if let Some(display) = &state.display {
+        let field: Vec<f64> = state.field32.iter().map(|&x| f64::from(x)).collect();
+        let sampled = mul_vec(display, &field);
+        state.display32 = sampled.iter().map(|&x| x as f32).collect();
+    }
     state.solve_ms = (solved - start).as_secs_f64() * 1e3;
     state.map_ms = solved.elapsed().as_secs_f64() * 1e3;
     state.version += 1;
@@ -537,7 +543,10 @@ fn status(state: &State, basis: &ReducedBasis) -> Status {
 fn frame(state: &State, basis: &ReducedBasis) -> Vec<u8> {
     // Serialising plain numbers, strings and JSON values cannot fail.
     let json = serde_json::to_string(&status(state, basis)).unwrap_or_default();
-    encode_field_frame(&json, &state.field32)
+    match state.display {
+        Some(_) => encode_field_frame(&json, &state.display32),
+        None => encode_field_frame(&json, &state.field32),
+    }
 }
 
 fn check(
@@ -572,4 +581,30 @@ fn check(
             0.0
         },
     })
+}
+
+/// The map from a discretization's field coefficients to face-frame coefficients at the face
+/// centroids (`2F × n1`), or `None` when the coefficients already are that.
+fn display_map(complex: &dyn HodgeComplex) -> Option<CsMat<f64>> {
+    if complex.field_nodes().kind == NodeKind::FaceFrames {
+        return None;
+    }
+    let sampling = complex.sampling()?;
+    let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
+    for t in 0..sampling.face_count() {
+        for (i, w) in sampling.sample_frame_weights(t, [1.0 / 3.0; 3]) {
+            for (k, &wk) in w.iter().enumerate() {
+                rows.push(2 * t + k);
+                cols.push(i);
+                values.push(wk);
+            }
+        }
+    }
+    Some(from_triplets(
+        2 * sampling.face_count(),
+        complex.field_dimension(),
+        rows,
+        cols,
+        values,
+    ))
 }

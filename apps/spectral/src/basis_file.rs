@@ -10,7 +10,7 @@
 //! | 4 | header length `H` in bytes, from the magic to the payload (`u32`) |
 //! | 8 | mesh fingerprint ([`crate::mesh_fingerprint`]) |
 //! | 8 × 6 | faces `F`, field dimension `2F`, fields `d`, harmonic, integrable, co-integrable counts |
-//! | 4 + L | discretization id: `u32` length, UTF-8 text (e.g. `conforming (barycentric)`) |
+//! | 4 + L | discretization id: `u32` length, UTF-8 text: the catalog id (e.g. `conforming-barycentric`) |
 //! | 8 | [`Hash64`] of the header bytes before it |
 //! | 8·d | eigenvalues (`f64`), ascending |
 //! | d, zero-padded to a multiple of 8 | families (`0` harmonic, `1` integrable, `2` co-integrable) |
@@ -38,7 +38,7 @@ pub const BASIS_FILE_VERSION: u32 = 1;
 /// What a basis file must match to be used: the discretization and the mesh.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct BasisFileKey {
-    /// The discretization id, [`HodgeComplex::name`] (names the mass lumping too).
+    /// The catalog id of the discretization, [`HodgeComplex::id`] (names the mass lumping too).
     pub discretization: String,
     /// [`mesh_fingerprint`] of the mesh.
     pub mesh_fingerprint: u64,
@@ -50,7 +50,7 @@ impl BasisFileKey {
     /// The key of a basis computed for `complex` on `mesh`.
     pub fn new<H: HodgeComplex + ?Sized>(mesh: &SurfaceMesh, complex: &H) -> Self {
         Self {
-            discretization: complex.name(),
+            discretization: complex.id().to_string(),
             mesh_fingerprint: mesh_fingerprint(mesh),
             face_count: mesh.face_count(),
         }

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use std::cell::Cell;
 use std::time::Instant;
 use tvf_core::discretization::sparse::mul_vec;
-use tvf_core::discretization::{FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 
 /// How a basis computation went: sizes, accuracy and cost.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -77,11 +77,11 @@ impl BasisReport {
 /// `MaxEigenvalue` requests each family's number of eigenpairs is counted exactly beforehand by
 /// Sylvester's law of inertia (every eigenvalue of both below one threshold), so each family is
 /// solved once and the selection is provably the lowest of the union; by Lemma 1 `Φ = d0 φ / ‖d0 φ‖` and
-/// `Ψ = J G_co ψ / ‖J G_co ψ‖` are eigenfields of `L` with eigenvalues `λ`, `μ`.
+/// `Ψ = −M1⁻¹ d1ᵀ ψ / ‖M1⁻¹ d1ᵀ ψ‖` (finite elements: `J G_co ψ` normalised) are eigenfields of `L` with eigenvalues `λ`, `μ`.
 ///
 /// Errors: [`BasisError::Boundary`] on a mesh with boundary, [`BasisError::InvalidRequest`],
 /// solver failures.
-pub fn compute_basis<H: HodgeComplex>(
+pub fn compute_basis<H: HodgeComplex + ?Sized>(
     complex: &H,
     request: &BasisRequest<'_>,
 ) -> Result<SpectralBasis, BasisError> {
@@ -93,7 +93,7 @@ pub fn compute_basis<H: HodgeComplex>(
         compact.eigenvalues().to_vec(),
         compact.families().to_vec(),
         fields,
-        complex.m1().to_vec(),
+        complex.m1().values().to_vec(),
     )?;
     if request.single_precision_copy {
         basis.store_single_precision_copy();
@@ -110,29 +110,29 @@ pub fn compute_basis<H: HodgeComplex>(
 /// The Fourier basis in compact form (eigenfunctions instead of dense fields, see
 /// [`EigenfunctionBasis`]) and the report of its computation. Same steps and errors as
 /// [`compute_basis`], without forming the dense fields.
-pub fn compute_eigenfunction_basis<H: HodgeComplex>(
+pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     complex: &H,
     request: &BasisRequest<'_>,
 ) -> Result<(EigenfunctionBasis, BasisReport), BasisError> {
     let start = Instant::now();
-    if complex.has_boundary() {
+    if complex.topology().has_boundary {
         return Err(BasisError::Boundary);
     }
-    let components = complex.component_count();
+    let components = complex.topology().component_count;
     let exact = ScalarSpectrum::new(
         "potential",
         complex.exact_eigenproblem(),
-        complex.potentials().node_components(),
+        &complex.potential_nodes().components,
         components,
     );
     let co_exact = ScalarSpectrum::new(
         "co-potential",
         complex.co_exact_eigenproblem(),
-        complex.co_potentials().node_components(),
+        &complex.co_potential_nodes().components,
         components,
     );
-    let h = complex.harmonic_dimension();
-    let area: f64 = complex.m1().iter().sum::<f64>() / 2.0;
+    let h = complex.topology().harmonic_dimension;
+    let area = complex.total_area();
     // Exact counts per family up front (inertia), so each family is solved once.
     let split = split_families(request.size, h, &exact, &co_exact, area)?;
     let (ka, kb) = (split.potential, split.co_potential);
@@ -202,9 +202,8 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex>(
     report.co_potential_kernel_eigenvalues = b.kernel_values.clone();
     report.max_solver_residual = a.max_residual.max(b.max_residual);
 
-    let co_gradient = complex.co_gradient();
-    let potentials = normalised(complex.d0(), complex.m1(), &a.vectors, na);
-    let co_potentials = normalised(&co_gradient, complex.m1(), &b.vectors, nb);
+    let potentials = normalised(complex.d0(), complex.m1().values(), &a.vectors, na);
+    let co_potentials = normalised(complex.co_gradient(), complex.m1().values(), &b.vectors, nb);
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
     report.seconds = start.elapsed().as_secs_f64();
     Ok((

@@ -5,14 +5,14 @@ use crate::basis::check_length;
 use crate::{FieldFamily, SpectralBasisError};
 use faer::{Col, Mat, MatRef};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
-use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 
 /// The basis of [`crate::compute_basis`] in compact form: integrable fields as potentials,
 /// co-integrable fields as co-potentials, harmonic fields as fields.
 ///
 /// With `φ̃_i` the columns of [`potentials`](Self::potentials) (`n0 × a`) and `ψ̃_j` those of
 /// [`co_potentials`](Self::co_potentials) (`n2 × b`), the fields are
-/// `Φ_i = d0 φ̃_i` and `Ψ_j = J G_co ψ̃_j`, `M1`-unit: each stored function is the
+/// `Φ_i = d0 φ̃_i` and `Ψ_j = −M1⁻¹ d1ᵀ ψ̃_j`, `M1`-unit: each stored function is the
 /// `M0`-normalised eigenfunction divided by `√λ` (so `φ̃ = φ / √λ`). The harmonic fields are
 /// stored densely (`2F × h`, `h = 2g`). An integrable field costs `n0` numbers, a co-integrable one
 /// `n2`; on a closed mesh `n0 + n2 = V + E ≈ 2F`, half of the `4F` of a dense pair.
@@ -92,26 +92,26 @@ impl EigenfunctionBasis {
     }
 
     /// Checks that `complex` has the shapes this basis was computed with.
-    fn check_complex<H: HodgeComplex>(&self, complex: &H) -> Result<(), SpectralBasisError> {
+    fn check_complex<H: HodgeComplex + ?Sized>(&self, complex: &H) -> Result<(), SpectralBasisError> {
         check_length(
             "harmonic field rows (2F)",
-            complex.fields().dimension(),
+            complex.field_dimension(),
             self.harmonic.nrows(),
         )?;
         check_length(
             "potential rows (n0)",
-            complex.potentials().dimension(),
+            complex.potential_dimension(),
             self.potentials.nrows(),
         )?;
         check_length(
             "co-potential rows (n2)",
-            complex.co_potentials().dimension(),
+            complex.co_potential_dimension(),
             self.co_potentials.nrows(),
         )
     }
 
     /// Basis field `index` as a dense field (`2F` pointwise coefficients).
-    pub fn field<H: HodgeComplex>(&self, complex: &H, index: usize) -> Vec<f64> {
+    pub fn field<H: HodgeComplex + ?Sized>(&self, complex: &H, index: usize) -> Vec<f64> {
         let slot = self.slots[index];
         match self.families[index] {
             FieldFamily::Integrable => {
@@ -127,14 +127,14 @@ impl EigenfunctionBasis {
     /// Fourier coefficients `Uᵀ M1 v` of a field `v` (`2F` entries) by sparse products:
     /// `α = φ̃ᵀ d0ᵀ M1 v`, `β = −ψ̃ᵀ d1 v` (since `J G_co = −M1⁻¹ d1ᵀ`), `γ = Γᵀ M1 v`.
     /// Returns `d` coefficients in basis order.
-    pub fn coefficients<H: HodgeComplex>(
+    pub fn coefficients<H: HodgeComplex + ?Sized>(
         &self,
         complex: &H,
         field: &[f64],
     ) -> Result<Vec<f64>, SpectralBasisError> {
-        check_length("field", complex.fields().dimension(), field.len())?;
+        check_length("field", complex.field_dimension(), field.len())?;
         self.check_complex(complex)?;
-        let weighted: Vec<f64> = field.iter().zip(complex.m1()).map(|(v, m)| v * m).collect();
+        let weighted = complex.m1().apply(field);
         let divergence = mul_transpose_vec(complex.d0(), &weighted);
         let curl: Vec<f64> = mul_vec(complex.d1(), field).iter().map(|x| -x).collect();
         let alpha = transpose_times(self.potentials.as_ref(), &divergence);
@@ -151,7 +151,7 @@ impl EigenfunctionBasis {
 
     /// The field `Σ c_i U_i` (`2F` entries) from `d` coefficients, by sparse products:
     /// `d0 (φ̃ α) + J G_co (ψ̃ β) + Γ γ`.
-    pub fn reconstruct<H: HodgeComplex>(
+    pub fn reconstruct<H: HodgeComplex + ?Sized>(
         &self,
         complex: &H,
         coefficients: &[f64],
@@ -183,9 +183,9 @@ impl EigenfunctionBasis {
 
     /// The dense fields `U` (`2F × d`), column `i` = [`field`](Self::field)`(i)`, built in
     /// parallel from the sparse gradients `d0` and `J G_co`.
-    pub fn dense_fields<H: HodgeComplex>(&self, complex: &H) -> Mat<f64> {
+    pub fn dense_fields<H: HodgeComplex + ?Sized>(&self, complex: &H) -> Mat<f64> {
         use rayon::prelude::*;
-        let rows = complex.fields().dimension();
+        let rows = complex.field_dimension();
         let d0 = complex.d0();
         let co_gradient = complex.co_gradient();
         let mut fields = Mat::zeros(rows, self.len());
@@ -201,7 +201,7 @@ impl EigenfunctionBasis {
                             mul_vec(d0, &column(self.potentials.as_ref(), slot))
                         }
                         FieldFamily::Cointegrable => {
-                            mul_vec(&co_gradient, &column(self.co_potentials.as_ref(), slot))
+                            mul_vec(co_gradient, &column(self.co_potentials.as_ref(), slot))
                         }
                         FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
                     }

@@ -14,7 +14,7 @@ use crate::npy::{NpyArray, NpyDtype, NpyError};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
-use tvf_core::discretization::{FieldSpace, TangentProjection};
+use tvf_core::discretization::{FieldSampling, TangentProjection};
 
 /// What can go wrong reading or writing a field file (every variant names the file).
 #[derive(Debug, Error)]
@@ -302,12 +302,13 @@ pub fn write_face_vector_sequence(
     )
 }
 
-/// Reads a field file for a mesh and projects it onto the tangent planes of `space`.
+/// Reads a field file for a mesh (one 3D vector per face) and turns it into a field of the
+/// discretization whose sampling is `space` ([`FieldSampling::from_face_vectors`]).
 ///
-/// Returns the tangent field (`2F` pointwise face-frame coefficients) and the dropped normal
+/// Returns the field (`n1` coefficients) and the dropped normal
 /// component of every vector (`F` entries, see [`TangentProjection`]). Fails with
 /// [`FieldIoError::FaceCount`] if the file does not hold exactly one vector per face.
-pub fn read_tangent_field<S: FieldSpace + ?Sized>(
+pub fn read_tangent_field<S: FieldSampling + ?Sized>(
     path: &Path,
     space: &S,
 ) -> Result<TangentProjection, FieldIoError> {
@@ -320,22 +321,22 @@ pub fn read_tangent_field<S: FieldSpace + ?Sized>(
         });
     }
     space
-        .from_vectors(&vectors)
+        .from_face_vectors(&vectors)
         .map_err(|e| FieldIoError::Inconsistent {
             path: path.to_path_buf(),
             message: e.to_string(),
         })
 }
 
-/// Writes a tangent field (`2F` face-frame coefficients of `space`) as one 3D vector per face,
-/// format by extension.
-pub fn write_tangent_field<S: FieldSpace + ?Sized>(
+/// Writes a field (`n1` coefficients of the discretization whose sampling is `space`) as one 3D
+/// vector per face, sampled at the centroids, format by extension.
+pub fn write_tangent_field<S: FieldSampling + ?Sized>(
     path: &Path,
     space: &S,
     field: &[f64],
 ) -> Result<(), FieldIoError> {
     let vectors = space
-        .to_vectors(field)
+        .to_face_vectors(field)
         .map_err(|e| FieldIoError::Inconsistent {
             path: path.to_path_buf(),
             message: e.to_string(),

@@ -3,7 +3,7 @@
 use crate::laplacian_apply::{apply_hodge_laplacian, field_norm};
 use crate::BasisError;
 use faer::Mat;
-use tvf_core::discretization::{FieldSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_discretizations::HodgeDecomposer;
 
 /// An `M1`-orthonormal basis of the harmonic fields and its quality.
@@ -17,19 +17,19 @@ pub struct HarmonicFields {
     pub kernel_residual: f64,
 }
 
-/// Projects `h = complex.harmonic_dimension()` random fields (seeded) onto the harmonic space
+/// Projects `h = complex.topology().harmonic_dimension` random fields (seeded) onto the harmonic space
 /// (two Poisson solves each: remove the integrable and co-integrable parts), orthonormalises them
 /// in `M1` and re-projects (by [`HodgeDecomposer::harmonic_basis`]), then measures the result.
 /// On a genus-0 mesh nothing is factored and the result has no column.
-pub fn harmonic_fields<H: HodgeComplex>(
+pub fn harmonic_fields<H: HodgeComplex + ?Sized>(
     complex: &H,
     seed: u64,
 ) -> Result<HarmonicFields, BasisError> {
-    if complex.has_boundary() {
+    if complex.topology().has_boundary {
         return Err(BasisError::Boundary);
     }
-    let rows = complex.fields().dimension();
-    let h = complex.harmonic_dimension();
+    let rows = complex.field_dimension();
+    let h = complex.topology().harmonic_dimension;
     if h == 0 {
         return Ok(HarmonicFields {
             fields: Mat::zeros(rows, 0),

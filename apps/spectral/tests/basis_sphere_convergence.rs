@@ -14,7 +14,7 @@ const BANDS: [usize; 3] = [1, 2, 3];
 
 /// Relative error `max |λ − l(l+1)| / l(l+1)` of each band `l = 1, 2, 3`, separately over its
 /// `2l+1` integrable and its `2l+1` co-integrable fields: `[band][0 integrable, 1 co-integrable]`.
-fn band_errors<H: HodgeComplex>(complex: &H) -> [[f64; 2]; 3] {
+fn band_errors<H: HodgeComplex + ?Sized>(complex: &H) -> [[f64; 2]; 3] {
     let count: usize = BANDS.iter().map(|l| 2 * (2 * l + 1)).sum();
     let basis = compute_basis(complex, &BasisRequest::fields(count)).unwrap();
     assert_eq!(basis.count(FieldFamily::Harmonic), 0);

@@ -9,7 +9,7 @@ use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily, SpectralBasis};
 
 /// The eigenfields a request for `d` fields must return: the lowest `d` of the complete basis.
-fn check_fields<H: HodgeComplex>(complex: &H, complete: &SpectralBasis, d: usize, what: &str) {
+fn check_fields<H: HodgeComplex + ?Sized>(complex: &H, complete: &SpectralBasis, d: usize, what: &str) {
     let basis = compute_basis(complex, &BasisRequest::fields(d)).unwrap();
     assert_eq!(basis.len(), d, "{what}, d = {d}");
     for (j, (a, b)) in basis
@@ -63,7 +63,7 @@ fn check_fields<H: HodgeComplex>(complex: &H, complete: &SpectralBasis, d: usize
 
 /// Bounds halfway between consecutive well separated eigenvalues give exactly the fields up to
 /// them; a bound above the spectrum gives all fields, a zero bound the harmonic ones.
-fn check_bounds<H: HodgeComplex>(complex: &H, complete: &SpectralBasis, what: &str) {
+fn check_bounds<H: HodgeComplex + ?Sized>(complex: &H, complete: &SpectralBasis, what: &str) {
     let all = complete.eigenvalues();
     let harmonic = complete.count(FieldFamily::Harmonic);
     for fraction in [0.05, 0.3, 0.8] {

@@ -100,7 +100,7 @@ fn dirichlet(s: &sprs::CsMat<f64>, v: &[f64]) -> f64 {
     mul_vec(s, v).iter().zip(v).map(|(a, b)| a * b).sum()
 }
 
-fn check_low_pass_energy<H: HodgeComplex>(complex: &H) {
+fn check_low_pass_energy<H: HodgeComplex + ?Sized>(complex: &H) {
     let s = complex.dirichlet_energy();
     let complete = compute_basis(complex, &BasisRequest::complete()).unwrap();
     let partial = truncated(&complete, 60);

@@ -10,7 +10,7 @@ use tvf_spectral::{
 
 /// A time-dependent field: a rotating swirl around an axis, one frame per time step (3D vectors
 /// projected onto the faces).
-fn frames<H: HodgeComplex>(
+fn frames<H: HodgeComplex + ?Sized>(
     complex: &H,
     mesh: &tvf_core::SurfaceMesh,
     count: usize,

@@ -31,6 +31,40 @@ pub enum DiscretizationError {
         /// The first offending index.
         index: usize,
     },
+    /// Entries of a mass that must be positive are not.
+    #[error("{what} must be positive: {count} entries are not (the first, entry {first}, is {value:e})")]
+    NotPositive {
+        /// Which mass (e.g. "M1").
+        what: &'static str,
+        /// How many entries are not positive.
+        count: usize,
+        /// The first such entry.
+        first: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// The diagonal Hodge star on edges (`(cot α + cot β)/2`) is not positive: the mesh is not
+    /// Delaunay.
+    #[error("the mesh is not Delaunay: {count} edges have cot α + cot β ≤ 0 (the first is edge {first}, cot α + cot β = {value:.3e}); the diagonal Hodge star ⋆1 needs a Delaunay mesh")]
+    NotDelaunay {
+        /// Number of edges with `cot α + cot β ≤ 0`.
+        count: usize,
+        /// The first such edge.
+        first: usize,
+        /// Its `cot α + cot β`.
+        value: f64,
+    },
+    /// A command needs a capability the discretization does not offer.
+    #[error("the discretization '{discretization}' does not offer {capability}")]
+    MissingCapability {
+        /// The complex's id.
+        discretization: String,
+        /// What is missing.
+        capability: &'static str,
+    },
+    /// The matrices of a complex do not fit together.
+    #[error("inconsistent complex: {0}")]
+    Inconsistent(String),
     /// A face index is out of range.
     #[error("face {face} is out of range (the mesh has {face_count} faces)")]
     FaceOutOfRange {

@@ -1,84 +1,85 @@
-//! The [`HodgeComplex`] trait: the short cochain complex behind a discrete Hodge decomposition.
+//! The [`HodgeComplex`] trait: the five matrices of a discrete Hodge decomposition, the single
+//! source of truth of everything downstream.
 
-use super::{FieldSpace, FunctionSpace};
+use super::{
+    ComplexTopology, DiagonalMass, FieldRotation, FieldSampling, NodeSpace, OperatorCache,
+    PointEvaluation,
+};
 use sprs::CsMat;
 
-/// A discrete Hodge decomposition `X_h = d0(potentials) ⊕ M1⁻¹d1ᵀ(co-potentials) ⊕ H`, given as
-/// the cochain complex
+/// A discrete Hodge decomposition given as a short cochain complex with masses
 ///
 /// ```text
-/// potentials (n0) --d0--> fields (2F) --d1--> co-potentials (n2),   d1 · d0 = 0
+/// potentials (n0) --d0--> fields (n1) --d1--> co-potentials (n2),   d1 · d0 = 0
+///      M0                    M1                  M2 (acts on d1's integrated output)
 /// ```
 ///
-/// with diagonal masses `M0` (potentials), `M1` (fields) and `M2` (acting on the integrated
-/// output of `d1`). The two instances of the paper:
+/// | entry | potentials | fields | co-potentials | `d0` | `d1` | `M0` | `M1` | `M2` |
+/// |---|---|---|---|---|---|---|---|---|
+/// | conforming | P1 (`V`) | face vectors (`2F`) | CR (`E`) | `G` | `G*ᵀ J M_X` | `M` | `M_X` | `M*⁻¹` |
+/// | nonconforming | CR (`E`) | face vectors (`2F`) | P1 (`V`) | `G*` | `Gᵀ J M_X` | `M*` | `M_X` | `M⁻¹` |
+/// | DEC 1-forms | vertices (`V`) | edges (`E`) | faces (`F`) | incidence | incidence | `⋆0` | `⋆1` | `⋆2` |
 ///
-/// | complex | potentials | co-potentials | `d0` | `d1` | `M0` | `M1` | `M2` |
-/// |---|---|---|---|---|---|---|---|
-/// | conforming | P1 (`V`) | CR (`E`) | `G` | `G*ᵀ J M_X` | `M` | `M_X` | `M*⁻¹` |
-/// | nonconforming | CR (`E`) | P1 (`V`) | `G*` | `Gᵀ J M_X` | `M*` | `M_X` | `M⁻¹` |
+/// Potentials and fields are **pointwise** (nodal values, vector coefficients, or for DEC the
+/// integrals the forms are defined by); `d0` is the gradient, `d1 x` the **integrated** curl in
+/// the co-potential space (`M2 d1` the pointwise one). Every other operator — divergence and
+/// curl, stiffness matrices, `S`, `L`, `B`, both scalar eigenproblems, eigenfields, the Hodge
+/// decomposition — is derived from these five in [`super::HodgeOperators`] and nowhere else.
 ///
-/// Potentials and co-potentials are **pointwise** nodal values of their function spaces;
-/// `d0 f` is a pointwise field (the gradient), `d1 v` is the **integrated** curl of `v` in the
-/// co-potential space (`M2 d1` is the pointwise one). Everything derived from these five things
-/// lives in the blanket extension [`crate::discretization::HodgeOperators`].
-///
-/// Implementors provide the spaces, `d1`, `M2` and the harmonic dimension; `d0`, `M0`, `M1`
-/// default to the potential gradient and the spaces' masses.
-pub trait HodgeComplex {
-    /// The potential space (the source of `d0`).
-    type Potentials: FunctionSpace;
-    /// The co-potential space (the target of `d1`).
-    type CoPotentials: FunctionSpace;
-    /// The field space.
-    type Fields: FieldSpace;
+/// The trait is object safe: the catalog of `tvf-discretizations` hands out
+/// `Box<dyn HodgeComplex>`. Derived operators are cached in the [`OperatorCache`] the
+/// implementor owns (a wrapper that changes a matrix must own a fresh cache, not forward its
+/// inner complex's).
+pub trait HodgeComplex: Send + Sync {
+    /// Stable identifier, lower-case kebab-case (`conforming-barycentric`, `dec-circumcentric`):
+    /// the catalog id, written into basis files and cache names.
+    fn id(&self) -> &str;
 
-    /// Short human-readable name, e.g. `"conforming (barycentric)"`.
-    fn name(&self) -> String;
+    /// `d0` (`n1 × n0`): the gradient, potentials → fields.
+    fn d0(&self) -> &CsMat<f64>;
 
-    /// The potential space `S_h` (conforming) or `S*_h` (nonconforming).
-    fn potentials(&self) -> &Self::Potentials;
-
-    /// The co-potential space `S*_h` (conforming) or `S_h` (nonconforming).
-    fn co_potentials(&self) -> &Self::CoPotentials;
-
-    /// The field space `X_h`.
-    fn fields(&self) -> &Self::Fields;
-
-    /// `d0` (`2F × n0`): the gradient of the potential space (pointwise in, pointwise out,
-    /// units 1/length).
-    fn d0(&self) -> &CsMat<f64> {
-        self.potentials().gradient()
-    }
-
-    /// `d1` (`n2 × 2F`): the integrated curl into the co-potential space,
-    /// `d1 = G_coᵀ J M1` with `G_co` the co-potential gradient (units length). `d1 · d0 = 0` up to
-    /// round-off on closed meshes.
+    /// `d1` (`n2 × n1`): the integrated curl, fields → co-potentials. `d1 · d0 = 0` up to
+    /// round-off (on closed meshes for the finite-element complexes).
     fn d1(&self) -> &CsMat<f64>;
 
-    /// Diagonal of `M0` (`n0` entries, area): the lumped mass of the potential space.
-    fn m0(&self) -> &[f64] {
-        self.potentials().mass()
+    /// `M0` (`n0 × n0`, area): the inner product of potentials.
+    fn m0(&self) -> &DiagonalMass;
+
+    /// `M1` (`n1 × n1`): the inner product of fields, `xᵀ M1 y = ∫ ⟨x, y⟩`.
+    fn m1(&self) -> &DiagonalMass;
+
+    /// `M2` (`n2 × n2`, 1/area): turns `d1`'s integrated values into pointwise ones; `M2⁻¹` is the
+    /// inner product of co-potentials.
+    fn m2(&self) -> &DiagonalMass;
+
+    /// The nodes of the potential space (`n0`).
+    fn potential_nodes(&self) -> &NodeSpace;
+
+    /// The nodes of the field space (`n1`).
+    fn field_nodes(&self) -> &NodeSpace;
+
+    /// The nodes of the co-potential space (`n2`).
+    fn co_potential_nodes(&self) -> &NodeSpace;
+
+    /// Components, harmonic dimension and boundary of the mesh.
+    fn topology(&self) -> &ComplexTopology;
+
+    /// Storage for the derived operators of [`super::HodgeOperators`] (computed once, on first
+    /// use).
+    fn operator_cache(&self) -> &OperatorCache;
+
+    /// Sampling fields as 3D vectors at points, if the discretization offers it.
+    fn sampling(&self) -> Option<&dyn FieldSampling> {
+        None
     }
 
-    /// Diagonal of `M1 = M_X` (`2F` entries, area).
-    fn m1(&self) -> &[f64] {
-        self.fields().mass()
+    /// The rotation `J` of fields by +π/2, if the field space has one.
+    fn rotation(&self) -> Option<&dyn FieldRotation> {
+        None
     }
 
-    /// Diagonal of `M2` (`n2` entries, 1/area): the inverse lumped mass of the co-potential space
-    /// (zero for a node no face uses). It turns `d1`'s integrated values into pointwise ones.
-    fn m2(&self) -> &[f64];
-
-    /// Dimension of the harmonic space `H`: `2g` summed over the components of a closed mesh.
-    fn harmonic_dimension(&self) -> usize;
-
-    /// Whether the mesh has boundary edges. Then `d1 · d0 ≠ 0` on the boundary (the operators are
-    /// assembled with natural boundary conditions) and the Hodge decomposition is not defined.
-    fn has_boundary(&self) -> bool;
-
-    /// Number of connected components.
-    fn component_count(&self) -> usize {
-        self.potentials().component_count()
+    /// Evaluation of potentials and co-potentials at points, if the discretization offers it.
+    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
+        None
     }
 }

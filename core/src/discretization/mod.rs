@@ -1,92 +1,106 @@
-//! The discretization traits: what a discretization of tangential vector fields must provide, and
-//! every operator of the paper derived once from it.
+//! The seam: what a discretization of tangential vector fields provides — five matrices and a few
+//! small capabilities — and every operator of the paper derived once from them.
 //!
-//! The paper's discrete Hodge decomposition is a short cochain complex with diagonal masses
-//! (`shared/docs/ARCHITECTURE.md`):
+//! The paper's discrete Hodge decomposition is a short cochain complex with masses
+//! (`shared/docs/ARCHITECTURE.md`, `docs/discretizations.md`):
 //!
 //! ```text
-//! potentials --d0--> fields --d1--> co-potentials,      d1 · d0 = 0 (closed meshes)
-//!   mass M0         mass M1       mass M2⁻¹ (M2 acts on d1's integrated output)
+//! potentials --d0--> fields --d1--> co-potentials,      d1 · d0 = 0
+//!     M0              M1              M2 (acts on d1's integrated output)
 //! ```
 //!
-//! - [`FunctionSpace`]: a space of scalar functions (P1 on vertices, Crouzeix–Raviart on edge
-//!   midpoints, ...): dimension, lumped mass, gradient into face fields, interpolation.
-//! - [`FieldSpace`]: the piecewise constant tangent fields `X_h`: frames, `J`, `M_X`, conversion
-//!   to and from one 3D vector per face.
-//! - [`HodgeComplex`]: pairs a potential space and a co-potential space over a field space and
-//!   hands out `d0`, `d1`, `M0`, `M1`, `M2`.
-//! - [`HodgeOperators`]: blanket extension of every [`HodgeComplex`]: divergence and curl (both
-//!   families), stiffness matrices, Dirichlet energy `S`, Hodge–Laplacian `L`, biharmonic `B`,
-//!   the two eigenproblems of Section 6 and the maps from (co-)potentials to fields.
+//! - [`HodgeComplex`]: the five matrices `d0`, `d1`, `M0`, `M1`, `M2` ([`DiagonalMass`]), the
+//!   nodes of the three spaces ([`NodeSpace`]), the topology, a stable id, and the optional
+//!   capabilities [`FieldSampling`] (fields as 3D vectors at points), [`FieldRotation`] (`J`,
+//!   which gives the other family of divergence and curl) and [`PointEvaluation`] (potentials at
+//!   points). Object safe: catalogs hand out `Box<dyn HodgeComplex>`.
+//! - [`HodgeOperators`]: blanket extension of every complex: divergence and curl, stiffness
+//!   matrices, Dirichlet energy `S`, Hodge–Laplacian `L`, biharmonic `B`, the two scalar
+//!   eigenproblems of Section 6 and the maps from (co-)potentials to fields — all from the five
+//!   matrices, computed once and cached in the complex's [`OperatorCache`].
 //!
-//! Code downstream (spectral basis, filters, splines) is written against these traits only, so
-//! that the conforming and the nonconforming decomposition, and any discretization added later,
-//! are interchangeable. `tvf-discretizations` holds the implementations and shows, in its crate
-//! docs, how to add a third one.
+//! Code downstream (spectral basis, filters, splines, design, rendering, the editor) is written
+//! against these traits only. `tvf-discretizations` holds the implementations and the catalog.
 //!
 //! # Adding a discretization
-//! Implement [`HodgeComplex`] (usually by assembling spaces, see
-//! `tvf_discretizations::FiniteElementComplex::from_spaces`, whose crate docs run a complete
-//! example) and every operator of [`HodgeOperators`] follows. The smallest possible variant wraps
-//! an existing complex and changes one ingredient, here the co-potential mass `M2`:
+//! Build the five matrices and implement [`HodgeComplex`]; every operator of
+//! [`HodgeOperators`] follows. The smallest variant wraps an existing complex and changes one
+//! ingredient, here the co-potential mass `M2` (scaled by `1/factor`). It owns a fresh
+//! [`OperatorCache`], so every derived operator — `L`, `S` and both eigenproblems alike — sees the
+//! new `M2`; the conformance suite in `tests/` runs this very wrapper.
 //!
 //! ```
 //! use sprs::CsMat;
-//! use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+//! use tvf_core::discretization::*;
 //!
 //! /// Any complex with its co-potential inner product scaled by `factor` (so `M2` by 1/factor).
 //! struct ScaledCoPotentials<H> {
 //!     inner: H,
-//!     m2: Vec<f64>,
+//!     id: String,
+//!     m2: DiagonalMass,
+//!     cache: OperatorCache,
 //! }
 //!
 //! impl<H: HodgeComplex> ScaledCoPotentials<H> {
-//!     fn new(inner: H, factor: f64) -> Self {
-//!         let m2 = inner.m2().iter().map(|m| m / factor).collect();
-//!         Self { inner, m2 }
+//!     fn new(inner: H, factor: f64) -> Result<Self, DiscretizationError> {
+//!         let m2 = inner.m2().values().iter().map(|m| m / factor).collect();
+//!         Ok(Self {
+//!             id: format!("{}-scaled-co-potentials", inner.id()),
+//!             m2: DiagonalMass::new("M2", m2)?,
+//!             inner,
+//!             cache: OperatorCache::default(),
+//!         })
 //!     }
 //! }
 //!
 //! impl<H: HodgeComplex> HodgeComplex for ScaledCoPotentials<H> {
-//!     type Potentials = H::Potentials;
-//!     type CoPotentials = H::CoPotentials;
-//!     type Fields = H::Fields;
-//!     fn name(&self) -> String { format!("{} (scaled co-potentials)", self.inner.name()) }
-//!     fn potentials(&self) -> &H::Potentials { self.inner.potentials() }
-//!     fn co_potentials(&self) -> &H::CoPotentials { self.inner.co_potentials() }
-//!     fn fields(&self) -> &H::Fields { self.inner.fields() }
+//!     fn id(&self) -> &str { &self.id }
+//!     fn d0(&self) -> &CsMat<f64> { self.inner.d0() }
 //!     fn d1(&self) -> &CsMat<f64> { self.inner.d1() }
-//!     fn m2(&self) -> &[f64] { &self.m2 }
-//!     fn harmonic_dimension(&self) -> usize { self.inner.harmonic_dimension() }
-//!     fn has_boundary(&self) -> bool { self.inner.has_boundary() }
+//!     fn m0(&self) -> &DiagonalMass { self.inner.m0() }
+//!     fn m1(&self) -> &DiagonalMass { self.inner.m1() }
+//!     fn m2(&self) -> &DiagonalMass { &self.m2 }
+//!     fn potential_nodes(&self) -> &NodeSpace { self.inner.potential_nodes() }
+//!     fn field_nodes(&self) -> &NodeSpace { self.inner.field_nodes() }
+//!     fn co_potential_nodes(&self) -> &NodeSpace { self.inner.co_potential_nodes() }
+//!     fn topology(&self) -> &ComplexTopology { self.inner.topology() }
+//!     fn operator_cache(&self) -> &OperatorCache { &self.cache }
+//!     fn sampling(&self) -> Option<&dyn FieldSampling> { self.inner.sampling() }
 //! }
 //!
 //! /// Written once against the traits: works for the wrapper as for any other complex.
-//! fn laplacian_size<H: HodgeComplex>(complex: &H) -> (usize, usize) {
+//! fn laplacian_size(complex: &dyn HodgeComplex) -> (usize, usize) {
 //!     complex.hodge_laplacian().shape()
 //! }
 //! # fn _compiles<H: HodgeComplex>(h: H) -> (usize, usize) {
-//! #     laplacian_size(&ScaledCoPotentials::new(h, 2.0))
+//! #     laplacian_size(&ScaledCoPotentials::new(h, 2.0).unwrap())
 //! # }
 //! ```
 //!
 //! # Units
-//! Field coefficients are *pointwise* (a tangent vector per face). Function coefficients are
-//! *pointwise* nodal values. A matrix called "integrated" returns values that are integrals over
-//! the node's lumped area (multiply a pointwise quantity by the mass to get the integrated one).
+//! Potentials are **pointwise** nodal values. Field coefficients are what the discretization says
+//! (a tangent vector per face in its frame, a 1-form's integral along each edge); the sampling
+//! capability turns them into pointwise 3D vectors. A matrix called "integrated" returns values
+//! that are integrals over the node's lumped area.
 
+mod capabilities;
+mod diagonal_mass;
 mod error;
-mod field_space;
-mod function_space;
 mod hodge_complex;
 mod hodge_operators;
+mod nodes;
+mod operator_cache;
 pub mod sparse;
 
+pub use capabilities::{
+    check_length, FieldRotation, FieldSampling, PointEvaluation, TangentProjection,
+};
+pub use diagonal_mass::DiagonalMass;
 pub use error::DiscretizationError;
-pub use field_space::{FieldSpace, TangentProjection};
-pub use function_space::FunctionSpace;
 pub use hodge_complex::HodgeComplex;
 pub use hodge_operators::{Eigenproblem, HodgeOperators};
+pub use nodes::{ComplexTopology, NodeKind, NodeSpace};
+pub use operator_cache::OperatorCache;
 
 /// Marker in node → component maps for a node that no face uses (an unreferenced vertex).
 pub const NO_COMPONENT: usize = usize::MAX;

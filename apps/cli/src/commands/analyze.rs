@@ -51,9 +51,9 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 pub fn run(mut args: AnalyzeArgs) -> Result<()> {
     let field_path = args.input.required_second(args.field.take(), "FIELD");
     let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
-    let field = read_field(&field_path, &setup.fields)?;
+    let field = read_field(&field_path, setup.fields()?)?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
-    let exact = exact_hodge_energies(&setup.mesh, &setup.discretization, &field)?;
+    let exact = Some(exact_hodge_energies(setup.complex.as_ref(), &field)?);
     create_output_dir(&args.output)?;
 
     let mut csv = String::from("index,family,eigenvalue,frequency,coefficient\n");

@@ -1,13 +1,12 @@
 //! `tvf basis`: compute the Fourier basis of a mesh (Section 6) and save it as a `.tvfb` file.
 
-use crate::basis_source::{Decomposition, Discretization, Mass};
+use crate::discretization_flags::DiscretizationFlags;
+use tvf_core::discretization::HodgeOperators;
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, Progress};
-use crate::with_complex;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
-use tvf_core::discretization::FieldSpace;
 use tvf_spectral::{
     compute_basis, mesh_fingerprint, save_basis, BasisFileKey, BasisRequest, FieldFamily,
 };
@@ -27,12 +26,8 @@ pub struct BasisArgs {
     /// paper's d); K ≥ 2F gives the complete basis.
     #[arg(short = 'k', value_name = "K")]
     fields: usize,
-    /// Hodge decomposition.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
-    decomposition: Decomposition,
-    /// Mass lumping.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
-    mass: Mass,
+    #[command(flatten)]
+    discretization: DiscretizationFlags,
     /// Seed of the random fields and start vectors (equal seeds give identical files).
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -50,22 +45,21 @@ pub fn run(args: BasisArgs) -> Result<()> {
         bail!("-k 0: ask for at least one eigenfield");
     }
     let mesh = args.input.load()?.mesh;
-    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
-        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
+    let discretization = args.discretization.build(&mesh, &args.input.label())?;
     let progress = Progress::new("basis");
     let basis = {
         let callback = progress.basis_callback();
-        let request = if args.fields >= discretization.fields().dimension() {
+        let request = if args.fields >= discretization.field_dimension() {
             BasisRequest::complete()
         } else {
             BasisRequest::fields(args.fields)
         };
         let request = request.with_seed(args.seed).with_progress(&callback);
-        with_complex!(&discretization, c => compute_basis(c, &request))
+        compute_basis(discretization.as_ref(), &request)
             .with_context(|| format!("{}: cannot compute the basis", args.input.label()))?
     };
     let key = BasisFileKey {
-        discretization: discretization.name(),
+        discretization: discretization.id().to_string(),
         mesh_fingerprint: mesh_fingerprint(&mesh),
         face_count: mesh.face_count(),
     };

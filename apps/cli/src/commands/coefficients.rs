@@ -35,7 +35,7 @@ pub struct CoefficientsArgs {
 pub fn run(mut args: CoefficientsArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
-    let field = read_field(&field, &setup.fields)?;
+    let field = read_field(&field, setup.fields()?)?;
     let analysis = FourierAnalysis::new(&setup.basis, &field)?;
     let basis = &setup.basis;
     if args.json {

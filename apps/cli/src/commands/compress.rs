@@ -55,7 +55,7 @@ pub fn run(mut args: CompressArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     let size = args.basis.size_or(BasisSize::Pairs(args.pairs));
     let setup = load_setup(&args.input, &args.basis.options, size)?;
-    let (frames, source) = read_frames(&field, &setup.fields)?;
+    let (frames, source) = read_frames(&field, setup.fields()?)?;
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },
         None => CoefficientCoding::Float64,

@@ -2,14 +2,13 @@
 //! harmonic parts, with the potentials.
 
 use super::spectral_inputs::read_field;
-use crate::basis_source::{Decomposition, Discretization, Mass};
+use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::report::Report;
-use crate::with_complex;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
-use tvf_core::discretization::{FieldSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::HodgeOperators;
 use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::{write_face_vectors, write_npy, NpyArray, NpyDtype};
 
@@ -29,12 +28,8 @@ pub struct DecomposeArgs {
     /// Output folder (created if missing).
     #[arg(short, long = "output", value_name = "DIR", visible_alias = "out")]
     out: PathBuf,
-    /// Hodge decomposition.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
-    decomposition: Decomposition,
-    /// Mass lumping.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
-    mass: Mass,
+    #[command(flatten)]
+    discretization: DiscretizationFlags,
     /// Print the energies of the parts as one JSON object on stdout.
     #[arg(long)]
     json: bool,
@@ -44,14 +39,15 @@ pub struct DecomposeArgs {
 pub fn run(mut args: DecomposeArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     let mesh = args.input.load()?.mesh;
-    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
-        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
-    let field = read_field(&field, discretization.fields())?;
+    let discretization = args.discretization.build(&mesh, &args.input.label())?;
+    let field = read_field(&field, discretization.require_sampling()?)?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create the folder {}", args.out.display()))?;
     let mut report = Report::new(args.json);
-    report.set("discretization", discretization.name());
-    with_complex!(&discretization, c => {
+    report.set("discretization", discretization.id());
+    {
+        let c = discretization.as_ref();
+        {
         let parts = HodgeDecomposer::new(c)
             .and_then(|d| d.decompose(&field))
             .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
@@ -62,7 +58,7 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
             ("cointegrable", &parts.co_integrable),
             ("harmonic", &parts.harmonic),
         ] {
-            write_face_vectors(&args.out.join(format!("{name}.npy")), &c.fields().to_vectors(part)?)?;
+            write_face_vectors(&args.out.join(format!("{name}.npy")), &c.require_sampling()?.to_face_vectors(part)?)?;
             let energy = c.field_inner(part, part);
             report.line(format!(
                 "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
@@ -77,7 +73,8 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
             )?;
         }
         Ok::<(), anyhow::Error>(())
-    })?;
+    }
+    }?;
     report.line(format!(
         "wrote the parts and potentials to {}",
         args.out.display()

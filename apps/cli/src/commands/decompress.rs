@@ -48,7 +48,7 @@ pub fn run(mut args: DecompressArgs) -> Result<()> {
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;
     let frames = decode_frames(&codec, &file)?;
-    write_frames(&args.output, &setup.fields, &frames)?;
+    write_frames(&args.output, setup.fields()?, &frames)?;
     println!("frames    {}", frames.len());
     println!("wrote     {}", args.output.display());
     Ok(())

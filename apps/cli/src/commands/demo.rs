@@ -2,6 +2,7 @@
 //! web page of pictures and numbers, each step timed.
 
 use crate::demo::{run as run_demo, DemoConfig};
+use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::picture::parse_size;
 use anyhow::{bail, Result};
@@ -61,6 +62,8 @@ pub struct DemoArgs {
     /// Size of a full-width picture (grid panels are half of it each way).
     #[arg(long, value_name = "WxH", default_value = "800x600")]
     size: String,
+    #[command(flatten)]
+    discretization: DiscretizationFlags,
     /// A small mesh, basis and pictures, for tests (a few seconds).
     #[arg(long, hide = true)]
     quick: bool,
@@ -113,6 +116,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
         mesh,
         mesh_name,
         fields,
+        discretization: args.discretization.id(),
         width,
         height,
         fur_strands: if args.quick { 1500 } else { 25_000 },

@@ -7,7 +7,6 @@ use super::spline::{
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::report::Report;
-use crate::with_complex;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::PathBuf;
@@ -63,11 +62,11 @@ pub fn run(args: DesignArgs) -> Result<()> {
     let mut report = Report::new(args.json);
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
-    with_complex!(&discretization, c => design_with(c, &inputs, &args, &mut report))?;
+    design_with(discretization.as_ref(), &inputs, &args, &mut report)?;
     report.finish()
 }
 
-fn design_with<H: HodgeComplex>(
+fn design_with<H: HodgeComplex + ?Sized>(
     complex: &H,
     inputs: &DesignInputs,
     args: &DesignArgs,
@@ -78,7 +77,7 @@ fn design_with<H: HodgeComplex>(
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega: inputs.set.omega,
-        regularization: default_regularization(&dirichlet, complex.m1()),
+        regularization: default_regularization(&dirichlet, complex.m1().values()),
     };
     let field = if args.full {
         let assembly = start.elapsed();
@@ -86,7 +85,7 @@ fn design_with<H: HodgeComplex>(
         let ordering = args.ordering.unwrap_or(DEFAULT_FULL_ORDERING);
         let design = FullSoftDesign::from_matrices_with_ordering(
             &dirichlet,
-            complex.m1(),
+            complex.m1().values(),
             options,
             constraints.clone(),
             ordering,
@@ -186,7 +185,7 @@ fn design_with<H: HodgeComplex>(
     };
     let residuals: Vec<_> = constraints.iter().map(|c| residual(c, &field)).collect();
     report_residuals(&residuals, out);
-    write_tangent_field(&args.output, complex.fields(), &field)?;
+    write_tangent_field(&args.output, complex.require_sampling()?, &field)?;
     out.line(format!("wrote {}", args.output.display()));
     out.set("output", args.output.display().to_string());
     Ok(())

@@ -1,8 +1,8 @@
 //! `tvf edit`: the interactive spline editor in the browser (a local server on 127.0.0.1).
 
-use crate::basis_source::{BasisSource, Discretization};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_design::ConstraintSet;
@@ -16,7 +16,7 @@ use tvf_spectral::mesh_fingerprint;
     after_help = "Examples:\n  tvf edit bunny.obj   (then open the printed http://127.0.0.1:PORT address)\n  \
 tvf edit --example bumpy-torus -k 300 --constraints constraints.json --port 8080\n\n\
 The editor works in the basis of the K lowest eigenfields (-k K, the paper's d; computed once and cached, \
-K ≥ 2F: the complete basis) or of a --basis file, with the conforming decomposition."
+K ≥ 2F: the complete basis) or of a --basis file, with the discretization of --discretization (or of the basis file)."
 )]
 pub struct EditArgs {
     #[command(flatten)]
@@ -42,17 +42,11 @@ pub fn run(args: EditArgs) -> Result<()> {
         }
         None => None,
     };
-    if let Discretization::Nonconforming(_) =
-        args.basis.options.discretization(&mesh, &args.input)?
-    {
-        bail!(
-            "the editor works with the conforming decomposition (divergence at vertices, curl at \
-             edges); give a conforming basis or --decomposition conforming"
-        );
-    }
-    let basis = ReducedBasis::from_spectral(&args.basis.resolve(&mesh, &args.input)?.basis)?;
+    let resolved = args.basis.resolve(&mesh, &args.input)?;
+    let discretization = resolved.discretization.id().to_string();
+    let basis = ReducedBasis::from_spectral(&resolved.basis)?;
     println!(
-        "mesh            {} ({} faces), basis of {} fields",
+        "mesh            {} ({} faces), basis of {} fields, {discretization}",
         args.input.label(),
         mesh.face_count(),
         basis.len()
@@ -62,6 +56,7 @@ pub fn run(args: EditArgs) -> Result<()> {
         basis,
         constraints,
         basis_size: None,
+        discretization,
     })
     .with_context(|| match &args.constraints {
         Some(path) => format!("starting the editor with {}", path.display()),

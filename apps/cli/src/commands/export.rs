@@ -2,14 +2,13 @@
 //! with per-face vectors and scalars, or OBJ with the field's streamlines as polylines.
 
 use super::spectral_inputs::read_field;
-use crate::basis_source::{Decomposition, Discretization, Mass};
+use tvf_core::discretization::HodgeOperators;
+use crate::discretization_flags::DiscretizationFlags;
 use crate::face_quantities::{face_scalar, ColorBy};
 use crate::mesh_input::MeshInput;
-use crate::with_complex;
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
-use tvf_core::discretization::FieldSpace;
 use tvf_render::{trace_streamlines, write_obj, write_ply, write_vtk, FaceData, StreamlineOptions};
 
 const EXAMPLES: &str = "Examples:
@@ -49,12 +48,8 @@ pub struct ExportArgs {
     /// Streamline density for OBJ (about this many separations² fit the surface).
     #[arg(long, value_name = "N", default_value_t = 2000)]
     streamlines: usize,
-    /// Hodge decomposition whose divergence and curl are written.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
-    decomposition: Decomposition,
-    /// Mass lumping of that decomposition.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
-    mass: Mass,
+    #[command(flatten)]
+    discretization: DiscretizationFlags,
 }
 
 fn format_of(path: &Path) -> Option<Format> {
@@ -77,10 +72,9 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
             args.output.display()
         );
     };
-    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
-        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
-    let field = read_field(&field, discretization.fields())?;
-    let vectors = discretization.fields().to_vectors(&field)?;
+    let discretization = args.discretization.build(&mesh, &args.input.label())?;
+    let field = read_field(&field, discretization.require_sampling()?)?;
+    let vectors = discretization.require_sampling()?.to_face_vectors(&field)?;
     match format {
         Format::Vtk | Format::Ply => {
             let mut data = FaceData {
@@ -94,7 +88,7 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
                 ColorBy::Energy,
             ] {
                 let values =
-                    with_complex!(&discretization, c => face_scalar(c, kind, &field, &vectors));
+                    face_scalar(discretization.as_ref(), kind, &field, &vectors)?;
                 data.scalars
                     .extend(values.map(|v| (kind.label().to_string(), v)));
             }

@@ -72,7 +72,7 @@ pub fn run(mut args: FilterArgs) -> Result<()> {
     let integrable = response("integrable", &args.integrable)?;
     let cointegrable = response("cointegrable", &args.cointegrable)?;
     let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
-    let field = read_field(&field, &setup.fields)?;
+    let field = read_field(&field, setup.fields()?)?;
     let filter = SpectralFilter {
         integrable,
         cointegrable,
@@ -80,7 +80,7 @@ pub fn run(mut args: FilterArgs) -> Result<()> {
         rest_gain: args.rest,
     };
     let filtered = filter.apply(&setup.basis, &field)?;
-    write_tangent_field(&args.output, &setup.fields, &filtered.field)?;
+    write_tangent_field(&args.output, setup.fields()?, &filtered.field)?;
     let norm = |v: &[f64]| setup.basis.inner_product(v, v).sqrt();
     let mut report = Report::new(args.json);
     report.line(format!(

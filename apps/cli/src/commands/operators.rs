@@ -1,6 +1,6 @@
 //! `tvf operators`: writes the paper's matrices of a mesh as Matrix Market files.
 
-use crate::basis_source::{Decomposition, Mass};
+use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -11,129 +11,106 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::sparse::diagonal;
-use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 
 /// Arguments of `tvf operators`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf operators bunny.obj -o matrices/\n  tvf operators --example torus --decomposition nonconforming --mass voronoi -o matrices/"
+    after_help = "Examples:\n  tvf operators bunny.obj -o matrices/\n  tvf operators --example torus --discretization dec-circumcentric -o matrices/"
 )]
 pub struct OperatorsArgs {
     #[command(flatten)]
     input: MeshInput,
-    /// Hodge decomposition whose field matrices (S, B) are written.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
-    decomposition: Decomposition,
-    /// Mass lumping of M and Mstar.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
-    mass: Mass,
+    #[command(flatten)]
+    discretization: DiscretizationFlags,
     /// Output folder (created if missing).
     #[arg(short, long = "output", visible_alias = "out", value_name = "DIR")]
     out: PathBuf,
 }
 
-/// Writes G, Gstar, M, Mstar, MX, J, Sc, Sstar, S, B (Matrix Market) and info.json.
+/// Writes the five matrices of the complex (d0, d1, M0, M1, M2), the derived S0, S2, S, B, J
+/// where the complex has a rotation, and info.json.
 pub fn run(args: OperatorsArgs) -> Result<()> {
     let mesh = args.input.load()?.mesh;
-    let lumping = args.mass.lumping();
+    let complex = args.discretization.build(&mesh, &args.input.label())?;
     fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create output directory {}", args.out.display()))?;
-    match args.decomposition {
-        Decomposition::Conforming => {
-            let complex = Conforming::new(&mesh, lumping).context("cannot build the operators")?;
-            write_all(&complex, &mesh, true, &args.out, lumping)
-        }
-        Decomposition::Nonconforming => {
-            let complex =
-                Nonconforming::new(&mesh, lumping).context("cannot build the operators")?;
-            write_all(&complex, &mesh, false, &args.out, lumping)
-        }
-    }
+    write_all(complex.as_ref(), &mesh, &args.out)
 }
 
-/// Writes every file; `p1_is_potential` says whether the complex's potential space is P1
-/// (conforming) or Crouzeix–Raviart (nonconforming).
-fn write_all<H: HodgeComplex>(
-    complex: &H,
-    mesh: &SurfaceMesh,
-    p1_is_potential: bool,
-    out: &Path,
-    lumping: MassLumping,
-) -> Result<()> {
-    let (g, gstar) = (
-        complex.potentials().gradient(),
-        complex.co_potentials().gradient(),
-    );
-    let (m, mstar) = (complex.potentials().mass(), complex.co_potentials().mass());
-    let (sc, sstar) = (
-        complex.potential_stiffness(),
-        complex.co_potential_stiffness(),
-    );
-    let (g, gstar, m, mstar, sc, sstar) = if p1_is_potential {
-        (g, gstar, m, mstar, sc, sstar)
-    } else {
-        (gstar, g, mstar, m, sstar, sc)
-    };
-    let matrices: [(&str, CsMat<f64>); 10] = [
-        ("G", g.clone()),
-        ("Gstar", gstar.clone()),
-        ("M", diagonal(m)),
-        ("Mstar", diagonal(mstar)),
-        ("MX", diagonal(complex.m1())),
-        ("J", complex.fields().rotation().clone()),
-        ("Sc", sc),
-        ("Sstar", sstar),
-        ("S", complex.dirichlet_energy()),
-        ("B", complex.biharmonic_energy()),
+/// Writes every file of `complex`.
+fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &Path) -> Result<()> {
+    let mut matrices: Vec<(&str, CsMat<f64>)> = vec![
+        ("d0", complex.d0().clone()),
+        ("d1", complex.d1().clone()),
+        ("M0", diagonal(complex.m0().values())),
+        ("M1", diagonal(complex.m1().values())),
+        ("M2", diagonal(complex.m2().values())),
+        ("S0", complex.potential_stiffness().clone()),
+        ("S2", complex.co_potential_stiffness().clone()),
+        ("S", complex.dirichlet_energy().clone()),
+        ("B", complex.biharmonic_energy().clone()),
     ];
+    if let Some(rotation) = complex.rotation() {
+        matrices.push(("J", rotation.rotation().clone()));
+    }
     for (name, matrix) in &matrices {
         write_atomically(&out.join(format!("{name}.mtx")), |w| {
             sprs::io::write_matrix_market_to_bufwrite(w, matrix)
         })?;
     }
+    let (n0, n1, n2) = (
+        complex.potential_dimension(),
+        complex.field_dimension(),
+        complex.co_potential_dimension(),
+    );
+    let nodes = |space: &tvf_core::discretization::NodeSpace| space.kind.name();
     let info = json!({
+        "discretization": complex.id(),
         "vertices": mesh.vertex_count(),
         "edges": mesh.edge_count(),
         "faces": mesh.face_count(),
         "components": mesh.component_count(),
         "genus": mesh.genus(),
-        "harmonic_dimension": complex.harmonic_dimension(),
+        "harmonic_dimension": complex.topology().harmonic_dimension,
         "closed": mesh.is_closed(),
-        "decomposition": if p1_is_potential { "conforming" } else { "nonconforming" },
-        "mass_lumping": lumping.name(),
+        "nodes": {
+            "potentials": nodes(complex.potential_nodes()),
+            "fields": nodes(complex.field_nodes()),
+            "co_potentials": nodes(complex.co_potential_nodes()),
+        },
         "matrices": {
-            "G": "2F x V, gradient of P1 hat functions, pointwise, face frames",
-            "Gstar": "2F x E, gradient of Crouzeix-Raviart basis functions (1 - 2 phi_c), pointwise",
-            "M": "V x V diagonal, lumped P1 mass (integrated, area)",
-            "Mstar": "E x E diagonal, lumped CR mass (integrated, area)",
-            "MX": "2F x 2F diagonal, face area twice per face",
-            "J": "2F x 2F, +pi/2 rotation per face, (a, b) -> (-b, a)",
-            "Sc": "V x V cotan matrix G^T MX G",
-            "Sstar": "E x E CR stiffness Gstar^T MX Gstar",
-            "S": "2F x 2F field Dirichlet energy of the chosen decomposition; conforming: MX (G M^-1 G^T - J Gstar Mstar^-1 Gstar^T J) MX, nonconforming: (G, M) and (Gstar, Mstar) exchanged",
-            "B": "2F x 2F biharmonic energy S MX^-1 S",
+            "d0": format!("{n1} x {n0}, gradient: potentials -> fields (pointwise)"),
+            "d1": format!("{n2} x {n1}, integrated curl: fields -> co-potentials; d1 d0 = 0"),
+            "M0": format!("{n0} x {n0} diagonal, potential mass (integrated, area)"),
+            "M1": format!("{n1} x {n1} diagonal, field mass: x^T M1 y = integral of <x, y>"),
+            "M2": format!("{n2} x {n2} diagonal, turns d1's integrated values into pointwise ones (1/area)"),
+            "S0": format!("{n0} x {n0} potential stiffness d0^T M1 d0 (the cotan matrix for P1 potentials)"),
+            "S2": format!("{n2} x {n2} co-potential stiffness d1 M1^-1 d1^T"),
+            "S": format!("{n1} x {n1} Dirichlet energy M1 d0 M0^-1 d0^T M1 + d1^T M2 d1"),
+            "B": format!("{n1} x {n1} biharmonic energy S M1^-1 S"),
+            "J": if complex.rotation().is_some() {
+                format!("{n1} x {n1}, +pi/2 rotation per face, (a, b) -> (-b, a)")
+            } else {
+                "not written: this discretization has no rotation of fields".to_string()
+            },
         },
         "conventions": {
             "indices": "0-based in this file; Matrix Market files are 1-based",
-            "field_layout": "face t stored at rows 2t, 2t+1 in the frame e1 = normalize(p_i1 - p_i0), e2 = n x e1",
+            "face_frames": "a face-frame field stores face t at rows 2t, 2t+1 in the frame e1 = normalize(p_i1 - p_i0), e2 = n x e1",
+            "edges": "edges (a, b) with a < b in lexicographic order; a 1-form is the field integrated from a to b",
             "vertex_order": "as in the input mesh",
-            "edge_order": "edges (a, b) with a < b in lexicographic order",
             "face_orientation": "counter-clockwise seen from outside, n = (p1 - p0) x (p2 - p0) normalized",
         },
     });
     let text = serde_json::to_string_pretty(&info)? + "\n";
     write_atomically(&out.join("info.json"), |w| w.write_all(text.as_bytes()))?;
     println!(
-        "wrote 10 matrices and info.json to {} ({} decomposition, {} mass)",
+        "wrote {} matrices and info.json to {} ({})",
+        matrices.len(),
         out.display(),
-        if p1_is_potential {
-            "conforming"
-        } else {
-            "nonconforming"
-        },
-        lumping.name()
+        complex.id()
     );
     Ok(())
 }

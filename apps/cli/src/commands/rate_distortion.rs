@@ -68,7 +68,7 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
     let largest = args.ks.iter().max().copied().unwrap_or(0);
     let size = args.basis.size_or(BasisSize::Pairs(largest));
     let setup = load_setup(&args.input, &args.basis.options, size)?;
-    let field = read_field(&field, &setup.fields)?;
+    let field = read_field(&field, setup.fields()?)?;
     let stamp = FileStamp {
         mesh_fingerprint: setup.mesh_fingerprint,
         basis_id: basis_id(&setup.basis),

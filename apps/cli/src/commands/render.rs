@@ -1,14 +1,14 @@
 //! `tvf render`: a picture of a mesh and (optionally) a tangent field, in software.
 
 use super::spectral_inputs::read_field;
-use crate::basis_source::{Decomposition, Discretization, Mass};
+use tvf_core::discretization::HodgeOperators;
+use crate::discretization_flags::DiscretizationFlags;
 use crate::face_quantities::ColorBy;
 use crate::mesh_input::{usage_error, MeshInput};
 use crate::picture::{
     constraint_markers, draw, grid, parse_size, parse_view, Overlays, Style, View,
 };
 use crate::progress::note;
-use crate::with_complex;
 use anyhow::{bail, Context, Result};
 use clap::error::ErrorKind;
 use clap::Args;
@@ -76,12 +76,8 @@ pub struct RenderArgs {
     /// FIELD).
     #[arg(long)]
     parts: bool,
-    /// Hodge decomposition whose divergence, curl and parts are shown.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
-    decomposition: Decomposition,
-    /// Mass lumping of that decomposition.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
-    mass: Mass,
+    #[command(flatten)]
+    discretization: DiscretizationFlags,
     /// Title printed at the top of the picture.
     #[arg(long, value_name = "TEXT")]
     title: Option<String>,
@@ -101,10 +97,9 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     }
     let start = Instant::now();
     let mesh = args.input.load()?.mesh;
-    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
-        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
+    let discretization = args.discretization.build(&mesh, &args.input.label())?;
     let field = match &field_path {
-        Some(path) => Some(read_field(path, discretization.fields())?),
+        Some(path) => Some(read_field(path, discretization.require_sampling()?)?),
         None => None,
     };
     let color = args.color.unwrap_or(if field.is_some() {
@@ -118,7 +113,7 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
         set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), path)?;
         // The same checks as for splines: every index in range, values finite (errors name
         // the file and the constraint's id).
-        with_complex!(&discretization, c => ConstraintAssembler::new(c, &mesh).compile_all(&set.constraints))
+        ConstraintAssembler::new(discretization.as_ref(), &mesh).compile_all(&set.constraints)
             .with_context(|| format!("{}", path.display()))?;
         markers = constraint_markers(&mesh, &set.constraints, 6.0 * args.size.1 as f64 / 768.0);
         if markers.len() < set.constraints.len() {
@@ -140,7 +135,7 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     let image = match (&field, args.parts) {
         (Some(field), true) => {
             let parts =
-                with_complex!(&discretization, c => HodgeDecomposer::new(c)?.decompose(field))?;
+                HodgeDecomposer::new(discretization.as_ref())?.decompose(field)?;
             let panels = [
                 ("field", field.as_slice()),
                 ("integrable (curl-free)", &parts.integrable),

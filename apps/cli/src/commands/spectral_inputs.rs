@@ -4,12 +4,14 @@
 //! frames) read as tangent fields.
 
 use crate::basis_source::{BasisOptions, BasisSize};
+use tvf_core::discretization::HodgeOperators;
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
-use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{Conforming, FaceFields, HodgeDecomposer, MassLumping, Nonconforming};
+use crate::discretization_flags::Discretization;
+use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::{
     read_face_vector_sequence, read_tangent_field, write_face_vector_sequence, write_tangent_field,
     EnergySplit, FieldIoError, NpyDtype, SpectralBasis,
@@ -19,8 +21,8 @@ use tvf_spectral::{
 pub struct SpectralSetup {
     /// The mesh.
     pub mesh: SurfaceMesh,
-    /// The tangent field space (frames, `M_X`, 3D conversion).
-    pub fields: FaceFields,
+    /// The discretization the basis belongs to.
+    pub complex: Discretization,
     /// The basis (from `--basis`, the cache, or computed).
     pub basis: SpectralBasis,
     /// The discretization the basis was computed with (its id, as in basis files).
@@ -39,6 +41,13 @@ pub fn load_setup(
     setup_for_mesh(input.load()?.mesh, input, source, size)
 }
 
+impl SpectralSetup {
+    /// How fields of the discretization are read and written as per-face vectors.
+    pub fn fields(&self) -> Result<&dyn FieldSampling> {
+        Ok(self.complex.require_sampling()?)
+    }
+}
+
 /// [`load_setup`] for a mesh already loaded from `input`.
 pub fn setup_for_mesh(
     mesh: SurfaceMesh,
@@ -48,8 +57,8 @@ pub fn setup_for_mesh(
 ) -> Result<SpectralSetup> {
     let resolved = source.resolve(&mesh, input, size)?;
     Ok(SpectralSetup {
-        fields: resolved.discretization.fields().clone(),
-        discretization: resolved.discretization.name(),
+        discretization: resolved.discretization.id().to_string(),
+        complex: resolved.discretization,
         mesh_fingerprint: resolved.mesh_fingerprint,
         basis: resolved.basis,
         mesh,
@@ -58,7 +67,7 @@ pub fn setup_for_mesh(
 
 /// Reads one field file (`.npy` `F × 3` or text) as a tangent field (`2F` coefficients); notes
 /// on stderr how large the dropped normal components were.
-pub fn read_field(path: &Path, fields: &FaceFields) -> Result<Vec<f64>> {
+pub fn read_field(path: &Path, fields: &dyn FieldSampling) -> Result<Vec<f64>> {
     let projection = read_tangent_field(path, fields)?;
     let normal = projection.max_normal_part();
     if normal > 0.0 {
@@ -83,7 +92,7 @@ pub enum FrameSource {
 
 /// Reads a field or a sequence: a folder of field files (`.npy` or `.txt`, sorted by name), an
 /// `.npy` array `F × 3 × T`, or one field file.
-pub fn read_frames(path: &Path, fields: &FaceFields) -> Result<(Vec<Vec<f64>>, FrameSource)> {
+pub fn read_frames(path: &Path, fields: &dyn FieldSampling) -> Result<(Vec<Vec<f64>>, FrameSource)> {
     if path.is_dir() {
         let mut files: Vec<PathBuf> = std::fs::read_dir(path)
             .with_context(|| format!("cannot list the frame folder {}", path.display()))?
@@ -119,7 +128,7 @@ pub fn read_frames(path: &Path, fields: &FaceFields) -> Result<(Vec<Vec<f64>>, F
                         );
                     }
                     let projection = fields
-                        .from_vectors(vectors)
+                        .from_face_vectors(vectors)
                         .with_context(|| format!("{}: frame {k}", path.display()))?;
                     frames.push(projection.field);
                 }
@@ -135,14 +144,14 @@ pub fn read_frames(path: &Path, fields: &FaceFields) -> Result<(Vec<Vec<f64>>, F
 /// Writes frames: one frame to the file `out` (format by extension); several to one `.npy`
 /// array `F × 3 × T` if `out` ends in `.npy`, otherwise into the folder `out` as
 /// `frame_00000.npy`, `frame_00001.npy`, ...
-pub fn write_frames(out: &Path, fields: &FaceFields, frames: &[Vec<f64>]) -> Result<()> {
+pub fn write_frames(out: &Path, fields: &dyn FieldSampling, frames: &[Vec<f64>]) -> Result<()> {
     if let [single] = frames {
         write_tangent_field(out, fields, single)?;
         return Ok(());
     }
     let vectors = frames
         .iter()
-        .map(|f| fields.to_vectors(f))
+        .map(|f| fields.to_face_vectors(f))
         .collect::<Result<Vec<_>, _>>()?;
     if out
         .extension()
@@ -159,29 +168,10 @@ pub fn write_frames(out: &Path, fields: &FaceFields, frames: &[Vec<f64>]) -> Res
     Ok(())
 }
 
-/// Energies of the exact Hodge decomposition of `field` with the discretization called
-/// `discretization` (the basis file's id), or `None` if no built-in discretization has that name.
-pub fn exact_hodge_energies(
-    mesh: &SurfaceMesh,
-    discretization: &str,
-    field: &[f64],
-) -> Result<Option<EnergySplit>> {
-    for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
-        let conforming = Conforming::new(mesh, lumping)?;
-        if conforming.name() == discretization {
-            return energies(&conforming, field).map(Some);
-        }
-        let nonconforming = Nonconforming::new(mesh, lumping)?;
-        if nonconforming.name() == discretization {
-            return energies(&nonconforming, field).map(Some);
-        }
-    }
-    Ok(None)
-}
-
-fn energies<H: HodgeComplex>(complex: &H, field: &[f64]) -> Result<EnergySplit> {
+/// Energies of the exact Hodge decomposition of `field` by `complex`.
+pub fn exact_hodge_energies(complex: &dyn HodgeComplex, field: &[f64]) -> Result<EnergySplit> {
     let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
-    Ok(EnergySplit::of_hodge_parts(&parts, complex.m1()))
+    Ok(EnergySplit::of_hodge_parts(&parts, complex.m1().values()))
 }
 
 /// Creates the output folder `dir` (and its parents).

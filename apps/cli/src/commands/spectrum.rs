@@ -1,15 +1,14 @@
 //! `tvf spectrum`: the lowest eigenvalues of the Hodge–Laplacian on tangent fields, labelled by
 //! family.
 
-use crate::basis_source::{Decomposition, Discretization, Mass};
+use crate::discretization_flags::DiscretizationFlags;
+use tvf_core::discretization::HodgeOperators;
 use crate::mesh_input::MeshInput;
 use crate::progress::Progress;
-use crate::with_complex;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde_json::json;
 use std::time::Instant;
-use tvf_core::discretization::FieldSpace;
 use tvf_spectral::{compute_eigenfunction_basis, BasisRequest};
 
 /// Arguments of `tvf spectrum`.
@@ -26,12 +25,8 @@ pub struct SpectrumArgs {
     /// (`tvf basis -k K`, the paper's d); K ≥ 2F gives all of them.
     #[arg(short = 'k', value_name = "K")]
     count: usize,
-    /// Hodge decomposition.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "conforming")]
-    decomposition: Decomposition,
-    /// Mass lumping.
-    #[arg(long, value_enum, value_name = "NAME", default_value = "barycentric")]
-    mass: Mass,
+    #[command(flatten)]
+    discretization: DiscretizationFlags,
     /// Print JSON to stdout instead of a table.
     #[arg(long)]
     json: bool,
@@ -44,19 +39,18 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
     }
     let start = Instant::now();
     let mesh = args.input.load()?.mesh;
-    let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
-        .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
+    let discretization = args.discretization.build(&mesh, &args.input.label())?;
     let progress = Progress::new("spectrum");
     let (basis, _) = {
         let callback = progress.basis_callback();
         // K ≥ 2F: every eigenvalue (the complete basis), as for `tvf basis -k K`.
-        let request = if args.count >= discretization.fields().dimension() {
+        let request = if args.count >= discretization.field_dimension() {
             BasisRequest::complete()
         } else {
             BasisRequest::fields(args.count)
         };
         let request = request.with_progress(&callback);
-        with_complex!(&discretization, c => compute_eigenfunction_basis(c, &request))
+        compute_eigenfunction_basis(discretization.as_ref(), &request)
             .with_context(|| format!("{}: cannot compute the spectrum", args.input.label()))?
     };
     let seconds = start.elapsed().as_secs_f64();
@@ -65,7 +59,7 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
     if args.json {
         let out = json!({
             "mesh": args.input.label(),
-            "discretization": discretization.name(),
+            "discretization": discretization.id(),
             "faces": mesh.face_count(),
             "eigenvalues": basis.eigenvalues(),
             "labels": labels,

@@ -1,10 +1,11 @@
 //! `tvf spline`: a tangential vector field spline (hard constraints, Section 7) from a JSON
 //! constraint file, in a loaded or freshly computed eigenbasis.
 
-use crate::basis_source::{BasisSource, Discretization};
+use crate::basis_source::BasisSource;
+use tvf_core::discretization::HodgeOperators;
+use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
 use crate::report::Report;
-use crate::with_complex;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -109,16 +110,16 @@ pub fn reduced_basis(
     report.line(format!(
         "basis           {} fields of {} ready in {seconds:.3} s",
         resolved.basis.len(),
-        resolved.discretization.name(),
+        resolved.discretization.id(),
     ));
     report.set("basis_fields", resolved.basis.len());
-    report.set("discretization", resolved.discretization.name());
+    report.set("discretization", resolved.discretization.id());
     report.set("basis_seconds", seconds);
     Ok(ReducedBasis::from_spectral(&resolved.basis)?)
 }
 
 /// Compiles the set's constraints for `complex`; errors name the constraint file.
-pub fn compile<H: HodgeComplex>(
+pub fn compile<H: HodgeComplex + ?Sized>(
     complex: &H,
     inputs: &DesignInputs,
 ) -> Result<Vec<CompiledConstraint>> {
@@ -152,11 +153,11 @@ pub fn run(args: SplineArgs) -> Result<()> {
     let mut report = Report::new(args.json);
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
-    with_complex!(&discretization, c => spline_with(c, &inputs, &args, &mut report))?;
+    spline_with(discretization.as_ref(), &inputs, &args, &mut report)?;
     report.finish()
 }
 
-fn spline_with<H: HodgeComplex>(
+fn spline_with<H: HodgeComplex + ?Sized>(
     complex: &H,
     inputs: &DesignInputs,
     args: &SplineArgs,
@@ -198,7 +199,7 @@ fn spline_with<H: HodgeComplex>(
     report.set("solve_ms", solve_ms);
     report.set("map_ms", map_ms);
     report_residuals(&session.residuals(&field), report);
-    write_tangent_field(&args.output, complex.fields(), &field)?;
+    write_tangent_field(&args.output, complex.require_sampling()?, &field)?;
     report.line(format!("wrote {}", args.output.display()));
     report.set("output", args.output.display().to_string());
     Ok(())

@@ -2,18 +2,18 @@
 
 use super::page::Section;
 use super::DemoConfig;
-use crate::basis_source::{compute, BasisSize, Decomposition, Discretization, Mass};
+use crate::basis_source::{compute, BasisSize};
+use crate::discretization_flags::{build_discretization, Discretization};
 use crate::face_quantities::ColorBy;
 use crate::picture::{draw, Overlays, Style, View};
-use crate::with_complex;
 use anyhow::Result;
 use tvf_render::save_png;
 use tvf_spectral::{eigen_residual, FieldFamily, SpectralBasis};
 
-/// Builds the conforming (barycentric) discretization, computes the basis and draws the mesh.
+/// Builds the chosen discretization, computes the basis and draws the mesh.
 pub fn run(config: &DemoConfig) -> Result<(Section, Discretization, SpectralBasis)> {
     let mesh = &config.mesh;
-    let discretization = Discretization::new(mesh, Decomposition::Conforming, Mass::Barycentric)?;
+    let discretization = build_discretization(&config.discretization, mesh, &config.mesh_name)?;
     let basis = compute(&discretization, BasisSize::Fields(config.fields))?;
     let fewest = basis
         .count(FieldFamily::Integrable)
@@ -63,7 +63,7 @@ pub fn run(config: &DemoConfig) -> Result<(Section, Discretization, SpectralBasi
         .map(|j| {
             let u: Vec<f64> = basis.fields().col(j).iter().copied().collect();
             let lambda = basis.eigenvalues()[j];
-            with_complex!(&discretization, c => eigen_residual(c, lambda, &u)) / lambda.max(1.0)
+            eigen_residual(discretization.as_ref(), lambda, &u) / lambda.max(1.0)
         })
         .fold(0.0, f64::max);
     let eigenvalues = basis.eigenvalues();

@@ -7,10 +7,9 @@ use super::test_fields::faces_at_screen_points;
 use super::Context;
 use crate::face_quantities::ColorBy;
 use crate::picture::{constraint_markers, draw, grid, Overlays, Style};
-use crate::with_complex;
 use anyhow::Result;
 use std::time::Instant;
-use tvf_core::discretization::{FieldSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{FieldSampling, HodgeOperators};
 use tvf_core::geometry::{add, norm, scale};
 use tvf_design::{
     default_regularization, residual, Constraint, ConstraintAssembler, Location, ReducedBasis,
@@ -24,7 +23,7 @@ const SOFT_WEIGHT: f64 = 10.0;
 /// Three vectors, a source, a sink and a vortex on faces spread over the visible surface. Divergence and curl values are `±8/r` with `r = √(area / 6π)`: a point
 /// constraint spreads over a small disc only, so it needs this strength to show beside unit
 /// vectors.
-fn constraints<S: FieldSpace>(cx: &Context, fields: &S) -> Vec<Constraint> {
+fn constraints(cx: &Context, fields: &dyn FieldSampling) -> Vec<Constraint> {
     // Image-plane targets: left, right and front for the vectors; then the source (front left),
     // the sink (front right) and the vortex (at the back).
     let targets = [
@@ -69,7 +68,7 @@ fn constraints<S: FieldSpace>(cx: &Context, fields: &S) -> Vec<Constraint> {
 
 /// Solves the spline and the soft design; returns the section and the spline field.
 pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
-    let set = with_complex!(cx.discretization, c => constraints(cx, c.fields()));
+    let set = constraints(cx, cx.discretization.require_sampling()?);
     let omega = DEFAULT_OMEGA * cx.mesh.total_area() / (4.0 * std::f64::consts::PI);
     let reduced = ReducedBasis::from_spectral(cx.basis)?;
     let mut section = Section::new(
@@ -84,7 +83,9 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
             cx.basis.len()
         ),
     );
-    let (spline, soft, timings) = with_complex!(cx.discretization, c => {
+    let (spline, soft, timings) = {
+        let c = cx.discretization.as_ref();
+        {
         let compiled = ConstraintAssembler::new(c, cx.mesh).compile_all(&set)?;
         let start = Instant::now();
         let mut session = SplineSession::new(&reduced, omega)?;
@@ -98,7 +99,7 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
         let start = Instant::now();
         let options = SoftOptions {
             omega,
-            regularization: default_regularization(&c.dirichlet_energy(), c.m1()),
+            regularization: default_regularization(c.dirichlet_energy(), c.m1().values()),
         };
         let mut design = ReducedSoftDesign::new(&reduced, options)?;
         design.add_all(compiled.iter().cloned())?;
@@ -121,7 +122,8 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
             format!("{:.2e}", worst(&soft)),
         );
         (spline, soft, (spline_solve, soft_solve))
-    });
+    }
+    };
     section.number(
         "setup + solve (reduced, before mapping to faces)",
         format!(
@@ -165,8 +167,8 @@ pub fn fur(cx: &Context, field: &[f64]) -> Result<Section> {
     // Unit directions: strands of even length that follow the field's direction.
     let vectors: Vec<[f64; 3]> = cx
         .discretization
-        .fields()
-        .to_vectors(field)?
+        .require_sampling()?
+        .to_face_vectors(field)?
         .into_iter()
         .map(|v| {
             let length = norm(v);

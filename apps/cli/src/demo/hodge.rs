@@ -6,7 +6,6 @@ use super::test_fields::smooth_field;
 use super::Context;
 use crate::face_quantities::ColorBy;
 use crate::picture::{draw, grid, Overlays, Style};
-use crate::with_complex;
 use anyhow::Result;
 use tvf_core::discretization::HodgeOperators;
 use tvf_discretizations::HodgeDecomposer;
@@ -20,7 +19,9 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
          harmonic. Colour: divergence for the integrable part, curl for the co-integrable part, \
          magnitude otherwise.",
     );
-    let (field, parts, inner) = with_complex!(cx.discretization, c => {
+    let (field, parts, inner) = {
+        let c = cx.discretization.as_ref();
+        {
         let field = smooth_field(c, cx.mesh);
         let parts = HodgeDecomposer::new(c)?.decompose(&field)?;
         let inner = |a: &[f64], b: &[f64]| c.field_inner(a, b);
@@ -34,7 +35,8 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
             inner(&field, &field),
         ];
         (field, parts, products)
-    });
+    }
+    };
     let panels = [
         ("test field", field.as_slice(), ColorBy::Magnitude),
         (

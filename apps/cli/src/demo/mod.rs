@@ -16,7 +16,7 @@ mod hodge;
 mod page;
 mod test_fields;
 
-use crate::basis_source::Discretization;
+use crate::discretization_flags::Discretization;
 use crate::picture::View;
 use crate::progress::note;
 use anyhow::{Context as _, Result};
@@ -38,6 +38,8 @@ pub struct DemoConfig {
     pub mesh_name: String,
     /// Eigenfields of the basis (`-k`, harmonic ones included).
     pub fields: usize,
+    /// Catalog id of the discretization.
+    pub discretization: String,
     /// Size of a full-width picture (panels of grids are half of it each way).
     pub width: u32,
     /// Height of a full-width picture.
@@ -188,7 +190,7 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
                 config.mesh.genus()
             ),
         ),
-        ("discretization".to_string(), discretization.name()),
+        ("discretization".to_string(), discretization.id().to_string()),
         (
             "basis".to_string(),
             format!(

@@ -4,7 +4,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::geometry::{cross, dot, normalize};
 use tvf_core::SurfaceMesh;
 use tvf_render::bounding_box;
@@ -20,17 +20,16 @@ fn normalised(mesh: &SurfaceMesh, points: &[[f64; 3]]) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// A smooth field with integrable, co-integrable and harmonic content (`2F` coefficients,
-/// pointwise): `grad f + J grad g + P(ω × p)` with `f = sin(2x + z)` on the potential nodes,
+/// A smooth field with integrable, co-integrable and harmonic content (`n1` coefficients): `grad f + J grad g + P(ω × p)` with `f = sin(2x + z)` on the potential nodes,
 /// `g = cos(3y − z)` on the co-potential nodes (normalised coordinates) and the tangential
 /// projection `P` of the rotation about the coordinate axis along which the mesh is thinnest
 /// (mostly harmonic on a torus around that axis).
-pub fn smooth_field<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64> {
-    let f: Vec<f64> = normalised(mesh, &complex.potentials().node_positions())
+pub fn smooth_field<H: HodgeComplex + ?Sized>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64> {
+    let f: Vec<f64> = normalised(mesh, &complex.potential_nodes().positions)
         .iter()
         .map(|q| (2.0 * q[0] + q[2]).sin())
         .collect();
-    let g: Vec<f64> = normalised(mesh, &complex.co_potentials().node_positions())
+    let g: Vec<f64> = normalised(mesh, &complex.co_potential_nodes().positions)
         .iter()
         .map(|q| (3.0 * q[1] - q[2]).cos())
         .collect();
@@ -58,10 +57,10 @@ pub fn smooth_field<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64
         })
         .collect();
     let swirl = complex
-        .fields()
-        .from_vectors(&rotation)
+        .require_sampling()
+        .and_then(|sampling| sampling.from_face_vectors(&rotation))
         .map(|p| p.field)
-        .unwrap_or_else(|_| vec![0.0; complex.fields().dimension()]);
+        .unwrap_or_else(|_| vec![0.0; complex.field_dimension()]);
     let a = complex.gradient_field(&f);
     let b = complex.co_gradient_field(&g);
     // Scale the potentials' parts to unit RMS each so that no part dominates the picture.
@@ -105,10 +104,7 @@ pub fn faces_at_screen_points(
         .iter()
         .enumerate()
         .filter(|&(t, _)| dot(mesh.face_normal(t), to_eye) > 0.5)
-        .map(|(t, f)| {
-            let c = std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0);
-            (t, [dot(c, right), dot(c, up), dot(c, to_eye)])
-        })
+        .map(|(t, f)| (t, [dot(std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0), right), dot(std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0), up), dot(std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0), to_eye)]))
         .collect();
     if facing.is_empty() {
         return Vec::new();

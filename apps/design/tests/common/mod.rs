@@ -13,7 +13,7 @@ use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{compute_basis, BasisRequest, SpectralBasis};
 
 /// The `d` lowest eigenfields (`None`: the complete basis).
-pub fn spectral_basis<H: HodgeComplex>(complex: &H, d: Option<usize>) -> SpectralBasis {
+pub fn spectral_basis<H: HodgeComplex + ?Sized>(complex: &H, d: Option<usize>) -> SpectralBasis {
     let request = match d {
         Some(d) => BasisRequest::fields(d),
         None => BasisRequest::complete(),

@@ -1,17 +1,22 @@
-//! The [`FunctionSpace`] trait: a finite element space of scalar functions on a mesh.
+//! The [`FunctionSpace`] trait: a finite element space of scalar functions on a mesh, the building
+//! block of [`crate::FiniteElementComplex`].
 
 use sprs::CsMat;
+use tvf_core::discretization::NodeKind;
 
 /// A space of piecewise linear scalar functions on a triangle mesh, represented by nodal values
 /// (Lagrange P1: one value per vertex; Crouzeix–Raviart: one value per edge midpoint).
 ///
 /// Coefficients are **pointwise** nodal values. The space knows its lumped mass (the plug-in
 /// point for mass lumping) and its gradient into the piecewise constant face fields `X_h`, in the
-/// face frames of [`crate::discretization::FieldSpace`] (`e1 = normalize(p_{i1} − p_{i0})`,
+/// face frames of [`crate::FaceFields`] (`e1 = normalize(p_{i1} − p_{i0})`,
 /// `e2 = n × e1`, see `shared/docs/MATH.md`).
 pub trait FunctionSpace {
     /// Short human-readable name, e.g. `"Lagrange P1"`.
     fn name(&self) -> &str;
+
+    /// The mesh element of each node (vertices for P1, edges for Crouzeix–Raviart).
+    fn node_kind(&self) -> NodeKind;
 
     /// Number of nodes `n` (degrees of freedom): `V` for P1, `E` for Crouzeix–Raviart.
     fn dimension(&self) -> usize;
@@ -34,7 +39,7 @@ pub trait FunctionSpace {
     fn node_positions(&self) -> Vec<[f64; 3]>;
 
     /// Connected component of every node (`n` entries, in `0..component_count()`), or
-    /// [`crate::discretization::NO_COMPONENT`] for a node no face uses. The indicator function of
+    /// [`tvf_core::discretization::NO_COMPONENT`] for a node no face uses. The indicator function of
     /// each component spans the kernel of [`FunctionSpace::gradient`]: the Poisson solves fix one
     /// node per component.
     fn node_components(&self) -> &[usize];

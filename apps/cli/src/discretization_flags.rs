@@ -1,0 +1,67 @@
+//! `--discretization ID` (and its shorthands `--decomposition`, `--mass`): which catalog entry a
+//! subcommand builds.
+
+use anyhow::{Context, Result};
+use clap::Args;
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::{catalog_entry, BoxedComplex, DEFAULT_DISCRETIZATION};
+
+/// A discretization chosen at run time from the catalog.
+pub type Discretization = BoxedComplex;
+
+/// The discretization flags shared by every subcommand that builds a complex.
+#[derive(Args, Debug, Clone, Default)]
+pub struct DiscretizationFlags {
+    /// Discretization: an id of the catalog (`tvf discretizations` lists them)
+    /// [default: conforming-barycentric, or the basis file's].
+    #[arg(long, value_name = "ID")]
+    pub discretization: Option<String>,
+    /// Shorthand for --discretization NAME-MASS: the decomposition part of the id
+    /// (conforming, nonconforming, dec).
+    #[arg(long, value_name = "NAME", conflicts_with = "discretization")]
+    pub decomposition: Option<String>,
+    /// Shorthand for --discretization DECOMPOSITION-NAME: the mass part of the id (barycentric,
+    /// voronoi; circumcentric for dec).
+    #[arg(long, value_name = "NAME", conflicts_with = "discretization")]
+    pub mass: Option<String>,
+}
+
+impl DiscretizationFlags {
+    /// The id the flags ask for, if any flag was given (a shorthand fills the missing part
+    /// with `conforming` / `barycentric`).
+    pub fn requested_id(&self) -> Option<String> {
+        if let Some(id) = &self.discretization {
+            return Some(id.clone());
+        }
+        if self.decomposition.is_none() && self.mass.is_none() {
+            return None;
+        }
+        Some(format!(
+            "{}-{}",
+            self.decomposition.as_deref().unwrap_or("conforming"),
+            self.mass.as_deref().unwrap_or("barycentric")
+        ))
+    }
+
+    /// The id to use: the flags', else [`DEFAULT_DISCRETIZATION`].
+    pub fn id(&self) -> String {
+        self.requested_id()
+            .unwrap_or_else(|| DEFAULT_DISCRETIZATION.to_string())
+    }
+
+    /// Builds the chosen complex on `mesh`; `label` names the mesh in errors.
+    pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
+        build_discretization(&self.id(), mesh, label)
+    }
+}
+
+/// Builds the catalog entry `id` on `mesh`; errors name the mesh (`label`) and the entry.
+pub fn build_discretization(id: &str, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
+    let entry = catalog_entry(id)?;
+    (entry.build)(mesh).with_context(|| {
+        format!(
+            "{label}: cannot build the discretization '{id}' (needs: {})",
+            entry.preconditions
+        )
+    })
+}

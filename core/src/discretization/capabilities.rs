@@ -1,0 +1,120 @@
+//! The small capabilities a complex may offer besides its five matrices. Generic code asks only
+//! for the one it uses, through [`super::HodgeComplex::sampling`],
+//! [`super::HodgeComplex::rotation`] and [`super::HodgeComplex::point_evaluation`].
+
+use super::DiscretizationError;
+use sprs::CsMat;
+
+/// The result of turning 3D vectors (one per face) into a field.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TangentProjection {
+    /// The field (`n1` coefficients of the complex).
+    pub field: Vec<f64>,
+    /// The dropped normal component of every input vector (`F` entries, signed, same units as
+    /// the input): `v · n_t`. Callers decide whether a large value means bad input.
+    pub normal_parts: Vec<f64>,
+}
+
+impl TangentProjection {
+    /// Largest absolute dropped normal component (0 for an empty mesh).
+    pub fn max_normal_part(&self) -> f64 {
+        self.normal_parts.iter().fold(0.0, |m, x| m.max(x.abs()))
+    }
+}
+
+/// Sampling: a field seen as a 3D tangent vector at a point of a face, as a linear map, and its
+/// inverse on per-face vectors. It gives field I/O (one 3D vector per face), rendering, vector
+/// constraints and the editor.
+pub trait FieldSampling: Send + Sync {
+    /// Number of faces `F` of the mesh.
+    fn face_count(&self) -> usize;
+
+    /// Number of field coefficients `n1`.
+    fn field_dimension(&self) -> usize;
+
+    /// An orthonormal, positively oriented frame `[e1, e2]` of face `t`'s plane (`e2 = n × e1`,
+    /// `e1 = normalize(p_{i1} − p_{i0})`).
+    fn frame(&self, face: usize) -> [[f64; 3]; 2];
+
+    /// The unit normal of face `t` (counter-clockwise orientation).
+    fn normal(&self, face: usize) -> [f64; 3];
+
+    /// The sampled vector at the point of face `face` with barycentric coordinates `barycentric`
+    /// (w.r.t. the corners `i0, i1, i2`) as a linear map: `v = Σ w_i x_i` over the returned
+    /// `(i, w_i)`, `w_i` a 3D vector in the face plane (pointwise units). Panics if `face` is out
+    /// of range.
+    fn sample_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, [f64; 3])>;
+
+    /// The sampled vector in the coordinates of the face frame ([`FieldSampling::frame`]): the
+    /// same linear map as [`FieldSampling::sample_weights`] with each weight `w_i` given as
+    /// `(w_i·e1, w_i·e2)`. Discretizations whose coefficients are frame coordinates override it
+    /// to return exact unit weights.
+    fn sample_frame_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, [f64; 2])> {
+        let [e1, e2] = self.frame(face);
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        self.sample_weights(face, barycentric)
+            .into_iter()
+            .map(|(i, w)| (i, [dot(w, e1), dot(w, e2)]))
+            .collect()
+    }
+
+    /// A field from one 3D vector per face (`F` entries): each vector is projected onto its face
+    /// plane and turned into coefficients (each discretization documents how); the dropped normal
+    /// components are returned alongside.
+    fn from_face_vectors(
+        &self,
+        vectors: &[[f64; 3]],
+    ) -> Result<TangentProjection, DiscretizationError>;
+
+    /// One 3D vector per face (`F` entries): the field sampled at each face's centroid.
+    fn to_face_vectors(&self, field: &[f64]) -> Result<Vec<[f64; 3]>, DiscretizationError> {
+        check_length("field coefficients", self.field_dimension(), field.len())?;
+        Ok((0..self.face_count())
+            .map(|t| {
+                let mut v = [0.0; 3];
+                for (i, w) in self.sample_weights(t, [1.0 / 3.0; 3]) {
+                    for k in 0..3 {
+                        v[k] += w[k] * field[i];
+                    }
+                }
+                v
+            })
+            .collect())
+    }
+}
+
+/// A rotation `J` of fields by +π/2 in every tangent plane (`n1 × n1`, `M1`-orthogonal,
+/// `J² = −I`). Piecewise constant face fields have one; with it the complex also has "the other
+/// family" of divergence and curl (see [`super::HodgeOperators::other_divergence`]).
+pub trait FieldRotation: Send + Sync {
+    /// The matrix `J` (`n1 × n1`).
+    fn rotation(&self) -> &CsMat<f64>;
+}
+
+/// Evaluation of potentials and co-potentials at a point of a face: the interpolation weights of
+/// each space. Gives divergence and curl constraints at points, and face colours.
+pub trait PointEvaluation: Send + Sync {
+    /// The potential nodes whose basis functions are non-zero at the point of face `face` with
+    /// barycentric coordinates `barycentric`, with their values there (the weights sum to 1).
+    fn potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)>;
+
+    /// The same for the co-potential space.
+    fn co_potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)>;
+}
+
+/// Fails with [`DiscretizationError::DimensionMismatch`] unless `found == expected`.
+pub fn check_length(
+    what: &'static str,
+    expected: usize,
+    found: usize,
+) -> Result<(), DiscretizationError> {
+    if expected == found {
+        Ok(())
+    } else {
+        Err(DiscretizationError::DimensionMismatch {
+            what,
+            expected,
+            found,
+        })
+    }
+}

@@ -1,0 +1,133 @@
+//! The catalog: every discretization tvf ships, listed once. The CLI, the editor, papers/, basis
+//! files and the cache key read it; nothing else names a discretization.
+
+use crate::{Conforming, DecComplex, MassLumping, Nonconforming};
+use thiserror::Error;
+use tvf_core::discretization::{DiscretizationError, HodgeComplex};
+use tvf_core::SurfaceMesh;
+
+/// A complex built by the catalog, behind the object-safe seam.
+pub type BoxedComplex = Box<dyn HodgeComplex>;
+
+/// One discretization: a stable id, what it is, what it needs of the mesh, and its constructor.
+#[derive(Clone, Copy)]
+pub struct CatalogEntry {
+    /// Stable id, lower-case kebab-case (`conforming-barycentric`): command lines, basis files,
+    /// cache names.
+    pub id: &'static str,
+    /// One line: potentials, fields, co-potentials and masses.
+    pub description: &'static str,
+    /// What the mesh must satisfy beyond being a valid oriented manifold triangle mesh.
+    pub preconditions: &'static str,
+    /// Whether construction needs a Delaunay mesh (the conformance suite's corpus for it is the
+    /// Delaunay part).
+    pub needs_delaunay: bool,
+    /// Builds the complex of a mesh.
+    pub build: fn(&SurfaceMesh) -> Result<BoxedComplex, DiscretizationError>,
+}
+
+impl std::fmt::Debug for CatalogEntry {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CatalogEntry").field("id", &self.id).finish()
+    }
+}
+
+/// The id used when none is given: the paper's conforming decomposition, barycentric masses.
+pub const DEFAULT_DISCRETIZATION: &str = "conforming-barycentric";
+
+const ANY_MESH: &str = "none (any valid mesh without degenerate faces)";
+const DELAUNAY: &str = "a Delaunay mesh: cot α + cot β > 0 on every edge (⋆1 positive)";
+
+static CATALOG: [CatalogEntry; 6] = [
+    CatalogEntry {
+        id: "conforming-barycentric",
+        description: "the paper's conforming decomposition: P1 potentials, face fields, Crouzeix–Raviart co-potentials; barycentric lumped masses",
+        preconditions: ANY_MESH,
+        needs_delaunay: false,
+        build: |mesh| Ok(Box::new(Conforming::new(mesh, MassLumping::Barycentric)?)),
+    },
+    CatalogEntry {
+        id: "conforming-voronoi",
+        description: "the conforming decomposition with mixed-Voronoi vertex and midpoint-Voronoi edge masses",
+        preconditions: ANY_MESH,
+        needs_delaunay: false,
+        build: |mesh| Ok(Box::new(Conforming::new(mesh, MassLumping::Voronoi)?)),
+    },
+    CatalogEntry {
+        id: "nonconforming-barycentric",
+        description: "the nonconforming decomposition: Crouzeix–Raviart potentials, face fields, P1 co-potentials; barycentric lumped masses",
+        preconditions: ANY_MESH,
+        needs_delaunay: false,
+        build: |mesh| Ok(Box::new(Nonconforming::new(mesh, MassLumping::Barycentric)?)),
+    },
+    CatalogEntry {
+        id: "nonconforming-voronoi",
+        description: "the nonconforming decomposition with mixed-Voronoi vertex and midpoint-Voronoi edge masses",
+        preconditions: ANY_MESH,
+        needs_delaunay: false,
+        build: |mesh| Ok(Box::new(Nonconforming::new(mesh, MassLumping::Voronoi)?)),
+    },
+    CatalogEntry {
+        id: "dec-barycentric",
+        description: "DEC 1-forms: 0-forms on vertices, 1-forms on edges, 2-forms on faces; ⋆0 barycentric vertex areas, ⋆1 cotan weights, ⋆2 = 1/area; Whitney sampling",
+        preconditions: DELAUNAY,
+        needs_delaunay: true,
+        build: |mesh| Ok(Box::new(DecComplex::new(mesh, MassLumping::Barycentric)?)),
+    },
+    CatalogEntry {
+        id: "dec-circumcentric",
+        description: "DEC 1-forms with ⋆0 the mixed-Voronoi (circumcentric on non-obtuse triangles) vertex areas; ⋆1 cotan weights, ⋆2 = 1/area; Whitney sampling",
+        preconditions: DELAUNAY,
+        needs_delaunay: true,
+        build: |mesh| Ok(Box::new(DecComplex::new(mesh, MassLumping::Voronoi)?)),
+    },
+];
+
+/// Every discretization, in the order `tvf discretizations` lists them.
+pub fn catalog() -> &'static [CatalogEntry] {
+    &CATALOG
+}
+
+/// An id the catalog does not know.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("unknown discretization '{id}'; the catalog has: {known}")]
+pub struct UnknownDiscretization {
+    /// The id asked for.
+    pub id: String,
+    /// The known ids, comma-separated.
+    pub known: String,
+}
+
+/// The entry with id `id`.
+pub fn catalog_entry(id: &str) -> Result<&'static CatalogEntry, UnknownDiscretization> {
+    CATALOG
+        .iter()
+        .find(|entry| entry.id == id)
+        .ok_or_else(|| UnknownDiscretization {
+            id: id.to_string(),
+            known: CATALOG.iter().map(|e| e.id).collect::<Vec<_>>().join(", "),
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_are_unique_kebab_case_and_match_the_built_complex() {
+        let mesh = tvf_core::generate::icosphere(1);
+        let mut seen = std::collections::HashSet::new();
+        for entry in catalog() {
+            assert!(seen.insert(entry.id), "duplicate id {}", entry.id);
+            assert!(entry
+                .id
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '-'));
+            let complex = (entry.build)(&mesh).unwrap();
+            assert_eq!(complex.id(), entry.id);
+        }
+        assert!(catalog_entry(DEFAULT_DISCRETIZATION).is_ok());
+        let unknown = catalog_entry("nope").unwrap_err().to_string();
+        assert!(unknown.contains("dec-circumcentric"), "{unknown}");
+    }
+}

@@ -1,0 +1,238 @@
+//! [`DecComplex`]: discrete exterior calculus on primal forms — potentials on vertices, fields
+//! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
+
+use crate::face_geometry::FaceGeometry;
+use crate::finite_element_complex::mesh_topology;
+use crate::whitney_sampling::WhitneySampling;
+use crate::MassLumping;
+use sprs::CsMat;
+use tvf_core::discretization::sparse::from_triplets;
+use tvf_core::discretization::{
+    ComplexTopology, DiagonalMass, DiscretizationError, FieldSampling, HodgeComplex, NodeKind,
+    NodeSpace, OperatorCache, PointEvaluation,
+};
+use tvf_core::SurfaceMesh;
+
+/// The DEC complex of primal forms (Desbrun, Kanso, Tong 2008; the setting of Fisher et al.
+/// 2007):
+///
+/// ```text
+/// 0-forms (V) --d0--> 1-forms (E) --d1--> 2-forms (F)
+///     ⋆0                ⋆1                 ⋆2
+/// ```
+///
+/// - A field is a 1-form: `x_e = ∫_e ⟨v, t⟩`, the field integrated along edge `e = (a, b)`,
+///   `a < b`, from `a` to `b` (units length × field).
+/// - `d0` (`E × V`): row `e = (a, b)` has `−1` at `a` and `+1` at `b` (`(d0 f)_e = f_b − f_a`).
+/// - `d1` (`F × E`): row `t` has `±1` at its three edges, `+1` where the counter-clockwise
+///   boundary of `t` runs `a → b` (the circulation around `t`).
+/// - `M0 = ⋆0`: vertex areas, a [`MassLumping`] rule (barycentric thirds, or mixed Voronoi, which
+///   is the circumcentric dual area on non-obtuse triangles).
+/// - `M1 = ⋆1 = (cot α + cot β)/2` per edge (one cotangent on a boundary edge): the ratio of dual
+///   to primal edge length. Positive exactly on (edge-)Delaunay meshes; construction fails with
+///   [`DiscretizationError::NotDelaunay`] otherwise.
+/// - `M2 = ⋆2 = 1/area` per face.
+///
+/// The exact eigenproblem `(d0ᵀ ⋆1 d0, ⋆0)` is the cotan Laplacian; the co-exact one
+/// `(d1 ⋆1⁻¹ d1ᵀ, ⋆2⁻¹)` lives on faces. Sampling is Whitney interpolation
+/// ([`WhitneySampling`]); there is no rotation `J` on 1-forms, hence no "other family".
+#[derive(Debug, Clone)]
+pub struct DecComplex {
+    id: String,
+    d0: CsMat<f64>,
+    d1: CsMat<f64>,
+    m0: DiagonalMass,
+    m1: DiagonalMass,
+    m2: DiagonalMass,
+    potential_nodes: NodeSpace,
+    field_nodes: NodeSpace,
+    co_potential_nodes: NodeSpace,
+    topology: ComplexTopology,
+    sampling: WhitneySampling,
+    faces: Vec<[usize; 3]>,
+    cache: OperatorCache,
+}
+
+impl DecComplex {
+    /// The DEC complex of `mesh` with vertex areas `⋆0` by `lumping`, catalog id
+    /// `dec-barycentric` or `dec-circumcentric` (for [`MassLumping::Voronoi`]). Fails on a
+    /// degenerate face or a mesh that is not Delaunay.
+    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+        let geometry = FaceGeometry::new(mesh)?;
+        let edge_star = edge_hodge_star(mesh, &geometry);
+        if let Some(first) = edge_star.iter().position(|&s| s <= 0.0) {
+            return Err(DiscretizationError::NotDelaunay {
+                count: edge_star.iter().filter(|&&s| s <= 0.0).count(),
+                first,
+                value: 2.0 * edge_star[first],
+            });
+        }
+        let id = match lumping {
+            MassLumping::Barycentric => "dec-barycentric",
+            MassLumping::Voronoi => "dec-circumcentric",
+        };
+        let positions = mesh.positions();
+        let potential_nodes = NodeSpace {
+            kind: NodeKind::Vertices,
+            positions: positions.to_vec(),
+            components: mesh.vertex_components(),
+        };
+        let field_nodes = NodeSpace {
+            kind: NodeKind::Edges,
+            positions: mesh
+                .edges()
+                .iter()
+                .map(|&[a, b]| std::array::from_fn(|k| (positions[a][k] + positions[b][k]) / 2.0))
+                .collect(),
+            components: mesh.edge_components(),
+        };
+        let co_potential_nodes = NodeSpace {
+            kind: NodeKind::Faces,
+            positions: mesh
+                .faces()
+                .iter()
+                .map(|f| {
+                    let p = f.map(|i| positions[i]);
+                    std::array::from_fn(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
+                })
+                .collect(),
+            components: mesh.face_components().to_vec(),
+        };
+        let m0 = DiagonalMass::positive_on_used_nodes(
+            "M0 (⋆0, vertex areas)",
+            lumping.vertex_masses(mesh, &geometry),
+            &potential_nodes.components,
+        )?;
+        let m1 = DiagonalMass::positive_on_used_nodes(
+            "M1 (⋆1, the edge Hodge star)",
+            edge_star,
+            &field_nodes.components,
+        )?;
+        let m2 = DiagonalMass::positive_on_used_nodes(
+            "M2 (⋆2, inverse face areas)",
+            geometry.areas.iter().map(|a| 1.0 / a).collect(),
+            &co_potential_nodes.components,
+        )?;
+        Ok(Self {
+            id: id.to_string(),
+            d0: vertex_edge_incidence(mesh),
+            d1: edge_face_incidence(mesh),
+            m0,
+            m1,
+            m2,
+            potential_nodes,
+            field_nodes,
+            co_potential_nodes,
+            topology: mesh_topology(mesh),
+            sampling: WhitneySampling::new(mesh, &geometry),
+            faces: mesh.faces().to_vec(),
+            cache: OperatorCache::default(),
+        })
+    }
+}
+
+/// `(cot α + cot β)/2` per edge: the cotangents of the corners opposite the edge in its faces.
+pub fn edge_hodge_star(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Vec<f64> {
+    let mut star = vec![0.0; mesh.edge_count()];
+    for (t, edges) in mesh.face_edges().iter().enumerate() {
+        let cot = geometry.cotangents(t);
+        for c in 0..3 {
+            star[edges[c]] += cot[c] / 2.0;
+        }
+    }
+    star
+}
+
+/// Signed vertex → edge incidence (`E × V`): `−1` at `a`, `+1` at `b` for edge `(a, b)`.
+fn vertex_edge_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
+    let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
+    for (e, &[a, b]) in mesh.edges().iter().enumerate() {
+        rows.extend([e, e]);
+        cols.extend([a, b]);
+        values.extend([-1.0, 1.0]);
+    }
+    from_triplets(mesh.edge_count(), mesh.vertex_count(), rows, cols, values)
+}
+
+/// Signed edge → face incidence (`F × E`): `+1` where the face's counter-clockwise boundary runs
+/// along the edge's orientation `a → b`, `−1` where it runs against it.
+fn edge_face_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
+    let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
+    for (t, (face, edges)) in mesh.faces().iter().zip(mesh.face_edges()).enumerate() {
+        for c in 0..3 {
+            // The edge opposite corner c runs from corner c+1 to corner c+2.
+            let (from, to) = (face[(c + 1) % 3], face[(c + 2) % 3]);
+            rows.push(t);
+            cols.push(edges[c]);
+            values.push(if from < to { 1.0 } else { -1.0 });
+        }
+    }
+    from_triplets(mesh.face_count(), mesh.edge_count(), rows, cols, values)
+}
+
+impl HodgeComplex for DecComplex {
+    fn id(&self) -> &str {
+        &self.id
+    }
+
+    fn d0(&self) -> &CsMat<f64> {
+        &self.d0
+    }
+
+    fn d1(&self) -> &CsMat<f64> {
+        &self.d1
+    }
+
+    fn m0(&self) -> &DiagonalMass {
+        &self.m0
+    }
+
+    fn m1(&self) -> &DiagonalMass {
+        &self.m1
+    }
+
+    fn m2(&self) -> &DiagonalMass {
+        &self.m2
+    }
+
+    fn potential_nodes(&self) -> &NodeSpace {
+        &self.potential_nodes
+    }
+
+    fn field_nodes(&self) -> &NodeSpace {
+        &self.field_nodes
+    }
+
+    fn co_potential_nodes(&self) -> &NodeSpace {
+        &self.co_potential_nodes
+    }
+
+    fn topology(&self) -> &ComplexTopology {
+        &self.topology
+    }
+
+    fn operator_cache(&self) -> &OperatorCache {
+        &self.cache
+    }
+
+    fn sampling(&self) -> Option<&dyn FieldSampling> {
+        Some(&self.sampling)
+    }
+
+    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
+        Some(self)
+    }
+}
+
+impl PointEvaluation for DecComplex {
+    /// 0-forms are interpolated linearly (Whitney 0-forms are the hat functions).
+    fn potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)> {
+        let nodes = self.faces[face];
+        (0..3).map(|c| (nodes[c], barycentric[c])).collect()
+    }
+
+    /// A 2-form's pointwise value (`⋆2` times its integral) is constant on its face.
+    fn co_potential_weights(&self, face: usize, _barycentric: [f64; 3]) -> Vec<(usize, f64)> {
+        vec![(face, 1.0)]
+    }
+}
