@@ -28,7 +28,9 @@ pub struct CatalogEntry {
 
 impl std::fmt::Debug for CatalogEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("CatalogEntry").field("id", &self.id).finish()
+        f.debug_struct("CatalogEntry")
+            .field("id", &self.id)
+            .finish()
     }
 }
 

@@ -30,7 +30,8 @@ use tvf_core::SurfaceMesh;
 ///   is the circumcentric dual area on non-obtuse triangles).
 /// - `M1 = ⋆1 = (cot α + cot β)/2` per edge (one cotangent on a boundary edge): the ratio of dual
 ///   to primal edge length. Positive exactly on (edge-)Delaunay meshes; construction fails with
-///   [`DiscretizationError::NotDelaunay`] otherwise.
+///   [`DiscretizationError::NotDelaunay`] when some edge has `cot α + cot β ≤`
+///   [`DELAUNAY_TOLERANCE`].
 /// - `M2 = ⋆2 = 1/area` per face.
 ///
 /// The exact eigenproblem `(d0ᵀ ⋆1 d0, ⋆0)` is the cotan Laplacian; the co-exact one
@@ -53,6 +54,12 @@ pub struct DecComplex {
     cache: OperatorCache,
 }
 
+/// Smallest `cot α + cot β` (dimensionless) an edge of a DEC mesh may have. A cyclic
+/// quadrilateral split by a diagonal (a rectangle, a cell of a quad torus) has exactly 0 there,
+/// which round-off turns into values like ±3e-17; accepting those would give `⋆1⁻¹ ≈ 1e16` and a
+/// meaningless co-exact stiffness, so they are refused with the truly negative ones.
+pub const DELAUNAY_TOLERANCE: f64 = 1e-12;
+
 impl DecComplex {
     /// The DEC complex of `mesh` with vertex areas `⋆0` by `lumping`, catalog id
     /// `dec-barycentric` or `dec-circumcentric` (for [`MassLumping::Voronoi`]). Fails on a
@@ -60,11 +67,13 @@ impl DecComplex {
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
         let geometry = FaceGeometry::new(mesh)?;
         let edge_star = edge_hodge_star(mesh, &geometry);
-        if let Some(first) = edge_star.iter().position(|&s| s <= 0.0) {
+        let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
+        if let Some(first) = edge_star.iter().position(|&s| not_delaunay(s)) {
             return Err(DiscretizationError::NotDelaunay {
-                count: edge_star.iter().filter(|&&s| s <= 0.0).count(),
+                count: edge_star.iter().filter(|&&s| not_delaunay(s)).count(),
                 first,
                 value: 2.0 * edge_star[first],
+                tolerance: DELAUNAY_TOLERANCE,
             });
         }
         let id = match lumping {

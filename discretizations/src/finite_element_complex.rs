@@ -6,8 +6,8 @@ use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping}
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
 use tvf_core::discretization::{
-    ComplexTopology, DiagonalMass, DiscretizationError, FieldRotation, FieldSampling,
-    HodgeComplex, NodeKind, NodeSpace, OperatorCache, PointEvaluation,
+    ComplexTopology, DiagonalMass, DiscretizationError, FieldRotation, FieldSampling, HodgeComplex,
+    NodeKind, NodeSpace, OperatorCache, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -70,7 +70,11 @@ fn face_frame_nodes(mesh: &SurfaceMesh) -> NodeSpace {
     NodeSpace {
         kind: NodeKind::FaceFrames,
         positions: mesh.faces().iter().flat_map(|f| [centroid(f); 2]).collect(),
-        components: mesh.face_components().iter().flat_map(|&c| [c, c]).collect(),
+        components: mesh
+            .face_components()
+            .iter()
+            .flat_map(|&c| [c, c])
+            .collect(),
     }
 }
 
@@ -114,7 +118,10 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             co_potentials.mass().to_vec(),
             &co_potential_nodes.components,
         )?;
-        let m2 = DiagonalMass::new("M2 (inverse co-potential mass)", reciprocal(co_potentials.mass()))?;
+        let m2 = DiagonalMass::new(
+            "M2 (inverse co-potential mass)",
+            reciprocal(co_potentials.mass()),
+        )?;
         Ok(Self {
             id: id.into(),
             potentials,

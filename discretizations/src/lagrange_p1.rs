@@ -2,9 +2,9 @@
 
 use crate::face_geometry::FaceGeometry;
 use crate::gradient_assembly::assemble_gradient;
+use crate::FunctionSpace;
 use crate::MassLumping;
 use sprs::CsMat;
-use crate::FunctionSpace;
 use tvf_core::discretization::{DiscretizationError, NodeKind};
 use tvf_core::SurfaceMesh;
 

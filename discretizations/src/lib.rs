@@ -43,7 +43,7 @@
 //!
 //! ```
 //! use sprs::CsMat;
-//! use tvf_core::discretization::{HodgeOperators, NodeKind};
+//! use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind};
 //! use tvf_core::generate::icosphere;
 //! use tvf_discretizations::{
 //!     CrouzeixRaviart, FaceFields, FiniteElementComplex, FunctionSpace, LagrangeP1, MassLumping,
@@ -114,7 +114,7 @@ pub use catalog::{
     DEFAULT_DISCRETIZATION,
 };
 pub use crouzeix_raviart::CrouzeixRaviart;
-pub use dec_complex::{edge_hodge_star, DecComplex};
+pub use dec_complex::{edge_hodge_star, DecComplex, DELAUNAY_TOLERANCE};
 pub use error::DecompositionError;
 pub use face_fields::FaceFields;
 pub use finite_element_complex::{mesh_topology, Conforming, FiniteElementComplex, Nonconforming};

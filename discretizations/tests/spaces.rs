@@ -2,13 +2,13 @@
 
 use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{
-    DiscretizationError, FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators,
+    DiscretizationError, FieldRotation, FieldSampling, HodgeComplex, HodgeOperators,
 };
 use tvf_core::generate::{icosphere, torus};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
-    Conforming, CrouzeixRaviart, DecompositionError, FaceFields, HodgeDecomposer, LagrangeP1,
-    MassLumping, Nonconforming,
+    Conforming, CrouzeixRaviart, DecompositionError, FaceFields, FunctionSpace, HodgeDecomposer,
+    LagrangeP1, MassLumping, Nonconforming,
 };
 
 /// A linear function `f(p) = a·p + c` sampled at the nodes of a space.
@@ -31,7 +31,7 @@ fn gradients_and_interpolation_reproduce_linear_functions() {
         let f = sample(&space.node_positions(), a, 2.5);
         // The gradient of a linear function is its tangential projection, per face.
         let gradient = fields
-            .to_vectors(&mul_vec(space.gradient(), &f))
+            .to_face_vectors(&mul_vec(space.gradient(), &f))
             .expect("right length");
         for (t, g) in gradient.iter().enumerate() {
             let n = fields.normal(t);
@@ -67,8 +67,10 @@ fn gradients_and_interpolation_reproduce_linear_functions() {
 fn vectors_round_trip_and_normal_parts_are_reported() {
     let mesh = icosphere(1);
     let fields = FaceFields::new(&mesh).expect("valid mesh");
-    let field: Vec<f64> = (0..fields.dimension()).map(|i| (i as f64).cos()).collect();
-    let vectors = fields.to_vectors(&field).expect("right length");
+    let field: Vec<f64> = (0..fields.field_dimension())
+        .map(|i| (i as f64).cos())
+        .collect();
+    let vectors = fields.to_face_vectors(&field).expect("right length");
     let lifted: Vec<[f64; 3]> = vectors
         .iter()
         .enumerate()
@@ -77,7 +79,7 @@ fn vectors_round_trip_and_normal_parts_are_reported() {
             std::array::from_fn(|k| v[k] + 0.25 * n[k])
         })
         .collect();
-    let projection = fields.from_vectors(&lifted).expect("right length");
+    let projection = fields.from_face_vectors(&lifted).expect("right length");
     for (x, y) in projection.field.iter().zip(&field) {
         assert!((x - y).abs() < 1e-12);
     }
@@ -87,7 +89,7 @@ fn vectors_round_trip_and_normal_parts_are_reported() {
         .all(|p| (p - 0.25).abs() < 1e-12));
     assert!((projection.max_normal_part() - 0.25).abs() < 1e-12);
     assert_eq!(
-        fields.from_vectors(&lifted[1..]),
+        fields.from_face_vectors(&lifted[1..]),
         Err(DiscretizationError::DimensionMismatch {
             what: "per-face vectors",
             expected: 80,
@@ -97,13 +99,13 @@ fn vectors_round_trip_and_normal_parts_are_reported() {
     let mut bad = lifted.clone();
     bad[3][1] = f64::NAN;
     assert!(matches!(
-        fields.from_vectors(&bad),
+        fields.from_face_vectors(&bad),
         Err(DiscretizationError::NonFinite { index: 3, .. })
     ));
-    assert!(fields.to_vectors(&field[1..]).is_err());
+    assert!(fields.to_face_vectors(&field[1..]).is_err());
     // J is a rotation by +π/2 about the normal: J v = n × v.
     let rotated = fields
-        .to_vectors(&fields.rotate(&field))
+        .to_face_vectors(&mul_vec(fields.rotation(), &field))
         .expect("right length");
     for (t, (r, v)) in rotated.iter().zip(&vectors).enumerate() {
         let n = fields.normal(t);
@@ -150,7 +152,7 @@ fn open_mesh_builds_operators_but_refuses_decomposition() {
     )
     .expect("valid");
     let complex = Nonconforming::new(&mesh, MassLumping::Voronoi).expect("valid geometry");
-    assert!(complex.has_boundary());
+    assert!(complex.topology().has_boundary);
     assert_eq!(complex.dirichlet_energy().shape(), (4, 4));
     assert!(matches!(
         HodgeDecomposer::new(&complex),
@@ -169,7 +171,7 @@ fn decomposition_rejects_wrong_input() {
             DiscretizationError::DimensionMismatch { .. }
         ))
     ));
-    let mut field = vec![1.0; complex.fields().dimension()];
+    let mut field = vec![1.0; complex.field_dimension()];
     field[5] = f64::INFINITY;
     assert!(matches!(
         decomposer.decompose(&field),

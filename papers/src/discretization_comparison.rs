@@ -1,4 +1,4 @@
-//! The discretization comparison: every entry of [`crate::registry::DISCRETIZATIONS`] on
+//! The discretization comparison: every entry of the catalog ([`crate::registry`]) on
 //! icospheres under refinement, eigenvalues against the unit sphere's `l(l+1)`, convergence
 //! orders and the time to build each basis; a Markdown table and a log–log plot.
 //!
@@ -12,10 +12,11 @@
 use crate::error::PaperError;
 use crate::markdown::{seconds, thousands, Table};
 use crate::progress::Progress;
-use crate::registry::Discretization;
+use crate::registry::basis_of;
 use tvf_core::generate::icosphere;
 use tvf_core::geometry::{norm, sub};
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::CatalogEntry;
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{BasisRequest, FieldFamily, SpectralBasis};
 
@@ -64,7 +65,7 @@ impl LevelResult {
 /// One discretization on every level.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DiscretizationResult {
-    /// Name from the registry.
+    /// Catalog id of the discretization.
     pub name: String,
     /// One entry per level, in the order of the configuration.
     pub levels: Vec<LevelResult>,
@@ -131,7 +132,7 @@ pub fn family_error(
 
 /// Runs every discretization of `entries` on every level of `config`.
 pub fn run(
-    entries: &[Discretization],
+    entries: &[CatalogEntry],
     config: &ComparisonConfig,
     progress: &Progress,
 ) -> Result<Vec<DiscretizationResult>, PaperError> {
@@ -139,7 +140,7 @@ pub fn run(
     let mut results: Vec<DiscretizationResult> = entries
         .iter()
         .map(|e| DiscretizationResult {
-            name: e.name.to_string(),
+            name: e.id.to_string(),
             levels: Vec::new(),
         })
         .collect();
@@ -148,7 +149,7 @@ pub fn run(
         let h = mean_edge_length(&mesh);
         for (entry, result) in entries.iter().zip(&mut results) {
             let request = BasisRequest::pairs(exact.len()).with_seed(1);
-            let timed = (entry.build)(&mesh, &request)?;
+            let timed = basis_of(entry, &mesh, &request)?;
             let level_result = LevelResult {
                 level,
                 faces: mesh.face_count(),
@@ -159,7 +160,7 @@ pub fn run(
             };
             progress.note(format!(
                 "comparison: {} on icosphere level {level} ({} faces): errors {:.2e} / {:.2e}, {}",
-                entry.name,
+                entry.id,
                 thousands(mesh.face_count()),
                 level_result.integrable_error,
                 level_result.cointegrable_error,

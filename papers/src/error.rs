@@ -13,6 +13,9 @@ pub enum PaperError {
     /// A discretization could not be assembled (e.g. a degenerate face).
     #[error(transparent)]
     Discretization(#[from] tvf_core::discretization::DiscretizationError),
+    /// A discretization id the catalog does not know.
+    #[error(transparent)]
+    UnknownDiscretization(#[from] tvf_discretizations::UnknownDiscretization),
     /// The eigenfield basis could not be computed.
     #[error(transparent)]
     Basis(#[from] tvf_spectral::BasisError),

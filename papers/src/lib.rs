@@ -2,19 +2,19 @@
 //!
 //! Reproductions of papers' tables and figures, one module per paper (see `papers/README.md`):
 //! [`brandt2017`] reproduces Brandt et al., "Spectral Processing of Tangential Vector Fields"
-//! (CGF 2017). [`discretization_comparison`] runs every discretization of
-//! [`registry::DISCRETIZATIONS`] through the same eigenvalue-convergence study; adding a
-//! discretization there is one line.
+//! (CGF 2017). [`discretization_comparison`] runs every discretization of the catalog
+//! ([`registry::compared_discretizations`]) through the same eigenvalue-convergence study; a
+//! discretization added to the catalog is compared without another line.
 //!
 //! The pieces run on generated meshes as well as on the paper's:
 //!
 //! ```
 //! use tvf_papers::discretization_comparison::{run, ComparisonConfig};
 //! use tvf_papers::progress::Progress;
-//! use tvf_papers::registry::DISCRETIZATIONS;
+//! use tvf_papers::registry::compared_discretizations;
 //!
 //! let config = ComparisonConfig { levels: vec![1, 2], max_degree: 2 };
-//! let results = run(&DISCRETIZATIONS[..1], &config, &Progress::new(true))?;
+//! let results = run(&compared_discretizations()[..1], &config, &Progress::new(true))?;
 //! // The eigenvalue error falls under refinement.
 //! assert!(results[0].levels[1].error() < results[0].levels[0].error());
 //! # Ok::<(), tvf_papers::error::PaperError>(())

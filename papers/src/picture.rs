@@ -5,7 +5,7 @@ use crate::error::PaperError;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::{Rgba, RgbaImage};
 use std::path::Path;
-use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::geometry::norm;
 use tvf_core::SurfaceMesh;
 use tvf_render::{
@@ -44,7 +44,7 @@ pub const COINTEGRABLE_RED: [u8; 3] = [225, 95, 85];
 
 /// Renders `field` (`2F` face-frame coefficients of `complex`, pointwise) on `mesh` as a line
 /// integral convolution over `tint`, titled `title`.
-pub fn field_panel<H: HodgeComplex>(
+pub fn field_panel<H: HodgeComplex + ?Sized>(
     mesh: &SurfaceMesh,
     complex: &H,
     field: &[f64],
@@ -52,7 +52,7 @@ pub fn field_panel<H: HodgeComplex>(
     tint: Tint,
     view: View,
 ) -> Result<RgbaImage, PaperError> {
-    let vectors = complex.fields().to_vectors(field)?;
+    let vectors = complex.require_sampling()?.to_face_vectors(field)?;
     let mut options = RenderOptions {
         width: view.width,
         height: view.height,

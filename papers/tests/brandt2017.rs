@@ -9,7 +9,7 @@ use tvf_papers::brandt2017::{
 };
 use tvf_papers::discretization_comparison::{self, ComparisonConfig};
 use tvf_papers::progress::Progress;
-use tvf_papers::registry::DISCRETIZATIONS;
+use tvf_papers::registry::compared_discretizations;
 
 const EVERYTHING: PaperMesh = PaperMesh {
     file: "generated-bumpy-torus",
@@ -169,7 +169,7 @@ fn missing_and_failing_meshes_are_skipped_and_the_comparison_still_runs() {
     assert_eq!(mesh, "hand");
     assert!(reason.starts_with("failed:"), "{reason}");
     assert!(results.table1.is_empty() && results.findings.is_empty());
-    assert_eq!(results.comparison.len(), DISCRETIZATIONS.len());
+    assert_eq!(results.comparison.len(), compared_discretizations().len());
     write(&config.out, &results, &info()).unwrap();
     let full = std::fs::read_to_string(config.out.join("RESULTS.md")).unwrap();
     for (mesh, _) in &results.skipped {
@@ -186,8 +186,9 @@ fn every_discretization_converges_on_icospheres() {
         max_degree: 3,
     };
     let results =
-        discretization_comparison::run(DISCRETIZATIONS, &config, &Progress::new(true)).unwrap();
-    assert_eq!(results.len(), DISCRETIZATIONS.len());
+        discretization_comparison::run(compared_discretizations(), &config, &Progress::new(true))
+            .unwrap();
+    assert_eq!(results.len(), compared_discretizations().len());
     for r in &results {
         assert_eq!(r.levels.len(), 3);
         for w in r.levels.windows(2) {
@@ -214,5 +215,8 @@ fn every_discretization_converges_on_icospheres() {
         );
     }
     let table = discretization_comparison::markdown(&results);
-    assert_eq!(table.lines().count(), 2 + 3 * DISCRETIZATIONS.len());
+    assert_eq!(
+        table.lines().count(),
+        2 + 3 * compared_discretizations().len()
+    );
 }

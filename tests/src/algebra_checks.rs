@@ -1,11 +1,14 @@
-//! Algebraic checks: symmetry, semi-definiteness, masses, the complex property `d1 · d0 = 0`.
+//! Algebraic core checks: the complex property `d1 · d0 = 0`, shapes, nodes and masses,
+//! symmetry and semi-definiteness.
 
+use crate::corpus::CorpusMesh;
 use crate::dense::generalized_eigenvalues;
 use sprs::CsMat;
-use tvf_core::discretization::sparse::{product, transpose};
-use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::sparse::{product, scale_rows, transpose};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind, NodeSpace, NO_COMPONENT};
 
-fn max_abs(a: &CsMat<f64>) -> f64 {
+/// Largest absolute entry of a sparse matrix (0 if empty).
+pub fn max_abs(a: &CsMat<f64>) -> f64 {
     a.data().iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
@@ -31,60 +34,40 @@ pub fn check_psd(what: &str, a: &CsMat<f64>, mass: &[f64]) {
     );
 }
 
-/// The symmetric matrices of a complex are symmetric: `S`, `B` and both stiffness matrices.
-pub fn check_symmetric_operators<H: HodgeComplex>(complex: &H) {
-    check_symmetric("potential stiffness", &complex.potential_stiffness());
-    check_symmetric("co-potential stiffness", &complex.co_potential_stiffness());
-    check_symmetric("Dirichlet energy S", &complex.dirichlet_energy());
-    check_symmetric("biharmonic energy B", &complex.biharmonic_energy());
-}
-
-/// `S`, `B` and both stiffness matrices are positive semi-definite (dense; small meshes).
-pub fn check_psd_operators<H: HodgeComplex>(complex: &H) {
-    check_psd("S", &complex.dirichlet_energy(), complex.m1());
-    check_psd("B", &complex.biharmonic_energy(), complex.m1());
-    let exact = complex.exact_eigenproblem();
-    check_psd("potential stiffness", &exact.stiffness, &exact.mass);
-    let co_exact = complex.co_exact_eigenproblem();
-    check_psd(
-        "co-potential stiffness",
-        &co_exact.stiffness,
-        &co_exact.mass,
+/// `S`, `B` and both stiffness matrices are symmetric.
+pub fn check_symmetric_operators<H: HodgeComplex + ?Sized>(complex: &H) {
+    check_symmetric(
+        "potential stiffness d0ᵀ M1 d0",
+        complex.potential_stiffness(),
     );
+    check_symmetric(
+        "co-potential stiffness d1 M1⁻¹ d1ᵀ",
+        complex.co_potential_stiffness(),
+    );
+    check_symmetric("Dirichlet energy S", complex.dirichlet_energy());
+    check_symmetric("biharmonic energy B", complex.biharmonic_energy());
 }
 
-/// All masses positive, each space's masses sum to the total area, `M2 = M_co⁻¹`, and the
-/// dimensions agree.
-pub fn check_masses<H: HodgeComplex>(complex: &H, total_area: f64) {
-    let p = complex.potentials();
-    let q = complex.co_potentials();
-    let x = complex.fields();
-    assert_eq!(complex.m0().len(), p.dimension());
-    assert_eq!(complex.m1().len(), x.dimension());
-    assert_eq!(complex.m2().len(), q.dimension());
-    for (what, mass) in [("M0", p.mass()), ("M_co", q.mass()), ("M1", x.mass())] {
-        assert!(mass.iter().all(|&m| m > 0.0), "{what}: non-positive mass");
-    }
-    for (what, sum) in [
-        ("M0", p.mass().iter().sum::<f64>()),
-        ("M_co", q.mass().iter().sum::<f64>()),
-        ("M1 / 2", x.mass().iter().sum::<f64>() / 2.0),
-    ] {
-        assert!(
-            (sum - total_area).abs() <= 1e-12 * total_area,
-            "{what} sums to {sum}, area is {total_area}"
-        );
-    }
-    for (m2, m) in complex.m2().iter().zip(q.mass()) {
-        assert!(
-            (m2 * m - 1.0).abs() < 1e-14,
-            "M2 is not the inverse co-potential mass"
-        );
-    }
+/// `S` and `B` (w.r.t. `M1`) and both scalar eigenproblems are positive semi-definite (dense;
+/// small meshes).
+pub fn check_psd_operators<H: HodgeComplex + ?Sized>(complex: &H) {
+    check_psd("S", complex.dirichlet_energy(), complex.m1().values());
+    check_psd("B", complex.biharmonic_energy(), complex.m1().values());
+    let exact = complex.exact_eigenproblem();
+    check_psd("exact eigenproblem", &exact.stiffness, &exact.mass);
+    let co_exact = complex.co_exact_eigenproblem();
+    check_psd("co-exact eigenproblem", &co_exact.stiffness, &co_exact.mass);
 }
 
-/// `d1 · d0 = 0` up to round-off: `max |d1 d0| ≤ 1e-12 · max|d1| · max|d0|`.
-pub fn check_d1_d0_zero<H: HodgeComplex>(complex: &H) {
+/// `d1 · d0 = 0` up to round-off (`max |d1 d0| ≤ 1e-12 · max|d1| · max|d0|`), and, through the
+/// co-gradient `−M1⁻¹ d1ᵀ` (a path that also involves `M1`), integrable ⟂ co-integrable:
+/// `(−M1⁻¹ d1ᵀ)ᵀ M1 d0 = 0`.
+pub fn check_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) {
+    assert_eq!(
+        complex.d1().cols(),
+        complex.d0().rows(),
+        "d1 and d0 do not compose"
+    );
     let composed = product(complex.d1(), complex.d0());
     let scale = max_abs(complex.d1()) * max_abs(complex.d0());
     let error = max_abs(&composed);
@@ -92,56 +75,98 @@ pub fn check_d1_d0_zero<H: HodgeComplex>(complex: &H) {
         error <= 1e-12 * scale,
         "|d1 d0| = {error:e}, scale {scale:e}"
     );
-}
-
-/// Integrable ⟂ co-integrable: `(J G_co)ᵀ M1 d0 = 0` (conforming: `G*ᵀ J M_X G = 0`), computed
-/// through the co-gradient, a path independent of `d1`.
-pub fn check_integrable_orthogonal_to_cointegrable<H: HodgeComplex>(complex: &H) {
     let co_gradient = complex.co_gradient();
-    let weighted = tvf_core::discretization::sparse::scale_rows(complex.m1(), complex.d0());
-    let cross = product(&transpose(&co_gradient), &weighted);
-    let scale = max_abs(&co_gradient) * max_abs(&weighted);
+    let weighted = scale_rows(complex.m1().values(), complex.d0());
+    let cross = product(&transpose(co_gradient), &weighted);
+    let scale = max_abs(co_gradient) * max_abs(&weighted);
     let error = max_abs(&cross);
     assert!(
         error <= 1e-12 * scale,
-        "|(J G_co)ᵀ M1 d0| = {error:e}, scale {scale:e}"
+        "|(M1⁻¹ d1ᵀ)ᵀ M1 d0| = {error:e}, scale {scale:e}"
     );
 }
 
-/// `J² = −I`, `Jᵀ M1 J = M1`, and the frames are orthonormal, positively oriented, tangent.
-pub fn check_field_space<H: HodgeComplex>(complex: &H) {
-    let x = complex.fields();
-    let j = x.rotation();
-    let j2 = product(j, j);
-    for (value, (r, c)) in j2.iter() {
-        let expected = if r == c { -1.0 } else { 0.0 };
-        assert!((value - expected).abs() < 1e-15, "J² ≠ −I at ({r},{c})");
+/// Number of nodes a space of kind `kind` has on `mesh`.
+fn expected_node_count(kind: NodeKind, mesh: &CorpusMesh) -> usize {
+    match kind {
+        NodeKind::Vertices => mesh.mesh.vertex_count(),
+        NodeKind::Edges => mesh.mesh.edge_count(),
+        NodeKind::Faces => mesh.mesh.face_count(),
+        NodeKind::FaceFrames => 2 * mesh.mesh.face_count(),
     }
-    assert_eq!(j2.nnz(), x.dimension());
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    for t in 0..x.face_count() {
-        let [e1, e2] = x.frame(t);
-        let n = x.normal(t);
-        for (value, expected) in [
-            (dot(e1, e1), 1.0),
-            (dot(e2, e2), 1.0),
-            (dot(e1, e2), 0.0),
-            (dot(e1, n), 0.0),
-            (dot(e2, n), 0.0),
-        ] {
+}
+
+fn check_node_space(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMesh) {
+    let components = mesh.mesh.component_count();
+    assert_eq!(nodes.len(), size, "{what}: one node per row/column");
+    assert_eq!(nodes.positions.len(), size, "{what}: one position per node");
+    assert_eq!(
+        size,
+        expected_node_count(nodes.kind, mesh),
+        "{what}: node count of kind {}",
+        nodes.kind.name()
+    );
+    assert!(
+        nodes.positions.iter().flatten().all(|x| x.is_finite()),
+        "{what}: non-finite node position"
+    );
+    assert!(
+        nodes
+            .components
+            .iter()
+            .all(|&c| c < components || c == NO_COMPONENT),
+        "{what}: component out of range"
+    );
+}
+
+/// Shapes, nodes, topology and masses agree with the mesh: `d0` is `n1 × n0`, `d1` is `n2 × n1`,
+/// each node space has one node per row (as many as its kind says), every mass is positive on
+/// the nodes faces use, the topology has the mesh's components, boundary and `2g`, and the
+/// potential masses partition the area: `Σ M0 = total_area() = area` (relative 1e-12).
+pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+    let (n0, n1, n2) = (
+        complex.potential_dimension(),
+        complex.field_dimension(),
+        complex.co_potential_dimension(),
+    );
+    assert_eq!(complex.d0().shape(), (n1, n0), "d0 shape");
+    assert_eq!(complex.d1().shape(), (n2, n1), "d1 shape");
+    for (what, nodes, size) in [
+        ("potential nodes", complex.potential_nodes(), n0),
+        ("field nodes", complex.field_nodes(), n1),
+        ("co-potential nodes", complex.co_potential_nodes(), n2),
+    ] {
+        check_node_space(what, nodes, size, mesh);
+    }
+    for (what, mass, nodes) in [
+        ("M0", complex.m0(), complex.potential_nodes()),
+        ("M1", complex.m1(), complex.field_nodes()),
+        ("M2", complex.m2(), complex.co_potential_nodes()),
+    ] {
+        assert_eq!(mass.len(), nodes.len(), "{what}: one entry per node");
+        for (i, (&m, &c)) in mass.values().iter().zip(&nodes.components).enumerate() {
             assert!(
-                (value - expected).abs() < 1e-12,
-                "frame of face {t} not orthonormal"
+                m.is_finite() && (m > 0.0 || c == NO_COMPONENT),
+                "{what}[{i}] = {m:e} on a used node"
             );
         }
-        let c = [
-            e1[1] * e2[2] - e1[2] * e2[1],
-            e1[2] * e2[0] - e1[0] * e2[2],
-            e1[0] * e2[1] - e1[1] * e2[0],
-        ];
-        assert!(
-            (dot(c, n) - 1.0).abs() < 1e-12,
-            "frame of face {t} negatively oriented"
-        );
     }
+    let topology = complex.topology();
+    assert_eq!(
+        topology.component_count,
+        mesh.mesh.component_count(),
+        "components"
+    );
+    assert_eq!(
+        topology.harmonic_dimension,
+        2 * mesh.genus,
+        "reported harmonic dimension"
+    );
+    assert_eq!(topology.has_boundary, !mesh.mesh.is_closed(), "boundary");
+    let area = mesh.mesh.total_area();
+    let total = complex.total_area();
+    assert!(
+        (total - area).abs() <= 1e-12 * area,
+        "Σ M0 = {total}, the mesh's area is {area}"
+    );
 }

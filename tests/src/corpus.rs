@@ -1,12 +1,21 @@
 //! The meshes every discretization is checked on: generated in code (always available) and the
-//! real meshes of `../shared/meshes` (used when present).
+//! real meshes of `../shared/meshes` (used when present), in two corpora — the general one, and
+//! the Delaunay one for discretizations that need `cot α + cot β > 0` on every edge (DEC's
+//! diagonal `⋆1`).
 
+use std::f64::consts::TAU;
 use std::path::PathBuf;
 use tvf_core::generate::{genus_surface, icosphere, jitter, rigid_motion, torus};
+use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::DELAUNAY_TOLERANCE;
 
-/// Largest field dimension `2F` for which the suite runs dense eigenvalue checks.
+/// Largest field dimension `n1` for which the suite runs dense eigenvalue checks.
 pub const DENSE_LIMIT: usize = 1600;
+
+/// Largest field dimension `n1` for which the suite runs dense eigenvector checks (Lemma 1 and
+/// the orthonormality of the assembled basis), which cost several times more.
+pub const EIGENVECTOR_LIMIT: usize = 1000;
 
 /// A corpus entry: a mesh and what a correct discretization must find on it.
 #[derive(Debug, Clone)]
@@ -15,22 +24,91 @@ pub struct CorpusMesh {
     pub name: String,
     /// The mesh.
     pub mesh: SurfaceMesh,
-    /// Its genus summed over components (the harmonic dimension is twice this).
+    /// Its genus summed over components (the harmonic dimension is twice this), stated
+    /// independently of the mesh's own Euler characteristic.
     pub genus: usize,
 }
 
 impl CorpusMesh {
-    fn new(name: impl Into<String>, mesh: SurfaceMesh, genus: usize) -> Self {
+    /// A named mesh of total genus `genus`.
+    pub fn new(name: impl Into<String>, mesh: SurfaceMesh, genus: usize) -> Self {
         Self {
             name: name.into(),
             mesh,
             genus,
         }
     }
+}
 
-    /// Whether dense eigenvalue checks are affordable (`2F ≤ DENSE_LIMIT`).
-    pub fn dense_ok(&self) -> bool {
-        2 * self.mesh.face_count() <= DENSE_LIMIT
+/// Which meshes a discretization is checked on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Corpus {
+    /// Every generated mesh (genus 0–3, two components, rigidly moved and jittered copies, quad
+    /// tori that are not Delaunay) and `kitten`, `eight`, `3holes` from `../shared/meshes`.
+    General,
+    /// Meshes with `cot α + cot β > 0` on every edge: icospheres, a staggered torus, flipped
+    /// genus-2 and genus-3 surfaces, jittered and moved copies, two components, and `eight.obj`
+    /// (the only Delaunay shared mesh).
+    Delaunay,
+}
+
+impl Corpus {
+    /// The corpus of catalog entry `id`: [`Corpus::Delaunay`] if the entry needs a Delaunay mesh.
+    /// Panics on an id the catalog does not know.
+    pub fn for_catalog_entry(id: &str) -> Self {
+        let entry = tvf_discretizations::catalog_entry(id).unwrap_or_else(|e| panic!("{e}"));
+        if entry.needs_delaunay {
+            Corpus::Delaunay
+        } else {
+            Corpus::General
+        }
+    }
+
+    /// The generated meshes and, if `with_shared`, the shared meshes that are present.
+    pub fn meshes(self, with_shared: bool) -> Vec<CorpusMesh> {
+        let mut meshes = match self {
+            Corpus::General => generated_corpus(),
+            Corpus::Delaunay => delaunay_corpus(),
+        };
+        if with_shared {
+            meshes.extend(shared_corpus(self));
+        }
+        meshes
+    }
+
+    /// Two small meshes (genus 0 and 1) for the rigid-motion property test.
+    pub fn motion_meshes(self) -> Vec<CorpusMesh> {
+        match self {
+            Corpus::General => vec![
+                CorpusMesh::new("icosphere(1)", icosphere(1), 0),
+                CorpusMesh::new(
+                    "torus 12×6",
+                    torus(1.0, 0.4, 12, 6).expect("valid torus"),
+                    1,
+                ),
+            ],
+            Corpus::Delaunay => vec![
+                CorpusMesh::new("icosphere(1)", icosphere(1), 0),
+                CorpusMesh::new("staggered torus 16×8", staggered_torus(1.0, 0.4, 16, 8), 1),
+            ],
+        }
+    }
+
+    /// A randomly perturbed genus-1 mesh for the jitter property test: a quad torus jittered by
+    /// 0.2 (general), or a staggered torus jittered by 0.2 and made Delaunay by edge flips.
+    pub fn jittered_mesh(self, seed: u64) -> CorpusMesh {
+        let name = format!("jittered torus (seed {seed})");
+        match self {
+            Corpus::General => {
+                let base = torus(1.0, 0.4, 12, 6).expect("valid torus");
+                CorpusMesh::new(name, jitter(&base, 0.2, seed).expect("finite amplitude"), 1)
+            }
+            Corpus::Delaunay => {
+                let base = staggered_torus(1.0, 0.4, 16, 8);
+                let jittered = jitter(&base, 0.2, seed).expect("finite amplitude");
+                CorpusMesh::new(name, delaunay_flips(&jittered), 1)
+            }
+        }
     }
 }
 
@@ -51,19 +129,21 @@ fn small_torus() -> SurfaceMesh {
     torus(1.0, 0.4, 16, 8).expect("valid torus parameters")
 }
 
+fn shifted_icosphere() -> SurfaceMesh {
+    rigid_motion(&icosphere(1), [0.0, 0.0, 1.0], 0.0, [5.0, 0.0, 0.0]).expect("finite")
+}
+
 /// Generated meshes: icospheres, tori, genus-2 and genus-3 surfaces, a two-component mesh, a
-/// rigidly moved and a jittered copy. All small enough for dense checks except where noted.
+/// rigidly moved and a jittered copy. All small enough for dense checks except icosphere(3).
 pub fn generated_corpus() -> Vec<CorpusMesh> {
     let moved_torus = rigid_motion(&small_torus(), [1.0, -2.0, 0.5], 0.83, [3.0, -1.0, 2.0])
         .expect("finite motion");
     let jittered_sphere = jitter(&icosphere(2), 0.15, 7).expect("finite amplitude");
     let jittered_genus2 = jitter(&genus_surface(2, 2), 0.15, 11).expect("finite amplitude");
-    let shifted_sphere =
-        rigid_motion(&icosphere(1), [0.0, 0.0, 1.0], 0.0, [5.0, 0.0, 0.0]).expect("finite");
     vec![
         CorpusMesh::new("icosphere(1)", icosphere(1), 0),
         CorpusMesh::new("icosphere(2)", icosphere(2), 0),
-        CorpusMesh::new("icosphere(3) (sparse checks only)", icosphere(3), 0),
+        CorpusMesh::new("icosphere(3)", icosphere(3), 0),
         CorpusMesh::new("torus 16×8", small_torus(), 1),
         CorpusMesh::new(
             "thin torus 24×6",
@@ -74,7 +154,7 @@ pub fn generated_corpus() -> Vec<CorpusMesh> {
         CorpusMesh::new("genus-3 surface", genus_surface(3, 2), 3),
         CorpusMesh::new(
             "torus + sphere (two components)",
-            disjoint_union(&small_torus(), &shifted_sphere),
+            disjoint_union(&small_torus(), &shifted_icosphere()),
             1,
         ),
         CorpusMesh::new("rigidly moved torus", moved_torus, 1),
@@ -83,21 +163,162 @@ pub fn generated_corpus() -> Vec<CorpusMesh> {
     ]
 }
 
-/// `kitten` (genus 1), `eight` (genus 2) and `3holes` (genus 3) from `../shared/meshes`, when
-/// present; prints a skip message and returns none otherwise.
-pub fn shared_corpus() -> Vec<CorpusMesh> {
+/// Generated Delaunay meshes (each checked by [`is_delaunay`] in this crate's tests): icospheres
+/// (Delaunay as generated, also jittered by 0.15), a staggered torus (acute triangles), genus-2
+/// and genus-3 plate surfaces made Delaunay by edge flips, a rigidly moved copy and two
+/// components.
+pub fn delaunay_corpus() -> Vec<CorpusMesh> {
+    let torus = staggered_torus(1.0, 0.4, 24, 10);
+    let moved_torus =
+        rigid_motion(&torus, [1.0, -2.0, 0.5], 0.83, [3.0, -1.0, 2.0]).expect("finite motion");
+    let flipped = |genus| {
+        let jittered = jitter(&genus_surface(genus, 2), 0.05, 3).expect("finite amplitude");
+        delaunay_flips(&jittered)
+    };
+    vec![
+        CorpusMesh::new("icosphere(1)", icosphere(1), 0),
+        CorpusMesh::new("icosphere(2)", icosphere(2), 0),
+        CorpusMesh::new("icosphere(3)", icosphere(3), 0),
+        CorpusMesh::new("staggered torus 24×10", torus.clone(), 1),
+        CorpusMesh::new("flipped genus-2 surface", flipped(2), 2),
+        CorpusMesh::new("flipped genus-3 surface", flipped(3), 3),
+        CorpusMesh::new(
+            "staggered torus + sphere (two components)",
+            disjoint_union(&torus, &shifted_icosphere()),
+            1,
+        ),
+        CorpusMesh::new("rigidly moved staggered torus", moved_torus, 1),
+        CorpusMesh::new(
+            "jittered icosphere(2)",
+            jitter(&icosphere(2), 0.15, 7).expect("finite amplitude"),
+            0,
+        ),
+    ]
+}
+
+/// Meshes of `../shared/meshes` when present (a skip message for each missing one): for the
+/// general corpus `kitten` (genus 1), `eight` (genus 2) and `3holes` (genus 3); for the Delaunay
+/// corpus `eight` alone.
+pub fn shared_corpus(corpus: Corpus) -> Vec<CorpusMesh> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/meshes");
-    let mut corpus = Vec::new();
-    for (file, genus) in [("kitten.obj", 1), ("eight.obj", 2), ("3holes.obj", 3)] {
+    let files: &[(&str, usize)] = match corpus {
+        Corpus::General => &[("kitten.obj", 1), ("eight.obj", 2), ("3holes.obj", 3)],
+        Corpus::Delaunay => &[("eight.obj", 2)],
+    };
+    let mut meshes = Vec::new();
+    for &(file, genus) in files {
         let path = dir.join(file);
         if !path.exists() {
             eprintln!("skipping {}: not present", path.display());
             continue;
         }
         match tvf_core::io::load_mesh(&path) {
-            Ok(loaded) => corpus.push(CorpusMesh::new(file, loaded.mesh, genus)),
+            Ok(loaded) => meshes.push(CorpusMesh::new(file, loaded.mesh, genus)),
             Err(error) => panic!("{} exists but does not load: {error}", path.display()),
         }
     }
-    corpus
+    meshes
+}
+
+/// A torus of revolution around z (`major`, `minor` radii) whose rings of `around` vertices are
+/// shifted by half a cell on every other of the `tube` rings (`tube` even), so every cell is two
+/// near-isosceles triangles instead of a split rectangle: `2·around·tube` faces, genus 1, outward
+/// normals. With `around ≈ 2π·major / (2π·minor / tube)` all triangles are acute, hence Delaunay
+/// (a quad torus is not: its diagonals have `cot α + cot β = 0`).
+pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> SurfaceMesh {
+    assert!(
+        tube & 1 == 0 && tube >= 4 && around >= 3,
+        "even tube ≥ 4, around ≥ 3"
+    );
+    let index = |ring: usize, i: usize| (ring % tube) * around + i % around;
+    let positions = (0..tube)
+        .flat_map(|ring| {
+            let v = TAU * ring as f64 / tube as f64;
+            let shift = 0.5 * (ring % 2) as f64;
+            (0..around).map(move |i| {
+                let u = TAU * (i as f64 + shift) / around as f64;
+                let radius = major + minor * v.cos();
+                [radius * u.cos(), radius * u.sin(), minor * v.sin()]
+            })
+        })
+        .collect();
+    let mut faces = Vec::with_capacity(2 * around * tube);
+    for ring in 0..tube {
+        for i in 0..around {
+            let (a, a_next) = (index(ring, i), index(ring, i + 1));
+            let (b, b_next) = (index(ring + 1, i), index(ring + 1, i + 1));
+            if ring % 2 == 0 {
+                // The upper ring is shifted by +1/2: b sits between a and a_next.
+                faces.push([a, a_next, b]);
+                faces.push([b, a_next, b_next]);
+            } else {
+                // The lower ring is shifted: a sits between b and b_next.
+                faces.push([a, b_next, b]);
+                faces.push([a, index(ring, i + 1), b_next]);
+            }
+        }
+    }
+    SurfaceMesh::new(positions, faces).expect("a staggered torus is a valid closed mesh")
+}
+
+/// `cot α + cot β` of every edge (`E` entries, one cotangent on a boundary edge), computed from
+/// the 3D corner angles.
+pub fn cotangent_sums(mesh: &SurfaceMesh) -> Vec<f64> {
+    let mut sums = vec![0.0; mesh.edge_count()];
+    for (t, edges) in mesh.face_edges().iter().enumerate() {
+        for (c, &e) in edges.iter().enumerate() {
+            sums[e] += corner_cotangent(mesh, t, c);
+        }
+    }
+    sums
+}
+
+/// Cotangent of the angle at corner `c` of face `t`, from 3D positions (independent of
+/// `tvf-discretizations`).
+pub fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
+    let o = mesh.corner(t, c);
+    let u = sub(mesh.corner(t, (c + 1) % 3), o);
+    let v = sub(mesh.corner(t, (c + 2) % 3), o);
+    dot(u, v) / norm(cross(u, v))
+}
+
+/// Whether every edge has `cot α + cot β >` [`DELAUNAY_TOLERANCE`] (what DEC needs).
+pub fn is_delaunay(mesh: &SurfaceMesh) -> bool {
+    cotangent_sums(mesh).iter().all(|&s| s > DELAUNAY_TOLERANCE)
+}
+
+/// Lawson flips on the surface: while some interior edge has `cot α + cot β ≤`
+/// [`DELAUNAY_TOLERANCE`], the worst one
+/// is replaced by the other diagonal of its two faces (vertices stay put, so the surface changes
+/// slightly where it is not flat). Panics if a flip would break the mesh or if 10·E flips do not
+/// make it Delaunay; meant for the small generated meshes of the corpus.
+pub fn delaunay_flips(mesh: &SurfaceMesh) -> SurfaceMesh {
+    let mut current = mesh.clone();
+    for _ in 0..10 * mesh.edge_count() {
+        let sums = cotangent_sums(&current);
+        let worst = (0..sums.len())
+            .filter(|&e| !current.is_boundary_edge(e))
+            .min_by(|&a, &b| sums[a].total_cmp(&sums[b]))
+            .filter(|&e| sums[e] <= DELAUNAY_TOLERANCE);
+        let Some(edge) = worst else {
+            return current;
+        };
+        let mut faces = current.faces().to_vec();
+        let [s, t] = current.edge_faces()[edge];
+        let corner = |f: usize| {
+            current.face_edges()[f]
+                .iter()
+                .position(|&e| e == edge)
+                .expect("an edge's face contains it")
+        };
+        let (cs, ct) = (corner(s), corner(t));
+        let (p, a, b) = (faces[s][cs], faces[s][(cs + 1) % 3], faces[s][(cs + 2) % 3]);
+        let q = faces[t][ct];
+        // (p, a, b) and (q, b, a) become (p, a, q) and (q, b, p): same orientation.
+        faces[s] = [p, a, q];
+        faces[t] = [q, b, p];
+        current = SurfaceMesh::new(current.positions().to_vec(), faces)
+            .unwrap_or_else(|e| panic!("flipping edge {edge} broke the mesh: {e}"));
+    }
+    panic!("Lawson flips did not converge")
 }

@@ -1,20 +1,42 @@
-//! Dense eigenvalues (faer) for the checks on small meshes.
+//! Dense eigenvalues and eigenvectors (faer) for the checks on small meshes.
 
 use faer::{Mat, Side};
 use sprs::CsMat;
 
-/// Eigenvalues (ascending) of the generalized problem `A x = λ diag(mass) x`, computed densely as
-/// the eigenvalues of `D^{-1/2} A D^{-1/2}` (symmetric). `A` must be symmetric, `mass > 0`.
-pub fn generalized_eigenvalues(a: &CsMat<f64>, mass: &[f64]) -> Vec<f64> {
+/// `D^{-1/2} A D^{-1/2}` as a dense symmetric matrix (`D = diag(mass)`, `mass > 0`).
+fn scaled_dense(a: &CsMat<f64>, mass: &[f64]) -> Mat<f64> {
     let n = a.rows();
+    assert_eq!(mass.len(), n, "one mass per row");
+    assert!(
+        mass.iter().all(|&m| m > 0.0),
+        "dense eigenproblems need a positive mass"
+    );
     let scale: Vec<f64> = mass.iter().map(|m| 1.0 / m.sqrt()).collect();
     let mut dense = Mat::<f64>::zeros(n, n);
     for (value, (i, j)) in a.iter() {
         dense[(i, j)] += value * scale[i] * scale[j];
     }
     dense
+}
+
+/// Eigenvalues (ascending) of the generalized problem `A x = λ diag(mass) x`, computed densely as
+/// the eigenvalues of `D^{-1/2} A D^{-1/2}` (symmetric). `A` must be symmetric, `mass > 0`.
+pub fn generalized_eigenvalues(a: &CsMat<f64>, mass: &[f64]) -> Vec<f64> {
+    scaled_dense(a, mass)
         .self_adjoint_eigenvalues(Side::Lower)
         .expect("dense symmetric eigenvalues converge")
+}
+
+/// All eigenpairs of `A x = λ diag(mass) x`, ascending: `(λ, X)` with the columns of `X`
+/// (`n × n`) `diag(mass)`-orthonormal.
+pub fn generalized_eigenpairs(a: &CsMat<f64>, mass: &[f64]) -> (Vec<f64>, Mat<f64>) {
+    let eigen = scaled_dense(a, mass)
+        .self_adjoint_eigen(Side::Lower)
+        .expect("dense symmetric eigendecomposition converges");
+    let values = eigen.S().column_vector().iter().copied().collect();
+    let u = eigen.U();
+    let vectors = Mat::from_fn(u.nrows(), u.ncols(), |i, j| u[(i, j)] / mass[i].sqrt());
+    (values, vectors)
 }
 
 /// Splits ascending eigenvalues into (count of those `≤ tolerance · max`, the rest).

@@ -1,62 +1,181 @@
 //! # tvf-tests
 //!
-//! The conformance suite every discretization gets. Generic checks are written once against the
-//! traits of [`tvf_core::discretization`]; the macro [`conformance_suite!`] instantiates all of
-//! them for one discretization, over the corpus of [`corpus`], in one line:
+//! The conformance suite every discretization gets. Checks are written once against the seam of
+//! [`tvf_core::discretization`] (`&dyn HodgeComplex` or `H: HodgeComplex + ?Sized`), in two
+//! kinds:
+//!
+//! - **core checks** ([`suite`]) every complex must pass: `d1 d0 = 0`; shapes, nodes and
+//!   positive masses with `Σ M0 = area`; `S`, `B` and both stiffness matrices symmetric and
+//!   positive semi-definite; `dim ker L = 2g` per component; the Hodge decomposition
+//!   (`M1`-orthogonal parts summing back, the integrable part curl-free, the co-integrable part
+//!   divergence-free); Lemma 1 eigenfields; the spectrum of `L` as the union of the two scalar
+//!   spectra; a complete orthonormal eigenfield basis; sampling and point evaluation where
+//!   offered; invariance under rigid motions and on jittered meshes (proptest);
+//! - **reference checks** ([`reference`]) a complex opts into: `cotan_formula` (stiffness
+//!   matrices against the cotan, Crouzeix–Raviart or dual-graph formulas), `rotation`
+//!   (`J² = −I`, `Jᵀ M1 J = M1`), `face_fields`, `div_curl_formulas` (both families of
+//!   divergence and curl against explicit sums), `co_potential_masses` (`Σ M2⁻¹ = area`) and
+//!   `sphere_spectrum` (convergence to `l(l+1)` on the unit sphere).
+//!
+//! The macro [`conformance_suite!`] instantiates the core suite (and any reference checks) for
+//! one constructor in one line, over a [`corpus::Corpus`]: the general one, or the Delaunay one
+//! for discretizations that need `cot α + cot β > 0`.
 //!
 //! ```
-//! use tvf_discretizations::{Conforming, MassLumping};
+//! use tvf_discretizations::{catalog_entry, Conforming, MassLumping};
+//! use tvf_tests::corpus::Corpus;
 //!
+//! // Every core check, on the general corpus.
 //! tvf_tests::conformance_suite!(conforming_barycentric, |mesh| {
 //!     Conforming::new(mesh, MassLumping::Barycentric)
 //! });
+//!
+//! // A boxed complex from the catalog, on the Delaunay corpus, with two reference checks.
+//! tvf_tests::conformance_suite!(
+//!     dec_circumcentric,
+//!     |mesh| (catalog_entry("dec-circumcentric").expect("in the catalog").build)(mesh),
+//!     corpus = Corpus::Delaunay,
+//!     reference = [cotan_formula, co_potential_masses],
+//! );
 //! # fn main() {}
 //! ```
 //!
-//! The constructor is any `Fn(&SurfaceMesh) -> Result<H, E>` with `H: HodgeComplex` and
-//! `E: Debug`. Dense eigenvalue checks run on meshes with `2F ≤` [`corpus::DENSE_LIMIT`]; the
-//! kernel dimension on larger and real meshes is checked through the rank of harmonic projections.
+//! The constructor is any `Fn(&SurfaceMesh) -> Result<H, E>` with `E: Debug` and `H` either a
+//! `HodgeComplex + 'static` or a `Box<dyn HodgeComplex>`. Every catalog entry has its suite line
+//! in `tests/tests/conformance.rs` through [`catalog_suites!`], which fails when one is missing.
+//! Dense eigenvalue checks run when `n1 ≤` [`corpus::DENSE_LIMIT`], dense eigenvector checks when
+//! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; the kernel dimension on larger and real meshes is checked
+//! through the rank of harmonic projections.
 #![warn(missing_docs)]
 
 pub mod algebra_checks;
+pub mod capability_checks;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;
+pub mod reference;
 pub mod reference_formulas;
+pub mod scaled_co_potentials;
 pub mod spectral_checks;
+pub mod suite;
 mod suite_macro;
 
 pub use proptest;
 pub use tvf_core;
 pub use tvf_discretizations;
 
+use corpus::{Corpus, CorpusMesh};
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::BoxedComplex;
+
+/// How the suite builds a complex: the constructor of a suite line, its result boxed and its
+/// error formatted.
+pub type Constructor<'a> = &'a dyn Fn(&SurfaceMesh) -> Result<BoxedComplex, String>;
+
 /// Identity that fixes a closure's signature to `Fn(&SurfaceMesh) -> Result<H, E>` (so that
 /// `|mesh| Conforming::new(mesh, ...)` needs no type annotation inside the macro).
 pub fn constructor<H, E, F>(f: F) -> F
 where
-    F: Fn(&tvf_core::SurfaceMesh) -> Result<H, E>,
+    F: Fn(&SurfaceMesh) -> Result<H, E>,
 {
     f
 }
 
-/// Builds a complex with `constructor`, panicking with the mesh name on error (test helper).
-pub fn build_complex<H, E, F>(constructor: &F, mesh: &corpus::CorpusMesh) -> H
-where
-    E: std::fmt::Debug,
-    F: Fn(&tvf_core::SurfaceMesh) -> Result<H, E>,
-{
-    constructor(&mesh.mesh).unwrap_or_else(|e| panic!("{}: construction failed: {e:?}", mesh.name))
+/// Builds the complex of a corpus mesh, panicking with the mesh's name on error.
+pub fn build(constructor: Constructor, mesh: &CorpusMesh) -> BoxedComplex {
+    constructor(&mesh.mesh).unwrap_or_else(|e| panic!("{}: construction failed: {e}", mesh.name))
 }
 
-/// Runs `check` on every mesh of the generated corpus (and, if `with_shared`, the real meshes),
-/// naming the mesh in any failure.
-pub fn for_each_mesh(with_shared: bool, mut check: impl FnMut(&corpus::CorpusMesh)) {
-    let mut meshes = corpus::generated_corpus();
-    if with_shared {
-        meshes.extend(corpus::shared_corpus());
+/// Builds the complex of catalog entry `id` (an unknown id is an error naming the known ones).
+pub fn build_catalog_entry(id: &str, mesh: &SurfaceMesh) -> Result<BoxedComplex, String> {
+    let entry = tvf_discretizations::catalog_entry(id).map_err(|e| e.to_string())?;
+    (entry.build)(mesh).map_err(|e| e.to_string())
+}
+
+/// Fails unless `covered` (the ids with a suite line) lists every catalog id exactly once and
+/// nothing else.
+pub fn assert_catalog_covered(covered: &[&str]) {
+    let ids: Vec<&str> = tvf_discretizations::catalog()
+        .iter()
+        .map(|e| e.id)
+        .collect();
+    let missing: Vec<&str> = ids
+        .iter()
+        .copied()
+        .filter(|id| !covered.contains(id))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "catalog entries without a conformance suite line: {missing:?}"
+    );
+    let unknown: Vec<&str> = covered
+        .iter()
+        .copied()
+        .filter(|id| !ids.contains(id))
+        .collect();
+    assert!(
+        unknown.is_empty(),
+        "suite lines for unknown ids: {unknown:?}"
+    );
+    for id in covered {
+        let lines = covered.iter().filter(|x| *x == id).count();
+        assert_eq!(lines, 1, "{id} has {lines} suite lines");
     }
-    for mesh in &meshes {
+}
+
+/// Runs `check` on every mesh of `corpus` (and, if `with_shared`, the shared meshes that are
+/// present), naming the mesh on stderr so that a failure can be traced to it.
+pub fn for_each_mesh(corpus: Corpus, with_shared: bool, mut check: impl FnMut(&CorpusMesh)) {
+    for mesh in &corpus.meshes(with_shared) {
         eprintln!("checking {} ({} faces)", mesh.name, mesh.mesh.face_count());
         check(mesh);
+    }
+}
+
+/// Boxing of a suite line's complex, whether the constructor returns a concrete complex or
+/// already a `Box<dyn HodgeComplex>` (method resolution picks [`__private::AlreadyBoxed`] for the
+/// latter and [`__private::NeedsBox`] otherwise; used by the macros only).
+#[doc(hidden)]
+pub mod __private {
+    use std::cell::RefCell;
+    use tvf_core::discretization::HodgeComplex;
+    use tvf_discretizations::BoxedComplex;
+
+    /// A built complex waiting to be boxed.
+    pub struct Boxing<T>(RefCell<Option<T>>);
+
+    impl<T> Boxing<T> {
+        /// Holds `value`.
+        pub fn new(value: T) -> Self {
+            Self(RefCell::new(Some(value)))
+        }
+
+        fn take(&self) -> T {
+            self.0.borrow_mut().take().expect("boxed once")
+        }
+    }
+
+    /// Chosen when the constructor returns a `Box<dyn HodgeComplex>`.
+    pub trait AlreadyBoxed {
+        /// The box itself.
+        fn boxed(&self) -> BoxedComplex;
+    }
+
+    impl AlreadyBoxed for Boxing<BoxedComplex> {
+        fn boxed(&self) -> BoxedComplex {
+            self.take()
+        }
+    }
+
+    /// Chosen when the constructor returns a concrete complex.
+    pub trait NeedsBox {
+        /// The complex, boxed.
+        fn boxed(&self) -> BoxedComplex;
+    }
+
+    impl<H: HodgeComplex + 'static> NeedsBox for &Boxing<H> {
+        fn boxed(&self) -> BoxedComplex {
+            Box::new(self.take())
+        }
     }
 }

@@ -1,28 +1,15 @@
-//! Independent re-derivations of the stiffness matrices from the explicit formulas (cotangents of
-//! the 3D triangle angles), used to check the assembled `Gᵀ M_X G` and `G*ᵀ M_X G*`.
+//! Independent re-derivations of operators from explicit formulas (cotangents and gradients of
+//! the 3D triangles, nothing from `tvf-discretizations`), for the reference checks.
 
+use crate::corpus::corner_cotangent;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::{FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::NodeKind;
+use tvf_core::geometry::{cross, dot, scale, sub};
 use tvf_core::SurfaceMesh;
 
-/// Cotangent of the angle at corner `c` of face `t`, from 3D positions.
-fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
-    let o = mesh.corner(t, c);
-    let a = mesh.corner(t, (c + 1) % 3);
-    let b = mesh.corner(t, (c + 2) % 3);
-    let u = [a[0] - o[0], a[1] - o[1], a[2] - o[2]];
-    let v = [b[0] - o[0], b[1] - o[1], b[2] - o[2]];
-    let dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    let cross = [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ];
-    dot / (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt()
-}
-
-/// The cotan matrix `S_ij = −(cot α_ij + cot β_ij)/2`, `S_ii = −Σ_j S_ij` (`V × V`).
+/// The cotan matrix `S_ij = −(cot α_ij + cot β_ij)/2`, `S_ii = −Σ_j S_ij` (`V × V`, integrated,
+/// positive semi-definite).
 pub fn cotan_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for (t, face) in mesh.faces().iter().enumerate() {
@@ -63,42 +50,109 @@ pub fn crouzeix_raviart_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
     from_triplets(n, n, rows, cols, values)
 }
 
+/// The weighted dual-graph Laplacian on faces (`F × F`), DEC's `d1 ⋆1⁻¹ d1ᵀ`: two faces sharing
+/// edge `e` couple by `−2/(cot α_e + cot β_e)`, the diagonal of face `t` is
+/// `Σ_{e ∈ t} 2/(cot α_e + cot β_e)` (one cotangent on a boundary edge).
+pub fn dual_graph_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
+    let sums = crate::corpus::cotangent_sums(mesh);
+    let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
+    for (e, faces) in mesh.edge_faces().iter().enumerate() {
+        let w = 2.0 / sums[e];
+        let used: Vec<usize> = faces
+            .iter()
+            .copied()
+            .filter(|&t| t != tvf_core::NO_FACE)
+            .collect();
+        for &s in &used {
+            for &t in &used {
+                rows.push(s);
+                cols.push(t);
+                values.push(if s == t { w } else { -w });
+            }
+        }
+    }
+    let n = mesh.face_count();
+    from_triplets(n, n, rows, cols, values)
+}
+
+/// The explicit stiffness of a space of scalar functions with nodes of kind `kind`: cotan for
+/// vertices (P1 and DEC 0-forms), Crouzeix–Raviart for edges, the dual-graph Laplacian for faces
+/// (DEC 2-forms); `None` for face frames (not a space of scalar functions).
+pub fn explicit_stiffness(kind: NodeKind, mesh: &SurfaceMesh) -> Option<CsMat<f64>> {
+    match kind {
+        NodeKind::Vertices => Some(cotan_matrix(mesh)),
+        NodeKind::Edges => Some(crouzeix_raviart_matrix(mesh)),
+        NodeKind::Faces => Some(dual_graph_matrix(mesh)),
+        NodeKind::FaceFrames => None,
+    }
+}
+
 /// `max |A − B| ≤ 1e-10 · max |B|` entry for entry.
 pub fn assert_matrices_close(what: &str, a: &CsMat<f64>, b: &CsMat<f64>) {
+    assert_matrices_within(what, a, b, 1e-10);
+}
+
+/// `max |A − B| ≤ tolerance · max |B|` entry for entry.
+pub fn assert_matrices_within(what: &str, a: &CsMat<f64>, b: &CsMat<f64>, tolerance: f64) {
     assert_eq!(a.shape(), b.shape(), "{what}: shapes differ");
     let difference = &a.to_csr() - &b.to_csr();
     let error = difference.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let scale = b.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
     assert!(
-        error <= 1e-10 * scale,
+        error <= tolerance * scale,
         "{what}: differs by {error:e} (max entry {scale:e})"
     );
 }
 
-/// The stiffness of whichever space is P1 (dimension `V`) equals the cotan matrix and that of
-/// whichever is Crouzeix–Raviart (dimension `E`) equals the CR formula. Panics if a space has
-/// neither dimension (the check only applies to P1/CR discretizations).
-pub fn check_cotan_formula<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) {
-    let cotan = cotan_matrix(mesh);
-    let cr = crouzeix_raviart_matrix(mesh);
-    for (which, dimension, stiffness) in [
-        (
-            "potential",
-            complex.potentials().dimension(),
-            complex.potential_stiffness(),
-        ),
-        (
-            "co-potential",
-            complex.co_potentials().dimension(),
-            complex.co_potential_stiffness(),
-        ),
-    ] {
-        if dimension == mesh.vertex_count() {
-            assert_matrices_close(&format!("{which} stiffness vs cotan"), &stiffness, &cotan);
-        } else if dimension == mesh.edge_count() {
-            assert_matrices_close(&format!("{which} stiffness vs CR formula"), &stiffness, &cr);
-        } else {
-            panic!("{which} space has dimension {dimension}: neither P1 nor Crouzeix-Raviart");
+/// The 3D gradients on face `t` of the piecewise linear basis functions with nodes of kind
+/// `kind` that are non-zero on `t`: `(node, ∇ψ)`. P1 hat of corner `c`:
+/// `n × (p_{c+2} − p_{c+1}) / 2A`; Crouzeix–Raviart function of the edge opposite corner `c`:
+/// `1 − 2 φ_c`, gradient `−2 ∇φ_c`. `None` for other kinds.
+pub fn basis_gradients(
+    kind: NodeKind,
+    mesh: &SurfaceMesh,
+    t: usize,
+) -> Option<[(usize, [f64; 3]); 3]> {
+    let p: [[f64; 3]; 3] = std::array::from_fn(|c| mesh.corner(t, c));
+    let scaled_normal = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+    let two_area_squared = dot(scaled_normal, scaled_normal);
+    // n / 2A = scaled_normal / |scaled_normal|², since |scaled_normal| = 2A.
+    let hat = |c: usize| {
+        scale(
+            cross(scaled_normal, sub(p[(c + 2) % 3], p[(c + 1) % 3])),
+            1.0 / two_area_squared,
+        )
+    };
+    match kind {
+        NodeKind::Vertices => Some(std::array::from_fn(|c| (mesh.faces()[t][c], hat(c)))),
+        NodeKind::Edges => Some(std::array::from_fn(|c| {
+            (mesh.face_edges()[t][c], scale(hat(c), -2.0))
+        })),
+        NodeKind::Faces | NodeKind::FaceFrames => None,
+    }
+}
+
+/// Pointwise divergence and curl of a piecewise constant field (one 3D tangent vector `v_t` per
+/// face) on the nodes of a space of kind `kind` with lumped masses `mass`:
+/// `div_i = −(1/m_i) Σ_t A_t ⟨∇ψ_i, v_t⟩` and `curl_i = (1/m_i) Σ_t A_t ⟨∇ψ_i, n_t × v_t⟩`
+/// (`n` entries each). Panics for kinds without [`basis_gradients`].
+pub fn explicit_divergence_and_curl(
+    kind: NodeKind,
+    mesh: &SurfaceMesh,
+    mass: &[f64],
+    vectors: &[[f64; 3]],
+) -> (Vec<f64>, Vec<f64>) {
+    let mut divergence = vec![0.0; mass.len()];
+    let mut curl = vec![0.0; mass.len()];
+    for (t, &v) in vectors.iter().enumerate() {
+        let area = mesh.face_area(t);
+        let rotated = cross(mesh.face_normal(t), v);
+        let gradients = basis_gradients(kind, mesh, t)
+            .unwrap_or_else(|| panic!("no explicit basis gradients for {}", kind.name()));
+        for (node, gradient) in gradients {
+            divergence[node] -= area * dot(gradient, v) / mass[node];
+            curl[node] += area * dot(gradient, rotated) / mass[node];
         }
     }
+    (divergence, curl)
 }

@@ -1,102 +1,103 @@
-//! The [`conformance_suite!`](crate::conformance_suite) macro.
+//! The [`conformance_suite!`](crate::conformance_suite) and
+//! [`catalog_suites!`](crate::catalog_suites) macros.
 
-/// Instantiates every conformance check for one discretization: `conformance_suite!(name,
-/// constructor)` with `constructor: Fn(&SurfaceMesh) -> Result<impl HodgeComplex, impl Debug>`.
-/// Expands to a module `name` with one `#[test]` per property.
+/// Instantiates the conformance suite for one discretization: a module `name` with one `#[test]`
+/// per core check of [`crate::suite`] (two of them proptest properties), and a submodule
+/// `reference` with one `#[test]` per named check of [`crate::reference`].
+///
+/// ```text
+/// conformance_suite!(name, constructor);
+/// conformance_suite!(name, constructor, corpus = Corpus::Delaunay);
+/// conformance_suite!(name, constructor, reference = [cotan_formula, rotation]);
+/// conformance_suite!(name, constructor, corpus = ..., reference = [...]);
+/// ```
+///
+/// - `constructor`: `Fn(&SurfaceMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
+///   'static` or a `Box<dyn HodgeComplex>`; evaluated inside the generated module (which
+///   imports `super::*`).
+/// - `corpus`: an expression of type [`crate::corpus::Corpus`], default `Corpus::General`.
+/// - `reference`: names of functions in [`crate::reference`] (an unknown name does not compile).
 #[macro_export]
 macro_rules! conformance_suite {
-    ($name:ident, $constructor:expr) => {
+    (
+        $name:ident,
+        $constructor:expr
+        $(, corpus = $corpus:expr)?
+        $(, reference = [$($check:ident),* $(,)?])?
+        $(,)?
+    ) => {
         mod $name {
             #[allow(unused_imports)]
             use super::*;
-            use $crate::algebra_checks::*;
-            use $crate::decomposition_checks::*;
-            use $crate::reference_formulas::check_cotan_formula;
-            use $crate::spectral_checks::*;
-            use $crate::{build_complex, for_each_mesh};
+
+            /// The suite line's constructor, its complex boxed and its error formatted.
+            fn build_complex(
+                mesh: &$crate::tvf_core::SurfaceMesh,
+            ) -> ::std::result::Result<$crate::tvf_discretizations::BoxedComplex, String> {
+                #[allow(unused_imports)]
+                use $crate::__private::{AlreadyBoxed as _, NeedsBox as _};
+                let constructor = $crate::constructor($constructor);
+                let built = constructor(mesh).map_err(|e| format!("{e:?}"))?;
+                Ok((&$crate::__private::Boxing::new(built)).boxed())
+            }
+
+            fn corpus() -> $crate::corpus::Corpus {
+                $crate::__suite_corpus!($($corpus)?)
+            }
 
             #[test]
-            fn masses_positive_and_field_space_valid() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(true, |m| {
-                    let complex = build_complex(&constructor, m);
-                    check_masses(&complex, m.mesh.total_area());
-                    check_field_space(&complex);
-                });
+            fn nodes_and_masses() {
+                $crate::suite::nodes_and_masses(&build_complex, corpus());
+            }
+
+            #[test]
+            fn d1_d0_is_zero() {
+                $crate::suite::d1_d0_is_zero(&build_complex, corpus());
             }
 
             #[test]
             fn symmetric_operators() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(true, |m| check_symmetric_operators(&build_complex(&constructor, m)));
+                $crate::suite::symmetric_operators(&build_complex, corpus());
             }
 
             #[test]
             fn positive_semidefinite_operators() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(false, |m| {
-                    if m.dense_ok() {
-                        check_psd_operators(&build_complex(&constructor, m));
-                    }
-                });
+                $crate::suite::positive_semidefinite_operators(&build_complex, corpus());
             }
 
             #[test]
-            fn d1_d0_is_zero_and_parts_orthogonal() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(true, |m| {
-                    let complex = build_complex(&constructor, m);
-                    check_d1_d0_zero(&complex);
-                    check_integrable_orthogonal_to_cointegrable(&complex);
-                });
-            }
-
-            #[test]
-            fn stiffness_matches_cotan_and_cr_formulas() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(true, |m| check_cotan_formula(&build_complex(&constructor, m), &m.mesh));
+            fn capabilities() {
+                $crate::suite::capabilities(&build_complex, corpus());
             }
 
             #[test]
             fn hodge_decomposition() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(true, |m| check_hodge_decomposition(&build_complex(&constructor, m), 17));
+                $crate::suite::hodge_decomposition(&build_complex, corpus());
             }
 
             #[test]
             fn kernel_is_2g_dense() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(false, |m| {
-                    if m.dense_ok() {
-                        check_kernel_is_2g_dense(&build_complex(&constructor, m), m.genus);
-                    }
-                });
+                $crate::suite::kernel_is_2g_dense(&build_complex, corpus());
             }
 
             #[test]
             fn kernel_is_2g_by_harmonic_projection() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(true, |m| {
-                    check_kernel_is_2g_sparse(&build_complex(&constructor, m), m.genus, 23)
-                });
+                $crate::suite::kernel_is_2g_by_harmonic_projection(&build_complex, corpus());
             }
 
             #[test]
-            fn spectrum_is_union_of_function_spectra() {
-                let constructor = $crate::constructor($constructor);
-                for_each_mesh(false, |m| {
-                    if m.dense_ok() {
-                        check_spectrum_union(&build_complex(&constructor, m), m.genus);
-                    }
-                });
+            fn spectrum_is_union_of_scalar_spectra() {
+                $crate::suite::spectrum_is_union_of_scalar_spectra(&build_complex, corpus());
             }
 
             #[test]
-            fn unit_sphere_spectrum() {
-                let constructor = $crate::constructor($constructor);
-                let sphere = $crate::tvf_core::generate::icosphere(2);
-                let complex = constructor(&sphere).expect("icosphere(2) builds");
-                check_sphere_spectrum(&complex);
+            fn lemma1_eigenfields() {
+                $crate::suite::lemma1_eigenfields(&build_complex, corpus());
+            }
+
+            #[test]
+            fn basis_is_orthonormal() {
+                $crate::suite::basis_is_orthonormal(&build_complex, corpus());
             }
 
             $crate::proptest::proptest! {
@@ -108,31 +109,74 @@ macro_rules! conformance_suite {
                     angle in -3.0f64..3.0,
                     translation in $crate::proptest::array::uniform3(-10.0f64..10.0),
                 ) {
-                    let constructor = $crate::constructor($constructor);
-                    for mesh in [
-                        $crate::tvf_core::generate::icosphere(1),
-                        $crate::tvf_core::generate::torus(1.0, 0.4, 12, 6).expect("valid torus"),
-                    ] {
-                        let moved = $crate::tvf_core::generate::rigid_motion(&mesh, axis, angle, translation)
-                            .expect("finite motion");
-                        let a = constructor(&mesh).expect("builds");
-                        let b = constructor(&moved).expect("builds");
-                        check_rigid_motion_invariance(&a, &b, true);
-                    }
+                    $crate::suite::rigid_motion_invariance(
+                        &build_complex,
+                        corpus(),
+                        axis,
+                        angle,
+                        translation,
+                    );
                 }
 
                 #[test]
-                fn jittered_meshes(seed in 0u64..1_000_000) {
-                    let constructor = $crate::constructor($constructor);
-                    let base = $crate::tvf_core::generate::torus(1.0, 0.4, 12, 6).expect("valid torus");
-                    let mesh = $crate::tvf_core::generate::jitter(&base, 0.2, seed).expect("finite");
-                    let complex = constructor(&mesh).expect("builds");
-                    check_d1_d0_zero(&complex);
-                    check_kernel_is_2g_dense(&complex, 1);
-                    check_hodge_decomposition(&complex, seed);
-                    check_spectrum_union(&complex, 1);
+                fn jittered_mesh(seed in 0u64..1_000_000) {
+                    $crate::suite::jittered_mesh(&build_complex, corpus(), seed);
                 }
             }
+
+            mod reference {
+                $($(
+                    #[test]
+                    fn $check() {
+                        $crate::reference::$check(&super::build_complex, super::corpus());
+                    }
+                )*)?
+            }
+        }
+    };
+}
+
+/// The corpus of a suite line: the given expression, or `Corpus::General`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __suite_corpus {
+    () => {
+        $crate::corpus::Corpus::General
+    };
+    ($corpus:expr) => {
+        $corpus
+    };
+}
+
+/// One [`conformance_suite!`](crate::conformance_suite) per catalog entry, built through
+/// `catalog_entry(id)` on the entry's corpus ([`crate::corpus::Corpus::for_catalog_entry`]: the
+/// Delaunay corpus when it `needs_delaunay`), plus the constant `COVERED_IDS` and a test
+/// `every_catalog_entry_has_a_suite_line` that fails unless the lines cover the catalog exactly.
+///
+/// ```text
+/// catalog_suites! {
+///     conforming_barycentric => "conforming-barycentric", reference = [cotan_formula, rotation];
+///     dec_barycentric => "dec-barycentric";
+/// }
+/// ```
+#[macro_export]
+macro_rules! catalog_suites {
+    ($($name:ident => $id:literal $(, reference = [$($check:ident),* $(,)?])?;)*) => {
+        $(
+            $crate::conformance_suite!(
+                $name,
+                |mesh| $crate::build_catalog_entry($id, mesh),
+                corpus = $crate::corpus::Corpus::for_catalog_entry($id)
+                $(, reference = [$($check),*])?
+            );
+        )*
+
+        /// The catalog ids that have a suite line above.
+        pub const COVERED_IDS: &[&str] = &[$($id),*];
+
+        #[test]
+        fn every_catalog_entry_has_a_suite_line() {
+            $crate::assert_catalog_covered(COVERED_IDS);
         }
     };
 }

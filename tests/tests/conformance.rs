@@ -1,17 +1,26 @@
-//! The conformance suite, one line per discretization: both Hodge complexes, both lumpings.
+//! The conformance suite, one line per catalog entry (a missing line fails
+//! `every_catalog_entry_has_a_suite_line`), and the seam's documented wrapper complex.
 
-use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
+use tvf_discretizations::{Conforming, MassLumping};
+use tvf_tests::scaled_co_potentials::ScaledCoPotentials;
 
-tvf_tests::conformance_suite!(conforming_barycentric, |mesh| {
-    Conforming::new(mesh, MassLumping::Barycentric)
-});
-tvf_tests::conformance_suite!(conforming_voronoi, |mesh| Conforming::new(
-    mesh,
-    MassLumping::Voronoi
-));
-tvf_tests::conformance_suite!(nonconforming_barycentric, |mesh| {
-    Nonconforming::new(mesh, MassLumping::Barycentric)
-});
-tvf_tests::conformance_suite!(nonconforming_voronoi, |mesh| {
-    Nonconforming::new(mesh, MassLumping::Voronoi)
-});
+tvf_tests::catalog_suites! {
+    conforming_barycentric => "conforming-barycentric",
+        reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
+    conforming_voronoi => "conforming-voronoi",
+        reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
+    nonconforming_barycentric => "nonconforming-barycentric",
+        reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
+    nonconforming_voronoi => "nonconforming-voronoi",
+        reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
+    dec_barycentric => "dec-barycentric",
+        reference = [cotan_formula, co_potential_masses, sphere_spectrum];
+    dec_circumcentric => "dec-circumcentric",
+        reference = [cotan_formula, co_potential_masses, sphere_spectrum];
+}
+
+tvf_tests::conformance_suite!(
+    scaled_co_potentials,
+    |mesh| ScaledCoPotentials::new(Conforming::new(mesh, MassLumping::Barycentric)?, 2.0),
+    reference = [cotan_formula, face_fields],
+);

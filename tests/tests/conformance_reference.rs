@@ -1,12 +1,13 @@
 //! Cross-discretization facts of `shared/docs/MATH.md` that the per-discretization suite cannot
-//! state alone: the published icosphere eigenvalues, and the nonconforming Hodge–Laplacian having
-//! the spectrum of the conforming one.
+//! state alone: the published icosphere eigenvalues, the nonconforming Hodge–Laplacian having
+//! the spectrum of the conforming one, and the wrapper complex's spectrum following its `M2`.
 
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::generate::{genus_surface, icosphere, torus};
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_tests::dense::{generalized_eigenvalues, split_zeros};
-use tvf_tests::spectral_checks::check_same_spectrum;
+use tvf_tests::scaled_co_potentials::ScaledCoPotentials;
+use tvf_tests::spectral_checks::{check_same_spectrum, hodge_spectrum};
 
 /// MATH.md: on the 320-face icosphere (barycentric lumping) the lowest three nonzero P1
 /// eigenvalues are ≈ 2.000 and the lowest three Crouzeix–Raviart ones ≈ 2.046 (verified there
@@ -26,17 +27,13 @@ fn icosphere_320_lowest_eigenvalues_match_math_md() {
         &generalized_eigenvalues(&co_exact.stiffness, &co_exact.mass),
         1e-9,
     );
-    eprintln!("P1 lowest {:?}, CR lowest {:?}", &p1[..4], &cr[..4]);
     for &lambda in &p1[..3] {
         assert!((lambda - 2.000).abs() < 5e-4, "P1: {:?}", &p1[..3]);
     }
     for &lambda in &cr[..3] {
         assert!((lambda - 2.046).abs() < 5e-4, "CR: {:?}", &cr[..3]);
     }
-    let (zeros, l) = split_zeros(
-        &generalized_eigenvalues(&complex.dirichlet_energy(), complex.m1()),
-        1e-9,
-    );
+    let (zeros, l) = split_zeros(&hodge_spectrum(&complex), 1e-9);
     assert_eq!(zeros, 0);
     let mut six: Vec<f64> = p1[..3].iter().chain(&cr[..3]).copied().collect();
     six.sort_by(f64::total_cmp);
@@ -59,5 +56,56 @@ fn nonconforming_spectrum_equals_conforming_spectrum() {
             let b = Nonconforming::new(&mesh, lumping).expect("builds");
             check_same_spectrum(&a, &b);
         }
+    }
+}
+
+/// Scaling `M2⁻¹` by 2 halves the co-exact eigenvalues, leaves the exact ones, and the spectrum
+/// of the wrapper's own `L` is the union of the inner P1 spectrum and the halved CR spectrum (a
+/// wrapper that forwarded its inner complex's operator cache would keep the inner `L`).
+#[test]
+fn scaled_co_potentials_spectrum_follows_its_own_m2() {
+    for (mesh, genus) in [
+        (icosphere(2), 0),
+        (torus(1.0, 0.4, 16, 8).expect("valid torus"), 1),
+    ] {
+        let inner = Conforming::new(&mesh, MassLumping::Barycentric).expect("builds");
+        let nonzero = |problem: tvf_core::discretization::Eigenproblem| {
+            split_zeros(
+                &generalized_eigenvalues(&problem.stiffness, &problem.mass),
+                1e-9,
+            )
+            .1
+        };
+        let p1 = nonzero(inner.exact_eigenproblem());
+        let cr = nonzero(inner.co_exact_eigenproblem());
+        let inner_spectrum = hodge_spectrum(&inner);
+        let scaled = ScaledCoPotentials::new(inner, 2.0).expect("positive masses");
+        assert_eq!(nonzero(scaled.exact_eigenproblem()), p1);
+        let scaled_cr = nonzero(scaled.co_exact_eigenproblem());
+        let max = cr.last().copied().unwrap_or(0.0);
+        for (k, (a, b)) in scaled_cr.iter().zip(&cr).enumerate() {
+            assert!(
+                (a - b / 2.0).abs() <= 1e-9 * max,
+                "co-exact eigenvalue {k}: {a} vs {b}/2"
+            );
+        }
+        let (zeros, l) = split_zeros(&hodge_spectrum(&scaled), 1e-9);
+        assert_eq!(zeros, 2 * genus);
+        let mut union: Vec<f64> = p1.iter().chain(&scaled_cr).copied().collect();
+        union.sort_by(f64::total_cmp);
+        assert_eq!(l.len(), union.len());
+        let max = l.last().copied().unwrap_or(0.0);
+        for (k, (a, b)) in l.iter().zip(&union).enumerate() {
+            assert!(
+                (a - b).abs() <= 1e-9 * max,
+                "eigenvalue {k} of L: {a}, union {b}"
+            );
+        }
+        let lowest_inner = inner_spectrum[2 * genus];
+        assert!(
+            l[0] < 0.75 * lowest_inner,
+            "the halved CR eigenvalues must show in L: {} vs inner {lowest_inner}",
+            l[0]
+        );
     }
 }

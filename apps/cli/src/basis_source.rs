@@ -22,13 +22,13 @@
 //! keys mean bit-identical bases). A cached basis is reused and stderr says so; a damaged or
 //! mismatching cache file is recomputed with a warning.
 
+use crate::discretization_flags::{build_discretization, Discretization, DiscretizationFlags};
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use crate::discretization_flags::{build_discretization, Discretization, DiscretizationFlags};
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_spectral::{
@@ -130,21 +130,18 @@ impl BasisOptions {
         }
         let discretization = self.discretization.build(mesh, &input.label())?;
         let size_name = match size {
-            BasisSize::Fields(k) if k >= discretization.field_dimension() => {
-                "complete".to_string()
-            }
+            BasisSize::Fields(k) if k >= discretization.field_dimension() => "complete".to_string(),
             BasisSize::Fields(k) => format!("d{k}"),
             BasisSize::Pairs(p) => format!("p{p}"),
         };
-        let key = BasisFileKey {
-            discretization: discretization.id().to_string(),
-            mesh_fingerprint: fingerprint,
-            face_count: mesh.face_count(),
-        };
+        let key = BasisFileKey::new(mesh, discretization.as_ref());
         let cache_file = if self.no_cache {
             None
         } else {
-            let name = format!("{fingerprint:016x}-{}-{size_name}.tvfb", discretization.id());
+            let name = format!(
+                "{fingerprint:016x}-{}-{size_name}.tvfb",
+                discretization.id()
+            );
             Some(self.cache_folder(input).join(name))
         };
         if let Some(file) = cache_file.as_ref().filter(|f| f.exists()) {
@@ -242,11 +239,7 @@ impl BasisOptions {
         let start = Instant::now();
         let id = self.file_discretization(path)?;
         let discretization = build_discretization(&id, mesh, &path.display().to_string())?;
-        let key = BasisFileKey {
-            discretization: discretization.id().to_string(),
-            mesh_fingerprint: fingerprint,
-            face_count: mesh.face_count(),
-        };
+        let key = BasisFileKey::new(mesh, discretization.as_ref());
         let basis = load_basis(path, &key)?;
         note(format!(
             "using basis {} ({} fields, {}, loaded in {:.2} s)",

@@ -4,7 +4,7 @@
 use anyhow::{Context, Result};
 use clap::Args;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{catalog_entry, BoxedComplex, DEFAULT_DISCRETIZATION};
+use tvf_discretizations::{catalog, catalog_entry, BoxedComplex, DEFAULT_DISCRETIZATION};
 
 /// A discretization chosen at run time from the catalog.
 pub type Discretization = BoxedComplex;
@@ -14,15 +14,15 @@ pub type Discretization = BoxedComplex;
 pub struct DiscretizationFlags {
     /// Discretization: an id of the catalog (`tvf discretizations` lists them)
     /// [default: conforming-barycentric, or the basis file's].
-    #[arg(long, value_name = "ID")]
+    #[arg(long, value_name = "ID", value_parser = catalog_id)]
     pub discretization: Option<String>,
     /// Shorthand for --discretization NAME-MASS: the decomposition part of the id
     /// (conforming, nonconforming, dec).
-    #[arg(long, value_name = "NAME", conflicts_with = "discretization")]
+    #[arg(long, value_name = "NAME", conflicts_with = "discretization", value_parser = decomposition_part)]
     pub decomposition: Option<String>,
     /// Shorthand for --discretization DECOMPOSITION-NAME: the mass part of the id (barycentric,
     /// voronoi; circumcentric for dec).
-    #[arg(long, value_name = "NAME", conflicts_with = "discretization")]
+    #[arg(long, value_name = "NAME", conflicts_with = "discretization", value_parser = mass_part)]
     pub mass: Option<String>,
 }
 
@@ -52,6 +52,40 @@ impl DiscretizationFlags {
     /// Builds the chosen complex on `mesh`; `label` names the mesh in errors.
     pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
         build_discretization(&self.id(), mesh, label)
+    }
+}
+
+/// Accepts an id of the catalog (a usage error lists them otherwise).
+fn catalog_id(value: &str) -> Result<String, String> {
+    catalog_entry(value)
+        .map(|entry| entry.id.to_string())
+        .map_err(|e| e.to_string())
+}
+
+/// The catalog ids split at their last `-`: (decomposition, mass).
+fn id_parts() -> impl Iterator<Item = (&'static str, &'static str)> {
+    catalog()
+        .iter()
+        .filter_map(|entry| entry.id.rsplit_once('-'))
+}
+
+/// Accepts the first part of some catalog id (`conforming`, `nonconforming`, `dec`).
+fn decomposition_part(value: &str) -> Result<String, String> {
+    one_of(value, id_parts().map(|(d, _)| d).collect())
+}
+
+/// Accepts the last part of some catalog id (`barycentric`, `voronoi`, `circumcentric`).
+fn mass_part(value: &str) -> Result<String, String> {
+    one_of(value, id_parts().map(|(_, m)| m).collect())
+}
+
+fn one_of(value: &str, mut known: Vec<&str>) -> Result<String, String> {
+    known.sort_unstable();
+    known.dedup();
+    if known.contains(&value) {
+        Ok(value.to_string())
+    } else {
+        Err(format!("'{value}' is not one of: {}", known.join(", ")))
     }
 }
 

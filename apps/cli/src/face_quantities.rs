@@ -15,7 +15,9 @@
 
 use clap::ValueEnum;
 use tvf_core::discretization::sparse::mul_vec;
-use tvf_core::discretization::{DiscretizationError, HodgeComplex, HodgeOperators, PointEvaluation};
+use tvf_core::discretization::{
+    DiscretizationError, HodgeComplex, HodgeOperators, PointEvaluation,
+};
 use tvf_core::geometry::norm;
 
 /// Which per-face scalar colours the surface.
@@ -71,10 +73,7 @@ fn at_centroids(
                 Space::Potentials => evaluation.potential_weights(t, [1.0 / 3.0; 3]),
                 Space::CoPotentials => evaluation.co_potential_weights(t, [1.0 / 3.0; 3]),
             };
-            weights
-                .iter()
-                .map(|&(i, w)| w * nodal[i])
-                .sum()
+            weights.iter().map(|&(i, w)| w * nodal[i]).sum()
         })
         .collect()
 }
@@ -140,73 +139,98 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
-        use tvf_core::generate::torus;
-    use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
+    use tvf_core::generate::{icosphere, torus};
+    use tvf_core::SurfaceMesh;
+    use tvf_discretizations::{catalog_entry, BoxedComplex};
 
     fn random_field(n: usize) -> Vec<f64> {
         let mut rng = ChaCha8Rng::seed_from_u64(4);
         (0..n).map(|_| rng.random_range(-1.0..1.0)).collect()
     }
 
-    fn check_energy<H: HodgeComplex + ?Sized>(complex: &H, mesh: &tvf_core::SurfaceMesh) {
+    fn build(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
+        (catalog_entry(id).unwrap().build)(mesh).unwrap()
+    }
+
+    fn check_energy(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {
         let field = random_field(complex.field_dimension());
-        let density = energy_density(complex, &field, mesh.face_count());
+        let density = energy_density(complex, &field, mesh.face_count()).unwrap();
         let integrated: f64 = density
             .iter()
             .enumerate()
             .map(|(t, r)| r * mesh.face_area(t))
             .sum();
-        let s = complex.dirichlet_energy();
         let exact: f64 = field
             .iter()
-            .zip(mul_vec(&s, &field))
+            .zip(mul_vec(complex.dirichlet_energy(), &field))
             .map(|(a, b)| a * b)
             .sum();
         assert!(
             (integrated - exact).abs() <= 1e-9 * exact,
             "{}: Σ A ρ = {integrated}, xᵀSx = {exact}",
-            complex.id().to_string()
+            complex.id()
         );
     }
 
     #[test]
     fn energy_density_integrates_to_the_dirichlet_energy() {
-        let mesh = torus(1.0, 0.4, 16, 8).unwrap();
-        check_energy(
-            &Conforming::new(&mesh, MassLumping::Barycentric).unwrap(),
-            &mesh,
-        );
-        check_energy(
-            &Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap(),
-            &mesh,
-        );
+        let torus = torus(1.0, 0.4, 16, 8).unwrap();
+        for id in ["conforming-barycentric", "nonconforming-barycentric"] {
+            check_energy(build(id, &torus).as_ref(), &torus);
+        }
+        // DEC needs a Delaunay mesh (the quad-grid torus has ⋆1 = 0 on its diagonals).
+        let sphere = icosphere(2);
+        check_energy(build("dec-barycentric", &sphere).as_ref(), &sphere);
     }
 
-    #[test]
-    fn gradients_have_no_curl_and_co_gradients_no_divergence() {
-        let mesh = torus(1.0, 0.4, 16, 8).unwrap();
-        let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
-        let potential: Vec<f64> = mesh.positions().iter().map(|p| p[0] * p[2]).collect();
+    fn check_gradients(complex: &dyn HodgeComplex) {
+        let sampling = complex.require_sampling().unwrap();
+        let potential: Vec<f64> = complex
+            .potential_nodes()
+            .positions
+            .iter()
+            .map(|p| p[0] * p[2])
+            .collect();
         let gradient = complex.gradient_field(&potential);
-        let vectors = complex.require_sampling()?.to_face_vectors(&gradient).unwrap();
-        let curl = face_scalar(&complex, ColorBy::Curl, &gradient, &vectors).unwrap();
-        let div = face_scalar(&complex, ColorBy::Divergence, &gradient, &vectors).unwrap();
+        let vectors = sampling.to_face_vectors(&gradient).unwrap();
+        let curl = face_scalar(complex, ColorBy::Curl, &gradient, &vectors)
+            .unwrap()
+            .unwrap();
+        let div = face_scalar(complex, ColorBy::Divergence, &gradient, &vectors)
+            .unwrap()
+            .unwrap();
         let largest = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        assert!(largest > 0.1, "the gradient of x·z has divergence");
+        assert!(
+            largest > 0.1,
+            "{}: the gradient of x·z has divergence",
+            complex.id()
+        );
         assert!(curl.iter().all(|c| c.abs() <= 1e-10 * largest));
-        // A co-gradient J G* g has no (conforming) divergence but a curl.
+        // A co-gradient −M1⁻¹ d1ᵀ g has no divergence but a curl.
         let co_potential: Vec<f64> = complex
-            .co_potentials()
-            .node_positions()
+            .co_potential_nodes()
+            .positions
             .iter()
             .map(|p| p[0] * p[2])
             .collect();
         let rotated = complex.co_gradient_field(&co_potential);
-        let vectors = complex.require_sampling()?.to_face_vectors(&rotated).unwrap();
-        let div = face_scalar(&complex, ColorBy::Divergence, &rotated, &vectors).unwrap();
-        let curl = face_scalar(&complex, ColorBy::Curl, &rotated, &vectors).unwrap();
+        let vectors = sampling.to_face_vectors(&rotated).unwrap();
+        let div = face_scalar(complex, ColorBy::Divergence, &rotated, &vectors)
+            .unwrap()
+            .unwrap();
+        let curl = face_scalar(complex, ColorBy::Curl, &rotated, &vectors)
+            .unwrap()
+            .unwrap();
         let largest = curl.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        assert!(largest > 0.1);
+        assert!(largest > 0.1, "{}: the co-gradient has curl", complex.id());
         assert!(div.iter().all(|d| d.abs() <= 1e-10 * largest));
+    }
+
+    #[test]
+    fn gradients_have_no_curl_and_co_gradients_no_divergence() {
+        let torus = torus(1.0, 0.4, 16, 8).unwrap();
+        check_gradients(build("conforming-barycentric", &torus).as_ref());
+        check_gradients(build("nonconforming-voronoi", &torus).as_ref());
+        check_gradients(build("dec-circumcentric", &icosphere(2)).as_ref());
     }
 }

@@ -30,6 +30,8 @@ struct Cli {
 enum Command {
     /// Report a mesh's counts, topology, angles and validation findings.
     Info(commands::info::InfoArgs),
+    /// List the discretizations of the catalog (ids for --discretization).
+    Discretizations(commands::discretizations::DiscretizationsArgs),
     /// Compute the Fourier basis (harmonic fields + K pairs of eigenfields) and save it (.tvfb).
     Basis(commands::basis::BasisArgs),
     /// The lowest K eigenvalues of the Hodge–Laplacian on tangent fields, labelled by family.
@@ -38,7 +40,7 @@ enum Command {
     Decompose(commands::decompose::DecomposeArgs),
     /// Fourier coefficients of a field in a basis file, and the rest field's share.
     Coefficients(commands::coefficients::CoefficientsArgs),
-    /// Write the paper's matrices (G, G*, M, M*, M_X, J, cotan, CR, S, B) as Matrix Market files.
+    /// Write a discretization's matrices (d0, d1, M0, M1, M2, S0, S2, S, B, J) as Matrix Market files.
     Operators(commands::operators::OperatorsArgs),
     /// Filter a field in its spectral basis (low-pass, high-pass, band-pass, cut-off, drawn curves).
     Filter(commands::filter::FilterArgs),
@@ -69,6 +71,7 @@ fn main() {
     progress::set_quiet(cli.quiet);
     let result = match cli.command {
         Command::Info(args) => commands::info::run(args),
+        Command::Discretizations(args) => commands::discretizations::run(args),
         Command::Basis(args) => commands::basis::run(args),
         Command::Spectrum(args) => commands::spectrum::run(args),
         Command::Decompose(args) => commands::decompose::run(args),

@@ -2,9 +2,9 @@
 //! colour scalars, constraint markers, view and size parsing, and panel grids.
 
 use anyhow::{bail, Result};
-use tvf_core::discretization::HodgeOperators;
 use clap::ValueEnum;
 use image::RgbaImage;
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::geometry::{add, scale};
 use tvf_core::SurfaceMesh;
 use tvf_design::{Constraint, Location, Target};

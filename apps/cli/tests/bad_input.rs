@@ -566,8 +566,13 @@ fn bad_constraint_files_name_the_file_the_constraint_and_the_problem() {
 fn the_editor_refuses_bad_input_before_serving() {
     let fx = fixture();
     let m = fx.mesh_file.as_str();
-    let output = tvf(&["edit", m, "--decomposition", "nonconforming", "-k", "10"]);
-    assert_refused(&output, &["conforming decomposition"], "nonconforming");
+    // DEC on the quad-grid torus, which is not Delaunay: refused before serving.
+    let output = tvf(&["edit", m, "--discretization", "dec-barycentric", "-k", "10"]);
+    assert_refused(
+        &output,
+        &["torus.obj", "not Delaunay"],
+        "DEC on a non-Delaunay mesh",
+    );
     let conflict = fx.file(
         "conflict.json",
         r#"{"constraints": [{"id": "a", "kind": "vector", "face": 3, "value": [1, 0, 0]},

@@ -87,6 +87,24 @@ fn usage_errors_exit_with_2() {
         ],
         vec!["spline", "mesh.obj", "-o", "x.npy"],
         vec!["operators", "mesh.obj", "-o", "m", "--mass", "heavy"],
+        vec![
+            "operators",
+            "mesh.obj",
+            "-o",
+            "m",
+            "--discretization",
+            "fem",
+        ],
+        vec![
+            "spectrum",
+            "mesh.obj",
+            "-k",
+            "4",
+            "--discretization",
+            "dec-barycentric",
+            "--mass",
+            "voronoi",
+        ],
         vec!["render", "mesh.obj", "-o", "x.png", "--color", "purple"],
         vec![
             "filter", "mesh.obj", "f.npy", "-o", "x.npy", "--basis", "b.tvfb", "-k", "5",
@@ -273,9 +291,20 @@ fn a_basis_file_must_match_the_requested_discretization() {
     assert_eq!(output.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(
-        stderr.contains("b.tvfb") && stderr.contains("nonconforming decomposition"),
+        stderr.contains("b.tvfb")
+            && stderr.contains("'nonconforming-barycentric'")
+            && stderr.contains("'conforming-barycentric' was asked for"),
         "{stderr}"
     );
+    // The same through --discretization.
+    let output = tvf()
+        .args(["coefficients", &mesh, field.to_str().unwrap(), "--basis"])
+        .arg(&basis)
+        .args(["--discretization", "dec-barycentric"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("'dec-barycentric' was asked for"));
     // Without --decomposition the file's own discretization is used.
     let output = tvf()
         .args(["coefficients", &mesh, field.to_str().unwrap(), "--basis"])

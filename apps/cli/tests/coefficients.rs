@@ -4,7 +4,7 @@
 mod common;
 
 use common::{assert_success, tvf};
-use tvf_core::discretization::FieldSpace;
+use tvf_core::discretization::FieldSampling;
 use tvf_core::generate::{genus_surface, torus};
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_discretizations::FaceFields;
@@ -32,7 +32,7 @@ fn coefficients_of_a_combination_of_basis_fields() {
         .collect();
     let field = basis.reconstruct(&wanted).unwrap();
     let field_path = dir.path().join("field.npy");
-    write_face_vectors(&field_path, &space.to_vectors(&field).unwrap()).unwrap();
+    write_face_vectors(&field_path, &space.to_face_vectors(&field).unwrap()).unwrap();
     let output = tvf()
         .arg("coefficients")
         .arg(&mesh_path)

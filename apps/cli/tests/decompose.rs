@@ -5,7 +5,7 @@ mod common;
 
 use common::assert_success;
 use std::process::Command;
-use tvf_core::discretization::{FieldSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{FieldSampling, HodgeOperators};
 use tvf_core::generate::genus_surface;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_discretizations::{Conforming, MassLumping};
@@ -18,11 +18,11 @@ fn parts_sum_to_the_field_and_are_orthogonal() {
     write_obj(&mesh_path, &genus_surface(2, 4)).unwrap();
     let mesh = load_mesh(&mesh_path).unwrap().mesh;
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    let space = complex.fields();
-    let field: Vec<f64> = (0..space.dimension())
+    let space = complex.face_fields();
+    let field: Vec<f64> = (0..space.field_dimension())
         .map(|i| ((i * 7919) % 1000) as f64 / 500.0 - 1.0)
         .collect();
-    let vectors = space.to_vectors(&field).unwrap();
+    let vectors = space.to_face_vectors(&field).unwrap();
     let field_path = dir.path().join("field.txt");
     write_face_vectors(&field_path, &vectors).unwrap();
     let out = dir.path().join("parts");
@@ -37,7 +37,7 @@ fn parts_sum_to_the_field_and_are_orthogonal() {
     assert_success(&output);
     let read = |name: &str| {
         space
-            .from_vectors(&read_face_vectors(&out.join(format!("{name}.npy"))).unwrap())
+            .from_face_vectors(&read_face_vectors(&out.join(format!("{name}.npy"))).unwrap())
             .unwrap()
             .field
     };

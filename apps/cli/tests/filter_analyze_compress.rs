@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use tvf_core::discretization::FieldSpace;
+use tvf_core::discretization::FieldSampling;
 use tvf_core::generate::torus;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_core::SurfaceMesh;
@@ -100,7 +100,7 @@ fn failed(output: &Output) -> String {
 /// Tangent field (`2F`) of a vector file.
 fn tangent(fields: &FaceFields, path: &Path) -> Vec<f64> {
     fields
-        .from_vectors(&read_face_vectors(path).unwrap())
+        .from_face_vectors(&read_face_vectors(path).unwrap())
         .unwrap()
         .field
 }
@@ -289,8 +289,8 @@ fn compress_a_sequence_from_a_folder_and_from_an_array() {
         };
         assert_eq!(decoded.len(), 4);
         for (k, (original, back)) in frames.iter().zip(&decoded).enumerate() {
-            let a = fields.from_vectors(original).unwrap().field;
-            let b = fields.from_vectors(back).unwrap().field;
+            let a = fields.from_face_vectors(original).unwrap().field;
+            let b = fields.from_face_vectors(back).unwrap().field;
             let error = relative_error(&fields, &a, &b);
             let reported = report["relative_errors"][k].as_f64().unwrap();
             // The f32 array input is read as f32 values: compare with the reported error loosely.

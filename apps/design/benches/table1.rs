@@ -73,11 +73,11 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     let other: Vec<CompiledConstraint> = ConstraintAssembler::new(&complex, &mesh)
         .compile_all(&constraints(&mesh, 2))
         .expect("constraints");
-    let basis = random_basis(complex.m1(), FIELDS);
+    let basis = random_basis(complex.m1().values(), FIELDS);
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega: OMEGA,
-        regularization: default_regularization(&dirichlet, complex.m1()),
+        regularization: default_regularization(&dirichlet, complex.m1().values()),
     };
     let label = format!("{name} ({} faces)", mesh.face_count());
 
@@ -171,7 +171,7 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     for &ordering in orderings {
         let design = FullSoftDesign::from_matrices_with_ordering(
             &dirichlet,
-            complex.m1(),
+            complex.m1().values(),
             options,
             compiled.clone(),
             ordering,
@@ -182,7 +182,7 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
                 b.iter_with_large_drop(|| {
                     FullSoftDesign::from_matrices_with_ordering(
                         &dirichlet,
-                        complex.m1(),
+                        complex.m1().values(),
                         options,
                         compiled.clone(),
                         ordering,
@@ -206,12 +206,18 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     // 100 MB of hand's factor on this VM): `iter_with_large_drop` drops outside the timing.
     group.bench_function("factor (default ordering)", |b| {
         b.iter_with_large_drop(|| {
-            FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone())
-                .unwrap()
+            FullSoftDesign::from_matrices(
+                &dirichlet,
+                complex.m1().values(),
+                options,
+                compiled.clone(),
+            )
+            .unwrap()
         })
     });
     let mut full =
-        FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled.clone()).unwrap();
+        FullSoftDesign::from_matrices(&dirichlet, complex.m1().values(), options, compiled.clone())
+            .unwrap();
     let mut flip = false;
     group.bench_function("refactor (symbolic reused)", |b| {
         b.iter(|| {

@@ -167,8 +167,9 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
         let Location::Face { face, barycentric } = location else {
             return Err(ConstraintError::BadLocation {
                 id: id.to_string(),
-                problem: "a vector constraint needs a \"face\" (the field is sampled at a point of it)"
-                    .into(),
+                problem:
+                    "a vector constraint needs a \"face\" (the field is sampled at a point of it)"
+                        .into(),
             });
         };
         let sampling = self
@@ -209,7 +210,10 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             ("divergence", Space::Potentials) => {
                 (complex.potential_divergence(), complex.potential_nodes())
             }
-            ("divergence", _) => (other(complex.other_divergence())?, complex.co_potential_nodes()),
+            ("divergence", _) => (
+                other(complex.other_divergence())?,
+                complex.co_potential_nodes(),
+            ),
             (_, Space::CoPotentials) => (complex.co_potential_curl(), complex.co_potential_nodes()),
             _ => (other(complex.other_curl())?, complex.potential_nodes()),
         })

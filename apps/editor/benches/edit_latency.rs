@@ -23,6 +23,7 @@ use rayon::prelude::*;
 use serde_json::json;
 use tvf_core::SurfaceMesh;
 use tvf_design::ReducedBasis;
+use tvf_discretizations::DEFAULT_DISCRETIZATION;
 use tvf_editor::{decode_field_frame, Editor, EditorServer, EditorSetup};
 
 const D: usize = 1000;
@@ -83,6 +84,7 @@ fn bench(name: &str, mesh: SurfaceMesh, rounds: usize) {
         basis,
         constraints: None,
         basis_size: None,
+        discretization: DEFAULT_DISCRETIZATION.to_string(),
     })
     .expect("editor");
     let server = EditorServer::start(editor, 0).expect("server");

@@ -5,8 +5,8 @@ use std::sync::Arc;
 
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::catalog_entry;
 use tvf_design::{ConstraintSet, ReducedBasis};
+use tvf_discretizations::catalog_entry;
 
 use crate::edit_op::EditOp;
 use crate::engine::{run_engine, Reply, Request, Snapshot};
@@ -85,7 +85,16 @@ impl Editor {
         let engine_mesh = Arc::clone(&mesh);
         std::thread::Builder::new()
             .name("tvf-editor-engine".into())
-            .spawn(move || run_engine(&engine_mesh, complex.as_ref(), basis, initial, inbox, started))
+            .spawn(move || {
+                run_engine(
+                    &engine_mesh,
+                    complex.as_ref(),
+                    basis,
+                    initial,
+                    inbox,
+                    started,
+                )
+            })
             .map_err(|source| EditorError::Io {
                 what: "starting the editing engine thread".into(),
                 source,

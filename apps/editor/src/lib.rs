@@ -22,7 +22,14 @@
 //! let rows: Vec<f64> = (0..n * d).map(|k| if k / d == k % d { 1.0 } else { 0.0 }).collect();
 //! let eigenvalues: Vec<f64> = (1..=d).map(|i| i as f64).collect();
 //! let basis = ReducedBasis::from_row_major(rows, n, eigenvalues, vec![false; d]).unwrap();
-//! let editor = Editor::start(EditorSetup { mesh, basis, constraints: None, basis_size: None }).unwrap();
+//! let editor = Editor::start(EditorSetup {
+//!     mesh,
+//!     basis,
+//!     constraints: None,
+//!     basis_size: None,
+//!     discretization: tvf_discretizations::DEFAULT_DISCRETIZATION.to_string(),
+//! })
+//! .unwrap();
 //! let op = EditOp::parse(br#"{"op": "add", "constraint":
 //!     {"id": "a", "kind": "vector", "face": 2, "value": [1.0, 0.0, 0.0]}}"#).unwrap();
 //! let frame = decode_field_frame(&editor.edit(op).unwrap()).unwrap();

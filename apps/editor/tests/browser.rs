@@ -13,7 +13,8 @@ mod webdriver;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use common::{icosphere_server, Client};
+use common::{icosphere_server_for, Client};
+use tvf_discretizations::DEFAULT_DISCRETIZATION;
 use webdriver::{find_executable, Browser};
 
 fn screenshot_dir() -> PathBuf {
@@ -32,14 +33,28 @@ fn save(name: &str, png: &[u8]) {
 
 #[test]
 fn editor_page_adds_a_constraint_in_a_headless_browser() {
+    drive_the_editor(DEFAULT_DISCRETIZATION, "editor");
+}
+
+/// The same session on a non-default catalog entry: DEC 1-forms, whose fields the server samples
+/// into face frames for the page.
+#[test]
+fn editor_page_works_with_dec_one_forms() {
+    drive_the_editor("dec-circumcentric", "editor-dec");
+}
+
+/// Loads the page for the catalog entry `id`, adds a vector constraint by dragging, checks the
+/// field and the page, provokes a conflict, adds a source and grows fur; screenshots are named
+/// `{prefix}-*.png`.
+fn drive_the_editor(id: &str, prefix: &str) {
     let (Some(chromium), Some(chromedriver)) =
         (find_executable("chromium"), find_executable("chromedriver"))
     else {
-        println!("SKIPPED editor_page_adds_a_constraint_in_a_headless_browser: chromium or chromedriver not on PATH (run .ci/browser-setup)");
+        println!("SKIPPED the browser test on {id}: chromium or chromedriver not on PATH (run .ci/browser-setup)");
         return;
     };
     let started = Instant::now();
-    let server = icosphere_server();
+    let server = icosphere_server_for(id);
     let client = Client::new(&server);
     let browser =
         Browser::start(&chromedriver, &chromium, 1200, 800).expect("headless chromium session");
@@ -50,7 +65,7 @@ fn editor_page_adds_a_constraint_in_a_headless_browser() {
     assert_eq!(ready, "true", "the page failed to start: {ready}");
     // WebGL2 really renders: the canvas centre is the shaded sphere, not the background.
     let before = browser.screenshot().expect("screenshot");
-    save("editor-1-loaded.png", &before);
+    save(&format!("{prefix}-1-loaded.png"), &before);
     assert_eq!(
         browser
             .script("return document.getElementById('constraint-count').textContent;")
@@ -120,7 +135,7 @@ fn editor_page_adds_a_constraint_in_a_headless_browser() {
         .expect("residual shown as a number");
     assert!(residual < 1e-9, "{residual}");
     let after = browser.screenshot().expect("screenshot");
-    save("editor-2-vector-constraint.png", &after);
+    save(&format!("{prefix}-2-vector-constraint.png"), &after);
     assert_ne!(before, after, "the picture changed");
 
     // A second vector constraint in the same face with another direction conflicts: the page
@@ -154,7 +169,7 @@ fn editor_page_adds_a_constraint_in_a_headless_browser() {
         .expect("the error area shows the conflict");
     assert!(error.as_str().unwrap().contains("conflicting"), "{error}");
     save(
-        "editor-3-conflict-error.png",
+        &format!("{prefix}-3-conflict-error.png"),
         &browser.screenshot().unwrap(),
     );
     assert_eq!(client.check()["constraints"].as_array().unwrap().len(), 1);
@@ -177,8 +192,14 @@ fn editor_page_adds_a_constraint_in_a_headless_browser() {
         .wait_for("return window.__furStrands > 0;", Duration::from_secs(15))
         .expect("fur is drawn");
     assert!(client.check()["max_relative"].as_f64().unwrap() < 1e-9);
-    save("editor-4-fur.png", &browser.screenshot().unwrap());
+    save(
+        &format!("{prefix}-4-fur.png"),
+        &browser.screenshot().unwrap(),
+    );
     drop(browser);
     server.shutdown();
-    println!("browser test took {:.1} s", started.elapsed().as_secs_f64());
+    println!(
+        "browser test on {id} took {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
 }

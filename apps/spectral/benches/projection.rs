@@ -16,7 +16,7 @@ use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::Duration;
-use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use tvf_core::discretization::HodgeComplex;
 use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{FieldFamily, SpectralBasis};
 
@@ -68,7 +68,7 @@ fn projection(c: &mut Criterion) {
     let Some(mesh) = hand_mesh() else { return };
     let complex =
         Conforming::new(&mesh, MassLumping::Barycentric).expect("hand.obj is a valid closed mesh");
-    let mass = complex.fields().mass().to_vec();
+    let mass = complex.m1().values().to_vec();
     let basis = orthonormal_stand_in(&mass);
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let field: Vec<f64> = (0..mass.len())

@@ -9,13 +9,13 @@
 //! | 4 | format version (`u32`, currently 1) |
 //! | 4 | header length `H` in bytes, from the magic to the payload (`u32`) |
 //! | 8 | mesh fingerprint ([`crate::mesh_fingerprint`]) |
-//! | 8 × 6 | faces `F`, field dimension `2F`, fields `d`, harmonic, integrable, co-integrable counts |
+//! | 8 × 6 | faces `F`, field dimension `n1` (`2F` for face fields, `E` for DEC 1-forms), fields `d`, harmonic, integrable, co-integrable counts |
 //! | 4 + L | discretization id: `u32` length, UTF-8 text: the catalog id (e.g. `conforming-barycentric`) |
 //! | 8 | [`Hash64`] of the header bytes before it |
 //! | 8·d | eigenvalues (`f64`), ascending |
 //! | d, zero-padded to a multiple of 8 | families (`0` harmonic, `1` integrable, `2` co-integrable) |
-//! | 8·2F | diagonal of `M_X` |
-//! | 8·2F·d | the fields, column by column (`2F` values each) |
+//! | 8·n1 | diagonal of `M1` |
+//! | 8·n1·d | the fields, column by column (`n1` values each) |
 //! | 8 | [`Hash64`] of the payload (everything between the header and this checksum) |
 //!
 //! The round trip is bit-exact. Saving is atomic; loading streams (no second copy in memory).
@@ -27,7 +27,7 @@ use faer::Mat;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
-use tvf_core::discretization::HodgeComplex;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::SurfaceMesh;
 
 /// The magic bytes of a basis file.
@@ -44,6 +44,8 @@ pub struct BasisFileKey {
     pub mesh_fingerprint: u64,
     /// Faces of the mesh.
     pub face_count: usize,
+    /// Field coefficients `n1` of the discretization on the mesh.
+    pub field_dimension: usize,
 }
 
 impl BasisFileKey {
@@ -53,6 +55,7 @@ impl BasisFileKey {
             discretization: complex.id().to_string(),
             mesh_fingerprint: mesh_fingerprint(mesh),
             face_count: mesh.face_count(),
+            field_dimension: complex.field_dimension(),
         }
     }
 }
@@ -168,12 +171,12 @@ pub fn save_basis(
     key: &BasisFileKey,
 ) -> Result<(), BasisFileError> {
     let n = basis.field_dimension();
-    if n != 2 * key.face_count {
+    if n != key.field_dimension {
         return Err(BasisFileError::Invalid {
             path: path.to_path_buf(),
             reason: format!(
-                "basis fields have {n} rows, the mesh has {} faces",
-                key.face_count
+                "basis fields have {n} rows, the fields of '{}' on this mesh have {}",
+                key.discretization, key.field_dimension
             ),
         });
     }
@@ -252,7 +255,7 @@ fn encode_header(h: &BasisFileHeader) -> Vec<u8> {
     out.extend_from_slice(&h.key.mesh_fingerprint.to_le_bytes());
     for count in [
         h.key.face_count,
-        2 * h.key.face_count,
+        h.key.field_dimension,
         h.field_count,
         h.harmonic_count,
         h.integrable_count,
@@ -345,13 +348,14 @@ fn read_header(
             discretization,
             mesh_fingerprint: u64_at(16),
             face_count: counts[0],
+            field_dimension: counts[1],
         },
         field_count: counts[2],
         harmonic_count: counts[3],
         integrable_count: counts[4],
         cointegrable_count: counts[5],
     };
-    if counts[1] != 2 * counts[0] || counts[3] + counts[4] + counts[5] != counts[2] {
+    if counts[3] + counts[4] + counts[5] != counts[2] {
         return Err(invalid(format!("inconsistent counts {counts:?}")));
     }
     Ok((header, length as u64))
@@ -375,6 +379,7 @@ fn read_basis(
         }
         if key.mesh_fingerprint != header.key.mesh_fingerprint
             || key.face_count != header.key.face_count
+            || key.field_dimension != header.key.field_dimension
         {
             return Err(BasisFileError::WrongMesh {
                 path: path.to_path_buf(),
@@ -385,7 +390,7 @@ fn read_basis(
             });
         }
     }
-    let (n, d) = (2 * header.key.face_count as u64, header.field_count as u64);
+    let (n, d) = (header.key.field_dimension as u64, header.field_count as u64);
     let promised = (|| {
         let fields = n.checked_mul(d)?.checked_mul(8)?;
         header_length

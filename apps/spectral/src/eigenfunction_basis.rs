@@ -92,7 +92,10 @@ impl EigenfunctionBasis {
     }
 
     /// Checks that `complex` has the shapes this basis was computed with.
-    fn check_complex<H: HodgeComplex + ?Sized>(&self, complex: &H) -> Result<(), SpectralBasisError> {
+    fn check_complex<H: HodgeComplex + ?Sized>(
+        &self,
+        complex: &H,
+    ) -> Result<(), SpectralBasisError> {
         check_length(
             "harmonic field rows (2F)",
             complex.field_dimension(),

@@ -3,7 +3,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::{FieldSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{genus_surface, icosphere, torus};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
@@ -18,7 +18,12 @@ fn column(basis: &SpectralBasis, j: usize) -> Vec<f64> {
 }
 
 /// Every field an eigenfield to 1e-8·max(1, λ); `Uᵀ M_X U = I` to 1e-9; harmonic count = 2g.
-fn check_basis<H: HodgeComplex + ?Sized>(complex: &H, basis: &SpectralBasis, genus: usize, what: &str) {
+fn check_basis<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    basis: &SpectralBasis,
+    genus: usize,
+    what: &str,
+) {
     assert_eq!(
         basis.count(FieldFamily::Harmonic),
         2 * genus,

@@ -13,7 +13,12 @@ fn mesh_dir() -> Option<PathBuf> {
     dir.is_dir().then_some(dir)
 }
 
-fn check<H: HodgeComplex + ?Sized>(complex: &H, basis: &SpectralBasis, harmonic: usize, what: &str) {
+fn check<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    basis: &SpectralBasis,
+    harmonic: usize,
+    what: &str,
+) {
     assert_eq!(basis.count(FieldFamily::Harmonic), harmonic, "{what}");
     let u = basis.fields();
     let fields: Vec<Vec<f64>> = (0..basis.len())

@@ -9,7 +9,12 @@ use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily, SpectralBasis};
 
 /// The eigenfields a request for `d` fields must return: the lowest `d` of the complete basis.
-fn check_fields<H: HodgeComplex + ?Sized>(complex: &H, complete: &SpectralBasis, d: usize, what: &str) {
+fn check_fields<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    complete: &SpectralBasis,
+    d: usize,
+    what: &str,
+) {
     let basis = compute_basis(complex, &BasisRequest::fields(d)).unwrap();
     assert_eq!(basis.len(), d, "{what}, d = {d}");
     for (j, (a, b)) in basis

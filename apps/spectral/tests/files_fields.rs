@@ -1,7 +1,7 @@
 //! Field files: `.npy` and text round trips, NumPy compatibility, and every rejection.
 
 use std::path::Path;
-use tvf_core::discretization::FieldSpace;
+use tvf_core::discretization::FieldSampling;
 use tvf_core::generate::icosphere;
 use tvf_discretizations::FaceFields;
 use tvf_spectral::{
@@ -198,7 +198,7 @@ fn tangent_fields_are_projected_and_the_normal_part_reported() {
     let mesh = icosphere(1);
     let space = FaceFields::new(&mesh).unwrap();
     let dir = tempfile::tempdir().unwrap();
-    let field: Vec<f64> = (0..space.dimension())
+    let field: Vec<f64> = (0..space.field_dimension())
         .map(|i| (i as f64 * 0.41).sin())
         .collect();
     let path = dir.path().join("tangent.npy");
@@ -210,7 +210,7 @@ fn tangent_fields_are_projected_and_the_normal_part_reported() {
     assert!(back.max_normal_part() < 1e-14);
     // add 0.5 n_t to every vector: projected away and reported
     let vectors: Vec<[f64; 3]> = space
-        .to_vectors(&field)
+        .to_face_vectors(&field)
         .unwrap()
         .iter()
         .enumerate()

@@ -1,6 +1,6 @@
 //! Sequences: many frames with one basis, in parallel, give the same frames as one at a time.
 
-use tvf_core::discretization::{FieldSpace, HodgeComplex};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::torus;
 use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{
@@ -34,7 +34,12 @@ fn frames<H: HodgeComplex + ?Sized>(
                     ]
                 })
                 .collect();
-            complex.fields().from_vectors(&vectors).unwrap().field
+            complex
+                .require_sampling()
+                .unwrap()
+                .from_face_vectors(&vectors)
+                .unwrap()
+                .field
         })
         .collect()
 }

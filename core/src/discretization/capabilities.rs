@@ -61,6 +61,8 @@ pub trait FieldSampling: Send + Sync {
     /// A field from one 3D vector per face (`F` entries): each vector is projected onto its face
     /// plane and turned into coefficients (each discretization documents how); the dropped normal
     /// components are returned alongside.
+    // Named as the inverse of `to_face_vectors`; it needs `self` for the geometry.
+    #[allow(clippy::wrong_self_convention)]
     fn from_face_vectors(
         &self,
         vectors: &[[f64; 3]],

@@ -32,7 +32,9 @@ pub enum DiscretizationError {
         index: usize,
     },
     /// Entries of a mass that must be positive are not.
-    #[error("{what} must be positive: {count} entries are not (the first, entry {first}, is {value:e})")]
+    #[error(
+        "{what} must be positive: {count} entries are not (the first, entry {first}, is {value:e})"
+    )]
     NotPositive {
         /// Which mass (e.g. "M1").
         what: &'static str,
@@ -43,16 +45,18 @@ pub enum DiscretizationError {
         /// Its value.
         value: f64,
     },
-    /// The diagonal Hodge star on edges (`(cot α + cot β)/2`) is not positive: the mesh is not
-    /// Delaunay.
-    #[error("the mesh is not Delaunay: {count} edges have cot α + cot β ≤ 0 (the first is edge {first}, cot α + cot β = {value:.3e}); the diagonal Hodge star ⋆1 needs a Delaunay mesh")]
+    /// The diagonal Hodge star on edges (`(cot α + cot β)/2`) is not positive (at most a
+    /// round-off tolerance): the mesh is not Delaunay.
+    #[error("the mesh is not Delaunay: {count} edges have cot α + cot β ≤ {tolerance:e} (the first is edge {first}, cot α + cot β = {value:.3e}); the diagonal Hodge star ⋆1 needs a Delaunay mesh")]
     NotDelaunay {
-        /// Number of edges with `cot α + cot β ≤ 0`.
+        /// Number of edges with `cot α + cot β` at most the tolerance.
         count: usize,
         /// The first such edge.
         first: usize,
         /// Its `cot α + cot β`.
         value: f64,
+        /// The tolerance below which `cot α + cot β` counts as not positive.
+        tolerance: f64,
     },
     /// A command needs a capability the discretization does not offer.
     #[error("the discretization '{discretization}' does not offer {capability}")]

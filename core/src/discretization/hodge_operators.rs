@@ -75,15 +75,13 @@ pub trait HodgeOperators: HodgeComplex {
     /// Pointwise divergence on the potential nodes, `−M0⁻¹ d0ᵀ M1` (`n0 × n1`). Its kernel
     /// contains the co-integrable and the harmonic fields.
     fn potential_divergence(&self) -> &CsMat<f64> {
-        self.operator_cache()
-            .potential_divergence
-            .get_or_init(|| {
-                let minus_inverse: Vec<f64> = self.m0().inverse().iter().map(|x| -x).collect();
-                scale_cols(
-                    &scale_rows(&minus_inverse, &transpose(self.d0())),
-                    self.m1().values(),
-                )
-            })
+        self.operator_cache().potential_divergence.get_or_init(|| {
+            let minus_inverse: Vec<f64> = self.m0().inverse().iter().map(|x| -x).collect();
+            scale_cols(
+                &scale_rows(&minus_inverse, &transpose(self.d0())),
+                self.m1().values(),
+            )
+        })
     }
 
     /// Pointwise curl on the co-potential nodes, `M2 d1` (`n2 × n1`). Its kernel contains the
@@ -200,8 +198,12 @@ pub trait HodgeOperators: HodgeComplex {
 
     /// The rotation capability, or [`DiscretizationError::MissingCapability`].
     fn require_rotation(&self) -> Result<&dyn FieldRotation, DiscretizationError> {
-        self.rotation()
-            .ok_or_else(|| missing(self.id(), "a rotation J of fields (the other family of divergence and curl)"))
+        self.rotation().ok_or_else(|| {
+            missing(
+                self.id(),
+                "a rotation J of fields (the other family of divergence and curl)",
+            )
+        })
     }
 
     /// The point-evaluation capability, or [`DiscretizationError::MissingCapability`].

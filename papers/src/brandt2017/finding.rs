@@ -3,8 +3,8 @@
 
 use crate::picture::View;
 use std::path::Path;
+use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::Conforming;
 use tvf_spectral::SpectralBasis;
 
 /// One reproduced result.
@@ -43,16 +43,17 @@ impl Finding {
     }
 }
 
-/// What an experiment on one mesh works with: the mesh, its conforming (barycentric) complex,
+/// What an experiment on one mesh works with: the mesh, its complex (the catalog's default),
 /// the basis computed once for it, where to write and how large to draw.
-#[derive(Debug, Clone, Copy)]
+#[derive(Clone, Copy)]
 pub struct Experiment<'a> {
     /// Mesh name (file stem).
     pub name: &'a str,
     /// The mesh.
     pub mesh: &'a SurfaceMesh,
-    /// Its conforming complex with barycentric lumping (the paper's choice).
-    pub complex: &'a Conforming,
+    /// Its complex: the catalog's default, the paper's conforming decomposition with
+    /// barycentric lumping.
+    pub complex: &'a dyn HodgeComplex,
     /// The basis, computed once per mesh.
     pub basis: &'a SpectralBasis,
     /// Output folder.

@@ -16,7 +16,7 @@ use crate::error::PaperError;
 use crate::markdown::thousands;
 use crate::picture::{save, View};
 use crate::progress::Progress;
-use crate::registry::DISCRETIZATIONS;
+use crate::registry::compared_discretizations;
 use crate::timing::Repetitions;
 use compression::RateCurve;
 use compression_sequence::SequenceSize;
@@ -26,7 +26,7 @@ use std::time::Instant;
 use table1::{PaperTimings, Table1Repetitions, Table1Row};
 use tvf_core::io::load_mesh;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{Conforming, MassLumping};
+use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 use tvf_spectral::{compute_basis, BasisRequest};
 
 /// Constraints of the designed fields of Figure 9 (soft design, seeded).
@@ -252,7 +252,11 @@ pub fn run(config: &Config, progress: &Progress) -> Result<Results, PaperError> 
         results.findings.push(finding);
     }
     let (comparison, _) = progress.step("discretization comparison", || {
-        discretization_comparison::run(DISCRETIZATIONS, &config.sizes.comparison, progress)
+        discretization_comparison::run(
+            compared_discretizations(),
+            &config.sizes.comparison,
+            progress,
+        )
     })?;
     let plot =
         discretization_comparison::plot(&comparison, config.sizes.plot.0, config.sizes.plot.1);
@@ -289,15 +293,18 @@ pub fn run_mesh(
             sizes.pairs, sizes.pairs
         ),
         || {
-            let complex = Conforming::new(mesh, MassLumping::Barycentric)?;
-            let basis = compute_basis(&complex, &BasisRequest::pairs(sizes.pairs).with_seed(1))?;
+            let complex = (catalog_entry(DEFAULT_DISCRETIZATION)?.build)(mesh)?;
+            let basis = compute_basis(
+                complex.as_ref(),
+                &BasisRequest::pairs(sizes.pairs).with_seed(1),
+            )?;
             Ok::<_, PaperError>((complex, basis))
         },
     )?;
     let x = Experiment {
         name,
         mesh,
-        complex: &complex,
+        complex: complex.as_ref(),
         basis: &basis,
         out: &config.out,
         view: View {

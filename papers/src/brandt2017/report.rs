@@ -192,7 +192,7 @@ fn finding_section(f: &Finding) -> String {
 /// The comparison section: table, plot and the orders summarised.
 fn comparison_section(results: &Results) -> String {
     let mut s = String::from(
-        "## Discretization comparison\n\nEvery entry of `papers/src/registry.rs` on icospheres \
+        "## Discretization comparison\n\nEvery entry of the catalog (`discretizations/src/catalog.rs`) on icospheres \
          (vertices on the unit sphere) under refinement: largest relative error of each family's \
          lowest eigenvalues against the unit sphere's `l(l+1)` (multiplicity `2l+1`), the \
          estimated convergence order `log(e_i/e_{i+1}) / log(h_i/h_{i+1})` and the time to \

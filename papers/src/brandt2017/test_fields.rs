@@ -9,11 +9,10 @@ use crate::error::PaperError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::geometry::{dot, norm, sub};
 use tvf_core::SurfaceMesh;
 use tvf_design::{default_regularization, ConstraintAssembler, FullSoftDesign, SoftOptions};
-use tvf_discretizations::Conforming;
 use tvf_render::bounding_box;
 
 /// Centre of the bounding box and its largest half-extent.
@@ -42,7 +41,7 @@ fn thinnest_axis(mesh: &SurfaceMesh) -> usize {
 }
 
 /// Scales `x` to unit RMS magnitude (`‖x‖_{M_X}² / area = 1`); a zero field stays zero.
-fn unit_rms<H: HodgeComplex>(complex: &H, area: f64, x: &mut [f64]) {
+fn unit_rms<H: HodgeComplex + ?Sized>(complex: &H, area: f64, x: &mut [f64]) {
     let rms = (complex.field_inner(x, x) / area).sqrt();
     if rms > 0.0 {
         x.iter_mut().for_each(|v| *v /= rms);
@@ -53,12 +52,13 @@ fn unit_rms<H: HodgeComplex>(complex: &H, area: f64, x: &mut [f64]) {
 /// low-frequency trigonometric functions of the normalised coordinates on the potential and
 /// co-potential nodes, `P(swirl)` the tangential projection of the rotation about the thinnest
 /// axis (mostly harmonic on a torus around that axis).
-pub fn smooth_field<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64> {
+pub fn smooth_field<H: HodgeComplex + ?Sized>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64> {
     let (centre, half) = frame_of(mesh);
     let local = |p: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| (p[k] - centre[k]) / half) };
     let f: Vec<f64> = complex
-        .potentials()
-        .node_positions()
+        .potential_nodes()
+        .positions
+        .clone()
         .into_iter()
         .map(|p| {
             let q = local(p);
@@ -66,8 +66,9 @@ pub fn smooth_field<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64
         })
         .collect();
     let g: Vec<f64> = complex
-        .co_potentials()
-        .node_positions()
+        .co_potential_nodes()
+        .positions
+        .clone()
         .into_iter()
         .map(|p| {
             let q = local(p);
@@ -91,10 +92,10 @@ pub fn smooth_field<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64
         complex.gradient_field(&f),
         complex.co_gradient_field(&g),
         complex
-            .fields()
-            .from_vectors(&swirl)
+            .require_sampling()
+            .and_then(|sampling| sampling.from_face_vectors(&swirl))
             .map(|p| p.field)
-            .unwrap_or_else(|_| vec![0.0; complex.fields().dimension()]),
+            .unwrap_or_else(|_| vec![0.0; complex.field_dimension()]),
     ];
     for part in &mut parts {
         unit_rms(complex, area, part);
@@ -109,7 +110,7 @@ pub fn smooth_field<H: HodgeComplex>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64
 /// [`seeded_constraints`](super::table1::seeded_constraints)) and the biharmonic weight
 /// `omega`, so that it is as smooth as the constraints allow; unit RMS.
 pub fn designed_field(
-    complex: &Conforming,
+    complex: &dyn HodgeComplex,
     mesh: &SurfaceMesh,
     constraints: usize,
     omega: f64,
@@ -123,9 +124,10 @@ pub fn designed_field(
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega,
-        regularization: default_regularization(&dirichlet, complex.m1()),
+        regularization: default_regularization(&dirichlet, complex.m1().values()),
     };
-    let design = FullSoftDesign::from_matrices(&dirichlet, complex.m1(), options, compiled)?;
+    let design =
+        FullSoftDesign::from_matrices(&dirichlet, complex.m1().values(), options, compiled)?;
     let (mut field, _) = design.solve();
     unit_rms(complex, mesh.total_area(), &mut field);
     Ok(field)
@@ -189,7 +191,7 @@ pub fn gaussian_sum(points: &[[f64; 3]], centres: &[([f64; 3], f64)], sigma: f64
 /// Figure 10's field: `count` small vortices (rotated gradients of Gaussian bumps of width a
 /// quarter of the mean spacing, spread by farthest-point sampling, seeded random strengths
 /// `±(0.5..1)`), unit RMS.
-pub fn vortex_field<H: HodgeComplex>(
+pub fn vortex_field<H: HodgeComplex + ?Sized>(
     complex: &H,
     mesh: &SurfaceMesh,
     count: usize,
@@ -206,7 +208,7 @@ pub fn vortex_field<H: HodgeComplex>(
         })
         .collect();
     let g = gaussian_sum(
-        &complex.co_potentials().node_positions(),
+        &complex.co_potential_nodes().positions.clone(),
         &centres,
         0.25 * spacing,
     );
@@ -236,7 +238,7 @@ pub struct MovingFeatures {
 impl MovingFeatures {
     /// `count` sources and `count` vortices at seeded random faces of `mesh`, bumps of width
     /// `width_fraction` times the largest half-extent.
-    pub fn new<H: HodgeComplex>(
+    pub fn new<H: HodgeComplex + ?Sized>(
         complex: &H,
         mesh: &SurfaceMesh,
         count: usize,
@@ -266,10 +268,10 @@ impl MovingFeatures {
             })
             .collect();
         let mut swirl = complex
-            .fields()
-            .from_vectors(&rotation)
+            .require_sampling()
+            .and_then(|sampling| sampling.from_face_vectors(&rotation))
             .map(|p| p.field)
-            .unwrap_or_else(|_| vec![0.0; complex.fields().dimension()]);
+            .unwrap_or_else(|_| vec![0.0; complex.field_dimension()]);
         unit_rms(complex, mesh.total_area(), &mut swirl);
         Self {
             sources,
@@ -277,8 +279,8 @@ impl MovingFeatures {
             sigma: width_fraction * half,
             axis,
             centre,
-            potential_nodes: complex.potentials().node_positions(),
-            co_potential_nodes: complex.co_potentials().node_positions(),
+            potential_nodes: complex.potential_nodes().positions.clone(),
+            co_potential_nodes: complex.co_potential_nodes().positions.clone(),
             swirl,
         }
     }
@@ -295,7 +297,7 @@ impl MovingFeatures {
     }
 
     /// The field at time `t ∈ [0, 1]` (the whole sequence).
-    pub fn frame<H: HodgeComplex>(&self, complex: &H, t: f64) -> Vec<f64> {
+    pub fn frame<H: HodgeComplex + ?Sized>(&self, complex: &H, t: f64) -> Vec<f64> {
         let at = |features: &[([f64; 3], f64, f64)]| -> Vec<([f64; 3], f64)> {
             features
                 .iter()
@@ -317,24 +319,25 @@ impl MovingFeatures {
 mod tests {
     use super::*;
     use tvf_core::generate::torus;
-    use tvf_discretizations::{Conforming, MassLumping};
+    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 
     #[test]
     fn fields_are_seeded_finite_and_unit_rms() {
         let mesh = torus(1.0, 0.4, 24, 12).unwrap();
-        let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+        let boxed = (catalog_entry(DEFAULT_DISCRETIZATION).unwrap().build)(&mesh).unwrap();
+        let complex = boxed.as_ref();
         let area = mesh.total_area();
-        let v = vortex_field(&complex, &mesh, 12, 3);
-        assert_eq!(v, vortex_field(&complex, &mesh, 12, 3));
+        let v = vortex_field(complex, &mesh, 12, 3);
+        assert_eq!(v, vortex_field(complex, &mesh, 12, 3));
         let rms = (complex.field_inner(&v, &v) / area).sqrt();
         assert!((rms - 1.0).abs() < 1e-12);
-        let s = smooth_field(&complex, &mesh);
+        let s = smooth_field(complex, &mesh);
         assert!(s.iter().all(|x| x.is_finite()));
-        let moving = MovingFeatures::new(&complex, &mesh, 3, 0.2, 5);
-        let (a, b) = (moving.frame(&complex, 0.0), moving.frame(&complex, 0.1));
+        let moving = MovingFeatures::new(complex, &mesh, 3, 0.2, 5);
+        let (a, b) = (moving.frame(complex, 0.0), moving.frame(complex, 0.1));
         assert_eq!(a.len(), 2 * mesh.face_count());
         assert!(a.iter().zip(&b).any(|(x, y)| (x - y).abs() > 1e-6));
-        let d = designed_field(&complex, &mesh, 6, 1.0, 2).unwrap();
+        let d = designed_field(complex, &mesh, 6, 1.0, 2).unwrap();
         assert!((complex.field_inner(&d, &d) / area - 1.0).abs() < 1e-9);
         assert_eq!(noise(5, 0.5, 1), noise(5, 0.5, 1));
         assert!(noise(100, 0.5, 2).iter().all(|x| x.abs() <= 0.5));

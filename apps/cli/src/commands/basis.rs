@@ -1,15 +1,13 @@
 //! `tvf basis`: compute the Fourier basis of a mesh (Section 6) and save it as a `.tvfb` file.
 
 use crate::discretization_flags::DiscretizationFlags;
-use tvf_core::discretization::HodgeOperators;
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
-use tvf_spectral::{
-    compute_basis, mesh_fingerprint, save_basis, BasisFileKey, BasisRequest, FieldFamily,
-};
+use tvf_core::discretization::HodgeOperators;
+use tvf_spectral::{compute_basis, save_basis, BasisFileKey, BasisRequest, FieldFamily};
 
 /// Arguments of `tvf basis`.
 #[derive(Args)]
@@ -58,11 +56,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
         compute_basis(discretization.as_ref(), &request)
             .with_context(|| format!("{}: cannot compute the basis", args.input.label()))?
     };
-    let key = BasisFileKey {
-        discretization: discretization.id().to_string(),
-        mesh_fingerprint: mesh_fingerprint(&mesh),
-        face_count: mesh.face_count(),
-    };
+    let key = BasisFileKey::new(&mesh, discretization.as_ref());
     save_basis(&args.output, &basis, &key)?;
     let report = basis.report().cloned().unwrap_or_default();
     progress.finish(format!(

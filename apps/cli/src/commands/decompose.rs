@@ -48,32 +48,46 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
     {
         let c = discretization.as_ref();
         {
-        let parts = HodgeDecomposer::new(c)
-            .and_then(|d| d.decompose(&field))
-            .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
-        let total = c.field_inner(&field, &field);
-        report.set("field_energy", total);
-        for (name, part) in [
-            ("integrable", &parts.integrable),
-            ("cointegrable", &parts.co_integrable),
-            ("harmonic", &parts.harmonic),
-        ] {
-            write_face_vectors(&args.out.join(format!("{name}.npy")), &c.require_sampling()?.to_face_vectors(part)?)?;
-            let energy = c.field_inner(part, part);
-            report.line(format!(
-                "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
-                if total > 0.0 { 100.0 * energy / total } else { 0.0 }
-            ));
-            report.set(&format!("{name}_energy"), energy);
+            let parts = HodgeDecomposer::new(c)
+                .and_then(|d| d.decompose(&field))
+                .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
+            let total = c.field_inner(&field, &field);
+            report.set("field_energy", total);
+            for (name, part) in [
+                ("integrable", &parts.integrable),
+                ("cointegrable", &parts.co_integrable),
+                ("harmonic", &parts.harmonic),
+            ] {
+                write_face_vectors(
+                    &args.out.join(format!("{name}.npy")),
+                    &c.require_sampling()?.to_face_vectors(part)?,
+                )?;
+                let energy = c.field_inner(part, part);
+                report.line(format!(
+                    "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
+                    if total > 0.0 {
+                        100.0 * energy / total
+                    } else {
+                        0.0
+                    }
+                ));
+                report.set(&format!("{name}_energy"), energy);
+            }
+            for (name, values) in [
+                ("potential", &parts.potential),
+                ("co_potential", &parts.co_potential),
+            ] {
+                write_npy(
+                    &args.out.join(format!("{name}.npy")),
+                    &NpyArray {
+                        shape: vec![values.len()],
+                        data: values.clone(),
+                        dtype: NpyDtype::F64,
+                    },
+                )?;
+            }
+            Ok::<(), anyhow::Error>(())
         }
-        for (name, values) in [("potential", &parts.potential), ("co_potential", &parts.co_potential)] {
-            write_npy(
-                &args.out.join(format!("{name}.npy")),
-                &NpyArray { shape: vec![values.len()], data: values.clone(), dtype: NpyDtype::F64 },
-            )?;
-        }
-        Ok::<(), anyhow::Error>(())
-    }
     }?;
     report.line(format!(
         "wrote the parts and potentials to {}",

@@ -2,13 +2,13 @@
 //! with per-face vectors and scalars, or OBJ with the field's streamlines as polylines.
 
 use super::spectral_inputs::read_field;
-use tvf_core::discretization::HodgeOperators;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::face_quantities::{face_scalar, ColorBy};
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
+use tvf_core::discretization::HodgeOperators;
 use tvf_render::{trace_streamlines, write_obj, write_ply, write_vtk, FaceData, StreamlineOptions};
 
 const EXAMPLES: &str = "Examples:
@@ -87,8 +87,7 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
                 ColorBy::Curl,
                 ColorBy::Energy,
             ] {
-                let values =
-                    face_scalar(discretization.as_ref(), kind, &field, &vectors)?;
+                let values = face_scalar(discretization.as_ref(), kind, &field, &vectors)?;
                 data.scalars
                     .extend(values.map(|v| (kind.label().to_string(), v)));
             }

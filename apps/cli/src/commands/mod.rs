@@ -8,6 +8,7 @@ pub mod decompose;
 pub mod decompress;
 pub mod demo;
 pub mod design;
+pub mod discretizations;
 pub mod edit;
 pub mod export;
 pub mod filter;

@@ -1,7 +1,6 @@
 //! `tvf render`: a picture of a mesh and (optionally) a tangent field, in software.
 
 use super::spectral_inputs::read_field;
-use tvf_core::discretization::HodgeOperators;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::face_quantities::ColorBy;
 use crate::mesh_input::{usage_error, MeshInput};
@@ -14,6 +13,7 @@ use clap::error::ErrorKind;
 use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
+use tvf_core::discretization::HodgeOperators;
 use tvf_design::{ConstraintAssembler, ConstraintSet};
 use tvf_discretizations::HodgeDecomposer;
 use tvf_render::save_png;
@@ -113,7 +113,8 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
         set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), path)?;
         // The same checks as for splines: every index in range, values finite (errors name
         // the file and the constraint's id).
-        ConstraintAssembler::new(discretization.as_ref(), &mesh).compile_all(&set.constraints)
+        ConstraintAssembler::new(discretization.as_ref(), &mesh)
+            .compile_all(&set.constraints)
             .with_context(|| format!("{}", path.display()))?;
         markers = constraint_markers(&mesh, &set.constraints, 6.0 * args.size.1 as f64 / 768.0);
         if markers.len() < set.constraints.len() {
@@ -134,8 +135,7 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     };
     let image = match (&field, args.parts) {
         (Some(field), true) => {
-            let parts =
-                HodgeDecomposer::new(discretization.as_ref())?.decompose(field)?;
+            let parts = HodgeDecomposer::new(discretization.as_ref())?.decompose(field)?;
             let panels = [
                 ("field", field.as_slice()),
                 ("integrable (curl-free)", &parts.integrable),

@@ -4,13 +4,13 @@
 //! frames) read as tangent fields.
 
 use crate::basis_source::{BasisOptions, BasisSize};
-use tvf_core::discretization::HodgeOperators;
+use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::SurfaceMesh;
-use crate::discretization_flags::Discretization;
 use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::{
     read_face_vector_sequence, read_tangent_field, write_face_vector_sequence, write_tangent_field,
@@ -92,7 +92,10 @@ pub enum FrameSource {
 
 /// Reads a field or a sequence: a folder of field files (`.npy` or `.txt`, sorted by name), an
 /// `.npy` array `F × 3 × T`, or one field file.
-pub fn read_frames(path: &Path, fields: &dyn FieldSampling) -> Result<(Vec<Vec<f64>>, FrameSource)> {
+pub fn read_frames(
+    path: &Path,
+    fields: &dyn FieldSampling,
+) -> Result<(Vec<Vec<f64>>, FrameSource)> {
     if path.is_dir() {
         let mut files: Vec<PathBuf> = std::fs::read_dir(path)
             .with_context(|| format!("cannot list the frame folder {}", path.display()))?

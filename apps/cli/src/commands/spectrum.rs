@@ -2,13 +2,13 @@
 //! family.
 
 use crate::discretization_flags::DiscretizationFlags;
-use tvf_core::discretization::HodgeOperators;
 use crate::mesh_input::MeshInput;
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde_json::json;
 use std::time::Instant;
+use tvf_core::discretization::HodgeOperators;
 use tvf_spectral::{compute_eigenfunction_basis, BasisRequest};
 
 /// Arguments of `tvf spectrum`.

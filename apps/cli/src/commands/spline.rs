@@ -2,7 +2,6 @@
 //! constraint file, in a loaded or freshly computed eigenbasis.
 
 use crate::basis_source::BasisSource;
-use tvf_core::discretization::HodgeOperators;
 use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
 use crate::report::Report;
@@ -11,6 +10,7 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::HodgeComplex;
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_design::{
     CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, ReducedBasis,

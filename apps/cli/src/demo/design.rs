@@ -86,43 +86,43 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
     let (spline, soft, timings) = {
         let c = cx.discretization.as_ref();
         {
-        let compiled = ConstraintAssembler::new(c, cx.mesh).compile_all(&set)?;
-        let start = Instant::now();
-        let mut session = SplineSession::new(&reduced, omega)?;
-        for constraint in compiled.iter().cloned() {
-            session.add(constraint)?;
+            let compiled = ConstraintAssembler::new(c, cx.mesh).compile_all(&set)?;
+            let start = Instant::now();
+            let mut session = SplineSession::new(&reduced, omega)?;
+            for constraint in compiled.iter().cloned() {
+                session.add(constraint)?;
+            }
+            let v = session.solve();
+            let spline_solve = start.elapsed().as_secs_f64();
+            let mut spline = vec![0.0; reduced.field_dimension()];
+            reduced.map(&v, &mut spline)?;
+            let start = Instant::now();
+            let options = SoftOptions {
+                omega,
+                regularization: default_regularization(c.dirichlet_energy(), c.m1().values()),
+            };
+            let mut design = ReducedSoftDesign::new(&reduced, options)?;
+            design.add_all(compiled.iter().cloned())?;
+            let v = design.solve();
+            let soft_solve = start.elapsed().as_secs_f64();
+            let mut soft = vec![0.0; reduced.field_dimension()];
+            reduced.map(&v, &mut soft)?;
+            let worst = |field: &[f64]| {
+                compiled
+                    .iter()
+                    .map(|k| residual(k, field).relative)
+                    .fold(0.0, f64::max)
+            };
+            section.number(
+                "spline: worst relative constraint residual",
+                format!("{:.2e}", worst(&spline)),
+            );
+            section.number(
+                "soft design: worst relative constraint residual",
+                format!("{:.2e}", worst(&soft)),
+            );
+            (spline, soft, (spline_solve, soft_solve))
         }
-        let v = session.solve();
-        let spline_solve = start.elapsed().as_secs_f64();
-        let mut spline = vec![0.0; reduced.field_dimension()];
-        reduced.map(&v, &mut spline)?;
-        let start = Instant::now();
-        let options = SoftOptions {
-            omega,
-            regularization: default_regularization(c.dirichlet_energy(), c.m1().values()),
-        };
-        let mut design = ReducedSoftDesign::new(&reduced, options)?;
-        design.add_all(compiled.iter().cloned())?;
-        let v = design.solve();
-        let soft_solve = start.elapsed().as_secs_f64();
-        let mut soft = vec![0.0; reduced.field_dimension()];
-        reduced.map(&v, &mut soft)?;
-        let worst = |field: &[f64]| {
-            compiled
-                .iter()
-                .map(|k| residual(k, field).relative)
-                .fold(0.0, f64::max)
-        };
-        section.number(
-            "spline: worst relative constraint residual",
-            format!("{:.2e}", worst(&spline)),
-        );
-        section.number(
-            "soft design: worst relative constraint residual",
-            format!("{:.2e}", worst(&soft)),
-        );
-        (spline, soft, (spline_solve, soft_solve))
-    }
     };
     section.number(
         "setup + solve (reduced, before mapping to faces)",

@@ -22,20 +22,20 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
     let (field, parts, inner) = {
         let c = cx.discretization.as_ref();
         {
-        let field = smooth_field(c, cx.mesh);
-        let parts = HodgeDecomposer::new(c)?.decompose(&field)?;
-        let inner = |a: &[f64], b: &[f64]| c.field_inner(a, b);
-        let products = [
-            inner(&parts.integrable, &parts.integrable),
-            inner(&parts.co_integrable, &parts.co_integrable),
-            inner(&parts.harmonic, &parts.harmonic),
-            inner(&parts.integrable, &parts.co_integrable),
-            inner(&parts.integrable, &parts.harmonic),
-            inner(&parts.co_integrable, &parts.harmonic),
-            inner(&field, &field),
-        ];
-        (field, parts, products)
-    }
+            let field = smooth_field(c, cx.mesh);
+            let parts = HodgeDecomposer::new(c)?.decompose(&field)?;
+            let inner = |a: &[f64], b: &[f64]| c.field_inner(a, b);
+            let products = [
+                inner(&parts.integrable, &parts.integrable),
+                inner(&parts.co_integrable, &parts.co_integrable),
+                inner(&parts.harmonic, &parts.harmonic),
+                inner(&parts.integrable, &parts.co_integrable),
+                inner(&parts.integrable, &parts.harmonic),
+                inner(&parts.co_integrable, &parts.harmonic),
+                inner(&field, &field),
+            ];
+            (field, parts, products)
+        }
     };
     let panels = [
         ("test field", field.as_slice(), ColorBy::Magnitude),

@@ -190,7 +190,10 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
                 config.mesh.genus()
             ),
         ),
-        ("discretization".to_string(), discretization.id().to_string()),
+        (
+            "discretization".to_string(),
+            discretization.id().to_string(),
+        ),
         (
             "basis".to_string(),
             format!(

@@ -104,7 +104,25 @@ pub fn faces_at_screen_points(
         .iter()
         .enumerate()
         .filter(|&(t, _)| dot(mesh.face_normal(t), to_eye) > 0.5)
-        .map(|(t, f)| (t, [dot(std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0), right), dot(std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0), up), dot(std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0), to_eye)]))
+        .map(|(t, f)| {
+            (
+                t,
+                [
+                    dot(
+                        std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0),
+                        right,
+                    ),
+                    dot(
+                        std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0),
+                        up,
+                    ),
+                    dot(
+                        std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0),
+                        to_eye,
+                    ),
+                ],
+            )
+        })
         .collect();
     if facing.is_empty() {
         return Vec::new();

@@ -3,30 +3,40 @@
 
 #![allow(dead_code)] // each test binary uses a different part of this module
 
+use std::collections::HashMap;
 use std::io::Read;
-use std::sync::OnceLock;
+use std::sync::Mutex;
 
 use tvf_core::generate::icosphere;
 use tvf_design::ReducedBasis;
-use tvf_discretizations::{Conforming, MassLumping};
+use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 use tvf_editor::{Editor, EditorServer, EditorSetup};
 use tvf_spectral::{compute_basis, BasisRequest};
 
 /// Faces of `icosphere(3)`.
 pub const FACES: usize = 1280;
 
-/// The 100 lowest eigenfields of `icosphere(3)` (computed once per test binary).
+/// The 100 lowest eigenfields of `icosphere(3)` with the default discretization.
 pub fn icosphere_basis() -> ReducedBasis {
-    static BASIS: OnceLock<ReducedBasis> = OnceLock::new();
-    BASIS
-        .get_or_init(|| {
+    icosphere_basis_for(DEFAULT_DISCRETIZATION)
+}
+
+/// The 100 lowest eigenfields of `icosphere(3)` with the catalog entry `id` (computed once per
+/// test binary and id).
+pub fn icosphere_basis_for(id: &str) -> ReducedBasis {
+    static BASES: Mutex<Option<HashMap<String, ReducedBasis>>> = Mutex::new(None);
+    let mut bases = BASES.lock().unwrap_or_else(|e| e.into_inner());
+    bases
+        .get_or_insert_with(HashMap::new)
+        .entry(id.to_string())
+        .or_insert_with(|| {
             let mesh = icosphere(3);
             let complex =
-                Conforming::new(&mesh, MassLumping::Barycentric).expect("icosphere operators");
+                (catalog_entry(id).expect("catalog id").build)(&mesh).expect("icosphere operators");
             // The complete basis by the dense eigensolvers (exact, about 2 s here), of which the
             // first 100 columns are the 100 lowest eigenfields.
-            let spectral =
-                compute_basis(&complex, &BasisRequest::complete()).expect("icosphere basis");
+            let spectral = compute_basis(complex.as_ref(), &BasisRequest::complete())
+                .expect("icosphere basis");
             let full = ReducedBasis::from_spectral(&spectral).expect("reduced basis");
             let d = 100;
             let n = full.field_dimension();
@@ -44,11 +54,17 @@ pub fn icosphere_basis() -> ReducedBasis {
 
 /// The editor on `icosphere(3)` with the 100 lowest eigenfields, served on 127.0.0.1.
 pub fn icosphere_server() -> EditorServer {
+    icosphere_server_for(DEFAULT_DISCRETIZATION)
+}
+
+/// [`icosphere_server`] with the catalog entry `id`.
+pub fn icosphere_server_for(id: &str) -> EditorServer {
     let editor = Editor::start(EditorSetup {
         mesh: icosphere(3),
-        basis: icosphere_basis(),
+        basis: icosphere_basis_for(id),
         constraints: None,
         basis_size: None,
+        discretization: id.to_string(),
     })
     .expect("editor starts");
     EditorServer::start(editor, 0).expect("server starts")

@@ -1,0 +1,51 @@
+//! `tvf discretizations`: the catalog, one entry per line.
+
+use anyhow::Result;
+use clap::Args;
+use serde_json::json;
+use tvf_discretizations::{catalog, DEFAULT_DISCRETIZATION};
+
+/// Arguments of `tvf discretizations`.
+#[derive(Args)]
+#[command(
+    after_help = "Examples:\n  tvf discretizations\n  tvf discretizations --json\n\nEach line begins with the id that --discretization takes, then the description and the \
+preconditions on the mesh. --decomposition NAME --mass MASS is a shorthand for the id NAME-MASS."
+)]
+pub struct DiscretizationsArgs {
+    /// Print JSON to stdout: {"default": ID, "discretizations": [{"id", "description", "preconditions"}, ...]}.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Prints the catalog.
+pub fn run(args: DiscretizationsArgs) -> Result<()> {
+    if args.json {
+        let entries: Vec<_> = catalog()
+            .iter()
+            .map(|e| {
+                json!({
+                    "id": e.id,
+                    "description": e.description,
+                    "preconditions": e.preconditions,
+                })
+            })
+            .collect();
+        println!(
+            "{}",
+            json!({"default": DEFAULT_DISCRETIZATION, "discretizations": entries})
+        );
+        return Ok(());
+    }
+    for entry in catalog() {
+        let default = if entry.id == DEFAULT_DISCRETIZATION {
+            " (default)"
+        } else {
+            ""
+        };
+        println!(
+            "{}{default} — {}. Preconditions: {}.",
+            entry.id, entry.description, entry.preconditions
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,322 @@
+//! Checks of the optional capabilities: sampling and point evaluation (core: whatever a complex
+//! offers must behave), the rotation `J`, face fields and the explicit divergence and curl
+//! (reference: for complexes that opt in).
+
+use crate::corpus::CorpusMesh;
+use crate::decomposition_checks::random_field;
+use crate::reference_formulas::explicit_divergence_and_curl;
+use tvf_core::discretization::sparse::{mul_vec, product, scale_cols, transpose};
+use tvf_core::discretization::{FieldSampling, HodgeComplex, HodgeOperators, NodeKind};
+use tvf_core::geometry::{cross, dot, norm, scale, sub};
+
+/// Barycentric points every sampling check visits: the centroid, near each corner, on an edge.
+pub const SAMPLE_POINTS: [[f64; 3]; 5] = [
+    [1.0 / 3.0; 3],
+    [0.8, 0.1, 0.1],
+    [0.1, 0.7, 0.2],
+    [0.05, 0.15, 0.8],
+    [0.5, 0.5, 0.0],
+];
+
+/// The sampled vector `Σ w_i x_i` at a point.
+pub fn sample(sampling: &dyn FieldSampling, field: &[f64], face: usize, b: [f64; 3]) -> [f64; 3] {
+    let mut v = [0.0; 3];
+    for (i, w) in sampling.sample_weights(face, b) {
+        for k in 0..3 {
+            v[k] += w[k] * field[i];
+        }
+    }
+    v
+}
+
+fn assert_vectors_close(what: &str, a: [f64; 3], b: [f64; 3], tolerance: f64) {
+    let error = norm(sub(a, b));
+    assert!(
+        error <= tolerance,
+        "{what}: {a:?} vs {b:?} (error {error:e})"
+    );
+}
+
+/// Core, if the complex samples fields: dimensions agree with the complex, every frame is
+/// orthonormal, positively oriented (`e1 × e2 = n`) and tangent, the normal is the mesh's, every
+/// sampled vector is tangent, and a constant 3D vector turned into a field by
+/// `from_face_vectors` samples back to its projection onto each face at every point of
+/// [`SAMPLE_POINTS`] (to 1e-12 of its length), with its normal parts reported.
+pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+    let Some(sampling) = complex.sampling() else {
+        return;
+    };
+    let mesh = &mesh.mesh;
+    assert_eq!(sampling.face_count(), mesh.face_count(), "sampling: faces");
+    assert_eq!(
+        sampling.field_dimension(),
+        complex.field_dimension(),
+        "sampling: field dimension"
+    );
+    let constant = [0.3, -1.1, 0.6];
+    let projection = sampling
+        .from_face_vectors(&vec![constant; mesh.face_count()])
+        .expect("one vector per face");
+    assert_eq!(projection.field.len(), complex.field_dimension());
+    let random = random_field(complex, 5);
+    for t in 0..mesh.face_count() {
+        let [e1, e2] = sampling.frame(t);
+        let n = sampling.normal(t);
+        assert_vectors_close(
+            &format!("normal of face {t}"),
+            n,
+            mesh.face_normal(t),
+            1e-12,
+        );
+        for (value, expected) in [
+            (dot(e1, e1), 1.0),
+            (dot(e2, e2), 1.0),
+            (dot(e1, e2), 0.0),
+            (dot(e1, n), 0.0),
+            (dot(e2, n), 0.0),
+            (dot(cross(e1, e2), n), 1.0),
+        ] {
+            assert!(
+                (value - expected).abs() < 1e-12,
+                "frame of face {t} not orthonormal, tangent and positive"
+            );
+        }
+        let normal_part = dot(constant, n);
+        assert!(
+            (projection.normal_parts[t] - normal_part).abs() <= 1e-12 * norm(constant),
+            "face {t}: reported normal part {} vs {normal_part}",
+            projection.normal_parts[t]
+        );
+        let tangent = sub(constant, scale(n, normal_part));
+        for b in SAMPLE_POINTS {
+            let v = sample(sampling, &projection.field, t, b);
+            assert_vectors_close(
+                &format!("constant field sampled in face {t} at {b:?}"),
+                v,
+                tangent,
+                1e-12 * norm(constant),
+            );
+            let w = sample(sampling, &random, t, b);
+            assert!(
+                dot(w, n).abs() <= 1e-12 * (1.0 + norm(w)),
+                "sampled vector not tangent in face {t}"
+            );
+        }
+    }
+}
+
+/// Core, if the complex evaluates (co-)potentials at points: weights of both spaces sum to 1 at
+/// every point of [`crate::capability_checks::SAMPLE_POINTS`] and name nodes in range; the
+/// potential weights reproduce a linear function sampled at the potential nodes' positions (to
+/// 1e-12).
+pub fn check_point_evaluation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+    let Some(evaluation) = complex.point_evaluation() else {
+        return;
+    };
+    let mesh = &mesh.mesh;
+    let a = [0.3, -1.2, 0.7];
+    let linear = |p: [f64; 3]| dot(a, p) + 2.5;
+    let values: Vec<f64> = complex
+        .potential_nodes()
+        .positions
+        .iter()
+        .map(|&p| linear(p))
+        .collect();
+    let scale = values.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    for t in 0..mesh.face_count() {
+        for b in SAMPLE_POINTS {
+            for (what, weights, n) in [
+                (
+                    "potential",
+                    evaluation.potential_weights(t, b),
+                    complex.potential_dimension(),
+                ),
+                (
+                    "co-potential",
+                    evaluation.co_potential_weights(t, b),
+                    complex.co_potential_dimension(),
+                ),
+            ] {
+                let total: f64 = weights.iter().map(|&(_, w)| w).sum();
+                assert!(
+                    (total - 1.0).abs() < 1e-14,
+                    "{what} weights in face {t} sum to {total}"
+                );
+                assert!(
+                    weights.iter().all(|&(i, _)| i < n),
+                    "{what}: node out of range"
+                );
+            }
+            let point: [f64; 3] =
+                std::array::from_fn(|k| (0..3).map(|c| b[c] * mesh.corner(t, c)[k]).sum());
+            let value: f64 = evaluation
+                .potential_weights(t, b)
+                .iter()
+                .map(|&(i, w)| w * values[i])
+                .sum();
+            assert!(
+                (value - linear(point)).abs() <= 1e-12 * scale,
+                "potential interpolation in face {t}: {value} vs {}",
+                linear(point)
+            );
+        }
+    }
+}
+
+/// Reference `rotation`: the complex has a rotation `J` with `J² = −I` (exactly) and
+/// `Jᵀ M1 J = M1` (relative 1e-14); with sampling, `J` rotates every sampled vector by +π/2:
+/// `sample(J x) = n × sample(x)` (to 1e-12).
+pub fn check_rotation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+    let j = complex
+        .rotation()
+        .expect("the complex opted into the rotation checks but has no rotation")
+        .rotation();
+    let n = complex.field_dimension();
+    assert_eq!(j.shape(), (n, n), "J shape");
+    let j2 = product(j, j);
+    for (value, (r, c)) in j2.iter() {
+        let expected = if r == c { -1.0 } else { 0.0 };
+        assert!(value == &expected, "J² ≠ −I at ({r},{c}): {value}");
+    }
+    assert_eq!(j2.nnz(), n, "J² has one entry per row");
+    let m1 = complex.m1().values();
+    let jt_m1_j = product(&transpose(j), &scale_cols(j, m1));
+    let max = m1.iter().fold(0.0f64, |m, x| m.max(*x));
+    for (value, (r, c)) in jt_m1_j.iter() {
+        let expected = if r == c { m1[r] } else { 0.0 };
+        assert!(
+            (value - expected).abs() <= 1e-14 * max,
+            "Jᵀ M1 J ≠ M1 at ({r},{c})"
+        );
+    }
+    if let Some(sampling) = complex.sampling() {
+        let x = random_field(complex, 3);
+        let jx = mul_vec(j, &x);
+        for t in 0..mesh.mesh.face_count() {
+            for b in SAMPLE_POINTS {
+                let v = sample(sampling, &x, t, b);
+                let expected = cross(sampling.normal(t), v);
+                assert_vectors_close(
+                    &format!("J in face {t}"),
+                    sample(sampling, &jx, t, b),
+                    expected,
+                    1e-12 * (1.0 + norm(v)),
+                );
+            }
+        }
+    }
+}
+
+/// Reference `face_fields`: the fields are one tangent vector per face (`n1 = 2F`, nodes
+/// [`NodeKind::FaceFrames`]), `M1 = (A_t, A_t)` per face (relative 1e-12, so `Σ M1 = 2·area`),
+/// sampling is constant on each face, and `from_face_vectors ∘ to_face_vectors` is the identity
+/// on fields (to 1e-12), while a vector lifted off the face plane is reported by its normal part.
+pub fn check_face_fields<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+    let mesh = &mesh.mesh;
+    assert_eq!(complex.field_nodes().kind, NodeKind::FaceFrames);
+    assert_eq!(complex.field_dimension(), 2 * mesh.face_count());
+    let m1 = complex.m1().values();
+    for t in 0..mesh.face_count() {
+        let area = mesh.face_area(t);
+        for k in 0..2 {
+            assert!(
+                (m1[2 * t + k] - area).abs() <= 1e-12 * area,
+                "M1 of face {t}: {} vs area {area}",
+                m1[2 * t + k]
+            );
+        }
+    }
+    let sampling = complex
+        .sampling()
+        .expect("face fields are sampled per face");
+    let field = random_field(complex, 9);
+    let vectors = sampling.to_face_vectors(&field).expect("right length");
+    for (t, &v) in vectors.iter().enumerate() {
+        for b in SAMPLE_POINTS {
+            assert_vectors_close(
+                &format!("face field sampled in face {t}"),
+                sample(sampling, &field, t, b),
+                v,
+                1e-12 * (1.0 + norm(v)),
+            );
+        }
+    }
+    let lifted: Vec<[f64; 3]> = vectors
+        .iter()
+        .enumerate()
+        .map(|(t, &v)| {
+            let n = sampling.normal(t);
+            std::array::from_fn(|k| v[k] + 0.25 * n[k])
+        })
+        .collect();
+    let projection = sampling.from_face_vectors(&lifted).expect("right length");
+    for (i, (x, y)) in projection.field.iter().zip(&field).enumerate() {
+        assert!((x - y).abs() < 1e-12, "round trip changed coefficient {i}");
+    }
+    assert!(
+        (projection.max_normal_part() - 0.25).abs() < 1e-12,
+        "normal parts: {}",
+        projection.max_normal_part()
+    );
+}
+
+/// Reference `div_curl_formulas`: for random face fields, the complex's divergence and curl of
+/// both families equal the explicit sums over faces of `A_t ⟨∇ψ_i, v_t⟩` and
+/// `A_t ⟨∇ψ_i, n × v_t⟩` ([`explicit_divergence_and_curl`]) with the potential basis (masses
+/// `M0`: `potential_divergence`, `other_curl`) and the co-potential basis (masses `M2⁻¹`:
+/// `other_divergence`, `co_potential_curl`), relative 1e-10. Needs face fields, a rotation and
+/// P1 or Crouzeix–Raviart spaces.
+pub fn check_div_curl_formulas<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+    let mesh = &mesh.mesh;
+    let sampling = complex
+        .sampling()
+        .expect("div_curl_formulas needs sampling");
+    let other_divergence = complex
+        .other_divergence()
+        .expect("div_curl_formulas needs a rotation");
+    let other_curl = complex
+        .other_curl()
+        .expect("div_curl_formulas needs a rotation");
+    let co_mass = complex.m2().inverse();
+    for seed in [1, 2] {
+        let field = random_field(complex, seed);
+        let vectors = sampling.to_face_vectors(&field).expect("right length");
+        let (p_div, p_curl) = explicit_divergence_and_curl(
+            complex.potential_nodes().kind,
+            mesh,
+            complex.m0().values(),
+            &vectors,
+        );
+        let (q_div, q_curl) = explicit_divergence_and_curl(
+            complex.co_potential_nodes().kind,
+            mesh,
+            &co_mass,
+            &vectors,
+        );
+        for (what, matrix, expected) in [
+            (
+                "potential_divergence",
+                complex.potential_divergence(),
+                &p_div,
+            ),
+            ("other_curl", other_curl, &p_curl),
+            ("other_divergence", other_divergence, &q_div),
+            ("co_potential_curl", complex.co_potential_curl(), &q_curl),
+        ] {
+            assert_vectors_equal(what, &mul_vec(matrix, &field), expected);
+        }
+    }
+}
+
+fn assert_vectors_equal(what: &str, got: &[f64], expected: &[f64]) {
+    assert_eq!(got.len(), expected.len(), "{what}: length");
+    let scale = expected.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let error = got
+        .iter()
+        .zip(expected)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(
+        error <= 1e-10 * scale,
+        "{what} differs from its explicit formula by {error:e} (max {scale:e})"
+    );
+}

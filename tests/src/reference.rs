@@ -1,0 +1,91 @@
+//! Reference checks a complex opts into with `reference = [...]` in
+//! [`crate::conformance_suite!`]: explicit formulas and properties that only some
+//! discretizations have. Each function runs one check on every mesh of a corpus (the shared
+//! meshes included), except [`sphere_spectrum`], which runs on the unit icosphere.
+
+use crate::algebra_checks::max_abs;
+use crate::capability_checks::{check_div_curl_formulas, check_face_fields, check_rotation};
+use crate::corpus::Corpus;
+use crate::reference_formulas::{assert_matrices_close, explicit_stiffness};
+use crate::spectral_checks::check_sphere_spectrum;
+use crate::{build, for_each_mesh, Constructor};
+use tvf_core::discretization::HodgeOperators;
+
+/// Both stiffness matrices equal their explicit formulas by node kind (relative 1e-10): cotan
+/// on vertices (P1, DEC 0-forms), Crouzeix–Raviart on edges, the dual-graph Laplacian on faces
+/// (DEC 2-forms). Panics for a space of face frames.
+pub fn cotan_formula(constructor: Constructor, corpus: Corpus) {
+    for_each_mesh(corpus, true, |mesh| {
+        let complex = build(constructor, mesh);
+        for (which, nodes, stiffness) in [
+            (
+                "potential",
+                complex.potential_nodes(),
+                complex.potential_stiffness(),
+            ),
+            (
+                "co-potential",
+                complex.co_potential_nodes(),
+                complex.co_potential_stiffness(),
+            ),
+        ] {
+            let expected = explicit_stiffness(nodes.kind, &mesh.mesh).unwrap_or_else(|| {
+                panic!(
+                    "{which} space on {}: no explicit stiffness formula",
+                    nodes.kind.name()
+                )
+            });
+            assert!(max_abs(&expected) > 0.0, "empty explicit stiffness");
+            assert_matrices_close(
+                &format!("{which} stiffness vs the {} formula", nodes.kind.name()),
+                stiffness,
+                &expected,
+            );
+        }
+    });
+}
+
+/// `J² = −I`, `Jᵀ M1 J = M1`, `J` rotates sampled vectors by +π/2
+/// ([`check_rotation`]).
+pub fn rotation(constructor: Constructor, corpus: Corpus) {
+    for_each_mesh(corpus, true, |mesh| {
+        check_rotation(build(constructor, mesh).as_ref(), mesh)
+    });
+}
+
+/// Fields are piecewise constant face vectors with `M1 = (A_t, A_t)` ([`check_face_fields`]).
+pub fn face_fields(constructor: Constructor, corpus: Corpus) {
+    for_each_mesh(corpus, true, |mesh| {
+        check_face_fields(build(constructor, mesh).as_ref(), mesh)
+    });
+}
+
+/// Divergence and curl of both families equal their explicit formulas
+/// ([`check_div_curl_formulas`]).
+pub fn div_curl_formulas(constructor: Constructor, corpus: Corpus) {
+    for_each_mesh(corpus, true, |mesh| {
+        check_div_curl_formulas(build(constructor, mesh).as_ref(), mesh)
+    });
+}
+
+/// The co-potential masses partition the area: `Σ M2⁻¹ = area` (relative 1e-12).
+pub fn co_potential_masses(constructor: Constructor, corpus: Corpus) {
+    for_each_mesh(corpus, true, |mesh| {
+        let complex = build(constructor, mesh);
+        let total: f64 = complex.m2().inverse().iter().sum();
+        let area = mesh.mesh.total_area();
+        assert!(
+            (total - area).abs() <= 1e-12 * area,
+            "Σ M2⁻¹ = {total}, the mesh's area is {area}"
+        );
+    });
+}
+
+/// On the unit icosphere(2) (320 faces; Delaunay, so in every corpus) the lowest six
+/// eigenvalues of `L` are ≈ 2 and the seventh is above 5 ([`check_sphere_spectrum`]): the
+/// complex approximates the smooth Hodge–Laplacian. The corpus is not used.
+pub fn sphere_spectrum(constructor: Constructor, _corpus: Corpus) {
+    let sphere =
+        crate::corpus::CorpusMesh::new("icosphere(2)", tvf_core::generate::icosphere(2), 0);
+    check_sphere_spectrum(build(constructor, &sphere).as_ref());
+}

@@ -1,0 +1,48 @@
+//! The corpora are what they claim: genera agree with the meshes, the Delaunay corpus (and its
+//! jittered property-test meshes) is Delaunay and builds every catalog entry.
+
+use tvf_discretizations::catalog;
+use tvf_tests::corpus::{is_delaunay, staggered_torus, Corpus};
+
+#[test]
+fn genera_and_closedness_match_the_meshes() {
+    for corpus in [Corpus::General, Corpus::Delaunay] {
+        for mesh in corpus.meshes(true).iter().chain(&corpus.motion_meshes()) {
+            assert!(mesh.mesh.is_closed(), "{} is not closed", mesh.name);
+            assert_eq!(mesh.mesh.genus(), mesh.genus, "{}: genus", mesh.name);
+        }
+    }
+}
+
+#[test]
+fn the_delaunay_corpus_is_delaunay_and_builds_every_entry() {
+    let meshes = Corpus::Delaunay.meshes(true);
+    let jittered = (0..4).map(|seed| Corpus::Delaunay.jittered_mesh(seed * 7919));
+    for mesh in meshes.into_iter().chain(jittered) {
+        assert!(is_delaunay(&mesh.mesh), "{} is not Delaunay", mesh.name);
+        for entry in catalog() {
+            let complex = (entry.build)(&mesh.mesh)
+                .unwrap_or_else(|e| panic!("{} on {}: {e}", entry.id, mesh.name));
+            assert_eq!(complex.id(), entry.id);
+        }
+    }
+}
+
+#[test]
+fn the_general_corpus_has_non_delaunay_meshes() {
+    let refused = Corpus::General
+        .meshes(false)
+        .iter()
+        .filter(|m| !is_delaunay(&m.mesh))
+        .count();
+    assert!(refused >= 5, "only {refused} non-Delaunay meshes");
+}
+
+#[test]
+fn the_staggered_torus_has_acute_triangles_only() {
+    let mesh = staggered_torus(1.0, 0.4, 24, 10);
+    assert_eq!(mesh.genus(), 1);
+    assert!(mesh.signed_volume() > 0.0, "normals point inwards");
+    let (_, max_angle) = mesh.angle_range_deg();
+    assert!(max_angle < 90.0, "largest angle {max_angle}°");
+}
