@@ -77,7 +77,7 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega: OMEGA,
-        regularization: default_regularization(&dirichlet, complex.m1().values()),
+        regularization: default_regularization(dirichlet, complex.m1().values()),
     };
     let label = format!("{name} ({} faces)", mesh.face_count());
 
@@ -170,7 +170,7 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     };
     for &ordering in orderings {
         let design = FullSoftDesign::from_matrices_with_ordering(
-            &dirichlet,
+            dirichlet,
             complex.m1().values(),
             options,
             compiled.clone(),
@@ -181,7 +181,7 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
             group.bench_function("factor (amd)", |b| {
                 b.iter_with_large_drop(|| {
                     FullSoftDesign::from_matrices_with_ordering(
-                        &dirichlet,
+                        dirichlet,
                         complex.m1().values(),
                         options,
                         compiled.clone(),
@@ -207,7 +207,7 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
     group.bench_function("factor (default ordering)", |b| {
         b.iter_with_large_drop(|| {
             FullSoftDesign::from_matrices(
-                &dirichlet,
+                dirichlet,
                 complex.m1().values(),
                 options,
                 compiled.clone(),
@@ -216,7 +216,7 @@ fn bench_mesh(c: &mut Criterion, name: &str) {
         })
     });
     let mut full =
-        FullSoftDesign::from_matrices(&dirichlet, complex.m1().values(), options, compiled.clone())
+        FullSoftDesign::from_matrices(dirichlet, complex.m1().values(), options, compiled.clone())
             .unwrap();
     let mut flip = false;
     group.bench_function("refactor (symbolic reused)", |b| {

@@ -82,7 +82,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             assembler.compile_all(&common::constraints(&mesh, 2))?;
         let options = SoftOptions {
             omega: OMEGA,
-            regularization: default_regularization(&dirichlet, complex.m1().values()),
+            regularization: default_regularization(dirichlet, complex.m1().values()),
         };
         for &ordering in &orderings {
             let (mut total, mut assembly, mut first, mut numeric, mut solve) =
@@ -94,7 +94,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             for _ in 0..runs {
                 let start = Instant::now();
                 let mut design = FullSoftDesign::from_matrices_with(
-                    &dirichlet,
+                    dirichlet,
                     complex.m1().values(),
                     options,
                     compiled.clone(),

@@ -42,8 +42,7 @@ pub fn reference_spline<H: HodgeComplex + ?Sized>(
         }
     }
     let dirichlet = complex.dirichlet_energy();
-    let energy: CsMat<f64> =
-        linear_combination(1.0, &complex.biharmonic_energy(), omega, &dirichlet);
+    let energy: CsMat<f64> = linear_combination(1.0, complex.biharmonic_energy(), omega, dirichlet);
     let screened: Vec<f64> = complex.m1().values().iter().map(|m| epsilon * m).collect();
     let matrix = linear_combination(1.0, &energy, 1.0, &diagonal(&screened));
     let factor = SparseCholesky::new(&matrix)?;

@@ -103,7 +103,7 @@ impl FullSoftDesign {
         constraints: Vec<CompiledConstraint>,
     ) -> Result<Self, DesignError> {
         Self::from_matrices(
-            &complex.dirichlet_energy(),
+            complex.dirichlet_energy(),
             complex.m1().values(),
             options,
             constraints,

@@ -78,10 +78,10 @@ fn default_ordering_is_used_by_from_matrices() {
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega: 0.1,
-        regularization: default_regularization(&dirichlet, complex.m1().values()),
+        regularization: default_regularization(dirichlet, complex.m1().values()),
     };
     let design =
-        FullSoftDesign::from_matrices(&dirichlet, complex.m1().values(), options, Vec::new())
+        FullSoftDesign::from_matrices(dirichlet, complex.m1().values(), options, Vec::new())
             .expect("full design");
     assert_eq!(design.ordering(), DEFAULT_FULL_ORDERING);
     assert!(design.factor_entries() > 0 && design.factor_flop_count() > 0.0);

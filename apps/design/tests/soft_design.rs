@@ -15,7 +15,7 @@ use tvf_discretizations::{Conforming, MassLumping};
 fn options(complex: &Conforming, omega: f64) -> SoftOptions {
     SoftOptions {
         omega,
-        regularization: default_regularization(&complex.dirichlet_energy(), complex.m1().values()),
+        regularization: default_regularization(complex.dirichlet_energy(), complex.m1().values()),
     }
 }
 

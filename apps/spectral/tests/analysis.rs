@@ -35,7 +35,7 @@ fn family_energies_match_the_hodge_decomposition_with_a_complete_basis() {
         assert!((analysis.energy.cointegrable - exact.cointegrable).abs() < 1e-9 * total);
         assert!((analysis.energy.harmonic - exact.harmonic).abs() < 1e-9 * total);
         assert!(analysis.energy.harmonic > 0.0);
-        let dirichlet: f64 = mul_vec(&s, &field)
+        let dirichlet: f64 = mul_vec(s, &field)
             .iter()
             .zip(&field)
             .map(|(a, b)| a * b)

@@ -146,7 +146,7 @@ pub fn measure(
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega: DEFAULT_OMEGA,
-        regularization: default_regularization(&dirichlet, complex.m1().values()),
+        regularization: default_regularization(dirichlet, complex.m1().values()),
     };
     let (reduced_factor, design) = median_time(fast, || {
         let mut design = ReducedSoftDesign::new(&reduced, options)?;
@@ -158,7 +158,7 @@ pub fn measure(
     drop(reduced);
 
     let (full_factor, full) = median_time(repetitions.full_factor, || {
-        FullSoftDesign::from_matrices(&dirichlet, complex.m1().values(), options, compiled.clone())
+        FullSoftDesign::from_matrices(dirichlet, complex.m1().values(), options, compiled.clone())
     })?;
     let (full_solve, (_, report)) = median_time(fast, || Ok::<_, PaperError>(full.solve()))?;
 

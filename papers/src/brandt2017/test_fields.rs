@@ -124,10 +124,10 @@ pub fn designed_field(
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega,
-        regularization: default_regularization(&dirichlet, complex.m1().values()),
+        regularization: default_regularization(dirichlet, complex.m1().values()),
     };
     let design =
-        FullSoftDesign::from_matrices(&dirichlet, complex.m1().values(), options, compiled)?;
+        FullSoftDesign::from_matrices(dirichlet, complex.m1().values(), options, compiled)?;
     let (mut field, _) = design.solve();
     unit_rms(complex, mesh.total_area(), &mut field);
     Ok(field)

@@ -77,14 +77,14 @@ fn design_with<H: HodgeComplex + ?Sized>(
     let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega: inputs.set.omega,
-        regularization: default_regularization(&dirichlet, complex.m1().values()),
+        regularization: default_regularization(dirichlet, complex.m1().values()),
     };
     let field = if args.full {
         let assembly = start.elapsed();
         let start = Instant::now();
         let ordering = args.ordering.unwrap_or(DEFAULT_FULL_ORDERING);
         let design = FullSoftDesign::from_matrices_with_ordering(
-            &dirichlet,
+            dirichlet,
             complex.m1().values(),
             options,
             constraints.clone(),
