@@ -3,7 +3,8 @@
 use crate::face_geometry::FaceGeometry;
 use sprs::CsMat;
 use tvf_core::discretization::{
-    check_length, DiscretizationError, FieldRotation, FieldSampling, TangentProjection,
+    check_face_vectors, check_length, DiscretizationError, FieldRotation, FieldSampling,
+    TangentProjection,
 };
 use tvf_core::geometry::dot;
 use tvf_core::SurfaceMesh;
@@ -82,16 +83,7 @@ impl FieldSampling for FaceFields {
         &self,
         vectors: &[[f64; 3]],
     ) -> Result<TangentProjection, DiscretizationError> {
-        check_length("per-face vectors", self.face_count(), vectors.len())?;
-        if let Some(index) = vectors
-            .iter()
-            .position(|v| v.iter().any(|x| !x.is_finite()))
-        {
-            return Err(DiscretizationError::NonFinite {
-                what: "per-face vectors",
-                index,
-            });
-        }
+        check_face_vectors(self.face_count(), vectors)?;
         let mut field = Vec::with_capacity(self.field_dimension());
         let mut normal_parts = Vec::with_capacity(self.face_count());
         for (t, &v) in vectors.iter().enumerate() {

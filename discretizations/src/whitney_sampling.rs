@@ -3,7 +3,7 @@
 
 use crate::face_geometry::FaceGeometry;
 use tvf_core::discretization::{
-    check_length, DiscretizationError, FieldSampling, TangentProjection,
+    check_face_vectors, DiscretizationError, FieldSampling, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, scale, sub};
 use tvf_core::SurfaceMesh;
@@ -97,16 +97,7 @@ impl FieldSampling for WhitneySampling {
         &self,
         vectors: &[[f64; 3]],
     ) -> Result<TangentProjection, DiscretizationError> {
-        check_length("per-face vectors", self.face_count(), vectors.len())?;
-        if let Some(index) = vectors
-            .iter()
-            .position(|v| v.iter().any(|x| !x.is_finite()))
-        {
-            return Err(DiscretizationError::NonFinite {
-                what: "per-face vectors",
-                index,
-            });
-        }
+        check_face_vectors(self.face_count(), vectors)?;
         let mut sums = vec![0.0; self.edges.len()];
         let mut counts = vec![0u32; self.edges.len()];
         for (t, &v) in vectors.iter().enumerate() {

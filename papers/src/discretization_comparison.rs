@@ -17,7 +17,7 @@ use tvf_core::generate::icosphere;
 use tvf_core::geometry::{norm, sub};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::CatalogEntry;
-use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
+use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle, PALETTE};
 use tvf_spectral::{BasisRequest, FieldFamily, SpectralBasis};
 
 /// What the comparison runs.
@@ -214,7 +214,8 @@ pub fn markdown(results: &[DiscretizationResult]) -> String {
 /// Log–log plot of both families' errors against `h`, one line per discretization and family.
 pub fn plot(results: &[DiscretizationResult], width: u32, height: u32) -> Plot {
     let mut series = Vec::new();
-    for result in results {
+    for (index, result) in results.iter().enumerate() {
+        let color = PALETTE[index % PALETTE.len()];
         for (family, error) in [
             (
                 "integrable",
@@ -223,11 +224,16 @@ pub fn plot(results: &[DiscretizationResult], width: u32, height: u32) -> Plot {
             ("co-integrable", |l: &LevelResult| l.cointegrable_error),
         ] {
             let points = result.levels.iter().map(|l| (l.h, error(l))).collect();
-            series.push(Series::new(
-                format!("{}: {family}", result.name),
-                points,
-                SeriesStyle::LineAndMarkers,
-            ));
+            // One hue per discretization: the integrable family as a line with markers, the
+            // co-integrable one as markers only.
+            let style = if family == "integrable" {
+                SeriesStyle::LineAndMarkers
+            } else {
+                SeriesStyle::Scatter
+            };
+            let mut line = Series::new(format!("{}: {family}", result.name), points, style);
+            line.color = Some(color);
+            series.push(line);
         }
     }
     // Room above the data for the legend (drawn in the top-right corner).

@@ -65,7 +65,7 @@ pub use error::RenderError;
 pub use export::{save_png, write_atomically, write_obj, write_ply, write_vtk, FaceData};
 pub use fur::{grow_fur, FurOptions};
 pub use lic::LicOptions;
-pub use plot::{Axis, AxisScale, Plot, Series, SeriesStyle};
+pub use plot::{Axis, AxisScale, Plot, Series, SeriesStyle, PALETTE};
 pub use render::render;
 pub use scene::{
     ArrowOptions, FaceScalar, FieldLayer, FieldStyle, Marker, Polyline, RenderOptions, Scene,

@@ -87,7 +87,8 @@ pub struct Plot {
     pub height: u32,
 }
 
-const PALETTE: [[u8; 3]; 8] = [
+/// The colours series get in turn when they name none (sRGB).
+pub const PALETTE: [[u8; 3]; 8] = [
     [31, 119, 180],
     [214, 39, 40],
     [44, 160, 44],

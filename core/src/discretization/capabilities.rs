@@ -104,6 +104,25 @@ pub trait PointEvaluation: Send + Sync {
     fn co_potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)>;
 }
 
+/// Checks the input of [`FieldSampling::from_face_vectors`]: one vector per face (`face_count`
+/// of them), every component finite.
+pub fn check_face_vectors(
+    face_count: usize,
+    vectors: &[[f64; 3]],
+) -> Result<(), DiscretizationError> {
+    check_length("per-face vectors", face_count, vectors.len())?;
+    match vectors
+        .iter()
+        .position(|v| v.iter().any(|x| !x.is_finite()))
+    {
+        Some(index) => Err(DiscretizationError::NonFinite {
+            what: "per-face vectors",
+            index,
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Fails with [`DiscretizationError::DimensionMismatch`] unless `found == expected`.
 pub fn check_length(
     what: &'static str,

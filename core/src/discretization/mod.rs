@@ -93,7 +93,8 @@ mod operator_cache;
 pub mod sparse;
 
 pub use capabilities::{
-    check_length, FieldRotation, FieldSampling, PointEvaluation, TangentProjection,
+    check_face_vectors, check_length, FieldRotation, FieldSampling, PointEvaluation,
+    TangentProjection,
 };
 pub use diagonal_mass::DiagonalMass;
 pub use error::DiscretizationError;

@@ -232,7 +232,11 @@ fn comparison_section(results: &Results) -> String {
         "\nThe paper proves no rate; for P1 and Crouzeix–Raviart Laplace eigenvalues order 2 is \
          the classical one. The conforming and nonconforming complexes share their spectra (the \
          integrable family of one is the co-integrable family of the other, MATH.md), so their \
-         rows agree with the families swapped; only the mass lumping changes the numbers.\n\n",
+         rows agree with the families swapped; only the mass lumping changes the numbers. DEC's \
+         exact eigenproblem is the cotan Laplacian again, so its integrable rows equal the \
+         conforming ones with the same vertex masses; its co-integrable family, \
+         (d1 ⋆1⁻¹ d1ᵀ, ⋆2⁻¹) on faces, is a different discretization from Crouzeix–Raviart and \
+         converges at the same order with its own constant.\n\n",
     );
     s
 }
