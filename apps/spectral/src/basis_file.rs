@@ -245,6 +245,15 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> BasisFileError + '_ {
     }
 }
 
+/// The catalog id a stored discretization name stands for: files written before the catalog
+/// store `decomposition (mass)`, e.g. `conforming (barycentric)` for `conforming-barycentric`.
+fn catalog_id_of(stored: &str) -> String {
+    match stored.strip_suffix(')').and_then(|s| s.split_once(" (")) {
+        Some((decomposition, mass)) => format!("{decomposition}-{mass}"),
+        None => stored.to_string(),
+    }
+}
+
 fn encode_header(h: &BasisFileHeader) -> Vec<u8> {
     let name = h.key.discretization.as_bytes();
     let length = 8 + 4 + 4 + 8 + 6 * 8 + 4 + name.len() + 8;
@@ -340,8 +349,10 @@ fn read_header(
             "header length does not match the discretization id".into(),
         ));
     }
-    let discretization = String::from_utf8(bytes[76..body].to_vec())
-        .map_err(|_| invalid("discretization id is not UTF-8".into()))?;
+    let discretization = catalog_id_of(
+        &String::from_utf8(bytes[76..body].to_vec())
+            .map_err(|_| invalid("discretization id is not UTF-8".into()))?,
+    );
     let header = BasisFileHeader {
         version,
         key: BasisFileKey {
@@ -506,5 +517,23 @@ impl<R: Read> HashingReader<R> {
             .chunks_exact(8)
             .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
             .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_of_files_written_before_the_catalog_read_as_catalog_ids() {
+        assert_eq!(
+            catalog_id_of("conforming (barycentric)"),
+            "conforming-barycentric"
+        );
+        assert_eq!(
+            catalog_id_of("nonconforming (voronoi)"),
+            "nonconforming-voronoi"
+        );
+        assert_eq!(catalog_id_of("dec-circumcentric"), "dec-circumcentric");
     }
 }
