@@ -7,6 +7,7 @@ use super::Context;
 use crate::face_quantities::ColorBy;
 use crate::picture::{draw, grid, Overlays, Style};
 use anyhow::Result;
+use tvf_core::discretization::HodgeOperators;
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
     relative_l2_error, FieldFamily, FrequencyResponse, SpectralAnalysis, SpectralFilter,
@@ -19,13 +20,22 @@ const NOISE_LEVEL: f64 = 0.8;
 pub fn run(cx: &Context, clean: &[f64]) -> Result<Section> {
     let basis = cx.basis;
     let mass = basis.field_mass();
-    let area: f64 = mass.iter().sum::<f64>() / 2.0;
+    let area = cx.discretization.total_area();
     let rms = (basis.inner_product(clean, clean) / area).sqrt();
-    let noisy: Vec<f64> = clean
-        .iter()
-        .zip(noise(clean.len(), NOISE_LEVEL * rms, 17))
-        .map(|(a, b)| a + b)
+    // Uniform noise in each face's frame coordinates, as tangent vectors per face, turned into a
+    // field of the discretization (face fields: exactly those coordinates).
+    let sampling = cx.discretization.require_sampling()?;
+    let per_face = noise(2 * sampling.face_count(), NOISE_LEVEL * rms, 17);
+    let vectors: Vec<[f64; 3]> = per_face
+        .chunks_exact(2)
+        .enumerate()
+        .map(|(t, ab)| {
+            let [e1, e2] = sampling.frame(t);
+            std::array::from_fn(|k| ab[0] * e1[k] + ab[1] * e2[k])
+        })
         .collect();
+    let noise_field = sampling.from_face_vectors(&vectors)?.field;
+    let noisy: Vec<f64> = clean.iter().zip(noise_field).map(|(a, b)| a + b).collect();
     // Gain 1/2 at the eigenvalue a sixth of the way up the basis.
     let reference = basis.eigenvalues()[basis.len() / 6].max(1e-12);
     let t = std::f64::consts::LN_2 / reference;
