@@ -209,6 +209,27 @@ pub enum DesignError {
         /// What it must be.
         expected: &'static str,
     },
+    /// A solved field or a constraint residual is NaN or infinite.
+    #[error("constraint '{id}': {problem}; {cause}")]
+    NotFinite {
+        /// The constraint whose residual is not finite, or the one with the largest values.
+        id: String,
+        /// What is not finite.
+        problem: String,
+        /// The likely cause.
+        cause: String,
+    },
+    /// `omega` is so large that the reduced energy of an eigenfield is not a normal `f64`.
+    #[error(
+        "omega {omega:e} is too large for this basis: the energy of the eigenfield with \
+         eigenvalue {eigenvalue:e} overflows f64 arithmetic"
+    )]
+    OmegaTooLarge {
+        /// The weight given.
+        omega: f64,
+        /// The eigenvalue whose energy is out of range.
+        eigenvalue: f64,
+    },
     /// A dense system that must be positive definite is not (numerically).
     #[error("{0} is not positive definite")]
     NotPositiveDefinite(String),

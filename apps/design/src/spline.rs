@@ -64,7 +64,14 @@ impl<'a> SplineSession<'a> {
             });
         }
         let lambda = basis.regularised_eigenvalues()?;
-        let inverse_energy = lambda.iter().map(|&l| 1.0 / (l * l + omega * l)).collect();
+        let inverse_energy: Vec<f64> = lambda.iter().map(|&l| 1.0 / (l * l + omega * l)).collect();
+        if let Some((&eigenvalue, _)) = lambda
+            .iter()
+            .zip(&inverse_energy)
+            .find(|(_, w)| !w.is_normal())
+        {
+            return Err(DesignError::OmegaTooLarge { omega, eigenvalue });
+        }
         Ok(Self {
             basis,
             inverse_energy,

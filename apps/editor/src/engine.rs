@@ -13,7 +13,8 @@ use std::time::Instant;
 use tvf_core::discretization::{FieldSpace, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet, ReducedBasis, SplineSession,
+    checked_residuals, CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet,
+    ReducedBasis, SplineSession,
 };
 use tvf_discretizations::{Conforming, MassLumping};
 
@@ -306,7 +307,7 @@ fn serve(
                 let _ = reply.send(Ok(set.to_json()));
             }
             Request::Check(reply) => {
-                let _ = reply.send(check(state, &session, basis));
+                let _ = reply.send(check(state, basis));
             }
             Request::FaceVectors(reply) => {
                 let field: Vec<f64> = state.field32.iter().map(|&x| f64::from(x)).collect();
@@ -540,22 +541,20 @@ fn frame(state: &State, basis: &ReducedBasis) -> Vec<u8> {
     encode_field_frame(&json, &state.field32)
 }
 
-fn check(
-    state: &State,
-    session: &SplineSession,
-    basis: &ReducedBasis,
-) -> Result<CheckReport, EditorError> {
+/// The held field mapped in `f64` and checked against every constraint; a NaN or infinite
+/// field or residual is an error naming the constraint.
+fn check(state: &State, basis: &ReducedBasis) -> Result<CheckReport, EditorError> {
     let mut field = vec![0.0; basis.field_dimension()];
     basis.map(&state.coefficients, &mut field)?;
-    let constraints: Vec<CheckedConstraint> = session
-        .residuals(&field)
-        .into_iter()
-        .map(|r| CheckedConstraint {
-            id: r.id,
-            absolute: r.absolute,
-            relative: r.relative,
-        })
-        .collect();
+    let constraints: Vec<CheckedConstraint> =
+        checked_residuals(&field, &state.compiled, state.current.omega)?
+            .into_iter()
+            .map(|r| CheckedConstraint {
+                id: r.id,
+                absolute: r.absolute,
+                relative: r.relative,
+            })
+            .collect();
     let max_relative = constraints.iter().fold(0.0f64, |m, c| m.max(c.relative));
     let largest = field.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let deviation = field

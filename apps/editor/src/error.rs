@@ -84,7 +84,8 @@ pub enum EditorError {
 
 impl EditorError {
     /// The HTTP status code for this error: 400 for malformed input, 404/405 for unknown
-    /// endpoints or ids, 409 for edits the current state refuses, 500 otherwise.
+    /// endpoints or ids, 409 for edits the current state refuses, 422 for a field that is not
+    /// finite, 500 otherwise.
     pub fn status_code(&self) -> u16 {
         match self {
             EditorError::BadRequest { .. }
@@ -95,7 +96,10 @@ impl EditorError {
             EditorError::NotFound { .. } => 404,
             EditorError::MethodNotAllowed { .. } => 405,
             EditorError::Design(DesignError::UnknownId { .. }) => 404,
-            EditorError::Design(DesignError::BadParameter { .. }) => 400,
+            EditorError::Design(
+                DesignError::BadParameter { .. } | DesignError::OmegaTooLarge { .. },
+            ) => 400,
+            EditorError::Design(DesignError::NotFinite { .. }) => 422,
             EditorError::Design(
                 DesignError::Dependent { .. } | DesignError::DuplicateId { .. },
             )

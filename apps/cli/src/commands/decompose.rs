@@ -46,7 +46,8 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
     let mesh = args.input.load()?.mesh;
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
         .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
-    let field = read_field(&field, discretization.fields())?;
+    let field_path = field;
+    let field = read_field(&field_path, discretization.fields())?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("cannot create the folder {}", args.out.display()))?;
     let mut report = Report::new(args.json);
@@ -56,6 +57,13 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
             .and_then(|d| d.decompose(&field))
             .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
         let total = c.field_inner(&field, &field);
+        if !total.is_finite() {
+            anyhow::bail!(
+                "{}: the field's energy ‖·‖² is not finite ({total:e}): its vectors are too large \
+                 for f64 arithmetic",
+                field_path.display()
+            );
+        }
         report.set("field_energy", total);
         for (name, part) in [
             ("integrable", &parts.integrable),

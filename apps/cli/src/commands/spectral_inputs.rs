@@ -67,7 +67,30 @@ pub fn read_field(path: &Path, fields: &FaceFields) -> Result<Vec<f64>> {
             path.display()
         ));
     }
+    check_magnitudes(path, &projection.field)?;
     Ok(projection.field)
+}
+
+/// Largest accepted field coefficient: its square (and a sum of a few of them) stays finite, so
+/// magnitudes and energies of the field can be computed in `f64`.
+pub const MAX_FIELD_COEFFICIENT: f64 = 1e150;
+
+/// Refuses a field whose coefficients are too large to square in `f64` (magnitudes, energies and
+/// everything computed from them would be infinite or NaN); the message names the file.
+fn check_magnitudes(path: &Path, field: &[f64]) -> Result<()> {
+    if let Some((k, x)) = field
+        .iter()
+        .enumerate()
+        .find(|(_, x)| x.is_nan() || x.abs() > MAX_FIELD_COEFFICIENT)
+    {
+        anyhow::bail!(
+            "{}: the vector of face {} has a component of {x:e}: too large for f64 arithmetic \
+             (lengths and energies overflow; components must be at most {MAX_FIELD_COEFFICIENT:e})",
+            path.display(),
+            k / 2
+        );
+    }
+    Ok(())
 }
 
 /// Where a sequence of frames came from (and how decompression writes it back by default).

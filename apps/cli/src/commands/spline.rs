@@ -12,8 +12,8 @@ use std::time::Instant;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, ReducedBasis,
-    SplineSession,
+    checked_residuals, worst_residual, CompiledConstraint, ConstraintAssembler, ConstraintResidual,
+    ConstraintSet, ReducedBasis, SplineSession,
 };
 use tvf_spectral::{mesh_fingerprint, write_tangent_field};
 
@@ -127,6 +127,17 @@ pub fn compile<H: HodgeComplex>(
         .with_context(|| format!("{}", inputs.constraints_path.display()))
 }
 
+/// The residuals of the solved `field`, or an error naming the constraint file and the
+/// constraint when the field or a residual is NaN or infinite.
+pub fn solution_residuals(
+    field: &[f64],
+    constraints: &[CompiledConstraint],
+    inputs: &DesignInputs,
+) -> Result<Vec<ConstraintResidual>> {
+    checked_residuals(field, constraints, inputs.set.omega)
+        .with_context(|| format!("{}", inputs.constraints_path.display()))
+}
+
 /// Reports one line per constraint residual and the worst relative one (JSON: `residuals`
 /// as `[{id, absolute, relative}]` and `worst_relative_residual`).
 pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
@@ -137,7 +148,7 @@ pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
             r.id, r.absolute, r.relative
         ));
     }
-    let worst = residuals.iter().map(|r| r.relative).fold(0.0, f64::max);
+    let worst = worst_residual(residuals).map_or(0.0, |r| r.relative);
     report.line(format!("worst relative residual {worst:.3e}"));
     let list: Vec<_> = residuals
         .iter()
@@ -165,8 +176,9 @@ fn spline_with<H: HodgeComplex>(
     let constraints = compile(complex, inputs)?;
     let basis = reduced_basis(inputs, &args.input, &args.basis, report)?;
     let start = Instant::now();
-    let mut session = SplineSession::new(&basis, inputs.set.omega)?;
-    for c in constraints {
+    let mut session = SplineSession::new(&basis, inputs.set.omega)
+        .with_context(|| format!("{}", inputs.constraints_path.display()))?;
+    for c in constraints.iter().cloned() {
         session
             .add(c)
             .with_context(|| format!("{}", inputs.constraints_path.display()))?;
@@ -197,7 +209,7 @@ fn spline_with<H: HodgeComplex>(
     report.set("setup_ms", setup_ms);
     report.set("solve_ms", solve_ms);
     report.set("map_ms", map_ms);
-    report_residuals(&session.residuals(&field), report);
+    report_residuals(&solution_residuals(&field, &constraints, inputs)?, report);
     write_tangent_field(&args.output, complex.fields(), &field)?;
     report.line(format!("wrote {}", args.output.display()));
     report.set("output", args.output.display().to_string());
