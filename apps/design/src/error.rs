@@ -166,6 +166,20 @@ pub enum DesignError {
         /// `pivot² / diagonal` of the bordered factorization (0 = exactly dependent).
         relative_pivot: f64,
     },
+    /// A constraint the reduced space cannot hold on its own (its rows vanish in it or depend
+    /// on each other there): the basis is too small or misses the constraint's location.
+    #[error(
+        "constraint '{id}' cannot be met in the reduced space of {basis_size} basis fields: \
+         {detail} (use a larger basis); it was not added"
+    )]
+    NotRepresentable {
+        /// The constraint.
+        id: String,
+        /// Number of basis fields.
+        basis_size: usize,
+        /// What happens to its rows.
+        detail: String,
+    },
     /// An id that is already active was added again.
     #[error("constraint id '{id}' is already active")]
     DuplicateId {

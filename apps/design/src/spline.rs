@@ -295,6 +295,21 @@ impl<'a> SplineSession<'a> {
             + constraint.values[row].abs();
         let conflicting =
             (implied - constraint.values[row]).abs() > 1e-8 * scale.max(f64::MIN_POSITIVE);
+        if involved.iter().all(|i| *i == constraint.id) {
+            // Nothing else is involved: the basis cannot hold this constraint on its own.
+            return DesignError::NotRepresentable {
+                id: constraint.id.clone(),
+                basis_size: self.basis.len(),
+                detail: if involved.is_empty() {
+                    "its rows vanish there".to_string()
+                } else {
+                    format!(
+                        "its {} rows are linearly dependent there",
+                        constraint.rows.len()
+                    )
+                },
+            };
+        }
         DesignError::Dependent {
             id: constraint.id.clone(),
             involved,

@@ -226,9 +226,16 @@ fn serve(
         Ok(s) => s,
         Err(e) => return Served::Failed(e, edit),
     };
+    // Going back to the state before a refused basis-size change (no edit waits, and the
+    // engine has started) shows the same field again: it keeps its version.
+    let restoring = edit.is_none() && started.is_none();
+    let version = state.version;
     state.current = target;
     state.compiled = compiled;
     refresh(state, &mut session, &mut mapper, None);
+    if restoring {
+        state.version = version;
+    }
     if let Some(edit) = edit {
         if edit.record {
             push_history(state, edit.previous);

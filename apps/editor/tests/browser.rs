@@ -35,6 +35,11 @@ fn editor_page_adds_a_constraint_in_a_headless_browser() {
     let (Some(chromium), Some(chromedriver)) =
         (find_executable("chromium"), find_executable("chromedriver"))
     else {
+        // In CI (.ci/browser-setup installs them) a missing browser is a failure, not a skip.
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true but chromium or chromedriver is not on PATH (run .ci/browser-setup)"
+        );
         println!("SKIPPED editor_page_adds_a_constraint_in_a_headless_browser: chromium or chromedriver not on PATH (run .ci/browser-setup)");
         return;
     };
