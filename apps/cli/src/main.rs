@@ -7,7 +7,9 @@ mod commands;
 mod demo;
 mod examples;
 mod face_quantities;
+mod interrupt;
 mod mesh_input;
+mod output_rules;
 mod picture;
 mod progress;
 mod report;
@@ -64,6 +66,7 @@ enum Command {
 }
 
 fn main() {
+    interrupt::install();
     let cli = Cli::parse();
     progress::set_quiet(cli.quiet);
     let result = match cli.command {

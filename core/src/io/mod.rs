@@ -1,4 +1,6 @@
-//! Reading and writing triangle meshes: OBJ, OFF and PLY in, OBJ and PLY out.
+//! Reading and writing triangle meshes: OBJ, OFF and PLY in, OBJ and PLY out; and how every tvf
+//! output is written: atomically ([`write_atomically`], [`StagedFolder`] for folders), after
+//! [`check_output`], with interrupted and stale temporaries cleaned up ([`temporaries`]).
 //!
 //! Every reader goes through [`crate::SurfaceMesh::validated`], so a [`LoadedMesh`] is always a
 //! valid oriented manifold mesh, and a [`LoadError`] names the file, the line where one applies,
@@ -17,15 +19,20 @@ mod atomic_write;
 mod error;
 mod obj_reader;
 mod off_reader;
+mod output_path;
 mod ply_header;
 mod ply_reader;
 mod raw_mesh;
+mod staged_folder;
+pub mod temporaries;
 mod text;
 mod writers;
 
-pub use atomic_write::write_atomically;
+pub use atomic_write::{write_atomically, WRITE_FAULT_VARIABLE};
 pub use error::{LoadError, LoadErrorKind};
+pub use output_path::{check_output, OutputPathError};
 pub use raw_mesh::LoadedMesh;
+pub use staged_folder::StagedFolder;
 pub use writers::{save_mesh, write_obj, write_ply, SaveError};
 
 use std::path::Path;

@@ -2,6 +2,7 @@
 
 use crate::basis_source::{Decomposition, Discretization, Mass};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::progress::{note, Progress};
 use crate::with_complex;
 use anyhow::{bail, Context, Result};
@@ -49,6 +50,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
     if args.fields == 0 {
         bail!("-k 0: ask for at least one eigenfield");
     }
+    check_output(&args.output, &args.input, &[])?;
     let mesh = args.input.load()?.mesh;
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
         .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;

@@ -4,6 +4,7 @@
 use super::spectral_inputs::read_field;
 use crate::basis_source::{Decomposition, Discretization, Mass};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
 use crate::with_complex;
 use anyhow::{Context, Result};
@@ -43,15 +44,15 @@ pub struct DecomposeArgs {
 /// Decomposes the field and writes the parts.
 pub fn run(mut args: DecomposeArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
+    check_output(&args.out, &args.input, &[Some(&field)])?;
     let mesh = args.input.load()?.mesh;
     let discretization = Discretization::new(&mesh, args.decomposition, args.mass)
         .with_context(|| format!("{}: cannot build the discretization", args.input.label()))?;
     let field_path = field;
     let field = read_field(&field_path, discretization.fields())?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create the folder {}", args.out.display()))?;
     let mut report = Report::new(args.json);
     report.set("discretization", discretization.name());
+    let staged = stage(&args.out)?;
     with_complex!(&discretization, c => {
         let parts = HodgeDecomposer::new(c)
             .and_then(|d| d.decompose(&field))
@@ -70,7 +71,8 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
             ("cointegrable", &parts.co_integrable),
             ("harmonic", &parts.harmonic),
         ] {
-            write_face_vectors(&args.out.join(format!("{name}.npy")), &c.fields().to_vectors(part)?)?;
+            write_face_vectors(&staged.path().join(format!("{name}.npy")), &c.fields().to_vectors(part)?)
+                .with_context(|| format!("cannot write {}", args.out.join(format!("{name}.npy")).display()))?;
             let energy = c.field_inner(part, part);
             report.line(format!(
                 "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
@@ -80,12 +82,14 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
         }
         for (name, values) in [("potential", &parts.potential), ("co_potential", &parts.co_potential)] {
             write_npy(
-                &args.out.join(format!("{name}.npy")),
+                &staged.path().join(format!("{name}.npy")),
                 &NpyArray { shape: vec![values.len()], data: values.clone(), dtype: NpyDtype::F64 },
-            )?;
+            )
+            .with_context(|| format!("cannot write {}", args.out.join(format!("{name}.npy")).display()))?;
         }
         Ok::<(), anyhow::Error>(())
     })?;
+    commit(staged)?;
     report.line(format!(
         "wrote the parts and potentials to {}",
         args.out.display()

@@ -7,6 +7,7 @@ use super::spline::{
 };
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::report::Report;
 use crate::with_complex;
 use anyhow::{bail, Context, Result};
@@ -62,6 +63,9 @@ pub struct DesignArgs {
 /// Runs `tvf design`.
 pub fn run(args: DesignArgs) -> Result<()> {
     let mut report = Report::new(args.json);
+    let basis_file = args.basis.options.basis.as_deref();
+    let inputs = [Some(args.constraints.as_path()), basis_file];
+    check_output(&args.output, &args.input, &inputs)?;
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
     with_complex!(&discretization, c => design_with(c, &inputs, &args, &mut report))?;

@@ -2,16 +2,17 @@
 
 use crate::basis_source::{Decomposition, Mass};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use sprs::CsMat;
-use std::fs;
 use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use tvf_core::discretization::sparse::diagonal;
 use tvf_core::discretization::{FieldSpace, FunctionSpace, HodgeComplex, HodgeOperators};
+use tvf_core::io::StagedFolder;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 
@@ -36,21 +37,30 @@ pub struct OperatorsArgs {
 
 /// Writes G, Gstar, M, Mstar, MX, J, Sc, Sstar, S, B (Matrix Market) and info.json.
 pub fn run(args: OperatorsArgs) -> Result<()> {
+    check_output(&args.out, &args.input, &[])?;
     let mesh = args.input.load()?.mesh;
     let lumping = args.mass.lumping();
-    fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create output directory {}", args.out.display()))?;
+    let staged = stage(&args.out)?;
     match args.decomposition {
         Decomposition::Conforming => {
             let complex = Conforming::new(&mesh, lumping).context("cannot build the operators")?;
-            write_all(&complex, &mesh, true, &args.out, lumping)
+            write_all(&complex, &mesh, true, &staged, lumping)?;
         }
         Decomposition::Nonconforming => {
             let complex =
                 Nonconforming::new(&mesh, lumping).context("cannot build the operators")?;
-            write_all(&complex, &mesh, false, &args.out, lumping)
+            write_all(&complex, &mesh, false, &staged, lumping)?;
         }
     }
+    let out = staged.target().to_path_buf();
+    commit(staged)?;
+    println!(
+        "wrote 10 matrices and info.json to {} ({} decomposition, {} mass)",
+        out.display(),
+        args.decomposition.name(),
+        lumping.name()
+    );
+    Ok(())
 }
 
 /// Writes every file; `p1_is_potential` says whether the complex's potential space is P1
@@ -59,7 +69,7 @@ fn write_all<H: HodgeComplex>(
     complex: &H,
     mesh: &SurfaceMesh,
     p1_is_potential: bool,
-    out: &Path,
+    out: &StagedFolder,
     lumping: MassLumping,
 ) -> Result<()> {
     let (g, gstar) = (
@@ -89,7 +99,7 @@ fn write_all<H: HodgeComplex>(
         ("B", complex.biharmonic_energy()),
     ];
     for (name, matrix) in &matrices {
-        write_atomically(&out.join(format!("{name}.mtx")), |w| {
+        write_atomically(out, &format!("{name}.mtx"), |w| {
             sprs::io::write_matrix_market_to_bufwrite(w, matrix)
         })?;
     }
@@ -124,25 +134,17 @@ fn write_all<H: HodgeComplex>(
         },
     });
     let text = serde_json::to_string_pretty(&info)? + "\n";
-    write_atomically(&out.join("info.json"), |w| w.write_all(text.as_bytes()))?;
-    println!(
-        "wrote 10 matrices and info.json to {} ({} decomposition, {} mass)",
-        out.display(),
-        if p1_is_potential {
-            "conforming"
-        } else {
-            "nonconforming"
-        },
-        lumping.name()
-    );
+    write_atomically(out, "info.json", |w| w.write_all(text.as_bytes()))?;
     Ok(())
 }
 
-/// Writes `path` atomically ([`tvf_core::io::write_atomically`]); errors name the file.
+/// Writes the file `name` of the staged folder `out` atomically
+/// ([`tvf_core::io::write_atomically`]); errors name the file in the output folder.
 fn write_atomically(
-    path: &Path,
+    out: &StagedFolder,
+    name: &str,
     fill: impl FnOnce(&mut BufWriter<&mut File>) -> std::io::Result<()>,
 ) -> Result<()> {
-    tvf_core::io::write_atomically(path, fill)
-        .with_context(|| format!("cannot write {}", path.display()))
+    tvf_core::io::write_atomically(&out.path().join(name), fill)
+        .with_context(|| format!("cannot write {}", out.target().join(name).display()))
 }

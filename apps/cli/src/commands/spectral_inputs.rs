@@ -5,6 +5,7 @@
 
 use crate::basis_source::{BasisOptions, BasisSize};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{commit, stage};
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::{FieldSpace, HodgeComplex};
@@ -173,11 +174,13 @@ pub fn write_frames(out: &Path, fields: &FaceFields, frames: &[Vec<f64>]) -> Res
     {
         write_face_vector_sequence(out, &vectors, NpyDtype::F64)?;
     } else {
-        std::fs::create_dir_all(out)
-            .with_context(|| format!("cannot create the folder {}", out.display()))?;
+        let staged = stage(out)?;
         for (k, frame) in frames.iter().enumerate() {
-            write_tangent_field(&out.join(format!("frame_{k:05}.npy")), fields, frame)?;
+            let name = format!("frame_{k:05}.npy");
+            write_tangent_field(&staged.path().join(&name), fields, frame)
+                .with_context(|| format!("cannot write {}", out.join(&name).display()))?;
         }
+        commit(staged)?;
     }
     Ok(())
 }
@@ -205,10 +208,4 @@ pub fn exact_hodge_energies(
 fn energies<H: HodgeComplex>(complex: &H, field: &[f64]) -> Result<EnergySplit> {
     let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
     Ok(EnergySplit::of_hodge_parts(&parts, complex.m1()))
-}
-
-/// Creates the output folder `dir` (and its parents).
-pub fn create_output_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("cannot create the folder {}", dir.display()))
 }

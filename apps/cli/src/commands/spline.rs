@@ -3,6 +3,7 @@
 
 use crate::basis_source::{BasisSource, Discretization};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::report::Report;
 use crate::with_complex;
 use anyhow::{Context, Result};
@@ -161,6 +162,9 @@ pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
 /// Runs `tvf spline`.
 pub fn run(args: SplineArgs) -> Result<()> {
     let mut report = Report::new(args.json);
+    let basis_file = args.basis.options.basis.as_deref();
+    let inputs = [Some(args.constraints.as_path()), basis_file];
+    check_output(&args.output, &args.input, &inputs)?;
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
     with_complex!(&discretization, c => spline_with(c, &inputs, &args, &mut report))?;
