@@ -16,7 +16,7 @@ pub enum ConstraintError {
         /// The kind given.
         kind: String,
     },
-    /// A face, vertex or edge index is out of range (or negative).
+    /// A face, vertex or edge index is out of range.
     #[error("constraint '{id}': {what} {index} is out of range (the mesh has {count} of them)")]
     OutOfRange {
         /// Constraint id.
@@ -27,6 +27,16 @@ pub enum ConstraintError {
         index: i64,
         /// How many there are.
         count: usize,
+    },
+    /// A face, vertex or edge index is negative.
+    #[error("constraint '{id}': {what} {index} is negative (indices count from 0)")]
+    NegativeIndex {
+        /// Constraint id.
+        id: String,
+        /// `face`, `vertex` or `edge`.
+        what: &'static str,
+        /// The index given.
+        index: i64,
     },
     /// Barycentric coordinates that are negative, non-finite or do not sum to 1.
     #[error(

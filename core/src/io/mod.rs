@@ -16,6 +16,7 @@
 //! ```
 
 mod atomic_write;
+mod bounded_read;
 mod error;
 mod obj_reader;
 mod off_reader;
@@ -29,6 +30,7 @@ mod text;
 mod writers;
 
 pub use atomic_write::{write_atomically, WRITE_FAULT_VARIABLE};
+pub use bounded_read::{read_at_most, read_exactly_at_most};
 pub use error::{LoadError, LoadErrorKind};
 pub use output_path::{check_output, OutputPathError};
 pub use raw_mesh::LoadedMesh;
