@@ -111,3 +111,36 @@ fn endless_inputs_are_refused_naming_the_file() {
         assert!(started.elapsed() < std::time::Duration::from_secs(30));
     }
 }
+
+#[test]
+fn a_concave_polygon_is_reported_not_silently_folded() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // A square with a notch (reflex corner 4), one polygon, fanned from corner 1; and the same
+    // square convex as two quads.
+    std::fs::write(
+        d.join("notch.obj"),
+        "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 1 0\nv 0 4 0\nf 1 2 3 4 5\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("convex.obj"),
+        "v 0 0 0\nv 4 0 0\nv 4 4 0\nv 0 4 0\nv 2 0 0\nv 2 4 0\nf 1 5 6 4\nf 5 2 3 6\n",
+    )
+    .unwrap();
+    let output = run(d, &["info", "notch.obj", "--json"]);
+    assert_success(&output);
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let warnings = report["warnings"].to_string();
+    assert!(
+        warnings.contains("non-convex polygons") && warnings.contains("line 6"),
+        "{report}"
+    );
+    let output = run(d, &["info", "convex.obj", "--json"]);
+    assert_success(&output);
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert!(
+        !report["warnings"].to_string().contains("non-convex"),
+        "{report}"
+    );
+}

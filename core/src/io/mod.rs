@@ -18,6 +18,7 @@
 mod atomic_write;
 mod bounded_read;
 mod error;
+mod folded_polygons;
 mod obj_reader;
 mod off_reader;
 mod output_path;
