@@ -25,6 +25,7 @@ use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 use std::path::PathBuf;
 use tvf_core::io::{load_mesh, LoadedMesh};
+use tvf_core::mesh::ValidationWarning;
 use tvf_core::SurfaceMesh;
 
 /// A mesh file or a built-in example; exactly one must be given.
@@ -61,6 +62,13 @@ impl MeshInput {
             (Some(path), _) => {
                 let loaded = load_mesh(path)?;
                 check_geometry_range(&loaded.mesh, &self.label())?;
+                // Folded polygons make every result wrong: said by every subcommand, not only
+                // by `tvf info`.
+                for warning in &loaded.report.warnings {
+                    if let ValidationWarning::FoldedPolygons { .. } = warning {
+                        crate::progress::warn(format!("{}: {warning}", self.label()));
+                    }
+                }
                 Ok(loaded)
             }
             (None, Some(name)) => {

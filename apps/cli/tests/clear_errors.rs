@@ -136,6 +136,14 @@ fn a_concave_polygon_is_reported_not_silently_folded() {
         warnings.contains("non-convex polygons") && warnings.contains("line 6"),
         "{report}"
     );
+    // Every subcommand says so, e.g. render.
+    let output = run(d, &["render", "notch.obj", "-o", "notch.png"]);
+    assert_success(&output);
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("warning: notch.obj") && message.contains("non-convex"),
+        "{message}"
+    );
     let output = run(d, &["info", "convex.obj", "--json"]);
     assert_success(&output);
     let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
