@@ -152,3 +152,19 @@ fn a_concave_polygon_is_reported_not_silently_folded() {
         "{report}"
     );
 }
+
+#[cfg(unix)]
+#[test]
+fn an_endless_mesh_stream_is_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    std::os::unix::fs::symlink("/dev/zero", dir.path().join("zero.obj")).unwrap();
+    let started = std::time::Instant::now();
+    let output = run(dir.path(), &["info", "zero.obj"]);
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("zero.obj") && message.contains("larger than"),
+        "{message}"
+    );
+    assert!(started.elapsed() < std::time::Duration::from_secs(60));
+}

@@ -77,13 +77,23 @@ pub fn load_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, LoadError> {
             extension: extension.to_string(),
         })
     })?;
-    let bytes = std::fs::read(path).map_err(|e| {
+    // A regular file is read whole (its size bounds it); a stream (a FIFO, a device) only up
+    // to MAX_STREAMED_MESH_BYTES, so one that never ends is refused.
+    let limit = match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => u64::MAX,
+        _ => MAX_STREAMED_MESH_BYTES,
+    };
+    let bytes = read_at_most(path, limit).map_err(|e| {
         error(LoadErrorKind::Unreadable {
             reason: e.to_string(),
         })
     })?;
     parse_mesh_bytes(&bytes, format, path)
 }
+
+/// Most bytes read from a mesh that is not a regular file (a FIFO, a device): 1 GiB, about ten
+/// million faces of text.
+pub const MAX_STREAMED_MESH_BYTES: u64 = 1 << 30;
 
 /// Parses and validates a mesh held in memory; `name` is used in errors in place of a path.
 pub fn parse_mesh_bytes(
