@@ -146,7 +146,13 @@ impl BasisOptions {
         };
         if let Some(file) = cache_file.as_ref().filter(|f| f.exists()) {
             let start = Instant::now();
-            match load_basis(file, &key) {
+            let dimension = discretization.field_dimension();
+            let loaded = load_basis(file, &key)
+                .map_err(anyhow::Error::from)
+                .and_then(|b| {
+                    size_mismatch(size, dimension, &b).map_or(Ok(b), |problem| bail!(problem))
+                });
+            match loaded {
                 Ok(basis) => {
                     note(format!(
                         "using cached basis {} ({} fields, {}, loaded in {:.2} s)",
@@ -161,7 +167,10 @@ impl BasisOptions {
                         mesh_fingerprint: fingerprint,
                     });
                 }
-                Err(error) => warn(format!("cached basis is unusable ({error}); recomputing")),
+                Err(error) => warn(format!(
+                    "cached basis is unusable ({}: {error}); recomputing",
+                    file.display()
+                )),
             }
         }
         let basis = compute(&discretization, size)
@@ -253,6 +262,33 @@ impl BasisOptions {
             basis,
             mesh_fingerprint: fingerprint,
         })
+    }
+}
+
+/// Why a loaded basis does not have the size its cache name promises (`None` if it has): `K`
+/// fields for `-k K`, the complete basis (`dimension` fields) for `K ≥ dimension`, at most `P`
+/// fields of each non-harmonic family (and `P` of one, unless the basis is complete) for `P`
+/// pairs.
+fn size_mismatch(size: BasisSize, dimension: usize, basis: &SpectralBasis) -> Option<String> {
+    let fields = basis.len();
+    match size {
+        BasisSize::Fields(k) => {
+            let wanted = k.min(dimension);
+            (fields != wanted).then(|| format!("it holds {fields} fields, not {wanted}"))
+        }
+        BasisSize::Pairs(p) => {
+            let integrable = basis.count(FieldFamily::Integrable);
+            let cointegrable = basis.count(FieldFamily::Cointegrable);
+            let fits = integrable <= p
+                && cointegrable <= p
+                && (integrable == p || cointegrable == p || fields == dimension);
+            (!fits).then(|| {
+                format!(
+                    "it holds {integrable} integrable and {cointegrable} co-integrable fields, \
+                     not {p} pairs"
+                )
+            })
+        }
     }
 }
 

@@ -8,7 +8,9 @@ mod demo;
 mod discretization_flags;
 mod examples;
 mod face_quantities;
+mod interrupt;
 mod mesh_input;
+mod output_rules;
 mod picture;
 mod progress;
 mod report;
@@ -67,6 +69,7 @@ enum Command {
 }
 
 fn main() {
+    interrupt::install();
     let cli = Cli::parse();
     progress::set_quiet(cli.quiet);
     let result = match cli.command {
@@ -89,6 +92,7 @@ fn main() {
         Command::Demo(args) => commands::demo::run(args),
         Command::Edit(args) => commands::edit::run(args),
     };
+    interrupt::yield_to_interruption();
     if let Err(error) = result {
         eprintln!("error: {}", error_message(&error));
         std::process::exit(1);

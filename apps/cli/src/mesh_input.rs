@@ -25,6 +25,7 @@ use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 use std::path::PathBuf;
 use tvf_core::io::{load_mesh, LoadedMesh};
+use tvf_core::mesh::ValidationWarning;
 use tvf_core::SurfaceMesh;
 
 /// A mesh file or a built-in example; exactly one must be given.
@@ -58,7 +59,18 @@ impl MeshInput {
             );
         }
         match (&self.mesh, &self.example) {
-            (Some(path), _) => Ok(load_mesh(path)?),
+            (Some(path), _) => {
+                let loaded = load_mesh(path)?;
+                check_geometry_range(&loaded.mesh, &self.label())?;
+                // Folded polygons make every result wrong: said by every subcommand, not only
+                // by `tvf info`.
+                for warning in &loaded.report.warnings {
+                    if let ValidationWarning::FoldedPolygons { .. } = warning {
+                        crate::progress::warn(format!("{}: {warning}", self.label()));
+                    }
+                }
+                Ok(loaded)
+            }
             (None, Some(name)) => {
                 let mesh = example_mesh(name)?;
                 let (mesh, report) =
@@ -110,6 +122,25 @@ impl MeshInput {
             ),
         }
     }
+}
+
+/// Refuses a mesh whose coordinates are so large that its areas overflow `f64` (angles and
+/// every operator would then be meaningless); the message names the mesh and the largest
+/// coordinate.
+fn check_geometry_range(mesh: &SurfaceMesh, label: &str) -> Result<()> {
+    let area = mesh.total_area();
+    if !area.is_finite() {
+        let largest = mesh
+            .positions()
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        anyhow::bail!(
+            "{label}: coordinates up to {largest:e} are too large for f64 arithmetic: the total \
+             area is {area} and angles cannot be measured (scale the mesh down)"
+        );
+    }
+    Ok(())
 }
 
 /// Reports a usage error the way clap does (on stderr with the subcommand's usage line, exit

@@ -23,6 +23,9 @@ use serde::{Deserialize, Serialize};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
+/// Largest constraint file read (64 MiB: hundreds of thousands of constraints).
+pub const MAX_CONSTRAINT_FILE_BYTES: u64 = 64 << 20;
+
 /// Default `omega` when a file does not give one.
 pub const DEFAULT_OMEGA: f64 = 0.1;
 
@@ -80,15 +83,24 @@ impl ConstraintSet {
     /// Reads and validates a constraint file; errors name the file (and the constraint id).
     pub fn load(path: impl AsRef<Path>) -> Result<Self, ConstraintFileError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| ConstraintFileError::Io {
+        let io = |source| ConstraintFileError::Io {
             path: path.to_path_buf(),
             source,
+        };
+        let bytes = tvf_core::io::read_at_most(path, MAX_CONSTRAINT_FILE_BYTES).map_err(io)?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            io(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "not UTF-8 text",
+            ))
         })?;
         Self::parse(&text, path)
     }
 
-    /// Parses and validates JSON text; `origin` names the source in errors.
+    /// Parses and validates JSON text (a leading UTF-8 byte-order mark, as some editors write,
+    /// is skipped); `origin` names the source in errors.
     pub fn parse(text: &str, origin: &Path) -> Result<Self, ConstraintFileError> {
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         let record: SetRecord =
             serde_json::from_str(text).map_err(|source| ConstraintFileError::Json {
                 path: origin.to_path_buf(),
@@ -217,11 +229,10 @@ fn to_constraint(c: &ConstraintRecord) -> Result<Constraint, ConstraintError> {
 fn location_of(c: &ConstraintRecord) -> Result<Location, ConstraintError> {
     let id = &c.id;
     let index = |what: &'static str, i: i64| {
-        usize::try_from(i).map_err(|_| ConstraintError::OutOfRange {
+        usize::try_from(i).map_err(|_| ConstraintError::NegativeIndex {
             id: id.clone(),
             what,
             index: i,
-            count: 0,
         })
     };
     let bad = |problem: &str| ConstraintError::BadLocation {

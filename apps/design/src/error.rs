@@ -16,7 +16,7 @@ pub enum ConstraintError {
         /// The kind given.
         kind: String,
     },
-    /// A face, vertex or edge index is out of range (or negative).
+    /// A face, vertex or edge index is out of range.
     #[error("constraint '{id}': {what} {index} is out of range (the mesh has {count} of them)")]
     OutOfRange {
         /// Constraint id.
@@ -27,6 +27,16 @@ pub enum ConstraintError {
         index: i64,
         /// How many there are.
         count: usize,
+    },
+    /// A face, vertex or edge index is negative.
+    #[error("constraint '{id}': {what} {index} is negative (indices count from 0)")]
+    NegativeIndex {
+        /// Constraint id.
+        id: String,
+        /// `face`, `vertex` or `edge`.
+        what: &'static str,
+        /// The index given.
+        index: i64,
     },
     /// Barycentric coordinates that are negative, non-finite or do not sum to 1.
     #[error(
@@ -175,6 +185,20 @@ pub enum DesignError {
         /// `pivot² / diagonal` of the bordered factorization (0 = exactly dependent).
         relative_pivot: f64,
     },
+    /// A constraint the reduced space cannot hold on its own (its rows vanish in it or depend
+    /// on each other there): the basis is too small or misses the constraint's location.
+    #[error(
+        "constraint '{id}' cannot be met in the reduced space of {basis_size} basis fields: \
+         {detail} (use a larger basis); it was not added"
+    )]
+    NotRepresentable {
+        /// The constraint.
+        id: String,
+        /// Number of basis fields.
+        basis_size: usize,
+        /// What happens to its rows.
+        detail: String,
+    },
     /// An id that is already active was added again.
     #[error("constraint id '{id}' is already active")]
     DuplicateId {
@@ -217,6 +241,27 @@ pub enum DesignError {
         value: String,
         /// What it must be.
         expected: &'static str,
+    },
+    /// A solved field or a constraint residual is NaN or infinite.
+    #[error("constraint '{id}': {problem}; {cause}")]
+    NotFinite {
+        /// The constraint whose residual is not finite, or the one with the largest values.
+        id: String,
+        /// What is not finite.
+        problem: String,
+        /// The likely cause.
+        cause: String,
+    },
+    /// `omega` is so large that the reduced energy of an eigenfield is not a normal `f64`.
+    #[error(
+        "omega {omega:e} is too large for this basis: the energy of the eigenfield with \
+         eigenvalue {eigenvalue:e} overflows f64 arithmetic"
+    )]
+    OmegaTooLarge {
+        /// The weight given.
+        omega: f64,
+        /// The eigenvalue whose energy is out of range.
+        eigenvalue: f64,
     },
     /// A dense system that must be positive definite is not (numerically).
     #[error("{0} is not positive definite")]

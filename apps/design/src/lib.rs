@@ -37,6 +37,7 @@ mod reference_spline;
 mod refinement;
 mod soft_full;
 mod soft_reduced;
+mod solution_check;
 mod sparse_pattern;
 mod spline;
 
@@ -54,5 +55,6 @@ pub use soft_full::{
     default_regularization, FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING,
 };
 pub use soft_reduced::ReducedSoftDesign;
+pub use solution_check::{checked_residuals, worst_residual};
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};
 pub use tvf_solvers::FillOrdering;

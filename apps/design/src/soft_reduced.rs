@@ -55,6 +55,17 @@ impl<'a> ReducedSoftDesign<'a> {
                 l + options.omega * l * l + options.regularization
             })
             .collect();
+        if let Some((&eigenvalue, _)) = basis
+            .eigenvalues()
+            .iter()
+            .zip(&diagonal)
+            .find(|(_, x)| !x.is_finite())
+        {
+            return Err(DesignError::OmegaTooLarge {
+                omega: options.omega,
+                eigenvalue,
+            });
+        }
         if diagonal.iter().any(|&x| x <= 0.0) {
             return Err(DesignError::BadBasis(
                 "the basis has harmonic fields: soft design needs a positive regularization".into(),

@@ -64,7 +64,14 @@ impl<'a> SplineSession<'a> {
             });
         }
         let lambda = basis.regularised_eigenvalues()?;
-        let inverse_energy = lambda.iter().map(|&l| 1.0 / (l * l + omega * l)).collect();
+        let inverse_energy: Vec<f64> = lambda.iter().map(|&l| 1.0 / (l * l + omega * l)).collect();
+        if let Some((&eigenvalue, _)) = lambda
+            .iter()
+            .zip(&inverse_energy)
+            .find(|(_, w)| !w.is_normal())
+        {
+            return Err(DesignError::OmegaTooLarge { omega, eigenvalue });
+        }
         Ok(Self {
             basis,
             inverse_energy,
@@ -288,6 +295,21 @@ impl<'a> SplineSession<'a> {
             + constraint.values[row].abs();
         let conflicting =
             (implied - constraint.values[row]).abs() > 1e-8 * scale.max(f64::MIN_POSITIVE);
+        if involved.iter().all(|i| *i == constraint.id) {
+            // Nothing else is involved: the basis cannot hold this constraint on its own.
+            return DesignError::NotRepresentable {
+                id: constraint.id.clone(),
+                basis_size: self.basis.len(),
+                detail: if involved.is_empty() {
+                    "its rows vanish there".to_string()
+                } else {
+                    format!(
+                        "its {} rows are linearly dependent there",
+                        constraint.rows.len()
+                    )
+                },
+            };
+        }
         DesignError::Dependent {
             id: constraint.id.clone(),
             involved,

@@ -70,7 +70,7 @@ fn parse_errors_name_the_file_and_the_constraint() {
         ),
         (
             r#"{"id": "k", "kind": "vector", "face": -1, "value": [1, 0, 0]}"#,
-            "face -1 is out of range",
+            "face -1 is negative",
         ),
         (
             r#"{"id": "k", "kind": "curl", "face": 1, "barycentric": [0.5, 0.5, 0.5], "value": 1.0}"#,

@@ -4,7 +4,7 @@
 import { MeshData, vec } from './mesh.js';
 import { OrbitCamera } from './camera.js';
 import { Renderer, faceColors } from './gl.js';
-import { EditQueue, getBinary, parseFieldFrame } from './net.js';
+import { EditQueue, TOKEN, apiFetch, getBinary, parseFieldFrame } from './net.js';
 
 const $ = (id) => document.getElementById(id);
 const canvas = $('view');
@@ -364,7 +364,7 @@ $('fur').addEventListener('change', () => {
 });
 $('save').addEventListener('click', async () => {
   try {
-    const response = await fetch('/api/constraints', { cache: 'no-store' });
+    const response = await apiFetch('/api/constraints');
     if (!response.ok) throw new Error(`${response.status} ${await response.text()}`);
     const url = URL.createObjectURL(await response.blob());
     const a = document.createElement('a');
@@ -383,7 +383,7 @@ $('load').addEventListener('change', async () => {
 // A heartbeat, so that a server that went away is reported even while nobody edits.
 setInterval(async () => {
   try {
-    const r = await fetch('/api/ping', { cache: 'no-store' });
+    const r = await apiFetch('/api/ping');
     if (!r.ok) throw new Error(String(r.status));
     if (document.body.dataset.error && document.body.dataset.error.startsWith('lost connection')) clearError();
   } catch (e) { showError(`lost connection to the tvf server (${e.message})`); }
@@ -392,6 +392,8 @@ setInterval(async () => {
 window.addEventListener('resize', requestRedraw);
 
 async function start() {
+  // The download link is a plain navigation: it carries the token in its query.
+  $('export-fur').href = `/api/fur.obj?token=${encodeURIComponent(TOKEN)}`;
   try {
     app.renderer = new Renderer(canvas);
     app.mesh = new MeshData(await getBinary('/api/mesh'));

@@ -15,13 +15,21 @@ export function parseFieldFrame(buffer) {
   return { status, coords };
 }
 
+// The session token the server embedded in the page; every API call carries it.
+export const TOKEN = document.querySelector('meta[name="tvf-token"]').content;
+
+// fetch() of an API path with the session token.
+export function apiFetch(path, options = {}) {
+  return fetch(path, { cache: 'no-store', ...options, headers: { ...(options.headers || {}), 'X-TVF-Token': TOKEN } });
+}
+
 async function errorText(response) {
   const text = await response.text();
   try { return JSON.parse(text).error || text; } catch (_) { return text || response.statusText; }
 }
 
 export async function getBinary(path) {
-  const response = await fetch(path, { cache: 'no-store' });
+  const response = await apiFetch(path);
   if (!response.ok) throw new Error(`${path}: ${response.status} ${await errorText(response)}`);
   return response.arrayBuffer();
 }
@@ -52,7 +60,7 @@ export class EditQueue {
     this.busy = true;
     const started = performance.now();
     try {
-      const response = await fetch('/api/edit', {
+      const response = await apiFetch('/api/edit', {
         method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(op),
       });
       if (response.ok) {

@@ -88,7 +88,11 @@ fn bench(name: &str, mesh: SurfaceMesh, rounds: usize) {
     })
     .expect("editor");
     let server = EditorServer::start(editor, 0).expect("server");
-    let url = format!("http://{}/api/edit", server.address());
+    let url = format!(
+        "http://{}/api/edit?token={}",
+        server.address(),
+        server.token()
+    );
     let agent: ureq::Agent = ureq::Agent::config_builder()
         .http_status_as_error(true)
         .build()
@@ -139,7 +143,11 @@ fn bench(name: &str, mesh: SurfaceMesh, rounds: usize) {
         }
     }
     // The HTTP floor: a tiny GET on the same kind of connection.
-    let ping_url = format!("http://{}/api/ping", server.address());
+    let ping_url = format!(
+        "http://{}/api/ping?token={}",
+        server.address(),
+        server.token()
+    );
     let mut pings: Vec<f64> = (0..rounds)
         .map(|_| {
             let start = Instant::now();

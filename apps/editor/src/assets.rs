@@ -56,3 +56,12 @@ pub fn asset(path: &str) -> Option<&'static Asset> {
     let path = if path == "/" { "/index.html" } else { path };
     ASSETS.iter().find(|a| a.path == path)
 }
+
+/// Where the page template holds the session token.
+const TOKEN_PLACEHOLDER: &str = "{{TVF_TOKEN}}";
+
+/// The page (`index.html`) with the session `token` embedded, for its scripts to send with
+/// every API call (see [`crate::access`]).
+pub fn page(token: &str) -> String {
+    include_str!("../assets/index.html").replace(TOKEN_PLACEHOLDER, token)
+}

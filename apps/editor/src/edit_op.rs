@@ -38,8 +38,9 @@ enum OpRecord {
     Omega { value: f64 },
     BasisSize { value: usize },
     Load { set: serde_json::Value },
-    Clear,
-    Undo,
+    // Braces, not unit variants: serde refuses unknown fields only for struct variants.
+    Clear {},
+    Undo {},
 }
 
 impl EditOp {
@@ -59,8 +60,8 @@ impl EditOp {
                 &set.to_string(),
                 Path::new("loaded constraint set"),
             )?),
-            OpRecord::Clear => EditOp::Clear,
-            OpRecord::Undo => EditOp::Undo,
+            OpRecord::Clear {} => EditOp::Clear,
+            OpRecord::Undo {} => EditOp::Undo,
         })
     }
 

@@ -15,7 +15,8 @@ use tvf_core::discretization::sparse::{from_triplets, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet, ReducedBasis, SplineSession,
+    checked_residuals, CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet,
+    ReducedBasis, SplineSession,
 };
 
 use crate::edit_op::EditOp;
@@ -226,9 +227,16 @@ fn serve(
         Ok(s) => s,
         Err(e) => return Served::Failed(e, edit),
     };
+    // Going back to the state before a refused basis-size change (no edit waits, and the
+    // engine has started) shows the same field again: it keeps its version.
+    let restoring = edit.is_none() && started.is_none();
+    let version = state.version;
     state.current = target;
     state.compiled = compiled;
     refresh(state, &mut session, &mut mapper, None);
+    if restoring {
+        state.version = version;
+    }
     if let Some(edit) = edit {
         if edit.record {
             push_history(state, edit.previous);
@@ -307,7 +315,7 @@ fn serve(
                 let _ = reply.send(Ok(set.to_json()));
             }
             Request::Check(reply) => {
-                let _ = reply.send(check(state, &session, basis));
+                let _ = reply.send(check(state, basis));
             }
             Request::FaceVectors(reply) => {
                 let field: Vec<f64> = state.field32.iter().map(|&x| f64::from(x)).collect();
@@ -549,22 +557,20 @@ fn frame(state: &State, basis: &ReducedBasis) -> Vec<u8> {
     }
 }
 
-fn check(
-    state: &State,
-    session: &SplineSession,
-    basis: &ReducedBasis,
-) -> Result<CheckReport, EditorError> {
+/// The held field mapped in `f64` and checked against every constraint; a NaN or infinite
+/// field or residual is an error naming the constraint.
+fn check(state: &State, basis: &ReducedBasis) -> Result<CheckReport, EditorError> {
     let mut field = vec![0.0; basis.field_dimension()];
     basis.map(&state.coefficients, &mut field)?;
-    let constraints: Vec<CheckedConstraint> = session
-        .residuals(&field)
-        .into_iter()
-        .map(|r| CheckedConstraint {
-            id: r.id,
-            absolute: r.absolute,
-            relative: r.relative,
-        })
-        .collect();
+    let constraints: Vec<CheckedConstraint> =
+        checked_residuals(&field, &state.compiled, state.current.omega)?
+            .into_iter()
+            .map(|r| CheckedConstraint {
+                id: r.id,
+                absolute: r.absolute,
+                relative: r.relative,
+            })
+            .collect();
     let max_relative = constraints.iter().fold(0.0f64, |m, c| m.max(c.relative));
     let largest = field.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let deviation = field

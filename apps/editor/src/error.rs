@@ -12,6 +12,25 @@ pub enum EditorError {
         /// What is wrong.
         reason: String,
     },
+    /// The request does not come from the editor's own page (foreign `Host` or `Origin`, no
+    /// or a wrong session token; see [`crate::access`]).
+    #[error("forbidden: {reason}")]
+    Forbidden {
+        /// Why.
+        reason: String,
+    },
+    /// The client did not send its request in time.
+    #[error("timed out waiting for {what}")]
+    Timeout {
+        /// What was being read.
+        what: &'static str,
+    },
+    /// Too many connections or uploads at once; the request was not read.
+    #[error("the server is busy ({what}); try again")]
+    Busy {
+        /// What is exhausted.
+        what: &'static str,
+    },
     /// No such page or endpoint.
     #[error("not found: {path}")]
     NotFound {
@@ -83,8 +102,10 @@ pub enum EditorError {
 }
 
 impl EditorError {
-    /// The HTTP status code for this error: 400 for malformed input, 404/405 for unknown
-    /// endpoints or ids, 409 for edits the current state refuses, 500 otherwise.
+    /// The HTTP status code for this error: 400 for malformed input, 403 for a request from
+    /// elsewhere than the editor's page, 404/405 for unknown endpoints or ids, 408 for a request
+    /// sent too slowly, 503 when busy, 409 for edits the current state refuses, 422 for a field
+    /// that is not finite, 500 otherwise.
     pub fn status_code(&self) -> u16 {
         match self {
             EditorError::BadRequest { .. }
@@ -92,12 +113,20 @@ impl EditorError {
             | EditorError::ConstraintFile(_)
             | EditorError::BadBasisSize { .. }
             | EditorError::BadPayload { .. } => 400,
+            EditorError::Forbidden { .. } => 403,
             EditorError::NotFound { .. } => 404,
+            EditorError::Timeout { .. } => 408,
+            EditorError::Busy { .. } => 503,
             EditorError::MethodNotAllowed { .. } => 405,
             EditorError::Design(DesignError::UnknownId { .. }) => 404,
-            EditorError::Design(DesignError::BadParameter { .. }) => 400,
             EditorError::Design(
-                DesignError::Dependent { .. } | DesignError::DuplicateId { .. },
+                DesignError::BadParameter { .. } | DesignError::OmegaTooLarge { .. },
+            ) => 400,
+            EditorError::Design(DesignError::NotFinite { .. }) => 422,
+            EditorError::Design(
+                DesignError::Dependent { .. }
+                | DesignError::NotRepresentable { .. }
+                | DesignError::DuplicateId { .. },
             )
             | EditorError::NothingToUndo => 409,
             EditorError::TooLarge { .. } => 413,
@@ -118,6 +147,7 @@ impl EditorError {
                     .chain(involved.iter().cloned())
                     .collect()
             }
+            EditorError::Design(DesignError::NotRepresentable { id, .. }) => vec![id.clone()],
             _ => Vec::new(),
         }
     }

@@ -6,7 +6,9 @@
 //! updated incrementally.
 //!
 //! - [`Editor`]: the editing engine (a thread owning the basis and the session).
-//! - [`EditorServer`]: the HTTP server; its endpoints are listed in the [`server`] module.
+//! - [`EditorServer`]: the HTTP server; its endpoints are listed in the [`server`] module, who
+//!   may call them in [`access`] (own Host and Origin, session token), the wire format in
+//!   [`http`].
 //! - [`EditOp`]: the edits, as JSON; [`payload`]: the binary mesh, field and fur payloads.
 //!
 //! ```
@@ -38,12 +40,14 @@
 //! ```
 #![warn(missing_docs)]
 
+pub mod access;
 pub mod assets;
 mod edit_op;
 mod editor;
 mod engine;
 mod error;
 mod field_mapper;
+pub mod http;
 pub mod payload;
 pub mod server;
 mod status;

@@ -2,7 +2,7 @@
 //!
 //! | method, path | answer |
 //! |---|---|
-//! | `GET /` and the page's files | the embedded page ([`crate::assets`]) |
+//! | `GET /?token=…` and the page's files | the embedded page ([`crate::assets`]) |
 //! | `GET /api/mesh` | the mesh payload ([`crate::payload`]) |
 //! | `GET /api/field` | the current field frame |
 //! | `POST /api/edit` | applies an [`EditOp`] (JSON body), answers with the new field frame |
@@ -12,86 +12,103 @@
 //! | `GET /api/fur.obj?strands=N&length=L` | the same strands as OBJ polylines (download) |
 //! | `GET /api/ping` | `ok` |
 //!
+//! The page and every `/api/` call need the session token, and every request the server's own
+//! `Host` (and `Origin`, if any): see [`crate::access`]; otherwise 403.
+//!
 //! Errors are answered with a 4xx/5xx status and a JSON body `{"error": "...", "ids": [...]}`.
 
-use std::io::Read;
-use std::net::SocketAddr;
+use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
 
-use tiny_http::{Header, Method, Request, Response, Server};
 use tvf_render::{grow_fur, write_obj, FurOptions};
 
-use crate::assets::asset;
+use crate::access::Access;
+use crate::assets::{asset, page};
 use crate::edit_op::EditOp;
 use crate::editor::Editor;
 use crate::error::EditorError;
+use crate::http::{read_body, read_head, write_response, RequestHead};
 use crate::payload::{encode_fur, encode_mesh};
 
 /// Largest accepted request body (a constraint set being loaded), bytes.
 pub const MAX_BODY_BYTES: u64 = 8 << 20;
 /// Most fur strands one request may ask for.
 pub const MAX_STRANDS: usize = 200_000;
-/// Worker threads answering requests (edits are still applied one at a time by the engine).
-const WORKERS: usize = 4;
+/// Longest fur strands one request may ask for (`length`, in bounding-box diagonals as in
+/// [`FurOptions::length`]).
+pub const MAX_FUR_LENGTH: f64 = 10.0;
+/// Most connections answered at once (one thread each); more are answered 503 at once.
+pub const MAX_CONNECTIONS: usize = 64;
+/// Connections kept free for requests without a body (the page's reads and `/api/ping`): at
+/// most `MAX_CONNECTIONS - RESERVED_CONNECTIONS` may be receiving a body at once.
+pub const RESERVED_CONNECTIONS: usize = 8;
+/// Time a client has to send its request head.
+pub const HEAD_DEADLINE: Duration = Duration::from_secs(10);
+/// Time a client has to send its request body (after the head).
+pub const BODY_DEADLINE: Duration = Duration::from_secs(10);
 
 /// A running editor server; stops with [`EditorServer::shutdown`] (or runs until the process
 /// ends with [`EditorServer::join`]).
+///
+/// One thread accepts connections and starts one thread per connection (at most
+/// [`MAX_CONNECTIONS`]); each answers one request and closes. Heads and bodies are read against
+/// deadlines ([`HEAD_DEADLINE`], [`BODY_DEADLINE`]), and uploads may not take the last
+/// [`RESERVED_CONNECTIONS`], so stalled uploads cannot keep the page from being answered.
+/// Requests pass the [`crate::access`] checks first.
 pub struct EditorServer {
-    server: Arc<Server>,
-    workers: Vec<JoinHandle<()>>,
+    acceptor: JoinHandle<()>,
+    stop: Arc<AtomicBool>,
     address: SocketAddr,
+    token: String,
 }
 
 struct Shared {
     editor: Editor,
     mesh_payload: Vec<u8>,
+    access: Access,
+    connections: AtomicUsize,
+    uploads: AtomicUsize,
 }
 
 impl EditorServer {
     /// Listens on `127.0.0.1:port` (`port` 0: chosen by the OS) and starts answering.
     pub fn start(editor: Editor, port: u16) -> Result<Self, EditorError> {
-        let server = Server::http(("127.0.0.1", port)).map_err(|e| EditorError::Io {
-            what: format!("listening on 127.0.0.1:{port}"),
-            source: std::io::Error::other(e.to_string()),
-        })?;
-        let address = server
-            .server_addr()
-            .to_ip()
-            .ok_or_else(|| EditorError::Io {
-                what: "reading the server's address".into(),
-                source: std::io::Error::other("not an IP socket"),
+        let listener =
+            TcpListener::bind(("127.0.0.1", port)).map_err(|source| EditorError::Io {
+                what: format!("listening on 127.0.0.1:{port}"),
+                source,
             })?;
+        let address = listener.local_addr().map_err(|source| EditorError::Io {
+            what: "reading the server's address".into(),
+            source,
+        })?;
         let shared = Arc::new(Shared {
             mesh_payload: encode_mesh(editor.mesh())?,
             editor,
+            access: Access::new(address.port()),
+            connections: AtomicUsize::new(0),
+            uploads: AtomicUsize::new(0),
         });
-        let server = Arc::new(server);
-        let mut workers = Vec::with_capacity(WORKERS);
-        for k in 0..WORKERS {
-            let server = Arc::clone(&server);
-            let shared = Arc::clone(&shared);
-            let worker = std::thread::Builder::new()
-                .name(format!("tvf-editor-http-{k}"))
-                .spawn(move || {
-                    while let Ok(request) = server.recv() {
-                        // A panic while answering one request must not take the worker down;
-                        // the request is then dropped, which answers 500.
-                        let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                            handle(&shared, request)
-                        }));
-                    }
-                })
+        let token = shared.access.token().to_string();
+        let stop = Arc::new(AtomicBool::new(false));
+        let acceptor = {
+            let stop = Arc::clone(&stop);
+            std::thread::Builder::new()
+                .name("tvf-editor-accept".into())
+                .spawn(move || accept(&listener, &shared, &stop))
                 .map_err(|source| EditorError::Io {
-                    what: "starting an HTTP worker thread".into(),
+                    what: "starting the HTTP accept thread".into(),
                     source,
-                })?;
-            workers.push(worker);
-        }
+                })?
+        };
         Ok(Self {
-            server,
-            workers,
+            acceptor,
+            stop,
             address,
+            token,
         })
     }
 
@@ -100,74 +117,143 @@ impl EditorServer {
         self.address
     }
 
-    /// The page's URL, `http://127.0.0.1:PORT/`.
+    /// The session token every API call must carry (see [`crate::access`]).
+    pub fn token(&self) -> &str {
+        &self.token
+    }
+
+    /// The page's URL with the session token, `http://127.0.0.1:PORT/?token=…`.
     pub fn url(&self) -> String {
-        format!("http://{}/", self.address)
+        format!("http://{}/?token={}", self.address, self.token)
     }
 
     /// Blocks until the server stops (which it does not on its own).
     pub fn join(self) {
-        for w in self.workers {
-            let _ = w.join();
-        }
+        let _ = self.acceptor.join();
     }
 
-    /// Stops accepting requests and waits for the workers.
+    /// Stops accepting connections (requests being answered finish on their own threads).
     pub fn shutdown(self) {
-        for _ in 0..self.workers.len() {
-            self.server.unblock();
+        self.stop.store(true, Ordering::SeqCst);
+        // Wake the accept loop with a connection of our own.
+        let _ = TcpStream::connect(self.address);
+        let _ = self.acceptor.join();
+    }
+}
+
+/// Accepts connections until `stop`, one thread each, at most [`MAX_CONNECTIONS`] at once.
+fn accept(listener: &TcpListener, shared: &Arc<Shared>, stop: &AtomicBool) {
+    for stream in listener.incoming() {
+        if stop.load(Ordering::SeqCst) {
+            return;
         }
-        for w in self.workers {
-            let _ = w.join();
+        let Ok(mut stream) = stream else { continue };
+        if shared.connections.fetch_add(1, Ordering::SeqCst) >= MAX_CONNECTIONS {
+            shared.connections.fetch_sub(1, Ordering::SeqCst);
+            respond(
+                &mut stream,
+                Err(EditorError::Busy {
+                    what: "too many connections",
+                }),
+            );
+            continue;
+        }
+        let shared_for_thread = Arc::clone(shared);
+        let spawned = std::thread::Builder::new()
+            .name("tvf-editor-http".into())
+            .spawn(move || {
+                let shared = shared_for_thread;
+                // A panic while answering drops the connection, never the server.
+                let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    serve_connection(&shared, stream)
+                }));
+                shared.connections.fetch_sub(1, Ordering::SeqCst);
+            });
+        if spawned.is_err() {
+            shared.connections.fetch_sub(1, Ordering::SeqCst);
         }
     }
 }
 
-fn header(name: &str, value: &str) -> Header {
-    // Names and values are ASCII constants of this file.
-    Header::from_bytes(name.as_bytes(), value.as_bytes())
-        .unwrap_or_else(|_| Header::from_bytes(&b"X-Invalid"[..], &b"1"[..]).expect("ASCII header"))
+/// Reads one request from `stream`, answers it and closes the connection.
+fn serve_connection(shared: &Shared, mut stream: TcpStream) {
+    let _ = stream.set_nodelay(true);
+    let answer = read_head(&mut stream, Instant::now() + HEAD_DEADLINE)
+        .and_then(|(head, rest)| answer(shared, &head, rest, &mut stream));
+    respond(&mut stream, answer);
+}
+
+/// Releases an upload slot when dropped.
+struct UploadSlot<'a>(&'a AtomicUsize);
+
+impl Drop for UploadSlot<'_> {
+    fn drop(&mut self) {
+        self.0.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// The body of a request, read before its deadline; 0 bytes without `Content-Length`.
+fn body(
+    shared: &Shared,
+    head: &RequestHead,
+    rest: Vec<u8>,
+    stream: &mut TcpStream,
+) -> Result<Vec<u8>, EditorError> {
+    let length = head.content_length()?;
+    if length as u64 > MAX_BODY_BYTES {
+        return Err(EditorError::TooLarge {
+            what: "request body bytes",
+            count: length,
+        });
+    }
+    if length == 0 {
+        return Ok(Vec::new());
+    }
+    let limit = MAX_CONNECTIONS - RESERVED_CONNECTIONS;
+    if shared.uploads.fetch_add(1, Ordering::SeqCst) >= limit {
+        shared.uploads.fetch_sub(1, Ordering::SeqCst);
+        return Err(EditorError::Busy {
+            what: "too many uploads at once",
+        });
+    }
+    let _slot = UploadSlot(&shared.uploads);
+    read_body(stream, rest, length, Instant::now() + BODY_DEADLINE)
+}
+
+fn respond(stream: &mut TcpStream, answer: Answer) {
+    let (status, body, content_type, attachment) = match answer {
+        Ok((body, content_type, attachment)) => (200, body, content_type, attachment),
+        Err(error) => {
+            let body =
+                serde_json::json!({ "error": error.to_string(), "ids": error.involved_ids() });
+            (
+                error.status_code(),
+                body.to_string().into_bytes(),
+                "application/json",
+                None,
+            )
+        }
+    };
+    let disposition = attachment.map(|name| format!("attachment; filename=\"{name}\""));
+    let mut headers = vec![
+        ("Content-Type", content_type),
+        ("Cache-Control", "no-store"),
+        ("X-Content-Type-Options", "nosniff"),
+    ];
+    if let Some(d) = &disposition {
+        headers.push(("Content-Disposition", d));
+    }
+    // The client may have gone away; nothing to do about it.
+    if write_response(stream, status, &headers, &body).is_err() {
+        let _ = stream.shutdown(Shutdown::Both);
+    }
 }
 
 type Answer = Result<(Vec<u8>, &'static str, Option<&'static str>), EditorError>;
 
-fn handle(shared: &Shared, mut request: Request) {
-    let method = request.method().clone();
-    let url = request.url().to_string();
-    let (path, query) = url.split_once('?').unwrap_or((url.as_str(), ""));
-    let answer = route(shared, &method, path, query, &mut request);
-    let response = match answer {
-        Ok((body, content_type, attachment)) => {
-            let mut r = Response::from_data(body)
-                .with_header(header("Content-Type", content_type))
-                .with_header(header("Cache-Control", "no-store"));
-            if let Some(name) = attachment {
-                r = r.with_header(header(
-                    "Content-Disposition",
-                    &format!("attachment; filename=\"{name}\""),
-                ));
-            }
-            r
-        }
-        Err(error) => {
-            let body =
-                serde_json::json!({ "error": error.to_string(), "ids": error.involved_ids() });
-            Response::from_data(body.to_string().into_bytes())
-                .with_status_code(error.status_code())
-                .with_header(header("Content-Type", "application/json"))
-        }
-    };
-    // The client may have gone away; nothing to do about it.
-    let _ = request.respond(response);
-}
-
-fn route(
-    shared: &Shared,
-    method: &Method,
-    path: &str,
-    query: &str,
-    request: &mut Request,
-) -> Answer {
+fn answer(shared: &Shared, head: &RequestHead, rest: Vec<u8>, stream: &mut TcpStream) -> Answer {
+    shared.access.check(head)?;
+    let (method, path, query) = (head.method.as_str(), head.path(), head.query());
     let not_allowed = || EditorError::MethodNotAllowed {
         method: method.to_string(),
         path: path.to_string(),
@@ -176,14 +262,14 @@ fn route(
     const JSON: &str = "application/json";
     match path {
         "/api/edit" => {
-            if *method != Method::Post {
+            if method != "POST" {
                 return Err(not_allowed());
             }
-            let body = read_body(request)?;
+            let body = body(shared, head, rest, stream)?;
             let op = EditOp::parse(&body)?;
             Ok((shared.editor.edit(op)?, BINARY, None))
         }
-        _ if *method != Method::Get => Err(not_allowed()),
+        _ if method != "GET" => Err(not_allowed()),
         "/api/mesh" => Ok((shared.mesh_payload.clone(), BINARY, None)),
         "/api/field" => Ok((shared.editor.field_frame()?, BINARY, None)),
         "/api/ping" => Ok((b"ok".to_vec(), "text/plain", None)),
@@ -201,6 +287,11 @@ fn route(
         }
         "/api/fur" => Ok((encode_fur(&fur(shared, query, 6000)?)?, BINARY, None)),
         "/api/fur.obj" => Ok((fur_obj(shared, query)?, "text/plain", Some("fur.obj"))),
+        "/" | "/index.html" => Ok((
+            page(shared.access.token()).into_bytes(),
+            "text/html; charset=utf-8",
+            None,
+        )),
         _ => match asset(path) {
             Some(a) => Ok((a.body.as_bytes().to_vec(), a.content_type, None)),
             None => Err(EditorError::NotFound {
@@ -208,24 +299,6 @@ fn route(
             }),
         },
     }
-}
-
-fn read_body(request: &mut Request) -> Result<Vec<u8>, EditorError> {
-    let mut body = Vec::new();
-    request
-        .as_reader()
-        .take(MAX_BODY_BYTES + 1)
-        .read_to_end(&mut body)
-        .map_err(|e| EditorError::BadRequest {
-            reason: format!("reading the request body: {e}"),
-        })?;
-    if body.len() as u64 > MAX_BODY_BYTES {
-        return Err(EditorError::TooLarge {
-            what: "request body bytes",
-            count: body.len(),
-        });
-    }
-    Ok(body)
 }
 
 /// Reads `name=value` from a query string; `None` if absent.
@@ -261,9 +334,18 @@ fn fur(
         });
     }
     let defaults = FurOptions::default();
+    let length = query_number(query, "length")?.unwrap_or(defaults.length);
+    if !(length > 0.0 && length <= MAX_FUR_LENGTH) {
+        return Err(EditorError::BadRequest {
+            reason: format!(
+                "length must be positive and at most {MAX_FUR_LENGTH} (bounding-box diagonals), \
+                 got {length}"
+            ),
+        });
+    }
     let options = FurOptions {
         strand_count: strands as usize,
-        length: query_number(query, "length")?.unwrap_or(defaults.length),
+        length,
         ..defaults
     };
     let vectors = shared.editor.face_vectors()?;

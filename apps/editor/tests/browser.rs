@@ -50,6 +50,11 @@ fn drive_the_editor(id: &str, prefix: &str) {
     let (Some(chromium), Some(chromedriver)) =
         (find_executable("chromium"), find_executable("chromedriver"))
     else {
+        // In CI (.ci/browser-setup installs them) a missing browser is a failure, not a skip.
+        assert!(
+            std::env::var("CI").map_or(true, |v| v != "true"),
+            "CI=true but chromium or chromedriver is not on PATH (run .ci/browser-setup)"
+        );
         println!("SKIPPED the browser test on {id}: chromium or chromedriver not on PATH (run .ci/browser-setup)");
         return;
     };

@@ -21,7 +21,10 @@
 use crate::atomic_write::write_atomically;
 use crate::compression_error::CompressionError;
 use std::path::Path;
+use tvf_core::io::read_exactly_at_most;
 
+/// Largest `.tvfc` file read (4 GiB: 500 million 64-bit coefficients).
+pub const MAX_TVFC_BYTES: u64 = 1 << 32;
 /// The magic bytes at the start of every `.tvfc` file.
 pub const TVFC_MAGIC: [u8; 8] = *b"TVFC\r\n\x1a\n";
 /// The format version this build writes and reads.
@@ -232,10 +235,23 @@ impl CompressedFields {
             path: path.display().to_string(),
             source: Box::new(source),
         };
-        let bytes = std::fs::read(path).map_err(|e| CompressionError::Io {
+        let io = |e: std::io::Error| CompressionError::Io {
             path: path.display().to_string(),
             message: e.to_string(),
-        })?;
+        };
+        // The magic first: anything else (a stream of zeros) is refused before it is read.
+        let mut file = std::fs::File::open(path).map_err(io)?;
+        let mut bytes = Vec::new();
+        read_exactly_at_most(&mut file, TVFC_MAGIC.len() as u64, &mut bytes).map_err(io)?;
+        if bytes[..] == TVFC_MAGIC {
+            read_exactly_at_most(&mut file, MAX_TVFC_BYTES, &mut bytes).map_err(io)?;
+            if bytes.len() as u64 > MAX_TVFC_BYTES {
+                return Err(io(std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    format!("larger than {MAX_TVFC_BYTES} bytes, more than a .tvfc file can need"),
+                )));
+            }
+        }
         Self::from_bytes(&bytes).map_err(in_file)
     }
 

@@ -8,6 +8,7 @@
 //! be guessed generously or solved a second time.
 
 use crate::basis_request::BasisSize;
+use crate::dense_memory::check_dense_memory;
 use crate::scalar_spectrum::ScalarSpectrum;
 use crate::BasisError;
 use faer::sparse::SparseColMatRef;
@@ -138,7 +139,10 @@ pub(crate) fn split_families(
         BasisSize::Pairs(k) => {
             return Ok(FamilySplit::fixed(k.min(available_a), k.min(available_b)))
         }
-        BasisSize::Complete => return Ok(FamilySplit::fixed(available_a, available_b)),
+        BasisSize::Complete => {
+            check_dense_memory(potential.dimension(), co_potential.dimension())?;
+            return Ok(FamilySplit::fixed(available_a, available_b));
+        }
         BasisSize::Fields(d) => {
             let total = harmonic + available_a + available_b;
             if d > total {

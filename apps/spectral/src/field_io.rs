@@ -15,6 +15,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::{FieldSampling, TangentProjection};
+use tvf_core::io::{read_at_most, read_exactly_at_most};
 
 /// What can go wrong reading or writing a field file (every variant names the file).
 #[derive(Debug, Error)]
@@ -115,14 +116,31 @@ fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> FieldIoError + '_ {
     }
 }
 
-/// Reads any `.npy` array of `f32`/`f64` (C order).
+/// Reads any `.npy` array of `f32`/`f64` (C order). No more bytes are read than the header
+/// justifies (the header, the data its shape needs, one byte to detect trailing data), so a
+/// stream that never ends is refused.
 pub fn read_npy(path: &Path) -> Result<NpyArray, FieldIoError> {
-    let bytes = std::fs::read(path).map_err(io_error(path))?;
-    NpyArray::from_bytes(&bytes).map_err(|source| FieldIoError::Npy {
+    let npy_error = |source| FieldIoError::Npy {
         path: path.to_path_buf(),
         source,
-    })
+    };
+    let mut file = std::fs::File::open(path).map_err(io_error(path))?;
+    let mut bytes = Vec::new();
+    read_exactly_at_most(&mut file, 12, &mut bytes).map_err(io_error(path))?;
+    if let Some(start) = NpyArray::data_start(&bytes).map_err(npy_error)? {
+        let header = (start as u64).saturating_sub(bytes.len() as u64);
+        read_exactly_at_most(&mut file, header, &mut bytes).map_err(io_error(path))?;
+        if bytes.len() == start {
+            let payload = NpyArray::payload_length(&bytes).map_err(npy_error)? as u64;
+            read_exactly_at_most(&mut file, payload.saturating_add(1), &mut bytes)
+                .map_err(io_error(path))?;
+        }
+    }
+    NpyArray::from_bytes(&bytes).map_err(npy_error)
 }
+
+/// Largest text field file accepted: about 13 million faces at 80 bytes per line.
+pub const MAX_TEXT_FIELD_BYTES: u64 = 1 << 30;
 
 /// Writes an `.npy` array atomically. Fails with [`FieldIoError::Inconsistent`] if the number of
 /// elements does not match the shape.
@@ -159,7 +177,13 @@ pub fn read_face_vectors(path: &Path) -> Result<Vec<[f64; 3]>, FieldIoError> {
             .map(|c| [c[0], c[1], c[2]])
             .collect()
     } else {
-        let text = std::fs::read_to_string(path).map_err(io_error(path))?;
+        let bytes = read_at_most(path, MAX_TEXT_FIELD_BYTES).map_err(io_error(path))?;
+        let text = String::from_utf8(bytes).map_err(|_| {
+            io_error(path)(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                "stream did not contain valid UTF-8",
+            ))
+        })?;
         parse_text(path, &text)?
     };
     if let Some(index) = vectors

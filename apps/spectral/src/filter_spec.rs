@@ -257,16 +257,22 @@ fn parse_curve_points(arguments: &str) -> Result<PiecewiseLinear, FilterSpecErro
 /// Reads a curve from a JSON file: `{"points": [[F, G], ...]}` or `[[F, G], ...]`.
 pub fn read_curve_file(path: &Path) -> Result<PiecewiseLinear, FilterSpecError> {
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| FilterSpecError::FileRead {
+    let read_error = |message: String| FilterSpecError::FileRead {
         path: shown.clone(),
-        message: e.to_string(),
-    })?;
+        message,
+    };
+    // A curve is a few points; 16 MiB is far more than any needs.
+    let bytes =
+        tvf_core::io::read_at_most(path, 16 << 20).map_err(|e| read_error(e.to_string()))?;
+    let text = String::from_utf8(bytes).map_err(|_| read_error("not UTF-8 text".into()))?;
+    // A leading byte-order mark (some editors write one) is not JSON.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
     let json_error = |message: String| FilterSpecError::Json {
         path: shown.clone(),
         message,
     };
     let value: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| json_error(e.to_string()))?;
+        serde_json::from_str(text).map_err(|e| json_error(e.to_string()))?;
     let list = match &value {
         serde_json::Value::Array(list) => list,
         serde_json::Value::Object(map) => match map.get("points") {

@@ -85,38 +85,108 @@ pub struct NpyArray {
     pub dtype: NpyDtype,
 }
 
+/// Longest `.npy` header accepted (numpy writes a few hundred bytes at most).
+pub const MAX_HEADER_BYTES: usize = 1 << 20;
+
 impl NpyArray {
-    /// Parses the bytes of an `.npy` file.
-    pub fn from_bytes(bytes: &[u8]) -> Result<Self, NpyError> {
-        if bytes.len() < 8 || &bytes[..6] != MAGIC {
-            return Err(if bytes.len() < 8 && MAGIC.starts_with(bytes) {
-                NpyError::Truncated("file ends inside the magic string".into())
+    /// Where the data of an `.npy` file starts, read from its first bytes (magic, version,
+    /// header length: 10 or 12 bytes); `None` if `prefix` is too short to tell. Headers longer
+    /// than [`MAX_HEADER_BYTES`] are refused.
+    pub fn data_start(prefix: &[u8]) -> Result<Option<usize>, NpyError> {
+        if prefix.len() < 8 {
+            return if MAGIC.starts_with(prefix) || prefix.starts_with(MAGIC) {
+                Ok(None)
             } else {
-                NpyError::NotNpy
-            });
+                Err(NpyError::NotNpy)
+            };
         }
-        let (major, minor) = (bytes[6], bytes[7]);
-        let (length_size, utf8) = match (major, minor) {
-            (1, 0) => (2, false),
-            (2, 0) => (4, false),
-            (3, 0) => (4, true),
+        if &prefix[..6] != MAGIC {
+            return Err(NpyError::NotNpy);
+        }
+        let (major, minor) = (prefix[6], prefix[7]);
+        let length_size = match (major, minor) {
+            (1, 0) => 2,
+            (2, 0) | (3, 0) => 4,
             _ => return Err(NpyError::Version { major, minor }),
         };
         let start = 8 + length_size;
-        if bytes.len() < start {
-            return Err(NpyError::Truncated(
-                "file ends inside the header length".into(),
-            ));
+        if prefix.len() < start {
+            return Ok(None);
         }
         let header_len = if length_size == 2 {
-            u16::from_le_bytes([bytes[8], bytes[9]]) as usize
+            u16::from_le_bytes([prefix[8], prefix[9]]) as usize
         } else {
-            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize
+            u32::from_le_bytes([prefix[8], prefix[9], prefix[10], prefix[11]]) as usize
         };
-        let data_start = start + header_len;
+        if header_len > MAX_HEADER_BYTES {
+            return Err(NpyError::Header(format!(
+                "a header of {header_len} bytes is longer than any array needs ({MAX_HEADER_BYTES})"
+            )));
+        }
+        Ok(Some(start + header_len))
+    }
+
+    /// Parses the bytes of an `.npy` file.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, NpyError> {
+        let (parsed, dtype, data_start, needed) = Self::parse_head(bytes)?;
+        let payload = &bytes[data_start..];
+        if payload.len() < needed {
+            return Err(NpyError::Truncated(format!(
+                "shape {:?} needs {needed} data bytes, only {} present",
+                parsed.shape,
+                payload.len()
+            )));
+        }
+        if payload.len() > needed {
+            return Err(NpyError::TrailingData {
+                extra: payload.len() - needed,
+            });
+        }
+        let data = match dtype {
+            NpyDtype::F64 => payload
+                .chunks_exact(8)
+                .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+                .collect(),
+            NpyDtype::F32 => payload
+                .chunks_exact(4)
+                .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
+                .collect(),
+        };
+        Ok(Self {
+            shape: parsed.shape,
+            data,
+            dtype,
+        })
+    }
+
+    /// The data length (bytes) the header of an `.npy` file promises; `head` holds the file's
+    /// bytes at least up to the end of the header.
+    pub fn payload_length(head: &[u8]) -> Result<usize, NpyError> {
+        Self::parse_head(head).map(|(_, _, _, needed)| needed)
+    }
+
+    /// Header, dtype, data start and data length of the `.npy` bytes `bytes` (at least up to the
+    /// end of the header).
+    fn parse_head(bytes: &[u8]) -> Result<(Header, NpyDtype, usize, usize), NpyError> {
+        let data_start = match Self::data_start(bytes)? {
+            Some(start) => start,
+            None if bytes.len() < 8 => {
+                return Err(NpyError::Truncated(
+                    "file ends inside the magic string".into(),
+                ))
+            }
+            None => {
+                return Err(NpyError::Truncated(
+                    "file ends inside the header length".into(),
+                ))
+            }
+        };
+        let utf8 = bytes[6] == 3;
+        let start = if bytes[6] == 1 { 10 } else { 12 };
         if bytes.len() < data_start {
             return Err(NpyError::Truncated(format!(
-                "header says {header_len} bytes, only {} present",
+                "header says {} bytes, only {} present",
+                data_start - start,
                 bytes.len() - start
             )));
         }
@@ -146,34 +216,7 @@ impl NpyArray {
         let needed = count
             .checked_mul(dtype.size())
             .ok_or_else(|| NpyError::Header("shape overflows".into()))?;
-        let payload = &bytes[data_start..];
-        if payload.len() < needed {
-            return Err(NpyError::Truncated(format!(
-                "shape {:?} needs {needed} data bytes, only {} present",
-                parsed.shape,
-                payload.len()
-            )));
-        }
-        if payload.len() > needed {
-            return Err(NpyError::TrailingData {
-                extra: payload.len() - needed,
-            });
-        }
-        let data = match dtype {
-            NpyDtype::F64 => payload
-                .chunks_exact(8)
-                .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-                .collect(),
-            NpyDtype::F32 => payload
-                .chunks_exact(4)
-                .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
-                .collect(),
-        };
-        Ok(Self {
-            shape: parsed.shape,
-            data,
-            dtype,
-        })
+        Ok((parsed, dtype, data_start, needed))
     }
 
     /// The bytes of the `.npy` file (format 1.0 unless the header needs 2.0), header padded so

@@ -5,10 +5,25 @@
 //! The temporary file is created with mode `0o666` minus the process umask (on Unix), like a
 //! file made by [`std::fs::File::create`]: outputs are readable by others as usual (e.g.
 //! `0o644` under the common umask `022`), not owner-only as temporary files are by default.
+//!
+//! The target's folder must exist (tvf never creates a missing parent folder; the error says
+//! which folder is missing). While it is written, the temporary file is registered with
+//! [`super::temporaries`], so an interrupted process removes it; stale temporaries of a killed
+//! process are swept from the folder.
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
+
+use super::temporaries::{
+    register, sweep_stale_temporaries, TEMPORARY_FILE_PREFIX, TEMPORARY_SUFFIX,
+};
+
+/// Environment variable for tests of all-or-nothing outputs and of interruption: `fail:NAME`
+/// makes writing a file called `NAME` (the last path component) fail as on a full disk, after
+/// its content went to the temporary file; `stall:NAME` makes it wait there for a minute, as
+/// on a very slow disk (to interrupt the process then).
+pub const WRITE_FAULT_VARIABLE: &str = "TVF_TEST_WRITE_FAULT";
 
 /// Writes `path` atomically through `fill`, which writes the content into a buffered writer.
 /// On error (from `fill` or the file system) the temporary file is removed and `path` is left
@@ -29,8 +44,17 @@ pub fn write_atomically(
         Some(parent) if !parent.as_os_str().is_empty() => parent,
         _ => Path::new("."),
     };
+    if !directory.is_dir() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::NotFound,
+            format!("the folder {} does not exist", directory.display()),
+        ));
+    }
+    sweep_stale_temporaries(directory);
     let mut builder = tempfile::Builder::new();
-    builder.prefix(".tvf-write-").suffix(".tmp");
+    builder
+        .prefix(TEMPORARY_FILE_PREFIX)
+        .suffix(TEMPORARY_SUFFIX);
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
@@ -38,14 +62,31 @@ pub fn write_atomically(
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
     let mut temporary = builder.tempfile_in(directory)?;
+    let _registration = register(temporary.path());
     {
         let mut writer = BufWriter::new(temporary.as_file_mut());
         fill(&mut writer)?;
         writer.flush()?;
     }
+    match injected_fault(path).as_deref() {
+        Some("fail") => {
+            return Err(std::io::Error::other(format!(
+                "injected write failure ({WRITE_FAULT_VARIABLE})"
+            )))
+        }
+        Some("stall") => std::thread::sleep(std::time::Duration::from_secs(60)),
+        _ => {}
+    }
     temporary.as_file().sync_all()?;
     temporary.persist(path).map_err(|e| e.error)?;
     Ok(())
+}
+
+/// The fault [`WRITE_FAULT_VARIABLE`] asks for when writing `path` (`fail` or `stall`), if any.
+fn injected_fault(path: &Path) -> Option<String> {
+    let value = std::env::var(WRITE_FAULT_VARIABLE).ok()?;
+    let (fault, name) = value.split_once(':')?;
+    (path.file_name()? == std::ffi::OsStr::new(name)).then(|| fault.to_string())
 }
 
 #[cfg(test)]

@@ -1,4 +1,6 @@
-//! Reading and writing triangle meshes: OBJ, OFF and PLY in, OBJ and PLY out.
+//! Reading and writing triangle meshes: OBJ, OFF and PLY in, OBJ and PLY out; and how every tvf
+//! output is written: atomically ([`write_atomically`], [`StagedFolder`] for folders), after
+//! [`check_output`], with interrupted and stale temporaries cleaned up ([`temporaries`]).
 //!
 //! Every reader goes through [`crate::SurfaceMesh::validated`], so a [`LoadedMesh`] is always a
 //! valid oriented manifold mesh, and a [`LoadError`] names the file, the line where one applies,
@@ -14,18 +16,26 @@
 //! ```
 
 mod atomic_write;
+mod bounded_read;
 mod error;
+mod folded_polygons;
 mod obj_reader;
 mod off_reader;
+mod output_path;
 mod ply_header;
 mod ply_reader;
 mod raw_mesh;
+mod staged_folder;
+pub mod temporaries;
 mod text;
 mod writers;
 
-pub use atomic_write::write_atomically;
+pub use atomic_write::{write_atomically, WRITE_FAULT_VARIABLE};
+pub use bounded_read::{read_at_most, read_exactly_at_most};
 pub use error::{LoadError, LoadErrorKind};
+pub use output_path::{check_output, OutputPathError};
 pub use raw_mesh::LoadedMesh;
+pub use staged_folder::StagedFolder;
 pub use writers::{save_mesh, write_obj, write_ply, SaveError};
 
 use std::path::Path;
@@ -67,13 +77,23 @@ pub fn load_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, LoadError> {
             extension: extension.to_string(),
         })
     })?;
-    let bytes = std::fs::read(path).map_err(|e| {
+    // A regular file is read whole (its size bounds it); a stream (a FIFO, a device) only up
+    // to MAX_STREAMED_MESH_BYTES, so one that never ends is refused.
+    let limit = match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => u64::MAX,
+        _ => MAX_STREAMED_MESH_BYTES,
+    };
+    let bytes = read_at_most(path, limit).map_err(|e| {
         error(LoadErrorKind::Unreadable {
             reason: e.to_string(),
         })
     })?;
     parse_mesh_bytes(&bytes, format, path)
 }
+
+/// Most bytes read from a mesh that is not a regular file (a FIFO, a device): 1 GiB, about ten
+/// million faces of text.
+pub const MAX_STREAMED_MESH_BYTES: u64 = 1 << 30;
 
 /// Parses and validates a mesh held in memory; `name` is used in errors in place of a path.
 pub fn parse_mesh_bytes(

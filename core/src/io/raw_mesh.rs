@@ -1,7 +1,8 @@
 //! What a reader produces before validation, and the step from it to a [`LoadedMesh`].
 
 use super::error::{LoadError, LoadErrorKind};
-use crate::mesh::ValidationReport;
+use super::folded_polygons::folded_polygons;
+use crate::mesh::{ValidationReport, ValidationWarning};
 use crate::{MeshError, SurfaceMesh};
 use std::path::Path;
 
@@ -53,8 +54,16 @@ impl RawMesh {
             vertex_lines,
             face_lines,
         } = self;
+        let folded = folded_polygons(&positions, &faces, &face_lines);
         SurfaceMesh::validated(positions, faces)
-            .map(|(mesh, report)| LoadedMesh { mesh, report })
+            .map(|(mesh, mut report)| {
+                if let Some((count, first_line)) = folded {
+                    report
+                        .warnings
+                        .push(ValidationWarning::FoldedPolygons { count, first_line });
+                }
+                LoadedMesh { mesh, report }
+            })
             .map_err(|error| {
                 let line = match &error {
                     MeshError::NonFiniteCoordinate { vertex }

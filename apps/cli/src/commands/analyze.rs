@@ -1,9 +1,10 @@
 //! `tvf analyze`: a field's Fourier coefficients against frequency (the paper's Figure 8) and
 //! the energy of each part of its Hodge decomposition.
 
-use super::spectral_inputs::{create_output_dir, exact_hodge_energies, load_setup, read_field};
+use super::spectral_inputs::{exact_hodge_energies, load_setup, read_field};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
@@ -50,11 +51,13 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 /// Runs the analysis and writes the three files.
 pub fn run(mut args: AnalyzeArgs) -> Result<()> {
     let field_path = args.input.required_second(args.field.take(), "FIELD");
+    let basis_file = args.basis.options.basis.as_deref();
+    check_output(&args.output, &args.input, &[Some(&field_path), basis_file])?;
     let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
     let field = read_field(&field_path, setup.fields()?)?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
     let exact = Some(exact_hodge_energies(setup.complex.as_ref(), &field)?);
-    create_output_dir(&args.output)?;
+    let staged = stage(&args.output)?;
 
     let mut csv = String::from("index,family,eigenvalue,frequency,coefficient\n");
     for e in &analysis.entries {
@@ -69,7 +72,7 @@ pub fn run(mut args: AnalyzeArgs) -> Result<()> {
         )?;
     }
     let csv_path = args.output.join("coefficients.csv");
-    write_atomically(&csv_path, csv.as_bytes())
+    write_atomically(&staged.path().join("coefficients.csv"), csv.as_bytes())
         .with_context(|| format!("cannot write {}", csv_path.display()))?;
 
     let mut report = json!({
@@ -87,13 +90,15 @@ pub fn run(mut args: AnalyzeArgs) -> Result<()> {
     }
     let json_path = args.output.join("energy.json");
     write_atomically(
-        &json_path,
+        &staged.path().join("energy.json"),
         serde_json::to_string_pretty(&report)?.as_bytes(),
     )
     .with_context(|| format!("cannot write {}", json_path.display()))?;
 
     let png_path = args.output.join("spectrum.png");
-    plot_spectrum(&analysis, &png_path)?;
+    plot_spectrum(&analysis, &staged.path().join("spectrum.png"))
+        .with_context(|| format!("cannot write {}", png_path.display()))?;
+    commit(staged)?;
 
     if args.json {
         println!("{}", serde_json::to_string_pretty(&report)?);

@@ -2,6 +2,7 @@
 
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -42,6 +43,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
     if args.fields == 0 {
         bail!("-k 0: ask for at least one eigenfield");
     }
+    check_output(&args.output, &args.input, &[])?;
     let mesh = args.input.load()?.mesh;
     let discretization = args.discretization.build(&mesh, &args.input.label())?;
     let progress = Progress::new("basis");

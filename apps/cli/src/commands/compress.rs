@@ -4,6 +4,7 @@
 use super::spectral_inputs::{load_setup, read_frames, FrameSource};
 use crate::basis_source::{BasisSize, BasisSource};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::progress::Progress;
 use anyhow::Result;
 use clap::Args;
@@ -53,6 +54,8 @@ pub struct CompressArgs {
 /// Compresses the frames, writes the file and reports size and error.
 pub fn run(mut args: CompressArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
+    let basis_file = args.basis.options.basis.as_deref();
+    check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
     let size = args.basis.size_or(BasisSize::Pairs(args.pairs));
     let setup = load_setup(&args.input, &args.basis.options, size)?;
     let (frames, source) = read_frames(&field, setup.fields()?)?;

@@ -4,6 +4,7 @@
 use super::spectral_inputs::read_field;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -38,57 +39,76 @@ pub struct DecomposeArgs {
 /// Decomposes the field and writes the parts.
 pub fn run(mut args: DecomposeArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
+    check_output(&args.out, &args.input, &[Some(&field)])?;
     let mesh = args.input.load()?.mesh;
     let discretization = args.discretization.build(&mesh, &args.input.label())?;
-    let field = read_field(&field, discretization.require_sampling()?)?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create the folder {}", args.out.display()))?;
+    let field_path = field;
+    let field = read_field(&field_path, discretization.require_sampling()?)?;
     let mut report = Report::new(args.json);
     report.set("discretization", discretization.id());
-    {
-        let c = discretization.as_ref();
-        {
-            let parts = HodgeDecomposer::new(c)
-                .and_then(|d| d.decompose(&field))
-                .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
-            let total = c.field_inner(&field, &field);
-            report.set("field_energy", total);
-            for (name, part) in [
-                ("integrable", &parts.integrable),
-                ("cointegrable", &parts.co_integrable),
-                ("harmonic", &parts.harmonic),
-            ] {
-                write_face_vectors(
-                    &args.out.join(format!("{name}.npy")),
-                    &c.require_sampling()?.to_face_vectors(part)?,
-                )?;
-                let energy = c.field_inner(part, part);
-                report.line(format!(
-                    "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
-                    if total > 0.0 {
-                        100.0 * energy / total
-                    } else {
-                        0.0
-                    }
-                ));
-                report.set(&format!("{name}_energy"), energy);
-            }
-            for (name, values) in [
-                ("potential", &parts.potential),
-                ("co_potential", &parts.co_potential),
-            ] {
-                write_npy(
-                    &args.out.join(format!("{name}.npy")),
-                    &NpyArray {
-                        shape: vec![values.len()],
-                        data: values.clone(),
-                        dtype: NpyDtype::F64,
-                    },
-                )?;
-            }
-            Ok::<(), anyhow::Error>(())
+    let staged = stage(&args.out)?;
+    let c = discretization.as_ref();
+    (|| {
+        let parts = HodgeDecomposer::new(c)
+            .and_then(|d| d.decompose(&field))
+            .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
+        let total = c.field_inner(&field, &field);
+        if !total.is_finite() {
+            anyhow::bail!(
+                "{}: the field's energy ‖·‖² is not finite ({total:e}): its vectors are too large \
+                 for f64 arithmetic",
+                field_path.display()
+            );
         }
-    }?;
+        report.set("field_energy", total);
+        for (name, part) in [
+            ("integrable", &parts.integrable),
+            ("cointegrable", &parts.co_integrable),
+            ("harmonic", &parts.harmonic),
+        ] {
+            write_face_vectors(
+                &staged.path().join(format!("{name}.npy")),
+                &c.require_sampling()?.to_face_vectors(part)?,
+            )
+            .with_context(|| {
+                format!(
+                    "cannot write {}",
+                    args.out.join(format!("{name}.npy")).display()
+                )
+            })?;
+            let energy = c.field_inner(part, part);
+            report.line(format!(
+                "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
+                if total > 0.0 {
+                    100.0 * energy / total
+                } else {
+                    0.0
+                }
+            ));
+            report.set(&format!("{name}_energy"), energy);
+        }
+        for (name, values) in [
+            ("potential", &parts.potential),
+            ("co_potential", &parts.co_potential),
+        ] {
+            write_npy(
+                &staged.path().join(format!("{name}.npy")),
+                &NpyArray {
+                    shape: vec![values.len()],
+                    data: values.clone(),
+                    dtype: NpyDtype::F64,
+                },
+            )
+            .with_context(|| {
+                format!(
+                    "cannot write {}",
+                    args.out.join(format!("{name}.npy")).display()
+                )
+            })?;
+        }
+        Ok::<(), anyhow::Error>(())
+    })()?;
+    commit(staged)?;
     report.line(format!(
         "wrote the parts and potentials to {}",
         args.out.display()

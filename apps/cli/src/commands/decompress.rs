@@ -3,6 +3,7 @@
 use super::spectral_inputs::{setup_for_mesh, write_frames};
 use crate::basis_source::{BasisSize, BasisSource};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::progress::Progress;
 use anyhow::Result;
 use clap::Args;
@@ -36,6 +37,8 @@ pub fn run(mut args: DecompressArgs) -> Result<()> {
     let compressed = args
         .input
         .required_second(args.compressed.take(), "FILE.tvfc");
+    let basis_file = args.basis.options.basis.as_deref();
+    check_output(&args.output, &args.input, &[Some(&compressed), basis_file])?;
     // The mesh first: a bad mesh is reported before a bad file.
     let mesh = args.input.load()?.mesh;
     let file = CompressedFields::read(&compressed)?;

@@ -4,10 +4,11 @@
 use crate::demo::{run as run_demo, DemoConfig};
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{commit, stage};
 use crate::picture::parse_size;
 use anyhow::{bail, Result};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use tvf_core::generate::bumpy_torus;
 use tvf_core::SurfaceMesh;
 
@@ -71,6 +72,8 @@ pub struct DemoArgs {
 
 /// Runs the demo.
 pub fn run(args: DemoArgs) -> Result<()> {
+    let inputs: Vec<&Path> = args.mesh.as_deref().into_iter().collect();
+    tvf_core::io::check_output(&args.output, &inputs)?;
     let (width, height) = if args.quick {
         (320, 240)
     } else {
@@ -111,8 +114,10 @@ pub fn run(args: DemoArgs) -> Result<()> {
     if fields < MIN_FIELDS {
         bail!("-k {fields}: the demo needs at least {MIN_FIELDS} eigenfields");
     }
+    // The pages and pictures go to a temporary sibling folder, renamed into place at the end.
+    let staged = stage(&args.output)?;
     let config = DemoConfig {
-        output: args.output,
+        output: staged.path().to_path_buf(),
         mesh,
         mesh_name,
         fields,
@@ -122,6 +127,8 @@ pub fn run(args: DemoArgs) -> Result<()> {
         fur_strands: if args.quick { 1500 } else { 25_000 },
     };
     let index = run_demo(&config)?;
+    commit(staged)?;
+    let index = args.output.join(index.file_name().unwrap_or_default());
     println!("wrote {}", index.display());
     Ok(())
 }

@@ -2,18 +2,20 @@
 //! (sparse Cholesky) or reduced (dense Cholesky in the eigenbasis).
 
 use super::spline::{
-    compile, discretization, load_inputs, reduced_basis, report_residuals, DesignInputs,
+    compile, discretization, load_inputs, reduced_basis, report_residuals, solution_residuals,
+    DesignInputs,
 };
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::report::Report;
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_design::{
-    default_regularization, residual, FillOrdering, FullSoftDesign, ReducedSoftDesign, SoftOptions,
+    default_regularization, FillOrdering, FullSoftDesign, ReducedSoftDesign, SoftOptions,
     DEFAULT_FULL_ORDERING,
 };
 use tvf_spectral::write_tangent_field;
@@ -60,6 +62,9 @@ pub struct DesignArgs {
 /// Runs `tvf design`.
 pub fn run(args: DesignArgs) -> Result<()> {
     let mut report = Report::new(args.json);
+    let basis_file = args.basis.options.basis.as_deref();
+    let inputs = [Some(args.constraints.as_path()), basis_file];
+    check_output(&args.output, &args.input, &inputs)?;
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
     design_with(discretization.as_ref(), &inputs, &args, &mut report)?;
@@ -89,7 +94,14 @@ fn design_with<H: HodgeComplex + ?Sized>(
             options,
             constraints.clone(),
             ordering,
-        )?;
+        )
+        .with_context(|| {
+            format!(
+                "{}: the full soft-design system (omega {:e}) cannot be factored",
+                inputs.constraints_path.display(),
+                inputs.set.omega
+            )
+        })?;
         let factor = start.elapsed();
         let timings = design.timings();
         let start = Instant::now();
@@ -134,10 +146,12 @@ fn design_with<H: HodgeComplex + ?Sized>(
         out.set("factor_gflop", design.factor_flop_count() / 1e9);
         out.set("system_residuals", &report.residuals);
         out.set("rounding_floor", report.rounding_floor);
+        solution_residuals(&field, &constraints, inputs)?;
         if !report.meets(1e-8) {
             bail!(
-                "the full solve reached only a relative residual of {:.1e} (the rounding floor of an \
+                "{}: the full solve reached only a relative residual of {:.1e} (the rounding floor of an \
                  f64 field is {:.1e})",
+                inputs.constraints_path.display(),
                 report.final_residual(),
                 report.rounding_floor
             );
@@ -155,8 +169,11 @@ fn design_with<H: HodgeComplex + ?Sized>(
     } else {
         let basis = reduced_basis(inputs, &args.input, &args.basis, out)?;
         let start = Instant::now();
-        let mut design = ReducedSoftDesign::new(&basis, options)?;
-        design.add_all(constraints.clone())?;
+        let mut design = ReducedSoftDesign::new(&basis, options)
+            .with_context(|| format!("{}", inputs.constraints_path.display()))?;
+        design
+            .add_all(constraints.clone())
+            .with_context(|| format!("{}", inputs.constraints_path.display()))?;
         let factor = start.elapsed();
         let start = Instant::now();
         let v = design.solve();
@@ -183,8 +200,7 @@ fn design_with<H: HodgeComplex + ?Sized>(
         out.set("map_ms", map_ms);
         field
     };
-    let residuals: Vec<_> = constraints.iter().map(|c| residual(c, &field)).collect();
-    report_residuals(&residuals, out);
+    report_residuals(&solution_residuals(&field, &constraints, inputs)?, out);
     write_tangent_field(&args.output, complex.require_sampling()?, &field)?;
     out.line(format!("wrote {}", args.output.display()));
     out.set("output", args.output.display().to_string());

@@ -3,6 +3,7 @@
 use super::spectral_inputs::{load_setup, read_field};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::report::Report;
 use anyhow::{bail, Result};
 use clap::Args;
@@ -64,6 +65,8 @@ fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
 /// Filters the field and writes the result.
 pub fn run(mut args: FilterArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
+    let basis_file = args.basis.options.basis.as_deref();
+    check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
     for (name, gain) in [("--harmonic", args.harmonic), ("--rest", args.rest)] {
         if !gain.is_finite() || gain < 0.0 {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");

@@ -2,16 +2,17 @@
 
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use sprs::CsMat;
-use std::fs;
 use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use tvf_core::discretization::sparse::diagonal;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::io::StagedFolder;
 use tvf_core::SurfaceMesh;
 
 /// Arguments of `tvf operators`.
@@ -32,15 +33,23 @@ pub struct OperatorsArgs {
 /// Writes the five matrices of the complex (d0, d1, M0, M1, M2), the derived S0, S2, S, B, J
 /// where the complex has a rotation, and info.json.
 pub fn run(args: OperatorsArgs) -> Result<()> {
+    check_output(&args.out, &args.input, &[])?;
     let mesh = args.input.load()?.mesh;
     let complex = args.discretization.build(&mesh, &args.input.label())?;
-    fs::create_dir_all(&args.out)
-        .with_context(|| format!("cannot create output directory {}", args.out.display()))?;
-    write_all(complex.as_ref(), &mesh, &args.out)
+    let staged = stage(&args.out)?;
+    let written = write_all(complex.as_ref(), &mesh, &staged)?;
+    let out = staged.target().to_path_buf();
+    commit(staged)?;
+    println!(
+        "wrote {written} matrices and info.json to {} ({})",
+        out.display(),
+        complex.id()
+    );
+    Ok(())
 }
 
-/// Writes every file of `complex`.
-fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &Path) -> Result<()> {
+/// Writes every file of `complex` into `out`; returns the number of matrices.
+fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &StagedFolder) -> Result<usize> {
     let mut matrices: Vec<(&str, CsMat<f64>)> = vec![
         ("d0", complex.d0().clone()),
         ("d1", complex.d1().clone()),
@@ -56,7 +65,7 @@ fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &Path) -> Resu
         matrices.push(("J", rotation.rotation().clone()));
     }
     for (name, matrix) in &matrices {
-        write_atomically(&out.join(format!("{name}.mtx")), |w| {
+        write_atomically(out, &format!("{name}.mtx"), |w| {
             sprs::io::write_matrix_market_to_bufwrite(w, matrix)
         })?;
     }
@@ -105,21 +114,17 @@ fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &Path) -> Resu
         },
     });
     let text = serde_json::to_string_pretty(&info)? + "\n";
-    write_atomically(&out.join("info.json"), |w| w.write_all(text.as_bytes()))?;
-    println!(
-        "wrote {} matrices and info.json to {} ({})",
-        matrices.len(),
-        out.display(),
-        complex.id()
-    );
-    Ok(())
+    write_atomically(out, "info.json", |w| w.write_all(text.as_bytes()))?;
+    Ok(matrices.len())
 }
 
-/// Writes `path` atomically ([`tvf_core::io::write_atomically`]); errors name the file.
+/// Writes the file `name` of the staged folder `out` atomically
+/// ([`tvf_core::io::write_atomically`]); errors name the file in the output folder.
 fn write_atomically(
-    path: &Path,
+    out: &StagedFolder,
+    name: &str,
     fill: impl FnOnce(&mut BufWriter<&mut File>) -> std::io::Result<()>,
 ) -> Result<()> {
-    tvf_core::io::write_atomically(path, fill)
-        .with_context(|| format!("cannot write {}", path.display()))
+    tvf_core::io::write_atomically(&out.path().join(name), fill)
+        .with_context(|| format!("cannot write {}", out.target().join(name).display()))
 }

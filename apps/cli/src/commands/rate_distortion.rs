@@ -1,9 +1,10 @@
 //! `tvf rate-distortion`: relative L2 error against bits per vertex for several numbers of
 //! pairs, with 64-bit and with quantised, range-coded coefficients (the paper's Figure 9).
 
-use super::spectral_inputs::{create_output_dir, load_setup, read_field};
+use super::spectral_inputs::{load_setup, read_field};
 use crate::basis_source::{BasisSize, BasisSource};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -64,6 +65,8 @@ pub fn coding_label(coding: CoefficientCoding) -> String {
 /// Measures every point and writes the CSV and the plot.
 pub fn run(mut args: RateDistortionArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
+    let basis_file = args.basis.options.basis.as_deref();
+    check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
     // Without --basis or -k, compute as many pairs as the largest P tried.
     let largest = args.ks.iter().max().copied().unwrap_or(0);
     let size = args.basis.size_or(BasisSize::Pairs(largest));
@@ -81,7 +84,7 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
             .map(|&bits| CoefficientCoding::Quantized { bits }),
     );
     let points = rate_distortion(&setup.basis, &field, stamp, &args.ks, &codings)?;
-    create_output_dir(&args.output)?;
+    let staged = stage(&args.output)?;
 
     let mut csv = String::from("coding,bits,pairs,bytes,bits_per_vertex,relative_error\n");
     for p in &points {
@@ -96,7 +99,7 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
         )?;
     }
     let csv_path = args.output.join("rate_distortion.csv");
-    write_atomically(&csv_path, csv.as_bytes())
+    write_atomically(&staged.path().join("rate_distortion.csv"), csv.as_bytes())
         .with_context(|| format!("cannot write {}", csv_path.display()))?;
     let png_path = args.output.join("rate_distortion.png");
     let label = args.input.label();
@@ -109,7 +112,9 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
         format!("Rate-distortion on {mesh_name}"),
         (1000, 650),
     );
-    save_png(&plot.render()?, &png_path)?;
+    save_png(&plot.render()?, &staged.path().join("rate_distortion.png"))
+        .with_context(|| format!("cannot write {}", png_path.display()))?;
+    commit(staged)?;
 
     let mut report = Report::new(args.json);
     report.line(format!(

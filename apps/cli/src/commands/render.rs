@@ -4,6 +4,7 @@ use super::spectral_inputs::read_field;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::face_quantities::ColorBy;
 use crate::mesh_input::{usage_error, MeshInput};
+use crate::output_rules::check_output;
 use crate::picture::{
     constraint_markers, draw, grid, parse_size, parse_view, Overlays, Style, View,
 };
@@ -86,6 +87,8 @@ pub struct RenderArgs {
 /// Renders the picture and writes the PNG.
 pub fn run(mut args: RenderArgs) -> Result<()> {
     let field_path = args.input.optional_second(args.field.take(), "FIELD");
+    let inputs = [field_path.as_deref(), args.constraints.as_deref()];
+    check_output(&args.output, &args.input, &inputs)?;
     if args.parts && field_path.is_none() {
         usage_error(
             ErrorKind::MissingRequiredArgument,

@@ -6,6 +6,7 @@
 use crate::basis_source::{BasisOptions, BasisSize};
 use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{commit, stage};
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::HodgeOperators;
@@ -76,7 +77,30 @@ pub fn read_field(path: &Path, fields: &dyn FieldSampling) -> Result<Vec<f64>> {
             path.display()
         ));
     }
+    check_magnitudes(path, &projection.field)?;
     Ok(projection.field)
+}
+
+/// Largest accepted field coefficient: its square (and a sum of a few of them) stays finite, so
+/// magnitudes and energies of the field can be computed in `f64`.
+pub const MAX_FIELD_COEFFICIENT: f64 = 1e150;
+
+/// Refuses a field whose coefficients are too large to square in `f64` (magnitudes, energies and
+/// everything computed from them would be infinite or NaN); the message names the file.
+fn check_magnitudes(path: &Path, field: &[f64]) -> Result<()> {
+    if let Some((k, x)) = field
+        .iter()
+        .enumerate()
+        .find(|(_, x)| x.is_nan() || x.abs() > MAX_FIELD_COEFFICIENT)
+    {
+        anyhow::bail!(
+            "{}: the vector of face {} has a component of {x:e}: too large for f64 arithmetic \
+             (lengths and energies overflow; components must be at most {MAX_FIELD_COEFFICIENT:e})",
+            path.display(),
+            k / 2
+        );
+    }
+    Ok(())
 }
 
 /// Where a sequence of frames came from (and how decompression writes it back by default).
@@ -162,11 +186,13 @@ pub fn write_frames(out: &Path, fields: &dyn FieldSampling, frames: &[Vec<f64>])
     {
         write_face_vector_sequence(out, &vectors, NpyDtype::F64)?;
     } else {
-        std::fs::create_dir_all(out)
-            .with_context(|| format!("cannot create the folder {}", out.display()))?;
+        let staged = stage(out)?;
         for (k, frame) in frames.iter().enumerate() {
-            write_tangent_field(&out.join(format!("frame_{k:05}.npy")), fields, frame)?;
+            let name = format!("frame_{k:05}.npy");
+            write_tangent_field(&staged.path().join(&name), fields, frame)
+                .with_context(|| format!("cannot write {}", out.join(&name).display()))?;
         }
+        commit(staged)?;
     }
     Ok(())
 }
@@ -175,10 +201,4 @@ pub fn write_frames(out: &Path, fields: &dyn FieldSampling, frames: &[Vec<f64>])
 pub fn exact_hodge_energies(complex: &dyn HodgeComplex, field: &[f64]) -> Result<EnergySplit> {
     let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
     Ok(EnergySplit::of_hodge_parts(&parts, complex.m1().values()))
-}
-
-/// Creates the output folder `dir` (and its parents).
-pub fn create_output_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("cannot create the folder {}", dir.display()))
 }

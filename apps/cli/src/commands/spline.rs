@@ -4,6 +4,7 @@
 use crate::basis_source::BasisSource;
 use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -13,8 +14,8 @@ use tvf_core::discretization::HodgeComplex;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, ReducedBasis,
-    SplineSession,
+    checked_residuals, worst_residual, CompiledConstraint, ConstraintAssembler, ConstraintResidual,
+    ConstraintSet, ReducedBasis, SplineSession,
 };
 use tvf_spectral::{mesh_fingerprint, write_tangent_field};
 
@@ -128,6 +129,17 @@ pub fn compile<H: HodgeComplex + ?Sized>(
         .with_context(|| format!("{}", inputs.constraints_path.display()))
 }
 
+/// The residuals of the solved `field`, or an error naming the constraint file and the
+/// constraint when the field or a residual is NaN or infinite.
+pub fn solution_residuals(
+    field: &[f64],
+    constraints: &[CompiledConstraint],
+    inputs: &DesignInputs,
+) -> Result<Vec<ConstraintResidual>> {
+    checked_residuals(field, constraints, inputs.set.omega)
+        .with_context(|| format!("{}", inputs.constraints_path.display()))
+}
+
 /// Reports one line per constraint residual and the worst relative one (JSON: `residuals`
 /// as `[{id, absolute, relative}]` and `worst_relative_residual`).
 pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
@@ -138,7 +150,7 @@ pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
             r.id, r.absolute, r.relative
         ));
     }
-    let worst = residuals.iter().map(|r| r.relative).fold(0.0, f64::max);
+    let worst = worst_residual(residuals).map_or(0.0, |r| r.relative);
     report.line(format!("worst relative residual {worst:.3e}"));
     let list: Vec<_> = residuals
         .iter()
@@ -151,6 +163,9 @@ pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
 /// Runs `tvf spline`.
 pub fn run(args: SplineArgs) -> Result<()> {
     let mut report = Report::new(args.json);
+    let basis_file = args.basis.options.basis.as_deref();
+    let inputs = [Some(args.constraints.as_path()), basis_file];
+    check_output(&args.output, &args.input, &inputs)?;
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let discretization = discretization(&inputs, &args.input, &args.basis)?;
     spline_with(discretization.as_ref(), &inputs, &args, &mut report)?;
@@ -166,8 +181,9 @@ fn spline_with<H: HodgeComplex + ?Sized>(
     let constraints = compile(complex, inputs)?;
     let basis = reduced_basis(inputs, &args.input, &args.basis, report)?;
     let start = Instant::now();
-    let mut session = SplineSession::new(&basis, inputs.set.omega)?;
-    for c in constraints {
+    let mut session = SplineSession::new(&basis, inputs.set.omega)
+        .with_context(|| format!("{}", inputs.constraints_path.display()))?;
+    for c in constraints.iter().cloned() {
         session
             .add(c)
             .with_context(|| format!("{}", inputs.constraints_path.display()))?;
@@ -198,7 +214,7 @@ fn spline_with<H: HodgeComplex + ?Sized>(
     report.set("setup_ms", setup_ms);
     report.set("solve_ms", solve_ms);
     report.set("map_ms", map_ms);
-    report_residuals(&session.residuals(&field), report);
+    report_residuals(&solution_residuals(&field, &constraints, inputs)?, report);
     write_tangent_field(&args.output, complex.require_sampling()?, &field)?;
     report.line(format!("wrote {}", args.output.display()));
     report.set("output", args.output.display().to_string());

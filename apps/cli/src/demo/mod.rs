@@ -120,8 +120,6 @@ fn timed(
 /// Runs the whole demo and writes `index.html`; returns the page's path.
 pub fn run(config: &DemoConfig) -> Result<PathBuf> {
     let start = Instant::now();
-    std::fs::create_dir_all(&config.output)
-        .with_context(|| format!("cannot create the folder {}", config.output.display()))?;
     const STEPS: usize = 7;
     let mut sections = Vec::new();
     let mut computed = None;

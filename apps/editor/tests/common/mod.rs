@@ -70,10 +70,12 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
     EditorServer::start(editor, 0).expect("server starts")
 }
 
-/// A blocking HTTP client for one server that returns every status (no error on 4xx).
+/// A blocking HTTP client for one server that returns every status (no error on 4xx) and sends
+/// the session token, as the page does.
 pub struct Client {
     agent: ureq::Agent,
     base: String,
+    token: String,
 }
 
 impl Client {
@@ -85,6 +87,7 @@ impl Client {
         Self {
             agent,
             base: format!("http://{}", server.address()),
+            token: server.token().to_string(),
         }
     }
 
@@ -104,6 +107,7 @@ impl Client {
         Self::read(
             self.agent
                 .get(format!("{}{path}", self.base))
+                .header("X-TVF-Token", &self.token)
                 .call()
                 .expect("GET"),
         )
@@ -115,6 +119,7 @@ impl Client {
             .agent
             .post(format!("{}{path}", self.base))
             .header("Content-Type", "application/json")
+            .header("X-TVF-Token", &self.token)
             .send(body.as_bytes())
             .expect("POST");
         Self::read(response)

@@ -1,0 +1,79 @@
+//! [`check_output`]: the rules every output path of tvf follows, checked before anything is
+//! computed: its folder must exist (tvf never creates a missing parent folder), and it must not
+//! be one of the command's inputs (writing it would destroy the input).
+
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// An output path that breaks a rule of [`check_output`].
+#[derive(Debug, Error, PartialEq, Eq)]
+pub enum OutputPathError {
+    /// The folder the output would go into does not exist.
+    #[error("cannot write {output}: the folder {folder} does not exist (create it first)")]
+    MissingFolder {
+        /// The output.
+        output: PathBuf,
+        /// Its missing parent folder.
+        folder: PathBuf,
+    },
+    /// The output is one of the inputs.
+    #[error("cannot write {output}: it is also an input of this command (choose another output)")]
+    IsAnInput {
+        /// The output.
+        output: PathBuf,
+    },
+}
+
+/// Checks that `output` (a file or a folder to write) can be written without surprises: its
+/// parent folder exists, and it is not the same file or folder as any of `inputs` (compared
+/// after resolving links and relative paths).
+pub fn check_output(output: &Path, inputs: &[&Path]) -> Result<(), OutputPathError> {
+    let folder = match output.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    if !folder.is_dir() {
+        return Err(OutputPathError::MissingFolder {
+            output: output.to_path_buf(),
+            folder: folder.to_path_buf(),
+        });
+    }
+    if let Ok(resolved) = output.canonicalize() {
+        if inputs
+            .iter()
+            .any(|input| input.canonicalize().is_ok_and(|i| i == resolved))
+        {
+            return Err(OutputPathError::IsAnInput {
+                output: output.to_path_buf(),
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_folders_and_inputs_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let mesh = dir.path().join("m.obj");
+        std::fs::write(&mesh, b"v 0 0 0").unwrap();
+        assert_eq!(check_output(&dir.path().join("out.png"), &[&mesh]), Ok(()));
+        let missing = dir.path().join("no/out.png");
+        let error = check_output(&missing, &[]).unwrap_err();
+        assert!(error.to_string().contains("out.png"), "{error}");
+        assert!(matches!(error, OutputPathError::MissingFolder { .. }));
+        let same = dir.path().join("sub/../m.obj");
+        std::fs::create_dir(dir.path().join("sub")).unwrap();
+        assert_eq!(
+            check_output(&same, &[&mesh]),
+            Err(OutputPathError::IsAnInput {
+                output: same.clone()
+            })
+        );
+        // A bare file name goes into the current folder, which exists.
+        assert_eq!(check_output(Path::new("plain.png"), &[]), Ok(()));
+    }
+}

@@ -1,0 +1,161 @@
+//! The temporary files and folders tvf writes next to its outputs before renaming them into
+//! place (`.tvf-write-*.tmp` files, `.tvf-folder-*.tmp` folders): a registry of those this
+//! process is writing, which [`remove_temporaries`] deletes when the process is interrupted
+//! (SIGINT, SIGTERM), and [`sweep_stale_temporaries`], which deletes the ones a killed process
+//! left behind.
+
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::{Duration, SystemTime};
+
+/// Name prefix of a temporary output file.
+pub const TEMPORARY_FILE_PREFIX: &str = ".tvf-write-";
+/// Name prefix of a temporary output folder.
+pub const TEMPORARY_FOLDER_PREFIX: &str = ".tvf-folder-";
+/// Name suffix of both.
+pub const TEMPORARY_SUFFIX: &str = ".tmp";
+/// A temporary not modified for this long belongs to no running process (a running write
+/// touches its file at least every few seconds) and is swept.
+pub const STALE_AFTER: Duration = Duration::from_secs(3600);
+
+/// Temporaries this process is writing.
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Folders already swept by this process.
+static SWEPT: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
+
+/// A temporary in [the registry](self); leaves it when dropped (after a rename or a removal).
+#[derive(Debug)]
+pub struct Registration(PathBuf);
+
+impl Drop for Registration {
+    fn drop(&mut self) {
+        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(k) = live.iter().position(|p| *p == self.0) {
+            live.swap_remove(k);
+        }
+    }
+}
+
+/// Registers `path` (a temporary file or folder) until the returned guard is dropped.
+pub fn register(path: &Path) -> Registration {
+    let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+    live.push(path.to_path_buf());
+    Registration(path.to_path_buf())
+}
+
+/// Deletes every registered temporary (for a signal handler: the process exits next).
+/// Returns how many were deleted.
+pub fn remove_temporaries() -> usize {
+    remove_registered(|_| true)
+}
+
+/// Deletes the registered temporaries for which `selected` holds; returns how many.
+fn remove_registered(selected: impl Fn(&Path) -> bool) -> usize {
+    let live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+    live.iter()
+        .filter(|path| selected(path))
+        .filter(|path| {
+            if path.is_dir() {
+                std::fs::remove_dir_all(path).is_ok()
+            } else {
+                std::fs::remove_file(path).is_ok()
+            }
+        })
+        .count()
+}
+
+/// Whether `name` follows our temporaries' naming pattern.
+pub fn is_temporary_name(name: &str) -> bool {
+    (name.starts_with(TEMPORARY_FILE_PREFIX) || name.starts_with(TEMPORARY_FOLDER_PREFIX))
+        && name.ends_with(TEMPORARY_SUFFIX)
+}
+
+/// Deletes the temporaries of our naming pattern in `folder` that were not modified for
+/// [`STALE_AFTER`] (left by a process that was killed); each folder once per process. Errors
+/// are ignored: sweeping is a courtesy, never a reason to fail a write.
+pub fn sweep_stale_temporaries(folder: &Path) {
+    {
+        let mut swept = SWEPT.lock().unwrap_or_else(|e| e.into_inner());
+        if !swept
+            .get_or_insert_with(HashSet::new)
+            .insert(folder.to_path_buf())
+        {
+            return;
+        }
+    }
+    let Ok(entries) = std::fs::read_dir(folder) else {
+        return;
+    };
+    let now = SystemTime::now();
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        if !is_temporary_name(&name.to_string_lossy()) {
+            continue;
+        }
+        let Ok(metadata) = entry.path().symlink_metadata() else {
+            continue;
+        };
+        let age = metadata
+            .modified()
+            .ok()
+            .and_then(|m| now.duration_since(m).ok());
+        if age.is_some_and(|a| a >= STALE_AFTER) {
+            let path = entry.path();
+            let _ = if metadata.is_dir() {
+                std::fs::remove_dir_all(&path)
+            } else {
+                std::fs::remove_file(&path)
+            };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn our_names_are_recognised_and_others_not() {
+        assert!(is_temporary_name(".tvf-write-abc123.tmp"));
+        assert!(is_temporary_name(".tvf-folder-abc123.tmp"));
+        for other in ["tvf-write-a.tmp", ".tvf-write-a.npy", "x.tmp", ".tvf-cache"] {
+            assert!(!is_temporary_name(other), "{other}");
+        }
+    }
+
+    #[test]
+    fn registered_temporaries_are_removed_and_stale_ones_swept() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join(".tvf-write-live.tmp");
+        let folder = dir.path().join(".tvf-folder-live.tmp");
+        std::fs::write(&file, b"x").unwrap();
+        std::fs::create_dir(&folder).unwrap();
+        std::fs::write(folder.join("a.npy"), b"x").unwrap();
+        let guards = [register(&file), register(&folder)];
+        // Only this test's temporaries: tests running at the same time register their own.
+        assert_eq!(remove_registered(|p| p.starts_with(dir.path())), 2);
+        assert!(!file.exists() && !folder.exists());
+        drop(guards);
+
+        // A fresh temporary (maybe another process's) stays; an old one of ours goes; other
+        // files stay whatever their age.
+        let fresh = dir.path().join(".tvf-write-fresh.tmp");
+        let stale = dir.path().join(".tvf-write-stale.tmp");
+        let mine = dir.path().join("keep.tmp");
+        for p in [&fresh, &stale, &mine] {
+            std::fs::write(p, b"x").unwrap();
+        }
+        let old = SystemTime::now() - 2 * STALE_AFTER;
+        for p in [&stale, &mine] {
+            std::fs::File::options()
+                .write(true)
+                .open(p)
+                .unwrap()
+                .set_modified(old)
+                .unwrap();
+        }
+        sweep_stale_temporaries(dir.path());
+        assert!(fresh.exists() && mine.exists() && !stale.exists());
+    }
+}
