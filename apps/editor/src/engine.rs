@@ -289,7 +289,10 @@ fn serve(
                     },
                     op => {
                         let before = state.current.clone();
-                        let outcome = apply(state, &mut session, basis, op);
+                        let outcome = apply(state, &mut session, basis, op).and_then(|v| {
+                            refuse_non_finite(state, &mut session, basis, before.clone())
+                                .map(|()| v)
+                        });
                         let record = record.then_some(before);
                         answer(
                             state,
@@ -480,6 +483,33 @@ fn sync<'b>(
     state.current = target;
     state.compiled = compiled;
     Ok(None)
+}
+
+/// After an edit was applied: if the session's solution is NaN or infinite (values or ω so
+/// large that `f64` arithmetic overflows), goes back to `before` and returns the error naming
+/// the constraint, so the editor never holds or shows a non-finite field.
+fn refuse_non_finite<'b>(
+    state: &mut State,
+    session: &mut SplineSession<'b>,
+    basis: &'b ReducedBasis,
+    before: Snapshot,
+) -> Result<(), EditorError> {
+    let coefficients = session.solve();
+    if coefficients.iter().all(|x| x.is_finite()) {
+        return Ok(());
+    }
+    let mut field = vec![0.0; basis.field_dimension()];
+    basis.map(&coefficients, &mut field)?;
+    let error = match checked_residuals(&field, &state.compiled, state.current.omega) {
+        Err(error) => EditorError::from(error),
+        Ok(_) => EditorError::Design(tvf_design::DesignError::NotFinite {
+            id: String::new(),
+            problem: "the solved field is not finite".into(),
+            cause: format!("omega is {:e}", state.current.omega),
+        }),
+    };
+    sync(state, session, basis, before)?;
+    Err(error)
 }
 
 /// Solves the session and maps the coefficients to the `f32` field: through the drag cache

@@ -1,7 +1,8 @@
 //! The editor server over loopback as an adversary sees it: requests from other web pages
 //! (foreign Host or Origin, no token) are refused with 403 and change nothing, stalled uploads
 //! do not keep `/api/ping` from being answered, bad parameters and unknown JSON fields are 400,
-//! a non-finite field fails `/api/check`, and a bounded stress run keeps every answer correct.
+//! an edit whose field would not be finite is refused, and a bounded stress run keeps every
+//! answer correct.
 
 mod common;
 
@@ -186,22 +187,39 @@ fn a_refused_basis_size_explains_itself_and_keeps_the_version() {
 }
 
 #[test]
-fn a_non_finite_field_fails_the_check_naming_the_constraint() {
+fn an_edit_whose_field_is_not_finite_is_refused_naming_the_constraint() {
     let server = icosphere_server();
     let client = Client::new(&server);
-    let (status, _) =
-        client.edit(json!({"op": "add", "constraint": vector("huge", 5, [1e308, 1e308, -1e308])}));
     assert_eq!(
-        status, 200,
-        "the values are finite, so the edit is accepted"
+        client
+            .edit(json!({"op": "add", "constraint": vector("calm", 9, [1.0, 0.0, 0.0])}))
+            .0,
+        200
     );
-    let (status, body) = client.get("/api/check");
-    assert_eq!(status, 422, "{}", String::from_utf8_lossy(&body));
-    let message = error_message(&body);
-    assert!(
-        message.contains("'huge'") && message.contains("NaN"),
-        "{message}"
-    );
+    let before = version(&client);
+    for (op, id) in [
+        (
+            json!({"op": "add", "constraint": vector("huge", 5, [1e308, 1e308, -1e308])}),
+            "'huge'",
+        ),
+        (
+            json!({"op": "set", "constraint": vector("calm", 9, [1e308, -1e308, 1e308])}),
+            "'calm'",
+        ),
+    ] {
+        let (status, body) = client.edit(op.clone());
+        assert_eq!(status, 422, "{op}: {}", String::from_utf8_lossy(&body));
+        let message = error_message(&body);
+        assert!(
+            message.contains(id) && message.contains("NaN") && message.contains("overflow"),
+            "{message}"
+        );
+    }
+    // Nothing changed: the field and its check are those before the edits.
+    assert_eq!(version(&client), before);
+    let check = client.check();
+    assert_eq!(check["constraints"].as_array().unwrap().len(), 1, "{check}");
+    assert!(check["max_relative"].as_f64().unwrap() < 1e-9, "{check}");
     server.shutdown();
 }
 
