@@ -3,7 +3,7 @@
 
 use crate::{Conforming, DecComplex, MassLumping, Nonconforming};
 use thiserror::Error;
-use tvf_core::discretization::{DiscretizationError, HodgeComplex};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, HodgeComplex};
 use tvf_core::SurfaceMesh;
 
 /// A complex built by the catalog, behind the object-safe seam.
@@ -22,9 +22,32 @@ pub struct CatalogEntry {
     /// Whether construction needs a Delaunay mesh (the conformance suite's corpus for it is the
     /// Delaunay part).
     pub needs_delaunay: bool,
-    /// Builds the complex of a mesh.
+    /// Builds the complex of a mesh (on a mesh with boundary with the default boundary
+    /// condition, [`BoundaryCondition::Tangential`]).
     pub build: fn(&SurfaceMesh) -> Result<BoxedComplex, DiscretizationError>,
+    /// Builds the complex of a mesh with the given boundary condition (the same complex as
+    /// `build` on a closed mesh). Fails with
+    /// [`DiscretizationError::UnsupportedBoundaryCondition`] for a condition not in
+    /// `boundary_conditions` on a mesh with boundary.
+    pub build_with_boundary:
+        fn(&SurfaceMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>,
+    /// The boundary conditions the entry offers on meshes with boundary, the default first.
+    pub boundary_conditions: &'static [BoundaryCondition],
 }
+
+impl CatalogEntry {
+    /// `build_with_boundary(mesh, boundary)`.
+    pub fn build_with(
+        &self,
+        mesh: &SurfaceMesh,
+        boundary: BoundaryCondition,
+    ) -> Result<BoxedComplex, DiscretizationError> {
+        (self.build_with_boundary)(mesh, boundary)
+    }
+}
+
+const BOTH: &[BoundaryCondition] = &BoundaryCondition::ALL;
+const ABSOLUTE: &[BoundaryCondition] = &[BoundaryCondition::Tangential];
 
 impl std::fmt::Debug for CatalogEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -47,6 +70,10 @@ static CATALOG: [CatalogEntry; 6] = [
         preconditions: ANY_MESH,
         needs_delaunay: false,
         build: |mesh| Ok(Box::new(Conforming::new(mesh, MassLumping::Barycentric)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(Conforming::with_boundary(mesh, MassLumping::Barycentric, boundary)?))
+        },
+        boundary_conditions: BOTH,
     },
     CatalogEntry {
         id: "conforming-voronoi",
@@ -54,6 +81,10 @@ static CATALOG: [CatalogEntry; 6] = [
         preconditions: ANY_MESH,
         needs_delaunay: false,
         build: |mesh| Ok(Box::new(Conforming::new(mesh, MassLumping::Voronoi)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(Conforming::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
+        },
+        boundary_conditions: BOTH,
     },
     CatalogEntry {
         id: "nonconforming-barycentric",
@@ -61,6 +92,10 @@ static CATALOG: [CatalogEntry; 6] = [
         preconditions: ANY_MESH,
         needs_delaunay: false,
         build: |mesh| Ok(Box::new(Nonconforming::new(mesh, MassLumping::Barycentric)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(Nonconforming::with_boundary(mesh, MassLumping::Barycentric, boundary)?))
+        },
+        boundary_conditions: BOTH,
     },
     CatalogEntry {
         id: "nonconforming-voronoi",
@@ -68,6 +103,10 @@ static CATALOG: [CatalogEntry; 6] = [
         preconditions: ANY_MESH,
         needs_delaunay: false,
         build: |mesh| Ok(Box::new(Nonconforming::new(mesh, MassLumping::Voronoi)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(Nonconforming::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
+        },
+        boundary_conditions: BOTH,
     },
     CatalogEntry {
         id: "dec-barycentric",
@@ -75,6 +114,10 @@ static CATALOG: [CatalogEntry; 6] = [
         preconditions: DELAUNAY,
         needs_delaunay: true,
         build: |mesh| Ok(Box::new(DecComplex::new(mesh, MassLumping::Barycentric)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(DecComplex::with_boundary(mesh, MassLumping::Barycentric, boundary)?))
+        },
+        boundary_conditions: ABSOLUTE,
     },
     CatalogEntry {
         id: "dec-circumcentric",
@@ -82,6 +125,10 @@ static CATALOG: [CatalogEntry; 6] = [
         preconditions: DELAUNAY,
         needs_delaunay: true,
         build: |mesh| Ok(Box::new(DecComplex::new(mesh, MassLumping::Voronoi)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(DecComplex::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
+        },
+        boundary_conditions: ABSOLUTE,
     },
 ];
 
@@ -100,8 +147,10 @@ pub struct UnknownDiscretization {
     pub known: String,
 }
 
-/// The entry with id `id`.
+/// The entry with id `id`. A complex's id on a mesh with boundary, `{entry id}+{boundary}`, also
+/// finds its entry (see [`split_complex_id`]).
 pub fn catalog_entry(id: &str) -> Result<&'static CatalogEntry, UnknownDiscretization> {
+    let id = split_complex_id(id).0;
     CATALOG
         .iter()
         .find(|entry| entry.id == id)
@@ -109,6 +158,19 @@ pub fn catalog_entry(id: &str) -> Result<&'static CatalogEntry, UnknownDiscretiz
             id: id.to_string(),
             known: CATALOG.iter().map(|e| e.id).collect::<Vec<_>>().join(", "),
         })
+}
+
+/// Splits a complex id into the catalog id and the boundary condition it names:
+/// `conforming-barycentric+normal` → (`conforming-barycentric`, `Some(Normal)`);
+/// `conforming-barycentric` → (`conforming-barycentric`, `None`) (a closed mesh).
+pub fn split_complex_id(id: &str) -> (&str, Option<BoundaryCondition>) {
+    match id.split_once('+') {
+        Some((entry, boundary)) => match BoundaryCondition::from_name(boundary) {
+            Some(condition) => (entry, Some(condition)),
+            None => (id, None),
+        },
+        None => (id, None),
+    }
 }
 
 #[cfg(test)]

@@ -1,15 +1,16 @@
 //! [`DecComplex`]: discrete exterior calculus on primal forms — potentials on vertices, fields
 //! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
 
+use crate::boundary_conditions::{component_boundary_loops, mesh_topology};
 use crate::face_geometry::FaceGeometry;
-use crate::finite_element_complex::mesh_topology;
+use crate::finite_element_complex::complex_id;
 use crate::whitney_sampling::WhitneySampling;
 use crate::MassLumping;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{
-    ComplexTopology, DiagonalMass, DiscretizationError, FieldSampling, HodgeComplex, NodeKind,
-    NodeSpace, OperatorCache, PointEvaluation,
+    BoundaryCondition, ComplexTopology, DiagonalMass, DiscretizationError, FieldSampling,
+    HodgeComplex, NodeKind, NodeSpace, OperatorCache, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -37,6 +38,13 @@ use tvf_core::SurfaceMesh;
 /// The exact eigenproblem `(d0ᵀ ⋆1 d0, ⋆0)` is the cotan Laplacian; the co-exact one
 /// `(d1 ⋆1⁻¹ d1ᵀ, ⋆2⁻¹)` lives on faces. Sampling is Whitney interpolation
 /// ([`WhitneySampling`]); there is no rotation `J` on 1-forms, hence no "other family".
+///
+/// On a mesh with boundary the complex is that of **absolute** forms (every vertex, edge and
+/// face): the boundary condition [`BoundaryCondition::Tangential`]. The co-exact problem then has
+/// no constant kernel on a component with boundary (a boundary edge couples its face to a zero
+/// outside, a Dirichlet condition on the dual graph) and the harmonic 1-forms are the `2g + b − 1`
+/// Neumann fields. Relative forms ([`BoundaryCondition::Normal`]) would drop the boundary edges
+/// from the field space and are not offered.
 #[derive(Debug, Clone)]
 pub struct DecComplex {
     id: String,
@@ -65,6 +73,29 @@ impl DecComplex {
     /// `dec-barycentric` or `dec-circumcentric` (for [`MassLumping::Voronoi`]). Fails on a
     /// degenerate face or a mesh that is not Delaunay.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+        Self::with_boundary(mesh, lumping, BoundaryCondition::default())
+    }
+
+    /// [`DecComplex::new`] with boundary condition `boundary`; on a mesh with boundary only
+    /// [`BoundaryCondition::Tangential`] (absolute forms) is offered, [`BoundaryCondition::Normal`]
+    /// fails with [`DiscretizationError::UnsupportedBoundaryCondition`]. The id gets `+{boundary}`
+    /// appended on a mesh with boundary.
+    pub fn with_boundary(
+        mesh: &SurfaceMesh,
+        lumping: MassLumping,
+        boundary: BoundaryCondition,
+    ) -> Result<Self, DiscretizationError> {
+        let id = match lumping {
+            MassLumping::Barycentric => "dec-barycentric",
+            MassLumping::Voronoi => "dec-circumcentric",
+        };
+        if !mesh.is_closed() && boundary != BoundaryCondition::Tangential {
+            return Err(DiscretizationError::UnsupportedBoundaryCondition {
+                discretization: id.to_string(),
+                condition: boundary.name(),
+                reason: "DEC offers absolute forms (tangential) only",
+            });
+        }
         let geometry = FaceGeometry::new(mesh)?;
         let edge_star = edge_hodge_star(mesh, &geometry);
         let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
@@ -76,37 +107,40 @@ impl DecComplex {
                 tolerance: DELAUNAY_TOLERANCE,
             });
         }
-        let id = match lumping {
-            MassLumping::Barycentric => "dec-barycentric",
-            MassLumping::Voronoi => "dec-circumcentric",
-        };
         let positions = mesh.positions();
-        let potential_nodes = NodeSpace {
-            kind: NodeKind::Vertices,
-            positions: positions.to_vec(),
-            components: mesh.vertex_components(),
-        };
-        let field_nodes = NodeSpace {
-            kind: NodeKind::Edges,
-            positions: mesh
-                .edges()
+        let components = mesh.component_count();
+        let potential_nodes = NodeSpace::with_constant_kernel(
+            NodeKind::Vertices,
+            positions.to_vec(),
+            mesh.vertex_components(),
+            components,
+        );
+        let field_nodes = NodeSpace::with_constant_kernel(
+            NodeKind::Edges,
+            mesh.edges()
                 .iter()
                 .map(|&[a, b]| std::array::from_fn(|k| (positions[a][k] + positions[b][k]) / 2.0))
                 .collect(),
-            components: mesh.edge_components(),
-        };
-        let co_potential_nodes = NodeSpace {
-            kind: NodeKind::Faces,
-            positions: mesh
-                .faces()
+            mesh.edge_components(),
+            components,
+        );
+        let mut co_potential_nodes = NodeSpace::with_constant_kernel(
+            NodeKind::Faces,
+            mesh.faces()
                 .iter()
                 .map(|f| {
                     let p = f.map(|i| positions[i]);
                     std::array::from_fn(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
                 })
                 .collect(),
-            components: mesh.face_components().to_vec(),
-        };
+            mesh.face_components().to_vec(),
+            components,
+        );
+        // 2-forms: constants are in the kernel of d1 ⋆1⁻¹ d1ᵀ only on closed components.
+        co_potential_nodes.constant_kernel = component_boundary_loops(mesh)
+            .iter()
+            .map(|&b| b == 0)
+            .collect();
         let m0 = DiagonalMass::positive_on_used_nodes(
             "M0 (⋆0, vertex areas)",
             lumping.vertex_masses(mesh, &geometry),
@@ -123,7 +157,7 @@ impl DecComplex {
             &co_potential_nodes.components,
         )?;
         Ok(Self {
-            id: id.to_string(),
+            id: complex_id(id, mesh, boundary),
             d0: vertex_edge_incidence(mesh),
             d1: edge_face_incidence(mesh),
             m0,
@@ -132,7 +166,7 @@ impl DecComplex {
             potential_nodes,
             field_nodes,
             co_potential_nodes,
-            topology: mesh_topology(mesh),
+            topology: mesh_topology(mesh, boundary),
             sampling: WhitneySampling::new(mesh, &geometry),
             faces: mesh.faces().to_vec(),
             cache: OperatorCache::default(),

@@ -1,13 +1,14 @@
 //! [`FiniteElementComplex`]: a Hodge complex built from a potential space and a co-potential space
 //! over the face fields; [`Conforming`] and [`Nonconforming`] are its two instances from the paper.
 
+use crate::boundary_conditions::{drop_columns, drop_rows, mesh_topology, with_dirichlet_boundary};
 use crate::face_geometry::FaceGeometry;
 use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping};
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
 use tvf_core::discretization::{
-    ComplexTopology, DiagonalMass, DiscretizationError, FieldRotation, FieldSampling, HodgeComplex,
-    NodeKind, NodeSpace, OperatorCache, PointEvaluation,
+    BoundaryCondition, ComplexTopology, DiagonalMass, DiscretizationError, FieldRotation,
+    FieldSampling, HodgeComplex, NodeKind, NodeSpace, OperatorCache, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -23,6 +24,7 @@ pub struct FiniteElementComplex<P, Q> {
     potentials: P,
     co_potentials: Q,
     fields: FaceFields,
+    d0: CsMat<f64>,
     d1: CsMat<f64>,
     m0: DiagonalMass,
     m1: DiagonalMass,
@@ -42,23 +44,14 @@ pub type Conforming = FiniteElementComplex<LagrangeP1, CrouzeixRaviart>;
 /// potentials Crouzeix–Raviart (`E`), co-potentials P1 (`V`).
 pub type Nonconforming = FiniteElementComplex<CrouzeixRaviart, LagrangeP1>;
 
-/// The topology of `mesh` as a complex sees it: components, `2g` summed over the components,
-/// boundary.
-pub fn mesh_topology(mesh: &SurfaceMesh) -> ComplexTopology {
-    ComplexTopology {
-        component_count: mesh.component_count(),
-        harmonic_dimension: 2 * mesh.genus(),
-        has_boundary: !mesh.is_closed(),
-    }
-}
-
-/// The nodes of a function space.
+/// The nodes of a function space (free boundary values).
 fn function_nodes(space: &impl FunctionSpace) -> NodeSpace {
-    NodeSpace {
-        kind: space.node_kind(),
-        positions: space.node_positions(),
-        components: space.node_components().to_vec(),
-    }
+    NodeSpace::with_constant_kernel(
+        space.node_kind(),
+        space.node_positions(),
+        space.node_components().to_vec(),
+        space.component_count(),
+    )
 }
 
 /// The `2F` field nodes: two per face, at its centroid.
@@ -67,27 +60,52 @@ fn face_frame_nodes(mesh: &SurfaceMesh) -> NodeSpace {
         let p = f.map(|i| mesh.positions()[i]);
         std::array::from_fn(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
     };
-    NodeSpace {
-        kind: NodeKind::FaceFrames,
-        positions: mesh.faces().iter().flat_map(|f| [centroid(f); 2]).collect(),
-        components: mesh
-            .face_components()
+    NodeSpace::with_constant_kernel(
+        NodeKind::FaceFrames,
+        mesh.faces().iter().flat_map(|f| [centroid(f); 2]).collect(),
+        mesh.face_components()
             .iter()
             .flat_map(|&c| [c, c])
             .collect(),
-    }
+        mesh.component_count(),
+    )
 }
 
 impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
-    /// Assembles the complex from its spaces (`d1 = G_Qᵀ J M_X`, `M2 = mass(Q)⁻¹`) with catalog id
-    /// `id`. Fails if a gradient does not have `2F` rows or a mass is not positive on the nodes
-    /// faces use.
+    /// Assembles the complex from its spaces (`d0 = G_P`, `d1 = G_Qᵀ J M_X`, `M2 = mass(Q)⁻¹`)
+    /// with catalog id `id` and, on a mesh with boundary, the default boundary condition
+    /// ([`BoundaryCondition::Tangential`]). See [`FiniteElementComplex::from_spaces_with_boundary`].
     pub fn from_spaces(
         id: impl Into<String>,
         mesh: &SurfaceMesh,
         potentials: P,
         co_potentials: Q,
         fields: FaceFields,
+    ) -> Result<Self, DiscretizationError> {
+        Self::from_spaces_with_boundary(
+            id,
+            mesh,
+            potentials,
+            co_potentials,
+            fields,
+            BoundaryCondition::default(),
+        )
+    }
+
+    /// Assembles the complex from its spaces with boundary condition `boundary`. On a mesh with
+    /// boundary, [`BoundaryCondition::Tangential`] fixes the co-potentials at their boundary nodes
+    /// to zero (drops those rows of `d1`: `S*_h,0` for the conforming complex) and
+    /// [`BoundaryCondition::Normal`] fixes the potentials there (drops those columns of `d0`:
+    /// `S_h,0`); either way `d1 · d0 = 0`. The masses keep every node (a Dirichlet node's mass is
+    /// unused). Fails if a gradient does not have `2F` rows or a mass is not positive on the nodes
+    /// faces use.
+    pub fn from_spaces_with_boundary(
+        id: impl Into<String>,
+        mesh: &SurfaceMesh,
+        potentials: P,
+        co_potentials: Q,
+        fields: FaceFields,
+        boundary: BoundaryCondition,
     ) -> Result<Self, DiscretizationError> {
         for gradient in [potentials.gradient(), co_potentials.gradient()] {
             if gradient.rows() != fields.field_dimension() {
@@ -99,9 +117,22 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             }
         }
         let rotated_mass = scale_cols(fields.rotation(), fields.mass());
-        let d1 = product(&transpose(co_potentials.gradient()), &rotated_mass);
-        let potential_nodes = function_nodes(&potentials);
-        let co_potential_nodes = function_nodes(&co_potentials);
+        let mut d0 = potentials.gradient().clone();
+        let mut d1 = product(&transpose(co_potentials.gradient()), &rotated_mass);
+        let mut potential_nodes = function_nodes(&potentials);
+        let mut co_potential_nodes = function_nodes(&co_potentials);
+        if !mesh.is_closed() {
+            match boundary {
+                BoundaryCondition::Tangential => {
+                    co_potential_nodes = with_dirichlet_boundary(co_potential_nodes, mesh);
+                    d1 = drop_rows(&d1, &co_potential_nodes.dirichlet);
+                }
+                BoundaryCondition::Normal => {
+                    potential_nodes = with_dirichlet_boundary(potential_nodes, mesh);
+                    d0 = drop_columns(&d0, &potential_nodes.dirichlet);
+                }
+            }
+        }
         let field_nodes = face_frame_nodes(mesh);
         let m0 = DiagonalMass::positive_on_used_nodes(
             "M0 (potential mass)",
@@ -127,6 +158,7 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             potentials,
             co_potentials,
             fields,
+            d0,
             d1,
             m0,
             m1,
@@ -134,7 +166,7 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             potential_nodes,
             field_nodes,
             co_potential_nodes,
-            topology: mesh_topology(mesh),
+            topology: mesh_topology(mesh, boundary),
             cache: OperatorCache::default(),
         })
     }
@@ -157,31 +189,66 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
 
 impl Conforming {
     /// The conforming complex of `mesh` with the given mass lumping (for both function spaces),
-    /// catalog id `conforming-{lumping}`. Fails on a degenerate face.
+    /// catalog id `conforming-{lumping}`, default boundary condition. Fails on a degenerate face.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+        Self::with_boundary(mesh, lumping, BoundaryCondition::default())
+    }
+
+    /// The conforming complex with boundary condition `boundary`: on a mesh with boundary
+    /// `X_h = ∇S_h ⊕ J∇S*_h,0 ⊕ H_N` (tangential) or `X_h = ∇S_h,0 ⊕ J∇S*_h ⊕ H_D` (normal).
+    /// Catalog id `conforming-{lumping}`, with `+{boundary}` appended on a mesh with boundary.
+    pub fn with_boundary(
+        mesh: &SurfaceMesh,
+        lumping: MassLumping,
+        boundary: BoundaryCondition,
+    ) -> Result<Self, DiscretizationError> {
         let geometry = FaceGeometry::new(mesh)?;
-        Self::from_spaces(
-            format!("conforming-{}", lumping.name()),
+        Self::from_spaces_with_boundary(
+            complex_id(&format!("conforming-{}", lumping.name()), mesh, boundary),
             mesh,
             LagrangeP1::from_geometry(mesh, &geometry, lumping),
             CrouzeixRaviart::from_geometry(mesh, &geometry, lumping),
             FaceFields::from_geometry(&geometry),
+            boundary,
         )
     }
 }
 
 impl Nonconforming {
     /// The nonconforming complex of `mesh` with the given mass lumping (for both function
-    /// spaces), catalog id `nonconforming-{lumping}`. Fails on a degenerate face.
+    /// spaces), catalog id `nonconforming-{lumping}`, default boundary condition. Fails on a
+    /// degenerate face.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+        Self::with_boundary(mesh, lumping, BoundaryCondition::default())
+    }
+
+    /// The nonconforming complex with boundary condition `boundary`: on a mesh with boundary
+    /// `X_h = ∇S*_h ⊕ J∇S_h,0 ⊕ H*_N` (tangential) or `X_h = ∇S*_h,0 ⊕ J∇S_h ⊕ H*_D` (normal).
+    /// Catalog id `nonconforming-{lumping}`, with `+{boundary}` appended on a mesh with boundary.
+    pub fn with_boundary(
+        mesh: &SurfaceMesh,
+        lumping: MassLumping,
+        boundary: BoundaryCondition,
+    ) -> Result<Self, DiscretizationError> {
         let geometry = FaceGeometry::new(mesh)?;
-        Self::from_spaces(
-            format!("nonconforming-{}", lumping.name()),
+        Self::from_spaces_with_boundary(
+            complex_id(&format!("nonconforming-{}", lumping.name()), mesh, boundary),
             mesh,
             CrouzeixRaviart::from_geometry(mesh, &geometry, lumping),
             LagrangeP1::from_geometry(mesh, &geometry, lumping),
             FaceFields::from_geometry(&geometry),
+            boundary,
         )
+    }
+}
+
+/// The id of a complex: the catalog id on a closed mesh, `{catalog id}+{boundary}` on a mesh with
+/// boundary (basis files and cache names tell the two boundary conditions apart).
+pub fn complex_id(catalog_id: &str, mesh: &SurfaceMesh, boundary: BoundaryCondition) -> String {
+    if mesh.is_closed() {
+        catalog_id.to_string()
+    } else {
+        format!("{catalog_id}+{}", boundary.name())
     }
 }
 
@@ -195,7 +262,7 @@ where
     }
 
     fn d0(&self) -> &CsMat<f64> {
-        self.potentials.gradient()
+        &self.d0
     }
 
     fn d1(&self) -> &CsMat<f64> {

@@ -11,9 +11,10 @@ use tvf_core::discretization::{DiscretizationError, HodgeComplex, HodgeOperators
 /// The three `M1`-orthogonal parts of a field and their potentials.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HodgeParts {
-    /// Potential `f` (`n0` pointwise values, zero mean per component): `integrable = d0 f`.
+    /// Potential `f` (`n0` pointwise values, zero mean per component with constants in the kernel,
+    /// zero on Dirichlet nodes): `integrable = d0 f`.
     pub potential: Vec<f64>,
-    /// Co-potential `g` (`n2` pointwise values, zero mean per component):
+    /// Co-potential `g` (`n2` pointwise values, normalised like the potential):
     /// `co_integrable = −M1⁻¹ d1ᵀ g` (finite elements: `J G_co g`).
     pub co_potential: Vec<f64>,
     /// Integrable (curl-free) part `d0 f` (`2F`, pointwise).
@@ -26,7 +27,8 @@ pub struct HodgeParts {
 
 /// Prefactored Hodge decomposition of one complex: both singular Poisson systems
 /// `(d0ᵀ M1 d0) f = d0ᵀ M1 v` and `(d1 M1⁻¹ d1ᵀ) g = −d1 v` are factored once (one node pinned per
-/// connected component), so decomposing many fields costs two triangular solves each.
+/// connected component whose constants are in the kernel, every Dirichlet node fixed to zero), so
+/// decomposing many fields costs two triangular solves each.
 #[derive(Debug)]
 pub struct HodgeDecomposer<'a, H: HodgeComplex + ?Sized> {
     complex: &'a H,
@@ -35,23 +37,17 @@ pub struct HodgeDecomposer<'a, H: HodgeComplex + ?Sized> {
 }
 
 impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
-    /// Factors the two Poisson systems of `complex`. Fails on a mesh with boundary
-    /// ([`DecompositionError::Boundary`]) or if a factorization fails.
+    /// Factors the two Poisson systems of `complex` (on a mesh with boundary, on the free nodes
+    /// of each space: the boundary condition is in the complex). Fails if a factorization fails.
     pub fn new(complex: &'a H) -> Result<Self, DecompositionError> {
-        if complex.topology().has_boundary {
-            return Err(DecompositionError::Boundary);
-        }
-        let components = complex.topology().component_count;
         let exact = PinnedPoisson::new(
             complex.potential_stiffness(),
-            &complex.potential_nodes().components,
-            components,
+            complex.potential_nodes(),
             complex.m0().values(),
         )?;
         let co_exact = PinnedPoisson::new(
             complex.co_potential_stiffness(),
-            &complex.co_potential_nodes().components,
-            components,
+            complex.co_potential_nodes(),
             &complex.m2().inverse(),
         )?;
         Ok(Self {

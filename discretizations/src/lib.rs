@@ -94,6 +94,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod boundary_conditions;
 mod catalog;
 mod crouzeix_raviart;
 mod dec_complex;
@@ -109,15 +110,19 @@ mod mass_lumping;
 mod pinned_poisson;
 mod whitney_sampling;
 
+pub use boundary_conditions::{
+    boundary_nodes, component_boundary_loops, drop_columns, drop_rows, mesh_topology,
+    with_dirichlet_boundary,
+};
 pub use catalog::{
-    catalog, catalog_entry, BoxedComplex, CatalogEntry, UnknownDiscretization,
+    catalog, catalog_entry, split_complex_id, BoxedComplex, CatalogEntry, UnknownDiscretization,
     DEFAULT_DISCRETIZATION,
 };
 pub use crouzeix_raviart::CrouzeixRaviart;
 pub use dec_complex::{edge_hodge_star, DecComplex, DELAUNAY_TOLERANCE};
 pub use error::DecompositionError;
 pub use face_fields::FaceFields;
-pub use finite_element_complex::{mesh_topology, Conforming, FiniteElementComplex, Nonconforming};
+pub use finite_element_complex::{complex_id, Conforming, FiniteElementComplex, Nonconforming};
 pub use function_space::FunctionSpace;
 pub use hodge_decomposition::{HodgeDecomposer, HodgeParts};
 pub use lagrange_p1::LagrangeP1;

@@ -1,43 +1,52 @@
-//! Solves a singular Poisson system whose kernel is spanned by the per-component constants.
+//! Solves a singular Poisson system on the free nodes of a space, with the per-component constants
+//! in its kernel where the space has them.
 
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::NO_COMPONENT;
+use tvf_core::discretization::{NodeSpace, NO_COMPONENT};
 use tvf_solvers::{SolverError, SparseCholesky};
 
-/// Factorization of a symmetric PSD stiffness `A` (`n × n`) whose kernel is spanned by the
-/// indicator functions of the connected components (cotan and Crouzeix–Raviart matrices).
+/// Factorization of a symmetric PSD stiffness `A` (`n × n`) of one space of a complex (cotan,
+/// Crouzeix–Raviart, ...), whose kernel on the free nodes is spanned by the indicator functions
+/// of the components listed in [`NodeSpace::constant_kernel`].
 ///
-/// Method: the first node of every component (and every node of no component) is pinned to
-/// zero by replacing its row and column with the identity; the reduced matrix is SPD. For a
-/// consistent right-hand side (zero sum over every component), the result solves `A x = b`
-/// exactly; it is then shifted to have zero mean (w.r.t. `mass`) on every component.
+/// Method: every node that is not free (no face uses it, or the boundary condition fixes it to
+/// zero) and the first free node of every component with constants in the kernel are pinned to
+/// zero by replacing their row and column with the identity; the reduced matrix is SPD. For a
+/// consistent right-hand side (zero sum over every such component), the result solves `A x = b`
+/// on the free nodes exactly; it is then shifted to have zero mean (w.r.t. `mass`) on every such
+/// component, and is zero on the nodes that are not free.
 #[derive(Debug)]
 pub struct PinnedPoisson {
     cholesky: SparseCholesky,
     pinned: Vec<bool>,
-    components: Vec<usize>,
+    /// Component of every node whose constants are in the kernel, else `NO_COMPONENT`.
+    shifted: Vec<usize>,
     component_count: usize,
     mass: Vec<f64>,
 }
 
 impl PinnedPoisson {
-    /// Factors `stiffness` with the node → component map `components` and lumped `mass`.
+    /// Factors `stiffness` (`n × n`) of the space `nodes` with lumped `mass` (`n` entries).
     pub fn new(
         stiffness: &CsMat<f64>,
-        components: &[usize],
-        component_count: usize,
+        nodes: &NodeSpace,
         mass: &[f64],
     ) -> Result<Self, SolverError> {
-        let n = components.len();
+        let n = nodes.len();
+        let component_count = nodes.constant_kernel.len();
         let mut pinned = vec![false; n];
+        let mut shifted = vec![NO_COMPONENT; n];
         let mut seen = vec![false; component_count];
-        for (node, &c) in components.iter().enumerate() {
-            if c == NO_COMPONENT {
+        for (node, &c) in nodes.components.iter().enumerate() {
+            if !nodes.is_free(node) {
                 pinned[node] = true;
-            } else if !seen[c] {
-                seen[c] = true;
-                pinned[node] = true;
+            } else if nodes.constant_kernel[c] {
+                shifted[node] = c;
+                if !seen[c] {
+                    seen[c] = true;
+                    pinned[node] = true;
+                }
             }
         }
         let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
@@ -57,14 +66,15 @@ impl PinnedPoisson {
         Ok(Self {
             cholesky: SparseCholesky::new(&reduced)?,
             pinned,
-            components: components.to_vec(),
+            shifted,
             component_count,
             mass: mass.to_vec(),
         })
     }
 
-    /// Solves `A x = rhs` (`rhs` must sum to zero over each component); the result has zero
-    /// mass-weighted mean on every component and is zero on nodes of no component.
+    /// Solves `A x = rhs` on the free nodes (`rhs` must sum to zero over each component with
+    /// constants in the kernel); the result has zero mass-weighted mean on every such component
+    /// and is zero on the nodes that are not free.
     pub fn solve(&self, rhs: &[f64]) -> Vec<f64> {
         let reduced: Vec<f64> = rhs
             .iter()
@@ -74,13 +84,13 @@ impl PinnedPoisson {
         let mut x = self.cholesky.solve(&reduced);
         let mut sums = vec![0.0; self.component_count];
         let mut weights = vec![0.0; self.component_count];
-        for ((&xi, &c), &m) in x.iter().zip(&self.components).zip(&self.mass) {
+        for ((&xi, &c), &m) in x.iter().zip(&self.shifted).zip(&self.mass) {
             if c != NO_COMPONENT {
                 sums[c] += m * xi;
                 weights[c] += m;
             }
         }
-        for (xi, &c) in x.iter_mut().zip(&self.components) {
+        for (xi, &c) in x.iter_mut().zip(&self.shifted) {
             if c != NO_COMPONENT && weights[c] > 0.0 {
                 *xi -= sums[c] / weights[c];
             }

@@ -2,7 +2,8 @@
 
 use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{
-    DiscretizationError, FieldRotation, FieldSampling, HodgeComplex, HodgeOperators,
+    BoundaryCondition, DiscretizationError, FieldRotation, FieldSampling, HodgeComplex,
+    HodgeOperators,
 };
 use tvf_core::generate::{icosphere, torus};
 use tvf_core::SurfaceMesh;
@@ -139,8 +140,8 @@ fn degenerate_face_is_an_error() {
 }
 
 #[test]
-fn open_mesh_builds_operators_but_refuses_decomposition() {
-    // A single square made of two triangles.
+fn open_mesh_decomposes_with_either_boundary_condition() {
+    // A single square made of two triangles: every vertex and four edges on the boundary.
     let mesh = SurfaceMesh::new(
         vec![
             [0.0, 0.0, 0.0],
@@ -151,13 +152,30 @@ fn open_mesh_builds_operators_but_refuses_decomposition() {
         vec![[0, 1, 2], [0, 2, 3]],
     )
     .expect("valid");
-    let complex = Nonconforming::new(&mesh, MassLumping::Voronoi).expect("valid geometry");
-    assert!(complex.topology().has_boundary);
-    assert_eq!(complex.dirichlet_energy().shape(), (4, 4));
-    assert!(matches!(
-        HodgeDecomposer::new(&complex),
-        Err(DecompositionError::Boundary)
-    ));
+    for boundary in BoundaryCondition::ALL {
+        let complex = Nonconforming::with_boundary(&mesh, MassLumping::Voronoi, boundary)
+            .expect("valid geometry");
+        assert!(complex.topology().has_boundary);
+        assert_eq!(complex.topology().harmonic_dimension, 0, "a disk");
+        assert_eq!(
+            complex.id(),
+            format!("nonconforming-voronoi+{}", boundary.name())
+        );
+        assert_eq!(complex.dirichlet_energy().shape(), (4, 4));
+        let field = [0.3, -1.0, 2.0, 0.5];
+        let parts = HodgeDecomposer::new(&complex)
+            .expect("factors")
+            .decompose(&field)
+            .expect("decomposes");
+        for (i, &v) in field.iter().enumerate() {
+            let sum = parts.integrable[i] + parts.co_integrable[i] + parts.harmonic[i];
+            assert!((sum - v).abs() < 1e-12);
+            assert!(
+                parts.harmonic[i].abs() < 1e-12,
+                "no harmonic fields on a disk"
+            );
+        }
+    }
 }
 
 #[test]

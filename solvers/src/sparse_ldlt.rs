@@ -302,6 +302,14 @@ impl SparseLdlt {
                 }
             }
         }
+        if let SymbolicCholeskyRaw::Simplicial(sym) = self.symbolic.raw() {
+            // faer picks the simplicial factor for very sparse patterns (e.g. a diagonal
+            // matrix); each column of `L` stores its diagonal entry, which holds `D`, first.
+            let col_ptr = sym.col_ptr();
+            for (j, pivot) in d.iter_mut().enumerate() {
+                *pivot = self.values[col_ptr[j]];
+            }
+        }
         d
     }
 

@@ -119,3 +119,20 @@ fn inertia_counts_eigenvalues_below_shift() {
         assert_eq!(inertia.negative + inertia.positive, n);
     }
 }
+
+#[test]
+fn diagonal_matrices_factor() {
+    // faer factors a diagonal pattern with its simplicial (not supernodal) representation; the
+    // positivity check must read the pivots from it too.
+    let diagonal = diagonal_matrix(&[1.0, 3.0, 2.0]);
+    let cholesky = SparseCholesky::new(&diagonal).expect("a positive diagonal is SPD");
+    let x = cholesky.solve(&[1.0, 1.0, 1.0]);
+    assert!((x[1] - 1.0 / 3.0).abs() < 1e-15 && (x[2] - 0.5).abs() < 1e-15);
+    let singular = diagonal_matrix(&[1.0, 0.0, 2.0]);
+    assert!(SparseCholesky::new(&singular).is_err());
+}
+
+fn diagonal_matrix(d: &[f64]) -> sprs::CsMat<f64> {
+    let n = d.len();
+    sprs::CsMat::new((n, n), (0..=n).collect(), (0..n).collect(), d.to_vec())
+}

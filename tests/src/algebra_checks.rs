@@ -117,11 +117,33 @@ fn check_node_space(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMes
             .all(|&c| c < components || c == NO_COMPONENT),
         "{what}: component out of range"
     );
+    assert_eq!(
+        nodes.dirichlet.len(),
+        size,
+        "{what}: one Dirichlet flag per node"
+    );
+    assert_eq!(
+        nodes.constant_kernel.len(),
+        components,
+        "{what}: one constant-kernel flag per component"
+    );
+    if mesh.mesh.is_closed() {
+        assert_eq!(
+            nodes.dirichlet_count(),
+            0,
+            "{what}: Dirichlet nodes on a closed mesh"
+        );
+        assert!(
+            nodes.constant_kernel.iter().all(|&k| k),
+            "{what}: constants not in the kernel on a closed mesh"
+        );
+    }
 }
 
 /// Shapes, nodes, topology and masses agree with the mesh: `d0` is `n1 × n0`, `d1` is `n2 × n1`,
 /// each node space has one node per row (as many as its kind says), every mass is positive on
-/// the nodes faces use, the topology has the mesh's components, boundary and `2g`, and the
+/// the nodes faces use, the topology has the mesh's components, boundary and harmonic dimension
+/// (`2g`, or `2g + b − 1` per component with boundary), and the
 /// potential masses partition the area: `Σ M0 = total_area() = area` (relative 1e-12).
 pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
     let (n0, n1, n2) = (
@@ -158,8 +180,7 @@ pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
         "components"
     );
     assert_eq!(
-        topology.harmonic_dimension,
-        2 * mesh.genus,
+        topology.harmonic_dimension, mesh.harmonic_dimension,
         "reported harmonic dimension"
     );
     assert_eq!(topology.has_boundary, !mesh.mesh.is_closed(), "boundary");

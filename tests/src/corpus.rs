@@ -5,7 +5,10 @@
 
 use std::f64::consts::TAU;
 use std::path::PathBuf;
-use tvf_core::generate::{genus_surface, icosphere, jitter, rigid_motion, torus};
+use tvf_core::generate::{
+    disk, genus_surface, hemisphere, holed_torus, icosphere, jitter, open_cylinder,
+    perforated_plate, rigid_motion, torus,
+};
 use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::DELAUNAY_TOLERANCE;
@@ -24,19 +27,52 @@ pub struct CorpusMesh {
     pub name: String,
     /// The mesh.
     pub mesh: SurfaceMesh,
-    /// Its genus summed over components (the harmonic dimension is twice this), stated
-    /// independently of the mesh's own Euler characteristic.
+    /// Its genus summed over components, stated independently of the mesh's own Euler
+    /// characteristic.
     pub genus: usize,
+    /// The dimension of the harmonic space, stated independently: `2·genus` on a closed mesh,
+    /// `Σ (2g + b − 1)` over the components with `b ≥ 1` boundary loops (plus `2g` over the
+    /// closed ones) on a mesh with boundary, for both boundary conditions.
+    pub harmonic_dimension: usize,
 }
 
 impl CorpusMesh {
-    /// A named mesh of total genus `genus`.
+    /// A named closed mesh of total genus `genus` (harmonic dimension `2·genus`).
     pub fn new(name: impl Into<String>, mesh: SurfaceMesh, genus: usize) -> Self {
         Self {
             name: name.into(),
             mesh,
             genus,
+            harmonic_dimension: 2 * genus,
         }
+    }
+
+    /// A named mesh with boundary of total genus `genus` and harmonic dimension
+    /// `harmonic_dimension`.
+    pub fn open(
+        name: impl Into<String>,
+        mesh: SurfaceMesh,
+        genus: usize,
+        harmonic_dimension: usize,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            mesh,
+            genus,
+            harmonic_dimension,
+        }
+    }
+
+    /// The harmonic dimension of every component from the mesh's own topology: `2g` on a closed
+    /// component, `2g + b − 1` on one with `b ≥ 1` boundary loops.
+    pub fn component_harmonic_dimensions(&self) -> Vec<usize> {
+        let loops = tvf_discretizations::component_boundary_loops(&self.mesh);
+        self.mesh
+            .component_genera()
+            .iter()
+            .zip(&loops)
+            .map(|(&g, &b)| if b == 0 { 2 * g } else { 2 * g + b - 1 })
+            .collect()
     }
 }
 
@@ -50,6 +86,12 @@ pub enum Corpus {
     /// genus-2 and genus-3 surfaces, jittered and moved copies, two components, and `eight.obj`
     /// (the only Delaunay shared mesh).
     Delaunay,
+    /// Meshes with boundary ([`open_corpus`]): disk, open cylinder, hemisphere, pair of pants,
+    /// torus with a hole, two components with different boundary counts, and the raw
+    /// `bunny.obj` (5 loops, unreferenced vertices) from `../shared/meshes`.
+    Open,
+    /// The Delaunay part of the open corpus ([`open_delaunay_corpus`]).
+    OpenDelaunay,
 }
 
 impl Corpus {
@@ -64,11 +106,22 @@ impl Corpus {
         }
     }
 
+    /// The open corpus of catalog entry `id`: [`Corpus::OpenDelaunay`] if the entry needs a
+    /// Delaunay mesh, else [`Corpus::Open`].
+    pub fn open_for_catalog_entry(id: &str) -> Self {
+        match Self::for_catalog_entry(id) {
+            Corpus::Delaunay => Corpus::OpenDelaunay,
+            _ => Corpus::Open,
+        }
+    }
+
     /// The generated meshes and, if `with_shared`, the shared meshes that are present.
     pub fn meshes(self, with_shared: bool) -> Vec<CorpusMesh> {
         let mut meshes = match self {
             Corpus::General => generated_corpus(),
             Corpus::Delaunay => delaunay_corpus(),
+            Corpus::Open => open_corpus(),
+            Corpus::OpenDelaunay => open_delaunay_corpus(),
         };
         if with_shared {
             meshes.extend(shared_corpus(self));
@@ -91,6 +144,10 @@ impl Corpus {
                 CorpusMesh::new("icosphere(1)", icosphere(1), 0),
                 CorpusMesh::new("staggered torus 16×8", staggered_torus(1.0, 0.4, 16, 8), 1),
             ],
+            Corpus::Open | Corpus::OpenDelaunay => vec![
+                CorpusMesh::open("hemisphere(3)", hemisphere(3), 0, 0),
+                CorpusMesh::open("open cylinder 12×3", open_cylinder(12, 3, 1.0), 0, 1),
+            ],
         }
     }
 
@@ -107,6 +164,16 @@ impl Corpus {
                 let base = staggered_torus(1.0, 0.4, 16, 8);
                 let jittered = jitter(&base, 0.2, seed).expect("finite amplitude");
                 CorpusMesh::new(name, delaunay_flips(&jittered), 1)
+            }
+            Corpus::Open | Corpus::OpenDelaunay => {
+                let name = format!("jittered open cylinder (seed {seed})");
+                let jittered = jitter(&open_cylinder(16, 4, 1.0), 0.1, seed).expect("finite");
+                let mesh = if self == Corpus::OpenDelaunay {
+                    delaunay_flips(&jittered)
+                } else {
+                    jittered
+                };
+                CorpusMesh::open(name, mesh, 0, 1)
             }
         }
     }
@@ -196,6 +263,76 @@ pub fn delaunay_corpus() -> Vec<CorpusMesh> {
     ]
 }
 
+/// Generated meshes with boundary (harmonic dimension `2g + b − 1` per component): disk (b = 1),
+/// open cylinder (annulus, b = 2), hemisphere (b = 1), pair of pants (plate with two holes,
+/// b = 3), torus with one hole (g = 1, b = 1), and a disk + pair of pants (two components,
+/// b = 1 and 3), a jittered pair of pants. All small enough for the dense checks.
+pub fn open_corpus() -> Vec<CorpusMesh> {
+    let pants = perforated_plate(2, 8);
+    let shifted_disk =
+        rigid_motion(&disk(3), [0.0, 0.0, 1.0], 0.0, [0.0, 0.0, 3.0]).expect("finite");
+    vec![
+        CorpusMesh::open("disk(4)", disk(4), 0, 0),
+        CorpusMesh::open("open cylinder 16×4", open_cylinder(16, 4, 1.0), 0, 1),
+        CorpusMesh::open("hemisphere(5)", hemisphere(5), 0, 0),
+        CorpusMesh::open("pair of pants", pants.clone(), 0, 2),
+        CorpusMesh::open(
+            "torus 16×8 with a hole",
+            holed_torus(1.0, 0.4, 16, 8).expect("valid torus"),
+            1,
+            2,
+        ),
+        CorpusMesh::open(
+            "disk + pair of pants (two components)",
+            disjoint_union(&shifted_disk, &pants),
+            0,
+            2,
+        ),
+        CorpusMesh::open(
+            "jittered pair of pants",
+            jitter(&pants, 0.1, 5).expect("finite amplitude"),
+            0,
+            2,
+        ),
+    ]
+}
+
+/// The Delaunay meshes with boundary (edge flips where needed, every mesh checked by
+/// [`is_delaunay`] in this crate's tests): disk, open cylinder, hemisphere, pair of pants, two
+/// components.
+pub fn open_delaunay_corpus() -> Vec<CorpusMesh> {
+    let pants = delaunay_flips(&perforated_plate(2, 8));
+    let shifted_disk = rigid_motion(
+        &delaunay_flips(&disk(3)),
+        [0.0, 0.0, 1.0],
+        0.0,
+        [0.0, 0.0, 3.0],
+    )
+    .expect("finite");
+    vec![
+        CorpusMesh::open("flipped disk(4)", delaunay_flips(&disk(4)), 0, 0),
+        CorpusMesh::open(
+            "open cylinder 16×4",
+            delaunay_flips(&open_cylinder(16, 4, 1.0)),
+            0,
+            1,
+        ),
+        CorpusMesh::open(
+            "flipped hemisphere(5)",
+            delaunay_flips(&hemisphere(5)),
+            0,
+            0,
+        ),
+        CorpusMesh::open("flipped pair of pants", pants.clone(), 0, 2),
+        CorpusMesh::open(
+            "flipped disk + pair of pants (two components)",
+            disjoint_union(&shifted_disk, &pants),
+            0,
+            2,
+        ),
+    ]
+}
+
 /// Meshes of `../shared/meshes` when present (a skip message for each missing one): for the
 /// general corpus `kitten` (genus 1), `eight` (genus 2) and `3holes` (genus 3); for the Delaunay
 /// corpus `eight` alone.
@@ -204,6 +341,8 @@ pub fn shared_corpus(corpus: Corpus) -> Vec<CorpusMesh> {
     let files: &[(&str, usize)] = match corpus {
         Corpus::General => &[("kitten.obj", 1), ("eight.obj", 2), ("3holes.obj", 3)],
         Corpus::Delaunay => &[("eight.obj", 2)],
+        Corpus::Open => &[("bunny.obj", 0)],
+        Corpus::OpenDelaunay => &[],
     };
     let mut meshes = Vec::new();
     for &(file, genus) in files {
@@ -213,7 +352,11 @@ pub fn shared_corpus(corpus: Corpus) -> Vec<CorpusMesh> {
             continue;
         }
         match tvf_core::io::load_mesh(&path) {
-            Ok(loaded) => meshes.push(CorpusMesh::new(file, loaded.mesh, genus)),
+            Ok(loaded) if loaded.mesh.is_closed() => {
+                meshes.push(CorpusMesh::new(file, loaded.mesh, genus))
+            }
+            // The raw bunny: genus 0, 5 boundary loops, so 4 harmonic fields.
+            Ok(loaded) => meshes.push(CorpusMesh::open(file, loaded.mesh, genus, 4)),
             Err(error) => panic!("{} exists but does not load: {error}", path.display()),
         }
     }

@@ -53,3 +53,26 @@ pub fn split_zeros(eigenvalues: &[f64], relative_tolerance: f64) -> (usize, Vec<
         .collect();
     (zeros, rest)
 }
+
+/// The eigenproblem `(a, diag(mass))` restricted to the free nodes of `nodes`
+/// ([`tvf_core::discretization::NodeSpace::is_free`]): the restricted stiffness and mass, and
+/// the full index of every restricted node.
+pub fn restrict_to_free(
+    a: &CsMat<f64>,
+    mass: &[f64],
+    nodes: &tvf_core::discretization::NodeSpace,
+) -> (CsMat<f64>, Vec<f64>, Vec<usize>) {
+    let free: Vec<usize> = (0..nodes.len()).filter(|&i| nodes.is_free(i)).collect();
+    let mut restricted = vec![usize::MAX; nodes.len()];
+    for (r, &i) in free.iter().enumerate() {
+        restricted[i] = r;
+    }
+    let mut triplets = sprs::TriMat::new((free.len(), free.len()));
+    for (&value, (i, j)) in a.iter() {
+        if restricted[i] != usize::MAX && restricted[j] != usize::MAX {
+            triplets.add_triplet(restricted[i], restricted[j], value);
+        }
+    }
+    let mass = free.iter().map(|&i| mass[i]).collect();
+    (triplets.to_csr(), mass, free)
+}

@@ -53,6 +53,7 @@ pub mod capability_checks;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;
+pub mod open_suite;
 pub mod reference;
 pub mod reference_formulas;
 pub mod scaled_co_potentials;

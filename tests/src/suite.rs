@@ -132,7 +132,11 @@ pub fn rigid_motion_invariance(
     for mesh in corpus.motion_meshes() {
         let moved = tvf_core::generate::rigid_motion(&mesh.mesh, axis, angle, translation)
             .expect("finite motion");
-        let moved = CorpusMesh::new(format!("{} moved", mesh.name), moved, mesh.genus);
+        let moved = CorpusMesh {
+            name: format!("{} moved", mesh.name),
+            mesh: moved,
+            ..mesh.clone()
+        };
         let original = build(constructor, &mesh);
         let moved = build(constructor, &moved);
         check_rigid_motion_invariance(original.as_ref(), moved.as_ref(), true);

@@ -150,7 +150,9 @@ macro_rules! __suite_corpus {
 
 /// One [`conformance_suite!`](crate::conformance_suite) per catalog entry, built through
 /// `catalog_entry(id)` on the entry's corpus ([`crate::corpus::Corpus::for_catalog_entry`]: the
-/// Delaunay corpus when it `needs_delaunay`), plus the constant `COVERED_IDS` and a test
+/// Delaunay corpus when it `needs_delaunay`), a module `open_meshes` with the core suite on the
+/// meshes with boundary for both boundary conditions (per entry: `tangential`, `normal`), plus
+/// the constant `COVERED_IDS` and a test
 /// `every_catalog_entry_has_a_suite_line` that fails unless the lines cover the catalog exactly.
 ///
 /// ```text
@@ -170,6 +172,30 @@ macro_rules! catalog_suites {
                 $(, reference = [$($check),*])?
             );
         )*
+
+        /// The core suite on meshes with boundary: per catalog entry, one test per boundary
+        /// condition ([`crate::open_suite::open_mesh_suite`]).
+        mod open_meshes {
+            $(
+                mod $name {
+                    #[test]
+                    fn tangential() {
+                        $crate::open_suite::open_mesh_suite(
+                            $id,
+                            $crate::tvf_core::discretization::BoundaryCondition::Tangential,
+                        );
+                    }
+
+                    #[test]
+                    fn normal() {
+                        $crate::open_suite::open_mesh_suite(
+                            $id,
+                            $crate::tvf_core::discretization::BoundaryCondition::Normal,
+                        );
+                    }
+                }
+            )*
+        }
 
         /// The catalog ids that have a suite line above.
         pub const COVERED_IDS: &[&str] = &[$($id),*];

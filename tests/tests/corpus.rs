@@ -46,3 +46,27 @@ fn the_staggered_torus_has_acute_triangles_only() {
     let (_, max_angle) = mesh.angle_range_deg();
     assert!(max_angle < 90.0, "largest angle {max_angle}°");
 }
+
+#[test]
+fn the_open_corpora_have_boundary_and_their_stated_topology() {
+    for corpus in [Corpus::Open, Corpus::OpenDelaunay] {
+        for mesh in corpus.meshes(true).iter().chain(&corpus.motion_meshes()) {
+            assert!(!mesh.mesh.is_closed(), "{} is closed", mesh.name);
+            assert_eq!(mesh.mesh.genus(), mesh.genus, "{}: genus", mesh.name);
+            assert_eq!(
+                mesh.component_harmonic_dimensions().iter().sum::<usize>(),
+                mesh.harmonic_dimension,
+                "{}: 2g + b − 1",
+                mesh.name
+            );
+        }
+    }
+    let jittered = (0..4).map(|seed| Corpus::OpenDelaunay.jittered_mesh(seed * 7919));
+    for mesh in Corpus::OpenDelaunay
+        .meshes(true)
+        .into_iter()
+        .chain(jittered)
+    {
+        assert!(is_delaunay(&mesh.mesh), "{} is not Delaunay", mesh.name);
+    }
+}

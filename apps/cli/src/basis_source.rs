@@ -31,6 +31,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::split_complex_id;
 use tvf_spectral::{
     compute_basis, load_basis, mesh_fingerprint, read_basis_header, save_basis, BasisFileKey,
     BasisRequest, FieldFamily, SpectralBasis,
@@ -219,22 +220,41 @@ impl BasisOptions {
     /// `--basis` file's (read from its header, checked against the discretization flags), else
     /// the flags' (default conforming-barycentric).
     pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<Discretization> {
-        let id = match &self.basis {
-            Some(path) => self.file_discretization(path)?,
-            None => self.discretization.id(),
-        };
-        build_discretization(&id, mesh, &input.label())
+        match &self.basis {
+            Some(path) => {
+                build_discretization(&self.file_discretization(path)?, mesh, &input.label())
+            }
+            None => self.discretization.build(mesh, &input.label()),
+        }
     }
 
     /// The catalog id named by the header of the basis file `path`, refused if it contradicts
     /// the discretization flags.
     fn file_discretization(&self, path: &Path) -> Result<String> {
         let stored = read_basis_header(path)?.key.discretization;
-        if let Some(wanted) = self.discretization.requested_id().filter(|w| *w != stored) {
+        // On a mesh with boundary the stored id is `{catalog id}+{boundary}`.
+        let (stored_entry, stored_boundary) = split_complex_id(&stored);
+        if let Some(wanted) = self
+            .discretization
+            .requested_id()
+            .filter(|w| w != stored_entry)
+        {
             bail!(
                 "{}: the basis was computed with the discretization '{stored}', but '{wanted}' was asked for",
                 path.display()
             );
+        }
+        if let (Some(stored_boundary), Some(wanted)) =
+            (stored_boundary, self.discretization.boundary)
+        {
+            if stored_boundary != wanted {
+                bail!(
+                    "{}: the basis was computed with the boundary condition '{}', but '{}' was asked for",
+                    path.display(),
+                    stored_boundary.name(),
+                    wanted.name()
+                );
+            }
         }
         Ok(stored)
     }

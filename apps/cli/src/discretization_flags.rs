@@ -1,10 +1,13 @@
 //! `--discretization ID` (and its shorthands `--decomposition`, `--mass`): which catalog entry a
-//! subcommand builds.
+//! subcommand builds; `--boundary` its boundary condition on meshes with boundary.
 
 use anyhow::{Context, Result};
 use clap::Args;
+use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{catalog, catalog_entry, BoxedComplex, DEFAULT_DISCRETIZATION};
+use tvf_discretizations::{
+    catalog, catalog_entry, split_complex_id, BoxedComplex, DEFAULT_DISCRETIZATION,
+};
 
 /// A discretization chosen at run time from the catalog.
 pub type Discretization = BoxedComplex;
@@ -24,6 +27,12 @@ pub struct DiscretizationFlags {
     /// voronoi; circumcentric for dec).
     #[arg(long, value_name = "NAME", conflicts_with = "discretization", value_parser = mass_part)]
     pub mass: Option<String>,
+    /// Boundary condition on meshes with boundary: tangential (potentials free, co-potentials
+    /// zero on the boundary: every eigenfield and harmonic field is tangential to the boundary)
+    /// or normal (potentials zero on the boundary: fields normal to it). Ignored on closed
+    /// meshes [default: tangential, or the basis file's].
+    #[arg(long, value_name = "CONDITION", value_parser = boundary_condition)]
+    pub boundary: Option<BoundaryCondition>,
 }
 
 impl DiscretizationFlags {
@@ -49,10 +58,22 @@ impl DiscretizationFlags {
             .unwrap_or_else(|| DEFAULT_DISCRETIZATION.to_string())
     }
 
-    /// Builds the chosen complex on `mesh`; `label` names the mesh in errors.
-    pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
-        build_discretization(&self.id(), mesh, label)
+    /// The boundary condition to use: the flag's, else the default (tangential).
+    pub fn boundary_condition(&self) -> BoundaryCondition {
+        self.boundary.unwrap_or_default()
     }
+
+    /// Builds the chosen complex on `mesh` with the chosen boundary condition; `label` names the
+    /// mesh in errors.
+    pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
+        build_with_boundary(&self.id(), self.boundary_condition(), mesh, label)
+    }
+}
+
+/// Accepts `tangential` or `normal`.
+fn boundary_condition(value: &str) -> Result<BoundaryCondition, String> {
+    BoundaryCondition::from_name(value)
+        .ok_or_else(|| format!("'{value}' is not a boundary condition: tangential or normal"))
 }
 
 /// Accepts an id of the catalog (a usage error lists them otherwise).
@@ -89,10 +110,23 @@ fn one_of(value: &str, mut known: Vec<&str>) -> Result<String, String> {
     }
 }
 
-/// Builds the catalog entry `id` on `mesh`; errors name the mesh (`label`) and the entry.
+/// Builds the complex with id `id` on `mesh`: a catalog id, or a complex id of a mesh with
+/// boundary, `{catalog id}+{boundary}` (as basis files store it), whose boundary condition is
+/// used (the default otherwise); errors name the mesh (`label`) and the entry.
 pub fn build_discretization(id: &str, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
+    let (entry_id, boundary) = split_complex_id(id);
+    build_with_boundary(entry_id, boundary.unwrap_or_default(), mesh, label)
+}
+
+/// Builds catalog entry `id` on `mesh` with boundary condition `boundary`.
+pub fn build_with_boundary(
+    id: &str,
+    boundary: BoundaryCondition,
+    mesh: &SurfaceMesh,
+    label: &str,
+) -> Result<Discretization> {
     let entry = catalog_entry(id)?;
-    (entry.build)(mesh).with_context(|| {
+    entry.build_with(mesh, boundary).with_context(|| {
         format!(
             "{label}: cannot build the discretization '{id}' (needs: {})",
             entry.preconditions

@@ -1,7 +1,9 @@
 //! Built-in example meshes, selectable with `--example NAME` wherever a mesh is expected.
 
 use anyhow::{bail, Result};
-use tvf_core::generate::{bumpy_torus, genus_surface, icosphere, torus};
+use tvf_core::generate::{
+    bumpy_torus, genus_surface, hemisphere, icosphere, perforated_plate, torus,
+};
 use tvf_core::SurfaceMesh;
 
 /// Names accepted by `--example`.
@@ -14,6 +16,8 @@ pub const EXAMPLE_NAMES: &[&str] = &[
     "genus2",
     "genus3",
     "genus4",
+    "hemisphere",
+    "pants",
 ];
 
 /// Generates the built-in example called `name`.
@@ -28,6 +32,9 @@ pub fn example_mesh(name: &str) -> Result<SurfaceMesh> {
         "genus2" => Ok(genus_surface(2, 8)),
         "genus3" => Ok(genus_surface(3, 8)),
         "genus4" => Ok(genus_surface(4, 8)),
+        // Meshes with boundary: one loop (2400 faces), three loops (a plate with two holes).
+        "hemisphere" => Ok(hemisphere(20)),
+        "pants" => Ok(perforated_plate(2, 12)),
         _ => bail!(
             "unknown example '{name}': choose one of {}",
             EXAMPLE_NAMES.join(", ")

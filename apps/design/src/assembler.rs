@@ -240,10 +240,12 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             }
             Location::Vertex(node) => {
                 self.check_node_kind(constraint, kind, nodes.kind, NodeKind::Vertices)?;
+                self.check_not_dirichlet(constraint, kind, nodes, node)?;
                 vec![(node, 1.0)]
             }
             Location::Edge(node) => {
                 self.check_node_kind(constraint, kind, nodes.kind, NodeKind::Edges)?;
+                self.check_not_dirichlet(constraint, kind, nodes, node)?;
                 vec![(node, 1.0)]
             }
         };
@@ -259,6 +261,29 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             }
         }
         Ok(row.into_iter().filter(|&(_, a)| a != 0.0).collect())
+    }
+
+    /// A divergence or curl at a node the boundary condition fixes (a Dirichlet node, whose row of
+    /// the operator is zero) cannot be prescribed.
+    fn check_not_dirichlet(
+        &self,
+        constraint: &Constraint,
+        kind: &'static str,
+        nodes: &NodeSpace,
+        node: usize,
+    ) -> Result<(), ConstraintError> {
+        if !nodes.dirichlet.get(node).copied().unwrap_or(false) {
+            return Ok(());
+        }
+        Err(ConstraintError::Unsupported {
+            id: constraint.id.clone(),
+            detail: format!(
+                "{} {node} lies on the boundary, where the boundary condition '{}' of '{}' fixes the values: its {kind} is zero and cannot be prescribed (use an interior node, or the other --boundary)",
+                nodes.kind.name(),
+                self.complex.topology().boundary_condition.name(),
+                self.complex.id()
+            ),
+        })
     }
 
     fn check_node_kind(

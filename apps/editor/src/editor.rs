@@ -6,7 +6,7 @@ use std::sync::Arc;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_design::{ConstraintSet, ReducedBasis};
-use tvf_discretizations::catalog_entry;
+use tvf_discretizations::{catalog_entry, split_complex_id};
 
 use crate::edit_op::EditOp;
 use crate::engine::{run_engine, Reply, Request, Snapshot};
@@ -48,8 +48,11 @@ impl Editor {
         } = setup;
         let entry = catalog_entry(&discretization)
             .map_err(|e| EditorError::Discretization(e.to_string()))?;
-        let complex =
-            (entry.build)(&mesh).map_err(|e| EditorError::Discretization(e.to_string()))?;
+        // A complex id on a mesh with boundary names its boundary condition (`…+normal`).
+        let boundary = split_complex_id(&discretization).1.unwrap_or_default();
+        let complex = entry
+            .build_with(&mesh, boundary)
+            .map_err(|e| EditorError::Discretization(e.to_string()))?;
         complex
             .require_sampling()
             .map_err(|e| EditorError::Discretization(e.to_string()))?;

@@ -59,3 +59,42 @@ fn every_catalog_entry_edits_and_meets_its_constraints() {
         );
     }
 }
+
+#[test]
+fn meshes_with_boundary_edit_with_both_boundary_conditions() {
+    use tvf_core::discretization::BoundaryCondition;
+    use tvf_core::generate::perforated_plate;
+    use tvf_design::ReducedBasis;
+    use tvf_spectral::{compute_basis, BasisRequest};
+    // A plate with two holes (three boundary loops); the id names the boundary condition, as
+    // basis files on meshes with boundary store it.
+    let mesh = perforated_plate(2, 8);
+    let entry = tvf_discretizations::catalog_entry("conforming-barycentric").unwrap();
+    for boundary in BoundaryCondition::ALL {
+        let complex = entry.build_with(&mesh, boundary).unwrap();
+        let spectral = compute_basis(complex.as_ref(), &BasisRequest::fields(60)).unwrap();
+        let editor = Editor::start(EditorSetup {
+            mesh: mesh.clone(),
+            basis: ReducedBasis::from_spectral(&spectral).unwrap(),
+            constraints: None,
+            basis_size: None,
+            discretization: complex.id().to_string(),
+        })
+        .unwrap_or_else(|e| panic!("{boundary:?}: {e}"));
+        for constraint in [
+            r#"{"id": "v", "kind": "vector", "face": 7, "value": [1.0, 0.5, 0.0]}"#,
+            r#"{"id": "s", "kind": "divergence", "face": 100, "value": 2.0}"#,
+        ] {
+            let op = format!(r#"{{"op": "add", "constraint": {constraint}}}"#);
+            editor
+                .edit(EditOp::parse(op.as_bytes()).unwrap())
+                .unwrap_or_else(|e| panic!("{boundary:?}: {constraint}: {e}"));
+        }
+        let check = editor.check().unwrap();
+        assert!(
+            check.max_relative < 1e-9,
+            "{boundary:?}: residual {}",
+            check.max_relative
+        );
+    }
+}

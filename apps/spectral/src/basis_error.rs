@@ -8,9 +8,6 @@ use tvf_solvers::SolverError;
 /// What can go wrong in [`crate::compute_basis`].
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum BasisError {
-    /// The mesh has boundary edges: Lemma 1 and the Hodge decomposition need a closed mesh.
-    #[error("the Fourier basis needs a closed mesh; this mesh has boundary edges")]
-    Boundary,
     /// The request cannot be met (e.g. more fields than the space has, a negative bound).
     #[error("invalid basis request: {0}")]
     InvalidRequest(String),
@@ -25,8 +22,8 @@ pub enum BasisError {
         /// The solver's error.
         source: SolverError,
     },
-    /// The lowest eigenvalues, one per connected component, are not numerically zero: the
-    /// complex's component count does not match its kernel.
+    /// The lowest eigenvalues, one per connected component whose constants are in the kernel,
+    /// are not numerically zero: the complex's node spaces do not match its kernel.
     #[error(
         "{problem} eigenproblem: expected {components} zero eigenvalues (one per component), but \
          eigenvalue {value:e} is not small against the first non-zero one {first_nonzero:e}"

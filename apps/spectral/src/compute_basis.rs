@@ -5,7 +5,7 @@ use crate::basis_request::{BasisRequest, BasisSize, BasisStage};
 use crate::eigenfunction_basis::EigenfunctionBasis;
 use crate::family_split::split_families;
 use crate::harmonic_fields::harmonic_fields;
-use crate::scalar_spectrum::{ScalarEigenpairs, ScalarSpectrum};
+use crate::scalar_spectrum::{free_nodes, ScalarEigenpairs, ScalarSpectrum};
 use crate::{BasisError, FieldFamily, SpectralBasis};
 use faer::Mat;
 use rayon::prelude::*;
@@ -79,8 +79,11 @@ impl BasisReport {
 /// solved once and the selection is provably the lowest of the union; by Lemma 1 `Φ = d0 φ / ‖d0 φ‖` and
 /// `Ψ = −M1⁻¹ d1ᵀ ψ / ‖M1⁻¹ d1ᵀ ψ‖` (finite elements: `J G_co ψ` normalised) are eigenfields of `L` with eigenvalues `λ`, `μ`.
 ///
-/// Errors: [`BasisError::Boundary`] on a mesh with boundary, [`BasisError::InvalidRequest`],
-/// solver failures.
+/// On a mesh with boundary the scalar problems are those of the complex's boundary condition
+/// (Dirichlet eigenfunctions on the space whose boundary values are fixed, Neumann on the other)
+/// and there are `2g + b − 1` harmonic fields per component.
+///
+/// Errors: [`BasisError::InvalidRequest`], solver failures.
 pub fn compute_basis<H: HodgeComplex + ?Sized>(
     complex: &H,
     request: &BasisRequest<'_>,
@@ -115,21 +118,19 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     request: &BasisRequest<'_>,
 ) -> Result<(EigenfunctionBasis, BasisReport), BasisError> {
     let start = Instant::now();
-    if complex.topology().has_boundary {
-        return Err(BasisError::Boundary);
-    }
-    let components = complex.topology().component_count;
+    let (potential_nodes, co_potential_nodes) =
+        (complex.potential_nodes(), complex.co_potential_nodes());
     let exact = ScalarSpectrum::new(
         "potential",
         complex.exact_eigenproblem(),
-        &complex.potential_nodes().components,
-        components,
+        &free_nodes(potential_nodes),
+        potential_nodes.kernel_dimension(),
     );
     let co_exact = ScalarSpectrum::new(
         "co-potential",
         complex.co_exact_eigenproblem(),
-        &complex.co_potential_nodes().components,
-        components,
+        &free_nodes(co_potential_nodes),
+        co_potential_nodes.kernel_dimension(),
     );
     let h = complex.topology().harmonic_dimension;
     let area = complex.total_area();
@@ -156,7 +157,6 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     let (a, b) = solve_both_families(
         (&exact, ka, family_seed(2)),
         (&co_exact, kb, family_seed(3)),
-        components,
         request,
     );
     let (a, b) = (a?, b?);
@@ -223,7 +223,6 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
 fn solve_both_families(
     potential: (&ScalarSpectrum, usize, u64),
     co_potential: (&ScalarSpectrum, usize, u64),
-    components: usize,
     request: &BasisRequest<'_>,
 ) -> (
     Result<ScalarEigenpairs, BasisError>,
@@ -232,22 +231,22 @@ fn solve_both_families(
     let (exact, ka, seed_a) = potential;
     let (co_exact, kb, seed_b) = co_potential;
     let wanted = ka + kb;
-    let found = |p: &tvf_solvers::EigenProgress, count: usize| {
-        p.found.saturating_sub(components).min(count)
+    let found = |p: &tvf_solvers::EigenProgress, kernel: usize, count: usize| {
+        p.found.saturating_sub(kernel).min(count)
     };
     let done_a = Cell::new(0);
     let done_b = Cell::new(0);
     let report = || request.report(BasisStage::Eigenpairs, done_a.get() + done_b.get(), wanted);
     request.report(BasisStage::Eigenpairs, 0, wanted);
     let a = exact.lowest_nonzero(ka, seed_a, &|p: &tvf_solvers::EigenProgress| {
-        done_a.set(found(p, ka));
+        done_a.set(found(p, exact.components(), ka));
         report();
     });
     if let Ok(pairs) = &a {
         done_a.set(pairs.values.len());
     }
     let b = co_exact.lowest_nonzero(kb, seed_b, &|p: &tvf_solvers::EigenProgress| {
-        done_b.set(found(p, kb));
+        done_b.set(found(p, co_exact.components(), kb));
         report();
     });
     if let Ok(pairs) = &b {

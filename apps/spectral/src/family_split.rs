@@ -362,7 +362,7 @@ mod tests {
             stiffness: from_triplets(n, n, rows, cols, values),
             mass: vec![1.0; n],
         };
-        ScalarSpectrum::new("path", problem, &vec![0; n], 1)
+        ScalarSpectrum::new("path", problem, &vec![true; n], 1)
     }
 
     fn nonzero_eigenvalues_below(n: usize, t: f64) -> usize {

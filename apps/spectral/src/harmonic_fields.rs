@@ -1,4 +1,5 @@
-//! The harmonic fields of a closed mesh (`2g` of them), with how good they are.
+//! The harmonic fields of a complex (`2g` per closed component, `2g + b − 1` per component with
+//! `b` boundary loops), with how good they are.
 
 use crate::laplacian_apply::{apply_hodge_laplacian, field_norm};
 use crate::BasisError;
@@ -25,9 +26,6 @@ pub fn harmonic_fields<H: HodgeComplex + ?Sized>(
     complex: &H,
     seed: u64,
 ) -> Result<HarmonicFields, BasisError> {
-    if complex.topology().has_boundary {
-        return Err(BasisError::Boundary);
-    }
     let rows = complex.field_dimension();
     let h = complex.topology().harmonic_dimension;
     if h == 0 {

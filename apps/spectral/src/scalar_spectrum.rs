@@ -7,12 +7,13 @@ use faer::sparse::SparseColMat;
 use faer::Mat;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::{Eigenproblem, NO_COMPONENT};
+use tvf_core::discretization::{Eigenproblem, NodeSpace};
 use tvf_solvers::convert::shifted_upper_triangle;
 use tvf_solvers::{lowest_eigenpairs, EigenOptions, EigenProgress};
 
-/// The eigenproblem `A x = λ M x` of one function space, restricted to the nodes some face uses
-/// (unused nodes have zero mass and are decoupled; the solver needs a positive mass).
+/// The eigenproblem `A x = λ M x` of one function space, restricted to its free nodes (unused
+/// nodes have zero mass and are decoupled, the solver needs a positive mass; Dirichlet nodes of a
+/// boundary condition carry no degree of freedom, their row and column of `A` are zero).
 pub(crate) struct ScalarSpectrum {
     /// Which problem, for messages: "potential" or "co-potential".
     pub name: &'static str,
@@ -21,7 +22,7 @@ pub(crate) struct ScalarSpectrum {
     /// Map restricted index → full index, `None` if every node is used.
     used: Option<Vec<usize>>,
     full_dimension: usize,
-    /// Kernel dimension: one constant per connected component.
+    /// Kernel dimension: one constant per connected component whose constants are in the kernel.
     components: usize,
 }
 
@@ -31,7 +32,8 @@ pub(crate) struct ScalarEigenpairs {
     pub values: Vec<f64>,
     /// `n × k` eigenvectors in the full node numbering (zero on unused nodes), `M`-orthonormal.
     pub vectors: Mat<f64>,
-    /// The dropped kernel eigenvalues (one per component), for the report.
+    /// The dropped kernel eigenvalues (one per component with constants in the kernel), for the
+    /// report.
     pub kernel_values: Vec<f64>,
     /// Largest relative residual reported by the solver.
     pub max_residual: f64,
@@ -41,15 +43,23 @@ pub(crate) struct ScalarEigenpairs {
     pub solves: usize,
 }
 
+/// Whether each node of `nodes` is free ([`NodeSpace::is_free`]).
+pub(crate) fn free_nodes(nodes: &NodeSpace) -> Vec<bool> {
+    (0..nodes.len()).map(|i| nodes.is_free(i)).collect()
+}
+
 impl ScalarSpectrum {
+    /// The problem restricted to the nodes `i` with `free[i]` (`n` entries), whose stiffness has
+    /// a kernel of dimension `kernel_dimension` there.
     pub fn new(
         name: &'static str,
         problem: Eigenproblem,
-        node_components: &[usize],
-        components: usize,
+        free: &[bool],
+        kernel_dimension: usize,
     ) -> Self {
+        let components = kernel_dimension;
         let full_dimension = problem.mass.len();
-        if node_components.iter().all(|&c| c != NO_COMPONENT) {
+        if free.iter().all(|&f| f) {
             return Self {
                 name,
                 stiffness: problem.stiffness,
@@ -59,9 +69,7 @@ impl ScalarSpectrum {
                 components,
             };
         }
-        let used: Vec<usize> = (0..full_dimension)
-            .filter(|&i| node_components[i] != NO_COMPONENT)
-            .collect();
+        let used: Vec<usize> = (0..full_dimension).filter(|&i| free[i]).collect();
         let mut restricted = vec![usize::MAX; full_dimension];
         for (r, &i) in used.iter().enumerate() {
             restricted[i] = r;
@@ -85,7 +93,7 @@ impl ScalarSpectrum {
         }
     }
 
-    /// Number of non-zero eigenvalues the problem has: used nodes minus components.
+    /// Number of non-zero eigenvalues the problem has: free nodes minus the kernel dimension.
     pub fn available(&self) -> usize {
         self.mass.len().saturating_sub(self.components)
     }
@@ -95,7 +103,7 @@ impl ScalarSpectrum {
         self.mass.len()
     }
 
-    /// Dimension of the kernel of `A`: one constant per connected component.
+    /// Dimension of the kernel of `A` on the free nodes.
     pub fn components(&self) -> usize {
         self.components
     }

@@ -227,20 +227,23 @@ fn eigenfunction_form_matches_the_dense_fields() {
 }
 
 #[test]
-fn boundary_meshes_are_rejected() {
-    let mesh = SurfaceMesh::new(
-        vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [1.0, 1.0, 0.0],
-        ],
-        vec![[0, 1, 2], [1, 3, 2]],
-    )
-    .unwrap();
-    let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    assert!(matches!(
-        compute_basis(&complex, &BasisRequest::pairs(1)),
-        Err(tvf_spectral::BasisError::Boundary)
-    ));
+fn meshes_with_boundary_get_a_complete_orthonormal_basis() {
+    let mesh = tvf_core::generate::perforated_plate(1, 4);
+    for boundary in tvf_core::discretization::BoundaryCondition::ALL {
+        let complex = Conforming::with_boundary(&mesh, MassLumping::Barycentric, boundary).unwrap();
+        let basis = compute_basis(&complex, &BasisRequest::complete()).unwrap();
+        // An annulus: one harmonic field; the basis spans all 2F fields.
+        assert_eq!(basis.report().unwrap().harmonic_dimension, 1);
+        assert_eq!(basis.len(), complex.field_dimension());
+        let d = basis.len();
+        let fields = basis.fields();
+        let column = |j: usize| (0..d).map(|r| fields[(r, j)]).collect::<Vec<f64>>();
+        for i in (0..d).step_by(7) {
+            for j in (0..d).step_by(5) {
+                let inner = basis.inner_product(&column(i), &column(j));
+                let expected = if i == j { 1.0 } else { 0.0 };
+                assert!((inner - expected).abs() < 1e-8, "({i},{j}) = {inner}");
+            }
+        }
+    }
 }

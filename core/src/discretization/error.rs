@@ -66,6 +66,16 @@ pub enum DiscretizationError {
         /// What is missing.
         capability: &'static str,
     },
+    /// The discretization has no complex for this boundary condition on a mesh with boundary.
+    #[error("the discretization '{discretization}' does not offer the boundary condition '{condition}' on meshes with boundary: {reason}")]
+    UnsupportedBoundaryCondition {
+        /// The complex's id.
+        discretization: String,
+        /// The boundary condition asked for.
+        condition: &'static str,
+        /// Why, and what is offered instead.
+        reason: &'static str,
+    },
     /// The matrices of a complex do not fit together.
     #[error("inconsistent complex: {0}")]
     Inconsistent(String),

@@ -39,7 +39,8 @@ pub trait HodgeComplex: Send + Sync {
     fn d0(&self) -> &CsMat<f64>;
 
     /// `d1` (`n2 × n1`): the integrated curl, fields → co-potentials. `d1 · d0 = 0` up to
-    /// round-off (on closed meshes for the finite-element complexes).
+    /// round-off (on a mesh with boundary thanks to the boundary condition: the Dirichlet nodes'
+    /// column of `d0` or row of `d1` is zero, see [`super::NodeSpace`]).
     fn d1(&self) -> &CsMat<f64>;
 
     /// `M0` (`n0 × n0`, area): the inner product of potentials.
@@ -61,7 +62,7 @@ pub trait HodgeComplex: Send + Sync {
     /// The nodes of the co-potential space (`n2`).
     fn co_potential_nodes(&self) -> &NodeSpace;
 
-    /// Components, harmonic dimension and boundary of the mesh.
+    /// Components, harmonic dimension, boundary and boundary condition of the complex.
     fn topology(&self) -> &ComplexTopology;
 
     /// Storage for the derived operators of [`super::HodgeOperators`] (computed once, on first

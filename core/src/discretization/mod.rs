@@ -100,7 +100,7 @@ pub use diagonal_mass::DiagonalMass;
 pub use error::DiscretizationError;
 pub use hodge_complex::HodgeComplex;
 pub use hodge_operators::{Eigenproblem, HodgeOperators};
-pub use nodes::{ComplexTopology, NodeKind, NodeSpace};
+pub use nodes::{BoundaryCondition, ComplexTopology, NodeKind, NodeSpace};
 pub use operator_cache::OperatorCache;
 
 /// Marker in node → component maps for a node that no face uses (an unreferenced vertex).

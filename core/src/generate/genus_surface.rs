@@ -30,6 +30,17 @@ pub fn genus_surface(genus: usize, resolution: usize) -> SurfaceMesh {
     thicken(&sheet, wall_layers)
 }
 
+/// The flat sheet of [`genus_surface`] with `holes ≥ 1` holes: planar points and
+/// counter-clockwise triangles (an annulus-like cell per hole, cells sharing their sides).
+pub(crate) fn perforated_plate_sheet(
+    holes: usize,
+    resolution: usize,
+) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+    let k = resolution.max(2).div_ceil(2) * 2;
+    let sheet = perforated_sheet(holes, k);
+    (sheet.points, sheet.triangles)
+}
+
 /// A planar triangulation: points and counter-clockwise triangles.
 struct Sheet {
     points: Vec<[f64; 2]>,

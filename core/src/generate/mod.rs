@@ -4,6 +4,7 @@ mod bumpy_torus;
 mod genus_surface;
 mod icosphere;
 mod jitter;
+mod open_surfaces;
 mod rigid_motion;
 mod torus;
 
@@ -11,5 +12,6 @@ pub use bumpy_torus::bumpy_torus;
 pub use genus_surface::genus_surface;
 pub use icosphere::icosphere;
 pub use jitter::jitter;
+pub use open_surfaces::{disk, hemisphere, holed_torus, open_cylinder, perforated_plate};
 pub use rigid_motion::rigid_motion;
 pub use torus::torus;

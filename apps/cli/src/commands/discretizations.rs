@@ -12,7 +12,7 @@ use tvf_discretizations::{catalog, DEFAULT_DISCRETIZATION};
 preconditions on the mesh. --decomposition NAME --mass MASS is a shorthand for the id NAME-MASS."
 )]
 pub struct DiscretizationsArgs {
-    /// Print JSON to stdout: {"default": ID, "discretizations": [{"id", "description", "preconditions"}, ...]}.
+    /// Print JSON to stdout: {"default": ID, "discretizations": [{"id", "description", "preconditions", "boundary_conditions"}, ...]}.
     #[arg(long)]
     json: bool,
 }
@@ -27,6 +27,7 @@ pub fn run(args: DiscretizationsArgs) -> Result<()> {
                     "id": e.id,
                     "description": e.description,
                     "preconditions": e.preconditions,
+                    "boundary_conditions": boundary_names(e),
                 })
             })
             .collect();
@@ -43,9 +44,17 @@ pub fn run(args: DiscretizationsArgs) -> Result<()> {
             ""
         };
         println!(
-            "{}{default} — {}. Preconditions: {}.",
-            entry.id, entry.description, entry.preconditions
+            "{}{default} — {}. Preconditions: {}. Boundary conditions on meshes with boundary: {}.",
+            entry.id,
+            entry.description,
+            entry.preconditions,
+            boundary_names(entry).join(", ")
         );
     }
     Ok(())
+}
+
+/// The `--boundary` values an entry offers, the default first.
+fn boundary_names(entry: &tvf_discretizations::CatalogEntry) -> Vec<&'static str> {
+    entry.boundary_conditions.iter().map(|b| b.name()).collect()
 }

@@ -4,6 +4,8 @@ use crate::mesh_input::MeshInput;
 use anyhow::Result;
 use clap::Args;
 use serde_json::json;
+use tvf_core::discretization::BoundaryCondition;
+use tvf_discretizations::mesh_topology;
 
 /// Arguments of `tvf info`.
 #[derive(Args)]
@@ -20,11 +22,18 @@ pub struct InfoArgs {
 /// ones), `edges`, `faces`, `components`, `boundary_loops`, `genus`, `closed`, `min_angle_deg`,
 /// `max_angle_deg`, `warnings` (messages), plus `source`, `file_vertices` (all vertices the
 /// file lists), `unreferenced_vertices`, `duplicate_vertices`, `euler_characteristic`,
-/// `component_genera`, `total_area` and `signed_volume`.
+/// `component_genera`, `component_boundary_loops`, `harmonic_dimension` (per boundary condition,
+/// `{"tangential": h, "normal": h}`: `2g` per closed component, `2g + b − 1` per component with
+/// `b ≥ 1` boundary loops), `total_area` and `signed_volume`.
 pub fn run(args: InfoArgs) -> Result<()> {
     let loaded = args.input.load()?;
     let (mesh, report) = (&loaded.mesh, &loaded.report);
     let warnings: Vec<String> = report.warnings.iter().map(|w| w.to_string()).collect();
+    let loops = tvf_discretizations::component_boundary_loops(mesh);
+    let harmonic: Vec<(BoundaryCondition, usize)> = BoundaryCondition::ALL
+        .into_iter()
+        .map(|b| (b, mesh_topology(mesh, b).harmonic_dimension))
+        .collect();
     if args.json {
         let value = json!({
             "source": args.input.label(),
@@ -43,6 +52,11 @@ pub fn run(args: InfoArgs) -> Result<()> {
             "duplicate_vertices": report.duplicate_vertices(),
             "euler_characteristic": mesh.euler_characteristic(),
             "component_genera": mesh.component_genera(),
+            "component_boundary_loops": loops,
+            "harmonic_dimension": harmonic
+                .iter()
+                .map(|(b, h)| (b.name().to_string(), json!(h)))
+                .collect::<serde_json::Map<_, _>>(),
             "total_area": mesh.total_area(),
             "signed_volume": mesh.signed_volume(),
         });
@@ -56,6 +70,18 @@ pub fn run(args: InfoArgs) -> Result<()> {
     println!("components     {}", mesh.component_count());
     println!("boundary loops {}", mesh.boundary_loops().len());
     println!("genus          {}", mesh.genus());
+    if mesh.is_closed() {
+        println!("harmonic       {} (2g)", harmonic[0].1);
+    } else {
+        let per_condition: Vec<String> = harmonic
+            .iter()
+            .map(|(b, h)| format!("{h} ({})", b.name()))
+            .collect();
+        println!(
+            "harmonic       {} (2g + b − 1 per component with boundary; loops per component {loops:?})",
+            per_condition.join(", ")
+        );
+    }
     println!(
         "closed         {}",
         if mesh.is_closed() { "yes" } else { "no" }

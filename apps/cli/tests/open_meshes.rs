@@ -1,0 +1,274 @@
+//! Meshes with boundary through the commands: a generated pair of pants (three boundary loops)
+//! with both boundary conditions, and the raw `bunny.obj` of `../shared/meshes` (five loops,
+//! unreferenced vertices) where it exists.
+
+mod common;
+
+use common::{assert_success, tvf};
+use serde_json::Value;
+use std::path::Path;
+use tvf_core::generate::perforated_plate;
+use tvf_core::io::{load_mesh, write_obj};
+use tvf_core::SurfaceMesh;
+
+fn run(dir: &Path, args: &[&str]) -> std::process::Output {
+    let output = tvf()
+        .current_dir(dir)
+        .args(args)
+        .arg("--quiet")
+        .output()
+        .expect("the tvf binary runs");
+    assert_success(&output);
+    output
+}
+
+fn json(output: &std::process::Output) -> Value {
+    serde_json::from_slice(&output.stdout).expect("JSON on stdout")
+}
+
+/// A field with both families: a rotation about z plus a gradient-like part, per face.
+fn write_field(mesh: &SurfaceMesh, path: &Path) {
+    let field: String = mesh
+        .faces()
+        .iter()
+        .map(|f| {
+            let c: [f64; 3] = std::array::from_fn(|k| {
+                f.iter().map(|&v| mesh.positions()[v][k]).sum::<f64>() / 3.0
+            });
+            format!("{} {} {}\n", -c[1] + 0.3 * c[0], c[0] + 0.2, 0.1 * c[2])
+        })
+        .collect();
+    std::fs::write(path, field).unwrap();
+}
+
+/// Constraints at an interior vertex and an interior edge (boundary nodes are fixed by one of the
+/// boundary conditions).
+fn write_constraints(mesh: &SurfaceMesh, path: &Path) {
+    let mut on_boundary = vec![false; mesh.vertex_count()];
+    for e in mesh.boundary_edges() {
+        for v in mesh.edges()[e] {
+            on_boundary[v] = true;
+        }
+    }
+    let vertex = (0..mesh.vertex_count()).find(|&v| !on_boundary[v]).unwrap();
+    let edge = (0..mesh.edge_count())
+        .find(|&e| !mesh.edges()[e].iter().any(|&v| on_boundary[v]))
+        .unwrap();
+    let constraints = format!(
+        r#"{{"constraints": [
+        {{"id": "v", "kind": "vector", "face": 3, "value": [1.0, 0.5, 0.0]}},
+        {{"id": "s", "kind": "divergence", "vertex": {vertex}, "value": 2.0}},
+        {{"id": "c", "kind": "curl", "edge": {edge}, "value": -1.0}}
+    ]}}"#
+    );
+    std::fs::write(path, constraints).unwrap();
+}
+
+/// basis, coefficients, decompose, filter, spline, design (reduced and full), render on `mesh`
+/// (the file `name` in `dir`) with boundary condition `boundary`; `k` eigenfields.
+fn every_command(dir: &Path, name: &str, boundary: &str, k: &str, harmonic: usize) {
+    let b = ["--boundary", boundary];
+    let basis_file = format!("{boundary}.tvfb");
+    let basis = json(&run(
+        dir,
+        &[
+            &["basis", name, "-k", k, "-o", &basis_file, "--json"][..],
+            &b,
+        ]
+        .concat(),
+    ));
+    let expected_id = format!("conforming-barycentric+{boundary}");
+    assert_eq!(basis["discretization"], expected_id.as_str());
+    assert_eq!(basis["harmonic"], harmonic);
+    // The basis file brings its boundary condition back without the flag.
+    let coefficients = json(&run(
+        dir,
+        &[
+            "coefficients",
+            name,
+            "field.txt",
+            "--basis",
+            &basis_file,
+            "--json",
+        ],
+    ));
+    assert_eq!(coefficients["discretization"], expected_id.as_str());
+    let decompose = json(&run(
+        dir,
+        &[
+            &[
+                "decompose",
+                name,
+                "field.txt",
+                "-o",
+                &format!("parts-{boundary}"),
+                "--json",
+            ][..],
+            &b,
+        ]
+        .concat(),
+    ));
+    assert_eq!(
+        decompose["discretization"],
+        expected_id.as_str(),
+        "{decompose}"
+    );
+    assert!(dir.join(format!("parts-{boundary}/harmonic.npy")).is_file());
+    run(
+        dir,
+        &[
+            "filter",
+            name,
+            "field.txt",
+            "--basis",
+            &basis_file,
+            "-o",
+            "smooth.npy",
+        ],
+    );
+    let spline = json(&run(
+        dir,
+        &[
+            &[
+                "spline",
+                name,
+                "--constraints",
+                "c.json",
+                "-k",
+                k,
+                "-o",
+                "spline.npy",
+                "--json",
+            ][..],
+            &b,
+        ]
+        .concat(),
+    ));
+    assert_eq!(spline["discretization"], expected_id.as_str());
+    run(
+        dir,
+        &[
+            &[
+                "design",
+                name,
+                "--constraints",
+                "c.json",
+                "--reduced",
+                "-k",
+                k,
+                "-o",
+                "r.npy",
+            ][..],
+            &b,
+        ]
+        .concat(),
+    );
+    run(
+        dir,
+        &[
+            &[
+                "design",
+                name,
+                "--constraints",
+                "c.json",
+                "--full",
+                "-o",
+                "f.npy",
+            ][..],
+            &b,
+        ]
+        .concat(),
+    );
+    run(
+        dir,
+        &[
+            &[
+                "render",
+                name,
+                "spline.npy",
+                "-o",
+                "spline.png",
+                "--size",
+                "120x90",
+            ][..],
+            &b,
+        ]
+        .concat(),
+    );
+}
+
+#[test]
+fn a_pair_of_pants_runs_through_every_command_with_both_boundary_conditions() {
+    let temp = tempfile::tempdir().unwrap();
+    let dir = temp.path();
+    let mesh = perforated_plate(2, 8);
+    write_obj(dir.join("pants.obj"), &mesh).unwrap();
+    write_field(&mesh, &dir.join("field.txt"));
+    write_constraints(&mesh, &dir.join("c.json"));
+    let info = json(&run(dir, &["info", "pants.obj", "--json"]));
+    assert_eq!(info["boundary_loops"], 3);
+    assert_eq!(info["harmonic_dimension"]["tangential"], 2);
+    assert_eq!(info["harmonic_dimension"]["normal"], 2);
+    for boundary in ["tangential", "normal"] {
+        every_command(dir, "pants.obj", boundary, "30", 2);
+    }
+    // A divergence on a boundary vertex cannot be prescribed where potentials are fixed.
+    let boundary_vertex = mesh.edges()[mesh.boundary_edges()[0]][0];
+    std::fs::write(
+        dir.join("bad.json"),
+        format!(
+            r#"{{"constraints": [{{"id": "s", "kind": "divergence", "vertex": {boundary_vertex}, "value": 1.0}}]}}"#
+        ),
+    )
+    .unwrap();
+    let output = tvf()
+        .current_dir(dir)
+        .args(["design", "pants.obj", "--constraints", "bad.json", "--full"])
+        .args(["-o", "bad.npy", "--boundary", "normal", "--quiet"])
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("lies on the boundary"), "{stderr}");
+}
+
+#[test]
+fn dec_refuses_the_normal_boundary_condition_with_a_clear_error() {
+    let temp = tempfile::tempdir().unwrap();
+    let output = tvf()
+        .current_dir(temp.path())
+        .args(["spectrum", "--example", "hemisphere", "-k", "4"])
+        .args([
+            "--discretization",
+            "dec-barycentric",
+            "--boundary",
+            "normal",
+        ])
+        .output()
+        .unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("does not offer the boundary condition 'normal'"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn the_raw_bunny_runs_through_every_command() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/bunny.obj");
+    if !path.exists() {
+        eprintln!("skipping: {} is not present", path.display());
+        return;
+    }
+    let temp = tempfile::tempdir().unwrap();
+    let dir = temp.path();
+    std::fs::copy(&path, dir.join("bunny.obj")).unwrap();
+    let mesh = load_mesh(&path).unwrap().mesh;
+    write_field(&mesh, &dir.join("field.txt"));
+    write_constraints(&mesh, &dir.join("c.json"));
+    let info = json(&run(dir, &["info", "bunny.obj", "--json"]));
+    assert_eq!(info["boundary_loops"], 5);
+    assert_eq!(info["harmonic_dimension"]["tangential"], 4);
+    every_command(dir, "bunny.obj", "tangential", "20", 4);
+}

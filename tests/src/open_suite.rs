@@ -1,0 +1,149 @@
+//! The core suite on meshes with boundary, for one catalog entry and one boundary condition
+//! ([`open_mesh_suite`]), and the boundary behaviour of eigenfields
+//! ([`check_essential_boundary_conditions`]).
+
+use crate::algebra_checks::{
+    check_d1_d0_zero, check_nodes_and_masses, check_psd_operators, check_symmetric_operators,
+};
+use crate::capability_checks::{check_point_evaluation, check_sampling};
+use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
+use crate::decomposition_checks::{
+    check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
+};
+use crate::spectral_checks::{
+    check_basis_orthonormal, check_lemma1, check_spectrum_union, lemma1_eigenfields,
+};
+use tvf_core::discretization::{
+    BoundaryCondition, DiscretizationError, HodgeComplex, HodgeOperators, NodeKind,
+};
+use tvf_core::geometry::{dot, norm, sub};
+
+/// Runs every core check on every mesh of the open corpus of catalog entry `id` (and the raw
+/// `bunny.obj` where present, sparse checks only) with boundary condition `boundary`: shapes and
+/// masses, `d1 d0 = 0`, symmetry, semi-definiteness, capabilities, the Hodge decomposition, `dim
+/// ker L = 2g + b − 1` per component (dense and by harmonic projection), the spectrum union,
+/// Lemma 1, the complete orthonormal basis and the essential boundary conditions. If the entry
+/// does not offer `boundary`, checks that construction fails with
+/// [`DiscretizationError::UnsupportedBoundaryCondition`] instead.
+pub fn open_mesh_suite(id: &str, boundary: BoundaryCondition) {
+    let entry = tvf_discretizations::catalog_entry(id).unwrap_or_else(|e| panic!("{e}"));
+    let corpus = Corpus::open_for_catalog_entry(id);
+    for mesh in corpus.meshes(true) {
+        eprintln!(
+            "checking {id} ({}) on {} ({} faces)",
+            boundary.name(),
+            mesh.name,
+            mesh.mesh.face_count()
+        );
+        let built = entry.build_with(&mesh.mesh, boundary);
+        if !entry.boundary_conditions.contains(&boundary) {
+            match built {
+                Err(DiscretizationError::UnsupportedBoundaryCondition { .. }) => continue,
+                Err(e) => panic!("{}: unexpected error {e}", mesh.name),
+                Ok(_) => panic!("{}: {id} built with unsupported {boundary:?}", mesh.name),
+            }
+        }
+        let complex = built.unwrap_or_else(|e| panic!("{}: {e}", mesh.name));
+        let complex = complex.as_ref();
+        assert_eq!(complex.id(), format!("{id}+{}", boundary.name()), "id");
+        assert_eq!(complex.topology().boundary_condition, boundary);
+        run_core_checks(complex, &mesh);
+    }
+}
+
+fn run_core_checks(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
+    check_nodes_and_masses(complex, mesh);
+    check_d1_d0_zero(complex);
+    check_symmetric_operators(complex);
+    check_sampling(complex, mesh);
+    check_point_evaluation(complex, mesh);
+    check_hodge_decomposition(complex, 17);
+    check_kernel_is_2g_sparse(complex, mesh, 23);
+    let n1 = complex.field_dimension();
+    if n1 <= DENSE_LIMIT {
+        check_psd_operators(complex);
+        check_kernel_is_2g_dense(complex, mesh);
+        check_spectrum_union(complex, mesh);
+    }
+    if n1 <= EIGENVECTOR_LIMIT {
+        check_lemma1(complex);
+        check_basis_orthonormal(complex, 29);
+        check_essential_boundary_conditions(complex, mesh);
+    }
+}
+
+/// The boundary conditions that hold pointwise (essential ones): where a space is P1 with zero
+/// boundary values (`S_h,0`, Dirichlet nodes on vertices), a function of it vanishes along every
+/// boundary edge, so its gradient is normal to the edge. Hence every integrable eigenfield
+/// `d0 φ / √λ` of a complex whose potentials are `S_h,0` is **normal** to each boundary edge, and
+/// every co-integrable eigenfield `−M1⁻¹ d1ᵀ ψ / √μ = J ∇ψ / √μ` of a complex whose co-potentials
+/// are `S_h,0` is **tangential** to it — to round-off: the component along (resp. across) the
+/// edge is at most `1e-10` times the field's largest vector. Checked through sampling at the
+/// centroid of the boundary face, for complexes with face-frame fields. (Natural conditions —
+/// Neumann potentials, Crouzeix–Raviart values fixed at midpoints only — hold weakly and are not
+/// pointwise.)
+pub fn check_essential_boundary_conditions(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
+    let Some(sampling) = complex.sampling() else {
+        return;
+    };
+    if complex.field_nodes().kind != NodeKind::FaceFrames {
+        return;
+    }
+    let mesh = &mesh.mesh;
+    let vertex_dirichlet = |nodes: &tvf_core::discretization::NodeSpace| {
+        nodes.kind == NodeKind::Vertices && nodes.dirichlet_count() > 0
+    };
+    let integrable_normal = vertex_dirichlet(complex.potential_nodes());
+    let co_integrable_tangential = vertex_dirichlet(complex.co_potential_nodes());
+    if !integrable_normal && !co_integrable_tangential {
+        return;
+    }
+    let fields = lemma1_eigenfields(complex);
+    let integrable_count = {
+        let p = complex.potential_nodes();
+        p.free_count() - p.kernel_dimension()
+    };
+    let boundary: Vec<(usize, [f64; 3])> = mesh
+        .boundary_edges()
+        .into_iter()
+        .map(|e| {
+            let [a, b] = mesh.edges()[e];
+            let t = mesh.edge_faces()[e]
+                .into_iter()
+                .find(|&t| t < mesh.face_count())
+                .expect("a boundary edge has one face");
+            let d = sub(mesh.positions()[b], mesh.positions()[a]);
+            (t, d.map(|x| x / norm(d)))
+        })
+        .collect();
+    let mut checked = 0;
+    for (k, (lambda, field)) in fields.iter().enumerate() {
+        let integrable = k < integrable_count;
+        if !((integrable && integrable_normal) || (!integrable && co_integrable_tangential)) {
+            continue;
+        }
+        let vectors = sampling.to_face_vectors(field).expect("field length");
+        let largest = vectors.iter().fold(0.0f64, |m, v| m.max(norm(*v)));
+        for &(t, tangent) in &boundary {
+            let v = vectors[t];
+            let along = dot(v, tangent).abs();
+            let normal = sampling.normal(t);
+            let across_direction = tvf_core::geometry::cross(normal, tangent);
+            let across = dot(v, across_direction).abs();
+            let (what, value) = if integrable {
+                ("tangential component of an integrable eigenfield", along)
+            } else {
+                ("normal component of a co-integrable eigenfield", across)
+            };
+            assert!(
+                value <= 1e-10 * largest,
+                "{what} (λ = {lambda}) on boundary face {t}: {value:e} (largest {largest:e})"
+            );
+        }
+        checked += 1;
+    }
+    assert!(
+        checked > 0,
+        "no eigenfield with an essential boundary condition"
+    );
+}

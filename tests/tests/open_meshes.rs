@@ -1,0 +1,179 @@
+//! Meshes with boundary: the harmonic dimension and `d1 d0` measured against the theory on the
+//! open corpus, and the scalar spectra of both boundary conditions converging to the analytic
+//! Dirichlet and Neumann eigenvalues of the unit hemisphere.
+
+use tvf_core::discretization::sparse::product;
+use tvf_core::discretization::{BoundaryCondition, HodgeComplex, HodgeOperators};
+use tvf_core::generate::hemisphere;
+use tvf_discretizations::catalog_entry;
+use tvf_solvers::{lowest_eigenpairs, EigenOptions};
+use tvf_tests::algebra_checks::max_abs;
+use tvf_tests::corpus::{open_corpus, open_delaunay_corpus, shared_corpus, Corpus};
+use tvf_tests::dense::{generalized_eigenvalues, restrict_to_free, split_zeros};
+
+/// `(|d1 d0| / (|d1| |d0|), dim ker L measured densely or `None` if too large)`.
+fn measure(complex: &dyn HodgeComplex) -> (f64, Option<usize>) {
+    let residual = max_abs(&product(complex.d1(), complex.d0()))
+        / (max_abs(complex.d1()) * max_abs(complex.d0()));
+    let kernel = (complex.field_dimension() <= 1600).then(|| {
+        let eigenvalues =
+            generalized_eigenvalues(complex.dirichlet_energy(), complex.m1().values());
+        split_zeros(&eigenvalues, 1e-9).0
+    });
+    (residual, kernel)
+}
+
+#[test]
+fn harmonic_dimension_and_d1_d0_match_the_theory_on_every_open_mesh() {
+    let entries = [
+        ("conforming-barycentric", open_corpus()),
+        ("nonconforming-barycentric", open_corpus()),
+        ("dec-circumcentric", open_delaunay_corpus()),
+    ];
+    eprintln!("| entry | boundary | mesh | faces | b per component | 2g+b−1 | measured dim ker L | |d1 d0| rel. |");
+    eprintln!("|---|---|---|---|---|---|---|---|");
+    for (id, meshes) in entries {
+        let entry = catalog_entry(id).unwrap();
+        for mesh in &meshes {
+            for &boundary in entry.boundary_conditions {
+                let complex = entry.build_with(&mesh.mesh, boundary).unwrap();
+                let (residual, kernel) = measure(complex.as_ref());
+                let loops = tvf_discretizations::component_boundary_loops(&mesh.mesh);
+                eprintln!(
+                    "| {id} | {} | {} | {} | {loops:?} | {} | {} | {residual:.1e} |",
+                    boundary.name(),
+                    mesh.name,
+                    mesh.mesh.face_count(),
+                    mesh.harmonic_dimension,
+                    kernel.map_or("–".to_string(), |k| k.to_string()),
+                );
+                assert!(
+                    residual <= 1e-12,
+                    "{id} {}: |d1 d0| {residual:e}",
+                    mesh.name
+                );
+                if let Some(k) = kernel {
+                    assert_eq!(k, mesh.harmonic_dimension, "{id} {}", mesh.name);
+                }
+                assert_eq!(
+                    complex.topology().harmonic_dimension,
+                    mesh.harmonic_dimension
+                );
+            }
+        }
+    }
+    // The raw bunny (where ../shared/meshes exists): 5 boundary loops, unreferenced vertices.
+    for mesh in shared_corpus(Corpus::Open) {
+        for boundary in BoundaryCondition::ALL {
+            let complex = catalog_entry("conforming-barycentric")
+                .unwrap()
+                .build_with(&mesh.mesh, boundary)
+                .unwrap();
+            let (residual, _) = measure(complex.as_ref());
+            eprintln!(
+                "| conforming-barycentric | {} | {} | {} | {:?} | {} | (suite: by projection) | {residual:.1e} |",
+                boundary.name(),
+                mesh.name,
+                mesh.mesh.face_count(),
+                tvf_discretizations::component_boundary_loops(&mesh.mesh),
+                mesh.harmonic_dimension
+            );
+            assert!(residual <= 1e-12);
+        }
+    }
+}
+
+/// The lowest `count` non-zero eigenvalues of `(A, M)` restricted to the free nodes of `nodes`.
+fn lowest_nonzero(
+    problem: &tvf_core::discretization::Eigenproblem,
+    nodes: &tvf_core::discretization::NodeSpace,
+    count: usize,
+) -> Vec<f64> {
+    let (a, m, _) = restrict_to_free(&problem.stiffness, &problem.mass, nodes);
+    let kernel = nodes.kernel_dimension();
+    let pairs =
+        lowest_eigenpairs(&a, &m, count + kernel, &EigenOptions::default()).expect("eigenpairs");
+    pairs.values[kernel..].to_vec()
+}
+
+/// Unit hemisphere, Laplace–Beltrami eigenvalues `l(l+1)` with eigenfunctions `Y_l^m`:
+/// Dirichlet at the equator keeps `l + m` odd (multiplicity `l`), Neumann `l + m` even
+/// (multiplicity `l + 1`, `l = 0` the constant, dropped here).
+fn hemisphere_reference(dirichlet: bool, count: usize) -> Vec<f64> {
+    let mut values = Vec::new();
+    for l in 1usize.. {
+        let multiplicity = if dirichlet { l } else { l + 1 };
+        for _ in 0..multiplicity {
+            values.push((l * (l + 1)) as f64);
+        }
+        if values.len() >= count {
+            break;
+        }
+    }
+    values.truncate(count);
+    values
+}
+
+#[test]
+fn hemisphere_spectra_converge_to_the_dirichlet_and_neumann_eigenvalues() {
+    const COUNT: usize = 9; // l = 1, 2, 3 for Dirichlet (1 + 2 + 3 + 3 of l = 4)
+    let levels = [4usize, 8, 16, 32];
+    eprintln!(
+        "| entry | boundary | problem | rings | faces | max rel. error (lowest {COUNT}) | order |"
+    );
+    eprintln!("|---|---|---|---|---|---|---|");
+    for id in ["conforming-barycentric", "nonconforming-barycentric"] {
+        let entry = catalog_entry(id).unwrap();
+        for boundary in BoundaryCondition::ALL {
+            let mut errors = [Vec::new(), Vec::new()];
+            for &rings in &levels {
+                let mesh = hemisphere(rings);
+                let complex = entry.build_with(&mesh, boundary).unwrap();
+                for (k, (problem, nodes)) in [
+                    (complex.exact_eigenproblem(), complex.potential_nodes()),
+                    (
+                        complex.co_exact_eigenproblem(),
+                        complex.co_potential_nodes(),
+                    ),
+                ]
+                .iter()
+                .enumerate()
+                {
+                    let dirichlet = nodes.dirichlet_count() > 0;
+                    let computed = lowest_nonzero(problem, nodes, COUNT);
+                    let reference = hemisphere_reference(dirichlet, COUNT);
+                    let error = computed
+                        .iter()
+                        .zip(&reference)
+                        .map(|(c, r)| ((c - r) / r).abs())
+                        .fold(0.0, f64::max);
+                    let order = errors[k]
+                        .last()
+                        .map(|&previous: &f64| (previous / error).log2());
+                    eprintln!(
+                        "| {id} | {} | {} ({}) | {rings} | {} | {error:.2e} | {} |",
+                        boundary.name(),
+                        if k == 0 {
+                            "potentials"
+                        } else {
+                            "co-potentials"
+                        },
+                        if dirichlet { "Dirichlet" } else { "Neumann" },
+                        mesh.face_count(),
+                        order.map_or("–".to_string(), |o| format!("{o:.2}")),
+                    );
+                    errors[k].push(error);
+                }
+            }
+            for (k, e) in errors.iter().enumerate() {
+                let n = e.len();
+                let order = (e[n - 2] / e[n - 1]).log2();
+                assert!(
+                    order > 1.7 && e[n - 1] < 5e-3,
+                    "{id} {} problem {k}: errors {e:?}",
+                    boundary.name()
+                );
+            }
+        }
+    }
+}
