@@ -21,7 +21,7 @@ use tvf_design::{
     default_regularization, CompiledConstraint, ConstraintAssembler, FactorParallelism,
     FillOrdering, FullSoftDesign, SoftOptions,
 };
-use tvf_discretizations::{Conforming, MassLumping};
+use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 
 const OMEGA: f64 = 0.1;
 
@@ -71,11 +71,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 continue;
             }
         };
-        let complex = Conforming::new(&mesh, MassLumping::Barycentric)?;
+        let complex = (catalog_entry(DEFAULT_DISCRETIZATION)?.build)(&mesh)?;
         let start = Instant::now();
         let dirichlet = complex.dirichlet_energy();
         let assembly_s = start.elapsed().as_secs_f64();
-        let assembler = ConstraintAssembler::new(&complex, &mesh);
+        let assembler = ConstraintAssembler::new(complex.as_ref(), &mesh);
         let compiled: Vec<CompiledConstraint> =
             assembler.compile_all(&common::constraints(&mesh, 1))?;
         let other: Vec<CompiledConstraint> =
