@@ -15,7 +15,7 @@
 mod common;
 
 use std::time::{Duration, Instant};
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::io::load_mesh;
 use tvf_design::{
     default_regularization, CompiledConstraint, ConstraintAssembler, FactorParallelism,
