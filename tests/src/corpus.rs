@@ -7,7 +7,7 @@ use std::f64::consts::TAU;
 use std::path::PathBuf;
 use tvf_core::generate::{
     disk, genus_surface, hemisphere, holed_torus, icosphere, jitter, open_cylinder,
-    perforated_plate, rigid_motion, torus,
+    perforated_plate, rigid_motion, staggered_ring_faces, torus,
 };
 use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_core::SurfaceMesh;
@@ -373,7 +373,6 @@ pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> Su
         tube & 1 == 0 && tube >= 4 && around >= 3,
         "even tube ≥ 4, around ≥ 3"
     );
-    let index = |ring: usize, i: usize| (ring % tube) * around + i % around;
     let positions = (0..tube)
         .flat_map(|ring| {
             let v = TAU * ring as f64 / tube as f64;
@@ -385,22 +384,7 @@ pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> Su
             })
         })
         .collect();
-    let mut faces = Vec::with_capacity(2 * around * tube);
-    for ring in 0..tube {
-        for i in 0..around {
-            let (a, a_next) = (index(ring, i), index(ring, i + 1));
-            let (b, b_next) = (index(ring + 1, i), index(ring + 1, i + 1));
-            if ring % 2 == 0 {
-                // The upper ring is shifted by +1/2: b sits between a and a_next.
-                faces.push([a, a_next, b]);
-                faces.push([b, a_next, b_next]);
-            } else {
-                // The lower ring is shifted: a sits between b and b_next.
-                faces.push([a, b_next, b]);
-                faces.push([a, index(ring, i + 1), b_next]);
-            }
-        }
-    }
+    let faces = staggered_ring_faces(around, tube, tube);
     SurfaceMesh::new(positions, faces).expect("a staggered torus is a valid closed mesh")
 }
 

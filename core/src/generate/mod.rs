@@ -6,6 +6,7 @@ mod icosphere;
 mod jitter;
 mod open_surfaces;
 mod rigid_motion;
+mod staggered_rings;
 mod torus;
 
 pub use bumpy_torus::bumpy_torus;
@@ -14,4 +15,5 @@ pub use icosphere::icosphere;
 pub use jitter::jitter;
 pub use open_surfaces::{disk, hemisphere, holed_torus, open_cylinder, perforated_plate};
 pub use rigid_motion::rigid_motion;
+pub use staggered_rings::staggered_ring_faces;
 pub use torus::torus;

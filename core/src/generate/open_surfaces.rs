@@ -2,6 +2,7 @@
 //! pants), torus with a hole.
 
 use super::genus_surface::perforated_plate_sheet;
+use super::staggered_ring_faces;
 use crate::SurfaceMesh;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -77,7 +78,6 @@ pub fn hemisphere(rings: usize) -> SurfaceMesh {
 /// the triangles are near-isosceles. Two boundary loops; `2·around·layers` faces.
 pub fn open_cylinder(around: usize, layers: usize, height: f64) -> SurfaceMesh {
     let (around, layers) = (around.max(3), layers.max(1));
-    let index = |ring: usize, i: usize| ring * around + i % around;
     let positions = (0..=layers)
         .flat_map(|ring| {
             let shift = 0.5 * (ring % 2) as f64;
@@ -87,20 +87,7 @@ pub fn open_cylinder(around: usize, layers: usize, height: f64) -> SurfaceMesh {
             })
         })
         .collect();
-    let mut faces = Vec::with_capacity(2 * around * layers);
-    for ring in 0..layers {
-        for i in 0..around {
-            let (a, a_next) = (index(ring, i), index(ring, i + 1));
-            let (b, b_next) = (index(ring + 1, i), index(ring + 1, i + 1));
-            if ring % 2 == 0 {
-                faces.push([a, a_next, b]);
-                faces.push([b, a_next, b_next]);
-            } else {
-                faces.push([a, b_next, b]);
-                faces.push([a, a_next, b_next]);
-            }
-        }
-    }
+    let faces = staggered_ring_faces(around, layers, layers + 1);
     SurfaceMesh::new(positions, faces).expect("the open cylinder is a valid mesh")
 }
 
