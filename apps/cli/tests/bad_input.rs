@@ -191,10 +191,10 @@ fn a_malformed_mesh_is_refused_by_every_subcommand() {
     }
 }
 
-/// Meshes with boundary: every command accepts them (the boundary condition is part of the
-/// complex) except the demo, which needs a closed mesh.
+/// Meshes with boundary: the commands accept them (the boundary condition is part of the
+/// complex).
 #[test]
-fn a_mesh_with_boundary_is_refused_only_by_the_demo() {
+fn a_mesh_with_boundary_is_accepted() {
     let fx = fixture();
     let open = fx.file(
         "open.obj",
@@ -209,8 +209,6 @@ fn a_mesh_with_boundary_is_refused_only_by_the_demo() {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
-    let output = tvf(&["demo", "--mesh", &open, "-o", &o]);
-    assert_refused(&output, &["open.obj", "closed"], "demo");
 }
 
 /// Issue 5: field files of the wrong shape, size or content, in every format.

@@ -195,6 +195,14 @@ fn every_command(dir: &Path, name: &str, boundary: &str, k: &str, harmonic: usiz
         ]
         .concat(),
     );
+    // The demo's tour on the open mesh.
+    let demo = format!("demo-{boundary}");
+    run(
+        dir,
+        &[&["demo", "--quick", "--mesh", name, "-o", &demo][..], &b].concat(),
+    );
+    assert!(dir.join(&demo).join("index.html").is_file());
+    assert!(dir.join(&demo).join("harmonic.png").is_file());
 }
 
 #[test]

@@ -53,7 +53,8 @@ pub struct DemoArgs {
     /// Output folder (created if missing): index.html and the pictures.
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
-    /// A closed mesh file instead of the generated bumpy torus.
+    /// A mesh file instead of the generated bumpy torus (closed or with boundary; --boundary
+    /// picks the boundary condition).
     #[arg(long, value_name = "MESH")]
     mesh: Option<PathBuf>,
     /// Basis size: the K lowest eigenfields, harmonic ones included (the paper's d)
@@ -99,13 +100,6 @@ pub fn run(args: DemoArgs) -> Result<()> {
     let Some(mesh) = mesh else {
         bail!("the built-in bumpy torus parameters are invalid");
     };
-    if !mesh.is_closed() {
-        bail!(
-            "{mesh_name}: the demo needs a closed mesh (the Fourier basis is defined for closed surfaces); \
-             this one has {} boundary edges",
-            mesh.boundary_edges().len()
-        );
-    }
     let fields = args.fields.unwrap_or(if args.quick {
         QUICK_FIELDS
     } else {

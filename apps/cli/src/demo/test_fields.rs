@@ -1,4 +1,4 @@
-//! The demo's inputs, made from the mesh alone (so that `--mesh` works on any closed mesh): a
+//! The demo's inputs, made from the mesh alone (so that `--mesh` works on any mesh): a
 //! smooth test field with all three Hodge parts, seeded noise, and constraint positions spread
 //! over the surface.
 
