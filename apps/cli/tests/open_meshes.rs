@@ -195,6 +195,82 @@ fn every_command(dir: &Path, name: &str, boundary: &str, k: &str, harmonic: usiz
         ]
         .concat(),
     );
+    // Analysis, compression and export with the basis file's boundary condition.
+    let analysis = format!("analysis-{boundary}");
+    run(
+        dir,
+        &[
+            "analyze",
+            name,
+            "field.txt",
+            "--basis",
+            &basis_file,
+            "-o",
+            &analysis,
+        ],
+    );
+    assert!(dir.join(&analysis).is_dir());
+    let compressed = format!("f-{boundary}.tvfc");
+    run(
+        dir,
+        &[
+            "compress",
+            name,
+            "field.txt",
+            "--basis",
+            &basis_file,
+            "--pairs",
+            "5",
+            "-o",
+            &compressed,
+        ],
+    );
+    run(
+        dir,
+        &[
+            "decompress",
+            name,
+            &compressed,
+            "--basis",
+            &basis_file,
+            "-o",
+            "back.npy",
+        ],
+    );
+    assert!(dir.join("back.npy").is_file());
+    let curves = format!("rd-{boundary}");
+    run(
+        dir,
+        &[
+            "rate-distortion",
+            name,
+            "field.txt",
+            "--basis",
+            &basis_file,
+            "--pairs",
+            "3,5",
+            "-o",
+            &curves,
+        ],
+    );
+    assert!(dir.join(&curves).is_dir());
+    run(
+        dir,
+        &[
+            &[
+                "export",
+                name,
+                "spline.npy",
+                "--format",
+                "vtk",
+                "-o",
+                "spline.vtk",
+            ][..],
+            &b,
+        ]
+        .concat(),
+    );
+    assert!(dir.join("spline.vtk").is_file());
     // The demo's tour on the open mesh.
     let demo = format!("demo-{boundary}");
     run(
