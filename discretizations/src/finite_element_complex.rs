@@ -171,16 +171,6 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
         })
     }
 
-    /// The potential space.
-    pub fn potential_space(&self) -> &P {
-        &self.potentials
-    }
-
-    /// The co-potential space.
-    pub fn co_potential_space(&self) -> &Q {
-        &self.co_potentials
-    }
-
     /// The face fields.
     pub fn face_fields(&self) -> &FaceFields {
         &self.fields

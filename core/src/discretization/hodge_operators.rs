@@ -2,7 +2,7 @@
 //! the five matrices of a [`HodgeComplex`] and cached.
 
 use super::sparse::{diagonal, mul_vec, product, scale_cols, scale_rows, transpose};
-use super::{DiscretizationError, FieldRotation, FieldSampling, HodgeComplex, PointEvaluation};
+use super::{DiscretizationError, FieldSampling, HodgeComplex, PointEvaluation};
 use sprs::CsMat;
 
 /// A generalized symmetric eigenproblem `A x = λ diag(mass) x`.
@@ -194,16 +194,6 @@ pub trait HodgeOperators: HodgeComplex {
     fn require_sampling(&self) -> Result<&dyn FieldSampling, DiscretizationError> {
         self.sampling()
             .ok_or_else(|| missing(self.id(), "sampling fields as 3D vectors"))
-    }
-
-    /// The rotation capability, or [`DiscretizationError::MissingCapability`].
-    fn require_rotation(&self) -> Result<&dyn FieldRotation, DiscretizationError> {
-        self.rotation().ok_or_else(|| {
-            missing(
-                self.id(),
-                "a rotation J of fields (the other family of divergence and curl)",
-            )
-        })
     }
 
     /// The point-evaluation capability, or [`DiscretizationError::MissingCapability`].
