@@ -173,6 +173,44 @@ pub fn split_complex_id(id: &str) -> (&str, Option<BoundaryCondition>) {
     }
 }
 
+/// Why [`build_complex`] could not build a complex.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum CatalogBuildError {
+    /// The id names no catalog entry.
+    #[error(transparent)]
+    Unknown(#[from] UnknownDiscretization),
+    /// The entry refused the mesh (a precondition or the boundary condition).
+    #[error("cannot build the discretization '{id}' (needs: {preconditions}): {source}")]
+    Refused {
+        /// The entry's id.
+        id: &'static str,
+        /// What the entry needs of the mesh ([`CatalogEntry::preconditions`]).
+        preconditions: &'static str,
+        /// The entry's error.
+        source: DiscretizationError,
+    },
+}
+
+/// Builds the complex named by `id` on `mesh`: a catalog id (built with `boundary`, the
+/// default if `None`), or a complex id `{catalog id}+{condition}` as basis files store it,
+/// whose own condition is used.
+pub fn build_complex(
+    id: &str,
+    boundary: Option<BoundaryCondition>,
+    mesh: &SurfaceMesh,
+) -> Result<BoxedComplex, CatalogBuildError> {
+    let (entry_id, named_boundary) = split_complex_id(id);
+    let entry = catalog_entry(entry_id)?;
+    let boundary = named_boundary.or(boundary).unwrap_or_default();
+    entry
+        .build_with(mesh, boundary)
+        .map_err(|source| CatalogBuildError::Refused {
+            id: entry.id,
+            preconditions: entry.preconditions,
+            source,
+        })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -115,8 +115,8 @@ pub use boundary_conditions::{
     with_dirichlet_boundary,
 };
 pub use catalog::{
-    catalog, catalog_entry, split_complex_id, BoxedComplex, CatalogEntry, UnknownDiscretization,
-    DEFAULT_DISCRETIZATION,
+    build_complex, catalog, catalog_entry, split_complex_id, BoxedComplex, CatalogBuildError,
+    CatalogEntry, UnknownDiscretization, DEFAULT_DISCRETIZATION,
 };
 pub use crouzeix_raviart::CrouzeixRaviart;
 pub use dec_complex::{edge_hodge_star, DecComplex, DELAUNAY_TOLERANCE};

@@ -13,16 +13,14 @@
 //!   discretization (default conforming-barycentric);
 //! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
 //!
-//! The cache: a computed basis is saved as `{fingerprint}-{discretization id}-{size}.tvfb` in
-//! `--cache-dir`, else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in
-//! `--example` mesh (no file to sit next to) in `tvf-cache/` under the system temporary folder.
-//! `{size}` is `d{K}` for `K` fields, `p{P}` for the `P` pairs a compressed file needs when no
-//! `-k` is given, `complete` for the complete basis. The key is the mesh fingerprint (vertices
-//! and faces), the discretization's catalog id and the size (the seed is fixed, so equal
-//! keys mean bit-identical bases). A cached basis is reused and stderr says so; a damaged or
-//! mismatching cache file is recomputed with a warning.
+//! The cache is a [`BasisStore`] (file names and keys are documented there) in `--cache-dir`,
+//! else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in `--example`
+//! mesh (no file to sit next to) in `tvf-cache/` under the system temporary folder. A cached
+//! basis is reused and stderr says so; a damaged or mismatching cache file is recomputed with a
+//! warning. `-k` sizes are `BasisSize::Fields`; the pairs a compressed file needs when no `-k`
+//! is given are `BasisSize::Pairs`.
 
-use crate::discretization_flags::{build_discretization, Discretization, DiscretizationFlags};
+use crate::discretization_flags::{Discretization, DiscretizationFlags};
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
 use anyhow::{bail, Context, Result};
@@ -31,25 +29,14 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::split_complex_id;
+use tvf_discretizations::build_complex;
 use tvf_spectral::{
-    compute_basis, load_basis, mesh_fingerprint, read_basis_header, save_basis, BasisFileKey,
-    BasisRequest, FieldFamily, SpectralBasis,
+    basis_file_complex_id, compute_basis_of_size, mesh_fingerprint, open_basis_file, BasisSize,
+    BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
 };
 
 /// Eigenfields computed when neither `--basis` nor `-k` is given.
 pub const DEFAULT_FIELDS: usize = 200;
-
-/// The size of a computed basis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BasisSize {
-    /// The `K` eigenfields of lowest eigenvalue, harmonic ones included (`-k K`); `K ≥ 2F`
-    /// means the complete basis.
-    Fields(usize),
-    /// The harmonic fields plus `P` integrable and `P` co-integrable eigenfields: what a
-    /// compressed file keeping `P` pairs needs (used only when no `-k` is given).
-    Pairs(usize),
-}
 
 /// Environment variable naming the basis cache folder.
 pub const CACHE_DIR_VARIABLE: &str = "TVF_CACHE_DIR";
@@ -120,9 +107,28 @@ impl BasisOptions {
         input: &MeshInput,
         size: BasisSize,
     ) -> Result<ResolvedBasis> {
-        let fingerprint = mesh_fingerprint(mesh);
+        let mesh_fingerprint = mesh_fingerprint(mesh);
         if let Some(path) = &self.basis {
-            return self.load_file(mesh, path, fingerprint);
+            let start = Instant::now();
+            let requested = self.discretization.requested_id();
+            let (discretization, basis) = open_basis_file(
+                path,
+                mesh,
+                requested.as_deref(),
+                self.discretization.boundary,
+            )?;
+            note(format!(
+                "using basis {} ({} fields, {}, loaded in {:.2} s)",
+                path.display(),
+                basis.len(),
+                discretization.id(),
+                start.elapsed().as_secs_f64()
+            ));
+            return Ok(ResolvedBasis {
+                discretization,
+                basis,
+                mesh_fingerprint,
+            });
         }
         match size {
             BasisSize::Fields(0) => bail!("-k 0: ask for at least one eigenfield"),
@@ -130,71 +136,60 @@ impl BasisOptions {
             _ => {}
         }
         let discretization = self.discretization.build(mesh, &input.label())?;
-        let size_name = match size {
-            BasisSize::Fields(k) if k >= discretization.field_dimension() => "complete".to_string(),
-            BasisSize::Fields(k) => format!("d{k}"),
-            BasisSize::Pairs(p) => format!("p{p}"),
-        };
-        let key = BasisFileKey::new(mesh, discretization.as_ref());
-        let cache_file = if self.no_cache {
-            None
+        let basis = if self.no_cache {
+            compute(&discretization, size)
         } else {
-            let name = format!(
-                "{fingerprint:016x}-{}-{size_name}.tvfb",
-                discretization.id()
-            );
-            Some(self.cache_folder(input).join(name))
-        };
-        if let Some(file) = cache_file.as_ref().filter(|f| f.exists()) {
-            let start = Instant::now();
-            let dimension = discretization.field_dimension();
-            let loaded = load_basis(file, &key)
-                .map_err(anyhow::Error::from)
-                .and_then(|b| {
-                    size_mismatch(size, dimension, &b).map_or(Ok(b), |problem| bail!(problem))
-                });
-            match loaded {
-                Ok(basis) => {
-                    note(format!(
-                        "using cached basis {} ({} fields, {}, loaded in {:.2} s)",
-                        file.display(),
-                        basis.len(),
-                        key.discretization,
-                        start.elapsed().as_secs_f64()
-                    ));
-                    return Ok(ResolvedBasis {
-                        discretization,
-                        basis,
-                        mesh_fingerprint: fingerprint,
-                    });
-                }
-                Err(error) => warn(format!(
-                    "cached basis is unusable ({}: {error}); recomputing",
-                    file.display()
-                )),
-            }
+            self.cached(mesh, &discretization, size, input)
         }
-        let basis = compute(&discretization, size)
-            .with_context(|| format!("{}: cannot compute the basis", input.label()))?;
-        if let Some(file) = &cache_file {
-            let saved = file
-                .parent()
-                .map_or(Ok(()), std::fs::create_dir_all)
-                .map_err(anyhow::Error::from)
-                .and_then(|()| save_basis(file, &basis, &key).map_err(anyhow::Error::from));
-            match saved {
-                Ok(()) => note(format!("cached basis in {}", file.display())),
-                Err(error) => warn(format!(
-                    "cannot cache the basis in {} ({error}); continuing without the cache",
-                    file.display()
-                )),
-            }
-        }
+        .with_context(|| format!("{}: cannot compute the basis", input.label()))?;
         Ok(ResolvedBasis {
             discretization,
             basis,
-            mesh_fingerprint: fingerprint,
+            mesh_fingerprint,
         })
+    }
+
+    /// The basis of `size` from the cache, computed (with a progress bar) and cached if the
+    /// cache does not hold a usable one; stderr says which.
+    fn cached(
+        &self,
+        mesh: &SurfaceMesh,
+        discretization: &Discretization,
+        size: BasisSize,
+        input: &MeshInput,
+    ) -> Result<SpectralBasis> {
+        let store = BasisStore::new(self.cache_folder(input));
+        let progress = Progress::new("basis");
+        let callback = progress.basis_callback();
+        let (basis, origin) = store.basis(mesh, discretization.as_ref(), size, Some(&callback))?;
+        match origin {
+            StoredBasisOrigin::Read { file, seconds } => {
+                drop(callback);
+                drop(progress);
+                note(format!(
+                    "using cached basis {} ({} fields, {}, loaded in {seconds:.2} s)",
+                    file.display(),
+                    basis.len(),
+                    discretization.id(),
+                ));
+            }
+            StoredBasisOrigin::Computed {
+                unusable_file,
+                saved,
+            } => {
+                finish(&progress, discretization, size, &basis);
+                if let Some(problem) = unusable_file {
+                    warn(format!("cached basis is unusable ({problem}); recomputed"));
+                }
+                match saved {
+                    Ok(file) => note(format!("cached basis in {}", file.display())),
+                    Err(problem) => warn(format!(
+                        "cannot cache the basis ({problem}); continuing without the cache"
+                    )),
+                }
+            }
+        }
+        Ok(basis)
     }
 
     /// The cache folder for `input`: `--cache-dir`, `$TVF_CACHE_DIR`, `.tvf-cache/` next to the
@@ -222,92 +217,18 @@ impl BasisOptions {
     pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<Discretization> {
         match &self.basis {
             Some(path) => {
-                build_discretization(&self.file_discretization(path)?, mesh, &input.label())
+                let requested = self.discretization.requested_id();
+                let id = basis_file_complex_id(
+                    path,
+                    requested.as_deref(),
+                    self.discretization.boundary,
+                )?;
+                Ok(
+                    build_complex(&id, None, mesh)
+                        .with_context(|| format!("{}", path.display()))?,
+                )
             }
             None => self.discretization.build(mesh, &input.label()),
-        }
-    }
-
-    /// The catalog id named by the header of the basis file `path`, refused if it contradicts
-    /// the discretization flags.
-    fn file_discretization(&self, path: &Path) -> Result<String> {
-        let stored = read_basis_header(path)?.key.discretization;
-        // On a mesh with boundary the stored id is `{catalog id}+{boundary}`.
-        let (stored_entry, stored_boundary) = split_complex_id(&stored);
-        if let Some(wanted) = self
-            .discretization
-            .requested_id()
-            .filter(|w| w != stored_entry)
-        {
-            bail!(
-                "{}: the basis was computed with the discretization '{stored}', but '{wanted}' was asked for",
-                path.display()
-            );
-        }
-        if let (Some(stored_boundary), Some(wanted)) =
-            (stored_boundary, self.discretization.boundary)
-        {
-            if stored_boundary != wanted {
-                bail!(
-                    "{}: the basis was computed with the boundary condition '{}', but '{}' was asked for",
-                    path.display(),
-                    stored_boundary.name(),
-                    wanted.name()
-                );
-            }
-        }
-        Ok(stored)
-    }
-
-    fn load_file(
-        &self,
-        mesh: &SurfaceMesh,
-        path: &Path,
-        fingerprint: u64,
-    ) -> Result<ResolvedBasis> {
-        let start = Instant::now();
-        let id = self.file_discretization(path)?;
-        let discretization = build_discretization(&id, mesh, &path.display().to_string())?;
-        let key = BasisFileKey::new(mesh, discretization.as_ref());
-        let basis = load_basis(path, &key)?;
-        note(format!(
-            "using basis {} ({} fields, {}, loaded in {:.2} s)",
-            path.display(),
-            basis.len(),
-            key.discretization,
-            start.elapsed().as_secs_f64()
-        ));
-        Ok(ResolvedBasis {
-            discretization,
-            basis,
-            mesh_fingerprint: fingerprint,
-        })
-    }
-}
-
-/// Why a loaded basis does not have the size its cache name promises (`None` if it has): `K`
-/// fields for `-k K`, the complete basis (`dimension` fields) for `K ≥ dimension`, at most `P`
-/// fields of each non-harmonic family (and `P` of one, unless the basis is complete) for `P`
-/// pairs.
-fn size_mismatch(size: BasisSize, dimension: usize, basis: &SpectralBasis) -> Option<String> {
-    let fields = basis.len();
-    match size {
-        BasisSize::Fields(k) => {
-            let wanted = k.min(dimension);
-            (fields != wanted).then(|| format!("it holds {fields} fields, not {wanted}"))
-        }
-        BasisSize::Pairs(p) => {
-            let integrable = basis.count(FieldFamily::Integrable);
-            let cointegrable = basis.count(FieldFamily::Cointegrable);
-            let fits = integrable <= p
-                && cointegrable <= p
-                && (integrable == p || cointegrable == p || fields == dimension);
-            (!fits).then(|| {
-                format!(
-                    "it holds {integrable} integrable and {cointegrable} co-integrable fields, \
-                     not {p} pairs"
-                )
-            })
         }
     }
 }
@@ -317,16 +238,28 @@ fn size_mismatch(size: BasisSize, dimension: usize, basis: &SpectralBasis) -> Op
 pub fn compute(discretization: &Discretization, size: BasisSize) -> Result<SpectralBasis> {
     let progress = Progress::new("basis");
     let callback = progress.basis_callback();
+    let basis = compute_basis_of_size(discretization.as_ref(), size, Some(&callback))?;
+    finish(&progress, discretization, size, &basis);
+    Ok(basis)
+}
+
+/// Ends the progress bar of a computed basis with what was computed and how long it took.
+fn finish(
+    progress: &Progress,
+    discretization: &Discretization,
+    size: BasisSize,
+    basis: &SpectralBasis,
+) {
     let dimension = discretization.field_dimension();
-    let (request, asked) = match size {
-        BasisSize::Fields(k) if k >= dimension => (
-            BasisRequest::complete(),
-            format!("-k {k} ≥ 2F = {dimension}: the complete basis"),
-        ),
-        BasisSize::Fields(k) => (BasisRequest::fields(k), format!("-k {k}")),
-        BasisSize::Pairs(p) => (BasisRequest::pairs(p), format!("{p} pairs + harmonic")),
+    let asked = match size {
+        BasisSize::Fields(k) if k >= dimension => {
+            format!("-k {k} ≥ 2F = {dimension}: the complete basis")
+        }
+        BasisSize::Fields(k) => format!("-k {k}"),
+        BasisSize::Pairs(p) => format!("{p} pairs + harmonic"),
+        BasisSize::MaxEigenvalue(bound) => format!("λ ≤ {bound}"),
+        BasisSize::Complete => "the complete basis".to_string(),
     };
-    let basis = compute_basis(discretization.as_ref(), &request.with_progress(&callback))?;
     progress.finish(format!(
         "{} fields ({asked}; {} harmonic, {} integrable, {} co-integrable; {}) computed in {:.2} s",
         basis.len(),
@@ -336,5 +269,4 @@ pub fn compute(discretization: &Discretization, size: BasisSize) -> Result<Spect
         discretization.id(),
         basis.report().map_or(0.0, |r| r.seconds)
     ));
-    Ok(basis)
 }

@@ -6,7 +6,7 @@ use clap::Args;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
-    catalog, catalog_entry, split_complex_id, BoxedComplex, DEFAULT_DISCRETIZATION,
+    build_complex, catalog, catalog_entry, BoxedComplex, DEFAULT_DISCRETIZATION,
 };
 
 /// A discretization chosen at run time from the catalog.
@@ -66,7 +66,8 @@ impl DiscretizationFlags {
     /// Builds the chosen complex on `mesh` with the chosen boundary condition; `label` names the
     /// mesh in errors.
     pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
-        build_with_boundary(&self.id(), self.boundary_condition(), mesh, label)
+        build_complex(&self.id(), Some(self.boundary_condition()), mesh)
+            .with_context(|| label.to_string())
     }
 }
 
@@ -108,28 +109,4 @@ fn one_of(value: &str, mut known: Vec<&str>) -> Result<String, String> {
     } else {
         Err(format!("'{value}' is not one of: {}", known.join(", ")))
     }
-}
-
-/// Builds the complex with id `id` on `mesh`: a catalog id, or a complex id of a mesh with
-/// boundary, `{catalog id}+{boundary}` (as basis files store it), whose boundary condition is
-/// used (the default otherwise); errors name the mesh (`label`) and the entry.
-pub fn build_discretization(id: &str, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
-    let (entry_id, boundary) = split_complex_id(id);
-    build_with_boundary(entry_id, boundary.unwrap_or_default(), mesh, label)
-}
-
-/// Builds catalog entry `id` on `mesh` with boundary condition `boundary`.
-pub fn build_with_boundary(
-    id: &str,
-    boundary: BoundaryCondition,
-    mesh: &SurfaceMesh,
-    label: &str,
-) -> Result<Discretization> {
-    let entry = catalog_entry(id)?;
-    entry.build_with(mesh, boundary).with_context(|| {
-        format!(
-            "{label}: cannot build the discretization '{id}' (needs: {})",
-            entry.preconditions
-        )
-    })
 }

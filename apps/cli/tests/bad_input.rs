@@ -71,11 +71,11 @@ fn fixture() -> Fixture {
 
 fn malformed(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../tests/data/malformed")
+        .join("../../core/tests/data/malformed")
         .join(name)
 }
 
-/// Issue 2: every malformed mesh file of the corpus, with the problem it must report (and the
+/// Every malformed mesh file of the corpus, with the problem it must report (and the
 /// line, where the file has one).
 #[test]
 fn every_malformed_mesh_file_is_refused_with_its_problem() {
@@ -158,7 +158,7 @@ fn every_malformed_mesh_file_is_refused_with_its_problem() {
     }
 }
 
-/// Issue 2 through every kind of subcommand: a malformed mesh stops each with the same
+/// Through every kind of subcommand, a malformed mesh stops each with the same
 /// message, before any work.
 #[test]
 fn a_malformed_mesh_is_refused_by_every_subcommand() {
@@ -211,7 +211,7 @@ fn a_mesh_with_boundary_is_accepted() {
     );
 }
 
-/// Issue 5: field files of the wrong shape, size or content, in every format.
+/// Field files of the wrong shape, size or content, in every format.
 #[test]
 fn bad_field_files_name_the_file_and_the_problem() {
     let fx = fixture();
@@ -280,7 +280,7 @@ fn bad_field_files_name_the_file_and_the_problem() {
     }
 }
 
-/// Issue 6: sequences whose frames do not fit the mesh, and an empty frame folder.
+/// Sequences whose frames do not fit the mesh, and an empty frame folder.
 #[test]
 fn bad_sequences_name_the_file_and_the_problem() {
     let fx = fixture();
@@ -327,7 +327,7 @@ fn bad_sequences_name_the_file_and_the_problem() {
     assert_refused(&output, &["garbage.tvfc", "wrong magic"], "garbage .tvfc");
 }
 
-/// Issue 6: a filter curve file that is missing or malformed is bad input (exit 1, file named);
+/// A filter curve file that is missing or malformed is bad input (exit 1, file named);
 /// a malformed SPEC on the command line is a usage error (exit 2).
 #[test]
 fn bad_filter_specs_name_the_file_or_the_spec() {
@@ -379,7 +379,7 @@ fn bad_filter_specs_name_the_file_or_the_spec() {
     assert!(String::from_utf8_lossy(&output.stderr).contains("lowpass:t="));
 }
 
-/// Issue 5: basis files that are damaged, truncated, of a newer format, not basis files, or
+/// Basis files that are damaged, truncated, of a newer format, not basis files, or
 /// made for another mesh.
 #[test]
 fn bad_basis_files_name_the_file_and_the_problem() {
@@ -445,7 +445,7 @@ fn bad_basis_files_name_the_file_and_the_problem() {
     }
 }
 
-/// Issue 7: constraint files: malformed JSON, unknown kinds, indices out of range (face,
+/// Constraint files: malformed JSON, unknown kinds, indices out of range (face,
 /// vertex, edge), bad barycentric coordinates, duplicate ids, negative ω, a fingerprint of
 /// another mesh, redundant and conflicting constraints (reported by id), a missing file.
 #[test]
@@ -557,7 +557,7 @@ fn bad_constraint_files_name_the_file_the_constraint_and_the_problem() {
     );
 }
 
-/// Issue 9: the editor refuses what it cannot serve before it starts the server.
+/// the editor refuses what it cannot serve before it starts the server.
 #[test]
 fn the_editor_refuses_bad_input_before_serving() {
     let fx = fixture();
@@ -590,7 +590,7 @@ fn the_editor_refuses_bad_input_before_serving() {
     );
 }
 
-/// Issue 8: an output that cannot be written names the file.
+/// an output that cannot be written names the file.
 #[test]
 fn an_unwritable_output_names_the_file() {
     let fx = fixture();

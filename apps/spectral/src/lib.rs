@@ -30,8 +30,10 @@ mod atomic_write;
 mod basis;
 mod basis_error;
 mod basis_file;
+mod basis_file_complex;
 mod basis_id;
 mod basis_request;
+mod basis_store;
 mod compress;
 mod compressed_file;
 mod compression_error;
@@ -64,8 +66,12 @@ pub use basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, BasisFileError, BasisFileHeader,
     BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
+pub use basis_file_complex::{
+    basis_file_complex, basis_file_complex_id, open_basis_file, BasisFileUseError,
+};
 pub use basis_id::basis_id;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
+pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
 pub use compress::{pair_selection, FieldCodec};
 pub use compressed_file::{
     CoefficientCoding, CompressedFields, FramePayload, TvfcHeader, TVFC_HEADER_BYTES, TVFC_MAGIC,

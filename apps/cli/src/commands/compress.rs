@@ -2,7 +2,7 @@
 //! Fourier coefficients in a `.tvfc` file.
 
 use super::spectral_inputs::{load_setup, read_frames, FrameSource};
-use crate::basis_source::{BasisSize, BasisSource};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::progress::Progress;
@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use serde_json::json;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use tvf_spectral::BasisSize;
 use tvf_spectral::{
     basis_id, relative_l2_error, CoefficientCoding, CompressedFields, CompressionError,
     CompressionReport, FieldCodec,

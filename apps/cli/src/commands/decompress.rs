@@ -1,7 +1,7 @@
 //! `tvf decompress`: the fields of a `.tvfc` file.
 
 use super::spectral_inputs::{setup_for_mesh, write_frames};
-use crate::basis_source::{BasisSize, BasisSource};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::progress::Progress;
@@ -10,6 +10,7 @@ use clap::Args;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use tvf_spectral::BasisSize;
 use tvf_spectral::{basis_id, CompressedFields, CompressionError, FieldCodec};
 
 /// Arguments of `tvf decompress`.

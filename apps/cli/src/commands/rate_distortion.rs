@@ -2,7 +2,7 @@
 //! pairs, with 64-bit and with quantised, range-coded coefficients (the paper's Figure 9).
 
 use super::spectral_inputs::{load_setup, read_field};
-use crate::basis_source::{BasisSize, BasisSource};
+use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
@@ -11,6 +11,7 @@ use clap::Args;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
+use tvf_spectral::BasisSize;
 use tvf_spectral::{
     basis_id, equal_error_comparison, rate_distortion, write_atomically, CoefficientCoding,
     FileStamp, RatePoint,

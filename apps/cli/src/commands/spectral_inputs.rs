@@ -3,7 +3,7 @@
 //! computed basis, see [`crate::basis_source`]), and field files (one field, or a sequence of
 //! frames) read as tangent fields.
 
-use crate::basis_source::{BasisOptions, BasisSize};
+use crate::basis_source::BasisOptions;
 use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{commit, stage};
@@ -13,6 +13,7 @@ use tvf_core::discretization::HodgeOperators;
 use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::HodgeDecomposer;
+use tvf_spectral::BasisSize;
 use tvf_spectral::{
     read_face_vector_sequence, read_tangent_field, write_face_vector_sequence, write_tangent_field,
     EnergySplit, FieldIoError, NpyDtype, SpectralBasis,

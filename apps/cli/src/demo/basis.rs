@@ -2,18 +2,21 @@
 
 use super::page::Section;
 use super::DemoConfig;
-use crate::basis_source::{compute, BasisSize};
-use crate::discretization_flags::{build_discretization, Discretization};
+use crate::basis_source::compute;
+use crate::discretization_flags::Discretization;
 use crate::face_quantities::ColorBy;
 use crate::picture::{draw, Overlays, Style, View};
+use anyhow::Context;
 use anyhow::Result;
+use tvf_discretizations::build_complex;
 use tvf_render::save_png;
-use tvf_spectral::{eigen_residual, FieldFamily, SpectralBasis};
+use tvf_spectral::{eigen_residual, BasisSize, FieldFamily, SpectralBasis};
 
 /// Builds the chosen discretization, computes the basis and draws the mesh.
 pub fn run(config: &DemoConfig) -> Result<(Section, Discretization, SpectralBasis)> {
     let mesh = &config.mesh;
-    let discretization = build_discretization(&config.discretization, mesh, &config.mesh_name)?;
+    let discretization = build_complex(&config.discretization, None, mesh)
+        .with_context(|| config.mesh_name.clone())?;
     let basis = compute(&discretization, BasisSize::Fields(config.fields))?;
     let fewest = basis
         .count(FieldFamily::Integrable)

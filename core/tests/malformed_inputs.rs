@@ -1,4 +1,4 @@
-//! Every file in `tests/data/malformed/` is rejected with its own specific error, the message
+//! Every file in `core/tests/data/malformed/` is rejected with its own specific error, the message
 //! names the file, and nothing panics.
 
 use std::path::{Path, PathBuf};
@@ -9,7 +9,7 @@ use tvf_core::MeshError as M;
 type Expectation = (&'static str, fn(&K) -> bool, Option<usize>);
 
 fn corpus() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("data/malformed")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/malformed")
 }
 
 const EXPECTED: &[Expectation] = &[

@@ -1,0 +1,102 @@
+//! [`open_basis_file`]: a basis file together with the complex it was computed for, rebuilt
+//! from the catalog id stored in its header.
+
+use crate::{load_basis, read_basis_header, BasisFileError, BasisFileKey, SpectralBasis};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+use tvf_core::discretization::BoundaryCondition;
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::{build_complex, split_complex_id, BoxedComplex, CatalogBuildError};
+
+/// Why a basis file cannot be used on a mesh (every variant names the file).
+#[derive(Debug, Error)]
+pub enum BasisFileUseError {
+    /// The file cannot be read, or belongs to another mesh.
+    #[error(transparent)]
+    File(#[from] BasisFileError),
+    /// The file's discretization is not the one asked for.
+    #[error("{}: the basis was computed with the discretization '{stored}', but '{wanted}' was asked for", path.display())]
+    OtherDiscretization {
+        /// The basis file.
+        path: PathBuf,
+        /// The complex id in the file.
+        stored: String,
+        /// The catalog id asked for.
+        wanted: String,
+    },
+    /// The file's boundary condition is not the one asked for.
+    #[error("{}: the basis was computed with the boundary condition '{}', but '{}' was asked for", path.display(), stored.name(), wanted.name())]
+    OtherBoundaryCondition {
+        /// The basis file.
+        path: PathBuf,
+        /// The condition in the file.
+        stored: BoundaryCondition,
+        /// The condition asked for.
+        wanted: BoundaryCondition,
+    },
+    /// The file's discretization cannot be built on the mesh.
+    #[error("{}: {source}", path.display())]
+    Complex {
+        /// The basis file.
+        path: PathBuf,
+        /// Why the catalog could not build it.
+        source: CatalogBuildError,
+    },
+}
+
+/// The complex id stored in the basis file `path`, checked against what the caller asks for:
+/// `entry` a catalog id, `boundary` a boundary condition (`None`: whatever the file has).
+pub fn basis_file_complex_id(
+    path: &Path,
+    entry: Option<&str>,
+    boundary: Option<BoundaryCondition>,
+) -> Result<String, BasisFileUseError> {
+    let stored = read_basis_header(path)?.key.discretization;
+    // On a mesh with boundary the stored id is `{catalog id}+{boundary}`.
+    let (stored_entry, stored_boundary) = split_complex_id(&stored);
+    if let Some(wanted) = entry.filter(|&wanted| wanted != stored_entry) {
+        return Err(BasisFileUseError::OtherDiscretization {
+            path: path.to_path_buf(),
+            stored: stored.clone(),
+            wanted: wanted.to_string(),
+        });
+    }
+    if let (Some(stored), Some(wanted)) = (stored_boundary, boundary) {
+        if stored != wanted {
+            return Err(BasisFileUseError::OtherBoundaryCondition {
+                path: path.to_path_buf(),
+                stored,
+                wanted,
+            });
+        }
+    }
+    Ok(stored)
+}
+
+/// The complex a basis file was computed for, built on `mesh` (see [`basis_file_complex_id`]
+/// for `entry` and `boundary`).
+pub fn basis_file_complex(
+    path: &Path,
+    mesh: &SurfaceMesh,
+    entry: Option<&str>,
+    boundary: Option<BoundaryCondition>,
+) -> Result<BoxedComplex, BasisFileUseError> {
+    let id = basis_file_complex_id(path, entry, boundary)?;
+    build_complex(&id, None, mesh).map_err(|source| BasisFileUseError::Complex {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// Reads the basis file `path` for `mesh`: its complex (see [`basis_file_complex`]) and the
+/// basis, checked to belong to the mesh and the complex.
+pub fn open_basis_file(
+    path: &Path,
+    mesh: &SurfaceMesh,
+    entry: Option<&str>,
+    boundary: Option<BoundaryCondition>,
+) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
+    let complex = basis_file_complex(path, mesh, entry, boundary)?;
+    let basis = load_basis(path, &BasisFileKey::new(mesh, complex.as_ref()))?;
+    Ok((complex, basis))
+}

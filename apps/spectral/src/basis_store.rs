@@ -1,0 +1,180 @@
+//! [`BasisStore`]: a folder of computed Fourier bases (`.tvfb` files), so that a basis is
+//! computed once per mesh, discretization and size and then read back.
+//!
+//! A basis is kept as `{fingerprint}-{complex id}-{size}.tvfb`: the mesh fingerprint
+//! ([`mesh_fingerprint`], 16 hex digits), the complex's [`HodgeComplex::id`] (a catalog id, or
+//! `{catalog id}+{boundary}` on a mesh with boundary) and the size: `d{K}` for the `K` lowest
+//! fields, `p{P}` for `P` pairs, `complete` for the complete basis. The seed is fixed (0), so
+//! equal names mean bit-identical bases. A file that is damaged or does not hold what its name
+//! promises is recomputed (and the problem reported), never used.
+
+use crate::{
+    compute_basis, load_basis, mesh_fingerprint, save_basis, BasisError, BasisFileKey,
+    BasisProgress, BasisRequest, BasisSize, FieldFamily, SpectralBasis,
+};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::SurfaceMesh;
+
+/// A folder of computed bases (see the module documentation for the file names).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BasisStore {
+    folder: PathBuf,
+}
+
+/// Where a basis handed out by [`BasisStore::basis`] came from.
+#[derive(Debug)]
+pub enum StoredBasisOrigin {
+    /// Read from this file of the store in `seconds`.
+    Read {
+        /// The basis file.
+        file: PathBuf,
+        /// Wall-clock time of the read.
+        seconds: f64,
+    },
+    /// Computed now.
+    Computed {
+        /// Why the stored file could not be used, if there was one (it was replaced).
+        unusable_file: Option<String>,
+        /// The file the basis was saved to, or why it could not be saved (the basis is
+        /// still returned: the store is a cache).
+        saved: Result<PathBuf, String>,
+    },
+}
+
+impl BasisStore {
+    /// The store kept in `folder` (created when the first basis is saved).
+    pub fn new(folder: impl Into<PathBuf>) -> Self {
+        Self {
+            folder: folder.into(),
+        }
+    }
+
+    /// The folder of the store.
+    pub fn folder(&self) -> &Path {
+        &self.folder
+    }
+
+    /// The file a basis of `size` for `complex` on `mesh` is kept in.
+    pub fn file<H: HodgeComplex + ?Sized>(
+        &self,
+        mesh: &SurfaceMesh,
+        complex: &H,
+        size: BasisSize,
+    ) -> PathBuf {
+        let size_name = match effective_size(size, complex.field_dimension()) {
+            BasisSize::Fields(k) => format!("d{k}"),
+            BasisSize::Pairs(p) => format!("p{p}"),
+            BasisSize::MaxEigenvalue(bound) => format!("l{:016x}", bound.to_bits()),
+            BasisSize::Complete => "complete".to_string(),
+        };
+        self.folder.join(format!(
+            "{:016x}-{}-{size_name}.tvfb",
+            mesh_fingerprint(mesh),
+            complex.id()
+        ))
+    }
+
+    /// The basis of `size` for `complex` on `mesh`: read from the store if it holds a usable
+    /// one, else computed with seed 0 (reporting to `progress`) and saved.
+    ///
+    /// `size` [`BasisSize::Fields`]`(K)` with `K ≥ n1` (the field dimension) is the complete
+    /// basis. Errors are those of [`compute_basis`]; problems of the store itself (unreadable
+    /// or mismatching files, a folder that cannot be written) are reported in the returned
+    /// [`StoredBasisOrigin`], not as errors.
+    pub fn basis<H: HodgeComplex + ?Sized>(
+        &self,
+        mesh: &SurfaceMesh,
+        complex: &H,
+        size: BasisSize,
+        progress: Option<&dyn Fn(&BasisProgress)>,
+    ) -> Result<(SpectralBasis, StoredBasisOrigin), BasisError> {
+        let file = self.file(mesh, complex, size);
+        let key = BasisFileKey::new(mesh, complex);
+        let mut unusable_file = None;
+        if file.exists() {
+            let start = Instant::now();
+            let read = load_basis(&file, &key)
+                .map_err(|e| e.to_string())
+                .and_then(|basis| {
+                    size_mismatch(size, complex.field_dimension(), &basis)
+                        .map_or(Ok(basis), |problem| {
+                            Err(format!("{}: {problem}", file.display()))
+                        })
+                });
+            match read {
+                Ok(basis) => {
+                    let origin = StoredBasisOrigin::Read {
+                        file,
+                        seconds: start.elapsed().as_secs_f64(),
+                    };
+                    return Ok((basis, origin));
+                }
+                Err(problem) => unusable_file = Some(problem),
+            }
+        }
+        let basis = compute_basis_of_size(complex, size, progress)?;
+        let saved = std::fs::create_dir_all(&self.folder)
+            .map_err(|e| format!("{}: {e}", self.folder.display()))
+            .and_then(|()| save_basis(&file, &basis, &key).map_err(|e| e.to_string()))
+            .map(|()| file);
+        Ok((
+            basis,
+            StoredBasisOrigin::Computed {
+                unusable_file,
+                saved,
+            },
+        ))
+    }
+}
+
+/// Computes the basis of `size` for `complex` with seed 0, reporting to `progress`;
+/// [`BasisSize::Fields`]`(K)` with `K ≥ n1` is the complete basis (dense eigensolvers).
+pub fn compute_basis_of_size<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    size: BasisSize,
+    progress: Option<&dyn Fn(&BasisProgress)>,
+) -> Result<SpectralBasis, BasisError> {
+    let mut request = BasisRequest::new(effective_size(size, complex.field_dimension()));
+    request.progress = progress;
+    compute_basis(complex, &request)
+}
+
+/// `size`, with `K ≥ field_dimension` fields read as the complete basis.
+fn effective_size(size: BasisSize, field_dimension: usize) -> BasisSize {
+    match size {
+        BasisSize::Fields(k) if k >= field_dimension => BasisSize::Complete,
+        other => other,
+    }
+}
+
+/// Why a stored basis does not have the size its file name promises (`None` if it has): `K`
+/// fields for `K`, all `dimension` fields for the complete basis, at most `P` fields of each
+/// non-harmonic family (and `P` of one, unless the basis is complete) for `P` pairs.
+fn size_mismatch(size: BasisSize, dimension: usize, basis: &SpectralBasis) -> Option<String> {
+    let fields = basis.len();
+    match effective_size(size, dimension) {
+        BasisSize::Fields(k) => (fields != k).then(|| format!("it holds {fields} fields, not {k}")),
+        BasisSize::Complete => (fields != dimension)
+            .then(|| format!("it holds {fields} fields, not the complete {dimension}")),
+        BasisSize::Pairs(p) => {
+            let integrable = basis.count(FieldFamily::Integrable);
+            let cointegrable = basis.count(FieldFamily::Cointegrable);
+            let fits = integrable <= p
+                && cointegrable <= p
+                && (integrable == p || cointegrable == p || fields == dimension);
+            (!fits).then(|| {
+                format!(
+                    "it holds {integrable} integrable and {cointegrable} co-integrable fields, \
+                     not {p} pairs"
+                )
+            })
+        }
+        BasisSize::MaxEigenvalue(bound) => basis
+            .eigenvalues()
+            .iter()
+            .any(|&lambda| lambda > bound)
+            .then(|| format!("it holds eigenvalues above the bound {bound:e}")),
+    }
+}
