@@ -25,7 +25,7 @@ pub mod brandt2017;
 pub mod discretization_comparison;
 pub mod error;
 pub mod markdown;
-pub mod picture;
+pub mod panels;
 pub mod progress;
 pub mod registry;
 pub mod timing;

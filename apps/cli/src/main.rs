@@ -7,11 +7,10 @@ mod commands;
 mod demo;
 mod discretization_flags;
 mod examples;
-mod face_quantities;
 mod interrupt;
 mod mesh_input;
 mod output_rules;
-mod picture;
+mod picture_options;
 mod progress;
 mod report;
 

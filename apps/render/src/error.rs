@@ -66,6 +66,10 @@ pub enum RenderError {
         #[source]
         source: std::io::Error,
     },
+    /// The discretization cannot give what a picture needs (its sampling, its point
+    /// evaluation, or a field of the wrong size).
+    #[error(transparent)]
+    Discretization(#[from] tvf_core::discretization::DiscretizationError),
     /// PNG encoding failed.
     #[error("cannot encode PNG {path}: {message}")]
     Png {

@@ -6,6 +6,8 @@
 //!   per-face colour map with colour bar ([`FaceScalar`], [`ColorMap`]), the field as arrows,
 //!   evenly spaced streamlines traced across faces ([`trace_streamlines`]) or line integral
 //!   convolution, point markers and 3D polylines;
+//! - [`draw_field`]: a discretization's field over a surface coloured by a [`FaceQuantity`]
+//!   (magnitude, divergence, curl, energy density) or one [`Tint`], panels in a [`grid`];
 //! - [`Plot`]: line/scatter plots with linear or log axes (spectra, rate–distortion);
 //! - [`grow_fur`]: hair strands along a field;
 //! - [`write_vtk`], [`write_ply`], [`write_obj`], [`save_png`]: atomic exports.
@@ -45,6 +47,8 @@ mod colorbar;
 mod colormap;
 mod error;
 mod export;
+mod face_quantities;
+mod field_picture;
 mod fur;
 mod lic;
 mod overlay3d;
@@ -63,6 +67,11 @@ pub use camera::{bounding_box, Camera};
 pub use colormap::{ColorMap, ColorScale};
 pub use error::RenderError;
 pub use export::{save_png, write_atomically, write_obj, write_ply, write_vtk, FaceData};
+pub use face_quantities::{energy_density, face_scalar, FaceQuantity};
+pub use field_picture::{
+    colored, draw_field, field_layer, grid, Overlays, Style, Tint, View, COINTEGRABLE_RED,
+    INTEGRABLE_GREEN,
+};
 pub use fur::{grow_fur, FurOptions};
 pub use lic::LicOptions;
 pub use plot::{Axis, AxisScale, Plot, Series, SeriesStyle, PALETTE};

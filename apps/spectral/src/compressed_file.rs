@@ -44,6 +44,16 @@ pub enum CoefficientCoding {
     },
 }
 
+impl CoefficientCoding {
+    /// Label for plots and tables: "64-bit coefficients" or "B-bit quantised, range-coded".
+    pub fn label(self) -> String {
+        match self {
+            CoefficientCoding::Float64 => "64-bit coefficients".to_string(),
+            CoefficientCoding::Quantized { bits } => format!("{bits}-bit quantised, range-coded"),
+        }
+    }
+}
+
 /// Everything before the frames.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct TvfcHeader {

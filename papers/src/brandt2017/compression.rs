@@ -5,8 +5,9 @@ use super::finding::{Experiment, Finding};
 use super::test_fields::vortex_field;
 use crate::error::PaperError;
 use crate::markdown::{ratio, seconds};
-use crate::picture::{field_panel, grid, save, Tint};
+use crate::panels::{field_panel, save};
 use crate::timing::{median_time, Repetitions};
+use tvf_render::{grid, FaceQuantity, Tint};
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
     basis_id, mesh_fingerprint, rate_distortion, relative_l2_error, CoefficientCoding, FieldCodec,
@@ -20,9 +21,11 @@ pub struct RateCurve {
     pub mesh: String,
     /// Which field was compressed.
     pub field: String,
+    /// How the coefficients are stored (the paper's rate is [`CoefficientCoding::Float64`]).
+    pub coding: CoefficientCoding,
     /// Faces of the mesh (for the rate against two doubles per face).
     pub faces: usize,
-    /// Points, ascending pairs (64-bit coefficients, the paper's rate).
+    /// Points, ascending pairs.
     pub points: Vec<RatePoint>,
 }
 
@@ -54,18 +57,26 @@ fn stamp(x: &Experiment) -> FileStamp {
     }
 }
 
-/// The rate–distortion curve of `field` on `x` (64-bit coefficients).
-pub fn rate_curve(x: &Experiment, field: &[f64], label: &str) -> Result<RateCurve, PaperError> {
+/// The rate–distortion curve of `field` on `x` with the coefficients stored as `coding`: one
+/// real compressed file per pair count of [`pair_counts`], its error measured on the decoded
+/// field.
+pub fn rate_curve(
+    x: &Experiment,
+    field: &[f64],
+    label: &str,
+    coding: CoefficientCoding,
+) -> Result<RateCurve, PaperError> {
     let points = rate_distortion(
         x.basis,
         field,
         stamp(x),
         &pair_counts(available_pairs(x)),
-        &[CoefficientCoding::Float64],
+        &[coding],
     )?;
     Ok(RateCurve {
         mesh: x.name.to_string(),
         field: label.to_string(),
+        coding,
         faces: x.mesh.face_count(),
         points,
     })
@@ -85,11 +96,11 @@ pub fn figure9(
                 .iter()
                 .map(|p| (p.bits_per_vertex, p.relative_error.max(1e-16)))
                 .collect();
-            Series::new(
-                format!("{} ({})", c.mesh, c.field),
-                points,
-                SeriesStyle::LineAndMarkers,
-            )
+            let name = match c.coding {
+                CoefficientCoding::Float64 => format!("{} ({})", c.mesh, c.field),
+                coding => format!("{} ({}, {})", c.mesh, c.field, coding.label()),
+            };
+            Series::new(name, points, SeriesStyle::LineAndMarkers)
         })
         .collect();
     // Room above the curves for the legend (drawn in the top-right corner).
@@ -102,8 +113,7 @@ pub fn figure9(
     let mut y = Axis::new("relative L2 error", AxisScale::Log10);
     y.range = Some((lowest / 2.0, 100.0));
     let plot = Plot {
-        title: "Rate-distortion: relative L2 error against bits per vertex (64-bit coefficients)"
-            .to_string(),
+        title: "Rate-distortion: relative L2 error against bits per vertex".to_string(),
         x: Axis::new("bits per vertex (file size)", AxisScale::Log10),
         y,
         series,
@@ -124,7 +134,13 @@ pub fn figure9(
         for p in &c.points {
             if [10, 100].contains(&p.pairs) || Some(p) == c.points.last() {
                 finding.number(
-                    format!("{} ({}), k = {} pairs", c.mesh, c.field, p.pairs),
+                    format!(
+                        "{} ({}, {}), k = {} pairs",
+                        c.mesh,
+                        c.field,
+                        c.coding.label(),
+                        p.pairs
+                    ),
                     format!(
                         "error {:.3e}, {:.1} bits/vertex, {} bytes, rate {:.1} against two \
                          doubles per face",
@@ -232,7 +248,7 @@ pub fn figure10(x: &Experiment) -> Result<(Finding, Vec<f64>), PaperError> {
             x.complex,
             &field,
             &format!("{VORTICES} vortices"),
-            Tint::Magnitude,
+            Tint::Quantity(FaceQuantity::Magnitude),
             x.view,
         )?,
         field_panel(
@@ -240,7 +256,7 @@ pub fn figure10(x: &Experiment) -> Result<(Finding, Vec<f64>), PaperError> {
             x.complex,
             &compressed,
             &format!("from {pairs} pairs"),
-            Tint::Magnitude,
+            Tint::Quantity(FaceQuantity::Magnitude),
             x.view,
         )?,
         field_panel(
@@ -248,7 +264,7 @@ pub fn figure10(x: &Experiment) -> Result<(Finding, Vec<f64>), PaperError> {
             x.complex,
             &residual,
             "residual",
-            Tint::Magnitude,
+            Tint::Quantity(FaceQuantity::Magnitude),
             x.view,
         )?,
     ];

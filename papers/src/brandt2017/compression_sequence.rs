@@ -6,9 +6,10 @@ use super::finding::{Experiment, Finding};
 use super::test_fields::MovingFeatures;
 use crate::error::PaperError;
 use crate::markdown::{seconds, thousands};
-use crate::picture::{field_panel, grid, save, Tint};
+use crate::panels::{field_panel, save};
 use rayon::prelude::*;
 use std::time::Instant;
+use tvf_render::{grid, FaceQuantity, Tint};
 use tvf_spectral::{
     basis_id, compress_with_report, mesh_fingerprint, CoefficientCoding, FieldCodec,
 };
@@ -121,7 +122,7 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, PaperError> {
                 x.complex,
                 original,
                 &format!("frame {snapshot}: uncompressed"),
-                Tint::Magnitude,
+                Tint::Quantity(FaceQuantity::Magnitude),
                 x.view,
             )?,
             field_panel(
@@ -129,7 +130,7 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, PaperError> {
                 x.complex,
                 &compressed,
                 &format!("frame {snapshot}: {kept} coefficients"),
-                Tint::Magnitude,
+                Tint::Quantity(FaceQuantity::Magnitude),
                 x.view,
             )?,
         ];

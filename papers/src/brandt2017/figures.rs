@@ -2,9 +2,10 @@
 //! spectrum).
 
 use super::finding::{Experiment, Finding};
-use super::test_fields::{designed_field, noise};
+use super::test_fields::{designed_field, tangent_noise};
 use crate::error::PaperError;
-use crate::picture::{field_panel, grid, save, Tint, COINTEGRABLE_RED, INTEGRABLE_GREEN};
+use crate::panels::{field_panel, save};
+use tvf_render::{grid, FaceQuantity, Tint, COINTEGRABLE_RED, INTEGRABLE_GREEN};
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
     relative_l2_error, FieldFamily, FrequencyResponse, PiecewiseLinear, SpectralAnalysis,
@@ -26,9 +27,10 @@ fn column(x: &Experiment, index: usize) -> Vec<f64> {
     x.basis.fields().col(index).iter().copied().collect()
 }
 
-/// Figure 1: the [`FIGURE1_PAIRS`] pairs of eigenfields, integrable (green, curl-free) above
-/// co-integrable (red, divergence-free).
-pub fn figure1(x: &Experiment) -> Result<Finding, PaperError> {
+/// Figure 1: pairs of eigenfields (1-based pair numbers `shown`; the paper's are
+/// [`FIGURE1_PAIRS`]; pairs the basis does not hold are left out), integrable (green,
+/// curl-free) above co-integrable (red, divergence-free).
+pub fn figure1(x: &Experiment, shown: &[usize]) -> Result<Finding, PaperError> {
     let mut finding = Finding::new(
         "Figure 1",
         "Pairs of eigenfields: integrable (green, curl-free) above co-integrable (red, divergence-free)",
@@ -36,10 +38,10 @@ pub fn figure1(x: &Experiment) -> Result<Finding, PaperError> {
     );
     let integrable = family_indices(x, FieldFamily::Integrable);
     let cointegrable = family_indices(x, FieldFamily::Cointegrable);
-    let pairs: Vec<usize> = FIGURE1_PAIRS
+    let pairs: Vec<usize> = shown
         .iter()
         .copied()
-        .filter(|&k| k <= integrable.len() && k <= cointegrable.len())
+        .filter(|&k| k >= 1 && k <= integrable.len() && k <= cointegrable.len())
         .collect();
     let lambda = |i: usize| x.basis.eigenvalues()[i];
     let mut top = Vec::new();
@@ -109,7 +111,7 @@ pub fn figures7_8(x: &Experiment, plot_size: (u32, u32)) -> Result<Vec<Finding>,
     let rms = (basis.inner_product(&clean, &clean) / x.mesh.total_area()).sqrt();
     let noisy: Vec<f64> = clean
         .iter()
-        .zip(noise(clean.len(), NOISE_LEVEL * rms, 17))
+        .zip(tangent_noise(x.complex, NOISE_LEVEL * rms, 17)?)
         .map(|(a, b)| a + b)
         .collect();
     // Reference frequency: a sixth of the way up the basis.
@@ -145,7 +147,7 @@ pub fn figures7_8(x: &Experiment, plot_size: (u32, u32)) -> Result<Vec<Finding>,
             x.complex,
             &noisy,
             "input: designed field + noise",
-            Tint::Magnitude,
+            Tint::Quantity(FaceQuantity::Magnitude),
             x.view,
         )?,
         field_panel(
@@ -153,7 +155,7 @@ pub fn figures7_8(x: &Experiment, plot_size: (u32, u32)) -> Result<Vec<Finding>,
             x.complex,
             &smoothed.field,
             "low-pass, integrable lows x2",
-            Tint::Magnitude,
+            Tint::Quantity(FaceQuantity::Magnitude),
             x.view,
         )?,
         field_panel(
@@ -161,7 +163,7 @@ pub fn figures7_8(x: &Experiment, plot_size: (u32, u32)) -> Result<Vec<Finding>,
             x.complex,
             &sharpened.field,
             "high-pass, integrable lows removed",
-            Tint::Magnitude,
+            Tint::Quantity(FaceQuantity::Magnitude),
             x.view,
         )?,
     ];
@@ -175,7 +177,7 @@ pub fn figures7_8(x: &Experiment, plot_size: (u32, u32)) -> Result<Vec<Finding>,
     f7.files.push(file7.to_string());
     f7.number(
         "noise",
-        format!("each coordinate uniform in ±{NOISE_LEVEL} × the clean field's RMS"),
+        format!("each face's frame coordinates uniform in ±{NOISE_LEVEL} × the clean field's RMS"),
     );
     f7.number(
         "reference frequency f_ref (basis field len/6)",

@@ -1,10 +1,10 @@
 //! [`Finding`]: one reproduced result (a figure or an experiment) with its files, its numbers
 //! and how it compares with the paper; [`Experiment`]: what every experiment needs.
 
-use crate::picture::View;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
+use tvf_render::View;
 use tvf_spectral::SpectralBasis;
 
 /// One reproduced result.

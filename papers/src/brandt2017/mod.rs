@@ -14,7 +14,7 @@ pub mod test_fields;
 use crate::discretization_comparison::{self, ComparisonConfig, DiscretizationResult};
 use crate::error::PaperError;
 use crate::markdown::thousands;
-use crate::picture::{save, View};
+use crate::panels::save;
 use crate::progress::Progress;
 use crate::registry::compared_discretizations;
 use crate::timing::Repetitions;
@@ -27,7 +27,8 @@ use table1::{PaperTimings, Table1Repetitions, Table1Row};
 use tvf_core::io::load_mesh;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
-use tvf_spectral::{compute_basis, BasisRequest};
+use tvf_render::View;
+use tvf_spectral::{compute_basis, BasisRequest, CoefficientCoding};
 
 /// Constraints of the designed fields of Figure 9 (soft design, seeded).
 pub const DESIGNED_FIELD_CONSTRAINTS: usize = 12;
@@ -342,7 +343,9 @@ fn run_role(
     let name = x.name;
     match role {
         Role::Eigenfields => {
-            let (f, _) = progress.step(&format!("{name}: Figure 1"), || figures::figure1(x))?;
+            let (f, _) = progress.step(&format!("{name}: Figure 1"), || {
+                figures::figure1(x, &figures::FIGURE1_PAIRS)
+            })?;
             results.findings.push(f);
         }
         Role::Filtering => {
@@ -367,8 +370,18 @@ fn run_role(
                 )?;
                 let smooth = test_fields::smooth_field(x.complex, x.mesh);
                 Ok::<_, PaperError>([
-                    compression::rate_curve(x, &designed, "designed field")?,
-                    compression::rate_curve(x, &smooth, "analytic field")?,
+                    compression::rate_curve(
+                        x,
+                        &designed,
+                        "designed field",
+                        CoefficientCoding::Float64,
+                    )?,
+                    compression::rate_curve(
+                        x,
+                        &smooth,
+                        "analytic field",
+                        CoefficientCoding::Float64,
+                    )?,
                 ])
             })?;
             curves.extend(c);
@@ -378,7 +391,7 @@ fn run_role(
                 progress.step(&format!("{name}: Figure 10"), || compression::figure10(x))?;
             results.findings.push(f);
             let (c, _) = progress.step(&format!("{name}: rate-distortion"), || {
-                compression::rate_curve(x, &field, "vortex field")
+                compression::rate_curve(x, &field, "vortex field", CoefficientCoding::Float64)
             })?;
             curves.push(c);
         }

@@ -141,6 +141,27 @@ pub fn noise(dimension: usize, amplitude: f64, seed: u64) -> Vec<f64> {
         .collect()
 }
 
+/// Seeded noise as a field of `complex`: on every face a tangent vector whose two frame
+/// coordinates are uniform in `[−amplitude, amplitude]`, sampled into the complex's
+/// coefficients (for face fields exactly those coordinates).
+pub fn tangent_noise(
+    complex: &dyn HodgeComplex,
+    amplitude: f64,
+    seed: u64,
+) -> Result<Vec<f64>, PaperError> {
+    let sampling = complex.require_sampling()?;
+    let coordinates = noise(2 * sampling.face_count(), amplitude, seed);
+    let vectors: Vec<[f64; 3]> = coordinates
+        .chunks_exact(2)
+        .enumerate()
+        .map(|(t, ab)| {
+            let [e1, e2] = sampling.frame(t);
+            std::array::from_fn(|k| ab[0] * e1[k] + ab[1] * e2[k])
+        })
+        .collect();
+    Ok(sampling.from_face_vectors(&vectors)?.field)
+}
+
 /// `count` face centroids spread by farthest-point sampling (Euclidean), starting at face 0.
 pub fn spread_points(mesh: &SurfaceMesh, count: usize) -> Vec<[f64; 3]> {
     let c = centroids(mesh);
@@ -318,6 +339,13 @@ impl MovingFeatures {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn noise_is_seeded_and_bounded() {
+        assert_eq!(noise(10, 0.5, 1), noise(10, 0.5, 1));
+        assert_ne!(noise(10, 0.5, 1), noise(10, 0.5, 2));
+        assert!(noise(100, 0.5, 3).iter().all(|x| x.abs() <= 0.5));
+    }
     use tvf_core::generate::torus;
     use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 

@@ -5,7 +5,7 @@ use crate::demo::{run as run_demo, DemoConfig};
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{commit, stage};
-use crate::picture::parse_size;
+use crate::picture_options::parse_size;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};

@@ -3,13 +3,13 @@
 
 use super::spectral_inputs::read_field;
 use crate::discretization_flags::DiscretizationFlags;
-use crate::face_quantities::{face_scalar, ColorBy};
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::HodgeOperators;
+use tvf_render::{face_scalar, FaceQuantity};
 use tvf_render::{trace_streamlines, write_obj, write_ply, write_vtk, FaceData, StreamlineOptions};
 
 const EXAMPLES: &str = "Examples:
@@ -84,10 +84,10 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
                 scalars: Vec::new(),
             };
             for kind in [
-                ColorBy::Magnitude,
-                ColorBy::Divergence,
-                ColorBy::Curl,
-                ColorBy::Energy,
+                FaceQuantity::Magnitude,
+                FaceQuantity::Divergence,
+                FaceQuantity::Curl,
+                FaceQuantity::Energy,
             ] {
                 let values = face_scalar(discretization.as_ref(), kind, &field, &vectors)?;
                 data.scalars

@@ -55,14 +55,6 @@ pub struct RateDistortionArgs {
     json: bool,
 }
 
-/// Legend label of a coefficient coding.
-pub fn coding_label(coding: CoefficientCoding) -> String {
-    match coding {
-        CoefficientCoding::Float64 => "64-bit coefficients".to_string(),
-        CoefficientCoding::Quantized { bits } => format!("{bits}-bit quantised, range-coded"),
-    }
-}
-
 /// Measures every point and writes the CSV and the plot.
 pub fn run(mut args: RateDistortionArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
@@ -127,14 +119,14 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
         report.line(format!(
             "{:>6} {:>34} {:>10} {:>12.3} {:>14.4e}",
             p.pairs,
-            coding_label(p.coding),
+            p.coding.label(),
             p.bytes,
             p.bits_per_vertex,
             p.relative_error
         ));
         rows.push(serde_json::json!({
             "pairs": p.pairs,
-            "coding": coding_label(p.coding),
+            "coding": p.coding.label(),
             "bytes": p.bytes,
             "bits_per_vertex": p.bits_per_vertex,
             "relative_error": p.relative_error,
@@ -148,7 +140,7 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
         comparisons.push(serde_json::json!({
             "pairs": exact.pairs,
             "bytes": exact.bytes,
-            "quantised_coding": coding_label(quantised.coding),
+            "quantised_coding": quantised.coding.label(),
             "quantised_pairs": quantised.pairs,
             "quantised_bytes": quantised.bytes,
             "ratio": exact.bytes as f64 / quantised.bytes as f64,
@@ -158,7 +150,7 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
             exact.pairs,
             exact.bytes,
             exact.relative_error,
-            coding_label(quantised.coding),
+            quantised.coding.label(),
             quantised.pairs,
             quantised.bytes,
             quantised.relative_error,
@@ -192,7 +184,7 @@ pub fn rate_distortion_plot(
                 .map(|p| (p.bits_per_vertex, p.relative_error))
                 .collect();
             line.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series::new(coding_label(coding), line, SeriesStyle::LineAndMarkers)
+            Series::new(coding.label(), line, SeriesStyle::LineAndMarkers)
         })
         .collect();
     Plot {

@@ -2,11 +2,10 @@
 
 use super::spectral_inputs::read_field;
 use crate::discretization_flags::DiscretizationFlags;
-use crate::face_quantities::ColorBy;
 use crate::mesh_input::{usage_error, MeshInput};
 use crate::output_rules::check_output;
-use crate::picture::{
-    constraint_markers, draw, grid, parse_size, parse_view, Overlays, Style, View,
+use crate::picture_options::{
+    constraint_markers, face_quantity_arg, parse_size, parse_view, style_arg,
 };
 use crate::progress::note;
 use anyhow::{bail, Context, Result};
@@ -17,7 +16,7 @@ use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_design::{ConstraintAssembler, ConstraintSet};
 use tvf_discretizations::HodgeDecomposer;
-use tvf_render::save_png;
+use tvf_render::{draw_field, grid, save_png, FaceQuantity, Overlays, Style, Tint, View};
 use tvf_spectral::mesh_fingerprint;
 
 const EXAMPLES: &str = "Examples:
@@ -55,11 +54,12 @@ pub struct RenderArgs {
     /// Output PNG file.
     #[arg(short, long, value_name = "OUT.png")]
     output: PathBuf,
-    /// Per-face colour map [default: magnitude with a field, none without].
-    #[arg(long, value_enum, value_name = "QUANTITY")]
-    color: Option<ColorBy>,
-    /// How the field is drawn.
-    #[arg(long, value_enum, value_name = "STYLE", default_value = "streamlines")]
+    /// Per-face colour map: magnitude, divergence, curl, energy or none [default: magnitude with
+    /// a field, none without].
+    #[arg(long, value_name = "QUANTITY", value_parser = face_quantity_arg)]
+    color: Option<FaceQuantity>,
+    /// How the field is drawn: arrows, streamlines, lic or none.
+    #[arg(long, value_name = "STYLE", default_value = "streamlines", value_parser = style_arg)]
     style: Style,
     /// Camera turn and elevation in degrees.
     #[arg(long, value_name = "YAW,PITCH", default_value = "30,20", value_parser = view_arg, allow_hyphen_values = true)]
@@ -105,11 +105,11 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
         Some(path) => Some(read_field(path, discretization.require_sampling()?)?),
         None => None,
     };
-    let color = args.color.unwrap_or(if field.is_some() {
-        ColorBy::Magnitude
+    let color = Tint::Quantity(args.color.unwrap_or(if field.is_some() {
+        FaceQuantity::Magnitude
     } else {
-        ColorBy::None
-    });
+        FaceQuantity::None
+    }));
     let mut markers = Vec::new();
     if let Some(path) = &args.constraints {
         let set = ConstraintSet::load(path)?;
@@ -152,10 +152,10 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
                     title: Some(name.to_string()),
                     ..Default::default()
                 };
-                let view = view((width / 2).max(16), (height / 2).max(16));
-                images.push(draw(
+                let view = view(width, height).panel(2);
+                images.push(draw_field(
                     &mesh,
-                    &discretization,
+                    discretization.as_ref(),
                     Some(part),
                     color,
                     args.style,
@@ -171,9 +171,9 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
                 title: args.title.clone(),
                 ..Default::default()
             };
-            draw(
+            draw_field(
                 &mesh,
-                &discretization,
+                discretization.as_ref(),
                 field.as_deref(),
                 color,
                 args.style,

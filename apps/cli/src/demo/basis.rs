@@ -4,12 +4,11 @@ use super::page::Section;
 use super::DemoConfig;
 use crate::basis_source::compute;
 use crate::discretization_flags::Discretization;
-use crate::face_quantities::ColorBy;
-use crate::picture::{draw, Overlays, Style, View};
 use anyhow::Context;
 use anyhow::Result;
 use tvf_discretizations::build_complex;
 use tvf_render::save_png;
+use tvf_render::{draw_field, FaceQuantity, Overlays, Style, Tint, View};
 use tvf_spectral::{eigen_residual, BasisSize, FieldFamily, SpectralBasis};
 
 /// Builds the chosen discretization, computes the basis and draws the mesh.
@@ -49,11 +48,11 @@ pub fn run(config: &DemoConfig) -> Result<(Section, Discretization, SpectralBasi
         )),
         ..Default::default()
     };
-    let image = draw(
+    let image = draw_field(
         mesh,
-        &discretization,
+        discretization.as_ref(),
         None,
-        ColorBy::None,
+        Tint::Quantity(FaceQuantity::None),
         Style::None,
         overlays,
         view,

@@ -3,10 +3,9 @@
 //! et al., and fur grown along the spline field.
 
 use super::page::Section;
-use super::test_fields::faces_at_screen_points;
+use super::screen_points::faces_at_screen_points;
 use super::Context;
-use crate::face_quantities::ColorBy;
-use crate::picture::{constraint_markers, draw, grid, Overlays, Style};
+use crate::picture_options::constraint_markers;
 use anyhow::Result;
 use std::time::Instant;
 use tvf_core::discretization::{FieldSampling, HodgeOperators};
@@ -15,6 +14,7 @@ use tvf_design::{
     default_regularization, residual, Constraint, ConstraintAssembler, Location, ReducedBasis,
     ReducedSoftDesign, SoftOptions, SplineSession, Target, DEFAULT_OMEGA,
 };
+use tvf_render::{draw_field, grid, FaceQuantity, Overlays, Style, Tint};
 use tvf_render::{grow_fur, FurOptions, Polyline};
 
 /// Soft-design weight of every constraint (soft constraints trade accuracy for smoothness).
@@ -34,7 +34,7 @@ fn constraints(cx: &Context, fields: &dyn FieldSampling) -> Vec<Constraint> {
         [0.45, -0.55],
         [0.0, 0.75],
     ];
-    let faces = faces_at_screen_points(cx.mesh, cx.to_eye(), &targets);
+    let faces = faces_at_screen_points(cx.mesh, cx.view().to_eye(), &targets);
     let r = (cx.mesh.total_area() / (6.0 * std::f64::consts::PI)).sqrt();
     let strength = 8.0 / r.max(1e-300);
     let at = |face| Location::Face {
@@ -144,11 +144,11 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
             title: Some(title.to_string()),
             ..Default::default()
         };
-        panels.push(draw(
+        panels.push(draw_field(
             cx.mesh,
-            cx.discretization,
+            cx.discretization.as_ref(),
             Some(field),
-            ColorBy::Magnitude,
+            Tint::Quantity(FaceQuantity::Magnitude),
             Style::Streamlines,
             overlays,
             cx.panel_view(),
@@ -200,11 +200,11 @@ pub fn fur(cx: &Context, field: &[f64]) -> Result<Section> {
         title: Some("fur along the spline".to_string()),
         ..Default::default()
     };
-    let image = draw(
+    let image = draw_field(
         cx.mesh,
-        cx.discretization,
+        cx.discretization.as_ref(),
         None,
-        ColorBy::None,
+        Tint::Quantity(FaceQuantity::None),
         Style::None,
         overlays,
         cx.view(),

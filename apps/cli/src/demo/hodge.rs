@@ -2,13 +2,12 @@
 //! harmonic parts.
 
 use super::page::Section;
-use super::test_fields::smooth_field;
 use super::Context;
-use crate::face_quantities::ColorBy;
-use crate::picture::{draw, grid, Overlays, Style};
 use anyhow::Result;
 use tvf_core::discretization::HodgeOperators;
 use tvf_discretizations::HodgeDecomposer;
+use tvf_papers::brandt2017::test_fields::smooth_field;
+use tvf_render::{draw_field, grid, FaceQuantity, Overlays, Style, Tint};
 
 /// Decomposes the test field, draws it and its parts; returns the section and the field.
 pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
@@ -38,18 +37,26 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
         }
     };
     let panels = [
-        ("test field", field.as_slice(), ColorBy::Magnitude),
+        (
+            "test field",
+            field.as_slice(),
+            Tint::Quantity(FaceQuantity::Magnitude),
+        ),
         (
             "integrable part (colour: divergence)",
             &parts.integrable,
-            ColorBy::Divergence,
+            Tint::Quantity(FaceQuantity::Divergence),
         ),
         (
             "co-integrable part (colour: curl)",
             &parts.co_integrable,
-            ColorBy::Curl,
+            Tint::Quantity(FaceQuantity::Curl),
         ),
-        ("harmonic part", &parts.harmonic, ColorBy::Magnitude),
+        (
+            "harmonic part",
+            &parts.harmonic,
+            Tint::Quantity(FaceQuantity::Magnitude),
+        ),
     ];
     let mut images = Vec::new();
     for (title, part, color) in panels {
@@ -57,9 +64,9 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
             title: Some(title.to_string()),
             ..Default::default()
         };
-        images.push(draw(
+        images.push(draw_field(
             cx.mesh,
-            cx.discretization,
+            cx.discretization.as_ref(),
             Some(part),
             color,
             Style::Streamlines,

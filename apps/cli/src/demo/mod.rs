@@ -4,7 +4,8 @@
 //! [`eigenfields`]), the Hodge decomposition of a field ([`hodge`]), filtering a noisy field
 //! and its spectrum (Figures 7, 8, [`filtering`]), rate–distortion (Figure 9,
 //! [`compression`]), a spline beside soft design (Figure 4, [`design`]) and fur along the
-//! spline (Figure 5, also [`design`]). Every step is timed (page and stderr); every file is
+//! spline (Figure 5, also [`design`]). Figures 1, 7, 8 and 9 are papers/'s own
+//! (`tvf_papers::brandt2017`): the demo runs the reproduction's code on its mesh. Every step is timed (page and stderr); every file is
 //! written atomically.
 
 mod basis;
@@ -14,10 +15,9 @@ mod eigenfields;
 mod filtering;
 mod hodge;
 mod page;
-mod test_fields;
+mod screen_points;
 
 use crate::discretization_flags::Discretization;
-use crate::picture::View;
 use crate::progress::note;
 use anyhow::{Context as _, Result};
 use image::RgbaImage;
@@ -25,7 +25,9 @@ use page::Section;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::SurfaceMesh;
+use tvf_papers::brandt2017::finding::Experiment;
 use tvf_render::save_png;
+use tvf_render::View;
 use tvf_spectral::SpectralBasis;
 
 /// What the demo runs on and how large it draws.
@@ -72,25 +74,30 @@ impl Context<'_> {
         }
     }
 
-    /// Unit vector from the centre of the pictures towards the camera (as in
-    /// `tvf_render::Camera::fit`).
-    pub fn to_eye(&self) -> [f64; 3] {
-        let view = self.view();
-        let (yaw, pitch) = (view.yaw.to_radians(), view.pitch.to_radians());
-        [
-            yaw.sin() * pitch.cos(),
-            pitch.sin(),
-            yaw.cos() * pitch.cos(),
-        ]
-    }
-
     /// The view of one panel of a two-column grid.
     pub fn panel_view(&self) -> View {
-        View {
-            width: (self.config.width / 2).max(16),
-            height: (self.config.height / 2).max(16),
-            ..self.view()
+        self.view().panel(2)
+    }
+
+    /// What papers/'s figures need: this mesh, complex and basis, writing into the output
+    /// folder, one panel per field of [`Context::panel_view`].
+    pub fn experiment(&self) -> Experiment<'_> {
+        Experiment {
+            name: &self.config.mesh_name,
+            mesh: self.mesh,
+            complex: self.discretization.as_ref(),
+            basis: self.basis,
+            out: &self.config.output,
+            view: self.panel_view(),
         }
+    }
+
+    /// Size of a plot: the full width, three quarters of the height.
+    pub fn plot_size(&self) -> (u32, u32) {
+        (
+            self.config.width.max(200),
+            (self.config.height * 3 / 4).max(150),
+        )
     }
 
     /// Saves `image` as `name` in the output folder.
@@ -146,12 +153,19 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
         test_field = field;
         Ok(section)
     })?);
+    let mut spectrum = None;
     sections.push(timed(
         4,
         STEPS,
         "Filtering a noisy field (Figures 7 and 8)",
-        || filtering::run(&cx, &test_field),
+        || {
+            let mut figures = filtering::run(&cx)?.into_iter();
+            let filtering = figures.next().context("Figure 7 is missing")?;
+            spectrum = figures.next();
+            Ok(filtering)
+        },
     )?);
+    sections.extend(spectrum);
     sections.push(timed(
         5,
         STEPS,

@@ -4,6 +4,7 @@
 use anyhow::{Context, Result};
 use std::fmt::Write as _;
 use std::path::Path;
+use tvf_papers::brandt2017::finding::Finding;
 use tvf_spectral::write_atomically;
 
 /// Escapes text for HTML.
@@ -54,6 +55,23 @@ impl Section {
             file: file.into(),
             caption: caption.into(),
         });
+    }
+
+    /// The section showing a reproduced figure of papers/: its pictures (captioned with its
+    /// title), its numbers, and what the paper reports beside how this run compares.
+    pub fn from_finding(finding: &Finding) -> Self {
+        let mut section = Section::new(
+            format!("{} ({})", finding.title, finding.id),
+            format!(
+                "The paper: {} This run: {}",
+                finding.paper, finding.comparison
+            ),
+        );
+        for file in &finding.files {
+            section.figure(file.clone(), format!("{}: {}", finding.id, finding.title));
+        }
+        section.numbers.extend(finding.numbers.iter().cloned());
+        section
     }
 
     /// Adds a row of numbers.

@@ -1,21 +1,15 @@
-//! Building pictures of fields, shared by `tvf render` and `tvf demo`: field drawing styles,
-//! colour scalars, constraint markers, view and size parsing, and panel grids.
+//! Pictures of a discretization's fields, shared by `tvf render`, `tvf demo` and papers/: a
+//! field drawn in a [`FieldStyle`]-like [`Style`] over a surface coloured by a
+//! [`FaceQuantity`] or one solid [`Tint`], seen from a [`View`], and panels in a [`grid`].
 
-use anyhow::{bail, Result};
-use clap::ValueEnum;
-use image::RgbaImage;
-use tvf_core::discretization::HodgeOperators;
-use tvf_core::geometry::{add, scale};
-use tvf_core::SurfaceMesh;
-use tvf_design::{Constraint, Location, Target};
-use tvf_render::{
-    ArrowOptions, ColorMap, ColorScale, FaceScalar, FieldLayer, FieldStyle, LicOptions, Marker,
-    StreamlineOptions,
+use crate::face_quantities::{face_scalar, FaceQuantity};
+use crate::{
+    render, ArrowOptions, ColorMap, ColorScale, FaceScalar, FieldLayer, FieldStyle, LicOptions,
+    Marker, Polyline, RenderError, RenderOptions, Scene, StreamlineOptions,
 };
-
-use crate::discretization_flags::Discretization;
-use crate::face_quantities::{face_scalar, ColorBy};
-use tvf_render::{render, Polyline, RenderOptions, Scene};
+use image::RgbaImage;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::SurfaceMesh;
 
 /// Image size and camera.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,6 +26,72 @@ pub struct View {
     pub zoom: f64,
 }
 
+impl View {
+    /// Unit vector from the centre of the picture towards the camera (as in
+    /// [`crate::Camera::fit`]).
+    pub fn to_eye(&self) -> [f64; 3] {
+        let (yaw, pitch) = (self.yaw.to_radians(), self.pitch.to_radians());
+        [
+            yaw.sin() * pitch.cos(),
+            pitch.sin(),
+            yaw.cos() * pitch.cos(),
+        ]
+    }
+
+    /// The same camera at `1/divisor` of the size each way (at least 16 pixels): one panel of
+    /// a grid `divisor` panels wide.
+    pub fn panel(&self, divisor: u32) -> View {
+        View {
+            width: (self.width / divisor.max(1)).max(16),
+            height: (self.height / divisor.max(1)).max(16),
+            ..*self
+        }
+    }
+}
+
+/// How a field is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    /// Arrow glyphs on evenly spread faces.
+    Arrows,
+    /// Evenly spaced streamlines traced across faces.
+    Streamlines,
+    /// Line integral convolution.
+    Lic,
+    /// The field is not drawn (colour map only).
+    None,
+}
+
+impl Style {
+    /// Every style, in the order of [`Style::NAMES`].
+    pub const ALL: [Style; 4] = [Style::Arrows, Style::Streamlines, Style::Lic, Style::None];
+
+    /// The names command lines use.
+    pub const NAMES: [&'static str; 4] = ["arrows", "streamlines", "lic", "none"];
+
+    /// The style called `name` (one of [`Style::NAMES`]).
+    pub fn from_name(name: &str) -> Option<Style> {
+        Self::NAMES
+            .iter()
+            .position(|&n| n == name)
+            .map(|i| Self::ALL[i])
+    }
+}
+
+/// How the surface under the field is coloured.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Tint {
+    /// A per-face quantity of the field, colour-mapped (see [`colored`]).
+    Quantity(FaceQuantity),
+    /// One colour (the paper's Figure 1: green curl-free, red divergence-free fields).
+    Solid([u8; 3]),
+}
+
+/// Green of curl-free (integrable) fields, as in the paper's Figure 1.
+pub const INTEGRABLE_GREEN: [u8; 3] = [90, 190, 90];
+/// Red of divergence-free (co-integrable) fields, as in the paper's Figure 1.
+pub const COINTEGRABLE_RED: [u8; 3] = [225, 95, 85];
+
 /// What to draw besides the surface.
 #[derive(Debug, Clone, Default)]
 pub struct Overlays {
@@ -43,30 +103,35 @@ pub struct Overlays {
     pub title: Option<String>,
 }
 
-/// Renders `mesh` with `field` (`2F` face-frame coefficients of `discretization`, if any)
-/// coloured by `color` and drawn in `style`, plus `overlays`.
-pub fn draw(
+impl Overlays {
+    /// Only a title.
+    pub fn titled(title: impl Into<String>) -> Self {
+        Overlays {
+            title: Some(title.into()),
+            ..Default::default()
+        }
+    }
+}
+
+/// Renders `mesh` with `field` (`n1` coefficients of `complex`, if any) over a surface
+/// coloured by `tint`, the field drawn in `style`, plus `overlays`. Needs the complex's
+/// sampling (and its point evaluation for divergence, curl and energy).
+pub fn draw_field(
     mesh: &SurfaceMesh,
-    discretization: &Discretization,
+    complex: &dyn HodgeComplex,
     field: Option<&[f64]>,
-    color: ColorBy,
+    tint: Tint,
     style: Style,
     overlays: Overlays,
     view: View,
-) -> Result<RgbaImage> {
+) -> Result<RgbaImage, RenderError> {
     let mut scene = Scene {
         markers: overlays.markers,
         polylines: overlays.polylines,
         title: overlays.title,
         ..Default::default()
     };
-    if let Some(field) = field {
-        let vectors = discretization.require_sampling()?.to_face_vectors(field)?;
-        let values = face_scalar(discretization.as_ref(), color, field, &vectors)?;
-        scene.face_scalar = values.map(|v| colored(color, v));
-        scene.fields.extend(field_layer(vectors, style, view.width));
-    }
-    let options = RenderOptions {
+    let mut options = RenderOptions {
         width: view.width,
         height: view.height,
         yaw_degrees: view.yaw,
@@ -74,20 +139,18 @@ pub fn draw(
         zoom: view.zoom,
         ..Default::default()
     };
-    Ok(render(mesh, &scene, &options)?)
-}
-
-/// How a field is drawn.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum Style {
-    /// Arrow glyphs on evenly spread faces.
-    Arrows,
-    /// Evenly spaced streamlines traced across faces.
-    Streamlines,
-    /// Line integral convolution.
-    Lic,
-    /// The field is not drawn (colour map only).
-    None,
+    if let Tint::Solid(color) = tint {
+        options.surface_color = color;
+    }
+    if let Some(field) = field {
+        let vectors = complex.require_sampling()?.to_face_vectors(field)?;
+        if let Tint::Quantity(quantity) = tint {
+            let values = face_scalar(complex, quantity, field, &vectors)?;
+            scene.face_scalar = values.map(|v| colored(quantity, v));
+        }
+        scene.fields.extend(field_layer(vectors, style, view.width));
+    }
+    render(mesh, &scene, &options)
 }
 
 /// The layer drawing `vectors` (one per face) in `style`, sized for an image `width` pixels
@@ -116,7 +179,7 @@ pub fn field_layer(vectors: Vec<[f64; 3]>, style: Style, width: u32) -> Option<F
 /// (symmetric about 0) for divergence and curl. The range is robust: the 1st to 99th percentile
 /// (of `|value|` for signed quantities), so that a few extreme faces (slivers, sharp creases) do
 /// not wash the map out; values beyond it get the end colours.
-pub fn colored(kind: ColorBy, values: Vec<f64>) -> FaceScalar {
+pub fn colored(kind: FaceQuantity, values: Vec<f64>) -> FaceScalar {
     let map = if kind.is_signed() {
         ColorMap::BlueWhiteRed
     } else {
@@ -150,77 +213,6 @@ pub fn colored(kind: ColorBy, values: Vec<f64>) -> FaceScalar {
     scalar
 }
 
-/// The point of `mesh` where `constraint` applies: a face's barycentric point (centroid if
-/// none), a vertex, or an edge midpoint. `None` if an index is out of range.
-pub fn constraint_position(mesh: &SurfaceMesh, constraint: &Constraint) -> Option<[f64; 3]> {
-    let p = mesh.positions();
-    match constraint.location {
-        Location::Face { face, barycentric } => {
-            let f = mesh.faces().get(face)?;
-            let l = barycentric.unwrap_or([1.0 / 3.0; 3]);
-            Some((0..3).fold([0.0; 3], |acc, c| add(acc, scale(p[f[c]], l[c]))))
-        }
-        Location::Vertex(v) => p.get(v).copied(),
-        Location::Edge(e) => {
-            let [a, b] = *mesh.edges().get(e)?;
-            Some(scale(add(p[a], p[b]), 0.5))
-        }
-    }
-}
-
-/// Markers for constraints, coloured by kind (vector orange with its direction, source red,
-/// sink blue, vortex green), `radius_px` in output pixels.
-pub fn constraint_markers(
-    mesh: &SurfaceMesh,
-    constraints: &[Constraint],
-    radius_px: f64,
-) -> Vec<Marker> {
-    constraints
-        .iter()
-        .filter_map(|c| {
-            let position = constraint_position(mesh, c)?;
-            let (kind, direction) = match c.target {
-                Target::Vector(v) => ("vector", Some(v)),
-                Target::Divergence(d) if d >= 0.0 => ("source", None),
-                Target::Divergence(_) => ("sink", None),
-                Target::Curl(_) => ("vortex", None),
-            };
-            Some(Marker {
-                position,
-                color: Marker::constraint_color(kind),
-                radius_px,
-                direction,
-            })
-        })
-        .collect()
-}
-
-/// Parses `YAW,PITCH` in degrees.
-pub fn parse_view(text: &str) -> Result<(f64, f64)> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    if let [yaw, pitch] = parts[..] {
-        if let (Ok(yaw), Ok(pitch)) = (yaw.parse::<f64>(), pitch.parse::<f64>()) {
-            if yaw.is_finite() && pitch.is_finite() {
-                return Ok((yaw, pitch));
-            }
-        }
-    }
-    bail!("'{text}' is not a view: give YAW,PITCH in degrees, e.g. 30,20")
-}
-
-/// Parses `WxH` in pixels (each 16..=16384).
-pub fn parse_size(text: &str) -> Result<(u32, u32)> {
-    let lower = text.to_ascii_lowercase();
-    if let Some((w, h)) = lower.split_once('x') {
-        if let (Ok(w), Ok(h)) = (w.trim().parse::<u32>(), h.trim().parse::<u32>()) {
-            if (16..=16384).contains(&w) && (16..=16384).contains(&h) {
-                return Ok((w, h));
-            }
-        }
-    }
-    bail!("'{text}' is not an image size: give WxH with each side 16..16384, e.g. 800x600")
-}
-
 /// Places `panels` (equal sizes) in a grid `columns` wide on a white background.
 pub fn grid(panels: &[RgbaImage], columns: usize) -> RgbaImage {
     let Some(first) = panels.first() else {
@@ -247,24 +239,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn views_and_sizes_parse_and_reject_garbage() {
-        assert_eq!(parse_view("30,-15").unwrap(), (30.0, -15.0));
-        assert!(parse_view("30").is_err());
-        assert!(parse_view("a,b").is_err());
-        assert_eq!(parse_size("800x600").unwrap(), (800, 600));
-        assert_eq!(parse_size("64X48").unwrap(), (64, 48));
-        assert!(parse_size("8x600").is_err());
-        assert!(parse_size("800").is_err());
-    }
-
-    #[test]
     fn colour_ranges_ignore_a_few_extreme_faces() {
         let mut values: Vec<f64> = (0..1000).map(|i| (i % 10) as f64 - 4.5).collect();
         values[7] = 1e6;
-        let signed = colored(ColorBy::Divergence, values.clone());
+        let signed = colored(FaceQuantity::Divergence, values.clone());
         assert_eq!((signed.scale.min, signed.scale.max), (-4.5, 4.5));
         let magnitude: Vec<f64> = values.iter().map(|v| v.abs()).collect();
-        let sequential = colored(ColorBy::Magnitude, magnitude);
+        let sequential = colored(FaceQuantity::Magnitude, magnitude);
         assert_eq!((sequential.scale.min, sequential.scale.max), (0.5, 4.5));
         assert_eq!(signed.values.len(), 1000);
     }
@@ -278,5 +259,17 @@ mod tests {
         assert_eq!(out.get_pixel(5, 1).0, [0, 0, 255, 255]);
         assert_eq!(out.get_pixel(1, 4).0, [255, 0, 0, 255]);
         assert_eq!(out.get_pixel(6, 4).0, [255, 255, 255, 255]);
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for (style, name) in Style::ALL.iter().zip(Style::NAMES) {
+            assert_eq!(Style::from_name(name), Some(*style));
+        }
+        for quantity in FaceQuantity::ALL {
+            assert_eq!(FaceQuantity::from_name(quantity.label()), Some(quantity));
+        }
+        assert_eq!(Style::from_name("glyphs"), None);
+        assert_eq!(FaceQuantity::from_name("speed"), None);
     }
 }

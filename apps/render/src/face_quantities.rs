@@ -13,7 +13,6 @@
 //!   exactly, because `xᵀ S x = Σ_i M0_i div_i² + Σ_j M2_j⁻¹ curl_j²` and each node's lumped mass is
 //!   a third of its faces' areas; with Voronoi lumping the sum is an approximation.
 
-use clap::ValueEnum;
 use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{
     DiscretizationError, HodgeComplex, HodgeOperators, PointEvaluation,
@@ -21,8 +20,8 @@ use tvf_core::discretization::{
 use tvf_core::geometry::norm;
 
 /// Which per-face scalar colours the surface.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum ColorBy {
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FaceQuantity {
     /// Length of the field vector.
     Magnitude,
     /// Pointwise divergence at the face centroid.
@@ -35,21 +34,38 @@ pub enum ColorBy {
     None,
 }
 
-impl ColorBy {
+impl FaceQuantity {
+    /// Every quantity, in the order of [`FaceQuantity::NAMES`].
+    pub const ALL: [FaceQuantity; 5] = [
+        FaceQuantity::Magnitude,
+        FaceQuantity::Divergence,
+        FaceQuantity::Curl,
+        FaceQuantity::Energy,
+        FaceQuantity::None,
+    ];
+
+    /// The names command lines and files use, [`FaceQuantity::label`] of [`FaceQuantity::ALL`].
+    pub const NAMES: [&'static str; 5] = ["magnitude", "divergence", "curl", "energy", "none"];
+
+    /// The quantity called `name` (one of [`FaceQuantity::NAMES`]).
+    pub fn from_name(name: &str) -> Option<FaceQuantity> {
+        Self::ALL.into_iter().find(|q| q.label() == name)
+    }
+
     /// Label for colour bars and exports.
     pub fn label(self) -> &'static str {
         match self {
-            ColorBy::Magnitude => "magnitude",
-            ColorBy::Divergence => "divergence",
-            ColorBy::Curl => "curl",
-            ColorBy::Energy => "energy",
-            ColorBy::None => "none",
+            FaceQuantity::Magnitude => "magnitude",
+            FaceQuantity::Divergence => "divergence",
+            FaceQuantity::Curl => "curl",
+            FaceQuantity::Energy => "energy",
+            FaceQuantity::None => "none",
         }
     }
 
     /// Whether the quantity is signed (diverging colour map).
     pub fn is_signed(self) -> bool {
-        matches!(self, ColorBy::Divergence | ColorBy::Curl)
+        matches!(self, FaceQuantity::Divergence | FaceQuantity::Curl)
     }
 }
 
@@ -89,31 +105,31 @@ fn nodal_curl<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> Vec<f64> 
 }
 
 /// The per-face scalar `kind` of `field` (`n1` coefficients of the complex) whose 3D vectors at
-/// the face centroids are `vectors`; `None` for [`ColorBy::None`]. Divergence, curl and energy
+/// the face centroids are `vectors`; `None` for [`FaceQuantity::None`]. Divergence, curl and energy
 /// need the complex's point evaluation.
 pub fn face_scalar<H: HodgeComplex + ?Sized>(
     complex: &H,
-    kind: ColorBy,
+    kind: FaceQuantity,
     field: &[f64],
     vectors: &[[f64; 3]],
 ) -> Result<Option<Vec<f64>>, DiscretizationError> {
     let faces = vectors.len();
     Ok(match kind {
-        ColorBy::Magnitude => Some(vectors.iter().map(|&v| norm(v)).collect()),
-        ColorBy::Divergence => Some(at_centroids(
+        FaceQuantity::Magnitude => Some(vectors.iter().map(|&v| norm(v)).collect()),
+        FaceQuantity::Divergence => Some(at_centroids(
             complex.require_point_evaluation()?,
             Space::Potentials,
             &nodal_divergence(complex, field),
             faces,
         )),
-        ColorBy::Curl => Some(at_centroids(
+        FaceQuantity::Curl => Some(at_centroids(
             complex.require_point_evaluation()?,
             Space::CoPotentials,
             &nodal_curl(complex, field),
             faces,
         )),
-        ColorBy::Energy => Some(energy_density(complex, field, faces)?),
-        ColorBy::None => None,
+        FaceQuantity::Energy => Some(energy_density(complex, field, faces)?),
+        FaceQuantity::None => None,
     })
 }
 
@@ -193,10 +209,10 @@ mod tests {
             .collect();
         let gradient = complex.gradient_field(&potential);
         let vectors = sampling.to_face_vectors(&gradient).unwrap();
-        let curl = face_scalar(complex, ColorBy::Curl, &gradient, &vectors)
+        let curl = face_scalar(complex, FaceQuantity::Curl, &gradient, &vectors)
             .unwrap()
             .unwrap();
-        let div = face_scalar(complex, ColorBy::Divergence, &gradient, &vectors)
+        let div = face_scalar(complex, FaceQuantity::Divergence, &gradient, &vectors)
             .unwrap()
             .unwrap();
         let largest = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -215,10 +231,10 @@ mod tests {
             .collect();
         let rotated = complex.co_gradient_field(&co_potential);
         let vectors = sampling.to_face_vectors(&rotated).unwrap();
-        let div = face_scalar(complex, ColorBy::Divergence, &rotated, &vectors)
+        let div = face_scalar(complex, FaceQuantity::Divergence, &rotated, &vectors)
             .unwrap()
             .unwrap();
-        let curl = face_scalar(complex, ColorBy::Curl, &rotated, &vectors)
+        let curl = face_scalar(complex, FaceQuantity::Curl, &rotated, &vectors)
             .unwrap()
             .unwrap();
         let largest = curl.iter().fold(0.0f64, |m, x| m.max(x.abs()));

@@ -1,0 +1,61 @@
+//! Panels of the figures: a field as line integral convolution over a magnitude colour map or
+//! a solid tint (`tvf_render::draw_field`), and PNG output of the committed pictures.
+
+use crate::error::PaperError;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::RgbaImage;
+use std::path::Path;
+use tvf_core::discretization::HodgeComplex;
+use tvf_core::SurfaceMesh;
+use tvf_render::{draw_field, Overlays, Style, Tint, View};
+
+/// Renders `field` (`n1` coefficients of `complex`) on `mesh` as a line integral convolution
+/// over `tint`, titled `title`.
+pub fn field_panel(
+    mesh: &SurfaceMesh,
+    complex: &dyn HodgeComplex,
+    field: &[f64],
+    title: &str,
+    tint: Tint,
+    view: View,
+) -> Result<RgbaImage, PaperError> {
+    Ok(draw_field(
+        mesh,
+        complex,
+        Some(field),
+        tint,
+        Style::Lic,
+        Overlays::titled(title),
+        view,
+    )?)
+}
+
+/// Bits kept per colour channel in saved pictures: 6 of 8 looks the same and halves the size of
+/// the noisy line-integral-convolution textures.
+const CHANNEL_BITS: u32 = 6;
+
+/// Saves `image` as an RGB PNG at `path` (atomically), alpha dropped (the pictures are opaque),
+/// each channel rounded to [`CHANNEL_BITS`] bits, best compression, so that the committed
+/// pictures stay small.
+pub fn save(image: &RgbaImage, path: &Path) -> Result<(), PaperError> {
+    let step = 1u16 << (8 - CHANNEL_BITS);
+    let rgb = image::RgbImage::from_fn(image.width(), image.height(), |x, y| {
+        let p = image.get_pixel(x, y).0;
+        image::Rgb([0, 1, 2].map(|k| {
+            let q = (p[k] as u16 + step / 2) / step * step;
+            q.min(255) as u8
+        }))
+    });
+    let mut bytes = Vec::new();
+    let encoder =
+        PngEncoder::new_with_quality(&mut bytes, CompressionType::Best, FilterType::Adaptive);
+    rgb.write_with_encoder(encoder)
+        .map_err(|e| PaperError::Write {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(e),
+        })?;
+    tvf_spectral::write_atomically(path, &bytes).map_err(|source| PaperError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}
