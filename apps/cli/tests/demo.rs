@@ -43,12 +43,12 @@ fn quick_demo_writes_a_page_with_existing_pictures_and_step_times() {
     assert!(sources.len() >= 9, "{sources:?}");
     for name in [
         "mesh.png",
-        "eigenfields.png",
+        "figure1_eigenfields.png",
         "harmonic.png",
         "hodge.png",
-        "filtering.png",
-        "spectrum.png",
-        "rate_distortion.png",
+        "figure7_filtering.png",
+        "figure8_spectrum.png",
+        "figure9_rate_distortion.png",
         "design.png",
         "fur.png",
     ] {

@@ -6,10 +6,20 @@ use super::Context;
 use anyhow::Result;
 use tvf_papers::brandt2017::figures::figures7_8;
 
-/// Figures 7 and 8, one section each.
-pub fn run(cx: &Context) -> Result<Vec<Section>> {
-    Ok(figures7_8(&cx.experiment(), cx.plot_size())?
+/// Figures 7 and 8 in one section.
+pub fn run(cx: &Context) -> Result<Section> {
+    let mut figures = figures7_8(&cx.experiment(), cx.plot_size())?
         .iter()
         .map(Section::from_finding)
-        .collect())
+        .collect::<Vec<_>>()
+        .into_iter();
+    let mut section = figures
+        .next()
+        .ok_or_else(|| anyhow::anyhow!("Figure 7 is missing"))?;
+    for more in figures {
+        section.text = format!("{} {}: {}", section.text, more.title, more.text);
+        section.figures.extend(more.figures);
+        section.numbers.extend(more.numbers);
+    }
+    Ok(section)
 }

@@ -116,6 +116,7 @@ fn timed(
     note(format!("demo [{number}/{total}] {title} ..."));
     let start = Instant::now();
     let mut section = step().with_context(|| format!("demo step '{title}'"))?;
+    section.title = title.to_string();
     section.seconds = start.elapsed().as_secs_f64();
     note(format!(
         "demo [{number}/{total}] {title}: {:.2} s",
@@ -153,19 +154,12 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
         test_field = field;
         Ok(section)
     })?);
-    let mut spectrum = None;
     sections.push(timed(
         4,
         STEPS,
         "Filtering a noisy field (Figures 7 and 8)",
-        || {
-            let mut figures = filtering::run(&cx)?.into_iter();
-            let filtering = figures.next().context("Figure 7 is missing")?;
-            spectrum = figures.next();
-            Ok(filtering)
-        },
+        || filtering::run(&cx),
     )?);
-    sections.extend(spectrum);
     sections.push(timed(
         5,
         STEPS,
