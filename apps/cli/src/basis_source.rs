@@ -20,7 +20,7 @@
 //! warning. `-k` sizes are `BasisSize::Fields`; the pairs a compressed file needs when no `-k`
 //! is given are `BasisSize::Pairs`.
 
-use crate::discretization_flags::{Discretization, DiscretizationFlags};
+use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
 use anyhow::{bail, Context, Result};
@@ -30,6 +30,7 @@ use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::build_complex;
+use tvf_discretizations::BoxedComplex;
 use tvf_spectral::{
     basis_file_complex_id, compute_basis_of_size, mesh_fingerprint, open_basis_file, BasisSize,
     BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
@@ -91,7 +92,7 @@ impl BasisSource {
 /// A basis ready for use, with the discretization it belongs to.
 pub struct ResolvedBasis {
     /// The discretization (named by the basis file, or chosen by the flags).
-    pub discretization: Discretization,
+    pub discretization: BoxedComplex,
     /// The basis.
     pub basis: SpectralBasis,
     /// [`mesh_fingerprint`] of the mesh.
@@ -154,7 +155,7 @@ impl BasisOptions {
     fn cached(
         &self,
         mesh: &SurfaceMesh,
-        discretization: &Discretization,
+        discretization: &BoxedComplex,
         size: BasisSize,
         input: &MeshInput,
     ) -> Result<SpectralBasis> {
@@ -214,7 +215,7 @@ impl BasisOptions {
     /// The discretization a basis would use, without computing or loading the basis: the
     /// `--basis` file's (read from its header, checked against the discretization flags), else
     /// the flags' (default conforming-barycentric).
-    pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<Discretization> {
+    pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<BoxedComplex> {
         match &self.basis {
             Some(path) => {
                 let requested = self.discretization.requested_id();
@@ -235,7 +236,7 @@ impl BasisOptions {
 
 /// Computes a basis of `size` with a progress bar: `K` fields (the complete basis if
 /// `K ≥ 2F`) or `P` pairs plus the harmonic fields.
-pub fn compute(discretization: &Discretization, size: BasisSize) -> Result<SpectralBasis> {
+pub fn compute(discretization: &BoxedComplex, size: BasisSize) -> Result<SpectralBasis> {
     let progress = Progress::new("basis");
     let callback = progress.basis_callback();
     let basis = compute_basis_of_size(discretization.as_ref(), size, Some(&callback))?;
@@ -246,7 +247,7 @@ pub fn compute(discretization: &Discretization, size: BasisSize) -> Result<Spect
 /// Ends the progress bar of a computed basis with what was computed and how long it took.
 fn finish(
     progress: &Progress,
-    discretization: &Discretization,
+    discretization: &BoxedComplex,
     size: BasisSize,
     basis: &SpectralBasis,
 ) {

@@ -9,9 +9,6 @@ use tvf_discretizations::{
     build_complex, catalog, catalog_entry, BoxedComplex, DEFAULT_DISCRETIZATION,
 };
 
-/// A discretization chosen at run time from the catalog.
-pub type Discretization = BoxedComplex;
-
 /// The discretization flags shared by every subcommand that builds a complex.
 #[derive(Args, Debug, Clone, Default)]
 pub struct DiscretizationFlags {
@@ -65,7 +62,7 @@ impl DiscretizationFlags {
 
     /// Builds the chosen complex on `mesh` with the chosen boundary condition; `label` names the
     /// mesh in errors.
-    pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<Discretization> {
+    pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<BoxedComplex> {
         build_complex(&self.id(), Some(self.boundary_condition()), mesh)
             .with_context(|| label.to_string())
     }

@@ -9,7 +9,7 @@ use faer::Par;
 /// sequentially, unless the environment variable [`SEQUENTIAL_FLOP_LIMIT_VARIABLE`] gives
 /// another limit (the crossover depends on the machine's cores and memory bandwidth).
 ///
-/// Measured on the 2-core test machine (`examples/full_soft_orderings.rs`, nested dissection,
+/// Measured on the 2-core test machine (papers/`examples/full_soft_orderings.rs`, nested dissection,
 /// whole first factorization, sequential vs faer's parallel, 2026-11-21): hand (4.5 Gflop)
 /// 0.36 vs 0.40 s, rocker-arm (6.5 Gflop) 0.51 vs 0.64 s, bunny-closed (60 Gflop) 3.1 vs 4.5 s,
 /// bumpy-torus-x4 (107 Gflop) 7.1 vs 5.7 s, armadillo-x4 (329 Gflop) 22.5 vs 20.9 s. Below

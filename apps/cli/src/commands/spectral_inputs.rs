@@ -4,7 +4,6 @@
 //! frames) read as tangent fields.
 
 use crate::basis_source::BasisOptions;
-use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{commit, stage};
 use anyhow::{bail, Context, Result};
@@ -12,6 +11,7 @@ use std::path::{Path, PathBuf};
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::BoxedComplex;
 use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::BasisSize;
 use tvf_spectral::{
@@ -24,7 +24,7 @@ pub struct SpectralSetup {
     /// The mesh.
     pub mesh: SurfaceMesh,
     /// The discretization the basis belongs to.
-    pub complex: Discretization,
+    pub complex: BoxedComplex,
     /// The basis (from `--basis`, the cache, or computed).
     pub basis: SpectralBasis,
     /// The discretization the basis was computed with (its id, as in basis files).

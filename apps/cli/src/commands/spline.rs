@@ -2,7 +2,6 @@
 //! constraint file, in a loaded or freshly computed eigenbasis.
 
 use crate::basis_source::BasisSource;
-use crate::discretization_flags::Discretization;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::report::Report;
@@ -17,6 +16,7 @@ use tvf_design::{
     checked_residuals, worst_residual, CompiledConstraint, ConstraintAssembler, ConstraintResidual,
     ConstraintSet, ReducedBasis, SplineSession,
 };
+use tvf_discretizations::BoxedComplex;
 use tvf_spectral::{mesh_fingerprint, write_tangent_field};
 
 /// Arguments of `tvf spline`.
@@ -93,7 +93,7 @@ pub fn discretization(
     inputs: &DesignInputs,
     input: &MeshInput,
     source: &BasisSource,
-) -> Result<Discretization> {
+) -> Result<BoxedComplex> {
     source.options.discretization(&inputs.mesh, input)
 }
 

@@ -3,16 +3,16 @@
 use super::page::Section;
 use super::DemoConfig;
 use crate::basis_source::compute;
-use crate::discretization_flags::Discretization;
 use anyhow::Context;
 use anyhow::Result;
 use tvf_discretizations::build_complex;
+use tvf_discretizations::BoxedComplex;
 use tvf_render::save_png;
 use tvf_render::{draw_field, FaceQuantity, Overlays, Style, Tint, View};
 use tvf_spectral::{eigen_residual, BasisSize, FieldFamily, SpectralBasis};
 
 /// Builds the chosen discretization, computes the basis and draws the mesh.
-pub fn run(config: &DemoConfig) -> Result<(Section, Discretization, SpectralBasis)> {
+pub fn run(config: &DemoConfig) -> Result<(Section, BoxedComplex, SpectralBasis)> {
     let mesh = &config.mesh;
     let discretization = build_complex(&config.discretization, None, mesh)
         .with_context(|| config.mesh_name.clone())?;

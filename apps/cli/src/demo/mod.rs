@@ -17,7 +17,6 @@ mod hodge;
 mod page;
 mod screen_points;
 
-use crate::discretization_flags::Discretization;
 use crate::progress::note;
 use anyhow::{Context as _, Result};
 use image::RgbaImage;
@@ -25,6 +24,7 @@ use page::Section;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::BoxedComplex;
 use tvf_papers::brandt2017::finding::Experiment;
 use tvf_render::save_png;
 use tvf_render::View;
@@ -55,7 +55,7 @@ pub struct Context<'a> {
     /// The mesh.
     pub mesh: &'a SurfaceMesh,
     /// The (conforming, barycentric) discretization.
-    pub discretization: &'a Discretization,
+    pub discretization: &'a BoxedComplex,
     /// The basis.
     pub basis: &'a SpectralBasis,
     /// The configuration.

@@ -4,15 +4,13 @@
 //! Medians over `--runs N` (default 3).
 //!
 //! ```text
-//! cargo run --release -p tvf-design --example full_soft_orderings -- [--runs N] [--seq] [--parallelism auto|seq|par] [--ordering amd|nd] [MESH ...]
+//! cargo run --release -p tvf-papers --example full_soft_orderings -- [--runs N] [--seq] [--parallelism auto|seq|par] [--ordering amd|nd] [MESH ...]
 //! ```
-//! MESH names a file `../shared/meshes/MESH.obj` (default: the five Table 1 meshes); `--seq`
+//! MESH names a file `../shared/meshes/MESH.obj` (default: papers/'s Table 1 meshes, the
+//! constraints papers/'s 30 seeded ones); `--seq`
 //! sets faer's global parallelism to one thread (its default is all threads); `--parallelism`
 //! chooses the design's own [`FactorParallelism`] (default `auto`: one thread for small
 //! factors). The `threads` column says which the factorization used.
-
-#[path = "../benches/common/mod.rs"]
-mod common;
 
 use std::time::{Duration, Instant};
 use tvf_core::discretization::HodgeOperators;
@@ -22,6 +20,8 @@ use tvf_design::{
     FillOrdering, FullSoftDesign, SoftOptions,
 };
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+use tvf_papers::brandt2017::table1::seeded_constraints;
+use tvf_papers::brandt2017::MESHES;
 
 const OMEGA: f64 = 0.1;
 
@@ -56,14 +56,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     if names.is_empty() {
-        names = common::MESHES.iter().map(|s| s.to_string()).collect();
+        names = MESHES
+            .iter()
+            .filter(|m| m.paper.is_some())
+            .map(|m| m.file.to_string())
+            .collect();
     }
     println!(
         "| mesh | faces | ordering | threads | nnz(L) | flops | assembly S | assembly aug. | ordering+symbolic | numeric | factor total | solve | steps | residual | floor |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for name in names {
-        let path = common::mesh_dir().join(format!("{name}.obj"));
+        let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../../shared/meshes")
+            .join(format!("{name}.obj"));
         let mesh = match load_mesh(&path) {
             Ok(loaded) => loaded.mesh,
             Err(e) => {
@@ -77,9 +83,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let assembly_s = start.elapsed().as_secs_f64();
         let assembler = ConstraintAssembler::new(complex.as_ref(), &mesh);
         let compiled: Vec<CompiledConstraint> =
-            assembler.compile_all(&common::constraints(&mesh, 1))?;
+            assembler.compile_all(&seeded_constraints(&mesh, 30, 1))?;
         let other: Vec<CompiledConstraint> =
-            assembler.compile_all(&common::constraints(&mesh, 2))?;
+            assembler.compile_all(&seeded_constraints(&mesh, 30, 2))?;
         let options = SoftOptions {
             omega: OMEGA,
             regularization: default_regularization(dirichlet, complex.m1().values()),
