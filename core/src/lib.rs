@@ -14,8 +14,10 @@
 pub mod discretization;
 pub mod generate;
 pub mod geometry;
+mod hash64;
 pub mod io;
 pub mod mesh;
 
+pub use hash64::Hash64;
 pub use mesh::{MeshError, SurfaceMesh, NO_FACE};
 pub use mesh::{ValidationReport, ValidationWarning};

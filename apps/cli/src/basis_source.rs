@@ -32,8 +32,8 @@ use tvf_core::SurfaceMesh;
 use tvf_discretizations::build_complex;
 use tvf_discretizations::BoxedComplex;
 use tvf_spectral::{
-    basis_file_complex_id, compute_basis_of_size, mesh_fingerprint, open_basis_file, BasisSize,
-    BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
+    basis_file_complex_id, compute_basis_of_size, open_basis_file, BasisSize, BasisStore,
+    FieldFamily, SpectralBasis, StoredBasisOrigin,
 };
 
 /// Eigenfields computed when neither `--basis` nor `-k` is given.
@@ -95,7 +95,7 @@ pub struct ResolvedBasis {
     pub discretization: BoxedComplex,
     /// The basis.
     pub basis: SpectralBasis,
-    /// [`mesh_fingerprint`] of the mesh.
+    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
     pub mesh_fingerprint: u64,
 }
 
@@ -108,7 +108,7 @@ impl BasisOptions {
         input: &MeshInput,
         size: BasisSize,
     ) -> Result<ResolvedBasis> {
-        let mesh_fingerprint = mesh_fingerprint(mesh);
+        let mesh_fingerprint = mesh.fingerprint();
         if let Some(path) = &self.basis {
             let start = Instant::now();
             let requested = self.discretization.requested_id();

@@ -9,7 +9,7 @@ use std::process::{Command, Output};
 use tvf_core::generate::torus;
 use tvf_core::io::write_obj;
 use tvf_core::SurfaceMesh;
-use tvf_spectral::{mesh_fingerprint, write_face_vector_sequence, write_npy, NpyArray, NpyDtype};
+use tvf_spectral::{write_face_vector_sequence, write_npy, NpyArray, NpyDtype};
 
 fn tvf<S: AsRef<OsStr>>(args: &[S]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_tvf"))
@@ -504,7 +504,7 @@ fn bad_constraint_files_name_the_file_the_constraint_and_the_problem() {
             vec![
                 "fingerprint.json".into(),
                 "0123456789abcdef".into(),
-                format!("{:016x}", mesh_fingerprint(&fx.mesh)),
+                format!("{:016x}", fx.mesh.fingerprint()),
             ],
         ),
         (

@@ -8,7 +8,7 @@
 //! | 8 | magic `TVFBASIS` |
 //! | 4 | format version (`u32`, currently 1) |
 //! | 4 | header length `H` in bytes, from the magic to the payload (`u32`) |
-//! | 8 | mesh fingerprint ([`crate::mesh_fingerprint`]) |
+//! | 8 | mesh fingerprint ([`tvf_core::SurfaceMesh::fingerprint`]) |
 //! | 8 × 6 | faces `F`, field dimension `n1` (`2F` for face fields, `E` for DEC 1-forms), fields `d`, harmonic, integrable, co-integrable counts |
 //! | 4 + L | discretization id: `u32` length, UTF-8 text: the catalog id (e.g. `conforming-barycentric`) |
 //! | 8 | [`Hash64`] of the header bytes before it |
@@ -21,13 +21,13 @@
 //! The round trip is bit-exact. Saving is atomic; loading streams (no second copy in memory).
 
 use crate::atomic_write::write_atomically_with;
-use crate::fingerprint::{mesh_fingerprint, Hash64};
 use crate::{FieldFamily, SpectralBasis};
 use faer::Mat;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::Hash64;
 use tvf_core::SurfaceMesh;
 
 /// The magic bytes of a basis file.
@@ -40,7 +40,7 @@ pub const BASIS_FILE_VERSION: u32 = 1;
 pub struct BasisFileKey {
     /// The catalog id of the discretization, [`HodgeComplex::id`] (names the mass lumping too).
     pub discretization: String,
-    /// [`mesh_fingerprint`] of the mesh.
+    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
     pub mesh_fingerprint: u64,
     /// Faces of the mesh.
     pub face_count: usize,
@@ -53,7 +53,7 @@ impl BasisFileKey {
     pub fn new<H: HodgeComplex + ?Sized>(mesh: &SurfaceMesh, complex: &H) -> Self {
         Self {
             discretization: complex.id().to_string(),
-            mesh_fingerprint: mesh_fingerprint(mesh),
+            mesh_fingerprint: mesh.fingerprint(),
             face_count: mesh.face_count(),
             field_dimension: complex.field_dimension(),
         }

@@ -2,15 +2,15 @@
 //! computed once per mesh, discretization and size and then read back.
 //!
 //! A basis is kept as `{fingerprint}-{complex id}-{size}.tvfb`: the mesh fingerprint
-//! ([`mesh_fingerprint`], 16 hex digits), the complex's [`HodgeComplex::id`] (a catalog id, or
+//! ([`SurfaceMesh::fingerprint`], 16 hex digits), the complex's [`HodgeComplex::id`] (a catalog id, or
 //! `{catalog id}+{boundary}` on a mesh with boundary) and the size: `d{K}` for the `K` lowest
 //! fields, `p{P}` for `P` pairs, `complete` for the complete basis. The seed is fixed (0), so
 //! equal names mean bit-identical bases. A file that is damaged or does not hold what its name
 //! promises is recomputed (and the problem reported), never used.
 
 use crate::{
-    compute_basis, load_basis, mesh_fingerprint, save_basis, BasisError, BasisFileKey,
-    BasisProgress, BasisRequest, BasisSize, FieldFamily, SpectralBasis,
+    compute_basis, load_basis, save_basis, BasisError, BasisFileKey, BasisProgress, BasisRequest,
+    BasisSize, FieldFamily, SpectralBasis,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -71,7 +71,7 @@ impl BasisStore {
         };
         self.folder.join(format!(
             "{:016x}-{}-{size_name}.tvfb",
-            mesh_fingerprint(mesh),
+            mesh.fingerprint(),
             complex.id()
         ))
     }

@@ -74,6 +74,38 @@ pub enum FieldIoError {
         /// Index of the first offending vector (face).
         index: usize,
     },
+    /// A component too large for `f64` arithmetic (or NaN): its square, and so lengths and
+    /// energies, would overflow. Components must be at most [`crate::MAX_FIELD_COMPONENT`].
+    #[error(
+        "{}: the vector of face {face} has a component of {value:e}: too large for f64 \
+         arithmetic (lengths and energies overflow; components must be at most {max:e})",
+        path.display(),
+        max = crate::MAX_FIELD_COMPONENT
+    )]
+    TooLarge {
+        /// The file.
+        path: PathBuf,
+        /// The face.
+        face: usize,
+        /// The component.
+        value: f64,
+    },
+    /// A frame folder without frame files.
+    #[error("{}: the folder holds no .npy or .txt frame", path.display())]
+    NoFrames {
+        /// The folder.
+        path: PathBuf,
+    },
+    /// A frame that cannot be turned into a tangent field of the discretization.
+    #[error("{}: frame {frame}: {source}", path.display())]
+    Frame {
+        /// The file.
+        path: PathBuf,
+        /// The frame (0-based).
+        frame: usize,
+        /// Why.
+        source: tvf_core::discretization::DiscretizationError,
+    },
     /// The data to write are inconsistent (ragged frames, shape not matching the data).
     #[error("{}: cannot write: {message}", path.display())]
     Inconsistent {

@@ -42,11 +42,11 @@ mod dense_memory;
 mod eigen_refinement;
 mod eigenfunction_basis;
 mod family_split;
+mod field_frames;
 mod field_io;
 mod filter;
 mod filter_response;
 mod filter_spec;
-mod fingerprint;
 mod fourier;
 mod harmonic_fields;
 mod laplacian_apply;
@@ -80,6 +80,10 @@ pub use compressed_file::{
 pub use compression_error::CompressionError;
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
 pub use eigenfunction_basis::EigenfunctionBasis;
+pub use field_frames::{
+    read_field_file, read_field_frames, write_field_frames, FieldFrames, FieldFromFile,
+    FrameSource, MAX_FIELD_COMPONENT,
+};
 pub use field_io::{
     read_face_vector_sequence, read_face_vectors, read_npy, read_tangent_field,
     write_face_vector_sequence, write_face_vectors, write_face_vectors_as, write_npy,
@@ -88,7 +92,6 @@ pub use field_io::{
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
-pub use fingerprint::{mesh_fingerprint, Hash64};
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};

@@ -1,6 +1,7 @@
 //! Triangle meshes: the [`SurfaceMesh`] type, its topology and its errors.
 
 mod error;
+mod fingerprint;
 mod quality;
 mod surface_mesh;
 mod topology;

@@ -10,8 +10,8 @@ use crate::timing::{median_time, Repetitions};
 use tvf_render::{grid, FaceQuantity, Tint};
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
-    basis_id, mesh_fingerprint, rate_distortion, relative_l2_error, CoefficientCoding, FieldCodec,
-    FieldFamily, FileStamp, RatePoint,
+    basis_id, rate_distortion, relative_l2_error, CoefficientCoding, FieldCodec, FieldFamily,
+    FileStamp, RatePoint,
 };
 
 /// One mesh's rate–distortion curve.
@@ -51,7 +51,7 @@ pub fn available_pairs(x: &Experiment) -> usize {
 
 fn stamp(x: &Experiment) -> FileStamp {
     FileStamp {
-        mesh_fingerprint: mesh_fingerprint(x.mesh),
+        mesh_fingerprint: x.mesh.fingerprint(),
         basis_id: basis_id(x.basis),
         vertex_count: x.mesh.vertex_count(),
     }

@@ -10,9 +10,7 @@ use crate::panels::{field_panel, save};
 use rayon::prelude::*;
 use std::time::Instant;
 use tvf_render::{grid, FaceQuantity, Tint};
-use tvf_spectral::{
-    basis_id, compress_with_report, mesh_fingerprint, CoefficientCoding, FieldCodec,
-};
+use tvf_spectral::{basis_id, compress_with_report, CoefficientCoding, FieldCodec};
 
 /// Size of the sequence experiment.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,7 +38,7 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, PaperError> {
         .map(|k| moving.frame(x.complex, k as f64 / size.frames.max(1) as f64))
         .collect();
     let generate = start.elapsed().as_secs_f64();
-    let (fingerprint, id) = (mesh_fingerprint(x.mesh), basis_id(x.basis));
+    let (fingerprint, id) = (x.mesh.fingerprint(), basis_id(x.basis));
     let mass = x.basis.field_mass();
     let mut finding = Finding::new(
         "Section 8.6 / Figure 11",

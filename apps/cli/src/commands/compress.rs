@@ -1,7 +1,7 @@
 //! `tvf compress`: a field, or a time-dependent sequence of fields, as the lowest `k` pairs of
 //! Fourier coefficients in a `.tvfc` file.
 
-use super::spectral_inputs::{load_setup, read_frames, FrameSource};
+use super::spectral_inputs::{load_setup, read_frames};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
@@ -13,6 +13,7 @@ use serde_json::json;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use tvf_spectral::BasisSize;
+use tvf_spectral::FrameSource;
 use tvf_spectral::{
     basis_id, relative_l2_error, CoefficientCoding, CompressedFields, CompressionError,
     CompressionReport, FieldCodec,

@@ -1,6 +1,6 @@
 //! `tvf decompress`: the fields of a `.tvfc` file.
 
-use super::spectral_inputs::{setup_for_mesh, write_frames};
+use super::spectral_inputs::setup_for_mesh;
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
@@ -10,6 +10,7 @@ use clap::Args;
 use rayon::prelude::*;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use tvf_spectral::write_field_frames;
 use tvf_spectral::BasisSize;
 use tvf_spectral::{basis_id, CompressedFields, CompressionError, FieldCodec};
 
@@ -52,7 +53,7 @@ pub fn run(mut args: DecompressArgs) -> Result<()> {
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;
     let frames = decode_frames(&codec, &file)?;
-    write_frames(&args.output, setup.fields()?, &frames)?;
+    write_field_frames(&args.output, setup.fields()?, &frames)?;
     println!("frames    {}", frames.len());
     println!("wrote     {}", args.output.display());
     Ok(())

@@ -8,7 +8,6 @@ use std::path::PathBuf;
 use tvf_design::ConstraintSet;
 use tvf_design::ReducedBasis;
 use tvf_editor::{Editor, EditorServer, EditorSetup};
-use tvf_spectral::mesh_fingerprint;
 
 /// Arguments of `tvf edit`.
 #[derive(Args)]
@@ -37,7 +36,7 @@ pub fn run(args: EditArgs) -> Result<()> {
     let constraints = match &args.constraints {
         Some(path) => {
             let set = ConstraintSet::load(path)?;
-            set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), path)?;
+            set.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), path)?;
             Some(set)
         }
         None => None,

@@ -17,7 +17,6 @@ use tvf_core::discretization::HodgeOperators;
 use tvf_design::{ConstraintAssembler, ConstraintSet};
 use tvf_discretizations::HodgeDecomposer;
 use tvf_render::{draw_field, grid, save_png, FaceQuantity, Overlays, Style, Tint, View};
-use tvf_spectral::mesh_fingerprint;
 
 const EXAMPLES: &str = "Examples:
   tvf render bunny.obj field.npy -o field.png --color curl --style streamlines
@@ -113,7 +112,7 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     let mut markers = Vec::new();
     if let Some(path) = &args.constraints {
         let set = ConstraintSet::load(path)?;
-        set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), path)?;
+        set.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), path)?;
         // The same checks as for splines: every index in range, values finite (errors name
         // the file and the constraint's id).
         ConstraintAssembler::new(discretization.as_ref(), &mesh)

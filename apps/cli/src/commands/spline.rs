@@ -17,7 +17,7 @@ use tvf_design::{
     ConstraintSet, ReducedBasis, SplineSession,
 };
 use tvf_discretizations::BoxedComplex;
-use tvf_spectral::{mesh_fingerprint, write_tangent_field};
+use tvf_spectral::write_tangent_field;
 
 /// Arguments of `tvf spline`.
 #[derive(Args)]
@@ -62,7 +62,7 @@ pub fn load_inputs(
 ) -> Result<DesignInputs> {
     let mesh = input.load()?.mesh;
     let set = ConstraintSet::load(constraints)?;
-    set.check_fingerprint(&format!("{:016x}", mesh_fingerprint(&mesh)), constraints)?;
+    set.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), constraints)?;
     report.line(format!(
         "mesh            {} ({} faces, genus {})",
         input.label(),

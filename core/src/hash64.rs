@@ -1,11 +1,9 @@
-//! A fast streaming 64-bit hash, and the fingerprint of a mesh built from it.
+//! [`Hash64`]: a fast streaming 64-bit hash (checksums of files, fingerprints of meshes).
 //!
 //! The hash reads 8-byte little-endian words; every step `h ← rotl((h ⊕ w) · P, 29)` is a
 //! bijection both of `h` and of `w`, so changing any single word (in particular flipping any
 //! number of bits inside one 8-byte word) always changes the result. It is a checksum against
 //! damage and a key for caches, not a cryptographic hash.
-
-use tvf_core::SurfaceMesh;
 
 const P1: u64 = 0x9e37_79b9_7f4a_7c15;
 const P2: u64 = 0xc2b2_ae3d_27d4_eb4f;
@@ -102,32 +100,9 @@ impl Hash64 {
     }
 }
 
-/// A 64-bit fingerprint of a mesh: the vertex and face counts, the exact `f64` bits of every
-/// vertex position and every face's vertex indices, in order. Equal meshes (same numbers, same
-/// order) have equal fingerprints; any change of a coordinate bit, an index or the order changes
-/// it with overwhelming probability. Used to tie cached bases and compressed fields to their mesh.
-pub fn mesh_fingerprint(mesh: &SurfaceMesh) -> u64 {
-    let mut h = Hash64::new();
-    h.update(b"tvf-mesh");
-    h.update_u64(mesh.vertex_count() as u64);
-    h.update_u64(mesh.face_count() as u64);
-    for p in mesh.positions() {
-        for &x in p {
-            h.update_f64(x);
-        }
-    }
-    for f in mesh.faces() {
-        for &i in f {
-            h.update_u64(i as u64);
-        }
-    }
-    h.finish()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use tvf_core::generate::icosphere;
 
     #[test]
     fn streaming_equals_one_shot_and_detects_changes() {
@@ -145,20 +120,5 @@ mod tests {
         }
         assert_ne!(Hash64::of(&data[..999]), whole);
         assert_ne!(Hash64::of(&[]), Hash64::of(&[0]));
-    }
-
-    #[test]
-    fn mesh_fingerprint_sees_every_coordinate_and_index() {
-        let mesh = icosphere(1);
-        let base = mesh_fingerprint(&mesh);
-        assert_eq!(base, mesh_fingerprint(&icosphere(1)));
-        let mut positions = mesh.positions().to_vec();
-        positions[17][2] = f64::from_bits(positions[17][2].to_bits() ^ 1);
-        let moved = SurfaceMesh::new(positions, mesh.faces().to_vec()).unwrap();
-        assert_ne!(mesh_fingerprint(&moved), base);
-        let mut faces = mesh.faces().to_vec();
-        faces[3] = [faces[3][1], faces[3][2], faces[3][0]];
-        let rotated = SurfaceMesh::new(mesh.positions().to_vec(), faces).unwrap();
-        assert_ne!(mesh_fingerprint(&rotated), base);
     }
 }
