@@ -1,7 +1,9 @@
 //! # tvf-spectral
 //!
 //! The Fourier basis of tangent fields (Section 6 of the paper) and what is built on it:
-//! coefficients, reconstruction, filters and compression.
+//! coefficients, reconstruction, analysis and filters (the files at the top level), the
+//! compression codec (`codec/`) and the file formats (`formats/`: `.npy`, field files, basis
+//! files, compressed files).
 //!
 //! ```
 //! use tvf_core::generate::torus;
@@ -26,77 +28,65 @@
 #![warn(missing_docs)]
 
 mod analysis;
-mod atomic_write;
 mod basis;
 mod basis_error;
-mod basis_file;
-mod basis_file_complex;
-mod basis_id;
 mod basis_request;
 mod basis_store;
-mod compress;
-mod compressed_file;
-mod compression_error;
+mod codec;
 mod compute_basis;
 mod dense_memory;
 mod eigen_refinement;
 mod eigenfunction_basis;
 mod family_split;
-mod field_frames;
-mod field_io;
 mod filter;
 mod filter_response;
 mod filter_spec;
+mod formats;
 mod fourier;
 mod harmonic_fields;
 mod laplacian_apply;
-mod npy;
-mod quantization;
-pub mod range_coder;
-mod rate_distortion;
 mod scalar_spectrum;
-mod sequence;
-mod symbol_coder;
 
 pub use analysis::{CoefficientEntry, EnergySplit, SpectralAnalysis};
-pub use atomic_write::{write_atomically, write_atomically_with};
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_error::BasisError;
-pub use basis_file::{
+pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
+pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
+pub use codec::compress::{pair_selection, FieldCodec};
+pub use codec::compression_error::CompressionError;
+pub use codec::quantization::UniformQuantizer;
+pub use codec::range_coder;
+pub use codec::rate_distortion::{equal_error_comparison, rate_distortion, FileStamp, RatePoint};
+pub use codec::sequence::{compress_with_report, relative_l2_error, CompressionReport};
+pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
+pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
+pub use eigenfunction_basis::EigenfunctionBasis;
+pub use filter::{FilterError, FilteredField, SpectralFilter};
+pub use filter_response::{FrequencyResponse, PiecewiseLinear};
+pub use filter_spec::{read_curve_file, FilterSpecError};
+pub use formats::atomic_write::{write_atomically, write_atomically_with};
+pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, BasisFileError, BasisFileHeader,
     BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
-pub use basis_file_complex::{
+pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, BasisFileUseError,
 };
-pub use basis_id::basis_id;
-pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
-pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
-pub use compress::{pair_selection, FieldCodec};
-pub use compressed_file::{
+pub use formats::basis_id::basis_id;
+pub use formats::compressed_file::{
     CoefficientCoding, CompressedFields, FramePayload, TvfcHeader, TVFC_HEADER_BYTES, TVFC_MAGIC,
     TVFC_VERSION,
 };
-pub use compression_error::CompressionError;
-pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
-pub use eigenfunction_basis::EigenfunctionBasis;
-pub use field_frames::{
+pub use formats::field_frames::{
     read_field_file, read_field_frames, write_field_frames, FieldFrames, FieldFromFile,
     FrameSource, MAX_FIELD_COMPONENT,
 };
-pub use field_io::{
+pub use formats::field_io::{
     read_face_vector_sequence, read_face_vectors, read_npy, read_tangent_field,
     write_face_vector_sequence, write_face_vectors, write_face_vectors_as, write_npy,
     write_tangent_field, FieldFileFormat, FieldIoError,
 };
-pub use filter::{FilterError, FilteredField, SpectralFilter};
-pub use filter_response::{FrequencyResponse, PiecewiseLinear};
-pub use filter_spec::{read_curve_file, FilterSpecError};
+pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
-pub use npy::{NpyArray, NpyDtype, NpyError};
-pub use quantization::UniformQuantizer;
-pub use rate_distortion::{equal_error_comparison, rate_distortion, FileStamp, RatePoint};
-pub use sequence::{compress_with_report, relative_l2_error, CompressionReport};
-pub use symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};

@@ -3,10 +3,10 @@
 //! the serialised `.tvfc` length and its error is measured on the decoded field.
 
 use crate::basis::SpectralBasis;
-use crate::compress::FieldCodec;
-use crate::compressed_file::{CoefficientCoding, CompressedFields};
-use crate::compression_error::CompressionError;
-use crate::sequence::relative_l2_error;
+use crate::codec::compress::FieldCodec;
+use crate::codec::compression_error::CompressionError;
+use crate::codec::sequence::relative_l2_error;
+use crate::formats::compressed_file::{CoefficientCoding, CompressedFields};
 use rayon::prelude::*;
 
 /// One compressed file of the curve.
@@ -29,7 +29,7 @@ pub struct RatePoint {
 pub struct FileStamp {
     /// Fingerprint of the mesh.
     pub mesh_fingerprint: u64,
-    /// [`basis_id`](crate::basis_id) of the basis.
+    /// [`basis_id`](crate::formats::basis_id) of the basis.
     pub basis_id: u64,
     /// Vertices of the mesh (for bits per vertex).
     pub vertex_count: usize,

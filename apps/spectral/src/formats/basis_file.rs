@@ -20,7 +20,7 @@
 //!
 //! The round trip is bit-exact. Saving is atomic; loading streams (no second copy in memory).
 
-use crate::atomic_write::write_atomically_with;
+use crate::formats::atomic_write::write_atomically_with;
 use crate::{FieldFamily, SpectralBasis};
 use faer::Mat;
 use std::io::{Read, Write};

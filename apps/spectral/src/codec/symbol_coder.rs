@@ -11,7 +11,7 @@
 //! symbols (coefficients are coded in order of frequency, and their size drifts slowly with
 //! frequency, so the neighbours predict the next one well).
 
-use crate::range_coder::{BitModel, RangeDecoder, RangeEncoder};
+use crate::codec::range_coder::{BitModel, RangeDecoder, RangeEncoder};
 use thiserror::Error;
 
 /// Number of neighbourhood contexts (mean bit length of the two previous symbols: 0 to 31).

@@ -3,10 +3,12 @@
 //! range-coded (beyond the paper).
 
 use crate::basis::{FieldFamily, SpectralBasis};
-use crate::compressed_file::{CoefficientCoding, CompressedFields, FramePayload, TvfcHeader};
-use crate::compression_error::CompressionError;
-use crate::quantization::UniformQuantizer;
-use crate::symbol_coder::{decode_symbols, encode_symbols};
+use crate::codec::compression_error::CompressionError;
+use crate::codec::quantization::UniformQuantizer;
+use crate::codec::symbol_coder::{decode_symbols, encode_symbols};
+use crate::formats::compressed_file::{
+    CoefficientCoding, CompressedFields, FramePayload, TvfcHeader,
+};
 use rayon::prelude::*;
 
 /// The basis fields kept when compressing with `pairs` pairs: the lowest `pairs` integrable, the
@@ -64,7 +66,7 @@ pub struct FieldCodec<'a> {
 
 impl<'a> FieldCodec<'a> {
     /// A codec keeping `pairs` pairs of `basis`, for files stamped with the mesh fingerprint and
-    /// the basis id ([`basis_id`](crate::basis_id) of `basis`, passed in because it hashes the
+    /// the basis id ([`basis_id`](crate::formats::basis_id) of `basis`, passed in because it hashes the
     /// whole basis).
     pub fn new(
         basis: &'a SpectralBasis,

@@ -5,7 +5,7 @@
 //! the mean-square-optimal choice at high rate. The step is chosen per frame so that the largest
 //! coefficient maps to the largest `bits`-bit symbol.
 
-use crate::symbol_coder::{max_magnitude, SymbolCodingError};
+use crate::codec::symbol_coder::{max_magnitude, SymbolCodingError};
 
 /// `q = round(c / step)`, `ĉ = q · step`; `|c − ĉ| ≤ step / 2` for every coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]

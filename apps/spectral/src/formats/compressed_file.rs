@@ -9,7 +9,7 @@
 //! | 10 | 1 | coding: 0 = `f64` coefficients, 1 = quantised + range-coded |
 //! | 11 | 1 | bits per quantised symbol (0 for `f64`) |
 //! | 12 | 8 | mesh fingerprint |
-//! | 20 | 8 | basis id ([`basis_id`](crate::basis_id)) |
+//! | 20 | 8 | basis id ([`basis_id`](crate::formats::basis_id)) |
 //! | 28 | 8 | field dimension `2F` |
 //! | 36 | 4 | pairs `k` (lowest `k` integrable and `k` co-integrable fields) |
 //! | 40 | 4 | coefficients per frame `n` (the kept fields, [`pair_selection`](crate::pair_selection)) |
@@ -18,8 +18,8 @@
 //! | 56 | … | `T` frames: `f64` mode `n` doubles; quantised mode the step (`f64`), the coded length (`u32`) and the range-coded symbols |
 //! | end − 4 | 4 | CRC-32 of every byte before it |
 
-use crate::atomic_write::write_atomically;
-use crate::compression_error::CompressionError;
+use crate::codec::compression_error::CompressionError;
+use crate::formats::atomic_write::write_atomically;
 use std::path::Path;
 use tvf_core::io::read_exactly_at_most;
 
@@ -59,7 +59,7 @@ impl CoefficientCoding {
 pub struct TvfcHeader {
     /// Fingerprint of the mesh the fields live on.
     pub mesh_fingerprint: u64,
-    /// [`basis_id`](crate::basis_id) of the basis the coefficients refer to.
+    /// [`basis_id`](crate::formats::basis_id) of the basis the coefficients refer to.
     pub basis_id: u64,
     /// `2F`.
     pub field_dimension: u64,

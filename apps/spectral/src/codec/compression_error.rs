@@ -1,7 +1,7 @@
 //! [`CompressionError`]: everything that can go wrong compressing fields or reading a `.tvfc`.
 
 use crate::basis::SpectralBasisError;
-use crate::symbol_coder::SymbolCodingError;
+use crate::codec::symbol_coder::SymbolCodingError;
 use thiserror::Error;
 
 /// Why a field could not be compressed or a `.tvfc` file could not be decoded.

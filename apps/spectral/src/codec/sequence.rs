@@ -1,9 +1,9 @@
 //! Compressing one field or a time-dependent sequence of fields with one basis, and measuring
 //! what it cost: [`compress_with_report`], [`CompressionReport`].
 
-use crate::compress::FieldCodec;
-use crate::compressed_file::CompressedFields;
-use crate::compression_error::CompressionError;
+use crate::codec::compress::FieldCodec;
+use crate::codec::compression_error::CompressionError;
+use crate::formats::compressed_file::CompressedFields;
 use rayon::prelude::*;
 
 /// Relative `M_X` error `‖v − ṽ‖_{M_X} / ‖v‖_{M_X}` of an approximation (`mass` is the diagonal

@@ -9,8 +9,8 @@
 //! [`read_tangent_field`] turns them into a tangent field of `2F` face-frame coefficients by
 //! projecting each onto its face's plane, and reports the dropped normal components.
 
-use crate::atomic_write::write_atomically;
-use crate::npy::{NpyArray, NpyDtype, NpyError};
+use crate::formats::atomic_write::write_atomically;
+use crate::formats::npy::{NpyArray, NpyDtype, NpyError};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;

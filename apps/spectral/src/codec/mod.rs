@@ -1,0 +1,11 @@
+//! The compression codec (Section 8.6 of the paper and beyond): keeping the lowest coefficient
+//! pairs of a field, optionally quantised and range-coded, frames of a sequence, and
+//! rate–distortion measurements of real compressed files.
+
+pub(crate) mod compress;
+pub(crate) mod compression_error;
+pub(crate) mod quantization;
+pub mod range_coder;
+pub(crate) mod rate_distortion;
+pub(crate) mod sequence;
+pub(crate) mod symbol_coder;

@@ -1,0 +1,12 @@
+//! The file formats of tvf-spectral: `.npy` arrays, field files and frame sequences, basis
+//! files (`.tvfb`) with the complex they belong to, compressed fields (`.tvfc`), and the
+//! content id of a basis. Every write is atomic; every error names the file.
+
+pub(crate) mod atomic_write;
+pub(crate) mod basis_file;
+pub(crate) mod basis_file_complex;
+pub(crate) mod basis_id;
+pub(crate) mod compressed_file;
+pub(crate) mod field_frames;
+pub(crate) mod field_io;
+pub(crate) mod npy;
