@@ -47,7 +47,6 @@ impl CatalogEntry {
 }
 
 const BOTH: &[BoundaryCondition] = &BoundaryCondition::ALL;
-const ABSOLUTE: &[BoundaryCondition] = &[BoundaryCondition::Tangential];
 
 impl std::fmt::Debug for CatalogEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -117,7 +116,7 @@ static CATALOG: [CatalogEntry; 6] = [
         build_with_boundary: |mesh, boundary| {
             Ok(Box::new(DecComplex::with_boundary(mesh, MassLumping::Barycentric, boundary)?))
         },
-        boundary_conditions: ABSOLUTE,
+        boundary_conditions: BOTH,
     },
     CatalogEntry {
         id: "dec-circumcentric",
@@ -128,7 +127,7 @@ static CATALOG: [CatalogEntry; 6] = [
         build_with_boundary: |mesh, boundary| {
             Ok(Box::new(DecComplex::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
         },
-        boundary_conditions: ABSOLUTE,
+        boundary_conditions: BOTH,
     },
 ];
 
