@@ -398,3 +398,34 @@ fn the_raw_bunny_runs_through_every_command() {
         4,
     );
 }
+
+#[test]
+fn the_catalog_listing_names_both_boundary_conditions_and_what_they_fix() {
+    let temp = tempfile::tempdir().unwrap();
+    let listing = json(&run(temp.path(), &["discretizations", "--json"]));
+    let entries = listing["discretizations"].as_array().unwrap();
+    assert_eq!(entries.len(), 6);
+    for entry in entries {
+        assert_eq!(
+            entry["boundary_conditions"],
+            serde_json::json!(["tangential", "normal"]),
+            "{entry}"
+        );
+        let id = entry["id"].as_str().unwrap();
+        let normal = entry["boundary_meanings"]["normal"].as_str().unwrap();
+        let expected = if id.starts_with("dec-") {
+            "relative forms"
+        } else if id.starts_with("conforming-") {
+            "P1 potentials zero"
+        } else {
+            "Crouzeix–Raviart potentials zero"
+        };
+        assert!(normal.contains(expected), "{id}: {normal}");
+    }
+    let text = String::from_utf8(run(temp.path(), &["discretizations"]).stdout).unwrap();
+    let dec = text
+        .lines()
+        .find(|l| l.starts_with("dec-circumcentric"))
+        .unwrap();
+    assert!(dec.contains("normal (relative forms"), "{dec}");
+}
