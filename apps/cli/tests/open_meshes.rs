@@ -352,6 +352,27 @@ fn dec_runs_through_every_command_on_a_delaunay_pair_of_pants_with_both_boundary
     for boundary in ["tangential", "normal"] {
         every_command(dir, "pants.obj", "dec-circumcentric", boundary, "30", 2);
     }
+    // The exported matrices say which nodes relative forms fix: boundary vertices and edges.
+    run(
+        dir,
+        &[
+            "operators",
+            "pants.obj",
+            "--discretization",
+            "dec-circumcentric",
+            "--boundary",
+            "normal",
+            "-o",
+            "ops",
+        ],
+    );
+    let info: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("ops/info.json")).unwrap()).unwrap();
+    let boundary_edges = mesh.boundary_edges().len();
+    assert_eq!(info["fixed_nodes"]["fields"], boundary_edges, "{info}");
+    // On a boundary loop there are as many vertices as edges.
+    assert_eq!(info["fixed_nodes"]["potentials"], boundary_edges, "{info}");
+    assert_eq!(info["fixed_nodes"]["co_potentials"], 0, "{info}");
     // Relative forms (normal) fix the 0-forms at boundary vertices: a divergence there is refused.
     let boundary_vertex = mesh.edges()[mesh.boundary_edges()[0]][0];
     std::fs::write(
