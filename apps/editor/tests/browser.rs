@@ -86,7 +86,8 @@ fn wait_until_the_page_shows_the_server_field(
     }
 }
 
-/// On a pair of pants (three boundary loops) with both boundary conditions: the page starts,
+/// On a pair of pants (three boundary loops) with both boundary conditions, for the default
+/// entry and DEC (relative forms for `normal`): the page starts,
 /// a drag in an interior face adds a vector constraint and a click with the source tool a
 /// divergence constraint in another interior face; the server's field satisfies both, the page
 /// shows its version and residual, and every vector the page draws is finite (and not all zero).
@@ -95,9 +96,12 @@ fn editor_page_edits_a_pair_of_pants_with_both_boundary_conditions() {
     let Some((chromium, chromedriver)) = browser_executables("a pair of pants") else {
         return;
     };
-    for boundary in BoundaryCondition::ALL {
-        let prefix = format!("editor-pants-{}", boundary.name());
-        let (server, mesh) = pants_server_for(DEFAULT_DISCRETIZATION, boundary);
+    for (id, boundary) in [DEFAULT_DISCRETIZATION, "dec-circumcentric"]
+        .into_iter()
+        .flat_map(|id| BoundaryCondition::ALL.map(|b| (id, b)))
+    {
+        let prefix = format!("editor-pants-{id}-{}", boundary.name());
+        let (server, mesh) = pants_server_for(id, boundary);
         let client = Client::new(&server);
         let browser =
             Browser::start(&chromedriver, &chromium, 1200, 800).expect("headless chromium session");
@@ -107,7 +111,7 @@ fn editor_page_edits_a_pair_of_pants_with_both_boundary_conditions() {
             .expect("page starts");
         assert_eq!(
             ready, "true",
-            "{boundary:?}: the page failed to start: {ready}"
+            "{id} {boundary:?}: the page failed to start: {ready}"
         );
         let before = browser.screenshot().expect("screenshot");
         save(&format!("{prefix}-1-loaded.png"), &before);
@@ -160,10 +164,10 @@ fn editor_page_edits_a_pair_of_pants_with_both_boundary_conditions() {
             .expect("the source is added");
         let check = wait_until_the_page_shows_the_server_field(&browser, &client);
         let constraints = check["constraints"].as_array().expect("constraints");
-        assert_eq!(constraints.len(), 2, "{boundary:?}: {check}");
+        assert_eq!(constraints.len(), 2, "{id} {boundary:?}: {check}");
         assert!(
             check["max_relative"].as_f64().unwrap() < 1e-9,
-            "{boundary:?}: the held field misses the constraints: {check}"
+            "{id} {boundary:?}: the held field misses the constraints: {check}"
         );
         let shown = browser
             .script(
@@ -173,22 +177,22 @@ fn editor_page_edits_a_pair_of_pants_with_both_boundary_conditions() {
         assert_eq!(
             shown[0].as_str().unwrap(),
             check["version"].as_u64().unwrap().to_string(),
-            "{boundary:?}: the page shows the server's field version"
+            "{id} {boundary:?}: the page shows the server's field version"
         );
         let residual: f64 = shown[1].as_str().unwrap().parse().expect("residual shown");
-        assert!(residual < 1e-9, "{boundary:?}: residual {residual}");
+        assert!(residual < 1e-9, "{id} {boundary:?}: residual {residual}");
         assert_eq!(
             shown[2], true,
-            "{boundary:?}: the page holds a non-finite vector"
+            "{id} {boundary:?}: the page holds a non-finite vector"
         );
         assert!(
             shown[3].as_f64().unwrap() > 0.0,
-            "{boundary:?}: the field is zero"
+            "{id} {boundary:?}: the field is zero"
         );
         assert_eq!(shown[4].as_u64().unwrap() as usize, 3 * mesh.face_count());
         let after = browser.screenshot().expect("screenshot");
         save(&format!("{prefix}-2-constraints.png"), &after);
-        assert_ne!(before, after, "{boundary:?}: the picture changed");
+        assert_ne!(before, after, "{id} {boundary:?}: the picture changed");
         drop(browser);
         server.shutdown();
     }

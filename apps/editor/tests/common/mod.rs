@@ -73,14 +73,17 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
 }
 
 /// The editor on a generated pair of pants (`perforated_plate(2, 8)`: flat, genus 0, three
-/// boundary loops) with catalog entry `id`, boundary condition `boundary` and its 60 lowest
-/// eigenfields, served on 127.0.0.1; also returns the mesh.
+/// boundary loops; Delaunay-flipped for entries that need it) with catalog entry `id`, boundary
+/// condition `boundary` and its 60 lowest eigenfields, served on 127.0.0.1; also returns the
+/// mesh.
 pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, SurfaceMesh) {
-    let mesh = perforated_plate(2, 8);
-    let complex = catalog_entry(id)
-        .expect("catalog id")
-        .build_with(&mesh, boundary)
-        .expect("pants operators");
+    let entry = catalog_entry(id).expect("catalog id");
+    let mesh = if entry.needs_delaunay {
+        tvf_tests::corpus::delaunay_flips(&perforated_plate(2, 8))
+    } else {
+        perforated_plate(2, 8)
+    };
+    let complex = entry.build_with(&mesh, boundary).expect("pants operators");
     let spectral = compute_basis(complex.as_ref(), &BasisRequest::fields(60)).expect("pants basis");
     let editor = Editor::start(EditorSetup {
         mesh: mesh.clone(),
