@@ -33,6 +33,9 @@ pub struct CatalogEntry {
         fn(&SurfaceMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>,
     /// The boundary conditions the entry offers on meshes with boundary, the default first.
     pub boundary_conditions: &'static [BoundaryCondition],
+    /// What each boundary condition of [`BoundaryCondition::ALL`] (in that order) fixes in this
+    /// complex, one phrase each, for listings.
+    pub boundary_meanings: [&'static str; 2],
 }
 
 impl CatalogEntry {
@@ -44,10 +47,31 @@ impl CatalogEntry {
     ) -> Result<BoxedComplex, DiscretizationError> {
         (self.build_with_boundary)(mesh, boundary)
     }
+
+    /// What `boundary` fixes in this complex (one phrase, e.g. "P1 potentials zero at boundary
+    /// vertices").
+    pub fn boundary_meaning(&self, boundary: BoundaryCondition) -> &'static str {
+        match boundary {
+            BoundaryCondition::Tangential => self.boundary_meanings[0],
+            BoundaryCondition::Normal => self.boundary_meanings[1],
+        }
+    }
 }
 
+const CONFORMING_BOUNDARY: [&str; 2] = [
+    "Crouzeix–Raviart co-potentials zero at boundary edge midpoints",
+    "P1 potentials zero at boundary vertices",
+];
+const NONCONFORMING_BOUNDARY: [&str; 2] = [
+    "P1 co-potentials zero at boundary vertices",
+    "Crouzeix–Raviart potentials zero at boundary edge midpoints",
+];
+const DEC_BOUNDARY: [&str; 2] = [
+    "absolute forms, nothing fixed",
+    "relative forms: 0-forms zero at boundary vertices, 1-forms zero on boundary edges",
+];
+
 const BOTH: &[BoundaryCondition] = &BoundaryCondition::ALL;
-const ABSOLUTE: &[BoundaryCondition] = &[BoundaryCondition::Tangential];
 
 impl std::fmt::Debug for CatalogEntry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -74,6 +98,7 @@ static CATALOG: [CatalogEntry; 6] = [
             Ok(Box::new(Conforming::with_boundary(mesh, MassLumping::Barycentric, boundary)?))
         },
         boundary_conditions: BOTH,
+        boundary_meanings: CONFORMING_BOUNDARY,
     },
     CatalogEntry {
         id: "conforming-voronoi",
@@ -85,6 +110,7 @@ static CATALOG: [CatalogEntry; 6] = [
             Ok(Box::new(Conforming::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
         },
         boundary_conditions: BOTH,
+        boundary_meanings: CONFORMING_BOUNDARY,
     },
     CatalogEntry {
         id: "nonconforming-barycentric",
@@ -96,6 +122,7 @@ static CATALOG: [CatalogEntry; 6] = [
             Ok(Box::new(Nonconforming::with_boundary(mesh, MassLumping::Barycentric, boundary)?))
         },
         boundary_conditions: BOTH,
+        boundary_meanings: NONCONFORMING_BOUNDARY,
     },
     CatalogEntry {
         id: "nonconforming-voronoi",
@@ -107,6 +134,7 @@ static CATALOG: [CatalogEntry; 6] = [
             Ok(Box::new(Nonconforming::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
         },
         boundary_conditions: BOTH,
+        boundary_meanings: NONCONFORMING_BOUNDARY,
     },
     CatalogEntry {
         id: "dec-barycentric",
@@ -117,7 +145,8 @@ static CATALOG: [CatalogEntry; 6] = [
         build_with_boundary: |mesh, boundary| {
             Ok(Box::new(DecComplex::with_boundary(mesh, MassLumping::Barycentric, boundary)?))
         },
-        boundary_conditions: ABSOLUTE,
+        boundary_conditions: BOTH,
+        boundary_meanings: DEC_BOUNDARY,
     },
     CatalogEntry {
         id: "dec-circumcentric",
@@ -128,7 +157,8 @@ static CATALOG: [CatalogEntry; 6] = [
         build_with_boundary: |mesh, boundary| {
             Ok(Box::new(DecComplex::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
         },
-        boundary_conditions: ABSOLUTE,
+        boundary_conditions: BOTH,
+        boundary_meanings: DEC_BOUNDARY,
     },
 ];
 

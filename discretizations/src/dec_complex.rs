@@ -1,7 +1,10 @@
 //! [`DecComplex`]: discrete exterior calculus on primal forms — potentials on vertices, fields
 //! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
 
-use crate::boundary_conditions::{component_boundary_loops, mesh_topology};
+use crate::boundary_conditions::{
+    boundary_nodes, component_boundary_loops, drop_columns, drop_rows, mesh_topology,
+    with_dirichlet_boundary,
+};
 use crate::face_geometry::FaceGeometry;
 use crate::finite_element_complex::complex_id;
 use crate::whitney_sampling::WhitneySampling;
@@ -39,12 +42,20 @@ use tvf_core::SurfaceMesh;
 /// `(d1 ⋆1⁻¹ d1ᵀ, ⋆2⁻¹)` lives on faces. Sampling is Whitney interpolation
 /// ([`WhitneySampling`]); there is no rotation `J` on 1-forms, hence no "other family".
 ///
-/// On a mesh with boundary the complex is that of **absolute** forms (every vertex, edge and
-/// face): the boundary condition [`BoundaryCondition::Tangential`]. The co-exact problem then has
-/// no constant kernel on a component with boundary (a boundary edge couples its face to a zero
-/// outside, a Dirichlet condition on the dual graph) and the harmonic 1-forms are the `2g + b − 1`
-/// Neumann fields. Relative forms ([`BoundaryCondition::Normal`]) would drop the boundary edges
-/// from the field space and are not offered.
+/// On a mesh with boundary:
+///
+/// - [`BoundaryCondition::Tangential`]: **absolute** forms (every vertex, edge and face). The
+///   co-exact problem has no constant kernel on a component with boundary (a boundary edge couples
+///   its face to a zero outside, a Dirichlet condition on the dual graph) and the harmonic 1-forms
+///   are the `2g + b − 1` Neumann fields.
+/// - [`BoundaryCondition::Normal`]: **relative** forms, the cochains that vanish on the boundary.
+///   Boundary vertices are Dirichlet nodes of the 0-forms (zero columns of `d0`) and boundary
+///   edges Dirichlet nodes of the 1-forms (zero rows of `d0`, zero columns of `d1`, zero weight
+///   in sampling); every face stays. The exact problem is the cotan Laplacian with Dirichlet
+///   conditions, the co-exact one has the constants in its kernel (Neumann on the dual graph), and
+///   the harmonic 1-forms are the `2g + b − 1` Dirichlet fields (relative cohomology, by
+///   Lefschetz duality of the same dimension as the absolute one). A relative 1-form's Whitney
+///   field has no component along the boundary: it is normal there.
 #[derive(Debug, Clone)]
 pub struct DecComplex {
     id: String,
@@ -76,10 +87,10 @@ impl DecComplex {
         Self::with_boundary(mesh, lumping, BoundaryCondition::default())
     }
 
-    /// [`DecComplex::new`] with boundary condition `boundary`; on a mesh with boundary only
-    /// [`BoundaryCondition::Tangential`] (absolute forms) is offered, [`BoundaryCondition::Normal`]
-    /// fails with [`DiscretizationError::UnsupportedBoundaryCondition`]. The id gets `+{boundary}`
-    /// appended on a mesh with boundary.
+    /// [`DecComplex::new`] with boundary condition `boundary`: on a mesh with boundary absolute
+    /// forms for [`BoundaryCondition::Tangential`], relative forms for
+    /// [`BoundaryCondition::Normal`] (see [`DecComplex`]). The id gets `+{boundary}` appended on a
+    /// mesh with boundary.
     pub fn with_boundary(
         mesh: &SurfaceMesh,
         lumping: MassLumping,
@@ -89,13 +100,6 @@ impl DecComplex {
             MassLumping::Barycentric => "dec-barycentric",
             MassLumping::Voronoi => "dec-circumcentric",
         };
-        if !mesh.is_closed() && boundary != BoundaryCondition::Tangential {
-            return Err(DiscretizationError::UnsupportedBoundaryCondition {
-                discretization: id.to_string(),
-                condition: boundary.name(),
-                reason: "DEC offers absolute forms (tangential) only",
-            });
-        }
         let geometry = FaceGeometry::new(mesh)?;
         let edge_star = edge_hodge_star(mesh, &geometry);
         let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
@@ -109,13 +113,13 @@ impl DecComplex {
         }
         let positions = mesh.positions();
         let components = mesh.component_count();
-        let potential_nodes = NodeSpace::with_constant_kernel(
+        let mut potential_nodes = NodeSpace::with_constant_kernel(
             NodeKind::Vertices,
             positions.to_vec(),
             mesh.vertex_components(),
             components,
         );
-        let field_nodes = NodeSpace::with_constant_kernel(
+        let mut field_nodes = NodeSpace::with_constant_kernel(
             NodeKind::Edges,
             mesh.edges()
                 .iter()
@@ -136,11 +140,27 @@ impl DecComplex {
             mesh.face_components().to_vec(),
             components,
         );
-        // 2-forms: constants are in the kernel of d1 ⋆1⁻¹ d1ᵀ only on closed components.
-        co_potential_nodes.constant_kernel = component_boundary_loops(mesh)
-            .iter()
-            .map(|&b| b == 0)
-            .collect();
+        let mut d0 = vertex_edge_incidence(mesh);
+        let mut d1 = edge_face_incidence(mesh);
+        let relative = !mesh.is_closed() && boundary == BoundaryCondition::Normal;
+        if relative {
+            // Relative forms: zero on boundary vertices and edges. A boundary edge joins two
+            // boundary vertices, so dropping its row of d0 loses nothing; the face circulations
+            // of a constant 2-form cancel on interior edges, so the constants are in the kernel.
+            potential_nodes = with_dirichlet_boundary(potential_nodes, mesh);
+            field_nodes.dirichlet = boundary_nodes(mesh, NodeKind::Edges);
+            d0 = drop_rows(
+                &drop_columns(&d0, &potential_nodes.dirichlet),
+                &field_nodes.dirichlet,
+            );
+            d1 = drop_columns(&d1, &field_nodes.dirichlet);
+        } else {
+            // Absolute 2-forms: the constants are in the kernel only on closed components.
+            co_potential_nodes.constant_kernel = component_boundary_loops(mesh)
+                .iter()
+                .map(|&b| b == 0)
+                .collect();
+        }
         let m0 = DiagonalMass::positive_on_used_nodes(
             "M0 (⋆0, vertex areas)",
             lumping.vertex_masses(mesh, &geometry),
@@ -156,10 +176,11 @@ impl DecComplex {
             geometry.areas.iter().map(|a| 1.0 / a).collect(),
             &co_potential_nodes.components,
         )?;
+        let sampling = WhitneySampling::new(mesh, &geometry, field_nodes.dirichlet.clone());
         Ok(Self {
             id: complex_id(id, mesh, boundary),
-            d0: vertex_edge_incidence(mesh),
-            d1: edge_face_incidence(mesh),
+            d0,
+            d1,
             m0,
             m1,
             m2,
@@ -167,7 +188,7 @@ impl DecComplex {
             field_nodes,
             co_potential_nodes,
             topology: mesh_topology(mesh, boundary),
-            sampling: WhitneySampling::new(mesh, &geometry),
+            sampling,
             faces: mesh.faces().to_vec(),
             cache: OperatorCache::default(),
         })

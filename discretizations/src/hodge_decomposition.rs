@@ -17,7 +17,7 @@ pub struct HodgeParts {
     /// Co-potential `g` (`n2` pointwise values, normalised like the potential):
     /// `co_integrable = −M1⁻¹ d1ᵀ g` (finite elements: `J G_co g`).
     pub co_potential: Vec<f64>,
-    /// Integrable (curl-free) part `d0 f` (`2F`, pointwise).
+    /// Integrable (curl-free) part `d0 f` (`n1`).
     pub integrable: Vec<f64>,
     /// Co-integrable (divergence-free) part `−M1⁻¹ d1ᵀ g` (`n1`).
     pub co_integrable: Vec<f64>,
@@ -62,8 +62,9 @@ impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
         self.complex
     }
 
-    /// Decomposes `field` (`2F` pointwise coefficients) into its integrable, co-integrable and
-    /// harmonic parts, per connected component.
+    /// Decomposes `field` (`n1` coefficients) into its integrable, co-integrable and harmonic
+    /// parts, per connected component. Fails on a wrong length, a non-finite value, or a nonzero
+    /// value at a Dirichlet field node (relative forms: a boundary edge).
     pub fn decompose(&self, field: &[f64]) -> Result<HodgeParts, DecompositionError> {
         let c = self.complex;
         let dimension = c.field_dimension();
@@ -79,6 +80,15 @@ impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
             return Err(DiscretizationError::NonFinite {
                 what: "field to decompose",
                 index,
+            }
+            .into());
+        }
+        let fixed = &c.field_nodes().dirichlet;
+        if let Some(index) = (0..dimension).find(|&i| fixed[i] && field[i] != 0.0) {
+            return Err(DiscretizationError::NonzeroOnDirichletNode {
+                what: "field to decompose",
+                index,
+                value: field[index],
             }
             .into());
         }
@@ -109,16 +119,25 @@ impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
     }
 
     /// An `M1`-orthonormal basis of the harmonic fields (`harmonic_dimension()` fields of length
-    /// `2F`): random fields (seeded) projected onto `H`, Gram–Schmidt in `M1`, each re-projected once
-    /// after orthogonalisation for accuracy (`shared/docs/MATH.md`).
+    /// `n1`): random fields (seeded, zero on the Dirichlet field nodes) projected onto `H`,
+    /// Gram–Schmidt in `M1`, each re-projected once after orthogonalisation for accuracy
+    /// (`shared/docs/MATH.md`).
     pub fn harmonic_basis(&self, seed: u64) -> Result<Vec<Vec<f64>>, DecompositionError> {
         let c = self.complex;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let harmonic_dimension = c.topology().harmonic_dimension;
         let mut basis: Vec<Vec<f64>> = Vec::with_capacity(harmonic_dimension);
+        let nodes = c.field_nodes();
         for _ in 0..harmonic_dimension {
             let random: Vec<f64> = (0..c.field_dimension())
-                .map(|_| rng.random_range(-1.0..1.0))
+                .map(|i| {
+                    let x = rng.random_range(-1.0..1.0);
+                    if nodes.dirichlet[i] {
+                        0.0
+                    } else {
+                        x
+                    }
+                })
                 .collect();
             let mut h = self.harmonic_part(&random)?;
             for _pass in 0..2 {

@@ -20,6 +20,11 @@ use tvf_core::SurfaceMesh;
 /// or two) faces `t` next to edge `e`. The edge lies in each face's plane, so this is the
 /// integral of the face-projected vector; a constant 3D vector projected face by face gives the
 /// same value from both sides, so sampling after the de Rham map reproduces it exactly.
+///
+/// For relative forms (the boundary edges fixed to zero) the fixed edges have no Whitney form in
+/// the sampling and get 0 from the de Rham map. The sampled field is then normal to the boundary:
+/// along a boundary edge the Whitney forms of the other two edges of its face have no tangential
+/// component. A constant vector is still reproduced in every face without a fixed edge.
 #[derive(Debug, Clone)]
 pub struct WhitneySampling {
     faces: Vec<[usize; 3]>,
@@ -28,13 +33,18 @@ pub struct WhitneySampling {
     positions: Vec<[f64; 3]>,
     frames: Vec<[[f64; 3]; 2]>,
     normals: Vec<[f64; 3]>,
+    /// Edges whose value the boundary condition fixes to zero (`E` entries; all `false` for
+    /// absolute forms).
+    fixed_edges: Vec<bool>,
     /// `∇λ_c` of the three corners of every face (3D, in the face plane, 1/length).
     barycentric_gradients: Vec<[[f64; 3]; 3]>,
 }
 
 impl WhitneySampling {
-    /// Precomputes the barycentric gradients of every face of `mesh`.
-    pub fn new(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Self {
+    /// Precomputes the barycentric gradients of every face of `mesh`; the edges flagged in
+    /// `fixed_edges` (`E` entries) are zero in every field.
+    pub fn new(mesh: &SurfaceMesh, geometry: &FaceGeometry, fixed_edges: Vec<bool>) -> Self {
+        assert_eq!(fixed_edges.len(), mesh.edge_count(), "one flag per edge");
         let barycentric_gradients = mesh
             .faces()
             .iter()
@@ -56,6 +66,7 @@ impl WhitneySampling {
             positions: mesh.positions().to_vec(),
             frames: geometry.frames.clone(),
             normals: geometry.normals.clone(),
+            fixed_edges,
             barycentric_gradients,
         }
     }
@@ -82,6 +93,7 @@ impl FieldSampling for WhitneySampling {
         let corners = self.faces[face];
         let gradients = &self.barycentric_gradients[face];
         (0..3)
+            .filter(|&c| !self.fixed_edges[self.face_edges[face][c]])
             .map(|c| {
                 let (j, k) = ((c + 1) % 3, (c + 2) % 3);
                 let sign = if corners[j] < corners[k] { 1.0 } else { -1.0 };
@@ -110,7 +122,14 @@ impl FieldSampling for WhitneySampling {
         let field = sums
             .iter()
             .zip(&counts)
-            .map(|(&s, &n)| if n > 0 { s / f64::from(n) } else { 0.0 })
+            .zip(&self.fixed_edges)
+            .map(|((&s, &n), &fixed)| {
+                if n > 0 && !fixed {
+                    s / f64::from(n)
+                } else {
+                    0.0
+                }
+            })
             .collect();
         let normal_parts = vectors
             .iter()

@@ -1,11 +1,15 @@
 //! Unit properties of the DEC 1-form complex: signed incidences, the cotan Hodge star, the
 //! relation to the conforming cotan matrix, Whitney sampling and the Delaunay precondition.
 
-use tvf_core::discretization::{DiscretizationError, FieldSampling, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{
+    BoundaryCondition, DiscretizationError, FieldSampling, HodgeComplex, HodgeOperators,
+};
 use tvf_core::generate::{bumpy_torus, genus_surface, icosphere, jitter, rigid_motion, torus};
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{Conforming, DecComplex, MassLumping, DELAUNAY_TOLERANCE};
+use tvf_discretizations::{
+    Conforming, DecComplex, DecompositionError, HodgeDecomposer, MassLumping, DELAUNAY_TOLERANCE,
+};
 
 /// Cotangent of the angle at corner `c` of face `t`, from 3D positions.
 fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
@@ -352,4 +356,87 @@ fn generated_meshes_that_are_delaunay() {
             "{name} should be refused"
         );
     }
+}
+
+#[test]
+fn relative_forms_fix_boundary_vertices_and_edges_to_zero() {
+    let mesh = flat_patch(6);
+    let absolute =
+        DecComplex::with_boundary(&mesh, MassLumping::Voronoi, BoundaryCondition::Tangential)
+            .expect("absolute forms");
+    let relative =
+        DecComplex::with_boundary(&mesh, MassLumping::Voronoi, BoundaryCondition::Normal)
+            .expect("relative forms");
+    assert_eq!(relative.id(), "dec-circumcentric+normal");
+    let boundary_edge: Vec<bool> = (0..mesh.edge_count())
+        .map(|e| mesh.is_boundary_edge(e))
+        .collect();
+    let mut boundary_vertex = vec![false; mesh.vertex_count()];
+    for e in mesh.boundary_edges() {
+        for v in mesh.edges()[e] {
+            boundary_vertex[v] = true;
+        }
+    }
+    assert_eq!(relative.potential_nodes().dirichlet, boundary_vertex);
+    assert_eq!(relative.field_nodes().dirichlet, boundary_edge);
+    assert_eq!(relative.co_potential_nodes().dirichlet_count(), 0);
+    assert_eq!(relative.co_potential_nodes().constant_kernel, vec![true]);
+    assert_eq!(absolute.co_potential_nodes().constant_kernel, vec![false]);
+    // d0 and d1 are those of absolute forms with the fixed columns and rows emptied.
+    for (&value, (e, v)) in absolute.d0().iter() {
+        let kept = !boundary_vertex[v] && !boundary_edge[e];
+        assert_eq!(
+            relative.d0().get(e, v).copied(),
+            kept.then_some(value),
+            "d0[{e}, {v}]"
+        );
+    }
+    for (&value, (t, e)) in absolute.d1().iter() {
+        let kept = !boundary_edge[e];
+        assert_eq!(
+            relative.d1().get(t, e).copied(),
+            kept.then_some(value),
+            "d1[{t}, {e}]"
+        );
+    }
+    let composed = tvf_core::discretization::sparse::product(relative.d1(), relative.d0());
+    assert!(composed.iter().all(|(&x, _)| x == 0.0), "d1 d0 = 0 exactly");
+    // Fields of the space are zero on boundary edges; others are refused naming the edge.
+    let sampling = relative.sampling().expect("Whitney sampling");
+    let projection = sampling
+        .from_face_vectors(&vec![[0.3, -1.1, 0.6]; mesh.face_count()])
+        .expect("one vector per face");
+    let first = boundary_edge
+        .iter()
+        .position(|&b| b)
+        .expect("a boundary edge");
+    assert!((0..mesh.edge_count()).all(|e| !boundary_edge[e] || projection.field[e] == 0.0));
+    let decomposer = HodgeDecomposer::new(&relative).expect("factors");
+    let parts = decomposer
+        .decompose(&projection.field)
+        .expect("a relative 1-form");
+    assert!(
+        parts.harmonic.iter().all(|x| x.abs() < 1e-10),
+        "a disk has no harmonic field"
+    );
+    let mut outside = projection.field.clone();
+    outside[first] = 0.5;
+    match decomposer.decompose(&outside) {
+        Err(DecompositionError::Discretization(DiscretizationError::NonzeroOnDirichletNode {
+            index,
+            value,
+            ..
+        })) => assert_eq!((index, value), (first, 0.5)),
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+    // On a closed mesh both conditions give the same complex.
+    let sphere = icosphere(2);
+    let a = DecComplex::with_boundary(&sphere, MassLumping::Voronoi, BoundaryCondition::Tangential)
+        .unwrap();
+    let b = DecComplex::with_boundary(&sphere, MassLumping::Voronoi, BoundaryCondition::Normal)
+        .unwrap();
+    assert_eq!(a.id(), b.id());
+    assert_eq!(a.d0(), b.d0());
+    assert_eq!(a.d1(), b.d1());
+    assert_eq!(a.field_nodes(), b.field_nodes());
 }

@@ -41,7 +41,10 @@ fn assert_vectors_close(what: &str, a: [f64; 3], b: [f64; 3], tolerance: f64) {
 /// orthonormal, positively oriented (`e1 × e2 = n`) and tangent, the normal is the mesh's, every
 /// sampled vector is tangent, and a constant 3D vector turned into a field by
 /// `from_face_vectors` samples back to its projection onto each face at every point of
-/// [`SAMPLE_POINTS`] (to 1e-12 of its length), with its normal parts reported.
+/// [`SAMPLE_POINTS`] (to 1e-12 of its length), with its normal parts reported. Where the complex
+/// fixes field nodes to zero (relative forms: boundary edges), `from_face_vectors` gives 0 there,
+/// no sampling weight names them, the constant is reproduced in the faces whose weights name no
+/// fixed node, and [`check_relative_sampling`] holds.
 pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
     let Some(sampling) = complex.sampling() else {
         return;
@@ -58,8 +61,24 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
         .from_face_vectors(&vec![constant; mesh.face_count()])
         .expect("one vector per face");
     assert_eq!(projection.field.len(), complex.field_dimension());
+    let fixed = &complex.field_nodes().dirichlet;
+    for (i, &x) in projection.field.iter().enumerate() {
+        assert!(
+            !fixed[i] || x == 0.0,
+            "from_face_vectors gives {x} at fixed field node {i}"
+        );
+    }
     let random = random_field(complex, 5);
     for t in 0..mesh.face_count() {
+        let names_fixed = SAMPLE_POINTS
+            .iter()
+            .any(|&b| sampling.sample_weights(t, b).iter().any(|&(i, _)| fixed[i]));
+        assert!(
+            !names_fixed,
+            "a sampling weight of face {t} names a fixed field node"
+        );
+        let touches_fixed = complex.field_nodes().kind == NodeKind::Edges
+            && mesh.face_edges()[t].iter().any(|&e| fixed[e]);
         let [e1, e2] = sampling.frame(t);
         let n = sampling.normal(t);
         assert_vectors_close(
@@ -89,13 +108,15 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
         );
         let tangent = sub(constant, scale(n, normal_part));
         for b in SAMPLE_POINTS {
-            let v = sample(sampling, &projection.field, t, b);
-            assert_vectors_close(
-                &format!("constant field sampled in face {t} at {b:?}"),
-                v,
-                tangent,
-                1e-12 * norm(constant),
-            );
+            if !touches_fixed {
+                let v = sample(sampling, &projection.field, t, b);
+                assert_vectors_close(
+                    &format!("constant field sampled in face {t} at {b:?}"),
+                    v,
+                    tangent,
+                    1e-12 * norm(constant),
+                );
+            }
             let w = sample(sampling, &random, t, b);
             assert!(
                 dot(w, n).abs() <= 1e-12 * (1.0 + norm(w)),
@@ -103,6 +124,53 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
             );
         }
     }
+}
+
+/// Core, if the complex samples 1-forms on edges and fixes some edges (relative forms): a random
+/// field of the space sampled at three points of each fixed edge, in its face, has no component
+/// along the edge (to 1e-12 of the largest sampled vector): relative 1-forms are normal to the
+/// boundary. At least one fixed edge must be a boundary edge of the mesh, and every fixed edge is.
+pub fn check_relative_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+    let Some(sampling) = complex.sampling() else {
+        return;
+    };
+    let nodes = complex.field_nodes();
+    if nodes.kind != NodeKind::Edges || nodes.dirichlet_count() == 0 {
+        return;
+    }
+    let mesh = &mesh.mesh;
+    let field = random_field(complex, 41);
+    let mut checked = 0;
+    let mut largest = 0.0f64;
+    let mut worst = 0.0f64;
+    for (t, edges) in mesh.face_edges().iter().enumerate() {
+        for (c, &e) in edges.iter().enumerate() {
+            if !nodes.dirichlet[e] {
+                continue;
+            }
+            assert!(
+                mesh.is_boundary_edge(e),
+                "fixed edge {e} is not a boundary edge"
+            );
+            let [a, b] = mesh.edges()[e];
+            let along = sub(mesh.positions()[b], mesh.positions()[a]);
+            let along = scale(along, 1.0 / norm(along));
+            for s in [0.0, 0.3, 1.0] {
+                let mut point = [0.0; 3];
+                point[(c + 1) % 3] = s;
+                point[(c + 2) % 3] = 1.0 - s;
+                let v = sample(sampling, &field, t, point);
+                largest = largest.max(norm(v));
+                worst = worst.max(dot(v, along).abs());
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 0, "no fixed edge checked");
+    assert!(
+        worst <= 1e-12 * largest,
+        "a relative 1-form has a component {worst:e} along a boundary edge (largest {largest:e})"
+    );
 }
 
 /// Core, if the complex evaluates (co-)potentials at points: weights of both spaces sum to 1 at

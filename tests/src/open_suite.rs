@@ -5,7 +5,7 @@
 use crate::algebra_checks::{
     check_d1_d0_zero, check_nodes_and_masses, check_psd_operators, check_symmetric_operators,
 };
-use crate::capability_checks::{check_point_evaluation, check_sampling};
+use crate::capability_checks::{check_point_evaluation, check_relative_sampling, check_sampling};
 use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{
     check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
@@ -22,7 +22,8 @@ use tvf_core::geometry::{dot, norm, sub};
 /// `bunny.obj` where present, sparse checks only) with boundary condition `boundary`: shapes and
 /// masses, `d1 d0 = 0`, symmetry, semi-definiteness, capabilities, the Hodge decomposition, `dim
 /// ker L = 2g + b − 1` per component (dense and by harmonic projection), the spectrum union,
-/// Lemma 1, the complete orthonormal basis and the essential boundary conditions. If the entry
+/// Lemma 1, the complete orthonormal basis, the essential boundary conditions and, for relative
+/// forms, fields that vanish on the boundary edges and sample normal to the boundary. If the entry
 /// does not offer `boundary`, checks that construction fails with
 /// [`DiscretizationError::UnsupportedBoundaryCondition`] instead.
 pub fn open_mesh_suite(id: &str, boundary: BoundaryCondition) {
@@ -56,6 +57,7 @@ fn run_core_checks(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
     check_d1_d0_zero(complex);
     check_symmetric_operators(complex);
     check_sampling(complex, mesh);
+    check_relative_sampling(complex, mesh);
     check_point_evaluation(complex, mesh);
     check_hodge_decomposition(complex, 17);
     check_kernel_is_2g_sparse(complex, mesh, 23);
@@ -69,6 +71,38 @@ fn run_core_checks(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
         check_lemma1(complex);
         check_basis_orthonormal(complex, 29);
         check_essential_boundary_conditions(complex, mesh);
+        check_fields_vanish_on_fixed_nodes(complex);
+    }
+}
+
+/// Where the complex fixes field nodes (relative forms: boundary edges), every eigenfield of
+/// Lemma 1 and every harmonic basis field is zero there, to round-off (`1e-12` of its largest
+/// coefficient); at least one field is checked.
+pub fn check_fields_vanish_on_fixed_nodes(complex: &dyn HodgeComplex) {
+    let nodes = complex.field_nodes();
+    if nodes.dirichlet_count() == 0 {
+        return;
+    }
+    let mut fields: Vec<Vec<f64>> = lemma1_eigenfields(complex)
+        .into_iter()
+        .map(|(_, u)| u)
+        .collect();
+    fields.extend(
+        tvf_discretizations::HodgeDecomposer::new(complex)
+            .expect("decomposer factors")
+            .harmonic_basis(31)
+            .expect("harmonic basis"),
+    );
+    assert!(!fields.is_empty(), "no field to check");
+    for (k, field) in fields.iter().enumerate() {
+        let largest = field.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let on_fixed = (0..field.len())
+            .filter(|&i| nodes.dirichlet[i])
+            .fold(0.0f64, |m, i| m.max(field[i].abs()));
+        assert!(
+            on_fixed <= 1e-12 * largest,
+            "field {k} has {on_fixed:e} on a fixed field node (largest {largest:e})"
+        );
     }
 }
 

@@ -13,9 +13,15 @@ use tvf_discretizations::HodgeDecomposer;
 /// Relative threshold (of the largest eigenvalue) below which an eigenvalue counts as zero.
 const ZERO: f64 = 1e-9;
 
-/// The spectrum of `L`, ascending: the generalized eigenvalues of `(S, M1)`.
+/// The spectrum of `L`, ascending: the generalized eigenvalues of `(S, M1)` on the free field
+/// nodes (every field node unless the complex fixes some, as relative forms fix boundary edges).
 pub fn hodge_spectrum<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<f64> {
-    generalized_eigenvalues(complex.dirichlet_energy(), complex.m1().values())
+    let (s, m, _) = restrict_to_free(
+        complex.dirichlet_energy(),
+        complex.m1().values(),
+        complex.field_nodes(),
+    );
+    generalized_eigenvalues(&s, &m)
 }
 
 /// The nonzero spectrum of `L` is the union of the nonzero spectra of the exact pair
@@ -116,8 +122,8 @@ pub fn check_lemma1<H: HodgeComplex + ?Sized>(complex: &H) {
 }
 
 /// Lemma 2: the eigenfields of both scalar problems and an `M1`-orthonormal harmonic basis
-/// together are `n1` fields with `Uᵀ M1 U = I` (max deviation ≤ 1e-9): a complete orthonormal
-/// basis of the fields.
+/// together are as many fields as there are free field nodes (`n1` unless the complex fixes
+/// some), with `Uᵀ M1 U = I` (max deviation ≤ 1e-9): a complete orthonormal basis of the fields.
 pub fn check_basis_orthonormal<H: HodgeComplex + ?Sized>(complex: &H, seed: u64) {
     let mut basis: Vec<Vec<f64>> = lemma1_eigenfields(complex)
         .into_iter()
@@ -128,17 +134,20 @@ pub fn check_basis_orthonormal<H: HodgeComplex + ?Sized>(complex: &H, seed: u64)
         .harmonic_basis(seed)
         .expect("harmonic basis");
     basis.extend(harmonic);
-    let n = complex.field_dimension();
+    let (n, free) = (
+        complex.field_dimension(),
+        complex.field_nodes().free_count(),
+    );
     assert_eq!(
         basis.len(),
-        n,
-        "eigenfields + harmonic fields = field dimension"
+        free,
+        "eigenfields + harmonic fields = free field nodes"
     );
     let sqrt_mass: Vec<f64> = complex.m1().values().iter().map(|m| m.sqrt()).collect();
-    let weighted = Mat::<f64>::from_fn(n, n, |i, j| sqrt_mass[i] * basis[j][i]);
+    let weighted = Mat::<f64>::from_fn(n, free, |i, j| sqrt_mass[i] * basis[j][i]);
     let gram = weighted.transpose() * &weighted;
-    for i in 0..n {
-        for j in 0..n {
+    for i in 0..free {
+        for j in 0..free {
             let expected = if i == j { 1.0 } else { 0.0 };
             assert!(
                 (gram[(i, j)] - expected).abs() <= 1e-9,

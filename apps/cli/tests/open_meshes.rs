@@ -1,6 +1,7 @@
 //! Meshes with boundary through the commands: a generated pair of pants (three boundary loops)
-//! with both boundary conditions, and the raw `bunny.obj` of `../shared/meshes` (five loops,
-//! unreferenced vertices) where it exists.
+//! with both boundary conditions, for the default finite-element entry and (Delaunay-flipped) for
+//! DEC, and the raw `bunny.obj` of `../shared/meshes` (five loops, unreferenced vertices) where it
+//! exists.
 
 mod common;
 
@@ -10,6 +11,7 @@ use std::path::Path;
 use tvf_core::generate::perforated_plate;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_core::SurfaceMesh;
+use tvf_tests::corpus::delaunay_flips;
 
 fn run(dir: &Path, args: &[&str]) -> std::process::Output {
     let output = tvf()
@@ -41,9 +43,9 @@ fn write_field(mesh: &SurfaceMesh, path: &Path) {
     std::fs::write(path, field).unwrap();
 }
 
-/// Constraints at an interior vertex and an interior edge (boundary nodes are fixed by one of the
-/// boundary conditions).
-fn write_constraints(mesh: &SurfaceMesh, path: &Path) {
+/// Constraints at an interior vertex and an interior edge, or with `curl_on_faces` (DEC) face 7
+/// (boundary nodes are fixed by one of the boundary conditions).
+fn write_constraints(mesh: &SurfaceMesh, path: &Path, curl_on_faces: bool) {
     let mut on_boundary = vec![false; mesh.vertex_count()];
     for e in mesh.boundary_edges() {
         for v in mesh.edges()[e] {
@@ -54,20 +56,36 @@ fn write_constraints(mesh: &SurfaceMesh, path: &Path) {
     let edge = (0..mesh.edge_count())
         .find(|&e| !mesh.edges()[e].iter().any(|&v| on_boundary[v]))
         .unwrap();
+    let curl_node = if curl_on_faces {
+        r#""face": 7"#.to_string()
+    } else {
+        format!(r#""edge": {edge}"#)
+    };
     let constraints = format!(
         r#"{{"constraints": [
         {{"id": "v", "kind": "vector", "face": 3, "value": [1.0, 0.5, 0.0]}},
         {{"id": "s", "kind": "divergence", "vertex": {vertex}, "value": 2.0}},
-        {{"id": "c", "kind": "curl", "edge": {edge}, "value": -1.0}}
+        {{"id": "c", "kind": "curl", {curl_node}, "value": -1.0}}
     ]}}"#
     );
     std::fs::write(path, constraints).unwrap();
 }
 
-/// basis, coefficients, decompose, filter, spline, design (reduced and full), render on `mesh`
-/// (the file `name` in `dir`) with boundary condition `boundary`; `k` eigenfields.
-fn every_command(dir: &Path, name: &str, boundary: &str, k: &str, harmonic: usize) {
-    let b = ["--boundary", boundary];
+/// basis, coefficients, decompose, filter, spline, design (reduced and full), render, analyze,
+/// compress, decompress, rate-distortion, export and the quick demo on `mesh` (the file `name` in
+/// `dir`) with catalog entry `discretization` and boundary condition `boundary`; `k`
+/// eigenfields.
+fn every_command(
+    dir: &Path,
+    name: &str,
+    discretization: &str,
+    boundary: &str,
+    k: &str,
+    harmonic: usize,
+) {
+    let b = ["--boundary", boundary, "--discretization", discretization];
+    let boundary = format!("{discretization}-{boundary}");
+    let boundary = boundary.as_str();
     let basis_file = format!("{boundary}.tvfb");
     let basis = json(&run(
         dir,
@@ -77,7 +95,7 @@ fn every_command(dir: &Path, name: &str, boundary: &str, k: &str, harmonic: usiz
         ]
         .concat(),
     ));
-    let expected_id = format!("conforming-barycentric+{boundary}");
+    let expected_id = format!("{discretization}+{}", b[1]);
     assert_eq!(basis["discretization"], expected_id.as_str());
     assert_eq!(basis["harmonic"], harmonic);
     // The basis file brings its boundary condition back without the flag.
@@ -288,13 +306,20 @@ fn a_pair_of_pants_runs_through_every_command_with_both_boundary_conditions() {
     let mesh = perforated_plate(2, 8);
     write_obj(dir.join("pants.obj"), &mesh).unwrap();
     write_field(&mesh, &dir.join("field.txt"));
-    write_constraints(&mesh, &dir.join("c.json"));
+    write_constraints(&mesh, &dir.join("c.json"), false);
     let info = json(&run(dir, &["info", "pants.obj", "--json"]));
     assert_eq!(info["boundary_loops"], 3);
     assert_eq!(info["harmonic_dimension"]["tangential"], 2);
     assert_eq!(info["harmonic_dimension"]["normal"], 2);
     for boundary in ["tangential", "normal"] {
-        every_command(dir, "pants.obj", boundary, "30", 2);
+        every_command(
+            dir,
+            "pants.obj",
+            "conforming-barycentric",
+            boundary,
+            "30",
+            2,
+        );
     }
     // A divergence on a boundary vertex cannot be prescribed where potentials are fixed.
     let boundary_vertex = mesh.edges()[mesh.boundary_edges()[0]][0];
@@ -317,25 +342,56 @@ fn a_pair_of_pants_runs_through_every_command_with_both_boundary_conditions() {
 }
 
 #[test]
-fn dec_refuses_the_normal_boundary_condition_with_a_clear_error() {
+fn dec_runs_through_every_command_on_a_delaunay_pair_of_pants_with_both_boundary_conditions() {
     let temp = tempfile::tempdir().unwrap();
-    let output = tvf()
-        .current_dir(temp.path())
-        .args(["spectrum", "--example", "hemisphere", "-k", "4"])
-        .args([
+    let dir = temp.path();
+    let mesh = delaunay_flips(&perforated_plate(2, 8));
+    write_obj(dir.join("pants.obj"), &mesh).unwrap();
+    write_field(&mesh, &dir.join("field.txt"));
+    write_constraints(&mesh, &dir.join("c.json"), true);
+    for boundary in ["tangential", "normal"] {
+        every_command(dir, "pants.obj", "dec-circumcentric", boundary, "30", 2);
+    }
+    // The exported matrices say which nodes relative forms fix: boundary vertices and edges.
+    run(
+        dir,
+        &[
+            "operators",
+            "pants.obj",
             "--discretization",
-            "dec-barycentric",
+            "dec-circumcentric",
             "--boundary",
             "normal",
-        ])
+            "-o",
+            "ops",
+        ],
+    );
+    let info: Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("ops/info.json")).unwrap()).unwrap();
+    let boundary_edges = mesh.boundary_edges().len();
+    assert_eq!(info["fixed_nodes"]["fields"], boundary_edges, "{info}");
+    // On a boundary loop there are as many vertices as edges.
+    assert_eq!(info["fixed_nodes"]["potentials"], boundary_edges, "{info}");
+    assert_eq!(info["fixed_nodes"]["co_potentials"], 0, "{info}");
+    // Relative forms (normal) fix the 0-forms at boundary vertices: a divergence there is refused.
+    let boundary_vertex = mesh.edges()[mesh.boundary_edges()[0]][0];
+    std::fs::write(
+        dir.join("bad.json"),
+        format!(
+            r#"{{"constraints": [{{"id": "s", "kind": "divergence", "vertex": {boundary_vertex}, "value": 1.0}}]}}"#
+        ),
+    )
+    .unwrap();
+    let output = tvf()
+        .current_dir(dir)
+        .args(["design", "pants.obj", "--constraints", "bad.json", "--full"])
+        .args(["-o", "bad.npy", "--boundary", "normal", "--quiet"])
+        .args(["--discretization", "dec-circumcentric"])
         .output()
         .unwrap();
     assert!(!output.status.success());
     let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        stderr.contains("does not offer the boundary condition 'normal'"),
-        "{stderr}"
-    );
+    assert!(stderr.contains("lies on the boundary"), "{stderr}");
 }
 
 #[test]
@@ -350,9 +406,47 @@ fn the_raw_bunny_runs_through_every_command() {
     std::fs::copy(&path, dir.join("bunny.obj")).unwrap();
     let mesh = load_mesh(&path).unwrap().mesh;
     write_field(&mesh, &dir.join("field.txt"));
-    write_constraints(&mesh, &dir.join("c.json"));
+    write_constraints(&mesh, &dir.join("c.json"), false);
     let info = json(&run(dir, &["info", "bunny.obj", "--json"]));
     assert_eq!(info["boundary_loops"], 5);
     assert_eq!(info["harmonic_dimension"]["tangential"], 4);
-    every_command(dir, "bunny.obj", "tangential", "20", 4);
+    every_command(
+        dir,
+        "bunny.obj",
+        "conforming-barycentric",
+        "tangential",
+        "20",
+        4,
+    );
+}
+
+#[test]
+fn the_catalog_listing_names_both_boundary_conditions_and_what_they_fix() {
+    let temp = tempfile::tempdir().unwrap();
+    let listing = json(&run(temp.path(), &["discretizations", "--json"]));
+    let entries = listing["discretizations"].as_array().unwrap();
+    assert_eq!(entries.len(), 6);
+    for entry in entries {
+        assert_eq!(
+            entry["boundary_conditions"],
+            serde_json::json!(["tangential", "normal"]),
+            "{entry}"
+        );
+        let id = entry["id"].as_str().unwrap();
+        let normal = entry["boundary_meanings"]["normal"].as_str().unwrap();
+        let expected = if id.starts_with("dec-") {
+            "relative forms"
+        } else if id.starts_with("conforming-") {
+            "P1 potentials zero"
+        } else {
+            "Crouzeix–Raviart potentials zero"
+        };
+        assert!(normal.contains(expected), "{id}: {normal}");
+    }
+    let text = String::from_utf8(run(temp.path(), &["discretizations"]).stdout).unwrap();
+    let dec = text
+        .lines()
+        .find(|l| l.starts_with("dec-circumcentric"))
+        .unwrap();
+    assert!(dec.contains("normal (relative forms"), "{dec}");
 }

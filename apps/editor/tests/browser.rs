@@ -1,7 +1,9 @@
 //! End to end in a real headless browser (Debian's chromium driven by chromedriver over the
 //! WebDriver protocol): load the editor for an icosphere, add a vector constraint by dragging on
 //! the canvas, check that the server's field satisfies it and that the page shows the update;
-//! then trigger a conflicting constraint (the page must show the error) and fur mode.
+//! then trigger a conflicting constraint (the page must show the error) and fur mode. On a mesh
+//! with boundary (a pair of pants), with both boundary conditions: place a vector constraint and
+//! a source by mouse and check that the page shows the server's finite field.
 //!
 //! Skips with a message when chromium or chromedriver are not installed (`.ci/browser-setup`
 //! installs them). Screenshots go to `$TVF_SCREENSHOT_DIR` (default: the target's temp dir).
@@ -13,7 +15,8 @@ mod webdriver;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use common::{icosphere_server_for, Client};
+use common::{icosphere_server_for, pants_server_for, Client};
+use tvf_core::discretization::BoundaryCondition;
 use tvf_discretizations::DEFAULT_DISCRETIZATION;
 use webdriver::{find_executable, Browser};
 
@@ -43,10 +46,9 @@ fn editor_page_works_with_dec_one_forms() {
     drive_the_editor("dec-circumcentric", "editor-dec");
 }
 
-/// Loads the page for the catalog entry `id`, adds a vector constraint by dragging, checks the
-/// field and the page, provokes a conflict, adds a source and grows fur; screenshots are named
-/// `{prefix}-*.png`.
-fn drive_the_editor(id: &str, prefix: &str) {
+/// The browser pair `(chromium, chromedriver)`, or `None` with a message outside CI (in CI a
+/// missing browser fails the test).
+fn browser_executables(what: &str) -> Option<(PathBuf, PathBuf)> {
     let (Some(chromium), Some(chromedriver)) =
         (find_executable("chromium"), find_executable("chromedriver"))
     else {
@@ -55,7 +57,152 @@ fn drive_the_editor(id: &str, prefix: &str) {
             std::env::var("CI").map_or(true, |v| v != "true"),
             "CI=true but chromium or chromedriver is not on PATH (run .ci/browser-setup)"
         );
-        println!("SKIPPED the browser test on {id}: chromium or chromedriver not on PATH (run .ci/browser-setup)");
+        println!("SKIPPED the browser test on {what}: chromium or chromedriver not on PATH (run .ci/browser-setup)");
+        return None;
+    };
+    Some((chromium, chromedriver))
+}
+
+/// Waits (up to 10 s) until the page shows the field version the server holds; returns the
+/// server's check.
+fn wait_until_the_page_shows_the_server_field(
+    browser: &Browser,
+    client: &Client,
+) -> serde_json::Value {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        let check = client.check();
+        let version = check["version"].as_u64().unwrap();
+        let shown: u64 = browser
+            .script("return document.body.dataset.version;")
+            .unwrap()
+            .as_str()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0);
+        if shown == version || Instant::now() > deadline {
+            return check;
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// On a pair of pants (three boundary loops) with both boundary conditions, for the default
+/// entry and DEC (relative forms for `normal`): the page starts,
+/// a drag in an interior face adds a vector constraint and a click with the source tool a
+/// divergence constraint in another interior face; the server's field satisfies both, the page
+/// shows its version and residual, and every vector the page draws is finite (and not all zero).
+#[test]
+fn editor_page_edits_a_pair_of_pants_with_both_boundary_conditions() {
+    let Some((chromium, chromedriver)) = browser_executables("a pair of pants") else {
+        return;
+    };
+    for (id, boundary) in [DEFAULT_DISCRETIZATION, "dec-circumcentric"]
+        .into_iter()
+        .flat_map(|id| BoundaryCondition::ALL.map(|b| (id, b)))
+    {
+        let prefix = format!("editor-pants-{id}-{}", boundary.name());
+        let (server, mesh) = pants_server_for(id, boundary);
+        let client = Client::new(&server);
+        let browser =
+            Browser::start(&chromedriver, &chromium, 1200, 800).expect("headless chromium session");
+        browser.goto(&server.url()).expect("open the page");
+        let ready = browser
+            .wait_for("return document.body.dataset.ready || (document.body.dataset.error ? 'error: ' + document.body.dataset.error : null);", Duration::from_secs(20))
+            .expect("page starts");
+        assert_eq!(
+            ready, "true",
+            "{id} {boundary:?}: the page failed to start: {ready}"
+        );
+        let before = browser.screenshot().expect("screenshot");
+        save(&format!("{prefix}-1-loaded.png"), &before);
+        // Two interior faces (no boundary vertex), the ones farthest apart along x.
+        let mut on_boundary = vec![false; mesh.vertex_count()];
+        for e in mesh.boundary_edges() {
+            for v in mesh.edges()[e] {
+                on_boundary[v] = true;
+            }
+        }
+        let interior: Vec<usize> = (0..mesh.face_count())
+            .filter(|&t| mesh.faces()[t].iter().all(|&v| !on_boundary[v]))
+            .collect();
+        let x = |t: usize| mesh.corner(t, 0)[0];
+        let left = *interior
+            .iter()
+            .min_by(|&&a, &&b| x(a).total_cmp(&x(b)))
+            .unwrap();
+        let right = *interior
+            .iter()
+            .max_by(|&&a, &&b| x(a).total_cmp(&x(b)))
+            .unwrap();
+        let screen = |face: usize| {
+            let p = browser
+                .script(&format!(
+                    "const {{ app, screenOf }} = window.tvfEditor;                      const s = screenOf(app.mesh.pointAt({face}, [1/3, 1/3, 1/3]));                      const r = document.getElementById('view').getBoundingClientRect();                      return [Math.round(r.left + s[0]), Math.round(r.top + s[1])];"
+                ))
+                .expect("screen position of a face");
+            (p[0].as_i64().unwrap(), p[1].as_i64().unwrap())
+        };
+        let (lx, ly) = screen(left);
+        browser
+            .drag((lx, ly), (lx + 60, ly - 25))
+            .expect("drag on the canvas");
+        browser
+            .wait_for("return document.getElementById('constraint-count').textContent === '1' && !document.querySelector('#error:not([hidden])');", Duration::from_secs(10))
+            .expect("the page shows one constraint");
+        browser
+            .click(&browser.element("button[data-tool=source]").unwrap())
+            .unwrap();
+        let (rx, ry) = screen(right);
+        browser
+            .drag((rx, ry), (rx, ry))
+            .expect("click for a source");
+        browser
+            .wait_for(
+                "return document.getElementById('constraint-count').textContent === '2' && !document.querySelector('#error:not([hidden])');",
+                Duration::from_secs(10),
+            )
+            .expect("the source is added");
+        let check = wait_until_the_page_shows_the_server_field(&browser, &client);
+        let constraints = check["constraints"].as_array().expect("constraints");
+        assert_eq!(constraints.len(), 2, "{id} {boundary:?}: {check}");
+        assert!(
+            check["max_relative"].as_f64().unwrap() < 1e-9,
+            "{id} {boundary:?}: the held field misses the constraints: {check}"
+        );
+        let shown = browser
+            .script(
+                "const v = window.tvfEditor.app.vectors;                  let finite = true, largest = 0;                  for (const x of v) { finite = finite && Number.isFinite(x); largest = Math.max(largest, Math.abs(x)); }                  return [document.body.dataset.version, document.getElementById('residual').textContent, finite, largest, v.length];",
+            )
+            .unwrap();
+        assert_eq!(
+            shown[0].as_str().unwrap(),
+            check["version"].as_u64().unwrap().to_string(),
+            "{id} {boundary:?}: the page shows the server's field version"
+        );
+        let residual: f64 = shown[1].as_str().unwrap().parse().expect("residual shown");
+        assert!(residual < 1e-9, "{id} {boundary:?}: residual {residual}");
+        assert_eq!(
+            shown[2], true,
+            "{id} {boundary:?}: the page holds a non-finite vector"
+        );
+        assert!(
+            shown[3].as_f64().unwrap() > 0.0,
+            "{id} {boundary:?}: the field is zero"
+        );
+        assert_eq!(shown[4].as_u64().unwrap() as usize, 3 * mesh.face_count());
+        let after = browser.screenshot().expect("screenshot");
+        save(&format!("{prefix}-2-constraints.png"), &after);
+        assert_ne!(before, after, "{id} {boundary:?}: the picture changed");
+        drop(browser);
+        server.shutdown();
+    }
+}
+
+/// Loads the page for the catalog entry `id`, adds a vector constraint by dragging, checks the
+/// field and the page, provokes a conflict, adds a source and grows fur; screenshots are named
+/// `{prefix}-*.png`.
+fn drive_the_editor(id: &str, prefix: &str) {
+    let Some((chromium, chromedriver)) = browser_executables(id) else {
         return;
     };
     let started = Instant::now();
@@ -90,23 +237,7 @@ fn drive_the_editor(id: &str, prefix: &str) {
         .wait_for("return document.getElementById('constraint-count').textContent === '1' && !document.querySelector('#error:not([hidden])');", Duration::from_secs(10))
         .expect("the page shows one constraint");
     // Wait until the server answered the last drag step and the page has shown it.
-    let check = {
-        let deadline = Instant::now() + Duration::from_secs(10);
-        loop {
-            let check = client.check();
-            let version = check["version"].as_u64().unwrap();
-            let shown: u64 = browser
-                .script("return document.body.dataset.version;")
-                .unwrap()
-                .as_str()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(0);
-            if shown == version || Instant::now() > deadline {
-                break check;
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
-    };
+    let check = wait_until_the_page_shows_the_server_field(&browser, &client);
     let constraints = check["constraints"].as_array().expect("constraints");
     assert_eq!(constraints.len(), 1, "{check}");
     assert!(

@@ -66,11 +66,21 @@ fn meshes_with_boundary_edit_with_both_boundary_conditions() {
     use tvf_core::generate::perforated_plate;
     use tvf_design::ReducedBasis;
     use tvf_spectral::{compute_basis, BasisRequest};
-    // A plate with two holes (three boundary loops); the id names the boundary condition, as
-    // basis files on meshes with boundary store it.
-    let mesh = perforated_plate(2, 8);
-    let entry = tvf_discretizations::catalog_entry("conforming-barycentric").unwrap();
-    for boundary in BoundaryCondition::ALL {
+    // A plate with two holes (three boundary loops), Delaunay-flipped for DEC (whose `normal`
+    // is the complex of relative forms); the id names the boundary condition, as basis files on
+    // meshes with boundary store it.
+    let plate = perforated_plate(2, 8);
+    for (id, mesh, boundary) in BoundaryCondition::ALL.into_iter().flat_map(|boundary| {
+        [
+            ("conforming-barycentric", plate.clone(), boundary),
+            (
+                "dec-circumcentric",
+                tvf_tests::corpus::delaunay_flips(&plate),
+                boundary,
+            ),
+        ]
+    }) {
+        let entry = tvf_discretizations::catalog_entry(id).unwrap();
         let complex = entry.build_with(&mesh, boundary).unwrap();
         let spectral = compute_basis(complex.as_ref(), &BasisRequest::fields(60)).unwrap();
         let editor = Editor::start(EditorSetup {
@@ -80,7 +90,7 @@ fn meshes_with_boundary_edit_with_both_boundary_conditions() {
             basis_size: None,
             discretization: complex.id().to_string(),
         })
-        .unwrap_or_else(|e| panic!("{boundary:?}: {e}"));
+        .unwrap_or_else(|e| panic!("{id} {boundary:?}: {e}"));
         for constraint in [
             r#"{"id": "v", "kind": "vector", "face": 7, "value": [1.0, 0.5, 0.0]}"#,
             r#"{"id": "s", "kind": "divergence", "face": 100, "value": 2.0}"#,
@@ -88,12 +98,12 @@ fn meshes_with_boundary_edit_with_both_boundary_conditions() {
             let op = format!(r#"{{"op": "add", "constraint": {constraint}}}"#);
             editor
                 .edit(EditOp::parse(op.as_bytes()).unwrap())
-                .unwrap_or_else(|e| panic!("{boundary:?}: {constraint}: {e}"));
+                .unwrap_or_else(|e| panic!("{id} {boundary:?}: {constraint}: {e}"));
         }
         let check = editor.check().unwrap();
         assert!(
             check.max_relative < 1e-9,
-            "{boundary:?}: residual {}",
+            "{id} {boundary:?}: residual {}",
             check.max_relative
         );
     }

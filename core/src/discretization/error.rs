@@ -76,6 +76,18 @@ pub enum DiscretizationError {
         /// Why, and what is offered instead.
         reason: &'static str,
     },
+    /// A value at a node the boundary condition fixes to zero (a Dirichlet node) is not zero: the
+    /// vector is not in the complex's space (e.g. a 1-form with a value on a boundary edge given
+    /// to a complex of relative forms).
+    #[error("{what} has the value {value:e} at node {index}, which the boundary condition fixes to zero")]
+    NonzeroOnDirichletNode {
+        /// What was being passed.
+        what: &'static str,
+        /// The first offending node.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
     /// The matrices of a complex do not fit together.
     #[error("inconsistent complex: {0}")]
     Inconsistent(String),

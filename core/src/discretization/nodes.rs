@@ -33,10 +33,15 @@ impl NodeKind {
 /// belongs to, and which values the boundary condition fixes.
 ///
 /// On a mesh with boundary a space may have **Dirichlet nodes**: nodes whose value is zero by the
-/// boundary condition (P1 at boundary vertices, Crouzeix–Raviart at boundary edge midpoints). They
-/// keep their index (node `i` is still vertex or edge `i`), but their column of `d0` (potential
-/// space) or row of `d1` (co-potential space) is zero, so they carry no degree of freedom:
-/// Poisson solves and eigenproblems work on the **free** nodes ([`NodeSpace::is_free`]).
+/// boundary condition (P1 at boundary vertices, Crouzeix–Raviart at boundary edge midpoints, DEC
+/// relative forms at boundary vertices and edges). They keep their index (node `i` is still
+/// vertex or edge `i`), but their column of `d0` (potential space), row of `d1` (co-potential
+/// space), or row of `d0` and column of `d1` (field space) is zero, so they carry no degree of
+/// freedom: Poisson solves and eigenproblems work on the **free** nodes ([`NodeSpace::is_free`]).
+/// A field is zero on the Dirichlet field nodes: sampling gives them no weight, and the
+/// decomposition refuses a field that is not zero there. `L` restricted to the free field nodes
+/// has the harmonic fields as its kernel (each Dirichlet field node adds a zero row and column
+/// to `S`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodeSpace {
     /// The mesh element of each node.
@@ -119,7 +124,8 @@ impl NodeSpace {
 /// | `Normal` | zero on the boundary (Dirichlet) | free (Neumann) | normal | `H_D`, Dirichlet fields |
 ///
 /// Both have `2g + b − 1` harmonic fields on a connected component of genus `g` with `b ≥ 1`
-/// boundary loops. DEC offers `Tangential` (absolute forms) only.
+/// boundary loops. For DEC, `Tangential` is the complex of absolute forms and `Normal` that of
+/// relative forms (zero on boundary vertices and edges).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum BoundaryCondition {
     /// Potentials free, co-potentials zero on the boundary: every eigenfield and harmonic field

@@ -12,7 +12,7 @@ use tvf_discretizations::{catalog, DEFAULT_DISCRETIZATION};
 preconditions on the mesh. --decomposition NAME --mass MASS is a shorthand for the id NAME-MASS."
 )]
 pub struct DiscretizationsArgs {
-    /// Print JSON to stdout: {"default": ID, "discretizations": [{"id", "description", "preconditions", "boundary_conditions"}, ...]}.
+    /// Print JSON to stdout: {"default": ID, "discretizations": [{"id", "description", "preconditions", "boundary_conditions", "boundary_meanings": {CONDITION: TEXT}}, ...]}.
     #[arg(long)]
     json: bool,
 }
@@ -28,6 +28,11 @@ pub fn run(args: DiscretizationsArgs) -> Result<()> {
                     "description": e.description,
                     "preconditions": e.preconditions,
                     "boundary_conditions": boundary_names(e),
+                    "boundary_meanings": e
+                        .boundary_conditions
+                        .iter()
+                        .map(|&b| (b.name().to_string(), json!(e.boundary_meaning(b))))
+                        .collect::<serde_json::Map<_, _>>(),
                 })
             })
             .collect();
@@ -48,7 +53,12 @@ pub fn run(args: DiscretizationsArgs) -> Result<()> {
             entry.id,
             entry.description,
             entry.preconditions,
-            boundary_names(entry).join(", ")
+            entry
+                .boundary_conditions
+                .iter()
+                .map(|&b| format!("{} ({})", b.name(), entry.boundary_meaning(b)))
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     Ok(())

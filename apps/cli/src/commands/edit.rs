@@ -5,6 +5,7 @@ use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
+use tvf_core::ValidationWarning;
 use tvf_design::ConstraintSet;
 use tvf_design::ReducedBasis;
 use tvf_editor::{Editor, EditorServer, EditorSetup};
@@ -32,7 +33,8 @@ pub struct EditArgs {
 
 /// Runs `tvf edit` until the process is stopped.
 pub fn run(args: EditArgs) -> Result<()> {
-    let mesh = args.input.load()?.mesh;
+    let loaded = args.input.load()?;
+    let mesh = loaded.mesh;
     let constraints = match &args.constraints {
         Some(path) => {
             let set = ConstraintSet::load(path)?;
@@ -50,6 +52,15 @@ pub fn run(args: EditArgs) -> Result<()> {
         mesh.face_count(),
         basis.len()
     );
+    // Vertex numbers in constraints count the referenced vertices only: say what was dropped.
+    for warning in &loaded.report.warnings {
+        if let ValidationWarning::UnreferencedVertices { .. } = warning {
+            println!(
+                "mesh            {}: {warning}; vertex numbers count the referenced vertices",
+                args.input.label()
+            );
+        }
+    }
     let editor = Editor::start(EditorSetup {
         mesh,
         basis,

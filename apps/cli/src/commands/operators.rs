@@ -89,6 +89,12 @@ fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &StagedFolder)
             "fields": nodes(complex.field_nodes()),
             "co_potentials": nodes(complex.co_potential_nodes()),
         },
+        "fixed_nodes": {
+            "about": "nodes the boundary condition fixes to zero: their columns of d0 (potentials), rows of d0 and columns of d1 (fields) or rows of d1 (co-potentials) are empty",
+            "potentials": complex.potential_nodes().dirichlet_count(),
+            "fields": complex.field_nodes().dirichlet_count(),
+            "co_potentials": complex.co_potential_nodes().dirichlet_count(),
+        },
         "matrices": {
             "d0": format!("{n1} x {n0}, gradient: potentials -> fields (pointwise)"),
             "d1": format!("{n2} x {n1}, integrated curl: fields -> co-potentials; d1 d0 = 0"),

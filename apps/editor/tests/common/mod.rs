@@ -7,7 +7,9 @@ use std::collections::HashMap;
 use std::io::Read;
 use std::sync::Mutex;
 
-use tvf_core::generate::icosphere;
+use tvf_core::discretization::BoundaryCondition;
+use tvf_core::generate::{icosphere, perforated_plate};
+use tvf_core::SurfaceMesh;
 use tvf_design::ReducedBasis;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 use tvf_editor::{Editor, EditorServer, EditorSetup};
@@ -68,6 +70,30 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
     })
     .expect("editor starts");
     EditorServer::start(editor, 0).expect("server starts")
+}
+
+/// The editor on a generated pair of pants (`perforated_plate(2, 8)`: flat, genus 0, three
+/// boundary loops; Delaunay-flipped for entries that need it) with catalog entry `id`, boundary
+/// condition `boundary` and its 60 lowest eigenfields, served on 127.0.0.1; also returns the
+/// mesh.
+pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, SurfaceMesh) {
+    let entry = catalog_entry(id).expect("catalog id");
+    let mesh = if entry.needs_delaunay {
+        tvf_tests::corpus::delaunay_flips(&perforated_plate(2, 8))
+    } else {
+        perforated_plate(2, 8)
+    };
+    let complex = entry.build_with(&mesh, boundary).expect("pants operators");
+    let spectral = compute_basis(complex.as_ref(), &BasisRequest::fields(60)).expect("pants basis");
+    let editor = Editor::start(EditorSetup {
+        mesh: mesh.clone(),
+        basis: ReducedBasis::from_spectral(&spectral).expect("reduced basis"),
+        constraints: None,
+        basis_size: None,
+        discretization: complex.id().to_string(),
+    })
+    .expect("editor starts");
+    (EditorServer::start(editor, 0).expect("server starts"), mesh)
 }
 
 /// A blocking HTTP client for one server that returns every status (no error on 4xx) and sends
