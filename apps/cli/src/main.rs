@@ -4,7 +4,7 @@
 
 mod basis_source;
 mod commands;
-mod demo;
+mod demo_page;
 mod discretization_flags;
 mod examples;
 mod interrupt;

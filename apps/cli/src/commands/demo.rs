@@ -1,7 +1,7 @@
 //! `tvf demo`: the tour. Computes a basis on a generated bumpy torus (or `--mesh`) and writes a
 //! web page of pictures and numbers, each step timed.
 
-use crate::demo::{run as run_demo, DemoConfig};
+use crate::demo_page::{run as run_demo, DemoConfig};
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{commit, stage};

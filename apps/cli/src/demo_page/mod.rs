@@ -1,4 +1,5 @@
-//! `tvf demo`: the tour of tvf on one mesh, as a web page of pictures and numbers.
+//! The page `tvf demo` writes (its flags are parsed in `commands/demo.rs`): the tour of tvf on
+//! one mesh, as a web page of pictures and numbers.
 //!
 //! Steps, one file each: the basis ([`basis`]), the eigenfields (paper Figure 1,
 //! [`eigenfields`]), the Hodge decomposition of a field ([`hodge`]), filtering a noisy field
