@@ -11,8 +11,8 @@
 
 use crate::error::PaperError;
 use crate::markdown::{seconds, thousands, Table};
-use crate::progress::Progress;
 use crate::registry::basis_of;
+use crate::step_log::StepLog;
 use tvf_core::generate::icosphere;
 use tvf_core::geometry::{norm, sub};
 use tvf_core::SurfaceMesh;
@@ -134,7 +134,7 @@ pub fn family_error(
 pub fn run(
     entries: &[CatalogEntry],
     config: &ComparisonConfig,
-    progress: &Progress,
+    progress: &StepLog,
 ) -> Result<Vec<DiscretizationResult>, PaperError> {
     let exact = sphere_eigenvalues(config.max_degree);
     let mut results: Vec<DiscretizationResult> = entries

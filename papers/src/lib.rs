@@ -10,11 +10,11 @@
 //!
 //! ```
 //! use tvf_papers::discretization_comparison::{run, ComparisonConfig};
-//! use tvf_papers::progress::Progress;
+//! use tvf_papers::step_log::StepLog;
 //! use tvf_papers::registry::compared_discretizations;
 //!
 //! let config = ComparisonConfig { levels: vec![1, 2], max_degree: 2 };
-//! let results = run(&compared_discretizations()[..1], &config, &Progress::new(true))?;
+//! let results = run(&compared_discretizations()[..1], &config, &StepLog::new(true))?;
 //! // The eigenvalue error falls under refinement.
 //! assert!(results[0].levels[1].error() < results[0].levels[0].error());
 //! # Ok::<(), tvf_papers::error::PaperError>(())
@@ -26,6 +26,6 @@ pub mod discretization_comparison;
 pub mod error;
 pub mod markdown;
 pub mod panels;
-pub mod progress;
 pub mod registry;
+pub mod step_log;
 pub mod timing;

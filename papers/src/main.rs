@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use tvf_papers::brandt2017::{self, report::RunInfo, Config, Sizes};
-use tvf_papers::progress::Progress;
+use tvf_papers::step_log::StepLog;
 
 /// Reproduce papers' tables and figures with tvf.
 #[derive(Debug, Parser)]
@@ -51,7 +51,7 @@ fn main() -> ExitCode {
             large,
             quiet,
         } => {
-            let progress = Progress::new(quiet);
+            let progress = StepLog::new(quiet);
             let config = Config {
                 meshes: meshes.clone(),
                 out: out.clone(),

@@ -8,8 +8,8 @@ use tvf_papers::brandt2017::{
     run, run_mesh, table1, Config, PaperMesh, Results, Role, Sizes, MESHES,
 };
 use tvf_papers::discretization_comparison::{self, ComparisonConfig};
-use tvf_papers::progress::Progress;
 use tvf_papers::registry::compared_discretizations;
+use tvf_papers::step_log::StepLog;
 
 const EVERYTHING: PaperMesh = PaperMesh {
     file: "generated-bumpy-torus",
@@ -44,7 +44,7 @@ fn every_experiment_runs_on_a_generated_mesh_and_the_reports_list_every_result()
         large: false,
         sizes,
     };
-    let progress = Progress::new(true);
+    let progress = StepLog::new(true);
     let mut results = Results::default();
     let mut curves = Vec::new();
     let mut entry = EVERYTHING;
@@ -162,7 +162,7 @@ fn missing_and_failing_meshes_are_skipped_and_the_comparison_still_runs() {
         large: false,
         sizes,
     };
-    let results = run(&config, &Progress::new(true)).unwrap();
+    let results = run(&config, &StepLog::new(true)).unwrap();
     let default_meshes = MESHES.iter().filter(|m| !m.large).count();
     assert_eq!(results.skipped.len(), default_meshes);
     let (mesh, reason) = &results.skipped[0];
@@ -186,7 +186,7 @@ fn every_discretization_converges_on_icospheres() {
         max_degree: 3,
     };
     let results =
-        discretization_comparison::run(compared_discretizations(), &config, &Progress::new(true))
+        discretization_comparison::run(compared_discretizations(), &config, &StepLog::new(true))
             .unwrap();
     assert_eq!(results.len(), compared_discretizations().len());
     for r in &results {

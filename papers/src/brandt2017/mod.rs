@@ -15,8 +15,8 @@ use crate::discretization_comparison::{self, ComparisonConfig, DiscretizationRes
 use crate::error::PaperError;
 use crate::markdown::thousands;
 use crate::panels::save;
-use crate::progress::Progress;
 use crate::registry::compared_discretizations;
+use crate::step_log::StepLog;
 use crate::timing::Repetitions;
 use compression::RateCurve;
 use compression_sequence::SequenceSize;
@@ -218,7 +218,7 @@ pub fn load_average() -> String {
 }
 
 /// Runs every experiment on the meshes present and writes the pictures and the reports.
-pub fn run(config: &Config, progress: &Progress) -> Result<Results, PaperError> {
+pub fn run(config: &Config, progress: &StepLog) -> Result<Results, PaperError> {
     let start = Instant::now();
     std::fs::create_dir_all(&config.out).map_err(|source| PaperError::Write {
         path: config.out.clone(),
@@ -274,7 +274,7 @@ pub fn run_mesh(
     entry: &PaperMesh,
     mesh: &SurfaceMesh,
     config: &Config,
-    progress: &Progress,
+    progress: &StepLog,
     results: &mut Results,
     curves: &mut Vec<RateCurve>,
 ) -> Result<(), PaperError> {
@@ -336,7 +336,7 @@ fn run_role(
     role: Role,
     x: &Experiment,
     sizes: &Sizes,
-    progress: &Progress,
+    progress: &StepLog,
     results: &mut Results,
     curves: &mut Vec<RateCurve>,
 ) -> Result<(), PaperError> {

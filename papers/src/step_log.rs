@@ -1,16 +1,16 @@
-//! [`Progress`]: one line per step on stderr, with the time since the start and the step's own
-//! time, so that a long reproduction run shows where it is and where the time goes.
+//! [`StepLog`]: the reproduction's log, one line per step on stderr, with the time since the
+//! start and the step's own time, so that a long reproduction run shows where it is and where the time goes.
 
 use std::time::Instant;
 
 /// Writes progress lines `[  12.3 s] message` to stderr (nothing when quiet).
 #[derive(Debug)]
-pub struct Progress {
+pub struct StepLog {
     start: Instant,
     quiet: bool,
 }
 
-impl Progress {
+impl StepLog {
     /// A progress writer starting its clock now.
     pub fn new(quiet: bool) -> Self {
         Self {
@@ -19,7 +19,7 @@ impl Progress {
         }
     }
 
-    /// Seconds since [`Progress::new`].
+    /// Seconds since [`StepLog::new`].
     pub fn elapsed(&self) -> f64 {
         self.start.elapsed().as_secs_f64()
     }
