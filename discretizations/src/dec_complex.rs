@@ -12,8 +12,8 @@ use crate::MassLumping;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{
-    BoundaryCondition, ComplexTopology, DiagonalMass, DiscretizationError, FieldSampling,
-    HodgeComplex, NodeKind, NodeSpace, OperatorCache, PointEvaluation,
+    BoundaryCondition, ComplexParts, DiagonalMass, DiscretizationError, FieldSampling,
+    HodgeComplex, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -58,19 +58,9 @@ use tvf_core::SurfaceMesh;
 ///   field has no component along the boundary: it is normal there.
 #[derive(Debug, Clone)]
 pub struct DecComplex {
-    id: String,
-    d0: CsMat<f64>,
-    d1: CsMat<f64>,
-    m0: DiagonalMass,
-    m1: DiagonalMass,
-    m2: DiagonalMass,
-    potential_nodes: NodeSpace,
-    field_nodes: NodeSpace,
-    co_potential_nodes: NodeSpace,
-    topology: ComplexTopology,
+    parts: ComplexParts,
     sampling: WhitneySampling,
     faces: Vec<[usize; 3]>,
-    cache: OperatorCache,
 }
 
 /// Smallest `cot α + cot β` (dimensionless) an edge of a DEC mesh may have. A cyclic
@@ -178,19 +168,16 @@ impl DecComplex {
         )?;
         let sampling = WhitneySampling::new(mesh, &geometry, field_nodes.dirichlet.clone());
         Ok(Self {
-            id: complex_id(id, mesh, boundary),
-            d0,
-            d1,
-            m0,
-            m1,
-            m2,
-            potential_nodes,
-            field_nodes,
-            co_potential_nodes,
-            topology: mesh_topology(mesh, boundary),
+            parts: ComplexParts::new(
+                complex_id(id, mesh, boundary),
+                d0,
+                d1,
+                [m0, m1, m2],
+                [potential_nodes, field_nodes, co_potential_nodes],
+                mesh_topology(mesh, boundary),
+            )?,
             sampling,
             faces: mesh.faces().to_vec(),
-            cache: OperatorCache::default(),
         })
     }
 }
@@ -235,48 +222,8 @@ fn edge_face_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
 }
 
 impl HodgeComplex for DecComplex {
-    fn id(&self) -> &str {
-        &self.id
-    }
-
-    fn d0(&self) -> &CsMat<f64> {
-        &self.d0
-    }
-
-    fn d1(&self) -> &CsMat<f64> {
-        &self.d1
-    }
-
-    fn m0(&self) -> &DiagonalMass {
-        &self.m0
-    }
-
-    fn m1(&self) -> &DiagonalMass {
-        &self.m1
-    }
-
-    fn m2(&self) -> &DiagonalMass {
-        &self.m2
-    }
-
-    fn potential_nodes(&self) -> &NodeSpace {
-        &self.potential_nodes
-    }
-
-    fn field_nodes(&self) -> &NodeSpace {
-        &self.field_nodes
-    }
-
-    fn co_potential_nodes(&self) -> &NodeSpace {
-        &self.co_potential_nodes
-    }
-
-    fn topology(&self) -> &ComplexTopology {
-        &self.topology
-    }
-
-    fn operator_cache(&self) -> &OperatorCache {
-        &self.cache
+    fn parts(&self) -> &ComplexParts {
+        &self.parts
     }
 
     fn sampling(&self) -> Option<&dyn FieldSampling> {

@@ -4,11 +4,10 @@
 use crate::boundary_conditions::{drop_columns, drop_rows, mesh_topology, with_dirichlet_boundary};
 use crate::face_geometry::FaceGeometry;
 use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping};
-use sprs::CsMat;
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
 use tvf_core::discretization::{
-    BoundaryCondition, ComplexTopology, DiagonalMass, DiscretizationError, FieldRotation,
-    FieldSampling, HodgeComplex, NodeKind, NodeSpace, OperatorCache, PointEvaluation,
+    BoundaryCondition, ComplexParts, DiagonalMass, DiscretizationError, FieldRotation,
+    FieldSampling, HodgeComplex, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -20,20 +19,10 @@ use tvf_core::SurfaceMesh;
 /// evaluation (the spaces' interpolation weights).
 #[derive(Debug, Clone)]
 pub struct FiniteElementComplex<P, Q> {
-    id: String,
+    parts: ComplexParts,
     potentials: P,
     co_potentials: Q,
     fields: FaceFields,
-    d0: CsMat<f64>,
-    d1: CsMat<f64>,
-    m0: DiagonalMass,
-    m1: DiagonalMass,
-    m2: DiagonalMass,
-    potential_nodes: NodeSpace,
-    field_nodes: NodeSpace,
-    co_potential_nodes: NodeSpace,
-    topology: ComplexTopology,
-    cache: OperatorCache,
 }
 
 /// The conforming decomposition `X_h = grad S_h ⊕ J grad S*_h ⊕ H_h` (the paper's choice):
@@ -154,20 +143,17 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             reciprocal(co_potentials.mass()),
         )?;
         Ok(Self {
-            id: id.into(),
+            parts: ComplexParts::new(
+                id,
+                d0,
+                d1,
+                [m0, m1, m2],
+                [potential_nodes, field_nodes, co_potential_nodes],
+                mesh_topology(mesh, boundary),
+            )?,
             potentials,
             co_potentials,
             fields,
-            d0,
-            d1,
-            m0,
-            m1,
-            m2,
-            potential_nodes,
-            field_nodes,
-            co_potential_nodes,
-            topology: mesh_topology(mesh, boundary),
-            cache: OperatorCache::default(),
         })
     }
 
@@ -247,48 +233,8 @@ where
     P: FunctionSpace + Send + Sync,
     Q: FunctionSpace + Send + Sync,
 {
-    fn id(&self) -> &str {
-        &self.id
-    }
-
-    fn d0(&self) -> &CsMat<f64> {
-        &self.d0
-    }
-
-    fn d1(&self) -> &CsMat<f64> {
-        &self.d1
-    }
-
-    fn m0(&self) -> &DiagonalMass {
-        &self.m0
-    }
-
-    fn m1(&self) -> &DiagonalMass {
-        &self.m1
-    }
-
-    fn m2(&self) -> &DiagonalMass {
-        &self.m2
-    }
-
-    fn potential_nodes(&self) -> &NodeSpace {
-        &self.potential_nodes
-    }
-
-    fn field_nodes(&self) -> &NodeSpace {
-        &self.field_nodes
-    }
-
-    fn co_potential_nodes(&self) -> &NodeSpace {
-        &self.co_potential_nodes
-    }
-
-    fn topology(&self) -> &ComplexTopology {
-        &self.topology
-    }
-
-    fn operator_cache(&self) -> &OperatorCache {
-        &self.cache
+    fn parts(&self) -> &ComplexParts {
+        &self.parts
     }
 
     fn sampling(&self) -> Option<&dyn FieldSampling> {

@@ -2,8 +2,8 @@
 //! source of truth of everything downstream.
 
 use super::{
-    ComplexTopology, DiagonalMass, FieldRotation, FieldSampling, NodeSpace, OperatorCache,
-    PointEvaluation,
+    ComplexParts, ComplexTopology, DiagonalMass, FieldRotation, FieldSampling, NodeSpace,
+    OperatorCache, PointEvaluation,
 };
 use sprs::CsMat;
 
@@ -26,48 +26,75 @@ use sprs::CsMat;
 /// curl, stiffness matrices, `S`, `L`, `B`, both scalar eigenproblems, eigenfields, the Hodge
 /// decomposition — is derived from these five in [`super::HodgeOperators`] and nowhere else.
 ///
-/// The trait is object safe: the catalog of `tvf-discretizations` hands out
-/// `Box<dyn HodgeComplex>`. Derived operators are cached in the [`OperatorCache`] the
-/// implementor owns (a wrapper that changes a matrix must own a fresh cache, not forward its
-/// inner complex's).
+/// An implementor gives its [`ComplexParts`] (built and shape-checked once) and the
+/// capabilities it offers; the accessors are provided from the parts and are not meant to be
+/// overridden. The trait is object safe: the catalog of `tvf-discretizations` hands out
+/// `Box<dyn HodgeComplex>`. Derived operators are cached in the parts' [`OperatorCache`] (a
+/// wrapper that changes a matrix builds new parts, which come with a fresh cache).
 pub trait HodgeComplex: Send + Sync {
+    /// The five matrices, the nodes, the topology, the id and the operator cache: the one
+    /// required method (together with the capabilities below, which default to none).
+    fn parts(&self) -> &ComplexParts;
+
     /// Stable identifier, lower-case kebab-case (`conforming-barycentric`, `dec-circumcentric`):
     /// the catalog id, written into basis files and cache names.
-    fn id(&self) -> &str;
+    fn id(&self) -> &str {
+        self.parts().id()
+    }
 
     /// `d0` (`n1 × n0`): the gradient, potentials → fields.
-    fn d0(&self) -> &CsMat<f64>;
+    fn d0(&self) -> &CsMat<f64> {
+        self.parts().d0()
+    }
 
     /// `d1` (`n2 × n1`): the integrated curl, fields → co-potentials. `d1 · d0 = 0` up to
     /// round-off (on a mesh with boundary thanks to the boundary condition: the Dirichlet nodes'
     /// column of `d0` or row of `d1` is zero, see [`super::NodeSpace`]).
-    fn d1(&self) -> &CsMat<f64>;
+    fn d1(&self) -> &CsMat<f64> {
+        self.parts().d1()
+    }
 
     /// `M0` (`n0 × n0`, area): the inner product of potentials.
-    fn m0(&self) -> &DiagonalMass;
+    fn m0(&self) -> &DiagonalMass {
+        self.parts().m0()
+    }
 
     /// `M1` (`n1 × n1`): the inner product of fields, `xᵀ M1 y = ∫ ⟨x, y⟩`.
-    fn m1(&self) -> &DiagonalMass;
+    fn m1(&self) -> &DiagonalMass {
+        self.parts().m1()
+    }
 
     /// `M2` (`n2 × n2`, 1/area): turns `d1`'s integrated values into pointwise ones; `M2⁻¹` is the
     /// inner product of co-potentials.
-    fn m2(&self) -> &DiagonalMass;
+    fn m2(&self) -> &DiagonalMass {
+        self.parts().m2()
+    }
 
     /// The nodes of the potential space (`n0`).
-    fn potential_nodes(&self) -> &NodeSpace;
+    fn potential_nodes(&self) -> &NodeSpace {
+        self.parts().potential_nodes()
+    }
 
     /// The nodes of the field space (`n1`).
-    fn field_nodes(&self) -> &NodeSpace;
+    fn field_nodes(&self) -> &NodeSpace {
+        self.parts().field_nodes()
+    }
 
     /// The nodes of the co-potential space (`n2`).
-    fn co_potential_nodes(&self) -> &NodeSpace;
+    fn co_potential_nodes(&self) -> &NodeSpace {
+        self.parts().co_potential_nodes()
+    }
 
     /// Components, harmonic dimension, boundary and boundary condition of the complex.
-    fn topology(&self) -> &ComplexTopology;
+    fn topology(&self) -> &ComplexTopology {
+        self.parts().topology()
+    }
 
     /// Storage for the derived operators of [`super::HodgeOperators`] (computed once, on first
     /// use).
-    fn operator_cache(&self) -> &OperatorCache;
+    fn operator_cache(&self) -> &OperatorCache {
+        self.parts().operator_cache()
+    }
 
     /// Sampling fields as 3D vectors at points, if the discretization offers it.
     fn sampling(&self) -> Option<&dyn FieldSampling> {

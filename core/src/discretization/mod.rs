@@ -9,8 +9,9 @@
 //!     M0              M1              M2 (acts on d1's integrated output)
 //! ```
 //!
-//! - [`HodgeComplex`]: the five matrices `d0`, `d1`, `M0`, `M1`, `M2` ([`DiagonalMass`]), the
-//!   nodes of the three spaces ([`NodeSpace`]), the topology, a stable id, and the optional
+//! - [`HodgeComplex`]: its [`ComplexParts`] — the five matrices `d0`, `d1`, `M0`, `M1`, `M2`
+//!   ([`DiagonalMass`]), the nodes of the three spaces ([`NodeSpace`]), the topology, a stable
+//!   id — and the optional
 //!   capabilities [`FieldSampling`] (fields as 3D vectors at points), [`FieldRotation`] (`J`,
 //!   which gives the other family of divergence and curl) and [`PointEvaluation`] (potentials at
 //!   points). Object safe: catalogs hand out `Box<dyn HodgeComplex>`.
@@ -23,48 +24,35 @@
 //! against these traits only. `tvf-discretizations` holds the implementations and the catalog.
 //!
 //! # Adding a discretization
-//! Build the five matrices and implement [`HodgeComplex`]; every operator of
+//! Build the five matrices into [`ComplexParts`] (which checks their shapes) and implement
+//! [`HodgeComplex`] by handing them out, plus the capabilities you offer; every operator of
 //! [`HodgeOperators`] follows. The smallest variant wraps an existing complex and changes one
-//! ingredient, here the co-potential mass `M2` (scaled by `1/factor`). It owns a fresh
-//! [`OperatorCache`], so every derived operator — `L`, `S` and both eigenproblems alike — sees the
-//! new `M2`; the conformance suite in `tests/` runs this very wrapper.
+//! ingredient, here the co-potential mass `M2` (scaled by `1/factor`). New parts come with a
+//! fresh [`OperatorCache`], so every derived operator — `L`, `S` and both eigenproblems alike —
+//! sees the new `M2`; the conformance suite in `tests/` runs this very wrapper.
 //!
 //! ```
-//! use sprs::CsMat;
 //! use tvf_core::discretization::*;
 //!
 //! /// Any complex with its co-potential inner product scaled by `factor` (so `M2` by 1/factor).
 //! struct ScaledCoPotentials<H> {
 //!     inner: H,
-//!     id: String,
-//!     m2: DiagonalMass,
-//!     cache: OperatorCache,
+//!     parts: ComplexParts,
 //! }
 //!
 //! impl<H: HodgeComplex> ScaledCoPotentials<H> {
 //!     fn new(inner: H, factor: f64) -> Result<Self, DiscretizationError> {
 //!         let m2 = inner.m2().values().iter().map(|m| m / factor).collect();
-//!         Ok(Self {
-//!             id: format!("{}-scaled-co-potentials", inner.id()),
-//!             m2: DiagonalMass::new("M2", m2)?,
-//!             inner,
-//!             cache: OperatorCache::default(),
-//!         })
+//!         let id = format!("{}-scaled-co-potentials", inner.id());
+//!         let parts = inner
+//!             .parts()
+//!             .with_co_potential_mass(id, DiagonalMass::new("M2", m2)?)?;
+//!         Ok(Self { inner, parts })
 //!     }
 //! }
 //!
 //! impl<H: HodgeComplex> HodgeComplex for ScaledCoPotentials<H> {
-//!     fn id(&self) -> &str { &self.id }
-//!     fn d0(&self) -> &CsMat<f64> { self.inner.d0() }
-//!     fn d1(&self) -> &CsMat<f64> { self.inner.d1() }
-//!     fn m0(&self) -> &DiagonalMass { self.inner.m0() }
-//!     fn m1(&self) -> &DiagonalMass { self.inner.m1() }
-//!     fn m2(&self) -> &DiagonalMass { &self.m2 }
-//!     fn potential_nodes(&self) -> &NodeSpace { self.inner.potential_nodes() }
-//!     fn field_nodes(&self) -> &NodeSpace { self.inner.field_nodes() }
-//!     fn co_potential_nodes(&self) -> &NodeSpace { self.inner.co_potential_nodes() }
-//!     fn topology(&self) -> &ComplexTopology { self.inner.topology() }
-//!     fn operator_cache(&self) -> &OperatorCache { &self.cache }
+//!     fn parts(&self) -> &ComplexParts { &self.parts }
 //!     fn sampling(&self) -> Option<&dyn FieldSampling> { self.inner.sampling() }
 //! }
 //!
@@ -84,6 +72,7 @@
 //! that are integrals over the node's lumped area.
 
 mod capabilities;
+mod complex_parts;
 mod diagonal_mass;
 mod error;
 mod hodge_complex;
@@ -96,6 +85,7 @@ pub use capabilities::{
     check_face_vectors, check_length, FieldRotation, FieldSampling, PointEvaluation,
     TangentProjection,
 };
+pub use complex_parts::ComplexParts;
 pub use diagonal_mass::DiagonalMass;
 pub use error::DiscretizationError;
 pub use hodge_complex::HodgeComplex;

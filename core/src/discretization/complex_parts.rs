@@ -1,0 +1,142 @@
+//! [`ComplexParts`]: what every discrete Hodge decomposition consists of — the five matrices,
+//! the nodes of its three spaces, its topology and a stable id — checked once for consistent
+//! shapes, with the cache of the operators derived from them.
+
+use super::{ComplexTopology, DiagonalMass, DiscretizationError, NodeSpace, OperatorCache};
+use sprs::CsMat;
+
+/// The parts of a complex `potentials (n0) --d0--> fields (n1) --d1--> co-potentials (n2)` with
+/// masses `M0`, `M1`, `M2` (see [`super::HodgeComplex`] for their meaning and units).
+///
+/// Built by [`ComplexParts::new`], which checks that the shapes fit together; immutable after
+/// that, so that the derived operators in its [`OperatorCache`] always belong to these matrices.
+/// To change one ingredient, build new parts ([`ComplexParts::with_co_potential_mass`]), which
+/// come with a fresh cache.
+#[derive(Debug, Clone)]
+pub struct ComplexParts {
+    id: String,
+    d0: CsMat<f64>,
+    d1: CsMat<f64>,
+    masses: [DiagonalMass; 3],
+    nodes: [NodeSpace; 3],
+    topology: ComplexTopology,
+    cache: OperatorCache,
+}
+
+impl ComplexParts {
+    /// The parts with id `id` (lower-case kebab-case, see [`super::HodgeComplex::id`]):
+    /// `d0` (`n1 × n0`), `d1` (`n2 × n1`), `masses` `[M0, M1, M2]` and `nodes` (potentials,
+    /// fields, co-potentials) of lengths `n0`, `n1`, `n2`. Fails with
+    /// [`DiscretizationError::DimensionMismatch`] if a shape does not fit.
+    pub fn new(
+        id: impl Into<String>,
+        d0: CsMat<f64>,
+        d1: CsMat<f64>,
+        masses: [DiagonalMass; 3],
+        nodes: [NodeSpace; 3],
+        topology: ComplexTopology,
+    ) -> Result<Self, DiscretizationError> {
+        let (n1, n0) = d0.shape();
+        let n2 = d1.rows();
+        let checks: [(&'static str, usize, usize); 7] = [
+            ("columns of d1 (the rows of d0)", n1, d1.cols()),
+            ("M0 (the columns of d0)", n0, masses[0].len()),
+            ("M1 (the rows of d0)", n1, masses[1].len()),
+            ("M2 (the rows of d1)", n2, masses[2].len()),
+            ("potential nodes", n0, nodes[0].len()),
+            ("field nodes", n1, nodes[1].len()),
+            ("co-potential nodes", n2, nodes[2].len()),
+        ];
+        for (what, expected, found) in checks {
+            if expected != found {
+                return Err(DiscretizationError::DimensionMismatch {
+                    what,
+                    expected,
+                    found,
+                });
+            }
+        }
+        Ok(Self {
+            id: id.into(),
+            d0,
+            d1,
+            masses,
+            nodes,
+            topology,
+            cache: OperatorCache::default(),
+        })
+    }
+
+    /// The same parts with id `id` and the co-potential mass `M2` replaced (same length), and
+    /// a fresh cache: the smallest new discretization.
+    pub fn with_co_potential_mass(
+        &self,
+        id: impl Into<String>,
+        m2: DiagonalMass,
+    ) -> Result<Self, DiscretizationError> {
+        let [m0, m1, _] = self.masses.clone();
+        Self::new(
+            id,
+            self.d0.clone(),
+            self.d1.clone(),
+            [m0, m1, m2],
+            self.nodes.clone(),
+            self.topology,
+        )
+    }
+
+    /// The id.
+    pub fn id(&self) -> &str {
+        &self.id
+    }
+
+    /// `d0` (`n1 × n0`).
+    pub fn d0(&self) -> &CsMat<f64> {
+        &self.d0
+    }
+
+    /// `d1` (`n2 × n1`).
+    pub fn d1(&self) -> &CsMat<f64> {
+        &self.d1
+    }
+
+    /// `M0` (`n0`).
+    pub fn m0(&self) -> &DiagonalMass {
+        &self.masses[0]
+    }
+
+    /// `M1` (`n1`).
+    pub fn m1(&self) -> &DiagonalMass {
+        &self.masses[1]
+    }
+
+    /// `M2` (`n2`).
+    pub fn m2(&self) -> &DiagonalMass {
+        &self.masses[2]
+    }
+
+    /// The potential nodes (`n0`).
+    pub fn potential_nodes(&self) -> &NodeSpace {
+        &self.nodes[0]
+    }
+
+    /// The field nodes (`n1`).
+    pub fn field_nodes(&self) -> &NodeSpace {
+        &self.nodes[1]
+    }
+
+    /// The co-potential nodes (`n2`).
+    pub fn co_potential_nodes(&self) -> &NodeSpace {
+        &self.nodes[2]
+    }
+
+    /// Components, harmonic dimension and boundary.
+    pub fn topology(&self) -> &ComplexTopology {
+        &self.topology
+    }
+
+    /// The cache of the derived operators.
+    pub fn operator_cache(&self) -> &OperatorCache {
+        &self.cache
+    }
+}
