@@ -2,6 +2,7 @@
 //!
 //! Exit codes: 0 success, 1 bad input or failed computation, 2 usage error (clap).
 
+mod basis_export;
 mod basis_source;
 mod commands;
 mod demo;
@@ -10,6 +11,7 @@ mod examples;
 mod face_quantities;
 mod interrupt;
 mod mesh_input;
+mod npy_export;
 mod output_rules;
 mod picture;
 mod progress;
