@@ -36,12 +36,16 @@ impl Mesh {
         for (t, face) in raw.iter().enumerate() {
             let mut converted = [0usize; 3];
             for (c, &v) in face.iter().enumerate() {
-                converted[c] = usize::try_from(v).map_err(|_| {
-                    tvf_error(format!(
-                        "{label}: face {t} refers to vertex {v}, but the mesh has {} vertices",
-                        positions.len()
-                    ))
-                })?;
+                converted[c] = usize::try_from(v)
+                    .ok()
+                    .filter(|&v| v < positions.len())
+                    .ok_or_else(|| {
+                        // Worded as the mesh readers word it (`tvf info mesh.off`).
+                        tvf_error(format!(
+                            "{label}: face {t}: vertex index {v} is out of range: the mesh has {} vertices",
+                            positions.len()
+                        ))
+                    })?;
             }
             faces.push(converted);
         }
