@@ -288,7 +288,10 @@ mod tests {
     use tvf_core::discretization::HodgeOperators;
     use tvf_core::generate::{icosphere, torus};
 
-    fn parts(c: &dyn HodgeComplex) -> (CsMat<f64>, CsMat<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    /// `d0`, `d1` and the three mass diagonals of a complex.
+    type Parts = (CsMat<f64>, CsMat<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+
+    fn parts(c: &dyn HodgeComplex) -> Parts {
         (
             c.d0().clone(),
             c.d1().clone(),
