@@ -18,9 +18,9 @@ pub fn tvf_error(message: impl Into<String>) -> PyErr {
     TvfError::new_err(message.into())
 }
 
-/// `TvfError` whose message is `error` and its sources, joined by `: ` (causes already contained
-/// in the message are skipped, as the command line does).
-pub fn from_error(error: &(dyn Error + 'static)) -> PyErr {
+/// `error` and its sources joined by `: `, skipping causes the message already contains (as
+/// the command line prints an error).
+fn chain(error: &(dyn Error + 'static)) -> String {
     let mut message = String::new();
     let mut cause = Some(error);
     while let Some(e) = cause {
@@ -33,11 +33,15 @@ pub fn from_error(error: &(dyn Error + 'static)) -> PyErr {
         }
         cause = e.source();
     }
-    tvf_error(message)
+    message
 }
 
-/// `TvfError` with `context: error`.
+/// `TvfError` whose message is `error` and its causes.
+pub fn from_error(error: &(dyn Error + 'static)) -> PyErr {
+    tvf_error(chain(error))
+}
+
+/// `TvfError` with `context: error` (and its causes).
 pub fn with_context(context: &str, error: &(dyn Error + 'static)) -> PyErr {
-    let inner = from_error(error);
-    pyo3::Python::attach(|py| tvf_error(format!("{context}: {}", inner.value(py))))
+    tvf_error(format!("{context}: {}", chain(error)))
 }
