@@ -60,19 +60,6 @@ impl Mesh {
         })
     }
 
-    /// Reads and validates a mesh file (OBJ, OFF, PLY).
-    #[staticmethod]
-    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
-        let loaded = py.detach(|| load_mesh(&path)).map_err(|e| from_error(&e))?;
-        let label = path.display().to_string();
-        check_geometry_range(&loaded.mesh, &label)?;
-        Ok(Self {
-            mesh: loaded.mesh,
-            report: loaded.report,
-            label,
-        })
-    }
-
     /// Vertex positions, `V × 3` (unreferenced input vertices dropped).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
@@ -189,10 +176,17 @@ impl Mesh {
     }
 }
 
-/// `(V, F)` of a mesh file, validated (unreferenced vertices dropped).
+/// Reads and validates a mesh file (OBJ, OFF, PLY); errors name the file and the line.
 #[pyfunction]
 pub fn read_mesh(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Mesh> {
-    Mesh::load(py, path)
+    let loaded = py.detach(|| load_mesh(&path)).map_err(|e| from_error(&e))?;
+    let label = path.display().to_string();
+    check_geometry_range(&loaded.mesh, &label)?;
+    Ok(Mesh {
+        mesh: loaded.mesh,
+        report: loaded.report,
+        label,
+    })
 }
 
 /// Rows of an `n × 3` array; another shape is an error naming `what`.
