@@ -60,9 +60,18 @@ const EXPECTED: &[Expectation] = &[
         Some(2),
     ),
     (
-        "big_endian.ply",
-        |k| matches!(k, K::Unsupported { .. }),
-        Some(2),
+        // A big-endian header over little-endian data: the indices read as huge numbers.
+        "byte_order_mismatch.ply",
+        |k| {
+            matches!(
+                k,
+                K::IndexOutOfRange {
+                    index: 33554432,
+                    vertex_count: 4
+                }
+            )
+        },
+        None,
     ),
     (
         "wrong_counts_trailing.off",

@@ -181,3 +181,71 @@ fn huge_counts_of_empty_elements_do_not_hang() {
     let loaded = parse_mesh_bytes(text.as_bytes(), MeshFormat::Ply, "padding.ply").unwrap();
     assert_eq!(loaded.mesh.face_count(), 1);
 }
+
+#[test]
+fn big_endian_binary_ply_reads_like_little_endian() {
+    // A tetrahedron with float coordinates, a ushort property between them, uchar/int lists.
+    let positions: [[f32; 3]; 4] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let faces: [[i32; 3]; 4] = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+    let file = |format: &str, big: bool| {
+        let mut bytes = format!(
+            "ply\nformat {format} 1.0\nelement vertex 4\nproperty float x\nproperty ushort tag\n\
+             property float y\nproperty float z\nelement face 4\n\
+             property list uchar int vertex_indices\nend_header\n"
+        )
+        .into_bytes();
+        for (i, p) in positions.iter().enumerate() {
+            let tag = 300 + i as u16;
+            let (x, tag, y, z) = if big {
+                (
+                    p[0].to_be_bytes(),
+                    tag.to_be_bytes(),
+                    p[1].to_be_bytes(),
+                    p[2].to_be_bytes(),
+                )
+            } else {
+                (
+                    p[0].to_le_bytes(),
+                    tag.to_le_bytes(),
+                    p[1].to_le_bytes(),
+                    p[2].to_le_bytes(),
+                )
+            };
+            bytes.extend(x);
+            bytes.extend(tag);
+            bytes.extend(y);
+            bytes.extend(z);
+        }
+        for face in faces {
+            bytes.push(3);
+            for v in face {
+                bytes.extend(if big {
+                    v.to_be_bytes()
+                } else {
+                    v.to_le_bytes()
+                });
+            }
+        }
+        bytes
+    };
+    let big =
+        parse_mesh_bytes(&file("binary_big_endian", true), MeshFormat::Ply, "be.ply").unwrap();
+    let little = parse_mesh_bytes(
+        &file("binary_little_endian", false),
+        MeshFormat::Ply,
+        "le.ply",
+    )
+    .unwrap();
+    assert_eq!(big.mesh.positions(), little.mesh.positions());
+    assert_eq!(big.mesh.faces(), little.mesh.faces());
+    assert_eq!(big.mesh.positions()[3], [0.0, 0.0, 1.0]);
+    assert!(big.mesh.is_closed());
+    // The same bytes declared little-endian are refused (indices out of range).
+    let wrong = file("binary_little_endian", true);
+    assert!(parse_mesh_bytes(&wrong, MeshFormat::Ply, "wrong.ply").is_err());
+}

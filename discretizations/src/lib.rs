@@ -9,6 +9,7 @@
 //!   with a [`MassLumping`]);
 //! - discrete exterior calculus on primal 1-forms, [`DecComplex`], sampled by Whitney
 //!   interpolation ([`WhitneySampling`]);
+//! - [`MatrixComplex`]: a complex from five matrices assembled elsewhere (checked);
 //! - the Hodge decomposition [`HodgeDecomposer`] of any complex.
 //!
 //! ```
@@ -107,6 +108,7 @@ mod gradient_assembly;
 mod hodge_decomposition;
 mod lagrange_p1;
 mod mass_lumping;
+mod matrix_complex;
 mod pinned_poisson;
 mod whitney_sampling;
 
@@ -127,5 +129,6 @@ pub use function_space::FunctionSpace;
 pub use hodge_decomposition::{HodgeDecomposer, HodgeParts};
 pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
+pub use matrix_complex::{MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};
 pub use pinned_poisson::PinnedPoisson;
 pub use whitney_sampling::WhitneySampling;

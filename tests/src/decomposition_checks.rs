@@ -1,5 +1,6 @@
 //! Core checks of the Hodge decomposition and of the harmonic space.
 
+use crate::check_outcome::{assert_outcomes, CheckOutcome};
 use crate::corpus::CorpusMesh;
 use crate::dense::split_zeros;
 use crate::spectral_checks::hodge_spectrum;
@@ -36,17 +37,25 @@ fn max_abs(x: &[f64]) -> f64 {
     x.iter().fold(0.0, |m, v| m.max(v.abs()))
 }
 
-/// Decomposes a random field and a field with known parts and checks: the three parts are
+/// Decomposes a random field and a field with known parts and measures: the three parts are
 /// mutually `M1`-orthogonal (relative 1e-10), sum back to the input, the integrable part is
 /// curl-free (`co_potential_curl = M2 d1` kills it), the co-integrable part divergence-free
 /// (`potential_divergence = −M0⁻¹ d0ᵀ M1` kills it), the harmonic part is both and in the kernel
 /// of `L`; a field `d0 f − M1⁻¹ d1ᵀ g + h` is split back into exactly these parts.
-pub fn check_hodge_decomposition<H: HodgeComplex + ?Sized>(complex: &H, seed: u64) {
-    let decomposer = HodgeDecomposer::new(complex).expect("decomposer factors");
+pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    seed: u64,
+) -> Vec<CheckOutcome> {
+    let decomposer = match HodgeDecomposer::new(complex) {
+        Ok(decomposer) => decomposer,
+        Err(e) => return vec![CheckOutcome::failed("hodge_decomposition", e.to_string())],
+    };
     let field = random_field(complex, seed);
-    let parts = decomposer
-        .decompose(&field)
-        .expect("decomposition succeeds");
+    let parts = match decomposer.decompose(&field) {
+        Ok(parts) => parts,
+        Err(e) => return vec![CheckOutcome::failed("hodge_decomposition", e.to_string())],
+    };
+    let mut outcomes = Vec::new();
     let norm = m1_norm(complex, &field);
     let named = [
         ("integrable", &parts.integrable),
@@ -56,22 +65,33 @@ pub fn check_hodge_decomposition<H: HodgeComplex + ?Sized>(complex: &H, seed: u6
     for a in 0..3 {
         for b in a + 1..3 {
             let inner = complex.field_inner(named[a].1, named[b].1);
-            assert!(
-                inner.abs() <= 1e-10 * norm * norm,
-                "{} and {} parts not orthogonal: {inner:e} (|v|² = {:e})",
-                named[a].0,
-                named[b].0,
-                norm * norm
-            );
+            outcomes.push(CheckOutcome::at_most(
+                format!("orthogonal parts: {} and {}", named[a].0, named[b].0),
+                inner.abs(),
+                1e-10 * norm * norm,
+                format!(
+                    "{} and {} parts: inner product {inner:e} (|v|² = {:e})",
+                    named[a].0,
+                    named[b].0,
+                    norm * norm
+                ),
+            ));
         }
     }
-    for (i, &v) in field.iter().enumerate() {
-        let sum = parts.integrable[i] + parts.co_integrable[i] + parts.harmonic[i];
-        assert!(
-            (sum - v).abs() <= 1e-12 * (1.0 + v.abs()),
-            "parts do not sum to the input at {i}"
-        );
-    }
+    let worst_sum = field
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            let sum = parts.integrable[i] + parts.co_integrable[i] + parts.harmonic[i];
+            (sum - v).abs() / (1.0 + v.abs())
+        })
+        .fold(0.0f64, f64::max);
+    outcomes.push(CheckOutcome::at_most(
+        "parts sum to the field",
+        worst_sum,
+        1e-12,
+        format!("max |Σ parts − v| / (1 + |v|) = {worst_sum:e}"),
+    ));
     let curl = complex.co_potential_curl();
     let divergence = complex.potential_divergence();
     let laplacian = complex.hodge_laplacian();
@@ -100,10 +120,12 @@ pub fn check_hodge_decomposition<H: HodgeComplex + ?Sized>(complex: &H, seed: u6
     ] {
         let value = max_abs(&mul_vec(matrix, part));
         let reference = scale(matrix, part);
-        assert!(
-            value <= 1e-9 * reference,
-            "{what}: {value:e} (scale {reference:e})"
-        );
+        outcomes.push(CheckOutcome::at_most(
+            what,
+            value,
+            1e-9 * reference,
+            format!("{what}: {value:e} (scale {reference:e})"),
+        ));
     }
     // Known parts: v = d0 f − M1⁻¹ d1ᵀ g (+ harmonic h from the random field) is recovered.
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
@@ -118,9 +140,13 @@ pub fn check_hodge_decomposition<H: HodgeComplex + ?Sized>(complex: &H, seed: u6
     let composed: Vec<f64> = (0..field.len())
         .map(|i| grad[i] + cograd[i] + parts.harmonic[i])
         .collect();
-    let again = decomposer
-        .decompose(&composed)
-        .expect("decomposition succeeds");
+    let again = match decomposer.decompose(&composed) {
+        Ok(again) => again,
+        Err(e) => {
+            outcomes.push(CheckOutcome::failed("known parts recovered", e.to_string()));
+            return outcomes;
+        }
+    };
     let scale = m1_norm(complex, &composed);
     for (what, got, expected) in [
         ("integrable", &again.integrable, &grad),
@@ -129,24 +155,47 @@ pub fn check_hodge_decomposition<H: HodgeComplex + ?Sized>(complex: &H, seed: u6
     ] {
         let difference: Vec<f64> = got.iter().zip(expected).map(|(a, b)| a - b).collect();
         let error = m1_norm(complex, &difference);
-        assert!(
-            error <= 1e-9 * scale,
-            "{what} part not recovered: error {error:e} (|v| = {scale:e})"
-        );
+        outcomes.push(CheckOutcome::at_most(
+            format!("known {what} part recovered"),
+            error,
+            1e-9 * scale,
+            format!("{what} part not recovered: error {error:e} (|v| = {scale:e})"),
+        ));
     }
+    outcomes
+}
+
+/// The checks of [`measure_hodge_decomposition`], asserted.
+pub fn check_hodge_decomposition<H: HodgeComplex + ?Sized>(complex: &H, seed: u64) {
+    assert_outcomes(&measure_hodge_decomposition(complex, seed));
+}
+
+/// `dim ker L` = `harmonic_dimension` by dense eigenvalues of `(S, M1)` (small meshes),
+/// measured.
+pub fn measure_kernel_dimension_dense<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    harmonic_dimension: usize,
+) -> CheckOutcome {
+    let eigenvalues = hodge_spectrum(complex);
+    let (zeros, _) = split_zeros(&eigenvalues, 1e-9);
+    CheckOutcome::count(
+        "kernel dimension",
+        zeros,
+        harmonic_dimension,
+        format!(
+            "dim ker L = {zeros}, expected {harmonic_dimension} (lowest eigenvalues {:?})",
+            &eigenvalues[..(harmonic_dimension + 3).min(eigenvalues.len())]
+        ),
+    )
 }
 
 /// `dim ker L` = the corpus mesh's harmonic dimension (`2g`; `2g + b − 1` per component with
 /// boundary) by dense eigenvalues of `(S, M1)` on the free field nodes (small meshes).
 pub fn check_kernel_is_2g_dense<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
-    let eigenvalues = hodge_spectrum(complex);
-    let (zeros, _) = split_zeros(&eigenvalues, 1e-9);
-    assert_eq!(
-        zeros,
+    assert_outcomes(&[measure_kernel_dimension_dense(
+        complex,
         mesh.harmonic_dimension,
-        "dim ker L (lowest eigenvalues {:?})",
-        &eigenvalues[..(mesh.harmonic_dimension + 3).min(eigenvalues.len())]
-    );
+    )]);
 }
 
 /// `dim H = h_c` on every component `c` without dense eigenvalues (any size), `h_c = 2g_c` on a

@@ -17,6 +17,10 @@
 //!   divergence and curl against explicit sums), `co_potential_masses` (`Σ M2⁻¹ = area`) and
 //!   `sphere_spectrum` (convergence to `l(l+1)` on the unit sphere).
 //!
+//! Each core check measures first and asserts on [`check_outcome::CheckOutcome`]s;
+//! [`check_report::core_check_report`] returns those outcomes as a report instead, for complexes
+//! built elsewhere (the Python package's `tvf.check`).
+//!
 //! The macro [`conformance_suite!`] instantiates the core suite (and any reference checks) for
 //! one constructor in one line, over a [`corpus::Corpus`]: the general one, or the Delaunay one
 //! for discretizations that need `cot α + cot β > 0`.
@@ -50,6 +54,8 @@
 
 pub mod algebra_checks;
 pub mod capability_checks;
+pub mod check_outcome;
+pub mod check_report;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;

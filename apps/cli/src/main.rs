@@ -2,6 +2,7 @@
 //!
 //! Exit codes: 0 success, 1 bad input or failed computation, 2 usage error (clap).
 
+mod basis_export;
 mod basis_source;
 mod commands;
 mod demo_page;
@@ -9,6 +10,7 @@ mod discretization_flags;
 mod examples;
 mod interrupt;
 mod mesh_input;
+mod npy_export;
 mod output_rules;
 mod picture_options;
 mod progress;

@@ -67,7 +67,7 @@ pub enum LoadErrorKind {
         /// What was found.
         message: String,
     },
-    /// A valid file using a variant tvf does not read (e.g. big-endian PLY).
+    /// A valid file using a variant tvf does not read (e.g. a 4D OFF file).
     #[error("unsupported: {feature}")]
     Unsupported {
         /// The unsupported feature.

@@ -47,7 +47,7 @@ pub enum MeshFormat {
     Obj,
     /// Object File Format (text).
     Off,
-    /// Stanford PLY (ASCII or binary little-endian).
+    /// Stanford PLY (ASCII or binary, little- or big-endian).
     Ply,
 }
 

@@ -82,6 +82,7 @@ pub(crate) struct Element {
 pub(crate) enum Encoding {
     Ascii,
     BinaryLittleEndian,
+    BinaryBigEndian,
 }
 
 /// A parsed header and where the body starts.
@@ -128,14 +129,7 @@ pub(crate) fn read_header(bytes: &[u8]) -> Result<Header, Located> {
                 encoding = Some(match *format {
                     "ascii" => Encoding::Ascii,
                     "binary_little_endian" => Encoding::BinaryLittleEndian,
-                    "binary_big_endian" => {
-                        return Err(at(
-                            line,
-                            LoadErrorKind::Unsupported {
-                                feature: "big-endian binary PLY".into(),
-                            },
-                        ))
-                    }
+                    "binary_big_endian" => Encoding::BinaryBigEndian,
                     other => {
                         return Err(parse_error(line, format!("unknown PLY format '{other}'")))
                     }

@@ -1,4 +1,4 @@
-//! PLY, ASCII or binary little-endian: the `vertex` element's `x y z` (any scalar type) and the
+//! PLY, ASCII or binary (little- or big-endian): the `vertex` element's `x y z` (any scalar type) and the
 //! `face` element's `vertex_indices` (or `vertex_index`) list (any integer types); every other
 //! property and element is read past and ignored.
 
@@ -21,7 +21,16 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
             })?;
             Source::Ascii(AsciiBody::new(text, header.header_lines))
         }
-        Encoding::BinaryLittleEndian => Source::Binary { body, offset: 0 },
+        Encoding::BinaryLittleEndian => Source::Binary {
+            body,
+            offset: 0,
+            big_endian: false,
+        },
+        Encoding::BinaryBigEndian => Source::Binary {
+            body,
+            offset: 0,
+            big_endian: true,
+        },
     };
     let vertex_count = header
         .elements
@@ -159,7 +168,12 @@ impl Role {
 /// (the caller turns that into a truncation message naming the element).
 enum Source<'a> {
     Ascii(AsciiBody<'a>),
-    Binary { body: &'a [u8], offset: usize },
+    /// Binary values; `big_endian` says their byte order.
+    Binary {
+        body: &'a [u8],
+        offset: usize,
+        big_endian: bool,
+    },
 }
 
 /// Result of reading one value: `Err(None)` means the data ended.
@@ -191,12 +205,20 @@ impl Source<'_> {
                     ))
                 })
             }
-            Source::Binary { body, offset } => {
+            Source::Binary {
+                body,
+                offset,
+                big_endian,
+            } => {
                 let size = ty.size();
                 let bytes = body.get(*offset..*offset + size).ok_or(None)?;
                 *offset += size;
+                // Little-endian from here on: a big-endian value's bytes are reversed.
                 let mut b = [0u8; 8];
                 b[..size].copy_from_slice(bytes);
+                if *big_endian {
+                    b[..size].reverse();
+                }
                 Ok(match ty {
                     ScalarType::I8 => i8::from_le_bytes([b[0]]) as f64,
                     ScalarType::U8 => b[0] as f64,
@@ -215,7 +237,7 @@ impl Source<'_> {
     fn skip(&mut self, ty: ScalarType, n: usize) -> Read<()> {
         match self {
             Source::Ascii(_) => (0..n).try_for_each(|_| self.number(ty).map(|_| ())),
-            Source::Binary { body, offset } => {
+            Source::Binary { body, offset, .. } => {
                 let end = n
                     .checked_mul(ty.size())
                     .and_then(|bytes| offset.checked_add(bytes))
@@ -239,7 +261,7 @@ impl Source<'_> {
                 )),
                 None => Ok(()),
             },
-            Source::Binary { body, offset } if *offset < body.len() => Err((
+            Source::Binary { body, offset, .. } if *offset < body.len() => Err((
                 None,
                 LoadErrorKind::TrailingData {
                     message: format!("{} bytes", body.len() - *offset),

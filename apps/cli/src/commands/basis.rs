@@ -1,5 +1,7 @@
-//! `tvf basis`: compute the Fourier basis of a mesh (Section 6) and save it as a `.tvfb` file.
+//! `tvf basis`: compute the Fourier basis of a mesh (Section 6) and save it as a `.tvfb` file
+//! and/or as numpy arrays (`--export DIR`).
 
+use crate::basis_export::export_basis;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
@@ -13,7 +15,7 @@ use tvf_spectral::{compute_basis, save_basis, BasisFileKey, BasisRequest, FieldF
 /// Arguments of `tvf basis`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf basis bunny.obj -k 1000 -o bunny.tvfb\n  tvf basis --example genus2 -k 200 --decomposition nonconforming --mass voronoi -o g2.tvfb\n\nThe basis holds the K eigenfields of lowest eigenvalue of the Hodge–Laplacian (the paper's d): \
+    after_help = "Examples:\n  tvf basis bunny.obj -k 1000 -o bunny.tvfb\n  tvf basis bunny.obj -k 100 --export bunny-basis/   (np.load(\"bunny-basis/fields.npy\"))\n  tvf basis --example genus2 -k 200 --decomposition nonconforming --mass voronoi -o g2.tvfb\n\nThe basis holds the K eigenfields of lowest eigenvalue of the Hodge–Laplacian (the paper's d): \
 the 2g harmonic fields first, then integrable and co-integrable eigenfields mixed as their eigenvalues come, \
 sorted by eigenvalue (`tvf spectrum -k K` lists the same K eigenvalues). K ≥ 2F gives the complete basis. The file is tied to the mesh \
 (fingerprint of its vertices and faces) and to the discretization; other commands take it with --basis."
@@ -31,8 +33,13 @@ pub struct BasisArgs {
     #[arg(long, default_value_t = 0)]
     seed: u64,
     /// Output basis file (.tvfb).
-    #[arg(short, long, value_name = "FILE")]
-    output: PathBuf,
+    #[arg(short, long, value_name = "FILE", required_unless_present = "export")]
+    output: Option<PathBuf>,
+    /// Also (or instead) write the basis as numpy arrays into the folder DIR: eigenvalues.npy,
+    /// families.npy, coefficients.npy (2F × K), fields.npy (F × 3 × K, at the face centroids)
+    /// and frames.npy (F × 2 × 3).
+    #[arg(long, value_name = "DIR")]
+    export: Option<PathBuf>,
     /// Print a summary (counts, eigenvalues, labels, seconds) as one JSON object on stdout.
     #[arg(long)]
     json: bool,
@@ -43,7 +50,9 @@ pub fn run(args: BasisArgs) -> Result<()> {
     if args.fields == 0 {
         bail!("-k 0: ask for at least one eigenfield");
     }
-    check_output(&args.output, &args.input, &[])?;
+    for output in args.output.iter().chain(&args.export) {
+        check_output(output, &args.input, &[])?;
+    }
     let mesh = args.input.load()?.mesh;
     let discretization = args.discretization.build(&mesh, &args.input.label())?;
     let progress = Progress::new("basis");
@@ -59,7 +68,18 @@ pub fn run(args: BasisArgs) -> Result<()> {
             .with_context(|| format!("{}: cannot compute the basis", args.input.label()))?
     };
     let key = BasisFileKey::new(&mesh, discretization.as_ref());
-    save_basis(&args.output, &basis, &key)?;
+    if let Some(output) = &args.output {
+        save_basis(output, &basis, &key)?;
+    }
+    if let Some(dir) = &args.export {
+        export_basis(&basis, discretization.as_ref(), dir)?;
+    }
+    let written: Vec<String> = args
+        .output
+        .iter()
+        .chain(&args.export)
+        .map(|p| p.display().to_string())
+        .collect();
     let report = basis.report().cloned().unwrap_or_default();
     progress.finish(format!(
         "{} fields ({} harmonic, {} integrable, {} co-integrable; {}) in {:.2} s -> {}",
@@ -69,7 +89,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
         basis.count(FieldFamily::Cointegrable),
         key.discretization,
         report.seconds,
-        args.output.display()
+        written.join(" and ")
     ));
     if let Some(threshold) = report.split_threshold {
         note(format!(
@@ -107,7 +127,8 @@ pub fn run(args: BasisArgs) -> Result<()> {
             },
             "split_threshold": report.split_threshold,
             "counting_seconds": report.counting_seconds,
-            "output": args.output.display().to_string(),
+            "output": args.output.as_ref().map(|p| p.display().to_string()),
+            "export": args.export.as_ref().map(|p| p.display().to_string()),
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
     }

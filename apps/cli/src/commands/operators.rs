@@ -1,7 +1,9 @@
-//! `tvf operators`: writes the paper's matrices of a mesh as Matrix Market files.
+//! `tvf operators`: writes the paper's matrices of a mesh as Matrix Market files (or as `.npz`
+//! files `scipy.sparse.load_npz` reads), with the map from the mesh's vertices to the input's.
 
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
+use crate::npy_export::{npy_bytes, write_sparse_npz, NpyData};
 use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
@@ -13,12 +15,16 @@ use std::path::PathBuf;
 use tvf_core::discretization::sparse::diagonal;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::StagedFolder;
+use tvf_core::mesh::ValidationReport;
 use tvf_core::SurfaceMesh;
 
 /// Arguments of `tvf operators`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf operators bunny.obj -o matrices/\n  tvf operators --example torus --discretization dec-circumcentric -o matrices/"
+    after_help = "Examples:\n  tvf operators bunny.obj -o matrices/\n  tvf operators --example torus --discretization dec-circumcentric -o matrices/\n  \
+tvf operators bunny.obj --format npz -o matrices/   (scipy.sparse.load_npz(\"matrices/S.npz\"))\n\n\
+Unreferenced vertices of the input are dropped: vertex_map.npy (int64, one entry per mesh vertex) \
+gives the input index of every row/column of a vertex-indexed matrix."
 )]
 pub struct OperatorsArgs {
     #[command(flatten)]
@@ -28,16 +34,36 @@ pub struct OperatorsArgs {
     /// Output folder (created if missing).
     #[arg(short, long = "output", visible_alias = "out", value_name = "DIR")]
     out: PathBuf,
+    /// File format of the matrices: Matrix Market (`NAME.mtx`, 1-based) or scipy's sparse
+    /// `.npz` (`NAME.npz`, CSR, read by `scipy.sparse.load_npz`).
+    #[arg(long, value_enum, default_value_t = MatrixFormat::Mtx)]
+    format: MatrixFormat,
+}
+
+/// How `tvf operators` writes a matrix.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MatrixFormat {
+    /// Matrix Market coordinate files (`.mtx`).
+    Mtx,
+    /// `scipy.sparse.save_npz` layout (`.npz`, CSR).
+    Npz,
 }
 
 /// Writes the five matrices of the complex (d0, d1, M0, M1, M2), the derived S0, S2, S, B, J
-/// where the complex has a rotation, and info.json.
+/// where the complex has a rotation, vertex_map.npy and info.json.
 pub fn run(args: OperatorsArgs) -> Result<()> {
     check_output(&args.out, &args.input, &[])?;
-    let mesh = args.input.load()?.mesh;
+    let loaded = args.input.load()?;
+    let mesh = loaded.mesh;
     let complex = args.discretization.build(&mesh, &args.input.label())?;
     let staged = stage(&args.out)?;
-    let written = write_all(complex.as_ref(), &mesh, &staged)?;
+    let written = write_all(
+        complex.as_ref(),
+        &mesh,
+        &loaded.report,
+        args.format,
+        &staged,
+    )?;
     let out = staged.target().to_path_buf();
     commit(staged)?;
     println!(
@@ -49,7 +75,13 @@ pub fn run(args: OperatorsArgs) -> Result<()> {
 }
 
 /// Writes every file of `complex` into `out`; returns the number of matrices.
-fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &StagedFolder) -> Result<usize> {
+fn write_all(
+    complex: &dyn HodgeComplex,
+    mesh: &SurfaceMesh,
+    report: &ValidationReport,
+    format: MatrixFormat,
+    out: &StagedFolder,
+) -> Result<usize> {
     let mut matrices: Vec<(&str, CsMat<f64>)> = vec![
         ("d0", complex.d0().clone()),
         ("d1", complex.d1().clone()),
@@ -65,10 +97,22 @@ fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &StagedFolder)
         matrices.push(("J", rotation.rotation().clone()));
     }
     for (name, matrix) in &matrices {
-        write_atomically(out, &format!("{name}.mtx"), |w| {
-            sprs::io::write_matrix_market_to_bufwrite(w, matrix)
-        })?;
+        match format {
+            MatrixFormat::Mtx => write_atomically(out, &format!("{name}.mtx"), |w| {
+                sprs::io::write_matrix_market_to_bufwrite(w, matrix)
+            })?,
+            MatrixFormat::Npz => write_atomically(out, &format!("{name}.npz"), |w| {
+                let mut buffer = std::io::Cursor::new(Vec::new());
+                write_sparse_npz(&mut buffer, matrix)?;
+                w.write_all(buffer.get_ref())
+            })?,
+        }
     }
+    let vertex_map: Vec<i64> = report.original_vertex.iter().map(|&v| v as i64).collect();
+    write_atomically(out, "vertex_map.npy", |w| {
+        w.write_all(&npy_bytes(&NpyData::I64(&vertex_map), &[vertex_map.len()]))
+    })?;
+    let dropped = report.unreferenced_vertices();
     let (n0, n1, n2) = (
         complex.potential_dimension(),
         complex.field_dimension(),
@@ -78,6 +122,11 @@ fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &StagedFolder)
     let info = json!({
         "discretization": complex.id(),
         "vertices": mesh.vertex_count(),
+        "input_vertices": report.input_vertex_count,
+        "matrix_format": match format {
+            MatrixFormat::Mtx => "Matrix Market (.mtx)",
+            MatrixFormat::Npz => "scipy.sparse CSR (.npz, scipy.sparse.load_npz)",
+        },
         "edges": mesh.edge_count(),
         "faces": mesh.face_count(),
         "components": mesh.component_count(),
@@ -112,10 +161,19 @@ fn write_all(complex: &dyn HodgeComplex, mesh: &SurfaceMesh, out: &StagedFolder)
             },
         },
         "conventions": {
-            "indices": "0-based in this file; Matrix Market files are 1-based",
+            "indices": "0-based in this file, in .npz and .npy files; Matrix Market files are 1-based",
             "face_frames": "a face-frame field stores face t at rows 2t, 2t+1 in the frame e1 = normalize(p_i1 - p_i0), e2 = n x e1",
             "edges": "edges (a, b) with a < b in lexicographic order; a 1-form is the field integrated from a to b",
-            "vertex_order": "as in the input mesh",
+            "vertex_order": if dropped == 0 {
+                format!("as in the input mesh ({} vertices, none unreferenced); vertex_map.npy is the identity", report.input_vertex_count)
+            } else {
+                format!(
+                    "the input's vertices in input order without the {dropped} unreferenced ones \
+                     ({} of {} kept): vertex_map.npy[v] is the input index of mesh vertex v",
+                    report.original_vertex.len(),
+                    report.input_vertex_count
+                )
+            },
             "face_orientation": "counter-clockwise seen from outside, n = (p1 - p0) x (p2 - p0) normalized",
         },
     });

@@ -1,0 +1,143 @@
+//! Arrays for numpy: `.npy` files of float64, int64 and Unicode-string arrays, and sparse
+//! matrices as the `.npz` files `scipy.sparse.load_npz` reads (a zip of the CSR arrays `data`,
+//! `indices`, `indptr`, `shape` and the format name `csr`). Written through a closure so the
+//! caller decides how the file is written (atomically, into a staged folder).
+
+use sprs::CsMat;
+use std::io::{Seek, Write};
+
+/// An array for a `.npy` file: its shape and its elements in C order.
+pub enum NpyData<'a> {
+    /// `<f8`.
+    F64(&'a [f64]),
+    /// `<i8`.
+    I64(&'a [i64]),
+    /// `<U{n}` (UTF-32, `n` the longest string's length in characters).
+    Text(&'a [&'a str]),
+    /// A 0-d `|S{n}` byte string (scipy's `format` entry).
+    Bytes(&'a [u8]),
+}
+
+/// The bytes of a version 1.0 `.npy` file holding `data` with shape `shape`.
+pub fn npy_bytes(data: &NpyData<'_>, shape: &[usize]) -> Vec<u8> {
+    let width = match data {
+        NpyData::Text(strings) => strings
+            .iter()
+            .map(|s| s.chars().count())
+            .max()
+            .unwrap_or(0)
+            .max(1),
+        NpyData::Bytes(bytes) => bytes.len().max(1),
+        _ => 0,
+    };
+    let descr = match data {
+        NpyData::F64(_) => "<f8".to_string(),
+        NpyData::I64(_) => "<i8".to_string(),
+        NpyData::Text(_) => format!("<U{width}"),
+        NpyData::Bytes(_) => format!("|S{width}"),
+    };
+    let shape_text = match shape {
+        [] => "()".to_string(),
+        [n] => format!("({n},)"),
+        dims => format!(
+            "({})",
+            dims.iter()
+                .map(|d| d.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    let mut header =
+        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape_text}, }}");
+    // Magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64.
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend((header.len() as u16).to_le_bytes());
+    out.extend(header.as_bytes());
+    match data {
+        NpyData::F64(values) => values.iter().for_each(|v| out.extend(v.to_le_bytes())),
+        NpyData::I64(values) => values.iter().for_each(|v| out.extend(v.to_le_bytes())),
+        NpyData::Text(strings) => {
+            for s in strings.iter() {
+                let mut count = 0;
+                for c in s.chars() {
+                    out.extend((c as u32).to_le_bytes());
+                    count += 1;
+                }
+                out.extend(std::iter::repeat_n(0u8, 4 * (width - count)));
+            }
+        }
+        NpyData::Bytes(bytes) => out.extend(*bytes),
+    }
+    out
+}
+
+/// Writes `matrix` as an uncompressed `.npz` in scipy's CSR layout.
+pub fn write_sparse_npz<W: Write + Seek>(writer: W, matrix: &CsMat<f64>) -> std::io::Result<()> {
+    let csr = if matrix.is_csr() {
+        matrix.clone()
+    } else {
+        matrix.to_csr()
+    };
+    let indptr: Vec<i64> = csr
+        .indptr()
+        .raw_storage()
+        .iter()
+        .map(|&i| i as i64)
+        .collect();
+    let indices: Vec<i64> = csr.indices().iter().map(|&i| i as i64).collect();
+    let shape = [csr.rows() as i64, csr.cols() as i64];
+    let members = [
+        (
+            "indices.npy",
+            npy_bytes(&NpyData::I64(&indices), &[indices.len()]),
+        ),
+        (
+            "indptr.npy",
+            npy_bytes(&NpyData::I64(&indptr), &[indptr.len()]),
+        ),
+        ("format.npy", npy_bytes(&NpyData::Bytes(b"csr"), &[])),
+        ("shape.npy", npy_bytes(&NpyData::I64(&shape), &[2])),
+        (
+            "data.npy",
+            npy_bytes(&NpyData::F64(csr.data()), &[csr.nnz()]),
+        ),
+    ];
+    let mut zip = zip::ZipWriter::new(writer);
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Stored)
+        .large_file(csr.nnz() > 100_000_000);
+    for (name, bytes) in members {
+        zip.start_file(name, options)
+            .map_err(std::io::Error::other)?;
+        zip.write_all(&bytes)?;
+    }
+    zip.finish().map_err(std::io::Error::other)?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn headers_are_aligned_and_describe_the_data() {
+        let bytes = npy_bytes(&NpyData::F64(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]), &[2, 3]);
+        let header_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+        assert_eq!((10 + header_len) % 64, 0);
+        let header = std::str::from_utf8(&bytes[10..10 + header_len]).unwrap();
+        assert!(header.contains("'descr': '<f8'") && header.contains("'shape': (2, 3)"));
+        assert_eq!(bytes.len(), 10 + header_len + 48);
+        let text = npy_bytes(&NpyData::Text(&["harmonic", "é"]), &[2]);
+        let header_len = u16::from_le_bytes([text[8], text[9]]) as usize;
+        assert!(std::str::from_utf8(&text[10..10 + header_len])
+            .unwrap()
+            .contains("'<U8'"));
+        assert_eq!(text.len(), 10 + header_len + 2 * 8 * 4);
+        let scalar = npy_bytes(&NpyData::Bytes(b"csr"), &[]);
+        assert!(scalar.ends_with(b"csr"));
+    }
+}

@@ -1,0 +1,110 @@
+//! `tvf.basis`: the Fourier basis of a complex; and the way back from Python's basis arrays to a
+//! [`SpectralBasis`] for the functions that work in a basis.
+
+use crate::arrays::{face_fields_to_numpy, mat_to_numpy, numpy_to_mat};
+use crate::complex::Complex;
+use crate::errors::{from_error, tvf_error, with_context};
+use crate::progress::Progress;
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_spectral::{compute_basis, BasisRequest, FieldFamily, SpectralBasis};
+
+/// The `k` lowest eigenfields of `L` (the complete basis if `k ≥ n1`), as a dict:
+/// `eigenvalues` (`k`), `families` (list of `harmonic`/`integrable`/`cointegrable`),
+/// `coefficients` (`n1 × k`, `Uᵀ M1 U = I`), `face_vectors` (`F × 3 × k`, sampled at the face
+/// centroids; `None` without sampling), `discretization`, `seconds`.
+#[pyfunction]
+#[pyo3(signature = (complex, k, seed = 0, progress = None))]
+pub fn basis<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    k: usize,
+    seed: u64,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    if k == 0 {
+        return Err(tvf_error("-k 0: ask for at least one eigenfield"));
+    }
+    let c = complex.complex.as_ref();
+    let reporter = Progress::new(progress);
+    let computed = py.detach(|| {
+        let callback =
+            |p: &tvf_spectral::BasisProgress| reporter.report(p.stage.name(), p.done, p.wanted);
+        let request = if k >= c.field_dimension() {
+            BasisRequest::complete()
+        } else {
+            BasisRequest::fields(k)
+        };
+        compute_basis(c, &request.with_seed(seed).with_progress(&callback))
+    });
+    reporter.finish()?;
+    let basis = computed
+        .map_err(|e| with_context(&format!("{}: cannot compute the basis", complex.label), &e))?;
+    let out = PyDict::new(py);
+    out.set_item("eigenvalues", basis.eigenvalues().to_vec().into_pyarray(py))?;
+    let families: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
+    out.set_item("families", families)?;
+    out.set_item("coefficients", mat_to_numpy(py, &basis.fields()))?;
+    let face_vectors = match c.sampling() {
+        Some(sampling) => {
+            let fields = basis.fields();
+            let columns = py.detach(|| {
+                (0..basis.len())
+                    .map(|j| {
+                        let column: Vec<f64> = fields.col(j).iter().copied().collect();
+                        sampling.to_face_vectors(&column)
+                    })
+                    .collect::<Result<Vec<_>, _>>()
+            });
+            let columns = columns.map_err(|e| from_error(&e))?;
+            Some(face_fields_to_numpy(py, &columns, sampling.face_count()))
+        }
+        None => None,
+    };
+    out.set_item("face_vectors", face_vectors)?;
+    out.set_item("discretization", c.id())?;
+    out.set_item("seconds", basis.report().map_or(0.0, |r| r.seconds))?;
+    Ok(out)
+}
+
+/// A [`SpectralBasis`] of `complex` from Python's arrays (eigenvalues, family names,
+/// `n1 × k` coefficients), checked against the complex.
+pub fn spectral_basis(
+    complex: &dyn HodgeComplex,
+    eigenvalues: PyReadonlyArray1<'_, f64>,
+    families: Vec<String>,
+    coefficients: PyReadonlyArray2<'_, f64>,
+) -> PyResult<SpectralBasis> {
+    let families = families
+        .iter()
+        .map(|name| match name.as_str() {
+            "harmonic" => Ok(FieldFamily::Harmonic),
+            "integrable" => Ok(FieldFamily::Integrable),
+            "cointegrable" => Ok(FieldFamily::Cointegrable),
+            other => Err(tvf_error(format!(
+                "basis: '{other}' is not a family: harmonic, integrable or cointegrable"
+            ))),
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let fields = numpy_to_mat(&coefficients);
+    if fields.nrows() != complex.field_dimension() {
+        return Err(tvf_error(format!(
+            "basis: its fields have {} coefficients, the discretization '{}' has {}",
+            fields.nrows(),
+            complex.id(),
+            complex.field_dimension()
+        )));
+    }
+    if fields.col_iter().any(|c| c.iter().any(|x| !x.is_finite())) {
+        return Err(tvf_error("basis: its fields contain non-finite values"));
+    }
+    SpectralBasis::new(
+        eigenvalues.as_slice()?.to_vec(),
+        families,
+        fields,
+        complex.m1().values().to_vec(),
+    )
+    .map_err(|e| with_context("basis", &e))
+}

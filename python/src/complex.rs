@@ -1,0 +1,152 @@
+//! `tvf.Complex`: a discretization built on a mesh — an entry of the catalog, or five matrices a
+//! researcher assembled (`Complex.from_matrices`), behind the same seam.
+
+use crate::arrays::{csr_from_parts, CsrParts};
+use crate::errors::{from_error, tvf_error};
+use crate::mesh::Mesh;
+use numpy::PyReadonlyArray1;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::{catalog, catalog_entry, BoxedComplex, MatrixComplex, MatrixSampling};
+
+/// A complex and the mesh it was built on.
+#[pyclass(frozen, module = "tvf._native")]
+pub struct Complex {
+    pub complex: BoxedComplex,
+    pub mesh: SurfaceMesh,
+    pub label: String,
+}
+
+#[pymethods]
+impl Complex {
+    /// Catalog entry `discretization` on `mesh` with boundary condition `boundary`
+    /// (`tangential` or `normal`; only matters on meshes with boundary).
+    #[staticmethod]
+    fn build(py: Python<'_>, mesh: &Mesh, discretization: &str, boundary: &str) -> PyResult<Self> {
+        let entry = catalog_entry(discretization).map_err(|e| from_error(&e))?;
+        let condition = BoundaryCondition::from_name(boundary).ok_or_else(|| {
+            tvf_error(format!(
+                "'{boundary}' is not a boundary condition: tangential or normal"
+            ))
+        })?;
+        let complex = py
+            .detach(|| entry.build_with(&mesh.mesh, condition))
+            .map_err(|e| {
+                tvf_error(format!(
+                    "{}: cannot build the discretization '{discretization}' (needs: {}): {e}",
+                    mesh.label, entry.preconditions
+                ))
+            })?;
+        Ok(Self {
+            complex,
+            mesh: mesh.mesh.clone(),
+            label: mesh.label.clone(),
+        })
+    }
+
+    /// A complex from the five matrices (CSR parts of `d0`, `d1`; the diagonals of `M0`, `M1`,
+    /// `M2`) on a closed `mesh`; `sampling` is `none`, `face-frames` or `whitney`.
+    #[staticmethod]
+    #[allow(clippy::too_many_arguments)]
+    fn from_matrices(
+        py: Python<'_>,
+        mesh: &Mesh,
+        d0: CsrParts<'_>,
+        d1: CsrParts<'_>,
+        m0: PyReadonlyArray1<'_, f64>,
+        m1: PyReadonlyArray1<'_, f64>,
+        m2: PyReadonlyArray1<'_, f64>,
+        sampling: &str,
+        id: &str,
+    ) -> PyResult<Self> {
+        let sampling = MatrixSampling::from_name(sampling).ok_or_else(|| {
+            tvf_error(format!(
+                "'{sampling}' is not a sampling: none, face-frames or whitney"
+            ))
+        })?;
+        let d0 = csr_from_parts("d0", d0)?;
+        let d1 = csr_from_parts("d1", d1)?;
+        let (m0, m1, m2) = (
+            m0.as_slice()?.to_vec(),
+            m1.as_slice()?.to_vec(),
+            m2.as_slice()?.to_vec(),
+        );
+        let complex = py
+            .detach(|| MatrixComplex::new(id, &mesh.mesh, d0, d1, m0, m1, m2, sampling))
+            .map_err(|e| tvf_error(format!("{}: {e}", mesh.label)))?;
+        Ok(Self {
+            complex: Box::new(complex),
+            mesh: mesh.mesh.clone(),
+            label: mesh.label.clone(),
+        })
+    }
+
+    /// The complex's id (catalog id, with `+tangential`/`+normal` on meshes with boundary).
+    #[getter]
+    fn id(&self) -> String {
+        self.complex.id().to_string()
+    }
+
+    /// `(n0, n1, n2)`: potentials, field coefficients, co-potentials.
+    #[getter]
+    fn dimensions(&self) -> (usize, usize, usize) {
+        (
+            self.complex.potential_dimension(),
+            self.complex.field_dimension(),
+            self.complex.co_potential_dimension(),
+        )
+    }
+
+    /// Node kinds of the three spaces (`vertices`, `edges`, `faces`, `face-frames`).
+    #[getter]
+    fn node_kinds(&self) -> (String, String, String) {
+        (
+            self.complex.potential_nodes().kind.name().to_string(),
+            self.complex.field_nodes().kind.name().to_string(),
+            self.complex.co_potential_nodes().kind.name().to_string(),
+        )
+    }
+
+    /// Dimension of the harmonic space.
+    #[getter]
+    fn harmonic_dimension(&self) -> usize {
+        self.complex.topology().harmonic_dimension
+    }
+
+    /// Whether fields can be sampled as 3D vectors (face vectors in and out).
+    #[getter]
+    fn has_sampling(&self) -> bool {
+        self.complex.sampling().is_some()
+    }
+
+    fn __repr__(&self) -> String {
+        let (n0, n1, n2) = self.dimensions();
+        format!(
+            "Complex('{}' on '{}': n0={n0}, n1={n1}, n2={n2})",
+            self.complex.id(),
+            self.label
+        )
+    }
+}
+
+/// The catalog: one dict per entry (`id`, `description`, `preconditions`, `needs_delaunay`,
+/// `boundary_conditions`).
+#[pyfunction]
+pub fn discretizations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
+    catalog()
+        .iter()
+        .map(|entry| {
+            let d = PyDict::new(py);
+            d.set_item("id", entry.id)?;
+            d.set_item("description", entry.description)?;
+            d.set_item("preconditions", entry.preconditions)?;
+            d.set_item("needs_delaunay", entry.needs_delaunay)?;
+            let conditions: Vec<&str> =
+                entry.boundary_conditions.iter().map(|b| b.name()).collect();
+            d.set_item("boundary_conditions", conditions)?;
+            Ok(d)
+        })
+        .collect()
+}

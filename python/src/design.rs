@@ -1,0 +1,120 @@
+//! `tvf.spline` and `tvf.design`: fields from constraint sets, in the JSON format of the
+//! command line's constraint files (Python passes the dict serialised as JSON).
+
+use crate::basis::spectral_basis;
+use crate::complex::Complex;
+use crate::errors::{from_error, tvf_error, with_context};
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::Path;
+use tvf_core::discretization::HodgeOperators;
+use tvf_design::{
+    checked_residuals, default_regularization, CompiledConstraint, ConstraintAssembler,
+    ConstraintResidual, ConstraintSet, FullSoftDesign, ReducedBasis, SoftOptions, SplineSession,
+};
+
+/// Parses the constraint JSON (`origin` names it in messages) and compiles it on the complex.
+fn constraints(
+    complex: &Complex,
+    json: &str,
+    origin: &str,
+) -> PyResult<(ConstraintSet, Vec<CompiledConstraint>)> {
+    let origin = Path::new(origin);
+    let set = ConstraintSet::parse(json, origin).map_err(|e| from_error(&e))?;
+    set.check_fingerprint(&format!("{:016x}", complex.mesh.fingerprint()), origin)
+        .map_err(|e| from_error(&e))?;
+    let compiled = ConstraintAssembler::new(complex.complex.as_ref(), &complex.mesh)
+        .compile_all(&set.constraints)
+        .map_err(|e| with_context(&origin.display().to_string(), &e))?;
+    Ok((set, compiled))
+}
+
+/// The field and its per-constraint residuals as a dict.
+fn result<'py>(
+    py: Python<'py>,
+    field: Vec<f64>,
+    compiled: &[CompiledConstraint],
+    omega: f64,
+    origin: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let residuals: Vec<ConstraintResidual> =
+        checked_residuals(&field, compiled, omega).map_err(|e| with_context(origin, &e))?;
+    let out = PyDict::new(py);
+    out.set_item("field", field.into_pyarray(py))?;
+    let list = PyDict::new(py);
+    for r in residuals {
+        list.set_item(r.id, (r.absolute, r.relative))?;
+    }
+    out.set_item("residuals", list)?;
+    Ok(out)
+}
+
+/// The spline (hard constraints) in the given basis: dict `field` (`n1`), `residuals`
+/// (`{id: (absolute, relative)}`).
+#[pyfunction]
+pub fn spline<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    basis: (
+        PyReadonlyArray1<'py, f64>,
+        Vec<String>,
+        PyReadonlyArray2<'py, f64>,
+    ),
+    constraints_json: &str,
+    origin: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let c = complex.complex.as_ref();
+    let (set, compiled) = constraints(complex, constraints_json, origin)?;
+    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let field = py.detach(|| -> Result<Vec<f64>, tvf_design::DesignError> {
+        let reduced = ReducedBasis::from_spectral(&basis)?;
+        let mut session = SplineSession::new(&reduced, set.omega)?;
+        for constraint in compiled.iter().cloned() {
+            session.add(constraint)?;
+        }
+        let v = session.solve();
+        let mut field = vec![0.0; reduced.field_dimension()];
+        reduced.map(&v, &mut field)?;
+        Ok(field)
+    });
+    let field = field.map_err(|e| with_context(origin, &e))?;
+    result(py, field, &compiled, set.omega, origin)
+}
+
+/// Soft-constrained design on the full field space (sparse `LDLᵀ` with refinement): dict
+/// `field`, `residuals`.
+#[pyfunction]
+pub fn design<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    constraints_json: &str,
+    origin: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let c = complex.complex.as_ref();
+    let (set, compiled) = constraints(complex, constraints_json, origin)?;
+    let field = py.detach(|| -> Result<Vec<f64>, tvf_design::DesignError> {
+        let dirichlet = c.dirichlet_energy();
+        let options = SoftOptions {
+            omega: set.omega,
+            regularization: default_regularization(dirichlet, c.m1().values()),
+        };
+        let design = FullSoftDesign::new(c, options, compiled.clone())?;
+        Ok(design.solve().0)
+    });
+    let field = field.map_err(|e| {
+        with_context(
+            &format!(
+                "{origin}: the full soft-design system (omega {:e}) cannot be factored",
+                set.omega
+            ),
+            &e,
+        )
+    })?;
+    if let Some(i) = field.iter().position(|x| !x.is_finite()) {
+        return Err(tvf_error(format!(
+            "{origin}: the designed field is not finite (coefficient {i})"
+        )));
+    }
+    result(py, field, &compiled, set.omega, origin)
+}

@@ -1,0 +1,250 @@
+//! Field functions: the Hodge decomposition, Fourier coefficients, spectral filters and
+//! compression, on field coefficient vectors (`n1` entries; Python converts face vectors).
+
+use crate::basis::spectral_basis;
+use crate::complex::Complex;
+use crate::errors::{from_error, tvf_error, with_context};
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_discretizations::HodgeDecomposer;
+use tvf_spectral::{
+    basis_id, CoefficientCoding, CompressedFields, FieldCodec, FrequencyResponse, SpectralFilter,
+};
+
+/// Basis arrays as Python passes them: eigenvalues, families, coefficients.
+type BasisParts<'py> = (
+    PyReadonlyArray1<'py, f64>,
+    Vec<String>,
+    PyReadonlyArray2<'py, f64>,
+);
+
+/// A field's coefficients, checked: length `n1`, finite.
+fn field_values(
+    complex: &dyn HodgeComplex,
+    field: &PyReadonlyArray1<'_, f64>,
+) -> PyResult<Vec<f64>> {
+    let values = field.as_slice()?.to_vec();
+    if values.len() != complex.field_dimension() {
+        return Err(tvf_error(format!(
+            "field: expected {} coefficients for '{}', got {}",
+            complex.field_dimension(),
+            complex.id(),
+            values.len()
+        )));
+    }
+    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+        return Err(tvf_error(format!(
+            "field: non-finite value at coefficient {i}"
+        )));
+    }
+    Ok(values)
+}
+
+/// Face vectors (`F × 3`) as field coefficients, with the largest dropped normal component.
+#[pyfunction]
+pub fn from_face_vectors<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    vectors: PyReadonlyArray2<'py, f64>,
+) -> PyResult<(Bound<'py, PyAny>, f64)> {
+    let sampling = complex
+        .complex
+        .require_sampling()
+        .map_err(|e| from_error(&e))?;
+    let vectors = crate::arrays::numpy_to_vectors(&vectors)?;
+    if let Some(t) = vectors
+        .iter()
+        .position(|v| v.iter().any(|x| !x.is_finite()))
+    {
+        return Err(tvf_error(format!("field: non-finite vector at face {t}")));
+    }
+    let projection = sampling
+        .from_face_vectors(&vectors)
+        .map_err(|e| from_error(&e))?;
+    let normal = projection.max_normal_part();
+    Ok((projection.field.into_pyarray(py).into_any(), normal))
+}
+
+/// Field coefficients sampled at the face centroids (`F × 3`).
+#[pyfunction]
+pub fn to_face_vectors<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    field: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let c = complex.complex.as_ref();
+    let sampling = c.require_sampling().map_err(|e| from_error(&e))?;
+    let values = field_values(c, &field)?;
+    let vectors = sampling
+        .to_face_vectors(&values)
+        .map_err(|e| from_error(&e))?;
+    Ok(crate::arrays::vectors_to_numpy(py, &vectors))
+}
+
+/// The Hodge decomposition: dict of `integrable`, `co_integrable`, `harmonic` (`n1` each),
+/// `potential` (`n0`), `co_potential` (`n2`).
+#[pyfunction]
+pub fn decompose<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    field: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let c = complex.complex.as_ref();
+    let values = field_values(c, &field)?;
+    let parts = py
+        .detach(|| HodgeDecomposer::new(c).and_then(|d| d.decompose(&values)))
+        .map_err(|e| {
+            with_context(
+                &format!("{}: cannot decompose the field", complex.label),
+                &e,
+            )
+        })?;
+    let out = PyDict::new(py);
+    out.set_item("integrable", parts.integrable.into_pyarray(py))?;
+    out.set_item("co_integrable", parts.co_integrable.into_pyarray(py))?;
+    out.set_item("harmonic", parts.harmonic.into_pyarray(py))?;
+    out.set_item("potential", parts.potential.into_pyarray(py))?;
+    out.set_item("co_potential", parts.co_potential.into_pyarray(py))?;
+    Ok(out)
+}
+
+/// Fourier coefficients `Uᵀ M1 v` of a field in a basis, and the relative norm of the rest.
+#[pyfunction]
+pub fn coefficients<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    basis: BasisParts<'py>,
+    field: PyReadonlyArray1<'py, f64>,
+) -> PyResult<(Bound<'py, PyAny>, f64)> {
+    let c = complex.complex.as_ref();
+    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let values = field_values(c, &field)?;
+    let analysis = py
+        .detach(|| tvf_spectral::FourierAnalysis::new(&basis, &values))
+        .map_err(|e| from_error(&e))?;
+    Ok((
+        analysis.coefficients.into_pyarray(py).into_any(),
+        analysis.relative_rest_norm,
+    ))
+}
+
+/// A spectral filter (responses as the command line's `--integrable`/`--cointegrable` specs):
+/// returns the filtered field and the filtered coefficients.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn filter<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    basis: BasisParts<'py>,
+    field: PyReadonlyArray1<'py, f64>,
+    integrable: &str,
+    cointegrable: &str,
+    harmonic_gain: f64,
+    rest_gain: f64,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    let c = complex.complex.as_ref();
+    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let values = field_values(c, &field)?;
+    let response = |what: &str, spec: &str| -> PyResult<FrequencyResponse> {
+        spec.parse::<FrequencyResponse>()
+            .map_err(|e| with_context(&format!("--{what} {spec}"), &e))
+    };
+    let filter = SpectralFilter {
+        integrable: response("integrable", integrable)?,
+        cointegrable: response("cointegrable", cointegrable)?,
+        harmonic_gain,
+        rest_gain,
+    };
+    let filtered = py
+        .detach(|| filter.apply(&basis, &values))
+        .map_err(|e| from_error(&e))?;
+    Ok((
+        filtered.field.into_pyarray(py).into_any(),
+        filtered.filtered_coefficients.into_pyarray(py).into_any(),
+    ))
+}
+
+/// The codec of `pairs` pairs (`bits`: quantised, else 64-bit coefficients).
+fn codec<'b>(
+    complex: &Complex,
+    basis: &'b tvf_spectral::SpectralBasis,
+    pairs: usize,
+    bits: Option<u32>,
+) -> PyResult<FieldCodec<'b>> {
+    let coding = match bits {
+        Some(bits) => CoefficientCoding::Quantized { bits },
+        None => CoefficientCoding::Float64,
+    };
+    FieldCodec::new(
+        basis,
+        complex.mesh.fingerprint(),
+        basis_id(basis),
+        pairs,
+        coding,
+    )
+    .map_err(|e| from_error(&e))
+}
+
+/// Fields (rows of `fields`, `n1` each) compressed into the bytes of a `.tvfc` file.
+#[pyfunction]
+#[pyo3(signature = (complex, basis, fields, pairs, bits = None))]
+pub fn compress<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    basis: BasisParts<'py>,
+    fields: PyReadonlyArray2<'py, f64>,
+    pairs: usize,
+    bits: Option<u32>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let c = complex.complex.as_ref();
+    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let codec = codec(complex, &basis, pairs, bits)?;
+    let view = fields.as_array();
+    if view.ncols() != c.field_dimension() {
+        return Err(tvf_error(format!(
+            "fields: expected {} coefficients per field, got {}",
+            c.field_dimension(),
+            view.ncols()
+        )));
+    }
+    let rows: Vec<Vec<f64>> = view.rows().into_iter().map(|r| r.to_vec()).collect();
+    if let Some(i) = rows.iter().position(|r| r.iter().any(|x| !x.is_finite())) {
+        return Err(tvf_error(format!(
+            "fields: field {i} has non-finite values"
+        )));
+    }
+    let file = py
+        .detach(|| codec.compress(&rows))
+        .map_err(|e| from_error(&e))?;
+    Ok(PyBytes::new(py, &file.to_bytes()))
+}
+
+/// The fields of `.tvfc` bytes (one row each), checked against the mesh and the basis.
+#[pyfunction]
+pub fn decompress<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    basis: BasisParts<'py>,
+    data: &[u8],
+) -> PyResult<Bound<'py, PyAny>> {
+    let c = complex.complex.as_ref();
+    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let file = CompressedFields::from_bytes(data).map_err(|e| from_error(&e))?;
+    let codec = FieldCodec::for_file(
+        &basis,
+        complex.mesh.fingerprint(),
+        basis_id(&basis),
+        &file.header,
+    )
+    .map_err(|e| from_error(&e))?;
+    let fields = py
+        .detach(|| codec.decompress(&file))
+        .map_err(|e| from_error(&e))?;
+    let n1 = c.field_dimension();
+    let flat: Vec<f64> = fields.concat();
+    let array = numpy::ndarray::Array2::from_shape_vec((fields.len(), n1), flat)
+        .map_err(|e| tvf_error(e.to_string()))?;
+    Ok(array.into_pyarray(py).into_any())
+}

@@ -1,0 +1,31 @@
+"""Fixtures: the ``tvf`` binary of this checkout (built by ``cargo test --workspace --release``
+or ``cargo build --release -p tvf-cli``; ``TVF_BIN`` overrides), and generated meshes."""
+
+import os
+import pathlib
+import subprocess
+
+import pytest
+
+REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="session")
+def tvf_bin():
+    path = pathlib.Path(os.environ.get("TVF_BIN", REPOSITORY / "target" / "release" / "tvf"))
+    if not path.exists():
+        raise RuntimeError(f"the tvf binary is missing at {path}: run `cargo build --release -p tvf-cli` (or set TVF_BIN)")
+    return path
+
+
+@pytest.fixture
+def run_tvf(tvf_bin):
+    """Runs the tvf command line; returns the CompletedProcess (text)."""
+
+    def run(*args, check=True):
+        result = subprocess.run([str(tvf_bin), *map(str, args)], capture_output=True, text=True)
+        if check and result.returncode != 0:
+            raise AssertionError(f"tvf {' '.join(map(str, args))} failed: {result.stderr}")
+        return result
+
+    return run

@@ -1,0 +1,114 @@
+"""Bring your own discretization: the P1 / Crouzeix-Raviart complex assembled in numpy runs
+through tvf's code, passes the conformance checks and has the built-in spectrum; a broken entry
+is named by the report."""
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+import tvf
+from reference import icosphere, p1_cr_complex, torus
+
+
+def own_complex(mesh, V, F, **changes):
+    ref = p1_cr_complex(V, F)
+    ref.update(changes)
+    return tvf.Complex.from_matrices(mesh, ref["d0"], ref["d1"], ref["M0"], ref["M1"], sp.diags(ref["M2"]), sampling="face-frames", id="numpy-p1-cr")
+
+
+@pytest.fixture(scope="module")
+def torus_mesh():
+    V, F = torus(n=12, m=6)
+    return V, F, tvf.Mesh(V, F)
+
+
+def test_numpy_complex_passes_the_conformance_checks(torus_mesh):
+    V, F, mesh = torus_mesh
+    complex_ = own_complex(mesh, V, F)
+    assert complex_.node_kinds == ("vertices", "face-frames", "edges")
+    assert complex_.harmonic_dimension == 2
+    report = tvf.check(complex_)
+    assert report.passed, str(report)
+    names = {o["name"] for o in report.outcomes}
+    assert {"d1_d0_zero", "spectrum union", "kernel dimension", "potential_masses_sum_to_area"} <= names
+    assert all(o["status"] == "passed" for o in report.outcomes), str(report)
+
+
+def test_numpy_complex_has_the_built_in_spectrum_and_results(torus_mesh):
+    V, F, mesh = torus_mesh
+    complex_ = own_complex(mesh, V, F)
+    built_in = tvf.Complex(mesh, "conforming-barycentric")
+    ours = tvf.basis(complex_, 40, seed=3)
+    theirs = tvf.basis(built_in, 40, seed=3)
+    assert np.max(np.abs(ours.eigenvalues - theirs.eigenvalues)) <= 1e-10 * theirs.eigenvalues[-1]
+    assert list(ours.families) == list(theirs.families)
+    field = np.random.default_rng(1).normal(size=(len(F), 3))
+    a = tvf.decompose(complex_, field)
+    b = tvf.decompose(built_in, field)
+    for part in ("integrable", "co_integrable", "harmonic"):
+        assert np.allclose(a[part], b[part], atol=1e-10)
+    constraints = {"constraints": [{"id": "v", "kind": "vector", "face": 3, "value": [0.0, 0.0, 1.0]}, {"id": "s", "kind": "divergence", "vertex": 10, "value": 1.0}]}
+    ours_spline = tvf.spline(complex_, constraints, basis=ours)
+    theirs_spline = tvf.spline(built_in, constraints, basis=theirs)
+    assert np.allclose(ours_spline["field"], theirs_spline["field"], atol=1e-8)
+    filtered, _ = tvf.filter(complex_, field, ours, integrable="lowpass:t=0.01")
+    assert filtered.shape == field.shape
+
+
+def test_a_broken_entry_is_named(torus_mesh):
+    V, F, mesh = torus_mesh
+    ref = p1_cr_complex(V, F)
+    M0 = ref["M0"].copy()
+    M0[7] *= 3.0  # the potential masses no longer partition the area
+    report = tvf.check(own_complex(mesh, V, F, M0=M0))
+    assert not report.passed
+    failed = [o["name"] for o in report.failures]
+    assert "potential_masses_sum_to_area" in failed, str(report)
+    assert "d1_d0_zero" not in failed
+
+    d1 = ref["d1"].tolil()
+    d1[4, 9] += 1e-3 * abs(ref["d1"]).max()  # d1 d0 = 0 broken: refused at construction
+    with pytest.raises(tvf.TvfError, match=r"d1 · d0 is not zero"):
+        own_complex(mesh, V, F, d1=d1.tocsr())
+
+    # The gradient of one vertex dropped (its column of d0 zeroed): still a complex (d1 d0 = 0),
+    # but the constants leave the kernel of the potential stiffness, so the decomposition's
+    # Poisson solve (which pins one constant per component) breaks down at that vertex.
+    d0 = ref["d0"].tolil()
+    d0[:, 17] = 0.0
+    report = tvf.check(own_complex(mesh, V, F, d0=d0.tocsr()))
+    failed = {o["name"]: o for o in report.failures}
+    assert set(failed) == {"hodge_decomposition"}, str(report)
+    assert "row/column 17" in failed["hodge_decomposition"]["detail"]
+
+
+def test_from_matrices_validates_its_input(torus_mesh):
+    V, F, mesh = torus_mesh
+    ref = p1_cr_complex(V, F)
+    with pytest.raises(tvf.TvfError, match="M1 must be positive"):
+        own_complex(mesh, V, F, M1=-ref["M1"])
+    with pytest.raises(tvf.TvfError, match=r"M0 \(one entry per column of d0\): expected %d entries, found %d" % (len(V), len(V) - 1)):
+        own_complex(mesh, V, F, M0=ref["M0"][1:])
+    nan = ref["d0"].copy()
+    nan.data[3] = np.nan
+    with pytest.raises(tvf.TvfError, match="d0 contains a non-finite value"):
+        own_complex(mesh, V, F, d0=nan)
+    with pytest.raises(tvf.TvfError, match="has 7 nodes"):
+        tvf.Complex.from_matrices(mesh, sp.csr_matrix((2 * len(F), 7)), sp.csr_matrix((3, 2 * len(F))), np.ones(7), ref["M1"], np.ones(3))
+    with pytest.raises(tvf.TvfError, match="not a sampling"):
+        tvf.Complex.from_matrices(mesh, ref["d0"], ref["d1"], ref["M0"], ref["M1"], ref["M2"], sampling="nearest")
+    with pytest.raises(tvf.TvfError, match="off-diagonal"):
+        own_complex(mesh, V, F, M0=sp.csr_matrix(np.ones((len(V), len(V)))))
+
+
+def test_dec_from_matrices_with_whitney_sampling():
+    V, F = icosphere(2)
+    mesh = tvf.Mesh(V, F)
+    ops = tvf.operators(mesh, "dec-circumcentric")
+    complex_ = tvf.Complex.from_matrices(mesh, ops["d0"], ops["d1"], ops["M0"], ops["M1"], ops["M2"], sampling="whitney", id="my-dec")
+    assert complex_.node_kinds == ("vertices", "edges", "faces")
+    assert tvf.check(complex_).passed
+    ours = tvf.basis(complex_, 20)
+    theirs = tvf.basis(mesh, 20, discretization="dec-circumcentric")
+    assert np.allclose(ours.eigenvalues, theirs.eigenvalues, rtol=0, atol=1e-10 * theirs.eigenvalues[-1])
+    assert ours.fields.shape == (len(F), 3, 20)

@@ -1,0 +1,83 @@
+"""Checks and conversions of the arrays handed to tvf: dtypes, shapes, contiguity, and
+``scipy.sparse`` matrices to and from the CSR parts the native module speaks."""
+
+import numpy as np
+import scipy.sparse as sp
+
+from ._native import TvfError
+
+
+def float_array(value, name, ndim=None, columns=None):
+    """``value`` as a C-contiguous float64 array; a non-numeric dtype is a TypeError, a wrong
+    number of dimensions or columns a TvfError naming ``name``."""
+    array = np.asarray(value)
+    if array.dtype == object or not (
+        np.issubdtype(array.dtype, np.floating) or np.issubdtype(array.dtype, np.integer)
+    ):
+        raise TypeError(f"{name}: expected a float array, got dtype {array.dtype}")
+    if np.issubdtype(array.dtype, np.complexfloating):
+        raise TypeError(f"{name}: expected a real float array, got dtype {array.dtype}")
+    _check_shape(array, name, ndim, columns)
+    return np.ascontiguousarray(array, dtype=np.float64)
+
+
+def index_array(value, name, ndim=None, columns=None):
+    """``value`` as a C-contiguous int64 array; floats (even integral ones) are a TypeError."""
+    array = np.asarray(value)
+    if array.dtype == bool or not np.issubdtype(array.dtype, np.integer):
+        raise TypeError(f"{name}: expected an integer array of vertex indices, got dtype {array.dtype}")
+    _check_shape(array, name, ndim, columns)
+    if np.issubdtype(array.dtype, np.unsignedinteger) and array.size and array.max() > np.iinfo(np.int64).max:
+        raise TvfError(f"{name}: index {array.max()} is out of range")
+    return np.ascontiguousarray(array, dtype=np.int64)
+
+
+def _check_shape(array, name, ndim, columns):
+    if ndim is not None and array.ndim != ndim:
+        want = "(n, %d)" % columns if columns is not None else f"{ndim} dimensions"
+        raise TvfError(f"{name}: expected shape {want}, got {array.shape}")
+    if columns is not None and array.shape[-1] != columns:
+        raise TvfError(f"{name}: expected shape (n, {columns}), got {array.shape}")
+
+
+def csr_parts(matrix, name):
+    """A scipy.sparse matrix (or dense 2-D array) as ``(indptr, indices, data, shape)``,
+    float64, canonical CSR."""
+    if not sp.issparse(matrix):
+        matrix = float_array(matrix, name, ndim=2)
+    matrix = sp.csr_matrix(matrix, dtype=np.float64, copy=True)
+    matrix.sum_duplicates()
+    matrix.sort_indices()
+    return (
+        np.ascontiguousarray(matrix.indptr, dtype=np.int64),
+        np.ascontiguousarray(matrix.indices, dtype=np.int64),
+        np.ascontiguousarray(matrix.data, dtype=np.float64),
+        (int(matrix.shape[0]), int(matrix.shape[1])),
+    )
+
+
+def diagonal(matrix, name):
+    """The diagonal of a diagonal matrix given as a vector or as a (sparse) diagonal matrix;
+    off-diagonal entries are an error."""
+    if sp.issparse(matrix):
+        coo = sp.coo_matrix(matrix)
+        if matrix.shape[0] != matrix.shape[1]:
+            raise TvfError(f"{name}: a diagonal mass must be square, got shape {matrix.shape}")
+        off = coo.row != coo.col
+        if np.any(coo.data[off] != 0):
+            raise TvfError(f"{name}: a diagonal mass has off-diagonal entries")
+        return np.ascontiguousarray(matrix.diagonal(), dtype=np.float64)
+    array = float_array(matrix, name)
+    if array.ndim == 2:
+        if array.shape[0] != array.shape[1] or np.any(array - np.diag(np.diag(array))):
+            raise TvfError(f"{name}: expected a vector or a diagonal matrix, got shape {array.shape}")
+        return np.ascontiguousarray(np.diag(array))
+    if array.ndim != 1:
+        raise TvfError(f"{name}: expected a vector or a diagonal matrix, got shape {array.shape}")
+    return array
+
+
+def to_csr(parts):
+    """``scipy.sparse.csr_matrix`` from the native module's CSR parts."""
+    indptr, indices, data, shape = parts
+    return sp.csr_matrix((data, indices, indptr), shape=shape)

@@ -1,0 +1,61 @@
+"""Fields from constraints: :func:`spline` (hard) and :func:`design` (soft)."""
+
+import json
+
+import numpy as np
+
+from . import _native
+from ._native import TvfError
+from .complex import DEFAULT_DISCRETIZATION, as_complex
+from .spectral import _complex_of, _field_out, basis as compute_basis
+
+
+def _json(constraints):
+    if isinstance(constraints, (str, bytes)):
+        return constraints if isinstance(constraints, str) else constraints.decode("utf-8")
+    try:
+        return json.dumps(constraints, allow_nan=True)
+    except TypeError as e:
+        raise TvfError(f"constraints: not JSON data: {e}") from None
+
+
+def _result(complex_, raw):
+    coefficients = np.asarray(raw["field"])
+    field = _field_out(complex_, coefficients, complex_.has_sampling)
+    return {"field": field, "coefficients": coefficients, "residuals": dict(raw["residuals"])}
+
+
+def spline(mesh, constraints, k=None, basis=None, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", seed=0, progress=None, origin="constraints"):
+    """A tangential vector field spline (``tvf spline``): minimises ``E_B + omega E_D`` in the
+    basis of the ``k`` lowest eigenfields subject to the constraints, met exactly in that basis.
+
+    ``constraints``: the dict of a constraint file (``{"omega": 0.1, "constraints": [{"id":
+    "a", "kind": "vector", "face": 12, "value": [1, 0, 0]}, ...]}``; kinds ``vector``,
+    ``divergence``, ``curl``; locations ``face`` (+ ``barycentric``), ``vertex``, ``edge``;
+    see the README's "Constraint files"), or its JSON text. ``origin`` names it in messages.
+    Give ``k`` (the basis is computed) or a :class:`tvf.Basis`. Conflicting or dependent
+    constraints raise :class:`tvf.TvfError` naming them, as the command line does.
+
+    Returns a dict: ``field`` (``(F, 3)`` face vectors, or coefficients without sampling),
+    ``coefficients`` (``n1``), ``residuals`` (``{id: (absolute, relative)}``)."""
+    if basis is None:
+        if k is None:
+            raise TvfError("spline: give k (the basis size) or a basis")
+        complex_ = as_complex(mesh, discretization, boundary)
+        basis = compute_basis(complex_, k, seed=seed, progress=progress)
+    else:
+        complex_ = _complex_of(mesh, discretization, boundary, basis)
+    raw = _native.spline(complex_._native, basis._parts(), _json(constraints), str(origin))
+    return _result(complex_, raw)
+
+
+def design(mesh, constraints, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", origin="constraints"):
+    """Soft-constrained design (``tvf design --full``): minimises
+    ``E_D + omega E_B + sum_i weight_i |C_i x - c_i|^2`` over the full field space (sparse
+    ``LDL^T`` with iterative refinement).
+
+    ``constraints`` as for :func:`spline` (``weight`` > 0 per constraint, default 1). Returns
+    the same dict as :func:`spline`."""
+    complex_ = as_complex(mesh, discretization, boundary)
+    raw = _native.design(complex_._native, _json(constraints), str(origin))
+    return _result(complex_, raw)

@@ -1,0 +1,116 @@
+//! [`CheckOutcome`]: what one conformance check measured and whether that passes. The core checks
+//! measure first ([`crate::algebra_checks::measure_d1_d0_zero`] and the other `measure_*`
+//! functions) and the suite asserts on the outcomes ([`assert_outcomes`]); [`crate::check_report`]
+//! returns them instead, for callers that want a report (the Python package's `tvf.check`).
+
+/// Whether a check passed, failed or was not run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CheckStatus {
+    /// The measured value is within the limit.
+    Passed,
+    /// The measured value exceeds the limit (or a count differs from the expected one).
+    Failed,
+    /// Not run (a dense check on a complex too large for it).
+    Skipped,
+}
+
+impl CheckStatus {
+    /// Lower-case name: `passed`, `failed`, `skipped`.
+    pub fn name(self) -> &'static str {
+        match self {
+            CheckStatus::Passed => "passed",
+            CheckStatus::Failed => "failed",
+            CheckStatus::Skipped => "skipped",
+        }
+    }
+}
+
+/// One measured property of a complex.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CheckOutcome {
+    /// Stable name of the check, e.g. `d1_d0_zero` or `symmetric:S`.
+    pub name: String,
+    /// The outcome.
+    pub status: CheckStatus,
+    /// The measured value (an error norm, or a count for counting checks).
+    pub measured: f64,
+    /// The largest value that passes (for counting checks: the expected count).
+    pub limit: f64,
+    /// One line saying what was measured against what.
+    pub detail: String,
+}
+
+impl CheckOutcome {
+    /// Passes when `measured ≤ limit` (a NaN measurement fails).
+    pub fn at_most(name: impl Into<String>, measured: f64, limit: f64, detail: String) -> Self {
+        let passed = measured <= limit;
+        Self::new(name, passed, measured, limit, detail)
+    }
+
+    /// Passes when the count `measured` equals `expected`.
+    pub fn count(
+        name: impl Into<String>,
+        measured: usize,
+        expected: usize,
+        detail: String,
+    ) -> Self {
+        Self::new(
+            name,
+            measured == expected,
+            measured as f64,
+            expected as f64,
+            detail,
+        )
+    }
+
+    /// A check that failed before it could measure anything (e.g. a factorization failed).
+    pub fn failed(name: impl Into<String>, detail: String) -> Self {
+        Self::new(name, false, f64::NAN, f64::NAN, detail)
+    }
+
+    /// A check not run; `reason` says why.
+    pub fn skipped(name: impl Into<String>, reason: String) -> Self {
+        Self {
+            name: name.into(),
+            status: CheckStatus::Skipped,
+            measured: f64::NAN,
+            limit: f64::NAN,
+            detail: reason,
+        }
+    }
+
+    fn new(
+        name: impl Into<String>,
+        passed: bool,
+        measured: f64,
+        limit: f64,
+        detail: String,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            status: if passed {
+                CheckStatus::Passed
+            } else {
+                CheckStatus::Failed
+            },
+            measured,
+            limit,
+            detail,
+        }
+    }
+
+    /// Whether the check failed.
+    pub fn failed_check(&self) -> bool {
+        self.status == CheckStatus::Failed
+    }
+}
+
+/// Panics with the name and detail of every failed outcome (the suite's assertion).
+pub fn assert_outcomes(outcomes: &[CheckOutcome]) {
+    let failures: Vec<String> = outcomes
+        .iter()
+        .filter(|o| o.failed_check())
+        .map(|o| format!("{}: {}", o.name, o.detail))
+        .collect();
+    assert!(failures.is_empty(), "{}", failures.join("; "));
+}
