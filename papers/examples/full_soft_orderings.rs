@@ -83,9 +83,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let assembly_s = start.elapsed().as_secs_f64();
         let assembler = ConstraintAssembler::new(complex.as_ref(), &mesh);
         let compiled: Vec<CompiledConstraint> =
-            assembler.compile_all(&seeded_constraints(&mesh, 30, 1))?;
+            assembler.compile_all(&seeded_constraints(&mesh, complex.as_ref(), 30, 1))?;
         let other: Vec<CompiledConstraint> =
-            assembler.compile_all(&seeded_constraints(&mesh, 30, 2))?;
+            assembler.compile_all(&seeded_constraints(&mesh, complex.as_ref(), 30, 2))?;
         let options = SoftOptions {
             omega: OMEGA,
             regularization: default_regularization(dirichlet, complex.m1().values()),

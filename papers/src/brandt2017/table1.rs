@@ -8,7 +8,7 @@ use crate::markdown::{ratio, seconds, thousands, Table};
 use crate::timing::{median_time, Repetitions, Timing};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::HodgeOperators;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::SurfaceMesh;
 use tvf_design::{
     default_regularization, Constraint, ConstraintAssembler, FullSoftDesign, Location,
@@ -79,12 +79,26 @@ pub struct Table1Row {
     pub paper: Option<PaperTimings>,
 }
 
-/// `count` seeded constraints spread over `mesh` (conforming node kinds): 80 % vectors in
-/// random faces with random directions, then alternately divergences at vertices and curls at
-/// edges (for 30: 24 vectors, 3 sources/sinks, 3 vortices).
-pub fn seeded_constraints(mesh: &SurfaceMesh, count: usize, seed: u64) -> Vec<Constraint> {
+/// `count` seeded constraints spread over `mesh` for `complex`: 80 % vectors in random faces
+/// with random directions, then alternately divergences and curls (for 30: 24 vectors, 3
+/// sources/sinks, 3 vortices), each at a node of the complex's own space next to a random face
+/// (conforming: divergence at a vertex, curl at an edge; DEC: curl on the face).
+pub fn seeded_constraints(
+    mesh: &SurfaceMesh,
+    complex: &dyn HodgeComplex,
+    count: usize,
+    seed: u64,
+) -> Vec<Constraint> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let vectors = count * 4 / 5;
+    let node_next_to = |kind: NodeKind, face: usize| match kind {
+        NodeKind::Vertices => Location::Vertex(mesh.faces()[face][0]),
+        NodeKind::Edges => Location::Edge(mesh.face_edges()[face][0]),
+        NodeKind::Faces | NodeKind::FaceFrames => Location::Face {
+            face,
+            barycentric: None,
+        },
+    };
     (0..count)
         .map(|k| {
             let face = rng.random_range(0..mesh.face_count().max(1));
@@ -96,16 +110,18 @@ pub fn seeded_constraints(mesh: &SurfaceMesh, count: usize, seed: u64) -> Vec<Co
                 };
                 Constraint::new(format!("v{k}"), Target::Vector(v), location)
             } else if (k - vectors).is_multiple_of(2) {
-                let vertex = mesh.faces()[face][0];
                 let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
                 Constraint::new(
                     format!("d{k}"),
                     Target::Divergence(sign),
-                    Location::Vertex(vertex),
+                    node_next_to(complex.potential_nodes().kind, face),
                 )
             } else {
-                let edge = mesh.face_edges()[face][0];
-                Constraint::new(format!("c{k}"), Target::Curl(1.0), Location::Edge(edge))
+                Constraint::new(
+                    format!("c{k}"),
+                    Target::Curl(1.0),
+                    node_next_to(complex.co_potential_nodes().kind, face),
+                )
             }
         })
         .collect()
@@ -121,7 +137,7 @@ pub fn measure(
     paper: Option<(usize, PaperTimings)>,
 ) -> Result<Table1Row, PaperError> {
     let (mesh, complex, basis) = (x.mesh, x.complex, x.basis);
-    let constraints = seeded_constraints(mesh, constraint_count, 30);
+    let constraints = seeded_constraints(mesh, complex, constraint_count, 30);
     let compiled = ConstraintAssembler::new(complex, mesh).compile_all(&constraints)?;
     let reduced = ReducedBasis::from_spectral(basis)?;
     let fast = repetitions.fast;

@@ -118,6 +118,7 @@ pub fn designed_field(
 ) -> Result<Vec<f64>, PaperError> {
     let compiled = ConstraintAssembler::new(complex, mesh).compile_all(&seeded_constraints(
         mesh,
+        complex,
         constraints,
         seed,
     ))?;
