@@ -3,7 +3,7 @@
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
-use crate::refinement::{accurate_residual, refined_solve, SolveReport};
+use tvf_solvers::iterative_refinement::{accurate_residual, refined_solve, SolveReport};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 use sprs::CsMat;
