@@ -5,8 +5,12 @@
 //! - [`SparseCholesky`]: supernodal sparse Cholesky (faer) with symbolic reuse and blocked solves.
 //! - [`SparseLdlt`]: the underlying `LDLᵀ` factorization of indefinite shifted matrices, with
 //!   [`Inertia`] (Sylvester's law) for eigenvalue counting.
-//! - [`lowest_eigenpairs`]: lowest k eigenpairs of `A x = λ M x` (shift-and-invert block
-//!   Krylov–Schur, spectrum slicing, inertia-verified completeness).
+//! - [`lowest_eigenpairs`], [`lowest_eigenpairs_of`]: lowest eigenpairs of one or several
+//!   pencils `A x = λ M x` (spectrum intervals with exact inertia counts, solved concurrently by
+//!   shift-and-invert block Krylov–Schur, refined where the residual misses the target).
+//! - [`Pencil`]: a pencil and its factorizations (each shift factored once, shared by counting,
+//!   solving and refinement), [`Pencil::count_below`] counts eigenvalues below a threshold;
+//!   [`SolverStatistics`] reports factorizations, solves and time per phase.
 //! - [`dense_generalized_eigen`]: dense reference eigensolver (test oracle, small problems).
 //! - [`DenseCholesky`]: dense Cholesky with rank-one update/downdate and bordered updates.
 //! - [`convert`]: `sprs → faer` conversions.
@@ -33,7 +37,11 @@ pub mod sparse_pattern;
 
 pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::dense_generalized_eigen;
-pub use eigen::{lowest_eigenpairs, EigenOptions, EigenProgress, Eigenpairs};
+pub use eigen::{
+    lowest_eigenpairs, lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress,
+    EigenRequest, EigenSolution, Eigenpairs, Pencil, Phase, PhaseStatistics, RequestError,
+    ShiftCount, SolverStatistics,
+};
 pub use error::SolverError;
 pub use factor_parallelism::{FactorParallelism, SEQUENTIAL_FLOP_LIMIT};
 pub use iterative_refinement::SolveReport;

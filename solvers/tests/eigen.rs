@@ -91,16 +91,15 @@ fn grid_laplacian_with_irregular_masses() {
     let a = grid_laplacian(40, 38, false);
     let mass = irregular_masses(a.rows(), 11);
     let options = EigenOptions {
-        slice_size: 40,
         interval_size: 40,
         ..Default::default()
     };
     let result = lowest_eigenpairs(&a, &mass, 100, &options).unwrap();
     check_against_oracle(&a, &mass, 100, &result);
+    let statistics = result.statistics;
     assert!(
-        result.factorizations >= 2,
-        "several slices expected, got {}",
-        result.factorizations
+        statistics.solving.factorizations >= 3,
+        "several intervals expected, got {statistics:?}"
     );
     assert!(result.residuals.iter().all(|r| r.is_finite()));
 }
@@ -125,11 +124,10 @@ fn periodic_grid_multiplicities_are_complete() {
     // torus grid with unit mass: eigenvalues 4 sin²(πa/n) + 4 sin²(πb/n), multiplicities 1, 2, 4, 8
     let a = grid_laplacian(30, 30, true);
     let mass = vec![1.0; a.rows()];
-    let options = |concurrent_slices| EigenOptions {
-        slice_size: 48,
+    let options = |threads| EigenOptions {
         interval_size: 48,
         block_size: 8,
-        concurrent_slices,
+        threads,
         ..Default::default()
     };
     // k = 137 ends a multiplet: count of eigenvalues below the 138th distinct level
@@ -138,9 +136,8 @@ fn periodic_grid_multiplicities_are_complete() {
     let k = (120..200)
         .find(|&k| reference[k] - reference[k - 1] > 1e-6)
         .unwrap();
-    // both drivers: independent intervals (default) and sequential shifts
-    for concurrent_slices in [2, 0] {
-        let result = lowest_eigenpairs(&a, &mass, k, &options(concurrent_slices)).unwrap();
+    for threads in [2, 1] {
+        let result = lowest_eigenpairs(&a, &mass, k, &options(threads)).unwrap();
         check_against_oracle(&a, &mass, k, &result);
     }
 }
@@ -153,12 +150,11 @@ fn multiplicity_larger_than_block_size_is_found() {
     let a = direct_sum(&copies);
     let base = irregular_masses(block.rows(), 9);
     let mass: Vec<f64> = (0..5).flat_map(|_| base.iter().copied()).collect();
-    for concurrent_slices in [2, 0] {
+    for threads in [2, 1] {
         let options = EigenOptions {
             block_size: 2,
-            slice_size: 20,
             interval_size: 20,
-            concurrent_slices,
+            threads,
             ..Default::default()
         };
         let result = lowest_eigenpairs(&a, &mass, 50, &options).unwrap();
@@ -172,11 +168,10 @@ fn multiplicity_larger_than_block_size_is_found() {
 fn interval_results_do_not_depend_on_the_thread_count() {
     let a = grid_laplacian(40, 38, false);
     let mass = irregular_masses(a.rows(), 7);
-    let run = |concurrent_slices| {
+    let run = |threads| {
         let options = EigenOptions {
-            slice_size: 30,
             interval_size: 30,
-            concurrent_slices,
+            threads,
             ..Default::default()
         };
         lowest_eigenpairs(&a, &mass, 120, &options).unwrap()
@@ -184,16 +179,14 @@ fn interval_results_do_not_depend_on_the_thread_count() {
     let one = run(1);
     check_against_oracle(&a, &mass, 120, &one);
     assert!(
-        one.factorizations >= 5,
-        "several intervals expected, got {} factorizations",
-        one.factorizations
+        one.statistics.factorizations() >= 5,
+        "several intervals expected, got {:?}",
+        one.statistics
     );
     let three = run(3);
     assert_eq!(one.values, three.values);
-    assert_eq!(one.solves, three.solves);
+    assert_eq!(one.statistics.solves(), three.statistics.solves());
     assert_eq!(one.vectors, three.vectors);
-    let sequential = run(0);
-    check_against_oracle(&a, &mass, 120, &sequential);
 }
 
 #[test]
@@ -213,9 +206,9 @@ fn seeded_runs_are_deterministic_and_report_progress() {
     let first = lowest_eigenpairs(&a, &mass, 30, &options).unwrap();
     let second = lowest_eigenpairs(&a, &mass, 30, &options).unwrap();
     assert_eq!(first.values, second.values);
-    assert_eq!(first.solves, second.solves);
+    assert_eq!(first.statistics.solves(), second.statistics.solves());
     assert!(calls.get() >= 2);
-    assert!(first.solves > 0);
+    assert!(first.statistics.solves() > 0);
 }
 
 #[test]
@@ -223,7 +216,7 @@ fn small_problems_use_the_dense_path() {
     let a = grid_laplacian(8, 7, false);
     let mass = irregular_masses(a.rows(), 8);
     let result = lowest_eigenpairs(&a, &mass, 50, &EigenOptions::default()).unwrap();
-    assert_eq!(result.factorizations, 0);
+    assert_eq!(result.statistics.factorizations(), 0);
     let ad = dense(&a);
     let (reference, _) = dense_generalized_eigen(ad.as_ref(), &mass).unwrap();
     for j in 0..50 {

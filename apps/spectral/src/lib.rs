@@ -37,7 +37,6 @@ mod compressed_file;
 mod compression_error;
 mod compute_basis;
 mod dense_memory;
-mod eigen_refinement;
 mod eigenfunction_basis;
 mod family_split;
 mod field_io;
