@@ -6,7 +6,8 @@ use faer::Mat;
 use std::cell::Cell;
 use tvf_solvers::convert::shifted_upper_triangle;
 use tvf_solvers::{
-    dense_generalized_eigen, lowest_eigenpairs, EigenOptions, Eigenpairs, SolverError, SparseLdlt,
+    dense_generalized_eigen, lowest_eigenpairs, lowest_eigenpairs_of, EigenOptions, EigenRequest,
+    Eigenpairs, Pencil, SolverError, SparseLdlt,
 };
 
 fn dense(a: &sprs::CsMat<f64>) -> Mat<f64> {
@@ -248,4 +249,72 @@ fn invalid_requests_are_errors() {
     ));
     let empty = lowest_eigenpairs(&a, &mass, 0, &EigenOptions::default()).unwrap();
     assert!(empty.values.is_empty());
+}
+
+#[test]
+fn an_interval_whose_shift_sits_on_an_eigenvalue_is_split_and_solved() {
+    // One interval (−∞, 2λ*) whose midpoint, the shift, is the eigenvalue λ* to rounding: the
+    // shift-inverted operator has |θ| ≈ 1e14/λ* there, so the pairs at the far end of the
+    // interval cannot reach the tolerance relative to their |θ| ≈ 1/λ* (the rounding floor is
+    // ε·max|θ|). The interval must be split at its shift instead of restarting forever.
+    let a = grid_laplacian(30, 30, true);
+    let mass = vec![1.0; a.rows()];
+    let (reference, _) = dense_generalized_eigen(dense(&a).as_ref(), &mass).unwrap();
+    let star = reference[61];
+    let pencil = Pencil::new(&a, &mass).unwrap();
+    let top = pencil.count_below(2.0 * star).unwrap();
+    let k = top.below;
+    assert!(k > 100 && 3 * k < a.rows(), "{k}");
+    let options = EigenOptions {
+        interval_size: 10 * k,
+        ..Default::default()
+    };
+    let request = EigenRequest {
+        pencil: &pencil,
+        count: k,
+        top: Some(top),
+        seed: 5,
+    };
+    let solution = lowest_eigenpairs_of(&[request], &options).unwrap();
+    let statistics = solution.statistics;
+    // One split: one more count, and the two halves' shifts.
+    assert_eq!(statistics.counting.factorizations, 2, "{statistics:?}");
+    assert_eq!(statistics.solving.factorizations, 3, "{statistics:?}");
+    check_against_oracle(&a, &mass, k, &solution.pairs[0]);
+}
+
+#[test]
+fn every_shift_is_factored_once_and_counted_shifts_are_reused() {
+    let a = grid_laplacian(40, 38, false);
+    let mass = irregular_masses(a.rows(), 13);
+    let pencil = Pencil::new(&a, &mass).unwrap();
+    // A caller's count (as a basis split does) serves as the top shift and as a boundary.
+    let (reference, _) = dense_generalized_eigen(dense(&a).as_ref(), &mass).unwrap();
+    let t = 0.5 * (reference[119] + reference[120]);
+    let top = pencil.count_below(t).unwrap();
+    assert_eq!(top.below, 120);
+    let middle = pencil.count_below(0.5 * t).unwrap();
+    assert_eq!(pencil.count_below(0.5 * t).unwrap(), middle);
+    assert_eq!(pencil.statistics().counting.factorizations, 2);
+    let options = EigenOptions {
+        interval_size: 30,
+        ..Default::default()
+    };
+    let request = EigenRequest {
+        pencil: &pencil,
+        count: 120,
+        top: Some(top),
+        seed: 1,
+    };
+    let solution = lowest_eigenpairs_of(&[request], &options).unwrap();
+    let statistics = solution.statistics;
+    // Four intervals: boundaries t/4 and 3t/4 are new, t/2 was counted already.
+    assert_eq!(statistics.counting.factorizations, 4, "{statistics:?}");
+    assert_eq!(statistics.solving.factorizations, 4, "{statistics:?}");
+    assert_eq!(statistics.refinement.factorizations, 0, "{statistics:?}");
+    let mut shifts: Vec<f64> = pencil.counted().iter().map(|c| c.shift).collect();
+    shifts.dedup();
+    assert_eq!(shifts.len(), statistics.factorizations());
+    check_against_oracle(&a, &mass, 120, &solution.pairs[0]);
+    assert!(solution.pairs[0].field_residuals.iter().all(|r| *r <= 1e-10));
 }

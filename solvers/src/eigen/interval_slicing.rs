@@ -18,11 +18,12 @@
 //!    kept. The intervals of every pencil run as one pool of jobs on `EigenOptions::threads`
 //!    threads; interval `i` of a pencil is seeded from `(seed, i)`, so the result does not depend
 //!    on thread timing. An interval that does not converge within `EigenOptions::max_restarts`
-//!    restarts, or whose pairs disagree with its counts, is split at its midpoint (whose count
-//!    is known) and the halves are solved with new midpoints: a shift that lands next to an
-//!    eigenvalue makes `max|θ|` huge and the far end of the interval unresolvable
-//!    (`ε·max|θ| > tolerance·|θ|`), and a cluster that straddles an interval end converges
-//!    slowly; both are cured by a different shift and a narrower interval.
+//!    restarts, or whose pairs disagree with its counts, is split near (not at) its midpoint
+//!    (one more count) and the halves are solved with their own midpoints as shifts: a shift
+//!    that lands next to an eigenvalue makes `max|θ|` huge and the far end of the interval
+//!    unresolvable (`ε·max|θ| > tolerance·|θ|`: the slice restarts until its restart limit, which
+//!    was 1000), and a cluster that straddles an interval end converges slowly; both are cured by
+//!    a different shift and a narrower interval.
 //! 3. *Refinement.* Pairs whose eigenfield residual misses `EigenOptions::refinement_target`
 //!    get one inverse-iteration step with their interval's factorization
 //!    ([`super::refinement`]); the others are left as they are.
@@ -50,8 +51,11 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{mpsc, Arc};
 
-/// Times an interval may be split at its midpoint after failing to converge.
+/// Times an interval may be split after failing to converge.
 const MAX_SPLITS: usize = 3;
+/// Where an interval that failed is split, as a fraction of its width from its lower end: not
+/// its midpoint, where the failed shift was.
+const SPLIT_POINT: f64 = 0.55;
 /// Trial shifts of the search for the top shift.
 const MAX_TOP_TRIALS: usize = 12;
 
@@ -483,7 +487,7 @@ struct IntervalSettings {
     parallelism: Par,
 }
 
-/// Solves `interval` into `out`; on failure splits it at its midpoint (`depth` splits so far).
+/// Solves `interval` into `out`; on failure splits it (`depth` splits so far).
 fn solve_interval(
     request: &EigenRequest<'_, '_>,
     interval: &Interval,
@@ -526,14 +530,30 @@ fn solve_interval(
         }
         Err(SolverError::NoConvergence { .. }) if depth < MAX_SPLITS => {
             drop(factor);
+            // Not at σ itself: if σ sits on an eigenvalue (the likely cause), a boundary there
+            // would put that eigenvalue on an interval end. The halves get new midpoints.
+            let split = if lower.is_finite() {
+                lower + SPLIT_POINT * (upper - lower)
+            } else {
+                SPLIT_POINT * upper
+            };
+            let middle = pencil.count_below(split)?;
+            if middle.below < nu_lower || middle.below > nu_upper || middle.shift >= upper {
+                return Err(SolverError::NoConvergence {
+                    reason: format!(
+                        "the count {} at {:e} contradicts the interval's counts {nu_lower}..{nu_upper}",
+                        middle.below, middle.shift
+                    ),
+                });
+            }
             let halves = [
                 Interval {
                     lower: interval.lower,
-                    upper: (sigma, nu),
+                    upper: (middle.shift, middle.below),
                     stream: 2 * interval.stream + 1_000_003,
                 },
                 Interval {
-                    lower: (sigma, nu),
+                    lower: (middle.shift, middle.below),
                     upper: interval.upper,
                     stream: 2 * interval.stream + 1_000_004,
                 },
