@@ -2,21 +2,21 @@
 //! `(S + ωB + εM_X + C̃ᵀ W C̃) x = C̃ᵀ W c`, factored through a quasi-definite augmented system
 //! (sparse `LDLᵀ`) with iterative refinement.
 
+use crate::constraint::constraint_gram_entries;
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
-use tvf_solvers::iterative_refinement::{
-    exact, refined_solve, symmetric_product, DoubleDouble, SolveReport,
-};
-use tvf_solvers::FactorParallelism;
-use crate::constraint::constraint_gram_entries;
-use tvf_solvers::sparse_pattern::{position, with_extra_entries};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, Par};
 use sprs::CsMat;
 use std::time::{Duration, Instant};
 use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_solvers::iterative_refinement::{
+    exact, refined_solve, symmetric_product, DoubleDouble, SolveReport,
+};
 use tvf_solvers::ordering::nested_dissection_of_groups;
+use tvf_solvers::sparse_pattern::{position, with_extra_entries};
+use tvf_solvers::FactorParallelism;
 use tvf_solvers::{FillOrdering, SolverError, SparseLdlt};
 
 /// Parameters of soft design (full and reduced use the same ones, so that they agree).

@@ -251,7 +251,13 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
 }
 
 /// One family's eigenproblem for [`solve_both_families`]: `(problem, pencil, count, top, seed)`.
-type Family<'p, 'a> = (&'p ScalarSpectrum, &'p Pencil<'a>, usize, Option<ShiftCount>, u64);
+type Family<'p, 'a> = (
+    &'p ScalarSpectrum,
+    &'p Pencil<'a>,
+    usize,
+    Option<ShiftCount>,
+    u64,
+);
 
 /// Both scalar eigenproblems in one eigensolver call: their spectrum intervals form one pool of
 /// jobs, so both cores stay busy until the last interval of either family is done. Progress of
@@ -275,8 +281,16 @@ fn solve_both_families(
     let done = [Cell::new(0), Cell::new(0)];
     let progress = |p: &EigenProgress| {
         let (spectrum, ..) = families[p.request];
-        done[p.request].set(p.found.saturating_sub(spectrum.components()).min(counts[p.request]));
-        request.report(BasisStage::Eigenpairs, done[0].get() + done[1].get(), wanted);
+        done[p.request].set(
+            p.found
+                .saturating_sub(spectrum.components())
+                .min(counts[p.request]),
+        );
+        request.report(
+            BasisStage::Eigenpairs,
+            done[0].get() + done[1].get(),
+            wanted,
+        );
     };
     request.report(BasisStage::Eigenpairs, 0, wanted);
     let requests: Vec<EigenRequest<'_, '_>> = families

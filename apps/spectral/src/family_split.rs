@@ -224,10 +224,7 @@ impl PairCounter<'_, '_> {
                     source,
                 })
         };
-        let (a, b) = rayon::join(
-            || count(self.potential, t),
-            || count(self.co_potential, t),
-        );
+        let (a, b) = rayon::join(|| count(self.potential, t), || count(self.co_potential, t));
         let (mut a, mut b) = (a?, b?);
         for _ in 0..MAX_ALIGNMENTS {
             if a.shift < b.shift {

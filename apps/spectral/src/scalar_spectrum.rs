@@ -134,7 +134,10 @@ impl ScalarSpectrum {
     /// Errors: [`BasisError::KernelMismatch`].
     pub fn nonzero(&self, pairs: Eigenpairs, count: usize) -> Result<ScalarEigenpairs, BasisError> {
         let max_residual = pairs.residuals.iter().fold(0.0, |m: f64, &r| m.max(r));
-        let max_field_residual = pairs.field_residuals.iter().fold(0.0, |m: f64, &r| m.max(r));
+        let max_field_residual = pairs
+            .field_residuals
+            .iter()
+            .fold(0.0, |m: f64, &r| m.max(r));
         let (all_values, all_vectors) = (pairs.values, pairs.vectors);
         let count = count.min(all_values.len().saturating_sub(self.components));
         let kernel_values = all_values[..self.components].to_vec();

@@ -26,7 +26,8 @@
 //!    a different shift and a narrower interval.
 //! 3. *Refinement.* Pairs whose eigenfield residual misses `EigenOptions::refinement_target`
 //!    get one inverse-iteration step with their interval's factorization
-//!    ([`super::refinement`]); the others are left as they are.
+//!    ([`super::refinement`]; an interval keeps its factorization only if it has such pairs);
+//!    the others are left as they are.
 //!
 //! The result is complete by construction: interval `i` must return exactly its count, so the
 //! total is `ν(σ_top) ≥ k`, every eigenvalue below `σ_top`. Vectors of neighbouring intervals
@@ -56,6 +57,9 @@ const MAX_SPLITS: usize = 3;
 /// Where an interval that failed is split, as a fraction of its width from its lower end: not
 /// its midpoint, where the failed shift was.
 const SPLIT_POINT: f64 = 0.55;
+/// Inverse-iteration steps of the refinement of one interval (each one solve per pair still
+/// above the target).
+const MAX_REFINEMENT_STEPS: usize = 3;
 /// Trial shifts of the search for the top shift.
 const MAX_TOP_TRIALS: usize = 12;
 
@@ -127,22 +131,28 @@ pub fn lowest_eigenpairs_of(
             let (values, vectors) =
                 dense_generalized_eigen(pencil.full.to_dense().as_ref(), pencil.mass)
                     .map_err(fail(r))?;
-            pairs[r] = Some((values[..k].to_vec(), vectors.as_ref().subcols(0, k).to_owned()));
+            pairs[r] = Some((
+                values[..k].to_vec(),
+                vectors.as_ref().subcols(0, k).to_owned(),
+            ));
         } else {
             let block = block_size(options, n);
             let top = match request.top {
                 Some(top) if top.below >= k => top,
-                Some(top) => {
-                    return Err(fail(r)(SolverError::NoConvergence {
-                        reason: format!(
-                            "the top shift {:e} has {} eigenvalues below it, fewer than the {k} wanted",
-                            top.shift, top.below
-                        ),
-                    }))
-                }
+                Some(top) => return Err(fail(r)(SolverError::NoConvergence {
+                    reason: format!(
+                        "the top shift {:e} has {} eigenvalues below it, fewer than the {k} wanted",
+                        top.shift, top.below
+                    ),
+                })),
                 None => search_top(pencil, k, block).map_err(fail(r))?,
             };
-            plans.push(Plan::new(r, pencil, top, options.interval_size.max(2 * block)));
+            plans.push(Plan::new(
+                r,
+                pencil,
+                top,
+                options.interval_size.max(2 * block),
+            ));
         }
     }
     let boundary_jobs: Vec<(usize, usize)> = plans
@@ -192,6 +202,7 @@ pub fn lowest_eigenpairs_of(
         block_size: options.block_size,
         max_restarts: options.max_restarts,
         parallelism: options.parallelism,
+        refinement_target: options.refinement_target,
     };
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
@@ -256,46 +267,56 @@ pub fn lowest_eigenpairs_of(
         .enumerate()
         .flat_map_iter(|(p, parts)| parts.iter_mut().map(move |part| (p, part)))
         .map(|(p, part)| {
-            let pencil = requests[plans[p].request].pencil;
-            let floor = 1e-8 * pencil.mean_eigenvalue.abs();
-            let residuals = field_residuals(
-                pencil.full.as_ref(),
-                pencil.mass,
-                &part.values,
-                part.vectors.as_ref(),
-                floor,
-                par,
-            );
-            let which: Vec<usize> = (0..residuals.len())
-                .filter(|&j| residuals[j] > target)
-                .collect();
-            if which.is_empty() {
-                return Ok(0);
-            }
-            let Some(factor) = part.factor.take() else {
+            let Some((which, factor)) = part.refine.take() else {
                 return Ok(0);
             };
-            let (values, vectors) = refine_columns(
-                pencil.full.as_ref(),
-                pencil.mass,
-                &factor,
-                part.vectors.as_ref(),
-                &which,
-                par,
-            )
-            .map_err(fail(plans[p].request))?;
-            pencil.add_solves(Phase::Refinement, which.len());
-            part.values = values;
-            part.vectors = vectors;
-            Ok(which.len())
+            let pencil = requests[plans[p].request].pencil;
+            let floor = 1e-8 * pencil.mean_eigenvalue.abs();
+            let residual_of = |values: &[f64], vectors: &Mat<f64>| {
+                field_residuals(
+                    pencil.full.as_ref(),
+                    pencil.mass,
+                    values,
+                    vectors.as_ref(),
+                    floor,
+                    par,
+                )
+            };
+            let mut before = residual_of(&part.values, &part.vectors);
+            let mut which = which;
+            let mut refined = 0;
+            for _ in 0..MAX_REFINEMENT_STEPS {
+                let (values, vectors) = refine_columns(
+                    pencil.full.as_ref(),
+                    pencil.mass,
+                    &factor,
+                    part.vectors.as_ref(),
+                    &which,
+                    par,
+                )
+                .map_err(fail(plans[p].request))?;
+                pencil.add_solves(Phase::Refinement, which.len());
+                refined = refined.max(which.len());
+                let after = residual_of(&values, &vectors);
+                part.values = values;
+                part.vectors = vectors;
+                // Another step only for pairs still above the target that the last step
+                // improved: the others are at the rounding floor of their vectors.
+                which = (0..after.len())
+                    .filter(|&j| after[j] > target && after[j] < 0.5 * before[j])
+                    .collect();
+                before = after;
+                if which.is_empty() {
+                    break;
+                }
+            }
+            Ok(refined)
         })
         .collect();
     for count in refined {
         statistics.refined_pairs += count?;
     }
     for (p, parts) in intervals.iter_mut().enumerate() {
-        // The factorizations are not needed any more.
-        parts.iter_mut().for_each(|part| part.factor = None);
         parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
         let pencil = requests[plans[p].request].pencil;
         orthogonalize_neighbours(parts, pencil.mass, par);
@@ -335,7 +356,8 @@ pub fn lowest_eigenpairs_of(
     let mut results = Vec::with_capacity(requests.len());
     for (request, found) in requests.iter().zip(pairs) {
         let pencil = request.pencil;
-        let (values, vectors) = found.unwrap_or_else(|| (Vec::new(), Mat::zeros(pencil.dimension(), 0)));
+        let (values, vectors) =
+            found.unwrap_or_else(|| (Vec::new(), Mat::zeros(pencil.dimension(), 0)));
         statistics.counting.factorizations += pencil.statistics().counting.factorizations;
         statistics.counting.solves += pencil.statistics().counting.solves;
         statistics.solving.factorizations += pencil.statistics().solving.factorizations;
@@ -387,7 +409,11 @@ impl Plan {
                 .iter()
                 .filter(|c| c.shift > bounds[i - 1] && c.shift < top.shift)
                 .filter(|c| (c.shift - wanted).abs() <= 0.25 * width)
-                .min_by(|a, b| (a.shift - wanted).abs().total_cmp(&(b.shift - wanted).abs()));
+                .min_by(|a, b| {
+                    (a.shift - wanted)
+                        .abs()
+                        .total_cmp(&(b.shift - wanted).abs())
+                });
             match near {
                 Some(count) => {
                     bounds.push(count.shift);
@@ -474,8 +500,10 @@ struct SolvedInterval {
     lower: f64,
     values: Vec<f64>,
     vectors: Mat<f64>,
-    /// The factorization at the interval's shift, kept for the refinement.
-    factor: Option<Arc<SparseLdlt>>,
+    /// The pairs whose eigenfield residual misses the target, and the factorization at the
+    /// interval's shift for their refinement (`None` when there are none: factorizations are
+    /// large, only those needed are kept).
+    refine: Option<(Vec<usize>, Arc<SparseLdlt>)>,
 }
 
 /// The numeric settings of the intervals (the part of [`EigenOptions`] the worker threads see).
@@ -485,6 +513,7 @@ struct IntervalSettings {
     block_size: usize,
     max_restarts: usize,
     parallelism: Par,
+    refinement_target: f64,
 }
 
 /// Solves `interval` into `out`; on failure splits it (`depth` splits so far).
@@ -520,11 +549,22 @@ fn solve_interval(
     let attempt = solve_at_shift(request, interval, options, &factor, count, report);
     match attempt {
         Ok((values, vectors)) => {
+            let residuals = field_residuals(
+                pencil.full.as_ref(),
+                pencil.mass,
+                &values,
+                vectors.as_ref(),
+                1e-8 * pencil.mean_eigenvalue.abs(),
+                options.parallelism,
+            );
+            let which: Vec<usize> = (0..residuals.len())
+                .filter(|&j| residuals[j] > options.refinement_target)
+                .collect();
             out.push(SolvedInterval {
                 lower,
                 values,
                 vectors,
-                factor: Some(factor),
+                refine: (!which.is_empty()).then_some((which, factor)),
             });
             Ok(())
         }
@@ -583,13 +623,11 @@ fn solve_at_shift(
     let (upper, nu_upper) = interval.upper;
     let wanted = nu_upper - nu_lower;
     let block = options.block_size.clamp(1, n / 8 + 1);
-    let deflation = Mat::<f64>::zeros(n, 0);
     let problem = SliceProblem {
         factor,
         mass: pencil.mass,
         sigma: at.shift,
         lower_bound: lower,
-        deflation: deflation.as_ref(),
         lower_needed: at.below - nu_lower,
         upper_target: nu_upper - at.below,
         upper_bound: upper,
@@ -640,8 +678,14 @@ type Job<'a, T> = dyn Fn(usize, &dyn Fn(usize, usize)) -> Result<T, RequestError
 
 /// A message from a worker thread to the coordinating thread.
 enum Message<T> {
-    Progress { job: usize, locked: usize },
-    Done { job: usize, result: Result<T, RequestError> },
+    Progress {
+        job: usize,
+        locked: usize,
+    },
+    Done {
+        job: usize,
+        result: Result<T, RequestError>,
+    },
 }
 
 /// Runs `jobs` jobs on `threads` threads and returns their results in job order;

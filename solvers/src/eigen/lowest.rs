@@ -38,9 +38,12 @@ pub fn lowest_eigenpairs(
         seed: options.seed,
     };
     let mut solution = lowest_eigenpairs_of(&[request], options).map_err(|e| e.source)?;
-    let mut pairs = solution.pairs.pop().ok_or_else(|| SolverError::NoConvergence {
-        reason: "the driver returned no result".into(),
-    })?;
+    let mut pairs = solution
+        .pairs
+        .pop()
+        .ok_or_else(|| SolverError::NoConvergence {
+            reason: "the driver returned no result".into(),
+        })?;
     // With one request the call's statistics (phase times included) are the pencil's.
     pairs.statistics = solution.statistics;
     Ok(pairs)

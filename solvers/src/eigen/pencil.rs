@@ -78,7 +78,11 @@ impl<'a> Pencil<'a> {
             full,
             mass,
             scale: if rho > 0.0 { rho } else { 1.0 },
-            mean_eigenvalue: if total_mass > 0.0 { trace / total_mass } else { 0.0 },
+            mean_eigenvalue: if total_mass > 0.0 {
+                trace / total_mass
+            } else {
+                0.0
+            },
             template: Mutex::new(None),
             counts: Mutex::new(Vec::new()),
             statistics: Mutex::new(SolverStatistics::default()),
@@ -117,7 +121,10 @@ impl<'a> Pencil<'a> {
 
     /// Factorizations and solves so far, by phase (no times: those belong to the caller's phases).
     pub fn statistics(&self) -> SolverStatistics {
-        *self.statistics.lock().unwrap_or_else(PoisonError::into_inner)
+        *self
+            .statistics
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner)
     }
 
     /// Adds `solves` single-vector solves to `phase`.
@@ -148,7 +155,9 @@ impl<'a> Pencil<'a> {
                     Some(first) => {
                         let first = Arc::clone(first);
                         drop(template);
-                        first.factor_alike(upper.as_ref(), parallelism).map(Arc::new)
+                        first
+                            .factor_alike(upper.as_ref(), parallelism)
+                            .map(Arc::new)
                     }
                     None => SparseLdlt::new(upper.as_ref()).map(|mut f| {
                         f.set_parallelism(parallelism);

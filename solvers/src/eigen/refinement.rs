@@ -81,8 +81,12 @@ pub(crate) fn refine_columns(
             });
         }
         // Keep the sign of x (z ≈ x/(λ − σ) points either way).
-        let sign = if mass_inner(vectors.subcols(column, 1), mass, z.as_ref().subcols(j, 1), Par::Seq)
-            [(0, 0)]
+        let sign = if mass_inner(
+            vectors.subcols(column, 1),
+            mass,
+            z.as_ref().subcols(j, 1),
+            Par::Seq,
+        )[(0, 0)]
             < 0.0
         {
             -1.0
