@@ -240,8 +240,8 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     report.max_solver_residual = a.max_residual.max(b.max_residual);
     report.max_field_residual = a.max_field_residual.max(b.max_field_residual);
 
-    let potentials = normalised(complex.d0(), complex.m1().values(), &a.vectors, na);
-    let co_potentials = normalised(complex.co_gradient(), complex.m1().values(), &b.vectors, nb);
+    let potentials = normalised(complex.d0(), complex.m1().values(), a.vectors, na);
+    let co_potentials = normalised(complex.co_gradient(), complex.m1().values(), b.vectors, nb);
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
     report.seconds = start.elapsed().as_secs_f64();
     Ok((
@@ -329,27 +329,30 @@ fn solve_both_families(
 
 /// The first `count` columns of `functions`, each divided by the `M1` norm of `gradient · φ`,
 /// so that `gradient · φ̃` is `M1`-unit. `gradient` is `2F × n` (the complex's `d0` or `J G_co`).
+/// Works in place (no second copy of the eigenfunctions).
 fn normalised(
     gradient: &sprs::CsMat<f64>,
     m1: &[f64],
-    functions: &Mat<f64>,
+    mut functions: Mat<f64>,
     count: usize,
 ) -> Mat<f64> {
     let rows = functions.nrows();
-    let columns: Vec<Vec<f64>> = (0..count)
+    functions.truncate(rows, count.min(functions.ncols()));
+    let norms: Vec<f64> = (0..functions.ncols())
         .into_par_iter()
         .map(|j| {
-            let mut phi: Vec<f64> = (0..rows).map(|i| functions[(i, j)]).collect();
+            let phi: Vec<f64> = (0..rows).map(|i| functions[(i, j)]).collect();
             let field = mul_vec(gradient, &phi);
-            let norm = field
+            field
                 .iter()
                 .zip(m1)
                 .map(|(v, m)| v * v * m)
                 .sum::<f64>()
-                .sqrt();
-            phi.iter_mut().for_each(|x| *x /= norm);
-            phi
+                .sqrt()
         })
         .collect();
-    Mat::from_fn(rows, count, |i, j| columns[j][i])
+    for (j, norm) in norms.iter().enumerate() {
+        functions.col_mut(j).iter_mut().for_each(|x| *x /= norm);
+    }
+    functions
 }

@@ -60,8 +60,8 @@ pub use atomic_write::{write_atomically, write_atomically_with};
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_error::BasisError;
 pub use basis_file::{
-    load_basis, read_basis_file, read_basis_header, save_basis, BasisFileError, BasisFileHeader,
-    BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
+    load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
+    BasisFileError, BasisFileHeader, BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
 pub use basis_id::basis_id;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
@@ -90,3 +90,5 @@ pub use quantization::UniformQuantizer;
 pub use rate_distortion::{equal_error_comparison, rate_distortion, FileStamp, RatePoint};
 pub use sequence::{compress_with_report, relative_l2_error, CompressionReport};
 pub use symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
+/// The eigensolver's cost by phase, as [`BasisReport`] gives it.
+pub use tvf_solvers::{process_cpu_seconds, PhaseStatistics, SolverStatistics};

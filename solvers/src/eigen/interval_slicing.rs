@@ -139,12 +139,14 @@ pub fn lowest_eigenpairs_of(
             let block = block_size(options, n);
             let top = match request.top {
                 Some(top) if top.below >= k => top,
-                Some(top) => return Err(fail(r)(SolverError::NoConvergence {
-                    reason: format!(
+                Some(top) => {
+                    return Err(fail(r)(SolverError::NoConvergence {
+                        reason: format!(
                         "the top shift {:e} has {} eigenvalues below it, fewer than the {k} wanted",
                         top.shift, top.below
                     ),
-                })),
+                    }))
+                }
                 None => search_top(pencil, k, block).map_err(fail(r))?,
             };
             plans.push(Plan::new(
@@ -330,7 +332,8 @@ pub fn lowest_eigenpairs_of(
         let total: usize = parts.iter().map(|part| part.values.len()).sum();
         let mut values = Vec::with_capacity(total);
         let mut vectors = Mat::<f64>::zeros(n, k);
-        for part in &parts {
+        // Each interval's vectors are freed once copied (one copy of the eigenvectors at a time).
+        for part in parts {
             for (j, &value) in part.values.iter().enumerate() {
                 if values.len() < k {
                     vectors
