@@ -42,7 +42,7 @@ pub use assembler::ConstraintAssembler;
 pub use constraint::{CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target};
 pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
 pub use error::{ConstraintError, ConstraintFileError, DesignError};
-pub use reduced_basis::{ReducedBasis, ReducedBasisF32};
+pub use reduced_basis::{FieldScalar, ReducedBasis, ReducedBasisF32, RowMajorFields};
 pub use reference_spline::{reference_spline, ReferenceSpline};
 pub use soft_full::{
     default_regularization, FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING,

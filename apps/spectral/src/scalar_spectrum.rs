@@ -36,6 +36,8 @@ pub(crate) struct ScalarEigenpairs {
     pub max_residual: f64,
     /// Largest relative eigenfield residual reported by the solver (after its refinement).
     pub max_field_residual: f64,
+    /// Largest rounding floor of those residuals.
+    pub max_field_residual_floor: f64,
 }
 
 /// Whether each node of `nodes` is free ([`NodeSpace::is_free`]).
@@ -138,6 +140,10 @@ impl ScalarSpectrum {
             .field_residuals
             .iter()
             .fold(0.0, |m: f64, &r| m.max(r));
+        let max_field_residual_floor = pairs
+            .field_residual_floors
+            .iter()
+            .fold(0.0, |m: f64, &r| m.max(r));
         let (all_values, all_vectors) = (pairs.values, pairs.vectors);
         let count = count.min(all_values.len().saturating_sub(self.components));
         let kernel_values = all_values[..self.components].to_vec();
@@ -178,6 +184,7 @@ impl ScalarSpectrum {
             kernel_values,
             max_residual,
             max_field_residual,
+            max_field_residual_floor,
         })
     }
 }

@@ -305,7 +305,9 @@ pub fn lowest_eigenpairs_of(
                 // Another step only for pairs still above the target that the last step
                 // improved: the others are at the rounding floor of their vectors.
                 which = (0..after.len())
-                    .filter(|&j| after[j] > target && after[j] < 0.5 * before[j])
+                    .filter(|&j| {
+                        after[j].misses(target) && after[j].residual < 0.5 * before[j].residual
+                    })
                     .collect();
                 before = after;
                 if which.is_empty() {
@@ -376,7 +378,13 @@ pub fn lowest_eigenpairs_of(
             floor,
             par,
         );
-        results.push(Eigenpairs::new(pencil, values, vectors, field));
+        results.push(Eigenpairs::new(
+            pencil,
+            values,
+            vectors,
+            field.iter().map(|f| f.residual).collect(),
+            field.iter().map(|f| f.floor).collect(),
+        ));
     }
     Ok(EigenSolution {
         pairs: results,
@@ -561,7 +569,7 @@ fn solve_interval(
                 options.parallelism,
             );
             let which: Vec<usize> = (0..residuals.len())
-                .filter(|&j| residuals[j] > options.refinement_target)
+                .filter(|&j| residuals[j].misses(options.refinement_target))
                 .collect();
             out.push(SolvedInterval {
                 lower,

@@ -21,8 +21,11 @@ use faer::sparse::SparseColMatRef;
 use faer::{Accum, Mat, MatRef, Par};
 
 /// Relative eigenfield residuals `√(sᵀ A s / λ) / λ`, `s = M⁻¹ (A x − λ M x)`, of the `n × s`
-/// M-orthonormal `vectors` (see the module documentation); `0` for eigenvalues at most `floor`
-/// (the kernel, which has no eigenfield).
+/// M-orthonormal `vectors` (see the module documentation), and the rounding floor of each: the
+/// same expression for the rounding error of `s` itself, `δs_i ≈ ε (|A| |x|)_i / M_ii` with
+/// random signs (`δsᵀ A δs ≈ Σ_i A_ii δs_i²`). On meshes with slivers (tiny `M_ii`) the floor
+/// can exceed any target: no `f64` vector shows a smaller residual. Both are `0` for eigenvalues
+/// at most `floor` (the kernel, which has no eigenfield).
 pub(crate) fn field_residuals(
     a: SparseColMatRef<'_, usize, f64>,
     mass: &[f64],
@@ -30,7 +33,7 @@ pub(crate) fn field_residuals(
     vectors: MatRef<'_, f64>,
     floor: f64,
     par: Par,
-) -> Vec<f64> {
+) -> Vec<FieldResidual> {
     let (n, s) = (vectors.nrows(), vectors.ncols());
     let mut ax = Mat::<f64>::zeros(n, s);
     sparse_dense_matmul(ax.as_mut(), Accum::Replace, a, vectors, 1.0, par);
@@ -42,17 +45,60 @@ pub(crate) fn field_residuals(
     }
     let mut as_ = Mat::<f64>::zeros(n, s);
     sparse_dense_matmul(as_.as_mut(), Accum::Replace, a, ax.as_ref(), 1.0, par);
+    // |A| |x| and the diagonal of A, for the floor.
+    let col_ptr = a.symbolic().col_ptr();
+    let row_idx = a.symbolic().row_idx();
+    let mut abs_ax = Mat::<f64>::zeros(n, s);
+    let mut diagonal = vec![0.0; n];
+    for c in 0..n {
+        for p in col_ptr[c]..col_ptr[c + 1] {
+            let (r, v) = (row_idx[p], a.val()[p]);
+            if r == c {
+                diagonal[c] = v;
+            }
+            for j in 0..s {
+                abs_ax[(r, j)] += v.abs() * vectors[(c, j)].abs();
+            }
+        }
+    }
     (0..s)
         .map(|j| {
             let lambda = values[j];
             if lambda <= floor {
-                return 0.0;
+                return FieldResidual::default();
             }
             let energy: f64 = (0..n).map(|i| ax[(i, j)] * as_[(i, j)]).sum();
-            (energy.max(0.0) / lambda).sqrt() / lambda
+            let noise: f64 = (0..n)
+                .map(|i| {
+                    let e =
+                        f64::EPSILON * (abs_ax[(i, j)] / mass[i] + lambda * vectors[(i, j)].abs());
+                    diagonal[i].max(0.0) * e * e
+                })
+                .sum();
+            FieldResidual {
+                residual: (energy.max(0.0) / lambda).sqrt() / lambda,
+                floor: (noise / lambda).sqrt() / lambda,
+            }
         })
         .collect()
 }
+
+/// A relative eigenfield residual and its rounding floor (see [`field_residuals`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct FieldResidual {
+    pub residual: f64,
+    pub floor: f64,
+}
+
+impl FieldResidual {
+    /// Whether refinement could help: above `target` and clearly above the rounding floor.
+    pub(crate) fn misses(&self, target: f64) -> bool {
+        self.residual > target && self.residual > FLOOR_MARGIN * self.floor
+    }
+}
+
+/// How far above its rounding floor a residual must be for refinement to be worth a solve.
+const FLOOR_MARGIN: f64 = 10.0;
 
 /// Refines the columns `which` of the `n × s` eigenvectors `vectors` (M-orthonormal, one
 /// interval's) with `factor = LDLᵀ(A − σM)`: `z = (A − σM)⁻¹ M x`, M-normalised, replaces `x`,

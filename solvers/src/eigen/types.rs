@@ -58,7 +58,8 @@ pub struct EigenOptions<'a> {
     pub interval_size: usize,
     /// Eigenpairs whose relative eigenfield residual `√(sᵀ A s / λ) / λ`,
     /// `s = M⁻¹(A x − λ M x)` (the residual of the Hodge–Laplacian eigenfield `D x/√λ` when
-    /// `A = Dᵀ W D`), exceeds this get one inverse-iteration step with their interval's
+    /// `A = Dᵀ W D`), exceeds this and ten times its rounding floor (see
+    /// [`Eigenpairs::field_residual_floors`]) get one inverse-iteration step with their interval's
     /// factorization (more steps, up to three, while a step halves the residual). Default
     /// `1e-9`, a tenth of what the basis tests demand; residuals of a few `1e-9` can be the
     /// rounding floor of the vectors themselves. `f64::INFINITY` switches refinement off.
@@ -114,6 +115,9 @@ pub struct Eigenpairs {
     pub residuals: Vec<f64>,
     /// Relative eigenfield residuals (see [`EigenOptions::refinement_target`]); 0 for the kernel.
     pub field_residuals: Vec<f64>,
+    /// The rounding floor of each field residual: what the rounding of `A x` alone makes it
+    /// (on meshes with slivers it can be far above the target; such pairs are not refined).
+    pub field_residual_floors: Vec<f64>,
     /// Factorizations and solves of the pencil by phase (counts made before the call
     /// included); from [`crate::lowest_eigenpairs`] also the wall-clock and processor seconds of
     /// each phase.
@@ -127,6 +131,7 @@ impl Eigenpairs {
         values: Vec<f64>,
         vectors: Mat<f64>,
         field_residuals: Vec<f64>,
+        field_residual_floors: Vec<f64>,
     ) -> Self {
         let residuals = relative_residuals(pencil, &values, &vectors);
         Self {
@@ -134,6 +139,7 @@ impl Eigenpairs {
             vectors,
             residuals,
             field_residuals,
+            field_residual_floors,
             statistics: pencil.statistics(),
         }
     }

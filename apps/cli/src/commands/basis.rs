@@ -138,6 +138,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
             "distinct_shifts": report.distinct_shifts,
             "refined_pairs": report.solver.refined_pairs,
             "max_field_residual": report.max_field_residual,
+            "max_field_residual_floor": report.max_field_residual_floor,
             "output": args.output.display().to_string(),
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
