@@ -84,8 +84,10 @@ pub struct BasisReport {
 /// and an `f32` copy too if the request asks for them), sorted by eigenvalue and labelled.
 ///
 /// Steps (Section 6): the `2g` harmonic fields by projecting seeded random fields; the lowest
-/// eigenpairs `(λ, φ)` of `(d0ᵀ M1 d0, M0)` and `(μ, ψ)` of `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` (sparse
-/// spectrum-slicing Lanczos, dense for small problems, both at once), the constant
+/// eigenpairs `(λ, φ)` of `(d0ᵀ M1 d0, M0)` and `(μ, ψ)` of `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` (the spectrum
+/// intervals of both, with exact inertia counts, solved in one pool of threads by shift-invert
+/// Krylov–Schur and refined where the eigenfield residual misses 1e-9·λ; dense for small
+/// problems; every shift is factored once, the threshold's counts included), the constant
 /// eigenfunctions (one per connected component, found by count) dropped; for `Fields` and
 /// `MaxEigenvalue` requests each family's number of eigenpairs is counted exactly beforehand by
 /// Sylvester's law of inertia (every eigenvalue of both below one threshold), so each family is

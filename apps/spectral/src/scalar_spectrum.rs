@@ -23,7 +23,7 @@ pub(crate) struct ScalarSpectrum {
     components: usize,
 }
 
-/// Eigenpairs found by [`ScalarSpectrum::lowest_nonzero`].
+/// Eigenpairs kept by [`ScalarSpectrum::nonzero`].
 pub(crate) struct ScalarEigenpairs {
     /// Non-zero eigenvalues, ascending.
     pub values: Vec<f64>,
