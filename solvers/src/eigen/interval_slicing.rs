@@ -25,9 +25,10 @@
 //!    was 1000), and a cluster that straddles an interval end converges slowly; both are cured by
 //!    a different shift and a narrower interval.
 //! 3. *Refinement.* Pairs whose eigenfield residual misses `EigenOptions::refinement_target`
-//!    get one inverse-iteration step with their interval's factorization
-//!    ([`super::refinement`]; an interval keeps its factorization only if it has such pairs);
-//!    the others are left as they are.
+//!    (and is clearly above its rounding floor) get inverse-iteration steps with their
+//!    interval's factorization ([`super::refinement`]; an interval keeps its factorization only
+//!    if it has such pairs), if a trial step on the worst of them halves its residual; the
+//!    others are left as they are.
 //!
 //! The result is complete by construction: interval `i` must return exactly its count, so the
 //! total is `ν(σ_top) ≥ k`, every eigenvalue below `σ_top`. Vectors of neighbouring intervals
@@ -37,7 +38,7 @@
 use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
 use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
-use super::refinement::{field_residuals, refine_columns};
+use super::refinement::{field_residuals, refine_columns, step_helps};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::mass_inner;
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
@@ -285,6 +286,26 @@ pub fn lowest_eigenpairs_of(
                 )
             };
             let mut before = residual_of(&part.values, &part.vectors);
+            // One trial solve on the worst pair first: if it does not help, none will.
+            let worst = which
+                .iter()
+                .copied()
+                .max_by(|&i, &j| before[i].residual.total_cmp(&before[j].residual));
+            let helps = worst.is_some_and(|j| {
+                step_helps(
+                    pencil.full.as_ref(),
+                    pencil.mass,
+                    &factor,
+                    part.vectors.as_ref(),
+                    j,
+                    before[j].residual,
+                    floor,
+                )
+            });
+            pencil.add_solves(Phase::Refinement, 1);
+            if !helps {
+                return Ok(0);
+            }
             let mut which = which;
             let mut refined = 0;
             for _ in 0..MAX_REFINEMENT_STEPS {

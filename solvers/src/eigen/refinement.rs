@@ -145,3 +145,31 @@ pub(crate) fn refine_columns(
     }
     rayleigh_ritz(a, mass, refined.as_ref(), par)
 }
+
+/// Whether an inverse-iteration step with `factor` halves the field residual `before` of column
+/// `column` of `vectors`: one solve and no Rayleigh–Ritz, to find out before refining a whole
+/// interval. On meshes with slivers the residual of every pair sits at the accuracy of the
+/// solves themselves, which no step improves.
+pub(crate) fn step_helps(
+    a: SparseColMatRef<'_, usize, f64>,
+    mass: &[f64],
+    factor: &SparseLdlt,
+    vectors: MatRef<'_, f64>,
+    column: usize,
+    before: f64,
+    floor: f64,
+) -> bool {
+    let n = vectors.nrows();
+    let mut z = Mat::from_fn(n, 1, |i, _| mass[i] * vectors[(i, column)]);
+    factor.solve_in_place(z.as_mut());
+    let norm = mass_inner(z.as_ref(), mass, z.as_ref(), Par::Seq)[(0, 0)].sqrt();
+    if !(norm.is_finite() && norm > 0.0) {
+        return false;
+    }
+    z.col_mut(0).iter_mut().for_each(|x| *x /= norm);
+    let mut az = Mat::<f64>::zeros(n, 1);
+    sparse_dense_matmul(az.as_mut(), Accum::Replace, a, z.as_ref(), 1.0, Par::Seq);
+    let rayleigh: f64 = (0..n).map(|i| z[(i, 0)] * az[(i, 0)]).sum();
+    let after = field_residuals(a, mass, &[rayleigh], z.as_ref(), floor, Par::Seq);
+    after.first().is_some_and(|r| r.residual < 0.5 * before)
+}
