@@ -33,7 +33,7 @@ fn median(mut values: Vec<Duration>) -> f64 {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut runs = 3usize;
     let mut names = Vec::new();
-    let mut parallelism = FactorParallelism::Auto;
+    let mut parallelism = FactorParallelism::default();
     let mut orderings = vec![FillOrdering::Amd, FillOrdering::NestedDissection];
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
@@ -41,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             faer::set_global_parallelism(faer::Par::Seq);
         } else if arg == "--parallelism" {
             parallelism = match args.next().as_deref() {
-                Some("auto") => FactorParallelism::Auto,
+                Some("auto") => FactorParallelism::default(),
                 Some("seq") => FactorParallelism::Sequential,
                 Some("par") => FactorParallelism::Parallel,
                 _ => return Err("--parallelism: auto, seq or par".into()),

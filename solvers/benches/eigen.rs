@@ -59,7 +59,7 @@ fn solver_benches(c: &mut Criterion) {
             group.bench_function(format!("{k} lowest eigenpairs"), |b| {
                 b.iter(|| {
                     lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &EigenOptions::default())
-                        .map(|r| r.solves)
+                        .map(|r| r.statistics.solves())
                 })
             });
             group.finish();

@@ -1,7 +1,7 @@
 //! Plain timed run of the eigensolver on the benchmark meshes (numbers for the report).
 //!
 //! `cargo run --release -p tvf-solvers --example eigen_bench -- [MESH.obj ...] [--k K] [--kind cotan|cr|both]`
-//! `[--block B] [--slice S] [--tol T] [--interval I] [--concurrent C (0 = sequential driver)] [--threads T]`
+//! `[--block B] [--tol T] [--interval I] [--concurrent C (intervals at a time)] [--threads T]`
 //! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes.
 
 #[path = "../benches/mesh_matrices/mod.rs"]
@@ -30,12 +30,9 @@ fn main() {
                     faer::Par::Seq
                 };
             }
-            "--concurrent" => {
-                options.concurrent_slices = next_value(&mut args, options.concurrent_slices)
-            }
+            "--concurrent" => options.threads = next_value(&mut args, options.threads),
             "--interval" => options.interval_size = next_value(&mut args, options.interval_size),
             "--tol" => options.tolerance = next_value(&mut args, options.tolerance),
-            "--slice" => options.slice_size = next_value(&mut args, options.slice_size),
             other => meshes.push(PathBuf::from(other)),
         }
     }
@@ -98,10 +95,29 @@ fn main() {
                 "{} {name}: n = {n}, nnz(L) = {}, analyse+factor {analyse:.3} s, refactor {numeric:.3} s | k = {k}: {seconds:.2} s, {} factorizations, {} solves, λ ∈ [{:.3e}, {:.3e}], max residual {worst:.1e}, max |XᵀMX − I| {gram_error:.1e}",
                 mesh.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
                 ldlt.factor_len(),
-                result.factorizations,
-                result.solves,
+                result.statistics.factorizations(),
+                result.statistics.solves(),
                 result.values.first().copied().unwrap_or(0.0),
                 result.values.last().copied().unwrap_or(0.0),
+            );
+            let statistics = result.statistics;
+            let max_field = result.field_residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+            for (phase, p) in [
+                ("counting", statistics.counting),
+                ("solving", statistics.solving),
+                ("refinement", statistics.refinement),
+            ] {
+                println!(
+                    "  {phase:<10} {:>3} factorizations {:>6} solves {:>8.2} s wall {:>5.0} % CPU",
+                    p.factorizations,
+                    p.solves,
+                    p.wall_seconds,
+                    100.0 * p.utilisation()
+                );
+            }
+            println!(
+                "  refined pairs {}, max relative field residual {max_field:.1e}",
+                statistics.refined_pairs
             );
         }
     }

@@ -5,11 +5,19 @@
 //! - [`SparseCholesky`]: supernodal sparse Cholesky (faer) with symbolic reuse and blocked solves.
 //! - [`SparseLdlt`]: the underlying `LDLᵀ` factorization of indefinite shifted matrices, with
 //!   [`Inertia`] (Sylvester's law) for eigenvalue counting.
-//! - [`lowest_eigenpairs`]: lowest k eigenpairs of `A x = λ M x` (shift-and-invert block
-//!   Krylov–Schur, spectrum slicing, inertia-verified completeness).
+//! - [`lowest_eigenpairs`], [`lowest_eigenpairs_of`]: lowest eigenpairs of one or several
+//!   pencils `A x = λ M x` (spectrum intervals with exact inertia counts, solved concurrently by
+//!   shift-and-invert block Krylov–Schur, refined where the residual misses the target).
+//! - [`Pencil`]: a pencil and its factorizations (each shift factored once, shared by counting,
+//!   solving and refinement), [`Pencil::count_below`] counts eigenvalues below a threshold;
+//!   [`SolverStatistics`] reports factorizations, solves and time per phase.
 //! - [`dense_generalized_eigen`]: dense reference eigensolver (test oracle, small problems).
 //! - [`DenseCholesky`]: dense Cholesky with rank-one update/downdate and bordered updates.
 //! - [`convert`]: `sprs → faer` conversions.
+//! - [`iterative_refinement`]: refined sparse solves (conjugate gradients preconditioned by a
+//!   factorization) with residuals in double-double arithmetic.
+//! - [`sparse_pattern`]: CSR patterns that grow, for numeric refactorizations.
+//! - [`FactorParallelism`]: one thread or all of them for a factorization, by its flop count.
 //! - [`ordering`]: fill-reducing orderings ([`FillOrdering`]: AMD or METIS nested dissection).
 #![warn(missing_docs)]
 // Index loops mirror the matrix formulas (L[i][k], x[i]) in the numeric kernels.
@@ -20,14 +28,23 @@ mod dense_cholesky;
 mod dense_eigen;
 mod eigen;
 mod error;
+mod factor_parallelism;
+pub mod iterative_refinement;
 pub mod ordering;
 mod sparse_cholesky;
 mod sparse_ldlt;
+pub mod sparse_pattern;
 
 pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::dense_generalized_eigen;
-pub use eigen::{lowest_eigenpairs, EigenOptions, EigenProgress, Eigenpairs};
+pub use eigen::{
+    lowest_eigenpairs, lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress,
+    EigenRequest, EigenSolution, Eigenpairs, Pencil, Phase, PhaseStatistics, RequestError,
+    ShiftCount, SolverStatistics,
+};
 pub use error::SolverError;
+pub use factor_parallelism::{FactorParallelism, SEQUENTIAL_FLOP_LIMIT};
+pub use iterative_refinement::SolveReport;
 pub use ordering::FillOrdering;
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_ldlt::{Inertia, SparseLdlt};

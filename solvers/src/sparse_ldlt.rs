@@ -117,6 +117,39 @@ impl SparseLdlt {
         )
     }
 
+    /// A new factorization of `upper` (same pattern) with this one's fill-reducing permutation
+    /// (no new ordering is computed; the symbolic analysis is repeated, which is cheap next to
+    /// the numeric work) and the given parallelism. Unlike [`SparseLdlt::refactor`] it leaves
+    /// `self` intact, so factorizations at several shifts can live side by side.
+    ///
+    /// Errors: [`SolverError::PatternMismatch`], [`SolverError::Singular`].
+    pub fn factor_alike(
+        &self,
+        upper: SparseColMatRef<'_, usize, f64>,
+        parallelism: Par,
+    ) -> Result<Self, SolverError> {
+        if !self.same_pattern(upper) {
+            return Err(SolverError::PatternMismatch);
+        }
+        let symbolic = match self.symbolic.perm() {
+            Some(perm) => {
+                let (forward, inverse) = perm.arrays();
+                analyse(
+                    upper,
+                    SymmetricOrdering::Custom(PermRef::new_checked(
+                        forward,
+                        inverse,
+                        self.dimension(),
+                    )),
+                )?
+            }
+            None => analyse(upper, SymmetricOrdering::Identity)?,
+        };
+        Self::factor_analysed(upper, symbolic, self.ordering, parallelism, |len| {
+            vec![0.0; len]
+        })
+    }
+
     /// The same as [`SparseLdlt::with_ordering`], with the parallelism chosen as in
     /// [`SparseLdlt::with_permutation_and_parallelism`].
     ///

@@ -6,7 +6,8 @@ use faer::Mat;
 use std::cell::Cell;
 use tvf_solvers::convert::shifted_upper_triangle;
 use tvf_solvers::{
-    dense_generalized_eigen, lowest_eigenpairs, EigenOptions, Eigenpairs, SolverError, SparseLdlt,
+    dense_generalized_eigen, lowest_eigenpairs, lowest_eigenpairs_of, EigenOptions, EigenRequest,
+    Eigenpairs, Pencil, SolverError, SparseLdlt,
 };
 
 fn dense(a: &sprs::CsMat<f64>) -> Mat<f64> {
@@ -91,16 +92,15 @@ fn grid_laplacian_with_irregular_masses() {
     let a = grid_laplacian(40, 38, false);
     let mass = irregular_masses(a.rows(), 11);
     let options = EigenOptions {
-        slice_size: 40,
         interval_size: 40,
         ..Default::default()
     };
     let result = lowest_eigenpairs(&a, &mass, 100, &options).unwrap();
     check_against_oracle(&a, &mass, 100, &result);
+    let statistics = result.statistics;
     assert!(
-        result.factorizations >= 2,
-        "several slices expected, got {}",
-        result.factorizations
+        statistics.solving.factorizations >= 3,
+        "several intervals expected, got {statistics:?}"
     );
     assert!(result.residuals.iter().all(|r| r.is_finite()));
 }
@@ -125,11 +125,10 @@ fn periodic_grid_multiplicities_are_complete() {
     // torus grid with unit mass: eigenvalues 4 sin²(πa/n) + 4 sin²(πb/n), multiplicities 1, 2, 4, 8
     let a = grid_laplacian(30, 30, true);
     let mass = vec![1.0; a.rows()];
-    let options = |concurrent_slices| EigenOptions {
-        slice_size: 48,
+    let options = |threads| EigenOptions {
         interval_size: 48,
         block_size: 8,
-        concurrent_slices,
+        threads,
         ..Default::default()
     };
     // k = 137 ends a multiplet: count of eigenvalues below the 138th distinct level
@@ -138,9 +137,8 @@ fn periodic_grid_multiplicities_are_complete() {
     let k = (120..200)
         .find(|&k| reference[k] - reference[k - 1] > 1e-6)
         .unwrap();
-    // both drivers: independent intervals (default) and sequential shifts
-    for concurrent_slices in [2, 0] {
-        let result = lowest_eigenpairs(&a, &mass, k, &options(concurrent_slices)).unwrap();
+    for threads in [2, 1] {
+        let result = lowest_eigenpairs(&a, &mass, k, &options(threads)).unwrap();
         check_against_oracle(&a, &mass, k, &result);
     }
 }
@@ -153,12 +151,11 @@ fn multiplicity_larger_than_block_size_is_found() {
     let a = direct_sum(&copies);
     let base = irregular_masses(block.rows(), 9);
     let mass: Vec<f64> = (0..5).flat_map(|_| base.iter().copied()).collect();
-    for concurrent_slices in [2, 0] {
+    for threads in [2, 1] {
         let options = EigenOptions {
             block_size: 2,
-            slice_size: 20,
             interval_size: 20,
-            concurrent_slices,
+            threads,
             ..Default::default()
         };
         let result = lowest_eigenpairs(&a, &mass, 50, &options).unwrap();
@@ -172,11 +169,10 @@ fn multiplicity_larger_than_block_size_is_found() {
 fn interval_results_do_not_depend_on_the_thread_count() {
     let a = grid_laplacian(40, 38, false);
     let mass = irregular_masses(a.rows(), 7);
-    let run = |concurrent_slices| {
+    let run = |threads| {
         let options = EigenOptions {
-            slice_size: 30,
             interval_size: 30,
-            concurrent_slices,
+            threads,
             ..Default::default()
         };
         lowest_eigenpairs(&a, &mass, 120, &options).unwrap()
@@ -184,16 +180,14 @@ fn interval_results_do_not_depend_on_the_thread_count() {
     let one = run(1);
     check_against_oracle(&a, &mass, 120, &one);
     assert!(
-        one.factorizations >= 5,
-        "several intervals expected, got {} factorizations",
-        one.factorizations
+        one.statistics.factorizations() >= 5,
+        "several intervals expected, got {:?}",
+        one.statistics
     );
     let three = run(3);
     assert_eq!(one.values, three.values);
-    assert_eq!(one.solves, three.solves);
+    assert_eq!(one.statistics.solves(), three.statistics.solves());
     assert_eq!(one.vectors, three.vectors);
-    let sequential = run(0);
-    check_against_oracle(&a, &mass, 120, &sequential);
 }
 
 #[test]
@@ -213,9 +207,9 @@ fn seeded_runs_are_deterministic_and_report_progress() {
     let first = lowest_eigenpairs(&a, &mass, 30, &options).unwrap();
     let second = lowest_eigenpairs(&a, &mass, 30, &options).unwrap();
     assert_eq!(first.values, second.values);
-    assert_eq!(first.solves, second.solves);
+    assert_eq!(first.statistics.solves(), second.statistics.solves());
     assert!(calls.get() >= 2);
-    assert!(first.solves > 0);
+    assert!(first.statistics.solves() > 0);
 }
 
 #[test]
@@ -223,7 +217,7 @@ fn small_problems_use_the_dense_path() {
     let a = grid_laplacian(8, 7, false);
     let mass = irregular_masses(a.rows(), 8);
     let result = lowest_eigenpairs(&a, &mass, 50, &EigenOptions::default()).unwrap();
-    assert_eq!(result.factorizations, 0);
+    assert_eq!(result.statistics.factorizations(), 0);
     let ad = dense(&a);
     let (reference, _) = dense_generalized_eigen(ad.as_ref(), &mass).unwrap();
     for j in 0..50 {
@@ -255,4 +249,72 @@ fn invalid_requests_are_errors() {
     ));
     let empty = lowest_eigenpairs(&a, &mass, 0, &EigenOptions::default()).unwrap();
     assert!(empty.values.is_empty());
+}
+
+#[test]
+fn an_interval_whose_shift_sits_on_an_eigenvalue_is_split_and_solved() {
+    // One interval (−∞, 2λ*) whose midpoint, the shift, is the eigenvalue λ* to rounding: the
+    // shift-inverted operator has |θ| ≈ 1e14/λ* there, so the pairs at the far end of the
+    // interval cannot reach the tolerance relative to their |θ| ≈ 1/λ* (the rounding floor is
+    // ε·max|θ|). The interval must be split at its shift instead of restarting forever.
+    let a = grid_laplacian(30, 30, true);
+    let mass = vec![1.0; a.rows()];
+    let (reference, _) = dense_generalized_eigen(dense(&a).as_ref(), &mass).unwrap();
+    let star = reference[61];
+    let pencil = Pencil::new(&a, &mass).unwrap();
+    let top = pencil.count_below(2.0 * star).unwrap();
+    let k = top.below;
+    assert!(k > 100 && 3 * k < a.rows(), "{k}");
+    let options = EigenOptions {
+        interval_size: 10 * k,
+        ..Default::default()
+    };
+    let request = EigenRequest {
+        pencil: &pencil,
+        count: k,
+        top: Some(top),
+        seed: 5,
+    };
+    let solution = lowest_eigenpairs_of(&[request], &options).unwrap();
+    let statistics = solution.statistics;
+    // One split: one more count, and the two halves' shifts.
+    assert_eq!(statistics.counting.factorizations, 2, "{statistics:?}");
+    assert_eq!(statistics.solving.factorizations, 3, "{statistics:?}");
+    check_against_oracle(&a, &mass, k, &solution.pairs[0]);
+}
+
+#[test]
+fn every_shift_is_factored_once_and_counted_shifts_are_reused() {
+    let a = grid_laplacian(40, 38, false);
+    let mass = irregular_masses(a.rows(), 13);
+    let pencil = Pencil::new(&a, &mass).unwrap();
+    // A caller's count (as a basis split does) serves as the top shift and as a boundary.
+    let (reference, _) = dense_generalized_eigen(dense(&a).as_ref(), &mass).unwrap();
+    let t = 0.5 * (reference[119] + reference[120]);
+    let top = pencil.count_below(t).unwrap();
+    assert_eq!(top.below, 120);
+    let middle = pencil.count_below(0.5 * t).unwrap();
+    assert_eq!(pencil.count_below(0.5 * t).unwrap(), middle);
+    assert_eq!(pencil.statistics().counting.factorizations, 2);
+    let options = EigenOptions {
+        interval_size: 30,
+        ..Default::default()
+    };
+    let request = EigenRequest {
+        pencil: &pencil,
+        count: 120,
+        top: Some(top),
+        seed: 1,
+    };
+    let solution = lowest_eigenpairs_of(&[request], &options).unwrap();
+    let statistics = solution.statistics;
+    // Four intervals: boundaries t/4 and 3t/4 are new, t/2 was counted already.
+    assert_eq!(statistics.counting.factorizations, 4, "{statistics:?}");
+    assert_eq!(statistics.solving.factorizations, 4, "{statistics:?}");
+    assert_eq!(statistics.refinement.factorizations, 0, "{statistics:?}");
+    let mut shifts: Vec<f64> = pencil.counted().iter().map(|c| c.shift).collect();
+    shifts.dedup();
+    assert_eq!(shifts.len(), statistics.factorizations());
+    check_against_oracle(&a, &mass, 120, &solution.pairs[0]);
+    assert!(solution.pairs[0].field_residuals.iter().all(|r| *r <= 1e-9));
 }

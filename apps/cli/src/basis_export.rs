@@ -7,14 +7,18 @@ use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_spectral::SpectralBasis;
+use tvf_spectral::EigenfunctionBasis;
 
 /// Writes `eigenvalues.npy` (`k`, float64, ascending), `families.npy` (`k` strings:
 /// `harmonic`, `integrable`, `cointegrable`), `coefficients.npy` (`n1 × k`, the
 /// discretization's own coefficients, `M1`-orthonormal) and, where the complex samples fields,
 /// `fields.npy` (`F × 3 × k`, each field at the face centroids) and `frames.npy` (`F × 2 × 3`,
 /// `[e1, e2]` of every face) into the folder `dir`.
-pub fn export_basis(basis: &SpectralBasis, complex: &dyn HodgeComplex, dir: &Path) -> Result<()> {
+pub fn export_basis(
+    basis: &EigenfunctionBasis,
+    complex: &dyn HodgeComplex,
+    dir: &Path,
+) -> Result<()> {
     let staged = stage(dir)?;
     let write = |name: &str, bytes: Vec<u8>| -> Result<()> {
         tvf_core::io::write_atomically(&staged.path().join(name), |w| w.write_all(&bytes))
@@ -28,9 +32,9 @@ pub fn export_basis(basis: &SpectralBasis, complex: &dyn HodgeComplex, dir: &Pat
     )?;
     let families: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
     write("families.npy", npy_bytes(&NpyData::Text(&families), &[k]))?;
-    let fields = basis.fields();
+    let columns: Vec<Vec<f64>> = (0..k).map(|j| basis.field(complex, j)).collect();
     let coefficients: Vec<f64> = (0..n1)
-        .flat_map(|i| (0..k).map(move |j| fields[(i, j)]))
+        .flat_map(|i| columns.iter().map(move |column| column[i]))
         .collect();
     write(
         "coefficients.npy",
@@ -39,9 +43,8 @@ pub fn export_basis(basis: &SpectralBasis, complex: &dyn HodgeComplex, dir: &Pat
     if let Some(sampling) = complex.sampling() {
         let faces = sampling.face_count();
         let mut sampled = vec![0.0; faces * 3 * k];
-        for j in 0..k {
-            let column: Vec<f64> = fields.col(j).iter().copied().collect();
-            for (t, v) in sampling.to_face_vectors(&column)?.iter().enumerate() {
+        for (j, column) in columns.iter().enumerate() {
+            for (t, v) in sampling.to_face_vectors(column)?.iter().enumerate() {
                 for (c, x) in v.iter().enumerate() {
                     sampled[(t * 3 + c) * k + j] = *x;
                 }

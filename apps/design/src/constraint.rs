@@ -147,3 +147,20 @@ impl CompiledConstraint {
         self.values.iter().map(|v| v * v).sum::<f64>().sqrt()
     }
 }
+
+/// The entries `(i, j)` (both triangles) of `C̃ᵀ W C̃` for a set of constraints.
+pub(crate) fn constraint_gram_entries(
+    constraints: &[CompiledConstraint],
+) -> Vec<(usize, usize, f64)> {
+    let mut entries = Vec::new();
+    for c in constraints {
+        for row in &c.rows {
+            for &(i, a) in row {
+                for &(j, b) in row {
+                    entries.push((i, j, c.weight * a * b));
+                }
+            }
+        }
+    }
+    entries
+}

@@ -232,16 +232,6 @@ pub enum DesignError {
         /// Value given.
         value: f64,
     },
-    /// An environment variable that tunes the solvers holds something unusable.
-    #[error("environment variable {variable} = '{value}': {expected}")]
-    BadEnvironment {
-        /// The variable's name.
-        variable: &'static str,
-        /// Its value.
-        value: String,
-        /// What it must be.
-        expected: &'static str,
-    },
     /// A solved field or a constraint residual is NaN or infinite.
     #[error("constraint '{id}': {problem}; {cause}")]
     NotFinite {

@@ -31,30 +31,23 @@ mod assembler;
 mod constraint;
 mod constraint_file;
 mod error;
-mod factor_parallelism;
 mod reduced_basis;
 mod reference_spline;
-mod refinement;
 mod soft_full;
 mod soft_reduced;
 mod solution_check;
-mod sparse_pattern;
 mod spline;
 
 pub use assembler::ConstraintAssembler;
 pub use constraint::{CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target};
 pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
 pub use error::{ConstraintError, ConstraintFileError, DesignError};
-pub use factor_parallelism::{
-    sequential_flop_limit, FactorParallelism, SEQUENTIAL_FLOP_LIMIT, SEQUENTIAL_FLOP_LIMIT_VARIABLE,
-};
-pub use reduced_basis::{ReducedBasis, ReducedBasisF32};
+pub use reduced_basis::{FieldScalar, ReducedBasis, ReducedBasisF32, RowMajorFields};
 pub use reference_spline::{reference_spline, ReferenceSpline};
-pub use refinement::SolveReport;
 pub use soft_full::{
     default_regularization, FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING,
 };
 pub use soft_reduced::ReducedSoftDesign;
 pub use solution_check::{checked_residuals, worst_residual};
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};
-pub use tvf_solvers::FillOrdering;
+pub use tvf_solvers::{FactorParallelism, FillOrdering, SolveReport, SEQUENTIAL_FLOP_LIMIT};

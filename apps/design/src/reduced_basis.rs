@@ -1,5 +1,6 @@
 //! [`ReducedBasis`]: the eigenfields `U` stored row by row, with the eigenvalues, for the reduced
-//! solvers; and the multithreaded maps `x = U v` in `f64` and `f32`.
+//! solvers; and [`RowMajorFields`], the row-major `U` in `f64` or `f32` with the one
+//! multithreaded map `x = U v` both precisions share.
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
@@ -18,17 +19,38 @@ const ROWS_PER_TASK: usize = 2048;
 /// per output coefficient, streaming `U` exactly once.
 #[derive(Debug, Clone)]
 pub struct ReducedBasis {
-    rows: Vec<f64>,
-    field_dimension: usize,
+    fields: RowMajorFields<f64>,
     eigenvalues: Vec<f64>,
     harmonic: Vec<bool>,
 }
 
-/// `U` in single precision (row-major), for the fast map `x = U v` (half the memory traffic).
+/// `U` (`n × d`) stored row-major in precision `T` (`f64`, or `f32` for the fast map with half
+/// the memory traffic), with the map `x = U v`.
 #[derive(Debug, Clone)]
-pub struct ReducedBasisF32 {
-    rows: Vec<f32>,
+pub struct RowMajorFields<T> {
+    rows: Vec<T>,
     len: usize,
+    field_dimension: usize,
+}
+
+/// `U` in single precision, for the fast map `x = U v`.
+pub type ReducedBasisF32 = RowMajorFields<f32>;
+
+/// The number types of [`RowMajorFields`]: `f64` and `f32`.
+pub trait FieldScalar:
+    Copy + Send + Sync + Default + std::ops::Add<Output = Self> + std::ops::Mul<Output = Self>
+{
+    /// Independent accumulators of a dot product or sum (lets the compiler vectorise: 4 for
+    /// `f64`, 8 for `f32`, one 256-bit register each).
+    const LANES: usize;
+}
+
+impl FieldScalar for f64 {
+    const LANES: usize = 4;
+}
+
+impl FieldScalar for f32 {
+    const LANES: usize = 8;
 }
 
 impl ReducedBasis {
@@ -91,8 +113,11 @@ impl ReducedBasis {
             *flag |= l <= 1e-10 * max;
         }
         Ok(Self {
-            rows,
-            field_dimension,
+            fields: RowMajorFields {
+                rows,
+                len: d,
+                field_dimension,
+            },
             eigenvalues,
             harmonic,
         })
@@ -110,7 +135,7 @@ impl ReducedBasis {
 
     /// Dimension `2F` of the field space.
     pub fn field_dimension(&self) -> usize {
-        self.field_dimension
+        self.fields.field_dimension
     }
 
     /// Eigenvalues `λ_i` (`d` entries, 1/length²).
@@ -126,7 +151,7 @@ impl ReducedBasis {
     /// Row `r` of `U` (`d` values): coefficient `r` of every basis field.
     pub fn row(&self, r: usize) -> &[f64] {
         let d = self.len();
-        &self.rows[r * d..(r + 1) * d]
+        &self.fields.rows[r * d..(r + 1) * d]
     }
 
     /// The eigenvalues with harmonic ones (0) replaced by a tenth of the lowest non-harmonic
@@ -182,8 +207,41 @@ impl ReducedBasis {
 
     /// `x = U v` (`2F` values, multithreaded): one dot product per coefficient.
     pub fn map(&self, coefficients: &[f64], field: &mut [f64]) -> Result<(), DesignError> {
-        self.check_map(coefficients.len(), field.len())?;
-        let d = self.len();
+        self.fields.map(coefficients, field)
+    }
+
+    /// Sum of all entries of `U`, multithreaded: reads `U` once, the memory-streaming reference
+    /// the map `x = U v` is measured against.
+    pub fn stream_sum(&self) -> f64 {
+        self.fields.stream_sum()
+    }
+
+    /// A single-precision copy of `U` for the fast map `x = U v`.
+    pub fn to_f32(&self) -> ReducedBasisF32 {
+        RowMajorFields {
+            rows: self.fields.rows.par_iter().map(|&x| x as f32).collect(),
+            len: self.fields.len,
+            field_dimension: self.fields.field_dimension,
+        }
+    }
+}
+
+impl<T: FieldScalar> RowMajorFields<T> {
+    /// Number of basis fields `d`.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the basis has no field.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// `x = U v` (`2F` values, multithreaded): one dot product per coefficient, accumulated in
+    /// `T` (for `f32`, relative error about `d · 6e-8` of `Σ|U_rk v_k|`).
+    pub fn map(&self, coefficients: &[T], field: &mut [T]) -> Result<(), DesignError> {
+        let d = self.len;
+        check_map(d, self.field_dimension, coefficients.len(), field.len())?;
         field
             .par_chunks_mut(ROWS_PER_TASK)
             .zip(self.rows.par_chunks(ROWS_PER_TASK * d.max(1)))
@@ -195,75 +253,12 @@ impl ReducedBasis {
         Ok(())
     }
 
-    /// Sum of all entries of `U`, multithreaded: reads `U` once, the memory-streaming reference
-    /// the map `x = U v` is measured against.
-    pub fn stream_sum(&self) -> f64 {
-        self.rows
-            .par_chunks(ROWS_PER_TASK * self.len().max(1))
-            .map(lane_sum)
-            .sum()
-    }
-
-    /// A single-precision copy of `U` for [`ReducedBasisF32::map`].
-    pub fn to_f32(&self) -> ReducedBasisF32 {
-        ReducedBasisF32 {
-            rows: self.rows.par_iter().map(|&x| x as f32).collect(),
-            len: self.len(),
-        }
-    }
-
-    fn check_map(&self, coefficients: usize, field: usize) -> Result<(), DesignError> {
-        check_map(self.len(), self.field_dimension, coefficients, field)
-    }
-}
-
-impl ReducedBasisF32 {
-    /// Number of basis fields `d`.
-    pub fn len(&self) -> usize {
-        self.len
-    }
-
-    /// Whether the basis has no field.
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
-    }
-
-    /// `x = U v` in single precision (`2F` values, multithreaded; `f32` accumulation over `d`
-    /// terms, relative error about `d · 6e-8` of `Σ|U_rk v_k|`).
-    pub fn map(&self, coefficients: &[f32], field: &mut [f32]) -> Result<(), DesignError> {
-        let d = self.len;
-        check_map(
-            d,
-            self.rows.len() / d.max(1),
-            coefficients.len(),
-            field.len(),
-        )?;
-        field
-            .par_chunks_mut(ROWS_PER_TASK)
-            .zip(self.rows.par_chunks(ROWS_PER_TASK * d.max(1)))
-            .for_each(|(out, block)| {
-                for (x, row) in out.iter_mut().zip(block.chunks_exact(d.max(1))) {
-                    *x = dot_f32(row, coefficients);
-                }
-            });
-        Ok(())
-    }
-
-    /// Sum of all entries (the streaming reference for the `f32` map).
-    pub fn stream_sum(&self) -> f32 {
+    /// Sum of all entries of `U`, multithreaded (reads `U` once: the streaming reference).
+    pub fn stream_sum(&self) -> T {
         self.rows
             .par_chunks(ROWS_PER_TASK * self.len.max(1))
-            .map(|c| {
-                let mut acc = [0.0f32; 8];
-                let (head, tail) = c.split_at(c.len() - c.len() % 8);
-                for x in head.chunks_exact(8) {
-                    for k in 0..8 {
-                        acc[k] += x[k];
-                    }
-                }
-                acc.iter().sum::<f32>() + tail.iter().sum::<f32>()
-            })
-            .sum()
+            .map(lane_sum)
+            .reduce(T::default, |a, b| a + b)
     }
 }
 
@@ -285,41 +280,34 @@ fn check_map(d: usize, n: usize, coefficients: usize, field: usize) -> Result<()
     Ok(())
 }
 
-/// Dot product with four independent accumulators (lets the compiler vectorise).
-pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let (a4, ar) = a.split_at(a.len() - a.len() % 4);
-    let (b4, br) = b.split_at(a4.len());
-    for (x, y) in a4.chunks_exact(4).zip(b4.chunks_exact(4)) {
-        for k in 0..4 {
-            acc[k] += x[k] * y[k];
+/// Dot product with `T::LANES` independent accumulators (lets the compiler vectorise).
+pub(crate) fn dot<T: FieldScalar>(a: &[T], b: &[T]) -> T {
+    let mut acc = [T::default(); 8];
+    let lanes = T::LANES;
+    let (head, a_tail) = a.split_at(a.len() - a.len() % lanes);
+    let (b_head, b_tail) = b.split_at(head.len());
+    for (x, y) in head.chunks_exact(lanes).zip(b_head.chunks_exact(lanes)) {
+        for k in 0..lanes {
+            acc[k] = acc[k] + x[k] * y[k];
         }
     }
-    let tail: f64 = ar.iter().zip(br).map(|(x, y)| x * y).sum();
-    acc[0] + acc[1] + acc[2] + acc[3] + tail
+    let tail = a_tail
+        .iter()
+        .zip(b_tail)
+        .fold(T::default(), |sum, (&x, &y)| sum + x * y);
+    acc[..lanes].iter().fold(T::default(), |sum, &x| sum + x) + tail
 }
 
-/// Sum with four independent accumulators (vectorisable, so it runs at memory speed).
-fn lane_sum(a: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let (head, tail) = a.split_at(a.len() - a.len() % 4);
-    for x in head.chunks_exact(4) {
-        for k in 0..4 {
-            acc[k] += x[k];
+/// Sum with `T::LANES` independent accumulators (vectorisable, so it runs at memory speed).
+fn lane_sum<T: FieldScalar>(a: &[T]) -> T {
+    let mut acc = [T::default(); 8];
+    let lanes = T::LANES;
+    let (head, tail) = a.split_at(a.len() - a.len() % lanes);
+    for x in head.chunks_exact(lanes) {
+        for k in 0..lanes {
+            acc[k] = acc[k] + x[k];
         }
     }
-    acc[0] + acc[1] + acc[2] + acc[3] + tail.iter().sum::<f64>()
-}
-
-/// `f32` dot product with eight independent accumulators.
-fn dot_f32(a: &[f32], b: &[f32]) -> f32 {
-    let mut acc = [0.0f32; 8];
-    let (a8, ar) = a.split_at(a.len() - a.len() % 8);
-    let (b8, br) = b.split_at(a8.len());
-    for (x, y) in a8.chunks_exact(8).zip(b8.chunks_exact(8)) {
-        for k in 0..8 {
-            acc[k] += x[k] * y[k];
-        }
-    }
-    acc.iter().sum::<f32>() + ar.iter().zip(br).map(|(x, y)| x * y).sum::<f32>()
+    acc[..lanes].iter().fold(T::default(), |sum, &x| sum + x)
+        + tail.iter().fold(T::default(), |sum, &x| sum + x)
 }

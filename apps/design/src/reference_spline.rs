@@ -3,12 +3,12 @@
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
-use crate::refinement::{accurate_residual, refined_solve, SolveReport};
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_solvers::iterative_refinement::{accurate_residual, refined_solve, SolveReport};
 use tvf_solvers::SparseCholesky;
 
 /// The full spline and how well its solves went.

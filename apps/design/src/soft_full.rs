@@ -2,18 +2,21 @@
 //! `(S + ωB + εM_X + C̃ᵀ W C̃) x = C̃ᵀ W c`, factored through a quasi-definite augmented system
 //! (sparse `LDLᵀ`) with iterative refinement.
 
+use crate::constraint::constraint_gram_entries;
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
-use crate::factor_parallelism::{sequential_flop_limit, FactorParallelism, SEQUENTIAL_FLOP_LIMIT};
-use crate::refinement::{exact, refined_solve, symmetric_product, DoubleDouble, SolveReport};
-use crate::sparse_pattern::{constraint_gram_entries, position, with_extra_entries};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, Par};
 use sprs::CsMat;
 use std::time::{Duration, Instant};
 use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_solvers::iterative_refinement::{
+    exact, refined_solve, symmetric_product, DoubleDouble, SolveReport,
+};
 use tvf_solvers::ordering::nested_dissection_of_groups;
+use tvf_solvers::sparse_pattern::{position, with_extra_entries};
+use tvf_solvers::FactorParallelism;
 use tvf_solvers::{FillOrdering, SolverError, SparseLdlt};
 
 /// Parameters of soft design (full and reduced use the same ones, so that they agree).
@@ -78,8 +81,8 @@ pub const DEFAULT_FULL_ORDERING: FillOrdering = FillOrdering::NestedDissection;
 /// symbolic analysis is done.
 ///
 /// Factorizations and solves run on one thread or on all of them, chosen per system by a
-/// [`FactorParallelism`] policy (default [`FactorParallelism::Auto`]: one thread below
-/// [`crate::SEQUENTIAL_FLOP_LIMIT`] flops, where faer's parallel factorization is slower).
+/// [`FactorParallelism`] policy (default: one thread below [`crate::SEQUENTIAL_FLOP_LIMIT`]
+/// flops, where faer's parallel factorization is slower).
 #[derive(Debug)]
 pub struct FullSoftDesign {
     dirichlet: CsMat<f64>,
@@ -142,13 +145,13 @@ impl FullSoftDesign {
             options,
             constraints,
             ordering,
-            FactorParallelism::Auto,
+            FactorParallelism::default(),
         )
     }
 
     /// The same as [`FullSoftDesign::from_matrices_with_ordering`] with the threading of the
     /// factorizations and solves chosen by the caller (kept for later factorizations);
-    /// the other constructors use [`FactorParallelism::Auto`].
+    /// the other constructors use [`FactorParallelism::default`].
     pub fn from_matrices_with(
         dirichlet: &CsMat<f64>,
         mass: &[f64],
@@ -421,11 +424,7 @@ fn factor_augmented(
     ordering: FillOrdering,
     parallelism: FactorParallelism,
 ) -> Result<SparseLdlt, DesignError> {
-    let limit = match parallelism {
-        FactorParallelism::Auto => sequential_flop_limit()?,
-        FactorParallelism::Sequential | FactorParallelism::Parallel => SEQUENTIAL_FLOP_LIMIT,
-    };
-    let choose = |flops| parallelism.choose(flops, limit);
+    let choose = |flops| parallelism.choose(flops);
     let factor = match ordering {
         FillOrdering::Amd => {
             SparseLdlt::with_ordering_and_parallelism(augmented.as_ref(), ordering, choose)?

@@ -7,36 +7,28 @@ mod common;
 use common::{max_relative_difference, FullDesignInputs};
 use faer::Par;
 use tvf_core::generate::{icosphere, jitter};
-use tvf_design::{
-    sequential_flop_limit, FactorParallelism, FillOrdering, FullSoftDesign, SEQUENTIAL_FLOP_LIMIT,
-    SEQUENTIAL_FLOP_LIMIT_VARIABLE,
-};
+use tvf_design::{FactorParallelism, FillOrdering, FullSoftDesign, SEQUENTIAL_FLOP_LIMIT};
 
 #[test]
 fn the_policy_maps_flops_to_threads() {
-    assert_eq!(FactorParallelism::default(), FactorParallelism::Auto);
-    // No test sets the override variable, so the limit is the constant.
-    assert!(std::env::var_os(SEQUENTIAL_FLOP_LIMIT_VARIABLE).is_none());
+    let automatic = FactorParallelism::default();
     assert_eq!(
-        sequential_flop_limit().expect("unset: the constant"),
-        SEQUENTIAL_FLOP_LIMIT
+        automatic,
+        FactorParallelism::Auto {
+            sequential_flop_limit: SEQUENTIAL_FLOP_LIMIT
+        }
     );
+    assert_eq!(automatic.choose(0.5 * SEQUENTIAL_FLOP_LIMIT), Par::Seq);
     assert_eq!(
-        FactorParallelism::Auto.choose(0.5 * SEQUENTIAL_FLOP_LIMIT, SEQUENTIAL_FLOP_LIMIT),
-        Par::Seq
-    );
-    assert_eq!(
-        FactorParallelism::Auto.choose(2.0 * SEQUENTIAL_FLOP_LIMIT, SEQUENTIAL_FLOP_LIMIT),
+        automatic.choose(2.0 * SEQUENTIAL_FLOP_LIMIT),
         faer::get_global_parallelism()
     );
-    assert_eq!(
-        FactorParallelism::Sequential.choose(1e15, SEQUENTIAL_FLOP_LIMIT),
-        Par::Seq
-    );
-    assert_eq!(
-        FactorParallelism::Parallel.choose(1.0, SEQUENTIAL_FLOP_LIMIT),
-        Par::rayon(0)
-    );
+    let lower = FactorParallelism::Auto {
+        sequential_flop_limit: 1e3,
+    };
+    assert_eq!(lower.choose(1e4), faer::get_global_parallelism());
+    assert_eq!(FactorParallelism::Sequential.choose(1e15), Par::Seq);
+    assert_eq!(FactorParallelism::Parallel.choose(1.0), Par::rayon(0));
 }
 
 #[test]
@@ -60,7 +52,7 @@ fn sequential_and_parallel_factors_give_the_same_field() {
         )
         .expect("full design")
     };
-    let automatic = design(FactorParallelism::Auto);
+    let automatic = design(FactorParallelism::default());
     let mut sequential = design(FactorParallelism::Sequential);
     let mut parallel = design(FactorParallelism::Parallel);
     // Large enough that the factor's values are zeroed by several threads (≥ 2^20 values).

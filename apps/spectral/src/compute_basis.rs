@@ -13,6 +13,10 @@ use std::cell::Cell;
 use std::time::Instant;
 use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_solvers::{
+    lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress, EigenRequest, Pencil,
+    PhaseStatistics, ShiftCount, SolverStatistics,
+};
 
 /// How a basis computation went: sizes, accuracy and cost.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -33,12 +37,28 @@ pub struct BasisReport {
     pub co_potential_kernel_eigenvalues: Vec<f64>,
     /// Largest relative residual `‖Ax − λMx‖ / (‖A‖‖x‖)` the eigensolver reported.
     pub max_solver_residual: f64,
-    /// Sparse factorizations used by the eigensolver.
+    /// Largest relative eigenfield residual `‖LΦ − λΦ‖/λ` the eigensolver reported for the
+    /// eigenfields of both families (after its refinement).
+    pub max_field_residual: f64,
+    /// Largest rounding floor of those residuals (what rounding `A x` alone gives; on meshes
+    /// with slivers it can be far above 1e-8, and so can the residuals).
+    pub max_field_residual_floor: f64,
+    /// Sparse factorizations of both families, all phases (counting included).
     pub factorizations: usize,
-    /// Single-vector solves used by the eigensolver.
+    /// Distinct shifts factored for both families: equal to
+    /// [`BasisReport::factorizations`] when every shift was factored once (a shift nudged off
+    /// an eigenvalue costs one more).
+    pub distinct_shifts: usize,
+    /// Single-vector solves of both families, all phases.
     pub solves: usize,
-    /// Eigensolver calls: one per family, each with its exact count.
+    /// Eigenproblems solved: one per family, each with its exact count (both in one call).
     pub eigensolver_calls: usize,
+    /// The eigensolver's cost by phase: counting at interval boundaries (its times; the threshold
+    /// search is [`BasisReport::counting_seconds`]), solving, refinement; factorization counts
+    /// include the threshold search.
+    pub solver: SolverStatistics,
+    /// Forming the dense fields from the eigenfunctions ([`compute_basis`] only).
+    pub assembly: PhaseStatistics,
     /// For [`BasisSize::Fields`] and [`BasisSize::MaxEigenvalue`] split by inertia counts: the
     /// threshold `t` (units of λ, 1/length²) such that exactly the non-zero eigenvalues of both
     /// families strictly below `t` were computed. `None` when the request fixed the counts
@@ -48,6 +68,8 @@ pub struct BasisReport {
     pub counting_factorizations: usize,
     /// Wall-clock seconds spent counting (included in [`BasisReport::seconds`]).
     pub counting_seconds: f64,
+    /// Processor seconds (all threads) spent counting.
+    pub counting_cpu_seconds: f64,
     /// Non-zero eigenpairs of the potential problem the eigensolver computed (at least
     /// [`BasisReport::integrable_count`]; the difference was computed in vain).
     pub integrable_computed: usize,
@@ -58,21 +80,14 @@ pub struct BasisReport {
     pub seconds: f64,
 }
 
-impl BasisReport {
-    /// Adds one eigensolver call's factorizations and solves.
-    fn add_solver_counts(&mut self, pairs: &ScalarEigenpairs) {
-        self.factorizations += pairs.factorizations;
-        self.solves += pairs.solves;
-        self.eigensolver_calls += 1;
-    }
-}
-
 /// The Fourier basis of `complex` as requested, with dense `2F × d` fields (the eigenfunctions
 /// and an `f32` copy too if the request asks for them), sorted by eigenvalue and labelled.
 ///
 /// Steps (Section 6): the `2g` harmonic fields by projecting seeded random fields; the lowest
-/// eigenpairs `(λ, φ)` of `(d0ᵀ M1 d0, M0)` and `(μ, ψ)` of `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` (sparse
-/// spectrum-slicing Lanczos, dense for small problems, both at once), the constant
+/// eigenpairs `(λ, φ)` of `(d0ᵀ M1 d0, M0)` and `(μ, ψ)` of `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` (the spectrum
+/// intervals of both, with exact inertia counts, solved in one pool of threads by shift-invert
+/// Krylov–Schur and refined where the eigenfield residual misses 1e-9·λ; dense for small
+/// problems; every shift is factored once, the threshold's counts included), the constant
 /// eigenfunctions (one per connected component, found by count) dropped; for `Fields` and
 /// `MaxEigenvalue` requests each family's number of eigenpairs is counted exactly beforehand by
 /// Sylvester's law of inertia (every eigenvalue of both below one threshold), so each family is
@@ -91,7 +106,13 @@ pub fn compute_basis<H: HodgeComplex + ?Sized>(
     let start = Instant::now();
     let (compact, mut report) = compute_eigenfunction_basis(complex, request)?;
     request.report(BasisStage::Assembling, 0, compact.len());
+    let (assembly_start, assembly_cpu) = (Instant::now(), process_cpu_seconds());
     let fields = compact.dense_fields(complex);
+    report.assembly = PhaseStatistics {
+        wall_seconds: assembly_start.elapsed().as_secs_f64(),
+        cpu_seconds: process_cpu_seconds() - assembly_cpu,
+        ..PhaseStatistics::default()
+    };
     let mut basis = SpectralBasis::new(
         compact.eigenvalues().to_vec(),
         compact.families().to_vec(),
@@ -134,8 +155,18 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     );
     let h = complex.topology().harmonic_dimension;
     let area = complex.total_area();
-    // Exact counts per family up front (inertia), so each family is solved once.
-    let split = split_families(request.size, h, &exact, &co_exact, area)?;
+    let (exact_pencil, co_exact_pencil) = (exact.pencil()?, co_exact.pencil()?);
+    // Exact counts per family up front (inertia), so each family is solved once; the pencils
+    // remember the counted shifts, so the eigensolver factors none of them again.
+    let cpu = process_cpu_seconds();
+    let split = split_families(
+        request.size,
+        h,
+        (&exact, &exact_pencil),
+        (&co_exact, &co_exact_pencil),
+        area,
+    )?;
+    let counting_cpu_seconds = process_cpu_seconds() - cpu;
     let (ka, kb) = (split.potential, split.co_potential);
 
     request.report(BasisStage::Harmonic, 0, h);
@@ -149,19 +180,30 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         split_threshold: split.threshold,
         counting_factorizations: split.factorizations,
         counting_seconds: split.seconds,
+        counting_cpu_seconds,
         ..BasisReport::default()
     };
     // Each family's eigensolver gets its own seed, derived from the request's (salts 2 and 3
     // keep the seeds, and so the bases, of earlier versions).
     let family_seed = |salt: u64| request.seed ^ salt.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-    let (a, b) = solve_both_families(
-        (&exact, ka, family_seed(2)),
-        (&co_exact, kb, family_seed(3)),
+    let tops = split.tops.map_or((None, None), |(a, b)| (Some(a), Some(b)));
+    let (a, b, solver) = solve_both_families(
+        (&exact, &exact_pencil, ka, tops.0, family_seed(2)),
+        (&co_exact, &co_exact_pencil, kb, tops.1, family_seed(3)),
         request,
-    );
-    let (a, b) = (a?, b?);
-    report.add_solver_counts(&a);
-    report.add_solver_counts(&b);
+    )?;
+    report.solver = solver;
+    report.factorizations = solver.factorizations();
+    report.solves = solver.solves();
+    report.eigensolver_calls = 2;
+    report.distinct_shifts = [&exact_pencil, &co_exact_pencil]
+        .iter()
+        .map(|pencil| {
+            let mut shifts: Vec<f64> = pencil.counted().iter().map(|c| c.shift).collect();
+            shifts.dedup();
+            shifts.len()
+        })
+        .sum();
     // Fails loudly if the eigensolver disagrees with the counts the selection below relies on.
     split.check(&exact, &a.values, ka)?;
     split.check(&co_exact, &b.values, kb)?;
@@ -201,9 +243,11 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     report.potential_kernel_eigenvalues = a.kernel_values.clone();
     report.co_potential_kernel_eigenvalues = b.kernel_values.clone();
     report.max_solver_residual = a.max_residual.max(b.max_residual);
+    report.max_field_residual = a.max_field_residual.max(b.max_field_residual);
+    report.max_field_residual_floor = a.max_field_residual_floor.max(b.max_field_residual_floor);
 
-    let potentials = normalised(complex.d0(), complex.m1().values(), &a.vectors, na);
-    let co_potentials = normalised(complex.co_gradient(), complex.m1().values(), &b.vectors, nb);
+    let potentials = normalised(complex.d0(), complex.m1().values(), a.vectors, na);
+    let co_potentials = normalised(complex.co_gradient(), complex.m1().values(), b.vectors, nb);
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
     report.seconds = start.elapsed().as_secs_f64();
     Ok((
@@ -212,73 +256,109 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     ))
 }
 
-/// Both scalar eigenproblems, one after the other, each using all threads (the eigensolver
-/// spreads its dense products and blocked solves over rayon's pool). Running them at the same
-/// time on two threads, as before the solver was threaded, was slower: bunny-closed, d = 1000,
-/// 47.3 s against 44.3 s (2 cores, 2026-11-21). Progress of both is reported as one
-/// [`BasisStage::Eigenpairs`] stage with `done` = eigenpairs found in both and
-/// `wanted = ka + kb`.
+/// One family's eigenproblem for [`solve_both_families`]: `(problem, pencil, count, top, seed)`.
+type Family<'p, 'a> = (
+    &'p ScalarSpectrum,
+    &'p Pencil<'a>,
+    usize,
+    Option<ShiftCount>,
+    u64,
+);
+
+/// Both scalar eigenproblems in one eigensolver call: their spectrum intervals form one pool of
+/// jobs, so both cores stay busy until the last interval of either family is done. Progress of
+/// both is reported as one [`BasisStage::Eigenpairs`] stage with `done` = eigenpairs found in
+/// both and `wanted = ka + kb`.
 ///
-/// Each family is `(problem, count, seed)`; returns the potential and the co-potential eigenpairs.
+/// Each family is `(problem, pencil, count, top, seed)` with `top` the count at the split's
+/// threshold (kernel included); returns the potential and the co-potential eigenpairs and the
+/// solver's statistics.
 fn solve_both_families(
-    potential: (&ScalarSpectrum, usize, u64),
-    co_potential: (&ScalarSpectrum, usize, u64),
+    potential: Family<'_, '_>,
+    co_potential: Family<'_, '_>,
     request: &BasisRequest<'_>,
-) -> (
-    Result<ScalarEigenpairs, BasisError>,
-    Result<ScalarEigenpairs, BasisError>,
-) {
-    let (exact, ka, seed_a) = potential;
-    let (co_exact, kb, seed_b) = co_potential;
-    let wanted = ka + kb;
-    let found = |p: &tvf_solvers::EigenProgress, kernel: usize, count: usize| {
-        p.found.saturating_sub(kernel).min(count)
+) -> Result<(ScalarEigenpairs, ScalarEigenpairs, SolverStatistics), BasisError> {
+    let families = [potential, co_potential];
+    let counts: Vec<usize> = families
+        .iter()
+        .map(|(spectrum, _, count, _, _)| (*count).min(spectrum.available()))
+        .collect();
+    let wanted = counts[0] + counts[1];
+    let done = [Cell::new(0), Cell::new(0)];
+    let progress = |p: &EigenProgress| {
+        let (spectrum, ..) = families[p.request];
+        done[p.request].set(
+            p.found
+                .saturating_sub(spectrum.components())
+                .min(counts[p.request]),
+        );
+        request.report(
+            BasisStage::Eigenpairs,
+            done[0].get() + done[1].get(),
+            wanted,
+        );
     };
-    let done_a = Cell::new(0);
-    let done_b = Cell::new(0);
-    let report = || request.report(BasisStage::Eigenpairs, done_a.get() + done_b.get(), wanted);
     request.report(BasisStage::Eigenpairs, 0, wanted);
-    let a = exact.lowest_nonzero(ka, seed_a, &|p: &tvf_solvers::EigenProgress| {
-        done_a.set(found(p, exact.components(), ka));
-        report();
-    });
-    if let Ok(pairs) = &a {
-        done_a.set(pairs.values.len());
-    }
-    let b = co_exact.lowest_nonzero(kb, seed_b, &|p: &tvf_solvers::EigenProgress| {
-        done_b.set(found(p, co_exact.components(), kb));
-        report();
-    });
-    if let Ok(pairs) = &b {
-        done_b.set(pairs.values.len());
-    }
-    report();
-    (a, b)
+    let requests: Vec<EigenRequest<'_, '_>> = families
+        .iter()
+        .zip(&counts)
+        .map(|((spectrum, pencil, _, top, seed), &count)| EigenRequest {
+            pencil,
+            count: count + spectrum.components(),
+            top: *top,
+            seed: *seed,
+        })
+        .collect();
+    let options = EigenOptions {
+        progress: Some(&progress),
+        ..EigenOptions::default()
+    };
+    let solution = lowest_eigenpairs_of(&requests, &options).map_err(|e| BasisError::Eigen {
+        problem: families[e.request].0.name,
+        source: e.source,
+    })?;
+    request.report(BasisStage::Eigenpairs, wanted, wanted);
+    let mut pairs = solution.pairs.into_iter();
+    let mut next = |family: usize| {
+        let found = pairs.next().ok_or_else(|| BasisError::Eigen {
+            problem: families[family].0.name,
+            source: tvf_solvers::SolverError::NoConvergence {
+                reason: "the eigensolver returned no result".into(),
+            },
+        })?;
+        families[family].0.nonzero(found, counts[family])
+    };
+    let a = next(0)?;
+    let b = next(1)?;
+    Ok((a, b, solution.statistics))
 }
 
 /// The first `count` columns of `functions`, each divided by the `M1` norm of `gradient · φ`,
 /// so that `gradient · φ̃` is `M1`-unit. `gradient` is `2F × n` (the complex's `d0` or `J G_co`).
+/// Works in place (no second copy of the eigenfunctions).
 fn normalised(
     gradient: &sprs::CsMat<f64>,
     m1: &[f64],
-    functions: &Mat<f64>,
+    mut functions: Mat<f64>,
     count: usize,
 ) -> Mat<f64> {
     let rows = functions.nrows();
-    let columns: Vec<Vec<f64>> = (0..count)
+    functions.truncate(rows, count.min(functions.ncols()));
+    let norms: Vec<f64> = (0..functions.ncols())
         .into_par_iter()
         .map(|j| {
-            let mut phi: Vec<f64> = (0..rows).map(|i| functions[(i, j)]).collect();
+            let phi: Vec<f64> = (0..rows).map(|i| functions[(i, j)]).collect();
             let field = mul_vec(gradient, &phi);
-            let norm = field
+            field
                 .iter()
                 .zip(m1)
                 .map(|(v, m)| v * v * m)
                 .sum::<f64>()
-                .sqrt();
-            phi.iter_mut().for_each(|x| *x /= norm);
-            phi
+                .sqrt()
         })
         .collect();
-    Mat::from_fn(rows, count, |i, j| columns[j][i])
+    for (j, norm) in norms.iter().enumerate() {
+        functions.col_mut(j).iter_mut().for_each(|x| *x /= norm);
+    }
+    functions
 }

@@ -184,33 +184,39 @@ impl EigenfunctionBasis {
             .collect())
     }
 
-    /// The dense fields `U` (`2F × d`), column `i` = [`field`](Self::field)`(i)`, built in
-    /// parallel from the sparse gradients `d0` and `J G_co`.
-    pub fn dense_fields<H: HodgeComplex + ?Sized>(&self, complex: &H) -> Mat<f64> {
+    /// The basis fields `range` as dense fields (`2F` values each), built in parallel from the
+    /// sparse gradients `d0` and `J G_co`.
+    pub fn field_columns<H: HodgeComplex + ?Sized>(
+        &self,
+        complex: &H,
+        range: std::ops::Range<usize>,
+    ) -> Vec<Vec<f64>> {
         use rayon::prelude::*;
-        let rows = complex.field_dimension();
         let d0 = complex.d0();
         let co_gradient = complex.co_gradient();
-        let mut fields = Mat::zeros(rows, self.len());
-        const CHUNK: usize = 64;
-        for start in (0..self.len()).step_by(CHUNK) {
-            let end = (start + CHUNK).min(self.len());
-            let columns: Vec<Vec<f64>> = (start..end)
-                .into_par_iter()
-                .map(|i| {
-                    let slot = self.slots[i];
-                    match self.families[i] {
-                        FieldFamily::Integrable => {
-                            mul_vec(d0, &column(self.potentials.as_ref(), slot))
-                        }
-                        FieldFamily::Cointegrable => {
-                            mul_vec(co_gradient, &column(self.co_potentials.as_ref(), slot))
-                        }
-                        FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
+        range
+            .into_par_iter()
+            .map(|i| {
+                let slot = self.slots[i];
+                match self.families[i] {
+                    FieldFamily::Integrable => mul_vec(d0, &column(self.potentials.as_ref(), slot)),
+                    FieldFamily::Cointegrable => {
+                        mul_vec(co_gradient, &column(self.co_potentials.as_ref(), slot))
                     }
-                })
-                .collect();
-            for (j, values) in columns.iter().enumerate() {
+                    FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
+                }
+            })
+            .collect()
+    }
+
+    /// The dense fields `U` (`2F × d`), column `i` = [`field`](Self::field)`(i)`, built in
+    /// parallel chunks by [`field_columns`](Self::field_columns).
+    pub fn dense_fields<H: HodgeComplex + ?Sized>(&self, complex: &H) -> Mat<f64> {
+        let rows = complex.field_dimension();
+        let mut fields = Mat::zeros(rows, self.len());
+        for start in (0..self.len()).step_by(FIELD_CHUNK) {
+            let end = (start + FIELD_CHUNK).min(self.len());
+            for (j, values) in self.field_columns(complex, start..end).iter().enumerate() {
                 for (r, &v) in values.iter().enumerate() {
                     fields[(r, start + j)] = v;
                 }
@@ -219,6 +225,10 @@ impl EigenfunctionBasis {
         fields
     }
 }
+
+/// Fields formed at a time by [`EigenfunctionBasis::dense_fields`] and by the streaming writer
+/// of basis files (enough to keep every core busy, little memory).
+pub const FIELD_CHUNK: usize = 64;
 
 fn column(m: MatRef<'_, f64>, j: usize) -> Vec<f64> {
     (0..m.nrows()).map(|i| m[(i, j)]).collect()

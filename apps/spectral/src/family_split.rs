@@ -11,11 +11,9 @@ use crate::basis_request::BasisSize;
 use crate::dense_memory::check_dense_memory;
 use crate::scalar_spectrum::ScalarSpectrum;
 use crate::BasisError;
-use faer::sparse::SparseColMatRef;
-use faer::Par;
 use std::f64::consts::PI;
 use std::time::Instant;
-use tvf_solvers::{EigenOptions, SolverError, SparseLdlt};
+use tvf_solvers::{EigenOptions, Pencil, ShiftCount, SolverError};
 
 /// Relative margin above a [`BasisSize::MaxEigenvalue`] bound at which eigenvalues are counted,
 /// so that an eigenvalue equal to the bound up to round-off is computed (and then kept, the
@@ -29,8 +27,9 @@ const MAX_EVALUATIONS: usize = 12;
 /// Evaluations after which the search bisects instead of interpolating (interpolation on a
 /// staircase can stall at a cluster of eigenvalues).
 const BISECT_AFTER: usize = 7;
-/// Upward nudges of a shift that lands on an eigenvalue (a zero pivot) before giving up.
-const MAX_NUDGES: i32 = 8;
+/// Recounts of the family with the lower shift when the two families' shifts were nudged apart
+/// (each pencil nudges a shift that is one of its eigenvalues upwards on its own).
+const MAX_ALIGNMENTS: usize = 4;
 
 /// How many non-zero eigenpairs of each family to compute, and what counting them cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,6 +44,9 @@ pub(crate) struct FamilySplit {
     pub threshold: Option<f64>,
     /// Numeric `LDLᵀ` factorizations spent counting (both families).
     pub factorizations: usize,
+    /// The counts of both families at the threshold (kernel included), for the eigensolver's
+    /// top shift: `None` when the counts are fixed by the request.
+    pub tops: Option<(ShiftCount, ShiftCount)>,
     /// Wall-clock seconds spent counting.
     pub seconds: f64,
 }
@@ -56,6 +58,7 @@ impl FamilySplit {
             co_potential,
             threshold: None,
             factorizations: 0,
+            tops: None,
             seconds: 0.0,
         }
     }
@@ -114,8 +117,8 @@ impl FamilySplit {
 pub(crate) fn split_families(
     size: BasisSize,
     harmonic: usize,
-    potential: &ScalarSpectrum,
-    co_potential: &ScalarSpectrum,
+    (potential, potential_pencil): (&ScalarSpectrum, &Pencil<'_>),
+    (co_potential, co_potential_pencil): (&ScalarSpectrum, &Pencil<'_>),
     area: f64,
 ) -> Result<FamilySplit, BasisError> {
     let start = Instant::now();
@@ -123,10 +126,9 @@ pub(crate) fn split_families(
     let dense_threshold = EigenOptions::default().dense_threshold;
     let tiny =
         potential.dimension() <= dense_threshold && co_potential.dimension() <= dense_threshold;
-    let mut counter = PairCounter {
-        potential: InertiaCounter::new(potential),
-        co_potential: InertiaCounter::new(co_potential),
-        factorizations: 0,
+    let counter = PairCounter {
+        potential: (potential, potential_pencil),
+        co_potential: (co_potential, co_potential_pencil),
     };
     // Above every eigenvalue of both families: all eigenvalues are below it, uncounted.
     let ceiling = || {
@@ -177,120 +179,94 @@ pub(crate) fn split_families(
             (shift, (a, b))
         }
     };
+    // Both counts at the threshold are remembered by the pencils: no new factorization.
+    let tops = (
+        potential_pencil.count_below(threshold),
+        co_potential_pencil.count_below(threshold),
+    );
+    let tops = match tops {
+        (Ok(a), Ok(b)) => (a, b),
+        (Err(source), _) | (_, Err(source)) => {
+            return Err(BasisError::Eigen {
+                problem: potential.name,
+                source,
+            })
+        }
+    };
     Ok(FamilySplit {
         potential: counts.0,
         co_potential: counts.1,
         threshold: Some(threshold),
-        factorizations: counter.factorizations,
+        factorizations: counter.factorizations(),
+        tops: Some(tops),
         seconds: start.elapsed().as_secs_f64(),
     })
 }
 
-/// Eigenvalue counts of one family by the inertia of `A − tM`, the symbolic analysis of the
-/// first factorization reused for every later shift.
-struct InertiaCounter<'a> {
-    spectrum: &'a ScalarSpectrum,
-    factorization: Option<SparseLdlt>,
+/// Counts of both families at the same shift, computed in parallel by their pencils (which
+/// remember every shift, so the eigensolver does not factor a counted one again).
+struct PairCounter<'p, 'a> {
+    potential: (&'p ScalarSpectrum, &'p Pencil<'a>),
+    co_potential: (&'p ScalarSpectrum, &'p Pencil<'a>),
 }
 
-impl<'a> InertiaCounter<'a> {
-    fn new(spectrum: &'a ScalarSpectrum) -> Self {
-        Self {
-            spectrum,
-            factorization: None,
-        }
-    }
-
-    /// Eigenvalues of `(A, M)` strictly below `shift`, kernel included; `None` if `shift` is an
-    /// eigenvalue to working precision (a zero pivot).
-    fn below(&mut self, shift: f64) -> Result<Option<usize>, BasisError> {
-        let upper = self.spectrum.shifted_upper(shift)?;
-        match self.factor(upper.as_ref()) {
-            Ok(factorization) => {
-                let inertia = factorization.inertia();
-                Ok((inertia.zero == 0).then_some(inertia.negative))
-            }
-            Err(SolverError::Singular { .. }) => Ok(None),
-            Err(source) => Err(BasisError::Eigen {
-                problem: self.spectrum.name,
-                source,
-            }),
-        }
-    }
-
-    /// `LDLᵀ` of `upper`: a numeric refactorization after the first time.
-    fn factor(
-        &mut self,
-        upper: SparseColMatRef<'_, usize, f64>,
-    ) -> Result<&SparseLdlt, SolverError> {
-        let factorization = match self.factorization.take() {
-            Some(mut factorization) => match factorization.refactor(upper) {
-                Ok(()) => factorization,
-                Err(error) => {
-                    self.factorization = Some(factorization);
-                    return Err(error);
-                }
-            },
-            None => {
-                let mut factorization = SparseLdlt::new(upper)?;
-                // The two families are counted on two threads already.
-                factorization.set_parallelism(Par::Seq);
-                factorization
-            }
-        };
-        Ok(self.factorization.insert(factorization))
-    }
-}
-
-/// Counts of both families at the same shift, computed in parallel.
-struct PairCounter<'a> {
-    potential: InertiaCounter<'a>,
-    co_potential: InertiaCounter<'a>,
-    /// Numeric factorizations so far (both families).
-    factorizations: usize,
-}
-
-impl PairCounter<'_> {
+impl PairCounter<'_, '_> {
     /// `(shift, a, b)`: the non-zero eigenvalues `a` of the potential and `b` of the
     /// co-potential problem strictly below `shift`, where `shift ≥ t` is `t`, nudged upward by
-    /// growing relative steps from 1e-12 while it is an eigenvalue to working precision.
-    fn nonzero_below(&mut self, t: f64) -> Result<(f64, usize, usize), BasisError> {
-        let mut shift = t;
-        for attempt in 0..MAX_NUDGES {
-            let (potential, co_potential) = (&mut self.potential, &mut self.co_potential);
-            let (a, b) = rayon::join(|| potential.below(shift), || co_potential.below(shift));
-            self.factorizations += 2;
-            if let (Some(a), Some(b)) = (a?, b?) {
+    /// a pencil while it is an eigenvalue to working precision (and the other family recounted
+    /// there, so that both counts hold at the same shift).
+    fn nonzero_below(&self, t: f64) -> Result<(f64, usize, usize), BasisError> {
+        let count = |(spectrum, pencil): (&ScalarSpectrum, &Pencil<'_>), shift: f64| {
+            pencil
+                .count_below(shift)
+                .map_err(|source| BasisError::Eigen {
+                    problem: spectrum.name,
+                    source,
+                })
+        };
+        let (a, b) = rayon::join(|| count(self.potential, t), || count(self.co_potential, t));
+        let (mut a, mut b) = (a?, b?);
+        for _ in 0..MAX_ALIGNMENTS {
+            if a.shift < b.shift {
+                a = count(self.potential, b.shift)?;
+            } else if b.shift < a.shift {
+                b = count(self.co_potential, a.shift)?;
+            } else {
                 return Ok((
-                    shift,
-                    a.saturating_sub(self.potential.spectrum.components()),
-                    b.saturating_sub(self.co_potential.spectrum.components()),
+                    a.shift,
+                    a.below.saturating_sub(self.potential.0.components()),
+                    b.below.saturating_sub(self.co_potential.0.components()),
                 ));
             }
-            shift += shift.abs() * 1e-12 * 16f64.powi(attempt);
         }
         Err(BasisError::Eigen {
-            problem: self.potential.spectrum.name,
+            problem: self.potential.0.name,
             source: SolverError::NoConvergence {
                 reason: format!(
-                    "every shift tried near {t:e} is an eigenvalue to working precision (zero \
-                     pivots), so the eigenvalues below it cannot be counted"
+                    "the two families' shifts near {t:e} could not be brought together (both \
+                     are eigenvalues to working precision)"
                 ),
             },
         })
     }
 
+    /// Counting factorizations of both pencils so far.
+    fn factorizations(&self) -> usize {
+        self.potential.1.statistics().counting.factorizations
+            + self.co_potential.1.statistics().counting.factorizations
+    }
+
     /// `(t, (a, b))` with `a + b ≥ m` non-zero eigenvalues of the two families below `t` and
     /// `a + b − m` small (see [`split_families`]). `ceiling` is above every eigenvalue of both.
     fn threshold_for(
-        &mut self,
+        &self,
         m: usize,
         area: f64,
         ceiling: f64,
     ) -> Result<(f64, (usize, usize)), BasisError> {
         let all = (
-            self.potential.spectrum.available(),
-            self.co_potential.spectrum.available(),
+            self.potential.0.available(),
+            self.co_potential.0.available(),
         );
         let slack = (m / 250).max(1);
         let goal = m as f64 + slack as f64 / 2.0;
@@ -374,10 +350,10 @@ mod tests {
     #[test]
     fn counts_match_the_closed_form_spectrum_and_shifts_on_eigenvalues_are_nudged() {
         let (a, b) = (path(40), path(63));
-        let mut counter = PairCounter {
-            potential: InertiaCounter::new(&a),
-            co_potential: InertiaCounter::new(&b),
-            factorizations: 0,
+        let (pa, pb) = (a.pencil().unwrap(), b.pencil().unwrap());
+        let counter = PairCounter {
+            potential: (&a, &pa),
+            co_potential: (&b, &pb),
         };
         for t in [0.01, 0.5, 1.3, 3.9] {
             assert_eq!(
@@ -389,13 +365,17 @@ mod tests {
                 )
             );
         }
+        // Counted shifts are remembered: no new factorization.
+        let before = counter.factorizations();
+        counter.nonzero_below(0.5).unwrap();
+        assert_eq!(counter.factorizations(), before);
         // 2 is an eigenvalue of the 40-node path (k = 20): its LDLᵀ has an exactly zero pivot
         // (integer arithmetic on a tree), so the shift moves up and the eigenvalue counts.
         let (shift, below_a, below_b) = counter.nonzero_below(2.0).unwrap();
         assert!(shift > 2.0 && shift < 2.0 + 1e-6, "{shift}");
         assert_eq!(below_a, 20);
         assert_eq!(below_b, nonzero_eigenvalues_below(63, shift));
-        assert!(counter.factorizations > 10);
+        assert!(counter.factorizations() > 10);
     }
 
     #[test]
@@ -404,10 +384,10 @@ mod tests {
         let ceiling = a.eigenvalue_upper_bound().max(b.eigenvalue_upper_bound());
         assert!(ceiling >= 4.0);
         for m in [1, 7, 100, 250, 418] {
-            let mut counter = PairCounter {
-                potential: InertiaCounter::new(&a),
-                co_potential: InertiaCounter::new(&b),
-                factorizations: 0,
+            let (pa, pb) = (a.pencil().unwrap(), b.pencil().unwrap());
+            let counter = PairCounter {
+                potential: (&a, &pa),
+                co_potential: (&b, &pb),
             };
             // Weyl's law does not hold for paths: the search must still get there.
             let (t, (below_a, below_b)) = counter.threshold_for(m, 1.0, ceiling).unwrap();
@@ -418,7 +398,7 @@ mod tests {
             // At most MAX_EVALUATIONS counts, plus a nudge or two where bisection lands on
             // eigenvalues with simple closed forms (1, 2, 3 are eigenvalues of both paths).
             assert!(
-                counter.factorizations <= 2 * (MAX_EVALUATIONS + 2),
+                counter.factorizations() <= 2 * (MAX_EVALUATIONS + 2),
                 "m = {m}"
             );
         }
@@ -432,6 +412,7 @@ mod tests {
             co_potential: 0,
             threshold: Some(1.0),
             factorizations: 2,
+            tops: None,
             seconds: 0.0,
         };
         assert!(split.check(&spectrum, &[0.1, 0.4, 0.9], 3).is_ok());

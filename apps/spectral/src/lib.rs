@@ -35,7 +35,6 @@ mod basis_store;
 mod codec;
 mod compute_basis;
 mod dense_memory;
-mod eigen_refinement;
 mod eigenfunction_basis;
 mod family_split;
 mod filter;
@@ -66,8 +65,8 @@ pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
 pub use formats::atomic_write::{write_atomically, write_atomically_with};
 pub use formats::basis_file::{
-    load_basis, read_basis_file, read_basis_header, save_basis, BasisFileError, BasisFileHeader,
-    BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
+    load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
+    BasisFileError, BasisFileHeader, BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
 pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, BasisFileUseError,
@@ -90,3 +89,5 @@ pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
+/// The eigensolver's cost by phase, as [`BasisReport`] gives it.
+pub use tvf_solvers::{process_cpu_seconds, PhaseStatistics, SolverStatistics};

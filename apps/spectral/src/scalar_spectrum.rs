@@ -1,15 +1,12 @@
 //! The lowest non-zero eigenpairs of one scalar Laplacian `(A, M)` of a Hodge complex (the
 //! potential or the co-potential eigenproblem), with its kernel removed by count.
 
-use crate::eigen_refinement::refine_eigenpairs;
 use crate::BasisError;
-use faer::sparse::SparseColMat;
 use faer::Mat;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{Eigenproblem, NodeSpace};
-use tvf_solvers::convert::shifted_upper_triangle;
-use tvf_solvers::{lowest_eigenpairs, EigenOptions, EigenProgress};
+use tvf_solvers::{Eigenpairs, Pencil};
 
 /// The eigenproblem `A x = λ M x` of one function space, restricted to its free nodes (unused
 /// nodes have zero mass and are decoupled, the solver needs a positive mass; Dirichlet nodes of a
@@ -26,7 +23,7 @@ pub(crate) struct ScalarSpectrum {
     components: usize,
 }
 
-/// Eigenpairs found by [`ScalarSpectrum::lowest_nonzero`].
+/// Eigenpairs kept by [`ScalarSpectrum::nonzero`].
 pub(crate) struct ScalarEigenpairs {
     /// Non-zero eigenvalues, ascending.
     pub values: Vec<f64>,
@@ -37,10 +34,10 @@ pub(crate) struct ScalarEigenpairs {
     pub kernel_values: Vec<f64>,
     /// Largest relative residual reported by the solver.
     pub max_residual: f64,
-    /// Factorizations and single solves the solver used.
-    pub factorizations: usize,
-    /// Single-vector solves.
-    pub solves: usize,
+    /// Largest relative eigenfield residual reported by the solver (after its refinement).
+    pub max_field_residual: f64,
+    /// Largest rounding floor of those residuals.
+    pub max_field_residual_floor: f64,
 }
 
 /// Whether each node of `nodes` is free ([`NodeSpace::is_free`]).
@@ -108,15 +105,13 @@ impl ScalarSpectrum {
         self.components
     }
 
-    /// The upper triangle of the `n × n` matrix `A − shift · M` (faer CSC, every diagonal entry
-    /// stored, so the pattern does not depend on `shift`), for inertia counts: its negative
-    /// pivots are the eigenvalues of `(A, M)` strictly below `shift`.
-    pub fn shifted_upper(&self, shift: f64) -> Result<SparseColMat<usize, f64>, BasisError> {
-        shifted_upper_triangle(&self.stiffness, &self.mass, shift).map_err(|source| {
-            BasisError::Eigen {
-                problem: self.name,
-                source,
-            }
+    /// The pencil `(A, M)` for the eigensolver and inertia counts.
+    ///
+    /// Errors: [`BasisError::Eigen`] if the matrices are not a valid pencil.
+    pub fn pencil(&self) -> Result<Pencil<'_>, BasisError> {
+        Pencil::new(&self.stiffness, &self.mass).map_err(|source| BasisError::Eigen {
+            problem: self.name,
+            source,
         })
     }
 
@@ -133,47 +128,24 @@ impl ScalarSpectrum {
             .fold(0.0, |bound: f64, (sum, mass)| bound.max(sum / mass))
     }
 
-    /// The lowest `count ≤ available()` non-zero eigenpairs. The `components` lowest eigenpairs
-    /// are the kernel (constants per component) and are dropped by count; they are checked to be
-    /// small against the first kept eigenvalue.
-    pub fn lowest_nonzero(
-        &self,
-        count: usize,
-        seed: u64,
-        progress: &dyn Fn(&EigenProgress),
-    ) -> Result<ScalarEigenpairs, BasisError> {
-        let count = count.min(self.available());
-        let total = count + self.components;
-        let options = EigenOptions {
-            seed,
-            progress: Some(progress),
-            ..EigenOptions::default()
-        };
-        let pairs =
-            lowest_eigenpairs(&self.stiffness, &self.mass, total, &options).map_err(|source| {
-                BasisError::Eigen {
-                    problem: self.name,
-                    source,
-                }
-            })?;
-        let iterative = pairs.factorizations > 0;
+    /// The lowest `count` non-zero eigenpairs from the solver's lowest `count + components()`
+    /// eigenpairs `pairs` of [`ScalarSpectrum::pencil`]. The `components` lowest are the kernel
+    /// (constants per component) and are dropped by count; they are checked to be small against
+    /// the first kept eigenvalue.
+    ///
+    /// Errors: [`BasisError::KernelMismatch`].
+    pub fn nonzero(&self, pairs: Eigenpairs, count: usize) -> Result<ScalarEigenpairs, BasisError> {
         let max_residual = pairs.residuals.iter().fold(0.0, |m: f64, &r| m.max(r));
-        let (all_values, all_vectors) = if iterative && total > 0 {
-            let first_nonzero = pairs.values.get(self.components).copied().unwrap_or(1.0);
-            refine_eigenpairs(
-                &self.stiffness,
-                &self.mass,
-                &pairs.values,
-                &pairs.vectors,
-                first_nonzero,
-            )
-            .map_err(|source| BasisError::Eigen {
-                problem: self.name,
-                source,
-            })?
-        } else {
-            (pairs.values, pairs.vectors)
-        };
+        let max_field_residual = pairs
+            .field_residuals
+            .iter()
+            .fold(0.0, |m: f64, &r| m.max(r));
+        let max_field_residual_floor = pairs
+            .field_residual_floors
+            .iter()
+            .fold(0.0, |m: f64, &r| m.max(r));
+        let (all_values, all_vectors) = (pairs.values, pairs.vectors);
+        let count = count.min(all_values.len().saturating_sub(self.components));
         let kernel_values = all_values[..self.components].to_vec();
         let values = all_values[self.components..].to_vec();
         if let Some(&first_nonzero) = values.first() {
@@ -211,8 +183,8 @@ impl ScalarSpectrum {
             vectors,
             kernel_values,
             max_residual,
-            factorizations: pairs.factorizations,
-            solves: pairs.solves,
+            max_field_residual,
+            max_field_residual_floor,
         })
     }
 }

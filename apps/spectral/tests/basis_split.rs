@@ -213,3 +213,33 @@ fn tiny_meshes_are_solved_completely_without_counting() {
     }
     assert!(compute_basis(&complex, &BasisRequest::fields(161)).is_err());
 }
+
+/// A basis of 300 fields on a mesh large enough for the sparse solver (2562 vertices, 7680
+/// edges): every shift is factored once, shared by counting, solving and refinement (the
+/// solver's statistics say how many shifts and how many factorizations), refinement factors
+/// nothing, and the eigensolver factors neither the threshold again nor any other counted shift.
+#[test]
+fn a_basis_factors_every_shift_once() {
+    let mesh = icosphere(4);
+    let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+    let basis = compute_basis(&complex, &BasisRequest::fields(300)).unwrap();
+    let report = basis.report().unwrap();
+    let solver = report.solver;
+    assert!(report.split_threshold.is_some(), "{report:?}");
+    assert!(
+        solver.solving.factorizations >= 4,
+        "several intervals: {solver:?}"
+    );
+    assert_eq!(solver.refinement.factorizations, 0, "{solver:?}");
+    assert_eq!(report.factorizations, solver.factorizations());
+    assert_eq!(
+        report.factorizations, report.distinct_shifts,
+        "a shift was factored twice: {report:?}"
+    );
+    // The threshold search's counts are part of the counting phase; the boundaries add the rest.
+    assert!(solver.counting.factorizations >= report.counting_factorizations);
+    assert!(
+        solver.solves() > 0 && report.max_field_residual <= 1e-8,
+        "{report:?}"
+    );
+}

@@ -4,8 +4,9 @@ use std::path::Path;
 use tvf_core::generate::{icosphere, rigid_motion};
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{
-    compute_basis, load_basis, read_basis_file, read_basis_header, save_basis, BasisFileError,
-    BasisFileKey, BasisRequest, SpectralBasis,
+    compute_basis, compute_eigenfunction_basis, load_basis, read_basis_file, read_basis_header,
+    save_basis, save_eigenfunction_basis, BasisFileError, BasisFileKey, BasisRequest,
+    SpectralBasis,
 };
 
 fn setup() -> (tvf_core::SurfaceMesh, SpectralBasis, BasisFileKey) {
@@ -46,6 +47,29 @@ fn round_trip_is_bit_exact() {
     // saving over an existing file leaves exactly one file
     save_basis(&path, &loaded, &key).unwrap();
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+}
+
+/// The streaming writer (fields formed from the eigenfunctions while the file is written) writes
+/// the same bytes as the writer of the dense basis, over more than one chunk of fields.
+#[test]
+fn streamed_compact_basis_is_the_dense_basis_file() {
+    let mesh = icosphere(2);
+    let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+    let request = BasisRequest::pairs(70).with_seed(3);
+    let key = BasisFileKey::new(&mesh, &complex);
+    let dir = tempfile::tempdir().unwrap();
+    let (compact, _) = compute_eigenfunction_basis(&complex, &request).unwrap();
+    assert!(compact.len() > 128);
+    let streamed = dir.path().join("streamed.tvfb");
+    save_eigenfunction_basis(&streamed, &compact, &complex, &key).unwrap();
+    let dense = dir.path().join("dense.tvfb");
+    save_basis(&dense, &compute_basis(&complex, &request).unwrap(), &key).unwrap();
+    assert_eq!(
+        std::fs::read(&streamed).unwrap(),
+        std::fs::read(&dense).unwrap()
+    );
+    let loaded = load_basis(&streamed, &key).unwrap();
+    assert_eq!(loaded.eigenvalues(), compact.eigenvalues());
 }
 
 fn damaged(path: &Path, bytes: &[u8], key: &BasisFileKey) -> BasisFileError {

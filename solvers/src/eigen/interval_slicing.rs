@@ -1,433 +1,796 @@
-//! Independent spectrum slicing: the lowest part of the spectrum is cut into intervals with
-//! exact eigenvalue counts (Sylvester inertia), and the intervals are solved concurrently.
+//! The eigen driver: the lowest part of the spectrum of one or more pencils is cut into
+//! intervals with exact eigenvalue counts (Sylvester inertia), and all intervals of all pencils
+//! are solved concurrently.
 //!
-//! 1. *Top shift.* Inertia counts `ν(σ)` (negative pivots of an `LDLᵀ` of `A − σM`, the exact
-//!    number of eigenvalues below σ) at trial shifts find `σ_top` with `ν(σ_top) ≥ k`, starting
-//!    from Weyl's law for surfaces (`ν(σ)` grows linearly in σ) anchored at the mean eigenvalue
-//!    `trace(A)/trace(M)`, and rescaling by `k/ν` until the count is at least `k` and not
-//!    much more.
-//! 2. *Boundaries.* `m = ⌈ν(σ_top)/interval_size⌉` intervals `(b_i, b_{i+1})` with `b_0 = −∞`,
-//!    `b_m = σ_top` and `b_i = σ_top·i/m` in between (equal counts under Weyl's law); the
-//!    counts `c_i = ν(b_{i+1}) − ν(b_i)` are exact (one factorization per boundary).
-//! 3. *Intervals.* Each interval is factored at its midpoint σ (so the eigenvalues at both ends
+//! 1. *Counting.* The top shift `σ_top` with `ν(σ_top) ≥ k` (`ν(σ)`: negative pivots of an
+//!    `LDLᵀ` of `A − σM`, the exact number of eigenvalues below σ) is given by the caller (who
+//!    counted it already, e.g. to split a basis between two pencils) or found from Weyl's law for
+//!    surfaces (`ν` grows linearly in σ) anchored at the mean eigenvalue `trace(A)/trace(M)`.
+//!    `m = ⌈ν(σ_top)/interval_size⌉` intervals `(b_i, b_{i+1})`, `b_0 = −∞`, `b_m = σ_top`,
+//!    `b_i ≈ σ_top·i/m` in between (equal counts under Weyl's law; a shift the pencil has
+//!    counted before within a quarter interval of `σ_top·i/m` is taken instead, so no shift is
+//!    factored twice); the boundaries are counted concurrently.
+//! 2. *Solving.* Each interval is factored at its midpoint σ (so the eigenvalues at both ends
 //!    have the same `|θ| = 1/|λ − σ|`) and solved by the Krylov–Schur slice
-//!    ([`super::krylov_slice`]) with exact targets `ν(σ) − ν(b_i)` below and
-//!    `ν(b_{i+1}) − ν(σ)` above σ, no deflation against other intervals; its locked vectors go
-//!    through the Rayleigh–Ritz against `A` ([`super::rayleigh_ritz`]) and those with Ritz
-//!    values inside the interval are kept. The intervals run on `concurrent_slices` threads,
-//!    each with its own factorization and sequential solves; interval `i` is seeded from
-//!    `(seed, i)`, so the result does not depend on thread timing.
+//!    ([`super::krylov_slice`]) with exact targets `ν(σ) − ν(b_i)` below and `ν(b_{i+1}) − ν(σ)`
+//!    above σ, no deflation against other intervals; its locked vectors go through the
+//!    Rayleigh–Ritz against `A` ([`super::rayleigh_ritz`]) and those inside the interval are
+//!    kept. The intervals of every pencil run as one pool of jobs on `EigenOptions::threads`
+//!    threads; interval `i` of a pencil is seeded from `(seed, i)`, so the result does not depend
+//!    on thread timing. An interval that does not converge within `EigenOptions::max_restarts`
+//!    restarts, or whose pairs disagree with its counts, is split near (not at) its midpoint
+//!    (one more count) and the halves are solved with their own midpoints as shifts: a shift
+//!    that lands next to an eigenvalue makes `max|θ|` huge and the far end of the interval
+//!    unresolvable (`ε·max|θ| > tolerance·|θ|`: the slice restarts until its restart limit, which
+//!    was 1000), and a cluster that straddles an interval end converges slowly; both are cured by
+//!    a different shift and a narrower interval.
+//! 3. *Refinement.* Pairs whose eigenfield residual misses `EigenOptions::refinement_target`
+//!    (and is clearly above its rounding floor) get inverse-iteration steps with their
+//!    interval's factorization ([`super::refinement`]; an interval keeps its factorization only
+//!    if it has such pairs), if a trial step on the worst of them halves its residual; the
+//!    others are left as they are.
 //!
-//! The result is complete by construction: interval `i` must return exactly `c_i` pairs, so
-//! the total is `ν(σ_top) ≥ k`, every eigenvalue below `σ_top`. If an interval disagrees with
-//! its count (an eigenvalue within rounding of a boundary, misclassified), the driver reports
-//! `None` and the caller falls back to the sequential slicing, which never misclassifies.
-//! Vectors of different intervals are M-orthogonal because their eigenvalues differ (by at
-//! least the distance across a boundary, which lies in a gap with overwhelming probability).
+//! The result is complete by construction: interval `i` must return exactly its count, so the
+//! total is `ν(σ_top) ≥ k`, every eigenvalue below `σ_top`. Vectors of neighbouring intervals
+//! are M-orthogonalised against each other at the end (their eigenvalues differ by at least the
+//! distance across a boundary, but that can be small).
 
 use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
+use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
+use super::refinement::{field_residuals, refine_columns, step_helps};
+use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::mass_inner;
-use super::types::{EigenOptions, EigenProgress};
-use crate::convert::shifted_upper_triangle;
+use super::types::{EigenOptions, EigenProgress, Eigenpairs};
+use crate::dense_eigen::dense_generalized_eigen;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
-use faer::sparse::SparseColMat;
 use faer::{Accum, Mat, Par};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::mpsc;
+use std::sync::{mpsc, Arc};
 
-/// Eigenvalues, `n × count` eigenvectors, factorizations and solves of a sliced solve.
-pub(crate) type SlicedResult = (Vec<f64>, Mat<f64>, usize, usize);
+/// Times an interval may be split after failing to converge.
+const MAX_SPLITS: usize = 3;
+/// Where an interval that failed is split, as a fraction of its width from its lower end: not
+/// its midpoint, where the failed shift was.
+const SPLIT_POINT: f64 = 0.55;
+/// Inverse-iteration steps of the refinement of one interval (each one solve per pair still
+/// above the target).
+const MAX_REFINEMENT_STEPS: usize = 3;
+/// Trial shifts of the search for the top shift.
+const MAX_TOP_TRIALS: usize = 12;
 
-/// Scale of the spectrum: the mean eigenvalue `trace(A)/trace(M)` and a Gershgorin-type bound.
-pub(crate) struct SpectrumScale {
-    pub mean_eigenvalue: f64,
-    pub scale: f64,
+/// One eigenproblem of [`lowest_eigenpairs_of`]: the `count` lowest eigenpairs of `pencil`.
+pub struct EigenRequest<'p, 'a> {
+    /// The pencil `(A, M)`.
+    pub pencil: &'p Pencil<'a>,
+    /// Number of eigenpairs wanted (kernel included).
+    pub count: usize,
+    /// A shift counted before with at least `count` eigenvalues below it (the lower, the
+    /// better), or `None` to search for one.
+    pub top: Option<ShiftCount>,
+    /// Seed of the random start blocks; equal seeds give identical results.
+    pub seed: u64,
 }
 
-/// Factors `A − σM`, reusing `previous`'s symbolic analysis, and nudges σ upwards if it hits
-/// an eigenvalue exactly. Returns the factorization, the shift used and the factorization count.
-pub(crate) fn factor_shifted(
-    a: &sprs::CsMat<f64>,
-    mass: &[f64],
-    sigma: f64,
-    previous: Option<SparseLdlt>,
-    scale: f64,
-    par: Par,
-) -> Result<(SparseLdlt, f64, usize), SolverError> {
-    let mut sigma = sigma;
-    let mut previous = previous;
-    let mut attempts = 0;
-    loop {
-        let shifted = shifted_upper_triangle(a, mass, sigma)?;
-        let result = match previous.take() {
-            None => SparseLdlt::new(shifted.as_ref()),
-            Some(mut f) => {
-                f.set_parallelism(par);
-                f.refactor(shifted.as_ref()).map(|_| f)
-            }
-        };
-        attempts += 1;
-        match result {
-            Ok(mut f) => {
-                f.set_parallelism(par);
-                return Ok((f, sigma, attempts));
-            }
-            Err(SolverError::Singular { .. }) if attempts <= 5 => {
-                sigma += 1e-7 * scale.max(sigma.abs()) * attempts as f64;
-            }
-            Err(e) => return Err(e),
+/// The eigenpairs of every request and what the call cost.
+#[derive(Debug, Clone)]
+pub struct EigenSolution {
+    /// One result per request, in request order.
+    pub pairs: Vec<Eigenpairs>,
+    /// Factorizations and solves of every pencil (counts made before the call included) and the
+    /// wall-clock and processor seconds of this call's phases (all requests together).
+    pub statistics: SolverStatistics,
+}
+
+/// A failed request: which one and why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("eigenproblem {request}: {source}")]
+pub struct RequestError {
+    /// Index of the request in the slice given to [`lowest_eigenpairs_of`].
+    pub request: usize,
+    /// What went wrong.
+    #[source]
+    pub source: SolverError,
+}
+
+/// The lowest eigenpairs of several pencils at once (see the module documentation): all
+/// boundaries are counted in one concurrent batch, all intervals solved in one pool, so two
+/// pencils of different size keep every core busy until the end.
+///
+/// Small problems (`n ≤ options.dense_threshold` or `3k ≥ n`) are solved densely.
+///
+/// Errors: [`RequestError`] with [`SolverError::TooManyEigenpairs`] (`k > n`),
+/// [`SolverError::NoConvergence`] or a factorization failure.
+pub fn lowest_eigenpairs_of(
+    requests: &[EigenRequest<'_, '_>],
+    options: &EigenOptions<'_>,
+) -> Result<EigenSolution, RequestError> {
+    let fail = |request: usize| move |source: SolverError| RequestError { request, source };
+    let mut statistics = SolverStatistics::default();
+    let mut pairs: Vec<Option<(Vec<f64>, Mat<f64>)>> = vec![None; requests.len()];
+    let mut plans: Vec<Plan> = Vec::new();
+
+    // ---- 1. counting ----
+    let clock = PhaseClock::start();
+    for (r, request) in requests.iter().enumerate() {
+        let pencil = request.pencil;
+        let (n, k) = (pencil.dimension(), request.count);
+        if k > n {
+            return Err(fail(r)(SolverError::TooManyEigenpairs {
+                requested: k,
+                dimension: n,
+            }));
         }
+        if k == 0 {
+            pairs[r] = Some((Vec::new(), Mat::zeros(n, 0)));
+        } else if n <= options.dense_threshold || 3 * k >= n {
+            let (values, vectors) =
+                dense_generalized_eigen(pencil.full.to_dense().as_ref(), pencil.mass)
+                    .map_err(fail(r))?;
+            pairs[r] = Some((
+                values[..k].to_vec(),
+                vectors.as_ref().subcols(0, k).to_owned(),
+            ));
+        } else {
+            let block = block_size(options, n);
+            let top = match request.top {
+                Some(top) if top.below >= k => top,
+                Some(top) => {
+                    return Err(fail(r)(SolverError::NoConvergence {
+                        reason: format!(
+                        "the top shift {:e} has {} eigenvalues below it, fewer than the {k} wanted",
+                        top.shift, top.below
+                    ),
+                    }))
+                }
+                None => search_top(pencil, k, block).map_err(fail(r))?,
+            };
+            plans.push(Plan::new(
+                r,
+                pencil,
+                top,
+                options.interval_size.max(2 * block),
+            ));
+        }
+    }
+    let boundary_jobs: Vec<(usize, usize)> = plans
+        .iter()
+        .enumerate()
+        .flat_map(|(p, plan)| plan.uncounted().map(move |i| (p, i)))
+        .collect();
+    let counted: Vec<Result<ShiftCount, RequestError>> = boundary_jobs
+        .par_iter()
+        .map(|&(p, i)| {
+            let plan = &plans[p];
+            requests[plan.request]
+                .pencil
+                .count_below(plan.bounds[i])
+                .map_err(fail(plan.request))
+        })
+        .collect();
+    for (&(p, i), count) in boundary_jobs.iter().zip(counted) {
+        let count = count?;
+        plans[p].bounds[i] = count.shift;
+        plans[p].counts[i] = count.below;
+    }
+    for plan in &plans {
+        if plan.counts.windows(2).any(|w| w[1] < w[0])
+            || plan.bounds.windows(2).any(|w| w[1] <= w[0])
+        {
+            return Err(fail(plan.request)(SolverError::NoConvergence {
+                reason: "inertia counts at the interval boundaries are not monotone".into(),
+            }));
+        }
+    }
+    clock.stop(&mut statistics.counting);
+
+    // ---- 2. solving ----
+    let clock = PhaseClock::start();
+    let jobs: Vec<(usize, usize)> = plans
+        .iter()
+        .enumerate()
+        .flat_map(|(p, plan)| {
+            (0..plan.bounds.len() - 1)
+                .filter(|&i| plan.counts[i + 1] > plan.counts[i])
+                .map(move |i| (p, i))
+        })
+        .collect();
+    let settings = IntervalSettings {
+        tolerance: options.tolerance,
+        block_size: options.block_size,
+        max_restarts: options.max_restarts,
+        parallelism: options.parallelism,
+        refinement_target: options.refinement_target,
+    };
+    let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
+        let (p, i) = jobs[job];
+        let plan = &plans[p];
+        let request = &requests[plan.request];
+        let interval = Interval {
+            lower: (plan.bounds[i], plan.counts[i]),
+            upper: (plan.bounds[i + 1], plan.counts[i + 1]),
+            stream: i as u64 + 1,
+        };
+        let mut solved = Vec::new();
+        solve_interval(request, &interval, &settings, 0, report, &mut solved)
+            .map(|()| solved)
+            .map_err(fail(plan.request))
+    };
+    let mut locked = vec![0usize; jobs.len()];
+    let mut finished = vec![false; jobs.len()];
+    let mut on_message = |job: usize, found: usize, done: bool| {
+        let (p, i) = jobs[job];
+        let plan = &plans[p];
+        let wanted_here = plan.counts[i + 1] - plan.counts[i];
+        if done {
+            finished[job] = true;
+            locked[job] = wanted_here;
+        } else {
+            locked[job] = found.min(wanted_here);
+        }
+        if let Some(callback) = options.progress {
+            let of_plan = |j: &usize| jobs[*j].0 == p;
+            let confirmed = (0..jobs.len())
+                .filter(|j| of_plan(j) && finished[*j])
+                .map(|j| locked[j])
+                .sum::<usize>();
+            let found = (0..jobs.len())
+                .filter(of_plan)
+                .map(|j| locked[j])
+                .sum::<usize>();
+            let pencil_statistics = requests[plan.request].pencil.statistics();
+            callback(&EigenProgress {
+                request: plan.request,
+                found: found.min(requests[plan.request].count),
+                confirmed: confirmed.min(requests[plan.request].count),
+                wanted: requests[plan.request].count,
+                factorizations: pencil_statistics.factorizations(),
+                solves: pencil_statistics.solves(),
+            });
+        }
+    };
+    let solved = run_jobs(jobs.len(), options.threads, &solve_job, &mut on_message)?;
+    let mut intervals: Vec<Vec<SolvedInterval>> = plans.iter().map(|_| Vec::new()).collect();
+    for (&(p, _), parts) in jobs.iter().zip(solved) {
+        intervals[p].extend(parts);
+    }
+    clock.stop(&mut statistics.solving);
+
+    // ---- 3. refinement ----
+    let clock = PhaseClock::start();
+    let par = options.parallelism;
+    let target = options.refinement_target;
+    let refined: Vec<Result<usize, RequestError>> = intervals
+        .par_iter_mut()
+        .enumerate()
+        .flat_map_iter(|(p, parts)| parts.iter_mut().map(move |part| (p, part)))
+        .map(|(p, part)| {
+            let Some((which, factor)) = part.refine.take() else {
+                return Ok(0);
+            };
+            let pencil = requests[plans[p].request].pencil;
+            let floor = 1e-8 * pencil.mean_eigenvalue.abs();
+            let residual_of = |values: &[f64], vectors: &Mat<f64>| {
+                field_residuals(
+                    pencil.full.as_ref(),
+                    pencil.mass,
+                    values,
+                    vectors.as_ref(),
+                    floor,
+                    par,
+                )
+            };
+            let mut before = residual_of(&part.values, &part.vectors);
+            // One trial solve on the worst pair first: if it does not help, none will.
+            let worst = which
+                .iter()
+                .copied()
+                .max_by(|&i, &j| before[i].residual.total_cmp(&before[j].residual));
+            let helps = worst.is_some_and(|j| {
+                step_helps(
+                    pencil.full.as_ref(),
+                    pencil.mass,
+                    &factor,
+                    part.vectors.as_ref(),
+                    j,
+                    before[j].residual,
+                    floor,
+                )
+            });
+            pencil.add_solves(Phase::Refinement, 1);
+            if !helps {
+                return Ok(0);
+            }
+            let mut which = which;
+            let mut refined = 0;
+            for _ in 0..MAX_REFINEMENT_STEPS {
+                let (values, vectors) = refine_columns(
+                    pencil.full.as_ref(),
+                    pencil.mass,
+                    &factor,
+                    part.vectors.as_ref(),
+                    &which,
+                    par,
+                )
+                .map_err(fail(plans[p].request))?;
+                pencil.add_solves(Phase::Refinement, which.len());
+                refined = refined.max(which.len());
+                let after = residual_of(&values, &vectors);
+                part.values = values;
+                part.vectors = vectors;
+                // Another step only for pairs still above the target that the last step
+                // improved: the others are at the rounding floor of their vectors.
+                which = (0..after.len())
+                    .filter(|&j| {
+                        after[j].misses(target) && after[j].residual < 0.5 * before[j].residual
+                    })
+                    .collect();
+                before = after;
+                if which.is_empty() {
+                    break;
+                }
+            }
+            Ok(refined)
+        })
+        .collect();
+    for count in refined {
+        statistics.refined_pairs += count?;
+    }
+    for (p, parts) in intervals.iter_mut().enumerate() {
+        parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
+        let pencil = requests[plans[p].request].pencil;
+        orthogonalize_neighbours(parts, pencil.mass, par);
+    }
+    clock.stop(&mut statistics.refinement);
+
+    // ---- assembly ----
+    for (plan, parts) in plans.iter().zip(intervals) {
+        let request = &requests[plan.request];
+        let (n, k) = (request.pencil.dimension(), request.count);
+        let total: usize = parts.iter().map(|part| part.values.len()).sum();
+        let mut values = Vec::with_capacity(total);
+        let mut vectors = Mat::<f64>::zeros(n, k);
+        // Each interval's vectors are freed once copied (one copy of the eigenvectors at a time).
+        for part in parts {
+            for (j, &value) in part.values.iter().enumerate() {
+                if values.len() < k {
+                    vectors
+                        .as_mut()
+                        .col_mut(values.len())
+                        .copy_from(part.vectors.col(j));
+                }
+                values.push(value);
+            }
+        }
+        let top = plan.counts[plan.counts.len() - 1];
+        if values.len() != top || values.windows(2).any(|w| w[1] < w[0]) {
+            return Err(fail(plan.request)(SolverError::NoConvergence {
+                reason: format!(
+                    "the intervals returned {} eigenvalues, the inertia count says {top}",
+                    values.len()
+                ),
+            }));
+        }
+        values.truncate(k);
+        pairs[plan.request] = Some((values, vectors));
+    }
+    let mut results = Vec::with_capacity(requests.len());
+    for (request, found) in requests.iter().zip(pairs) {
+        let pencil = request.pencil;
+        let (values, vectors) =
+            found.unwrap_or_else(|| (Vec::new(), Mat::zeros(pencil.dimension(), 0)));
+        statistics.counting.factorizations += pencil.statistics().counting.factorizations;
+        statistics.counting.solves += pencil.statistics().counting.solves;
+        statistics.solving.factorizations += pencil.statistics().solving.factorizations;
+        statistics.solving.solves += pencil.statistics().solving.solves;
+        statistics.refinement.factorizations += pencil.statistics().refinement.factorizations;
+        statistics.refinement.solves += pencil.statistics().refinement.solves;
+        let floor = 1e-8 * pencil.mean_eigenvalue.abs();
+        let field = field_residuals(
+            pencil.full.as_ref(),
+            pencil.mass,
+            &values,
+            vectors.as_ref(),
+            floor,
+            par,
+        );
+        results.push(Eigenpairs::new(
+            pencil,
+            values,
+            vectors,
+            field.iter().map(|f| f.residual).collect(),
+            field.iter().map(|f| f.floor).collect(),
+        ));
+    }
+    Ok(EigenSolution {
+        pairs: results,
+        statistics,
+    })
+}
+
+/// Vectors per Krylov block for a problem of dimension `n`.
+fn block_size(options: &EigenOptions<'_>, n: usize) -> usize {
+    options.block_size.clamp(1, n / 8 + 1)
+}
+
+/// The intervals of one request: boundaries `b_0 = −∞ < b_1 < … < b_m = σ_top` and their counts.
+struct Plan {
+    request: usize,
+    bounds: Vec<f64>,
+    counts: Vec<usize>,
+    /// Whether `counts[i]` is known (`b_0`, `b_m` and shifts counted before).
+    known: Vec<bool>,
+}
+
+impl Plan {
+    fn new(request: usize, pencil: &Pencil<'_>, top: ShiftCount, interval_size: usize) -> Self {
+        let intervals = top.below.div_ceil(interval_size).max(1);
+        let width = top.shift / intervals as f64;
+        let before = pencil.counted();
+        let mut bounds = vec![f64::NEG_INFINITY];
+        let mut counts = vec![0];
+        let mut known = vec![true];
+        for i in 1..intervals {
+            let wanted = width * i as f64;
+            let near = before
+                .iter()
+                .filter(|c| c.shift > bounds[i - 1] && c.shift < top.shift)
+                .filter(|c| (c.shift - wanted).abs() <= 0.25 * width)
+                .min_by(|a, b| {
+                    (a.shift - wanted)
+                        .abs()
+                        .total_cmp(&(b.shift - wanted).abs())
+                });
+            match near {
+                Some(count) => {
+                    bounds.push(count.shift);
+                    counts.push(count.below);
+                    known.push(true);
+                }
+                None => {
+                    bounds.push(wanted);
+                    counts.push(0);
+                    known.push(false);
+                }
+            }
+        }
+        bounds.push(top.shift);
+        counts.push(top.below);
+        known.push(true);
+        Self {
+            request,
+            bounds,
+            counts,
+            known,
+        }
+    }
+
+    /// Boundaries still to be counted.
+    fn uncounted(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.bounds.len()).filter(|&i| !self.known[i])
     }
 }
 
-/// One job: `(job index, the worker's factorization, progress report(locked, solves))`.
-type Job<'a, T> = dyn Fn(usize, &mut Option<SparseLdlt>, &dyn Fn(usize, usize)) -> Result<T, SolverError>
-    + Sync
-    + 'a;
+/// A shift `σ_top` with at least `k` eigenvalues below it and not many more: trial shifts from
+/// Weyl's law (ν grows linearly in σ), rescaled by `k/ν` and bracketed.
+fn search_top(pencil: &Pencil<'_>, k: usize, block: usize) -> Result<ShiftCount, SolverError> {
+    let n = pencil.dimension();
+    let enough = k + block;
+    let plenty = enough + enough / 16;
+    let mean = if pencil.mean_eigenvalue > 0.0 {
+        pencil.mean_eigenvalue
+    } else {
+        pencil.scale
+    };
+    let mut sigma = 2.0 * mean * enough as f64 / n as f64;
+    let mut top: Option<ShiftCount> = None;
+    let mut below: Option<ShiftCount> = None;
+    for _ in 0..MAX_TOP_TRIALS {
+        let count = pencil.count_below(sigma)?;
+        if count.below >= k {
+            if top.is_none_or(|t| count.shift < t.shift) {
+                top = Some(count);
+            }
+            if count.below <= plenty {
+                break;
+            }
+        } else if below.is_none_or(|b| count.shift > b.shift) {
+            below = Some(count);
+        }
+        let target = 0.5 * (enough + plenty) as f64;
+        let mut next = if count.below > 0 {
+            count.shift * target / count.below as f64
+        } else {
+            4.0 * count.shift.abs().max(1e-12 * pencil.scale)
+        };
+        if let (Some(lo), Some(hi)) = (below, top) {
+            if !(next > lo.shift && next < hi.shift) {
+                next = 0.5 * (lo.shift + hi.shift);
+            }
+        }
+        sigma = next;
+    }
+    top.ok_or_else(|| SolverError::NoConvergence {
+        reason: format!("no shift with {k} eigenvalues below it found in {MAX_TOP_TRIALS} trials"),
+    })
+}
+
+/// An interval to solve: `(bound, count)` at both ends and the random stream of its start block.
+struct Interval {
+    lower: (f64, usize),
+    upper: (f64, usize),
+    stream: u64,
+}
+
+/// One solved interval: its eigenpairs (ascending) and the factorization at its shift.
+struct SolvedInterval {
+    lower: f64,
+    values: Vec<f64>,
+    vectors: Mat<f64>,
+    /// The pairs whose eigenfield residual misses the target, and the factorization at the
+    /// interval's shift for their refinement (`None` when there are none: factorizations are
+    /// large, only those needed are kept).
+    refine: Option<(Vec<usize>, Arc<SparseLdlt>)>,
+}
+
+/// The numeric settings of the intervals (the part of [`EigenOptions`] the worker threads see).
+#[derive(Clone, Copy)]
+struct IntervalSettings {
+    tolerance: f64,
+    block_size: usize,
+    max_restarts: usize,
+    parallelism: Par,
+    refinement_target: f64,
+}
+
+/// Solves `interval` into `out`; on failure splits it (`depth` splits so far).
+fn solve_interval(
+    request: &EigenRequest<'_, '_>,
+    interval: &Interval,
+    options: &IntervalSettings,
+    depth: usize,
+    report: &dyn Fn(usize, usize),
+    out: &mut Vec<SolvedInterval>,
+) -> Result<(), SolverError> {
+    let pencil = request.pencil;
+    let (lower, nu_lower) = interval.lower;
+    let (upper, nu_upper) = interval.upper;
+    let wanted = nu_upper - nu_lower;
+    if wanted == 0 {
+        return Ok(());
+    }
+    let midpoint = if lower.is_finite() {
+        0.5 * (lower + upper)
+    } else {
+        0.5 * upper
+    };
+    let (factor, count) = pencil.factor(midpoint, Phase::Solving, Par::Seq)?;
+    let (sigma, nu) = (count.shift, count.below);
+    if nu < nu_lower || nu > nu_upper || sigma >= upper {
+        return Err(SolverError::NoConvergence {
+            reason: format!(
+                "the count {nu} at shift {sigma:e} contradicts the interval's counts {nu_lower}..{nu_upper}"
+            ),
+        });
+    }
+    let attempt = solve_at_shift(request, interval, options, &factor, count, report);
+    match attempt {
+        Ok((values, vectors)) => {
+            let residuals = field_residuals(
+                pencil.full.as_ref(),
+                pencil.mass,
+                &values,
+                vectors.as_ref(),
+                1e-8 * pencil.mean_eigenvalue.abs(),
+                options.parallelism,
+            );
+            let which: Vec<usize> = (0..residuals.len())
+                .filter(|&j| residuals[j].misses(options.refinement_target))
+                .collect();
+            out.push(SolvedInterval {
+                lower,
+                values,
+                vectors,
+                refine: (!which.is_empty()).then_some((which, factor)),
+            });
+            Ok(())
+        }
+        Err(SolverError::NoConvergence { .. }) if depth < MAX_SPLITS => {
+            drop(factor);
+            // Not at σ itself: if σ sits on an eigenvalue (the likely cause), a boundary there
+            // would put that eigenvalue on an interval end. The halves get new midpoints.
+            let split = if lower.is_finite() {
+                lower + SPLIT_POINT * (upper - lower)
+            } else {
+                SPLIT_POINT * upper
+            };
+            let middle = pencil.count_below(split)?;
+            if middle.below < nu_lower || middle.below > nu_upper || middle.shift >= upper {
+                return Err(SolverError::NoConvergence {
+                    reason: format!(
+                        "the count {} at {:e} contradicts the interval's counts {nu_lower}..{nu_upper}",
+                        middle.below, middle.shift
+                    ),
+                });
+            }
+            let halves = [
+                Interval {
+                    lower: interval.lower,
+                    upper: (middle.shift, middle.below),
+                    stream: 2 * interval.stream + 1_000_003,
+                },
+                Interval {
+                    lower: (middle.shift, middle.below),
+                    upper: interval.upper,
+                    stream: 2 * interval.stream + 1_000_004,
+                },
+            ];
+            for half in &halves {
+                solve_interval(request, half, options, depth + 1, report, out)?;
+            }
+            Ok(())
+        }
+        Err(e) => Err(e),
+    }
+}
+
+/// The Krylov–Schur slice of `interval` at the shift of `factor` and its Rayleigh–Ritz against
+/// `A`: the interval's eigenpairs, ascending.
+fn solve_at_shift(
+    request: &EigenRequest<'_, '_>,
+    interval: &Interval,
+    options: &IntervalSettings,
+    factor: &SparseLdlt,
+    at: ShiftCount,
+    report: &dyn Fn(usize, usize),
+) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
+    let pencil = request.pencil;
+    let n = pencil.dimension();
+    let (lower, nu_lower) = interval.lower;
+    let (upper, nu_upper) = interval.upper;
+    let wanted = nu_upper - nu_lower;
+    let block = options.block_size.clamp(1, n / 8 + 1);
+    let problem = SliceProblem {
+        factor,
+        mass: pencil.mass,
+        sigma: at.shift,
+        lower_bound: lower,
+        lower_needed: at.below - nu_lower,
+        upper_target: nu_upper - at.below,
+        upper_bound: upper,
+    };
+    let settings = SliceSettings {
+        block_size: block,
+        tolerance: options.tolerance,
+        max_restarts: options.max_restarts,
+        max_basis: 2 * wanted + 4 * block,
+        parallelism: options.parallelism,
+    };
+    let mut rng = ChaCha8Rng::seed_from_u64(request.seed);
+    rng.set_stream(interval.stream);
+    let outcome = run_slice(&problem, &settings, &mut rng, &mut |locked, solves| {
+        report(locked, solves)
+    });
+    let solves = match &outcome {
+        Ok(o) => o.solves,
+        Err(_) => 0,
+    };
+    pencil.add_solves(Phase::Solving, solves);
+    let outcome = outcome?;
+    let (values, vectors) = rayleigh_ritz(
+        pencil.full.as_ref(),
+        pencil.mass,
+        outcome.vectors.as_ref(),
+        options.parallelism,
+    )?;
+    let inside: Vec<usize> = (0..values.len())
+        .filter(|&i| values[i] > lower && values[i] < upper)
+        .collect();
+    if inside.len() != wanted {
+        return Err(SolverError::NoConvergence {
+            reason: format!(
+                "the interval ({lower:e}, {upper:e}) holds {wanted} eigenvalues, {} were found",
+                inside.len()
+            ),
+        });
+    }
+    Ok((
+        inside.iter().map(|&i| values[i]).collect(),
+        Mat::from_fn(n, wanted, |i, j| vectors[(i, inside[j])]),
+    ))
+}
+
+/// One job: `(job index, progress report(locked, solves))`.
+type Job<'a, T> = dyn Fn(usize, &dyn Fn(usize, usize)) -> Result<T, RequestError> + Sync + 'a;
 
 /// A message from a worker thread to the coordinating thread.
 enum Message<T> {
     Progress {
         job: usize,
         locked: usize,
-        solves: usize,
     },
     Done {
         job: usize,
-        result: Result<T, SolverError>,
+        result: Result<T, RequestError>,
     },
 }
 
-/// Runs `jobs` jobs on `threads` threads (each keeps its own factorization between jobs) and
-/// returns their results in job order; `on_message(job, locked, solves, done)` is called on the
-/// calling thread for every progress report and completion. Stops at the first error.
+/// Runs `jobs` jobs on `threads` threads and returns their results in job order;
+/// `on_message(job, locked, done)` is called on the calling thread for every progress report and
+/// completion. Stops at the first error.
 fn run_jobs<T: Send>(
     jobs: usize,
     threads: usize,
     work: &Job<'_, T>,
-    on_message: &mut dyn FnMut(usize, usize, usize, bool),
-) -> Result<Vec<T>, SolverError> {
+    on_message: &mut dyn FnMut(usize, usize, bool),
+) -> Result<Vec<T>, RequestError> {
     let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
-    let mut results: Vec<Option<Result<T, SolverError>>> = (0..jobs).map(|_| None).collect();
+    let mut results: Vec<Option<Result<T, RequestError>>> = (0..jobs).map(|_| None).collect();
     std::thread::scope(|scope| {
         let (sender, receiver) = mpsc::channel::<Message<T>>();
         for _ in 0..threads.clamp(1, jobs.max(1)) {
             let sender = sender.clone();
             let (next, failed) = (&next, &failed);
-            scope.spawn(move || {
-                let mut factor: Option<SparseLdlt> = None;
-                loop {
-                    let job = next.fetch_add(1, Ordering::Relaxed);
-                    if job >= jobs || failed.load(Ordering::Relaxed) {
-                        break;
-                    }
-                    let report = |locked: usize, solves: usize| {
-                        // The receiver outlives the workers inside the scope.
-                        let _ = sender.send(Message::Progress {
-                            job,
-                            locked,
-                            solves,
-                        });
-                    };
-                    let result = work(job, &mut factor, &report);
-                    if result.is_err() {
-                        failed.store(true, Ordering::Relaxed);
-                    }
-                    let _ = sender.send(Message::Done { job, result });
+            scope.spawn(move || loop {
+                let job = next.fetch_add(1, Ordering::Relaxed);
+                if job >= jobs || failed.load(Ordering::Relaxed) {
+                    break;
                 }
+                let report = |locked: usize, _solves: usize| {
+                    // The receiver outlives the workers inside the scope.
+                    let _ = sender.send(Message::Progress { job, locked });
+                };
+                let result = work(job, &report);
+                if result.is_err() {
+                    failed.store(true, Ordering::Relaxed);
+                }
+                let _ = sender.send(Message::Done { job, result });
             });
         }
         drop(sender);
         for message in receiver {
             match message {
-                Message::Progress {
-                    job,
-                    locked,
-                    solves,
-                } => on_message(job, locked, solves, false),
+                Message::Progress { job, locked } => on_message(job, locked, false),
                 Message::Done { job, result } => {
-                    on_message(job, 0, 0, true);
+                    on_message(job, 0, true);
                     results[job] = Some(result);
                 }
             }
         }
     });
-    let mut out = Vec::with_capacity(jobs);
-    for result in results {
-        match result {
-            Some(Ok(value)) => out.push(value),
-            Some(Err(e)) => return Err(e),
-            None => {
-                return Err(SolverError::NoConvergence {
-                    reason: "a spectrum interval was abandoned after another one failed".into(),
-                })
-            }
-        }
+    // A job is missing only if another one failed: report that failure.
+    if let Some(error) = results.iter().flatten().find_map(|r| r.as_ref().err()) {
+        return Err(error.clone());
     }
-    Ok(out)
-}
-
-/// One solved interval: its eigenpairs (ascending), factorizations and solves.
-struct IntervalResult {
-    values: Vec<f64>,
-    vectors: Mat<f64>,
-    factorizations: usize,
-    solves: usize,
-}
-
-/// Lowest `k` eigenpairs by independent intervals (see the module documentation).
-/// `Ok(None)`: the intervals did not add up to their inertia counts; use the sequential
-/// driver instead.
-pub(crate) fn interval_sliced(
-    a: &sprs::CsMat<f64>,
-    full: &SparseColMat<usize, f64>,
-    mass: &[f64],
-    k: usize,
-    options: &EigenOptions<'_>,
-    spectrum: &SpectrumScale,
-) -> Result<Option<SlicedResult>, SolverError> {
-    let n = mass.len();
-    let par = options.parallelism;
-    let block = options.block_size.clamp(1, n / 8 + 1);
-    let interval_size = options.interval_size.max(2 * block);
-    let scale = spectrum.scale;
-    if spectrum.mean_eigenvalue <= 0.0 {
-        return Ok(None);
-    }
-    let mut factorizations = 0usize;
-
-    // ---- 1. top shift: ν(σ_top) ≥ k, not much more ----
-    let enough = k + block;
-    let plenty = enough + enough / 16;
-    let mut sigma = 2.0 * spectrum.mean_eigenvalue * enough as f64 / n as f64;
-    let mut factor: Option<SparseLdlt> = None;
-    let mut top: Option<(f64, usize)> = None;
-    let mut below: Option<(f64, usize)> = None;
-    for _ in 0..12 {
-        let (f, used, count) = factor_shifted(a, mass, sigma, factor.take(), scale, par)?;
-        factorizations += count;
-        let nu = f.inertia().negative;
-        factor = Some(f);
-        if nu >= k {
-            if top.is_none_or(|(s, _)| used < s) {
-                top = Some((used, nu));
-            }
-            if nu <= plenty {
-                break;
-            }
-        } else if below.is_none_or(|(s, _)| used > s) {
-            below = Some((used, nu));
-        }
-        // Weyl's law: ν grows linearly in σ.
-        let target = 0.5 * (enough + plenty) as f64;
-        let mut next = if nu > 0 {
-            used * target / nu as f64
-        } else {
-            4.0 * used
-        };
-        if let (Some((lo, _)), Some((hi, _))) = (below, top) {
-            if !(next > lo && next < hi) {
-                next = 0.5 * (lo + hi);
-            }
-        }
-        sigma = next;
-    }
-    let Some((sigma_top, nu_top)) = top else {
-        return Ok(None);
-    };
-
-    // ---- 2. boundaries with exact counts ----
-    let intervals = nu_top.div_ceil(interval_size).max(1);
-    let mut bounds: Vec<f64> = (0..=intervals)
-        .map(|i| sigma_top * i as f64 / intervals as f64)
-        .collect();
-    bounds[0] = f64::NEG_INFINITY;
-    let threads = options.concurrent_slices.max(1);
-    let inner = &bounds;
-    let count_at = move |job: usize,
-                         factor: &mut Option<SparseLdlt>,
-                         _: &dyn Fn(usize, usize)|
-          -> Result<(f64, usize, usize), SolverError> {
-        let (f, used, count) =
-            factor_shifted(a, mass, inner[job + 1], factor.take(), scale, Par::Seq)?;
-        let nu = f.inertia().negative;
-        *factor = Some(f);
-        Ok((used, nu, count))
-    };
-    let inner_counts = run_jobs(intervals - 1, threads, &count_at, &mut |_, _, _, _| {})?;
-    let mut counts = vec![0usize; intervals + 1];
-    for (i, (used, nu, count)) in inner_counts.into_iter().enumerate() {
-        bounds[i + 1] = used;
-        counts[i + 1] = nu;
-        factorizations += count;
-    }
-    bounds[intervals] = sigma_top;
-    counts[intervals] = nu_top;
-    if counts.windows(2).any(|w| w[1] < w[0]) {
-        return Ok(None);
-    }
-
-    // ---- 3. intervals, concurrently ----
-    let (seed, tolerance, max_restarts) = (options.seed, options.tolerance, options.max_restarts);
-    let (bounds_ref, counts_ref) = (&bounds, &counts);
-    let solve_interval = move |job: usize,
-                               factor: &mut Option<SparseLdlt>,
-                               report: &dyn Fn(usize, usize)|
-          -> Result<IntervalResult, SolverError> {
-        let (lower, upper) = (bounds_ref[job], bounds_ref[job + 1]);
-        let (nu_lower, nu_upper) = (counts_ref[job], counts_ref[job + 1]);
-        let wanted = nu_upper - nu_lower;
-        if wanted == 0 {
-            return Ok(IntervalResult {
-                values: Vec::new(),
-                vectors: Mat::zeros(n, 0),
-                factorizations: 0,
-                solves: 0,
-            });
-        }
-        let midpoint = if lower.is_finite() {
-            0.5 * (lower + upper)
-        } else {
-            0.5 * upper
-        };
-        let (ldlt, sigma, count) = factor_shifted(a, mass, midpoint, factor.take(), scale, par)?;
-        let nu = ldlt.inertia().negative;
-        if nu < nu_lower || nu > nu_upper || sigma >= upper {
-            return Err(misclassified(job));
-        }
-        let deflation = Mat::<f64>::zeros(n, 0);
-        let problem = SliceProblem {
-            factor: &ldlt,
-            mass,
-            sigma,
-            lower_bound: lower,
-            deflation: deflation.as_ref(),
-            lower_needed: nu - nu_lower,
-            upper_target: nu_upper - nu,
-            upper_bound: upper,
-        };
-        let settings = SliceSettings {
-            block_size: block,
-            tolerance,
-            max_restarts,
-            max_basis: 2 * wanted + 4 * block,
-            parallelism: par,
-        };
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_stream(job as u64 + 1);
-        let outcome = run_slice(&problem, &settings, &mut rng, &mut |locked, solves| {
-            report(locked, solves)
-        })?;
-        *factor = Some(ldlt);
-        let (values, vectors) = rayleigh_ritz(full.as_ref(), mass, outcome.vectors.as_ref(), par)?;
-        let inside: Vec<usize> = (0..values.len())
-            .filter(|&i| values[i] > lower && values[i] < upper)
-            .collect();
-        if inside.len() != wanted {
-            return Err(misclassified(job));
-        }
-        Ok(IntervalResult {
-            values: inside.iter().map(|&i| values[i]).collect(),
-            vectors: Mat::from_fn(n, wanted, |i, j| vectors[(i, inside[j])]),
-            factorizations: count,
-            solves: outcome.solves,
-        })
-    };
-    let mut locked = vec![0usize; intervals];
-    let mut solves_so_far = vec![0usize; intervals];
-    let mut finished = vec![false; intervals];
-    let mut on_message = |job: usize, found: usize, solves: usize, done: bool| {
-        if done {
-            finished[job] = true;
-        } else {
-            locked[job] = found;
-            solves_so_far[job] = solves;
-        }
-        if let Some(callback) = options.progress {
-            let confirmed = (0..intervals)
-                .filter(|&i| finished[i])
-                .map(|i| counts[i + 1] - counts[i])
-                .sum::<usize>();
-            callback(&EigenProgress {
-                found: locked.iter().sum::<usize>().max(confirmed),
-                confirmed,
-                wanted: k,
-                slices: finished.iter().filter(|&&f| f).count(),
-                factorizations,
-                solves: solves_so_far.iter().sum(),
-            });
-        }
-    };
-    let mut solved = match run_jobs(intervals, threads, &solve_interval, &mut on_message) {
-        Ok(solved) => solved,
-        Err(SolverError::NoConvergence { .. }) => return Ok(None),
-        Err(e) => return Err(e),
-    };
-
-    orthogonalize_neighbours(&mut solved, mass, par);
-    let mut values = Vec::with_capacity(nu_top);
-    let mut vectors = Mat::<f64>::zeros(n, k);
-    let mut solves = 0;
-    for part in &solved {
-        factorizations += part.factorizations;
-        solves += part.solves;
-        for (j, &value) in part.values.iter().enumerate() {
-            if values.len() < k {
-                vectors
-                    .as_mut()
-                    .col_mut(values.len())
-                    .copy_from(part.vectors.col(j));
-            }
-            values.push(value);
-        }
-    }
-    // Sylvester: every eigenvalue below σ_top, and nothing else, was found.
-    if values.len() != nu_top || values.windows(2).any(|w| w[1] < w[0]) {
-        return Ok(None);
-    }
-    values.truncate(k);
-    Ok(Some((values, vectors, factorizations, solves)))
+    Ok(results.into_iter().flatten().flatten().collect())
 }
 
 /// Restores M-orthogonality across interval boundaries: `X_i ← X_i − X_p (X_pᵀ M X_i)` with
 /// `p` the previous non-empty interval. Eigenvectors of different intervals are orthogonal
 /// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (measured:
-/// `|XᵀMX − I|` of 3·10⁻¹⁰ for the Crouzeix–Raviart bunny at k = 500 without this, 2·10⁻¹² with
-/// the sequential driver, which deflates). Intervals further apart are separated by at least
-/// an interval's width. Costs two `n × s × s` products per boundary; the change of each vector
-/// is of the size of that error, so residuals and in-interval orthonormality stay as they were.
-fn orthogonalize_neighbours(parts: &mut [IntervalResult], mass: &[f64], par: Par) {
-    let mut previous: Option<usize> = None;
-    for i in 0..parts.len() {
-        if parts[i].values.is_empty() {
-            continue;
-        }
-        if let Some(p) = previous {
-            let (before, after) = parts.split_at_mut(i);
-            let earlier = before[p].vectors.as_ref();
-            let current = &mut after[0].vectors;
-            let overlap = mass_inner(earlier, mass, current.as_ref(), par);
-            matmul(
-                current.as_mut(),
-                Accum::Add,
-                earlier,
-                overlap.as_ref(),
-                -1.0,
-                par,
-            );
-        }
-        previous = Some(i);
-    }
-}
-
-fn misclassified(job: usize) -> SolverError {
-    SolverError::NoConvergence {
-        reason: format!("spectrum interval {job} does not match its inertia count"),
+/// `|XᵀMX − I|` of 3·10⁻¹⁰ for the Crouzeix–Raviart bunny at k = 500 without this).
+/// Intervals further apart are separated by at least an interval's width. Costs two
+/// `n × s × s` products per boundary; the change of each vector is of the size of that error,
+/// so residuals and in-interval orthonormality stay as they were.
+fn orthogonalize_neighbours(parts: &mut [SolvedInterval], mass: &[f64], par: Par) {
+    for i in 1..parts.len() {
+        let (before, after) = parts.split_at_mut(i);
+        let earlier = before[i - 1].vectors.as_ref();
+        let current = &mut after[0].vectors;
+        let overlap = mass_inner(earlier, mass, current.as_ref(), par);
+        matmul(
+            current.as_mut(),
+            Accum::Add,
+            earlier,
+            overlap.as_ref(),
+            -1.0,
+            par,
+        );
     }
 }

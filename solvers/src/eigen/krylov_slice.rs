@@ -4,14 +4,13 @@
 //! largest-magnitude eigenvalues `θ = 1/(λ − σ)` of `OP`.
 //!
 //! State (all M-orthonormal, mutually M-orthogonal):
-//! - `deflation`: eigenvectors found by earlier slices near this window (never re-found);
 //! - `locked`: converged eigenvectors of this slice;
 //! - `V` (`n × m`, "expanded"): `OP V = V H + U G` with symmetric `H` (`m × m`);
 //! - `U` (`n × r`, "unexpanded"): the next block to which `OP` is applied.
 //!
 //! Expanding applies `OP` to `U` with one blocked solve, orthogonalises the result with BLAS-3
 //! block Gram–Schmidt (one classical pass against `V`, where the cancellation is, then
-//! DGKS-checked passes against deflation, locked and `V` together, usually one), and appends
+//! DGKS-checked passes against locked and `V` together, usually one), and appends
 //! `U` to `V`. The locked vectors' eigenvalues are recomputed afterwards by the driver's
 //! Rayleigh–Ritz against `A` (see `rayleigh_ritz.rs` for why the Ritz values `θ` alone are not
 //! accurate enough).
@@ -39,17 +38,15 @@ pub(crate) struct SliceProblem<'a> {
     pub mass: &'a [f64],
     /// The shift σ.
     pub sigma: f64,
-    /// All eigenvalues `≤ lower_bound` are already known: nothing there is ever locked.
+    /// The interval's lower end: eigenvalues `≤ lower_bound` belong to another interval and
+    /// never count.
     pub lower_bound: f64,
-    /// `n × q` known eigenvectors (M-orthonormal) to deflate.
-    pub deflation: MatRef<'a, f64>,
-    /// Number of not-yet-known eigenvalues in `(lower_bound, σ)` (from the inertia count).
+    /// Number of eigenvalues in `(lower_bound, σ)` (from the inertia counts).
     pub lower_needed: usize,
-    /// Number of new eigenvalues in `[σ, upper_bound)` to find (nearest first).
+    /// Number of eigenvalues in `[σ, upper_bound)` (from the inertia counts).
     pub upper_target: usize,
-    /// Only eigenvalues below it count towards `upper_target` (`+∞` in the sequential driver;
-    /// an interval's upper end, with an exact `upper_target` from inertia counts, in the
-    /// independent-interval driver). Converged pairs just above it may still be locked (they
+    /// The interval's upper end: only eigenvalues below it count towards `upper_target` (an
+    /// exact count from inertia). Converged pairs just above it may still be locked (they
     /// deflate the slice) and are discarded by the caller.
     pub upper_bound: f64,
 }
@@ -119,7 +116,7 @@ pub(crate) fn run_slice(
     let block = settings.block_size.max(1);
     let sigma = problem.sigma;
     let wanted = problem.lower_needed + problem.upper_target;
-    let room = n.saturating_sub(problem.deflation.ncols() + wanted + 3 * block);
+    let room = n.saturating_sub(wanted + 3 * block);
     let max_basis = settings.max_basis.min(room);
     if max_basis < 2 * block {
         return Err(SolverError::NoConvergence {
@@ -134,7 +131,7 @@ pub(crate) fn run_slice(
     let mut solves = 0usize;
 
     let mut basis = Mat::<f64>::zeros(n, max_basis + 3 * block);
-    let start = random_orthonormal_block(n, block, &[problem.deflation], mass, rng, par)?;
+    let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
     basis.as_mut().subcols_mut(0, block).copy_from(&start);
     let (mut mv, mut mu) = (0usize, block);
     let mut h = Mat::<f64>::zeros(0, 0);
@@ -155,7 +152,7 @@ pub(crate) fn run_slice(
             let reference = mass_column_norms(mass, z.as_ref());
             let m_new = mv + mu;
             let current = basis.as_ref().subcols(0, m_new);
-            let bases = [problem.deflation, locked.view(), current];
+            let bases = [locked.view(), current];
             // OP U lies almost entirely in span(V) (that is the Krylov relation), while its
             // components along the deflated and locked eigenvectors are tiny in exact
             // arithmetic. So the big cancellation is against V alone: one classical pass against
@@ -180,8 +177,8 @@ pub(crate) fn run_slice(
                 par,
             );
             let mut coefficients = project_out(z.as_mut(), &bases, mass, par);
-            coefficients[2] += &first_pass;
-            let c = &coefficients[2];
+            coefficients[1] += &first_pass;
+            let c = &coefficients[1];
             let next = orthonormalize_block(z, &reference, &bases, mass, rng, par)?;
             let mut h_new = Mat::<f64>::zeros(m_new, m_new);
             h_new.as_mut().submatrix_mut(0, 0, mv, mv).copy_from(&h);
@@ -225,56 +222,22 @@ pub(crate) fn run_slice(
         let residual: Vec<f64> = (0..mv)
             .map(|j| (0..mu).map(|i| gy[(i, j)] * gy[(i, j)]).sum::<f64>().sqrt())
             .collect();
-        // Ritz pairs in (lower_bound, σ) are the most negative θ: all of them are wanted (the
-        // inertia count says exactly `lower_needed` eigenvalues lie there), however far below σ
-        // they are. They come first, then the pairs above σ by decreasing θ (nearest first).
-        // Ranking both sides together by |θ| would let the many eigenvalues just above σ push
-        // a missing one far below σ out of the locking window and out of the restart basis.
-        let lambda_of = |i: usize| sigma + 1.0 / theta[i];
-        let mut lower_order: Vec<usize> = (0..mv)
-            .filter(|&i| theta[i] < 0.0 && lambda_of(i) > problem.lower_bound)
-            .collect();
-        lower_order.sort_by(|&a, &b| theta[a].total_cmp(&theta[b]));
-        let mut upper_order: Vec<usize> = (0..mv).filter(|&i| theta[i] > 0.0).collect();
-        upper_order.sort_by(|&a, &b| theta[b].total_cmp(&theta[a]));
-        // Pairs at or below lower_bound (known, outside the deflation window) and θ = 0 are
-        // purged.
-
         let lower_remaining = problem.lower_needed - lower_found;
         let upper_remaining = problem.upper_target.saturating_sub(upper_found);
         let window = lower_remaining + upper_remaining + block;
-        let upper_window = upper_remaining + block;
         let converged = |i: usize| residual[i] <= settings.tolerance * theta[i].abs();
         let mut lock = Vec::new();
         let mut keep = Vec::new();
-        let exact_upper = problem.upper_bound.is_finite();
-        if exact_upper {
-            // An interval with exact counts on both sides of a central shift: the wanted pairs
-            // are (about) the largest |θ|, and converged pairs just outside the interval are
-            // locked too (they deflate the slice instead of returning after every restart).
-            let mut order: Vec<usize> = (0..mv).filter(|&i| theta[i] != 0.0).collect();
-            order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
-            for (rank, &i) in order.iter().enumerate() {
-                if !converged(i) {
-                    keep.push(i);
-                } else if rank < window {
-                    lock.push(i);
-                }
-            }
-        } else {
-            for &i in &lower_order {
-                if converged(i) {
-                    lock.push(i);
-                } else {
-                    keep.push(i);
-                }
-            }
-            for (rank, &i) in upper_order.iter().enumerate() {
-                if !converged(i) {
-                    keep.push(i);
-                } else if rank < upper_window {
-                    lock.push(i);
-                }
+        // Exact counts on both sides of a central shift: the wanted pairs are (about) the
+        // largest |θ|, and converged pairs just outside the interval are locked too (they
+        // deflate the slice instead of returning after every restart). θ = 0 is purged.
+        let mut order: Vec<usize> = (0..mv).filter(|&i| theta[i] != 0.0).collect();
+        order.sort_by(|&a, &b| theta[b].abs().total_cmp(&theta[a].abs()));
+        for (rank, &i) in order.iter().enumerate() {
+            if !converged(i) {
+                keep.push(i);
+            } else if rank < window {
+                lock.push(i);
             }
         }
         let (mut new_lower, mut new_upper) = (0, 0);
@@ -347,35 +310,20 @@ pub(crate) fn run_slice(
         // Missing eigenvalues counted by inertia (below σ; above σ too when the upper end is
         // an exact count) without any Ritz approximation in the basis (e.g. a multiplicity
         // larger than the block size): bring in fresh random directions.
-        let missing = problem.lower_needed - lower_found
-            + if exact_upper {
-                problem.upper_target.saturating_sub(upper_found)
-            } else {
-                0
-            };
+        let missing =
+            problem.lower_needed - lower_found + problem.upper_target.saturating_sub(upper_found);
         let candidates = keep
             .iter()
             .filter(|&&i| {
                 let lambda = sigma + 1.0 / theta[i];
-                let upper_end = if exact_upper {
-                    problem.upper_bound
-                } else {
-                    sigma
-                };
-                lambda < upper_end && lambda > problem.lower_bound
+                lambda < problem.upper_bound && lambda > problem.lower_bound
             })
             .count();
-        let newly_locked = new_lower + if exact_upper { new_upper } else { 0 };
+        let newly_locked = new_lower + new_upper;
         if missing > 0 && newly_locked == 0 && candidates < missing && mu + block <= 3 * block {
             let current = basis.as_ref().subcols(0, mv + mu);
-            let fresh = random_orthonormal_block(
-                n,
-                block,
-                &[problem.deflation, locked.view(), current],
-                mass,
-                rng,
-                par,
-            )?;
+            let fresh =
+                random_orthonormal_block(n, block, &[locked.view(), current], mass, rng, par)?;
             basis.as_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
             let mut g_new = Mat::<f64>::zeros(mu + block, mv);
             g_new.as_mut().subrows_mut(0, mu).copy_from(&g);

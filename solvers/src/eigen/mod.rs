@@ -4,9 +4,15 @@ mod interval_slicing;
 mod krylov_slice;
 mod lowest;
 mod mass_orthogonal;
+mod pencil;
 mod rayleigh_ritz;
+mod refinement;
+mod statistics;
 mod tall_products;
 mod types;
 
+pub use interval_slicing::{lowest_eigenpairs_of, EigenRequest, EigenSolution, RequestError};
 pub use lowest::lowest_eigenpairs;
+pub use pencil::{Pencil, ShiftCount};
+pub use statistics::{process_cpu_seconds, Phase, PhaseStatistics, SolverStatistics};
 pub use types::{EigenOptions, EigenProgress, Eigenpairs};

@@ -1,66 +1,71 @@
-//! Options, progress reports and results of [`crate::lowest_eigenpairs`].
+//! Options, progress reports and results of [`crate::lowest_eigenpairs`] and
+//! [`crate::lowest_eigenpairs_of`].
 
-use faer::{Mat, Par};
+use super::pencil::Pencil;
+use super::statistics::SolverStatistics;
+use faer::sparse::linalg::matmul::sparse_dense_matmul;
+use faer::{Accum, Mat, Par};
 use std::fmt;
 
-/// Progress of [`crate::lowest_eigenpairs`], reported after every restart of every slice.
+/// Progress of one request of [`crate::lowest_eigenpairs_of`], reported after every restart of
+/// every interval and when an interval is done.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EigenProgress {
-    /// Eigenpairs found so far (confirmed by an inertia count or still tentative).
+    /// Index of the request.
+    pub request: usize,
+    /// Eigenpairs found so far (converged in an interval still running, or in a finished one).
     pub found: usize,
-    /// Eigenpairs whose completeness has been confirmed by an inertia count.
+    /// Eigenpairs of finished intervals (complete by their inertia counts).
     pub confirmed: usize,
     /// Number of eigenpairs requested.
     pub wanted: usize,
-    /// Shifts (spectrum slices) used so far.
-    pub slices: usize,
-    /// Sparse factorizations computed so far.
+    /// Sparse factorizations of the request's pencil so far (counting included).
     pub factorizations: usize,
-    /// Single-vector solves with a factorization so far (a block of `r` counts `r`).
+    /// Single-vector solves with its factorizations so far (a block of `r` counts `r`).
     pub solves: usize,
 }
 
-/// Tuning knobs of [`crate::lowest_eigenpairs`]. `Default` gives the recommended values.
+/// Tuning knobs of the eigensolver. `Default` gives the recommended values.
 #[derive(Clone, Copy)]
 pub struct EigenOptions<'a> {
-    /// Seed of the random start blocks; equal seeds give identical results.
+    /// Seed of the random start blocks of [`crate::lowest_eigenpairs`] (requests of
+    /// [`crate::lowest_eigenpairs_of`] carry their own); equal seeds give identical results.
     pub seed: u64,
     /// Convergence tolerance: a Ritz pair `(θ, u)` of the shift-inverted operator
     /// `(A − σM)⁻¹M` is accepted when `‖OP u − θ u‖_M ≤ tolerance · |θ|`. Default `1e-12`.
     pub tolerance: f64,
     /// Number of vectors per Krylov block (and per blocked solve). Default 8.
     pub block_size: usize,
-    /// Target number of new eigenpairs per spectrum slice of the sequential driver
-    /// (`concurrent_slices = 0`; one factorization each). Default 128.
-    pub slice_size: usize,
-    /// Maximum number of restarts per slice before giving up. Default 1000.
+    /// Restarts of one interval before it is split at its shift and its halves are solved
+    /// with new shifts (at most three times). Default 25; an interval of 96 eigenpairs
+    /// typically needs 2–5 (bumpy-torus-x4's Crouzeix–Raviart problem, k = 1000: 420–560
+    /// solves of blocks of 8 per interval).
     pub max_restarts: usize,
     /// Problems with `n ≤ dense_threshold` (or `3k ≥ n`) use the dense solver. Default 400.
     pub dense_threshold: usize,
-    /// Threads for the dense block operations (Gram–Schmidt, restarts, Rayleigh–Ritz), for the
-    /// blocked solves and for the factorizations. The dense products with the tall Krylov bases
-    /// are split by rows (each thread streams its own rows of the basis) and a block of
-    /// right-hand sides by columns (each thread runs a sequential supernodal solve on its
-    /// columns: faer's parallel solve synchronises per supernode, which costs more than it gains
-    /// on surface meshes). Products with fewer than 8192 rows run on one thread. Results agree with a
+    /// Threads of the dense products with the tall Krylov bases inside one interval (split by
+    /// rows; products with fewer than 8192 rows run on one thread). Results agree with a
     /// single-threaded run to rounding (not bitwise: partial sums are added in another order).
-    /// Default `Par::rayon(0)` (all of rayon's threads): 500 cotan eigenpairs of bunny-closed
-    /// took 8.9 s on two threads against 13.0 s on one (issue 4).
+    /// Default `Par::rayon(0)` (all of rayon's threads).
     pub parallelism: Par,
-    /// Number of spectrum intervals solved concurrently, each on its own thread with its own
-    /// factorization. `0` selects the sequential driver (shift after shift, each placed from
-    /// what the previous one found); `≥ 1` cuts the spectrum into intervals with exact
-    /// eigenvalue counts (inertia) first and solves them independently on that many threads
-    /// (the result is the same for every thread count). Default 0: the interval driver is 1.7–1.8×
-    /// faster on bunny-closed (k = 500, quiet machine) but was seen to spend many minutes in one
-    /// interval of bumpy-torus-x4's Crouzeix–Raviart problem (issue 4), so it is opt-in for now.
-    pub concurrent_slices: usize,
-    /// Target number of eigenpairs per interval of the independent-interval driver
-    /// (`concurrent_slices ≥ 1`; two factorizations each, one at its midpoint and one at its
-    /// upper end). Smaller intervals mean smaller Krylov bases (dense work grows with the
-    /// square of the basis) but more factorizations and more work at interval ends. Default 96.
+    /// Intervals solved at the same time, each on its own thread with its own factorization and
+    /// sequential solves (the result is the same for every thread count). Default: the number of
+    /// rayon's threads.
+    pub threads: usize,
+    /// Target number of eigenpairs per interval (one factorization at its midpoint, one at its
+    /// upper end). Smaller intervals mean smaller Krylov bases (dense work grows with the square
+    /// of the basis) but more factorizations and more work at interval ends. Default 96.
     pub interval_size: usize,
-    /// Called with a progress report after every restart; `None` for silence.
+    /// Eigenpairs whose relative eigenfield residual `√(sᵀ A s / λ) / λ`,
+    /// `s = M⁻¹(A x − λ M x)` (the residual of the Hodge–Laplacian eigenfield `D x/√λ` when
+    /// `A = Dᵀ W D`), exceeds this and ten times its rounding floor (see
+    /// [`Eigenpairs::field_residual_floors`]) get one inverse-iteration step with their interval's
+    /// factorization (more steps, up to three, while a step halves the residual). Default
+    /// `1e-9`, a tenth of what the basis tests demand; residuals of a few `1e-9` can be the
+    /// rounding floor of the vectors themselves. `f64::INFINITY` switches refinement off.
+    pub refinement_target: f64,
+    /// Called on the calling thread with a progress report after every restart; `None` for
+    /// silence.
     pub progress: Option<&'a dyn Fn(&EigenProgress)>,
 }
 
@@ -70,12 +75,12 @@ impl Default for EigenOptions<'_> {
             seed: 0x7466_7665_6967_656e,
             tolerance: 1e-12,
             block_size: 8,
-            slice_size: 128,
-            max_restarts: 1000,
+            max_restarts: 25,
             dense_threshold: 400,
             parallelism: Par::rayon(0),
-            concurrent_slices: 0,
+            threads: rayon::current_num_threads(),
             interval_size: 96,
+            refinement_target: 1e-9,
             progress: None,
         }
     }
@@ -87,12 +92,12 @@ impl fmt::Debug for EigenOptions<'_> {
             .field("seed", &self.seed)
             .field("tolerance", &self.tolerance)
             .field("block_size", &self.block_size)
-            .field("slice_size", &self.slice_size)
             .field("max_restarts", &self.max_restarts)
             .field("dense_threshold", &self.dense_threshold)
             .field("parallelism", &self.parallelism)
-            .field("concurrent_slices", &self.concurrent_slices)
+            .field("threads", &self.threads)
             .field("interval_size", &self.interval_size)
+            .field("refinement_target", &self.refinement_target)
             .field("progress", &self.progress.map(|_| "callback"))
             .finish()
     }
@@ -108,8 +113,74 @@ pub struct Eigenpairs {
     /// Relative residuals `‖A x_j − λ_j M x_j‖₂ / (‖A‖₁ ‖x_j‖₂)`, where `‖A‖₁` is the
     /// maximum absolute column sum (an upper bound of `‖A‖₂`).
     pub residuals: Vec<f64>,
-    /// Sparse factorizations computed (one per shift, plus retries).
-    pub factorizations: usize,
-    /// Single-vector solves (a block solve of `r` right-hand sides counts `r`).
-    pub solves: usize,
+    /// Relative eigenfield residuals (see [`EigenOptions::refinement_target`]); 0 for the kernel.
+    pub field_residuals: Vec<f64>,
+    /// The rounding floor of each field residual: what the rounding of `A x` alone makes it
+    /// (on meshes with slivers it can be far above the target; such pairs are not refined).
+    pub field_residual_floors: Vec<f64>,
+    /// Factorizations and solves of the pencil by phase (counts made before the call
+    /// included); from [`crate::lowest_eigenpairs`] also the wall-clock and processor seconds of
+    /// each phase.
+    pub statistics: SolverStatistics,
+}
+
+impl Eigenpairs {
+    /// The pairs with their residuals against `pencil`.
+    pub(crate) fn new(
+        pencil: &Pencil<'_>,
+        values: Vec<f64>,
+        vectors: Mat<f64>,
+        field_residuals: Vec<f64>,
+        field_residual_floors: Vec<f64>,
+    ) -> Self {
+        let residuals = relative_residuals(pencil, &values, &vectors);
+        Self {
+            values,
+            vectors,
+            residuals,
+            field_residuals,
+            field_residual_floors,
+            statistics: pencil.statistics(),
+        }
+    }
+}
+
+/// `‖A x − λ M x‖₂ / (‖A‖₁ ‖x‖₂)` per column.
+fn relative_residuals(pencil: &Pencil<'_>, values: &[f64], vectors: &Mat<f64>) -> Vec<f64> {
+    let full = &pencil.full;
+    let mass = pencil.mass;
+    let n = full.nrows();
+    let k = values.len();
+    let mut ax = Mat::<f64>::zeros(n, k);
+    sparse_dense_matmul(
+        ax.as_mut(),
+        Accum::Replace,
+        full.as_ref(),
+        vectors.as_ref(),
+        1.0,
+        Par::Seq,
+    );
+    let col_ptr = full.symbolic().col_ptr();
+    let norm_a = (0..n)
+        .map(|j| {
+            full.val()[col_ptr[j]..col_ptr[j + 1]]
+                .iter()
+                .map(|v| v.abs())
+                .sum::<f64>()
+        })
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    (0..k)
+        .map(|j| {
+            let mut r2 = 0.0;
+            let mut x2 = 0.0;
+            for i in 0..n {
+                let x = vectors[(i, j)];
+                let r = ax[(i, j)] - values[j] * mass[i] * x;
+                r2 += r * r;
+                x2 += x * x;
+            }
+            r2.sqrt() / (norm_a * x2.sqrt().max(f64::MIN_POSITIVE))
+        })
+        .collect()
 }

@@ -9,8 +9,12 @@ use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
+use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
-use tvf_spectral::{compute_basis, save_basis, BasisFileKey, BasisRequest, FieldFamily};
+use tvf_spectral::{
+    compute_eigenfunction_basis, process_cpu_seconds, save_eigenfunction_basis, BasisFileKey,
+    BasisRequest, FieldFamily, PhaseStatistics,
+};
 
 /// Arguments of `tvf basis`.
 #[derive(Args)]
@@ -56,7 +60,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
     let mesh = args.input.load()?.mesh;
     let discretization = args.discretization.build(&mesh, &args.input.label())?;
     let progress = Progress::new("basis");
-    let basis = {
+    let (basis, report) = {
         let callback = progress.basis_callback();
         let request = if args.fields >= discretization.field_dimension() {
             BasisRequest::complete()
@@ -64,29 +68,36 @@ pub fn run(args: BasisArgs) -> Result<()> {
             BasisRequest::fields(args.fields)
         };
         let request = request.with_seed(args.seed).with_progress(&callback);
-        compute_basis(discretization.as_ref(), &request)
+        compute_eigenfunction_basis(discretization.as_ref(), &request)
             .with_context(|| format!("{}: cannot compute the basis", args.input.label()))?
     };
     let key = BasisFileKey::new(&mesh, discretization.as_ref());
+    // The file holds dense fields; they are formed a few at a time while it is written.
+    let (writing_start, writing_cpu) = (Instant::now(), process_cpu_seconds());
     if let Some(output) = &args.output {
-        save_basis(output, &basis, &key)?;
+        save_eigenfunction_basis(output, &basis, discretization.as_ref(), &key)?;
     }
     if let Some(dir) = &args.export {
         export_basis(&basis, discretization.as_ref(), dir)?;
     }
+    let writing = PhaseStatistics {
+        wall_seconds: writing_start.elapsed().as_secs_f64(),
+        cpu_seconds: process_cpu_seconds() - writing_cpu,
+        ..PhaseStatistics::default()
+    };
     let written: Vec<String> = args
         .output
         .iter()
         .chain(&args.export)
         .map(|p| p.display().to_string())
         .collect();
-    let report = basis.report().cloned().unwrap_or_default();
+    let count = |family| basis.families().iter().filter(|&&f| f == family).count();
     progress.finish(format!(
         "{} fields ({} harmonic, {} integrable, {} co-integrable; {}) in {:.2} s -> {}",
         basis.len(),
-        basis.count(FieldFamily::Harmonic),
-        basis.count(FieldFamily::Integrable),
-        basis.count(FieldFamily::Cointegrable),
+        count(FieldFamily::Harmonic),
+        count(FieldFamily::Integrable),
+        count(FieldFamily::Cointegrable),
         key.discretization,
         report.seconds,
         written.join(" and ")
@@ -115,9 +126,9 @@ pub fn run(args: BasisArgs) -> Result<()> {
             "mesh": args.input.label(),
             "discretization": key.discretization,
             "fields": basis.len(),
-            "harmonic": basis.count(FieldFamily::Harmonic),
-            "integrable": basis.count(FieldFamily::Integrable),
-            "cointegrable": basis.count(FieldFamily::Cointegrable),
+            "harmonic": count(FieldFamily::Harmonic),
+            "integrable": count(FieldFamily::Integrable),
+            "cointegrable": count(FieldFamily::Cointegrable),
             "eigenvalues": basis.eigenvalues(),
             "labels": labels,
             "seconds": report.seconds,
@@ -127,10 +138,42 @@ pub fn run(args: BasisArgs) -> Result<()> {
             },
             "split_threshold": report.split_threshold,
             "counting_seconds": report.counting_seconds,
+            "phases": {
+                "counting": phase(&PhaseStatistics {
+                    wall_seconds: report.counting_seconds,
+                    cpu_seconds: report.counting_cpu_seconds,
+                    factorizations: report.counting_factorizations,
+                    solves: 0,
+                }),
+                "boundaries": phase(&PhaseStatistics {
+                    factorizations: report.solver.counting.factorizations
+                        - report.counting_factorizations,
+                    ..report.solver.counting
+                }),
+                "solving": phase(&report.solver.solving),
+                "refinement": phase(&report.solver.refinement),
+                "writing": phase(&writing),
+            },
+            "factorizations": report.factorizations,
+            "distinct_shifts": report.distinct_shifts,
+            "refined_pairs": report.solver.refined_pairs,
+            "max_field_residual": report.max_field_residual,
+            "max_field_residual_floor": report.max_field_residual_floor,
             "output": args.output.as_ref().map(|p| p.display().to_string()),
             "export": args.export.as_ref().map(|p| p.display().to_string()),
         });
         println!("{}", serde_json::to_string_pretty(&summary)?);
     }
     Ok(())
+}
+
+/// A phase's cost as JSON: wall-clock and processor seconds, busy cores, factorizations, solves.
+fn phase(statistics: &PhaseStatistics) -> serde_json::Value {
+    serde_json::json!({
+        "seconds": statistics.wall_seconds,
+        "cpu_seconds": statistics.cpu_seconds,
+        "cores_busy": statistics.utilisation(),
+        "factorizations": statistics.factorizations,
+        "solves": statistics.solves,
+    })
 }

@@ -15,8 +15,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_design::{
-    default_regularization, FillOrdering, FullSoftDesign, ReducedSoftDesign, SoftOptions,
-    DEFAULT_FULL_ORDERING,
+    default_regularization, FactorParallelism, FillOrdering, FullSoftDesign, ReducedSoftDesign,
+    SoftOptions, DEFAULT_FULL_ORDERING, SEQUENTIAL_FLOP_LIMIT,
 };
 use tvf_spectral::write_tangent_field;
 
@@ -59,6 +59,32 @@ pub struct DesignArgs {
     json: bool,
 }
 
+/// Environment variable overriding [`SEQUENTIAL_FLOP_LIMIT`] for the full design's factorization
+/// (a number of flops, e.g. `1e11`).
+const SEQUENTIAL_FLOP_LIMIT_VARIABLE: &str = "TVF_SEQUENTIAL_FLOP_LIMIT";
+
+/// The full design's threading: one thread below [`SEQUENTIAL_FLOP_LIMIT`] flops, or below the
+/// value of [`SEQUENTIAL_FLOP_LIMIT_VARIABLE`] when it is set. A value that is not a
+/// non-negative number is an error (a typo would otherwise silently change the threading).
+fn factor_parallelism() -> Result<FactorParallelism> {
+    let sequential_flop_limit = match std::env::var_os(SEQUENTIAL_FLOP_LIMIT_VARIABLE) {
+        None => SEQUENTIAL_FLOP_LIMIT,
+        Some(raw) => {
+            let value = raw.to_string_lossy().into_owned();
+            match value.trim().parse::<f64>() {
+                Ok(limit) if limit >= 0.0 => limit,
+                _ => bail!(
+                    "environment variable {SEQUENTIAL_FLOP_LIMIT_VARIABLE} = '{value}': a \
+                     non-negative number of flops, e.g. 1e11"
+                ),
+            }
+        }
+    };
+    Ok(FactorParallelism::Auto {
+        sequential_flop_limit,
+    })
+}
+
 /// Runs `tvf design`.
 pub fn run(args: DesignArgs) -> Result<()> {
     let mut report = Report::new(args.json);
@@ -88,12 +114,13 @@ fn design_with<H: HodgeComplex + ?Sized>(
         let assembly = start.elapsed();
         let start = Instant::now();
         let ordering = args.ordering.unwrap_or(DEFAULT_FULL_ORDERING);
-        let design = FullSoftDesign::from_matrices_with_ordering(
+        let design = FullSoftDesign::from_matrices_with(
             dirichlet,
             complex.m1().values(),
             options,
             constraints.clone(),
             ordering,
+            factor_parallelism()?,
         )
         .with_context(|| {
             format!(

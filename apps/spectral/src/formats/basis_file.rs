@@ -20,10 +20,12 @@
 //!
 //! The round trip is bit-exact. Saving is atomic; loading streams (no second copy in memory).
 
+use crate::eigenfunction_basis::FIELD_CHUNK;
 use crate::formats::atomic_write::write_atomically_with;
-use crate::{FieldFamily, SpectralBasis};
+use crate::{EigenfunctionBasis, FieldFamily, SpectralBasis};
 use faer::Mat;
 use std::io::{Read, Write};
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
@@ -170,7 +172,61 @@ pub fn save_basis(
     basis: &SpectralBasis,
     key: &BasisFileKey,
 ) -> Result<(), BasisFileError> {
-    let n = basis.field_dimension();
+    let fields = basis.fields();
+    let contents = BasisContents {
+        eigenvalues: basis.eigenvalues(),
+        families: basis.families(),
+        field_mass: basis.field_mass(),
+        field_dimension: basis.field_dimension(),
+    };
+    write_basis(path, key, &contents, &|range| {
+        range
+            .map(|j| {
+                let column = fields.col(j);
+                (0..column.nrows()).map(|i| column[i]).collect()
+            })
+            .collect()
+    })
+}
+
+/// Saves a basis in compact form (the eigenfunctions of `complex`) for the mesh and
+/// discretization of `key`, atomically: the file holds the dense fields, formed a few at a time
+/// in parallel while the file is written, so they are never all in memory. The file is the one
+/// [`save_basis`] writes for the dense basis ([`EigenfunctionBasis::dense_fields`]).
+pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
+    path: &Path,
+    basis: &EigenfunctionBasis,
+    complex: &H,
+    key: &BasisFileKey,
+) -> Result<(), BasisFileError> {
+    let contents = BasisContents {
+        eigenvalues: basis.eigenvalues(),
+        families: basis.families(),
+        field_mass: complex.m1().values(),
+        field_dimension: complex.field_dimension(),
+    };
+    write_basis(path, key, &contents, &|range| {
+        basis.field_columns(complex, range)
+    })
+}
+
+/// Everything of a basis file but its fields.
+struct BasisContents<'a> {
+    eigenvalues: &'a [f64],
+    families: &'a [FieldFamily],
+    field_mass: &'a [f64],
+    field_dimension: usize,
+}
+
+/// Writes a basis file whose fields `range` are `columns(range)` (each `field_dimension` values).
+fn write_basis(
+    path: &Path,
+    key: &BasisFileKey,
+    contents: &BasisContents<'_>,
+    columns: &dyn Fn(Range<usize>) -> Vec<Vec<f64>>,
+) -> Result<(), BasisFileError> {
+    let n = contents.field_dimension;
+    let count = contents.eigenvalues.len();
     if n != key.field_dimension {
         return Err(BasisFileError::Invalid {
             path: path.to_path_buf(),
@@ -180,13 +236,14 @@ pub fn save_basis(
             ),
         });
     }
+    let family_count = |family| contents.families.iter().filter(|&&f| f == family).count();
     let header = encode_header(&BasisFileHeader {
         version: BASIS_FILE_VERSION,
         key: key.clone(),
-        field_count: basis.len(),
-        harmonic_count: basis.count(FieldFamily::Harmonic),
-        integrable_count: basis.count(FieldFamily::Integrable),
-        cointegrable_count: basis.count(FieldFamily::Cointegrable),
+        field_count: count,
+        harmonic_count: family_count(FieldFamily::Harmonic),
+        integrable_count: family_count(FieldFamily::Integrable),
+        cointegrable_count: family_count(FieldFamily::Cointegrable),
     });
     write_atomically_with(path, |w| {
         w.write_all(&header)?;
@@ -194,22 +251,28 @@ pub fn save_basis(
             inner: w,
             hash: Hash64::new(),
         };
-        let mut buffer = Vec::with_capacity(8 * n.max(basis.len()) + 8);
-        buffer.extend(basis.eigenvalues().iter().flat_map(|x| x.to_le_bytes()));
+        let mut buffer = Vec::with_capacity(8 * n.max(count) + 8);
+        buffer.extend(contents.eigenvalues.iter().flat_map(|x| x.to_le_bytes()));
         out.write_all(&buffer)?;
         buffer.clear();
-        buffer.extend(basis.families().iter().map(|&f| family_code(f)));
-        buffer.resize(basis.len().div_ceil(8) * 8, 0);
+        buffer.extend(contents.families.iter().map(|&f| family_code(f)));
+        buffer.resize(count.div_ceil(8) * 8, 0);
         out.write_all(&buffer)?;
         buffer.clear();
-        buffer.extend(basis.field_mass().iter().flat_map(|x| x.to_le_bytes()));
+        buffer.extend(contents.field_mass.iter().flat_map(|x| x.to_le_bytes()));
         out.write_all(&buffer)?;
-        let fields = basis.fields();
-        for j in 0..basis.len() {
-            buffer.clear();
-            let column = fields.col(j);
-            buffer.extend((0..n).flat_map(|i| column[i].to_le_bytes()));
-            out.write_all(&buffer)?;
+        for start in (0..count).step_by(FIELD_CHUNK) {
+            for column in columns(start..(start + FIELD_CHUNK).min(count)) {
+                if column.len() != n {
+                    return Err(std::io::Error::other(format!(
+                        "a field has {} values, not {n}",
+                        column.len()
+                    )));
+                }
+                buffer.clear();
+                buffer.extend(column.iter().flat_map(|x| x.to_le_bytes()));
+                out.write_all(&buffer)?;
+            }
         }
         let checksum = out.hash.finish();
         w.write_all(&checksum.to_le_bytes())

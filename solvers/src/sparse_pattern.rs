@@ -1,29 +1,11 @@
-//! Symmetric CSR matrices with a fixed, growing pattern: the full soft-design system keeps the
-//! union of every pattern it has seen, so that a constraint change usually refactors numerically
-//! with the symbolic analysis reused.
+//! Sparse CSR matrices with a fixed, growing pattern: a system that keeps the union of every
+//! pattern it has seen refactors numerically, with the symbolic analysis reused, when its
+//! entries change.
 
-use crate::constraint::CompiledConstraint;
 use sprs::CsMat;
 
-/// The entries `(i, j)` (both triangles) of `C̃ᵀ W C̃` for a set of constraints.
-pub(crate) fn constraint_gram_entries(
-    constraints: &[CompiledConstraint],
-) -> Vec<(usize, usize, f64)> {
-    let mut entries = Vec::new();
-    for c in constraints {
-        for row in &c.rows {
-            for &(i, a) in row {
-                for &(j, b) in row {
-                    entries.push((i, j, c.weight * a * b));
-                }
-            }
-        }
-    }
-    entries
-}
-
 /// Position of `(row, col)` in the CSR data of `matrix`, if the pattern holds it.
-pub(crate) fn position(matrix: &CsMat<f64>, row: usize, col: usize) -> Option<usize> {
+pub fn position(matrix: &CsMat<f64>, row: usize, col: usize) -> Option<usize> {
     let start = matrix.indptr().index(row);
     let end = matrix.indptr().index(row + 1);
     matrix.indices()[start..end]
@@ -33,7 +15,7 @@ pub(crate) fn position(matrix: &CsMat<f64>, row: usize, col: usize) -> Option<us
 }
 
 /// `matrix` (CSR, sorted) with its pattern extended by `extra` positions, stored as explicit zeros.
-pub(crate) fn with_extra_entries(matrix: &CsMat<f64>, extra: &[(usize, usize)]) -> CsMat<f64> {
+pub fn with_extra_entries(matrix: &CsMat<f64>, extra: &[(usize, usize)]) -> CsMat<f64> {
     let n = matrix.rows();
     let mut per_row: Vec<Vec<(usize, f64)>> = (0..n)
         .map(|r| {

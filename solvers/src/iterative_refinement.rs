@@ -28,7 +28,7 @@ pub struct SolveReport {
     /// each entry by a random fraction of its last bit (`|δ_j| ≤ 2⁻⁵³ |x_j|`). Storing the exact
     /// solution in `f64` perturbs it by that much, so no `f64` field can be expected to reach a
     /// residual much below this; on well-scaled systems it is near 1e-16, on meshes with slivers
-    /// it can exceed 1e-8 (bunny-closed's full soft design: see the issue 7 note).
+    /// it can exceed 1e-8 (bunny-closed's full soft design).
     pub rounding_floor: f64,
 }
 
@@ -69,8 +69,10 @@ fn rounding_floor(apply: &impl Fn(&[f64]) -> Vec<f64>, x: &[f64], norm_b: f64) -
 
 /// A double-double number `hi + lo` (`|lo| ≤ ulp(hi)/2` after normalisation).
 #[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct DoubleDouble {
+pub struct DoubleDouble {
+    /// The leading part.
     pub hi: f64,
+    /// The rounding error of `hi`.
     pub lo: f64,
 }
 
@@ -123,7 +125,7 @@ impl DoubleDouble {
 
 /// `M x` in double-double for a **symmetric** sparse `M` (CSR or CSC: by symmetry every outer
 /// view is a row), `x` given in double-double.
-pub(crate) fn symmetric_product(matrix: &CsMat<f64>, x: &[DoubleDouble]) -> Vec<DoubleDouble> {
+pub fn symmetric_product(matrix: &CsMat<f64>, x: &[DoubleDouble]) -> Vec<DoubleDouble> {
     (0..matrix.outer_dims())
         .map(|i| {
             let mut sum = DoubleDouble::default();
@@ -138,12 +140,12 @@ pub(crate) fn symmetric_product(matrix: &CsMat<f64>, x: &[DoubleDouble]) -> Vec<
 }
 
 /// Promotes `f64` values to double-double.
-pub(crate) fn exact(x: &[f64]) -> Vec<DoubleDouble> {
+pub fn exact(x: &[f64]) -> Vec<DoubleDouble> {
     x.iter().map(|&hi| DoubleDouble { hi, lo: 0.0 }).collect()
 }
 
 /// `b − M x` for a symmetric sparse `M`, in double-double, rounded to `f64`.
-pub(crate) fn accurate_residual(matrix: &CsMat<f64>, x: &[f64], b: &[f64]) -> Vec<f64> {
+pub fn accurate_residual(matrix: &CsMat<f64>, x: &[f64], b: &[f64]) -> Vec<f64> {
     symmetric_product(matrix, &exact(x))
         .into_iter()
         .zip(b)
@@ -165,7 +167,7 @@ pub(crate) fn accurate_residual(matrix: &CsMat<f64>, x: &[f64], b: &[f64]) -> Ve
 /// refinement stops at a true relative residual of 1e-12, or when a replacement fails to halve
 /// it (the rounding floor `≈ ε ‖|A| |x|‖ / ‖b‖` of an `f64` field; the best field seen is
 /// returned), or after 50 steps.
-pub(crate) fn refined_solve(
+pub fn refined_solve(
     apply: impl Fn(&[f64]) -> Vec<f64>,
     residual: impl Fn(&[f64]) -> Vec<f64>,
     b: &[f64],

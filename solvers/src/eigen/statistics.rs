@@ -1,0 +1,139 @@
+//! [`SolverStatistics`]: what an eigen computation cost, phase by phase (factorizations, solves,
+//! wall-clock and processor seconds), so that callers can check that every shift was factored
+//! once and how well the phases use the machine's cores.
+
+use std::ops::AddAssign;
+use std::time::Instant;
+
+/// The phases of an eigen computation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// Inertia counts (`LDLᵀ` of `A − tM`) at thresholds and interval boundaries.
+    Counting,
+    /// Krylov–Schur iterations of the spectrum intervals, with their Rayleigh–Ritz against `A`.
+    Solving,
+    /// Inverse-iteration refinement of the eigenpairs whose residual misses the target.
+    Refinement,
+}
+
+/// The cost of one phase.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PhaseStatistics {
+    /// Numeric sparse factorizations (one per shift; a shift nudged off an eigenvalue counts again).
+    pub factorizations: usize,
+    /// Single-vector solves with a factorization (a block of `r` counts `r`).
+    pub solves: usize,
+    /// Wall-clock seconds.
+    pub wall_seconds: f64,
+    /// Processor seconds of the whole process (user + system, every thread) during the phase;
+    /// `cpu_seconds / wall_seconds` is the number of cores the phase kept busy on average
+    /// (other work of the same process running at the same time counts too).
+    pub cpu_seconds: f64,
+}
+
+impl PhaseStatistics {
+    /// Average number of busy cores: `cpu_seconds / wall_seconds` (0 for an empty phase).
+    pub fn utilisation(&self) -> f64 {
+        if self.wall_seconds > 0.0 {
+            self.cpu_seconds / self.wall_seconds
+        } else {
+            0.0
+        }
+    }
+}
+
+impl AddAssign for PhaseStatistics {
+    fn add_assign(&mut self, other: Self) {
+        self.factorizations += other.factorizations;
+        self.solves += other.solves;
+        self.wall_seconds += other.wall_seconds;
+        self.cpu_seconds += other.cpu_seconds;
+    }
+}
+
+/// The cost of an eigen computation by phase.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SolverStatistics {
+    /// Inertia counts.
+    pub counting: PhaseStatistics,
+    /// Krylov–Schur iterations.
+    pub solving: PhaseStatistics,
+    /// Refinement of eigenpairs that missed the residual target.
+    pub refinement: PhaseStatistics,
+    /// Eigenpairs that were refined (the others met the target from the Krylov iteration).
+    pub refined_pairs: usize,
+}
+
+impl SolverStatistics {
+    /// Factorizations of all phases.
+    pub fn factorizations(&self) -> usize {
+        self.counting.factorizations + self.solving.factorizations + self.refinement.factorizations
+    }
+
+    /// Solves of all phases.
+    pub fn solves(&self) -> usize {
+        self.counting.solves + self.solving.solves + self.refinement.solves
+    }
+
+    /// The statistics of `phase`.
+    pub fn phase(&self, phase: Phase) -> PhaseStatistics {
+        match phase {
+            Phase::Counting => self.counting,
+            Phase::Solving => self.solving,
+            Phase::Refinement => self.refinement,
+        }
+    }
+
+    /// The statistics of `phase`, to change.
+    pub fn phase_mut(&mut self, phase: Phase) -> &mut PhaseStatistics {
+        match phase {
+            Phase::Counting => &mut self.counting,
+            Phase::Solving => &mut self.solving,
+            Phase::Refinement => &mut self.refinement,
+        }
+    }
+}
+
+impl AddAssign for SolverStatistics {
+    fn add_assign(&mut self, other: Self) {
+        self.counting += other.counting;
+        self.solving += other.solving;
+        self.refinement += other.refinement;
+        self.refined_pairs += other.refined_pairs;
+    }
+}
+
+/// Wall-clock and process processor time since it was started.
+pub(crate) struct PhaseClock {
+    wall: Instant,
+    cpu: f64,
+}
+
+impl PhaseClock {
+    pub(crate) fn start() -> Self {
+        Self {
+            wall: Instant::now(),
+            cpu: process_cpu_seconds(),
+        }
+    }
+
+    /// Adds the elapsed wall-clock and processor seconds to `statistics`.
+    pub(crate) fn stop(self, statistics: &mut PhaseStatistics) {
+        statistics.wall_seconds += self.wall.elapsed().as_secs_f64();
+        statistics.cpu_seconds += (process_cpu_seconds() - self.cpu).max(0.0);
+    }
+}
+
+/// User + system processor seconds of this process so far (all threads); 0 where unavailable.
+pub fn process_cpu_seconds() -> f64 {
+    // SAFETY: getrusage only writes the zero-initialised struct it is given.
+    let usage = unsafe {
+        let mut usage: libc::rusage = std::mem::zeroed();
+        if libc::getrusage(libc::RUSAGE_SELF, &mut usage) != 0 {
+            return 0.0;
+        }
+        usage
+    };
+    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+    seconds(usage.ru_utime) + seconds(usage.ru_stime)
+}
