@@ -210,12 +210,6 @@ impl ReducedBasis {
         self.fields.map(coefficients, field)
     }
 
-    /// Sum of all entries of `U`, multithreaded: reads `U` once, the memory-streaming reference
-    /// the map `x = U v` is measured against.
-    pub fn stream_sum(&self) -> f64 {
-        self.fields.stream_sum()
-    }
-
     /// A single-precision copy of `U` for the fast map `x = U v`.
     pub fn to_f32(&self) -> ReducedBasisF32 {
         RowMajorFields {
@@ -251,14 +245,6 @@ impl<T: FieldScalar> RowMajorFields<T> {
                 }
             });
         Ok(())
-    }
-
-    /// Sum of all entries of `U`, multithreaded (reads `U` once: the streaming reference).
-    pub fn stream_sum(&self) -> T {
-        self.rows
-            .par_chunks(ROWS_PER_TASK * self.len.max(1))
-            .map(lane_sum)
-            .reduce(T::default, |a, b| a + b)
     }
 }
 
@@ -296,18 +282,4 @@ pub(crate) fn dot<T: FieldScalar>(a: &[T], b: &[T]) -> T {
         .zip(b_tail)
         .fold(T::default(), |sum, (&x, &y)| sum + x * y);
     acc[..lanes].iter().fold(T::default(), |sum, &x| sum + x) + tail
-}
-
-/// Sum with `T::LANES` independent accumulators (vectorisable, so it runs at memory speed).
-fn lane_sum<T: FieldScalar>(a: &[T]) -> T {
-    let mut acc = [T::default(); 8];
-    let lanes = T::LANES;
-    let (head, tail) = a.split_at(a.len() - a.len() % lanes);
-    for x in head.chunks_exact(lanes) {
-        for k in 0..lanes {
-            acc[k] = acc[k] + x[k];
-        }
-    }
-    acc[..lanes].iter().fold(T::default(), |sum, &x| sum + x)
-        + tail.iter().fold(T::default(), |sum, &x| sum + x)
 }
