@@ -1,13 +1,12 @@
 //! `tvf basis --export DIR`: a basis as plain `.npy` arrays (numpy reads them with `np.load`),
 //! written into a staged folder that appears whole or not at all.
 
-use crate::npy_export::{npy_bytes, NpyData};
 use crate::output_rules::{commit, stage};
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_spectral::EigenfunctionBasis;
+use tvf_spectral::{npy_bytes, EigenfunctionBasis, NpyData};
 
 /// Writes `eigenvalues.npy` (`k`, float64, ascending), `families.npy` (`k` strings:
 /// `harmonic`, `integrable`, `cointegrable`), `coefficients.npy` (`n1 × k`, the

@@ -10,7 +10,6 @@ mod discretization_flags;
 mod examples;
 mod interrupt;
 mod mesh_input;
-mod npy_export;
 mod output_rules;
 mod picture_options;
 mod progress;

@@ -86,6 +86,7 @@ pub use formats::field_io::{
     write_tangent_field, FieldFileFormat, FieldIoError,
 };
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
+pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};

@@ -3,7 +3,6 @@
 
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
-use crate::npy_export::{npy_bytes, write_sparse_npz, NpyData};
 use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
@@ -17,6 +16,7 @@ use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::StagedFolder;
 use tvf_core::mesh::ValidationReport;
 use tvf_core::SurfaceMesh;
+use tvf_spectral::{npy_bytes, write_sparse_npz, NpyData};
 
 /// Arguments of `tvf operators`.
 #[derive(Args)]

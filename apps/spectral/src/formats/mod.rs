@@ -10,3 +10,4 @@ pub(crate) mod compressed_file;
 pub(crate) mod field_frames;
 pub(crate) mod field_io;
 pub(crate) mod npy;
+pub(crate) mod numpy_export;

@@ -1,7 +1,8 @@
-//! Arrays for numpy: `.npy` files of float64, int64 and Unicode-string arrays, and sparse
-//! matrices as the `.npz` files `scipy.sparse.load_npz` reads (a zip of the CSR arrays `data`,
-//! `indices`, `indptr`, `shape` and the format name `csr`). Written through a closure so the
-//! caller decides how the file is written (atomically, into a staged folder).
+//! Arrays for numpy, written: `.npy` files of float64, int64 and Unicode-string arrays (for
+//! exports; `npy.rs` reads and writes the float arrays of field files), and sparse matrices as
+//! the `.npz` files `scipy.sparse.load_npz` reads (a zip of the CSR arrays `data`, `indices`,
+//! `indptr`, `shape` and the format name `csr`). The caller decides how the bytes are written
+//! (atomically, into a staged folder).
 
 use sprs::CsMat;
 use std::io::{Seek, Write};
