@@ -5,6 +5,7 @@ use crate::face_fields::FaceFields;
 use crate::face_geometry::FaceGeometry;
 use crate::whitney_sampling::WhitneySampling;
 use sprs::CsMat;
+use tvf_core::discretization::check_length;
 use tvf_core::discretization::sparse::product;
 use tvf_core::discretization::{
     ComplexParts, DiagonalMass, DiscretizationError, FieldRotation, FieldSampling, HodgeComplex,
@@ -81,11 +82,11 @@ impl MatrixComplex {
             ));
         }
         let (n1, n0) = d0.shape();
-        check_dimension("columns of d1 (n1, the rows of d0)", n1, d1.cols())?;
+        check_length("columns of d1 (n1, the rows of d0)", n1, d1.cols())?;
         let n2 = d1.rows();
-        check_dimension("M0 (one entry per column of d0)", n0, m0.len())?;
-        check_dimension("M1 (one entry per row of d0)", n1, m1.len())?;
-        check_dimension("M2 (one entry per row of d1)", n2, m2.len())?;
+        check_length("M0 (one entry per column of d0)", n0, m0.len())?;
+        check_length("M1 (one entry per row of d0)", n1, m1.len())?;
+        check_length("M2 (one entry per row of d1)", n2, m2.len())?;
         check_finite("d0", &d0)?;
         check_finite("d1", &d1)?;
         let potential_nodes = node_space(mesh, n0, "potential space (columns of d0)")?;
@@ -130,22 +131,6 @@ impl MatrixComplex {
                 crate::mesh_topology(mesh, Default::default()),
             )?,
             sampler,
-        })
-    }
-}
-
-fn check_dimension(
-    what: &'static str,
-    expected: usize,
-    found: usize,
-) -> Result<(), DiscretizationError> {
-    if expected == found {
-        Ok(())
-    } else {
-        Err(DiscretizationError::DimensionMismatch {
-            what,
-            expected,
-            found,
         })
     }
 }

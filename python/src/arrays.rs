@@ -8,6 +8,7 @@ use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use sprs::CsMat;
+use tvf_core::discretization::sparse::{csr_arrays, CsrArrays};
 
 /// CSR parts as Python passes them: `indptr`, `indices` (int64), `data` (float64), `shape`.
 pub type CsrParts<'py> = (
@@ -42,26 +43,19 @@ pub fn csr_from_parts(name: &str, parts: CsrParts<'_>) -> PyResult<CsMat<f64>> {
 
 /// The CSR parts of `matrix` as numpy arrays: `(indptr, indices, data, (rows, cols))`.
 pub fn csr_to_parts<'py>(py: Python<'py>, matrix: &CsMat<f64>) -> PyResult<Bound<'py, PyTuple>> {
-    let csr = if matrix.is_csr() {
-        matrix.clone()
-    } else {
-        matrix.to_csr()
-    };
-    let indptr: Vec<i64> = csr
-        .indptr()
-        .raw_storage()
-        .iter()
-        .map(|&i| i as i64)
-        .collect();
-    let indices: Vec<i64> = csr.indices().iter().map(|&i| i as i64).collect();
-    let data = csr.data().to_vec();
+    let CsrArrays {
+        indptr,
+        indices,
+        data,
+        shape,
+    } = csr_arrays(matrix);
     PyTuple::new(
         py,
         [
             indptr.into_pyarray(py).into_any(),
             indices.into_pyarray(py).into_any(),
             data.into_pyarray(py).into_any(),
-            csr.shape().into_pyobject(py)?.into_any(),
+            shape.into_pyobject(py)?.into_any(),
         ],
     )
 }

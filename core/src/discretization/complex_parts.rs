@@ -2,7 +2,9 @@
 //! the nodes of its three spaces, its topology and a stable id — checked once for consistent
 //! shapes, with the cache of the operators derived from them.
 
-use super::{ComplexTopology, DiagonalMass, DiscretizationError, NodeSpace, OperatorCache};
+use super::{
+    check_length, ComplexTopology, DiagonalMass, DiscretizationError, NodeSpace, OperatorCache,
+};
 use sprs::CsMat;
 
 /// The parts of a complex `potentials (n0) --d0--> fields (n1) --d1--> co-potentials (n2)` with
@@ -48,13 +50,7 @@ impl ComplexParts {
             ("co-potential nodes", n2, nodes[2].len()),
         ];
         for (what, expected, found) in checks {
-            if expected != found {
-                return Err(DiscretizationError::DimensionMismatch {
-                    what,
-                    expected,
-                    found,
-                });
-            }
+            check_length(what, expected, found)?;
         }
         Ok(Self {
             id: id.into(),

@@ -121,3 +121,33 @@ pub fn to_csr(a: &CsMat<f64>) -> CsMat<f64> {
         a.to_csr()
     }
 }
+
+/// The compressed-sparse-row arrays of a matrix as numpy and scipy store them: `indptr`
+/// (`rows + 1`), `indices` and `data` (`nnz`), and the shape `(rows, cols)`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CsrArrays {
+    /// Row starts, `rows + 1` entries.
+    pub indptr: Vec<i64>,
+    /// Column of each stored entry.
+    pub indices: Vec<i64>,
+    /// Value of each stored entry.
+    pub data: Vec<f64>,
+    /// `(rows, cols)`.
+    pub shape: (usize, usize),
+}
+
+/// The CSR arrays of `a` (converted to row-major storage if it is column-major).
+pub fn csr_arrays(a: &CsMat<f64>) -> CsrArrays {
+    let csr = if a.is_csr() { a.clone() } else { a.to_csr() };
+    CsrArrays {
+        indptr: csr
+            .indptr()
+            .raw_storage()
+            .iter()
+            .map(|&i| i as i64)
+            .collect(),
+        indices: csr.indices().iter().map(|&i| i as i64).collect(),
+        data: csr.data().to_vec(),
+        shape: csr.shape(),
+    }
+}

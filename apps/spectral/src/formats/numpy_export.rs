@@ -6,6 +6,7 @@
 
 use sprs::CsMat;
 use std::io::{Seek, Write};
+use tvf_core::discretization::sparse::{csr_arrays, CsrArrays};
 
 /// An array for a `.npy` file: its shape and its elements in C order.
 pub enum NpyData<'a> {
@@ -78,19 +79,13 @@ pub fn npy_bytes(data: &NpyData<'_>, shape: &[usize]) -> Vec<u8> {
 
 /// Writes `matrix` as an uncompressed `.npz` in scipy's CSR layout.
 pub fn write_sparse_npz<W: Write + Seek>(writer: W, matrix: &CsMat<f64>) -> std::io::Result<()> {
-    let csr = if matrix.is_csr() {
-        matrix.clone()
-    } else {
-        matrix.to_csr()
-    };
-    let indptr: Vec<i64> = csr
-        .indptr()
-        .raw_storage()
-        .iter()
-        .map(|&i| i as i64)
-        .collect();
-    let indices: Vec<i64> = csr.indices().iter().map(|&i| i as i64).collect();
-    let shape = [csr.rows() as i64, csr.cols() as i64];
+    let CsrArrays {
+        indptr,
+        indices,
+        data,
+        shape: (rows, cols),
+    } = csr_arrays(matrix);
+    let shape = [rows as i64, cols as i64];
     let members = [
         (
             "indices.npy",
@@ -102,15 +97,12 @@ pub fn write_sparse_npz<W: Write + Seek>(writer: W, matrix: &CsMat<f64>) -> std:
         ),
         ("format.npy", npy_bytes(&NpyData::Bytes(b"csr"), &[])),
         ("shape.npy", npy_bytes(&NpyData::I64(&shape), &[2])),
-        (
-            "data.npy",
-            npy_bytes(&NpyData::F64(csr.data()), &[csr.nnz()]),
-        ),
+        ("data.npy", npy_bytes(&NpyData::F64(&data), &[data.len()])),
     ];
     let mut zip = zip::ZipWriter::new(writer);
     let options = zip::write::SimpleFileOptions::default()
         .compression_method(zip::CompressionMethod::Stored)
-        .large_file(csr.nnz() > 100_000_000);
+        .large_file(data.len() > 100_000_000);
     for (name, bytes) in members {
         zip.start_file(name, options)
             .map_err(std::io::Error::other)?;
