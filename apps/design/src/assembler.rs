@@ -73,11 +73,7 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
                 extra: " and positive",
             });
         }
-        let finite = match constraint.target {
-            Target::Vector(v) => v.iter().all(|x| x.is_finite()),
-            Target::Divergence(s) | Target::Curl(s) => s.is_finite(),
-        };
-        if !finite {
+        if !constraint.target.is_finite() {
             return Err(ConstraintError::NotFinite {
                 id: id.clone(),
                 what: "value",

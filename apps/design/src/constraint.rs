@@ -1,6 +1,8 @@
 //! The constraint model: what a user prescribes (a vector, a divergence or a curl value), where,
 //! and in which operator family.
 
+use crate::DesignError;
+
 /// What a constraint prescribes. All values are **pointwise** (MATH.md): a tangent vector, or the
 /// pointwise divergence / curl of the field (units 1/length times the field's units).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -15,6 +17,14 @@ pub enum Target {
 }
 
 impl Target {
+    /// Whether every prescribed number is finite.
+    pub fn is_finite(&self) -> bool {
+        match self {
+            Target::Vector(v) => v.iter().all(|x| x.is_finite()),
+            Target::Divergence(s) | Target::Curl(s) => s.is_finite(),
+        }
+    }
+
     /// Lower-case name used in JSON: `vector`, `divergence`, `curl`.
     pub fn kind_name(&self) -> &'static str {
         match self {
@@ -133,6 +143,25 @@ pub struct CompiledConstraint {
 }
 
 impl CompiledConstraint {
+    /// Replaces the prescribed values (same rows): as many as before, all finite.
+    pub fn set_values(&mut self, values: &[f64]) -> Result<(), DesignError> {
+        if values.len() != self.values.len() {
+            return Err(DesignError::DimensionMismatch {
+                what: "constraint values",
+                expected: self.values.len(),
+                actual: values.len(),
+            });
+        }
+        if let Some(&value) = values.iter().find(|v| !v.is_finite()) {
+            return Err(DesignError::BadParameter {
+                what: "constraint value",
+                value,
+            });
+        }
+        self.values.copy_from_slice(values);
+        Ok(())
+    }
+
     /// Residuals `rows[k] · x − values[k]` for a field `x` (`2F` coefficients).
     pub fn residuals(&self, field: &[f64]) -> Vec<f64> {
         self.rows

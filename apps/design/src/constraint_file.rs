@@ -181,11 +181,7 @@ fn to_constraint(c: &ConstraintRecord) -> Result<Constraint, ConstraintError> {
             })
         }
     };
-    let finite = match target {
-        Target::Vector(v) => v.iter().all(|x| x.is_finite()),
-        Target::Divergence(s) | Target::Curl(s) => s.is_finite(),
-    };
-    if !finite {
+    if !target.is_finite() {
         return Err(ConstraintError::NotFinite {
             id: id.clone(),
             what: "value",

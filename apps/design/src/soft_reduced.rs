@@ -114,16 +114,7 @@ impl<'a> ReducedSoftDesign<'a> {
     /// Changes the values of constraint `id` (same rows): only the right-hand side changes.
     pub fn set_values(&mut self, id: &str, values: &[f64]) -> Result<(), DesignError> {
         let index = self.index_of(id)?;
-        let current = &mut self.active[index].compiled.values;
-        if values.len() != current.len() {
-            return Err(DesignError::DimensionMismatch {
-                what: "constraint values",
-                expected: current.len(),
-                actual: values.len(),
-            });
-        }
-        current.copy_from_slice(values);
-        Ok(())
+        self.active[index].compiled.set_values(values)
     }
 
     /// The active constraints.

@@ -164,26 +164,7 @@ impl<'a> SplineSession<'a> {
     /// Changes the prescribed values of `id` (same rows): only the next solve changes.
     pub fn set_values(&mut self, id: &str, values: &[f64]) -> Result<(), DesignError> {
         let index = self.index_of(id)?;
-        let current = &mut self.active[index].compiled.values;
-        if values.len() != current.len() {
-            return Err(DesignError::DimensionMismatch {
-                what: "constraint values",
-                expected: current.len(),
-                actual: values.len(),
-            });
-        }
-        if values.iter().any(|v| !v.is_finite()) {
-            return Err(DesignError::BadParameter {
-                what: "constraint value",
-                value: values
-                    .iter()
-                    .copied()
-                    .find(|v| !v.is_finite())
-                    .unwrap_or(f64::NAN),
-            });
-        }
-        current.copy_from_slice(values);
-        Ok(())
+        self.active[index].compiled.set_values(values)
     }
 
     /// Replaces constraint `id` by `constraint` (same id): a value-only change when the rows are

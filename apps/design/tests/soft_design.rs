@@ -173,6 +173,9 @@ fn reduced_soft_design_updates_match_a_fresh_factorization() {
     edited.remove("v2").unwrap();
     edited.remove("source").unwrap();
     edited.set_values("v0", &[0.5, 0.5]).unwrap();
+    // Values that are not finite, or of the wrong count, are refused and change nothing.
+    assert!(edited.set_values("v0", &[f64::NAN, 0.5]).is_err());
+    assert!(edited.set_values("v0", &[0.5]).is_err());
     let mut fresh = ReducedSoftDesign::new(&basis, opts).unwrap();
     for c in all.iter().filter(|c| c.id != "v2" && c.id != "source") {
         let mut c = c.clone();
