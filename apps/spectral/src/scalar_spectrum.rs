@@ -164,10 +164,7 @@ impl ScalarSpectrum {
         }
         let n = self.full_dimension;
         let vectors = match &self.used {
-            None => all_vectors
-                .as_ref()
-                .subcols(self.components, count)
-                .to_owned(),
+            None => drop_leading_columns(all_vectors, self.components, count),
             Some(used) => {
                 let mut full = Mat::zeros(n, count);
                 for j in 0..count {
@@ -187,4 +184,18 @@ impl ScalarSpectrum {
             max_field_residual_floor,
         })
     }
+}
+
+/// Columns `skip..skip + count` of `matrix`, moved to the front in place (the eigenvectors of
+/// a million-face mesh are gigabytes: no second copy).
+fn drop_leading_columns(mut matrix: Mat<f64>, skip: usize, count: usize) -> Mat<f64> {
+    if skip > 0 {
+        for j in 0..count {
+            let (target, source) = matrix.as_mut().split_at_col_mut(j + 1);
+            target.col_mut(j).copy_from(source.col(skip - 1));
+        }
+    }
+    let rows = matrix.nrows();
+    matrix.truncate(rows, count);
+    matrix
 }

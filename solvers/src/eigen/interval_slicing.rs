@@ -24,11 +24,11 @@
 //!    unresolvable (`ε·max|θ| > tolerance·|θ|`: the slice restarts until its restart limit, which
 //!    was 1000), and a cluster that straddles an interval end converges slowly; both are cured by
 //!    a different shift and a narrower interval.
-//! 3. *Refinement.* Pairs whose eigenfield residual misses `EigenOptions::refinement_target`
-//!    (and is clearly above its rounding floor) get inverse-iteration steps with their
-//!    interval's factorization ([`super::refinement`]; an interval keeps its factorization only
-//!    if it has such pairs), if a trial step on the worst of them halves its residual; the
-//!    others are left as they are.
+//! 3. *Refinement*, by the interval's job right after its solve, with the same factorization
+//!    (so no factorization outlives its job): pairs whose eigenfield residual misses
+//!    `EigenOptions::refinement_target` (and is clearly above its rounding floor) get
+//!    inverse-iteration steps ([`super::refinement`]) if a trial step on the worst of them
+//!    halves its residual; the others are left as they are.
 //!
 //! The result is complete by construction: interval `i` must return exactly its count, so the
 //! total is `ν(σ_top) ≥ k`, every eigenvalue below `σ_top`. Vectors of neighbouring intervals
@@ -38,7 +38,7 @@
 use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
 use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
-use super::refinement::{field_residuals, refine_columns, step_helps};
+use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::mass_inner;
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
@@ -51,16 +51,13 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{mpsc, Arc};
+use std::sync::mpsc;
 
 /// Times an interval may be split after failing to converge.
 const MAX_SPLITS: usize = 3;
 /// Where an interval that failed is split, as a fraction of its width from its lower end: not
 /// its midpoint, where the failed shift was.
 const SPLIT_POINT: f64 = 0.55;
-/// Inverse-iteration steps of the refinement of one interval (each one solve per pair still
-/// above the target).
-const MAX_REFINEMENT_STEPS: usize = 3;
 /// Trial shifts of the search for the top shift.
 const MAX_TOP_TRIALS: usize = 12;
 
@@ -259,94 +256,19 @@ pub fn lowest_eigenpairs_of(
     for (&(p, _), parts) in jobs.iter().zip(solved) {
         intervals[p].extend(parts);
     }
-    clock.stop(&mut statistics.solving);
-
-    // ---- 3. refinement ----
-    let clock = PhaseClock::start();
-    let par = options.parallelism;
-    let target = options.refinement_target;
-    let refined: Vec<Result<usize, RequestError>> = intervals
-        .par_iter_mut()
-        .enumerate()
-        .flat_map_iter(|(p, parts)| parts.iter_mut().map(move |part| (p, part)))
-        .map(|(p, part)| {
-            let Some((which, factor)) = part.refine.take() else {
-                return Ok(0);
-            };
-            let pencil = requests[plans[p].request].pencil;
-            let floor = 1e-8 * pencil.mean_eigenvalue.abs();
-            let residual_of = |values: &[f64], vectors: &Mat<f64>| {
-                field_residuals(
-                    pencil.full.as_ref(),
-                    pencil.mass,
-                    values,
-                    vectors.as_ref(),
-                    floor,
-                    par,
-                )
-            };
-            let mut before = residual_of(&part.values, &part.vectors);
-            // One trial solve on the worst pair first: if it does not help, none will.
-            let worst = which
-                .iter()
-                .copied()
-                .max_by(|&i, &j| before[i].residual.total_cmp(&before[j].residual));
-            let helps = worst.is_some_and(|j| {
-                step_helps(
-                    pencil.full.as_ref(),
-                    pencil.mass,
-                    &factor,
-                    part.vectors.as_ref(),
-                    j,
-                    before[j].residual,
-                    floor,
-                )
-            });
-            pencil.add_solves(Phase::Refinement, 1);
-            if !helps {
-                return Ok(0);
-            }
-            let mut which = which;
-            let mut refined = 0;
-            for _ in 0..MAX_REFINEMENT_STEPS {
-                let (values, vectors) = refine_columns(
-                    pencil.full.as_ref(),
-                    pencil.mass,
-                    &factor,
-                    part.vectors.as_ref(),
-                    &which,
-                    par,
-                )
-                .map_err(fail(plans[p].request))?;
-                pencil.add_solves(Phase::Refinement, which.len());
-                refined = refined.max(which.len());
-                let after = residual_of(&values, &vectors);
-                part.values = values;
-                part.vectors = vectors;
-                // Another step only for pairs still above the target that the last step
-                // improved: the others are at the rounding floor of their vectors.
-                which = (0..after.len())
-                    .filter(|&j| {
-                        after[j].misses(target) && after[j].residual < 0.5 * before[j].residual
-                    })
-                    .collect();
-                before = after;
-                if which.is_empty() {
-                    break;
-                }
-            }
-            Ok(refined)
-        })
-        .collect();
-    for count in refined {
-        statistics.refined_pairs += count?;
+    for part in intervals.iter().flatten() {
+        statistics.refined_pairs += part.refinement.refined;
+        statistics.refinement.wall_seconds += part.refinement.wall_seconds;
+        statistics.refinement.cpu_seconds += part.refinement.cpu_seconds;
     }
+
+    // ---- 3. assembly ----
+    let par = options.parallelism;
     for (p, parts) in intervals.iter_mut().enumerate() {
         parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
         let pencil = requests[plans[p].request].pencil;
         orthogonalize_neighbours(parts, pencil.mass, par);
     }
-    clock.stop(&mut statistics.refinement);
 
     // ---- assembly ----
     for (plan, parts) in plans.iter().zip(intervals) {
@@ -407,6 +329,7 @@ pub fn lowest_eigenpairs_of(
             field.iter().map(|f| f.floor).collect(),
         ));
     }
+    clock.stop(&mut statistics.solving);
     Ok(EigenSolution {
         pairs: results,
         statistics,
@@ -527,15 +450,12 @@ struct Interval {
     stream: u64,
 }
 
-/// One solved interval: its eigenpairs (ascending) and the factorization at its shift.
+/// One solved interval: its eigenpairs (ascending, refined) and what the refinement cost.
 struct SolvedInterval {
     lower: f64,
     values: Vec<f64>,
     vectors: Mat<f64>,
-    /// The pairs whose eigenfield residual misses the target, and the factorization at the
-    /// interval's shift for their refinement (`None` when there are none: factorizations are
-    /// large, only those needed are kept).
-    refine: Option<(Vec<usize>, Arc<SparseLdlt>)>,
+    refinement: Refinement,
 }
 
 /// The numeric settings of the intervals (the part of [`EigenOptions`] the worker threads see).
@@ -580,23 +500,27 @@ fn solve_interval(
     }
     let attempt = solve_at_shift(request, interval, options, &factor, count, report);
     match attempt {
-        Ok((values, vectors)) => {
-            let residuals = field_residuals(
+        Ok((mut values, mut vectors)) => {
+            // Refined here, while the factorization is at hand, not in a later phase that
+            // would have to keep every interval's factorization alive.
+            let refinement = refine_interval(
                 pencil.full.as_ref(),
                 pencil.mass,
-                &values,
-                vectors.as_ref(),
-                1e-8 * pencil.mean_eigenvalue.abs(),
-                options.parallelism,
-            );
-            let which: Vec<usize> = (0..residuals.len())
-                .filter(|&j| residuals[j].misses(options.refinement_target))
-                .collect();
+                &factor,
+                &mut values,
+                &mut vectors,
+                &RefinementSettings {
+                    target: options.refinement_target,
+                    floor: 1e-8 * pencil.mean_eigenvalue.abs(),
+                    parallelism: options.parallelism,
+                },
+            )?;
+            pencil.add_solves(Phase::Refinement, refinement.solves);
             out.push(SolvedInterval {
                 lower,
                 values,
                 vectors,
-                refine: (!which.is_empty()).then_some((which, factor)),
+                refinement,
             });
             Ok(())
         }

@@ -8,6 +8,7 @@ mod pencil;
 mod rayleigh_ritz;
 mod refinement;
 mod statistics;
+mod symmetric_products;
 mod tall_products;
 mod types;
 

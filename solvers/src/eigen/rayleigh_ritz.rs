@@ -21,6 +21,7 @@
 //! diagonalises `A` exactly, so degenerate eigenvalues come out equal to rounding. Its cost is one
 //! sparse product `A Q` and two `n × s × s` dense products per slice.
 
+use super::symmetric_products::symmetric_times;
 use super::tall_products::{mass_inner, tall_inner, tall_times};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
@@ -60,14 +61,7 @@ pub(crate) fn rayleigh_ritz(
     faer::linalg::triangular_solve::solve_lower_triangular_in_place(llt.L(), q_t.as_mut(), par);
     let q = q_t.transpose().to_owned();
     let mut aq = Mat::<f64>::zeros(n, s);
-    faer::sparse::linalg::matmul::sparse_dense_matmul(
-        aq.as_mut(),
-        Accum::Replace,
-        a,
-        q.as_ref(),
-        1.0,
-        par,
-    );
+    symmetric_times(aq.as_mut(), a, q.as_ref(), par);
     let t = tall_inner(q.as_ref(), aq.as_ref(), par);
     let t = Mat::from_fn(s, s, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
     let (values, w) = symmetric_eigen(t.as_ref())?;

@@ -13,12 +13,15 @@
 //! `M`-orthogonality inside clusters.
 
 use super::rayleigh_ritz::rayleigh_ritz;
+use super::statistics::ThreadClock;
+use super::symmetric_products::{
+    gather_times, map_column_chunks, symmetric_times, Entries, Row, CHUNK,
+};
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
-use faer::sparse::linalg::matmul::sparse_dense_matmul;
 use faer::sparse::SparseColMatRef;
-use faer::{Accum, Mat, MatRef, Par};
+use faer::{Mat, MatRef, Par};
 
 /// Relative eigenfield residuals `√(sᵀ A s / λ) / λ`, `s = M⁻¹ (A x − λ M x)`, of the `n × s`
 /// M-orthonormal `vectors` (see the module documentation), and the rounding floor of each: the
@@ -34,51 +37,57 @@ pub(crate) fn field_residuals(
     floor: f64,
     par: Par,
 ) -> Vec<FieldResidual> {
-    let (n, s) = (vectors.nrows(), vectors.ncols());
-    let mut ax = Mat::<f64>::zeros(n, s);
-    sparse_dense_matmul(ax.as_mut(), Accum::Replace, a, vectors, 1.0, par);
-    // s = M⁻¹ A x − λ x, in place.
-    for j in 0..s {
-        for i in 0..n {
-            ax[(i, j)] = ax[(i, j)] / mass[i] - values[j] * vectors[(i, j)];
+    let n = vectors.nrows();
+    let diagonal = diagonal_of(a);
+    let chunks = map_column_chunks(vectors, par, |first, width, x| {
+        let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
+        let mut ax = vec![[0.0; CHUNK]; n];
+        gather_times(a, x, &mut ax, Entries::Signed);
+        // s = M⁻¹ A x − λ x, in place.
+        for ((s, x), m) in ax.iter_mut().zip(x).zip(mass) {
+            for j in 0..CHUNK {
+                s[j] = s[j] / m - lambda[j] * x[j];
+            }
         }
-    }
-    let mut as_ = Mat::<f64>::zeros(n, s);
-    sparse_dense_matmul(as_.as_mut(), Accum::Replace, a, ax.as_ref(), 1.0, par);
-    // |A| |x| and the diagonal of A, for the floor.
+        let s = ax;
+        let mut a_s = vec![[0.0; CHUNK]; n];
+        gather_times(a, &s, &mut a_s, Entries::Signed);
+        // |A| |x|, for the floor.
+        let mut abs_ax = vec![[0.0; CHUNK]; n];
+        gather_times(a, x, &mut abs_ax, Entries::Magnitudes);
+        let (mut energy, mut noise) = ([0.0; CHUNK], [0.0; CHUNK]);
+        for i in 0..n {
+            let weight = diagonal[i].max(0.0);
+            for j in 0..CHUNK {
+                energy[j] += s[i][j] * a_s[i][j];
+                let e = f64::EPSILON * (abs_ax[i][j] / mass[i] + lambda[j] * x[i][j].abs());
+                noise[j] += weight * e * e;
+            }
+        }
+        (0..width)
+            .map(|j| {
+                if lambda[j] <= floor {
+                    return FieldResidual::default();
+                }
+                FieldResidual {
+                    residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
+                    floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
+                }
+            })
+            .collect::<Vec<_>>()
+    });
+    chunks.into_iter().flatten().collect()
+}
+
+/// The diagonal of the `n × n` sparse `a` (0 where no entry is stored).
+fn diagonal_of(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
     let col_ptr = a.symbolic().col_ptr();
     let row_idx = a.symbolic().row_idx();
-    let mut abs_ax = Mat::<f64>::zeros(n, s);
-    let mut diagonal = vec![0.0; n];
-    for c in 0..n {
-        for p in col_ptr[c]..col_ptr[c + 1] {
-            let (r, v) = (row_idx[p], a.val()[p]);
-            if r == c {
-                diagonal[c] = v;
-            }
-            for j in 0..s {
-                abs_ax[(r, j)] += v.abs() * vectors[(c, j)].abs();
-            }
-        }
-    }
-    (0..s)
-        .map(|j| {
-            let lambda = values[j];
-            if lambda <= floor {
-                return FieldResidual::default();
-            }
-            let energy: f64 = (0..n).map(|i| ax[(i, j)] * as_[(i, j)]).sum();
-            let noise: f64 = (0..n)
-                .map(|i| {
-                    let e =
-                        f64::EPSILON * (abs_ax[(i, j)] / mass[i] + lambda * vectors[(i, j)].abs());
-                    diagonal[i].max(0.0) * e * e
-                })
-                .sum();
-            FieldResidual {
-                residual: (energy.max(0.0) / lambda).sqrt() / lambda,
-                floor: (noise / lambda).sqrt() / lambda,
-            }
+    (0..a.ncols())
+        .map(|c| {
+            (col_ptr[c]..col_ptr[c + 1])
+                .find(|&p| row_idx[p] == c)
+                .map_or(0.0, |p| a.val()[p])
         })
         .collect()
 }
@@ -99,6 +108,113 @@ impl FieldResidual {
 
 /// How far above its rounding floor a residual must be for refinement to be worth a solve.
 const FLOOR_MARGIN: f64 = 10.0;
+
+/// Inverse-iteration steps of the refinement of one interval (each one solve per pair still
+/// above the target).
+const MAX_REFINEMENT_STEPS: usize = 3;
+
+/// When a pair is refined.
+pub(crate) struct RefinementSettings {
+    /// Relative eigenfield residual to reach (see `EigenOptions::refinement_target`).
+    pub target: f64,
+    /// Eigenvalues at most `floor` (the kernel) have no eigenfield and are left alone.
+    pub floor: f64,
+    pub parallelism: Par,
+}
+
+/// What the refinement of one interval did and cost.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Refinement {
+    /// Pairs refined (in the first step; later steps refine a subset of them).
+    pub refined: usize,
+    /// Single-vector solves (the trial step included).
+    pub solves: usize,
+    /// Wall-clock seconds of the calling thread in the refinement.
+    pub wall_seconds: f64,
+    /// Processor seconds of the calling thread in the refinement (threads it lends work to
+    /// are not counted).
+    pub cpu_seconds: f64,
+}
+
+/// Refines the eigenpairs of one interval (`values` ascending, `vectors` `n × s`
+/// M-orthonormal) whose eigenfield residual misses `settings.target` and is clearly above its
+/// rounding floor, with `factor = LDLᵀ(A − σM)` at the interval's shift: first one trial step on
+/// the worst pair (if it does not halve that residual, no step will help any: the interval sits
+/// at the accuracy of its solves), then up to [`MAX_REFINEMENT_STEPS`] steps of
+/// [`refine_columns`], each on the pairs the previous step improved that still miss the target.
+///
+/// Errors: [`SolverError::NoConvergence`] if a step loses a vector.
+pub(crate) fn refine_interval(
+    a: SparseColMatRef<'_, usize, f64>,
+    mass: &[f64],
+    factor: &SparseLdlt,
+    values: &mut Vec<f64>,
+    vectors: &mut Mat<f64>,
+    settings: &RefinementSettings,
+) -> Result<Refinement, SolverError> {
+    let clock = ThreadClock::start();
+    let mut outcome = Refinement::default();
+    let residual_of = |values: &[f64], vectors: &Mat<f64>| {
+        field_residuals(
+            a,
+            mass,
+            values,
+            vectors.as_ref(),
+            settings.floor,
+            settings.parallelism,
+        )
+    };
+    let mut before = residual_of(values, vectors);
+    let mut which: Vec<usize> = (0..before.len())
+        .filter(|&j| before[j].misses(settings.target))
+        .collect();
+    let worst = which
+        .iter()
+        .copied()
+        .max_by(|&i, &j| before[i].residual.total_cmp(&before[j].residual));
+    if let Some(worst) = worst {
+        outcome.solves += 1;
+        if step_helps(
+            a,
+            mass,
+            factor,
+            vectors.as_ref(),
+            worst,
+            before[worst].residual,
+            settings.floor,
+        ) {
+            for _ in 0..MAX_REFINEMENT_STEPS {
+                let (new_values, new_vectors) = refine_columns(
+                    a,
+                    mass,
+                    factor,
+                    vectors.as_ref(),
+                    &which,
+                    settings.parallelism,
+                )?;
+                outcome.solves += which.len();
+                outcome.refined = outcome.refined.max(which.len());
+                let after = residual_of(&new_values, &new_vectors);
+                *values = new_values;
+                *vectors = new_vectors;
+                // Another step only for pairs still above the target that the last step
+                // improved: the others are at the rounding floor of their vectors.
+                which = (0..after.len())
+                    .filter(|&j| {
+                        after[j].misses(settings.target)
+                            && after[j].residual < 0.5 * before[j].residual
+                    })
+                    .collect();
+                before = after;
+                if which.is_empty() {
+                    break;
+                }
+            }
+        }
+    }
+    (outcome.wall_seconds, outcome.cpu_seconds) = clock.elapsed();
+    Ok(outcome)
+}
 
 /// Refines the columns `which` of the `n × s` eigenvectors `vectors` (M-orthonormal, one
 /// interval's) with `factor = LDLᵀ(A − σM)`: `z = (A − σM)⁻¹ M x`, M-normalised, replaces `x`,
@@ -168,7 +284,7 @@ pub(crate) fn step_helps(
     }
     z.col_mut(0).iter_mut().for_each(|x| *x /= norm);
     let mut az = Mat::<f64>::zeros(n, 1);
-    sparse_dense_matmul(az.as_mut(), Accum::Replace, a, z.as_ref(), 1.0, Par::Seq);
+    symmetric_times(az.as_mut(), a, z.as_ref(), Par::Seq);
     let rayleigh: f64 = (0..n).map(|i| z[(i, 0)] * az[(i, 0)]).sum();
     let after = field_residuals(a, mass, &[rayleigh], z.as_ref(), floor, Par::Seq);
     after.first().is_some_and(|r| r.residual < 0.5 * before)

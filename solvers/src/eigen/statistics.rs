@@ -12,7 +12,8 @@ pub enum Phase {
     Counting,
     /// Krylov–Schur iterations of the spectrum intervals, with their Rayleigh–Ritz against `A`.
     Solving,
-    /// Inverse-iteration refinement of the eigenpairs whose residual misses the target.
+    /// Inverse-iteration refinement of the eigenpairs whose residual misses the target, made by
+    /// each interval's job right after its Krylov–Schur solve (inside the solving phase).
     Refinement,
 }
 
@@ -58,7 +59,10 @@ pub struct SolverStatistics {
     pub counting: PhaseStatistics,
     /// Krylov–Schur iterations.
     pub solving: PhaseStatistics,
-    /// Refinement of eigenpairs that missed the residual target.
+    /// Refinement of eigenpairs that missed the residual target. It runs inside the solving
+    /// phase (each interval refines its own pairs with its own factorization), so its
+    /// `wall_seconds` and `cpu_seconds` are summed over the threads that refined, and are part of
+    /// the solving phase's seconds, not added to them.
     pub refinement: PhaseStatistics,
     /// Eigenpairs that were refined (the others met the target from the Krylov iteration).
     pub refined_pairs: usize,
@@ -122,6 +126,42 @@ impl PhaseClock {
         statistics.wall_seconds += self.wall.elapsed().as_secs_f64();
         statistics.cpu_seconds += (process_cpu_seconds() - self.cpu).max(0.0);
     }
+}
+
+/// Wall-clock and processor time of the calling thread since it was started.
+pub(crate) struct ThreadClock {
+    wall: Instant,
+    cpu: f64,
+}
+
+impl ThreadClock {
+    pub(crate) fn start() -> Self {
+        Self {
+            wall: Instant::now(),
+            cpu: thread_cpu_seconds(),
+        }
+    }
+
+    /// `(wall-clock seconds, processor seconds of this thread)` since the start.
+    pub(crate) fn elapsed(&self) -> (f64, f64) {
+        (
+            self.wall.elapsed().as_secs_f64(),
+            (thread_cpu_seconds() - self.cpu).max(0.0),
+        )
+    }
+}
+
+/// Processor seconds of the calling thread so far; 0 where unavailable.
+fn thread_cpu_seconds() -> f64 {
+    // SAFETY: clock_gettime only writes the zero-initialised struct it is given.
+    let time = unsafe {
+        let mut time: libc::timespec = std::mem::zeroed();
+        if libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut time) != 0 {
+            return 0.0;
+        }
+        time
+    };
+    time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9
 }
 
 /// User + system processor seconds of this process so far (all threads); 0 where unavailable.

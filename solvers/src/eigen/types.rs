@@ -3,8 +3,8 @@
 
 use super::pencil::Pencil;
 use super::statistics::SolverStatistics;
-use faer::sparse::linalg::matmul::sparse_dense_matmul;
-use faer::{Accum, Mat, Par};
+use super::symmetric_products::{gather_times, map_column_chunks, Entries, CHUNK};
+use faer::{Mat, Par};
 use std::fmt;
 
 /// Progress of one request of [`crate::lowest_eigenpairs_of`], reported after every restart of
@@ -145,21 +145,11 @@ impl Eigenpairs {
     }
 }
 
-/// `‖A x − λ M x‖₂ / (‖A‖₁ ‖x‖₂)` per column.
+/// `‖A x − λ M x‖₂ / (‖A‖₁ ‖x‖₂)` per column, in chunks of columns (never an `n × k` product).
 fn relative_residuals(pencil: &Pencil<'_>, values: &[f64], vectors: &Mat<f64>) -> Vec<f64> {
-    let full = &pencil.full;
+    let full = pencil.full.as_ref();
     let mass = pencil.mass;
     let n = full.nrows();
-    let k = values.len();
-    let mut ax = Mat::<f64>::zeros(n, k);
-    sparse_dense_matmul(
-        ax.as_mut(),
-        Accum::Replace,
-        full.as_ref(),
-        vectors.as_ref(),
-        1.0,
-        Par::Seq,
-    );
     let col_ptr = full.symbolic().col_ptr();
     let norm_a = (0..n)
         .map(|j| {
@@ -170,17 +160,21 @@ fn relative_residuals(pencil: &Pencil<'_>, values: &[f64], vectors: &Mat<f64>) -
         })
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
-    (0..k)
-        .map(|j| {
-            let mut r2 = 0.0;
-            let mut x2 = 0.0;
-            for i in 0..n {
-                let x = vectors[(i, j)];
-                let r = ax[(i, j)] - values[j] * mass[i] * x;
-                r2 += r * r;
-                x2 += x * x;
-            }
-            r2.sqrt() / (norm_a * x2.sqrt().max(f64::MIN_POSITIVE))
-        })
-        .collect()
+    let chunks = map_column_chunks(vectors.as_ref(), Par::rayon(0), |first, width, x| {
+        let mut ax = vec![[0.0; CHUNK]; n];
+        gather_times(full, x, &mut ax, Entries::Signed);
+        (0..width)
+            .map(|j| {
+                let lambda = values[first + j];
+                let (mut r2, mut x2) = (0.0, 0.0);
+                for ((ax, x), m) in ax.iter().zip(x).zip(mass) {
+                    let r = ax[j] - lambda * m * x[j];
+                    r2 += r * r;
+                    x2 += x[j] * x[j];
+                }
+                r2.sqrt() / (norm_a * f64::sqrt(x2).max(f64::MIN_POSITIVE))
+            })
+            .collect::<Vec<_>>()
+    });
+    chunks.into_iter().flatten().collect()
 }

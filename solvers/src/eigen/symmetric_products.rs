@@ -1,0 +1,189 @@
+//! Products of a sparse symmetric matrix with tall dense blocks, in parallel over chunks of
+//! columns.
+//!
+//! Why by hand: faer's `sparse_dense_matmul` (0.24) runs on one thread whatever `Par` it is
+//! given and scatters each column of the sparse matrix into the output. For a symmetric `A` in
+//! full (both triangles) CSC storage, column `c` of `A` is also row `c`, so `(A X)[c, :]` is a
+//! *gather* over column `c`: each output row is written once, and the rows of a chunk of
+//! [`CHUNK`] columns of `X` packed side by side ([`Row`]) are read contiguously. Chunks are
+//! independent, so they run on rayon's threads; a chunk's buffers are `n` rows of [`CHUNK`]
+//! values, so products with thousands of columns never hold more than a few chunks at a time.
+
+use faer::sparse::SparseColMatRef;
+use faer::{MatMut, MatRef, Par};
+use rayon::prelude::*;
+
+/// Columns of one chunk.
+pub(crate) const CHUNK: usize = 8;
+
+/// One row of a chunk: the values of up to [`CHUNK`] columns in one row (missing columns 0).
+pub(crate) type Row = [f64; CHUNK];
+
+/// Whether a product uses the entries of `A` or their magnitudes `|A|`.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Entries {
+    Signed,
+    Magnitudes,
+}
+
+/// `out[c] = Σ_r A[r, c] · rows[r]` (`|A[r, c]|` for [`Entries::Magnitudes`]): the rows of
+/// `A·X` for symmetric `A` (full storage, `n × n`) and the packed chunk `rows` of `X`
+/// (`n` rows).
+pub(crate) fn gather_times(
+    a: SparseColMatRef<'_, usize, f64>,
+    rows: &[Row],
+    out: &mut [Row],
+    entries: Entries,
+) {
+    let col_ptr = a.symbolic().col_ptr();
+    let row_idx = a.symbolic().row_idx();
+    let values = a.val();
+    for (c, target) in out.iter_mut().enumerate() {
+        let mut sum = [0.0; CHUNK];
+        for p in col_ptr[c]..col_ptr[c + 1] {
+            let v = match entries {
+                Entries::Signed => values[p],
+                Entries::Magnitudes => values[p].abs(),
+            };
+            let x = &rows[row_idx[p]];
+            for (s, x) in sum.iter_mut().zip(x) {
+                *s += v * x;
+            }
+        }
+        *target = sum;
+    }
+}
+
+/// Columns `first..first + width` of `x` packed into rows (`width ≤ CHUNK`).
+pub(crate) fn pack(x: MatRef<'_, f64>, first: usize, width: usize) -> Vec<Row> {
+    let mut rows = vec![[0.0; CHUNK]; x.nrows()];
+    for j in 0..width {
+        let column = x.col(first + j);
+        for (row, &value) in rows.iter_mut().zip(column.iter()) {
+            row[j] = value;
+        }
+    }
+    rows
+}
+
+/// Calls `work(first, width, rows)` for every chunk of [`CHUNK`] columns of `x` (`rows`: the
+/// chunk packed, `width` its columns) and returns the results in column order; chunks run on
+/// rayon's threads when `par` allows more than one.
+pub(crate) fn map_column_chunks<T: Send>(
+    x: MatRef<'_, f64>,
+    par: Par,
+    work: impl Fn(usize, usize, &[Row]) -> T + Sync,
+) -> Vec<T> {
+    let chunks = x.ncols().div_ceil(CHUNK);
+    let one = |chunk: usize| {
+        let first = chunk * CHUNK;
+        let width = CHUNK.min(x.ncols() - first);
+        work(first, width, &pack(x, first, width))
+    };
+    if par.degree() > 1 {
+        (0..chunks).into_par_iter().map(one).collect()
+    } else {
+        (0..chunks).map(one).collect()
+    }
+}
+
+/// `out ← A x` for the `n × n` symmetric sparse `a` (full storage) and `x`, `out` of shape
+/// `n × s`, in parallel over chunks of columns under `par`.
+pub(crate) fn symmetric_times(
+    out: MatMut<'_, f64>,
+    a: SparseColMatRef<'_, usize, f64>,
+    x: MatRef<'_, f64>,
+    par: Par,
+) {
+    assert!(
+        a.nrows() == a.ncols()
+            && x.nrows() == a.ncols()
+            && out.nrows() == a.nrows()
+            && out.ncols() == x.ncols(),
+        "symmetric_times: shapes do not match"
+    );
+    let n = a.nrows();
+    let one = |(chunk, mut target): (usize, MatMut<'_, f64>)| {
+        let first = chunk * CHUNK;
+        let width = target.ncols();
+        let rows = pack(x, first, width);
+        let mut product = vec![[0.0; CHUNK]; n];
+        gather_times(a, &rows, &mut product, Entries::Signed);
+        for j in 0..width {
+            for (i, row) in product.iter().enumerate() {
+                target[(i, j)] = row[j];
+            }
+        }
+    };
+    if par.degree() > 1 {
+        out.par_col_chunks_mut(CHUNK).enumerate().for_each(one);
+    } else {
+        let mut rest = out;
+        let mut chunk = 0;
+        while rest.ncols() > 0 {
+            let width = CHUNK.min(rest.ncols());
+            let (head, tail) = rest.split_at_col_mut(width);
+            one((chunk, head));
+            rest = tail;
+            chunk += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::{SparseColMat, Triplet};
+    use faer::Mat;
+    use std::num::NonZeroUsize;
+
+    /// A symmetric `n × n` matrix with a few off-diagonals and mixed signs, full storage.
+    fn symmetric(n: usize) -> SparseColMat<usize, f64> {
+        let mut triplets = Vec::new();
+        for i in 0..n {
+            triplets.push(Triplet::new(i, i, 3.0 + (i % 5) as f64));
+            for offset in [1, 7, 40] {
+                if i + offset < n {
+                    let v = ((i * 13 + offset) % 11) as f64 / 5.0 - 1.0;
+                    triplets.push(Triplet::new(i, i + offset, v));
+                    triplets.push(Triplet::new(i + offset, i, v));
+                }
+            }
+        }
+        SparseColMat::try_new_from_triplets(n, n, &triplets).expect("valid triplets")
+    }
+
+    #[test]
+    fn chunked_products_match_the_dense_product() {
+        let n = 300;
+        let a = symmetric(n);
+        let dense = a.to_dense();
+        // 19 columns: two full chunks and a partial one.
+        let x = Mat::from_fn(n, 19, |i, j| ((i * 7 + j * 3) % 17) as f64 - 8.0);
+        let expected = &dense * &x;
+        for par in [
+            Par::Seq,
+            Par::Rayon(NonZeroUsize::new(2).expect("non-zero")),
+        ] {
+            let mut out = Mat::<f64>::zeros(n, 19);
+            symmetric_times(out.as_mut(), a.as_ref(), x.as_ref(), par);
+            assert!((&out - &expected).norm_max() <= 1e-12 * expected.norm_max());
+        }
+        let magnitudes = Mat::from_fn(n, n, |i, j| dense[(i, j)].abs());
+        let expected = &magnitudes * &x;
+        let sums = map_column_chunks(x.as_ref(), Par::Seq, |first, width, rows| {
+            let mut out = vec![[0.0; CHUNK]; n];
+            gather_times(a.as_ref(), rows, &mut out, Entries::Magnitudes);
+            (first, width, out)
+        });
+        assert_eq!(sums.len(), 3);
+        for (first, width, out) in sums {
+            for j in 0..width {
+                for i in 0..n {
+                    assert!((out[i][j] - expected[(i, first + j)]).abs() <= 1e-12);
+                }
+            }
+            assert!(out.iter().all(|row| row[width..].iter().all(|&v| v == 0.0)));
+        }
+    }
+}
