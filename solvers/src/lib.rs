@@ -38,13 +38,13 @@ pub mod sparse_pattern;
 pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::dense_generalized_eigen;
 pub use eigen::{
-    lowest_eigenpairs, lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress,
-    EigenRequest, EigenSolution, Eigenpairs, Pencil, Phase, PhaseStatistics, RequestError,
-    ShiftCount, SolverStatistics,
+    keep_columns, lowest_eigenpairs, lowest_eigenpairs_of, process_cpu_seconds, EigenOptions,
+    EigenProgress, EigenRequest, EigenSolution, Eigenpairs, Pencil, Phase, PhaseStatistics,
+    RequestError, ShiftCount, SolverStatistics,
 };
 pub use error::SolverError;
 pub use factor_parallelism::{FactorParallelism, SEQUENTIAL_FLOP_LIMIT};
 pub use iterative_refinement::SolveReport;
 pub use ordering::FillOrdering;
 pub use sparse_cholesky::SparseCholesky;
-pub use sparse_ldlt::{Inertia, SparseLdlt};
+pub use sparse_ldlt::{FactorPattern, Inertia, SparseLdlt};

@@ -39,6 +39,42 @@ pub struct Inertia {
     pub positive: usize,
 }
 
+/// The fill-reducing permutation of a [`SparseLdlt`] and the pattern it was analysed for
+/// ([`SparseLdlt::pattern`]): a few integers per nonzero, far smaller than the factor.
+#[derive(Debug, Clone)]
+pub struct FactorPattern {
+    forward: Vec<usize>,
+    inverse: Vec<usize>,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    ordering: FillOrdering,
+}
+
+impl FactorPattern {
+    /// A factorization of `upper` (the pattern this was taken from) with the same fill-reducing
+    /// permutation (the symbolic analysis is repeated, which is cheap next to the numeric work)
+    /// and the given parallelism.
+    ///
+    /// Errors: [`SolverError::PatternMismatch`], [`SolverError::Singular`].
+    pub fn factor(
+        &self,
+        upper: SparseColMatRef<'_, usize, f64>,
+        parallelism: Par,
+    ) -> Result<SparseLdlt, SolverError> {
+        if upper.nrows() != self.forward.len()
+            || upper.symbolic().col_ptr() != self.col_ptr.as_slice()
+            || upper.symbolic().row_idx() != self.row_idx.as_slice()
+        {
+            return Err(SolverError::PatternMismatch);
+        }
+        let permutation = PermRef::new_checked(&self.forward, &self.inverse, self.forward.len());
+        let symbolic = analyse(upper, SymmetricOrdering::Custom(permutation))?;
+        SparseLdlt::factor_analysed(upper, symbolic, self.ordering, parallelism, |len| {
+            vec![0.0; len]
+        })
+    }
+}
+
 /// Sparse symmetric `LDLᵀ` factorization of an `n × n` matrix given by its upper triangle.
 #[derive(Debug)]
 pub struct SparseLdlt {
@@ -117,37 +153,21 @@ impl SparseLdlt {
         )
     }
 
-    /// A new factorization of `upper` (same pattern) with this one's fill-reducing permutation
-    /// (no new ordering is computed; the symbolic analysis is repeated, which is cheap next to
-    /// the numeric work) and the given parallelism. Unlike [`SparseLdlt::refactor`] it leaves
-    /// `self` intact, so factorizations at several shifts can live side by side.
-    ///
-    /// Errors: [`SolverError::PatternMismatch`], [`SolverError::Singular`].
-    pub fn factor_alike(
-        &self,
-        upper: SparseColMatRef<'_, usize, f64>,
-        parallelism: Par,
-    ) -> Result<Self, SolverError> {
-        if !self.same_pattern(upper) {
-            return Err(SolverError::PatternMismatch);
-        }
-        let symbolic = match self.symbolic.perm() {
-            Some(perm) => {
-                let (forward, inverse) = perm.arrays();
-                analyse(
-                    upper,
-                    SymmetricOrdering::Custom(PermRef::new_checked(
-                        forward,
-                        inverse,
-                        self.dimension(),
-                    )),
-                )?
-            }
-            None => analyse(upper, SymmetricOrdering::Identity)?,
+    /// The fill-reducing permutation and the pattern of this factorization, without its
+    /// values: what [`FactorPattern::factor`] needs to factor other matrices of the same pattern
+    /// (the shifts `A − σM` of an eigenproblem) without a new ordering.
+    pub fn pattern(&self) -> FactorPattern {
+        let forward = match self.symbolic.perm() {
+            Some(perm) => perm.arrays().0.to_vec(),
+            None => (0..self.dimension()).collect(),
         };
-        Self::factor_analysed(upper, symbolic, self.ordering, parallelism, |len| {
-            vec![0.0; len]
-        })
+        FactorPattern {
+            inverse: inverse_permutation(&forward),
+            forward,
+            col_ptr: self.col_ptr.clone(),
+            row_idx: self.row_idx.clone(),
+            ordering: self.ordering,
+        }
     }
 
     /// The same as [`SparseLdlt::with_ordering`], with the parallelism chosen as in

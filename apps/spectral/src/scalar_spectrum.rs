@@ -6,7 +6,7 @@ use faer::Mat;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{Eigenproblem, NodeSpace};
-use tvf_solvers::{Eigenpairs, Pencil};
+use tvf_solvers::{keep_columns, Eigenpairs, Pencil};
 
 /// The eigenproblem `A x = λ M x` of one function space, restricted to its free nodes (unused
 /// nodes have zero mass and are decoupled, the solver needs a positive mass; Dirichlet nodes of a
@@ -164,7 +164,7 @@ impl ScalarSpectrum {
         }
         let n = self.full_dimension;
         let vectors = match &self.used {
-            None => drop_leading_columns(all_vectors, self.components, count),
+            None => keep_columns(all_vectors, self.components, count),
             Some(used) => {
                 let mut full = Mat::zeros(n, count);
                 for j in 0..count {
@@ -184,18 +184,4 @@ impl ScalarSpectrum {
             max_field_residual_floor,
         })
     }
-}
-
-/// Columns `skip..skip + count` of `matrix`, moved to the front in place (the eigenvectors of
-/// a million-face mesh are gigabytes: no second copy).
-fn drop_leading_columns(mut matrix: Mat<f64>, skip: usize, count: usize) -> Mat<f64> {
-    if skip > 0 {
-        for j in 0..count {
-            let (target, source) = matrix.as_mut().split_at_col_mut(j + 1);
-            target.col_mut(j).copy_from(source.col(skip - 1));
-        }
-    }
-    let rows = matrix.nrows();
-    matrix.truncate(rows, count);
-    matrix
 }

@@ -40,7 +40,7 @@ use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
-use super::tall_products::mass_inner;
+use super::tall_products::{keep_columns, mass_inner};
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
 use crate::dense_eigen::dense_generalized_eigen;
 use crate::error::SolverError;
@@ -609,23 +609,22 @@ fn solve_at_shift(
     let (values, vectors) = rayleigh_ritz(
         pencil.full.as_ref(),
         pencil.mass,
-        outcome.vectors.as_ref(),
+        outcome.vectors,
         options.parallelism,
     )?;
-    let inside: Vec<usize> = (0..values.len())
-        .filter(|&i| values[i] > lower && values[i] < upper)
-        .collect();
-    if inside.len() != wanted {
+    // The values ascend, so the ones inside the interval are consecutive.
+    let first = values.partition_point(|&v| v <= lower);
+    let found = values[first..].partition_point(|&v| v < upper);
+    if found != wanted {
         return Err(SolverError::NoConvergence {
             reason: format!(
-                "the interval ({lower:e}, {upper:e}) holds {wanted} eigenvalues, {} were found",
-                inside.len()
+                "the interval ({lower:e}, {upper:e}) holds {wanted} eigenvalues, {found} were found"
             ),
         });
     }
     Ok((
-        inside.iter().map(|&i| values[i]).collect(),
-        Mat::from_fn(n, wanted, |i, j| vectors[(i, inside[j])]),
+        values[first..first + found].to_vec(),
+        keep_columns(vectors, first, found),
     ))
 }
 

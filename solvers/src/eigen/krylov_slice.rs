@@ -22,7 +22,7 @@
 use super::mass_orthogonal::{
     mass_column_norms, mass_times, orthonormalize_block, project_out, random_orthonormal_block,
 };
-use super::tall_products::{mass_inner, tall_times};
+use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
@@ -82,6 +82,13 @@ impl ColumnStore {
     }
     pub(crate) fn view(&self) -> MatRef<'_, f64> {
         self.data.as_ref().subcols(0, self.count)
+    }
+    /// The stored columns as a matrix (no copy; the spare capacity stays allocated).
+    pub(crate) fn into_mat(self) -> Mat<f64> {
+        let mut data = self.data;
+        let rows = data.nrows();
+        data.truncate(rows, self.count);
+        data
     }
     pub(crate) fn append(&mut self, block: MatRef<'_, f64>) {
         let need = self.count + block.ncols();
@@ -279,7 +286,7 @@ pub(crate) fn run_slice(
         }
         if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
             return Ok(SliceOutcome {
-                vectors: locked.view().to_owned(),
+                vectors: locked.into_mat(),
                 solves,
             });
         }
@@ -291,17 +298,8 @@ pub(crate) fn run_slice(
         keep.truncate(keep_target);
         let p = keep.len();
         let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
-        let mut v_new = Mat::<f64>::zeros(n, p);
-        tall_times(
-            v_new.as_mut(),
-            Accum::Replace,
-            basis.as_ref().subcols(0, mv),
-            y_keep.as_ref(),
-            1.0,
-            par,
-        );
         let u_old = basis.as_ref().subcols(mv, mu).to_owned();
-        basis.as_mut().subcols_mut(0, p).copy_from(&v_new);
+        tall_times_in_place(basis.as_mut().subcols_mut(0, mv), y_keep.as_ref(), par);
         basis.as_mut().subcols_mut(p, mu).copy_from(&u_old);
         h = Mat::from_fn(p, p, |i, j| if i == j { theta[keep[i]] } else { 0.0 });
         g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);

@@ -16,4 +16,5 @@ pub use interval_slicing::{lowest_eigenpairs_of, EigenRequest, EigenSolution, Re
 pub use lowest::lowest_eigenpairs;
 pub use pencil::{Pencil, ShiftCount};
 pub use statistics::{process_cpu_seconds, Phase, PhaseStatistics, SolverStatistics};
+pub use tall_products::keep_columns;
 pub use types::{EigenOptions, EigenProgress, Eigenpairs};

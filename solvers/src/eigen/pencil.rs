@@ -7,7 +7,7 @@ use super::statistics::{Phase, SolverStatistics};
 use crate::convert::{shifted_upper_triangle, square_dimension, upper_triangle_csc};
 use crate::dense_eigen::check_mass;
 use crate::error::SolverError;
-use crate::sparse_ldlt::SparseLdlt;
+use crate::sparse_ldlt::{FactorPattern, SparseLdlt};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Par;
 use std::sync::{Arc, Mutex, PoisonError};
@@ -40,8 +40,9 @@ pub struct Pencil<'a> {
     pub(crate) scale: f64,
     /// `trace(A)/trace(M)`: the mean eigenvalue (robust to sliver triangles, unlike `scale`).
     pub(crate) mean_eigenvalue: f64,
-    /// The first factorization: later ones reuse its fill-reducing permutation.
-    template: Mutex<Option<Arc<SparseLdlt>>>,
+    /// The ordering of the first factorization, reused by all later ones (its values are not
+    /// kept: a factor of a million-face mesh's pencil takes a gigabyte).
+    template: Mutex<Option<Arc<FactorPattern>>>,
     counts: Mutex<Vec<ShiftCount>>,
     statistics: Mutex<SolverStatistics>,
 }
@@ -152,18 +153,15 @@ impl<'a> Pencil<'a> {
             let result = {
                 let mut template = self.template.lock().unwrap_or_else(PoisonError::into_inner);
                 match template.as_ref() {
-                    Some(first) => {
-                        let first = Arc::clone(first);
+                    Some(pattern) => {
+                        let pattern = Arc::clone(pattern);
                         drop(template);
-                        first
-                            .factor_alike(upper.as_ref(), parallelism)
-                            .map(Arc::new)
+                        pattern.factor(upper.as_ref(), parallelism).map(Arc::new)
                     }
                     None => SparseLdlt::new(upper.as_ref()).map(|mut f| {
                         f.set_parallelism(parallelism);
-                        let f = Arc::new(f);
-                        *template = Some(Arc::clone(&f));
-                        f
+                        *template = Some(Arc::new(f.pattern()));
+                        Arc::new(f)
                     }),
                 }
             };

@@ -19,16 +19,18 @@
 //! (M-orthonormal), `T = Qᵀ A Q` (`s × s`), `T = W Λ Wᵀ`, `X ← Q W`. Rayleigh–Ritz against `A`
 //! is accurate to `ε‖A‖` in the eigenvalues and has no `1/θ` amplification; within a cluster it
 //! diagonalises `A` exactly, so degenerate eigenvalues come out equal to rounding. Its cost is one
-//! sparse product `A Q` and two `n × s × s` dense products per slice.
+//! sparse product `A Q` and three `n × s × s` dense products per slice.
 
-use super::symmetric_products::symmetric_times;
-use super::tall_products::{mass_inner, tall_inner, tall_times};
+use super::symmetric_products::{gather_times, map_column_chunks, Entries, CHUNK};
+use super::tall_products::{mass_inner, tall_inner, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use faer::sparse::SparseColMatRef;
-use faer::{Accum, Mat, MatRef, Par};
+use faer::{Mat, MatRef, Par};
 
-/// Rayleigh–Ritz of the `n × s` block `x` (columns nearly M-orthonormal) for `A y = λ M y`.
+/// Rayleigh–Ritz of the `n × s` block `x` (columns nearly M-orthonormal) for `A y = λ M y`,
+/// in place: `x` becomes the Ritz vectors, and no other `n × s` matrix is allocated (`A Q` is
+/// formed and projected a chunk of columns at a time).
 ///
 /// - `a`: `n × n` sparse symmetric matrix in full (both triangles) storage.
 /// - `mass`: diagonal of `M` (`n` positive entries).
@@ -40,15 +42,16 @@ use faer::{Accum, Mat, MatRef, Par};
 pub(crate) fn rayleigh_ritz(
     a: SparseColMatRef<'_, usize, f64>,
     mass: &[f64],
-    x: MatRef<'_, f64>,
+    mut x: Mat<f64>,
     par: Par,
 ) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
-    let (n, s) = (x.nrows(), x.ncols());
+    let s = x.ncols();
     if s == 0 {
-        return Ok((Vec::new(), Mat::zeros(n, 0)));
+        return Ok((Vec::new(), x));
     }
-    // Q = X L⁻ᵀ with XᵀMX = L Lᵀ: exact M-orthonormalisation of a nearly orthonormal block.
-    let gram = mass_inner(x, mass, x, par);
+    // Q = X L⁻ᵀ with XᵀMX = L Lᵀ: exact M-orthonormalisation of a nearly orthonormal block
+    // (L is close to the identity, so its explicit inverse is accurate).
+    let gram = mass_inner(x.as_ref(), mass, x.as_ref(), par);
     let gram = Mat::from_fn(s, s, |i, j| 0.5 * (gram[(i, j)] + gram[(j, i)]));
     let llt = gram
         .as_ref()
@@ -56,23 +59,34 @@ pub(crate) fn rayleigh_ritz(
         .map_err(|_| SolverError::NoConvergence {
             reason: "locked eigenvectors of a slice are linearly dependent".into(),
         })?;
-    let mut q_t = x.transpose().to_owned();
-    // Lᵀ-solve from the left on Xᵀ: Qᵀ = L⁻¹ Xᵀ.
-    faer::linalg::triangular_solve::solve_lower_triangular_in_place(llt.L(), q_t.as_mut(), par);
-    let q = q_t.transpose().to_owned();
-    let mut aq = Mat::<f64>::zeros(n, s);
-    symmetric_times(aq.as_mut(), a, q.as_ref(), par);
-    let t = tall_inner(q.as_ref(), aq.as_ref(), par);
+    let mut l_inverse = Mat::<f64>::identity(s, s);
+    faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+        llt.L(),
+        l_inverse.as_mut(),
+        Par::Seq,
+    );
+    tall_times_in_place(x.as_mut(), l_inverse.transpose(), par);
+    let t = projected(a, x.as_ref(), par);
     let t = Mat::from_fn(s, s, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
     let (values, w) = symmetric_eigen(t.as_ref())?;
-    let mut vectors = Mat::<f64>::zeros(n, s);
-    tall_times(
-        vectors.as_mut(),
-        Accum::Replace,
-        q.as_ref(),
-        w.as_ref(),
-        1.0,
-        par,
-    );
-    Ok((values, vectors))
+    tall_times_in_place(x.as_mut(), w.as_ref(), par);
+    Ok((values, x))
+}
+
+/// `Qᵀ A Q` (`s × s`) for the `n × s` block `q`, a chunk of columns of `A Q` at a time.
+fn projected(a: SparseColMatRef<'_, usize, f64>, q: MatRef<'_, f64>, par: Par) -> Mat<f64> {
+    let n = q.nrows();
+    let chunks = map_column_chunks(q, par, |first, width, rows| {
+        let mut product = vec![[0.0; CHUNK]; n];
+        gather_times(a, rows, &mut product, Entries::Signed);
+        let aq = Mat::from_fn(n, width, |i, j| product[i][j]);
+        (first, tall_inner(q, aq.as_ref(), Par::Seq))
+    });
+    let mut t = Mat::<f64>::zeros(q.ncols(), q.ncols());
+    for (first, block) in chunks {
+        t.as_mut()
+            .subcols_mut(first, block.ncols())
+            .copy_from(&block);
+    }
+    t
 }

@@ -188,7 +188,7 @@ pub(crate) fn refine_interval(
                     a,
                     mass,
                     factor,
-                    vectors.as_ref(),
+                    std::mem::replace(vectors, Mat::new()),
                     &which,
                     settings.parallelism,
                 )?;
@@ -219,14 +219,14 @@ pub(crate) fn refine_interval(
 /// Refines the columns `which` of the `n × s` eigenvectors `vectors` (M-orthonormal, one
 /// interval's) with `factor = LDLᵀ(A − σM)`: `z = (A − σM)⁻¹ M x`, M-normalised, replaces `x`,
 /// and a Rayleigh–Ritz against `A` on the span of all `s` columns gives the new ascending values
-/// and M-orthonormal vectors.
+/// and M-orthonormal vectors (in the matrix given, which is consumed).
 ///
 /// Errors: [`SolverError::NoConvergence`] if the refined columns become dependent.
 pub(crate) fn refine_columns(
     a: SparseColMatRef<'_, usize, f64>,
     mass: &[f64],
     factor: &SparseLdlt,
-    vectors: MatRef<'_, f64>,
+    mut vectors: Mat<f64>,
     which: &[usize],
     par: Par,
 ) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
@@ -234,7 +234,6 @@ pub(crate) fn refine_columns(
     let mut z = Mat::from_fn(n, which.len(), |i, j| mass[i] * vectors[(i, which[j])]);
     factor.solve_in_place(z.as_mut());
     let norms = mass_inner(z.as_ref(), mass, z.as_ref(), par);
-    let mut refined = vectors.to_owned();
     for (j, &column) in which.iter().enumerate() {
         let norm = norms[(j, j)].sqrt();
         if !(norm.is_finite() && norm > 0.0) {
@@ -244,7 +243,7 @@ pub(crate) fn refine_columns(
         }
         // Keep the sign of x (z ≈ x/(λ − σ) points either way).
         let sign = if mass_inner(
-            vectors.subcols(column, 1),
+            vectors.as_ref().subcols(column, 1),
             mass,
             z.as_ref().subcols(j, 1),
             Par::Seq,
@@ -256,10 +255,10 @@ pub(crate) fn refine_columns(
             1.0
         };
         for i in 0..n {
-            refined[(i, column)] = sign * z[(i, j)] / norm;
+            vectors[(i, column)] = sign * z[(i, j)] / norm;
         }
     }
-    rayleigh_ritz(a, mass, refined.as_ref(), par)
+    rayleigh_ritz(a, mass, vectors, par)
 }
 
 /// Whether an inverse-iteration step with `factor` halves the field residual `before` of column

@@ -66,6 +66,74 @@ fn split_times(
     );
 }
 
+/// Rows per block of [`tall_times_in_place`].
+const IN_PLACE_ROWS: usize = 512;
+
+/// `B[:, 0..p] ← B · Y` in place for `B: n × m` and `Y: m × p` (`p ≤ m`; the other columns of
+/// `B` are left with stale values): each block of rows is multiplied into a small buffer and
+/// written back, so no second `n × p` matrix is allocated (the thick restarts and Rayleigh–Ritz
+/// rotations of bases with millions of rows). Row blocks run on `par.degree()` threads.
+pub(crate) fn tall_times_in_place(b: MatMut<'_, f64>, y: MatRef<'_, f64>, par: Par) {
+    assert!(
+        y.nrows() == b.ncols() && y.ncols() <= b.ncols(),
+        "tall_times_in_place: shapes do not match"
+    );
+    let parts = row_parts(b.nrows(), par);
+    in_place_parts(b, y, parts);
+}
+
+fn in_place_parts(mut b: MatMut<'_, f64>, y: MatRef<'_, f64>, parts: usize) {
+    if parts <= 1 {
+        let p = y.ncols();
+        let mut buffer = Mat::<f64>::zeros(IN_PLACE_ROWS, p);
+        let mut start = 0;
+        while start < b.nrows() {
+            let rows = IN_PLACE_ROWS.min(b.nrows() - start);
+            let block = b.rb_mut().subrows_mut(start, rows);
+            let mut product = buffer.as_mut().subrows_mut(0, rows);
+            matmul(
+                product.rb_mut(),
+                Accum::Replace,
+                block.as_ref(),
+                y,
+                1.0,
+                Par::Seq,
+            );
+            block.subcols_mut(0, p).copy_from(product.as_ref());
+            start += rows;
+        }
+        return;
+    }
+    let left_parts = parts / 2;
+    let split = b.nrows() * left_parts / parts;
+    let (top, bottom) = b.split_at_row_mut(split);
+    rayon::join(
+        || in_place_parts(top, y, left_parts),
+        || in_place_parts(bottom, y, parts - left_parts),
+    );
+}
+
+/// Columns `first..first + count` of `matrix`, moved to the front in place and the rest cut
+/// off (eigenvectors of a million-unknown problem are gigabytes: no second copy).
+pub fn keep_columns(mut matrix: Mat<f64>, first: usize, count: usize) -> Mat<f64> {
+    assert!(
+        first + count <= matrix.ncols(),
+        "keep_columns: columns {first}..{} of {}",
+        first + count,
+        matrix.ncols()
+    );
+    if first > 0 {
+        for j in 0..count {
+            // Column `first + j` is column `first − 1` of the right part.
+            let (target, source) = matrix.as_mut().split_at_col_mut(j + 1);
+            target.col_mut(j).copy_from(source.col(first - 1));
+        }
+    }
+    let rows = matrix.nrows();
+    matrix.truncate(rows, count);
+    matrix
+}
+
 /// `Bᵀ M Z` (`p × r`) for `B: n × p`, `Z: n × r` and the diagonal `mass` of `M`, rows split
 /// across `par.degree()` threads (partial products summed).
 pub(crate) fn mass_inner(
@@ -183,5 +251,16 @@ mod tests {
             }
         }
         assert!((&expected - &out_split).norm_max() <= 1e-12 * expected.norm_max());
+
+        // In place, with a partial last row block: the first 4 columns become B·Y.
+        let y = sample(13, 4, 5);
+        let mut in_place = b.clone();
+        tall_times_in_place(in_place.as_mut(), y.as_ref(), par);
+        let product = &b * &y;
+        let first = in_place.as_ref().subcols(0, 4);
+        assert!((first - &product).norm_max() <= 1e-12 * product.norm_max());
+
+        let kept = keep_columns(b.clone(), 3, 6);
+        assert_eq!(kept, b.as_ref().subcols(3, 6).to_owned());
     }
 }
