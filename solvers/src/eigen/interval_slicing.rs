@@ -188,7 +188,7 @@ pub fn lowest_eigenpairs_of(
 
     // ---- 2. solving ----
     let clock = PhaseClock::start();
-    let jobs: Vec<(usize, usize)> = plans
+    let mut jobs: Vec<(usize, usize)> = plans
         .iter()
         .enumerate()
         .flat_map(|(p, plan)| {
@@ -197,6 +197,13 @@ pub fn lowest_eigenpairs_of(
                 .map(move |i| (p, i))
         })
         .collect();
+    // The largest jobs first (dimension × eigenpairs), so that the pool ends on small ones and
+    // no thread idles long while the last big interval finishes.
+    let size = |&(p, i): &(usize, usize)| {
+        let plan = &plans[p];
+        requests[plan.request].pencil.dimension() * (plan.counts[i + 1] - plan.counts[i])
+    };
+    jobs.sort_by_key(|job| std::cmp::Reverse(size(job)));
     let settings = IntervalSettings {
         tolerance: options.tolerance,
         block_size: options.block_size,

@@ -1,7 +1,8 @@
-//! [`Pencil`]: a symmetric pencil `(A, M)` (`M` diagonal, positive) and every factorization of
-//! `A − σM` made for it, so that counting, solving and refinement share them: each shift is
-//! factored once, its inertia is remembered, and the fill-reducing ordering of the first
-//! factorization is reused by all later ones.
+//! [`Pencil`]: a symmetric pencil `(A, M)` (`M` diagonal, positive) and what is known about the
+//! factorizations of `A − σM` made for it: each shift's inertia is remembered (a shift counted
+//! once is never factored again), the fill-reducing ordering of the first factorization is
+//! reused by all later ones, and an interval of the eigensolver solves and refines with the one
+//! factorization at its shift, which is freed when the interval is done.
 
 use super::statistics::{Phase, SolverStatistics};
 use crate::convert::{shifted_upper_triangle, square_dimension, upper_triangle_csc};
