@@ -4,7 +4,7 @@ mod common;
 
 use common::*;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
-use faer::Mat;
+use faer::{Mat, Par};
 use tvf_solvers::convert::upper_triangle_csc;
 use tvf_solvers::ordering::{
     inverse_permutation, is_permutation, nested_dissection, nested_dissection_of_groups,
@@ -197,4 +197,33 @@ fn faer_full(a: &sprs::CsMat<f64>) -> SparseColMat<usize, f64> {
         csc.indices().to_vec(),
     );
     SparseColMat::new(symbolic, csc.data().to_vec())
+}
+
+#[test]
+fn a_factor_pattern_factors_shifted_matrices_like_a_fresh_factorization() {
+    let a = grid_system(12, 9);
+    let n = a.rows();
+    let upper = upper_triangle_csc(&a).unwrap();
+    let pattern = SparseLdlt::new(upper.as_ref()).unwrap().pattern();
+    // A − σI with σ inside the spectrum: indefinite, same pattern.
+    let mut shifted = a.clone();
+    for i in 0..n {
+        *shifted.get_mut(i, i).unwrap() -= 2.5;
+    }
+    let shifted_upper = upper_triangle_csc(&shifted).unwrap();
+    let reused = pattern.factor(shifted_upper.as_ref(), Par::Seq).unwrap();
+    let fresh = SparseLdlt::new(shifted_upper.as_ref()).unwrap();
+    assert_eq!(reused.inertia(), fresh.inertia());
+    assert!(reused.inertia().negative > 0 && reused.inertia().positive > 0);
+    let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
+    let mut x = Mat::from_fn(n, 1, |i, _| b[i]);
+    reused.solve_in_place(x.as_mut());
+    let x: Vec<f64> = (0..n).map(|i| x[(i, 0)]).collect();
+    assert!(relative_residual(&shifted, &x, &b) < 1e-11);
+    // Another pattern is refused.
+    let other = upper_triangle_csc(&grid_system(9, 12)).unwrap();
+    assert!(matches!(
+        pattern.factor(other.as_ref(), Par::Seq),
+        Err(SolverError::PatternMismatch)
+    ));
 }
