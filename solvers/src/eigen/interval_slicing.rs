@@ -283,18 +283,15 @@ pub fn lowest_eigenpairs_of(
         let (n, k) = (request.pencil.dimension(), request.count);
         let total: usize = parts.iter().map(|part| part.values.len()).sum();
         let mut values = Vec::with_capacity(total);
-        let mut vectors = Mat::<f64>::zeros(n, k);
-        // Each interval's vectors are freed once copied (one copy of the eigenvectors at a time).
+        // The memory of `vectors` is reserved, not touched (`Mat::zeros` would write all of it
+        // while every interval still holds its vectors): each interval's columns are written
+        // as it is freed, so the eigenvectors exist once at a time.
+        let mut vectors = Mat::<f64>::with_capacity(n, k);
         for part in parts {
-            for (j, &value) in part.values.iter().enumerate() {
-                if values.len() < k {
-                    vectors
-                        .as_mut()
-                        .col_mut(values.len())
-                        .copy_from(part.vectors.col(j));
-                }
-                values.push(value);
-            }
+            let start = vectors.ncols();
+            let take = part.values.len().min(k - start);
+            vectors.resize_with(n, start + take, |i, j| part.vectors[(i, j - start)]);
+            values.extend_from_slice(&part.values);
         }
         let top = plan.counts[plan.counts.len() - 1];
         if values.len() != top || values.windows(2).any(|w| w[1] < w[0]) {

@@ -67,44 +67,29 @@ pub(crate) struct SliceOutcome {
     pub solves: usize,
 }
 
-/// Growable `n × count` column store with amortised appends.
+/// Growable `n × count` column store: its memory is reserved up front and written only as
+/// columns are appended (growing, if ever, by reallocation, not by a zeroed copy).
 pub(crate) struct ColumnStore {
     data: Mat<f64>,
-    count: usize,
 }
 
 impl ColumnStore {
     pub(crate) fn new(n: usize, capacity: usize) -> Self {
-        Self {
-            data: Mat::zeros(n, capacity.max(1)),
-            count: 0,
-        }
+        let mut data = Mat::with_capacity(n, capacity.max(1));
+        data.resize_with(n, 0, |_, _| 0.0);
+        Self { data }
     }
     pub(crate) fn view(&self) -> MatRef<'_, f64> {
-        self.data.as_ref().subcols(0, self.count)
+        self.data.as_ref()
     }
-    /// The stored columns as a matrix (no copy; the spare capacity stays allocated).
+    /// The stored columns as a matrix (no copy).
     pub(crate) fn into_mat(self) -> Mat<f64> {
-        let mut data = self.data;
-        let rows = data.nrows();
-        data.truncate(rows, self.count);
-        data
+        self.data
     }
     pub(crate) fn append(&mut self, block: MatRef<'_, f64>) {
-        let need = self.count + block.ncols();
-        if need > self.data.ncols() {
-            let mut bigger = Mat::zeros(self.data.nrows(), need.max(2 * self.data.ncols()));
-            bigger
-                .as_mut()
-                .subcols_mut(0, self.count)
-                .copy_from(self.view());
-            self.data = bigger;
-        }
+        let (n, start) = (self.data.nrows(), self.data.ncols());
         self.data
-            .as_mut()
-            .subcols_mut(self.count, block.ncols())
-            .copy_from(block);
-        self.count = need;
+            .resize_with(n, start + block.ncols(), |i, j| block[(i, j - start)]);
     }
 }
 
