@@ -49,6 +49,17 @@ pub fn install() {
     }
 }
 
+/// A report piped into a reader that stops early (`tvf info mesh.obj | head -c 100`) ends tvf
+/// quietly with SIGPIPE, as it ends other Unix tools: Rust ignores SIGPIPE, so the write would
+/// fail and `println!` panic. Not for the editor's server, whose sockets must survive a
+/// client that goes away (tvf's output files are never pipes, so no temporary is left behind).
+pub fn end_quietly_on_closed_pipe() {
+    // SAFETY: restoring the default action of one signal; no handler is involved.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 /// Waits for the exit of the interruption in progress, if any: the main thread calls it before
 /// it ends the process itself, so that an interrupted run exits with `128 + signal` (not with
 /// the error its removed temporaries caused, nor with success).

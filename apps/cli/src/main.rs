@@ -71,6 +71,9 @@ enum Command {
 fn main() {
     interrupt::install();
     let cli = Cli::parse();
+    if !matches!(cli.command, Command::Edit(_)) {
+        interrupt::end_quietly_on_closed_pipe();
+    }
     progress::set_quiet(cli.quiet);
     let result = match cli.command {
         Command::Info(args) => commands::info::run(args),

@@ -1,6 +1,7 @@
 //! Conventions every subcommand follows: `--help` shows an example, usage errors exit with 2,
 //! bad input (a missing file) exits with 1 and names the file; the basis cache is reused and
-//! says so; a damaged cache file is recomputed with a warning.
+//! says so; a damaged cache file is recomputed with a warning; a report written into a closed
+//! pipe ends tvf quietly (SIGPIPE), not with a panic.
 
 mod common;
 
@@ -313,4 +314,31 @@ fn a_basis_file_must_match_the_requested_discretization() {
         .unwrap();
     assert_success(&output);
     assert!(String::from_utf8_lossy(&output.stderr).contains("using basis"));
+}
+
+#[test]
+fn a_report_into_a_closed_pipe_ends_quietly() {
+    use std::os::fd::{FromRawFd, OwnedFd};
+    use std::os::unix::process::ExitStatusExt;
+    // A pipe whose reading end is closed before tvf starts: its first write meets no reader.
+    let mut fds = [0; 2];
+    // SAFETY: `fds` has room for the two descriptors pipe() writes.
+    assert_eq!(unsafe { libc::pipe(fds.as_mut_ptr()) }, 0);
+    // SAFETY: both descriptors were just created and are owned by nobody else.
+    let (reading, writing) =
+        unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    drop(reading);
+    let output = tvf()
+        .args(["info", "--example", "torus"])
+        .stdout(writing)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(
+        output.status.signal(),
+        Some(libc::SIGPIPE),
+        "{:?}",
+        output.status
+    );
 }
