@@ -10,7 +10,8 @@ use std::time::Instant;
 pub enum Phase {
     /// Inertia counts (`LDLᵀ` of `A − tM`) at thresholds and interval boundaries.
     Counting,
-    /// Krylov–Schur iterations of the spectrum intervals, with their Rayleigh–Ritz against `A`.
+    /// Krylov–Schur iterations of the spectrum intervals, with their Rayleigh–Ritz against `A`
+    /// and their refinement, then the assembly of the eigenvectors and their residual check.
     Solving,
     /// Inverse-iteration refinement of the eigenpairs whose residual misses the target, made by
     /// each interval's job right after its Krylov–Schur solve (inside the solving phase).
@@ -57,7 +58,7 @@ impl AddAssign for PhaseStatistics {
 pub struct SolverStatistics {
     /// Inertia counts.
     pub counting: PhaseStatistics,
-    /// Krylov–Schur iterations.
+    /// Krylov–Schur iterations, refinement, assembly and residual check.
     pub solving: PhaseStatistics,
     /// Refinement of eigenpairs that missed the residual target. It runs inside the solving
     /// phase (each interval refines its own pairs with its own factorization), so its
