@@ -329,6 +329,7 @@ pub fn lowest_eigenpairs_of(
             pencil,
             values,
             vectors,
+            field.iter().map(|f| f.relative).collect(),
             field.iter().map(|f| f.residual).collect(),
             field.iter().map(|f| f.floor).collect(),
         ));

@@ -28,7 +28,8 @@ use faer::{Mat, MatRef, Par};
 /// same expression for the rounding error of `s` itself, `δs_i ≈ ε (|A| |x|)_i / M_ii` with
 /// random signs (`δsᵀ A δs ≈ Σ_i A_ii δs_i²`). On meshes with slivers (tiny `M_ii`) the floor
 /// can exceed any target: no `f64` vector shows a smaller residual. Both are `0` for eigenvalues
-/// at most `floor` (the kernel, which has no eigenfield).
+/// at most `floor` (the kernel, which has no eigenfield). The same pass gives every pair's plain
+/// relative residual `‖A x − λ M x‖₂ / (‖A‖₁ ‖x‖₂)` ([`FieldResidual::relative`]).
 pub(crate) fn field_residuals(
     a: SparseColMatRef<'_, usize, f64>,
     mass: &[f64],
@@ -39,14 +40,19 @@ pub(crate) fn field_residuals(
 ) -> Vec<FieldResidual> {
     let n = vectors.nrows();
     let diagonal = diagonal_of(a);
+    let norm_a = max_column_sum(a);
     let chunks = map_column_chunks(vectors, par, |first, width, x| {
         let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
         let mut ax = vec![[0.0; CHUNK]; n];
         gather_times(a, x, &mut ax, Entries::Signed);
-        // s = M⁻¹ A x − λ x, in place.
+        // r = A x − λ M x (its norm), then s = M⁻¹ r, in place.
+        let (mut r2, mut x2) = ([0.0; CHUNK], [0.0; CHUNK]);
         for ((s, x), m) in ax.iter_mut().zip(x).zip(mass) {
             for j in 0..CHUNK {
-                s[j] = s[j] / m - lambda[j] * x[j];
+                let r = s[j] - lambda[j] * m * x[j];
+                r2[j] += r * r;
+                x2[j] += x[j] * x[j];
+                s[j] = r / m;
             }
         }
         let s = ax;
@@ -66,12 +72,17 @@ pub(crate) fn field_residuals(
         }
         (0..width)
             .map(|j| {
+                let relative = r2[j].sqrt() / (norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
                 if lambda[j] <= floor {
-                    return FieldResidual::default();
+                    return FieldResidual {
+                        relative,
+                        ..FieldResidual::default()
+                    };
                 }
                 FieldResidual {
                     residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
                     floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
+                    relative,
                 }
             })
             .collect::<Vec<_>>()
@@ -92,11 +103,28 @@ fn diagonal_of(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
         .collect()
 }
 
-/// A relative eigenfield residual and its rounding floor (see [`field_residuals`]).
+/// The maximum absolute column sum `‖A‖₁` (an upper bound of `‖A‖₂`), at least the smallest
+/// positive number.
+fn max_column_sum(a: SparseColMatRef<'_, usize, f64>) -> f64 {
+    let col_ptr = a.symbolic().col_ptr();
+    (0..a.ncols())
+        .map(|c| {
+            a.val()[col_ptr[c]..col_ptr[c + 1]]
+                .iter()
+                .map(|v| v.abs())
+                .sum::<f64>()
+        })
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE)
+}
+
+/// A relative eigenfield residual, its rounding floor and the pair's plain relative residual
+/// (see [`field_residuals`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(crate) struct FieldResidual {
     pub residual: f64,
     pub floor: f64,
+    pub relative: f64,
 }
 
 impl FieldResidual {

@@ -3,7 +3,6 @@
 
 use super::pencil::Pencil;
 use super::statistics::SolverStatistics;
-use super::symmetric_products::{gather_times, map_column_chunks, Entries, CHUNK};
 use faer::{Mat, Par};
 use std::fmt;
 
@@ -125,15 +124,15 @@ pub struct Eigenpairs {
 }
 
 impl Eigenpairs {
-    /// The pairs with their residuals against `pencil`.
+    /// The pairs of `pencil` with their residuals (see the fields).
     pub(crate) fn new(
         pencil: &Pencil<'_>,
         values: Vec<f64>,
         vectors: Mat<f64>,
+        residuals: Vec<f64>,
         field_residuals: Vec<f64>,
         field_residual_floors: Vec<f64>,
     ) -> Self {
-        let residuals = relative_residuals(pencil, &values, &vectors);
         Self {
             values,
             vectors,
@@ -143,38 +142,4 @@ impl Eigenpairs {
             statistics: pencil.statistics(),
         }
     }
-}
-
-/// `‖A x − λ M x‖₂ / (‖A‖₁ ‖x‖₂)` per column, in chunks of columns (never an `n × k` product).
-fn relative_residuals(pencil: &Pencil<'_>, values: &[f64], vectors: &Mat<f64>) -> Vec<f64> {
-    let full = pencil.full.as_ref();
-    let mass = pencil.mass;
-    let n = full.nrows();
-    let col_ptr = full.symbolic().col_ptr();
-    let norm_a = (0..n)
-        .map(|j| {
-            full.val()[col_ptr[j]..col_ptr[j + 1]]
-                .iter()
-                .map(|v| v.abs())
-                .sum::<f64>()
-        })
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    let chunks = map_column_chunks(vectors.as_ref(), Par::rayon(0), |first, width, x| {
-        let mut ax = vec![[0.0; CHUNK]; n];
-        gather_times(full, x, &mut ax, Entries::Signed);
-        (0..width)
-            .map(|j| {
-                let lambda = values[first + j];
-                let (mut r2, mut x2) = (0.0, 0.0);
-                for ((ax, x), m) in ax.iter().zip(x).zip(mass) {
-                    let r = ax[j] - lambda * m * x[j];
-                    r2 += r * r;
-                    x2 += x[j] * x[j];
-                }
-                r2.sqrt() / (norm_a * f64::sqrt(x2).max(f64::MIN_POSITIVE))
-            })
-            .collect::<Vec<_>>()
-    });
-    chunks.into_iter().flatten().collect()
 }
