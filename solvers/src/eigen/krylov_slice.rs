@@ -20,7 +20,8 @@
 //! (`V ← V Y`, `H ← Θ`, `G ← G Y`), and the rest is purged.
 
 use super::mass_orthogonal::{
-    mass_column_norms, mass_times, orthonormalize_block, project_out, random_orthonormal_block,
+    mass_column_norms, mass_times, orthonormalize_block, project_out_after_known,
+    random_orthonormal_block,
 };
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
@@ -160,15 +161,14 @@ pub(crate) fn run_slice(
             }
             let own = mass_inner(basis.as_ref().subcols(mv, mu), mass, z.as_ref(), par);
             first_pass.as_mut().subrows_mut(mv, mu).copy_from(&own);
-            tall_times(
+            let mut coefficients = project_out_after_known(
                 z.as_mut(),
-                Accum::Add,
                 current,
                 first_pass.as_ref(),
-                -1.0,
+                &bases,
+                mass,
                 par,
             );
-            let mut coefficients = project_out(z.as_mut(), &bases, mass, par);
             coefficients[1] += &first_pass;
             let c = &coefficients[1];
             let next = orthonormalize_block(z, &reference, &bases, mass, rng, par)?;

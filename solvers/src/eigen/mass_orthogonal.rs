@@ -2,7 +2,7 @@
 //! written with dense matrix products (BLAS-3) so that orthogonalising a block of `r`
 //! vectors against a basis of `p` vectors costs two `p × n × r` products per pass.
 
-use super::tall_products::{mass_inner, tall_times};
+use super::tall_products::{mass_inner, sweep, tall_times};
 use crate::error::SolverError;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -62,6 +62,43 @@ pub(crate) fn project_out(
             break;
         }
         before = after;
+    }
+    total
+}
+
+/// [`project_out`] of `z − K C` without forming it first: `z ← z − K C` for the basis `K`
+/// (`n × p`, one of `bases` or spanned by them) and coefficients `C` (`p × r`) known in
+/// advance (in the Krylov–Schur expansion they follow from the Krylov relation), then the
+/// Gram–Schmidt pass against `bases`, both as two fused sweeps over the rows (see [`sweep`]):
+/// the update by `K` with the inner products against `bases`, then the update by `bases` with the
+/// column norms. The same DGKS criterion as [`project_out`] decides on further passes (rare),
+/// which [`project_out`] makes. Returns, per basis, the coefficients `Bᵀ M (z − K C)` (`C` is
+/// not included).
+pub(crate) fn project_out_after_known(
+    mut z: MatMut<'_, f64>,
+    known: MatRef<'_, f64>,
+    known_coefficients: MatRef<'_, f64>,
+    bases: &[MatRef<'_, f64>],
+    mass: &[f64],
+    par: Par,
+) -> Vec<Mat<f64>> {
+    let first = sweep(z.rb_mut(), &[(known, known_coefficients)], bases, mass, par);
+    let subtract: Vec<(MatRef<'_, f64>, MatRef<'_, f64>)> = bases
+        .iter()
+        .zip(&first.inner)
+        .map(|(b, c)| (*b, c.as_ref()))
+        .collect();
+    let second = sweep(z.rb_mut(), &subtract, &[], mass, par);
+    let mut total = first.inner;
+    let kept_norm = second
+        .squared_norms
+        .iter()
+        .zip(&first.squared_norms)
+        .all(|(after, before)| *after > SECOND_PASS_RATIO * SECOND_PASS_RATIO * *before);
+    if !kept_norm {
+        for (sum, more) in total.iter_mut().zip(project_out(z, bases, mass, par)) {
+            *sum += &more;
+        }
     }
     total
 }

@@ -9,6 +9,7 @@ mod rayleigh_ritz;
 mod refinement;
 mod statistics;
 mod symmetric_products;
+mod tall_kernels;
 mod tall_products;
 mod types;
 

@@ -21,7 +21,7 @@
 //! diagonalises `A` exactly, so degenerate eigenvalues come out equal to rounding. Its cost is one
 //! sparse product `A Q` and three `n × s × s` dense products per slice.
 
-use super::symmetric_products::{gather_times, map_column_chunks, Entries, CHUNK};
+use super::symmetric_products::{gather_times, map_column_chunks, CHUNK};
 use super::tall_products::{mass_inner, tall_inner, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
@@ -78,7 +78,7 @@ fn projected(a: SparseColMatRef<'_, usize, f64>, q: MatRef<'_, f64>, par: Par) -
     let n = q.nrows();
     let chunks = map_column_chunks(q, par, |first, width, rows| {
         let mut product = vec![[0.0; CHUNK]; n];
-        gather_times(a, rows, &mut product, Entries::Signed);
+        gather_times(a, rows, &mut product);
         let aq = Mat::from_fn(n, width, |i, j| product[i][j]);
         (first, tall_inner(q, aq.as_ref(), Par::Seq))
     });

@@ -15,7 +15,7 @@
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::statistics::ThreadClock;
 use super::symmetric_products::{
-    gather_times, map_column_chunks, symmetric_times, Entries, Row, CHUNK,
+    gather_times, gather_times_and_magnitudes, map_column_chunks, symmetric_times, Row, CHUNK,
 };
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
@@ -43,8 +43,9 @@ pub(crate) fn field_residuals(
     let norm_a = max_column_sum(a);
     let chunks = map_column_chunks(vectors, par, |first, width, x| {
         let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
-        let mut ax = vec![[0.0; CHUNK]; n];
-        gather_times(a, x, &mut ax, Entries::Signed);
+        // A x and |A| |x| (for the floor) from one pass over A.
+        let (mut ax, mut abs_ax) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
+        gather_times_and_magnitudes(a, x, &mut ax, &mut abs_ax);
         // r = A x − λ M x (its norm), then s = M⁻¹ r, in place.
         let (mut r2, mut x2) = ([0.0; CHUNK], [0.0; CHUNK]);
         for ((s, x), m) in ax.iter_mut().zip(x).zip(mass) {
@@ -57,10 +58,7 @@ pub(crate) fn field_residuals(
         }
         let s = ax;
         let mut a_s = vec![[0.0; CHUNK]; n];
-        gather_times(a, &s, &mut a_s, Entries::Signed);
-        // |A| |x|, for the floor.
-        let mut abs_ax = vec![[0.0; CHUNK]; n];
-        gather_times(a, x, &mut abs_ax, Entries::Magnitudes);
+        gather_times(a, &s, &mut a_s);
         let (mut energy, mut noise) = ([0.0; CHUNK], [0.0; CHUNK]);
         for i in 0..n {
             let weight = diagonal[i].max(0.0);

@@ -19,38 +19,46 @@ pub(crate) const CHUNK: usize = 8;
 /// One row of a chunk: the values of up to [`CHUNK`] columns in one row (missing columns 0).
 pub(crate) type Row = [f64; CHUNK];
 
-/// Whether a product uses the entries of `A` or their magnitudes `|A|`.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Entries {
-    Signed,
-    Magnitudes,
-}
-
-/// `out[c] = Σ_r A[r, c] · rows[r]` (`|A[r, c]|` for [`Entries::Magnitudes`]): the rows of
-/// `A·X` for symmetric `A` (full storage, `n × n`) and the packed chunk `rows` of `X`
-/// (`n` rows).
-pub(crate) fn gather_times(
-    a: SparseColMatRef<'_, usize, f64>,
-    rows: &[Row],
-    out: &mut [Row],
-    entries: Entries,
-) {
+/// `out[c] = Σ_r A[r, c] · rows[r]`: the rows of `A·X` for symmetric `A` (full storage,
+/// `n × n`) and the packed chunk `rows` of `X` (`n` rows).
+pub(crate) fn gather_times(a: SparseColMatRef<'_, usize, f64>, rows: &[Row], out: &mut [Row]) {
     let col_ptr = a.symbolic().col_ptr();
     let row_idx = a.symbolic().row_idx();
     let values = a.val();
     for (c, target) in out.iter_mut().enumerate() {
         let mut sum = [0.0; CHUNK];
         for p in col_ptr[c]..col_ptr[c + 1] {
-            let v = match entries {
-                Entries::Signed => values[p],
-                Entries::Magnitudes => values[p].abs(),
-            };
-            let x = &rows[row_idx[p]];
+            let (v, x) = (values[p], &rows[row_idx[p]]);
             for (s, x) in sum.iter_mut().zip(x) {
                 *s += v * x;
             }
         }
         *target = sum;
+    }
+}
+
+/// [`gather_times`] and, from the same pass over `A`, `magnitudes[c] = Σ_r |A[r, c]| · |rows[r]|`
+/// (the scale of the rounding errors of `A·X`).
+pub(crate) fn gather_times_and_magnitudes(
+    a: SparseColMatRef<'_, usize, f64>,
+    rows: &[Row],
+    out: &mut [Row],
+    magnitudes: &mut [Row],
+) {
+    let col_ptr = a.symbolic().col_ptr();
+    let row_idx = a.symbolic().row_idx();
+    let values = a.val();
+    for (c, (target, magnitude)) in out.iter_mut().zip(magnitudes.iter_mut()).enumerate() {
+        let (mut sum, mut scale) = ([0.0; CHUNK], [0.0; CHUNK]);
+        for p in col_ptr[c]..col_ptr[c + 1] {
+            let (v, x) = (values[p], &rows[row_idx[p]]);
+            for j in 0..CHUNK {
+                sum[j] += v * x[j];
+                scale[j] += v.abs() * x[j].abs();
+            }
+        }
+        *target = sum;
+        *magnitude = scale;
     }
 }
 
@@ -108,7 +116,7 @@ pub(crate) fn symmetric_times(
         let width = target.ncols();
         let rows = pack(x, first, width);
         let mut product = vec![[0.0; CHUNK]; n];
-        gather_times(a, &rows, &mut product, Entries::Signed);
+        gather_times(a, &rows, &mut product);
         for j in 0..width {
             for (i, row) in product.iter().enumerate() {
                 target[(i, j)] = row[j];
@@ -170,20 +178,26 @@ mod tests {
             assert!((&out - &expected).norm_max() <= 1e-12 * expected.norm_max());
         }
         let magnitudes = Mat::from_fn(n, n, |i, j| dense[(i, j)].abs());
-        let expected = &magnitudes * &x;
+        let expected_magnitudes = &magnitudes * Mat::from_fn(n, 19, |i, j| x[(i, j)].abs());
         let sums = map_column_chunks(x.as_ref(), Par::Seq, |first, width, rows| {
-            let mut out = vec![[0.0; CHUNK]; n];
-            gather_times(a.as_ref(), rows, &mut out, Entries::Magnitudes);
-            (first, width, out)
+            let (mut out, mut magnitudes) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
+            gather_times_and_magnitudes(a.as_ref(), rows, &mut out, &mut magnitudes);
+            (first, width, out, magnitudes)
         });
         assert_eq!(sums.len(), 3);
-        for (first, width, out) in sums {
+        for (first, width, out, magnitudes) in sums {
             for j in 0..width {
                 for i in 0..n {
                     assert!((out[i][j] - expected[(i, first + j)]).abs() <= 1e-12);
+                    let magnitude = expected_magnitudes[(i, first + j)];
+                    assert!((magnitudes[i][j] - magnitude).abs() <= 1e-12);
                 }
             }
-            assert!(out.iter().all(|row| row[width..].iter().all(|&v| v == 0.0)));
+            for rows in [&out, &magnitudes] {
+                assert!(rows
+                    .iter()
+                    .all(|row| row[width..].iter().all(|&v| v == 0.0)));
+            }
         }
     }
 }

@@ -10,6 +10,8 @@
 //! `m × r` partial inner products are summed at the end (one small reduction).
 
 use super::mass_orthogonal::mass_times;
+use super::symmetric_products::{Row, CHUNK};
+use super::tall_kernels;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::ReborrowMut;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -111,6 +113,168 @@ fn in_place_parts(mut b: MatMut<'_, f64>, y: MatRef<'_, f64>, parts: usize) {
         || in_place_parts(top, y, left_parts),
         || in_place_parts(bottom, y, parts - left_parts),
     );
+}
+
+/// Rows per block of [`sweep`]: long enough for the hardware prefetchers to stream each column
+/// segment (32 KB), short enough that the block of a basis of a few hundred columns (about
+/// 10 MB) is still in the last-level cache when the inner products read it again after the
+/// update.
+const SWEEP_ROWS: usize = 4096;
+
+/// Columns `CHUNK·chunk .. CHUNK·(chunk + 1)` of `c` (`p × r`), packed as `p` rows (missing
+/// columns 0).
+fn pack_chunk(c: MatRef<'_, f64>, chunk: usize) -> Vec<Row> {
+    let first = chunk * CHUNK;
+    let width = CHUNK.min(c.ncols() - first);
+    (0..c.nrows())
+        .map(|k| std::array::from_fn(|j| if j < width { c[(k, first + j)] } else { 0.0 }))
+        .collect()
+}
+
+/// What one [`sweep`] computed.
+pub(crate) struct Sweep {
+    /// `Bᵀ M z` (`p × r`) for each basis `B` in `project`, with `z` after the update.
+    pub inner: Vec<Mat<f64>>,
+    /// Squared M-norms of the columns of `z` after the update.
+    pub squared_norms: Vec<f64>,
+}
+
+/// One pass over the rows of `z` (`n × r`): `z ← z − Σ_i S_i C_i` for the pairs
+/// `(S_i: n × p_i, C_i: p_i × r)` in `subtract`, then `Bᵀ M z` for each basis `B` (`n × q`) in
+/// `project` and the squared M-norms of the columns of `z`, all from the updated rows while
+/// they are in cache. Block Gram–Schmidt reads each basis twice per pass (inner products, then
+/// the update), and the bases (`n × m`, `m` a few hundred) are far larger than the caches; with
+/// the update of one pass and the inner products of the next fused in one sweep, a basis is read
+/// once per pass. Rows are split across `par.degree()` threads.
+pub(crate) fn sweep(
+    z: MatMut<'_, f64>,
+    subtract: &[(MatRef<'_, f64>, MatRef<'_, f64>)],
+    project: &[MatRef<'_, f64>],
+    mass: &[f64],
+    par: Par,
+) -> Sweep {
+    let parts = row_parts(z.nrows(), par);
+    split_sweep(z, 0, subtract, project, mass, parts)
+}
+
+fn split_sweep(
+    mut z: MatMut<'_, f64>,
+    first_row: usize,
+    subtract: &[(MatRef<'_, f64>, MatRef<'_, f64>)],
+    project: &[MatRef<'_, f64>],
+    mass: &[f64],
+    parts: usize,
+) -> Sweep {
+    let r = z.ncols();
+    if parts <= 1 {
+        let mut inner: Vec<Mat<f64>> = project.iter().map(|b| Mat::zeros(b.ncols(), r)).collect();
+        let mut squared_norms = vec![0.0; r];
+        let packed_coefficients: Vec<Vec<Vec<Row>>> = subtract
+            .iter()
+            .map(|(_, c)| {
+                (0..r.div_ceil(CHUNK))
+                    .map(|chunk| pack_chunk(*c, chunk))
+                    .collect()
+            })
+            .collect();
+        let mut sums: Vec<Vec<Vec<Row>>> = project
+            .iter()
+            .map(|b| vec![vec![[0.0; CHUNK]; b.ncols()]; r.div_ceil(CHUNK)])
+            .collect();
+        let mut block = vec![[0.0; CHUNK]; SWEEP_ROWS.min(z.nrows())];
+        let mut weighted = block.clone();
+        let mut start = 0;
+        while start < z.nrows() {
+            let rows = SWEEP_ROWS.min(z.nrows() - start);
+            let global = first_row + start;
+            for chunk in 0..r.div_ceil(CHUNK) {
+                let first = chunk * CHUNK;
+                let width = CHUNK.min(r - first);
+                let values = &mut block[..rows];
+                for (i, row) in values.iter_mut().enumerate() {
+                    *row = std::array::from_fn(|j| {
+                        if j < width {
+                            z[(start + i, first + j)]
+                        } else {
+                            0.0
+                        }
+                    });
+                }
+                for ((s, _), coefficients) in subtract.iter().zip(&packed_coefficients) {
+                    if s.ncols() > 0 {
+                        tall_kernels::subtract(
+                            values,
+                            s.subrows(global, rows),
+                            &coefficients[chunk],
+                        );
+                    }
+                }
+                let mut chunk_norms = [0.0; CHUNK];
+                for (i, (row, w)) in values.iter().zip(weighted.iter_mut()).enumerate() {
+                    let m = mass[global + i];
+                    for j in 0..CHUNK {
+                        w[j] = m * row[j];
+                        chunk_norms[j] += w[j] * row[j];
+                    }
+                }
+                for j in 0..width {
+                    squared_norms[first + j] += chunk_norms[j];
+                }
+                for (b, sum) in project.iter().zip(sums.iter_mut()) {
+                    if b.ncols() > 0 {
+                        tall_kernels::inner_add(
+                            &mut sum[chunk],
+                            b.subrows(global, rows),
+                            &weighted[..rows],
+                        );
+                    }
+                }
+                for (i, row) in values.iter().enumerate() {
+                    for j in 0..width {
+                        z[(start + i, first + j)] = row[j];
+                    }
+                }
+            }
+            start += rows;
+        }
+        for (total, sum) in inner.iter_mut().zip(&sums) {
+            for (chunk, rows) in sum.iter().enumerate() {
+                let first = chunk * CHUNK;
+                for j in 0..CHUNK.min(r - first) {
+                    for (k, row) in rows.iter().enumerate() {
+                        total[(k, first + j)] = row[j];
+                    }
+                }
+            }
+        }
+        return Sweep {
+            inner,
+            squared_norms,
+        };
+    }
+    let left_parts = parts / 2;
+    let split = z.nrows() * left_parts / parts;
+    let (top, bottom) = z.split_at_row_mut(split);
+    let (mut a, b) = rayon::join(
+        || split_sweep(top, first_row, subtract, project, mass, left_parts),
+        || {
+            split_sweep(
+                bottom,
+                first_row + split,
+                subtract,
+                project,
+                mass,
+                parts - left_parts,
+            )
+        },
+    );
+    for (x, y) in a.inner.iter_mut().zip(&b.inner) {
+        *x += y;
+    }
+    for (x, y) in a.squared_norms.iter_mut().zip(&b.squared_norms) {
+        *x += y;
+    }
+    a
 }
 
 /// Columns `first..first + count` of `matrix`, moved to the front in place and the rest cut
@@ -259,6 +423,33 @@ mod tests {
         let product = &b * &y;
         let first = in_place.as_ref().subcols(0, 4);
         assert!((first - &product).norm_max() <= 1e-12 * product.norm_max());
+
+        // A sweep over 11 columns (a full chunk and a partial one), on three row ranges with
+        // partial row blocks: z − B C, then Lᵀ M z, Bᵀ M z and the squared M-norms of z.
+        let n = 2 * SWEEP_ROWS + 3 * MIN_ROWS_PER_THREAD + 17;
+        let (basis, other, z) = (sample(n, 13, 6), sample(n, 5, 7), sample(n, 11, 8));
+        let coefficients = sample(13, 11, 9);
+        let mass: Vec<f64> = (0..n).map(|i| 0.5 + (i % 7) as f64).collect();
+        let mut updated = z.clone();
+        let result = sweep(
+            updated.as_mut(),
+            &[(basis.as_ref(), coefficients.as_ref())],
+            &[other.as_ref(), basis.as_ref()],
+            &mass,
+            par,
+        );
+        let expected = &z - &basis * &coefficients;
+        assert!((&updated - &expected).norm_max() <= 1e-12 * expected.norm_max());
+        for (b, inner) in [&other, &basis].into_iter().zip(&result.inner) {
+            let exact = mass_inner(b.as_ref(), &mass, expected.as_ref(), Par::Seq);
+            assert!((inner - &exact).norm_max() <= 1e-12 * exact.norm_max());
+        }
+        for (j, norm) in result.squared_norms.iter().enumerate() {
+            let exact = (0..n)
+                .map(|i| mass[i] * expected[(i, j)].powi(2))
+                .sum::<f64>();
+            assert!((norm - exact).abs() <= 1e-12 * exact);
+        }
 
         let kept = keep_columns(b.clone(), 3, 6);
         assert_eq!(kept, b.as_ref().subcols(3, 6).to_owned());
