@@ -13,8 +13,10 @@
 //! 2. *Solving.* Each interval is factored at its midpoint σ (so the eigenvalues at both ends
 //!    have the same `|θ| = 1/|λ − σ|`) and solved by the Krylov–Schur slice
 //!    ([`super::krylov_slice`]) with exact targets `ν(σ) − ν(b_i)` below and `ν(b_{i+1}) − ν(σ)`
-//!    above σ, no deflation against other intervals; its locked vectors go through the
-//!    Rayleigh–Ritz against `A` ([`super::rayleigh_ritz`]) and those inside the interval are
+//!    above σ, no deflation against other intervals; its locked vectors get one
+//!    inverse-iteration step with the interval's factorization (it damps the high-frequency
+//!    rounding noise of the Krylov vectors, which the eigenfields amplify) and go through the
+//!    Rayleigh–Ritz against `A` ([`super::rayleigh_ritz`]), and those inside the interval are
 //!    kept. The intervals of every pencil run as one pool of jobs on `EigenOptions::threads`
 //!    threads; interval `i` of a pencil is seeded from `(seed, i)`, so the result does not depend
 //!    on thread timing. An interval that does not converge within `EigenOptions::max_restarts`
@@ -25,7 +27,7 @@
 //!    was 1000), and a cluster that straddles an interval end converges slowly; both are cured by
 //!    a different shift and a narrower interval.
 //! 3. *Refinement*, by the interval's job right after its solve, with the same factorization
-//!    (so no factorization outlives its job): pairs whose eigenfield residual misses
+//!    (so no factorization outlives its job): pairs whose eigenfield residual still misses
 //!    `EigenOptions::refinement_target` (and is clearly above its rounding floor) get
 //!    inverse-iteration steps ([`super::refinement`]) if a trial step on the worst of them
 //!    halves its residual; the others are left as they are.
@@ -37,8 +39,10 @@
 
 use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
 use super::pencil::{Pencil, ShiftCount};
-use super::rayleigh_ritz::rayleigh_ritz;
-use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
+use super::refinement::{
+    field_residuals, inverse_iteration_then_rayleigh_ritz, refine_interval, Refinement,
+    RefinementSettings,
+};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::{keep_columns, mass_inner};
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
@@ -611,12 +615,15 @@ fn solve_at_shift(
     };
     pencil.add_solves(Phase::Solving, solves);
     let outcome = outcome?;
-    let (values, vectors) = rayleigh_ritz(
+    let locked = outcome.vectors.ncols();
+    let (values, vectors) = inverse_iteration_then_rayleigh_ritz(
         pencil.full.as_ref(),
         pencil.mass,
+        factor,
         outcome.vectors,
         options.parallelism,
     )?;
+    pencil.add_solves(Phase::Solving, locked);
     // The values ascend, so the ones inside the interval are consecutive.
     let first = values.partition_point(|&v| v <= lower);
     let found = values[first..].partition_point(|&v| v < upper);

@@ -8,10 +8,11 @@
 //! - `V` (`n × m`, "expanded"): `OP V = V H + U G` with symmetric `H` (`m × m`);
 //! - `U` (`n × r`, "unexpanded"): the next block to which `OP` is applied.
 //!
-//! Expanding applies `OP` to `U` with one blocked solve, orthogonalises the result with BLAS-3
-//! block Gram–Schmidt (one classical pass against `V`, where the cancellation is, then
-//! DGKS-checked passes against locked and `V` together, usually one), and appends
-//! `U` to `V`. The locked vectors' eigenvalues are recomputed afterwards by the driver's
+//! Expanding applies `OP` to `U` with one blocked solve, orthogonalises the result with block
+//! Gram–Schmidt (the update by `V` with the coefficients the Krylov relation gives, where the
+//! cancellation is, then DGKS-checked passes against locked and `V` together, usually one; the
+//! two are fused into two sweeps over the rows, see
+//! [`super::mass_orthogonal::project_out_after_known`]), and appends `U` to `V`. The locked vectors' eigenvalues are recomputed afterwards by the driver's
 //! Rayleigh–Ritz against `A` (see `rayleigh_ritz.rs` for why the Ritz values `θ` alone are not
 //! accurate enough).
 //!

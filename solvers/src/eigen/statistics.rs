@@ -10,8 +10,9 @@ use std::time::Instant;
 pub enum Phase {
     /// Inertia counts (`LDLᵀ` of `A − tM`) at thresholds and interval boundaries.
     Counting,
-    /// Krylov–Schur iterations of the spectrum intervals, with their Rayleigh–Ritz against `A`
-    /// and their refinement, then the assembly of the eigenvectors and their residual check.
+    /// Krylov–Schur iterations of the spectrum intervals, with the inverse-iteration step on
+    /// all locked vectors, their Rayleigh–Ritz against `A` and their refinement, then the
+    /// assembly of the eigenvectors and their residual check.
     Solving,
     /// Inverse-iteration refinement of the eigenpairs whose residual misses the target, made by
     /// each interval's job right after its Krylov–Schur solve (inside the solving phase).
@@ -65,7 +66,8 @@ pub struct SolverStatistics {
     /// `wall_seconds` and `cpu_seconds` are summed over the threads that refined, and are part of
     /// the solving phase's seconds, not added to them.
     pub refinement: PhaseStatistics,
-    /// Eigenpairs that were refined (the others met the target from the Krylov iteration).
+    /// Eigenpairs that were refined (the others met the target after the inverse-iteration step
+    /// every interval makes on all its pairs, whose solves count in the solving phase).
     pub refined_pairs: usize,
 }
 
