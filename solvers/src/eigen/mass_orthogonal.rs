@@ -2,7 +2,7 @@
 //! written with dense matrix products (BLAS-3) so that orthogonalising a block of `r`
 //! vectors against a basis of `p` vectors costs two `p × n × r` products per pass.
 
-use super::tall_products::{mass_inner, sweep, tall_times};
+use super::tall_products::{mass_inner, sweep, tall_times, tall_times_in_place};
 use crate::error::SolverError;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -253,16 +253,7 @@ fn cholesky_qr2(z: &Mat<f64>, mass: &[f64], par: Par) -> Option<OrthonormalBlock
         let sym = Mat::from_fn(r, r, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
         let u = small_cholesky(sym.as_ref())?;
         let inv = upper_inverse(u.as_ref());
-        let mut next = Mat::zeros(q.nrows(), r);
-        tall_times(
-            next.as_mut(),
-            Accum::Replace,
-            q.as_ref(),
-            inv.as_ref(),
-            1.0,
-            par,
-        );
-        q = next;
+        tall_times_in_place(q.as_mut(), inv.as_ref(), par);
         let mut t = Mat::zeros(r, r);
         matmul(
             t.as_mut(),
