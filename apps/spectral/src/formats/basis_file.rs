@@ -223,7 +223,7 @@ fn write_basis(
     path: &Path,
     key: &BasisFileKey,
     contents: &BasisContents<'_>,
-    columns: &dyn Fn(Range<usize>) -> Vec<Vec<f64>>,
+    columns: &(dyn Fn(Range<usize>) -> Vec<Vec<f64>> + Sync),
 ) -> Result<(), BasisFileError> {
     let n = contents.field_dimension;
     let count = contents.eigenvalues.len();
@@ -261,19 +261,34 @@ fn write_basis(
         buffer.clear();
         buffer.extend(contents.field_mass.iter().flat_map(|x| x.to_le_bytes()));
         out.write_all(&buffer)?;
-        for start in (0..count).step_by(FIELD_CHUNK) {
-            for column in columns(start..(start + FIELD_CHUNK).min(count)) {
-                if column.len() != n {
-                    return Err(std::io::Error::other(format!(
-                        "a field has {} values, not {n}",
-                        column.len()
-                    )));
+        // The next chunk of fields is formed on another thread while this one is written, so
+        // forming (parallel) and writing (one thread) overlap.
+        std::thread::scope(|scope| {
+            let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Vec<f64>>>(1);
+            scope.spawn(move || {
+                for start in (0..count).step_by(FIELD_CHUNK) {
+                    let chunk = columns(start..(start + FIELD_CHUNK).min(count));
+                    // A closed channel means the writer failed and stopped.
+                    if sender.send(chunk).is_err() {
+                        break;
+                    }
                 }
-                buffer.clear();
-                buffer.extend(column.iter().flat_map(|x| x.to_le_bytes()));
-                out.write_all(&buffer)?;
+            });
+            for chunk in &receiver {
+                for column in chunk {
+                    if column.len() != n {
+                        return Err(std::io::Error::other(format!(
+                            "a field has {} values, not {n}",
+                            column.len()
+                        )));
+                    }
+                    buffer.clear();
+                    buffer.extend(column.iter().flat_map(|x| x.to_le_bytes()));
+                    out.write_all(&buffer)?;
+                }
             }
-        }
+            Ok(())
+        })?;
         let checksum = out.hash.finish();
         w.write_all(&checksum.to_le_bytes())
     })
