@@ -31,6 +31,7 @@ mod error;
 mod factor_parallelism;
 pub mod iterative_refinement;
 pub mod ordering;
+mod packed_ldlt_solve;
 mod sparse_cholesky;
 mod sparse_ldlt;
 pub mod sparse_pattern;

@@ -512,10 +512,16 @@ fn solve_interval(
         Ok((mut values, mut vectors)) => {
             // Refined here, while the factorization is at hand, not in a later phase that
             // would have to keep every interval's factorization alive.
+            let factor_at = |shift: f64| {
+                pencil
+                    .factor(shift, Phase::Refinement, Par::Seq)
+                    .map(|(f, _)| f)
+            };
             let refinement = refine_interval(
                 pencil.full.as_ref(),
                 pencil.mass,
                 &factor,
+                &factor_at,
                 &mut values,
                 &mut vectors,
                 &RefinementSettings {
