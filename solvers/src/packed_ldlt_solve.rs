@@ -12,6 +12,7 @@
 //! FMA (chosen at run time).
 
 use faer::perm::PermRef;
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
 use faer::MatMut;
 
@@ -37,22 +38,39 @@ pub(crate) fn solve_packed(
     let mut first = 0;
     while first < rhs.ncols() {
         let width = WIDTH.min(rhs.ncols() - first);
-        let source = |i: usize| perm.map_or(i, |p| p.arrays().0[i]);
-        for (i, row) in x.iter_mut().enumerate() {
-            let from = source(i);
-            *row = std::array::from_fn(|j| {
-                if j < width {
-                    rhs[(from, first + j)]
-                } else {
-                    0.0
+        // Row i of the permuted system is row forward[i] of rhs; one column at a time, so the
+        // random accesses stay inside one contiguous column.
+        let forward = perm.map(|p| p.arrays().0);
+        x.iter_mut().for_each(|row| *row = [0.0; WIDTH]);
+        for j in 0..width {
+            let column = rhs.rb().col(first + j);
+            match forward {
+                Some(forward) => {
+                    for (row, &from) in x.iter_mut().zip(forward) {
+                        row[j] = column[from];
+                    }
                 }
-            });
+                None => {
+                    for (row, value) in x.iter_mut().zip(column.iter()) {
+                        row[j] = *value;
+                    }
+                }
+            }
         }
         solve_rows(factor, &mut x);
-        for (i, row) in x.iter().enumerate() {
-            let to = source(i);
-            for j in 0..width {
-                rhs[(to, first + j)] = row[j];
+        for j in 0..width {
+            let mut column = rhs.rb_mut().col_mut(first + j);
+            match forward {
+                Some(forward) => {
+                    for (row, &to) in x.iter().zip(forward) {
+                        column[to] = row[j];
+                    }
+                }
+                None => {
+                    for (row, value) in x.iter().zip(column.iter_mut()) {
+                        *value = row[j];
+                    }
+                }
             }
         }
         first += width;

@@ -82,7 +82,19 @@ pub(crate) fn project_out_after_known(
     mass: &[f64],
     par: Par,
 ) -> Vec<Mat<f64>> {
-    let first = sweep(z.rb_mut(), &[(known, known_coefficients)], bases, mass, par);
+    // Only the rows of C with a nonzero entry take part (in the Krylov expansion, those of the
+    // last block and of the block itself, except after a restart): the other columns of K are
+    // still read for the inner products, but not multiplied.
+    let nonzero =
+        |k: &usize| (0..known_coefficients.ncols()).any(|j| known_coefficients[(*k, j)] != 0.0);
+    let rows = 0..known_coefficients.nrows();
+    let first_row = rows.clone().find(nonzero).unwrap_or(0);
+    let end_row = rows.rev().find(nonzero).map_or(first_row, |k| k + 1);
+    let active = (
+        known.subcols(first_row, end_row - first_row),
+        known_coefficients.subrows(first_row, end_row - first_row),
+    );
+    let first = sweep(z.rb_mut(), &[active], bases, mass, par);
     let subtract: Vec<(MatRef<'_, f64>, MatRef<'_, f64>)> = bases
         .iter()
         .zip(&first.inner)

@@ -13,7 +13,7 @@ use super::mass_orthogonal::mass_times;
 use super::symmetric_products::{Row, CHUNK};
 use super::tall_kernels;
 use faer::linalg::matmul::matmul;
-use faer::reborrow::ReborrowMut;
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 
 /// Fewest rows a thread gets; smaller products run on one thread.
@@ -191,14 +191,14 @@ fn split_sweep(
                 let first = chunk * CHUNK;
                 let width = CHUNK.min(r - first);
                 let values = &mut block[..rows];
-                for (i, row) in values.iter_mut().enumerate() {
-                    *row = std::array::from_fn(|j| {
-                        if j < width {
-                            z[(start + i, first + j)]
-                        } else {
-                            0.0
-                        }
-                    });
+                if width < CHUNK {
+                    values.iter_mut().for_each(|row| *row = [0.0; CHUNK]);
+                }
+                for j in 0..width {
+                    let column = z.rb().col(first + j).subrows(start, rows);
+                    for (row, value) in values.iter_mut().zip(column.iter()) {
+                        row[j] = *value;
+                    }
                 }
                 for ((s, _), coefficients) in subtract.iter().zip(&packed_coefficients) {
                     if s.ncols() > 0 {
@@ -229,9 +229,10 @@ fn split_sweep(
                         );
                     }
                 }
-                for (i, row) in values.iter().enumerate() {
-                    for j in 0..width {
-                        z[(start + i, first + j)] = row[j];
+                for j in 0..width {
+                    let column = z.rb_mut().col_mut(first + j).subrows_mut(start, rows);
+                    for (row, value) in values.iter().zip(column.iter_mut()) {
+                        *value = row[j];
                     }
                 }
             }
