@@ -1,6 +1,7 @@
 //! Block Gram–Schmidt in the inner product `⟨x, y⟩_M = xᵀ M y` with a diagonal `M`,
-//! written with dense matrix products (BLAS-3) so that orthogonalising a block of `r`
-//! vectors against a basis of `p` vectors costs two `p × n × r` products per pass.
+//! written with dense matrix products so that orthogonalising a block of `r` vectors against a
+//! basis of `p` vectors costs two `p × n × r` products per pass (in the Krylov expansion, the
+//! fused row sweeps of `tall_products.rs`, which read the basis once per pass).
 
 use super::tall_products::{mass_inner, sweep, tall_times, tall_times_in_place};
 use crate::error::SolverError;

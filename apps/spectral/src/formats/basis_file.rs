@@ -262,9 +262,10 @@ fn write_basis(
         buffer.extend(contents.field_mass.iter().flat_map(|x| x.to_le_bytes()));
         out.write_all(&buffer)?;
         // The next chunk of fields is formed on another thread while this one is written, so
-        // forming (parallel) and writing (one thread) overlap.
+        // forming (parallel) and writing (one thread) overlap; the channel holds no chunk of its
+        // own, so at most two chunks exist at a time (2 GB at a million faces).
         std::thread::scope(|scope| {
-            let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Vec<f64>>>(1);
+            let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Vec<f64>>>(0);
             scope.spawn(move || {
                 for start in (0..count).step_by(FIELD_CHUNK) {
                     let chunk = columns(start..(start + FIELD_CHUNK).min(count));
