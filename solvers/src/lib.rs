@@ -32,6 +32,7 @@ mod factor_parallelism;
 pub mod iterative_refinement;
 pub mod ordering;
 mod packed_ldlt_solve;
+mod packed_rows;
 mod sparse_cholesky;
 mod sparse_ldlt;
 pub mod sparse_pattern;

@@ -16,11 +16,7 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
 use faer::MatMut;
 
-/// Right-hand sides solved together (one row of them is one cache line).
-pub(crate) const WIDTH: usize = 8;
-
-/// The values of the [`WIDTH`] right-hand sides at one unknown (missing columns 0).
-type Row = [f64; WIDTH];
+use crate::packed_rows::{has_avx2_fma, multiply_add, Row, WIDTH};
 
 /// Overwrites `rhs` (`n × r`) with the solution of `P L D Lᵀ Pᵀ X = rhs` for the supernodal
 /// factor (`symbolic`, `values`) and the fill-reducing permutation `perm` (`None`: identity;
@@ -30,7 +26,29 @@ pub(crate) fn solve_packed(
     symbolic: &SymbolicSupernodalCholesky<usize>,
     values: &[f64],
     perm: Option<PermRef<'_, usize>>,
+    rhs: MatMut<'_, f64>,
+) {
+    solve_packed_with(symbolic, values, perm, rhs, solve_rows);
+}
+
+/// [`solve_packed`] with the portable loops whatever the CPU (to test them where FMA exists).
+#[cfg(test)]
+pub(crate) fn solve_packed_portable(
+    symbolic: &SymbolicSupernodalCholesky<usize>,
+    values: &[f64],
+    perm: Option<PermRef<'_, usize>>,
+    rhs: MatMut<'_, f64>,
+) {
+    solve_packed_with(symbolic, values, perm, rhs, solve_rows_body::<false>);
+}
+
+/// [`solve_packed`] with `solve` for the packed triangular solves.
+fn solve_packed_with(
+    symbolic: &SymbolicSupernodalCholesky<usize>,
+    values: &[f64],
+    perm: Option<PermRef<'_, usize>>,
     mut rhs: MatMut<'_, f64>,
+    solve: fn(SupernodalLdltRef<'_, usize, f64>, &mut [Row]),
 ) {
     let n = rhs.nrows();
     let factor = SupernodalLdltRef::new(symbolic, values);
@@ -57,7 +75,7 @@ pub(crate) fn solve_packed(
                 }
             }
         }
-        solve_rows(factor, &mut x);
+        solve(factor, &mut x);
         for j in 0..width {
             let mut column = rhs.rb_mut().col_mut(first + j);
             match forward {
@@ -80,7 +98,7 @@ pub(crate) fn solve_packed(
 /// `x ← (L D Lᵀ)⁻¹ x` on packed rows.
 fn solve_rows(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+    if has_avx2_fma() {
         // SAFETY: the CPU supports the features the function is compiled for.
         unsafe { solve_rows_fma(factor, x) };
         return;
@@ -98,11 +116,7 @@ fn solve_rows_fma(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
 #[inline(always)]
 fn subtract_scaled<const FUSED: bool>(target: &mut Row, l: f64, source: &Row) {
     for j in 0..WIDTH {
-        target[j] = if FUSED {
-            (-l).mul_add(source[j], target[j])
-        } else {
-            target[j] - l * source[j]
-        };
+        target[j] = multiply_add::<FUSED>(-l, source[j], target[j]);
     }
 }
 

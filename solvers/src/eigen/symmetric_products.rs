@@ -13,11 +13,8 @@ use faer::sparse::SparseColMatRef;
 use faer::{MatMut, MatRef, Par};
 use rayon::prelude::*;
 
-/// Columns of one chunk.
-pub(crate) const CHUNK: usize = 8;
-
-/// One row of a chunk: the values of up to [`CHUNK`] columns in one row (missing columns 0).
-pub(crate) type Row = [f64; CHUNK];
+/// Columns of one chunk, and one row of a chunk (see [`crate::packed_rows`]).
+pub(crate) use crate::packed_rows::{Row, WIDTH as CHUNK};
 
 /// `out[c] = Σ_r A[r, c] · rows[r]`: the rows of `A·X` for symmetric `A` (full storage,
 /// `n × n`) and the packed chunk `rows` of `X` (`n` rows).

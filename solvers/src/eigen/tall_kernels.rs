@@ -13,7 +13,7 @@
 //! loops are compiled twice, with and without AVX2 + FMA, and the variant is chosen at run time
 //! (the crates are built for the baseline x86-64 target).
 
-use super::symmetric_products::{Row, CHUNK};
+use crate::packed_rows::{has_avx2_fma, multiply_add, Row, WIDTH as CHUNK};
 use faer::MatRef;
 
 /// Columns of `B` consumed together by [`inner_add`] (independent accumulators hide the FMA
@@ -31,7 +31,7 @@ pub(crate) fn inner_add(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]) {
         "inner_add: shapes do not match"
     );
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+    if has_avx2_fma() {
         // SAFETY: the CPU supports the features the function is compiled for.
         unsafe { inner_add_fma(out, b, w) };
         return;
@@ -47,7 +47,7 @@ pub(crate) fn subtract(z: &mut [Row], b: MatRef<'_, f64>, c: &[Row]) {
         "subtract: shapes do not match"
     );
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma") {
+    if has_avx2_fma() {
         // SAFETY: the CPU supports the features the function is compiled for.
         unsafe { subtract_fma(z, b, c) };
         return;
@@ -65,17 +65,6 @@ fn inner_add_fma(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]) {
 #[target_feature(enable = "avx2,fma")]
 fn subtract_fma(z: &mut [Row], b: MatRef<'_, f64>, c: &[Row]) {
     subtract_body::<true>(z, b, c);
-}
-
-/// `a + x · y`, fused when `FUSED` (only in functions compiled with FMA: elsewhere `mul_add`
-/// would call a slow library routine).
-#[inline(always)]
-fn multiply_add<const FUSED: bool>(x: f64, y: f64, a: f64) -> f64 {
-    if FUSED {
-        x.mul_add(y, a)
-    } else {
-        a + x * y
-    }
 }
 
 /// The contiguous column `k` of `b`.
