@@ -272,37 +272,64 @@ pub(crate) fn refine_interval(
     stubborn.sort_by(|&i, &j| before[j].residual.total_cmp(&before[i].residual));
     stubborn.truncate(MAX_NEAR_SHIFT_PAIRS);
     if !stubborn.is_empty() {
-        let mut trial = vectors.clone();
-        for &j in &stubborn {
-            let gap = [j.checked_sub(1), Some(j + 1)]
-                .into_iter()
-                .flatten()
-                .filter_map(|k| values.get(k))
-                .map(|v| (v - values[j]).abs())
-                .fold(values[j].abs(), f64::min);
-            let near = factor_at(values[j] - 0.01 * gap)?;
-            let mut z = Mat::from_fn(trial.nrows(), 1, |i, _| mass[i] * trial[(i, j)]);
-            near.solve_in_place(z.as_mut());
-            outcome.solves += 1;
-            let norm = mass_inner(z.as_ref(), mass, z.as_ref(), Par::Seq)[(0, 0)].sqrt();
-            if !(norm.is_finite() && norm > 0.0) {
-                return Err(SolverError::NoConvergence {
-                    reason: "an inverse-iteration step of the refinement lost its vector".into(),
-                });
-            }
-            trial.col_mut(j).copy_from(z.col(0) / norm);
-        }
-        let (new_values, new_vectors) = rayleigh_ritz(a, mass, trial, settings.parallelism)?;
-        let after = residual_of(&new_values, &new_vectors);
+        outcome.solves += stubborn.len();
+        // Best effort: a failed factorization or a lost vector leaves the pairs as they are
+        // (their residuals are reported either way), and so does a result that is not better.
+        let stepped = near_shift_steps(a, mass, factor_at, values, vectors, &stubborn, settings);
         let worst = |r: &[FieldResidual]| r.iter().map(|r| r.residual).fold(0.0, f64::max);
-        if worst(&after) < worst(&before) {
-            outcome.refined = outcome.refined.max(stubborn.len());
-            *values = new_values;
-            *vectors = new_vectors;
+        if let Some((new_values, new_vectors, after)) = stepped {
+            if after.iter().all(|r| r.residual.is_finite()) && worst(&after) < worst(&before) {
+                outcome.refined = outcome.refined.max(stubborn.len());
+                *values = new_values;
+                *vectors = new_vectors;
+            }
         }
     }
     (outcome.wall_seconds, outcome.cpu_seconds) = clock.elapsed();
     Ok(outcome)
+}
+
+/// One inverse-iteration step for each column in `pairs` of the `n × s` eigenvectors
+/// `vectors`, at a shift of its own (`λ_j − gap/100`, `gap` the distance to the nearest
+/// neighbouring eigenvalue or to 0), then the Rayleigh–Ritz on the span of all columns.
+/// Returns the new values, vectors and field residuals, or `None` if a factorization fails or
+/// a vector is lost.
+fn near_shift_steps(
+    a: SparseColMatRef<'_, usize, f64>,
+    mass: &[f64],
+    factor_at: &dyn Fn(f64) -> Result<Arc<SparseLdlt>, SolverError>,
+    values: &[f64],
+    vectors: &Mat<f64>,
+    pairs: &[usize],
+    settings: &RefinementSettings,
+) -> Option<(Vec<f64>, Mat<f64>, Vec<FieldResidual>)> {
+    let mut trial = vectors.clone();
+    for &j in pairs {
+        let gap = [j.checked_sub(1), Some(j + 1)]
+            .into_iter()
+            .flatten()
+            .filter_map(|k| values.get(k))
+            .map(|v| (v - values[j]).abs())
+            .fold(values[j].abs(), f64::min);
+        let near = factor_at(values[j] - 0.01 * gap).ok()?;
+        let mut z = Mat::from_fn(trial.nrows(), 1, |i, _| mass[i] * trial[(i, j)]);
+        near.solve_in_place(z.as_mut());
+        let norm = mass_inner(z.as_ref(), mass, z.as_ref(), Par::Seq)[(0, 0)].sqrt();
+        if !(norm.is_finite() && norm > 0.0) {
+            return None;
+        }
+        trial.col_mut(j).copy_from(z.col(0) / norm);
+    }
+    let (new_values, new_vectors) = rayleigh_ritz(a, mass, trial, settings.parallelism).ok()?;
+    let residuals = field_residuals(
+        a,
+        mass,
+        &new_values,
+        new_vectors.as_ref(),
+        settings.floor,
+        settings.parallelism,
+    );
+    Some((new_values, new_vectors, residuals))
 }
 
 /// Refines the columns `which` of the `n × s` eigenvectors `vectors` (M-orthonormal, one
