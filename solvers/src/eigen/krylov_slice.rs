@@ -12,7 +12,8 @@
 //! Gram–Schmidt (the update by `V` with the coefficients the Krylov relation gives, where the
 //! cancellation is, then DGKS-checked passes against locked and `V` together, usually one; the
 //! two are fused into two sweeps over the rows, see
-//! [`super::mass_orthogonal::project_out_after_known`]), and appends `U` to `V`. The locked vectors' eigenvalues are recomputed afterwards by the driver's
+//! [`super::mass_orthogonal::project_out_after_known`]), and appends `U` to `V`. The locked
+//! vectors' eigenvalues are recomputed afterwards by the driver's
 //! Rayleigh–Ritz against `A` (see `rayleigh_ritz.rs` for why the Ritz values `θ` alone are not
 //! accurate enough).
 //!
