@@ -15,22 +15,25 @@
 //!
 //! The cure is to take the *span* of the locked vectors, which is accurate (each locked vector
 //! is an accurate member of the invariant subspace up to mixing inside it and the rounding-level
-//! components above), and re-extract eigenpairs from it with `A` itself: `Q = X R⁻¹`
-//! (M-orthonormal), `T = Qᵀ A Q` (`s × s`), `T = W Λ Wᵀ`, `X ← Q W`. Rayleigh–Ritz against `A`
+//! components above), and re-extract eigenpairs from it with `A` itself: `Q = X L⁻ᵀ`
+//! (M-orthonormal, `XᵀMX = L Lᵀ`), `T = Qᵀ A Q = L⁻¹ (Xᵀ A X) L⁻ᵀ` (`s × s`), `T = W Λ Wᵀ`,
+//! `X ← Q W = X (L⁻ᵀ W)`. Rayleigh–Ritz against `A`
 //! is accurate to `ε‖A‖` in the eigenvalues and has no `1/θ` amplification; within a cluster it
 //! diagonalises `A` exactly, so degenerate eigenvalues come out equal to rounding. Its cost is one
-//! sparse product `A Q` and three `n × s × s` dense products per slice.
+//! sparse product `A X` and three `n × s × s` dense products per slice (`XᵀMX`, `XᵀAX` and the
+//! rotation).
 
-use super::symmetric_products::{gather_times, map_column_chunks, CHUNK};
+use super::symmetric_products::{gather_times, pack, CHUNK};
 use super::tall_products::{mass_inner, tall_inner, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, MatRef, Par};
+use rayon::prelude::*;
 
 /// Rayleigh–Ritz of the `n × s` block `x` (columns nearly M-orthonormal) for `A y = λ M y`,
-/// in place: `x` becomes the Ritz vectors, and no other `n × s` matrix is allocated (`A Q` is
-/// formed and projected a chunk of columns at a time).
+/// in place: `x` becomes the Ritz vectors, and no other `n × s` matrix is allocated (`A X` is
+/// formed and projected [`PROJECTED_COLUMNS`] columns at a time).
 ///
 /// - `a`: `n × n` sparse symmetric matrix in full (both triangles) storage.
 /// - `mass`: diagonal of `M` (`n` positive entries).
@@ -49,8 +52,9 @@ pub(crate) fn rayleigh_ritz(
     if s == 0 {
         return Ok((Vec::new(), x));
     }
-    // Q = X L⁻ᵀ with XᵀMX = L Lᵀ: exact M-orthonormalisation of a nearly orthonormal block
-    // (L is close to the identity, so its explicit inverse is accurate).
+    // Q = X L⁻ᵀ with XᵀMX = L Lᵀ is M-orthonormal (L is close to the identity for a nearly
+    // orthonormal block, so its explicit inverse is accurate), and Qᵀ A Q = L⁻¹ (Xᵀ A X) L⁻ᵀ:
+    // Q is never formed, and X is rotated once, by L⁻ᵀ W.
     let gram = mass_inner(x.as_ref(), mass, x.as_ref(), par);
     let gram = Mat::from_fn(s, s, |i, j| 0.5 * (gram[(i, j)] + gram[(j, i)]));
     let llt = gram
@@ -65,25 +69,45 @@ pub(crate) fn rayleigh_ritz(
         l_inverse.as_mut(),
         Par::Seq,
     );
-    tall_times_in_place(x.as_mut(), l_inverse.transpose(), par);
-    let t = projected(a, x.as_ref(), par);
+    let t = &l_inverse * projected(a, x.as_ref(), par) * l_inverse.transpose();
     let t = Mat::from_fn(s, s, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
     let (values, w) = symmetric_eigen(t.as_ref())?;
-    tall_times_in_place(x.as_mut(), w.as_ref(), par);
+    let rotation = l_inverse.transpose() * &w;
+    tall_times_in_place(x.as_mut(), rotation.as_ref(), par);
     Ok((values, x))
 }
 
-/// `Qᵀ A Q` (`s × s`) for the `n × s` block `q`, a chunk of columns of `A Q` at a time.
+/// Columns of `A Q` formed at a time by [`projected`]: wide enough that `Qᵀ (A Q)` reads `Q`
+/// once per 32 columns, not once per packed chunk of 8.
+const PROJECTED_COLUMNS: usize = 4 * CHUNK;
+
+/// `Qᵀ A Q` (`s × s`) for the `n × s` block `q`, [`PROJECTED_COLUMNS`] columns of `A Q` at a
+/// time (gathered a packed chunk at a time).
 fn projected(a: SparseColMatRef<'_, usize, f64>, q: MatRef<'_, f64>, par: Par) -> Mat<f64> {
-    let n = q.nrows();
-    let chunks = map_column_chunks(q, par, |first, width, rows| {
+    let (n, s) = (q.nrows(), q.ncols());
+    let groups: Vec<usize> = (0..s).step_by(PROJECTED_COLUMNS).collect();
+    let one = |&first: &usize| {
+        let width = PROJECTED_COLUMNS.min(s - first);
+        let mut aq = Mat::<f64>::zeros(n, width);
         let mut product = vec![[0.0; CHUNK]; n];
-        gather_times(a, rows, &mut product);
-        let aq = Mat::from_fn(n, width, |i, j| product[i][j]);
+        for offset in (0..width).step_by(CHUNK) {
+            let chunk = CHUNK.min(width - offset);
+            gather_times(a, &pack(q, first + offset, chunk), &mut product);
+            for j in 0..chunk {
+                for (i, row) in product.iter().enumerate() {
+                    aq[(i, offset + j)] = row[j];
+                }
+            }
+        }
         (first, tall_inner(q, aq.as_ref(), Par::Seq))
-    });
-    let mut t = Mat::<f64>::zeros(q.ncols(), q.ncols());
-    for (first, block) in chunks {
+    };
+    let blocks: Vec<(usize, Mat<f64>)> = if par.degree() > 1 {
+        groups.par_iter().map(one).collect()
+    } else {
+        groups.iter().map(one).collect()
+    };
+    let mut t = Mat::<f64>::zeros(s, s);
+    for (first, block) in blocks {
         t.as_mut()
             .subcols_mut(first, block.ncols())
             .copy_from(&block);
