@@ -23,7 +23,15 @@ const AMPLIFICATION_LIMIT: f64 = 1e3;
 
 /// `M Z` for a diagonal `M` (row scaling).
 pub(crate) fn mass_times(mass: &[f64], z: MatRef<'_, f64>) -> Mat<f64> {
-    Mat::from_fn(z.nrows(), z.ncols(), |i, j| mass[i] * z[(i, j)])
+    // A copy scaled column by column (contiguous loops the compiler vectorises; an
+    // element-wise `Mat::from_fn` was 5 % of a whole basis computation on a small mesh).
+    let mut out = z.to_owned();
+    for j in 0..out.ncols() {
+        for (x, m) in out.col_mut(j).iter_mut().zip(mass) {
+            *x *= m;
+        }
+    }
+    out
 }
 
 /// Removes from `z` its `M`-projection onto each (M-orthonormal) basis in `bases` with block
