@@ -28,6 +28,7 @@ use super::symmetric_products::{
 };
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
+use crate::packed_rows::{has_avx2_fma, multiply_add};
 use crate::sparse_ldlt::SparseLdlt;
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, MatRef, Par};
@@ -48,54 +49,107 @@ pub(crate) fn field_residuals(
     floor: f64,
     par: Par,
 ) -> Vec<FieldResidual> {
-    let n = vectors.nrows();
     let diagonal = diagonal_of(a);
     let norm_a = max_column_sum(a);
+    let inverse_mass: Vec<f64> = mass.iter().map(|m| m.recip()).collect();
+    let pencil = ChunkPencil {
+        a,
+        mass,
+        inverse_mass: &inverse_mass,
+        diagonal: &diagonal,
+        norm_a,
+        floor,
+    };
     let chunks = map_column_chunks(vectors, par, |first, width, x| {
         let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
-        // A x and |A| |x| (for the floor) from one pass over A.
-        let (mut ax, mut abs_ax) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
-        gather_times_and_magnitudes(a, x, &mut ax, &mut abs_ax);
-        // r = A x − λ M x (its norm), then s = M⁻¹ r, in place.
-        let (mut r2, mut x2) = ([0.0; CHUNK], [0.0; CHUNK]);
-        for ((s, x), m) in ax.iter_mut().zip(x).zip(mass) {
-            for j in 0..CHUNK {
-                let r = s[j] - lambda[j] * m * x[j];
-                r2[j] += r * r;
-                x2[j] += x[j] * x[j];
-                s[j] = r / m;
-            }
+        #[cfg(target_arch = "x86_64")]
+        if has_avx2_fma() {
+            // SAFETY: the CPU supports the features the function is compiled for.
+            return unsafe { chunk_residuals_fma(&pencil, &lambda, width, x) };
         }
-        let s = ax;
-        let mut a_s = vec![[0.0; CHUNK]; n];
-        gather_times(a, &s, &mut a_s);
-        let (mut energy, mut noise) = ([0.0; CHUNK], [0.0; CHUNK]);
-        for i in 0..n {
-            let weight = diagonal[i].max(0.0);
-            for j in 0..CHUNK {
-                energy[j] += s[i][j] * a_s[i][j];
-                let e = f64::EPSILON * (abs_ax[i][j] / mass[i] + lambda[j] * x[i][j].abs());
-                noise[j] += weight * e * e;
-            }
-        }
-        (0..width)
-            .map(|j| {
-                let relative = r2[j].sqrt() / (norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
-                if lambda[j] <= floor {
-                    return FieldResidual {
-                        relative,
-                        ..FieldResidual::default()
-                    };
-                }
-                FieldResidual {
-                    residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
-                    floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
-                    relative,
-                }
-            })
-            .collect::<Vec<_>>()
+        chunk_residuals::<false>(&pencil, &lambda, width, x)
     });
     chunks.into_iter().flatten().collect()
+}
+
+/// What [`field_residuals`] needs of the pencil, per chunk of columns.
+struct ChunkPencil<'a> {
+    a: SparseColMatRef<'a, usize, f64>,
+    mass: &'a [f64],
+    /// `1 / M_ii`.
+    inverse_mass: &'a [f64],
+    /// `A_ii`.
+    diagonal: &'a [f64],
+    /// `‖A‖₁`.
+    norm_a: f64,
+    /// Eigenvalues at most this have no eigenfield.
+    floor: f64,
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn chunk_residuals_fma(
+    pencil: &ChunkPencil<'_>,
+    lambda: &Row,
+    width: usize,
+    x: &[Row],
+) -> Vec<FieldResidual> {
+    chunk_residuals::<true>(pencil, lambda, width, x)
+}
+
+/// The [`FieldResidual`]s of one packed chunk `x` (`n` rows, `width` columns used) with
+/// eigenvalues `lambda`; multiply–adds fused when `FUSED` (in functions compiled with FMA).
+#[inline(always)]
+fn chunk_residuals<const FUSED: bool>(
+    pencil: &ChunkPencil<'_>,
+    lambda: &Row,
+    width: usize,
+    x: &[Row],
+) -> Vec<FieldResidual> {
+    let n = x.len();
+    let (mass, inverse_mass) = (pencil.mass, pencil.inverse_mass);
+    // A x and |A| |x| (for the floor) from one pass over A.
+    let (mut ax, mut abs_ax) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
+    gather_times_and_magnitudes(pencil.a, x, &mut ax, &mut abs_ax);
+    // r = A x − λ M x (its norm), then s = M⁻¹ r, in place.
+    let (mut r2, mut x2) = ([0.0; CHUNK], [0.0; CHUNK]);
+    for (((s, x), m), inverse) in ax.iter_mut().zip(x).zip(mass).zip(inverse_mass) {
+        for j in 0..CHUNK {
+            let r = multiply_add::<FUSED>(-lambda[j] * m, x[j], s[j]);
+            r2[j] = multiply_add::<FUSED>(r, r, r2[j]);
+            x2[j] = multiply_add::<FUSED>(x[j], x[j], x2[j]);
+            s[j] = r * inverse;
+        }
+    }
+    let s = ax;
+    let mut a_s = vec![[0.0; CHUNK]; n];
+    gather_times(pencil.a, &s, &mut a_s);
+    let (mut energy, mut noise) = ([0.0; CHUNK], [0.0; CHUNK]);
+    for i in 0..n {
+        let weight = pencil.diagonal[i].max(0.0);
+        for j in 0..CHUNK {
+            energy[j] = multiply_add::<FUSED>(s[i][j], a_s[i][j], energy[j]);
+            let e = f64::EPSILON
+                * multiply_add::<FUSED>(abs_ax[i][j], inverse_mass[i], lambda[j] * x[i][j].abs());
+            noise[j] = multiply_add::<FUSED>(weight * e, e, noise[j]);
+        }
+    }
+    (0..width)
+        .map(|j| {
+            let relative = r2[j].sqrt() / (pencil.norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
+            if lambda[j] <= pencil.floor {
+                return FieldResidual {
+                    relative,
+                    ..FieldResidual::default()
+                };
+            }
+            FieldResidual {
+                residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
+                floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
+                relative,
+            }
+        })
+        .collect()
 }
 
 /// The diagonal of the `n × n` sparse `a` (0 where no entry is stored).

@@ -18,6 +18,7 @@ pub(crate) use crate::packed_rows::{Row, WIDTH as CHUNK};
 
 /// `out[c] = Σ_r A[r, c] · rows[r]`: the rows of `A·X` for symmetric `A` (full storage,
 /// `n × n`) and the packed chunk `rows` of `X` (`n` rows).
+#[inline(always)]
 pub(crate) fn gather_times(a: SparseColMatRef<'_, usize, f64>, rows: &[Row], out: &mut [Row]) {
     let col_ptr = a.symbolic().col_ptr();
     let row_idx = a.symbolic().row_idx();
@@ -36,6 +37,7 @@ pub(crate) fn gather_times(a: SparseColMatRef<'_, usize, f64>, rows: &[Row], out
 
 /// [`gather_times`] and, from the same pass over `A`, `magnitudes[c] = Σ_r |A[r, c]| · |rows[r]|`
 /// (the scale of the rounding errors of `A·X`).
+#[inline(always)]
 pub(crate) fn gather_times_and_magnitudes(
     a: SparseColMatRef<'_, usize, f64>,
     rows: &[Row],
