@@ -134,6 +134,14 @@ fn pack_chunk(c: MatRef<'_, f64>, chunk: usize) -> Vec<Row> {
         .collect()
 }
 
+/// The values of a column with unit row stride.
+fn contiguous(column: faer::ColRef<'_, f64>) -> &[f64] {
+    column
+        .try_as_col_major()
+        .expect("blocks have contiguous columns")
+        .as_slice()
+}
+
 /// What one [`sweep`] computed.
 pub(crate) struct Sweep {
     /// `Bᵀ M z` (`p × r`) for each basis `B` in `project`, with `z` after the update.
@@ -194,13 +202,14 @@ fn split_sweep(
                 let first = chunk * CHUNK;
                 let width = CHUNK.min(r - first);
                 let values = &mut block[..rows];
-                if width < CHUNK {
-                    values.iter_mut().for_each(|row| *row = [0.0; CHUNK]);
-                }
-                for j in 0..width {
-                    let column = z.rb().col(first + j).subrows(start, rows);
-                    for (row, value) in values.iter_mut().zip(column.iter()) {
-                        row[j] = *value;
+                // Row by row: each packed row is written once, whole (the columns are read as
+                // `width` sequential streams).
+                {
+                    let columns: Vec<&[f64]> = (0..width)
+                        .map(|j| contiguous(z.rb().col(first + j).subrows(start, rows)))
+                        .collect();
+                    for (i, row) in values.iter_mut().enumerate() {
+                        *row = std::array::from_fn(|j| if j < width { columns[j][i] } else { 0.0 });
                     }
                 }
                 for ((s, _), coefficients) in subtract.iter().zip(&packed_coefficients) {
@@ -232,10 +241,21 @@ fn split_sweep(
                         );
                     }
                 }
-                for j in 0..width {
-                    let column = z.rb_mut().col_mut(first + j).subrows_mut(start, rows);
-                    for (row, value) in values.iter().zip(column.iter_mut()) {
-                        *value = row[j];
+                let mut columns: Vec<&mut [f64]> = z
+                    .rb_mut()
+                    .subcols_mut(first, width)
+                    .subrows_mut(start, rows)
+                    .col_iter_mut()
+                    .map(|column| {
+                        column
+                            .try_as_col_major_mut()
+                            .expect("blocks have contiguous columns")
+                            .as_slice_mut()
+                    })
+                    .collect();
+                for (i, row) in values.iter().enumerate() {
+                    for (j, column) in columns.iter_mut().enumerate() {
+                        column[i] = row[j];
                     }
                 }
             }
