@@ -63,14 +63,18 @@ pub(crate) fn gather_times_and_magnitudes(
 
 /// Columns `first..first + width` of `x` packed into rows (`width ≤ CHUNK`).
 pub(crate) fn pack(x: MatRef<'_, f64>, first: usize, width: usize) -> Vec<Row> {
-    let mut rows = vec![[0.0; CHUNK]; x.nrows()];
-    for j in 0..width {
-        let column = x.col(first + j);
-        for (row, &value) in rows.iter_mut().zip(column.iter()) {
-            row[j] = value;
-        }
+    // Row by row (each packed row written once, whole) when the columns are contiguous.
+    let columns: Option<Vec<&[f64]>> = (0..width)
+        .map(|j| x.col(first + j).try_as_col_major().map(|c| c.as_slice()))
+        .collect();
+    match columns {
+        Some(columns) => (0..x.nrows())
+            .map(|i| std::array::from_fn(|j| if j < width { columns[j][i] } else { 0.0 }))
+            .collect(),
+        None => (0..x.nrows())
+            .map(|i| std::array::from_fn(|j| if j < width { x[(i, first + j)] } else { 0.0 }))
+            .collect(),
     }
-    rows
 }
 
 /// Calls `work(first, width, rows)` for every chunk of [`CHUNK`] columns of `x` (`rows`: the
