@@ -31,3 +31,23 @@ pub(crate) fn multiply_add<const FUSED: bool>(x: f64, y: f64, a: f64) -> f64 {
         a + x * y
     }
 }
+
+/// Packs the equally long `columns` (at most [`WIDTH`]) into `rows` (one row per entry; missing
+/// columns 0), row by row: each packed row is written once, whole, and the columns are read
+/// as sequential streams.
+pub(crate) fn pack_columns(columns: &[&[f64]], rows: &mut [Row]) {
+    let width = columns.len();
+    assert!(
+        width <= WIDTH && columns.iter().all(|c| c.len() == rows.len()),
+        "pack_columns: shapes do not match"
+    );
+    if let Ok(full) = <&[&[f64]; WIDTH]>::try_from(columns) {
+        for (i, row) in rows.iter_mut().enumerate() {
+            *row = std::array::from_fn(|j| full[j][i]);
+        }
+        return;
+    }
+    for (i, row) in rows.iter_mut().enumerate() {
+        *row = std::array::from_fn(|j| if j < width { columns[j][i] } else { 0.0 });
+    }
+}

@@ -13,6 +13,7 @@ use faer::sparse::SparseColMatRef;
 use faer::{MatMut, MatRef, Par};
 use rayon::prelude::*;
 
+use crate::packed_rows::pack_columns;
 /// Columns of one chunk, and one row of a chunk (see [`crate::packed_rows`]).
 pub(crate) use crate::packed_rows::{Row, WIDTH as CHUNK};
 
@@ -68,9 +69,11 @@ pub(crate) fn pack(x: MatRef<'_, f64>, first: usize, width: usize) -> Vec<Row> {
         .map(|j| x.col(first + j).try_as_col_major().map(|c| c.as_slice()))
         .collect();
     match columns {
-        Some(columns) => (0..x.nrows())
-            .map(|i| std::array::from_fn(|j| if j < width { columns[j][i] } else { 0.0 }))
-            .collect(),
+        Some(columns) => {
+            let mut rows = vec![[0.0; CHUNK]; x.nrows()];
+            pack_columns(&columns, &mut rows);
+            rows
+        }
         None => (0..x.nrows())
             .map(|i| std::array::from_fn(|j| if j < width { x[(i, first + j)] } else { 0.0 }))
             .collect(),

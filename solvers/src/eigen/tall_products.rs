@@ -12,6 +12,7 @@
 use super::mass_orthogonal::mass_times;
 use super::symmetric_products::{Row, CHUNK};
 use super::tall_kernels;
+use crate::packed_rows::pack_columns;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -202,16 +203,10 @@ fn split_sweep(
                 let first = chunk * CHUNK;
                 let width = CHUNK.min(r - first);
                 let values = &mut block[..rows];
-                // Row by row: each packed row is written once, whole (the columns are read as
-                // `width` sequential streams).
-                {
-                    let columns: Vec<&[f64]> = (0..width)
-                        .map(|j| contiguous(z.rb().col(first + j).subrows(start, rows)))
-                        .collect();
-                    for (i, row) in values.iter_mut().enumerate() {
-                        *row = std::array::from_fn(|j| if j < width { columns[j][i] } else { 0.0 });
-                    }
-                }
+                let columns: Vec<&[f64]> = (0..width)
+                    .map(|j| contiguous(z.rb().col(first + j).subrows(start, rows)))
+                    .collect();
+                pack_columns(&columns, values);
                 for ((s, _), coefficients) in subtract.iter().zip(&packed_coefficients) {
                     if s.ncols() > 0 {
                         tall_kernels::subtract(
