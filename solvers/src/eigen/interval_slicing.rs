@@ -17,9 +17,10 @@
 //!    inverse-iteration step with the interval's factorization (it damps the high-frequency
 //!    rounding noise of the Krylov vectors, which the eigenfields amplify) and go through the
 //!    Rayleigh–Ritz against `A` ([`super::rayleigh_ritz`]), and those inside the interval are
-//!    kept. The intervals of every pencil run as one pool of jobs on `EigenOptions::threads`
-//!    threads; interval `i` of a pencil is seeded from `(seed, i)`, so the result does not depend
-//!    on thread timing. An interval that does not converge within `EigenOptions::max_restarts`
+//!    kept. The intervals of every pencil run as one pool of jobs, `EigenOptions::threads` at a
+//!    time as tasks of rayon's pool (their parallel products split across the same threads);
+//!    interval `i` of a pencil is seeded from `(seed, i)`, so the result does not depend on
+//!    thread timing. An interval that does not converge within `EigenOptions::max_restarts`
 //!    restarts, or whose pairs disagree with its counts, is split near (not at) its midpoint
 //!    (one more count) and the halves are solved with their own midpoints as shifts: a shift
 //!    that lands next to an eigenvalue makes `max|θ|` huge and the far end of the interval
@@ -661,7 +662,8 @@ enum Message<T> {
     },
 }
 
-/// Runs `jobs` jobs on `threads` threads and returns their results in job order;
+/// Runs `jobs` jobs, `threads` at a time as tasks of the current rayon pool, and returns their
+/// results in job order;
 /// `on_message(job, locked, done)` is called on the calling thread for every progress report and
 /// completion. Stops at the first error.
 fn run_jobs<T: Send>(
@@ -675,26 +677,33 @@ fn run_jobs<T: Send>(
     let mut results: Vec<Option<Result<T, RequestError>>> = (0..jobs).map(|_| None).collect();
     std::thread::scope(|scope| {
         let (sender, receiver) = mpsc::channel::<Message<T>>();
-        for _ in 0..threads.clamp(1, jobs.max(1)) {
-            let sender = sender.clone();
-            let (next, failed) = (&next, &failed);
-            scope.spawn(move || loop {
-                let job = next.fetch_add(1, Ordering::Relaxed);
-                if job >= jobs || failed.load(Ordering::Relaxed) {
-                    break;
+        let (next, failed) = (&next, &failed);
+        // The workers are tasks of rayon's pool, not threads of their own: a job's parallel
+        // products then split by work stealing on the same threads (a thread outside the pool
+        // would hand each of them to the pool and sleep until it is done, and the pool's
+        // threads and the job threads would contend for the cores).
+        scope.spawn(move || {
+            rayon::scope(|pool| {
+                for _ in 0..threads.clamp(1, jobs.max(1)) {
+                    let sender = sender.clone();
+                    pool.spawn(move |_| loop {
+                        let job = next.fetch_add(1, Ordering::Relaxed);
+                        if job >= jobs || failed.load(Ordering::Relaxed) {
+                            break;
+                        }
+                        let report = |locked: usize, _solves: usize| {
+                            // The receiver outlives the workers inside the scope.
+                            let _ = sender.send(Message::Progress { job, locked });
+                        };
+                        let result = work(job, &report);
+                        if result.is_err() {
+                            failed.store(true, Ordering::Relaxed);
+                        }
+                        let _ = sender.send(Message::Done { job, result });
+                    });
                 }
-                let report = |locked: usize, _solves: usize| {
-                    // The receiver outlives the workers inside the scope.
-                    let _ = sender.send(Message::Progress { job, locked });
-                };
-                let result = work(job, &report);
-                if result.is_err() {
-                    failed.store(true, Ordering::Relaxed);
-                }
-                let _ = sender.send(Message::Done { job, result });
             });
-        }
-        drop(sender);
+        });
         for message in receiver {
             match message {
                 Message::Progress { job, locked } => on_message(job, locked, false),

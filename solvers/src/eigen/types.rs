@@ -47,9 +47,9 @@ pub struct EigenOptions<'a> {
     /// single-threaded run to rounding (not bitwise: partial sums are added in another order).
     /// Default `Par::rayon(0)` (all of rayon's threads).
     pub parallelism: Par,
-    /// Intervals solved at the same time, each on its own thread with its own factorization and
-    /// sequential solves (the result is the same for every thread count). Default: the number of
-    /// rayon's threads.
+    /// Intervals solved at the same time, each a task of rayon's pool with its own factorization
+    /// and sequential solves (the result is the same for every thread count). Default: the
+    /// number of rayon's threads.
     pub threads: usize,
     /// Target number of eigenpairs per interval (one factorization at its midpoint, one at its
     /// upper end). Smaller intervals mean smaller Krylov bases (dense work grows with the square
