@@ -215,6 +215,9 @@ pub(crate) fn run_slice(
             solves,
         });
     }
+    let ritz = |h: &Mat<f64>, g: &Mat<f64>, found| {
+        ritz_pairs(h.as_ref(), g.as_ref(), problem, settings, found)
+    };
     let mut restarted = false;
     let mut steps_since_check = 0usize;
     for _restart in 0..settings.max_restarts {
@@ -287,13 +290,7 @@ pub(crate) fn run_slice(
             if restarted && 2 * remaining <= wanted && steps_since_check >= COMPLETION_CHECK_BLOCKS
             {
                 steps_since_check = 0;
-                let pairs = ritz_pairs(
-                    h.as_ref(),
-                    g.as_ref(),
-                    problem,
-                    settings,
-                    (lower_found, upper_found),
-                )?;
+                let pairs = ritz(&h, &g, (lower_found, upper_found))?;
                 if lower_found + pairs.inside.0 >= problem.lower_needed
                     && upper_found + pairs.inside.1 >= problem.upper_target
                 {
@@ -312,13 +309,7 @@ pub(crate) fn run_slice(
             lock,
             mut keep,
             inside,
-        } = ritz_pairs(
-            h.as_ref(),
-            g.as_ref(),
-            problem,
-            settings,
-            (lower_found, upper_found),
-        )?;
+        } = ritz(&h, &g, (lower_found, upper_found))?;
         let window = problem.lower_needed - lower_found
             + problem.upper_target.saturating_sub(upper_found)
             + block;
