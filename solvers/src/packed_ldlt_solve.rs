@@ -142,10 +142,10 @@ fn solve_rows_body<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>,
         while first < size {
             let width = GROUP.min(size - first);
             match width {
-                4 => forward_group::<4, FUSED>(block, start, pattern, first, x),
-                3 => forward_group::<3, FUSED>(block, start, pattern, first, x),
-                2 => forward_group::<2, FUSED>(block, start, pattern, first, x),
-                _ => forward_group::<1, FUSED>(block, start, pattern, first, x),
+                4 => forward_group::<4, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                3 => forward_group::<3, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                2 => forward_group::<2, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                _ => forward_group::<1, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
             }
             first += width;
         }
@@ -159,87 +159,116 @@ fn solve_rows_body<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>,
         while end > 0 {
             let first = end.saturating_sub(GROUP);
             match end - first {
-                4 => backward_group::<4, FUSED>(block, start, pattern, first, x),
-                3 => backward_group::<3, FUSED>(block, start, pattern, first, x),
-                2 => backward_group::<2, FUSED>(block, start, pattern, first, x),
-                _ => backward_group::<1, FUSED>(block, start, pattern, first, x),
+                4 => backward_group::<4, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                3 => backward_group::<3, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                2 => backward_group::<2, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                _ => backward_group::<1, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
             }
             end = first;
         }
     }
 }
 
-/// Forward substitution of the `K` columns `first..first + K` of a supernode (`block`: its
-/// `(size + pattern) × size` values; its unknowns start at `start`): the triangle among them,
-/// then every later row of the block loses `Σ_k L[row, first + k] · x[start + first + k]`.
-#[inline(always)]
-fn forward_group<const K: usize, const FUSED: bool>(
-    block: faer::MatRef<'_, f64>,
-    start: usize,
-    pattern: &[usize],
+/// Columns `first..first + K` of a supernode (`block`: its `(size + pattern) × size` values,
+/// column-major; its unknowns start at `start`).
+struct ColumnGroup<'a, const K: usize> {
+    /// The group's columns of the block, whole.
+    columns: [&'a [f64]; K],
+    /// Column of the block the group starts at.
     first: usize,
-    x: &mut [Row],
-) {
-    let size = block.ncols();
-    let columns: [&[f64]; K] = std::array::from_fn(|k| block_column(block, first + k));
-    let mut values: [Row; K] = std::array::from_fn(|k| x[start + first + k]);
-    for k in 0..K {
-        for later in k + 1..K {
-            let l = columns[k][first + later];
-            let source = values[k];
-            subtract_scaled::<FUSED>(&mut values[later], l, &source);
+    /// Unknown of the group's first column.
+    unknown: usize,
+    /// Unknowns of the rows of the block after the group: the rest of the supernode's own
+    /// unknowns, then its pattern.
+    later: std::iter::Chain<std::ops::Range<usize>, std::iter::Copied<std::slice::Iter<'a, usize>>>,
+}
+
+impl<'a, const K: usize> ColumnGroup<'a, K> {
+    #[inline(always)]
+    fn new(block: faer::MatRef<'a, f64>, start: usize, pattern: &'a [usize], first: usize) -> Self {
+        let size = block.ncols();
+        Self {
+            columns: std::array::from_fn(|k| block_column(block, first + k)),
+            first,
+            unknown: start + first,
+            later: (start + first + K..start + size).chain(pattern.iter().copied()),
         }
     }
-    // Rows of the block after the group: the rest of the triangle, then the pattern.
-    let targets = (start + first + K..start + size).chain(pattern.iter().copied());
-    let below = size + pattern.len() - (first + K);
-    let below_columns: [&[f64]; K] = std::array::from_fn(|k| &columns[k][first + K..][..below]);
-    for (i, target) in targets.enumerate() {
-        let mut sum = x[target];
-        for k in 0..K {
-            subtract_scaled::<FUSED>(&mut sum, below_columns[k][i], &values[k]);
-        }
-        x[target] = sum;
+
+    /// `L[first + later, first + k]`: the group's triangle.
+    #[inline(always)]
+    fn triangle(&self, later: usize, k: usize) -> f64 {
+        self.columns[k][self.first + later]
     }
-    // The group's part of y is final: store z = D⁻¹ y (D is on the diagonal of the block).
-    for (k, value) in values.iter().enumerate() {
-        let inverse = columns[k][first + k].recip();
-        x[start + first + k] = value.map(|v| v * inverse);
+
+    /// The later rows, each as its unknown and the group's `K` values of `L` on it.
+    #[inline(always)]
+    fn later_rows(self) -> impl Iterator<Item = (usize, [f64; K])> + 'a {
+        let below: [&[f64]; K] = std::array::from_fn(|k| &self.columns[k][self.first + K..]);
+        self.later
+            .enumerate()
+            .map(move |(i, unknown)| (unknown, std::array::from_fn(|k| below[k][i])))
     }
 }
 
-/// Backward substitution of the `K` columns `first..first + K` of a supernode (see
-/// [`forward_group`]): each loses `Σ_row L[row, column] · x[row]` over the later rows of the
-/// block (every row read once for the whole group), then the triangle among them.
+/// Forward substitution of a group of `K` columns of a supernode: the triangle among them,
+/// then every later row of the block loses `Σ_k L[row, first + k] · x[start + first + k]`, and
+/// the group's values are divided by their pivots.
 #[inline(always)]
-fn backward_group<const K: usize, const FUSED: bool>(
-    block: faer::MatRef<'_, f64>,
-    start: usize,
-    pattern: &[usize],
-    first: usize,
-    x: &mut [Row],
-) {
-    let size = block.ncols();
-    let columns: [&[f64]; K] = std::array::from_fn(|k| block_column(block, first + k));
-    let mut values: [Row; K] = std::array::from_fn(|k| x[start + first + k]);
-    let sources = (start + first + K..start + size).chain(pattern.iter().copied());
-    let below = size + pattern.len() - (first + K);
-    let below_columns: [&[f64]; K] = std::array::from_fn(|k| &columns[k][first + K..][..below]);
-    for (i, source) in sources.enumerate() {
+fn forward_group<const K: usize, const FUSED: bool>(group: ColumnGroup<'_, K>, x: &mut [Row]) {
+    let unknown = group.unknown;
+    let mut values: [Row; K] = std::array::from_fn(|k| x[unknown + k]);
+    for k in 0..K {
+        for later in k + 1..K {
+            let source = values[k];
+            subtract_scaled::<FUSED>(&mut values[later], group.triangle(later, k), &source);
+        }
+    }
+    // The group's part of y is final: z = D⁻¹ y (D is on the diagonal of the block).
+    let pivots: [f64; K] = std::array::from_fn(|k| group.triangle(k, k));
+    for (target, l) in group.later_rows() {
+        let mut sum = x[target];
+        for k in 0..K {
+            subtract_scaled::<FUSED>(&mut sum, l[k], &values[k]);
+        }
+        x[target] = sum;
+    }
+    for (k, value) in values.iter().enumerate() {
+        let inverse = pivots[k].recip();
+        x[unknown + k] = value.map(|v| v * inverse);
+    }
+}
+
+/// Backward substitution of a group of `K` columns of a supernode: each loses
+/// `Σ_row L[row, column] · x[row]` over the later rows of the block (every row read once for
+/// the whole group), then the triangle among them.
+#[inline(always)]
+fn backward_group<const K: usize, const FUSED: bool>(group: ColumnGroup<'_, K>, x: &mut [Row]) {
+    let unknown = group.unknown;
+    let mut values: [Row; K] = std::array::from_fn(|k| x[unknown + k]);
+    let triangle: [[f64; K]; K] = std::array::from_fn(|later| {
+        std::array::from_fn(|k| {
+            if later > k {
+                group.triangle(later, k)
+            } else {
+                0.0
+            }
+        })
+    });
+    for (source, l) in group.later_rows() {
         let source = x[source];
         for k in 0..K {
-            subtract_scaled::<FUSED>(&mut values[k], below_columns[k][i], &source);
+            subtract_scaled::<FUSED>(&mut values[k], l[k], &source);
         }
     }
     for k in (0..K).rev() {
         for later in k + 1..K {
-            let l = columns[k][first + later];
             let source = values[later];
-            subtract_scaled::<FUSED>(&mut values[k], l, &source);
+            subtract_scaled::<FUSED>(&mut values[k], triangle[later][k], &source);
         }
     }
     for (k, value) in values.iter().enumerate() {
-        x[start + first + k] = *value;
+        x[unknown + k] = *value;
     }
 }
 
