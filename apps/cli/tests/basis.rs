@@ -6,7 +6,10 @@ use common::{assert_success, tvf};
 use tvf_core::generate::genus_surface;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
-use tvf_spectral::{compute_basis, load_basis, BasisFileKey, BasisRequest, FieldFamily};
+use tvf_spectral::{
+    compute_basis, load_basis, read_basis_header, BasisFileKey, BasisFileLayout, BasisRequest,
+    FieldFamily,
+};
 
 #[test]
 fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
@@ -27,7 +30,16 @@ fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
     assert!(stderr.contains("26 fields"), "{stderr}");
     let mesh = load_mesh(&mesh_path).unwrap().mesh;
     let complex = Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    let basis = load_basis(&out, &BasisFileKey::new(&mesh, &complex)).unwrap();
+    // The file holds the eigenfunctions: E + V values per pair of fields, not 4F.
+    let header = read_basis_header(&out).unwrap();
+    assert_eq!(
+        header.layout,
+        BasisFileLayout::Eigenfunctions {
+            potential_dimension: mesh.edge_count(),
+            co_potential_dimension: mesh.vertex_count(),
+        }
+    );
+    let basis = load_basis(&out, &BasisFileKey::new(&mesh, &complex), &complex).unwrap();
     assert_eq!(basis.len(), 26);
     assert_eq!(basis.count(FieldFamily::Harmonic), 2);
     let expected = compute_basis(&complex, &BasisRequest::fields(26)).unwrap();
@@ -37,7 +49,7 @@ fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
     }
     // The file is refused for the other decomposition.
     let conforming = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
-    assert!(load_basis(&out, &BasisFileKey::new(&mesh, &conforming)).is_err());
+    assert!(load_basis(&out, &BasisFileKey::new(&mesh, &conforming), &conforming).is_err());
     // --quiet prints nothing.
     let quiet = tvf()
         .arg("basis")

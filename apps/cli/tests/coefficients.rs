@@ -8,7 +8,7 @@ use tvf_core::discretization::FieldSampling;
 use tvf_core::generate::{genus_surface, torus};
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_discretizations::FaceFields;
-use tvf_spectral::{read_basis_file, write_face_vectors};
+use tvf_spectral::{open_basis_file, write_face_vectors};
 
 #[test]
 fn coefficients_of_a_combination_of_basis_fields() {
@@ -24,8 +24,8 @@ fn coefficients_of_a_combination_of_basis_fields() {
         .status()
         .unwrap();
     assert!(status.success());
-    let (_, basis) = read_basis_file(&basis_path).unwrap();
     let mesh = load_mesh(&mesh_path).unwrap().mesh;
+    let (_, basis) = open_basis_file(&basis_path, &mesh, None, None).unwrap();
     let space = FaceFields::new(&mesh).unwrap();
     let wanted: Vec<f64> = (0..basis.len())
         .map(|i| if i % 3 == 0 { 0.0 } else { i as f64 - 4.5 })

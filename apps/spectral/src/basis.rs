@@ -84,12 +84,7 @@ impl SpectralBasis {
         check_length("families", d, families.len())?;
         check_length("basis columns", d, fields.ncols())?;
         check_length("field mass", fields.nrows(), field_mass.len())?;
-        for (index, &value) in eigenvalues.iter().enumerate() {
-            let ascending = index == 0 || value >= eigenvalues[index - 1];
-            if !value.is_finite() || value < 0.0 || !ascending {
-                return Err(SpectralBasisError::BadEigenvalue { index, value });
-            }
-        }
+        check_eigenvalues(&eigenvalues)?;
         Ok(Self {
             eigenvalues,
             families,
@@ -189,6 +184,11 @@ impl SpectralBasis {
         self.eigenfunctions.as_ref()
     }
 
+    /// Removes the compact form from this basis and returns it, if it was kept.
+    pub fn take_eigenfunctions(&mut self) -> Option<EigenfunctionBasis> {
+        self.eigenfunctions.take()
+    }
+
     /// Attaches the compact form of the same basis (same order and eigenvalues).
     pub fn attach_eigenfunctions(&mut self, eigenfunctions: EigenfunctionBasis) {
         self.eigenfunctions = Some(eigenfunctions);
@@ -243,6 +243,17 @@ fn combine_columns<T: Copy + Into<f64> + Sync>(
 }
 
 /// `Ok` when `actual == expected`, else a [`SpectralBasisError::LengthMismatch`] naming `what`.
+/// Checks that `eigenvalues` are finite, non-negative and ascending.
+pub(crate) fn check_eigenvalues(eigenvalues: &[f64]) -> Result<(), SpectralBasisError> {
+    for (index, &value) in eigenvalues.iter().enumerate() {
+        let ascending = index == 0 || value >= eigenvalues[index - 1];
+        if !value.is_finite() || value < 0.0 || !ascending {
+            return Err(SpectralBasisError::BadEigenvalue { index, value });
+        }
+    }
+    Ok(())
+}
+
 pub(crate) fn check_length(
     what: &'static str,
     expected: usize,

@@ -9,8 +9,8 @@
 //! promises is recomputed (and the problem reported), never used.
 
 use crate::{
-    compute_basis, load_basis, save_basis, BasisError, BasisFileKey, BasisProgress, BasisRequest,
-    BasisSize, FieldFamily, SpectralBasis,
+    compute_basis, load_basis, save_eigenfunction_basis, BasisError, BasisFileKey, BasisProgress,
+    BasisRequest, BasisSize, FieldFamily, SpectralBasis,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -95,7 +95,7 @@ impl BasisStore {
         let mut unusable_file = None;
         if file.exists() {
             let start = Instant::now();
-            let read = load_basis(&file, &key)
+            let read = load_basis(&file, &key, complex)
                 .map_err(|e| e.to_string())
                 .and_then(|basis| {
                     size_mismatch(size, complex.field_dimension(), &basis)
@@ -114,11 +114,24 @@ impl BasisStore {
                 Err(problem) => unusable_file = Some(problem),
             }
         }
-        let basis = compute_basis_of_size(complex, size, progress)?;
-        let saved = std::fs::create_dir_all(&self.folder)
-            .map_err(|e| format!("{}: {e}", self.folder.display()))
-            .and_then(|()| save_basis(&file, &basis, &key).map_err(|e| e.to_string()))
-            .map(|()| file);
+        let mut request = size_request(size, complex.field_dimension(), progress);
+        request.keep_eigenfunctions = true;
+        let mut basis = compute_basis(complex, &request)?;
+        // Saved in compact form (smaller, see `save_eigenfunction_basis`), which is then dropped
+        // from memory: the basis handed out carries only its dense fields.
+        let saved = match basis.take_eigenfunctions() {
+            Some(compact) => std::fs::create_dir_all(&self.folder)
+                .map_err(|e| format!("{}: {e}", self.folder.display()))
+                .and_then(|()| {
+                    save_eigenfunction_basis(&file, &compact, complex, &key)
+                        .map_err(|e| e.to_string())
+                })
+                .map(|()| file),
+            None => Err(format!(
+                "{}: the compact basis was not kept",
+                file.display()
+            )),
+        };
         Ok((
             basis,
             StoredBasisOrigin::Computed {
@@ -136,9 +149,21 @@ pub fn compute_basis_of_size<H: HodgeComplex + ?Sized>(
     size: BasisSize,
     progress: Option<&dyn Fn(&BasisProgress)>,
 ) -> Result<SpectralBasis, BasisError> {
-    let mut request = BasisRequest::new(effective_size(size, complex.field_dimension()));
+    compute_basis(
+        complex,
+        &size_request(size, complex.field_dimension(), progress),
+    )
+}
+
+/// The request of a basis of `size` with seed 0, reporting to `progress`.
+fn size_request<'a>(
+    size: BasisSize,
+    field_dimension: usize,
+    progress: Option<&'a dyn Fn(&BasisProgress)>,
+) -> BasisRequest<'a> {
+    let mut request = BasisRequest::new(effective_size(size, field_dimension));
     request.progress = progress;
-    compute_basis(complex, &request)
+    request
 }
 
 /// `size`, with `K ≥ field_dimension` fields read as the complete basis.

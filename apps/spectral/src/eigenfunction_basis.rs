@@ -1,7 +1,7 @@
 //! [`EigenfunctionBasis`]: the Fourier basis stored as eigenfunctions (half the memory of the
 //! dense fields), turned into fields through the complex's sparse gradients.
 
-use crate::basis::check_length;
+use crate::basis::{check_eigenvalues, check_length};
 use crate::{FieldFamily, SpectralBasisError};
 use faer::{Col, Mat, MatRef};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
@@ -48,6 +48,65 @@ impl EigenfunctionBasis {
         }
     }
 
+    /// Assembles a compact basis from its stored form: `eigenvalues` and `families` in basis
+    /// order, and each family's matrix with its columns in the order the family's fields appear
+    /// in the basis (as [`family_slots`](Self::family_slots) lists them). Checks the eigenvalues
+    /// and that each matrix has one column per field of its family.
+    pub fn from_columns(
+        eigenvalues: Vec<f64>,
+        families: Vec<FieldFamily>,
+        potentials: Mat<f64>,
+        co_potentials: Mat<f64>,
+        harmonic: Mat<f64>,
+    ) -> Result<Self, SpectralBasisError> {
+        check_length("families", eigenvalues.len(), families.len())?;
+        check_eigenvalues(&eigenvalues)?;
+        let count = |family| families.iter().filter(|&&f| f == family).count();
+        check_length(
+            "potential columns (integrable fields)",
+            count(FieldFamily::Integrable),
+            potentials.ncols(),
+        )?;
+        check_length(
+            "co-potential columns (co-integrable fields)",
+            count(FieldFamily::Cointegrable),
+            co_potentials.ncols(),
+        )?;
+        check_length(
+            "harmonic columns",
+            count(FieldFamily::Harmonic),
+            harmonic.ncols(),
+        )?;
+        let mut next = [0usize; 3];
+        let slots = families
+            .iter()
+            .map(|&family| {
+                let counter = &mut next[family_index(family)];
+                *counter += 1;
+                *counter - 1
+            })
+            .collect();
+        Ok(Self {
+            eigenvalues,
+            families,
+            slots,
+            potentials,
+            co_potentials,
+            harmonic,
+        })
+    }
+
+    /// The columns of `family`'s matrix that hold its fields, in the order the fields appear in
+    /// the basis.
+    pub fn family_slots(&self, family: FieldFamily) -> Vec<usize> {
+        self.families
+            .iter()
+            .zip(&self.slots)
+            .filter(|(&f, _)| f == family)
+            .map(|(_, &slot)| slot)
+            .collect()
+    }
+
     /// Number of basis fields `d`.
     pub fn len(&self) -> usize {
         self.eigenvalues.len()
@@ -92,7 +151,7 @@ impl EigenfunctionBasis {
     }
 
     /// Checks that `complex` has the shapes this basis was computed with.
-    fn check_complex<H: HodgeComplex + ?Sized>(
+    pub(crate) fn check_complex<H: HodgeComplex + ?Sized>(
         &self,
         complex: &H,
     ) -> Result<(), SpectralBasisError> {
@@ -223,6 +282,15 @@ impl EigenfunctionBasis {
             }
         }
         fields
+    }
+}
+
+/// Position of `family` in per-family arrays: integrable, co-integrable, harmonic.
+fn family_index(family: FieldFamily) -> usize {
+    match family {
+        FieldFamily::Integrable => 0,
+        FieldFamily::Cointegrable => 1,
+        FieldFamily::Harmonic => 2,
     }
 }
 

@@ -66,7 +66,8 @@ pub use filter_spec::{read_curve_file, FilterSpecError};
 pub use formats::atomic_write::{write_atomically, write_atomically_with};
 pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
-    BasisFileError, BasisFileHeader, BasisFileKey, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
+    BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, BASIS_FILE_MAGIC,
+    BASIS_FILE_VERSION,
 };
 pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, BasisFileUseError,
@@ -87,6 +88,7 @@ pub use formats::field_io::{
 };
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
+pub use formats::stored_basis::StoredBasis;
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};

@@ -1,20 +1,27 @@
-//! Basis files (`.tvfb`): bit-exact round trip and one typed error per kind of bad file.
+//! Basis files (`.tvfb`): bit-exact round trips in both layouts, files of format version 1, and
+//! one typed error per kind of bad file.
 
 use std::path::Path;
-use tvf_core::generate::{icosphere, rigid_motion};
+use tvf_core::generate::{icosphere, rigid_motion, torus};
+use tvf_core::Hash64;
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{
     compute_basis, compute_eigenfunction_basis, load_basis, read_basis_file, read_basis_header,
-    save_basis, save_eigenfunction_basis, BasisFileError, BasisFileKey, BasisRequest,
-    SpectralBasis,
+    save_basis, save_eigenfunction_basis, BasisFileError, BasisFileKey, BasisFileLayout,
+    BasisRequest, SpectralBasis, StoredBasis,
 };
 
-fn setup() -> (tvf_core::SurfaceMesh, SpectralBasis, BasisFileKey) {
+fn setup() -> (
+    tvf_core::SurfaceMesh,
+    Conforming,
+    SpectralBasis,
+    BasisFileKey,
+) {
     let mesh = icosphere(1);
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let basis = compute_basis(&complex, &BasisRequest::pairs(17)).unwrap();
     let key = BasisFileKey::new(&mesh, &complex);
-    (mesh, basis, key)
+    (mesh, complex, basis, key)
 }
 
 fn bits(basis: &SpectralBasis) -> Vec<u64> {
@@ -31,28 +38,31 @@ fn bits(basis: &SpectralBasis) -> Vec<u64> {
 
 #[test]
 fn round_trip_is_bit_exact() {
-    let (_, basis, key) = setup();
+    let (_, complex, basis, key) = setup();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("sphere.tvfb");
     save_basis(&path, &basis, &key).unwrap();
-    let loaded = load_basis(&path, &key).unwrap();
+    let loaded = load_basis(&path, &key, &complex).unwrap();
     assert_eq!(loaded.families(), basis.families());
     assert_eq!(bits(&loaded), bits(&basis));
     let header = read_basis_header(&path).unwrap();
     assert_eq!(header.key, key);
     assert_eq!(header.field_count, 34);
     assert_eq!(header.integrable_count, 17);
-    let (_, again) = read_basis_file(&path).unwrap();
+    assert_eq!(header.layout, BasisFileLayout::Fields);
+    let (_, StoredBasis::Fields(again)) = read_basis_file(&path).unwrap() else {
+        panic!("a dense basis is stored as fields");
+    };
     assert_eq!(bits(&again), bits(&basis));
     // saving over an existing file leaves exactly one file
     save_basis(&path, &loaded, &key).unwrap();
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }
 
-/// The streaming writer (fields formed from the eigenfunctions while the file is written) writes
-/// the same bytes as the writer of the dense basis, over more than one chunk of fields.
+/// A compact basis is saved as eigenfunctions, about half the bytes of its fields, and loads to
+/// exactly the fields `compute_basis` gives (over more than one chunk of fields).
 #[test]
-fn streamed_compact_basis_is_the_dense_basis_file() {
+fn compact_basis_is_stored_as_eigenfunctions_and_loads_to_the_dense_fields() {
     let mesh = icosphere(2);
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let request = BasisRequest::pairs(70).with_seed(3);
@@ -60,21 +70,96 @@ fn streamed_compact_basis_is_the_dense_basis_file() {
     let dir = tempfile::tempdir().unwrap();
     let (compact, _) = compute_eigenfunction_basis(&complex, &request).unwrap();
     assert!(compact.len() > 128);
-    let streamed = dir.path().join("streamed.tvfb");
-    save_eigenfunction_basis(&streamed, &compact, &complex, &key).unwrap();
+    let stored = dir.path().join("compact.tvfb");
+    save_eigenfunction_basis(&stored, &compact, &complex, &key).unwrap();
+    let dense_basis = compute_basis(&complex, &request).unwrap();
     let dense = dir.path().join("dense.tvfb");
-    save_basis(&dense, &compute_basis(&complex, &request).unwrap(), &key).unwrap();
+    save_basis(&dense, &dense_basis, &key).unwrap();
     assert_eq!(
-        std::fs::read(&streamed).unwrap(),
-        std::fs::read(&dense).unwrap()
+        read_basis_header(&stored).unwrap().layout,
+        BasisFileLayout::Eigenfunctions {
+            potential_dimension: mesh.vertex_count(),
+            co_potential_dimension: mesh.edge_count(),
+        }
     );
-    let loaded = load_basis(&streamed, &key).unwrap();
-    assert_eq!(loaded.eigenvalues(), compact.eigenvalues());
+    let (compact_bytes, dense_bytes) = (
+        std::fs::metadata(&stored).unwrap().len(),
+        std::fs::metadata(&dense).unwrap().len(),
+    );
+    // V + E values per pair against 4F: about half the fields (0.50 here), plus the eigenvalues.
+    assert!(
+        (compact_bytes as f64) < 0.52 * dense_bytes as f64,
+        "{compact_bytes} against {dense_bytes}"
+    );
+    let loaded = load_basis(&stored, &key, &complex).unwrap();
+    assert_eq!(loaded.families(), dense_basis.families());
+    assert_eq!(bits(&loaded), bits(&dense_basis));
+    let (header, StoredBasis::Eigenfunctions(read)) = read_basis_file(&stored).unwrap() else {
+        panic!("a compact basis is stored as eigenfunctions");
+    };
+    assert_eq!(header.field_count, compact.len());
+    assert_eq!(read.eigenvalues(), compact.eigenvalues());
+    assert_eq!(read.potentials(), compact.potentials());
+    assert_eq!(read.co_potentials(), compact.co_potentials());
+    assert_eq!(read.harmonic_fields(), compact.harmonic_fields());
+    // the complex of another mesh does not fit the stored eigenfunctions
+    let other = Conforming::new(&icosphere(1), MassLumping::Barycentric).unwrap();
+    let (_, stored_basis) = read_basis_file(&stored).unwrap();
+    assert!(stored_basis.into_fields(&other).is_err());
 }
 
-fn damaged(path: &Path, bytes: &[u8], key: &BasisFileKey) -> BasisFileError {
+/// Where the eigenfunctions are not smaller (only harmonic fields), the fields are written,
+/// formed while the file is written.
+#[test]
+fn harmonic_only_basis_is_stored_as_fields() {
+    let mesh = torus(1.0, 0.4, 12, 8).unwrap();
+    let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+    let request = BasisRequest::fields(2);
+    let key = BasisFileKey::new(&mesh, &complex);
+    let (compact, _) = compute_eigenfunction_basis(&complex, &request).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("harmonic.tvfb");
+    save_eigenfunction_basis(&path, &compact, &complex, &key).unwrap();
+    assert_eq!(
+        read_basis_header(&path).unwrap().layout,
+        BasisFileLayout::Fields
+    );
+    let loaded = load_basis(&path, &key, &complex).unwrap();
+    assert_eq!(
+        bits(&loaded),
+        bits(&compute_basis(&complex, &request).unwrap())
+    );
+}
+
+/// Files of format version 1 (fields only, no layout words in the header) still load.
+#[test]
+fn version_one_files_load() {
+    let (_, complex, basis, key) = setup();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sphere.tvfb");
+    save_basis(&path, &basis, &key).unwrap();
+    let current = std::fs::read(&path).unwrap();
+    // Rewrite the header as version 1 wrote it: version 1, no layout words, its own checksum.
+    let header_length = u32::from_le_bytes(current[12..16].try_into().unwrap()) as usize;
+    let mut header = current[..72].to_vec();
+    header.extend_from_slice(&current[96..header_length - 8]);
+    header[8..12].copy_from_slice(&1u32.to_le_bytes());
+    let old_length = header.len() + 8;
+    header[12..16].copy_from_slice(&(old_length as u32).to_le_bytes());
+    let checksum = Hash64::of(&header);
+    header.extend_from_slice(&checksum.to_le_bytes());
+    header.extend_from_slice(&current[header_length..]);
+    std::fs::write(&path, &header).unwrap();
+    let read = read_basis_header(&path).unwrap();
+    assert_eq!((read.version, read.layout), (1, BasisFileLayout::Fields));
+    assert_eq!(read.key, key);
+    let loaded = load_basis(&path, &key, &complex).unwrap();
+    assert_eq!(bits(&loaded), bits(&basis));
+}
+
+fn damaged(path: &Path, bytes: &[u8], key: &BasisFileKey, complex: &Conforming) -> BasisFileError {
     std::fs::write(path, bytes).unwrap();
-    let error = load_basis(path, key).unwrap_err();
+    let error = load_basis(path, key, complex).unwrap_err();
     assert!(
         error.to_string().contains(&path.display().to_string()),
         "{error}"
@@ -84,7 +169,7 @@ fn damaged(path: &Path, bytes: &[u8], key: &BasisFileKey) -> BasisFileError {
 
 #[test]
 fn every_bad_file_gets_its_error() {
-    let (mesh, basis, key) = setup();
+    let (mesh, complex, basis, key) = setup();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("good.tvfb");
     save_basis(&path, &basis, &key).unwrap();
@@ -98,7 +183,7 @@ fn every_bad_file_gets_its_error() {
         &Conforming::new(&moved, MassLumping::Barycentric).unwrap(),
     );
     assert!(matches!(
-        load_basis(&path, &moved_key),
+        load_basis(&path, &moved_key, &complex),
         Err(BasisFileError::WrongMesh { .. })
     ));
     let finer = icosphere(2);
@@ -107,7 +192,7 @@ fn every_bad_file_gets_its_error() {
         &Conforming::new(&finer, MassLumping::Barycentric).unwrap(),
     );
     assert!(matches!(
-        load_basis(&path, &finer_key),
+        load_basis(&path, &finer_key, &complex),
         Err(BasisFileError::WrongMesh {
             found_faces: 80,
             expected_faces: 320,
@@ -125,7 +210,7 @@ fn every_bad_file_gets_its_error() {
             &Conforming::new(&mesh, MassLumping::Voronoi).unwrap(),
         ),
     ] {
-        let error = load_basis(&path, &other).unwrap_err();
+        let error = load_basis(&path, &other, &complex).unwrap_err();
         assert!(
             matches!(error, BasisFileError::WrongDiscretization { .. }),
             "{error}"
@@ -133,38 +218,38 @@ fn every_bad_file_gets_its_error() {
     }
     // a newer format
     let mut newer = good.clone();
-    newer[8..12].copy_from_slice(&2u32.to_le_bytes());
+    newer[8..12].copy_from_slice(&3u32.to_le_bytes());
     assert!(matches!(
-        damaged(&bad, &newer, &key),
+        damaged(&bad, &newer, &key, &complex),
         BasisFileError::NewerFormat {
-            found: 2,
-            supported: 1,
+            found: 3,
+            supported: 2,
             ..
         }
     ));
     // not a basis file at all
     assert!(matches!(
-        damaged(&bad, b"v 0 0 0\n", &key),
+        damaged(&bad, b"v 0 0 0\n", &key, &complex),
         BasisFileError::NotABasisFile { .. }
     ));
     assert!(matches!(
-        damaged(&bad, &[], &key),
+        damaged(&bad, &[], &key, &complex),
         BasisFileError::NotABasisFile { .. }
     ));
     // truncated in the payload, in the header
     assert!(matches!(
-        damaged(&bad, &good[..good.len() - 100], &key),
+        damaged(&bad, &good[..good.len() - 100], &key, &complex),
         BasisFileError::Truncated { .. }
     ));
     assert!(matches!(
-        damaged(&bad, &good[..40], &key),
+        damaged(&bad, &good[..40], &key, &complex),
         BasisFileError::Truncated { .. }
     ));
     // trailing garbage
     let mut longer = good.clone();
     longer.extend_from_slice(&[0; 8]);
     assert!(matches!(
-        damaged(&bad, &longer, &key),
+        damaged(&bad, &longer, &key, &complex),
         BasisFileError::Invalid { .. }
     ));
     // one flipped bit in the header, in the eigenvalues, in the fields, in the checksum
@@ -172,7 +257,7 @@ fn every_bad_file_gets_its_error() {
     let mut flip = good.clone();
     flip[20] ^= 0x04;
     assert!(matches!(
-        damaged(&bad, &flip, &key),
+        damaged(&bad, &flip, &key, &complex),
         BasisFileError::Checksum { part: "header", .. }
     ));
     for position in [
@@ -185,7 +270,7 @@ fn every_bad_file_gets_its_error() {
         flip[position] ^= 0x80;
         assert!(
             matches!(
-                damaged(&bad, &flip, &key),
+                damaged(&bad, &flip, &key, &complex),
                 BasisFileError::Checksum {
                     part: "payload",
                     ..
@@ -196,7 +281,7 @@ fn every_bad_file_gets_its_error() {
     }
     // missing file
     assert!(matches!(
-        load_basis(&dir.path().join("missing.tvfb"), &key),
+        load_basis(&dir.path().join("missing.tvfb"), &key, &complex),
         Err(BasisFileError::Io { .. })
     ));
     // a basis that does not fit the key is refused at save time

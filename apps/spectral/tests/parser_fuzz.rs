@@ -9,8 +9,9 @@ use rand_chacha::ChaCha8Rng;
 use tvf_core::generate::torus;
 use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{
-    basis_id, compute_basis, read_basis_file, save_basis, BasisFileKey, BasisRequest,
-    CoefficientCoding, CompressedFields, FieldCodec, NpyArray, NpyDtype,
+    basis_id, compute_basis, compute_eigenfunction_basis, read_basis_file, save_basis,
+    save_eigenfunction_basis, BasisFileKey, BasisRequest, CoefficientCoding, CompressedFields,
+    FieldCodec, NpyArray, NpyDtype,
 };
 
 fn cases() -> usize {
@@ -108,7 +109,14 @@ fn basis_and_compressed_file_readers_survive_mutated_files() {
         field_dimension: 2 * mesh.face_count(),
     };
     save_basis(&path, &basis, &key).unwrap();
-    let tvfb_seed = std::fs::read(&path).unwrap();
+    let (compact, _) = compute_eigenfunction_basis(&complex, &BasisRequest::fields(12)).unwrap();
+    let compact_path = dir.path().join("compact.tvfb");
+    save_eigenfunction_basis(&compact_path, &compact, &complex, &key).unwrap();
+    // Both layouts: the dense fields and the eigenfunctions.
+    let tvfb_seeds = [
+        std::fs::read(&path).unwrap(),
+        std::fs::read(&compact_path).unwrap(),
+    ];
     let field: Vec<f64> = (0..basis.field_dimension())
         .map(|k| (k as f64).sin())
         .collect();
@@ -130,7 +138,7 @@ fn basis_and_compressed_file_readers_survive_mutated_files() {
     let (mut tvfb_parsed, mut tvfc_parsed) = (0, 0);
     let fuzz_path = dir.path().join("fuzz.tvfb");
     for _ in 0..cases() {
-        let bytes = input(std::slice::from_ref(&tvfb_seed), &mut rng);
+        let bytes = input(&tvfb_seeds, &mut rng);
         std::fs::write(&fuzz_path, &bytes).unwrap();
         match read_basis_file(&fuzz_path) {
             Ok((header, basis)) => {

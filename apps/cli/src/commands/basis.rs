@@ -72,7 +72,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
             .with_context(|| format!("{}: cannot compute the basis", args.input.label()))?
     };
     let key = BasisFileKey::new(&mesh, discretization.as_ref());
-    // The file holds dense fields; they are formed a few at a time while it is written.
+    // The file holds the eigenfunctions (about half the bytes of the dense fields).
     let (writing_start, writing_cpu) = (Instant::now(), process_cpu_seconds());
     if let Some(output) = &args.output {
         save_eigenfunction_basis(output, &basis, discretization.as_ref(), &key)?;

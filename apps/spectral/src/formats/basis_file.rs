@@ -1,4 +1,4 @@
-//! Basis files (`.tvfb`): a [`SpectralBasis`] saved for reuse, tied to its mesh and
+//! Basis files (`.tvfb`): a Fourier basis saved for reuse, tied to its mesh and
 //! discretization.
 //!
 //! Layout (all integers and floats little-endian):
@@ -6,78 +6,49 @@
 //! | bytes | content |
 //! |---|---|
 //! | 8 | magic `TVFBASIS` |
-//! | 4 | format version (`u32`, currently 1) |
+//! | 4 | format version (`u32`, currently 2) |
 //! | 4 | header length `H` in bytes, from the magic to the payload (`u32`) |
 //! | 8 | mesh fingerprint ([`tvf_core::SurfaceMesh::fingerprint`]) |
-//! | 8 × 6 | faces `F`, field dimension `n1` (`2F` for face fields, `E` for DEC 1-forms), fields `d`, harmonic, integrable, co-integrable counts |
-//! | 4 + L | discretization id: `u32` length, UTF-8 text: the catalog id (e.g. `conforming-barycentric`) |
+//! | 8 × 6 | faces `F`, field dimension `n1` (`2F` for face fields, `E` for DEC 1-forms), fields `d`, harmonic `h`, integrable `a`, co-integrable `b` counts |
+//! | 8 × 3 | layout (`0` fields, `1` eigenfunctions), potential rows `n0`, co-potential rows `n2` (`0` for the fields layout); absent in version 1, whose layout is fields |
+//! | 4 + L | discretization id: `u32` length, UTF-8 text: the complex id (e.g. `conforming-barycentric`) |
 //! | 8 | [`Hash64`] of the header bytes before it |
 //! | 8·d | eigenvalues (`f64`), ascending |
 //! | d, zero-padded to a multiple of 8 | families (`0` harmonic, `1` integrable, `2` co-integrable) |
-//! | 8·n1 | diagonal of `M1` |
-//! | 8·n1·d | the fields, column by column (`n1` values each) |
+//! | layout-specific | see below |
 //! | 8 | [`Hash64`] of the payload (everything between the header and this checksum) |
 //!
-//! The round trip is bit-exact. Saving is atomic; loading streams (no second copy in memory).
+//! The fields layout continues with `8·n1` bytes, the diagonal of `M1`, and `8·n1·d` bytes, the
+//! fields column by column. The eigenfunctions layout ([`crate::EigenfunctionBasis`])
+//! continues with the `a` potentials (`8·n0` bytes each), the `b` co-potentials (`8·n2` bytes
+//! each) and the `h` harmonic fields (`8·n1` bytes each), each family in the order its fields
+//! appear in the basis; its fields are formed through the complex's sparse gradients on
+//! loading, so it needs the complex, and it is written whenever it is the smaller of the two
+//! (on every mesh of the catalog's complexes: `V + E` values for a pair of fields against `4F`,
+//! about half).
+//!
+//! Round trips are bit-exact: a fields file gives back its fields, an eigenfunctions file its
+//! eigenfunctions and so the very fields the basis had in memory. Saving is atomic; loading
+//! streams (no second copy in memory).
 
 use crate::eigenfunction_basis::FIELD_CHUNK;
 use crate::formats::atomic_write::write_atomically_with;
+use crate::formats::basis_file_header::{encode_header, read_header};
+pub use crate::formats::basis_file_header::{BasisFileHeader, BasisFileKey, BasisFileLayout};
+use crate::formats::stored_basis::StoredBasis;
 use crate::{EigenfunctionBasis, FieldFamily, SpectralBasis};
-use faer::Mat;
+use faer::{ColRef, Mat};
 use std::io::{Read, Write};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::Hash64;
-use tvf_core::SurfaceMesh;
 
 /// The magic bytes of a basis file.
 pub const BASIS_FILE_MAGIC: &[u8; 8] = b"TVFBASIS";
 /// The format version this build writes and the newest it reads.
-pub const BASIS_FILE_VERSION: u32 = 1;
-
-/// What a basis file must match to be used: the discretization and the mesh.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct BasisFileKey {
-    /// The catalog id of the discretization, [`HodgeComplex::id`] (names the mass lumping too).
-    pub discretization: String,
-    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
-    pub mesh_fingerprint: u64,
-    /// Faces of the mesh.
-    pub face_count: usize,
-    /// Field coefficients `n1` of the discretization on the mesh.
-    pub field_dimension: usize,
-}
-
-impl BasisFileKey {
-    /// The key of a basis computed for `complex` on `mesh`.
-    pub fn new<H: HodgeComplex + ?Sized>(mesh: &SurfaceMesh, complex: &H) -> Self {
-        Self {
-            discretization: complex.id().to_string(),
-            mesh_fingerprint: mesh.fingerprint(),
-            face_count: mesh.face_count(),
-            field_dimension: complex.field_dimension(),
-        }
-    }
-}
-
-/// The header of a basis file.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct BasisFileHeader {
-    /// Format version of the file.
-    pub version: u32,
-    /// Mesh and discretization the basis belongs to.
-    pub key: BasisFileKey,
-    /// Number of basis fields `d`.
-    pub field_count: usize,
-    /// Harmonic fields among them.
-    pub harmonic_count: usize,
-    /// Integrable fields among them.
-    pub integrable_count: usize,
-    /// Co-integrable fields among them.
-    pub cointegrable_count: usize,
-}
+pub const BASIS_FILE_VERSION: u32 = 2;
 
 /// Why a basis file could not be written or used (every variant names the file).
 #[derive(Debug, Error)]
@@ -166,7 +137,8 @@ fn family_code(family: FieldFamily) -> u8 {
     }
 }
 
-/// Saves `basis` for the mesh and discretization of `key`, atomically.
+/// Saves `basis` (dense fields) for the mesh and discretization of `key`, atomically, in the
+/// fields layout.
 pub fn save_basis(
     path: &Path,
     basis: &SpectralBasis,
@@ -176,54 +148,100 @@ pub fn save_basis(
     let contents = BasisContents {
         eigenvalues: basis.eigenvalues(),
         families: basis.families(),
-        field_mass: basis.field_mass(),
         field_dimension: basis.field_dimension(),
     };
-    write_basis(path, key, &contents, &|range| {
-        range
-            .map(|j| {
-                let column = fields.col(j);
-                (0..column.nrows()).map(|i| column[i]).collect()
-            })
-            .collect()
-    })
+    write_basis(
+        path,
+        key,
+        &contents,
+        BasisFileLayout::Fields,
+        |out, buffer| {
+            write_values(out, buffer, basis.field_mass())?;
+            for j in 0..fields.ncols() {
+                write_column(out, buffer, fields.col(j))?;
+            }
+            Ok(())
+        },
+    )
 }
 
-/// Saves a basis in compact form (the eigenfunctions of `complex`) for the mesh and
-/// discretization of `key`, atomically: the file holds the dense fields, formed a few at a time
-/// in parallel while the file is written, so they are never all in memory. The file is the one
-/// [`save_basis`] writes for the dense basis ([`EigenfunctionBasis::dense_fields`]).
+/// Saves a basis computed in compact form (the eigenfunctions of `complex`) for the mesh and
+/// discretization of `key`, atomically: in the eigenfunctions layout when it is the smaller,
+/// else in the fields layout, the fields formed a few at a time in parallel while the file is
+/// written, so they are never all in memory. Either file loads to the basis
+/// [`EigenfunctionBasis::dense_fields`] gives.
 pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     path: &Path,
     basis: &EigenfunctionBasis,
     complex: &H,
     key: &BasisFileKey,
 ) -> Result<(), BasisFileError> {
+    basis
+        .check_complex(complex)
+        .map_err(|e| BasisFileError::Invalid {
+            path: path.to_path_buf(),
+            reason: format!("the basis does not fit its complex: {e}"),
+        })?;
     let contents = BasisContents {
         eigenvalues: basis.eigenvalues(),
         families: basis.families(),
-        field_mass: complex.m1().values(),
         field_dimension: complex.field_dimension(),
     };
-    write_basis(path, key, &contents, &|range| {
-        basis.field_columns(complex, range)
-    })
+    let (n0, n2) = (
+        complex.potential_dimension(),
+        complex.co_potential_dimension(),
+    );
+    let count = |family| basis.families().iter().filter(|&&f| f == family).count();
+    let compact_values = n0 * count(FieldFamily::Integrable)
+        + n2 * count(FieldFamily::Cointegrable)
+        + contents.field_dimension * count(FieldFamily::Harmonic);
+    if compact_values < contents.field_dimension * basis.len() {
+        let layout = BasisFileLayout::Eigenfunctions {
+            potential_dimension: n0,
+            co_potential_dimension: n2,
+        };
+        return write_basis(path, key, &contents, layout, |out, buffer| {
+            for (family, matrix) in [
+                (FieldFamily::Integrable, basis.potentials()),
+                (FieldFamily::Cointegrable, basis.co_potentials()),
+                (FieldFamily::Harmonic, basis.harmonic_fields()),
+            ] {
+                for slot in basis.family_slots(family) {
+                    write_column(out, buffer, matrix.col(slot))?;
+                }
+            }
+            Ok(())
+        });
+    }
+    write_basis(
+        path,
+        key,
+        &contents,
+        BasisFileLayout::Fields,
+        |out, buffer| {
+            write_values(out, buffer, complex.m1().values())?;
+            write_streamed_fields(out, buffer, basis.len(), &|range| {
+                basis.field_columns(complex, range)
+            })
+        },
+    )
 }
 
-/// Everything of a basis file but its fields.
+/// Everything of a basis file but its layout-specific part.
 struct BasisContents<'a> {
     eigenvalues: &'a [f64],
     families: &'a [FieldFamily],
-    field_mass: &'a [f64],
     field_dimension: usize,
 }
 
-/// Writes a basis file whose fields `range` are `columns(range)` (each `field_dimension` values).
+/// Writes a basis file: header, eigenvalues and families, then `body(out, buffer)` writes the
+/// layout-specific part through the checksumming `out` (with `buffer` as scratch space).
 fn write_basis(
     path: &Path,
     key: &BasisFileKey,
     contents: &BasisContents<'_>,
-    columns: &(dyn Fn(Range<usize>) -> Vec<Vec<f64>> + Sync),
+    layout: BasisFileLayout,
+    body: impl FnOnce(&mut HashingWriter<'_>, &mut Vec<u8>) -> std::io::Result<()>,
 ) -> Result<(), BasisFileError> {
     let n = contents.field_dimension;
     let count = contents.eigenvalues.len();
@@ -244,6 +262,7 @@ fn write_basis(
         harmonic_count: family_count(FieldFamily::Harmonic),
         integrable_count: family_count(FieldFamily::Integrable),
         cointegrable_count: family_count(FieldFamily::Cointegrable),
+        layout,
     });
     write_atomically_with(path, |w| {
         w.write_all(&header)?;
@@ -252,44 +271,12 @@ fn write_basis(
             hash: Hash64::new(),
         };
         let mut buffer = Vec::with_capacity(8 * n.max(count) + 8);
-        buffer.extend(contents.eigenvalues.iter().flat_map(|x| x.to_le_bytes()));
-        out.write_all(&buffer)?;
+        write_values(&mut out, &mut buffer, contents.eigenvalues)?;
         buffer.clear();
         buffer.extend(contents.families.iter().map(|&f| family_code(f)));
         buffer.resize(count.div_ceil(8) * 8, 0);
         out.write_all(&buffer)?;
-        buffer.clear();
-        buffer.extend(contents.field_mass.iter().flat_map(|x| x.to_le_bytes()));
-        out.write_all(&buffer)?;
-        // The next chunk of fields is formed on another thread while this one is written, so
-        // forming (parallel) and writing (one thread) overlap; the channel holds no chunk of its
-        // own, so at most two chunks exist at a time (2 GB at a million faces).
-        std::thread::scope(|scope| {
-            let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Vec<f64>>>(0);
-            scope.spawn(move || {
-                for start in (0..count).step_by(FIELD_CHUNK) {
-                    let chunk = columns(start..(start + FIELD_CHUNK).min(count));
-                    // A closed channel means the writer failed and stopped.
-                    if sender.send(chunk).is_err() {
-                        break;
-                    }
-                }
-            });
-            for chunk in &receiver {
-                for column in chunk {
-                    if column.len() != n {
-                        return Err(std::io::Error::other(format!(
-                            "a field has {} values, not {n}",
-                            column.len()
-                        )));
-                    }
-                    buffer.clear();
-                    buffer.extend(column.iter().flat_map(|x| x.to_le_bytes()));
-                    out.write_all(&buffer)?;
-                }
-            }
-            Ok(())
-        })?;
+        body(&mut out, &mut buffer)?;
         let checksum = out.hash.finish();
         w.write_all(&checksum.to_le_bytes())
     })
@@ -299,14 +286,76 @@ fn write_basis(
     })
 }
 
-/// Loads a basis and checks that it belongs to `expected` (mesh and discretization).
-pub fn load_basis(path: &Path, expected: &BasisFileKey) -> Result<SpectralBasis, BasisFileError> {
-    read_basis(path, Some(expected)).map(|(_, basis)| basis)
+/// Writes `values` as little-endian `f64`s through `buffer`.
+fn write_values(out: &mut impl Write, buffer: &mut Vec<u8>, values: &[f64]) -> std::io::Result<()> {
+    buffer.clear();
+    buffer.extend(values.iter().flat_map(|x| x.to_le_bytes()));
+    out.write_all(buffer)
 }
 
-/// Loads a basis without checking what it belongs to (integrity is still checked); returns its
-/// header too.
-pub fn read_basis_file(path: &Path) -> Result<(BasisFileHeader, SpectralBasis), BasisFileError> {
+/// Writes one matrix column as little-endian `f64`s through `buffer`.
+fn write_column(
+    out: &mut impl Write,
+    buffer: &mut Vec<u8>,
+    column: ColRef<'_, f64>,
+) -> std::io::Result<()> {
+    buffer.clear();
+    buffer.extend(column.iter().flat_map(|x| x.to_le_bytes()));
+    out.write_all(buffer)
+}
+
+/// Writes `count` fields whose columns `range` are `columns(range)` (each `n1` values, checked
+/// against the header by the reader's size check).
+///
+/// The next chunk of fields is formed on another thread while this one is written, so forming
+/// (parallel) and writing (one thread) overlap; the channel holds no chunk of its own, so at
+/// most two chunks exist at a time.
+fn write_streamed_fields(
+    out: &mut impl Write,
+    buffer: &mut Vec<u8>,
+    count: usize,
+    columns: &(dyn Fn(Range<usize>) -> Vec<Vec<f64>> + Sync),
+) -> std::io::Result<()> {
+    std::thread::scope(|scope| {
+        let (sender, receiver) = std::sync::mpsc::sync_channel::<Vec<Vec<f64>>>(0);
+        scope.spawn(move || {
+            for start in (0..count).step_by(FIELD_CHUNK) {
+                let chunk = columns(start..(start + FIELD_CHUNK).min(count));
+                // A closed channel means the writer failed and stopped.
+                if sender.send(chunk).is_err() {
+                    break;
+                }
+            }
+        });
+        for chunk in &receiver {
+            for column in chunk {
+                write_values(out, buffer, &column)?;
+            }
+        }
+        Ok(())
+    })
+}
+
+/// Loads a basis with dense fields and checks that it belongs to `expected` (mesh and
+/// discretization); an eigenfunctions file is turned into fields through `complex`, the complex
+/// `expected` was made from.
+pub fn load_basis<H: HodgeComplex + ?Sized>(
+    path: &Path,
+    expected: &BasisFileKey,
+    complex: &H,
+) -> Result<SpectralBasis, BasisFileError> {
+    let (_, stored) = read_basis(path, Some(expected))?;
+    stored
+        .into_fields(complex)
+        .map_err(|e| BasisFileError::Invalid {
+            path: path.to_path_buf(),
+            reason: format!("the basis does not fit its complex: {e}"),
+        })
+}
+
+/// Loads a basis in the form the file holds it, without checking what it belongs to (integrity
+/// is still checked); returns its header too.
+pub fn read_basis_file(path: &Path) -> Result<(BasisFileHeader, StoredBasis), BasisFileError> {
     read_basis(path, None)
 }
 
@@ -324,137 +373,10 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> BasisFileError + '_ {
     }
 }
 
-/// The catalog id a stored discretization name stands for: files written before the catalog
-/// store `decomposition (mass)`, e.g. `conforming (barycentric)` for `conforming-barycentric`.
-fn catalog_id_of(stored: &str) -> String {
-    match stored.strip_suffix(')').and_then(|s| s.split_once(" (")) {
-        Some((decomposition, mass)) => format!("{decomposition}-{mass}"),
-        None => stored.to_string(),
-    }
-}
-
-fn encode_header(h: &BasisFileHeader) -> Vec<u8> {
-    let name = h.key.discretization.as_bytes();
-    let length = 8 + 4 + 4 + 8 + 6 * 8 + 4 + name.len() + 8;
-    let mut out = Vec::with_capacity(length);
-    out.extend_from_slice(BASIS_FILE_MAGIC);
-    out.extend_from_slice(&h.version.to_le_bytes());
-    out.extend_from_slice(&(length as u32).to_le_bytes());
-    out.extend_from_slice(&h.key.mesh_fingerprint.to_le_bytes());
-    for count in [
-        h.key.face_count,
-        h.key.field_dimension,
-        h.field_count,
-        h.harmonic_count,
-        h.integrable_count,
-        h.cointegrable_count,
-    ] {
-        out.extend_from_slice(&(count as u64).to_le_bytes());
-    }
-    out.extend_from_slice(&(name.len() as u32).to_le_bytes());
-    out.extend_from_slice(name);
-    let checksum = Hash64::of(&out);
-    out.extend_from_slice(&checksum.to_le_bytes());
-    out
-}
-
-/// Reads and checks the header; returns it with its length in bytes.
-fn read_header(
-    path: &Path,
-    reader: &mut impl Read,
-) -> Result<(BasisFileHeader, u64), BasisFileError> {
-    let mut fixed = [0u8; 16];
-    match reader.read_exact(&mut fixed) {
-        Ok(()) => {}
-        Err(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
-            return Err(BasisFileError::NotABasisFile {
-                path: path.to_path_buf(),
-            })
-        }
-        Err(e) => return Err(io(path)(e)),
-    }
-    if &fixed[..8] != BASIS_FILE_MAGIC {
-        return Err(BasisFileError::NotABasisFile {
-            path: path.to_path_buf(),
-        });
-    }
-    let version = u32::from_le_bytes([fixed[8], fixed[9], fixed[10], fixed[11]]);
-    if version > BASIS_FILE_VERSION {
-        return Err(BasisFileError::NewerFormat {
-            path: path.to_path_buf(),
-            found: version,
-            supported: BASIS_FILE_VERSION,
-        });
-    }
-    let length = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]) as usize;
-    let damaged = || BasisFileError::Checksum {
-        path: path.to_path_buf(),
-        part: "header",
-    };
-    if version == 0 || !(16 + 8 + 48 + 4 + 8..=1 << 20).contains(&length) {
-        return Err(damaged());
-    }
-    let mut bytes = fixed.to_vec();
-    bytes.resize(length, 0);
-    reader.read_exact(&mut bytes[16..]).map_err(|e| {
-        if e.kind() == std::io::ErrorKind::UnexpectedEof {
-            BasisFileError::Truncated {
-                path: path.to_path_buf(),
-                expected: length as u64,
-                found: 0,
-            }
-        } else {
-            io(path)(e)
-        }
-    })?;
-    let body = length - 8;
-    let stored = u64::from_le_bytes(bytes[body..].try_into().map_err(|_| damaged())?);
-    if Hash64::of(&bytes[..body]) != stored {
-        return Err(damaged());
-    }
-    let u64_at = |at: usize| {
-        let mut w = [0u8; 8];
-        w.copy_from_slice(&bytes[at..at + 8]);
-        u64::from_le_bytes(w)
-    };
-    let counts: Vec<usize> = (0..6).map(|i| u64_at(24 + 8 * i) as usize).collect();
-    let name_length = u32::from_le_bytes([bytes[72], bytes[73], bytes[74], bytes[75]]) as usize;
-    let invalid = |reason: String| BasisFileError::Invalid {
-        path: path.to_path_buf(),
-        reason,
-    };
-    if 76 + name_length != body {
-        return Err(invalid(
-            "header length does not match the discretization id".into(),
-        ));
-    }
-    let discretization = catalog_id_of(
-        &String::from_utf8(bytes[76..body].to_vec())
-            .map_err(|_| invalid("discretization id is not UTF-8".into()))?,
-    );
-    let header = BasisFileHeader {
-        version,
-        key: BasisFileKey {
-            discretization,
-            mesh_fingerprint: u64_at(16),
-            face_count: counts[0],
-            field_dimension: counts[1],
-        },
-        field_count: counts[2],
-        harmonic_count: counts[3],
-        integrable_count: counts[4],
-        cointegrable_count: counts[5],
-    };
-    if counts[3] + counts[4] + counts[5] != counts[2] {
-        return Err(invalid(format!("inconsistent counts {counts:?}")));
-    }
-    Ok((header, length as u64))
-}
-
 fn read_basis(
     path: &Path,
     expected: Option<&BasisFileKey>,
-) -> Result<(BasisFileHeader, SpectralBasis), BasisFileError> {
+) -> Result<(BasisFileHeader, StoredBasis), BasisFileError> {
     let file = std::fs::File::open(path).map_err(io(path))?;
     let size = file.metadata().map_err(io(path))?.len();
     let mut reader = std::io::BufReader::with_capacity(1 << 20, file);
@@ -480,20 +402,14 @@ fn read_basis(
             });
         }
     }
-    let (n, d) = (header.key.field_dimension as u64, header.field_count as u64);
-    let promised = (|| {
-        let fields = n.checked_mul(d)?.checked_mul(8)?;
-        header_length
-            .checked_add(8 * d)?
-            .checked_add(d.div_ceil(8) * 8)?
-            .checked_add(8 * n)?
-            .checked_add(fields)?
-            .checked_add(8)
-    })()
-    .ok_or_else(|| BasisFileError::Invalid {
+    let invalid = |reason: String| BasisFileError::Invalid {
         path: path.to_path_buf(),
-        reason: "sizes overflow".into(),
-    })?;
+        reason,
+    };
+    let promised = header
+        .payload_bytes()
+        .and_then(|payload| payload.checked_add(header_length))
+        .ok_or_else(|| invalid("sizes overflow".into()))?;
     if size < promised {
         return Err(BasisFileError::Truncated {
             path: path.to_path_buf(),
@@ -502,30 +418,37 @@ fn read_basis(
         });
     }
     if size > promised {
-        return Err(BasisFileError::Invalid {
-            path: path.to_path_buf(),
-            reason: format!("{} bytes of trailing data", size - promised),
-        });
+        return Err(invalid(format!(
+            "{} bytes of trailing data",
+            size - promised
+        )));
     }
-    let (n, d) = (n as usize, d as usize);
+    let (n, d) = (header.key.field_dimension, header.field_count);
     let mut input = HashingReader {
         inner: reader,
         hash: Hash64::new(),
     };
-    let read_err = io(path);
-    let eigenvalues = input.f64s(d).map_err(read_err)?;
+    let eigenvalues = input.f64s(d).map_err(io(path))?;
     let mut codes = vec![0u8; d.div_ceil(8) * 8];
     input.read_exact(&mut codes).map_err(io(path))?;
-    let field_mass = input.f64s(n).map_err(io(path))?;
-    let mut fields = Mat::<f64>::zeros(n, d);
-    let mut buffer = vec![0u8; 8 * n];
-    for j in 0..d {
-        input.read_exact(&mut buffer).map_err(io(path))?;
-        let mut column = fields.col_mut(j);
-        for (i, chunk) in buffer.chunks_exact(8).enumerate() {
-            column[i] = f64::from_le_bytes(chunk.try_into().unwrap_or([0; 8]));
-        }
-    }
+    let read_body = |input: &mut HashingReader<_>| -> std::io::Result<_> {
+        Ok(match header.layout {
+            BasisFileLayout::Fields => {
+                let field_mass = input.f64s(n)?;
+                let fields = input.matrix(n, d)?;
+                Body::Fields { field_mass, fields }
+            }
+            BasisFileLayout::Eigenfunctions {
+                potential_dimension,
+                co_potential_dimension,
+            } => Body::Eigenfunctions {
+                potentials: input.matrix(potential_dimension, header.integrable_count)?,
+                co_potentials: input.matrix(co_potential_dimension, header.cointegrable_count)?,
+                harmonic: input.matrix(n, header.harmonic_count)?,
+            },
+        })
+    };
+    let body = read_body(&mut input).map_err(io(path))?;
     let computed = input.hash.finish();
     let mut stored = [0u8; 8];
     input.inner.read_exact(&mut stored).map_err(io(path))?;
@@ -535,10 +458,6 @@ fn read_basis(
             part: "payload",
         });
     }
-    let invalid = |reason: String| BasisFileError::Invalid {
-        path: path.to_path_buf(),
-        reason,
-    };
     let families = codes[..d]
         .iter()
         .map(|&c| match c {
@@ -548,16 +467,48 @@ fn read_basis(
             other => Err(invalid(format!("unknown family code {other}"))),
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let basis = SpectralBasis::new(eigenvalues, families, fields, field_mass)
-        .map_err(|e| invalid(e.to_string()))?;
-    if basis.count(FieldFamily::Harmonic) != header.harmonic_count
-        || basis.count(FieldFamily::Integrable) != header.integrable_count
+    let count = |family| families.iter().filter(|&&f| f == family).count();
+    if count(FieldFamily::Harmonic) != header.harmonic_count
+        || count(FieldFamily::Integrable) != header.integrable_count
     {
         return Err(invalid("family counts differ from the header".into()));
     }
-    Ok((header, basis))
+    let stored = match body {
+        Body::Fields { field_mass, fields } => {
+            SpectralBasis::new(eigenvalues, families, fields, field_mass)
+                .map(|basis| StoredBasis::Fields(Box::new(basis)))
+        }
+        Body::Eigenfunctions {
+            potentials,
+            co_potentials,
+            harmonic,
+        } => EigenfunctionBasis::from_columns(
+            eigenvalues,
+            families,
+            potentials,
+            co_potentials,
+            harmonic,
+        )
+        .map(|basis| StoredBasis::Eigenfunctions(Box::new(basis))),
+    }
+    .map_err(|e| invalid(e.to_string()))?;
+    Ok((header, stored))
 }
 
+/// The layout-specific part of a basis file, as read.
+enum Body {
+    Fields {
+        field_mass: Vec<f64>,
+        fields: Mat<f64>,
+    },
+    Eigenfunctions {
+        potentials: Mat<f64>,
+        co_potentials: Mat<f64>,
+        harmonic: Mat<f64>,
+    },
+}
+
+/// Writes through to `inner`, hashing what it writes.
 struct HashingWriter<'a> {
     inner: &'a mut dyn Write,
     hash: Hash64,
@@ -597,22 +548,17 @@ impl<R: Read> HashingReader<R> {
             .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
             .collect())
     }
-}
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_of_files_written_before_the_catalog_read_as_catalog_ids() {
-        assert_eq!(
-            catalog_id_of("conforming (barycentric)"),
-            "conforming-barycentric"
-        );
-        assert_eq!(
-            catalog_id_of("nonconforming (voronoi)"),
-            "nonconforming-voronoi"
-        );
-        assert_eq!(catalog_id_of("dec-circumcentric"), "dec-circumcentric");
+    /// A `rows × columns` matrix stored column by column.
+    fn matrix(&mut self, rows: usize, columns: usize) -> std::io::Result<Mat<f64>> {
+        let mut matrix = Mat::<f64>::zeros(rows, columns);
+        let mut bytes = vec![0u8; 8 * rows];
+        for j in 0..columns {
+            self.read_exact(&mut bytes)?;
+            for (value, chunk) in matrix.col_mut(j).iter_mut().zip(bytes.chunks_exact(8)) {
+                *value = f64::from_le_bytes(chunk.try_into().unwrap_or([0; 8]));
+            }
+        }
+        Ok(matrix)
     }
 }

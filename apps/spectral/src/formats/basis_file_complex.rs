@@ -97,6 +97,10 @@ pub fn open_basis_file(
     boundary: Option<BoundaryCondition>,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
     let complex = basis_file_complex(path, mesh, entry, boundary)?;
-    let basis = load_basis(path, &BasisFileKey::new(mesh, complex.as_ref()))?;
+    let basis = load_basis(
+        path,
+        &BasisFileKey::new(mesh, complex.as_ref()),
+        complex.as_ref(),
+    )?;
     Ok((complex, basis))
 }

@@ -5,9 +5,11 @@
 pub(crate) mod atomic_write;
 pub(crate) mod basis_file;
 pub(crate) mod basis_file_complex;
+pub(crate) mod basis_file_header;
 pub(crate) mod basis_id;
 pub(crate) mod compressed_file;
 pub(crate) mod field_frames;
 pub(crate) mod field_io;
 pub(crate) mod npy;
 pub(crate) mod numpy_export;
+pub(crate) mod stored_basis;
