@@ -3,7 +3,7 @@
 
 use crate::basis::{check_eigenvalues, check_length};
 use crate::{FieldFamily, SpectralBasisError};
-use faer::{Col, Mat, MatRef};
+use faer::{Col, ColRef, Mat, MatRef};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 
@@ -251,37 +251,44 @@ impl EigenfunctionBasis {
         range: std::ops::Range<usize>,
     ) -> Vec<Vec<f64>> {
         use rayon::prelude::*;
-        let d0 = complex.d0();
-        let co_gradient = complex.co_gradient();
+        let (d0, co_gradient) = (complex.d0(), complex.co_gradient());
         range
             .into_par_iter()
-            .map(|i| {
-                let slot = self.slots[i];
-                match self.families[i] {
-                    FieldFamily::Integrable => mul_vec(d0, &column(self.potentials.as_ref(), slot)),
-                    FieldFamily::Cointegrable => {
-                        mul_vec(co_gradient, &column(self.co_potentials.as_ref(), slot))
-                    }
-                    FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
-                }
-            })
+            .map(|i| self.field_with(d0, co_gradient, i))
             .collect()
     }
 
-    /// The dense fields `U` (`2F × d`), column `i` = [`field`](Self::field)`(i)`, built in
-    /// parallel chunks by [`field_columns`](Self::field_columns).
+    /// The dense fields `U` (`2F × d`), column `i` = [`field`](Self::field)`(i)`, formed in
+    /// parallel, each straight into its column.
     pub fn dense_fields<H: HodgeComplex + ?Sized>(&self, complex: &H) -> Mat<f64> {
-        let rows = complex.field_dimension();
-        let mut fields = Mat::zeros(rows, self.len());
-        for start in (0..self.len()).step_by(FIELD_CHUNK) {
-            let end = (start + FIELD_CHUNK).min(self.len());
-            for (j, values) in self.field_columns(complex, start..end).iter().enumerate() {
-                for (r, &v) in values.iter().enumerate() {
-                    fields[(r, start + j)] = v;
-                }
-            }
-        }
+        use rayon::prelude::*;
+        let (d0, co_gradient) = (complex.d0(), complex.co_gradient());
+        let mut fields = Mat::zeros(complex.field_dimension(), self.len());
         fields
+            .par_col_iter_mut()
+            .enumerate()
+            .for_each(|(i, mut column)| {
+                let values = self.field_with(d0, co_gradient, i);
+                column.copy_from(ColRef::from_slice(&values));
+            });
+        fields
+    }
+
+    /// Basis field `i` (`2F` values) from the gradient `d0` and the co-gradient `J G_co`.
+    fn field_with(
+        &self,
+        d0: &sprs::CsMat<f64>,
+        co_gradient: &sprs::CsMat<f64>,
+        i: usize,
+    ) -> Vec<f64> {
+        let slot = self.slots[i];
+        match self.families[i] {
+            FieldFamily::Integrable => mul_vec(d0, &column(self.potentials.as_ref(), slot)),
+            FieldFamily::Cointegrable => {
+                mul_vec(co_gradient, &column(self.co_potentials.as_ref(), slot))
+            }
+            FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
+        }
     }
 }
 
@@ -294,8 +301,8 @@ fn family_index(family: FieldFamily) -> usize {
     }
 }
 
-/// Fields formed at a time by [`EigenfunctionBasis::dense_fields`] and by the streaming writer
-/// of basis files (enough to keep every core busy, little memory).
+/// Fields formed at a time by the streaming writer of basis files (enough to keep every core
+/// busy, little memory).
 pub const FIELD_CHUNK: usize = 64;
 
 fn column(m: MatRef<'_, f64>, j: usize) -> Vec<f64> {
