@@ -2,6 +2,7 @@
 
 mod interval_slicing;
 mod krylov_slice;
+mod krylov_workspaces;
 mod lowest;
 mod mass_orthogonal;
 mod pencil;
