@@ -282,13 +282,51 @@ impl EigenfunctionBasis {
         i: usize,
     ) -> Vec<f64> {
         let slot = self.slots[i];
-        match self.families[i] {
-            FieldFamily::Integrable => mul_vec(d0, &column(self.potentials.as_ref(), slot)),
-            FieldFamily::Cointegrable => {
-                mul_vec(co_gradient, &column(self.co_potentials.as_ref(), slot))
-            }
-            FieldFamily::Harmonic => column(self.harmonic.as_ref(), slot),
+        let stored = match self.families[i] {
+            FieldFamily::Integrable => self.potentials.col(slot),
+            FieldFamily::Cointegrable => self.co_potentials.col(slot),
+            FieldFamily::Harmonic => self.harmonic.col(slot),
+        };
+        let values: Vec<f64> = stored.iter().copied().collect();
+        field_of_stored(d0, co_gradient, self.families[i], &values)
+    }
+}
+
+/// The field (`2F` values) of one stored column of a compact basis: `d0 φ̃` for a potential,
+/// `J G_co ψ̃` for a co-potential, the column itself for a harmonic field.
+pub(crate) fn field_of_stored(
+    d0: &sprs::CsMat<f64>,
+    co_gradient: &sprs::CsMat<f64>,
+    family: FieldFamily,
+    stored: &[f64],
+) -> Vec<f64> {
+    let mut field = vec![0.0; d0.rows()];
+    field_of_stored_into(d0, co_gradient, family, stored, &mut field);
+    field
+}
+
+/// [`field_of_stored`] written into `field` (`2F` values).
+pub(crate) fn field_of_stored_into(
+    d0: &sprs::CsMat<f64>,
+    co_gradient: &sprs::CsMat<f64>,
+    family: FieldFamily,
+    stored: &[f64],
+    field: &mut [f64],
+) {
+    let operator = match family {
+        FieldFamily::Integrable => d0,
+        FieldFamily::Cointegrable => co_gradient,
+        FieldFamily::Harmonic => {
+            field.copy_from_slice(stored);
+            return;
         }
+    };
+    if operator.is_csr() {
+        for (value, row) in field.iter_mut().zip(operator.outer_iterator()) {
+            *value = row.iter().map(|(j, a)| a * stored[j]).sum();
+        }
+    } else {
+        field.copy_from_slice(&mul_vec(operator, stored));
     }
 }
 

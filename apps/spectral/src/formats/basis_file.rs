@@ -31,13 +31,14 @@
 //! eigenfunctions and so the very fields the basis had in memory. Saving is atomic; loading
 //! streams (no second copy in memory).
 
-use crate::eigenfunction_basis::FIELD_CHUNK;
+use crate::eigenfunction_basis::{field_of_stored_into, FIELD_CHUNK};
 use crate::formats::atomic_write::write_atomically_with;
 use crate::formats::basis_file_header::{encode_header, read_header};
 pub use crate::formats::basis_file_header::{BasisFileHeader, BasisFileKey, BasisFileLayout};
 use crate::formats::stored_basis::StoredBasis;
 use crate::{EigenfunctionBasis, FieldFamily, SpectralBasis};
-use faer::{ColRef, Mat};
+use faer::reborrow::{IntoConst, ReborrowMut};
+use faer::{ColRef, Mat, MatMut};
 use std::io::{Read, Write};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -337,26 +338,46 @@ fn write_streamed_fields(
 }
 
 /// Loads a basis with dense fields and checks that it belongs to `expected` (mesh and
-/// discretization); an eigenfunctions file is turned into fields through `complex`, the complex
-/// `expected` was made from.
+/// discretization). The eigenfunctions of an eigenfunctions file are turned into fields through
+/// `complex` (the complex `expected` was made from) a chunk at a time while the file is read, so
+/// they are never all in memory next to the fields.
 pub fn load_basis<H: HodgeComplex + ?Sized>(
     path: &Path,
     expected: &BasisFileKey,
     complex: &H,
 ) -> Result<SpectralBasis, BasisFileError> {
-    let (_, stored) = read_basis(path, Some(expected))?;
-    stored
-        .into_fields(complex)
-        .map_err(|e| BasisFileError::Invalid {
+    let (d0, co_gradient) = (complex.d0(), complex.co_gradient());
+    let forming = FieldForming {
+        potential_dimension: complex.potential_dimension(),
+        co_potential_dimension: complex.co_potential_dimension(),
+        field_mass: complex.m1().values(),
+        d0,
+        co_gradient,
+    };
+    match read_basis(path, Some(expected), Some(&forming))? {
+        (_, StoredBasis::Fields(basis)) => Ok(*basis),
+        // Not returned when forming is given.
+        (_, StoredBasis::Eigenfunctions(_)) => Err(BasisFileError::Invalid {
             path: path.to_path_buf(),
-            reason: format!("the basis does not fit its complex: {e}"),
-        })
+            reason: "the eigenfunctions were not turned into fields".into(),
+        }),
+    }
+}
+
+/// What turns the stored eigenfunctions into fields while a file is read: the complex's
+/// potential and co-potential dimensions, `M1`, its gradient `d0` and co-gradient `J G_co`.
+struct FieldForming<'a> {
+    potential_dimension: usize,
+    co_potential_dimension: usize,
+    field_mass: &'a [f64],
+    d0: &'a sprs::CsMat<f64>,
+    co_gradient: &'a sprs::CsMat<f64>,
 }
 
 /// Loads a basis in the form the file holds it, without checking what it belongs to (integrity
 /// is still checked); returns its header too.
 pub fn read_basis_file(path: &Path) -> Result<(BasisFileHeader, StoredBasis), BasisFileError> {
-    read_basis(path, None)
+    read_basis(path, None, None)
 }
 
 /// Reads only the header of a basis file (checked against its checksum).
@@ -373,9 +394,12 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> BasisFileError + '_ {
     }
 }
 
+/// Reads a basis file (checked against `expected` if given); with `forming`, an eigenfunctions
+/// file is returned as dense fields.
 fn read_basis(
     path: &Path,
     expected: Option<&BasisFileKey>,
+    forming: Option<&FieldForming<'_>>,
 ) -> Result<(BasisFileHeader, StoredBasis), BasisFileError> {
     let file = std::fs::File::open(path).map_err(io(path))?;
     let size = file.metadata().map_err(io(path))?.len();
@@ -424,6 +448,24 @@ fn read_basis(
         )));
     }
     let (n, d) = (header.key.field_dimension, header.field_count);
+    if let (
+        Some(forming),
+        BasisFileLayout::Eigenfunctions {
+            potential_dimension,
+            co_potential_dimension,
+        },
+    ) = (forming, header.layout)
+    {
+        if (potential_dimension, co_potential_dimension)
+            != (forming.potential_dimension, forming.co_potential_dimension)
+        {
+            return Err(invalid(format!(
+                "the file holds potentials of {potential_dimension} and co-potentials of \
+                 {co_potential_dimension} values, the complex's have {} and {}",
+                forming.potential_dimension, forming.co_potential_dimension
+            )));
+        }
+    }
     let mut input = HashingReader {
         inner: reader,
         hash: Hash64::new(),
@@ -432,19 +474,26 @@ fn read_basis(
     let mut codes = vec![0u8; d.div_ceil(8) * 8];
     input.read_exact(&mut codes).map_err(io(path))?;
     let read_body = |input: &mut HashingReader<_>| -> std::io::Result<_> {
-        Ok(match header.layout {
-            BasisFileLayout::Fields => {
+        Ok(match (header.layout, forming) {
+            (BasisFileLayout::Fields, _) => {
                 let field_mass = input.f64s(n)?;
                 let fields = input.matrix(n, d)?;
                 Body::Fields { field_mass, fields }
             }
-            BasisFileLayout::Eigenfunctions {
-                potential_dimension,
-                co_potential_dimension,
-            } => Body::Eigenfunctions {
+            (
+                BasisFileLayout::Eigenfunctions {
+                    potential_dimension,
+                    co_potential_dimension,
+                },
+                None,
+            ) => Body::Eigenfunctions {
                 potentials: input.matrix(potential_dimension, header.integrable_count)?,
                 co_potentials: input.matrix(co_potential_dimension, header.cointegrable_count)?,
                 harmonic: input.matrix(n, header.harmonic_count)?,
+            },
+            (BasisFileLayout::Eigenfunctions { .. }, Some(forming)) => Body::Fields {
+                field_mass: forming.field_mass.to_vec(),
+                fields: input.formed_fields(&header, &codes[..d], forming)?,
             },
         })
     };
@@ -549,16 +598,94 @@ impl<R: Read> HashingReader<R> {
             .collect())
     }
 
+    /// The dense fields (`n1 × d`) of the eigenfunctions that follow in an eigenfunctions file
+    /// with `header` and family `codes`, formed by `forming` a chunk of columns at a time (in
+    /// parallel). Columns whose family codes are inconsistent with the header are left zero;
+    /// the caller rejects such a file once its checksum is checked.
+    fn formed_fields(
+        &mut self,
+        header: &BasisFileHeader,
+        codes: &[u8],
+        forming: &FieldForming<'_>,
+    ) -> std::io::Result<Mat<f64>> {
+        use rayon::prelude::*;
+        let n1 = header.key.field_dimension;
+        let mut fields = Mat::<f64>::zeros(n1, header.field_count);
+        for (family, rows, count) in [
+            (
+                FieldFamily::Integrable,
+                forming.potential_dimension,
+                header.integrable_count,
+            ),
+            (
+                FieldFamily::Cointegrable,
+                forming.co_potential_dimension,
+                header.cointegrable_count,
+            ),
+            (FieldFamily::Harmonic, n1, header.harmonic_count),
+        ] {
+            // The basis positions of the family's fields, in the order they are stored.
+            let targets: Vec<usize> = (0..codes.len())
+                .filter(|&i| codes[i] == family_code(family))
+                .collect();
+            // Column of the chunk each basis field comes from, if it is in the chunk.
+            let mut source = vec![None; header.field_count];
+            let mut buffer = Mat::<f64>::zeros(rows, FIELD_CHUNK.min(count));
+            for start in (0..count).step_by(FIELD_CHUNK) {
+                let mut chunk = buffer
+                    .as_mut()
+                    .subcols_mut(0, FIELD_CHUNK.min(count - start));
+                self.read_columns(chunk.rb_mut())?;
+                let chunk = chunk.into_const();
+                source.fill(None);
+                for j in 0..chunk.ncols() {
+                    if let Some(&target) = targets.get(start + j) {
+                        source[target] = Some(j);
+                    }
+                }
+                fields
+                    .par_col_iter_mut()
+                    .zip(&source)
+                    .for_each(|(field, source)| {
+                        let stored = source
+                            .and_then(|j| chunk.col(j).try_as_col_major().map(|c| c.as_slice()));
+                        let field = field.try_as_col_major_mut().map(|c| c.as_slice_mut());
+                        if let (Some(stored), Some(field)) = (stored, field) {
+                            field_of_stored_into(
+                                forming.d0,
+                                forming.co_gradient,
+                                family,
+                                stored,
+                                field,
+                            );
+                        }
+                    });
+            }
+        }
+        Ok(fields)
+    }
+
     /// A `rows × columns` matrix stored column by column.
     fn matrix(&mut self, rows: usize, columns: usize) -> std::io::Result<Mat<f64>> {
         let mut matrix = Mat::<f64>::zeros(rows, columns);
-        let mut bytes = vec![0u8; 8 * rows];
-        for j in 0..columns {
+        self.read_columns(matrix.as_mut())?;
+        Ok(matrix)
+    }
+
+    /// Reads the columns of `matrix`, stored one after the other.
+    fn read_columns(&mut self, mut matrix: MatMut<'_, f64>) -> std::io::Result<()> {
+        let mut bytes = vec![0u8; 8 * matrix.nrows()];
+        for j in 0..matrix.ncols() {
             self.read_exact(&mut bytes)?;
-            for (value, chunk) in matrix.col_mut(j).iter_mut().zip(bytes.chunks_exact(8)) {
+            for (value, chunk) in matrix
+                .rb_mut()
+                .col_mut(j)
+                .iter_mut()
+                .zip(bytes.chunks_exact(8))
+            {
                 *value = f64::from_le_bytes(chunk.try_into().unwrap_or([0; 8]));
             }
         }
-        Ok(matrix)
+        Ok(())
     }
 }
