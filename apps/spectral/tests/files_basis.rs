@@ -290,3 +290,44 @@ fn every_bad_file_gets_its_error() {
         Err(BasisFileError::Invalid { .. })
     ));
 }
+
+/// A non-finite value behind valid checksums (a file written by a faulty tool) is refused, in
+/// both layouts, naming the file.
+#[test]
+fn non_finite_values_behind_valid_checksums_are_refused() {
+    let mesh = icosphere(1);
+    let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+    let request = BasisRequest::pairs(17);
+    let key = BasisFileKey::new(&mesh, &complex);
+    let dir = tempfile::tempdir().unwrap();
+    let dense = dir.path().join("dense.tvfb");
+    save_basis(&dense, &compute_basis(&complex, &request).unwrap(), &key).unwrap();
+    let compact = dir.path().join("compact.tvfb");
+    let (eigenfunctions, _) = compute_eigenfunction_basis(&complex, &request).unwrap();
+    save_eigenfunction_basis(&compact, &eigenfunctions, &complex, &key).unwrap();
+    // Loading forms the fields of the compact file, so both name a field; reading the compact
+    // file as it is names the stored co-potential.
+    for (path, stored) in [(&dense, "field"), (&compact, "co-potential")] {
+        let mut bytes = std::fs::read(path).unwrap();
+        let header_length = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let end = bytes.len() - 8;
+        // the last stored value, then the payload checksum recomputed
+        bytes[end - 8..end].copy_from_slice(&f64::NAN.to_le_bytes());
+        let checksum = Hash64::of(&bytes[header_length..end]);
+        bytes[end..].copy_from_slice(&checksum.to_le_bytes());
+        std::fs::write(path, &bytes).unwrap();
+        let error = load_basis(path, &key, &complex).unwrap_err();
+        assert!(matches!(error, BasisFileError::Invalid { .. }), "{error}");
+        let message = error.to_string();
+        assert!(message.contains(&path.display().to_string()), "{message}");
+        assert!(
+            message.contains("field") && message.contains("non-finite"),
+            "{message}"
+        );
+        let message = read_basis_file(path).unwrap_err().to_string();
+        assert!(
+            message.contains(stored) && message.contains("non-finite"),
+            "{message}"
+        );
+    }
+}

@@ -522,6 +522,9 @@ fn read_basis(
     {
         return Err(invalid("family counts differ from the header".into()));
     }
+    if let Some(problem) = body.non_finite() {
+        return Err(invalid(problem));
+    }
     let stored = match body {
         Body::Fields { field_mass, fields } => {
             SpectralBasis::new(eigenvalues, families, fields, field_mass)
@@ -555,6 +558,39 @@ enum Body {
         co_potentials: Mat<f64>,
         harmonic: Mat<f64>,
     },
+}
+
+impl Body {
+    /// Where the first non-finite value is, if there is one.
+    fn non_finite(&self) -> Option<String> {
+        let first_in = |what: &str, matrix: &Mat<f64>| {
+            (0..matrix.ncols()).find_map(|j| {
+                let column = matrix.col(j);
+                (0..matrix.nrows())
+                    .find(|&i| !column[i].is_finite())
+                    .map(|i| {
+                        format!(
+                            "{what} {j} has the non-finite value {} at row {i}",
+                            column[i]
+                        )
+                    })
+            })
+        };
+        match self {
+            Body::Fields { field_mass, fields } => field_mass
+                .iter()
+                .position(|m| !m.is_finite())
+                .map(|i| format!("the diagonal of M1 is not finite at row {i}"))
+                .or_else(|| first_in("field", fields)),
+            Body::Eigenfunctions {
+                potentials,
+                co_potentials,
+                harmonic,
+            } => first_in("potential", potentials)
+                .or_else(|| first_in("co-potential", co_potentials))
+                .or_else(|| first_in("harmonic field", harmonic)),
+        }
+    }
 }
 
 /// Writes through to `inner`, hashing what it writes.
