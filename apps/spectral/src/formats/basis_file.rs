@@ -566,14 +566,12 @@ impl Body {
         let first_in = |what: &str, matrix: &Mat<f64>| {
             (0..matrix.ncols()).find_map(|j| {
                 let column = matrix.col(j);
-                (0..matrix.nrows())
-                    .find(|&i| !column[i].is_finite())
-                    .map(|i| {
-                        format!(
-                            "{what} {j} has the non-finite value {} at row {i}",
-                            column[i]
-                        )
-                    })
+                column.iter().position(|value| !value.is_finite()).map(|i| {
+                    format!(
+                        "{what} {j} has the non-finite value {} at row {i}",
+                        column[i]
+                    )
+                })
             })
         };
         match self {
