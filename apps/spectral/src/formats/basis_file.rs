@@ -38,7 +38,7 @@ pub use crate::formats::basis_file_header::{BasisFileHeader, BasisFileKey, Basis
 use crate::formats::stored_basis::StoredBasis;
 use crate::{EigenfunctionBasis, FieldFamily, SpectralBasis};
 use faer::reborrow::{IntoConst, ReborrowMut};
-use faer::{ColRef, Mat, MatMut};
+use faer::{Mat, MatMut};
 use std::io::{Read, Write};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -159,7 +159,7 @@ pub fn save_basis(
         |out, buffer| {
             write_values(out, buffer, basis.field_mass())?;
             for j in 0..fields.ncols() {
-                write_column(out, buffer, fields.col(j))?;
+                write_values(out, buffer, fields.col(j).iter())?;
             }
             Ok(())
         },
@@ -208,7 +208,7 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
                 (FieldFamily::Harmonic, basis.harmonic_fields()),
             ] {
                 for slot in basis.family_slots(family) {
-                    write_column(out, buffer, matrix.col(slot))?;
+                    write_values(out, buffer, matrix.col(slot).iter())?;
                 }
             }
             Ok(())
@@ -287,21 +287,14 @@ fn write_basis(
     })
 }
 
-/// Writes `values` as little-endian `f64`s through `buffer`.
-fn write_values(out: &mut impl Write, buffer: &mut Vec<u8>, values: &[f64]) -> std::io::Result<()> {
-    buffer.clear();
-    buffer.extend(values.iter().flat_map(|x| x.to_le_bytes()));
-    out.write_all(buffer)
-}
-
-/// Writes one matrix column as little-endian `f64`s through `buffer`.
-fn write_column(
+/// Writes `values` (a slice or a matrix column) as little-endian `f64`s through `buffer`.
+fn write_values<'v>(
     out: &mut impl Write,
     buffer: &mut Vec<u8>,
-    column: ColRef<'_, f64>,
+    values: impl IntoIterator<Item = &'v f64>,
 ) -> std::io::Result<()> {
     buffer.clear();
-    buffer.extend(column.iter().flat_map(|x| x.to_le_bytes()));
+    buffer.extend(values.into_iter().flat_map(|x| x.to_le_bytes()));
     out.write_all(buffer)
 }
 
