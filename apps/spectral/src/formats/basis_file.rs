@@ -150,6 +150,7 @@ pub fn save_basis(
         eigenvalues: basis.eigenvalues(),
         families: basis.families(),
         field_dimension: basis.field_dimension(),
+        field_mass: basis.field_mass(),
     };
     write_basis(
         path,
@@ -157,11 +158,7 @@ pub fn save_basis(
         &contents,
         BasisFileLayout::Fields,
         |out, buffer| {
-            write_values(out, buffer, basis.field_mass())?;
-            for j in 0..fields.ncols() {
-                write_values(out, buffer, fields.col(j).iter())?;
-            }
-            Ok(())
+            (0..fields.ncols()).try_for_each(|j| write_values(out, buffer, fields.col(j).iter()))
         },
     )
 }
@@ -187,6 +184,7 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         eigenvalues: basis.eigenvalues(),
         families: basis.families(),
         field_dimension: complex.field_dimension(),
+        field_mass: complex.m1().values(),
     };
     let (n0, n2) = (
         complex.potential_dimension(),
@@ -220,7 +218,6 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         &contents,
         BasisFileLayout::Fields,
         |out, buffer| {
-            write_values(out, buffer, complex.m1().values())?;
             write_streamed_fields(out, buffer, basis.len(), &|range| {
                 basis.field_columns(complex, range)
             })
@@ -228,15 +225,18 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     )
 }
 
-/// Everything of a basis file but its layout-specific part.
+/// Everything of a basis file but its stored fields or eigenfunctions.
 struct BasisContents<'a> {
     eigenvalues: &'a [f64],
     families: &'a [FieldFamily],
     field_dimension: usize,
+    /// The diagonal of `M1` (written in the fields layout only).
+    field_mass: &'a [f64],
 }
 
-/// Writes a basis file: header, eigenvalues and families, then `body(out, buffer)` writes the
-/// layout-specific part through the checksumming `out` (with `buffer` as scratch space).
+/// Writes a basis file: header, eigenvalues, families (and in the fields layout the diagonal of
+/// `M1`), then `body(out, buffer)` writes the stored fields or eigenfunctions through the
+/// checksumming `out` (with `buffer` as scratch space).
 fn write_basis(
     path: &Path,
     key: &BasisFileKey,
@@ -277,6 +277,9 @@ fn write_basis(
         buffer.extend(contents.families.iter().map(|&f| family_code(f)));
         buffer.resize(count.div_ceil(8) * 8, 0);
         out.write_all(&buffer)?;
+        if layout == BasisFileLayout::Fields {
+            write_values(&mut out, &mut buffer, contents.field_mass)?;
+        }
         body(&mut out, &mut buffer)?;
         let checksum = out.hash.finish();
         w.write_all(&checksum.to_le_bytes())
