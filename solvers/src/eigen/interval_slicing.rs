@@ -38,8 +38,7 @@
 //! are M-orthogonalised against each other at the end (their eigenvalues differ by at least the
 //! distance across a boundary, but that can be small).
 
-use super::krylov_slice::{basis_columns, run_slice, SliceProblem, SliceSettings};
-use super::krylov_workspaces::KrylovWorkspaces;
+use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
 use super::pencil::{Pencil, ShiftCount};
 use super::refinement::{
     field_residuals, inverse_iteration_then_rayleigh_ritz, refine_interval, Refinement,
@@ -217,7 +216,6 @@ pub fn lowest_eigenpairs_of(
         parallelism: options.parallelism,
         refinement_target: options.refinement_target,
     };
-    let workspaces = KrylovWorkspaces::default();
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
         let plan = &plans[p];
@@ -228,17 +226,9 @@ pub fn lowest_eigenpairs_of(
             stream: i as u64 + 1,
         };
         let mut solved = Vec::new();
-        solve_interval(
-            request,
-            &interval,
-            &settings,
-            &workspaces,
-            0,
-            report,
-            &mut solved,
-        )
-        .map(|()| solved)
-        .map_err(fail(plan.request))
+        solve_interval(request, &interval, &settings, 0, report, &mut solved)
+            .map(|()| solved)
+            .map_err(fail(plan.request))
     };
     let mut locked = vec![0usize; jobs.len()];
     let mut finished = vec![false; jobs.len()];
@@ -274,7 +264,6 @@ pub fn lowest_eigenpairs_of(
         }
     };
     let solved = run_jobs(jobs.len(), options.threads, &solve_job, &mut on_message)?;
-    drop(workspaces);
     let mut intervals: Vec<Vec<SolvedInterval>> = plans.iter().map(|_| Vec::new()).collect();
     for (&(p, _), parts) in jobs.iter().zip(solved) {
         intervals[p].extend(parts);
@@ -494,7 +483,6 @@ fn solve_interval(
     request: &EigenRequest<'_, '_>,
     interval: &Interval,
     options: &IntervalSettings,
-    workspaces: &KrylovWorkspaces,
     depth: usize,
     report: &dyn Fn(usize, usize),
     out: &mut Vec<SolvedInterval>,
@@ -520,9 +508,7 @@ fn solve_interval(
             ),
         });
     }
-    let attempt = solve_at_shift(
-        request, interval, options, workspaces, &factor, count, report,
-    );
+    let attempt = solve_at_shift(request, interval, options, &factor, count, report);
     match attempt {
         Ok((mut values, mut vectors)) => {
             // Refined here, while the factorization is at hand, not in a later phase that
@@ -585,7 +571,7 @@ fn solve_interval(
                 },
             ];
             for half in &halves {
-                solve_interval(request, half, options, workspaces, depth + 1, report, out)?;
+                solve_interval(request, half, options, depth + 1, report, out)?;
             }
             Ok(())
         }
@@ -599,7 +585,6 @@ fn solve_at_shift(
     request: &EigenRequest<'_, '_>,
     interval: &Interval,
     options: &IntervalSettings,
-    workspaces: &KrylovWorkspaces,
     factor: &SparseLdlt,
     at: ShiftCount,
     report: &dyn Fn(usize, usize),
@@ -628,15 +613,9 @@ fn solve_at_shift(
     };
     let mut rng = ChaCha8Rng::seed_from_u64(request.seed);
     rng.set_stream(interval.stream);
-    let mut basis = workspaces.take(n, basis_columns(&settings));
-    let outcome = run_slice(
-        &problem,
-        &settings,
-        basis.as_mut(),
-        &mut rng,
-        &mut |locked, solves| report(locked, solves),
-    );
-    workspaces.give_back(basis);
+    let outcome = run_slice(&problem, &settings, &mut rng, &mut |locked, solves| {
+        report(locked, solves)
+    });
     let solves = match &outcome {
         Ok(o) => o.solves,
         Err(_) => 0,

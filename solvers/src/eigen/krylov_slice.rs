@@ -33,8 +33,7 @@ use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
-use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::{Accum, Mat, MatMut, MatRef, Par};
+use faer::{Accum, Mat, MatRef, Par};
 use rand_chacha::ChaCha8Rng;
 
 /// What one slice must find.
@@ -65,11 +64,6 @@ pub(crate) struct SliceSettings {
     pub max_restarts: usize,
     pub max_basis: usize,
     pub parallelism: Par,
-}
-
-/// Columns of the Krylov basis workspace of a slice with `settings` (see [`run_slice`]).
-pub(crate) fn basis_columns(settings: &SliceSettings) -> usize {
-    settings.max_basis + 3 * settings.block_size.max(1)
 }
 
 /// Converged eigenvectors of one slice (unsorted; their eigenvalues are recomputed by the
@@ -181,13 +175,10 @@ fn ritz_pairs(
 
 /// Runs block Krylov–Schur until `lower_needed` eigenvalues in `(lower_bound, σ)` and
 /// `upper_target` eigenvalues above σ are locked. `on_restart(locked, solves)` is called
-/// after every restart. `basis` is the workspace of the Krylov basis, `n ×`
-/// [`basis_columns`]`(settings)` at least, its contents unspecified (every column is written
-/// before it is read).
+/// after every restart.
 pub(crate) fn run_slice(
     problem: &SliceProblem<'_>,
     settings: &SliceSettings,
-    mut basis: MatMut<'_, f64>,
     rng: &mut ChaCha8Rng,
     on_restart: &mut dyn FnMut(usize, usize),
 ) -> Result<SliceOutcome, SolverError> {
@@ -211,12 +202,9 @@ pub(crate) fn run_slice(
     let (mut lower_found, mut upper_found) = (0usize, 0usize);
     let mut solves = 0usize;
 
-    assert!(
-        basis.nrows() == n && basis.ncols() >= basis_columns(settings),
-        "run_slice: the basis workspace is too small"
-    );
+    let mut basis = Mat::<f64>::zeros(n, max_basis + 3 * block);
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
-    basis.rb_mut().subcols_mut(0, block).copy_from(&start);
+    basis.as_mut().subcols_mut(0, block).copy_from(&start);
     let (mut mv, mut mu) = (0usize, block);
     let mut h = Mat::<f64>::zeros(0, 0);
     let mut g = Mat::<f64>::zeros(block, 0);
@@ -235,12 +223,12 @@ pub(crate) fn run_slice(
     for _restart in 0..settings.max_restarts {
         // ---- expansion ----
         while mv + mu <= max_basis {
-            let mut z = mass_times(mass, basis.rb().subcols(mv, mu));
+            let mut z = mass_times(mass, basis.as_ref().subcols(mv, mu));
             problem.factor.solve_in_place(z.as_mut());
             solves += mu;
             let reference = mass_column_norms(mass, z.as_ref());
             let m_new = mv + mu;
-            let current = basis.rb().subcols(0, m_new);
+            let current = basis.as_ref().subcols(0, m_new);
             let bases = [locked.view(), current];
             // OP U lies almost entirely in span(V) (that is the Krylov relation), while its
             // components along the deflated and locked eigenvectors are tiny in exact
@@ -255,7 +243,7 @@ pub(crate) fn run_slice(
                     first_pass[(i, j)] = g[(j, i)];
                 }
             }
-            let own = mass_inner(basis.rb().subcols(mv, mu), mass, z.as_ref(), par);
+            let own = mass_inner(basis.as_ref().subcols(mv, mu), mass, z.as_ref(), par);
             first_pass.as_mut().subrows_mut(mv, mu).copy_from(&own);
             let mut coefficients = project_out_after_known(
                 z.as_mut(),
@@ -333,7 +321,7 @@ pub(crate) fn run_slice(
             tall_times(
                 x.as_mut(),
                 Accum::Replace,
-                basis.rb().subcols(0, mv),
+                basis.as_ref().subcols(0, mv),
                 y_lock.as_ref(),
                 1.0,
                 par,
@@ -364,9 +352,9 @@ pub(crate) fn run_slice(
         keep.truncate(keep_target);
         let p = keep.len();
         let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
-        let u_old = basis.rb().subcols(mv, mu).to_owned();
-        tall_times_in_place(basis.rb_mut().subcols_mut(0, mv), y_keep.as_ref(), par);
-        basis.rb_mut().subcols_mut(p, mu).copy_from(&u_old);
+        let u_old = basis.as_ref().subcols(mv, mu).to_owned();
+        tall_times_in_place(basis.as_mut().subcols_mut(0, mv), y_keep.as_ref(), par);
+        basis.as_mut().subcols_mut(p, mu).copy_from(&u_old);
         h = Mat::from_fn(p, p, |i, j| if i == j { theta[keep[i]] } else { 0.0 });
         g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);
         mv = p;
@@ -385,10 +373,10 @@ pub(crate) fn run_slice(
             .count();
         let newly_locked = inside.0 + inside.1;
         if missing > 0 && newly_locked == 0 && candidates < missing && mu + block <= 3 * block {
-            let current = basis.rb().subcols(0, mv + mu);
+            let current = basis.as_ref().subcols(0, mv + mu);
             let fresh =
                 random_orthonormal_block(n, block, &[locked.view(), current], mass, rng, par)?;
-            basis.rb_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
+            basis.as_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
             let mut g_new = Mat::<f64>::zeros(mu + block, mv);
             g_new.as_mut().subrows_mut(0, mu).copy_from(&g);
             g = g_new;

@@ -2,7 +2,6 @@
 
 mod interval_slicing;
 mod krylov_slice;
-mod krylov_workspaces;
 mod lowest;
 mod mass_orthogonal;
 mod pencil;
