@@ -23,7 +23,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMatRef;
-use faer::{Conj, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, Par, Side};
 
 /// Counts of negative, zero and positive pivots of an `LDLᵀ` factorization.
 ///
@@ -408,6 +408,50 @@ impl SparseLdlt {
             self.solve_column_groups(rhs, groups);
         } else {
             self.solve_with(rhs, self.parallelism);
+        }
+    }
+
+    /// The elimination order of the factorization: row `i` of the factored (permuted) system is
+    /// row `order[i]` of the input numbering (`None`: the input order itself).
+    pub fn elimination_order(&self) -> Option<&[usize]> {
+        self.symbolic.perm().map(|perm| perm.arrays().0)
+    }
+
+    /// [`solve_in_place`](Self::solve_in_place) for right-hand sides whose rows are in
+    /// [elimination order](Self::elimination_order) (row `i` holds input row `order[i]`); the
+    /// solutions come back in the same order. A caller that keeps its vectors in this order
+    /// (the Krylov slices) saves the gather and scatter through the permutation on every solve.
+    ///
+    /// # Panics
+    /// If `rhs.nrows() != self.dimension()` (a programming error).
+    pub fn solve_in_elimination_order(&self, mut rhs: MatMut<'_, f64>) {
+        assert_eq!(
+            rhs.nrows(),
+            self.dimension(),
+            "right-hand side has the wrong number of rows"
+        );
+        if let (SymbolicCholeskyRaw::Supernodal(symbolic), 1) =
+            (self.symbolic.raw(), self.parallelism.degree())
+        {
+            solve_packed(symbolic, &self.values, None, rhs);
+            return;
+        }
+        let Some(order) = self.elimination_order() else {
+            self.solve_in_place(rhs);
+            return;
+        };
+        // Other factorizations solve in the input numbering.
+        let mut input = Mat::<f64>::zeros(rhs.nrows(), rhs.ncols());
+        for j in 0..rhs.ncols() {
+            for (i, &row) in order.iter().enumerate() {
+                input[(row, j)] = rhs[(i, j)];
+            }
+        }
+        self.solve_in_place(input.as_mut());
+        for j in 0..rhs.ncols() {
+            for (i, &row) in order.iter().enumerate() {
+                rhs[(i, j)] = input[(row, j)];
+            }
         }
     }
 

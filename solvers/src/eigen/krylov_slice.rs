@@ -33,6 +33,7 @@ use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
+use faer::reborrow::Reborrow;
 use faer::{Accum, Mat, MatRef, Par};
 use rand_chacha::ChaCha8Rng;
 
@@ -97,6 +98,25 @@ impl ColumnStore {
         self.data
             .resize_with(n, start + block.ncols(), |i, j| block[(i, j - start)]);
     }
+}
+
+/// The rows of `vectors` (in elimination order: row `i` is input row `order[i]`) put in input
+/// order, column by column in place (one column of scratch space).
+fn in_input_order(mut vectors: Mat<f64>, order: Option<&[usize]>) -> Mat<f64> {
+    let Some(order) = order else {
+        return vectors;
+    };
+    let mut column = vec![0.0; vectors.nrows()];
+    for j in 0..vectors.ncols() {
+        let mut target = vectors.col_mut(j);
+        for (value, stored) in column.iter_mut().zip(target.rb().iter()) {
+            *value = *stored;
+        }
+        for (&value, &row) in column.iter().zip(order) {
+            target[row] = value;
+        }
+    }
+    vectors
 }
 
 /// Expansion steps (blocks) between two completion checks of a slice's last cycle: each check
@@ -176,13 +196,21 @@ fn ritz_pairs(
 /// Runs block Krylov–Schur until `lower_needed` eigenvalues in `(lower_bound, σ)` and
 /// `upper_target` eigenvalues above σ are locked. `on_restart(locked, solves)` is called
 /// after every restart.
+///
+/// The Krylov vectors are kept in the factorization's
+/// [elimination order](SparseLdlt::elimination_order), so the solves need no gather or scatter
+/// through the permutation (`M` is diagonal, so nothing else depends on the order); the
+/// returned vectors are in the input order.
 pub(crate) fn run_slice(
     problem: &SliceProblem<'_>,
     settings: &SliceSettings,
     rng: &mut ChaCha8Rng,
     on_restart: &mut dyn FnMut(usize, usize),
 ) -> Result<SliceOutcome, SolverError> {
-    let mass = problem.mass;
+    let order = problem.factor.elimination_order();
+    let permuted_mass: Option<Vec<f64>> =
+        order.map(|order| order.iter().map(|&row| problem.mass[row]).collect());
+    let mass = permuted_mass.as_deref().unwrap_or(problem.mass);
     let n = mass.len();
     let par = settings.parallelism;
     let block = settings.block_size.max(1);
@@ -224,7 +252,7 @@ pub(crate) fn run_slice(
         // ---- expansion ----
         while mv + mu <= max_basis {
             let mut z = mass_times(mass, basis.as_ref().subcols(mv, mu));
-            problem.factor.solve_in_place(z.as_mut());
+            problem.factor.solve_in_elimination_order(z.as_mut());
             solves += mu;
             let reference = mass_column_norms(mass, z.as_ref());
             let m_new = mv + mu;
@@ -340,7 +368,7 @@ pub(crate) fn run_slice(
         }
         if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
             return Ok(SliceOutcome {
-                vectors: locked.into_mat(),
+                vectors: in_input_order(locked.into_mat(), order),
                 solves,
             });
         }
