@@ -634,4 +634,32 @@ mod tests {
             }
         }
     }
+
+    /// Solving in elimination order gives the solution of the input-order solve, permuted: on
+    /// one thread (the packed solve without the permutation) and on two (through faer's solve in
+    /// the input numbering).
+    #[test]
+    fn solve_in_elimination_order_is_the_permuted_solve() {
+        let upper = shifted_grid(29, 0.47);
+        let n = upper.nrows();
+        let rhs = Mat::from_fn(n, 11, |i, j| ((i * 5 + j * 17) % 19) as f64 / 9.0 - 1.0);
+        for parallelism in [Par::Seq, Par::rayon(2)] {
+            let mut ldlt =
+                SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::NestedDissection)
+                    .expect("factors");
+            ldlt.set_parallelism(parallelism);
+            let order = ldlt.elimination_order().expect("a fill ordering").to_vec();
+            assert!(order.iter().enumerate().any(|(i, &row)| i != row));
+            let mut input = rhs.clone();
+            ldlt.solve_in_place(input.as_mut());
+            let mut permuted = Mat::from_fn(n, rhs.ncols(), |i, j| rhs[(order[i], j)]);
+            ldlt.solve_in_elimination_order(permuted.as_mut());
+            let expected = Mat::from_fn(n, rhs.ncols(), |i, j| input[(order[i], j)]);
+            let difference = (&permuted - &expected).norm_max();
+            assert!(
+                difference <= 1e-12 * expected.norm_max(),
+                "{parallelism:?}: {difference:e}"
+            );
+        }
+    }
 }
