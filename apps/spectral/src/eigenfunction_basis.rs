@@ -3,6 +3,7 @@
 
 use crate::basis::{check_eigenvalues, check_length};
 use crate::{FieldFamily, SpectralBasisError};
+use faer::reborrow::ReborrowMut;
 use faer::{Col, ColRef, Mat, MatRef};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
@@ -267,11 +268,39 @@ impl EigenfunctionBasis {
         fields
             .par_col_iter_mut()
             .enumerate()
-            .for_each(|(i, mut column)| {
-                let values = self.field_with(d0, co_gradient, i);
-                column.copy_from(ColRef::from_slice(&values));
-            });
+            .for_each(
+                |(i, mut column)| match column.rb_mut().try_as_col_major_mut() {
+                    Some(target) => {
+                        let stored = self.stored_column(i);
+                        field_of_stored_into(
+                            d0,
+                            co_gradient,
+                            self.families[i],
+                            &stored,
+                            target.as_slice_mut(),
+                        );
+                    }
+                    None => {
+                        let values = self.field_with(d0, co_gradient, i);
+                        column.copy_from(ColRef::from_slice(&values));
+                    }
+                },
+            );
         fields
+    }
+
+    /// The stored column (potential, co-potential or harmonic field) of basis field `i`.
+    fn stored_column(&self, i: usize) -> std::borrow::Cow<'_, [f64]> {
+        let slot = self.slots[i];
+        let stored = match self.families[i] {
+            FieldFamily::Integrable => self.potentials.col(slot),
+            FieldFamily::Cointegrable => self.co_potentials.col(slot),
+            FieldFamily::Harmonic => self.harmonic.col(slot),
+        };
+        match stored.try_as_col_major() {
+            Some(contiguous) => std::borrow::Cow::Borrowed(contiguous.as_slice()),
+            None => std::borrow::Cow::Owned(stored.iter().copied().collect()),
+        }
     }
 
     /// Basis field `i` (`2F` values) from the gradient `d0` and the co-gradient `J G_co`.
@@ -281,14 +310,7 @@ impl EigenfunctionBasis {
         co_gradient: &sprs::CsMat<f64>,
         i: usize,
     ) -> Vec<f64> {
-        let slot = self.slots[i];
-        let stored = match self.families[i] {
-            FieldFamily::Integrable => self.potentials.col(slot),
-            FieldFamily::Cointegrable => self.co_potentials.col(slot),
-            FieldFamily::Harmonic => self.harmonic.col(slot),
-        };
-        let values: Vec<f64> = stored.iter().copied().collect();
-        field_of_stored(d0, co_gradient, self.families[i], &values)
+        field_of_stored(d0, co_gradient, self.families[i], &self.stored_column(i))
     }
 }
 
