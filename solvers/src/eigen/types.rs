@@ -31,7 +31,11 @@ pub struct EigenOptions<'a> {
     /// [`crate::lowest_eigenpairs_of`] carry their own); equal seeds give identical results.
     pub seed: u64,
     /// Convergence tolerance: a Ritz pair `(θ, u)` of the shift-inverted operator
-    /// `(A − σM)⁻¹M` is accepted when `‖OP u − θ u‖_M ≤ tolerance · |θ|`. Default `1e-12`.
+    /// `(A − σM)⁻¹M` is accepted when `‖OP u − θ u‖_M ≤ tolerance · |θ|`. Default `1e-10`: the
+    /// eigenvalues come from a Rayleigh–Ritz against `A`, whose error is quadratic in the
+    /// vectors' (on kitten, eight and hand the spectrum agrees with a run at `1e-12` to
+    /// `5·10⁻¹⁴` relative), and the inverse-iteration step every locked vector takes brings the
+    /// eigenfield residuals below `1e-8`; `1e-12` cost 7 % more solves for nothing measurable.
     pub tolerance: f64,
     /// Number of vectors per Krylov block (and per blocked solve). Default 8.
     pub block_size: usize,
@@ -72,7 +76,7 @@ impl Default for EigenOptions<'_> {
     fn default() -> Self {
         Self {
             seed: 0x7466_7665_6967_656e,
-            tolerance: 1e-12,
+            tolerance: 1e-10,
             block_size: 8,
             max_restarts: 25,
             dense_threshold: 400,
