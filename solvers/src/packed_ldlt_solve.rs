@@ -34,6 +34,16 @@ pub(crate) fn solve_packed(
     solve_packed_with(symbolic, values, perm, rhs, solve_rows);
 }
 
+/// Overwrites the packed rows `x` (`n` rows of up to [`WIDTH`] right-hand sides, in the
+/// factor's elimination order: no permutation) with the solution of `L D Lᵀ X = x`.
+pub(crate) fn solve_packed_rows(
+    symbolic: &SymbolicSupernodalCholesky<usize>,
+    values: &[f64],
+    x: &mut [Row],
+) {
+    solve_rows(SupernodalLdltRef::new(symbolic, values), x);
+}
+
 /// [`solve_packed`] with the portable loops whatever the CPU (to test them where FMA exists).
 #[cfg(test)]
 pub(crate) fn solve_packed_portable(

@@ -13,7 +13,8 @@
 
 use crate::error::SolverError;
 use crate::ordering::{inverse_permutation, is_permutation, nested_dissection, FillOrdering};
-use crate::packed_ldlt_solve::solve_packed;
+use crate::packed_ldlt_solve::{solve_packed, solve_packed_rows};
+use crate::packed_rows::{Row, WIDTH};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::perm::PermRef;
@@ -452,6 +453,32 @@ impl SparseLdlt {
             for (i, &row) in order.iter().enumerate() {
                 rhs[(i, j)] = input[(row, j)];
             }
+        }
+    }
+
+    /// [`Self::solve_in_elimination_order`] on packed rows: `rows` (`n` rows of [`WIDTH`]
+    /// right-hand sides, in elimination order) is overwritten with the solutions. A caller that
+    /// packs its block anyway (the Krylov expansion scales it by `M` while packing) saves the
+    /// packing and unpacking of the column-major solve.
+    ///
+    /// # Panics
+    /// If `rows.len() != self.dimension()` (a programming error).
+    pub(crate) fn solve_rows_in_elimination_order(&self, rows: &mut [Row]) {
+        assert_eq!(
+            rows.len(),
+            self.dimension(),
+            "right-hand side has the wrong number of rows"
+        );
+        if let (SymbolicCholeskyRaw::Supernodal(symbolic), 1) =
+            (self.symbolic.raw(), self.parallelism.degree())
+        {
+            solve_packed_rows(symbolic, &self.values, rows);
+            return;
+        }
+        let mut block = Mat::from_fn(rows.len(), WIDTH, |i, j| rows[i][j]);
+        self.solve_in_elimination_order(block.as_mut());
+        for (i, row) in rows.iter_mut().enumerate() {
+            *row = std::array::from_fn(|j| block[(i, j)]);
         }
     }
 

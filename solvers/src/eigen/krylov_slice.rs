@@ -25,16 +25,16 @@
 //! basis: 6–10 % fewer solves on hand, kitten and bunny-closed (k = 500 per pencil).
 
 use super::mass_orthogonal::{
-    mass_column_norms, mass_times, orthonormalize_block, project_out_after_known,
-    random_orthonormal_block,
+    orthonormalize_block, project_out_after_known, random_orthonormal_block,
 };
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
+use crate::packed_rows::{pack_columns, Row, WIDTH};
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
-use faer::reborrow::Reborrow;
-use faer::{Accum, Mat, MatRef, Par};
+use faer::reborrow::{IntoConst, Reborrow, ReborrowMut};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 use rand_chacha::ChaCha8Rng;
 
 /// What one slice must find.
@@ -117,6 +117,109 @@ fn in_input_order(mut vectors: Mat<f64>, order: Option<&[usize]>) -> Mat<f64> {
         }
     }
     vectors
+}
+
+/// Packed rows reused by every [`apply_operator`] of a slice (`n` rows each).
+struct OperatorScratch {
+    /// The block `U`, packed.
+    block: Vec<Row>,
+    /// `M U`, overwritten by the solve with `OP U`.
+    solution: Vec<Row>,
+}
+
+impl OperatorScratch {
+    fn new(n: usize) -> Self {
+        Self {
+            block: vec![[0.0; WIDTH]; n],
+            solution: vec![[0.0; WIDTH]; n],
+        }
+    }
+}
+
+/// What [`apply_operator`] measured on the way.
+struct Applied {
+    /// M-norms of the columns of `Z = OP U` (`r`).
+    norms: Vec<f64>,
+    /// `Uᵀ M Z` (`r × r`).
+    own: Mat<f64>,
+}
+
+/// `z ← OP U = (A − σM)⁻¹ M U` for the block `u` (`n × r`, rows in elimination order), [`WIDTH`]
+/// columns at a time: `U` is packed and scaled by `M` in one pass, solved on the packed rows, and
+/// unpacked into `z` in one more, which also accumulates the M-norms of `Z` and `Uᵀ M Z` (for
+/// `r ≤ WIDTH`; a wider block takes one product for the latter).
+fn apply_operator(
+    factor: &SparseLdlt,
+    mass: &[f64],
+    u: MatRef<'_, f64>,
+    mut z: MatMut<'_, f64>,
+    scratch: &mut OperatorScratch,
+    par: Par,
+) -> Applied {
+    let r = u.ncols();
+    let mut squared = vec![0.0; r];
+    let mut own_rows = [[0.0; WIDTH]; WIDTH];
+    for first in (0..r).step_by(WIDTH) {
+        let width = WIDTH.min(r - first);
+        let columns: Vec<&[f64]> = (0..width).map(|j| contiguous(u.col(first + j))).collect();
+        pack_columns(&columns, &mut scratch.block);
+        for ((scaled, row), m) in scratch.solution.iter_mut().zip(&scratch.block).zip(mass) {
+            *scaled = std::array::from_fn(|j| m * row[j]);
+        }
+        factor.solve_rows_in_elimination_order(&mut scratch.solution);
+        let mut targets: Vec<&mut [f64]> = z
+            .rb_mut()
+            .subcols_mut(first, width)
+            .col_iter_mut()
+            .map(|column| {
+                column
+                    .try_as_col_major_mut()
+                    .expect("blocks have contiguous columns")
+                    .as_slice_mut()
+            })
+            .collect();
+        let mut chunk_squared = [0.0; WIDTH];
+        for (i, ((solved, row), m)) in scratch
+            .solution
+            .iter()
+            .zip(&scratch.block)
+            .zip(mass)
+            .enumerate()
+        {
+            let weighted: Row = std::array::from_fn(|j| m * solved[j]);
+            for (j, target) in targets.iter_mut().enumerate() {
+                target[i] = solved[j];
+            }
+            for j in 0..WIDTH {
+                chunk_squared[j] += weighted[j] * solved[j];
+            }
+            if r <= WIDTH {
+                for (a, own) in own_rows.iter_mut().enumerate() {
+                    for j in 0..WIDTH {
+                        own[j] += row[a] * weighted[j];
+                    }
+                }
+            }
+        }
+        squared[first..first + width].copy_from_slice(&chunk_squared[..width]);
+    }
+    let own = if r <= WIDTH {
+        Mat::from_fn(r, r, |a, b| own_rows[a][b])
+    } else {
+        mass_inner(u, mass, z.rb(), par)
+    };
+    Applied {
+        norms: squared.iter().map(|s| s.sqrt()).collect(),
+        own,
+    }
+}
+
+/// The values of a column with unit row stride.
+fn contiguous(column: faer::ColRef<'_, f64>) -> &[f64] {
+    column
+        .try_as_col_major()
+        .expect("blocks have contiguous columns")
+        .as_slice()
 }
 
 /// Expansion steps (blocks) between two completion checks of a slice's last cycle: each check
@@ -231,6 +334,7 @@ pub(crate) fn run_slice(
     let mut solves = 0usize;
 
     let mut basis = Mat::<f64>::zeros(n, max_basis + 3 * block);
+    let mut scratch = OperatorScratch::new(n);
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
     basis.as_mut().subcols_mut(0, block).copy_from(&start);
     let (mut mv, mut mu) = (0usize, block);
@@ -251,12 +355,20 @@ pub(crate) fn run_slice(
     for _restart in 0..settings.max_restarts {
         // ---- expansion ----
         while mv + mu <= max_basis {
-            let mut z = mass_times(mass, basis.as_ref().subcols(mv, mu));
-            problem.factor.solve_in_elimination_order(z.as_mut());
-            solves += mu;
-            let reference = mass_column_norms(mass, z.as_ref());
+            // The new block is formed in place, in the basis columns right after U.
             let m_new = mv + mu;
-            let current = basis.as_ref().subcols(0, m_new);
+            let (current, mut free) = basis.as_mut().split_at_col_mut(m_new);
+            let current = current.into_const();
+            let mut z = free.rb_mut().subcols_mut(0, mu);
+            let applied = apply_operator(
+                problem.factor,
+                mass,
+                current.subcols(mv, mu),
+                z.rb_mut(),
+                &mut scratch,
+                par,
+            );
+            solves += mu;
             let bases = [locked.view(), current];
             // OP U lies almost entirely in span(V) (that is the Krylov relation), while its
             // components along the deflated and locked eigenvectors are tiny in exact
@@ -271,10 +383,12 @@ pub(crate) fn run_slice(
                     first_pass[(i, j)] = g[(j, i)];
                 }
             }
-            let own = mass_inner(basis.as_ref().subcols(mv, mu), mass, z.as_ref(), par);
-            first_pass.as_mut().subrows_mut(mv, mu).copy_from(&own);
+            first_pass
+                .as_mut()
+                .subrows_mut(mv, mu)
+                .copy_from(&applied.own);
             let mut coefficients = project_out_after_known(
-                z.as_mut(),
+                z.rb_mut(),
                 current,
                 first_pass.as_ref(),
                 &bases,
@@ -283,7 +397,7 @@ pub(crate) fn run_slice(
             );
             coefficients[1] += &first_pass;
             let c = &coefficients[1];
-            let next = orthonormalize_block(z, &reference, &bases, mass, rng, par)?;
+            let next = orthonormalize_block(z, &applied.norms, &bases, mass, rng, par)?;
             let mut h_new = Mat::<f64>::zeros(m_new, m_new);
             h_new.as_mut().submatrix_mut(0, 0, mv, mv).copy_from(&h);
             for j in 0..mu {
@@ -296,20 +410,11 @@ pub(crate) fn run_slice(
                     h_new[(mv + i, mv + j)] = 0.5 * (c[(mv + i, j)] + c[(mv + j, i)]);
                 }
             }
-            let mu_new = next.block.ncols();
-            let mut g_new = Mat::<f64>::zeros(mu_new, m_new);
-            g_new
-                .as_mut()
-                .submatrix_mut(0, mv, mu_new, mu)
-                .copy_from(&next.coefficients);
-            basis
-                .as_mut()
-                .subcols_mut(m_new, mu_new)
-                .copy_from(&next.block);
+            let mut g_new = Mat::<f64>::zeros(mu, m_new);
+            g_new.as_mut().submatrix_mut(0, mv, mu, mu).copy_from(&next);
             h = h_new;
             g = g_new;
             mv = m_new;
-            mu = mu_new;
             steps_since_check += 1;
             // In the slice's last cycle, stop expanding as soon as the Ritz pairs complete it
             // instead of always filling the basis (on average half a cycle of solves saved).

@@ -5,7 +5,6 @@
 
 use super::tall_products::{mass_inner, sweep, tall_times, tall_times_in_place};
 use crate::error::SolverError;
-use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 use rand::Rng;
@@ -20,19 +19,6 @@ const DEPENDENCE_THRESHOLD: f64 = 1e-10;
 /// Largest `‖Z‖ / min R_jj` (growth of rounding-level components along the bases when a block is
 /// normalised) for which the block is accepted without a further Gram–Schmidt pass.
 const AMPLIFICATION_LIMIT: f64 = 1e3;
-
-/// `M Z` for a diagonal `M` (row scaling).
-pub(crate) fn mass_times(mass: &[f64], z: MatRef<'_, f64>) -> Mat<f64> {
-    // A copy scaled column by column (contiguous loops the compiler vectorises; an
-    // element-wise `Mat::from_fn` was 5 % of a whole basis computation on a small mesh).
-    let mut out = z.to_owned();
-    for j in 0..out.ncols() {
-        for (x, m) in out.col_mut(j).iter_mut().zip(mass) {
-            *x *= m;
-        }
-    }
-    out
-}
 
 /// Removes from `z` its `M`-projection onto each (M-orthonormal) basis in `bases` with block
 /// classical Gram–Schmidt. One pass leaves components of relative size `ε·κ` along the bases,
@@ -191,39 +177,33 @@ fn upper_inverse(u: MatRef<'_, f64>) -> Mat<f64> {
     inv
 }
 
-/// Result of [`orthonormalize_block`].
-pub(crate) struct OrthonormalBlock {
-    /// `n × r` block with M-orthonormal columns, M-orthogonal to the bases.
-    pub block: Mat<f64>,
-    /// `r × r` upper-triangular `B` with `Z_in = block · B` (up to the parts removed);
-    /// columns that were replaced by random vectors have zero entries in `B`.
-    pub coefficients: Mat<f64>,
-}
-
-/// M-orthonormalises the columns of `z` (already M-orthogonal to `bases`): CholeskyQR2 when
-/// the block is well conditioned, column-wise Gram–Schmidt otherwise. Columns that are
-/// numerically dependent (norm below `1e-10` of `reference_norms`) are replaced by random
-/// vectors orthogonalised against `bases` and the previous columns; their coefficient rows
-/// are zero, so the Krylov relation is unaffected.
+/// M-orthonormalises the columns of `z` (`n × r`, already M-orthogonal to `bases`) in place
+/// and returns the `r × r` upper-triangular `B` with `Z_in = Z_out · B` (up to the parts
+/// removed): CholeskyQR2 when the block is well conditioned, column-wise Gram–Schmidt otherwise.
+/// Columns that are numerically dependent (norm below `1e-10` of `reference_norms`) are
+/// replaced by random vectors orthogonalised against `bases` and the previous columns; their
+/// rows of `B` are zero, so the Krylov relation is unaffected.
 ///
 /// Errors: [`SolverError::NoConvergence`] if no independent direction is left (the bases span
 /// the whole space).
 pub(crate) fn orthonormalize_block(
-    z: Mat<f64>,
+    mut z: MatMut<'_, f64>,
     reference_norms: &[f64],
     bases: &[MatRef<'_, f64>],
     mass: &[f64],
     rng: &mut ChaCha8Rng,
     par: Par,
-) -> Result<OrthonormalBlock, SolverError> {
-    let norms = mass_column_norms(mass, z.as_ref());
-    let well_scaled = norms
-        .iter()
-        .zip(reference_norms)
-        .all(|(n, r)| *n > 1e-4 * r.max(f64::MIN_POSITIVE));
-    let first = match well_scaled.then(|| cholesky_qr2(&z, mass, par)).flatten() {
-        Some(result) => result,
-        None => column_gram_schmidt(z, reference_norms, bases, mass, rng, par)?,
+) -> Result<Mat<f64>, SolverError> {
+    let gram = mass_gram(z.rb(), mass, par);
+    let well_scaled = (0..z.ncols())
+        .all(|j| gram[(j, j)].sqrt() > 1e-4 * reference_norms[j].max(f64::MIN_POSITIVE));
+    let first = match well_scaled
+        .then(|| cholesky_qr2(z.rb_mut(), gram, bases, mass, rng, par))
+        .transpose()?
+        .flatten()
+    {
+        Some(coefficients) => coefficients,
+        None => column_gram_schmidt(z.rb_mut(), reference_norms, bases, mass, rng, par)?,
     };
     // Normalising a nearly dependent block (Q = Z R⁻¹ with ill-conditioned R) amplifies the
     // rounding-level components that Z kept along `bases` by up to ‖R⁻¹‖‖Z‖ ≈ growth below.
@@ -234,78 +214,74 @@ pub(crate) fn orthonormalize_block(
     // this third Gram–Schmidt pass over all bases would cost a third of the orthogonalisation
     // for nothing, so it is skipped.
     let largest_reference = reference_norms.iter().copied().fold(0.0f64, f64::max);
-    let smallest_pivot = (0..first.coefficients.ncols())
-        .map(|j| first.coefficients[(j, j)].abs())
+    let smallest_pivot = (0..first.ncols())
+        .map(|j| first[(j, j)].abs())
         .fold(f64::INFINITY, f64::min);
     if smallest_pivot > 0.0 && largest_reference <= AMPLIFICATION_LIMIT * smallest_pivot {
         return Ok(first);
     }
-    let mut block = first.block;
-    project_out(block.as_mut(), bases, mass, par);
-    match cholesky_qr2(&block, mass, par) {
-        Some(second) => {
-            let mut coefficients =
-                Mat::zeros(second.coefficients.nrows(), first.coefficients.ncols());
-            matmul(
-                coefficients.as_mut(),
-                Accum::Replace,
-                second.coefficients.as_ref(),
-                first.coefficients.as_ref(),
-                1.0,
-                Par::Seq,
-            );
-            Ok(OrthonormalBlock {
-                block: second.block,
-                coefficients,
-            })
-        }
+    project_out(z.rb_mut(), bases, mass, par);
+    let gram = mass_gram(z.rb(), mass, par);
+    match cholesky_qr2(z, gram, bases, mass, rng, par)? {
+        Some(second) => Ok(&second * &first),
         None => Err(SolverError::NoConvergence {
             reason: "Krylov block lost its rank during reorthogonalisation".into(),
         }),
     }
 }
 
-fn cholesky_qr2(z: &Mat<f64>, mass: &[f64], par: Par) -> Option<OrthonormalBlock> {
-    let r = z.ncols();
-    let mut q = z.clone();
-    let mut total = Mat::<f64>::identity(r, r);
-    for _pass in 0..2 {
-        let s = mass_inner(q.as_ref(), mass, q.as_ref(), par);
-        let sym = Mat::from_fn(r, r, |i, j| 0.5 * (s[(i, j)] + s[(j, i)]));
-        let u = small_cholesky(sym.as_ref())?;
-        let inv = upper_inverse(u.as_ref());
-        tall_times_in_place(q.as_mut(), inv.as_ref(), par);
-        let mut t = Mat::zeros(r, r);
-        matmul(
-            t.as_mut(),
-            Accum::Replace,
-            u.as_ref(),
-            total.as_ref(),
-            1.0,
-            Par::Seq,
-        );
-        total = t;
-    }
-    Some(OrthonormalBlock {
-        block: q,
-        coefficients: total,
-    })
+/// `Zᵀ M Z` (`r × r`), symmetrised.
+fn mass_gram(z: MatRef<'_, f64>, mass: &[f64], par: Par) -> Mat<f64> {
+    let s = mass_inner(z, mass, z, par);
+    Mat::from_fn(s.nrows(), s.ncols(), |i, j| 0.5 * (s[(i, j)] + s[(j, i)]))
 }
 
+/// Two CholeskyQR passes over `z` in place, the first with `gram = Zᵀ M Z`: returns `B` with
+/// `Z_in = Z_out · B`, or `None` with `z` untouched when the first pass finds the block too
+/// ill-conditioned for CholeskyQR. After a first pass that succeeded (condition below 10⁶)
+/// the second cannot fail in exact arithmetic; if rounding makes it fail anyway, column-wise
+/// Gram–Schmidt finishes the block and its factor is folded in.
+fn cholesky_qr2(
+    mut z: MatMut<'_, f64>,
+    gram: Mat<f64>,
+    bases: &[MatRef<'_, f64>],
+    mass: &[f64],
+    rng: &mut ChaCha8Rng,
+    par: Par,
+) -> Result<Option<Mat<f64>>, SolverError> {
+    let Some(first) = small_cholesky(gram.as_ref()) else {
+        return Ok(None);
+    };
+    tall_times_in_place(z.rb_mut(), upper_inverse(first.as_ref()).as_ref(), par);
+    let second = match small_cholesky(mass_gram(z.rb(), mass, par).as_ref()) {
+        Some(second) => {
+            tall_times_in_place(z.rb_mut(), upper_inverse(second.as_ref()).as_ref(), par);
+            second
+        }
+        None => {
+            let unit = vec![1.0; z.ncols()];
+            column_gram_schmidt(z, &unit, bases, mass, rng, par)?
+        }
+    };
+    Ok(Some(&second * &first))
+}
+
+/// Column-wise Gram–Schmidt of `z` in place (see [`orthonormalize_block`]): returns the
+/// upper-triangular `B` with `Z_in = Z_out · B`, zero rows for replaced columns.
 fn column_gram_schmidt(
-    mut z: Mat<f64>,
+    mut z: MatMut<'_, f64>,
     reference_norms: &[f64],
     bases: &[MatRef<'_, f64>],
     mass: &[f64],
     rng: &mut ChaCha8Rng,
     par: Par,
-) -> Result<OrthonormalBlock, SolverError> {
+) -> Result<Mat<f64>, SolverError> {
     let (n, r) = (z.nrows(), z.ncols());
     let mut coefficients = Mat::<f64>::zeros(r, r);
     for j in 0..r {
         let mut replaced = false;
         for attempt in 0..4 {
-            let (done, mut rest) = z.as_mut().split_at_col_mut(j);
+            let (done, mut rest) = z.rb_mut().split_at_col_mut(j);
             let mut col = rest.rb_mut().subcols_mut(0, 1);
             let before = if replaced {
                 mass_column_norms(mass, col.rb())[0]
@@ -339,10 +315,7 @@ fn column_gram_schmidt(
             fill_random(col.rb_mut(), rng);
         }
     }
-    Ok(OrthonormalBlock {
-        block: z,
-        coefficients,
-    })
+    Ok(coefficients)
 }
 
 /// A fresh `n × r` random block, M-orthonormal and M-orthogonal to `bases`.
@@ -358,5 +331,6 @@ pub(crate) fn random_orthonormal_block(
     fill_random(z.as_mut(), rng);
     let reference = mass_column_norms(mass, z.as_ref());
     project_out(z.as_mut(), bases, mass, par);
-    Ok(orthonormalize_block(z, &reference, bases, mass, rng, par)?.block)
+    orthonormalize_block(z.as_mut(), &reference, bases, mass, rng, par)?;
+    Ok(z)
 }

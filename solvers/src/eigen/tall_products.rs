@@ -9,7 +9,6 @@
 //! a sequential product on it, so every thread streams its own part of `B` exactly once; the
 //! `m × r` partial inner products are summed at the end (one small reduction).
 
-use super::mass_orthogonal::mass_times;
 use super::symmetric_products::{Row, CHUNK};
 use super::tall_kernels;
 use crate::packed_rows::pack_columns;
@@ -124,6 +123,9 @@ fn in_place_parts(mut b: MatMut<'_, f64>, y: MatRef<'_, f64>, parts: usize) {
 /// (32 KB segments), 12–15 ms with 16,384 or 32,768 rows, and 17–21 ms with whole columns; the
 /// update sweep 17 ms with any of them.
 const SWEEP_ROWS: usize = 16384;
+
+/// Values of the weighted row block of [`mass_inner`] (256 KiB).
+const WEIGHTED_VALUES: usize = 32768;
 
 /// Columns `CHUNK·chunk .. CHUNK·(chunk + 1)` of `c` (`p × r`), packed as `p` rows (missing
 /// columns 0).
@@ -342,19 +344,40 @@ fn split_inner(
 ) -> Mat<f64> {
     if parts <= 1 {
         let mut c = Mat::zeros(b.ncols(), z.ncols());
-        let mut product = |rhs: MatRef<'_, f64>| {
+        let Some(weight) = weight else {
+            matmul(c.as_mut(), Accum::Replace, b.transpose(), z, 1.0, Par::Seq);
+            return c;
+        };
+        // W Z a block of rows at a time, in one small buffer (a weighted copy of all of Z would
+        // be a fresh n × r allocation on every call, whose first touch costs more than the
+        // product on small blocks).
+        let rows_per_block = (WEIGHTED_VALUES / z.ncols().max(1)).clamp(64, 4096);
+        let mut weighted = Mat::<f64>::zeros(rows_per_block.min(z.nrows()), z.ncols());
+        let mut start = 0;
+        while start < z.nrows() {
+            let rows = rows_per_block.min(z.nrows() - start);
+            let mut block = weighted.as_mut().subrows_mut(0, rows);
+            block.copy_from(z.subrows(start, rows));
+            for j in 0..block.ncols() {
+                let column = block.rb_mut().col_mut(j);
+                for (x, w) in column.iter_mut().zip(&weight[start..start + rows]) {
+                    *x *= w;
+                }
+            }
+            let accum = if start == 0 {
+                Accum::Replace
+            } else {
+                Accum::Add
+            };
             matmul(
                 c.as_mut(),
-                Accum::Replace,
-                b.transpose(),
-                rhs,
+                accum,
+                b.subrows(start, rows).transpose(),
+                block.rb(),
                 1.0,
                 Par::Seq,
-            )
-        };
-        match weight {
-            Some(w) => product(mass_times(w, z).as_ref()),
-            None => product(z),
+            );
+            start += rows;
         }
         return c;
     }
