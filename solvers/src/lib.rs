@@ -29,6 +29,7 @@ mod dense_eigen;
 mod eigen;
 mod error;
 mod factor_parallelism;
+mod huge_pages;
 pub mod iterative_refinement;
 pub mod ordering;
 mod packed_ldlt_solve;

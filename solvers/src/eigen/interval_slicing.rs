@@ -40,15 +40,14 @@
 
 use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
 use super::pencil::{Pencil, ShiftCount};
-use super::refinement::{
-    field_residuals, inverse_iteration_then_rayleigh_ritz, refine_interval, Refinement,
-    RefinementSettings,
-};
+use super::rayleigh_ritz::rayleigh_ritz;
+use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::{keep_columns, mass_inner};
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
 use crate::dense_eigen::dense_generalized_eigen;
 use crate::error::SolverError;
+use crate::huge_pages::reserve_on_huge_pages;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
 use faer::{Accum, Mat, Par};
@@ -291,7 +290,7 @@ pub fn lowest_eigenpairs_of(
         // The memory of `vectors` is reserved, not touched (`Mat::zeros` would write all of it
         // while every interval still holds its vectors): each interval's columns are written
         // as it is freed, so the eigenvectors exist once at a time.
-        let mut vectors = Mat::<f64>::with_capacity(n, k);
+        let mut vectors = reserve_on_huge_pages(n, k);
         for part in parts {
             let start = vectors.ncols();
             let take = part.values.len().min(k - start);
@@ -622,15 +621,12 @@ fn solve_at_shift(
     };
     pencil.add_solves(Phase::Solving, solves);
     let outcome = outcome?;
-    let locked = outcome.vectors.ncols();
-    let (values, vectors) = inverse_iteration_then_rayleigh_ritz(
+    let (values, vectors) = rayleigh_ritz(
         pencil.full.as_ref(),
         pencil.mass,
-        factor,
         outcome.vectors,
         options.parallelism,
     )?;
-    pencil.add_solves(Phase::Solving, locked);
     // The values ascend, so the ones inside the interval are consecutive.
     let first = values.partition_point(|&v| v <= lower);
     let found = values[first..].partition_point(|&v| v < upper);

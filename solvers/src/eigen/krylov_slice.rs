@@ -30,6 +30,7 @@ use super::mass_orthogonal::{
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
+use crate::huge_pages::{reserve_on_huge_pages, zeros_on_huge_pages};
 use crate::packed_rows::{pack_columns, Row, WIDTH};
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
@@ -67,8 +68,9 @@ pub(crate) struct SliceSettings {
     pub parallelism: Par,
 }
 
-/// Converged eigenvectors of one slice (unsorted; their eigenvalues are recomputed by the
-/// driver's final Rayleigh–Ritz against `A`, which is more accurate than the Ritz values `θ`).
+/// Converged eigenvectors of one slice after one inverse-iteration step (unsorted; their
+/// eigenvalues are recomputed by the driver's final Rayleigh–Ritz against `A`, which is more
+/// accurate than the Ritz values `θ`).
 pub(crate) struct SliceOutcome {
     pub vectors: Mat<f64>,
     pub solves: usize,
@@ -82,7 +84,7 @@ pub(crate) struct ColumnStore {
 
 impl ColumnStore {
     pub(crate) fn new(n: usize, capacity: usize) -> Self {
-        let mut data = Mat::with_capacity(n, capacity.max(1));
+        let mut data = reserve_on_huge_pages(n, capacity.max(1));
         data.resize_with(n, 0, |_, _| 0.0);
         Self { data }
     }
@@ -93,10 +95,12 @@ impl ColumnStore {
     pub(crate) fn into_mat(self) -> Mat<f64> {
         self.data
     }
-    pub(crate) fn append(&mut self, block: MatRef<'_, f64>) {
+    /// Appends the columns of `V Y` (`V: n × m`, `Y: m × c`), formed in place.
+    pub(crate) fn append_product(&mut self, v: MatRef<'_, f64>, y: MatRef<'_, f64>, par: Par) {
         let (n, start) = (self.data.nrows(), self.data.ncols());
-        self.data
-            .resize_with(n, start + block.ncols(), |i, j| block[(i, j - start)]);
+        self.data.resize_with(n, start + y.ncols(), |_, _| 0.0);
+        let new = self.data.as_mut().subcols_mut(start, y.ncols());
+        tall_times(new, Accum::Replace, v, y, 1.0, par);
     }
 }
 
@@ -145,9 +149,8 @@ struct Applied {
 }
 
 /// `z ← OP U = (A − σM)⁻¹ M U` for the block `u` (`n × r`, rows in elimination order), [`WIDTH`]
-/// columns at a time: `U` is packed and scaled by `M` in one pass, solved on the packed rows, and
-/// unpacked into `z` in one more, which also accumulates the M-norms of `Z` and `Uᵀ M Z` (for
-/// `r ≤ WIDTH`; a wider block takes one product for the latter).
+/// columns at a time ([`solve_chunk`], [`unpack_chunk`]), with the M-norms of `Z` and
+/// `Uᵀ M Z` (for `r ≤ WIDTH` from the unpacking pass; a wider block takes one product).
 fn apply_operator(
     factor: &SparseLdlt,
     mass: &[f64],
@@ -161,47 +164,10 @@ fn apply_operator(
     let mut own_rows = [[0.0; WIDTH]; WIDTH];
     for first in (0..r).step_by(WIDTH) {
         let width = WIDTH.min(r - first);
-        let columns: Vec<&[f64]> = (0..width).map(|j| contiguous(u.col(first + j))).collect();
-        pack_columns(&columns, &mut scratch.block);
-        for ((scaled, row), m) in scratch.solution.iter_mut().zip(&scratch.block).zip(mass) {
-            *scaled = std::array::from_fn(|j| m * row[j]);
-        }
-        factor.solve_rows_in_elimination_order(&mut scratch.solution);
-        let mut targets: Vec<&mut [f64]> = z
-            .rb_mut()
-            .subcols_mut(first, width)
-            .col_iter_mut()
-            .map(|column| {
-                column
-                    .try_as_col_major_mut()
-                    .expect("blocks have contiguous columns")
-                    .as_slice_mut()
-            })
-            .collect();
-        let mut chunk_squared = [0.0; WIDTH];
-        for (i, ((solved, row), m)) in scratch
-            .solution
-            .iter()
-            .zip(&scratch.block)
-            .zip(mass)
-            .enumerate()
-        {
-            let weighted: Row = std::array::from_fn(|j| m * solved[j]);
-            for (j, target) in targets.iter_mut().enumerate() {
-                target[i] = solved[j];
-            }
-            for j in 0..WIDTH {
-                chunk_squared[j] += weighted[j] * solved[j];
-            }
-            if r <= WIDTH {
-                for (a, own) in own_rows.iter_mut().enumerate() {
-                    for j in 0..WIDTH {
-                        own[j] += row[a] * weighted[j];
-                    }
-                }
-            }
-        }
-        squared[first..first + width].copy_from_slice(&chunk_squared[..width]);
+        solve_chunk(factor, mass, u.subcols(first, width), scratch);
+        let own = (r <= WIDTH).then_some(&mut own_rows);
+        let chunk = unpack_chunk(mass, z.rb_mut().subcols_mut(first, width), scratch, own);
+        squared[first..first + width].copy_from_slice(&chunk[..width]);
     }
     let own = if r <= WIDTH {
         Mat::from_fn(r, r, |a, b| own_rows[a][b])
@@ -212,6 +178,97 @@ fn apply_operator(
         norms: squared.iter().map(|s| s.sqrt()).collect(),
         own,
     }
+}
+
+/// Packs the columns of `u` (`n × width`, `width ≤ WIDTH`) into `scratch.block` and `M U` into
+/// `scratch.solution` in one pass, then overwrites the latter with `(A − σM)⁻¹ M U`.
+fn solve_chunk(
+    factor: &SparseLdlt,
+    mass: &[f64],
+    u: MatRef<'_, f64>,
+    scratch: &mut OperatorScratch,
+) {
+    let columns: Vec<&[f64]> = u.col_iter().map(contiguous).collect();
+    pack_columns(&columns, &mut scratch.block);
+    for ((scaled, row), m) in scratch.solution.iter_mut().zip(&scratch.block).zip(mass) {
+        *scaled = std::array::from_fn(|j| m * row[j]);
+    }
+    factor.solve_rows_in_elimination_order(&mut scratch.solution);
+}
+
+/// Writes the solved chunk `scratch.solution` into the columns of `z` (`n × width`) and returns
+/// their squared M-norms; with `own`, also adds `Uᵀ M Z` of the packed `scratch.block` to it.
+fn unpack_chunk(
+    mass: &[f64],
+    mut z: MatMut<'_, f64>,
+    scratch: &OperatorScratch,
+    mut own: Option<&mut [Row; WIDTH]>,
+) -> Row {
+    let mut targets: Vec<&mut [f64]> = z
+        .rb_mut()
+        .col_iter_mut()
+        .map(|column| {
+            column
+                .try_as_col_major_mut()
+                .expect("blocks have contiguous columns")
+                .as_slice_mut()
+        })
+        .collect();
+    let mut squared = [0.0; WIDTH];
+    for (i, ((solved, row), m)) in scratch
+        .solution
+        .iter()
+        .zip(&scratch.block)
+        .zip(mass)
+        .enumerate()
+    {
+        let weighted: Row = std::array::from_fn(|j| m * solved[j]);
+        for (j, target) in targets.iter_mut().enumerate() {
+            target[i] = solved[j];
+        }
+        for j in 0..WIDTH {
+            squared[j] += weighted[j] * solved[j];
+        }
+        if let Some(own) = own.as_deref_mut() {
+            for (a, own_row) in own.iter_mut().enumerate() {
+                for j in 0..WIDTH {
+                    own_row[j] += row[a] * weighted[j];
+                }
+            }
+        }
+    }
+    squared
+}
+
+/// One inverse-iteration step on every column of the locked vectors `x` (`n × s`, elimination
+/// order), in place: `X ← (A − σM)⁻¹ M X`, columns M-normalised. It damps the rounding noise the
+/// Krylov vectors carry at high frequencies, which the eigenfields would amplify, by
+/// `|λ − σ| / |λ_m − σ|` per component (see `refinement.rs`): after it most pairs meet the
+/// eigenfield target. Costs `s` solves.
+///
+/// Errors: [`SolverError::NoConvergence`] if a column vanishes.
+fn inverse_iteration_step(
+    factor: &SparseLdlt,
+    mass: &[f64],
+    mut x: MatMut<'_, f64>,
+    scratch: &mut OperatorScratch,
+) -> Result<(), SolverError> {
+    for first in (0..x.ncols()).step_by(WIDTH) {
+        let width = WIDTH.min(x.ncols() - first);
+        solve_chunk(factor, mass, x.rb().subcols(first, width), scratch);
+        let mut chunk = x.rb_mut().subcols_mut(first, width);
+        let squared = unpack_chunk(mass, chunk.rb_mut(), scratch, None);
+        for (j, column) in chunk.col_iter_mut().enumerate() {
+            let norm = squared[j].sqrt();
+            if !(norm.is_finite() && norm > 0.0) {
+                return Err(SolverError::NoConvergence {
+                    reason: "an inverse-iteration step lost a locked vector".into(),
+                });
+            }
+            column.iter_mut().for_each(|value| *value /= norm);
+        }
+    }
+    Ok(())
 }
 
 /// The values of a column with unit row stride.
@@ -297,8 +354,9 @@ fn ritz_pairs(
 }
 
 /// Runs block Krylov–Schur until `lower_needed` eigenvalues in `(lower_bound, σ)` and
-/// `upper_target` eigenvalues above σ are locked. `on_restart(locked, solves)` is called
-/// after every restart.
+/// `upper_target` eigenvalues above σ are locked, then takes one inverse-iteration step on the
+/// locked vectors ([`inverse_iteration_step`]; its solves are counted). `on_restart(locked,
+/// solves)` is called after every restart.
 ///
 /// The Krylov vectors are kept in the factorization's
 /// [elimination order](SparseLdlt::elimination_order), so the solves need no gather or scatter
@@ -333,7 +391,7 @@ pub(crate) fn run_slice(
     let (mut lower_found, mut upper_found) = (0usize, 0usize);
     let mut solves = 0usize;
 
-    let mut basis = Mat::<f64>::zeros(n, max_basis + 3 * block);
+    let mut basis = zeros_on_huge_pages(n, max_basis + 3 * block);
     let mut scratch = OperatorScratch::new(n);
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
     basis.as_mut().subcols_mut(0, block).copy_from(&start);
@@ -450,16 +508,7 @@ pub(crate) fn run_slice(
         upper_found += inside.1;
         if !lock.is_empty() {
             let y_lock = Mat::from_fn(mv, lock.len(), |i, j| y[(i, lock[j])]);
-            let mut x = Mat::<f64>::zeros(n, lock.len());
-            tall_times(
-                x.as_mut(),
-                Accum::Replace,
-                basis.as_ref().subcols(0, mv),
-                y_lock.as_ref(),
-                1.0,
-                par,
-            );
-            locked.append(x.as_ref());
+            locked.append_product(basis.as_ref().subcols(0, mv), y_lock.as_ref(), par);
             locked_values.extend(lock.iter().map(|&i| sigma + 1.0 / theta[i]));
         }
         on_restart(locked_values.len(), solves);
@@ -472,8 +521,11 @@ pub(crate) fn run_slice(
             });
         }
         if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
+            let mut vectors = locked.into_mat();
+            inverse_iteration_step(problem.factor, mass, vectors.as_mut(), &mut scratch)?;
+            solves += vectors.ncols();
             return Ok(SliceOutcome {
-                vectors: in_input_order(locked.into_mat(), order),
+                vectors: in_input_order(vectors, order),
                 solves,
             });
         }

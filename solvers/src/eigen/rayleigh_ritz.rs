@@ -20,8 +20,8 @@
 //! `X ← Q W = X (L⁻ᵀ W)`. Rayleigh–Ritz against `A`
 //! is accurate to `ε‖A‖` in the eigenvalues and has no `1/θ` amplification; within a cluster it
 //! diagonalises `A` exactly, so degenerate eigenvalues come out equal to rounding. Its cost is one
-//! sparse product `A X` and three `n × s × s` dense products per slice (`XᵀMX`, `XᵀAX` and the
-//! rotation).
+//! sparse product `A X` and, per slice, the upper block triangles of `XᵀMX` and `XᵀAX` (half an
+//! `n × s × s` product each) and the rotation (one).
 
 use super::symmetric_products::{gather_times, pack, CHUNK};
 use super::tall_products::{mass_inner, tall_inner, tall_times_in_place};
@@ -55,8 +55,7 @@ pub(crate) fn rayleigh_ritz(
     // Q = X L⁻ᵀ with XᵀMX = L Lᵀ is M-orthonormal (L is close to the identity for a nearly
     // orthonormal block, so its explicit inverse is accurate), and Qᵀ A Q = L⁻¹ (Xᵀ A X) L⁻ᵀ:
     // Q is never formed, and X is rotated once, by L⁻ᵀ W.
-    let gram = mass_inner(x.as_ref(), mass, x.as_ref(), par);
-    let gram = Mat::from_fn(s, s, |i, j| 0.5 * (gram[(i, j)] + gram[(j, i)]));
+    let gram = mass_gram(x.as_ref(), mass, par);
     let llt = gram
         .as_ref()
         .llt(faer::Side::Lower)
@@ -81,8 +80,44 @@ pub(crate) fn rayleigh_ritz(
 /// once per 32 columns, not once per packed chunk of 8.
 const PROJECTED_COLUMNS: usize = 4 * CHUNK;
 
+/// `Xᵀ M X` (`s × s`) for the `n × s` block `x`, from its upper block triangle (see
+/// [`symmetric_from_upper`]).
+fn mass_gram(x: MatRef<'_, f64>, mass: &[f64], par: Par) -> Mat<f64> {
+    let s = x.ncols();
+    let groups: Vec<usize> = (0..s).step_by(PROJECTED_COLUMNS).collect();
+    let blocks = groups
+        .iter()
+        .map(|&first| {
+            let width = PROJECTED_COLUMNS.min(s - first);
+            let upper = x.subcols(0, first + width);
+            (first, mass_inner(upper, mass, x.subcols(first, width), par))
+        })
+        .collect();
+    symmetric_from_upper(s, blocks)
+}
+
+/// The symmetric `s × s` matrix whose columns `first..first + width` have the rows
+/// `0..first + width` given in `blocks` (`(first, (first + width) × width)`): every entry on and
+/// above the diagonal is in a block, the ones below are mirrored (the block products of a
+/// symmetric projection cost half as much).
+fn symmetric_from_upper(s: usize, blocks: Vec<(usize, Mat<f64>)>) -> Mat<f64> {
+    let mut t = Mat::<f64>::zeros(s, s);
+    for (first, block) in blocks {
+        t.as_mut()
+            .submatrix_mut(0, first, block.nrows(), block.ncols())
+            .copy_from(&block);
+    }
+    for j in 0..s {
+        for i in j + 1..s {
+            t[(i, j)] = t[(j, i)];
+        }
+    }
+    t
+}
+
 /// `Qᵀ A Q` (`s × s`) for the `n × s` block `q`, [`PROJECTED_COLUMNS`] columns of `A Q` at a
-/// time (gathered a packed chunk at a time).
+/// time (gathered a packed chunk at a time), each projected onto the columns of `q` up to its
+/// own ([`symmetric_from_upper`]).
 fn projected(a: SparseColMatRef<'_, usize, f64>, q: MatRef<'_, f64>, par: Par) -> Mat<f64> {
     let (n, s) = (q.nrows(), q.ncols());
     let groups: Vec<usize> = (0..s).step_by(PROJECTED_COLUMNS).collect();
@@ -99,18 +134,14 @@ fn projected(a: SparseColMatRef<'_, usize, f64>, q: MatRef<'_, f64>, par: Par) -
                 }
             }
         }
-        (first, tall_inner(q, aq.as_ref(), Par::Seq))
+        let upper = q.subcols(0, first + width);
+        (first, tall_inner(upper, aq.as_ref(), Par::Seq))
     };
+    // The last groups are the largest: started first, they do not end the parallel loop alone.
     let blocks: Vec<(usize, Mat<f64>)> = if par.degree() > 1 {
-        groups.par_iter().map(one).collect()
+        groups.par_iter().rev().map(one).collect()
     } else {
         groups.iter().map(one).collect()
     };
-    let mut t = Mat::<f64>::zeros(s, s);
-    for (first, block) in blocks {
-        t.as_mut()
-            .subcols_mut(first, block.ncols())
-            .copy_from(&block);
-    }
-    t
+    symmetric_from_upper(s, blocks)
 }

@@ -13,7 +13,8 @@
 //! `M`-orthogonality inside clusters.
 //!
 //! Every interval takes that step once on all its locked vectors, before the one Rayleigh–Ritz
-//! it needs anyway ([`inverse_iteration_then_rayleigh_ritz`]): on the bunny, nearly every pair
+//! it needs anyway (the slice takes it in its elimination order, see `krylov_slice.rs`): on the
+//! bunny, nearly every pair
 //! missed the target without it, so checking first cost a residual pass and a second
 //! Rayleigh–Ritz for nothing. [`refine_interval`] then handles the few pairs still above the
 //! target: more steps at the interval's shift, and for a pair still ten times above it (the
@@ -427,47 +428,6 @@ pub(crate) fn refine_columns(
         for i in 0..n {
             vectors[(i, column)] = sign * z[(i, j)] / norm;
         }
-    }
-    rayleigh_ritz(a, mass, vectors, par)
-}
-
-/// One inverse-iteration step on every column of the `n × s` block `vectors` (the locked
-/// vectors of a slice), in place, then the Rayleigh–Ritz against `A` on their span: `X ←
-/// (A − σM)⁻¹ M X` with `factor = LDLᵀ(A − σM)`, columns M-normalised, then
-/// [`rayleigh_ritz`]. The step damps the rounding noise the Krylov vectors carry at high
-/// frequencies (see the module documentation), which the eigenfields would amplify, by
-/// `|λ − σ| / |λ_m − σ|` per component: after it most pairs meet the eigenfield target, and
-/// [`refine_interval`] has little left to do. Costs `s` solves and replaces the Rayleigh–Ritz the
-/// slice needs anyway. Returns `s` ascending values and the M-orthonormal Ritz vectors.
-///
-/// Errors: [`SolverError::NoConvergence`] if a column vanishes or the block loses its rank.
-pub(crate) fn inverse_iteration_then_rayleigh_ritz(
-    a: SparseColMatRef<'_, usize, f64>,
-    mass: &[f64],
-    factor: &SparseLdlt,
-    mut vectors: Mat<f64>,
-    par: Par,
-) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
-    for j in 0..vectors.ncols() {
-        for (x, m) in vectors.col_mut(j).iter_mut().zip(mass) {
-            *x *= m;
-        }
-    }
-    factor.solve_in_place(vectors.as_mut());
-    for j in 0..vectors.ncols() {
-        let norm = vectors
-            .col(j)
-            .iter()
-            .zip(mass)
-            .map(|(x, m)| m * x * x)
-            .sum::<f64>()
-            .sqrt();
-        if !(norm.is_finite() && norm > 0.0) {
-            return Err(SolverError::NoConvergence {
-                reason: "an inverse-iteration step lost a locked vector".into(),
-            });
-        }
-        vectors.col_mut(j).iter_mut().for_each(|x| *x /= norm);
     }
     rayleigh_ritz(a, mass, vectors, par)
 }
