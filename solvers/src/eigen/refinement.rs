@@ -61,14 +61,14 @@ pub(crate) fn field_residuals(
         norm_a,
         floor,
     };
-    let chunks = map_column_chunks(vectors, par, |first, width, x| {
+    let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
         let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
         #[cfg(target_arch = "x86_64")]
         if has_avx2_fma() {
             // SAFETY: the CPU supports the features the function is compiled for.
-            return unsafe { chunk_residuals_fma(&pencil, &lambda, width, x) };
+            return unsafe { chunk_residuals_fma(&pencil, &lambda, width, x, work) };
         }
-        chunk_residuals::<false>(&pencil, &lambda, width, x)
+        chunk_residuals::<false>(&pencil, &lambda, width, x, work)
     });
     chunks.into_iter().flatten().collect()
 }
@@ -94,24 +94,27 @@ fn chunk_residuals_fma(
     lambda: &Row,
     width: usize,
     x: &[Row],
+    work: &mut [Vec<Row>; 3],
 ) -> Vec<FieldResidual> {
-    chunk_residuals::<true>(pencil, lambda, width, x)
+    chunk_residuals::<true>(pencil, lambda, width, x, work)
 }
 
 /// The [`FieldResidual`]s of one packed chunk `x` (`n` rows, `width` columns used) with
-/// eigenvalues `lambda`; multiply–adds fused when `FUSED` (in functions compiled with FMA).
+/// eigenvalues `lambda`, in the `n`-row buffers `work`; multiply–adds fused when `FUSED` (in
+/// functions compiled with FMA).
 #[inline(always)]
 fn chunk_residuals<const FUSED: bool>(
     pencil: &ChunkPencil<'_>,
     lambda: &Row,
     width: usize,
     x: &[Row],
+    work: &mut [Vec<Row>; 3],
 ) -> Vec<FieldResidual> {
     let n = x.len();
     let (mass, inverse_mass) = (pencil.mass, pencil.inverse_mass);
+    let [ax, abs_ax, a_s] = work;
     // A x and |A| |x| (for the floor) from one pass over A.
-    let (mut ax, mut abs_ax) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
-    gather_times_and_magnitudes(pencil.a, x, &mut ax, &mut abs_ax);
+    gather_times_and_magnitudes(pencil.a, x, ax, abs_ax);
     // r = A x − λ M x (its norm), then s = M⁻¹ r, in place.
     let (mut r2, mut x2) = ([0.0; CHUNK], [0.0; CHUNK]);
     for (((s, x), m), inverse) in ax.iter_mut().zip(x).zip(mass).zip(inverse_mass) {
@@ -123,8 +126,7 @@ fn chunk_residuals<const FUSED: bool>(
         }
     }
     let s = ax;
-    let mut a_s = vec![[0.0; CHUNK]; n];
-    gather_times(pencil.a, &s, &mut a_s);
+    gather_times(pencil.a, s, a_s);
     let (mut energy, mut noise) = ([0.0; CHUNK], [0.0; CHUNK]);
     for i in 0..n {
         let weight = pencil.diagonal[i].max(0.0);

@@ -64,40 +64,70 @@ pub(crate) fn gather_times_and_magnitudes(
 
 /// Columns `first..first + width` of `x` packed into rows (`width ≤ CHUNK`).
 pub(crate) fn pack(x: MatRef<'_, f64>, first: usize, width: usize) -> Vec<Row> {
+    let mut rows = vec![[0.0; CHUNK]; x.nrows()];
+    pack_into(x, first, width, &mut rows);
+    rows
+}
+
+/// [`pack`] into `rows` (`n` rows, overwritten).
+fn pack_into(x: MatRef<'_, f64>, first: usize, width: usize, rows: &mut [Row]) {
     // Row by row (each packed row written once, whole) when the columns are contiguous.
     let columns: Option<Vec<&[f64]>> = (0..width)
         .map(|j| x.col(first + j).try_as_col_major().map(|c| c.as_slice()))
         .collect();
     match columns {
-        Some(columns) => {
-            let mut rows = vec![[0.0; CHUNK]; x.nrows()];
-            pack_columns(&columns, &mut rows);
-            rows
+        Some(columns) => pack_columns(&columns, rows),
+        None => {
+            for (i, row) in rows.iter_mut().enumerate() {
+                *row = std::array::from_fn(|j| if j < width { x[(i, first + j)] } else { 0.0 });
+            }
         }
-        None => (0..x.nrows())
-            .map(|i| std::array::from_fn(|j| if j < width { x[(i, first + j)] } else { 0.0 }))
-            .collect(),
     }
 }
 
-/// Calls `work(first, width, rows)` for every chunk of [`CHUNK`] columns of `x` (`rows`: the
-/// chunk packed, `width` its columns) and returns the results in column order; chunks run on
-/// rayon's threads when `par` allows more than one.
+/// The `n`-row buffers one worker of [`map_column_chunks`] reuses for all its chunks (fresh
+/// buffers per chunk were, on the bunny, gigabytes of zeroed memory per basis).
+pub(crate) struct ChunkBuffers {
+    /// The current chunk, packed.
+    packed: Vec<Row>,
+    /// Work space for the caller (contents unspecified on entry).
+    pub work: [Vec<Row>; 3],
+}
+
+impl ChunkBuffers {
+    fn new(n: usize) -> Self {
+        Self {
+            packed: vec![[0.0; CHUNK]; n],
+            work: std::array::from_fn(|_| vec![[0.0; CHUNK]; n]),
+        }
+    }
+}
+
+/// Calls `work(first, width, rows, buffers)` for every chunk of [`CHUNK`] columns of `x`
+/// (`rows`: the chunk packed, `width` its columns; `buffers`: the worker's reused work space)
+/// and returns the results in column order; chunks run on rayon's threads when `par` allows
+/// more than one.
 pub(crate) fn map_column_chunks<T: Send>(
     x: MatRef<'_, f64>,
     par: Par,
-    work: impl Fn(usize, usize, &[Row]) -> T + Sync,
+    work: impl Fn(usize, usize, &[Row], &mut [Vec<Row>; 3]) -> T + Sync,
 ) -> Vec<T> {
     let chunks = x.ncols().div_ceil(CHUNK);
-    let one = |chunk: usize| {
+    let one = |buffers: &mut ChunkBuffers, chunk: usize| {
         let first = chunk * CHUNK;
         let width = CHUNK.min(x.ncols() - first);
-        work(first, width, &pack(x, first, width))
+        pack_into(x, first, width, &mut buffers.packed);
+        work(first, width, &buffers.packed, &mut buffers.work)
     };
+    let n = x.nrows();
     if par.degree() > 1 {
-        (0..chunks).into_par_iter().map(one).collect()
+        (0..chunks)
+            .into_par_iter()
+            .map_init(|| ChunkBuffers::new(n), one)
+            .collect()
     } else {
-        (0..chunks).map(one).collect()
+        let mut buffers = ChunkBuffers::new(n);
+        (0..chunks).map(|chunk| one(&mut buffers, chunk)).collect()
     }
 }
 
@@ -185,7 +215,7 @@ mod tests {
         }
         let magnitudes = Mat::from_fn(n, n, |i, j| dense[(i, j)].abs());
         let expected_magnitudes = &magnitudes * Mat::from_fn(n, 19, |i, j| x[(i, j)].abs());
-        let sums = map_column_chunks(x.as_ref(), Par::Seq, |first, width, rows| {
+        let sums = map_column_chunks(x.as_ref(), Par::Seq, |first, width, rows, _work| {
             let (mut out, mut magnitudes) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
             gather_times_and_magnitudes(a.as_ref(), rows, &mut out, &mut magnitudes);
             (first, width, out, magnitudes)
