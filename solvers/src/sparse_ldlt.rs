@@ -664,7 +664,7 @@ mod tests {
 
     /// Solving in elimination order gives the solution of the input-order solve, permuted: on
     /// one thread (the packed solve without the permutation) and on two (through faer's solve in
-    /// the input numbering).
+    /// the input numbering), column-major and on packed rows.
     #[test]
     fn solve_in_elimination_order_is_the_permuted_solve() {
         let upper = shifted_grid(29, 0.47);
@@ -686,6 +686,19 @@ mod tests {
             assert!(
                 difference <= 1e-12 * expected.norm_max(),
                 "{parallelism:?}: {difference:e}"
+            );
+            // The same solve on packed rows (the first WIDTH columns).
+            let mut rows: Vec<Row> = (0..n)
+                .map(|i| std::array::from_fn(|j| rhs[(order[i], j)]))
+                .collect();
+            ldlt.solve_rows_in_elimination_order(&mut rows);
+            let packed_difference = (0..n)
+                .flat_map(|i| (0..WIDTH).map(move |j| (i, j)))
+                .map(|(i, j)| (rows[i][j] - expected[(i, j)]).abs())
+                .fold(0.0f64, f64::max);
+            assert!(
+                packed_difference <= 1e-12 * expected.norm_max(),
+                "{parallelism:?}, packed rows: {packed_difference:e}"
             );
         }
     }

@@ -182,7 +182,8 @@ fn upper_inverse(u: MatRef<'_, f64>) -> Mat<f64> {
 /// removed): CholeskyQR2 when the block is well conditioned, column-wise Gram–Schmidt otherwise.
 /// Columns that are numerically dependent (norm below `1e-10` of `reference_norms`) are
 /// replaced by random vectors orthogonalised against `bases` and the previous columns; their
-/// rows of `B` are zero, so the Krylov relation is unaffected.
+/// columns of `B` are zero (what was left of them is rounding noise), so the Krylov relation is
+/// unaffected.
 ///
 /// Errors: [`SolverError::NoConvergence`] if no independent direction is left (the bases span
 /// the whole space).
@@ -333,4 +334,68 @@ pub(crate) fn random_orthonormal_block(
     project_out(z.as_mut(), bases, mass, par);
     orthonormalize_block(z.as_mut(), &reference, bases, mass, rng, par)?;
     Ok(z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    fn sample(n: usize, c: usize, seed: usize) -> Mat<f64> {
+        Mat::from_fn(n, c, |i, j| {
+            ((i * 31 + j * 17 + seed * 7) % 101) as f64 / 50.0 - 1.0
+        })
+    }
+
+    /// The block comes out M-orthonormal and M-orthogonal to the bases, in place, with the
+    /// triangular factor of the Krylov relation (`Z_in = Z_out · B`); a dependent column is
+    /// replaced by a random direction whose column of `B` is zero.
+    #[test]
+    fn orthonormalize_block_in_place_keeps_the_relation() {
+        let n = 300;
+        let mass: Vec<f64> = (0..n).map(|i| 0.5 + (i % 7) as f64 / 3.0).collect();
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let basis = random_orthonormal_block(n, 10, &[], &mass, &mut rng, Par::Seq)
+            .expect("a random block has full rank");
+        for dependent in [false, true] {
+            let mut z = sample(n, 6, 1);
+            if dependent {
+                let first = z.col(0).to_owned();
+                z.col_mut(5).copy_from(&first);
+            }
+            let reference = mass_column_norms(&mass, z.as_ref());
+            project_out(z.as_mut(), &[basis.as_ref()], &mass, Par::Seq);
+            let before = z.clone();
+            let b = orthonormalize_block(
+                z.as_mut(),
+                &reference,
+                &[basis.as_ref()],
+                &mass,
+                &mut rng,
+                Par::Seq,
+            )
+            .expect("orthonormalised");
+            let gram = mass_inner(z.as_ref(), &mass, z.as_ref(), Par::Seq);
+            let identity = Mat::<f64>::identity(6, 6);
+            assert!((&gram - &identity).norm_max() < 1e-13, "{dependent}");
+            let along = mass_inner(basis.as_ref(), &mass, z.as_ref(), Par::Seq);
+            assert!(along.norm_max() < 1e-13, "{dependent}");
+            let rebuilt = &z * &b;
+            let kept = if dependent { 5 } else { 6 };
+            let difference =
+                (rebuilt.as_ref().subcols(0, kept) - before.as_ref().subcols(0, kept)).norm_max();
+            assert!(difference < 1e-12 * before.norm_max(), "{dependent}");
+            for i in 1..6 {
+                for j in 0..i {
+                    assert_eq!(b[(i, j)], 0.0, "B is upper triangular");
+                }
+            }
+            if dependent {
+                assert!(
+                    b.col(5).iter().all(|&v| v == 0.0),
+                    "a replaced column of B is zero"
+                );
+            }
+        }
+    }
 }

@@ -145,3 +145,21 @@ fn projected(a: SparseColMatRef<'_, usize, f64>, q: MatRef<'_, f64>, par: Par) -
     };
     symmetric_from_upper(s, blocks)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Gram matrix from its upper block triangle equals the full product, for a width that
+    /// is not a multiple of the column groups.
+    #[test]
+    fn gram_from_the_upper_blocks_is_the_full_product() {
+        let (n, s) = (500, 45);
+        let x = Mat::from_fn(n, s, |i, j| ((i * 13 + j * 29) % 97) as f64 / 48.0 - 1.0);
+        let mass: Vec<f64> = (0..n).map(|i| 0.25 + (i % 5) as f64).collect();
+        let full = mass_inner(x.as_ref(), &mass, x.as_ref(), Par::Seq);
+        let gram = mass_gram(x.as_ref(), &mass, Par::Seq);
+        assert!((&gram - &full).norm_max() <= 1e-12 * full.norm_max());
+        assert_eq!(gram, gram.transpose().to_owned());
+    }
+}
