@@ -32,6 +32,28 @@ pub(crate) fn multiply_add<const FUSED: bool>(x: f64, y: f64, a: f64) -> f64 {
     }
 }
 
+/// The values of a column with unit row stride (the blocks of the solver's loops are column-major
+/// with contiguous columns).
+pub(crate) fn contiguous(column: faer::ColRef<'_, f64>) -> &[f64] {
+    column
+        .try_as_col_major()
+        .expect("blocks have contiguous columns")
+        .as_slice()
+}
+
+/// The columns of `block` as mutable slices (see [`contiguous`]).
+pub(crate) fn contiguous_columns_mut(block: faer::MatMut<'_, f64>) -> Vec<&mut [f64]> {
+    block
+        .col_iter_mut()
+        .map(|column| {
+            column
+                .try_as_col_major_mut()
+                .expect("blocks have contiguous columns")
+                .as_slice_mut()
+        })
+        .collect()
+}
+
 /// Packs the equally long `columns` (at most [`WIDTH`]) into `rows` (one row per entry; missing
 /// columns 0), row by row: each packed row is written once, whole, and the columns are read
 /// as sequential streams.

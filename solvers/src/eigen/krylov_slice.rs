@@ -31,7 +31,7 @@ use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::huge_pages::{reserve_on_huge_pages, zeros_on_huge_pages};
-use crate::packed_rows::{pack_columns, Row, WIDTH};
+use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns, Row, WIDTH};
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{IntoConst, Reborrow, ReborrowMut};
@@ -204,16 +204,7 @@ fn unpack_chunk(
     scratch: &OperatorScratch,
     mut own: Option<&mut [Row; WIDTH]>,
 ) -> Row {
-    let mut targets: Vec<&mut [f64]> = z
-        .rb_mut()
-        .col_iter_mut()
-        .map(|column| {
-            column
-                .try_as_col_major_mut()
-                .expect("blocks have contiguous columns")
-                .as_slice_mut()
-        })
-        .collect();
+    let mut targets = contiguous_columns_mut(z.rb_mut());
     let mut squared = [0.0; WIDTH];
     for (i, ((solved, row), m)) in scratch
         .solution
@@ -269,14 +260,6 @@ fn inverse_iteration_step(
         }
     }
     Ok(())
-}
-
-/// The values of a column with unit row stride.
-fn contiguous(column: faer::ColRef<'_, f64>) -> &[f64] {
-    column
-        .try_as_col_major()
-        .expect("blocks have contiguous columns")
-        .as_slice()
 }
 
 /// Expansion steps (blocks) between two completion checks of a slice's last cycle: each check

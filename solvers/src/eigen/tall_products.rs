@@ -11,7 +11,7 @@
 
 use super::symmetric_products::{Row, CHUNK};
 use super::tall_kernels;
-use crate::packed_rows::pack_columns;
+use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns};
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -137,14 +137,6 @@ fn pack_chunk(c: MatRef<'_, f64>, chunk: usize) -> Vec<Row> {
         .collect()
 }
 
-/// The values of a column with unit row stride.
-fn contiguous(column: faer::ColRef<'_, f64>) -> &[f64] {
-    column
-        .try_as_col_major()
-        .expect("blocks have contiguous columns")
-        .as_slice()
-}
-
 /// What one [`sweep`] computed.
 pub(crate) struct Sweep {
     /// `Bᵀ M z` (`p × r`) for each basis `B` in `project`, with `z` after the update.
@@ -238,18 +230,11 @@ fn split_sweep(
                         );
                     }
                 }
-                let mut columns: Vec<&mut [f64]> = z
-                    .rb_mut()
-                    .subcols_mut(first, width)
-                    .subrows_mut(start, rows)
-                    .col_iter_mut()
-                    .map(|column| {
-                        column
-                            .try_as_col_major_mut()
-                            .expect("blocks have contiguous columns")
-                            .as_slice_mut()
-                    })
-                    .collect();
+                let mut columns = contiguous_columns_mut(
+                    z.rb_mut()
+                        .subcols_mut(first, width)
+                        .subrows_mut(start, rows),
+                );
                 for (i, row) in values.iter().enumerate() {
                     for (j, column) in columns.iter_mut().enumerate() {
                         column[i] = row[j];
