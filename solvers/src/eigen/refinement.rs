@@ -5,8 +5,9 @@
 //! co-potential problems of a Hodge complex are of this form), Lemma 1 of Brandt et al. maps an
 //! eigenpair `(λ, x)` to the eigenfield `D x / √λ` of the Hodge–Laplacian, whose residual is
 //! `√(sᵀ A s / λ)` with `s = M⁻¹ (A x − λ M x)` ([`field_residuals`]). The gradient amplifies the
-//! high-frequency part of `r = A x − λ M x` (by about 1/h), so a Krylov pair converged to the solver's tolerance
-//! in the shift-inverted metric can still show `1e-8` or more in the field. One step
+//! high-frequency part of `r = A x − λ M x` (by about 1/h), so a Krylov pair converged to the
+//! solver's tolerance in the shift-inverted metric can still show `1e-8` or more in the field.
+//! One step
 //! `z = (A − σM)⁻¹ M x` at the interval's own shift σ (no new factorization) damps every component
 //! of eigenvalue `λ_m` by `|λ − σ| / |λ_m − σ|`, tiny for high frequencies since σ lies within
 //! half an interval of `λ`; the Rayleigh–Ritz on the interval's span then restores `A`- and
@@ -14,9 +15,8 @@
 //!
 //! Every interval takes that step once on all its locked vectors, before the one Rayleigh–Ritz
 //! it needs anyway (the slice takes it in its elimination order, see `krylov_slice.rs`): on the
-//! bunny, nearly every pair
-//! missed the target without it, so checking first cost a residual pass and a second
-//! Rayleigh–Ritz for nothing. [`refine_interval`] then handles the few pairs still above the
+//! bunny, nearly every pair missed the target without it, so checking first cost a residual pass
+//! and a second Rayleigh–Ritz for nothing. [`refine_interval`] then handles the few pairs still above the
 //! target: more steps at the interval's shift, and for a pair still ten times above it (the
 //! lowest pair of the first interval on kitten and hand: components along eigenvectors near the
 //! interval's far end are hardly damped at its midpoint, and the lowest eigenfields amplify them
