@@ -22,29 +22,36 @@ const HUGE_PAGE: usize = 2 << 20;
 /// `resize_with`, which is when the memory is first touched.
 pub(crate) fn reserve_on_huge_pages(rows: usize, columns: usize) -> Mat<f64> {
     let matrix = Mat::<f64>::with_capacity(rows, columns);
+    let bytes = matrix.col_stride().unsigned_abs() * columns * std::mem::size_of::<f64>();
+    advise_huge_pages(matrix.as_ptr() as usize, bytes);
+    matrix
+}
+
+/// An empty vector with room for `len` values, advised like [`reserve_on_huge_pages`].
+pub(crate) fn reserve_values_on_huge_pages(len: usize) -> Vec<f64> {
+    let values = Vec::<f64>::with_capacity(len);
+    advise_huge_pages(values.as_ptr() as usize, len * std::mem::size_of::<f64>());
+    values
+}
+
+/// Advises the whole huge pages inside `[start, start + bytes)`, untouched memory of a fresh
+/// allocation, for transparent huge pages.
+fn advise_huge_pages(start: usize, bytes: usize) {
     #[cfg(target_os = "linux")]
     {
-        let bytes = matrix.col_stride().unsigned_abs() * columns * std::mem::size_of::<f64>();
-        let start = matrix.as_ptr() as usize;
         let (first, end) = (
             start.next_multiple_of(HUGE_PAGE),
             (start + bytes) / HUGE_PAGE * HUGE_PAGE,
         );
         if end > first {
-            // SAFETY: [first, end) lies inside the matrix's own allocation, which is untouched
-            // and owned by it; the advice changes how the kernel backs those pages, not their
+            // SAFETY: [first, end) lies inside a fresh allocation that the caller owns and has
+            // not touched; the advice changes how the kernel backs those pages, not their
             // contents or validity. Failure (e.g. THP compiled out) only means no advice.
             unsafe {
                 libc::madvise(first as *mut libc::c_void, end - first, libc::MADV_HUGEPAGE);
             }
         }
     }
-    matrix
-}
-
-/// A `rows × columns` zero matrix on transparent huge pages ([`reserve_on_huge_pages`]).
-pub(crate) fn zeros_on_huge_pages(rows: usize, columns: usize) -> Mat<f64> {
-    let mut matrix = reserve_on_huge_pages(rows, columns);
-    matrix.resize_with(rows, columns, |_, _| 0.0);
-    matrix
+    #[cfg(not(target_os = "linux"))]
+    let _ = (start, bytes);
 }

@@ -38,13 +38,14 @@
 //! are M-orthogonalised against each other at the end (their eigenvalues differ by at least the
 //! distance across a boundary, but that can be small).
 
-use super::krylov_slice::{run_slice, SliceProblem, SliceSettings};
+use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::{keep_columns, mass_inner};
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
+use super::workspace_pool::WorkspacePool;
 use crate::dense_eigen::dense_generalized_eigen;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_on_huge_pages;
@@ -215,6 +216,7 @@ pub fn lowest_eigenpairs_of(
         parallelism: options.parallelism,
         refinement_target: options.refinement_target,
     };
+    let slice_memory = WorkspacePool::<SliceMemory>::new(jobs.len());
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
         let plan = &plans[p];
@@ -225,9 +227,17 @@ pub fn lowest_eigenpairs_of(
             stream: i as u64 + 1,
         };
         let mut solved = Vec::new();
-        solve_interval(request, &interval, &settings, 0, report, &mut solved)
-            .map(|()| solved)
-            .map_err(fail(plan.request))
+        solve_interval(
+            request,
+            &interval,
+            &settings,
+            &slice_memory,
+            0,
+            report,
+            &mut solved,
+        )
+        .map(|()| solved)
+        .map_err(fail(plan.request))
     };
     let mut locked = vec![0usize; jobs.len()];
     let mut finished = vec![false; jobs.len()];
@@ -263,6 +273,7 @@ pub fn lowest_eigenpairs_of(
         }
     };
     let solved = run_jobs(jobs.len(), options.threads, &solve_job, &mut on_message)?;
+    drop(slice_memory);
     let mut intervals: Vec<Vec<SolvedInterval>> = plans.iter().map(|_| Vec::new()).collect();
     for (&(p, _), parts) in jobs.iter().zip(solved) {
         intervals[p].extend(parts);
@@ -482,6 +493,7 @@ fn solve_interval(
     request: &EigenRequest<'_, '_>,
     interval: &Interval,
     options: &IntervalSettings,
+    slice_memory: &WorkspacePool<SliceMemory>,
     depth: usize,
     report: &dyn Fn(usize, usize),
     out: &mut Vec<SolvedInterval>,
@@ -507,7 +519,15 @@ fn solve_interval(
             ),
         });
     }
-    let attempt = solve_at_shift(request, interval, options, &factor, count, report);
+    let attempt = solve_at_shift(
+        request,
+        interval,
+        options,
+        slice_memory,
+        &factor,
+        count,
+        report,
+    );
     match attempt {
         Ok((mut values, mut vectors)) => {
             // Refined here, while the factorization is at hand, not in a later phase that
@@ -570,7 +590,7 @@ fn solve_interval(
                 },
             ];
             for half in &halves {
-                solve_interval(request, half, options, depth + 1, report, out)?;
+                solve_interval(request, half, options, slice_memory, depth + 1, report, out)?;
             }
             Ok(())
         }
@@ -584,6 +604,7 @@ fn solve_at_shift(
     request: &EigenRequest<'_, '_>,
     interval: &Interval,
     options: &IntervalSettings,
+    slice_memory: &WorkspacePool<SliceMemory>,
     factor: &SparseLdlt,
     at: ShiftCount,
     report: &dyn Fn(usize, usize),
@@ -612,9 +633,15 @@ fn solve_at_shift(
     };
     let mut rng = ChaCha8Rng::seed_from_u64(request.seed);
     rng.set_stream(interval.stream);
-    let outcome = run_slice(&problem, &settings, &mut rng, &mut |locked, solves| {
-        report(locked, solves)
-    });
+    let mut memory = slice_memory.take();
+    let outcome = run_slice(
+        &problem,
+        &settings,
+        &mut memory,
+        &mut rng,
+        &mut |locked, solves| report(locked, solves),
+    );
+    slice_memory.give_back(memory);
     let solves = match &outcome {
         Ok(o) => o.solves,
         Err(_) => 0,

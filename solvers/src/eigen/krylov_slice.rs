@@ -30,7 +30,7 @@ use super::mass_orthogonal::{
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
-use crate::huge_pages::{reserve_on_huge_pages, zeros_on_huge_pages};
+use crate::huge_pages::{reserve_on_huge_pages, reserve_values_on_huge_pages};
 use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns, Row, WIDTH};
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
@@ -124,6 +124,7 @@ fn in_input_order(mut vectors: Mat<f64>, order: Option<&[usize]>) -> Mat<f64> {
 }
 
 /// Packed rows reused by every [`apply_operator`] of a slice (`n` rows each).
+#[derive(Default)]
 struct OperatorScratch {
     /// The block `U`, packed.
     block: Vec<Row>,
@@ -132,11 +133,42 @@ struct OperatorScratch {
 }
 
 impl OperatorScratch {
+    #[cfg(test)]
     fn new(n: usize) -> Self {
-        Self {
-            block: vec![[0.0; WIDTH]; n],
-            solution: vec![[0.0; WIDTH]; n],
+        let mut scratch = Self::default();
+        scratch.fit(n);
+        scratch
+    }
+
+    /// Makes both buffers `n` rows long (their values are overwritten before they are read).
+    fn fit(&mut self, n: usize) {
+        self.block.resize(n, [0.0; WIDTH]);
+        self.solution.resize(n, [0.0; WIDTH]);
+    }
+}
+
+/// The work memory of a slice, handed to the next slice by the driver (see
+/// [`super::workspace_pool`]): the Krylov basis and the operator's buffers.
+#[derive(Default)]
+pub(crate) struct SliceMemory {
+    /// Values of the Krylov basis (column-major); its length only grows.
+    basis: Vec<f64>,
+    scratch: OperatorScratch,
+}
+
+impl SliceMemory {
+    /// Room for an `n × columns` basis (stale values: every column is written before it is
+    /// read) and operator buffers of `n` rows. Memory that must grow is allocated fresh,
+    /// advised for huge pages, instead of being copied.
+    fn fit(&mut self, n: usize, columns: usize) {
+        let len = n * columns;
+        if self.basis.capacity() < len {
+            self.basis = reserve_values_on_huge_pages(len);
         }
+        if self.basis.len() < len {
+            self.basis.resize(len, 0.0);
+        }
+        self.scratch.fit(n);
     }
 }
 
@@ -348,6 +380,7 @@ fn ritz_pairs(
 pub(crate) fn run_slice(
     problem: &SliceProblem<'_>,
     settings: &SliceSettings,
+    memory: &mut SliceMemory,
     rng: &mut ChaCha8Rng,
     on_restart: &mut dyn FnMut(usize, usize),
 ) -> Result<SliceOutcome, SolverError> {
@@ -374,10 +407,15 @@ pub(crate) fn run_slice(
     let (mut lower_found, mut upper_found) = (0usize, 0usize);
     let mut solves = 0usize;
 
-    let mut basis = zeros_on_huge_pages(n, max_basis + 3 * block);
-    let mut scratch = OperatorScratch::new(n);
+    let columns = max_basis + 3 * block;
+    memory.fit(n, columns);
+    let SliceMemory {
+        basis: values,
+        scratch,
+    } = memory;
+    let mut basis = MatMut::from_column_major_slice_mut(&mut values[..n * columns], n, columns);
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
-    basis.as_mut().subcols_mut(0, block).copy_from(&start);
+    basis.rb_mut().subcols_mut(0, block).copy_from(&start);
     let (mut mv, mut mu) = (0usize, block);
     let mut h = Mat::<f64>::zeros(0, 0);
     let mut g = Mat::<f64>::zeros(block, 0);
@@ -398,7 +436,7 @@ pub(crate) fn run_slice(
         while mv + mu <= max_basis {
             // The new block is formed in place, in the basis columns right after U.
             let m_new = mv + mu;
-            let (current, mut free) = basis.as_mut().split_at_col_mut(m_new);
+            let (current, mut free) = basis.rb_mut().split_at_col_mut(m_new);
             let current = current.into_const();
             let mut z = free.rb_mut().subcols_mut(0, mu);
             let applied = apply_operator(
@@ -406,7 +444,7 @@ pub(crate) fn run_slice(
                 mass,
                 current.subcols(mv, mu),
                 z.rb_mut(),
-                &mut scratch,
+                scratch,
                 par,
             );
             solves += mu;
@@ -491,7 +529,7 @@ pub(crate) fn run_slice(
         upper_found += inside.1;
         if !lock.is_empty() {
             let y_lock = Mat::from_fn(mv, lock.len(), |i, j| y[(i, lock[j])]);
-            locked.append_product(basis.as_ref().subcols(0, mv), y_lock.as_ref(), par);
+            locked.append_product(basis.rb().subcols(0, mv), y_lock.as_ref(), par);
             locked_values.extend(lock.iter().map(|&i| sigma + 1.0 / theta[i]));
         }
         on_restart(locked_values.len(), solves);
@@ -505,7 +543,7 @@ pub(crate) fn run_slice(
         }
         if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
             let mut vectors = locked.into_mat();
-            inverse_iteration_step(problem.factor, mass, vectors.as_mut(), &mut scratch)?;
+            inverse_iteration_step(problem.factor, mass, vectors.as_mut(), scratch)?;
             solves += vectors.ncols();
             return Ok(SliceOutcome {
                 vectors: in_input_order(vectors, order),
@@ -520,9 +558,9 @@ pub(crate) fn run_slice(
         keep.truncate(keep_target);
         let p = keep.len();
         let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
-        let u_old = basis.as_ref().subcols(mv, mu).to_owned();
-        tall_times_in_place(basis.as_mut().subcols_mut(0, mv), y_keep.as_ref(), par);
-        basis.as_mut().subcols_mut(p, mu).copy_from(&u_old);
+        let u_old = basis.rb().subcols(mv, mu).to_owned();
+        tall_times_in_place(basis.rb_mut().subcols_mut(0, mv), y_keep.as_ref(), par);
+        basis.rb_mut().subcols_mut(p, mu).copy_from(&u_old);
         h = Mat::from_fn(p, p, |i, j| if i == j { theta[keep[i]] } else { 0.0 });
         g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);
         mv = p;
@@ -541,10 +579,10 @@ pub(crate) fn run_slice(
             .count();
         let newly_locked = inside.0 + inside.1;
         if missing > 0 && newly_locked == 0 && candidates < missing && mu + block <= 3 * block {
-            let current = basis.as_ref().subcols(0, mv + mu);
+            let current = basis.rb().subcols(0, mv + mu);
             let fresh =
                 random_orthonormal_block(n, block, &[locked.view(), current], mass, rng, par)?;
-            basis.as_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
+            basis.rb_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
             let mut g_new = Mat::<f64>::zeros(mu + block, mv);
             g_new.as_mut().subrows_mut(0, mu).copy_from(&g);
             g = g_new;

@@ -12,6 +12,7 @@ mod symmetric_products;
 mod tall_kernels;
 mod tall_products;
 mod types;
+mod workspace_pool;
 
 pub use interval_slicing::{lowest_eigenpairs_of, EigenRequest, EigenSolution, RequestError};
 pub use lowest::lowest_eigenpairs;
