@@ -43,7 +43,7 @@ use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
-use super::tall_products::{keep_columns, mass_inner};
+use super::tall_products::mass_inner;
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
 use super::workspace_pool::WorkspacePool;
 use crate::dense_eigen::dense_generalized_eigen;
@@ -51,12 +51,13 @@ use crate::error::SolverError;
 use crate::huge_pages::reserve_on_huge_pages;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
-use faer::{Accum, Mat, Par};
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{Accum, Mat, MatMut, Par};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::mpsc;
+use std::sync::{mpsc, Mutex};
 
 /// Times an interval may be split after failing to converge.
 const MAX_SPLITS: usize = 3;
@@ -216,6 +217,45 @@ pub fn lowest_eigenpairs_of(
         parallelism: options.parallelism,
         refinement_target: options.refinement_target,
     };
+    // Each plan's eigenvectors are written by the jobs straight into their columns of one
+    // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
+    // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
+    let mut eigenvectors: Vec<Mat<f64>> = plans
+        .iter()
+        .map(|plan| {
+            let request = &requests[plan.request];
+            reserve_on_huge_pages(request.pencil.dimension(), request.count)
+        })
+        .collect();
+    let outputs: Vec<Mutex<Option<MatMut<'_, f64>>>> = {
+        let mut outputs: Vec<Option<MatMut<'_, f64>>> = jobs.iter().map(|_| None).collect();
+        for (p, matrix) in eigenvectors.iter_mut().enumerate() {
+            let request = &requests[plans[p].request];
+            let (n, k) = (request.pencil.dimension(), request.count);
+            // SAFETY: the matrix has room for `k` columns of `n` rows at its column stride
+            // (reserved above); the view only writes (each job its own columns, all of them,
+            // checked below before the columns become part of the matrix with `set_dims`), and
+            // `eigenvectors` is not touched while the views live.
+            let mut rest = unsafe {
+                MatMut::from_raw_parts_mut(matrix.as_ptr_mut(), n, k, 1, matrix.col_stride())
+            };
+            let mut in_order: Vec<(usize, usize)> = jobs
+                .iter()
+                .enumerate()
+                .filter(|(_, &(q, _))| q == p)
+                .map(|(job, &(_, i))| (i, job))
+                .collect();
+            in_order.sort_unstable();
+            for (i, job) in in_order {
+                let counts = &plans[p].counts;
+                let width = counts[i + 1].min(k) - counts[i].min(k);
+                let (columns, tail) = rest.split_at_col_mut(width);
+                outputs[job] = Some(columns);
+                rest = tail;
+            }
+        }
+        outputs.into_iter().map(Mutex::new).collect()
+    };
     let slice_memory = WorkspacePool::<SliceMemory>::new(jobs.len());
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
@@ -226,17 +266,32 @@ pub fn lowest_eigenpairs_of(
             upper: (plan.bounds[i + 1], plan.counts[i + 1]),
             stream: i as u64 + 1,
         };
+        let output = outputs[job]
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner())
+            .take()
+            .expect("every job runs once");
+        let width = output.ncols();
+        let mut memory = slice_memory.take();
         let mut solved = Vec::new();
-        solve_interval(
+        let result = solve_interval(
             request,
             &interval,
             &settings,
-            &slice_memory,
+            &mut memory,
             0,
             report,
             &mut solved,
-        )
-        .map(|()| solved)
+            output,
+        );
+        slice_memory.give_back(memory);
+        match result {
+            Ok(written) if written == width => Ok(solved),
+            Ok(written) => Err(SolverError::NoConvergence {
+                reason: format!("an interval wrote {written} of its {width} eigenvectors"),
+            }),
+            Err(error) => Err(error),
+        }
         .map_err(fail(plan.request))
     };
     let mut locked = vec![0usize; jobs.len()];
@@ -274,6 +329,7 @@ pub fn lowest_eigenpairs_of(
     };
     let solved = run_jobs(jobs.len(), options.threads, &solve_job, &mut on_message)?;
     drop(slice_memory);
+    drop(outputs);
     let mut intervals: Vec<Vec<SolvedInterval>> = plans.iter().map(|_| Vec::new()).collect();
     for (&(p, _), parts) in jobs.iter().zip(solved) {
         intervals[p].extend(parts);
@@ -286,28 +342,18 @@ pub fn lowest_eigenpairs_of(
 
     // ---- 3. assembly ----
     let par = options.parallelism;
-    for (p, parts) in intervals.iter_mut().enumerate() {
-        parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
-        let pencil = requests[plans[p].request].pencil;
-        orthogonalize_neighbours(parts, pencil.mass, par);
-    }
-
-    // ---- assembly ----
-    for (plan, parts) in plans.iter().zip(intervals) {
+    for ((plan, mut parts), mut vectors) in plans.iter().zip(intervals).zip(eigenvectors) {
         let request = &requests[plan.request];
         let (n, k) = (request.pencil.dimension(), request.count);
-        let total: usize = parts.iter().map(|part| part.values.len()).sum();
-        let mut values = Vec::with_capacity(total);
-        // The memory of `vectors` is reserved, not touched (`Mat::zeros` would write all of it
-        // while every interval still holds its vectors): each interval's columns are written
-        // as it is freed, so the eigenvectors exist once at a time.
-        let mut vectors = reserve_on_huge_pages(n, k);
-        for part in parts {
-            let start = vectors.ncols();
-            let take = part.values.len().min(k - start);
-            vectors.resize_with(n, start + take, |i, j| part.vectors[(i, j - start)]);
-            values.extend_from_slice(&part.values);
-        }
+        // SAFETY: every job of the plan returned, and each wrote all the columns of its part of
+        // the reserved `n × k` (checked in `solve_job`); the parts cover columns `0..k`.
+        unsafe { vectors.set_dims(n, k) };
+        parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
+        orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass, par);
+        let mut values: Vec<f64> = parts
+            .iter()
+            .flat_map(|part| part.values.iter().copied())
+            .collect();
         let top = plan.counts[plan.counts.len() - 1];
         if values.len() != top || values.windows(2).any(|w| w[1] < w[0]) {
             return Err(fail(plan.request)(SolverError::NoConvergence {
@@ -470,11 +516,11 @@ struct Interval {
     stream: u64,
 }
 
-/// One solved interval: its eigenpairs (ascending, refined) and what the refinement cost.
+/// One solved interval: its eigenvalues (ascending, refined; the eigenvectors went to the
+/// columns the driver gave it) and what the refinement cost.
 struct SolvedInterval {
     lower: f64,
     values: Vec<f64>,
-    vectors: Mat<f64>,
     refinement: Refinement,
 }
 
@@ -488,22 +534,27 @@ struct IntervalSettings {
     refinement_target: f64,
 }
 
-/// Solves `interval` into `out`; on failure splits it (`depth` splits so far).
+/// Solves `interval` into `out` (its eigenvalues) and `output` (its eigenvectors: the first
+/// `output.ncols() ≤ wanted` of them, fewer where the request ends inside the interval), with
+/// `memory` as the slices' work memory; on failure splits it (`depth` splits so far). Returns
+/// the number of columns of `output` written (all of them on success).
+#[allow(clippy::too_many_arguments)]
 fn solve_interval(
     request: &EigenRequest<'_, '_>,
     interval: &Interval,
     options: &IntervalSettings,
-    slice_memory: &WorkspacePool<SliceMemory>,
+    memory: &mut SliceMemory,
     depth: usize,
     report: &dyn Fn(usize, usize),
     out: &mut Vec<SolvedInterval>,
-) -> Result<(), SolverError> {
+    output: MatMut<'_, f64>,
+) -> Result<usize, SolverError> {
     let pencil = request.pencil;
     let (lower, nu_lower) = interval.lower;
     let (upper, nu_upper) = interval.upper;
     let wanted = nu_upper - nu_lower;
     if wanted == 0 {
-        return Ok(());
+        return Ok(0);
     }
     let midpoint = if lower.is_finite() {
         0.5 * (lower + upper)
@@ -519,17 +570,12 @@ fn solve_interval(
             ),
         });
     }
-    let attempt = solve_at_shift(
-        request,
-        interval,
-        options,
-        slice_memory,
-        &factor,
-        count,
-        report,
-    );
+    let attempt = solve_at_shift(request, interval, options, memory, &factor, count, report);
     match attempt {
-        Ok((mut values, mut vectors)) => {
+        Ok((mut values, (first, found))) => {
+            let mut vectors = memory
+                .vectors(pencil.dimension(), first + found)
+                .subcols_mut(first, found);
             // Refined here, while the factorization is at hand, not in a later phase that
             // would have to keep every interval's factorization alive.
             let factor_at = |shift: f64| {
@@ -543,7 +589,7 @@ fn solve_interval(
                 &factor,
                 &factor_at,
                 &mut values,
-                &mut vectors,
+                vectors.rb_mut(),
                 &RefinementSettings {
                     target: options.refinement_target,
                     floor: 1e-8 * pencil.mean_eigenvalue.abs(),
@@ -551,13 +597,16 @@ fn solve_interval(
                 },
             )?;
             pencil.add_solves(Phase::Refinement, refinement.solves);
+            let written = output.ncols().min(found);
+            output
+                .subcols_mut(0, written)
+                .copy_from(vectors.rb().subcols(0, written));
             out.push(SolvedInterval {
                 lower,
                 values,
-                vectors,
                 refinement,
             });
-            Ok(())
+            Ok(written)
         }
         Err(SolverError::NoConvergence { .. }) if depth < MAX_SPLITS => {
             drop(factor);
@@ -589,26 +638,31 @@ fn solve_interval(
                     stream: 2 * interval.stream + 1_000_004,
                 },
             ];
-            for half in &halves {
-                solve_interval(request, half, options, slice_memory, depth + 1, report, out)?;
+            let lower_width = (middle.below - nu_lower).min(output.ncols());
+            let (lower_output, upper_output) = output.split_at_col_mut(lower_width);
+            let mut written = 0;
+            for (half, part) in halves.iter().zip([lower_output, upper_output]) {
+                written +=
+                    solve_interval(request, half, options, memory, depth + 1, report, out, part)?;
             }
-            Ok(())
+            Ok(written)
         }
         Err(e) => Err(e),
     }
 }
 
 /// The Krylov–Schur slice of `interval` at the shift of `factor` and its Rayleigh–Ritz against
-/// `A`: the interval's eigenpairs, ascending.
+/// `A`: the interval's eigenvalues, ascending, and `(first, count)`: their eigenvectors are
+/// columns `first..first + count` of [`SliceMemory::vectors`].
 fn solve_at_shift(
     request: &EigenRequest<'_, '_>,
     interval: &Interval,
     options: &IntervalSettings,
-    slice_memory: &WorkspacePool<SliceMemory>,
+    memory: &mut SliceMemory,
     factor: &SparseLdlt,
     at: ShiftCount,
     report: &dyn Fn(usize, usize),
-) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
+) -> Result<(Vec<f64>, (usize, usize)), SolverError> {
     let pencil = request.pencil;
     let n = pencil.dimension();
     let (lower, nu_lower) = interval.lower;
@@ -633,25 +687,23 @@ fn solve_at_shift(
     };
     let mut rng = ChaCha8Rng::seed_from_u64(request.seed);
     rng.set_stream(interval.stream);
-    let mut memory = slice_memory.take();
     let outcome = run_slice(
         &problem,
         &settings,
-        &mut memory,
+        memory,
         &mut rng,
         &mut |locked, solves| report(locked, solves),
     );
-    slice_memory.give_back(memory);
     let solves = match &outcome {
         Ok(o) => o.solves,
         Err(_) => 0,
     };
     pencil.add_solves(Phase::Solving, solves);
     let outcome = outcome?;
-    let (values, vectors) = rayleigh_ritz(
+    let values = rayleigh_ritz(
         pencil.full.as_ref(),
         pencil.mass,
-        outcome.vectors,
+        memory.vectors(n, outcome.columns),
         options.parallelism,
     )?;
     // The values ascend, so the ones inside the interval are consecutive.
@@ -664,10 +716,7 @@ fn solve_at_shift(
             ),
         });
     }
-    Ok((
-        values[first..first + found].to_vec(),
-        keep_columns(vectors, first, found),
-    ))
+    Ok((values[first..first + found].to_vec(), (first, found)))
 }
 
 /// One job: `(job index, progress report(locked, solves))`.
@@ -745,25 +794,39 @@ fn run_jobs<T: Send>(
 }
 
 /// Restores M-orthogonality across interval boundaries: `X_i ← X_i − X_p (X_pᵀ M X_i)` with
-/// `p` the previous non-empty interval. Eigenvectors of different intervals are orthogonal
+/// `p` the previous non-empty interval, on the columns of `vectors` (`n × k`) that `parts`
+/// (ascending) fill in order. Eigenvectors of different intervals are orthogonal
 /// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (measured:
 /// `|XᵀMX − I|` of 3·10⁻¹⁰ for the Crouzeix–Raviart bunny at k = 500 without this).
 /// Intervals further apart are separated by at least an interval's width. Costs two
 /// `n × s × s` products per boundary; the change of each vector is of the size of that error,
 /// so residuals and in-interval orthonormality stay as they were.
-fn orthogonalize_neighbours(parts: &mut [SolvedInterval], mass: &[f64], par: Par) {
-    for i in 1..parts.len() {
-        let (before, after) = parts.split_at_mut(i);
-        let earlier = before[i - 1].vectors.as_ref();
-        let current = &mut after[0].vectors;
-        let overlap = mass_inner(earlier, mass, current.as_ref(), par);
+fn orthogonalize_neighbours(
+    parts: &[SolvedInterval],
+    mut vectors: MatMut<'_, f64>,
+    mass: &[f64],
+    par: Par,
+) {
+    let k = vectors.ncols();
+    let mut start = 0;
+    for pair in parts.windows(2) {
+        let (earlier, current) = (pair[0].values.len(), pair[1].values.len());
+        let middle = start + earlier;
+        if middle >= k {
+            break;
+        }
+        let (before, after) = vectors.rb_mut().split_at_col_mut(middle);
+        let earlier = before.rb().subcols(start, earlier);
+        let mut current = after.subcols_mut(0, current.min(k - middle));
+        let overlap = mass_inner(earlier, mass, current.rb(), par);
         matmul(
-            current.as_mut(),
+            current.rb_mut(),
             Accum::Add,
             earlier,
             overlap.as_ref(),
             -1.0,
             par,
         );
+        start = middle;
     }
 }

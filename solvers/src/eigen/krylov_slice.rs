@@ -30,7 +30,7 @@ use super::mass_orthogonal::{
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
-use crate::huge_pages::{reserve_on_huge_pages, reserve_values_on_huge_pages};
+use crate::huge_pages::reserve_values_on_huge_pages;
 use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns, Row, WIDTH};
 use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
@@ -68,51 +68,64 @@ pub(crate) struct SliceSettings {
     pub parallelism: Par,
 }
 
-/// Converged eigenvectors of one slice after one inverse-iteration step (unsorted; their
-/// eigenvalues are recomputed by the driver's final Rayleigh–Ritz against `A`, which is more
-/// accurate than the Ritz values `θ`).
+/// What a slice found: `columns` converged eigenvectors, after one inverse-iteration step, in
+/// the first `n × columns` values of the slice's [`SliceMemory`] ([`SliceMemory::vectors`];
+/// unsorted: their eigenvalues are recomputed by the driver's final Rayleigh–Ritz against `A`,
+/// which is more accurate than the Ritz values `θ`).
 pub(crate) struct SliceOutcome {
-    pub vectors: Mat<f64>,
+    pub columns: usize,
     pub solves: usize,
 }
 
-/// Growable `n × count` column store: its memory is reserved up front and written only as
-/// columns are appended (growing, if ever, by reallocation, not by a zeroed copy).
-pub(crate) struct ColumnStore {
-    data: Mat<f64>,
+/// Growable `n × count` column store in borrowed memory (column-major values): it is written
+/// only as columns are appended, and grows (by reallocation, never by a zeroed copy) only when
+/// a slice locks more columns than the memory has room for.
+struct ColumnStore<'m> {
+    values: &'m mut Vec<f64>,
+    n: usize,
+    columns: usize,
 }
 
-impl ColumnStore {
-    pub(crate) fn new(n: usize, capacity: usize) -> Self {
-        let mut data = reserve_on_huge_pages(n, capacity.max(1));
-        data.resize_with(n, 0, |_, _| 0.0);
-        Self { data }
+impl<'m> ColumnStore<'m> {
+    /// An empty store with room for `capacity` columns of `n` rows.
+    fn new(values: &'m mut Vec<f64>, n: usize, capacity: usize) -> Self {
+        if values.capacity() < n * capacity {
+            *values = reserve_values_on_huge_pages(n * capacity);
+        }
+        Self {
+            values,
+            n,
+            columns: 0,
+        }
     }
-    pub(crate) fn view(&self) -> MatRef<'_, f64> {
-        self.data.as_ref()
+
+    fn view(&self) -> MatRef<'_, f64> {
+        let len = self.n * self.columns;
+        MatRef::from_column_major_slice(&self.values[..len], self.n, self.columns)
     }
-    /// The stored columns as a matrix (no copy).
-    pub(crate) fn into_mat(self) -> Mat<f64> {
-        self.data
-    }
+
     /// Appends the columns of `V Y` (`V: n × m`, `Y: m × c`), formed in place.
-    pub(crate) fn append_product(&mut self, v: MatRef<'_, f64>, y: MatRef<'_, f64>, par: Par) {
-        let (n, start) = (self.data.nrows(), self.data.ncols());
-        self.data.resize_with(n, start + y.ncols(), |_, _| 0.0);
-        let new = self.data.as_mut().subcols_mut(start, y.ncols());
+    fn append_product(&mut self, v: MatRef<'_, f64>, y: MatRef<'_, f64>, par: Par) {
+        let (start, end) = (self.n * self.columns, self.n * (self.columns + y.ncols()));
+        if self.values.len() < end {
+            self.values.resize(end, 0.0);
+        }
+        let new =
+            MatMut::from_column_major_slice_mut(&mut self.values[start..end], self.n, y.ncols());
         tall_times(new, Accum::Replace, v, y, 1.0, par);
+        self.columns += y.ncols();
     }
 }
 
 /// The rows of `vectors` (in elimination order: row `i` is input row `order[i]`) put in input
 /// order, column by column in place (one column of scratch space).
-fn in_input_order(mut vectors: Mat<f64>, order: Option<&[usize]>) -> Mat<f64> {
+fn put_in_input_order(mut vectors: MatMut<'_, f64>, order: Option<&[usize]>) {
     let Some(order) = order else {
-        return vectors;
+        return;
     };
     let mut column = vec![0.0; vectors.nrows()];
     for j in 0..vectors.ncols() {
-        let mut target = vectors.col_mut(j);
+        let mut target = vectors.rb_mut().col_mut(j);
         for (value, stored) in column.iter_mut().zip(target.rb().iter()) {
             *value = *stored;
         }
@@ -120,7 +133,6 @@ fn in_input_order(mut vectors: Mat<f64>, order: Option<&[usize]>) -> Mat<f64> {
             target[row] = value;
         }
     }
-    vectors
 }
 
 /// Packed rows reused by every [`apply_operator`] of a slice (`n` rows each).
@@ -148,15 +160,23 @@ impl OperatorScratch {
 }
 
 /// The work memory of a slice, handed to the next slice by the driver (see
-/// [`super::workspace_pool`]): the Krylov basis and the operator's buffers.
+/// [`super::workspace_pool`]): the Krylov basis, the locked vectors (the slice's result, which
+/// the driver copies out before it hands the memory on) and the operator's buffers.
 #[derive(Default)]
 pub(crate) struct SliceMemory {
     /// Values of the Krylov basis (column-major); its length only grows.
     basis: Vec<f64>,
+    /// Values of the locked vectors (column-major); its length only grows.
+    locked: Vec<f64>,
     scratch: OperatorScratch,
 }
 
 impl SliceMemory {
+    /// The `n × columns` eigenvectors the last slice found ([`SliceOutcome`]).
+    pub(crate) fn vectors(&mut self, n: usize, columns: usize) -> MatMut<'_, f64> {
+        MatMut::from_column_major_slice_mut(&mut self.locked[..n * columns], n, columns)
+    }
+
     /// Room for an `n × columns` basis (stale values: every column is written before it is
     /// read) and operator buffers of `n` rows. Memory that must grow is allocated fresh,
     /// advised for huge pages, instead of being copied.
@@ -402,7 +422,7 @@ pub(crate) fn run_slice(
             ),
         });
     }
-    let mut locked = ColumnStore::new(n, wanted + 2 * block);
+
     let mut locked_values: Vec<f64> = Vec::new();
     let (mut lower_found, mut upper_found) = (0usize, 0usize);
     let mut solves = 0usize;
@@ -411,9 +431,11 @@ pub(crate) fn run_slice(
     memory.fit(n, columns);
     let SliceMemory {
         basis: values,
+        locked: locked_memory,
         scratch,
     } = memory;
     let mut basis = MatMut::from_column_major_slice_mut(&mut values[..n * columns], n, columns);
+    let mut locked = ColumnStore::new(locked_memory, n, wanted + 2 * block);
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
     basis.rb_mut().subcols_mut(0, block).copy_from(&start);
     let (mut mv, mut mu) = (0usize, block);
@@ -421,10 +443,7 @@ pub(crate) fn run_slice(
     let mut g = Mat::<f64>::zeros(block, 0);
 
     if wanted == 0 {
-        return Ok(SliceOutcome {
-            vectors: Mat::zeros(n, 0),
-            solves,
-        });
+        return Ok(SliceOutcome { columns: 0, solves });
     }
     let ritz = |h: &Mat<f64>, g: &Mat<f64>, found| {
         ritz_pairs(h.as_ref(), g.as_ref(), problem, settings, found)
@@ -542,13 +561,13 @@ pub(crate) fn run_slice(
             });
         }
         if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
-            let mut vectors = locked.into_mat();
-            inverse_iteration_step(problem.factor, mass, vectors.as_mut(), scratch)?;
-            solves += vectors.ncols();
-            return Ok(SliceOutcome {
-                vectors: in_input_order(vectors, order),
-                solves,
-            });
+            let columns = locked.columns;
+            let mut vectors =
+                MatMut::from_column_major_slice_mut(&mut locked.values[..n * columns], n, columns);
+            inverse_iteration_step(problem.factor, mass, vectors.rb_mut(), scratch)?;
+            solves += columns;
+            put_in_input_order(vectors, order);
+            return Ok(SliceOutcome { columns, solves });
         }
 
         // ---- thick restart ----

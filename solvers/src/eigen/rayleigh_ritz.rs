@@ -27,35 +27,36 @@ use super::symmetric_products::{gather_times, pack, CHUNK};
 use super::tall_products::{mass_inner, tall_inner, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
+use faer::reborrow::Reborrow;
 use faer::sparse::SparseColMatRef;
-use faer::{Mat, MatRef, Par};
+use faer::{Mat, MatMut, MatRef, Par};
 use rayon::prelude::*;
 
 /// Rayleigh–Ritz of the `n × s` block `x` (columns nearly M-orthonormal) for `A y = λ M y`,
-/// in place: `x` becomes the Ritz vectors, and no other `n × s` matrix is allocated (`A X` is
-/// formed and projected [`PROJECTED_COLUMNS`] columns at a time).
+/// in place: `x` becomes the M-orthonormal Ritz vectors (spanning the same space), and no other
+/// `n × s` matrix is allocated (`A X` is formed and projected [`PROJECTED_COLUMNS`] columns at a
+/// time).
 ///
 /// - `a`: `n × n` sparse symmetric matrix in full (both triangles) storage.
 /// - `mass`: diagonal of `M` (`n` positive entries).
 ///
-/// Returns `s` ascending Ritz values and the `n × s` M-orthonormal Ritz vectors (spanning the
-/// same space as `x`).
+/// Returns the `s` ascending Ritz values, in the order of the columns of `x`.
 ///
 /// Errors: [`SolverError::NoConvergence`] if the columns of `x` are numerically dependent.
 pub(crate) fn rayleigh_ritz(
     a: SparseColMatRef<'_, usize, f64>,
     mass: &[f64],
-    mut x: Mat<f64>,
+    x: MatMut<'_, f64>,
     par: Par,
-) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
+) -> Result<Vec<f64>, SolverError> {
     let s = x.ncols();
     if s == 0 {
-        return Ok((Vec::new(), x));
+        return Ok(Vec::new());
     }
     // Q = X L⁻ᵀ with XᵀMX = L Lᵀ is M-orthonormal (L is close to the identity for a nearly
     // orthonormal block, so its explicit inverse is accurate), and Qᵀ A Q = L⁻¹ (Xᵀ A X) L⁻ᵀ:
     // Q is never formed, and X is rotated once, by L⁻ᵀ W.
-    let gram = mass_gram(x.as_ref(), mass, par);
+    let gram = mass_gram(x.rb(), mass, par);
     let llt = gram
         .as_ref()
         .llt(faer::Side::Lower)
@@ -68,12 +69,12 @@ pub(crate) fn rayleigh_ritz(
         l_inverse.as_mut(),
         Par::Seq,
     );
-    let t = &l_inverse * projected(a, x.as_ref(), par) * l_inverse.transpose();
+    let t = &l_inverse * projected(a, x.rb(), par) * l_inverse.transpose();
     let t = Mat::from_fn(s, s, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
     let (values, w) = symmetric_eigen(t.as_ref())?;
     let rotation = l_inverse.transpose() * &w;
-    tall_times_in_place(x.as_mut(), rotation.as_ref(), par);
-    Ok((values, x))
+    tall_times_in_place(x, rotation.as_ref(), par);
+    Ok(values)
 }
 
 /// Columns of `A Q` formed at a time by [`projected`]: wide enough that `Qᵀ (A Q)` reads `Q`

@@ -31,8 +31,9 @@ use super::tall_products::mass_inner;
 use crate::error::SolverError;
 use crate::packed_rows::{has_avx2_fma, multiply_add};
 use crate::sparse_ldlt::SparseLdlt;
+use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
-use faer::{Mat, MatRef, Par};
+use faer::{Mat, MatMut, MatRef, Par};
 use std::sync::Arc;
 
 /// Relative eigenfield residuals `√(sᵀ A s / λ) / λ`, `s = M⁻¹ (A x − λ M x)`, of the `n × s`
@@ -257,22 +258,22 @@ pub(crate) fn refine_interval(
     factor: &SparseLdlt,
     factor_at: &dyn Fn(f64) -> Result<Arc<SparseLdlt>, SolverError>,
     values: &mut Vec<f64>,
-    vectors: &mut Mat<f64>,
+    mut vectors: MatMut<'_, f64>,
     settings: &RefinementSettings,
 ) -> Result<Refinement, SolverError> {
     let clock = ThreadClock::start();
     let mut outcome = Refinement::default();
-    let residual_of = |values: &[f64], vectors: &Mat<f64>| {
+    let residual_of = |values: &[f64], vectors: MatRef<'_, f64>| {
         field_residuals(
             a,
             mass,
             values,
-            vectors.as_ref(),
+            vectors,
             settings.floor,
             settings.parallelism,
         )
     };
-    let mut before = residual_of(values, vectors);
+    let mut before = residual_of(values, vectors.rb());
     let mut which: Vec<usize> = (0..before.len())
         .filter(|&j| before[j].misses(settings.target))
         .collect();
@@ -286,25 +287,23 @@ pub(crate) fn refine_interval(
             a,
             mass,
             factor,
-            vectors.as_ref(),
+            vectors.rb(),
             worst,
             before[worst].residual,
             settings.floor,
         ) {
             for _ in 0..MAX_REFINEMENT_STEPS {
-                let (new_values, new_vectors) = refine_columns(
+                *values = refine_columns(
                     a,
                     mass,
                     factor,
-                    std::mem::replace(vectors, Mat::new()),
+                    vectors.rb_mut(),
                     &which,
                     settings.parallelism,
                 )?;
                 outcome.solves += which.len();
                 outcome.refined = outcome.refined.max(which.len());
-                let after = residual_of(&new_values, &new_vectors);
-                *values = new_values;
-                *vectors = new_vectors;
+                let after = residual_of(values, vectors.rb());
                 // Another step only for pairs still above the target that the last step
                 // improved: the others are at the rounding floor of their vectors.
                 which = (0..after.len())
@@ -332,13 +331,21 @@ pub(crate) fn refine_interval(
         outcome.solves += stubborn.len();
         // Best effort: a failed factorization or a lost vector leaves the pairs as they are
         // (their residuals are reported either way), and so does a result that is not better.
-        let stepped = near_shift_steps(a, mass, factor_at, values, vectors, &stubborn, settings);
+        let stepped = near_shift_steps(
+            a,
+            mass,
+            factor_at,
+            values,
+            vectors.rb(),
+            &stubborn,
+            settings,
+        );
         let worst = |r: &[FieldResidual]| r.iter().map(|r| r.residual).fold(0.0, f64::max);
         if let Some((new_values, new_vectors, after)) = stepped {
             if after.iter().all(|r| r.residual.is_finite()) && worst(&after) < worst(&before) {
                 outcome.refined = outcome.refined.max(stubborn.len());
                 *values = new_values;
-                *vectors = new_vectors;
+                vectors.copy_from(&new_vectors);
             }
         }
     }
@@ -356,11 +363,11 @@ fn near_shift_steps(
     mass: &[f64],
     factor_at: &dyn Fn(f64) -> Result<Arc<SparseLdlt>, SolverError>,
     values: &[f64],
-    vectors: &Mat<f64>,
+    vectors: MatRef<'_, f64>,
     pairs: &[usize],
     settings: &RefinementSettings,
 ) -> Option<(Vec<f64>, Mat<f64>, Vec<FieldResidual>)> {
-    let mut trial = vectors.clone();
+    let mut trial = vectors.to_owned();
     for &j in pairs {
         let gap = [j.checked_sub(1), Some(j + 1)]
             .into_iter()
@@ -377,32 +384,32 @@ fn near_shift_steps(
         }
         trial.col_mut(j).copy_from(z.col(0) / norm);
     }
-    let (new_values, new_vectors) = rayleigh_ritz(a, mass, trial, settings.parallelism).ok()?;
+    let new_values = rayleigh_ritz(a, mass, trial.as_mut(), settings.parallelism).ok()?;
     let residuals = field_residuals(
         a,
         mass,
         &new_values,
-        new_vectors.as_ref(),
+        trial.as_ref(),
         settings.floor,
         settings.parallelism,
     );
-    Some((new_values, new_vectors, residuals))
+    Some((new_values, trial, residuals))
 }
 
 /// Refines the columns `which` of the `n × s` eigenvectors `vectors` (M-orthonormal, one
 /// interval's) with `factor = LDLᵀ(A − σM)`: `z = (A − σM)⁻¹ M x`, M-normalised, replaces `x`,
 /// and a Rayleigh–Ritz against `A` on the span of all `s` columns gives the new ascending values
-/// and M-orthonormal vectors (in the matrix given, which is consumed).
+/// (returned) and M-orthonormal vectors (in place).
 ///
 /// Errors: [`SolverError::NoConvergence`] if the refined columns become dependent.
 pub(crate) fn refine_columns(
     a: SparseColMatRef<'_, usize, f64>,
     mass: &[f64],
     factor: &SparseLdlt,
-    mut vectors: Mat<f64>,
+    mut vectors: MatMut<'_, f64>,
     which: &[usize],
     par: Par,
-) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
+) -> Result<Vec<f64>, SolverError> {
     let n = vectors.nrows();
     let mut z = Mat::from_fn(n, which.len(), |i, j| mass[i] * vectors[(i, which[j])]);
     factor.solve_in_place(z.as_mut());
@@ -416,7 +423,7 @@ pub(crate) fn refine_columns(
         }
         // Keep the sign of x (z ≈ x/(λ − σ) points either way).
         let sign = if mass_inner(
-            vectors.as_ref().subcols(column, 1),
+            vectors.rb().subcols(column, 1),
             mass,
             z.as_ref().subcols(j, 1),
             Par::Seq,
