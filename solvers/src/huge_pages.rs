@@ -1,8 +1,8 @@
 //! Large work matrices on transparent huge pages.
 //!
-//! Why: the eigensolver's biggest matrices (each interval's Krylov basis, its locked vectors,
-//! the assembled eigenvectors: hundreds of MB on the bunny, GBs at a million faces) are fresh
-//! allocations that the kernel backs page by page on first touch, one fault per 4 KiB page.
+//! Why: the eigensolver's biggest matrices (the slices' Krylov bases and locked vectors, the
+//! eigenvectors: hundreds of MB on the bunny, GBs at a million faces) are fresh allocations that
+//! the kernel backs page by page on first touch, one fault per 4 KiB page.
 //! Advised for huge pages (`madvise(MADV_HUGEPAGE)`, honoured when
 //! `/sys/kernel/mm/transparent_hugepage/enabled` is `always` or `madvise`, the common default),
 //! such a matrix faults once per 2 MiB. Measured on the 2-core test VM: a bunny-closed basis
