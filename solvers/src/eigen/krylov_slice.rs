@@ -493,7 +493,7 @@ pub(crate) fn run_slice(
                 .as_mut()
                 .subrows_mut(mv, mu)
                 .copy_from(&applied.own);
-            let mut coefficients = project_out_after_known(
+            let (mut coefficients, gram) = project_out_after_known(
                 z.rb_mut(),
                 current,
                 first_pass.as_ref(),
@@ -503,7 +503,7 @@ pub(crate) fn run_slice(
             );
             coefficients[1] += &first_pass;
             let c = &coefficients[1];
-            let next = orthonormalize_block(z, &applied.norms, &bases, mass, rng, par)?;
+            let next = orthonormalize_block(z, gram, &applied.norms, &bases, mass, rng, par)?;
             let mut h_new = Mat::<f64>::zeros(m_new, m_new);
             h_new.as_mut().submatrix_mut(0, 0, mv, mv).copy_from(&h);
             for j in 0..mu {

@@ -68,7 +68,8 @@ pub(crate) fn project_out(
 /// the update by `K` with the inner products against `bases`, then the update by `bases` with the
 /// column norms. The same DGKS criterion as [`project_out`] decides on further passes (rare),
 /// which [`project_out`] makes. Returns, per basis, the coefficients `Bᵀ M (z − K C)` (`C` is
-/// not included).
+/// not included), and `zᵀ M z` of the result when the second sweep could form it (at most
+/// eight columns, no further pass).
 pub(crate) fn project_out_after_known(
     mut z: MatMut<'_, f64>,
     known: MatRef<'_, f64>,
@@ -76,7 +77,7 @@ pub(crate) fn project_out_after_known(
     bases: &[MatRef<'_, f64>],
     mass: &[f64],
     par: Par,
-) -> Vec<Mat<f64>> {
+) -> (Vec<Mat<f64>>, Option<Mat<f64>>) {
     // Only the rows of C with a nonzero entry take part (in the Krylov expansion, those of the
     // last block and of the block itself, except after a restart): the other columns of K are
     // still read for the inner products, but not multiplied.
@@ -89,13 +90,13 @@ pub(crate) fn project_out_after_known(
         known.subcols(first_row, end_row - first_row),
         known_coefficients.subrows(first_row, end_row - first_row),
     );
-    let first = sweep(z.rb_mut(), &[active], bases, mass, par);
+    let first = sweep(z.rb_mut(), &[active], bases, mass, false, par);
     let subtract: Vec<(MatRef<'_, f64>, MatRef<'_, f64>)> = bases
         .iter()
         .zip(&first.inner)
         .map(|(b, c)| (*b, c.as_ref()))
         .collect();
-    let second = sweep(z.rb_mut(), &subtract, &[], mass, par);
+    let second = sweep(z.rb_mut(), &subtract, &[], mass, true, par);
     let mut total = first.inner;
     let kept_norm = second
         .squared_norms
@@ -106,8 +107,9 @@ pub(crate) fn project_out_after_known(
         for (sum, more) in total.iter_mut().zip(project_out(z, bases, mass, par)) {
             *sum += &more;
         }
+        return (total, None);
     }
-    total
+    (total, second.gram)
 }
 
 /// M-norms of the columns of `z`.
@@ -179,7 +181,7 @@ fn upper_inverse(u: MatRef<'_, f64>) -> Mat<f64> {
 
 /// M-orthonormalises the columns of `z` (`n × r`, already M-orthogonal to `bases`) in place
 /// and returns the `r × r` upper-triangular `B` with `Z_in = Z_out · B` (up to the parts
-/// removed): CholeskyQR2 when the block is well conditioned, column-wise Gram–Schmidt otherwise.
+/// removed); `gram` is `zᵀ M z` if the caller has it (else it is computed): CholeskyQR2 when the block is well conditioned, column-wise Gram–Schmidt otherwise.
 /// Columns that are numerically dependent (norm below `1e-10` of `reference_norms`) are
 /// replaced by random vectors orthogonalised against `bases` and the previous columns; their
 /// columns of `B` are zero (what was left of them is rounding noise), so the Krylov relation is
@@ -189,13 +191,19 @@ fn upper_inverse(u: MatRef<'_, f64>) -> Mat<f64> {
 /// the whole space).
 pub(crate) fn orthonormalize_block(
     mut z: MatMut<'_, f64>,
+    gram: Option<Mat<f64>>,
     reference_norms: &[f64],
     bases: &[MatRef<'_, f64>],
     mass: &[f64],
     rng: &mut ChaCha8Rng,
     par: Par,
 ) -> Result<Mat<f64>, SolverError> {
-    let gram = mass_gram(z.rb(), mass, par);
+    let gram = match gram {
+        Some(gram) => Mat::from_fn(gram.nrows(), gram.ncols(), |i, j| {
+            0.5 * (gram[(i, j)] + gram[(j, i)])
+        }),
+        None => mass_gram(z.rb(), mass, par),
+    };
     let well_scaled = (0..z.ncols())
         .all(|j| gram[(j, j)].sqrt() > 1e-4 * reference_norms[j].max(f64::MIN_POSITIVE));
     let first = match well_scaled
@@ -332,7 +340,7 @@ pub(crate) fn random_orthonormal_block(
     fill_random(z.as_mut(), rng);
     let reference = mass_column_norms(mass, z.as_ref());
     project_out(z.as_mut(), bases, mass, par);
-    orthonormalize_block(z.as_mut(), &reference, bases, mass, rng, par)?;
+    orthonormalize_block(z.as_mut(), None, &reference, bases, mass, rng, par)?;
     Ok(z)
 }
 
@@ -368,6 +376,7 @@ mod tests {
             let before = z.clone();
             let b = orthonormalize_block(
                 z.as_mut(),
+                None,
                 &reference,
                 &[basis.as_ref()],
                 &mass,

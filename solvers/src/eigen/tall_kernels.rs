@@ -55,6 +55,38 @@ pub(crate) fn subtract(z: &mut [Row], b: MatRef<'_, f64>, c: &[Row]) {
     subtract_body::<false>(z, b, c);
 }
 
+/// `gram[a] += Σ_i z[i][a] · w[i]` for packed rows `z` and `w` (`rows` each): `Zᵀ W` of two
+/// packed blocks (`8 × 8`, row `a` in `gram[a]`).
+pub(crate) fn gram_add(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]) {
+    assert!(z.len() == w.len(), "gram_add: shapes do not match");
+    #[cfg(target_arch = "x86_64")]
+    if has_avx2_fma() {
+        // SAFETY: the CPU supports the features the function is compiled for.
+        unsafe { gram_add_fma(gram, z, w) };
+        return;
+    }
+    gram_add_body::<false>(gram, z, w);
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+fn gram_add_fma(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]) {
+    gram_add_body::<true>(gram, z, w);
+}
+
+#[inline(always)]
+fn gram_add_body<const FUSED: bool>(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]) {
+    let mut sums = *gram;
+    for (row, weighted) in z.iter().zip(w) {
+        for a in 0..CHUNK {
+            for j in 0..CHUNK {
+                sums[a][j] = multiply_add::<FUSED>(row[a], weighted[j], sums[a][j]);
+            }
+        }
+    }
+    *gram = sums;
+}
+
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn inner_add_fma(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]) {

@@ -143,6 +143,9 @@ pub(crate) struct Sweep {
     pub inner: Vec<Mat<f64>>,
     /// Squared M-norms of the columns of `z` after the update.
     pub squared_norms: Vec<f64>,
+    /// `zᵀ M z` (`r × r`) after the update, when asked for and `r ≤ CHUNK` (the Gram matrix
+    /// CholeskyQR starts from, at 8 multiply–adds per value of `z` while its rows are in cache).
+    pub gram: Option<Mat<f64>>,
 }
 
 /// One pass over the rows of `z` (`n × r`): `z ← z − Σ_i S_i C_i` for the pairs
@@ -157,10 +160,12 @@ pub(crate) fn sweep(
     subtract: &[(MatRef<'_, f64>, MatRef<'_, f64>)],
     project: &[MatRef<'_, f64>],
     mass: &[f64],
+    with_gram: bool,
     par: Par,
 ) -> Sweep {
     let parts = row_parts(z.nrows(), par);
-    split_sweep(z, 0, subtract, project, mass, parts)
+    let with_gram = with_gram && z.ncols() <= CHUNK;
+    split_sweep(z, 0, subtract, project, mass, with_gram, parts)
 }
 
 fn split_sweep(
@@ -169,12 +174,14 @@ fn split_sweep(
     subtract: &[(MatRef<'_, f64>, MatRef<'_, f64>)],
     project: &[MatRef<'_, f64>],
     mass: &[f64],
+    with_gram: bool,
     parts: usize,
 ) -> Sweep {
     let r = z.ncols();
     if parts <= 1 {
         let mut inner: Vec<Mat<f64>> = project.iter().map(|b| Mat::zeros(b.ncols(), r)).collect();
         let mut squared_norms = vec![0.0; r];
+        let mut gram_rows = [[0.0; CHUNK]; CHUNK];
         let packed_coefficients: Vec<Vec<Vec<Row>>> = subtract
             .iter()
             .map(|(_, c)| {
@@ -218,6 +225,9 @@ fn split_sweep(
                         chunk_norms[j] += w[j] * row[j];
                     }
                 }
+                if with_gram {
+                    tall_kernels::gram_add(&mut gram_rows, values, &weighted[..rows]);
+                }
                 for j in 0..width {
                     squared_norms[first + j] += chunk_norms[j];
                 }
@@ -256,13 +266,18 @@ fn split_sweep(
         return Sweep {
             inner,
             squared_norms,
+            gram: with_gram.then(|| Mat::from_fn(r, r, |a, b| gram_rows[a][b])),
         };
     }
     let left_parts = parts / 2;
     let split = z.nrows() * left_parts / parts;
     let (top, bottom) = z.split_at_row_mut(split);
     let (mut a, b) = rayon::join(
-        || split_sweep(top, first_row, subtract, project, mass, left_parts),
+        || {
+            split_sweep(
+                top, first_row, subtract, project, mass, with_gram, left_parts,
+            )
+        },
         || {
             split_sweep(
                 bottom,
@@ -270,6 +285,7 @@ fn split_sweep(
                 subtract,
                 project,
                 mass,
+                with_gram,
                 parts - left_parts,
             )
         },
@@ -278,6 +294,9 @@ fn split_sweep(
         *x += y;
     }
     for (x, y) in a.squared_norms.iter_mut().zip(&b.squared_norms) {
+        *x += y;
+    }
+    if let (Some(x), Some(y)) = (a.gram.as_mut(), b.gram.as_ref()) {
         *x += y;
     }
     a
@@ -463,7 +482,12 @@ mod tests {
             &[(basis.as_ref(), coefficients.as_ref())],
             &[other.as_ref(), basis.as_ref()],
             &mass,
+            true,
             par,
+        );
+        assert!(
+            result.gram.is_none(),
+            "no Gram matrix of more than eight columns"
         );
         let expected = &z - &basis * &coefficients;
         assert!((&updated - &expected).norm_max() <= 1e-12 * expected.norm_max());
@@ -477,6 +501,20 @@ mod tests {
                 .sum::<f64>();
             assert!((norm - exact).abs() <= 1e-12 * exact);
         }
+
+        // The Gram matrix of an eight-column update, summed over the row ranges.
+        let mut updated = z.as_ref().subcols(0, 8).to_owned();
+        let result = sweep(
+            updated.as_mut(),
+            &[(basis.as_ref(), coefficients.as_ref().subcols(0, 8))],
+            &[],
+            &mass,
+            true,
+            par,
+        );
+        let gram = result.gram.expect("the Gram matrix of eight columns");
+        let exact = mass_inner(updated.as_ref(), &mass, updated.as_ref(), Par::Seq);
+        assert!((&gram - &exact).norm_max() <= 1e-12 * exact.norm_max());
 
         let kept = keep_columns(b.clone(), 3, 6);
         assert_eq!(kept, b.as_ref().subcols(3, 6).to_owned());
