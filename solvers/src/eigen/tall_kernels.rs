@@ -156,14 +156,7 @@ fn subtract_fma(z: &mut [Row], b: MatRef<'_, f64>, c: &[Row]) {
         }
         k += COLUMNS;
     }
-    for (k, coefficient) in c.iter().enumerate().skip(k) {
-        let values = column(b, k);
-        for (x, row) in values.iter().zip(z.iter_mut()) {
-            for j in 0..CHUNK {
-                row[j] = multiply_add::<true>(*x, -coefficient[j], row[j]);
-            }
-        }
-    }
+    subtract_columns_from::<true>(k, z, b, c);
 }
 
 /// The contiguous column `k` of `b`.
@@ -232,7 +225,18 @@ fn subtract_body<const FUSED: bool>(z: &mut [Row], b: MatRef<'_, f64>, c: &[Row]
         }
         k += UPDATE_UNROLL;
     }
-    for (k, coefficient) in c.iter().enumerate().skip(k) {
+    subtract_columns_from::<FUSED>(k, z, b, c);
+}
+
+/// The columns `first..` of [`subtract`], one at a time (those left over by the unrolled loops).
+#[inline(always)]
+fn subtract_columns_from<const FUSED: bool>(
+    first: usize,
+    z: &mut [Row],
+    b: MatRef<'_, f64>,
+    c: &[Row],
+) {
+    for (k, coefficient) in c.iter().enumerate().skip(first) {
         let values = column(b, k);
         for (x, row) in values.iter().zip(z.iter_mut()) {
             for j in 0..CHUNK {
