@@ -93,9 +93,13 @@ fn pack_full_rows(full: &[&[f64]; WIDTH], rows: &mut [Row], first: usize) {
 fn pack_full_avx2(full: &[&[f64]; WIDTH], rows: &mut [Row]) {
     use std::arch::x86_64::*;
     let n = rows.len();
+    assert!(
+        full.iter().all(|column| column.len() == n),
+        "pack_columns: shapes do not match"
+    );
     let quads = n / 4;
     // SAFETY (all intrinsics below): the CPU has AVX2 (this function's features); every column
-    // holds `n` values (checked by `pack_columns`), so the loads at `4q..4q + 4` with
+    // holds `n` values (asserted above), so the loads at `4q..4q + 4` with
     // `4q + 4 ≤ n` are in bounds, and so are the stores into rows `4q..4q + 4`, two 4-wide
     // halves each.
     unsafe {

@@ -181,7 +181,8 @@ fn upper_inverse(u: MatRef<'_, f64>) -> Mat<f64> {
 
 /// M-orthonormalises the columns of `z` (`n × r`, already M-orthogonal to `bases`) in place
 /// and returns the `r × r` upper-triangular `B` with `Z_in = Z_out · B` (up to the parts
-/// removed); `gram` is `zᵀ M z` if the caller has it (else it is computed): CholeskyQR2 when the block is well conditioned, column-wise Gram–Schmidt otherwise.
+/// removed): CholeskyQR2 when the block is well conditioned, column-wise Gram–Schmidt
+/// otherwise. `gram` is `zᵀ M z` if the caller has formed it already (else it is computed).
 /// Columns that are numerically dependent (norm below `1e-10` of `reference_norms`) are
 /// replaced by random vectors orthogonalised against `bases` and the previous columns; their
 /// columns of `B` are zero (what was left of them is rounding noise), so the Krylov relation is
@@ -199,9 +200,7 @@ pub(crate) fn orthonormalize_block(
     par: Par,
 ) -> Result<Mat<f64>, SolverError> {
     let gram = match gram {
-        Some(gram) => Mat::from_fn(gram.nrows(), gram.ncols(), |i, j| {
-            0.5 * (gram[(i, j)] + gram[(j, i)])
-        }),
+        Some(gram) => symmetrized(&gram),
         None => mass_gram(z.rb(), mass, par),
     };
     let well_scaled = (0..z.ncols())
@@ -241,7 +240,11 @@ pub(crate) fn orthonormalize_block(
 
 /// `Zᵀ M Z` (`r × r`), symmetrised.
 fn mass_gram(z: MatRef<'_, f64>, mass: &[f64], par: Par) -> Mat<f64> {
-    let s = mass_inner(z, mass, z, par);
+    symmetrized(&mass_inner(z, mass, z, par))
+}
+
+/// `(S + Sᵀ) / 2` of a square `s`.
+fn symmetrized(s: &Mat<f64>) -> Mat<f64> {
     Mat::from_fn(s.nrows(), s.ncols(), |i, j| 0.5 * (s[(i, j)] + s[(j, i)]))
 }
 
