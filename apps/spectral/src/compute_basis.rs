@@ -7,11 +7,11 @@ use crate::family_split::split_families;
 use crate::harmonic_fields::harmonic_fields;
 use crate::scalar_spectrum::{free_nodes, ScalarEigenpairs, ScalarSpectrum};
 use crate::{BasisError, FieldFamily, SpectralBasis};
-use faer::Mat;
+use faer::{Mat, MatRef};
 use rayon::prelude::*;
 use std::cell::Cell;
 use std::time::Instant;
-use tvf_core::discretization::sparse::mul_vec;
+use tvf_core::discretization::sparse::to_csr;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_solvers::{
     lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress, EigenRequest, Pencil,
@@ -344,21 +344,46 @@ fn normalised(
 ) -> Mat<f64> {
     let rows = functions.nrows();
     functions.truncate(rows, count.min(functions.ncols()));
+    let gradient = to_csr(gradient);
     let norms: Vec<f64> = (0..functions.ncols())
+        .step_by(NORM_CHUNK)
+        .collect::<Vec<_>>()
         .into_par_iter()
-        .map(|j| {
-            let phi: Vec<f64> = (0..rows).map(|i| functions[(i, j)]).collect();
-            let field = mul_vec(gradient, &phi);
-            field
-                .iter()
-                .zip(m1)
-                .map(|(v, m)| v * v * m)
-                .sum::<f64>()
-                .sqrt()
+        .flat_map_iter(|first| {
+            let width = NORM_CHUNK.min(functions.ncols() - first);
+            field_norms(&gradient, m1, functions.as_ref().subcols(first, width))
         })
         .collect();
     for (j, norm) in norms.iter().enumerate() {
         functions.col_mut(j).iter_mut().for_each(|x| *x /= norm);
     }
     functions
+}
+
+/// Columns per task of [`normalised`]: their values packed in rows of this many, so that one
+/// pass over the gradient serves them all.
+const NORM_CHUNK: usize = 8;
+
+/// `‖gradient · φ_j‖_{M1}` for the columns `φ_j` of `functions` (`n × w`, `w ≤ NORM_CHUNK`) and
+/// the CSR `gradient` (`2F × n`), without forming the fields: each row of the product is a
+/// packed row of `w` values, squared and weighted by `M1` as it is formed (in the order of a
+/// column-by-column product and sum, so the norms are the same to the bit).
+fn field_norms(gradient: &sprs::CsMat<f64>, m1: &[f64], functions: MatRef<'_, f64>) -> Vec<f64> {
+    let width = functions.ncols();
+    let packed: Vec<[f64; NORM_CHUNK]> = (0..functions.nrows())
+        .map(|i| std::array::from_fn(|j| if j < width { functions[(i, j)] } else { 0.0 }))
+        .collect();
+    let mut squared = [0.0; NORM_CHUNK];
+    for (row, m) in gradient.outer_iterator().zip(m1) {
+        let mut value = [0.0; NORM_CHUNK];
+        for (k, a) in row.iter() {
+            for j in 0..NORM_CHUNK {
+                value[j] += a * packed[k][j];
+            }
+        }
+        for j in 0..NORM_CHUNK {
+            squared[j] += value[j] * value[j] * m;
+        }
+    }
+    squared[..width].iter().map(|s| s.sqrt()).collect()
 }
