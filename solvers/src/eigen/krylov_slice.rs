@@ -187,15 +187,20 @@ impl SliceMemory {
     }
 }
 
-/// Makes `values` hold room for `len` values: memory that is too small, or more than twice too
-/// large (a slice of the other, smaller pencil after the large one), is released first and
-/// reserved afresh on huge pages. Kept oversized, the memory of the large pencil's slices would
-/// stay for the small pencil's (at a million faces 4 GB per thread while the last intervals
-/// fill the eigenvectors: a peak of 18.3 GiB instead of 17.1).
+/// Makes `values` hold room for `len` values: memory that is too small is released and
+/// reserved afresh on huge pages; memory more than twice too large (a slice of the other,
+/// smaller pencil after the large one) is shrunk in place, so the pages it keeps are ones it
+/// has touched already (fresh pages cost a kernel fault and zeroing each, see
+/// `interval_slicing.rs`). Kept oversized, the memory of the large pencil's slices would stay
+/// for the small pencil's (at a million faces 4 GB per thread while the last intervals fill the
+/// eigenvectors: a peak of 18.3 GiB instead of 17.1).
 fn fit_memory(values: &mut Vec<f64>, len: usize) {
-    if values.capacity() < len || values.capacity() > 2 * len {
+    if values.capacity() < len {
         *values = Vec::new();
         *values = reserve_values_on_huge_pages(len);
+    } else if values.capacity() > 2 * len {
+        values.truncate(len);
+        values.shrink_to(len);
     }
 }
 
