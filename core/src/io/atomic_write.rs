@@ -11,10 +11,10 @@
 //! [`super::temporaries`], so an interrupted process removes it; stale temporaries of a killed
 //! process are swept from the folder.
 
-use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::Path;
 
+use super::early_writeback::EarlyWriteback;
 use super::temporaries::{
     register, sweep_stale_temporaries, TEMPORARY_FILE_PREFIX, TEMPORARY_SUFFIX,
 };
@@ -24,6 +24,10 @@ use super::temporaries::{
 /// its content went to the temporary file; `stall:NAME` makes it wait there for a minute, as
 /// on a very slow disk (to interrupt the process then).
 pub const WRITE_FAULT_VARIABLE: &str = "TVF_TEST_WRITE_FAULT";
+
+/// The buffered writer [`write_atomically`] hands to its `fill`: the temporary file, whose disk
+/// writes start while it is written ([`EarlyWriteback`]).
+pub type AtomicWriter<'f> = BufWriter<EarlyWriteback<'f>>;
 
 /// Writes `path` atomically through `fill`, which writes the content into a buffered writer.
 /// On error (from `fill` or the file system) the temporary file is removed and `path` is left
@@ -38,7 +42,7 @@ pub const WRITE_FAULT_VARIABLE: &str = "TVF_TEST_WRITE_FAULT";
 /// ```
 pub fn write_atomically(
     path: &Path,
-    fill: impl FnOnce(&mut BufWriter<&mut File>) -> std::io::Result<()>,
+    fill: impl FnOnce(&mut AtomicWriter<'_>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let directory = match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent,
@@ -64,7 +68,7 @@ pub fn write_atomically(
     let mut temporary = builder.tempfile_in(directory)?;
     let _registration = register(temporary.path());
     {
-        let mut writer = BufWriter::new(temporary.as_file_mut());
+        let mut writer = BufWriter::new(EarlyWriteback::new(temporary.as_file_mut()));
         fill(&mut writer)?;
         writer.flush()?;
     }
@@ -92,6 +96,7 @@ fn injected_fault(path: &Path) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs::File;
 
     #[test]
     fn replaces_the_file_and_leaves_no_temporary() {

@@ -17,6 +17,7 @@
 
 mod atomic_write;
 mod bounded_read;
+mod early_writeback;
 mod error;
 mod folded_polygons;
 mod obj_reader;
@@ -30,8 +31,9 @@ pub mod temporaries;
 mod text;
 mod writers;
 
-pub use atomic_write::{write_atomically, WRITE_FAULT_VARIABLE};
+pub use atomic_write::{write_atomically, AtomicWriter, WRITE_FAULT_VARIABLE};
 pub use bounded_read::{read_at_most, read_exactly_at_most};
+pub use early_writeback::EarlyWriteback;
 pub use error::{LoadError, LoadErrorKind};
 pub use output_path::{check_output, OutputPathError};
 pub use raw_mesh::LoadedMesh;

@@ -1,7 +1,7 @@
 //! Writers: OBJ (text) and PLY (binary little-endian), always written atomically.
 
 use crate::SurfaceMesh;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
@@ -97,7 +97,7 @@ pub fn write_ply(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveE
 /// `path`, so readers never see a half-written file ([`super::write_atomically`]).
 fn write_atomically(
     path: &Path,
-    fill: impl FnOnce(&mut BufWriter<&mut std::fs::File>) -> std::io::Result<()>,
+    fill: impl FnOnce(&mut super::AtomicWriter<'_>) -> std::io::Result<()>,
 ) -> Result<(), SaveError> {
     super::write_atomically(path, fill).map_err(|source| SaveError::Io {
         path: path.to_path_buf(),

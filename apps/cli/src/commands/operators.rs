@@ -8,12 +8,11 @@ use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use sprs::CsMat;
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::PathBuf;
 use tvf_core::discretization::sparse::diagonal;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::io::StagedFolder;
+use tvf_core::io::{AtomicWriter, StagedFolder};
 use tvf_core::mesh::ValidationReport;
 use tvf_core::SurfaceMesh;
 use tvf_spectral::{npy_bytes, write_sparse_npz, NpyData};
@@ -187,7 +186,7 @@ fn write_all(
 fn write_atomically(
     out: &StagedFolder,
     name: &str,
-    fill: impl FnOnce(&mut BufWriter<&mut File>) -> std::io::Result<()>,
+    fill: impl FnOnce(&mut AtomicWriter<'_>) -> std::io::Result<()>,
 ) -> Result<()> {
     tvf_core::io::write_atomically(&out.path().join(name), fill)
         .with_context(|| format!("cannot write {}", out.target().join(name).display()))

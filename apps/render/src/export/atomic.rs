@@ -1,8 +1,7 @@
 //! Atomic file writes: write into a temporary file in the target's folder, then rename.
 
-use std::fs::File;
-use std::io::BufWriter;
 use std::path::Path;
+use tvf_core::io::AtomicWriter;
 
 use crate::error::RenderError;
 
@@ -12,7 +11,7 @@ use crate::error::RenderError;
 /// minus the umask), see [`tvf_core::io::write_atomically`].
 pub fn write_atomically(
     path: &Path,
-    fill: impl FnOnce(&mut BufWriter<&mut File>) -> std::io::Result<()>,
+    fill: impl FnOnce(&mut AtomicWriter<'_>) -> std::io::Result<()>,
 ) -> Result<(), RenderError> {
     let io = |source| RenderError::Io {
         path: path.to_path_buf(),
