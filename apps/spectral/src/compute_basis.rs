@@ -7,6 +7,7 @@ use crate::family_split::split_families;
 use crate::harmonic_fields::harmonic_fields;
 use crate::scalar_spectrum::{free_nodes, ScalarEigenpairs, ScalarSpectrum};
 use crate::{BasisError, FieldFamily, SpectralBasis};
+use faer::reborrow::Reborrow;
 use faer::{Mat, MatRef};
 use rayon::prelude::*;
 use std::cell::Cell;
@@ -345,23 +346,20 @@ fn normalised(
     let rows = functions.nrows();
     functions.truncate(rows, count.min(functions.ncols()));
     let gradient = to_csr(gradient);
-    let norms: Vec<f64> = (0..functions.ncols())
-        .step_by(NORM_CHUNK)
-        .collect::<Vec<_>>()
-        .into_par_iter()
-        .flat_map_iter(|first| {
-            let width = NORM_CHUNK.min(functions.ncols() - first);
-            field_norms(&gradient, m1, functions.as_ref().subcols(first, width))
-        })
-        .collect();
-    for (j, norm) in norms.iter().enumerate() {
-        functions.col_mut(j).iter_mut().for_each(|x| *x /= norm);
-    }
+    functions
+        .as_mut()
+        .par_col_chunks_mut(NORM_CHUNK)
+        .for_each(|chunk| {
+            let norms = field_norms(&gradient, m1, chunk.rb());
+            for (column, norm) in chunk.col_iter_mut().zip(norms) {
+                column.iter_mut().for_each(|x| *x /= norm);
+            }
+        });
     functions
 }
 
 /// Columns per task of [`normalised`]: their values packed in rows of this many, so that one
-/// pass over the gradient serves them all.
+/// pass over the gradient serves them all (and each task divides its own columns).
 const NORM_CHUNK: usize = 8;
 
 /// `‖gradient · φ_j‖_{M1}` for the columns `φ_j` of `functions` (`n × w`, `w ≤ NORM_CHUNK`) and
