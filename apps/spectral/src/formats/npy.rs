@@ -219,45 +219,11 @@ impl NpyArray {
         Ok((parsed, dtype, data_start, needed))
     }
 
-    /// The bytes of the `.npy` file (format 1.0 unless the header needs 2.0), header padded so
-    /// that the data starts at a multiple of 64 bytes. `f32` output rounds each value to nearest.
+    /// The bytes of the `.npy` file ([`npy_header`], then the data). `f32` output rounds each
+    /// value to nearest.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let shape = match self.shape.len() {
-            1 => format!("({},)", self.shape[0]),
-            _ => format!(
-                "({})",
-                self.shape
-                    .iter()
-                    .map(|d| d.to_string())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-        };
-        let dict = format!(
-            "{{'descr': '{}', 'fortran_order': False, 'shape': {shape}, }}",
-            self.dtype.descr()
-        );
-        // Total of magic + version + length field + dict + padding + '\n' is a multiple of 64.
-        let unpadded_v1 = 10 + dict.len() + 1;
-        let (version, length_size) = if unpadded_v1.div_ceil(64) * 64 - 10 <= u16::MAX as usize {
-            (1u8, 2usize)
-        } else {
-            (2u8, 4usize)
-        };
-        let prefix = 8 + length_size;
-        let total = (prefix + dict.len() + 1).div_ceil(64) * 64;
-        let header_len = total - prefix;
-        let mut out = Vec::with_capacity(total + self.data.len() * self.dtype.size());
-        out.extend_from_slice(MAGIC);
-        out.extend_from_slice(&[version, 0]);
-        if length_size == 2 {
-            out.extend_from_slice(&(header_len as u16).to_le_bytes());
-        } else {
-            out.extend_from_slice(&(header_len as u32).to_le_bytes());
-        }
-        out.extend_from_slice(dict.as_bytes());
-        out.resize(total - 1, b' ');
-        out.push(b'\n');
+        let mut out = npy_header(self.dtype.descr(), &self.shape);
+        out.reserve(self.data.len() * self.dtype.size());
         match self.dtype {
             NpyDtype::F64 => self
                 .data
@@ -270,6 +236,46 @@ impl NpyArray {
         }
         out
     }
+}
+
+/// The header of an `.npy` file whose C-order data of element type `descr` (e.g. `<f8`) and
+/// shape `shape` follows it: magic, format version (1.0 unless the header needs 2.0), header
+/// length, and the header dict padded with spaces and a newline so that the data starts at a
+/// multiple of 64 bytes.
+pub(crate) fn npy_header(descr: &str, shape: &[usize]) -> Vec<u8> {
+    let shape = match shape {
+        [n] => format!("({n},)"),
+        dims => format!(
+            "({})",
+            dims.iter()
+                .map(|d| d.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    let dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    // Total of magic + version + length field + dict + padding + '\n' is a multiple of 64.
+    let unpadded_v1 = 10 + dict.len() + 1;
+    let (version, length_size) = if unpadded_v1.div_ceil(64) * 64 - 10 <= u16::MAX as usize {
+        (1u8, 2usize)
+    } else {
+        (2u8, 4usize)
+    };
+    let prefix = 8 + length_size;
+    let total = (prefix + dict.len() + 1).div_ceil(64) * 64;
+    let header_len = total - prefix;
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&[version, 0]);
+    if length_size == 2 {
+        out.extend_from_slice(&(header_len as u16).to_le_bytes());
+    } else {
+        out.extend_from_slice(&(header_len as u32).to_le_bytes());
+    }
+    out.extend_from_slice(dict.as_bytes());
+    out.resize(total - 1, b' ');
+    out.push(b'\n');
+    out
 }
 
 struct Header {

@@ -1,9 +1,10 @@
 //! Arrays for numpy, written: `.npy` files of float64, int64 and Unicode-string arrays (for
-//! exports; `npy.rs` reads and writes the float arrays of field files), and sparse matrices as
-//! the `.npz` files `scipy.sparse.load_npz` reads (a zip of the CSR arrays `data`, `indices`,
-//! `indptr`, `shape` and the format name `csr`). The caller decides how the bytes are written
-//! (atomically, into a staged folder).
+//! exports; `npy.rs` reads and writes the float arrays of field files, and writes the header of
+//! both), and sparse matrices as the `.npz` files `scipy.sparse.load_npz` reads (a zip of the CSR
+//! arrays `data`, `indices`, `indptr`, `shape` and the format name `csr`). The caller decides
+//! how the bytes are written (atomically, into a staged folder).
 
+use crate::formats::npy::npy_header;
 use sprs::CsMat;
 use std::io::{Seek, Write};
 use tvf_core::discretization::sparse::{csr_arrays, CsrArrays};
@@ -20,7 +21,8 @@ pub enum NpyData<'a> {
     Bytes(&'a [u8]),
 }
 
-/// The bytes of a version 1.0 `.npy` file holding `data` with shape `shape`.
+/// The bytes of an `.npy` file holding `data` with shape `shape` (format 1.0 unless the header
+/// needs 2.0, see [`npy_header`]).
 pub fn npy_bytes(data: &NpyData<'_>, shape: &[usize]) -> Vec<u8> {
     let width = match data {
         NpyData::Text(strings) => strings
@@ -38,27 +40,7 @@ pub fn npy_bytes(data: &NpyData<'_>, shape: &[usize]) -> Vec<u8> {
         NpyData::Text(_) => format!("<U{width}"),
         NpyData::Bytes(_) => format!("|S{width}"),
     };
-    let shape_text = match shape {
-        [] => "()".to_string(),
-        [n] => format!("({n},)"),
-        dims => format!(
-            "({})",
-            dims.iter()
-                .map(|d| d.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-    };
-    let mut header =
-        format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape_text}, }}");
-    // Magic (6) + version (2) + length (2) + header + '\n' is a multiple of 64.
-    while (10 + header.len() + 1) % 64 != 0 {
-        header.push(' ');
-    }
-    header.push('\n');
-    let mut out = b"\x93NUMPY\x01\x00".to_vec();
-    out.extend((header.len() as u16).to_le_bytes());
-    out.extend(header.as_bytes());
+    let mut out = npy_header(&descr, shape);
     match data {
         NpyData::F64(values) => values.iter().for_each(|v| out.extend(v.to_le_bytes())),
         NpyData::I64(values) => values.iter().for_each(|v| out.extend(v.to_le_bytes())),
@@ -132,5 +114,23 @@ mod tests {
         assert_eq!(text.len(), 10 + header_len + 2 * 8 * 4);
         let scalar = npy_bytes(&NpyData::Bytes(b"csr"), &[]);
         assert!(scalar.ends_with(b"csr"));
+    }
+
+    /// An exported float64 array is the field files' `.npy` of the same array, byte for byte,
+    /// and reads back.
+    #[test]
+    fn float_exports_are_field_files() {
+        let data = [1.5, -2.0, 3.25, 0.0, 5.0, 6.125];
+        let exported = npy_bytes(&NpyData::F64(&data), &[3, 2]);
+        let array = crate::formats::npy::NpyArray {
+            shape: vec![3, 2],
+            data: data.to_vec(),
+            dtype: crate::formats::npy::NpyDtype::F64,
+        };
+        assert!(exported == array.to_bytes());
+        assert_eq!(
+            crate::formats::npy::NpyArray::from_bytes(&exported),
+            Ok(array)
+        );
     }
 }
