@@ -20,7 +20,7 @@ use tvf_design::{
     FillOrdering, FullSoftDesign, SoftOptions,
 };
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
-use tvf_papers::brandt2017::table1::seeded_constraints;
+use tvf_figures::seeded_constraints::seeded_constraints;
 use tvf_papers::brandt2017::MESHES;
 
 const OMEGA: f64 = 0.1;

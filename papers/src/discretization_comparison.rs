@@ -9,14 +9,15 @@
 //! integrable and once in the co-integrable family; each family's lowest `L(L+2)` eigenvalues
 //! are compared with the first `L` such levels.
 
-use crate::error::PaperError;
-use crate::markdown::{seconds, thousands, Table};
+use crate::markdown::Table;
 use crate::registry::basis_of;
 use crate::step_log::StepLog;
 use tvf_core::generate::icosphere;
 use tvf_core::geometry::{norm, sub};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::CatalogEntry;
+use tvf_figures::numbers::{seconds, thousands};
+use tvf_figures::FigureError;
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle, PALETTE};
 use tvf_spectral::{BasisRequest, FieldFamily, SpectralBasis};
 
@@ -107,7 +108,7 @@ pub fn family_error(
     basis: &SpectralBasis,
     family: FieldFamily,
     exact: &[f64],
-) -> Result<f64, PaperError> {
+) -> Result<f64, FigureError> {
     let values: Vec<f64> = basis
         .eigenvalues()
         .iter()
@@ -116,7 +117,7 @@ pub fn family_error(
         .map(|(l, _)| *l)
         .collect();
     if values.len() < exact.len() {
-        return Err(PaperError::Invalid(format!(
+        return Err(FigureError::Invalid(format!(
             "the basis has {} {} eigenvalues, the comparison needs {}",
             values.len(),
             family.name(),
@@ -135,7 +136,7 @@ pub fn run(
     entries: &[CatalogEntry],
     config: &ComparisonConfig,
     progress: &StepLog,
-) -> Result<Vec<DiscretizationResult>, PaperError> {
+) -> Result<Vec<DiscretizationResult>, FigureError> {
     let exact = sphere_eigenvalues(config.max_degree);
     let mut results: Vec<DiscretizationResult> = entries
         .iter()

@@ -17,15 +17,12 @@
 //! let results = run(&compared_discretizations()[..1], &config, &StepLog::new(true))?;
 //! // The eigenvalue error falls under refinement.
 //! assert!(results[0].levels[1].error() < results[0].levels[0].error());
-//! # Ok::<(), tvf_papers::error::PaperError>(())
+//! # Ok::<(), tvf_figures::FigureError>(())
 //! ```
 #![warn(missing_docs)]
 
 pub mod brandt2017;
 pub mod discretization_comparison;
-pub mod error;
 pub mod markdown;
-pub mod panels;
 pub mod registry;
 pub mod step_log;
-pub mod timing;

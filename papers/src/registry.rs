@@ -2,10 +2,10 @@
 //! ([`tvf_discretizations::catalog`]); a discretization added there is compared here without
 //! another line.
 
-use crate::error::PaperError;
 use std::time::Instant;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog, CatalogEntry};
+use tvf_figures::FigureError;
 use tvf_spectral::{compute_basis, BasisRequest, SpectralBasis};
 
 /// A basis and the wall-clock seconds it took, complex assembly included.
@@ -27,7 +27,7 @@ pub fn basis_of(
     entry: &CatalogEntry,
     mesh: &SurfaceMesh,
     request: &BasisRequest<'_>,
-) -> Result<TimedBasis, PaperError> {
+) -> Result<TimedBasis, FigureError> {
     let start = Instant::now();
     let complex = (entry.build)(mesh)?;
     let basis = compute_basis(complex.as_ref(), request)?;

@@ -42,7 +42,10 @@ impl StepLog {
         let start = Instant::now();
         let value = step()?;
         let seconds = start.elapsed().as_secs_f64();
-        self.note(format!("{name}: {}", crate::markdown::seconds(seconds)));
+        self.note(format!(
+            "{name}: {}",
+            tvf_figures::numbers::seconds(seconds)
+        ));
         Ok((value, seconds))
     }
 }

@@ -62,9 +62,9 @@ fn every_experiment_runs_on_a_generated_mesh_and_the_reports_list_every_result()
             assert!(w[1].relative_error <= w[0].relative_error + 1e-12);
         }
     }
-    results.findings.push(
-        tvf_papers::brandt2017::compression::figure9(&curves, dir.path(), (320, 240)).unwrap(),
-    );
+    results
+        .findings
+        .push(tvf_figures::compression::figure9(&curves, dir.path(), (320, 240)).unwrap());
 
     // Table 1: one row, every column measured, the paper's numbers beside ours.
     let row = &results.table1[0];

@@ -3,7 +3,7 @@
 use crate::complex::Complex;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tvf_tests::check_report::core_check_report;
+use tvf_conformance::check_report::core_check_report;
 
 /// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,
 /// `detail`.

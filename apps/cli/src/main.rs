@@ -5,7 +5,6 @@
 mod basis_export;
 mod basis_source;
 mod commands;
-mod demo_page;
 mod discretization_flags;
 mod examples;
 mod interrupt;

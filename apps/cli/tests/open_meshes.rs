@@ -8,10 +8,10 @@ mod common;
 use common::{assert_success, tvf};
 use serde_json::Value;
 use std::path::Path;
+use tvf_conformance::corpus::delaunay_flips;
 use tvf_core::generate::perforated_plate;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_core::SurfaceMesh;
-use tvf_tests::corpus::delaunay_flips;
 
 fn run(dir: &Path, args: &[&str]) -> std::process::Output {
     let output = tvf()

@@ -75,7 +75,7 @@ fn meshes_with_boundary_edit_with_both_boundary_conditions() {
             ("conforming-barycentric", plate.clone(), boundary),
             (
                 "dec-circumcentric",
-                tvf_tests::corpus::delaunay_flips(&plate),
+                tvf_conformance::corpus::delaunay_flips(&plate),
                 boundary,
             ),
         ]

@@ -3,35 +3,29 @@
 //! paper's meshes that are present, with the basis of every mesh computed once and shared by
 //! all its experiments.
 
-pub mod compression;
-pub mod compression_sequence;
-pub mod figures;
-pub mod finding;
 pub mod report;
 pub mod table1;
-pub mod test_fields;
 
 use crate::discretization_comparison::{self, ComparisonConfig, DiscretizationResult};
-use crate::error::PaperError;
-use crate::markdown::thousands;
-use crate::panels::save;
 use crate::registry::compared_discretizations;
 use crate::step_log::StepLog;
-use crate::timing::Repetitions;
-use compression::RateCurve;
-use compression_sequence::SequenceSize;
-use finding::{Experiment, Finding};
 use std::path::PathBuf;
 use std::time::Instant;
 use table1::{PaperTimings, Table1Repetitions, Table1Row};
 use tvf_core::io::load_mesh;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+use tvf_figures::compression::{self, RateCurve};
+use tvf_figures::compression_sequence::{self, SequenceSize};
+use tvf_figures::finding::{Experiment, Finding};
+use tvf_figures::numbers::thousands;
+use tvf_figures::panels::save;
+use tvf_figures::seeded_constraints::DESIGNED_FIELD_CONSTRAINTS;
+use tvf_figures::timing::Repetitions;
+use tvf_figures::FigureError;
+use tvf_figures::{eigenfields_and_filtering, test_fields};
 use tvf_render::View;
 use tvf_spectral::{compute_basis, BasisRequest, CoefficientCoding};
-
-/// Constraints of the designed fields of Figure 9 (soft design, seeded).
-pub const DESIGNED_FIELD_CONSTRAINTS: usize = 12;
 
 /// What a mesh is used for besides Table 1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -218,9 +212,9 @@ pub fn load_average() -> String {
 }
 
 /// Runs every experiment on the meshes present and writes the pictures and the reports.
-pub fn run(config: &Config, progress: &StepLog) -> Result<Results, PaperError> {
+pub fn run(config: &Config, progress: &StepLog) -> Result<Results, FigureError> {
     let start = Instant::now();
-    std::fs::create_dir_all(&config.out).map_err(|source| PaperError::Write {
+    std::fs::create_dir_all(&config.out).map_err(|source| FigureError::Write {
         path: config.out.clone(),
         source,
     })?;
@@ -277,7 +271,7 @@ pub fn run_mesh(
     progress: &StepLog,
     results: &mut Results,
     curves: &mut Vec<RateCurve>,
-) -> Result<(), PaperError> {
+) -> Result<(), FigureError> {
     let name = entry.file;
     let sizes = &config.sizes;
     results.load.push((name.to_string(), load_average()));
@@ -299,7 +293,7 @@ pub fn run_mesh(
                 complex.as_ref(),
                 &BasisRequest::pairs(sizes.pairs).with_seed(1),
             )?;
-            Ok::<_, PaperError>((complex, basis))
+            Ok::<_, FigureError>((complex, basis))
         },
     )?;
     let x = Experiment {
@@ -339,18 +333,18 @@ fn run_role(
     progress: &StepLog,
     results: &mut Results,
     curves: &mut Vec<RateCurve>,
-) -> Result<(), PaperError> {
+) -> Result<(), FigureError> {
     let name = x.name;
     match role {
         Role::Eigenfields => {
             let (f, _) = progress.step(&format!("{name}: Figure 1"), || {
-                figures::figure1(x, &figures::FIGURE1_PAIRS)
+                eigenfields_and_filtering::figure1(x, &eigenfields_and_filtering::FIGURE1_PAIRS)
             })?;
             results.findings.push(f);
         }
         Role::Filtering => {
             let (fs, _) = progress.step(&format!("{name}: Figures 7 and 8"), || {
-                figures::figures7_8(x, sizes.plot)
+                eigenfields_and_filtering::figures7_8(x, sizes.plot)
             })?;
             results.findings.extend(fs);
             let field = test_fields::smooth_field(x.complex, x.mesh);
@@ -369,7 +363,7 @@ fn run_role(
                     9,
                 )?;
                 let smooth = test_fields::smooth_field(x.complex, x.mesh);
-                Ok::<_, PaperError>([
+                Ok::<_, FigureError>([
                     compression::rate_curve(
                         x,
                         &designed,

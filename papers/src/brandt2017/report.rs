@@ -2,13 +2,14 @@
 //! its numbers and how it compares, the discretization comparison, the differences and why) and
 //! `README.md` (an index of the results, one line each).
 
-use super::finding::Finding;
 use super::table1::{self, Table1Row};
 use super::Results;
 use crate::discretization_comparison;
-use crate::error::PaperError;
-use crate::markdown::{seconds, Table};
+use crate::markdown::Table;
 use std::path::Path;
+use tvf_figures::finding::Finding;
+use tvf_figures::numbers::seconds;
+use tvf_figures::FigureError;
 
 /// How the run was started, for the reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -44,14 +45,14 @@ const TABLE1_REASONS: &[(&str, &str)] = &[
 ];
 
 /// Writes `RESULTS.md` and `README.md` into `out`.
-pub fn write(out: &Path, results: &Results, info: &RunInfo) -> Result<(), PaperError> {
+pub fn write(out: &Path, results: &Results, info: &RunInfo) -> Result<(), FigureError> {
     for (name, text) in [
         ("RESULTS.md", results_markdown(results, info)),
         ("README.md", readme_markdown(results, info)),
     ] {
         let path = out.join(name);
         tvf_spectral::write_atomically(&path, text.as_bytes()).map_err(|source| {
-            PaperError::Write {
+            FigureError::Write {
                 path: path.clone(),
                 source,
             }

@@ -2,18 +2,17 @@
 //! of the reduced spline, the reduced soft design and the full soft design with 30 seeded
 //! constraints, beside the paper's numbers (Java + MUMPS on a 2015 laptop).
 
-use super::finding::Experiment;
-use crate::error::PaperError;
-use crate::markdown::{ratio, seconds, thousands, Table};
-use crate::timing::{median_time, Repetitions, Timing};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind};
-use tvf_core::SurfaceMesh;
+use crate::markdown::Table;
+use tvf_core::discretization::HodgeOperators;
 use tvf_design::{
-    default_regularization, Constraint, ConstraintAssembler, FullSoftDesign, Location,
-    ReducedBasis, ReducedSoftDesign, SoftOptions, SplineSession, Target, DEFAULT_OMEGA,
+    default_regularization, ConstraintAssembler, FullSoftDesign, ReducedBasis, ReducedSoftDesign,
+    SoftOptions, SplineSession, DEFAULT_OMEGA,
 };
+use tvf_figures::finding::Experiment;
+use tvf_figures::numbers::{ratio, seconds, thousands};
+use tvf_figures::seeded_constraints::seeded_constraints;
+use tvf_figures::timing::{median_time, Repetitions, Timing};
+use tvf_figures::FigureError;
 
 /// The paper's timings of one mesh (seconds).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,54 +78,6 @@ pub struct Table1Row {
     pub paper: Option<PaperTimings>,
 }
 
-/// `count` seeded constraints spread over `mesh` for `complex`: 80 % vectors in random faces
-/// with random directions, then alternately divergences and curls (for 30: 24 vectors, 3
-/// sources/sinks, 3 vortices), each at a node of the complex's own space next to a random face
-/// (conforming: divergence at a vertex, curl at an edge; DEC: curl on the face).
-pub fn seeded_constraints(
-    mesh: &SurfaceMesh,
-    complex: &dyn HodgeComplex,
-    count: usize,
-    seed: u64,
-) -> Vec<Constraint> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let vectors = count * 4 / 5;
-    let node_next_to = |kind: NodeKind, face: usize| match kind {
-        NodeKind::Vertices => Location::Vertex(mesh.faces()[face][0]),
-        NodeKind::Edges => Location::Edge(mesh.face_edges()[face][0]),
-        NodeKind::Faces | NodeKind::FaceFrames => Location::Face {
-            face,
-            barycentric: None,
-        },
-    };
-    (0..count)
-        .map(|k| {
-            let face = rng.random_range(0..mesh.face_count().max(1));
-            if k < vectors {
-                let v = [(); 3].map(|_| rng.random_range(-1.0..1.0));
-                let location = Location::Face {
-                    face,
-                    barycentric: None,
-                };
-                Constraint::new(format!("v{k}"), Target::Vector(v), location)
-            } else if (k - vectors).is_multiple_of(2) {
-                let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
-                Constraint::new(
-                    format!("d{k}"),
-                    Target::Divergence(sign),
-                    node_next_to(complex.potential_nodes().kind, face),
-                )
-            } else {
-                Constraint::new(
-                    format!("c{k}"),
-                    Target::Curl(1.0),
-                    node_next_to(complex.co_potential_nodes().kind, face),
-                )
-            }
-        })
-        .collect()
-}
-
 /// Measures the design columns of Table 1 on the mesh of `x` with its basis (whose time,
 /// `bases_seconds`, the caller measured), with `constraint_count` seeded constraints.
 pub fn measure(
@@ -135,7 +86,7 @@ pub fn measure(
     constraint_count: usize,
     repetitions: Table1Repetitions,
     paper: Option<(usize, PaperTimings)>,
-) -> Result<Table1Row, PaperError> {
+) -> Result<Table1Row, FigureError> {
     let (mesh, complex, basis) = (x.mesh, x.complex, x.basis);
     let constraints = seeded_constraints(mesh, complex, constraint_count, 30);
     let compiled = ConstraintAssembler::new(complex, mesh).compile_all(&constraints)?;
@@ -147,9 +98,9 @@ pub fn measure(
         for c in &compiled {
             session.add(c.clone())?;
         }
-        Ok::<_, PaperError>(session)
+        Ok::<_, FigureError>(session)
     })?;
-    let (spline_solve, v) = median_time(fast, || Ok::<_, PaperError>(session.solve()))?;
+    let (spline_solve, v) = median_time(fast, || Ok::<_, FigureError>(session.solve()))?;
     let mut field = vec![0.0; reduced.field_dimension()];
     let (map, ()) = median_time(fast, || reduced.map(&v, &mut field))?;
     let spline_residual = session
@@ -167,16 +118,16 @@ pub fn measure(
     let (reduced_factor, design) = median_time(fast, || {
         let mut design = ReducedSoftDesign::new(&reduced, options)?;
         design.add_all(compiled.iter().cloned())?;
-        Ok::<_, PaperError>(design)
+        Ok::<_, FigureError>(design)
     })?;
-    let (reduced_solve, _) = median_time(fast, || Ok::<_, PaperError>(design.solve()))?;
+    let (reduced_solve, _) = median_time(fast, || Ok::<_, FigureError>(design.solve()))?;
     drop(design);
     drop(reduced);
 
     let (full_factor, full) = median_time(repetitions.full_factor, || {
         FullSoftDesign::from_matrices(dirichlet, complex.m1().values(), options, compiled.clone())
     })?;
-    let (full_solve, (_, report)) = median_time(fast, || Ok::<_, PaperError>(full.solve()))?;
+    let (full_solve, (_, report)) = median_time(fast, || Ok::<_, FigureError>(full.solve()))?;
 
     Ok(Table1Row {
         mesh: x.name.to_string(),

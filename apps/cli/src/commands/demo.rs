@@ -1,16 +1,21 @@
 //! `tvf demo`: the tour. Computes a basis on a generated bumpy torus (or `--mesh`) and writes a
 //! web page of pictures and numbers, each step timed.
 
-use crate::demo_page::{run as run_demo, DemoConfig};
+use crate::basis_source::compute;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{commit, stage};
 use crate::picture_options::parse_size;
+use crate::progress::note;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
 use tvf_core::generate::bumpy_torus;
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::BoxedComplex;
+use tvf_figures::demo::{run as run_demo, DemoConfig, DemoHost};
+use tvf_figures::FigureError;
+use tvf_spectral::{BasisSize, SpectralBasis};
 
 const EXAMPLES: &str = "Examples:
   tvf demo -o demo-out                  (then open demo-out/index.html)
@@ -120,9 +125,27 @@ pub fn run(args: DemoArgs) -> Result<()> {
         height,
         fur_strands: if args.quick { 1500 } else { 25_000 },
     };
-    let index = run_demo(&config)?;
+    let index = run_demo(&config, &CommandLineHost)?;
     commit(staged)?;
     let index = args.output.join(index.file_name().unwrap_or_default());
     println!("wrote {}", index.display());
     Ok(())
+}
+
+/// The demo run from the command line: bases computed with a progress bar, notes on stderr
+/// (hidden by `--quiet`).
+struct CommandLineHost;
+
+impl DemoHost for CommandLineHost {
+    fn compute_basis(
+        &self,
+        complex: &BoxedComplex,
+        size: BasisSize,
+    ) -> Result<SpectralBasis, FigureError> {
+        compute(complex, size).map_err(|e| FigureError::Host(e.into()))
+    }
+
+    fn note(&self, message: &str) {
+        note(message);
+    }
 }

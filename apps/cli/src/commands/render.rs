@@ -4,9 +4,7 @@ use super::spectral_inputs::read_field;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::{usage_error, MeshInput};
 use crate::output_rules::check_output;
-use crate::picture_options::{
-    constraint_markers, face_quantity_arg, parse_size, parse_view, style_arg,
-};
+use crate::picture_options::{face_quantity_arg, parse_size, parse_view, style_arg};
 use crate::progress::note;
 use anyhow::{bail, Context, Result};
 use clap::error::ErrorKind;
@@ -16,6 +14,7 @@ use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_design::{ConstraintAssembler, ConstraintSet};
 use tvf_discretizations::HodgeDecomposer;
+use tvf_figures::constraint_markers::constraint_markers;
 use tvf_render::{draw_field, grid, save_png, FaceQuantity, Overlays, Style, Tint, View};
 
 const EXAMPLES: &str = "Examples:

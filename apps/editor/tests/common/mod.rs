@@ -79,7 +79,7 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
 pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, SurfaceMesh) {
     let entry = catalog_entry(id).expect("catalog id");
     let mesh = if entry.needs_delaunay {
-        tvf_tests::corpus::delaunay_flips(&perforated_plate(2, 8))
+        tvf_conformance::corpus::delaunay_flips(&perforated_plate(2, 8))
     } else {
         perforated_plate(2, 8)
     };

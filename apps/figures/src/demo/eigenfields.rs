@@ -3,8 +3,8 @@
 
 use super::page::Section;
 use super::Context;
-use anyhow::Result;
-use tvf_papers::brandt2017::figures::figure1;
+use crate::eigenfields_and_filtering::figure1;
+use crate::error::FigureError;
 use tvf_render::{draw_field, grid, FaceQuantity, Overlays, Style, Tint};
 use tvf_spectral::FieldFamily;
 
@@ -16,7 +16,7 @@ const PAIRS_SHOWN: [usize; 3] = [1, 2, 3];
 const HARMONIC_SHOWN: usize = 4;
 
 /// Figure 1 on the demo's basis, then the harmonic fields.
-pub fn run(cx: &Context) -> Result<Section> {
+pub fn run(cx: &Context) -> Result<Section, FigureError> {
     let mut section = Section::from_finding(&figure1(&cx.experiment(), &PAIRS_SHOWN)?);
     let harmonic: Vec<usize> = (0..cx.basis.len())
         .filter(|&i| cx.basis.families()[i] == FieldFamily::Harmonic)

@@ -2,12 +2,12 @@
 //! state alone: the published icosphere eigenvalues, the nonconforming Hodge–Laplacian having
 //! the spectrum of the conforming one, and the wrapper complex's spectrum following its `M2`.
 
+use tvf_conformance::dense::{generalized_eigenvalues, split_zeros};
+use tvf_conformance::scaled_co_potentials::ScaledCoPotentials;
+use tvf_conformance::spectral_checks::{check_same_spectrum, hodge_spectrum};
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::generate::{genus_surface, icosphere, torus};
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
-use tvf_tests::dense::{generalized_eigenvalues, split_zeros};
-use tvf_tests::scaled_co_potentials::ScaledCoPotentials;
-use tvf_tests::spectral_checks::{check_same_spectrum, hodge_spectrum};
 
 /// MATH.md: on the 320-face icosphere (barycentric lumping) the lowest three nonzero P1
 /// eigenvalues are ≈ 2.000 and the lowest three Crouzeix–Raviart ones ≈ 2.046 (verified there

@@ -1,10 +1,10 @@
 //! Figure 1 (eigenfield pairs) and Figures 7 and 8 (spectral filtering of a noisy field and its
 //! spectrum).
 
-use super::finding::{Experiment, Finding};
-use super::test_fields::{designed_field, tangent_noise};
-use crate::error::PaperError;
+use crate::error::FigureError;
+use crate::finding::{Experiment, Finding};
 use crate::panels::{field_panel, save};
+use crate::test_fields::{designed_field, tangent_noise};
 use tvf_render::{grid, FaceQuantity, Tint, COINTEGRABLE_RED, INTEGRABLE_GREEN};
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
@@ -30,7 +30,7 @@ fn column(x: &Experiment, index: usize) -> Vec<f64> {
 /// Figure 1: pairs of eigenfields (1-based pair numbers `shown`; the paper's are
 /// [`FIGURE1_PAIRS`]; pairs the basis does not hold are left out), integrable (green,
 /// curl-free) above co-integrable (red, divergence-free).
-pub fn figure1(x: &Experiment, shown: &[usize]) -> Result<Finding, PaperError> {
+pub fn figure1(x: &Experiment, shown: &[usize]) -> Result<Finding, FigureError> {
     let mut finding = Finding::new(
         "Figure 1",
         "Pairs of eigenfields: integrable (green, curl-free) above co-integrable (red, divergence-free)",
@@ -100,14 +100,20 @@ pub fn figure1(x: &Experiment, shown: &[usize]) -> Result<Finding, PaperError> {
 /// Noise amplitude relative to the clean field's RMS magnitude (Figure 7).
 const NOISE_LEVEL: f64 = 0.8;
 
-/// Figures 7 and 8: a designed field (soft design, [`super::DESIGNED_FIELD_CONSTRAINTS`] seeded
+/// Figures 7 and 8: a designed field (soft design, [`crate::seeded_constraints::DESIGNED_FIELD_CONSTRAINTS`] seeded
 /// constraints) plus noise, a low-pass filter that also enhances the
 /// integrable low frequencies, a high-pass view without the integrable low frequencies, and
 /// the coefficient spectrum of the input.
-pub fn figures7_8(x: &Experiment, plot_size: (u32, u32)) -> Result<Vec<Finding>, PaperError> {
+pub fn figures7_8(x: &Experiment, plot_size: (u32, u32)) -> Result<Vec<Finding>, FigureError> {
     let basis = x.basis;
     let mass = basis.field_mass();
-    let clean = designed_field(x.complex, x.mesh, super::DESIGNED_FIELD_CONSTRAINTS, 1.0, 7)?;
+    let clean = designed_field(
+        x.complex,
+        x.mesh,
+        crate::seeded_constraints::DESIGNED_FIELD_CONSTRAINTS,
+        1.0,
+        7,
+    )?;
     let rms = (basis.inner_product(&clean, &clean) / x.mesh.total_area()).sqrt();
     let noisy: Vec<f64> = clean
         .iter()

@@ -1,11 +1,11 @@
 //! Compression of single fields: the rate–distortion curves of Figure 9, the many-vortex field
 //! of Figure 10 with its residual, and the projection / reconstruction timings of Section 8.6.
 
-use super::finding::{Experiment, Finding};
-use super::test_fields::vortex_field;
-use crate::error::PaperError;
-use crate::markdown::{ratio, seconds};
+use crate::error::FigureError;
+use crate::finding::{Experiment, Finding};
+use crate::numbers::{ratio, seconds};
 use crate::panels::{field_panel, save};
+use crate::test_fields::vortex_field;
 use crate::timing::{median_time, Repetitions};
 use tvf_render::{grid, FaceQuantity, Tint};
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
@@ -65,7 +65,7 @@ pub fn rate_curve(
     field: &[f64],
     label: &str,
     coding: CoefficientCoding,
-) -> Result<RateCurve, PaperError> {
+) -> Result<RateCurve, FigureError> {
     let points = rate_distortion(
         x.basis,
         field,
@@ -87,7 +87,7 @@ pub fn figure9(
     curves: &[RateCurve],
     out: &std::path::Path,
     plot_size: (u32, u32),
-) -> Result<Finding, PaperError> {
+) -> Result<Finding, FigureError> {
     let series = curves
         .iter()
         .map(|c| {
@@ -177,7 +177,7 @@ pub fn figure9(
          k = 500; the paper's curves go on to 2000 pairs, with the rocker arm 'essentially \
          lossless' at k = 1100. The fields are our own (the paper's are not published), so \
          error levels compare in trend only.",
-        super::DESIGNED_FIELD_CONSTRAINTS,
+        crate::seeded_constraints::DESIGNED_FIELD_CONSTRAINTS,
         finals.join("; ")
     );
     Ok(finding)
@@ -189,7 +189,7 @@ pub fn projection_timings(
     x: &Experiment,
     field: &[f64],
     repetitions: Repetitions,
-) -> Result<Finding, PaperError> {
+) -> Result<Finding, FigureError> {
     let (project, coefficients) = median_time(repetitions, || x.basis.coefficients(field))?;
     let (reconstruct, _) = median_time(repetitions, || x.basis.reconstruct(&coefficients))?;
     let mut finding = Finding::new(
@@ -229,7 +229,7 @@ pub const VORTICES: usize = 120;
 /// Figure 10: a field of [`VORTICES`] small vortices, its compression with every pair of the
 /// basis and the residual (what those pairs cannot represent). Returns the finding and the
 /// field (for the rate–distortion curve).
-pub fn figure10(x: &Experiment) -> Result<(Finding, Vec<f64>), PaperError> {
+pub fn figure10(x: &Experiment) -> Result<(Finding, Vec<f64>), FigureError> {
     let field = vortex_field(x.complex, x.mesh, VORTICES, 10);
     let pairs = available_pairs(x);
     let s = stamp(x);

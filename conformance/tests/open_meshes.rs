@@ -2,15 +2,17 @@
 //! open corpus, and the scalar spectra of both boundary conditions converging to the analytic
 //! Dirichlet and Neumann eigenvalues of the unit hemisphere.
 
+use tvf_conformance::algebra_checks::max_abs;
+use tvf_conformance::corpus::{
+    delaunay_flips, open_corpus, open_delaunay_corpus, shared_corpus, Corpus,
+};
+use tvf_conformance::dense::{generalized_eigenvalues, restrict_to_free, split_zeros};
 use tvf_core::discretization::sparse::product;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::generate::hemisphere;
 use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_discretizations::catalog_entry;
 use tvf_solvers::{lowest_eigenpairs, EigenOptions};
-use tvf_tests::algebra_checks::max_abs;
-use tvf_tests::corpus::{delaunay_flips, open_corpus, open_delaunay_corpus, shared_corpus, Corpus};
-use tvf_tests::dense::{generalized_eigenvalues, restrict_to_free, split_zeros};
 
 /// `(|d1 d0| / (|d1| |d0|), dim ker L measured densely on the free field nodes or `None` if
 /// too large)`.

@@ -1,12 +1,12 @@
 //! The time-dependent compression experiment (Section 8.6, Figure 11): a sequence of fields on
 //! the bumpy torus compressed with one basis; file sizes and the mean relative error per frame.
 
-use super::compression::available_pairs;
-use super::finding::{Experiment, Finding};
-use super::test_fields::MovingFeatures;
-use crate::error::PaperError;
-use crate::markdown::{seconds, thousands};
+use crate::compression::available_pairs;
+use crate::error::FigureError;
+use crate::finding::{Experiment, Finding};
+use crate::numbers::{seconds, thousands};
 use crate::panels::{field_panel, save};
+use crate::test_fields::MovingFeatures;
 use rayon::prelude::*;
 use std::time::Instant;
 use tvf_render::{grid, FaceQuantity, Tint};
@@ -30,7 +30,7 @@ fn megabytes(bytes: f64) -> String {
 
 /// Compresses the sequence with 64-bit and with 16-bit quantised coefficients and draws one
 /// frame (Figure 11) uncompressed beside compressed.
-pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, PaperError> {
+pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, FigureError> {
     let moving = MovingFeatures::new(x.complex, x.mesh, size.features, 0.12, 11);
     let start = Instant::now();
     let frames: Vec<Vec<f64>> = (0..size.frames)

@@ -1,7 +1,7 @@
 //! Panels of the figures: a field as line integral convolution over a magnitude colour map or
 //! a solid tint (`tvf_render::draw_field`), and PNG output of the committed pictures.
 
-use crate::error::PaperError;
+use crate::error::FigureError;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::RgbaImage;
 use std::path::Path;
@@ -18,7 +18,7 @@ pub fn field_panel(
     title: &str,
     tint: Tint,
     view: View,
-) -> Result<RgbaImage, PaperError> {
+) -> Result<RgbaImage, FigureError> {
     Ok(draw_field(
         mesh,
         complex,
@@ -37,7 +37,7 @@ const CHANNEL_BITS: u32 = 6;
 /// Saves `image` as an RGB PNG at `path` (atomically), alpha dropped (the pictures are opaque),
 /// each channel rounded to [`CHANNEL_BITS`] bits, best compression, so that the committed
 /// pictures stay small.
-pub fn save(image: &RgbaImage, path: &Path) -> Result<(), PaperError> {
+pub fn save(image: &RgbaImage, path: &Path) -> Result<(), FigureError> {
     let step = 1u16 << (8 - CHANNEL_BITS);
     let rgb = image::RgbImage::from_fn(image.width(), image.height(), |x, y| {
         let p = image.get_pixel(x, y).0;
@@ -50,11 +50,11 @@ pub fn save(image: &RgbaImage, path: &Path) -> Result<(), PaperError> {
     let encoder =
         PngEncoder::new_with_quality(&mut bytes, CompressionType::Best, FilterType::Adaptive);
     rgb.write_with_encoder(encoder)
-        .map_err(|e| PaperError::Write {
+        .map_err(|e| FigureError::Write {
             path: path.to_path_buf(),
             source: std::io::Error::other(e),
         })?;
-    tvf_spectral::write_atomically(path, &bytes).map_err(|source| PaperError::Write {
+    tvf_spectral::write_atomically(path, &bytes).map_err(|source| FigureError::Write {
         path: path.to_path_buf(),
         source,
     })

@@ -1,6 +1,7 @@
-//! # tvf-tests
+//! # tvf-conformance
 //!
-//! The conformance suite every discretization gets. Checks are written once against the seam of
+//! The conformance suite every discretization gets, as a library: the workspace's tests, the
+//! Python package's `tvf.check` and crates of your own run it. Checks are written once against the seam of
 //! [`tvf_core::discretization`] (`&dyn HodgeComplex` or `H: HodgeComplex + ?Sized`), in two
 //! kinds:
 //!
@@ -27,15 +28,15 @@
 //!
 //! ```
 //! use tvf_discretizations::{catalog_entry, Conforming, MassLumping};
-//! use tvf_tests::corpus::Corpus;
+//! use tvf_conformance::corpus::Corpus;
 //!
 //! // Every core check, on the general corpus.
-//! tvf_tests::conformance_suite!(conforming_barycentric, |mesh| {
+//! tvf_conformance::conformance_suite!(conforming_barycentric, |mesh| {
 //!     Conforming::new(mesh, MassLumping::Barycentric)
 //! });
 //!
 //! // A boxed complex from the catalog, on the Delaunay corpus, with two reference checks.
-//! tvf_tests::conformance_suite!(
+//! tvf_conformance::conformance_suite!(
 //!     dec_circumcentric,
 //!     |mesh| (catalog_entry("dec-circumcentric").expect("in the catalog").build)(mesh),
 //!     corpus = Corpus::Delaunay,
@@ -46,7 +47,7 @@
 //!
 //! The constructor is any `Fn(&SurfaceMesh) -> Result<H, E>` with `E: Debug` and `H` either a
 //! `HodgeComplex + 'static` or a `Box<dyn HodgeComplex>`. Every catalog entry has its suite line
-//! in `tests/tests/conformance.rs` through [`catalog_suites!`], which fails when one is missing.
+//! in `conformance/tests/conformance.rs` through [`catalog_suites!`], which fails when one is missing.
 //! Dense eigenvalue checks run when `n1 ≤` [`corpus::DENSE_LIMIT`], dense eigenvector checks when
 //! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; the kernel dimension on larger and real meshes is checked
 //! through the rank of harmonic projections.

@@ -2,9 +2,8 @@
 
 use super::page::Section;
 use super::DemoConfig;
-use crate::basis_source::compute;
-use anyhow::Context;
-use anyhow::Result;
+use super::DemoHost;
+use crate::error::FigureError;
 use tvf_discretizations::build_complex;
 use tvf_discretizations::BoxedComplex;
 use tvf_render::save_png;
@@ -12,20 +11,26 @@ use tvf_render::{draw_field, FaceQuantity, Overlays, Style, Tint, View};
 use tvf_spectral::{eigen_residual, BasisSize, FieldFamily, SpectralBasis};
 
 /// Builds the chosen discretization, computes the basis and draws the mesh.
-pub fn run(config: &DemoConfig) -> Result<(Section, BoxedComplex, SpectralBasis)> {
+pub fn run(
+    config: &DemoConfig,
+    host: &dyn DemoHost,
+) -> Result<(Section, BoxedComplex, SpectralBasis), FigureError> {
     let mesh = &config.mesh;
-    let discretization = build_complex(&config.discretization, None, mesh)
-        .with_context(|| config.mesh_name.clone())?;
-    let basis = compute(&discretization, BasisSize::Fields(config.fields))?;
+    let discretization =
+        build_complex(&config.discretization, None, mesh).map_err(|e| FigureError::InContext {
+            context: config.mesh_name.clone(),
+            source: Box::new(e.into()),
+        })?;
+    let basis = host.compute_basis(&discretization, BasisSize::Fields(config.fields))?;
     let fewest = basis
         .count(FieldFamily::Integrable)
         .min(basis.count(FieldFamily::Cointegrable));
     if fewest < 3 {
-        anyhow::bail!(
+        return Err(FigureError::Invalid(format!(
             "-k {}: the basis holds only {fewest} fields of one family; the demo shows three \
              pairs, ask for more eigenfields",
             config.fields
-        );
+        )));
     }
     let mut section = Section::new(
         "Mesh and Fourier basis",

@@ -3,14 +3,14 @@
 
 use super::page::Section;
 use super::Context;
-use anyhow::Result;
+use crate::error::FigureError;
+use crate::test_fields::smooth_field;
 use tvf_core::discretization::HodgeOperators;
 use tvf_discretizations::HodgeDecomposer;
-use tvf_papers::brandt2017::test_fields::smooth_field;
 use tvf_render::{draw_field, grid, FaceQuantity, Overlays, Style, Tint};
 
 /// Decomposes the test field, draws it and its parts; returns the section and the field.
-pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
+pub fn run(cx: &Context) -> Result<(Section, Vec<f64>), FigureError> {
     let mut section = Section::new(
         "Hodge decomposition",
         "A test field (a gradient, a rotated gradient and a swirl about the torus axis) and its \

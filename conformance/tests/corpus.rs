@@ -1,8 +1,8 @@
 //! The corpora are what they claim: genera agree with the meshes, the Delaunay corpus (and its
 //! jittered property-test meshes) is Delaunay and builds every catalog entry.
 
+use tvf_conformance::corpus::{is_delaunay, staggered_torus, Corpus};
 use tvf_discretizations::catalog;
-use tvf_tests::corpus::{is_delaunay, staggered_torus, Corpus};
 
 #[test]
 fn genera_and_closedness_match_the_meshes() {

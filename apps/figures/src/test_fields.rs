@@ -4,8 +4,8 @@
 //! small vortices (Figure 10) and a time-dependent field of moving sources and vortices (the
 //! bumpy-torus sequence). All are `2F` pointwise face-frame coefficients of the given complex.
 
-use super::table1::seeded_constraints;
-use crate::error::PaperError;
+use crate::error::FigureError;
+use crate::seeded_constraints::seeded_constraints;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -115,7 +115,7 @@ pub fn designed_field(
     constraints: usize,
     omega: f64,
     seed: u64,
-) -> Result<Vec<f64>, PaperError> {
+) -> Result<Vec<f64>, FigureError> {
     let compiled = ConstraintAssembler::new(complex, mesh).compile_all(&seeded_constraints(
         mesh,
         complex,
@@ -149,7 +149,7 @@ pub fn tangent_noise(
     complex: &dyn HodgeComplex,
     amplitude: f64,
     seed: u64,
-) -> Result<Vec<f64>, PaperError> {
+) -> Result<Vec<f64>, FigureError> {
     let sampling = complex.require_sampling()?;
     let coordinates = noise(2 * sampling.face_count(), amplitude, seed);
     let vectors: Vec<[f64; 3]> = coordinates

@@ -3,8 +3,8 @@
 
 use super::page::Section;
 use super::Context;
-use anyhow::Result;
-use tvf_papers::brandt2017::compression::{figure9, rate_curve};
+use crate::compression::{figure9, rate_curve};
+use crate::error::FigureError;
 use tvf_spectral::{equal_error_comparison, CoefficientCoding};
 
 /// Codings compared: the paper's 64-bit coefficients and two quantiser symbol sizes.
@@ -15,7 +15,7 @@ const CODINGS: [CoefficientCoding; 3] = [
 ];
 
 /// Compresses `field` with every coding at the pair counts of Figure 9 and plots the curves.
-pub fn run(cx: &Context, field: &[f64]) -> Result<Section> {
+pub fn run(cx: &Context, field: &[f64]) -> Result<Section, FigureError> {
     let x = cx.experiment();
     let curves = CODINGS
         .iter()

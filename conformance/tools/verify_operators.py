@@ -6,7 +6,7 @@ code shared with tvf), runs `tvf operators` on the same file for both decomposit
 mass lumpings, and compares every matrix entry for entry.
 
     pip install numpy scipy
-    python3 tests/tools/verify_operators.py path/to/mesh.obj [path/to/tvf]
+    python3 conformance/tools/verify_operators.py path/to/mesh.obj [path/to/tvf]
 
 Exit status 0 if every matrix agrees to 1e-12 relative to its largest entry.
 """

@@ -1,10 +1,10 @@
 //! The conformance suite, one line per catalog entry (a missing line fails
 //! `every_catalog_entry_has_a_suite_line`), and the seam's documented wrapper complex.
 
+use tvf_conformance::scaled_co_potentials::ScaledCoPotentials;
 use tvf_discretizations::{Conforming, MassLumping};
-use tvf_tests::scaled_co_potentials::ScaledCoPotentials;
 
-tvf_tests::catalog_suites! {
+tvf_conformance::catalog_suites! {
     conforming_barycentric => "conforming-barycentric",
         reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
     conforming_voronoi => "conforming-voronoi",
@@ -19,7 +19,7 @@ tvf_tests::catalog_suites! {
         reference = [cotan_formula, co_potential_masses, sphere_spectrum];
 }
 
-tvf_tests::conformance_suite!(
+tvf_conformance::conformance_suite!(
     scaled_co_potentials,
     |mesh| ScaledCoPotentials::new(Conforming::new(mesh, MassLumping::Barycentric)?, 2.0),
     reference = [cotan_formula, face_fields],

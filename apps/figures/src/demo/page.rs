@@ -1,10 +1,10 @@
 //! The demo's web page: sections of pictures, number tables and step times, written as one
 //! self-contained `index.html` (inline CSS, pictures referenced by relative file name).
 
-use anyhow::{Context, Result};
+use crate::error::FigureError;
+use crate::finding::Finding;
 use std::fmt::Write as _;
 use std::path::Path;
-use tvf_papers::brandt2017::finding::Finding;
 use tvf_spectral::write_atomically;
 
 /// Escapes text for HTML.
@@ -152,10 +152,9 @@ pub fn html(title: &str, intro: &[(String, String)], sections: &[Section], total
 }
 
 /// Writes the page to `dir/index.html` atomically.
-pub fn write_page(dir: &Path, page: &str) -> Result<()> {
+pub fn write_page(dir: &Path, page: &str) -> Result<(), FigureError> {
     let path = dir.join("index.html");
-    write_atomically(&path, page.as_bytes())
-        .with_context(|| format!("cannot write {}", path.display()))
+    write_atomically(&path, page.as_bytes()).map_err(|source| FigureError::Write { path, source })
 }
 
 #[cfg(test)]

@@ -5,8 +5,8 @@
 use super::page::Section;
 use super::screen_points::faces_at_screen_points;
 use super::Context;
-use crate::picture_options::constraint_markers;
-use anyhow::Result;
+use crate::constraint_markers::constraint_markers;
+use crate::error::FigureError;
 use std::time::Instant;
 use tvf_core::discretization::{FieldSampling, HodgeOperators};
 use tvf_core::geometry::{add, norm, scale};
@@ -67,7 +67,7 @@ fn constraints(cx: &Context, fields: &dyn FieldSampling) -> Vec<Constraint> {
 }
 
 /// Solves the spline and the soft design; returns the section and the spline field.
-pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
+pub fn run(cx: &Context) -> Result<(Section, Vec<f64>), FigureError> {
     let set = constraints(cx, cx.discretization.require_sampling()?);
     let omega = DEFAULT_OMEGA * cx.mesh.total_area() / (4.0 * std::f64::consts::PI);
     let reduced = ReducedBasis::from_spectral(cx.basis)?;
@@ -163,7 +163,7 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>)> {
 }
 
 /// Grows fur along `field` and draws it.
-pub fn fur(cx: &Context, field: &[f64]) -> Result<Section> {
+pub fn fur(cx: &Context, field: &[f64]) -> Result<Section, FigureError> {
     // Unit directions: strands of even length that follow the field's direction.
     let vectors: Vec<[f64; 3]> = cx
         .discretization

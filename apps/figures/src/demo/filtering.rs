@@ -3,11 +3,11 @@
 
 use super::page::Section;
 use super::Context;
-use anyhow::Result;
-use tvf_papers::brandt2017::figures::figures7_8;
+use crate::eigenfields_and_filtering::figures7_8;
+use crate::error::FigureError;
 
 /// Figures 7 and 8 in one section.
-pub fn run(cx: &Context) -> Result<Section> {
+pub fn run(cx: &Context) -> Result<Section, FigureError> {
     let mut figures = figures7_8(&cx.experiment(), cx.plot_size())?
         .iter()
         .map(Section::from_finding)
@@ -15,7 +15,7 @@ pub fn run(cx: &Context) -> Result<Section> {
         .into_iter();
     let mut section = figures
         .next()
-        .ok_or_else(|| anyhow::anyhow!("Figure 7 is missing"))?;
+        .ok_or_else(|| FigureError::Invalid("Figure 7 is missing".to_string()))?;
     for more in figures {
         section.text = format!("{} {}: {}", section.text, more.title, more.text);
         section.figures.extend(more.figures);

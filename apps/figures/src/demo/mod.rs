@@ -1,12 +1,12 @@
-//! The page `tvf demo` writes (its flags are parsed in `commands/demo.rs`): the tour of tvf on
-//! one mesh, as a web page of pictures and numbers.
+//! The demo page (`tvf demo` parses its flags and runs it): the tour of tvf on one mesh, as a
+//! web page of pictures and numbers.
 //!
 //! Steps, one file each: the basis ([`basis`]), the eigenfields (paper Figure 1,
 //! [`eigenfields`]), the Hodge decomposition of a field ([`hodge`]), filtering a noisy field
 //! and its spectrum (Figures 7, 8, [`filtering`]), rate–distortion (Figure 9,
 //! [`compression`]), a spline beside soft design (Figure 4, [`design`]) and fur along the
-//! spline (Figure 5, also [`design`]). Figures 1, 7, 8 and 9 are papers/'s own
-//! (`tvf_papers::brandt2017`): the demo runs the reproduction's code on its mesh. Every step is timed (page and stderr); every file is
+//! spline (Figure 5, also [`design`]). Figures 1, 7, 8 and 9 are this crate's, the same code
+//! papers/'s reproduction runs. Every step is timed (page and the host's notes); every file is
 //! written atomically.
 
 mod basis;
@@ -18,17 +18,17 @@ mod hodge;
 mod page;
 mod screen_points;
 
-use crate::progress::note;
-use anyhow::{Context as _, Result};
+use crate::error::FigureError;
+use crate::finding::Experiment;
 use image::RgbaImage;
 use page::Section;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::BoxedComplex;
-use tvf_papers::brandt2017::finding::Experiment;
 use tvf_render::save_png;
 use tvf_render::View;
+use tvf_spectral::BasisSize;
 use tvf_spectral::SpectralBasis;
 
 /// What the demo runs on and how large it draws.
@@ -49,6 +49,20 @@ pub struct DemoConfig {
     pub height: u32,
     /// Fur strands.
     pub fur_strands: usize,
+}
+
+/// What the demo asks of the program that runs it: the basis (computed the program's way, e.g.
+/// the CLI's with a progress bar) and a place for its progress notes.
+pub trait DemoHost {
+    /// The basis of `size` of `complex`.
+    fn compute_basis(
+        &self,
+        complex: &BoxedComplex,
+        size: BasisSize,
+    ) -> Result<SpectralBasis, FigureError>;
+
+    /// Shows one line of progress (e.g. on stderr).
+    fn note(&self, message: &str);
 }
 
 /// What every step can use: the mesh, the discretization, the basis, the output folder.
@@ -102,24 +116,27 @@ impl Context<'_> {
     }
 
     /// Saves `image` as `name` in the output folder.
-    pub fn save(&self, image: &RgbaImage, name: &str) -> Result<()> {
+    pub fn save(&self, image: &RgbaImage, name: &str) -> Result<(), FigureError> {
         Ok(save_png(image, &self.config.output.join(name))?)
     }
 }
 
-/// Runs one step: times it, reports it on stderr, and records the time in its section.
+/// Runs one step: times it, reports it through the host, and records the time in its section.
 fn timed(
-    number: usize,
-    total: usize,
+    host: &dyn DemoHost,
+    (number, total): (usize, usize),
     title: &str,
-    step: impl FnOnce() -> Result<Section>,
-) -> Result<Section> {
-    note(format!("demo [{number}/{total}] {title} ..."));
+    step: impl FnOnce() -> Result<Section, FigureError>,
+) -> Result<Section, FigureError> {
+    host.note(&format!("demo [{number}/{total}] {title} ..."));
     let start = Instant::now();
-    let mut section = step().with_context(|| format!("demo step '{title}'"))?;
+    let mut section = step().map_err(|e| FigureError::InContext {
+        context: format!("demo step '{title}'"),
+        source: Box::new(e),
+    })?;
     section.title = title.to_string();
     section.seconds = start.elapsed().as_secs_f64();
-    note(format!(
+    host.note(&format!(
         "demo [{number}/{total}] {title}: {:.2} s",
         section.seconds
     ));
@@ -127,18 +144,20 @@ fn timed(
 }
 
 /// Runs the whole demo and writes `index.html`; returns the page's path.
-pub fn run(config: &DemoConfig) -> Result<PathBuf> {
+pub fn run(config: &DemoConfig, host: &dyn DemoHost) -> Result<PathBuf, FigureError> {
     let start = Instant::now();
     const STEPS: usize = 7;
     let mut sections = Vec::new();
     let mut computed = None;
-    sections.push(timed(1, STEPS, "Mesh and Fourier basis", || {
-        let (section, discretization, basis) = basis::run(config)?;
+    sections.push(timed(host, (1, STEPS), "Mesh and Fourier basis", || {
+        let (section, discretization, basis) = basis::run(config, host)?;
         computed = Some((discretization, basis));
         Ok(section)
     })?);
     let Some((discretization, basis)) = computed else {
-        anyhow::bail!("the basis step produced no basis");
+        return Err(FigureError::Invalid(
+            "the basis step produced no basis".to_string(),
+        ));
     };
     let cx = Context {
         mesh: &config.mesh,
@@ -146,31 +165,31 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
         basis: &basis,
         config,
     };
-    sections.push(timed(2, STEPS, "Eigenfields (Figure 1)", || {
+    sections.push(timed(host, (2, STEPS), "Eigenfields (Figure 1)", || {
         eigenfields::run(&cx)
     })?);
     let mut test_field = Vec::new();
-    sections.push(timed(3, STEPS, "Hodge decomposition", || {
+    sections.push(timed(host, (3, STEPS), "Hodge decomposition", || {
         let (section, field) = hodge::run(&cx)?;
         test_field = field;
         Ok(section)
     })?);
     sections.push(timed(
-        4,
-        STEPS,
+        host,
+        (4, STEPS),
         "Filtering a noisy field (Figures 7 and 8)",
         || filtering::run(&cx),
     )?);
     sections.push(timed(
-        5,
-        STEPS,
+        host,
+        (5, STEPS),
         "Compression: rate and distortion (Figure 9)",
         || compression::run(&cx, &test_field),
     )?);
     let mut spline = Vec::new();
     sections.push(timed(
-        6,
-        STEPS,
+        host,
+        (6, STEPS),
         "Spline and soft design (Figure 4)",
         || {
             let (section, field) = design::run(&cx)?;
@@ -179,8 +198,8 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
         },
     )?);
     sections.push(timed(
-        7,
-        STEPS,
+        host,
+        (7, STEPS),
         "Fur along the spline field (Figure 5)",
         || design::fur(&cx, &spline),
     )?);
@@ -221,6 +240,6 @@ pub fn run(config: &DemoConfig) -> Result<PathBuf> {
     );
     page::write_page(&config.output, &html)?;
     let index = config.output.join("index.html");
-    note(format!("demo finished in {total:.1} s"));
+    host.note(&format!("demo finished in {total:.1} s"));
     Ok(index)
 }
