@@ -12,7 +12,7 @@ use crate::MassLumping;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, DiagonalMass, DiscretizationError, FieldSampling,
+    BoundaryCondition, ComplexParts, Mass, DiscretizationError, FieldSampling,
     HodgeComplex, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
@@ -151,17 +151,17 @@ impl DecComplex {
                 .map(|&b| b == 0)
                 .collect();
         }
-        let m0 = DiagonalMass::positive_on_used_nodes(
+        let m0 = Mass::diagonal_positive_on_used_nodes(
             "M0 (⋆0, vertex areas)",
             lumping.vertex_masses(mesh, &geometry),
             &potential_nodes.components,
         )?;
-        let m1 = DiagonalMass::positive_on_used_nodes(
+        let m1 = Mass::diagonal_positive_on_used_nodes(
             "M1 (⋆1, the edge Hodge star)",
             edge_star,
             &field_nodes.components,
         )?;
-        let m2 = DiagonalMass::positive_on_used_nodes(
+        let m2 = Mass::diagonal_positive_on_used_nodes(
             "M2 (⋆2, inverse face areas)",
             geometry.areas.iter().map(|a| 1.0 / a).collect(),
             &co_potential_nodes.components,

@@ -6,7 +6,7 @@ use crate::face_geometry::FaceGeometry;
 use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping};
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
 use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, DiagonalMass, DiscretizationError, FieldRotation,
+    BoundaryCondition, ComplexParts, Mass, DiscretizationError, FieldRotation,
     FieldSampling, HodgeComplex, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
@@ -123,22 +123,22 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             }
         }
         let field_nodes = face_frame_nodes(mesh);
-        let m0 = DiagonalMass::positive_on_used_nodes(
+        let m0 = Mass::diagonal_positive_on_used_nodes(
             "M0 (potential mass)",
             potentials.mass().to_vec(),
             &potential_nodes.components,
         )?;
-        let m1 = DiagonalMass::positive_on_used_nodes(
+        let m1 = Mass::diagonal_positive_on_used_nodes(
             "M1 (field mass)",
             fields.mass().to_vec(),
             &field_nodes.components,
         )?;
-        DiagonalMass::positive_on_used_nodes(
+        Mass::diagonal_positive_on_used_nodes(
             "co-potential mass",
             co_potentials.mass().to_vec(),
             &co_potential_nodes.components,
         )?;
-        let m2 = DiagonalMass::new(
+        let m2 = Mass::diagonal(
             "M2 (inverse co-potential mass)",
             reciprocal(co_potentials.mass()),
         )?;

@@ -1,6 +1,7 @@
 //! The discrete Hodge decomposition `v = d0 f − M1⁻¹ d1ᵀ g + h` of a field, for any
 //! [`HodgeComplex`], and a basis of the harmonic fields.
 
+use crate::mixed_poisson::MixedPoisson;
 use crate::pinned_poisson::PinnedPoisson;
 use crate::DecompositionError;
 use rand::{Rng, SeedableRng};
@@ -28,12 +29,30 @@ pub struct HodgeParts {
 /// Prefactored Hodge decomposition of one complex: both singular Poisson systems
 /// `(d0ᵀ M1 d0) f = d0ᵀ M1 v` and `(d1 M1⁻¹ d1ᵀ) g = −d1 v` are factored once (one node pinned per
 /// connected component whose constants are in the kernel, every Dirichlet node fixed to zero), so
-/// decomposing many fields costs two triangular solves each.
+/// decomposing many fields costs two triangular solves each. Where `M1` is not diagonal, the
+/// co-exact system is dense and is solved in mixed form ([`MixedPoisson`]: a sparse saddle
+/// system and a few refinement steps).
 #[derive(Debug)]
 pub struct HodgeDecomposer<'a, H: HodgeComplex + ?Sized> {
     complex: &'a H,
     exact: PinnedPoisson,
-    co_exact: PinnedPoisson,
+    co_exact: CoExactPoisson,
+}
+
+/// The co-exact Poisson solve: a sparse stiffness, or the mixed form of a dense one.
+#[derive(Debug)]
+enum CoExactPoisson {
+    Pinned(PinnedPoisson),
+    Mixed(MixedPoisson),
+}
+
+impl CoExactPoisson {
+    fn solve(&self, rhs: &[f64]) -> Vec<f64> {
+        match self {
+            CoExactPoisson::Pinned(p) => p.solve(rhs),
+            CoExactPoisson::Mixed(p) => p.solve(rhs),
+        }
+    }
 }
 
 impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
@@ -43,13 +62,23 @@ impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
         let exact = PinnedPoisson::new(
             complex.potential_stiffness(),
             complex.potential_nodes(),
-            complex.m0().values(),
+            complex.m0(),
         )?;
-        let co_exact = PinnedPoisson::new(
-            complex.co_potential_stiffness(),
-            complex.co_potential_nodes(),
-            &complex.m2().inverse(),
-        )?;
+        let co_potential_mass = complex.m2().inverse();
+        let co_exact = match complex.co_potential_stiffness().as_sparse() {
+            Some(stiffness) => CoExactPoisson::Pinned(PinnedPoisson::new(
+                stiffness,
+                complex.co_potential_nodes(),
+                &co_potential_mass,
+            )?),
+            None => CoExactPoisson::Mixed(MixedPoisson::new(
+                complex.m1(),
+                complex.d1(),
+                &co_potential_mass,
+                complex.field_nodes(),
+                complex.co_potential_nodes(),
+            )?),
+        };
         Ok(Self {
             complex,
             exact,
@@ -121,7 +150,7 @@ impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
     /// An `M1`-orthonormal basis of the harmonic fields (`harmonic_dimension()` fields of length
     /// `n1`): random fields (seeded, zero on the Dirichlet field nodes) projected onto `H`,
     /// Gram–Schmidt in `M1`, each re-projected once after orthogonalisation for accuracy
-    /// (`shared/docs/MATH.md`).
+    /// (`docs/conventions.md`).
     pub fn harmonic_basis(&self, seed: u64) -> Result<Vec<Vec<f64>>, DecompositionError> {
         let c = self.complex;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);

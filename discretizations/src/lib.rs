@@ -109,6 +109,7 @@ mod hodge_decomposition;
 mod lagrange_p1;
 mod mass_lumping;
 mod matrix_complex;
+mod mixed_poisson;
 mod pinned_poisson;
 mod whitney_sampling;
 

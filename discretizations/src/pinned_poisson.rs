@@ -3,7 +3,7 @@
 
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::{NodeSpace, NO_COMPONENT};
+use tvf_core::discretization::{Mass, NodeSpace, NO_COMPONENT};
 use tvf_solvers::{SolverError, SparseCholesky};
 
 /// Factorization of a symmetric PSD stiffness `A` (`n × n`) of one space of a complex (cotan,
@@ -23,16 +23,13 @@ pub struct PinnedPoisson {
     /// Component of every node whose constants are in the kernel, else `NO_COMPONENT`.
     shifted: Vec<usize>,
     component_count: usize,
-    mass: Vec<f64>,
+    mass: Mass,
 }
 
 impl PinnedPoisson {
-    /// Factors `stiffness` (`n × n`) of the space `nodes` with lumped `mass` (`n` entries).
-    pub fn new(
-        stiffness: &CsMat<f64>,
-        nodes: &NodeSpace,
-        mass: &[f64],
-    ) -> Result<Self, SolverError> {
+    /// Factors `stiffness` (`n × n`) of the space `nodes` with `mass` (`n × n`, the space's inner
+    /// product, used for the means).
+    pub fn new(stiffness: &CsMat<f64>, nodes: &NodeSpace, mass: &Mass) -> Result<Self, SolverError> {
         let n = nodes.len();
         let component_count = nodes.constant_kernel.len();
         let mut pinned = vec![false; n];
@@ -68,7 +65,7 @@ impl PinnedPoisson {
             pinned,
             shifted,
             component_count,
-            mass: mass.to_vec(),
+            mass: mass.clone(),
         })
     }
 
@@ -82,19 +79,45 @@ impl PinnedPoisson {
             .map(|(&b, &p)| if p { 0.0 } else { b })
             .collect();
         let mut x = self.cholesky.solve(&reduced);
-        let mut sums = vec![0.0; self.component_count];
-        let mut weights = vec![0.0; self.component_count];
-        for ((&xi, &c), &m) in x.iter().zip(&self.shifted).zip(&self.mass) {
-            if c != NO_COMPONENT {
-                sums[c] += m * xi;
-                weights[c] += m;
-            }
-        }
+        let (sums, weights) = self.component_means(&x);
         for (xi, &c) in x.iter_mut().zip(&self.shifted) {
             if c != NO_COMPONENT && weights[c] > 0.0 {
                 *xi -= sums[c] / weights[c];
             }
         }
         x
+    }
+
+    /// Per component with constants in the kernel: `Σ (M x)_i` and `Σ (M 1)_i` over its nodes
+    /// (a diagonal mass: `Σ m_i x_i` and `Σ m_i`). Masses do not couple components.
+    fn component_means(&self, x: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let mut sums = vec![0.0; self.component_count];
+        let mut weights = vec![0.0; self.component_count];
+        match self.mass.diagonal_values() {
+            Some(mass) => {
+                for ((&xi, &c), &m) in x.iter().zip(&self.shifted).zip(mass) {
+                    if c != NO_COMPONENT {
+                        sums[c] += m * xi;
+                        weights[c] += m;
+                    }
+                }
+            }
+            None => {
+                let indicator: Vec<f64> = self
+                    .shifted
+                    .iter()
+                    .map(|&c| if c != NO_COMPONENT { 1.0 } else { 0.0 })
+                    .collect();
+                let masked: Vec<f64> = x.iter().zip(&indicator).map(|(a, b)| a * b).collect();
+                let (mx, m_one) = (self.mass.apply(&masked), self.mass.apply(&indicator));
+                for (i, &c) in self.shifted.iter().enumerate() {
+                    if c != NO_COMPONENT {
+                        sums[c] += mx[i];
+                        weights[c] += m_one[i];
+                    }
+                }
+            }
+        }
+        (sums, weights)
     }
 }

@@ -2,9 +2,7 @@
 //! the nodes of its three spaces, its topology and a stable id — checked once for consistent
 //! shapes, with the cache of the operators derived from them.
 
-use super::{
-    check_length, ComplexTopology, DiagonalMass, DiscretizationError, NodeSpace, OperatorCache,
-};
+use super::{check_length, ComplexTopology, DiscretizationError, Mass, NodeSpace, OperatorCache};
 use sprs::CsMat;
 
 /// The parts of a complex `potentials (n0) --d0--> fields (n1) --d1--> co-potentials (n2)` with
@@ -19,7 +17,7 @@ pub struct ComplexParts {
     id: String,
     d0: CsMat<f64>,
     d1: CsMat<f64>,
-    masses: [DiagonalMass; 3],
+    masses: [Mass; 3],
     nodes: [NodeSpace; 3],
     topology: ComplexTopology,
     cache: OperatorCache,
@@ -28,13 +26,17 @@ pub struct ComplexParts {
 impl ComplexParts {
     /// The parts with id `id` (lower-case kebab-case, see [`super::HodgeComplex::id`]):
     /// `d0` (`n1 × n0`), `d1` (`n2 × n1`), `masses` `[M0, M1, M2]` and `nodes` (potentials,
-    /// fields, co-potentials) of lengths `n0`, `n1`, `n2`. Fails with
-    /// [`DiscretizationError::DimensionMismatch`] if a shape does not fit.
+    /// fields, co-potentials) of lengths `n0`, `n1`, `n2`. Each mass is restricted to the free
+    /// nodes of its space (and a sparse one factored there: see [`Mass`]); `M1` must be stored
+    /// directly ([`super::MassForm::Direct`]). Fails with
+    /// [`DiscretizationError::DimensionMismatch`] if a shape does not fit,
+    /// [`DiscretizationError::NotPositiveDefinite`] or [`DiscretizationError::NotPositive`] if a
+    /// mass is not positive definite on its free nodes.
     pub fn new(
         id: impl Into<String>,
         d0: CsMat<f64>,
         d1: CsMat<f64>,
-        masses: [DiagonalMass; 3],
+        masses: [Mass; 3],
         nodes: [NodeSpace; 3],
         topology: ComplexTopology,
     ) -> Result<Self, DiscretizationError> {
@@ -52,6 +54,18 @@ impl ComplexParts {
         for (what, expected, found) in checks {
             check_length(what, expected, found)?;
         }
+        if masses[1].form() != super::MassForm::Direct {
+            return Err(DiscretizationError::Inconsistent(format!(
+                "{}: the field mass M1 must be given directly, not as its inverse",
+                masses[1].what()
+            )));
+        }
+        let [m0, m1, m2] = masses;
+        let masses = [
+            m0.restricted_to(&nodes[0])?,
+            m1.restricted_to(&nodes[1])?,
+            m2.restricted_to(&nodes[2])?,
+        ];
         Ok(Self {
             id: id.into(),
             d0,
@@ -68,7 +82,7 @@ impl ComplexParts {
     pub fn with_co_potential_mass(
         &self,
         id: impl Into<String>,
-        m2: DiagonalMass,
+        m2: Mass,
     ) -> Result<Self, DiscretizationError> {
         let [m0, m1, _] = self.masses.clone();
         Self::new(
@@ -96,18 +110,18 @@ impl ComplexParts {
         &self.d1
     }
 
-    /// `M0` (`n0`).
-    pub fn m0(&self) -> &DiagonalMass {
+    /// `M0` (`n0 × n0`).
+    pub fn m0(&self) -> &Mass {
         &self.masses[0]
     }
 
-    /// `M1` (`n1`).
-    pub fn m1(&self) -> &DiagonalMass {
+    /// `M1` (`n1 × n1`).
+    pub fn m1(&self) -> &Mass {
         &self.masses[1]
     }
 
-    /// `M2` (`n2`).
-    pub fn m2(&self) -> &DiagonalMass {
+    /// `M2` (`n2 × n2`).
+    pub fn m2(&self) -> &Mass {
         &self.masses[2]
     }
 

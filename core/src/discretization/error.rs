@@ -45,6 +45,24 @@ pub enum DiscretizationError {
         /// Its value.
         value: f64,
     },
+    /// A sparse mass is not positive definite on its free nodes.
+    #[error("{what} is not positive definite on its free nodes:{detail}")]
+    NotPositiveDefinite {
+        /// Which mass (e.g. "M1 (the Whitney mass)").
+        what: &'static str,
+        /// Where the Cholesky factorization failed.
+        detail: String,
+    },
+    /// A mass that must be symmetric is not (beyond round-off).
+    #[error("{what} is not symmetric: the largest |M − Mᵀ| entry is {asymmetry:e} against a largest entry of {scale:e}")]
+    NotSymmetric {
+        /// Which mass.
+        what: &'static str,
+        /// The largest entry of `|M − Mᵀ|`.
+        asymmetry: f64,
+        /// The largest entry of `|M|`.
+        scale: f64,
+    },
     /// The diagonal Hodge star on edges (`(cot α + cot β)/2`) is not positive (at most a
     /// round-off tolerance): the mesh is not Delaunay.
     #[error("the mesh is not Delaunay: {count} edges have cot α + cot β ≤ {tolerance:e} (the first is edge {first}, cot α + cot β = {value:.3e}); the diagonal Hodge star ⋆1 needs a Delaunay mesh")]

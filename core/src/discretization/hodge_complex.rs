@@ -2,7 +2,7 @@
 //! source of truth of everything downstream.
 
 use super::{
-    ComplexParts, ComplexTopology, DiagonalMass, FieldRotation, FieldSampling, NodeSpace,
+    ComplexParts, ComplexTopology, FieldRotation, FieldSampling, Mass, NodeSpace,
     OperatorCache, PointEvaluation,
 };
 use sprs::CsMat;
@@ -55,18 +55,19 @@ pub trait HodgeComplex: Send + Sync {
     }
 
     /// `M0` (`n0 × n0`, area): the inner product of potentials.
-    fn m0(&self) -> &DiagonalMass {
+    fn m0(&self) -> &Mass {
         self.parts().m0()
     }
 
     /// `M1` (`n1 × n1`): the inner product of fields, `xᵀ M1 y = ∫ ⟨x, y⟩`.
-    fn m1(&self) -> &DiagonalMass {
+    fn m1(&self) -> &Mass {
         self.parts().m1()
     }
 
     /// `M2` (`n2 × n2`, 1/area): turns `d1`'s integrated values into pointwise ones; `M2⁻¹` is the
-    /// inner product of co-potentials.
-    fn m2(&self) -> &DiagonalMass {
+    /// inner product of co-potentials. Stored as `M2⁻¹` ([`super::MassForm::Inverse`]) when that
+    /// is the sparse one (a consistent co-potential mass).
+    fn m2(&self) -> &Mass {
         self.parts().m2()
     }
 

@@ -2,7 +2,7 @@
 //! small capabilities — and every operator of the paper derived once from them.
 //!
 //! The paper's discrete Hodge decomposition is a short cochain complex with masses
-//! (`shared/docs/ARCHITECTURE.md`, `docs/discretizations.md`):
+//! (`docs/architecture.md`, `docs/conventions.md`):
 //!
 //! ```text
 //! potentials --d0--> fields --d1--> co-potentials,      d1 · d0 = 0
@@ -10,7 +10,7 @@
 //! ```
 //!
 //! - [`HodgeComplex`]: its [`ComplexParts`] — the five matrices `d0`, `d1`, `M0`, `M1`, `M2`
-//!   ([`DiagonalMass`]), the nodes of the three spaces ([`NodeSpace`]), the topology, a stable
+//!   (each [`Mass`] a symmetric positive definite operator, diagonal or sparse), the nodes of the three spaces ([`NodeSpace`]), the topology, a stable
 //!   id — and the optional
 //!   capabilities [`FieldSampling`] (fields as 3D vectors at points), [`FieldRotation`] (`J`,
 //!   which gives the other family of divergence and curl) and [`PointEvaluation`] (potentials at
@@ -18,7 +18,9 @@
 //! - [`HodgeOperators`]: blanket extension of every complex: divergence and curl, stiffness
 //!   matrices, Dirichlet energy `S`, Hodge–Laplacian `L`, biharmonic `B`, the two scalar
 //!   eigenproblems of Section 6 and the maps from (co-)potentials to fields — all from the five
-//!   matrices, computed once and cached in the complex's [`OperatorCache`].
+//!   matrices, computed once and cached in the complex's [`OperatorCache`], each a
+//!   [`LinearOperator`]: a sparse matrix where every mass involved is diagonal, else a
+//!   composition applied through sparse products and mass solves.
 //!
 //! Code downstream (spectral basis, filters, splines, design, rendering, the editor) is written
 //! against these traits only. `tvf-discretizations` holds the implementations and the catalog.
@@ -42,11 +44,9 @@
 //!
 //! impl<H: HodgeComplex> ScaledCoPotentials<H> {
 //!     fn new(inner: H, factor: f64) -> Result<Self, DiscretizationError> {
-//!         let m2 = inner.m2().values().iter().map(|m| m / factor).collect();
+//!         let m2 = inner.m2().scaled("M2 (scaled)", 1.0 / factor);
 //!         let id = format!("{}-scaled-co-potentials", inner.id());
-//!         let parts = inner
-//!             .parts()
-//!             .with_co_potential_mass(id, DiagonalMass::new("M2", m2)?)?;
+//!         let parts = inner.parts().with_co_potential_mass(id, m2)?;
 //!         Ok(Self { inner, parts })
 //!     }
 //! }
@@ -73,10 +73,11 @@
 
 mod capabilities;
 mod complex_parts;
-mod diagonal_mass;
 mod error;
 mod hodge_complex;
 mod hodge_operators;
+mod linear_operator;
+mod mass;
 mod nodes;
 mod operator_cache;
 pub mod sparse;
@@ -86,10 +87,11 @@ pub use capabilities::{
     TangentProjection,
 };
 pub use complex_parts::ComplexParts;
-pub use diagonal_mass::DiagonalMass;
 pub use error::DiscretizationError;
 pub use hodge_complex::HodgeComplex;
-pub use hodge_operators::{Eigenproblem, HodgeOperators};
+pub use hodge_operators::{all_sparse, EigenStiffness, Eigenproblem, HodgeOperators};
+pub use linear_operator::{Composition, Factor, LinearOperator};
+pub use mass::{Mass, MassForm, MassStorage};
 pub use nodes::{BoundaryCondition, ComplexTopology, NodeKind, NodeSpace};
 pub use operator_cache::OperatorCache;
 

@@ -1,5 +1,6 @@
 //! [`OperatorCache`]: where a complex keeps the operators derived from its five matrices.
 
+use super::LinearOperator;
 use sprs::CsMat;
 use std::sync::OnceLock;
 
@@ -9,15 +10,15 @@ use std::sync::OnceLock;
 #[derive(Debug, Default)]
 pub struct OperatorCache {
     pub(crate) potential_stiffness: OnceLock<CsMat<f64>>,
-    pub(crate) co_potential_stiffness: OnceLock<CsMat<f64>>,
-    pub(crate) potential_divergence: OnceLock<CsMat<f64>>,
-    pub(crate) co_potential_curl: OnceLock<CsMat<f64>>,
-    pub(crate) co_gradient: OnceLock<CsMat<f64>>,
-    pub(crate) dirichlet_energy: OnceLock<CsMat<f64>>,
-    pub(crate) hodge_laplacian: OnceLock<CsMat<f64>>,
-    pub(crate) biharmonic_energy: OnceLock<CsMat<f64>>,
-    pub(crate) other_divergence: OnceLock<CsMat<f64>>,
-    pub(crate) other_curl: OnceLock<CsMat<f64>>,
+    pub(crate) co_potential_stiffness: OnceLock<LinearOperator>,
+    pub(crate) potential_divergence: OnceLock<LinearOperator>,
+    pub(crate) co_potential_curl: OnceLock<LinearOperator>,
+    pub(crate) co_gradient: OnceLock<LinearOperator>,
+    pub(crate) dirichlet_energy: OnceLock<LinearOperator>,
+    pub(crate) hodge_laplacian: OnceLock<LinearOperator>,
+    pub(crate) biharmonic_energy: OnceLock<LinearOperator>,
+    pub(crate) other_divergence: OnceLock<LinearOperator>,
+    pub(crate) other_curl: OnceLock<LinearOperator>,
 }
 
 impl Clone for OperatorCache {

@@ -1,0 +1,238 @@
+//! Solves the co-exact Poisson problem `(d1 M1⁻¹ d1ᵀ) g = b` of a complex whose field mass `M1`
+//! is not diagonal (the Whitney 1-form mass): `d1 M1⁻¹ d1ᵀ` is dense, so it is solved in mixed
+//! form through a sparse saddle-point system and never formed.
+
+use crate::DecompositionError;
+use faer::Mat;
+use sprs::{CsMat, TriMat};
+use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
+use tvf_core::discretization::{DiscretizationError, Mass, NodeSpace, NO_COMPONENT};
+use tvf_solvers::{SolverError, SparseLdlt};
+
+/// Refinement steps at most; each divides the error by at least `λ₁/(λ₁ + ε)`.
+const MAX_STEPS: usize = 40;
+/// The regularisation `ε` relative to the mean eigenvalue of `(A, N)`.
+const RELATIVE_REGULARISATION: f64 = 1e-8;
+/// Relative residual `‖b − A g‖/‖b‖` the refinement stops at.
+const TARGET: f64 = 1e-13;
+
+/// The factorization of the quasi-definite saddle matrix
+///
+/// ```text
+/// K = [[−M1, d1ᵀ], [d1, ε N]]      (free field nodes, free co-potential nodes)
+/// ```
+///
+/// whose Schur complement is `d1 M1⁻¹ d1ᵀ + ε N` (`N = M2⁻¹`, the co-potential mass). With
+/// `−M1` negative definite and `ε N` positive definite, `K` has an `LDLᵀ` factorization in every
+/// fill-reducing order (quasi-definite matrices are strongly factorizable). The regularisation is
+/// removed by iterative refinement: `g ← g + (A + εN)⁻¹ (b − A g)` converges to the solution of
+/// `A g = b` on the complement of the kernel (constants per component with constants in the
+/// kernel), and the result is shifted to zero `N`-mean on each such component, as the pinned
+/// Poisson solve of the diagonal case does.
+#[derive(Debug)]
+pub struct MixedPoisson {
+    ldlt: SparseLdlt,
+    field_mass: Mass,
+    co_potential_mass: Mass,
+    d1: CsMat<f64>,
+    /// Free field nodes (full indices), then free co-potential nodes: the saddle's unknowns.
+    free_fields: Vec<usize>,
+    free_co_potentials: Vec<usize>,
+    /// Component of every co-potential node whose constants are in the kernel, else
+    /// `NO_COMPONENT`.
+    shifted: Vec<usize>,
+    component_count: usize,
+}
+
+impl MixedPoisson {
+    /// Factors the saddle matrix for the field mass `m1` (on `field_nodes`), `d1` (`n2 × n1`)
+    /// and the co-potential mass `n = M2⁻¹` (on `co_potential_nodes`).
+    pub fn new(
+        m1: &Mass,
+        d1: &CsMat<f64>,
+        n: &Mass,
+        field_nodes: &NodeSpace,
+        co_potential_nodes: &NodeSpace,
+    ) -> Result<Self, DecompositionError> {
+        let free_fields: Vec<usize> = (0..field_nodes.len())
+            .filter(|&i| field_nodes.is_free(i))
+            .collect();
+        let free_co_potentials: Vec<usize> = (0..co_potential_nodes.len())
+            .filter(|&i| co_potential_nodes.is_free(i))
+            .collect();
+        let (n1, n2) = (free_fields.len(), free_co_potentials.len());
+        let mut field_position = vec![usize::MAX; field_nodes.len()];
+        for (k, &i) in free_fields.iter().enumerate() {
+            field_position[i] = k;
+        }
+        let mut co_position = vec![usize::MAX; co_potential_nodes.len()];
+        for (k, &i) in free_co_potentials.iter().enumerate() {
+            co_position[i] = n1 + k;
+        }
+        let m1_matrix = m1.sparse_matrix().ok_or_else(|| {
+            DiscretizationError::Inconsistent("the field mass M1 is stored as its inverse".into())
+        })?;
+        let epsilon = RELATIVE_REGULARISATION * mean_eigenvalue(&m1_matrix, d1, n);
+        let mut upper = TriMat::new((n1 + n2, n1 + n2));
+        for (&value, (i, j)) in m1_matrix.iter() {
+            let (p, q) = (field_position[i], field_position[j]);
+            if p != usize::MAX && q != usize::MAX && p <= q {
+                upper.add_triplet(p, q, -value);
+            }
+        }
+        for (&value, (r, c)) in d1.iter() {
+            let (p, q) = (field_position[c], co_position[r]);
+            if p != usize::MAX && q != usize::MAX {
+                upper.add_triplet(p, q, value);
+            }
+        }
+        let n_matrix = co_potential_mass_matrix(n)?;
+        for (&value, (i, j)) in n_matrix.iter() {
+            let (p, q) = (co_position[i], co_position[j]);
+            if p != usize::MAX && q != usize::MAX && p <= q {
+                upper.add_triplet(p, q, epsilon * value);
+            }
+        }
+        let upper: CsMat<f64> = upper.to_csc();
+        let upper = tvf_solvers::convert::upper_triangle_csc(&upper)?;
+        let ldlt = SparseLdlt::new(upper.as_ref()).map_err(|e| match e {
+            SolverError::Singular { .. } => SolverError::Factorization(
+                "the mixed Poisson system of the co-exact part is singular: M1 is not positive \
+                 definite on the free field nodes"
+                    .into(),
+            ),
+            other => other,
+        })?;
+        let component_count = co_potential_nodes.constant_kernel.len();
+        let shifted = (0..co_potential_nodes.len())
+            .map(|i| {
+                let c = co_potential_nodes.components[i];
+                if co_potential_nodes.is_free(i) && c != NO_COMPONENT && co_potential_nodes.constant_kernel[c] {
+                    c
+                } else {
+                    NO_COMPONENT
+                }
+            })
+            .collect();
+        Ok(Self {
+            ldlt,
+            field_mass: m1.clone(),
+            co_potential_mass: n.clone(),
+            d1: d1.clone(),
+            free_fields,
+            free_co_potentials,
+            shifted,
+            component_count,
+        })
+    }
+
+    /// `A g = d1 M1⁻¹ d1ᵀ g`.
+    fn apply(&self, g: &[f64]) -> Vec<f64> {
+        mul_vec(&self.d1, &self.field_mass.solve(&mul_transpose_vec(&self.d1, g)))
+    }
+
+    /// `(A + εN)⁻¹ r` through the saddle system (`r` on the co-potential nodes, zero result on
+    /// the nodes that are not free).
+    fn regularised_solve(&self, r: &[f64]) -> Vec<f64> {
+        let n1 = self.free_fields.len();
+        let mut rhs = Mat::zeros(n1 + self.free_co_potentials.len(), 1);
+        for (k, &i) in self.free_co_potentials.iter().enumerate() {
+            rhs[(n1 + k, 0)] = r[i];
+        }
+        self.ldlt.solve_in_place(rhs.as_mut());
+        let mut g = vec![0.0; r.len()];
+        for (k, &i) in self.free_co_potentials.iter().enumerate() {
+            g[i] = rhs[(n1 + k, 0)];
+        }
+        g
+    }
+
+    /// Solves `A g = b` on the free co-potential nodes (`b` must sum to zero over each component
+    /// with constants in the kernel); the result has zero `N`-weighted mean on every such
+    /// component and is zero on the nodes that are not free.
+    pub fn solve(&self, b: &[f64]) -> Vec<f64> {
+        let b: Vec<f64> = (0..b.len())
+            .map(|i| if self.is_free(i) { b[i] } else { 0.0 })
+            .collect();
+        let norm = b.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let mut g = vec![0.0; b.len()];
+        if norm > 0.0 {
+            for _ in 0..MAX_STEPS {
+                let ag = self.apply(&g);
+                let r: Vec<f64> = b.iter().zip(&ag).map(|(x, y)| x - y).collect();
+                let r_norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if r_norm <= TARGET * norm {
+                    break;
+                }
+                let step = self.regularised_solve(&r);
+                g.iter_mut().zip(&step).for_each(|(x, s)| *x += s);
+            }
+        }
+        self.remove_means(&mut g);
+        g
+    }
+
+    fn is_free(&self, i: usize) -> bool {
+        self.co_potential_mass.is_free(i)
+    }
+
+    /// Shifts `g` to zero `N`-weighted mean on every component with constants in the kernel.
+    fn remove_means(&self, g: &mut [f64]) {
+        if self.component_count == 0 {
+            return;
+        }
+        let ng = self.co_potential_mass.apply(g);
+        let indicator: Vec<f64> = self
+            .shifted
+            .iter()
+            .map(|&c| if c != NO_COMPONENT { 1.0 } else { 0.0 })
+            .collect();
+        let n_one = self.co_potential_mass.apply(&indicator);
+        let mut sums = vec![0.0; self.component_count];
+        let mut weights = vec![0.0; self.component_count];
+        for (i, &c) in self.shifted.iter().enumerate() {
+            if c != NO_COMPONENT {
+                sums[c] += ng[i];
+                weights[c] += n_one[i];
+            }
+        }
+        for (x, &c) in g.iter_mut().zip(&self.shifted) {
+            if c != NO_COMPONENT && weights[c] > 0.0 {
+                *x -= sums[c] / weights[c];
+            }
+        }
+    }
+}
+
+/// `N` as a sparse matrix (the co-potential mass is stored directly when it is not diagonal).
+fn co_potential_mass_matrix(n: &Mass) -> Result<CsMat<f64>, DecompositionError> {
+    n.sparse_matrix().ok_or_else(|| {
+        DiscretizationError::Inconsistent(
+            "the co-potential mass M2⁻¹ is dense: the mixed Poisson solve needs it sparse".into(),
+        )
+        .into()
+    })
+}
+
+/// An estimate of the mean eigenvalue of `(d1 M1⁻¹ d1ᵀ, N)`: `Σ_rc d1_rc² / M1_cc` over `1ᵀ N 1`
+/// (the diagonal of `M1` stands in for `M1`, which is spectrally equivalent on meshes without
+/// degenerate faces). Only the scale of the regularisation depends on it.
+fn mean_eigenvalue(m1: &CsMat<f64>, d1: &CsMat<f64>, n: &Mass) -> f64 {
+    let mut diagonal = vec![0.0; m1.rows()];
+    for (&value, (i, j)) in m1.iter() {
+        if i == j {
+            diagonal[i] += value;
+        }
+    }
+    let trace: f64 = d1
+        .iter()
+        .filter(|(_, (_, c))| diagonal[*c] > 0.0)
+        .map(|(&v, (_, c))| v * v / diagonal[c])
+        .sum();
+    let total = n.total();
+    if trace > 0.0 && total > 0.0 {
+        trace / total
+    } else {
+        1.0
+    }
+}
