@@ -162,3 +162,42 @@ pub fn crouzeix_raviart(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Stiffne
         mass,
     }
 }
+
+/// A `nx × ny` grid of unit squares in the plane, each cut into two triangles along a diagonal
+/// whose direction alternates, with vertices displaced by a deterministic jitter of up to
+/// `jitter` (so that the spectrum has no symmetric multiplicities): positions and triangles
+/// (counter-clockwise).
+pub fn grid(nx: usize, ny: usize, jitter: f64) -> Triangles {
+    let id = |i: usize, j: usize| i + (nx + 1) * j;
+    let wobble = |k: usize, salt: usize| {
+        let h = (k.wrapping_mul(2_654_435_761).wrapping_add(salt * 40_503)) % 10_007;
+        jitter * (h as f64 / 10_007.0 - 0.5)
+    };
+    let mut positions = Vec::with_capacity((nx + 1) * (ny + 1));
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let k = id(i, j);
+            let inner = i > 0 && i < nx && j > 0 && j < ny;
+            let (dx, dy) = if inner {
+                (wobble(k, 1), wobble(k, 2))
+            } else {
+                (0.0, 0.0)
+            };
+            positions.push([i as f64 + dx, j as f64 + dy, 0.0]);
+        }
+    }
+    let mut faces = Vec::with_capacity(2 * nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if (i + j) % 2 == 0 {
+                faces.push([a, b, c]);
+                faces.push([a, c, d]);
+            } else {
+                faces.push([a, b, d]);
+                faces.push([b, c, d]);
+            }
+        }
+    }
+    (positions, faces)
+}
