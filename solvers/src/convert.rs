@@ -220,13 +220,25 @@ impl ShiftedPattern {
 
     /// `A − shift · B` on the union pattern (upper triangle, CSC).
     pub fn at(&self, shift: f64) -> SparseColMat<usize, f64> {
+        self.with_values(
+            self.base
+                .iter()
+                .zip(&self.shift_values)
+                .map(|(a, b)| a - shift * b)
+                .collect(),
+        )
+    }
+
+    /// `A` and `B` on the union pattern (upper triangles, CSC).
+    pub fn parts(&self) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
+        (
+            self.with_values(self.base.clone()),
+            self.with_values(self.shift_values.clone()),
+        )
+    }
+
+    fn with_values(&self, values: Vec<f64>) -> SparseColMat<usize, f64> {
         let n = self.col_ptr.len() - 1;
-        let values = self
-            .base
-            .iter()
-            .zip(&self.shift_values)
-            .map(|(a, b)| a - shift * b)
-            .collect();
         let symbolic = SymbolicSparseColMat::new_checked(
             n,
             n,

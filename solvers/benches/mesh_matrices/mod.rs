@@ -268,11 +268,9 @@ pub fn whitney(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Whitney {
             lambda(p, r) * grad(q, s) - lambda(p, s) * grad(q, r) - lambda(q, r) * grad(p, s)
                 + lambda(q, s) * grad(p, r)
         };
-        for c in 0..3 {
-            let (ec, sc) = e[c];
+        for (c, &(ec, sc)) in e.iter().enumerate() {
             d1.add_triplet(face, ec, sc);
-            for d in 0..3 {
-                let (ed, sd) = e[d];
+            for (d, &(ed, sd)) in e.iter().enumerate() {
                 let value = inner((c, (c + 1) % 3), (d, (d + 1) % 3));
                 mass.add_triplet(ec, ed, sc * sd * value);
             }
@@ -293,7 +291,7 @@ pub fn whitney(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Whitney {
 /// corner, and no triangle has all its vertices on the seam (such a triangle would be glued to
 /// its mirror image along all three edges, a closed surface of its own).
 pub fn pillow(nx: usize, ny: usize, jitter: f64, height: f64) -> Triangles {
-    assert!(nx % 2 == 0 && ny % 2 == 0, "pillow: nx and ny must be even");
+    assert!(nx & 1 == 0 && ny & 1 == 0, "pillow: nx and ny must be even");
     let (mut positions, top_faces) = grid(nx, ny, jitter);
     let id = |i: usize, j: usize| i + (nx + 1) * j;
     let bulge = |p: [f64; 3]| {

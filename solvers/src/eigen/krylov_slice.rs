@@ -29,7 +29,7 @@ use super::mass::Mass;
 use super::mass_orthogonal::{
     orthonormalize_block, project_out_after_known, random_orthonormal_block,
 };
-use super::shift_factor::ShiftFactor;
+use super::shift_factor::{SaddleScratch, ShiftFactor};
 use super::symmetric_products::gather_times;
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
@@ -147,6 +147,8 @@ struct OperatorScratch {
     weighted: Vec<Row>,
     /// The saddle system of a mixed pencil (empty otherwise).
     saddle: Vec<Row>,
+    /// The refined saddle solves of the inverse-iteration step (empty otherwise).
+    refined: SaddleScratch,
 }
 
 impl OperatorScratch {
@@ -236,7 +238,7 @@ fn apply_operator(
     let mut own_rows = [[0.0; WIDTH]; WIDTH];
     for first in (0..r).step_by(WIDTH) {
         let width = WIDTH.min(r - first);
-        solve_chunk(factor, mass, u.subcols(first, width), scratch);
+        solve_chunk(factor, mass, u.subcols(first, width), scratch, false);
         let own = (r <= WIDTH).then_some(&mut own_rows);
         let chunk = unpack_chunk(mass, z.rb_mut().subcols_mut(first, width), scratch, own);
         squared[first..first + width].copy_from_slice(&chunk[..width]);
@@ -259,6 +261,7 @@ fn solve_chunk(
     mass: Mass<'_>,
     u: MatRef<'_, f64>,
     scratch: &mut OperatorScratch,
+    refined: bool,
 ) {
     let columns: Vec<&[f64]> = u.col_iter().map(contiguous).collect();
     pack_columns(&columns, &mut scratch.block);
@@ -270,7 +273,11 @@ fn solve_chunk(
         }
         Mass::Sparse(m) => gather_times(m, &scratch.block, &mut scratch.solution),
     }
-    factor.solve_rows(&mut scratch.solution, &mut scratch.saddle);
+    if refined {
+        factor.solve_rows_refined(&mut scratch.solution, &mut scratch.refined);
+    } else {
+        factor.solve_rows(&mut scratch.solution, &mut scratch.saddle);
+    }
 }
 
 /// Writes the solved chunk `scratch.solution` into the columns of `z` (`n × width`) and returns
@@ -374,7 +381,7 @@ fn inverse_iteration_step(
 ) -> Result<(), SolverError> {
     for first in (0..x.ncols()).step_by(WIDTH) {
         let width = WIDTH.min(x.ncols() - first);
-        solve_chunk(factor, mass, x.rb().subcols(first, width), scratch);
+        solve_chunk(factor, mass, x.rb().subcols(first, width), scratch, true);
         let mut chunk = x.rb_mut().subcols_mut(first, width);
         let squared = unpack_chunk(mass, chunk.rb_mut(), scratch, None);
         for (j, column) in chunk.col_iter_mut().enumerate() {
@@ -652,7 +659,7 @@ pub(crate) fn run_slice(
             let mut vectors =
                 MatMut::from_column_major_slice_mut(&mut locked.values[..n * columns], n, columns);
             inverse_iteration_step(problem.factor, mass, vectors.rb_mut(), scratch)?;
-            solves += columns;
+            solves += columns * problem.factor.refined_solve_cost();
             put_in_input_order(vectors, order);
             return Ok(SliceOutcome { columns, solves });
         }
@@ -754,7 +761,7 @@ mod tests {
         let ldlt = SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::NestedDissection)
             .expect("factors");
         let frame = KrylovFrame::standard(&ldlt, None).expect("a frame");
-        let factor = ShiftFactor::new(ldlt, std::sync::Arc::new(frame));
+        let factor = ShiftFactor::new(ldlt, 0.9, std::sync::Arc::new(frame));
         let order = factor.krylov_order().expect("an ordering").to_vec();
         let permuted_values: Vec<f64> = order.iter().map(|&row| mass[row]).collect();
         let permuted_mass = Mass::Diagonal(&permuted_values);

@@ -89,7 +89,9 @@ impl SparseMass {
     }
 }
 
-/// The mass of a pencil as stored.
+/// The mass of a pencil as stored (one per pencil, never moved after construction: the size
+/// of the variants does not matter).
+#[allow(clippy::large_enum_variant)]
 enum StoredMass<'a> {
     Diagonal(&'a [f64]),
     Sparse(SparseMass),
@@ -148,7 +150,8 @@ impl StoredMass<'_> {
     }
 }
 
-/// What each kind of pencil stores (see the module documentation).
+/// What each kind of pencil stores (see the module documentation; one per pencil).
+#[allow(clippy::large_enum_variant)]
 enum Kind<'a> {
     Diagonal {
         stiffness: &'a sprs::CsMat<f64>,
@@ -523,12 +526,24 @@ impl<'a> Pencil<'a> {
         match &self.kind {
             Kind::Diagonal { .. } => KrylovFrame::standard(ldlt, None),
             Kind::SparseMass { mass, .. } => KrylovFrame::standard(ldlt, Some(mass.full.as_ref())),
-            Kind::Mixed { operator, mass, .. } => {
+            Kind::Mixed {
+                operator,
+                mass,
+                shifted,
+                ..
+            } => {
                 let sparse = match mass.view() {
                     Mass::Sparse(m) => Some(m),
                     Mass::Diagonal(_) => None,
                 };
-                KrylovFrame::saddle(ldlt, operator.inner_dimension(), sparse)
+                let (base, shift_part) = shifted.parts();
+                let (base, shift_part) = (symmetric_full(&base)?, symmetric_full(&shift_part)?);
+                KrylovFrame::saddle(
+                    ldlt,
+                    operator.inner_dimension(),
+                    sparse,
+                    (base.as_ref(), shift_part.as_ref()),
+                )
             }
         }
     }
@@ -555,13 +570,13 @@ impl<'a> Pencil<'a> {
                         drop(template);
                         pattern
                             .factor(upper.as_ref(), parallelism)
-                            .map(|ldlt| ShiftFactor::new(ldlt, frame))
+                            .map(|ldlt| ShiftFactor::new(ldlt, shift, frame))
                     }
                     None => SparseLdlt::new(upper.as_ref()).and_then(|mut ldlt| {
                         ldlt.set_parallelism(parallelism);
                         let frame = Arc::new(self.frame(&ldlt)?);
                         *template = Some((Arc::new(ldlt.pattern()), Arc::clone(&frame)));
-                        Ok(ShiftFactor::new(ldlt, frame))
+                        Ok(ShiftFactor::new(ldlt, shift, frame))
                     }),
                 }
             };

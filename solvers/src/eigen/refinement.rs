@@ -434,6 +434,8 @@ pub(crate) fn refine_interval(
             }
         }
     }
+    // A mixed pencil's solves are refined once (two solves each).
+    outcome.solves *= factor.refined_solve_cost();
     (outcome.wall_seconds, outcome.cpu_seconds) = clock.elapsed();
     Ok(outcome)
 }

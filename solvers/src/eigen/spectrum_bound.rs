@@ -18,13 +18,16 @@ pub(crate) const LANCZOS_STEPS: usize = 40;
 /// Factor applied to `θ + ρ`.
 pub(crate) const SAFETY_FACTOR: f64 = 1.05;
 
+/// A map of vectors of the pencil (`A x`, `M x` or `M⁻¹ x`).
+pub(crate) type VectorMap<'a> = &'a dyn Fn(&[f64]) -> Vec<f64>;
+
 /// `(θ + ρ) · SAFETY_FACTOR` for the largest eigenvalue of `A x = λ M x` (`n` unknowns), with
 /// `apply_a(x) = A x`, and `metric = Some((M x, M⁻¹ x))` or `None` for `M = I` (see the module
 /// documentation). Returns 0 for `n = 0`.
 pub(crate) fn lanczos_upper_bound(
     n: usize,
-    apply_a: &dyn Fn(&[f64]) -> Vec<f64>,
-    metric: Option<(&dyn Fn(&[f64]) -> Vec<f64>, &dyn Fn(&[f64]) -> Vec<f64>)>,
+    apply_a: VectorMap<'_>,
+    metric: Option<(VectorMap<'_>, VectorMap<'_>)>,
 ) -> f64 {
     if n == 0 {
         return 0.0;
