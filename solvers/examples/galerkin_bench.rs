@@ -84,6 +84,7 @@ fn main() {
     }
 
     let start = Instant::now();
+    let cpu = process_cpu_seconds();
     let exact =
         Pencil::with_mass(&cotan.stiffness, MassMatrix::Sparse(&consistent)).expect("valid pencil");
     let exact_setup = start.elapsed().as_secs_f64();
