@@ -3,6 +3,7 @@
 //! (from `../shared/meshes`; skipped with a message when absent).
 //! `TVF_BENCH_K` overrides the number of eigenpairs (default 500).
 
+#[allow(dead_code)]
 mod mesh_matrices;
 
 use criterion::{criterion_group, criterion_main, Criterion, SamplingMode};

@@ -5,6 +5,7 @@
 //! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes.
 
 #[path = "../benches/mesh_matrices/mod.rs"]
+#[allow(dead_code)]
 mod mesh_matrices;
 
 use std::path::PathBuf;

@@ -145,3 +145,126 @@ pub fn shifted_upper_triangle(
     let symbolic = SymbolicSparseColMat::new_checked(n, n, new_ptr, None, new_rows);
     Ok(SparseColMat::new(symbolic, new_vals))
 }
+
+/// The upper triangle of `A − σB` for any shift σ, on the union of the patterns of `A` and `B`
+/// and the diagonal (so the pattern, and the fill-reducing analysis of a factorization, does
+/// not depend on σ; entries present in only one of them are explicit zeros in the other).
+#[derive(Debug, Clone)]
+pub struct ShiftedPattern {
+    /// Column pointers of the union pattern (upper triangle, CSC).
+    col_ptr: Vec<usize>,
+    /// Row indices of the union pattern, sorted within each column.
+    row_idx: Vec<usize>,
+    /// `A` on the union pattern.
+    base: Vec<f64>,
+    /// `B` on the same pattern.
+    shift_values: Vec<f64>,
+}
+
+impl ShiftedPattern {
+    /// The union pattern of the upper triangles `a` and `b` (both `n × n`, CSC, sorted rows,
+    /// row ≤ column) and the diagonal, with the values of both.
+    ///
+    /// Errors: [`SolverError::DimensionMismatch`] if the sizes differ.
+    pub fn new(
+        a: &SparseColMat<usize, f64>,
+        b: &SparseColMat<usize, f64>,
+    ) -> Result<Self, SolverError> {
+        let n = a.ncols();
+        if b.ncols() != n || a.nrows() != n || b.nrows() != n {
+            return Err(SolverError::DimensionMismatch {
+                context: "shifted pattern",
+                expected: n,
+                actual: b.ncols(),
+            });
+        }
+        let column = |m: &SparseColMat<usize, f64>, j: usize| {
+            let range = m.symbolic().col_ptr()[j]..m.symbolic().col_ptr()[j + 1];
+            m.symbolic().row_idx()[range.clone()]
+                .iter()
+                .copied()
+                .zip(m.val()[range].iter().copied())
+                .collect::<Vec<_>>()
+        };
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::with_capacity(a.val().len() + b.val().len() + n);
+        let (mut base, mut shift_values) = (Vec::new(), Vec::new());
+        col_ptr.push(0);
+        for j in 0..n {
+            let mut entries: Vec<(usize, f64, f64)> = column(a, j)
+                .into_iter()
+                .map(|(i, v)| (i, v, 0.0))
+                .chain(column(b, j).into_iter().map(|(i, v)| (i, 0.0, v)))
+                .chain(std::iter::once((j, 0.0, 0.0)))
+                .collect();
+            entries.sort_by_key(|e| e.0);
+            for (i, va, vb) in entries {
+                let repeated = row_idx.len() > col_ptr[j] && row_idx.last() == Some(&i);
+                if let (true, Some(a), Some(b)) =
+                    (repeated, base.last_mut(), shift_values.last_mut())
+                {
+                    *a += va;
+                    *b += vb;
+                } else {
+                    row_idx.push(i);
+                    base.push(va);
+                    shift_values.push(vb);
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        Ok(Self {
+            col_ptr,
+            row_idx,
+            base,
+            shift_values,
+        })
+    }
+
+    /// `A − shift · B` on the union pattern (upper triangle, CSC).
+    pub fn at(&self, shift: f64) -> SparseColMat<usize, f64> {
+        self.with_values(
+            self.base
+                .iter()
+                .zip(&self.shift_values)
+                .map(|(a, b)| a - shift * b)
+                .collect(),
+        )
+    }
+
+    /// `A` and `B` on the union pattern (upper triangles, CSC).
+    pub fn parts(&self) -> (SparseColMat<usize, f64>, SparseColMat<usize, f64>) {
+        (
+            self.with_values(self.base.clone()),
+            self.with_values(self.shift_values.clone()),
+        )
+    }
+
+    fn with_values(&self, values: Vec<f64>) -> SparseColMat<usize, f64> {
+        let n = self.col_ptr.len() - 1;
+        let symbolic = SymbolicSparseColMat::new_checked(
+            n,
+            n,
+            self.col_ptr.clone(),
+            None,
+            self.row_idx.clone(),
+        );
+        SparseColMat::new(symbolic, values)
+    }
+}
+
+/// `A − shift · M` restricted to the upper triangle for a sparse symmetric `mass` (full or
+/// upper storage; its strict lower triangle is ignored), on the union of both patterns and
+/// the diagonal (see [`ShiftedPattern`]): the generalisation of [`shifted_upper_triangle`] to
+/// consistent masses.
+///
+/// Errors: [`SolverError::NotSquare`], [`SolverError::NonFinite`],
+/// [`SolverError::DimensionMismatch`].
+pub fn shifted_upper_triangle_with_mass(
+    matrix: &sprs::CsMat<f64>,
+    mass: &sprs::CsMat<f64>,
+    shift: f64,
+) -> Result<SparseColMat<usize, f64>, SolverError> {
+    let pattern = ShiftedPattern::new(&upper_triangle_csc(matrix)?, &upper_triangle_csc(mass)?)?;
+    Ok(pattern.at(shift))
+}

@@ -48,6 +48,19 @@ pub enum SolverError {
         /// Value of that pivot (0 if the elimination stopped on an exact zero).
         value: f64,
     },
+    /// A matrix of the input that must be symmetric positive definite is not (numerically):
+    /// a sparse mass matrix, or the `W` of a mixed pencil.
+    #[error(
+        "{matrix} is not positive definite (non-positive pivot {value:e} at row/column {pivot})"
+    )]
+    MatrixNotPositiveDefinite {
+        /// Which matrix: `"mass matrix"`, `"W"`, …
+        matrix: &'static str,
+        /// Row/column (original numbering) where the elimination met a non-positive pivot.
+        pivot: usize,
+        /// Value of that pivot (0 if the elimination stopped on an exact zero).
+        value: f64,
+    },
     /// An indefinite `LDLᵀ` factorization met an exactly zero pivot (the matrix is singular
     /// or the shift coincides with an eigenvalue).
     #[error("singular matrix: zero pivot at row/column {pivot}")]

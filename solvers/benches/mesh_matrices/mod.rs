@@ -162,3 +162,164 @@ pub fn crouzeix_raviart(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Stiffne
         mass,
     }
 }
+
+/// A `nx × ny` grid of unit squares in the plane, each cut into two triangles along a diagonal
+/// whose direction alternates, with vertices displaced by a deterministic jitter of up to
+/// `jitter` (so that the spectrum has no symmetric multiplicities): positions and triangles
+/// (counter-clockwise).
+pub fn grid(nx: usize, ny: usize, jitter: f64) -> Triangles {
+    let id = |i: usize, j: usize| i + (nx + 1) * j;
+    let wobble = |k: usize, salt: usize| {
+        let h = (k.wrapping_mul(2_654_435_761).wrapping_add(salt * 40_503)) % 10_007;
+        jitter * (h as f64 / 10_007.0 - 0.5)
+    };
+    let mut positions = Vec::with_capacity((nx + 1) * (ny + 1));
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let k = id(i, j);
+            let inner = i > 0 && i < nx && j > 0 && j < ny;
+            let (dx, dy) = if inner {
+                (wobble(k, 1), wobble(k, 2))
+            } else {
+                (0.0, 0.0)
+            };
+            positions.push([i as f64 + dx, j as f64 + dy, 0.0]);
+        }
+    }
+    let mut faces = Vec::with_capacity(2 * nx * ny);
+    for j in 0..ny {
+        for i in 0..nx {
+            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            if (i + j) % 2 == 0 {
+                faces.push([a, b, c]);
+                faces.push([a, c, d]);
+            } else {
+                faces.push([a, b, d]);
+                faces.push([b, c, d]);
+            }
+        }
+    }
+    (positions, faces)
+}
+
+/// The consistent P1 mass `M_ij = Σ_T (|T|/12)(1 + δ_ij)` over the triangles `T` holding
+/// vertices `i` and `j` (V × V, SPD, full storage).
+pub fn consistent_mass(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> sprs::CsMat<f64> {
+    let n = positions.len();
+    let mut t = sprs::TriMat::new((n, n));
+    for f in faces {
+        let (area, _) = face_geometry([positions[f[0]], positions[f[1]], positions[f[2]]]);
+        for a in 0..3 {
+            for b in 0..3 {
+                let factor = if a == b { 2.0 } else { 1.0 };
+                t.add_triplet(f[a], f[b], factor * area / 12.0);
+            }
+        }
+    }
+    t.to_csc()
+}
+
+/// The Whitney discretization of 1-forms on the edges of a triangle mesh.
+pub struct Whitney {
+    /// Edges `(low, high)` (vertex indices, oriented low → high).
+    pub edges: Vec<[usize; 2]>,
+    /// `M1[e, f] = Σ_T ∫_T ⟨W_e, W_f⟩` with `W_(p,q) = λ_p ∇λ_q − λ_q ∇λ_p` (E × E, SPD).
+    pub mass: sprs::CsMat<f64>,
+    /// The signed face–edge incidence `d1` (F × E): `+1` where the face's counter-clockwise
+    /// boundary runs along the edge's orientation, `−1` against it.
+    pub d1: sprs::CsMat<f64>,
+    /// Face areas (the diagonal face mass `N`).
+    pub face_areas: Vec<f64>,
+}
+
+/// The Whitney 1-form mass, the face–edge incidence and the face areas of a triangle mesh
+/// (`∫_T λ_a λ_b = |T|(1 + δ_ab)/12`, `⟨∇λ_a, ∇λ_b⟩ = (e_a · e_b)/(4|T|²)` with `e_a` the
+/// edge vector opposite corner `a`, taken cyclically).
+pub fn whitney(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Whitney {
+    let mut edge_index: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut edges = Vec::new();
+    let mut face_edges = Vec::with_capacity(faces.len());
+    for f in faces {
+        // Edge c runs from corner c to corner c + 1.
+        let e: [(usize, f64); 3] = std::array::from_fn(|c| {
+            let (a, b) = (f[c], f[(c + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            let index = *edge_index.entry(key).or_insert_with(|| {
+                edges.push([key.0, key.1]);
+                edges.len() - 1
+            });
+            (index, if a < b { 1.0 } else { -1.0 })
+        });
+        face_edges.push(e);
+    }
+    let (ne, nf) = (edges.len(), faces.len());
+    let mut mass = sprs::TriMat::new((ne, ne));
+    let mut d1 = sprs::TriMat::new((nf, ne));
+    let mut face_areas = Vec::with_capacity(nf);
+    for (face, (f, e)) in faces.iter().zip(&face_edges).enumerate() {
+        let p = [positions[f[0]], positions[f[1]], positions[f[2]]];
+        let (area, _) = face_geometry(p);
+        face_areas.push(area);
+        let opposite: [[f64; 3]; 3] = std::array::from_fn(|a| sub(p[(a + 2) % 3], p[(a + 1) % 3]));
+        let grad = |a: usize, b: usize| dot(opposite[a], opposite[b]) / (4.0 * area * area);
+        let lambda = |a: usize, b: usize| area * if a == b { 2.0 } else { 1.0 } / 12.0;
+        // ∫ ⟨λ_p ∇λ_q − λ_q ∇λ_p, λ_r ∇λ_s − λ_s ∇λ_r⟩ for local edges (p, q), (r, s).
+        let inner = |(p, q): (usize, usize), (r, s): (usize, usize)| {
+            lambda(p, r) * grad(q, s) - lambda(p, s) * grad(q, r) - lambda(q, r) * grad(p, s)
+                + lambda(q, s) * grad(p, r)
+        };
+        for (c, &(ec, sc)) in e.iter().enumerate() {
+            d1.add_triplet(face, ec, sc);
+            for (d, &(ed, sd)) in e.iter().enumerate() {
+                let value = inner((c, (c + 1) % 3), (d, (d + 1) % 3));
+                mass.add_triplet(ec, ed, sc * sd * value);
+            }
+        }
+    }
+    Whitney {
+        edges,
+        mass: mass.to_csc(),
+        d1: d1.to_csr(),
+        face_areas,
+    }
+}
+
+/// A closed "pillow": two copies of the jittered `nx × ny` grid glued along their boundary,
+/// the top one bulging to `+height`, the bottom one (faces reversed) to `−height`: a closed
+/// orientable surface (one constant in the kernels of the vertex Laplacian and of `d1ᵀ`).
+/// `nx` and `ny` must be even: then the diagonal of each corner square runs through the
+/// corner, and no triangle has all its vertices on the seam (such a triangle would be glued to
+/// its mirror image along all three edges, a closed surface of its own).
+pub fn pillow(nx: usize, ny: usize, jitter: f64, height: f64) -> Triangles {
+    assert!(nx & 1 == 0 && ny & 1 == 0, "pillow: nx and ny must be even");
+    let (mut positions, top_faces) = grid(nx, ny, jitter);
+    let id = |i: usize, j: usize| i + (nx + 1) * j;
+    let bulge = |p: [f64; 3]| {
+        let (u, v) = (p[0] / nx as f64, p[1] / ny as f64);
+        height * (std::f64::consts::PI * u).sin() * (std::f64::consts::PI * v).sin()
+    };
+    let top = positions.len();
+    let mut bottom = vec![usize::MAX; top];
+    for j in 0..=ny {
+        for i in 0..=nx {
+            let k = id(i, j);
+            if i == 0 || i == nx || j == 0 || j == ny {
+                bottom[k] = k;
+            } else {
+                let p = positions[k];
+                bottom[k] = positions.len();
+                positions.push([p[0], p[1], -bulge(p)]);
+            }
+        }
+    }
+    for p in positions.iter_mut().take(top) {
+        p[2] = bulge(*p);
+    }
+    let mut faces = top_faces.clone();
+    faces.extend(
+        top_faces
+            .iter()
+            .map(|f| [bottom[f[0]], bottom[f[2]], bottom[f[1]]]),
+    );
+    (positions, faces)
+}

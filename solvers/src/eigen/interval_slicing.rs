@@ -3,7 +3,8 @@
 //! are solved concurrently.
 //!
 //! 1. *Counting.* The top shift `σ_top` with `ν(σ_top) ≥ k` (`ν(σ)`: negative pivots of an
-//!    `LDLᵀ` of `A − σM`, the exact number of eigenvalues below σ) is given by the caller (who
+//!    `LDLᵀ` of `A − σM`, or of the saddle matrix of a mixed pencil less its `n1` negatives of
+//!    `−W`, the exact number of eigenvalues below σ; see [`Pencil`]) is given by the caller (who
 //!    counted it already, e.g. to split a basis between two pencils) or found from Weyl's law for
 //!    surfaces (`ν` grows linearly in σ) anchored at the mean eigenvalue `trace(A)/trace(M)`.
 //!    `m = ⌈ν(σ_top)/interval_size⌉` intervals `(b_i, b_{i+1})`, `b_0 = −∞`, `b_m = σ_top`,
@@ -47,17 +48,17 @@
 //! vectors into the result, were about a tenth of the processor time.
 
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
+use super::mass::Mass;
 use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
+use super::shift_factor::ShiftFactor;
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::mass_inner;
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
 use super::workspace_pool::WorkspacePool;
-use crate::dense_eigen::dense_generalized_eigen;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_on_huge_pages;
-use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, Par};
@@ -140,9 +141,7 @@ pub fn lowest_eigenpairs_of(
         if k == 0 {
             pairs[r] = Some((Vec::new(), Mat::zeros(n, 0)));
         } else if n <= options.dense_threshold || 3 * k >= n {
-            let (values, vectors) =
-                dense_generalized_eigen(pencil.full.to_dense().as_ref(), pencil.mass)
-                    .map_err(fail(r))?;
+            let (values, vectors) = pencil.dense_eigenpairs().map_err(fail(r))?;
             pairs[r] = Some((
                 values[..k].to_vec(),
                 vectors.as_ref().subcols(0, k).to_owned(),
@@ -357,7 +356,7 @@ pub fn lowest_eigenpairs_of(
         // the reserved `n × k` (checked in `solve_job`); the parts cover columns `0..k`.
         unsafe { vectors.set_dims(n, k) };
         parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
-        orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass, par);
+        orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass(), par);
         let mut values: Vec<f64> = parts
             .iter()
             .flat_map(|part| part.values.iter().copied())
@@ -386,14 +385,7 @@ pub fn lowest_eigenpairs_of(
         statistics.refinement.factorizations += pencil.statistics().refinement.factorizations;
         statistics.refinement.solves += pencil.statistics().refinement.solves;
         let floor = 1e-8 * pencil.mean_eigenvalue.abs();
-        let field = field_residuals(
-            pencil.full.as_ref(),
-            pencil.mass,
-            &values,
-            vectors.as_ref(),
-            floor,
-            par,
-        );
+        let field = field_residuals(&pencil.operators(), &values, vectors.as_ref(), floor, par);
         results.push(Eigenpairs::new(
             pencil,
             values,
@@ -592,8 +584,7 @@ fn solve_interval(
                     .map(|(f, _)| f)
             };
             let refinement = refine_interval(
-                pencil.full.as_ref(),
-                pencil.mass,
+                &pencil.operators(),
                 &factor,
                 &factor_at,
                 &mut values,
@@ -667,7 +658,7 @@ fn solve_at_shift(
     interval: &Interval,
     options: &IntervalSettings,
     memory: &mut SliceMemory,
-    factor: &SparseLdlt,
+    factor: &ShiftFactor,
     at: ShiftCount,
     report: &dyn Fn(usize, usize),
 ) -> Result<(Vec<f64>, (usize, usize)), SolverError> {
@@ -679,7 +670,7 @@ fn solve_at_shift(
     let block = options.block_size.clamp(1, n / 8 + 1);
     let problem = SliceProblem {
         factor,
-        mass: pencil.mass,
+        mass: pencil.mass(),
         sigma: at.shift,
         lower_bound: lower,
         lower_needed: at.below - nu_lower,
@@ -708,9 +699,10 @@ fn solve_at_shift(
     };
     pencil.add_solves(Phase::Solving, solves);
     let outcome = outcome?;
+    let operators = pencil.operators();
     let values = rayleigh_ritz(
-        pencil.full.as_ref(),
-        pencil.mass,
+        operators.stiffness,
+        operators.mass,
         memory.vectors(n, outcome.columns),
         options.parallelism,
     )?;
@@ -812,7 +804,7 @@ fn run_jobs<T: Send>(
 fn orthogonalize_neighbours(
     parts: &[SolvedInterval],
     mut vectors: MatMut<'_, f64>,
-    mass: &[f64],
+    mass: Mass<'_>,
     par: Par,
 ) {
     let k = vectors.ncols();

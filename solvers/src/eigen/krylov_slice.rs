@@ -1,6 +1,7 @@
 //! One spectrum slice: block Krylov–Schur (thick-restart block Lanczos with full
 //! reorthogonalisation) on the shift-inverted operator `OP = (A − σM)⁻¹ M`, which is
-//! self-adjoint in the M inner product. Eigenvalues λ of `(A, M)` near σ become the
+//! self-adjoint in the M inner product (`M` diagonal or sparse SPD; for a mixed pencil the
+//! solve goes through the saddle matrix, see `shift_factor.rs`). Eigenvalues λ of `(A, M)` near σ become the
 //! largest-magnitude eigenvalues `θ = 1/(λ − σ)` of `OP`.
 //!
 //! State (all M-orthonormal, mutually M-orthogonal):
@@ -24,15 +25,17 @@
 //! the Ritz pairs of `H` already complete the slice, and stops there instead of filling the
 //! basis: 6–10 % fewer solves on hand, kitten and bunny-closed (k = 500 per pencil).
 
+use super::mass::Mass;
 use super::mass_orthogonal::{
     orthonormalize_block, project_out_after_known, random_orthonormal_block,
 };
+use super::shift_factor::{SaddleScratch, ShiftFactor};
+use super::symmetric_products::gather_times;
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_values_on_huge_pages;
 use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns, Row, WIDTH};
-use crate::sparse_ldlt::SparseLdlt;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{IntoConst, Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -40,10 +43,10 @@ use rand_chacha::ChaCha8Rng;
 
 /// What one slice must find.
 pub(crate) struct SliceProblem<'a> {
-    /// `LDLᵀ` factorization of `A − σM`.
-    pub factor: &'a SparseLdlt,
-    /// Diagonal of `M`.
-    pub mass: &'a [f64],
+    /// The factorization at σ (of `A − σM`, or of the saddle matrix of a mixed pencil).
+    pub factor: &'a ShiftFactor,
+    /// `M`, rows in the pencil's input order.
+    pub mass: Mass<'a>,
     /// The shift σ.
     pub sigma: f64,
     /// The interval's lower end: eigenvalues `≤ lower_bound` belong to another interval and
@@ -140,6 +143,12 @@ struct OperatorScratch {
     block: Vec<Row>,
     /// `M U`, overwritten by the solve with `OP U`.
     solution: Vec<Row>,
+    /// `M OP U` for a sparse `M` (empty otherwise).
+    weighted: Vec<Row>,
+    /// The saddle system of a mixed pencil (empty otherwise).
+    saddle: Vec<Row>,
+    /// The refined saddle solves of the inverse-iteration step (empty otherwise).
+    refined: SaddleScratch,
 }
 
 impl OperatorScratch {
@@ -217,8 +226,8 @@ struct Applied {
 /// columns at a time ([`solve_chunk`], [`unpack_chunk`]), with the M-norms of `Z` and
 /// `Uᵀ M Z` (for `r ≤ WIDTH` from the unpacking pass; a wider block takes one product).
 fn apply_operator(
-    factor: &SparseLdlt,
-    mass: &[f64],
+    factor: &ShiftFactor,
+    mass: Mass<'_>,
     u: MatRef<'_, f64>,
     mut z: MatMut<'_, f64>,
     scratch: &mut OperatorScratch,
@@ -229,7 +238,7 @@ fn apply_operator(
     let mut own_rows = [[0.0; WIDTH]; WIDTH];
     for first in (0..r).step_by(WIDTH) {
         let width = WIDTH.min(r - first);
-        solve_chunk(factor, mass, u.subcols(first, width), scratch);
+        solve_chunk(factor, mass, u.subcols(first, width), scratch, false);
         let own = (r <= WIDTH).then_some(&mut own_rows);
         let chunk = unpack_chunk(mass, z.rb_mut().subcols_mut(first, width), scratch, own);
         squared[first..first + width].copy_from_slice(&chunk[..width]);
@@ -248,22 +257,51 @@ fn apply_operator(
 /// Packs the columns of `u` (`n × width`, `width ≤ WIDTH`) into `scratch.block` and `M U` into
 /// `scratch.solution` in one pass, then overwrites the latter with `(A − σM)⁻¹ M U`.
 fn solve_chunk(
-    factor: &SparseLdlt,
-    mass: &[f64],
+    factor: &ShiftFactor,
+    mass: Mass<'_>,
     u: MatRef<'_, f64>,
     scratch: &mut OperatorScratch,
+    refined: bool,
 ) {
     let columns: Vec<&[f64]> = u.col_iter().map(contiguous).collect();
     pack_columns(&columns, &mut scratch.block);
-    for ((scaled, row), m) in scratch.solution.iter_mut().zip(&scratch.block).zip(mass) {
-        *scaled = std::array::from_fn(|j| m * row[j]);
+    match mass {
+        Mass::Diagonal(mass) => {
+            for ((scaled, row), m) in scratch.solution.iter_mut().zip(&scratch.block).zip(mass) {
+                *scaled = std::array::from_fn(|j| m * row[j]);
+            }
+        }
+        Mass::Sparse(m) => gather_times(m, &scratch.block, &mut scratch.solution),
     }
-    factor.solve_rows_in_elimination_order(&mut scratch.solution);
+    if refined {
+        factor.solve_rows_refined(&mut scratch.solution, &mut scratch.refined);
+    } else {
+        factor.solve_rows(&mut scratch.solution, &mut scratch.saddle);
+    }
 }
 
 /// Writes the solved chunk `scratch.solution` into the columns of `z` (`n × width`) and returns
 /// their squared M-norms; with `own`, also adds `Uᵀ M Z` of the packed `scratch.block` to it.
 fn unpack_chunk(
+    mass: Mass<'_>,
+    z: MatMut<'_, f64>,
+    scratch: &mut OperatorScratch,
+    own: Option<&mut [Row; WIDTH]>,
+) -> Row {
+    match mass {
+        Mass::Diagonal(mass) => unpack_diagonal(mass, z, scratch, own),
+        Mass::Sparse(m) => {
+            scratch
+                .weighted
+                .resize(scratch.solution.len(), [0.0; WIDTH]);
+            gather_times(m, &scratch.solution, &mut scratch.weighted);
+            unpack_weighted(z, scratch, own)
+        }
+    }
+}
+
+/// [`unpack_chunk`] for a diagonal `M` (the weighted rows formed on the way).
+fn unpack_diagonal(
     mass: &[f64],
     mut z: MatMut<'_, f64>,
     scratch: &OperatorScratch,
@@ -296,6 +334,38 @@ fn unpack_chunk(
     squared
 }
 
+/// [`unpack_chunk`] for a sparse `M`, whose rows `M OP U` are in `scratch.weighted`.
+fn unpack_weighted(
+    mut z: MatMut<'_, f64>,
+    scratch: &OperatorScratch,
+    mut own: Option<&mut [Row; WIDTH]>,
+) -> Row {
+    let mut targets = contiguous_columns_mut(z.rb_mut());
+    let mut squared = [0.0; WIDTH];
+    for (i, ((solved, row), weighted)) in scratch
+        .solution
+        .iter()
+        .zip(&scratch.block)
+        .zip(&scratch.weighted)
+        .enumerate()
+    {
+        for (j, target) in targets.iter_mut().enumerate() {
+            target[i] = solved[j];
+        }
+        for j in 0..WIDTH {
+            squared[j] += weighted[j] * solved[j];
+        }
+        if let Some(own) = own.as_deref_mut() {
+            for (a, own_row) in own.iter_mut().enumerate() {
+                for j in 0..WIDTH {
+                    own_row[j] += row[a] * weighted[j];
+                }
+            }
+        }
+    }
+    squared
+}
+
 /// One inverse-iteration step on every column of the locked vectors `x` (`n × s`, elimination
 /// order), in place: `X ← (A − σM)⁻¹ M X`, columns M-normalised. It damps the rounding noise the
 /// Krylov vectors carry at high frequencies, which the eigenfields would amplify, by
@@ -304,14 +374,14 @@ fn unpack_chunk(
 ///
 /// Errors: [`SolverError::NoConvergence`] if a column vanishes.
 fn inverse_iteration_step(
-    factor: &SparseLdlt,
-    mass: &[f64],
+    factor: &ShiftFactor,
+    mass: Mass<'_>,
     mut x: MatMut<'_, f64>,
     scratch: &mut OperatorScratch,
 ) -> Result<(), SolverError> {
     for first in (0..x.ncols()).step_by(WIDTH) {
         let width = WIDTH.min(x.ncols() - first);
-        solve_chunk(factor, mass, x.rb().subcols(first, width), scratch);
+        solve_chunk(factor, mass, x.rb().subcols(first, width), scratch, true);
         let mut chunk = x.rb_mut().subcols_mut(first, width);
         let squared = unpack_chunk(mass, chunk.rb_mut(), scratch, None);
         for (j, column) in chunk.col_iter_mut().enumerate() {
@@ -406,10 +476,11 @@ fn ritz_pairs(
 /// locked vectors ([`inverse_iteration_step`]; its solves are counted). `on_restart(locked,
 /// solves)` is called after every restart.
 ///
-/// The Krylov vectors are kept in the factorization's
-/// [elimination order](SparseLdlt::elimination_order), so the solves need no gather or scatter
-/// through the permutation (`M` is diagonal, so nothing else depends on the order); the
-/// returned vectors are in the input order.
+/// The Krylov vectors are kept in the factorization's elimination order (for a mixed pencil,
+/// the order of its `x` unknowns in it: see `shift_factor.rs`), so the solves need no gather
+/// or scatter through the permutation; a diagonal `M` is permuted once per slice, a sparse one
+/// once per pencil (`P M Pᵀ`, [`ShiftFactor::krylov_mass`]). The returned vectors are in the
+/// input order.
 pub(crate) fn run_slice(
     problem: &SliceProblem<'_>,
     settings: &SliceSettings,
@@ -417,11 +488,21 @@ pub(crate) fn run_slice(
     rng: &mut ChaCha8Rng,
     on_restart: &mut dyn FnMut(usize, usize),
 ) -> Result<SliceOutcome, SolverError> {
-    let order = problem.factor.elimination_order();
-    let permuted_mass: Option<Vec<f64>> =
-        order.map(|order| order.iter().map(|&row| problem.mass[row]).collect());
-    let mass = permuted_mass.as_deref().unwrap_or(problem.mass);
-    let n = mass.len();
+    let order = problem.factor.krylov_order();
+    let permuted_mass: Option<Vec<f64>> = match problem.mass {
+        Mass::Diagonal(mass) => order.map(|order| order.iter().map(|&row| mass[row]).collect()),
+        Mass::Sparse(_) => None,
+    };
+    let (mass, n) = match (problem.mass, problem.factor.krylov_mass()) {
+        (Mass::Diagonal(mass), _) => {
+            let mass = permuted_mass.as_deref().unwrap_or(mass);
+            (Mass::Diagonal(mass), mass.len())
+        }
+        (Mass::Sparse(m), krylov) => {
+            let m = krylov.unwrap_or(m);
+            (Mass::Sparse(m), m.nrows())
+        }
+    };
     let par = settings.parallelism;
     let block = settings.block_size.max(1);
     let sigma = problem.sigma;
@@ -578,7 +659,7 @@ pub(crate) fn run_slice(
             let mut vectors =
                 MatMut::from_column_major_slice_mut(&mut locked.values[..n * columns], n, columns);
             inverse_iteration_step(problem.factor, mass, vectors.rb_mut(), scratch)?;
-            solves += columns;
+            solves += columns * problem.factor.refined_solve_cost();
             put_in_input_order(vectors, order);
             return Ok(SliceOutcome { columns, solves });
         }
@@ -634,7 +715,9 @@ pub(crate) fn run_slice(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::eigen::shift_factor::KrylovFrame;
     use crate::ordering::FillOrdering;
+    use crate::sparse_ldlt::SparseLdlt;
     use faer::sparse::{SparseColMat, Triplet};
 
     /// `A − σM` for the weighted 5-point Laplacian `A` of a `side × side` grid and a diagonal
@@ -675,17 +758,20 @@ mod tests {
     fn operator_on_packed_rows_solves_the_shifted_system() {
         let (upper, dense, mass) = shifted_grid(23, 0.9);
         let n = mass.len();
-        let factor = SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::NestedDissection)
+        let ldlt = SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::NestedDissection)
             .expect("factors");
-        let order = factor.elimination_order().expect("an ordering").to_vec();
-        let permuted_mass: Vec<f64> = order.iter().map(|&row| mass[row]).collect();
+        let frame = KrylovFrame::standard(&ldlt, None).expect("a frame");
+        let factor = ShiftFactor::new(ldlt, 0.9, std::sync::Arc::new(frame));
+        let order = factor.krylov_order().expect("an ordering").to_vec();
+        let permuted_values: Vec<f64> = order.iter().map(|&row| mass[row]).collect();
+        let permuted_mass = Mass::Diagonal(&permuted_values);
         let mut scratch = OperatorScratch::new(n);
         for r in [5, 11] {
             let u = Mat::from_fn(n, r, |i, j| ((i * 7 + j * 13) % 23) as f64 / 11.0 - 1.0);
             let mut z = Mat::<f64>::zeros(n, r);
             let applied = apply_operator(
                 &factor,
-                &permuted_mass,
+                permuted_mass,
                 u.as_ref(),
                 z.as_mut(),
                 &mut scratch,
@@ -703,25 +789,104 @@ mod tests {
             let mu = Mat::from_fn(n, r, |i, j| mass[i] * u_input[(i, j)]);
             let residual = &dense * &z_input - &mu;
             assert!(residual.norm_max() <= 1e-10 * mu.norm_max(), "r = {r}");
-            let own = mass_inner(u.as_ref(), &permuted_mass, z.as_ref(), Par::Seq);
+            let own = mass_inner(u.as_ref(), permuted_mass, z.as_ref(), Par::Seq);
             assert!(
                 (&applied.own - &own).norm_max() <= 1e-12 * own.norm_max(),
                 "r = {r}"
             );
             for (j, norm) in applied.norms.iter().enumerate() {
                 let direct = (0..n)
-                    .map(|i| permuted_mass[i] * z[(i, j)] * z[(i, j)])
+                    .map(|i| permuted_values[i] * z[(i, j)] * z[(i, j)])
                     .sum::<f64>()
                     .sqrt();
                 assert!((norm - direct).abs() <= 1e-12 * direct, "r = {r}");
             }
             let mut x = u.clone();
-            inverse_iteration_step(&factor, &permuted_mass, x.as_mut(), &mut scratch)
+            inverse_iteration_step(&factor, permuted_mass, x.as_mut(), &mut scratch)
                 .expect("no column vanishes");
             for (j, norm) in applied.norms.iter().enumerate() {
                 for i in 0..n {
                     assert!((x[(i, j)] - z[(i, j)] / norm).abs() <= 1e-12 * z.norm_max() / norm);
                 }
+            }
+        }
+    }
+
+    /// With a sparse mass (`P M Pᵀ` of the frame, the Krylov order): `OP U` solves
+    /// `(A − σM) Z = M U`, and the M-norms and `Uᵀ M Z` of the unpacking pass are the dense ones.
+    #[test]
+    fn operator_with_a_sparse_mass_solves_the_shifted_system() {
+        let side = 19;
+        let (a_upper, a_dense, _) = shifted_grid(side, 0.0);
+        let n = side * side;
+        let sigma = 0.7;
+        let mut m_dense = Mat::from_fn(n, n, |i, j| {
+            if i == j {
+                0.5 + (i % 3) as f64 / 4.0
+            } else {
+                0.0
+            }
+        });
+        for a in 0..n {
+            for b in [a + 1, a + side] {
+                if b < n && (b != a + 1 || (a + 1) % side != 0) {
+                    m_dense[(a, b)] = 0.1;
+                    m_dense[(b, a)] = 0.1;
+                }
+            }
+        }
+        let triplets = |upper_only: bool| -> Vec<Triplet<usize, usize, f64>> {
+            (0..n)
+                .flat_map(|j| (0..n).map(move |i| (i, j)))
+                .filter(|&(i, j)| m_dense[(i, j)] != 0.0 && (!upper_only || i <= j))
+                .map(|(i, j)| Triplet::new(i, j, m_dense[(i, j)]))
+                .collect()
+        };
+        let m_upper = SparseColMat::try_new_from_triplets(n, n, &triplets(true)).expect("valid");
+        let m_full = SparseColMat::try_new_from_triplets(n, n, &triplets(false)).expect("valid");
+        let shifted = crate::convert::ShiftedPattern::new(&a_upper, &m_upper)
+            .expect("same size")
+            .at(sigma);
+        let ldlt = SparseLdlt::with_ordering(shifted.as_ref(), FillOrdering::NestedDissection)
+            .expect("factors");
+        let frame = KrylovFrame::standard(&ldlt, Some(m_full.as_ref())).expect("a frame");
+        let factor = ShiftFactor::new(ldlt, sigma, std::sync::Arc::new(frame));
+        let order = factor.krylov_order().expect("an ordering").to_vec();
+        let mass = Mass::Sparse(factor.krylov_mass().expect("a sparse mass"));
+        let permuted_m = Mat::from_fn(n, n, |i, j| m_dense[(order[i], order[j])]);
+        let shifted_dense = &a_dense - &m_dense * faer::Scale(sigma);
+        let mut scratch = OperatorScratch::new(n);
+        for r in [6, 10] {
+            let u = Mat::from_fn(n, r, |i, j| ((i * 5 + j * 11) % 19) as f64 / 9.0 - 1.0);
+            let mut z = Mat::<f64>::zeros(n, r);
+            let applied = apply_operator(
+                &factor,
+                mass,
+                u.as_ref(),
+                z.as_mut(),
+                &mut scratch,
+                Par::Seq,
+            );
+            let mut u_input = Mat::<f64>::zeros(n, r);
+            let mut z_input = Mat::<f64>::zeros(n, r);
+            for (i, &row) in order.iter().enumerate() {
+                for j in 0..r {
+                    u_input[(row, j)] = u[(i, j)];
+                    z_input[(row, j)] = z[(i, j)];
+                }
+            }
+            let mu = &m_dense * &u_input;
+            let residual = &shifted_dense * &z_input - &mu;
+            assert!(residual.norm_max() <= 1e-10 * mu.norm_max(), "r = {r}");
+            let own = u.transpose() * &permuted_m * &z;
+            assert!(
+                (&applied.own - &own).norm_max() <= 1e-12 * own.norm_max(),
+                "r = {r}"
+            );
+            let direct = z.transpose() * &permuted_m * &z;
+            for (j, norm) in applied.norms.iter().enumerate() {
+                let expected = direct[(j, j)].sqrt();
+                assert!((norm - expected).abs() <= 1e-12 * expected, "r = {r}");
             }
         }
     }

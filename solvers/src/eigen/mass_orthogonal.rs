@@ -1,8 +1,11 @@
-//! Block Gram–Schmidt in the inner product `⟨x, y⟩_M = xᵀ M y` with a diagonal `M`,
+//! Block Gram–Schmidt in the inner product `⟨x, y⟩_M = xᵀ M y` with a diagonal or sparse `M`
+//! ([`Mass`]),
 //! written with dense matrix products so that orthogonalising a block of `r` vectors against a
 //! basis of `p` vectors costs two `p × n × r` products per pass (in the Krylov expansion, the
 //! fused row sweeps of `tall_products.rs`, which read the basis once per pass).
 
+use super::mass::Mass;
+use super::sparse_mass_products::sparse_squared_norms;
 use super::tall_products::{mass_inner, sweep, tall_times, tall_times_in_place};
 use crate::error::SolverError;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -31,7 +34,7 @@ const AMPLIFICATION_LIMIT: f64 = 1e3;
 pub(crate) fn project_out(
     mut z: MatMut<'_, f64>,
     bases: &[MatRef<'_, f64>],
-    mass: &[f64],
+    mass: Mass<'_>,
     par: Par,
 ) -> Vec<Mat<f64>> {
     let mut total: Vec<Mat<f64>> = bases
@@ -75,7 +78,7 @@ pub(crate) fn project_out_after_known(
     known: MatRef<'_, f64>,
     known_coefficients: MatRef<'_, f64>,
     bases: &[MatRef<'_, f64>],
-    mass: &[f64],
+    mass: Mass<'_>,
     par: Par,
 ) -> (Vec<Mat<f64>>, Option<Mat<f64>>) {
     // Only the rows of C with a nonzero entry take part (in the Krylov expansion, those of the
@@ -113,7 +116,16 @@ pub(crate) fn project_out_after_known(
 }
 
 /// M-norms of the columns of `z`.
-pub(crate) fn mass_column_norms(mass: &[f64], z: MatRef<'_, f64>) -> Vec<f64> {
+pub(crate) fn mass_column_norms(mass: Mass<'_>, z: MatRef<'_, f64>) -> Vec<f64> {
+    let mass = match mass {
+        Mass::Diagonal(mass) => mass,
+        Mass::Sparse(m) => {
+            return sparse_squared_norms(m, z)
+                .iter()
+                .map(|s| s.sqrt())
+                .collect();
+        }
+    };
     (0..z.ncols())
         .map(|j| {
             (0..z.nrows())
@@ -195,7 +207,7 @@ pub(crate) fn orthonormalize_block(
     gram: Option<Mat<f64>>,
     reference_norms: &[f64],
     bases: &[MatRef<'_, f64>],
-    mass: &[f64],
+    mass: Mass<'_>,
     rng: &mut ChaCha8Rng,
     par: Par,
 ) -> Result<Mat<f64>, SolverError> {
@@ -239,7 +251,7 @@ pub(crate) fn orthonormalize_block(
 }
 
 /// `Zᵀ M Z` (`r × r`), symmetrised.
-fn mass_gram(z: MatRef<'_, f64>, mass: &[f64], par: Par) -> Mat<f64> {
+fn mass_gram(z: MatRef<'_, f64>, mass: Mass<'_>, par: Par) -> Mat<f64> {
     symmetrized(&mass_inner(z, mass, z, par))
 }
 
@@ -257,7 +269,7 @@ fn cholesky_qr2(
     mut z: MatMut<'_, f64>,
     gram: Mat<f64>,
     bases: &[MatRef<'_, f64>],
-    mass: &[f64],
+    mass: Mass<'_>,
     rng: &mut ChaCha8Rng,
     par: Par,
 ) -> Result<Option<Mat<f64>>, SolverError> {
@@ -284,7 +296,7 @@ fn column_gram_schmidt(
     mut z: MatMut<'_, f64>,
     reference_norms: &[f64],
     bases: &[MatRef<'_, f64>],
-    mass: &[f64],
+    mass: Mass<'_>,
     rng: &mut ChaCha8Rng,
     par: Par,
 ) -> Result<Mat<f64>, SolverError> {
@@ -335,7 +347,7 @@ pub(crate) fn random_orthonormal_block(
     n: usize,
     r: usize,
     bases: &[MatRef<'_, f64>],
-    mass: &[f64],
+    mass: Mass<'_>,
     rng: &mut ChaCha8Rng,
     par: Par,
 ) -> Result<Mat<f64>, SolverError> {
@@ -366,7 +378,7 @@ mod tests {
         let n = 300;
         let mass: Vec<f64> = (0..n).map(|i| 0.5 + (i % 7) as f64 / 3.0).collect();
         let mut rng = ChaCha8Rng::seed_from_u64(3);
-        let basis = random_orthonormal_block(n, 10, &[], &mass, &mut rng, Par::Seq)
+        let basis = random_orthonormal_block(n, 10, &[], Mass::Diagonal(&mass), &mut rng, Par::Seq)
             .expect("a random block has full rank");
         for dependent in [false, true] {
             let mut z = sample(n, 6, 1);
@@ -374,23 +386,28 @@ mod tests {
                 let first = z.col(0).to_owned();
                 z.col_mut(5).copy_from(&first);
             }
-            let reference = mass_column_norms(&mass, z.as_ref());
-            project_out(z.as_mut(), &[basis.as_ref()], &mass, Par::Seq);
+            let reference = mass_column_norms(Mass::Diagonal(&mass), z.as_ref());
+            project_out(
+                z.as_mut(),
+                &[basis.as_ref()],
+                Mass::Diagonal(&mass),
+                Par::Seq,
+            );
             let before = z.clone();
             let b = orthonormalize_block(
                 z.as_mut(),
                 None,
                 &reference,
                 &[basis.as_ref()],
-                &mass,
+                Mass::Diagonal(&mass),
                 &mut rng,
                 Par::Seq,
             )
             .expect("orthonormalised");
-            let gram = mass_inner(z.as_ref(), &mass, z.as_ref(), Par::Seq);
+            let gram = mass_inner(z.as_ref(), Mass::Diagonal(&mass), z.as_ref(), Par::Seq);
             let identity = Mat::<f64>::identity(6, 6);
             assert!((&gram - &identity).norm_max() < 1e-13, "{dependent}");
-            let along = mass_inner(basis.as_ref(), &mass, z.as_ref(), Par::Seq);
+            let along = mass_inner(basis.as_ref(), Mass::Diagonal(&mass), z.as_ref(), Par::Seq);
             assert!(along.norm_max() < 1e-13, "{dependent}");
             let rebuilt = &z * &b;
             let kept = if dependent { 5 } else { 6 };

@@ -1,13 +1,22 @@
-//! Generalized symmetric eigensolver for the lowest eigenpairs of `A x = λ M x`.
+//! Generalized symmetric eigensolver for the lowest eigenpairs of `A x = λ M x`, for three
+//! kinds of pencils ([`Pencil`]): a diagonal mass, a sparse SPD mass, and the mixed pencils
+//! `d1 W⁻¹ d1ᵀ ψ = μ N ψ` solved through a saddle-point matrix.
 
 mod interval_slicing;
 mod krylov_slice;
 mod lowest;
+mod mass;
 mod mass_orthogonal;
+mod mixed_operator;
 mod pencil;
 mod rayleigh_ritz;
 mod refinement;
+mod shift_factor;
+mod sparse_mass_products;
+mod spectrum_bound;
 mod statistics;
+mod stiffness;
+mod stored_mass;
 mod symmetric_products;
 mod tall_kernels;
 mod tall_products;
@@ -16,6 +25,7 @@ mod workspace_pool;
 
 pub use interval_slicing::{lowest_eigenpairs_of, EigenRequest, EigenSolution, RequestError};
 pub use lowest::lowest_eigenpairs;
+pub use mass::MassMatrix;
 pub use pencil::{Pencil, ShiftCount};
 pub use statistics::{process_cpu_seconds, Phase, PhaseStatistics, SolverStatistics};
 pub use tall_products::keep_columns;

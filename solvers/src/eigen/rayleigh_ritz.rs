@@ -23,12 +23,13 @@
 //! sparse product `A X` and, per slice, the upper block triangles of `XᵀMX` and `XᵀAX` (half an
 //! `n × s × s` product each) and the rotation (one).
 
-use super::symmetric_products::{gather_times, pack, CHUNK};
+use super::mass::Mass;
+use super::stiffness::Stiffness;
+use super::symmetric_products::{pack, CHUNK};
 use super::tall_products::{mass_inner, tall_inner, tall_times_in_place};
 use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use faer::reborrow::Reborrow;
-use faer::sparse::SparseColMatRef;
 use faer::{Mat, MatMut, MatRef, Par};
 use rayon::prelude::*;
 
@@ -37,15 +38,15 @@ use rayon::prelude::*;
 /// `n × s` matrix is allocated (`A X` is formed and projected [`PROJECTED_COLUMNS`] columns at a
 /// time).
 ///
-/// - `a`: `n × n` sparse symmetric matrix in full (both triangles) storage.
-/// - `mass`: diagonal of `M` (`n` positive entries).
+/// - `a`: the `n × n` symmetric `A` (sparse, or the mixed operator).
+/// - `mass`: `M` (diagonal or sparse SPD).
 ///
 /// Returns the `s` ascending Ritz values, in the order of the columns of `x`.
 ///
 /// Errors: [`SolverError::NoConvergence`] if the columns of `x` are numerically dependent.
 pub(crate) fn rayleigh_ritz(
-    a: SparseColMatRef<'_, usize, f64>,
-    mass: &[f64],
+    a: Stiffness<'_>,
+    mass: Mass<'_>,
     x: MatMut<'_, f64>,
     par: Par,
 ) -> Result<Vec<f64>, SolverError> {
@@ -83,7 +84,7 @@ const PROJECTED_COLUMNS: usize = 4 * CHUNK;
 
 /// `Xᵀ M X` (`s × s`) for the `n × s` block `x`, from its upper block triangle (see
 /// [`symmetric_from_upper`]).
-fn mass_gram(x: MatRef<'_, f64>, mass: &[f64], par: Par) -> Mat<f64> {
+fn mass_gram(x: MatRef<'_, f64>, mass: Mass<'_>, par: Par) -> Mat<f64> {
     let s = x.ncols();
     let groups: Vec<usize> = (0..s).step_by(PROJECTED_COLUMNS).collect();
     let blocks = groups
@@ -119,16 +120,16 @@ fn symmetric_from_upper(s: usize, blocks: Vec<(usize, Mat<f64>)>) -> Mat<f64> {
 /// `Qᵀ A Q` (`s × s`) for the `n × s` block `q`, [`PROJECTED_COLUMNS`] columns of `A Q` at a
 /// time (gathered a packed chunk at a time), each projected onto the columns of `q` up to its
 /// own ([`symmetric_from_upper`]).
-fn projected(a: SparseColMatRef<'_, usize, f64>, q: MatRef<'_, f64>, par: Par) -> Mat<f64> {
+fn projected(a: Stiffness<'_>, q: MatRef<'_, f64>, par: Par) -> Mat<f64> {
     let (n, s) = (q.nrows(), q.ncols());
     let groups: Vec<usize> = (0..s).step_by(PROJECTED_COLUMNS).collect();
     let one = |&first: &usize| {
         let width = PROJECTED_COLUMNS.min(s - first);
         let mut aq = Mat::<f64>::zeros(n, width);
-        let mut product = vec![[0.0; CHUNK]; n];
+        let (mut product, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
         for offset in (0..width).step_by(CHUNK) {
             let chunk = CHUNK.min(width - offset);
-            gather_times(a, &pack(q, first + offset, chunk), &mut product);
+            a.times_rows(&pack(q, first + offset, chunk), &mut product, &mut work);
             for j in 0..chunk {
                 for (i, row) in product.iter().enumerate() {
                     aq[(i, offset + j)] = row[j];
@@ -158,8 +159,8 @@ mod tests {
         let (n, s) = (500, 45);
         let x = Mat::from_fn(n, s, |i, j| ((i * 13 + j * 29) % 97) as f64 / 48.0 - 1.0);
         let mass: Vec<f64> = (0..n).map(|i| 0.25 + (i % 5) as f64).collect();
-        let full = mass_inner(x.as_ref(), &mass, x.as_ref(), Par::Seq);
-        let gram = mass_gram(x.as_ref(), &mass, Par::Seq);
+        let full = mass_inner(x.as_ref(), Mass::Diagonal(&mass), x.as_ref(), Par::Seq);
+        let gram = mass_gram(x.as_ref(), Mass::Diagonal(&mass), Par::Seq);
         assert!((&gram - &full).norm_max() <= 1e-12 * full.norm_max());
         assert_eq!(gram, gram.transpose().to_owned());
     }

@@ -22,15 +22,18 @@
 //! interval's far end are hardly damped at its midpoint, and the lowest eigenfields amplify them
 //! most) one step at a shift of its own, next to its eigenvalue (one more factorization).
 
+use super::mass::{solve_mass_rows, Mass};
+use super::pencil::PencilOperators;
 use super::rayleigh_ritz::rayleigh_ritz;
+use super::shift_factor::ShiftFactor;
 use super::statistics::ThreadClock;
+use super::stiffness::Stiffness;
 use super::symmetric_products::{
-    gather_times, gather_times_and_magnitudes, map_column_chunks, symmetric_times, Row, CHUNK,
+    gather_times, gather_times_and_magnitudes, map_column_chunks, Row, CHUNK,
 };
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
 use crate::packed_rows::{has_avx2_fma, multiply_add};
-use crate::sparse_ldlt::SparseLdlt;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, MatMut, MatRef, Par};
@@ -43,14 +46,23 @@ use std::sync::Arc;
 /// can exceed any target: no `f64` vector shows a smaller residual. Both are `0` for eigenvalues
 /// at most `floor` (the kernel, which has no eigenfield). The same pass gives every pair's plain
 /// relative residual `‖A x − λ M x‖₂ / (‖A‖₁ ‖x‖₂)` ([`FieldResidual::relative`]).
+///
+/// For a sparse mass, `M⁻¹` is a solve with its Cholesky factorization, and the floor takes
+/// `M_ii` for the scale of `M` (`δs_i ≈ ε (|A| |x|)_i / M_ii`: within a small factor of the
+/// true `M⁻¹` for a mass matrix); for a mixed pencil `A_ii` is the estimate of
+/// [`super::mixed_operator::MixedOperator::diagonal_estimate`] and `‖A‖` the one the pencil
+/// made (see [`super::pencil::Pencil::mixed`]).
 pub(crate) fn field_residuals(
-    a: SparseColMatRef<'_, usize, f64>,
-    mass: &[f64],
+    operators: &PencilOperators<'_>,
     values: &[f64],
     vectors: MatRef<'_, f64>,
     floor: f64,
     par: Par,
 ) -> Vec<FieldResidual> {
+    let (a, mass) = match (operators.stiffness, operators.mass) {
+        (Stiffness::Sparse(a), Mass::Diagonal(mass)) => (a, mass),
+        _ => return general_field_residuals(operators, values, vectors, floor, par),
+    };
     let diagonal = diagonal_of(a);
     let norm_a = max_column_sum(a);
     let inverse_mass: Vec<f64> = mass.iter().map(|m| m.recip()).collect();
@@ -156,8 +168,86 @@ fn chunk_residuals<const FUSED: bool>(
         .collect()
 }
 
+/// [`field_residuals`] of a pencil with a sparse mass or a mixed stiffness (see there).
+fn general_field_residuals(
+    operators: &PencilOperators<'_>,
+    values: &[f64],
+    vectors: MatRef<'_, f64>,
+    floor: f64,
+    par: Par,
+) -> Vec<FieldResidual> {
+    let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
+        let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
+        general_chunk_residuals(operators, &lambda, width, x, work, floor)
+    });
+    chunks.into_iter().flatten().collect()
+}
+
+/// The [`FieldResidual`]s of one packed chunk `x` (see [`general_field_residuals`]).
+fn general_chunk_residuals(
+    operators: &PencilOperators<'_>,
+    lambda: &Row,
+    width: usize,
+    x: &[Row],
+    work: &mut [Vec<Row>; 3],
+    floor: f64,
+) -> Vec<FieldResidual> {
+    let [ax, abs_ax, a_s] = work;
+    let mut scratch = Vec::new();
+    operators
+        .stiffness
+        .times_rows_and_magnitudes(x, ax, abs_ax, &mut scratch);
+    operators.mass.times_rows(x, a_s);
+    // r = A x − λ M x (its norm), then s = M⁻¹ r.
+    let (mut r2, mut x2) = ([0.0; CHUNK], [0.0; CHUNK]);
+    for ((r, mx), x) in ax.iter_mut().zip(a_s.iter()).zip(x) {
+        for j in 0..CHUNK {
+            r[j] -= lambda[j] * mx[j];
+            r2[j] += r[j] * r[j];
+            x2[j] += x[j] * x[j];
+        }
+    }
+    let s = ax;
+    match operators.mass_factor {
+        Some(factor) => solve_mass_rows(factor, s, &mut scratch),
+        None => {
+            for (row, m) in s.iter_mut().zip(operators.mass_diagonal) {
+                row.iter_mut().for_each(|v| *v /= m);
+            }
+        }
+    }
+    operators.stiffness.times_rows(s, a_s, &mut scratch);
+    let (mut energy, mut noise) = ([0.0; CHUNK], [0.0; CHUNK]);
+    for i in 0..x.len() {
+        let weight = operators.stiffness_diagonal[i].max(0.0);
+        let inverse = operators.mass_diagonal[i].recip();
+        for j in 0..CHUNK {
+            energy[j] += s[i][j] * a_s[i][j];
+            let e = f64::EPSILON * (abs_ax[i][j] * inverse + lambda[j] * x[i][j].abs());
+            noise[j] += weight * e * e;
+        }
+    }
+    let norm_a = operators.stiffness_norm.max(f64::MIN_POSITIVE);
+    (0..width)
+        .map(|j| {
+            let relative = r2[j].sqrt() / (norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
+            if lambda[j] <= floor {
+                return FieldResidual {
+                    relative,
+                    ..FieldResidual::default()
+                };
+            }
+            FieldResidual {
+                residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
+                floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
+                relative,
+            }
+        })
+        .collect()
+}
+
 /// The diagonal of the `n × n` sparse `a` (0 where no entry is stored).
-fn diagonal_of(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+pub(crate) fn diagonal_of(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
     let col_ptr = a.symbolic().col_ptr();
     let row_idx = a.symbolic().row_idx();
     (0..a.ncols())
@@ -171,7 +261,7 @@ fn diagonal_of(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
 
 /// The maximum absolute column sum `‖A‖₁` (an upper bound of `‖A‖₂`), at least the smallest
 /// positive number.
-fn max_column_sum(a: SparseColMatRef<'_, usize, f64>) -> f64 {
+pub(crate) fn max_column_sum(a: SparseColMatRef<'_, usize, f64>) -> f64 {
     let col_ptr = a.symbolic().col_ptr();
     (0..a.ncols())
         .map(|c| {
@@ -253,10 +343,9 @@ pub(crate) struct Refinement {
 ///
 /// Errors: [`SolverError::NoConvergence`] if a step loses a vector.
 pub(crate) fn refine_interval(
-    a: SparseColMatRef<'_, usize, f64>,
-    mass: &[f64],
-    factor: &SparseLdlt,
-    factor_at: &dyn Fn(f64) -> Result<Arc<SparseLdlt>, SolverError>,
+    operators: &PencilOperators<'_>,
+    factor: &ShiftFactor,
+    factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
     values: &mut Vec<f64>,
     mut vectors: MatMut<'_, f64>,
     settings: &RefinementSettings,
@@ -265,8 +354,7 @@ pub(crate) fn refine_interval(
     let mut outcome = Refinement::default();
     let residual_of = |values: &[f64], vectors: MatRef<'_, f64>| {
         field_residuals(
-            a,
-            mass,
+            operators,
             values,
             vectors,
             settings.floor,
@@ -284,8 +372,7 @@ pub(crate) fn refine_interval(
     if let Some(worst) = worst {
         outcome.solves += 1;
         if step_helps(
-            a,
-            mass,
+            operators,
             factor,
             vectors.rb(),
             worst,
@@ -294,8 +381,7 @@ pub(crate) fn refine_interval(
         ) {
             for _ in 0..MAX_REFINEMENT_STEPS {
                 *values = refine_columns(
-                    a,
-                    mass,
+                    operators,
                     factor,
                     vectors.rb_mut(),
                     &which,
@@ -332,8 +418,7 @@ pub(crate) fn refine_interval(
         // Best effort: a failed factorization or a lost vector leaves the pairs as they are
         // (their residuals are reported either way), and so does a result that is not better.
         let stepped = near_shift_steps(
-            a,
-            mass,
+            operators,
             factor_at,
             values,
             vectors.rb(),
@@ -349,6 +434,8 @@ pub(crate) fn refine_interval(
             }
         }
     }
+    // A mixed pencil's solves are refined once (two solves each).
+    outcome.solves *= factor.refined_solve_cost();
     (outcome.wall_seconds, outcome.cpu_seconds) = clock.elapsed();
     Ok(outcome)
 }
@@ -359,9 +446,8 @@ pub(crate) fn refine_interval(
 /// Returns the new values, vectors and field residuals, or `None` if a factorization fails or
 /// a vector is lost.
 fn near_shift_steps(
-    a: SparseColMatRef<'_, usize, f64>,
-    mass: &[f64],
-    factor_at: &dyn Fn(f64) -> Result<Arc<SparseLdlt>, SolverError>,
+    operators: &PencilOperators<'_>,
+    factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
     values: &[f64],
     vectors: MatRef<'_, f64>,
     pairs: &[usize],
@@ -376,18 +462,23 @@ fn near_shift_steps(
             .map(|v| (v - values[j]).abs())
             .fold(values[j].abs(), f64::min);
         let near = factor_at(values[j] - 0.01 * gap).ok()?;
-        let mut z = Mat::from_fn(trial.nrows(), 1, |i, _| mass[i] * trial[(i, j)]);
+        let mut z = operators.mass.times(trial.as_ref().subcols(j, 1));
         near.solve_in_place(z.as_mut());
-        let norm = mass_inner(z.as_ref(), mass, z.as_ref(), Par::Seq)[(0, 0)].sqrt();
+        let norm = mass_inner(z.as_ref(), operators.mass, z.as_ref(), Par::Seq)[(0, 0)].sqrt();
         if !(norm.is_finite() && norm > 0.0) {
             return None;
         }
         trial.col_mut(j).copy_from(z.col(0) / norm);
     }
-    let new_values = rayleigh_ritz(a, mass, trial.as_mut(), settings.parallelism).ok()?;
+    let new_values = rayleigh_ritz(
+        operators.stiffness,
+        operators.mass,
+        trial.as_mut(),
+        settings.parallelism,
+    )
+    .ok()?;
     let residuals = field_residuals(
-        a,
-        mass,
+        operators,
         &new_values,
         trial.as_ref(),
         settings.floor,
@@ -403,15 +494,16 @@ fn near_shift_steps(
 ///
 /// Errors: [`SolverError::NoConvergence`] if the refined columns become dependent.
 pub(crate) fn refine_columns(
-    a: SparseColMatRef<'_, usize, f64>,
-    mass: &[f64],
-    factor: &SparseLdlt,
+    operators: &PencilOperators<'_>,
+    factor: &ShiftFactor,
     mut vectors: MatMut<'_, f64>,
     which: &[usize],
     par: Par,
 ) -> Result<Vec<f64>, SolverError> {
     let n = vectors.nrows();
-    let mut z = Mat::from_fn(n, which.len(), |i, j| mass[i] * vectors[(i, which[j])]);
+    let mass = operators.mass;
+    let selected = Mat::from_fn(n, which.len(), |i, j| vectors[(i, which[j])]);
+    let mut z = mass.times(selected.as_ref());
     factor.solve_in_place(z.as_mut());
     let norms = mass_inner(z.as_ref(), mass, z.as_ref(), par);
     for (j, &column) in which.iter().enumerate() {
@@ -438,7 +530,7 @@ pub(crate) fn refine_columns(
             vectors[(i, column)] = sign * z[(i, j)] / norm;
         }
     }
-    rayleigh_ritz(a, mass, vectors, par)
+    rayleigh_ritz(operators.stiffness, mass, vectors, par)
 }
 
 /// Whether an inverse-iteration step with `factor` cuts the field residual `before` of column
@@ -446,16 +538,16 @@ pub(crate) fn refine_columns(
 /// interval. On meshes with slivers the residual of every pair sits at the accuracy of the
 /// solves themselves, which no step improves.
 pub(crate) fn step_helps(
-    a: SparseColMatRef<'_, usize, f64>,
-    mass: &[f64],
-    factor: &SparseLdlt,
+    operators: &PencilOperators<'_>,
+    factor: &ShiftFactor,
     vectors: MatRef<'_, f64>,
     column: usize,
     before: f64,
     floor: f64,
 ) -> bool {
     let n = vectors.nrows();
-    let mut z = Mat::from_fn(n, 1, |i, _| mass[i] * vectors[(i, column)]);
+    let mass = operators.mass;
+    let mut z = mass.times(vectors.subcols(column, 1));
     factor.solve_in_place(z.as_mut());
     let norm = mass_inner(z.as_ref(), mass, z.as_ref(), Par::Seq)[(0, 0)].sqrt();
     if !(norm.is_finite() && norm > 0.0) {
@@ -463,9 +555,9 @@ pub(crate) fn step_helps(
     }
     z.col_mut(0).iter_mut().for_each(|x| *x /= norm);
     let mut az = Mat::<f64>::zeros(n, 1);
-    symmetric_times(az.as_mut(), a, z.as_ref(), Par::Seq);
+    operators.stiffness.times(az.as_mut(), z.as_ref(), Par::Seq);
     let rayleigh: f64 = (0..n).map(|i| z[(i, 0)] * az[(i, 0)]).sum();
-    let after = field_residuals(a, mass, &[rayleigh], z.as_ref(), floor, Par::Seq);
+    let after = field_residuals(operators, &[rayleigh], z.as_ref(), floor, Par::Seq);
     after
         .first()
         .is_some_and(|r| r.residual < TRIAL_GAIN * before)

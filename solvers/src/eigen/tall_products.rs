@@ -9,6 +9,8 @@
 //! a sequential product on it, so every thread streams its own part of `B` exactly once; the
 //! `m × r` partial inner products are summed at the end (one small reduction).
 
+use super::mass::Mass;
+use super::sparse_mass_products::{sparse_mass_inner, sparse_sweep};
 use super::symmetric_products::{Row, CHUNK};
 use super::tall_kernels;
 use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns};
@@ -20,7 +22,7 @@ use faer::{Accum, Mat, MatMut, MatRef, Par};
 const MIN_ROWS_PER_THREAD: usize = 4096;
 
 /// Number of row ranges for `n` rows under `par`.
-fn row_parts(n: usize, par: Par) -> usize {
+pub(crate) fn row_parts(n: usize, par: Par) -> usize {
     par.degree().min(n / MIN_ROWS_PER_THREAD).max(1)
 }
 
@@ -155,14 +157,20 @@ pub(crate) struct Sweep {
 /// the update), and the bases (`n × m`, `m` a few hundred) are far larger than the caches; with
 /// the update of one pass and the inner products of the next fused in one sweep, a basis is read
 /// once per pass. Rows are split across `par.degree()` threads.
+///
+/// A sparse `M` takes [`sparse_sweep`] (two passes: see `sparse_mass_products.rs`).
 pub(crate) fn sweep(
     z: MatMut<'_, f64>,
     subtract: &[(MatRef<'_, f64>, MatRef<'_, f64>)],
     project: &[MatRef<'_, f64>],
-    mass: &[f64],
+    mass: Mass<'_>,
     with_gram: bool,
     par: Par,
 ) -> Sweep {
+    let mass = match mass {
+        Mass::Diagonal(mass) => mass,
+        Mass::Sparse(m) => return sparse_sweep(z, subtract, project, m, with_gram, par),
+    };
     let parts = row_parts(z.nrows(), par);
     let with_gram = with_gram && z.ncols() <= CHUNK;
     split_sweep(z, 0, subtract, project, mass, with_gram, parts)
@@ -323,15 +331,19 @@ pub fn keep_columns(mut matrix: Mat<f64>, first: usize, count: usize) -> Mat<f64
     matrix
 }
 
-/// `Bᵀ M Z` (`p × r`) for `B: n × p`, `Z: n × r` and the diagonal `mass` of `M`, rows split
-/// across `par.degree()` threads (partial products summed).
+/// `Bᵀ M Z` (`p × r`) for `B: n × p`, `Z: n × r` and the mass `M`, rows split across
+/// `par.degree()` threads (partial products summed). A sparse `M` needs contiguous columns in
+/// `B` and `Z` (see [`sparse_mass_inner`]).
 pub(crate) fn mass_inner(
     b: MatRef<'_, f64>,
-    mass: &[f64],
+    mass: Mass<'_>,
     z: MatRef<'_, f64>,
     par: Par,
 ) -> Mat<f64> {
-    split_inner(b, Some(mass), z, row_parts(b.nrows(), par))
+    match mass {
+        Mass::Diagonal(mass) => split_inner(b, Some(mass), z, row_parts(b.nrows(), par)),
+        Mass::Sparse(m) => sparse_mass_inner(b, m, z, par),
+    }
 }
 
 /// `Bᵀ Z` (`p × r`) for `B: n × p`, `Z: n × r`, rows split as in [`mass_inner`].
@@ -422,8 +434,8 @@ mod tests {
         let mass: Vec<f64> = (0..n).map(|i| 0.5 + (i % 7) as f64).collect();
         let par = Par::Rayon(NonZeroUsize::new(3).expect("non-zero"));
 
-        let sequential = mass_inner(b.as_ref(), &mass, z.as_ref(), Par::Seq);
-        let split = mass_inner(b.as_ref(), &mass, z.as_ref(), par);
+        let sequential = mass_inner(b.as_ref(), Mass::Diagonal(&mass), z.as_ref(), Par::Seq);
+        let split = mass_inner(b.as_ref(), Mass::Diagonal(&mass), z.as_ref(), par);
         let scale = sequential.norm_max();
         assert!((&sequential - &split).norm_max() <= 1e-13 * scale);
         let plain = tall_inner(b.as_ref(), z.as_ref(), par);
@@ -481,7 +493,7 @@ mod tests {
             updated.as_mut(),
             &[(basis.as_ref(), coefficients.as_ref())],
             &[other.as_ref(), basis.as_ref()],
-            &mass,
+            Mass::Diagonal(&mass),
             true,
             par,
         );
@@ -492,7 +504,12 @@ mod tests {
         let expected = &z - &basis * &coefficients;
         assert!((&updated - &expected).norm_max() <= 1e-12 * expected.norm_max());
         for (b, inner) in [&other, &basis].into_iter().zip(&result.inner) {
-            let exact = mass_inner(b.as_ref(), &mass, expected.as_ref(), Par::Seq);
+            let exact = mass_inner(
+                b.as_ref(),
+                Mass::Diagonal(&mass),
+                expected.as_ref(),
+                Par::Seq,
+            );
             assert!((inner - &exact).norm_max() <= 1e-12 * exact.norm_max());
         }
         for (j, norm) in result.squared_norms.iter().enumerate() {
@@ -508,12 +525,17 @@ mod tests {
             updated.as_mut(),
             &[(basis.as_ref(), coefficients.as_ref().subcols(0, 8))],
             &[],
-            &mass,
+            Mass::Diagonal(&mass),
             true,
             par,
         );
         let gram = result.gram.expect("the Gram matrix of eight columns");
-        let exact = mass_inner(updated.as_ref(), &mass, updated.as_ref(), Par::Seq);
+        let exact = mass_inner(
+            updated.as_ref(),
+            Mass::Diagonal(&mass),
+            updated.as_ref(),
+            Par::Seq,
+        );
         assert!((&gram - &exact).norm_max() <= 1e-12 * exact.norm_max());
 
         let kept = keep_columns(b.clone(), 3, 6);

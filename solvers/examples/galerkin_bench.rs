@@ -1,0 +1,226 @@
+//! One timed run of the two eigenproblems of a Whitney basis against the lumped (conforming)
+//! ones of the same mesh, in the same process:
+//!
+//! - lumped: cotan stiffness with the barycentric lumped mass (vertices) and the
+//!   Crouzeix–Raviart stiffness with its lumped mass (edges), solved together;
+//! - Galerkin: cotan stiffness with the consistent P1 mass (vertices) and the mixed co-exact
+//!   pencil `d1 W⁻¹ d1ᵀ ψ = μ N ψ` (`W` the Whitney 1-form mass on edges, `d1` the face–edge
+//!   incidence, `N` the face areas), solved together.
+//!
+//! Also one factorization and one blocked solve (8 right-hand sides) of each kind of shifted
+//! matrix, for where the time goes.
+//!
+//! `cargo run --release -p tvf-solvers --example galerkin_bench -- [MESH.obj] [--k K]
+//! [--galerkin-only]` (default: `../shared/meshes/bunny-closed.obj`, `K = 500` per problem;
+//! `--galerkin-only` skips the lumped problems, e.g. for a profile).
+
+#[path = "../benches/mesh_matrices/mod.rs"]
+#[allow(dead_code)]
+mod mesh_matrices;
+
+use faer::sparse::{SparseColMat, Triplet};
+use faer::Mat;
+use std::path::PathBuf;
+use std::time::Instant;
+use tvf_solvers::convert::{shifted_upper_triangle, ShiftedPattern};
+use tvf_solvers::{
+    lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenRequest, Eigenpairs, MassMatrix,
+    Pencil, SolverStatistics, SparseLdlt,
+};
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let mut mesh: Option<PathBuf> = None;
+    let mut k = 500;
+    let mut galerkin_only = false;
+    while let Some(arg) = args.next() {
+        match arg.as_str() {
+            "--k" => k = args.next().and_then(|s| s.parse().ok()).unwrap_or(k),
+            "--galerkin-only" => galerkin_only = true,
+            other => mesh = Some(PathBuf::from(other)),
+        }
+    }
+    let Some(mesh) = mesh.or_else(|| mesh_matrices::shared_mesh("bunny-closed.obj")) else {
+        println!("galerkin_bench: ../shared/meshes not found, nothing to do");
+        return;
+    };
+    let (positions, faces) = match mesh_matrices::read_obj(&mesh) {
+        Ok(m) => m,
+        Err(e) => {
+            eprintln!("galerkin_bench: {e}");
+            return;
+        }
+    };
+    let cotan = mesh_matrices::cotan(&positions, &faces);
+    let cr = mesh_matrices::crouzeix_raviart(&positions, &faces);
+    let consistent = mesh_matrices::consistent_mass(&positions, &faces);
+    let whitney = mesh_matrices::whitney(&positions, &faces);
+    println!(
+        "{}: {} vertices, {} edges, {} faces, k = {k} per problem",
+        mesh.display(),
+        cotan.mass.len(),
+        whitney.edges.len(),
+        faces.len()
+    );
+    where_the_time_goes(&cr, &whitney);
+
+    let options = EigenOptions::default();
+    let (mut lumped_seconds, mut lumped_cpu) = (f64::NAN, f64::NAN);
+    if !galerkin_only {
+        let start = Instant::now();
+        let cpu = process_cpu_seconds();
+        let (vertex, edge) = (
+            Pencil::new(&cotan.stiffness, &cotan.mass).expect("valid pencil"),
+            Pencil::new(&cr.stiffness, &cr.mass).expect("valid pencil"),
+        );
+        let lumped = solve(&[&vertex, &edge], k, &options);
+        lumped_seconds = start.elapsed().as_secs_f64();
+        lumped_cpu = process_cpu_seconds() - cpu;
+        report(
+            "lumped (cotan, Crouzeix–Raviart)",
+            (lumped_seconds, lumped_cpu),
+            &lumped,
+        );
+    }
+
+    let start = Instant::now();
+    let cpu = process_cpu_seconds();
+    let exact =
+        Pencil::with_mass(&cotan.stiffness, MassMatrix::Sparse(&consistent)).expect("valid pencil");
+    let exact_setup = start.elapsed().as_secs_f64();
+    let coexact = Pencil::mixed(
+        &whitney.mass,
+        &whitney.d1,
+        MassMatrix::Diagonal(&whitney.face_areas),
+    )
+    .expect("valid pencil");
+    let setup = start.elapsed().as_secs_f64();
+    let galerkin = solve(&[&exact, &coexact], k, &options);
+    let galerkin_seconds = start.elapsed().as_secs_f64();
+    let galerkin_cpu = process_cpu_seconds() - cpu;
+    println!(
+        "  Galerkin pencils made (Cholesky of M and W, Lanczos bounds) in {setup:.2} s \
+         ({exact_setup:.2} s the consistent-mass one)"
+    );
+    report(
+        "Galerkin (consistent P1, mixed Whitney)",
+        (galerkin_seconds, galerkin_cpu),
+        &galerkin,
+    );
+    println!(
+        "Galerkin / lumped: wall time {:.2}, processor time {:.2}",
+        galerkin_seconds / lumped_seconds,
+        galerkin_cpu / lumped_cpu
+    );
+}
+
+fn solve(pencils: &[&Pencil<'_>], k: usize, options: &EigenOptions<'_>) -> Vec<Eigenpairs> {
+    let requests: Vec<EigenRequest<'_, '_>> = pencils
+        .iter()
+        .enumerate()
+        .map(|(i, pencil)| EigenRequest {
+            pencil,
+            count: k,
+            top: None,
+            seed: 17 + i as u64,
+        })
+        .collect();
+    let mut solution = lowest_eigenpairs_of(&requests, options).expect("eigensolver");
+    if let Some(first) = solution.pairs.first_mut() {
+        first.statistics = solution.statistics;
+    }
+    solution.pairs
+}
+
+fn report(name: &str, (seconds, cpu): (f64, f64), pairs: &[Eigenpairs]) {
+    let statistics: SolverStatistics = pairs[0].statistics;
+    println!("{name}: {seconds:.2} s wall, {cpu:.2} s processor");
+    for (phase, p) in [
+        ("counting", statistics.counting),
+        ("solving", statistics.solving),
+        ("refinement", statistics.refinement),
+    ] {
+        println!(
+            "  {phase:<10} {:>3} factorizations {:>6} solves {:>8.2} s wall {:>5.0} % CPU",
+            p.factorizations,
+            p.solves,
+            p.wall_seconds,
+            100.0 * p.utilisation()
+        );
+    }
+    for (i, pair) in pairs.iter().enumerate() {
+        let mut order: Vec<usize> = (0..pair.values.len()).collect();
+        order.sort_by(|&a, &b| pair.field_residuals[b].total_cmp(&pair.field_residuals[a]));
+        for &j in order.iter().take(4) {
+            println!(
+                "    pair {j}: λ {:.3e} field residual {:.1e} floor {:.1e}",
+                pair.values[j], pair.field_residuals[j], pair.field_residual_floors[j]
+            );
+        }
+        let worst = |v: &[f64]| v.iter().fold(0.0f64, |m, r| m.max(*r));
+        let above_floor = pair
+            .field_residuals
+            .iter()
+            .zip(&pair.field_residual_floors)
+            .filter(|(r, f)| **r > 1e-9 && **r > 10.0 * **f)
+            .count();
+        println!(
+            "  problem {i}: λ ∈ [{:.3e}, {:.3e}], max residual {:.1e}, max field residual {:.1e} \
+             (max floor {:.1e}; {above_floor} pairs above 1e-9 and 10 × their floor)",
+            pair.values.first().copied().unwrap_or(0.0),
+            pair.values.last().copied().unwrap_or(0.0),
+            worst(&pair.residuals),
+            worst(&pair.field_residuals),
+            worst(&pair.field_residual_floors)
+        );
+    }
+}
+
+/// Fill, factorization and blocked-solve times of `A − σM` (Crouzeix–Raviart, lumped) and of
+/// the saddle matrix `K(σ)` of the mixed pencil, at a small positive shift.
+fn where_the_time_goes(cr: &mesh_matrices::StiffnessMass, whitney: &mesh_matrices::Whitney) {
+    let sigma = 1e-3;
+    let upper = shifted_upper_triangle(&cr.stiffness, &cr.mass, sigma).expect("valid");
+    time_factor("Crouzeix–Raviart A − σM", &upper);
+    let (n1, n2) = (whitney.edges.len(), whitney.face_areas.len());
+    let total = n1 + n2;
+    let mut base = Vec::new();
+    for (value, (i, j)) in whitney.mass.iter() {
+        if i <= j {
+            base.push(Triplet::new(i, j, -*value));
+        }
+    }
+    for (value, (f, e)) in whitney.d1.iter() {
+        base.push(Triplet::new(e, n1 + f, *value));
+    }
+    let shift: Vec<Triplet<usize, usize, f64>> = (0..n2)
+        .map(|f| Triplet::new(n1 + f, n1 + f, whitney.face_areas[f]))
+        .collect();
+    let build = |t: &[Triplet<usize, usize, f64>]| {
+        SparseColMat::try_new_from_triplets(total, total, t).expect("valid")
+    };
+    let pattern = ShiftedPattern::new(&build(&base), &build(&shift)).expect("same size");
+    time_factor("Whitney saddle K(σ)", &pattern.at(sigma));
+}
+
+fn time_factor(name: &str, upper: &SparseColMat<usize, f64>) {
+    let start = Instant::now();
+    let mut ldlt = SparseLdlt::new(upper.as_ref()).expect("factors");
+    let analyse = start.elapsed().as_secs_f64();
+    ldlt.set_parallelism(faer::Par::Seq);
+    let start = Instant::now();
+    ldlt.refactor(upper.as_ref()).expect("refactors");
+    let numeric = start.elapsed().as_secs_f64();
+    let n = upper.nrows();
+    let mut rhs = Mat::from_fn(n, 8, |i, j| ((i * 7 + j * 3) % 11) as f64 - 5.0);
+    let start = Instant::now();
+    ldlt.solve_in_elimination_order(rhs.as_mut());
+    let solve = start.elapsed().as_secs_f64();
+    println!(
+        "  {name}: n = {n}, nnz(upper) = {}, nnz(L) = {}, analyse+factor {analyse:.3} s, \
+         refactor {numeric:.3} s, solve of 8 {:.1} ms",
+        upper.val().len(),
+        ldlt.factor_len(),
+        1e3 * solve
+    );
+}

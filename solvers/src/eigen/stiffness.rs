@@ -1,0 +1,78 @@
+//! [`Stiffness`]: the matrix `A` of a pencil as the eigensolver's products see it: a sparse
+//! symmetric matrix (standard pencils) or the mixed operator `d1 W⁻¹ d1ᵀ`
+//! ([`MixedOperator`]), applied to packed chunks of vectors in the pencil's input order.
+
+use super::mixed_operator::MixedOperator;
+use super::symmetric_products::{
+    gather_times, gather_times_and_magnitudes, pack, symmetric_times, Row, CHUNK,
+};
+use faer::sparse::SparseColMatRef;
+use faer::{MatMut, MatRef, Par};
+use rayon::prelude::*;
+
+/// The stiffness `A` (`n × n`, symmetric) of a pencil.
+#[derive(Clone, Copy)]
+pub(crate) enum Stiffness<'a> {
+    /// `A` in full symmetric CSC storage.
+    Sparse(SparseColMatRef<'a, usize, f64>),
+    /// `A = d1 W⁻¹ d1ᵀ`, never formed.
+    Mixed(&'a MixedOperator),
+}
+
+impl Stiffness<'_> {
+    /// `out ← A x` for the packed chunk `x` (`n` rows); `work` is scratch space for the mixed
+    /// operator (resized as needed, contents unspecified).
+    #[inline(always)]
+    pub(crate) fn times_rows(self, x: &[Row], out: &mut [Row], work: &mut Vec<Row>) {
+        match self {
+            Stiffness::Sparse(a) => gather_times(a, x, out),
+            Stiffness::Mixed(operator) => operator.times_rows(x, out, work),
+        }
+    }
+
+    /// [`Self::times_rows`] and the magnitudes of the products (`|A| |x|` for a sparse `A`;
+    /// see [`MixedOperator::times_rows_and_magnitudes`]).
+    pub(crate) fn times_rows_and_magnitudes(
+        self,
+        x: &[Row],
+        out: &mut [Row],
+        magnitudes: &mut [Row],
+        work: &mut Vec<Row>,
+    ) {
+        match self {
+            Stiffness::Sparse(a) => gather_times_and_magnitudes(a, x, out, magnitudes),
+            Stiffness::Mixed(operator) => {
+                operator.times_rows_and_magnitudes(x, out, magnitudes, work)
+            }
+        }
+    }
+
+    /// `out ← A x` (`n × s`), in parallel over chunks of columns under `par`.
+    pub(crate) fn times(self, mut out: MatMut<'_, f64>, x: MatRef<'_, f64>, par: Par) {
+        let operator = match self {
+            Stiffness::Sparse(a) => return symmetric_times(out, a, x, par),
+            Stiffness::Mixed(operator) => operator,
+        };
+        let n = x.nrows();
+        let one = |(chunk, mut target): (usize, MatMut<'_, f64>)| {
+            let width = target.ncols();
+            let rows = pack(x, chunk * CHUNK, width);
+            let (mut product, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
+            operator.times_rows(&rows, &mut product, &mut work);
+            for j in 0..width {
+                for (i, row) in product.iter().enumerate() {
+                    target[(i, j)] = row[j];
+                }
+            }
+        };
+        if par.degree() > 1 {
+            out.par_col_chunks_mut(CHUNK).enumerate().for_each(one);
+        } else {
+            let chunks = out.ncols().div_ceil(CHUNK);
+            for chunk in 0..chunks {
+                let width = CHUNK.min(out.ncols() - chunk * CHUNK);
+                one((chunk, out.as_mut().subcols_mut(chunk * CHUNK, width)));
+            }
+        }
+    }
+}
