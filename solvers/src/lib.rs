@@ -9,9 +9,19 @@
 //!   pencils `A x = λ M x` (spectrum intervals with exact inertia counts, solved concurrently by
 //!   shift-and-invert block Krylov–Schur, refined where the residual misses the target).
 //! - [`Pencil`]: a pencil and its factorizations (each shift factored once, shared by counting,
-//!   solving and refinement), [`Pencil::count_below`] counts eigenvalues below a threshold;
-//!   [`SolverStatistics`] reports factorizations, solves and time per phase.
-//! - [`dense_generalized_eigen`]: dense reference eigensolver (test oracle, small problems).
+//!   solving and refinement), [`Pencil::count_below`] counts eigenvalues below a threshold,
+//!   [`Pencil::spectrum_upper_bound`] bounds the spectrum; [`SolverStatistics`] reports
+//!   factorizations, solves and time per phase. Three kinds of pencils:
+//!   - diagonal mass ([`Pencil::new`]): `A` sparse, `M` a positive diagonal (lumped masses);
+//!   - sparse mass ([`Pencil::with_mass`] with [`MassMatrix::Sparse`]): `M` sparse SPD
+//!     (consistent Galerkin masses); shifts factor `A − σM` on the union pattern, `M⁻¹` is a
+//!     sparse Cholesky factorization of `M`;
+//!   - mixed ([`Pencil::mixed`]): `d1 W⁻¹ d1ᵀ ψ = μ N ψ` with `W` sparse SPD (e.g. the Whitney
+//!     1-form mass) and `N` diagonal or sparse SPD; the dense `A` is never formed: shifts factor
+//!     the saddle matrix `[[−W, d1ᵀ], [d1, −σN]]`, whose negative pivots less `n1` count the
+//!     eigenvalues below σ, and `A x` goes through a sparse Cholesky factorization of `W`.
+//! - [`dense_generalized_eigen`], [`dense_generalized_eigen_with_mass`]: dense reference
+//!   eigensolvers with a diagonal or a dense SPD mass (test oracle, small problems).
 //! - [`DenseCholesky`]: dense Cholesky with rank-one update/downdate and bordered updates.
 //! - [`convert`]: `sprs → faer` conversions.
 //! - [`iterative_refinement`]: refined sparse solves (conjugate gradients preconditioned by a

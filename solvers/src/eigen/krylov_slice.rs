@@ -811,4 +811,83 @@ mod tests {
             }
         }
     }
+
+    /// With a sparse mass (`P M Pᵀ` of the frame, the Krylov order): `OP U` solves
+    /// `(A − σM) Z = M U`, and the M-norms and `Uᵀ M Z` of the unpacking pass are the dense ones.
+    #[test]
+    fn operator_with_a_sparse_mass_solves_the_shifted_system() {
+        let side = 19;
+        let (a_upper, a_dense, _) = shifted_grid(side, 0.0);
+        let n = side * side;
+        let sigma = 0.7;
+        let mut m_dense = Mat::from_fn(n, n, |i, j| {
+            if i == j {
+                0.5 + (i % 3) as f64 / 4.0
+            } else {
+                0.0
+            }
+        });
+        for a in 0..n {
+            for b in [a + 1, a + side] {
+                if b < n && (b != a + 1 || (a + 1) % side != 0) {
+                    m_dense[(a, b)] = 0.1;
+                    m_dense[(b, a)] = 0.1;
+                }
+            }
+        }
+        let triplets = |upper_only: bool| -> Vec<Triplet<usize, usize, f64>> {
+            (0..n)
+                .flat_map(|j| (0..n).map(move |i| (i, j)))
+                .filter(|&(i, j)| m_dense[(i, j)] != 0.0 && (!upper_only || i <= j))
+                .map(|(i, j)| Triplet::new(i, j, m_dense[(i, j)]))
+                .collect()
+        };
+        let m_upper = SparseColMat::try_new_from_triplets(n, n, &triplets(true)).expect("valid");
+        let m_full = SparseColMat::try_new_from_triplets(n, n, &triplets(false)).expect("valid");
+        let shifted = crate::convert::ShiftedPattern::new(&a_upper, &m_upper)
+            .expect("same size")
+            .at(sigma);
+        let ldlt = SparseLdlt::with_ordering(shifted.as_ref(), FillOrdering::NestedDissection)
+            .expect("factors");
+        let frame = KrylovFrame::standard(&ldlt, Some(m_full.as_ref())).expect("a frame");
+        let factor = ShiftFactor::new(ldlt, sigma, std::sync::Arc::new(frame));
+        let order = factor.krylov_order().expect("an ordering").to_vec();
+        let mass = Mass::Sparse(factor.krylov_mass().expect("a sparse mass"));
+        let permuted_m = Mat::from_fn(n, n, |i, j| m_dense[(order[i], order[j])]);
+        let shifted_dense = &a_dense - &m_dense * faer::Scale(sigma);
+        let mut scratch = OperatorScratch::new(n);
+        for r in [6, 10] {
+            let u = Mat::from_fn(n, r, |i, j| ((i * 5 + j * 11) % 19) as f64 / 9.0 - 1.0);
+            let mut z = Mat::<f64>::zeros(n, r);
+            let applied = apply_operator(
+                &factor,
+                mass,
+                u.as_ref(),
+                z.as_mut(),
+                &mut scratch,
+                Par::Seq,
+            );
+            let mut u_input = Mat::<f64>::zeros(n, r);
+            let mut z_input = Mat::<f64>::zeros(n, r);
+            for (i, &row) in order.iter().enumerate() {
+                for j in 0..r {
+                    u_input[(row, j)] = u[(i, j)];
+                    z_input[(row, j)] = z[(i, j)];
+                }
+            }
+            let mu = &m_dense * &u_input;
+            let residual = &shifted_dense * &z_input - &mu;
+            assert!(residual.norm_max() <= 1e-10 * mu.norm_max(), "r = {r}");
+            let own = u.transpose() * &permuted_m * &z;
+            assert!(
+                (&applied.own - &own).norm_max() <= 1e-12 * own.norm_max(),
+                "r = {r}"
+            );
+            let direct = z.transpose() * &permuted_m * &z;
+            for (j, norm) in applied.norms.iter().enumerate() {
+                let expected = direct[(j, j)].sqrt();
+                assert!((norm - expected).abs() <= 1e-12 * expected, "r = {r}");
+            }
+        }
+    }
 }

@@ -15,11 +15,12 @@
 //! so a solve is accurate only to about `ε ‖d1‖² / (σ N_min ‖W‖)` relative. The Krylov
 //! expansion tolerates that (the computed `LDLᵀ` is exactly symmetric, so the operator is a
 //! nearby self-adjoint one, and the Rayleigh–Ritz against the true `A` restores the values),
-//! but the eigenvectors are then only that accurate (on bunny-closed, eigenfield residuals of
-//! `5·10⁻⁷`). So the solves that set the vectors' accuracy — the inverse-iteration step of every
-//! locked vector and the refinement — take one step of iterative refinement on the saddle
-//! system ([`ShiftFactor::solve_rows_refined`]: one more solve and a product with `K(σ)`, which
-//! brought those residuals to `10⁻⁹`). Standard pencils solve as before.
+//! but the eigenvectors are then only that accurate, and their eigenfield residuals (see
+//! `refinement.rs`) stay far above the target, out of reach of further steps with the same
+//! factorization. So the solves that set the vectors' accuracy — the inverse-iteration step of
+//! every locked vector and the refinement — take one step of iterative refinement on the saddle
+//! system ([`ShiftFactor::solve_rows_refined`]: one more solve and a product with `K(σ)`), which
+//! restores the accuracy of a backward-stable solve. Standard pencils solve as before.
 //!
 //! [`KrylovFrame`] holds what depends only on the elimination order (the same for every
 //! shift of a pencil: its factorizations share one fill-reducing ordering): the Krylov order,

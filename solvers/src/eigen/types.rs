@@ -111,10 +111,13 @@ impl fmt::Debug for EigenOptions<'_> {
 pub struct Eigenpairs {
     /// Eigenvalues in ascending order (length `k`).
     pub values: Vec<f64>,
-    /// `n × k` eigenvectors, column `j` for `values[j]`, M-orthonormal: `Xᵀ M X = I`.
+    /// `n × k` eigenvectors, column `j` for `values[j]`, M-orthonormal: `Xᵀ M X = I` (for a
+    /// mixed pencil the `n2 × k` vectors ψ, N-orthonormal).
     pub vectors: Mat<f64>,
-    /// Relative residuals `‖A x_j − λ_j M x_j‖₂ / (‖A‖₁ ‖x_j‖₂)`, where `‖A‖₁` is the
-    /// maximum absolute column sum (an upper bound of `‖A‖₂`).
+    /// Relative residuals `‖A x_j − λ_j M x_j‖₂ / (‖A‖ ‖x_j‖₂)`. For a pencil with a stored `A`
+    /// (diagonal or sparse mass) `‖A‖ = ‖A‖₁`, the maximum absolute column sum (an upper bound
+    /// of `‖A‖₂`); for a mixed pencil (`A = d1 W⁻¹ d1ᵀ`, not stored) `‖A‖` is an estimate of
+    /// `‖A‖₂` by block power iteration (see [`Pencil::mixed`]).
     pub residuals: Vec<f64>,
     /// Relative eigenfield residuals (see [`EigenOptions::refinement_target`]); 0 for the kernel.
     pub field_residuals: Vec<f64>,
