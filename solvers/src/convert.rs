@@ -199,9 +199,12 @@ impl ShiftedPattern {
                 .collect();
             entries.sort_by_key(|e| e.0);
             for (i, va, vb) in entries {
-                if row_idx.len() > col_ptr[j] && row_idx.last() == Some(&i) {
-                    *base.last_mut().expect("an entry") += va;
-                    *shift_values.last_mut().expect("an entry") += vb;
+                let repeated = row_idx.len() > col_ptr[j] && row_idx.last() == Some(&i);
+                if let (true, Some(a), Some(b)) =
+                    (repeated, base.last_mut(), shift_values.last_mut())
+                {
+                    *a += va;
+                    *b += vb;
                 } else {
                     row_idx.push(i);
                     base.push(va);

@@ -143,12 +143,11 @@ impl MixedOperator {
 
     /// The dense `n2 × n2` matrix `A` (the dense path of small problems only).
     pub(crate) fn dense(&self) -> Mat<f64> {
-        let (n1, n2) = (self.inner_dimension(), self.dimension());
+        let n2 = self.dimension();
         let by_face = self.by_face.to_dense();
         let mut x = by_face.clone();
         self.w.solve_in_elimination_order(x.as_mut());
         let a = by_face.transpose() * &x;
-        debug_assert_eq!((a.nrows(), a.ncols(), x.nrows()), (n2, n2, n1));
         Mat::from_fn(n2, n2, |i, j| 0.5 * (a[(i, j)] + a[(j, i)]))
     }
 }
