@@ -16,6 +16,7 @@ mod sparse_mass_products;
 mod spectrum_bound;
 mod statistics;
 mod stiffness;
+mod stored_mass;
 mod symmetric_products;
 mod tall_kernels;
 mod tall_products;

@@ -17,21 +17,21 @@
 //!   `negatives(K(σ)) − n1` whatever the elimination order; `A x` is `d1 (W⁻¹ (d1ᵀ x))` with a
 //!   sparse Cholesky factorization of `W`, made once.
 
-use super::mass::{full_symmetric_mass, symmetric_full, Mass, MassMatrix};
+use super::mass::{symmetric_full, Mass, MassMatrix};
 use super::mixed_operator::MixedOperator;
 use super::refinement::{diagonal_of, max_column_sum};
-use super::shift_factor::{KrylovFrame, ShiftFactor};
-use super::spectrum_bound::lanczos_upper_bound;
+use super::shift_factor::{saddle_pattern, KrylovFrame, ShiftFactor};
+use super::spectrum_bound::{block_power_norm, hutchinson_trace, upper_bound_of};
 use super::statistics::{Phase, SolverStatistics};
 use super::stiffness::Stiffness;
-use super::symmetric_products::{Row, CHUNK};
+use super::stored_mass::{MassSolver, SparseMass, StoredMass};
 use crate::convert::{
     shifted_upper_triangle, square_dimension, upper_triangle_csc, ShiftedPattern,
 };
 use crate::dense_eigen::{check_mass, dense_generalized_eigen, dense_generalized_eigen_with_mass};
 use crate::error::SolverError;
 use crate::sparse_ldlt::{FactorPattern, SparseLdlt};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::SparseColMat;
 use faer::{Mat, Par};
 use std::sync::{Arc, Mutex, OnceLock, PoisonError};
 
@@ -47,118 +47,6 @@ pub struct ShiftCount {
     pub shift: f64,
     /// Eigenvalues strictly below `shift`, kernel included.
     pub below: usize,
-}
-
-/// A sparse SPD mass: full storage, its Cholesky factorization and its diagonal.
-struct SparseMass {
-    full: SparseColMat<usize, f64>,
-    /// `LDLᵀ = M`, all pivots positive, solved on one thread.
-    factor: SparseLdlt,
-    diagonal: Vec<f64>,
-}
-
-impl SparseMass {
-    /// Checks and factors the mass `m` of a pencil of dimension `n`.
-    ///
-    /// Errors: [`SolverError::NotSquare`], [`SolverError::NonFinite`],
-    /// [`SolverError::DimensionMismatch`], [`SolverError::MatrixNotPositiveDefinite`] naming the
-    /// mass matrix.
-    fn new(m: &sprs::CsMat<f64>, n: usize) -> Result<Self, SolverError> {
-        let full = full_symmetric_mass(m, n, "mass matrix dimension")?;
-        let upper = upper_triangle_csc(m)?;
-        let not_positive = |pivot, value| SolverError::MatrixNotPositiveDefinite {
-            matrix: "mass matrix",
-            pivot,
-            value,
-        };
-        let mut factor = SparseLdlt::new(upper.as_ref()).map_err(|e| match e {
-            SolverError::Singular { pivot } => not_positive(pivot, 0.0),
-            other => other,
-        })?;
-        factor.set_parallelism(Par::Seq);
-        let pivots = factor.pivots();
-        if let Some(k) = pivots.iter().position(|&d| !(d > 0.0 && d.is_finite())) {
-            return Err(not_positive(factor.original_index(k), pivots[k]));
-        }
-        let diagonal = diagonal_of(full.as_ref());
-        Ok(Self {
-            full,
-            factor,
-            diagonal,
-        })
-    }
-}
-
-/// The mass of a pencil as stored (one per pencil, never moved after construction: the size
-/// of the variants does not matter).
-#[allow(clippy::large_enum_variant)]
-enum StoredMass<'a> {
-    Diagonal(&'a [f64]),
-    Sparse(SparseMass),
-}
-
-impl StoredMass<'_> {
-    fn view(&self) -> Mass<'_> {
-        match self {
-            StoredMass::Diagonal(mass) => Mass::Diagonal(mass),
-            StoredMass::Sparse(m) => Mass::Sparse(m.full.as_ref()),
-        }
-    }
-
-    /// The mass of the caller, checked (see [`SparseMass::new`], [`check_mass`]).
-    fn new(mass: MassMatrix<'_>, n: usize) -> Result<StoredMass<'_>, SolverError> {
-        match mass {
-            MassMatrix::Diagonal(mass) => {
-                if mass.len() != n {
-                    return Err(SolverError::DimensionMismatch {
-                        context: "mass diagonal length",
-                        expected: n,
-                        actual: mass.len(),
-                    });
-                }
-                check_mass(mass)?;
-                Ok(StoredMass::Diagonal(mass))
-            }
-            MassMatrix::Sparse(m) => Ok(StoredMass::Sparse(SparseMass::new(m, n)?)),
-        }
-    }
-
-    /// `Σ_ij M_ij` (the total mass: the area of a surface for P1 or face masses).
-    fn total(&self) -> f64 {
-        match self {
-            StoredMass::Diagonal(mass) => mass.iter().sum(),
-            StoredMass::Sparse(m) => m.full.val().iter().sum(),
-        }
-    }
-}
-
-/// `M x` and `M⁻¹ x` of a stored mass, for the Lanczos bound.
-#[derive(Clone, Copy)]
-enum MassSolver<'a> {
-    Diagonal(&'a [f64]),
-    Sparse(&'a SparseMass),
-}
-
-impl MassSolver<'_> {
-    fn apply(self, x: &[f64]) -> Vec<f64> {
-        let column = faer::MatRef::from_column_major_slice(x, x.len(), 1);
-        let product = match self {
-            MassSolver::Diagonal(d) => Mass::Diagonal(d).times(column),
-            MassSolver::Sparse(m) => Mass::Sparse(m.full.as_ref()).times(column),
-        };
-        (0..x.len()).map(|i| product[(i, 0)]).collect()
-    }
-
-    fn solve(self, x: &[f64]) -> Vec<f64> {
-        match self {
-            MassSolver::Diagonal(mass) => x.iter().zip(mass).map(|(v, m)| v / m).collect(),
-            MassSolver::Sparse(m) => {
-                let mut column = Mat::from_fn(x.len(), 1, |i, _| x[i]);
-                m.factor.solve_in_place(column.as_mut());
-                (0..x.len()).map(|i| column[(i, 0)]).collect()
-            }
-        }
-    }
 }
 
 /// What each kind of pencil stores (see the module documentation; one per pencil).
@@ -663,131 +551,4 @@ impl<'a> Pencil<'a> {
             ),
         })
     }
-}
-
-/// The Lanczos bound of `(A, M)` (see `spectrum_bound.rs`).
-fn upper_bound_of(stiffness: Stiffness<'_>, mass: MassSolver<'_>, n: usize) -> f64 {
-    let apply_a = |x: &[f64]| {
-        let column = faer::MatRef::from_column_major_slice(x, n, 1);
-        let mut out = Mat::<f64>::zeros(n, 1);
-        stiffness.times(out.as_mut(), column, Par::Seq);
-        (0..n).map(|i| out[(i, 0)]).collect()
-    };
-    let times_m = |x: &[f64]| mass.apply(x);
-    let solve_m = |x: &[f64]| mass.solve(x);
-    lanczos_upper_bound(n, &apply_a, Some((&times_m, &solve_m)))
-}
-
-/// Block power steps of the norm estimate of a mixed `A`.
-const POWER_STEPS: usize = 12;
-
-/// `λ_max(A)` of the symmetric positive semidefinite `A` (`n × n`) estimated by [`POWER_STEPS`]
-/// steps of block power iteration on eight pseudo-random vectors (one packed product each):
-/// the largest Rayleigh quotient of the last block, at least the smallest positive number.
-fn block_power_norm(stiffness: Stiffness<'_>, n: usize) -> f64 {
-    let mut x: Vec<Row> = (0..n)
-        .map(|i| {
-            std::array::from_fn(|j| {
-                let h = ((i * CHUNK + j) as u64 + 3).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-                (h >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-        })
-        .collect();
-    let (mut ax, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
-    let mut largest = f64::MIN_POSITIVE;
-    for _ in 0..POWER_STEPS {
-        stiffness.times_rows(&x, &mut ax, &mut work);
-        let (mut xx, mut xax, mut yy) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
-        for (a, b) in x.iter().zip(&ax) {
-            for j in 0..CHUNK {
-                xx[j] += a[j] * a[j];
-                xax[j] += a[j] * b[j];
-                yy[j] += b[j] * b[j];
-            }
-        }
-        largest = (0..CHUNK)
-            .filter(|&j| xx[j] > 0.0)
-            .map(|j| xax[j] / xx[j])
-            .fold(largest, f64::max);
-        let norms: Row = std::array::from_fn(|j| yy[j].sqrt());
-        if norms.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
-            break;
-        }
-        for (a, b) in x.iter_mut().zip(&ax) {
-            *a = std::array::from_fn(|j| b[j] / norms[j]);
-        }
-    }
-    largest
-}
-
-/// Hutchinson's estimate of `trace(A)`: the mean of `zᵀ A z` over eight vectors `z` of
-/// pseudo-random signs (one packed product).
-fn hutchinson_trace(stiffness: Stiffness<'_>, n: usize) -> f64 {
-    let z: Vec<Row> = (0..n)
-        .map(|i| {
-            std::array::from_fn(|j| {
-                let h = ((i * CHUNK + j) as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
-                if h >> 63 == 0 {
-                    1.0
-                } else {
-                    -1.0
-                }
-            })
-        })
-        .collect();
-    let (mut az, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
-    stiffness.times_rows(&z, &mut az, &mut work);
-    let sum: f64 = z
-        .iter()
-        .zip(&az)
-        .map(|(x, y)| (0..CHUNK).map(|j| x[j] * y[j]).sum::<f64>())
-        .sum();
-    sum / CHUNK as f64
-}
-
-/// The upper triangle of `K(σ) = [[−W, d1ᵀ], [d1, −σN]]` for every σ (rows `0..n1` the `u`
-/// unknowns, `n1..n1 + n2` the `ψ` unknowns).
-fn saddle_pattern(
-    w_upper: &SparseColMat<usize, f64>,
-    d1: &sprs::CsMat<f64>,
-    mass: &StoredMass<'_>,
-    n1: usize,
-    n2: usize,
-) -> Result<ShiftedPattern, SolverError> {
-    let total = n1 + n2;
-    let mut base = Vec::with_capacity(w_upper.val().len() + d1.nnz());
-    let (col_ptr, row_idx) = (w_upper.symbolic().col_ptr(), w_upper.symbolic().row_idx());
-    for j in 0..n1 {
-        for p in col_ptr[j]..col_ptr[j + 1] {
-            base.push(Triplet::new(row_idx[p], j, -w_upper.val()[p]));
-        }
-    }
-    for (value, (f, e)) in d1.iter() {
-        base.push(Triplet::new(e, n1 + f, *value));
-    }
-    let mut shift = Vec::new();
-    match mass {
-        StoredMass::Diagonal(d) => {
-            shift.extend(
-                d.iter()
-                    .enumerate()
-                    .map(|(f, &m)| Triplet::new(n1 + f, n1 + f, m)),
-            );
-        }
-        StoredMass::Sparse(m) => {
-            let (col_ptr, row_idx) = (m.full.symbolic().col_ptr(), m.full.symbolic().row_idx());
-            for g in 0..n2 {
-                for p in col_ptr[g]..col_ptr[g + 1] {
-                    if row_idx[p] <= g {
-                        shift.push(Triplet::new(n1 + row_idx[p], n1 + g, m.full.val()[p]));
-                    }
-                }
-            }
-        }
-    }
-    let build = |triplets: &[Triplet<usize, usize, f64>]| {
-        SparseColMat::try_new_from_triplets(total, total, triplets)
-            .map_err(|e| SolverError::Factorization(format!("{e:?}")))
-    };
-    ShiftedPattern::new(&build(&base)?, &build(&shift)?)
 }

@@ -27,9 +27,12 @@
 //! the sparse mass in it, and the saddle positions. It is formed once per pencil.
 
 use super::mass::permuted;
+use super::stored_mass::StoredMass;
 use super::symmetric_products::{gather_times, Row};
+use crate::convert::ShiftedPattern;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
+use faer::sparse::Triplet;
 use faer::sparse::{SparseColMat, SparseColMatRef};
 use faer::MatMut;
 
@@ -245,6 +248,53 @@ fn scatter(rows: &[Row], positions: &[usize], total: usize, buffer: &mut Vec<Row
     for (row, &k) in rows.iter().zip(positions) {
         buffer[k] = *row;
     }
+}
+
+/// The upper triangle of `K(σ) = [[−W, d1ᵀ], [d1, −σN]]` for every σ (rows `0..n1` the `u`
+/// unknowns, `n1..n1 + n2` the `ψ` unknowns).
+pub(crate) fn saddle_pattern(
+    w_upper: &SparseColMat<usize, f64>,
+    d1: &sprs::CsMat<f64>,
+    mass: &StoredMass<'_>,
+    n1: usize,
+    n2: usize,
+) -> Result<ShiftedPattern, SolverError> {
+    let total = n1 + n2;
+    let mut base = Vec::with_capacity(w_upper.val().len() + d1.nnz());
+    let (col_ptr, row_idx) = (w_upper.symbolic().col_ptr(), w_upper.symbolic().row_idx());
+    for j in 0..n1 {
+        for p in col_ptr[j]..col_ptr[j + 1] {
+            base.push(Triplet::new(row_idx[p], j, -w_upper.val()[p]));
+        }
+    }
+    for (value, (f, e)) in d1.iter() {
+        base.push(Triplet::new(e, n1 + f, *value));
+    }
+    let mut shift = Vec::new();
+    match mass {
+        StoredMass::Diagonal(d) => {
+            shift.extend(
+                d.iter()
+                    .enumerate()
+                    .map(|(f, &m)| Triplet::new(n1 + f, n1 + f, m)),
+            );
+        }
+        StoredMass::Sparse(m) => {
+            let (col_ptr, row_idx) = (m.full.symbolic().col_ptr(), m.full.symbolic().row_idx());
+            for g in 0..n2 {
+                for p in col_ptr[g]..col_ptr[g + 1] {
+                    if row_idx[p] <= g {
+                        shift.push(Triplet::new(n1 + row_idx[p], n1 + g, m.full.val()[p]));
+                    }
+                }
+            }
+        }
+    }
+    let build = |triplets: &[Triplet<usize, usize, f64>]| {
+        SparseColMat::try_new_from_triplets(total, total, triplets)
+            .map_err(|e| SolverError::Factorization(format!("{e:?}")))
+    };
+    ShiftedPattern::new(&build(&base)?, &build(&shift)?)
 }
 
 #[cfg(test)]

@@ -1,5 +1,8 @@
-//! An upper bound of the spectrum of a pencil `(A, M)` whose mass is not diagonal (or whose `A`
-//! is only known as an operator), by Lanczos.
+//! Estimates of the spectrum of a pencil `(A, M)` whose mass is not diagonal or whose `A` is
+//! only known as an operator: an upper bound by Lanczos ([`upper_bound_of`]), `‖A‖₂` by block
+//! power iteration ([`block_power_norm`]) and `trace(A)` by Hutchinson's estimator
+//! ([`hutchinson_trace`]).
+//!
 //!
 //! For a diagonal `M` the Gershgorin bound `max_i Σ_j |A_ij| / M_ii` is rigorous and costs one
 //! pass over `A`. For a sparse `M` it is not a bound at all (the consistent P1 mass has
@@ -11,6 +14,11 @@
 //! so after 40 steps `θ + ρ` is at or above `λ_max` unless the start vector is nearly orthogonal
 //! to the top eigenvectors (probability negligible for a random start); the bound is an
 //! inflated estimate, not a proof.
+
+use super::stiffness::Stiffness;
+use super::stored_mass::MassSolver;
+use super::symmetric_products::{Row, CHUNK};
+use faer::{Mat, Par};
 
 /// Lanczos steps of the estimate.
 pub(crate) const LANCZOS_STEPS: usize = 40;
@@ -88,6 +96,86 @@ pub(crate) fn lanczos_upper_bound(
     let top = values[m - 1];
     let residual = last_beta * vectors[(m - 1, m - 1)].abs();
     (top + residual).max(0.0) * SAFETY_FACTOR
+}
+
+/// The Lanczos bound of `(A, M)` (see `spectrum_bound.rs`).
+pub(crate) fn upper_bound_of(stiffness: Stiffness<'_>, mass: MassSolver<'_>, n: usize) -> f64 {
+    let apply_a = |x: &[f64]| {
+        let column = faer::MatRef::from_column_major_slice(x, n, 1);
+        let mut out = Mat::<f64>::zeros(n, 1);
+        stiffness.times(out.as_mut(), column, Par::Seq);
+        (0..n).map(|i| out[(i, 0)]).collect()
+    };
+    let times_m = |x: &[f64]| mass.apply(x);
+    let solve_m = |x: &[f64]| mass.solve(x);
+    lanczos_upper_bound(n, &apply_a, Some((&times_m, &solve_m)))
+}
+
+/// Block power steps of the norm estimate of a mixed `A`.
+const POWER_STEPS: usize = 12;
+
+/// `λ_max(A)` of the symmetric positive semidefinite `A` (`n × n`) estimated by [`POWER_STEPS`]
+/// steps of block power iteration on eight pseudo-random vectors (one packed product each):
+/// the largest Rayleigh quotient of the last block, at least the smallest positive number.
+pub(crate) fn block_power_norm(stiffness: Stiffness<'_>, n: usize) -> f64 {
+    let mut x: Vec<Row> = (0..n)
+        .map(|i| {
+            std::array::from_fn(|j| {
+                let h = ((i * CHUNK + j) as u64 + 3).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+                (h >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+        })
+        .collect();
+    let (mut ax, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
+    let mut largest = f64::MIN_POSITIVE;
+    for _ in 0..POWER_STEPS {
+        stiffness.times_rows(&x, &mut ax, &mut work);
+        let (mut xx, mut xax, mut yy) = ([0.0; CHUNK], [0.0; CHUNK], [0.0; CHUNK]);
+        for (a, b) in x.iter().zip(&ax) {
+            for j in 0..CHUNK {
+                xx[j] += a[j] * a[j];
+                xax[j] += a[j] * b[j];
+                yy[j] += b[j] * b[j];
+            }
+        }
+        largest = (0..CHUNK)
+            .filter(|&j| xx[j] > 0.0)
+            .map(|j| xax[j] / xx[j])
+            .fold(largest, f64::max);
+        let norms: Row = std::array::from_fn(|j| yy[j].sqrt());
+        if norms.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
+            break;
+        }
+        for (a, b) in x.iter_mut().zip(&ax) {
+            *a = std::array::from_fn(|j| b[j] / norms[j]);
+        }
+    }
+    largest
+}
+
+/// Hutchinson's estimate of `trace(A)`: the mean of `zᵀ A z` over eight vectors `z` of
+/// pseudo-random signs (one packed product).
+pub(crate) fn hutchinson_trace(stiffness: Stiffness<'_>, n: usize) -> f64 {
+    let z: Vec<Row> = (0..n)
+        .map(|i| {
+            std::array::from_fn(|j| {
+                let h = ((i * CHUNK + j) as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+                if h >> 63 == 0 {
+                    1.0
+                } else {
+                    -1.0
+                }
+            })
+        })
+        .collect();
+    let (mut az, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
+    stiffness.times_rows(&z, &mut az, &mut work);
+    let sum: f64 = z
+        .iter()
+        .zip(&az)
+        .map(|(x, y)| (0..CHUNK).map(|j| x[j] * y[j]).sum::<f64>())
+        .sum();
+    sum / CHUNK as f64
 }
 
 #[cfg(test)]
