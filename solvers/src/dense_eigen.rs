@@ -126,12 +126,27 @@ pub fn dense_generalized_eigen_with_mass(
     Ok((values, vectors))
 }
 
-/// The first row/column whose leading principal minor of the symmetric `m` is not positive
-/// (where its Cholesky factorization stops; `n` if none).
+/// The first row/column where the Cholesky factorization of the symmetric `m` (lower triangle
+/// read) meets a pivot that is not positive (`n` if none): one right-looking elimination.
 fn first_non_positive_pivot(m: MatRef<'_, f64>) -> usize {
-    (1..=m.nrows())
-        .find(|&k| m.submatrix(0, 0, k, k).llt(Side::Lower).is_err())
-        .map_or(m.nrows(), |k| k - 1)
+    let n = m.nrows();
+    let mut l = Mat::from_fn(n, n, |i, j| if i >= j { m[(i, j)] } else { 0.0 });
+    for k in 0..n {
+        let pivot = l[(k, k)];
+        if !(pivot > 0.0 && pivot.is_finite()) {
+            return k;
+        }
+        let root = pivot.sqrt();
+        for i in k..n {
+            l[(i, k)] /= root;
+        }
+        for j in k + 1..n {
+            for i in j..n {
+                l[(i, j)] -= l[(i, k)] * l[(j, k)];
+            }
+        }
+    }
+    n
 }
 
 /// Eigen-decomposition of a dense symmetric matrix (lower triangle read): ascending values and

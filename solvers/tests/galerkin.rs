@@ -467,3 +467,59 @@ fn indefinite_mass_and_w_are_named_errors() {
         Err(SolverError::DimensionMismatch { .. })
     ));
 }
+
+/// The dense solver with a dense mass agrees with the diagonal one on a diagonal mass, and
+/// rejects a mass that is not positive definite by name.
+#[test]
+fn dense_solver_with_a_mass_matrix() {
+    let n = 30;
+    let a = Mat::from_fn(n, n, |i, j| match i.abs_diff(j) {
+        0 => 2.0 + (i % 4) as f64,
+        1 => -1.0,
+        _ => 0.0,
+    });
+    let diagonal: Vec<f64> = (0..n).map(|i| 0.5 + (i % 3) as f64).collect();
+    let mass = Mat::from_fn(n, n, |i, j| if i == j { diagonal[i] } else { 0.0 });
+    let (expected, _) = dense_generalized_eigen(a.as_ref(), &diagonal).expect("dense");
+    let (values, vectors) =
+        dense_generalized_eigen_with_mass(a.as_ref(), mass.as_ref()).expect("dense with a mass");
+    for (v, e) in values.iter().zip(&expected) {
+        assert!((v - e).abs() <= 1e-13 * e.abs().max(1.0));
+    }
+    let gram = vectors.transpose() * &mass * &vectors;
+    assert!((&gram - Mat::<f64>::identity(n, n)).norm_max() <= 1e-13);
+    let mut indefinite = mass.clone();
+    indefinite[(7, 7)] = -1.0;
+    assert!(matches!(
+        dense_generalized_eigen_with_mass(a.as_ref(), indefinite.as_ref()),
+        Err(SolverError::MatrixNotPositiveDefinite {
+            matrix: "mass matrix",
+            pivot: 7,
+            ..
+        })
+    ));
+}
+
+/// `A − σM` on the union pattern of `A`, `M` and the diagonal equals the dense difference.
+#[test]
+fn shifted_matrix_with_a_sparse_mass_is_the_difference_on_the_union_pattern() {
+    let (positions, faces) = mesh_matrices::grid(4, 3, 0.2);
+    let stiffness = mesh_matrices::cotan(&positions, &faces).stiffness;
+    let mass = mesh_matrices::consistent_mass(&positions, &faces);
+    let sigma = 0.37;
+    let upper = tvf_solvers::convert::shifted_upper_triangle_with_mass(&stiffness, &mass, sigma)
+        .expect("valid");
+    let expected = &dense(&stiffness) - &dense(&mass) * faer::Scale(sigma);
+    let got = upper.to_dense();
+    for j in 0..expected.ncols() {
+        for i in 0..expected.nrows() {
+            let e = if i <= j { expected[(i, j)] } else { 0.0 };
+            assert!((got[(i, j)] - e).abs() <= 1e-14, "({i}, {j})");
+        }
+        let col = upper.symbolic().col_ptr()[j]..upper.symbolic().col_ptr()[j + 1];
+        assert!(
+            upper.symbolic().row_idx()[col].contains(&j),
+            "diagonal of column {j}"
+        );
+    }
+}
