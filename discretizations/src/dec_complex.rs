@@ -12,8 +12,8 @@ use crate::MassLumping;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, Mass, DiscretizationError, FieldSampling,
-    HodgeComplex, NodeKind, NodeSpace, PointEvaluation,
+    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
+    NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 

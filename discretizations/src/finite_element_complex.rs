@@ -6,8 +6,8 @@ use crate::face_geometry::FaceGeometry;
 use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping};
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
 use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, Mass, DiscretizationError, FieldRotation,
-    FieldSampling, HodgeComplex, NodeKind, NodeSpace, PointEvaluation,
+    BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
+    HodgeComplex, Mass, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 

@@ -79,7 +79,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let complex = (catalog_entry(DEFAULT_DISCRETIZATION)?.build)(&mesh)?;
         let start = Instant::now();
-        let dirichlet = complex.dirichlet_energy();
+        complex.dirichlet_energy();
         let assembly_s = start.elapsed().as_secs_f64();
         let assembler = ConstraintAssembler::new(complex.as_ref(), &mesh);
         let compiled: Vec<CompiledConstraint> =
@@ -88,7 +88,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             assembler.compile_all(&seeded_constraints(&mesh, complex.as_ref(), 30, 2))?;
         let options = SoftOptions {
             omega: OMEGA,
-            regularization: default_regularization(dirichlet, complex.m1().values()),
+            regularization: default_regularization(complex.as_ref()),
         };
         for &ordering in &orderings {
             let (mut total, mut assembly, mut first, mut numeric, mut solve) =
@@ -99,9 +99,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut report = None;
             for _ in 0..runs {
                 let start = Instant::now();
-                let mut design = FullSoftDesign::from_matrices_with(
-                    dirichlet,
-                    complex.m1().values(),
+                let mut design = FullSoftDesign::of_complex(
+                    complex.as_ref(),
                     options,
                     compiled.clone(),
                     ordering,

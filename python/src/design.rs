@@ -97,7 +97,7 @@ pub fn design<'py>(
         let dirichlet = c.dirichlet_energy();
         let options = SoftOptions {
             omega: set.omega,
-            regularization: default_regularization(dirichlet, c.m1().values()),
+            regularization: default_regularization(c),
         };
         let design = FullSoftDesign::new(c, options, compiled.clone())?;
         Ok(design.solve().0)

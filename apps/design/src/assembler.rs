@@ -5,10 +5,9 @@ use crate::constraint::{
     CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target,
 };
 use crate::error::ConstraintError;
-use sprs::CsMat;
 use std::collections::{BTreeMap, HashSet};
 use tvf_core::discretization::{
-    HodgeComplex, HodgeOperators, NodeKind, NodeSpace, PointEvaluation,
+    HodgeComplex, HodgeOperators, LinearOperator, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -191,9 +190,9 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
         constraint: &Constraint,
         kind: &'static str,
         space: Space,
-    ) -> Result<(&'a CsMat<f64>, &'a NodeSpace), ConstraintError> {
+    ) -> Result<(&'a LinearOperator, &'a NodeSpace), ConstraintError> {
         let complex = self.complex;
-        let other = |matrix: Option<&'a CsMat<f64>>| {
+        let other = |matrix: Option<&'a LinearOperator>| {
             matrix.ok_or_else(|| ConstraintError::Unsupported {
                 id: constraint.id.clone(),
                 detail: format!(
@@ -246,13 +245,28 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             }
         };
         let mut row = BTreeMap::new();
-        for (node, w) in weights {
-            if w == 0.0 {
-                continue;
+        match matrix.as_sparse() {
+            Some(matrix) => {
+                for (node, w) in weights {
+                    if w == 0.0 {
+                        continue;
+                    }
+                    if let Some(lane) = matrix.outer_view(node) {
+                        for (col, &a) in lane.iter() {
+                            *row.entry(col).or_insert(0.0) += w * a;
+                        }
+                    }
+                }
             }
-            if let Some(lane) = matrix.outer_view(node) {
-                for (col, &a) in lane.iter() {
-                    *row.entry(col).or_insert(0.0) += w * a;
+            None => {
+                // A composed operator (an inverse mass inside): its rows are dense; the weighted
+                // combination of rows is one transposed application.
+                let mut combination = vec![0.0; matrix.rows()];
+                for (node, w) in weights {
+                    combination[node] += w;
+                }
+                for (col, a) in matrix.apply_transpose(&combination).into_iter().enumerate() {
+                    row.insert(col, a);
                 }
             }
         }

@@ -41,9 +41,17 @@ pub fn reference_spline<H: HodgeComplex + ?Sized>(
             return Err(DesignError::BadParameter { what, value });
         }
     }
-    let dirichlet = complex.dirichlet_energy();
-    let energy: CsMat<f64> = linear_combination(1.0, complex.biharmonic_energy(), omega, dirichlet);
-    let screened: Vec<f64> = complex.m1().values().iter().map(|m| epsilon * m).collect();
+    let (Some(dirichlet), Some(biharmonic), Some(m1)) = (
+        complex.dirichlet_energy().as_sparse(),
+        complex.biharmonic_energy().as_sparse(),
+        complex.m1().diagonal_values(),
+    ) else {
+        return Err(DesignError::NotSparse {
+            what: "the reference spline",
+        });
+    };
+    let energy: CsMat<f64> = linear_combination(1.0, biharmonic, omega, dirichlet);
+    let screened: Vec<f64> = m1.iter().map(|m| epsilon * m).collect();
     let matrix = linear_combination(1.0, &energy, 1.0, &diagonal(&screened));
     let factor = SparseCholesky::new(&matrix)?;
     let n = matrix.rows();

@@ -7,6 +7,8 @@ use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Mat, Par};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
 use sprs::CsMat;
 use std::time::{Duration, Instant};
 use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
@@ -30,14 +32,39 @@ pub struct SoftOptions {
     pub regularization: f64,
 }
 
-/// `ε = 1e-10 · tr(M_X⁻¹ S) / 2F`: ten orders of magnitude below the mean eigenvalue of the
+/// `ε = 1e-10 · tr(M1⁻¹ S) / n1`: ten orders of magnitude below the mean eigenvalue of the
 /// Hodge–Laplacian, so it only matters on (near-)kernel directions left free by the constraints.
-pub fn default_regularization(dirichlet: &CsMat<f64>, mass: &[f64]) -> f64 {
-    let trace: f64 = (0..dirichlet.rows())
-        .map(|i| dirichlet.get(i, i).copied().unwrap_or(0.0) / mass[i].max(f64::MIN_POSITIVE))
-        .sum();
-    1e-10 * trace / dirichlet.rows().max(1) as f64
+/// Where `S` is a sparse matrix and `M1` diagonal the trace is exact; otherwise it is estimated
+/// from [`TRACE_PROBES`] seeded random sign vectors `z` as the mean of `zᵀ M1⁻¹ S z` (only the
+/// scale of `ε` depends on it).
+pub fn default_regularization<H: HodgeComplex + ?Sized>(complex: &H) -> f64 {
+    let dirichlet = complex.dirichlet_energy();
+    let n = dirichlet.rows().max(1) as f64;
+    let trace: f64 = match (dirichlet.as_sparse(), complex.m1().diagonal_values()) {
+        (Some(dirichlet), Some(mass)) => (0..dirichlet.rows())
+            .map(|i| dirichlet.get(i, i).copied().unwrap_or(0.0) / mass[i].max(f64::MIN_POSITIVE))
+            .sum(),
+        _ => {
+            let mut rng = ChaCha8Rng::seed_from_u64(TRACE_SEED);
+            let estimates: f64 = (0..TRACE_PROBES)
+                .map(|_| {
+                    let z: Vec<f64> = (0..dirichlet.rows())
+                        .map(|_| if rng.random_bool(0.5) { 1.0 } else { -1.0 })
+                        .collect();
+                    let y = complex.m1().solve(&dirichlet.apply(&z));
+                    z.iter().zip(&y).map(|(a, b)| a * b).sum::<f64>()
+                })
+                .sum();
+            estimates / TRACE_PROBES as f64
+        }
+    };
+    1e-10 * trace / n
 }
+
+/// Random probes of the trace estimate of [`default_regularization`].
+pub const TRACE_PROBES: usize = 8;
+/// Seed of those probes.
+const TRACE_SEED: u64 = 0x7472_6163_655f_6573;
 
 /// Wall-clock times of the last (re)factorization of a [`FullSoftDesign`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -99,18 +126,40 @@ pub struct FullSoftDesign {
 }
 
 impl FullSoftDesign {
-    /// Assembles `S` and `M_X` of `complex` and factors the system for `constraints`.
+    /// Assembles `S` and `M1` of `complex` and factors the system for `constraints`, ordered by
+    /// [`DEFAULT_FULL_ORDERING`].
     pub fn new<H: HodgeComplex + ?Sized>(
         complex: &H,
         options: SoftOptions,
         constraints: Vec<CompiledConstraint>,
     ) -> Result<Self, DesignError> {
-        Self::from_matrices(
-            complex.dirichlet_energy(),
-            complex.m1().values(),
+        Self::of_complex(
+            complex,
             options,
             constraints,
+            DEFAULT_FULL_ORDERING,
+            FactorParallelism::default(),
         )
+    }
+
+    /// The same as [`FullSoftDesign::new`] with the fill-reducing `ordering` and the threading
+    /// of the factorizations chosen by the caller.
+    pub fn of_complex<H: HodgeComplex + ?Sized>(
+        complex: &H,
+        options: SoftOptions,
+        constraints: Vec<CompiledConstraint>,
+        ordering: FillOrdering,
+        parallelism: FactorParallelism,
+    ) -> Result<Self, DesignError> {
+        let (Some(dirichlet), Some(mass)) = (
+            complex.dirichlet_energy().as_sparse(),
+            complex.m1().diagonal_values(),
+        ) else {
+            return Err(DesignError::NotSparse {
+                what: "the full soft design",
+            });
+        };
+        Self::from_matrices_with(dirichlet, mass, options, constraints, ordering, parallelism)
     }
 
     /// The same from the Dirichlet energy `S` (`2F × 2F`, integrated, symmetric) and the diagonal

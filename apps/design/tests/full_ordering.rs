@@ -4,7 +4,6 @@
 mod common;
 
 use common::{max_relative_difference, FullDesignInputs};
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{icosphere, jitter, torus};
 use tvf_design::{
     default_regularization, FillOrdering, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING,
@@ -72,17 +71,14 @@ fn amd_and_nested_dissection_give_the_same_field() {
 }
 
 #[test]
-fn default_ordering_is_used_by_from_matrices() {
+fn default_ordering_is_used_by_new() {
     let mesh = icosphere(2);
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
-    let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega: 0.1,
-        regularization: default_regularization(dirichlet, complex.m1().values()),
+        regularization: default_regularization(&complex),
     };
-    let design =
-        FullSoftDesign::from_matrices(dirichlet, complex.m1().values(), options, Vec::new())
-            .expect("full design");
+    let design = FullSoftDesign::new(&complex, options, Vec::new()).expect("full design");
     assert_eq!(design.ordering(), DEFAULT_FULL_ORDERING);
     assert!(design.factor_entries() > 0 && design.factor_flop_count() > 0.0);
 }

@@ -107,7 +107,7 @@ pub fn smooth_field<H: HodgeComplex + ?Sized>(complex: &H, mesh: &SurfaceMesh) -
 
 /// A designed field, as the paper's "custom" fields were made with its design tools: the full
 /// soft design (Fisher et al.) with `constraints` seeded constraints (see
-/// [`seeded_constraints`](super::table1::seeded_constraints)) and the biharmonic weight
+/// [`seeded_constraints`](crate::seeded_constraints::seeded_constraints)) and the biharmonic weight
 /// `omega`, so that it is as smooth as the constraints allow; unit RMS.
 pub fn designed_field(
     complex: &dyn HodgeComplex,
@@ -122,13 +122,11 @@ pub fn designed_field(
         constraints,
         seed,
     ))?;
-    let dirichlet = complex.dirichlet_energy();
     let options = SoftOptions {
         omega,
-        regularization: default_regularization(dirichlet, complex.m1().values()),
+        regularization: default_regularization(complex),
     };
-    let design =
-        FullSoftDesign::from_matrices(dirichlet, complex.m1().values(), options, compiled)?;
+    let design = FullSoftDesign::new(complex, options, compiled)?;
     let (mut field, _) = design.solve();
     unit_rms(complex, mesh.total_area(), &mut field);
     Ok(field)

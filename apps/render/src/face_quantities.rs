@@ -13,7 +13,6 @@
 //!   exactly, because `xᵀ S x = Σ_i M0_i div_i² + Σ_j M2_j⁻¹ curl_j²` and each node's lumped mass is
 //!   a third of its faces' areas; with Voronoi lumping the sum is an approximation.
 
-use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{
     DiscretizationError, HodgeComplex, HodgeOperators, PointEvaluation,
 };
@@ -96,12 +95,12 @@ fn at_centroids(
 
 /// Nodal pointwise divergence of `field` in the potential space (`n0` values).
 fn nodal_divergence<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> Vec<f64> {
-    mul_vec(complex.potential_divergence(), field)
+    complex.potential_divergence().apply(field)
 }
 
 /// Nodal pointwise curl of `field` in the co-potential space (`n2` values).
 fn nodal_curl<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> Vec<f64> {
-    mul_vec(complex.co_potential_curl(), field)
+    complex.co_potential_curl().apply(field)
 }
 
 /// The per-face scalar `kind` of `field` (`n1` coefficients of the complex) whose 3D vectors at
@@ -178,7 +177,7 @@ mod tests {
             .sum();
         let exact: f64 = field
             .iter()
-            .zip(mul_vec(complex.dirichlet_energy(), &field))
+            .zip(complex.dirichlet_energy().apply(&field))
             .map(|(a, b)| a * b)
             .sum();
         assert!(

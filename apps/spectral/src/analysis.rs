@@ -4,6 +4,7 @@
 
 use crate::basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 use crate::fourier::FourierAnalysis;
+use tvf_core::discretization::Mass;
 use tvf_discretizations::HodgeParts;
 
 /// One basis field's coefficient.
@@ -35,15 +36,20 @@ pub struct EnergySplit {
 }
 
 impl EnergySplit {
-    /// Sum of the four parts (equals `‖v‖²_{M_X}` since the parts are `M_X`-orthogonal).
+    /// Sum of the four parts (equals `‖v‖²_{M1}` since the parts are `M1`-orthogonal).
     pub fn total(&self) -> f64 {
         self.integrable + self.cointegrable + self.harmonic + self.rest
     }
 
-    /// The squared norms of the three parts of an exact Hodge decomposition, with the mass
-    /// diagonal `M_X` (`2F` entries); `rest` is 0.
-    pub fn of_hodge_parts(parts: &HodgeParts, field_mass: &[f64]) -> Self {
-        let norm2 = |x: &[f64]| -> f64 { x.iter().zip(field_mass).map(|(a, m)| a * a * m).sum() };
+    /// The squared norms of the three parts of an exact Hodge decomposition in the field mass
+    /// `M1`; `rest` is 0.
+    pub fn of_hodge_parts(parts: &HodgeParts, field_mass: &Mass) -> Self {
+        let norm2 = |x: &[f64]| -> f64 {
+            match field_mass.diagonal_values() {
+                Some(mass) => x.iter().zip(mass).map(|(a, m)| a * a * m).sum(),
+                None => field_mass.inner(x, x),
+            }
+        };
         Self {
             integrable: norm2(&parts.integrable),
             cointegrable: norm2(&parts.co_integrable),

@@ -4,6 +4,7 @@ use crate::{BasisReport, EigenfunctionBasis};
 use faer::{Col, Mat, MatRef};
 use rayon::prelude::*;
 use thiserror::Error;
+use tvf_core::discretization::Mass;
 
 /// The family a basis field belongs to in the Hodge decomposition.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -54,16 +55,16 @@ pub enum SpectralBasisError {
 
 /// `d` eigenfields of the Hodge–Laplacian `L` of one discretization, `M_X`-orthonormal.
 ///
-/// Shapes: `fields` is `2F × d` (column `i` is field `i` in face-frame coordinates, face `t` at
-/// rows `2t, 2t+1`), `eigenvalues` and `families` have `d` entries, ascending in eigenvalue,
-/// `field_mass` is the diagonal of `M_X` (`2F` entries, face areas twice).
-/// `L U = U Λ` and `Uᵀ M_X U = I` hold to solver accuracy.
+/// Shapes: `fields` is `n1 × d` (column `i` is field `i` in the complex's field coefficients),
+/// `eigenvalues` and `families` have `d` entries, ascending in eigenvalue, `field_mass` is the
+/// complex's `M1` (`n1 × n1`, diagonal or sparse). `L U = U Λ` and `Uᵀ M1 U = I` hold to solver
+/// accuracy.
 #[derive(Debug, Clone)]
 pub struct SpectralBasis {
     eigenvalues: Vec<f64>,
     families: Vec<FieldFamily>,
     fields: Mat<f64>,
-    field_mass: Vec<f64>,
+    field_mass: Mass,
     /// Optional `f32` copy of `fields` (same shape) for fast reconstruction.
     fields_f32: Option<Mat<f32>>,
     /// Optional compact form (eigenfunctions) of the same basis.
@@ -78,7 +79,7 @@ impl SpectralBasis {
         eigenvalues: Vec<f64>,
         families: Vec<FieldFamily>,
         fields: Mat<f64>,
-        field_mass: Vec<f64>,
+        field_mass: Mass,
     ) -> Result<Self, SpectralBasisError> {
         let d = eigenvalues.len();
         check_length("families", d, families.len())?;
@@ -106,7 +107,7 @@ impl SpectralBasis {
         self.eigenvalues.is_empty()
     }
 
-    /// Dimension `2F` of the field space.
+    /// Dimension `n1` of the field space.
     pub fn field_dimension(&self) -> usize {
         self.fields.nrows()
     }
@@ -126,25 +127,31 @@ impl SpectralBasis {
         &self.families
     }
 
-    /// The fields `U`, `2F × d`.
+    /// The fields `U`, `n1 × d`.
     pub fn fields(&self) -> MatRef<'_, f64> {
         self.fields.as_ref()
     }
 
-    /// Diagonal of `M_X`, `2F` entries.
-    pub fn field_mass(&self) -> &[f64] {
+    /// The field mass `M1` (`n1 × n1`).
+    pub fn field_mass(&self) -> &Mass {
         &self.field_mass
     }
 
-    /// Fourier coefficients `Uᵀ M_X v` of a field `v` (`2F` entries), `d` entries.
+    /// Fourier coefficients `Uᵀ M1 v` of a field `v` (`n1` entries), `d` entries.
     pub fn coefficients(&self, field: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
         check_length("field", self.field_dimension(), field.len())?;
-        let weighted = Col::from_fn(field.len(), |r| self.field_mass[r] * field[r]);
+        let weighted = match self.field_mass.diagonal_values() {
+            Some(mass) => Col::from_fn(field.len(), |r| mass[r] * field[r]),
+            None => {
+                let weighted = self.field_mass.apply(field);
+                Col::from_fn(field.len(), |r| weighted[r])
+            }
+        };
         let coefficients = self.fields.transpose() * &weighted;
         Ok((0..self.len()).map(|i| coefficients[i]).collect())
     }
 
-    /// The field `U c` for coefficients `c` (`d` entries), `2F` entries.
+    /// The field `U c` for coefficients `c` (`d` entries), `n1` entries.
     pub fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
         check_length("coefficients", self.len(), coefficients.len())?;
         Ok(combine_columns(self.fields.as_ref(), coefficients))
@@ -204,13 +211,12 @@ impl SpectralBasis {
         self.report = Some(report);
     }
 
-    /// `M_X` inner product `aᵀ M_X b` of two fields (`2F` entries each).
+    /// `M1` inner product `aᵀ M1 b` of two fields (`n1` entries each).
     pub fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
-        a.iter()
-            .zip(b)
-            .zip(&self.field_mass)
-            .map(|((x, y), m)| x * m * y)
-            .sum()
+        match self.field_mass.diagonal_values() {
+            Some(mass) => a.iter().zip(b).zip(mass).map(|((x, y), m)| x * m * y).sum(),
+            None => self.field_mass.inner(a, b),
+        }
     }
 }
 

@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use std::cell::Cell;
 use std::time::Instant;
 use tvf_core::discretization::sparse::to_csr;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass};
 use tvf_solvers::{
     lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress, EigenRequest, Pencil,
     PhaseStatistics, ShiftCount, SolverStatistics,
@@ -118,7 +118,7 @@ pub fn compute_basis<H: HodgeComplex + ?Sized>(
         compact.eigenvalues().to_vec(),
         compact.families().to_vec(),
         fields,
-        complex.m1().values().to_vec(),
+        complex.m1().clone(),
     )?;
     if request.single_precision_copy {
         basis.store_single_precision_copy();
@@ -142,16 +142,19 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     let start = Instant::now();
     let (potential_nodes, co_potential_nodes) =
         (complex.potential_nodes(), complex.co_potential_nodes());
+    let free_fields = free_nodes(complex.field_nodes());
     let exact = ScalarSpectrum::new(
         "potential",
         complex.exact_eigenproblem(),
         &free_nodes(potential_nodes),
+        &free_fields,
         potential_nodes.kernel_dimension(),
     );
     let co_exact = ScalarSpectrum::new(
         "co-potential",
         complex.co_exact_eigenproblem(),
         &free_nodes(co_potential_nodes),
+        &free_fields,
         co_potential_nodes.kernel_dimension(),
     );
     let h = complex.topology().harmonic_dimension;
@@ -247,8 +250,9 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     report.max_field_residual = a.max_field_residual.max(b.max_field_residual);
     report.max_field_residual_floor = a.max_field_residual_floor.max(b.max_field_residual_floor);
 
-    let potentials = normalised(complex.d0(), complex.m1().values(), a.vectors, na);
-    let co_potentials = normalised(complex.co_gradient(), complex.m1().values(), b.vectors, nb);
+    let gradient = LinearOperator::Sparse(complex.d0().clone());
+    let potentials = normalised(&gradient, complex.m1(), a.vectors, na);
+    let co_potentials = normalised(complex.co_gradient(), complex.m1(), b.vectors, nb);
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
     report.seconds = start.elapsed().as_secs_f64();
     Ok((
@@ -335,16 +339,21 @@ fn solve_both_families(
 }
 
 /// The first `count` columns of `functions`, each divided by the `M1` norm of `gradient · φ`,
-/// so that `gradient · φ̃` is `M1`-unit. `gradient` is `2F × n` (the complex's `d0` or `J G_co`).
-/// Works in place (no second copy of the eigenfunctions).
+/// so that `gradient · φ̃` is `M1`-unit. `gradient` is `n1 × n` (the complex's `d0` or its
+/// co-gradient `−M1⁻¹ d1ᵀ`). Works in place (no second copy of the eigenfunctions) where the
+/// gradient is a sparse matrix and `M1` diagonal; otherwise the fields are formed a block at a
+/// time.
 fn normalised(
-    gradient: &sprs::CsMat<f64>,
-    m1: &[f64],
+    gradient: &LinearOperator,
+    m1: &Mass,
     mut functions: Mat<f64>,
     count: usize,
 ) -> Mat<f64> {
     let rows = functions.nrows();
     functions.truncate(rows, count.min(functions.ncols()));
+    let (Some(gradient), Some(m1)) = (gradient.as_sparse(), m1.diagonal_values()) else {
+        return normalised_through_fields(gradient, m1, functions);
+    };
     let gradient = to_csr(gradient);
     functions
         .as_mut()
@@ -357,6 +366,39 @@ fn normalised(
         });
     functions
 }
+
+/// [`normalised`] for a gradient or a field mass that is not a sparse matrix or not diagonal:
+/// the fields of [`FIELD_BLOCK`] columns at a time are formed (`gradient · φ`), their `M1` norms
+/// taken and the columns divided.
+fn normalised_through_fields(
+    gradient: &LinearOperator,
+    m1: &Mass,
+    mut functions: Mat<f64>,
+) -> Mat<f64> {
+    let columns = functions.ncols();
+    let mut first = 0;
+    while first < columns {
+        let width = FIELD_BLOCK.min(columns - first);
+        let block = functions.as_ref().subcols(first, width);
+        let fields = gradient.apply_block(block);
+        let weighted = m1.apply_block(fields.as_ref());
+        for j in 0..width {
+            let squared: f64 = (0..fields.nrows())
+                .map(|i| fields[(i, j)] * weighted[(i, j)])
+                .sum();
+            let norm = squared.sqrt();
+            functions
+                .col_mut(first + j)
+                .iter_mut()
+                .for_each(|x| *x /= norm);
+        }
+        first += width;
+    }
+    functions
+}
+
+/// Fields formed at a time by [`normalised_through_fields`].
+const FIELD_BLOCK: usize = 64;
 
 /// Columns per task of [`normalised`]: their values packed in rows of this many, so that one
 /// pass over the gradient serves them all (and each task divides its own columns).

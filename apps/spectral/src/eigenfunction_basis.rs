@@ -1,12 +1,12 @@
 //! [`EigenfunctionBasis`]: the Fourier basis stored as eigenfunctions (half the memory of the
-//! dense fields), turned into fields through the complex's sparse gradients.
+//! dense fields), turned into fields through the complex's gradients `d0` and `−M1⁻¹ d1ᵀ`.
 
 use crate::basis::{check_eigenvalues, check_length};
 use crate::{FieldFamily, SpectralBasisError};
 use faer::reborrow::ReborrowMut;
 use faer::{Col, ColRef, Mat, MatRef};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator};
 
 /// The basis of [`crate::compute_basis`] in compact form: integrable fields as potentials,
 /// co-integrable fields as co-potentials, harmonic fields as fields.
@@ -15,8 +15,8 @@ use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 /// [`co_potentials`](Self::co_potentials) (`n2 × b`), the fields are
 /// `Φ_i = d0 φ̃_i` and `Ψ_j = −M1⁻¹ d1ᵀ ψ̃_j`, `M1`-unit: each stored function is the
 /// `M0`-normalised eigenfunction divided by `√λ` (so `φ̃ = φ / √λ`). The harmonic fields are
-/// stored densely (`2F × h`, `h = 2g`). An integrable field costs `n0` numbers, a co-integrable one
-/// `n2`; on a closed mesh `n0 + n2 = V + E ≈ 2F`, half of the `4F` of a dense pair.
+/// stored densely (`n1 × h`). An integrable field costs `n0` numbers, a co-integrable one `n2`;
+/// for face fields on a closed mesh `n0 + n2 = V + E ≈ 2F`, half of the `4F` of a dense pair.
 ///
 /// All methods that produce or consume fields need the complex the basis was computed for.
 #[derive(Debug, Clone)]
@@ -139,7 +139,7 @@ impl EigenfunctionBasis {
         self.co_potentials.as_ref()
     }
 
-    /// Harmonic fields (`2F × h`, `M1`-orthonormal).
+    /// Harmonic fields (`n1 × h`, `M1`-orthonormal).
     pub fn harmonic_fields(&self) -> MatRef<'_, f64> {
         self.harmonic.as_ref()
     }
@@ -157,7 +157,7 @@ impl EigenfunctionBasis {
         complex: &H,
     ) -> Result<(), SpectralBasisError> {
         check_length(
-            "harmonic field rows (2F)",
+            "harmonic field rows (n1)",
             complex.field_dimension(),
             self.harmonic.nrows(),
         )?;
@@ -173,7 +173,7 @@ impl EigenfunctionBasis {
         )
     }
 
-    /// Basis field `index` as a dense field (`2F` pointwise coefficients).
+    /// Basis field `index` as a dense field (`n1` pointwise coefficients).
     pub fn field<H: HodgeComplex + ?Sized>(&self, complex: &H, index: usize) -> Vec<f64> {
         let slot = self.slots[index];
         match self.families[index] {
@@ -187,8 +187,8 @@ impl EigenfunctionBasis {
         }
     }
 
-    /// Fourier coefficients `Uᵀ M1 v` of a field `v` (`2F` entries) by sparse products:
-    /// `α = φ̃ᵀ d0ᵀ M1 v`, `β = −ψ̃ᵀ d1 v` (since `J G_co = −M1⁻¹ d1ᵀ`), `γ = Γᵀ M1 v`.
+    /// Fourier coefficients `Uᵀ M1 v` of a field `v` (`n1` entries) by sparse products:
+    /// `α = φ̃ᵀ d0ᵀ M1 v`, `β = −ψ̃ᵀ d1 v` (since the co-gradient is `−M1⁻¹ d1ᵀ`), `γ = Γᵀ M1 v`.
     /// Returns `d` coefficients in basis order.
     pub fn coefficients<H: HodgeComplex + ?Sized>(
         &self,
@@ -212,8 +212,8 @@ impl EigenfunctionBasis {
             .collect())
     }
 
-    /// The field `Σ c_i U_i` (`2F` entries) from `d` coefficients, by sparse products:
-    /// `d0 (φ̃ α) + J G_co (ψ̃ β) + Γ γ`.
+    /// The field `Σ c_i U_i` (`n1` entries) from `d` coefficients: `d0 (φ̃ α) − M1⁻¹ d1ᵀ (ψ̃ β) +
+    /// Γ γ`.
     pub fn reconstruct<H: HodgeComplex + ?Sized>(
         &self,
         complex: &H,
@@ -244,8 +244,8 @@ impl EigenfunctionBasis {
             .collect())
     }
 
-    /// The basis fields `range` as dense fields (`2F` values each), built in parallel from the
-    /// sparse gradients `d0` and `J G_co`.
+    /// The basis fields `range` as dense fields (`n1` values each), built in parallel from the
+    /// gradients `d0` and `−M1⁻¹ d1ᵀ`.
     pub fn field_columns<H: HodgeComplex + ?Sized>(
         &self,
         complex: &H,
@@ -259,12 +259,30 @@ impl EigenfunctionBasis {
             .collect()
     }
 
-    /// The dense fields `U` (`2F × d`), column `i` = [`field`](Self::field)`(i)`, formed in
-    /// parallel, each straight into its column.
+    /// The dense fields `U` (`n1 × d`), column `i` = [`field`](Self::field)`(i)`, formed in
+    /// parallel, each straight into its column. Where the co-gradient is not a sparse matrix
+    /// (a non-diagonal `M1`), the co-integrable fields are formed first, all at once, by one
+    /// block solve with `M1`.
     pub fn dense_fields<H: HodgeComplex + ?Sized>(&self, complex: &H) -> Mat<f64> {
         use rayon::prelude::*;
         let (d0, co_gradient) = (complex.d0(), complex.co_gradient());
         let mut fields = Mat::zeros(complex.field_dimension(), self.len());
+        if !co_gradient.is_sparse() {
+            let co_exact = co_gradient.apply_block(self.co_potentials.as_ref());
+            for i in 0..self.len() {
+                let slot = self.slots[i];
+                match self.families[i] {
+                    FieldFamily::Integrable => {
+                        let stored = self.stored_column(i);
+                        let values = mul_vec(d0, &stored);
+                        fields.col_mut(i).copy_from(ColRef::from_slice(&values));
+                    }
+                    FieldFamily::Cointegrable => fields.col_mut(i).copy_from(co_exact.col(slot)),
+                    FieldFamily::Harmonic => fields.col_mut(i).copy_from(self.harmonic.col(slot)),
+                }
+            }
+            return fields;
+        }
         fields
             .par_col_iter_mut()
             .enumerate()
@@ -303,22 +321,22 @@ impl EigenfunctionBasis {
         }
     }
 
-    /// Basis field `i` (`2F` values) from the gradient `d0` and the co-gradient `J G_co`.
+    /// Basis field `i` (`n1` values) from the gradient `d0` and the co-gradient `−M1⁻¹ d1ᵀ`.
     fn field_with(
         &self,
         d0: &sprs::CsMat<f64>,
-        co_gradient: &sprs::CsMat<f64>,
+        co_gradient: &LinearOperator,
         i: usize,
     ) -> Vec<f64> {
         field_of_stored(d0, co_gradient, self.families[i], &self.stored_column(i))
     }
 }
 
-/// The field (`2F` values) of one stored column of a compact basis: `d0 φ̃` for a potential,
-/// `J G_co ψ̃` for a co-potential, the column itself for a harmonic field.
+/// The field (`n1` values) of one stored column of a compact basis: `d0 φ̃` for a potential,
+/// `−M1⁻¹ d1ᵀ ψ̃` for a co-potential, the column itself for a harmonic field.
 pub(crate) fn field_of_stored(
     d0: &sprs::CsMat<f64>,
-    co_gradient: &sprs::CsMat<f64>,
+    co_gradient: &LinearOperator,
     family: FieldFamily,
     stored: &[f64],
 ) -> Vec<f64> {
@@ -327,17 +345,23 @@ pub(crate) fn field_of_stored(
     field
 }
 
-/// [`field_of_stored`] written into `field` (`2F` values).
+/// [`field_of_stored`] written into `field` (`n1` values).
 pub(crate) fn field_of_stored_into(
     d0: &sprs::CsMat<f64>,
-    co_gradient: &sprs::CsMat<f64>,
+    co_gradient: &LinearOperator,
     family: FieldFamily,
     stored: &[f64],
     field: &mut [f64],
 ) {
     let operator = match family {
         FieldFamily::Integrable => d0,
-        FieldFamily::Cointegrable => co_gradient,
+        FieldFamily::Cointegrable => match co_gradient.as_sparse() {
+            Some(sparse) => sparse,
+            None => {
+                field.copy_from_slice(&co_gradient.apply(stored));
+                return;
+            }
+        },
         FieldFamily::Harmonic => {
             field.copy_from_slice(stored);
             return;

@@ -133,8 +133,8 @@ pub(crate) fn split_families(
     // Above every eigenvalue of both families: all eigenvalues are below it, uncounted.
     let ceiling = || {
         potential
-            .eigenvalue_upper_bound()
-            .max(co_potential.eigenvalue_upper_bound())
+            .eigenvalue_upper_bound(potential_pencil)
+            .max(co_potential.eigenvalue_upper_bound(co_potential_pencil))
             * (1.0 + INCLUSIVE_MARGIN)
     };
     let (threshold, counts) = match size {
@@ -316,7 +316,7 @@ impl PairCounter<'_, '_> {
 mod tests {
     use super::*;
     use tvf_core::discretization::sparse::from_triplets;
-    use tvf_core::discretization::Eigenproblem;
+    use tvf_core::discretization::{EigenStiffness, Eigenproblem, Mass};
 
     /// The graph Laplacian of a path with `n` nodes and unit masses: eigenvalues
     /// `2 − 2 cos(kπ/n)`, `k = 0..n`, one zero (one component).
@@ -335,10 +335,10 @@ mod tests {
             }
         }
         let problem = Eigenproblem {
-            stiffness: from_triplets(n, n, rows, cols, values),
-            mass: vec![1.0; n],
+            stiffness: EigenStiffness::Sparse(from_triplets(n, n, rows, cols, values)),
+            mass: Mass::diagonal("unit mass", vec![1.0; n]).unwrap(),
         };
-        ScalarSpectrum::new("path", problem, &vec![true; n], 1)
+        ScalarSpectrum::new("path", problem, &vec![true; n], &[], 1)
     }
 
     fn nonzero_eigenvalues_below(n: usize, t: f64) -> usize {
@@ -381,7 +381,9 @@ mod tests {
     #[test]
     fn thresholds_cover_the_request_with_little_excess() {
         let (a, b) = (path(120), path(300));
-        let ceiling = a.eigenvalue_upper_bound().max(b.eigenvalue_upper_bound());
+        let ceiling = a
+            .eigenvalue_upper_bound(&a.pencil().unwrap())
+            .max(b.eigenvalue_upper_bound(&b.pencil().unwrap()));
         assert!(ceiling >= 4.0);
         for m in [1, 7, 100, 250, 418] {
             let (pa, pb) = (a.pencil().unwrap(), b.pencil().unwrap());

@@ -5,22 +5,41 @@ use crate::BasisError;
 use faer::Mat;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::{Eigenproblem, NodeSpace};
-use tvf_solvers::{keep_columns, Eigenpairs, Pencil};
+use tvf_core::discretization::{EigenStiffness, Eigenproblem, NodeSpace};
+use tvf_solvers::{keep_columns, Eigenpairs, MassMatrix, Pencil};
 
 /// The eigenproblem `A x = λ M x` of one function space, restricted to its free nodes (unused
-/// nodes have zero mass and are decoupled, the solver needs a positive mass; Dirichlet nodes of a
-/// boundary condition carry no degree of freedom, their row and column of `A` are zero).
+/// nodes carry no mass and Dirichlet nodes of a boundary condition no degree of freedom: the
+/// solver needs a mass positive definite on its unknowns). `A` is a sparse matrix, or the
+/// co-exact stiffness `d1 M1⁻¹ d1ᵀ` in mixed form (restricted to the free field and co-potential
+/// nodes); `M` is a diagonal or a sparse matrix.
 pub(crate) struct ScalarSpectrum {
     /// Which problem, for messages: "potential" or "co-potential".
     pub name: &'static str,
-    stiffness: CsMat<f64>,
-    mass: Vec<f64>,
+    stiffness: RestrictedStiffness,
+    mass: RestrictedMass,
     /// Map restricted index → full index, `None` if every node is used.
     used: Option<Vec<usize>>,
     full_dimension: usize,
     /// Kernel dimension: one constant per connected component whose constants are in the kernel.
     components: usize,
+}
+
+/// The stiffness on the free nodes.
+enum RestrictedStiffness {
+    Sparse(CsMat<f64>),
+    /// `d1 W⁻¹ d1ᵀ`: `W` (the field mass on the free field nodes) and `d1` (free co-potential
+    /// rows, free field columns).
+    Mixed {
+        w: CsMat<f64>,
+        d1: CsMat<f64>,
+    },
+}
+
+/// The mass on the free nodes.
+enum RestrictedMass {
+    Diagonal(Vec<f64>),
+    Sparse(CsMat<f64>),
 }
 
 /// Eigenpairs kept by [`ScalarSpectrum::nonzero`].
@@ -47,57 +66,77 @@ pub(crate) fn free_nodes(nodes: &NodeSpace) -> Vec<bool> {
 
 impl ScalarSpectrum {
     /// The problem restricted to the nodes `i` with `free[i]` (`n` entries), whose stiffness has
-    /// a kernel of dimension `kernel_dimension` there.
+    /// a kernel of dimension `kernel_dimension` there. For a mixed stiffness, `free_fields` are
+    /// the free field nodes (the unknowns of `W`).
     pub fn new(
         name: &'static str,
         problem: Eigenproblem,
         free: &[bool],
+        free_fields: &[bool],
         kernel_dimension: usize,
     ) -> Self {
-        let components = kernel_dimension;
         let full_dimension = problem.mass.len();
-        if free.iter().all(|&f| f) {
-            return Self {
-                name,
-                stiffness: problem.stiffness,
-                mass: problem.mass,
-                used: None,
-                full_dimension,
-                components,
-            };
-        }
+        let everything = free.iter().all(|&f| f);
         let used: Vec<usize> = (0..full_dimension).filter(|&i| free[i]).collect();
-        let mut restricted = vec![usize::MAX; full_dimension];
-        for (r, &i) in used.iter().enumerate() {
-            restricted[i] = r;
-        }
-        let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
-        for (&value, (i, j)) in problem.stiffness.iter() {
-            if restricted[i] != usize::MAX && restricted[j] != usize::MAX {
-                rows.push(restricted[i]);
-                cols.push(restricted[j]);
-                values.push(value);
+        let position = positions(free);
+        let restrict = |a: &CsMat<f64>, rows: &[usize], cols: &[usize], n: (usize, usize)| {
+            let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+            for (&value, (i, j)) in a.iter() {
+                if rows[i] != usize::MAX && cols[j] != usize::MAX {
+                    r.push(rows[i]);
+                    c.push(cols[j]);
+                    v.push(value);
+                }
             }
-        }
+            from_triplets(n.0, n.1, r, c, v)
+        };
         let n = used.len();
+        let stiffness = match problem.stiffness {
+            EigenStiffness::Sparse(a) if everything => RestrictedStiffness::Sparse(a),
+            EigenStiffness::Sparse(a) => {
+                RestrictedStiffness::Sparse(restrict(&a, &position, &position, (n, n)))
+            }
+            EigenStiffness::Mixed { field_mass, d1 } => {
+                let field_position = positions(free_fields);
+                let n1 = free_fields.iter().filter(|&&f| f).count();
+                let w = field_mass
+                    .sparse_matrix()
+                    .expect("a field mass is stored directly");
+                RestrictedStiffness::Mixed {
+                    w: restrict(&w, &field_position, &field_position, (n1, n1)),
+                    d1: restrict(&d1, &position, &field_position, (n, n1)),
+                }
+            }
+        };
+        let mass = match (problem.mass.diagonal_values(), problem.mass.sparse_matrix()) {
+            (Some(values), _) if everything => RestrictedMass::Diagonal(values.to_vec()),
+            (Some(values), _) => {
+                RestrictedMass::Diagonal(used.iter().map(|&i| values[i]).collect())
+            }
+            (None, Some(m)) => RestrictedMass::Sparse(restrict(&m, &position, &position, (n, n))),
+            (None, None) => unreachable!("an eigenproblem's mass is stored directly"),
+        };
         Self {
             name,
-            stiffness: from_triplets(n, n, rows, cols, values),
-            mass: used.iter().map(|&i| problem.mass[i]).collect(),
-            used: Some(used),
+            stiffness,
+            mass,
+            used: if everything { None } else { Some(used) },
             full_dimension,
-            components,
+            components: kernel_dimension,
         }
     }
 
     /// Number of non-zero eigenvalues the problem has: free nodes minus the kernel dimension.
     pub fn available(&self) -> usize {
-        self.mass.len().saturating_sub(self.components)
+        self.dimension().saturating_sub(self.components)
     }
 
-    /// Dimension `n` of `A` and `M` (the used nodes).
+    /// Dimension `n` of `A` and `M` (the free nodes).
     pub fn dimension(&self) -> usize {
-        self.mass.len()
+        match &self.mass {
+            RestrictedMass::Diagonal(values) => values.len(),
+            RestrictedMass::Sparse(m) => m.rows(),
+        }
     }
 
     /// Dimension of the kernel of `A` on the free nodes.
@@ -109,23 +148,38 @@ impl ScalarSpectrum {
     ///
     /// Errors: [`BasisError::Eigen`] if the matrices are not a valid pencil.
     pub fn pencil(&self) -> Result<Pencil<'_>, BasisError> {
-        Pencil::new(&self.stiffness, &self.mass).map_err(|source| BasisError::Eigen {
+        let mass = match &self.mass {
+            RestrictedMass::Diagonal(values) => MassMatrix::Diagonal(values),
+            RestrictedMass::Sparse(m) => MassMatrix::Sparse(m),
+        };
+        match &self.stiffness {
+            RestrictedStiffness::Sparse(a) => Pencil::with_mass(a, mass),
+            RestrictedStiffness::Mixed { w, d1 } => Pencil::mixed(w, d1, mass),
+        }
+        .map_err(|source| BasisError::Eigen {
             problem: self.name,
             source,
         })
     }
 
-    /// An upper bound of every eigenvalue of `(A, M)` (units of `λ`, 1/length²): Gershgorin's
-    /// bound `max_i Σ_j |A_ij| / M_ii` on `M⁻¹A`, which has the same eigenvalues.
-    pub fn eigenvalue_upper_bound(&self) -> f64 {
-        let mut row_sums = vec![0.0; self.mass.len()];
-        for (&value, (i, _)) in self.stiffness.iter() {
-            row_sums[i] += value.abs();
+    /// An upper bound of every eigenvalue of `(A, M)` (units of `λ`, 1/length²). With a diagonal
+    /// mass and a sparse stiffness: Gershgorin's bound `max_i Σ_j |A_ij| / M_ii` on `M⁻¹A`,
+    /// which has the same eigenvalues; otherwise the pencil's estimate
+    /// ([`Pencil::spectrum_upper_bound`]).
+    pub fn eigenvalue_upper_bound(&self, pencil: &Pencil<'_>) -> f64 {
+        match (&self.stiffness, &self.mass) {
+            (RestrictedStiffness::Sparse(a), RestrictedMass::Diagonal(mass)) => {
+                let mut row_sums = vec![0.0; mass.len()];
+                for (&value, (i, _)) in a.iter() {
+                    row_sums[i] += value.abs();
+                }
+                row_sums
+                    .iter()
+                    .zip(mass)
+                    .fold(0.0, |bound: f64, (sum, mass)| bound.max(sum / mass))
+            }
+            _ => pencil.spectrum_upper_bound(),
         }
-        row_sums
-            .iter()
-            .zip(&self.mass)
-            .fold(0.0, |bound: f64, (sum, mass)| bound.max(sum / mass))
     }
 
     /// The lowest `count` non-zero eigenpairs from the solver's lowest `count + components()`
@@ -184,4 +238,19 @@ impl ScalarSpectrum {
             max_field_residual_floor,
         })
     }
+}
+
+/// Position of each free node among the free nodes (`usize::MAX` for the others).
+fn positions(free: &[bool]) -> Vec<usize> {
+    let mut next = 0;
+    free.iter()
+        .map(|&f| {
+            if f {
+                next += 1;
+                next - 1
+            } else {
+                usize::MAX
+            }
+        })
+        .collect()
 }

@@ -204,7 +204,7 @@ fn files_for_another_mesh_or_basis_are_refused() {
         basis.eigenvalues().to_vec(),
         basis.families().to_vec(),
         fields,
-        basis.field_mass().to_vec(),
+        basis.field_mass().clone(),
     )
     .unwrap();
     assert_ne!(basis_id(&flipped), id);

@@ -27,7 +27,14 @@ fn setup() -> (
 fn bits(basis: &SpectralBasis) -> Vec<u64> {
     let u = basis.fields();
     let mut out: Vec<u64> = basis.eigenvalues().iter().map(|x| x.to_bits()).collect();
-    out.extend(basis.field_mass().iter().map(|x| x.to_bits()));
+    out.extend(
+        basis
+            .field_mass()
+            .diagonal_values()
+            .unwrap()
+            .iter()
+            .map(|x| x.to_bits()),
+    );
     for j in 0..u.ncols() {
         for i in 0..u.nrows() {
             out.push(u[(i, j)].to_bits());

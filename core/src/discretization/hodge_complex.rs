@@ -2,8 +2,8 @@
 //! source of truth of everything downstream.
 
 use super::{
-    ComplexParts, ComplexTopology, FieldRotation, FieldSampling, Mass, NodeSpace,
-    OperatorCache, PointEvaluation,
+    ComplexParts, ComplexTopology, FieldRotation, FieldSampling, Mass, NodeSpace, OperatorCache,
+    PointEvaluation,
 };
 use sprs::CsMat;
 

@@ -113,8 +113,9 @@ pub trait HodgeOperators: HodgeComplex {
     /// The co-gradient `−M1⁻¹ d1ᵀ` (`n1 × n2`, pointwise): the field of a co-potential;
     /// finite elements: `J G_co`, the rotated gradient.
     fn co_gradient(&self) -> &LinearOperator {
-        self.operator_cache().co_gradient.get_or_init(|| {
-            match self.m1().inverse_diagonal() {
+        self.operator_cache()
+            .co_gradient
+            .get_or_init(|| match self.m1().inverse_diagonal() {
                 Some(inverse) => {
                     let minus_inverse: Vec<f64> = inverse.iter().map(|x| -x).collect();
                     LinearOperator::Sparse(scale_rows(&minus_inverse, &transpose(self.d1())))
@@ -126,8 +127,7 @@ pub trait HodgeOperators: HodgeComplex {
                         Factor::transpose(self.d1()),
                     ],
                 ),
-            }
-        })
+            })
     }
 
     /// `−M1⁻¹ d1ᵀ g` for a co-potential `g` (`n2` values in, `n1` out).
@@ -179,7 +179,11 @@ pub trait HodgeOperators: HodgeComplex {
         let rotation = self.rotation()?.rotation();
         Some(self.operator_cache().other_divergence.get_or_init(|| {
             let (m1, m2) = (self.m1(), self.m2());
-            match (m2.diagonal_values(), m1.diagonal_values(), m1.inverse_diagonal()) {
+            match (
+                m2.diagonal_values(),
+                m1.diagonal_values(),
+                m1.inverse_diagonal(),
+            ) {
                 (Some(m2), Some(m1), Some(m1_inverse)) => {
                     let minus: Vec<f64> = m2.iter().map(|x| -x).collect();
                     let jt_m1 = scale_cols(&transpose(rotation), m1);
@@ -229,9 +233,8 @@ pub trait HodgeOperators: HodgeComplex {
     /// Stiffness of the potential space, `d0ᵀ M1 d0` (`n0 × n0`, integrated, symmetric PSD,
     /// exactly symmetric in floating point); conforming: the cotan matrix. Always sparse.
     fn potential_stiffness(&self) -> &CsMat<f64> {
-        self.operator_cache()
-            .potential_stiffness
-            .get_or_init(|| match self.m1().diagonal_values() {
+        self.operator_cache().potential_stiffness.get_or_init(|| {
+            match self.m1().diagonal_values() {
                 Some(m1) => gram(self.d0(), m1),
                 None => {
                     let m1 = self
@@ -240,7 +243,8 @@ pub trait HodgeOperators: HodgeComplex {
                         .expect("a field mass is stored directly");
                     symmetrized(&product(&transpose(self.d0()), &product(&m1, self.d0())))
                 }
-            })
+            }
+        })
     }
 
     /// Stiffness of the co-potential space, `d1 M1⁻¹ d1ᵀ` (`n2 × n2`, integrated, symmetric PSD,
@@ -266,7 +270,11 @@ pub trait HodgeOperators: HodgeComplex {
     fn dirichlet_energy(&self) -> &LinearOperator {
         self.operator_cache().dirichlet_energy.get_or_init(|| {
             let (m0, m1, m2) = (self.m0(), self.m1(), self.m2());
-            match (m0.inverse_diagonal(), m1.diagonal_values(), m2.diagonal_values()) {
+            match (
+                m0.inverse_diagonal(),
+                m1.diagonal_values(),
+                m2.diagonal_values(),
+            ) {
                 (Some(m0_inverse), Some(m1), Some(m2)) => {
                     let w = scale_cols(&scale_rows(m1, self.d0()), &sqrt_all(&m0_inverse));
                     let u = scale_rows(&sqrt_all(m2), self.d1());

@@ -295,10 +295,7 @@ fn term_shape(factors: &[Factor]) -> (usize, usize) {
             "factors of a product do not chain"
         );
     }
-    (
-        factors[0].shape().0,
-        factors[factors.len() - 1].shape().1,
-    )
+    (factors[0].shape().0, factors[factors.len() - 1].shape().1)
 }
 
 /// The product of `factors` as a sparse matrix, if every factor is sparse.
@@ -336,12 +333,8 @@ mod tests {
                 t.add_triplet(i + 1, i, 1.0);
             }
         }
-        let nodes = NodeSpace::with_constant_kernel(
-            NodeKind::Vertices,
-            vec![[0.0; 3]; n],
-            vec![0; n],
-            1,
-        );
+        let nodes =
+            NodeSpace::with_constant_kernel(NodeKind::Vertices, vec![[0.0; 3]; n], vec![0; n], 1);
         Mass::sparse("M", t.to_csr())
             .unwrap()
             .restricted_to(&nodes)

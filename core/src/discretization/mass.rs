@@ -249,6 +249,15 @@ impl Mass {
         self.free.as_ref().is_none_or(|free| free[i])
     }
 
+    /// The stored matrix as it was given (CSR, `n × n`; a diagonal as a diagonal matrix): `M`,
+    /// or `M⁻¹` for [`MassForm::Inverse`] (see [`Mass::form`]).
+    pub fn stored_matrix(&self) -> CsMat<f64> {
+        match &self.storage {
+            MassStorage::Diagonal(values) => super::sparse::diagonal(values),
+            MassStorage::Sparse(matrix) => matrix.clone(),
+        }
+    }
+
     /// `M` as a sparse matrix (CSR, `n × n`) when it is sparse: a diagonal, or a sparse matrix
     /// stored directly. `None` for a mass stored as its inverse (`M` is dense).
     pub fn sparse_matrix(&self) -> Option<CsMat<f64>> {
@@ -264,7 +273,9 @@ impl Mass {
     /// nodes. `None` for a sparse mass stored directly (`M⁻¹` is dense).
     pub fn sparse_inverse_matrix(&self) -> Option<CsMat<f64>> {
         match (&self.storage, self.form) {
-            (MassStorage::Diagonal(_), _) => Some(super::sparse::diagonal(&self.inverse_diagonal()?)),
+            (MassStorage::Diagonal(_), _) => {
+                Some(super::sparse::diagonal(&self.inverse_diagonal()?))
+            }
             (MassStorage::Sparse(matrix), MassForm::Inverse) => {
                 Some(self.restricted_matrix(matrix))
             }
@@ -468,7 +479,8 @@ impl Mass {
                         self.what
                     )));
                 };
-                let free_nodes: Vec<usize> = (0..matrix.rows()).filter(|&i| self.is_free(i)).collect();
+                let free_nodes: Vec<usize> =
+                    (0..matrix.rows()).filter(|&i| self.is_free(i)).collect();
                 let mut position = vec![usize::MAX; matrix.rows()];
                 for (k, &i) in free_nodes.iter().enumerate() {
                     position[i] = k;
@@ -558,7 +570,10 @@ fn checked_symmetric(
     let transpose = super::sparse::transpose(&matrix);
     let scale = matrix.data().iter().fold(0.0_f64, |m, x| m.max(x.abs()));
     let difference = &matrix - &transpose;
-    let asymmetry = difference.data().iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let asymmetry = difference
+        .data()
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
     if asymmetry > 1e-12 * scale {
         return Err(DiscretizationError::NotSymmetric {
             what,
@@ -691,7 +706,10 @@ mod tests {
         t.add_triplet(0, 1, 0.5);
         t.add_triplet(1, 1, 1.0);
         let err = Mass::sparse("M1", t.to_csr()).unwrap_err();
-        assert!(matches!(err, DiscretizationError::NotSymmetric { .. }), "{err}");
+        assert!(
+            matches!(err, DiscretizationError::NotSymmetric { .. }),
+            "{err}"
+        );
     }
 
     #[test]

@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use serde_json::json;
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use tvf_core::discretization::Mass;
 use tvf_spectral::BasisSize;
 use tvf_spectral::FrameSource;
 use tvf_spectral::{
@@ -124,11 +125,11 @@ pub fn run(mut args: CompressArgs) -> Result<()> {
     Ok(())
 }
 
-/// Encodes every frame (in parallel) and decodes it again to measure its relative `M_X` error,
+/// Encodes every frame (in parallel) and decodes it again to measure its relative `M1` error,
 /// with a progress bar for sequences (plain lines off a terminal, nothing with `--quiet`).
 fn compress_frames(
     codec: &FieldCodec<'_>,
-    mass: &[f64],
+    mass: &Mass,
     frames: &[Vec<f64>],
     vertex_count: usize,
 ) -> Result<(CompressedFields, CompressionReport)> {
@@ -158,7 +159,7 @@ fn compress_frames(
         bytes: file.to_bytes().len(),
         frames: frames.len(),
         vertex_count,
-        face_count: mass.len() / 2,
+        field_dimension: mass.len(),
         coefficients_per_frame: codec.selection().len(),
         relative_errors,
     };

@@ -105,18 +105,17 @@ fn design_with<H: HodgeComplex + ?Sized>(
 ) -> Result<()> {
     let constraints = compile(complex, inputs)?;
     let start = Instant::now();
-    let dirichlet = complex.dirichlet_energy();
+    complex.dirichlet_energy();
     let options = SoftOptions {
         omega: inputs.set.omega,
-        regularization: default_regularization(dirichlet, complex.m1().values()),
+        regularization: default_regularization(complex),
     };
     let field = if args.full {
         let assembly = start.elapsed();
         let start = Instant::now();
         let ordering = args.ordering.unwrap_or(DEFAULT_FULL_ORDERING);
-        let design = FullSoftDesign::from_matrices_with(
-            dirichlet,
-            complex.m1().values(),
+        let design = FullSoftDesign::of_complex(
+            complex,
             options,
             constraints.clone(),
             ordering,

@@ -10,8 +10,7 @@ use serde_json::json;
 use sprs::CsMat;
 use std::io::Write;
 use std::path::PathBuf;
-use tvf_core::discretization::sparse::diagonal;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, Mass, MassForm};
 use tvf_core::io::{AtomicWriter, StagedFolder};
 use tvf_core::mesh::ValidationReport;
 use tvf_core::SurfaceMesh;
@@ -81,19 +80,48 @@ fn write_all(
     format: MatrixFormat,
     out: &StagedFolder,
 ) -> Result<usize> {
-    let mut matrices: Vec<(&str, CsMat<f64>)> = vec![
-        ("d0", complex.d0().clone()),
-        ("d1", complex.d1().clone()),
-        ("M0", diagonal(complex.m0().values())),
-        ("M1", diagonal(complex.m1().values())),
-        ("M2", diagonal(complex.m2().values())),
-        ("S0", complex.potential_stiffness().clone()),
-        ("S2", complex.co_potential_stiffness().clone()),
-        ("S", complex.dirichlet_energy().clone()),
-        ("B", complex.biharmonic_energy().clone()),
+    let mut matrices: Vec<(String, CsMat<f64>)> = vec![
+        ("d0".into(), complex.d0().clone()),
+        ("d1".into(), complex.d1().clone()),
     ];
+    let mut masses = serde_json::Map::new();
+    for (name, mass) in [
+        ("M0", complex.m0()),
+        ("M1", complex.m1()),
+        ("M2", complex.m2()),
+    ] {
+        let file = mass_file_name(name, mass.form());
+        masses.insert(name.to_string(), mass_info(&file, mass));
+        matrices.push((file, mass.stored_matrix()));
+    }
+    matrices.push(("S0".into(), complex.potential_stiffness().clone()));
+    let mut not_written = serde_json::Map::new();
+    for (name, operator, why) in [
+        (
+            "S2",
+            complex.co_potential_stiffness(),
+            "d1 M1^-1 d1^T with a non-diagonal M1",
+        ),
+        (
+            "S",
+            complex.dirichlet_energy(),
+            "it contains M0^-1 or M2 of a non-diagonal mass",
+        ),
+        (
+            "B",
+            complex.biharmonic_energy(),
+            "S M1^-1 S with a non-diagonal M1 or a dense S",
+        ),
+    ] {
+        match operator.as_sparse() {
+            Some(matrix) => matrices.push((name.into(), matrix.clone())),
+            None => {
+                not_written.insert(name.into(), json!(format!("dense: {why}")));
+            }
+        }
+    }
     if let Some(rotation) = complex.rotation() {
-        matrices.push(("J", rotation.rotation().clone()));
+        matrices.push(("J".into(), rotation.rotation().clone()));
     }
     for (name, matrix) in &matrices {
         match format {
@@ -146,9 +174,9 @@ fn write_all(
         "matrices": {
             "d0": format!("{n1} x {n0}, gradient: potentials -> fields (pointwise)"),
             "d1": format!("{n2} x {n1}, integrated curl: fields -> co-potentials; d1 d0 = 0"),
-            "M0": format!("{n0} x {n0} diagonal, potential mass (integrated, area)"),
-            "M1": format!("{n1} x {n1} diagonal, field mass: x^T M1 y = integral of <x, y>"),
-            "M2": format!("{n2} x {n2} diagonal, turns d1's integrated values into pointwise ones (1/area)"),
+            "M0": format!("{n0} x {n0}, potential mass (integrated, area)"),
+            "M1": format!("{n1} x {n1}, field mass: x^T M1 y = integral of <x, y>"),
+            "M2": format!("{n2} x {n2}, turns d1's integrated values into pointwise ones (1/area); M2^-1 is the co-potential mass"),
             "S0": format!("{n0} x {n0} potential stiffness d0^T M1 d0 (the cotan matrix for P1 potentials)"),
             "S2": format!("{n2} x {n2} co-potential stiffness d1 M1^-1 d1^T"),
             "S": format!("{n1} x {n1} Dirichlet energy M1 d0 M0^-1 d0^T M1 + d1^T M2 d1"),
@@ -159,6 +187,8 @@ fn write_all(
                 "not written: this discretization has no rotation of fields".to_string()
             },
         },
+        "masses": masses,
+        "not_written": not_written,
         "conventions": {
             "indices": "0-based in this file, in .npz and .npy files; Matrix Market files are 1-based",
             "face_frames": "a face-frame field stores face t at rows 2t, 2t+1 in the frame e1 = normalize(p_i1 - p_i0), e2 = n x e1",
@@ -179,6 +209,25 @@ fn write_all(
     let text = serde_json::to_string_pretty(&info)? + "\n";
     write_atomically(out, "info.json", |w| w.write_all(text.as_bytes()))?;
     Ok(matrices.len())
+}
+
+/// The file name of a mass: its name, with `_inverse` when the file holds the inverse (the form
+/// in which it is sparse).
+fn mass_file_name(name: &str, form: MassForm) -> String {
+    match form {
+        MassForm::Direct => name.to_string(),
+        MassForm::Inverse => format!("{name}_inverse"),
+    }
+}
+
+/// What `info.json` says of a mass: its file, whether the file holds the mass or its inverse,
+/// and whether it is diagonal.
+fn mass_info(file: &str, mass: &Mass) -> serde_json::Value {
+    json!({
+        "file": file,
+        "form": mass.form().name(),
+        "storage": if mass.is_diagonal() { "diagonal" } else { "sparse" },
+    })
 }
 
 /// Writes the file `name` of the staged folder `out` atomically

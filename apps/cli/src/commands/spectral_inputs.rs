@@ -94,5 +94,5 @@ fn note_normal_parts(path: &Path, normal: f64) {
 /// Energies of the exact Hodge decomposition of `field` by `complex`.
 pub fn exact_hodge_energies(complex: &dyn HodgeComplex, field: &[f64]) -> Result<EnergySplit> {
     let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
-    Ok(EnergySplit::of_hodge_parts(&parts, complex.m1().values()))
+    Ok(EnergySplit::of_hodge_parts(&parts, complex.m1()))
 }

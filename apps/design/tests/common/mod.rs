@@ -114,10 +114,10 @@ pub struct FullDesignInputs {
 impl FullDesignInputs {
     pub fn new(mesh: &SurfaceMesh, vectors: usize, seeds: (u64, u64)) -> Self {
         let complex = Conforming::new(mesh, MassLumping::Barycentric).expect("complex");
-        let dirichlet = complex.dirichlet_energy().clone();
+        let dirichlet = complex.dirichlet_energy().as_sparse().unwrap().clone();
         let options = SoftOptions {
             omega: 0.1,
-            regularization: default_regularization(&dirichlet, complex.m1().values()),
+            regularization: default_regularization(&complex),
         };
         let assembler = ConstraintAssembler::new(&complex, mesh);
         let compile = |seed| {
@@ -128,7 +128,7 @@ impl FullDesignInputs {
         Self {
             first: compile(seeds.0),
             second: compile(seeds.1),
-            mass: complex.m1().values().to_vec(),
+            mass: complex.m1().diagonal_values().unwrap().to_vec(),
             dirichlet,
             options,
         }

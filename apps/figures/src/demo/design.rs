@@ -99,7 +99,7 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>), FigureError> {
             let start = Instant::now();
             let options = SoftOptions {
                 omega,
-                regularization: default_regularization(c.dirichlet_energy(), c.m1().values()),
+                regularization: default_regularization(c),
             };
             let mut design = ReducedSoftDesign::new(&reduced, options)?;
             design.add_all(compiled.iter().cloned())?;

@@ -5,16 +5,30 @@ use crate::codec::compress::FieldCodec;
 use crate::codec::compression_error::CompressionError;
 use crate::formats::compressed_file::CompressedFields;
 use rayon::prelude::*;
+use tvf_core::discretization::Mass;
 
-/// Relative `M_X` error `‖v − ṽ‖_{M_X} / ‖v‖_{M_X}` of an approximation (`mass` is the diagonal
-/// of `M_X`, `2F` entries). A zero field gives the absolute error instead (0 if `ṽ = 0`).
-pub fn relative_l2_error(mass: &[f64], original: &[f64], approximation: &[f64]) -> f64 {
-    let mut difference = 0.0;
-    let mut norm = 0.0;
-    for ((v, a), m) in original.iter().zip(approximation).zip(mass) {
-        difference += (v - a) * (v - a) * m;
-        norm += v * v * m;
-    }
+/// Relative `M1` error `‖v − ṽ‖_{M1} / ‖v‖_{M1}` of an approximation (`mass` is the complex's
+/// field mass; the absolute error if `v = 0`).
+pub fn relative_l2_error(mass: &Mass, original: &[f64], approximation: &[f64]) -> f64 {
+    let (difference, norm) = match mass.diagonal_values() {
+        Some(mass) => {
+            let mut difference = 0.0;
+            let mut norm = 0.0;
+            for ((v, a), m) in original.iter().zip(approximation).zip(mass) {
+                difference += (v - a) * (v - a) * m;
+                norm += v * v * m;
+            }
+            (difference, norm)
+        }
+        None => {
+            let error: Vec<f64> = original
+                .iter()
+                .zip(approximation)
+                .map(|(v, a)| v - a)
+                .collect();
+            (mass.inner(&error, &error), mass.inner(original, original))
+        }
+    };
     if norm > 0.0 {
         (difference / norm).sqrt()
     } else {
@@ -31,11 +45,11 @@ pub struct CompressionReport {
     pub frames: usize,
     /// Vertices of the mesh (for bits per vertex).
     pub vertex_count: usize,
-    /// Faces of the mesh.
-    pub face_count: usize,
+    /// Field coefficients `n1` of one frame (`2F` for face fields, `E` for 1-forms).
+    pub field_dimension: usize,
     /// Coefficients kept per frame (`2k + h`).
     pub coefficients_per_frame: usize,
-    /// Relative `M_X` error of every frame.
+    /// Relative `M1` error of every frame.
     pub relative_errors: Vec<f64>,
 }
 
@@ -56,23 +70,25 @@ impl CompressionReport {
         8.0 * self.bytes as f64 / (self.vertex_count.max(1) * self.frames.max(1)) as f64
     }
 
-    /// Compression rate against two doubles per face and frame, `16 F T / bytes`.
+    /// Compression rate against the uncompressed frames, one double per field coefficient,
+    /// `8 n1 T / bytes` (for face fields two doubles per face, `16 F T / bytes`).
     pub fn rate_against_two_doubles(&self) -> f64 {
-        (16 * self.face_count * self.frames) as f64 / self.bytes.max(1) as f64
+        (8 * self.field_dimension * self.frames) as f64 / self.bytes.max(1) as f64
     }
 
-    /// Compression rate against two single-precision floats per face and frame, `8 F T / bytes`.
+    /// Compression rate against one single-precision float per field coefficient and frame,
+    /// `4 n1 T / bytes` (for face fields two floats per face).
     pub fn rate_against_two_floats(&self) -> f64 {
         0.5 * self.rate_against_two_doubles()
     }
 }
 
-/// Compresses `fields` (one or many frames, `2F` pointwise coefficients each) and decodes the
+/// Compresses `fields` (one or many frames, `n1` pointwise coefficients each) and decodes the
 /// result again to measure the error of every frame; frames run in parallel.
 /// Returns the file and its report.
 pub fn compress_with_report(
     codec: &FieldCodec<'_>,
-    mass: &[f64],
+    mass: &Mass,
     fields: &[Vec<f64>],
     vertex_count: usize,
 ) -> Result<(CompressedFields, CompressionReport), CompressionError> {
@@ -87,7 +103,7 @@ pub fn compress_with_report(
         bytes,
         frames: fields.len(),
         vertex_count,
-        face_count: mass.len() / 2,
+        field_dimension: mass.len(),
         coefficients_per_frame: codec.selection().len(),
         relative_errors,
     };

@@ -43,7 +43,7 @@ use std::io::{Read, Write};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass};
 use tvf_core::Hash64;
 
 /// The magic bytes of a basis file.
@@ -152,6 +152,7 @@ pub fn save_basis(
         field_dimension: basis.field_dimension(),
         field_mass: basis.field_mass(),
     };
+    require_diagonal_field_mass(path, contents.field_mass)?;
     write_basis(
         path,
         key,
@@ -184,7 +185,7 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         eigenvalues: basis.eigenvalues(),
         families: basis.families(),
         field_dimension: complex.field_dimension(),
-        field_mass: complex.m1().values(),
+        field_mass: complex.m1(),
     };
     let (n0, n2) = (
         complex.potential_dimension(),
@@ -194,7 +195,7 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     let compact_values = n0 * count(FieldFamily::Integrable)
         + n2 * count(FieldFamily::Cointegrable)
         + contents.field_dimension * count(FieldFamily::Harmonic);
-    if compact_values < contents.field_dimension * basis.len() {
+    if compact_values < contents.field_dimension * basis.len() || !complex.m1().is_diagonal() {
         let layout = BasisFileLayout::Eigenfunctions {
             potential_dimension: n0,
             co_potential_dimension: n2,
@@ -230,8 +231,22 @@ struct BasisContents<'a> {
     eigenvalues: &'a [f64],
     families: &'a [FieldFamily],
     field_dimension: usize,
-    /// The diagonal of `M1` (written in the fields layout only).
-    field_mass: &'a [f64],
+    /// `M1` (its diagonal is written in the fields layout, which needs a diagonal `M1`).
+    field_mass: &'a Mass,
+}
+
+/// Fails unless `M1` is diagonal: the fields layout stores the diagonal of `M1`.
+fn require_diagonal_field_mass(path: &Path, mass: &Mass) -> Result<(), BasisFileError> {
+    if mass.is_diagonal() {
+        Ok(())
+    } else {
+        Err(BasisFileError::Invalid {
+            path: path.to_path_buf(),
+            reason: "a basis whose field mass M1 is not diagonal is saved as eigenfunctions, \
+                     not as dense fields"
+                .into(),
+        })
+    }
 }
 
 /// Writes a basis file: header, eigenvalues, families (and in the fields layout the diagonal of
@@ -278,7 +293,8 @@ fn write_basis(
         buffer.resize(count.div_ceil(8) * 8, 0);
         out.write_all(&buffer)?;
         if layout == BasisFileLayout::Fields {
-            write_values(&mut out, &mut buffer, contents.field_mass)?;
+            let diagonal = contents.field_mass.diagonal_values().unwrap_or_default();
+            write_values(&mut out, &mut buffer, diagonal)?;
         }
         body(&mut out, &mut buffer)?;
         let checksum = out.hash.finish();
@@ -346,7 +362,7 @@ pub fn load_basis<H: HodgeComplex + ?Sized>(
     let forming = FieldForming {
         potential_dimension: complex.potential_dimension(),
         co_potential_dimension: complex.co_potential_dimension(),
-        field_mass: complex.m1().values(),
+        field_mass: complex.m1(),
         d0,
         co_gradient,
     };
@@ -361,13 +377,13 @@ pub fn load_basis<H: HodgeComplex + ?Sized>(
 }
 
 /// What turns the stored eigenfunctions into fields while a file is read: the complex's
-/// potential and co-potential dimensions, `M1`, its gradient `d0` and co-gradient `J G_co`.
+/// potential and co-potential dimensions, `M1`, its gradient `d0` and co-gradient `−M1⁻¹ d1ᵀ`.
 struct FieldForming<'a> {
     potential_dimension: usize,
     co_potential_dimension: usize,
-    field_mass: &'a [f64],
+    field_mass: &'a Mass,
     d0: &'a sprs::CsMat<f64>,
-    co_gradient: &'a sprs::CsMat<f64>,
+    co_gradient: &'a LinearOperator,
 }
 
 /// Loads a basis in the form the file holds it, without checking what it belongs to (integrity
@@ -472,7 +488,7 @@ fn read_basis(
     let read_body = |input: &mut HashingReader<_>| -> std::io::Result<_> {
         Ok(match (header.layout, forming) {
             (BasisFileLayout::Fields, _) => {
-                let field_mass = input.f64s(n)?;
+                let field_mass = FieldMassRead::Diagonal(input.f64s(n)?);
                 let fields = input.matrix(n, d)?;
                 Body::Fields { field_mass, fields }
             }
@@ -488,7 +504,7 @@ fn read_basis(
                 harmonic: input.matrix(n, header.harmonic_count)?,
             },
             (BasisFileLayout::Eigenfunctions { .. }, Some(forming)) => Body::Fields {
-                field_mass: forming.field_mass.to_vec(),
+                field_mass: FieldMassRead::Complex(forming.field_mass.clone()),
                 fields: input.formed_fields(&header, &codes[..d], forming)?,
             },
         })
@@ -523,6 +539,13 @@ fn read_basis(
     }
     let stored = match body {
         Body::Fields { field_mass, fields } => {
+            let field_mass = match field_mass {
+                FieldMassRead::Diagonal(values) => {
+                    Mass::diagonal("M1 (from the basis file)", values)
+                        .map_err(|e| invalid(e.to_string()))?
+                }
+                FieldMassRead::Complex(mass) => mass,
+            };
             SpectralBasis::new(eigenvalues, families, fields, field_mass)
                 .map(|basis| StoredBasis::Fields(Box::new(basis)))
         }
@@ -543,10 +566,17 @@ fn read_basis(
     Ok((header, stored))
 }
 
+/// The field mass of a basis read as fields: the diagonal stored in the file, or the complex's
+/// `M1` when the file's eigenfunctions were turned into fields.
+enum FieldMassRead {
+    Diagonal(Vec<f64>),
+    Complex(Mass),
+}
+
 /// The layout-specific part of a basis file, as read.
 enum Body {
     Fields {
-        field_mass: Vec<f64>,
+        field_mass: FieldMassRead,
         fields: Mat<f64>,
     },
     Eigenfunctions {
@@ -571,11 +601,15 @@ impl Body {
             })
         };
         match self {
-            Body::Fields { field_mass, fields } => field_mass
+            Body::Fields {
+                field_mass: FieldMassRead::Diagonal(field_mass),
+                fields,
+            } => field_mass
                 .iter()
                 .position(|m| !m.is_finite())
                 .map(|i| format!("the diagonal of M1 is not finite at row {i}"))
                 .or_else(|| first_in("field", fields)),
+            Body::Fields { fields, .. } => first_in("field", fields),
             Body::Eigenfunctions {
                 potentials,
                 co_potentials,

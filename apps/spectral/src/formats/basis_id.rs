@@ -3,6 +3,7 @@
 
 use crate::basis::{FieldFamily, SpectralBasis};
 use rayon::prelude::*;
+use tvf_core::discretization::MassStorage;
 
 /// Multiplier of the word mixing (a 64-bit odd constant from the golden ratio).
 const MIX: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -20,8 +21,8 @@ fn finalize(mut x: u64) -> u64 {
     x ^ (x >> 31)
 }
 
-/// A fingerprint of everything that decoding depends on: the shape `2F × d`, the eigenvalues,
-/// the families, the mass `M_X` and every entry of the fields (bit patterns, so two bases that
+/// A fingerprint of everything that decoding depends on: the shape `n1 × d`, the eigenvalues,
+/// the families, the field mass `M1` and every entry of the fields (bit patterns, so two bases that
 /// differ only in the sign of one eigenfield get different ids). Columns are hashed in parallel.
 pub fn basis_id(basis: &SpectralBasis) -> u64 {
     let fields = basis.fields();
@@ -48,8 +49,18 @@ pub fn basis_id(basis: &SpectralBasis) -> u64 {
         };
         state = absorb(absorb(state, lambda.to_bits()), tag);
     }
-    for &m in basis.field_mass() {
-        state = absorb(state, m.to_bits());
+    match basis.field_mass().storage() {
+        MassStorage::Diagonal(values) => {
+            for &m in values {
+                state = absorb(state, m.to_bits());
+            }
+        }
+        MassStorage::Sparse(matrix) => {
+            state = absorb(state, basis.field_mass().form() as u64 + 1);
+            for (&m, (i, j)) in matrix.iter() {
+                state = absorb(absorb(absorb(state, i as u64), j as u64), m.to_bits());
+            }
+        }
     }
     for h in column_hashes {
         state = absorb(state, h);

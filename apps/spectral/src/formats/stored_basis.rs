@@ -54,7 +54,7 @@ impl StoredBasis {
                     compact.eigenvalues().to_vec(),
                     compact.families().to_vec(),
                     compact.dense_fields(complex),
-                    complex.m1().values().to_vec(),
+                    complex.m1().clone(),
                 )
             }
         }
