@@ -1,6 +1,8 @@
 //! `tvf spectrum --json` on kitten, eight and hand from `../shared/meshes` gives the 40 lowest
 //! eigenvalues and their families recorded in `fixtures/recorded_spectra.json` (by the version of
-//! tvf before the matrices-first seam, for every finite-element catalog entry), to 1e-10.
+//! tvf before the matrices-first seam for every finite-element catalog entry, and by the version
+//! before masses became SPD operators for the DEC entries on the Delaunay `eight`), to 1e-10.
+//! `recorded_spectra.rs` checks generated meshes the same way, without `../shared`.
 //!
 //! Uses `../shared/meshes`; skips (with a message) where that folder does not exist.
 
@@ -29,7 +31,11 @@ fn shared_meshes_spectra_equal_the_recorded_ones() {
     let recorded: Value =
         serde_json::from_str(&std::fs::read_to_string(&fixture).expect("fixture")).expect("JSON");
     let recorded = recorded.as_object().expect("an object");
-    assert_eq!(recorded.len(), 12, "3 meshes × 4 finite-element entries");
+    assert_eq!(
+        recorded.len(),
+        14,
+        "3 meshes × 4 finite-element entries, and eight × 2 DEC entries"
+    );
     for (key, expected) in recorded {
         let (mesh, id) = key.split_once('-').expect("MESH-ID");
         let output = tvf()
