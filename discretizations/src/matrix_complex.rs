@@ -8,8 +8,8 @@ use sprs::CsMat;
 use tvf_core::discretization::check_length;
 use tvf_core::discretization::sparse::product;
 use tvf_core::discretization::{
-    ComplexParts, Mass, DiscretizationError, FieldRotation, FieldSampling, HodgeComplex,
-    NodeKind, NodeSpace,
+    ComplexParts, DiscretizationError, FieldRotation, FieldSampling, HodgeComplex, Mass, NodeKind,
+    NodeSpace,
 };
 use tvf_core::SurfaceMesh;
 

@@ -107,7 +107,10 @@ impl MixedPoisson {
         let shifted = (0..co_potential_nodes.len())
             .map(|i| {
                 let c = co_potential_nodes.components[i];
-                if co_potential_nodes.is_free(i) && c != NO_COMPONENT && co_potential_nodes.constant_kernel[c] {
+                if co_potential_nodes.is_free(i)
+                    && c != NO_COMPONENT
+                    && co_potential_nodes.constant_kernel[c]
+                {
                     c
                 } else {
                     NO_COMPONENT
@@ -128,7 +131,10 @@ impl MixedPoisson {
 
     /// `A g = d1 M1⁻¹ d1ᵀ g`.
     fn apply(&self, g: &[f64]) -> Vec<f64> {
-        mul_vec(&self.d1, &self.field_mass.solve(&mul_transpose_vec(&self.d1, g)))
+        mul_vec(
+            &self.d1,
+            &self.field_mass.solve(&mul_transpose_vec(&self.d1, g)),
+        )
     }
 
     /// `(A + εN)⁻¹ r` through the saddle system (`r` on the co-potential nodes, zero result on

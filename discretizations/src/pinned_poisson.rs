@@ -29,7 +29,11 @@ pub struct PinnedPoisson {
 impl PinnedPoisson {
     /// Factors `stiffness` (`n × n`) of the space `nodes` with `mass` (`n × n`, the space's inner
     /// product, used for the means).
-    pub fn new(stiffness: &CsMat<f64>, nodes: &NodeSpace, mass: &Mass) -> Result<Self, SolverError> {
+    pub fn new(
+        stiffness: &CsMat<f64>,
+        nodes: &NodeSpace,
+        mass: &Mass,
+    ) -> Result<Self, SolverError> {
         let n = nodes.len();
         let component_count = nodes.constant_kernel.len();
         let mut pinned = vec![false; n];

@@ -115,7 +115,9 @@ fn stars_are_cotan_weights_vertex_areas_and_inverse_face_areas() {
     for (name, mesh) in delaunay_meshes() {
         let complex = build(&mesh);
         for (e, (&star, &sum)) in complex
-            .m1().diagonal_values().unwrap()
+            .m1()
+            .diagonal_values()
+            .unwrap()
             .iter()
             .zip(&cotangent_sums(&mesh))
             .enumerate()
@@ -132,7 +134,14 @@ fn stars_are_cotan_weights_vertex_areas_and_inverse_face_areas() {
                 vertex_areas[v] += mesh.face_area(t) / 3.0;
             }
         }
-        for (v, (&m, &a)) in complex.m0().diagonal_values().unwrap().iter().zip(&vertex_areas).enumerate() {
+        for (v, (&m, &a)) in complex
+            .m0()
+            .diagonal_values()
+            .unwrap()
+            .iter()
+            .zip(&vertex_areas)
+            .enumerate()
+        {
             assert!(
                 (m - a).abs() <= 1e-12 * a,
                 "{name}: ⋆0 of vertex {v}: {m} vs {a}"
