@@ -111,6 +111,7 @@ mod mass_lumping;
 mod matrix_complex;
 mod mixed_poisson;
 mod pinned_poisson;
+mod primal_forms;
 mod whitney_sampling;
 
 pub use boundary_conditions::{
