@@ -97,6 +97,7 @@
 
 mod boundary_conditions;
 mod catalog;
+mod consistent_mass;
 mod crouzeix_raviart;
 mod dec_complex;
 mod error;
@@ -112,6 +113,8 @@ mod matrix_complex;
 mod mixed_poisson;
 mod pinned_poisson;
 mod primal_forms;
+mod whitney_galerkin;
+mod whitney_mass;
 mod whitney_sampling;
 
 pub use boundary_conditions::{
@@ -122,6 +125,7 @@ pub use catalog::{
     build_complex, catalog, catalog_entry, split_complex_id, BoxedComplex, CatalogBuildError,
     CatalogEntry, UnknownDiscretization, DEFAULT_DISCRETIZATION,
 };
+pub use consistent_mass::consistent_p1_mass;
 pub use crouzeix_raviart::CrouzeixRaviart;
 pub use dec_complex::{edge_hodge_star, DecComplex, DELAUNAY_TOLERANCE};
 pub use error::DecompositionError;
@@ -133,4 +137,6 @@ pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use matrix_complex::{MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};
 pub use pinned_poisson::PinnedPoisson;
+pub use whitney_galerkin::WhitneyGalerkin;
+pub use whitney_mass::whitney_mass;
 pub use whitney_sampling::WhitneySampling;

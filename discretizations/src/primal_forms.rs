@@ -1,7 +1,8 @@
 //! [`PrimalForms`]: what every complex of primal forms on a triangle mesh shares — the signed
 //! incidences `d0`, `d1`, the node spaces of vertices, edges and faces with a boundary condition
-//! (absolute or relative forms), and point evaluation of 0- and 2-forms. Complexes of primal
-//! forms (DEC, [`crate::DecComplex`]) differ only in their masses.
+//! (absolute or relative forms), and point evaluation of 0- and 2-forms. DEC
+//! ([`crate::DecComplex`]) and Whitney forms with Galerkin masses ([`crate::WhitneyGalerkin`])
+//! differ only in their masses.
 
 use crate::boundary_conditions::{
     boundary_nodes, component_boundary_loops, drop_columns, drop_rows, with_dirichlet_boundary,
