@@ -6,11 +6,20 @@
 //! - the finite-element complexes of the paper, [`Conforming`] and [`Nonconforming`]
 //!   ([`FiniteElementComplex`] over the function spaces [`LagrangeP1`] (`S_h`, vertices) and
 //!   [`CrouzeixRaviart`] (`S*_h`, edge midpoints) and the face fields [`FaceFields`] (`X_h`),
-//!   with a [`MassLumping`]);
-//! - discrete exterior calculus on primal 1-forms, [`DecComplex`], sampled by Whitney
-//!   interpolation ([`WhitneySampling`]);
+//!   with a [`MassLumping`], or with the consistent P1 mass [`consistent_p1_mass`] where P1
+//!   appears: [`Conforming::consistent`] (`M0`), [`Nonconforming::consistent`] (`M2`, stored as
+//!   its sparse inverse);
+//! - primal forms sampled by Whitney interpolation ([`WhitneySampling`]), with two kinds of
+//!   masses: discrete exterior calculus, [`DecComplex`] (diagonal Hodge stars, Delaunay meshes),
+//!   and [`WhitneyGalerkin`] (the consistent P1 mass, the Whitney mass [`whitney_mass`] and
+//!   `1/area`: Galerkin masses, every mesh);
 //! - [`MatrixComplex`]: a complex from five matrices assembled elsewhere (checked);
 //! - the Hodge decomposition [`HodgeDecomposer`] of any complex.
+//!
+//! Masses are [`Mass`](tvf_core::discretization::Mass)es, each stored in the form in which it is
+//! sparse: a diagonal (every lumped mass, DEC's stars, `M2 = 1/area`), a sparse matrix (the
+//! consistent P1 mass as `M0`, the Whitney mass), or the sparse inverse (the consistent P1
+//! co-potential mass of `nonconforming-consistent`, whose `M2` is dense).
 //!
 //! ```
 //! use tvf_core::discretization::HodgeOperators;
