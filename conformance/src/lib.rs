@@ -13,11 +13,13 @@
 //!   Lemma 1 eigenfields; the spectrum of `L` as the union of the two scalar spectra; a complete
 //!   orthonormal eigenfield basis; sampling and point evaluation where offered; invariance under
 //!   rigid motions and on jittered meshes (proptest);
-//! - **reference checks** ([`reference`](mod@reference)) a complex opts into: `cotan_formula`
-//!   (stiffness matrices against the cotan, Crouzeix–Raviart or dual-graph formulas),
-//!   `rotation` (`J² = −I`, `Jᵀ M1 J = M1`), `face_fields`, `div_curl_formulas` (both families
-//!   of divergence and curl against explicit sums), `co_potential_masses`
-//!   (`1ᵀ M2⁻¹ 1 = area`) and `sphere_spectrum` (convergence to `l(l+1)` on the unit sphere).
+//! - **reference checks** ([`reference`](mod@reference)) a complex opts into: `cotan_formula` (stiffness
+//!   matrices against the cotan, Crouzeix–Raviart or dual-graph formulas) or
+//!   `potential_cotan_formula` (the potential stiffness alone), `rotation` (`J² = −I`,
+//!   `Jᵀ M1 J = M1`), `face_fields`, `div_curl_formulas` (both families of divergence and curl
+//!   against explicit sums), `co_potential_masses` (`1ᵀ M2⁻¹ 1 = area`), `galerkin_masses`
+//!   (every mass the `L²` Gram matrix of what the complex evaluates and samples) and
+//!   `sphere_spectrum` (convergence to `l(l+1)` on the unit sphere).
 //!
 //! Masses are [`tvf_core::discretization::Mass`]es and derived operators
 //! [`tvf_core::discretization::LinearOperator`]s: the checks apply them, form them densely on
@@ -67,6 +69,7 @@ pub mod check_report;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;
+pub mod galerkin_mass_checks;
 pub mod open_suite;
 pub mod reference;
 pub mod reference_formulas;

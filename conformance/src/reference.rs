@@ -6,6 +6,7 @@
 use crate::algebra_checks::max_abs;
 use crate::capability_checks::{check_div_curl_formulas, check_face_fields, check_rotation};
 use crate::corpus::Corpus;
+use crate::galerkin_mass_checks::check_galerkin_masses;
 use crate::reference_formulas::{assert_operator_equals, explicit_stiffness};
 use crate::spectral_checks::check_sphere_spectrum;
 use crate::{build, for_each_mesh, Constructor};
@@ -33,6 +34,21 @@ pub fn cotan_formula(constructor: Constructor, corpus: Corpus) {
     });
 }
 
+/// The potential stiffness `d0ᵀ M1 d0` alone equals its explicit formula by node kind
+/// (relative 1e-10): for complexes whose co-potential stiffness has no explicit sparse formula
+/// (the mixed RT0–P0 stiffness of Whitney forms with their Galerkin mass).
+pub fn potential_cotan_formula(constructor: Constructor, corpus: Corpus) {
+    for_each_mesh(corpus, true, |mesh| {
+        let complex = build(constructor, mesh);
+        check_stiffness_formula(
+            "potential",
+            complex.potential_nodes(),
+            &LinearOperator::Sparse(complex.potential_stiffness().clone()),
+            &mesh.mesh,
+        );
+    });
+}
+
 /// `stiffness` equals the explicit stiffness of the node kind of `nodes` on `mesh`.
 fn check_stiffness_formula(
     which: &str,
@@ -52,6 +68,14 @@ fn check_stiffness_formula(
         stiffness,
         &expected,
     );
+}
+
+/// Every mass is the Galerkin mass of what the complex evaluates and samples
+/// ([`check_galerkin_masses`]).
+pub fn galerkin_masses(constructor: Constructor, corpus: Corpus) {
+    for_each_mesh(corpus, true, |mesh| {
+        check_galerkin_masses(build(constructor, mesh).as_ref(), mesh)
+    });
 }
 
 /// `J² = −I`, `Jᵀ M1 J = M1`, `J` rotates sampled vectors by +π/2

@@ -34,6 +34,9 @@ fn harmonic_dimension_and_d1_d0_match_the_theory_on_every_open_mesh() {
         ("conforming-barycentric", open_corpus()),
         ("nonconforming-barycentric", open_corpus()),
         ("dec-circumcentric", open_delaunay_corpus()),
+        ("conforming-consistent", open_corpus()),
+        ("nonconforming-consistent", open_corpus()),
+        ("whitney-galerkin", open_corpus()),
     ];
     eprintln!("| entry | boundary | mesh | faces | b per component | 2g+b−1 | measured dim ker L | |d1 d0| rel. |");
     eprintln!("|---|---|---|---|---|---|---|---|");
