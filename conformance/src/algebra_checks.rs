@@ -1,17 +1,61 @@
-//! Algebraic core checks: the complex property `d1 · d0 = 0`, shapes, nodes and masses,
-//! symmetry and semi-definiteness.
+//! Algebraic core checks: the complex property `d1 · d0 = 0`, shapes, nodes and masses
+//! (positive diagonals, or sparse matrices positive definite on the free nodes), symmetry and
+//! semi-definiteness of the derived operators.
 
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
-use crate::corpus::CorpusMesh;
-use crate::dense::generalized_eigenvalues;
-use sprs::CsMat;
-use tvf_core::discretization::sparse::{product, scale_rows, transpose};
-use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind, NodeSpace, NO_COMPONENT};
+use crate::corpus::{CorpusMesh, DENSE_LIMIT};
+use crate::dense::{
+    free_eigenproblem, generalized_eigenvalues, hodge_pencil, restrict_to_free, DenseMass,
+};
+use faer::Mat;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use sprs::{CsMat, TriMat};
+use tvf_core::discretization::sparse::{mul_transpose_vec, product, transpose};
+use tvf_core::discretization::{
+    HodgeComplex, HodgeOperators, LinearOperator, Mass, MassForm, MassStorage, NodeKind, NodeSpace,
+    NO_COMPONENT,
+};
 use tvf_core::SurfaceMesh;
+use tvf_solvers::SparseCholesky;
+
+/// Random probe vectors per check of an operator too large to form densely.
+pub const PROBES: usize = 4;
 
 /// Largest absolute entry of a sparse matrix (0 if empty).
 pub fn max_abs(a: &CsMat<f64>) -> f64 {
     a.data().iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// Largest absolute entry of a dense matrix (0 if empty).
+pub fn max_abs_dense(a: &Mat<f64>) -> f64 {
+    let mut largest = 0.0f64;
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            largest = largest.max(a[(i, j)].abs());
+        }
+    }
+    largest
+}
+
+fn max_abs_vec(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |m, v| m.max(v.abs()))
+}
+
+fn norm(x: &[f64]) -> f64 {
+    x.iter().map(|v| v * v).sum::<f64>().sqrt()
+}
+
+fn dot(x: &[f64], y: &[f64]) -> f64 {
+    x.iter().zip(y).map(|(a, b)| a * b).sum()
+}
+
+/// `count` seeded random vectors of length `n`, uniform in `[−1, 1]`.
+fn probes(n: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..count)
+        .map(|_| (0..n).map(|_| rng.random_range(-1.0..1.0)).collect())
+        .collect()
 }
 
 /// `max |A − Aᵀ| ≤ 1e-12 · max |A|`, measured (a non-square matrix fails).
@@ -35,9 +79,42 @@ pub fn check_symmetric(what: &str, a: &CsMat<f64>) {
     assert_outcomes(&[measure_symmetric(what, a)]);
 }
 
-/// Smallest generalized eigenvalue of `(A, diag(mass))` is `≥ −1e-10 · largest` (dense),
-/// measured as `−λ_min` against `1e-10 · |λ_max|`.
-pub fn measure_psd(what: &str, a: &CsMat<f64>, mass: &[f64]) -> CheckOutcome {
+/// A derived operator is symmetric: a sparse matrix entry by entry ([`measure_symmetric`]); a
+/// composed one formed densely when it has at most [`DENSE_LIMIT`] columns (`max |A − Aᵀ| ≤
+/// 1e-12 · max |A|`, the same criterion), else on [`PROBES`] seeded random pairs `x`, `y`:
+/// `|xᵀ A y − yᵀ A x| ≤ 1e-12 · max(|x| |A y|, |y| |A x|)` (the same relative round-off, measured
+/// on products instead of entries).
+pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcome {
+    if let Some(sparse) = a.as_sparse() {
+        return measure_symmetric(what, sparse);
+    }
+    let name = format!("symmetric: {what}");
+    let (rows, cols) = a.shape();
+    if rows != cols {
+        return CheckOutcome::failed(name, format!("{what}: not square {:?}", a.shape()));
+    }
+    if cols <= DENSE_LIMIT {
+        let dense = a.to_dense();
+        let asymmetry = max_abs_dense(&(&dense - dense.transpose()));
+        let scale = max_abs_dense(&dense);
+        let detail = format!("{what} (dense): asymmetry {asymmetry:e} vs max entry {scale:e}");
+        return CheckOutcome::at_most(name, asymmetry, 1e-12 * scale, detail);
+    }
+    let vectors = probes(cols, 2 * PROBES, 0x5e11);
+    let (mut asymmetry, mut scale) = (0.0f64, 0.0f64);
+    for pair in vectors.chunks(2) {
+        let (x, y) = (&pair[0], &pair[1]);
+        let (ax, ay) = (a.apply(x), a.apply(y));
+        asymmetry = asymmetry.max((dot(x, &ay) - dot(y, &ax)).abs());
+        scale = scale.max((norm(x) * norm(&ay)).max(norm(y) * norm(&ax)));
+    }
+    let detail = format!("{what} (probes): |xᵀAy − yᵀAx| = {asymmetry:e} vs |x| |Ay| = {scale:e}");
+    CheckOutcome::at_most(name, asymmetry, 1e-12 * scale, detail)
+}
+
+/// Smallest generalized eigenvalue of `(A, M)` (dense, symmetric-definite) is `≥ −1e-10 ·
+/// largest`, measured as `−λ_min` against `1e-10 · |λ_max|`.
+pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
     let eigenvalues = generalized_eigenvalues(a, mass);
     let (min, max) = (eigenvalues[0], eigenvalues[eigenvalues.len() - 1]);
     let detail = format!("{what}: eigenvalue {min:e} (largest {max:e})");
@@ -49,36 +126,48 @@ pub fn measure_psd(what: &str, a: &CsMat<f64>, mass: &[f64]) -> CheckOutcome {
     )
 }
 
-/// Smallest generalized eigenvalue of `(A, diag(mass))` is `≥ −1e-10 · largest` (dense).
-pub fn check_psd(what: &str, a: &CsMat<f64>, mass: &[f64]) {
+/// Smallest generalized eigenvalue of `(A, M)` is `≥ −1e-10 · largest` (dense).
+pub fn check_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) {
     assert_outcomes(&[measure_psd(what, a, mass)]);
 }
 
-/// [`measure_symmetric`] of `S`, `B` and both stiffness matrices.
+/// [`measure_symmetric`] of the potential stiffness (always sparse) and
+/// [`measure_symmetric_operator`] of the co-potential stiffness, `S` and `B`.
 pub fn measure_symmetric_operators<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
     vec![
         measure_symmetric(
             "potential stiffness d0ᵀ M1 d0",
             complex.potential_stiffness(),
         ),
-        measure_symmetric(
+        measure_symmetric_operator(
             "co-potential stiffness d1 M1⁻¹ d1ᵀ",
             complex.co_potential_stiffness(),
         ),
-        measure_symmetric("Dirichlet energy S", complex.dirichlet_energy()),
-        measure_symmetric("biharmonic energy B", complex.biharmonic_energy()),
+        measure_symmetric_operator("Dirichlet energy S", complex.dirichlet_energy()),
+        measure_symmetric_operator("biharmonic energy B", complex.biharmonic_energy()),
     ]
 }
 
-/// [`measure_psd`] of `S` and `B` (w.r.t. `M1`) and both scalar eigenproblems (dense).
+/// [`measure_psd`] of `S` and `B` (w.r.t. `M1`, on the free field nodes) and of both scalar
+/// eigenproblems (on the free nodes of their spaces), all formed densely.
 pub fn measure_psd_operators<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
-    let exact = complex.exact_eigenproblem();
-    let co_exact = complex.co_exact_eigenproblem();
+    let (s, m1, _) = hodge_pencil(complex);
+    let (b, _, _) = restrict_to_free(
+        &complex.biharmonic_energy().to_dense(),
+        &DenseMass::of(complex.m1()),
+        complex.field_nodes(),
+    );
+    let (exact, exact_mass, _) =
+        free_eigenproblem(&complex.exact_eigenproblem(), complex.potential_nodes());
+    let (co_exact, co_exact_mass, _) = free_eigenproblem(
+        &complex.co_exact_eigenproblem(),
+        complex.co_potential_nodes(),
+    );
     vec![
-        measure_psd("S", complex.dirichlet_energy(), complex.m1().values()),
-        measure_psd("B", complex.biharmonic_energy(), complex.m1().values()),
-        measure_psd("exact eigenproblem", &exact.stiffness, &exact.mass),
-        measure_psd("co-exact eigenproblem", &co_exact.stiffness, &co_exact.mass),
+        measure_psd("S", &s, &m1),
+        measure_psd("B", &b, &m1),
+        measure_psd("exact eigenproblem", &exact, &exact_mass),
+        measure_psd("co-exact eigenproblem", &co_exact, &co_exact_mass),
     ]
 }
 
@@ -95,7 +184,9 @@ pub fn check_psd_operators<H: HodgeComplex + ?Sized>(complex: &H) {
 
 /// `d1 · d0 = 0` up to round-off (`max |d1 d0| ≤ 1e-12 · max|d1| · max|d0|`), and, through the
 /// co-gradient `−M1⁻¹ d1ᵀ` (a path that also involves `M1`), integrable ⟂ co-integrable:
-/// `(−M1⁻¹ d1ᵀ)ᵀ M1 d0 = 0`; measured.
+/// `(−M1⁻¹ d1ᵀ)ᵀ M1 d0 = 0` (`max` entry `≤ 1e-12 · max |co-gradient| · max |M1 d0|`; for a
+/// composed co-gradient measured on [`PROBES`] seeded random co-potentials `r`:
+/// `max |(M1 d0)ᵀ (−M1⁻¹ d1ᵀ r)| ≤ 1e-12 · max |M1 d0| · max |−M1⁻¹ d1ᵀ r|`).
 pub fn measure_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
     if complex.d1().cols() != complex.d0().rows() {
         return vec![CheckOutcome::failed(
@@ -116,11 +207,26 @@ pub fn measure_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOut
         1e-12 * scale,
         format!("|d1 d0| = {error:e}, scale {scale:e}"),
     );
-    let co_gradient = complex.co_gradient();
-    let weighted = scale_rows(complex.m1().values(), complex.d0());
-    let cross = product(&transpose(co_gradient), &weighted);
-    let scale = max_abs(co_gradient) * max_abs(&weighted);
-    let error = max_abs(&cross);
+    let m1 = complex
+        .m1()
+        .sparse_matrix()
+        .expect("the field mass M1 is stored directly");
+    let weighted = product(&m1, complex.d0());
+    let (error, scale) = match complex.co_gradient().as_sparse() {
+        Some(co_gradient) => {
+            let cross = product(&transpose(co_gradient), &weighted);
+            (max_abs(&cross), max_abs(co_gradient) * max_abs(&weighted))
+        }
+        None => {
+            let (mut error, mut largest) = (0.0f64, 0.0f64);
+            for r in probes(complex.co_potential_dimension(), PROBES, 0xd1d0) {
+                let field = complex.co_gradient_field(&r);
+                error = error.max(max_abs_vec(&mul_transpose_vec(&weighted, &field)));
+                largest = largest.max(max_abs_vec(&field));
+            }
+            (error, largest * max_abs(&weighted))
+        }
+    };
     let second = CheckOutcome::at_most(
         "integrable_orthogonal_to_co_integrable",
         error,
@@ -135,47 +241,108 @@ pub fn check_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) {
     assert_outcomes(&measure_d1_d0_zero(complex));
 }
 
-/// The potential masses partition the area: `|Σ M0 − area| ≤ 1e-12 · area`; and every mass is
-/// finite and positive on the nodes faces use (one outcome per mass).
+/// Whether a diagonal mass is finite and positive on the nodes faces use: the bad nodes.
+fn bad_diagonal_nodes(values: &[f64], nodes: &NodeSpace) -> Vec<usize> {
+    (0..values.len())
+        .filter(|&i| {
+            let m = values[i];
+            let used = nodes.components.get(i) != Some(&NO_COMPONENT);
+            !(m.is_finite() && (m > 0.0 || !used))
+        })
+        .collect()
+}
+
+/// The stored sparse matrix of a mass restricted to the free nodes of `nodes`, factored by a
+/// sparse Cholesky factorization of its own: `Ok(free count)` if it is finite and positive
+/// definite there, else what failed.
+fn sparse_mass_positive_definite(matrix: &CsMat<f64>, nodes: &NodeSpace) -> Result<usize, String> {
+    if let Some(index) = matrix.data().iter().position(|x| !x.is_finite()) {
+        return Err(format!("stored entry {index} is not finite"));
+    }
+    let free: Vec<usize> = (0..nodes.len()).filter(|&i| nodes.is_free(i)).collect();
+    let mut position = vec![usize::MAX; nodes.len()];
+    for (k, &i) in free.iter().enumerate() {
+        position[i] = k;
+    }
+    let mut block = TriMat::new((free.len(), free.len()));
+    for (&value, (i, j)) in matrix.iter() {
+        if position[i] != usize::MAX && position[j] != usize::MAX {
+            block.add_triplet(position[i], position[j], value);
+        }
+    }
+    let block: CsMat<f64> = block.to_csc();
+    SparseCholesky::new(&block)
+        .map(|_| free.len())
+        .map_err(|e| format!("not positive definite on its free nodes: {e}"))
+}
+
+/// One outcome per mass: a diagonal is finite and positive on every node faces use; a sparse
+/// matrix (`M`, or `M⁻¹` for a mass stored as its inverse) is finite, exactly symmetric as
+/// stored, and positive definite on the free nodes of its space (its own sparse Cholesky
+/// factorization there).
+fn measure_mass(what: &str, mass: &Mass, nodes: &NodeSpace) -> CheckOutcome {
+    let name = format!("positive_masses: {what}");
+    match mass.storage() {
+        MassStorage::Diagonal(values) => {
+            let bad = bad_diagonal_nodes(values, nodes);
+            let detail = match bad.first() {
+                Some(&i) => format!(
+                    "{what}[{i}] = {:e} on a used node ({} such)",
+                    values[i],
+                    bad.len()
+                ),
+                None => format!("{what}: every used node has a positive mass"),
+            };
+            CheckOutcome::count(name, bad.len(), 0, detail)
+        }
+        MassStorage::Sparse(matrix) => {
+            let stored = match mass.form() {
+                MassForm::Direct => what.to_string(),
+                MassForm::Inverse => format!("{what}⁻¹ (the stored form)"),
+            };
+            let asymmetry = max_abs(&(&matrix.to_csr() - &transpose(matrix)));
+            let result = if asymmetry > 0.0 {
+                Err(format!("not symmetric as stored (asymmetry {asymmetry:e})"))
+            } else {
+                sparse_mass_positive_definite(matrix, nodes)
+            };
+            match result {
+                Ok(free) => CheckOutcome::count(
+                    name,
+                    0,
+                    0,
+                    format!(
+                        "{stored}: sparse, symmetric, positive definite on its {free} free nodes"
+                    ),
+                ),
+                Err(reason) => CheckOutcome::count(name, 1, 0, format!("{stored}: {reason}")),
+            }
+        }
+    }
+}
+
+/// The potential masses partition the area: `|1ᵀ M0 1 − area| ≤ 1e-12 · area`; and every mass is
+/// a positive diagonal on the nodes faces use, or a sparse matrix positive definite on the free
+/// nodes (one outcome per mass).
 pub fn measure_masses<H: HodgeComplex + ?Sized>(
     complex: &H,
     mesh: &SurfaceMesh,
 ) -> Vec<CheckOutcome> {
-    let mut outcomes = Vec::new();
-    for (what, mass, nodes) in [
+    let mut outcomes: Vec<CheckOutcome> = [
         ("M0", complex.m0(), complex.potential_nodes()),
         ("M1", complex.m1(), complex.field_nodes()),
         ("M2", complex.m2(), complex.co_potential_nodes()),
-    ] {
-        let bad: Vec<usize> = (0..mass.len())
-            .filter(|&i| {
-                let m = mass.values()[i];
-                let used = nodes.components.get(i) != Some(&NO_COMPONENT);
-                !(m.is_finite() && (m > 0.0 || !used))
-            })
-            .collect();
-        let detail = match bad.first() {
-            Some(&i) => format!(
-                "{what}[{i}] = {:e} on a used node ({} such)",
-                mass.values()[i],
-                bad.len()
-            ),
-            None => format!("{what}: every used node has a positive mass"),
-        };
-        outcomes.push(CheckOutcome::count(
-            format!("positive_masses: {what}"),
-            bad.len(),
-            0,
-            detail,
-        ));
-    }
+    ]
+    .into_iter()
+    .map(|(what, mass, nodes)| measure_mass(what, mass, nodes))
+    .collect();
     let area = mesh.total_area();
     let total = complex.total_area();
     outcomes.push(CheckOutcome::at_most(
         "potential_masses_sum_to_area",
         (total - area).abs(),
         1e-12 * area,
-        format!("Σ M0 = {total}, the mesh's area is {area}"),
+        format!("1ᵀ M0 1 = {total}, the mesh's area is {area}"),
     ));
     outcomes
 }
@@ -235,10 +402,11 @@ fn check_node_space(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMes
 }
 
 /// Shapes, nodes, topology and masses agree with the mesh: `d0` is `n1 × n0`, `d1` is `n2 × n1`,
-/// each node space has one node per row (as many as its kind says), every mass is positive on
-/// the nodes faces use, the topology has the mesh's components, boundary and harmonic dimension
+/// each node space has one node per row (as many as its kind says), every mass is a positive
+/// diagonal on the nodes faces use or a sparse matrix positive definite on the free nodes, the
+/// topology has the mesh's components, boundary and harmonic dimension
 /// (`2g`, or `2g + b − 1` per component with boundary), and the
-/// potential masses partition the area: `Σ M0 = total_area() = area` (relative 1e-12).
+/// potential masses partition the area: `1ᵀ M0 1 = total_area() = area` (relative 1e-12).
 pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
     let (n0, n1, n2) = (
         complex.potential_dimension(),

@@ -2,10 +2,11 @@
 //! offers must behave), the rotation `J`, face fields and the explicit divergence and curl
 //! (reference: for complexes that opt in).
 
+use crate::algebra_checks::max_abs;
 use crate::corpus::CorpusMesh;
 use crate::decomposition_checks::random_field;
 use crate::reference_formulas::explicit_divergence_and_curl;
-use tvf_core::discretization::sparse::{mul_vec, product, scale_cols, transpose};
+use tvf_core::discretization::sparse::{mul_vec, product, transpose};
 use tvf_core::discretization::{FieldSampling, HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
 
@@ -247,16 +248,18 @@ pub fn check_rotation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
         assert!(value == &expected, "J² ≠ −I at ({r},{c}): {value}");
     }
     assert_eq!(j2.nnz(), n, "J² has one entry per row");
-    let m1 = complex.m1().values();
-    let jt_m1_j = product(&transpose(j), &scale_cols(j, m1));
-    let max = m1.iter().fold(0.0f64, |m, x| m.max(*x));
-    for (value, (r, c)) in jt_m1_j.iter() {
-        let expected = if r == c { m1[r] } else { 0.0 };
-        assert!(
-            (value - expected).abs() <= 1e-14 * max,
-            "Jᵀ M1 J ≠ M1 at ({r},{c})"
-        );
-    }
+    let m1 = complex
+        .m1()
+        .sparse_matrix()
+        .expect("the field mass M1 is stored directly");
+    let jt_m1_j = product(&transpose(j), &product(&m1, j));
+    let difference = &jt_m1_j - &m1.to_csr();
+    let error = max_abs(&difference);
+    assert!(
+        error <= 1e-14 * max_abs(&m1),
+        "Jᵀ M1 J ≠ M1: differs by {error:e} (max entry {:e})",
+        max_abs(&m1)
+    );
     if let Some(sampling) = complex.sampling() {
         let x = random_field(complex, 3);
         let jx = mul_vec(j, &x);
@@ -276,23 +279,37 @@ pub fn check_rotation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
 }
 
 /// Reference `face_fields`: the fields are one tangent vector per face (`n1 = 2F`, nodes
-/// [`NodeKind::FaceFrames`]), `M1 = (A_t, A_t)` per face (relative 1e-12, so `Σ M1 = 2·area`),
+/// [`NodeKind::FaceFrames`]), `M1 = (A_t, A_t)` per face, zero off the diagonal (relative 1e-12,
+/// so `1ᵀ M1 1 = 2·area`),
 /// sampling is constant on each face, and `from_face_vectors ∘ to_face_vectors` is the identity
 /// on fields (to 1e-12), while a vector lifted off the face plane is reported by its normal part.
 pub fn check_face_fields<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
     let mesh = &mesh.mesh;
     assert_eq!(complex.field_nodes().kind, NodeKind::FaceFrames);
     assert_eq!(complex.field_dimension(), 2 * mesh.face_count());
-    let m1 = complex.m1().values();
-    for t in 0..mesh.face_count() {
-        let area = mesh.face_area(t);
-        for k in 0..2 {
+    let m1 = complex
+        .m1()
+        .sparse_matrix()
+        .expect("the field mass M1 is stored directly");
+    let mut diagonal = vec![0.0; m1.rows()];
+    for (&value, (i, j)) in m1.iter() {
+        let area = mesh.face_area(i / 2);
+        if i == j {
+            diagonal[i] += value;
+        } else {
             assert!(
-                (m1[2 * t + k] - area).abs() <= 1e-12 * area,
-                "M1 of face {t}: {} vs area {area}",
-                m1[2 * t + k]
+                value.abs() <= 1e-12 * area,
+                "M1[{i}, {j}] = {value}: face fields have a diagonal M1"
             );
         }
+    }
+    for (i, &value) in diagonal.iter().enumerate() {
+        let area = mesh.face_area(i / 2);
+        assert!(
+            (value - area).abs() <= 1e-12 * area,
+            "M1 of face {}: {value} vs area {area}",
+            i / 2
+        );
     }
     let sampling = complex
         .sampling()
@@ -330,9 +347,9 @@ pub fn check_face_fields<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMes
 
 /// Reference `div_curl_formulas`: for random face fields, the complex's divergence and curl of
 /// both families equal the explicit sums over faces of `A_t ⟨∇ψ_i, v_t⟩` and
-/// `A_t ⟨∇ψ_i, n × v_t⟩` ([`explicit_divergence_and_curl`]) with the potential basis (masses
-/// `M0`: `potential_divergence`, `other_curl`) and the co-potential basis (masses `M2⁻¹`:
-/// `other_divergence`, `co_potential_curl`), relative 1e-10. Needs face fields, a rotation and
+/// `A_t ⟨∇ψ_i, n × v_t⟩` ([`explicit_divergence_and_curl`]) turned pointwise by the space's mass,
+/// with the potential basis (mass `M0`: `potential_divergence`, `other_curl`) and the
+/// co-potential basis (mass `M2⁻¹`: `other_divergence`, `co_potential_curl`), relative 1e-10. Needs face fields, a rotation and
 /// P1 or Crouzeix–Raviart spaces.
 pub fn check_div_curl_formulas<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
     let mesh = &mesh.mesh;
@@ -352,7 +369,7 @@ pub fn check_div_curl_formulas<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Cor
         let (p_div, p_curl) = explicit_divergence_and_curl(
             complex.potential_nodes().kind,
             mesh,
-            complex.m0().values(),
+            complex.m0(),
             &vectors,
         );
         let (q_div, q_curl) = explicit_divergence_and_curl(
@@ -371,7 +388,7 @@ pub fn check_div_curl_formulas<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Cor
             ("other_divergence", other_divergence, &q_div),
             ("co_potential_curl", complex.co_potential_curl(), &q_curl),
         ] {
-            assert_vectors_equal(what, &mul_vec(matrix, &field), expected);
+            assert_vectors_equal(what, &matrix.apply(&field), expected);
         }
     }
 }

@@ -37,8 +37,9 @@ impl CheckReport {
 }
 
 /// Runs the core checks on `complex` built on `mesh`: `d1 d0 = 0` and integrable ⟂
-/// co-integrable; masses positive on used nodes with `Σ M0 = area`; `S`, `B` and both stiffness
-/// matrices symmetric; the Hodge decomposition; and, when `n1 ≤` [`DENSE_LIMIT`], positive
+/// co-integrable; masses positive (a diagonal on the used nodes, a sparse matrix definite on the
+/// free nodes) with `1ᵀ M0 1 = area`; `S`, `B` and both stiffness matrices symmetric; the Hodge
+/// decomposition; and, when `n1 ≤` [`DENSE_LIMIT`], positive
 /// semi-definiteness, `dim ker L` (the mesh's harmonic dimension) and the spectrum of `L` as the
 /// union of the two scalar spectra, when `n1 ≤` [`EIGENVECTOR_LIMIT`] Lemma 1's eigenfields
 /// (larger complexes get these reported as skipped).
@@ -88,6 +89,7 @@ pub fn core_check_report(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) -> Chec
 mod tests {
     use super::*;
     use sprs::CsMat;
+    use tvf_core::discretization::Mass;
     use tvf_core::generate::torus;
     use tvf_discretizations::{catalog_entry, MatrixComplex, MatrixSampling};
 
@@ -98,17 +100,17 @@ mod tests {
         let report = core_check_report(built.as_ref(), &mesh);
         assert!(report.passed(), "{:?}", report.failures());
         assert!(report.outcomes.len() >= 20);
-        let mut m0 = built.m0().values().to_vec();
-        m0[3] *= 1.5; // Σ M0 no longer the area
+        let mut m0 = built.m0().diagonal_values().unwrap().to_vec();
+        m0[3] *= 1.5; // 1ᵀ M0 1 no longer the area
         let d0: CsMat<f64> = built.d0().clone();
         let broken = MatrixComplex::new(
             "broken",
             &mesh,
             d0,
             built.d1().clone(),
-            m0,
-            built.m1().values().to_vec(),
-            built.m2().values().to_vec(),
+            Mass::diagonal("M0", m0).unwrap(),
+            built.m1().clone(),
+            built.m2().clone(),
             MatrixSampling::None,
         )
         .unwrap();

@@ -80,7 +80,8 @@ impl CorpusMesh {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Corpus {
     /// Every generated mesh (genus 0–3, two components, rigidly moved and jittered copies, quad
-    /// tori that are not Delaunay) and `kitten`, `eight`, `3holes` from `../shared/meshes`.
+    /// tori and a torus of slivers that are not Delaunay) and `kitten`, `eight`, `3holes` from
+    /// `../shared/meshes`.
     General,
     /// Meshes with `cot α + cot β > 0` on every edge: icospheres, a staggered torus, flipped
     /// genus-2 and genus-3 surfaces, jittered and moved copies, two components, and `eight.obj`
@@ -201,7 +202,9 @@ fn shifted_icosphere() -> SurfaceMesh {
 }
 
 /// Generated meshes: icospheres, tori, genus-2 and genus-3 surfaces, a two-component mesh, a
-/// rigidly moved and a jittered copy. All small enough for dense checks except icosphere(3).
+/// rigidly moved and a jittered copy, and a torus with a strip of cap slivers. All small enough
+/// for dense checks except icosphere(3). Most are not Delaunay (the quad tori, the jittered and
+/// the sliver meshes), which is what a discretization without a Delaunay precondition must pass.
 pub fn generated_corpus() -> Vec<CorpusMesh> {
     let moved_torus = rigid_motion(&small_torus(), [1.0, -2.0, 0.5], 0.83, [3.0, -1.0, 2.0])
         .expect("finite motion");
@@ -227,6 +230,7 @@ pub fn generated_corpus() -> Vec<CorpusMesh> {
         CorpusMesh::new("rigidly moved torus", moved_torus, 1),
         CorpusMesh::new("jittered icosphere(2)", jittered_sphere, 0),
         CorpusMesh::new("jittered genus-2 surface", jittered_genus2, 2),
+        CorpusMesh::new("sliver torus 12×8", sliver_torus(1.0, 0.4, 12, 8, 0.01), 1),
     ]
 }
 
@@ -386,6 +390,30 @@ pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> Su
         .collect();
     let faces = staggered_ring_faces(around, tube, tube);
     SurfaceMesh::new(positions, faces).expect("a staggered torus is a valid closed mesh")
+}
+
+/// A [`staggered_torus`] whose ring 1 is pulled towards ring 0: each vertex of ring 1 moves to
+/// `thin` of its distance from the midpoint of the two ring-0 vertices it sits between, so the
+/// strip between rings 0 and 1 is made of cap slivers (one angle near 180°, two near 0°; for
+/// `thin = 0.01` on a 12×8 torus of radii 1 and 0.4 the angles span 0.46°–179.1°). Genus 1, not
+/// Delaunay.
+pub fn sliver_torus(major: f64, minor: f64, around: usize, tube: usize, thin: f64) -> SurfaceMesh {
+    let torus = staggered_torus(major, minor, around, tube);
+    let p = torus.positions();
+    let positions = (0..p.len())
+        .map(|v| {
+            let (ring, i) = (v / around, v % around);
+            if ring != 1 {
+                return p[v];
+            }
+            let (a, b) = (p[i], p[(i + 1) % around]);
+            std::array::from_fn(|k| {
+                let mid = (a[k] + b[k]) / 2.0;
+                mid + thin * (p[v][k] - mid)
+            })
+        })
+        .collect();
+    SurfaceMesh::new(positions, torus.faces().to_vec()).expect("moving vertices keeps the faces")
 }
 
 /// `cot α + cot β` of every edge (`E` entries, one cotangent on a boundary edge), computed from

@@ -1,41 +1,155 @@
-//! Dense eigenvalues and eigenvectors (faer) for the checks on small meshes.
+//! Dense generalized symmetric-definite eigenproblems `A x = λ M x` (faer) for the checks on
+//! small meshes: the stiffness formed densely from a sparse matrix or a [`LinearOperator`], the
+//! mass a positive diagonal or a dense SPD matrix ([`DenseMass`]).
 
-use faer::{Mat, Side};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::{Mat, Par, Side};
 use sprs::CsMat;
+use tvf_core::discretization::{
+    EigenStiffness, Eigenproblem, HodgeComplex, HodgeOperators, LinearOperator, Mass, NodeSpace,
+};
 
-/// `D^{-1/2} A D^{-1/2}` as a dense symmetric matrix (`D = diag(mass)`, `mass > 0`).
-fn scaled_dense(a: &CsMat<f64>, mass: &[f64]) -> Mat<f64> {
-    let n = a.rows();
-    assert_eq!(mass.len(), n, "one mass per row");
-    assert!(
-        mass.iter().all(|&m| m > 0.0),
-        "dense eigenproblems need a positive mass"
-    );
-    let scale: Vec<f64> = mass.iter().map(|m| 1.0 / m.sqrt()).collect();
-    let mut dense = Mat::<f64>::zeros(n, n);
-    for (value, (i, j)) in a.iter() {
-        dense[(i, j)] += value * scale[i] * scale[j];
-    }
-    dense
+/// The mass of a dense generalized eigenproblem.
+#[derive(Debug, Clone)]
+pub enum DenseMass {
+    /// A diagonal (`n` entries).
+    Diagonal(Vec<f64>),
+    /// A symmetric matrix (`n × n`).
+    Full(Mat<f64>),
 }
 
-/// Eigenvalues (ascending) of the generalized problem `A x = λ diag(mass) x`, computed densely as
-/// the eigenvalues of `D^{-1/2} A D^{-1/2}` (symmetric). `A` must be symmetric, `mass > 0`.
-pub fn generalized_eigenvalues(a: &CsMat<f64>, mass: &[f64]) -> Vec<f64> {
-    scaled_dense(a, mass)
+impl DenseMass {
+    /// The matrix `M` of a seam mass: its diagonal, or `M` applied to the identity (a mass
+    /// stored as its inverse is applied through its factorization, on its free nodes).
+    pub fn of(mass: &Mass) -> Self {
+        match mass.diagonal_values() {
+            Some(values) => DenseMass::Diagonal(values.to_vec()),
+            None => {
+                let n = mass.len();
+                DenseMass::Full(mass.apply_block(Mat::<f64>::identity(n, n).as_ref()))
+            }
+        }
+    }
+
+    /// Number of rows `n`.
+    pub fn len(&self) -> usize {
+        match self {
+            DenseMass::Diagonal(values) => values.len(),
+            DenseMass::Full(m) => m.nrows(),
+        }
+    }
+
+    /// Whether the mass has no row.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The rows and columns `keep` (full indices).
+    fn restricted(&self, keep: &[usize]) -> Self {
+        match self {
+            DenseMass::Diagonal(values) => {
+                DenseMass::Diagonal(keep.iter().map(|&i| values[i]).collect())
+            }
+            DenseMass::Full(m) => DenseMass::Full(pick(m, keep)),
+        }
+    }
+}
+
+/// A sparse matrix as a dense one (duplicates summed).
+pub fn dense(a: &CsMat<f64>) -> Mat<f64> {
+    LinearOperator::Sparse(a.clone()).to_dense()
+}
+
+/// The stiffness of an eigenproblem as a dense matrix: the sparse matrix, or `d1 W⁻¹ d1ᵀ` of a
+/// mixed one formed column by column through `W`'s solves.
+pub fn dense_stiffness(stiffness: &EigenStiffness) -> Mat<f64> {
+    match stiffness {
+        EigenStiffness::Sparse(a) => dense(a),
+        EigenStiffness::Mixed { field_mass, d1 } => {
+            let d1 = LinearOperator::Sparse(d1.clone());
+            let d1t = d1.to_dense().transpose().to_owned();
+            d1.apply_block(field_mass.solve_block(d1t.as_ref()).as_ref())
+        }
+    }
+}
+
+/// Rows and columns `keep` of a square matrix.
+fn pick(a: &Mat<f64>, keep: &[usize]) -> Mat<f64> {
+    Mat::from_fn(keep.len(), keep.len(), |r, c| a[(keep[r], keep[c])])
+}
+
+/// The symmetric matrix `C` with the eigenvalues of `(A, M)`, and how to map its eigenvectors
+/// back: `D^{-1/2} A D^{-1/2}` for a diagonal `M = D` (`D > 0`), `L⁻¹ A L⁻ᵀ` with the Cholesky
+/// factor `M = L Lᵀ` of a full one. Panics if `M` is not positive definite.
+fn transformed(a: &Mat<f64>, mass: &DenseMass) -> (Mat<f64>, Back) {
+    let n = a.nrows();
+    assert_eq!(mass.len(), n, "one mass row per row");
+    match mass {
+        DenseMass::Diagonal(values) => {
+            assert!(
+                values.iter().all(|&m| m > 0.0),
+                "dense eigenproblems need a positive mass"
+            );
+            let scale: Vec<f64> = values.iter().map(|m| 1.0 / m.sqrt()).collect();
+            let c = Mat::from_fn(n, n, |i, j| a[(i, j)] * scale[i] * scale[j]);
+            (c, Back::Scale(scale))
+        }
+        DenseMass::Full(m) => {
+            let symmetric = Mat::from_fn(n, n, |i, j| 0.5 * (m[(i, j)] + m[(j, i)]));
+            let llt = symmetric
+                .llt(Side::Lower)
+                .expect("dense eigenproblems need a positive definite mass");
+            let l = llt.L().to_owned();
+            let mut y = a.clone();
+            solve_lower_triangular_in_place(l.as_ref(), y.as_mut(), Par::Seq);
+            let mut c = y.transpose().to_owned();
+            solve_lower_triangular_in_place(l.as_ref(), c.as_mut(), Par::Seq);
+            let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
+            (c, Back::Cholesky(l))
+        }
+    }
+}
+
+/// How eigenvectors of the transformed problem map back to those of `(A, M)`.
+enum Back {
+    /// `x = D^{-1/2} y`.
+    Scale(Vec<f64>),
+    /// `x = L⁻ᵀ y`.
+    Cholesky(Mat<f64>),
+}
+
+/// Eigenvalues (ascending) of the generalized problem `A x = λ M x`, `A` symmetric (`n × n`) and
+/// `M` positive definite, from the symmetric transformed problem (its lower triangle).
+pub fn generalized_eigenvalues(a: &Mat<f64>, mass: &DenseMass) -> Vec<f64> {
+    transformed(a, mass)
+        .0
         .self_adjoint_eigenvalues(Side::Lower)
         .expect("dense symmetric eigenvalues converge")
 }
 
-/// All eigenpairs of `A x = λ diag(mass) x`, ascending: `(λ, X)` with the columns of `X`
-/// (`n × n`) `diag(mass)`-orthonormal.
-pub fn generalized_eigenpairs(a: &CsMat<f64>, mass: &[f64]) -> (Vec<f64>, Mat<f64>) {
-    let eigen = scaled_dense(a, mass)
+/// All eigenpairs of `A x = λ M x`, ascending: `(λ, X)` with the columns of `X` (`n × n`)
+/// `M`-orthonormal.
+pub fn generalized_eigenpairs(a: &Mat<f64>, mass: &DenseMass) -> (Vec<f64>, Mat<f64>) {
+    let (c, back) = transformed(a, mass);
+    let eigen = c
         .self_adjoint_eigen(Side::Lower)
         .expect("dense symmetric eigendecomposition converges");
     let values = eigen.S().column_vector().iter().copied().collect();
-    let u = eigen.U();
-    let vectors = Mat::from_fn(u.nrows(), u.ncols(), |i, j| u[(i, j)] / mass[i].sqrt());
+    let mut vectors = eigen.U().to_owned();
+    match back {
+        Back::Scale(scale) => {
+            for j in 0..vectors.ncols() {
+                for (i, s) in scale.iter().enumerate() {
+                    vectors[(i, j)] *= s;
+                }
+            }
+        }
+        Back::Cholesky(l) => {
+            solve_upper_triangular_in_place(l.transpose(), vectors.as_mut(), Par::Seq)
+        }
+    }
     (values, vectors)
 }
 
@@ -54,25 +168,36 @@ pub fn split_zeros(eigenvalues: &[f64], relative_tolerance: f64) -> (usize, Vec<
     (zeros, rest)
 }
 
-/// The eigenproblem `(a, diag(mass))` restricted to the free nodes of `nodes`
-/// ([`tvf_core::discretization::NodeSpace::is_free`]): the restricted stiffness and mass, and
-/// the full index of every restricted node.
+/// The problem `(a, mass)` restricted to the free nodes of `nodes` ([`NodeSpace::is_free`]):
+/// the restricted stiffness and mass, and the full index of every restricted node.
 pub fn restrict_to_free(
-    a: &CsMat<f64>,
-    mass: &[f64],
-    nodes: &tvf_core::discretization::NodeSpace,
-) -> (CsMat<f64>, Vec<f64>, Vec<usize>) {
+    a: &Mat<f64>,
+    mass: &DenseMass,
+    nodes: &NodeSpace,
+) -> (Mat<f64>, DenseMass, Vec<usize>) {
     let free: Vec<usize> = (0..nodes.len()).filter(|&i| nodes.is_free(i)).collect();
-    let mut restricted = vec![usize::MAX; nodes.len()];
-    for (r, &i) in free.iter().enumerate() {
-        restricted[i] = r;
-    }
-    let mut triplets = sprs::TriMat::new((free.len(), free.len()));
-    for (&value, (i, j)) in a.iter() {
-        if restricted[i] != usize::MAX && restricted[j] != usize::MAX {
-            triplets.add_triplet(restricted[i], restricted[j], value);
-        }
-    }
-    let mass = free.iter().map(|&i| mass[i]).collect();
-    (triplets.to_csr(), mass, free)
+    (pick(a, &free), mass.restricted(&free), free)
+}
+
+/// A scalar eigenproblem of a complex in dense form, restricted to the free nodes of `nodes`
+/// ([`restrict_to_free`]).
+pub fn free_eigenproblem(
+    problem: &Eigenproblem,
+    nodes: &NodeSpace,
+) -> (Mat<f64>, DenseMass, Vec<usize>) {
+    restrict_to_free(
+        &dense_stiffness(&problem.stiffness),
+        &DenseMass::of(&problem.mass),
+        nodes,
+    )
+}
+
+/// The dense problem `(S, M1)` of the Hodge–Laplacian `L = M1⁻¹ S`, restricted to the free field
+/// nodes: its eigenvalues are the spectrum of `L`.
+pub fn hodge_pencil<H: HodgeComplex + ?Sized>(complex: &H) -> (Mat<f64>, DenseMass, Vec<usize>) {
+    restrict_to_free(
+        &complex.dirichlet_energy().to_dense(),
+        &DenseMass::of(complex.m1()),
+        complex.field_nodes(),
+    )
 }

@@ -6,17 +6,26 @@
 //! kinds:
 //!
 //! - **core checks** ([`suite`]) every complex must pass: `d1 d0 = 0`; shapes, nodes and
-//!   positive masses with `Σ M0 = area`; `S`, `B` and both stiffness matrices symmetric and
-//!   positive semi-definite; `dim ker L = 2g` per component; the Hodge decomposition
-//!   (`M1`-orthogonal parts summing back, the integrable part curl-free, the co-integrable part
-//!   divergence-free); Lemma 1 eigenfields; the spectrum of `L` as the union of the two scalar
-//!   spectra; a complete orthonormal eigenfield basis; sampling and point evaluation where
-//!   offered; invariance under rigid motions and on jittered meshes (proptest);
-//! - **reference checks** ([`reference`]) a complex opts into: `cotan_formula` (stiffness
-//!   matrices against the cotan, Crouzeix–Raviart or dual-graph formulas), `rotation`
-//!   (`J² = −I`, `Jᵀ M1 J = M1`), `face_fields`, `div_curl_formulas` (both families of
-//!   divergence and curl against explicit sums), `co_potential_masses` (`Σ M2⁻¹ = area`) and
+//!   masses (positive diagonals, or sparse matrices positive definite on the free nodes) with
+//!   `1ᵀ M0 1 = area`; `S`, `B` and both stiffness matrices symmetric and positive
+//!   semi-definite; `dim ker L = 2g` per component; the Hodge decomposition (`M1`-orthogonal
+//!   parts summing back, the integrable part curl-free, the co-integrable part divergence-free);
+//!   Lemma 1 eigenfields; the spectrum of `L` as the union of the two scalar spectra; a complete
+//!   orthonormal eigenfield basis; sampling and point evaluation where offered; invariance under
+//!   rigid motions and on jittered meshes (proptest);
+//! - **reference checks** ([`reference`](mod@reference)) a complex opts into: `cotan_formula` (stiffness
+//!   matrices against the cotan, Crouzeix–Raviart or dual-graph formulas) or
+//!   `potential_cotan_formula` (the potential stiffness alone), `rotation` (`J² = −I`,
+//!   `Jᵀ M1 J = M1`), `face_fields`, `div_curl_formulas` (both families of divergence and curl
+//!   against explicit sums), `co_potential_masses` (`1ᵀ M2⁻¹ 1 = area`), `galerkin_masses`
+//!   (every mass the `L²` Gram matrix of what the complex evaluates and samples) and
 //!   `sphere_spectrum` (convergence to `l(l+1)` on the unit sphere).
+//!
+//! Masses are [`tvf_core::discretization::Mass`]es and derived operators
+//! [`tvf_core::discretization::LinearOperator`]s: the checks apply them, form them densely on
+//! small meshes ([`dense`]: `LinearOperator::to_dense`, a mass applied to the identity) and solve
+//! the generalized problems as symmetric-definite pencils (a Cholesky factor of a non-diagonal
+//! mass), restricted to the free nodes of each space.
 //!
 //! Each core check measures first and asserts on [`check_outcome::CheckOutcome`]s;
 //! [`check_report::core_check_report`] returns those outcomes as a report instead, for complexes
@@ -60,6 +69,7 @@ pub mod check_report;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;
+pub mod galerkin_mass_checks;
 pub mod open_suite;
 pub mod reference;
 pub mod reference_formulas;

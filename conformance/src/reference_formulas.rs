@@ -1,10 +1,11 @@
 //! Independent re-derivations of operators from explicit formulas (cotangents and gradients of
 //! the 3D triangles, nothing from `tvf-discretizations`), for the reference checks.
 
+use crate::algebra_checks::max_abs_dense;
 use crate::corpus::corner_cotangent;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::NodeKind;
+use tvf_core::discretization::{LinearOperator, Mass, NodeKind};
 use tvf_core::geometry::{cross, dot, scale, sub};
 use tvf_core::SurfaceMesh;
 
@@ -104,6 +105,28 @@ pub fn assert_matrices_within(what: &str, a: &CsMat<f64>, b: &CsMat<f64>, tolera
     );
 }
 
+/// Two derived operators agree: `max |A − B| ≤ 1e-10 · max |B|` entry for entry, as sparse
+/// matrices where both are, else formed densely (small meshes only).
+pub fn assert_operators_close(what: &str, a: &LinearOperator, b: &LinearOperator) {
+    if let (Some(a), Some(b)) = (a.as_sparse(), b.as_sparse()) {
+        return assert_matrices_close(what, a, b);
+    }
+    assert_eq!(a.shape(), b.shape(), "{what}: shapes differ");
+    let (a, b) = (a.to_dense(), b.to_dense());
+    let error = max_abs_dense(&(&a - &b));
+    let scale = max_abs_dense(&b);
+    assert!(
+        error <= 1e-10 * scale,
+        "{what}: differs by {error:e} (max entry {scale:e})"
+    );
+}
+
+/// A derived operator equals an explicit sparse matrix (`max |A − B| ≤ 1e-10 · max |B|`): entry
+/// for entry if it is sparse, else formed densely.
+pub fn assert_operator_equals(what: &str, a: &LinearOperator, b: &CsMat<f64>) {
+    assert_operators_close(what, a, &LinearOperator::Sparse(b.clone()));
+}
+
 /// The 3D gradients on face `t` of the piecewise linear basis functions with nodes of kind
 /// `kind` that are non-zero on `t`: `(node, ∇ψ)`. P1 hat of corner `c`:
 /// `n × (p_{c+2} − p_{c+1}) / 2A`; Crouzeix–Raviart function of the edge opposite corner `c`:
@@ -133,13 +156,14 @@ pub fn basis_gradients(
 }
 
 /// Pointwise divergence and curl of a piecewise constant field (one 3D tangent vector `v_t` per
-/// face) on the nodes of a space of kind `kind` with lumped masses `mass`:
-/// `div_i = −(1/m_i) Σ_t A_t ⟨∇ψ_i, v_t⟩` and `curl_i = (1/m_i) Σ_t A_t ⟨∇ψ_i, n_t × v_t⟩`
-/// (`n` entries each). Panics for kinds without [`basis_gradients`].
+/// face) on the nodes of a space of kind `kind` with mass `mass` (`n × n`, the space's inner
+/// product): `div = −M⁻¹ d` and `curl = M⁻¹ c` with the integrated values
+/// `d_i = Σ_t A_t ⟨∇ψ_i, v_t⟩` and `c_i = Σ_t A_t ⟨∇ψ_i, n_t × v_t⟩` (`n` entries each; a lumped
+/// mass divides node by node). Panics for kinds without [`basis_gradients`].
 pub fn explicit_divergence_and_curl(
     kind: NodeKind,
     mesh: &SurfaceMesh,
-    mass: &[f64],
+    mass: &Mass,
     vectors: &[[f64; 3]],
 ) -> (Vec<f64>, Vec<f64>) {
     let mut divergence = vec![0.0; mass.len()];
@@ -150,9 +174,9 @@ pub fn explicit_divergence_and_curl(
         let gradients = basis_gradients(kind, mesh, t)
             .unwrap_or_else(|| panic!("no explicit basis gradients for {}", kind.name()));
         for (node, gradient) in gradients {
-            divergence[node] -= area * dot(gradient, v) / mass[node];
-            curl[node] += area * dot(gradient, rotated) / mass[node];
+            divergence[node] -= area * dot(gradient, v);
+            curl[node] += area * dot(gradient, rotated);
         }
     }
-    (divergence, curl)
+    (mass.solve(&divergence), mass.solve(&curl))
 }

@@ -1,9 +1,7 @@
 //! [`ScaledCoPotentials`]: the smallest complex that is not in the catalog, the wrapper of the
 //! seam's documentation (`tvf_core::discretization`), run through the whole core suite.
 
-use tvf_core::discretization::{
-    ComplexParts, DiagonalMass, DiscretizationError, FieldSampling, HodgeComplex,
-};
+use tvf_core::discretization::{ComplexParts, DiscretizationError, FieldSampling, HodgeComplex};
 
 /// Any complex with its co-potential inner product `M2⁻¹` scaled by `factor` (so `M2` by
 /// `1/factor`); `d0`, `d1`, `M0`, `M1`, the nodes and the sampling are the inner complex's.
@@ -20,11 +18,9 @@ pub struct ScaledCoPotentials<H> {
 impl<H: HodgeComplex> ScaledCoPotentials<H> {
     /// Wraps `inner`, scaling `M2⁻¹` by `factor` (positive); id `{inner id}-scaled-co-potentials`.
     pub fn new(inner: H, factor: f64) -> Result<Self, DiscretizationError> {
-        let m2 = inner.m2().values().iter().map(|m| m / factor).collect();
+        let m2 = inner.m2().scaled("M2 (scaled)", 1.0 / factor);
         let id = format!("{}-scaled-co-potentials", inner.id());
-        let parts = inner
-            .parts()
-            .with_co_potential_mass(id, DiagonalMass::new("M2", m2)?)?;
+        let parts = inner.parts().with_co_potential_mass(id, m2)?;
         Ok(Self { inner, parts })
     }
 }

@@ -3,31 +3,27 @@
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
 use crate::corpus::CorpusMesh;
 use crate::dense::{
-    generalized_eigenpairs, generalized_eigenvalues, restrict_to_free, split_zeros,
+    free_eigenproblem, generalized_eigenpairs, generalized_eigenvalues, hodge_pencil, split_zeros,
 };
-use crate::reference_formulas::assert_matrices_close;
+use crate::reference_formulas::{assert_matrices_close, assert_operators_close};
 use faer::Mat;
-use tvf_core::discretization::sparse::mul_vec;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, Mass, MassStorage};
 use tvf_discretizations::HodgeDecomposer;
 
 /// Relative threshold (of the largest eigenvalue) below which an eigenvalue counts as zero.
 const ZERO: f64 = 1e-9;
 
-/// The spectrum of `L`, ascending: the generalized eigenvalues of `(S, M1)` on the free field
-/// nodes (every field node unless the complex fixes some, as relative forms fix boundary edges).
+/// The spectrum of `L`, ascending: the generalized eigenvalues of the symmetric-definite pencil
+/// `(S, M1)` (dense) on the free field nodes (every field node unless the complex fixes some,
+/// as relative forms fix boundary edges).
 pub fn hodge_spectrum<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<f64> {
-    let (s, m, _) = restrict_to_free(
-        complex.dirichlet_energy(),
-        complex.m1().values(),
-        complex.field_nodes(),
-    );
+    let (s, m, _) = hodge_pencil(complex);
     generalized_eigenvalues(&s, &m)
 }
 
 /// The nonzero spectrum of `L` is the union of the nonzero spectra of the exact pair
-/// `(d0ᵀ M1 d0, M0)` and the co-exact pair `(d1 M1⁻¹ d1ᵀ, M2⁻¹)`, entry for entry within
-/// `1e-9 · λ_max`; `L` has `harmonic_dimension` zeros, each scalar pair as many as its space's
+/// `(d0ᵀ M1 d0, M0)` and the co-exact pair `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` (each dense, on the free nodes
+/// of its space), entry for entry within `1e-9 · λ_max`; `L` has `harmonic_dimension` zeros, each scalar pair as many as its space's
 /// kernel dimension; measured.
 pub fn measure_spectrum_union<H: HodgeComplex + ?Sized>(
     complex: &H,
@@ -38,9 +34,9 @@ pub fn measure_spectrum_union<H: HodgeComplex + ?Sized>(
     let co_exact = complex.co_exact_eigenproblem();
     let (potential_nodes, co_potential_nodes) =
         (complex.potential_nodes(), complex.co_potential_nodes());
-    let (a, m, _) = restrict_to_free(&exact.stiffness, &exact.mass, potential_nodes);
+    let (a, m, _) = free_eigenproblem(&exact, potential_nodes);
     let (e_zeros, e_rest) = split_zeros(&generalized_eigenvalues(&a, &m), ZERO);
-    let (a, m, _) = restrict_to_free(&co_exact.stiffness, &co_exact.mass, co_potential_nodes);
+    let (a, m, _) = free_eigenproblem(&co_exact, co_potential_nodes);
     let (c_zeros, c_rest) = split_zeros(&generalized_eigenvalues(&a, &m), ZERO);
     let mut outcomes = vec![
         CheckOutcome::count(
@@ -122,7 +118,7 @@ pub fn lemma1_eigenfields<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<(f64, Ve
         (&exact, complex.potential_nodes(), true),
         (&co_exact, complex.co_potential_nodes(), false),
     ] {
-        let (a, m, free) = restrict_to_free(&problem.stiffness, &problem.mass, nodes);
+        let (a, m, free) = free_eigenproblem(problem, nodes);
         let (values, restricted) = generalized_eigenpairs(&a, &m);
         let mut vectors = Mat::<f64>::zeros(nodes.len(), values.len());
         for (r, &i) in free.iter().enumerate() {
@@ -160,7 +156,8 @@ pub fn measure_lemma1<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome
         if (norm - 1.0).abs() > worst_norm || norm.is_nan() {
             (worst_norm, norm_at) = ((norm - 1.0).abs(), k);
         }
-        let residual: Vec<f64> = mul_vec(laplacian, u)
+        let residual: Vec<f64> = laplacian
+            .apply(u)
             .iter()
             .zip(u)
             .map(|(lu, x)| lu - lambda * x)
@@ -214,9 +211,8 @@ pub fn check_basis_orthonormal<H: HodgeComplex + ?Sized>(complex: &H, seed: u64)
         free,
         "eigenfields + harmonic fields = free field nodes"
     );
-    let sqrt_mass: Vec<f64> = complex.m1().values().iter().map(|m| m.sqrt()).collect();
-    let weighted = Mat::<f64>::from_fn(n, free, |i, j| sqrt_mass[i] * basis[j][i]);
-    let gram = weighted.transpose() * &weighted;
+    let fields = Mat::<f64>::from_fn(n, free, |i, j| basis[j][i]);
+    let gram = fields.transpose() * complex.m1().apply_block(fields.as_ref());
     for i in 0..free {
         for j in 0..free {
             let expected = if i == j { 1.0 } else { 0.0 };
@@ -277,7 +273,7 @@ where
         moved.potential_stiffness(),
         original.potential_stiffness(),
     );
-    assert_matrices_close(
+    assert_operators_close(
         "co-potential stiffness after a rigid motion",
         moved.co_potential_stiffness(),
         original.co_potential_stiffness(),
@@ -287,19 +283,34 @@ where
         ("M1", moved.m1(), original.m1()),
         ("M2", moved.m2(), original.m2()),
     ] {
-        assert_eq!(
-            a.len(),
-            b.len(),
-            "{what}: size changed under a rigid motion"
-        );
-        for (x, y) in a.values().iter().zip(b.values()) {
-            assert!(
-                (x - y).abs() <= 1e-10 * y.abs(),
-                "{what} changed under a rigid motion: {x} vs {y}"
-            );
-        }
+        assert_masses_close(what, a, b);
     }
     if dense {
         check_same_spectrum(original, moved);
+    }
+}
+
+/// Two masses store the same matrix in the same form: diagonals entry for entry (relative
+/// 1e-10 of each entry), sparse matrices within `1e-10 · max |entry|`.
+fn assert_masses_close(what: &str, a: &Mass, b: &Mass) {
+    assert_eq!(
+        a.len(),
+        b.len(),
+        "{what}: size changed under a rigid motion"
+    );
+    assert_eq!(a.form(), b.form(), "{what}: stored form changed");
+    match (a.storage(), b.storage()) {
+        (MassStorage::Diagonal(x), MassStorage::Diagonal(y)) => {
+            for (x, y) in x.iter().zip(y) {
+                assert!(
+                    (x - y).abs() <= 1e-10 * y.abs(),
+                    "{what} changed under a rigid motion: {x} vs {y}"
+                );
+            }
+        }
+        (MassStorage::Sparse(x), MassStorage::Sparse(y)) => {
+            assert_matrices_close(&format!("{what} after a rigid motion"), x, y)
+        }
+        _ => panic!("{what}: storage changed under a rigid motion"),
     }
 }

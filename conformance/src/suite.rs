@@ -34,7 +34,7 @@ fn for_each_complex(
     });
 }
 
-/// Shapes, nodes, topology, positive masses and `Σ M0 = area`
+/// Shapes, nodes, topology, positive definite masses and `1ᵀ M0 1 = area`
 /// ([`check_nodes_and_masses`]).
 pub fn nodes_and_masses(constructor: Constructor, corpus: Corpus) {
     for_each_complex(constructor, corpus, true, usize::MAX, |c, m| {

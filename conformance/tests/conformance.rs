@@ -9,14 +9,20 @@ tvf_conformance::catalog_suites! {
         reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
     conforming_voronoi => "conforming-voronoi",
         reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
+    conforming_consistent => "conforming-consistent",
+        reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, galerkin_masses, sphere_spectrum];
     nonconforming_barycentric => "nonconforming-barycentric",
         reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
     nonconforming_voronoi => "nonconforming-voronoi",
         reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, sphere_spectrum];
+    nonconforming_consistent => "nonconforming-consistent",
+        reference = [cotan_formula, rotation, face_fields, div_curl_formulas, co_potential_masses, galerkin_masses, sphere_spectrum];
     dec_barycentric => "dec-barycentric",
         reference = [cotan_formula, co_potential_masses, sphere_spectrum];
     dec_circumcentric => "dec-circumcentric",
         reference = [cotan_formula, co_potential_masses, sphere_spectrum];
+    whitney_galerkin => "whitney-galerkin",
+        reference = [potential_cotan_formula, co_potential_masses, galerkin_masses, sphere_spectrum];
 }
 
 tvf_conformance::conformance_suite!(

@@ -2,7 +2,7 @@
 //! jittered property-test meshes) is Delaunay and builds every catalog entry.
 
 use tvf_conformance::corpus::{is_delaunay, staggered_torus, Corpus};
-use tvf_discretizations::catalog;
+use tvf_discretizations::{catalog, catalog_entry};
 
 #[test]
 fn genera_and_closedness_match_the_meshes() {
@@ -36,6 +36,40 @@ fn the_general_corpus_has_non_delaunay_meshes() {
         .filter(|m| !is_delaunay(&m.mesh))
         .count();
     assert!(refused >= 5, "only {refused} non-Delaunay meshes");
+}
+
+/// The general corpus has slivers (an angle below 1° and one above 175°) and jittered meshes
+/// that are not Delaunay, and every entry without a Delaunay precondition builds on each
+/// (`whitney-galerkin` among them) while DEC refuses it.
+#[test]
+fn entries_without_a_delaunay_precondition_build_on_slivers_and_jittered_meshes() {
+    let meshes = Corpus::General.meshes(false);
+    let slivers = meshes
+        .iter()
+        .filter(|m| {
+            let (low, high) = m.mesh.angle_range_deg();
+            low < 1.0 && high > 175.0
+        })
+        .count();
+    assert!(slivers >= 1, "no mesh with slivers");
+    let jittered = meshes
+        .iter()
+        .filter(|m| m.name.starts_with("jittered") && !is_delaunay(&m.mesh))
+        .count();
+    assert!(jittered >= 1, "no jittered mesh that is not Delaunay");
+    for mesh in meshes.iter().filter(|m| !is_delaunay(&m.mesh)) {
+        for entry in catalog() {
+            let built = (entry.build)(&mesh.mesh);
+            assert_eq!(
+                built.is_ok(),
+                !entry.needs_delaunay,
+                "{} on {}",
+                entry.id,
+                mesh.name
+            );
+        }
+    }
+    assert!(!catalog_entry("whitney-galerkin").unwrap().needs_delaunay);
 }
 
 #[test]

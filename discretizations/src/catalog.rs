@@ -1,7 +1,7 @@
 //! The catalog: every discretization tvf ships, listed once. The CLI, the editor, papers/, basis
 //! files and the cache key read it; nothing else names a discretization.
 
-use crate::{Conforming, DecComplex, MassLumping, Nonconforming};
+use crate::{Conforming, DecComplex, MassLumping, Nonconforming, WhitneyGalerkin};
 use thiserror::Error;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, HodgeComplex};
 use tvf_core::SurfaceMesh;
@@ -87,7 +87,7 @@ pub const DEFAULT_DISCRETIZATION: &str = "conforming-barycentric";
 const ANY_MESH: &str = "none (any valid mesh without degenerate faces)";
 const DELAUNAY: &str = "a Delaunay mesh: cot α + cot β > 0 on every edge (⋆1 positive)";
 
-static CATALOG: [CatalogEntry; 6] = [
+static CATALOG: [CatalogEntry; 9] = [
     CatalogEntry {
         id: "conforming-barycentric",
         description: "the paper's conforming decomposition: P1 potentials, face fields, Crouzeix–Raviart co-potentials; barycentric lumped masses",
@@ -108,6 +108,18 @@ static CATALOG: [CatalogEntry; 6] = [
         build: |mesh| Ok(Box::new(Conforming::new(mesh, MassLumping::Voronoi)?)),
         build_with_boundary: |mesh, boundary| {
             Ok(Box::new(Conforming::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
+        },
+        boundary_conditions: BOTH,
+        boundary_meanings: CONFORMING_BOUNDARY,
+    },
+    CatalogEntry {
+        id: "conforming-consistent",
+        description: "the conforming decomposition with Galerkin masses: the consistent P1 mass ∫φᵢφⱼ (sparse) as M0, the Crouzeix–Raviart mass (diagonal, already consistent)",
+        preconditions: ANY_MESH,
+        needs_delaunay: false,
+        build: |mesh| Ok(Box::new(Conforming::consistent(mesh)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(Conforming::consistent_with_boundary(mesh, boundary)?))
         },
         boundary_conditions: BOTH,
         boundary_meanings: CONFORMING_BOUNDARY,
@@ -137,6 +149,18 @@ static CATALOG: [CatalogEntry; 6] = [
         boundary_meanings: NONCONFORMING_BOUNDARY,
     },
     CatalogEntry {
+        id: "nonconforming-consistent",
+        description: "the nonconforming decomposition with Galerkin masses: the Crouzeix–Raviart mass (diagonal, already consistent) as M0, the consistent P1 mass as co-potential mass (M2 stored as its sparse inverse)",
+        preconditions: ANY_MESH,
+        needs_delaunay: false,
+        build: |mesh| Ok(Box::new(Nonconforming::consistent(mesh)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(Nonconforming::consistent_with_boundary(mesh, boundary)?))
+        },
+        boundary_conditions: BOTH,
+        boundary_meanings: NONCONFORMING_BOUNDARY,
+    },
+    CatalogEntry {
         id: "dec-barycentric",
         description: "DEC 1-forms: 0-forms on vertices, 1-forms on edges, 2-forms on faces; ⋆0 barycentric vertex areas, ⋆1 cotan weights, ⋆2 = 1/area; Whitney sampling",
         preconditions: DELAUNAY,
@@ -156,6 +180,18 @@ static CATALOG: [CatalogEntry; 6] = [
         build: |mesh| Ok(Box::new(DecComplex::new(mesh, MassLumping::Voronoi)?)),
         build_with_boundary: |mesh, boundary| {
             Ok(Box::new(DecComplex::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
+        },
+        boundary_conditions: BOTH,
+        boundary_meanings: DEC_BOUNDARY,
+    },
+    CatalogEntry {
+        id: "whitney-galerkin",
+        description: "Whitney forms with Galerkin masses (FEEC's lowest order): DEC's d0, d1 and Whitney sampling; M0 the consistent P1 mass, M1 the Whitney mass ∫⟨W_e, W_f⟩ (sparse, positive definite on every mesh), M2 = 1/area",
+        preconditions: ANY_MESH,
+        needs_delaunay: false,
+        build: |mesh| Ok(Box::new(WhitneyGalerkin::new(mesh)?)),
+        build_with_boundary: |mesh, boundary| {
+            Ok(Box::new(WhitneyGalerkin::with_boundary(mesh, boundary)?))
         },
         boundary_conditions: BOTH,
         boundary_meanings: DEC_BOUNDARY,

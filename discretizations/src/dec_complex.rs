@@ -1,19 +1,15 @@
 //! [`DecComplex`]: discrete exterior calculus on primal forms — potentials on vertices, fields
 //! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
 
-use crate::boundary_conditions::{
-    boundary_nodes, component_boundary_loops, drop_columns, drop_rows, mesh_topology,
-    with_dirichlet_boundary,
-};
+use crate::boundary_conditions::mesh_topology;
 use crate::face_geometry::FaceGeometry;
 use crate::finite_element_complex::complex_id;
+use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
 use crate::whitney_sampling::WhitneySampling;
 use crate::MassLumping;
-use sprs::CsMat;
-use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
-    NodeKind, NodeSpace, PointEvaluation,
+    PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -60,7 +56,7 @@ use tvf_core::SurfaceMesh;
 pub struct DecComplex {
     parts: ComplexParts,
     sampling: WhitneySampling,
-    faces: Vec<[usize; 3]>,
+    evaluation: PrimalFormEvaluation,
 }
 
 /// Smallest `cot α + cot β` (dimensionless) an edge of a DEC mesh may have. A cyclic
@@ -101,56 +97,11 @@ impl DecComplex {
                 tolerance: DELAUNAY_TOLERANCE,
             });
         }
-        let positions = mesh.positions();
-        let components = mesh.component_count();
-        let mut potential_nodes = NodeSpace::with_constant_kernel(
-            NodeKind::Vertices,
-            positions.to_vec(),
-            mesh.vertex_components(),
-            components,
-        );
-        let mut field_nodes = NodeSpace::with_constant_kernel(
-            NodeKind::Edges,
-            mesh.edges()
-                .iter()
-                .map(|&[a, b]| std::array::from_fn(|k| (positions[a][k] + positions[b][k]) / 2.0))
-                .collect(),
-            mesh.edge_components(),
-            components,
-        );
-        let mut co_potential_nodes = NodeSpace::with_constant_kernel(
-            NodeKind::Faces,
-            mesh.faces()
-                .iter()
-                .map(|f| {
-                    let p = f.map(|i| positions[i]);
-                    std::array::from_fn(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
-                })
-                .collect(),
-            mesh.face_components().to_vec(),
-            components,
-        );
-        let mut d0 = vertex_edge_incidence(mesh);
-        let mut d1 = edge_face_incidence(mesh);
-        let relative = !mesh.is_closed() && boundary == BoundaryCondition::Normal;
-        if relative {
-            // Relative forms: zero on boundary vertices and edges. A boundary edge joins two
-            // boundary vertices, so dropping its row of d0 loses nothing; the face circulations
-            // of a constant 2-form cancel on interior edges, so the constants are in the kernel.
-            potential_nodes = with_dirichlet_boundary(potential_nodes, mesh);
-            field_nodes.dirichlet = boundary_nodes(mesh, NodeKind::Edges);
-            d0 = drop_rows(
-                &drop_columns(&d0, &potential_nodes.dirichlet),
-                &field_nodes.dirichlet,
-            );
-            d1 = drop_columns(&d1, &field_nodes.dirichlet);
-        } else {
-            // Absolute 2-forms: the constants are in the kernel only on closed components.
-            co_potential_nodes.constant_kernel = component_boundary_loops(mesh)
-                .iter()
-                .map(|&b| b == 0)
-                .collect();
-        }
+        let PrimalForms {
+            d0,
+            d1,
+            nodes: [potential_nodes, field_nodes, co_potential_nodes],
+        } = PrimalForms::new(mesh, boundary);
         let m0 = Mass::diagonal_positive_on_used_nodes(
             "M0 (⋆0, vertex areas)",
             lumping.vertex_masses(mesh, &geometry),
@@ -177,7 +128,7 @@ impl DecComplex {
                 mesh_topology(mesh, boundary),
             )?,
             sampling,
-            faces: mesh.faces().to_vec(),
+            evaluation: PrimalFormEvaluation::new(mesh),
         })
     }
 }
@@ -194,33 +145,6 @@ pub fn edge_hodge_star(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Vec<f64> 
     star
 }
 
-/// Signed vertex → edge incidence (`E × V`): `−1` at `a`, `+1` at `b` for edge `(a, b)`.
-fn vertex_edge_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
-    let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
-    for (e, &[a, b]) in mesh.edges().iter().enumerate() {
-        rows.extend([e, e]);
-        cols.extend([a, b]);
-        values.extend([-1.0, 1.0]);
-    }
-    from_triplets(mesh.edge_count(), mesh.vertex_count(), rows, cols, values)
-}
-
-/// Signed edge → face incidence (`F × E`): `+1` where the face's counter-clockwise boundary runs
-/// along the edge's orientation `a → b`, `−1` where it runs against it.
-fn edge_face_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
-    let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
-    for (t, (face, edges)) in mesh.faces().iter().zip(mesh.face_edges()).enumerate() {
-        for c in 0..3 {
-            // The edge opposite corner c runs from corner c+1 to corner c+2.
-            let (from, to) = (face[(c + 1) % 3], face[(c + 2) % 3]);
-            rows.push(t);
-            cols.push(edges[c]);
-            values.push(if from < to { 1.0 } else { -1.0 });
-        }
-    }
-    from_triplets(mesh.face_count(), mesh.edge_count(), rows, cols, values)
-}
-
 impl HodgeComplex for DecComplex {
     fn parts(&self) -> &ComplexParts {
         &self.parts
@@ -231,19 +155,6 @@ impl HodgeComplex for DecComplex {
     }
 
     fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
-        Some(self)
-    }
-}
-
-impl PointEvaluation for DecComplex {
-    /// 0-forms are interpolated linearly (Whitney 0-forms are the hat functions).
-    fn potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)> {
-        let nodes = self.faces[face];
-        (0..3).map(|c| (nodes[c], barycentric[c])).collect()
-    }
-
-    /// A 2-form's pointwise value (`⋆2` times its integral) is constant on its face.
-    fn co_potential_weights(&self, face: usize, _barycentric: [f64; 3]) -> Vec<(usize, f64)> {
-        vec![(face, 1.0)]
+        Some(&self.evaluation)
     }
 }

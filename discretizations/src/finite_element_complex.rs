@@ -7,12 +7,13 @@ use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping}
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
 use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
-    HodgeComplex, Mass, NodeKind, NodeSpace, PointEvaluation,
+    HodgeComplex, Mass, MassForm, MassStorage, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
 /// The Hodge complex `P --d0--> X_h --d1--> Q` of two function spaces over the face fields:
-/// `d0 = G_P`, `d1 = G_Qᵀ J M_X`, `M0 = mass(P)`, `M1 = M_X`, `M2 = mass(Q)⁻¹`.
+/// `d0 = G_P`, `d1 = G_Qᵀ J M_X`, `M0 = mass(P)`, `M1 = M_X`, `M2 = mass(Q)⁻¹`, with each
+/// space's [`FunctionSpace::mass_matrix`] (lumped, or consistent).
 ///
 /// Any pair of [`FunctionSpace`]s makes a complex with [`FiniteElementComplex::from_spaces`]. It
 /// offers every capability: sampling (exact, one vector per face), the rotation `J` and point
@@ -85,9 +86,10 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
     /// boundary, [`BoundaryCondition::Tangential`] fixes the co-potentials at their boundary nodes
     /// to zero (drops those rows of `d1`: `S*_h,0` for the conforming complex) and
     /// [`BoundaryCondition::Normal`] fixes the potentials there (drops those columns of `d0`:
-    /// `S_h,0`); either way `d1 · d0 = 0`. The masses keep every node (a Dirichlet node's mass is
-    /// unused). Fails if a gradient does not have `2F` rows or a mass is not positive on the nodes
-    /// faces use.
+    /// `S_h,0`); either way `d1 · d0 = 0`. The masses are assembled over every node
+    /// ([`FunctionSpace::mass_matrix`]; `M2` is the inverse of the co-potential space's, stored
+    /// as `M2⁻¹` when that is the sparse one) and the seam restricts them to the free nodes. Fails
+    /// if a gradient does not have `2F` rows or a mass is not positive definite on the free nodes.
     pub fn from_spaces_with_boundary(
         id: impl Into<String>,
         mesh: &SurfaceMesh,
@@ -123,25 +125,13 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             }
         }
         let field_nodes = face_frame_nodes(mesh);
-        let m0 = Mass::diagonal_positive_on_used_nodes(
-            "M0 (potential mass)",
-            potentials.mass().to_vec(),
-            &potential_nodes.components,
-        )?;
+        let m0 = potentials.mass_matrix("M0 (potential mass)")?;
         let m1 = Mass::diagonal_positive_on_used_nodes(
             "M1 (field mass)",
             fields.mass().to_vec(),
             &field_nodes.components,
         )?;
-        Mass::diagonal_positive_on_used_nodes(
-            "co-potential mass",
-            co_potentials.mass().to_vec(),
-            &co_potential_nodes.components,
-        )?;
-        let m2 = Mass::diagonal(
-            "M2 (inverse co-potential mass)",
-            reciprocal(co_potentials.mass()),
-        )?;
+        let m2 = inverse_co_potential_mass(&co_potentials)?;
         Ok(Self {
             parts: ComplexParts::new(
                 id,
@@ -160,6 +150,25 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
     /// The face fields.
     pub fn face_fields(&self) -> &FaceFields {
         &self.fields
+    }
+}
+
+/// `M2`, the inverse of the co-potential space's mass matrix, in the form in which it is sparse:
+/// the reciprocal of a lumped diagonal, or a consistent mass stored as `M2⁻¹`
+/// ([`Mass::sparse_inverse`]). Fails if the mass is not positive on a node some face uses.
+fn inverse_co_potential_mass(space: &impl FunctionSpace) -> Result<Mass, DiscretizationError> {
+    let mass = space.mass_matrix("co-potential mass")?;
+    match (mass.storage(), mass.form()) {
+        (MassStorage::Diagonal(values), _) => {
+            Mass::diagonal("M2 (inverse co-potential mass)", reciprocal(values))
+        }
+        (MassStorage::Sparse(matrix), MassForm::Direct) => Mass::sparse_inverse(
+            "M2 (inverse of the consistent co-potential mass)",
+            matrix.clone(),
+        ),
+        (MassStorage::Sparse(matrix), MassForm::Inverse) => {
+            Mass::sparse("M2 (inverse co-potential mass)", matrix.clone())
+        }
     }
 }
 
@@ -188,6 +197,34 @@ impl Conforming {
             boundary,
         )
     }
+
+    /// The conforming complex with the consistent (Galerkin) P1 mass as `M0`, catalog id
+    /// `conforming-consistent`, default boundary condition. See
+    /// [`Conforming::consistent_with_boundary`].
+    pub fn consistent(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+        Self::consistent_with_boundary(mesh, BoundaryCondition::default())
+    }
+
+    /// The conforming complex with `M0` the consistent P1 mass `Σ_T |T| (1 + δ_ij)/12` (sparse)
+    /// and the Crouzeix–Raviart mass `|T|/3` per face and edge, which is already the consistent
+    /// one (the Crouzeix–Raviart basis is `L²`-orthogonal). On a closed mesh the spectrum of `L`
+    /// is `eig(cotan, consistent P1 mass) ∪ eig(CR stiffness, CR mass)`; with boundary, as
+    /// [`Conforming::with_boundary`]. Catalog id `conforming-consistent` (`+{boundary}` on a
+    /// mesh with boundary). Fails on a degenerate face.
+    pub fn consistent_with_boundary(
+        mesh: &SurfaceMesh,
+        boundary: BoundaryCondition,
+    ) -> Result<Self, DiscretizationError> {
+        let geometry = FaceGeometry::new(mesh)?;
+        Self::from_spaces_with_boundary(
+            complex_id("conforming-consistent", mesh, boundary),
+            mesh,
+            LagrangeP1::with_consistent_mass(mesh, &geometry),
+            CrouzeixRaviart::from_geometry(mesh, &geometry, MassLumping::Barycentric),
+            FaceFields::from_geometry(&geometry),
+            boundary,
+        )
+    }
 }
 
 impl Nonconforming {
@@ -212,6 +249,34 @@ impl Nonconforming {
             mesh,
             CrouzeixRaviart::from_geometry(mesh, &geometry, lumping),
             LagrangeP1::from_geometry(mesh, &geometry, lumping),
+            FaceFields::from_geometry(&geometry),
+            boundary,
+        )
+    }
+
+    /// The nonconforming complex with the consistent (Galerkin) P1 co-potential mass, catalog id
+    /// `nonconforming-consistent`, default boundary condition. See
+    /// [`Nonconforming::consistent_with_boundary`].
+    pub fn consistent(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+        Self::consistent_with_boundary(mesh, BoundaryCondition::default())
+    }
+
+    /// The nonconforming complex with the consistent P1 mass `Σ_T |T| (1 + δ_ij)/12` as the
+    /// co-potential inner product: `M2` is its inverse, dense, so it is stored as the sparse
+    /// `M2⁻¹` ([`Mass::sparse_inverse`]); the Crouzeix–Raviart potential mass `M0` is diagonal
+    /// and already consistent. Same spectrum as [`Conforming::consistent_with_boundary`] on a
+    /// closed mesh. Catalog id `nonconforming-consistent` (`+{boundary}` on a mesh with
+    /// boundary). Fails on a degenerate face.
+    pub fn consistent_with_boundary(
+        mesh: &SurfaceMesh,
+        boundary: BoundaryCondition,
+    ) -> Result<Self, DiscretizationError> {
+        let geometry = FaceGeometry::new(mesh)?;
+        Self::from_spaces_with_boundary(
+            complex_id("nonconforming-consistent", mesh, boundary),
+            mesh,
+            CrouzeixRaviart::from_geometry(mesh, &geometry, MassLumping::Barycentric),
+            LagrangeP1::with_consistent_mass(mesh, &geometry),
             FaceFields::from_geometry(&geometry),
             boundary,
         )

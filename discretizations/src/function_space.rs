@@ -2,13 +2,14 @@
 //! block of [`crate::FiniteElementComplex`].
 
 use sprs::CsMat;
-use tvf_core::discretization::NodeKind;
+use tvf_core::discretization::{DiscretizationError, Mass, NodeKind};
 
 /// A space of piecewise linear scalar functions on a triangle mesh, represented by nodal values
 /// (Lagrange P1: one value per vertex; Crouzeix–Raviart: one value per edge midpoint).
 ///
 /// Coefficients are **pointwise** nodal values. The space knows its lumped mass (the plug-in
-/// point for mass lumping) and its gradient into the piecewise constant face fields `X_h`, in the
+/// point for mass lumping), the mass matrix the complex uses (that lumped one, or a consistent
+/// one), and its gradient into the piecewise constant face fields `X_h`, in the
 /// face frames of [`crate::FaceFields`] (`e1 = normalize(p_{i1} − p_{i0})`,
 /// `e2 = n × e1`, see `shared/docs/MATH.md`).
 pub trait FunctionSpace {
@@ -24,6 +25,14 @@ pub trait FunctionSpace {
     /// Diagonal of the lumped mass matrix (`n` entries, units of area: the **integrated** weight
     /// of each node, `∫ f ≈ Σ_i mass_i f_i`). Zero only for a node no face uses.
     fn mass(&self) -> &[f64];
+
+    /// The mass matrix the complex uses for this space (`n × n`, area), named `what` in errors:
+    /// by default the lumped diagonal [`FunctionSpace::mass`] (an error if it is not positive on
+    /// a node some face uses). A space with a consistent (Galerkin) mass `∫ ψ_i ψ_j` returns it
+    /// here as a sparse matrix ([`Mass::sparse`]).
+    fn mass_matrix(&self, what: &'static str) -> Result<Mass, DiscretizationError> {
+        Mass::diagonal_positive_on_used_nodes(what, self.mass().to_vec(), self.node_components())
+    }
 
     /// Gradient matrix `2F × n` (units 1/length): column `i` holds the gradient of basis
     /// function `i`, one tangent vector per face in that face's frame, rows `2t, 2t+1` for face

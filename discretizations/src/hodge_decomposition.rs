@@ -30,7 +30,7 @@ pub struct HodgeParts {
 /// `(d0ᵀ M1 d0) f = d0ᵀ M1 v` and `(d1 M1⁻¹ d1ᵀ) g = −d1 v` are factored once (one node pinned per
 /// connected component whose constants are in the kernel, every Dirichlet node fixed to zero), so
 /// decomposing many fields costs two triangular solves each. Where `M1` is not diagonal, the
-/// co-exact system is dense and is solved in mixed form ([`MixedPoisson`]: a sparse saddle
+/// co-exact system is dense and is solved in mixed form (`MixedPoisson`: a sparse saddle
 /// system and a few refinement steps).
 #[derive(Debug)]
 pub struct HodgeDecomposer<'a, H: HodgeComplex + ?Sized> {
@@ -40,6 +40,8 @@ pub struct HodgeDecomposer<'a, H: HodgeComplex + ?Sized> {
 }
 
 /// The co-exact Poisson solve: a sparse stiffness, or the mixed form of a dense one.
+// One per decomposer, built once: the size of the larger variant costs nothing.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug)]
 enum CoExactPoisson {
     Pinned(PinnedPoisson),

@@ -6,11 +6,20 @@
 //! - the finite-element complexes of the paper, [`Conforming`] and [`Nonconforming`]
 //!   ([`FiniteElementComplex`] over the function spaces [`LagrangeP1`] (`S_h`, vertices) and
 //!   [`CrouzeixRaviart`] (`S*_h`, edge midpoints) and the face fields [`FaceFields`] (`X_h`),
-//!   with a [`MassLumping`]);
-//! - discrete exterior calculus on primal 1-forms, [`DecComplex`], sampled by Whitney
-//!   interpolation ([`WhitneySampling`]);
+//!   with a [`MassLumping`], or with the consistent P1 mass [`consistent_p1_mass`] where P1
+//!   appears: [`Conforming::consistent`] (`M0`), [`Nonconforming::consistent`] (`M2`, stored as
+//!   its sparse inverse);
+//! - primal forms sampled by Whitney interpolation ([`WhitneySampling`]), with two kinds of
+//!   masses: discrete exterior calculus, [`DecComplex`] (diagonal Hodge stars, Delaunay meshes),
+//!   and [`WhitneyGalerkin`] (the consistent P1 mass, the Whitney mass [`whitney_mass`] and
+//!   `1/area`: Galerkin masses, every mesh);
 //! - [`MatrixComplex`]: a complex from five matrices assembled elsewhere (checked);
 //! - the Hodge decomposition [`HodgeDecomposer`] of any complex.
+//!
+//! Masses are [`Mass`](tvf_core::discretization::Mass)es, each stored in the form in which it is
+//! sparse: a diagonal (every lumped mass, DEC's stars, `M2 = 1/area`), a sparse matrix (the
+//! consistent P1 mass as `M0`, the Whitney mass), or the sparse inverse (the consistent P1
+//! co-potential mass of `nonconforming-consistent`, whose `M2` is dense).
 //!
 //! ```
 //! use tvf_core::discretization::HodgeOperators;
@@ -37,7 +46,8 @@
 //!
 //! # Adding a discretization
 //! Build the five matrices and implement [`HodgeComplex`](tvf_core::discretization::HodgeComplex)
-//! (see [`DecComplex`] for a complete example, 230 lines with its Whitney sampling), then add one
+//! (see [`WhitneyGalerkin`] for a complete example: its three masses, about 115 lines, over the
+//! incidences, node spaces and Whitney sampling it shares with [`DecComplex`]), then add one
 //! [`CatalogEntry`] to [`catalog`]. Every command, the editor and papers/ read the catalog, and
 //! the conformance suite in `tests/` fails until the entry has its suite line. Finite-element
 //! variants can reuse [`FiniteElementComplex::from_spaces`] with a new [`FunctionSpace`]:
@@ -97,6 +107,7 @@
 
 mod boundary_conditions;
 mod catalog;
+mod consistent_mass;
 mod crouzeix_raviart;
 mod dec_complex;
 mod error;
@@ -111,6 +122,9 @@ mod mass_lumping;
 mod matrix_complex;
 mod mixed_poisson;
 mod pinned_poisson;
+mod primal_forms;
+mod whitney_galerkin;
+mod whitney_mass;
 mod whitney_sampling;
 
 pub use boundary_conditions::{
@@ -121,6 +135,7 @@ pub use catalog::{
     build_complex, catalog, catalog_entry, split_complex_id, BoxedComplex, CatalogBuildError,
     CatalogEntry, UnknownDiscretization, DEFAULT_DISCRETIZATION,
 };
+pub use consistent_mass::consistent_p1_mass;
 pub use crouzeix_raviart::CrouzeixRaviart;
 pub use dec_complex::{edge_hodge_star, DecComplex, DELAUNAY_TOLERANCE};
 pub use error::DecompositionError;
@@ -132,4 +147,6 @@ pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use matrix_complex::{MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};
 pub use pinned_poisson::PinnedPoisson;
+pub use whitney_galerkin::WhitneyGalerkin;
+pub use whitney_mass::whitney_mass;
 pub use whitney_sampling::WhitneySampling;

@@ -154,28 +154,51 @@ impl MixedPoisson {
     }
 
     /// Solves `A g = b` on the free co-potential nodes (`b` must sum to zero over each component
-    /// with constants in the kernel); the result has zero `N`-weighted mean on every such
-    /// component and is zero on the nodes that are not free.
+    /// with constants in the kernel; what does not, round-off of a consistent right-hand side,
+    /// is dropped); the result has zero `N`-weighted mean on every such component and is zero on
+    /// the nodes that are not free. The refinement stops at the target or when a step no longer
+    /// lowers the residual.
     pub fn solve(&self, b: &[f64]) -> Vec<f64> {
-        let b: Vec<f64> = (0..b.len())
-            .map(|i| if self.is_free(i) { b[i] } else { 0.0 })
-            .collect();
+        let b = self.in_range(b);
         let norm = b.iter().map(|x| x * x).sum::<f64>().sqrt();
         let mut g = vec![0.0; b.len()];
         if norm > 0.0 {
+            let mut previous = f64::INFINITY;
             for _ in 0..MAX_STEPS {
                 let ag = self.apply(&g);
                 let r: Vec<f64> = b.iter().zip(&ag).map(|(x, y)| x - y).collect();
                 let r_norm = r.iter().map(|x| x * x).sum::<f64>().sqrt();
-                if r_norm <= TARGET * norm {
+                if r_norm <= TARGET * norm || r_norm >= previous {
                     break;
                 }
+                previous = r_norm;
                 let step = self.regularised_solve(&r);
                 g.iter_mut().zip(&step).for_each(|(x, s)| *x += s);
             }
         }
         self.remove_means(&mut g);
         g
+    }
+
+    /// The part of `b` in the range of `A`: zero on the nodes that are not free, and the mean
+    /// removed on every component with constants in the kernel (`A` is symmetric, so its range is
+    /// what sums to zero there).
+    fn in_range(&self, b: &[f64]) -> Vec<f64> {
+        let mut sums = vec![0.0; self.component_count];
+        let mut counts = vec![0usize; self.component_count];
+        for (&x, &c) in b.iter().zip(&self.shifted) {
+            if c != NO_COMPONENT {
+                sums[c] += x;
+                counts[c] += 1;
+            }
+        }
+        (0..b.len())
+            .map(|i| match self.shifted[i] {
+                _ if !self.is_free(i) => 0.0,
+                NO_COMPONENT => b[i],
+                c => b[i] - sums[c] / counts[c] as f64,
+            })
+            .collect()
     }
 
     fn is_free(&self, i: usize) -> bool {
@@ -240,5 +263,49 @@ fn mean_eigenvalue(m1: &CsMat<f64>, d1: &CsMat<f64>, n: &Mass) -> f64 {
         trace / total
     } else {
         1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::WhitneyGalerkin;
+    use tvf_core::discretization::HodgeComplex;
+    use tvf_core::generate::{icosphere, jitter};
+
+    #[test]
+    fn solves_consistent_systems_and_drops_the_constant_part() {
+        let mesh = jitter(&icosphere(2), 0.2, 4).unwrap();
+        let complex = WhitneyGalerkin::new(&mesh).unwrap();
+        let n = complex.m2().inverse();
+        let poisson = MixedPoisson::new(
+            complex.m1(),
+            complex.d1(),
+            &n,
+            complex.field_nodes(),
+            complex.co_potential_nodes(),
+        )
+        .unwrap();
+        let f = mesh.face_count();
+        let mut b: Vec<f64> = (0..f).map(|t| (0.7 * t as f64).sin()).collect();
+        let mean = b.iter().sum::<f64>() / f as f64;
+        b.iter_mut().for_each(|x| *x -= mean);
+        let g = poisson.solve(&b);
+        let residual = poisson
+            .apply(&g)
+            .iter()
+            .zip(&b)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(residual <= 1e-12 * scale, "|A g − b| = {residual:e}");
+        // A constant added to b is outside the range of A: it changes nothing.
+        let shifted: Vec<f64> = b.iter().map(|x| x + 0.3).collect();
+        let h = poisson.solve(&shifted);
+        let difference = g
+            .iter()
+            .zip(&h)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        let size = g.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(difference <= 1e-12 * size, "{difference:e}");
     }
 }

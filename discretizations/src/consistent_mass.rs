@@ -1,0 +1,33 @@
+//! The consistent (Galerkin) mass of P1 functions, `∫ φ_i φ_j`.
+
+use crate::face_geometry::FaceGeometry;
+use sprs::CsMat;
+use tvf_core::discretization::sparse::from_triplets;
+use tvf_core::SurfaceMesh;
+
+/// The consistent P1 mass `M[i, j] = Σ_T ∫_T φ_i φ_j = Σ_T |T| (1 + δ_ij) / 12` over the faces
+/// `T` holding both vertices (`V × V`, symmetric, units of area; CSR).
+///
+/// Row `i` sums to a third of the area of the faces around vertex `i` (the barycentric lumped
+/// mass, [`crate::MassLumping::Barycentric`]), so `1ᵀ M 1` is the area. Positive definite on the
+/// vertices faces use (each face's `|T|/12 · [[2, 1, 1], [1, 2, 1], [1, 1, 2]]` is, with
+/// eigenvalues `|T|/12 · (4, 1, 1)`); a vertex no face uses has an empty row and column.
+pub fn consistent_p1_mass(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> CsMat<f64> {
+    let capacity = 9 * mesh.face_count();
+    let (mut rows, mut cols, mut values) = (
+        Vec::with_capacity(capacity),
+        Vec::with_capacity(capacity),
+        Vec::with_capacity(capacity),
+    );
+    for (face, &area) in mesh.faces().iter().zip(&geometry.areas) {
+        for a in 0..3 {
+            for b in 0..3 {
+                rows.push(face[a]);
+                cols.push(face[b]);
+                values.push(if a == b { area / 6.0 } else { area / 12.0 });
+            }
+        }
+    }
+    let n = mesh.vertex_count();
+    from_triplets(n, n, rows, cols, values)
+}

@@ -1,0 +1,115 @@
+//! [`WhitneyGalerkin`]: primal forms with Galerkin masses — the lowest-order finite element
+//! complex of exterior calculus (P1, Whitney 1-forms, P0) on a triangle mesh.
+
+use crate::boundary_conditions::mesh_topology;
+use crate::consistent_mass::consistent_p1_mass;
+use crate::face_geometry::FaceGeometry;
+use crate::finite_element_complex::complex_id;
+use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
+use crate::whitney_mass::whitney_mass;
+use crate::whitney_sampling::WhitneySampling;
+use tvf_core::discretization::{
+    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
+    PointEvaluation,
+};
+use tvf_core::SurfaceMesh;
+
+/// The complex of Whitney forms with their `L²` (Galerkin) inner products, catalog id
+/// `whitney-galerkin`:
+///
+/// ```text
+/// P1 (V) --d0--> Whitney 1-forms (E) --d1--> P0 (F)
+///   M0              M1                        M2
+/// ```
+///
+/// - `d0`, `d1`, the orientation of the edges (`a → b`, `a < b`), the 1-forms (`x_e` the
+///   integral of the field along edge `e`) and the boundary conditions are DEC's
+///   ([`crate::DecComplex`]); so are the sampling (Whitney interpolation, [`WhitneySampling`])
+///   and point evaluation (0-forms linear, 2-forms constant per face).
+/// - `M0` is the consistent P1 mass `Σ_T |T| (1 + δ_ij)/12` ([`crate::consistent_p1_mass`],
+///   sparse, area).
+/// - `M1` is the Whitney mass `Σ_T ∫_T ⟨W_e, W_f⟩` ([`crate::whitney_mass`], sparse,
+///   dimensionless): the field's `L²` norm is `xᵀ M1 x` exactly.
+/// - `M2 = 1/area` per face (diagonal, as DEC's `⋆2`): a 2-form is stored by its integral, and
+///   `M2⁻¹ = |T|` is the `L²` mass of the piecewise constants.
+///
+/// `M1` is positive definite on every mesh without degenerate faces: unlike DEC's `⋆1`, no
+/// Delaunay condition. The exact eigenproblem `(d0ᵀ M1 d0, M0)` is P1 (the cotan matrix with the
+/// consistent mass); the co-exact problem `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` is the mixed RT0–P0 Laplacian
+/// on faces (rotated by +π/2 in each face, the Whitney forms are the lowest-order
+/// Raviart–Thomas functions, `d1` their divergence), dense in `d1 M1⁻¹ d1ᵀ` and solved in mixed
+/// form downstream. There is no rotation `J` on 1-forms, hence no "other family".
+///
+/// On a mesh with boundary, [`BoundaryCondition::Tangential`] gives absolute forms and
+/// [`BoundaryCondition::Normal`] relative forms (boundary vertices and edges fixed to zero),
+/// exactly as for DEC. The seam restricts every mass to the free nodes of its space, so `M1⁻¹`
+/// is the inverse of the Whitney mass of the interior edges and nothing leaks into a fixed edge.
+#[derive(Debug, Clone)]
+pub struct WhitneyGalerkin {
+    parts: ComplexParts,
+    sampling: WhitneySampling,
+    evaluation: PrimalFormEvaluation,
+}
+
+impl WhitneyGalerkin {
+    /// The complex of `mesh` (the default boundary condition on a mesh with boundary). Fails on
+    /// a degenerate face.
+    pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+        Self::with_boundary(mesh, BoundaryCondition::default())
+    }
+
+    /// The complex with boundary condition `boundary`: absolute forms for
+    /// [`BoundaryCondition::Tangential`], relative forms for [`BoundaryCondition::Normal`]. The
+    /// id gets `+{boundary}` appended on a mesh with boundary.
+    pub fn with_boundary(
+        mesh: &SurfaceMesh,
+        boundary: BoundaryCondition,
+    ) -> Result<Self, DiscretizationError> {
+        let geometry = FaceGeometry::new(mesh)?;
+        let PrimalForms {
+            d0,
+            d1,
+            nodes: [potential_nodes, field_nodes, co_potential_nodes],
+        } = PrimalForms::new(mesh, boundary);
+        let m0 = Mass::sparse(
+            "M0 (the consistent P1 mass)",
+            consistent_p1_mass(mesh, &geometry),
+        )?;
+        let m1 = Mass::sparse(
+            "M1 (the Whitney 1-form mass)",
+            whitney_mass(mesh, &geometry),
+        )?;
+        let m2 = Mass::diagonal_positive_on_used_nodes(
+            "M2 (inverse face areas)",
+            geometry.areas.iter().map(|a| 1.0 / a).collect(),
+            &co_potential_nodes.components,
+        )?;
+        let sampling = WhitneySampling::new(mesh, &geometry, field_nodes.dirichlet.clone());
+        Ok(Self {
+            parts: ComplexParts::new(
+                complex_id("whitney-galerkin", mesh, boundary),
+                d0,
+                d1,
+                [m0, m1, m2],
+                [potential_nodes, field_nodes, co_potential_nodes],
+                mesh_topology(mesh, boundary),
+            )?,
+            sampling,
+            evaluation: PrimalFormEvaluation::new(mesh),
+        })
+    }
+}
+
+impl HodgeComplex for WhitneyGalerkin {
+    fn parts(&self) -> &ComplexParts {
+        &self.parts
+    }
+
+    fn sampling(&self) -> Option<&dyn FieldSampling> {
+        Some(&self.sampling)
+    }
+
+    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
+        Some(&self.evaluation)
+    }
+}
