@@ -2,8 +2,11 @@
 //! cached.
 //!
 //! Flags (the same in every subcommand that takes a basis):
-//! - `--basis FILE`: load this basis file; it must belong to the mesh (fingerprint) and, if
-//!   `--decomposition` / `--mass` are given, to that discretization;
+//! - `--basis FILE`: load this basis file; it must belong to the mesh (fingerprint), to the
+//!   matrices of its discretization as built now (the file's matrix hash: a file computed before
+//!   an entry's assembly changed is refused, naming the matrices that differ) and, if
+//!   `--decomposition` / `--mass` are given, to that discretization. A file of format version 1
+//!   or 2 carries no matrix hash: it is used on mesh and id alone, with a note on stderr;
 //! - `-k K`: otherwise compute the basis of the `K` eigenfields of lowest eigenvalue of the
 //!   Hodge–Laplacian, harmonic ones included, whichever family they belong to (the paper's `d`;
 //!   [`DEFAULT_FIELDS`] if not given). `K ≥ 2F` asks for the complete basis (dense
@@ -32,8 +35,8 @@ use tvf_core::SurfaceMesh;
 use tvf_discretizations::build_complex;
 use tvf_discretizations::BoxedComplex;
 use tvf_spectral::{
-    basis_file_complex_id, compute_basis_of_size, open_basis_file, BasisSize, BasisStore,
-    FieldFamily, SpectralBasis, StoredBasisOrigin,
+    basis_file_complex_id, compute_basis_of_size, open_basis_file, read_basis_header, BasisSize,
+    BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
 };
 
 /// Eigenfields computed when neither `--basis` nor `-k` is given.
@@ -125,6 +128,17 @@ impl BasisOptions {
                 discretization.id(),
                 start.elapsed().as_secs_f64()
             ));
+            let header = read_basis_header(path)?;
+            if header.key.matrix_hash.is_none() {
+                note(format!(
+                    "{}: basis file format version {} predates matrix hashes, so it cannot be \
+                     checked against the matrices of {} (only against its id and the mesh); \
+                     recompute it with `tvf basis` to have it checked",
+                    path.display(),
+                    header.version,
+                    discretization.id()
+                ));
+            }
             return Ok(ResolvedBasis {
                 discretization,
                 basis,

@@ -1,16 +1,20 @@
 //! [`BasisStore`]: a folder of computed Fourier bases (`.tvfb` files), so that a basis is
-//! computed once per mesh, discretization and size and then read back.
+//! computed once per mesh, complex and size and then read back.
 //!
-//! A basis is kept as `{fingerprint}-{complex id}-{size}.tvfb`: the mesh fingerprint
-//! ([`SurfaceMesh::fingerprint`], 16 hex digits), the complex's [`HodgeComplex::id`] (a catalog id, or
-//! `{catalog id}+{boundary}` on a mesh with boundary) and the size: `d{K}` for the `K` lowest
-//! fields, `p{P}` for `P` pairs, `complete` for the complete basis. The seed is fixed (0), so
-//! equal names mean bit-identical bases. A file that is damaged or does not hold what its name
-//! promises is recomputed (and the problem reported), never used.
-
+//! A basis is kept as `{fingerprint}-{complex id}-{matrix hash}-{size}.tvfb`: the mesh
+//! fingerprint ([`SurfaceMesh::fingerprint`], 16 hex digits), the complex's
+//! [`HodgeComplex::id`] (a catalog id, or `{catalog id}+{boundary}` on a mesh with boundary), the
+//! value of the complex's [`HodgeComplex::matrix_hash`] (16 hex digits: its five matrices and
+//! fixed nodes) and the size: `d{K}` for the `K` lowest fields, `p{P}` for `P` pairs, `l{bits}`
+//! for an eigenvalue bound, `complete` for the complete basis. The seed is fixed (0), so equal
+//! names mean bit-identical bases; a complex whose assembly changed has another name, and its
+//! basis is computed afresh. A file that is damaged, carries no matrix hash (format versions 1
+//! and 2) or does not hold what its name promises is recomputed (and the problem reported),
+//! never used. Files under the names of earlier versions (`{fingerprint}-{complex id}-{size}`)
+//! are never read; they may be deleted.
 use crate::{
-    compute_basis, load_basis, save_eigenfunction_basis, BasisError, BasisFileKey, BasisProgress,
-    BasisRequest, BasisSize, FieldFamily, SpectralBasis,
+    compute_basis, load_basis, read_basis_header, save_eigenfunction_basis, BasisError,
+    BasisFileKey, BasisProgress, BasisRequest, BasisSize, FieldFamily, SpectralBasis,
 };
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -70,9 +74,10 @@ impl BasisStore {
             BasisSize::Complete => "complete".to_string(),
         };
         self.folder.join(format!(
-            "{:016x}-{}-{size_name}.tvfb",
+            "{:016x}-{}-{:016x}-{size_name}.tvfb",
             mesh.fingerprint(),
-            complex.id()
+            complex.id(),
+            complex.matrix_hash().value()
         ))
     }
 
@@ -95,8 +100,17 @@ impl BasisStore {
         let mut unusable_file = None;
         if file.exists() {
             let start = Instant::now();
-            let read = load_basis(&file, &key, complex)
+            let read = read_basis_header(&file)
                 .map_err(|e| e.to_string())
+                .and_then(|header| match header.key.matrix_hash {
+                    Some(_) => Ok(()),
+                    None => Err(format!(
+                        "{}: format version {} predates matrix hashes",
+                        file.display(),
+                        header.version
+                    )),
+                })
+                .and_then(|()| load_basis(&file, &key, complex).map_err(|e| e.to_string()))
                 .and_then(|basis| {
                     size_mismatch(size, complex.field_dimension(), &basis)
                         .map_or(Ok(basis), |problem| {

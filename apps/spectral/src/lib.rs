@@ -66,8 +66,8 @@ pub use filter_spec::{read_curve_file, FilterSpecError};
 pub use formats::atomic_write::{write_atomically, write_atomically_with};
 pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
-    BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, BASIS_FILE_MAGIC,
-    BASIS_FILE_VERSION,
+    BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, StoredFieldMass,
+    BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
 pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, BasisFileUseError,

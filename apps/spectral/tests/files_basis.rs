@@ -1,14 +1,18 @@
-//! Basis files (`.tvfb`): bit-exact round trips in both layouts, files of format version 1, and
-//! one typed error per kind of bad file.
+//! Basis files (`.tvfb`): bit-exact round trips in both layouts, files of format versions 1 and
+//! 2 (rewritten, and as tvf wrote them), and one typed error per kind of bad file.
 
+mod common;
+
+use common::downgrade;
 use std::path::Path;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{icosphere, rigid_motion, torus};
 use tvf_core::Hash64;
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{
     compute_basis, compute_eigenfunction_basis, load_basis, read_basis_file, read_basis_header,
     save_basis, save_eigenfunction_basis, BasisFileError, BasisFileKey, BasisFileLayout,
-    BasisRequest, SpectralBasis, StoredBasis,
+    BasisRequest, BasisSize, SpectralBasis, StoredBasis, StoredFieldMass,
 };
 
 fn setup() -> (
@@ -54,9 +58,12 @@ fn round_trip_is_bit_exact() {
     assert_eq!(bits(&loaded), bits(&basis));
     let header = read_basis_header(&path).unwrap();
     assert_eq!(header.key, key);
+    assert_eq!(header.version, 3);
+    assert_eq!(header.key.matrix_hash, Some(complex.matrix_hash()));
     assert_eq!(header.field_count, 34);
     assert_eq!(header.integrable_count, 17);
     assert_eq!(header.layout, BasisFileLayout::Fields);
+    assert_eq!(header.field_mass, StoredFieldMass::Diagonal);
     let (_, StoredBasis::Fields(again)) = read_basis_file(&path).unwrap() else {
         panic!("a dense basis is stored as fields");
     };
@@ -82,13 +89,15 @@ fn compact_basis_is_stored_as_eigenfunctions_and_loads_to_the_dense_fields() {
     let dense_basis = compute_basis(&complex, &request).unwrap();
     let dense = dir.path().join("dense.tvfb");
     save_basis(&dense, &dense_basis, &key).unwrap();
+    let header = read_basis_header(&stored).unwrap();
     assert_eq!(
-        read_basis_header(&stored).unwrap().layout,
+        header.layout,
         BasisFileLayout::Eigenfunctions {
             potential_dimension: mesh.vertex_count(),
             co_potential_dimension: mesh.edge_count(),
         }
     );
+    assert_eq!(header.field_mass, StoredFieldMass::FromComplex);
     let (compact_bytes, dense_bytes) = (
         std::fs::metadata(&stored).unwrap().len(),
         std::fs::metadata(&dense).unwrap().len(),
@@ -138,30 +147,90 @@ fn harmonic_only_basis_is_stored_as_fields() {
     );
 }
 
-/// Files of format version 1 (fields only, no layout words in the header) still load.
+/// Files of format versions 1 (fields only, no layout words in the header) and 2 (no matrix
+/// hash, no field mass words) still load, bit-exact, in both layouts; their header carries no
+/// matrix hash.
 #[test]
-fn version_one_files_load() {
+fn version_one_and_two_files_load() {
     let (_, complex, basis, key) = setup();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("sphere.tvfb");
     save_basis(&path, &basis, &key).unwrap();
     let current = std::fs::read(&path).unwrap();
-    // Rewrite the header as version 1 wrote it: version 1, no layout words, its own checksum.
-    let header_length = u32::from_le_bytes(current[12..16].try_into().unwrap()) as usize;
-    let mut header = current[..72].to_vec();
-    header.extend_from_slice(&current[96..header_length - 8]);
-    header[8..12].copy_from_slice(&1u32.to_le_bytes());
-    let old_length = header.len() + 8;
-    header[12..16].copy_from_slice(&(old_length as u32).to_le_bytes());
-    let checksum = Hash64::of(&header);
-    header.extend_from_slice(&checksum.to_le_bytes());
-    header.extend_from_slice(&current[header_length..]);
-    std::fs::write(&path, &header).unwrap();
-    let read = read_basis_header(&path).unwrap();
-    assert_eq!((read.version, read.layout), (1, BasisFileLayout::Fields));
-    assert_eq!(read.key, key);
-    let loaded = load_basis(&path, &key, &complex).unwrap();
-    assert_eq!(bits(&loaded), bits(&basis));
+    let (compact, _) = compute_eigenfunction_basis(&complex, &BasisRequest::pairs(17)).unwrap();
+    let compact_path = dir.path().join("compact.tvfb");
+    save_eigenfunction_basis(&compact_path, &compact, &complex, &key).unwrap();
+    let compact_current = std::fs::read(&compact_path).unwrap();
+    for (version, bytes) in [
+        (1, downgrade(&current, 1)),
+        (2, downgrade(&current, 2)),
+        (2, downgrade(&compact_current, 2)),
+    ] {
+        std::fs::write(&path, &bytes).unwrap();
+        let read = read_basis_header(&path).unwrap();
+        assert_eq!(read.version, version);
+        assert_eq!(read.key.matrix_hash, None);
+        assert_eq!(
+            read.key,
+            BasisFileKey {
+                matrix_hash: None,
+                ..key.clone()
+            }
+        );
+        let loaded = load_basis(&path, &key, &complex).unwrap();
+        assert_eq!(bits(&loaded), bits(&basis));
+    }
+}
+
+/// Files of format version 2 as tvf wrote them (`tvf basis`, conforming-barycentric, seed 0)
+/// load: an octahedron's 6 lowest fields (eigenfunctions layout) and a square-frame torus's 2
+/// harmonic fields (fields layout), the same eigenvalues as computed now and `M1`-orthonormal.
+#[test]
+fn version_two_files_written_by_tvf_load() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    for (name, fields, layout) in [
+        (
+            "octahedron",
+            6,
+            BasisFileLayout::Eigenfunctions {
+                potential_dimension: 6,
+                co_potential_dimension: 12,
+            },
+        ),
+        ("frame-torus", 2, BasisFileLayout::Fields),
+    ] {
+        let mesh = tvf_core::io::load_mesh(data.join(format!("{name}.obj")))
+            .unwrap()
+            .mesh;
+        let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+        let path = data.join(format!("{name}-v2.tvfb"));
+        let header = read_basis_header(&path).unwrap();
+        assert_eq!((header.version, header.layout), (2, layout), "{name}");
+        assert_eq!(header.key.matrix_hash, None);
+        let loaded = load_basis(&path, &BasisFileKey::new(&mesh, &complex), &complex).unwrap();
+        let computed =
+            tvf_spectral::compute_basis_of_size(&complex, BasisSize::Fields(fields), None).unwrap();
+        assert_eq!(loaded.families(), computed.families(), "{name}");
+        for (a, b) in loaded.eigenvalues().iter().zip(computed.eigenvalues()) {
+            assert!(
+                (a - b).abs() <= 1e-12 * b.abs().max(1.0),
+                "{name}: {a} vs {b}"
+            );
+        }
+        for i in 0..fields {
+            for j in 0..fields {
+                let column =
+                    |k: usize| -> Vec<f64> { loaded.fields().col(k).iter().copied().collect() };
+                let inner = complex.m1().inner(&column(i), &column(j));
+                let expected = if i == j { 1.0 } else { 0.0 };
+                assert!(
+                    (inner - expected).abs() < 1e-10,
+                    "{name}: ⟨u{i}, u{j}⟩ = {inner}"
+                );
+            }
+        }
+        assert_eq!(loaded.field_dimension(), complex.field_dimension());
+    }
 }
 
 fn damaged(path: &Path, bytes: &[u8], key: &BasisFileKey, complex: &Conforming) -> BasisFileError {
@@ -225,12 +294,12 @@ fn every_bad_file_gets_its_error() {
     }
     // a newer format
     let mut newer = good.clone();
-    newer[8..12].copy_from_slice(&3u32.to_le_bytes());
+    newer[8..12].copy_from_slice(&4u32.to_le_bytes());
     assert!(matches!(
         damaged(&bad, &newer, &key, &complex),
         BasisFileError::NewerFormat {
-            found: 3,
-            supported: 2,
+            found: 4,
+            supported: 3,
             ..
         }
     ));

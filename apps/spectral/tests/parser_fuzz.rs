@@ -4,8 +4,14 @@
 //!
 //! Inputs per reader: 3000 by default; set `TVF_FUZZ_CASES` for a longer run.
 
+mod common;
+
+use common::{
+    coupled_field_mass, downgrade, header_length, reseal_header, reseal_payload, WithFieldMass,
+};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::torus;
 use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{
@@ -95,6 +101,18 @@ fn npy_parser_survives_random_and_mutated_files() {
     println!("npy: {} inputs, {parsed} parsed", cases());
 }
 
+/// Recomputes both checksums of a basis file where its header length allows, so that mutated
+/// contents reach the checks behind the checksums.
+fn resealed(bytes: &mut [u8]) {
+    if bytes.len() >= 16 {
+        let h = header_length(bytes);
+        if (8..=bytes.len() - 8).contains(&h) {
+            reseal_header(bytes);
+            reseal_payload(bytes);
+        }
+    }
+}
+
 #[test]
 fn basis_and_compressed_file_readers_survive_mutated_files() {
     let mesh = torus(1.0, 0.45, 9, 6).unwrap();
@@ -107,15 +125,33 @@ fn basis_and_compressed_file_readers_survive_mutated_files() {
         mesh_fingerprint: 7,
         face_count: mesh.face_count(),
         field_dimension: 2 * mesh.face_count(),
+        matrix_hash: Some(complex.matrix_hash()),
     };
     save_basis(&path, &basis, &key).unwrap();
     let (compact, _) = compute_eigenfunction_basis(&complex, &BasisRequest::fields(12)).unwrap();
     let compact_path = dir.path().join("compact.tvfb");
     save_eigenfunction_basis(&compact_path, &compact, &complex, &key).unwrap();
-    // Both layouts: the dense fields and the eigenfunctions.
+    let sparse = {
+        let inner = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+        let m1 = coupled_field_mass(inner.m1(), 0.3);
+        WithFieldMass::new(inner, m1)
+    };
+    let sparse_path = dir.path().join("sparse.tvfb");
+    let sparse_basis = compute_basis(&sparse, &BasisRequest::fields(4)).unwrap();
+    save_basis(
+        &sparse_path,
+        &sparse_basis,
+        &BasisFileKey::new(&mesh, &sparse),
+    )
+    .unwrap();
+    // Both layouts: the dense fields (with a diagonal and a sparse M1) and the eigenfunctions;
+    // and a file of format version 2.
+    let dense = std::fs::read(&path).unwrap();
     let tvfb_seeds = [
-        std::fs::read(&path).unwrap(),
+        downgrade(&dense, 2),
+        dense,
         std::fs::read(&compact_path).unwrap(),
+        std::fs::read(&sparse_path).unwrap(),
     ];
     let field: Vec<f64> = (0..basis.field_dimension())
         .map(|k| (k as f64).sin())
@@ -138,7 +174,10 @@ fn basis_and_compressed_file_readers_survive_mutated_files() {
     let (mut tvfb_parsed, mut tvfc_parsed) = (0, 0);
     let fuzz_path = dir.path().join("fuzz.tvfb");
     for _ in 0..cases() {
-        let bytes = input(&tvfb_seeds, &mut rng);
+        let mut bytes = input(&tvfb_seeds, &mut rng);
+        if rng.random_bool(0.5) {
+            resealed(&mut bytes);
+        }
         std::fs::write(&fuzz_path, &bytes).unwrap();
         match read_basis_file(&fuzz_path) {
             Ok((header, basis)) => {

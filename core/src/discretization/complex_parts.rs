@@ -2,8 +2,11 @@
 //! the nodes of its three spaces, its topology and a stable id — checked once for consistent
 //! shapes, with the cache of the operators derived from them.
 
-use super::{check_length, ComplexTopology, DiscretizationError, Mass, NodeSpace, OperatorCache};
+use super::{
+    check_length, ComplexTopology, DiscretizationError, Mass, MatrixHash, NodeSpace, OperatorCache,
+};
 use sprs::CsMat;
+use std::sync::OnceLock;
 
 /// The parts of a complex `potentials (n0) --d0--> fields (n1) --d1--> co-potentials (n2)` with
 /// masses `M0`, `M1`, `M2` (see [`super::HodgeComplex`] for their meaning and units).
@@ -21,6 +24,7 @@ pub struct ComplexParts {
     nodes: [NodeSpace; 3],
     topology: ComplexTopology,
     cache: OperatorCache,
+    matrix_hash: OnceLock<MatrixHash>,
 }
 
 impl ComplexParts {
@@ -74,6 +78,7 @@ impl ComplexParts {
             nodes,
             topology,
             cache: OperatorCache::default(),
+            matrix_hash: OnceLock::new(),
         })
     }
 
@@ -148,5 +153,11 @@ impl ComplexParts {
     /// The cache of the derived operators.
     pub fn operator_cache(&self) -> &OperatorCache {
         &self.cache
+    }
+
+    /// The hashes of the five matrices and the fixed nodes ([`MatrixHash`]), computed on first
+    /// use and kept (the parts are immutable).
+    pub fn matrix_hash(&self) -> MatrixHash {
+        *self.matrix_hash.get_or_init(|| MatrixHash::of(self))
     }
 }

@@ -2,8 +2,8 @@
 //! source of truth of everything downstream.
 
 use super::{
-    ComplexParts, ComplexTopology, FieldRotation, FieldSampling, Mass, NodeSpace, OperatorCache,
-    PointEvaluation,
+    ComplexParts, ComplexTopology, FieldRotation, FieldSampling, Mass, MatrixHash, NodeSpace,
+    OperatorCache, PointEvaluation,
 };
 use sprs::CsMat;
 
@@ -89,6 +89,12 @@ pub trait HodgeComplex: Send + Sync {
     /// Components, harmonic dimension, boundary and boundary condition of the complex.
     fn topology(&self) -> &ComplexTopology {
         self.parts().topology()
+    }
+
+    /// The hashes of the five matrices and the fixed nodes, computed once per complex: what
+    /// basis files and cached bases are keyed on besides the id and the mesh.
+    fn matrix_hash(&self) -> MatrixHash {
+        self.parts().matrix_hash()
     }
 
     /// Storage for the derived operators of [`super::HodgeOperators`] (computed once, on first

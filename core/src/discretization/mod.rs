@@ -21,6 +21,9 @@
 //!   matrices, computed once and cached in the complex's [`OperatorCache`], each a
 //!   [`LinearOperator`]: a sparse matrix where every mass involved is diagonal, else a
 //!   composition applied through sparse products and mass solves.
+//! - [`MatrixHash`]: hashes of the five matrices and of the nodes the boundary condition fixes
+//!   ([`HodgeComplex::matrix_hash`], computed once per complex), which key basis files and
+//!   cached bases so that a basis is never reused for changed matrices.
 //!
 //! Code downstream (spectral basis, filters, splines, design, rendering, the editor) is written
 //! against these traits only. `tvf-discretizations` holds the implementations and the catalog.
@@ -78,6 +81,7 @@ mod hodge_complex;
 mod hodge_operators;
 mod linear_operator;
 mod mass;
+mod matrix_hash;
 mod nodes;
 mod operator_cache;
 pub mod sparse;
@@ -92,6 +96,7 @@ pub use hodge_complex::HodgeComplex;
 pub use hodge_operators::{all_sparse, EigenStiffness, Eigenproblem, HodgeOperators};
 pub use linear_operator::{Composition, Factor, LinearOperator};
 pub use mass::{Mass, MassForm, MassStorage};
+pub use matrix_hash::MatrixHash;
 pub use nodes::{BoundaryCondition, ComplexTopology, NodeKind, NodeSpace};
 pub use operator_cache::OperatorCache;
 

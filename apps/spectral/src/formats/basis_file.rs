@@ -1,16 +1,18 @@
-//! Basis files (`.tvfb`): a Fourier basis saved for reuse, tied to its mesh and
-//! discretization.
+//! Basis files (`.tvfb`): a Fourier basis saved for reuse, tied to its mesh, its discretization
+//! and the matrices of that discretization.
 //!
-//! Layout (all integers and floats little-endian):
+//! Layout of format version 3 (all integers and floats little-endian; words are 8 bytes):
 //!
 //! | bytes | content |
 //! |---|---|
 //! | 8 | magic `TVFBASIS` |
-//! | 4 | format version (`u32`, currently 2) |
+//! | 4 | format version (`u32`, currently 3) |
 //! | 4 | header length `H` in bytes, from the magic to the payload (`u32`) |
 //! | 8 | mesh fingerprint ([`tvf_core::SurfaceMesh::fingerprint`]) |
 //! | 8 × 6 | faces `F`, field dimension `n1` (`2F` for face fields, `E` for DEC 1-forms), fields `d`, harmonic `h`, integrable `a`, co-integrable `b` counts |
-//! | 8 × 3 | layout (`0` fields, `1` eigenfunctions), potential rows `n0`, co-potential rows `n2` (`0` for the fields layout); absent in version 1, whose layout is fields |
+//! | 8 × 3 | layout (`0` fields, `1` eigenfunctions), potential rows `n0`, co-potential rows `n2` (`0` for the fields layout) |
+//! | 8 × 6 | matrix hash of the complex ([`tvf_core::discretization::MatrixHash`]): the hashes of `d0`, `d1`, `M0`, `M1`, `M2` and of the fixed nodes |
+//! | 8 × 3 | field mass `M1` ([`StoredFieldMass`]): storage (`0` not stored, the eigenfunctions layout; `1` diagonal; `2` sparse), form (`0`: the stored matrix is `M1` itself; `1`, `M1⁻¹`, is reserved and refused), stored entries `nnz` (`0` unless sparse) |
 //! | 4 + L | discretization id: `u32` length, UTF-8 text: the complex id (e.g. `conforming-barycentric`) |
 //! | 8 | [`Hash64`] of the header bytes before it |
 //! | 8·d | eigenvalues (`f64`), ascending |
@@ -18,23 +20,43 @@
 //! | layout-specific | see below |
 //! | 8 | [`Hash64`] of the payload (everything between the header and this checksum) |
 //!
-//! The fields layout continues with `8·n1` bytes, the diagonal of `M1`, and `8·n1·d` bytes, the
-//! fields column by column. The eigenfunctions layout ([`crate::EigenfunctionBasis`])
-//! continues with the `a` potentials (`8·n0` bytes each), the `b` co-potentials (`8·n2` bytes
-//! each) and the `h` harmonic fields (`8·n1` bytes each), each family in the order its fields
-//! appear in the basis; its fields are formed through the complex's sparse gradients on
-//! loading, so it needs the complex, and it is written whenever it is the smaller of the two
+//! The **fields layout** continues with `M1` and then `8·n1·d` bytes, the fields column by
+//! column. `M1` is stored as the complex holds it ([`tvf_core::discretization::Mass`]): a
+//! diagonal as its `n1` values (`f64`); a sparse matrix as its compressed sparse rows — `n1 + 1`
+//! row starts (`u64`, from `0` to `nnz`), `nnz` column indices (`u64`, strictly ascending in each
+//! row) and `nnz` values (`f64`), both triangles, bit for bit. Reading it back checks the
+//! structure, finiteness and symmetry, and that it hashes to the header's `M1` hash; its free
+//! nodes are not stored (the basis only applies `M1`, which does not need them).
+//!
+//! The **eigenfunctions layout** ([`crate::EigenfunctionBasis`]) stores no mass (`M1` is the
+//! complex's) and continues with the `a` potentials (`8·n0` bytes each), the `b` co-potentials
+//! (`8·n2` bytes each) and the `h` harmonic fields (`8·n1` bytes each), each family in the order
+//! its fields appear in the basis; its fields are formed through the complex's sparse gradients
+//! on loading, so it needs the complex, and it is written whenever it is the smaller of the two
 //! (on every mesh of the catalog's complexes: `V + E` values for a pair of fields against `4F`,
 //! about half).
 //!
-//! Round trips are bit-exact: a fields file gives back its fields, an eigenfunctions file its
-//! eigenfunctions and so the very fields the basis had in memory. Saving is atomic; loading
-//! streams (no second copy in memory).
+//! **Matrices.** A basis is loaded for a complex only if the header's matrix hash is the
+//! complex's ([`BasisFileError::WrongMatrices`] names the parts that differ): the same id and
+//! mesh with a changed assembly is another basis.
+//!
+//! **Earlier versions** still load. Version 2 has neither the matrix hash nor the field mass
+//! words (the fields layout holds the diagonal of `M1`, as `1` above); version 1 has no layout
+//! words either (its layout is fields). They carry no matrix hash, so [`load_basis`] accepts them
+//! on id and mesh alone, and their header's [`BasisFileKey::matrix_hash`] is `None` for callers
+//! that want more (the basis store never uses them; the CLI's `--basis` says so on stderr).
+//!
+//! Round trips are bit-exact: a fields file gives back its fields and `M1`, an eigenfunctions
+//! file its eigenfunctions and so the very fields the basis had in memory. Saving is atomic;
+//! loading streams (no second copy in memory), and a header whose counts promise more bytes
+//! than the file has is refused before anything is allocated for them.
 
 use crate::eigenfunction_basis::{field_of_stored_into, FIELD_CHUNK};
 use crate::formats::atomic_write::write_atomically_with;
 use crate::formats::basis_file_header::{encode_header, read_header};
 pub use crate::formats::basis_file_header::{BasisFileHeader, BasisFileKey, BasisFileLayout};
+pub use crate::formats::basis_file_mass::StoredFieldMass;
+use crate::formats::basis_file_mass::{write_field_mass, FieldMassRead};
 use crate::formats::stored_basis::StoredBasis;
 use crate::{EigenfunctionBasis, FieldFamily, SpectralBasis};
 use faer::reborrow::{IntoConst, ReborrowMut};
@@ -43,13 +65,13 @@ use std::io::{Read, Write};
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass, MatrixHash};
 use tvf_core::Hash64;
 
 /// The magic bytes of a basis file.
 pub const BASIS_FILE_MAGIC: &[u8; 8] = b"TVFBASIS";
 /// The format version this build writes and the newest it reads.
-pub const BASIS_FILE_VERSION: u32 = 2;
+pub const BASIS_FILE_VERSION: u32 = 3;
 
 /// Why a basis file could not be written or used (every variant names the file).
 #[derive(Debug, Error)]
@@ -87,6 +109,21 @@ pub enum BasisFileError {
         found: String,
         /// Discretization asked for.
         expected: String,
+    },
+    /// Computed for the same discretization id and mesh, but from other matrices (the
+    /// assembly changed since): the basis is not theirs.
+    #[error("{}: the basis was computed from other matrices of '{discretization}' than this complex has ({} differ{}: matrix hash {found:016x} in the file, {expected:016x} of the complex); recompute the basis", path.display(), differing.join(", "), if differing.len() == 1 { "s" } else { "" })]
+    WrongMatrices {
+        /// The file.
+        path: PathBuf,
+        /// The complex id (the same in the file and the complex).
+        discretization: String,
+        /// Names of the parts whose hashes differ ([`MatrixHash::PART_NAMES`]).
+        differing: Vec<&'static str>,
+        /// [`MatrixHash::value`] in the file.
+        found: u64,
+        /// [`MatrixHash::value`] of the complex.
+        expected: u64,
     },
     /// Computed for another mesh.
     #[error("{}: basis belongs to another mesh ({found_faces} faces, fingerprint {found:016x}; this mesh: {expected_faces} faces, fingerprint {expected:016x})", path.display())]
@@ -152,7 +189,6 @@ pub fn save_basis(
         field_dimension: basis.field_dimension(),
         field_mass: basis.field_mass(),
     };
-    require_diagonal_field_mass(path, contents.field_mass)?;
     write_basis(
         path,
         key,
@@ -168,7 +204,9 @@ pub fn save_basis(
 /// discretization of `key`, atomically: in the eigenfunctions layout when it is the smaller,
 /// else in the fields layout, the fields formed a few at a time in parallel while the file is
 /// written, so they are never all in memory. Either file loads to the basis
-/// [`EigenfunctionBasis::dense_fields`] gives.
+/// [`EigenfunctionBasis::dense_fields`] gives, bit for bit: co-integrable fields through a
+/// co-gradient that is not a sparse matrix (a sparse `M1`) are formed by one block solve, which
+/// the loader repeats, so a basis with such fields is always written as eigenfunctions.
 pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     path: &Path,
     basis: &EigenfunctionBasis,
@@ -181,6 +219,12 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
             path: path.to_path_buf(),
             reason: format!("the basis does not fit its complex: {e}"),
         })?;
+    if key.matrix_hash != Some(complex.matrix_hash()) {
+        return Err(BasisFileError::Invalid {
+            path: path.to_path_buf(),
+            reason: "the key's matrix hash is not the complex's".into(),
+        });
+    }
     let contents = BasisContents {
         eigenvalues: basis.eigenvalues(),
         families: basis.families(),
@@ -195,7 +239,8 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     let compact_values = n0 * count(FieldFamily::Integrable)
         + n2 * count(FieldFamily::Cointegrable)
         + contents.field_dimension * count(FieldFamily::Harmonic);
-    if compact_values < contents.field_dimension * basis.len() || !complex.m1().is_diagonal() {
+    let streamed_alike = complex.co_gradient().is_sparse() || count(FieldFamily::Cointegrable) == 0;
+    if compact_values < contents.field_dimension * basis.len() || !streamed_alike {
         let layout = BasisFileLayout::Eigenfunctions {
             potential_dimension: n0,
             co_potential_dimension: n2,
@@ -231,27 +276,14 @@ struct BasisContents<'a> {
     eigenvalues: &'a [f64],
     families: &'a [FieldFamily],
     field_dimension: usize,
-    /// `M1` (its diagonal is written in the fields layout, which needs a diagonal `M1`).
+    /// `M1` (written in the fields layout).
     field_mass: &'a Mass,
 }
 
-/// Fails unless `M1` is diagonal: the fields layout stores the diagonal of `M1`.
-fn require_diagonal_field_mass(path: &Path, mass: &Mass) -> Result<(), BasisFileError> {
-    if mass.is_diagonal() {
-        Ok(())
-    } else {
-        Err(BasisFileError::Invalid {
-            path: path.to_path_buf(),
-            reason: "a basis whose field mass M1 is not diagonal is saved as eigenfunctions, \
-                     not as dense fields"
-                .into(),
-        })
-    }
-}
-
-/// Writes a basis file: header, eigenvalues, families (and in the fields layout the diagonal of
-/// `M1`), then `body(out, buffer)` writes the stored fields or eigenfunctions through the
-/// checksumming `out` (with `buffer` as scratch space).
+/// Writes a basis file: header, eigenvalues, families (and in the fields layout `M1`), then
+/// `body(out, buffer)` writes the stored fields or eigenfunctions through the checksumming
+/// `out` (with `buffer` as scratch space). Refuses a key without a matrix hash and, in the
+/// fields layout, an `M1` that is not the one the key's matrix hash names.
 fn write_basis(
     path: &Path,
     key: &BasisFileKey,
@@ -270,16 +302,41 @@ fn write_basis(
             ),
         });
     }
+    let invalid = |reason: String| BasisFileError::Invalid {
+        path: path.to_path_buf(),
+        reason,
+    };
+    let Some(matrix_hash) = key.matrix_hash else {
+        return Err(invalid(
+            "the key carries no matrix hash of the complex (BasisFileKey::new gives it)".into(),
+        ));
+    };
+    let field_mass = match layout {
+        BasisFileLayout::Fields => {
+            if MatrixHash::of_mass(contents.field_mass) != matrix_hash.m1 {
+                return Err(invalid(format!(
+                    "the basis's field mass is not the M1 of the complex '{}' of the key",
+                    key.discretization
+                )));
+            }
+            StoredFieldMass::of(contents.field_mass).map_err(invalid)?
+        }
+        BasisFileLayout::Eigenfunctions { .. } => StoredFieldMass::FromComplex,
+    };
     let family_count = |family| contents.families.iter().filter(|&&f| f == family).count();
-    let header = encode_header(&BasisFileHeader {
-        version: BASIS_FILE_VERSION,
-        key: key.clone(),
-        field_count: count,
-        harmonic_count: family_count(FieldFamily::Harmonic),
-        integrable_count: family_count(FieldFamily::Integrable),
-        cointegrable_count: family_count(FieldFamily::Cointegrable),
-        layout,
-    });
+    let header = encode_header(
+        &BasisFileHeader {
+            version: BASIS_FILE_VERSION,
+            key: key.clone(),
+            field_count: count,
+            harmonic_count: family_count(FieldFamily::Harmonic),
+            integrable_count: family_count(FieldFamily::Integrable),
+            cointegrable_count: family_count(FieldFamily::Cointegrable),
+            layout,
+            field_mass,
+        },
+        &matrix_hash,
+    );
     write_atomically_with(path, |w| {
         w.write_all(&header)?;
         let mut out = HashingWriter {
@@ -293,8 +350,7 @@ fn write_basis(
         buffer.resize(count.div_ceil(8) * 8, 0);
         out.write_all(&buffer)?;
         if layout == BasisFileLayout::Fields {
-            let diagonal = contents.field_mass.diagonal_values().unwrap_or_default();
-            write_values(&mut out, &mut buffer, diagonal)?;
+            write_field_mass(&mut out, contents.field_mass)?;
         }
         body(&mut out, &mut buffer)?;
         let checksum = out.hash.finish();
@@ -349,10 +405,13 @@ fn write_streamed_fields(
     })
 }
 
-/// Loads a basis with dense fields and checks that it belongs to `expected` (mesh and
-/// discretization). The eigenfunctions of an eigenfunctions file are turned into fields through
+/// Loads a basis with dense fields and checks that it belongs to `expected`: its mesh, its
+/// discretization and, for a file of format version 3, its matrix hash
+/// ([`BasisFileError::WrongMatrices`]; a file of versions 1 and 2 carries none and is accepted
+/// on id and mesh). The eigenfunctions of an eigenfunctions file are turned into fields through
 /// `complex` (the complex `expected` was made from) a chunk at a time while the file is read, so
-/// they are never all in memory next to the fields.
+/// they are never all in memory next to the fields (the co-integrable ones all at once where
+/// the co-gradient has mass solves, as the basis formed them).
 pub fn load_basis<H: HodgeComplex + ?Sized>(
     path: &Path,
     expected: &BasisFileKey,
@@ -418,25 +477,7 @@ fn read_basis(
     let mut reader = std::io::BufReader::with_capacity(1 << 20, file);
     let (header, header_length) = read_header(path, &mut reader)?;
     if let Some(key) = expected {
-        if key.discretization != header.key.discretization {
-            return Err(BasisFileError::WrongDiscretization {
-                path: path.to_path_buf(),
-                found: header.key.discretization,
-                expected: key.discretization.clone(),
-            });
-        }
-        if key.mesh_fingerprint != header.key.mesh_fingerprint
-            || key.face_count != header.key.face_count
-            || key.field_dimension != header.key.field_dimension
-        {
-            return Err(BasisFileError::WrongMesh {
-                path: path.to_path_buf(),
-                found: header.key.mesh_fingerprint,
-                expected: key.mesh_fingerprint,
-                found_faces: header.key.face_count,
-                expected_faces: key.face_count,
-            });
-        }
+        key.check_file(path, &header.key)?;
     }
     let invalid = |reason: String| BasisFileError::Invalid {
         path: path.to_path_buf(),
@@ -488,7 +529,7 @@ fn read_basis(
     let read_body = |input: &mut HashingReader<_>| -> std::io::Result<_> {
         Ok(match (header.layout, forming) {
             (BasisFileLayout::Fields, _) => {
-                let field_mass = FieldMassRead::Diagonal(input.f64s(n)?);
+                let field_mass = FieldMassRead::read(input, header.field_mass, n)?;
                 let fields = input.matrix(n, d)?;
                 Body::Fields { field_mass, fields }
             }
@@ -504,7 +545,7 @@ fn read_basis(
                 harmonic: input.matrix(n, header.harmonic_count)?,
             },
             (BasisFileLayout::Eigenfunctions { .. }, Some(forming)) => Body::Fields {
-                field_mass: FieldMassRead::Complex(forming.field_mass.clone()),
+                field_mass: Some(FieldMassRead::Complex(forming.field_mass.clone())),
                 fields: input.formed_fields(&header, &codes[..d], forming)?,
             },
         })
@@ -539,13 +580,16 @@ fn read_basis(
     }
     let stored = match body {
         Body::Fields { field_mass, fields } => {
-            let field_mass = match field_mass {
-                FieldMassRead::Diagonal(values) => {
-                    Mass::diagonal("M1 (from the basis file)", values)
-                        .map_err(|e| invalid(e.to_string()))?
-                }
-                FieldMassRead::Complex(mass) => mass,
-            };
+            let field_mass = field_mass
+                .ok_or_else(|| invalid("the fields layout holds no field mass".into()))?
+                .into_mass()
+                .map_err(invalid)?;
+            let hash = header.key.matrix_hash.map(|h| h.m1);
+            if hash.is_some_and(|m1| MatrixHash::of_mass(&field_mass) != m1) {
+                return Err(invalid(
+                    "the stored M1 is not the one the header's matrix hash names".into(),
+                ));
+            }
             SpectralBasis::new(eigenvalues, families, fields, field_mass)
                 .map(|basis| StoredBasis::Fields(Box::new(basis)))
         }
@@ -566,17 +610,11 @@ fn read_basis(
     Ok((header, stored))
 }
 
-/// The field mass of a basis read as fields: the diagonal stored in the file, or the complex's
-/// `M1` when the file's eigenfunctions were turned into fields.
-enum FieldMassRead {
-    Diagonal(Vec<f64>),
-    Complex(Mass),
-}
-
 /// The layout-specific part of a basis file, as read.
 enum Body {
     Fields {
-        field_mass: FieldMassRead,
+        /// `None` only for a fields file whose header says it stores no mass.
+        field_mass: Option<FieldMassRead>,
         fields: Mat<f64>,
     },
     Eigenfunctions {
@@ -601,14 +639,6 @@ impl Body {
             })
         };
         match self {
-            Body::Fields {
-                field_mass: FieldMassRead::Diagonal(field_mass),
-                fields,
-            } => field_mass
-                .iter()
-                .position(|m| !m.is_finite())
-                .map(|i| format!("the diagonal of M1 is not finite at row {i}"))
-                .or_else(|| first_in("field", fields)),
             Body::Fields { fields, .. } => first_in("field", fields),
             Body::Eigenfunctions {
                 potentials,
@@ -692,6 +722,17 @@ impl<R: Read> HashingReader<R> {
             let targets: Vec<usize> = (0..codes.len())
                 .filter(|&i| codes[i] == family_code(family))
                 .collect();
+            if family == FieldFamily::Cointegrable && !forming.co_gradient.is_sparse() {
+                // A co-gradient with mass solves forms all co-exact fields by one block solve,
+                // as `EigenfunctionBasis::dense_fields` does, so the fields are the basis's bit
+                // for bit (column by column they differ in round-off).
+                let co_potentials = self.matrix(rows, count)?;
+                let co_exact = forming.co_gradient.apply_block(co_potentials.as_ref());
+                for (k, &target) in targets.iter().enumerate().take(co_exact.ncols()) {
+                    fields.col_mut(target).copy_from(co_exact.col(k));
+                }
+                continue;
+            }
             // Column of the chunk each basis field comes from, if it is in the chunk.
             let mut source = vec![None; header.field_count];
             let mut buffer = Mat::<f64>::zeros(rows, FIELD_CHUNK.min(count));

@@ -89,7 +89,9 @@ pub fn basis_file_complex(
 }
 
 /// Reads the basis file `path` for `mesh`: its complex (see [`basis_file_complex`]) and the
-/// basis, checked to belong to the mesh and the complex.
+/// basis, checked to belong to the mesh and the complex — for a file of format version 3 to the
+/// complex's matrices too ([`BasisFileError::WrongMatrices`] otherwise; earlier files carry no
+/// matrix hash, see [`crate::formats::basis_file`]).
 pub fn open_basis_file(
     path: &Path,
     mesh: &SurfaceMesh,

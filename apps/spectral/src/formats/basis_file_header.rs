@@ -3,12 +3,13 @@
 //! [`crate::formats::basis_file`].
 
 use super::basis_file::{BasisFileError, BASIS_FILE_MAGIC, BASIS_FILE_VERSION};
+use super::basis_file_mass::StoredFieldMass;
 use std::io::Read;
 use std::path::Path;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, MatrixHash};
 use tvf_core::{Hash64, SurfaceMesh};
 
-/// What a basis file must match to be used: the discretization and the mesh.
+/// What a basis file must match to be used: the discretization, its matrices and the mesh.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct BasisFileKey {
     /// The catalog id of the discretization, [`HodgeComplex::id`] (names the mass lumping too).
@@ -19,6 +20,9 @@ pub struct BasisFileKey {
     pub face_count: usize,
     /// Field coefficients `n1` of the discretization on the mesh.
     pub field_dimension: usize,
+    /// [`HodgeComplex::matrix_hash`] of the complex: its five matrices and fixed nodes. `None`
+    /// in the header of a file of format version 1 or 2, which predates it.
+    pub matrix_hash: Option<MatrixHash>,
 }
 
 impl BasisFileKey {
@@ -29,6 +33,46 @@ impl BasisFileKey {
             mesh_fingerprint: mesh.fingerprint(),
             face_count: mesh.face_count(),
             field_dimension: complex.field_dimension(),
+            matrix_hash: Some(complex.matrix_hash()),
+        }
+    }
+
+    /// Checks that the basis file `path`, whose header has the key `file`, belongs to this key:
+    /// [`BasisFileError::WrongDiscretization`], [`BasisFileError::WrongMesh`] or, when both
+    /// keys carry a matrix hash, [`BasisFileError::WrongMatrices`] otherwise.
+    pub(crate) fn check_file(
+        &self,
+        path: &Path,
+        file: &BasisFileKey,
+    ) -> Result<(), BasisFileError> {
+        if self.discretization != file.discretization {
+            return Err(BasisFileError::WrongDiscretization {
+                path: path.to_path_buf(),
+                found: file.discretization.clone(),
+                expected: self.discretization.clone(),
+            });
+        }
+        if self.mesh_fingerprint != file.mesh_fingerprint
+            || self.face_count != file.face_count
+            || self.field_dimension != file.field_dimension
+        {
+            return Err(BasisFileError::WrongMesh {
+                path: path.to_path_buf(),
+                found: file.mesh_fingerprint,
+                expected: self.mesh_fingerprint,
+                found_faces: file.face_count,
+                expected_faces: self.face_count,
+            });
+        }
+        match (file.matrix_hash, self.matrix_hash) {
+            (Some(found), Some(wanted)) if found != wanted => Err(BasisFileError::WrongMatrices {
+                path: path.to_path_buf(),
+                discretization: file.discretization.clone(),
+                differing: wanted.differing_parts(&found),
+                found: found.value(),
+                expected: wanted.value(),
+            }),
+            _ => Ok(()),
         }
     }
 }
@@ -36,7 +80,7 @@ impl BasisFileKey {
 /// What the payload of a basis file holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BasisFileLayout {
-    /// The diagonal of `M1` and the `d` fields densely (`n1` values each).
+    /// `M1` (see [`StoredFieldMass`]) and the `d` fields densely (`n1` values each).
     Fields,
     /// The eigenfunctions ([`crate::EigenfunctionBasis`]): the integrable fields' potentials
     /// (`n0` values each), the co-integrable fields' co-potentials (`n2` values each) and the
@@ -67,6 +111,10 @@ pub struct BasisFileHeader {
     pub cointegrable_count: usize,
     /// What the payload holds (always [`BasisFileLayout::Fields`] in version 1 files).
     pub layout: BasisFileLayout,
+    /// How the payload holds `M1`: [`StoredFieldMass::FromComplex`] exactly in the
+    /// eigenfunctions layout (and [`StoredFieldMass::Diagonal`] in the fields layout of
+    /// versions 1 and 2).
+    pub field_mass: StoredFieldMass,
 }
 
 impl BasisFileHeader {
@@ -75,7 +123,9 @@ impl BasisFileHeader {
         let d = self.field_count as u64;
         let n1 = self.key.field_dimension as u64;
         let values = match self.layout {
-            BasisFileLayout::Fields => n1.checked_mul(d)?.checked_add(n1)?,
+            BasisFileLayout::Fields => n1
+                .checked_mul(d)?
+                .checked_add(self.field_mass.payload_words(self.key.field_dimension)?)?,
             BasisFileLayout::Eigenfunctions {
                 potential_dimension,
                 co_potential_dimension,
@@ -96,13 +146,26 @@ impl BasisFileHeader {
 
 /// Offset of the six counts (faces, `n1`, `d`, harmonic, integrable, co-integrable).
 const COUNTS_AT: usize = 24;
-/// Offset of the version-2 layout words (layout code, `n0`, `n2`).
+/// Offset of the layout words (layout code, `n0`, `n2`; version 2 on).
 const LAYOUT_AT: usize = COUNTS_AT + 6 * 8;
+/// Offset of the six matrix hash words (version 3 on).
+const MATRIX_HASH_AT: usize = LAYOUT_AT + 3 * 8;
+/// Offset of the three field mass words (version 3 on).
+const FIELD_MASS_AT: usize = MATRIX_HASH_AT + 6 * 8;
+/// Offset of the length of the discretization id, by format version.
+fn name_length_at(version: u32) -> usize {
+    match version {
+        1 => LAYOUT_AT,
+        2 => MATRIX_HASH_AT,
+        _ => FIELD_MASS_AT + 3 * 8,
+    }
+}
 
-/// The bytes of `header`, in the current format version, ending with their checksum.
-pub(crate) fn encode_header(header: &BasisFileHeader) -> Vec<u8> {
+/// The bytes of `header` with the matrix hash `matrix_hash`, in the current format version,
+/// ending with their checksum.
+pub(crate) fn encode_header(header: &BasisFileHeader, matrix_hash: &MatrixHash) -> Vec<u8> {
     let name = header.key.discretization.as_bytes();
-    let length = LAYOUT_AT + 3 * 8 + 4 + name.len() + 8;
+    let length = name_length_at(BASIS_FILE_VERSION) + 4 + name.len() + 8;
     let mut out = Vec::with_capacity(length);
     out.extend_from_slice(BASIS_FILE_MAGIC);
     out.extend_from_slice(&BASIS_FILE_VERSION.to_le_bytes());
@@ -128,6 +191,13 @@ pub(crate) fn encode_header(header: &BasisFileHeader) -> Vec<u8> {
     ] {
         out.extend_from_slice(&(word as u64).to_le_bytes());
     }
+    for word in matrix_hash
+        .parts()
+        .into_iter()
+        .chain(header.field_mass.words())
+    {
+        out.extend_from_slice(&word.to_le_bytes());
+    }
     out.extend_from_slice(&(name.len() as u32).to_le_bytes());
     out.extend_from_slice(name);
     let checksum = Hash64::of(&out);
@@ -135,7 +205,7 @@ pub(crate) fn encode_header(header: &BasisFileHeader) -> Vec<u8> {
     out
 }
 
-/// Reads and checks the header (format versions 1 and 2); returns it with its length in bytes.
+/// Reads and checks the header (format versions 1 to 3); returns it with its length in bytes.
 pub(crate) fn read_header(
     path: &Path,
     reader: &mut impl Read,
@@ -167,12 +237,7 @@ pub(crate) fn read_header(
             supported: BASIS_FILE_VERSION,
         });
     }
-    // Version 1 has no layout words: its name length follows the counts.
-    let name_at = if version == 1 {
-        LAYOUT_AT + 4
-    } else {
-        LAYOUT_AT + 3 * 8 + 4
-    };
+    let name_at = name_length_at(version) + 4;
     let length = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]) as usize;
     let damaged = || BasisFileError::Checksum {
         path: path.to_path_buf(),
@@ -225,6 +290,24 @@ pub(crate) fn read_header(
             other => return Err(invalid(format!("unknown layout code {other}"))),
         }
     };
+    let (matrix_hash, field_mass) = if version < 3 {
+        let field_mass = match layout {
+            BasisFileLayout::Fields => StoredFieldMass::Diagonal,
+            BasisFileLayout::Eigenfunctions { .. } => StoredFieldMass::FromComplex,
+        };
+        (None, field_mass)
+    } else {
+        let hash = std::array::from_fn(|i| u64_at(MATRIX_HASH_AT + 8 * i));
+        let mass = std::array::from_fn(|i| u64_at(FIELD_MASS_AT + 8 * i));
+        let field_mass = StoredFieldMass::from_words(mass).map_err(invalid)?;
+        let from_complex = field_mass == StoredFieldMass::FromComplex;
+        if from_complex != matches!(layout, BasisFileLayout::Eigenfunctions { .. }) {
+            return Err(invalid(format!(
+                "the field mass storage {field_mass:?} does not fit the layout {layout:?}"
+            )));
+        }
+        (Some(MatrixHash::from_parts(hash)), field_mass)
+    };
     let name_length = u32::from_le_bytes(
         bytes[name_at - 4..name_at]
             .try_into()
@@ -253,12 +336,14 @@ pub(crate) fn read_header(
             mesh_fingerprint: u64_at(16),
             face_count: counts[0],
             field_dimension: counts[1],
+            matrix_hash,
         },
         field_count: counts[2],
         harmonic_count: counts[3],
         integrable_count: counts[4],
         cointegrable_count: counts[5],
         layout,
+        field_mass,
     };
     Ok((header, length as u64))
 }

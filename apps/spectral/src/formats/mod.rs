@@ -6,6 +6,7 @@ pub(crate) mod atomic_write;
 pub(crate) mod basis_file;
 pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_header;
+pub(crate) mod basis_file_mass;
 pub(crate) mod basis_id;
 pub(crate) mod compressed_file;
 pub(crate) mod field_frames;

@@ -6,7 +6,7 @@ use tvf_core::discretization::HodgeComplex;
 /// A basis read from a basis file, in the form the file holds it.
 #[derive(Debug, Clone)]
 pub enum StoredBasis {
-    /// Dense fields (`n1 × d`) with the diagonal of `M1`.
+    /// Dense fields (`n1 × d`) with `M1` as the file stores it (diagonal or sparse).
     Fields(Box<SpectralBasis>),
     /// Eigenfunctions; the fields need the complex the basis was computed for.
     Eigenfunctions(Box<EigenfunctionBasis>),
