@@ -231,7 +231,11 @@ fn a_computed_basis_is_cached_reused_and_recomputed_when_damaged() {
         .collect();
     assert_eq!(files.len(), 1, "{files:?}");
     let name = files[0].file_name().unwrap().to_string_lossy().into_owned();
-    assert!(name.ends_with("-conforming-barycentric-d6.tvfb"), "{name}");
+    // {fingerprint}-{complex id}-{matrix hash}-{size}.tvfb
+    let parts: Vec<&str> = name.rsplitn(3, '-').collect();
+    assert_eq!(parts[0], "d6.tvfb", "{name}");
+    assert_eq!(parts[1].len(), 16, "the matrix hash in {name}");
+    assert!(parts[2].ends_with("-conforming-barycentric"), "{name}");
 
     let (second, stderr) = coefficients(&[]);
     assert!(stderr.contains("using cached basis"), "{stderr}");
