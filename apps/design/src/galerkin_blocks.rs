@@ -70,12 +70,14 @@ pub(crate) enum AuxKind {
     CoPotential,
 }
 
-/// A space whose term of the Dirichlet energy `Rᵀ D⁻¹ R` is dense (`D⁻¹` of a sparse `D`): its
+/// A space whose term `Rᵀ D⁻¹ R` of the Dirichlet energy is not kept as a sparse matrix: its
 /// nodal quantity `D⁻¹ R x` becomes an auxiliary unknown of the augmented systems.
 ///
-/// Potentials: `R = d0ᵀ M1`, `D = M0` (a sparse mass stored directly). Co-potentials: `R = d1`,
-/// `D = M2⁻¹` (a co-potential mass stored as its sparse inverse). Both restricted to the free
-/// nodes of the space (rows) and of the fields (columns).
+/// Potentials: `R = d0ᵀ M1`, `D = M0`, where `M0` is stored directly and is sparse (`M0⁻¹`
+/// dense), or is diagonal while `M1` is not (then `M1 d0 M0⁻¹ d0ᵀ M1` is sparse but couples far
+/// more fields than `R` does). Co-potentials: `R = d1`, `D = M2⁻¹`, where the co-potential mass is
+/// stored as its sparse inverse (`M2` dense). Both restricted to the free nodes of the space
+/// (rows) and of the fields (columns).
 #[derive(Debug, Clone)]
 pub(crate) struct AuxSpace {
     pub kind: AuxKind,
@@ -113,8 +115,9 @@ pub(crate) struct EnergyWeights {
 /// The sparse pieces of `S = M1 d0 M0⁻¹ d0ᵀ M1 + d1ᵀ M2 d1` and of `M1`, restricted to the free
 /// field nodes (`n1f` of the `n1`; a field is zero on the others):
 ///
-/// - `direct`: the terms of `S` that are sparse matrices (a mass with a sparse inverse in the
-///   middle: a diagonal, or a co-potential mass stored directly);
+/// - `direct`: the terms of `S` kept as sparse matrices (a mass with a sparse inverse in the
+///   middle: a diagonal, or a co-potential mass stored directly; for the potentials only with a
+///   diagonal `M1` or an `M0` stored as its inverse);
 /// - `aux`: the other terms, `Rᵀ D⁻¹ R` per [`AuxSpace`];
 /// - `field_mass`: `M1` (diagonal or sparse).
 ///
@@ -147,7 +150,12 @@ impl GalerkinBlocks {
         let n1f = field.len();
         let mut direct: CsMat<f64> = CsMat::zero((n1f, n1f));
         let mut aux = Vec::new();
-        match m0.sparse_inverse_matrix() {
+        // With a non-diagonal M1 the sparse M1 d0 M0⁻¹ d0ᵀ M1 of a diagonal M0 couples fields
+        // much farther than d0ᵀ M1 does: it goes through p as well when M0 itself is sparse.
+        let potential_direct = m0
+            .sparse_inverse_matrix()
+            .filter(|_| m1.is_diagonal() || m0.sparse_matrix().is_none());
+        match potential_direct {
             Some(m0_inverse) => {
                 // M1 d0 M0⁻¹ d0ᵀ M1.
                 let gradient = product(&m1_matrix, d0);
