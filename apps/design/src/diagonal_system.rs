@@ -160,7 +160,7 @@ impl DiagonalSoftSystem {
 }
 
 /// Upper triangle (CSC, sorted rows) of the augmented matrix `[[top, √ω S], [√ω S, −M]]`
-/// (`2n × 2n` for `n = 2F`); its pattern depends only on the patterns of `top` and `S`.
+/// (`2n × 2n` for `n = n1`); its pattern depends only on the patterns of `top` and `S`.
 ///
 /// Built column by column without a transpose: column `c < n` of the upper triangle of the
 /// symmetric `top` is its row `c` up to the diagonal, and column `n + i` is `√ω` times row `i` of
@@ -249,7 +249,7 @@ fn factor_augmented(
     Ok(factor)
 }
 
-/// The augmented matrix must have `2F` positive and `2F` negative pivots (quasi-definite);
+/// The augmented matrix must have `n1` positive and `n1` negative pivots (quasi-definite);
 /// otherwise the top-left block was not positive definite.
 fn check_inertia(factor: &SparseLdlt) -> Result<(), DesignError> {
     let inertia = factor.inertia();

@@ -66,14 +66,29 @@ pub const DEFAULT_FULL_ORDERING: FillOrdering = FillOrdering::NestedDissection;
 ///   [`FullSoftDesign::from_matrices_with_ordering`]); its inertia (`n1` positive, `n1`
 ///   negative pivots) is checked. The nested-dissection ordering groups the unknowns per face.
 /// - **any other masses** (a consistent `M0`, a sparse `M1` such as the Whitney 1-form mass, a
-///   co-potential mass stored as `M2⁻¹`): the same system on the free field nodes, with `−M1`
-///   sparse, and for each scalar space whose term of `S` is dense the nodal quantity
-///   `p = M0⁻¹ d0ᵀ M1 x` (minus the divergence) or `q = M2 d1 x` (the curl) as auxiliary
-///   unknowns with their multipliers, so that every block is sparse; a divergence or curl
-///   constraint of such a space is a sparse row on `p` or `q`, and a constraint row that is
-///   dense over the field (the other family through an inverse mass) gets one auxiliary unknown
-///   of its own ([`crate::augmented_system`] has the matrix, its signs and why its `LDLᵀ` exists).
-///   Its ordering groups the unknowns per field element and per scalar node.
+///   co-potential mass stored as `M2⁻¹`): the same system on the free field nodes (a field is
+///   zero on the others), with `−M1` sparse, and for each scalar space whose term `Rᵀ D⁻¹ R` of
+///   `S` is dense (potentials: `R = d0ᵀ M1`, `D = M0`; co-potentials: `R = d1`, `D = M2⁻¹`) its
+///   nodal quantity `p = D⁻¹ R x` (`M0⁻¹ d0ᵀ M1 x`, minus the divergence; `M2 d1 x`, the curl)
+///   and a multiplier `s` as auxiliary unknowns on the free nodes of the space:
+///
+///   ```text
+///          x           y            p             s      λ
+///   x [ T + S_d      √ω S_d         0             Rᵀ     g   ]
+///   y [ √ω S_d       −M1           √ω Rᵀ          0      0   ]      T = εM1 + C̃ᵀWC̃,
+///   p [ 0            √ω R          D + W_p       −D      0   ]      S_d = the sparse terms of S
+///   s [ R            0             −D             0      0   ]
+///   λ [ gᵀ           0              0             0    −1/w  ]
+///   ```
+///
+///   Eliminating `(p, s)` gives back the system above with `S = S_d + Rᵀ D⁻¹ R`. Every block is
+///   sparse. A divergence or curl constraint of such a space is a sparse row `a` on `p` (its
+///   term `W_p = w a aᵀ`), and a constraint row that stays dense over the field (the other
+///   family through an inverse mass) is an unknown `λ` of its own (coupling `g`, the row). The
+///   system is not quasi-definite (the `s` block is zero), but with each `p_i` eliminated before
+///   its `s_i` an `LDLᵀ` exists with positive pivots on `x, p` and negative ones on `y, s, λ`;
+///   the ordering groups the unknowns per field element and per scalar node to that end, and the
+///   inertia is checked.
 ///
 /// Every solve is refined on the original system `A` (applied as `S x + ω S M1⁻¹ S x + ...`
 /// through sparse products and mass solves, `B` is never formed), with residuals in

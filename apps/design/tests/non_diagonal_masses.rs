@@ -262,6 +262,30 @@ fn nodal_constraints_are_sparse_rows_of_the_auxiliary_unknowns() {
     assert_eq!(by_id("curl-other").origins[0], RowOrigin::Composed);
     assert_eq!(by_id("div-other").origins[0], RowOrigin::Field);
     assert!(by_id("v0").origins.iter().all(|o| *o == RowOrigin::Field));
+    // In the full system neither the dense divergence row (a row of p) nor the dense row of the
+    // other family's curl (an unknown of its own, eliminated last) fills the field block: the
+    // factor grows by about one column.
+    let mesh = icosphere(2);
+    let complex = conforming_consistent(&mesh, BoundaryCondition::Tangential);
+    let compiled = constraints(&complex, &mesh, 2, 5);
+    let dense: Vec<CompiledConstraint> = compiled
+        .into_iter()
+        .filter(|c| c.id == "source" || c.id == "curl-other")
+        .collect();
+    assert!(dense
+        .iter()
+        .all(|c| c.rows[0].len() > complex.field_dimension() / 2));
+    let entries = |constraints: Vec<CompiledConstraint>| {
+        FullSoftDesign::new(&complex, options(&complex, 0.1), constraints)
+            .expect("design")
+            .factor_entries()
+    };
+    let (without, with) = (entries(Vec::new()), entries(dense));
+    println!("factor entries: {without} without constraints, {with} with two dense rows");
+    assert!(
+        with - without < 8 * complex.field_dimension(),
+        "{without} → {with}"
+    );
 }
 
 #[test]
