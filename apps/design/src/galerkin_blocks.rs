@@ -17,6 +17,7 @@ pub(crate) struct FreeNodes {
 }
 
 impl FreeNodes {
+    /// The free nodes of `nodes`.
     pub(crate) fn of(nodes: &NodeSpace) -> Self {
         let full: Vec<usize> = (0..nodes.len()).filter(|&i| nodes.is_free(i)).collect();
         let mut position = vec![usize::MAX; nodes.len()];
@@ -131,7 +132,7 @@ pub(crate) struct GalerkinBlocks {
     pub direct: CsMat<f64>,
     /// `M1` (`n1f × n1f`, CSR, symmetric).
     pub field_mass: CsMat<f64>,
-    /// The spaces whose term of `S` is dense.
+    /// The spaces whose term of `S` goes through auxiliary unknowns.
     pub aux: Vec<AuxSpace>,
     /// Group of every free field node for the orderings (a face for face-frame fields, else the
     /// node itself), and the number of groups.
