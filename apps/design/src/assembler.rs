@@ -2,7 +2,7 @@
 //! any [`HodgeComplex`].
 
 use crate::constraint::{
-    CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target,
+    CompiledConstraint, Constraint, Location, OperatorFamily, RowOrigin, SparseRow, Target,
 };
 use crate::error::ConstraintError;
 use std::collections::{BTreeMap, HashSet};
@@ -23,7 +23,7 @@ enum Space {
 
 /// Builds constraint rows for one mesh and one discretization.
 ///
-/// Rows (all **pointwise**, over the `n1` field coefficients):
+/// Rows (all **pointwise**, over the `n1` field coefficients; each with its [`RowOrigin`]):
 /// - vector at a point of face `t` (the centroid without `barycentric`): the two rows of the
 ///   sampled vector in the face frame ([`tvf_core::discretization::FieldSampling::sample_frame_weights`]; face fields: the
 ///   identity on `x[2t], x[2t+1]`); the 3D value is projected onto the face plane
@@ -34,6 +34,10 @@ enum Space {
 ///   [`OperatorFamily::Other`].
 /// - divergence / curl at a point of a face: the nodal rows mixed with the space's interpolation
 ///   weights at the point ([`PointEvaluation`]).
+///
+/// Where the operator is composed (an inverse of a non-diagonal mass inside) the row is dense: it
+/// is computed as one transposed application of the operator to the interpolation weights (a
+/// mass solve), never from a dense matrix.
 ///
 /// `vertex` / `edge` locations address nodes of a space whose nodes are vertices / edges (read
 /// off [`NodeSpace::kind`]); a key that does not fit the requested family's space is rejected with
@@ -56,7 +60,7 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
         }
     }
 
-    /// Number of faces `F` (the rows have `2F` columns).
+    /// Number of faces `F`.
     pub fn face_count(&self) -> usize {
         self.face_count
     }
@@ -80,23 +84,26 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             });
         }
         self.check_location(id, constraint.location)?;
-        let (rows, values) = match constraint.target {
-            Target::Vector(v) => self.vector_rows(id, constraint.location, v)?,
+        let (rows, values, origins) = match constraint.target {
+            Target::Vector(v) => {
+                let (rows, values) = self.vector_rows(id, constraint.location, v)?;
+                (rows, values, vec![RowOrigin::Field; 2])
+            }
             Target::Divergence(s) => {
                 let space = match constraint.family {
                     OperatorFamily::Decomposition => Space::Potentials,
                     OperatorFamily::Other => Space::CoPotentials,
                 };
-                let row = self.scalar_row(constraint, "divergence", space)?;
-                (vec![row], vec![s])
+                let (row, origin) = self.scalar_row(constraint, "divergence", space)?;
+                (vec![row], vec![s], vec![origin])
             }
             Target::Curl(s) => {
                 let space = match constraint.family {
                     OperatorFamily::Decomposition => Space::CoPotentials,
                     OperatorFamily::Other => Space::Potentials,
                 };
-                let row = self.scalar_row(constraint, "curl", space)?;
-                (vec![row], vec![s])
+                let (row, origin) = self.scalar_row(constraint, "curl", space)?;
+                (vec![row], vec![s], vec![origin])
             }
         };
         if rows.iter().any(|row| row.iter().all(|&(_, a)| a == 0.0)) {
@@ -107,6 +114,7 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             rows,
             values,
             weight: constraint.weight,
+            origins,
         })
     }
 
@@ -214,12 +222,13 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
         })
     }
 
+    /// The row of a divergence or curl constraint and what it is made of.
     fn scalar_row(
         &self,
         constraint: &Constraint,
         kind: &'static str,
         space: Space,
-    ) -> Result<SparseRow, ConstraintError> {
+    ) -> Result<(SparseRow, RowOrigin), ConstraintError> {
         let (matrix, nodes) = self.operator(constraint, kind, space)?;
         let weights: Vec<(usize, f64)> = match constraint.location {
             Location::Face { face, barycentric } => {
@@ -243,6 +252,18 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
                 self.check_not_dirichlet(constraint, kind, nodes, node)?;
                 vec![(node, 1.0)]
             }
+        };
+        let origin = match (constraint.family, space) {
+            (OperatorFamily::Decomposition, Space::Potentials) => {
+                // potential_divergence = −M0⁻¹ d0ᵀ M1.
+                RowOrigin::Potential(nonzero(weights.iter().map(|&(i, w)| (i, -w))))
+            }
+            (OperatorFamily::Decomposition, Space::CoPotentials) => {
+                // co_potential_curl = M2 d1.
+                RowOrigin::CoPotential(nonzero(weights.iter().copied()))
+            }
+            (OperatorFamily::Other, _) if matrix.is_sparse() => RowOrigin::Field,
+            (OperatorFamily::Other, _) => RowOrigin::Composed,
         };
         let mut row = BTreeMap::new();
         match matrix.as_sparse() {
@@ -270,7 +291,7 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
                 }
             }
         }
-        Ok(row.into_iter().filter(|&(_, a)| a != 0.0).collect())
+        Ok((row.into_iter().filter(|&(_, a)| a != 0.0).collect(), origin))
     }
 
     /// A divergence or curl at a node the boundary condition fixes (a Dirichlet node, whose row of
@@ -328,6 +349,15 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             ),
         })
     }
+}
+
+/// The weights summed per node, without zeros, ascending by node.
+fn nonzero(weights: impl Iterator<Item = (usize, f64)>) -> SparseRow {
+    let mut summed = BTreeMap::new();
+    for (node, w) in weights {
+        *summed.entry(node).or_insert(0.0) += w;
+    }
+    summed.into_iter().filter(|&(_, w)| w != 0.0).collect()
 }
 
 fn unsupported(id: &str, error: impl std::fmt::Display) -> ConstraintError {

@@ -123,13 +123,40 @@ impl Constraint {
     }
 }
 
-/// A sparse row over the field coefficients (`2F` columns): `(column, value)` pairs.
+/// A sparse row: `(index, value)` pairs with distinct indices. Over the field coefficients
+/// (`n1` columns) unless said otherwise.
 pub type SparseRow = Vec<(usize, f64)>;
+
+/// What a constraint row is made of, in terms of the complex's nodal quantities.
+///
+/// The pointwise divergence of the decomposition is `−M0⁻¹ d0ᵀ M1` and its curl `M2 d1`; where
+/// `M0` is not diagonal (a consistent P1 mass) or `M2` is dense (a consistent co-potential mass
+/// stored as `M2⁻¹`), their rows are dense over the field coefficients. The full soft design
+/// ([`crate::FullSoftDesign`]) then keeps the nodal quantities `M0⁻¹ d0ᵀ M1 x` and `M2 d1 x` as
+/// unknowns of its sparse system and reads such a row as the sparse combination `a` of them.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RowOrigin {
+    /// A combination of field coefficients that is sparse: a sampled vector, or the other
+    /// family's divergence or curl where its operator is a sparse matrix.
+    Field,
+    /// `Σ_j a_j (M0⁻¹ d0ᵀ M1)_j`, `a` over the potential nodes: a divergence of the
+    /// decomposition family (`a` is minus the interpolation weights of the point or node).
+    Potential(SparseRow),
+    /// `Σ_j a_j (M2 d1)_j`, `a` over the co-potential nodes: a curl of the decomposition family
+    /// (`a` is the interpolation weights).
+    CoPotential(SparseRow),
+    /// A row of a composed operator that is neither of the above (the other family's divergence
+    /// or curl where a mass it inverts is not diagonal): dense over the field coefficients.
+    Composed,
+}
 
 /// A constraint turned into linear rows over the field coefficients: `rows[k] · x = values[k]`.
 ///
 /// Rows are **pointwise** (a row of the pointwise divergence, curl or identity), so residuals are
-/// in the units of the prescribed values.
+/// in the units of the prescribed values. Every row is complete over the `n1` field coefficients:
+/// sparse where the operator is a sparse matrix, dense where the operator is composed (an inverse
+/// of a non-diagonal mass inside; see [`RowOrigin`]). The reduced solvers only need `rows[k] U`,
+/// which a dense row gives as well.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CompiledConstraint {
     /// The constraint's id.
@@ -140,6 +167,8 @@ pub struct CompiledConstraint {
     pub values: Vec<f64>,
     /// Soft-design weight (rows are scaled by `√weight` in soft design only).
     pub weight: f64,
+    /// What each row is made of (one per row).
+    pub origins: Vec<RowOrigin>,
 }
 
 impl CompiledConstraint {
@@ -162,7 +191,7 @@ impl CompiledConstraint {
         Ok(())
     }
 
-    /// Residuals `rows[k] · x − values[k]` for a field `x` (`2F` coefficients).
+    /// Residuals `rows[k] · x − values[k]` for a field `x` (`n1` coefficients).
     pub fn residuals(&self, field: &[f64]) -> Vec<f64> {
         self.rows
             .iter()

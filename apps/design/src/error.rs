@@ -169,13 +169,6 @@ pub enum ConstraintFileError {
 /// What can go wrong in a spline session or a soft design.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum DesignError {
-    /// A full-resolution system needs the complex's operators as sparse matrices, and a mass of
-    /// the complex is not diagonal.
-    #[error("{what} needs a complex whose masses are diagonal")]
-    NotSparse {
-        /// Which computation.
-        what: &'static str,
-    },
     /// A constraint row depends linearly on the active constraints (in the reduced space): it is
     /// either redundant (its value agrees) or conflicting (it does not). The session is unchanged.
     #[error(

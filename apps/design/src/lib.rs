@@ -9,8 +9,9 @@
 //! - [`ReducedBasis`]: the eigenfields `U` row-major, with `x = U v` in `f64` and `f32`.
 //! - [`SplineSession`]: the reduced spline editor (bordered dense Cholesky of `C D⁻¹ Cᵀ`);
 //!   [`reference_spline`]: the full-resolution spline for checking it.
-//! - [`FullSoftDesign`] (sparse Cholesky, symbolic reuse, iterative refinement) and
-//!   [`ReducedSoftDesign`] (dense Cholesky with low-rank updates).
+//! - [`FullSoftDesign`] (sparse `LDLᵀ` of an augmented system, symbolic reuse, iterative
+//!   refinement; any masses: diagonal, consistent, Whitney) and [`ReducedSoftDesign`] (dense
+//!   Cholesky with low-rank updates).
 //!
 //! ```
 //! use tvf_core::generate::icosphere;
@@ -28,25 +29,31 @@
 #![warn(missing_docs)]
 
 mod assembler;
+mod augmented_system;
 mod constraint;
 mod constraint_file;
+mod diagonal_system;
 mod error;
+mod galerkin_blocks;
+mod galerkin_soft;
 mod reduced_basis;
 mod reference_spline;
+mod regularization;
 mod soft_full;
 mod soft_reduced;
 mod solution_check;
 mod spline;
 
 pub use assembler::ConstraintAssembler;
-pub use constraint::{CompiledConstraint, Constraint, Location, OperatorFamily, SparseRow, Target};
+pub use constraint::{
+    CompiledConstraint, Constraint, Location, OperatorFamily, RowOrigin, SparseRow, Target,
+};
 pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
 pub use error::{ConstraintError, ConstraintFileError, DesignError};
 pub use reduced_basis::{FieldScalar, ReducedBasis, ReducedBasisF32, RowMajorFields};
 pub use reference_spline::{reference_spline, ReferenceSpline};
-pub use soft_full::{
-    default_regularization, FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING,
-};
+pub use regularization::default_regularization;
+pub use soft_full::{FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING};
 pub use soft_reduced::ReducedSoftDesign;
 pub use solution_check::{checked_residuals, worst_residual};
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};

@@ -10,7 +10,7 @@ use tvf_spectral::{FieldFamily, SpectralBasis};
 /// Rows per parallel task in the maps `x = U v`.
 const ROWS_PER_TASK: usize = 2048;
 
-/// `d` basis fields `U` (`2F × d`, `Uᵀ M_X U = I`) stored **row-major** (row `r` = the `d`
+/// `d` basis fields `U` (`n1 × d`, `Uᵀ M1 U = I`) stored **row-major** (row `r` = the `d`
 /// values of coefficient `r` across the basis), with eigenvalues `λ_i` of the Hodge–Laplacian
 /// (units 1/length²) and a harmonic flag per field.
 ///
@@ -97,7 +97,7 @@ impl ReducedBasis {
         }
         if rows.len() != field_dimension * d {
             return Err(DesignError::DimensionMismatch {
-                what: "basis values (2F × d)",
+                what: "basis values (n1 × d)",
                 expected: field_dimension * d,
                 actual: rows.len(),
             });
@@ -133,7 +133,7 @@ impl ReducedBasis {
         self.eigenvalues.is_empty()
     }
 
-    /// Dimension `2F` of the field space.
+    /// Dimension `n1` of the field space.
     pub fn field_dimension(&self) -> usize {
         self.fields.field_dimension
     }
@@ -189,7 +189,7 @@ impl ReducedBasis {
     }
 
     /// The rows of `constraint` in reduced coordinates, `C̃_i U` (one `d`-vector per row);
-    /// fails if a row addresses a field coefficient `≥ 2F`.
+    /// fails if a row addresses a field coefficient `≥ n1`.
     pub fn reduce_constraint(
         &self,
         constraint: &CompiledConstraint,
@@ -197,7 +197,7 @@ impl ReducedBasis {
         let n = self.field_dimension();
         if let Some(&(j, _)) = constraint.rows.iter().flatten().find(|(j, _)| *j >= n) {
             return Err(DesignError::DimensionMismatch {
-                what: "constraint row column (must be < 2F)",
+                what: "constraint row column (must be < n1)",
                 expected: n,
                 actual: j,
             });
@@ -205,7 +205,7 @@ impl ReducedBasis {
         Ok(constraint.rows.iter().map(|r| self.reduce_row(r)).collect())
     }
 
-    /// `x = U v` (`2F` values, multithreaded): one dot product per coefficient.
+    /// `x = U v` (`n1` values, multithreaded): one dot product per coefficient.
     pub fn map(&self, coefficients: &[f64], field: &mut [f64]) -> Result<(), DesignError> {
         self.fields.map(coefficients, field)
     }
@@ -231,7 +231,7 @@ impl<T: FieldScalar> RowMajorFields<T> {
         self.len == 0
     }
 
-    /// `x = U v` (`2F` values, multithreaded): one dot product per coefficient, accumulated in
+    /// `x = U v` (`n1` values, multithreaded): one dot product per coefficient, accumulated in
     /// `T` (for `f32`, relative error about `d · 6e-8` of `Σ|U_rk v_k|`).
     pub fn map(&self, coefficients: &[T], field: &mut [T]) -> Result<(), DesignError> {
         let d = self.len;
@@ -258,7 +258,7 @@ fn check_map(d: usize, n: usize, coefficients: usize, field: usize) -> Result<()
     }
     if field != n {
         return Err(DesignError::DimensionMismatch {
-            what: "field coefficients (2F)",
+            what: "field coefficients (n1)",
             expected: n,
             actual: field,
         });

@@ -26,7 +26,7 @@ struct Active {
 /// update (`r` = 2 for a vector constraint, 1 for divergence / curl), [`remove`](Self::remove) the
 /// matching downdate: `O(d² r)` each, never a refactorisation. The harmonic fields (`λ = 0`) are
 /// held only by `ε` and the constraints, exactly as in [`crate::FullSoftDesign`] with the same
-/// [`SoftOptions`] (in the eigenbasis `Uᵀ S U = Λ`, `Uᵀ B U = Λ²`, `Uᵀ M_X U = I`), so the two
+/// [`SoftOptions`] (in the eigenbasis `Uᵀ S U = Λ`, `Uᵀ B U = Λ²`, `Uᵀ M1 U = I`), so the two
 /// agree as `d` grows; `ε` must therefore be positive when the basis has harmonic fields.
 #[derive(Debug, Clone)]
 pub struct ReducedSoftDesign<'a> {
@@ -139,7 +139,7 @@ impl<'a> ReducedSoftDesign<'a> {
         (0..d).map(|k| rhs[(k, 0)]).collect()
     }
 
-    /// The full field `x = U v` (`2F` values, multithreaded).
+    /// The full field `x = U v` (`n1` values, multithreaded).
     pub fn field(&self) -> Vec<f64> {
         let v = self.solve();
         let mut x = vec![0.0; self.basis.field_dimension()];

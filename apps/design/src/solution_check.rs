@@ -95,6 +95,7 @@ mod tests {
                 .enumerate()
                 .map(|(k, _)| vec![(k, 1.0)])
                 .collect(),
+            origins: vec![crate::RowOrigin::Field; values.len()],
             values,
             weight: 1.0,
         }

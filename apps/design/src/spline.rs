@@ -205,7 +205,7 @@ impl<'a> SplineSession<'a> {
         v
     }
 
-    /// The full field `x = U v` (`2F` values) of [`solve`](Self::solve), multithreaded.
+    /// The full field `x = U v` (`n1` values) of [`solve`](Self::solve), multithreaded.
     pub fn field(&self) -> Vec<f64> {
         let v = self.solve();
         let mut x = vec![0.0; self.basis.field_dimension()];
@@ -214,7 +214,7 @@ impl<'a> SplineSession<'a> {
         x
     }
 
-    /// Residuals of every active constraint for a full field `x` (`2F` values).
+    /// Residuals of every active constraint for a full field `x` (`n1` values).
     pub fn residuals(&self, field: &[f64]) -> Vec<ConstraintResidual> {
         self.active
             .iter()

@@ -12,7 +12,9 @@ use rayon::prelude::*;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::geometry::{dot, norm, sub};
 use tvf_core::SurfaceMesh;
-use tvf_design::{default_regularization, ConstraintAssembler, FullSoftDesign, SoftOptions};
+use tvf_design::{
+    checked_residuals, default_regularization, ConstraintAssembler, FullSoftDesign, SoftOptions,
+};
 use tvf_render::bounding_box;
 
 /// Centre of the bounding box and its largest half-extent.
@@ -108,7 +110,8 @@ pub fn smooth_field<H: HodgeComplex + ?Sized>(complex: &H, mesh: &SurfaceMesh) -
 /// A designed field, as the paper's "custom" fields were made with its design tools: the full
 /// soft design (Fisher et al.) with `constraints` seeded constraints (see
 /// [`seeded_constraints`](crate::seeded_constraints::seeded_constraints)) and the biharmonic weight
-/// `omega`, so that it is as smooth as the constraints allow; unit RMS.
+/// `omega`, so that it is as smooth as the constraints allow; unit RMS. Any complex (diagonal or
+/// consistent masses); a field or constraint residual that is not finite is an error.
 pub fn designed_field(
     complex: &dyn HodgeComplex,
     mesh: &SurfaceMesh,
@@ -128,6 +131,7 @@ pub fn designed_field(
     };
     let design = FullSoftDesign::new(complex, options, compiled)?;
     let (mut field, _) = design.solve();
+    checked_residuals(&field, design.constraints(), omega)?;
     unit_rms(complex, mesh.total_area(), &mut field);
     Ok(field)
 }

@@ -111,6 +111,8 @@ pub fn measure(
     drop(session);
 
     // S is formed now, so that the full factorization below is timed given S (as in the paper).
+    // With non-diagonal masses S is composed, and the sparse blocks of the augmented system are
+    // assembled inside the timed factorization.
     complex.dirichlet_energy();
     let options = SoftOptions {
         omega: DEFAULT_OMEGA,

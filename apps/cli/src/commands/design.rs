@@ -140,7 +140,7 @@ fn design_with<H: HodgeComplex + ?Sized>(
         );
         out.line(format!("assembly        {assembly_ms:.3} ms (S)"));
         out.line(format!(
-            "full factor     {factor_ms:.3} ms (2F = {}, augmented LDLᵀ, {} ordering, {} factor entries, \
+            "full factor     {factor_ms:.3} ms (n1 = {}, augmented LDLᵀ, {} ordering, {} factor entries, \
              {:.1} Gflop; system assembly {:.3} ms, ordering + symbolic + numeric {:.3} ms)",
             field.len(),
             ordering.name(),
