@@ -97,13 +97,18 @@ pub fn load_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, LoadError> {
 /// million faces of text.
 pub const MAX_STREAMED_MESH_BYTES: u64 = 1 << 30;
 
-/// Parses and validates a mesh held in memory; `name` is used in errors in place of a path.
+/// The UTF-8 byte-order mark some editors put at the start of a text file.
+pub const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// Parses and validates a mesh held in memory; `name` is used in errors in place of a path. A
+/// leading UTF-8 byte-order mark is skipped (in every format: the PLY header is text too).
 pub fn parse_mesh_bytes(
     bytes: &[u8],
     format: MeshFormat,
     name: impl AsRef<Path>,
 ) -> Result<LoadedMesh, LoadError> {
     let name = name.as_ref();
+    let bytes = bytes.strip_prefix(UTF8_BOM).unwrap_or(bytes);
     let raw = match format {
         MeshFormat::Obj => text::as_text(bytes).and_then(obj_reader::read_obj),
         MeshFormat::Off => text::as_text(bytes).and_then(off_reader::read_off),
