@@ -13,6 +13,7 @@ mod output_rules;
 mod picture_options;
 mod progress;
 mod report;
+mod test_faults;
 
 use clap::{Parser, Subcommand};
 
@@ -69,6 +70,7 @@ enum Command {
 
 fn main() {
     interrupt::install();
+    test_faults::install();
     let cli = Cli::parse();
     if !matches!(cli.command, Command::Edit(_)) {
         interrupt::end_quietly_on_closed_pipe();

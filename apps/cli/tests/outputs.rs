@@ -11,7 +11,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant, SystemTime};
 use tvf_core::generate::genus_surface;
-use tvf_core::io::{write_obj, WRITE_FAULT_VARIABLE};
+use tvf_core::io::write_obj;
+
+/// The variable with which the `tvf` binary injects write faults (`fail:NAME`, `stall:NAME`).
+const WRITE_FAULT_VARIABLE: &str = "TVF_TEST_WRITE_FAULT";
 
 /// Faces of `--example torus`.
 const TORUS_FACES: usize = 2304;

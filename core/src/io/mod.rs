@@ -26,18 +26,22 @@ mod output_path;
 mod ply_header;
 mod ply_reader;
 mod raw_mesh;
+mod staged_file;
 mod staged_folder;
 pub mod temporaries;
 mod text;
+mod write_faults;
 mod writers;
 
-pub use atomic_write::{write_atomically, AtomicWriter, WRITE_FAULT_VARIABLE};
+pub use atomic_write::{write_atomically, AtomicWriter};
 pub use bounded_read::{read_at_most, read_exactly_at_most};
 pub use early_writeback::EarlyWriteback;
 pub use error::{LoadError, LoadErrorKind};
 pub use output_path::{check_output, OutputPathError};
 pub use raw_mesh::LoadedMesh;
+pub use staged_file::StagedFile;
 pub use staged_folder::StagedFolder;
+pub use write_faults::{inject_write_faults, WriteFault, WriteFaultHook, STALL};
 pub use writers::{save_mesh, write_obj, write_ply, SaveError};
 
 use std::path::Path;
