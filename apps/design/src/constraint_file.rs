@@ -119,7 +119,10 @@ impl ConstraintSet {
         };
         let mut seen = HashSet::new();
         let mut constraints = Vec::with_capacity(record.constraints.len());
-        for c in &record.constraints {
+        for (position, c) in record.constraints.iter().enumerate() {
+            if c.id.trim().is_empty() {
+                return Err(invalid(ConstraintError::EmptyId { position }));
+            }
             if !seen.insert(c.id.clone()) {
                 return Err(invalid(ConstraintError::DuplicateId { id: c.id.clone() }));
             }

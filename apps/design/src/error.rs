@@ -58,6 +58,15 @@ pub enum ConstraintError {
         /// Extra explanation (e.g. " and positive").
         extra: &'static str,
     },
+    /// A constraint whose id is empty or blank.
+    #[error(
+        "constraint {position} (counting from 0) has an empty id: every constraint needs a \
+         unique id that is not blank (errors and residuals name it)"
+    )]
+    EmptyId {
+        /// The constraint's place in the file's list.
+        position: usize,
+    },
     /// Two constraints share an id.
     #[error("constraint id '{id}' is used twice")]
     DuplicateId {

@@ -82,9 +82,10 @@ fn bad(reason: String) -> EditorError {
 /// Parses a request head: the bytes before the blank line that ends it (`\r\n\r\n` excluded).
 pub fn parse_head(bytes: &[u8]) -> Result<RequestHead, EditorError> {
     if bytes.len() > MAX_HEAD_BYTES {
-        return Err(EditorError::TooLarge {
+        return Err(EditorError::RequestTooLarge {
             what: "request head bytes",
             count: bytes.len(),
+            limit: MAX_HEAD_BYTES,
         });
     }
     let text =
@@ -115,9 +116,10 @@ pub fn parse_head(bytes: &[u8]) -> Result<RequestHead, EditorError> {
             return Err(bad(format!("malformed header name '{name}'")));
         }
         if headers.len() == MAX_HEADERS {
-            return Err(EditorError::TooLarge {
+            return Err(EditorError::RequestTooLarge {
                 what: "request headers",
                 count: MAX_HEADERS + 1,
+                limit: MAX_HEADERS,
             });
         }
         headers.push((name.to_ascii_lowercase(), value.trim().to_string()));
@@ -148,9 +150,10 @@ pub fn read_head(
             return Ok((head, buffer[end + 4..].to_vec()));
         }
         if buffer.len() > MAX_HEAD_BYTES {
-            return Err(EditorError::TooLarge {
+            return Err(EditorError::RequestTooLarge {
                 what: "request head bytes",
                 count: buffer.len(),
+                limit: MAX_HEAD_BYTES,
             });
         }
         let n = read_before(stream, &mut chunk, deadline, "the request head")?;
