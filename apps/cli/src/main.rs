@@ -4,7 +4,9 @@
 
 mod basis_export;
 mod basis_source;
+mod cache_folder;
 mod commands;
+mod computed_field;
 mod discretization_flags;
 mod examples;
 mod interrupt;
