@@ -331,7 +331,9 @@ fn folder_outputs_appear_whole_or_not_at_all() {
 }
 
 /// Starts `args` with a stalled write of `file`, waits until its temporary `prefix` appears in
-/// `folder`, sends `signal` and returns the exit code.
+/// `folder`, sends `signal` and returns the exit code. (Signals are Unix's; elsewhere the
+/// interruption is the console's Ctrl+C, which a test cannot send to a child.)
+#[cfg(unix)]
 fn interrupt_while_writing(
     dir: &Path,
     args: &[&str],
@@ -363,6 +365,7 @@ fn interrupt_while_writing(
     child.wait().unwrap().code()
 }
 
+#[cfg(unix)]
 #[test]
 fn interrupted_writes_leave_no_temporaries_and_stale_ones_are_swept() {
     let dir = workspace();
@@ -421,6 +424,7 @@ fn interrupted_writes_leave_no_temporaries_and_stale_ones_are_swept() {
 /// `tvf basis -o X --export DIR` interrupted after `X` is complete, while `DIR` is written:
 /// neither appears (a command's outputs appear together or not at all); without the
 /// interruption both do.
+#[cfg(unix)]
 #[test]
 fn an_interrupted_basis_leaves_neither_its_file_nor_its_export() {
     let dir = workspace();
