@@ -360,3 +360,47 @@ fn big_endian_binary_ply_reads_like_little_endian() {
     let wrong = file("binary_little_endian", true);
     assert!(parse_mesh_bytes(&wrong, MeshFormat::Ply, "wrong.ply").is_err());
 }
+
+/// Odd encodings of text meshes: bytes of another encoding in comments are allowed, line ends
+/// of a carriage return only are lines, a UTF-16 file and a stray byte-order mark before a
+/// keyword are clear errors (the mark used to hide its vertex line), control characters in
+/// messages are escaped, and a PLY version other than 1.0 is refused.
+#[test]
+fn odd_encodings_are_read_or_refused_clearly() {
+    let obj = "v 9 9 9\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 2 3 4\nf 2 4 5\n";
+    let plain = parse_mesh_bytes(obj.as_bytes(), MeshFormat::Obj, "plain.obj").unwrap();
+    let latin1 = [
+        b"# cr\xe9\xe9 par un vieil outil\n".as_slice(),
+        obj.as_bytes(),
+    ]
+    .concat();
+    let cr_only = obj.replace('\n', "\r");
+    for (bytes, what) in [
+        (latin1, "Latin-1 comment"),
+        (cr_only.into_bytes(), "CR line ends"),
+    ] {
+        let read = parse_mesh_bytes(&bytes, MeshFormat::Obj, "odd.obj")
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(read.mesh.positions(), plain.mesh.positions(), "{what}");
+        assert_eq!(read.mesh.faces(), plain.mesh.faces(), "{what}");
+    }
+    let utf16: Vec<u8> = [0xFF, 0xFE]
+        .into_iter()
+        .chain(obj.encode_utf16().flat_map(|u| u.to_le_bytes()))
+        .collect();
+    let error = parse_mesh_bytes(&utf16, MeshFormat::Obj, "wide.obj").unwrap_err();
+    assert!(matches!(error.kind, LoadErrorKind::Utf16), "{error}");
+    let twice = format!("\u{feff}\u{feff}{obj}");
+    let error = parse_mesh_bytes(twice.as_bytes(), MeshFormat::Obj, "twice.obj").unwrap_err();
+    assert_eq!(error.line, Some(1), "{error}");
+    assert!(error.to_string().contains("not an OBJ keyword"), "{error}");
+    let nul = obj.replace("v 1 0 0", "v 1\u{0}0 0");
+    let error = parse_mesh_bytes(nul.as_bytes(), MeshFormat::Obj, "nul.obj").unwrap_err();
+    assert!(error.to_string().contains("1\\u{0}0"), "{error}");
+    assert!(!error.to_string().contains('\0'));
+    let ply = "ply\nformat ascii 2.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+               property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+               end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let error = parse_mesh_bytes(ply.as_bytes(), MeshFormat::Ply, "two.ply").unwrap_err();
+    assert!(error.to_string().contains("version '2.0'"), "{error}");
+}

@@ -114,8 +114,8 @@ pub fn parse_mesh_bytes(
     let name = name.as_ref();
     let bytes = bytes.strip_prefix(UTF8_BOM).unwrap_or(bytes);
     let raw = match format {
-        MeshFormat::Obj => text::as_text(bytes).and_then(obj_reader::read_obj),
-        MeshFormat::Off => text::as_text(bytes).and_then(off_reader::read_off),
+        MeshFormat::Obj => text::as_text(bytes).and_then(|text| obj_reader::read_obj(&text)),
+        MeshFormat::Off => text::as_text(bytes).and_then(|text| off_reader::read_off(&text)),
         MeshFormat::Ply => ply_reader::read_ply(bytes),
     };
     match raw {
