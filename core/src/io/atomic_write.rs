@@ -9,7 +9,8 @@
 //! A target that exists and is neither a regular file nor a folder (a character device such as
 //! `/dev/null`, a FIFO, a socket) is written to directly, streaming: renaming a file over it
 //! would replace the device node or the pipe with a regular file (and needs a temporary file in
-//! its folder, e.g. `/dev`). Atomicity is a property of regular files only.
+//! its folder, e.g. `/dev`). Atomicity is a property of regular files only. A target that is a
+//! symbolic link is written through: the file it points to is replaced, the link stays.
 //!
 //! The target's folder must exist (tvf never creates a missing parent folder; the error says
 //! which folder is missing). While it is written, the temporary file is registered with
@@ -23,6 +24,7 @@ use std::io::{BufWriter, Write};
 use std::path::Path;
 
 use super::early_writeback::EarlyWriteback;
+use super::output_path::through_links;
 use super::temporaries::{
     commit_uninterrupted, register, sweep_stale_temporaries, TEMPORARY_FILE_PREFIX,
     TEMPORARY_SUFFIX,
@@ -48,6 +50,7 @@ pub fn write_atomically(
     path: &Path,
     fill: impl FnOnce(&mut AtomicWriter<'_>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
+    let path = &through_links(path);
     let directory = match path.parent() {
         Some(parent) if !parent.as_os_str().is_empty() => parent,
         _ => Path::new("."),
@@ -167,6 +170,23 @@ mod tests {
         let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
         assert!(kind.is_fifo(), "{kind:?}");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    /// A link is written through: its target gets the content and the link stays a link.
+    #[cfg(unix)]
+    #[test]
+    fn a_link_output_is_written_through() {
+        let dir = tempfile::tempdir().unwrap();
+        let (link, real) = (dir.path().join("link.npy"), dir.path().join("real.npy"));
+        std::fs::write(&real, b"old").unwrap();
+        std::os::unix::fs::symlink("real.npy", &link).unwrap();
+        write_atomically(&link, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(std::fs::read(&real).unwrap(), b"new");
+        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        let dangling = dir.path().join("dangling.npy");
+        std::os::unix::fs::symlink("missing/x.npy", &dangling).unwrap();
+        let error = write_atomically(&dangling, |w| w.write_all(b"x")).unwrap_err();
+        assert!(error.to_string().contains("does not exist"), "{error}");
     }
 
     #[test]

@@ -9,6 +9,7 @@
 
 use std::path::{Path, PathBuf};
 
+use super::output_path::through_links;
 use super::staged_folder::StagedFolder;
 use super::temporaries::commit_uninterrupted;
 
@@ -24,6 +25,7 @@ impl StagedFile {
     /// Starts writing the file `target`. Its folder must exist (tvf never creates a missing
     /// parent); `target` must not be a folder.
     pub fn new(target: &Path) -> std::io::Result<Self> {
+        let target = &through_links(target);
         let staging = match std::fs::metadata(target) {
             Ok(metadata) if metadata.is_dir() => {
                 return Err(std::io::Error::new(

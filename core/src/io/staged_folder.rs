@@ -9,6 +9,8 @@
 
 use std::path::{Path, PathBuf};
 
+use super::output_path::through_links;
+
 use super::temporaries::{
     commit_uninterrupted, register, sweep_stale_temporaries, Registration, TEMPORARY_FOLDER_PREFIX,
     TEMPORARY_SUFFIX,
@@ -26,6 +28,7 @@ impl StagedFolder {
     /// Starts writing the folder `target`. Its parent folder must exist (tvf never creates a
     /// missing parent); `target` must be a folder if it exists.
     pub fn new(target: &Path) -> std::io::Result<Self> {
+        let target = &through_links(target);
         let parent = match target.parent() {
             Some(p) if !p.as_os_str().is_empty() => p,
             _ => Path::new("."),
