@@ -14,7 +14,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 /// Set when an interruption has been taken: the process is cleaning up and about to exit.
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 
-
 /// Installs the clean-up; call first in `main`, before any other thread starts. If it cannot be
 /// installed, the default actions stay.
 pub fn install() {

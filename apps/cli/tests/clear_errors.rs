@@ -169,8 +169,8 @@ fn an_endless_mesh_stream_is_refused_naming_the_file() {
     assert!(started.elapsed() < std::time::Duration::from_secs(60));
 }
 
-/// Report details: 7 trailing bytes of an `.npy` are called 7 (not 1), an empty constraint id
-/// is refused (its residual line would have no label).
+/// Report details: 7 trailing bytes of an `.npy` are called 7 (not 1), an empty, blank or
+/// multi-line constraint id is refused (its residual line would have no label, or break).
 #[test]
 fn trailing_npy_bytes_are_counted_and_an_empty_id_is_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -197,7 +197,7 @@ fn trailing_npy_bytes_are_counted_and_an_empty_id_is_refused() {
         "{stderr}"
     );
 
-    for id in ["", "  "] {
+    for id in ["", "  ", "a\\nb"] {
         let constraints = format!(
             r#"{{"constraints": [{{"id": "a", "kind": "vector", "face": 3, "value": [1, 0, 0]}},
                 {{"id": "{id}", "kind": "vector", "face": 9, "value": [0, 1, 0]}}]}}"#
@@ -223,7 +223,7 @@ fn trailing_npy_bytes_are_counted_and_an_empty_id_is_refused() {
         assert!(
             stderr.contains("c.json")
                 && stderr.contains("constraint 1")
-                && stderr.contains("empty id"),
+                && stderr.contains("has the id"),
             "{id:?}: {stderr}"
         );
         assert!(!d.join("s.npy").exists());

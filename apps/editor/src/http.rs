@@ -115,6 +115,10 @@ pub fn parse_head(bytes: &[u8]) -> Result<RequestHead, EditorError> {
         if name.is_empty() || !name.bytes().all(is_token_byte) {
             return Err(bad(format!("malformed header name '{name}'")));
         }
+        // RFC 9110: a field value holds no control characters but the tab (a NUL is refused).
+        if value.chars().any(|c| c.is_control() && c != '\t') {
+            return Err(bad(format!("header {name} holds a control character")));
+        }
         if headers.len() == MAX_HEADERS {
             return Err(EditorError::RequestTooLarge {
                 what: "request headers",
@@ -312,6 +316,7 @@ mod tests {
             b"GET / HTTP/1.1\r\nno colon",
             b"GET / HTTP/1.1\r\n: empty name",
             b"GET / HTTP/1.1\r\n folded: x",
+            b"GET / HTTP/1.1\r\nx-a: a\0b",
         ] {
             assert!(
                 parse_head(bad).is_err(),

@@ -358,9 +358,11 @@ fn fur(
     default_strands: usize,
 ) -> Result<Vec<Vec<[f64; 3]>>, EditorError> {
     let strands = query_number(query, "strands")?.unwrap_or(default_strands as f64);
-    if !(1.0..=MAX_STRANDS as f64).contains(&strands) {
+    if !(1.0..=MAX_STRANDS as f64).contains(&strands) || strands.fract() != 0.0 {
         return Err(EditorError::BadRequest {
-            reason: format!("strands must be between 1 and {MAX_STRANDS}, got {strands}"),
+            reason: format!(
+                "strands must be a whole number between 1 and {MAX_STRANDS}, got {strands}"
+            ),
         });
     }
     let defaults = FurOptions::default();

@@ -239,11 +239,16 @@ fn refused_edits_answer_4xx_and_change_nothing() {
             400,
             mesh_fingerprint.as_str(),
         ),
-        // an empty id would label nothing
+        // an empty id would label nothing, a line break would break the report's lines
         (
             json!({"op": "add", "constraint": vector("", 9, [0.0, 1.0, 0.0])}),
             400,
-            "empty id",
+            "has the id \"\"",
+        ),
+        (
+            json!({"op": "add", "constraint": vector("a\nb", 9, [0.0, 1.0, 0.0])}),
+            400,
+            "control characters",
         ),
     ];
     for (op, code, needle) in cases {
@@ -264,6 +269,7 @@ fn refused_edits_answer_4xx_and_change_nothing() {
     assert_eq!(client.get("/api/edit").0, 405);
     assert_eq!(client.get("/api/fur?strands=-3").0, 400);
     assert_eq!(client.get("/api/fur?strands=abc").0, 400);
+    assert_eq!(client.get("/api/fur?strands=1.5").0, 400);
     // Nothing of that changed the state.
     let (s, b) = client.get("/api/field");
     let state = frame(s, &b);

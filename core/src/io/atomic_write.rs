@@ -182,7 +182,10 @@ mod tests {
         std::os::unix::fs::symlink("real.npy", &link).unwrap();
         write_atomically(&link, |w| w.write_all(b"new")).unwrap();
         assert_eq!(std::fs::read(&real).unwrap(), b"new");
-        assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
         let dangling = dir.path().join("dangling.npy");
         std::os::unix::fs::symlink("missing/x.npy", &dangling).unwrap();
         let error = write_atomically(&dangling, |w| w.write_all(b"x")).unwrap_err();

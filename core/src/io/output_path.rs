@@ -25,10 +25,12 @@ pub enum OutputPathError {
 }
 
 /// Checks that `output` (a file or a folder to write) can be written without surprises: its
-/// parent folder exists, and it is not the same file or folder as any of `inputs` (compared
-/// after resolving links and relative paths).
+/// parent folder exists (for a symbolic link: its target's), and it is not the same file or
+/// folder as any of `inputs` (compared after resolving links and relative paths).
 pub fn check_output(output: &Path, inputs: &[&Path]) -> Result<(), OutputPathError> {
-    let folder = match output.parent() {
+    // A link is written through: the folder of its target must exist.
+    let written = through_links(output);
+    let folder = match written.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
