@@ -393,7 +393,12 @@ fn odd_encodings_are_read_or_refused_clearly() {
     let twice = format!("\u{feff}\u{feff}{obj}");
     let error = parse_mesh_bytes(twice.as_bytes(), MeshFormat::Obj, "twice.obj").unwrap_err();
     assert_eq!(error.line, Some(1), "{error}");
-    assert!(error.to_string().contains("not an OBJ keyword"), "{error}");
+    assert!(
+        error
+            .to_string()
+            .contains("\\u{feff}v' is not an OBJ keyword"),
+        "{error}"
+    );
     let nul = obj.replace("v 1 0 0", "v 1\u{0}0 0");
     let error = parse_mesh_bytes(nul.as_bytes(), MeshFormat::Obj, "nul.obj").unwrap_err();
     assert!(error.to_string().contains("1\\u{0}0"), "{error}");

@@ -22,7 +22,7 @@ pub(crate) fn parse_error(line: usize, message: impl Into<String>) -> Located {
         .into()
         .chars()
         .flat_map(|c| {
-            let escaped: Vec<char> = if c.is_control() {
+            let escaped: Vec<char> = if c.is_control() || c == '\u{feff}' {
                 c.escape_default().collect()
             } else {
                 vec![c]
