@@ -38,7 +38,7 @@ fn is_utf16_text(bytes: &[u8]) -> bool {
             u16::from_be_bytes(pair)
         }
     });
-    bytes.len() % 2 == 0
+    bytes.len().is_multiple_of(2)
         && char::decode_utf16(units)
             .all(|c| c.is_ok_and(|c| !c.is_control() || matches!(c, '\n' | '\r' | '\t')))
 }
