@@ -127,8 +127,119 @@ fn inward_closed_mesh_gets_a_warning() {
     let loaded = parse_mesh_bytes(flipped.as_bytes(), MeshFormat::Obj, "inward.obj").unwrap();
     assert!(matches!(
         loaded.report.warnings.as_slice(),
-        [ValidationWarning::InwardNormals { signed_volume }] if *signed_volume < 0.0
+        [ValidationWarning::InwardNormals { components: 1, signed_volume, .. }]
+            if *signed_volume < 0.0
     ));
+}
+
+/// Two octahedra, the second reversed and smaller: the total signed volume is positive, but the
+/// reversed component is found and named.
+#[test]
+fn one_reversed_component_among_others_is_named() {
+    let mut text = String::new();
+    let mut faces_written = 0;
+    for (k, (scale, reversed)) in [(2.0, false), (1.0, true)].into_iter().enumerate() {
+        let offset = 6 * k;
+        for p in [
+            [1.0, 0.0, 0.0],
+            [-1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, -1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -1.0],
+        ] {
+            let x = 10.0 * k as f64;
+            text += &format!("v {} {} {}\n", x + scale * p[0], scale * p[1], scale * p[2]);
+        }
+        for [a, b, c] in [
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ] {
+            let [b, c] = if reversed { [c, b] } else { [b, c] };
+            text += &format!(
+                "f {} {} {}\n",
+                offset + a + 1,
+                offset + b + 1,
+                offset + c + 1
+            );
+            faces_written += 1;
+        }
+    }
+    let loaded = parse_mesh_bytes(text.as_bytes(), MeshFormat::Obj, "two.obj").unwrap();
+    assert_eq!(loaded.mesh.face_count(), faces_written);
+    assert!(
+        loaded.mesh.signed_volume() > 0.0,
+        "the total hides the reversed part"
+    );
+    let warning = loaded
+        .report
+        .warnings
+        .iter()
+        .find(|w| matches!(w, ValidationWarning::InwardNormals { .. }))
+        .expect("the reversed octahedron is reported");
+    assert!(matches!(
+        warning,
+        ValidationWarning::InwardNormals {
+            components: 1,
+            first_component: 1,
+            first_face: 8,
+            ..
+        }
+    ));
+    assert!(warning.to_string().contains("component 1"), "{warning}");
+}
+
+/// A UTF-8 byte-order mark before the first line changes nothing, in every format (it used to
+/// hide the first OBJ vertex, shifting every index by one).
+#[test]
+fn a_leading_byte_order_mark_is_skipped_in_every_format() {
+    const BOM: &str = "\u{feff}";
+    let obj = "v 9 9 9\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 2 3 4\nf 2 4 5\n";
+    let ascii_ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n\
+                     property float y\nproperty float z\nelement face 2\n\
+                     property list uchar int vertex_indices\nend_header\n\
+                     0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+    let mut binary_ply = b"ply\nformat binary_little_endian 1.0\nelement vertex 4\n\
+                           property double x\nproperty double y\nproperty double z\n\
+                           element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+        .to_vec();
+    for p in [
+        [0.0f64, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+    ] {
+        binary_ply.extend(p.iter().flat_map(|x| x.to_le_bytes()));
+    }
+    for face in [[0i32, 1, 2], [0, 2, 3]] {
+        binary_ply.push(3);
+        binary_ply.extend(face.iter().flat_map(|v| v.to_le_bytes()));
+    }
+    for (bytes, format) in [
+        (obj.as_bytes().to_vec(), MeshFormat::Obj),
+        (SQUARE_OFF.as_bytes().to_vec(), MeshFormat::Off),
+        (ascii_ply.as_bytes().to_vec(), MeshFormat::Ply),
+        (binary_ply, MeshFormat::Ply),
+    ] {
+        let plain = parse_mesh_bytes(&bytes, format, "plain").unwrap();
+        let with_bom = [BOM.as_bytes(), &bytes].concat();
+        let marked = parse_mesh_bytes(&with_bom, format, "marked")
+            .unwrap_or_else(|e| panic!("{format:?}: {e}"));
+        assert_eq!(
+            marked.mesh.positions(),
+            plain.mesh.positions(),
+            "{format:?}"
+        );
+        assert_eq!(marked.mesh.faces(), plain.mesh.faces(), "{format:?}");
+        assert_eq!(marked.report.warnings, plain.report.warnings, "{format:?}");
+        assert!((marked.mesh.total_area() - 1.0).abs() < 1e-12, "{format:?}");
+    }
 }
 
 #[test]
@@ -248,4 +359,53 @@ fn big_endian_binary_ply_reads_like_little_endian() {
     // The same bytes declared little-endian are refused (indices out of range).
     let wrong = file("binary_little_endian", true);
     assert!(parse_mesh_bytes(&wrong, MeshFormat::Ply, "wrong.ply").is_err());
+}
+
+/// Odd encodings of text meshes: bytes of another encoding in comments are allowed, line ends
+/// of a carriage return only are lines, a UTF-16 file and a stray byte-order mark before a
+/// keyword are clear errors (the mark used to hide its vertex line), control characters in
+/// messages are escaped, and a PLY version other than 1.0 is refused.
+#[test]
+fn odd_encodings_are_read_or_refused_clearly() {
+    let obj = "v 9 9 9\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 2 3 4\nf 2 4 5\n";
+    let plain = parse_mesh_bytes(obj.as_bytes(), MeshFormat::Obj, "plain.obj").unwrap();
+    let latin1 = [
+        b"# cr\xe9\xe9 par un vieil outil\n".as_slice(),
+        obj.as_bytes(),
+    ]
+    .concat();
+    let cr_only = obj.replace('\n', "\r");
+    for (bytes, what) in [
+        (latin1, "Latin-1 comment"),
+        (cr_only.into_bytes(), "CR line ends"),
+    ] {
+        let read = parse_mesh_bytes(&bytes, MeshFormat::Obj, "odd.obj")
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(read.mesh.positions(), plain.mesh.positions(), "{what}");
+        assert_eq!(read.mesh.faces(), plain.mesh.faces(), "{what}");
+    }
+    let utf16: Vec<u8> = [0xFF, 0xFE]
+        .into_iter()
+        .chain(obj.encode_utf16().flat_map(|u| u.to_le_bytes()))
+        .collect();
+    let error = parse_mesh_bytes(&utf16, MeshFormat::Obj, "wide.obj").unwrap_err();
+    assert!(matches!(error.kind, LoadErrorKind::Utf16), "{error}");
+    let twice = format!("\u{feff}\u{feff}{obj}");
+    let error = parse_mesh_bytes(twice.as_bytes(), MeshFormat::Obj, "twice.obj").unwrap_err();
+    assert_eq!(error.line, Some(1), "{error}");
+    assert!(
+        error
+            .to_string()
+            .contains("\\u{feff}v' is not an OBJ keyword"),
+        "{error}"
+    );
+    let nul = obj.replace("v 1 0 0", "v 1\u{0}0 0");
+    let error = parse_mesh_bytes(nul.as_bytes(), MeshFormat::Obj, "nul.obj").unwrap_err();
+    assert!(error.to_string().contains("1\\u{0}0"), "{error}");
+    assert!(!error.to_string().contains('\0'));
+    let ply = "ply\nformat ascii 2.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+               property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+               end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let error = parse_mesh_bytes(ply.as_bytes(), MeshFormat::Ply, "two.ply").unwrap_err();
+    assert!(error.to_string().contains("version '2.0'"), "{error}");
 }

@@ -44,6 +44,7 @@ pub mod iterative_refinement;
 pub mod ordering;
 mod packed_ldlt_solve;
 mod packed_rows;
+mod process_clock;
 mod sparse_cholesky;
 mod sparse_ldlt;
 pub mod sparse_pattern;

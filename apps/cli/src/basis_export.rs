@@ -1,23 +1,25 @@
 //! `tvf basis --export DIR`: a basis as plain `.npy` arrays (numpy reads them with `np.load`),
-//! written into a staged folder that appears whole or not at all.
+//! written into a staged folder that appears whole or not at all (committed by the caller,
+//! together with its other outputs).
 
-use crate::output_rules::{commit, stage};
+use crate::output_rules::stage;
 use anyhow::{Context, Result};
 use std::io::Write;
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::io::StagedFolder;
 use tvf_spectral::{npy_bytes, EigenfunctionBasis, NpyData};
 
 /// Writes `eigenvalues.npy` (`k`, float64, ascending), `families.npy` (`k` strings:
 /// `harmonic`, `integrable`, `cointegrable`), `coefficients.npy` (`n1 × k`, the
 /// discretization's own coefficients, `M1`-orthonormal) and, where the complex samples fields,
 /// `fields.npy` (`F × 3 × k`, each field at the face centroids) and `frames.npy` (`F × 2 × 3`,
-/// `[e1, e2]` of every face) into the folder `dir`.
-pub fn export_basis(
+/// `[e1, e2]` of every face) into the staged folder `dir`, returned uncommitted.
+pub fn stage_basis_export(
     basis: &EigenfunctionBasis,
     complex: &dyn HodgeComplex,
     dir: &Path,
-) -> Result<()> {
+) -> Result<StagedFolder> {
     let staged = stage(dir)?;
     let write = |name: &str, bytes: Vec<u8>| -> Result<()> {
         tvf_core::io::write_atomically(&staged.path().join(name), |w| w.write_all(&bytes))
@@ -61,5 +63,5 @@ pub fn export_basis(
             npy_bytes(&NpyData::F64(&frames), &[faces, 2, 3]),
         )?;
     }
-    commit(staged)
+    Ok(staged)
 }

@@ -18,11 +18,14 @@
 //!
 //! The cache is a [`BasisStore`] (file names and keys are documented there) in `--cache-dir`,
 //! else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in `--example`
-//! mesh (no file to sit next to) in `tvf-cache/` under the system temporary folder. A cached
-//! basis is reused and stderr says so; a damaged or mismatching cache file is recomputed with a
+//! mesh (no file to sit next to) in the user's cache folder
+//! ([`crate::cache_folder::user_cache_folder`]). A default folder is created private and used
+//! only if it is safe ([`crate::cache_folder::prepare_private_folder`]; otherwise a warning, and
+//! the basis is computed without the cache). A cached basis is reused and stderr says so; a damaged or mismatching cache file is recomputed with a
 //! warning. `-k` sizes are `BasisSize::Fields`; the pairs a compressed file needs when no `-k`
 //! is given are `BasisSize::Pairs`.
 
+use crate::cache_folder::{prepare_private_folder, user_cache_folder};
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
@@ -55,7 +58,7 @@ pub struct BasisOptions {
     #[command(flatten)]
     pub discretization: DiscretizationFlags,
     /// Folder of cached bases [default: $TVF_CACHE_DIR, else .tvf-cache/ next to the mesh, else
-    /// tvf-cache/ in the temporary folder for --example meshes].
+    /// the user's cache folder (~/.cache/tvf) for --example meshes].
     #[arg(long, value_name = "DIR", conflicts_with = "basis")]
     pub cache_dir: Option<PathBuf>,
     /// Compute the basis without reading or writing the cache (overrides --cache-dir).
@@ -111,6 +114,23 @@ impl BasisOptions {
         input: &MeshInput,
         size: BasisSize,
     ) -> Result<ResolvedBasis> {
+        let discretization = match &self.basis {
+            Some(_) => None,
+            None => Some(self.discretization.build(mesh, &input.label())?),
+        };
+        self.resolve_with(mesh, input, size, discretization)
+    }
+
+    /// [`BasisOptions::resolve`] with the discretization already built (by
+    /// [`BasisOptions::discretization`], to check the other inputs before the basis is
+    /// computed); a `--basis` file brings its own, and `discretization` may then be `None`.
+    pub fn resolve_with(
+        &self,
+        mesh: &SurfaceMesh,
+        input: &MeshInput,
+        size: BasisSize,
+        discretization: Option<BoxedComplex>,
+    ) -> Result<ResolvedBasis> {
         let mesh_fingerprint = mesh.fingerprint();
         if let Some(path) = &self.basis {
             let start = Instant::now();
@@ -150,7 +170,10 @@ impl BasisOptions {
             BasisSize::Pairs(0) => bail!("0 pairs: ask for at least one pair of eigenfields"),
             _ => {}
         }
-        let discretization = self.discretization.build(mesh, &input.label())?;
+        let discretization = match discretization {
+            Some(discretization) => discretization,
+            None => self.discretization.build(mesh, &input.label())?,
+        };
         let basis = if self.no_cache {
             compute(&discretization, size)
         } else {
@@ -173,7 +196,17 @@ impl BasisOptions {
         size: BasisSize,
         input: &MeshInput,
     ) -> Result<SpectralBasis> {
-        let store = BasisStore::new(self.cache_folder(input));
+        let (folder, chosen) = self.cache_folder(input);
+        if !chosen {
+            if let Err(problem) = prepare_private_folder(&folder) {
+                warn(format!(
+                    "not using the basis cache {}: {problem}; computing without it",
+                    folder.display()
+                ));
+                return compute(discretization, size);
+            }
+        }
+        let store = BasisStore::new(folder);
         let progress = Progress::new("basis");
         let callback = progress.basis_callback();
         let (basis, origin) = store.basis(mesh, discretization.as_ref(), size, Some(&callback))?;
@@ -207,23 +240,25 @@ impl BasisOptions {
         Ok(basis)
     }
 
-    /// The cache folder for `input`: `--cache-dir`, `$TVF_CACHE_DIR`, `.tvf-cache/` next to the
-    /// mesh file, or `tvf-cache/` in the temporary folder for built-in examples.
-    pub fn cache_folder(&self, input: &MeshInput) -> PathBuf {
+    /// The cache folder for `input` and whether the user chose it: `--cache-dir` or
+    /// `$TVF_CACHE_DIR` (chosen), else `.tvf-cache/` next to the mesh file or, for built-in
+    /// examples, the user's cache folder (defaults, checked before use).
+    pub fn cache_folder(&self, input: &MeshInput) -> (PathBuf, bool) {
         if let Some(dir) = &self.cache_dir {
-            return dir.clone();
+            return (dir.clone(), true);
         }
         if let Some(dir) = std::env::var_os(CACHE_DIR_VARIABLE).filter(|d| !d.is_empty()) {
-            return PathBuf::from(dir);
+            return (PathBuf::from(dir), true);
         }
-        match &input.mesh {
+        let default = match &input.mesh {
             Some(path) => path
                 .parent()
                 .filter(|p| !p.as_os_str().is_empty())
                 .unwrap_or(Path::new("."))
                 .join(".tvf-cache"),
-            None => std::env::temp_dir().join("tvf-cache"),
-        }
+            None => user_cache_folder(),
+        };
+        (default, false)
     }
 
     /// The discretization a basis would use, without computing or loading the basis: the

@@ -4,7 +4,9 @@
 
 mod basis_export;
 mod basis_source;
+mod cache_folder;
 mod commands;
+mod computed_field;
 mod discretization_flags;
 mod examples;
 mod interrupt;
@@ -13,6 +15,7 @@ mod output_rules;
 mod picture_options;
 mod progress;
 mod report;
+mod test_faults;
 
 use clap::{Parser, Subcommand};
 
@@ -69,6 +72,7 @@ enum Command {
 
 fn main() {
     interrupt::install();
+    test_faults::install();
     let cli = Cli::parse();
     if !matches!(cli.command, Command::Edit(_)) {
         interrupt::end_quietly_on_closed_pipe();

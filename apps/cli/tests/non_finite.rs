@@ -264,3 +264,113 @@ fn a_cached_basis_of_the_wrong_size_is_recomputed() {
         assert!(stderr.contains("using cached basis"), "{stderr}");
     }
 }
+
+/// `tvf filter` with gains whose products overflow `f64` (`--rest 1e308`, a field ×1e149 with
+/// `--rest 1e300`, a curve of gain 1e308) is an error naming the cause, and writes nothing: never
+/// a field of NaN entries with exit 0 (which the text reader would then refuse).
+#[test]
+fn a_filter_whose_result_overflows_is_an_error_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cache = d.join("cache").display().to_string();
+    // icosphere(3) has 1280 faces; a field not in the span of 40 eigenfields (a rest part).
+    let field: String = (0..1280)
+        .map(|t| format!("{} {} 0\n", 1.0 + (t % 7) as f64, (t % 3) as f64))
+        .collect();
+    let plain = write(d, "f.txt", &field);
+    let scaled: String = (0..1280)
+        .map(|t| format!("{}e149 {} 0\n", 1.0 + (t % 7) as f64, (t % 3) as f64))
+        .collect();
+    let big = write(d, "big.txt", &scaled);
+    let cases: [(&str, &[&str]); 4] = [
+        (&plain, &["--rest", "1e308"]),
+        (&big, &["--rest", "1e300"]),
+        (&plain, &["--integrable", "curve:0,1e308"]),
+        (&plain, &["--cointegrable", "curve:0,1e308;100,1e308"]),
+    ];
+    for (field, gains) in cases {
+        for out in ["out.npy", "out.txt"] {
+            let output = d.join(out).display().to_string();
+            let mut args = vec!["filter", "--example", "icosphere", field, "-k", "40"];
+            args.extend_from_slice(&["--cache-dir", &cache, "--json", "-o", &output]);
+            args.extend_from_slice(gains);
+            let (code, stderr, result) = run(&args);
+            let stdout = String::from_utf8_lossy(&result.stdout);
+            assert_eq!(code, Some(1), "{gains:?} {out}: {stderr}\n{stdout}");
+            assert!(
+                stderr.contains("not finite")
+                    || stderr.contains("overflows")
+                    || stderr.contains("cannot write the field"),
+                "{gains:?}: {stderr}"
+            );
+            assert!(!stdout.contains("null"), "{gains:?}: {stdout}");
+            assert!(!d.join(out).exists(), "{gains:?}: {out} was written");
+        }
+    }
+    // The same command with ordinary gains writes a field the readers accept.
+    let output = d.join("ok.txt").display().to_string();
+    let args = [
+        "filter",
+        "--example",
+        "icosphere",
+        &plain,
+        "-k",
+        "40",
+        "--cache-dir",
+        &cache,
+        "--rest",
+        "2",
+        "-o",
+        &output,
+    ];
+    let (code, stderr, _) = run(&args);
+    assert_eq!(code, Some(0), "{stderr}");
+    let again = d.join("again.txt").display().to_string();
+    let args = [
+        "filter",
+        "--example",
+        "icosphere",
+        &output,
+        "-k",
+        "40",
+        "--cache-dir",
+        &cache,
+        "-o",
+        &again,
+    ];
+    let (code, stderr, _) = run(&args);
+    assert_eq!(
+        code,
+        Some(0),
+        "the filter's own output is readable: {stderr}"
+    );
+}
+
+/// A field whose largest component is about 1e-300 has squared norms that underflow: it is
+/// refused naming the file (its energies and shares would all be reported as 0).
+#[test]
+fn a_field_too_small_for_f64_energies_is_refused_naming_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let cache = d.join("cache").display().to_string();
+    let tiny: String = (0..1280)
+        .map(|t| format!("{}e-300 {}e-300 0\n", 1.0 + (t % 7) as f64, (t % 3) as f64))
+        .collect();
+    let tiny = write(d, "tiny.txt", &tiny);
+    let analysis = d.join("an").display().to_string();
+    for command in ["coefficients", "analyze"] {
+        let mut args = vec![command, "--example", "icosphere", &tiny, "-k", "40"];
+        args.extend_from_slice(&["--cache-dir", &cache]);
+        if command == "analyze" {
+            args.extend_from_slice(&["-o", &analysis]);
+        }
+        let (code, stderr, output) = run(&args);
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert_eq!(code, Some(1), "{command}: {stderr}\n{stdout}");
+        assert!(
+            stderr.contains("tiny.txt") && stderr.contains("too small"),
+            "{command}: {stderr}"
+        );
+        assert!(!stdout.contains("0.00 %"), "{command}: {stdout}");
+    }
+}

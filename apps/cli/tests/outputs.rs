@@ -1,8 +1,9 @@
 //! End-to-end: how every subcommand writes its output. A missing parent folder is refused by
 //! every subcommand with a message naming the output; an output equal to an input is refused;
 //! folder outputs appear whole or not at all (tested with an injected write failure); an
-//! interrupted write (SIGINT, SIGTERM) leaves no temporary, stale temporaries are swept; a
-//! complete basis larger than the machine's memory is refused with its size.
+//! interrupted write (SIGINT, SIGTERM) leaves no temporary, stale temporaries are swept, and a
+//! command's outputs appear together or not at all; a complete basis larger than the machine's
+//! memory is refused with its size.
 
 mod common;
 
@@ -11,7 +12,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Output, Stdio};
 use std::time::{Duration, Instant, SystemTime};
 use tvf_core::generate::genus_surface;
-use tvf_core::io::{write_obj, WRITE_FAULT_VARIABLE};
+use tvf_core::io::write_obj;
+
+/// The variable with which the `tvf` binary injects write faults (`fail:NAME`, `stall:NAME`).
+const WRITE_FAULT_VARIABLE: &str = "TVF_TEST_WRITE_FAULT";
 
 /// Faces of `--example torus`.
 const TORUS_FACES: usize = 2304;
@@ -141,11 +145,31 @@ fn an_output_equal_to_an_input_is_refused_and_the_input_kept() {
     let mesh = std::fs::read(d.join("m.obj")).unwrap();
     let field = std::fs::read(d.join("f.txt")).unwrap();
     let constraints = std::fs::read(d.join("c.json")).unwrap();
+    let curve = br#"{"points": [[0, 1], [10, 0]]}"#;
+    std::fs::write(d.join("curve.json"), curve).unwrap();
     for args in [
         vec!["render", "m.obj", "f.txt", "-o", "m.obj"],
         vec!["render", "m.obj", "f.txt", "-o", "./f.txt"],
         vec!["export", "m.obj", "f.txt", "-o", "m.obj"],
         vec!["filter", "m.obj", "f.txt", "--rest", "0", "-o", "f.txt"],
+        vec![
+            "filter",
+            "m.obj",
+            "f.txt",
+            "--integrable",
+            "@curve.json",
+            "-o",
+            "curve.json",
+        ],
+        vec![
+            "filter",
+            "m.obj",
+            "f.txt",
+            "--cointegrable",
+            "@./curve.json",
+            "-o",
+            "curve.json",
+        ],
         vec!["spline", "m.obj", "--constraints", "c.json", "-o", "c.json"],
         vec![
             "design",
@@ -165,6 +189,7 @@ fn an_output_equal_to_an_input_is_refused_and_the_input_kept() {
     assert_eq!(std::fs::read(d.join("m.obj")).unwrap(), mesh);
     assert_eq!(std::fs::read(d.join("f.txt")).unwrap(), field);
     assert_eq!(std::fs::read(d.join("c.json")).unwrap(), constraints);
+    assert_eq!(std::fs::read(d.join("curve.json")).unwrap(), curve);
 }
 
 #[test]
@@ -306,7 +331,9 @@ fn folder_outputs_appear_whole_or_not_at_all() {
 }
 
 /// Starts `args` with a stalled write of `file`, waits until its temporary `prefix` appears in
-/// `folder`, sends `signal` and returns the exit code.
+/// `folder`, sends `signal` and returns the exit code. (Signals are Unix's; elsewhere the
+/// interruption is the console's Ctrl+C, which a test cannot send to a child.)
+#[cfg(unix)]
 fn interrupt_while_writing(
     dir: &Path,
     args: &[&str],
@@ -338,6 +365,7 @@ fn interrupt_while_writing(
     child.wait().unwrap().code()
 }
 
+#[cfg(unix)]
 #[test]
 fn interrupted_writes_leave_no_temporaries_and_stale_ones_are_swept() {
     let dir = workspace();
@@ -391,6 +419,71 @@ fn interrupted_writes_leave_no_temporaries_and_stale_ones_are_swept() {
     assert_success(&run(d, &basis));
     assert!(!stale.exists() && !stale_folder.exists());
     assert!(fresh.exists() && other.exists() && d.join("d/x.tvfb").exists());
+}
+
+/// `tvf basis -o X --export DIR` interrupted after `X` is complete, while `DIR` is written:
+/// neither appears (a command's outputs appear together or not at all); without the
+/// interruption both do.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_basis_leaves_neither_its_file_nor_its_export() {
+    let dir = workspace();
+    let d = dir.path();
+    std::fs::create_dir(d.join("d")).unwrap();
+    let args = [
+        "basis",
+        "--example",
+        "torus",
+        "-k",
+        "10",
+        "-o",
+        "d/x.tvfb",
+        "--export",
+        "d/arrays",
+    ];
+    let mut child = tvf()
+        .current_dir(d)
+        .env(WRITE_FAULT_VARIABLE, "stall:frames.npy")
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("tvf starts");
+    // fields.npy is written before frames.npy, whose write stalls: the export is then being
+    // written and the basis file is complete.
+    let deadline = Instant::now() + Duration::from_secs(120);
+    let export_written = || {
+        std::fs::read_dir(d.join("d")).unwrap().any(|entry| {
+            let path = entry.unwrap().path();
+            path.join("fields.npy").is_file()
+        })
+    };
+    while !export_written() {
+        assert!(Instant::now() < deadline, "the export was not written");
+        assert!(child.try_wait().unwrap().is_none(), "tvf ended early");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let pid = libc::pid_t::try_from(child.id()).unwrap();
+    // SAFETY: sending a signal to our own child process.
+    assert_eq!(unsafe { libc::kill(pid, libc::SIGINT) }, 0);
+    assert_eq!(child.wait().unwrap().code(), Some(130));
+    assert!(
+        !d.join("d/x.tvfb").exists(),
+        "the basis file appeared alone"
+    );
+    assert!(!d.join("d/arrays").exists());
+    assert!(
+        temporaries(&d.join("d")).is_empty(),
+        "{:?}",
+        temporaries(&d.join("d"))
+    );
+    assert_success(&run(d, &args));
+    assert!(d.join("d/x.tvfb").is_file() && d.join("d/arrays/frames.npy").is_file());
+    assert!(
+        temporaries(&d.join("d")).is_empty(),
+        "{:?}",
+        temporaries(&d.join("d"))
+    );
 }
 
 #[test]

@@ -119,7 +119,13 @@ impl ConstraintSet {
         };
         let mut seen = HashSet::new();
         let mut constraints = Vec::with_capacity(record.constraints.len());
-        for c in &record.constraints {
+        for (position, c) in record.constraints.iter().enumerate() {
+            if c.id.trim().is_empty() || c.id.chars().any(char::is_control) {
+                return Err(invalid(ConstraintError::BadId {
+                    position,
+                    id: c.id.clone(),
+                }));
+            }
             if !seen.insert(c.id.clone()) {
                 return Err(invalid(ConstraintError::DuplicateId { id: c.id.clone() }));
             }

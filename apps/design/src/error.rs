@@ -58,6 +58,18 @@ pub enum ConstraintError {
         /// Extra explanation (e.g. " and positive").
         extra: &'static str,
     },
+    /// A constraint whose id is empty, blank or holds control characters (a line break).
+    #[error(
+        "constraint {position} (counting from 0) has the id {id:?}: every constraint needs a \
+         unique id that is not empty or blank and holds no control characters (errors and \
+         residuals name it)"
+    )]
+    BadId {
+        /// The constraint's place in the file's list.
+        position: usize,
+        /// The id.
+        id: String,
+    },
     /// Two constraints share an id.
     #[error("constraint id '{id}' is used twice")]
     DuplicateId {

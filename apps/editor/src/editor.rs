@@ -1,5 +1,6 @@
 //! [`Editor`]: the handle to the editing engine ([`crate::engine`]) that the HTTP threads use.
 
+use std::path::Path;
 use std::sync::mpsc::{channel, Sender};
 use std::sync::Arc;
 
@@ -122,8 +123,13 @@ impl Editor {
     }
 
     /// Applies an edit and returns the new field frame (see [`crate::payload`]). A refused
-    /// edit leaves the state unchanged.
+    /// edit leaves the state unchanged; a constraint set made for another mesh (its
+    /// `mesh_fingerprint` differs from the mesh's) is refused before it reaches the session.
     pub fn edit(&self, op: EditOp) -> Result<Vec<u8>, EditorError> {
+        if let EditOp::Load(set) = &op {
+            let fingerprint = format!("{:016x}", self.mesh.fingerprint());
+            set.check_fingerprint(&fingerprint, Path::new("loaded constraint set"))?;
+        }
         self.ask(|r| Request::Edit(op, r))
     }
 

@@ -67,7 +67,17 @@ pub enum EditorError {
         /// The size of the loaded basis.
         available: usize,
     },
-    /// A count that does not fit the binary format.
+    /// A request larger than the server accepts (its head, its headers, its body).
+    #[error("the request is too large: {count} {what}, at most {limit} are accepted")]
+    RequestTooLarge {
+        /// What was counted (e.g. "request body bytes").
+        what: &'static str,
+        /// The count.
+        count: usize,
+        /// The most accepted.
+        limit: usize,
+    },
+    /// A count that does not fit the binary format of the mesh, field or fur payloads.
     #[error("too many {what} for the binary format: {count}")]
     TooLarge {
         /// What was counted.
@@ -105,7 +115,7 @@ impl EditorError {
     /// The HTTP status code for this error: 400 for malformed input, 403 for a request from
     /// elsewhere than the editor's page, 404/405 for unknown endpoints or ids, 408 for a request
     /// sent too slowly, 503 when busy, 409 for edits the current state refuses, 422 for a field
-    /// that is not finite, 500 otherwise.
+    /// that is not finite, 413 for a request larger than the server accepts, 500 otherwise.
     pub fn status_code(&self) -> u16 {
         match self {
             EditorError::BadRequest { .. }
@@ -129,7 +139,8 @@ impl EditorError {
                 | DesignError::DuplicateId { .. },
             )
             | EditorError::NothingToUndo => 409,
-            EditorError::TooLarge { .. } => 413,
+            EditorError::RequestTooLarge { .. } => 413,
+            EditorError::TooLarge { .. } => 500,
             EditorError::Design(_)
             | EditorError::Render(_)
             | EditorError::Discretization(_)

@@ -82,9 +82,10 @@ fn bad(reason: String) -> EditorError {
 /// Parses a request head: the bytes before the blank line that ends it (`\r\n\r\n` excluded).
 pub fn parse_head(bytes: &[u8]) -> Result<RequestHead, EditorError> {
     if bytes.len() > MAX_HEAD_BYTES {
-        return Err(EditorError::TooLarge {
+        return Err(EditorError::RequestTooLarge {
             what: "request head bytes",
             count: bytes.len(),
+            limit: MAX_HEAD_BYTES,
         });
     }
     let text =
@@ -114,10 +115,15 @@ pub fn parse_head(bytes: &[u8]) -> Result<RequestHead, EditorError> {
         if name.is_empty() || !name.bytes().all(is_token_byte) {
             return Err(bad(format!("malformed header name '{name}'")));
         }
+        // RFC 9110: a field value holds no control characters but the tab (a NUL is refused).
+        if value.chars().any(|c| c.is_control() && c != '\t') {
+            return Err(bad(format!("header {name} holds a control character")));
+        }
         if headers.len() == MAX_HEADERS {
-            return Err(EditorError::TooLarge {
+            return Err(EditorError::RequestTooLarge {
                 what: "request headers",
                 count: MAX_HEADERS + 1,
+                limit: MAX_HEADERS,
             });
         }
         headers.push((name.to_ascii_lowercase(), value.trim().to_string()));
@@ -148,9 +154,10 @@ pub fn read_head(
             return Ok((head, buffer[end + 4..].to_vec()));
         }
         if buffer.len() > MAX_HEAD_BYTES {
-            return Err(EditorError::TooLarge {
+            return Err(EditorError::RequestTooLarge {
                 what: "request head bytes",
                 count: buffer.len(),
+                limit: MAX_HEAD_BYTES,
             });
         }
         let n = read_before(stream, &mut chunk, deadline, "the request head")?;
@@ -309,6 +316,7 @@ mod tests {
             b"GET / HTTP/1.1\r\nno colon",
             b"GET / HTTP/1.1\r\n: empty name",
             b"GET / HTTP/1.1\r\n folded: x",
+            b"GET / HTTP/1.1\r\nx-a: a\0b",
         ] {
             assert!(
                 parse_head(bad).is_err(),

@@ -51,6 +51,7 @@ pub mod http;
 pub mod payload;
 pub mod server;
 mod status;
+mod waiting_room;
 
 pub use edit_op::EditOp;
 pub use editor::{Editor, EditorSetup};

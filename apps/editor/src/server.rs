@@ -32,6 +32,7 @@ use crate::editor::Editor;
 use crate::error::EditorError;
 use crate::http::{read_body, read_head, write_response, RequestHead};
 use crate::payload::{encode_fur, encode_mesh};
+use crate::waiting_room::WaitingRoom;
 
 /// Largest accepted request body (a constraint set being loaded), bytes.
 pub const MAX_BODY_BYTES: u64 = 8 << 20;
@@ -40,8 +41,16 @@ pub const MAX_STRANDS: usize = 200_000;
 /// Longest fur strands one request may ask for (`length`, in bounding-box diagonals as in
 /// [`FurOptions::length`]).
 pub const MAX_FUR_LENGTH: f64 = 10.0;
-/// Most connections answered at once (one thread each); more are answered 503 at once.
+/// Most connections waiting for their request head at once (one thread each): when one more
+/// arrives, the one waiting longest is closed ([`WaitingRoom`]), so idle connections cannot
+/// keep the page's requests out.
+pub const MAX_WAITING_CONNECTIONS: usize = 64;
+/// Most requests that passed the access checks ([`crate::access`]) answered at once (one
+/// thread each); more are answered 503 at once.
 pub const MAX_CONNECTIONS: usize = 64;
+/// Most connection threads at all (waiting, answering, and closing evicted ones); a
+/// connection beyond them is answered 503 at once.
+pub const MAX_THREADS: usize = 4 * (MAX_WAITING_CONNECTIONS + MAX_CONNECTIONS);
 /// Connections kept free for requests without a body (the page's reads and `/api/ping`): at
 /// most `MAX_CONNECTIONS - RESERVED_CONNECTIONS` may be receiving a body at once.
 pub const RESERVED_CONNECTIONS: usize = 8;
@@ -53,11 +62,13 @@ pub const BODY_DEADLINE: Duration = Duration::from_secs(10);
 /// A running editor server; stops with [`EditorServer::shutdown`] (or runs until the process
 /// ends with [`EditorServer::join`]).
 ///
-/// One thread accepts connections and starts one thread per connection (at most
-/// [`MAX_CONNECTIONS`]); each answers one request and closes. Heads and bodies are read against
-/// deadlines ([`HEAD_DEADLINE`], [`BODY_DEADLINE`]), and uploads may not take the last
-/// [`RESERVED_CONNECTIONS`], so stalled uploads cannot keep the page from being answered.
-/// Requests pass the [`crate::access`] checks first.
+/// One thread accepts connections and starts one thread per connection; each answers one
+/// request and closes. Heads and bodies are read against deadlines ([`HEAD_DEADLINE`],
+/// [`BODY_DEADLINE`]); connections still sending their head are at most
+/// [`MAX_WAITING_CONNECTIONS`] (the longest waiting is closed for a new one), requests that
+/// passed the [`crate::access`] checks at most [`MAX_CONNECTIONS`], and uploads may not take the
+/// last [`RESERVED_CONNECTIONS`] of those: neither idle connections nor stalled uploads can keep
+/// the page from being answered.
 pub struct EditorServer {
     acceptor: JoinHandle<()>,
     stop: Arc<AtomicBool>,
@@ -69,6 +80,8 @@ struct Shared {
     editor: Editor,
     mesh_payload: Vec<u8>,
     access: Access,
+    waiting: WaitingRoom,
+    threads: AtomicUsize,
     connections: AtomicUsize,
     uploads: AtomicUsize,
 }
@@ -89,6 +102,8 @@ impl EditorServer {
             mesh_payload: encode_mesh(editor.mesh())?,
             editor,
             access: Access::new(address.port()),
+            waiting: WaitingRoom::new(MAX_WAITING_CONNECTIONS),
+            threads: AtomicUsize::new(0),
             connections: AtomicUsize::new(0),
             uploads: AtomicUsize::new(0),
         });
@@ -141,15 +156,15 @@ impl EditorServer {
     }
 }
 
-/// Accepts connections until `stop`, one thread each, at most [`MAX_CONNECTIONS`] at once.
+/// Accepts connections until `stop`, one thread each, at most [`MAX_THREADS`] at once.
 fn accept(listener: &TcpListener, shared: &Arc<Shared>, stop: &AtomicBool) {
     for stream in listener.incoming() {
         if stop.load(Ordering::SeqCst) {
             return;
         }
         let Ok(mut stream) = stream else { continue };
-        if shared.connections.fetch_add(1, Ordering::SeqCst) >= MAX_CONNECTIONS {
-            shared.connections.fetch_sub(1, Ordering::SeqCst);
+        if shared.threads.fetch_add(1, Ordering::SeqCst) >= MAX_THREADS {
+            shared.threads.fetch_sub(1, Ordering::SeqCst);
             respond(
                 &mut stream,
                 Err(EditorError::Busy {
@@ -167,26 +182,46 @@ fn accept(listener: &TcpListener, shared: &Arc<Shared>, stop: &AtomicBool) {
                 let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                     serve_connection(&shared, stream)
                 }));
-                shared.connections.fetch_sub(1, Ordering::SeqCst);
+                shared.threads.fetch_sub(1, Ordering::SeqCst);
             });
         if spawned.is_err() {
-            shared.connections.fetch_sub(1, Ordering::SeqCst);
+            shared.threads.fetch_sub(1, Ordering::SeqCst);
         }
     }
 }
 
-/// Reads one request from `stream`, answers it and closes the connection.
+/// Reads one request from `stream` (waiting for its head in the [`WaitingRoom`]), answers it
+/// if it passes the access checks and a slot is free, and closes the connection.
 fn serve_connection(shared: &Shared, mut stream: TcpStream) {
     let _ = stream.set_nodelay(true);
-    let answer = read_head(&mut stream, Instant::now() + HEAD_DEADLINE)
-        .and_then(|(head, rest)| answer(shared, &head, rest, &mut stream));
+    let ticket = shared.waiting.enter(&stream);
+    let head = read_head(&mut stream, Instant::now() + HEAD_DEADLINE);
+    drop(ticket);
+    let answer = head.and_then(|(head, rest)| {
+        shared.access.check(&head)?;
+        let _slot = take_slot(&shared.connections, MAX_CONNECTIONS, "too many connections")?;
+        answer(shared, &head, rest, &mut stream)
+    });
     respond(&mut stream, answer);
 }
 
-/// Releases an upload slot when dropped.
-struct UploadSlot<'a>(&'a AtomicUsize);
+/// One of `limit` slots counted by `taken`, or [`EditorError::Busy`] with `what`.
+fn take_slot<'a>(
+    taken: &'a AtomicUsize,
+    limit: usize,
+    what: &'static str,
+) -> Result<Slot<'a>, EditorError> {
+    if taken.fetch_add(1, Ordering::SeqCst) >= limit {
+        taken.fetch_sub(1, Ordering::SeqCst);
+        return Err(EditorError::Busy { what });
+    }
+    Ok(Slot(taken))
+}
 
-impl Drop for UploadSlot<'_> {
+/// A slot of a limited kind (a connection, an upload); released when dropped.
+struct Slot<'a>(&'a AtomicUsize);
+
+impl Drop for Slot<'_> {
     fn drop(&mut self) {
         self.0.fetch_sub(1, Ordering::SeqCst);
     }
@@ -201,22 +236,17 @@ fn body(
 ) -> Result<Vec<u8>, EditorError> {
     let length = head.content_length()?;
     if length as u64 > MAX_BODY_BYTES {
-        return Err(EditorError::TooLarge {
+        return Err(EditorError::RequestTooLarge {
             what: "request body bytes",
             count: length,
+            limit: MAX_BODY_BYTES as usize,
         });
     }
     if length == 0 {
         return Ok(Vec::new());
     }
     let limit = MAX_CONNECTIONS - RESERVED_CONNECTIONS;
-    if shared.uploads.fetch_add(1, Ordering::SeqCst) >= limit {
-        shared.uploads.fetch_sub(1, Ordering::SeqCst);
-        return Err(EditorError::Busy {
-            what: "too many uploads at once",
-        });
-    }
-    let _slot = UploadSlot(&shared.uploads);
+    let _slot = take_slot(&shared.uploads, limit, "too many uploads at once")?;
     read_body(stream, rest, length, Instant::now() + BODY_DEADLINE)
 }
 
@@ -251,8 +281,8 @@ fn respond(stream: &mut TcpStream, answer: Answer) {
 
 type Answer = Result<(Vec<u8>, &'static str, Option<&'static str>), EditorError>;
 
+/// The answer to a request that passed the access checks.
 fn answer(shared: &Shared, head: &RequestHead, rest: Vec<u8>, stream: &mut TcpStream) -> Answer {
-    shared.access.check(head)?;
     let (method, path, query) = (head.method.as_str(), head.path(), head.query());
     let not_allowed = || EditorError::MethodNotAllowed {
         method: method.to_string(),
@@ -328,9 +358,11 @@ fn fur(
     default_strands: usize,
 ) -> Result<Vec<Vec<[f64; 3]>>, EditorError> {
     let strands = query_number(query, "strands")?.unwrap_or(default_strands as f64);
-    if !(1.0..=MAX_STRANDS as f64).contains(&strands) {
+    if !(1.0..=MAX_STRANDS as f64).contains(&strands) || strands.fract() != 0.0 {
         return Err(EditorError::BadRequest {
-            reason: format!("strands must be between 1 and {MAX_STRANDS}, got {strands}"),
+            reason: format!(
+                "strands must be a whole number between 1 and {MAX_STRANDS}, got {strands}"
+            ),
         });
     }
     let defaults = FurOptions::default();

@@ -191,6 +191,7 @@ fn frame_ok((status, body): (u16, Vec<u8>)) -> tvf_editor::FieldFrame {
 #[test]
 fn refused_edits_answer_4xx_and_change_nothing() {
     let server = icosphere_server();
+    let mesh_fingerprint = format!("{:016x}", icosphere(3).fingerprint());
     let client = Client::new(&server);
     frame_ok(client.edit(json!({"op": "add", "constraint": vector("a", 5, [1.0, 0.0, 0.0])})));
     let cases: Vec<(serde_json::Value, u16, &str)> = vec![
@@ -225,6 +226,30 @@ fn refused_edits_answer_4xx_and_change_nothing() {
         (json!({"op": "basis_size", "value": 0}), 400, "basis size"),
         (json!({"op": "basis_size", "value": 101}), 400, "basis size"),
         (json!({"op": "jump"}), 400, "jump"),
+        // a constraint set made for another mesh: refused naming both fingerprints
+        (
+            json!({"op": "load", "set": {"mesh_fingerprint": "0000000000000000",
+                "constraints": [vector("z", 3, [1.0, 0.0, 0.0])]}}),
+            400,
+            "0000000000000000",
+        ),
+        (
+            json!({"op": "load", "set": {"mesh_fingerprint": "0000000000000000",
+                "constraints": []}}),
+            400,
+            mesh_fingerprint.as_str(),
+        ),
+        // an empty id would label nothing, a line break would break the report's lines
+        (
+            json!({"op": "add", "constraint": vector("", 9, [0.0, 1.0, 0.0])}),
+            400,
+            "has the id \"\"",
+        ),
+        (
+            json!({"op": "add", "constraint": vector("a\nb", 9, [0.0, 1.0, 0.0])}),
+            400,
+            "control characters",
+        ),
     ];
     for (op, code, needle) in cases {
         let (status, body) = client.edit(op.clone());
@@ -244,6 +269,7 @@ fn refused_edits_answer_4xx_and_change_nothing() {
     assert_eq!(client.get("/api/edit").0, 405);
     assert_eq!(client.get("/api/fur?strands=-3").0, 400);
     assert_eq!(client.get("/api/fur?strands=abc").0, 400);
+    assert_eq!(client.get("/api/fur?strands=1.5").0, 400);
     // Nothing of that changed the state.
     let (s, b) = client.get("/api/field");
     let state = frame(s, &b);

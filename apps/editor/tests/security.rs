@@ -146,11 +146,18 @@ fn bad_parameters_unknown_fields_and_malformed_requests_are_400() {
     ] {
         assert_eq!(raw(address, &request).0, 400, "{request:?}");
     }
-    let (status, _) = raw(
+    let (status, body) = raw(
         address,
         &format!("POST /api/edit HTTP/1.1\r\n{host}\r\nContent-Length: 999999999\r\n\r\n"),
     );
     assert_eq!(status, 413);
+    // The message is about the request, not about a payload format.
+    let message = error_message(body.as_bytes());
+    assert!(
+        message.contains("request is too large") && message.contains("999999999"),
+        "{message}"
+    );
+    assert!(!message.contains("binary format"), "{message}");
     server.shutdown();
 }
 
@@ -265,6 +272,41 @@ fn stalled_uploads_do_not_block_ping_and_time_out() {
     assert!(started.elapsed() < Duration::from_secs(25));
     server.shutdown();
 }
+
+/// Idle connections (opened, nothing sent) beyond the server's capacity do not keep the page's
+/// token-bearing requests out: each is answered at once.
+#[test]
+fn idle_connections_do_not_keep_the_page_out() {
+    let server = icosphere_server();
+    let client = Client::new(&server);
+    let address = server.address();
+    let idle: Vec<TcpStream> = (0..IDLE_CONNECTIONS)
+        .map(|_| TcpStream::connect(address).unwrap())
+        .collect();
+    std::thread::sleep(Duration::from_millis(300));
+    for _ in 0..10 {
+        let start = Instant::now();
+        let (status, body) = client.get("/api/ping");
+        assert_eq!(
+            (status, body.as_slice()),
+            (200, &b"ok"[..]),
+            "{}",
+            String::from_utf8_lossy(&body)
+        );
+        assert!(
+            start.elapsed() < Duration::from_secs(2),
+            "{:?}",
+            start.elapsed()
+        );
+        let (status, _) = client.get("/api/field");
+        assert_eq!(status, 200);
+    }
+    drop(idle);
+    server.shutdown();
+}
+
+/// Twice the connections the server lets wait for their request head.
+const IDLE_CONNECTIONS: usize = 2 * tvf_editor::server::MAX_WAITING_CONNECTIONS;
 
 /// The `p`-quantile of `values` (sorted in place).
 fn quantile(values: &mut [f64], p: f64) -> f64 {

@@ -79,7 +79,7 @@ pub use formats::compressed_file::{
 };
 pub use formats::field_frames::{
     read_field_file, read_field_frames, write_field_frames, FieldFrames, FieldFromFile,
-    FrameSource, MAX_FIELD_COMPONENT,
+    FrameSource, MAX_FIELD_COMPONENT, MIN_FIELD_COMPONENT,
 };
 pub use formats::field_io::{
     read_face_vector_sequence, read_face_vectors, read_npy, read_tangent_field,

@@ -46,6 +46,9 @@ pub enum LoadErrorKind {
     /// A text format contains bytes that are not UTF-8 text (binary data).
     #[error("not a text file: invalid UTF-8 data")]
     NotText,
+    /// A text format saved as UTF-16 (it starts with a UTF-16 byte-order mark).
+    #[error("the file is UTF-16 text: save it as UTF-8")]
+    Utf16,
     /// The file is empty or holds only comments and whitespace.
     #[error("the file is empty")]
     Empty,

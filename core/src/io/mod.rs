@@ -26,18 +26,22 @@ mod output_path;
 mod ply_header;
 mod ply_reader;
 mod raw_mesh;
+mod staged_file;
 mod staged_folder;
 pub mod temporaries;
 mod text;
+mod write_faults;
 mod writers;
 
-pub use atomic_write::{write_atomically, AtomicWriter, WRITE_FAULT_VARIABLE};
+pub use atomic_write::{write_atomically, AtomicWriter};
 pub use bounded_read::{read_at_most, read_exactly_at_most};
 pub use early_writeback::EarlyWriteback;
 pub use error::{LoadError, LoadErrorKind};
 pub use output_path::{check_output, OutputPathError};
 pub use raw_mesh::LoadedMesh;
+pub use staged_file::StagedFile;
 pub use staged_folder::StagedFolder;
+pub use write_faults::{inject_write_faults, WriteFault, WriteFaultHook, STALL};
 pub use writers::{save_mesh, write_obj, write_ply, SaveError};
 
 use std::path::Path;
@@ -97,16 +101,21 @@ pub fn load_mesh(path: impl AsRef<Path>) -> Result<LoadedMesh, LoadError> {
 /// million faces of text.
 pub const MAX_STREAMED_MESH_BYTES: u64 = 1 << 30;
 
-/// Parses and validates a mesh held in memory; `name` is used in errors in place of a path.
+/// The UTF-8 byte-order mark some editors put at the start of a text file.
+pub const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// Parses and validates a mesh held in memory; `name` is used in errors in place of a path. A
+/// leading UTF-8 byte-order mark is skipped (in every format: the PLY header is text too).
 pub fn parse_mesh_bytes(
     bytes: &[u8],
     format: MeshFormat,
     name: impl AsRef<Path>,
 ) -> Result<LoadedMesh, LoadError> {
     let name = name.as_ref();
+    let bytes = bytes.strip_prefix(UTF8_BOM).unwrap_or(bytes);
     let raw = match format {
-        MeshFormat::Obj => text::as_text(bytes).and_then(obj_reader::read_obj),
-        MeshFormat::Off => text::as_text(bytes).and_then(off_reader::read_off),
+        MeshFormat::Obj => text::as_text(bytes).and_then(|text| obj_reader::read_obj(&text)),
+        MeshFormat::Off => text::as_text(bytes).and_then(|text| off_reader::read_off(&text)),
         MeshFormat::Ply => ply_reader::read_ply(bytes),
     };
     match raw {

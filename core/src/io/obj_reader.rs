@@ -72,6 +72,14 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
                 for_tobj.push_str(content);
                 for_tobj.push('\n');
             }
+            // Other keywords (vt, vn, usemtl, ...) are ignored; one that is not a plain word
+            // (a stray byte-order mark or control character before a `v`) would hide its line.
+            other if !other.bytes().all(|b| b.is_ascii_graphic()) => {
+                return Err(parse_error(
+                    line,
+                    format!("'{other}' is not an OBJ keyword (unexpected characters)"),
+                ))
+            }
             _ => {}
         }
     }

@@ -25,10 +25,12 @@ pub enum OutputPathError {
 }
 
 /// Checks that `output` (a file or a folder to write) can be written without surprises: its
-/// parent folder exists, and it is not the same file or folder as any of `inputs` (compared
-/// after resolving links and relative paths).
+/// parent folder exists (for a symbolic link: its target's), and it is not the same file or
+/// folder as any of `inputs` (compared after resolving links and relative paths).
 pub fn check_output(output: &Path, inputs: &[&Path]) -> Result<(), OutputPathError> {
-    let folder = match output.parent() {
+    // A link is written through: the folder of its target must exist.
+    let written = through_links(output);
+    let folder = match written.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
@@ -49,6 +51,26 @@ pub fn check_output(output: &Path, inputs: &[&Path]) -> Result<(), OutputPathErr
         }
     }
     Ok(())
+}
+
+/// The path an output at `path` is written to: `path` itself, or for a symbolic link the path
+/// it points to (following a chain of links), so the link stays a link and its target gets the
+/// content. A link that points nowhere yet gives the path where its target would be.
+pub(crate) fn through_links(path: &Path) -> PathBuf {
+    /// Links followed at most (a loop of links stops here).
+    const MAX_LINKS: usize = 40;
+    let mut path = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        let is_link = std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_symlink());
+        let Some(target) = is_link.then(|| std::fs::read_link(&path).ok()).flatten() else {
+            break;
+        };
+        path = match path.parent() {
+            Some(parent) => parent.join(target),
+            None => target,
+        };
+    }
+    path
 }
 
 #[cfg(test)]
@@ -75,5 +97,19 @@ mod tests {
         );
         // A bare file name goes into the current folder, which exists.
         assert_eq!(check_output(Path::new("plain.png"), &[]), Ok(()));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_are_followed_to_their_targets() {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        std::fs::create_dir(d.join("data")).unwrap();
+        std::os::unix::fs::symlink("data/real.npy", d.join("link.npy")).unwrap();
+        std::os::unix::fs::symlink("link.npy", d.join("chain.npy")).unwrap();
+        assert_eq!(through_links(&d.join("chain.npy")), d.join("data/real.npy"));
+        assert_eq!(through_links(&d.join("plain.npy")), d.join("plain.npy"));
+        std::os::unix::fs::symlink("loop", d.join("loop")).unwrap();
+        assert_eq!(through_links(&d.join("loop")), d.join("loop"));
     }
 }

@@ -125,6 +125,12 @@ pub(crate) fn read_header(bytes: &[u8]) -> Result<Header, Located> {
         match tokens.as_slice() {
             ["ply"] if line == 1 => {}
             [] | ["comment", ..] | ["obj_info", ..] => {}
+            ["format", _, version] if *version != "1.0" => {
+                return Err(parse_error(
+                    line,
+                    format!("PLY version '{version}' is not supported (only 1.0)"),
+                ))
+            }
             ["format", format, _version] => {
                 encoding = Some(match *format {
                     "ascii" => Encoding::Ascii,

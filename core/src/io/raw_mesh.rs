@@ -16,12 +16,21 @@ pub(crate) fn at(line: usize, kind: LoadErrorKind) -> Located {
 
 /// Builds a [`Located`] parse error at `line`.
 pub(crate) fn parse_error(line: usize, message: impl Into<String>) -> Located {
-    at(
-        line,
-        LoadErrorKind::Parse {
-            message: message.into(),
-        },
-    )
+    // Control characters of the file (a NUL, an escape) are shown escaped, never sent to the
+    // terminal as they are.
+    let message: String = message
+        .into()
+        .chars()
+        .flat_map(|c| {
+            let escaped: Vec<char> = if c.is_control() || c == '\u{feff}' {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            escaped
+        })
+        .collect();
+    at(line, LoadErrorKind::Parse { message })
 }
 
 /// Positions and triangles exactly as a file lists them (0-based, polygons fan-triangulated).

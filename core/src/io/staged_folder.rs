@@ -9,8 +9,11 @@
 
 use std::path::{Path, PathBuf};
 
+use super::output_path::through_links;
+
 use super::temporaries::{
-    register, sweep_stale_temporaries, Registration, TEMPORARY_FOLDER_PREFIX, TEMPORARY_SUFFIX,
+    commit_uninterrupted, register, sweep_stale_temporaries, Registration, TEMPORARY_FOLDER_PREFIX,
+    TEMPORARY_SUFFIX,
 };
 
 /// A folder being written; see the [module](self).
@@ -25,6 +28,7 @@ impl StagedFolder {
     /// Starts writing the folder `target`. Its parent folder must exist (tvf never creates a
     /// missing parent); `target` must be a folder if it exists.
     pub fn new(target: &Path) -> std::io::Result<Self> {
+        let target = &through_links(target);
         let parent = match target.parent() {
             Some(p) if !p.as_os_str().is_empty() => p,
             _ => Path::new("."),
@@ -74,11 +78,17 @@ impl StagedFolder {
         &self.target
     }
 
-    /// Moves the complete folder into place.
+    /// Moves the complete folder into place (uninterrupted, see
+    /// [`super::temporaries::commit_uninterrupted`]: into an existing folder every file moves).
     pub fn commit(mut self) -> std::io::Result<()> {
         let Some(staging) = self.staging.take() else {
             return Ok(());
         };
+        commit_uninterrupted(|| self.move_into_place(staging))
+    }
+
+    /// The renames of [`commit`](Self::commit).
+    fn move_into_place(&self, staging: tempfile::TempDir) -> std::io::Result<()> {
         let empty_target = std::fs::read_dir(&self.target)
             .map(|mut entries| entries.next().is_none())
             .unwrap_or(false);

@@ -3,7 +3,13 @@
 //! process is writing, which [`remove_temporaries`] deletes when the process is interrupted
 //! (SIGINT, SIGTERM), and [`sweep_stale_temporaries`], which deletes the ones a killed process
 //! left behind.
+//!
+//! Putting finished outputs into place (the renames of [`super::write_atomically`],
+//! [`super::StagedFolder::commit`], [`super::StagedFile::commit`]) runs inside
+//! [`commit_uninterrupted`], and [`remove_temporaries`] waits for it: an interruption never
+//! lands between the renames of one command's outputs, which so appear together or not at all.
 
+use std::cell::Cell;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -21,6 +27,12 @@ pub const STALE_AFTER: Duration = Duration::from_secs(3600);
 
 /// Temporaries this process is writing.
 static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Held while finished outputs are put into place; see [`commit_uninterrupted`].
+static COMMITTING: Mutex<()> = Mutex::new(());
+thread_local! {
+    /// Whether this thread holds [`COMMITTING`].
+    static COMMITTING_HERE: Cell<bool> = const { Cell::new(false) };
+}
 /// Folders already swept by this process.
 static SWEPT: Mutex<Option<HashSet<PathBuf>>> = Mutex::new(None);
 
@@ -44,14 +56,39 @@ pub fn register(path: &Path) -> Registration {
     Registration(path.to_path_buf())
 }
 
-/// Deletes every registered temporary (for a signal handler: the process exits next).
-/// Returns how many were deleted.
+/// Deletes every registered temporary (for a signal handler: the process exits next), after
+/// the [`commit_uninterrupted`] in progress, if any, has ended. Returns how many were deleted.
 pub fn remove_temporaries() -> usize {
     remove_registered(|_| true)
 }
 
-/// Deletes the registered temporaries for which `selected` holds; returns how many.
+/// Runs `commit`, which puts finished outputs into place (renames), so that
+/// [`remove_temporaries`] waits until it has ended: outputs committed together appear together
+/// even when the process is interrupted meanwhile. `commit` must not block on anything but the
+/// file system (renames, removals).
+/// A commit nested in another (a folder committed among a command's outputs) runs in the
+/// section its caller holds.
+pub fn commit_uninterrupted<T>(commit: impl FnOnce() -> T) -> T {
+    if COMMITTING_HERE.with(Cell::get) {
+        return commit();
+    }
+    let _committing = COMMITTING.lock().unwrap_or_else(|e| e.into_inner());
+    /// Marks this thread as committing until dropped (also when `commit` panics).
+    struct Here;
+    impl Drop for Here {
+        fn drop(&mut self) {
+            COMMITTING_HERE.with(|here| here.set(false));
+        }
+    }
+    COMMITTING_HERE.with(|here| here.set(true));
+    let _here = Here;
+    commit()
+}
+
+/// Deletes the registered temporaries for which `selected` holds, once no commit is in
+/// progress; returns how many.
 fn remove_registered(selected: impl Fn(&Path) -> bool) -> usize {
+    let _committing = COMMITTING.lock().unwrap_or_else(|e| e.into_inner());
     let live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
     live.iter()
         .filter(|path| selected(path))
@@ -157,5 +194,37 @@ mod tests {
         }
         sweep_stale_temporaries(dir.path());
         assert!(fresh.exists() && mine.exists() && !stale.exists());
+    }
+
+    /// A commit waits for no other of its own thread (nested commits run inside the outer
+    /// one), and the removal of temporaries waits for a commit of another thread to end.
+    #[test]
+    fn removal_waits_for_a_commit_and_commits_nest() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join(".tvf-write-committing.tmp");
+        std::fs::write(&file, b"x").unwrap();
+        let guard = register(&file);
+        let (entered, inside) = std::sync::mpsc::channel();
+        let (release, released) = std::sync::mpsc::channel::<()>();
+        let committer = std::thread::spawn(move || {
+            commit_uninterrupted(|| {
+                commit_uninterrupted(|| entered.send(()).unwrap());
+                released.recv().unwrap();
+                std::fs::rename(&file, file.with_extension("done")).unwrap();
+            });
+            drop(guard);
+        });
+        inside.recv().unwrap();
+        let mine = dir.path().to_path_buf();
+        let remover = std::thread::spawn(move || remove_registered(|p| p.starts_with(&mine)));
+        std::thread::sleep(Duration::from_millis(100));
+        assert!(
+            !remover.is_finished(),
+            "the removal did not wait for the commit"
+        );
+        release.send(()).unwrap();
+        committer.join().unwrap();
+        remover.join().unwrap();
+        assert!(dir.path().join(".tvf-write-committing.done").exists());
     }
 }

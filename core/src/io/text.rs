@@ -2,14 +2,63 @@
 
 use super::error::LoadErrorKind;
 use super::raw_mesh::{at, parse_error, Located};
+use std::borrow::Cow;
 
-/// The bytes as text; binary data is [`LoadErrorKind::NotText`] at the line where it starts.
-pub(crate) fn as_text(bytes: &[u8]) -> Result<&str, Located> {
-    std::str::from_utf8(bytes).map_err(|e| {
-        let valid = &bytes[..e.valid_up_to()];
-        let line = 1 + valid.iter().filter(|&&b| b == b'\n').count();
-        at(line, LoadErrorKind::NotText)
-    })
+/// The bytes as text. Comments (`#` to the end of the line) may hold any bytes (old tools write
+/// them in Latin-1); elsewhere bytes that are not UTF-8 are [`LoadErrorKind::NotText`] at their
+/// line, and a UTF-16 file is [`LoadErrorKind::Utf16`]. Lines that end in a carriage return
+/// only (old Mac files) are read as lines.
+pub(crate) fn as_text(bytes: &[u8]) -> Result<Cow<'_, str>, Located> {
+    if is_utf16_text(bytes) {
+        return Err(at(1, LoadErrorKind::Utf16));
+    }
+    let text = match std::str::from_utf8(bytes) {
+        Ok(text) => Cow::Borrowed(text),
+        Err(_) => Cow::Owned(without_comments(bytes)?),
+    };
+    if !text.contains('\n') && text.contains('\r') {
+        return Ok(Cow::Owned(text.replace('\r', "\n")));
+    }
+    Ok(text)
+}
+
+/// Whether `bytes` are UTF-16 text: a byte-order mark, then code units that decode without
+/// error into characters that are not control characters other than line ends and tabs.
+fn is_utf16_text(bytes: &[u8]) -> bool {
+    let little_endian = match bytes {
+        [0xFF, 0xFE, ..] => true,
+        [0xFE, 0xFF, ..] => false,
+        _ => return false,
+    };
+    let units = bytes[2..].chunks_exact(2).map(|pair| {
+        let pair = [pair[0], pair[1]];
+        if little_endian {
+            u16::from_le_bytes(pair)
+        } else {
+            u16::from_be_bytes(pair)
+        }
+    });
+    bytes.len().is_multiple_of(2)
+        && char::decode_utf16(units)
+            .all(|c| c.is_ok_and(|c| !c.is_control() || matches!(c, '\n' | '\r' | '\t')))
+}
+
+/// The lines of `bytes` with their comments cut off (line numbers kept), which must be UTF-8.
+fn without_comments(bytes: &[u8]) -> Result<String, Located> {
+    let mut text = String::with_capacity(bytes.len());
+    for (number, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let content = match line.iter().position(|&b| b == b'#') {
+            Some(k) => &line[..k],
+            None => line,
+        };
+        let content =
+            std::str::from_utf8(content).map_err(|_| at(number + 1, LoadErrorKind::NotText))?;
+        if number > 0 {
+            text.push('\n');
+        }
+        text.push_str(content);
+    }
+    Ok(text)
 }
 
 /// The part of `line` before a `#` comment.

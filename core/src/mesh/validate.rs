@@ -8,7 +8,7 @@
 use super::error::MeshError;
 use super::surface_mesh::SurfaceMesh;
 use super::validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};
-use crate::geometry::{cross, norm, sub};
+use crate::geometry::{cross, dot, norm, sub};
 use std::collections::HashMap;
 
 /// A face whose `|(p1−p0)×(p2−p0)|` is at most this times its longest squared edge length is
@@ -62,11 +62,8 @@ impl SurfaceMesh {
         let faces = faces.into_iter().map(|f| f.map(|v| new_index[v])).collect();
         let mesh = SurfaceMesh::new(kept_positions, faces)?;
 
-        if mesh.is_closed() {
-            let signed_volume = mesh.signed_volume();
-            if signed_volume < 0.0 {
-                warnings.push(ValidationWarning::InwardNormals { signed_volume });
-            }
+        if let Some(warning) = inward_components(&mesh) {
+            warnings.push(warning);
         }
         let (min_angle_deg, max_angle_deg) = mesh.angle_range_deg();
         let small = (0..mesh.face_count())
@@ -88,6 +85,35 @@ impl SurfaceMesh {
         };
         Ok((mesh, report))
     }
+}
+
+/// The closed components of `mesh` whose signed volume is negative (normals inward), if any.
+fn inward_components(mesh: &SurfaceMesh) -> Option<ValidationWarning> {
+    let count = mesh.component_count();
+    let mut volume = vec![0.0; count];
+    let mut first_face = vec![usize::MAX; count];
+    for (t, (face, &c)) in mesh.faces().iter().zip(mesh.face_components()).enumerate() {
+        let [p0, p1, p2] = face.map(|v| mesh.positions()[v]);
+        volume[c] += dot(p0, cross(p1, p2)) / 6.0;
+        first_face[c] = first_face[c].min(t);
+    }
+    let mut open = vec![false; count];
+    let vertex_component = mesh.vertex_components();
+    for boundary in mesh.boundary_loops() {
+        for v in boundary {
+            open[vertex_component[v]] = true;
+        }
+    }
+    let inward: Vec<usize> = (0..count)
+        .filter(|&c| !open[c] && volume[c] < 0.0)
+        .collect();
+    let &first = inward.first()?;
+    Some(ValidationWarning::InwardNormals {
+        components: inward.len(),
+        first_component: first,
+        first_face: first_face[first],
+        signed_volume: volume[first],
+    })
 }
 
 /// Every error check of [`SurfaceMesh::validated`], without building anything.

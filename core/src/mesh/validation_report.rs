@@ -22,9 +22,17 @@ pub enum ValidationWarning {
         /// The earlier vertex it repeats (input index).
         duplicate_of: usize,
     },
-    /// The mesh is closed but encloses a negative volume: the normals point inward.
+    /// Closed components (no boundary) that enclose a negative volume: their normals point
+    /// inward. Judged per component, so one reversed part of a mesh is found even when the
+    /// others outweigh it.
     InwardNormals {
-        /// The signed volume (units of length³).
+        /// How many closed components point inward.
+        components: usize,
+        /// The first of them (component ids as in [`crate::SurfaceMesh::face_components`]).
+        first_component: usize,
+        /// The lowest-numbered face of that component.
+        first_face: usize,
+        /// That component's signed volume (units of length³).
         signed_volume: f64,
     },
     /// Faces with an interior angle below [`SMALL_ANGLE_DEG`] degrees (slivers).
@@ -74,9 +82,16 @@ impl fmt::Display for ValidationWarning {
                 "{count} vertices repeat an earlier position exactly \
                  (first: vertex {first} = vertex {duplicate_of})"
             ),
-            Self::InwardNormals { signed_volume } => write!(
+            Self::InwardNormals {
+                components,
+                first_component,
+                first_face,
+                signed_volume,
+            } => write!(
                 f,
-                "closed mesh with negative signed volume {signed_volume:e}: normals point inward"
+                "{components} closed component(s) with a negative signed volume: their normals \
+                 point inward (first: component {first_component}, the one with face \
+                 {first_face}, signed volume {signed_volume:e})"
             ),
             Self::SmallAngles { faces } => {
                 write!(f, "{faces} faces have an angle below {SMALL_ANGLE_DEG}°")

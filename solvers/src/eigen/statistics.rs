@@ -2,6 +2,8 @@
 //! wall-clock and processor seconds), so that callers can check that every shift was factored
 //! once and how well the phases use the machine's cores.
 
+pub use crate::process_clock::process_cpu_seconds;
+use crate::process_clock::{cpu_seconds_between, thread_cpu_seconds};
 use std::ops::AddAssign;
 use std::time::Instant;
 
@@ -30,7 +32,8 @@ pub struct PhaseStatistics {
     pub wall_seconds: f64,
     /// Processor seconds of the whole process (user + system, every thread) during the phase;
     /// `cpu_seconds / wall_seconds` is the number of cores the phase kept busy on average
-    /// (other work of the same process running at the same time counts too).
+    /// (other work of the same process running at the same time counts too). NaN where the
+    /// platform has no processor-time clock ([`crate::process_clock`]).
     pub cpu_seconds: f64,
 }
 
@@ -127,7 +130,7 @@ impl PhaseClock {
     /// Adds the elapsed wall-clock and processor seconds to `statistics`.
     pub(crate) fn stop(self, statistics: &mut PhaseStatistics) {
         statistics.wall_seconds += self.wall.elapsed().as_secs_f64();
-        statistics.cpu_seconds += (process_cpu_seconds() - self.cpu).max(0.0);
+        statistics.cpu_seconds += cpu_seconds_between(self.cpu, process_cpu_seconds());
     }
 }
 
@@ -149,34 +152,7 @@ impl ThreadClock {
     pub(crate) fn elapsed(&self) -> (f64, f64) {
         (
             self.wall.elapsed().as_secs_f64(),
-            (thread_cpu_seconds() - self.cpu).max(0.0),
+            cpu_seconds_between(self.cpu, thread_cpu_seconds()),
         )
     }
-}
-
-/// Processor seconds of the calling thread so far; 0 where unavailable.
-fn thread_cpu_seconds() -> f64 {
-    // SAFETY: clock_gettime only writes the zero-initialised struct it is given.
-    let time = unsafe {
-        let mut time: libc::timespec = std::mem::zeroed();
-        if libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut time) != 0 {
-            return 0.0;
-        }
-        time
-    };
-    time.tv_sec as f64 + time.tv_nsec as f64 * 1e-9
-}
-
-/// User + system processor seconds of this process so far (all threads); 0 where unavailable.
-pub fn process_cpu_seconds() -> f64 {
-    // SAFETY: getrusage only writes the zero-initialised struct it is given.
-    let usage = unsafe {
-        let mut usage: libc::rusage = std::mem::zeroed();
-        if libc::getrusage(libc::RUSAGE_SELF, &mut usage) != 0 {
-            return 0.0;
-        }
-        usage
-    };
-    let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
-    seconds(usage.ru_utime) + seconds(usage.ru_stime)
 }

@@ -1,7 +1,7 @@
 //! `tvf analyze`: a field's Fourier coefficients against frequency (the paper's Figure 8) and
 //! the energy of each part of its Hodge decomposition.
 
-use super::spectral_inputs::{exact_hodge_energies, load_setup, read_field};
+use super::spectral_inputs::{exact_hodge_energies, load_inputs, read_field};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
@@ -53,8 +53,9 @@ pub fn run(mut args: AnalyzeArgs) -> Result<()> {
     let field_path = args.input.required_second(args.field.take(), "FIELD");
     let basis_file = args.basis.options.basis.as_deref();
     check_output(&args.output, &args.input, &[Some(&field_path), basis_file])?;
-    let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
-    let field = read_field(&field_path, setup.fields()?)?;
+    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let field = read_field(&field_path, inputs.fields()?)?;
+    let setup = inputs.with_basis(&args.input, &args.basis.options, args.basis.size())?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
     let exact = Some(exact_hodge_energies(setup.complex.as_ref(), &field)?);
     let staged = stage(&args.output)?;

@@ -1,16 +1,18 @@
 //! `tvf basis`: compute the Fourier basis of a mesh (Section 6) and save it as a `.tvfb` file
 //! and/or as numpy arrays (`--export DIR`).
 
-use crate::basis_export::export_basis;
+use crate::basis_export::stage_basis_export;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
-use crate::output_rules::check_output;
+use crate::output_rules::{check_output, commit};
 use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
+use tvf_core::io::temporaries::commit_uninterrupted;
+use tvf_core::io::StagedFile;
 use tvf_spectral::{
     compute_eigenfunction_basis, process_cpu_seconds, save_eigenfunction_basis, BasisFileKey,
     BasisRequest, FieldFamily, PhaseStatistics,
@@ -74,12 +76,36 @@ pub fn run(args: BasisArgs) -> Result<()> {
     let key = BasisFileKey::new(&mesh, discretization.as_ref());
     // The file holds the eigenfunctions (about half the bytes of the dense fields).
     let (writing_start, writing_cpu) = (Instant::now(), process_cpu_seconds());
+    // Both outputs appear together or neither: the file waits, staged, for the folder.
+    let staged_file = match (&args.output, &args.export) {
+        (Some(output), Some(_)) => Some(
+            StagedFile::new(output)
+                .with_context(|| format!("cannot write {}", output.display()))?,
+        ),
+        _ => None,
+    };
     if let Some(output) = &args.output {
-        save_eigenfunction_basis(output, &basis, discretization.as_ref(), &key)?;
+        let path = staged_file
+            .as_ref()
+            .map_or(output.clone(), StagedFile::path);
+        save_eigenfunction_basis(&path, &basis, discretization.as_ref(), &key)
+            .with_context(|| format!("cannot write {}", output.display()))?;
     }
-    if let Some(dir) = &args.export {
-        export_basis(&basis, discretization.as_ref(), dir)?;
-    }
+    let staged_export = args
+        .export
+        .as_ref()
+        .map(|dir| stage_basis_export(&basis, discretization.as_ref(), dir))
+        .transpose()?;
+    commit_uninterrupted(|| -> Result<()> {
+        if let Some(folder) = staged_export {
+            commit(folder)?;
+        }
+        if let (Some(file), Some(output)) = (staged_file, &args.output) {
+            file.commit()
+                .with_context(|| format!("cannot write {}", output.display()))?;
+        }
+        Ok(())
+    })?;
     let writing = PhaseStatistics {
         wall_seconds: writing_start.elapsed().as_secs_f64(),
         cpu_seconds: process_cpu_seconds() - writing_cpu,

@@ -1,7 +1,7 @@
 //! `tvf coefficients`: the Fourier coefficients α, β, γ of a field in a saved basis, and the rest
 //! field's share.
 
-use super::spectral_inputs::{load_setup, read_field};
+use super::spectral_inputs::{load_inputs, read_field};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use anyhow::Result;
@@ -34,8 +34,9 @@ pub struct CoefficientsArgs {
 /// Computes and prints the coefficients.
 pub fn run(mut args: CoefficientsArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
-    let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
-    let field = read_field(&field, setup.fields()?)?;
+    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let field = read_field(&field, inputs.fields()?)?;
+    let setup = inputs.with_basis(&args.input, &args.basis.options, args.basis.size())?;
     let analysis = FourierAnalysis::new(&setup.basis, &field)?;
     let basis = &setup.basis;
     if args.json {

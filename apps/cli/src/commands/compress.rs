@@ -1,7 +1,7 @@
 //! `tvf compress`: a field, or a time-dependent sequence of fields, as the lowest `k` pairs of
 //! Fourier coefficients in a `.tvfc` file.
 
-use super::spectral_inputs::{load_setup, read_frames};
+use super::spectral_inputs::{load_inputs, read_frames};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
@@ -60,8 +60,9 @@ pub fn run(mut args: CompressArgs) -> Result<()> {
     let basis_file = args.basis.options.basis.as_deref();
     check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
     let size = args.basis.size_or(BasisSize::Pairs(args.pairs));
-    let setup = load_setup(&args.input, &args.basis.options, size)?;
-    let (frames, source) = read_frames(&field, setup.fields()?)?;
+    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let (frames, source) = read_frames(&field, inputs.fields()?)?;
+    let setup = inputs.with_basis(&args.input, &args.basis.options, size)?;
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },
         None => CoefficientCoding::Float64,

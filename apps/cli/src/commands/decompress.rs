@@ -1,15 +1,17 @@
 //! `tvf decompress`: the fields of a `.tvfc` file.
 
-use super::spectral_inputs::setup_for_mesh;
+use super::spectral_inputs::{inputs_for_mesh, SpectralInputs};
 use crate::basis_source::BasisSource;
+use crate::computed_field::check_computed_field;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::progress::Progress;
-use anyhow::Result;
+use anyhow::{bail, Result};
 use clap::Args;
 use rayon::prelude::*;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use tvf_core::discretization::HodgeOperators;
 use tvf_spectral::write_field_frames;
 use tvf_spectral::BasisSize;
 use tvf_spectral::{basis_id, CompressedFields, CompressionError, FieldCodec};
@@ -44,18 +46,54 @@ pub fn run(mut args: DecompressArgs) -> Result<()> {
     // The mesh first: a bad mesh is reported before a bad file.
     let mesh = args.input.load()?.mesh;
     let file = CompressedFields::read(&compressed)?;
+    let inputs = inputs_for_mesh(mesh, &args.input, &args.basis.options)?;
+    check_file_fits(&compressed, &file, &inputs)?;
     // Without --basis or -k, compute the basis of as many pairs as the file keeps.
     let size = args
         .basis
         .size_or(BasisSize::Pairs(file.header.pairs as usize));
-    let setup = setup_for_mesh(mesh, &args.input, &args.basis.options, size)?;
+    let setup = inputs.with_basis(&args.input, &args.basis.options, size)?;
     let id = basis_id(&setup.basis);
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;
     let frames = decode_frames(&codec, &file)?;
+    for (k, frame) in frames.iter().enumerate() {
+        check_computed_field(
+            frame,
+            &format!("frame {k} of {}", compressed.display()),
+            "its coefficients are too large for f64 arithmetic",
+        )?;
+    }
     write_field_frames(&args.output, setup.fields()?, &frames)?;
     println!("frames    {}", frames.len());
     println!("wrote     {}", args.output.display());
+    Ok(())
+}
+
+/// Refuses a compressed file made for another mesh or for fields of another size, before any
+/// basis is computed (the basis it was made with is checked by its id once it is there).
+fn check_file_fits(path: &Path, file: &CompressedFields, inputs: &SpectralInputs) -> Result<()> {
+    let mesh = inputs.mesh.fingerprint();
+    if file.header.mesh_fingerprint != mesh {
+        bail!(
+            "{}: {}",
+            path.display(),
+            CompressionError::MeshMismatch {
+                file: file.header.mesh_fingerprint,
+                mesh,
+            }
+        );
+    }
+    let dimension = inputs.complex.field_dimension();
+    if file.header.field_dimension != dimension as u64 {
+        bail!(
+            "{}: the file holds fields of {} coefficients, but the fields of {} on this mesh \
+             have {dimension} (compressed with another discretization?)",
+            path.display(),
+            file.header.field_dimension,
+            inputs.complex.id()
+        );
+    }
     Ok(())
 }
 

@@ -6,8 +6,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_core::ValidationWarning;
-use tvf_design::ConstraintSet;
 use tvf_design::ReducedBasis;
+use tvf_design::{ConstraintAssembler, ConstraintSet};
 use tvf_editor::{Editor, EditorServer, EditorSetup};
 
 /// Arguments of `tvf edit`.
@@ -35,15 +35,25 @@ pub struct EditArgs {
 pub fn run(args: EditArgs) -> Result<()> {
     let loaded = args.input.load()?;
     let mesh = loaded.mesh;
+    // Every input is checked before the basis is computed: the constraints against the
+    // discretization they will be compiled for.
+    let complex = args.basis.options.discretization(&mesh, &args.input)?;
     let constraints = match &args.constraints {
         Some(path) => {
             let set = ConstraintSet::load(path)?;
             set.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), path)?;
+            ConstraintAssembler::new(complex.as_ref(), &mesh)
+                .compile_all(&set.constraints)
+                .with_context(|| format!("{}", path.display()))?;
             Some(set)
         }
         None => None,
     };
-    let resolved = args.basis.resolve(&mesh, &args.input)?;
+    let computed_with = args.basis.options.basis.is_none().then_some(complex);
+    let resolved =
+        args.basis
+            .options
+            .resolve_with(&mesh, &args.input, args.basis.size(), computed_with)?;
     let discretization = resolved.discretization.id().to_string();
     let basis = ReducedBasis::from_spectral(&resolved.basis)?;
     println!(

@@ -1,13 +1,14 @@
 //! `tvf filter`: scale a field's Fourier coefficients by functions of frequency.
 
-use super::spectral_inputs::{load_setup, read_field};
+use super::spectral_inputs::{load_inputs, read_field};
 use crate::basis_source::BasisSource;
+use crate::computed_field::check_computed_field;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::report::Report;
 use anyhow::{bail, Result};
 use clap::Args;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use tvf_spectral::{write_tangent_field, FrequencyResponse, SpectralFilter};
 
 const SPEC_HELP: &str = "Examples:\n  tvf filter bunny.obj noisy.npy --basis bunny.tvfb --integrable lowpass:t=0.01 --cointegrable lowpass:t=0.01 -o smooth.npy\n  tvf filter bunny.obj field.npy -k 200 --cointegrable cutoff:f=8 --rest 0 -o filtered.npy\n\nSPEC: identity | lowpass:t=T (gain e^(-t·λ)) | highpass:t=T (2 - e^(-t·λ)) | \
@@ -56,6 +57,11 @@ fn spec_syntax(spec: &str) -> Result<String, String> {
         .map_err(|e| e.to_string())
 }
 
+/// The curve file of a `@FILE.json` SPEC, if it is one.
+fn curve_file(spec: &str) -> Option<&Path> {
+    spec.strip_prefix('@').map(Path::new)
+}
+
 /// The response of `--{flag} SPEC`; errors name the flag (and the file of `@FILE.json`).
 fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
     spec.parse::<FrequencyResponse>()
@@ -66,7 +72,9 @@ fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
 pub fn run(mut args: FilterArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     let basis_file = args.basis.options.basis.as_deref();
-    check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
+    let curves = [curve_file(&args.integrable), curve_file(&args.cointegrable)];
+    let inputs = [Some(field.as_path()), basis_file, curves[0], curves[1]];
+    check_output(&args.output, &args.input, &inputs)?;
     for (name, gain) in [("--harmonic", args.harmonic), ("--rest", args.rest)] {
         if !gain.is_finite() || gain < 0.0 {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");
@@ -74,8 +82,9 @@ pub fn run(mut args: FilterArgs) -> Result<()> {
     }
     let integrable = response("integrable", &args.integrable)?;
     let cointegrable = response("cointegrable", &args.cointegrable)?;
-    let setup = load_setup(&args.input, &args.basis.options, args.basis.size())?;
-    let field = read_field(&field, setup.fields()?)?;
+    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let field = read_field(&field, inputs.fields()?)?;
+    let setup = inputs.with_basis(&args.input, &args.basis.options, args.basis.size())?;
     let filter = SpectralFilter {
         integrable,
         cointegrable,
@@ -83,23 +92,36 @@ pub fn run(mut args: FilterArgs) -> Result<()> {
         rest_gain: args.rest,
     };
     let filtered = filter.apply(&setup.basis, &field)?;
-    write_tangent_field(&args.output, setup.fields()?, &filtered.field)?;
+    let cause = format!(
+        "the gains times the field's coefficients overflow f64 arithmetic: --integrable {}, \
+         --cointegrable {}, --harmonic {}, --rest {}",
+        args.integrable, args.cointegrable, args.harmonic, args.rest
+    );
+    check_computed_field(&filtered.field, "the filtered field", &cause)?;
     let norm = |v: &[f64]| setup.basis.inner_product(v, v).sqrt();
+    let (input_norm, output_norm) = (norm(&field), norm(&filtered.field));
+    if !output_norm.is_finite() {
+        bail!(
+            "the norm of the filtered field overflows f64 arithmetic ({cause}); nothing was \
+             written"
+        );
+    }
+    write_tangent_field(&args.output, setup.fields()?, &filtered.field)?;
     let mut report = Report::new(args.json);
     report.line(format!(
         "basis          {} fields ({})",
         setup.basis.len(),
         setup.discretization
     ));
-    report.line(format!("input norm     {:.6e}", norm(&field)));
+    report.line(format!("input norm     {input_norm:.6e}"));
     report.line(format!("rest norm      {:.6e}", filtered.rest_norm));
-    report.line(format!("output norm    {:.6e}", norm(&filtered.field)));
+    report.line(format!("output norm    {output_norm:.6e}"));
     report.line(format!("wrote          {}", args.output.display()));
     report.set("basis_fields", setup.basis.len());
     report.set("discretization", &setup.discretization);
-    report.set("input_norm", norm(&field));
+    report.set("input_norm", input_norm);
     report.set("rest_norm", filtered.rest_norm);
-    report.set("output_norm", norm(&filtered.field));
+    report.set("output_norm", output_norm);
     report.set("output", args.output.display().to_string());
     report.finish()
 }

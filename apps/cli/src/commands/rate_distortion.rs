@@ -1,7 +1,7 @@
 //! `tvf rate-distortion`: relative L2 error against bits per vertex for several numbers of
 //! pairs, with 64-bit and with quantised, range-coded coefficients (the paper's Figure 9).
 
-use super::spectral_inputs::{load_setup, read_field};
+use super::spectral_inputs::{load_inputs, read_field};
 use crate::basis_source::BasisSource;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
@@ -63,8 +63,9 @@ pub fn run(mut args: RateDistortionArgs) -> Result<()> {
     // Without --basis or -k, compute as many pairs as the largest P tried.
     let largest = args.ks.iter().max().copied().unwrap_or(0);
     let size = args.basis.size_or(BasisSize::Pairs(largest));
-    let setup = load_setup(&args.input, &args.basis.options, size)?;
-    let field = read_field(&field, setup.fields()?)?;
+    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let field = read_field(&field, inputs.fields()?)?;
+    let setup = inputs.with_basis(&args.input, &args.basis.options, size)?;
     let stamp = FileStamp {
         mesh_fingerprint: setup.mesh_fingerprint,
         basis_id: basis_id(&setup.basis),

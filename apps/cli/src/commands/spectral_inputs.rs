@@ -1,6 +1,7 @@
 //! What `filter`, `analyze`, `compress`, `decompress`, `rate-distortion` and `coefficients`
-//! share: a mesh with its basis (a basis file checked to belong to the mesh, or a cached or
-//! computed basis, see [`crate::basis_source`]), and field files (one field, or a sequence of
+//! share: a mesh with its discretization, against which the other inputs are checked first
+//! ([`SpectralInputs`]), then its basis (a basis file checked to belong to the mesh, or a cached
+//! or computed basis, see [`crate::basis_source`]); field files (one field, or a sequence of
 //! frames) read as tangent fields.
 
 use crate::basis_source::BasisOptions;
@@ -29,14 +30,55 @@ pub struct SpectralSetup {
     pub mesh_fingerprint: u64,
 }
 
-/// Loads the mesh and its basis: the `--basis` file (refused if computed for another mesh or
-/// discretization) or a basis of `size` computed once and cached (see [`BasisOptions`]).
-pub fn load_setup(
+/// A mesh and the discretization its basis will have, before the basis is loaded or
+/// computed: every other input (fields, compressed files) is checked against these first, so
+/// that a bad input is refused before the expensive step and leaves no basis in the cache.
+pub struct SpectralInputs {
+    /// The mesh.
+    pub mesh: SurfaceMesh,
+    /// The discretization (the `--basis` file's, read from its header, or the flags').
+    pub complex: BoxedComplex,
+}
+
+/// Loads the mesh and builds its discretization (see [`SpectralInputs`]).
+pub fn load_inputs(input: &MeshInput, source: &BasisOptions) -> Result<SpectralInputs> {
+    inputs_for_mesh(input.load()?.mesh, input, source)
+}
+
+/// [`load_inputs`] for a mesh already loaded from `input`.
+pub fn inputs_for_mesh(
+    mesh: SurfaceMesh,
     input: &MeshInput,
     source: &BasisOptions,
-    size: BasisSize,
-) -> Result<SpectralSetup> {
-    setup_for_mesh(input.load()?.mesh, input, source, size)
+) -> Result<SpectralInputs> {
+    let complex = source.discretization(&mesh, input)?;
+    Ok(SpectralInputs { mesh, complex })
+}
+
+impl SpectralInputs {
+    /// How fields of the discretization are read and written as per-face vectors.
+    pub fn fields(&self) -> Result<&dyn FieldSampling> {
+        Ok(self.complex.require_sampling()?)
+    }
+
+    /// The basis of `size` for the mesh: the `--basis` file (refused if computed for another
+    /// mesh or discretization) or a basis computed once and cached (see [`BasisOptions`]).
+    pub fn with_basis(
+        self,
+        input: &MeshInput,
+        source: &BasisOptions,
+        size: BasisSize,
+    ) -> Result<SpectralSetup> {
+        let computed_with = source.basis.is_none().then_some(self.complex);
+        let resolved = source.resolve_with(&self.mesh, input, size, computed_with)?;
+        Ok(SpectralSetup {
+            discretization: resolved.discretization.id().to_string(),
+            complex: resolved.discretization,
+            mesh_fingerprint: resolved.mesh_fingerprint,
+            basis: resolved.basis,
+            mesh: self.mesh,
+        })
+    }
 }
 
 impl SpectralSetup {
@@ -44,23 +86,6 @@ impl SpectralSetup {
     pub fn fields(&self) -> Result<&dyn FieldSampling> {
         Ok(self.complex.require_sampling()?)
     }
-}
-
-/// [`load_setup`] for a mesh already loaded from `input`.
-pub fn setup_for_mesh(
-    mesh: SurfaceMesh,
-    input: &MeshInput,
-    source: &BasisOptions,
-    size: BasisSize,
-) -> Result<SpectralSetup> {
-    let resolved = source.resolve(&mesh, input, size)?;
-    Ok(SpectralSetup {
-        discretization: resolved.discretization.id().to_string(),
-        complex: resolved.discretization,
-        mesh_fingerprint: resolved.mesh_fingerprint,
-        basis: resolved.basis,
-        mesh,
-    })
 }
 
 /// Reads one field file (`.npy` `F × 3` or text) as a tangent field (`n1` coefficients); notes

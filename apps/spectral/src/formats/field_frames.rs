@@ -16,6 +16,11 @@ use tvf_core::io::StagedFolder;
 /// magnitudes and energies of the field can be computed in `f64`.
 pub const MAX_FIELD_COMPONENT: f64 = 1e150;
 
+/// Smallest accepted largest component of a field that is not zero: below it, squared lengths
+/// and energies underflow to zero (or lose their digits), so every norm, share and relative
+/// error of the field would be wrong.
+pub const MIN_FIELD_COMPONENT: f64 = 1e-150;
+
 /// One field read from a file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FieldFromFile {
@@ -60,20 +65,28 @@ pub fn read_field_file(
     })
 }
 
-/// Refuses a field with a NaN component or one above [`MAX_FIELD_COMPONENT`].
+/// Refuses a field with a NaN component or one above [`MAX_FIELD_COMPONENT`], and a field
+/// that is not zero but whose largest component is below [`MIN_FIELD_COMPONENT`].
 fn check_magnitudes(path: &Path, field: &[f64]) -> Result<(), FieldIoError> {
-    match field
+    if let Some((k, &value)) = field
         .iter()
         .enumerate()
         .find(|(_, x)| x.is_nan() || x.abs() > MAX_FIELD_COMPONENT)
     {
-        Some((k, &value)) => Err(FieldIoError::TooLarge {
+        return Err(FieldIoError::TooLarge {
             path: path.to_path_buf(),
             face: k / 2,
             value,
-        }),
-        None => Ok(()),
+        });
     }
+    let largest = field.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if largest > 0.0 && largest < MIN_FIELD_COMPONENT {
+        return Err(FieldIoError::TooSmall {
+            path: path.to_path_buf(),
+            largest,
+        });
+    }
+    Ok(())
 }
 
 /// Reads a field or a sequence: a folder of field files (`.npy` or `.txt`, sorted by name), an

@@ -90,6 +90,37 @@ pub enum FieldIoError {
         /// The component.
         value: f64,
     },
+    /// A field whose largest component is not zero but below [`crate::MIN_FIELD_COMPONENT`]:
+    /// its squared lengths and energies underflow.
+    #[error(
+        "{}: the largest component of the field is {largest:e}: too small for f64 arithmetic \
+         (squared lengths and energies underflow to zero; the largest component must be at \
+         least {min:e} unless the field is zero: scale the field up)",
+        path.display(),
+        min = crate::MIN_FIELD_COMPONENT
+    )]
+    TooSmall {
+        /// The file.
+        path: PathBuf,
+        /// The largest component.
+        largest: f64,
+    },
+    /// A field to write with a component that is NaN, infinite or above
+    /// [`crate::MAX_FIELD_COMPONENT`]: the file would be refused when read back.
+    #[error(
+        "{}: cannot write the field: the vector of face {face} has the component {value:e} \
+         (a written field must be finite, with components at most {max:e})",
+        path.display(),
+        max = crate::MAX_FIELD_COMPONENT
+    )]
+    Unwritable {
+        /// The file.
+        path: PathBuf,
+        /// The face.
+        face: usize,
+        /// The component.
+        value: f64,
+    },
     /// A frame folder without frame files.
     #[error("{}: the folder holds no .npy or .txt frame", path.display())]
     NoFrames {
@@ -168,7 +199,34 @@ pub fn read_npy(path: &Path) -> Result<NpyArray, FieldIoError> {
                 .map_err(io_error(path))?;
         }
     }
-    NpyArray::from_bytes(&bytes).map_err(npy_error)
+    match NpyArray::from_bytes(&bytes) {
+        // One byte past the array was read to see that there is more: count all of it.
+        Err(NpyError::TrailingData { .. }) => {
+            Err(npy_error(trailing_data(&mut file, bytes.len() as u64 - 1)))
+        }
+        result => result.map_err(npy_error),
+    }
+}
+
+/// The trailing data of an `.npy` file whose array ends at byte `end` and which was read to
+/// `end + 1`: the exact count for a regular file, for a stream what follows up to a bound.
+fn trailing_data(file: &mut std::fs::File, end: u64) -> NpyError {
+    const STREAM_BOUND: u64 = 1 << 20;
+    match file.metadata() {
+        Ok(metadata) if metadata.is_file() => NpyError::TrailingData {
+            extra: metadata.len().saturating_sub(end),
+            more: false,
+        },
+        _ => {
+            let mut rest = Vec::new();
+            let _ = read_exactly_at_most(file, STREAM_BOUND, &mut rest);
+            let extra = 1 + rest.len() as u64;
+            NpyError::TrailingData {
+                extra,
+                more: rest.len() as u64 == STREAM_BOUND,
+            }
+        }
+    }
 }
 
 /// Largest text field file accepted: about 13 million faces at 80 bytes per line.
@@ -216,7 +274,8 @@ pub fn read_face_vectors(path: &Path) -> Result<Vec<[f64; 3]>, FieldIoError> {
                 "stream did not contain valid UTF-8",
             ))
         })?;
-        parse_text(path, &text)?
+        // A byte-order mark some editors write before the first line is not part of it.
+        parse_text(path, text.strip_prefix('\u{feff}').unwrap_or(&text))?
     };
     if let Some(index) = vectors
         .iter()
@@ -268,12 +327,31 @@ pub fn write_face_vectors(path: &Path, vectors: &[[f64; 3]]) -> Result<(), Field
     write_face_vectors_as(path, vectors, FieldFileFormat::from_path(path))
 }
 
-/// Writes one 3D vector per face in an explicit format (atomic).
+/// Refuses vectors that the readers would refuse (see [`FieldIoError::Unwritable`]).
+fn check_writable(path: &Path, vectors: &[[f64; 3]]) -> Result<(), FieldIoError> {
+    for (face, v) in vectors.iter().enumerate() {
+        if let Some(&value) = v
+            .iter()
+            .find(|x| !x.is_finite() || x.abs() > crate::MAX_FIELD_COMPONENT)
+        {
+            return Err(FieldIoError::Unwritable {
+                path: path.to_path_buf(),
+                face,
+                value,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Writes one 3D vector per face in an explicit format (atomic). Vectors with a NaN, infinite
+/// or too large component ([`FieldIoError::Unwritable`]) are refused: nothing is written.
 pub fn write_face_vectors_as(
     path: &Path,
     vectors: &[[f64; 3]],
     format: FieldFileFormat,
 ) -> Result<(), FieldIoError> {
+    check_writable(path, vectors)?;
     match format {
         FieldFileFormat::Npy(dtype) => write_npy(
             path,
@@ -323,12 +401,15 @@ pub fn read_face_vector_sequence(path: &Path) -> Result<Vec<Vec<[f64; 3]>>, Fiel
 }
 
 /// Writes `T` frames of `F` vectors as one `.npy` array `F × 3 × T` (atomic). All frames must
-/// have the same length.
+/// have the same length; vectors are checked as by [`write_face_vectors_as`].
 pub fn write_face_vector_sequence(
     path: &Path,
     frames: &[Vec<[f64; 3]>],
     dtype: NpyDtype,
 ) -> Result<(), FieldIoError> {
+    for frame in frames {
+        check_writable(path, frame)?;
+    }
     let faces = frames.first().map_or(0, Vec::len);
     if let Some(k) = frames.iter().position(|f| f.len() != faces) {
         return Err(FieldIoError::Inconsistent {

@@ -67,10 +67,15 @@ pub enum NpyError {
     )]
     FortranOrder,
     /// The data section is longer than the shape says.
-    #[error("{extra} bytes of trailing data after the array")]
+    #[error(
+        "{extra}{} bytes of trailing data after the array",
+        if *more { " or more" } else { "" }
+    )]
     TrailingData {
-        /// Number of unexpected bytes.
-        extra: usize,
+        /// Number of unexpected bytes (a lower bound if `more`).
+        extra: u64,
+        /// Whether there are more than `extra` (a stream that was not read to its end).
+        more: bool,
     },
 }
 
@@ -139,7 +144,8 @@ impl NpyArray {
         }
         if payload.len() > needed {
             return Err(NpyError::TrailingData {
-                extra: payload.len() - needed,
+                extra: (payload.len() - needed) as u64,
+                more: false,
             });
         }
         let data = match dtype {
@@ -488,7 +494,10 @@ mod tests {
         extra.push(0);
         assert_eq!(
             NpyArray::from_bytes(&extra),
-            Err(NpyError::TrailingData { extra: 1 })
+            Err(NpyError::TrailingData {
+                extra: 1,
+                more: false
+            })
         );
         let mut fortran = good.clone();
         let pos = fortran.windows(5).position(|w| w == b"False").unwrap();
