@@ -104,7 +104,7 @@ pub fn spectral_basis(
         eigenvalues.as_slice()?.to_vec(),
         families,
         fields,
-        complex.m1().values().to_vec(),
+        complex.m1().clone(),
     )
     .map_err(|e| with_context("basis", &e))
 }

@@ -8,7 +8,6 @@ use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
-use tvf_core::discretization::HodgeOperators;
 use tvf_design::{
     checked_residuals, default_regularization, CompiledConstraint, ConstraintAssembler,
     ConstraintResidual, ConstraintSet, FullSoftDesign, ReducedBasis, SoftOptions, SplineSession,
@@ -94,7 +93,6 @@ pub fn design<'py>(
     let c = complex.complex.as_ref();
     let (set, compiled) = constraints(complex, constraints_json, origin)?;
     let field = py.detach(|| -> Result<Vec<f64>, tvf_design::DesignError> {
-        let dirichlet = c.dirichlet_energy();
         let options = SoftOptions {
             omega: set.omega,
             regularization: default_regularization(c),
