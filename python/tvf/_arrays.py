@@ -81,27 +81,6 @@ def mass(matrix, name):
     return csr_parts(matrix, name)
 
 
-def diagonal(matrix, name):
-    """The diagonal of a diagonal matrix given as a vector or as a (sparse) diagonal matrix;
-    off-diagonal entries are an error."""
-    if sp.issparse(matrix):
-        coo = sp.coo_matrix(matrix)
-        if matrix.shape[0] != matrix.shape[1]:
-            raise TvfError(f"{name}: a diagonal mass must be square, got shape {matrix.shape}")
-        off = coo.row != coo.col
-        if np.any(coo.data[off] != 0):
-            raise TvfError(f"{name}: a diagonal mass has off-diagonal entries")
-        return np.ascontiguousarray(matrix.diagonal(), dtype=np.float64)
-    array = float_array(matrix, name)
-    if array.ndim == 2:
-        if array.shape[0] != array.shape[1] or np.any(array - np.diag(np.diag(array))):
-            raise TvfError(f"{name}: expected a vector or a diagonal matrix, got shape {array.shape}")
-        return np.ascontiguousarray(np.diag(array))
-    if array.ndim != 1:
-        raise TvfError(f"{name}: expected a vector or a diagonal matrix, got shape {array.shape}")
-    return array
-
-
 def to_csr(parts):
     """``scipy.sparse.csr_matrix`` from the native module's CSR parts."""
     indptr, indices, data, shape = parts
