@@ -40,6 +40,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fields::decompress, m)?)?;
     m.add_function(wrap_pyfunction!(design::spline, m)?)?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design_reduced, m)?)?;
     m.add_function(wrap_pyfunction!(eigsh::eigsh, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
     Ok(())
