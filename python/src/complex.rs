@@ -3,7 +3,9 @@
 
 use crate::arrays::{csr_from_parts, CsrParts};
 use crate::errors::{from_error, tvf_error};
-use crate::masses::{mass_description, mass_from_input, Given, MassInput};
+use crate::masses::{
+    direct_co_potential_mass, mass_description, mass_from_input, Given, MassInput,
+};
 use crate::mesh::Mesh;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -78,7 +80,9 @@ impl Complex {
         let m0 = mass_from_input("M0", m0, Given::Mass).map_err(labelled)?;
         let m1 = mass_from_input("M1", m1, Given::Mass).map_err(labelled)?;
         let m2 = match (m2, m2_inverse) {
-            (Some(m2), None) => mass_from_input("M2", m2, Given::Mass),
+            (Some(m2), None) => {
+                mass_from_input("M2", m2, Given::Mass).and_then(direct_co_potential_mass)
+            }
             (None, Some(inverse)) => mass_from_input("M2_inverse (M2⁻¹)", inverse, Given::Inverse),
             _ => Err(tvf_error(
                 "give the co-potential mass either as M2 or as its inverse M2_inverse, not both",

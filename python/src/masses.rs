@@ -50,6 +50,21 @@ pub fn mass_from_input(what: &'static str, input: MassInput<'_>, given: Given) -
     checked.map_err(|e| tvf_error(e.to_string()))
 }
 
+/// `M2` given directly, checked to be diagonal: the co-exact eigenproblem's mass is the
+/// co-potential mass `M2⁻¹`, which tvf's eigensolvers need sparse, and the inverse of an `M2`
+/// with off-diagonal entries is dense.
+pub fn direct_co_potential_mass(m2: Mass) -> PyResult<Mass> {
+    if m2.is_diagonal() {
+        Ok(m2)
+    } else {
+        Err(tvf_error(
+            "M2 has off-diagonal entries, so its inverse, the co-potential mass, is dense; tvf \
+             needs the co-potential mass sparse: give M2 as a diagonal, or the sparse \
+             co-potential mass as M2_inverse",
+        ))
+    }
+}
+
 /// `{"M0": {...}, "M1": {...}, "M2": {...}}`: for each mass its `storage` (`diagonal` or
 /// `sparse`), its `form` (`direct`: the sparse matrix is `M`; `inverse`: it is `M⁻¹`, and `M`
 /// is dense) and `key`, the key of `tvf.operators` that holds the sparse matrix (`M2` or

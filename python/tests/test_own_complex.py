@@ -217,6 +217,18 @@ def test_broken_masses_are_refused_naming_the_matrix(torus_mesh):
         build(M2_inverse=area)
     with pytest.raises(tvf.TvfError, match="give the co-potential mass as M2 or as its inverse M2_inverse"):
         build(M2=None)
+    # M2 with off-diagonal entries has a dense inverse: the co-potential mass must be sparse.
+    coupled = sp.diags(ref["M2"]) + 0.01 * sp.diags(np.sqrt(ref["M2"][1:] * ref["M2"][:-1]), 1, shape=(len(F), len(F)))
+    with pytest.raises(tvf.TvfError, match="M2 has off-diagonal entries, so its inverse, the co-potential mass, is dense"):
+        build(M2=coupled + coupled.T - sp.diags(ref["M2"]))
+    # Given as M2_inverse the same matrix is a sparse co-potential mass: with the sparse
+    # Whitney M1 the co-exact problem is a mixed pencil with a sparse mass.
+    mixed = build(M2=None, M2_inverse=coupled + coupled.T - sp.diags(ref["M2"]))
+    assert mixed.masses["M2"] == {"storage": "sparse", "form": "inverse", "key": "M2_inverse"}
+    basis = tvf.basis(mixed, 30, seed=1)
+    U = basis.coefficients
+    assert np.max(np.abs(U.T @ (ref["M1"] @ U) - np.eye(30))) < 1e-10
+    assert tvf.check(mixed).passed
     dense_m2 = tvf.operators(mesh, "nonconforming-consistent")["M2"]
     with pytest.raises(TypeError, match="got a LinearOperator .* as M2_inverse"):
         build(M2=dense_m2)

@@ -65,7 +65,9 @@ class Complex:
             ``(M + M^T) / 2``).
 
           Diagonal masses keep every derived operator a sparse matrix; a sparse mass makes
-          those that contain its inverse compositions (see :func:`operators`).
+          those that contain its inverse compositions (see :func:`operators`). ``M2`` itself
+          must be diagonal (the co-potential mass, its inverse, must be sparse): a sparse
+          co-potential mass is given as ``M2_inverse``.
         - ``M2_inverse`` (keyword only, instead of ``M2``): the inverse ``M2^-1``, the
           co-potential mass, when that is the sparse one (a consistent co-potential mass: the
           consistent P1 mass of ``nonconforming-consistent``, whose ``M2`` is dense). A vector
