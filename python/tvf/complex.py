@@ -43,8 +43,8 @@ class Complex:
     @classmethod
     def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None):
         """Your own discretization: the five matrices, run through the same Rust code as the
-        built-in ones (basis, decomposition, coefficients, filter, compression, spline, design,
-        :func:`tvf.check`).
+        built-in ones (basis, decomposition, coefficients, filter, compression, spline, design —
+        the full one with diagonal masses, the reduced one always —, :func:`tvf.check`).
 
         - ``mesh``: a closed :class:`Mesh` (with boundary, the boundary condition would have to
           be given too: use a catalog entry there).
