@@ -69,6 +69,13 @@ pub fn basis<'py>(
     Ok(out)
 }
 
+/// Basis arrays as Python passes them: eigenvalues, families, `n1 × k` coefficients.
+pub type BasisParts<'py> = (
+    PyReadonlyArray1<'py, f64>,
+    Vec<String>,
+    PyReadonlyArray2<'py, f64>,
+);
+
 /// A [`SpectralBasis`] of `complex` from Python's arrays (eigenvalues, family names,
 /// `n1 × k` coefficients), checked against the complex.
 pub fn spectral_basis(
@@ -104,7 +111,7 @@ pub fn spectral_basis(
         eigenvalues.as_slice()?.to_vec(),
         families,
         fields,
-        complex.m1().values().to_vec(),
+        complex.m1().clone(),
     )
     .map_err(|e| with_context("basis", &e))
 }

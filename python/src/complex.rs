@@ -3,8 +3,10 @@
 
 use crate::arrays::{csr_from_parts, CsrParts};
 use crate::errors::{from_error, tvf_error};
+use crate::masses::{
+    direct_co_potential_mass, mass_description, mass_from_input, Given, MassInput,
+};
 use crate::mesh::Mesh;
-use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
@@ -46,18 +48,24 @@ impl Complex {
         })
     }
 
-    /// A complex from the five matrices (CSR parts of `d0`, `d1`; the diagonals of `M0`, `M1`,
-    /// `M2`) on a closed `mesh`; `sampling` is `none`, `face-frames` or `whitney`.
+    /// A complex from the five matrices on a closed `mesh`: the CSR parts of `d0`, `d1`; the
+    /// masses `M0`, `M1` and either `M2` or its inverse `m2_inverse` (exactly one of them), each
+    /// a diagonal or CSR parts (see [`MassInput`]); `sampling` is `none`, `face-frames` or
+    /// `whitney`. Errors name the matrix: shapes, finite entries, symmetry, positive
+    /// definiteness on the used nodes (a Cholesky factorization of each sparse mass),
+    /// `d1 · d0 = 0`.
     #[staticmethod]
+    #[pyo3(signature = (mesh, d0, d1, m0, m1, m2, m2_inverse, sampling, id))]
     #[allow(clippy::too_many_arguments)]
     fn from_matrices(
         py: Python<'_>,
         mesh: &Mesh,
         d0: CsrParts<'_>,
         d1: CsrParts<'_>,
-        m0: PyReadonlyArray1<'_, f64>,
-        m1: PyReadonlyArray1<'_, f64>,
-        m2: PyReadonlyArray1<'_, f64>,
+        m0: MassInput<'_>,
+        m1: MassInput<'_>,
+        m2: Option<MassInput<'_>>,
+        m2_inverse: Option<MassInput<'_>>,
         sampling: &str,
         id: &str,
     ) -> PyResult<Self> {
@@ -66,13 +74,21 @@ impl Complex {
                 "'{sampling}' is not a sampling: none, face-frames or whitney"
             ))
         })?;
-        let d0 = csr_from_parts("d0", d0)?;
-        let d1 = csr_from_parts("d1", d1)?;
-        let (m0, m1, m2) = (
-            m0.as_slice()?.to_vec(),
-            m1.as_slice()?.to_vec(),
-            m2.as_slice()?.to_vec(),
-        );
+        let labelled = |e: PyErr| tvf_error(format!("{}: {}", mesh.label, e.value(py)));
+        let d0 = csr_from_parts("d0", d0).map_err(labelled)?;
+        let d1 = csr_from_parts("d1", d1).map_err(labelled)?;
+        let m0 = mass_from_input("M0", m0, Given::Mass).map_err(labelled)?;
+        let m1 = mass_from_input("M1", m1, Given::Mass).map_err(labelled)?;
+        let m2 = match (m2, m2_inverse) {
+            (Some(m2), None) => {
+                mass_from_input("M2", m2, Given::Mass).and_then(direct_co_potential_mass)
+            }
+            (None, Some(inverse)) => mass_from_input("M2_inverse (M2⁻¹)", inverse, Given::Inverse),
+            _ => Err(tvf_error(
+                "give the co-potential mass either as M2 or as its inverse M2_inverse, not both",
+            )),
+        }
+        .map_err(labelled)?;
         let complex = py
             .detach(|| MatrixComplex::new(id, &mesh.mesh, d0, d1, m0, m1, m2, sampling))
             .map_err(|e| tvf_error(format!("{}: {e}", mesh.label)))?;
@@ -119,6 +135,13 @@ impl Complex {
     #[getter]
     fn has_sampling(&self) -> bool {
         self.complex.sampling().is_some()
+    }
+
+    /// How the complex stores each mass: `{"M0": {"storage", "form", "key"}, ...}` (see
+    /// [`mass_description`]).
+    #[getter]
+    fn masses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        mass_description(py, self.complex.as_ref())
     }
 
     fn __repr__(&self) -> String {

@@ -1,16 +1,17 @@
 //! `tvf.spline` and `tvf.design`: fields from constraint sets, in the JSON format of the
 //! command line's constraint files (Python passes the dict serialised as JSON).
 
-use crate::basis::spectral_basis;
+use crate::basis::{spectral_basis, BasisParts};
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
-use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
 use tvf_design::{
     checked_residuals, default_regularization, CompiledConstraint, ConstraintAssembler,
-    ConstraintResidual, ConstraintSet, FullSoftDesign, ReducedBasis, SoftOptions, SplineSession,
+    ConstraintResidual, ConstraintSet, DesignError, FullSoftDesign, ReducedBasis,
+    ReducedSoftDesign, SoftOptions, SplineSession,
 };
 
 /// Parses the constraint JSON (`origin` names it in messages) and compiles it on the complex.
@@ -55,18 +56,14 @@ fn result<'py>(
 pub fn spline<'py>(
     py: Python<'py>,
     complex: &Complex,
-    basis: (
-        PyReadonlyArray1<'py, f64>,
-        Vec<String>,
-        PyReadonlyArray2<'py, f64>,
-    ),
+    basis: BasisParts<'py>,
     constraints_json: &str,
     origin: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
     let (set, compiled) = constraints(complex, constraints_json, origin)?;
     let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
-    let field = py.detach(|| -> Result<Vec<f64>, tvf_design::DesignError> {
+    let field = py.detach(|| -> Result<Vec<f64>, DesignError> {
         let reduced = ReducedBasis::from_spectral(&basis)?;
         let mut session = SplineSession::new(&reduced, set.omega)?;
         for constraint in compiled.iter().cloned() {
@@ -92,7 +89,7 @@ pub fn design<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
     let (set, compiled) = constraints(complex, constraints_json, origin)?;
-    let field = py.detach(|| -> Result<Vec<f64>, tvf_design::DesignError> {
+    let field = py.detach(|| -> Result<Vec<f64>, DesignError> {
         let options = SoftOptions {
             omega: set.omega,
             regularization: default_regularization(c),
@@ -109,6 +106,41 @@ pub fn design<'py>(
             &e,
         )
     })?;
+    if let Some(i) = field.iter().position(|x| !x.is_finite()) {
+        return Err(tvf_error(format!(
+            "{origin}: the designed field is not finite (coefficient {i})"
+        )));
+    }
+    result(py, field, &compiled, set.omega, origin)
+}
+
+/// Soft-constrained design in the given basis (dense Cholesky of the reduced system
+/// `(Λ + ωΛ² + CᵀWC) v = CᵀWc`; any complex): dict `field`, `residuals`.
+#[pyfunction]
+pub fn design_reduced<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    basis: BasisParts<'py>,
+    constraints_json: &str,
+    origin: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let c = complex.complex.as_ref();
+    let (set, compiled) = constraints(complex, constraints_json, origin)?;
+    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let field = py.detach(|| -> Result<Vec<f64>, DesignError> {
+        let reduced = ReducedBasis::from_spectral(&basis)?;
+        let options = SoftOptions {
+            omega: set.omega,
+            regularization: default_regularization(c),
+        };
+        let mut design = ReducedSoftDesign::new(&reduced, options)?;
+        design.add_all(compiled.clone())?;
+        let v = design.solve();
+        let mut field = vec![0.0; reduced.field_dimension()];
+        reduced.map(&v, &mut field)?;
+        Ok(field)
+    });
+    let field = field.map_err(|e| with_context(origin, &e))?;
     if let Some(i) = field.iter().position(|x| !x.is_finite()) {
         return Err(tvf_error(format!(
             "{origin}: the designed field is not finite (coefficient {i})"

@@ -1,7 +1,7 @@
 //! Field functions: the Hodge decomposition, Fourier coefficients, spectral filters and
 //! compression, on field coefficient vectors (`n1` entries; Python converts face vectors).
 
-use crate::basis::spectral_basis;
+use crate::basis::{spectral_basis, BasisParts};
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
@@ -12,13 +12,6 @@ use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::{
     basis_id, CoefficientCoding, CompressedFields, FieldCodec, FrequencyResponse, SpectralFilter,
 };
-
-/// Basis arrays as Python passes them: eigenvalues, families, coefficients.
-type BasisParts<'py> = (
-    PyReadonlyArray1<'py, f64>,
-    Vec<String>,
-    PyReadonlyArray2<'py, f64>,
-);
 
 /// A field's coefficients, checked: length `n1`, finite.
 fn field_values(

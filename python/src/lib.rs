@@ -14,6 +14,8 @@ mod design;
 mod eigsh;
 mod errors;
 mod fields;
+mod linear_operator;
+mod masses;
 mod mesh;
 mod operators;
 mod progress;
@@ -24,6 +26,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("TvfError", m.py().get_type::<errors::TvfError>())?;
     m.add_class::<mesh::Mesh>()?;
     m.add_class::<complex::Complex>()?;
+    m.add_class::<linear_operator::Operator>()?;
     m.add_function(wrap_pyfunction!(mesh::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(complex::discretizations, m)?)?;
     m.add_function(wrap_pyfunction!(operators::operators, m)?)?;
@@ -37,6 +40,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fields::decompress, m)?)?;
     m.add_function(wrap_pyfunction!(design::spline, m)?)?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design_reduced, m)?)?;
     m.add_function(wrap_pyfunction!(eigsh::eigsh, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
     Ok(())

@@ -1,36 +1,57 @@
-//! `tvf.operators`: every matrix of a complex as CSR parts, and the face frames.
+//! `tvf.operators`: every matrix of a complex — sparse ones as CSR parts, dense ones as
+//! [`Operator`]s applied through the Rust operator — and the face frames.
 
 use crate::arrays::csr_to_parts;
 use crate::complex::Complex;
+use crate::linear_operator::Operator;
+use crate::masses::{named_masses, stored_key};
 use numpy::ndarray::Array3;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tvf_core::discretization::sparse::diagonal;
-use tvf_core::discretization::HodgeOperators;
+use tvf_core::discretization::{Factor, HodgeOperators, LinearOperator, MassForm};
 
-/// `{name: (indptr, indices, data, shape)}` for d0, d1, M0, M1, M2, S0, S2, S, L, B, div, curl,
-/// (div_other, curl_other, J where the complex has a rotation), and `frames` (`F × 2 × 3`) where
-/// it has a sampling.
+/// `{name: value}` where `value` is the CSR parts `(indptr, indices, data, shape)` of a sparse
+/// matrix or an [`Operator`]:
+///
+/// - masses: `M0`, `M1`, `M2` as their stored sparse matrices (a diagonal or a sparse SPD
+///   matrix); a mass stored as its inverse is `{name}_inverse` (CSR) and `{name}` (an
+///   [`Operator`], `M x` by a Cholesky solve with the stored inverse);
+/// - `d0`, `d1`, `S0` (always sparse), `J` where the complex has a rotation (sparse);
+/// - `S2`, `S`, `L`, `B`, `div`, `curl` (and `div_other`, `curl_other` with a rotation): CSR
+///   where every mass involved is diagonal, else an [`Operator`];
+/// - `frames` (`F × 2 × 3`) where the complex has a sampling.
 #[pyfunction]
 pub fn operators<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
     // Derived operators are computed (and cached) without the GIL.
     py.detach(|| {
+        c.potential_stiffness();
+        c.co_potential_stiffness();
         c.dirichlet_energy();
         c.hodge_laplacian();
         c.biharmonic_energy();
+        c.potential_divergence();
+        c.co_potential_curl();
         c.other_divergence();
         c.other_curl();
     });
     let out = PyDict::new(py);
-    let put = |name: &str, m: &sprs::CsMat<f64>| out.set_item(name, csr_to_parts(py, m)?);
-    put("d0", c.d0())?;
-    put("d1", c.d1())?;
-    put("M0", &diagonal(c.m0().values()))?;
-    put("M1", &diagonal(c.m1().values()))?;
-    put("M2", &diagonal(c.m2().values()))?;
-    put("S0", c.potential_stiffness())?;
+    let put_sparse = |name: &str, m: &sprs::CsMat<f64>| out.set_item(name, csr_to_parts(py, m)?);
+    let put = |name: &str, operator: &LinearOperator| match operator.as_sparse() {
+        Some(matrix) => put_sparse(name, matrix),
+        None => out.set_item(name, Operator::new(name, operator.clone())),
+    };
+    put_sparse("d0", c.d0())?;
+    put_sparse("d1", c.d1())?;
+    for (name, mass) in named_masses(c) {
+        put_sparse(&stored_key(name, mass.form()), &mass.stored_matrix())?;
+        if mass.form() == MassForm::Inverse {
+            let dense = LinearOperator::product(1.0, vec![Factor::Mass(mass.clone())]);
+            out.set_item(name, Operator::new(name, dense))?;
+        }
+    }
+    put_sparse("S0", c.potential_stiffness())?;
     put("S2", c.co_potential_stiffness())?;
     put("S", c.dirichlet_energy())?;
     put("L", c.hodge_laplacian())?;
@@ -42,7 +63,7 @@ pub fn operators<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Bound<'py,
         put("curl_other", curl)?;
     }
     if let Some(rotation) = c.rotation() {
-        put("J", rotation.rotation())?;
+        put_sparse("J", rotation.rotation())?;
     }
     if let Some(sampling) = c.sampling() {
         let faces = sampling.face_count();

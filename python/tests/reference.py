@@ -1,7 +1,8 @@
-"""Independent numpy implementations for the tests: generated meshes and the P1 / Crouzeix-Raviart
+"""Independent numpy implementations for the tests: generated meshes, the P1 / Crouzeix-Raviart
 complex assembled from the formulas of the maths conventions (face frames e1 = normalize(p1 - p0),
-e2 = n x e1; G = P1 gradients, G* = -2 G per opposite corner; barycentric lumping), written
-without any tvf code."""
+e2 = n x e1; G = P1 gradients, G* = -2 G per opposite corner; barycentric lumping), and the
+Galerkin masses (the consistent P1 mass, the Whitney 1-form mass) with the complex of Whitney
+forms, written without any tvf code."""
 
 import numpy as np
 import scipy.sparse as sp
@@ -114,13 +115,9 @@ def p1_cr_complex(V, F):
     ``J``, ``G``, ``G*``, ``M*`` for further checks. Vertices no face uses get zero rows,
     columns and masses."""
     nf, nv = len(F), len(V)
-    fr, n, area = frames(V, F)
+    fr, _, area = frames(V, F)
     E, opposite = edges(F)
-    rows, cols, vals = [], [], []
-    grads = np.zeros((nf, 3, 3))
-    for c in range(3):
-        pa, pb = V[F[:, (c + 1) % 3]], V[F[:, (c + 2) % 3]]
-        grads[:, c] = np.cross(n, pb - pa) / (2 * area[:, None])
+    grads, _ = p1_gradients(V, F)
     G_rows, G_cols, G_vals, Gs_cols, Gs_vals = [], [], [], [], []
     for t in range(nf):
         for c in range(3):
@@ -139,6 +136,67 @@ def p1_cr_complex(V, F):
     J = sp.block_diag([np.array([[0.0, -1.0], [1.0, 0.0]])] * nf, format="csr")
     d1 = (Gs.T @ J @ sp.diags(MX)).tocsr()
     return {"d0": G, "d1": d1, "M0": M, "M1": MX, "M2": 1.0 / Ms, "J": J, "G": G, "Gs": Gs, "Ms": Ms, "frames": fr, "edges": E}
+
+
+def p1_gradients(V, F):
+    """The gradient of each face's three P1 hat functions ``(F, 3, 3)`` (corner c: the hat
+    function of vertex ``F[t, c]``) and the face areas ``(F,)``."""
+    _, n, area = frames(V, F)
+    grads = np.zeros((len(F), 3, 3))
+    for c in range(3):
+        pa, pb = V[F[:, (c + 1) % 3]], V[F[:, (c + 2) % 3]]
+        grads[:, c] = np.cross(n, pb - pa) / (2 * area[:, None])
+    return grads, area
+
+
+def consistent_p1_mass(V, F):
+    """The consistent P1 mass ``M[i, j] = sum_T |T| (1 + delta_ij) / 12`` (V x V, sparse)."""
+    _, _, area = frames(V, F)
+    rows, cols, vals = [], [], []
+    for a in range(3):
+        for b in range(3):
+            rows.append(F[:, a])
+            cols.append(F[:, b])
+            vals.append(area * (2.0 if a == b else 1.0) / 12)
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(len(V), len(V)))
+
+
+def whitney_complex(V, F):
+    """The complex of Whitney forms with Galerkin masses (FEEC's P1 -> Whitney 1-forms -> P0):
+    ``d0`` the signed edge-vertex incidence (edge (a, b), a < b, from a to b), ``d1`` the
+    signed face-edge incidence (+1 where the counter-clockwise boundary of the face runs from a
+    to b), ``M0`` the consistent P1 mass, ``M1`` the Whitney mass
+    ``M1[e, f] = sum_T integral <W_e, W_f>`` with ``W_ab = l_a grad l_b - l_b grad l_a``
+    (exact quadrature: ``integral l_i l_j = |T| (1 + delta_ij) / 12``), ``M2 = 1/area``."""
+    E, opposite = edges(F)
+    ne = len(E)
+    d0 = sp.csr_matrix((np.concatenate([-np.ones(ne), np.ones(ne)]), (np.tile(np.arange(ne), 2), np.concatenate([E[:, 0], E[:, 1]]))), shape=(ne, len(V)))
+    grads, area = p1_gradients(V, F)
+    # The local edge opposite corner c runs from corner c + 1 to corner c + 2 along the
+    # counter-clockwise boundary; its global orientation is from the smaller vertex index.
+    local = [((c + 1) % 3, (c + 2) % 3) for c in range(3)]
+    d1_rows, d1_cols, d1_vals = [], [], []
+    rows, cols, vals = [], [], []
+    for t in range(len(F)):
+        oriented = []
+        for c, (i, j) in enumerate(local):
+            if F[t, i] > F[t, j]:
+                i, j = j, i
+            oriented.append((opposite[t, c], i, j))
+            d1_rows.append(t)
+            d1_cols.append(opposite[t, c])
+            d1_vals.append(1.0 if F[t, (c + 1) % 3] < F[t, (c + 2) % 3] else -1.0)
+        g = grads[t]
+        m = lambda a, b: area[t] * (2.0 if a == b else 1.0) / 12
+        for e, i, j in oriented:
+            for f, k, l in oriented:
+                value = m(i, k) * g[j] @ g[l] - m(i, l) * g[j] @ g[k] - m(j, k) * g[i] @ g[l] + m(j, l) * g[i] @ g[k]
+                rows.append(e)
+                cols.append(f)
+                vals.append(value)
+    d1 = sp.csr_matrix((d1_vals, (d1_rows, d1_cols)), shape=(len(F), ne))
+    M1 = sp.csr_matrix((vals, (rows, cols)), shape=(ne, ne))
+    return {"d0": d0, "d1": d1, "M0": consistent_p1_mass(V, F), "M1": M1, "M2": 1.0 / area, "edges": E}
 
 
 def cotan_matrix(V, F):

@@ -1,12 +1,14 @@
-"""tvf.eigsh against scipy.sparse.linalg.eigsh on a generated cotan pencil."""
+"""tvf.eigsh against scipy.sparse.linalg.eigsh on a generated cotan pencil, and with a sparse
+mass (the consistent P1 mass) against scipy.linalg.eigh."""
 
 import numpy as np
 import pytest
 import scipy.sparse as sp
+import scipy.linalg as la
 import scipy.sparse.linalg as sla
 
 import tvf
-from reference import cotan_matrix, icosphere, torus
+from reference import consistent_p1_mass, cotan_matrix, icosphere, torus
 
 
 def lumped_mass(V, F):
@@ -52,3 +54,34 @@ def test_eigsh_refuses_bad_pencils():
     bad.data[0] = np.nan
     with pytest.raises(tvf.TvfError, match="non-finite"):
         tvf.eigsh(bad, np.ones(n), 3)
+
+
+@pytest.mark.parametrize("k", [12, 60, 162])
+def test_eigsh_with_a_sparse_mass_matches_dense_eigh(k):
+    V, F = icosphere(2)  # 162 vertices: k = 162 is the whole spectrum
+    A = cotan_matrix(V, F)
+    M = consistent_p1_mass(V, F)
+    values, vectors, residuals = tvf.eigsh(A, M.tocsc(), k, return_residuals=True)
+    reference = la.eigh(A.toarray(), M.toarray(), eigvals_only=True)[:k]
+    assert values.shape == (k,) and vectors.shape == (len(V), k)
+    assert np.max(np.abs(values - reference)) <= 1e-10 * reference[-1], values - reference
+    assert np.max(np.abs(vectors.T @ (M @ vectors) - np.eye(k))) < 1e-10
+    assert np.max(np.abs(A @ vectors - (M @ vectors) * values)) < 1e-9 * abs(A).max()
+    assert np.all(residuals < 1e-10)
+    # The consistent mass is not the lumped one: the spectra differ.
+    lumped = tvf.eigsh(A, lumped_mass(V, F), k)[0]
+    assert np.max(np.abs(lumped - values)) > 1e-3 * values[-1]
+
+
+def test_eigsh_refuses_broken_sparse_masses():
+    V, F = icosphere(1)
+    A = cotan_matrix(V, F)
+    M = consistent_p1_mass(V, F)
+    asymmetric = M.tolil()
+    asymmetric[0, 1] += 1e-3 * abs(M).max()
+    with pytest.raises(tvf.TvfError, match=r"M \(the mass matrix\) is not symmetric"):
+        tvf.eigsh(A, asymmetric, 3)
+    with pytest.raises(tvf.TvfError, match="mass matrix is not positive definite"):
+        tvf.eigsh(A, M - 0.6 * sp.diags(M.diagonal()), 3)
+    with pytest.raises(tvf.TvfError, match=r"M \(the mass matrix\) has 41 rows, A has 42"):
+        tvf.eigsh(A, M[1:, 1:], 3)

@@ -1,12 +1,17 @@
 """tvf.operators against an independent numpy assembly and against the command line's files
-(Matrix Market and npz), on a mesh with unreferenced vertices too."""
+(Matrix Market and npz), on a mesh with unreferenced vertices too; on complexes with sparse
+masses, the dense derived operators as LinearOperators against dense numpy algebra."""
+
+import json
 
 import numpy as np
+import pytest
 import scipy.io
 import scipy.sparse as sp
+import scipy.sparse.linalg as sla
 
 import tvf
-from reference import cotan_matrix, max_difference, p1_cr_complex, torus, write_obj
+from reference import cotan_matrix, icosphere, max_difference, p1_cr_complex, torus, write_obj
 
 
 def assert_entrywise(name, got, expected, relative=1e-12):
@@ -88,3 +93,91 @@ def test_vertex_map_is_the_identity_without_stray_vertices(tmp_path, run_tvf):
     run_tvf("operators", path, "-o", tmp_path / "out")
     assert np.array_equal(np.load(tmp_path / "out" / "vertex_map.npy"), np.arange(len(V)))
     assert np.array_equal(tvf.Mesh(V, F).vertex_map, np.arange(len(V)))
+
+
+# Which operators contain the inverse of a sparse mass (or M2 stored as its inverse) and are
+# therefore dense: LinearOperators. Every other key is a csr_matrix.
+COMPOSED = {
+    "whitney-galerkin": {"S2", "S", "L", "B", "div"},
+    "conforming-consistent": {"S", "L", "B", "div", "curl_other"},
+    "nonconforming-consistent": {"M2", "S", "L", "B", "curl", "div_other"},
+}
+
+
+def dense_operators(ops):
+    """Every derived operator from the five matrices by dense numpy algebra (small meshes)."""
+    d0, d1, M0, M1 = (ops[name].toarray() for name in ("d0", "d1", "M0", "M1"))
+    M2 = np.linalg.inv(ops["M2_inverse"].toarray()) if "M2_inverse" in ops else ops["M2"].toarray()
+    iM0, iM1 = np.linalg.inv(M0), np.linalg.inv(M1)
+    S = M1 @ d0 @ iM0 @ d0.T @ M1 + d1.T @ M2 @ d1
+    out = {"M2": M2, "S0": d0.T @ M1 @ d0, "S2": d1 @ iM1 @ d1.T, "S": S, "L": iM1 @ S, "B": S @ iM1 @ S, "div": -iM0 @ d0.T @ M1, "curl": M2 @ d1}
+    if "J" in ops:
+        J = ops["J"].toarray()
+        out["div_other"] = -M2 @ d1 @ iM1 @ J.T @ M1
+        out["curl_other"] = iM0 @ d0.T @ J @ M1
+    return out
+
+
+@pytest.mark.parametrize("entry", sorted(COMPOSED))
+def test_operators_of_galerkin_complexes(entry):
+    V, F = icosphere(1)
+    complex_ = tvf.Complex(tvf.Mesh(V, F), entry)
+    ops = tvf.operators(complex_)
+    composed = {name for name, value in ops.items() if isinstance(value, tvf.ComposedOperator)}
+    assert composed == COMPOSED[entry]
+    for name, value in ops.items():
+        if name != "frames" and name not in composed:
+            assert sp.isspmatrix_csr(value), name
+    # The stored form of each mass, and M2_inverse exactly where M2 is dense.
+    assert ("M2_inverse" in ops) == (complex_.masses["M2"]["form"] == "inverse")
+    for name, mass in complex_.masses.items():
+        assert sp.isspmatrix_csr(ops[mass["key"]])
+        assert (ops[mass["key"]].nnz > ops[mass["key"]].shape[0]) == (mass["storage"] == "sparse")
+    rng = np.random.default_rng(1)
+    for name, dense in dense_operators(ops).items():
+        operator = ops[name]
+        assert operator.shape == dense.shape, name
+        scale = np.max(np.abs(dense))
+        x = rng.normal(size=dense.shape[1])
+        y = rng.normal(size=dense.shape[0])
+        X = rng.normal(size=(dense.shape[1], 3))
+        assert np.max(np.abs(operator @ x - dense @ x)) <= 1e-12 * scale * np.max(np.abs(x)) * dense.shape[1], name
+        assert np.max(np.abs(operator.T @ y - dense.T @ y)) <= 1e-12 * scale * np.max(np.abs(y)) * dense.shape[0], name
+        assert np.max(np.abs(operator @ X - dense @ X)) <= 1e-12 * scale * np.max(np.abs(X)) * dense.shape[1], name
+        if isinstance(operator, tvf.ComposedOperator):
+            assert operator.name == name and operator.dtype == np.float64
+            assert np.max(np.abs(operator.rmatvec(y) - dense.T @ y)) <= 1e-12 * scale * np.max(np.abs(y)) * dense.shape[0], name
+            assert np.max(np.abs(operator @ np.eye(dense.shape[1]) - dense)) <= 1e-13 * scale, name
+    # A LinearOperator works with SciPy's solvers: (S + M1) x = b by conjugate gradients.
+    system = sla.aslinearoperator(ops["S"]) + sla.aslinearoperator(ops["M1"])
+    b = rng.normal(size=system.shape[0])
+    x, info = sla.cg(system, b, rtol=1e-12, maxiter=2000)
+    expected = np.linalg.solve(dense_operators(ops)["S"] + ops["M1"].toarray(), b)
+    assert info == 0 and np.max(np.abs(x - expected)) <= 1e-8 * np.max(np.abs(expected))
+
+
+def test_composed_operators_check_their_input():
+    ops = tvf.operators(tvf.Mesh(*icosphere(1)), "whitney-galerkin")
+    S = ops["S"]
+    with pytest.raises(tvf.TvfError, match="S: matvec: the vector has a non-finite value at entry 0"):
+        S @ np.full(S.shape[1], np.nan)
+    with pytest.raises(ValueError):
+        S @ np.ones(3)
+    z = S @ np.full(S.shape[1], 1 + 2j)
+    assert np.allclose(z, (1 + 2j) * (S @ np.ones(S.shape[1])))
+
+
+def test_galerkin_operators_match_the_command_line(tmp_path, run_tvf):
+    V, F = torus(n=10, m=6)
+    path = tmp_path / "t.obj"
+    write_obj(path, V, F)
+    ops = tvf.operators(tvf.Mesh(V, F), "nonconforming-consistent")
+    out = tmp_path / "npz"
+    run_tvf("operators", path, "--discretization", "nonconforming-consistent", "--format", "npz", "-o", out)
+    info = json.loads((out / "info.json").read_text())
+    assert info["masses"]["M2"] == {"file": "M2_inverse", "form": "inverse", "storage": "sparse"}
+    assert set(info["not_written"]) == {"S", "B"}
+    written = {p.stem for p in out.glob("*.npz")}
+    assert written == {"d0", "d1", "M0", "M1", "M2_inverse", "S0", "S2", "J"}
+    for name in written:
+        assert_entrywise(f"{name} (python vs npz)", ops[name], sp.load_npz(out / f"{name}.npz"), 1e-15)

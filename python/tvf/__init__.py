@@ -1,6 +1,7 @@
 """tvf — spectral processing of tangential vector fields on triangle meshes, from Python.
 
-numpy arrays and ``scipy.sparse.csr_matrix`` in and out; the computations are tvf's Rust code
+numpy arrays and ``scipy.sparse`` matrices in and out (dense derived operators as
+``scipy.sparse.linalg.LinearOperator``); the computations are tvf's Rust code
 (the same as the ``tvf`` command line), run without holding the GIL. Start with::
 
     import tvf
@@ -17,6 +18,7 @@ for the same problem; wrong dtypes are a ``TypeError``.
 from ._native import TvfError
 from .mesh import Mesh, read_mesh
 from .complex import Complex, discretizations, operators, DEFAULT_DISCRETIZATION
+from .linear_operator import ComposedOperator
 from .spectral import Basis, basis, decompose, coefficients, filter, compress, decompress
 from .design import spline, design
 from .solvers import eigsh
@@ -29,6 +31,7 @@ __all__ = [
     "Complex",
     "discretizations",
     "operators",
+    "ComposedOperator",
     "DEFAULT_DISCRETIZATION",
     "Basis",
     "basis",

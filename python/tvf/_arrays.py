@@ -3,6 +3,7 @@
 
 import numpy as np
 import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from ._native import TvfError
 
@@ -45,6 +46,8 @@ def csr_parts(matrix, name):
     float64, canonical CSR."""
     if not sp.issparse(matrix):
         matrix = float_array(matrix, name, ndim=2)
+    elif not (np.issubdtype(matrix.dtype, np.floating) or np.issubdtype(matrix.dtype, np.integer)):
+        raise TypeError(f"{name}: expected a real sparse matrix, got dtype {matrix.dtype}")
     matrix = sp.csr_matrix(matrix, dtype=np.float64, copy=True)
     matrix.sum_duplicates()
     matrix.sort_indices()
@@ -56,25 +59,26 @@ def csr_parts(matrix, name):
     )
 
 
-def diagonal(matrix, name):
-    """The diagonal of a diagonal matrix given as a vector or as a (sparse) diagonal matrix;
-    off-diagonal entries are an error."""
-    if sp.issparse(matrix):
-        coo = sp.coo_matrix(matrix)
-        if matrix.shape[0] != matrix.shape[1]:
-            raise TvfError(f"{name}: a diagonal mass must be square, got shape {matrix.shape}")
-        off = coo.row != coo.col
-        if np.any(coo.data[off] != 0):
-            raise TvfError(f"{name}: a diagonal mass has off-diagonal entries")
-        return np.ascontiguousarray(matrix.diagonal(), dtype=np.float64)
-    array = float_array(matrix, name)
-    if array.ndim == 2:
-        if array.shape[0] != array.shape[1] or np.any(array - np.diag(np.diag(array))):
-            raise TvfError(f"{name}: expected a vector or a diagonal matrix, got shape {array.shape}")
-        return np.ascontiguousarray(np.diag(array))
-    if array.ndim != 1:
-        raise TvfError(f"{name}: expected a vector or a diagonal matrix, got shape {array.shape}")
-    return array
+def mass(matrix, name):
+    """A mass as the native module takes it: the ``n`` entries of a diagonal (from a vector, or
+    a square matrix without off-diagonal entries), or the CSR parts of a sparse matrix (any
+    ``scipy.sparse`` format, or a dense 2-D array). Symmetry and positive definiteness are
+    checked by the native module."""
+    if isinstance(matrix, spla.LinearOperator):
+        hint = f": give its inverse ({name}_inverse of tvf.operators) as {name}_inverse" if name == "M2" else ""
+        raise TypeError(f"{name}: expected a vector or a sparse matrix, got a LinearOperator (a dense mass){hint}")
+    if not sp.issparse(matrix):
+        array = float_array(matrix, name)
+        if array.ndim == 1:
+            return array
+        if array.ndim != 2:
+            raise TvfError(f"{name}: expected a vector or a matrix, got shape {array.shape}")
+        matrix = sp.csr_matrix(array)
+    square = matrix.shape[0] == matrix.shape[1]
+    coo = sp.coo_matrix(matrix)
+    if square and not np.any(coo.data[coo.row != coo.col]):
+        return float_array(matrix.diagonal(), name)
+    return csr_parts(matrix, name)
 
 
 def to_csr(parts):

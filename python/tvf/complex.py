@@ -2,7 +2,9 @@
 :func:`operators`."""
 
 from . import _native
-from ._arrays import csr_parts, diagonal, to_csr
+from ._arrays import csr_parts, mass, to_csr
+from ._native import TvfError
+from .linear_operator import ComposedOperator
 from .mesh import Mesh
 
 DEFAULT_DISCRETIZATION = "conforming-barycentric"
@@ -17,7 +19,9 @@ def discretizations():
 
 class Complex:
     """A discretization built on a mesh: five matrices ``d0`` (``n1 x n0``), ``d1``
-    (``n2 x n1``), diagonal ``M0``, ``M1``, ``M2``, with ``d1 @ d0 = 0``.
+    (``n2 x n1``) and the symmetric positive definite masses ``M0``, ``M1``, ``M2`` (each a
+    diagonal or a sparse matrix; ``M2`` possibly given by its sparse inverse), with
+    ``d1 @ d0 = 0``.
 
     ``Complex(mesh, discretization="conforming-barycentric", boundary="tangential")`` builds a
     catalog entry (:func:`discretizations`); ``boundary`` (``tangential`` or ``normal``) only
@@ -27,7 +31,8 @@ class Complex:
 
     Attributes: ``mesh``, ``id``, ``dimensions`` (``(n0, n1, n2)``), ``node_kinds`` (each of
     ``vertices``, ``edges``, ``faces``, ``face-frames``), ``harmonic_dimension``,
-    ``has_sampling`` (fields convert to and from face vectors).
+    ``has_sampling`` (fields convert to and from face vectors), ``masses`` (how each mass is
+    stored).
     """
 
     def __init__(self, mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential"):
@@ -36,18 +41,37 @@ class Complex:
         self._native = _native.Complex.build(mesh._native, str(discretization), str(boundary))
 
     @classmethod
-    def from_matrices(cls, mesh, d0, d1, M0, M1, M2, sampling="face-frames", id="custom"):
+    def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None):
         """Your own discretization: the five matrices, run through the same Rust code as the
-        built-in ones (basis, decomposition, filter, spline, design, :func:`tvf.check`).
+        built-in ones (basis, decomposition, coefficients, filter, compression, spline, design —
+        the full one with diagonal masses, the reduced one always —, :func:`tvf.check`).
 
         - ``mesh``: a closed :class:`Mesh` (with boundary, the boundary condition would have to
           be given too: use a catalog entry there).
         - ``d0`` (``n1 x n0``, the gradient: potentials to fields, pointwise) and ``d1``
           (``n2 x n1``, the integrated curl: fields to co-potentials): any ``scipy.sparse``
           matrix or dense array.
-        - ``M0`` (``n0``, potential masses, area), ``M1`` (``n1``, field masses:
-          ``x @ (M1 * y)`` is the integral of ``<x, y>``), ``M2`` (``n2``, 1/area: turns the
-          integrated curl into a pointwise one): vectors or diagonal matrices.
+        - ``M0`` (``n0 x n0``, the potential mass, area), ``M1`` (``n1 x n1``, the field mass:
+          ``x @ (M1 @ y)`` is the integral of ``<x, y>``), ``M2`` (``n2 x n2``, 1/area: turns
+          the integrated curl into a pointwise one; ``M2^-1`` is the co-potential mass). Each
+          is symmetric positive definite, given as
+
+          * a vector of ``n`` entries: the diagonal (lumped masses, DEC's Hodge stars), or a
+            diagonal matrix (sparse or dense): the same;
+          * a sparse matrix with off-diagonal entries (any ``scipy.sparse`` format, or a dense
+            2-D array): a Galerkin mass such as the consistent P1 mass
+            ``|T| (1 + delta_ij) / 12`` per triangle or the Whitney 1-form mass. It must be
+            symmetric to round-off (``max|M - M^T| <= 1e-12 max|M|``; it is used as
+            ``(M + M^T) / 2``).
+
+          Diagonal masses keep every derived operator a sparse matrix; a sparse mass makes
+          those that contain its inverse compositions (see :func:`operators`). ``M2`` itself
+          must be diagonal (the co-potential mass, its inverse, must be sparse): a sparse
+          co-potential mass is given as ``M2_inverse``.
+        - ``M2_inverse`` (keyword only, instead of ``M2``): the inverse ``M2^-1``, the
+          co-potential mass, when that is the sparse one (a consistent co-potential mass: the
+          consistent P1 mass of ``nonconforming-consistent``, whose ``M2`` is dense). A vector
+          or a sparse matrix as above. Give exactly one of ``M2`` and ``M2_inverse``.
         - ``sampling``: ``"face-frames"`` (fields are ``2F`` coefficients, face ``t`` at
           ``2t, 2t+1`` in its frame ``e1 = normalize(p1 - p0)``, ``e2 = n x e1``; gives the
           rotation ``J`` too), ``"whitney"`` (fields are ``E`` edge integrals, Whitney
@@ -55,20 +79,27 @@ class Complex:
         - ``id``: the name written into results and messages.
 
         The space of each node set is inferred from its size (V vertices, E edges, F faces,
-        2F face frames). Checked, each with a message naming the matrix: shapes, finite
-        entries, masses positive on every node a face uses (``M2`` of a closed mesh: every
-        node), and ``max|d1 d0| <= 1e-10 max|d1| max|d0|``. Run :func:`tvf.check` for the rest
-        of the conformance suite."""
+        2F face frames). Checked, each failure a :class:`tvf.TvfError` whose message names the
+        matrix (``d0``, ``d1``, ``M0``, ``M1``, ``M2``, ``M2_inverse (M2⁻¹)``): shapes (square
+        masses of the right size), finite entries, symmetry, positive definiteness (a diagonal
+        positive on every node a face uses; a sparse mass by the sparse Cholesky factorization
+        that tvf then uses to solve with it), and ``max|d1 d0| <= 1e-10 max|d1| max|d0|``. Run
+        :func:`tvf.check` for the rest of the conformance suite."""
         _check_mesh(mesh)
+        if M2 is not None and M2_inverse is not None:
+            raise TvfError("give the co-potential mass either as M2 or as its inverse M2_inverse, not both")
+        if M2 is None and M2_inverse is None:
+            raise TvfError("give the co-potential mass as M2 or as its inverse M2_inverse")
         complex_ = cls.__new__(cls)
         complex_.mesh = mesh
         complex_._native = _native.Complex.from_matrices(
             mesh._native,
             csr_parts(d0, "d0"),
             csr_parts(d1, "d1"),
-            diagonal(M0, "M0"),
-            diagonal(M1, "M1"),
-            diagonal(M2, "M2"),
+            mass(M0, "M0"),
+            mass(M1, "M1"),
+            None if M2 is None else mass(M2, "M2"),
+            None if M2_inverse is None else mass(M2_inverse, "M2_inverse"),
             str(sampling),
             str(id),
         )
@@ -94,6 +125,15 @@ class Complex:
     def has_sampling(self):
         return self._native.has_sampling
 
+    @property
+    def masses(self):
+        """How each mass is stored: ``{"M0": {"storage": ..., "form": ..., "key": ...}, "M1":
+        ..., "M2": ...}``. ``storage`` is ``diagonal`` or ``sparse``; ``form`` is ``direct``
+        (the sparse matrix is the mass) or ``inverse`` (it is the mass's inverse, and the mass
+        is dense); ``key`` is the key of :func:`operators` holding the sparse matrix (``M2`` or
+        ``M2_inverse``)."""
+        return {name: dict(entry) for name, entry in self._native.masses.items()}
+
     def __repr__(self):
         return repr(self._native)
 
@@ -111,36 +151,63 @@ def as_complex(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential
 
 
 def operators(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential"):
-    """Every matrix of a discretization as ``scipy.sparse.csr_matrix``, and the face frames.
+    """Every matrix of a discretization, and the face frames.
 
     ``mesh`` is a :class:`Mesh` (then ``discretization`` and ``boundary`` choose the catalog
     entry) or a :class:`Complex`. Returns a dict (``n0``, ``n1``, ``n2``: potentials, field
     coefficients, co-potentials; conforming: ``V``, ``2F``, ``E``; nonconforming: ``E``,
-    ``2F``, ``V``; DEC: ``V``, ``E``, ``F``):
+    ``2F``, ``V``; DEC and ``whitney-galerkin``: ``V``, ``E``, ``F``). A value is a
+    ``scipy.sparse.csr_matrix`` where the matrix is sparse, and a
+    :class:`tvf.ComposedOperator` (a ``scipy.sparse.linalg.LinearOperator`` applied by tvf,
+    never formed) where it is dense:
 
-    ===============  ==========  =====================================================
-    key              shape       matrix
-    ===============  ==========  =====================================================
-    ``d0``           n1 x n0     gradient, potentials -> fields (pointwise)
-    ``d1``           n2 x n1     integrated curl, fields -> co-potentials; d1 d0 = 0
-    ``M0``           n0 x n0     diagonal potential mass (area)
-    ``M1``           n1 x n1     diagonal field mass: x^T M1 y = integral of <x, y>
-    ``M2``           n2 x n2     diagonal, integrated -> pointwise co-potentials (1/area)
-    ``S0``           n0 x n0     potential stiffness d0^T M1 d0 (P1: the cotan matrix)
-    ``S2``           n2 x n2     co-potential stiffness d1 M1^-1 d1^T
-    ``S``            n1 x n1     Dirichlet energy M1 d0 M0^-1 d0^T M1 + d1^T M2 d1
-    ``L``            n1 x n1     Hodge-Laplacian M1^-1 S
-    ``B``            n1 x n1     biharmonic energy S M1^-1 S
-    ``div``          n0 x n1     divergence -M0^-1 d0^T M1 (pointwise, at potential nodes)
-    ``curl``         n2 x n1     curl M2 d1 (pointwise, at co-potential nodes)
-    ``div_other``    n2 x n1     the other family's divergence (finite elements only)
-    ``curl_other``   n0 x n1     the other family's curl (finite elements only)
-    ``J``            n1 x n1     rotation by +pi/2, (a, b) -> (-b, a) per face (face fields)
-    ``frames``       F x 2 x 3   numpy array: ``frames[t] = [e1, e2]`` of face t
-    ===============  ==========  =====================================================
+    ================  ==========  ====================================================  ========
+    key               shape       matrix                                                type
+    ================  ==========  ====================================================  ========
+    ``d0``            n1 x n0     gradient, potentials -> fields (pointwise)            csr
+    ``d1``            n2 x n1     integrated curl, fields -> co-potentials; d1 d0 = 0   csr
+    ``M0``            n0 x n0     potential mass (area): diagonal or sparse SPD         csr
+    ``M1``            n1 x n1     field mass, x^T M1 y = integral of <x, y>: diagonal   csr
+                                  or sparse SPD
+    ``M2``            n2 x n2     integrated -> pointwise co-potentials (1/area);       csr / op
+                                  M2^-1 is the co-potential mass. Dense (an operator)
+                                  where ``M2_inverse`` is given
+    ``M2_inverse``    n2 x n2     only where M2 is stored as its inverse: the sparse    csr
+                                  co-potential mass (``nonconforming-consistent``)
+    ``S0``            n0 x n0     potential stiffness d0^T M1 d0 (P1: the cotan matrix) csr
+    ``S2``            n2 x n2     co-potential stiffness d1 M1^-1 d1^T                  csr / op
+    ``S``             n1 x n1     Dirichlet energy M1 d0 M0^-1 d0^T M1 + d1^T M2 d1     csr / op
+    ``L``             n1 x n1     Hodge-Laplacian M1^-1 S                               csr / op
+    ``B``             n1 x n1     biharmonic energy S M1^-1 S                           csr / op
+    ``div``           n0 x n1     divergence -M0^-1 d0^T M1 (pointwise, potentials)     csr / op
+    ``curl``          n2 x n1     curl M2 d1 (pointwise, at co-potential nodes)         csr / op
+    ``div_other``     n2 x n1     the other family's divergence (finite elements only)  csr / op
+    ``curl_other``    n0 x n1     the other family's curl (finite elements only)       csr / op
+    ``J``             n1 x n1     rotation by +pi/2, (a, b) -> (-b, a) per face         csr
+    ``frames``        F x 2 x 3   ``frames[t] = [e1, e2]`` of face t                    ndarray
+    ================  ==========  ====================================================  ========
+
+    A derived operator is a ``csr_matrix`` exactly where every mass it contains is diagonal
+    (every lumped entry: all of them) or appears uninverted; it is a ComposedOperator where it
+    contains ``M0^-1`` or ``M1^-1`` of a sparse mass or ``M2`` given by its inverse
+    (``conforming-consistent``: ``S``, ``L``, ``B``, ``div``, ``curl_other``;
+    ``whitney-galerkin``: all of ``S2``, ``S``, ``L``, ``B``, ``div``;
+    ``nonconforming-consistent``: ``M2``, ``S``, ``L``, ``B``, ``curl``, ``div_other``).
+    :attr:`Complex.masses` says how each mass is stored. Masses are the stored matrices
+    (a fixed node of a mesh with boundary keeps its row); a mass given as an operator applies
+    ``M2`` on the free nodes and is zero on the others.
 
     Vertex rows and columns are in mesh numbering (see ``Mesh.vertex_map``); edges as
-    ``Mesh.edges``. The entries equal those ``tvf operators`` writes."""
+    ``Mesh.edges``. The sparse entries equal those ``tvf operators`` writes (which writes
+    ``M2_inverse`` in place of a dense ``M2`` and leaves dense derived matrices out)."""
     complex_ = as_complex(mesh, discretization, boundary)
     raw = _native.operators(complex_._native)
-    return {name: (value if name == "frames" else to_csr(value)) for name, value in raw.items()}
+    return {name: _operator(name, value) for name, value in raw.items()}
+
+
+def _operator(name, value):
+    if name == "frames":
+        return value
+    if isinstance(value, _native.Operator):
+        return ComposedOperator(value)
+    return to_csr(value)

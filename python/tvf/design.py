@@ -49,13 +49,31 @@ def spline(mesh, constraints, k=None, basis=None, discretization=DEFAULT_DISCRET
     return _result(complex_, raw)
 
 
-def design(mesh, constraints, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", origin="constraints"):
-    """Soft-constrained design (``tvf design --full``): minimises
-    ``E_D + omega E_B + sum_i weight_i |C_i x - c_i|^2`` over the full field space (sparse
-    ``LDL^T`` with iterative refinement).
+def design(mesh, constraints, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", origin="constraints", k=None, basis=None, seed=0, progress=None):
+    """Soft-constrained design (``tvf design``): minimises
+    ``E_D + omega E_B + sum_i weight_i |C_i x - c_i|^2`` (plus a tiny screening
+    ``eps x^T M1 x`` that pins harmonic fields the constraints leave free).
+
+    - **full** (``k`` and ``basis`` not given; ``tvf design --full``): over the full field
+      space, by a sparse ``LDL^T`` of an augmented system with iterative refinement. Every
+      complex: where a mass is not diagonal (``whitney-galerkin``, ``conforming-consistent``,
+      ``nonconforming-consistent``, a :meth:`Complex.from_matrices` complex with sparse masses)
+      the system gets auxiliary unknowns (the divergence and curl at the nodes) so that it stays
+      sparse.
+    - **reduced** (``k`` or a :class:`tvf.Basis` given; ``tvf design --reduced``): in the basis
+      of the ``k`` lowest eigenfields (computed with ``seed`` and ``progress`` as
+      :func:`tvf.basis`, or the basis given), a dense system of the basis size. Every complex.
 
     ``constraints`` as for :func:`spline` (``weight`` > 0 per constraint, default 1). Returns
     the same dict as :func:`spline`."""
-    complex_ = as_complex(mesh, discretization, boundary)
-    raw = _native.design(complex_._native, _json(constraints), str(origin))
+    if basis is None and k is None:
+        complex_ = as_complex(mesh, discretization, boundary)
+        raw = _native.design(complex_._native, _json(constraints), str(origin))
+        return _result(complex_, raw)
+    if basis is None:
+        complex_ = as_complex(mesh, discretization, boundary)
+        basis = compute_basis(complex_, k, seed=seed, progress=progress)
+    else:
+        complex_ = _complex_of(mesh, discretization, boundary, basis)
+    raw = _native.design_reduced(complex_._native, basis._parts(), _json(constraints), str(origin))
     return _result(complex_, raw)

@@ -24,7 +24,8 @@ class Basis:
       curl-free) or ``cointegrable`` (co-gradients ``-M1^-1 d1^T psi / sqrt(m)``,
       divergence-free).
     - ``coefficients``: ``(n1, k)``, the discretization's own coefficients, ``M1``-orthonormal:
-      ``coefficients.T @ (M1[:, None] * coefficients) = I``.
+      ``coefficients.T @ (M1 @ coefficients) = I`` with ``M1 = tvf.operators(complex)["M1"]``
+      (diagonal or sparse).
     - ``fields``: ``(F, 3, k)``, each field sampled at the face centroids as a 3D tangent
       vector (``None`` for a complex without sampling).
     - ``discretization``: the complex id the basis belongs to.
@@ -104,7 +105,9 @@ def basis(mesh, k, discretization=DEFAULT_DISCRETIZATION, boundary="tangential",
     Harmonic fields come from projecting random fields, the others from the two scalar
     eigenproblems ``(d0^T M1 d0, M0)`` and ``(d1 M1^-1 d1^T, M2^-1)`` solved by tvf's
     spectrum-slicing eigensolver; the selection is provably the lowest ``k`` (inertia counts).
-    Signs of eigenfields are arbitrary; eigenfields of a repeated eigenvalue span its
+    Sparse masses work as diagonal ones: a sparse ``M0`` or ``M2^-1`` is the pencil's mass
+    matrix, and with a sparse ``M1`` the co-exact stiffness ``d1 M1^-1 d1^T`` (dense) is never
+    formed (its shifts factor the sparse saddle matrix ``[[-M1, d1^T], [d1, -s M2^-1]]``). Signs of eigenfields are arbitrary; eigenfields of a repeated eigenvalue span its
     eigenspace in an arbitrary orthonormal basis. Returns a :class:`Basis`."""
     complex_ = as_complex(mesh, discretization, boundary)
     k = int(k)
