@@ -208,7 +208,12 @@ fn every_discretization_converges_on_icospheres() {
         }
     }
     // Conforming and nonconforming share their spectra with the families swapped.
-    let named = |id: &str| results.iter().find(|r| r.name == id).expect("in the catalog");
+    let named = |id: &str| {
+        results
+            .iter()
+            .find(|r| r.name == id)
+            .expect("in the catalog")
+    };
     let (c, n) = (
         named("conforming-barycentric"),
         named("nonconforming-barycentric"),

@@ -3,7 +3,8 @@
 //! shapes, with the cache of the operators derived from them.
 
 use super::{
-    check_length, ComplexTopology, DiscretizationError, Mass, MatrixHash, NodeSpace, OperatorCache,
+    check_length, ComplexTopology, DiscretizationError, Mass, MassForm, MatrixHash, NodeSpace,
+    OperatorCache,
 };
 use sprs::CsMat;
 use std::sync::OnceLock;
@@ -58,12 +59,7 @@ impl ComplexParts {
         for (what, expected, found) in checks {
             check_length(what, expected, found)?;
         }
-        if masses[1].form() != super::MassForm::Direct {
-            return Err(DiscretizationError::Inconsistent(format!(
-                "{}: the field mass M1 must be given directly, not as its inverse",
-                masses[1].what()
-            )));
-        }
+        check_mass_forms(&masses)?;
         let [m0, m1, m2] = masses;
         let masses = [
             m0.restricted_to(&nodes[0])?,
@@ -160,4 +156,28 @@ impl ComplexParts {
     pub fn matrix_hash(&self) -> MatrixHash {
         *self.matrix_hash.get_or_init(|| MatrixHash::of(self))
     }
+}
+
+/// The forms tvf computes with: `M0` and `M1` given directly (their inverses are solved, never
+/// formed), and `M2` diagonal or given by its sparse inverse, the co-potential mass (a sparse
+/// `M2` given directly would make the co-potential mass, the mass of the co-exact eigenproblem,
+/// dense).
+fn check_mass_forms(masses: &[Mass; 3]) -> Result<(), DiscretizationError> {
+    for (mass, name) in masses[..2].iter().zip(["M0", "M1"]) {
+        if mass.form() != MassForm::Direct {
+            return Err(DiscretizationError::Inconsistent(format!(
+                "{}: the mass {name} must be given directly, not as its inverse",
+                mass.what()
+            )));
+        }
+    }
+    let m2 = &masses[2];
+    if !m2.is_diagonal() && m2.form() == MassForm::Direct {
+        return Err(DiscretizationError::Inconsistent(format!(
+            "{}: a sparse M2 must be given as its inverse, the co-potential mass (M2 itself has a \
+             dense inverse, which tvf does not form)",
+            m2.what()
+        )));
+    }
+    Ok(())
 }
