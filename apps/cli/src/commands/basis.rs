@@ -24,7 +24,8 @@ use tvf_spectral::{
     after_help = "Examples:\n  tvf basis bunny.obj -k 1000 -o bunny.tvfb\n  tvf basis bunny.obj -k 100 --export bunny-basis/   (np.load(\"bunny-basis/fields.npy\"))\n  tvf basis --example genus2 -k 200 --decomposition nonconforming --mass voronoi -o g2.tvfb\n\nThe basis holds the K eigenfields of lowest eigenvalue of the Hodge–Laplacian (the paper's d): \
 the 2g harmonic fields first, then integrable and co-integrable eigenfields mixed as their eigenvalues come, \
 sorted by eigenvalue (`tvf spectrum -k K` lists the same K eigenvalues). K ≥ 2F gives the complete basis. The file is tied to the mesh \
-(fingerprint of its vertices and faces) and to the discretization; other commands take it with --basis."
+(fingerprint of its vertices and faces), to the discretization and to its matrices (a hash of the five \
+matrices and the fixed nodes); other commands take it with --basis."
 )]
 pub struct BasisArgs {
     #[command(flatten)]
