@@ -66,6 +66,8 @@ pub mod algebra_checks;
 pub mod capability_checks;
 pub mod check_outcome;
 pub mod check_report;
+pub mod convergence;
+pub mod convergence_table;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;

@@ -58,6 +58,8 @@ enum Command {
     RateDistortion(commands::rate_distortion::RateDistortionArgs),
     /// A tangential vector field spline (hard constraints) from a JSON constraint file.
     Spline(commands::spline::SplineArgs),
+    /// Convergence against exact spectra (unit sphere, hemisphere): errors, orders, times, plot.
+    Convergence(commands::convergence::ConvergenceArgs),
     /// Soft-constrained field design (Fisher et al.), full or reduced, from a JSON constraint file.
     Design(commands::design::DesignArgs),
     /// Render a mesh and a field to PNG (colour map, arrows, streamlines or LIC, constraints).
@@ -93,6 +95,7 @@ fn main() {
         Command::RateDistortion(args) => commands::rate_distortion::run(args),
         Command::Spline(args) => commands::spline::run(args),
         Command::Design(args) => commands::design::run(args),
+        Command::Convergence(args) => commands::convergence::run(args),
         Command::Render(args) => commands::render::run(args),
         Command::Export(args) => commands::export::run(args),
         Command::Demo(args) => commands::demo::run(args),

@@ -14,6 +14,8 @@
 //! - [`finding`]: [`Finding`] (one reproduced result: files, numbers, the paper's claim) and
 //!   [`Experiment`] (mesh, complex, basis, output folder, view).
 //! - [`demo`]: the demo page, run by `tvf demo` through a [`demo::DemoHost`].
+//! - [`convergence_plot`]: the picture of a convergence study against exact spectra
+//!   (`tvf convergence`, `papers/`'s discretization comparison).
 //! - [`panels`], [`constraint_markers`], [`numbers`], [`timing`]: drawing, marking, formatting
 //!   and timing helpers the figures share.
 //!
@@ -34,6 +36,7 @@
 pub mod compression;
 pub mod compression_sequence;
 pub mod constraint_markers;
+pub mod convergence_plot;
 pub mod demo;
 pub mod eigenfields_and_filtering;
 pub mod error;

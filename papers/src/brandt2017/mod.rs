@@ -6,12 +6,13 @@
 pub mod report;
 pub mod table1;
 
-use crate::discretization_comparison::{self, ComparisonConfig, DiscretizationResult};
+use crate::discretization_comparison::{self, ComparisonConfig};
 use crate::registry::compared_discretizations;
 use crate::step_log::StepLog;
 use std::path::PathBuf;
 use std::time::Instant;
 use table1::{PaperTimings, Table1Repetitions, Table1Row};
+use tvf_conformance::convergence::ConvergenceReport;
 use tvf_core::io::load_mesh;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
@@ -193,7 +194,7 @@ pub struct Results {
     /// Figures and experiments.
     pub findings: Vec<Finding>,
     /// The discretization comparison.
-    pub comparison: Vec<DiscretizationResult>,
+    pub comparison: ConvergenceReport,
     /// Pictures of the comparison.
     pub comparison_files: Vec<String>,
     /// Meshes not run or not finished: `(file, reason)`.

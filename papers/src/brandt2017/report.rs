@@ -4,12 +4,13 @@
 
 use super::table1::{self, Table1Row};
 use super::Results;
-use crate::discretization_comparison;
 use crate::markdown::Table;
 use std::path::Path;
+use tvf_conformance::convergence_table::markdown_table;
 use tvf_figures::finding::Finding;
 use tvf_figures::numbers::seconds;
 use tvf_figures::FigureError;
+use tvf_spectral::FieldFamily;
 
 /// How the run was started, for the reports.
 #[derive(Debug, Clone, PartialEq)]
@@ -193,46 +194,59 @@ fn finding_section(f: &Finding) -> String {
 /// The comparison section: table, plot and the orders summarised.
 fn comparison_section(results: &Results) -> String {
     let mut s = String::from(
-        "## Discretization comparison\n\nEvery entry of the catalog (`discretizations/src/catalog.rs`) on icospheres \
-         (vertices on the unit sphere) under refinement: largest relative error of each family's \
-         lowest eigenvalues against the unit sphere's `l(l+1)` (multiplicity `2l+1`), the \
-         estimated convergence order `log(e_i/e_{i+1}) / log(h_i/h_{i+1})` and the time to \
-         assemble the complex and compute the basis.\n\n",
+        "## Discretization comparison\n\nEvery entry of the catalog (`discretizations/src/builtin_catalog.rs`) \
+         through the convergence study of `tvf convergence` on icospheres (vertices on the unit \
+         sphere) under refinement: largest relative error of each family's lowest eigenvalues \
+         against the unit sphere's `l(l+1)` (multiplicity `2l+1`), the local order \
+         `log(e_i/e_{i+1}) / log(h_i/h_{i+1})` against the previous level and the time to \
+         assemble the complex and compute the basis. `tvf convergence` runs the same study on \
+         the hemisphere under both boundary conditions too.\n\n",
     );
-    if results.comparison.is_empty() {
+    let report = &results.comparison;
+    if report.rows.is_empty() {
         s.push_str("Not run.\n\n");
         return s;
     }
-    s.push_str(&discretization_comparison::markdown(&results.comparison));
+    s.push_str(&markdown_table(report));
     s.push('\n');
     for file in &results.comparison_files {
         s.push_str(&format!("![discretization comparison]({file})\n\n"));
     }
     let mut summary = Table::new([
         "discretization",
-        "last order (integrable / co-integrable)",
+        "fitted order (integrable / co-integrable)",
         "finest basis time",
     ]);
-    for r in &results.comparison {
-        let last =
-            |orders: Vec<f64>| orders.last().map_or("–".to_string(), |o| format!("{o:.2}"));
+    let mut names: Vec<&str> = Vec::new();
+    for row in &report.rows {
+        if !names.contains(&row.discretization.as_str()) {
+            names.push(&row.discretization);
+        }
+    }
+    for name in names {
+        let order = |family| {
+            report
+                .orders
+                .iter()
+                .find(|o| o.discretization == name && o.family == family)
+                .map_or("–".to_string(), |o| format!("{:.2}", o.order))
+        };
+        let finest = report.rows.iter().rev().find(|r| r.discretization == name);
         summary.row([
-            r.name.clone(),
+            name.to_string(),
             format!(
                 "{} / {}",
-                last(r.orders(|l| l.integrable_error)),
-                last(r.orders(|l| l.cointegrable_error))
+                order(FieldFamily::Integrable),
+                order(FieldFamily::Cointegrable)
             ),
-            r.levels
-                .last()
-                .map_or("–".to_string(), |l| seconds(l.seconds)),
+            finest.map_or("–".to_string(), |r| seconds(r.seconds)),
         ]);
     }
     s.push_str(&summary.to_markdown());
     s.push_str(
         "\nThe paper proves no rate; for P1 and Crouzeix–Raviart Laplace eigenvalues order 2 is \
          the classical one. The conforming and nonconforming complexes share their spectra (the \
-         integrable family of one is the co-integrable family of the other, MATH.md), so their \
+         integrable family of one is the co-integrable family of the other), so their \
          rows agree with the families swapped; only the mass lumping changes the numbers. DEC's \
          exact eigenproblem is the cotan Laplacian again, so its integrable rows equal the \
          conforming ones with the same vertex masses; its co-integrable family, \
@@ -319,7 +333,7 @@ pub fn readme_markdown(results: &Results, info: &RunInfo) -> String {
             f.comparison.clone(),
         ]);
     }
-    if !results.comparison.is_empty() {
+    if !results.comparison.rows.is_empty() {
         let files: Vec<String> = results
             .comparison_files
             .iter()

@@ -4,6 +4,7 @@ pub mod analyze;
 pub mod basis;
 pub mod coefficients;
 pub mod compress;
+pub mod convergence;
 pub mod decompose;
 pub mod decompress;
 pub mod demo;

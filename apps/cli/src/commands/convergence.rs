@@ -1,0 +1,192 @@
+//! `tvf convergence`: chosen discretizations on refinement sequences of surfaces with exact
+//! spectra (the unit sphere, the unit hemisphere under both boundary conditions); the relative
+//! eigenvalue errors per level, the observed orders and the basis times as a table, JSON and a
+//! log–log plot. The study itself is [`tvf_conformance::convergence`].
+
+use crate::progress::{note, Progress};
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use serde_json::json;
+use std::path::PathBuf;
+use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
+use tvf_conformance::convergence_table::{markdown_table, orders_summary};
+use tvf_core::discretization::BoundaryCondition;
+use tvf_discretizations::{catalog, catalog_entry, CatalogEntry};
+use tvf_figures::convergence_plot::convergence_figure;
+use tvf_render::save_png;
+
+/// Arguments of `tvf convergence`.
+#[derive(Args)]
+#[command(
+    after_help = "Examples:\n  tvf convergence --discretization conforming-barycentric --discretization nonconforming-barycentric\n  \
+tvf convergence --surface sphere --max-level 5 -o convergence.png --json\n\n\
+Exact spectra: on the unit sphere every l(l+1) (l ≥ 1) with multiplicity 2l+1 in each family; on the \
+upper unit hemisphere the family whose potentials are fixed (normal: integrable; tangential: \
+co-integrable) has the Dirichlet spectrum (l+m odd, l per degree), the other the Neumann spectrum \
+(l+m even, l+1 per degree). Errors are max |λ_h − λ|/λ over the lowest N eigenvalues of a family; \
+the order is the least-squares slope of log error against log h over the levels (the coarsest \
+dropped when there are three or more).\n\n\
+With --json, prints {\"rows\": [{\"discretization\", \"surface\", \"boundary\", \"level\", \"faces\", \
+\"h\", \"integrable_error\", \"cointegrable_error\", \"seconds\"}, ...], \"orders\": \
+[{\"discretization\", \"surface\", \"boundary\", \"family\": \"integrable\"|\"cointegrable\", \
+\"order\"}, ...]}."
+)]
+pub struct ConvergenceArgs {
+    /// A catalog id to study (repeatable) [default: every entry of the catalog].
+    #[arg(long = "discretization", value_name = "ID")]
+    discretizations: Vec<String>,
+    /// The surfaces: the sphere, the hemisphere (both boundary conditions), or all.
+    #[arg(long, value_enum, default_value_t = SurfaceChoice::All)]
+    surface: SurfaceChoice,
+    /// The coarsest refinement level (icosphere level; the hemisphere has 2·2^level rings).
+    #[arg(long, value_name = "LEVEL", default_value_t = 1)]
+    min_level: u32,
+    /// The finest refinement level (level 4: 5,120 sphere and 6,144 hemisphere faces).
+    #[arg(long, value_name = "LEVEL", default_value_t = 4)]
+    max_level: u32,
+    /// Eigenvalues compared per family (the lowest nonzero ones).
+    #[arg(short = 'n', long, value_name = "N", default_value_t = 24)]
+    eigenvalues: usize,
+    /// Write the log–log plot (error against mean edge length, one colour per discretization).
+    #[arg(short, long, value_name = "PNG")]
+    output: Option<PathBuf>,
+    /// Print JSON to stdout instead of the table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Which surfaces a study runs on.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum SurfaceChoice {
+    /// The unit sphere.
+    Sphere,
+    /// The unit hemisphere, tangential and normal boundary condition.
+    Hemisphere,
+    /// Both.
+    All,
+}
+
+impl SurfaceChoice {
+    fn surfaces(self) -> Vec<Surface> {
+        let hemispheres = BoundaryCondition::ALL.into_iter().map(Surface::Hemisphere);
+        match self {
+            SurfaceChoice::Sphere => vec![Surface::Sphere],
+            SurfaceChoice::Hemisphere => hemispheres.collect(),
+            SurfaceChoice::All => Surface::all(),
+        }
+    }
+}
+
+/// Runs the study and reports it.
+pub fn run(args: ConvergenceArgs) -> Result<()> {
+    if args.min_level > args.max_level {
+        bail!(
+            "--min-level {} is above --max-level {}",
+            args.min_level,
+            args.max_level
+        );
+    }
+    if args.max_level > 7 {
+        bail!(
+            "--max-level {}: at most 7 (1.3 million sphere faces)",
+            args.max_level
+        );
+    }
+    if args.eigenvalues == 0 {
+        bail!("-n 0: compare at least one eigenvalue per family");
+    }
+    if let Some(output) = &args.output {
+        tvf_core::io::check_output(output, &[])?;
+    }
+    let entries: Vec<&CatalogEntry> = if args.discretizations.is_empty() {
+        catalog().iter().collect()
+    } else {
+        args.discretizations
+            .iter()
+            .map(|id| catalog_entry(id))
+            .collect::<Result<_, _>>()?
+    };
+    let builders: Vec<_> = entries
+        .iter()
+        .map(|entry| {
+            move |mesh: &tvf_core::SurfaceMesh, boundary| {
+                entry
+                    .build_with(mesh, boundary)
+                    .map_err(|e| format!("cannot build (needs: {}): {e}", entry.preconditions))
+            }
+        })
+        .collect();
+    let candidates: Vec<Candidate<'_>> = entries
+        .iter()
+        .zip(&builders)
+        .map(|(entry, build)| Candidate {
+            name: entry.id.to_string(),
+            build,
+        })
+        .collect();
+    let config = ConvergenceConfig {
+        surfaces: args.surface.surfaces(),
+        levels: (args.min_level..=args.max_level).collect(),
+        eigenvalues: args.eigenvalues,
+    };
+    let progress = Progress::new("convergence");
+    let report = run_convergence(&candidates, &config, &|done, total, row| {
+        progress.update(&row.summary(), done, total)
+    })?;
+    progress.finish(format!("{} bases", report.rows.len()));
+    if let Some(output) = &args.output {
+        let figure = convergence_figure(&report, 640, 480)?;
+        save_png(&figure, output).with_context(|| format!("cannot write {}", output.display()))?;
+        note(format!("plot: {}", output.display()));
+    }
+    if args.json {
+        let boundary = |s: Surface| s.boundary().map(|b| b.name());
+        let rows: Vec<_> = report
+            .rows
+            .iter()
+            .map(|r| {
+                json!({
+                    "discretization": r.discretization,
+                    "surface": r.surface.name(),
+                    "boundary": boundary(r.surface),
+                    "level": r.level,
+                    "faces": r.faces,
+                    "h": r.h,
+                    "integrable_error": r.integrable_error,
+                    "cointegrable_error": r.cointegrable_error,
+                    "seconds": r.seconds,
+                })
+            })
+            .collect();
+        let orders: Vec<_> = report
+            .orders
+            .iter()
+            .map(|o| {
+                json!({
+                    "discretization": o.discretization,
+                    "surface": o.surface.name(),
+                    "boundary": boundary(o.surface),
+                    "family": o.family.name(),
+                    "order": finite_or_null(o.order),
+                })
+            })
+            .collect();
+        let out = json!({ "rows": rows, "orders": orders });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        print!("{}", markdown_table(&report));
+        println!();
+        print!("{}", orders_summary(&report));
+    }
+    Ok(())
+}
+
+/// An order, or `null` in JSON where it could not be fitted (fewer than two levels with a
+/// nonzero error).
+fn finite_or_null(order: f64) -> serde_json::Value {
+    if order.is_finite() {
+        json!(order)
+    } else {
+        serde_json::Value::Null
+    }
+}
