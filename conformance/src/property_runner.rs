@@ -11,6 +11,7 @@ use crate::strategies::{mesh_specs, MeshNeeds, MeshSpec};
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use std::cell::RefCell;
 use std::collections::BTreeMap;
+use std::panic::AssertUnwindSafe;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
 
@@ -21,11 +22,36 @@ pub type Builder<'a> = &'a dyn Fn(&SurfaceMesh) -> Result<Box<dyn HodgeComplex>,
 /// Name of the outcome reporting that the builder refused a mesh.
 pub const CONSTRUCTION: &str = "construction";
 
+/// Name of the outcome reporting that the builder or a check panicked (its message the detail).
+pub const PANIC: &str = "panic";
+
 /// Runs the core checks ([`core_check_report`]) and, on a closed mesh, the measured `reference`
 /// checks ([`measure_reference`]; the test suite runs them on closed meshes only, the stiffness
 /// formulas know no boundary conditions) on the complex `builder` makes of `mesh`. A refused mesh
-/// is one failed outcome named [`CONSTRUCTION`].
+/// is one failed outcome named [`CONSTRUCTION`], a panic of the builder or of a check one named
+/// [`PANIC`].
 pub fn check_mesh(
+    builder: Builder,
+    mesh: &SurfaceMesh,
+    reference: &[ReferenceCheck],
+) -> CheckReport {
+    let checked = std::panic::catch_unwind(AssertUnwindSafe(|| {
+        checks_on_mesh(builder, mesh, reference)
+    }));
+    checked.unwrap_or_else(|payload| {
+        let message = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_else(|| "a panic without a message".to_string());
+        CheckReport {
+            outcomes: vec![CheckOutcome::failed(PANIC, message)],
+        }
+    })
+}
+
+/// [`check_mesh`] without the panic guard.
+fn checks_on_mesh(
     builder: Builder,
     mesh: &SurfaceMesh,
     reference: &[ReferenceCheck],
