@@ -154,8 +154,7 @@ fn an_asymmetric_mass_is_refused_as_not_symmetric() {
     }
     m1.add_triplet(0, 1, 0.25);
     let refused = Mass::sparse("M1", m1.to_csr())
-        .err()
-        .expect("an asymmetric mass is refused")
+        .expect_err("an asymmetric mass is refused")
         .to_string();
     assert!(
         refused.contains("M1") && refused.contains("symmetric"),

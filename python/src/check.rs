@@ -13,8 +13,8 @@ use tvf_conformance::check_outcome::CheckOutcome;
 use tvf_conformance::check_report::core_check_report;
 use tvf_conformance::property_runner::{check_mesh, run_property, PropertyRequest};
 use tvf_conformance::strategies::MeshNeeds;
-use tvf_core::discretization::{ComplexParts, FieldRotation, FieldSampling, HodgeComplex};
 use tvf_core::discretization::PointEvaluation;
+use tvf_core::discretization::{ComplexParts, FieldRotation, FieldSampling, HodgeComplex};
 use tvf_core::SurfaceMesh;
 
 /// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,

@@ -10,18 +10,14 @@
 //!   variants (edge flips) and [`mesh_specs`], the strategy a property runner draws from.
 //!
 //! ```
-//! use tvf_conformance::proptest::prelude::*;
+//! use tvf_conformance::proptest::strategy::{Strategy, ValueTree};
+//! use tvf_conformance::proptest::test_runner::TestRunner;
 //! use tvf_conformance::strategies::{mesh_specs, MeshNeeds};
 //!
-//! proptest! {
-//!     #![proptest_config(ProptestConfig::with_cases(4))]
-//!     #[test]
-//!     fn every_mesh_is_valid(spec in mesh_specs(MeshNeeds::default())) {
-//!         let mesh = spec.build().unwrap();
-//!         prop_assert!(mesh.mesh.face_count() > 0);
-//!     }
-//! }
-//! # fn main() {}
+//! let mut runner = TestRunner::deterministic();
+//! let spec = mesh_specs(MeshNeeds::default()).new_tree(&mut runner).unwrap().current();
+//! let mesh = spec.build().unwrap();
+//! assert_eq!(mesh.mesh.component_count(), spec.components.len());
 //! ```
 
 pub mod closed;
