@@ -448,6 +448,13 @@ pub fn is_delaunay(mesh: &SurfaceMesh) -> bool {
 /// slightly where it is not flat). Panics if a flip would break the mesh or if 10·E flips do not
 /// make it Delaunay; meant for the small generated meshes of the corpus.
 pub fn delaunay_flips(mesh: &SurfaceMesh) -> SurfaceMesh {
+    try_delaunay_flips(mesh).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// [`delaunay_flips`], with an error instead of a panic when a flip would break the mesh (e.g.
+/// two faces that would share both vertices of the new diagonal) or when 10·E flips do not make
+/// it Delaunay (the mesh strategies reject such draws).
+pub fn try_delaunay_flips(mesh: &SurfaceMesh) -> Result<SurfaceMesh, String> {
     let mut current = mesh.clone();
     for _ in 0..10 * mesh.edge_count() {
         let sums = cotangent_sums(&current);
@@ -456,7 +463,7 @@ pub fn delaunay_flips(mesh: &SurfaceMesh) -> SurfaceMesh {
             .min_by(|&a, &b| sums[a].total_cmp(&sums[b]))
             .filter(|&e| sums[e] <= DELAUNAY_TOLERANCE);
         let Some(edge) = worst else {
-            return current;
+            return Ok(current);
         };
         let mut faces = current.faces().to_vec();
         let [s, t] = current.edge_faces()[edge];
@@ -473,7 +480,7 @@ pub fn delaunay_flips(mesh: &SurfaceMesh) -> SurfaceMesh {
         faces[s] = [p, a, q];
         faces[t] = [q, b, p];
         current = SurfaceMesh::new(current.positions().to_vec(), faces)
-            .unwrap_or_else(|e| panic!("flipping edge {edge} broke the mesh: {e}"));
+            .map_err(|e| format!("flipping edge {edge} broke the mesh: {e}"))?;
     }
-    panic!("Lawson flips did not converge")
+    Err("Lawson flips did not converge".to_string())
 }

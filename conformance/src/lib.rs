@@ -31,6 +31,12 @@
 //! [`check_report::core_check_report`] returns those outcomes as a report instead, for complexes
 //! built elsewhere (the Python package's `tvf.check`).
 //!
+//! Property-based checking: [`strategies`] draws small mesh descriptions (genus 0–5, surfaces
+//! with boundary, several components, jitter, slivers, rigid motions, Delaunay variants) that
+//! proptest shrinks; [`property_runner::run_property`] runs the core checks and the measured
+//! reference checks ([`reference_report`]) of a builder on `N` of them and shrinks a failure to a
+//! minimal failing mesh (`tvf check`, the Python package's `tvf.check` with a builder).
+//!
 //! The macro [`conformance_suite!`] instantiates the core suite (and any reference checks) for
 //! one constructor in one line, over a [`corpus::Corpus`]: the general one, or the Delaunay one
 //! for discretizations that need `cot α + cot β > 0`.
@@ -73,10 +79,13 @@ pub mod decomposition_checks;
 pub mod dense;
 pub mod galerkin_mass_checks;
 pub mod open_suite;
+pub mod property_runner;
 pub mod reference;
 pub mod reference_formulas;
+pub mod reference_report;
 pub mod scaled_co_potentials;
 pub mod spectral_checks;
+pub mod strategies;
 pub mod suite;
 mod suite_macro;
 

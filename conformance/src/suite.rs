@@ -9,11 +9,26 @@ use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{
     check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
 };
+use crate::property_runner::{run_property, PropertyRequest};
 use crate::spectral_checks::{
     check_basis_orthonormal, check_lemma1, check_rigid_motion_invariance, check_spectrum_union,
 };
+use crate::strategies::MeshNeeds;
 use crate::{build, for_each_mesh, Constructor};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+
+/// Cases per property of a suite line unless its `cases = N` says otherwise.
+pub const DEFAULT_CASES: u32 = 64;
+
+/// Seed of the mesh draws of [`generated_meshes`] (fixed: the suite is deterministic).
+pub const GENERATED_MESHES_SEED: u64 = 2017;
+
+/// The cases a property of a suite line runs: `cases`, lowered to proptest's default count when
+/// that is smaller (proptest reads it from the environment variable `PROPTEST_CASES`; unset it
+/// is 256), so that a quick run can ask for fewer.
+pub fn property_cases(cases: u32) -> u32 {
+    cases.min(proptest::test_runner::Config::default().cases)
+}
 
 /// Runs `check` on every mesh of `corpus` (and the shared meshes if `with_shared`) whose complex
 /// has at most `limit` field coefficients.
@@ -154,4 +169,38 @@ pub fn jittered_mesh(constructor: Constructor, corpus: Corpus, seed: u64) {
     check_kernel_is_2g_dense(complex, &mesh);
     check_hodge_decomposition(complex, seed);
     check_spectrum_union(complex, &mesh);
+}
+
+/// The core checks on `cases` meshes drawn from [`crate::strategies::mesh_specs`] (Delaunay ones
+/// for the Delaunay corpora; closed and open ones); panics with the shrunk minimal failing mesh
+/// and its failed checks.
+pub fn generated_meshes(constructor: Constructor, corpus: Corpus, cases: u32) {
+    let needs = MeshNeeds {
+        delaunay: matches!(corpus, Corpus::Delaunay | Corpus::OpenDelaunay),
+        closed_only: false,
+    };
+    let request = PropertyRequest::new(cases, GENERATED_MESHES_SEED, needs);
+    let report = run_property(constructor, &request, &|_| {});
+    if let Some(aborted) = report.aborted {
+        panic!("the property run stopped: {aborted}");
+    }
+    if let Some(counterexample) = report.counterexample {
+        let failures: Vec<String> = counterexample
+            .report
+            .failures()
+            .iter()
+            .map(|o| {
+                format!(
+                    "{} = {:e} (limit {:e}): {}",
+                    o.name, o.measured, o.limit, o.detail
+                )
+            })
+            .collect();
+        panic!(
+            "minimal failing mesh ({} faces): {}\n{}",
+            counterexample.mesh.mesh.face_count(),
+            counterexample.mesh.name,
+            failures.join("\n")
+        );
+    }
 }

@@ -2,14 +2,15 @@
 //! [`catalog_suites!`](crate::catalog_suites) macros.
 
 /// Instantiates the conformance suite for one discretization: a module `name` with one `#[test]`
-/// per core check of [`crate::suite`] (two of them proptest properties), and a submodule
-/// `reference` with one `#[test]` per named check of [`crate::reference`].
+/// per core check of [`crate::suite`] (three of them properties over random draws), and a
+/// submodule `reference` with one `#[test]` per named check of [`crate::reference`].
 ///
 /// ```text
 /// conformance_suite!(name, constructor);
 /// conformance_suite!(name, constructor, corpus = Corpus::Delaunay);
 /// conformance_suite!(name, constructor, reference = [cotan_formula, rotation]);
-/// conformance_suite!(name, constructor, corpus = ..., reference = [...]);
+/// conformance_suite!(name, constructor, cases = 16);
+/// conformance_suite!(name, constructor, corpus = ..., reference = [...], cases = ...);
 /// ```
 ///
 /// - `constructor`: `Fn(&SurfaceMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
@@ -17,6 +18,10 @@
 ///   imports `super::*`).
 /// - `corpus`: an expression of type [`crate::corpus::Corpus`], default `Corpus::General`.
 /// - `reference`: names of functions in [`crate::reference`] (an unknown name does not compile).
+/// - `cases`: cases per property (`rigid_motion_invariance`, `jittered_mesh`,
+///   `generated_meshes`), default [`crate::suite::DEFAULT_CASES`] (64). The environment variable
+///   `PROPTEST_CASES`, which proptest reads, can lower it (never raise it):
+///   [`crate::suite::property_cases`].
 #[macro_export]
 macro_rules! conformance_suite {
     (
@@ -24,6 +29,7 @@ macro_rules! conformance_suite {
         $constructor:expr
         $(, corpus = $corpus:expr)?
         $(, reference = [$($check:ident),* $(,)?])?
+        $(, cases = $cases:expr)?
         $(,)?
     ) => {
         mod $name {
@@ -43,6 +49,10 @@ macro_rules! conformance_suite {
 
             fn corpus() -> $crate::corpus::Corpus {
                 $crate::__suite_corpus!($($corpus)?)
+            }
+
+            fn cases() -> u32 {
+                $crate::suite::property_cases($crate::__suite_cases!($($cases)?))
             }
 
             #[test]
@@ -100,8 +110,13 @@ macro_rules! conformance_suite {
                 $crate::suite::basis_is_orthonormal(&build_complex, corpus());
             }
 
+            #[test]
+            fn generated_meshes() {
+                $crate::suite::generated_meshes(&build_complex, corpus(), cases());
+            }
+
             $crate::proptest::proptest! {
-                #![proptest_config($crate::proptest::prelude::ProptestConfig::with_cases(4))]
+                #![proptest_config($crate::proptest::prelude::ProptestConfig::with_cases(cases()))]
 
                 #[test]
                 fn rigid_motion_invariance(
@@ -133,6 +148,19 @@ macro_rules! conformance_suite {
                 )*)?
             }
         }
+    };
+}
+
+/// The cases per property of a suite line: the given expression, or
+/// [`crate::suite::DEFAULT_CASES`].
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __suite_cases {
+    () => {
+        $crate::suite::DEFAULT_CASES
+    };
+    ($cases:expr) => {
+        $cases
     };
 }
 

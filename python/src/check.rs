@@ -1,17 +1,109 @@
-//! `tvf.check`: the core conformance checks of the test suite on a complex, as a report.
+//! `tvf.check`: the core conformance checks of the test suite on a complex, as a report; and on
+//! a Python builder `(V, F) -> matrices`, on one mesh or property-based on generated meshes with
+//! the shrunk minimal failing mesh (`tvf_conformance::property_runner`).
 
+use crate::arrays::vectors_to_numpy;
 use crate::complex::Complex;
+use crate::mesh::Mesh;
+use numpy::ndarray::Array2;
+use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use tvf_conformance::check_outcome::CheckOutcome;
 use tvf_conformance::check_report::core_check_report;
+use tvf_conformance::property_runner::{check_mesh, run_property, PropertyRequest};
+use tvf_conformance::strategies::MeshNeeds;
+use tvf_core::discretization::PointEvaluation;
+use tvf_core::discretization::{ComplexParts, FieldRotation, FieldSampling, HodgeComplex};
+use tvf_core::SurfaceMesh;
 
 /// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,
 /// `detail`.
 #[pyfunction]
 pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let report = py.detach(|| core_check_report(complex.complex.as_ref(), &complex.mesh));
-    report
-        .outcomes
+    outcome_dicts(py, &report.outcomes)
+}
+
+/// The core checks of the complexes `build(V, F)` (a Python callable returning a native
+/// `Complex`) makes: on `mesh` if given, else on `cases` closed meshes drawn with `seed`
+/// (Delaunay ones if `delaunay`), shrinking a failure. A dict: `passed`, `cases_passed`,
+/// `outcomes` (the mesh's, or each check's worst case), `counterexample` (`(V, F)` or `None`)
+/// and `counterexample_outcomes`.
+#[pyfunction]
+#[pyo3(signature = (build, cases, seed, mesh, delaunay))]
+pub fn check_builder<'py>(
+    py: Python<'py>,
+    build: Py<PyAny>,
+    cases: u32,
+    seed: u64,
+    mesh: Option<&Mesh>,
+    delaunay: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+        Python::attach(|py| {
+            let (v, f) = mesh_arrays(py, mesh);
+            let built = build.call1(py, (v, f)).map_err(|e| e.to_string())?;
+            let complex = built
+                .bind(py)
+                .cast::<Complex>()
+                .map_err(|e| format!("the builder did not return a native Complex: {e}"))?;
+            let complex = complex.clone().unbind();
+            Ok(Box::new(PythonComplex(complex)) as Box<dyn HodgeComplex>)
+        })
+    };
+    let result = PyDict::new(py);
+    if let Some(mesh) = mesh {
+        let report = py.detach(|| check_mesh(&builder, &mesh.mesh, &[]));
+        result.set_item("passed", report.passed())?;
+        result.set_item("cases_passed", u32::from(report.passed()))?;
+        result.set_item("outcomes", outcome_dicts(py, &report.outcomes)?)?;
+        result.set_item("counterexample", py.None())?;
+        result.set_item("counterexample_outcomes", Vec::<Bound<'py, PyDict>>::new())?;
+        return Ok(result);
+    }
+    let needs = MeshNeeds {
+        delaunay,
+        closed_only: true,
+    };
+    let request = PropertyRequest::new(cases, seed, needs);
+    let report = py.detach(|| run_property(&builder, &request, &|_| {}));
+    if let Some(reason) = &report.aborted {
+        return Err(crate::errors::tvf_error(format!(
+            "the property run stopped: {reason}"
+        )));
+    }
+    result.set_item("passed", report.passed())?;
+    result.set_item("cases_passed", report.cases_passed)?;
+    result.set_item("outcomes", outcome_dicts(py, &report.worst)?)?;
+    match &report.counterexample {
+        Some(counterexample) => {
+            result.set_item("counterexample", mesh_arrays(py, &counterexample.mesh.mesh))?;
+            let outcomes = outcome_dicts(py, &counterexample.report.outcomes)?;
+            result.set_item("counterexample_outcomes", outcomes)?;
+        }
+        None => {
+            result.set_item("counterexample", py.None())?;
+            result.set_item("counterexample_outcomes", Vec::<Bound<'py, PyDict>>::new())?;
+        }
+    }
+    Ok(result)
+}
+
+/// `(V, F)`: positions `n × 3` float64 and faces `m × 3` int64.
+fn mesh_arrays<'py>(py: Python<'py>, mesh: &SurfaceMesh) -> (Bound<'py, PyAny>, Bound<'py, PyAny>) {
+    let faces = mesh.faces();
+    let f = Array2::from_shape_fn((faces.len(), 3), |(t, c)| faces[t][c] as i64)
+        .into_pyarray(py)
+        .into_any();
+    (vectors_to_numpy(py, mesh.positions()), f)
+}
+
+fn outcome_dicts<'py>(
+    py: Python<'py>,
+    outcomes: &[CheckOutcome],
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    outcomes
         .iter()
         .map(|o| {
             let d = PyDict::new(py);
@@ -23,4 +115,31 @@ pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py,
             Ok(d)
         })
         .collect()
+}
+
+/// A complex the Python builder made, owned by Python; the checks read it through the seam.
+struct PythonComplex(Py<Complex>);
+
+impl PythonComplex {
+    fn inner(&self) -> &dyn HodgeComplex {
+        self.0.get().complex.as_ref()
+    }
+}
+
+impl HodgeComplex for PythonComplex {
+    fn parts(&self) -> &ComplexParts {
+        self.inner().parts()
+    }
+
+    fn sampling(&self) -> Option<&dyn FieldSampling> {
+        self.inner().sampling()
+    }
+
+    fn rotation(&self) -> Option<&dyn FieldRotation> {
+        self.inner().rotation()
+    }
+
+    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
+        self.inner().point_evaluation()
+    }
 }

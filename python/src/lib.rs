@@ -43,5 +43,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(design::design_reduced, m)?)?;
     m.add_function(wrap_pyfunction!(eigsh::eigsh, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
+    m.add_function(wrap_pyfunction!(check::check_builder, m)?)?;
     Ok(())
 }

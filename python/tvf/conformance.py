@@ -1,10 +1,12 @@
-"""The conformance suite's core checks on any complex: :func:`check`."""
+"""The conformance suite's core checks on any complex, or property-based on a builder of
+complexes over generated meshes with a shrunk counterexample: :func:`check`."""
 
-from dataclasses import dataclass
-from typing import List
+from dataclasses import dataclass, field
+from typing import List, Optional, Tuple
 
 from . import _native
 from .complex import Complex
+from .mesh import Mesh
 
 
 @dataclass
@@ -15,6 +17,12 @@ class CheckReport:
 
     complex_id: str
     outcomes: List[dict]
+    #: With a builder: the meshes that passed (before the first failure).
+    cases_passed: int = 1
+    #: With a builder: the shrunk minimal failing mesh ``(V, F)``, or ``None``.
+    counterexample: Optional[Tuple] = None
+    #: With a builder: every check measured on the counterexample.
+    counterexample_outcomes: List[dict] = field(default_factory=list)
 
     @property
     def passed(self):
@@ -23,8 +31,9 @@ class CheckReport:
 
     @property
     def failures(self):
-        """The failed outcomes."""
-        return [o for o in self.outcomes if o["status"] == "failed"]
+        """The failed outcomes (on the counterexample, if there is one)."""
+        outcomes = self.outcomes + self.counterexample_outcomes
+        return [o for o in outcomes if o["status"] == "failed"]
 
     def __str__(self):
         lines = [f"conformance of '{self.complex_id}': {'passed' if self.passed else 'FAILED'}"]
@@ -33,10 +42,9 @@ class CheckReport:
         return "\n".join(lines)
 
 
-def check(complex_):
+def check(x, cases=64, seed=0, mesh=None, delaunay=False):
     """Runs the core checks of tvf's conformance suite (the same code the Rust test suite
-    asserts with) on a :class:`Complex` — a catalog entry or your own
-    (:meth:`Complex.from_matrices`) — on its mesh:
+    asserts with):
 
     ``d1 d0 = 0``; integrable fields orthogonal to co-integrable ones; masses positive on used
     nodes, ``sum(M0) = area``; the harmonic dimension the complex reports; ``S``, ``B`` and both
@@ -44,8 +52,44 @@ def check(complex_):
     curl-free / divergence-free parts, known parts recovered); and for small complexes
     (``n1 <= 1600``; Lemma 1: ``n1 <= 1000``, otherwise reported as skipped) positive
     semi-definiteness, ``dim ker L``, the spectrum of ``L`` as the union of the two scalar
-    spectra, and Lemma 1's eigenfields. Returns a :class:`CheckReport`; nothing raises for a
-    failed check."""
-    if not isinstance(complex_, Complex):
-        raise TypeError(f"expected a tvf.Complex, got {type(complex_).__name__}")
-    return CheckReport(complex_.id, [dict(o) for o in _native.check(complex_._native)])
+    spectra, and Lemma 1's eigenfields.
+
+    ``x`` is either
+
+    - a :class:`Complex` (a catalog entry or your own, :meth:`Complex.from_matrices`): checked on
+      its mesh (``cases``, ``seed``, ``mesh`` are not used); or
+    - a builder: a callable ``(V, F) -> dict(d0=, d1=, M0=, M1=, M2=, sampling=)`` (the
+      arguments of :meth:`Complex.from_matrices`; ``M2_inverse=`` instead of ``M2=``, ``id=``
+      optional; scipy.sparse or numpy). With ``mesh=(V, F)`` it is checked on that mesh;
+      otherwise on ``cases`` closed meshes generated from ``seed`` (genus 0–5, several
+      components, jittered, slivers, rigidly moved; only Delaunay ones with ``delaunay=True``).
+      When a case fails, the mesh description is shrunk (fewer faces, lower genus, no jitter)
+      and the report's ``counterexample`` is the minimal failing ``(V, F)`` with its checks in
+      ``counterexample_outcomes``; ``outcomes`` then hold each check's worst case over the
+      passing meshes. A builder that raises fails the check named ``construction``.
+
+    Returns a :class:`CheckReport`; nothing raises for a failed check."""
+    if isinstance(x, Complex):
+        return CheckReport(x.id, [dict(o) for o in _native.check(x._native)])
+    if not callable(x):
+        raise TypeError(f"expected a tvf.Complex or a builder (V, F) -> dict, got {type(x).__name__}")
+    cases, seed = int(cases), int(seed)
+    if cases < 1:
+        raise ValueError(f"cases must be at least 1, got {cases}")
+    if seed < 0:
+        raise ValueError(f"seed must be non-negative, got {seed}")
+    native_mesh = None if mesh is None else Mesh(*mesh, label="mesh")._native
+
+    def build(V, F):
+        parts = dict(x(V, F))
+        parts.setdefault("id", "builder")
+        return Complex.from_matrices(Mesh(V, F, label="generated mesh"), **parts)._native
+
+    result = _native.check_builder(build, cases, seed, native_mesh, bool(delaunay))
+    return CheckReport(
+        getattr(x, "__name__", "builder"),
+        [dict(o) for o in result["outcomes"]],
+        cases_passed=result["cases_passed"],
+        counterexample=result["counterexample"],
+        counterexample_outcomes=[dict(o) for o in result["counterexample_outcomes"]],
+    )

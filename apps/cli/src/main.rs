@@ -36,6 +36,8 @@ enum Command {
     Info(commands::info::InfoArgs),
     /// List the discretizations of the catalog (ids for --discretization).
     Discretizations(commands::discretizations::DiscretizationsArgs),
+    /// Check a discretization: the conformance checks on a mesh, or on generated meshes with the minimal failing one written as OBJ.
+    Check(commands::check::CheckArgs),
     /// Compute the Fourier basis (harmonic fields + K pairs of eigenfields) and save it (.tvfb).
     Basis(commands::basis::BasisArgs),
     /// The lowest K eigenvalues of the Hodge–Laplacian on tangent fields, labelled by family.
@@ -83,6 +85,7 @@ fn main() {
     let result = match cli.command {
         Command::Info(args) => commands::info::run(args),
         Command::Discretizations(args) => commands::discretizations::run(args),
+        Command::Check(args) => commands::check::run(args),
         Command::Basis(args) => commands::basis::run(args),
         Command::Spectrum(args) => commands::spectrum::run(args),
         Command::Decompose(args) => commands::decompose::run(args),

@@ -2,6 +2,7 @@
 
 pub mod analyze;
 pub mod basis;
+pub mod check;
 pub mod coefficients;
 pub mod compress;
 pub mod convergence;

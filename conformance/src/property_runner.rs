@@ -1,0 +1,259 @@
+//! The property runner: the core checks (and a catalog entry's measured reference checks) on one
+//! mesh ([`check_mesh`]) or on `N` meshes drawn from [`crate::strategies`] ([`run_property`]),
+//! with proptest's [`TestRunner`] on a fixed seed; on a failure, proptest shrinks the mesh
+//! description and the report holds the minimal failing mesh with its measured numbers.
+
+use crate::check_outcome::{CheckOutcome, CheckStatus};
+use crate::check_report::{core_check_report, CheckReport};
+use crate::corpus::CorpusMesh;
+use crate::reference_report::{measure_reference, ReferenceCheck};
+use crate::strategies::{mesh_specs, MeshNeeds, MeshSpec};
+use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
+use std::cell::RefCell;
+use std::collections::BTreeMap;
+use std::panic::AssertUnwindSafe;
+use tvf_core::discretization::HodgeComplex;
+use tvf_core::SurfaceMesh;
+
+/// Builds the complex to check on a mesh (a catalog entry, a researcher's own matrices...); the
+/// error says why the mesh was refused.
+pub type Builder<'a> = &'a dyn Fn(&SurfaceMesh) -> Result<Box<dyn HodgeComplex>, String>;
+
+/// Name of the outcome reporting that the builder refused a mesh.
+pub const CONSTRUCTION: &str = "construction";
+
+/// Name of the outcome reporting that the builder or a check panicked (its message the detail).
+pub const PANIC: &str = "panic";
+
+/// Runs the core checks ([`core_check_report`]) and, on a closed mesh, the measured `reference`
+/// checks ([`measure_reference`]; the test suite runs them on closed meshes only, the stiffness
+/// formulas know no boundary conditions) on the complex `builder` makes of `mesh`. A refused mesh
+/// is one failed outcome named [`CONSTRUCTION`], a panic of the builder or of a check one named
+/// [`PANIC`].
+pub fn check_mesh(
+    builder: Builder,
+    mesh: &SurfaceMesh,
+    reference: &[ReferenceCheck],
+) -> CheckReport {
+    let checked = std::panic::catch_unwind(AssertUnwindSafe(|| {
+        checks_on_mesh(builder, mesh, reference)
+    }));
+    checked.unwrap_or_else(|payload| {
+        let message = payload
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_else(|| "a panic without a message".to_string());
+        CheckReport {
+            outcomes: vec![CheckOutcome::failed(PANIC, message)],
+        }
+    })
+}
+
+/// [`check_mesh`] without the panic guard.
+fn checks_on_mesh(
+    builder: Builder,
+    mesh: &SurfaceMesh,
+    reference: &[ReferenceCheck],
+) -> CheckReport {
+    let complex = match builder(mesh) {
+        Ok(complex) => complex,
+        Err(error) => {
+            return CheckReport {
+                outcomes: vec![CheckOutcome::failed(CONSTRUCTION, error)],
+            }
+        }
+    };
+    let mut report = core_check_report(complex.as_ref(), mesh);
+    for &check in reference {
+        if mesh.is_closed() {
+            let outcomes = measure_reference(check, complex.as_ref(), mesh);
+            report.outcomes.extend(outcomes);
+        } else {
+            report.outcomes.push(CheckOutcome::skipped(
+                check.name(),
+                "reference checks hold on closed meshes (as in the test suite)".to_string(),
+            ));
+        }
+    }
+    report
+}
+
+/// What [`run_property`] runs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PropertyRequest {
+    /// Number of generated meshes.
+    pub cases: u32,
+    /// Seed of the mesh draws (the same seed draws the same meshes on every machine).
+    pub seed: u64,
+    /// The meshes the complex accepts (Delaunay only, closed only).
+    pub needs: MeshNeeds,
+    /// Measured reference checks to run besides the core checks.
+    pub reference: Vec<ReferenceCheck>,
+    /// At most this many shrinking steps after a failure.
+    pub max_shrink_iters: u32,
+}
+
+impl PropertyRequest {
+    /// `cases` meshes from `seed` for a complex with `needs`, no reference checks, at most 512
+    /// shrinking steps.
+    pub fn new(cases: u32, seed: u64, needs: MeshNeeds) -> Self {
+        Self {
+            cases,
+            seed,
+            needs,
+            reference: Vec::new(),
+            max_shrink_iters: 512,
+        }
+    }
+}
+
+/// Where [`run_property`] is, for progress bars.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PropertyProgress {
+    /// Case `index` (from 1) of the request's cases passed.
+    CasePassed {
+        /// 1-based case number.
+        index: u32,
+    },
+    /// A case failed; shrinking tried `steps` smaller meshes so far.
+    Shrinking {
+        /// Shrinking steps so far.
+        steps: u32,
+    },
+}
+
+/// The minimal failing mesh proptest shrank a failure to.
+#[derive(Debug, Clone)]
+pub struct Counterexample {
+    /// Its description.
+    pub spec: MeshSpec,
+    /// The mesh.
+    pub mesh: CorpusMesh,
+    /// Every check measured on it (at least one failed).
+    pub report: CheckReport,
+}
+
+/// The result of [`run_property`].
+#[derive(Debug, Clone)]
+pub struct PropertyReport {
+    /// Meshes checked before the first failure (all of them if none failed).
+    pub cases_passed: u32,
+    /// Per check, the outcome with the largest measured value relative to its limit over the
+    /// passing cases (skipped checks once), in name order.
+    pub worst: Vec<CheckOutcome>,
+    /// The shrunk failing mesh, if a case failed.
+    pub counterexample: Option<Counterexample>,
+    /// Why the run stopped early without a counterexample (e.g. too many rejected draws).
+    pub aborted: Option<String>,
+}
+
+impl PropertyReport {
+    /// Whether every case passed.
+    pub fn passed(&self) -> bool {
+        self.counterexample.is_none() && self.aborted.is_none()
+    }
+}
+
+/// Runs `check_mesh(builder, mesh, request.reference)` on `request.cases` meshes drawn from
+/// [`mesh_specs`]`(request.needs)` with a [`TestRunner`] seeded by `request.seed`; on a failure,
+/// proptest shrinks the description and the report holds the minimal failing mesh.
+/// `progress` is called after each case and each shrinking step.
+pub fn run_property(
+    builder: Builder,
+    request: &PropertyRequest,
+    progress: &dyn Fn(PropertyProgress),
+) -> PropertyReport {
+    let config = Config {
+        cases: request.cases,
+        max_shrink_iters: request.max_shrink_iters,
+        failure_persistence: None,
+        max_global_rejects: 64 * request.cases.max(16),
+        ..Config::default()
+    };
+    let mut seed = [0u8; 32];
+    seed[..8].copy_from_slice(&request.seed.to_le_bytes());
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed);
+    let mut runner = TestRunner::new_with_rng(config, rng);
+    let state = RefCell::new(RunState::default());
+    let result = runner.run(&mesh_specs(request.needs), |spec| {
+        let mesh = spec.build().map_err(TestCaseError::reject)?;
+        let report = check_mesh(builder, &mesh.mesh, &request.reference);
+        let mut state = state.borrow_mut();
+        if state.shrinking {
+            state.shrink_steps += 1;
+            progress(PropertyProgress::Shrinking {
+                steps: state.shrink_steps,
+            });
+        } else if report.passed() {
+            state.record(&report);
+            progress(PropertyProgress::CasePassed {
+                index: state.cases_passed,
+            });
+        } else {
+            state.shrinking = true;
+        }
+        if report.passed() {
+            Ok(())
+        } else {
+            let failed: Vec<String> = report.failures().iter().map(|o| o.name.clone()).collect();
+            Err(TestCaseError::fail(failed.join(", ")))
+        }
+    });
+    let state = state.into_inner();
+    let (counterexample, aborted) = match result {
+        Ok(()) => (None, None),
+        Err(TestError::Fail(_, spec)) => (Some(counterexample(builder, request, spec)), None),
+        Err(TestError::Abort(reason)) => (None, Some(reason.to_string())),
+    };
+    PropertyReport {
+        cases_passed: state.cases_passed,
+        worst: state.worst.into_values().collect(),
+        counterexample,
+        aborted,
+    }
+}
+
+/// The report of the shrunk description (re-measured: proptest keeps only the value).
+fn counterexample(builder: Builder, request: &PropertyRequest, spec: MeshSpec) -> Counterexample {
+    let mesh = spec
+        .build()
+        .expect("a description that failed was built before");
+    let report = check_mesh(builder, &mesh.mesh, &request.reference);
+    Counterexample { spec, mesh, report }
+}
+
+/// What the test closure of [`run_property`] accumulates.
+#[derive(Default)]
+struct RunState {
+    cases_passed: u32,
+    shrinking: bool,
+    shrink_steps: u32,
+    worst: BTreeMap<String, CheckOutcome>,
+}
+
+impl RunState {
+    /// Counts a passing case and keeps, per check, its worst outcome.
+    fn record(&mut self, report: &CheckReport) {
+        self.cases_passed += 1;
+        for outcome in &report.outcomes {
+            let replace = match self.worst.get(&outcome.name) {
+                None => true,
+                Some(kept) => badness(outcome) > badness(kept),
+            };
+            if replace {
+                self.worst.insert(outcome.name.clone(), outcome.clone());
+            }
+        }
+    }
+}
+
+/// How close an outcome came to failing: `measured / limit` (the measured value itself for a
+/// zero limit; −1 for skipped ones, so any measurement replaces them).
+fn badness(outcome: &CheckOutcome) -> f64 {
+    match outcome.status {
+        CheckStatus::Skipped => -1.0,
+        _ if outcome.limit > 0.0 => outcome.measured / outcome.limit,
+        _ => outcome.measured,
+    }
+}

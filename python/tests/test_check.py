@@ -1,0 +1,66 @@
+"""tvf.check with a builder (V, F) -> matrices: a correct builder passes on generated meshes and
+on a given mesh; a builder broken only above 100 faces is caught and its failure shrunk to a
+small failing mesh; a builder that raises fails the construction check."""
+
+import numpy as np
+import scipy.sparse as sp
+
+import tvf
+from reference import p1_cr_complex, torus
+
+
+def builder(V, F):
+    ref = p1_cr_complex(V, F)
+    return dict(d0=ref["d0"], d1=ref["d1"], M0=ref["M0"], M1=ref["M1"], M2=sp.diags(ref["M2"]), sampling="face-frames")
+
+
+def broken_above_100_faces(V, F):
+    parts = builder(V, F)
+    if len(F) > 100:
+        M0 = np.array(parts["M0"].diagonal() if sp.issparse(parts["M0"]) else parts["M0"], dtype=float)
+        M0[0] *= 2.0  # sum(M0) is no longer the area
+        parts["M0"] = M0
+    return parts
+
+
+def test_a_correct_builder_passes_on_generated_meshes():
+    report = tvf.check(builder, cases=12, seed=1)
+    assert report.passed, str(report)
+    assert report.cases_passed == 12
+    assert report.counterexample is None
+    names = {o["name"] for o in report.outcomes}
+    assert {"d1_d0_zero", "spectrum union", "potential_masses_sum_to_area"} <= names
+    measured = [o["measured"] for o in report.outcomes if o["name"] == "d1_d0_zero"]
+    assert measured and 0.0 <= measured[0] < 1e-10
+
+
+def test_a_correct_builder_passes_on_a_given_mesh():
+    V, F = torus(n=10, m=5)
+    report = tvf.check(builder, mesh=(V, F))
+    assert report.passed, str(report)
+    assert report.counterexample is None
+
+
+def test_a_builder_broken_above_100_faces_is_caught_and_shrunk():
+    report = tvf.check(broken_above_100_faces, cases=32, seed=7)
+    assert not report.passed
+    assert report.counterexample is not None
+    V, F = report.counterexample
+    assert V.shape[1] == 3 and F.shape[1] == 3
+    # Shrunk to the smallest failing mesh of its shape family: just above the threshold.
+    assert 100 < len(F) <= 200, len(F)
+    failed = {o["name"] for o in report.failures}
+    assert "potential_masses_sum_to_area" in failed, failed
+    # The counterexample reproduces the failure on its own.
+    again = tvf.check(broken_above_100_faces, mesh=(V, F))
+    assert not again.passed
+
+
+def test_a_builder_that_raises_fails_construction():
+    def raising(V, F):
+        raise RuntimeError("not on this mesh")
+
+    report = tvf.check(raising, cases=4, seed=0)
+    assert not report.passed
+    failed = {o["name"]: o["detail"] for o in report.failures}
+    assert "construction" in failed and "not on this mesh" in failed["construction"], failed
