@@ -91,7 +91,10 @@ pub fn check_builder<'py>(
 }
 
 /// `(V, F)`: positions `n × 3` float64 and faces `m × 3` int64.
-fn mesh_arrays<'py>(py: Python<'py>, mesh: &SurfaceMesh) -> (Bound<'py, PyAny>, Bound<'py, PyAny>) {
+pub(crate) fn mesh_arrays<'py>(
+    py: Python<'py>,
+    mesh: &SurfaceMesh,
+) -> (Bound<'py, PyAny>, Bound<'py, PyAny>) {
     let faces = mesh.faces();
     let f = Array2::from_shape_fn((faces.len(), 3), |(t, c)| faces[t][c] as i64)
         .into_pyarray(py)
@@ -118,7 +121,7 @@ fn outcome_dicts<'py>(
 }
 
 /// A complex the Python builder made, owned by Python; the checks read it through the seam.
-struct PythonComplex(Py<Complex>);
+pub(crate) struct PythonComplex(pub(crate) Py<Complex>);
 
 impl PythonComplex {
     fn inner(&self) -> &dyn HodgeComplex {

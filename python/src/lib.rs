@@ -10,6 +10,7 @@ mod arrays;
 mod basis;
 mod check;
 mod complex;
+mod convergence;
 mod design;
 mod eigsh;
 mod errors;
@@ -43,6 +44,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(design::design_reduced, m)?)?;
     m.add_function(wrap_pyfunction!(eigsh::eigsh, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
+    m.add_function(wrap_pyfunction!(convergence::convergence, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_builder, m)?)?;
     Ok(())
 }

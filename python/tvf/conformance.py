@@ -1,5 +1,6 @@
 """The conformance suite's core checks on any complex, or property-based on a builder of
-complexes over generated meshes with a shrunk counterexample: :func:`check`."""
+complexes over generated meshes with a shrunk counterexample (:func:`check`); the convergence
+study against exact spectra (:func:`convergence`)."""
 
 from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
@@ -80,12 +81,7 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
         raise ValueError(f"seed must be non-negative, got {seed}")
     native_mesh = None if mesh is None else Mesh(*mesh, label="mesh")._native
 
-    def build(V, F):
-        parts = dict(x(V, F))
-        parts.setdefault("id", "builder")
-        return Complex.from_matrices(Mesh(V, F, label="generated mesh"), **parts)._native
-
-    result = _native.check_builder(build, cases, seed, native_mesh, bool(delaunay))
+    result = _native.check_builder(_native_builder(x), cases, seed, native_mesh, bool(delaunay))
     return CheckReport(
         getattr(x, "__name__", "builder"),
         [dict(o) for o in result["outcomes"]],
@@ -93,3 +89,53 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
         counterexample=result["counterexample"],
         counterexample_outcomes=[dict(o) for o in result["counterexample_outcomes"]],
     )
+
+
+def convergence(discretizations, surfaces=("sphere", "hemisphere-tangential", "hemisphere-normal"),
+                levels=(1, 2, 3, 4), eigenvalues=24):
+    """The convergence study of ``tvf convergence``: each discretization on refinements of
+    surfaces with exact spectra, the largest relative error of the lowest ``eigenvalues``
+    eigenvalues of each family per level, the observed orders and the basis times.
+
+    ``discretizations`` is a list whose items are catalog ids (``"conforming-barycentric"``),
+    builders — callables ``(V, F) -> dict(d0=, d1=, M0=, M1=, M2=, sampling=)`` as for
+    :func:`check`, named by their ``__name__`` — or ``(name, id_or_builder)`` pairs. Builders run
+    on closed meshes only (:meth:`Complex.from_matrices`): use ``surfaces=("sphere",)``.
+    ``surfaces`` are ``sphere`` (icospheres, ``20·4^level`` faces), ``hemisphere-tangential``
+    and ``hemisphere-normal`` (ring meshes with ``2·2^level`` rings made Delaunay by edge flips).
+
+    Returns a dict with ``rows`` (dicts: ``discretization``, ``surface``, ``boundary``,
+    ``level``, ``faces``, ``h`` (mean edge length), ``integrable_error``,
+    ``cointegrable_error``, ``seconds``) and ``orders`` (dicts: ``discretization``,
+    ``surface``, ``boundary``, ``family`` (``integrable`` or ``cointegrable``), ``order``: the
+    least-squares slope of log error against log h, the coarsest level dropped when there are
+    three or more; ``None`` where it cannot be fitted)."""
+    candidates = []
+    for item in discretizations:
+        name, source = item if isinstance(item, tuple) else (None, item)
+        if isinstance(source, str):
+            candidates.append((name or source, source))
+        elif callable(source):
+            candidates.append((name or getattr(source, "__name__", "builder"), _native_builder(source)))
+        else:
+            raise TypeError(f"expected a catalog id or a builder (V, F) -> dict, got {type(source).__name__}")
+    names = [name for name, _ in candidates]
+    if len(set(names)) != len(names):
+        raise ValueError(f"discretization names must differ: {names}")
+    levels = [int(level) for level in levels]
+    if not levels or min(levels) < 0 or sorted(levels) != levels:
+        raise ValueError(f"levels must be ascending non-negative integers, got {levels}")
+    if int(eigenvalues) < 1:
+        raise ValueError(f"eigenvalues must be at least 1, got {eigenvalues}")
+    return _native.convergence(candidates, [str(s) for s in surfaces], levels, int(eigenvalues))
+
+
+def _native_builder(builder):
+    """A builder returning a dict of matrices as one returning the native complex."""
+
+    def build(V, F):
+        parts = dict(builder(V, F))
+        parts.setdefault("id", getattr(builder, "__name__", "builder"))
+        return Complex.from_matrices(Mesh(V, F, label="generated mesh"), **parts)._native
+
+    return build

@@ -1,0 +1,146 @@
+//! `tvf.convergence`: catalog entries and Python builders through the convergence study of
+//! `tvf convergence` (`tvf_conformance::convergence`) against the exact spectra of the unit
+//! sphere and hemisphere.
+
+use crate::check::{mesh_arrays, PythonComplex};
+use crate::complex::Complex;
+use crate::errors::{from_error, tvf_error};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use tvf_conformance::convergence::{
+    run_convergence, Candidate, ConvergenceConfig, ConvergenceReport, Surface,
+};
+use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
+use tvf_core::SurfaceMesh;
+use tvf_discretizations::catalog_entry;
+
+/// The constructor of one candidate: a catalog id or a Python callable `(V, F) -> native
+/// Complex` (closed meshes only: a builder on the hemisphere is refused before anything runs).
+type Builder = Box<
+    dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String> + Send + Sync,
+>;
+
+/// Runs the study. `candidates` are `(name, id_or_builder)` pairs; `surfaces` names from
+/// `sphere`, `hemisphere-tangential`, `hemisphere-normal`. A dict `rows` (one dict per
+/// candidate, surface and level) and `orders` (one per candidate, surface and family), with
+/// the keys of `tvf convergence --json`.
+#[pyfunction]
+#[pyo3(signature = (candidates, surfaces, levels, eigenvalues))]
+pub fn convergence<'py>(
+    py: Python<'py>,
+    candidates: Vec<(String, Py<PyAny>)>,
+    surfaces: Vec<String>,
+    levels: Vec<u32>,
+    eigenvalues: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let surfaces = surfaces
+        .iter()
+        .map(|name| surface(name))
+        .collect::<PyResult<Vec<_>>>()?;
+    if let Some(&level) = levels.iter().find(|&&l| l > 7) {
+        return Err(tvf_error(format!(
+            "level {level}: at most 7 (1.3 million sphere faces)"
+        )));
+    }
+    let mut builders: Vec<Builder> = Vec::new();
+    for (name, source) in &candidates {
+        if let Ok(id) = source.extract::<String>(py) {
+            let entry = catalog_entry(&id).map_err(|e| from_error(&e))?;
+            builders.push(Box::new(move |mesh, boundary| {
+                entry.build_with(mesh, boundary).map_err(|e| e.to_string())
+            }));
+            continue;
+        }
+        if surfaces.iter().any(|s| s.boundary().is_some()) {
+            return Err(tvf_error(format!(
+                "'{name}': a builder runs on closed meshes only (Complex.from_matrices); \
+                 ask for surfaces=('sphere',)"
+            )));
+        }
+        let build = source.clone_ref(py);
+        builders.push(Box::new(move |mesh, _| python_complex(&build, mesh)));
+    }
+    let names: Vec<String> = candidates.iter().map(|(name, _)| name.clone()).collect();
+    let config = ConvergenceConfig {
+        surfaces,
+        levels,
+        eigenvalues,
+    };
+    // The study runs without the GIL; a Python builder takes it while it builds.
+    let report = py
+        .detach(|| {
+            let study: Vec<Candidate<'_>> = names
+                .iter()
+                .zip(&builders)
+                .map(|(name, build)| Candidate {
+                    name: name.clone(),
+                    build: build.as_ref(),
+                })
+                .collect();
+            run_convergence(&study, &config, &|_, _, _| {})
+        })
+        .map_err(|e| tvf_error(e.to_string()))?;
+    report_dict(py, &report)
+}
+
+/// `sphere`, `hemisphere-tangential` or `hemisphere-normal`.
+fn surface(name: &str) -> PyResult<Surface> {
+    match name.strip_prefix("hemisphere-") {
+        None if name == "sphere" => Ok(Surface::Sphere),
+        Some(condition) => BoundaryCondition::from_name(condition)
+            .map(Surface::Hemisphere)
+            .ok_or_else(|| unknown_surface(name)),
+        None => Err(unknown_surface(name)),
+    }
+}
+
+fn unknown_surface(name: &str) -> PyErr {
+    tvf_error(format!(
+        "'{name}' is not a surface: sphere, hemisphere-tangential or hemisphere-normal"
+    ))
+}
+
+/// The complex a Python builder makes on `mesh`.
+fn python_complex(build: &Py<PyAny>, mesh: &SurfaceMesh) -> Result<Box<dyn HodgeComplex>, String> {
+    Python::attach(|py| {
+        let (v, f) = mesh_arrays(py, mesh);
+        let built = build.call1(py, (v, f)).map_err(|e| e.to_string())?;
+        let complex = built
+            .bind(py)
+            .cast::<Complex>()
+            .map_err(|e| format!("the builder did not return a native Complex: {e}"))?;
+        Ok(Box::new(PythonComplex(complex.clone().unbind())) as Box<dyn HodgeComplex>)
+    })
+}
+
+fn report_dict<'py>(py: Python<'py>, report: &ConvergenceReport) -> PyResult<Bound<'py, PyDict>> {
+    let boundary = |s: Surface| s.boundary().map(|b| b.name());
+    let mut rows = Vec::new();
+    for r in &report.rows {
+        let d = PyDict::new(py);
+        d.set_item("discretization", &r.discretization)?;
+        d.set_item("surface", r.surface.name())?;
+        d.set_item("boundary", boundary(r.surface))?;
+        d.set_item("level", r.level)?;
+        d.set_item("faces", r.faces)?;
+        d.set_item("h", r.h)?;
+        d.set_item("integrable_error", r.integrable_error)?;
+        d.set_item("cointegrable_error", r.cointegrable_error)?;
+        d.set_item("seconds", r.seconds)?;
+        rows.push(d);
+    }
+    let mut orders = Vec::new();
+    for o in &report.orders {
+        let d = PyDict::new(py);
+        d.set_item("discretization", &o.discretization)?;
+        d.set_item("surface", o.surface.name())?;
+        d.set_item("boundary", boundary(o.surface))?;
+        d.set_item("family", o.family.name())?;
+        d.set_item("order", o.order.is_finite().then_some(o.order))?;
+        orders.push(d);
+    }
+    let result = PyDict::new(py);
+    result.set_item("rows", rows)?;
+    result.set_item("orders", orders)?;
+    Ok(result)
+}
