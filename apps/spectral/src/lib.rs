@@ -88,6 +88,7 @@ pub use formats::field_io::{
 };
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
+pub use formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};
 pub use formats::stored_basis::StoredBasis;
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};

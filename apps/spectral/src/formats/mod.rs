@@ -1,6 +1,6 @@
 //! The file formats of tvf-spectral: `.npy` arrays, field files and frame sequences, basis
 //! files (`.tvfb`) with the complex they belong to, compressed fields (`.tvfc`), and the
-//! content id of a basis. Every write is atomic; every error names the file.
+//! content id of a basis; the sparse matrices and integer arrays other tools write. Every write is atomic; every error names the file.
 
 pub(crate) mod atomic_write;
 pub(crate) mod basis_file;
@@ -13,4 +13,5 @@ pub(crate) mod field_frames;
 pub(crate) mod field_io;
 pub(crate) mod npy;
 pub(crate) mod numpy_export;
+pub(crate) mod sparse_file_read;
 pub(crate) mod stored_basis;
