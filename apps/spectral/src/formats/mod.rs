@@ -1,6 +1,7 @@
 //! The file formats of tvf-spectral: `.npy` arrays, field files and frame sequences, basis
 //! files (`.tvfb`) with the complex they belong to, compressed fields (`.tvfc`), and the
-//! content id of a basis; the sparse matrices and integer arrays other tools write. Every write is atomic; every error names the file.
+//! content id of a basis; complex folders (the five matrices of a complex as files, with
+//! `info.json`); the sparse matrices and integer arrays other tools write. Every write is atomic; every error names the file.
 
 pub(crate) mod atomic_write;
 pub(crate) mod basis_file;
@@ -8,6 +9,8 @@ pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_header;
 pub(crate) mod basis_file_mass;
 pub(crate) mod basis_id;
+pub(crate) mod complex_folder;
+pub(crate) mod complex_folder_info;
 pub(crate) mod compressed_file;
 pub(crate) mod field_frames;
 pub(crate) mod field_io;

@@ -47,7 +47,11 @@ pub fn read_matrix_market(reader: impl BufRead) -> Result<SparseMatrix, String> 
     let symmetric = match words[4].as_str() {
         "general" => false,
         "symmetric" => true,
-        other => return Err(format!("line 1: '{other}' matrices are not read (general or symmetric)")),
+        other => {
+            return Err(format!(
+                "line 1: '{other}' matrices are not read (general or symmetric)"
+            ))
+        }
     };
     let (size_line, size) = loop {
         match next_line()? {
@@ -143,7 +147,11 @@ pub fn read_sparse_npz(reader: impl Read + Seek) -> Result<SparseMatrix, String>
         "csr" | "csc" => {
             let indptr = integers(member("indptr")?, "indptr")?;
             let indices = integers(member("indices")?, "indices")?;
-            let (outer, inner) = if format == "csr" { (rows, cols) } else { (cols, rows) };
+            let (outer, inner) = if format == "csr" {
+                (rows, cols)
+            } else {
+                (cols, rows)
+            };
             check_compressed(&indptr, &indices, data.len(), outer, inner)?;
             let mut triplets = TriMat::with_capacity((rows, cols), data.len());
             for (k, range) in indptr.windows(2).enumerate() {
@@ -159,7 +167,10 @@ pub fn read_sparse_npz(reader: impl Read + Seek) -> Result<SparseMatrix, String>
             Ok(triplets.to_csr())
         }
         "coo" => {
-            let (row, col) = (integers(member("row")?, "row")?, integers(member("col")?, "col")?);
+            let (row, col) = (
+                integers(member("row")?, "row")?,
+                integers(member("col")?, "col")?,
+            );
             if row.len() != data.len() || col.len() != data.len() {
                 return Err(format!(
                     "row.npy, col.npy and data.npy have {}, {} and {} entries",
@@ -171,7 +182,9 @@ pub fn read_sparse_npz(reader: impl Read + Seek) -> Result<SparseMatrix, String>
             let mut triplets = TriMat::with_capacity((rows, cols), data.len());
             for ((&i, &j), &value) in row.iter().zip(&col).zip(&data) {
                 if i >= rows || j >= cols {
-                    return Err(format!("entry ({i}, {j}) is outside the shape {rows} x {cols}"));
+                    return Err(format!(
+                        "entry ({i}, {j}) is outside the shape {rows} x {cols}"
+                    ));
                 }
                 triplets.add_triplet(i, j, value);
             }
@@ -212,7 +225,9 @@ fn check_compressed(
         ));
     }
     if let Some(bad) = indices.iter().find(|&&k| k >= inner) {
-        return Err(format!("index {bad} in indices.npy is beyond the shape ({inner})"));
+        return Err(format!(
+            "index {bad} in indices.npy is beyond the shape ({inner})"
+        ));
     }
     Ok(())
 }
@@ -304,7 +319,10 @@ mod tests {
         npz.set_position(0);
         assert_eq!(read_sparse_npz(npz).unwrap(), matrix);
         let map = npy_bytes(&NpyData::I64(&[0, 2, 5]), &[3]);
-        assert_eq!(read_index_npy(&map[..], "vertex_map").unwrap(), vec![0, 2, 5]);
+        assert_eq!(
+            read_index_npy(&map[..], "vertex_map").unwrap(),
+            vec![0, 2, 5]
+        );
     }
 
     #[test]
