@@ -124,6 +124,9 @@ fn edit(folder: &str, name: &str, format: &str, change: impl Fn(usize, usize, f6
     }
 }
 
+/// A change of one stored entry: `(row, col, value) → new value`.
+type EntryChange = fn(usize, usize, f64) -> f64;
+
 /// The diagonal of a diagonal matrix.
 fn diagonal(a: &CsMat<f64>) -> Vec<f64> {
     assert!(a.iter().all(|(_, (i, j))| i == j), "a diagonal mass");
@@ -257,7 +260,7 @@ fn round_trip(mesh: &SurfaceMesh, format: &str) {
     let field = setup.path("field.txt");
     write_field(mesh, &field);
     let all = (2 * mesh.face_count()).to_string();
-    let edits: [(&str, fn(usize, usize, f64) -> f64); 2] = [
+    let edits: [(&str, EntryChange); 2] = [
         ("M1", |_, _, v| 1.5 * v),
         ("M0", |i, _, v| v * (1.0 + 0.2 * (i as f64).sin())),
     ];
