@@ -1,15 +1,17 @@
 //! [`MatrixComplex`]: a complex made of five matrices someone else assembled (a researcher's own
-//! discretization, e.g. from Python), checked before anything downstream sees it.
+//! discretization, e.g. from Python or a folder of matrix files), checked before anything
+//! downstream sees it.
 
 use crate::face_fields::FaceFields;
 use crate::face_geometry::FaceGeometry;
+use crate::matrix_complex_nodes::{implied_harmonic_dimension, matrix_node_spaces, FixedNodes};
 use crate::whitney_sampling::WhitneySampling;
 use sprs::CsMat;
 use tvf_core::discretization::check_length;
 use tvf_core::discretization::sparse::product;
 use tvf_core::discretization::{
-    ComplexParts, DiscretizationError, FieldRotation, FieldSampling, HodgeComplex, Mass, NodeKind,
-    NodeSpace,
+    BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
+    HodgeComplex, Mass, NodeKind, NodeSpace,
 };
 use tvf_core::SurfaceMesh;
 
@@ -31,6 +33,15 @@ pub enum MatrixSampling {
 }
 
 impl MatrixSampling {
+    /// Its name: `none`, `face-frames`, `whitney`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::FaceFrames => "face-frames",
+            Self::Whitney => "whitney",
+        }
+    }
+
     /// The sampling named `name`: `none`, `face-frames` or `whitney`.
     pub fn from_name(name: &str) -> Option<Self> {
         match name {
@@ -49,22 +60,40 @@ enum Sampler {
     Whitney(WhitneySampling),
 }
 
-/// A [`HodgeComplex`] from the five matrices `d0` (`n1 × n0`), `d1` (`n2 × n1`) and the masses
-/// `M0`, `M1`, `M2` (each a [`Mass`]: a diagonal, a sparse matrix, or for `M2` also the sparse
-/// inverse), on a **closed** mesh. The node kind of each space follows from its size
-/// (`V` vertices, `E` edges, `F` faces, `2F` face frames; checked in that order), node positions
-/// and components from the mesh. [`MatrixComplex::new`] checks everything the seam promises:
-/// shapes, finite entries, masses symmetric positive definite on the nodes some face uses (a
-/// diagonal may be zero where no face uses the node), and `d1 · d0 = 0` (relative
-/// [`COMPLEX_TOLERANCE`]).
+/// The five matrices of a complex: `d0` (`n1 × n0`), `d1` (`n2 × n1`) and the masses `M0`,
+/// `M1`, `M2` (each a [`Mass`]: a diagonal, a sparse matrix, or for `M2` also the sparse
+/// inverse).
+pub struct ComplexMatrices {
+    /// The gradient, potentials → fields.
+    pub d0: CsMat<f64>,
+    /// The integrated curl, fields → co-potentials.
+    pub d1: CsMat<f64>,
+    /// The potential mass.
+    pub m0: Mass,
+    /// The field mass.
+    pub m1: Mass,
+    /// `M2` (or its inverse, the co-potential mass).
+    pub m2: Mass,
+}
+
+/// A [`HodgeComplex`] from five matrices ([`ComplexMatrices`]) on a mesh, with the nodes a
+/// boundary condition fixes ([`FixedNodes`]) on a mesh with boundary. The node kind of each
+/// space follows from its size (`V` vertices, `E` edges, `F` faces, `2F` face frames; checked
+/// in that order), node positions and components from the mesh, and which constants lie in the
+/// kernel of each stiffness from the matrices ([`crate::matrix_complex_nodes`]).
+/// [`MatrixComplex::with_boundary`] checks everything the seam promises: shapes, finite entries,
+/// fixed nodes with empty rows and columns, masses symmetric positive definite on the free nodes
+/// (a diagonal may be zero where no face uses the node), `d1 · d0 = 0` (relative
+/// [`COMPLEX_TOLERANCE`]), and that the kernels leave the harmonic dimension the mesh's topology
+/// gives (`2g` per closed component, `2g + b − 1` per component with `b` boundary loops).
 pub struct MatrixComplex {
     parts: ComplexParts,
     sampler: Sampler,
 }
 
 impl MatrixComplex {
-    /// Checks and wraps the matrices; `id` names the complex in basis files and messages. Errors
-    /// say which matrix is wrong and how.
+    /// Checks and wraps the matrices on a **closed** mesh (no fixed nodes); `id` names the
+    /// complex in basis files and messages. Errors say which matrix is wrong and how.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         id: &str,
@@ -78,11 +107,30 @@ impl MatrixComplex {
     ) -> Result<Self, DiscretizationError> {
         if !mesh.is_closed() {
             return Err(DiscretizationError::Inconsistent(
-                "a complex from matrices needs a closed mesh (the boundary condition of a mesh \
-                 with boundary is not given by the matrices); use a catalog entry there"
+                "a complex from matrices without fixed nodes needs a closed mesh (the boundary \
+                 condition of a mesh with boundary is not given by the matrices); use a catalog \
+                 entry there"
                     .to_string(),
             ));
         }
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+        let fixed = FixedNodes::default();
+        Self::with_boundary(id, mesh, matrices, &fixed, Default::default(), sampling)
+    }
+
+    /// Checks and wraps the matrices on any mesh: `fixed` are the nodes the boundary condition
+    /// `condition` fixes to zero (none on a closed mesh; `condition` only matters on a mesh with
+    /// boundary, where it is recorded in the topology). Errors say which matrix is wrong and
+    /// how.
+    pub fn with_boundary(
+        id: &str,
+        mesh: &SurfaceMesh,
+        matrices: ComplexMatrices,
+        fixed: &FixedNodes,
+        condition: BoundaryCondition,
+        sampling: MatrixSampling,
+    ) -> Result<Self, DiscretizationError> {
+        let ComplexMatrices { d0, d1, m0, m1, m2 } = matrices;
         let (n1, n0) = d0.shape();
         check_length("columns of d1 (n1, the rows of d0)", n1, d1.cols())?;
         let n2 = d1.rows();
@@ -91,47 +139,69 @@ impl MatrixComplex {
         check_length("M2 (one entry per row of d1)", n2, m2.len())?;
         check_finite("d0", &d0)?;
         check_finite("d1", &d1)?;
-        let potential_nodes = node_space(mesh, n0, "potential space (columns of d0)")?;
-        let field_nodes = node_space(mesh, n1, "field space (rows of d0)")?;
-        let co_potential_nodes = node_space(mesh, n2, "co-potential space (rows of d1)")?;
-        let composed = product(&d1, &d0);
-        let error = max_abs(&composed);
-        let scale = max_abs(&d1) * max_abs(&d0);
-        if error > COMPLEX_TOLERANCE * scale {
+        let spaces = matrix_node_spaces(mesh, &d0, &d1, fixed)?;
+        check_complex(&d0, &d1)?;
+        let topology = crate::mesh_topology(mesh, condition);
+        let implied = implied_harmonic_dimension(&spaces);
+        if implied != topology.harmonic_dimension as i64 {
             return Err(DiscretizationError::Inconsistent(format!(
-                "d1 · d0 is not zero: max |d1 d0| = {error:e}, above {COMPLEX_TOLERANCE:e} · \
-                 max |d1| · max |d0| = {:e}",
-                COMPLEX_TOLERANCE * scale
+                "the matrices leave {implied} harmonic fields (free field nodes minus the ranks \
+                 of d0 and d1, whose kernels are the constants found on each component), but the \
+                 mesh's topology has {} (2g per closed component, 2g + b - 1 per component with \
+                 b boundary loops){}",
+                topology.harmonic_dimension,
+                if mesh.is_closed() || fixed != &FixedNodes::default() {
+                    ""
+                } else {
+                    "; on a mesh with boundary, give the nodes the boundary condition fixes"
+                }
             )));
         }
-        let sampler = match sampling {
-            MatrixSampling::None => Sampler::None,
-            MatrixSampling::FaceFrames => {
-                require_kind("face-frames sampling", &field_nodes, NodeKind::FaceFrames)?;
-                Sampler::FaceFrames(FaceFields::new(mesh)?)
-            }
-            MatrixSampling::Whitney => {
-                require_kind("Whitney sampling", &field_nodes, NodeKind::Edges)?;
-                let geometry = FaceGeometry::new(mesh)?;
-                Sampler::Whitney(WhitneySampling::new(
-                    mesh,
-                    &geometry,
-                    field_nodes.dirichlet.clone(),
-                ))
-            }
-        };
+        let sampler = sampler(mesh, sampling, &spaces[1])?;
         Ok(Self {
-            parts: ComplexParts::new(
-                id,
-                d0,
-                d1,
-                [m0, m1, m2],
-                [potential_nodes, field_nodes, co_potential_nodes],
-                crate::mesh_topology(mesh, Default::default()),
-            )?,
+            parts: ComplexParts::new(id, d0, d1, [m0, m1, m2], spaces, topology)?,
             sampler,
         })
     }
+}
+
+/// Checks `d1 · d0 = 0` relative to `max |d1| · max |d0|`.
+fn check_complex(d0: &CsMat<f64>, d1: &CsMat<f64>) -> Result<(), DiscretizationError> {
+    let composed = product(d1, d0);
+    let error = max_abs(&composed);
+    let scale = max_abs(d1) * max_abs(d0);
+    if error > COMPLEX_TOLERANCE * scale {
+        return Err(DiscretizationError::Inconsistent(format!(
+            "d1 · d0 is not zero: max |d1 d0| = {error:e}, above {COMPLEX_TOLERANCE:e} · \
+             max |d1| · max |d0| = {:e}",
+            COMPLEX_TOLERANCE * scale
+        )));
+    }
+    Ok(())
+}
+
+/// The sampler `sampling` asks for, checked against the field nodes.
+fn sampler(
+    mesh: &SurfaceMesh,
+    sampling: MatrixSampling,
+    field_nodes: &NodeSpace,
+) -> Result<Sampler, DiscretizationError> {
+    Ok(match sampling {
+        MatrixSampling::None => Sampler::None,
+        MatrixSampling::FaceFrames => {
+            require_kind("face-frames sampling", field_nodes, NodeKind::FaceFrames)?;
+            Sampler::FaceFrames(FaceFields::new(mesh)?)
+        }
+        MatrixSampling::Whitney => {
+            require_kind("Whitney sampling", field_nodes, NodeKind::Edges)?;
+            let geometry = FaceGeometry::new(mesh)?;
+            Sampler::Whitney(WhitneySampling::new(
+                mesh,
+                &geometry,
+                field_nodes.dirichlet.clone(),
+            ))
+        }
+    })
 }
 
 fn check_finite(what: &'static str, a: &CsMat<f64>) -> Result<(), DiscretizationError> {
@@ -156,55 +226,6 @@ fn require_kind(what: &str, nodes: &NodeSpace, kind: NodeKind) -> Result<(), Dis
             nodes.kind.name()
         )))
     }
-}
-
-/// The node space of `n` nodes on `mesh`: vertices, edges, faces or face frames by size.
-fn node_space(mesh: &SurfaceMesh, n: usize, what: &str) -> Result<NodeSpace, DiscretizationError> {
-    let positions = mesh.positions();
-    let centroid = |face: &[usize; 3]| {
-        let p = face.map(|v| positions[v]);
-        [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
-    };
-    let (kind, positions, components) = if n == mesh.vertex_count() {
-        (
-            NodeKind::Vertices,
-            positions.to_vec(),
-            mesh.vertex_components(),
-        )
-    } else if n == mesh.edge_count() {
-        let midpoints = mesh
-            .edges()
-            .iter()
-            .map(|&[a, b]| [0, 1, 2].map(|k| 0.5 * (positions[a][k] + positions[b][k])))
-            .collect();
-        (NodeKind::Edges, midpoints, mesh.edge_components())
-    } else if n == mesh.face_count() {
-        let centroids = mesh.faces().iter().map(centroid).collect();
-        (NodeKind::Faces, centroids, mesh.face_components().to_vec())
-    } else if n == 2 * mesh.face_count() {
-        let centroids = mesh.faces().iter().flat_map(|f| [centroid(f); 2]).collect();
-        let components = mesh
-            .face_components()
-            .iter()
-            .flat_map(|&c| [c; 2])
-            .collect();
-        (NodeKind::FaceFrames, centroids, components)
-    } else {
-        return Err(DiscretizationError::Inconsistent(format!(
-            "the {what} has {n} nodes: not the mesh's {} vertices, {} edges, {} faces or {} \
-             face-frame coefficients",
-            mesh.vertex_count(),
-            mesh.edge_count(),
-            mesh.face_count(),
-            2 * mesh.face_count()
-        )));
-    };
-    Ok(NodeSpace::with_constant_kernel(
-        kind,
-        positions,
-        components,
-        mesh.component_count(),
-    ))
 }
 
 impl HodgeComplex for MatrixComplex {
@@ -277,6 +298,91 @@ mod tests {
         let difference = copied - original;
         assert!(max_abs(&difference) <= 1e-14 * max_abs(original));
         assert!(copy.rotation().is_some());
+    }
+
+    /// Every catalog entry, rebuilt from its matrices and fixed nodes on a closed and an open
+    /// mesh under both boundary conditions, has the catalog's matrix hash: the computed kernels
+    /// and the fixed nodes are the entry's own.
+    #[test]
+    fn rebuilds_every_entry_with_its_fixed_nodes_and_kernels() {
+        use crate::catalog;
+        let meshes = [icosphere(1), tvf_core::generate::disk(3)];
+        for mesh in &meshes {
+            for entry in catalog() {
+                for condition in BoundaryCondition::ALL {
+                    let Ok(built) = entry.build_with(mesh, condition) else {
+                        continue;
+                    };
+                    let (d0, d1, m0, m1, m2) = parts(built.as_ref());
+                    let fixed = FixedNodes::of([
+                        built.potential_nodes(),
+                        built.field_nodes(),
+                        built.co_potential_nodes(),
+                    ]);
+                    let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+                    let copy = MatrixComplex::with_boundary(
+                        "copy",
+                        mesh,
+                        matrices,
+                        &fixed,
+                        condition,
+                        MatrixSampling::None,
+                    )
+                    .unwrap_or_else(|e| panic!("{} {condition:?}: {e}", entry.id));
+                    assert_eq!(
+                        copy.matrix_hash(),
+                        built.matrix_hash(),
+                        "{} {condition:?} on {} faces",
+                        entry.id,
+                        mesh.face_count()
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn an_open_mesh_needs_its_fixed_nodes() {
+        let mesh = tvf_core::generate::disk(3);
+        let built = (catalog_entry("conforming-barycentric").unwrap().build)(&mesh).unwrap();
+        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+        let message = MatrixComplex::with_boundary(
+            "x",
+            &mesh,
+            matrices,
+            &FixedNodes::default(),
+            BoundaryCondition::Tangential,
+            MatrixSampling::None,
+        )
+        .err()
+        .unwrap()
+        .to_string();
+        assert!(
+            message.contains("give the nodes the boundary condition fixes"),
+            "{message}"
+        );
+        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
+        let wrong = FixedNodes {
+            potentials: vec![0],
+            ..FixedNodes::default()
+        };
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+        let message = MatrixComplex::with_boundary(
+            "x",
+            &mesh,
+            matrices,
+            &wrong,
+            BoundaryCondition::Tangential,
+            MatrixSampling::None,
+        )
+        .err()
+        .unwrap()
+        .to_string();
+        assert!(
+            message.contains("fixed potential node 0 has a nonzero column of d0"),
+            "{message}"
+        );
     }
 
     #[test]

@@ -13,7 +13,9 @@
 //!   eigensolvers, small meshes only). `-k` means this in every subcommand (`tvf spectrum -k K`
 //!   lists the same `K` eigenvalues);
 //! - `--discretization ID` (a catalog id; shorthands `--decomposition NAME`, `--mass NAME`): the
-//!   discretization (default conforming-barycentric);
+//!   discretization (default conforming-barycentric); or `--complex DIR`, matrices read from a
+//!   folder (a `--basis` file then must have been computed from the same matrices: a file made
+//!   with `--complex` is reopened by giving `--complex` again);
 //! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
 //!
 //! The cache is a [`BasisStore`] (file names and keys are documented there) in `--cache-dir`,
@@ -38,8 +40,8 @@ use tvf_core::SurfaceMesh;
 use tvf_discretizations::build_complex;
 use tvf_discretizations::BoxedComplex;
 use tvf_spectral::{
-    basis_file_complex_id, compute_basis_of_size, open_basis_file, read_basis_header, BasisSize,
-    BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
+    basis_file_complex_id, compute_basis_of_size, open_basis_file, open_basis_file_with,
+    read_basis_header, BasisSize, BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
 };
 
 /// Eigenfields computed when neither `--basis` nor `-k` is given.
@@ -116,7 +118,7 @@ impl BasisOptions {
     ) -> Result<ResolvedBasis> {
         let discretization = match &self.basis {
             Some(_) => None,
-            None => Some(self.discretization.build(mesh, &input.label())?),
+            None => Some(self.discretization.build(mesh, input)?),
         };
         self.resolve_with(mesh, input, size, discretization)
     }
@@ -135,12 +137,18 @@ impl BasisOptions {
         if let Some(path) = &self.basis {
             let start = Instant::now();
             let requested = self.discretization.requested_id();
-            let (discretization, basis) = open_basis_file(
-                path,
-                mesh,
-                requested.as_deref(),
-                self.discretization.boundary,
-            )?;
+            let (discretization, basis) = match &self.discretization.complex {
+                Some(_) => {
+                    let complex = self.discretization.build(mesh, input)?;
+                    open_basis_file_with(path, mesh, complex)?
+                }
+                None => open_basis_file(
+                    path,
+                    mesh,
+                    requested.as_deref(),
+                    self.discretization.boundary,
+                )?,
+            };
             note(format!(
                 "using basis {} ({} fields, {}, loaded in {:.2} s)",
                 path.display(),
@@ -172,7 +180,7 @@ impl BasisOptions {
         }
         let discretization = match discretization {
             Some(discretization) => discretization,
-            None => self.discretization.build(mesh, &input.label())?,
+            None => self.discretization.build(mesh, input)?,
         };
         let basis = if self.no_cache {
             compute(&discretization, size)
@@ -266,6 +274,9 @@ impl BasisOptions {
     /// the flags' (default conforming-barycentric).
     pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<BoxedComplex> {
         match &self.basis {
+            Some(_) if self.discretization.complex.is_some() => {
+                self.discretization.build(mesh, input)
+            }
             Some(path) => {
                 let requested = self.discretization.requested_id();
                 let id = basis_file_complex_id(
@@ -278,7 +289,7 @@ impl BasisOptions {
                         .with_context(|| format!("{}", path.display()))?,
                 )
             }
-            None => self.discretization.build(mesh, &input.label()),
+            None => self.discretization.build(mesh, input),
         }
     }
 }

@@ -1,8 +1,12 @@
 //! `--discretization ID` (and its shorthands `--decomposition`, `--mass`): which catalog entry a
-//! subcommand builds; `--boundary` its boundary condition on meshes with boundary.
+//! subcommand builds; `--boundary` its boundary condition on meshes with boundary; or
+//! `--complex DIR`: the five matrices of a folder (`tvf operators -o DIR`, edited, or made by
+//! hand), read by [`tvf_spectral::read_complex_folder`].
 
+use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
+use std::path::PathBuf;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
@@ -30,6 +34,16 @@ pub struct DiscretizationFlags {
     /// meshes [default: tangential, or the basis file's].
     #[arg(long, value_name = "CONDITION", value_parser = boundary_condition)]
     pub boundary: Option<BoundaryCondition>,
+    /// Your own matrices: the folder `tvf operators MESH -o DIR` writes (edited, or made by
+    /// hand): d0, d1, M0, M1, M2 (or M2_inverse) as .mtx or .npz in the mesh's numbering, with
+    /// optional info.json (sampling, fixed nodes, boundary condition) and vertex_map.npy.
+    /// Derived files (S, S0, S2, B, J) are ignored.
+    #[arg(
+        long,
+        value_name = "DIR",
+        conflicts_with_all = ["discretization", "decomposition", "mass", "boundary"]
+    )]
+    pub complex: Option<PathBuf>,
 }
 
 impl DiscretizationFlags {
@@ -60,11 +74,24 @@ impl DiscretizationFlags {
         self.boundary.unwrap_or_default()
     }
 
-    /// Builds the chosen complex on `mesh` with the chosen boundary condition; `label` names the
-    /// mesh in errors.
-    pub fn build(&self, mesh: &SurfaceMesh, label: &str) -> Result<BoxedComplex> {
+    /// Builds the chosen complex on `mesh` (loaded from `input`, which names it in errors) with
+    /// the chosen boundary condition, or reads it from the `--complex` folder.
+    pub fn build(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<BoxedComplex> {
+        if let Some(dir) = &self.complex {
+            let identity: Vec<usize>;
+            let original_vertex = match input.original_vertex() {
+                Some(map) => map,
+                None => {
+                    identity = (0..mesh.vertex_count()).collect();
+                    &identity
+                }
+            };
+            let complex = tvf_spectral::read_complex_folder(dir, mesh, original_vertex)
+                .with_context(|| format!("--complex {} on {}", dir.display(), input.label()))?;
+            return Ok(Box::new(complex));
+        }
         build_complex(&self.id(), Some(self.boundary_condition()), mesh)
-            .with_context(|| label.to_string())
+            .with_context(|| input.label())
     }
 }
 

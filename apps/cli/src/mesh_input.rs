@@ -41,14 +41,42 @@ pub struct MeshInput {
         value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
     )]
     pub example: Option<String>,
+    /// The input index of every mesh vertex (`ValidationReport::original_vertex`), recorded by
+    /// [`MeshInput::load`]: what `--complex DIR`'s `vertex_map.npy` is checked against.
+    #[arg(skip)]
+    original_vertex: std::sync::OnceLock<Vec<usize>>,
 }
 
 impl MeshInput {
+    /// The mesh file `path`.
+    pub fn file(path: PathBuf) -> Self {
+        Self {
+            mesh: Some(path),
+            example: None,
+            original_vertex: Default::default(),
+        }
+    }
+
     /// Loads and validates the mesh. File errors name the file, the line where one applies,
     /// and the problem; examples are validated like files (their report has no warnings).
     ///
     /// Both a mesh file and `--example` is a usage error (exit code 2).
     pub fn load(&self) -> Result<LoadedMesh> {
+        let loaded = self.load_and_validate()?;
+        // A second load of the same input finds the same numbering.
+        let _ = self
+            .original_vertex
+            .set(loaded.report.original_vertex.clone());
+        Ok(loaded)
+    }
+
+    /// The input index of every vertex of the mesh [`MeshInput::load`] loaded (`None` before
+    /// it did).
+    pub fn original_vertex(&self) -> Option<&[usize]> {
+        self.original_vertex.get().map(Vec::as_slice)
+    }
+
+    fn load_and_validate(&self) -> Result<LoadedMesh> {
         if let (Some(path), Some(name)) = (&self.mesh, &self.example) {
             usage_error(
                 ErrorKind::ArgumentConflict,

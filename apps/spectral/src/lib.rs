@@ -70,9 +70,14 @@ pub use formats::basis_file::{
     BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
 pub use formats::basis_file_complex::{
-    basis_file_complex, basis_file_complex_id, open_basis_file, BasisFileUseError,
+    basis_file_complex, basis_file_complex_id, open_basis_file, open_basis_file_with,
+    BasisFileUseError,
 };
 pub use formats::basis_id::basis_id;
+pub use formats::complex_folder::{read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID};
+pub use formats::complex_folder_info::{
+    complex_folder_info, mass_file_name, sampling_of, MatrixFileFormat,
+};
 pub use formats::compressed_file::{
     CoefficientCoding, CompressedFields, FramePayload, TvfcHeader, TVFC_HEADER_BYTES, TVFC_MAGIC,
     TVFC_VERSION,
@@ -88,6 +93,7 @@ pub use formats::field_io::{
 };
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
+pub use formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};
 pub use formats::stored_basis::StoredBasis;
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};

@@ -61,7 +61,7 @@ pub fn run(args: BasisArgs) -> Result<()> {
         check_output(output, &args.input, &[])?;
     }
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input.label())?;
+    let discretization = args.discretization.build(&mesh, &args.input)?;
     let progress = Progress::new("basis");
     let (basis, report) = {
         let callback = progress.basis_callback();

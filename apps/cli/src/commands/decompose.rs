@@ -41,7 +41,7 @@ pub fn run(mut args: DecomposeArgs) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     check_output(&args.out, &args.input, &[Some(&field)])?;
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input.label())?;
+    let discretization = args.discretization.build(&mesh, &args.input)?;
     let field_path = field;
     let field = read_field(&field_path, discretization.require_sampling()?)?;
     let mut report = Report::new(args.json);

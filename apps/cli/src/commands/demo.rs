@@ -78,6 +78,13 @@ pub struct DemoArgs {
 
 /// Runs the demo.
 pub fn run(args: DemoArgs) -> Result<()> {
+    if let Some(dir) = &args.discretization.complex {
+        bail!(
+            "--complex {}: tvf demo builds a catalog discretization on its mesh; run the other \
+             subcommands (spectrum, filter, render ...) on your matrices",
+            dir.display()
+        );
+    }
     let inputs: Vec<&Path> = args.mesh.as_deref().into_iter().collect();
     tvf_core::io::check_output(&args.output, &inputs)?;
     let (width, height) = if args.quick {
@@ -87,10 +94,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
     };
     let (mesh, mesh_name) = match &args.mesh {
         Some(path) => {
-            let input = MeshInput {
-                mesh: Some(path.clone()),
-                example: None,
-            };
+            let input = MeshInput::file(path.clone());
             (Some(input.load()?.mesh), input.label())
         }
         None if args.quick => (

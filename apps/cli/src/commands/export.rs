@@ -74,7 +74,7 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
             args.output.display()
         );
     };
-    let discretization = args.discretization.build(&mesh, &args.input.label())?;
+    let discretization = args.discretization.build(&mesh, &args.input)?;
     let field = read_field(&field, discretization.require_sampling()?)?;
     let vectors = discretization.require_sampling()?.to_face_vectors(&field)?;
     match format {

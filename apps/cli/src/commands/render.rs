@@ -98,7 +98,7 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     }
     let start = Instant::now();
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input.label())?;
+    let discretization = args.discretization.build(&mesh, &args.input)?;
     let field = match &field_path {
         Some(path) => Some(read_field(path, discretization.require_sampling()?)?),
         None => None,

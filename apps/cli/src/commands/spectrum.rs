@@ -39,7 +39,7 @@ pub fn run(args: SpectrumArgs) -> Result<()> {
     }
     let start = Instant::now();
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input.label())?;
+    let discretization = args.discretization.build(&mesh, &args.input)?;
     let progress = Progress::new("spectrum");
     let (basis, _) = {
         let callback = progress.basis_callback();

@@ -1,5 +1,6 @@
 //! [`open_basis_file`]: a basis file together with the complex it was computed for, rebuilt
-//! from the catalog id stored in its header.
+//! from the catalog id stored in its header; [`open_basis_file_with`] for a complex the caller
+//! has (one read from a complex folder, whose matrices no id can rebuild).
 
 use crate::{load_basis, read_basis_header, BasisFileError, BasisFileKey, SpectralBasis};
 use std::path::{Path, PathBuf};
@@ -34,6 +35,15 @@ pub enum BasisFileUseError {
         /// The condition asked for.
         wanted: BoundaryCondition,
     },
+    /// The file was computed for matrices read from a complex folder, which its id cannot
+    /// rebuild.
+    #[error("{}: the basis was computed from the matrices of a complex folder ('{stored}'): give that folder again (tvf: --complex DIR)", path.display())]
+    NeedsComplexFolder {
+        /// The basis file.
+        path: PathBuf,
+        /// The complex id in the file.
+        stored: String,
+    },
     /// The file's discretization cannot be built on the mesh.
     #[error("{}: {source}", path.display())]
     Complex {
@@ -54,6 +64,12 @@ pub fn basis_file_complex_id(
     let stored = read_basis_header(path)?.key.discretization;
     // On a mesh with boundary the stored id is `{catalog id}+{boundary}`.
     let (stored_entry, stored_boundary) = split_complex_id(&stored);
+    if stored_entry == crate::COMPLEX_FOLDER_ID {
+        return Err(BasisFileUseError::NeedsComplexFolder {
+            path: path.to_path_buf(),
+            stored: stored.clone(),
+        });
+    }
     if let Some(wanted) = entry.filter(|&wanted| wanted != stored_entry) {
         return Err(BasisFileUseError::OtherDiscretization {
             path: path.to_path_buf(),
@@ -99,6 +115,22 @@ pub fn open_basis_file(
     boundary: Option<BoundaryCondition>,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
     let complex = basis_file_complex(path, mesh, entry, boundary)?;
+    let basis = load_basis(
+        path,
+        &BasisFileKey::new(mesh, complex.as_ref()),
+        complex.as_ref(),
+    )?;
+    Ok((complex, basis))
+}
+
+/// Reads the basis file `path` for `complex` on `mesh`: checked to belong to the mesh, to the
+/// complex's id and, for a file of format version 3, to its matrices
+/// ([`BasisFileError::WrongMatrices`] names the matrices that differ).
+pub fn open_basis_file_with(
+    path: &Path,
+    mesh: &SurfaceMesh,
+    complex: BoxedComplex,
+) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
     let basis = load_basis(
         path,
         &BasisFileKey::new(mesh, complex.as_ref()),
