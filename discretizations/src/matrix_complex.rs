@@ -254,7 +254,10 @@ mod tests {
     #[test]
     fn rebuilds_a_catalog_complex_with_its_operators() {
         let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let built = (catalog_entry("conforming-barycentric").unwrap().build)(&mesh).unwrap();
+        let built = catalog_entry("conforming-barycentric")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let copy = MatrixComplex::new(
             "copy",
@@ -282,7 +285,10 @@ mod tests {
     #[test]
     fn whitney_sampling_needs_edge_fields() {
         let mesh = icosphere(1);
-        let dec = (catalog_entry("dec-circumcentric").unwrap().build)(&mesh).unwrap();
+        let dec = catalog_entry("dec-circumcentric")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let (d0, d1, m0, m1, m2) = parts(dec.as_ref());
         let ok = MatrixComplex::new(
             "dec",
@@ -307,7 +313,10 @@ mod tests {
     #[test]
     fn refuses_broken_matrices_naming_them() {
         let mesh = icosphere(1);
-        let built = (catalog_entry("conforming-barycentric").unwrap().build)(&mesh).unwrap();
+        let built = catalog_entry("conforming-barycentric")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let build = |d0: CsMat<f64>, m1: Mass| {
             MatrixComplex::new(
