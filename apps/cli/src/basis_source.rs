@@ -12,8 +12,10 @@
 //!   [`DEFAULT_FIELDS`] if not given). `K ≥ 2F` asks for the complete basis (dense
 //!   eigensolvers, small meshes only). `-k` means this in every subcommand (`tvf spectrum -k K`
 //!   lists the same `K` eigenvalues);
-//! - `--discretization ID` (a catalog id; shorthands `--decomposition NAME`, `--mass NAME`): the
-//!   discretization (default conforming-barycentric);
+//! - `--discretization ID` (an id of the program's catalog, [`crate::RunContext`]; shorthands
+//!   `--decomposition NAME`, `--mass NAME`): the discretization (default
+//!   conforming-barycentric). A `--basis` file's discretization is rebuilt through the same
+//!   catalog, so a basis of a program's own entry reopens in that program;
 //! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
 //!
 //! The cache is a [`BasisStore`] (file names and keys are documented there) in `--cache-dir`,
@@ -35,8 +37,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::build_complex;
-use tvf_discretizations::BoxedComplex;
+use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::{
     basis_file_complex_id, compute_basis_of_size, open_basis_file, read_basis_header, BasisSize,
     BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
@@ -90,8 +91,13 @@ impl BasisSource {
     }
 
     /// The basis for `mesh` (see [`BasisOptions::resolve`]) of [`BasisSource::size`].
-    pub fn resolve(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<ResolvedBasis> {
-        self.options.resolve(mesh, input, self.size())
+    pub fn resolve(
+        &self,
+        catalog: &Catalog,
+        mesh: &SurfaceMesh,
+        input: &MeshInput,
+    ) -> Result<ResolvedBasis> {
+        self.options.resolve(catalog, mesh, input, self.size())
     }
 }
 
@@ -107,18 +113,20 @@ pub struct ResolvedBasis {
 
 impl BasisOptions {
     /// The basis for `mesh`: loads `--basis` (checking mesh and discretization) or computes a
-    /// basis of `size`, through the cache unless `--no-cache`.
+    /// basis of `size`, through the cache unless `--no-cache`; the discretization is an entry of
+    /// `catalog`.
     pub fn resolve(
         &self,
+        catalog: &Catalog,
         mesh: &SurfaceMesh,
         input: &MeshInput,
         size: BasisSize,
     ) -> Result<ResolvedBasis> {
         let discretization = match &self.basis {
             Some(_) => None,
-            None => Some(self.discretization.build(mesh, &input.label())?),
+            None => Some(self.discretization.build(catalog, mesh, &input.label())?),
         };
-        self.resolve_with(mesh, input, size, discretization)
+        self.resolve_with(catalog, mesh, input, size, discretization)
     }
 
     /// [`BasisOptions::resolve`] with the discretization already built (by
@@ -126,6 +134,7 @@ impl BasisOptions {
     /// computed); a `--basis` file brings its own, and `discretization` may then be `None`.
     pub fn resolve_with(
         &self,
+        catalog: &Catalog,
         mesh: &SurfaceMesh,
         input: &MeshInput,
         size: BasisSize,
@@ -136,6 +145,7 @@ impl BasisOptions {
             let start = Instant::now();
             let requested = self.discretization.requested_id();
             let (discretization, basis) = open_basis_file(
+                catalog,
                 path,
                 mesh,
                 requested.as_deref(),
@@ -172,7 +182,7 @@ impl BasisOptions {
         }
         let discretization = match discretization {
             Some(discretization) => discretization,
-            None => self.discretization.build(mesh, &input.label())?,
+            None => self.discretization.build(catalog, mesh, &input.label())?,
         };
         let basis = if self.no_cache {
             compute(&discretization, size)
@@ -263,8 +273,13 @@ impl BasisOptions {
 
     /// The discretization a basis would use, without computing or loading the basis: the
     /// `--basis` file's (read from its header, checked against the discretization flags), else
-    /// the flags' (default conforming-barycentric).
-    pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<BoxedComplex> {
+    /// the flags' (default conforming-barycentric); built by the entry of `catalog`.
+    pub fn discretization(
+        &self,
+        catalog: &Catalog,
+        mesh: &SurfaceMesh,
+        input: &MeshInput,
+    ) -> Result<BoxedComplex> {
         match &self.basis {
             Some(path) => {
                 let requested = self.discretization.requested_id();
@@ -273,12 +288,11 @@ impl BasisOptions {
                     requested.as_deref(),
                     self.discretization.boundary,
                 )?;
-                Ok(
-                    build_complex(&id, None, mesh)
-                        .with_context(|| format!("{}", path.display()))?,
-                )
+                Ok(catalog
+                    .build_complex(&id, None, mesh)
+                    .with_context(|| format!("{}", path.display()))?)
             }
-            None => self.discretization.build(mesh, &input.label()),
+            None => self.discretization.build(catalog, mesh, &input.label()),
         }
     }
 }

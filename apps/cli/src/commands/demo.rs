@@ -2,6 +2,7 @@
 //! web page of pictures and numbers, each step timed.
 
 use crate::basis_source::compute;
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{commit, stage};
@@ -77,7 +78,7 @@ pub struct DemoArgs {
 }
 
 /// Runs the demo.
-pub fn run(args: DemoArgs) -> Result<()> {
+pub fn run(args: DemoArgs, context: &RunContext) -> Result<()> {
     let inputs: Vec<&Path> = args.mesh.as_deref().into_iter().collect();
     tvf_core::io::check_output(&args.output, &inputs)?;
     let (width, height) = if args.quick {
@@ -120,7 +121,9 @@ pub fn run(args: DemoArgs) -> Result<()> {
         mesh,
         mesh_name,
         fields,
+        catalog: context.catalog().clone(),
         discretization: args.discretization.id(),
+        boundary: args.discretization.boundary,
         width,
         height,
         fur_strands: if args.quick { 1500 } else { 25_000 },

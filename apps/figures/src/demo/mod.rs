@@ -24,8 +24,9 @@ use image::RgbaImage;
 use page::Section;
 use std::path::PathBuf;
 use std::time::Instant;
+use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::BoxedComplex;
+use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_render::save_png;
 use tvf_render::View;
 use tvf_spectral::BasisSize;
@@ -41,8 +42,13 @@ pub struct DemoConfig {
     pub mesh_name: String,
     /// Eigenfields of the basis (`-k`, harmonic ones included).
     pub fields: usize,
-    /// Catalog id of the discretization.
+    /// The catalog the discretization is taken from (the program's: built-in entries and its
+    /// own).
+    pub catalog: Catalog,
+    /// Id of the discretization in `catalog`.
     pub discretization: String,
+    /// Its boundary condition on a mesh with boundary (`None`: the entry's default).
+    pub boundary: Option<BoundaryCondition>,
     /// Size of a full-width picture (panels of grids are half of it each way).
     pub width: u32,
     /// Height of a full-width picture.
