@@ -29,7 +29,7 @@ fn both_conditions(entry: CatalogEntry, [tangential, normal]: [&str; 2]) -> Cata
         .with_boundary_condition(Normal, normal)
 }
 
-/// The nine entries.
+/// tvf's entries, [`crate::DEFAULT_DISCRETIZATION`] first.
 pub(crate) fn builtin_entries() -> Vec<CatalogEntry> {
     use MassLumping::{Barycentric, Voronoi};
     vec![

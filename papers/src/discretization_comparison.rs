@@ -1,4 +1,5 @@
-//! The discretization comparison: every entry of the catalog ([`crate::registry`]) on
+//! The discretization comparison: catalog entries (the built-in ones, [`crate::registry`], or
+//! any others) on
 //! icospheres under refinement, eigenvalues against the unit sphere's `l(l+1)`, convergence
 //! orders and the time to build each basis; a Markdown table and a log–log plot.
 //!
@@ -141,7 +142,7 @@ pub fn run(
     let mut results: Vec<DiscretizationResult> = entries
         .iter()
         .map(|e| DiscretizationResult {
-            name: e.id.to_string(),
+            name: e.id().to_string(),
             levels: Vec::new(),
         })
         .collect();
@@ -161,7 +162,7 @@ pub fn run(
             };
             progress.note(format!(
                 "comparison: {} on icosphere level {level} ({} faces): errors {:.2e} / {:.2e}, {}",
-                entry.id,
+                entry.id(),
                 thousands(mesh.face_count()),
                 level_result.integrable_error,
                 level_result.cointegrable_error,

@@ -123,7 +123,6 @@ pub fn run(args: DemoArgs, context: &RunContext) -> Result<()> {
         fields,
         catalog: context.catalog().clone(),
         discretization: args.discretization.id(),
-        boundary: args.discretization.boundary,
         width,
         height,
         fur_strands: if args.quick { 1500 } else { 25_000 },

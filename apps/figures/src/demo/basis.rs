@@ -17,7 +17,7 @@ pub fn run(
     let mesh = &config.mesh;
     let discretization = config
         .catalog
-        .build_complex(&config.discretization, config.boundary, mesh)
+        .build_complex(&config.discretization, None, mesh)
         .map_err(|e| FigureError::InContext {
             context: config.mesh_name.clone(),
             source: Box::new(e.into()),

@@ -24,7 +24,6 @@ use image::RgbaImage;
 use page::Section;
 use std::path::PathBuf;
 use std::time::Instant;
-use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_render::save_png;
@@ -45,10 +44,9 @@ pub struct DemoConfig {
     /// The catalog the discretization is taken from (the program's: built-in entries and its
     /// own).
     pub catalog: Catalog,
-    /// Id of the discretization in `catalog`.
+    /// Id of the discretization in `catalog` (built with the entry's default boundary condition
+    /// on a mesh with boundary).
     pub discretization: String,
-    /// Its boundary condition on a mesh with boundary (`None`: the entry's default).
-    pub boundary: Option<BoundaryCondition>,
     /// Size of a full-width picture (panels of grids are half of it each way).
     pub width: u32,
     /// Height of a full-width picture.
