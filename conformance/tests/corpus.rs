@@ -21,7 +21,8 @@ fn the_delaunay_corpus_is_delaunay_and_builds_every_entry() {
     for mesh in meshes.into_iter().chain(jittered) {
         assert!(is_delaunay(&mesh.mesh), "{} is not Delaunay", mesh.name);
         for entry in builtin_catalog() {
-            let complex = entry.build(&mesh.mesh)
+            let complex = entry
+                .build(&mesh.mesh)
                 .unwrap_or_else(|e| panic!("{} on {}: {e}", entry.id(), mesh.name));
             assert_eq!(complex.id(), entry.id());
         }

@@ -75,6 +75,9 @@ impl DiscretizationFlags {
     }
 }
 
+/// Checks one flag's value against the catalog; the error says what the catalog offers.
+type IdCheck = fn(&str, &Catalog) -> Result<(), String>;
+
 /// Checks the discretization flags of the subcommand in `matches` against `catalog`:
 /// `--discretization` must be an id of the catalog, `--decomposition` / `--mass` the first /
 /// last part of one. The error is a usage error of the subcommand of `command` (exit code 2),
@@ -87,7 +90,7 @@ pub fn check_ids(
     let Some((name, sub_matches)) = matches.subcommand() else {
         return Ok(());
     };
-    let checks: [(&str, &str, fn(&str, &Catalog) -> Result<(), String>); 3] = [
+    let checks: [(&str, &str, IdCheck); 3] = [
         ("discretization", "--discretization <ID>", catalog_id),
         (
             "decomposition",

@@ -40,8 +40,8 @@ pub enum BasisFileUseError {
     Complex {
         /// The basis file.
         path: PathBuf,
-        /// Why the catalog could not build it.
-        source: CatalogBuildError,
+        /// Why the catalog could not build it (boxed: the error is large).
+        source: Box<CatalogBuildError>,
     },
 }
 
@@ -88,7 +88,7 @@ pub fn basis_file_complex(
         .build_complex(&id, None, mesh)
         .map_err(|source| BasisFileUseError::Complex {
             path: path.to_path_buf(),
-            source,
+            source: Box::new(source),
         })
 }
 
