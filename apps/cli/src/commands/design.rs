@@ -95,14 +95,8 @@ pub fn run(args: DesignArgs, context: &RunContext) -> Result<()> {
     check_output(&args.output, &args.input, &inputs)?;
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
     let catalog = context.catalog();
-    let discretization = discretization(catalog, &inputs, &args.input, &args.basis)?;
-    design_with(
-        catalog,
-        discretization.as_ref(),
-        &inputs,
-        &args,
-        &mut report,
-    )?;
+    let complex = discretization(catalog, &inputs, &args.input, &args.basis)?;
+    design_with(catalog, complex.as_ref(), &inputs, &args, &mut report)?;
     report.finish()
 }
 
