@@ -12,7 +12,7 @@
 //!   [`DEFAULT_FIELDS`] if not given). `K ≥ 2F` asks for the complete basis (dense
 //!   eigensolvers, small meshes only). `-k` means this in every subcommand (`tvf spectrum -k K`
 //!   lists the same `K` eigenvalues);
-//! - `--discretization ID` (an id of the program's catalog, [`crate::RunContext`]; shorthands
+//! - `--discretization ID` (an id of the program's catalog, the `RunContext`; shorthands
 //!   `--decomposition NAME`, `--mass NAME`): the discretization (default
 //!   conforming-barycentric). A `--basis` file's discretization is rebuilt through the same
 //!   catalog, so a basis of a program's own entry reopens in that program;

@@ -34,7 +34,7 @@ use clap::{CommandFactory, FromArgMatches, Subcommand};
 use std::process::ExitCode;
 use tvf_discretizations::Catalog;
 
-pub use context::RunContext;
+use context::RunContext;
 
 /// Spectral processing of tangential vector fields on triangle meshes.
 #[derive(clap::Parser)]
