@@ -96,7 +96,10 @@ mod tests {
     #[test]
     fn a_catalog_complex_passes_and_a_broken_mass_is_named() {
         let mesh = torus(1.0, 0.4, 10, 6).unwrap();
-        let built = (catalog_entry("nonconforming-voronoi").unwrap().build)(&mesh).unwrap();
+        let built = catalog_entry("nonconforming-voronoi")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let report = core_check_report(built.as_ref(), &mesh);
         assert!(report.passed(), "{:?}", report.failures());
         assert!(report.outcomes.len() >= 20);

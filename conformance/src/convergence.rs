@@ -22,6 +22,7 @@ use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{hemisphere, icosphere};
 use tvf_core::geometry::{norm, sub};
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::CatalogEntry;
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily};
 
 /// A surface with a known spectrum.
@@ -92,13 +93,48 @@ impl Surface {
     }
 }
 
+/// What a candidate runs to build its complex on a mesh under a boundary condition; errors are
+/// reported with the candidate's name.
+pub type CandidateBuilder<'a> = Box<
+    dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
+        + Send
+        + Sync
+        + 'a,
+>;
+
 /// A discretization under study: a name and a constructor from a mesh and a boundary
 /// condition (a catalog entry, a parameterised entry, a researcher's own).
 pub struct Candidate<'a> {
     /// Shown in tables and plots.
     pub name: String,
-    /// Builds the complex; errors are reported with the candidate's name.
-    pub build: &'a dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>,
+    /// Builds the complex.
+    pub build: CandidateBuilder<'a>,
+}
+
+impl<'a> Candidate<'a> {
+    /// A candidate named `name` built by `build`.
+    pub fn new(
+        name: impl Into<String>,
+        build: impl Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
+            + Send
+            + Sync
+            + 'a,
+    ) -> Self {
+        Self {
+            name: name.into(),
+            build: Box::new(build),
+        }
+    }
+
+    /// The catalog entry `entry`, named by its id; a refused mesh is reported with what the
+    /// entry needs.
+    pub fn from_entry(entry: &'a CatalogEntry) -> Self {
+        Self::new(entry.id(), move |mesh, boundary| {
+            entry
+                .build_with(mesh, boundary)
+                .map_err(|e| format!("cannot build (needs: {}): {e}", entry.preconditions()))
+        })
+    }
 }
 
 /// What a study runs.

@@ -11,7 +11,7 @@ use tvf_core::generate::{
 };
 use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::DELAUNAY_TOLERANCE;
+use tvf_discretizations::{CatalogEntry, DELAUNAY_TOLERANCE};
 
 /// Largest field dimension `n1` for which the suite runs dense eigenvalue checks.
 pub const DENSE_LIMIT: usize = 1600;
@@ -96,23 +96,23 @@ pub enum Corpus {
 }
 
 impl Corpus {
-    /// The corpus of catalog entry `id`: [`Corpus::Delaunay`] if the entry needs a Delaunay mesh.
-    /// Panics on an id the catalog does not know.
-    pub fn for_catalog_entry(id: &str) -> Self {
-        let entry = tvf_discretizations::catalog_entry(id).unwrap_or_else(|e| panic!("{e}"));
-        if entry.needs_delaunay {
+    /// The corpus of catalog entry `entry` (of any catalog): [`Corpus::Delaunay`] if the entry
+    /// needs a Delaunay mesh, else [`Corpus::General`].
+    pub fn for_catalog_entry(entry: &CatalogEntry) -> Self {
+        if entry.needs_delaunay() {
             Corpus::Delaunay
         } else {
             Corpus::General
         }
     }
 
-    /// The open corpus of catalog entry `id`: [`Corpus::OpenDelaunay`] if the entry needs a
+    /// The open corpus of catalog entry `entry`: [`Corpus::OpenDelaunay`] if the entry needs a
     /// Delaunay mesh, else [`Corpus::Open`].
-    pub fn open_for_catalog_entry(id: &str) -> Self {
-        match Self::for_catalog_entry(id) {
-            Corpus::Delaunay => Corpus::OpenDelaunay,
-            _ => Corpus::Open,
+    pub fn open_for_catalog_entry(entry: &CatalogEntry) -> Self {
+        if entry.needs_delaunay() {
+            Corpus::OpenDelaunay
+        } else {
+            Corpus::Open
         }
     }
 

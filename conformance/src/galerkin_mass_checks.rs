@@ -127,7 +127,7 @@ mod tests {
     fn a_lumped_potential_mass_is_not_the_galerkin_mass() {
         let mesh = CorpusMesh::new("icosphere(1)", icosphere(1), 0);
         let entry = tvf_discretizations::catalog_entry("conforming-barycentric").unwrap();
-        check_galerkin_masses((entry.build)(&mesh.mesh).unwrap().as_ref(), &mesh);
+        check_galerkin_masses(entry.build(&mesh.mesh).unwrap().as_ref(), &mesh);
     }
 
     #[test]
@@ -135,10 +135,10 @@ mod tests {
     fn the_dec_star_is_not_the_whitney_mass() {
         let mesh = CorpusMesh::new("icosphere(1)", icosphere(1), 0);
         let entry = tvf_discretizations::catalog_entry("dec-barycentric").unwrap();
-        let complex = (entry.build)(&mesh.mesh).unwrap();
+        let complex = entry.build(&mesh.mesh).unwrap();
         // DEC's M0 is lumped too; compare M1 alone by swapping in the Galerkin M0.
         let galerkin = tvf_discretizations::catalog_entry("whitney-galerkin").unwrap();
-        let m0 = (galerkin.build)(&mesh.mesh).unwrap().m0().clone();
+        let m0 = galerkin.build(&mesh.mesh).unwrap().m0().clone();
         let parts = ComplexParts::new(
             "dec-with-galerkin-m0",
             complex.d0().clone(),

@@ -53,7 +53,7 @@
 //! // A boxed complex from the catalog, on the Delaunay corpus, with two reference checks.
 //! tvf_conformance::conformance_suite!(
 //!     dec_circumcentric,
-//!     |mesh| (catalog_entry("dec-circumcentric").expect("in the catalog").build)(mesh),
+//!     |mesh| catalog_entry("dec-circumcentric").expect("in the catalog").build(mesh),
 //!     corpus = Corpus::Delaunay,
 //!     reference = [cotan_formula, co_potential_masses],
 //! );
@@ -61,8 +61,31 @@
 //! ```
 //!
 //! The constructor is any `Fn(&SurfaceMesh) -> Result<H, E>` with `E: Debug` and `H` either a
-//! `HodgeComplex + 'static` or a `Box<dyn HodgeComplex>`. Every catalog entry has its suite line
-//! in `conformance/tests/conformance.rs` through [`catalog_suites!`], which fails when one is missing.
+//! `HodgeComplex + 'static` or a `Box<dyn HodgeComplex>`. A catalog entry (a
+//! [`CatalogEntry`], built-in or of a crate of your own) gets the suite on its corpus and the
+//! suite on meshes with boundary for both boundary conditions ([`open_suite`]) in one line:
+//!
+//! ```
+//! use tvf_core::discretization::BoundaryCondition;
+//! use tvf_discretizations::{BoxedComplex, CatalogEntry, Nonconforming, MassLumping};
+//!
+//! fn my_entry() -> CatalogEntry {
+//!     CatalogEntry::new(
+//!         "nonconforming-voronoi",
+//!         "the nonconforming decomposition, Voronoi masses",
+//!         |mesh, boundary| -> Result<BoxedComplex, _> {
+//!             Ok(Box::new(Nonconforming::with_boundary(mesh, MassLumping::Voronoi, boundary)?))
+//!         },
+//!     )
+//!     .with_boundary_condition(BoundaryCondition::Tangential, "P1 co-potentials zero")
+//! }
+//!
+//! tvf_conformance::conformance_suite!(my_discretization, entry = my_entry());
+//! # fn main() {}
+//! ```
+//!
+//! Every built-in entry has its suite line in `conformance/tests/conformance.rs` through
+//! [`catalog_suites!`], which fails when one is missing.
 //! Dense eigenvalue checks run when `n1 ≤` [`corpus::DENSE_LIMIT`], dense eigenvector checks when
 //! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; the kernel dimension on larger and real meshes is checked
 //! through the rank of harmonic projections.
@@ -95,7 +118,7 @@ pub use tvf_discretizations;
 
 use corpus::{Corpus, CorpusMesh};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::BoxedComplex;
+use tvf_discretizations::{BoxedComplex, CatalogEntry};
 
 /// How the suite builds a complex: the constructor of a suite line, its result boxed and its
 /// error formatted.
@@ -115,19 +138,18 @@ pub fn build(constructor: Constructor, mesh: &CorpusMesh) -> BoxedComplex {
     constructor(&mesh.mesh).unwrap_or_else(|e| panic!("{}: construction failed: {e}", mesh.name))
 }
 
-/// Builds the complex of catalog entry `id` (an unknown id is an error naming the known ones).
-pub fn build_catalog_entry(id: &str, mesh: &SurfaceMesh) -> Result<BoxedComplex, String> {
-    let entry = tvf_discretizations::catalog_entry(id).map_err(|e| e.to_string())?;
-    (entry.build)(mesh).map_err(|e| e.to_string())
+/// The built-in catalog entry `id` (the suite lines of [`catalog_suites!`]); panics with the
+/// known ids on an id the built-in catalog does not know.
+pub fn builtin_entry(id: &str) -> CatalogEntry {
+    tvf_discretizations::catalog_entry(id)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .clone()
 }
 
-/// Fails unless `covered` (the ids with a suite line) lists every catalog id exactly once and
-/// nothing else.
+/// Fails unless `covered` (the ids with a suite line) lists every id of the built-in catalog
+/// exactly once and nothing else.
 pub fn assert_catalog_covered(covered: &[&str]) {
-    let ids: Vec<&str> = tvf_discretizations::catalog()
-        .iter()
-        .map(|e| e.id)
-        .collect();
+    let ids: Vec<&str> = tvf_discretizations::builtin_catalog().ids().collect();
     let missing: Vec<&str> = ids
         .iter()
         .copied()

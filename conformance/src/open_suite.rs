@@ -1,4 +1,5 @@
-//! The core suite on meshes with boundary, for one catalog entry and one boundary condition
+//! The core suite on meshes with boundary, for one catalog entry (of any catalog) and one
+//! boundary condition
 //! ([`open_mesh_suite`]), and the boundary behaviour of eigenfields
 //! ([`check_essential_boundary_conditions`]).
 
@@ -17,8 +18,9 @@ use tvf_core::discretization::{
     BoundaryCondition, DiscretizationError, HodgeComplex, HodgeOperators, NodeKind,
 };
 use tvf_core::geometry::{dot, norm, sub};
+use tvf_discretizations::CatalogEntry;
 
-/// Runs every core check on every mesh of the open corpus of catalog entry `id` (and the raw
+/// Runs every core check on every mesh of the open corpus of catalog entry `entry` (and the raw
 /// `bunny.obj` where present, sparse checks only) with boundary condition `boundary`: shapes and
 /// masses, `d1 d0 = 0`, symmetry, semi-definiteness, capabilities, the Hodge decomposition, `dim
 /// ker L = 2g + b − 1` per component (dense and by harmonic projection), the spectrum union,
@@ -26,9 +28,9 @@ use tvf_core::geometry::{dot, norm, sub};
 /// forms, fields that vanish on the boundary edges and sample normal to the boundary. If the entry
 /// does not offer `boundary`, checks that construction fails with
 /// [`DiscretizationError::UnsupportedBoundaryCondition`] instead.
-pub fn open_mesh_suite(id: &str, boundary: BoundaryCondition) {
-    let entry = tvf_discretizations::catalog_entry(id).unwrap_or_else(|e| panic!("{e}"));
-    let corpus = Corpus::open_for_catalog_entry(id);
+pub fn open_mesh_suite(entry: &CatalogEntry, boundary: BoundaryCondition) {
+    let id = entry.id();
+    let corpus = Corpus::open_for_catalog_entry(entry);
     for mesh in corpus.meshes(true) {
         eprintln!(
             "checking {id} ({}) on {} ({} faces)",
@@ -37,7 +39,7 @@ pub fn open_mesh_suite(id: &str, boundary: BoundaryCondition) {
             mesh.mesh.face_count()
         );
         let built = entry.build_with(&mesh.mesh, boundary);
-        if !entry.boundary_conditions.contains(&boundary) {
+        if !entry.boundary_conditions().contains(&boundary) {
             match built {
                 Err(DiscretizationError::UnsupportedBoundaryCondition { .. }) => continue,
                 Err(e) => panic!("{}: unexpected error {e}", mesh.name),

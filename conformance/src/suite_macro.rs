@@ -6,6 +6,8 @@
 /// submodule `reference` with one `#[test]` per named check of [`crate::reference`].
 ///
 /// ```text
+/// conformance_suite!(name, entry = catalog_entry);
+/// conformance_suite!(name, entry = catalog_entry, reference = [cotan_formula, rotation]);
 /// conformance_suite!(name, constructor);
 /// conformance_suite!(name, constructor, corpus = Corpus::Delaunay);
 /// conformance_suite!(name, constructor, reference = [cotan_formula, rotation]);
@@ -13,6 +15,14 @@
 /// conformance_suite!(name, constructor, corpus = ..., reference = [...], cases = ...);
 /// ```
 ///
+/// - `entry`: an expression of type [`CatalogEntry`](tvf_discretizations::CatalogEntry) (of any
+///   catalog, e.g. `my_entry()`; evaluated inside the generated module, which imports
+///   `super::*`, once per complex built). The module `name` then has a submodule
+///   `closed_meshes`, the suite on the entry's corpus
+///   ([`Corpus::for_catalog_entry`](crate::corpus::Corpus::for_catalog_entry): the Delaunay one
+///   when it needs Delaunay meshes), and a submodule `open_meshes` with one test per boundary
+///   condition ([`crate::open_suite::open_mesh_suite`]: the core suite on meshes with boundary
+///   for a condition the entry offers; for one it does not, that the entry refuses it).
 /// - `constructor`: `Fn(&SurfaceMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
 ///   'static` or a `Box<dyn HodgeComplex>`; evaluated inside the generated module (which
 ///   imports `super::*`).
@@ -24,6 +34,48 @@
 ///   [`crate::suite::property_cases`].
 #[macro_export]
 macro_rules! conformance_suite {
+    (
+        $name:ident,
+        entry = $entry:expr
+        $(, reference = [$($check:ident),* $(,)?])?
+        $(,)?
+    ) => {
+        mod $name {
+            #[allow(unused_imports)]
+            use super::*;
+
+            /// The suite line's catalog entry.
+            fn suite_entry() -> $crate::tvf_discretizations::CatalogEntry {
+                $entry
+            }
+
+            $crate::conformance_suite!(
+                closed_meshes,
+                |mesh| suite_entry().build(mesh),
+                corpus = $crate::corpus::Corpus::for_catalog_entry(&suite_entry())
+                $(, reference = [$($check),*])?
+            );
+
+            /// The core suite on meshes with boundary, one test per boundary condition.
+            mod open_meshes {
+                #[test]
+                fn tangential() {
+                    $crate::open_suite::open_mesh_suite(
+                        &super::suite_entry(),
+                        $crate::tvf_core::discretization::BoundaryCondition::Tangential,
+                    );
+                }
+
+                #[test]
+                fn normal() {
+                    $crate::open_suite::open_mesh_suite(
+                        &super::suite_entry(),
+                        $crate::tvf_core::discretization::BoundaryCondition::Normal,
+                    );
+                }
+            }
+        }
+    };
     (
         $name:ident,
         $constructor:expr
@@ -176,12 +228,11 @@ macro_rules! __suite_corpus {
     };
 }
 
-/// One [`conformance_suite!`](crate::conformance_suite) per catalog entry, built through
-/// `catalog_entry(id)` on the entry's corpus ([`crate::corpus::Corpus::for_catalog_entry`]: the
-/// Delaunay corpus when it `needs_delaunay`), a module `open_meshes` with the core suite on the
-/// meshes with boundary for both boundary conditions (per entry: `tangential`, `normal`), plus
-/// the constant `COVERED_IDS` and a test
-/// `every_catalog_entry_has_a_suite_line` that fails unless the lines cover the catalog exactly.
+/// One [`conformance_suite!`](crate::conformance_suite)`(name, entry = ...)` per built-in catalog
+/// entry (the entry by id, [`crate::builtin_entry`]: closed meshes on the entry's corpus, meshes
+/// with boundary for both boundary conditions), plus the constant `COVERED_IDS` and a test
+/// `every_catalog_entry_has_a_suite_line` that fails unless the lines cover the built-in catalog
+/// exactly.
 ///
 /// ```text
 /// catalog_suites! {
@@ -195,37 +246,12 @@ macro_rules! catalog_suites {
         $(
             $crate::conformance_suite!(
                 $name,
-                |mesh| $crate::build_catalog_entry($id, mesh),
-                corpus = $crate::corpus::Corpus::for_catalog_entry($id)
+                entry = $crate::builtin_entry($id)
                 $(, reference = [$($check),*])?
             );
         )*
 
-        /// The core suite on meshes with boundary: per catalog entry, one test per boundary
-        /// condition ([`crate::open_suite::open_mesh_suite`]).
-        mod open_meshes {
-            $(
-                mod $name {
-                    #[test]
-                    fn tangential() {
-                        $crate::open_suite::open_mesh_suite(
-                            $id,
-                            $crate::tvf_core::discretization::BoundaryCondition::Tangential,
-                        );
-                    }
-
-                    #[test]
-                    fn normal() {
-                        $crate::open_suite::open_mesh_suite(
-                            $id,
-                            $crate::tvf_core::discretization::BoundaryCondition::Normal,
-                        );
-                    }
-                }
-            )*
-        }
-
-        /// The catalog ids that have a suite line above.
+        /// The built-in catalog ids that have a suite line above.
         pub const COVERED_IDS: &[&str] = &[$($id),*];
 
         #[test]

@@ -5,37 +5,14 @@
 use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::catalog_entry;
+use tvf_discretizations::Catalog;
 use tvf_spectral::FieldFamily;
-
-fn builder(
-    id: &'static str,
-) -> impl Fn(
-    &SurfaceMesh,
-    BoundaryCondition,
-) -> Result<Box<dyn tvf_core::discretization::HodgeComplex>, String> {
-    move |mesh, boundary| {
-        catalog_entry(id)
-            .map_err(|e| e.to_string())?
-            .build_with(mesh, boundary)
-            .map_err(|e| e.to_string())
-    }
-}
 
 #[test]
 fn p1_and_crouzeix_raviart_converge_at_order_two() {
-    let conforming = builder("conforming-barycentric");
-    let nonconforming = builder("nonconforming-barycentric");
-    let candidates = [
-        Candidate {
-            name: "conforming-barycentric".into(),
-            build: &conforming,
-        },
-        Candidate {
-            name: "nonconforming-barycentric".into(),
-            build: &nonconforming,
-        },
-    ];
+    let catalog = Catalog::builtin();
+    let candidates = ["conforming-barycentric", "nonconforming-barycentric"]
+        .map(|id| Candidate::from_entry(catalog.get(id).unwrap()));
     let config = ConvergenceConfig {
         surfaces: Surface::all(),
         levels: vec![2, 3, 4],
@@ -59,11 +36,10 @@ fn p1_and_crouzeix_raviart_converge_at_order_two() {
 
 #[test]
 fn a_candidate_that_cannot_be_built_is_named() {
-    let refuse = |_: &SurfaceMesh, _: BoundaryCondition| Err("no assembly yet".to_string());
-    let candidates = [Candidate {
-        name: "draft".into(),
-        build: &refuse,
-    }];
+    let candidates = [Candidate::new(
+        "draft",
+        |_: &SurfaceMesh, _: BoundaryCondition| Err("no assembly yet".to_string()),
+    )];
     let error = run_convergence(&candidates, &ConvergenceConfig::default(), &|_, _, _| {})
         .err()
         .unwrap()

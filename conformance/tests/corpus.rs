@@ -2,7 +2,7 @@
 //! jittered property-test meshes) is Delaunay and builds every catalog entry.
 
 use tvf_conformance::corpus::{is_delaunay, staggered_torus, Corpus};
-use tvf_discretizations::{catalog, catalog_entry};
+use tvf_discretizations::{builtin_catalog, catalog_entry};
 
 #[test]
 fn genera_and_closedness_match_the_meshes() {
@@ -20,10 +20,11 @@ fn the_delaunay_corpus_is_delaunay_and_builds_every_entry() {
     let jittered = (0..4).map(|seed| Corpus::Delaunay.jittered_mesh(seed * 7919));
     for mesh in meshes.into_iter().chain(jittered) {
         assert!(is_delaunay(&mesh.mesh), "{} is not Delaunay", mesh.name);
-        for entry in catalog() {
-            let complex = (entry.build)(&mesh.mesh)
-                .unwrap_or_else(|e| panic!("{} on {}: {e}", entry.id, mesh.name));
-            assert_eq!(complex.id(), entry.id);
+        for entry in builtin_catalog() {
+            let complex = entry
+                .build(&mesh.mesh)
+                .unwrap_or_else(|e| panic!("{} on {}: {e}", entry.id(), mesh.name));
+            assert_eq!(complex.id(), entry.id());
         }
     }
 }
@@ -58,18 +59,18 @@ fn entries_without_a_delaunay_precondition_build_on_slivers_and_jittered_meshes(
         .count();
     assert!(jittered >= 1, "no jittered mesh that is not Delaunay");
     for mesh in meshes.iter().filter(|m| !is_delaunay(&m.mesh)) {
-        for entry in catalog() {
-            let built = (entry.build)(&mesh.mesh);
+        for entry in builtin_catalog() {
+            let built = entry.build(&mesh.mesh);
             assert_eq!(
                 built.is_ok(),
-                !entry.needs_delaunay,
+                !entry.needs_delaunay(),
                 "{} on {}",
-                entry.id,
+                entry.id(),
                 mesh.name
             );
         }
     }
-    assert!(!catalog_entry("whitney-galerkin").unwrap().needs_delaunay);
+    assert!(!catalog_entry("whitney-galerkin").unwrap().needs_delaunay());
 }
 
 #[test]

@@ -43,7 +43,7 @@ fn harmonic_dimension_and_d1_d0_match_the_theory_on_every_open_mesh() {
     for (id, meshes) in entries {
         let entry = catalog_entry(id).unwrap();
         for mesh in &meshes {
-            for &boundary in entry.boundary_conditions {
+            for &boundary in entry.boundary_conditions() {
                 let complex = entry.build_with(&mesh.mesh, boundary).unwrap();
                 let (residual, kernel) = measure(complex.as_ref());
                 let loops = tvf_discretizations::component_boundary_loops(&mesh.mesh);
@@ -165,7 +165,7 @@ fn hemisphere_spectra_converge_to_the_dirichlet_and_neumann_eigenvalues() {
         for boundary in BoundaryCondition::ALL {
             let mut errors = [Vec::new(), Vec::new()];
             for &rings in &levels {
-                let mesh = if entry.needs_delaunay {
+                let mesh = if entry.needs_delaunay() {
                     delaunay_flips(&hemisphere(rings))
                 } else {
                     hemisphere(rings)
@@ -251,7 +251,7 @@ fn natural_boundary_conditions_hold_weakly_and_the_forbidden_part_shrinks() {
             let mut essential = [false, false];
             let mut names = [String::new(), String::new()];
             for &rings in &levels {
-                let mesh = if entry.needs_delaunay {
+                let mesh = if entry.needs_delaunay() {
                     delaunay_flips(&hemisphere(rings))
                 } else {
                     hemisphere(rings)

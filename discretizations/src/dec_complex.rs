@@ -2,8 +2,8 @@
 //! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
 
 use crate::boundary_conditions::mesh_topology;
+use crate::complex_id::complex_id;
 use crate::face_geometry::FaceGeometry;
-use crate::finite_element_complex::complex_id;
 use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
 use crate::whitney_sampling::WhitneySampling;
 use crate::MassLumping;

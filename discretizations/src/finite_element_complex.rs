@@ -2,6 +2,7 @@
 //! over the face fields; [`Conforming`] and [`Nonconforming`] are its two instances from the paper.
 
 use crate::boundary_conditions::{drop_columns, drop_rows, mesh_topology, with_dirichlet_boundary};
+use crate::complex_id::complex_id;
 use crate::face_geometry::FaceGeometry;
 use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping};
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
@@ -280,16 +281,6 @@ impl Nonconforming {
             FaceFields::from_geometry(&geometry),
             boundary,
         )
-    }
-}
-
-/// The id of a complex: the catalog id on a closed mesh, `{catalog id}+{boundary}` on a mesh with
-/// boundary (basis files and cache names tell the two boundary conditions apart).
-pub fn complex_id(catalog_id: &str, mesh: &SurfaceMesh, boundary: BoundaryCondition) -> String {
-    if mesh.is_closed() {
-        catalog_id.to_string()
-    } else {
-        format!("{catalog_id}+{}", boundary.name())
     }
 }
 

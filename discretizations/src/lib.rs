@@ -1,7 +1,7 @@
 //! # tvf-discretizations
 //!
 //! Every discretization tvf ships, behind the seam of [`tvf_core::discretization`], and the
-//! [`catalog`] that lists them:
+//! [`Catalog`] that lists them ([`Catalog::builtin`]; a program adds its own entries):
 //!
 //! - the finite-element complexes of the paper, [`Conforming`] and [`Nonconforming`]
 //!   ([`FiniteElementComplex`] over the function spaces [`LagrangeP1`] (`S_h`, vertices) and
@@ -27,13 +27,13 @@
 //! use tvf_discretizations::{catalog_entry, HodgeDecomposer};
 //!
 //! let mesh = icosphere(1); // 42 vertices, 120 edges, 80 faces
-//! let complex = (catalog_entry("conforming-barycentric")?.build)(&mesh)?;
+//! let complex = catalog_entry("conforming-barycentric")?.build(&mesh)?;
 //! assert_eq!(complex.d0().shape(), (160, 42));   // G: 2F × V
 //! assert_eq!(complex.d1().shape(), (120, 160));  // G*ᵀ J M_X: E × 2F
 //! assert_eq!(complex.hodge_laplacian().shape(), (160, 160)); // L = M_X⁻¹ S
 //!
 //! // The same code on DEC 1-forms: fields are edge values.
-//! let dec = (catalog_entry("dec-circumcentric")?.build)(&mesh)?;
+//! let dec = catalog_entry("dec-circumcentric")?.build(&mesh)?;
 //! assert_eq!(dec.d0().shape(), (120, 42));       // E × V incidence
 //!
 //! // Decompose a field: on a sphere there are no harmonic fields.
@@ -47,9 +47,12 @@
 //! # Adding a discretization
 //! Build the five matrices and implement [`HodgeComplex`](tvf_core::discretization::HodgeComplex)
 //! (see [`WhitneyGalerkin`] for a complete example: its three masses, about 115 lines, over the
-//! incidences, node spaces and Whitney sampling it shares with [`DecComplex`]), then add one
-//! [`CatalogEntry`] to [`catalog`]. Every command, the editor and papers/ read the catalog, and
-//! the conformance suite in `tests/` fails until the entry has its suite line. Finite-element
+//! incidences, node spaces and Whitney sampling it shares with [`DecComplex`]), then make it a
+//! [`CatalogEntry`]: one more entry in `builtin_catalog.rs` for tvf's own (every command, the
+//! editor and papers/ read [`Catalog::builtin`], and the conformance suite in
+//! `conformance/tests/` fails until the entry has its suite line), or, in a crate of your own,
+//! `Catalog::builtin().with(entry)?` handed to `tvf_cli::run` (the example crate
+//! `examples/own-discretization` does this). Finite-element
 //! variants can reuse [`FiniteElementComplex::from_spaces`] with a new [`FunctionSpace`]:
 //!
 //! ```
@@ -106,7 +109,10 @@
 #![warn(missing_docs)]
 
 mod boundary_conditions;
+mod builtin_catalog;
 mod catalog;
+mod catalog_entry;
+mod complex_id;
 mod consistent_mass;
 mod crouzeix_raviart;
 mod dec_complex;
@@ -133,15 +139,17 @@ pub use boundary_conditions::{
     with_dirichlet_boundary,
 };
 pub use catalog::{
-    build_complex, catalog, catalog_entry, split_complex_id, BoxedComplex, CatalogBuildError,
-    CatalogEntry, UnknownDiscretization, DEFAULT_DISCRETIZATION,
+    build_complex, builtin_catalog, catalog_entry, is_kebab_case, Catalog, CatalogBuildError,
+    CatalogError, UnknownDiscretization, DEFAULT_DISCRETIZATION,
 };
+pub use catalog_entry::{BoxedComplex, CatalogEntry, EntryConstructor, ANY_MESH};
+pub use complex_id::{complex_id, split_complex_id};
 pub use consistent_mass::consistent_p1_mass;
 pub use crouzeix_raviart::CrouzeixRaviart;
 pub use dec_complex::{edge_hodge_star, DecComplex, DELAUNAY_TOLERANCE};
 pub use error::DecompositionError;
 pub use face_fields::FaceFields;
-pub use finite_element_complex::{complex_id, Conforming, FiniteElementComplex, Nonconforming};
+pub use finite_element_complex::{Conforming, FiniteElementComplex, Nonconforming};
 pub use function_space::FunctionSpace;
 pub use hodge_decomposition::{HodgeDecomposer, HodgeParts};
 pub use lagrange_p1::LagrangeP1;

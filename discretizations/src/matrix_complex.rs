@@ -275,7 +275,10 @@ mod tests {
     #[test]
     fn rebuilds_a_catalog_complex_with_its_operators() {
         let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let built = (catalog_entry("conforming-barycentric").unwrap().build)(&mesh).unwrap();
+        let built = catalog_entry("conforming-barycentric")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let copy = MatrixComplex::new(
             "copy",
@@ -305,10 +308,10 @@ mod tests {
     /// and the fixed nodes are the entry's own.
     #[test]
     fn rebuilds_every_entry_with_its_fixed_nodes_and_kernels() {
-        use crate::catalog;
+        use crate::builtin_catalog;
         let meshes = [icosphere(1), tvf_core::generate::disk(3)];
         for mesh in &meshes {
-            for entry in catalog() {
+            for entry in builtin_catalog() {
                 for condition in BoundaryCondition::ALL {
                     let Ok(built) = entry.build_with(mesh, condition) else {
                         continue;
@@ -328,12 +331,12 @@ mod tests {
                         condition,
                         MatrixSampling::None,
                     )
-                    .unwrap_or_else(|e| panic!("{} {condition:?}: {e}", entry.id));
+                    .unwrap_or_else(|e| panic!("{} {condition:?}: {e}", entry.id()));
                     assert_eq!(
                         copy.matrix_hash(),
                         built.matrix_hash(),
                         "{} {condition:?} on {} faces",
-                        entry.id,
+                        entry.id(),
                         mesh.face_count()
                     );
                 }
@@ -344,7 +347,10 @@ mod tests {
     #[test]
     fn an_open_mesh_needs_its_fixed_nodes() {
         let mesh = tvf_core::generate::disk(3);
-        let built = (catalog_entry("conforming-barycentric").unwrap().build)(&mesh).unwrap();
+        let built = catalog_entry("conforming-barycentric")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
         let message = MatrixComplex::with_boundary(
@@ -388,7 +394,10 @@ mod tests {
     #[test]
     fn whitney_sampling_needs_edge_fields() {
         let mesh = icosphere(1);
-        let dec = (catalog_entry("dec-circumcentric").unwrap().build)(&mesh).unwrap();
+        let dec = catalog_entry("dec-circumcentric")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let (d0, d1, m0, m1, m2) = parts(dec.as_ref());
         let ok = MatrixComplex::new(
             "dec",
@@ -413,7 +422,10 @@ mod tests {
     #[test]
     fn refuses_broken_matrices_naming_them() {
         let mesh = icosphere(1);
-        let built = (catalog_entry("conforming-barycentric").unwrap().build)(&mesh).unwrap();
+        let built = catalog_entry("conforming-barycentric")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let build = |d0: CsMat<f64>, m1: Mass| {
             MatrixComplex::new(

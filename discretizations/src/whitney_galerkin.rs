@@ -2,9 +2,9 @@
 //! complex of exterior calculus (P1, Whitney 1-forms, P0) on a triangle mesh.
 
 use crate::boundary_conditions::mesh_topology;
+use crate::complex_id::complex_id;
 use crate::consistent_mass::consistent_p1_mass;
 use crate::face_geometry::FaceGeometry;
-use crate::finite_element_complex::complex_id;
 use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
 use crate::whitney_mass::whitney_mass;
 use crate::whitney_sampling::WhitneySampling;

@@ -248,7 +248,10 @@ fn boundary_conditions_pair_neumann_and_dirichlet_problems() {
 #[test]
 fn nonconforming_consistent_stores_m2_as_its_sparse_inverse() {
     let mesh = icosphere(1);
-    let complex = (catalog_entry("nonconforming-consistent").unwrap().build)(&mesh).unwrap();
+    let complex = catalog_entry("nonconforming-consistent")
+        .unwrap()
+        .build(&mesh)
+        .unwrap();
     let m2 = complex.m2();
     assert_eq!(m2.form(), MassForm::Inverse);
     assert!(m2.sparse_matrix().is_none(), "M2 itself is dense");
@@ -281,8 +284,8 @@ fn unreferenced_vertices_leave_the_masses() {
     let v = mesh.vertex_count();
     for id in CONSISTENT_ENTRIES {
         let entry = catalog_entry(id).unwrap();
-        let plain = (entry.build)(&mesh).unwrap();
-        let complex = (entry.build)(&padded).unwrap_or_else(|e| panic!("{id}: {e}"));
+        let plain = entry.build(&mesh).unwrap();
+        let complex = entry.build(&padded).unwrap_or_else(|e| panic!("{id}: {e}"));
         // The P1 space (potentials, or co-potentials for the nonconforming complex): its unused
         // vertices are not free, their rows of the consistent mass are empty and every solve
         // with the mass leaves them at zero.
@@ -326,7 +329,10 @@ fn unreferenced_vertices_leave_the_masses() {
         }
     }
     // A complex from matrices keeps the unused vertices and the zero rows of its M0.
-    let whitney = (catalog_entry("whitney-galerkin").unwrap().build)(&padded).unwrap();
+    let whitney = catalog_entry("whitney-galerkin")
+        .unwrap()
+        .build(&padded)
+        .unwrap();
     let rebuilt = MatrixComplex::new(
         "whitney-from-matrices",
         &padded,

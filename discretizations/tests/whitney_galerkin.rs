@@ -269,7 +269,7 @@ fn exact_family_is_p1_with_the_consistent_mass() {
     let conforming = catalog_entry("conforming-consistent").expect("in the catalog");
     for (name, mesh) in meshes() {
         let whitney = WhitneyGalerkin::new(&mesh).expect("builds");
-        let p1 = (conforming.build)(&mesh).expect("builds");
+        let p1 = conforming.build(&mesh).expect("builds");
         let (a, b) = (whitney.exact_eigenproblem(), p1.exact_eigenproblem());
         let (EigenStiffness::Sparse(sa), EigenStiffness::Sparse(sb)) = (&a.stiffness, &b.stiffness)
         else {

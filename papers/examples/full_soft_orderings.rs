@@ -77,7 +77,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 continue;
             }
         };
-        let complex = (catalog_entry(DEFAULT_DISCRETIZATION)?.build)(&mesh)?;
+        let complex = catalog_entry(DEFAULT_DISCRETIZATION)?.build(&mesh)?;
         let start = Instant::now();
         complex.dirichlet_energy();
         let assembly_s = start.elapsed().as_secs_f64();

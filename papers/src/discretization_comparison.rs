@@ -1,7 +1,8 @@
-//! The discretization comparison: entries of the catalog ([`crate::registry`]) through the
-//! convergence study of `tvf convergence` ([`tvf_conformance::convergence`]) on icospheres under
-//! refinement — each family's lowest eigenvalues against the unit sphere's `l(l+1)`, the orders
-//! and the time to build each basis — as the study's Markdown table and log–log plot.
+//! The discretization comparison: catalog entries (the built-in ones, [`crate::registry`], or
+//! any others) through the convergence study of `tvf convergence`
+//! ([`tvf_conformance::convergence`]) on icospheres under refinement — each family's lowest
+//! eigenvalues against the unit sphere's `l(l+1)`, the orders and the time to build each basis —
+//! as the study's Markdown table and log–log plot.
 //!
 //! The unit sphere has every `l(l+1)` (`l ≥ 1`, multiplicity `2l+1`) once in each family; the
 //! first `L` degrees are `L(L+2)` eigenvalues per family.
@@ -51,22 +52,7 @@ pub fn run(
     config: &ComparisonConfig,
     progress: &StepLog,
 ) -> Result<ConvergenceReport, FigureError> {
-    let builders: Vec<_> = entries
-        .iter()
-        .map(|entry| {
-            move |mesh: &tvf_core::SurfaceMesh, boundary| {
-                entry.build_with(mesh, boundary).map_err(|e| e.to_string())
-            }
-        })
-        .collect();
-    let candidates: Vec<Candidate<'_>> = entries
-        .iter()
-        .zip(&builders)
-        .map(|(entry, build)| Candidate {
-            name: entry.id.to_string(),
-            build,
-        })
-        .collect();
+    let candidates: Vec<Candidate<'_>> = entries.iter().map(Candidate::from_entry).collect();
     run_convergence(&candidates, &config.study(), &|_, _, row| {
         progress.note(format!("comparison: {}", row.summary()))
     })

@@ -1,10 +1,12 @@
-//! The discretizations papers/ runs: every entry of the catalog of `tvf-discretizations`
-//! ([`tvf_discretizations::catalog`]); a discretization added there is compared here without
-//! another line.
+//! The discretizations papers/ runs: every entry of the built-in catalog of
+//! `tvf-discretizations` ([`tvf_discretizations::Catalog::builtin`]); a discretization added
+//! there is compared here without another line. The comparison itself
+//! ([`crate::discretization_comparison::run`]) takes any entries, e.g. a catalog of one's own
+//! (`catalog.entries()`).
 
 use std::time::Instant;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{catalog, CatalogEntry};
+use tvf_discretizations::{builtin_catalog, CatalogEntry};
 use tvf_figures::FigureError;
 use tvf_spectral::{compute_basis, BasisRequest, SpectralBasis};
 
@@ -17,9 +19,9 @@ pub struct TimedBasis {
     pub seconds: f64,
 }
 
-/// The discretizations of the comparison: the whole catalog.
+/// The discretizations of the comparison: the whole built-in catalog.
 pub fn compared_discretizations() -> &'static [CatalogEntry] {
-    catalog()
+    builtin_catalog().entries()
 }
 
 /// Builds `entry`'s complex on `mesh` and computes the requested basis, timing both together.
@@ -29,7 +31,7 @@ pub fn basis_of(
     request: &BasisRequest<'_>,
 ) -> Result<TimedBasis, FigureError> {
     let start = Instant::now();
-    let complex = (entry.build)(mesh)?;
+    let complex = entry.build(mesh)?;
     let basis = compute_basis(complex.as_ref(), request)?;
     Ok(TimedBasis {
         basis,

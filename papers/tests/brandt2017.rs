@@ -196,19 +196,19 @@ fn every_discretization_converges_on_icospheres() {
         let rows: Vec<_> = report
             .rows
             .iter()
-            .filter(|r| r.discretization == entry.id)
+            .filter(|r| r.discretization == entry.id())
             .collect();
         assert_eq!(rows.len(), 3);
         for w in rows.windows(2) {
             assert!(
                 w[1].integrable_error < w[0].integrable_error,
                 "{}",
-                entry.id
+                entry.id()
             );
             assert!(
                 w[1].cointegrable_error < w[0].cointegrable_error,
                 "{}",
-                entry.id
+                entry.id()
             );
         }
     }

@@ -11,7 +11,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{catalog, catalog_entry, BoxedComplex, MatrixComplex, MatrixSampling};
+use tvf_discretizations::{
+    builtin_catalog, catalog_entry, BoxedComplex, MatrixComplex, MatrixSampling,
+};
 
 /// A complex and the mesh it was built on.
 #[pyclass(frozen, module = "tvf._native")]
@@ -38,7 +40,8 @@ impl Complex {
             .map_err(|e| {
                 tvf_error(format!(
                     "{}: cannot build the discretization '{discretization}' (needs: {}): {e}",
-                    mesh.label, entry.preconditions
+                    mesh.label,
+                    entry.preconditions()
                 ))
             })?;
         Ok(Self {
@@ -154,20 +157,23 @@ impl Complex {
     }
 }
 
-/// The catalog: one dict per entry (`id`, `description`, `preconditions`, `needs_delaunay`,
+/// The built-in catalog: one dict per entry (`id`, `description`, `preconditions`, `needs_delaunay`,
 /// `boundary_conditions`).
 #[pyfunction]
 pub fn discretizations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
-    catalog()
+    builtin_catalog()
         .iter()
         .map(|entry| {
             let d = PyDict::new(py);
-            d.set_item("id", entry.id)?;
-            d.set_item("description", entry.description)?;
-            d.set_item("preconditions", entry.preconditions)?;
-            d.set_item("needs_delaunay", entry.needs_delaunay)?;
-            let conditions: Vec<&str> =
-                entry.boundary_conditions.iter().map(|b| b.name()).collect();
+            d.set_item("id", entry.id())?;
+            d.set_item("description", entry.description())?;
+            d.set_item("preconditions", entry.preconditions())?;
+            d.set_item("needs_delaunay", entry.needs_delaunay())?;
+            let conditions: Vec<&str> = entry
+                .boundary_conditions()
+                .iter()
+                .map(|b| b.name())
+                .collect();
             d.set_item("boundary_conditions", conditions)?;
             Ok(d)
         })

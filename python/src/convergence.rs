@@ -14,12 +14,6 @@ use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::catalog_entry;
 
-/// The constructor of one candidate: a catalog id or a Python callable `(V, F) -> native
-/// Complex` (closed meshes only: a builder on the hemisphere is refused before anything runs).
-type Builder = Box<
-    dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String> + Send + Sync,
->;
-
 /// Runs the study. `candidates` are `(name, id_or_builder)` pairs; `surfaces` names from
 /// `sphere`, `hemisphere-tangential`, `hemisphere-normal`. A dict `rows` (one dict per
 /// candidate, surface and level) and `orders` (one per candidate, surface and family), with
@@ -42,13 +36,11 @@ pub fn convergence<'py>(
             "level {level}: at most 7 (1.3 million sphere faces)"
         )));
     }
-    let mut builders: Vec<Builder> = Vec::new();
+    let mut study: Vec<Candidate<'static>> = Vec::new();
     for (name, source) in &candidates {
         if let Ok(id) = source.extract::<String>(py) {
             let entry = catalog_entry(&id).map_err(|e| from_error(&e))?;
-            builders.push(Box::new(move |mesh, boundary| {
-                entry.build_with(mesh, boundary).map_err(|e| e.to_string())
-            }));
+            study.push(Candidate::from_entry(entry));
             continue;
         }
         if surfaces.iter().any(|s| s.boundary().is_some()) {
@@ -58,9 +50,10 @@ pub fn convergence<'py>(
             )));
         }
         let build = source.clone_ref(py);
-        builders.push(Box::new(move |mesh, _| python_complex(&build, mesh)));
+        study.push(Candidate::new(name.clone(), move |mesh, _| {
+            python_complex(&build, mesh)
+        }));
     }
-    let names: Vec<String> = candidates.iter().map(|(name, _)| name.clone()).collect();
     let config = ConvergenceConfig {
         surfaces,
         levels,
@@ -68,17 +61,7 @@ pub fn convergence<'py>(
     };
     // The study runs without the GIL; a Python builder takes it while it builds.
     let report = py
-        .detach(|| {
-            let study: Vec<Candidate<'_>> = names
-                .iter()
-                .zip(&builders)
-                .map(|(name, build)| Candidate {
-                    name: name.clone(),
-                    build: build.as_ref(),
-                })
-                .collect();
-            run_convergence(&study, &config, &|_, _, _| {})
-        })
+        .detach(|| run_convergence(&study, &config, &|_, _, _| {}))
         .map_err(|e| tvf_error(e.to_string()))?;
     report_dict(py, &report)
 }

@@ -12,10 +12,12 @@
 //!   [`DEFAULT_FIELDS`] if not given). `K ≥ 2F` asks for the complete basis (dense
 //!   eigensolvers, small meshes only). `-k` means this in every subcommand (`tvf spectrum -k K`
 //!   lists the same `K` eigenvalues);
-//! - `--discretization ID` (a catalog id; shorthands `--decomposition NAME`, `--mass NAME`): the
-//!   discretization (default conforming-barycentric); or `--complex DIR`, matrices read from a
-//!   folder (a `--basis` file then must have been computed from the same matrices: a file made
-//!   with `--complex` is reopened by giving `--complex` again);
+//! - `--discretization ID` (an id of the program's catalog, the `RunContext`; shorthands
+//!   `--decomposition NAME`, `--mass NAME`): the discretization (default
+//!   conforming-barycentric). A `--basis` file's discretization is rebuilt through the same
+//!   catalog, so a basis of a program's own entry reopens in that program; or `--complex DIR`,
+//!   matrices read from a folder (a `--basis` file then must have been computed from the same
+//!   matrices: a file made with `--complex` is reopened by giving `--complex` again);
 //! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
 //!
 //! The cache is a [`BasisStore`] (file names and keys are documented there) in `--cache-dir`,
@@ -37,8 +39,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::build_complex;
-use tvf_discretizations::BoxedComplex;
+use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::{
     basis_file_complex_id, compute_basis_of_size, open_basis_file, open_basis_file_with,
     read_basis_header, BasisSize, BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
@@ -92,8 +93,13 @@ impl BasisSource {
     }
 
     /// The basis for `mesh` (see [`BasisOptions::resolve`]) of [`BasisSource::size`].
-    pub fn resolve(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<ResolvedBasis> {
-        self.options.resolve(mesh, input, self.size())
+    pub fn resolve(
+        &self,
+        catalog: &Catalog,
+        mesh: &SurfaceMesh,
+        input: &MeshInput,
+    ) -> Result<ResolvedBasis> {
+        self.options.resolve(catalog, mesh, input, self.size())
     }
 }
 
@@ -109,18 +115,20 @@ pub struct ResolvedBasis {
 
 impl BasisOptions {
     /// The basis for `mesh`: loads `--basis` (checking mesh and discretization) or computes a
-    /// basis of `size`, through the cache unless `--no-cache`.
+    /// basis of `size`, through the cache unless `--no-cache`; the discretization is an entry of
+    /// `catalog`.
     pub fn resolve(
         &self,
+        catalog: &Catalog,
         mesh: &SurfaceMesh,
         input: &MeshInput,
         size: BasisSize,
     ) -> Result<ResolvedBasis> {
         let discretization = match &self.basis {
             Some(_) => None,
-            None => Some(self.discretization.build(mesh, input)?),
+            None => Some(self.discretization.build(catalog, mesh, input)?),
         };
-        self.resolve_with(mesh, input, size, discretization)
+        self.resolve_with(catalog, mesh, input, size, discretization)
     }
 
     /// [`BasisOptions::resolve`] with the discretization already built (by
@@ -128,6 +136,7 @@ impl BasisOptions {
     /// computed); a `--basis` file brings its own, and `discretization` may then be `None`.
     pub fn resolve_with(
         &self,
+        catalog: &Catalog,
         mesh: &SurfaceMesh,
         input: &MeshInput,
         size: BasisSize,
@@ -139,10 +148,11 @@ impl BasisOptions {
             let requested = self.discretization.requested_id();
             let (discretization, basis) = match &self.discretization.complex {
                 Some(_) => {
-                    let complex = self.discretization.build(mesh, input)?;
+                    let complex = self.discretization.build(catalog, mesh, input)?;
                     open_basis_file_with(path, mesh, complex)?
                 }
                 None => open_basis_file(
+                    catalog,
                     path,
                     mesh,
                     requested.as_deref(),
@@ -180,7 +190,7 @@ impl BasisOptions {
         }
         let discretization = match discretization {
             Some(discretization) => discretization,
-            None => self.discretization.build(mesh, input)?,
+            None => self.discretization.build(catalog, mesh, input)?,
         };
         let basis = if self.no_cache {
             compute(&discretization, size)
@@ -271,11 +281,16 @@ impl BasisOptions {
 
     /// The discretization a basis would use, without computing or loading the basis: the
     /// `--basis` file's (read from its header, checked against the discretization flags), else
-    /// the flags' (default conforming-barycentric).
-    pub fn discretization(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<BoxedComplex> {
+    /// the flags' (default conforming-barycentric); built by the entry of `catalog`.
+    pub fn discretization(
+        &self,
+        catalog: &Catalog,
+        mesh: &SurfaceMesh,
+        input: &MeshInput,
+    ) -> Result<BoxedComplex> {
         match &self.basis {
             Some(_) if self.discretization.complex.is_some() => {
-                self.discretization.build(mesh, input)
+                self.discretization.build(catalog, mesh, input)
             }
             Some(path) => {
                 let requested = self.discretization.requested_id();
@@ -284,12 +299,11 @@ impl BasisOptions {
                     requested.as_deref(),
                     self.discretization.boundary,
                 )?;
-                Ok(
-                    build_complex(&id, None, mesh)
-                        .with_context(|| format!("{}", path.display()))?,
-                )
+                Ok(catalog
+                    .build_complex(&id, None, mesh)
+                    .with_context(|| format!("{}", path.display()))?)
             }
-            None => self.discretization.build(mesh, input),
+            None => self.discretization.build(catalog, mesh, input),
         }
     }
 }

@@ -1,32 +1,33 @@
-//! `--discretization ID` (and its shorthands `--decomposition`, `--mass`): which catalog entry a
-//! subcommand builds; `--boundary` its boundary condition on meshes with boundary; or
-//! `--complex DIR`: the five matrices of a folder (`tvf operators -o DIR`, edited, or made by
-//! hand), read by [`tvf_spectral::read_complex_folder`].
+//! `--discretization ID` (and its shorthands `--decomposition`, `--mass`): which entry of the
+//! program's catalog a subcommand builds; `--boundary` its boundary condition on meshes with
+//! boundary; or `--complex DIR`: the five matrices of a folder (`tvf operators -o DIR`, edited,
+//! or made by hand), read by [`tvf_spectral::read_complex_folder`]. The catalog is a value given
+//! at run time ([`crate::run`]), which clap's value parsers cannot see: [`check_ids`] checks the
+//! ids right after parsing, as a usage error.
 
 use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
-use clap::Args;
+use clap::error::ErrorKind;
+use clap::{ArgMatches, Args};
 use std::path::PathBuf;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{
-    build_complex, catalog, catalog_entry, BoxedComplex, DEFAULT_DISCRETIZATION,
-};
+use tvf_discretizations::{BoxedComplex, Catalog, DEFAULT_DISCRETIZATION};
 
 /// The discretization flags shared by every subcommand that builds a complex.
 #[derive(Args, Debug, Clone, Default)]
 pub struct DiscretizationFlags {
     /// Discretization: an id of the catalog (`tvf discretizations` lists them)
     /// [default: conforming-barycentric, or the basis file's].
-    #[arg(long, value_name = "ID", value_parser = catalog_id)]
+    #[arg(long, value_name = "ID")]
     pub discretization: Option<String>,
     /// Shorthand for --discretization NAME-MASS: the decomposition part of the id
     /// (conforming, nonconforming, dec).
-    #[arg(long, value_name = "NAME", conflicts_with = "discretization", value_parser = decomposition_part)]
+    #[arg(long, value_name = "NAME", conflicts_with = "discretization")]
     pub decomposition: Option<String>,
     /// Shorthand for --discretization DECOMPOSITION-NAME: the mass part of the id (barycentric,
     /// voronoi; circumcentric for dec).
-    #[arg(long, value_name = "NAME", conflicts_with = "discretization", value_parser = mass_part)]
+    #[arg(long, value_name = "NAME", conflicts_with = "discretization")]
     pub mass: Option<String>,
     /// Boundary condition on meshes with boundary: tangential (potentials free, co-potentials
     /// zero on the boundary: every eigenfield and harmonic field is tangential to the boundary)
@@ -74,9 +75,15 @@ impl DiscretizationFlags {
         self.boundary.unwrap_or_default()
     }
 
-    /// Builds the chosen complex on `mesh` (loaded from `input`, which names it in errors) with
-    /// the chosen boundary condition, or reads it from the `--complex` folder.
-    pub fn build(&self, mesh: &SurfaceMesh, input: &MeshInput) -> Result<BoxedComplex> {
+    /// Builds the chosen entry of `catalog` on `mesh` (loaded from `input`, which names it in
+    /// errors) with the chosen boundary condition, or reads the complex from the `--complex`
+    /// folder.
+    pub fn build(
+        &self,
+        catalog: &Catalog,
+        mesh: &SurfaceMesh,
+        input: &MeshInput,
+    ) -> Result<BoxedComplex> {
         if let Some(dir) = &self.complex {
             let identity: Vec<usize>;
             let original_vertex = match input.original_vertex() {
@@ -90,9 +97,51 @@ impl DiscretizationFlags {
                 .with_context(|| format!("--complex {} on {}", dir.display(), input.label()))?;
             return Ok(Box::new(complex));
         }
-        build_complex(&self.id(), Some(self.boundary_condition()), mesh)
+        catalog
+            .build_complex(&self.id(), Some(self.boundary_condition()), mesh)
             .with_context(|| input.label())
     }
+}
+
+/// Checks one flag's value against the catalog; the error says what the catalog offers.
+type IdCheck = fn(&str, &Catalog) -> Result<(), String>;
+
+/// Checks the discretization flags of the subcommand in `matches` against `catalog`:
+/// `--discretization` must be an id of the catalog, `--decomposition` / `--mass` the first /
+/// last part of one. The error is a usage error of the subcommand of `command` (exit code 2),
+/// naming the flag and listing what the catalog offers.
+pub fn check_ids(
+    command: &mut clap::Command,
+    matches: &ArgMatches,
+    catalog: &Catalog,
+) -> Result<(), clap::Error> {
+    let Some((name, sub_matches)) = matches.subcommand() else {
+        return Ok(());
+    };
+    let checks: [(&str, &str, IdCheck); 3] = [
+        ("discretization", "--discretization <ID>", catalog_id),
+        (
+            "decomposition",
+            "--decomposition <NAME>",
+            decomposition_part,
+        ),
+        ("mass", "--mass <NAME>", mass_part),
+    ];
+    for (id, flag, check) in checks {
+        // A subcommand without the flag has no such argument: nothing to check.
+        let Ok(Some(value)) = sub_matches.try_get_one::<String>(id) else {
+            continue;
+        };
+        if let Err(problem) = check(value, catalog) {
+            command.build();
+            let message = format!("invalid value '{value}' for '{flag}': {problem}");
+            return Err(match command.find_subcommand_mut(name) {
+                Some(subcommand) => subcommand.error(ErrorKind::InvalidValue, message),
+                None => command.error(ErrorKind::InvalidValue, message),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Accepts `tangential` or `normal`.
@@ -101,35 +150,31 @@ fn boundary_condition(value: &str) -> Result<BoundaryCondition, String> {
         .ok_or_else(|| format!("'{value}' is not a boundary condition: tangential or normal"))
 }
 
-/// Accepts an id of the catalog (a usage error lists them otherwise).
-fn catalog_id(value: &str) -> Result<String, String> {
-    catalog_entry(value)
-        .map(|entry| entry.id.to_string())
-        .map_err(|e| e.to_string())
+/// Accepts an id of the catalog (the error lists them otherwise).
+fn catalog_id(value: &str, catalog: &Catalog) -> Result<(), String> {
+    catalog.get(value).map(|_| ()).map_err(|e| e.to_string())
 }
 
-/// The catalog ids split at their last `-`: (decomposition, mass).
-fn id_parts() -> impl Iterator<Item = (&'static str, &'static str)> {
-    catalog()
-        .iter()
-        .filter_map(|entry| entry.id.rsplit_once('-'))
+/// The catalog's ids split at their last `-`: (decomposition, mass).
+fn id_parts(catalog: &Catalog) -> impl Iterator<Item = (&str, &str)> {
+    catalog.ids().filter_map(|id| id.rsplit_once('-'))
 }
 
-/// Accepts the first part of some catalog id (`conforming`, `nonconforming`, `dec`).
-fn decomposition_part(value: &str) -> Result<String, String> {
-    one_of(value, id_parts().map(|(d, _)| d).collect())
+/// Accepts the first part of some catalog id (`conforming`, `nonconforming`, `dec`, ...).
+fn decomposition_part(value: &str, catalog: &Catalog) -> Result<(), String> {
+    one_of(value, id_parts(catalog).map(|(d, _)| d).collect())
 }
 
-/// Accepts the last part of some catalog id (`barycentric`, `voronoi`, `circumcentric`).
-fn mass_part(value: &str) -> Result<String, String> {
-    one_of(value, id_parts().map(|(_, m)| m).collect())
+/// Accepts the last part of some catalog id (`barycentric`, `voronoi`, `circumcentric`, ...).
+fn mass_part(value: &str, catalog: &Catalog) -> Result<(), String> {
+    one_of(value, id_parts(catalog).map(|(_, m)| m).collect())
 }
 
-fn one_of(value: &str, mut known: Vec<&str>) -> Result<String, String> {
+fn one_of(value: &str, mut known: Vec<&str>) -> Result<(), String> {
     known.sort_unstable();
     known.dedup();
     if known.contains(&value) {
-        Ok(value.to_string())
+        Ok(())
     } else {
         Err(format!("'{value}' is not one of: {}", known.join(", ")))
     }

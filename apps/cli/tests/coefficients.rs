@@ -25,7 +25,14 @@ fn coefficients_of_a_combination_of_basis_fields() {
         .unwrap();
     assert!(status.success());
     let mesh = load_mesh(&mesh_path).unwrap().mesh;
-    let (_, basis) = open_basis_file(&basis_path, &mesh, None, None).unwrap();
+    let (_, basis) = open_basis_file(
+        tvf_discretizations::builtin_catalog(),
+        &basis_path,
+        &mesh,
+        None,
+        None,
+    )
+    .unwrap();
     let space = FaceFields::new(&mesh).unwrap();
     let wanted: Vec<f64> = (0..basis.len())
         .map(|i| if i % 3 == 0 { 0.0 } else { i as f64 - 4.5 })

@@ -426,7 +426,7 @@ fn the_catalog_listing_names_both_boundary_conditions_and_what_they_fix() {
     let temp = tempfile::tempdir().unwrap();
     let listing = json(&run(temp.path(), &["discretizations", "--json"]));
     let entries = listing["discretizations"].as_array().unwrap();
-    assert_eq!(entries.len(), tvf_discretizations::catalog().len());
+    assert_eq!(entries.len(), tvf_discretizations::builtin_catalog().len());
     for entry in entries {
         assert_eq!(
             entry["boundary_conditions"],

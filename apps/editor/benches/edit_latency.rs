@@ -23,7 +23,7 @@ use rayon::prelude::*;
 use serde_json::json;
 use tvf_core::SurfaceMesh;
 use tvf_design::ReducedBasis;
-use tvf_discretizations::DEFAULT_DISCRETIZATION;
+use tvf_discretizations::build_complex;
 use tvf_editor::{decode_field_frame, Editor, EditorServer, EditorSetup};
 
 const D: usize = 1000;
@@ -79,12 +79,14 @@ fn bench(name: &str, mesh: SurfaceMesh, rounds: usize) {
     let basis = synthetic_basis(&mesh, D);
     let basis_seconds = t.elapsed().as_secs_f64();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let complex =
+        build_complex(tvf_discretizations::DEFAULT_DISCRETIZATION, None, &mesh).expect("operators");
     let editor = Editor::start(EditorSetup {
         mesh,
         basis,
         constraints: None,
         basis_size: None,
-        discretization: DEFAULT_DISCRETIZATION.to_string(),
+        complex,
     })
     .expect("editor");
     let server = EditorServer::start(editor, 0).expect("server");

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_design::{ConstraintSet, ReducedBasis};
-use tvf_discretizations::{catalog_entry, split_complex_id};
+use tvf_discretizations::BoxedComplex;
 
 use crate::edit_op::EditOp;
 use crate::engine::{run_engine, Reply, Request, Snapshot};
@@ -31,37 +31,32 @@ pub struct EditorSetup {
     pub constraints: Option<ConstraintSet>,
     /// Number of basis fields to use at first (all if `None`).
     pub basis_size: Option<usize>,
-    /// Catalog id of the discretization the basis belongs to (`conforming-barycentric`, ...).
-    pub discretization: String,
+    /// The complex of `mesh` the basis belongs to, built from the catalog entry of the caller's
+    /// catalog (`Catalog::build_complex`; an entry of one's own as well as a built-in one).
+    pub complex: BoxedComplex,
 }
 
 impl Editor {
-    /// Starts the engine thread: builds the discretization's operators on the mesh, the session and
-    /// the first field. Fails on a degenerate mesh, a bad basis size or constraints that do not
-    /// fit the mesh or are dependent.
+    /// Starts the engine thread: the session and the first field with the complex's operators.
+    /// Fails on a complex without field sampling, a basis of another field dimension, a bad basis
+    /// size or constraints that do not fit the mesh or are dependent.
     pub fn start(setup: EditorSetup) -> Result<Self, EditorError> {
         let EditorSetup {
             mesh,
             basis,
             constraints,
             basis_size,
-            discretization,
+            complex,
         } = setup;
-        let entry = catalog_entry(&discretization)
-            .map_err(|e| EditorError::Discretization(e.to_string()))?;
-        // A complex id on a mesh with boundary names its boundary condition (`…+normal`).
-        let boundary = split_complex_id(&discretization).1.unwrap_or_default();
-        let complex = entry
-            .build_with(&mesh, boundary)
-            .map_err(|e| EditorError::Discretization(e.to_string()))?;
         complex
             .require_sampling()
             .map_err(|e| EditorError::Discretization(e.to_string()))?;
         if basis.field_dimension() != complex.field_dimension() {
             return Err(EditorError::BadRequest {
                 reason: format!(
-                    "the basis has {} rows but the fields of '{discretization}' on this mesh have {}",
+                    "the basis has {} rows but the fields of '{}' on this mesh have {}",
                     basis.field_dimension(),
+                    complex.id(),
                     complex.field_dimension(),
                 ),
             });

@@ -17,6 +17,7 @@
 //! use tvf_editor::{decode_field_frame, EditOp, Editor, EditorSetup};
 //!
 //! let mesh = icosphere(1);
+//! let complex = tvf_discretizations::build_complex("conforming-barycentric", None, &mesh)?;
 //! // A toy basis for the example: the first 12 coordinate fields of the face frames
 //! // (a real one comes from tvf_spectral::compute_basis).
 //! let n = 2 * mesh.face_count();
@@ -29,14 +30,14 @@
 //!     basis,
 //!     constraints: None,
 //!     basis_size: None,
-//!     discretization: tvf_discretizations::DEFAULT_DISCRETIZATION.to_string(),
-//! })
-//! .unwrap();
+//!     complex,
+//! })?;
 //! let op = EditOp::parse(br#"{"op": "add", "constraint":
 //!     {"id": "a", "kind": "vector", "face": 2, "value": [1.0, 0.0, 0.0]}}"#).unwrap();
 //! let frame = decode_field_frame(&editor.edit(op).unwrap()).unwrap();
 //! assert_eq!(frame.status["constraints"].as_array().unwrap().len(), 1);
 //! assert!(editor.check().unwrap().max_relative < 1e-9);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 #![warn(missing_docs)]
 

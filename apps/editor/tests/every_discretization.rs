@@ -6,22 +6,23 @@ mod common;
 
 use common::icosphere_basis_for;
 use tvf_core::generate::icosphere;
-use tvf_discretizations::catalog;
+use tvf_discretizations::builtin_catalog;
 use tvf_editor::{decode_field_frame, EditOp, Editor, EditorSetup};
 
 #[test]
 fn every_catalog_entry_edits_and_meets_its_constraints() {
-    for entry in catalog() {
+    for entry in builtin_catalog() {
         let mesh = icosphere(3);
         let faces = mesh.face_count();
+        let complex = entry.build(&mesh).unwrap();
         let editor = Editor::start(EditorSetup {
             mesh,
-            basis: icosphere_basis_for(entry.id),
+            basis: icosphere_basis_for(entry.id()),
             constraints: None,
             basis_size: None,
-            discretization: entry.id.to_string(),
+            complex,
         })
-        .unwrap_or_else(|e| panic!("{}: {e}", entry.id));
+        .unwrap_or_else(|e| panic!("{}: {e}", entry.id()));
         for constraint in [
             r#"{"id": "v", "kind": "vector", "face": 7, "barycentric": [0.2, 0.3, 0.5], "value": [1.0, 0.5, 0.0]}"#,
             r#"{"id": "s", "kind": "divergence", "face": 300, "value": 2.0}"#,
@@ -30,31 +31,31 @@ fn every_catalog_entry_edits_and_meets_its_constraints() {
             let op = format!(r#"{{"op": "add", "constraint": {constraint}}}"#);
             let frame = editor
                 .edit(EditOp::parse(op.as_bytes()).unwrap())
-                .unwrap_or_else(|e| panic!("{}: {constraint}: {e}", entry.id));
+                .unwrap_or_else(|e| panic!("{}: {constraint}: {e}", entry.id()));
             let frame = decode_field_frame(&frame).unwrap();
             assert_eq!(
                 frame.coefficients.len(),
                 2 * faces,
                 "{}: face-frame.coefficients",
-                entry.id
+                entry.id()
             );
             assert!(
                 frame.coefficients.iter().all(|x| x.is_finite()),
                 "{}",
-                entry.id
+                entry.id()
             );
             assert!(
                 frame.coefficients.iter().any(|x| x.abs() > 1e-3),
                 "{}: the field is not zero",
-                entry.id
+                entry.id()
             );
         }
         let check = editor.check().unwrap();
-        assert_eq!(check.constraints.len(), 3, "{}", entry.id);
+        assert_eq!(check.constraints.len(), 3, "{}", entry.id());
         assert!(
             check.max_relative < 1e-9,
             "{}: residual {}",
-            entry.id,
+            entry.id(),
             check.max_relative
         );
     }
@@ -88,7 +89,7 @@ fn meshes_with_boundary_edit_with_both_boundary_conditions() {
             basis: ReducedBasis::from_spectral(&spectral).unwrap(),
             constraints: None,
             basis_size: None,
-            discretization: complex.id().to_string(),
+            complex,
         })
         .unwrap_or_else(|e| panic!("{id} {boundary:?}: {e}"));
         for constraint in [

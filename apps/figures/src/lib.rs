@@ -25,7 +25,7 @@
 //! use tvf_figures::test_fields::smooth_field;
 //!
 //! let mesh = icosphere(2);
-//! let complex = (catalog_entry(DEFAULT_DISCRETIZATION)?.build)(&mesh)?;
+//! let complex = catalog_entry(DEFAULT_DISCRETIZATION)?.build(&mesh)?;
 //! // A field with all three Hodge parts, one value per field coefficient of the complex.
 //! let field = smooth_field(complex.as_ref(), &mesh);
 //! assert_eq!(field.len(), 2 * mesh.face_count());

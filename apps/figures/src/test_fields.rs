@@ -355,7 +355,10 @@ mod tests {
     #[test]
     fn fields_are_seeded_finite_and_unit_rms() {
         let mesh = torus(1.0, 0.4, 24, 12).unwrap();
-        let boxed = (catalog_entry(DEFAULT_DISCRETIZATION).unwrap().build)(&mesh).unwrap();
+        let boxed = catalog_entry(DEFAULT_DISCRETIZATION)
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let complex = boxed.as_ref();
         let area = mesh.total_area();
         let v = vortex_field(complex, &mesh, 12, 3);

@@ -164,7 +164,7 @@ mod tests {
     }
 
     fn build(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
-        (catalog_entry(id).unwrap().build)(mesh).unwrap()
+        catalog_entry(id).unwrap().build(mesh).unwrap()
     }
 
     fn check_energy(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {

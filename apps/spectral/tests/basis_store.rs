@@ -8,7 +8,10 @@ use common::{changed_diagonal, coupled_field_mass, downgrade, WithFieldMass};
 use std::path::PathBuf;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{open_cylinder, torus};
-use tvf_discretizations::{build_complex, Conforming, MassLumping};
+use tvf_discretizations::{
+    build_complex, builtin_catalog, complex_id, BoxedComplex, Catalog, CatalogEntry, Conforming,
+    CrouzeixRaviart, FaceFields, FiniteElementComplex, LagrangeP1, MassLumping,
+};
 use tvf_spectral::{
     open_basis_file, BasisFileUseError, BasisSize, BasisStore, SpectralBasis, StoredBasisOrigin,
 };
@@ -93,21 +96,82 @@ fn a_basis_file_opens_with_its_own_complex_and_refuses_another() {
         .unwrap();
     let file = store.file(&mesh, complex.as_ref(), BasisSize::Pairs(4));
 
-    let (opened_complex, opened) = open_basis_file(&file, &mesh, None, None).unwrap();
+    let (opened_complex, opened) =
+        open_basis_file(builtin_catalog(), &file, &mesh, None, None).unwrap();
     assert_eq!(opened_complex.id(), "conforming-barycentric+normal");
     assert_eq!(opened.eigenvalues(), basis.eigenvalues());
 
-    let other = open_basis_file(&file, &mesh, Some("dec-circumcentric"), None);
+    let other = open_basis_file(
+        builtin_catalog(),
+        &file,
+        &mesh,
+        Some("dec-circumcentric"),
+        None,
+    );
     assert!(matches!(
         other,
         Err(BasisFileUseError::OtherDiscretization { .. })
     ));
-    let other = open_basis_file(&file, &mesh, None, Some(BoundaryCondition::Tangential));
+    let other = open_basis_file(
+        builtin_catalog(),
+        &file,
+        &mesh,
+        None,
+        Some(BoundaryCondition::Tangential),
+    );
     let message = other.err().unwrap().to_string();
     assert!(
         message.contains("'normal'")
             && message.contains("'tangential'")
             && message.contains(".tvfb"),
+        "{message}"
+    );
+}
+
+/// An entry of a catalog of one's own: the conforming complex with Voronoi masses under the id
+/// `own-voronoi`.
+fn own_entry() -> CatalogEntry {
+    CatalogEntry::new(
+        "own-voronoi",
+        "the conforming complex with Voronoi masses, under another id",
+        |mesh, boundary| -> Result<BoxedComplex, _> {
+            let lumping = MassLumping::Voronoi;
+            Ok(Box::new(FiniteElementComplex::from_spaces_with_boundary(
+                complex_id("own-voronoi", mesh, boundary),
+                mesh,
+                LagrangeP1::new(mesh, lumping)?,
+                CrouzeixRaviart::new(mesh, lumping)?,
+                FaceFields::new(mesh)?,
+                boundary,
+            )?))
+        },
+    )
+    .with_boundary_condition(BoundaryCondition::Tangential, "co-potentials zero")
+}
+
+#[test]
+fn a_basis_file_of_an_own_entry_reopens_through_its_catalog_only() {
+    let folder = tempfile::tempdir().unwrap();
+    let store = BasisStore::new(folder.path().to_path_buf());
+    let mesh = open_cylinder(12, 4, 1.0);
+    let catalog = Catalog::builtin().with(own_entry()).unwrap();
+    let complex = catalog.build_complex("own-voronoi", None, &mesh).unwrap();
+    assert_eq!(complex.id(), "own-voronoi+tangential");
+    let (basis, _) = store
+        .basis(&mesh, complex.as_ref(), BasisSize::Pairs(3), None)
+        .unwrap();
+    let file = store.file(&mesh, complex.as_ref(), BasisSize::Pairs(3));
+
+    let (opened_complex, opened) = open_basis_file(&catalog, &file, &mesh, None, None).unwrap();
+    assert_eq!(opened_complex.id(), "own-voronoi+tangential");
+    assert_eq!(opened.eigenvalues(), basis.eigenvalues());
+
+    let message = open_basis_file(builtin_catalog(), &file, &mesh, None, None)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(
+        message.contains("unknown discretization 'own-voronoi'") && message.contains(".tvfb"),
         "{message}"
     );
 }

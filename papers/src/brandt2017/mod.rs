@@ -289,7 +289,7 @@ pub fn run_mesh(
             sizes.pairs, sizes.pairs
         ),
         || {
-            let complex = (catalog_entry(DEFAULT_DISCRETIZATION)?.build)(mesh)?;
+            let complex = catalog_entry(DEFAULT_DISCRETIZATION)?.build(mesh)?;
             let basis = compute_basis(
                 complex.as_ref(),
                 &BasisRequest::pairs(sizes.pairs).with_seed(1),

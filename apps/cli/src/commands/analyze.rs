@@ -3,6 +3,7 @@
 
 use super::spectral_inputs::{exact_hodge_energies, load_inputs, read_field};
 use crate::basis_source::BasisSource;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
@@ -49,13 +50,18 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 }
 
 /// Runs the analysis and writes the three files.
-pub fn run(mut args: AnalyzeArgs) -> Result<()> {
+pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
     let field_path = args.input.required_second(args.field.take(), "FIELD");
     let basis_file = args.basis.options.basis.as_deref();
     check_output(&args.output, &args.input, &[Some(&field_path), basis_file])?;
-    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
     let field = read_field(&field_path, inputs.fields()?)?;
-    let setup = inputs.with_basis(&args.input, &args.basis.options, args.basis.size())?;
+    let setup = inputs.with_basis(
+        context.catalog(),
+        &args.input,
+        &args.basis.options,
+        args.basis.size(),
+    )?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
     let exact = Some(exact_hodge_energies(setup.complex.as_ref(), &field)?);
     let staged = stage(&args.output)?;

@@ -2,6 +2,7 @@
 //! and/or as numpy arrays (`--export DIR`).
 
 use crate::basis_export::stage_basis_export;
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit};
@@ -53,7 +54,7 @@ pub struct BasisArgs {
 }
 
 /// Computes and saves the basis.
-pub fn run(args: BasisArgs) -> Result<()> {
+pub fn run(args: BasisArgs, context: &RunContext) -> Result<()> {
     if args.fields == 0 {
         bail!("-k 0: ask for at least one eigenfield");
     }
@@ -61,7 +62,9 @@ pub fn run(args: BasisArgs) -> Result<()> {
         check_output(output, &args.input, &[])?;
     }
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input)?;
+    let discretization = args
+        .discretization
+        .build(context.catalog(), &mesh, &args.input)?;
     let progress = Progress::new("basis");
     let (basis, report) = {
         let callback = progress.basis_callback();

@@ -2,7 +2,9 @@
 //! checks on one mesh, or property-based on generated meshes with the minimal failing mesh
 //! written as OBJ (the logic: `tvf_conformance::property_runner`).
 
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
+use crate::mesh_input::MeshInput;
 use crate::progress::Progress;
 use crate::report::Report;
 use anyhow::{bail, Context, Result};
@@ -17,7 +19,7 @@ use tvf_conformance::property_runner::{
 use tvf_conformance::reference_report::catalog_reference_checks;
 use tvf_conformance::strategies::MeshNeeds;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::io::{load_mesh, write_obj};
+use tvf_core::io::write_obj;
 use tvf_core::SurfaceMesh;
 
 /// Arguments of `tvf check`.
@@ -58,23 +60,30 @@ pub struct CheckArgs {
 /// `limit`, `detail`), `failed` (names); for generated meshes also `cases`, `seed`,
 /// `cases_passed` (`checks` then holds each check's worst case) and, on a failure,
 /// `counterexample` (`path`, `faces`, `description`, `reproduce`, `checks`).
-pub fn run(args: CheckArgs) -> Result<()> {
-    let id = args.discretization.id();
-    let reference = catalog_reference_checks(&id);
-    let flags = args.discretization.clone();
-    let builder = move |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
-        flags.build(mesh, "mesh").map_err(|e| format!("{e:#}"))
+pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
+    let catalog = context.catalog();
+    let id = match &args.discretization.complex {
+        Some(dir) => format!("the matrices of {}", dir.display()),
+        None => args.discretization.id(),
     };
+    let reference = catalog_reference_checks(&id);
     let mut report = Report::new(args.json);
     report.set("discretization", &id);
     match &args.mesh {
         Some(path) => {
-            let loaded = load_mesh(path).with_context(|| path.display().to_string())?;
-            let checked = check_mesh(&builder, &loaded.mesh, reference);
+            let input = MeshInput::file(path.clone());
+            let mesh = input.load()?.mesh;
+            let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+                let flags = &args.discretization;
+                flags
+                    .build(catalog, mesh, &input)
+                    .map_err(|e| format!("{e:#}"))
+            };
+            let checked = check_mesh(&builder, &mesh, reference);
             report.line(format!(
                 "{id} on {} ({} faces): {}",
                 path.display(),
-                loaded.mesh.face_count(),
+                mesh.face_count(),
                 verdict(checked.passed())
             ));
             print_outcomes(&report, &checked.outcomes);
@@ -83,9 +92,22 @@ pub fn run(args: CheckArgs) -> Result<()> {
             finish(report, &checked)
         }
         None => {
-            let entry = tvf_discretizations::catalog_entry(&id)?;
+            if let Some(dir) = &args.discretization.complex {
+                bail!(
+                    "--complex {}: a folder holds the matrices of one mesh; give that MESH \
+                     (generated meshes need a catalog entry)",
+                    dir.display()
+                );
+            }
+            let entry = catalog.get(&id)?;
+            let boundary = args.discretization.boundary_condition();
+            let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+                catalog
+                    .build_complex(&id, Some(boundary), mesh)
+                    .map_err(|e| e.to_string())
+            };
             let mut request = PropertyRequest::new(args.cases, args.seed, MeshNeeds::default());
-            request.needs.delaunay = entry.needs_delaunay;
+            request.needs.delaunay = entry.needs_delaunay();
             request.reference = reference.to_vec();
             let progress = Progress::new("check");
             let on_progress = |event: PropertyProgress| match event {

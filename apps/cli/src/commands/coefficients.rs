@@ -3,6 +3,7 @@
 
 use super::spectral_inputs::{load_inputs, read_field};
 use crate::basis_source::BasisSource;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use anyhow::Result;
 use clap::Args;
@@ -32,11 +33,16 @@ pub struct CoefficientsArgs {
 }
 
 /// Computes and prints the coefficients.
-pub fn run(mut args: CoefficientsArgs) -> Result<()> {
+pub fn run(mut args: CoefficientsArgs, context: &RunContext) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
-    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(&args.input, &args.basis.options, args.basis.size())?;
+    let setup = inputs.with_basis(
+        context.catalog(),
+        &args.input,
+        &args.basis.options,
+        args.basis.size(),
+    )?;
     let analysis = FourierAnalysis::new(&setup.basis, &field)?;
     let basis = &setup.basis;
     if args.json {

@@ -3,6 +3,7 @@
 
 use super::spectral_inputs::{load_inputs, read_frames};
 use crate::basis_source::BasisSource;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::progress::Progress;
@@ -55,14 +56,14 @@ pub struct CompressArgs {
 }
 
 /// Compresses the frames, writes the file and reports size and error.
-pub fn run(mut args: CompressArgs) -> Result<()> {
+pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     let basis_file = args.basis.options.basis.as_deref();
     check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
     let size = args.basis.size_or(BasisSize::Pairs(args.pairs));
-    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
     let (frames, source) = read_frames(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(&args.input, &args.basis.options, size)?;
+    let setup = inputs.with_basis(context.catalog(), &args.input, &args.basis.options, size)?;
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },
         None => CoefficientCoding::Float64,

@@ -3,6 +3,7 @@
 //! eigenvalue errors per level, the observed orders and the basis times as a table, JSON and a
 //! log–log plot. The study itself is [`tvf_conformance::convergence`].
 
+use crate::context::RunContext;
 use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
@@ -11,7 +12,7 @@ use std::path::PathBuf;
 use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
 use tvf_conformance::convergence_table::{markdown_table, orders_summary};
 use tvf_core::discretization::BoundaryCondition;
-use tvf_discretizations::{catalog, catalog_entry, CatalogEntry};
+use tvf_discretizations::CatalogEntry;
 use tvf_figures::convergence_plot::convergence_figure;
 use tvf_render::save_png;
 
@@ -78,7 +79,7 @@ impl SurfaceChoice {
 }
 
 /// Runs the study and reports it.
-pub fn run(args: ConvergenceArgs) -> Result<()> {
+pub fn run(args: ConvergenceArgs, context: &RunContext) -> Result<()> {
     if args.min_level > args.max_level {
         bail!(
             "--min-level {} is above --max-level {}",
@@ -98,32 +99,16 @@ pub fn run(args: ConvergenceArgs) -> Result<()> {
     if let Some(output) = &args.output {
         tvf_core::io::check_output(output, &[])?;
     }
+    let catalog = context.catalog();
     let entries: Vec<&CatalogEntry> = if args.discretizations.is_empty() {
-        catalog().iter().collect()
+        catalog.iter().collect()
     } else {
         args.discretizations
             .iter()
-            .map(|id| catalog_entry(id))
+            .map(|id| catalog.get(id))
             .collect::<Result<_, _>>()?
     };
-    let builders: Vec<_> = entries
-        .iter()
-        .map(|entry| {
-            move |mesh: &tvf_core::SurfaceMesh, boundary| {
-                entry
-                    .build_with(mesh, boundary)
-                    .map_err(|e| format!("cannot build (needs: {}): {e}", entry.preconditions))
-            }
-        })
-        .collect();
-    let candidates: Vec<Candidate<'_>> = entries
-        .iter()
-        .zip(&builders)
-        .map(|(entry, build)| Candidate {
-            name: entry.id.to_string(),
-            build,
-        })
-        .collect();
+    let candidates: Vec<Candidate<'_>> = entries.into_iter().map(Candidate::from_entry).collect();
     let config = ConvergenceConfig {
         surfaces: args.surface.surfaces(),
         levels: (args.min_level..=args.max_level).collect(),

@@ -2,6 +2,7 @@
 //! harmonic parts, with the potentials.
 
 use super::spectral_inputs::read_field;
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
@@ -37,11 +38,13 @@ pub struct DecomposeArgs {
 }
 
 /// Decomposes the field and writes the parts.
-pub fn run(mut args: DecomposeArgs) -> Result<()> {
+pub fn run(mut args: DecomposeArgs, context: &RunContext) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     check_output(&args.out, &args.input, &[Some(&field)])?;
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input)?;
+    let discretization = args
+        .discretization
+        .build(context.catalog(), &mesh, &args.input)?;
     let field_path = field;
     let field = read_field(&field_path, discretization.require_sampling()?)?;
     let mut report = Report::new(args.json);

@@ -3,6 +3,7 @@
 use super::spectral_inputs::{inputs_for_mesh, SpectralInputs};
 use crate::basis_source::BasisSource;
 use crate::computed_field::check_computed_field;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::progress::Progress;
@@ -37,7 +38,7 @@ pub struct DecompressArgs {
 }
 
 /// Decodes every frame and writes them.
-pub fn run(mut args: DecompressArgs) -> Result<()> {
+pub fn run(mut args: DecompressArgs, context: &RunContext) -> Result<()> {
     let compressed = args
         .input
         .required_second(args.compressed.take(), "FILE.tvfc");
@@ -46,13 +47,13 @@ pub fn run(mut args: DecompressArgs) -> Result<()> {
     // The mesh first: a bad mesh is reported before a bad file.
     let mesh = args.input.load()?.mesh;
     let file = CompressedFields::read(&compressed)?;
-    let inputs = inputs_for_mesh(mesh, &args.input, &args.basis.options)?;
+    let inputs = inputs_for_mesh(context.catalog(), mesh, &args.input, &args.basis.options)?;
     check_file_fits(&compressed, &file, &inputs)?;
     // Without --basis or -k, compute the basis of as many pairs as the file keeps.
     let size = args
         .basis
         .size_or(BasisSize::Pairs(file.header.pairs as usize));
-    let setup = inputs.with_basis(&args.input, &args.basis.options, size)?;
+    let setup = inputs.with_basis(context.catalog(), &args.input, &args.basis.options, size)?;
     let id = basis_id(&setup.basis);
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;

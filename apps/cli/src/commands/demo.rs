@@ -2,6 +2,7 @@
 //! web page of pictures and numbers, each step timed.
 
 use crate::basis_source::compute;
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{commit, stage};
@@ -77,7 +78,7 @@ pub struct DemoArgs {
 }
 
 /// Runs the demo.
-pub fn run(args: DemoArgs) -> Result<()> {
+pub fn run(args: DemoArgs, context: &RunContext) -> Result<()> {
     if let Some(dir) = &args.discretization.complex {
         bail!(
             "--complex {}: tvf demo builds a catalog discretization on its mesh; run the other \
@@ -124,6 +125,7 @@ pub fn run(args: DemoArgs) -> Result<()> {
         mesh,
         mesh_name,
         fields,
+        catalog: context.catalog().clone(),
         discretization: args.discretization.id(),
         width,
         height,

@@ -6,6 +6,7 @@ use super::spline::{
     DesignInputs,
 };
 use crate::basis_source::BasisSource;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::report::Report;
@@ -18,6 +19,7 @@ use tvf_design::{
     default_regularization, FactorParallelism, FillOrdering, FullSoftDesign, ReducedSoftDesign,
     SoftOptions, DEFAULT_FULL_ORDERING, SEQUENTIAL_FLOP_LIMIT,
 };
+use tvf_discretizations::Catalog;
 use tvf_spectral::write_tangent_field;
 
 /// Arguments of `tvf design`.
@@ -86,18 +88,20 @@ fn factor_parallelism() -> Result<FactorParallelism> {
 }
 
 /// Runs `tvf design`.
-pub fn run(args: DesignArgs) -> Result<()> {
+pub fn run(args: DesignArgs, context: &RunContext) -> Result<()> {
     let mut report = Report::new(args.json);
     let basis_file = args.basis.options.basis.as_deref();
     let inputs = [Some(args.constraints.as_path()), basis_file];
     check_output(&args.output, &args.input, &inputs)?;
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
-    let discretization = discretization(&inputs, &args.input, &args.basis)?;
-    design_with(discretization.as_ref(), &inputs, &args, &mut report)?;
+    let catalog = context.catalog();
+    let complex = discretization(catalog, &inputs, &args.input, &args.basis)?;
+    design_with(catalog, complex.as_ref(), &inputs, &args, &mut report)?;
     report.finish()
 }
 
 fn design_with<H: HodgeComplex + ?Sized>(
+    catalog: &Catalog,
     complex: &H,
     inputs: &DesignInputs,
     args: &DesignArgs,
@@ -193,7 +197,7 @@ fn design_with<H: HodgeComplex + ?Sized>(
         }
         field
     } else {
-        let basis = reduced_basis(inputs, &args.input, &args.basis, out)?;
+        let basis = reduced_basis(catalog, inputs, &args.input, &args.basis, out)?;
         let start = Instant::now();
         let mut design = ReducedSoftDesign::new(&basis, options)
             .with_context(|| format!("{}", inputs.constraints_path.display()))?;

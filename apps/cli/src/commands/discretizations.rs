@@ -1,9 +1,10 @@
-//! `tvf discretizations`: the catalog, one entry per line.
+//! `tvf discretizations`: the program's catalog, one entry per line.
 
+use crate::context::RunContext;
 use anyhow::Result;
 use clap::Args;
 use serde_json::json;
-use tvf_discretizations::{catalog, DEFAULT_DISCRETIZATION};
+use tvf_discretizations::{CatalogEntry, DEFAULT_DISCRETIZATION};
 
 /// Arguments of `tvf discretizations`.
 #[derive(Args)]
@@ -17,19 +18,20 @@ pub struct DiscretizationsArgs {
     json: bool,
 }
 
-/// Prints the catalog.
-pub fn run(args: DiscretizationsArgs) -> Result<()> {
+/// Prints the catalog of `context`.
+pub fn run(args: DiscretizationsArgs, context: &RunContext) -> Result<()> {
     if args.json {
-        let entries: Vec<_> = catalog()
+        let entries: Vec<_> = context
+            .catalog()
             .iter()
             .map(|e| {
                 json!({
-                    "id": e.id,
-                    "description": e.description,
-                    "preconditions": e.preconditions,
+                    "id": e.id(),
+                    "description": e.description(),
+                    "preconditions": e.preconditions(),
                     "boundary_conditions": boundary_names(e),
                     "boundary_meanings": e
-                        .boundary_conditions
+                        .boundary_conditions()
                         .iter()
                         .map(|&b| (b.name().to_string(), json!(e.boundary_meaning(b))))
                         .collect::<serde_json::Map<_, _>>(),
@@ -42,29 +44,45 @@ pub fn run(args: DiscretizationsArgs) -> Result<()> {
         );
         return Ok(());
     }
-    for entry in catalog() {
-        let default = if entry.id == DEFAULT_DISCRETIZATION {
+    for entry in context.catalog() {
+        let default = if entry.id() == DEFAULT_DISCRETIZATION {
             " (default)"
         } else {
             ""
         };
         println!(
             "{}{default} — {}. Preconditions: {}. Boundary conditions on meshes with boundary: {}.",
-            entry.id,
-            entry.description,
-            entry.preconditions,
-            entry
-                .boundary_conditions
-                .iter()
-                .map(|&b| format!("{} ({})", b.name(), entry.boundary_meaning(b)))
-                .collect::<Vec<_>>()
-                .join(", ")
+            entry.id(),
+            entry.description(),
+            entry.preconditions(),
+            boundary_listing(entry)
         );
     }
     Ok(())
 }
 
+/// The boundary conditions an entry offers with what each fixes, the default first (`none` for
+/// an entry that builds on closed meshes only).
+fn boundary_listing(entry: &CatalogEntry) -> String {
+    if entry.boundary_conditions().is_empty() {
+        return "none (closed meshes only)".to_string();
+    }
+    entry
+        .boundary_conditions()
+        .iter()
+        .map(|&b| {
+            let fixes = entry.boundary_meaning(b).unwrap_or_default();
+            format!("{} ({fixes})", b.name())
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
 /// The `--boundary` values an entry offers, the default first.
-fn boundary_names(entry: &tvf_discretizations::CatalogEntry) -> Vec<&'static str> {
-    entry.boundary_conditions.iter().map(|b| b.name()).collect()
+fn boundary_names(entry: &CatalogEntry) -> Vec<&'static str> {
+    entry
+        .boundary_conditions()
+        .iter()
+        .map(|b| b.name())
+        .collect()
 }

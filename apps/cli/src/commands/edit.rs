@@ -1,6 +1,7 @@
 //! `tvf edit`: the interactive spline editor in the browser (a local server on 127.0.0.1).
 
 use crate::basis_source::BasisSource;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -32,12 +33,15 @@ pub struct EditArgs {
 }
 
 /// Runs `tvf edit` until the process is stopped.
-pub fn run(args: EditArgs) -> Result<()> {
+pub fn run(args: EditArgs, context: &RunContext) -> Result<()> {
     let loaded = args.input.load()?;
     let mesh = loaded.mesh;
     // Every input is checked before the basis is computed: the constraints against the
     // discretization they will be compiled for.
-    let complex = args.basis.options.discretization(&mesh, &args.input)?;
+    let complex = args
+        .basis
+        .options
+        .discretization(context.catalog(), &mesh, &args.input)?;
     let constraints = match &args.constraints {
         Some(path) => {
             let set = ConstraintSet::load(path)?;
@@ -50,17 +54,20 @@ pub fn run(args: EditArgs) -> Result<()> {
         None => None,
     };
     let computed_with = args.basis.options.basis.is_none().then_some(complex);
-    let resolved =
-        args.basis
-            .options
-            .resolve_with(&mesh, &args.input, args.basis.size(), computed_with)?;
-    let discretization = resolved.discretization.id().to_string();
+    let resolved = args.basis.options.resolve_with(
+        context.catalog(),
+        &mesh,
+        &args.input,
+        args.basis.size(),
+        computed_with,
+    )?;
     let basis = ReducedBasis::from_spectral(&resolved.basis)?;
     println!(
-        "mesh            {} ({} faces), basis of {} fields, {discretization}",
+        "mesh            {} ({} faces), basis of {} fields, {}",
         args.input.label(),
         mesh.face_count(),
-        basis.len()
+        basis.len(),
+        resolved.discretization.id()
     );
     // Vertex numbers in constraints count the referenced vertices only: say what was dropped.
     for warning in &loaded.report.warnings {
@@ -76,7 +83,7 @@ pub fn run(args: EditArgs) -> Result<()> {
         basis,
         constraints,
         basis_size: None,
-        discretization,
+        complex: resolved.discretization,
     })
     .with_context(|| match &args.constraints {
         Some(path) => format!("starting the editor with {}", path.display()),

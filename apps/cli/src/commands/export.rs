@@ -2,6 +2,7 @@
 //! with per-face vectors and scalars, or OBJ with the field's streamlines as polylines.
 
 use super::spectral_inputs::read_field;
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
@@ -64,7 +65,7 @@ fn format_of(path: &Path) -> Option<Format> {
 }
 
 /// Writes the export.
-pub fn run(mut args: ExportArgs) -> Result<()> {
+pub fn run(mut args: ExportArgs, context: &RunContext) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     check_output(&args.output, &args.input, &[Some(&field)])?;
     let mesh = args.input.load()?.mesh;
@@ -74,7 +75,9 @@ pub fn run(mut args: ExportArgs) -> Result<()> {
             args.output.display()
         );
     };
-    let discretization = args.discretization.build(&mesh, &args.input)?;
+    let discretization = args
+        .discretization
+        .build(context.catalog(), &mesh, &args.input)?;
     let field = read_field(&field, discretization.require_sampling()?)?;
     let vectors = discretization.require_sampling()?.to_face_vectors(&field)?;
     match format {

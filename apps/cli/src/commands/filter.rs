@@ -3,6 +3,7 @@
 use super::spectral_inputs::{load_inputs, read_field};
 use crate::basis_source::BasisSource;
 use crate::computed_field::check_computed_field;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::report::Report;
@@ -69,7 +70,7 @@ fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
 }
 
 /// Filters the field and writes the result.
-pub fn run(mut args: FilterArgs) -> Result<()> {
+pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     let basis_file = args.basis.options.basis.as_deref();
     let curves = [curve_file(&args.integrable), curve_file(&args.cointegrable)];
@@ -82,9 +83,14 @@ pub fn run(mut args: FilterArgs) -> Result<()> {
     }
     let integrable = response("integrable", &args.integrable)?;
     let cointegrable = response("cointegrable", &args.cointegrable)?;
-    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(&args.input, &args.basis.options, args.basis.size())?;
+    let setup = inputs.with_basis(
+        context.catalog(),
+        &args.input,
+        &args.basis.options,
+        args.basis.size(),
+    )?;
     let filter = SpectralFilter {
         integrable,
         cointegrable,

@@ -1,6 +1,7 @@
 //! `tvf operators`: writes the paper's matrices of a mesh as Matrix Market files (or as `.npz`
 //! files `scipy.sparse.load_npz` reads), with the map from the mesh's vertices to the input's.
 
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
@@ -53,11 +54,13 @@ pub enum MatrixFormat {
 
 /// Writes the five matrices of the complex (d0, d1, M0, M1, M2), the derived S0, S2, S, B, J
 /// where the complex has a rotation, vertex_map.npy and info.json.
-pub fn run(args: OperatorsArgs) -> Result<()> {
+pub fn run(args: OperatorsArgs, context: &RunContext) -> Result<()> {
     check_output(&args.out, &args.input, &[])?;
     let loaded = args.input.load()?;
     let mesh = loaded.mesh;
-    let complex = args.discretization.build(&mesh, &args.input)?;
+    let complex = args
+        .discretization
+        .build(context.catalog(), &mesh, &args.input)?;
     let staged = stage(&args.out)?;
     let written = write_all(
         complex.as_ref(),

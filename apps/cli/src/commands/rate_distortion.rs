@@ -3,6 +3,7 @@
 
 use super::spectral_inputs::{load_inputs, read_field};
 use crate::basis_source::BasisSource;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
@@ -56,16 +57,16 @@ pub struct RateDistortionArgs {
 }
 
 /// Measures every point and writes the CSV and the plot.
-pub fn run(mut args: RateDistortionArgs) -> Result<()> {
+pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
     let basis_file = args.basis.options.basis.as_deref();
     check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
     // Without --basis or -k, compute as many pairs as the largest P tried.
     let largest = args.ks.iter().max().copied().unwrap_or(0);
     let size = args.basis.size_or(BasisSize::Pairs(largest));
-    let inputs = load_inputs(&args.input, &args.basis.options)?;
+    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(&args.input, &args.basis.options, size)?;
+    let setup = inputs.with_basis(context.catalog(), &args.input, &args.basis.options, size)?;
     let stamp = FileStamp {
         mesh_fingerprint: setup.mesh_fingerprint,
         basis_id: basis_id(&setup.basis),

@@ -1,6 +1,7 @@
 //! `tvf render`: a picture of a mesh and (optionally) a tangent field, in software.
 
 use super::spectral_inputs::read_field;
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::{usage_error, MeshInput};
 use crate::output_rules::check_output;
@@ -83,7 +84,7 @@ pub struct RenderArgs {
 }
 
 /// Renders the picture and writes the PNG.
-pub fn run(mut args: RenderArgs) -> Result<()> {
+pub fn run(mut args: RenderArgs, context: &RunContext) -> Result<()> {
     let field_path = args.input.optional_second(args.field.take(), "FIELD");
     let inputs = [field_path.as_deref(), args.constraints.as_deref()];
     check_output(&args.output, &args.input, &inputs)?;
@@ -98,7 +99,9 @@ pub fn run(mut args: RenderArgs) -> Result<()> {
     }
     let start = Instant::now();
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input)?;
+    let discretization = args
+        .discretization
+        .build(context.catalog(), &mesh, &args.input)?;
     let field = match &field_path {
         Some(path) => Some(read_field(path, discretization.require_sampling()?)?),
         None => None,

@@ -11,8 +11,8 @@ use std::path::Path;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::BoxedComplex;
 use tvf_discretizations::HodgeDecomposer;
+use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::BasisSize;
 use tvf_spectral::{read_field_file, read_field_frames, EnergySplit, FrameSource, SpectralBasis};
 
@@ -40,18 +40,24 @@ pub struct SpectralInputs {
     pub complex: BoxedComplex,
 }
 
-/// Loads the mesh and builds its discretization (see [`SpectralInputs`]).
-pub fn load_inputs(input: &MeshInput, source: &BasisOptions) -> Result<SpectralInputs> {
-    inputs_for_mesh(input.load()?.mesh, input, source)
+/// Loads the mesh and builds its discretization, an entry of `catalog` (see
+/// [`SpectralInputs`]).
+pub fn load_inputs(
+    catalog: &Catalog,
+    input: &MeshInput,
+    source: &BasisOptions,
+) -> Result<SpectralInputs> {
+    inputs_for_mesh(catalog, input.load()?.mesh, input, source)
 }
 
 /// [`load_inputs`] for a mesh already loaded from `input`.
 pub fn inputs_for_mesh(
+    catalog: &Catalog,
     mesh: SurfaceMesh,
     input: &MeshInput,
     source: &BasisOptions,
 ) -> Result<SpectralInputs> {
-    let complex = source.discretization(&mesh, input)?;
+    let complex = source.discretization(catalog, &mesh, input)?;
     Ok(SpectralInputs { mesh, complex })
 }
 
@@ -65,12 +71,13 @@ impl SpectralInputs {
     /// mesh or discretization) or a basis computed once and cached (see [`BasisOptions`]).
     pub fn with_basis(
         self,
+        catalog: &Catalog,
         input: &MeshInput,
         source: &BasisOptions,
         size: BasisSize,
     ) -> Result<SpectralSetup> {
         let computed_with = source.basis.is_none().then_some(self.complex);
-        let resolved = source.resolve_with(&self.mesh, input, size, computed_with)?;
+        let resolved = source.resolve_with(catalog, &self.mesh, input, size, computed_with)?;
         Ok(SpectralSetup {
             discretization: resolved.discretization.id().to_string(),
             complex: resolved.discretization,

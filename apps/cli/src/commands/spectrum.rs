@@ -1,6 +1,7 @@
 //! `tvf spectrum`: the lowest eigenvalues of the Hodge–Laplacian on tangent fields, labelled by
 //! family.
 
+use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::progress::Progress;
@@ -33,13 +34,15 @@ pub struct SpectrumArgs {
 }
 
 /// Computes and prints the spectrum.
-pub fn run(args: SpectrumArgs) -> Result<()> {
+pub fn run(args: SpectrumArgs, context: &RunContext) -> Result<()> {
     if args.count == 0 {
         bail!("-k 0: ask for at least one eigenvalue");
     }
     let start = Instant::now();
     let mesh = args.input.load()?.mesh;
-    let discretization = args.discretization.build(&mesh, &args.input)?;
+    let discretization = args
+        .discretization
+        .build(context.catalog(), &mesh, &args.input)?;
     let progress = Progress::new("spectrum");
     let (basis, _) = {
         let callback = progress.basis_callback();

@@ -2,6 +2,7 @@
 //! constraint file, in a loaded or freshly computed eigenbasis.
 
 use crate::basis_source::BasisSource;
+use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::report::Report;
@@ -16,7 +17,7 @@ use tvf_design::{
     checked_residuals, worst_residual, CompiledConstraint, ConstraintAssembler, ConstraintResidual,
     ConstraintSet, ReducedBasis, SplineSession,
 };
-use tvf_discretizations::BoxedComplex;
+use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::write_tangent_field;
 
 /// Arguments of `tvf spline`.
@@ -90,23 +91,25 @@ pub fn load_inputs(
 /// The discretization of `source` (the basis file's, or the flags'), without the basis: for
 /// checking the constraints before an expensive basis computation.
 pub fn discretization(
+    catalog: &Catalog,
     inputs: &DesignInputs,
     input: &MeshInput,
     source: &BasisSource,
 ) -> Result<BoxedComplex> {
-    source.options.discretization(&inputs.mesh, input)
+    source.options.discretization(catalog, &inputs.mesh, input)
 }
 
 /// The basis of `source` (loaded, cached or computed; see [`crate::basis_source`]), row-major
 /// for the solvers.
 pub fn reduced_basis(
+    catalog: &Catalog,
     inputs: &DesignInputs,
     input: &MeshInput,
     source: &BasisSource,
     report: &mut Report,
 ) -> Result<ReducedBasis> {
     let start = Instant::now();
-    let resolved = source.resolve(&inputs.mesh, input)?;
+    let resolved = source.resolve(catalog, &inputs.mesh, input)?;
     let seconds = start.elapsed().as_secs_f64();
     report.line(format!(
         "basis           {} fields of {} ready in {seconds:.3} s",
@@ -161,25 +164,33 @@ pub fn report_residuals(residuals: &[ConstraintResidual], report: &mut Report) {
 }
 
 /// Runs `tvf spline`.
-pub fn run(args: SplineArgs) -> Result<()> {
+pub fn run(args: SplineArgs, context: &RunContext) -> Result<()> {
     let mut report = Report::new(args.json);
     let basis_file = args.basis.options.basis.as_deref();
     let inputs = [Some(args.constraints.as_path()), basis_file];
     check_output(&args.output, &args.input, &inputs)?;
     let inputs = load_inputs(&args.input, &args.constraints, &mut report)?;
-    let discretization = discretization(&inputs, &args.input, &args.basis)?;
-    spline_with(discretization.as_ref(), &inputs, &args, &mut report)?;
+    let catalog = context.catalog();
+    let discretization = discretization(catalog, &inputs, &args.input, &args.basis)?;
+    spline_with(
+        catalog,
+        discretization.as_ref(),
+        &inputs,
+        &args,
+        &mut report,
+    )?;
     report.finish()
 }
 
 fn spline_with<H: HodgeComplex + ?Sized>(
+    catalog: &Catalog,
     complex: &H,
     inputs: &DesignInputs,
     args: &SplineArgs,
     report: &mut Report,
 ) -> Result<()> {
     let constraints = compile(complex, inputs)?;
-    let basis = reduced_basis(inputs, &args.input, &args.basis, report)?;
+    let basis = reduced_basis(catalog, inputs, &args.input, &args.basis, report)?;
     let start = Instant::now();
     let mut session = SplineSession::new(&basis, inputs.set.omega)
         .with_context(|| format!("{}", inputs.constraints_path.display()))?;

@@ -33,8 +33,10 @@ pub fn icosphere_basis_for(id: &str) -> ReducedBasis {
         .entry(id.to_string())
         .or_insert_with(|| {
             let mesh = icosphere(3);
-            let complex =
-                (catalog_entry(id).expect("catalog id").build)(&mesh).expect("icosphere operators");
+            let complex = catalog_entry(id)
+                .expect("catalog id")
+                .build(&mesh)
+                .expect("icosphere operators");
             // The complete basis by the dense eigensolvers (exact, about 2 s here), of which the
             // first 100 columns are the 100 lowest eigenfields.
             let spectral = compute_basis(complex.as_ref(), &BasisRequest::complete())
@@ -61,12 +63,17 @@ pub fn icosphere_server() -> EditorServer {
 
 /// [`icosphere_server`] with the catalog entry `id`.
 pub fn icosphere_server_for(id: &str) -> EditorServer {
+    let mesh = icosphere(3);
+    let complex = catalog_entry(id)
+        .expect("catalog id")
+        .build(&mesh)
+        .expect("icosphere operators");
     let editor = Editor::start(EditorSetup {
-        mesh: icosphere(3),
+        mesh,
         basis: icosphere_basis_for(id),
         constraints: None,
         basis_size: None,
-        discretization: id.to_string(),
+        complex,
     })
     .expect("editor starts");
     EditorServer::start(editor, 0).expect("server starts")
@@ -78,7 +85,7 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
 /// mesh.
 pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, SurfaceMesh) {
     let entry = catalog_entry(id).expect("catalog id");
-    let mesh = if entry.needs_delaunay {
+    let mesh = if entry.needs_delaunay() {
         tvf_conformance::corpus::delaunay_flips(&perforated_plate(2, 8))
     } else {
         perforated_plate(2, 8)
@@ -90,7 +97,7 @@ pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer,
         basis: ReducedBasis::from_spectral(&spectral).expect("reduced basis"),
         constraints: None,
         basis_size: None,
-        discretization: complex.id().to_string(),
+        complex,
     })
     .expect("editor starts");
     (EditorServer::start(editor, 0).expect("server starts"), mesh)

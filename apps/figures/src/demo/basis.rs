@@ -4,7 +4,6 @@ use super::page::Section;
 use super::DemoConfig;
 use super::DemoHost;
 use crate::error::FigureError;
-use tvf_discretizations::build_complex;
 use tvf_discretizations::BoxedComplex;
 use tvf_render::save_png;
 use tvf_render::{draw_field, FaceQuantity, Overlays, Style, Tint, View};
@@ -16,8 +15,10 @@ pub fn run(
     host: &dyn DemoHost,
 ) -> Result<(Section, BoxedComplex, SpectralBasis), FigureError> {
     let mesh = &config.mesh;
-    let discretization =
-        build_complex(&config.discretization, None, mesh).map_err(|e| FigureError::InContext {
+    let discretization = config
+        .catalog
+        .build_complex(&config.discretization, None, mesh)
+        .map_err(|e| FigureError::InContext {
             context: config.mesh_name.clone(),
             source: Box::new(e.into()),
         })?;

@@ -25,7 +25,7 @@ use page::Section;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::BoxedComplex;
+use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_render::save_png;
 use tvf_render::View;
 use tvf_spectral::BasisSize;
@@ -41,7 +41,11 @@ pub struct DemoConfig {
     pub mesh_name: String,
     /// Eigenfields of the basis (`-k`, harmonic ones included).
     pub fields: usize,
-    /// Catalog id of the discretization.
+    /// The catalog the discretization is taken from (the program's: built-in entries and its
+    /// own).
+    pub catalog: Catalog,
+    /// Id of the discretization in `catalog` (built with the entry's default boundary condition
+    /// on a mesh with boundary).
     pub discretization: String,
     /// Size of a full-width picture (panels of grids are half of it each way).
     pub width: u32,

@@ -1,13 +1,15 @@
 //! [`open_basis_file`]: a basis file together with the complex it was computed for, rebuilt
-//! from the catalog id stored in its header; [`open_basis_file_with`] for a complex the caller
-//! has (one read from a complex folder, whose matrices no id can rebuild).
+//! from the complex id stored in its header through the catalog the basis was made with (an
+//! entry of a program's own catalog reopens only through that catalog); [`open_basis_file_with`]
+//! for a complex the caller has (one read from a complex folder, whose matrices no id can
+//! rebuild).
 
 use crate::{load_basis, read_basis_header, BasisFileError, BasisFileKey, SpectralBasis};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{build_complex, split_complex_id, BoxedComplex, CatalogBuildError};
+use tvf_discretizations::{split_complex_id, BoxedComplex, Catalog, CatalogBuildError};
 
 /// Why a basis file cannot be used on a mesh (every variant names the file).
 #[derive(Debug, Error)]
@@ -49,8 +51,8 @@ pub enum BasisFileUseError {
     Complex {
         /// The basis file.
         path: PathBuf,
-        /// Why the catalog could not build it.
-        source: CatalogBuildError,
+        /// Why the catalog could not build it (boxed: the error is large).
+        source: Box<CatalogBuildError>,
     },
 }
 
@@ -89,32 +91,37 @@ pub fn basis_file_complex_id(
     Ok(stored)
 }
 
-/// The complex a basis file was computed for, built on `mesh` (see [`basis_file_complex_id`]
-/// for `entry` and `boundary`).
+/// The complex a basis file was computed for, built on `mesh` by the entry of `catalog` its
+/// stored id names (see [`basis_file_complex_id`] for `entry` and `boundary`).
 pub fn basis_file_complex(
+    catalog: &Catalog,
     path: &Path,
     mesh: &SurfaceMesh,
     entry: Option<&str>,
     boundary: Option<BoundaryCondition>,
 ) -> Result<BoxedComplex, BasisFileUseError> {
     let id = basis_file_complex_id(path, entry, boundary)?;
-    build_complex(&id, None, mesh).map_err(|source| BasisFileUseError::Complex {
-        path: path.to_path_buf(),
-        source,
-    })
+    catalog
+        .build_complex(&id, None, mesh)
+        .map_err(|source| BasisFileUseError::Complex {
+            path: path.to_path_buf(),
+            source: Box::new(source),
+        })
 }
 
-/// Reads the basis file `path` for `mesh`: its complex (see [`basis_file_complex`]) and the
+/// Reads the basis file `path` for `mesh`: its complex, built through `catalog` (see
+/// [`basis_file_complex`]), and the
 /// basis, checked to belong to the mesh and the complex — for a file of format version 3 to the
 /// complex's matrices too ([`BasisFileError::WrongMatrices`] otherwise; earlier files carry no
 /// matrix hash, see [`crate::formats::basis_file`]).
 pub fn open_basis_file(
+    catalog: &Catalog,
     path: &Path,
     mesh: &SurfaceMesh,
     entry: Option<&str>,
     boundary: Option<BoundaryCondition>,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
-    let complex = basis_file_complex(path, mesh, entry, boundary)?;
+    let complex = basis_file_complex(catalog, path, mesh, entry, boundary)?;
     let basis = load_basis(
         path,
         &BasisFileKey::new(mesh, complex.as_ref()),

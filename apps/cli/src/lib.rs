@@ -1,0 +1,160 @@
+//! `tvf` as a library: [`run`] parses the command line and runs a subcommand with the
+//! discretizations of a [`Catalog`]. The `tvf` binary is `tvf_cli::run(Catalog::builtin())`; a
+//! crate of your own adds its entries first and gets every subcommand for them (see
+//! `examples/own-discretization`):
+//!
+//! ```no_run
+//! use tvf_discretizations::Catalog;
+//!
+//! fn main() -> std::process::ExitCode {
+//!     tvf_cli::run(Catalog::builtin())
+//! }
+//! ```
+//!
+//! Exit codes: 0 success, 1 bad input or failed computation, 2 usage error (clap; an id that is
+//! not in the catalog is one).
+
+mod basis_export;
+mod basis_source;
+mod cache_folder;
+mod commands;
+mod computed_field;
+mod context;
+mod discretization_flags;
+mod examples;
+mod interrupt;
+mod mesh_input;
+mod output_rules;
+mod picture_options;
+mod progress;
+mod report;
+mod test_faults;
+
+use clap::{CommandFactory, FromArgMatches, Subcommand};
+use std::process::ExitCode;
+use tvf_discretizations::Catalog;
+
+use context::RunContext;
+
+/// Spectral processing of tangential vector fields on triangle meshes.
+#[derive(clap::Parser)]
+#[command(name = "tvf", version, about, long_about = None)]
+struct Cli {
+    /// No progress bars and no notes on stderr (warnings and errors are still shown).
+    #[arg(short, long, global = true)]
+    quiet: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Report a mesh's counts, topology, angles and validation findings.
+    Info(commands::info::InfoArgs),
+    /// List the discretizations of the catalog (ids for --discretization).
+    Discretizations(commands::discretizations::DiscretizationsArgs),
+    /// Check a discretization: the conformance checks on a mesh, or on generated meshes with the minimal failing one written as OBJ.
+    Check(commands::check::CheckArgs),
+    /// Compute the Fourier basis (harmonic fields + K pairs of eigenfields) and save it (.tvfb).
+    Basis(commands::basis::BasisArgs),
+    /// The lowest K eigenvalues of the Hodge–Laplacian on tangent fields, labelled by family.
+    Spectrum(commands::spectrum::SpectrumArgs),
+    /// Hodge decomposition of a field: integrable, co-integrable and harmonic parts, potentials.
+    Decompose(commands::decompose::DecomposeArgs),
+    /// Fourier coefficients of a field in a basis file, and the rest field's share.
+    Coefficients(commands::coefficients::CoefficientsArgs),
+    /// Write a discretization's matrices (d0, d1, M0, M1, M2, S0, S2, S, B, J) as Matrix Market files.
+    Operators(commands::operators::OperatorsArgs),
+    /// Filter a field in its spectral basis (low-pass, high-pass, band-pass, cut-off, drawn curves).
+    Filter(commands::filter::FilterArgs),
+    /// Spectral analysis of a field: coefficients against frequency (CSV, PNG) and Hodge energies.
+    Analyze(commands::analyze::AnalyzeArgs),
+    /// Compress a field or a sequence of fields into a .tvfc file (64-bit or quantised coefficients).
+    Compress(commands::compress::CompressArgs),
+    /// Decompress a .tvfc file into fields.
+    Decompress(commands::decompress::DecompressArgs),
+    /// Rate–distortion curves of spectral compression (CSV and PNG plot).
+    RateDistortion(commands::rate_distortion::RateDistortionArgs),
+    /// A tangential vector field spline (hard constraints) from a JSON constraint file.
+    Spline(commands::spline::SplineArgs),
+    /// Soft-constrained field design (Fisher et al.), full or reduced, from a JSON constraint file.
+    Design(commands::design::DesignArgs),
+    /// Convergence against exact spectra (unit sphere, hemisphere): errors, orders, times, plot.
+    Convergence(commands::convergence::ConvergenceArgs),
+    /// Render a mesh and a field to PNG (colour map, arrows, streamlines or LIC, constraints).
+    Render(commands::render::RenderArgs),
+    /// Export a mesh and a field as VTK, PLY (per-face data) or OBJ (streamlines as polylines).
+    Export(commands::export::ExportArgs),
+    /// The tour: a web page of pictures and numbers on a generated bumpy torus (no input needed).
+    Demo(commands::demo::DemoArgs),
+    /// The interactive spline editor in the browser: a local server on 127.0.0.1 serving a WebGL2 page.
+    Edit(commands::edit::EditArgs),
+}
+
+/// Runs the subcommand of the process's command line with the discretizations of `catalog`
+/// (every `--discretization` id is looked up there, basis files reopen through it, `tvf
+/// discretizations` lists it) and returns the exit code; a usage error (clap, or an id the
+/// catalog does not know) ends the process with code 2 and the usage message.
+pub fn run(catalog: Catalog) -> ExitCode {
+    interrupt::install();
+    test_faults::install();
+    let mut command = Cli::command();
+    let matches = command.get_matches_mut();
+    if let Err(error) = discretization_flags::check_ids(&mut command, &matches, &catalog) {
+        error.exit();
+    }
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|error| error.exit());
+    if !matches!(cli.command, Command::Edit(_)) {
+        interrupt::end_quietly_on_closed_pipe();
+    }
+    progress::set_quiet(cli.quiet);
+    let context = RunContext::new(catalog);
+    let context = &context;
+    let result = match cli.command {
+        Command::Info(args) => commands::info::run(args),
+        Command::Discretizations(args) => commands::discretizations::run(args, context),
+        Command::Basis(args) => commands::basis::run(args, context),
+        Command::Spectrum(args) => commands::spectrum::run(args, context),
+        Command::Decompose(args) => commands::decompose::run(args, context),
+        Command::Coefficients(args) => commands::coefficients::run(args, context),
+        Command::Operators(args) => commands::operators::run(args, context),
+        Command::Filter(args) => commands::filter::run(args, context),
+        Command::Analyze(args) => commands::analyze::run(args, context),
+        Command::Compress(args) => commands::compress::run(args, context),
+        Command::Decompress(args) => commands::decompress::run(args, context),
+        Command::RateDistortion(args) => commands::rate_distortion::run(args, context),
+        Command::Spline(args) => commands::spline::run(args, context),
+        Command::Design(args) => commands::design::run(args, context),
+        Command::Check(args) => commands::check::run(args, context),
+        Command::Convergence(args) => commands::convergence::run(args, context),
+        Command::Render(args) => commands::render::run(args, context),
+        Command::Export(args) => commands::export::run(args, context),
+        Command::Demo(args) => commands::demo::run(args, context),
+        Command::Edit(args) => commands::edit::run(args, context),
+    };
+    interrupt::yield_to_interruption();
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {}", error_message(&error));
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// The error and its causes, joined by `": "`, leaving out a cause whose text the message
+/// already holds (typed errors often print their source themselves).
+fn error_message(error: &anyhow::Error) -> String {
+    let mut message = String::new();
+    for cause in error.chain() {
+        let text = cause.to_string();
+        if message.contains(&text) {
+            continue;
+        }
+        if !message.is_empty() {
+            message.push_str(": ");
+        }
+        message.push_str(&text);
+    }
+    message
+}

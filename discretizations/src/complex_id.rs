@@ -1,0 +1,52 @@
+//! The id a complex reports: its catalog entry's id on a closed mesh, `{entry id}+{condition}`
+//! on a mesh with boundary. Basis files store it and cached bases are named with it, so that a
+//! basis of one boundary condition is never taken for the other; [`split_complex_id`] reads it
+//! back.
+
+use tvf_core::discretization::BoundaryCondition;
+use tvf_core::SurfaceMesh;
+
+/// The id of the complex of catalog entry `entry_id` on `mesh` with boundary condition
+/// `boundary`: `entry_id` on a closed mesh, `{entry_id}+{boundary}` on a mesh with boundary.
+pub fn complex_id(entry_id: &str, mesh: &SurfaceMesh, boundary: BoundaryCondition) -> String {
+    if mesh.is_closed() {
+        entry_id.to_string()
+    } else {
+        format!("{entry_id}+{}", boundary.name())
+    }
+}
+
+/// Splits a complex id into the catalog entry's id and the boundary condition it names:
+/// `conforming-barycentric+normal` → (`conforming-barycentric`, `Some(Normal)`);
+/// `conforming-barycentric` → (`conforming-barycentric`, `None`) (a closed mesh). A suffix that
+/// names no boundary condition is part of the id.
+pub fn split_complex_id(id: &str) -> (&str, Option<BoundaryCondition>) {
+    match id.split_once('+') {
+        Some((entry, boundary)) => match BoundaryCondition::from_name(boundary) {
+            Some(condition) => (entry, Some(condition)),
+            None => (id, None),
+        },
+        None => (id, None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tvf_core::generate::{disk, icosphere};
+
+    #[test]
+    fn ids_name_the_condition_on_meshes_with_boundary_only_and_split_back() {
+        let closed = icosphere(1);
+        assert_eq!(complex_id("x-y", &closed, BoundaryCondition::Normal), "x-y");
+        let open = disk(2);
+        let id = complex_id("x-y", &open, BoundaryCondition::Normal);
+        assert_eq!(id, "x-y+normal");
+        assert_eq!(
+            split_complex_id(&id),
+            ("x-y", Some(BoundaryCondition::Normal))
+        );
+        assert_eq!(split_complex_id("x-y"), ("x-y", None));
+        assert_eq!(split_complex_id("x+z"), ("x+z", None));
+    }
+}
