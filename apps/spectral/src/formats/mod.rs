@@ -2,7 +2,6 @@
 //! files (`.tvfb`) with the complex they belong to, compressed fields (`.tvfc`), and the
 //! content id of a basis. Every write is atomic; every error names the file.
 
-pub(crate) mod atomic_write;
 pub(crate) mod basis_file;
 pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_header;
