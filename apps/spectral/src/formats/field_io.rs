@@ -180,7 +180,8 @@ fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> FieldIoError + '_ {
     }
 }
 
-/// Reads any `.npy` array of `f32`/`f64` (C order). No more bytes are read than the header
+/// Reads any `.npy` array of floats or integers (either byte order, C or Fortran order; values
+/// as `f64` in C order, see [`NpyArray::from_bytes`]). No more bytes are read than the header
 /// justifies (the header, the data its shape needs, one byte to detect trailing data), so a
 /// stream that never ends is refused.
 pub fn read_npy(path: &Path) -> Result<NpyArray, FieldIoError> {
