@@ -25,9 +25,9 @@
 //!    restarts, or whose pairs disagree with its counts, is split near (not at) its midpoint
 //!    (one more count) and the halves are solved with their own midpoints as shifts: a shift
 //!    that lands next to an eigenvalue makes `max|θ|` huge and the far end of the interval
-//!    unresolvable (`ε·max|θ| > tolerance·|θ|`: the slice restarts until its restart limit, which
-//!    was 1000), and a cluster that straddles an interval end converges slowly; both are cured by
-//!    a different shift and a narrower interval.
+//!    unresolvable (`ε·max|θ| > tolerance·|θ|`: the slice restarts until its restart limit), and
+//!    a cluster that straddles an interval end converges slowly; both are cured by a different
+//!    shift and a narrower interval.
 //! 3. *Refinement*, by the interval's job right after its solve, with the same factorization
 //!    (so no factorization outlives its job): pairs whose eigenfield residual still misses
 //!    `EigenOptions::refinement_target` (and is clearly above its rounding floor) get
@@ -42,10 +42,10 @@
 //! Memory: each job writes its refined eigenvectors straight into its columns of the pencil's
 //! `n × k` result (reserved up front, so each column is touched once, by its job), and a slice's
 //! Krylov basis, locked vectors and buffers are handed to the next job
-//! ([`super::workspace_pool`]). Fresh memory is expensive: the kernel zeroes every new page
-//! (on the 2-core test VM, first touches ran at 0.5–2 GB/s against 25 GB/s for a second
-//! pass), and on bunny-closed the per-slice bases and stores, and the copy of every interval's
-//! vectors into the result, were about a tenth of the processor time.
+//! ([`super::workspace_pool`]). Fresh memory is expensive: the kernel faults in and zeroes
+//! every new page on first touch, many times slower than a second pass over it, which made the
+//! per-slice bases and a copy of every interval's vectors a visible share of the processor
+//! time (numbers in `docs/performance.md`).
 
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::mass::Mass;
@@ -936,8 +936,8 @@ fn run_jobs<T: Send>(
 /// Restores M-orthogonality across interval boundaries: `X_i ← X_i − X_p (X_pᵀ M X_i)` with
 /// `p` the previous non-empty interval, on the columns of `vectors` (`n × k`) that `parts`
 /// (ascending) fill in order. Eigenvectors of different intervals are orthogonal
-/// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (measured:
-/// `|XᵀMX − I|` of 3·10⁻¹⁰ for the Crouzeix–Raviart bunny at k = 500 without this).
+/// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (see
+/// `docs/performance.md` for the loss of orthogonality without this step).
 /// Intervals further apart are separated by at least an interval's width. Costs two
 /// `n × s × s` products per boundary; the change of each vector is of the size of that error,
 /// so residuals and in-interval orthonormality stay as they were.

@@ -23,7 +23,7 @@
 //! (`V ← V Y`, `H ← Θ`, `G ← G Y`), and the rest is purged. Once at most half of the slice's
 //! pairs are still missing, the expansion checks every [`COMPLETION_CHECK_BLOCKS`] blocks whether
 //! the Ritz pairs of `H` already complete the slice, and stops there instead of filling the
-//! basis: 6–10 % fewer solves on hand, kitten and bunny-closed (k = 500 per pencil).
+//! basis, which saves solves (on average half a cycle's; measured in `docs/performance.md`).
 
 use super::mass::Mass;
 use super::mass_orthogonal::{
@@ -200,10 +200,10 @@ impl SliceMemory {
 /// reserved afresh on huge pages; memory more than twice too large (a slice of the other,
 /// smaller pencil after the large one) is shrunk in place (glibc shrinks a large allocation
 /// with `mremap`, without moving it), so the pages it keeps are ones it has touched already
-/// (fresh pages cost a kernel fault and zeroing each, see `interval_slicing.rs`: on bunny-closed
-/// the whole basis took 1.6 s of system time instead of 2.6–2.9 s). Kept oversized, the memory of the large pencil's slices would stay
-/// for the small pencil's (at a million faces 4 GB per thread while the last intervals fill the
-/// eigenvectors: a peak of 18.3 GiB instead of 17.1).
+/// (fresh pages cost a kernel fault and zeroing each, see `interval_slicing.rs`). Kept
+/// oversized, the memory of the large pencil's slices would stay for the small pencil's (GBs
+/// per thread at a million faces while the last intervals fill the eigenvectors, which raises
+/// the peak; numbers in `docs/performance.md`).
 fn fit_memory(values: &mut Vec<f64>, len: usize) {
     if values.capacity() < len {
         *values = Vec::new();
