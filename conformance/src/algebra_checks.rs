@@ -74,11 +74,6 @@ pub fn measure_symmetric(what: &str, a: &CsMat<f64>) -> CheckOutcome {
     CheckOutcome::at_most(name, asymmetry, limit, detail)
 }
 
-/// `max |A − Aᵀ| ≤ 1e-12 · max |A|`.
-pub fn check_symmetric(what: &str, a: &CsMat<f64>) {
-    assert_outcomes(&[measure_symmetric(what, a)]);
-}
-
 /// A derived operator is symmetric: a sparse matrix entry by entry ([`measure_symmetric`]); a
 /// composed one formed densely when it has at most [`DENSE_LIMIT`] columns (`max |A − Aᵀ| ≤
 /// 1e-12 · max |A|`, the same criterion), else on [`PROBES`] seeded random pairs `x`, `y`:
@@ -130,11 +125,6 @@ pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
         1e-10 * max.abs(),
         detail,
     )
-}
-
-/// Smallest generalized eigenvalue of `(A, M)` is `≥ −1e-10 · largest` (dense).
-pub fn check_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) {
-    assert_outcomes(&[measure_psd(what, a, mass)]);
 }
 
 /// [`measure_symmetric`] of the potential stiffness (always sparse) and

@@ -24,7 +24,10 @@ fn mesh() -> SurfaceMesh {
 }
 
 fn correct(mesh: &SurfaceMesh) -> BoxedComplex {
-    catalog_entry("conforming-barycentric").unwrap().build(mesh).unwrap()
+    catalog_entry("conforming-barycentric")
+        .unwrap()
+        .build(mesh)
+        .unwrap()
 }
 
 /// A `MatrixComplex` of the correct complex's matrices, `m1` replaced.

@@ -7,12 +7,10 @@ use faer::Par;
 /// [`FactorParallelism::default`] factors and solves sequentially (the crossover depends on the
 /// machine's cores and memory bandwidth; binaries may let users override it).
 ///
-/// Measured on the 2-core test machine (full soft design, nested dissection, whole first
-/// factorization, sequential vs faer's parallel, 2026-11-21): hand (4.5 Gflop) 0.36 vs 0.40 s,
-/// rocker-arm (6.5 Gflop) 0.51 vs 0.64 s, bunny-closed (60 Gflop) 3.1 vs 4.5 s, bumpy-torus-x4
-/// (107 Gflop) 7.1 vs 5.7 s, armadillo-x4 (329 Gflop) 22.5 vs 20.9 s. Below about 1e11 flops the
-/// supernodes are too small for faer's task synchronisation to pay off; the limit sits between
-/// bunny-closed and bumpy-torus-x4.
+/// Below about 1e11 flops the supernodes are too small for faer's task synchronisation to pay
+/// off: the full soft designs of the Table 1 meshes factored faster sequentially up to
+/// bunny-closed (60 Gflop) and faster in parallel from bumpy-torus-x4 (107 Gflop) on, and the
+/// limit sits between them (timings and the command in `docs/performance.md`).
 pub const SEQUENTIAL_FLOP_LIMIT: f64 = 8.0e10;
 
 /// How a factorization and its solves are threaded. faer's global parallelism setting is never

@@ -5,10 +5,9 @@
 //! the kernel backs page by page on first touch, one fault per 4 KiB page.
 //! Advised for huge pages (`madvise(MADV_HUGEPAGE)`, honoured when
 //! `/sys/kernel/mm/transparent_hugepage/enabled` is `always` or `madvise`, the common default),
-//! such a matrix faults once per 2 MiB. Measured on the 2-core test VM: a bunny-closed basis
-//! takes 236k page faults instead of 845k, and an armadillo-x4 basis 83.5 s instead of 88.5 s
-//! (system time 27.8 s instead of 32.0 s). The kernel still zeroes every fresh page, which
-//! remains most of that system time. Where the advice is not available (other systems, THP
+//! such a matrix faults once per 2 MiB instead of once per 4 KiB page, which cuts the page
+//! faults and some system time (numbers in `docs/performance.md`). The kernel still zeroes
+//! every fresh page, which remains most of that system time. Where the advice is not available (other systems, THP
 //! disabled) it is a no-op and the matrix is an ordinary one.
 
 use faer::Mat;

@@ -5,14 +5,13 @@
 //! a matrix product through its general kernels, then scatters the product into the
 //! column-major right-hand side one column at a time, and applies the fill-reducing
 //! permutation column by column before and after. On surface meshes most supernodes have a
-//! handful of columns, so the per-supernode dispatch and the column-wise scatters dominate: for
-//! the Crouzeix–Raviart bunny (104,499 unknowns) a solve with 8 right-hand sides took about
-//! 37 ms. Here every update of an unknown is an 8-wide multiply–add on its packed row, the
+//! handful of columns, so the per-supernode dispatch and the column-wise scatters dominate.
+//! Here every update of an unknown is an 8-wide multiply–add on its packed row, the
 //! columns of a supernode go in groups of four (each row below them is loaded and stored once
-//! per group, not once per column: 15 → 11.5 ms for that solve), the diagonal scaling is folded
+//! per group, not once per column), the diagonal scaling is folded
 //! into the forward pass, the permutation is applied while packing, and the loops are compiled
 //! with and without AVX2 + FMA (chosen at run time). Groups of six or eight columns, and an
-//! AVX-512 build of the loops, measured slower on the same machine (AMD EPYC, Zen 4).
+//! AVX-512 build of the loops, were slower (timings in `docs/performance.md`).
 
 use faer::perm::PermRef;
 use faer::reborrow::{Reborrow, ReborrowMut};

@@ -115,12 +115,6 @@ impl Constraint {
         self.family = family;
         self
     }
-
-    /// The same constraint with another soft-design weight.
-    pub fn with_weight(mut self, weight: f64) -> Self {
-        self.weight = weight;
-        self
-    }
 }
 
 /// A sparse row: `(index, value)` pairs with distinct indices. Over the field coefficients

@@ -217,9 +217,9 @@ fn augmented_upper(
 /// eliminates each face's four unknowns `x_2t, x_2t+1, y_2t, y_2t+1` together. A face separator,
 /// with all four unknowns of its faces, separates the augmented graph (`y_i` couples only to
 /// `x_j` with `S_ij ≠ 0`), so this is a nested dissection of the augmented system computed on a
-/// graph with a quarter of its vertices. Measured against METIS on the `2F` graph of `x` (each
-/// `y_i` right after its `x_i`): 16 % more flops on bunny-closed, but ordering plus symbolic
-/// analysis took 2.1 s instead of 6.5 s on bumpy-torus-x4, which wins from bunny size up.
+/// graph with a quarter of its vertices. Against METIS on the `2F` graph of `x` (each `y_i`
+/// right after its `x_i`) it costs somewhat more flops but a much faster ordering and symbolic
+/// analysis, which wins from bunny size up (numbers in `docs/performance.md`).
 fn factor_augmented(
     augmented: &SparseColMat<usize, f64>,
     n: usize,

@@ -40,9 +40,8 @@ pub struct FactorTimings {
 
 /// The fill-reducing ordering [`FullSoftDesign::new`] uses: nested dissection of the
 /// faces. On all five Table 1 meshes it needs fewer flops in the numeric factorization than AMD
-/// (Gflop, ND vs AMD: hand 4.5 vs 5.1, rocker-arm 6.5 vs 9.2, bunny-closed 60 vs 106,
-/// bumpy-torus-x4 107 vs 221, armadillo-x4 329 vs 439) and the whole factorization was faster
-/// on each (papers/`examples/full_soft_orderings.rs`).
+/// (up to half as many) and the whole factorization was faster on each (numbers in
+/// `docs/performance.md`, measured with papers/`examples/full_soft_orderings.rs`).
 pub const DEFAULT_FULL_ORDERING: FillOrdering = FillOrdering::NestedDissection;
 
 /// The full soft-design system and its sparse factorization.

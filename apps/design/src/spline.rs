@@ -6,7 +6,7 @@ use crate::error::DesignError;
 use crate::reduced_basis::{dot, ReducedBasis};
 use tvf_solvers::DenseCholesky;
 
-/// Default threshold on the relative pivot `(γ − |l|²)/γ` below which an appended constraint row
+/// Threshold on the relative pivot `(γ − |l|²)/γ` below which an appended constraint row
 /// counts as linearly dependent on the active ones.
 pub const DEFAULT_DEPENDENCY_TOLERANCE: f64 = 1e-10;
 
@@ -51,7 +51,6 @@ pub struct SplineSession<'a> {
     inverse_energy: Vec<f64>,
     active: Vec<Active>,
     factor: DenseCholesky,
-    tolerance: f64,
 }
 
 impl<'a> SplineSession<'a> {
@@ -77,15 +76,7 @@ impl<'a> SplineSession<'a> {
             inverse_energy,
             active: Vec::new(),
             factor: DenseCholesky::new(faer::Mat::<f64>::zeros(0, 0).as_ref())?,
-            tolerance: DEFAULT_DEPENDENCY_TOLERANCE,
         })
-    }
-
-    /// The same session with another dependency tolerance (relative pivot, default
-    /// [`DEFAULT_DEPENDENCY_TOLERANCE`]).
-    pub fn with_dependency_tolerance(mut self, tolerance: f64) -> Self {
-        self.tolerance = tolerance;
-        self
     }
 
     /// The basis the session works in.
@@ -128,7 +119,7 @@ impl<'a> SplineSession<'a> {
             // relative to `γ` means the row is (nearly) a combination of the active rows.
             let coefficients = self.factor.solve(&b)?;
             let relative_pivot = (gamma - dot(&b, &coefficients)) / gamma;
-            if !(gamma > 0.0 && relative_pivot > self.tolerance) {
+            if !(gamma > 0.0 && relative_pivot > DEFAULT_DEPENDENCY_TOLERANCE) {
                 for _ in 0..k {
                     self.factor.remove(self.factor.dimension() - 1)?;
                 }

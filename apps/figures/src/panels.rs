@@ -4,6 +4,7 @@
 use crate::error::FigureError;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::RgbaImage;
+use std::io::Write as _;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
@@ -54,8 +55,10 @@ pub fn save(image: &RgbaImage, path: &Path) -> Result<(), FigureError> {
             path: path.to_path_buf(),
             source: std::io::Error::other(e),
         })?;
-    tvf_spectral::write_atomically(path, &bytes).map_err(|source| FigureError::Write {
-        path: path.to_path_buf(),
-        source,
+    tvf_core::io::write_atomically(path, |w| w.write_all(&bytes)).map_err(|source| {
+        FigureError::Write {
+            path: path.to_path_buf(),
+            source,
+        }
     })
 }

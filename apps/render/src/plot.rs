@@ -141,6 +141,41 @@ fn axis_range(axis: &Axis, values: &[f64], name: &str) -> Result<(f64, f64), Ren
     })
 }
 
+/// Where the plot area lies in the image and how data map to it.
+struct PlotFrame {
+    /// Left and top margins (pixels): the plot area starts there.
+    left: f64,
+    top: f64,
+    /// Width and height of the plot area (pixels).
+    pw: f64,
+    ph: f64,
+    x_scale: AxisScale,
+    y_scale: AxisScale,
+    /// The axis ends through the scales (`forward(x0)`, `forward(x1)`, …).
+    fx: (f64, f64),
+    fy: (f64, f64),
+}
+
+impl PlotFrame {
+    /// Horizontal pixel of `x` in the plot area.
+    fn to_px(&self, x: f64) -> f64 {
+        (self.x_scale.forward(x) - self.fx.0) / (self.fx.1 - self.fx.0) * self.pw
+    }
+
+    /// Vertical pixel of `y` in the plot area (down from its top).
+    fn to_py(&self, y: f64) -> f64 {
+        self.ph - (self.y_scale.forward(y) - self.fy.0) / (self.fy.1 - self.fy.0) * self.ph
+    }
+}
+
+/// Major and minor ticks of both axes (data units).
+struct PlotTicks {
+    x_major: Vec<f64>,
+    x_minor: Vec<f64>,
+    y_major: Vec<f64>,
+    y_minor: Vec<f64>,
+}
+
 impl Plot {
     /// Draws the plot. Points that cannot be drawn (non-finite, or non-positive on a log
     /// axis) are skipped, and a line is broken there. Fails when no point at all can be
@@ -171,7 +206,14 @@ impl Plot {
         let tick_style = TextStyle::new(small);
         let (y_major, y_minor) = ticks(self.y.scale, y0, y1);
         let (x_major, x_minor) = ticks(self.x.scale, x0, x1);
-        let y_label_width = y_major
+        let ticks = PlotTicks {
+            x_major,
+            x_minor,
+            y_major,
+            y_minor,
+        };
+        let y_label_width = ticks
+            .y_major
             .iter()
             .map(|&v| text_width(&format_number(v, 3), &tick_style))
             .max()
@@ -187,75 +229,23 @@ impl Plot {
                 height: self.height,
             });
         }
-        let (fx0, fx1) = (self.x.scale.forward(x0), self.x.scale.forward(x1));
-        let (fy0, fy1) = (self.y.scale.forward(y0), self.y.scale.forward(y1));
-        let to_px = |x: f64| (self.x.scale.forward(x) - fx0) / (fx1 - fx0) * pw;
-        let to_py = |y: f64| ph - (self.y.scale.forward(y) - fy0) / (fy1 - fy0) * ph;
+        let frame = PlotFrame {
+            left,
+            top,
+            pw,
+            ph,
+            x_scale: self.x.scale,
+            y_scale: self.y.scale,
+            fx: (self.x.scale.forward(x0), self.x.scale.forward(x1)),
+            fy: (self.y.scale.forward(y0), self.y.scale.forward(y1)),
+        };
 
         let mut image = RgbaImage::from_pixel(self.width, self.height, Rgba([255, 255, 255, 255]));
-        // Grid on the plot layer (clipped to the plot area).
+        // Grid and data on the plot layer (clipped to the plot area).
         let mut layer = RgbaImage::new(pw as u32, ph as u32);
-        for &v in &x_minor {
-            draw_line(
-                &mut layer,
-                [to_px(v), 0.0],
-                [to_px(v), ph],
-                1.0,
-                [238, 238, 238],
-            );
-        }
-        for &v in &y_minor {
-            draw_line(
-                &mut layer,
-                [0.0, to_py(v)],
-                [pw, to_py(v)],
-                1.0,
-                [238, 238, 238],
-            );
-        }
-        for &v in &x_major {
-            draw_line(
-                &mut layer,
-                [to_px(v), 0.0],
-                [to_px(v), ph],
-                1.0,
-                [215, 215, 215],
-            );
-        }
-        for &v in &y_major {
-            draw_line(
-                &mut layer,
-                [0.0, to_py(v)],
-                [pw, to_py(v)],
-                1.0,
-                [215, 215, 215],
-            );
-        }
+        draw_grid(&mut layer, &frame, &ticks);
         let line_width = (h / 300.0).clamp(1.5, 4.0);
-        let mut legend = Vec::new();
-        for (k, s) in self.series.iter().enumerate() {
-            let color = s.color.unwrap_or(PALETTE[k % PALETTE.len()]);
-            let mut previous: Option<[f64; 2]> = None;
-            for &(x, y) in &s.points {
-                if !(self.x.scale.accepts(x) && self.y.scale.accepts(y)) {
-                    previous = None;
-                    continue;
-                }
-                let p = [to_px(x), to_py(y)];
-                if let (Some(q), SeriesStyle::Line | SeriesStyle::LineAndMarkers) =
-                    (previous, s.style)
-                {
-                    draw_line(&mut layer, q, p, line_width, color);
-                }
-                if matches!(s.style, SeriesStyle::Scatter | SeriesStyle::LineAndMarkers) {
-                    fill_disc(&mut layer, p, 1.6 * line_width, color);
-                }
-                previous = Some(p);
-            }
-            if !s.name.is_empty() {
-                legend.push((s.name.as_str(), color, s.style));
-            }
-        }
+        let legend = self.draw_series(&mut layer, &frame, line_width);
         overlay(&mut image, &layer, left as i64, top as i64);
         stroke_rect(
             &mut image,
@@ -265,48 +255,8 @@ impl Plot {
             (top + ph) as i64,
             [60, 60, 60],
         );
-
-        // Ticks and tick labels.
-        for &v in &x_major {
-            let x = left + to_px(v);
-            draw_line(
-                &mut image,
-                [x, top + ph],
-                [x, top + ph + 5.0],
-                1.0,
-                [60, 60, 60],
-            );
-            let style = tick_style.aligned(HAlign::Center, VAlign::Top);
-            draw_text(&mut image, x, top + ph + 7.0, &format_number(v, 3), &style);
-        }
-        for &v in &y_major {
-            let y = top + to_py(v);
-            draw_line(&mut image, [left - 5.0, y], [left, y], 1.0, [60, 60, 60]);
-            let style = tick_style.aligned(HAlign::Right, VAlign::Middle);
-            draw_text(&mut image, left - 8.0, y, &format_number(v, 3), &style);
-        }
-        let label_style = TextStyle::new(size);
-        draw_text(
-            &mut image,
-            left + 0.5 * pw,
-            h - 6.0,
-            &self.x.label,
-            &label_style.aligned(HAlign::Center, VAlign::Bottom),
-        );
-        draw_text_vertical(
-            &mut image,
-            6.0 + 0.5 * th,
-            top + 0.5 * ph,
-            &self.y.label,
-            &label_style,
-        );
-        draw_text(
-            &mut image,
-            0.5 * w,
-            0.5 * top,
-            &self.title,
-            &label_style.bold().aligned(HAlign::Center, VAlign::Middle),
-        );
+        draw_tick_labels(&mut image, &frame, &ticks, &tick_style);
+        self.draw_labels(&mut image, &frame, size);
         draw_legend(
             &mut image,
             &legend,
@@ -316,6 +266,114 @@ impl Plot {
             line_width,
         );
         Ok(image)
+    }
+
+    /// Draws every series on the plot `layer` (lines `line_width` pixels wide, dots 1.6 times
+    /// that) and returns the legend entries of the named ones.
+    fn draw_series(
+        &self,
+        layer: &mut RgbaImage,
+        frame: &PlotFrame,
+        line_width: f64,
+    ) -> Vec<(&str, [u8; 3], SeriesStyle)> {
+        let mut legend = Vec::new();
+        for (k, s) in self.series.iter().enumerate() {
+            let color = s.color.unwrap_or(PALETTE[k % PALETTE.len()]);
+            let mut previous: Option<[f64; 2]> = None;
+            for &(x, y) in &s.points {
+                if !(self.x.scale.accepts(x) && self.y.scale.accepts(y)) {
+                    previous = None;
+                    continue;
+                }
+                let p = [frame.to_px(x), frame.to_py(y)];
+                if let (Some(q), SeriesStyle::Line | SeriesStyle::LineAndMarkers) =
+                    (previous, s.style)
+                {
+                    draw_line(layer, q, p, line_width, color);
+                }
+                if matches!(s.style, SeriesStyle::Scatter | SeriesStyle::LineAndMarkers) {
+                    fill_disc(layer, p, 1.6 * line_width, color);
+                }
+                previous = Some(p);
+            }
+            if !s.name.is_empty() {
+                legend.push((s.name.as_str(), color, s.style));
+            }
+        }
+        legend
+    }
+
+    /// The axis labels (the y label vertical, left) and the title (bold, top centre), in text
+    /// of `size`.
+    fn draw_labels(&self, image: &mut RgbaImage, frame: &PlotFrame, size: TextSize) {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let th = size.height() as f64;
+        let label_style = TextStyle::new(size);
+        draw_text(
+            image,
+            frame.left + 0.5 * frame.pw,
+            h - 6.0,
+            &self.x.label,
+            &label_style.aligned(HAlign::Center, VAlign::Bottom),
+        );
+        draw_text_vertical(
+            image,
+            6.0 + 0.5 * th,
+            frame.top + 0.5 * frame.ph,
+            &self.y.label,
+            &label_style,
+        );
+        draw_text(
+            image,
+            0.5 * w,
+            0.5 * frame.top,
+            &self.title,
+            &label_style.bold().aligned(HAlign::Center, VAlign::Middle),
+        );
+    }
+}
+
+/// Grid lines on the plot `layer`: minor ones light, major ones darker, above the minor ones.
+fn draw_grid(layer: &mut RgbaImage, frame: &PlotFrame, ticks: &PlotTicks) {
+    let (pw, ph) = (frame.pw, frame.ph);
+    for &v in &ticks.x_minor {
+        let x = frame.to_px(v);
+        draw_line(layer, [x, 0.0], [x, ph], 1.0, [238, 238, 238]);
+    }
+    for &v in &ticks.y_minor {
+        let y = frame.to_py(v);
+        draw_line(layer, [0.0, y], [pw, y], 1.0, [238, 238, 238]);
+    }
+    for &v in &ticks.x_major {
+        let x = frame.to_px(v);
+        draw_line(layer, [x, 0.0], [x, ph], 1.0, [215, 215, 215]);
+    }
+    for &v in &ticks.y_major {
+        let y = frame.to_py(v);
+        draw_line(layer, [0.0, y], [pw, y], 1.0, [215, 215, 215]);
+    }
+}
+
+/// Tick marks and the labels of the major ticks, outside the plot area (below it and left of
+/// it).
+fn draw_tick_labels(
+    image: &mut RgbaImage,
+    frame: &PlotFrame,
+    ticks: &PlotTicks,
+    tick_style: &TextStyle,
+) {
+    let (left, top, ph) = (frame.left, frame.top, frame.ph);
+    for &v in &ticks.x_major {
+        let x = left + frame.to_px(v);
+        draw_line(image, [x, top + ph], [x, top + ph + 5.0], 1.0, [60, 60, 60]);
+        let style = tick_style.aligned(HAlign::Center, VAlign::Top);
+        draw_text(image, x, top + ph + 7.0, &format_number(v, 3), &style);
+    }
+    for &v in &ticks.y_major {
+        let y = top + frame.to_py(v);
+        draw_line(image, [left - 5.0, y], [left, y], 1.0, [60, 60, 60]);
+        let style = tick_style.aligned(HAlign::Right, VAlign::Middle);
+        draw_text(image, left - 8.0, y, &format_number(v, 3), &style);
     }
 }
 

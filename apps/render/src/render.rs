@@ -97,12 +97,52 @@ pub fn render(
     let mut frame = rasterize(mesh, &sample_camera, w * ss, h * ss);
     let edge = mean_edge_length(mesh);
 
-    // Line integral convolution textures (one value per output pixel), multiplied.
+    let texture = lic_texture_product(mesh, scene, &frame, ss, &camera, edge);
+    shade(
+        mesh,
+        scene,
+        options,
+        &camera,
+        &mut frame,
+        texture.as_deref(),
+        w,
+    );
+    let overlays = Overlays3d {
+        mesh,
+        camera: &camera,
+        sample_camera: &sample_camera,
+        ss: ss as f64,
+        edge,
+    };
+    overlays.draw_fields(&mut frame, scene)?;
+    overlays.draw_polylines(&mut frame, scene);
+    overlays.draw_markers(&mut frame, scene);
+
+    let mut image = downsample(&frame, ss, options.background);
+    if let Some(s) = &scene.face_scalar {
+        draw_colorbar(&mut image, &s.scale, &s.label, text);
+    }
+    if let Some(title) = &scene.title {
+        draw_title(&mut image, title, text);
+    }
+    Ok(image)
+}
+
+/// The line integral convolution textures of the scene's LIC layers (one value per output
+/// pixel, each `1 − strength + strength · LIC`), multiplied; `None` without LIC layers.
+fn lic_texture_product(
+    mesh: &SurfaceMesh,
+    scene: &Scene,
+    frame: &Frame,
+    ss: usize,
+    camera: &Camera,
+    edge: f64,
+) -> Option<Vec<f32>> {
     let mut texture: Option<Vec<f32>> = None;
     for layer in &scene.fields {
         if let FieldStyle::Lic(lic) = &layer.style {
-            let pixels = PixelFaces::from_frame(&frame, ss);
-            let dirs = screen_directions(mesh, &layer.vectors, &camera, edge);
+            let pixels = PixelFaces::from_frame(frame, ss);
+            let dirs = screen_directions(mesh, &layer.vectors, camera, edge);
             let jump = (0.05 * camera.scene_radius()) as f32;
             let tex = lic_texture(&pixels, &dirs, jump, lic);
             let strength = lic.strength.clamp(0.0, 1.0) as f32;
@@ -116,120 +156,132 @@ pub fn render(
             });
         }
     }
-    shade(
-        mesh,
-        scene,
-        options,
-        &camera,
-        &mut frame,
-        texture.as_deref(),
-        w,
-    );
+    texture
+}
 
-    for layer in &scene.fields {
-        match &layer.style {
-            FieldStyle::Arrows(opts) => {
-                let glyphs = arrow_glyphs(mesh, &layer.vectors, opts);
-                draw_glyphs(
-                    &mut frame,
-                    &sample_camera,
-                    &glyphs,
-                    opts.width_px * ss as f64,
-                    unit(opts.color),
+/// What the 3D overlays (arrows, streamlines, polylines, markers) are drawn with: the mesh, the
+/// camera of the output image and that of the supersampled frame (`ss` samples per pixel and
+/// axis), and the mean edge length (depth offsets, streamline steps).
+struct Overlays3d<'a> {
+    mesh: &'a SurfaceMesh,
+    camera: &'a Camera,
+    sample_camera: &'a Camera,
+    ss: f64,
+    edge: f64,
+}
+
+impl Overlays3d<'_> {
+    /// The arrow and streamline layers of the scene's fields (LIC layers are shaded instead).
+    fn draw_fields(&self, frame: &mut Frame, scene: &Scene) -> Result<(), RenderError> {
+        let ss = self.ss;
+        for layer in &scene.fields {
+            match &layer.style {
+                FieldStyle::Arrows(opts) => {
+                    let glyphs = arrow_glyphs(self.mesh, &layer.vectors, opts);
+                    draw_glyphs(
+                        frame,
+                        self.sample_camera,
+                        &glyphs,
+                        opts.width_px * ss,
+                        unit(opts.color),
+                    );
+                }
+                FieldStyle::Streamlines(opts) => {
+                    let lines = trace_streamlines(self.mesh, &layer.vectors, opts)?;
+                    draw_streamlines(
+                        frame,
+                        self.sample_camera,
+                        self.mesh,
+                        &lines,
+                        opts.width_px * ss,
+                        unit(opts.color),
+                        self.edge,
+                    );
+                }
+                FieldStyle::Lic(_) => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// The scene's polylines, their colour blended from `color` at the start to `tip_color`
+    /// at the end.
+    fn draw_polylines(&self, frame: &mut Frame, scene: &Scene) {
+        for line in &scene.polylines {
+            let n = line.points.len();
+            for (i, seg) in line.points.windows(2).enumerate() {
+                let s0 = i as f32 / (n - 1) as f32;
+                let s1 = (i + 1) as f32 / (n - 1) as f32;
+                let (c0, c1) = (unit(line.color), unit(line.tip_color));
+                let mix = |s: f32| [0, 1, 2].map(|k| c0[k] * (1.0 - s) + c1[k] * s);
+                let ink = Ink {
+                    color: [mix(s0), mix(s1)],
+                    alpha: [1.0; 2],
+                    depth_offset: 0.5 * self.edge,
+                };
+                segment(
+                    frame,
+                    self.sample_camera,
+                    seg[0],
+                    seg[1],
+                    line.width_px * self.ss,
+                    &ink,
                 );
             }
-            FieldStyle::Streamlines(opts) => {
-                let lines = trace_streamlines(mesh, &layer.vectors, opts)?;
-                draw_streamlines(
-                    &mut frame,
-                    &sample_camera,
-                    mesh,
-                    &lines,
-                    opts.width_px * ss as f64,
-                    unit(opts.color),
-                    edge,
-                );
-            }
-            FieldStyle::Lic(_) => {}
         }
     }
-    for line in &scene.polylines {
-        let n = line.points.len();
-        for (i, seg) in line.points.windows(2).enumerate() {
-            let s0 = i as f32 / (n - 1) as f32;
-            let s1 = (i + 1) as f32 / (n - 1) as f32;
-            let (c0, c1) = (unit(line.color), unit(line.tip_color));
-            let mix = |s: f32| [0, 1, 2].map(|k| c0[k] * (1.0 - s) + c1[k] * s);
+
+    /// The scene's markers: a disc each, and an arrow (dark outline, coloured fill) along the
+    /// marker's direction where it has a non-zero one.
+    fn draw_markers(&self, frame: &mut Frame, scene: &Scene) {
+        let (ss, edge) = (self.ss, self.edge);
+        let arrow_length = 0.16 * self.camera.scene_radius();
+        for m in &scene.markers {
             let ink = Ink {
-                color: [mix(s0), mix(s1)],
+                color: [unit(m.color), [0.1, 0.1, 0.1]],
                 alpha: [1.0; 2],
-                depth_offset: 0.5 * edge,
+                depth_offset: edge,
             };
-            segment(
-                &mut frame,
-                &sample_camera,
-                seg[0],
-                seg[1],
-                line.width_px * ss as f64,
+            if let Some(d) = m.direction.filter(|d| norm(*d) > 0.0) {
+                let tip = add(m.position, scale(normalize(d), arrow_length));
+                let side_axis = self.camera.to_eye(m.position);
+                let dark = Ink {
+                    color: [[0.1, 0.1, 0.1]; 2],
+                    ..ink
+                };
+                draw_arrow(
+                    frame,
+                    self.sample_camera,
+                    m.position,
+                    tip,
+                    side_axis,
+                    3.5 * ss,
+                    &dark,
+                );
+                let fill = Ink {
+                    depth_offset: arrow_length,
+                    ..ink
+                };
+                draw_arrow(
+                    frame,
+                    self.sample_camera,
+                    m.position,
+                    tip,
+                    side_axis,
+                    2.0 * ss,
+                    &fill,
+                );
+            }
+            disc(
+                frame,
+                self.sample_camera,
+                m.position,
+                m.radius_px * ss,
+                1.5 * ss,
                 &ink,
             );
         }
     }
-    let arrow_length = 0.16 * camera.scene_radius();
-    for m in &scene.markers {
-        let ink = Ink {
-            color: [unit(m.color), [0.1, 0.1, 0.1]],
-            alpha: [1.0; 2],
-            depth_offset: edge,
-        };
-        if let Some(d) = m.direction.filter(|d| norm(*d) > 0.0) {
-            let tip = add(m.position, scale(normalize(d), arrow_length));
-            let side_axis = camera.to_eye(m.position);
-            let dark = Ink {
-                color: [[0.1, 0.1, 0.1]; 2],
-                ..ink
-            };
-            draw_arrow(
-                &mut frame,
-                &sample_camera,
-                m.position,
-                tip,
-                side_axis,
-                3.5 * ss as f64,
-                &dark,
-            );
-            let fill = Ink {
-                depth_offset: arrow_length,
-                ..ink
-            };
-            draw_arrow(
-                &mut frame,
-                &sample_camera,
-                m.position,
-                tip,
-                side_axis,
-                2.0 * ss as f64,
-                &fill,
-            );
-        }
-        disc(
-            &mut frame,
-            &sample_camera,
-            m.position,
-            m.radius_px * ss as f64,
-            1.5 * ss as f64,
-            &ink,
-        );
-    }
-
-    let mut image = downsample(&frame, ss, options.background);
-    if let Some(s) = &scene.face_scalar {
-        draw_colorbar(&mut image, &s.scale, &s.label, text);
-    }
-    if let Some(title) = &scene.title {
-        draw_title(&mut image, title, text);
-    }
-    Ok(image)
 }
 
 /// Each face's unit field direction in output-image coordinates (zero where the field

@@ -187,8 +187,9 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         counting_cpu_seconds,
         ..BasisReport::default()
     };
-    // Each family's eigensolver gets its own seed, derived from the request's (salts 2 and 3
-    // keep the seeds, and so the bases, of earlier versions).
+    // Each family's eigensolver gets its own seed, derived from the request's with a fixed salt
+    // per family: the same request seed gives the same bases (and so the same cached files and
+    // recorded results), so the salts must not change.
     let family_seed = |salt: u64| request.seed ^ salt.wrapping_mul(0x9e37_79b9_7f4a_7c15);
     let tops = split.tops.map_or((None, None), |(a, b)| (Some(a), Some(b)));
     let (a, b, solver) = solve_both_families(

@@ -63,7 +63,6 @@ pub use eigenfunction_basis::EigenfunctionBasis;
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
-pub use formats::atomic_write::{write_atomically, write_atomically_with};
 pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
     BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, StoredFieldMass,

@@ -3,8 +3,8 @@
 //!
 //! Why: an atomic write ends with `fsync` (see [`super::write_atomically`]), which waits until
 //! every byte is on the disk. The kernel otherwise holds dirty pages back for seconds, so for a
-//! large file all of the disk's work was left to that `fsync`: 0.22 s of waiting for a 557 MB
-//! basis file on the 2-core test VM. Asking for the writeback of every written stretch of
+//! large file all of the disk's work was left to that `fsync` (a noticeable wait for a basis
+//! file of hundreds of MB, see `docs/performance.md`). Asking for the writeback of every written stretch of
 //! [`WRITEBACK_STRETCH`] bytes right away (`sync_file_range` with `SYNC_FILE_RANGE_WRITE`,
 //! which does not wait) lets the disk work while the rest is formed and copied. Elsewhere than
 //! Linux it is a plain writer.

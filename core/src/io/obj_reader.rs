@@ -1,16 +1,16 @@
 //! Wavefront OBJ: `v x y z [w | r g b]` and `f i j k ...` lines (1-based or negative indices,
 //! `i/t/n` forms, polygons fan-triangulated), `#` comments; everything else is ignored.
 //!
-//! Positions are parsed here (with line numbers), faces by `tobj`. `tobj` renumbers vertices in
-//! order of first use per object and drops unused ones, so it is handed a copy of the file in
-//! which vertex `k` is written as `v k 0 0`: the coordinates it returns are the file's vertex
-//! numbers, and the correspondence positions ↔ indices survives exactly. Before that, a light
-//! scan of every `f` line gives the errors `tobj` would report without a line number.
+//! A hand-written parser, not `tobj`: tvf reads only `v` and `f` lines, and needs what `tobj`
+//! does not give: every error names its line (a malformed number, a zero or out-of-range
+//! index, a face with fewer than three corners), vertices keep the file's numbering (`tobj`
+//! renumbers them by first use per object and drops unused ones), and each triangle knows the
+//! line of its face. Positive indices may point forward in the file, so they are checked
+//! against the final vertex count after the whole file is read.
 
 use super::error::LoadErrorKind;
 use super::raw_mesh::{at, parse_error, Located, RawMesh};
 use super::text::{check_finite, parse_coordinate, parse_integer, push_fan, strip_comment};
-use std::fmt::Write as _;
 
 /// Parses OBJ text into positions and fan-triangulated faces.
 pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
@@ -18,8 +18,6 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
     let mut vertex_lines = Vec::new();
     // Corners of every face line (0-based, resolved) and the line number.
     let mut face_corners: Vec<(usize, Vec<i64>)> = Vec::new();
-    // The copy of the file handed to tobj.
-    let mut for_tobj = String::with_capacity(text.len() / 2);
     let mut any_content = false;
 
     for (number, raw_line) in text.lines().enumerate() {
@@ -47,7 +45,6 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
                     }
                 };
                 check_finite(p, positions.len(), line)?;
-                let _ = writeln!(for_tobj, "v {} 0 0", positions.len());
                 positions.push(p);
                 vertex_lines.push(line);
             }
@@ -65,12 +62,6 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
                     ));
                 }
                 face_corners.push((line, corners));
-                for_tobj.push_str(content);
-                for_tobj.push('\n');
-            }
-            "o" | "g" => {
-                for_tobj.push_str(content);
-                for_tobj.push('\n');
             }
             // Other keywords (vt, vn, usemtl, ...) are ignored; one that is not a plain word
             // (a stray byte-order mark or control character before a `v`) would hide its line.
@@ -90,7 +81,7 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
     // Positive indices may point forward in the file; check them against the final count.
     let vertex_count = positions.len();
     let mut face_lines = Vec::new();
-    let mut expected_faces = Vec::new();
+    let mut faces = Vec::new();
     for (line, corners) in &face_corners {
         let mut resolved = Vec::with_capacity(corners.len());
         for &index in corners {
@@ -108,17 +99,8 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
                 }
             }
         }
-        push_fan(&resolved, *line, &mut expected_faces, &mut face_lines);
+        push_fan(&resolved, *line, &mut faces, &mut face_lines);
     }
-
-    let faces = faces_through_tobj(&for_tobj)?;
-    // tobj keeps the file's face order; if it ever did not, line numbers would be wrong, so
-    // they are only kept when its triangles are exactly those of the scan.
-    let face_lines = if faces == expected_faces {
-        face_lines
-    } else {
-        Vec::new()
-    };
     Ok(RawMesh {
         positions,
         faces,
@@ -169,49 +151,6 @@ fn face_corner(token: &str, seen: usize, line: usize) -> Result<i64, Located> {
     }
 }
 
-/// Runs tobj on the rewritten file and maps its vertices back to file vertex numbers.
-fn faces_through_tobj(for_tobj: &str) -> Result<Vec<[usize; 3]>, Located> {
-    // `..Default::default()` keeps this compiling (and those options off) if another crate
-    // turns on tobj's `merging` or `reordering` features, which add fields.
-    #[allow(clippy::needless_update)]
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: false,
-        ignore_points: true,
-        ignore_lines: true,
-        ..Default::default()
-    };
-    let tobj_error = |e: tobj::LoadError| {
-        (
-            None,
-            LoadErrorKind::Parse {
-                message: format!("OBJ face data: {e}"),
-            },
-        )
-    };
-    let (models, _) = tobj::load_obj_buf(
-        &mut std::io::Cursor::new(for_tobj.as_bytes()),
-        &options,
-        |_| Err(tobj::LoadError::OpenFileFailed),
-    )
-    .map_err(tobj_error)?;
-    let mut faces = Vec::new();
-    for model in &models {
-        let mesh = &model.mesh;
-        let original = |i: u32| -> Option<usize> {
-            let x = *mesh.positions.get(3 * i as usize)?;
-            (x >= 0.0 && x.fract() == 0.0).then_some(x as usize)
-        };
-        for triangle in mesh.indices.chunks_exact(3) {
-            match [0, 1, 2].map(|c| original(triangle[c])) {
-                [Some(a), Some(b), Some(c)] => faces.push([a, b, c]),
-                _ => return Err(tobj_error(tobj::LoadError::GenericFailure)),
-            }
-        }
-    }
-    Ok(faces)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -228,11 +167,38 @@ mod tests {
 
     #[test]
     fn duplicate_positions_keep_their_own_indices() {
-        // tobj alone would merge nothing but renumber by first use; vertex 1 is used first.
+        // Vertex 1 is used first, vertex 0 last: the file's numbering is kept all the same.
         let text = "v 0 0 0\nv 1 0 0\nv 1 0 0\nv 0 1 0\nf 2/1 4 1\nf 3 4 1\n";
         let raw = read_obj(text).unwrap();
         assert_eq!(raw.faces, vec![[1, 3, 0], [2, 3, 0]]);
         assert_eq!(raw.positions.len(), 4);
+    }
+
+    #[test]
+    fn objects_and_groups_keep_the_file_numbering_and_forward_indices_resolve() {
+        // Each `o`/`g` starts an object for tobj (renumbered from 0 there); here the indices
+        // stay the file's, a face may name a vertex defined after it, and `vt`/`vn` are skipped.
+        let text = "o first\nv 0 0 0\nv 1 0 0\nf 1 2 3\ng second\nvt 0 0\nv 0 1 0\n\
+                    vn 0 0 1\nv 1 1 0\nf 4/1/1 3//1 2\n";
+        let raw = read_obj(text).unwrap();
+        assert_eq!(raw.faces, vec![[0, 1, 2], [3, 2, 1]]);
+        assert_eq!(raw.face_lines, vec![4, 10]);
+        assert_eq!(raw.vertex_lines, vec![2, 3, 7, 9]);
+    }
+
+    #[test]
+    fn forward_index_past_the_end_names_its_line() {
+        let err = read_obj("v 0 0 0\nf 1 2 4\nv 1 0 0\nv 0 1 0\n").unwrap_err();
+        assert_eq!(
+            err,
+            at(
+                2,
+                LoadErrorKind::IndexOutOfRange {
+                    index: 4,
+                    vertex_count: 3
+                }
+            )
+        );
     }
 
     #[test]

@@ -5,6 +5,7 @@
 use super::table1::{self, Table1Row};
 use super::Results;
 use crate::markdown::Table;
+use std::io::Write as _;
 use std::path::Path;
 use tvf_conformance::convergence_table::markdown_table;
 use tvf_figures::finding::Finding;
@@ -52,12 +53,12 @@ pub fn write(out: &Path, results: &Results, info: &RunInfo) -> Result<(), Figure
         ("README.md", readme_markdown(results, info)),
     ] {
         let path = out.join(name);
-        tvf_spectral::write_atomically(&path, text.as_bytes()).map_err(|source| {
-            FigureError::Write {
+        tvf_core::io::write_atomically(&path, |w| w.write_all(text.as_bytes())).map_err(
+            |source| FigureError::Write {
                 path: path.clone(),
                 source,
-            }
-        })?;
+            },
+        )?;
     }
     Ok(())
 }

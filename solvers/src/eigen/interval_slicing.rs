@@ -25,9 +25,9 @@
 //!    restarts, or whose pairs disagree with its counts, is split near (not at) its midpoint
 //!    (one more count) and the halves are solved with their own midpoints as shifts: a shift
 //!    that lands next to an eigenvalue makes `max|θ|` huge and the far end of the interval
-//!    unresolvable (`ε·max|θ| > tolerance·|θ|`: the slice restarts until its restart limit, which
-//!    was 1000), and a cluster that straddles an interval end converges slowly; both are cured by
-//!    a different shift and a narrower interval.
+//!    unresolvable (`ε·max|θ| > tolerance·|θ|`: the slice restarts until its restart limit), and
+//!    a cluster that straddles an interval end converges slowly; both are cured by a different
+//!    shift and a narrower interval.
 //! 3. *Refinement*, by the interval's job right after its solve, with the same factorization
 //!    (so no factorization outlives its job): pairs whose eigenfield residual still misses
 //!    `EigenOptions::refinement_target` (and is clearly above its rounding floor) get
@@ -42,10 +42,10 @@
 //! Memory: each job writes its refined eigenvectors straight into its columns of the pencil's
 //! `n × k` result (reserved up front, so each column is touched once, by its job), and a slice's
 //! Krylov basis, locked vectors and buffers are handed to the next job
-//! ([`super::workspace_pool`]). Fresh memory is expensive: the kernel zeroes every new page
-//! (on the 2-core test VM, first touches ran at 0.5–2 GB/s against 25 GB/s for a second
-//! pass), and on bunny-closed the per-slice bases and stores, and the copy of every interval's
-//! vectors into the result, were about a tenth of the processor time.
+//! ([`super::workspace_pool`]). Fresh memory is expensive: the kernel faults in and zeroes
+//! every new page on first touch, many times slower than a second pass over it, which made the
+//! per-slice bases and a copy of every interval's vectors a visible share of the processor
+//! time (numbers in `docs/performance.md`).
 
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::mass::Mass;
@@ -122,13 +122,65 @@ pub fn lowest_eigenpairs_of(
     requests: &[EigenRequest<'_, '_>],
     options: &EigenOptions<'_>,
 ) -> Result<EigenSolution, RequestError> {
-    let fail = |request: usize| move |source: SolverError| RequestError { request, source };
     let mut statistics = SolverStatistics::default();
     let mut pairs: Vec<Option<(Vec<f64>, Mat<f64>)>> = vec![None; requests.len()];
-    let mut plans: Vec<Plan> = Vec::new();
 
-    // ---- 1. counting ----
     let clock = PhaseClock::start();
+    let plans = count_intervals(requests, options, &mut pairs)?;
+    clock.stop(&mut statistics.counting);
+
+    let clock = PhaseClock::start();
+    let jobs = interval_jobs(requests, &plans);
+    // Each plan's eigenvectors are written by the jobs straight into their columns of one
+    // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
+    // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
+    let mut eigenvectors: Vec<Mat<f64>> = plans
+        .iter()
+        .map(|plan| {
+            let request = &requests[plan.request];
+            reserve_on_huge_pages(request.pencil.dimension(), request.count)
+        })
+        .collect();
+    let intervals = solve_intervals(requests, options, &plans, &jobs, &mut eigenvectors)?;
+    for part in intervals.iter().flatten() {
+        statistics.refined_pairs += part.refinement.refined;
+        statistics.refinement.wall_seconds += part.refinement.wall_seconds;
+        statistics.refinement.cpu_seconds += part.refinement.cpu_seconds;
+    }
+    for ((plan, parts), vectors) in plans.iter().zip(intervals).zip(eigenvectors) {
+        let request = &requests[plan.request];
+        let assembled = assemble_plan(plan, request, parts, vectors, options.parallelism)
+            .map_err(fail(plan.request))?;
+        pairs[plan.request] = Some(assembled);
+    }
+    let results = requests
+        .iter()
+        .zip(pairs)
+        .map(|(request, found)| {
+            finish_request(request, found, &mut statistics, options.parallelism)
+        })
+        .collect();
+    clock.stop(&mut statistics.solving);
+    Ok(EigenSolution {
+        pairs: results,
+        statistics,
+    })
+}
+
+/// Turns a [`SolverError`] of request `request` into a [`RequestError`].
+fn fail(request: usize) -> impl Fn(SolverError) -> RequestError {
+    move |source: SolverError| RequestError { request, source }
+}
+
+/// Phase 1, counting: the requests with nothing to slice are answered in `pairs` (none wanted,
+/// or small enough for the dense solver); the others get a [`Plan`] whose boundaries are all
+/// counted (concurrently) and checked for monotone counts.
+fn count_intervals(
+    requests: &[EigenRequest<'_, '_>],
+    options: &EigenOptions<'_>,
+    pairs: &mut [Option<(Vec<f64>, Mat<f64>)>],
+) -> Result<Vec<Plan>, RequestError> {
+    let mut plans: Vec<Plan> = Vec::new();
     for (r, request) in requests.iter().enumerate() {
         let pencil = request.pencil;
         let (n, k) = (pencil.dimension(), request.count);
@@ -148,18 +200,7 @@ pub fn lowest_eigenpairs_of(
             ));
         } else {
             let block = block_size(options, n);
-            let top = match request.top {
-                Some(top) if top.below >= k => top,
-                Some(top) => {
-                    return Err(fail(r)(SolverError::NoConvergence {
-                        reason: format!(
-                        "the top shift {:e} has {} eigenvalues below it, fewer than the {k} wanted",
-                        top.shift, top.below
-                    ),
-                    }))
-                }
-                None => search_top(pencil, k, block).map_err(fail(r))?,
-            };
+            let top = top_shift(request, block).map_err(fail(r))?;
             plans.push(Plan::new(
                 r,
                 pencil,
@@ -168,6 +209,32 @@ pub fn lowest_eigenpairs_of(
             ));
         }
     }
+    count_boundaries(requests, &mut plans)?;
+    Ok(plans)
+}
+
+/// The request's top shift: the one it brings (checked to have at least `count` eigenvalues
+/// below it), else one found by [`search_top`].
+fn top_shift(request: &EigenRequest<'_, '_>, block: usize) -> Result<ShiftCount, SolverError> {
+    let k = request.count;
+    match request.top {
+        Some(top) if top.below >= k => Ok(top),
+        Some(top) => Err(SolverError::NoConvergence {
+            reason: format!(
+                "the top shift {:e} has {} eigenvalues below it, fewer than the {k} wanted",
+                top.shift, top.below
+            ),
+        }),
+        None => search_top(request.pencil, k, block),
+    }
+}
+
+/// Counts every plan's uncounted boundaries in one concurrent batch, then checks that each
+/// plan's bounds increase and its counts do not decrease.
+fn count_boundaries(
+    requests: &[EigenRequest<'_, '_>],
+    plans: &mut [Plan],
+) -> Result<(), RequestError> {
     let boundary_jobs: Vec<(usize, usize)> = plans
         .iter()
         .enumerate()
@@ -188,7 +255,7 @@ pub fn lowest_eigenpairs_of(
         plans[p].bounds[i] = count.shift;
         plans[p].counts[i] = count.below;
     }
-    for plan in &plans {
+    for plan in plans.iter() {
         if plan.counts.windows(2).any(|w| w[1] < w[0])
             || plan.bounds.windows(2).any(|w| w[1] <= w[0])
         {
@@ -197,10 +264,13 @@ pub fn lowest_eigenpairs_of(
             }));
         }
     }
-    clock.stop(&mut statistics.counting);
+    Ok(())
+}
 
-    // ---- 2. solving ----
-    let clock = PhaseClock::start();
+/// The jobs of phase 2: `(plan, interval)` for every interval that holds eigenvalues, the
+/// largest first (dimension × eigenpairs), so that the pool ends on small ones and no thread
+/// idles long while the last big interval finishes.
+fn interval_jobs(requests: &[EigenRequest<'_, '_>], plans: &[Plan]) -> Vec<(usize, usize)> {
     let mut jobs: Vec<(usize, usize)> = plans
         .iter()
         .enumerate()
@@ -210,13 +280,25 @@ pub fn lowest_eigenpairs_of(
                 .map(move |i| (p, i))
         })
         .collect();
-    // The largest jobs first (dimension × eigenpairs), so that the pool ends on small ones and
-    // no thread idles long while the last big interval finishes.
     let size = |&(p, i): &(usize, usize)| {
         let plan = &plans[p];
         requests[plan.request].pencil.dimension() * (plan.counts[i + 1] - plan.counts[i])
     };
     jobs.sort_by_key(|job| std::cmp::Reverse(size(job)));
+    jobs
+}
+
+/// Phase 2, solving: runs every job (`options.threads` at a time, see [`run_jobs`]), each
+/// writing its eigenvectors into its columns of its plan's matrix in `eigenvectors` (reserved
+/// `n × k`, one per plan); returns the solved intervals of each plan (in no particular order).
+/// On success every column `0..k` of every matrix was written.
+fn solve_intervals(
+    requests: &[EigenRequest<'_, '_>],
+    options: &EigenOptions<'_>,
+    plans: &[Plan],
+    jobs: &[(usize, usize)],
+    eigenvectors: &mut [Mat<f64>],
+) -> Result<Vec<Vec<SolvedInterval>>, RequestError> {
     let settings = IntervalSettings {
         tolerance: options.tolerance,
         block_size: options.block_size,
@@ -224,182 +306,240 @@ pub fn lowest_eigenpairs_of(
         parallelism: options.parallelism,
         refinement_target: options.refinement_target,
     };
-    // Each plan's eigenvectors are written by the jobs straight into their columns of one
-    // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
-    // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
-    let mut eigenvectors: Vec<Mat<f64>> = plans
-        .iter()
-        .map(|plan| {
-            let request = &requests[plan.request];
-            reserve_on_huge_pages(request.pencil.dimension(), request.count)
-        })
-        .collect();
-    let outputs: Vec<Mutex<Option<MatMut<'_, f64>>>> = {
-        let mut outputs: Vec<Option<MatMut<'_, f64>>> = jobs.iter().map(|_| None).collect();
-        for (p, matrix) in eigenvectors.iter_mut().enumerate() {
-            let request = &requests[plans[p].request];
-            let (n, k) = (request.pencil.dimension(), request.count);
-            // SAFETY: the matrix has room for `k` columns of `n` rows at its column stride
-            // (reserved above); the view only writes (each job its own columns, all of them,
-            // checked below before the columns become part of the matrix with `set_dims`), and
-            // `eigenvectors` is not touched while the views live.
-            let mut rest = unsafe {
-                MatMut::from_raw_parts_mut(matrix.as_ptr_mut(), n, k, 1, matrix.col_stride())
-            };
-            let mut in_order: Vec<(usize, usize)> = jobs
-                .iter()
-                .enumerate()
-                .filter(|(_, &(q, _))| q == p)
-                .map(|(job, &(_, i))| (i, job))
-                .collect();
-            in_order.sort_unstable();
-            for (i, job) in in_order {
-                let counts = &plans[p].counts;
-                let width = counts[i + 1].min(k) - counts[i].min(k);
-                let (columns, tail) = rest.split_at_col_mut(width);
-                outputs[job] = Some(columns);
-                rest = tail;
-            }
-        }
-        outputs.into_iter().map(Mutex::new).collect()
-    };
+    let outputs = job_outputs(requests, plans, jobs, eigenvectors);
     let slice_memory = WorkspacePool::<SliceMemory>::new(jobs.len());
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
         let plan = &plans[p];
-        let request = &requests[plan.request];
-        let interval = Interval {
-            lower: (plan.bounds[i], plan.counts[i]),
-            upper: (plan.bounds[i + 1], plan.counts[i + 1]),
-            stream: i as u64 + 1,
-        };
         let output = outputs[job]
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner())
             .take()
             .expect("every job runs once");
-        let width = output.ncols();
         let mut memory = slice_memory.take();
-        let mut solved = Vec::new();
-        let result = solve_interval(
-            request,
-            &interval,
+        let result = solve_job(
+            &requests[plan.request],
+            plan,
+            i,
             &settings,
             &mut memory,
-            0,
             report,
-            &mut solved,
             output,
         );
         slice_memory.give_back(memory);
-        match result {
-            Ok(written) if written == width => Ok(solved),
-            Ok(written) => Err(SolverError::NoConvergence {
-                reason: format!("an interval wrote {written} of its {width} eigenvectors"),
-            }),
-            Err(error) => Err(error),
-        }
-        .map_err(fail(plan.request))
+        result.map_err(fail(plan.request))
     };
-    let mut locked = vec![0usize; jobs.len()];
-    let mut finished = vec![false; jobs.len()];
-    let mut on_message = |job: usize, found: usize, done: bool| {
-        let (p, i) = jobs[job];
-        let plan = &plans[p];
-        let wanted_here = plan.counts[i + 1] - plan.counts[i];
-        if done {
-            finished[job] = true;
-            locked[job] = wanted_here;
-        } else {
-            locked[job] = found.min(wanted_here);
-        }
-        if let Some(callback) = options.progress {
-            let of_plan = |j: &usize| jobs[*j].0 == p;
-            let confirmed = (0..jobs.len())
-                .filter(|j| of_plan(j) && finished[*j])
-                .map(|j| locked[j])
-                .sum::<usize>();
-            let found = (0..jobs.len())
-                .filter(of_plan)
-                .map(|j| locked[j])
-                .sum::<usize>();
-            let pencil_statistics = requests[plan.request].pencil.statistics();
-            callback(&EigenProgress {
-                request: plan.request,
-                found: found.min(requests[plan.request].count),
-                confirmed: confirmed.min(requests[plan.request].count),
-                wanted: requests[plan.request].count,
-                factorizations: pencil_statistics.factorizations(),
-                solves: pencil_statistics.solves(),
-            });
-        }
-    };
+    let mut board = ProgressBoard::new(requests, plans, jobs, options.progress);
+    let mut on_message = |job: usize, found: usize, done: bool| board.record(job, found, done);
     let solved = run_jobs(jobs.len(), options.threads, &solve_job, &mut on_message)?;
-    drop(slice_memory);
-    drop(outputs);
     let mut intervals: Vec<Vec<SolvedInterval>> = plans.iter().map(|_| Vec::new()).collect();
     for (&(p, _), parts) in jobs.iter().zip(solved) {
         intervals[p].extend(parts);
     }
-    for part in intervals.iter().flatten() {
-        statistics.refined_pairs += part.refinement.refined;
-        statistics.refinement.wall_seconds += part.refinement.wall_seconds;
-        statistics.refinement.cpu_seconds += part.refinement.cpu_seconds;
+    Ok(intervals)
+}
+
+/// The output columns of each job: job `(p, i)` gets the columns of plan `p`'s eigenvectors
+/// that interval `i` fills (`counts[i]..counts[i + 1]`, cut at the request's `k`), as a view
+/// that a job takes once.
+fn job_outputs<'m>(
+    requests: &[EigenRequest<'_, '_>],
+    plans: &[Plan],
+    jobs: &[(usize, usize)],
+    eigenvectors: &'m mut [Mat<f64>],
+) -> Vec<Mutex<Option<MatMut<'m, f64>>>> {
+    let mut outputs: Vec<Option<MatMut<'m, f64>>> = jobs.iter().map(|_| None).collect();
+    for (p, matrix) in eigenvectors.iter_mut().enumerate() {
+        let request = &requests[plans[p].request];
+        let (n, k) = (request.pencil.dimension(), request.count);
+        // SAFETY: the matrix has room for `k` columns of `n` rows at its column stride
+        // (reserved by the caller); the view only writes (each job its own columns, all of
+        // them, checked in `solve_job` before the columns become part of the matrix with
+        // `set_dims` in `assemble_plan`), and the matrix stays mutably borrowed while the
+        // views live.
+        let mut rest = unsafe {
+            MatMut::from_raw_parts_mut(matrix.as_ptr_mut(), n, k, 1, matrix.col_stride())
+        };
+        let mut in_order: Vec<(usize, usize)> = jobs
+            .iter()
+            .enumerate()
+            .filter(|(_, &(q, _))| q == p)
+            .map(|(job, &(_, i))| (i, job))
+            .collect();
+        in_order.sort_unstable();
+        for (i, job) in in_order {
+            let counts = &plans[p].counts;
+            let width = counts[i + 1].min(k) - counts[i].min(k);
+            let (columns, tail) = rest.split_at_col_mut(width);
+            outputs[job] = Some(columns);
+            rest = tail;
+        }
+    }
+    outputs.into_iter().map(Mutex::new).collect()
+}
+
+/// One job of phase 2: solves interval `i` of `plan` into `output` (its columns of the
+/// eigenvectors) and checks that every column was written.
+fn solve_job(
+    request: &EigenRequest<'_, '_>,
+    plan: &Plan,
+    i: usize,
+    settings: &IntervalSettings,
+    memory: &mut SliceMemory,
+    report: &dyn Fn(usize, usize),
+    output: MatMut<'_, f64>,
+) -> Result<Vec<SolvedInterval>, SolverError> {
+    let interval = Interval {
+        lower: (plan.bounds[i], plan.counts[i]),
+        upper: (plan.bounds[i + 1], plan.counts[i + 1]),
+        stream: i as u64 + 1,
+    };
+    let width = output.ncols();
+    let mut solved = Vec::new();
+    let written = solve_interval(
+        request,
+        &interval,
+        settings,
+        memory,
+        0,
+        report,
+        &mut solved,
+        output,
+    )?;
+    if written == width {
+        Ok(solved)
+    } else {
+        Err(SolverError::NoConvergence {
+            reason: format!("an interval wrote {written} of its {width} eigenvectors"),
+        })
+    }
+}
+
+/// Eigenpairs locked so far by each job, for the progress callback (per request: found, and
+/// confirmed by finished jobs).
+struct ProgressBoard<'r, 'p> {
+    requests: &'r [EigenRequest<'p, 'p>],
+    plans: &'r [Plan],
+    jobs: &'r [(usize, usize)],
+    callback: Option<&'r dyn Fn(&EigenProgress)>,
+    locked: Vec<usize>,
+    finished: Vec<bool>,
+}
+
+impl<'r, 'p> ProgressBoard<'r, 'p> {
+    fn new(
+        requests: &'r [EigenRequest<'p, 'p>],
+        plans: &'r [Plan],
+        jobs: &'r [(usize, usize)],
+        callback: Option<&'r dyn Fn(&EigenProgress)>,
+    ) -> Self {
+        Self {
+            requests,
+            plans,
+            jobs,
+            callback,
+            locked: vec![0; jobs.len()],
+            finished: vec![false; jobs.len()],
+        }
     }
 
-    // ---- 3. assembly ----
-    let par = options.parallelism;
-    for ((plan, mut parts), mut vectors) in plans.iter().zip(intervals).zip(eigenvectors) {
-        let request = &requests[plan.request];
-        let (n, k) = (request.pencil.dimension(), request.count);
-        // SAFETY: every job of the plan returned, and each wrote all the columns of its part of
-        // the reserved `n × k` (checked in `solve_job`); the parts cover columns `0..k`.
-        unsafe { vectors.set_dims(n, k) };
-        parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
-        orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass(), par);
-        let mut values: Vec<f64> = parts
-            .iter()
-            .flat_map(|part| part.values.iter().copied())
-            .collect();
-        let top = plan.counts[plan.counts.len() - 1];
-        if values.len() != top || values.windows(2).any(|w| w[1] < w[0]) {
-            return Err(fail(plan.request)(SolverError::NoConvergence {
-                reason: format!(
-                    "the intervals returned {} eigenvalues, the inertia count says {top}",
-                    values.len()
-                ),
-            }));
+    /// Job `job` has locked `found` eigenpairs, or (`done`) finished; reports the job's request.
+    fn record(&mut self, job: usize, found: usize, done: bool) {
+        let (p, i) = self.jobs[job];
+        let plan = &self.plans[p];
+        let wanted_here = plan.counts[i + 1] - plan.counts[i];
+        if done {
+            self.finished[job] = true;
+            self.locked[job] = wanted_here;
+        } else {
+            self.locked[job] = found.min(wanted_here);
         }
-        values.truncate(k);
-        pairs[plan.request] = Some((values, vectors));
+        let Some(callback) = self.callback else {
+            return;
+        };
+        let of_plan = |j: &usize| self.jobs[*j].0 == p;
+        let confirmed = (0..self.jobs.len())
+            .filter(|j| of_plan(j) && self.finished[*j])
+            .map(|j| self.locked[j])
+            .sum::<usize>();
+        let found = (0..self.jobs.len())
+            .filter(of_plan)
+            .map(|j| self.locked[j])
+            .sum::<usize>();
+        let request = &self.requests[plan.request];
+        let pencil_statistics = request.pencil.statistics();
+        callback(&EigenProgress {
+            request: plan.request,
+            found: found.min(request.count),
+            confirmed: confirmed.min(request.count),
+            wanted: request.count,
+            factorizations: pencil_statistics.factorizations(),
+            solves: pencil_statistics.solves(),
+        });
     }
-    let mut results = Vec::with_capacity(requests.len());
-    for (request, found) in requests.iter().zip(pairs) {
-        let pencil = request.pencil;
-        let (values, vectors) =
-            found.unwrap_or_else(|| (Vec::new(), Mat::zeros(pencil.dimension(), 0)));
-        statistics.counting.factorizations += pencil.statistics().counting.factorizations;
-        statistics.counting.solves += pencil.statistics().counting.solves;
-        statistics.solving.factorizations += pencil.statistics().solving.factorizations;
-        statistics.solving.solves += pencil.statistics().solving.solves;
-        statistics.refinement.factorizations += pencil.statistics().refinement.factorizations;
-        statistics.refinement.solves += pencil.statistics().refinement.solves;
-        let floor = 1e-8 * pencil.mean_eigenvalue.abs();
-        let field = field_residuals(&pencil.operators(), &values, vectors.as_ref(), floor, par);
-        results.push(Eigenpairs::new(
-            pencil,
-            values,
-            vectors,
-            field.iter().map(|f| f.relative).collect(),
-            field.iter().map(|f| f.residual).collect(),
-            field.iter().map(|f| f.floor).collect(),
-        ));
+}
+
+/// Phase 3, assembly of one plan: its solved `parts` and the `n × k` matrix their jobs wrote
+/// (all columns, see [`solve_intervals`]); the vectors of neighbouring intervals are
+/// M-orthogonalised against each other, and the values checked against the plan's top count
+/// (all of them, ascending) before they are cut to the request's `k`.
+fn assemble_plan(
+    plan: &Plan,
+    request: &EigenRequest<'_, '_>,
+    mut parts: Vec<SolvedInterval>,
+    mut vectors: Mat<f64>,
+    par: Par,
+) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
+    let (n, k) = (request.pencil.dimension(), request.count);
+    // SAFETY: every job of the plan returned, and each wrote all the columns of its part of
+    // the reserved `n × k` (checked in `solve_job`); the parts cover columns `0..k`.
+    unsafe { vectors.set_dims(n, k) };
+    parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
+    orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass(), par);
+    let mut values: Vec<f64> = parts
+        .iter()
+        .flat_map(|part| part.values.iter().copied())
+        .collect();
+    let top = plan.counts[plan.counts.len() - 1];
+    if values.len() != top || values.windows(2).any(|w| w[1] < w[0]) {
+        return Err(SolverError::NoConvergence {
+            reason: format!(
+                "the intervals returned {} eigenvalues, the inertia count says {top}",
+                values.len()
+            ),
+        });
     }
-    clock.stop(&mut statistics.solving);
-    Ok(EigenSolution {
-        pairs: results,
-        statistics,
-    })
+    values.truncate(k);
+    Ok((values, vectors))
+}
+
+/// The result of one request from its assembled (or dense, or empty) pairs, with the field
+/// residuals of every pair; adds the pencil's factorizations and solves to `statistics`.
+fn finish_request(
+    request: &EigenRequest<'_, '_>,
+    found: Option<(Vec<f64>, Mat<f64>)>,
+    statistics: &mut SolverStatistics,
+    par: Par,
+) -> Eigenpairs {
+    let pencil = request.pencil;
+    let (values, vectors) =
+        found.unwrap_or_else(|| (Vec::new(), Mat::zeros(pencil.dimension(), 0)));
+    statistics.counting.factorizations += pencil.statistics().counting.factorizations;
+    statistics.counting.solves += pencil.statistics().counting.solves;
+    statistics.solving.factorizations += pencil.statistics().solving.factorizations;
+    statistics.solving.solves += pencil.statistics().solving.solves;
+    statistics.refinement.factorizations += pencil.statistics().refinement.factorizations;
+    statistics.refinement.solves += pencil.statistics().refinement.solves;
+    let floor = 1e-8 * pencil.mean_eigenvalue.abs();
+    let field = field_residuals(&pencil.operators(), &values, vectors.as_ref(), floor, par);
+    Eigenpairs::new(
+        pencil,
+        values,
+        vectors,
+        field.iter().map(|f| f.relative).collect(),
+        field.iter().map(|f| f.residual).collect(),
+        field.iter().map(|f| f.floor).collect(),
+    )
 }
 
 /// Vectors per Krylov block for a problem of dimension `n`.
@@ -796,8 +936,8 @@ fn run_jobs<T: Send>(
 /// Restores M-orthogonality across interval boundaries: `X_i ← X_i − X_p (X_pᵀ M X_i)` with
 /// `p` the previous non-empty interval, on the columns of `vectors` (`n × k`) that `parts`
 /// (ascending) fill in order. Eigenvectors of different intervals are orthogonal
-/// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (measured:
-/// `|XᵀMX − I|` of 3·10⁻¹⁰ for the Crouzeix–Raviart bunny at k = 500 without this).
+/// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (see
+/// `docs/performance.md` for the loss of orthogonality without this step).
 /// Intervals further apart are separated by at least an interval's width. Costs two
 /// `n × s × s` products per boundary; the change of each vector is of the size of that error,
 /// so residuals and in-interval orthonormality stay as they were.

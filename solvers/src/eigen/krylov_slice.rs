@@ -23,7 +23,7 @@
 //! (`V ← V Y`, `H ← Θ`, `G ← G Y`), and the rest is purged. Once at most half of the slice's
 //! pairs are still missing, the expansion checks every [`COMPLETION_CHECK_BLOCKS`] blocks whether
 //! the Ritz pairs of `H` already complete the slice, and stops there instead of filling the
-//! basis: 6–10 % fewer solves on hand, kitten and bunny-closed (k = 500 per pencil).
+//! basis, which saves solves (on average half a cycle's; measured in `docs/performance.md`).
 
 use super::mass::Mass;
 use super::mass_orthogonal::{
@@ -200,10 +200,10 @@ impl SliceMemory {
 /// reserved afresh on huge pages; memory more than twice too large (a slice of the other,
 /// smaller pencil after the large one) is shrunk in place (glibc shrinks a large allocation
 /// with `mremap`, without moving it), so the pages it keeps are ones it has touched already
-/// (fresh pages cost a kernel fault and zeroing each, see `interval_slicing.rs`: on bunny-closed
-/// the whole basis took 1.6 s of system time instead of 2.6–2.9 s). Kept oversized, the memory of the large pencil's slices would stay
-/// for the small pencil's (at a million faces 4 GB per thread while the last intervals fill the
-/// eigenvectors: a peak of 18.3 GiB instead of 17.1).
+/// (fresh pages cost a kernel fault and zeroing each, see `interval_slicing.rs`). Kept
+/// oversized, the memory of the large pencil's slices would stay for the small pencil's (GBs
+/// per thread at a million faces while the last intervals fill the eigenvectors, which raises
+/// the peak; numbers in `docs/performance.md`).
 fn fit_memory(values: &mut Vec<f64>, len: usize) {
     if values.capacity() < len {
         *values = Vec::new();
@@ -489,20 +489,8 @@ pub(crate) fn run_slice(
     on_restart: &mut dyn FnMut(usize, usize),
 ) -> Result<SliceOutcome, SolverError> {
     let order = problem.factor.krylov_order();
-    let permuted_mass: Option<Vec<f64>> = match problem.mass {
-        Mass::Diagonal(mass) => order.map(|order| order.iter().map(|&row| mass[row]).collect()),
-        Mass::Sparse(_) => None,
-    };
-    let (mass, n) = match (problem.mass, problem.factor.krylov_mass()) {
-        (Mass::Diagonal(mass), _) => {
-            let mass = permuted_mass.as_deref().unwrap_or(mass);
-            (Mass::Diagonal(mass), mass.len())
-        }
-        (Mass::Sparse(m), krylov) => {
-            let m = krylov.unwrap_or(m);
-            (Mass::Sparse(m), m.nrows())
-        }
-    };
+    let permuted_mass = permuted_diagonal_mass(problem.mass, order);
+    let (mass, n) = krylov_mass(problem, permuted_mass.as_deref());
     let par = settings.parallelism;
     let block = settings.block_size.max(1);
     let sigma = problem.sigma;
@@ -517,8 +505,8 @@ pub(crate) fn run_slice(
         });
     }
 
-    let mut locked_values: Vec<f64> = Vec::new();
-    let (mut lower_found, mut upper_found) = (0usize, 0usize);
+    // Pairs locked so far in `(lower_bound, σ)` and in `[σ, upper_bound)`.
+    let mut found = (0usize, 0usize);
     let mut solves = 0usize;
 
     if wanted == 0 {
@@ -534,182 +522,344 @@ pub(crate) fn run_slice(
     let mut basis = MatMut::from_column_major_slice_mut(&mut values[..n * columns], n, columns);
     let mut locked = ColumnStore::new(locked_memory, n, wanted + 2 * block);
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
-    basis.rb_mut().subcols_mut(0, block).copy_from(&start);
-    let (mut mv, mut mu) = (0usize, block);
-    let mut h = Mat::<f64>::zeros(0, 0);
-    let mut g = Mat::<f64>::zeros(block, 0);
+    let mut krylov = KrylovSchur::start(basis.rb_mut(), start.as_ref());
 
-    let ritz = |h: &Mat<f64>, g: &Mat<f64>, found| {
-        ritz_pairs(h.as_ref(), g.as_ref(), problem, settings, found)
+    let ritz = |krylov: &KrylovSchur, found| {
+        ritz_pairs(
+            krylov.h.as_ref(),
+            krylov.g.as_ref(),
+            problem,
+            settings,
+            found,
+        )
     };
     let mut restarted = false;
-    let mut steps_since_check = 0usize;
     for _restart in 0..settings.max_restarts {
         // ---- expansion ----
-        while mv + mu <= max_basis {
-            // The new block is formed in place, in the basis columns right after U.
-            let m_new = mv + mu;
-            let (current, mut free) = basis.rb_mut().split_at_col_mut(m_new);
-            let current = current.into_const();
-            let mut z = free.rb_mut().subcols_mut(0, mu);
-            let applied = apply_operator(
-                problem.factor,
-                mass,
-                current.subcols(mv, mu),
-                z.rb_mut(),
-                scratch,
-                par,
-            );
-            solves += mu;
-            let bases = [locked.view(), current];
-            // OP U lies almost entirely in span(V) (that is the Krylov relation), while its
-            // components along the deflated and locked eigenvectors are tiny in exact
-            // arithmetic. So the big cancellation is against V alone: one classical pass against
-            // V first, then the full (DGKS-checked) passes against everything, which mostly stop
-            // after one pass. Two full passes over [D, L, V] cost twice the dominant term.
-            // Coefficients along V are known from the Krylov relation (OP V = V H + U G, OP
-            // M-self-adjoint, so Vᵀ M OP U = Gᵀ); only the block's own ones are computed.
-            let mut first_pass = Mat::<f64>::zeros(m_new, mu);
-            for j in 0..mu {
-                for i in 0..mv {
-                    first_pass[(i, j)] = g[(j, i)];
-                }
-            }
-            first_pass
-                .as_mut()
-                .subrows_mut(mv, mu)
-                .copy_from(&applied.own);
-            let (mut coefficients, gram) = project_out_after_known(
-                z.rb_mut(),
-                current,
-                first_pass.as_ref(),
-                &bases,
-                mass,
-                par,
-            );
-            coefficients[1] += &first_pass;
-            let c = &coefficients[1];
-            let next = orthonormalize_block(z, gram, &applied.norms, &bases, mass, rng, par)?;
-            let mut h_new = Mat::<f64>::zeros(m_new, m_new);
-            h_new.as_mut().submatrix_mut(0, 0, mv, mv).copy_from(&h);
-            for j in 0..mu {
-                for i in 0..mv {
-                    let value = 0.5 * (c[(i, j)] + g[(j, i)]);
-                    h_new[(i, mv + j)] = value;
-                    h_new[(mv + j, i)] = value;
-                }
-                for i in 0..mu {
-                    h_new[(mv + i, mv + j)] = 0.5 * (c[(mv + i, j)] + c[(mv + j, i)]);
-                }
-            }
-            let mut g_new = Mat::<f64>::zeros(mu, m_new);
-            g_new.as_mut().submatrix_mut(0, mv, mu, mu).copy_from(&next);
-            h = h_new;
-            g = g_new;
-            mv = m_new;
-            steps_since_check += 1;
-            // In the slice's last cycle, stop expanding as soon as the Ritz pairs complete it
-            // instead of always filling the basis (on average half a cycle of solves saved).
-            let remaining = problem.lower_needed - lower_found
-                + problem.upper_target.saturating_sub(upper_found);
-            if restarted && 2 * remaining <= wanted && steps_since_check >= COMPLETION_CHECK_BLOCKS
-            {
-                steps_since_check = 0;
-                let pairs = ritz(&h, &g, (lower_found, upper_found))?;
-                if lower_found + pairs.inside.0 >= problem.lower_needed
-                    && upper_found + pairs.inside.1 >= problem.upper_target
-                {
-                    break;
-                }
-            }
-        }
+        let step = KrylovStep {
+            factor: problem.factor,
+            mass,
+            locked: locked.view(),
+            par,
+        };
+        // In the slice's last cycle, stop expanding as soon as the Ritz pairs complete it
+        // instead of always filling the basis (on average half a cycle of solves saved).
+        let check_completion = restarted && 2 * remaining(problem, found) <= wanted;
+        let complete = |krylov: &KrylovSchur| {
+            let pairs = ritz(krylov, found)?;
+            Ok(found.0 + pairs.inside.0 >= problem.lower_needed
+                && found.1 + pairs.inside.1 >= problem.upper_target)
+        };
+        solves += step.expansion_cycle(
+            basis.rb_mut(),
+            &mut krylov,
+            (scratch, rng),
+            max_basis,
+            check_completion.then_some(&complete),
+        )?;
         restarted = true;
-        steps_since_check = 0;
 
         // ---- Rayleigh–Ritz ----
-        let RitzPairs {
-            theta,
-            y,
-            gy,
-            lock,
-            mut keep,
-            inside,
-        } = ritz(&h, &g, (lower_found, upper_found))?;
-        let window = problem.lower_needed - lower_found
-            + problem.upper_target.saturating_sub(upper_found)
-            + block;
-        lower_found += inside.0;
-        upper_found += inside.1;
-        if !lock.is_empty() {
-            let y_lock = Mat::from_fn(mv, lock.len(), |i, j| y[(i, lock[j])]);
-            locked.append_product(basis.rb().subcols(0, mv), y_lock.as_ref(), par);
-            locked_values.extend(lock.iter().map(|&i| sigma + 1.0 / theta[i]));
+        let pairs = ritz(&krylov, found)?;
+        let window = remaining(problem, found) + block;
+        found.0 += pairs.inside.0;
+        found.1 += pairs.inside.1;
+        if !pairs.lock.is_empty() {
+            let y_lock = Mat::from_fn(krylov.mv, pairs.lock.len(), |i, j| {
+                pairs.y[(i, pairs.lock[j])]
+            });
+            locked.append_product(basis.rb().subcols(0, krylov.mv), y_lock.as_ref(), par);
         }
-        on_restart(locked_values.len(), solves);
-        if lower_found > problem.lower_needed {
+        on_restart(locked.columns, solves);
+        if found.0 > problem.lower_needed {
             return Err(SolverError::NoConvergence {
                 reason: format!(
-                    "inertia mismatch at shift {sigma:e}: found {lower_found} new eigenvalues below it, inertia allows {}",
-                    problem.lower_needed
+                    "inertia mismatch at shift {sigma:e}: found {} new eigenvalues below it, inertia allows {}",
+                    found.0, problem.lower_needed
                 ),
             });
         }
-        if lower_found == problem.lower_needed && upper_found >= problem.upper_target {
-            let columns = locked.columns;
-            let mut vectors =
-                MatMut::from_column_major_slice_mut(&mut locked.values[..n * columns], n, columns);
-            inverse_iteration_step(problem.factor, mass, vectors.rb_mut(), scratch)?;
-            solves += columns * problem.factor.refined_solve_cost();
-            put_in_input_order(vectors, order);
-            return Ok(SliceOutcome { columns, solves });
+        if found.0 == problem.lower_needed && found.1 >= problem.upper_target {
+            return finish_slice(problem.factor, mass, locked, scratch, order, solves);
         }
 
         // ---- thick restart ----
         let keep_target = window
             .max(max_basis / 2)
-            .min(max_basis.saturating_sub(mu + block));
+            .min(max_basis.saturating_sub(krylov.mu + block));
+        let mut keep = pairs.keep;
         keep.truncate(keep_target);
+        krylov.thick_restart(
+            basis.rb_mut(),
+            &pairs.theta,
+            &pairs.y,
+            &pairs.gy,
+            &keep,
+            par,
+        );
+
+        // Missing eigenvalues counted by inertia (below σ; above σ too when the upper end is
+        // an exact count) without any Ritz approximation in the basis (e.g. a multiplicity
+        // larger than the block size): bring in fresh random directions.
+        let missing = remaining(problem, found);
+        let newly_locked = pairs.inside.0 + pairs.inside.1;
+        if missing > 0
+            && newly_locked == 0
+            && candidates_inside(problem, &pairs.theta, &keep) < missing
+            && krylov.mu + block <= 3 * block
+        {
+            let current = basis.rb().subcols(0, krylov.mv + krylov.mu);
+            let fresh =
+                random_orthonormal_block(n, block, &[locked.view(), current], mass, rng, par)?;
+            krylov.append_unexpanded(basis.rb_mut(), fresh.as_ref());
+        }
+    }
+    Err(SolverError::NoConvergence {
+        reason: format!(
+            "slice at shift {sigma:e} did not converge in {} restarts (locked {} of {} eigenpairs below the shift, {} of {} above)",
+            settings.max_restarts,
+            found.0,
+            problem.lower_needed,
+            found.1,
+            problem.upper_target
+        ),
+    })
+}
+
+/// Pairs still missing after `found` `(below σ, above σ)` were locked: all below σ that the
+/// inertia counts, and the rest of the upper target.
+fn remaining(problem: &SliceProblem<'_>, (lower_found, upper_found): (usize, usize)) -> usize {
+    problem.lower_needed - lower_found + problem.upper_target.saturating_sub(upper_found)
+}
+
+/// How many of the kept Ritz values `theta[keep]` stand for eigenvalues `σ + 1/θ` strictly
+/// inside the interval.
+fn candidates_inside(problem: &SliceProblem<'_>, theta: &[f64], keep: &[usize]) -> usize {
+    keep.iter()
+        .filter(|&&i| {
+            let lambda = problem.sigma + 1.0 / theta[i];
+            lambda < problem.upper_bound && lambda > problem.lower_bound
+        })
+        .count()
+}
+
+/// A diagonal `M` permuted into the factorization's elimination order `order` (`None`: no
+/// permutation, or a sparse `M`, which the factorization permutes itself).
+fn permuted_diagonal_mass(mass: Mass<'_>, order: Option<&[usize]>) -> Option<Vec<f64>> {
+    match mass {
+        Mass::Diagonal(mass) => order.map(|order| order.iter().map(|&row| mass[row]).collect()),
+        Mass::Sparse(_) => None,
+    }
+}
+
+/// `M` in the order of the Krylov vectors (the diagonal permuted by the caller, see
+/// [`permuted_diagonal_mass`]; a sparse one `P M Pᵀ` from the factorization when it has one)
+/// and the dimension `n` of the vectors.
+fn krylov_mass<'a>(problem: &SliceProblem<'a>, permuted: Option<&'a [f64]>) -> (Mass<'a>, usize) {
+    match (problem.mass, problem.factor.krylov_mass()) {
+        (Mass::Diagonal(mass), _) => {
+            let mass = permuted.unwrap_or(mass);
+            (Mass::Diagonal(mass), mass.len())
+        }
+        (Mass::Sparse(m), krylov) => {
+            let m = krylov.unwrap_or(m);
+            (Mass::Sparse(m), m.nrows())
+        }
+    }
+}
+
+/// The slice is complete: one inverse-iteration step on the `locked` vectors (its solves
+/// counted in the returned `solves`, added to the `solves` so far), which are then put in input
+/// order.
+fn finish_slice(
+    factor: &ShiftFactor,
+    mass: Mass<'_>,
+    locked: ColumnStore<'_>,
+    scratch: &mut OperatorScratch,
+    order: Option<&[usize]>,
+    solves: usize,
+) -> Result<SliceOutcome, SolverError> {
+    let (n, columns) = (locked.n, locked.columns);
+    let mut vectors =
+        MatMut::from_column_major_slice_mut(&mut locked.values[..n * columns], n, columns);
+    inverse_iteration_step(factor, mass, vectors.rb_mut(), scratch)?;
+    let solves = solves + columns * factor.refined_solve_cost();
+    put_in_input_order(vectors, order);
+    Ok(SliceOutcome { columns, solves })
+}
+
+/// The Krylov–Schur decomposition `OP V = V H + U G` in the first columns of the basis: `V`
+/// the first `mv` (expanded), `U` the next `mu` (unexpanded); `H` is `mv × mv` (symmetric),
+/// `G` is `mu × mv`.
+struct KrylovSchur {
+    h: Mat<f64>,
+    g: Mat<f64>,
+    mv: usize,
+    mu: usize,
+}
+
+/// Whether the Ritz pairs of a decomposition complete the slice.
+type CompletionCheck<'c> = dyn Fn(&KrylovSchur) -> Result<bool, SolverError> + 'c;
+
+/// What one expansion step works with: the factorization, `M` (in the Krylov vectors' order),
+/// the locked vectors (`n × locked`) and the parallelism of the products.
+struct KrylovStep<'a> {
+    factor: &'a ShiftFactor,
+    mass: Mass<'a>,
+    locked: MatRef<'a, f64>,
+    par: Par,
+}
+
+impl KrylovStep<'_> {
+    /// One expansion cycle: expands `krylov` block by block ([`Self::expand`]) while the basis
+    /// has room (`mv + mu ≤ max_basis`); with `complete`, every [`COMPLETION_CHECK_BLOCKS`]
+    /// blocks it asks whether the Ritz pairs already complete the slice and stops if so.
+    /// Returns the number of solves.
+    fn expansion_cycle(
+        &self,
+        mut basis: MatMut<'_, f64>,
+        krylov: &mut KrylovSchur,
+        (scratch, rng): (&mut OperatorScratch, &mut ChaCha8Rng),
+        max_basis: usize,
+        complete: Option<&CompletionCheck<'_>>,
+    ) -> Result<usize, SolverError> {
+        let mut solves = 0;
+        let mut steps_since_check = 0usize;
+        while krylov.mv + krylov.mu <= max_basis {
+            solves += krylov.mu;
+            self.expand(basis.rb_mut(), krylov, scratch, rng)?;
+            steps_since_check += 1;
+            if let Some(complete) = complete {
+                if steps_since_check >= COMPLETION_CHECK_BLOCKS {
+                    steps_since_check = 0;
+                    if complete(krylov)? {
+                        break;
+                    }
+                }
+            }
+        }
+        Ok(solves)
+    }
+
+    /// Expands `krylov` by one block: `Z = OP U` (one blocked solve of `mu` columns), formed in
+    /// place in the basis columns right after `U`, orthonormalised against the locked vectors
+    /// and `[V, U]`; `U` joins `V` and the new block becomes `U` (`H` and `G` bordered).
+    fn expand(
+        &self,
+        mut basis: MatMut<'_, f64>,
+        krylov: &mut KrylovSchur,
+        scratch: &mut OperatorScratch,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<(), SolverError> {
+        let (mv, mu) = (krylov.mv, krylov.mu);
+        let (mass, par) = (self.mass, self.par);
+        let m_new = mv + mu;
+        let (current, mut free) = basis.rb_mut().split_at_col_mut(m_new);
+        let current = current.into_const();
+        let mut z = free.rb_mut().subcols_mut(0, mu);
+        let applied = apply_operator(
+            self.factor,
+            mass,
+            current.subcols(mv, mu),
+            z.rb_mut(),
+            scratch,
+            par,
+        );
+        let bases = [self.locked, current];
+        // OP U lies almost entirely in span(V) (that is the Krylov relation), while its
+        // components along the deflated and locked eigenvectors are tiny in exact
+        // arithmetic. So the big cancellation is against V alone: one classical pass against
+        // V first, then the full (DGKS-checked) passes against everything, which mostly stop
+        // after one pass. Two full passes over [D, L, V] cost twice the dominant term.
+        // Coefficients along V are known from the Krylov relation (OP V = V H + U G, OP
+        // M-self-adjoint, so Vᵀ M OP U = Gᵀ); only the block's own ones are computed.
+        let g = &krylov.g;
+        let mut first_pass = Mat::<f64>::zeros(m_new, mu);
+        for j in 0..mu {
+            for i in 0..mv {
+                first_pass[(i, j)] = g[(j, i)];
+            }
+        }
+        first_pass
+            .as_mut()
+            .subrows_mut(mv, mu)
+            .copy_from(&applied.own);
+        let (mut coefficients, gram) =
+            project_out_after_known(z.rb_mut(), current, first_pass.as_ref(), &bases, mass, par);
+        coefficients[1] += &first_pass;
+        let c = &coefficients[1];
+        let next = orthonormalize_block(z, gram, &applied.norms, &bases, mass, rng, par)?;
+        let mut h_new = Mat::<f64>::zeros(m_new, m_new);
+        h_new
+            .as_mut()
+            .submatrix_mut(0, 0, mv, mv)
+            .copy_from(&krylov.h);
+        for j in 0..mu {
+            for i in 0..mv {
+                let value = 0.5 * (c[(i, j)] + g[(j, i)]);
+                h_new[(i, mv + j)] = value;
+                h_new[(mv + j, i)] = value;
+            }
+            for i in 0..mu {
+                h_new[(mv + i, mv + j)] = 0.5 * (c[(mv + i, j)] + c[(mv + j, i)]);
+            }
+        }
+        let mut g_new = Mat::<f64>::zeros(mu, m_new);
+        g_new.as_mut().submatrix_mut(0, mv, mu, mu).copy_from(&next);
+        krylov.h = h_new;
+        krylov.g = g_new;
+        krylov.mv = m_new;
+        Ok(())
+    }
+}
+
+impl KrylovSchur {
+    /// The empty decomposition (`V` empty) whose `U` is the M-orthonormal block `start`, put in
+    /// the first columns of the basis.
+    fn start(mut basis: MatMut<'_, f64>, start: MatRef<'_, f64>) -> Self {
+        let block = start.ncols();
+        basis.rb_mut().subcols_mut(0, block).copy_from(start);
+        Self {
+            h: Mat::<f64>::zeros(0, 0),
+            g: Mat::<f64>::zeros(block, 0),
+            mv: 0,
+            mu: block,
+        }
+    }
+
+    /// Thick restart onto the Ritz pairs `keep` (indices into `theta`, the Ritz values, and the
+    /// columns of `y`, the Ritz vectors of `H`, and of `gy = G Y`): `V ← V Y_keep` in place,
+    /// `U` moved right after it, `H ← Θ_keep`, `G ← (G Y)_keep`.
+    fn thick_restart(
+        &mut self,
+        mut basis: MatMut<'_, f64>,
+        theta: &[f64],
+        y: &Mat<f64>,
+        gy: &Mat<f64>,
+        keep: &[usize],
+        par: Par,
+    ) {
+        let (mv, mu) = (self.mv, self.mu);
         let p = keep.len();
         let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
         let u_old = basis.rb().subcols(mv, mu).to_owned();
         tall_times_in_place(basis.rb_mut().subcols_mut(0, mv), y_keep.as_ref(), par);
         basis.rb_mut().subcols_mut(p, mu).copy_from(&u_old);
-        h = Mat::from_fn(p, p, |i, j| if i == j { theta[keep[i]] } else { 0.0 });
-        g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);
-        mv = p;
-
-        // Missing eigenvalues counted by inertia (below σ; above σ too when the upper end is
-        // an exact count) without any Ritz approximation in the basis (e.g. a multiplicity
-        // larger than the block size): bring in fresh random directions.
-        let missing =
-            problem.lower_needed - lower_found + problem.upper_target.saturating_sub(upper_found);
-        let candidates = keep
-            .iter()
-            .filter(|&&i| {
-                let lambda = sigma + 1.0 / theta[i];
-                lambda < problem.upper_bound && lambda > problem.lower_bound
-            })
-            .count();
-        let newly_locked = inside.0 + inside.1;
-        if missing > 0 && newly_locked == 0 && candidates < missing && mu + block <= 3 * block {
-            let current = basis.rb().subcols(0, mv + mu);
-            let fresh =
-                random_orthonormal_block(n, block, &[locked.view(), current], mass, rng, par)?;
-            basis.rb_mut().subcols_mut(mv + mu, block).copy_from(&fresh);
-            let mut g_new = Mat::<f64>::zeros(mu + block, mv);
-            g_new.as_mut().subrows_mut(0, mu).copy_from(&g);
-            g = g_new;
-            mu += block;
-        }
+        self.h = Mat::from_fn(p, p, |i, j| if i == j { theta[keep[i]] } else { 0.0 });
+        self.g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);
+        self.mv = p;
     }
-    Err(SolverError::NoConvergence {
-        reason: format!(
-            "slice at shift {sigma:e} did not converge in {} restarts (locked {lower_found} of {} eigenpairs below the shift, {upper_found} of {} above)",
-            settings.max_restarts,
-            problem.lower_needed,
-            problem.upper_target
-        ),
-    })
+
+    /// Appends the M-orthonormal block `fresh` (orthogonal to everything in the basis) to `U`
+    /// (its rows of `G` are zero).
+    fn append_unexpanded(&mut self, mut basis: MatMut<'_, f64>, fresh: MatRef<'_, f64>) {
+        let (mv, mu, block) = (self.mv, self.mu, fresh.ncols());
+        basis.rb_mut().subcols_mut(mv + mu, block).copy_from(fresh);
+        let mut g_new = Mat::<f64>::zeros(mu + block, mv);
+        g_new.as_mut().subrows_mut(0, mu).copy_from(&self.g);
+        self.g = g_new;
+        self.mu += block;
+    }
 }
 
 #[cfg(test)]

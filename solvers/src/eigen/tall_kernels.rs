@@ -4,11 +4,9 @@
 //! packed blocks of up to [`CHUNK`] columns ([`Row`]s).
 //!
 //! Why by hand: these products have a tiny output (`m × 8` or `rows × 8`) and a long or wide
-//! reduction, the shapes general matrix–matrix kernels handle worst. Measured on a 2-core AMD
-//! EPYC with `B` of 104,499 × 200 and 8 columns, one thread: faer's `matmul` reaches 12–14
-//! GFLOP/s on `Bᵀ W` (OpenBLAS through NumPy: 13) and 14–15 on `Z − B C`; these loops reach
-//! 35 and 18 on whole columns, and 22–30 and 21 on the 4096-row blocks of the Gram–Schmidt
-//! sweep. A row of `W` (or `c`) is one or two vector registers wide and several columns of `B`
+//! reduction, the shapes general matrix–matrix kernels handle worst; these loops ran about
+//! twice as fast as faer's `matmul` (and OpenBLAS) on `Bᵀ W` and somewhat faster on
+//! `Z − B C` (rates in `docs/performance.md`). A row of `W` (or `c`) is one or two vector registers wide and several columns of `B`
 //! are consumed at once, so every loaded value of `B` feeds eight fused multiply–adds. The
 //! loops are compiled twice, with and without AVX2 + FMA, and the variant is chosen at run time
 //! (the crates are built for the baseline x86-64 target).
@@ -20,7 +18,7 @@ use faer::MatRef;
 /// latency).
 const UNROLL: usize = 4;
 /// Columns of `B` consumed together by [`subtract`]: each load and store of a row of `z` is
-/// shared by this many multiply–adds (8 measured 1.4× faster than 4).
+/// shared by this many multiply–adds (8 was faster than 4, see `docs/performance.md`).
 const UPDATE_UNROLL: usize = 8;
 
 /// `out[k] += Σ_i b[i, k] · w[i]` for `b: rows × m` (column-major, contiguous columns),
@@ -96,8 +94,8 @@ fn inner_add_fma(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]) {
 /// [`subtract`] with AVX2 + FMA intrinsics: four columns of `b` at a time, whose negated
 /// coefficients stay in eight registers for the whole pass, and rows in pairs (14 of the 16
 /// vector registers). Compiled from [`subtract_body`], the coefficients of eight columns do not
-/// fit in registers and are reloaded for every row: 21 GFLOP/s against 30 here (one thread,
-/// 104,499 × 200 basis, 8 columns, median of 40 passes), the rate of [`inner_add`]. The
+/// fit in registers and are reloaded for every row, which is markedly slower (rates in
+/// `docs/performance.md`); this one keeps up with [`inner_add`]. The
 /// multiply–adds run in the same order as in [`subtract_body`], so the results are identical.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]

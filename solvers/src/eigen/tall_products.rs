@@ -120,10 +120,9 @@ fn in_place_parts(mut b: MatMut<'_, f64>, y: MatRef<'_, f64>, parts: usize) {
 /// Rows per block of [`sweep`]: long enough for the hardware prefetchers to stream each column
 /// segment (128 KB), short enough that the block of the columns updated in the same sweep (in
 /// the Gram–Schmidt sweeps, the last two Krylov blocks: 16 columns, 2 MB) is still in the
-/// last-level cache when the inner products read it again. Measured with a 104,499 × 190 basis
-/// and 8 columns, one thread per basis: the inner-product sweep takes 15–16 ms with 4096 rows
-/// (32 KB segments), 12–15 ms with 16,384 or 32,768 rows, and 17–21 ms with whole columns; the
-/// update sweep 17 ms with any of them.
+/// last-level cache when the inner products read it again. Shorter blocks and whole columns
+/// made the inner-product sweep slower, longer ones did not help, and the update sweep does not
+/// care (timings in `docs/performance.md`).
 const SWEEP_ROWS: usize = 16384;
 
 /// Values of the weighted row block of [`mass_inner`] (256 KiB).

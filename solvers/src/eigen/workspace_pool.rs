@@ -2,9 +2,9 @@
 //!
 //! Why: each Krylov–Schur slice needs a basis of `n × (2·wanted + 7·block)` values (190 MB for
 //! the Crouzeix–Raviart bunny-closed pencil, 2.7 GB at a million faces). Allocated fresh per
-//! slice, every page of it is faulted in and zeroed by the kernel on first touch: on
-//! bunny-closed the Krylov bases were about half of the process's kernel time. Recycled, a
-//! slice starts on memory that is already mapped.
+//! slice, every page of it is faulted in and zeroed by the kernel on first touch, which made the
+//! Krylov bases a large share of the process's kernel time (see `docs/performance.md`).
+//! Recycled, a slice starts on memory that is already mapped.
 //!
 //! A returned workspace is kept only while some job has not yet started: the pool never holds
 //! memory that no later job will use (at a million faces one spare basis costs GBs, and the

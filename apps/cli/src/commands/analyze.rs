@@ -10,9 +10,11 @@ use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
+use tvf_core::io::write_atomically;
 use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
-use tvf_spectral::{write_atomically, EnergySplit, FieldFamily, SpectralAnalysis};
+use tvf_spectral::{EnergySplit, FieldFamily, SpectralAnalysis};
 
 /// Arguments of `tvf analyze`.
 #[derive(Args)]
@@ -79,8 +81,10 @@ pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
         )?;
     }
     let csv_path = args.output.join("coefficients.csv");
-    write_atomically(&staged.path().join("coefficients.csv"), csv.as_bytes())
-        .with_context(|| format!("cannot write {}", csv_path.display()))?;
+    write_atomically(&staged.path().join("coefficients.csv"), |w| {
+        w.write_all(csv.as_bytes())
+    })
+    .with_context(|| format!("cannot write {}", csv_path.display()))?;
 
     let mut report = json!({
         "mesh": args.input.label(),
@@ -96,10 +100,10 @@ pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
         report["hodge"] = split_json(exact);
     }
     let json_path = args.output.join("energy.json");
-    write_atomically(
-        &staged.path().join("energy.json"),
-        serde_json::to_string_pretty(&report)?.as_bytes(),
-    )
+    let json = serde_json::to_string_pretty(&report)?;
+    write_atomically(&staged.path().join("energy.json"), |w| {
+        w.write_all(json.as_bytes())
+    })
     .with_context(|| format!("cannot write {}", json_path.display()))?;
 
     let png_path = args.output.join("spectrum.png");

@@ -10,12 +10,13 @@ use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
+use tvf_core::io::write_atomically;
 use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::BasisSize;
 use tvf_spectral::{
-    basis_id, equal_error_comparison, rate_distortion, write_atomically, CoefficientCoding,
-    FileStamp, RatePoint,
+    basis_id, equal_error_comparison, rate_distortion, CoefficientCoding, FileStamp, RatePoint,
 };
 
 /// Arguments of `tvf rate-distortion`.
@@ -94,8 +95,10 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
         )?;
     }
     let csv_path = args.output.join("rate_distortion.csv");
-    write_atomically(&staged.path().join("rate_distortion.csv"), csv.as_bytes())
-        .with_context(|| format!("cannot write {}", csv_path.display()))?;
+    write_atomically(&staged.path().join("rate_distortion.csv"), |w| {
+        w.write_all(csv.as_bytes())
+    })
+    .with_context(|| format!("cannot write {}", csv_path.display()))?;
     let png_path = args.output.join("rate_distortion.png");
     let label = args.input.label();
     let mesh_name = Path::new(&label)

@@ -4,8 +4,9 @@
 use crate::error::FigureError;
 use crate::finding::Finding;
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::Path;
-use tvf_spectral::write_atomically;
+use tvf_core::io::write_atomically;
 
 /// Escapes text for HTML.
 pub fn escape(text: &str) -> String {
@@ -154,7 +155,8 @@ pub fn html(title: &str, intro: &[(String, String)], sections: &[Section], total
 /// Writes the page to `dir/index.html` atomically.
 pub fn write_page(dir: &Path, page: &str) -> Result<(), FigureError> {
     let path = dir.join("index.html");
-    write_atomically(&path, page.as_bytes()).map_err(|source| FigureError::Write { path, source })
+    write_atomically(&path, |w| w.write_all(page.as_bytes()))
+        .map_err(|source| FigureError::Write { path, source })
 }
 
 #[cfg(test)]

@@ -52,7 +52,6 @@
 //! than the file has is refused before anything is allocated for them.
 
 use crate::eigenfunction_basis::{field_of_stored_into, FIELD_CHUNK};
-use crate::formats::atomic_write::write_atomically_with;
 use crate::formats::basis_file_header::{encode_header, read_header};
 pub use crate::formats::basis_file_header::{BasisFileHeader, BasisFileKey, BasisFileLayout};
 pub use crate::formats::basis_file_mass::StoredFieldMass;
@@ -337,7 +336,7 @@ fn write_basis(
         },
         &matrix_hash,
     );
-    write_atomically_with(path, |w| {
+    tvf_core::io::write_atomically(path, |w| {
         w.write_all(&header)?;
         let mut out = HashingWriter {
             inner: w,

@@ -19,7 +19,7 @@
 //! | end − 4 | 4 | CRC-32 of every byte before it |
 
 use crate::codec::compression_error::CompressionError;
-use crate::formats::atomic_write::write_atomically;
+use std::io::Write as _;
 use std::path::Path;
 use tvf_core::io::read_exactly_at_most;
 
@@ -269,9 +269,11 @@ impl CompressedFields {
     /// Returns the number of bytes written.
     pub fn write_atomic(&self, path: &Path) -> Result<usize, CompressionError> {
         let bytes = self.to_bytes();
-        write_atomically(path, &bytes).map_err(|e| CompressionError::Io {
-            path: path.display().to_string(),
-            message: e.to_string(),
+        tvf_core::io::write_atomically(path, |w| w.write_all(&bytes)).map_err(|e| {
+            CompressionError::Io {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            }
         })?;
         Ok(bytes.len())
     }

@@ -3,18 +3,19 @@
 //! `.npy` arrays of any shape.
 //!
 //! The format is chosen by the extension: `.npy` is NumPy, anything else is text. Every write is
-//! atomic ([`crate::write_atomically`]); every error names the file.
+//! atomic ([`tvf_core::io::write_atomically`]); every error names the file.
 //!
 //! Vectors in files are 3D and **pointwise** (one vector per face, in the mesh's coordinates).
 //! [`read_tangent_field`] turns them into a tangent field of `2F` face-frame coefficients by
 //! projecting each onto its face's plane, and reports the dropped normal components.
 
-use crate::formats::atomic_write::write_atomically;
 use crate::formats::npy::{NpyArray, NpyDtype, NpyError};
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::{FieldSampling, TangentProjection};
+use tvf_core::io::write_atomically;
 use tvf_core::io::{read_at_most, read_exactly_at_most};
 
 /// What can go wrong reading or writing a field file (every variant names the file).
@@ -179,7 +180,8 @@ fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> FieldIoError + '_ {
     }
 }
 
-/// Reads any `.npy` array of `f32`/`f64` (C order). No more bytes are read than the header
+/// Reads any `.npy` array of floats or integers (either byte order, C or Fortran order; values
+/// as `f64` in C order, see [`NpyArray::from_bytes`]). No more bytes are read than the header
 /// justifies (the header, the data its shape needs, one byte to detect trailing data), so a
 /// stream that never ends is refused.
 pub fn read_npy(path: &Path) -> Result<NpyArray, FieldIoError> {
@@ -246,7 +248,7 @@ pub fn write_npy(path: &Path, array: &NpyArray) -> Result<(), FieldIoError> {
             ),
         });
     }
-    write_atomically(path, &array.to_bytes()).map_err(io_error(path))
+    write_atomically(path, |w| w.write_all(&array.to_bytes())).map_err(io_error(path))
 }
 
 /// Reads one 3D vector per face from `path` (`.npy` `F × 3` of `f32`/`f64`, or text). Rejects
@@ -368,7 +370,7 @@ pub fn write_face_vectors_as(
                 // `{}` on f64 prints the shortest decimal that parses back to the same bits.
                 let _ = writeln!(text, "{} {} {}", v[0], v[1], v[2]);
             }
-            write_atomically(path, text.as_bytes()).map_err(io_error(path))
+            write_atomically(path, |w| w.write_all(text.as_bytes())).map_err(io_error(path))
         }
     }
 }

@@ -3,7 +3,6 @@
 //! content id of a basis; complex folders (the five matrices of a complex as files, with
 //! `info.json`); the sparse matrices and integer arrays other tools write. Every write is atomic; every error names the file.
 
-pub(crate) mod atomic_write;
 pub(crate) mod basis_file;
 pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_header;

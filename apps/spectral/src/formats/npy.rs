@@ -1,17 +1,24 @@
-//! NumPy `.npy` arrays of floating point numbers (format versions 1.0, 2.0 and 3.0).
+//! NumPy `.npy` arrays of numbers (format versions 1.0, 2.0 and 3.0), read and written with the
+//! `npyz` crate.
 //!
-//! Only what tangent fields need: little-endian `f32` (`<f4`) or `f64` (`<f8`) data in C order,
-//! any number of dimensions. The header is parsed as the Python dict literal the format
-//! specifies (`{'descr': '<f8', 'fortran_order': False, 'shape': (F, 3), }`), so keys may come
-//! in any order and with any spacing. Everything else (Fortran order, big-endian or integer
-//! dtypes, object arrays, truncated data) is rejected with a [`NpyError`] saying why.
+//! Read: float (`f4`, `f8`) and integer (`i1`…`i8`, `u1`…`u8`) dtypes of either byte order, in
+//! C or Fortran order, any number of dimensions; the values come back as `f64` in C order
+//! (integers converted exactly: one beyond ±2⁵³ that `f64` cannot hold is refused). Everything
+//! else (booleans, complex, strings, records, truncated or over-long data) is refused with a
+//! [`NpyError`] saying why. The first bytes (magic, version, header length) are checked here
+//! before `npyz` parses the header, so a bounded reader knows how much to read and an absurd
+//! header length is refused before it is read ([`MAX_HEADER_BYTES`]).
+//!
+//! Written: little-endian `f4`/`f8` in C order ([`NpyArray::to_bytes`]), the header padded so
+//! that the data start at a multiple of 64 bytes.
 
+use npyz::{DType, Deserialize, NpyFile, NpyHeader, Order, TypeChar, TypeStr, WriterBuilder};
 use thiserror::Error;
 
 /// The magic string every `.npy` file starts with.
 const MAGIC: &[u8; 6] = b"\x93NUMPY";
 
-/// Element type of an `.npy` array.
+/// Element type of an `.npy` array tvf writes (and of a float array it read).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum NpyDtype {
     /// Little-endian IEEE single precision (`<f4`).
@@ -58,14 +65,21 @@ pub enum NpyError {
     /// The header dict cannot be parsed.
     #[error("malformed .npy header: {0}")]
     Header(String),
-    /// A dtype other than little-endian `f4`/`f8`.
-    #[error("unsupported dtype {0:?} (only little-endian float32 '<f4' and float64 '<f8')")]
-    Dtype(String),
-    /// `fortran_order: True`.
+    /// A dtype that is not a float or an integer.
     #[error(
-        "Fortran-order arrays are not supported (save with C order, e.g. np.ascontiguousarray)"
+        "unsupported dtype {0:?} (only float32/float64 'f4'/'f8' and integers 'i1'…'i8', 'u1'…'u8', either byte order)"
     )]
-    FortranOrder,
+    Dtype(String),
+    /// An integer that `f64` cannot represent exactly (beyond ±2⁵³).
+    #[error("element {index} ({value}, dtype {dtype:?}) cannot be represented exactly as float64")]
+    Unrepresentable {
+        /// Position of the element in the file's order.
+        index: usize,
+        /// The integer.
+        value: String,
+        /// The file's dtype.
+        dtype: String,
+    },
     /// The data section is longer than the shape says.
     #[error(
         "{extra}{} bytes of trailing data after the array",
@@ -79,19 +93,41 @@ pub enum NpyError {
     },
 }
 
-/// A dense floating point array read from or written to `.npy`, in C (row-major) order.
+/// A dense array of numbers read from or written to `.npy`, in C (row-major) order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NpyArray {
     /// The shape, e.g. `[F, 3]`; an empty shape is a scalar (one element).
     pub shape: Vec<usize>,
-    /// The elements in C order (`shape.iter().product()` of them), widened to `f64`.
+    /// The elements in C order (`shape.iter().product()` of them), as `f64`.
     pub data: Vec<f64>,
-    /// The element type found in (or to be written to) the file.
+    /// The element type to be written; read: [`NpyDtype::F32`] for a float32 file,
+    /// [`NpyDtype::F64`] for every other (float64 or integer) one.
     pub dtype: NpyDtype,
 }
 
 /// Longest `.npy` header accepted (numpy writes a few hundred bytes at most).
 pub const MAX_HEADER_BYTES: usize = 1 << 20;
+
+/// What the header of an `.npy` file says: parsed by `npyz`, with the element type checked and
+/// the data length computed.
+struct Head {
+    header: NpyHeader,
+    element: Element,
+    /// Where the data start (bytes from the file's start).
+    data_start: usize,
+    /// Number of elements.
+    count: usize,
+    /// Length of the data (bytes).
+    needed: usize,
+}
+
+/// The element types read, by kind and size (either byte order).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Element {
+    Float(usize),
+    Int(usize),
+    Uint(usize),
+}
 
 impl NpyArray {
     /// Where the data of an `.npy` file starts, read from its first bytes (magic, version,
@@ -133,302 +169,212 @@ impl NpyArray {
 
     /// Parses the bytes of an `.npy` file.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, NpyError> {
-        let (parsed, dtype, data_start, needed) = Self::parse_head(bytes)?;
-        let payload = &bytes[data_start..];
-        if payload.len() < needed {
+        let head = parse_head(bytes)?;
+        let payload = &bytes[head.data_start..];
+        if payload.len() < head.needed {
             return Err(NpyError::Truncated(format!(
-                "shape {:?} needs {needed} data bytes, only {} present",
-                parsed.shape,
+                "shape {:?} needs {} data bytes, only {} present",
+                head.header.shape(),
+                head.needed,
                 payload.len()
             )));
         }
-        if payload.len() > needed {
+        if payload.len() > head.needed {
             return Err(NpyError::TrailingData {
-                extra: (payload.len() - needed) as u64,
+                extra: (payload.len() - head.needed) as u64,
                 more: false,
             });
         }
-        let data = match dtype {
-            NpyDtype::F64 => payload
-                .chunks_exact(8)
-                .map(|c| f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-                .collect(),
-            NpyDtype::F32 => payload
-                .chunks_exact(4)
-                .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]) as f64)
-                .collect(),
+        let descr = head.header.dtype().descr();
+        let file = NpyFile::with_header(head.header.clone(), payload);
+        let data = match head.element {
+            Element::Float(4) => widened(read_all::<f32>(file)?),
+            Element::Float(_) => read_all::<f64>(file)?,
+            Element::Int(1) => widened(read_all::<i8>(file)?),
+            Element::Int(2) => widened(read_all::<i16>(file)?),
+            Element::Int(4) => widened(read_all::<i32>(file)?),
+            Element::Int(_) => exactly(read_all::<i64>(file)?, &descr)?,
+            Element::Uint(1) => widened(read_all::<u8>(file)?),
+            Element::Uint(2) => widened(read_all::<u16>(file)?),
+            Element::Uint(4) => widened(read_all::<u32>(file)?),
+            Element::Uint(_) => exactly(read_all::<u64>(file)?, &descr)?,
         };
-        Ok(Self {
-            shape: parsed.shape,
-            data,
-            dtype,
-        })
+        if data.len() != head.count {
+            return Err(NpyError::Truncated(format!(
+                "{} of {} elements decoded",
+                data.len(),
+                head.count
+            )));
+        }
+        let shape: Vec<usize> = head.header.shape().iter().map(|&d| d as usize).collect();
+        let data = match head.header.order() {
+            Order::C => data,
+            Order::Fortran => fortran_to_c(&data, &shape),
+        };
+        let dtype = if head.element == Element::Float(4) {
+            NpyDtype::F32
+        } else {
+            NpyDtype::F64
+        };
+        Ok(Self { shape, data, dtype })
     }
 
     /// The data length (bytes) the header of an `.npy` file promises; `head` holds the file's
     /// bytes at least up to the end of the header.
     pub fn payload_length(head: &[u8]) -> Result<usize, NpyError> {
-        Self::parse_head(head).map(|(_, _, _, needed)| needed)
+        parse_head(head).map(|head| head.needed)
     }
 
-    /// Header, dtype, data start and data length of the `.npy` bytes `bytes` (at least up to the
-    /// end of the header).
-    fn parse_head(bytes: &[u8]) -> Result<(Header, NpyDtype, usize, usize), NpyError> {
-        let data_start = match Self::data_start(bytes)? {
-            Some(start) => start,
-            None if bytes.len() < 8 => {
-                return Err(NpyError::Truncated(
-                    "file ends inside the magic string".into(),
-                ))
-            }
-            None => {
-                return Err(NpyError::Truncated(
-                    "file ends inside the header length".into(),
-                ))
-            }
-        };
-        let utf8 = bytes[6] == 3;
-        let start = if bytes[6] == 1 { 10 } else { 12 };
-        if bytes.len() < data_start {
-            return Err(NpyError::Truncated(format!(
-                "header says {} bytes, only {} present",
-                data_start - start,
-                bytes.len() - start
-            )));
-        }
-        let header_bytes = &bytes[start..data_start];
-        let header = if utf8 {
-            std::str::from_utf8(header_bytes).map_err(|_| NpyError::Header("not UTF-8".into()))?
-        } else {
-            if !header_bytes.is_ascii() {
-                return Err(NpyError::Header("not ASCII".into()));
-            }
-            std::str::from_utf8(header_bytes).map_err(|_| NpyError::Header("not ASCII".into()))?
-        };
-        let parsed = parse_header(header)?;
-        let dtype = match parsed.descr.as_str() {
-            "<f8" => NpyDtype::F64,
-            "<f4" => NpyDtype::F32,
-            other => return Err(NpyError::Dtype(other.to_string())),
-        };
-        if parsed.fortran_order {
-            return Err(NpyError::FortranOrder);
-        }
-        let count = parsed
-            .shape
-            .iter()
-            .try_fold(1usize, |acc, &d| acc.checked_mul(d))
-            .ok_or_else(|| NpyError::Header("shape overflows".into()))?;
-        let needed = count
-            .checked_mul(dtype.size())
-            .ok_or_else(|| NpyError::Header("shape overflows".into()))?;
-        Ok((parsed, dtype, data_start, needed))
-    }
-
-    /// The bytes of the `.npy` file ([`npy_header`], then the data). `f32` output rounds each
+    /// The bytes of the `.npy` file (little-endian `dtype`, C order, format 1.0 unless the
+    /// header needs more; the data start at a multiple of 64 bytes). `f32` output rounds each
     /// value to nearest.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = npy_header(self.dtype.descr(), &self.shape);
-        out.reserve(self.data.len() * self.dtype.size());
+        let shape: Vec<u64> = self.shape.iter().map(|&d| d as u64).collect();
         match self.dtype {
-            NpyDtype::F64 => self
-                .data
-                .iter()
-                .for_each(|x| out.extend_from_slice(&x.to_le_bytes())),
-            NpyDtype::F32 => self
-                .data
-                .iter()
-                .for_each(|&x| out.extend_from_slice(&(x as f32).to_le_bytes())),
+            NpyDtype::F64 => npy_of(&shape, self.data.iter().copied()),
+            NpyDtype::F32 => npy_of(&shape, self.data.iter().map(|&x| x as f32)),
         }
-        out
     }
 }
 
-/// The header of an `.npy` file whose C-order data of element type `descr` (e.g. `<f8`) and
-/// shape `shape` follows it: magic, format version (1.0 unless the header needs 2.0), header
-/// length, and the header dict padded with spaces and a newline so that the data starts at a
-/// multiple of 64 bytes.
-pub(crate) fn npy_header(descr: &str, shape: &[usize]) -> Vec<u8> {
-    let shape = match shape {
-        [n] => format!("({n},)"),
-        dims => format!(
-            "({})",
-            dims.iter()
-                .map(|d| d.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        ),
-    };
-    let dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
-    // Total of magic + version + length field + dict + padding + '\n' is a multiple of 64.
-    let unpadded_v1 = 10 + dict.len() + 1;
-    let (version, length_size) = if unpadded_v1.div_ceil(64) * 64 - 10 <= u16::MAX as usize {
-        (1u8, 2usize)
-    } else {
-        (2u8, 4usize)
-    };
-    let prefix = 8 + length_size;
-    let total = (prefix + dict.len() + 1).div_ceil(64) * 64;
-    let header_len = total - prefix;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&[version, 0]);
-    if length_size == 2 {
-        out.extend_from_slice(&(header_len as u16).to_le_bytes());
-    } else {
-        out.extend_from_slice(&(header_len as u32).to_le_bytes());
-    }
-    out.extend_from_slice(dict.as_bytes());
-    out.resize(total - 1, b' ');
-    out.push(b'\n');
+/// The `.npy` bytes of `values` (little-endian, their default dtype) with shape `shape`.
+///
+/// Writing into memory cannot fail for these dtypes; a count that does not match the shape is
+/// a caller's error (checked before, e.g. by `write_npy`) and gives the bytes written so far.
+pub(crate) fn npy_of<T: npyz::AutoSerialize>(
+    shape: &[u64],
+    values: impl Iterator<Item = T>,
+) -> Vec<u8> {
+    let mut out = Vec::new();
+    let written = npyz::WriteOptions::new()
+        .default_dtype()
+        .shape(shape)
+        .writer(&mut out)
+        .begin_nd()
+        .and_then(|mut writer| {
+            writer.extend(values)?;
+            writer.finish()
+        });
+    debug_assert!(written.is_ok(), "in-memory .npy write: {written:?}");
     out
 }
 
-struct Header {
-    descr: String,
-    fortran_order: bool,
-    shape: Vec<usize>,
-}
-
-/// Parses `{'descr': '<f8', 'fortran_order': False, 'shape': (3, 4), }` (keys in any order).
-fn parse_header(text: &str) -> Result<Header, NpyError> {
-    let mut p = Parser {
-        s: text.as_bytes(),
-        i: 0,
+/// The header of the `.npy` bytes `bytes` (at least up to its end), its element type and data
+/// length.
+fn parse_head(bytes: &[u8]) -> Result<Head, NpyError> {
+    let data_start = match NpyArray::data_start(bytes)? {
+        Some(start) => start,
+        None if bytes.len() < 8 => {
+            return Err(NpyError::Truncated(
+                "file ends inside the magic string".into(),
+            ))
+        }
+        None => {
+            return Err(NpyError::Truncated(
+                "file ends inside the header length".into(),
+            ))
+        }
     };
-    p.expect(b'{')?;
-    let (mut descr, mut fortran, mut shape) = (None, None, None);
-    loop {
-        p.skip_space();
-        if p.eat(b'}') {
-            break;
-        }
-        let key = p.string()?;
-        p.skip_space();
-        p.expect(b':')?;
-        p.skip_space();
-        match key.as_str() {
-            "descr" => descr = Some(p.string()?),
-            "fortran_order" => fortran = Some(p.boolean()?),
-            "shape" => shape = Some(p.tuple()?),
-            other => return Err(NpyError::Header(format!("unknown key {other:?}"))),
-        }
-        p.skip_space();
-        if !p.eat(b',') {
-            p.skip_space();
-            p.expect(b'}')?;
-            break;
-        }
+    let start = if bytes[6] == 1 { 10 } else { 12 };
+    if bytes.len() < data_start {
+        return Err(NpyError::Truncated(format!(
+            "header says {} bytes, only {} present",
+            data_start - start,
+            bytes.len() - start
+        )));
     }
-    p.skip_space();
-    if p.i != p.s.len() {
-        return Err(NpyError::Header("text after the closing brace".into()));
-    }
-    let missing = |k: &str| NpyError::Header(format!("missing key '{k}'"));
-    Ok(Header {
-        descr: descr.ok_or_else(|| missing("descr"))?,
-        fortran_order: fortran.ok_or_else(|| missing("fortran_order"))?,
-        shape: shape.ok_or_else(|| missing("shape"))?,
+    let header = NpyHeader::from_reader(&bytes[..data_start])
+        .map_err(|e| NpyError::Header(e.to_string()))?;
+    let element = match header.dtype() {
+        DType::Plain(type_str) => element(&type_str)?,
+        other => return Err(NpyError::Dtype(other.descr())),
+    };
+    let count = header
+        .shape()
+        .iter()
+        .try_fold(1usize, |acc, &d| acc.checked_mul(usize::try_from(d).ok()?))
+        .ok_or_else(|| NpyError::Header("shape overflows".into()))?;
+    let size = match element {
+        Element::Float(size) | Element::Int(size) | Element::Uint(size) => size,
+    };
+    let needed = count
+        .checked_mul(size)
+        .ok_or_else(|| NpyError::Header("shape overflows".into()))?;
+    Ok(Head {
+        header,
+        element,
+        data_start,
+        count,
+        needed,
     })
 }
 
-struct Parser<'a> {
-    s: &'a [u8],
-    i: usize,
+/// The element type of a plain dtype, if it is one this module reads.
+fn element(type_str: &TypeStr) -> Result<Element, NpyError> {
+    let size = type_str.size_field();
+    match (type_str.type_char(), size) {
+        (TypeChar::Float, 4 | 8) => Ok(Element::Float(size as usize)),
+        (TypeChar::Int, 1 | 2 | 4 | 8) => Ok(Element::Int(size as usize)),
+        (TypeChar::Uint, 1 | 2 | 4 | 8) => Ok(Element::Uint(size as usize)),
+        _ => Err(NpyError::Dtype(type_str.to_string())),
+    }
 }
 
-impl Parser<'_> {
-    fn skip_space(&mut self) {
-        while self.i < self.s.len() && self.s[self.i].is_ascii_whitespace() {
-            self.i += 1;
-        }
-    }
+/// Every element of `file`'s data, in the file's order.
+fn read_all<T: Deserialize>(file: NpyFile<&[u8]>) -> Result<Vec<T>, NpyError> {
+    file.into_vec::<T>()
+        .map_err(|e| NpyError::Truncated(e.to_string()))
+}
 
-    fn eat(&mut self, c: u8) -> bool {
-        if self.s.get(self.i) == Some(&c) {
-            self.i += 1;
-            true
-        } else {
-            false
-        }
-    }
+/// Values that `f64` holds exactly (floats, integers of at most 32 bits) as `f64`.
+fn widened<T: Into<f64>>(values: Vec<T>) -> Vec<f64> {
+    values.into_iter().map(Into::into).collect()
+}
 
-    fn expect(&mut self, c: u8) -> Result<(), NpyError> {
-        if self.eat(c) {
-            Ok(())
-        } else {
-            Err(NpyError::Header(format!(
-                "expected '{}' at byte {}",
-                c as char, self.i
-            )))
-        }
-    }
-
-    fn string(&mut self) -> Result<String, NpyError> {
-        let quote = match self.s.get(self.i) {
-            Some(&q @ (b'\'' | b'"')) => q,
-            _ => {
-                return Err(NpyError::Header(format!(
-                    "expected a quoted string at byte {}",
-                    self.i
-                )))
+/// 64-bit integers as `f64`, refusing any that `f64` cannot represent exactly.
+fn exactly<T: Copy + Into<i128> + std::fmt::Display>(
+    values: Vec<T>,
+    descr: &str,
+) -> Result<Vec<f64>, NpyError> {
+    values
+        .into_iter()
+        .enumerate()
+        .map(|(index, value)| {
+            let wide: i128 = value.into();
+            let x = wide as f64;
+            if x as i128 == wide {
+                Ok(x)
+            } else {
+                Err(NpyError::Unrepresentable {
+                    index,
+                    value: value.to_string(),
+                    dtype: descr.trim_matches('\'').to_string(),
+                })
             }
-        };
-        self.i += 1;
-        let start = self.i;
-        while self.i < self.s.len() && self.s[self.i] != quote {
-            self.i += 1;
-        }
-        if self.i == self.s.len() {
-            return Err(NpyError::Header("unterminated string".into()));
-        }
-        let value = String::from_utf8_lossy(&self.s[start..self.i]).into_owned();
-        self.i += 1;
-        Ok(value)
-    }
+        })
+        .collect()
+}
 
-    fn boolean(&mut self) -> Result<bool, NpyError> {
-        let rest = &self.s[self.i..];
-        if rest.starts_with(b"True") {
-            self.i += 4;
-            Ok(true)
-        } else if rest.starts_with(b"False") {
-            self.i += 5;
-            Ok(false)
-        } else {
-            Err(NpyError::Header(
-                "fortran_order must be True or False".into(),
-            ))
-        }
+/// The elements of an array of shape `shape` stored in Fortran (column-major) order, put in C
+/// (row-major) order.
+fn fortran_to_c(data: &[f64], shape: &[usize]) -> Vec<f64> {
+    let mut fortran_strides = Vec::with_capacity(shape.len());
+    let mut stride = 1usize;
+    for &d in shape {
+        fortran_strides.push(stride);
+        stride *= d;
     }
-
-    fn tuple(&mut self) -> Result<Vec<usize>, NpyError> {
-        self.expect(b'(')?;
-        let mut dims = Vec::new();
-        loop {
-            self.skip_space();
-            if self.eat(b')') {
-                return Ok(dims);
+    (0..data.len())
+        .map(|c_index| {
+            // Digits of the C index, last axis fastest, mapped to the Fortran position.
+            let (mut rest, mut position) = (c_index, 0);
+            for (&d, &s) in shape.iter().zip(&fortran_strides).rev() {
+                position += (rest % d) * s;
+                rest /= d;
             }
-            let start = self.i;
-            while self.i < self.s.len() && self.s[self.i].is_ascii_digit() {
-                self.i += 1;
-            }
-            // Python 2 era writers append 'L' to long integers.
-            let digits = std::str::from_utf8(&self.s[start..self.i]).unwrap_or("");
-            let value: usize = digits
-                .parse()
-                .map_err(|_| NpyError::Header(format!("bad dimension in shape at byte {start}")))?;
-            self.eat(b'L');
-            dims.push(value);
-            self.skip_space();
-            if !self.eat(b',') {
-                self.skip_space();
-                self.expect(b')')?;
-                return Ok(dims);
-            }
-        }
-    }
+            data[position]
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -458,23 +404,159 @@ mod tests {
         }
     }
 
+    /// An `.npy` file written by hand: magic, version 1.0, the header dict padded to 64 bytes,
+    /// then `data` as is.
+    fn npy_file(header: &str, data: &[u8]) -> Vec<u8> {
+        let mut dict = header.as_bytes().to_vec();
+        while !(10 + dict.len() + 1).is_multiple_of(64) {
+            dict.push(b' ');
+        }
+        dict.push(b'\n');
+        let mut out = MAGIC.to_vec();
+        out.extend_from_slice(&[1, 0]);
+        out.extend_from_slice(&(dict.len() as u16).to_le_bytes());
+        out.extend(dict);
+        out.extend_from_slice(data);
+        out
+    }
+
     #[test]
-    fn parses_numpy_style_headers() {
-        let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (4,), }";
-        let h = parse_header(header).unwrap();
-        assert_eq!(h.shape, vec![4]);
-        let h =
-            parse_header("{\"shape\":(2L, 3L),\"fortran_order\":True,\"descr\":\"<f4\"}").unwrap();
-        assert_eq!(h.shape, vec![2, 3]);
-        assert!(h.fortran_order);
+    fn reads_numpy_style_headers() {
+        let data: Vec<u8> = [1.0f32, 2.0, 3.0, 4.0, 5.0, 6.0]
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        let a = NpyArray::from_bytes(&npy_file(
+            "{\"shape\":(2, 3),\"fortran_order\":False,\"descr\":\"<f4\"}",
+            &data,
+        ))
+        .unwrap();
+        assert_eq!((a.shape, a.dtype), (vec![2, 3], NpyDtype::F32));
+        let scalar = NpyArray::from_bytes(&npy_file(
+            "{'descr': '<f8', 'fortran_order': False, 'shape': (), }",
+            &2.5f64.to_le_bytes(),
+        ))
+        .unwrap();
+        assert_eq!((scalar.shape, scalar.data), (vec![], vec![2.5]));
+        for bad in [
+            "{'descr': '<f8', 'shape': (1,)}",
+            "{'descr': '<f8', 'fortran_order': False, 'shape': (a,)}",
+        ] {
+            assert!(matches!(
+                NpyArray::from_bytes(&npy_file(bad, &[0; 8])),
+                Err(NpyError::Header(_))
+            ));
+        }
+    }
+
+    #[test]
+    fn fortran_order_is_read_in_c_order() {
+        // The 2 × 3 array [[1, 2, 3], [4, 5, 6]] stored column by column.
+        let data: Vec<u8> = [1.0f64, 4.0, 2.0, 5.0, 3.0, 6.0]
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        let header = "{'descr': '<f8', 'fortran_order': True, 'shape': (2, 3), }";
+        let a = NpyArray::from_bytes(&npy_file(header, &data)).unwrap();
+        assert_eq!(a.shape, vec![2, 3]);
+        assert_eq!(a.data, vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+        // Three axes: element (i, j, k) of shape (2, 2, 2) is stored at i + 2j + 4k.
+        let values: Vec<f64> = (0..8).map(f64::from).collect();
+        let stored: Vec<u8> = (0..8)
+            .map(|f: usize| {
+                let (i, j, k) = (f % 2, (f / 2) % 2, f / 4);
+                values[4 * i + 2 * j + k]
+            })
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        let header = "{'descr': '<f8', 'fortran_order': True, 'shape': (2, 2, 2), }";
         assert_eq!(
-            parse_header("{'descr': '<f8', 'fortran_order': False, 'shape': (), }")
+            NpyArray::from_bytes(&npy_file(header, &stored))
                 .unwrap()
-                .shape,
-            Vec::<usize>::new()
+                .data,
+            values
         );
-        assert!(parse_header("{'descr': '<f8', 'shape': (1,)}").is_err());
-        assert!(parse_header("{'descr': '<f8', 'fortran_order': False, 'shape': (a,)}").is_err());
+    }
+
+    #[test]
+    fn big_endian_and_integer_dtypes_are_converted() {
+        let big: Vec<u8> = [1.5f64, -2.0, 1e300]
+            .iter()
+            .flat_map(|x| x.to_be_bytes())
+            .collect();
+        let a = NpyArray::from_bytes(&npy_file(
+            "{'descr': '>f8', 'fortran_order': False, 'shape': (3,), }",
+            &big,
+        ))
+        .unwrap();
+        assert_eq!((a.data, a.dtype), (vec![1.5, -2.0, 1e300], NpyDtype::F64));
+        let big32: Vec<u8> = [0.25f32, 3.0]
+            .iter()
+            .flat_map(|x| x.to_be_bytes())
+            .collect();
+        let a = NpyArray::from_bytes(&npy_file(
+            "{'descr': '>f4', 'fortran_order': False, 'shape': (2,), }",
+            &big32,
+        ))
+        .unwrap();
+        assert_eq!((a.data, a.dtype), (vec![0.25, 3.0], NpyDtype::F32));
+        let ints: Vec<u8> = [-3i32, 7, 1 << 30]
+            .iter()
+            .flat_map(|x| x.to_be_bytes())
+            .collect();
+        let a = NpyArray::from_bytes(&npy_file(
+            "{'descr': '>i4', 'fortran_order': False, 'shape': (3,), }",
+            &ints,
+        ))
+        .unwrap();
+        assert_eq!(a.data, vec![-3.0, 7.0, (1 << 30) as f64]);
+        let bytes = [0u8, 200, 255];
+        let a = NpyArray::from_bytes(&npy_file(
+            "{'descr': '|u1', 'fortran_order': False, 'shape': (3,), }",
+            &bytes,
+        ))
+        .unwrap();
+        assert_eq!(a.data, vec![0.0, 200.0, 255.0]);
+        let exact: Vec<u8> = [1i64 << 53, -(1i64 << 60), 42]
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        let a = NpyArray::from_bytes(&npy_file(
+            "{'descr': '<i8', 'fortran_order': False, 'shape': (3,), }",
+            &exact,
+        ))
+        .unwrap();
+        assert_eq!(
+            a.data,
+            vec![(1i64 << 53) as f64, -((1i64 << 60) as f64), 42.0]
+        );
+    }
+
+    #[test]
+    fn integers_float64_cannot_hold_are_refused() {
+        let values: Vec<u8> = [1u64, (1 << 53) + 1]
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        assert_eq!(
+            NpyArray::from_bytes(&npy_file(
+                "{'descr': '<u8', 'fortran_order': False, 'shape': (2,), }",
+                &values,
+            )),
+            Err(NpyError::Unrepresentable {
+                index: 1,
+                value: ((1u64 << 53) + 1).to_string(),
+                dtype: "<u8".into(),
+            })
+        );
+        let max: Vec<u8> = i64::MAX.to_le_bytes().to_vec();
+        assert!(matches!(
+            NpyArray::from_bytes(&npy_file(
+                "{'descr': '<i8', 'fortran_order': False, 'shape': (1,), }",
+                &max,
+            )),
+            Err(NpyError::Unrepresentable { index: 0, .. })
+        ));
     }
 
     #[test]
@@ -499,17 +581,14 @@ mod tests {
                 more: false
             })
         );
-        let mut fortran = good.clone();
-        let pos = fortran.windows(5).position(|w| w == b"False").unwrap();
-        fortran[pos..pos + 5].copy_from_slice(b"True ");
-        assert_eq!(NpyArray::from_bytes(&fortran), Err(NpyError::FortranOrder));
-        let mut big_endian = good.clone();
-        let pos = big_endian.windows(3).position(|w| w == b"<f8").unwrap();
-        big_endian[pos] = b'>';
-        assert_eq!(
-            NpyArray::from_bytes(&big_endian),
-            Err(NpyError::Dtype(">f8".into()))
-        );
+        for (descr, shown) in [("'|b1'", "|b1"), ("'<c16'", "<c16"), ("'<U3'", "<U3")] {
+            let header = format!("{{'descr': {descr}, 'fortran_order': False, 'shape': (1,), }}");
+            assert_eq!(
+                NpyArray::from_bytes(&npy_file(&header, &[0; 16])),
+                Err(NpyError::Dtype(shown.into())),
+                "{descr}"
+            );
+        }
         let mut v9 = good;
         v9[6] = 9;
         assert_eq!(

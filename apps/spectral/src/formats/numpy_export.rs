@@ -1,10 +1,10 @@
 //! Arrays for numpy, written: `.npy` files of float64, int64 and Unicode-string arrays (for
-//! exports; `npy.rs` reads and writes the float arrays of field files, and writes the header of
-//! both), and sparse matrices as the `.npz` files `scipy.sparse.load_npz` reads (a zip of the CSR
+//! exports, written with `npyz` like the float arrays of field files in `npy.rs`), and sparse matrices as the `.npz` files `scipy.sparse.load_npz` reads (a zip of the CSR
 //! arrays `data`, `indices`, `indptr`, `shape` and the format name `csr`). The caller decides
 //! how the bytes are written (atomically, into a staged folder).
 
-use crate::formats::npy::npy_header;
+use crate::formats::npy::npy_of;
+use npyz::{DType, TypeStr, WriterBuilder};
 use sprs::CsMat;
 use std::io::{Seek, Write};
 use tvf_core::discretization::sparse::{csr_arrays, CsrArrays};
@@ -22,40 +22,47 @@ pub enum NpyData<'a> {
 }
 
 /// The bytes of an `.npy` file holding `data` with shape `shape` (format 1.0 unless the header
-/// needs 2.0, see [`npy_header`]).
+/// needs more; the data start at a multiple of 64 bytes).
 pub fn npy_bytes(data: &NpyData<'_>, shape: &[usize]) -> Vec<u8> {
-    let width = match data {
-        NpyData::Text(strings) => strings
-            .iter()
-            .map(|s| s.chars().count())
-            .max()
-            .unwrap_or(0)
-            .max(1),
-        NpyData::Bytes(bytes) => bytes.len().max(1),
-        _ => 0,
-    };
-    let descr = match data {
-        NpyData::F64(_) => "<f8".to_string(),
-        NpyData::I64(_) => "<i8".to_string(),
-        NpyData::Text(_) => format!("<U{width}"),
-        NpyData::Bytes(_) => format!("|S{width}"),
-    };
-    let mut out = npy_header(&descr, shape);
+    let shape: Vec<u64> = shape.iter().map(|&d| d as u64).collect();
     match data {
-        NpyData::F64(values) => values.iter().for_each(|v| out.extend(v.to_le_bytes())),
-        NpyData::I64(values) => values.iter().for_each(|v| out.extend(v.to_le_bytes())),
+        NpyData::F64(values) => npy_of(&shape, values.iter().copied()),
+        NpyData::I64(values) => npy_of(&shape, values.iter().copied()),
         NpyData::Text(strings) => {
-            for s in strings.iter() {
-                let mut count = 0;
-                for c in s.chars() {
-                    out.extend((c as u32).to_le_bytes());
-                    count += 1;
-                }
-                out.extend(std::iter::repeat_n(0u8, 4 * (width - count)));
-            }
+            let width = strings
+                .iter()
+                .map(|s| s.chars().count())
+                .max()
+                .unwrap_or(0)
+                .max(1);
+            strings_npy(&format!("<U{width}"), &shape, strings)
         }
-        NpyData::Bytes(bytes) => out.extend(*bytes),
+        NpyData::Bytes(bytes) => {
+            let descr = format!("|S{}", bytes.len().max(1));
+            strings_npy(&descr, &shape, &[*bytes])
+        }
     }
+}
+
+/// The `.npy` bytes of `strings` (`str` or `[u8]`, each padded with zeros to the width of
+/// `descr`, a `<U{n}` or `|S{n}` dtype) with shape `shape`.
+fn strings_npy<T: npyz::Serialize + ?Sized>(descr: &str, shape: &[u64], strings: &[&T]) -> Vec<u8> {
+    let mut out = Vec::new();
+    let written = descr
+        .parse::<TypeStr>()
+        .map_err(std::io::Error::other)
+        .and_then(|type_str| {
+            let mut writer = npyz::WriteOptions::<T>::new()
+                .dtype(DType::Plain(type_str))
+                .shape(shape)
+                .writer(&mut out)
+                .begin_nd()?;
+            for s in strings {
+                writer.push(s)?;
+            }
+            writer.finish()
+        });
+    debug_assert!(written.is_ok(), "in-memory .npy write: {written:?}");
     out
 }
 
@@ -104,7 +111,7 @@ mod tests {
         let header_len = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
         assert_eq!((10 + header_len) % 64, 0);
         let header = std::str::from_utf8(&bytes[10..10 + header_len]).unwrap();
-        assert!(header.contains("'descr': '<f8'") && header.contains("'shape': (2, 3)"));
+        assert!(header.contains("'descr': '<f8'") && header.contains("'shape': (2, 3"));
         assert_eq!(bytes.len(), 10 + header_len + 48);
         let text = npy_bytes(&NpyData::Text(&["harmonic", "é"]), &[2]);
         let header_len = u16::from_le_bytes([text[8], text[9]]) as usize;
