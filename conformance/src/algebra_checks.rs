@@ -224,7 +224,7 @@ pub fn measure_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOut
         }
     };
     let second = CheckOutcome::at_most(
-        "integrable_orthogonal_to_co_integrable",
+        "integrable_orthogonal_to_cointegrable",
         error,
         1e-12 * scale,
         format!("|(M1⁻¹ d1ᵀ)ᵀ M1 d0| = {error:e}, scale {scale:e}"),

@@ -58,7 +58,7 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
     let norm = m1_norm(complex, &field);
     let named = [
         ("integrable", &parts.integrable),
-        ("co-integrable", &parts.co_integrable),
+        ("co-integrable", &parts.cointegrable),
         ("harmonic", &parts.harmonic),
     ];
     for a in 0..3 {
@@ -81,7 +81,7 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
         .iter()
         .enumerate()
         .map(|(i, &v)| {
-            let sum = parts.integrable[i] + parts.co_integrable[i] + parts.harmonic[i];
+            let sum = parts.integrable[i] + parts.cointegrable[i] + parts.harmonic[i];
             (sum - v).abs() / (1.0 + v.abs())
         })
         .fold(0.0f64, f64::max);
@@ -103,7 +103,7 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
         (
             "divergence of the co-integrable part",
             divergence,
-            &parts.co_integrable,
+            &parts.cointegrable,
         ),
         ("curl of the harmonic part", curl, &parts.harmonic),
         (
@@ -149,7 +149,7 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
     let scale = m1_norm(complex, &composed);
     for (what, got, expected) in [
         ("integrable", &again.integrable, &grad),
-        ("co-integrable", &again.co_integrable, &cograd),
+        ("co-integrable", &again.cointegrable, &cograd),
         ("harmonic", &again.harmonic, &parts.harmonic),
     ] {
         let difference: Vec<f64> = got.iter().zip(expected).map(|(a, b)| a - b).collect();

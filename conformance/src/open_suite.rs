@@ -130,8 +130,8 @@ pub fn check_essential_boundary_conditions(complex: &dyn HodgeComplex, mesh: &Co
         nodes.kind == NodeKind::Vertices && nodes.dirichlet_count() > 0
     };
     let integrable_normal = vertex_dirichlet(complex.potential_nodes());
-    let co_integrable_tangential = vertex_dirichlet(complex.co_potential_nodes());
-    if !integrable_normal && !co_integrable_tangential {
+    let cointegrable_tangential = vertex_dirichlet(complex.co_potential_nodes());
+    if !integrable_normal && !cointegrable_tangential {
         return;
     }
     let fields = lemma1_eigenfields(complex);
@@ -155,7 +155,7 @@ pub fn check_essential_boundary_conditions(complex: &dyn HodgeComplex, mesh: &Co
     let mut checked = 0;
     for (k, (lambda, field)) in fields.iter().enumerate() {
         let integrable = k < integrable_count;
-        if !((integrable && integrable_normal) || (!integrable && co_integrable_tangential)) {
+        if !((integrable && integrable_normal) || (!integrable && cointegrable_tangential)) {
             continue;
         }
         let vectors = sampling.to_face_vectors(field).expect("field length");

@@ -1,4 +1,4 @@
-//! Cross-discretization facts of `shared/docs/MATH.md` that the per-discretization suite cannot
+//! Cross-discretization facts of `docs/conventions.md` that the per-discretization suite cannot
 //! state alone: the published icosphere eigenvalues, the nonconforming Hodge–Laplacian having
 //! the spectrum of the conforming one, and the wrapper complex's spectrum following its `M2`.
 
@@ -15,7 +15,7 @@ fn spectrum(problem: &Eigenproblem, nodes: &NodeSpace) -> Vec<f64> {
     generalized_eigenvalues(&a, &m)
 }
 
-/// MATH.md: on the 320-face icosphere (barycentric lumping) the lowest three nonzero P1
+/// `docs/conventions.md`: on the 320-face icosphere (barycentric lumping) the lowest three nonzero P1
 /// eigenvalues are ≈ 2.000 and the lowest three Crouzeix–Raviart ones ≈ 2.046 (verified there
 /// against libigl), so the lowest six of `L` are these.
 #[test]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Independent check of `tvf operators` against shared/docs/MATH.md.
+"""Independent check of `tvf operators` against docs/conventions.md.
 
 Re-derives G, G*, M, M*, M_X, J, S_c, S*_c, S and B from an OBJ file with numpy/scipy (no
 code shared with tvf), runs `tvf operators` on the same file for both decompositions and both

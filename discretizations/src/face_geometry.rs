@@ -5,7 +5,7 @@ use tvf_core::discretization::DiscretizationError;
 use tvf_core::geometry::{cross, dot, normalize, sub};
 use tvf_core::SurfaceMesh;
 
-/// Frames and 2D corner coordinates of every face (the frame convention of `MATH.md`:
+/// Frames and 2D corner coordinates of every face (the frame convention of `docs/conventions.md`:
 /// `e1 = normalize(p_{i1} − p_{i0})`, `e2 = n × e1`).
 #[derive(Debug, Clone)]
 pub struct FaceGeometry {

@@ -11,7 +11,7 @@ use tvf_core::discretization::{DiscretizationError, Mass, NodeKind};
 /// point for mass lumping), the mass matrix the complex uses (that lumped one, or a consistent
 /// one), and its gradient into the piecewise constant face fields `X_h`, in the
 /// face frames of [`crate::FaceFields`] (`e1 = normalize(p_{i1} − p_{i0})`,
-/// `e2 = n × e1`, see `shared/docs/MATH.md`).
+/// `e2 = n × e1`, see `docs/conventions.md`).
 pub trait FunctionSpace {
     /// Short human-readable name, e.g. `"Lagrange P1"`.
     fn name(&self) -> &str;

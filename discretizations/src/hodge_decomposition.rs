@@ -16,12 +16,12 @@ pub struct HodgeParts {
     /// zero on Dirichlet nodes): `integrable = d0 f`.
     pub potential: Vec<f64>,
     /// Co-potential `g` (`n2` pointwise values, normalised like the potential):
-    /// `co_integrable = −M1⁻¹ d1ᵀ g` (finite elements: `J G_co g`).
+    /// `cointegrable = −M1⁻¹ d1ᵀ g` (finite elements: `J G_co g`).
     pub co_potential: Vec<f64>,
     /// Integrable (curl-free) part `d0 f` (`n1`).
     pub integrable: Vec<f64>,
     /// Co-integrable (divergence-free) part `−M1⁻¹ d1ᵀ g` (`n1`).
-    pub co_integrable: Vec<f64>,
+    pub cointegrable: Vec<f64>,
     /// Harmonic part `h = v − d0 f + M1⁻¹ d1ᵀ g` (`n1`): in the kernel of the Hodge–Laplacian.
     pub harmonic: Vec<f64>,
 }
@@ -128,18 +128,18 @@ impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
         let curl: Vec<f64> = mul_vec(c.d1(), field).iter().map(|x| -x).collect();
         let co_potential = self.co_exact.solve(&curl);
         let integrable = c.gradient_field(&potential);
-        let co_integrable = c.co_gradient_field(&co_potential);
+        let cointegrable = c.co_gradient_field(&co_potential);
         let harmonic = field
             .iter()
             .zip(&integrable)
-            .zip(&co_integrable)
+            .zip(&cointegrable)
             .map(|((v, a), b)| v - a - b)
             .collect();
         Ok(HodgeParts {
             potential,
             co_potential,
             integrable,
-            co_integrable,
+            cointegrable,
             harmonic,
         })
     }

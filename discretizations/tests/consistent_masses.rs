@@ -315,7 +315,7 @@ fn unreferenced_vertices_leave_the_masses() {
         let scale = norm_max(&field);
         for (a, b) in [
             (&parts.integrable, &plain_parts.integrable),
-            (&parts.co_integrable, &plain_parts.co_integrable),
+            (&parts.cointegrable, &plain_parts.cointegrable),
             (&parts.harmonic, &plain_parts.harmonic),
         ] {
             let error = a
@@ -352,7 +352,7 @@ fn unreferenced_vertices_leave_the_masses() {
         .decompose(&field)
         .unwrap();
     let norm = rebuilt.field_inner(&field, &field);
-    let cross = rebuilt.field_inner(&parts.integrable, &parts.co_integrable);
+    let cross = rebuilt.field_inner(&parts.integrable, &parts.cointegrable);
     assert!(
         cross.abs() <= 1e-10 * norm,
         "integrable and co-integrable parts: {cross:e}"

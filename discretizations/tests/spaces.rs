@@ -168,7 +168,7 @@ fn open_mesh_decomposes_with_either_boundary_condition() {
             .decompose(&field)
             .expect("decomposes");
         for (i, &v) in field.iter().enumerate() {
-            let sum = parts.integrable[i] + parts.co_integrable[i] + parts.harmonic[i];
+            let sum = parts.integrable[i] + parts.cointegrable[i] + parts.harmonic[i];
             assert!((sum - v).abs() < 1e-12);
             assert!(
                 parts.harmonic[i].abs() < 1e-12,

@@ -411,14 +411,14 @@ fn both_boundary_conditions_decompose_and_fix_what_dec_fixes() {
             .decompose(&field)
             .expect("decomposes");
         let norm = complex.field_inner(&field, &field);
-        for part in [&parts.integrable, &parts.co_integrable, &parts.harmonic] {
+        for part in [&parts.integrable, &parts.cointegrable, &parts.harmonic] {
             assert!(
                 (0..mesh.edge_count()).all(|e| !fixed[e] || part[e] == 0.0),
                 "{}: a part is not zero on a fixed edge",
                 boundary.name()
             );
         }
-        let cross = complex.field_inner(&parts.integrable, &parts.co_integrable);
+        let cross = complex.field_inner(&parts.integrable, &parts.cointegrable);
         assert!(
             cross.abs() <= 1e-10 * norm,
             "{}: {cross:e}",

@@ -76,7 +76,7 @@ pub fn to_face_vectors<'py>(
     Ok(crate::arrays::vectors_to_numpy(py, &vectors))
 }
 
-/// The Hodge decomposition: dict of `integrable`, `co_integrable`, `harmonic` (`n1` each),
+/// The Hodge decomposition: dict of `integrable`, `cointegrable`, `harmonic` (`n1` each),
 /// `potential` (`n0`), `co_potential` (`n2`).
 #[pyfunction]
 pub fn decompose<'py>(
@@ -96,7 +96,7 @@ pub fn decompose<'py>(
         })?;
     let out = PyDict::new(py);
     out.set_item("integrable", parts.integrable.into_pyarray(py))?;
-    out.set_item("co_integrable", parts.co_integrable.into_pyarray(py))?;
+    out.set_item("cointegrable", parts.cointegrable.into_pyarray(py))?;
     out.set_item("harmonic", parts.harmonic.into_pyarray(py))?;
     out.set_item("potential", parts.potential.into_pyarray(py))?;
     out.set_item("co_potential", parts.co_potential.into_pyarray(py))?;

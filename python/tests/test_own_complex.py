@@ -47,7 +47,7 @@ def test_numpy_complex_has_the_built_in_spectrum_and_results(torus_mesh):
     field = np.random.default_rng(1).normal(size=(len(F), 3))
     a = tvf.decompose(complex_, field)
     b = tvf.decompose(built_in, field)
-    for part in ("integrable", "co_integrable", "harmonic"):
+    for part in ("integrable", "cointegrable", "harmonic"):
         assert np.allclose(a[part], b[part], atol=1e-10)
     constraints = {"constraints": [{"id": "v", "kind": "vector", "face": 3, "value": [0.0, 0.0, 1.0]}, {"id": "s", "kind": "divergence", "vertex": 10, "value": 1.0}]}
     ours_spline = tvf.spline(complex_, constraints, basis=ours)

@@ -60,7 +60,7 @@ def test_decomposition_coefficients_filter_and_compression(torus_basis):
     assert np.allclose(c, expected, atol=1e-9) and rest < 1e-9
     parts = tvf.decompose(mesh, field)
     family = basis.families[7]
-    main = "integrable" if family == "integrable" else "co_integrable"
+    main = "integrable" if family == "integrable" else "cointegrable"
     assert np.allclose(parts[main], 2.0 * basis.fields[:, :, 7], atol=1e-9)
     assert np.allclose(parts["harmonic"], basis.fields[:, :, 0], atol=1e-9)
     filtered, gains_times_c = tvf.filter(mesh, field, basis, integrable="cutoff:f=0", cointegrable="cutoff:f=0", harmonic_gain=0.5)

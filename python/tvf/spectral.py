@@ -127,14 +127,15 @@ def decompose(mesh, field, discretization=DEFAULT_DISCRETIZATION, boundary="tang
     """The Hodge decomposition ``v = d0 f - M1^-1 d1^T g + h`` (``tvf decompose``).
 
     ``field``: ``(F, 3)`` face vectors (projected onto the face planes) or ``(n1,)``
-    coefficients. Returns a dict with ``integrable`` (curl-free), ``co_integrable``
-    (divergence-free), ``harmonic`` — in the form the field was given — and the ``potential``
+    coefficients. Returns a dict with ``integrable`` (curl-free), ``cointegrable``
+    (divergence-free; also under its earlier key ``co_integrable``), ``harmonic`` — in the form the field was given — and the ``potential``
     ``f`` (``n0``) and ``co_potential`` ``g`` (``n2``), each with zero mean per component. The
     three parts are ``M1``-orthogonal and sum to the (projected) field."""
     complex_ = as_complex(mesh, discretization, boundary)
     values, as_vectors = _field_in(complex_, field)
     parts = _native.decompose(complex_._native, values)
-    out = {name: _field_out(complex_, parts[name], as_vectors) for name in ("integrable", "co_integrable", "harmonic")}
+    out = {name: _field_out(complex_, parts[name], as_vectors) for name in ("integrable", "cointegrable", "harmonic")}
+    out["co_integrable"] = out["cointegrable"]
     out["potential"] = np.asarray(parts["potential"])
     out["co_potential"] = np.asarray(parts["co_potential"])
     return out

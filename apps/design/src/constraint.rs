@@ -3,7 +3,7 @@
 
 use crate::DesignError;
 
-/// What a constraint prescribes. All values are **pointwise** (MATH.md): a tangent vector, or the
+/// What a constraint prescribes. All values are **pointwise** (`docs/conventions.md`): a tangent vector, or the
 /// pointwise divergence / curl of the field (units 1/length times the field's units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Target {

@@ -6,7 +6,7 @@
 //! - Field frame (`GET /api/field`, `POST /api/edit`): `u32` magic `"TVFF"`, `u32` length `n` of
 //!   the status JSON, the JSON (UTF-8) padded with spaces to a multiple of 4 bytes, then `2F`
 //!   `f32` coefficients of the field in the face frames `e1 = normalize(p1 − p0)`, `e2 = n × e1`
-//!   (pointwise values, as in MATH.md).
+//!   (pointwise values, as in `docs/conventions.md`).
 //! - Fur (`GET /api/fur`): `u32` strand count `s`, `u32` points per strand `p`, `f32` points
 //!   (`3 s p`).
 

@@ -52,7 +52,7 @@ impl EnergySplit {
         };
         Self {
             integrable: norm2(&parts.integrable),
-            cointegrable: norm2(&parts.co_integrable),
+            cointegrable: norm2(&parts.cointegrable),
             harmonic: norm2(&parts.harmonic),
             rest: 0.0,
         }

@@ -186,7 +186,7 @@ fn filtering_the_integrable_family_leaves_the_other_parts_unchanged() {
         let before = decomposer.decompose(&field).unwrap();
         let after = decomposer.decompose(&out.field).unwrap();
         let scale = max_abs(&field);
-        assert!(max_abs_difference(&before.co_integrable, &after.co_integrable) < 1e-10 * scale);
+        assert!(max_abs_difference(&before.cointegrable, &after.cointegrable) < 1e-10 * scale);
         assert!(max_abs_difference(&before.harmonic, &after.harmonic) < 1e-10 * scale);
         let change = max_abs_difference(&before.integrable, &after.integrable);
         assert!(

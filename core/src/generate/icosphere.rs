@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 /// Unit icosphere after `level` 1-to-4 subdivisions: `20·4^level` faces, genus 0, outward normals.
 ///
-/// Level 0 has 12 vertices; level 2 has 320 faces (the mesh of MATH.md's spectrum facts).
+/// Level 0 has 12 vertices; level 2 has 320 faces (the mesh of the spectrum facts in `docs/conventions.md`).
 pub fn icosphere(level: u32) -> SurfaceMesh {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
     let mut positions: Vec<[f64; 3]> = [

@@ -9,7 +9,7 @@ pub const NO_FACE: usize = usize::MAX;
 
 /// An oriented, edge-manifold triangle mesh and the topology the discrete operators need.
 ///
-/// Conventions (see `shared/docs/MATH.md`):
+/// Conventions (see `docs/conventions.md`):
 /// - faces are counter-clockwise seen from the outside, normal `(p1−p0)×(p2−p0)/|…|`;
 /// - edge `e` is `(a, b)` with `a < b`, and edges are numbered in **lexicographic order of
 ///   `(a, b)`** (tools outside tvf rely on this);

@@ -72,7 +72,7 @@ const fn timings(
     }
 }
 
-/// The paper's meshes (MATH.md, Table 1). `bumpy-torus` is the public copy, coarser than the
+/// The paper's meshes (the paper's Table 1). `bumpy-torus` is the public copy, coarser than the
 /// paper's (31,752 instead of 140,240 faces): it runs the sequence experiment and is timed in
 /// Table 1 without a ratio; `bumpy-torus-x4` (127,008 faces) is the paper-scale copy compared
 /// with the paper's bumpy torus. `armadillo-x4` (345,928 faces, about 11 GB for its basis) runs

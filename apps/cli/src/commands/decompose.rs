@@ -66,7 +66,7 @@ pub fn run(mut args: DecomposeArgs, context: &RunContext) -> Result<()> {
         report.set("field_energy", total);
         for (name, part) in [
             ("integrable", &parts.integrable),
-            ("cointegrable", &parts.co_integrable),
+            ("cointegrable", &parts.cointegrable),
             ("harmonic", &parts.harmonic),
         ] {
             write_face_vectors(

@@ -143,7 +143,7 @@ pub fn run(mut args: RenderArgs, context: &RunContext) -> Result<()> {
             let panels = [
                 ("field", field.as_slice()),
                 ("integrable (curl-free)", &parts.integrable),
-                ("co-integrable (divergence-free)", &parts.co_integrable),
+                ("co-integrable (divergence-free)", &parts.cointegrable),
                 ("harmonic", &parts.harmonic),
             ];
             let mut images = Vec::new();

@@ -26,11 +26,11 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>), FigureError> {
             let inner = |a: &[f64], b: &[f64]| c.field_inner(a, b);
             let products = [
                 inner(&parts.integrable, &parts.integrable),
-                inner(&parts.co_integrable, &parts.co_integrable),
+                inner(&parts.cointegrable, &parts.cointegrable),
                 inner(&parts.harmonic, &parts.harmonic),
-                inner(&parts.integrable, &parts.co_integrable),
+                inner(&parts.integrable, &parts.cointegrable),
                 inner(&parts.integrable, &parts.harmonic),
-                inner(&parts.co_integrable, &parts.harmonic),
+                inner(&parts.cointegrable, &parts.harmonic),
                 inner(&field, &field),
             ];
             (field, parts, products)
@@ -49,7 +49,7 @@ pub fn run(cx: &Context) -> Result<(Section, Vec<f64>), FigureError> {
         ),
         (
             "co-integrable part (colour: curl)",
-            &parts.co_integrable,
+            &parts.cointegrable,
             Tint::Quantity(FaceQuantity::Curl),
         ),
         (
