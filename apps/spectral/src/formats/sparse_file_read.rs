@@ -118,19 +118,38 @@ fn entry(line: &str, rows: usize, cols: usize) -> Result<(usize, usize, f64), St
     Ok((index(i, rows, "row")?, index(j, cols, "column")?, value))
 }
 
-/// Reads a sparse matrix saved by `scipy.sparse.save_npz` (members `format`, `shape`, `data`
+/// The largest uncompressed member of an `.npz` the reader takes: 4 GiB, the arrays of a sparse
+/// matrix with about 170 million entries.
+pub const NPZ_MEMBER_LIMIT: u64 = 4 << 30;
+
+/// Reads a sparse matrix saved by `scipy.sparse.save_npz` (stored or deflate-compressed: numpy's
+/// default is compressed; members `format`, `shape`, `data`
 /// and `indices`, `indptr` for CSR/CSC or `row`, `col` for COO; integer indices of any width;
 /// unsorted and repeated indices are allowed, repeated entries summed).
 pub fn read_sparse_npz(reader: impl Read + Seek) -> Result<SparseMatrix, String> {
     let mut archive =
         zip::ZipArchive::new(reader).map_err(|e| format!("not an .npz (zip) archive: {e}"))?;
     let mut member = |name: &str| -> Result<npyz::NpyFile<std::io::Cursor<Vec<u8>>>, String> {
-        let mut file = archive.by_name(&format!("{name}.npy")).map_err(|_| {
-            format!("no member {name}.npy: not a sparse matrix of scipy.sparse.save_npz")
-        })?;
+        let file = archive
+            .by_name(&format!("{name}.npy"))
+            .map_err(|e| match e {
+                zip::result::ZipError::FileNotFound => {
+                    format!("no member {name}.npy: not a sparse matrix of scipy.sparse.save_npz")
+                }
+                other => format!("{name}.npy: {other}"),
+            })?;
+        // A member's stated size can lie (a compressed member may inflate without end): read
+        // at most the cap, and refuse a member that reaches it.
         let mut bytes = Vec::new();
-        file.read_to_end(&mut bytes)
+        file.take(NPZ_MEMBER_LIMIT)
+            .read_to_end(&mut bytes)
             .map_err(|e| format!("{name}.npy: {e}"))?;
+        if bytes.len() as u64 >= NPZ_MEMBER_LIMIT {
+            return Err(format!(
+                "{name}.npy: more than {} GiB uncompressed; not read",
+                NPZ_MEMBER_LIMIT >> 30
+            ));
+        }
         npyz::NpyFile::new(std::io::Cursor::new(bytes)).map_err(|e| format!("{name}.npy: {e}"))
     };
     let format = member("format")?
@@ -323,6 +342,30 @@ mod tests {
             read_index_npy(&map[..], "vertex_map").unwrap(),
             vec![0, 2, 5]
         );
+    }
+
+    /// `scipy.sparse.save_npz` compresses by default: the same members, deflated.
+    #[test]
+    fn deflated_archives_read_like_stored_ones() {
+        use std::io::Write;
+        let matrix = example();
+        let mut stored = std::io::Cursor::new(Vec::new());
+        write_sparse_npz(&mut stored, &matrix).unwrap();
+        stored.set_position(0);
+        let mut source = zip::ZipArchive::new(stored).unwrap();
+        let mut deflated = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+        let options = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Deflated);
+        for i in 0..source.len() {
+            let mut member = source.by_index(i).unwrap();
+            let mut bytes = Vec::new();
+            member.read_to_end(&mut bytes).unwrap();
+            deflated.start_file(member.name(), options).unwrap();
+            deflated.write_all(&bytes).unwrap();
+        }
+        let mut archive = deflated.finish().unwrap();
+        archive.set_position(0);
+        assert_eq!(read_sparse_npz(archive).unwrap(), matrix);
     }
 
     #[test]
