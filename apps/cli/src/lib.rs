@@ -16,7 +16,6 @@
 
 mod basis_export;
 mod basis_source;
-mod cache_folder;
 mod commands;
 mod computed_field;
 mod context;

@@ -31,6 +31,7 @@ mod analysis;
 mod basis;
 mod basis_error;
 mod basis_request;
+mod basis_resolution;
 mod basis_store;
 mod codec;
 mod compute_basis;
@@ -50,6 +51,10 @@ pub use analysis::{CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
+pub use basis_resolution::{
+    cache_messages, cached_or_computed_basis, computed_basis_summary, open_checked_basis_file,
+    prepare_private_folder, user_cache_folder_from, BasisCache, BasisFromFile, BasisMessage,
+};
 pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
 pub use codec::compress::{pair_selection, FieldCodec};
 pub use codec::compression_error::CompressionError;
