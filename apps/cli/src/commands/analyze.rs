@@ -1,10 +1,8 @@
 //! `tvf analyze`: a field's Fourier coefficients against frequency (the paper's Figure 8) and
 //! the energy of each part of its Hodge decomposition.
 
-use super::spectral_inputs::{exact_hodge_energies, load_inputs, read_field};
-use crate::basis_source::BasisSource;
+use super::spectral_inputs::{exact_hodge_energies, read_field, FieldArgs};
 use crate::context::RunContext;
-use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
@@ -26,12 +24,7 @@ Hodge decomposition)."
 )]
 pub struct AnalyzeArgs {
     #[command(flatten)]
-    input: MeshInput,
-    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD", required_unless_present = "example")]
-    field: Option<PathBuf>,
-    #[command(flatten)]
-    basis: BasisSource,
+    inputs: FieldArgs,
     /// Output folder (created if missing).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
@@ -53,17 +46,18 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 
 /// Runs the analysis and writes the three files.
 pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
-    let field_path = args.input.required_second(args.field.take(), "FIELD");
-    let basis_file = args.basis.options.basis.as_deref();
-    check_output(&args.output, &args.input, &[Some(&field_path), basis_file])?;
-    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
-    let field = read_field(&field_path, inputs.fields()?)?;
-    let setup = inputs.with_basis(
-        context.catalog(),
-        &args.input,
-        &args.basis.options,
-        args.basis.size(),
+    let field_path = args.inputs.field_path();
+    let basis_file = args.inputs.basis_file();
+    check_output(
+        &args.output,
+        &args.inputs.input,
+        &[Some(&field_path), basis_file],
     )?;
+    let inputs = args.inputs.load(context.catalog())?;
+    let field = read_field(&field_path, inputs.fields()?)?;
+    let setup = args
+        .inputs
+        .setup(context.catalog(), inputs, args.inputs.basis.size())?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
     let exact = Some(exact_hodge_energies(setup.complex.as_ref(), &field)?);
     let staged = stage(&args.output)?;
@@ -87,7 +81,7 @@ pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
     .with_context(|| format!("cannot write {}", csv_path.display()))?;
 
     let mut report = json!({
-        "mesh": args.input.label(),
+        "mesh": args.inputs.input.label(),
         "field": field_path.display().to_string(),
         "discretization": setup.discretization,
         "basis_fields": setup.basis.len(),

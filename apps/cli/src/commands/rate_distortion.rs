@@ -1,10 +1,8 @@
 //! `tvf rate-distortion`: relative L2 error against bits per vertex for several numbers of
 //! pairs, with 64-bit and with quantised, range-coded coefficients (the paper's Figure 9).
 
-use super::spectral_inputs::{load_inputs, read_field};
-use crate::basis_source::BasisSource;
+use super::spectral_inputs::{read_field, FieldArgs};
 use crate::context::RunContext;
-use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
 use anyhow::{Context, Result};
@@ -28,12 +26,7 @@ every 64-bit point, the smallest quantised file with an error at most as large."
 )]
 pub struct RateDistortionArgs {
     #[command(flatten)]
-    input: MeshInput,
-    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD", required_unless_present = "example")]
-    field: Option<PathBuf>,
-    #[command(flatten)]
-    basis: BasisSource,
+    inputs: FieldArgs,
     /// Numbers of coefficient pairs P to keep, comma-separated (each point keeps the lowest P
     /// integrable and P co-integrable coefficients plus the harmonic ones).
     #[arg(
@@ -59,15 +52,19 @@ pub struct RateDistortionArgs {
 
 /// Measures every point and writes the CSV and the plot.
 pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
-    let field = args.input.required_second(args.field.take(), "FIELD");
-    let basis_file = args.basis.options.basis.as_deref();
-    check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
+    let field = args.inputs.field_path();
+    let basis_file = args.inputs.basis_file();
+    check_output(
+        &args.output,
+        &args.inputs.input,
+        &[Some(&field), basis_file],
+    )?;
     // Without --basis or -k, compute as many pairs as the largest P tried.
     let largest = args.ks.iter().max().copied().unwrap_or(0);
-    let size = args.basis.size_or(BasisSize::Pairs(largest));
-    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
+    let size = args.inputs.basis.size_or(BasisSize::Pairs(largest));
+    let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(context.catalog(), &args.input, &args.basis.options, size)?;
+    let setup = args.inputs.setup(context.catalog(), inputs, size)?;
     let stamp = FileStamp {
         mesh_fingerprint: setup.mesh_fingerprint,
         basis_id: basis_id(&setup.basis),
@@ -100,7 +97,7 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
     })
     .with_context(|| format!("cannot write {}", csv_path.display()))?;
     let png_path = args.output.join("rate_distortion.png");
-    let label = args.input.label();
+    let label = args.inputs.input.label();
     let mesh_name = Path::new(&label)
         .file_name()
         .map_or(label.clone(), |n| n.to_string_lossy().into_owned());
