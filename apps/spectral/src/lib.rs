@@ -60,7 +60,9 @@ pub use codec::compress::{pair_selection, FieldCodec};
 pub use codec::compression_error::CompressionError;
 pub use codec::quantization::UniformQuantizer;
 pub use codec::range_coder;
-pub use codec::rate_distortion::{equal_error_comparison, rate_distortion, FileStamp, RatePoint};
+pub use codec::rate_distortion::{
+    equal_error_comparison, rate_distortion, rate_distortion_csv, FileStamp, RatePoint,
+};
 pub use codec::sequence::{compress_with_report, relative_l2_error, CompressionReport};
 pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};

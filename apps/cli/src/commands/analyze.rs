@@ -7,12 +7,12 @@ use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
-use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use tvf_core::io::write_atomically;
-use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
-use tvf_spectral::{EnergySplit, FieldFamily, SpectralAnalysis};
+use tvf_figures::spectral_plots::spectrum_plot;
+use tvf_render::save_png;
+use tvf_spectral::{EnergySplit, SpectralAnalysis};
 
 /// Arguments of `tvf analyze`.
 #[derive(Args)]
@@ -62,18 +62,7 @@ pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
     let exact = Some(exact_hodge_energies(setup.complex.as_ref(), &field)?);
     let staged = stage(&args.output)?;
 
-    let mut csv = String::from("index,family,eigenvalue,frequency,coefficient\n");
-    for e in &analysis.entries {
-        writeln!(
-            csv,
-            "{},{},{:e},{:e},{:e}",
-            e.index,
-            e.family.name(),
-            e.eigenvalue,
-            e.frequency,
-            e.coefficient
-        )?;
-    }
+    let csv = analysis.coefficients_csv();
     let csv_path = args.output.join("coefficients.csv");
     write_atomically(&staged.path().join("coefficients.csv"), |w| {
         w.write_all(csv.as_bytes())
@@ -129,53 +118,10 @@ pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
     );
     Ok(())
 }
-
 /// The paper's Figure 8: |coefficient| against frequency for both families (log scale).
 fn plot_spectrum(analysis: &SpectralAnalysis, path: &Path) -> Result<()> {
-    // Coefficients below round-off of the largest (e.g. harmonic ones of a field without a
-    // harmonic part) would only stretch the log axis.
-    let largest = analysis
-        .entries
-        .iter()
-        .fold(0.0f64, |m, e| m.max(e.coefficient.abs()));
-    let points = |family| -> Vec<(f64, f64)> {
-        analysis
-            .family(family)
-            .map(|e| (e.frequency, e.coefficient.abs()))
-            .filter(|&(_, c)| c > 1e-12 * largest)
-            .collect()
-    };
-    let mut series = vec![
-        Series::new(
-            "integrable |alpha|",
-            points(FieldFamily::Integrable),
-            SeriesStyle::Line,
-        ),
-        Series::new(
-            "co-integrable |beta|",
-            points(FieldFamily::Cointegrable),
-            SeriesStyle::Line,
-        ),
-    ];
-    let harmonic = points(FieldFamily::Harmonic);
-    if !harmonic.is_empty() {
-        series.push(Series::new(
-            "harmonic |gamma|",
-            harmonic,
-            SeriesStyle::Scatter,
-        ));
-    }
-    series.retain(|s| !s.points.is_empty());
-    if series.is_empty() {
+    let Some(plot) = spectrum_plot(analysis) else {
         anyhow::bail!("the field has no non-zero coefficient to plot");
-    }
-    let plot = Plot {
-        title: "Spectral analysis: coefficient magnitudes".to_string(),
-        x: Axis::new("frequency sqrt(lambda)", AxisScale::Linear),
-        y: Axis::new("|coefficient|", AxisScale::Log10),
-        series,
-        width: 1000,
-        height: 600,
     };
     save_png(&plot.render()?, path)?;
     Ok(())

@@ -7,14 +7,14 @@ use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
-use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use tvf_core::io::write_atomically;
-use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
-use tvf_spectral::BasisSize;
+use tvf_figures::spectral_plots::rate_distortion_plot;
+use tvf_render::save_png;
 use tvf_spectral::{
-    basis_id, equal_error_comparison, rate_distortion, CoefficientCoding, FileStamp, RatePoint,
+    basis_id, equal_error_comparison, rate_distortion, rate_distortion_csv, BasisSize,
+    CoefficientCoding, FileStamp,
 };
 
 /// Arguments of `tvf rate-distortion`.
@@ -79,18 +79,7 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
     let points = rate_distortion(&setup.basis, &field, stamp, &args.ks, &codings)?;
     let staged = stage(&args.output)?;
 
-    let mut csv = String::from("coding,bits,pairs,bytes,bits_per_vertex,relative_error\n");
-    for p in &points {
-        let (name, bits) = match p.coding {
-            CoefficientCoding::Float64 => ("f64", 64),
-            CoefficientCoding::Quantized { bits } => ("quantized", bits),
-        };
-        writeln!(
-            csv,
-            "{name},{bits},{},{},{:.6},{:e}",
-            p.pairs, p.bytes, p.bits_per_vertex, p.relative_error
-        )?;
-    }
+    let csv = rate_distortion_csv(&points);
     let csv_path = args.output.join("rate_distortion.csv");
     write_atomically(&staged.path().join("rate_distortion.csv"), |w| {
         w.write_all(csv.as_bytes())
@@ -168,33 +157,4 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
     report.set("csv", csv_path.display().to_string());
     report.set("plot", png_path.display().to_string());
     report.finish()
-}
-
-/// Relative error against bits per vertex, one line per coding (log–log), `size` in pixels.
-pub fn rate_distortion_plot(
-    points: &[RatePoint],
-    codings: &[CoefficientCoding],
-    title: String,
-    (width, height): (u32, u32),
-) -> Plot {
-    let series = codings
-        .iter()
-        .map(|&coding| {
-            let mut line: Vec<(f64, f64)> = points
-                .iter()
-                .filter(|p| p.coding == coding)
-                .map(|p| (p.bits_per_vertex, p.relative_error))
-                .collect();
-            line.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series::new(coding.label(), line, SeriesStyle::LineAndMarkers)
-        })
-        .collect();
-    Plot {
-        title,
-        x: Axis::new("bits per vertex", AxisScale::Log10),
-        y: Axis::new("relative L2 error", AxisScale::Log10),
-        series,
-        width,
-        height,
-    }
 }
