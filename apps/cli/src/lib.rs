@@ -20,7 +20,6 @@ mod commands;
 mod computed_field;
 mod context;
 mod discretization_flags;
-mod examples;
 mod interrupt;
 mod mesh_input;
 mod output_rules;
