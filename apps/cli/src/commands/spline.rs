@@ -27,7 +27,7 @@ use tvf_spectral::write_tangent_field;
 tvf spline bunny.obj --constraints constraints.json --basis bunny.tvfb -o spline.npy\n  \
 tvf render bunny.obj spline.npy --constraints constraints.json -o spline.png   (look at it)\n\n\
 The spline lives in the basis of the K lowest eigenfields (-k K, the paper's d; computed once and cached, \
-K ≥ 2F: the complete basis) or of a --basis file; constraints are met exactly in that basis."
+K ≥ n1 (the field dimension: 2F for face fields, E for DEC/Whitney): the complete basis) or of a --basis file; constraints are met exactly in that basis."
 )]
 pub struct SplineArgs {
     #[command(flatten)]
