@@ -3,6 +3,8 @@
 //! functions) and the suite asserts on the outcomes ([`assert_outcomes`]); [`crate::check_report`]
 //! returns them instead, for callers that want a report (the Python package's `tvf.check`).
 
+use serde::Serialize;
+
 /// Whether a check passed, failed or was not run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CheckStatus {
@@ -25,12 +27,22 @@ impl CheckStatus {
     }
 }
 
-/// One measured property of a complex.
-#[derive(Debug, Clone, PartialEq)]
+/// A status by its name.
+fn status_name<S: serde::Serializer>(
+    status: &CheckStatus,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(status.name())
+}
+
+/// One measured property of a complex; serialized with the keys of its fields, the status by
+/// its name, a measurement or limit that is not finite as `null` by `serde_json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CheckOutcome {
     /// Stable name of the check, e.g. `d1_d0_zero` or `symmetric:S`.
     pub name: String,
     /// The outcome.
+    #[serde(serialize_with = "status_name")]
     pub status: CheckStatus,
     /// The measured value (an error norm, or a count for counting checks).
     pub measured: f64,

@@ -17,6 +17,8 @@
 //! too, and that error is part of what is measured.
 
 use crate::corpus::delaunay_flips;
+use serde::ser::SerializeMap;
+use serde::{Serialize, Serializer};
 use std::time::Instant;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{hemisphere, icosphere};
@@ -158,12 +160,14 @@ impl Default for ConvergenceConfig {
     }
 }
 
-/// One candidate on one level of one surface.
-#[derive(Debug, Clone, PartialEq)]
+/// One candidate on one level of one surface; serialized with the keys of its fields, the
+/// surface as `surface` and `boundary` (see [`Surface`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct LevelRow {
     /// The candidate's name.
     pub discretization: String,
     /// The surface.
+    #[serde(flatten)]
     pub surface: Surface,
     /// Refinement level.
     pub level: u32,
@@ -207,27 +211,48 @@ impl LevelRow {
     }
 }
 
-/// The observed order of one family of one candidate on one surface.
-#[derive(Debug, Clone, PartialEq)]
+/// The observed order of one family of one candidate on one surface; serialized with the keys
+/// of its fields, the surface as `surface` and `boundary`, an order that could not be fitted
+/// (not finite) as `null` by `serde_json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ObservedOrder {
     /// The candidate's name.
     pub discretization: String,
     /// The surface.
+    #[serde(flatten)]
     pub surface: Surface,
     /// `integrable` or `cointegrable`.
+    #[serde(serialize_with = "family_name")]
     pub family: FieldFamily,
     /// The least-squares slope of `log error` against `log h` over the levels (all but the
     /// coarsest when there are three or more): the error behaves like `h^order`.
     pub order: f64,
 }
 
-/// The result of a study: one row per candidate, surface and level, and the orders.
-#[derive(Debug, Clone, PartialEq, Default)]
+/// The result of a study: one row per candidate, surface and level, and the orders (serialized
+/// as `rows` and `orders`).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct ConvergenceReport {
     /// Rows, by candidate, then surface, then level.
     pub rows: Vec<LevelRow>,
     /// One order per candidate, surface and family.
     pub orders: Vec<ObservedOrder>,
+}
+
+/// A family by its name (`integrable`, `cointegrable`, `harmonic`).
+fn family_name<S: Serializer>(family: &FieldFamily, serializer: S) -> Result<S::Ok, S::Error> {
+    serializer.serialize_str(family.name())
+}
+
+/// A surface as two entries: `surface` (its name) and `boundary` (the boundary condition's
+/// name, `null` on the sphere).
+impl Serialize for Surface {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(2))?;
+        map.serialize_entry("surface", self.name())?;
+        map.serialize_entry("boundary", &self.boundary().map(|b| b.name()))?;
+        map.end()
+    }
 }
 
 /// Why a study stopped.

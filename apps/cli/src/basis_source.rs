@@ -9,7 +9,8 @@
 //!   or 2 carries no matrix hash: it is used on mesh and id alone, with a note on stderr;
 //! - `-k K`: otherwise compute the basis of the `K` eigenfields of lowest eigenvalue of the
 //!   Hodge–Laplacian, harmonic ones included, whichever family they belong to (the paper's `d`;
-//!   [`DEFAULT_FIELDS`] if not given). `K ≥ 2F` asks for the complete basis (dense
+//!   [`DEFAULT_FIELDS`] if not given). `K ≥ n1` (the field dimension: 2F for face fields, E
+//!   for DEC/Whitney) asks for the complete basis (dense
 //!   eigensolvers, small meshes only). `-k` means this in every subcommand (`tvf spectrum -k K`
 //!   lists the same `K` eigenvalues);
 //! - `--discretization ID` (an id of the program's catalog, the `RunContext`; shorthands
@@ -23,26 +24,24 @@
 //! The cache is a [`BasisStore`] (file names and keys are documented there) in `--cache-dir`,
 //! else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in `--example`
 //! mesh (no file to sit next to) in the user's cache folder
-//! ([`crate::cache_folder::user_cache_folder`]). A default folder is created private and used
-//! only if it is safe ([`crate::cache_folder::prepare_private_folder`]; otherwise a warning, and
-//! the basis is computed without the cache). A cached basis is reused and stderr says so; a damaged or mismatching cache file is recomputed with a
+//! ([`user_cache_folder`]). A default folder is created private and used only if it is safe
+//! ([`tvf_spectral::BasisCache`]; otherwise a warning, and the basis is computed without the
+//! cache). A cached basis is reused and stderr says so; a damaged or mismatching cache file is recomputed with a
 //! warning. `-k` sizes are `BasisSize::Fields`; the pairs a compressed file needs when no `-k`
 //! is given are `BasisSize::Pairs`.
 
-use crate::cache_folder::{prepare_private_folder, user_cache_folder};
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
-use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::{
-    basis_file_complex_id, compute_basis_of_size, open_basis_file, open_basis_file_with,
-    read_basis_header, BasisSize, BasisStore, FieldFamily, SpectralBasis, StoredBasisOrigin,
+    basis_file_complex_id, cache_messages, cached_or_computed_basis, compute_basis_of_size,
+    computed_basis_summary, open_checked_basis_file, user_cache_folder_from, BasisCache,
+    BasisMessage, BasisSize, SpectralBasis,
 };
 
 /// Eigenfields computed when neither `--basis` nor `-k` is given.
@@ -75,8 +74,8 @@ pub struct BasisSource {
     #[command(flatten)]
     pub options: BasisOptions,
     /// Basis size: compute the K lowest eigenfields of the Hodge–Laplacian, harmonic ones
-    /// included (the paper's d), when no --basis is given; K ≥ 2F gives the complete basis
-    /// [default: 200].
+    /// included (the paper's d), when no --basis is given; K ≥ n1 (the field dimension: 2F for
+    /// face fields, E for DEC/Whitney) gives the complete basis [default: 200].
     #[arg(short = 'k', value_name = "K", conflicts_with = "basis")]
     pub fields: Option<usize>,
 }
@@ -144,42 +143,24 @@ impl BasisOptions {
     ) -> Result<ResolvedBasis> {
         let mesh_fingerprint = mesh.fingerprint();
         if let Some(path) = &self.basis {
-            let start = Instant::now();
-            let requested = self.discretization.requested_id();
-            let (discretization, basis) = match &self.discretization.complex {
-                Some(_) => {
-                    let complex = self.discretization.build(catalog, mesh, input)?;
-                    open_basis_file_with(path, mesh, complex)?
-                }
-                None => open_basis_file(
-                    catalog,
-                    path,
-                    mesh,
-                    requested.as_deref(),
-                    self.discretization.boundary,
-                )?,
+            let given = match &self.discretization.complex {
+                Some(_) => Some(self.discretization.build(catalog, mesh, input)?),
+                None => None,
             };
-            note(format!(
-                "using basis {} ({} fields, {}, loaded in {:.2} s)",
-                path.display(),
-                basis.len(),
-                discretization.id(),
-                start.elapsed().as_secs_f64()
-            ));
-            let header = read_basis_header(path)?;
-            if header.key.matrix_hash.is_none() {
-                note(format!(
-                    "{}: basis file format version {} predates matrix hashes, so it cannot be \
-                     checked against the matrices of {} (only against its id and the mesh); \
-                     recompute it with `tvf basis` to have it checked",
-                    path.display(),
-                    header.version,
-                    discretization.id()
-                ));
-            }
+            let requested = self.discretization.requested_id();
+            let boundary = self.discretization.boundary;
+            let file = open_checked_basis_file(
+                catalog,
+                path,
+                mesh,
+                requested.as_deref(),
+                boundary,
+                given,
+            )?;
+            file.messages(path).into_iter().for_each(tell);
             return Ok(ResolvedBasis {
-                discretization,
-                basis,
+                discretization: file.discretization,
+                basis: file.basis,
                 mesh_fingerprint,
             });
         }
@@ -192,12 +173,9 @@ impl BasisOptions {
             Some(discretization) => discretization,
             None => self.discretization.build(catalog, mesh, input)?,
         };
-        let basis = if self.no_cache {
-            compute(&discretization, size)
-        } else {
-            self.cached(mesh, &discretization, size, input)
-        }
-        .with_context(|| format!("{}: cannot compute the basis", input.label()))?;
+        let basis = self
+            .cached(mesh, &discretization, size, input)
+            .with_context(|| format!("{}: cannot compute the basis", input.label()))?;
         Ok(ResolvedBasis {
             discretization,
             basis,
@@ -205,8 +183,8 @@ impl BasisOptions {
         })
     }
 
-    /// The basis of `size` from the cache, computed (with a progress bar) and cached if the
-    /// cache does not hold a usable one; stderr says which.
+    /// The basis of `size` from the cache (none with `--no-cache`), computed (with a progress
+    /// bar) and cached if the cache does not hold a usable one; stderr says which.
     fn cached(
         &self,
         mesh: &SurfaceMesh,
@@ -214,69 +192,48 @@ impl BasisOptions {
         size: BasisSize,
         input: &MeshInput,
     ) -> Result<SpectralBasis> {
-        let (folder, chosen) = self.cache_folder(input);
-        if !chosen {
-            if let Err(problem) = prepare_private_folder(&folder) {
-                warn(format!(
-                    "not using the basis cache {}: {problem}; computing without it",
-                    folder.display()
-                ));
-                return compute(discretization, size);
-            }
-        }
-        let store = BasisStore::new(folder);
+        let store = self.cache(input).store().unwrap_or_else(|warning| {
+            tell(warning);
+            None
+        });
         let progress = Progress::new("basis");
         let callback = progress.basis_callback();
-        let (basis, origin) = store.basis(mesh, discretization.as_ref(), size, Some(&callback))?;
-        match origin {
-            StoredBasisOrigin::Read { file, seconds } => {
-                drop(callback);
-                drop(progress);
-                note(format!(
-                    "using cached basis {} ({} fields, {}, loaded in {seconds:.2} s)",
-                    file.display(),
-                    basis.len(),
-                    discretization.id(),
-                ));
-            }
-            StoredBasisOrigin::Computed {
-                unusable_file,
-                saved,
-            } => {
-                finish(&progress, discretization, size, &basis);
-                if let Some(problem) = unusable_file {
-                    warn(format!("cached basis is unusable ({problem}); recomputed"));
-                }
-                match saved {
-                    Ok(file) => note(format!("cached basis in {}", file.display())),
-                    Err(problem) => warn(format!(
-                        "cannot cache the basis ({problem}); continuing without the cache"
-                    )),
-                }
-            }
+        let (basis, origin) =
+            cached_or_computed_basis(store.as_ref(), mesh, discretization, size, Some(&callback))?;
+        drop(callback);
+        if !matches!(origin, Some(tvf_spectral::StoredBasisOrigin::Read { .. })) {
+            progress.finish(computed_basis_summary(discretization, size, &basis));
+        }
+        drop(progress);
+        if let Some(origin) = &origin {
+            cache_messages(origin, &basis, discretization)
+                .into_iter()
+                .for_each(tell);
         }
         Ok(basis)
     }
 
-    /// The cache folder for `input` and whether the user chose it: `--cache-dir` or
-    /// `$TVF_CACHE_DIR` (chosen), else `.tvf-cache/` next to the mesh file or, for built-in
-    /// examples, the user's cache folder (defaults, checked before use).
-    pub fn cache_folder(&self, input: &MeshInput) -> (PathBuf, bool) {
+    /// The cache: off with `--no-cache`; `--cache-dir` or `$TVF_CACHE_DIR` (chosen), else
+    /// `.tvf-cache/` next to the mesh file or, for built-in examples, the user's cache folder
+    /// (defaults, checked before use).
+    pub fn cache(&self, input: &MeshInput) -> BasisCache {
+        if self.no_cache {
+            return BasisCache::Off;
+        }
         if let Some(dir) = &self.cache_dir {
-            return (dir.clone(), true);
+            return BasisCache::Chosen(dir.clone());
         }
         if let Some(dir) = std::env::var_os(CACHE_DIR_VARIABLE).filter(|d| !d.is_empty()) {
-            return (PathBuf::from(dir), true);
+            return BasisCache::Chosen(PathBuf::from(dir));
         }
-        let default = match &input.mesh {
+        BasisCache::Default(match &input.mesh {
             Some(path) => path
                 .parent()
                 .filter(|p| !p.as_os_str().is_empty())
                 .unwrap_or(Path::new("."))
                 .join(".tvf-cache"),
             None => user_cache_folder(),
-        };
-        (default, false)
+        })
     }
 
     /// The discretization a basis would use, without computing or loading the basis: the
@@ -289,59 +246,46 @@ impl BasisOptions {
         input: &MeshInput,
     ) -> Result<BoxedComplex> {
         match &self.basis {
-            Some(_) if self.discretization.complex.is_some() => {
-                self.discretization.build(catalog, mesh, input)
-            }
-            Some(path) => {
+            Some(path) if self.discretization.complex.is_none() => {
                 let requested = self.discretization.requested_id();
-                let id = basis_file_complex_id(
-                    path,
-                    requested.as_deref(),
-                    self.discretization.boundary,
-                )?;
+                let boundary = self.discretization.boundary;
+                let id = basis_file_complex_id(path, requested.as_deref(), boundary)?;
                 Ok(catalog
                     .build_complex(&id, None, mesh)
                     .with_context(|| format!("{}", path.display()))?)
             }
-            None => self.discretization.build(catalog, mesh, input),
+            _ => self.discretization.build(catalog, mesh, input),
         }
     }
 }
 
+/// Prints a message of the basis resolution on stderr.
+fn tell(message: BasisMessage) {
+    match message {
+        BasisMessage::Note(text) => note(text),
+        BasisMessage::Warning(text) => warn(text),
+    }
+}
+
+/// The default cache folder for built-in example meshes: `$XDG_CACHE_HOME/tvf`, else
+/// `~/.cache/tvf` on Unix and `%LOCALAPPDATA%\tvf` on Windows, else `tvf-cache-USER` in the
+/// temporary folder ([`user_cache_folder_from`]).
+pub fn user_cache_folder() -> PathBuf {
+    let variable = |name| std::env::var_os(name).map(PathBuf::from);
+    user_cache_folder_from(
+        variable("XDG_CACHE_HOME"),
+        variable("HOME"),
+        variable("LOCALAPPDATA"),
+        variable("USER").or_else(|| variable("USERNAME")),
+    )
+}
+
 /// Computes a basis of `size` with a progress bar: `K` fields (the complete basis if
-/// `K ≥ 2F`) or `P` pairs plus the harmonic fields.
+/// `K ≥ n1`, the field dimension) or `P` pairs plus the harmonic fields.
 pub fn compute(discretization: &BoxedComplex, size: BasisSize) -> Result<SpectralBasis> {
     let progress = Progress::new("basis");
     let callback = progress.basis_callback();
     let basis = compute_basis_of_size(discretization.as_ref(), size, Some(&callback))?;
-    finish(&progress, discretization, size, &basis);
+    progress.finish(computed_basis_summary(discretization, size, &basis));
     Ok(basis)
-}
-
-/// Ends the progress bar of a computed basis with what was computed and how long it took.
-fn finish(
-    progress: &Progress,
-    discretization: &BoxedComplex,
-    size: BasisSize,
-    basis: &SpectralBasis,
-) {
-    let dimension = discretization.field_dimension();
-    let asked = match size {
-        BasisSize::Fields(k) if k >= dimension => {
-            format!("-k {k} ≥ 2F = {dimension}: the complete basis")
-        }
-        BasisSize::Fields(k) => format!("-k {k}"),
-        BasisSize::Pairs(p) => format!("{p} pairs + harmonic"),
-        BasisSize::MaxEigenvalue(bound) => format!("λ ≤ {bound}"),
-        BasisSize::Complete => "the complete basis".to_string(),
-    };
-    progress.finish(format!(
-        "{} fields ({asked}; {} harmonic, {} integrable, {} co-integrable; {}) computed in {:.2} s",
-        basis.len(),
-        basis.count(FieldFamily::Harmonic),
-        basis.count(FieldFamily::Integrable),
-        basis.count(FieldFamily::Cointegrable),
-        discretization.id(),
-        basis.report().map_or(0.0, |r| r.seconds)
-    ));
 }

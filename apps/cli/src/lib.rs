@@ -16,12 +16,10 @@
 
 mod basis_export;
 mod basis_source;
-mod cache_folder;
 mod commands;
 mod computed_field;
 mod context;
 mod discretization_flags;
-mod examples;
 mod interrupt;
 mod mesh_input;
 mod output_rules;

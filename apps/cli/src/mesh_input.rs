@@ -18,12 +18,12 @@
 //! `tvf render --example bumpy-torus field.npy -o out.png` works like
 //! `tvf render torus.obj field.npy -o out.png`.
 
-use crate::examples::{example_mesh, EXAMPLE_NAMES};
 use anyhow::{Context, Result};
 use clap::builder::PossibleValuesParser;
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
 use std::path::PathBuf;
+use tvf_core::generate::{example_mesh, EXAMPLE_NAMES};
 use tvf_core::io::{load_mesh, LoadedMesh};
 use tvf_core::mesh::ValidationWarning;
 use tvf_core::SurfaceMesh;
@@ -100,7 +100,12 @@ impl MeshInput {
                 Ok(loaded)
             }
             (None, Some(name)) => {
-                let mesh = example_mesh(name)?;
+                let Some(mesh) = example_mesh(name) else {
+                    anyhow::bail!(
+                        "unknown example '{name}': choose one of {}",
+                        EXAMPLE_NAMES.join(", ")
+                    );
+                };
                 let (mesh, report) =
                     SurfaceMesh::validated(mesh.positions().to_vec(), mesh.faces().to_vec())
                         .with_context(|| format!("built-in example '{name}' is invalid"))?;

@@ -43,6 +43,7 @@ mod soft_full;
 mod soft_reduced;
 mod solution_check;
 mod spline;
+mod timed_reduced_solve;
 
 pub use assembler::ConstraintAssembler;
 pub use constraint::{
@@ -57,4 +58,5 @@ pub use soft_full::{FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORD
 pub use soft_reduced::ReducedSoftDesign;
 pub use solution_check::{checked_residuals, worst_residual};
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};
+pub use timed_reduced_solve::{timed_reduced_design, timed_spline, TimedReducedSolve};
 pub use tvf_solvers::{FactorParallelism, FillOrdering, SolveReport, SEQUENTIAL_FLOP_LIMIT};

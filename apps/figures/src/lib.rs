@@ -16,6 +16,8 @@
 //! - [`demo`]: the demo page, run by `tvf demo` through a [`demo::DemoHost`].
 //! - [`convergence_plot`]: the picture of a convergence study against exact spectra
 //!   (`tvf convergence`, `papers/`'s discretization comparison).
+//! - [`spectral_plots`]: the plots of `tvf analyze` (coefficient magnitudes) and
+//!   `tvf rate-distortion` (rate–distortion curves).
 //! - [`panels`], [`constraint_markers`], [`numbers`], [`timing`]: drawing, marking, formatting
 //!   and timing helpers the figures share.
 //!
@@ -44,6 +46,7 @@ pub mod finding;
 pub mod numbers;
 pub mod panels;
 pub mod seeded_constraints;
+pub mod spectral_plots;
 pub mod test_fields;
 pub mod timing;
 

@@ -1,5 +1,6 @@
 //! Panels of the figures: a field as line integral convolution over a magnitude colour map or
-//! a solid tint (`tvf_render::draw_field`), and PNG output of the committed pictures.
+//! a solid tint (`tvf_render::draw_field`), a field with its Hodge parts as a 2×2 grid, and PNG
+//! output of the committed pictures.
 
 use crate::error::FigureError;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
@@ -8,7 +9,8 @@ use std::io::Write as _;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
-use tvf_render::{draw_field, Overlays, Style, Tint, View};
+use tvf_discretizations::HodgeDecomposer;
+use tvf_render::{draw_field, grid, Marker, Overlays, Style, Tint, View};
 
 /// Renders `field` (`n1` coefficients of `complex`) on `mesh` as a line integral convolution
 /// over `tint`, titled `title`.
@@ -29,6 +31,44 @@ pub fn field_panel(
         Overlays::titled(title),
         view,
     )?)
+}
+
+/// `field` (`n1` coefficients of `complex`) and its integrable, co-integrable and harmonic parts
+/// (exact Hodge decomposition) as a 2×2 grid of titled panels drawn in `style` over `tint`, each
+/// with `markers`; `view` is the size of the whole grid.
+pub fn hodge_parts_grid(
+    mesh: &SurfaceMesh,
+    complex: &dyn HodgeComplex,
+    field: &[f64],
+    (tint, style): (Tint, Style),
+    markers: &[Marker],
+    view: View,
+) -> Result<RgbaImage, FigureError> {
+    let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
+    let panels = [
+        ("field", field),
+        ("integrable (curl-free)", &parts.integrable),
+        ("co-integrable (divergence-free)", &parts.cointegrable),
+        ("harmonic", &parts.harmonic),
+    ];
+    let mut images = Vec::new();
+    for (name, part) in panels {
+        let overlays = Overlays {
+            markers: markers.to_vec(),
+            title: Some(name.to_string()),
+            ..Default::default()
+        };
+        images.push(draw_field(
+            mesh,
+            complex,
+            Some(part),
+            tint,
+            style,
+            overlays,
+            view.panel(2),
+        )?);
+    }
+    Ok(grid(&images, 2))
 }
 
 /// Bits kept per colour channel in saved pictures: 6 of 8 looks the same and halves the size of

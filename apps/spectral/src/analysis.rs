@@ -111,6 +111,23 @@ impl SpectralAnalysis {
         })
     }
 
+    /// The coefficients as CSV: a header `index,family,eigenvalue,frequency,coefficient`, then
+    /// one line per basis field (numbers in `{:e}` notation).
+    pub fn coefficients_csv(&self) -> String {
+        let mut csv = String::from("index,family,eigenvalue,frequency,coefficient\n");
+        for e in &self.entries {
+            csv.push_str(&format!(
+                "{},{},{:e},{:e},{:e}\n",
+                e.index,
+                e.family.name(),
+                e.eigenvalue,
+                e.frequency,
+                e.coefficient
+            ));
+        }
+        csv
+    }
+
     /// The entries of one family, ascending frequency.
     pub fn family(&self, family: FieldFamily) -> impl Iterator<Item = &CoefficientEntry> + '_ {
         self.entries.iter().filter(move |e| e.family == family)

@@ -31,6 +31,7 @@ mod analysis;
 mod basis;
 mod basis_error;
 mod basis_request;
+mod basis_resolution;
 mod basis_store;
 mod codec;
 mod compute_basis;
@@ -50,12 +51,18 @@ pub use analysis::{CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
+pub use basis_resolution::{
+    cache_messages, cached_or_computed_basis, computed_basis_summary, open_checked_basis_file,
+    prepare_private_folder, user_cache_folder_from, BasisCache, BasisFromFile, BasisMessage,
+};
 pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
 pub use codec::compress::{pair_selection, FieldCodec};
 pub use codec::compression_error::CompressionError;
 pub use codec::quantization::UniformQuantizer;
 pub use codec::range_coder;
-pub use codec::rate_distortion::{equal_error_comparison, rate_distortion, FileStamp, RatePoint};
+pub use codec::rate_distortion::{
+    equal_error_comparison, rate_distortion, rate_distortion_csv, FileStamp, RatePoint,
+};
 pub use codec::sequence::{compress_with_report, relative_l2_error, CompressionReport};
 pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};

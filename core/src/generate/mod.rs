@@ -1,6 +1,7 @@
 //! Meshes generated in code: no files needed for tests and demos.
 
 mod bumpy_torus;
+mod examples;
 mod genus_surface;
 mod icosphere;
 mod jitter;
@@ -10,6 +11,7 @@ mod staggered_rings;
 mod torus;
 
 pub use bumpy_torus::bumpy_torus;
+pub use examples::{example_mesh, EXAMPLE_NAMES};
 pub use genus_surface::genus_surface;
 pub use icosphere::icosphere;
 pub use jitter::jitter;

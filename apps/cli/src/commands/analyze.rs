@@ -1,20 +1,18 @@
 //! `tvf analyze`: a field's Fourier coefficients against frequency (the paper's Figure 8) and
 //! the energy of each part of its Hodge decomposition.
 
-use super::spectral_inputs::{exact_hodge_energies, load_inputs, read_field};
-use crate::basis_source::BasisSource;
+use super::spectral_inputs::{exact_hodge_energies, read_field, FieldArgs};
 use crate::context::RunContext;
-use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
-use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use tvf_core::io::write_atomically;
-use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
-use tvf_spectral::{EnergySplit, FieldFamily, SpectralAnalysis};
+use tvf_figures::spectral_plots::spectrum_plot;
+use tvf_render::save_png;
+use tvf_spectral::{EnergySplit, SpectralAnalysis};
 
 /// Arguments of `tvf analyze`.
 #[derive(Args)]
@@ -26,12 +24,7 @@ Hodge decomposition)."
 )]
 pub struct AnalyzeArgs {
     #[command(flatten)]
-    input: MeshInput,
-    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD", required_unless_present = "example")]
-    field: Option<PathBuf>,
-    #[command(flatten)]
-    basis: BasisSource,
+    inputs: FieldArgs,
     /// Output folder (created if missing).
     #[arg(short, long, value_name = "DIR")]
     output: PathBuf,
@@ -53,33 +46,23 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 
 /// Runs the analysis and writes the three files.
 pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
-    let field_path = args.input.required_second(args.field.take(), "FIELD");
-    let basis_file = args.basis.options.basis.as_deref();
-    check_output(&args.output, &args.input, &[Some(&field_path), basis_file])?;
-    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
-    let field = read_field(&field_path, inputs.fields()?)?;
-    let setup = inputs.with_basis(
-        context.catalog(),
-        &args.input,
-        &args.basis.options,
-        args.basis.size(),
+    let field_path = args.inputs.field_path();
+    let basis_file = args.inputs.basis_file();
+    check_output(
+        &args.output,
+        &args.inputs.input,
+        &[Some(&field_path), basis_file],
     )?;
+    let inputs = args.inputs.load(context.catalog())?;
+    let field = read_field(&field_path, inputs.fields()?)?;
+    let setup = args
+        .inputs
+        .setup(context.catalog(), inputs, args.inputs.basis.size())?;
     let analysis = SpectralAnalysis::new(&setup.basis, &field)?;
     let exact = Some(exact_hodge_energies(setup.complex.as_ref(), &field)?);
     let staged = stage(&args.output)?;
 
-    let mut csv = String::from("index,family,eigenvalue,frequency,coefficient\n");
-    for e in &analysis.entries {
-        writeln!(
-            csv,
-            "{},{},{:e},{:e},{:e}",
-            e.index,
-            e.family.name(),
-            e.eigenvalue,
-            e.frequency,
-            e.coefficient
-        )?;
-    }
+    let csv = analysis.coefficients_csv();
     let csv_path = args.output.join("coefficients.csv");
     write_atomically(&staged.path().join("coefficients.csv"), |w| {
         w.write_all(csv.as_bytes())
@@ -87,7 +70,7 @@ pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
     .with_context(|| format!("cannot write {}", csv_path.display()))?;
 
     let mut report = json!({
-        "mesh": args.input.label(),
+        "mesh": args.inputs.input.label(),
         "field": field_path.display().to_string(),
         "discretization": setup.discretization,
         "basis_fields": setup.basis.len(),
@@ -135,53 +118,10 @@ pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
     );
     Ok(())
 }
-
 /// The paper's Figure 8: |coefficient| against frequency for both families (log scale).
 fn plot_spectrum(analysis: &SpectralAnalysis, path: &Path) -> Result<()> {
-    // Coefficients below round-off of the largest (e.g. harmonic ones of a field without a
-    // harmonic part) would only stretch the log axis.
-    let largest = analysis
-        .entries
-        .iter()
-        .fold(0.0f64, |m, e| m.max(e.coefficient.abs()));
-    let points = |family| -> Vec<(f64, f64)> {
-        analysis
-            .family(family)
-            .map(|e| (e.frequency, e.coefficient.abs()))
-            .filter(|&(_, c)| c > 1e-12 * largest)
-            .collect()
-    };
-    let mut series = vec![
-        Series::new(
-            "integrable |alpha|",
-            points(FieldFamily::Integrable),
-            SeriesStyle::Line,
-        ),
-        Series::new(
-            "co-integrable |beta|",
-            points(FieldFamily::Cointegrable),
-            SeriesStyle::Line,
-        ),
-    ];
-    let harmonic = points(FieldFamily::Harmonic);
-    if !harmonic.is_empty() {
-        series.push(Series::new(
-            "harmonic |gamma|",
-            harmonic,
-            SeriesStyle::Scatter,
-        ));
-    }
-    series.retain(|s| !s.points.is_empty());
-    if series.is_empty() {
+    let Some(plot) = spectrum_plot(analysis) else {
         anyhow::bail!("the field has no non-zero coefficient to plot");
-    }
-    let plot = Plot {
-        title: "Spectral analysis: coefficient magnitudes".to_string(),
-        x: Axis::new("frequency sqrt(lambda)", AxisScale::Linear),
-        y: Axis::new("|coefficient|", AxisScale::Log10),
-        series,
-        width: 1000,
-        height: 600,
     };
     save_png(&plot.render()?, path)?;
     Ok(())

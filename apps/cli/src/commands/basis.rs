@@ -24,7 +24,7 @@ use tvf_spectral::{
 #[command(
     after_help = "Examples:\n  tvf basis bunny.obj -k 1000 -o bunny.tvfb\n  tvf basis bunny.obj -k 100 --export bunny-basis/   (np.load(\"bunny-basis/fields.npy\"))\n  tvf basis --example genus2 -k 200 --decomposition nonconforming --mass voronoi -o g2.tvfb\n\nThe basis holds the K eigenfields of lowest eigenvalue of the Hodge–Laplacian (the paper's d): \
 the 2g harmonic fields first, then integrable and co-integrable eigenfields mixed as their eigenvalues come, \
-sorted by eigenvalue (`tvf spectrum -k K` lists the same K eigenvalues). K ≥ 2F gives the complete basis. The file is tied to the mesh \
+sorted by eigenvalue (`tvf spectrum -k K` lists the same K eigenvalues). K ≥ n1 (the field dimension: 2F for face fields, E for DEC/Whitney) gives the complete basis. The file is tied to the mesh \
 (fingerprint of its vertices and faces), to the discretization and to its matrices (a hash of the five \
 matrices and the fixed nodes); other commands take it with --basis."
 )]
@@ -32,7 +32,8 @@ pub struct BasisArgs {
     #[command(flatten)]
     input: MeshInput,
     /// Basis size: the K lowest eigenfields of the Hodge–Laplacian, harmonic ones included (the
-    /// paper's d); K ≥ 2F gives the complete basis.
+    /// paper's d); K ≥ n1 (the field dimension: 2F for face fields, E for DEC/Whitney) gives
+    /// the complete basis.
     #[arg(short = 'k', value_name = "K")]
     fields: usize,
     #[command(flatten)]
@@ -44,7 +45,7 @@ pub struct BasisArgs {
     #[arg(short, long, value_name = "FILE", required_unless_present = "export")]
     output: Option<PathBuf>,
     /// Also (or instead) write the basis as numpy arrays into the folder DIR: eigenvalues.npy,
-    /// families.npy, coefficients.npy (2F × K), fields.npy (F × 3 × K, at the face centroids)
+    /// families.npy, coefficients.npy (n1 × K), fields.npy (F × 3 × K, at the face centroids)
     /// and frames.npy (F × 2 × 3).
     #[arg(long, value_name = "DIR")]
     export: Option<PathBuf>,

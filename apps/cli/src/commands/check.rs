@@ -9,7 +9,7 @@ use crate::progress::Progress;
 use crate::report::Report;
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use serde_json::{json, Value};
+use serde_json::json;
 use std::path::PathBuf;
 use tvf_conformance::check_outcome::CheckOutcome;
 use tvf_conformance::check_report::CheckReport;
@@ -88,7 +88,7 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
             ));
             print_outcomes(&report, &checked.outcomes);
             report.set("passed", checked.passed());
-            report.set("checks", outcomes_json(&checked.outcomes));
+            report.set("checks", &checked.outcomes);
             finish(report, &checked)
         }
         None => {
@@ -157,7 +157,7 @@ fn property_report(
         outcome.cases_passed
     ));
     print_outcomes(report, &outcome.worst);
-    report.set("checks", outcomes_json(&outcome.worst));
+    report.set("checks", &outcome.worst);
     let Some(counterexample) = &outcome.counterexample else {
         return Ok(());
     };
@@ -178,7 +178,7 @@ fn property_report(
             "faces": mesh.face_count(),
             "description": counterexample.mesh.name,
             "reproduce": reproduce,
-            "checks": outcomes_json(&counterexample.report.outcomes),
+            "checks": counterexample.report.outcomes,
         }),
     );
     Ok(())
@@ -223,20 +223,4 @@ fn number(x: f64) -> String {
     } else {
         format!("{x:.3e}")
     }
-}
-
-fn outcomes_json(outcomes: &[CheckOutcome]) -> Value {
-    let finite = |x: f64| if x.is_finite() { json!(x) } else { Value::Null };
-    outcomes
-        .iter()
-        .map(|o| {
-            json!({
-                "name": o.name,
-                "status": o.status.name(),
-                "measured": finite(o.measured),
-                "limit": finite(o.limit),
-                "detail": o.detail,
-            })
-        })
-        .collect()
 }

@@ -1,14 +1,11 @@
 //! `tvf coefficients`: the Fourier coefficients α, β, γ of a field in a saved basis, and the rest
 //! field's share.
 
-use super::spectral_inputs::{load_inputs, read_field};
-use crate::basis_source::BasisSource;
+use super::spectral_inputs::{read_field, FieldArgs};
 use crate::context::RunContext;
-use crate::mesh_input::MeshInput;
 use anyhow::Result;
 use clap::Args;
 use serde_json::json;
-use std::path::PathBuf;
 use tvf_spectral::{FieldFamily, FourierAnalysis};
 
 /// Arguments of `tvf coefficients`.
@@ -21,12 +18,7 @@ family, eigenvalue, frequency, coefficient}...], \"alpha\", \"beta\", \"gamma\",
 )]
 pub struct CoefficientsArgs {
     #[command(flatten)]
-    input: MeshInput,
-    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD", required_unless_present = "example")]
-    field: Option<PathBuf>,
-    #[command(flatten)]
-    basis: BasisSource,
+    inputs: FieldArgs,
     /// Print JSON to stdout instead of a table.
     #[arg(long)]
     json: bool,
@@ -34,15 +26,12 @@ pub struct CoefficientsArgs {
 
 /// Computes and prints the coefficients.
 pub fn run(mut args: CoefficientsArgs, context: &RunContext) -> Result<()> {
-    let field = args.input.required_second(args.field.take(), "FIELD");
-    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
+    let field = args.inputs.field_path();
+    let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(
-        context.catalog(),
-        &args.input,
-        &args.basis.options,
-        args.basis.size(),
-    )?;
+    let setup = args
+        .inputs
+        .setup(context.catalog(), inputs, args.inputs.basis.size())?;
     let analysis = FourierAnalysis::new(&setup.basis, &field)?;
     let basis = &setup.basis;
     if args.json {
@@ -64,7 +53,7 @@ pub fn run(mut args: CoefficientsArgs, context: &RunContext) -> Result<()> {
             .collect();
         let pairs = |list: &[(f64, f64)]| list.iter().map(|&(_, c)| c).collect::<Vec<_>>();
         let out = json!({
-            "mesh": args.input.label(),
+            "mesh": args.inputs.input.label(),
             "discretization": setup.discretization,
             "coefficients": entries,
             "alpha": pairs(&analysis.alpha),

@@ -1,10 +1,8 @@
 //! `tvf compress`: a field, or a time-dependent sequence of fields, as the lowest `k` pairs of
 //! Fourier coefficients in a `.tvfc` file.
 
-use super::spectral_inputs::{load_inputs, read_frames};
-use crate::basis_source::BasisSource;
+use super::spectral_inputs::{read_frames, FieldArgs};
 use crate::context::RunContext;
-use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::progress::Progress;
 use anyhow::Result;
@@ -34,12 +32,7 @@ symbols (step = largest |coefficient| / (2^(Q-1) - 1) per frame) and range-coded
 )]
 pub struct CompressArgs {
     #[command(flatten)]
-    input: MeshInput,
-    /// The field or sequence (see below).
-    #[arg(value_name = "FIELD", required_unless_present = "example")]
-    field: Option<PathBuf>,
-    #[command(flatten)]
-    basis: BasisSource,
+    inputs: FieldArgs,
     /// Coefficient pairs kept: the lowest P integrable + P co-integrable coefficients, plus the
     /// harmonic ones (without --basis or -k, the basis computed is these fields).
     #[arg(long, value_name = "P")]
@@ -57,13 +50,17 @@ pub struct CompressArgs {
 
 /// Compresses the frames, writes the file and reports size and error.
 pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
-    let field = args.input.required_second(args.field.take(), "FIELD");
-    let basis_file = args.basis.options.basis.as_deref();
-    check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
-    let size = args.basis.size_or(BasisSize::Pairs(args.pairs));
-    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
+    let field = args.inputs.field_path();
+    let basis_file = args.inputs.basis_file();
+    check_output(
+        &args.output,
+        &args.inputs.input,
+        &[Some(&field), basis_file],
+    )?;
+    let size = args.inputs.basis.size_or(BasisSize::Pairs(args.pairs));
+    let inputs = args.inputs.load(context.catalog())?;
     let (frames, source) = read_frames(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(context.catalog(), &args.input, &args.basis.options, size)?;
+    let setup = args.inputs.setup(context.catalog(), inputs, size)?;
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },
         None => CoefficientCoding::Float64,

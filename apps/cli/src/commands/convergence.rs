@@ -7,7 +7,6 @@ use crate::context::RunContext;
 use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use serde_json::json;
 use std::path::PathBuf;
 use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
 use tvf_conformance::convergence_table::{markdown_table, orders_summary};
@@ -125,53 +124,13 @@ pub fn run(args: ConvergenceArgs, context: &RunContext) -> Result<()> {
         note(format!("plot: {}", output.display()));
     }
     if args.json {
-        let boundary = |s: Surface| s.boundary().map(|b| b.name());
-        let rows: Vec<_> = report
-            .rows
-            .iter()
-            .map(|r| {
-                json!({
-                    "discretization": r.discretization,
-                    "surface": r.surface.name(),
-                    "boundary": boundary(r.surface),
-                    "level": r.level,
-                    "faces": r.faces,
-                    "h": r.h,
-                    "integrable_error": r.integrable_error,
-                    "cointegrable_error": r.cointegrable_error,
-                    "seconds": r.seconds,
-                })
-            })
-            .collect();
-        let orders: Vec<_> = report
-            .orders
-            .iter()
-            .map(|o| {
-                json!({
-                    "discretization": o.discretization,
-                    "surface": o.surface.name(),
-                    "boundary": boundary(o.surface),
-                    "family": o.family.name(),
-                    "order": finite_or_null(o.order),
-                })
-            })
-            .collect();
-        let out = json!({ "rows": rows, "orders": orders });
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        // Through a `Value`, so the keys are sorted as in every JSON report of tvf.
+        let report = serde_json::to_value(&report)?;
+        println!("{}", serde_json::to_string_pretty(&report)?);
     } else {
         print!("{}", markdown_table(&report));
         println!();
         print!("{}", orders_summary(&report));
     }
     Ok(())
-}
-
-/// An order, or `null` in JSON where it could not be fitted (fewer than two levels with a
-/// nonzero error).
-fn finite_or_null(order: f64) -> serde_json::Value {
-    if order.is_finite() {
-        json!(order)
-    } else {
-        serde_json::Value::Null
-    }
 }

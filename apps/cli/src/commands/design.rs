@@ -16,7 +16,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_design::{
-    default_regularization, FactorParallelism, FillOrdering, FullSoftDesign, ReducedSoftDesign,
+    default_regularization, timed_reduced_design, FactorParallelism, FillOrdering, FullSoftDesign,
     SoftOptions, DEFAULT_FULL_ORDERING, SEQUENTIAL_FLOP_LIMIT,
 };
 use tvf_discretizations::Catalog;
@@ -198,25 +198,9 @@ fn design_with<H: HodgeComplex + ?Sized>(
         field
     } else {
         let basis = reduced_basis(catalog, inputs, &args.input, &args.basis, out)?;
-        let start = Instant::now();
-        let mut design = ReducedSoftDesign::new(&basis, options)
+        let solved = timed_reduced_design(&basis, options, &constraints)
             .with_context(|| format!("{}", inputs.constraints_path.display()))?;
-        design
-            .add_all(constraints.clone())
-            .with_context(|| format!("{}", inputs.constraints_path.display()))?;
-        let factor = start.elapsed();
-        let start = Instant::now();
-        let v = design.solve();
-        let solve = start.elapsed();
-        let start = Instant::now();
-        let mut field = vec![0.0; basis.field_dimension()];
-        basis.map(&v, &mut field)?;
-        let map = start.elapsed();
-        let (factor_ms, solve_ms, map_ms) = (
-            factor.as_secs_f64() * 1e3,
-            solve.as_secs_f64() * 1e3,
-            map.as_secs_f64() * 1e3,
-        );
+        let (factor_ms, solve_ms, map_ms) = (solved.setup_ms, solved.solve_ms, solved.map_ms);
         out.line(format!(
             "reduced factor  {factor_ms:.3} ms (d = {})",
             basis.len()
@@ -228,7 +212,7 @@ fn design_with<H: HodgeComplex + ?Sized>(
         out.set("factor_ms", factor_ms);
         out.set("solve_ms", solve_ms);
         out.set("map_ms", map_ms);
-        field
+        solved.field
     };
     report_residuals(&solution_residuals(&field, &constraints, inputs)?, out);
     write_tangent_field(&args.output, complex.require_sampling()?, &field)?;

@@ -17,7 +17,7 @@ use tvf_editor::{Editor, EditorServer, EditorSetup};
     after_help = "Examples:\n  tvf edit bunny.obj   (then open the printed http://127.0.0.1:PORT address)\n  \
 tvf edit --example bumpy-torus -k 300 --constraints constraints.json --port 8080\n\n\
 The editor works in the basis of the K lowest eigenfields (-k K, the paper's d; computed once and cached, \
-K ≥ 2F: the complete basis) or of a --basis file, with the discretization of --discretization (or of the basis file)."
+K ≥ n1 (the field dimension: 2F for face fields, E for DEC/Whitney): the complete basis) or of a --basis file, with the discretization of --discretization (or of the basis file)."
 )]
 pub struct EditArgs {
     #[command(flatten)]

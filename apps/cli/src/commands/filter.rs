@@ -1,10 +1,8 @@
 //! `tvf filter`: scale a field's Fourier coefficients by functions of frequency.
 
-use super::spectral_inputs::{load_inputs, read_field};
-use crate::basis_source::BasisSource;
+use super::spectral_inputs::{read_field, FieldArgs};
 use crate::computed_field::check_computed_field;
 use crate::context::RunContext;
-use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::report::Report;
 use anyhow::{bail, Result};
@@ -21,12 +19,7 @@ gain G at frequency F = √λ, constant beyond the ends) | @FILE.json ({\"points
 #[command(after_help = SPEC_HELP)]
 pub struct FilterArgs {
     #[command(flatten)]
-    input: MeshInput,
-    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD", required_unless_present = "example")]
-    field: Option<PathBuf>,
-    #[command(flatten)]
-    basis: BasisSource,
+    inputs: FieldArgs,
     /// Gain of the integrable (curl-free) coefficients against frequency √λ.
     #[arg(long, value_name = "SPEC", default_value = "identity", value_parser = spec_syntax)]
     integrable: String,
@@ -71,11 +64,11 @@ fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
 
 /// Filters the field and writes the result.
 pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
-    let field = args.input.required_second(args.field.take(), "FIELD");
-    let basis_file = args.basis.options.basis.as_deref();
+    let field = args.inputs.field_path();
+    let basis_file = args.inputs.basis_file();
     let curves = [curve_file(&args.integrable), curve_file(&args.cointegrable)];
     let inputs = [Some(field.as_path()), basis_file, curves[0], curves[1]];
-    check_output(&args.output, &args.input, &inputs)?;
+    check_output(&args.output, &args.inputs.input, &inputs)?;
     for (name, gain) in [("--harmonic", args.harmonic), ("--rest", args.rest)] {
         if !gain.is_finite() || gain < 0.0 {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");
@@ -83,14 +76,11 @@ pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     }
     let integrable = response("integrable", &args.integrable)?;
     let cointegrable = response("cointegrable", &args.cointegrable)?;
-    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
+    let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(
-        context.catalog(),
-        &args.input,
-        &args.basis.options,
-        args.basis.size(),
-    )?;
+    let setup = args
+        .inputs
+        .setup(context.catalog(), inputs, args.inputs.basis.size())?;
     let filter = SpectralFilter {
         integrable,
         cointegrable,

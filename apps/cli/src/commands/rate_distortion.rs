@@ -1,22 +1,20 @@
 //! `tvf rate-distortion`: relative L2 error against bits per vertex for several numbers of
 //! pairs, with 64-bit and with quantised, range-coded coefficients (the paper's Figure 9).
 
-use super::spectral_inputs::{load_inputs, read_field};
-use crate::basis_source::BasisSource;
+use super::spectral_inputs::{read_field, FieldArgs};
 use crate::context::RunContext;
-use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
-use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use tvf_core::io::write_atomically;
-use tvf_render::{save_png, Axis, AxisScale, Plot, Series, SeriesStyle};
-use tvf_spectral::BasisSize;
+use tvf_figures::spectral_plots::rate_distortion_plot;
+use tvf_render::save_png;
 use tvf_spectral::{
-    basis_id, equal_error_comparison, rate_distortion, CoefficientCoding, FileStamp, RatePoint,
+    basis_id, equal_error_comparison, rate_distortion, rate_distortion_csv, BasisSize,
+    CoefficientCoding, FileStamp,
 };
 
 /// Arguments of `tvf rate-distortion`.
@@ -28,12 +26,7 @@ every 64-bit point, the smallest quantised file with an error at most as large."
 )]
 pub struct RateDistortionArgs {
     #[command(flatten)]
-    input: MeshInput,
-    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line).
-    #[arg(value_name = "FIELD", required_unless_present = "example")]
-    field: Option<PathBuf>,
-    #[command(flatten)]
-    basis: BasisSource,
+    inputs: FieldArgs,
     /// Numbers of coefficient pairs P to keep, comma-separated (each point keeps the lowest P
     /// integrable and P co-integrable coefficients plus the harmonic ones).
     #[arg(
@@ -59,15 +52,19 @@ pub struct RateDistortionArgs {
 
 /// Measures every point and writes the CSV and the plot.
 pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
-    let field = args.input.required_second(args.field.take(), "FIELD");
-    let basis_file = args.basis.options.basis.as_deref();
-    check_output(&args.output, &args.input, &[Some(&field), basis_file])?;
+    let field = args.inputs.field_path();
+    let basis_file = args.inputs.basis_file();
+    check_output(
+        &args.output,
+        &args.inputs.input,
+        &[Some(&field), basis_file],
+    )?;
     // Without --basis or -k, compute as many pairs as the largest P tried.
     let largest = args.ks.iter().max().copied().unwrap_or(0);
-    let size = args.basis.size_or(BasisSize::Pairs(largest));
-    let inputs = load_inputs(context.catalog(), &args.input, &args.basis.options)?;
+    let size = args.inputs.basis.size_or(BasisSize::Pairs(largest));
+    let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = inputs.with_basis(context.catalog(), &args.input, &args.basis.options, size)?;
+    let setup = args.inputs.setup(context.catalog(), inputs, size)?;
     let stamp = FileStamp {
         mesh_fingerprint: setup.mesh_fingerprint,
         basis_id: basis_id(&setup.basis),
@@ -82,25 +79,14 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
     let points = rate_distortion(&setup.basis, &field, stamp, &args.ks, &codings)?;
     let staged = stage(&args.output)?;
 
-    let mut csv = String::from("coding,bits,pairs,bytes,bits_per_vertex,relative_error\n");
-    for p in &points {
-        let (name, bits) = match p.coding {
-            CoefficientCoding::Float64 => ("f64", 64),
-            CoefficientCoding::Quantized { bits } => ("quantized", bits),
-        };
-        writeln!(
-            csv,
-            "{name},{bits},{},{},{:.6},{:e}",
-            p.pairs, p.bytes, p.bits_per_vertex, p.relative_error
-        )?;
-    }
+    let csv = rate_distortion_csv(&points);
     let csv_path = args.output.join("rate_distortion.csv");
     write_atomically(&staged.path().join("rate_distortion.csv"), |w| {
         w.write_all(csv.as_bytes())
     })
     .with_context(|| format!("cannot write {}", csv_path.display()))?;
     let png_path = args.output.join("rate_distortion.png");
-    let label = args.input.label();
+    let label = args.inputs.input.label();
     let mesh_name = Path::new(&label)
         .file_name()
         .map_or(label.clone(), |n| n.to_string_lossy().into_owned());
@@ -171,33 +157,4 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
     report.set("csv", csv_path.display().to_string());
     report.set("plot", png_path.display().to_string());
     report.finish()
-}
-
-/// Relative error against bits per vertex, one line per coding (log–log), `size` in pixels.
-pub fn rate_distortion_plot(
-    points: &[RatePoint],
-    codings: &[CoefficientCoding],
-    title: String,
-    (width, height): (u32, u32),
-) -> Plot {
-    let series = codings
-        .iter()
-        .map(|&coding| {
-            let mut line: Vec<(f64, f64)> = points
-                .iter()
-                .filter(|p| p.coding == coding)
-                .map(|p| (p.bits_per_vertex, p.relative_error))
-                .collect();
-            line.sort_by(|a, b| a.0.total_cmp(&b.0));
-            Series::new(coding.label(), line, SeriesStyle::LineAndMarkers)
-        })
-        .collect();
-    Plot {
-        title,
-        x: Axis::new("bits per vertex", AxisScale::Log10),
-        y: Axis::new("relative L2 error", AxisScale::Log10),
-        series,
-        width,
-        height,
-    }
 }

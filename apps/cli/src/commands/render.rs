@@ -14,9 +14,9 @@ use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_design::{ConstraintAssembler, ConstraintSet};
-use tvf_discretizations::HodgeDecomposer;
 use tvf_figures::constraint_markers::constraint_markers;
-use tvf_render::{draw_field, grid, save_png, FaceQuantity, Overlays, Style, Tint, View};
+use tvf_figures::panels::hodge_parts_grid;
+use tvf_render::{draw_field, save_png, FaceQuantity, Overlays, Style, Tint, View};
 
 const EXAMPLES: &str = "Examples:
   tvf render bunny.obj field.npy -o field.png --color curl --style streamlines
@@ -138,34 +138,14 @@ pub fn run(mut args: RenderArgs, context: &RunContext) -> Result<()> {
         zoom: args.zoom,
     };
     let image = match (&field, args.parts) {
-        (Some(field), true) => {
-            let parts = HodgeDecomposer::new(discretization.as_ref())?.decompose(field)?;
-            let panels = [
-                ("field", field.as_slice()),
-                ("integrable (curl-free)", &parts.integrable),
-                ("co-integrable (divergence-free)", &parts.cointegrable),
-                ("harmonic", &parts.harmonic),
-            ];
-            let mut images = Vec::new();
-            for (name, part) in panels {
-                let overlays = Overlays {
-                    markers: markers.clone(),
-                    title: Some(name.to_string()),
-                    ..Default::default()
-                };
-                let view = view(width, height).panel(2);
-                images.push(draw_field(
-                    &mesh,
-                    discretization.as_ref(),
-                    Some(part),
-                    color,
-                    args.style,
-                    overlays,
-                    view,
-                )?);
-            }
-            grid(&images, 2)
-        }
+        (Some(field), true) => hodge_parts_grid(
+            &mesh,
+            discretization.as_ref(),
+            field,
+            (color, args.style),
+            &markers,
+            view(width, height),
+        )?,
         _ => {
             let overlays = Overlays {
                 markers,

@@ -1,13 +1,14 @@
 //! What `filter`, `analyze`, `compress`, `decompress`, `rate-distortion` and `coefficients`
-//! share: a mesh with its discretization, against which the other inputs are checked first
+//! share: their `MESH FIELD` and basis flags ([`FieldArgs`]); a mesh with its discretization, against which the other inputs are checked first
 //! ([`SpectralInputs`]), then its basis (a basis file checked to belong to the mesh, or a cached
 //! or computed basis, see [`crate::basis_source`]); field files (one field, or a sequence of
 //! frames) read as tangent fields.
 
-use crate::basis_source::BasisOptions;
+use crate::basis_source::{BasisOptions, BasisSource};
 use crate::mesh_input::MeshInput;
 use anyhow::Result;
-use std::path::Path;
+use clap::Args;
+use std::path::{Path, PathBuf};
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::SurfaceMesh;
@@ -15,6 +16,46 @@ use tvf_discretizations::HodgeDecomposer;
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::BasisSize;
 use tvf_spectral::{read_field_file, read_field_frames, EnergySplit, FrameSource, SpectralBasis};
+
+/// `MESH FIELD` (or `--example NAME FIELD`) and where the basis comes from.
+#[derive(Args)]
+pub struct FieldArgs {
+    #[command(flatten)]
+    pub input: MeshInput,
+    /// The field: one 3D vector per face (.npy F×3, or text `x y z` per line; `tvf compress`
+    /// also takes a sequence, see below).
+    #[arg(value_name = "FIELD", required_unless_present = "example")]
+    field: Option<PathBuf>,
+    #[command(flatten)]
+    pub basis: BasisSource,
+}
+
+impl FieldArgs {
+    /// The field file (moved out of `MESH` with `--example`).
+    pub fn field_path(&mut self) -> PathBuf {
+        self.input.required_second(self.field.take(), "FIELD")
+    }
+
+    /// The `--basis` file, if given.
+    pub fn basis_file(&self) -> Option<&Path> {
+        self.basis.options.basis.as_deref()
+    }
+
+    /// The mesh and its discretization ([`load_inputs`]).
+    pub fn load(&self, catalog: &Catalog) -> Result<SpectralInputs> {
+        load_inputs(catalog, &self.input, &self.basis.options)
+    }
+
+    /// The basis of `size` for `inputs` ([`SpectralInputs::with_basis`]).
+    pub fn setup(
+        &self,
+        catalog: &Catalog,
+        inputs: SpectralInputs,
+        size: BasisSize,
+    ) -> Result<SpectralSetup> {
+        inputs.with_basis(catalog, &self.input, &self.basis.options, size)
+    }
+}
 
 /// A mesh, its face fields and a basis that belongs to it.
 pub struct SpectralSetup {

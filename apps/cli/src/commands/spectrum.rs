@@ -23,7 +23,8 @@ pub struct SpectrumArgs {
     #[command(flatten)]
     input: MeshInput,
     /// The K lowest eigenvalues, harmonic zeros included: those of the basis of K eigenfields
-    /// (`tvf basis -k K`, the paper's d); K ≥ 2F gives all of them.
+    /// (`tvf basis -k K`, the paper's d); K ≥ n1 (the field dimension: 2F for face fields, E
+    /// for DEC/Whitney) gives all of them.
     #[arg(short = 'k', value_name = "K")]
     count: usize,
     #[command(flatten)]
@@ -46,7 +47,7 @@ pub fn run(args: SpectrumArgs, context: &RunContext) -> Result<()> {
     let progress = Progress::new("spectrum");
     let (basis, _) = {
         let callback = progress.basis_callback();
-        // K ≥ 2F: every eigenvalue (the complete basis), as for `tvf basis -k K`.
+        // K ≥ n1: every eigenvalue (the complete basis), as for `tvf basis -k K`.
         let request = if args.count >= discretization.field_dimension() {
             BasisRequest::complete()
         } else {

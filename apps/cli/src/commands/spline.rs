@@ -14,8 +14,8 @@ use tvf_core::discretization::HodgeComplex;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::SurfaceMesh;
 use tvf_design::{
-    checked_residuals, worst_residual, CompiledConstraint, ConstraintAssembler, ConstraintResidual,
-    ConstraintSet, ReducedBasis, SplineSession,
+    checked_residuals, timed_spline, worst_residual, CompiledConstraint, ConstraintAssembler,
+    ConstraintResidual, ConstraintSet, ReducedBasis,
 };
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::write_tangent_field;
@@ -27,7 +27,7 @@ use tvf_spectral::write_tangent_field;
 tvf spline bunny.obj --constraints constraints.json --basis bunny.tvfb -o spline.npy\n  \
 tvf render bunny.obj spline.npy --constraints constraints.json -o spline.png   (look at it)\n\n\
 The spline lives in the basis of the K lowest eigenfields (-k K, the paper's d; computed once and cached, \
-K ≥ 2F: the complete basis) or of a --basis file; constraints are met exactly in that basis."
+K ≥ n1 (the field dimension: 2F for face fields, E for DEC/Whitney): the complete basis) or of a --basis file; constraints are met exactly in that basis."
 )]
 pub struct SplineArgs {
     #[command(flatten)]
@@ -191,40 +191,23 @@ fn spline_with<H: HodgeComplex + ?Sized>(
 ) -> Result<()> {
     let constraints = compile(complex, inputs)?;
     let basis = reduced_basis(catalog, inputs, &args.input, &args.basis, report)?;
-    let start = Instant::now();
-    let mut session = SplineSession::new(&basis, inputs.set.omega)
+    let solved = timed_spline(&basis, inputs.set.omega, &constraints)
         .with_context(|| format!("{}", inputs.constraints_path.display()))?;
-    for c in constraints.iter().cloned() {
-        session
-            .add(c)
-            .with_context(|| format!("{}", inputs.constraints_path.display()))?;
-    }
-    let setup = start.elapsed();
-    let start = Instant::now();
-    let v = session.solve();
-    let solve = start.elapsed();
-    let start = Instant::now();
-    let mut field = vec![0.0; basis.field_dimension()];
-    basis.map(&v, &mut field)?;
-    let map = start.elapsed();
-    let (setup_ms, solve_ms, map_ms) = (
-        setup.as_secs_f64() * 1e3,
-        solve.as_secs_f64() * 1e3,
-        map.as_secs_f64() * 1e3,
-    );
+    let (setup_ms, solve_ms, map_ms) = (solved.setup_ms, solved.solve_ms, solved.map_ms);
     report.line(format!(
         "spline setup    {setup_ms:.3} ms ({} constraints, {} rows, d = {})",
-        session.ids().len(),
-        session.row_count(),
+        constraints.len(),
+        solved.rows,
         basis.len()
     ));
     report.line(format!(
         "spline solve    {solve_ms:.3} ms reduced + {map_ms:.3} ms mapping to the full field"
     ));
-    report.set("rows", session.row_count());
+    report.set("rows", solved.rows);
     report.set("setup_ms", setup_ms);
     report.set("solve_ms", solve_ms);
     report.set("map_ms", map_ms);
+    let field = solved.field;
     report_residuals(&solution_residuals(&field, &constraints, inputs)?, report);
     write_tangent_field(&args.output, complex.require_sampling()?, &field)?;
     report.line(format!("wrote {}", args.output.display()));

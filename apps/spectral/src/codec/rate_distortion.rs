@@ -95,3 +95,20 @@ pub fn equal_error_comparison(points: &[RatePoint]) -> Vec<(RatePoint, RatePoint
         })
         .collect()
 }
+
+/// The points as CSV: a header `coding,bits,pairs,bytes,bits_per_vertex,relative_error`, then
+/// one line per point (`f64` coding as `f64,64`, quantised as `quantized,Q`).
+pub fn rate_distortion_csv(points: &[RatePoint]) -> String {
+    let mut csv = String::from("coding,bits,pairs,bytes,bits_per_vertex,relative_error\n");
+    for p in points {
+        let (name, bits) = match p.coding {
+            CoefficientCoding::Float64 => ("f64", 64),
+            CoefficientCoding::Quantized { bits } => ("quantized", bits),
+        };
+        csv.push_str(&format!(
+            "{name},{bits},{},{},{:.6},{:e}\n",
+            p.pairs, p.bytes, p.bits_per_vertex, p.relative_error
+        ));
+    }
+    csv
+}
