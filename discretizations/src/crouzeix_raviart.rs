@@ -26,11 +26,7 @@ pub struct CrouzeixRaviart {
 impl CrouzeixRaviart {
     /// Builds `S*_h` on `mesh`; fails on a degenerate face.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Ok(Self::from_geometry(
-            mesh,
-            &FaceGeometry::new(mesh)?,
-            lumping,
-        ))
+        FaceGeometry::build_on(mesh, |geometry| Self::from_geometry(mesh, geometry, lumping))
     }
 
     /// Builds `S*_h` from precomputed face geometry.

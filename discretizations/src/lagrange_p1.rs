@@ -29,11 +29,7 @@ pub struct LagrangeP1 {
 impl LagrangeP1 {
     /// Builds `S_h` on `mesh`; fails on a degenerate face.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Ok(Self::from_geometry(
-            mesh,
-            &FaceGeometry::new(mesh)?,
-            lumping,
-        ))
+        FaceGeometry::build_on(mesh, |geometry| Self::from_geometry(mesh, geometry, lumping))
     }
 
     /// Builds `S_h` from precomputed face geometry.
