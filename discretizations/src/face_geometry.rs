@@ -20,15 +20,6 @@ pub struct FaceGeometry {
 }
 
 impl FaceGeometry {
-    /// `build` applied to the geometry of `mesh`; fails on a degenerate face, as
-    /// [`FaceGeometry::new`].
-    pub fn build_on<T>(
-        mesh: &SurfaceMesh,
-        build: impl FnOnce(&FaceGeometry) -> T,
-    ) -> Result<T, DiscretizationError> {
-        Ok(build(&FaceGeometry::new(mesh)?))
-    }
-
     /// Computes the geometry of every face; fails on a face of zero or non-finite area.
     pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
         let face_count = mesh.face_count();

@@ -27,12 +27,8 @@ pub struct LagrangeP1 {
 }
 
 impl LagrangeP1 {
-    /// Builds `S_h` on `mesh`; fails on a degenerate face.
-    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        FaceGeometry::build_on(mesh, |geometry| Self::from_geometry(mesh, geometry, lumping))
-    }
-
-    /// Builds `S_h` from precomputed face geometry.
+    /// Builds `S_h` from precomputed face geometry (from the mesh alone:
+    /// [`crate::PaperSpace::new`]).
     pub fn from_geometry(
         mesh: &SurfaceMesh,
         geometry: &FaceGeometry,

@@ -35,6 +35,12 @@ impl SpaceMasses {
 pub trait PaperSpace: FunctionSpace + Sized {
     /// The space on `mesh` (face geometry `geometry`) with the mass matrix `masses` selects.
     fn build(mesh: &SurfaceMesh, geometry: &FaceGeometry, masses: SpaceMasses) -> Self;
+
+    /// The space on `mesh` with its mass lumped by `lumping`; fails on a degenerate face.
+    fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+        let geometry = FaceGeometry::new(mesh)?;
+        Ok(Self::build(mesh, &geometry, SpaceMasses::Lumped(lumping)))
+    }
 }
 
 impl PaperSpace for LagrangeP1 {
