@@ -75,7 +75,7 @@ pub(crate) fn field_residuals(
         floor,
     };
     let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
-        let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
+        let lambda = chunk_eigenvalues(values, first, width);
         #[cfg(target_arch = "x86_64")]
         if has_avx2_fma() {
             // SAFETY: the CPU supports the features the function is compiled for.
@@ -150,22 +150,59 @@ fn chunk_residuals<const FUSED: bool>(
             noise[j] = multiply_add::<FUSED>(weight * e, e, noise[j]);
         }
     }
-    (0..width)
-        .map(|j| {
-            let relative = r2[j].sqrt() / (pencil.norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
-            if lambda[j] <= pencil.floor {
-                return FieldResidual {
+    let sums = ChunkSums {
+        r2,
+        x2,
+        energy,
+        noise,
+    };
+    sums.residuals(lambda, width, pencil.norm_a, pencil.floor)
+}
+
+/// The per-column sums of one chunk from which its [`FieldResidual`]s follow.
+struct ChunkSums {
+    /// `‖r‖²`, `r = A x − λ M x`.
+    r2: Row,
+    /// `‖x‖²`.
+    x2: Row,
+    /// `sᵀ A s`, `s = M⁻¹ r`.
+    energy: Row,
+    /// The rounding-noise estimate of the energy.
+    noise: Row,
+}
+
+impl ChunkSums {
+    /// The [`FieldResidual`]s of the first `width` columns with eigenvalues `lambda`, `‖A‖₁ =
+    /// norm_a`; an eigenvalue at most `floor` gets only the relative residual.
+    fn residuals(&self, lambda: &Row, width: usize, norm_a: f64, floor: f64) -> Vec<FieldResidual> {
+        let Self {
+            r2,
+            x2,
+            energy,
+            noise,
+        } = self;
+        (0..width)
+            .map(|j| {
+                let relative = r2[j].sqrt() / (norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
+                if lambda[j] <= floor {
+                    return FieldResidual {
+                        relative,
+                        ..FieldResidual::default()
+                    };
+                }
+                FieldResidual {
+                    residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
+                    floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
                     relative,
-                    ..FieldResidual::default()
-                };
-            }
-            FieldResidual {
-                residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
-                floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
-                relative,
-            }
-        })
-        .collect()
+                }
+            })
+            .collect()
+    }
+}
+
+/// The eigenvalues of the chunk of `width` columns from `first`, 0 in the unused columns.
+fn chunk_eigenvalues(values: &[f64], first: usize, width: usize) -> Row {
+    std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 })
 }
 
 /// [`field_residuals`] of a pencil with a sparse mass or a mixed stiffness (see there).
@@ -177,7 +214,7 @@ fn general_field_residuals(
     par: Par,
 ) -> Vec<FieldResidual> {
     let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
-        let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
+        let lambda = chunk_eigenvalues(values, first, width);
         general_chunk_residuals(operators, &lambda, width, x, work, floor)
     });
     chunks.into_iter().flatten().collect()
@@ -228,22 +265,13 @@ fn general_chunk_residuals(
         }
     }
     let norm_a = operators.stiffness_norm.max(f64::MIN_POSITIVE);
-    (0..width)
-        .map(|j| {
-            let relative = r2[j].sqrt() / (norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
-            if lambda[j] <= floor {
-                return FieldResidual {
-                    relative,
-                    ..FieldResidual::default()
-                };
-            }
-            FieldResidual {
-                residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
-                floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
-                relative,
-            }
-        })
-        .collect()
+    let sums = ChunkSums {
+        r2,
+        x2,
+        energy,
+        noise,
+    };
+    sums.residuals(lambda, width, norm_a, floor)
 }
 
 /// The diagonal of the `n × n` sparse `a` (0 where no entry is stored).
