@@ -2,13 +2,14 @@
 //! a solid tint (`tvf_render::draw_field`), and PNG output of the committed pictures.
 
 use crate::error::FigureError;
+use crate::finding::Experiment;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::RgbaImage;
 use std::io::Write as _;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
-use tvf_render::{draw_field, Overlays, Style, Tint, View};
+use tvf_render::{draw_field, grid, FaceQuantity, Overlays, Style, Tint, View};
 
 /// Renders `field` (`n1` coefficients of `complex`) on `mesh` as a line integral convolution
 /// over `tint`, titled `title`.
@@ -29,6 +30,24 @@ pub fn field_panel(
         Overlays::titled(title),
         view,
     )?)
+}
+
+/// Renders `fields` (each `(field, title)`, `n1` coefficients of the experiment's complex) over
+/// the magnitude colour map side by side in one row and saves the picture as `file` in the
+/// experiment's output folder.
+pub fn save_magnitude_row(
+    x: &Experiment,
+    file: &str,
+    fields: &[(&[f64], &str)],
+) -> Result<(), FigureError> {
+    let panels = fields
+        .iter()
+        .map(|&(field, title)| {
+            let magnitude = Tint::Quantity(FaceQuantity::Magnitude);
+            field_panel(x.mesh, x.complex, field, title, magnitude, x.view)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    save(&grid(&panels, fields.len()), &x.out.join(file))
 }
 
 /// Bits kept per colour channel in saved pictures: 6 of 8 looks the same and halves the size of
