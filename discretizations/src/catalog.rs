@@ -228,18 +228,8 @@ pub fn build_complex(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Conforming, MassLumping};
+    use crate::catalog_entry::tests::conforming;
     use tvf_core::generate::{disk, icosphere};
-
-    fn conforming_as(id: &str) -> CatalogEntry {
-        CatalogEntry::new(id, "test", |mesh, boundary| -> Result<BoxedComplex, _> {
-            Ok(Box::new(Conforming::with_boundary(
-                mesh,
-                MassLumping::Barycentric,
-                boundary,
-            )?))
-        })
-    }
 
     #[test]
     fn builtin_ids_are_unique_kebab_case_and_match_the_built_complex() {
@@ -263,7 +253,7 @@ mod tests {
         let catalog = Catalog::builtin();
         let duplicate = catalog
             .clone()
-            .with(conforming_as(DEFAULT_DISCRETIZATION))
+            .with(conforming(DEFAULT_DISCRETIZATION))
             .unwrap_err();
         assert_eq!(
             duplicate,
@@ -271,7 +261,7 @@ mod tests {
         );
         for bad in ["", "Upper", "a--b", "-a", "a-", "a_b", "a+b", "blend-0.5"] {
             assert_eq!(
-                catalog.clone().with(conforming_as(bad)).unwrap_err(),
+                catalog.clone().with(conforming(bad)).unwrap_err(),
                 CatalogError::InvalidId(bad.to_string()),
                 "{bad}"
             );
@@ -282,7 +272,7 @@ mod tests {
     #[test]
     fn complex_ids_find_their_entry_and_name_the_condition() {
         let catalog = Catalog::new()
-            .with(conforming_as("conforming-barycentric"))
+            .with(conforming("conforming-barycentric"))
             .unwrap();
         assert_eq!(catalog.len(), 1);
         let entry = catalog.get("conforming-barycentric+normal").unwrap();

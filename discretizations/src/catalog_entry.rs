@@ -206,12 +206,13 @@ impl std::fmt::Debug for CatalogEntry {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::{Conforming, MassLumping};
     use tvf_core::generate::{disk, icosphere};
 
-    fn conforming(id: &'static str) -> CatalogEntry {
+    /// An entry with id `id` that builds the barycentric conforming complex.
+    pub(crate) fn conforming(id: &str) -> CatalogEntry {
         CatalogEntry::new(id, "test", |mesh, boundary| -> Result<BoxedComplex, _> {
             Ok(Box::new(Conforming::with_boundary(
                 mesh,

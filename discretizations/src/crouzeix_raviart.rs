@@ -5,7 +5,7 @@ use crate::gradient_assembly::assemble_gradient;
 use crate::FunctionSpace;
 use crate::MassLumping;
 use sprs::CsMat;
-use tvf_core::discretization::{DiscretizationError, NodeKind};
+use tvf_core::discretization::NodeKind;
 use tvf_core::SurfaceMesh;
 
 /// The nonconforming space `S*_h`: nodal values at the `E` edge midpoints (edges numbered as in
@@ -24,16 +24,8 @@ pub struct CrouzeixRaviart {
 }
 
 impl CrouzeixRaviart {
-    /// Builds `S*_h` on `mesh`; fails on a degenerate face.
-    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Ok(Self::from_geometry(
-            mesh,
-            &FaceGeometry::new(mesh)?,
-            lumping,
-        ))
-    }
-
-    /// Builds `S*_h` from precomputed face geometry.
+    /// Builds `S*_h` from precomputed face geometry (from the mesh alone:
+    /// [`crate::PaperSpace::new`]).
     pub fn from_geometry(
         mesh: &SurfaceMesh,
         geometry: &FaceGeometry,

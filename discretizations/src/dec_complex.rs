@@ -1,16 +1,10 @@
 //! [`DecComplex`]: discrete exterior calculus on primal forms — potentials on vertices, fields
 //! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
 
-use crate::boundary_conditions::mesh_topology;
-use crate::complex_id::complex_id;
 use crate::face_geometry::FaceGeometry;
-use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
-use crate::whitney_sampling::WhitneySampling;
+use crate::primal_form_complex::{inverse_face_areas, PrimalFormComplex};
 use crate::MassLumping;
-use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
-    PointEvaluation,
-};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
 use tvf_core::SurfaceMesh;
 
 /// The DEC complex of primal forms (Desbrun, Kanso, Tong 2008; the setting of Fisher et al.
@@ -52,12 +46,11 @@ use tvf_core::SurfaceMesh;
 ///   the harmonic 1-forms are the `2g + b − 1` Dirichlet fields (relative cohomology, by
 ///   Lefschetz duality of the same dimension as the absolute one). A relative 1-form's Whitney
 ///   field has no component along the boundary: it is normal there.
-#[derive(Debug, Clone)]
-pub struct DecComplex {
-    parts: ComplexParts,
-    sampling: WhitneySampling,
-    evaluation: PrimalFormEvaluation,
-}
+pub type DecComplex = PrimalFormComplex<HodgeStars>;
+
+/// The masses of [`DecComplex`]: the diagonal Hodge stars `⋆0`, `⋆1`, `⋆2`.
+#[derive(Debug, Clone, Copy)]
+pub struct HodgeStars;
 
 /// Smallest `cot α + cot β` (dimensionless) an edge of a DEC mesh may have. A cyclic
 /// quadrilateral split by a diagonal (a rectangle, a cell of a quad torus) has exactly 0 there,
@@ -65,7 +58,7 @@ pub struct DecComplex {
 /// meaningless co-exact stiffness, so they are refused with the truly negative ones.
 pub const DELAUNAY_TOLERANCE: f64 = 1e-12;
 
-impl DecComplex {
+impl PrimalFormComplex<HodgeStars> {
     /// The DEC complex of `mesh` with vertex areas `⋆0` by `lumping`, catalog id
     /// `dec-barycentric` or `dec-circumcentric` (for [`MassLumping::Voronoi`]). Fails on a
     /// degenerate face or a mesh that is not Delaunay.
@@ -97,38 +90,20 @@ impl DecComplex {
                 tolerance: DELAUNAY_TOLERANCE,
             });
         }
-        let PrimalForms {
-            d0,
-            d1,
-            nodes: [potential_nodes, field_nodes, co_potential_nodes],
-        } = PrimalForms::new(mesh, boundary);
-        let m0 = Mass::diagonal_positive_on_used_nodes(
-            "M0 (⋆0, vertex areas)",
-            lumping.vertex_masses(mesh, &geometry),
-            &potential_nodes.components,
-        )?;
-        let m1 = Mass::diagonal_positive_on_used_nodes(
-            "M1 (⋆1, the edge Hodge star)",
-            edge_star,
-            &field_nodes.components,
-        )?;
-        let m2 = Mass::diagonal_positive_on_used_nodes(
-            "M2 (⋆2, inverse face areas)",
-            geometry.areas.iter().map(|a| 1.0 / a).collect(),
-            &co_potential_nodes.components,
-        )?;
-        let sampling = WhitneySampling::new(mesh, &geometry, field_nodes.dirichlet.clone());
-        Ok(Self {
-            parts: ComplexParts::new(
-                complex_id(id, mesh, boundary),
-                d0,
-                d1,
-                [m0, m1, m2],
-                [potential_nodes, field_nodes, co_potential_nodes],
-                mesh_topology(mesh, boundary),
-            )?,
-            sampling,
-            evaluation: PrimalFormEvaluation::new(mesh),
+        Self::assemble(id, mesh, &geometry, boundary, |[vertices, edges, faces]| {
+            Ok([
+                Mass::diagonal_positive_on_used_nodes(
+                    "M0 (⋆0, vertex areas)",
+                    lumping.vertex_masses(mesh, &geometry),
+                    &vertices.components,
+                )?,
+                Mass::diagonal_positive_on_used_nodes(
+                    "M1 (⋆1, the edge Hodge star)",
+                    edge_star,
+                    &edges.components,
+                )?,
+                inverse_face_areas("M2 (⋆2, inverse face areas)", &geometry, faces)?,
+            ])
         })
     }
 }
@@ -143,18 +118,4 @@ pub fn edge_hodge_star(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Vec<f64> 
         }
     }
     star
-}
-
-impl HodgeComplex for DecComplex {
-    fn parts(&self) -> &ComplexParts {
-        &self.parts
-    }
-
-    fn sampling(&self) -> Option<&dyn FieldSampling> {
-        Some(&self.sampling)
-    }
-
-    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
-        Some(&self.evaluation)
-    }
 }

@@ -2,9 +2,7 @@
 //! over the face fields; [`Conforming`] and [`Nonconforming`] are its two instances from the paper.
 
 use crate::boundary_conditions::{drop_columns, drop_rows, mesh_topology, with_dirichlet_boundary};
-use crate::complex_id::complex_id;
-use crate::face_geometry::FaceGeometry;
-use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1, MassLumping};
+use crate::{CrouzeixRaviart, FaceFields, FunctionSpace, LagrangeP1};
 use tvf_core::discretization::sparse::{product, reciprocal, scale_cols, transpose};
 use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
@@ -28,11 +26,23 @@ pub struct FiniteElementComplex<P, Q> {
 }
 
 /// The conforming decomposition `X_h = grad S_h ⊕ J grad S*_h ⊕ H_h` (the paper's choice):
-/// potentials P1 (`V`), co-potentials Crouzeix–Raviart (`E`).
+/// potentials P1 (`V`), co-potentials Crouzeix–Raviart (`E`). On a mesh with boundary
+/// `X_h = ∇S_h ⊕ J∇S*_h,0 ⊕ H_N` (tangential) or `X_h = ∇S_h,0 ⊕ J∇S*_h ⊕ H_D` (normal). Its
+/// consistent variant has `M0` the consistent P1 mass `Σ_T |T| (1 + δ_ij)/12` (sparse) and the
+/// Crouzeix–Raviart mass `|T|/3` per face and edge, which is already the consistent one (the
+/// Crouzeix–Raviart basis is `L²`-orthogonal): on a closed mesh the spectrum of `L` is
+/// `eig(cotan, consistent P1 mass) ∪ eig(CR stiffness, CR mass)`. Constructors:
+/// [`FiniteElementComplex::new`] and its siblings (`crate::paper_complexes`).
 pub type Conforming = FiniteElementComplex<LagrangeP1, CrouzeixRaviart>;
 
 /// The nonconforming decomposition `X_h = grad S*_h ⊕ J grad S_h ⊕ H*_h`:
-/// potentials Crouzeix–Raviart (`E`), co-potentials P1 (`V`).
+/// potentials Crouzeix–Raviart (`E`), co-potentials P1 (`V`). On a mesh with boundary
+/// `X_h = ∇S*_h ⊕ J∇S_h,0 ⊕ H*_N` (tangential) or `X_h = ∇S*_h,0 ⊕ J∇S_h ⊕ H*_D` (normal). Its
+/// consistent variant has the consistent P1 mass as the co-potential inner product: `M2` is
+/// its inverse, dense, so it is stored as the sparse `M2⁻¹` ([`Mass::sparse_inverse`]); the
+/// Crouzeix–Raviart potential mass `M0` is diagonal and already consistent. Same spectrum as
+/// the consistent [`Conforming`] on a closed mesh. Constructors: [`FiniteElementComplex::new`]
+/// and its siblings.
 pub type Nonconforming = FiniteElementComplex<CrouzeixRaviart, LagrangeP1>;
 
 /// The nodes of a function space (free boundary values).
@@ -170,117 +180,6 @@ fn inverse_co_potential_mass(space: &impl FunctionSpace) -> Result<Mass, Discret
         (MassStorage::Sparse(matrix), MassForm::Inverse) => {
             Mass::sparse("M2 (inverse co-potential mass)", matrix.clone())
         }
-    }
-}
-
-impl Conforming {
-    /// The conforming complex of `mesh` with the given mass lumping (for both function spaces),
-    /// catalog id `conforming-{lumping}`, default boundary condition. Fails on a degenerate face.
-    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Self::with_boundary(mesh, lumping, BoundaryCondition::default())
-    }
-
-    /// The conforming complex with boundary condition `boundary`: on a mesh with boundary
-    /// `X_h = ∇S_h ⊕ J∇S*_h,0 ⊕ H_N` (tangential) or `X_h = ∇S_h,0 ⊕ J∇S*_h ⊕ H_D` (normal).
-    /// Catalog id `conforming-{lumping}`, with `+{boundary}` appended on a mesh with boundary.
-    pub fn with_boundary(
-        mesh: &SurfaceMesh,
-        lumping: MassLumping,
-        boundary: BoundaryCondition,
-    ) -> Result<Self, DiscretizationError> {
-        let geometry = FaceGeometry::new(mesh)?;
-        Self::from_spaces_with_boundary(
-            complex_id(&format!("conforming-{}", lumping.name()), mesh, boundary),
-            mesh,
-            LagrangeP1::from_geometry(mesh, &geometry, lumping),
-            CrouzeixRaviart::from_geometry(mesh, &geometry, lumping),
-            FaceFields::from_geometry(&geometry),
-            boundary,
-        )
-    }
-
-    /// The conforming complex with the consistent (Galerkin) P1 mass as `M0`, catalog id
-    /// `conforming-consistent`, default boundary condition. See
-    /// [`Conforming::consistent_with_boundary`].
-    pub fn consistent(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
-        Self::consistent_with_boundary(mesh, BoundaryCondition::default())
-    }
-
-    /// The conforming complex with `M0` the consistent P1 mass `Σ_T |T| (1 + δ_ij)/12` (sparse)
-    /// and the Crouzeix–Raviart mass `|T|/3` per face and edge, which is already the consistent
-    /// one (the Crouzeix–Raviart basis is `L²`-orthogonal). On a closed mesh the spectrum of `L`
-    /// is `eig(cotan, consistent P1 mass) ∪ eig(CR stiffness, CR mass)`; with boundary, as
-    /// [`Conforming::with_boundary`]. Catalog id `conforming-consistent` (`+{boundary}` on a
-    /// mesh with boundary). Fails on a degenerate face.
-    pub fn consistent_with_boundary(
-        mesh: &SurfaceMesh,
-        boundary: BoundaryCondition,
-    ) -> Result<Self, DiscretizationError> {
-        let geometry = FaceGeometry::new(mesh)?;
-        Self::from_spaces_with_boundary(
-            complex_id("conforming-consistent", mesh, boundary),
-            mesh,
-            LagrangeP1::with_consistent_mass(mesh, &geometry),
-            CrouzeixRaviart::from_geometry(mesh, &geometry, MassLumping::Barycentric),
-            FaceFields::from_geometry(&geometry),
-            boundary,
-        )
-    }
-}
-
-impl Nonconforming {
-    /// The nonconforming complex of `mesh` with the given mass lumping (for both function
-    /// spaces), catalog id `nonconforming-{lumping}`, default boundary condition. Fails on a
-    /// degenerate face.
-    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Self::with_boundary(mesh, lumping, BoundaryCondition::default())
-    }
-
-    /// The nonconforming complex with boundary condition `boundary`: on a mesh with boundary
-    /// `X_h = ∇S*_h ⊕ J∇S_h,0 ⊕ H*_N` (tangential) or `X_h = ∇S*_h,0 ⊕ J∇S_h ⊕ H*_D` (normal).
-    /// Catalog id `nonconforming-{lumping}`, with `+{boundary}` appended on a mesh with boundary.
-    pub fn with_boundary(
-        mesh: &SurfaceMesh,
-        lumping: MassLumping,
-        boundary: BoundaryCondition,
-    ) -> Result<Self, DiscretizationError> {
-        let geometry = FaceGeometry::new(mesh)?;
-        Self::from_spaces_with_boundary(
-            complex_id(&format!("nonconforming-{}", lumping.name()), mesh, boundary),
-            mesh,
-            CrouzeixRaviart::from_geometry(mesh, &geometry, lumping),
-            LagrangeP1::from_geometry(mesh, &geometry, lumping),
-            FaceFields::from_geometry(&geometry),
-            boundary,
-        )
-    }
-
-    /// The nonconforming complex with the consistent (Galerkin) P1 co-potential mass, catalog id
-    /// `nonconforming-consistent`, default boundary condition. See
-    /// [`Nonconforming::consistent_with_boundary`].
-    pub fn consistent(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
-        Self::consistent_with_boundary(mesh, BoundaryCondition::default())
-    }
-
-    /// The nonconforming complex with the consistent P1 mass `Σ_T |T| (1 + δ_ij)/12` as the
-    /// co-potential inner product: `M2` is its inverse, dense, so it is stored as the sparse
-    /// `M2⁻¹` ([`Mass::sparse_inverse`]); the Crouzeix–Raviart potential mass `M0` is diagonal
-    /// and already consistent. Same spectrum as [`Conforming::consistent_with_boundary`] on a
-    /// closed mesh. Catalog id `nonconforming-consistent` (`+{boundary}` on a mesh with
-    /// boundary). Fails on a degenerate face.
-    pub fn consistent_with_boundary(
-        mesh: &SurfaceMesh,
-        boundary: BoundaryCondition,
-    ) -> Result<Self, DiscretizationError> {
-        let geometry = FaceGeometry::new(mesh)?;
-        Self::from_spaces_with_boundary(
-            complex_id("nonconforming-consistent", mesh, boundary),
-            mesh,
-            CrouzeixRaviart::from_geometry(mesh, &geometry, MassLumping::Barycentric),
-            LagrangeP1::with_consistent_mass(mesh, &geometry),
-            FaceFields::from_geometry(&geometry),
-            boundary,
-        )
     }
 }
 

@@ -27,16 +27,8 @@ pub struct LagrangeP1 {
 }
 
 impl LagrangeP1 {
-    /// Builds `S_h` on `mesh`; fails on a degenerate face.
-    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Ok(Self::from_geometry(
-            mesh,
-            &FaceGeometry::new(mesh)?,
-            lumping,
-        ))
-    }
-
-    /// Builds `S_h` from precomputed face geometry.
+    /// Builds `S_h` from precomputed face geometry (from the mesh alone:
+    /// [`crate::PaperSpace::new`]).
     pub fn from_geometry(
         mesh: &SurfaceMesh,
         geometry: &FaceGeometry,

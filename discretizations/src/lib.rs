@@ -61,6 +61,7 @@
 //! use tvf_core::generate::icosphere;
 //! use tvf_discretizations::{
 //!     CrouzeixRaviart, FaceFields, FiniteElementComplex, FunctionSpace, LagrangeP1, MassLumping,
+//!     PaperSpace,
 //! };
 //!
 //! /// P1 with every vertex weighted by the mean vertex area.
@@ -128,7 +129,9 @@ mod mass_lumping;
 mod matrix_complex;
 pub mod matrix_complex_nodes;
 mod mixed_poisson;
+mod paper_complexes;
 mod pinned_poisson;
+mod primal_form_complex;
 mod primal_forms;
 mod whitney_galerkin;
 mod whitney_mass;
@@ -146,7 +149,7 @@ pub use catalog_entry::{BoxedComplex, CatalogEntry, EntryConstructor, ANY_MESH};
 pub use complex_id::{complex_id, split_complex_id};
 pub use consistent_mass::consistent_p1_mass;
 pub use crouzeix_raviart::CrouzeixRaviart;
-pub use dec_complex::{edge_hodge_star, DecComplex, DELAUNAY_TOLERANCE};
+pub use dec_complex::{edge_hodge_star, DecComplex, HodgeStars, DELAUNAY_TOLERANCE};
 pub use error::DecompositionError;
 pub use face_fields::FaceFields;
 pub use finite_element_complex::{Conforming, FiniteElementComplex, Nonconforming};
@@ -156,7 +159,9 @@ pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use matrix_complex::{ComplexMatrices, MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};
 pub use matrix_complex_nodes::FixedNodes;
+pub use paper_complexes::{PaperPair, PaperSpace, SpaceMasses};
 pub use pinned_poisson::PinnedPoisson;
-pub use whitney_galerkin::WhitneyGalerkin;
+pub use primal_form_complex::PrimalFormComplex;
+pub use whitney_galerkin::{GalerkinMasses, WhitneyGalerkin};
 pub use whitney_mass::whitney_mass;
 pub use whitney_sampling::WhitneySampling;

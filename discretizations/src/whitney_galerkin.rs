@@ -1,17 +1,11 @@
 //! [`WhitneyGalerkin`]: primal forms with Galerkin masses — the lowest-order finite element
 //! complex of exterior calculus (P1, Whitney 1-forms, P0) on a triangle mesh.
 
-use crate::boundary_conditions::mesh_topology;
-use crate::complex_id::complex_id;
 use crate::consistent_mass::consistent_p1_mass;
 use crate::face_geometry::FaceGeometry;
-use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
+use crate::primal_form_complex::{inverse_face_areas, PrimalFormComplex};
 use crate::whitney_mass::whitney_mass;
-use crate::whitney_sampling::WhitneySampling;
-use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
-    PointEvaluation,
-};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
 use tvf_core::SurfaceMesh;
 
 /// The complex of Whitney forms with their `L²` (Galerkin) inner products, catalog id
@@ -24,7 +18,7 @@ use tvf_core::SurfaceMesh;
 ///
 /// - `d0`, `d1`, the orientation of the edges (`a → b`, `a < b`), the 1-forms (`x_e` the
 ///   integral of the field along edge `e`) and the boundary conditions are DEC's
-///   ([`crate::DecComplex`]); so are the sampling (Whitney interpolation, [`WhitneySampling`])
+///   ([`crate::DecComplex`]); so are the sampling (Whitney interpolation, [`crate::WhitneySampling`])
 ///   and point evaluation (0-forms linear, 2-forms constant per face).
 /// - `M0` is the consistent P1 mass `Σ_T |T| (1 + δ_ij)/12` ([`crate::consistent_p1_mass`],
 ///   sparse, area).
@@ -44,14 +38,14 @@ use tvf_core::SurfaceMesh;
 /// [`BoundaryCondition::Normal`] relative forms (boundary vertices and edges fixed to zero),
 /// exactly as for DEC. The seam restricts every mass to the free nodes of its space, so `M1⁻¹`
 /// is the inverse of the Whitney mass of the interior edges and nothing leaks into a fixed edge.
-#[derive(Debug, Clone)]
-pub struct WhitneyGalerkin {
-    parts: ComplexParts,
-    sampling: WhitneySampling,
-    evaluation: PrimalFormEvaluation,
-}
+pub type WhitneyGalerkin = PrimalFormComplex<GalerkinMasses>;
 
-impl WhitneyGalerkin {
+/// The masses of [`WhitneyGalerkin`]: the `L²` (Galerkin) inner products of P1, Whitney 1-forms
+/// and P0.
+#[derive(Debug, Clone, Copy)]
+pub struct GalerkinMasses;
+
+impl PrimalFormComplex<GalerkinMasses> {
     /// The complex of `mesh` (the default boundary condition on a mesh with boundary). Fails on
     /// a degenerate face.
     pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
@@ -66,50 +60,24 @@ impl WhitneyGalerkin {
         boundary: BoundaryCondition,
     ) -> Result<Self, DiscretizationError> {
         let geometry = FaceGeometry::new(mesh)?;
-        let PrimalForms {
-            d0,
-            d1,
-            nodes: [potential_nodes, field_nodes, co_potential_nodes],
-        } = PrimalForms::new(mesh, boundary);
-        let m0 = Mass::sparse(
-            "M0 (the consistent P1 mass)",
-            consistent_p1_mass(mesh, &geometry),
-        )?;
-        let m1 = Mass::sparse(
-            "M1 (the Whitney 1-form mass)",
-            whitney_mass(mesh, &geometry),
-        )?;
-        let m2 = Mass::diagonal_positive_on_used_nodes(
-            "M2 (inverse face areas)",
-            geometry.areas.iter().map(|a| 1.0 / a).collect(),
-            &co_potential_nodes.components,
-        )?;
-        let sampling = WhitneySampling::new(mesh, &geometry, field_nodes.dirichlet.clone());
-        Ok(Self {
-            parts: ComplexParts::new(
-                complex_id("whitney-galerkin", mesh, boundary),
-                d0,
-                d1,
-                [m0, m1, m2],
-                [potential_nodes, field_nodes, co_potential_nodes],
-                mesh_topology(mesh, boundary),
-            )?,
-            sampling,
-            evaluation: PrimalFormEvaluation::new(mesh),
-        })
-    }
-}
-
-impl HodgeComplex for WhitneyGalerkin {
-    fn parts(&self) -> &ComplexParts {
-        &self.parts
-    }
-
-    fn sampling(&self) -> Option<&dyn FieldSampling> {
-        Some(&self.sampling)
-    }
-
-    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
-        Some(&self.evaluation)
+        Self::assemble(
+            "whitney-galerkin",
+            mesh,
+            &geometry,
+            boundary,
+            |[_, _, faces]| {
+                Ok([
+                    Mass::sparse(
+                        "M0 (the consistent P1 mass)",
+                        consistent_p1_mass(mesh, &geometry),
+                    )?,
+                    Mass::sparse(
+                        "M1 (the Whitney 1-form mass)",
+                        whitney_mass(mesh, &geometry),
+                    )?,
+                    inverse_face_areas("M2 (inverse face areas)", &geometry, faces)?,
+                ])
+            },
+        )
     }
 }

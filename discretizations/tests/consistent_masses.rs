@@ -12,7 +12,7 @@ use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     catalog_entry, consistent_p1_mass, face_geometry::FaceGeometry, FunctionSpace, HodgeDecomposer,
-    LagrangeP1, MassLumping, MatrixComplex, MatrixSampling,
+    LagrangeP1, MassLumping, MatrixComplex, MatrixSampling, PaperSpace,
 };
 use tvf_solvers::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
 

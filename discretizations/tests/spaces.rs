@@ -9,7 +9,7 @@ use tvf_core::generate::{icosphere, torus};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     Conforming, CrouzeixRaviart, DecompositionError, FaceFields, FunctionSpace, HodgeDecomposer,
-    LagrangeP1, MassLumping, Nonconforming,
+    LagrangeP1, MassLumping, Nonconforming, PaperSpace,
 };
 
 /// A linear function `f(p) = a·p + c` sampled at the nodes of a space.

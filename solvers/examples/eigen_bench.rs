@@ -103,19 +103,7 @@ fn main() {
             );
             let statistics = result.statistics;
             let max_field = result.field_residuals.iter().fold(0.0f64, |m, r| m.max(*r));
-            for (phase, p) in [
-                ("counting", statistics.counting),
-                ("solving", statistics.solving),
-                ("refinement", statistics.refinement),
-            ] {
-                println!(
-                    "  {phase:<10} {:>3} factorizations {:>6} solves {:>8.2} s wall {:>5.0} % CPU",
-                    p.factorizations,
-                    p.solves,
-                    p.wall_seconds,
-                    100.0 * p.utilisation()
-                );
-            }
+            print!("{}", statistics.phase_table());
             println!(
                 "  refined pairs {}, max relative field residual {max_field:.1e}",
                 statistics.refined_pairs

@@ -135,19 +135,7 @@ fn solve(pencils: &[&Pencil<'_>], k: usize, options: &EigenOptions<'_>) -> Vec<E
 fn report(name: &str, (seconds, cpu): (f64, f64), pairs: &[Eigenpairs]) {
     let statistics: SolverStatistics = pairs[0].statistics;
     println!("{name}: {seconds:.2} s wall, {cpu:.2} s processor");
-    for (phase, p) in [
-        ("counting", statistics.counting),
-        ("solving", statistics.solving),
-        ("refinement", statistics.refinement),
-    ] {
-        println!(
-            "  {phase:<10} {:>3} factorizations {:>6} solves {:>8.2} s wall {:>5.0} % CPU",
-            p.factorizations,
-            p.solves,
-            p.wall_seconds,
-            100.0 * p.utilisation()
-        );
-    }
+    print!("{}", statistics.phase_table());
     for (i, pair) in pairs.iter().enumerate() {
         let mut order: Vec<usize> = (0..pair.values.len()).collect();
         order.sort_by(|&a, &b| pair.field_residuals[b].total_cmp(&pair.field_residuals[a]));

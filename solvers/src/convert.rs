@@ -26,47 +26,26 @@ pub fn square_dimension(matrix: &sprs::CsMat<f64>) -> Result<usize, SolverError>
 pub fn upper_triangle_csc(
     matrix: &sprs::CsMat<f64>,
 ) -> Result<SparseColMat<usize, f64>, SolverError> {
-    let n = square_dimension(matrix)?;
-    let mut count = vec![0usize; n + 1];
-    for (value, (row, col)) in matrix.iter() {
-        if !value.is_finite() {
-            return Err(SolverError::NonFinite {
-                context: "sparse matrix",
-                row,
-                col,
-                value: *value,
-            });
-        }
-        if row <= col {
-            count[col + 1] += 1;
-        }
-    }
-    for j in 0..n {
-        count[j + 1] += count[j];
-    }
-    let col_ptr = count.clone();
-    let nnz = col_ptr[n];
-    let mut next = count;
-    let mut row_idx = vec![0usize; nnz];
-    let mut values = vec![0.0f64; nnz];
-    // CSC iteration is column-major with sorted rows; CSR iteration is row-major, so within a
-    // column rows also arrive in increasing order. Either way each column ends up sorted.
-    for (value, (row, col)) in matrix.iter() {
-        if row <= col {
-            let slot = next[col];
-            row_idx[slot] = row;
-            values[slot] = *value;
-            next[col] += 1;
-        }
-    }
-    let symbolic = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-    Ok(SparseColMat::new(symbolic, values))
+    square_dimension(matrix)?;
+    csc_of_entries(matrix, |row, col| row <= col)
 }
 
 /// Full copy of a `sprs` matrix (any shape, CSC or CSR) as a faer CSC matrix.
 ///
 /// Errors: [`SolverError::NonFinite`].
 pub fn to_faer_csc(matrix: &sprs::CsMat<f64>) -> Result<SparseColMat<usize, f64>, SolverError> {
+    csc_of_entries(matrix, |_, _| true)
+}
+
+/// The entries `(row, col)` of `matrix` (any shape, CSC or CSR) for which `keep` holds, as a
+/// faer CSC matrix of the same shape with sorted row indices (explicit zeros kept). Every
+/// entry, kept or not, must be finite.
+///
+/// Errors: [`SolverError::NonFinite`].
+fn csc_of_entries(
+    matrix: &sprs::CsMat<f64>,
+    keep: impl Fn(usize, usize) -> bool,
+) -> Result<SparseColMat<usize, f64>, SolverError> {
     let (rows, cols) = matrix.shape();
     let mut count = vec![0usize; cols + 1];
     for (value, (row, col)) in matrix.iter() {
@@ -78,7 +57,9 @@ pub fn to_faer_csc(matrix: &sprs::CsMat<f64>) -> Result<SparseColMat<usize, f64>
                 value: *value,
             });
         }
-        count[col + 1] += 1;
+        if keep(row, col) {
+            count[col + 1] += 1;
+        }
     }
     for j in 0..cols {
         count[j + 1] += count[j];
@@ -87,11 +68,15 @@ pub fn to_faer_csc(matrix: &sprs::CsMat<f64>) -> Result<SparseColMat<usize, f64>
     let mut next = count;
     let mut row_idx = vec![0usize; col_ptr[cols]];
     let mut values = vec![0.0f64; col_ptr[cols]];
+    // CSC iteration is column-major with sorted rows; CSR iteration is row-major, so within a
+    // column rows also arrive in increasing order. Either way each column ends up sorted.
     for (value, (row, col)) in matrix.iter() {
-        let slot = next[col];
-        row_idx[slot] = row;
-        values[slot] = *value;
-        next[col] += 1;
+        if keep(row, col) {
+            let slot = next[col];
+            row_idx[slot] = row;
+            values[slot] = *value;
+            next[col] += 1;
+        }
     }
     let symbolic = SymbolicSparseColMat::new_checked(rows, cols, col_ptr, None, row_idx);
     Ok(SparseColMat::new(symbolic, values))

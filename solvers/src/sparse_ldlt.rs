@@ -98,6 +98,32 @@ impl SparseLdlt {
         Self::with_ordering(upper, FillOrdering::Amd)
     }
 
+    /// [`SparseLdlt::new`] of a matrix that must be positive definite, set to solve on one
+    /// thread ([`Par::Seq`]).
+    ///
+    /// Errors: [`SolverError::MatrixNotPositiveDefinite`] naming `matrix` on a zero, negative or
+    /// non-finite pivot (at its original row), else as [`SparseLdlt::new`].
+    pub(crate) fn positive_definite(
+        upper: SparseColMatRef<'_, usize, f64>,
+        matrix: &'static str,
+    ) -> Result<Self, SolverError> {
+        let not_positive = |pivot, value| SolverError::MatrixNotPositiveDefinite {
+            matrix,
+            pivot,
+            value,
+        };
+        let mut factor = Self::new(upper).map_err(|e| match e {
+            SolverError::Singular { pivot } => not_positive(pivot, 0.0),
+            other => other,
+        })?;
+        factor.set_parallelism(Par::Seq);
+        let pivots = factor.pivots();
+        if let Some(k) = pivots.iter().position(|&d| !(d > 0.0 && d.is_finite())) {
+            return Err(not_positive(factor.original_index(k), pivots[k]));
+        }
+        Ok(factor)
+    }
+
     /// The same as [`SparseLdlt::new`] with the fill-reducing `ordering` of choice.
     ///
     /// Errors: those of [`SparseLdlt::new`], and [`SolverError::Factorization`] if the

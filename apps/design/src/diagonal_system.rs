@@ -10,7 +10,7 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::Mat;
 use sprs::CsMat;
 use std::time::Instant;
-use tvf_core::discretization::sparse::{diagonal, linear_combination, mul_vec};
+use tvf_core::discretization::sparse::{as_csr, diagonal, linear_combination, mul_vec};
 use tvf_solvers::iterative_refinement::{exact, symmetric_product, DoubleDouble};
 use tvf_solvers::ordering::nested_dissection_of_groups;
 use tvf_solvers::sparse_pattern::{position, with_extra_entries};
@@ -43,11 +43,7 @@ impl DiagonalSoftSystem {
         parallelism: FactorParallelism,
     ) -> Result<(Self, Instant), DesignError> {
         let n = dirichlet.rows();
-        let dirichlet = if dirichlet.is_csr() {
-            dirichlet.clone()
-        } else {
-            dirichlet.to_csr()
-        };
+        let dirichlet = as_csr(dirichlet);
         let screened: Vec<f64> = mass.iter().map(|m| options.regularization * m).collect();
         let base = linear_combination(1.0, &dirichlet, 1.0, &diagonal(&screened));
         let base = grow_pattern(&base, constraints);
@@ -57,7 +53,7 @@ impl DiagonalSoftSystem {
         let factor = factor_augmented(&augmented, n, ordering, parallelism)?;
         Ok((
             Self {
-                dirichlet,
+                dirichlet: dirichlet.into_owned(),
                 mass: mass.to_vec(),
                 omega: options.omega,
                 base,

@@ -25,7 +25,7 @@ pub struct Editor {
 pub struct EditorSetup {
     /// The mesh.
     pub mesh: SurfaceMesh,
-    /// The basis `U` (`2F × d`) with its eigenvalues.
+    /// The basis `U` (`n1 × d`) with its eigenvalues.
     pub basis: ReducedBasis,
     /// Constraints and ω to start with (none and ω = 0.1 if `None`).
     pub constraints: Option<ConstraintSet>,

@@ -5,7 +5,7 @@
 //! `x̂_i` that depend only on the constraint rows. While one constraint `j` changes only its
 //! values (a drag), `x(c) = x(c⁰) + Σ_k (c_jk − c⁰_jk) x̂_jk`. On the first value change of `j`
 //! the mapper streams `U` once for `x(c⁰)` and the (one or two) `x̂_jk` together; every further
-//! change of `j` is a sum of at most three vectors of length `2F`. Any other edit invalidates
+//! change of `j` is a sum of at most three vectors of length `n1`. Any other edit invalidates
 //! the cache. The reduced coefficients `v` stay exact (the session solves every time), so the
 //! full-precision check and the `f32` field agree to `f32` rounding.
 
@@ -23,7 +23,7 @@ struct DragCache {
     cardinal: Vec<Vec<f32>>,
 }
 
-/// `U` in single precision, row-major (`2F × d`), with the drag cache.
+/// `U` in single precision, row-major (`n1 × d`), with the drag cache.
 pub(crate) struct FieldMapper {
     rows: Vec<f32>,
     d: usize,

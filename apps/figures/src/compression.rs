@@ -4,10 +4,9 @@
 use crate::error::FigureError;
 use crate::finding::{Experiment, Finding};
 use crate::numbers::{ratio, seconds};
-use crate::panels::{field_panel, save};
+use crate::panels::{save, save_magnitude_row};
 use crate::test_fields::vortex_field;
 use crate::timing::{median_time, Repetitions};
-use tvf_render::{grid, FaceQuantity, Tint};
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
     basis_id, rate_distortion, relative_l2_error, CoefficientCoding, FieldCodec, FieldFamily,
@@ -242,34 +241,16 @@ pub fn figure10(x: &Experiment) -> Result<(Finding, Vec<f64>), FigureError> {
     )?;
     let compressed = codec.decode(&codec.encode(&field)?)?;
     let residual: Vec<f64> = field.iter().zip(&compressed).map(|(a, b)| a - b).collect();
-    let panels = vec![
-        field_panel(
-            x.mesh,
-            x.complex,
-            &field,
-            &format!("{VORTICES} vortices"),
-            Tint::Quantity(FaceQuantity::Magnitude),
-            x.view,
-        )?,
-        field_panel(
-            x.mesh,
-            x.complex,
-            &compressed,
-            &format!("from {pairs} pairs"),
-            Tint::Quantity(FaceQuantity::Magnitude),
-            x.view,
-        )?,
-        field_panel(
-            x.mesh,
-            x.complex,
-            &residual,
-            "residual",
-            Tint::Quantity(FaceQuantity::Magnitude),
-            x.view,
-        )?,
-    ];
     let file = "figure10_vortices.png";
-    save(&grid(&panels, 3), &x.out.join(file))?;
+    save_magnitude_row(
+        x,
+        file,
+        &[
+            (&field, &format!("{VORTICES} vortices")),
+            (&compressed, &format!("from {pairs} pairs")),
+            (&residual, "residual"),
+        ],
+    )?;
     let error = relative_l2_error(x.basis.field_mass(), &field, &compressed);
     let mut finding = Finding::new(
         "Figure 10",

@@ -5,11 +5,10 @@ use crate::compression::available_pairs;
 use crate::error::FigureError;
 use crate::finding::{Experiment, Finding};
 use crate::numbers::{seconds, thousands};
-use crate::panels::{field_panel, save};
+use crate::panels::save_magnitude_row;
 use crate::test_fields::MovingFeatures;
 use rayon::prelude::*;
 use std::time::Instant;
-use tvf_render::{grid, FaceQuantity, Tint};
 use tvf_spectral::{basis_id, compress_with_report, CoefficientCoding, FieldCodec};
 
 /// Size of the sequence experiment.
@@ -114,26 +113,18 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, FigureError> {
         let snapshot = size.frames * 3 / 10;
         let original = &frames[snapshot];
         let compressed = codec.decode(&codec.encode(original)?)?;
-        let panels = vec![
-            field_panel(
-                x.mesh,
-                x.complex,
-                original,
-                &format!("frame {snapshot}: uncompressed"),
-                Tint::Quantity(FaceQuantity::Magnitude),
-                x.view,
-            )?,
-            field_panel(
-                x.mesh,
-                x.complex,
-                &compressed,
-                &format!("frame {snapshot}: {kept} coefficients"),
-                Tint::Quantity(FaceQuantity::Magnitude),
-                x.view,
-            )?,
-        ];
         let file = "figure11_sequence_frame.png";
-        save(&grid(&panels, 2), &x.out.join(file))?;
+        save_magnitude_row(
+            x,
+            file,
+            &[
+                (original, &format!("frame {snapshot}: uncompressed")),
+                (
+                    &compressed,
+                    &format!("frame {snapshot}: {kept} coefficients"),
+                ),
+            ],
+        )?;
         finding.files.push(file.to_string());
     }
     finding.paper = "Bumpy torus (140,240 faces), 500 frames: 560.96 MB as two f32 per face, 1 MB \

@@ -3,9 +3,9 @@
 
 use crate::error::FigureError;
 use crate::finding::{Experiment, Finding};
-use crate::panels::{field_panel, save};
+use crate::panels::{field_panel, save, save_magnitude_row};
 use crate::test_fields::{designed_field, tangent_noise};
-use tvf_render::{grid, FaceQuantity, Tint, COINTEGRABLE_RED, INTEGRABLE_GREEN};
+use tvf_render::{grid, Tint, COINTEGRABLE_RED, INTEGRABLE_GREEN};
 use tvf_render::{Axis, AxisScale, Plot, Series, SeriesStyle};
 use tvf_spectral::{
     relative_l2_error, FieldFamily, FrequencyResponse, PiecewiseLinear, SpectralAnalysis,
@@ -157,34 +157,16 @@ fn figure7(x: &Experiment, clean: &[f64], noisy: &[f64]) -> Result<Finding, Figu
     let denoised =
         SpectralFilter::both(FrequencyResponse::LowPass { t }, 0.0).apply(basis, noisy)?;
     let sharpened = sharpening.apply(basis, noisy)?;
-    let panels = vec![
-        field_panel(
-            x.mesh,
-            x.complex,
-            noisy,
-            "input: designed field + noise",
-            Tint::Quantity(FaceQuantity::Magnitude),
-            x.view,
-        )?,
-        field_panel(
-            x.mesh,
-            x.complex,
-            &smoothed.field,
-            "low-pass, integrable lows x2",
-            Tint::Quantity(FaceQuantity::Magnitude),
-            x.view,
-        )?,
-        field_panel(
-            x.mesh,
-            x.complex,
-            &sharpened.field,
-            "high-pass, integrable lows removed",
-            Tint::Quantity(FaceQuantity::Magnitude),
-            x.view,
-        )?,
-    ];
     let file7 = "figure7_filtering.png";
-    save(&grid(&panels, 3), &x.out.join(file7))?;
+    save_magnitude_row(
+        x,
+        file7,
+        &[
+            (noisy, "input: designed field + noise"),
+            (&smoothed.field, "low-pass, integrable lows x2"),
+            (&sharpened.field, "high-pass, integrable lows removed"),
+        ],
+    )?;
     let mut f7 = Finding::new(
         "Figure 7",
         "Spectral filtering of a noisy field, the two families filtered separately",
@@ -243,35 +225,34 @@ fn figure8(
             .map(|e| (e.frequency, e.coefficient.abs().max(1e-12)))
             .collect()
     };
-    let series = vec![
-        colored(
-            Series::new(
-                "without the noise: both families",
-                points(&clean_analysis, FieldFamily::Integrable)
-                    .into_iter()
-                    .chain(points(&clean_analysis, FieldFamily::Cointegrable))
-                    .collect(),
-                SeriesStyle::Scatter,
-            ),
+    let both_clean = points(&clean_analysis, FieldFamily::Integrable)
+        .into_iter()
+        .chain(points(&clean_analysis, FieldFamily::Cointegrable))
+        .collect();
+    let series = [
+        (
+            "without the noise: both families",
+            both_clean,
             [170, 170, 170],
         ),
-        colored(
-            Series::new(
-                "input: integrable |alpha|",
-                points(&analysis, FieldFamily::Integrable),
-                SeriesStyle::Scatter,
-            ),
+        (
+            "input: integrable |alpha|",
+            points(&analysis, FieldFamily::Integrable),
             [31, 119, 180],
         ),
-        colored(
-            Series::new(
-                "input: co-integrable |beta|",
-                points(&analysis, FieldFamily::Cointegrable),
-                SeriesStyle::Scatter,
-            ),
+        (
+            "input: co-integrable |beta|",
+            points(&analysis, FieldFamily::Cointegrable),
             [214, 39, 40],
         ),
-    ];
+    ]
+    .into_iter()
+    .map(|(name, points, color)| {
+        let mut series = Series::new(name, points, SeriesStyle::Scatter);
+        series.color = Some(color);
+        series
+    })
+    .collect();
     let plot = Plot {
         title: format!("Spectrum of the Figure 7 input ({})", x.name),
         x: Axis::new("frequency sqrt(lambda)", AxisScale::Linear),
@@ -306,9 +287,4 @@ fn figure8(
                      equal energy per eigenfield) above the clean field's coefficients (grey)."
         .to_string();
     Ok(f8)
-}
-
-fn colored(mut series: Series, color: [u8; 3]) -> Series {
-    series.color = Some(color);
-    series
 }

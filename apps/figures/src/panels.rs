@@ -3,6 +3,7 @@
 //! output of the committed pictures.
 
 use crate::error::FigureError;
+use crate::finding::Experiment;
 use image::codecs::png::{CompressionType, FilterType, PngEncoder};
 use image::RgbaImage;
 use std::io::Write as _;
@@ -10,7 +11,7 @@ use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::HodgeDecomposer;
-use tvf_render::{draw_field, grid, Marker, Overlays, Style, Tint, View};
+use tvf_render::{draw_field, grid, FaceQuantity, Marker, Overlays, Style, Tint, View};
 
 /// Renders `field` (`n1` coefficients of `complex`) on `mesh` as a line integral convolution
 /// over `tint`, titled `title`.
@@ -69,6 +70,24 @@ pub fn hodge_parts_grid(
         )?);
     }
     Ok(grid(&images, 2))
+}
+
+/// Renders `fields` (each `(field, title)`, `n1` coefficients of the experiment's complex) over
+/// the magnitude colour map side by side in one row and saves the picture as `file` in the
+/// experiment's output folder.
+pub fn save_magnitude_row(
+    x: &Experiment,
+    file: &str,
+    fields: &[(&[f64], &str)],
+) -> Result<(), FigureError> {
+    let panels = fields
+        .iter()
+        .map(|&(field, title)| {
+            let magnitude = Tint::Quantity(FaceQuantity::Magnitude);
+            field_panel(x.mesh, x.complex, field, title, magnitude, x.view)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    save(&grid(&panels, fields.len()), &x.out.join(file))
 }
 
 /// Bits kept per colour channel in saved pictures: 6 of 8 looks the same and halves the size of

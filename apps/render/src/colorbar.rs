@@ -47,20 +47,10 @@ pub(crate) fn draw_colorbar(
     stroke_rect(image, x0 - 1, y0 - 1, x0 + bar, y1 + 1, [40, 40, 40]);
     let style = TextStyle::new(size);
     let lx = (x0 + bar + 6) as f64;
-    draw_text(
-        image,
-        lx,
-        y0 as f64,
-        &format_number(scale.max, 3),
-        &style.aligned(HAlign::Left, VAlign::Middle),
-    );
-    draw_text(
-        image,
-        lx,
-        y1 as f64,
-        &format_number(scale.min, 3),
-        &style.aligned(HAlign::Left, VAlign::Middle),
-    );
+    let label_style = style.aligned(HAlign::Left, VAlign::Middle);
+    for (y, value) in [(y0, scale.max), (y1, scale.min)] {
+        draw_text(image, lx, y as f64, &format_number(value, 3), &label_style);
+    }
     if scale.map.is_diverging() {
         draw_text(
             image,

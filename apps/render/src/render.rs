@@ -249,28 +249,15 @@ impl Overlays3d<'_> {
                     color: [[0.1, 0.1, 0.1]; 2],
                     ..ink
                 };
-                draw_arrow(
-                    frame,
-                    self.sample_camera,
-                    m.position,
-                    tip,
-                    side_axis,
-                    3.5 * ss,
-                    &dark,
-                );
                 let fill = Ink {
                     depth_offset: arrow_length,
                     ..ink
                 };
-                draw_arrow(
-                    frame,
-                    self.sample_camera,
-                    m.position,
-                    tip,
-                    side_axis,
-                    2.0 * ss,
-                    &fill,
-                );
+                // A dark outline, then the arrow in its colour drawn over it.
+                for (width, ink) in [(3.5 * ss, &dark), (2.0 * ss, &fill)] {
+                    let camera = self.sample_camera;
+                    draw_arrow(frame, camera, m.position, tip, side_axis, width, ink);
+                }
             }
             disc(
                 frame,

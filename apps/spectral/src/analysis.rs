@@ -74,7 +74,7 @@ pub struct SpectralAnalysis {
 }
 
 impl SpectralAnalysis {
-    /// Analyses `field` (`2F` pointwise coefficients) in `basis`.
+    /// Analyses `field` (`n1` pointwise coefficients in the complex's field numbering) in `basis`.
     pub fn new(basis: &SpectralBasis, field: &[f64]) -> Result<Self, SpectralBasisError> {
         let fourier = FourierAnalysis::new(basis, field)?;
         let energy = EnergySplit {

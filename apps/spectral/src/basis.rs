@@ -162,7 +162,7 @@ impl SpectralBasis {
         self.families.iter().filter(|&&f| f == family).count()
     }
 
-    /// Stores an `f32` copy of the fields (`2F × d`, rounded to nearest), used by
+    /// Stores an `f32` copy of the fields (`n1 × d`, rounded to nearest), used by
     /// [`reconstruct_f32`](Self::reconstruct_f32). Costs half the memory of the fields.
     pub fn store_single_precision_copy(&mut self) {
         let f = &self.fields;
@@ -174,7 +174,7 @@ impl SpectralBasis {
         self.fields_f32.as_ref().map(|m| m.as_ref())
     }
 
-    /// The field `U c` (`2F` entries) computed from the `f32` copy of `U` (accumulated in `f64`):
+    /// The field `U c` (`n1` entries) computed from the `f32` copy of `U` (accumulated in `f64`):
     /// half the memory traffic of [`reconstruct`](Self::reconstruct), relative error about
     /// `1e-7`. Falls back to the `f64` fields if no copy is stored.
     pub fn reconstruct_f32(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {

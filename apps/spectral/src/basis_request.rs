@@ -16,7 +16,7 @@ pub enum BasisSize {
     /// Every eigenfield with eigenvalue `λ ≤ bound` (units 1/length², `bound ≥ 0`); the frequency
     /// bound `ω` corresponds to `λ = ω²`.
     MaxEigenvalue(f64),
-    /// The complete basis of `X_h` (`2F` fields on a closed mesh), by dense eigensolvers: for
+    /// The complete basis of `X_h` (`n1` fields on a closed mesh), by dense eigensolvers: for
     /// small meshes only (a few thousand nodes).
     Complete,
 }

@@ -81,7 +81,7 @@ pub struct BasisReport {
     pub seconds: f64,
 }
 
-/// The Fourier basis of `complex` as requested, with dense `2F × d` fields (the eigenfunctions
+/// The Fourier basis of `complex` as requested, with dense `n1 × d` fields (the eigenfunctions
 /// and an `f32` copy too if the request asks for them), sorted by eigenvalue and labelled.
 ///
 /// Steps (Section 6): the `2g` harmonic fields by projecting seeded random fields; the lowest
@@ -406,7 +406,7 @@ const FIELD_BLOCK: usize = 64;
 const NORM_CHUNK: usize = 8;
 
 /// `‖gradient · φ_j‖_{M1}` for the columns `φ_j` of `functions` (`n × w`, `w ≤ NORM_CHUNK`) and
-/// the CSR `gradient` (`2F × n`), without forming the fields: each row of the product is a
+/// the CSR `gradient` (`n1 × n`), without forming the fields: each row of the product is a
 /// packed row of `w` values, squared and weighted by `M1` as it is formed (in the order of a
 /// column-by-column product and sum, so the norms are the same to the bit).
 fn field_norms(gradient: &sprs::CsMat<f64>, m1: &[f64], functions: MatRef<'_, f64>) -> Vec<f64> {

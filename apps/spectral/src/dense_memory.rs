@@ -17,32 +17,9 @@ pub fn dense_solve_bytes(a: usize, b: usize) -> f64 {
 pub fn available_memory() -> Option<f64> {
     #[cfg(target_os = "linux")]
     return meminfo_available(&std::fs::read_to_string("/proc/meminfo").ok()?);
-    #[cfg(any(
-        target_os = "android",
-        target_os = "macos",
-        target_os = "ios",
-        target_os = "freebsd",
-        target_os = "openbsd",
-        target_os = "netbsd",
-        target_os = "dragonfly",
-        target_os = "illumos",
-        target_os = "solaris"
-    ))]
+    #[cfg(all(sysconf_memory, not(target_os = "linux")))]
     return physical_memory();
-    #[cfg(not(any(
-        target_os = "linux",
-        any(
-            target_os = "android",
-            target_os = "macos",
-            target_os = "ios",
-            target_os = "freebsd",
-            target_os = "openbsd",
-            target_os = "netbsd",
-            target_os = "dragonfly",
-            target_os = "illumos",
-            target_os = "solaris"
-        )
-    )))]
+    #[cfg(not(sysconf_memory))]
     return None;
 }
 
@@ -56,18 +33,7 @@ fn meminfo_available(meminfo: &str) -> Option<f64> {
 
 /// The physical memory (`sysconf` pages × page size), bytes: an upper bound of what is
 /// available, on systems without `/proc/meminfo`.
-#[cfg(any(
-    target_os = "linux",
-    target_os = "android",
-    target_os = "macos",
-    target_os = "ios",
-    target_os = "freebsd",
-    target_os = "openbsd",
-    target_os = "netbsd",
-    target_os = "dragonfly",
-    target_os = "illumos",
-    target_os = "solaris"
-))]
+#[cfg(sysconf_memory)]
 #[cfg_attr(target_os = "linux", allow(dead_code))]
 fn physical_memory() -> Option<f64> {
     // SAFETY: sysconf only reads system constants.

@@ -23,12 +23,12 @@ pub enum FilterError {
     /// The field has a non-finite entry.
     #[error("field entry {index} is not finite")]
     NonFiniteField {
-        /// Position in the `2F` coefficients.
+        /// Position in the `n1` coefficients (the complex's field numbering).
         index: usize,
     },
 }
 
-/// A spectral filter. With a basis `U` (`2F × d`, `Uᵀ M_X U = I`) and a field `v` (`2F`,
+/// A spectral filter. With a basis `U` (`n1 × d`, `Uᵀ M_X U = I`) and a field `v` (`n1`,
 /// pointwise), coefficients `c = Uᵀ M_X v` and rest field `v_r = v − U c`, the output is
 ///
 /// ```text
@@ -60,7 +60,7 @@ impl Default for SpectralFilter {
 /// The result of [`SpectralFilter::apply`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct FilteredField {
-    /// The filtered field `v*` (`2F`, pointwise).
+    /// The filtered field `v*` (`n1`, pointwise).
     pub field: Vec<f64>,
     /// Coefficients `c = Uᵀ M_X v` of the input (`d`).
     pub coefficients: Vec<f64>,
@@ -105,7 +105,7 @@ impl SpectralFilter {
             .collect()
     }
 
-    /// Filters `field` (`2F` pointwise coefficients) in `basis`.
+    /// Filters `field` (`n1` pointwise coefficients) in `basis`.
     pub fn apply(
         &self,
         basis: &SpectralBasis,

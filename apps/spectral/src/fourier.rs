@@ -15,7 +15,7 @@ pub struct FourierAnalysis {
     pub beta: Vec<(f64, f64)>,
     /// Harmonic coefficients `γ_i = ⟨v, Γ_i⟩`.
     pub gamma: Vec<f64>,
-    /// The rest field `v_r = v − U Uᵀ M_X v` (`2F` pointwise entries): the part of `v` outside the
+    /// The rest field `v_r = v − U Uᵀ M_X v` (`n1` pointwise entries): the part of `v` outside the
     /// span of the basis (zero for a complete basis).
     pub rest: Vec<f64>,
     /// `‖v‖_{M_X}`.
@@ -25,7 +25,7 @@ pub struct FourierAnalysis {
 }
 
 impl FourierAnalysis {
-    /// Analyses `field` (`2F` pointwise coefficients) in `basis`.
+    /// Analyses `field` (`n1` pointwise coefficients) in `basis`.
     pub fn new(basis: &SpectralBasis, field: &[f64]) -> Result<Self, SpectralBasisError> {
         let coefficients = basis.coefficients(field)?;
         let projection = basis.reconstruct(&coefficients)?;

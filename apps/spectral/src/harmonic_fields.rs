@@ -10,7 +10,7 @@ use tvf_discretizations::HodgeDecomposer;
 /// An `M1`-orthonormal basis of the harmonic fields and its quality.
 #[derive(Debug, Clone)]
 pub struct HarmonicFields {
-    /// The fields, `2F × h` with `h = harmonic_dimension()` (`2g` summed over components).
+    /// The fields, `n1 × h` with `h = harmonic_dimension()` (`2g` summed over components).
     pub fields: Mat<f64>,
     /// `max |Γᵀ M1 Γ − I|` over all entries: distance from orthonormal.
     pub orthonormality_error: f64,

@@ -10,7 +10,7 @@ use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{open_cylinder, torus};
 use tvf_discretizations::{
     build_complex, builtin_catalog, complex_id, BoxedComplex, Catalog, CatalogEntry, Conforming,
-    CrouzeixRaviart, FaceFields, FiniteElementComplex, LagrangeP1, MassLumping,
+    CrouzeixRaviart, FaceFields, FiniteElementComplex, LagrangeP1, MassLumping, PaperSpace,
 };
 use tvf_spectral::{
     open_basis_file, BasisFileUseError, BasisSize, BasisStore, SpectralBasis, StoredBasisOrigin,

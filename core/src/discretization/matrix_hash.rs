@@ -2,6 +2,7 @@
 //! matrices and the nodes its boundary condition fixes — which tie basis files and cached bases
 //! to the matrices they were computed for.
 
+use super::sparse::as_csr;
 use super::{ComplexParts, Mass, MassForm, MassStorage, NodeSpace, NO_COMPONENT};
 use crate::hash64::Hash64;
 use sprs::CsMat;
@@ -129,13 +130,7 @@ impl MatrixHash {
 /// The hash of a sparse matrix: shape, then each row's stored entries (column and value bits)
 /// in row-major order, whatever its storage.
 fn sparse_hash(matrix: &CsMat<f64>) -> u64 {
-    let csr;
-    let matrix = if matrix.is_csr() {
-        matrix
-    } else {
-        csr = matrix.to_csr();
-        &csr
-    };
+    let matrix = as_csr(matrix);
     let mut h = Hash64::new();
     h.update(b"tvf-sparse");
     h.update_u64(matrix.rows() as u64);

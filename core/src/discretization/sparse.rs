@@ -2,6 +2,16 @@
 //! derived operators. All matrices returned here are in CSR storage with sorted indices.
 
 use sprs::{CsMat, TriMat};
+use std::borrow::Cow;
+
+/// `a` in CSR storage: borrowed if it is stored so already, else converted.
+pub fn as_csr(a: &CsMat<f64>) -> Cow<'_, CsMat<f64>> {
+    if a.is_csr() {
+        Cow::Borrowed(a)
+    } else {
+        Cow::Owned(a.to_csr())
+    }
+}
 
 /// The diagonal matrix `diag(d)` (n×n, CSR).
 pub fn diagonal(d: &[f64]) -> CsMat<f64> {
@@ -102,15 +112,6 @@ pub fn from_triplets(
     values: Vec<f64>,
 ) -> CsMat<f64> {
     TriMat::from_triplets((rows, cols), row_indices, col_indices, values).to_csr()
-}
-
-/// Borrows `a` if it is CSR, converts otherwise.
-fn as_csr(a: &CsMat<f64>) -> std::borrow::Cow<'_, CsMat<f64>> {
-    if a.is_csr() {
-        std::borrow::Cow::Borrowed(a)
-    } else {
-        std::borrow::Cow::Owned(a.to_csr())
-    }
 }
 
 /// The same matrix in CSR storage (a copy if it already is).

@@ -289,55 +289,29 @@ fn unpack_chunk(
     own: Option<&mut [Row; WIDTH]>,
 ) -> Row {
     match mass {
-        Mass::Diagonal(mass) => unpack_diagonal(mass, z, scratch, own),
+        Mass::Diagonal(mass) => {
+            let weighted = scratch
+                .solution
+                .iter()
+                .zip(mass)
+                .map(|(solved, m)| std::array::from_fn(|j| m * solved[j]));
+            unpack_rows(z, scratch, weighted, own)
+        }
         Mass::Sparse(m) => {
             scratch
                 .weighted
                 .resize(scratch.solution.len(), [0.0; WIDTH]);
             gather_times(m, &scratch.solution, &mut scratch.weighted);
-            unpack_weighted(z, scratch, own)
+            unpack_rows(z, scratch, scratch.weighted.iter().copied(), own)
         }
     }
 }
 
-/// [`unpack_chunk`] for a diagonal `M` (the weighted rows formed on the way).
-fn unpack_diagonal(
-    mass: &[f64],
+/// [`unpack_chunk`] given the rows of `M Z` (`weighted`, one per row of `scratch.solution`).
+fn unpack_rows(
     mut z: MatMut<'_, f64>,
     scratch: &OperatorScratch,
-    mut own: Option<&mut [Row; WIDTH]>,
-) -> Row {
-    let mut targets = contiguous_columns_mut(z.rb_mut());
-    let mut squared = [0.0; WIDTH];
-    for (i, ((solved, row), m)) in scratch
-        .solution
-        .iter()
-        .zip(&scratch.block)
-        .zip(mass)
-        .enumerate()
-    {
-        let weighted: Row = std::array::from_fn(|j| m * solved[j]);
-        for (j, target) in targets.iter_mut().enumerate() {
-            target[i] = solved[j];
-        }
-        for j in 0..WIDTH {
-            squared[j] += weighted[j] * solved[j];
-        }
-        if let Some(own) = own.as_deref_mut() {
-            for (a, own_row) in own.iter_mut().enumerate() {
-                for j in 0..WIDTH {
-                    own_row[j] += row[a] * weighted[j];
-                }
-            }
-        }
-    }
-    squared
-}
-
-/// [`unpack_chunk`] for a sparse `M`, whose rows `M OP U` are in `scratch.weighted`.
-fn unpack_weighted(
-    mut z: MatMut<'_, f64>,
-    scratch: &OperatorScratch,
+    weighted: impl Iterator<Item = Row>,
     mut own: Option<&mut [Row; WIDTH]>,
 ) -> Row {
     let mut targets = contiguous_columns_mut(z.rb_mut());
@@ -346,7 +320,7 @@ fn unpack_weighted(
         .solution
         .iter()
         .zip(&scratch.block)
-        .zip(&scratch.weighted)
+        .zip(weighted)
         .enumerate()
     {
         for (j, target) in targets.iter_mut().enumerate() {

@@ -11,7 +11,7 @@ use crate::convert::{square_dimension, to_faer_csc, upper_triangle_csc};
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Par};
+use faer::Mat;
 
 /// `A = d1 W⁻¹ d1ᵀ` (`n2 × n2`, symmetric positive semidefinite), by its factors.
 pub(crate) struct MixedOperator {
@@ -41,20 +41,7 @@ impl MixedOperator {
             });
         }
         let upper = upper_triangle_csc(w)?;
-        let not_positive = |pivot, value| SolverError::MatrixNotPositiveDefinite {
-            matrix: "W",
-            pivot,
-            value,
-        };
-        let mut factor = SparseLdlt::new(upper.as_ref()).map_err(|e| match e {
-            SolverError::Singular { pivot } => not_positive(pivot, 0.0),
-            other => other,
-        })?;
-        factor.set_parallelism(Par::Seq);
-        let pivots = factor.pivots();
-        if let Some(k) = pivots.iter().position(|&d| !(d > 0.0 && d.is_finite())) {
-            return Err(not_positive(factor.original_index(k), pivots[k]));
-        }
+        let factor = SparseLdlt::positive_definite(upper.as_ref(), "W")?;
         let mut position = vec![0usize; n1];
         for k in 0..n1 {
             position[factor.original_index(k)] = k;

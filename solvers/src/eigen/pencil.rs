@@ -24,11 +24,11 @@ use super::shift_factor::{saddle_pattern, KrylovFrame, ShiftFactor};
 use super::spectrum_bound::{block_power_norm, hutchinson_trace, upper_bound_of};
 use super::statistics::{Phase, SolverStatistics};
 use super::stiffness::Stiffness;
-use super::stored_mass::{MassSolver, SparseMass, StoredMass};
+use super::stored_mass::{check_diagonal_mass, MassSolver, SparseMass, StoredMass};
 use crate::convert::{
     shifted_upper_triangle, square_dimension, upper_triangle_csc, ShiftedPattern,
 };
-use crate::dense_eigen::{check_mass, dense_generalized_eigen, dense_generalized_eigen_with_mass};
+use crate::dense_eigen::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
 use crate::error::SolverError;
 use crate::sparse_ldlt::{FactorPattern, SparseLdlt};
 use faer::sparse::SparseColMat;
@@ -125,14 +125,7 @@ impl<'a> Pencil<'a> {
     /// [`SolverError::NonFinite`], [`SolverError::MassNotPositive`].
     pub fn new(stiffness: &'a sprs::CsMat<f64>, mass: &'a [f64]) -> Result<Self, SolverError> {
         let n = square_dimension(stiffness)?;
-        if mass.len() != n {
-            return Err(SolverError::DimensionMismatch {
-                context: "mass diagonal length",
-                expected: n,
-                actual: mass.len(),
-            });
-        }
-        check_mass(mass)?;
+        check_diagonal_mass(mass, n)?;
         let full = symmetric_full(&upper_triangle_csc(stiffness)?)?;
         let col_ptr = full.symbolic().col_ptr();
         let row_idx = full.symbolic().row_idx();

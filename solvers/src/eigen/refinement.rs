@@ -59,31 +59,42 @@ pub(crate) fn field_residuals(
     floor: f64,
     par: Par,
 ) -> Vec<FieldResidual> {
-    let (a, mass) = match (operators.stiffness, operators.mass) {
-        (Stiffness::Sparse(a), Mass::Diagonal(mass)) => (a, mass),
-        _ => return general_field_residuals(operators, values, vectors, floor, par),
-    };
-    let diagonal = diagonal_of(a);
-    let norm_a = max_column_sum(a);
-    let inverse_mass: Vec<f64> = mass.iter().map(|m| m.recip()).collect();
-    let pencil = ChunkPencil {
-        a,
-        mass,
-        inverse_mass: &inverse_mass,
-        diagonal: &diagonal,
-        norm_a,
-        floor,
+    let pencil = match (operators.stiffness, operators.mass) {
+        (Stiffness::Sparse(a), Mass::Diagonal(mass)) => Some(ChunkPencil {
+            a,
+            mass,
+            inverse_mass: mass.iter().map(|m| m.recip()).collect(),
+            diagonal: diagonal_of(a),
+            norm_a: max_column_sum(a),
+            floor,
+        }),
+        _ => None,
     };
     let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
         let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
-        #[cfg(target_arch = "x86_64")]
-        if has_avx2_fma() {
-            // SAFETY: the CPU supports the features the function is compiled for.
-            return unsafe { chunk_residuals_fma(&pencil, &lambda, width, x, work) };
+        match &pencil {
+            Some(pencil) => diagonal_chunk_residuals(pencil, &lambda, width, x, work),
+            None => general_chunk_residuals(operators, &lambda, width, x, work, floor),
         }
-        chunk_residuals::<false>(&pencil, &lambda, width, x, work)
     });
     chunks.into_iter().flatten().collect()
+}
+
+/// The [`FieldResidual`]s of one packed chunk `x` of a pencil with a sparse stiffness and a
+/// diagonal mass, with fused multiply–adds where the CPU has them.
+fn diagonal_chunk_residuals(
+    pencil: &ChunkPencil<'_>,
+    lambda: &Row,
+    width: usize,
+    x: &[Row],
+    work: &mut [Vec<Row>; 3],
+) -> Vec<FieldResidual> {
+    #[cfg(target_arch = "x86_64")]
+    if has_avx2_fma() {
+        // SAFETY: the CPU supports the features the function is compiled for.
+        return unsafe { chunk_residuals_fma(pencil, lambda, width, x, work) };
+    }
+    chunk_residuals::<false>(pencil, lambda, width, x, work)
 }
 
 /// What [`field_residuals`] needs of the pencil, per chunk of columns.
@@ -91,9 +102,9 @@ struct ChunkPencil<'a> {
     a: SparseColMatRef<'a, usize, f64>,
     mass: &'a [f64],
     /// `1 / M_ii`.
-    inverse_mass: &'a [f64],
+    inverse_mass: Vec<f64>,
     /// `A_ii`.
-    diagonal: &'a [f64],
+    diagonal: Vec<f64>,
     /// `‖A‖₁`.
     norm_a: f64,
     /// Eigenvalues at most this have no eigenfield.
@@ -124,7 +135,7 @@ fn chunk_residuals<const FUSED: bool>(
     work: &mut [Vec<Row>; 3],
 ) -> Vec<FieldResidual> {
     let n = x.len();
-    let (mass, inverse_mass) = (pencil.mass, pencil.inverse_mass);
+    let (mass, inverse_mass) = (pencil.mass, &pencil.inverse_mass);
     let [ax, abs_ax, a_s] = work;
     // A x and |A| |x| (for the floor) from one pass over A.
     gather_times_and_magnitudes(pencil.a, x, ax, abs_ax);
@@ -150,40 +161,57 @@ fn chunk_residuals<const FUSED: bool>(
             noise[j] = multiply_add::<FUSED>(weight * e, e, noise[j]);
         }
     }
-    (0..width)
-        .map(|j| {
-            let relative = r2[j].sqrt() / (pencil.norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
-            if lambda[j] <= pencil.floor {
-                return FieldResidual {
+    let sums = ChunkSums {
+        r2,
+        x2,
+        energy,
+        noise,
+    };
+    sums.residuals(lambda, width, pencil.norm_a, pencil.floor)
+}
+
+/// The per-column sums of one chunk from which its [`FieldResidual`]s follow.
+struct ChunkSums {
+    /// `‖r‖²`, `r = A x − λ M x`.
+    r2: Row,
+    /// `‖x‖²`.
+    x2: Row,
+    /// `sᵀ A s`, `s = M⁻¹ r`.
+    energy: Row,
+    /// The rounding-noise estimate of the energy.
+    noise: Row,
+}
+
+impl ChunkSums {
+    /// The [`FieldResidual`]s of the first `width` columns with eigenvalues `lambda`, `‖A‖₁ =
+    /// norm_a`; an eigenvalue at most `floor` gets only the relative residual.
+    fn residuals(&self, lambda: &Row, width: usize, norm_a: f64, floor: f64) -> Vec<FieldResidual> {
+        let Self {
+            r2,
+            x2,
+            energy,
+            noise,
+        } = self;
+        (0..width)
+            .map(|j| {
+                let relative = r2[j].sqrt() / (norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
+                if lambda[j] <= floor {
+                    return FieldResidual {
+                        relative,
+                        ..FieldResidual::default()
+                    };
+                }
+                FieldResidual {
+                    residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
+                    floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
                     relative,
-                    ..FieldResidual::default()
-                };
-            }
-            FieldResidual {
-                residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
-                floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
-                relative,
-            }
-        })
-        .collect()
+                }
+            })
+            .collect()
+    }
 }
 
-/// [`field_residuals`] of a pencil with a sparse mass or a mixed stiffness (see there).
-fn general_field_residuals(
-    operators: &PencilOperators<'_>,
-    values: &[f64],
-    vectors: MatRef<'_, f64>,
-    floor: f64,
-    par: Par,
-) -> Vec<FieldResidual> {
-    let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
-        let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
-        general_chunk_residuals(operators, &lambda, width, x, work, floor)
-    });
-    chunks.into_iter().flatten().collect()
-}
-
-/// The [`FieldResidual`]s of one packed chunk `x` (see [`general_field_residuals`]).
+/// The [`FieldResidual`]s of one packed chunk `x` of any other pencil (see [`field_residuals`]).
 fn general_chunk_residuals(
     operators: &PencilOperators<'_>,
     lambda: &Row,
@@ -228,22 +256,13 @@ fn general_chunk_residuals(
         }
     }
     let norm_a = operators.stiffness_norm.max(f64::MIN_POSITIVE);
-    (0..width)
-        .map(|j| {
-            let relative = r2[j].sqrt() / (norm_a * x2[j].sqrt().max(f64::MIN_POSITIVE));
-            if lambda[j] <= floor {
-                return FieldResidual {
-                    relative,
-                    ..FieldResidual::default()
-                };
-            }
-            FieldResidual {
-                residual: (energy[j].max(0.0) / lambda[j]).sqrt() / lambda[j],
-                floor: (noise[j] / lambda[j]).sqrt() / lambda[j],
-                relative,
-            }
-        })
-        .collect()
+    let sums = ChunkSums {
+        r2,
+        x2,
+        energy,
+        noise,
+    };
+    sums.residuals(lambda, width, norm_a, floor)
 }
 
 /// The diagonal of the `n × n` sparse `a` (0 where no entry is stored).

@@ -94,6 +94,28 @@ impl SolverStatistics {
         }
     }
 
+    /// One line per phase (counting, solving, refinement), each indented by two spaces and
+    /// ending in a newline: its factorizations, solves, wall seconds and average processor use
+    /// (`100 ·` [`PhaseStatistics::utilisation`], % CPU).
+    pub fn phase_table(&self) -> String {
+        [
+            ("counting", self.counting),
+            ("solving", self.solving),
+            ("refinement", self.refinement),
+        ]
+        .iter()
+        .map(|(phase, p)| {
+            format!(
+                "  {phase:<10} {:>3} factorizations {:>6} solves {:>8.2} s wall {:>5.0} % CPU\n",
+                p.factorizations,
+                p.solves,
+                p.wall_seconds,
+                100.0 * p.utilisation()
+            )
+        })
+        .collect()
+    }
+
     /// The statistics of `phase`, to change.
     pub fn phase_mut(&mut self, phase: Phase) -> &mut PhaseStatistics {
         match phase {

@@ -4,11 +4,10 @@
 
 use super::mixed_operator::MixedOperator;
 use super::symmetric_products::{
-    gather_times, gather_times_and_magnitudes, pack, symmetric_times, Row, CHUNK,
+    gather_times, gather_times_and_magnitudes, symmetric_times, times_by_chunks, Row,
 };
 use faer::sparse::SparseColMatRef;
 use faer::{MatMut, MatRef, Par};
-use rayon::prelude::*;
 
 /// The stiffness `A` (`n × n`, symmetric) of a pencil.
 #[derive(Clone, Copy)]
@@ -48,31 +47,13 @@ impl Stiffness<'_> {
     }
 
     /// `out ← A x` (`n × s`), in parallel over chunks of columns under `par`.
-    pub(crate) fn times(self, mut out: MatMut<'_, f64>, x: MatRef<'_, f64>, par: Par) {
+    pub(crate) fn times(self, out: MatMut<'_, f64>, x: MatRef<'_, f64>, par: Par) {
         let operator = match self {
             Stiffness::Sparse(a) => return symmetric_times(out, a, x, par),
             Stiffness::Mixed(operator) => operator,
         };
-        let n = x.nrows();
-        let one = |(chunk, mut target): (usize, MatMut<'_, f64>)| {
-            let width = target.ncols();
-            let rows = pack(x, chunk * CHUNK, width);
-            let (mut product, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
-            operator.times_rows(&rows, &mut product, &mut work);
-            for j in 0..width {
-                for (i, row) in product.iter().enumerate() {
-                    target[(i, j)] = row[j];
-                }
-            }
-        };
-        if par.degree() > 1 {
-            out.par_col_chunks_mut(CHUNK).enumerate().for_each(one);
-        } else {
-            let chunks = out.ncols().div_ceil(CHUNK);
-            for chunk in 0..chunks {
-                let width = CHUNK.min(out.ncols() - chunk * CHUNK);
-                one((chunk, out.as_mut().subcols_mut(chunk * CHUNK, width)));
-            }
-        }
+        times_by_chunks(out, x, par, |rows, product| {
+            operator.times_rows(rows, product, &mut Vec::new());
+        });
     }
 }

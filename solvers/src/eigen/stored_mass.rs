@@ -9,7 +9,7 @@ use crate::dense_eigen::check_mass;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::sparse::SparseColMat;
-use faer::{Mat, Par};
+use faer::Mat;
 
 /// A sparse SPD mass: full storage, its Cholesky factorization and its diagonal.
 pub(crate) struct SparseMass {
@@ -29,20 +29,7 @@ impl SparseMass {
     pub(crate) fn new(m: &sprs::CsMat<f64>, n: usize) -> Result<Self, SolverError> {
         let full = full_symmetric_mass(m, n, "mass matrix dimension")?;
         let upper = upper_triangle_csc(m)?;
-        let not_positive = |pivot, value| SolverError::MatrixNotPositiveDefinite {
-            matrix: "mass matrix",
-            pivot,
-            value,
-        };
-        let mut factor = SparseLdlt::new(upper.as_ref()).map_err(|e| match e {
-            SolverError::Singular { pivot } => not_positive(pivot, 0.0),
-            other => other,
-        })?;
-        factor.set_parallelism(Par::Seq);
-        let pivots = factor.pivots();
-        if let Some(k) = pivots.iter().position(|&d| !(d > 0.0 && d.is_finite())) {
-            return Err(not_positive(factor.original_index(k), pivots[k]));
-        }
+        let factor = SparseLdlt::positive_definite(upper.as_ref(), "mass matrix")?;
         let diagonal = diagonal_of(full.as_ref());
         Ok(Self {
             full,
@@ -50,6 +37,21 @@ impl SparseMass {
             diagonal,
         })
     }
+}
+
+/// Checks a diagonal mass of a pencil of dimension `n`: `n` entries ([`check_mass`]: positive,
+/// finite).
+///
+/// Errors: [`SolverError::DimensionMismatch`], else as [`check_mass`].
+pub(crate) fn check_diagonal_mass(mass: &[f64], n: usize) -> Result<(), SolverError> {
+    if mass.len() != n {
+        return Err(SolverError::DimensionMismatch {
+            context: "mass diagonal length",
+            expected: n,
+            actual: mass.len(),
+        });
+    }
+    check_mass(mass)
 }
 
 /// The mass of a pencil as stored (one per pencil, never moved after construction: the size
@@ -73,14 +75,7 @@ impl StoredMass<'_> {
     pub(crate) fn new(mass: MassMatrix<'_>, n: usize) -> Result<StoredMass<'_>, SolverError> {
         match mass {
             MassMatrix::Diagonal(mass) => {
-                if mass.len() != n {
-                    return Err(SolverError::DimensionMismatch {
-                        context: "mass diagonal length",
-                        expected: n,
-                        actual: mass.len(),
-                    });
-                }
-                check_mass(mass)?;
+                check_diagonal_mass(mass, n)?;
                 Ok(StoredMass::Diagonal(mass))
             }
             MassMatrix::Sparse(m) => Ok(StoredMass::Sparse(SparseMass::new(m, n)?)),

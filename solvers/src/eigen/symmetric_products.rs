@@ -146,13 +146,24 @@ pub(crate) fn symmetric_times(
             && out.ncols() == x.ncols(),
         "symmetric_times: shapes do not match"
     );
-    let n = a.nrows();
+    times_by_chunks(out, x, par, |rows, product| gather_times(a, rows, product));
+}
+
+/// `out ← A x` (`n × s`, `A` square) one chunk of `CHUNK` columns at a time, in parallel over
+/// the chunks under `par`: `rows_times(rows, product)` writes `product ← A X` of one packed
+/// chunk `X` (`n` rows).
+pub(crate) fn times_by_chunks(
+    out: MatMut<'_, f64>,
+    x: MatRef<'_, f64>,
+    par: Par,
+    rows_times: impl Fn(&[Row], &mut [Row]) + Sync,
+) {
+    let n = out.nrows();
     let one = |(chunk, mut target): (usize, MatMut<'_, f64>)| {
-        let first = chunk * CHUNK;
         let width = target.ncols();
-        let rows = pack(x, first, width);
+        let rows = pack(x, chunk * CHUNK, width);
         let mut product = vec![[0.0; CHUNK]; n];
-        gather_times(a, &rows, &mut product);
+        rows_times(&rows, &mut product);
         for j in 0..width {
             for (i, row) in product.iter().enumerate() {
                 target[(i, j)] = row[j];

@@ -53,7 +53,7 @@ pub fn pair_selection(basis: &SpectralBasis, pairs: usize) -> Result<Vec<usize>,
 
 /// Compresses and decompresses fields on one mesh in one basis.
 ///
-/// A field `v` (`2F` pointwise coefficients) becomes the coefficients `c = U_Sᵀ M_X v` of the
+/// A field `v` (`n1` pointwise coefficients) becomes the coefficients `c = U_Sᵀ M_X v` of the
 /// kept basis fields `S` ([`pair_selection`]); decoding returns `U_S ĉ`. With `f64` storage
 /// `ĉ = c` bit-exactly; with quantisation `|ĉ_i − c_i| ≤ step/2`, so the decoded field is within
 /// `(step/2)·√|S|` (`M_X` norm) of the projection `U_S c`.
@@ -177,7 +177,7 @@ impl<'a> FieldCodec<'a> {
         })
     }
 
-    /// Encodes a field (`2F` pointwise coefficients).
+    /// Encodes a field (`n1` pointwise coefficients).
     pub fn encode(&self, field: &[f64]) -> Result<FramePayload, CompressionError> {
         if let Some(index) = field.iter().position(|x| !x.is_finite()) {
             return Err(CompressionError::NonFinite {
@@ -219,7 +219,7 @@ impl<'a> FieldCodec<'a> {
         Ok(all)
     }
 
-    /// Decodes one frame into a field (`2F` pointwise coefficients).
+    /// Decodes one frame into a field (`n1` pointwise coefficients).
     pub fn decode(&self, payload: &FramePayload) -> Result<Vec<f64>, CompressionError> {
         Ok(self
             .basis

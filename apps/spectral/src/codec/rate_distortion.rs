@@ -35,7 +35,7 @@ pub struct FileStamp {
     pub vertex_count: usize,
 }
 
-/// Compresses `field` (`2F` pointwise coefficients) once for every `(pairs, coding)` combination
+/// Compresses `field` (`n1` pointwise coefficients) once for every `(pairs, coding)` combination
 /// and measures size and error; points in parallel, ordered by coding then pairs as given.
 pub fn rate_distortion(
     basis: &SpectralBasis,

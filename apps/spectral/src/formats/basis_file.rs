@@ -188,15 +188,10 @@ pub fn save_basis(
         field_dimension: basis.field_dimension(),
         field_mass: basis.field_mass(),
     };
-    write_basis(
-        path,
-        key,
-        &contents,
-        BasisFileLayout::Fields,
-        |out, buffer| {
-            (0..fields.ncols()).try_for_each(|j| write_values(out, buffer, fields.col(j).iter()))
-        },
-    )
+    let body = |out: &mut HashingWriter<'_>, buffer: &mut Vec<u8>| {
+        (0..fields.ncols()).try_for_each(|j| write_values(out, buffer, fields.col(j).iter()))
+    };
+    write_basis(path, key, &contents, BasisFileLayout::Fields, body)
 }
 
 /// Saves a basis computed in compact form (the eigenfunctions of `complex`) for the mesh and
@@ -257,17 +252,11 @@ pub fn save_eigenfunction_basis<H: HodgeComplex + ?Sized>(
             Ok(())
         });
     }
-    write_basis(
-        path,
-        key,
-        &contents,
-        BasisFileLayout::Fields,
-        |out, buffer| {
-            write_streamed_fields(out, buffer, basis.len(), &|range| {
-                basis.field_columns(complex, range)
-            })
-        },
-    )
+    let columns = |range| basis.field_columns(complex, range);
+    let body = |out: &mut HashingWriter<'_>, buffer: &mut Vec<u8>| {
+        write_streamed_fields(out, buffer, basis.len(), &columns)
+    };
+    write_basis(path, key, &contents, BasisFileLayout::Fields, body)
 }
 
 /// Everything of a basis file but its stored fields or eigenfunctions.

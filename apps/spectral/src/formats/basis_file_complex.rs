@@ -122,12 +122,7 @@ pub fn open_basis_file(
     boundary: Option<BoundaryCondition>,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
     let complex = basis_file_complex(catalog, path, mesh, entry, boundary)?;
-    let basis = load_basis(
-        path,
-        &BasisFileKey::new(mesh, complex.as_ref()),
-        complex.as_ref(),
-    )?;
-    Ok((complex, basis))
+    open_basis_file_with(path, mesh, complex)
 }
 
 /// Reads the basis file `path` for `complex` on `mesh`: checked to belong to the mesh, to the

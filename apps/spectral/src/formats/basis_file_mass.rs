@@ -3,6 +3,7 @@
 //! The full layout is documented in [`crate::formats::basis_file`].
 
 use std::io::{Read, Write};
+use tvf_core::discretization::sparse::as_csr;
 use tvf_core::discretization::{Mass, MassForm, MassStorage};
 
 /// Name of a field mass read from a basis file, in errors.
@@ -97,13 +98,7 @@ pub(crate) fn write_field_mass(out: &mut impl Write, mass: &Mass) -> std::io::Re
     match mass.storage() {
         MassStorage::Diagonal(values) => write_words(out, values.iter().map(|m| m.to_bits())),
         MassStorage::Sparse(matrix) => {
-            let csr;
-            let matrix = if matrix.is_csr() {
-                matrix
-            } else {
-                csr = matrix.to_csr();
-                &csr
-            };
+            let matrix = as_csr(matrix);
             let indptr = matrix.indptr();
             write_words(out, indptr.raw_storage().iter().map(|&i| i as u64))?;
             write_words(out, matrix.indices().iter().map(|&j| j as u64))?;

@@ -10,7 +10,7 @@
 //! | 11 | 1 | bits per quantised symbol (0 for `f64`) |
 //! | 12 | 8 | mesh fingerprint |
 //! | 20 | 8 | basis id ([`basis_id`](crate::formats::basis_id)) |
-//! | 28 | 8 | field dimension `2F` |
+//! | 28 | 8 | field dimension `n1` (`2F` for face fields, `E` for 1-forms) |
 //! | 36 | 4 | pairs `k` (lowest `k` integrable and `k` co-integrable fields) |
 //! | 40 | 4 | coefficients per frame `n` (the kept fields, [`pair_selection`](crate::pair_selection)) |
 //! | 44 | 4 | frame count `T` |
@@ -61,7 +61,7 @@ pub struct TvfcHeader {
     pub mesh_fingerprint: u64,
     /// [`basis_id`](crate::formats::basis_id) of the basis the coefficients refer to.
     pub basis_id: u64,
-    /// `2F`.
+    /// `n1`, the complex's field dimension.
     pub field_dimension: u64,
     /// Number of (integrable, co-integrable) pairs kept.
     pub pairs: u32,

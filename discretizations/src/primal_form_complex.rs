@@ -1,0 +1,85 @@
+//! [`PrimalFormComplex`]: a complex of primal forms ([`PrimalForms`]) with its three masses,
+//! Whitney sampling and point evaluation — the one type behind [`crate::DecComplex`] and
+//! [`crate::WhitneyGalerkin`], which differ only in the masses (the marker `M`).
+
+use crate::boundary_conditions::mesh_topology;
+use crate::complex_id::complex_id;
+use crate::face_geometry::FaceGeometry;
+use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
+use crate::whitney_sampling::WhitneySampling;
+use std::marker::PhantomData;
+use tvf_core::discretization::{
+    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
+    NodeSpace, PointEvaluation,
+};
+use tvf_core::SurfaceMesh;
+
+/// The complex `0-forms (V) --d0--> 1-forms (E) --d1--> 2-forms (F)` of [`PrimalForms`] with
+/// masses chosen by the marker `M` ([`crate::HodgeStars`] for DEC, [`crate::GalerkinMasses`]
+/// for Whitney forms), sampled by Whitney interpolation ([`WhitneySampling`]); 0-forms are
+/// evaluated linearly, 2-forms constant per face. There is no rotation `J` on 1-forms.
+#[derive(Debug, Clone)]
+pub struct PrimalFormComplex<M> {
+    parts: ComplexParts,
+    sampling: WhitneySampling,
+    evaluation: PrimalFormEvaluation,
+    masses: PhantomData<M>,
+}
+
+impl<M> PrimalFormComplex<M> {
+    /// Assembles the complex of `mesh` (face geometry `geometry`) with boundary condition
+    /// `boundary` and catalog id `id` (`+{boundary}` appended on a mesh with boundary);
+    /// `masses` gives `[M0, M1, M2]` from the node spaces of the 0-, 1- and 2-forms.
+    pub(crate) fn assemble(
+        id: &str,
+        mesh: &SurfaceMesh,
+        geometry: &FaceGeometry,
+        boundary: BoundaryCondition,
+        masses: impl FnOnce(&[NodeSpace; 3]) -> Result<[Mass; 3], DiscretizationError>,
+    ) -> Result<Self, DiscretizationError> {
+        let PrimalForms { d0, d1, nodes } = PrimalForms::new(mesh, boundary);
+        let masses = masses(&nodes)?;
+        let sampling = WhitneySampling::new(mesh, geometry, nodes[1].dirichlet.clone());
+        Ok(Self {
+            parts: ComplexParts::new(
+                complex_id(id, mesh, boundary),
+                d0,
+                d1,
+                masses,
+                nodes,
+                mesh_topology(mesh, boundary),
+            )?,
+            sampling,
+            evaluation: PrimalFormEvaluation::new(mesh),
+            masses: PhantomData,
+        })
+    }
+}
+
+/// `M2 = 1/area` per face (diagonal), named `what` in errors: a 2-form is stored by its
+/// integral, and `M2⁻¹ = |T|` is the `L²` mass of the piecewise constants.
+pub(crate) fn inverse_face_areas(
+    what: &'static str,
+    geometry: &FaceGeometry,
+    face_nodes: &NodeSpace,
+) -> Result<Mass, DiscretizationError> {
+    Mass::diagonal_positive_on_used_nodes(
+        what,
+        geometry.areas.iter().map(|a| 1.0 / a).collect(),
+        &face_nodes.components,
+    )
+}
+
+impl<M: Send + Sync> HodgeComplex for PrimalFormComplex<M> {
+    fn parts(&self) -> &ComplexParts {
+        &self.parts
+    }
+
+    fn sampling(&self) -> Option<&dyn FieldSampling> {
+        Some(&self.sampling)
+    }
+
+    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
+        Some(&self.evaluation)
+    }
+}
