@@ -119,7 +119,10 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, FigureError> {
             file,
             &[
                 (original, &format!("frame {snapshot}: uncompressed")),
-                (&compressed, &format!("frame {snapshot}: {kept} coefficients")),
+                (
+                    &compressed,
+                    &format!("frame {snapshot}: {kept} coefficients"),
+                ),
             ],
         )?;
         finding.files.push(file.to_string());

@@ -230,7 +230,11 @@ fn figure8(
         .chain(points(&clean_analysis, FieldFamily::Cointegrable))
         .collect();
     let series = [
-        ("without the noise: both families", both_clean, [170, 170, 170]),
+        (
+            "without the noise: both families",
+            both_clean,
+            [170, 170, 170],
+        ),
         (
             "input: integrable |alpha|",
             points(&analysis, FieldFamily::Integrable),

@@ -2,8 +2,8 @@
 //! matrices and the nodes its boundary condition fixes — which tie basis files and cached bases
 //! to the matrices they were computed for.
 
-use super::{ComplexParts, Mass, MassForm, MassStorage, NodeSpace, NO_COMPONENT};
 use super::sparse::as_csr;
+use super::{ComplexParts, Mass, MassForm, MassStorage, NodeSpace, NO_COMPONENT};
 use crate::hash64::Hash64;
 use sprs::CsMat;
 
