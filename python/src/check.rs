@@ -19,6 +19,22 @@ use tvf_core::SurfaceMesh;
 
 /// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,
 /// `detail`.
+/// The complex a Python builder makes on `mesh`.
+pub(crate) fn python_complex(
+    build: &Py<PyAny>,
+    mesh: &SurfaceMesh,
+) -> Result<Box<dyn HodgeComplex>, String> {
+    Python::attach(|py| {
+        let (v, f) = mesh_arrays(py, mesh);
+        let built = build.call1(py, (v, f)).map_err(|e| e.to_string())?;
+        let complex = built
+            .bind(py)
+            .cast::<Complex>()
+            .map_err(|e| format!("the builder did not return a native Complex: {e}"))?;
+        Ok(Box::new(PythonComplex(complex.clone().unbind())) as Box<dyn HodgeComplex>)
+    })
+}
+
 #[pyfunction]
 pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let report = py.detach(|| core_check_report(complex.complex.as_ref(), &complex.mesh));
@@ -40,18 +56,7 @@ pub fn check_builder<'py>(
     mesh: Option<&Mesh>,
     delaunay: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
-        Python::attach(|py| {
-            let (v, f) = mesh_arrays(py, mesh);
-            let built = build.call1(py, (v, f)).map_err(|e| e.to_string())?;
-            let complex = built
-                .bind(py)
-                .cast::<Complex>()
-                .map_err(|e| format!("the builder did not return a native Complex: {e}"))?;
-            let complex = complex.clone().unbind();
-            Ok(Box::new(PythonComplex(complex)) as Box<dyn HodgeComplex>)
-        })
-    };
+    let builder = |mesh: &SurfaceMesh| python_complex(&build, mesh);
     let result = PyDict::new(py);
     if let Some(mesh) = mesh {
         let report = py.detach(|| check_mesh(&builder, &mesh.mesh, &[]));

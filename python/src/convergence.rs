@@ -2,16 +2,14 @@
 //! `tvf convergence` (`tvf_conformance::convergence`) against the exact spectra of the unit
 //! sphere and hemisphere.
 
-use crate::check::{mesh_arrays, PythonComplex};
-use crate::complex::Complex;
+use crate::check::python_complex;
 use crate::errors::{from_error, tvf_error};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tvf_conformance::convergence::{
     run_convergence, Candidate, ConvergenceConfig, ConvergenceReport, Surface,
 };
-use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
-use tvf_core::SurfaceMesh;
+use tvf_core::discretization::BoundaryCondition;
 use tvf_discretizations::catalog_entry;
 
 /// Runs the study. `candidates` are `(name, id_or_builder)` pairs; `surfaces` names from
@@ -81,19 +79,6 @@ fn unknown_surface(name: &str) -> PyErr {
     tvf_error(format!(
         "'{name}' is not a surface: sphere, hemisphere-tangential or hemisphere-normal"
     ))
-}
-
-/// The complex a Python builder makes on `mesh`.
-fn python_complex(build: &Py<PyAny>, mesh: &SurfaceMesh) -> Result<Box<dyn HodgeComplex>, String> {
-    Python::attach(|py| {
-        let (v, f) = mesh_arrays(py, mesh);
-        let built = build.call1(py, (v, f)).map_err(|e| e.to_string())?;
-        let complex = built
-            .bind(py)
-            .cast::<Complex>()
-            .map_err(|e| format!("the builder did not return a native Complex: {e}"))?;
-        Ok(Box::new(PythonComplex(complex.clone().unbind())) as Box<dyn HodgeComplex>)
-    })
 }
 
 fn report_dict<'py>(py: Python<'py>, report: &ConvergenceReport) -> PyResult<Bound<'py, PyDict>> {
