@@ -73,15 +73,13 @@ def test_a_broken_entry_is_named(torus_mesh):
     with pytest.raises(tvf.TvfError, match=r"d1 · d0 is not zero"):
         own_complex(mesh, V, F, d1=d1.tocsr())
 
-    # The gradient of one vertex dropped (its column of d0 zeroed): still a complex (d1 d0 = 0),
-    # but the constants leave the kernel of the potential stiffness, so the decomposition's
-    # Poisson solve (which pins one constant per component) breaks down at that vertex.
+    # The gradient of one vertex dropped (its column of d0 zeroed): still d1 d0 = 0, but the
+    # constants leave the kernel of d0, so the harmonic dimension the matrices give no longer
+    # matches the torus's 2: refused at construction, naming both counts.
     d0 = ref["d0"].tolil()
     d0[:, 17] = 0.0
-    report = tvf.check(own_complex(mesh, V, F, d0=d0.tocsr()))
-    failed = {o["name"]: o for o in report.failures}
-    assert set(failed) == {"hodge_decomposition"}, str(report)
-    assert "row/column 17" in failed["hodge_decomposition"]["detail"]
+    with pytest.raises(tvf.TvfError, match=r"harmonic fields .* topology has 2"):
+        own_complex(mesh, V, F, d0=d0.tocsr())
 
 
 def test_from_matrices_validates_its_input(torus_mesh):
