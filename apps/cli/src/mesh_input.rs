@@ -57,6 +57,15 @@ impl MeshInput {
         }
     }
 
+    /// The built-in example `name` (one of [`EXAMPLE_NAMES`], checked when loaded).
+    pub fn example(name: &str) -> Self {
+        Self {
+            mesh: None,
+            example: Some(name.to_string()),
+            original_vertex: Default::default(),
+        }
+    }
+
     /// Loads and validates the mesh. File errors name the file, the line where one applies,
     /// and the problem; examples are validated like files (their report has no warnings).
     ///

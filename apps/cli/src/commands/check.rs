@@ -8,6 +8,7 @@ use crate::mesh_input::MeshInput;
 use crate::progress::Progress;
 use crate::report::Report;
 use anyhow::{bail, Context, Result};
+use clap::builder::PossibleValuesParser;
 use clap::Args;
 use serde_json::json;
 use std::path::PathBuf;
@@ -19,6 +20,7 @@ use tvf_conformance::property_runner::{
 use tvf_conformance::reference_report::catalog_reference_checks;
 use tvf_conformance::strategies::MeshNeeds;
 use tvf_core::discretization::HodgeComplex;
+use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
 use tvf_core::SurfaceMesh;
 
@@ -26,6 +28,7 @@ use tvf_core::SurfaceMesh;
 #[derive(Args)]
 #[command(after_help = "Examples:\n  \
     tvf check bunny.obj --discretization dec-circumcentric\n  \
+    tvf check --example genus2 --complex mine/\n  \
     tvf check --discretization conforming-voronoi --cases 64 --seed 1\n  \
     tvf check --discretization whitney-galerkin --cases 16 -o minimal.obj --json")]
 pub struct CheckArgs {
@@ -33,6 +36,14 @@ pub struct CheckArgs {
     /// --cases generated meshes instead.
     #[arg(value_name = "MESH")]
     mesh: Option<PathBuf>,
+    /// A built-in example mesh instead of a MESH file.
+    #[arg(
+        long,
+        value_name = "NAME",
+        conflicts_with = "mesh",
+        value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
+    )]
+    example: Option<String>,
     #[command(flatten)]
     discretization: DiscretizationFlags,
     /// Without MESH: number of generated meshes (closed of genus 0–5 and with boundary, several
@@ -69,20 +80,24 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let reference = catalog_reference_checks(&id);
     let mut report = Report::new(args.json);
     report.set("discretization", &id);
-    match &args.mesh {
-        Some(path) => {
-            let input = MeshInput::file(path.clone());
+    let input = match (&args.mesh, &args.example) {
+        (Some(path), _) => Some(MeshInput::file(path.clone())),
+        (None, Some(name)) => Some(MeshInput::example(name)),
+        (None, None) => None,
+    };
+    match &input {
+        Some(input) => {
             let mesh = input.load()?.mesh;
             let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
                 let flags = &args.discretization;
                 flags
-                    .build(catalog, mesh, &input)
+                    .build(catalog, mesh, input)
                     .map_err(|e| format!("{e:#}"))
             };
             let checked = check_mesh(&builder, &mesh, reference);
             report.line(format!(
                 "{id} on {} ({} faces): {}",
-                path.display(),
+                input.label(),
                 mesh.face_count(),
                 verdict(checked.passed())
             ));
