@@ -185,10 +185,23 @@ fn basis_export_writes_the_arrays_of_the_basis() {
     }
 }
 
-/// Whether the `.npy` header's shape is `shape` (numpy writes `(6,)`, npyz `(6, )`: both are the
-/// same tuple).
+/// Whether the `.npy` header's shape is `shape`, compared as tuples of numbers (numpy writes
+/// `(6,)` and `(4, 3)`, npyz `(6, )` and `(4, 3, )`: the same tuples).
 fn shape_is(header: &str, shape: &str) -> bool {
-    header
-        .replace(' ', "")
-        .contains(&format!("'shape':{}", shape.replace(' ', "")))
+    let numbers = |tuple: &str| -> Vec<String> {
+        tuple
+            .trim_matches(|c| c == '(' || c == ')')
+            .split(',')
+            .map(|n| n.trim().to_string())
+            .filter(|n| !n.is_empty())
+            .collect()
+    };
+    let Some(start) = header.find("'shape': (") else {
+        return false;
+    };
+    let rest = &header[start + "'shape': ".len()..];
+    let Some(end) = rest.find(')') else {
+        return false;
+    };
+    numbers(&rest[..=end]) == numbers(shape)
 }
