@@ -9,9 +9,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
 use tvf_design::{
-    checked_residuals, default_regularization, CompiledConstraint, ConstraintAssembler,
-    ConstraintResidual, ConstraintSet, DesignError, FullSoftDesign, ReducedBasis,
-    ReducedSoftDesign, SoftOptions, SplineSession,
+    checked_residuals, default_regularization, timed_reduced_design, timed_spline,
+    CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, DesignError,
+    FullSoftDesign, ReducedBasis, SoftOptions,
 };
 
 /// Parses the constraint JSON (`origin` names it in messages) and compiles it on the complex.
@@ -30,7 +30,8 @@ fn constraints(
     Ok((set, compiled))
 }
 
-/// The field and its per-constraint residuals as a dict.
+/// The field and its per-constraint residuals as a dict; a field with a non-finite coefficient
+/// is an error.
 fn result<'py>(
     py: Python<'py>,
     field: Vec<f64>,
@@ -38,6 +39,11 @@ fn result<'py>(
     omega: f64,
     origin: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if let Some(i) = field.iter().position(|x| !x.is_finite()) {
+        return Err(tvf_error(format!(
+            "{origin}: the designed field is not finite (coefficient {i})"
+        )));
+    }
     let residuals: Vec<ConstraintResidual> =
         checked_residuals(&field, compiled, omega).map_err(|e| with_context(origin, &e))?;
     let out = PyDict::new(py);
@@ -65,14 +71,7 @@ pub fn spline<'py>(
     let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
     let field = py.detach(|| -> Result<Vec<f64>, DesignError> {
         let reduced = ReducedBasis::from_spectral(&basis)?;
-        let mut session = SplineSession::new(&reduced, set.omega)?;
-        for constraint in compiled.iter().cloned() {
-            session.add(constraint)?;
-        }
-        let v = session.solve();
-        let mut field = vec![0.0; reduced.field_dimension()];
-        reduced.map(&v, &mut field)?;
-        Ok(field)
+        Ok(timed_spline(&reduced, set.omega, &compiled)?.field)
     });
     let field = field.map_err(|e| with_context(origin, &e))?;
     result(py, field, &compiled, set.omega, origin)
@@ -106,11 +105,6 @@ pub fn design<'py>(
             &e,
         )
     })?;
-    if let Some(i) = field.iter().position(|x| !x.is_finite()) {
-        return Err(tvf_error(format!(
-            "{origin}: the designed field is not finite (coefficient {i})"
-        )));
-    }
     result(py, field, &compiled, set.omega, origin)
 }
 
@@ -133,18 +127,8 @@ pub fn design_reduced<'py>(
             omega: set.omega,
             regularization: default_regularization(c),
         };
-        let mut design = ReducedSoftDesign::new(&reduced, options)?;
-        design.add_all(compiled.clone())?;
-        let v = design.solve();
-        let mut field = vec![0.0; reduced.field_dimension()];
-        reduced.map(&v, &mut field)?;
-        Ok(field)
+        Ok(timed_reduced_design(&reduced, options, &compiled)?.field)
     });
     let field = field.map_err(|e| with_context(origin, &e))?;
-    if let Some(i) = field.iter().position(|x| !x.is_finite()) {
-        return Err(tvf_error(format!(
-            "{origin}: the designed field is not finite (coefficient {i})"
-        )));
-    }
     result(py, field, &compiled, set.omega, origin)
 }
