@@ -3,7 +3,7 @@
 
 use super::spectral_inputs::{exact_hodge_energies, read_field, FieldArgs};
 use crate::context::RunContext;
-use crate::output_rules::{check_output, commit, stage};
+use crate::output_rules::{commit, stage};
 use anyhow::{Context, Result};
 use clap::Args;
 use serde_json::json;
@@ -46,13 +46,7 @@ fn split_json(split: &EnergySplit) -> serde_json::Value {
 
 /// Runs the analysis and writes the three files.
 pub fn run(mut args: AnalyzeArgs, context: &RunContext) -> Result<()> {
-    let field_path = args.inputs.field_path();
-    let basis_file = args.inputs.basis_file();
-    check_output(
-        &args.output,
-        &args.inputs.input,
-        &[Some(&field_path), basis_file],
-    )?;
+    let field_path = args.inputs.field_path_for(&args.output, &[])?;
     let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field_path, inputs.fields()?)?;
     let setup = args

@@ -3,7 +3,6 @@
 
 use super::spectral_inputs::{read_frames, FieldArgs};
 use crate::context::RunContext;
-use crate::output_rules::check_output;
 use crate::progress::Progress;
 use anyhow::Result;
 use clap::Args;
@@ -50,13 +49,7 @@ pub struct CompressArgs {
 
 /// Compresses the frames, writes the file and reports size and error.
 pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
-    let field = args.inputs.field_path();
-    let basis_file = args.inputs.basis_file();
-    check_output(
-        &args.output,
-        &args.inputs.input,
-        &[Some(&field), basis_file],
-    )?;
+    let field = args.inputs.field_path_for(&args.output, &[])?;
     let size = args.inputs.basis.size_or(BasisSize::Pairs(args.pairs));
     let inputs = args.inputs.load(context.catalog())?;
     let (frames, source) = read_frames(&field, inputs.fields()?)?;

@@ -3,7 +3,6 @@
 use super::spectral_inputs::{read_field, FieldArgs};
 use crate::computed_field::check_computed_field;
 use crate::context::RunContext;
-use crate::output_rules::check_output;
 use crate::report::Report;
 use anyhow::{bail, Result};
 use clap::Args;
@@ -64,11 +63,8 @@ fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
 
 /// Filters the field and writes the result.
 pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
-    let field = args.inputs.field_path();
-    let basis_file = args.inputs.basis_file();
     let curves = [curve_file(&args.integrable), curve_file(&args.cointegrable)];
-    let inputs = [Some(field.as_path()), basis_file, curves[0], curves[1]];
-    check_output(&args.output, &args.inputs.input, &inputs)?;
+    let field = args.inputs.field_path_for(&args.output, &curves)?;
     for (name, gain) in [("--harmonic", args.harmonic), ("--rest", args.rest)] {
         if !gain.is_finite() || gain < 0.0 {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");

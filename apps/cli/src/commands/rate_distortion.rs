@@ -3,7 +3,7 @@
 
 use super::spectral_inputs::{read_field, FieldArgs};
 use crate::context::RunContext;
-use crate::output_rules::{check_output, commit, stage};
+use crate::output_rules::{commit, stage};
 use crate::report::Report;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -52,13 +52,7 @@ pub struct RateDistortionArgs {
 
 /// Measures every point and writes the CSV and the plot.
 pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
-    let field = args.inputs.field_path();
-    let basis_file = args.inputs.basis_file();
-    check_output(
-        &args.output,
-        &args.inputs.input,
-        &[Some(&field), basis_file],
-    )?;
+    let field = args.inputs.field_path_for(&args.output, &[])?;
     // Without --basis or -k, compute as many pairs as the largest P tried.
     let largest = args.ks.iter().max().copied().unwrap_or(0);
     let size = args.inputs.basis.size_or(BasisSize::Pairs(largest));

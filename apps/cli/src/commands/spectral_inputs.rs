@@ -6,6 +6,7 @@
 
 use crate::basis_source::{BasisOptions, BasisSource};
 use crate::mesh_input::MeshInput;
+use crate::output_rules::check_output;
 use anyhow::Result;
 use clap::Args;
 use std::path::{Path, PathBuf};
@@ -34,6 +35,16 @@ impl FieldArgs {
     /// The field file (moved out of `MESH` with `--example`).
     pub fn field_path(&mut self) -> PathBuf {
         self.input.required_second(self.field.take(), "FIELD")
+    }
+
+    /// The field file, once the output rules hold for `output` against the inputs: the mesh,
+    /// the field, the `--basis` file and `others` ([`check_output`]).
+    pub fn field_path_for(&mut self, output: &Path, others: &[Option<&Path>]) -> Result<PathBuf> {
+        let field = self.field_path();
+        let mut inputs = vec![Some(field.as_path()), self.basis_file()];
+        inputs.extend_from_slice(others);
+        check_output(output, &self.input, &inputs)?;
+        Ok(field)
     }
 
     /// The `--basis` file, if given.
