@@ -66,15 +66,14 @@ pub fn spline<'py>(
     constraints_json: &str,
     origin: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let c = complex.complex.as_ref();
-    let (set, compiled) = constraints(complex, constraints_json, origin)?;
-    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
-    let field = py.detach(|| -> Result<Vec<f64>, DesignError> {
-        let reduced = ReducedBasis::from_spectral(&basis)?;
-        Ok(timed_spline(&reduced, set.omega, &compiled)?.field)
-    });
-    let field = field.map_err(|e| with_context(origin, &e))?;
-    result(py, field, &compiled, set.omega, origin)
+    reduced_solve(
+        py,
+        complex,
+        basis,
+        constraints_json,
+        origin,
+        |reduced, set, compiled| Ok(timed_spline(reduced, set.omega, compiled)?.field),
+    )
 }
 
 /// Soft-constrained design on the full field space (sparse `LDLᵀ` with refinement): dict
@@ -119,15 +118,39 @@ pub fn design_reduced<'py>(
     origin: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
+    reduced_solve(
+        py,
+        complex,
+        basis,
+        constraints_json,
+        origin,
+        |reduced, set, compiled| {
+            let options = SoftOptions {
+                omega: set.omega,
+                regularization: default_regularization(c),
+            };
+            Ok(timed_reduced_design(reduced, options, compiled)?.field)
+        },
+    )
+}
+
+/// A field solved by `solve` in the reduced basis `basis` with the constraints of
+/// `constraints_json` (without the GIL), with its residuals.
+fn reduced_solve<'py>(
+    py: Python<'py>,
+    complex: &Complex,
+    basis: BasisParts<'py>,
+    constraints_json: &str,
+    origin: &str,
+    solve: impl Fn(&ReducedBasis, &ConstraintSet, &[CompiledConstraint]) -> Result<Vec<f64>, DesignError>
+        + Send
+        + Sync,
+) -> PyResult<Bound<'py, PyDict>> {
     let (set, compiled) = constraints(complex, constraints_json, origin)?;
-    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
-    let field = py.detach(|| -> Result<Vec<f64>, DesignError> {
+    let basis = spectral_basis(complex.complex.as_ref(), basis.0, basis.1, basis.2)?;
+    let field = py.detach(|| {
         let reduced = ReducedBasis::from_spectral(&basis)?;
-        let options = SoftOptions {
-            omega: set.omega,
-            regularization: default_regularization(c),
-        };
-        Ok(timed_reduced_design(&reduced, options, &compiled)?.field)
+        solve(&reduced, &set, &compiled)
     });
     let field = field.map_err(|e| with_context(origin, &e))?;
     result(py, field, &compiled, set.omega, origin)
