@@ -2,11 +2,13 @@
 //! researcher assembled (`Complex.from_matrices`), behind the same seam.
 
 use crate::arrays::{csr_from_parts, CsrParts};
+use crate::basis::{spectral_basis, BasisParts};
 use crate::errors::{from_error, tvf_error};
 use crate::masses::{
     direct_co_potential_mass, mass_description, mass_from_input, Given, MassInput,
 };
 use crate::mesh::Mesh;
+use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
@@ -14,6 +16,7 @@ use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     builtin_catalog, catalog_entry, BoxedComplex, MatrixComplex, MatrixSampling,
 };
+use tvf_spectral::SpectralBasis;
 
 /// A complex and the mesh it was built on.
 #[pyclass(frozen, module = "tvf._native")]
@@ -178,4 +181,35 @@ pub fn discretizations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             Ok(d)
         })
         .collect()
+}
+
+/// What the field functions check before they run.
+impl Complex {
+    /// A field's coefficients, checked: length `n1`, finite.
+    pub fn field(&self, field: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
+        let values = field.as_slice()?.to_vec();
+        let complex = self.complex.as_ref();
+        if values.len() != complex.field_dimension() {
+            return Err(tvf_error(format!(
+                "field: expected {} coefficients for '{}', got {}",
+                complex.field_dimension(),
+                complex.id(),
+                values.len()
+            )));
+        }
+        if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+            return Err(tvf_error(format!(
+                "field: non-finite value at coefficient {i}"
+            )));
+        }
+        Ok(values)
+    }
+
+    /// A basis given as Python's arrays, checked against this complex.
+    pub fn basis(
+        &self,
+        (eigenvalues, families, coefficients): BasisParts<'_>,
+    ) -> PyResult<SpectralBasis> {
+        spectral_basis(self.complex.as_ref(), eigenvalues, families, coefficients)
+    }
 }

@@ -1,7 +1,7 @@
 //! `tvf.spline` and `tvf.design`: fields from constraint sets, in the JSON format of the
 //! command line's constraint files (Python passes the dict serialised as JSON).
 
-use crate::basis::{spectral_basis, BasisParts};
+use crate::basis::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
 use numpy::IntoPyArray;
@@ -56,26 +56,6 @@ fn result<'py>(
     Ok(out)
 }
 
-/// The spline (hard constraints) in the given basis: dict `field` (`n1`), `residuals`
-/// (`{id: (absolute, relative)}`).
-#[pyfunction]
-pub fn spline<'py>(
-    py: Python<'py>,
-    complex: &Complex,
-    basis: BasisParts<'py>,
-    constraints_json: &str,
-    origin: &str,
-) -> PyResult<Bound<'py, PyDict>> {
-    reduced_solve(
-        py,
-        complex,
-        basis,
-        constraints_json,
-        origin,
-        |reduced, set, compiled| Ok(timed_spline(reduced, set.omega, compiled)?.field),
-    )
-}
-
 /// Soft-constrained design on the full field space (sparse `LDLᵀ` with refinement): dict
 /// `field`, `residuals`.
 #[pyfunction]
@@ -107,15 +87,18 @@ pub fn design<'py>(
     result(py, field, &compiled, set.omega, origin)
 }
 
-/// Soft-constrained design in the given basis (dense Cholesky of the reduced system
-/// `(Λ + ωΛ² + CᵀWC) v = CᵀWc`; any complex): dict `field`, `residuals`.
+/// A field in the given basis from the constraints of `constraints_json`: the spline (hard
+/// constraints, `soft` false) or soft-constrained design (dense Cholesky of the reduced system
+/// `(Λ + ωΛ² + CᵀWC) v = CᵀWc`, `soft` true); any complex. Dict `field` (`n1`), `residuals`
+/// (`{id: (absolute, relative)}`).
 #[pyfunction]
-pub fn design_reduced<'py>(
+pub fn reduced<'py>(
     py: Python<'py>,
     complex: &Complex,
     basis: BasisParts<'py>,
     constraints_json: &str,
     origin: &str,
+    soft: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
     reduced_solve(
@@ -125,6 +108,9 @@ pub fn design_reduced<'py>(
         constraints_json,
         origin,
         |reduced, set, compiled| {
+            if !soft {
+                return Ok(timed_spline(reduced, set.omega, compiled)?.field);
+            }
             let options = SoftOptions {
                 omega: set.omega,
                 regularization: default_regularization(c),
@@ -147,7 +133,7 @@ fn reduced_solve<'py>(
         + Sync,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (set, compiled) = constraints(complex, constraints_json, origin)?;
-    let basis = spectral_basis(complex.complex.as_ref(), basis.0, basis.1, basis.2)?;
+    let basis = complex.basis(basis)?;
     let field = py.detach(|| {
         let reduced = ReducedBasis::from_spectral(&basis)?;
         solve(&reduced, &set, &compiled)

@@ -1,39 +1,17 @@
 //! Field functions: the Hodge decomposition, Fourier coefficients, spectral filters and
 //! compression, on field coefficient vectors (`n1` entries; Python converts face vectors).
 
-use crate::basis::{spectral_basis, BasisParts};
+use crate::basis::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::HodgeOperators;
 use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::{
     basis_id, CoefficientCoding, CompressedFields, FieldCodec, FrequencyResponse, SpectralFilter,
 };
-
-/// A field's coefficients, checked: length `n1`, finite.
-fn field_values(
-    complex: &dyn HodgeComplex,
-    field: &PyReadonlyArray1<'_, f64>,
-) -> PyResult<Vec<f64>> {
-    let values = field.as_slice()?.to_vec();
-    if values.len() != complex.field_dimension() {
-        return Err(tvf_error(format!(
-            "field: expected {} coefficients for '{}', got {}",
-            complex.field_dimension(),
-            complex.id(),
-            values.len()
-        )));
-    }
-    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-        return Err(tvf_error(format!(
-            "field: non-finite value at coefficient {i}"
-        )));
-    }
-    Ok(values)
-}
 
 /// Face vectors (`F × 3`) as field coefficients, with the largest dropped normal component.
 #[pyfunction]
@@ -67,9 +45,9 @@ pub fn to_face_vectors<'py>(
     complex: &Complex,
     field: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let c = complex.complex.as_ref();
-    let sampling = c.require_sampling().map_err(|e| from_error(&e))?;
-    let values = field_values(c, &field)?;
+    let values = complex.field(&field)?;
+    let sampling = complex.complex.require_sampling();
+    let sampling = sampling.map_err(|e| from_error(&e))?;
     let vectors = sampling
         .to_face_vectors(&values)
         .map_err(|e| from_error(&e))?;
@@ -85,7 +63,7 @@ pub fn decompose<'py>(
     field: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
-    let values = field_values(c, &field)?;
+    let values = complex.field(&field)?;
     let parts = py
         .detach(|| HodgeDecomposer::new(c).and_then(|d| d.decompose(&values)))
         .map_err(|e| {
@@ -111,9 +89,8 @@ pub fn coefficients<'py>(
     basis: BasisParts<'py>,
     field: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<(Bound<'py, PyAny>, f64)> {
-    let c = complex.complex.as_ref();
-    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
-    let values = field_values(c, &field)?;
+    let basis = complex.basis(basis)?;
+    let values = complex.field(&field)?;
     let analysis = py
         .detach(|| tvf_spectral::FourierAnalysis::new(&basis, &values))
         .map_err(|e| from_error(&e))?;
@@ -137,9 +114,8 @@ pub fn filter<'py>(
     harmonic_gain: f64,
     rest_gain: f64,
 ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
-    let c = complex.complex.as_ref();
-    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
-    let values = field_values(c, &field)?;
+    let basis = complex.basis(basis)?;
+    let values = complex.field(&field)?;
     let response = |what: &str, spec: &str| -> PyResult<FrequencyResponse> {
         spec.parse::<FrequencyResponse>()
             .map_err(|e| with_context(&format!("--{what} {spec}"), &e))
@@ -192,7 +168,7 @@ pub fn compress<'py>(
     bits: Option<u32>,
 ) -> PyResult<Bound<'py, PyBytes>> {
     let c = complex.complex.as_ref();
-    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let basis = complex.basis(basis)?;
     let codec = codec(complex, &basis, pairs, bits)?;
     let view = fields.as_array();
     if view.ncols() != c.field_dimension() {
@@ -223,7 +199,7 @@ pub fn decompress<'py>(
     data: &[u8],
 ) -> PyResult<Bound<'py, PyAny>> {
     let c = complex.complex.as_ref();
-    let basis = spectral_basis(c, basis.0, basis.1, basis.2)?;
+    let basis = complex.basis(basis)?;
     let file = CompressedFields::from_bytes(data).map_err(|e| from_error(&e))?;
     let codec = FieldCodec::for_file(
         &basis,

@@ -39,9 +39,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fields::filter, m)?)?;
     m.add_function(wrap_pyfunction!(fields::compress, m)?)?;
     m.add_function(wrap_pyfunction!(fields::decompress, m)?)?;
-    m.add_function(wrap_pyfunction!(design::spline, m)?)?;
+    m.add_function(wrap_pyfunction!(design::reduced, m)?)?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
-    m.add_function(wrap_pyfunction!(design::design_reduced, m)?)?;
     m.add_function(wrap_pyfunction!(eigsh::eigsh, m)?)?;
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
     m.add_function(wrap_pyfunction!(convergence::convergence, m)?)?;

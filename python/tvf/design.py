@@ -38,15 +38,9 @@ def spline(mesh, constraints, k=None, basis=None, discretization=DEFAULT_DISCRET
 
     Returns a dict: ``field`` (``(F, 3)`` face vectors, or coefficients without sampling),
     ``coefficients`` (``n1``), ``residuals`` (``{id: (absolute, relative)}``)."""
-    if basis is None:
-        if k is None:
-            raise TvfError("spline: give k (the basis size) or a basis")
-        complex_ = as_complex(mesh, discretization, boundary)
-        basis = compute_basis(complex_, k, seed=seed, progress=progress)
-    else:
-        complex_ = _complex_of(mesh, discretization, boundary, basis)
-    raw = _native.spline(complex_._native, basis._parts(), _json(constraints), str(origin))
-    return _result(complex_, raw)
+    if basis is None and k is None:
+        raise TvfError("spline: give k (the basis size) or a basis")
+    return _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft=False)
 
 
 def design(mesh, constraints, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", origin="constraints", k=None, basis=None, seed=0, progress=None):
@@ -70,10 +64,16 @@ def design(mesh, constraints, discretization=DEFAULT_DISCRETIZATION, boundary="t
         complex_ = as_complex(mesh, discretization, boundary)
         raw = _native.design(complex_._native, _json(constraints), str(origin))
         return _result(complex_, raw)
+    return _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft=True)
+
+
+def _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft):
+    """The spline (``soft`` false) or reduced soft design in ``basis``, or in the basis of the
+    ``k`` lowest eigenfields computed here."""
     if basis is None:
         complex_ = as_complex(mesh, discretization, boundary)
         basis = compute_basis(complex_, k, seed=seed, progress=progress)
     else:
         complex_ = _complex_of(mesh, discretization, boundary, basis)
-    raw = _native.design_reduced(complex_._native, basis._parts(), _json(constraints), str(origin))
+    raw = _native.reduced(complex_._native, basis._parts(), _json(constraints), str(origin), soft)
     return _result(complex_, raw)

@@ -12,43 +12,44 @@ pub struct Asset {
     pub body: &'static str,
 }
 
+impl Asset {
+    /// An HTML page.
+    const fn html(path: &'static str, body: &'static str) -> Self {
+        Asset {
+            path,
+            content_type: "text/html; charset=utf-8",
+            body,
+        }
+    }
+
+    /// A style sheet.
+    const fn css(path: &'static str, body: &'static str) -> Self {
+        Asset {
+            path,
+            content_type: "text/css; charset=utf-8",
+            body,
+        }
+    }
+
+    /// A JavaScript module.
+    const fn script(path: &'static str, body: &'static str) -> Self {
+        Asset {
+            path,
+            content_type: "text/javascript; charset=utf-8",
+            body,
+        }
+    }
+}
+
 /// Every file of the page.
 pub const ASSETS: &[Asset] = &[
-    Asset {
-        path: "/index.html",
-        content_type: "text/html; charset=utf-8",
-        body: include_str!("../assets/index.html"),
-    },
-    Asset {
-        path: "/style.css",
-        content_type: "text/css; charset=utf-8",
-        body: include_str!("../assets/style.css"),
-    },
-    Asset {
-        path: "/app.js",
-        content_type: "text/javascript; charset=utf-8",
-        body: include_str!("../assets/app.js"),
-    },
-    Asset {
-        path: "/mesh.js",
-        content_type: "text/javascript; charset=utf-8",
-        body: include_str!("../assets/mesh.js"),
-    },
-    Asset {
-        path: "/camera.js",
-        content_type: "text/javascript; charset=utf-8",
-        body: include_str!("../assets/camera.js"),
-    },
-    Asset {
-        path: "/gl.js",
-        content_type: "text/javascript; charset=utf-8",
-        body: include_str!("../assets/gl.js"),
-    },
-    Asset {
-        path: "/net.js",
-        content_type: "text/javascript; charset=utf-8",
-        body: include_str!("../assets/net.js"),
-    },
+    Asset::html("/index.html", include_str!("../assets/index.html")),
+    Asset::css("/style.css", include_str!("../assets/style.css")),
+    Asset::script("/app.js", include_str!("../assets/app.js")),
+    Asset::script("/mesh.js", include_str!("../assets/mesh.js")),
+    Asset::script("/camera.js", include_str!("../assets/camera.js")),
+    Asset::script("/gl.js", include_str!("../assets/gl.js")),
+    Asset::script("/net.js", include_str!("../assets/net.js")),
 ];
 
 /// The embedded file for a URL path (`/` is the page itself).

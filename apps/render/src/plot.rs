@@ -335,22 +335,21 @@ impl Plot {
 
 /// Grid lines on the plot `layer`: minor ones light, major ones darker, above the minor ones.
 fn draw_grid(layer: &mut RgbaImage, frame: &PlotFrame, ticks: &PlotTicks) {
+    const MINOR: [u8; 3] = [238, 238, 238];
+    const MAJOR: [u8; 3] = [215, 215, 215];
     let (pw, ph) = (frame.pw, frame.ph);
-    for &v in &ticks.x_minor {
-        let x = frame.to_px(v);
-        draw_line(layer, [x, 0.0], [x, ph], 1.0, [238, 238, 238]);
-    }
-    for &v in &ticks.y_minor {
-        let y = frame.to_py(v);
-        draw_line(layer, [0.0, y], [pw, y], 1.0, [238, 238, 238]);
-    }
-    for &v in &ticks.x_major {
-        let x = frame.to_px(v);
-        draw_line(layer, [x, 0.0], [x, ph], 1.0, [215, 215, 215]);
-    }
-    for &v in &ticks.y_major {
-        let y = frame.to_py(v);
-        draw_line(layer, [0.0, y], [pw, y], 1.0, [215, 215, 215]);
+    for (x_values, y_values, colour) in [
+        (&ticks.x_minor, &ticks.y_minor, MINOR),
+        (&ticks.x_major, &ticks.y_major, MAJOR),
+    ] {
+        for &v in x_values {
+            let x = frame.to_px(v);
+            draw_line(layer, [x, 0.0], [x, ph], 1.0, colour);
+        }
+        for &v in y_values {
+            let y = frame.to_py(v);
+            draw_line(layer, [0.0, y], [pw, y], 1.0, colour);
+        }
     }
 }
 
