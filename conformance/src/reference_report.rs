@@ -1,5 +1,6 @@
 //! [`ReferenceCheck`]: the reference checks of [`crate::reference`] as values, the ones each
-//! catalog entry opts into ([`catalog_reference_checks`]), and [`measure_reference`], which
+//! catalog entry opts into ([`catalog_reference_checks`], for both the test suite and
+//! `tvf check`), and [`measure_reference`], which
 //! measures a reference check on one complex and one mesh as [`CheckOutcome`]s (with numbers)
 //! instead of asserting — for [`crate::property_runner`] and `tvf check`.
 
@@ -18,23 +19,24 @@ pub const ROTATION_MASS_TOLERANCE: f64 = 1e-14;
 /// Relative tolerance of `M1 = (A_t, A_t)` and of `1ᵀ M2⁻¹ 1 = area`.
 pub const MASS_TOLERANCE: f64 = 1e-12;
 
-/// A reference check of [`crate::reference`].
+/// A reference check of [`crate::reference`], grouped by what it compares: operators against
+/// explicit formulas, masses against areas and integrals, then the rotation and the spectrum.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ReferenceCheck {
     /// Both stiffness matrices equal their explicit formulas by node kind.
     CotanFormula,
     /// The potential stiffness equals its explicit formula.
     PotentialCotanFormula,
-    /// `J² = −I` and `Jᵀ M1 J = M1`.
-    Rotation,
-    /// Face fields with `M1 = (A_t, A_t)`.
-    FaceFields,
     /// Divergence and curl against explicit sums (asserted by the test suite only).
     DivCurlFormulas,
     /// `1ᵀ M2⁻¹ 1 = area`.
     CoPotentialMasses,
+    /// Face fields with `M1 = (A_t, A_t)`.
+    FaceFields,
     /// Every mass the Galerkin mass of what the complex samples (asserted by the test suite only).
     GalerkinMasses,
+    /// `J² = −I` and `Jᵀ M1 J = M1`.
+    Rotation,
     /// Convergence to `l(l+1)` on the unit icosphere (mesh-independent; asserted by the test
     /// suite only).
     SphereSpectrum,
@@ -46,11 +48,11 @@ impl ReferenceCheck {
         match self {
             ReferenceCheck::CotanFormula => "cotan_formula",
             ReferenceCheck::PotentialCotanFormula => "potential_cotan_formula",
-            ReferenceCheck::Rotation => "rotation",
-            ReferenceCheck::FaceFields => "face_fields",
             ReferenceCheck::DivCurlFormulas => "div_curl_formulas",
             ReferenceCheck::CoPotentialMasses => "co_potential_masses",
+            ReferenceCheck::FaceFields => "face_fields",
             ReferenceCheck::GalerkinMasses => "galerkin_masses",
+            ReferenceCheck::Rotation => "rotation",
             ReferenceCheck::SphereSpectrum => "sphere_spectrum",
         }
     }
@@ -83,9 +85,10 @@ const WHITNEY_GALERKIN: &[ReferenceCheck] = &[
     SphereSpectrum,
 ];
 
-/// The reference checks catalog entry `id` (or a complex id `{id}+{boundary}`) opts into: the
-/// `reference = [...]` of its line in `conformance/tests/conformance.rs` (keep both lists
-/// equal); none for an id the catalog does not know.
+/// The reference checks catalog entry `id` (or a complex id `{id}+{boundary}`) opts into, in
+/// the order they run: the test suite's line of the entry ([`crate::catalog_suites!`], in
+/// `conformance/tests/conformance.rs`) runs them and `tvf check` measures them; none for an id
+/// the catalog does not know.
 pub fn catalog_reference_checks(id: &str) -> &'static [ReferenceCheck] {
     match tvf_discretizations::split_complex_id(id).0 {
         "conforming-barycentric"

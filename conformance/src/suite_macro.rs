@@ -3,16 +3,18 @@
 
 /// Instantiates the conformance suite for one discretization: a module `name` with one `#[test]`
 /// per core check of [`crate::suite`] (three of them properties over random draws), and a
-/// submodule `reference` with one `#[test]` per named check of [`crate::reference`].
+/// submodule `reference` with one `#[test]` per named check of [`crate::reference`] and one,
+/// `listed`, that runs a list of them given as a value.
 ///
 /// ```text
 /// conformance_suite!(name, entry = catalog_entry);
 /// conformance_suite!(name, entry = catalog_entry, reference = [cotan_formula, rotation]);
+/// conformance_suite!(name, entry = catalog_entry, reference_checks = catalog_reference_checks(id));
 /// conformance_suite!(name, constructor);
 /// conformance_suite!(name, constructor, corpus = Corpus::Delaunay);
 /// conformance_suite!(name, constructor, reference = [cotan_formula, rotation]);
 /// conformance_suite!(name, constructor, cases = 16);
-/// conformance_suite!(name, constructor, corpus = ..., reference = [...], cases = ...);
+/// conformance_suite!(name, constructor, corpus = ..., reference = [...], reference_checks = ..., cases = ...);
 /// ```
 ///
 /// - `entry`: an expression of type [`CatalogEntry`](tvf_discretizations::CatalogEntry) (of any
@@ -27,7 +29,12 @@
 ///   'static` or a `Box<dyn HodgeComplex>`; evaluated inside the generated module (which
 ///   imports `super::*`).
 /// - `corpus`: an expression of type [`crate::corpus::Corpus`], default `Corpus::General`.
-/// - `reference`: names of functions in [`crate::reference`] (an unknown name does not compile).
+/// - `reference`: names of functions in [`crate::reference`] (an unknown name does not compile),
+///   one test each.
+/// - `reference_checks`: an expression whose `.to_vec()` is a
+///   `Vec<`[`ReferenceCheck`](crate::reference_report::ReferenceCheck)`>` (e.g. a built-in
+///   entry's [`catalog_reference_checks`](crate::reference_report::catalog_reference_checks)),
+///   run in order by one test, `reference::listed` ([`crate::reference::run_checks`]).
 /// - `cases`: cases per property (`rigid_motion_invariance`, `jittered_mesh`,
 ///   `generated_meshes`), default [`crate::suite::DEFAULT_CASES`] (64). The environment variable
 ///   `PROPTEST_CASES`, which proptest reads, can lower it (never raise it):
@@ -38,6 +45,7 @@ macro_rules! conformance_suite {
         $name:ident,
         entry = $entry:expr
         $(, reference = [$($check:ident),* $(,)?])?
+        $(, reference_checks = $checks:expr)?
         $(,)?
     ) => {
         mod $name {
@@ -54,6 +62,7 @@ macro_rules! conformance_suite {
                 |mesh| suite_entry().build(mesh),
                 corpus = $crate::corpus::Corpus::for_catalog_entry(&suite_entry())
                 $(, reference = [$($check),*])?
+                $(, reference_checks = $checks)?
             );
 
             /// The core suite on meshes with boundary, one test per boundary condition.
@@ -81,6 +90,7 @@ macro_rules! conformance_suite {
         $constructor:expr
         $(, corpus = $corpus:expr)?
         $(, reference = [$($check:ident),* $(,)?])?
+        $(, reference_checks = $checks:expr)?
         $(, cases = $cases:expr)?
         $(,)?
     ) => {
@@ -106,6 +116,13 @@ macro_rules! conformance_suite {
             fn cases() -> u32 {
                 $crate::suite::property_cases($crate::__suite_cases!($($cases)?))
             }
+
+            $(
+                /// The reference checks of the suite line's `reference_checks`.
+                fn reference_checks() -> ::std::vec::Vec<$crate::reference_report::ReferenceCheck> {
+                    $checks.to_vec()
+                }
+            )?
 
             #[test]
             fn nodes_and_masses() {
@@ -198,7 +215,26 @@ macro_rules! conformance_suite {
                         $crate::reference::$check(&super::build_complex, super::corpus());
                     }
                 )*)?
+
+                $crate::__listed_reference_checks!($($checks)?);
             }
+        }
+    };
+}
+
+/// The test `listed` of a suite line with `reference_checks` (none without).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __listed_reference_checks {
+    () => {};
+    ($checks:expr) => {
+        #[test]
+        fn listed() {
+            $crate::reference::run_checks(
+                &super::reference_checks(),
+                &super::build_complex,
+                super::corpus(),
+            );
         }
     };
 }
@@ -230,24 +266,26 @@ macro_rules! __suite_corpus {
 
 /// One [`conformance_suite!`](crate::conformance_suite)`(name, entry = ...)` per built-in catalog
 /// entry (the entry by id, [`crate::builtin_entry`]: closed meshes on the entry's corpus, meshes
-/// with boundary for both boundary conditions), plus the constant `COVERED_IDS` and a test
+/// with boundary for both boundary conditions, and the reference checks the entry opts into,
+/// [`catalog_reference_checks`](crate::reference_report::catalog_reference_checks), the list
+/// `tvf check` measures), plus the constant `COVERED_IDS` and a test
 /// `every_catalog_entry_has_a_suite_line` that fails unless the lines cover the built-in catalog
 /// exactly.
 ///
 /// ```text
 /// catalog_suites! {
-///     conforming_barycentric => "conforming-barycentric", reference = [cotan_formula, rotation];
+///     conforming_barycentric => "conforming-barycentric";
 ///     dec_barycentric => "dec-barycentric";
 /// }
 /// ```
 #[macro_export]
 macro_rules! catalog_suites {
-    ($($name:ident => $id:literal $(, reference = [$($check:ident),* $(,)?])?;)*) => {
+    ($($name:ident => $id:literal;)*) => {
         $(
             $crate::conformance_suite!(
                 $name,
-                entry = $crate::builtin_entry($id)
-                $(, reference = [$($check),*])?
+                entry = $crate::builtin_entry($id),
+                reference_checks = $crate::reference_report::catalog_reference_checks($id)
             );
         )*
 

@@ -251,12 +251,17 @@ impl HodgeComplex for MatrixComplex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::catalog_entry;
+    use crate::{catalog_entry, BoxedComplex};
     use tvf_core::discretization::HodgeOperators;
-    use tvf_core::generate::{icosphere, torus};
+    use tvf_core::generate::{disk, icosphere, torus};
 
     /// `d0`, `d1` and the three masses of a complex.
     type Parts = (CsMat<f64>, CsMat<f64>, Mass, Mass, Mass);
+
+    /// The complex of built-in catalog entry `id` on `mesh`, default boundary condition.
+    fn catalog_complex(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
+        catalog_entry(id).unwrap().build(mesh).unwrap()
+    }
 
     fn parts(c: &dyn HodgeComplex) -> Parts {
         (
@@ -268,6 +273,38 @@ mod tests {
         )
     }
 
+    /// [`MatrixComplex::new`] of `parts` on the closed `mesh`.
+    fn closed_copy(
+        mesh: &SurfaceMesh,
+        (d0, d1, m0, m1, m2): Parts,
+        sampling: MatrixSampling,
+    ) -> Result<MatrixComplex, DiscretizationError> {
+        MatrixComplex::new("copy", mesh, d0, d1, m0, m1, m2, sampling)
+    }
+
+    /// [`MatrixComplex::with_boundary`] of `parts` on `mesh` with `fixed` nodes, without sampling.
+    fn copy_with_fixed(
+        mesh: &SurfaceMesh,
+        (d0, d1, m0, m1, m2): Parts,
+        fixed: &FixedNodes,
+        condition: BoundaryCondition,
+    ) -> Result<MatrixComplex, DiscretizationError> {
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+        MatrixComplex::with_boundary(
+            "copy",
+            mesh,
+            matrices,
+            fixed,
+            condition,
+            MatrixSampling::None,
+        )
+    }
+
+    /// The message of a refused complex.
+    fn refusal(result: Result<MatrixComplex, DiscretizationError>) -> String {
+        result.err().expect("the matrices are refused").to_string()
+    }
+
     fn diagonal(mass: &Mass) -> Vec<f64> {
         mass.diagonal_values().unwrap().to_vec()
     }
@@ -275,22 +312,8 @@ mod tests {
     #[test]
     fn rebuilds_a_catalog_complex_with_its_operators() {
         let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let built = catalog_entry("conforming-barycentric")
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
-        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
-        let copy = MatrixComplex::new(
-            "copy",
-            &mesh,
-            d0,
-            d1,
-            m0,
-            m1,
-            m2,
-            MatrixSampling::FaceFrames,
-        )
-        .unwrap();
+        let built = catalog_complex("conforming-barycentric", &mesh);
+        let copy = closed_copy(&mesh, parts(built.as_ref()), MatrixSampling::FaceFrames).unwrap();
         assert_eq!(copy.potential_nodes().kind, NodeKind::Vertices);
         assert_eq!(copy.co_potential_nodes().kind, NodeKind::Edges);
         assert_eq!(copy.topology().harmonic_dimension, 2);
@@ -309,29 +332,20 @@ mod tests {
     #[test]
     fn rebuilds_every_entry_with_its_fixed_nodes_and_kernels() {
         use crate::builtin_catalog;
-        let meshes = [icosphere(1), tvf_core::generate::disk(3)];
+        let meshes = [icosphere(1), disk(3)];
         for mesh in &meshes {
             for entry in builtin_catalog() {
                 for condition in BoundaryCondition::ALL {
                     let Ok(built) = entry.build_with(mesh, condition) else {
                         continue;
                     };
-                    let (d0, d1, m0, m1, m2) = parts(built.as_ref());
                     let fixed = FixedNodes::of([
                         built.potential_nodes(),
                         built.field_nodes(),
                         built.co_potential_nodes(),
                     ]);
-                    let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
-                    let copy = MatrixComplex::with_boundary(
-                        "copy",
-                        mesh,
-                        matrices,
-                        &fixed,
-                        condition,
-                        MatrixSampling::None,
-                    )
-                    .unwrap_or_else(|e| panic!("{} {condition:?}: {e}", entry.id()));
+                    let copy = copy_with_fixed(mesh, parts(built.as_ref()), &fixed, condition)
+                        .unwrap_or_else(|e| panic!("{} {condition:?}: {e}", entry.id()));
                     assert_eq!(
                         copy.matrix_hash(),
                         built.matrix_hash(),
@@ -346,45 +360,25 @@ mod tests {
 
     #[test]
     fn an_open_mesh_needs_its_fixed_nodes() {
-        let mesh = tvf_core::generate::disk(3);
-        let built = catalog_entry("conforming-barycentric")
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
-        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
-        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
-        let message = MatrixComplex::with_boundary(
-            "x",
-            &mesh,
-            matrices,
-            &FixedNodes::default(),
-            BoundaryCondition::Tangential,
-            MatrixSampling::None,
-        )
-        .err()
-        .unwrap()
-        .to_string();
+        let mesh = disk(3);
+        let built = catalog_complex("conforming-barycentric", &mesh);
+        let refused_with = |fixed: &FixedNodes| {
+            refusal(copy_with_fixed(
+                &mesh,
+                parts(built.as_ref()),
+                fixed,
+                BoundaryCondition::Tangential,
+            ))
+        };
+        let message = refused_with(&FixedNodes::default());
         assert!(
             message.contains("give the nodes the boundary condition fixes"),
             "{message}"
         );
-        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
-        let wrong = FixedNodes {
+        let message = refused_with(&FixedNodes {
             potentials: vec![0],
             ..FixedNodes::default()
-        };
-        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
-        let message = MatrixComplex::with_boundary(
-            "x",
-            &mesh,
-            matrices,
-            &wrong,
-            BoundaryCondition::Tangential,
-            MatrixSampling::None,
-        )
-        .err()
-        .unwrap()
-        .to_string();
+        });
         assert!(
             message.contains("fixed potential node 0 has a nonzero column of d0"),
             "{message}"
@@ -394,25 +388,14 @@ mod tests {
     #[test]
     fn whitney_sampling_needs_edge_fields() {
         let mesh = icosphere(1);
-        let dec = catalog_entry("dec-circumcentric")
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
-        let (d0, d1, m0, m1, m2) = parts(dec.as_ref());
-        let ok = MatrixComplex::new(
-            "dec",
-            &mesh,
-            d0.clone(),
-            d1.clone(),
-            m0.clone(),
-            m1.clone(),
-            m2.clone(),
-            MatrixSampling::Whitney,
-        );
+        let dec = catalog_complex("dec-circumcentric", &mesh);
+        let ok = closed_copy(&mesh, parts(dec.as_ref()), MatrixSampling::Whitney);
         assert!(ok.unwrap().sampling().is_some());
-        let wrong =
-            MatrixComplex::new("dec", &mesh, d0, d1, m0, m1, m2, MatrixSampling::FaceFrames);
-        let message = wrong.err().unwrap().to_string();
+        let message = refusal(closed_copy(
+            &mesh,
+            parts(dec.as_ref()),
+            MatrixSampling::FaceFrames,
+        ));
         assert!(
             message.contains("face-frames sampling needs fields on face-frames"),
             "{message}"
@@ -422,25 +405,11 @@ mod tests {
     #[test]
     fn refuses_broken_matrices_naming_them() {
         let mesh = icosphere(1);
-        let built = catalog_entry("conforming-barycentric")
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let built = catalog_complex("conforming-barycentric", &mesh);
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let build = |d0: CsMat<f64>, m1: Mass| {
-            MatrixComplex::new(
-                "x",
-                &mesh,
-                d0,
-                d1.clone(),
-                m0.clone(),
-                m1,
-                m2.clone(),
-                MatrixSampling::None,
-            )
-            .err()
-            .unwrap()
-            .to_string()
+            let parts = (d0, d1.clone(), m0.clone(), m1, m2.clone());
+            refusal(closed_copy(&mesh, parts, MatrixSampling::None))
         };
         let mut broken = d0.clone();
         broken.data_mut()[3] += 0.5;

@@ -84,7 +84,11 @@ where
     /// `{family}-{lumping}` (`conforming-barycentric`, `nonconforming-voronoi`, ...), default
     /// boundary condition. Fails on a degenerate face.
     pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
-        Self::with_boundary(mesh, lumping, BoundaryCondition::default())
+        Self::from_mesh(
+            mesh,
+            SpaceMasses::Lumped(lumping),
+            BoundaryCondition::default(),
+        )
     }
 
     /// [`FiniteElementComplex::new`] with boundary condition `boundary` (the decompositions it
@@ -101,7 +105,7 @@ where
     /// The complex with the consistent (Galerkin) P1 mass ([`SpaceMasses::Consistent`]),
     /// catalog id `{family}-consistent`, default boundary condition.
     pub fn consistent(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
-        Self::consistent_with_boundary(mesh, BoundaryCondition::default())
+        Self::from_mesh(mesh, SpaceMasses::Consistent, BoundaryCondition::default())
     }
 
     /// [`FiniteElementComplex::consistent`] with boundary condition `boundary` (`+{boundary}`

@@ -6,6 +6,7 @@
 use crate::constraint::SparseRow;
 use crate::error::DesignError;
 use crate::galerkin_blocks::{EnergyWeights, GalerkinBlocks};
+use crate::soft_system::Factoring;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef};
@@ -14,7 +15,7 @@ use sprs::{CsMat, TriMat};
 use std::collections::BTreeSet;
 use tvf_solvers::convert::upper_triangle_csc;
 use tvf_solvers::ordering::{nested_dissection_of_groups, AdjacencyGraph};
-use tvf_solvers::{FactorParallelism, FillOrdering, SolverError, SparseLdlt};
+use tvf_solvers::{FillOrdering, SolverError, SparseLdlt};
 
 /// Constraint terms of a soft design, each kept where it is sparse.
 #[derive(Debug, Clone, Default)]
@@ -107,13 +108,12 @@ impl AugmentedFactor {
         upper: &SparseColMat<usize, f64>,
         layout: Layout,
         blocks: &GalerkinBlocks,
-        ordering: FillOrdering,
-        parallelism: FactorParallelism,
+        factoring: Factoring,
     ) -> Result<Self, DesignError> {
-        let permutation = elimination_order(upper, &layout, blocks, ordering)?;
+        let permutation = elimination_order(upper, &layout, blocks, factoring.ordering)?;
         let factor =
             SparseLdlt::with_permutation_and_parallelism(upper.as_ref(), &permutation, |flops| {
-                parallelism.choose(flops)
+                factoring.parallelism.choose(flops)
             })
             .map_err(not_definite)?;
         check_inertia(&factor, &layout)?;

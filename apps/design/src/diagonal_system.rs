@@ -6,15 +6,17 @@ use crate::constraint::constraint_gram_entries;
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use crate::soft_full::SoftOptions;
+use crate::soft_system::{Factoring, SoftSystem};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::Mat;
 use sprs::CsMat;
 use std::time::Instant;
 use tvf_core::discretization::sparse::{as_csr, diagonal, linear_combination, mul_vec};
-use tvf_solvers::iterative_refinement::{exact, symmetric_product, DoubleDouble};
+use tvf_solvers::iterative_refinement::{
+    exact, refined_solve, symmetric_product, DoubleDouble, SolveReport,
+};
 use tvf_solvers::ordering::nested_dissection_of_groups;
 use tvf_solvers::sparse_pattern::{position, with_extra_entries};
-use tvf_solvers::FactorParallelism;
 use tvf_solvers::{FillOrdering, SolverError, SparseLdlt};
 
 /// The augmented system of a sparse `S` and a diagonal `M1` (see [`crate::FullSoftDesign`]):
@@ -39,8 +41,7 @@ impl DiagonalSoftSystem {
         mass: &[f64],
         options: SoftOptions,
         constraints: &[CompiledConstraint],
-        ordering: FillOrdering,
-        parallelism: FactorParallelism,
+        factoring: Factoring,
     ) -> Result<(Self, Instant), DesignError> {
         let n = dirichlet.rows();
         let dirichlet = as_csr(dirichlet);
@@ -50,7 +51,7 @@ impl DiagonalSoftSystem {
         let top = add_constraints(&base, constraints);
         let augmented = augmented_upper(&top, &dirichlet, options.omega, mass)?;
         let assembled = Instant::now();
-        let factor = factor_augmented(&augmented, n, ordering, parallelism)?;
+        let factor = factor_augmented(&augmented, n, factoring)?;
         Ok((
             Self {
                 dirichlet: dirichlet.into_owned(),
@@ -64,13 +65,29 @@ impl DiagonalSoftSystem {
         ))
     }
 
-    /// Replaces the constraints and refactors (numerically only when the pattern holds them);
-    /// returns whether the symbolic analysis was reused and the time the assembly ended.
-    pub(crate) fn set_constraints(
+    /// `A⁻¹ r` through the factor: the `x` part of the augmented solve with right-hand side
+    /// `(r, 0)`.
+    fn solve_field(&self, r: &[f64]) -> Vec<f64> {
+        let n = r.len();
+        let mut rhs = Mat::from_fn(2 * n, 1, |i, _| if i < n { r[i] } else { 0.0 });
+        self.factor.solve_in_place(rhs.as_mut());
+        (0..n).map(|i| rhs[(i, 0)]).collect()
+    }
+}
+
+impl SoftSystem for DiagonalSoftSystem {
+    fn factor(&self) -> &SparseLdlt {
+        &self.factor
+    }
+
+    fn field_dimension(&self) -> usize {
+        self.base.rows()
+    }
+
+    fn set_constraints(
         &mut self,
         constraints: &[CompiledConstraint],
-        ordering: FillOrdering,
-        parallelism: FactorParallelism,
+        factoring: Factoring,
     ) -> Result<(bool, Instant), DesignError> {
         let fits = constraint_gram_entries(constraints)
             .iter()
@@ -88,25 +105,16 @@ impl DiagonalSoftSystem {
             let top = add_constraints(&base, constraints);
             let augmented = augmented_upper(&top, &self.dirichlet, self.omega, &self.mass)?;
             assembled = Instant::now();
-            self.factor = factor_augmented(&augmented, self.base.rows(), ordering, parallelism)?;
+            self.factor = factor_augmented(&augmented, self.base.rows(), factoring)?;
             self.base = base;
             self.top = top;
         }
         Ok((fits, assembled))
     }
 
-    /// The factorization of the augmented system.
-    pub(crate) fn factor(&self) -> &SparseLdlt {
-        &self.factor
-    }
-
-    /// Number of field coefficients `n1`.
-    pub(crate) fn field_dimension(&self) -> usize {
-        self.base.rows()
-    }
-
-    /// `A x = (S + εM1 + C̃ᵀWC̃) x + ω S M1⁻¹ S x` (`n1` values), without forming `B`.
-    pub(crate) fn apply(&self, x: &[f64]) -> Vec<f64> {
+    /// `(S + εM1 + C̃ᵀWC̃) x + ω S M1⁻¹ S x`: `top` times `x` plus two sparse products and a
+    /// diagonal solve.
+    fn apply(&self, x: &[f64]) -> Vec<f64> {
         let mut y = mul_vec(&self.top, x);
         if self.omega > 0.0 {
             let sx: Vec<f64> = mul_vec(&self.dirichlet, x)
@@ -121,8 +129,7 @@ impl DiagonalSoftSystem {
         y
     }
 
-    /// `b − A x` in double-double (see [`crate::FullSoftDesign::accurate_residual`]).
-    pub(crate) fn accurate_residual(&self, x: &[f64], b: &[f64]) -> Vec<f64> {
+    fn accurate_residual(&self, x: &[f64], b: &[f64]) -> Vec<f64> {
         let x_exact = exact(x);
         let mut r: Vec<DoubleDouble> = symmetric_product(&self.top, &x_exact)
             .into_iter()
@@ -145,13 +152,13 @@ impl DiagonalSoftSystem {
         r.into_iter().map(|v| v.hi + v.lo).collect()
     }
 
-    /// `A⁻¹ r` through the factor: the `x` part of the augmented solve with right-hand side
-    /// `(r, 0)`.
-    pub(crate) fn solve_field(&self, r: &[f64]) -> Vec<f64> {
-        let n = r.len();
-        let mut rhs = Mat::from_fn(2 * n, 1, |i, _| if i < n { r[i] } else { 0.0 });
-        self.factor.solve_in_place(rhs.as_mut());
-        (0..n).map(|i| rhs[(i, 0)]).collect()
+    fn solve(&self, b: &[f64]) -> (Vec<f64>, SolveReport) {
+        refined_solve(
+            |x| self.apply(x),
+            |x| self.accurate_residual(x, b),
+            b,
+            |r| self.solve_field(r),
+        )
     }
 }
 
@@ -219,14 +226,15 @@ fn augmented_upper(
 fn factor_augmented(
     augmented: &SparseColMat<usize, f64>,
     n: usize,
-    ordering: FillOrdering,
-    parallelism: FactorParallelism,
+    factoring: Factoring,
 ) -> Result<SparseLdlt, DesignError> {
-    let choose = |flops| parallelism.choose(flops);
-    let factor = match ordering {
-        FillOrdering::Amd => {
-            SparseLdlt::with_ordering_and_parallelism(augmented.as_ref(), ordering, choose)?
-        }
+    let choose = |flops| factoring.parallelism.choose(flops);
+    let factor = match factoring.ordering {
+        FillOrdering::Amd => SparseLdlt::with_ordering_and_parallelism(
+            augmented.as_ref(),
+            factoring.ordering,
+            choose,
+        )?,
         FillOrdering::NestedDissection => {
             let faces = n.div_ceil(2);
             let face_of: Vec<usize> = (0..2 * n).map(|i| (i % n) / 2).collect();

@@ -7,10 +7,11 @@ use crate::constraint::{CompiledConstraint, RowOrigin, SparseRow};
 use crate::error::DesignError;
 use crate::galerkin_blocks::{AuxKind, EnergyWeights, GalerkinBlocks};
 use crate::soft_full::SoftOptions;
+use crate::soft_system::{Factoring, SoftSystem};
 use std::time::Instant;
 use tvf_core::discretization::HodgeComplex;
 use tvf_solvers::iterative_refinement::{exact, refined_solve, DoubleDouble, SolveReport};
-use tvf_solvers::{FactorParallelism, FillOrdering, SparseLdlt};
+use tvf_solvers::SparseLdlt;
 
 /// The soft-design energy of a complex with non-diagonal masses and its factored augmented
 /// system. Vectors of the internal methods are over the free field nodes (`n1f` values); the
@@ -32,8 +33,7 @@ impl GalerkinSoftSystem {
         complex: &H,
         options: SoftOptions,
         constraints: &[CompiledConstraint],
-        ordering: FillOrdering,
-        parallelism: FactorParallelism,
+        factoring: Factoring,
     ) -> Result<(Self, Instant), DesignError> {
         let blocks = GalerkinBlocks::new(complex);
         let weights = EnergyWeights {
@@ -46,7 +46,7 @@ impl GalerkinSoftSystem {
         union.include(&terms);
         let (upper, layout) = assemble(&blocks, weights, &terms, &union)?;
         let assembled = Instant::now();
-        let factor = AugmentedFactor::new(&upper, layout, &blocks, ordering, parallelism)?;
+        let factor = AugmentedFactor::new(&upper, layout, &blocks, factoring)?;
         let rows = field_rows(&blocks, constraints);
         Ok((
             Self {
@@ -60,64 +60,7 @@ impl GalerkinSoftSystem {
         ))
     }
 
-    /// Replaces the constraints and refactors (numerically when the pattern and the unknowns
-    /// are unchanged); returns whether the symbolic analysis was reused and the time the
-    /// assembly ended.
-    pub(crate) fn set_constraints(
-        &mut self,
-        constraints: &[CompiledConstraint],
-        ordering: FillOrdering,
-        parallelism: FactorParallelism,
-    ) -> Result<(bool, Instant), DesignError> {
-        let terms = constraint_terms(&self.blocks, constraints);
-        self.union.include(&terms);
-        let (upper, layout) = assemble(&self.blocks, self.weights, &terms, &self.union)?;
-        let assembled = Instant::now();
-        let reused = self.factor.refactor(&upper, &layout)?;
-        if !reused {
-            self.factor =
-                AugmentedFactor::new(&upper, layout, &self.blocks, ordering, parallelism)?;
-        }
-        self.rows = field_rows(&self.blocks, constraints);
-        Ok((reused, assembled))
-    }
-
-    /// The factorization of the augmented system.
-    pub(crate) fn factor(&self) -> &SparseLdlt {
-        self.factor.ldlt()
-    }
-
-    /// Number of field coefficients `n1`.
-    pub(crate) fn field_dimension(&self) -> usize {
-        self.blocks.field.space_len()
-    }
-
-    /// `A x` (`n1` values in and out; see [`crate::FullSoftDesign::apply`]).
-    pub(crate) fn apply(&self, x: &[f64]) -> Vec<f64> {
-        let field = &self.blocks.field;
-        field.scatter(&self.apply_free(&field.gather(x)))
-    }
-
-    /// `b − A x` in double-double (`n1` values in and out, zero on fixed field nodes).
-    pub(crate) fn accurate_residual(&self, x: &[f64], b: &[f64]) -> Vec<f64> {
-        let field = &self.blocks.field;
-        field.scatter(&self.residual_free(&field.gather(x), &field.gather(b)))
-    }
-
-    /// The refined solution of `A x = b` for `b` over all `n1` field coefficients (the entries
-    /// on fixed field nodes are dropped: the field is zero there).
-    pub(crate) fn solve(&self, b: &[f64]) -> (Vec<f64>, SolveReport) {
-        let field = &self.blocks.field;
-        let b = field.gather(b);
-        let (x, report) = refined_solve(
-            |x| self.apply_free(x),
-            |x| self.residual_free(x, &b),
-            &b,
-            |r| self.factor.solve_field(r),
-        );
-        (field.scatter(&x), report)
-    }
-
+    /// `A x` on the free field nodes (`n1f` values in and out).
     fn apply_free(&self, x: &[f64]) -> Vec<f64> {
         let mut y = self.blocks.energy(self.weights, x);
         for (row, w) in &self.rows {
@@ -129,6 +72,7 @@ impl GalerkinSoftSystem {
         y
     }
 
+    /// `b − A x` in double-double on the free field nodes (`n1f` values in and out).
     fn residual_free(&self, x: &[f64], b: &[f64]) -> Vec<f64> {
         let x = exact(x);
         let mut r: Vec<DoubleDouble> = self
@@ -148,6 +92,57 @@ impl GalerkinSoftSystem {
             }
         }
         r.into_iter().map(|v| v.hi + v.lo).collect()
+    }
+}
+
+impl SoftSystem for GalerkinSoftSystem {
+    fn factor(&self) -> &SparseLdlt {
+        self.factor.ldlt()
+    }
+
+    fn field_dimension(&self) -> usize {
+        self.blocks.field.space_len()
+    }
+
+    fn set_constraints(
+        &mut self,
+        constraints: &[CompiledConstraint],
+        factoring: Factoring,
+    ) -> Result<(bool, Instant), DesignError> {
+        let terms = constraint_terms(&self.blocks, constraints);
+        self.union.include(&terms);
+        let (upper, layout) = assemble(&self.blocks, self.weights, &terms, &self.union)?;
+        let assembled = Instant::now();
+        let reused = self.factor.refactor(&upper, &layout)?;
+        if !reused {
+            self.factor = AugmentedFactor::new(&upper, layout, &self.blocks, factoring)?;
+        }
+        self.rows = field_rows(&self.blocks, constraints);
+        Ok((reused, assembled))
+    }
+
+    fn apply(&self, x: &[f64]) -> Vec<f64> {
+        let field = &self.blocks.field;
+        field.scatter(&self.apply_free(&field.gather(x)))
+    }
+
+    fn accurate_residual(&self, x: &[f64], b: &[f64]) -> Vec<f64> {
+        let field = &self.blocks.field;
+        field.scatter(&self.residual_free(&field.gather(x), &field.gather(b)))
+    }
+
+    /// Solves on the free field nodes (the entries of `b` on fixed ones are dropped: the field
+    /// is zero there).
+    fn solve(&self, b: &[f64]) -> (Vec<f64>, SolveReport) {
+        let field = &self.blocks.field;
+        let b = field.gather(b);
+        let (x, report) = refined_solve(
+            |x| self.apply_free(x),
+            |x| self.residual_free(x, &b),
+            &b,
+            |r| self.factor.solve_field(r),
+        );
+        (field.scatter(&x), report)
     }
 }
 

@@ -41,6 +41,7 @@ mod reference_spline;
 mod regularization;
 mod soft_full;
 mod soft_reduced;
+mod soft_system;
 mod solution_check;
 mod spline;
 mod timed_reduced_solve;

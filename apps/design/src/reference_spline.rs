@@ -6,6 +6,7 @@ use crate::constraint::{CompiledConstraint, SparseRow};
 use crate::error::DesignError;
 use crate::galerkin_blocks::{EnergyWeights, GalerkinBlocks};
 use crate::regularization::mean_eigenvalue;
+use crate::soft_system::Factoring;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 use sprs::CsMat;
@@ -174,8 +175,10 @@ fn augmented_columns<H: HodgeComplex + ?Sized>(
         &upper,
         layout,
         &blocks,
-        FillOrdering::NestedDissection,
-        FactorParallelism::default(),
+        Factoring {
+            ordering: FillOrdering::NestedDissection,
+            parallelism: FactorParallelism::default(),
+        },
     )?;
     let n = blocks.field.space_len();
     let mut z: Vec<Vec<f64>> = Vec::with_capacity(rows.len());

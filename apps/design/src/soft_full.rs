@@ -7,11 +7,12 @@ use crate::constraint::CompiledConstraint;
 use crate::diagonal_system::DiagonalSoftSystem;
 use crate::error::DesignError;
 use crate::galerkin_soft::GalerkinSoftSystem;
+use crate::soft_system::{Factoring, SoftSystem};
 use faer::Par;
 use sprs::CsMat;
 use std::time::{Duration, Instant};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_solvers::iterative_refinement::{refined_solve, SolveReport};
+use tvf_solvers::iterative_refinement::SolveReport;
 use tvf_solvers::FactorParallelism;
 use tvf_solvers::{FillOrdering, SparseLdlt};
 
@@ -104,19 +105,13 @@ pub const DEFAULT_FULL_ORDERING: FillOrdering = FillOrdering::NestedDissection;
 /// flops, where faer's parallel factorization is slower).
 #[derive(Debug)]
 pub struct FullSoftDesign {
-    system: SoftSystem,
-    ordering: FillOrdering,
-    parallelism: FactorParallelism,
+    /// The factored system, by the kind of masses: [`DiagonalSoftSystem`] or
+    /// [`GalerkinSoftSystem`].
+    system: Box<dyn SoftSystem>,
+    factoring: Factoring,
     constraints: Vec<CompiledConstraint>,
     symbolic_analyses: usize,
     timings: FactorTimings,
-}
-
-/// The factored system, by the kind of masses (boxed: both are large and moved once).
-#[derive(Debug)]
-enum SoftSystem {
-    Diagonal(Box<DiagonalSoftSystem>),
-    Galerkin(Box<GalerkinSoftSystem>),
 }
 
 impl FullSoftDesign {
@@ -163,16 +158,13 @@ impl FullSoftDesign {
         let start = Instant::now();
         check_options(options)?;
         check_columns(&constraints, complex.field_dimension())?;
-        let (system, assembled) =
-            GalerkinSoftSystem::new(complex, options, &constraints, ordering, parallelism)?;
-        Ok(Self::built(
-            SoftSystem::Galerkin(Box::new(system)),
-            start,
-            assembled,
+        let factoring = Factoring {
             ordering,
             parallelism,
-            constraints,
-        ))
+        };
+        Self::built(start, constraints, factoring, |constraints| {
+            GalerkinSoftSystem::new(complex, options, constraints, factoring)
+        })
     }
 
     /// The same from the Dirichlet energy `S` (`n1 × n1`, integrated, symmetric) and the
@@ -233,36 +225,27 @@ impl FullSoftDesign {
             });
         }
         check_columns(&constraints, n)?;
-        let (system, assembled) = DiagonalSoftSystem::new(
-            dirichlet,
-            mass,
-            options,
-            &constraints,
+        let factoring = Factoring {
             ordering,
             parallelism,
-        )?;
-        Ok(Self::built(
-            SoftSystem::Diagonal(Box::new(system)),
-            start,
-            assembled,
-            ordering,
-            parallelism,
-            constraints,
-        ))
+        };
+        Self::built(start, constraints, factoring, |constraints| {
+            DiagonalSoftSystem::new(dirichlet, mass, options, constraints, factoring)
+        })
     }
 
-    fn built(
-        system: SoftSystem,
+    /// The design of the system that `assemble_and_factor` builds for `constraints` (checked
+    /// by the caller, which started at `start`), with the timings of that first factorization.
+    fn built<S: SoftSystem + 'static>(
         start: Instant,
-        assembled: Instant,
-        ordering: FillOrdering,
-        parallelism: FactorParallelism,
         constraints: Vec<CompiledConstraint>,
-    ) -> Self {
-        Self {
-            system,
-            ordering,
-            parallelism,
+        factoring: Factoring,
+        assemble_and_factor: impl FnOnce(&[CompiledConstraint]) -> Result<(S, Instant), DesignError>,
+    ) -> Result<Self, DesignError> {
+        let (system, assembled) = assemble_and_factor(&constraints)?;
+        Ok(Self {
+            system: Box::new(system),
+            factoring,
             constraints,
             symbolic_analyses: 1,
             timings: FactorTimings {
@@ -270,7 +253,7 @@ impl FullSoftDesign {
                 factorization: assembled.elapsed(),
                 symbolic: true,
             },
-        }
+        })
     }
 
     /// Replaces the constraints and refactors (numerically only when the pattern holds them).
@@ -280,16 +263,8 @@ impl FullSoftDesign {
         constraints: Vec<CompiledConstraint>,
     ) -> Result<bool, DesignError> {
         let start = Instant::now();
-        check_columns(&constraints, self.field_dimension())?;
-        let (ordering, parallelism) = (self.ordering, self.parallelism);
-        let (fits, assembled) = match &mut self.system {
-            SoftSystem::Diagonal(system) => {
-                system.set_constraints(&constraints, ordering, parallelism)?
-            }
-            SoftSystem::Galerkin(system) => {
-                system.set_constraints(&constraints, ordering, parallelism)?
-            }
-        };
+        check_columns(&constraints, self.system.field_dimension())?;
+        let (fits, assembled) = self.system.set_constraints(&constraints, self.factoring)?;
         if !fits {
             self.symbolic_analyses += 1;
         }
@@ -314,7 +289,7 @@ impl FullSoftDesign {
 
     /// The fill-reducing ordering of the augmented system.
     pub fn ordering(&self) -> FillOrdering {
-        self.ordering
+        self.factoring.ordering
     }
 
     /// Whether the factorizations and solves run on all threads (`false`: one thread), as
@@ -341,7 +316,7 @@ impl FullSoftDesign {
 
     /// The right-hand side `C̃ᵀ W c` (`n1` values, integrated units of the constraints).
     pub fn right_hand_side(&self) -> Vec<f64> {
-        let mut b = vec![0.0; self.field_dimension()];
+        let mut b = vec![0.0; self.system.field_dimension()];
         for c in &self.constraints {
             for (row, value) in c.rows.iter().zip(&c.values) {
                 for &(j, a) in row {
@@ -357,10 +332,7 @@ impl FullSoftDesign {
     /// `A` is the system on the free ones: the entries of `x` there are ignored and those of
     /// `A x` are zero.
     pub fn apply(&self, x: &[f64]) -> Vec<f64> {
-        match &self.system {
-            SoftSystem::Diagonal(system) => system.apply(x),
-            SoftSystem::Galerkin(system) => system.apply(x),
-        }
+        self.system.apply(x)
     }
 
     /// `b − A x` evaluated in double-double arithmetic (see [`crate::SolveReport`]): `S x`,
@@ -368,40 +340,18 @@ impl FullSoftDesign {
     /// accurate even where `ω S M1⁻¹ S` cancels heavily (slivers). Mass solves with a
     /// non-diagonal mass are applied in `f64` to both parts of the double-double vectors.
     pub fn accurate_residual(&self, x: &[f64], b: &[f64]) -> Vec<f64> {
-        match &self.system {
-            SoftSystem::Diagonal(system) => system.accurate_residual(x, b),
-            SoftSystem::Galerkin(system) => system.accurate_residual(x, b),
-        }
+        self.system.accurate_residual(x, b)
     }
 
     /// Solves for the field `x` (`n1` values) with iterative refinement until the relative
     /// residual `‖b − A x‖/‖b‖` (computed in double-double) is below 1e-12 or stops decreasing,
     /// and reports its history.
     pub fn solve(&self) -> (Vec<f64>, SolveReport) {
-        let b = self.right_hand_side();
-        match &self.system {
-            SoftSystem::Diagonal(system) => refined_solve(
-                |x| system.apply(x),
-                |x| system.accurate_residual(x, &b),
-                &b,
-                |r| system.solve_field(r),
-            ),
-            SoftSystem::Galerkin(system) => system.solve(&b),
-        }
+        self.system.solve(&self.right_hand_side())
     }
 
     fn factor(&self) -> &SparseLdlt {
-        match &self.system {
-            SoftSystem::Diagonal(system) => system.factor(),
-            SoftSystem::Galerkin(system) => system.factor(),
-        }
-    }
-
-    fn field_dimension(&self) -> usize {
-        match &self.system {
-            SoftSystem::Diagonal(system) => system.field_dimension(),
-            SoftSystem::Galerkin(system) => system.field_dimension(),
-        }
+        self.system.factor()
     }
 }
 

@@ -1,5 +1,6 @@
 //! A closed surface of any genus: the boundary of a thickened plate with `g` round holes.
 
+use super::quad_grid::{grid_cell, split_quad, Diagonal};
 use crate::SurfaceMesh;
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -60,17 +61,12 @@ fn square_sheet(k: usize) -> Sheet {
     let mut triangles = Vec::with_capacity(2 * k * k);
     for b in 0..k {
         for a in 0..k {
-            let (p, q, r, s) = (
-                index(a, b),
-                index(a + 1, b),
-                index(a + 1, b + 1),
-                index(a, b + 1),
-            );
-            if (a + b) % 2 == 0 {
-                triangles.extend([[p, q, r], [p, r, s]]);
+            let diagonal = if (a + b) % 2 == 0 {
+                Diagonal::AC
             } else {
-                triangles.extend([[p, q, s], [q, r, s]]);
-            }
+                Diagonal::BD
+            };
+            triangles.extend(split_quad(grid_cell(index, a, b), diagonal));
         }
     }
     Sheet { points, triangles }
@@ -129,33 +125,23 @@ fn perforated_sheet(genus: usize, k: usize) -> Sheet {
                 ring.push(index);
             }
         }
+        let vertex = |l: usize, j: usize| rings[l][j % (4 * k)];
         for l in 0..layers {
             for j in 0..4 * k {
-                let next = (j + 1) % (4 * k);
-                let quad = [
-                    rings[l][j],
-                    rings[l + 1][j],
-                    rings[l + 1][next],
-                    rings[l][next],
-                ];
-                triangles.extend(split_quad(&points, quad));
+                let quad = grid_cell(vertex, l, j);
+                triangles.extend(split_quad(quad, shorter_diagonal(&points, quad)));
             }
         }
     }
     Sheet { points, triangles }
 }
 
-/// Splits the counter-clockwise quad `[a, b, c, d]` along its shorter diagonal.
-fn split_quad(points: &[[f64; 2]], [a, b, c, d]: [usize; 4]) -> [[usize; 3]; 2] {
-    let distance = |p: usize, q: usize| {
+/// The shorter diagonal of the quad `quad` of planar `points`.
+fn shorter_diagonal(points: &[[f64; 2]], quad: [usize; 4]) -> Diagonal {
+    Diagonal::shorter(quad, |p, q| {
         let (dx, dy) = (points[p][0] - points[q][0], points[p][1] - points[q][1]);
         dx * dx + dy * dy
-    };
-    if distance(a, c) <= distance(b, d) {
-        [[a, b, c], [a, c, d]]
-    } else {
-        [[a, b, d], [b, c, d]]
-    }
+    })
 }
 
 /// Boundary loops of a sheet, each with the sheet on its left (outer loop counter-clockwise,
@@ -270,17 +256,12 @@ fn thicken(sheet: &Sheet, wall_layers: usize) -> SurfaceMesh {
             for i in 0..len {
                 let j = (i + 1) % len;
                 // The top sheet traverses cycle[i] → cycle[j]; the wall goes the other way.
-                let (a, b, a_down, b_down) =
-                    (ring[r][i], ring[r][j], ring[r + 1][i], ring[r + 1][j]);
-                let distance = |p: usize, q: usize| {
+                let quad = [ring[r][j], ring[r][i], ring[r + 1][i], ring[r + 1][j]];
+                let diagonal = Diagonal::shorter(quad, |p, q| {
                     let d = crate::geometry::sub(positions[p], positions[q]);
                     crate::geometry::dot(d, d)
-                };
-                if distance(b, a_down) <= distance(a, b_down) {
-                    faces.extend([[b, a, a_down], [b, a_down, b_down]]);
-                } else {
-                    faces.extend([[b, a, b_down], [a, a_down, b_down]]);
-                }
+                });
+                faces.extend(split_quad(quad, diagonal));
             }
         }
     }

@@ -6,6 +6,7 @@ mod genus_surface;
 mod icosphere;
 mod jitter;
 mod open_surfaces;
+mod quad_grid;
 mod rigid_motion;
 mod staggered_rings;
 mod torus;

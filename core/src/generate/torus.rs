@@ -1,5 +1,6 @@
 //! A torus of revolution around the z axis.
 
+use super::quad_grid::{grid_cell, split_quad, Diagonal};
 use crate::SurfaceMesh;
 use std::f64::consts::TAU;
 
@@ -36,18 +37,8 @@ pub(crate) fn torus_of_revolution(
         }
     }
     let index = |i: usize, j: usize| (i % around) * tube + (j % tube);
-    let mut faces = Vec::with_capacity(2 * around * tube);
-    for i in 0..around {
-        for j in 0..tube {
-            let (a, b, c, d) = (
-                index(i, j),
-                index(i + 1, j),
-                index(i + 1, j + 1),
-                index(i, j + 1),
-            );
-            faces.push([a, b, c]);
-            faces.push([a, c, d]);
-        }
-    }
+    let faces = (0..around)
+        .flat_map(|i| (0..tube).flat_map(move |j| split_quad(grid_cell(index, i, j), Diagonal::AC)))
+        .collect();
     SurfaceMesh::new(positions, faces).ok()
 }
