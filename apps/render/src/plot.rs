@@ -414,22 +414,10 @@ fn draw_legend(
     let bw = widest + sample + 26.0;
     let bh = row * entries.len() as f64 + 10.0;
     let x0 = right - bw;
-    fill_rect(
-        image,
-        x0 as i64,
-        top as i64,
-        right as i64,
-        (top + bh) as i64,
-        [255, 255, 255],
-    );
-    stroke_rect(
-        image,
-        x0 as i64,
-        top as i64,
-        right as i64,
-        (top + bh) as i64,
-        [150, 150, 150],
-    );
+    // The legend box in pixels: left, top, right, bottom.
+    let (l, t, r, b) = (x0 as i64, top as i64, right as i64, (top + bh) as i64);
+    fill_rect(image, l, t, r, b, [255, 255, 255]);
+    stroke_rect(image, l, t, r, b, [150, 150, 150]);
     for (i, (name, color, s)) in entries.iter().enumerate() {
         let y = top + 5.0 + row * (i as f64 + 0.5);
         let a = [x0 + 8.0, y];
