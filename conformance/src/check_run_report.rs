@@ -269,7 +269,11 @@ mod tests {
                 "d1_d0_zero"
             )
         );
-        assert!(lines[1].contains("          - ≤ -           refused"), "{}", lines[1]);
+        assert!(
+            lines[1].contains("          - ≤ -           refused"),
+            "{}",
+            lines[1]
+        );
     }
 
     #[test]
