@@ -1,6 +1,7 @@
 //! `tvf check`: the conformance suite's core checks and a catalog entry's measured reference
 //! checks on one mesh, or property-based on generated meshes with the minimal failing mesh
-//! written as OBJ (the logic: `tvf_conformance::property_runner`).
+//! written as OBJ (the logic: `tvf_conformance::property_runner`; the report:
+//! `tvf_conformance::check_run_report`).
 
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
@@ -20,6 +21,7 @@ use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::Catalog;
 
 /// Arguments of `tvf check`.
 #[derive(Args)]
@@ -97,7 +99,7 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
 fn check_generated(
     args: &CheckArgs,
     id: &str,
-    catalog: &tvf_discretizations::Catalog,
+    catalog: &Catalog,
     mut report: Report,
 ) -> Result<()> {
     if let Some(dir) = &args.discretization.complex {

@@ -38,7 +38,12 @@ pub struct DesignArgs {
     full: bool,
     /// Fill-reducing ordering of the full system's sparse factorization: `nd` (nested dissection,
     /// METIS; the default, fewer flops on every mesh measured) or `amd`.
-    #[arg(long, value_name = "amd|nd", conflicts_with = "reduced", value_parser = parse_fill_ordering)]
+    #[arg(
+        long,
+        value_name = "amd|nd",
+        conflicts_with = "reduced",
+        value_parser = parse_fill_ordering
+    )]
     ordering: Option<FillOrdering>,
     /// Solve the reduced system `(Λ + ωΛ² + CᵀWC) v = CᵀWc` in the eigenbasis.
     #[arg(long)]
