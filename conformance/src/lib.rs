@@ -29,7 +29,8 @@
 //!
 //! Each core check measures first and asserts on [`check_outcome::CheckOutcome`]s;
 //! [`check_report::core_check_report`] returns those outcomes as a report instead, for complexes
-//! built elsewhere (the Python package's `tvf.check`).
+//! built elsewhere (the Python package's `tvf.check`); [`check_run_report`] words a run's
+//! outcomes as text lines and JSON keys (`tvf check`).
 //!
 //! Property-based checking: [`strategies`] draws small mesh descriptions (genus 0–5, surfaces
 //! with boundary, several components, jitter, slivers, rigid motions, Delaunay variants) that
@@ -95,6 +96,7 @@ pub mod algebra_checks;
 pub mod capability_checks;
 pub mod check_outcome;
 pub mod check_report;
+pub mod check_run_report;
 pub mod convergence;
 pub mod convergence_table;
 pub mod corpus;

@@ -113,6 +113,7 @@ mod boundary_conditions;
 mod builtin_catalog;
 mod catalog;
 mod catalog_entry;
+mod catalog_ids;
 mod complex_id;
 mod consistent_mass;
 mod crouzeix_raviart;
@@ -146,6 +147,9 @@ pub use catalog::{
     CatalogError, UnknownDiscretization, DEFAULT_DISCRETIZATION,
 };
 pub use catalog_entry::{BoxedComplex, CatalogEntry, EntryConstructor, ANY_MESH};
+pub use catalog_ids::{
+    parse_boundary_condition, requested_catalog_id, DEFAULT_DECOMPOSITION_PART, DEFAULT_MASS_PART,
+};
 pub use complex_id::{complex_id, split_complex_id};
 pub use consistent_mass::consistent_p1_mass;
 pub use crouzeix_raviart::CrouzeixRaviart;

@@ -35,13 +35,13 @@ use crate::mesh_input::MeshInput;
 use crate::progress::{note, warn, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::{
-    basis_file_complex_id, cache_messages, cached_or_computed_basis, compute_basis_of_size,
-    computed_basis_summary, open_checked_basis_file, user_cache_folder_from, BasisCache,
-    BasisMessage, BasisSize, SpectralBasis,
+    basis_file_complex, cached_or_computed_basis, compute_basis_of_size, computed_basis_summary,
+    open_checked_basis_file, user_cache_folder_from, BasisCache, BasisMessage, BasisSize,
+    SpectralBasis,
 };
 
 /// Eigenfields computed when neither `--basis` nor `-k` is given.
@@ -198,42 +198,28 @@ impl BasisOptions {
         });
         let progress = Progress::new("basis");
         let callback = progress.basis_callback();
-        let (basis, origin) =
+        let cached =
             cached_or_computed_basis(store.as_ref(), mesh, discretization, size, Some(&callback))?;
         drop(callback);
-        if !matches!(origin, Some(tvf_spectral::StoredBasisOrigin::Read { .. })) {
-            progress.finish(computed_basis_summary(discretization, size, &basis));
+        if let Some(summary) = cached.computed_summary(discretization, size) {
+            progress.finish(summary);
         }
         drop(progress);
-        if let Some(origin) = &origin {
-            cache_messages(origin, &basis, discretization)
-                .into_iter()
-                .for_each(tell);
-        }
-        Ok(basis)
+        cached.messages(discretization).into_iter().for_each(tell);
+        Ok(cached.basis)
     }
 
-    /// The cache: off with `--no-cache`; `--cache-dir` or `$TVF_CACHE_DIR` (chosen), else
-    /// `.tvf-cache/` next to the mesh file or, for built-in examples, the user's cache folder
-    /// (defaults, checked before use).
+    /// The cache ([`BasisCache::choose`]): off with `--no-cache`; `--cache-dir` or
+    /// `$TVF_CACHE_DIR` (chosen), else `.tvf-cache/` next to the mesh file or, for built-in
+    /// examples, the user's cache folder (defaults, checked before use).
     pub fn cache(&self, input: &MeshInput) -> BasisCache {
-        if self.no_cache {
-            return BasisCache::Off;
-        }
-        if let Some(dir) = &self.cache_dir {
-            return BasisCache::Chosen(dir.clone());
-        }
-        if let Some(dir) = std::env::var_os(CACHE_DIR_VARIABLE).filter(|d| !d.is_empty()) {
-            return BasisCache::Chosen(PathBuf::from(dir));
-        }
-        BasisCache::Default(match &input.mesh {
-            Some(path) => path
-                .parent()
-                .filter(|p| !p.as_os_str().is_empty())
-                .unwrap_or(Path::new("."))
-                .join(".tvf-cache"),
-            None => user_cache_folder(),
-        })
+        let from_environment = std::env::var_os(CACHE_DIR_VARIABLE).filter(|d| !d.is_empty());
+        let chosen = self
+            .cache_dir
+            .clone()
+            .or(from_environment.map(PathBuf::from));
+        let mesh_file = input.mesh.as_deref();
+        BasisCache::choose(self.no_cache, chosen, mesh_file, user_cache_folder)
     }
 
     /// The discretization a basis would use, without computing or loading the basis: the
@@ -249,10 +235,8 @@ impl BasisOptions {
             Some(path) if self.discretization.complex.is_none() => {
                 let requested = self.discretization.requested_id();
                 let boundary = self.discretization.boundary;
-                let id = basis_file_complex_id(path, requested.as_deref(), boundary)?;
-                Ok(catalog
-                    .build_complex(&id, None, mesh)
-                    .with_context(|| format!("{}", path.display()))?)
+                let entry = requested.as_deref();
+                Ok(basis_file_complex(catalog, path, mesh, entry, boundary)?)
             }
             _ => self.discretization.build(catalog, mesh, input),
         }

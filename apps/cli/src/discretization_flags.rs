@@ -12,7 +12,9 @@ use clap::{ArgMatches, Args};
 use std::path::PathBuf;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{BoxedComplex, Catalog, DEFAULT_DISCRETIZATION};
+use tvf_discretizations::{
+    parse_boundary_condition, requested_catalog_id, BoxedComplex, Catalog, DEFAULT_DISCRETIZATION,
+};
 
 /// The discretization flags shared by every subcommand that builds a complex.
 #[derive(Args, Debug, Clone, Default)]
@@ -33,7 +35,7 @@ pub struct DiscretizationFlags {
     /// zero on the boundary: every eigenfield and harmonic field is tangential to the boundary)
     /// or normal (potentials zero on the boundary: fields normal to it). Ignored on closed
     /// meshes [default: tangential, or the basis file's].
-    #[arg(long, value_name = "CONDITION", value_parser = boundary_condition)]
+    #[arg(long, value_name = "CONDITION", value_parser = parse_boundary_condition)]
     pub boundary: Option<BoundaryCondition>,
     /// Your own matrices: the folder `tvf operators MESH -o DIR` writes (edited, or made by
     /// hand): d0, d1, M0, M1, M2 (or M2_inverse) as .mtx or .npz in the mesh's numbering, with
@@ -51,17 +53,12 @@ impl DiscretizationFlags {
     /// The id the flags ask for, if any flag was given (a shorthand fills the missing part
     /// with `conforming` / `barycentric`).
     pub fn requested_id(&self) -> Option<String> {
-        if let Some(id) = &self.discretization {
-            return Some(id.clone());
-        }
-        if self.decomposition.is_none() && self.mass.is_none() {
-            return None;
-        }
-        Some(format!(
-            "{}-{}",
-            self.decomposition.as_deref().unwrap_or("conforming"),
-            self.mass.as_deref().unwrap_or("barycentric")
-        ))
+        let decomposition = self.decomposition.as_deref();
+        requested_catalog_id(
+            self.discretization.as_deref(),
+            decomposition,
+            self.mass.as_deref(),
+        )
     }
 
     /// The id to use: the flags', else [`DEFAULT_DISCRETIZATION`].
@@ -85,14 +82,8 @@ impl DiscretizationFlags {
         input: &MeshInput,
     ) -> Result<BoxedComplex> {
         if let Some(dir) = &self.complex {
-            let identity: Vec<usize>;
-            let original_vertex = match input.original_vertex() {
-                Some(map) => map,
-                None => {
-                    identity = (0..mesh.vertex_count()).collect();
-                    &identity
-                }
-            };
+            let identity: Vec<usize> = (0..mesh.vertex_count()).collect();
+            let original_vertex = input.original_vertex().unwrap_or(&identity);
             let complex = tvf_spectral::read_complex_folder(dir, mesh, original_vertex)
                 .with_context(|| format!("--complex {} on {}", dir.display(), input.label()))?;
             return Ok(Box::new(complex));
@@ -104,7 +95,7 @@ impl DiscretizationFlags {
 }
 
 /// Checks one flag's value against the catalog; the error says what the catalog offers.
-type IdCheck = fn(&str, &Catalog) -> Result<(), String>;
+type IdCheck = fn(&Catalog, &str) -> Result<(), String>;
 
 /// Checks the discretization flags of the subcommand in `matches` against `catalog`:
 /// `--discretization` must be an id of the catalog, `--decomposition` / `--mass` the first /
@@ -119,20 +110,20 @@ pub fn check_ids(
         return Ok(());
     };
     let checks: [(&str, &str, IdCheck); 3] = [
-        ("discretization", "--discretization <ID>", catalog_id),
+        ("discretization", "--discretization <ID>", Catalog::check_id),
         (
             "decomposition",
             "--decomposition <NAME>",
-            decomposition_part,
+            Catalog::check_decomposition_part,
         ),
-        ("mass", "--mass <NAME>", mass_part),
+        ("mass", "--mass <NAME>", Catalog::check_mass_part),
     ];
     for (id, flag, check) in checks {
         // A subcommand without the flag has no such argument: nothing to check.
         let Ok(Some(value)) = sub_matches.try_get_one::<String>(id) else {
             continue;
         };
-        if let Err(problem) = check(value, catalog) {
+        if let Err(problem) = check(catalog, value) {
             command.build();
             let message = format!("invalid value '{value}' for '{flag}': {problem}");
             return Err(match command.find_subcommand_mut(name) {
@@ -142,40 +133,4 @@ pub fn check_ids(
         }
     }
     Ok(())
-}
-
-/// Accepts `tangential` or `normal`.
-fn boundary_condition(value: &str) -> Result<BoundaryCondition, String> {
-    BoundaryCondition::from_name(value)
-        .ok_or_else(|| format!("'{value}' is not a boundary condition: tangential or normal"))
-}
-
-/// Accepts an id of the catalog (the error lists them otherwise).
-fn catalog_id(value: &str, catalog: &Catalog) -> Result<(), String> {
-    catalog.get(value).map(|_| ()).map_err(|e| e.to_string())
-}
-
-/// The catalog's ids split at their last `-`: (decomposition, mass).
-fn id_parts(catalog: &Catalog) -> impl Iterator<Item = (&str, &str)> {
-    catalog.ids().filter_map(|id| id.rsplit_once('-'))
-}
-
-/// Accepts the first part of some catalog id (`conforming`, `nonconforming`, `dec`, ...).
-fn decomposition_part(value: &str, catalog: &Catalog) -> Result<(), String> {
-    one_of(value, id_parts(catalog).map(|(d, _)| d).collect())
-}
-
-/// Accepts the last part of some catalog id (`barycentric`, `voronoi`, `circumcentric`, ...).
-fn mass_part(value: &str, catalog: &Catalog) -> Result<(), String> {
-    one_of(value, id_parts(catalog).map(|(_, m)| m).collect())
-}
-
-fn one_of(value: &str, mut known: Vec<&str>) -> Result<(), String> {
-    known.sort_unstable();
-    known.dedup();
-    if known.contains(&value) {
-        Ok(())
-    } else {
-        Err(format!("'{value}' is not one of: {}", known.join(", ")))
-    }
 }

@@ -34,6 +34,16 @@ impl Report {
         }
     }
 
+    /// Prints `lines` now (unless the report is JSON) and records every key of `keys`, a value
+    /// that serializes as a JSON object: a report part of a library, such as
+    /// `tvf_design::ResidualReport`, with its text lines.
+    pub fn add(&mut self, lines: Vec<String>, keys: impl Serialize) {
+        lines.iter().for_each(|line| self.line(line));
+        if let Ok(Value::Object(keys)) = serde_json::to_value(keys) {
+            self.values.extend(keys);
+        }
+    }
+
     /// Records `value` under `key` for the JSON report.
     pub fn set(&mut self, key: &str, value: impl Serialize) {
         let value = serde_json::to_value(value).unwrap_or(Value::Null);

@@ -12,6 +12,9 @@
 //! - [`FullSoftDesign`] (sparse `LDLᵀ` of an augmented system, symbolic reuse, iterative
 //!   refinement; any masses: diagonal, consistent, Whitney) and [`ReducedSoftDesign`] (dense
 //!   Cholesky with low-rank updates).
+//! - [`DesignProblem`]: a mesh and its constraint file as `tvf spline` and `tvf design` run them
+//!   (timed solves: [`timed_spline`], [`timed_reduced_design`], [`timed_full_design`]; their
+//!   report lines and JSON keys: [`ResidualReport`], [`TimedFullDesign`]).
 //!
 //! ```
 //! use tvf_core::generate::icosphere;
@@ -32,6 +35,8 @@ mod assembler;
 mod augmented_system;
 mod constraint;
 mod constraint_file;
+mod design_problem;
+mod design_report;
 mod diagonal_system;
 mod error;
 mod galerkin_blocks;
@@ -44,6 +49,7 @@ mod soft_reduced;
 mod soft_system;
 mod solution_check;
 mod spline;
+mod timed_full_design;
 mod timed_reduced_solve;
 
 pub use assembler::ConstraintAssembler;
@@ -51,6 +57,8 @@ pub use constraint::{
     CompiledConstraint, Constraint, Location, OperatorFamily, RowOrigin, SparseRow, Target,
 };
 pub use constraint_file::{ConstraintSet, DEFAULT_OMEGA};
+pub use design_problem::{DesignProblem, DesignRunError, ProblemSummary};
+pub use design_report::{ReducedDesignTimes, ResidualReport};
 pub use error::{ConstraintError, ConstraintFileError, DesignError};
 pub use reduced_basis::{FieldScalar, ReducedBasis, ReducedBasisF32, RowMajorFields};
 pub use reference_spline::{reference_spline, ReferenceSpline};
@@ -59,5 +67,8 @@ pub use soft_full::{FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORD
 pub use soft_reduced::ReducedSoftDesign;
 pub use solution_check::{checked_residuals, worst_residual};
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};
+pub use timed_full_design::{
+    parse_fill_ordering, timed_full_design, TimedFullDesign, FULL_SOLVE_TARGET,
+};
 pub use timed_reduced_solve::{timed_reduced_design, timed_spline, TimedReducedSolve};
 pub use tvf_solvers::{FactorParallelism, FillOrdering, SolveReport, SEQUENTIAL_FLOP_LIMIT};

@@ -19,8 +19,8 @@ struct Active {
     reduced: Vec<Vec<f64>>,
 }
 
-/// Residual of one constraint.
-#[derive(Debug, Clone, PartialEq)]
+/// Residual of one constraint (serialized with the keys of its fields).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ConstraintResidual {
     /// Constraint id.
     pub id: String,

@@ -4,8 +4,8 @@
 
 use crate::basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 use crate::fourier::FourierAnalysis;
-use tvf_core::discretization::Mass;
-use tvf_discretizations::HodgeParts;
+use tvf_core::discretization::{HodgeComplex, Mass};
+use tvf_discretizations::{DecompositionError, HodgeDecomposer, HodgeParts};
 
 /// One basis field's coefficient.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -57,6 +57,17 @@ impl EnergySplit {
             rest: 0.0,
         }
     }
+}
+
+/// The energies of the exact Hodge decomposition of `field` (`n1` coefficients) by `complex`
+/// ([`HodgeDecomposer`]), in its field mass `M1` ([`EnergySplit::of_hodge_parts`]): what a
+/// truncated basis's split is compared with.
+pub fn exact_hodge_energies(
+    complex: &dyn HodgeComplex,
+    field: &[f64],
+) -> Result<EnergySplit, DecompositionError> {
+    let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
+    Ok(EnergySplit::of_hodge_parts(&parts, complex.m1()))
 }
 
 /// The spectral analysis of one field in one basis.
@@ -140,5 +151,33 @@ impl SpectralAnalysis {
         } else {
             0.0
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tvf_core::discretization::HodgeOperators;
+    use tvf_core::generate::torus;
+    use tvf_discretizations::catalog_entry;
+
+    #[test]
+    fn the_exact_energies_add_up_to_the_field_energy() {
+        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
+        let complex = catalog_entry("conforming-consistent")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
+        let n = complex.field_dimension();
+        let field: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
+        let split = exact_hodge_energies(complex.as_ref(), &field).unwrap();
+        let energy = complex.m1().inner(&field, &field);
+        assert!(
+            (split.total() - energy).abs() <= 1e-9 * energy,
+            "{split:?} {energy}"
+        );
+        assert!(split.integrable > 0.0 && split.cointegrable > 0.0 && split.harmonic > 0.0);
+        assert_eq!(split.rest, 0.0);
+        assert!(exact_hodge_energies(complex.as_ref(), &field[1..]).is_err());
     }
 }

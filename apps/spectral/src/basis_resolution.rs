@@ -122,6 +122,31 @@ impl BasisCache {
     }
 }
 
+/// A basis from a cache, or computed, and where it came from.
+pub struct CachedBasis {
+    /// The basis.
+    pub basis: SpectralBasis,
+    /// Read from or computed into the store (`None`: computed without a store).
+    pub origin: Option<StoredBasisOrigin>,
+}
+
+impl CachedBasis {
+    /// What was computed ([`computed_basis_summary`]), unless the basis was read from the
+    /// cache.
+    pub fn computed_summary(&self, complex: &BoxedComplex, size: BasisSize) -> Option<String> {
+        let read = matches!(self.origin, Some(StoredBasisOrigin::Read { .. }));
+        (!read).then(|| computed_basis_summary(complex, size, &self.basis))
+    }
+
+    /// What to tell the user about the cache ([`cache_messages`]; nothing without a store).
+    pub fn messages(&self, complex: &BoxedComplex) -> Vec<BasisMessage> {
+        match &self.origin {
+            Some(origin) => cache_messages(origin, &self.basis, complex),
+            None => Vec::new(),
+        }
+    }
+}
+
 /// The basis of `size` for `complex` on `mesh`: from `store` if it holds a usable one, else
 /// computed with seed 0 (reporting to `progress`) and saved there. The origin is `None` when
 /// there is no store.
@@ -131,17 +156,20 @@ pub fn cached_or_computed_basis(
     complex: &BoxedComplex,
     size: BasisSize,
     progress: Option<&dyn Fn(&BasisProgress)>,
-) -> Result<(SpectralBasis, Option<StoredBasisOrigin>), BasisError> {
-    match store {
+) -> Result<CachedBasis, BasisError> {
+    Ok(match store {
         Some(store) => {
             let (basis, origin) = store.basis(mesh, complex.as_ref(), size, progress)?;
-            Ok((basis, Some(origin)))
+            CachedBasis {
+                basis,
+                origin: Some(origin),
+            }
         }
-        None => Ok((
-            compute_basis_of_size(complex.as_ref(), size, progress)?,
-            None,
-        )),
-    }
+        None => CachedBasis {
+            basis: compute_basis_of_size(complex.as_ref(), size, progress)?,
+            origin: None,
+        },
+    })
 }
 
 /// What to tell the user about a basis of the cache: where it was read from, or why the cached

@@ -29,6 +29,7 @@
 
 mod analysis;
 mod basis;
+mod basis_cache_folder;
 mod basis_error;
 mod basis_request;
 mod basis_resolution;
@@ -47,13 +48,15 @@ mod harmonic_fields;
 mod laplacian_apply;
 mod scalar_spectrum;
 
-pub use analysis::{CoefficientEntry, EnergySplit, SpectralAnalysis};
+pub use analysis::{exact_hodge_energies, CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
+pub use basis_cache_folder::MESH_CACHE_FOLDER;
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use basis_resolution::{
     cache_messages, cached_or_computed_basis, computed_basis_summary, open_checked_basis_file,
     prepare_private_folder, user_cache_folder_from, BasisCache, BasisFromFile, BasisMessage,
+    CachedBasis,
 };
 pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
 pub use codec::compress::{pair_selection, FieldCodec};

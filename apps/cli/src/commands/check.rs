@@ -1,6 +1,7 @@
 //! `tvf check`: the conformance suite's core checks and a catalog entry's measured reference
 //! checks on one mesh, or property-based on generated meshes with the minimal failing mesh
-//! written as OBJ (the logic: `tvf_conformance::property_runner`).
+//! written as OBJ (the logic: `tvf_conformance::property_runner`; the report:
+//! `tvf_conformance::check_run_report`).
 
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
@@ -10,19 +11,17 @@ use crate::report::Report;
 use anyhow::{bail, Context, Result};
 use clap::builder::PossibleValuesParser;
 use clap::Args;
-use serde_json::json;
 use std::path::PathBuf;
-use tvf_conformance::check_outcome::CheckOutcome;
-use tvf_conformance::check_report::CheckReport;
-use tvf_conformance::property_runner::{
-    check_mesh, run_property, PropertyProgress, PropertyReport, PropertyRequest,
+use tvf_conformance::check_run_report::{
+    entry_property_request, MeshCheckReport, PropertyRunReport,
 };
+use tvf_conformance::property_runner::{check_mesh, run_property, PropertyProgress};
 use tvf_conformance::reference_report::catalog_reference_checks;
-use tvf_conformance::strategies::MeshNeeds;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
 use tvf_core::SurfaceMesh;
+use tvf_discretizations::Catalog;
 
 /// Arguments of `tvf check`.
 #[derive(Args)]
@@ -77,165 +76,80 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
         Some(dir) => format!("the matrices of {}", dir.display()),
         None => args.discretization.id(),
     };
-    let reference = catalog_reference_checks(&id);
     let mut report = Report::new(args.json);
-    report.set("discretization", &id);
     let input = match (&args.mesh, &args.example) {
-        (Some(path), _) => Some(MeshInput::file(path.clone())),
-        (None, Some(name)) => Some(MeshInput::example(name)),
-        (None, None) => None,
+        (Some(path), _) => MeshInput::file(path.clone()),
+        (None, Some(name)) => MeshInput::example(name),
+        (None, None) => return check_generated(&args, &id, catalog, report),
     };
-    match &input {
-        Some(input) => {
-            let mesh = input.load()?.mesh;
-            let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
-                let flags = &args.discretization;
-                flags
-                    .build(catalog, mesh, input)
-                    .map_err(|e| format!("{e:#}"))
-            };
-            let checked = check_mesh(&builder, &mesh, reference);
-            report.line(format!(
-                "{id} on {} ({} faces): {}",
-                input.label(),
-                mesh.face_count(),
-                verdict(checked.passed())
-            ));
-            print_outcomes(&report, &checked.outcomes);
-            report.set("passed", checked.passed());
-            report.set("checks", &checked.outcomes);
-            finish(report, &checked)
-        }
-        None => {
-            if let Some(dir) = &args.discretization.complex {
-                bail!(
-                    "--complex {}: a folder holds the matrices of one mesh; give that MESH \
-                     (generated meshes need a catalog entry)",
-                    dir.display()
-                );
-            }
-            let entry = catalog.get(&id)?;
-            let boundary = args.discretization.boundary_condition();
-            let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
-                catalog
-                    .build_complex(&id, Some(boundary), mesh)
-                    .map_err(|e| e.to_string())
-            };
-            let mut request = PropertyRequest::new(args.cases, args.seed, MeshNeeds::default());
-            request.needs.delaunay = entry.needs_delaunay();
-            request.reference = reference.to_vec();
-            let progress = Progress::new("check");
-            let on_progress = |event: PropertyProgress| match event {
-                PropertyProgress::CasePassed { index } => {
-                    progress.update("generated meshes", index as usize, args.cases as usize)
-                }
-                PropertyProgress::Shrinking { steps } => {
-                    progress.update("shrinking the failing mesh", steps as usize, 512)
-                }
-            };
-            let outcome = run_property(&builder, &request, &on_progress);
-            progress.finish(format!(
-                "{} of {} meshes passed",
-                outcome.cases_passed, args.cases
-            ));
-            property_report(&args, &id, &mut report, &outcome)?;
-            match outcome.counterexample {
-                Some(counterexample) => finish(report, &counterexample.report),
-                None => report.finish(),
-            }
-        }
-    }
+    let mesh = input.load()?.mesh;
+    let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+        let flags = &args.discretization;
+        flags
+            .build(catalog, mesh, &input)
+            .map_err(|e| format!("{e:#}"))
+    };
+    let checked = check_mesh(&builder, &mesh, catalog_reference_checks(&id));
+    let checked = MeshCheckReport::new(&id, &input.label(), mesh.face_count(), checked);
+    report.add(checked.lines(), &checked);
+    finish(report, checked.failure_message())
 }
 
-/// Reports a property run (and writes the counterexample).
-fn property_report(
+/// The property run on `--cases` generated meshes (and the counterexample written as OBJ).
+fn check_generated(
     args: &CheckArgs,
     id: &str,
-    report: &mut Report,
-    outcome: &PropertyReport,
+    catalog: &Catalog,
+    mut report: Report,
 ) -> Result<()> {
-    report.set("cases", args.cases);
-    report.set("seed", args.seed);
-    report.set("cases_passed", outcome.cases_passed);
-    report.set("passed", outcome.passed());
-    report.line(format!(
-        "{id} on {} generated meshes (seed {}): {}",
-        args.cases,
-        args.seed,
-        verdict(outcome.passed())
-    ));
-    if let Some(reason) = &outcome.aborted {
-        bail!("the property run stopped: {reason}");
+    if let Some(dir) = &args.discretization.complex {
+        bail!(
+            "--complex {}: a folder holds the matrices of one mesh; give that MESH \
+             (generated meshes need a catalog entry)",
+            dir.display()
+        );
     }
-    report.line(format!(
-        "worst case of each check over the {} passing meshes:",
-        outcome.cases_passed
-    ));
-    print_outcomes(report, &outcome.worst);
-    report.set("checks", &outcome.worst);
-    let Some(counterexample) = &outcome.counterexample else {
-        return Ok(());
+    let request = entry_property_request(catalog.get(id)?, args.cases, args.seed);
+    let boundary = args.discretization.boundary_condition();
+    let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+        catalog
+            .build_complex(id, Some(boundary), mesh)
+            .map_err(|e| e.to_string())
     };
-    let mesh = &counterexample.mesh.mesh;
-    write_obj(&args.output, mesh).with_context(|| args.output.display().to_string())?;
-    let reproduce = format!("tvf check {} --discretization {id}", args.output.display());
-    report.line(format!(
-        "minimal failing mesh ({} faces): {}\n  written to {}; reproduce with: {reproduce}",
-        mesh.face_count(),
-        counterexample.mesh.name,
-        args.output.display()
+    let progress = Progress::new("check");
+    let on_progress = |event: PropertyProgress| match event {
+        PropertyProgress::CasePassed { index } => {
+            progress.update("generated meshes", index as usize, args.cases as usize)
+        }
+        PropertyProgress::Shrinking { steps } => {
+            progress.update("shrinking the failing mesh", steps as usize, 512)
+        }
+    };
+    let outcome = run_property(&builder, &request, &on_progress);
+    progress.finish(format!(
+        "{} of {} meshes passed",
+        outcome.cases_passed, args.cases
     ));
-    print_outcomes(report, &counterexample.report.outcomes);
-    report.set(
-        "counterexample",
-        json!({
-            "path": args.output.display().to_string(),
-            "faces": mesh.face_count(),
-            "description": counterexample.mesh.name,
-            "reproduce": reproduce,
-            "checks": counterexample.report.outcomes,
-        }),
-    );
-    Ok(())
+    let run = PropertyRunReport::new(id, &request, &outcome, &args.output);
+    report.add(run.lines(), &run);
+    if let Some(message) = run.abort_message() {
+        bail!(message);
+    }
+    if let Some(counterexample) = &outcome.counterexample {
+        write_obj(&args.output, &counterexample.mesh.mesh)
+            .with_context(|| args.output.display().to_string())?;
+        run.counterexample_lines()
+            .iter()
+            .for_each(|line| report.line(line));
+    }
+    finish(report, run.failure_message())
 }
 
-/// Prints the JSON report, then fails naming the failed checks, if any.
-fn finish(mut report: Report, checked: &CheckReport) -> Result<()> {
-    let failed: Vec<String> = checked.failures().iter().map(|o| o.name.clone()).collect();
-    report.set("failed", &failed);
+/// Prints the JSON report, then fails with `failure` (naming the failed checks), if any.
+fn finish(report: Report, failure: Option<String>) -> Result<()> {
     report.finish()?;
-    if !failed.is_empty() {
-        bail!("failed checks: {}", failed.join(", "));
-    }
-    Ok(())
-}
-
-fn verdict(passed: bool) -> &'static str {
-    if passed {
-        "passed"
-    } else {
-        "FAILED"
-    }
-}
-
-/// One aligned line per check: status, name, measured value against its limit, detail.
-fn print_outcomes(report: &Report, outcomes: &[CheckOutcome]) {
-    for o in outcomes {
-        report.line(format!(
-            "  {:<7} {:<48} {:>11} ≤ {:<11} {}",
-            o.status.name(),
-            o.name,
-            number(o.measured),
-            number(o.limit),
-            o.detail
-        ));
-    }
-}
-
-fn number(x: f64) -> String {
-    if x.is_nan() {
-        "-".to_string()
-    } else {
-        format!("{x:.3e}")
+    match failure {
+        Some(message) => bail!(message),
+        None => Ok(()),
     }
 }

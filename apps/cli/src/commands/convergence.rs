@@ -11,7 +11,6 @@ use std::path::PathBuf;
 use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
 use tvf_conformance::convergence_table::{markdown_table, orders_summary};
 use tvf_core::discretization::BoundaryCondition;
-use tvf_discretizations::CatalogEntry;
 use tvf_figures::convergence_plot::convergence_figure;
 use tvf_render::save_png;
 
@@ -99,14 +98,7 @@ pub fn run(args: ConvergenceArgs, context: &RunContext) -> Result<()> {
         tvf_core::io::check_output(output, &[])?;
     }
     let catalog = context.catalog();
-    let entries: Vec<&CatalogEntry> = if args.discretizations.is_empty() {
-        catalog.iter().collect()
-    } else {
-        args.discretizations
-            .iter()
-            .map(|id| catalog.get(id))
-            .collect::<Result<_, _>>()?
-    };
+    let entries = catalog.selected(&args.discretizations)?;
     let candidates: Vec<Candidate<'_>> = entries.into_iter().map(Candidate::from_entry).collect();
     let config = ConvergenceConfig {
         surfaces: args.surface.surfaces(),

@@ -7,16 +7,15 @@
 use crate::basis_source::{BasisOptions, BasisSource};
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
+use crate::progress::note;
 use anyhow::Result;
 use clap::Args;
 use std::path::{Path, PathBuf};
-use tvf_core::discretization::HodgeOperators;
-use tvf_core::discretization::{FieldSampling, HodgeComplex};
+use tvf_core::discretization::{FieldSampling, HodgeOperators};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::HodgeDecomposer;
 use tvf_discretizations::{BoxedComplex, Catalog};
-use tvf_spectral::BasisSize;
-use tvf_spectral::{read_field_file, read_field_frames, EnergySplit, FrameSource, SpectralBasis};
+pub use tvf_spectral::exact_hodge_energies;
+use tvf_spectral::{read_field_file, read_field_frames, BasisSize, FrameSource, SpectralBasis};
 
 /// `MESH FIELD` (or `--example NAME FIELD`) and where the basis comes from.
 #[derive(Args)]
@@ -52,9 +51,10 @@ impl FieldArgs {
         self.basis.options.basis.as_deref()
     }
 
-    /// The mesh and its discretization ([`load_inputs`]).
+    /// Loads the mesh and builds its discretization ([`inputs_for_mesh`]).
     pub fn load(&self, catalog: &Catalog) -> Result<SpectralInputs> {
-        load_inputs(catalog, &self.input, &self.basis.options)
+        let mesh = self.input.load()?.mesh;
+        inputs_for_mesh(catalog, mesh, &self.input, &self.basis.options)
     }
 
     /// The basis of `size` for `inputs` ([`SpectralInputs::with_basis`]).
@@ -92,17 +92,8 @@ pub struct SpectralInputs {
     pub complex: BoxedComplex,
 }
 
-/// Loads the mesh and builds its discretization, an entry of `catalog` (see
-/// [`SpectralInputs`]).
-pub fn load_inputs(
-    catalog: &Catalog,
-    input: &MeshInput,
-    source: &BasisOptions,
-) -> Result<SpectralInputs> {
-    inputs_for_mesh(catalog, input.load()?.mesh, input, source)
-}
-
-/// [`load_inputs`] for a mesh already loaded from `input`.
+/// The inputs of a mesh already loaded from `input`: its discretization, an entry of `catalog`
+/// (see [`SpectralInputs`]).
 pub fn inputs_for_mesh(
     catalog: &Catalog,
     mesh: SurfaceMesh,
@@ -151,7 +142,9 @@ impl SpectralSetup {
 /// on stderr how large the dropped normal components were.
 pub fn read_field(path: &Path, fields: &dyn FieldSampling) -> Result<Vec<f64>> {
     let read = read_field_file(path, fields)?;
-    note_normal_parts(path, read.max_normal_part);
+    if let Some(text) = read.dropped_normal_note(path) {
+        note(format!("note: {text}"));
+    }
     Ok(read.field)
 }
 
@@ -162,21 +155,8 @@ pub fn read_frames(
     fields: &dyn FieldSampling,
 ) -> Result<(Vec<Vec<f64>>, FrameSource)> {
     let read = read_field_frames(path, fields)?;
-    note_normal_parts(path, read.max_normal_part);
-    Ok((read.frames, read.source))
-}
-
-fn note_normal_parts(path: &Path, normal: f64) {
-    if normal > 0.0 {
-        crate::progress::note(format!(
-            "note: {}: normal components up to {normal:.3e} were dropped (fields are tangent)",
-            path.display()
-        ));
+    if let Some(text) = read.dropped_normal_note(path) {
+        note(format!("note: {text}"));
     }
-}
-
-/// Energies of the exact Hodge decomposition of `field` by `complex`.
-pub fn exact_hodge_energies(complex: &dyn HodgeComplex, field: &[f64]) -> Result<EnergySplit> {
-    let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
-    Ok(EnergySplit::of_hodge_parts(&parts, complex.m1()))
+    Ok((read.frames, read.source))
 }

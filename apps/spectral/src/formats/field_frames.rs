@@ -52,6 +52,33 @@ pub struct FieldFrames {
     pub max_normal_part: f64,
 }
 
+impl FieldFromFile {
+    /// What to tell the user about the normal components dropped from the file `path`, if
+    /// any were ([`dropped_normal_note`]).
+    pub fn dropped_normal_note(&self, path: &Path) -> Option<String> {
+        dropped_normal_note(path, self.max_normal_part)
+    }
+}
+
+impl FieldFrames {
+    /// What to tell the user about the normal components dropped from the frames of `path`,
+    /// if any were ([`dropped_normal_note`]).
+    pub fn dropped_normal_note(&self, path: &Path) -> Option<String> {
+        dropped_normal_note(path, self.max_normal_part)
+    }
+}
+
+/// `PATH: normal components up to N were dropped (fields are tangent)` when the largest
+/// dropped normal component `max_normal_part` of the input `path` is not zero.
+fn dropped_normal_note(path: &Path, max_normal_part: f64) -> Option<String> {
+    (max_normal_part > 0.0).then(|| {
+        format!(
+            "{}: normal components up to {max_normal_part:.3e} were dropped (fields are tangent)",
+            path.display()
+        )
+    })
+}
+
 /// Reads one field file (`.npy` `F × 3` or text) as a tangent field of `sampling`.
 pub fn read_field_file(
     path: &Path,
@@ -208,4 +235,27 @@ pub fn write_field_frames(
         )?;
     }
     staged.commit().map_err(io)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dropped_normal_components_are_noted_only_when_there_were_some() {
+        let read = FieldFromFile {
+            field: vec![0.0; 2],
+            max_normal_part: 0.25,
+        };
+        assert_eq!(
+            read.dropped_normal_note(Path::new("f.npy")).as_deref(),
+            Some("f.npy: normal components up to 2.500e-1 were dropped (fields are tangent)")
+        );
+        let frames = FieldFrames {
+            frames: vec![vec![0.0; 2]],
+            source: FrameSource::Single,
+            max_normal_part: 0.0,
+        };
+        assert_eq!(frames.dropped_normal_note(Path::new("f.npy")), None);
+    }
 }
