@@ -33,6 +33,7 @@ mod basis_error;
 mod basis_request;
 mod basis_resolution;
 mod basis_store;
+mod basis_summary;
 mod codec;
 mod compute_basis;
 mod dense_memory;
@@ -56,6 +57,7 @@ pub use basis_resolution::{
     prepare_private_folder, user_cache_folder_from, BasisCache, BasisFromFile, BasisMessage,
 };
 pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
+pub use basis_summary::{BasisSummary, FamilyCounts};
 pub use codec::compress::{pair_selection, FieldCodec};
 pub use codec::compression_error::CompressionError;
 pub use codec::quantization::UniformQuantizer;
@@ -70,6 +72,7 @@ pub use eigenfunction_basis::EigenfunctionBasis;
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
+pub use formats::basis_arrays::{write_basis_arrays, BasisArraysError};
 pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
     BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, StoredFieldMass,
@@ -80,10 +83,12 @@ pub use formats::basis_file_complex::{
     BasisFileUseError,
 };
 pub use formats::basis_id::basis_id;
+pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
 pub use formats::complex_folder::{read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID};
 pub use formats::complex_folder_info::{
     complex_folder_info, mass_file_name, sampling_of, MatrixFileFormat,
 };
+pub use formats::complex_folder_write::write_complex_folder;
 pub use formats::compressed_file::{
     CoefficientCoding, CompressedFields, FramePayload, TvfcHeader, TVFC_HEADER_BYTES, TVFC_MAGIC,
     TVFC_VERSION,
@@ -97,6 +102,7 @@ pub use formats::field_io::{
     write_face_vector_sequence, write_face_vectors, write_face_vectors_as, write_npy,
     write_tangent_field, FieldFileFormat, FieldIoError,
 };
+pub use formats::folder_file::{write_folder_bytes, write_folder_file, FolderFileError};
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
 pub use formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};

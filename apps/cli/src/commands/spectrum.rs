@@ -48,12 +48,8 @@ pub fn run(args: SpectrumArgs, context: &RunContext) -> Result<()> {
     let (basis, _) = {
         let callback = progress.basis_callback();
         // K ≥ n1: every eigenvalue (the complete basis), as for `tvf basis -k K`.
-        let request = if args.count >= discretization.field_dimension() {
-            BasisRequest::complete()
-        } else {
-            BasisRequest::fields(args.count)
-        };
-        let request = request.with_progress(&callback);
+        let request = BasisRequest::lowest(args.count, discretization.field_dimension())
+            .with_progress(&callback);
         compute_eigenfunction_basis(discretization.as_ref(), &request)
             .with_context(|| format!("{}: cannot compute the spectrum", args.input.label()))?
     };
