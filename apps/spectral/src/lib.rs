@@ -35,6 +35,7 @@ mod basis_resolution;
 mod basis_store;
 mod basis_summary;
 mod codec;
+mod coefficient_report;
 mod compute_basis;
 mod dense_memory;
 mod eigenfunction_basis;
@@ -60,12 +61,16 @@ pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
 pub use basis_summary::{BasisSummary, FamilyCounts};
 pub use codec::compress::{pair_selection, FieldCodec};
 pub use codec::compression_error::CompressionError;
+pub use codec::compression_summary::CompressionSummary;
 pub use codec::quantization::UniformQuantizer;
 pub use codec::range_coder;
 pub use codec::rate_distortion::{
     equal_error_comparison, rate_distortion, rate_distortion_csv, FileStamp, RatePoint,
 };
-pub use codec::sequence::{compress_with_report, relative_l2_error, CompressionReport};
+pub use codec::sequence::{
+    compress_with_progress, compress_with_report, decompress_with_progress, relative_l2_error,
+    CompressionReport,
+};
 pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
 pub use eigenfunction_basis::EigenfunctionBasis;

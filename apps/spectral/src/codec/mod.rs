@@ -4,6 +4,8 @@
 
 pub(crate) mod compress;
 pub(crate) mod compression_error;
+pub(crate) mod compression_summary;
+pub(crate) mod file_fit;
 pub(crate) mod quantization;
 pub mod range_coder;
 pub(crate) mod rate_distortion;
