@@ -16,7 +16,6 @@
 
 mod basis_source;
 mod commands;
-mod computed_field;
 mod context;
 mod discretization_flags;
 mod interrupt;

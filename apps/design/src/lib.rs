@@ -30,6 +30,7 @@
 
 mod assembler;
 mod augmented_system;
+mod checked_constraint_file;
 mod constraint;
 mod constraint_file;
 mod diagonal_system;

@@ -37,6 +37,7 @@ mod basis_summary;
 mod codec;
 mod coefficient_report;
 mod compute_basis;
+mod computed_field;
 mod dense_memory;
 mod eigenfunction_basis;
 mod family_split;
@@ -73,6 +74,7 @@ pub use codec::sequence::{
 };
 pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
+pub use computed_field::{check_computed_field, NonFiniteField};
 pub use eigenfunction_basis::EigenfunctionBasis;
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};

@@ -2,7 +2,6 @@
 
 use super::spectral_inputs::inputs_for_mesh;
 use crate::basis_source::BasisSource;
-use crate::computed_field::check_computed_field;
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
@@ -11,7 +10,8 @@ use anyhow::{anyhow, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_spectral::{
-    basis_id, decompress_with_progress, write_field_frames, BasisSize, CompressedFields, FieldCodec,
+    basis_id, check_computed_field, decompress_with_progress, write_field_frames, BasisSize,
+    CompressedFields, FieldCodec,
 };
 
 /// Arguments of `tvf decompress`.
