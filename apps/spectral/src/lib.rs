@@ -28,6 +28,7 @@
 #![warn(missing_docs)]
 
 mod analysis;
+mod analysis_report;
 mod basis;
 mod basis_error;
 mod basis_request;
@@ -51,6 +52,7 @@ mod laplacian_apply;
 mod scalar_spectrum;
 
 pub use analysis::{CoefficientEntry, EnergySplit, SpectralAnalysis};
+pub use analysis_report::AnalysisReport;
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
@@ -68,6 +70,7 @@ pub use codec::range_coder;
 pub use codec::rate_distortion::{
     equal_error_comparison, rate_distortion, rate_distortion_csv, FileStamp, RatePoint,
 };
+pub use codec::rate_distortion_report::RateDistortionReport;
 pub use codec::sequence::{
     compress_with_progress, compress_with_report, decompress_with_progress, relative_l2_error,
     CompressionReport,

@@ -9,5 +9,6 @@ pub(crate) mod file_fit;
 pub(crate) mod quantization;
 pub mod range_coder;
 pub(crate) mod rate_distortion;
+pub(crate) mod rate_distortion_report;
 pub(crate) mod sequence;
 pub(crate) mod symbol_coder;
