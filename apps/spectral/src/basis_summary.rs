@@ -1,12 +1,14 @@
 //! What is said of a computed basis (`tvf basis`): how many fields of each family
 //! ([`FamilyCounts`]), how the computation went ([`BasisReport::notes`]), and the whole summary —
 //! counts, eigenvalues, labels, the cost of every phase, the files written — as one line and as
-//! JSON ([`BasisSummary`]).
+//! JSON ([`BasisSummary`]); its eigenvalues as a table (`tvf spectrum`,
+//! [`EigenfunctionBasis::spectrum_table`]).
 
 use crate::basis::FieldFamily;
 use crate::compute_basis::BasisReport;
 use crate::eigenfunction_basis::EigenfunctionBasis;
 use serde_json::{json, Value};
+use std::fmt::Write as _;
 use std::path::Path;
 use tvf_solvers::PhaseStatistics;
 
@@ -81,6 +83,26 @@ impl BasisReport {
             ("refinement", self.solver.refinement),
             ("writing", writing),
         ]
+    }
+}
+
+impl EigenfunctionBasis {
+    /// The eigenvalues as a table, one line each (every line ends in a newline): a header, then
+    /// index, eigenvalue `λ`, frequency `√λ` and family of every field, ascending.
+    pub fn spectrum_table(&self) -> String {
+        let mut text = format!(
+            "{:>6}  {:>22}  {:>14}  family\n",
+            "index", "eigenvalue", "frequency"
+        );
+        for (i, (&lambda, family)) in self.eigenvalues().iter().zip(self.families()).enumerate() {
+            let _ = writeln!(
+                text,
+                "{i:>6}  {lambda:>22.15e}  {:>14.6e}  {}",
+                lambda.sqrt(),
+                family.name()
+            );
+        }
+        text
     }
 }
 
@@ -226,6 +248,12 @@ mod tests {
             .map(|p| p["factorizations"].as_u64().unwrap())
             .sum();
         assert_eq!(factorizations as usize, report.solver.factorizations());
+        let table = basis.spectrum_table();
+        assert_eq!(table.lines().count(), 9);
+        assert!(
+            table.lines().nth(1).unwrap().ends_with("  harmonic"),
+            "{table}"
+        );
         // A genus-1 torus: the harmonic fields' accuracy is noted.
         assert!(report
             .notes()

@@ -82,7 +82,7 @@ pub use eigenfunction_basis::EigenfunctionBasis;
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
-pub use formats::basis_arrays::{write_basis_arrays, BasisArraysError};
+pub use formats::basis_arrays::write_basis_arrays;
 pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
     BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, StoredFieldMass,
@@ -112,7 +112,10 @@ pub use formats::field_io::{
     write_face_vector_sequence, write_face_vectors, write_face_vectors_as, write_npy,
     write_tangent_field, FieldFileFormat, FieldIoError,
 };
-pub use formats::folder_file::{write_folder_bytes, write_folder_file, FolderFileError};
+pub use formats::folder_file::{
+    write_folder_bytes, write_folder_file, FieldFolderError, FolderFileError,
+};
+pub use formats::hodge_parts_folder::write_hodge_parts;
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
 pub use formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};

@@ -55,8 +55,8 @@ pub fn run(args: SpectrumArgs, context: &RunContext) -> Result<()> {
     };
     let seconds = start.elapsed().as_secs_f64();
     progress.finish(format!("{} eigenvalues in {seconds:.2} s", basis.len()));
-    let labels: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
     if args.json {
+        let labels: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
         let out = json!({
             "mesh": args.input.label(),
             "discretization": discretization.id(),
@@ -67,16 +67,7 @@ pub fn run(args: SpectrumArgs, context: &RunContext) -> Result<()> {
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        println!(
-            "{:>6}  {:>22}  {:>14}  family",
-            "index", "eigenvalue", "frequency"
-        );
-        for (i, (&lambda, label)) in basis.eigenvalues().iter().zip(&labels).enumerate() {
-            println!(
-                "{i:>6}  {lambda:>22.15e}  {:>14.6e}  {label}",
-                lambda.sqrt()
-            );
-        }
+        print!("{}", basis.spectrum_table());
     }
     Ok(())
 }

@@ -3,22 +3,10 @@
 //! with its other outputs.
 
 use crate::eigenfunction_basis::EigenfunctionBasis;
-use crate::formats::folder_file::{write_folder_bytes, FolderFileError};
+use crate::formats::folder_file::{write_folder_bytes, FieldFolderError};
 use crate::formats::numpy_export::{npy_bytes, NpyData};
-use thiserror::Error;
-use tvf_core::discretization::{DiscretizationError, HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::StagedFolder;
-
-/// Why the arrays of a basis could not be written.
-#[derive(Debug, Error)]
-pub enum BasisArraysError {
-    /// A file could not be written.
-    #[error(transparent)]
-    Write(#[from] FolderFileError),
-    /// A field could not be sampled at the face centroids.
-    #[error(transparent)]
-    Sampling(#[from] DiscretizationError),
-}
 
 /// Writes `eigenvalues.npy` (`k`, float64, ascending), `families.npy` (`k` strings:
 /// `harmonic`, `integrable`, `cointegrable`), `coefficients.npy` (`n1 × k`, the
@@ -29,7 +17,7 @@ pub fn write_basis_arrays(
     basis: &EigenfunctionBasis,
     complex: &dyn HodgeComplex,
     folder: &StagedFolder,
-) -> Result<(), BasisArraysError> {
+) -> Result<(), FieldFolderError> {
     let k = basis.len();
     let n1 = complex.field_dimension();
     let eigenvalues = npy_bytes(&NpyData::F64(basis.eigenvalues()), &[k]);

@@ -3,9 +3,10 @@
 //! ([`save_basis_outputs`]).
 
 use crate::eigenfunction_basis::EigenfunctionBasis;
-use crate::formats::basis_arrays::{write_basis_arrays, BasisArraysError};
+use crate::formats::basis_arrays::write_basis_arrays;
 use crate::formats::basis_file::save_eigenfunction_basis;
 use crate::formats::basis_file_header::BasisFileKey;
+use crate::formats::folder_file::FieldFolderError;
 use std::error::Error as StdError;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -38,7 +39,7 @@ pub enum BasisOutputError {
     },
     /// An array of the folder could not be written.
     #[error(transparent)]
-    Arrays(#[from] BasisArraysError),
+    Arrays(#[from] FieldFolderError),
 }
 
 /// Writes `basis` (computed for `complex`, identified by `key`) as the basis file `file`

@@ -1,10 +1,12 @@
 //! One file of a folder output ([`tvf_core::io::StagedFolder`]: written into a temporary sibling,
 //! moved into place whole): [`write_folder_file`], and [`FolderFileError`], which names the file
-//! where it will appear, not where it is staged.
+//! where it will appear, not where it is staged; [`FieldFolderError`] for a folder of field
+//! arrays, whose fields are sampled at the faces first.
 
 use std::error::Error as StdError;
 use std::path::PathBuf;
 use thiserror::Error;
+use tvf_core::discretization::DiscretizationError;
 use tvf_core::io::{write_atomically, AtomicWriter, StagedFolder};
 
 /// A file of a folder output could not be written; `path` is the file in the output folder.
@@ -30,6 +32,17 @@ impl FolderFileError {
             source: source.into(),
         }
     }
+}
+
+/// Why a folder of field arrays could not be written.
+#[derive(Debug, Error)]
+pub enum FieldFolderError {
+    /// A file could not be written.
+    #[error(transparent)]
+    Write(#[from] FolderFileError),
+    /// A field could not be sampled at the face centroids.
+    #[error(transparent)]
+    Sampling(#[from] DiscretizationError),
 }
 
 /// Writes the file `name` of the staged `folder` atomically ([`write_atomically`]) with `fill`.

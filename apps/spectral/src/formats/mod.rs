@@ -17,6 +17,7 @@ pub(crate) mod compressed_file;
 pub(crate) mod field_frames;
 pub(crate) mod field_io;
 pub(crate) mod folder_file;
+pub(crate) mod hodge_parts_folder;
 pub(crate) mod npy;
 pub(crate) mod numpy_export;
 pub(crate) mod sparse_file_read;
