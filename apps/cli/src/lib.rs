@@ -14,10 +14,8 @@
 //! Exit codes: 0 success, 1 bad input or failed computation, 2 usage error (clap; an id that is
 //! not in the catalog is one).
 
-mod basis_export;
 mod basis_source;
 mod commands;
-mod computed_field;
 mod context;
 mod discretization_flags;
 mod interrupt;

@@ -18,7 +18,7 @@
 //! `tvf render --example bumpy-torus field.npy -o out.png` works like
 //! `tvf render torus.obj field.npy -o out.png`.
 
-use anyhow::{Context, Result};
+use anyhow::{anyhow, Context, Result};
 use clap::builder::PossibleValuesParser;
 use clap::error::ErrorKind;
 use clap::{Args, CommandFactory};
@@ -98,12 +98,16 @@ impl MeshInput {
         match (&self.mesh, &self.example) {
             (Some(path), _) => {
                 let loaded = load_mesh(path)?;
-                check_geometry_range(&loaded.mesh, &self.label())?;
+                let label = self.label();
+                loaded
+                    .mesh
+                    .check_geometry_range()
+                    .map_err(|e| anyhow!("{label}: {e}"))?;
                 // Folded polygons make every result wrong: said by every subcommand, not only
                 // by `tvf info`.
                 for warning in &loaded.report.warnings {
                     if let ValidationWarning::FoldedPolygons { .. } = warning {
-                        crate::progress::warn(format!("{}: {warning}", self.label()));
+                        crate::progress::warn(format!("{label}: {warning}"));
                     }
                 }
                 Ok(loaded)
@@ -164,25 +168,6 @@ impl MeshInput {
             ),
         }
     }
-}
-
-/// Refuses a mesh whose coordinates are so large that its areas overflow `f64` (angles and
-/// every operator would then be meaningless); the message names the mesh and the largest
-/// coordinate.
-fn check_geometry_range(mesh: &SurfaceMesh, label: &str) -> Result<()> {
-    let area = mesh.total_area();
-    if !area.is_finite() {
-        let largest = mesh
-            .positions()
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-        anyhow::bail!(
-            "{label}: coordinates up to {largest:e} are too large for f64 arithmetic: the total \
-             area is {area} and angles cannot be measured (scale the mesh down)"
-        );
-    }
-    Ok(())
 }
 
 /// Reports a usage error the way clap does (on stderr with the subcommand's usage line, exit

@@ -33,6 +33,7 @@
 
 mod assembler;
 mod augmented_system;
+mod checked_constraint_file;
 mod constraint;
 mod constraint_file;
 mod design_problem;

@@ -43,6 +43,9 @@ pub enum FigureError {
     /// A constraint could not be compiled.
     #[error(transparent)]
     Constraint(#[from] tvf_design::ConstraintError),
+    /// A constraint file could not be read, or does not fit the mesh.
+    #[error(transparent)]
+    ConstraintFile(#[from] tvf_design::ConstraintFileError),
     /// A picture could not be drawn or saved.
     #[error(transparent)]
     Render(#[from] tvf_render::RenderError),

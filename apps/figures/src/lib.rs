@@ -17,7 +17,8 @@
 //! - [`convergence_plot`]: the picture of a convergence study against exact spectra
 //!   (`tvf convergence`, `papers/`'s discretization comparison).
 //! - [`spectral_plots`]: the plots of `tvf analyze` (coefficient magnitudes) and
-//!   `tvf rate-distortion` (rate–distortion curves).
+//!   `tvf rate-distortion` (rate–distortion curves); [`spectral_folders`]: the folders these
+//!   commands write.
 //! - [`panels`], [`constraint_markers`], [`numbers`], [`timing`]: drawing, marking, formatting
 //!   and timing helpers the figures share.
 //!
@@ -46,6 +47,7 @@ pub mod finding;
 pub mod numbers;
 pub mod panels;
 pub mod seeded_constraints;
+pub mod spectral_folders;
 pub mod spectral_plots;
 pub mod test_fields;
 pub mod timing;

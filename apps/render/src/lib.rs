@@ -66,7 +66,9 @@ pub use arrows::{arrow_glyphs, ArrowGlyph};
 pub use camera::{bounding_box, Camera};
 pub use colormap::{ColorMap, ColorScale};
 pub use error::RenderError;
-pub use export::{save_png, write_atomically, write_obj, write_ply, write_vtk, FaceData};
+pub use export::{
+    save_png, streamline_polylines, write_atomically, write_obj, write_ply, write_vtk, FaceData,
+};
 pub use face_quantities::{energy_density, face_scalar, FaceQuantity};
 pub use field_picture::{
     colored, draw_field, field_layer, grid, Overlays, Style, Tint, View, COINTEGRABLE_RED,

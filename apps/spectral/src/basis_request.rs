@@ -90,6 +90,17 @@ impl<'a> BasisRequest<'a> {
         Self::new(BasisSize::Fields(count))
     }
 
+    /// The `count` lowest eigenfields of a complex with `field_dimension` (`n1`) field
+    /// coefficients: [`BasisRequest::fields`], or the complete basis
+    /// ([`BasisRequest::complete`]) when `count ≥ n1` (there are no more).
+    pub fn lowest(count: usize, field_dimension: usize) -> Self {
+        if count >= field_dimension {
+            Self::complete()
+        } else {
+            Self::fields(count)
+        }
+    }
+
     /// Harmonic fields plus `k` integrable and `k` co-integrable eigenfields ([`BasisSize::Pairs`]).
     pub fn pairs(k: usize) -> Self {
         Self::new(BasisSize::Pairs(k))
@@ -154,5 +165,17 @@ impl fmt::Debug for BasisRequest<'_> {
             .field("single_precision_copy", &self.single_precision_copy)
             .field("progress", &self.progress.map(|_| "callback"))
             .finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lowest_fields_of_all_or_more_are_the_complete_basis() {
+        assert_eq!(BasisRequest::lowest(5, 40).size, BasisSize::Fields(5));
+        assert_eq!(BasisRequest::lowest(40, 40).size, BasisSize::Complete);
+        assert_eq!(BasisRequest::lowest(400, 40).size, BasisSize::Complete);
     }
 }

@@ -28,14 +28,18 @@
 #![warn(missing_docs)]
 
 mod analysis;
+mod analysis_report;
 mod basis;
 mod basis_cache_folder;
 mod basis_error;
 mod basis_request;
 mod basis_resolution;
 mod basis_store;
+mod basis_summary;
 mod codec;
+mod coefficient_report;
 mod compute_basis;
+mod computed_field;
 mod dense_memory;
 mod eigenfunction_basis;
 mod family_split;
@@ -49,6 +53,7 @@ mod laplacian_apply;
 mod scalar_spectrum;
 
 pub use analysis::{exact_hodge_energies, CoefficientEntry, EnergySplit, SpectralAnalysis};
+pub use analysis_report::AnalysisReport;
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_cache_folder::MESH_CACHE_FOLDER;
 pub use basis_error::BasisError;
@@ -59,20 +64,28 @@ pub use basis_resolution::{
     CachedBasis,
 };
 pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
+pub use basis_summary::{BasisSummary, FamilyCounts};
 pub use codec::compress::{pair_selection, FieldCodec};
 pub use codec::compression_error::CompressionError;
+pub use codec::compression_summary::CompressionSummary;
 pub use codec::quantization::UniformQuantizer;
 pub use codec::range_coder;
 pub use codec::rate_distortion::{
     equal_error_comparison, rate_distortion, rate_distortion_csv, FileStamp, RatePoint,
 };
-pub use codec::sequence::{compress_with_report, relative_l2_error, CompressionReport};
+pub use codec::rate_distortion_report::RateDistortionReport;
+pub use codec::sequence::{
+    compress_with_progress, compress_with_report, decompress_with_progress, relative_l2_error,
+    CompressionReport,
+};
 pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
+pub use computed_field::{check_computed_field, NonFiniteField};
 pub use eigenfunction_basis::EigenfunctionBasis;
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
+pub use formats::basis_arrays::write_basis_arrays;
 pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
     BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, StoredFieldMass,
@@ -83,10 +96,12 @@ pub use formats::basis_file_complex::{
     BasisFileUseError,
 };
 pub use formats::basis_id::basis_id;
+pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
 pub use formats::complex_folder::{read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID};
 pub use formats::complex_folder_info::{
     complex_folder_info, mass_file_name, sampling_of, MatrixFileFormat,
 };
+pub use formats::complex_folder_write::write_complex_folder;
 pub use formats::compressed_file::{
     CoefficientCoding, CompressedFields, FramePayload, TvfcHeader, TVFC_HEADER_BYTES, TVFC_MAGIC,
     TVFC_VERSION,
@@ -100,6 +115,10 @@ pub use formats::field_io::{
     write_face_vector_sequence, write_face_vectors, write_face_vectors_as, write_npy,
     write_tangent_field, FieldFileFormat, FieldIoError,
 };
+pub use formats::folder_file::{
+    write_folder_bytes, write_folder_file, FieldFolderError, FolderFileError,
+};
+pub use formats::hodge_parts_folder::write_hodge_parts;
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
 pub use formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};

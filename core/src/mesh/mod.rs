@@ -2,6 +2,7 @@
 
 mod error;
 mod fingerprint;
+mod geometry_range;
 mod quality;
 mod surface_mesh;
 mod topology;
@@ -9,6 +10,7 @@ mod validate;
 mod validation_report;
 
 pub use error::MeshError;
+pub use geometry_range::GeometryRangeError;
 pub use quality::triangle_angles;
 pub use surface_mesh::{SurfaceMesh, NO_FACE};
 pub use validate::check_faces;

@@ -6,16 +6,10 @@ use crate::context::RunContext;
 use crate::progress::Progress;
 use anyhow::Result;
 use clap::Args;
-use rayon::prelude::*;
-use serde_json::json;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use tvf_core::discretization::Mass;
-use tvf_spectral::BasisSize;
-use tvf_spectral::FrameSource;
 use tvf_spectral::{
-    basis_id, relative_l2_error, CoefficientCoding, CompressedFields, CompressionError,
-    CompressionReport, FieldCodec,
+    basis_id, compress_with_progress, BasisSize, CoefficientCoding, CompressionSummary, FieldCodec,
+    FrameSource,
 };
 
 /// Arguments of `tvf compress`.
@@ -60,101 +54,16 @@ pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
     };
     let id = basis_id(&setup.basis);
     let codec = FieldCodec::new(&setup.basis, setup.mesh_fingerprint, id, args.pairs, coding)?;
-    let (file, report) = compress_frames(
-        &codec,
-        setup.basis.field_mass(),
-        &frames,
-        setup.mesh.vertex_count(),
-    )?;
-    file.write_atomic(&args.output)?;
-    let coding_name = match coding {
-        CoefficientCoding::Float64 => "f64".to_string(),
-        CoefficientCoding::Quantized { bits } => format!("quantised {bits} bits, range-coded"),
-    };
-    if args.json {
-        let value = json!({
-            "output": args.output.display().to_string(),
-            "frames": report.frames,
-            "sequence": source != FrameSource::Single,
-            "pairs": args.pairs,
-            "coefficients_per_frame": report.coefficients_per_frame,
-            "coding": coding_name,
-            "bytes": report.bytes,
-            "bits_per_vertex": report.bits_per_vertex(),
-            "rate_against_two_doubles": report.rate_against_two_doubles(),
-            "rate_against_two_floats": report.rate_against_two_floats(),
-            "mean_relative_error": report.mean_error(),
-            "worst_relative_error": report.worst_error(),
-            "relative_errors": report.relative_errors,
-        });
-        println!("{}", serde_json::to_string_pretty(&value)?);
-    } else {
-        println!("frames                {}", report.frames);
-        println!(
-            "coefficients/frame    {} ({} pairs, {coding_name})",
-            report.coefficients_per_frame, args.pairs
-        );
-        println!("file size             {} bytes", report.bytes);
-        println!(
-            "bits per vertex       {:.3} (per frame)",
-            report.bits_per_vertex()
-        );
-        println!(
-            "rate vs 2 doubles/face {:.2}",
-            report.rate_against_two_doubles()
-        );
-        println!(
-            "rate vs 2 floats/face {:.2}",
-            report.rate_against_two_floats()
-        );
-        println!(
-            "relative L2 error     mean {:.4e}, worst {:.4e}",
-            report.mean_error(),
-            report.worst_error()
-        );
-        println!("wrote                 {}", args.output.display());
-    }
-    Ok(())
-}
-
-/// Encodes every frame (in parallel) and decodes it again to measure its relative `M1` error,
-/// with a progress bar for sequences (plain lines off a terminal, nothing with `--quiet`).
-fn compress_frames(
-    codec: &FieldCodec<'_>,
-    mass: &Mass,
-    frames: &[Vec<f64>],
-    vertex_count: usize,
-) -> Result<(CompressedFields, CompressionReport)> {
-    if frames.is_empty() {
-        return Err(CompressionError::NoFrames.into());
-    }
+    // A progress bar for sequences (plain lines off a terminal, nothing with `--quiet`).
     let progress = (frames.len() > 1).then(|| Progress::new("compress"));
-    let done = AtomicUsize::new(0);
-    let encoded = frames
-        .par_iter()
-        .map(|field| {
-            let payload = codec.encode(field)?;
-            let error = relative_l2_error(mass, field, &codec.decode(&payload)?);
-            let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-            if let Some(progress) = &progress {
-                progress.update("frames", finished, frames.len());
-            }
-            Ok((payload, error))
-        })
-        .collect::<Result<Vec<_>, CompressionError>>()?;
-    let (payloads, relative_errors): (Vec<_>, Vec<_>) = encoded.into_iter().unzip();
-    let file = CompressedFields {
-        header: *codec.header(),
-        frames: payloads,
+    let on_frame = |done| {
+        if let Some(progress) = &progress {
+            progress.update("frames", done, frames.len());
+        }
     };
-    let report = CompressionReport {
-        bytes: file.to_bytes().len(),
-        frames: frames.len(),
-        vertex_count,
-        field_dimension: mass.len(),
-        coefficients_per_frame: codec.selection().len(),
-        relative_errors,
-    };
+    let mass = setup.basis.field_mass();
+    let vertex_count = setup.mesh.vertex_count();
+    let (file, report) = compress_with_progress(&codec, mass, &frames, vertex_count, &on_frame)?;
     if let Some(progress) = &progress {
         progress.finish(format!(
             "{} frames, {} bytes, worst relative error {:.3e}",
@@ -163,5 +72,18 @@ fn compress_frames(
             report.worst_error()
         ));
     }
-    Ok((file, report))
+    file.write_atomic(&args.output)?;
+    let summary = CompressionSummary {
+        report: &report,
+        output: &args.output,
+        pairs: args.pairs,
+        coding,
+        sequence: source != FrameSource::Single,
+    };
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&summary.to_json())?);
+    } else {
+        print!("{}", summary.text());
+    }
+    Ok(())
 }

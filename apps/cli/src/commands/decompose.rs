@@ -12,7 +12,7 @@ use clap::Args;
 use std::path::PathBuf;
 use tvf_core::discretization::HodgeOperators;
 use tvf_discretizations::HodgeDecomposer;
-use tvf_spectral::{write_face_vectors, write_npy, NpyArray, NpyDtype};
+use tvf_spectral::write_hodge_parts;
 
 /// Arguments of `tvf decompose`.
 #[derive(Args)]
@@ -51,66 +51,29 @@ pub fn run(mut args: DecomposeArgs, context: &RunContext) -> Result<()> {
     report.set("discretization", discretization.id());
     let staged = stage(&args.out)?;
     let c = discretization.as_ref();
-    (|| {
-        let parts = HodgeDecomposer::new(c)
-            .and_then(|d| d.decompose(&field))
-            .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
-        let total = c.field_inner(&field, &field);
-        if !total.is_finite() {
-            anyhow::bail!(
-                "{}: the field's energy ‖·‖² is not finite ({total:e}): its vectors are too large \
-                 for f64 arithmetic",
-                field_path.display()
-            );
-        }
-        report.set("field_energy", total);
-        for (name, part) in [
-            ("integrable", &parts.integrable),
-            ("cointegrable", &parts.cointegrable),
-            ("harmonic", &parts.harmonic),
-        ] {
-            write_face_vectors(
-                &staged.path().join(format!("{name}.npy")),
-                &c.require_sampling()?.to_face_vectors(part)?,
-            )
-            .with_context(|| {
-                format!(
-                    "cannot write {}",
-                    args.out.join(format!("{name}.npy")).display()
-                )
-            })?;
-            let energy = c.field_inner(part, part);
-            report.line(format!(
-                "{name:<13} ‖·‖² = {energy:.6e}  ({:.2} % of the field)",
-                if total > 0.0 {
-                    100.0 * energy / total
-                } else {
-                    0.0
-                }
-            ));
-            report.set(&format!("{name}_energy"), energy);
-        }
-        for (name, values) in [
-            ("potential", &parts.potential),
-            ("co_potential", &parts.co_potential),
-        ] {
-            write_npy(
-                &staged.path().join(format!("{name}.npy")),
-                &NpyArray {
-                    shape: vec![values.len()],
-                    data: values.clone(),
-                    dtype: NpyDtype::F64,
-                },
-            )
-            .with_context(|| {
-                format!(
-                    "cannot write {}",
-                    args.out.join(format!("{name}.npy")).display()
-                )
-            })?;
-        }
-        Ok::<(), anyhow::Error>(())
-    })()?;
+    let parts = HodgeDecomposer::new(c)
+        .and_then(|d| d.decompose(&field))
+        .with_context(|| format!("{}: cannot decompose the field", args.input.label()))?;
+    let total = c.field_inner(&field, &field);
+    if !total.is_finite() {
+        anyhow::bail!(
+            "{}: the field's energy ‖·‖² is not finite ({total:e}): its vectors are too large \
+             for f64 arithmetic",
+            field_path.display()
+        );
+    }
+    report.set("field_energy", total);
+    write_hodge_parts(&staged, c, &parts, &mut |name, energy| {
+        let share = if total > 0.0 {
+            100.0 * energy / total
+        } else {
+            0.0
+        };
+        report.line(format!(
+            "{name:<13} ‖·‖² = {energy:.6e}  ({share:.2} % of the field)"
+        ));
+        report.set(&format!("{name}_energy"), energy);
+    })?;
     commit(staged)?;
     report.line(format!(
         "wrote the parts and potentials to {}",

@@ -1,21 +1,18 @@
 //! `tvf decompress`: the fields of a `.tvfc` file.
 
-use super::spectral_inputs::{inputs_for_mesh, SpectralInputs};
+use super::spectral_inputs::inputs_for_mesh;
 use crate::basis_source::BasisSource;
-use crate::computed_field::check_computed_field;
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::check_output;
 use crate::progress::Progress;
-use anyhow::{bail, Result};
+use anyhow::{anyhow, Result};
 use clap::Args;
-use rayon::prelude::*;
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use tvf_core::discretization::HodgeOperators;
-use tvf_spectral::write_field_frames;
-use tvf_spectral::BasisSize;
-use tvf_spectral::{basis_id, CompressedFields, CompressionError, FieldCodec};
+use std::path::PathBuf;
+use tvf_spectral::{
+    basis_id, check_computed_field, decompress_with_progress, write_field_frames, BasisSize,
+    CompressedFields, FieldCodec,
+};
 
 /// Arguments of `tvf decompress`.
 #[derive(Args)]
@@ -48,7 +45,9 @@ pub fn run(mut args: DecompressArgs, context: &RunContext) -> Result<()> {
     let mesh = args.input.load()?.mesh;
     let file = CompressedFields::read(&compressed)?;
     let inputs = inputs_for_mesh(context.catalog(), mesh, &args.input, &args.basis.options)?;
-    check_file_fits(&compressed, &file, &inputs)?;
+    file.header
+        .check_fits(&inputs.mesh, inputs.complex.as_ref())
+        .map_err(|e| anyhow!("{}: {e}", compressed.display()))?;
     // Without --basis or -k, compute the basis of as many pairs as the file keeps.
     let size = args
         .basis
@@ -57,7 +56,18 @@ pub fn run(mut args: DecompressArgs, context: &RunContext) -> Result<()> {
     let id = basis_id(&setup.basis);
     let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;
-    let frames = decode_frames(&codec, &file)?;
+    // A progress bar for sequences (plain lines off a terminal, nothing with `--quiet`).
+    let count = file.frames.len();
+    let progress = (count > 1).then(|| Progress::new("decompress"));
+    let on_frame = |done| {
+        if let Some(progress) = &progress {
+            progress.update("frames", done, count);
+        }
+    };
+    let frames = decompress_with_progress(&codec, &file, &on_frame)?;
+    if let Some(progress) = &progress {
+        progress.finish(format!("{count} frames decoded"));
+    }
     for (k, frame) in frames.iter().enumerate() {
         check_computed_field(
             frame,
@@ -69,55 +79,4 @@ pub fn run(mut args: DecompressArgs, context: &RunContext) -> Result<()> {
     println!("frames    {}", frames.len());
     println!("wrote     {}", args.output.display());
     Ok(())
-}
-
-/// Refuses a compressed file made for another mesh or for fields of another size, before any
-/// basis is computed (the basis it was made with is checked by its id once it is there).
-fn check_file_fits(path: &Path, file: &CompressedFields, inputs: &SpectralInputs) -> Result<()> {
-    let mesh = inputs.mesh.fingerprint();
-    if file.header.mesh_fingerprint != mesh {
-        bail!(
-            "{}: {}",
-            path.display(),
-            CompressionError::MeshMismatch {
-                file: file.header.mesh_fingerprint,
-                mesh,
-            }
-        );
-    }
-    let dimension = inputs.complex.field_dimension();
-    if file.header.field_dimension != dimension as u64 {
-        bail!(
-            "{}: the file holds fields of {} coefficients, but the fields of {} on this mesh \
-             have {dimension} (compressed with another discretization?)",
-            path.display(),
-            file.header.field_dimension,
-            inputs.complex.id()
-        );
-    }
-    Ok(())
-}
-
-/// Decodes every frame (in parallel), with a progress bar for sequences (plain lines off a
-/// terminal, nothing with `--quiet`).
-fn decode_frames(codec: &FieldCodec<'_>, file: &CompressedFields) -> Result<Vec<Vec<f64>>> {
-    let count = file.frames.len();
-    let progress = (count > 1).then(|| Progress::new("decompress"));
-    let done = AtomicUsize::new(0);
-    let frames = file
-        .frames
-        .par_iter()
-        .map(|payload| {
-            let field = codec.decode(payload)?;
-            let finished = done.fetch_add(1, Ordering::Relaxed) + 1;
-            if let Some(progress) = &progress {
-                progress.update("frames", finished, count);
-            }
-            Ok(field)
-        })
-        .collect::<Result<Vec<_>, CompressionError>>()?;
-    if let Some(progress) = &progress {
-        progress.finish(format!("{count} frames decoded"));
-    }
-    Ok(frames)
 }

@@ -11,10 +11,8 @@ use crate::progress::note;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
-use tvf_core::generate::bumpy_torus;
-use tvf_core::SurfaceMesh;
 use tvf_discretizations::BoxedComplex;
-use tvf_figures::demo::{run as run_demo, DemoConfig, DemoHost};
+use tvf_figures::demo::{default_mesh, run as run_demo, DemoConfig, DemoHost};
 use tvf_figures::FigureError;
 use tvf_spectral::{BasisSize, SpectralBasis};
 
@@ -34,23 +32,6 @@ const QUICK_FIELDS: usize = 60;
 
 /// Fewest eigenfields the demo accepts: three pairs to show plus the harmonic fields.
 const MIN_FIELDS: usize = 10;
-
-/// Resolution of the default bumpy torus: vertices around the axis and around the tube
-/// (`2 · around · tube` faces).
-const TORUS_AROUND: usize = 120;
-const TORUS_TUBE: usize = 60;
-
-/// The torus turned so that its axis (z) points up in pictures (+y): `(x, y, z) ↦ (x, z, −y)`,
-/// a rotation, so orientation and intrinsic geometry are unchanged.
-fn upright(mesh: Option<SurfaceMesh>) -> Option<SurfaceMesh> {
-    let mesh = mesh?;
-    let positions = mesh
-        .positions()
-        .iter()
-        .map(|p| [p[0], p[2], -p[1]])
-        .collect();
-    SurfaceMesh::new(positions, mesh.faces().to_vec()).ok()
-}
 
 /// Arguments of `tvf demo`.
 #[derive(Args)]
@@ -96,19 +77,9 @@ pub fn run(args: DemoArgs, context: &RunContext) -> Result<()> {
     let (mesh, mesh_name) = match &args.mesh {
         Some(path) => {
             let input = MeshInput::file(path.clone());
-            (Some(input.load()?.mesh), input.label())
+            (input.load()?.mesh, input.label())
         }
-        None if args.quick => (
-            upright(bumpy_torus(1.0, 0.3, 40, 20, 12, 0.35)),
-            "bumpy torus (quick)".to_string(),
-        ),
-        None => (
-            upright(bumpy_torus(1.0, 0.3, TORUS_AROUND, TORUS_TUBE, 24, 0.35)),
-            "bumpy torus".to_string(),
-        ),
-    };
-    let Some(mesh) = mesh else {
-        bail!("the built-in bumpy torus parameters are invalid");
+        None => default_mesh(args.quick)?,
     };
     let fields = args.fields.unwrap_or(if args.quick {
         QUICK_FIELDS

@@ -7,8 +7,8 @@ use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_core::ValidationWarning;
+use tvf_design::ConstraintSet;
 use tvf_design::ReducedBasis;
-use tvf_design::{ConstraintAssembler, ConstraintSet};
 use tvf_editor::{Editor, EditorServer, EditorSetup};
 
 /// Arguments of `tvf edit`.
@@ -42,17 +42,11 @@ pub fn run(args: EditArgs, context: &RunContext) -> Result<()> {
         .basis
         .options
         .discretization(context.catalog(), &mesh, &args.input)?;
-    let constraints = match &args.constraints {
-        Some(path) => {
-            let set = ConstraintSet::load(path)?;
-            set.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), path)?;
-            ConstraintAssembler::new(complex.as_ref(), &mesh)
-                .compile_all(&set.constraints)
-                .with_context(|| format!("{}", path.display()))?;
-            Some(set)
-        }
-        None => None,
-    };
+    let constraints = args
+        .constraints
+        .as_deref()
+        .map(|path| ConstraintSet::load_for(path, &mesh, complex.as_ref()))
+        .transpose()?;
     let computed_with = args.basis.options.basis.is_none().then_some(complex);
     let resolved = args.basis.options.resolve_with(
         context.catalog(),

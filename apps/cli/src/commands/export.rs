@@ -10,8 +10,7 @@ use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::HodgeOperators;
-use tvf_render::{face_scalar, FaceQuantity};
-use tvf_render::{trace_streamlines, write_obj, write_ply, write_vtk, FaceData, StreamlineOptions};
+use tvf_render::{streamline_polylines, write_obj, write_ply, write_vtk, FaceData};
 
 const EXAMPLES: &str = "Examples:
   tvf export bunny.obj field.npy --format vtk -o field.vtk     (open in ParaView: cell data)
@@ -82,20 +81,7 @@ pub fn run(mut args: ExportArgs, context: &RunContext) -> Result<()> {
     let vectors = discretization.require_sampling()?.to_face_vectors(&field)?;
     match format {
         Format::Vtk | Format::Ply => {
-            let mut data = FaceData {
-                vectors: vec![("field".to_string(), vectors.clone())],
-                scalars: Vec::new(),
-            };
-            for kind in [
-                FaceQuantity::Magnitude,
-                FaceQuantity::Divergence,
-                FaceQuantity::Curl,
-                FaceQuantity::Energy,
-            ] {
-                let values = face_scalar(discretization.as_ref(), kind, &field, &vectors)?;
-                data.scalars
-                    .extend(values.map(|v| (kind.label().to_string(), v)));
-            }
+            let data = FaceData::of_field(discretization.as_ref(), &field, vectors)?;
             if format == Format::Vtk {
                 write_vtk(&args.output, &mesh, &data)?;
             } else {
@@ -113,14 +99,7 @@ pub fn run(mut args: ExportArgs, context: &RunContext) -> Result<()> {
             if args.streamlines == 0 {
                 bail!("--streamlines 0: ask for at least one streamline");
             }
-            let options = StreamlineOptions {
-                count: args.streamlines,
-                ..Default::default()
-            };
-            let lines: Vec<Vec<[f64; 3]>> = trace_streamlines(&mesh, &vectors, &options)?
-                .into_iter()
-                .map(|l| l.points)
-                .collect();
+            let lines = streamline_polylines(&mesh, &vectors, args.streamlines)?;
             write_obj(&args.output, Some(&mesh), &lines)?;
             println!(
                 "wrote {} ({} vertices, {} faces, {} streamlines)",

@@ -1,13 +1,12 @@
 //! `tvf filter`: scale a field's Fourier coefficients by functions of frequency.
 
 use super::spectral_inputs::{read_field, FieldArgs};
-use crate::computed_field::check_computed_field;
 use crate::context::RunContext;
 use crate::report::Report;
 use anyhow::{bail, Result};
 use clap::Args;
 use std::path::{Path, PathBuf};
-use tvf_spectral::{write_tangent_field, FrequencyResponse, SpectralFilter};
+use tvf_spectral::{check_computed_field, write_tangent_field, FrequencyResponse, SpectralFilter};
 
 const SPEC_HELP: &str = "Examples:\n  tvf filter bunny.obj noisy.npy --basis bunny.tvfb --integrable lowpass:t=0.01 --cointegrable lowpass:t=0.01 -o smooth.npy\n  tvf filter bunny.obj field.npy -k 200 --cointegrable cutoff:f=8 --rest 0 -o filtered.npy\n\nSPEC: identity | lowpass:t=T (gain e^(-t·λ)) | highpass:t=T (2 - e^(-t·λ)) | \
 bandpass:lo=A,hi=B (1 for A ≤ √λ ≤ B) | cutoff:f=F (1 for √λ ≤ F) | curve:F,G;F,G;... (piecewise linear \

@@ -5,19 +5,10 @@ use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
-use serde_json::json;
-use sprs::CsMat;
-use std::io::Write;
 use std::path::PathBuf;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::io::{AtomicWriter, StagedFolder};
-use tvf_core::mesh::ValidationReport;
-use tvf_core::SurfaceMesh;
-use tvf_spectral::{
-    complex_folder_info, mass_file_name, npy_bytes, write_sparse_npz, MatrixFileFormat, NpyData,
-};
+use tvf_spectral::{write_complex_folder, MatrixFileFormat};
 
 /// Arguments of `tvf operators`.
 #[derive(Args)]
@@ -61,14 +52,12 @@ pub fn run(args: OperatorsArgs, context: &RunContext) -> Result<()> {
     let complex = args
         .discretization
         .build(context.catalog(), &mesh, &args.input)?;
+    let format = match args.format {
+        MatrixFormat::Mtx => MatrixFileFormat::MatrixMarket,
+        MatrixFormat::Npz => MatrixFileFormat::SparseNpz,
+    };
     let staged = stage(&args.out)?;
-    let written = write_all(
-        complex.as_ref(),
-        &mesh,
-        &loaded.report,
-        args.format,
-        &staged,
-    )?;
+    let written = write_complex_folder(complex.as_ref(), &mesh, &loaded.report, format, &staged)?;
     let out = staged.target().to_path_buf();
     commit(staged)?;
     println!(
@@ -77,89 +66,4 @@ pub fn run(args: OperatorsArgs, context: &RunContext) -> Result<()> {
         complex.id()
     );
     Ok(())
-}
-
-/// Writes every file of `complex` into `out`; returns the number of matrices.
-fn write_all(
-    complex: &dyn HodgeComplex,
-    mesh: &SurfaceMesh,
-    report: &ValidationReport,
-    format: MatrixFormat,
-    out: &StagedFolder,
-) -> Result<usize> {
-    let mut matrices: Vec<(String, CsMat<f64>)> = vec![
-        ("d0".into(), complex.d0().clone()),
-        ("d1".into(), complex.d1().clone()),
-    ];
-    for (name, mass) in [
-        ("M0", complex.m0()),
-        ("M1", complex.m1()),
-        ("M2", complex.m2()),
-    ] {
-        matrices.push((mass_file_name(name, mass.form()), mass.stored_matrix()));
-    }
-    matrices.push(("S0".into(), complex.potential_stiffness().clone()));
-    let mut not_written = serde_json::Map::new();
-    for (name, operator, why) in [
-        (
-            "S2",
-            complex.co_potential_stiffness(),
-            "d1 M1^-1 d1^T with a non-diagonal M1",
-        ),
-        (
-            "S",
-            complex.dirichlet_energy(),
-            "it contains M0^-1 or M2 of a non-diagonal mass",
-        ),
-        (
-            "B",
-            complex.biharmonic_energy(),
-            "S M1^-1 S with a non-diagonal M1 or a dense S",
-        ),
-    ] {
-        match operator.as_sparse() {
-            Some(matrix) => matrices.push((name.into(), matrix.clone())),
-            None => {
-                not_written.insert(name.into(), json!(format!("dense: {why}")));
-            }
-        }
-    }
-    if let Some(rotation) = complex.rotation() {
-        matrices.push(("J".into(), rotation.rotation().clone()));
-    }
-    for (name, matrix) in &matrices {
-        match format {
-            MatrixFormat::Mtx => write_atomically(out, &format!("{name}.mtx"), |w| {
-                sprs::io::write_matrix_market_to_bufwrite(w, matrix)
-            })?,
-            MatrixFormat::Npz => write_atomically(out, &format!("{name}.npz"), |w| {
-                let mut buffer = std::io::Cursor::new(Vec::new());
-                write_sparse_npz(&mut buffer, matrix)?;
-                w.write_all(buffer.get_ref())
-            })?,
-        }
-    }
-    let vertex_map: Vec<i64> = report.original_vertex.iter().map(|&v| v as i64).collect();
-    write_atomically(out, "vertex_map.npy", |w| {
-        w.write_all(&npy_bytes(&NpyData::I64(&vertex_map), &[vertex_map.len()]))
-    })?;
-    let file_format = match format {
-        MatrixFormat::Mtx => MatrixFileFormat::MatrixMarket,
-        MatrixFormat::Npz => MatrixFileFormat::SparseNpz,
-    };
-    let info = complex_folder_info(complex, mesh, report, file_format, not_written);
-    let text = serde_json::to_string_pretty(&info)? + "\n";
-    write_atomically(out, "info.json", |w| w.write_all(text.as_bytes()))?;
-    Ok(matrices.len())
-}
-
-/// Writes the file `name` of the staged folder `out` atomically
-/// ([`tvf_core::io::write_atomically`]); errors name the file in the output folder.
-fn write_atomically(
-    out: &StagedFolder,
-    name: &str,
-    fill: impl FnOnce(&mut AtomicWriter<'_>) -> std::io::Result<()>,
-) -> Result<()> {
-    tvf_core::io::write_atomically(&out.path().join(name), fill)
-        .with_context(|| format!("cannot write {}", out.target().join(name).display()))
 }

@@ -5,16 +5,12 @@ use super::spectral_inputs::{read_field, FieldArgs};
 use crate::context::RunContext;
 use crate::output_rules::{commit, stage};
 use crate::report::Report;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
-use tvf_core::io::write_atomically;
-use tvf_figures::spectral_plots::rate_distortion_plot;
-use tvf_render::save_png;
+use tvf_figures::spectral_folders::write_rate_distortion_folder;
 use tvf_spectral::{
-    basis_id, equal_error_comparison, rate_distortion, rate_distortion_csv, BasisSize,
-    CoefficientCoding, FileStamp,
+    basis_id, rate_distortion, BasisSize, CoefficientCoding, FileStamp, RateDistortionReport,
 };
 
 /// Arguments of `tvf rate-distortion`.
@@ -71,78 +67,29 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
             .map(|&bits| CoefficientCoding::Quantized { bits }),
     );
     let points = rate_distortion(&setup.basis, &field, stamp, &args.ks, &codings)?;
-    let staged = stage(&args.output)?;
-
-    let csv = rate_distortion_csv(&points);
-    let csv_path = args.output.join("rate_distortion.csv");
-    write_atomically(&staged.path().join("rate_distortion.csv"), |w| {
-        w.write_all(csv.as_bytes())
-    })
-    .with_context(|| format!("cannot write {}", csv_path.display()))?;
-    let png_path = args.output.join("rate_distortion.png");
     let label = args.inputs.input.label();
     let mesh_name = Path::new(&label)
         .file_name()
         .map_or(label.clone(), |n| n.to_string_lossy().into_owned());
-    let plot = rate_distortion_plot(
-        &points,
-        &codings,
-        format!("Rate-distortion on {mesh_name}"),
-        (1000, 650),
-    );
-    save_png(&plot.render()?, &staged.path().join("rate_distortion.png"))
-        .with_context(|| format!("cannot write {}", png_path.display()))?;
+    let staged = stage(&args.output)?;
+    write_rate_distortion_folder(&staged, &points, &codings, &mesh_name)?;
     commit(staged)?;
 
+    let csv_path = args.output.join("rate_distortion.csv");
+    let png_path = args.output.join("rate_distortion.png");
+    let summary = RateDistortionReport { points: &points };
     let mut report = Report::new(args.json);
-    report.line(format!(
-        "{:>6} {:>34} {:>10} {:>12} {:>14}",
-        "pairs", "coding", "bytes", "bits/vertex", "rel. L2 error"
-    ));
-    let mut rows = Vec::new();
-    for p in &points {
-        report.line(format!(
-            "{:>6} {:>34} {:>10} {:>12.3} {:>14.4e}",
-            p.pairs,
-            p.coding.label(),
-            p.bytes,
-            p.bits_per_vertex,
-            p.relative_error
-        ));
-        rows.push(serde_json::json!({
-            "pairs": p.pairs,
-            "coding": p.coding.label(),
-            "bytes": p.bytes,
-            "bits_per_vertex": p.bits_per_vertex,
-            "relative_error": p.relative_error,
-        }));
-    }
+    summary
+        .table_lines()
+        .iter()
+        .for_each(|line| report.line(line));
     report.set("basis_fields", setup.basis.len());
-    report.set("points", rows);
-    report.line("at equal or lower error (smallest quantised file per 64-bit point):");
-    let mut comparisons = Vec::new();
-    for (exact, quantised) in equal_error_comparison(&points) {
-        comparisons.push(serde_json::json!({
-            "pairs": exact.pairs,
-            "bytes": exact.bytes,
-            "quantised_coding": quantised.coding.label(),
-            "quantised_pairs": quantised.pairs,
-            "quantised_bytes": quantised.bytes,
-            "ratio": exact.bytes as f64 / quantised.bytes as f64,
-        }));
-        report.line(format!(
-            "  P = {:>5}: 64-bit {:>9} bytes (error {:.3e})  vs  {} P = {} {:>8} bytes (error {:.3e}): {:.1}× smaller",
-            exact.pairs,
-            exact.bytes,
-            exact.relative_error,
-            quantised.coding.label(),
-            quantised.pairs,
-            quantised.bytes,
-            quantised.relative_error,
-            exact.bytes as f64 / quantised.bytes as f64
-        ));
-    }
-    report.set("equal_error", comparisons);
+    report.set("points", summary.points_json());
+    summary
+        .comparison_lines()
+        .iter()
+        .for_each(|line| report.line(line));
+    report.set("equal_error", summary.comparison_json());
     report.line(format!(
         "wrote {}, {}",
         csv_path.display(),

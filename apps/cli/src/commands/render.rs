@@ -7,14 +7,13 @@ use crate::mesh_input::{usage_error, MeshInput};
 use crate::output_rules::check_output;
 use crate::picture_options::{face_quantity_arg, parse_size, parse_view, style_arg};
 use crate::progress::note;
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::error::ErrorKind;
 use clap::Args;
 use std::path::PathBuf;
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
-use tvf_design::{ConstraintAssembler, ConstraintSet};
-use tvf_figures::constraint_markers::constraint_markers;
+use tvf_figures::constraint_markers::constraint_file_markers;
 use tvf_figures::panels::hodge_parts_grid;
 use tvf_render::{draw_field, save_png, FaceQuantity, Overlays, Style, Tint, View};
 
@@ -111,24 +110,12 @@ pub fn run(mut args: RenderArgs, context: &RunContext) -> Result<()> {
     } else {
         FaceQuantity::None
     }));
-    let mut markers = Vec::new();
-    if let Some(path) = &args.constraints {
-        let set = ConstraintSet::load(path)?;
-        set.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), path)?;
-        // The same checks as for splines: every index in range, values finite (errors name
-        // the file and the constraint's id).
-        ConstraintAssembler::new(discretization.as_ref(), &mesh)
-            .compile_all(&set.constraints)
-            .with_context(|| format!("{}", path.display()))?;
-        markers = constraint_markers(&mesh, &set.constraints, 6.0 * args.size.1 as f64 / 768.0);
-        if markers.len() < set.constraints.len() {
-            bail!(
-                "{}: {} constraint(s) refer to vertices, edges or faces this mesh does not have",
-                path.display(),
-                set.constraints.len() - markers.len()
-            );
-        }
-    }
+    // The same checks as for splines: every index in range, values finite (errors name the
+    // file and the constraint's id).
+    let markers = match &args.constraints {
+        Some(path) => constraint_file_markers(path, &mesh, discretization.as_ref(), args.size.1)?,
+        None => Vec::new(),
+    };
     let (width, height) = args.size;
     let view = |width, height| View {
         width,

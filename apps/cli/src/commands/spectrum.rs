@@ -48,19 +48,15 @@ pub fn run(args: SpectrumArgs, context: &RunContext) -> Result<()> {
     let (basis, _) = {
         let callback = progress.basis_callback();
         // K ≥ n1: every eigenvalue (the complete basis), as for `tvf basis -k K`.
-        let request = if args.count >= discretization.field_dimension() {
-            BasisRequest::complete()
-        } else {
-            BasisRequest::fields(args.count)
-        };
-        let request = request.with_progress(&callback);
+        let request = BasisRequest::lowest(args.count, discretization.field_dimension())
+            .with_progress(&callback);
         compute_eigenfunction_basis(discretization.as_ref(), &request)
             .with_context(|| format!("{}: cannot compute the spectrum", args.input.label()))?
     };
     let seconds = start.elapsed().as_secs_f64();
     progress.finish(format!("{} eigenvalues in {seconds:.2} s", basis.len()));
-    let labels: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
     if args.json {
+        let labels: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
         let out = json!({
             "mesh": args.input.label(),
             "discretization": discretization.id(),
@@ -71,16 +67,7 @@ pub fn run(args: SpectrumArgs, context: &RunContext) -> Result<()> {
         });
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        println!(
-            "{:>6}  {:>22}  {:>14}  family",
-            "index", "eigenvalue", "frequency"
-        );
-        for (i, (&lambda, label)) in basis.eigenvalues().iter().zip(&labels).enumerate() {
-            println!(
-                "{i:>6}  {lambda:>22.15e}  {:>14.6e}  {label}",
-                lambda.sqrt()
-            );
-        }
+        print!("{}", basis.spectrum_table());
     }
     Ok(())
 }

@@ -7,16 +7,19 @@
 //! [`compression`]), a spline beside soft design (Figure 4, [`design`]) and fur along the
 //! spline (Figure 5, also [`design`]). Figures 1, 7, 8 and 9 are this crate's, the same code
 //! papers/'s reproduction runs. Every step is timed (page and the host's notes); every file is
-//! written atomically.
+//! written atomically. Without a mesh of the user's, the demo runs on [`default_mesh`].
 
 mod basis;
 mod compression;
+mod default_mesh;
 mod design;
 mod eigenfields;
 mod filtering;
 mod hodge;
 mod page;
 mod screen_points;
+
+pub use default_mesh::default_mesh;
 
 use crate::error::FigureError;
 use crate::finding::Experiment;

@@ -1,12 +1,15 @@
 //! Exports for other tools: VTK legacy (ParaView), PLY (MeshLab, Polyscope), OBJ with
-//! polylines; and PNG images. Every file is written atomically.
+//! polylines; and PNG images. Every file is written atomically. A tangent field's data for
+//! them: `field_export`.
 
 mod atomic;
+mod field_export;
 mod obj;
 mod ply;
 mod vtk;
 
 pub use atomic::write_atomically;
+pub use field_export::streamline_polylines;
 pub use obj::write_obj;
 pub use ply::write_ply;
 pub use vtk::write_vtk;

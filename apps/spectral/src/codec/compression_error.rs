@@ -53,6 +53,17 @@ pub enum CompressionError {
         /// Fingerprint of the mesh given.
         mesh: u64,
     },
+    /// The file holds fields of another size than the complex's (made with another
+    /// discretization).
+    #[error("the file holds fields of {file} coefficients, but the fields of {complex} on this mesh have {dimension} (compressed with another discretization?)")]
+    FieldDimensionMismatch {
+        /// Field dimension `n1` in the file.
+        file: u64,
+        /// Id of the complex given.
+        complex: String,
+        /// Its field dimension `n1`.
+        dimension: usize,
+    },
     /// The file was made with another basis.
     #[error("file was compressed with another basis (basis id {file:016x}, this basis {basis:016x}); decode with the basis it was made with")]
     BasisMismatch {

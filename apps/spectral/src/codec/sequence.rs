@@ -1,10 +1,12 @@
 //! Compressing one field or a time-dependent sequence of fields with one basis, and measuring
-//! what it cost: [`compress_with_report`], [`CompressionReport`].
+//! what it cost: [`compress_with_report`] (with progress: [`compress_with_progress`]),
+//! [`CompressionReport`]; decoding with progress: [`decompress_with_progress`].
 
 use crate::codec::compress::FieldCodec;
 use crate::codec::compression_error::CompressionError;
 use crate::formats::compressed_file::CompressedFields;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use tvf_core::discretization::Mass;
 
 /// Relative `M1` error `‖v − ṽ‖_{M1} / ‖v‖_{M1}` of an approximation (`mass` is the complex's
@@ -92,15 +94,38 @@ pub fn compress_with_report(
     fields: &[Vec<f64>],
     vertex_count: usize,
 ) -> Result<(CompressedFields, CompressionReport), CompressionError> {
-    let file = codec.compress(fields)?;
-    let bytes = file.to_bytes().len();
-    let relative_errors = fields
+    compress_with_progress(codec, mass, fields, vertex_count, &|_| {})
+}
+
+/// [`compress_with_report`], calling `on_frame(done)` each time a frame has been encoded and
+/// measured (`done` frames so far; frames finish in any order, from several threads).
+pub fn compress_with_progress(
+    codec: &FieldCodec<'_>,
+    mass: &Mass,
+    fields: &[Vec<f64>],
+    vertex_count: usize,
+    on_frame: &(dyn Fn(usize) + Sync),
+) -> Result<(CompressedFields, CompressionReport), CompressionError> {
+    if fields.is_empty() {
+        return Err(CompressionError::NoFrames);
+    }
+    let done = AtomicUsize::new(0);
+    let encoded = fields
         .par_iter()
-        .zip(&file.frames)
-        .map(|(field, frame)| Ok(relative_l2_error(mass, field, &codec.decode(frame)?)))
-        .collect::<Result<Vec<f64>, CompressionError>>()?;
+        .map(|field| {
+            let payload = codec.encode(field)?;
+            let error = relative_l2_error(mass, field, &codec.decode(&payload)?);
+            on_frame(done.fetch_add(1, Ordering::Relaxed) + 1);
+            Ok((payload, error))
+        })
+        .collect::<Result<Vec<_>, CompressionError>>()?;
+    let (frames, relative_errors): (Vec<_>, Vec<_>) = encoded.into_iter().unzip();
+    let file = CompressedFields {
+        header: *codec.header(),
+        frames,
+    };
     let report = CompressionReport {
-        bytes,
+        bytes: file.to_bytes().len(),
         frames: fields.len(),
         vertex_count,
         field_dimension: mass.len(),
@@ -108,4 +133,22 @@ pub fn compress_with_report(
         relative_errors,
     };
     Ok((file, report))
+}
+
+/// Decodes every frame of `file` (made by `codec`, see [`FieldCodec::for_file`]) in parallel,
+/// calling `on_frame(done)` each time a frame has been decoded.
+pub fn decompress_with_progress(
+    codec: &FieldCodec<'_>,
+    file: &CompressedFields,
+    on_frame: &(dyn Fn(usize) + Sync),
+) -> Result<Vec<Vec<f64>>, CompressionError> {
+    let done = AtomicUsize::new(0);
+    file.frames
+        .par_iter()
+        .map(|payload| {
+            let field = codec.decode(payload)?;
+            on_frame(done.fetch_add(1, Ordering::Relaxed) + 1);
+            Ok(field)
+        })
+        .collect()
 }

@@ -3,16 +3,21 @@
 //! content id of a basis; complex folders (the five matrices of a complex as files, with
 //! `info.json`); the sparse matrices and integer arrays other tools write. Every write is atomic; every error names the file.
 
+pub(crate) mod basis_arrays;
 pub(crate) mod basis_file;
 pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_header;
 pub(crate) mod basis_file_mass;
 pub(crate) mod basis_id;
+pub(crate) mod basis_outputs;
 pub(crate) mod complex_folder;
 pub(crate) mod complex_folder_info;
+pub(crate) mod complex_folder_write;
 pub(crate) mod compressed_file;
 pub(crate) mod field_frames;
 pub(crate) mod field_io;
+pub(crate) mod folder_file;
+pub(crate) mod hodge_parts_folder;
 pub(crate) mod npy;
 pub(crate) mod numpy_export;
 pub(crate) mod sparse_file_read;

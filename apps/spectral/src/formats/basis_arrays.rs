@@ -1,46 +1,36 @@
-//! `tvf basis --export DIR`: a basis as plain `.npy` arrays (numpy reads them with `np.load`),
-//! written into a staged folder that appears whole or not at all (committed by the caller,
-//! together with its other outputs).
+//! A basis as plain `.npy` arrays (`tvf basis --export DIR`; numpy reads them with `np.load`):
+//! [`write_basis_arrays`] writes them into a staged folder, which the caller commits together
+//! with its other outputs.
 
-use crate::output_rules::stage;
-use anyhow::{Context, Result};
-use std::io::Write;
-use std::path::Path;
+use crate::eigenfunction_basis::EigenfunctionBasis;
+use crate::formats::folder_file::{write_folder_bytes, FieldFolderError};
+use crate::formats::numpy_export::{npy_bytes, NpyData};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::StagedFolder;
-use tvf_spectral::{npy_bytes, EigenfunctionBasis, NpyData};
 
 /// Writes `eigenvalues.npy` (`k`, float64, ascending), `families.npy` (`k` strings:
 /// `harmonic`, `integrable`, `cointegrable`), `coefficients.npy` (`n1 × k`, the
 /// discretization's own coefficients, `M1`-orthonormal) and, where the complex samples fields,
 /// `fields.npy` (`F × 3 × k`, each field at the face centroids) and `frames.npy` (`F × 2 × 3`,
-/// `[e1, e2]` of every face) into the staged folder `dir`, returned uncommitted.
-pub fn stage_basis_export(
+/// `[e1, e2]` of every face) of `basis` (a basis of `complex`) into the staged `folder`.
+pub fn write_basis_arrays(
     basis: &EigenfunctionBasis,
     complex: &dyn HodgeComplex,
-    dir: &Path,
-) -> Result<StagedFolder> {
-    let staged = stage(dir)?;
-    let write = |name: &str, bytes: Vec<u8>| -> Result<()> {
-        tvf_core::io::write_atomically(&staged.path().join(name), |w| w.write_all(&bytes))
-            .with_context(|| format!("cannot write {}", dir.join(name).display()))
-    };
+    folder: &StagedFolder,
+) -> Result<(), FieldFolderError> {
     let k = basis.len();
     let n1 = complex.field_dimension();
-    write(
-        "eigenvalues.npy",
-        npy_bytes(&NpyData::F64(basis.eigenvalues()), &[k]),
-    )?;
+    let eigenvalues = npy_bytes(&NpyData::F64(basis.eigenvalues()), &[k]);
+    write_folder_bytes(folder, "eigenvalues.npy", &eigenvalues)?;
     let families: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
-    write("families.npy", npy_bytes(&NpyData::Text(&families), &[k]))?;
+    let families = npy_bytes(&NpyData::Text(&families), &[k]);
+    write_folder_bytes(folder, "families.npy", &families)?;
     let columns: Vec<Vec<f64>> = (0..k).map(|j| basis.field(complex, j)).collect();
     let coefficients: Vec<f64> = (0..n1)
         .flat_map(|i| columns.iter().map(move |column| column[i]))
         .collect();
-    write(
-        "coefficients.npy",
-        npy_bytes(&NpyData::F64(&coefficients), &[n1, k]),
-    )?;
+    let coefficients = npy_bytes(&NpyData::F64(&coefficients), &[n1, k]);
+    write_folder_bytes(folder, "coefficients.npy", &coefficients)?;
     if let Some(sampling) = complex.sampling() {
         let faces = sampling.face_count();
         let mut sampled = vec![0.0; faces * 3 * k];
@@ -51,17 +41,13 @@ pub fn stage_basis_export(
                 }
             }
         }
-        write(
-            "fields.npy",
-            npy_bytes(&NpyData::F64(&sampled), &[faces, 3, k]),
-        )?;
+        let fields = npy_bytes(&NpyData::F64(&sampled), &[faces, 3, k]);
+        write_folder_bytes(folder, "fields.npy", &fields)?;
         let frames: Vec<f64> = (0..faces)
             .flat_map(|t| sampling.frame(t).into_iter().flatten())
             .collect();
-        write(
-            "frames.npy",
-            npy_bytes(&NpyData::F64(&frames), &[faces, 2, 3]),
-        )?;
+        let frames = npy_bytes(&NpyData::F64(&frames), &[faces, 2, 3]);
+        write_folder_bytes(folder, "frames.npy", &frames)?;
     }
-    Ok(staged)
+    Ok(())
 }

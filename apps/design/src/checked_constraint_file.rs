@@ -1,0 +1,84 @@
+//! A constraint set checked against the mesh and the discretization it will be used with
+//! ([`ConstraintSet::check_for`], [`ConstraintSet::load_for`]): its mesh fingerprint, if it
+//! gives one, and every constraint compiled (indices in range, node kinds that fit, values
+//! finite), before any expensive work (a basis, a picture) starts.
+
+use crate::assembler::ConstraintAssembler;
+use crate::constraint_file::ConstraintSet;
+use crate::error::ConstraintFileError;
+use std::path::Path;
+use tvf_core::discretization::HodgeComplex;
+use tvf_core::SurfaceMesh;
+
+impl ConstraintSet {
+    /// Loads the constraint file `path` ([`ConstraintSet::load`]) and checks it against `mesh`
+    /// and `complex` ([`ConstraintSet::check_for`]).
+    pub fn load_for<H: HodgeComplex + ?Sized>(
+        path: &Path,
+        mesh: &SurfaceMesh,
+        complex: &H,
+    ) -> Result<Self, ConstraintFileError> {
+        let set = Self::load(path)?;
+        set.check_for(path, mesh, complex)?;
+        Ok(set)
+    }
+
+    /// Checks the set (read from `origin`) against `mesh` and `complex` (built on `mesh`): the
+    /// file's fingerprint ([`ConstraintSet::check_fingerprint`]) and every constraint, as a
+    /// spline or design compiles it ([`ConstraintAssembler::compile_all`]). Errors name the
+    /// file and, for a constraint, its id.
+    pub fn check_for<H: HodgeComplex + ?Sized>(
+        &self,
+        origin: &Path,
+        mesh: &SurfaceMesh,
+        complex: &H,
+    ) -> Result<(), ConstraintFileError> {
+        self.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), origin)?;
+        ConstraintAssembler::new(complex, mesh)
+            .compile_all(&self.constraints)
+            .map_err(|source| ConstraintFileError::Invalid {
+                path: origin.to_path_buf(),
+                source,
+            })?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use tvf_core::generate::icosphere;
+    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+
+    #[test]
+    fn a_constraint_out_of_range_or_of_another_mesh_is_refused_naming_the_file() {
+        let mesh = icosphere(1);
+        let complex = catalog_entry(DEFAULT_DISCRETIZATION)
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
+        let origin = Path::new("c.json");
+        let check = |text: &str| {
+            let set = ConstraintSet::parse(text, origin).unwrap();
+            set.check_for(origin, &mesh, complex.as_ref())
+        };
+        let good =
+            r#"{"constraints": [{"id": "a", "kind": "vector", "face": 3, "value": [1, 0, 0]}]}"#;
+        assert!(check(good).is_ok());
+        let far =
+            r#"{"constraints": [{"id": "b", "kind": "divergence", "vertex": 9999, "value": 1}]}"#;
+        let error = check(far).unwrap_err();
+        assert!(
+            matches!(error, ConstraintFileError::Invalid { .. }),
+            "{error}"
+        );
+        let text = error.to_string();
+        assert!(text.starts_with("c.json: constraint 'b'"), "{text}");
+        let other = r#"{"mesh_fingerprint": "0000000000000001", "constraints": []}"#;
+        let error = check(other).unwrap_err();
+        assert!(
+            matches!(error, ConstraintFileError::FingerprintMismatch { .. }),
+            "{error}"
+        );
+    }
+}
