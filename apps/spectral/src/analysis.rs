@@ -158,16 +158,10 @@ impl SpectralAnalysis {
 mod tests {
     use super::*;
     use tvf_core::discretization::HodgeOperators;
-    use tvf_core::generate::torus;
-    use tvf_discretizations::catalog_entry;
 
     #[test]
     fn the_exact_energies_add_up_to_the_field_energy() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let complex = catalog_entry("conforming-consistent")
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (_, complex) = crate::test_torus::torus_complex("conforming-consistent");
         let n = complex.field_dimension();
         let field: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
         let split = exact_hodge_energies(complex.as_ref(), &field).unwrap();

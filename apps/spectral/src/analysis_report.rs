@@ -85,16 +85,11 @@ impl AnalysisReport<'_> {
 mod tests {
     use super::*;
     use crate::{compute_basis, BasisRequest};
-    use tvf_core::generate::torus;
-    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+    use tvf_discretizations::DEFAULT_DISCRETIZATION;
 
     #[test]
     fn the_report_holds_both_splits_and_three_lines() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let complex = catalog_entry(DEFAULT_DISCRETIZATION)
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (_, complex) = crate::test_torus::torus_complex(DEFAULT_DISCRETIZATION);
         let basis = compute_basis(complex.as_ref(), &BasisRequest::fields(6)).unwrap();
         let field: Vec<f64> = (0..basis.field_dimension())
             .map(|i| 2.0 * basis.fields()[(i, 0)])

@@ -207,16 +207,11 @@ mod tests {
     use super::*;
     use crate::basis_request::BasisRequest;
     use crate::compute_basis::compute_eigenfunction_basis;
-    use tvf_core::generate::torus;
-    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+    use tvf_discretizations::DEFAULT_DISCRETIZATION;
 
     #[test]
     fn the_summary_counts_the_families_and_lists_every_phase() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let complex = catalog_entry(DEFAULT_DISCRETIZATION)
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (_, complex) = crate::test_torus::torus_complex(DEFAULT_DISCRETIZATION);
         let (basis, report) =
             compute_eigenfunction_basis(complex.as_ref(), &BasisRequest::fields(8)).unwrap();
         let counts = FamilyCounts::of(basis.families());

@@ -94,16 +94,11 @@ impl FourierAnalysis {
 #[cfg(test)]
 mod tests {
     use crate::{compute_basis, BasisRequest, FourierAnalysis};
-    use tvf_core::generate::torus;
-    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+    use tvf_discretizations::DEFAULT_DISCRETIZATION;
 
     #[test]
     fn a_basis_field_has_one_coefficient_in_the_table_and_in_json() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let complex = catalog_entry(DEFAULT_DISCRETIZATION)
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (_, complex) = crate::test_torus::torus_complex(DEFAULT_DISCRETIZATION);
         let basis = compute_basis(complex.as_ref(), &BasisRequest::fields(6)).unwrap();
         let field: Vec<f64> = (0..basis.field_dimension())
             .map(|i| basis.fields()[(i, 4)])

@@ -51,6 +51,8 @@ mod fourier;
 mod harmonic_fields;
 mod laplacian_apply;
 mod scalar_spectrum;
+#[cfg(test)]
+mod test_torus;
 
 pub use analysis::{exact_hodge_energies, CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use analysis_report::AnalysisReport;

@@ -82,10 +82,9 @@ fn factor_parallelism() -> Result<FactorParallelism> {
 pub fn run(args: DesignArgs, context: &RunContext) -> Result<()> {
     let mut report = Report::new(args.design.json);
     let catalog = context.catalog();
-    let (problem, complex) =
+    let (problem, complex, constraints) =
         args.design
             .load(catalog, &args.input, &args.constraints, &mut report)?;
-    let constraints = problem.compile(complex.as_ref())?;
     let (field, residuals) = if args.full {
         let ordering = args.ordering.unwrap_or(DEFAULT_FULL_ORDERING);
         let parallelism = factor_parallelism()?;

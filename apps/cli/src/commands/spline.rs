@@ -13,7 +13,7 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_design::{DesignProblem, ReducedBasis, ResidualReport};
+use tvf_design::{CompiledConstraint, DesignProblem, ReducedBasis, ResidualReport};
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::write_tangent_field;
 
@@ -51,15 +51,16 @@ pub struct DesignOutputArgs {
 
 impl DesignOutputArgs {
     /// Applies the output rules, loads the mesh of `input` and the `constraints` file (and
-    /// reports them), and builds the discretization (the basis file's or the flags') without
-    /// the basis: the constraints are checked before an expensive basis computation.
+    /// reports them), builds the discretization (the basis file's or the flags') and compiles
+    /// the constraints for it, without the basis: the constraints are checked before an
+    /// expensive basis computation.
     pub fn load(
         &self,
         catalog: &Catalog,
         input: &MeshInput,
         constraints: &Path,
         report: &mut Report,
-    ) -> Result<(DesignProblem, BoxedComplex)> {
+    ) -> Result<(DesignProblem, BoxedComplex, Vec<CompiledConstraint>)> {
         let basis_file = self.basis.options.basis.as_deref();
         check_output(&self.output, input, &[Some(constraints), basis_file])?;
         let problem = DesignProblem::load(input.load()?.mesh, input.label(), constraints)?;
@@ -69,7 +70,8 @@ impl DesignOutputArgs {
             .basis
             .options
             .discretization(catalog, &problem.mesh, input)?;
-        Ok((problem, complex))
+        let compiled = problem.compile(complex.as_ref())?;
+        Ok((problem, complex, compiled))
     }
 
     /// The basis (loaded, cached or computed; see [`crate::basis_source`]), row-major for the
@@ -115,10 +117,9 @@ impl DesignOutputArgs {
 pub fn run(args: SplineArgs, context: &RunContext) -> Result<()> {
     let mut report = Report::new(args.design.json);
     let catalog = context.catalog();
-    let (problem, complex) =
+    let (problem, complex, constraints) =
         args.design
             .load(catalog, &args.input, &args.constraints, &mut report)?;
-    let constraints = problem.compile(complex.as_ref())?;
     let basis = args
         .design
         .reduced_basis(catalog, &problem, &args.input, &mut report)?;

@@ -105,16 +105,11 @@ mod tests {
         FieldCodec,
     };
     use std::sync::atomic::{AtomicUsize, Ordering};
-    use tvf_core::generate::torus;
-    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+    use tvf_discretizations::DEFAULT_DISCRETIZATION;
 
     #[test]
     fn every_frame_is_reported_and_summarised() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let complex = catalog_entry(DEFAULT_DISCRETIZATION)
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (mesh, complex) = crate::test_torus::torus_complex(DEFAULT_DISCRETIZATION);
         let basis = compute_basis(complex.as_ref(), &BasisRequest::pairs(6)).unwrap();
         let column = |j: usize| -> Vec<f64> {
             (0..basis.field_dimension())

@@ -38,16 +38,12 @@ impl TvfcHeader {
 mod tests {
     use super::*;
     use crate::CoefficientCoding;
-    use tvf_core::generate::{icosphere, torus};
+    use tvf_core::generate::icosphere;
     use tvf_discretizations::catalog_entry;
 
     #[test]
     fn a_file_of_another_mesh_or_field_size_is_refused() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let faces = catalog_entry("conforming-barycentric")
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (mesh, faces) = crate::test_torus::torus_complex("conforming-barycentric");
         let edges = catalog_entry("whitney-galerkin")
             .unwrap()
             .build(&mesh)

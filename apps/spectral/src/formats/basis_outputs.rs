@@ -113,16 +113,11 @@ mod tests {
     use crate::basis_request::BasisRequest;
     use crate::compute_basis::compute_eigenfunction_basis;
     use crate::formats::basis_file::load_basis;
-    use tvf_core::generate::torus;
-    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+    use tvf_discretizations::DEFAULT_DISCRETIZATION;
 
     #[test]
     fn the_file_and_the_arrays_are_written_together() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let complex = catalog_entry(DEFAULT_DISCRETIZATION)
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (mesh, complex) = crate::test_torus::torus_complex(DEFAULT_DISCRETIZATION);
         let (basis, _) =
             compute_eigenfunction_basis(complex.as_ref(), &BasisRequest::fields(6)).unwrap();
         let key = BasisFileKey::new(&mesh, complex.as_ref());

@@ -50,16 +50,11 @@ pub fn write_hodge_parts(
 mod tests {
     use super::*;
     use crate::formats::field_io::read_npy;
-    use tvf_core::generate::torus;
-    use tvf_discretizations::{catalog_entry, HodgeDecomposer, DEFAULT_DISCRETIZATION};
+    use tvf_discretizations::{HodgeDecomposer, DEFAULT_DISCRETIZATION};
 
     #[test]
     fn the_parts_and_potentials_are_written_and_their_energies_add_up() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
-        let complex = catalog_entry(DEFAULT_DISCRETIZATION)
-            .unwrap()
-            .build(&mesh)
-            .unwrap();
+        let (mesh, complex) = crate::test_torus::torus_complex(DEFAULT_DISCRETIZATION);
         let field: Vec<f64> = (0..complex.field_dimension())
             .map(|i| (0.37 * i as f64).sin())
             .collect();
