@@ -204,19 +204,9 @@ fn rows<T: Copy>(array: &numpy::ndarray::ArrayView2<'_, T>, what: &str) -> PyRes
         .collect())
 }
 
-/// The command line's refusal of meshes whose area overflows `f64`.
+/// The command line's refusal of meshes whose area overflows `f64`
+/// ([`SurfaceMesh::check_geometry_range`]), naming the mesh.
 fn check_geometry_range(mesh: &SurfaceMesh, label: &str) -> PyResult<()> {
-    let area = mesh.total_area();
-    if area.is_finite() {
-        return Ok(());
-    }
-    let largest = mesh
-        .positions()
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, x| m.max(x.abs()));
-    Err(tvf_error(format!(
-        "{label}: coordinates up to {largest:e} are too large for f64 arithmetic: the total \
-         area is {area} and angles cannot be measured (scale the mesh down)"
-    )))
+    mesh.check_geometry_range()
+        .map_err(|e| tvf_error(format!("{label}: {e}")))
 }
