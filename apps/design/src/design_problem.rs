@@ -247,7 +247,7 @@ mod tests {
     use super::*;
     use tvf_core::discretization::HodgeOperators;
     use tvf_core::generate::icosphere;
-    use tvf_discretizations::{Conforming, MassLumping};
+    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
     use tvf_spectral::{compute_basis, BasisRequest};
 
     const CONSTRAINTS: &str = r#"{"omega": 0.1, "constraints": [
@@ -277,15 +277,16 @@ mod tests {
             (80, 0, 2)
         );
         assert!(summary.lines()[1].starts_with("constraints     2 from "));
-        let complex = Conforming::new(&problem.mesh, MassLumping::Barycentric).unwrap();
-        let constraints = problem.compile(&complex).unwrap();
-        let basis = compute_basis(&complex, &BasisRequest::pairs(20)).unwrap();
+        let entry = catalog_entry(DEFAULT_DISCRETIZATION).unwrap();
+        let complex = entry.build(&problem.mesh).unwrap();
+        let constraints = problem.compile(complex.as_ref()).unwrap();
+        let basis = compute_basis(complex.as_ref(), &BasisRequest::pairs(20)).unwrap();
         let basis = ReducedBasis::from_spectral(&basis).unwrap();
         let spline = problem.spline(&basis, &constraints).unwrap();
         let report = problem.residuals(&spline.field, &constraints).unwrap();
         assert!(report.worst_relative_residual < 1e-9, "{report:?}");
         let design = problem
-            .reduced_design(&complex, &basis, &constraints)
+            .reduced_design(complex.as_ref(), &basis, &constraints)
             .unwrap();
         assert_eq!(design.field.len(), complex.field_dimension());
         let nan = vec![f64::NAN; complex.field_dimension()];
@@ -297,8 +298,9 @@ mod tests {
     fn errors_name_the_constraint_file() {
         let (_dir, problem) = problem(&CONSTRAINTS.replace("\"face\": 12", "\"face\": 999"));
         let problem = problem.unwrap();
-        let complex = Conforming::new(&problem.mesh, MassLumping::Barycentric).unwrap();
-        let error = problem.compile(&complex).unwrap_err();
+        let entry = catalog_entry(DEFAULT_DISCRETIZATION).unwrap();
+        let complex = entry.build(&problem.mesh).unwrap();
+        let error = problem.compile(complex.as_ref()).unwrap_err();
         assert!(error.to_string().ends_with("c.json"), "{error}");
         let source = std::error::Error::source(&error).unwrap().to_string();
         assert!(source.contains("face 999 is out of range"), "{source}");

@@ -169,18 +169,19 @@ mod tests {
     use super::*;
     use crate::{Constraint, ConstraintAssembler, Location, Target};
     use tvf_core::generate::icosphere;
-    use tvf_discretizations::{Conforming, MassLumping};
+    use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 
     #[test]
     fn a_full_design_is_timed_reported_and_accurate() {
         let mesh = icosphere(1);
-        let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+        let entry = catalog_entry(DEFAULT_DISCRETIZATION).unwrap();
+        let complex = entry.build(&mesh).unwrap();
         let source = Constraint::new("source", Target::Divergence(2.0), Location::Vertex(5));
-        let compiled = ConstraintAssembler::new(&complex, &mesh)
+        let compiled = ConstraintAssembler::new(complex.as_ref(), &mesh)
             .compile_all(&[source])
             .unwrap();
         let solved = timed_full_design(
-            &complex,
+            complex.as_ref(),
             0.1,
             compiled,
             FillOrdering::Amd,
