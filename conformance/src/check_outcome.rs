@@ -27,6 +27,34 @@ impl CheckStatus {
     }
 }
 
+/// How a check's measured value is compared with its limit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Comparison {
+    /// Passes when `measured ≤ limit` (an error norm against its tolerance).
+    AtMost,
+    /// Passes when `measured = limit` (a count against the expected count).
+    Equals,
+}
+
+impl Comparison {
+    /// Lower-case name, as in JSON: `at_most`, `equals`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Comparison::AtMost => "at_most",
+            Comparison::Equals => "equals",
+        }
+    }
+
+    /// The sign between the measured value and the limit: `≤` or `=`.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            Comparison::AtMost => "≤",
+            Comparison::Equals => "=",
+        }
+    }
+}
+
 /// A status by its name.
 fn status_name<S: serde::Serializer>(
     status: &CheckStatus,
@@ -48,6 +76,8 @@ pub struct CheckOutcome {
     pub measured: f64,
     /// The largest value that passes (for counting checks: the expected count).
     pub limit: f64,
+    /// How `measured` is compared with `limit`; serialized as `at_most` or `equals`.
+    pub comparison: Comparison,
     /// One line saying what was measured against what.
     pub detail: String,
 }
@@ -56,7 +86,7 @@ impl CheckOutcome {
     /// Passes when `measured ≤ limit` (a NaN measurement fails).
     pub fn at_most(name: impl Into<String>, measured: f64, limit: f64, detail: String) -> Self {
         let passed = measured <= limit;
-        Self::new(name, passed, measured, limit, detail)
+        Self::new(name, passed, measured, limit, detail).compared(Comparison::AtMost)
     }
 
     /// Passes when the count `measured` equals `expected`.
@@ -73,6 +103,7 @@ impl CheckOutcome {
             expected as f64,
             detail,
         )
+        .compared(Comparison::Equals)
     }
 
     /// A check that failed before it could measure anything (e.g. a factorization failed).
@@ -87,6 +118,7 @@ impl CheckOutcome {
             status: CheckStatus::Skipped,
             measured: f64::NAN,
             limit: f64::NAN,
+            comparison: Comparison::AtMost,
             detail: reason,
         }
     }
@@ -107,8 +139,13 @@ impl CheckOutcome {
             },
             measured,
             limit,
+            comparison: Comparison::AtMost,
             detail,
         }
+    }
+
+    fn compared(self, comparison: Comparison) -> Self {
+        Self { comparison, ..self }
     }
 
     /// Whether the check failed.

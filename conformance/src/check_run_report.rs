@@ -204,16 +204,17 @@ pub fn entry_property_request(entry: &CatalogEntry, cases: u32, seed: u64) -> Pr
 }
 
 /// One aligned line per check: status, name, measured value against its limit (`-` when not
-/// finite), detail.
+/// finite; `≤`, or `=` for counts), detail.
 pub fn outcome_lines(outcomes: &[CheckOutcome]) -> Vec<String> {
     outcomes
         .iter()
         .map(|o| {
             format!(
-                "  {:<7} {:<48} {:>11} ≤ {:<11} {}",
+                "  {:<7} {:<48} {:>11} {} {:<11} {}",
                 o.status.name(),
                 o.name,
                 number(o.measured),
+                o.comparison.symbol(),
                 number(o.limit),
                 o.detail
             )
@@ -274,6 +275,17 @@ mod tests {
             "{}",
             lines[1]
         );
+    }
+
+    #[test]
+    fn a_count_is_shown_and_serialized_as_an_equality() {
+        let count = CheckOutcome::count("kernel dimension", 2, 2, "dim ker L".into());
+        let line = &outcome_lines(std::slice::from_ref(&count))[0];
+        assert!(line.contains("2.000e0 = 2.000e0"), "{line}");
+        let json = serde_json::to_value(&count).unwrap();
+        assert_eq!(json["comparison"], "equals");
+        let bound = serde_json::to_value(&outcomes()[0]).unwrap();
+        assert_eq!(bound["comparison"], "at_most");
     }
 
     #[test]

@@ -119,6 +119,7 @@ fn outcome_dicts<'py>(
             d.set_item("status", o.status.name())?;
             d.set_item("measured", o.measured)?;
             d.set_item("limit", o.limit)?;
+            d.set_item("comparison", o.comparison.name())?;
             d.set_item("detail", &o.detail)?;
             Ok(d)
         })

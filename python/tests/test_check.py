@@ -32,6 +32,9 @@ def test_a_correct_builder_passes_on_generated_meshes():
     assert {"d1_d0_zero", "spectrum union", "potential_masses_sum_to_area"} <= names
     measured = [o["measured"] for o in report.outcomes if o["name"] == "d1_d0_zero"]
     assert measured and 0.0 <= measured[0] < 1e-10
+    comparisons = {o["name"]: o["comparison"] for o in report.outcomes}
+    assert comparisons["d1_d0_zero"] == "at_most"
+    assert comparisons["kernel dimension"] == "equals"
 
 
 def test_a_correct_builder_passes_on_a_given_mesh():

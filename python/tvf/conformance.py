@@ -14,7 +14,8 @@ from .mesh import Mesh
 class CheckReport:
     """What :func:`check` measured: ``outcomes`` is a list of dicts with ``name``, ``status``
     (``passed``, ``failed`` or ``skipped``), ``measured``, ``limit`` (the largest passing
-    value; for counts the expected count) and ``detail`` (one line)."""
+    value; for counts the expected count), ``comparison`` (``at_most``, or ``equals`` for
+    counts) and ``detail`` (one line)."""
 
     complex_id: str
     outcomes: List[dict]
