@@ -88,6 +88,17 @@ pub fn explicit_stiffness(kind: NodeKind, mesh: &SurfaceMesh) -> Option<CsMat<f6
     }
 }
 
+/// `(max |A − B|, max |B|)` entry for entry; `None` when the shapes differ.
+pub fn matrix_deviation(a: &CsMat<f64>, b: &CsMat<f64>) -> Option<(f64, f64)> {
+    if a.shape() != b.shape() {
+        return None;
+    }
+    let difference = &a.to_csr() - &b.to_csr();
+    let error = difference.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let scale = b.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    Some((error, scale))
+}
+
 /// `max |A − B| ≤ 1e-10 · max |B|` entry for entry.
 pub fn assert_matrices_close(what: &str, a: &CsMat<f64>, b: &CsMat<f64>) {
     assert_matrices_within(what, a, b, 1e-10);
@@ -95,10 +106,8 @@ pub fn assert_matrices_close(what: &str, a: &CsMat<f64>, b: &CsMat<f64>) {
 
 /// `max |A − B| ≤ tolerance · max |B|` entry for entry.
 pub fn assert_matrices_within(what: &str, a: &CsMat<f64>, b: &CsMat<f64>, tolerance: f64) {
-    assert_eq!(a.shape(), b.shape(), "{what}: shapes differ");
-    let difference = &a.to_csr() - &b.to_csr();
-    let error = difference.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let scale = b.data().iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let deviation = matrix_deviation(a, b);
+    let (error, scale) = deviation.unwrap_or_else(|| panic!("{what}: shapes differ"));
     assert!(
         error <= tolerance * scale,
         "{what}: differs by {error:e} (max entry {scale:e})"
