@@ -10,8 +10,8 @@ use pyo3::types::PyDict;
 use std::path::Path;
 use tvf_design::{
     checked_residuals, default_regularization, timed_reduced_design, timed_spline,
-    CompiledConstraint, ConstraintAssembler, ConstraintResidual, ConstraintSet, DesignError,
-    FullSoftDesign, ReducedBasis, SoftOptions,
+    CompiledConstraint, ConstraintResidual, ConstraintSet, DesignError, FullSoftDesign,
+    ReducedBasis, SoftOptions,
 };
 
 /// Parses the constraint JSON (`origin` names it in messages) and compiles it on the complex.
@@ -22,11 +22,9 @@ fn constraints(
 ) -> PyResult<(ConstraintSet, Vec<CompiledConstraint>)> {
     let origin = Path::new(origin);
     let set = ConstraintSet::parse(json, origin).map_err(|e| from_error(&e))?;
-    set.check_fingerprint(&format!("{:016x}", complex.mesh.fingerprint()), origin)
+    let compiled = set
+        .compile_for(origin, &complex.mesh, complex.complex.as_ref())
         .map_err(|e| from_error(&e))?;
-    let compiled = ConstraintAssembler::new(complex.complex.as_ref(), &complex.mesh)
-        .compile_all(&set.constraints)
-        .map_err(|e| with_context(&origin.display().to_string(), &e))?;
     Ok((set, compiled))
 }
 
