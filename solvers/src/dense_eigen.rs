@@ -4,12 +4,13 @@
 //! problems.
 
 use crate::error::SolverError;
+use crate::symmetric_eigen::symmetric_eigen;
 use faer::{Mat, MatRef, Par, Side};
 
 /// All eigenpairs of `A x = λ M x` for a dense symmetric `n × n` matrix `A` and a positive
 /// diagonal mass `M = diag(mass_diagonal)`.
 ///
-/// Computed with faer's self-adjoint eigensolver on `M^{-1/2} A M^{-1/2}` (symmetrised, so
+/// Computed with [`symmetric_eigen`] on `M^{-1/2} A M^{-1/2}` (symmetrised, so
 /// only the symmetric part of `A` matters); eigenvectors are mapped back with `M^{-1/2}`.
 /// Returns eigenvalues in ascending order and the `n × n` eigenvector matrix `X` (column `j`
 /// belongs to eigenvalue `j`) with `Xᵀ M X = I`.
@@ -147,23 +148,6 @@ fn first_non_positive_pivot(m: MatRef<'_, f64>) -> usize {
         }
     }
     n
-}
-
-/// Eigen-decomposition of a dense symmetric matrix (lower triangle read): ascending values and
-/// orthonormal eigenvectors.
-pub(crate) fn symmetric_eigen(a: MatRef<'_, f64>) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
-    let n = a.nrows();
-    if n == 0 {
-        return Ok((Vec::new(), Mat::zeros(0, 0)));
-    }
-    let evd = a
-        .self_adjoint_eigen(Side::Lower)
-        .map_err(|e| SolverError::NoConvergence {
-            reason: format!("dense self-adjoint eigensolver failed: {e:?}"),
-        })?;
-    let s = evd.S().column_vector();
-    let values: Vec<f64> = (0..n).map(|i| s[i]).collect();
-    Ok((values, evd.U().to_owned()))
 }
 
 /// Checks that every mass entry is finite and positive.

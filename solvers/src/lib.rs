@@ -21,7 +21,9 @@
 //!     the saddle matrix `[[−W, d1ᵀ], [d1, −σN]]`, whose negative pivots less `n1` count the
 //!     eigenvalues below σ, and `A x` goes through a sparse Cholesky factorization of `W`.
 //! - [`dense_generalized_eigen`], [`dense_generalized_eigen_with_mass`]: dense reference
-//!   eigensolvers with a diagonal or a dense SPD mass (test oracle, small problems).
+//!   eigensolvers with a diagonal or a dense SPD mass (test oracle, small problems), on
+//!   [`symmetric_eigen`]: faer's dense symmetric eigensolver with every residual checked (its
+//!   QR algorithm where divide and conquer misses round-off).
 //! - [`DenseCholesky`]: dense Cholesky with rank-one update/downdate and bordered updates.
 //! - [`convert`]: `sprs → faer` conversions.
 //! - [`iterative_refinement`]: refined sparse solves (conjugate gradients preconditioned by a
@@ -48,6 +50,7 @@ mod process_clock;
 mod sparse_cholesky;
 mod sparse_ldlt;
 pub mod sparse_pattern;
+mod symmetric_eigen;
 
 pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
@@ -62,3 +65,4 @@ pub use iterative_refinement::SolveReport;
 pub use ordering::FillOrdering;
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_ldlt::{FactorPattern, Inertia, SparseLdlt};
+pub use symmetric_eigen::symmetric_eigen;

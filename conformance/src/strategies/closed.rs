@@ -10,14 +10,6 @@ use tvf_core::SurfaceMesh;
 /// Largest genus the strategies draw.
 pub const MAX_GENUS: usize = 5;
 
-/// Largest genus of the coarse plates (resolution 2, angles 15.6°–112.5°) the strategies draw;
-/// higher genus comes at resolution 4. Plates of genus 4–5 at resolution 2 with mixed-Voronoi
-/// masses (`conforming-voronoi`, `nonconforming-voronoi`) give Lemma 1 residuals of about
-/// `2.7e-8 · λ_max`, above the suite's `1e-9 · λ_max` (genus 5: 416 faces, eigenvalue ≈ 393 of
-/// 469) — not yet understood, so they are kept out of the default draws rather than the
-/// tolerance loosened; `tvf check` on `genus_surface(5, 2)` reproduces it.
-pub const COARSE_PLATE_MAX_GENUS: usize = 3;
-
 /// A closed, connected surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ClosedShape {
@@ -50,7 +42,7 @@ pub enum ClosedShape {
         thin: f64,
     },
     /// The boundary of a thickened plate with `genus` holes ([`genus_surface`]); `resolution`
-    /// 2 (up to genus [`COARSE_PLATE_MAX_GENUS`]) or 4 segments per cell side.
+    /// 2 (coarse: angles 15.6°–112.5°) or 4 segments per cell side.
     Plate {
         /// Genus (0–[`MAX_GENUS`]).
         genus: usize,
@@ -109,11 +101,7 @@ pub fn closed_shapes(delaunay: bool) -> BoxedStrategy<ClosedShape> {
     let staggered = (2usize..=4).prop_map(|half| ClosedShape::StaggeredTorus { tube: 2 * half });
     let plate = (0..=MAX_GENUS, prop::bool::ANY).prop_map(|(genus, fine)| ClosedShape::Plate {
         genus,
-        resolution: if fine || genus > COARSE_PLATE_MAX_GENUS {
-            4
-        } else {
-            2
-        },
+        resolution: if fine { 4 } else { 2 },
     });
     if delaunay {
         return prop_oneof![sphere, staggered, plate].boxed();

@@ -32,10 +32,10 @@ use super::mass_orthogonal::{
 use super::shift_factor::{SaddleScratch, ShiftFactor};
 use super::symmetric_products::gather_times;
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
-use crate::dense_eigen::symmetric_eigen;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_values_on_huge_pages;
 use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns, Row, WIDTH};
+use crate::symmetric_eigen::symmetric_eigen;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{IntoConst, Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};

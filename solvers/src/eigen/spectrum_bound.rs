@@ -90,7 +90,7 @@ pub(crate) fn lanczos_upper_bound(
             0.0
         }
     });
-    let Ok((values, vectors)) = crate::dense_eigen::symmetric_eigen(t.as_ref()) else {
+    let Ok((values, vectors)) = crate::symmetric_eigen::symmetric_eigen(t.as_ref()) else {
         return f64::INFINITY;
     };
     let top = values[m - 1];
@@ -224,12 +224,12 @@ mod tests {
             reduced.as_mut(),
             faer::Par::Seq,
         );
-        let (values, _) = crate::dense_eigen::symmetric_eigen(reduced.as_ref()).expect("eigen");
+        let (values, _) = crate::symmetric_eigen::symmetric_eigen(reduced.as_ref()).expect("eigen");
         let top = values[n - 1];
         assert!(bound >= top, "bound {bound} below λ_max {top}");
         assert!(bound <= 1.2 * top, "bound {bound} far above λ_max {top}");
         let identity_bound = lanczos_upper_bound(n, &times_a, None);
-        let (a_values, _) = crate::dense_eigen::symmetric_eigen(a.as_ref()).expect("eigen");
+        let (a_values, _) = crate::symmetric_eigen::symmetric_eigen(a.as_ref()).expect("eigen");
         assert!(identity_bound >= a_values[n - 1]);
     }
 }
