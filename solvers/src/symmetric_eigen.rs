@@ -45,7 +45,8 @@ pub fn symmetric_eigen(c: MatRef<'_, f64>) -> Result<(Vec<f64>, Mat<f64>), Solve
     qr_algorithm_eigen(c)
 }
 
-/// The largest `‖C u_k − λ_k u_k‖₂` over the pairs (`C` symmetric, its lower triangle read).
+/// The largest `‖C u_k − λ_k u_k‖₂` over the pairs (`C` symmetric, its lower triangle read);
+/// NaN if any residual is NaN, so that the bound check fails.
 pub(crate) fn worst_residual(c: MatRef<'_, f64>, values: &[f64], vectors: MatRef<'_, f64>) -> f64 {
     let n = c.nrows();
     let symmetric = Mat::from_fn(n, n, |i, j| if i >= j { c[(i, j)] } else { c[(j, i)] });
@@ -57,7 +58,10 @@ pub(crate) fn worst_residual(c: MatRef<'_, f64>, values: &[f64], vectors: MatRef
                 .sum::<f64>()
                 .sqrt()
         })
-        .fold(0.0, f64::max)
+        .fold(
+            0.0,
+            |worst, r| if r.is_nan() || r > worst { r } else { worst },
+        )
 }
 
 /// `‖C‖_F` of the symmetric matrix whose lower triangle is `c`'s.
@@ -160,5 +164,7 @@ mod tests {
         assert!(worst_residual(c.as_ref(), &values, q.as_ref()) < 1e-12);
         let worst = worst_residual(c.as_ref(), &values, mixed.as_ref());
         assert!((worst - h).abs() < 1e-12, "{worst}");
+        let broken = Mat::from_fn(n, n, |i, j| if j == 0 { f64::NAN } else { q[(i, j)] });
+        assert!(worst_residual(c.as_ref(), &values, broken.as_ref()).is_nan());
     }
 }
