@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{assert_success, tvf};
+use common::{assert_success, tvf, write_field};
 use faer::{Mat, Side};
 use sprs::CsMat;
 use std::path::{Path, PathBuf};
@@ -221,21 +221,6 @@ fn assert_close(found: &[f64], expected: &[f64], what: &str) {
     }
 }
 
-/// A field with both families (one vector per face, as text).
-fn write_field(mesh: &SurfaceMesh, path: &Path) {
-    let text: String = mesh
-        .faces()
-        .iter()
-        .map(|f| {
-            let c: [f64; 3] = std::array::from_fn(|k| {
-                f.iter().map(|&v| mesh.positions()[v][k]).sum::<f64>() / 3.0
-            });
-            format!("{} {} {}\n", -c[1] + 0.3 * c[0], c[0] + 0.2, 0.1 * c[2])
-        })
-        .collect();
-    std::fs::write(path, text).unwrap();
-}
-
 /// Operators → edit → spectrum (complete, uncached) and analyze (cached basis of 10 fields),
 /// twice with different edits, compared with the dense pencils of the edited files.
 fn round_trip(mesh: &SurfaceMesh, format: &str) {
@@ -361,32 +346,38 @@ fn broken_folders_are_refused_naming_the_file() {
         "M0 is 3 x 3, but the complex needs 42 x 42",
     );
 
-    let nan = setup.operators("nan", "npz");
-    edit(
-        &nan,
-        "M1",
-        "npz",
-        |i, _, v| if i == 12 { f64::NAN } else { v },
-    );
-    check(&nan, "M1.npz", "row 12 col 12 (0-based): not finite");
-
-    let not_complex = setup.operators("not-complex", "mtx");
-    edit(
-        &not_complex,
-        "d0",
-        "mtx",
-        |i, _, v| if i == 3 { 2.0 * v } else { v },
-    );
-    check(&not_complex, "d1.mtx", "d1 · d0 is not zero");
-
-    let negative = setup.operators("negative", "mtx");
-    edit(
-        &negative,
-        "M1",
-        "mtx",
-        |i, _, v| if i == 7 { -v } else { v },
-    );
-    check(&negative, "M1.mtx", "M1 must be positive");
+    type Edit = fn(usize, usize, f64) -> f64;
+    let edited: [(&str, &str, &str, Edit, &str, &str); 3] = [
+        (
+            "nan",
+            "M1",
+            "npz",
+            |i, _, v| if i == 12 { f64::NAN } else { v },
+            "M1.npz",
+            "row 12 col 12 (0-based): not finite",
+        ),
+        (
+            "not-complex",
+            "d0",
+            "mtx",
+            |i, _, v| if i == 3 { 2.0 * v } else { v },
+            "d1.mtx",
+            "d1 · d0 is not zero",
+        ),
+        (
+            "negative",
+            "M1",
+            "mtx",
+            |i, _, v| if i == 7 { -v } else { v },
+            "M1.mtx",
+            "M1 must be positive",
+        ),
+    ];
+    for (case, matrix, format, change, file, problem) in edited {
+        let folder = setup.operators(case, format);
+        edit(&folder, matrix, format, change);
+        check(&folder, file, problem);
+    }
 
     let remapped = setup.operators("remapped", "mtx");
     let mut map: Vec<i64> = (0..42).collect();

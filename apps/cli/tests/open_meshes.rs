@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{assert_success, tvf};
+use common::{assert_success, tvf, write_field};
 use serde_json::Value;
 use std::path::Path;
 use tvf_conformance::corpus::delaunay_flips;
@@ -26,21 +26,6 @@ fn run(dir: &Path, args: &[&str]) -> std::process::Output {
 
 fn json(output: &std::process::Output) -> Value {
     serde_json::from_slice(&output.stdout).expect("JSON on stdout")
-}
-
-/// A field with both families: a rotation about z plus a gradient-like part, per face.
-fn write_field(mesh: &SurfaceMesh, path: &Path) {
-    let field: String = mesh
-        .faces()
-        .iter()
-        .map(|f| {
-            let c: [f64; 3] = std::array::from_fn(|k| {
-                f.iter().map(|&v| mesh.positions()[v][k]).sum::<f64>() / 3.0
-            });
-            format!("{} {} {}\n", -c[1] + 0.3 * c[0], c[0] + 0.2, 0.1 * c[2])
-        })
-        .collect();
-    std::fs::write(path, field).unwrap();
 }
 
 /// Constraints at an interior vertex and an interior edge, or with `curl_on_faces` (DEC) face 7

@@ -1,7 +1,10 @@
-//! Shared helpers of the CLI end-to-end tests: the `tvf` binary and the check that it succeeded.
+//! Shared helpers of the CLI end-to-end tests: the `tvf` binary, the check that it succeeded,
+//! and a test field file.
 #![allow(dead_code)]
 
+use std::path::Path;
 use std::process::{Command, Output};
+use tvf_core::SurfaceMesh;
 
 /// A command running the `tvf` binary built for these tests.
 pub fn tvf() -> Command {
@@ -16,4 +19,20 @@ pub fn assert_success(output: &Output) {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+}
+
+/// Writes a field with both families (a rotation about z plus a gradient-like part, one vector
+/// per face, as text) to `path`.
+pub fn write_field(mesh: &SurfaceMesh, path: &Path) {
+    let field: String = mesh
+        .faces()
+        .iter()
+        .map(|f| {
+            let c: [f64; 3] = std::array::from_fn(|k| {
+                f.iter().map(|&v| mesh.positions()[v][k]).sum::<f64>() / 3.0
+            });
+            format!("{} {} {}\n", -c[1] + 0.3 * c[0], c[0] + 0.2, 0.1 * c[2])
+        })
+        .collect();
+    std::fs::write(path, field).unwrap();
 }
