@@ -16,7 +16,7 @@ use tvf_core::discretization::{
     HodgeComplex, HodgeOperators, LinearOperator, Mass, MassForm, MassStorage, NodeKind, NodeSpace,
     NO_COMPONENT,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_solvers::SparseCholesky;
 
 /// Random probe vectors per check of an operator too large to form densely.
@@ -322,7 +322,7 @@ fn measure_mass(what: &str, mass: &Mass, nodes: &NodeSpace) -> CheckOutcome {
 /// nodes (one outcome per mass).
 pub fn measure_masses<H: HodgeComplex + ?Sized>(
     complex: &H,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> Vec<CheckOutcome> {
     let mut outcomes: Vec<CheckOutcome> = [
         ("M0", complex.m0(), complex.potential_nodes()),

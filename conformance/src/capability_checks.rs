@@ -10,7 +10,7 @@ use crate::reference_formulas::explicit_divergence_and_curl;
 use tvf_core::discretization::sparse::{mul_vec, product, transpose};
 use tvf_core::discretization::{FieldSampling, HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Barycentric points every sampling check visits: the centroid, near each corner, on an edge.
 pub const SAMPLE_POINTS: [[f64; 3]; 5] = [
@@ -363,7 +363,7 @@ pub fn check_div_curl_formulas<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Cor
 /// explicit value, against `1e-10`; a complex without sampling or a rotation fails naming it.
 pub fn measure_div_curl_formulas<H: HodgeComplex + ?Sized>(
     complex: &H,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> Vec<CheckOutcome> {
     const NAME: &str = "div_curl_formulas";
     let capabilities = (

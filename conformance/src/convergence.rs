@@ -23,7 +23,7 @@ use std::time::Instant;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{hemisphere, icosphere};
 use tvf_core::geometry::{norm, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::CatalogEntry;
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily};
 
@@ -64,7 +64,7 @@ impl Surface {
     }
 
     /// The mesh of refinement `level` (`0` the coarsest).
-    pub fn mesh(self, level: u32) -> SurfaceMesh {
+    pub fn mesh(self, level: u32) -> TriangleMesh {
         match self {
             Surface::Sphere => icosphere(level),
             Surface::Hemisphere(_) => delaunay_flips(&hemisphere(2 << level)),
@@ -98,7 +98,7 @@ impl Surface {
 /// What a candidate runs to build its complex on a mesh under a boundary condition; errors are
 /// reported with the candidate's name.
 pub type CandidateBuilder<'a> = Box<
-    dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
+    dyn Fn(&TriangleMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
         + Send
         + Sync
         + 'a,
@@ -117,7 +117,7 @@ impl<'a> Candidate<'a> {
     /// A candidate named `name` built by `build`.
     pub fn new(
         name: impl Into<String>,
-        build: impl Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
+        build: impl Fn(&TriangleMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
             + Send
             + Sync
             + 'a,
@@ -329,7 +329,7 @@ fn measure(
     candidate: &Candidate<'_>,
     surface: Surface,
     level: u32,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     h: f64,
     count: usize,
 ) -> Result<LevelRow, ConvergenceError> {
@@ -443,7 +443,7 @@ pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
 }
 
 /// Mean edge length of `mesh`.
-pub fn mean_edge_length(mesh: &SurfaceMesh) -> f64 {
+pub fn mean_edge_length(mesh: &TriangleMesh) -> f64 {
     let p = mesh.positions();
     let total: f64 = mesh
         .edges()

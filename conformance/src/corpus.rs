@@ -10,7 +10,7 @@ use tvf_core::generate::{
     perforated_plate, rigid_motion, staggered_ring_faces, torus,
 };
 use tvf_core::geometry::{cross, dot, norm, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{CatalogEntry, DELAUNAY_TOLERANCE};
 
 /// Largest field dimension `n1` for which the suite runs dense eigenvalue checks.
@@ -26,7 +26,7 @@ pub struct CorpusMesh {
     /// Name for failure messages.
     pub name: String,
     /// The mesh.
-    pub mesh: SurfaceMesh,
+    pub mesh: TriangleMesh,
     /// Its genus summed over components, stated independently of the mesh's own Euler
     /// characteristic.
     pub genus: usize,
@@ -38,7 +38,7 @@ pub struct CorpusMesh {
 
 impl CorpusMesh {
     /// A named closed mesh of total genus `genus` (harmonic dimension `2·genus`).
-    pub fn new(name: impl Into<String>, mesh: SurfaceMesh, genus: usize) -> Self {
+    pub fn new(name: impl Into<String>, mesh: TriangleMesh, genus: usize) -> Self {
         Self {
             name: name.into(),
             mesh,
@@ -51,7 +51,7 @@ impl CorpusMesh {
     /// `harmonic_dimension`.
     pub fn open(
         name: impl Into<String>,
-        mesh: SurfaceMesh,
+        mesh: TriangleMesh,
         genus: usize,
         harmonic_dimension: usize,
     ) -> Self {
@@ -181,7 +181,7 @@ impl Corpus {
 }
 
 /// The disjoint union of two meshes (the second's vertex indices shifted).
-pub fn disjoint_union(a: &SurfaceMesh, b: &SurfaceMesh) -> SurfaceMesh {
+pub fn disjoint_union(a: &TriangleMesh, b: &TriangleMesh) -> TriangleMesh {
     let offset = a.vertex_count();
     let positions = a.positions().iter().chain(b.positions()).copied().collect();
     let faces = a
@@ -190,14 +190,14 @@ pub fn disjoint_union(a: &SurfaceMesh, b: &SurfaceMesh) -> SurfaceMesh {
         .copied()
         .chain(b.faces().iter().map(|f| f.map(|v| v + offset)))
         .collect();
-    SurfaceMesh::new(positions, faces).expect("the union of two valid meshes is valid")
+    TriangleMesh::new(positions, faces).expect("the union of two valid meshes is valid")
 }
 
-fn small_torus() -> SurfaceMesh {
+fn small_torus() -> TriangleMesh {
     torus(1.0, 0.4, 16, 8).expect("valid torus parameters")
 }
 
-fn shifted_icosphere() -> SurfaceMesh {
+fn shifted_icosphere() -> TriangleMesh {
     rigid_motion(&icosphere(1), [0.0, 0.0, 1.0], 0.0, [5.0, 0.0, 0.0]).expect("finite")
 }
 
@@ -372,7 +372,7 @@ pub fn shared_corpus(corpus: Corpus) -> Vec<CorpusMesh> {
 /// near-isosceles triangles instead of a split rectangle: `2·around·tube` faces, genus 1, outward
 /// normals. With `around ≈ 2π·major / (2π·minor / tube)` all triangles are acute, hence Delaunay
 /// (a quad torus is not: its diagonals have `cot α + cot β = 0`).
-pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> SurfaceMesh {
+pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> TriangleMesh {
     assert!(
         tube & 1 == 0 && tube >= 4 && around >= 3,
         "even tube ≥ 4, around ≥ 3"
@@ -389,7 +389,7 @@ pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> Su
         })
         .collect();
     let faces = staggered_ring_faces(around, tube, tube);
-    SurfaceMesh::new(positions, faces).expect("a staggered torus is a valid closed mesh")
+    TriangleMesh::new(positions, faces).expect("a staggered torus is a valid closed mesh")
 }
 
 /// A [`staggered_torus`] whose ring 1 is pulled towards ring 0: each vertex of ring 1 moves to
@@ -397,7 +397,7 @@ pub fn staggered_torus(major: f64, minor: f64, around: usize, tube: usize) -> Su
 /// strip between rings 0 and 1 is made of cap slivers (one angle near 180°, two near 0°; for
 /// `thin = 0.01` on a 12×8 torus of radii 1 and 0.4 the angles span 0.46°–179.1°). Genus 1, not
 /// Delaunay.
-pub fn sliver_torus(major: f64, minor: f64, around: usize, tube: usize, thin: f64) -> SurfaceMesh {
+pub fn sliver_torus(major: f64, minor: f64, around: usize, tube: usize, thin: f64) -> TriangleMesh {
     let torus = staggered_torus(major, minor, around, tube);
     let p = torus.positions();
     let positions = (0..p.len())
@@ -413,12 +413,12 @@ pub fn sliver_torus(major: f64, minor: f64, around: usize, tube: usize, thin: f6
             })
         })
         .collect();
-    SurfaceMesh::new(positions, torus.faces().to_vec()).expect("moving vertices keeps the faces")
+    TriangleMesh::new(positions, torus.faces().to_vec()).expect("moving vertices keeps the faces")
 }
 
 /// `cot α + cot β` of every edge (`E` entries, one cotangent on a boundary edge), computed from
 /// the 3D corner angles.
-pub fn cotangent_sums(mesh: &SurfaceMesh) -> Vec<f64> {
+pub fn cotangent_sums(mesh: &TriangleMesh) -> Vec<f64> {
     let mut sums = vec![0.0; mesh.edge_count()];
     for (t, edges) in mesh.face_edges().iter().enumerate() {
         for (c, &e) in edges.iter().enumerate() {
@@ -430,7 +430,7 @@ pub fn cotangent_sums(mesh: &SurfaceMesh) -> Vec<f64> {
 
 /// Cotangent of the angle at corner `c` of face `t`, from 3D positions (independent of
 /// `tvf-discretizations`).
-pub fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
+pub fn corner_cotangent(mesh: &TriangleMesh, t: usize, c: usize) -> f64 {
     let o = mesh.corner(t, c);
     let u = sub(mesh.corner(t, (c + 1) % 3), o);
     let v = sub(mesh.corner(t, (c + 2) % 3), o);
@@ -438,7 +438,7 @@ pub fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
 }
 
 /// Whether every edge has `cot α + cot β >` [`DELAUNAY_TOLERANCE`] (what DEC needs).
-pub fn is_delaunay(mesh: &SurfaceMesh) -> bool {
+pub fn is_delaunay(mesh: &TriangleMesh) -> bool {
     cotangent_sums(mesh).iter().all(|&s| s > DELAUNAY_TOLERANCE)
 }
 
@@ -447,14 +447,14 @@ pub fn is_delaunay(mesh: &SurfaceMesh) -> bool {
 /// is replaced by the other diagonal of its two faces (vertices stay put, so the surface changes
 /// slightly where it is not flat). Panics if a flip would break the mesh or if 10·E flips do not
 /// make it Delaunay; meant for the small generated meshes of the corpus.
-pub fn delaunay_flips(mesh: &SurfaceMesh) -> SurfaceMesh {
+pub fn delaunay_flips(mesh: &TriangleMesh) -> TriangleMesh {
     try_delaunay_flips(mesh).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// [`delaunay_flips`], with an error instead of a panic when a flip would break the mesh (e.g.
 /// two faces that would share both vertices of the new diagonal) or when 10·E flips do not make
 /// it Delaunay (the mesh strategies reject such draws).
-pub fn try_delaunay_flips(mesh: &SurfaceMesh) -> Result<SurfaceMesh, String> {
+pub fn try_delaunay_flips(mesh: &TriangleMesh) -> Result<TriangleMesh, String> {
     let mut current = mesh.clone();
     for _ in 0..10 * mesh.edge_count() {
         let sums = cotangent_sums(&current);
@@ -479,7 +479,7 @@ pub fn try_delaunay_flips(mesh: &SurfaceMesh) -> Result<SurfaceMesh, String> {
         // (p, a, b) and (q, b, a) become (p, a, q) and (q, b, p): same orientation.
         faces[s] = [p, a, q];
         faces[t] = [q, b, p];
-        current = SurfaceMesh::new(current.positions().to_vec(), faces)
+        current = TriangleMesh::new(current.positions().to_vec(), faces)
             .map_err(|e| format!("flipping edge {edge} broke the mesh: {e}"))?;
     }
     Err("Lawson flips did not converge".to_string())

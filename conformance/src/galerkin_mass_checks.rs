@@ -8,7 +8,7 @@ use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::geometry::dot;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The edge midpoints of a triangle in barycentric coordinates: `∫_T g = |T|/3 Σ g(m)` holds
 /// exactly for polynomials `g` of degree at most 2, so for the product of two linear functions.
@@ -22,7 +22,7 @@ const TOLERANCE: f64 = 1e-12;
 /// of a face are `weights(face, barycentric)` (`(node, value)` pairs), each linear (or constant)
 /// on every face.
 pub fn evaluated_mass(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     n: usize,
     weights: impl Fn(usize, [f64; 3]) -> Vec<(usize, f64)>,
 ) -> CsMat<f64> {
@@ -45,7 +45,7 @@ pub fn evaluated_mass(
 
 /// `G[e, f] = Σ_T ∫_T ⟨w_e, w_f⟩` (`n1 × n1`) for the fields `w_e` the sampling gives each field
 /// node (its sampling weights), each linear (or constant) on every face.
-pub fn sampled_mass(mesh: &SurfaceMesh, sampling: &dyn FieldSampling) -> CsMat<f64> {
+pub fn sampled_mass(mesh: &TriangleMesh, sampling: &dyn FieldSampling) -> CsMat<f64> {
     let n = sampling.field_dimension();
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for t in 0..mesh.face_count() {
@@ -80,7 +80,7 @@ pub fn check_galerkin_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corpu
 /// inverse, fails naming what is missing.
 pub fn measure_galerkin_masses<H: HodgeComplex + ?Sized>(
     complex: &H,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> Vec<CheckOutcome> {
     const NAME: &str = "galerkin_masses";
     let (Some(evaluation), Some(sampling)) = (complex.point_evaluation(), complex.sampling())

@@ -61,7 +61,7 @@
 //! # fn main() {}
 //! ```
 //!
-//! The constructor is any `Fn(&SurfaceMesh) -> Result<H, E>` with `E: Debug` and `H` either a
+//! The constructor is any `Fn(&TriangleMesh) -> Result<H, E>` with `E: Debug` and `H` either a
 //! `HodgeComplex + 'static` or a `Box<dyn HodgeComplex>`. A catalog entry (a
 //! [`CatalogEntry`], built-in or of a crate of your own) gets the suite on its corpus and the
 //! suite on meshes with boundary for both boundary conditions ([`open_suite`]) in one line:
@@ -119,18 +119,18 @@ pub use tvf_core;
 pub use tvf_discretizations;
 
 use corpus::{Corpus, CorpusMesh};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{BoxedComplex, CatalogEntry};
 
 /// How the suite builds a complex: the constructor of a suite line, its result boxed and its
 /// error formatted.
-pub type Constructor<'a> = &'a dyn Fn(&SurfaceMesh) -> Result<BoxedComplex, String>;
+pub type Constructor<'a> = &'a dyn Fn(&TriangleMesh) -> Result<BoxedComplex, String>;
 
-/// Identity that fixes a closure's signature to `Fn(&SurfaceMesh) -> Result<H, E>` (so that
+/// Identity that fixes a closure's signature to `Fn(&TriangleMesh) -> Result<H, E>` (so that
 /// `|mesh| Conforming::new(mesh, ...)` needs no type annotation inside the macro).
 pub fn constructor<H, E, F>(f: F) -> F
 where
-    F: Fn(&SurfaceMesh) -> Result<H, E>,
+    F: Fn(&TriangleMesh) -> Result<H, E>,
 {
     f
 }

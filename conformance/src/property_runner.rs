@@ -13,11 +13,11 @@ use std::cell::RefCell;
 use std::collections::BTreeMap;
 use std::panic::AssertUnwindSafe;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Builds the complex to check on a mesh (a catalog entry, a researcher's own matrices...); the
 /// error says why the mesh was refused.
-pub type Builder<'a> = &'a dyn Fn(&SurfaceMesh) -> Result<Box<dyn HodgeComplex>, String>;
+pub type Builder<'a> = &'a dyn Fn(&TriangleMesh) -> Result<Box<dyn HodgeComplex>, String>;
 
 /// Name of the outcome reporting that the builder refused a mesh.
 pub const CONSTRUCTION: &str = "construction";
@@ -32,7 +32,7 @@ pub const PANIC: &str = "panic";
 /// [`PANIC`].
 pub fn check_mesh(
     builder: Builder,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     reference: &[ReferenceCheck],
 ) -> CheckReport {
     let checked = std::panic::catch_unwind(AssertUnwindSafe(|| {
@@ -53,7 +53,7 @@ pub fn check_mesh(
 /// [`check_mesh`] without the panic guard.
 fn checks_on_mesh(
     builder: Builder,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     reference: &[ReferenceCheck],
 ) -> CheckReport {
     let complex = match builder(mesh) {

@@ -14,7 +14,7 @@ use crate::reference_report::ReferenceCheck;
 use crate::spectral_checks::check_sphere_spectrum;
 use crate::{build, for_each_mesh, Constructor};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, NodeSpace};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Runs every check of `checks`, in order, on the complexes of `constructor` over `corpus`
 /// (naming each on stderr, so that a failing test shows which one failed).
@@ -72,7 +72,7 @@ pub fn potential_cotan_formula(constructor: Constructor, corpus: Corpus) {
 }
 
 /// The potential stiffness of `complex` equals the explicit stiffness of its node kind.
-fn check_potential_stiffness_formula(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {
+fn check_potential_stiffness_formula(complex: &dyn HodgeComplex, mesh: &TriangleMesh) {
     check_stiffness_formula(
         "potential",
         complex.potential_nodes(),
@@ -86,7 +86,7 @@ fn check_stiffness_formula(
     which: &str,
     nodes: &NodeSpace,
     stiffness: &LinearOperator,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) {
     let expected = explicit_stiffness(nodes.kind, mesh).unwrap_or_else(|| {
         panic!(

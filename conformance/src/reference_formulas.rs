@@ -7,11 +7,11 @@ use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{LinearOperator, Mass, NodeKind};
 use tvf_core::geometry::{cross, dot, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The cotan matrix `S_ij = −(cot α_ij + cot β_ij)/2`, `S_ii = −Σ_j S_ij` (`V × V`, integrated,
 /// positive semi-definite).
-pub fn cotan_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
+pub fn cotan_matrix(mesh: &TriangleMesh) -> CsMat<f64> {
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for (t, face) in mesh.faces().iter().enumerate() {
         for c in 0..3 {
@@ -31,7 +31,7 @@ pub fn cotan_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
 /// The Crouzeix–Raviart stiffness (`E × E`): in face `t`, the edges opposite corners `i` and `j`
 /// meet at corner `k` and couple by `−2 cot θ_k`; the edge opposite `i` gets `2 (cot θ_j + cot θ_k)`
 /// on the diagonal.
-pub fn crouzeix_raviart_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
+pub fn crouzeix_raviart_matrix(mesh: &TriangleMesh) -> CsMat<f64> {
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for (t, edges) in mesh.face_edges().iter().enumerate() {
         let cot: [f64; 3] = std::array::from_fn(|c| corner_cotangent(mesh, t, c));
@@ -54,7 +54,7 @@ pub fn crouzeix_raviart_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
 /// The weighted dual-graph Laplacian on faces (`F × F`), DEC's `d1 ⋆1⁻¹ d1ᵀ`: two faces sharing
 /// edge `e` couple by `−2/(cot α_e + cot β_e)`, the diagonal of face `t` is
 /// `Σ_{e ∈ t} 2/(cot α_e + cot β_e)` (one cotangent on a boundary edge).
-pub fn dual_graph_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
+pub fn dual_graph_matrix(mesh: &TriangleMesh) -> CsMat<f64> {
     let sums = crate::corpus::cotangent_sums(mesh);
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for (e, faces) in mesh.edge_faces().iter().enumerate() {
@@ -79,7 +79,7 @@ pub fn dual_graph_matrix(mesh: &SurfaceMesh) -> CsMat<f64> {
 /// The explicit stiffness of a space of scalar functions with nodes of kind `kind`: cotan for
 /// vertices (P1 and DEC 0-forms), Crouzeix–Raviart for edges, the dual-graph Laplacian for faces
 /// (DEC 2-forms); `None` for face frames (not a space of scalar functions).
-pub fn explicit_stiffness(kind: NodeKind, mesh: &SurfaceMesh) -> Option<CsMat<f64>> {
+pub fn explicit_stiffness(kind: NodeKind, mesh: &TriangleMesh) -> Option<CsMat<f64>> {
     match kind {
         NodeKind::Vertices => Some(cotan_matrix(mesh)),
         NodeKind::Edges => Some(crouzeix_raviart_matrix(mesh)),
@@ -142,7 +142,7 @@ pub fn assert_operator_equals(what: &str, a: &LinearOperator, b: &CsMat<f64>) {
 /// `1 − 2 φ_c`, gradient `−2 ∇φ_c`. `None` for other kinds.
 pub fn basis_gradients(
     kind: NodeKind,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     t: usize,
 ) -> Option<[(usize, [f64; 3]); 3]> {
     let p: [[f64; 3]; 3] = std::array::from_fn(|c| mesh.corner(t, c));
@@ -171,7 +171,7 @@ pub fn basis_gradients(
 /// mass divides node by node). Panics for kinds without [`basis_gradients`].
 pub fn explicit_divergence_and_curl(
     kind: NodeKind,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     mass: &Mass,
     vectors: &[[f64; 3]],
 ) -> (Vec<f64>, Vec<f64>) {

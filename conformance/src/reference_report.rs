@@ -12,7 +12,7 @@ use crate::reference_formulas::explicit_stiffness;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{product, transpose};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, NodeKind};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Relative tolerance of the explicit stiffness formulas (as [`crate::reference::cotan_formula`]).
 pub const FORMULA_TOLERANCE: f64 = 1e-10;
@@ -110,7 +110,7 @@ pub fn catalog_reference_checks(id: &str) -> &'static [ReferenceCheck] {
 pub fn measure_reference(
     check: ReferenceCheck,
     complex: &dyn HodgeComplex,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> Vec<CheckOutcome> {
     match check {
         CotanFormula => vec![
@@ -146,7 +146,7 @@ fn measure_stiffness_formula(
     check: ReferenceCheck,
     which: &str,
     complex: &dyn HodgeComplex,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> CheckOutcome {
     let name = format!("{}:{which}", check.name());
     let (nodes, stiffness) = if which == "potential" {
@@ -239,7 +239,7 @@ fn measure_rotation(complex: &dyn HodgeComplex) -> Vec<CheckOutcome> {
 }
 
 /// `M1 = (A_t, A_t)` per face, zero off the diagonal: max relative deviation.
-fn measure_face_field_mass(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) -> CheckOutcome {
+fn measure_face_field_mass(complex: &dyn HodgeComplex, mesh: &TriangleMesh) -> CheckOutcome {
     let name = "face_fields:M1_is_face_areas";
     if complex.field_nodes().kind != NodeKind::FaceFrames
         || complex.field_dimension() != 2 * mesh.face_count()

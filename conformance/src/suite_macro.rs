@@ -25,7 +25,7 @@
 ///   when it needs Delaunay meshes), and a submodule `open_meshes` with one test per boundary
 ///   condition ([`crate::open_suite::open_mesh_suite`]: the core suite on meshes with boundary
 ///   for a condition the entry offers; for one it does not, that the entry refuses it).
-/// - `constructor`: `Fn(&SurfaceMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
+/// - `constructor`: `Fn(&TriangleMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
 ///   'static` or a `Box<dyn HodgeComplex>`; evaluated inside the generated module (which
 ///   imports `super::*`).
 /// - `corpus`: an expression of type [`crate::corpus::Corpus`], default `Corpus::General`.
@@ -100,7 +100,7 @@ macro_rules! conformance_suite {
 
             /// The suite line's constructor, its complex boxed and its error formatted.
             fn build_complex(
-                mesh: &$crate::tvf_core::SurfaceMesh,
+                mesh: &$crate::tvf_core::TriangleMesh,
             ) -> ::std::result::Result<$crate::tvf_discretizations::BoxedComplex, String> {
                 #[allow(unused_imports)]
                 use $crate::__private::{AlreadyBoxed as _, NeedsBox as _};

@@ -4,7 +4,7 @@
 
 use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::Catalog;
 use tvf_spectral::FieldFamily;
 
@@ -38,7 +38,7 @@ fn p1_and_crouzeix_raviart_converge_at_order_two() {
 fn a_candidate_that_cannot_be_built_is_named() {
     let candidates = [Candidate::new(
         "draft",
-        |_: &SurfaceMesh, _: BoundaryCondition| Err("no assembly yet".to_string()),
+        |_: &TriangleMesh, _: BoundaryCondition| Err("no assembly yet".to_string()),
     )];
     let error = run_convergence(&candidates, &ConvergenceConfig::default(), &|_, _, _| {})
         .err()

@@ -9,7 +9,7 @@ use tvf_conformance::reference_report::ReferenceCheck;
 use tvf_conformance::strategies::MeshNeeds;
 use tvf_core::discretization::{ComplexParts, FieldRotation, HodgeComplex, HodgeOperators, Mass};
 use tvf_core::generate::torus;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{catalog_entry, BoxedComplex, MatrixComplex, MatrixSampling};
 
 const REFERENCE: [ReferenceCheck; 4] = [
@@ -19,11 +19,11 @@ const REFERENCE: [ReferenceCheck; 4] = [
     ReferenceCheck::CoPotentialMasses,
 ];
 
-fn mesh() -> SurfaceMesh {
+fn mesh() -> TriangleMesh {
     torus(1.0, 0.4, 8, 5).unwrap()
 }
 
-fn correct(mesh: &SurfaceMesh) -> BoxedComplex {
+fn correct(mesh: &TriangleMesh) -> BoxedComplex {
     catalog_entry("conforming-barycentric")
         .unwrap()
         .build(mesh)
@@ -31,7 +31,7 @@ fn correct(mesh: &SurfaceMesh) -> BoxedComplex {
 }
 
 /// A `MatrixComplex` of the correct complex's matrices, `m1` replaced.
-fn with_m1(mesh: &SurfaceMesh, m1: Mass) -> Result<MatrixComplex, String> {
+fn with_m1(mesh: &TriangleMesh, m1: Mass) -> Result<MatrixComplex, String> {
     let c = correct(mesh);
     MatrixComplex::new(
         "mutant",
@@ -46,7 +46,7 @@ fn with_m1(mesh: &SurfaceMesh, m1: Mass) -> Result<MatrixComplex, String> {
     .map_err(|e| e.to_string())
 }
 
-fn failed_names(complex: Box<dyn HodgeComplex>, mesh: &SurfaceMesh) -> Vec<String> {
+fn failed_names(complex: Box<dyn HodgeComplex>, mesh: &TriangleMesh) -> Vec<String> {
     let report = check_mesh(&|_| Ok(complex_ref(&complex)), mesh, &REFERENCE);
     report.failures().iter().map(|o| o.name.clone()).collect()
 }
@@ -169,7 +169,7 @@ fn an_asymmetric_mass_is_refused_as_not_symmetric() {
 /// family it ends in (within twice the threshold).
 #[test]
 fn a_builder_broken_above_100_faces_is_shrunk_to_a_small_failing_mesh() {
-    let builder = |mesh: &SurfaceMesh| -> Result<BoxedComplex, String> {
+    let builder = |mesh: &TriangleMesh| -> Result<BoxedComplex, String> {
         let c = correct(mesh);
         if mesh.face_count() <= 100 {
             return Ok(c);

@@ -41,7 +41,7 @@ proptest! {
 fn a_correct_entry_passes_the_property_runner_with_its_reference_checks() {
     let id = "nonconforming-consistent";
     let entry = tvf_conformance::builtin_entry(id);
-    let builder = |mesh: &tvf_core::SurfaceMesh| entry.build(mesh).map_err(|e| e.to_string());
+    let builder = |mesh: &tvf_core::TriangleMesh| entry.build(mesh).map_err(|e| e.to_string());
     let mut request = PropertyRequest::new(12, 3, MeshNeeds::default());
     request.reference = catalog_reference_checks(id).to_vec();
     let report = run_property(&builder, &request, &|_| {});

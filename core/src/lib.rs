@@ -19,5 +19,5 @@ pub mod io;
 pub mod mesh;
 
 pub use hash64::Hash64;
-pub use mesh::{MeshError, SurfaceMesh, NO_FACE};
+pub use mesh::{MeshError, TriangleMesh, NO_FACE};
 pub use mesh::{ValidationReport, ValidationWarning};

@@ -6,10 +6,10 @@
 use tvf_core::generate::{
     bumpy_torus, genus_surface, holed_torus, open_cylinder, perforated_plate, torus,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// FNV-1a (64 bit) over the coordinate bits of every vertex, then the indices of every face.
-fn order_hash(mesh: &SurfaceMesh) -> u64 {
+fn order_hash(mesh: &TriangleMesh) -> u64 {
     let mut hash = 0xcbf2_9ce4_8422_2325u64;
     let words = mesh
         .positions()

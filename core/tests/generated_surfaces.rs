@@ -2,12 +2,12 @@
 //! of the asked genus, and valid under full validation.
 
 use tvf_core::generate::{bumpy_torus, genus_surface, icosphere, jitter, rigid_motion, torus};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Full validation of an existing mesh; returns its angle range.
-fn assert_valid_closed_outward(mesh: &SurfaceMesh) -> (f64, f64) {
+fn assert_valid_closed_outward(mesh: &TriangleMesh) -> (f64, f64) {
     let (validated, report) =
-        SurfaceMesh::validated(mesh.positions().to_vec(), mesh.faces().to_vec())
+        TriangleMesh::validated(mesh.positions().to_vec(), mesh.faces().to_vec())
             .expect("generated meshes pass full validation");
     assert!(report.warnings.is_empty(), "{:?}", report.warnings);
     assert_eq!(validated.vertex_count(), mesh.vertex_count());
@@ -96,7 +96,7 @@ fn rigid_motion_preserves_lengths_volume_and_topology() {
     assert_eq!(moved.faces(), mesh.faces());
     assert!((moved.signed_volume() - mesh.signed_volume()).abs() < 1e-9);
     for (&[a, b], _) in mesh.edges().iter().zip(0..) {
-        let length = |m: &SurfaceMesh| {
+        let length = |m: &TriangleMesh| {
             tvf_core::geometry::norm(tvf_core::geometry::sub(m.positions()[a], m.positions()[b]))
         };
         assert!((length(&mesh) - length(&moved)).abs() < 1e-12);

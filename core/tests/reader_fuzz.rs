@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 use tvf_core::generate::{genus_surface, icosphere};
 use tvf_core::io::{parse_mesh_bytes, write_obj, write_ply, MeshFormat};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 const FORMATS: [MeshFormat; 3] = [MeshFormat::Obj, MeshFormat::Off, MeshFormat::Ply];
 
@@ -68,7 +68,7 @@ fn build_seeds() -> Vec<(Vec<u8>, MeshFormat)> {
     seeds
 }
 
-fn off_text(mesh: &SurfaceMesh) -> String {
+fn off_text(mesh: &TriangleMesh) -> String {
     let mut text = format!("OFF\n{} {} 0\n", mesh.vertex_count(), mesh.face_count());
     for p in mesh.positions() {
         text += &format!("{} {} {}\n", p[0], p[1], p[2]);
@@ -79,7 +79,7 @@ fn off_text(mesh: &SurfaceMesh) -> String {
     text
 }
 
-fn ascii_ply(mesh: &SurfaceMesh) -> String {
+fn ascii_ply(mesh: &TriangleMesh) -> String {
     let mut text = format!(
         "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\n\
          property float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",

@@ -5,12 +5,12 @@
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{BoundaryCondition, ComplexTopology, NodeKind, NodeSpace};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The topology of `mesh` as a complex with boundary condition `condition` sees it: components,
 /// boundary, and the harmonic dimension summed over the components — `2g` on a closed component,
 /// `2g + b − 1` on a component with `b ≥ 1` boundary loops (for both boundary conditions).
-pub fn mesh_topology(mesh: &SurfaceMesh, condition: BoundaryCondition) -> ComplexTopology {
+pub fn mesh_topology(mesh: &TriangleMesh, condition: BoundaryCondition) -> ComplexTopology {
     let loops = component_boundary_loops(mesh);
     let harmonic_dimension = mesh
         .component_genera()
@@ -27,7 +27,7 @@ pub fn mesh_topology(mesh: &SurfaceMesh, condition: BoundaryCondition) -> Comple
 }
 
 /// Number of boundary loops of every connected component (`component_count` entries).
-pub fn component_boundary_loops(mesh: &SurfaceMesh) -> Vec<usize> {
+pub fn component_boundary_loops(mesh: &TriangleMesh) -> Vec<usize> {
     let mut loops = vec![0; mesh.component_count()];
     let vertex_component = mesh.vertex_components();
     for cycle in mesh.boundary_loops() {
@@ -38,7 +38,7 @@ pub fn component_boundary_loops(mesh: &SurfaceMesh) -> Vec<usize> {
 
 /// The nodes of kind `kind` that lie on the boundary (`n` entries): vertices of boundary edges,
 /// boundary edges; never faces.
-pub fn boundary_nodes(mesh: &SurfaceMesh, kind: NodeKind) -> Vec<bool> {
+pub fn boundary_nodes(mesh: &TriangleMesh, kind: NodeKind) -> Vec<bool> {
     match kind {
         NodeKind::Vertices => {
             let mut on_boundary = vec![false; mesh.vertex_count()];
@@ -59,7 +59,7 @@ pub fn boundary_nodes(mesh: &SurfaceMesh, kind: NodeKind) -> Vec<bool> {
 
 /// `space` with every boundary node of `mesh` made a Dirichlet node (value fixed to zero); the
 /// constants stay in the kernel only on closed components.
-pub fn with_dirichlet_boundary(mut space: NodeSpace, mesh: &SurfaceMesh) -> NodeSpace {
+pub fn with_dirichlet_boundary(mut space: NodeSpace, mesh: &TriangleMesh) -> NodeSpace {
     space.dirichlet = boundary_nodes(mesh, space.kind);
     let loops = component_boundary_loops(mesh);
     space.constant_kernel = loops.iter().map(|&b| b == 0).collect();

@@ -9,7 +9,7 @@ use crate::complex_id::split_complex_id;
 use std::sync::OnceLock;
 use thiserror::Error;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The id used when none is given: the paper's conforming decomposition, barycentric masses.
 pub const DEFAULT_DISCRETIZATION: &str = "conforming-barycentric";
@@ -170,7 +170,7 @@ impl Catalog {
         &self,
         id: &str,
         boundary: Option<BoundaryCondition>,
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
     ) -> Result<BoxedComplex, CatalogBuildError> {
         let (entry_id, named_boundary) = split_complex_id(id);
         let entry = self.get(entry_id)?;
@@ -220,7 +220,7 @@ pub fn catalog_entry(id: &str) -> Result<&'static CatalogEntry, UnknownDiscretiz
 pub fn build_complex(
     id: &str,
     boundary: Option<BoundaryCondition>,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> Result<BoxedComplex, CatalogBuildError> {
     builtin_catalog().build_complex(id, boundary, mesh)
 }

@@ -5,7 +5,7 @@
 use crate::complex_id::complex_id;
 use std::sync::Arc;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, HodgeComplex};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// A complex built by a catalog entry, behind the object-safe seam.
 pub type BoxedComplex = Box<dyn HodgeComplex>;
@@ -13,7 +13,7 @@ pub type BoxedComplex = Box<dyn HodgeComplex>;
 /// What a catalog entry runs to build its complex: the mesh and the boundary condition in, the
 /// complex out. A closure, so that an entry can carry parameters (a blend factor, a scale).
 pub type EntryConstructor = Arc<
-    dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
+    dyn Fn(&TriangleMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
         + Send
         + Sync,
 >;
@@ -62,7 +62,7 @@ impl CatalogEntry {
     /// ([`ANY_MESH`]) and offers no boundary condition (closed meshes only) until told otherwise.
     pub fn new<F>(id: impl Into<String>, description: impl Into<String>, constructor: F) -> Self
     where
-        F: Fn(&SurfaceMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
+        F: Fn(&TriangleMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
             + Send
             + Sync
             + 'static,
@@ -160,7 +160,7 @@ impl CatalogEntry {
 
     /// Builds the complex of `mesh` (on a mesh with boundary with the entry's default boundary
     /// condition).
-    pub fn build(&self, mesh: &SurfaceMesh) -> Result<BoxedComplex, DiscretizationError> {
+    pub fn build(&self, mesh: &TriangleMesh) -> Result<BoxedComplex, DiscretizationError> {
         self.build_with(mesh, self.default_boundary())
     }
 
@@ -171,7 +171,7 @@ impl CatalogEntry {
     /// [`complex_id`]`(id, mesh, boundary)` (basis files rebuild their complex from that id).
     pub fn build_with(
         &self,
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         boundary: BoundaryCondition,
     ) -> Result<BoxedComplex, DiscretizationError> {
         if !mesh.is_closed() && !self.boundary_conditions.contains(&boundary) {

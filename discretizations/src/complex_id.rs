@@ -4,11 +4,11 @@
 //! back.
 
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The id of the complex of catalog entry `entry_id` on `mesh` with boundary condition
 /// `boundary`: `entry_id` on a closed mesh, `{entry_id}+{boundary}` on a mesh with boundary.
-pub fn complex_id(entry_id: &str, mesh: &SurfaceMesh, boundary: BoundaryCondition) -> String {
+pub fn complex_id(entry_id: &str, mesh: &TriangleMesh, boundary: BoundaryCondition) -> String {
     if mesh.is_closed() {
         entry_id.to_string()
     } else {

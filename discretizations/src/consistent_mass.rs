@@ -3,7 +3,7 @@
 use crate::face_geometry::FaceGeometry;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The consistent P1 mass `M[i, j] = Σ_T ∫_T φ_i φ_j = Σ_T |T| (1 + δ_ij) / 12` over the faces
 /// `T` holding both vertices (`V × V`, symmetric, units of area; CSR).
@@ -12,7 +12,7 @@ use tvf_core::SurfaceMesh;
 /// mass, [`crate::MassLumping::Barycentric`]), so `1ᵀ M 1` is the area. Positive definite on the
 /// vertices faces use (each face's `|T|/12 · [[2, 1, 1], [1, 2, 1], [1, 1, 2]]` is, with
 /// eigenvalues `|T|/12 · (4, 1, 1)`); a vertex no face uses has an empty row and column.
-pub fn consistent_p1_mass(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> CsMat<f64> {
+pub fn consistent_p1_mass(mesh: &TriangleMesh, geometry: &FaceGeometry) -> CsMat<f64> {
     let capacity = 9 * mesh.face_count();
     let (mut rows, mut cols, mut values) = (
         Vec::with_capacity(capacity),

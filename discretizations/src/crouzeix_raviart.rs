@@ -6,10 +6,10 @@ use crate::FunctionSpace;
 use crate::MassLumping;
 use sprs::CsMat;
 use tvf_core::discretization::NodeKind;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The nonconforming space `S*_h`: nodal values at the `E` edge midpoints (edges numbered as in
-/// [`SurfaceMesh::edges`]).
+/// [`TriangleMesh::edges`]).
 ///
 /// In face `t` the basis function of the edge opposite corner `c` is `1 − 2 φ_c`, so its gradient
 /// (`2F × E`, pointwise, 1/length) is `−2 grad φ_c`. Mass: a [`MassLumping`] rule.
@@ -27,7 +27,7 @@ impl CrouzeixRaviart {
     /// Builds `S*_h` from precomputed face geometry (from the mesh alone:
     /// [`crate::PaperSpace::new`]).
     pub fn from_geometry(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         geometry: &FaceGeometry,
         lumping: MassLumping,
     ) -> Self {

@@ -5,7 +5,7 @@ use crate::face_geometry::FaceGeometry;
 use crate::primal_form_complex::{inverse_face_areas, PrimalFormComplex};
 use crate::MassLumping;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The DEC complex of primal forms (Desbrun, Kanso, Tong 2008; the setting of Fisher et al.
 /// 2007):
@@ -62,7 +62,7 @@ impl PrimalFormComplex<HodgeStars> {
     /// The DEC complex of `mesh` with vertex areas `⋆0` by `lumping`, catalog id
     /// `dec-barycentric` or `dec-circumcentric` (for [`MassLumping::Voronoi`]). Fails on a
     /// degenerate face or a mesh that is not Delaunay.
-    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+    pub fn new(mesh: &TriangleMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
         Self::with_boundary(mesh, lumping, BoundaryCondition::default())
     }
 
@@ -71,7 +71,7 @@ impl PrimalFormComplex<HodgeStars> {
     /// [`BoundaryCondition::Normal`] (see [`DecComplex`]). The id gets `+{boundary}` appended on a
     /// mesh with boundary.
     pub fn with_boundary(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         lumping: MassLumping,
         boundary: BoundaryCondition,
     ) -> Result<Self, DiscretizationError> {
@@ -109,7 +109,7 @@ impl PrimalFormComplex<HodgeStars> {
 }
 
 /// `(cot α + cot β)/2` per edge: the cotangents of the corners opposite the edge in its faces.
-pub fn edge_hodge_star(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Vec<f64> {
+pub fn edge_hodge_star(mesh: &TriangleMesh, geometry: &FaceGeometry) -> Vec<f64> {
     let mut star = vec![0.0; mesh.edge_count()];
     for (t, edges) in mesh.face_edges().iter().enumerate() {
         let cot = geometry.cotangents(t);

@@ -7,7 +7,7 @@ use tvf_core::discretization::{
     TangentProjection,
 };
 use tvf_core::geometry::dot;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Piecewise constant tangent fields, one vector per face stored as `(x[2t], x[2t+1])` in the
 /// frame `e1 = normalize(p_{i1} − p_{i0})`, `e2 = n × e1` (pointwise coefficients);
@@ -23,7 +23,7 @@ pub struct FaceFields {
 
 impl FaceFields {
     /// Builds the field space of `mesh`; fails on a degenerate face.
-    pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+    pub fn new(mesh: &TriangleMesh) -> Result<Self, DiscretizationError> {
         Ok(Self::from_geometry(&FaceGeometry::new(mesh)?))
     }
 

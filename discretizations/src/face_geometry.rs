@@ -3,7 +3,7 @@
 
 use tvf_core::discretization::DiscretizationError;
 use tvf_core::geometry::{cross, dot, normalize, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Frames and 2D corner coordinates of every face (the frame convention of `docs/conventions.md`:
 /// `e1 = normalize(p_{i1} − p_{i0})`, `e2 = n × e1`).
@@ -21,7 +21,7 @@ pub struct FaceGeometry {
 
 impl FaceGeometry {
     /// Computes the geometry of every face; fails on a face of zero or non-finite area.
-    pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+    pub fn new(mesh: &TriangleMesh) -> Result<Self, DiscretizationError> {
         let face_count = mesh.face_count();
         let mut frames = Vec::with_capacity(face_count);
         let mut normals = Vec::with_capacity(face_count);

@@ -8,7 +8,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
     HodgeComplex, Mass, MassForm, MassStorage, NodeKind, NodeSpace, PointEvaluation,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The Hodge complex `P --d0--> X_h --d1--> Q` of two function spaces over the face fields:
 /// `d0 = G_P`, `d1 = G_Qᵀ J M_X`, `M0 = mass(P)`, `M1 = M_X`, `M2 = mass(Q)⁻¹`, with each
@@ -56,7 +56,7 @@ fn function_nodes(space: &impl FunctionSpace) -> NodeSpace {
 }
 
 /// The `2F` field nodes: two per face, at its centroid.
-fn face_frame_nodes(mesh: &SurfaceMesh) -> NodeSpace {
+fn face_frame_nodes(mesh: &TriangleMesh) -> NodeSpace {
     let centroid = |f: &[usize; 3]| {
         let p = f.map(|i| mesh.positions()[i]);
         std::array::from_fn(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
@@ -78,7 +78,7 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
     /// ([`BoundaryCondition::Tangential`]). See [`FiniteElementComplex::from_spaces_with_boundary`].
     pub fn from_spaces(
         id: impl Into<String>,
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         potentials: P,
         co_potentials: Q,
         fields: FaceFields,
@@ -103,7 +103,7 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
     /// if a gradient does not have `2F` rows or a mass is not positive definite on the free nodes.
     pub fn from_spaces_with_boundary(
         id: impl Into<String>,
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         potentials: P,
         co_potentials: Q,
         fields: FaceFields,

@@ -7,7 +7,7 @@ use crate::FunctionSpace;
 use crate::MassLumping;
 use sprs::CsMat;
 use tvf_core::discretization::{DiscretizationError, Mass, NodeKind};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The conforming space `S_h`: nodal values at the `V` vertices, hat-function basis.
 ///
@@ -30,7 +30,7 @@ impl LagrangeP1 {
     /// Builds `S_h` from precomputed face geometry (from the mesh alone:
     /// [`crate::PaperSpace::new`]).
     pub fn from_geometry(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         geometry: &FaceGeometry,
         lumping: MassLumping,
     ) -> Self {
@@ -53,7 +53,7 @@ impl LagrangeP1 {
     /// `S_h` with the consistent (Galerkin) mass `M[i, j] = Σ_T |T| (1 + δ_ij)/12`
     /// ([`crate::consistent_p1_mass`]) as its mass matrix; [`FunctionSpace::mass`] is then the
     /// barycentric lumped mass, the row sums of the consistent one.
-    pub fn with_consistent_mass(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Self {
+    pub fn with_consistent_mass(mesh: &TriangleMesh, geometry: &FaceGeometry) -> Self {
         Self {
             consistent_mass: Some(consistent_p1_mass(mesh, geometry)),
             ..Self::from_geometry(mesh, geometry, MassLumping::Barycentric)

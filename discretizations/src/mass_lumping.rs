@@ -5,7 +5,7 @@
 //! three nodes, so masses are positive and sum to the total area.
 
 use crate::face_geometry::FaceGeometry;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// A rule that splits each triangle's area among the nodes of a function space.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
@@ -81,7 +81,7 @@ impl MassLumping {
     }
 
     /// Lumped P1 masses (`V` entries, area); zero for a vertex no face uses.
-    pub fn vertex_masses(self, mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Vec<f64> {
+    pub fn vertex_masses(self, mesh: &TriangleMesh, geometry: &FaceGeometry) -> Vec<f64> {
         let mut mass = vec![0.0; mesh.vertex_count()];
         for (t, face) in mesh.faces().iter().enumerate() {
             let shares = self.vertex_shares(geometry, t);
@@ -93,7 +93,7 @@ impl MassLumping {
     }
 
     /// Lumped Crouzeix–Raviart masses (`E` entries, area).
-    pub fn edge_masses(self, mesh: &SurfaceMesh, geometry: &FaceGeometry) -> Vec<f64> {
+    pub fn edge_masses(self, mesh: &TriangleMesh, geometry: &FaceGeometry) -> Vec<f64> {
         let mut mass = vec![0.0; mesh.edge_count()];
         for (t, edges) in mesh.face_edges().iter().enumerate() {
             let shares = self.edge_shares(geometry, t);
@@ -145,8 +145,8 @@ mod tests {
     use super::*;
     use tvf_core::generate::icosphere;
 
-    fn right_triangle_geometry() -> (SurfaceMesh, FaceGeometry) {
-        let mesh = SurfaceMesh::new(
+    fn right_triangle_geometry() -> (TriangleMesh, FaceGeometry) {
+        let mesh = TriangleMesh::new(
             vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
             vec![[0, 1, 2]],
         )

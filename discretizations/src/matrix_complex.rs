@@ -13,7 +13,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
     HodgeComplex, Mass, NodeKind, NodeSpace,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// `max |d1 d0|` above this times `max |d1| · max |d0|` is not a complex.
 pub const COMPLEX_TOLERANCE: f64 = 1e-10;
@@ -97,7 +97,7 @@ impl MatrixComplex {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         id: &str,
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         d0: CsMat<f64>,
         d1: CsMat<f64>,
         m0: Mass,
@@ -124,7 +124,7 @@ impl MatrixComplex {
     /// how.
     pub fn with_boundary(
         id: &str,
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         matrices: ComplexMatrices,
         fixed: &FixedNodes,
         condition: BoundaryCondition,
@@ -182,7 +182,7 @@ fn check_complex(d0: &CsMat<f64>, d1: &CsMat<f64>) -> Result<(), DiscretizationE
 
 /// The sampler `sampling` asks for, checked against the field nodes.
 fn sampler(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     sampling: MatrixSampling,
     field_nodes: &NodeSpace,
 ) -> Result<Sampler, DiscretizationError> {
@@ -259,7 +259,7 @@ mod tests {
     type Parts = (CsMat<f64>, CsMat<f64>, Mass, Mass, Mass);
 
     /// The complex of built-in catalog entry `id` on `mesh`, default boundary condition.
-    fn catalog_complex(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
+    fn catalog_complex(id: &str, mesh: &TriangleMesh) -> BoxedComplex {
         catalog_entry(id).unwrap().build(mesh).unwrap()
     }
 
@@ -275,7 +275,7 @@ mod tests {
 
     /// [`MatrixComplex::new`] of `parts` on the closed `mesh`.
     fn closed_copy(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         (d0, d1, m0, m1, m2): Parts,
         sampling: MatrixSampling,
     ) -> Result<MatrixComplex, DiscretizationError> {
@@ -284,7 +284,7 @@ mod tests {
 
     /// [`MatrixComplex::with_boundary`] of `parts` on `mesh` with `fixed` nodes, without sampling.
     fn copy_with_fixed(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         (d0, d1, m0, m1, m2): Parts,
         fixed: &FixedNodes,
         condition: BoundaryCondition,

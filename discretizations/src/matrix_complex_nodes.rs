@@ -5,7 +5,7 @@
 use sprs::CsMat;
 use tvf_core::discretization::sparse::transpose;
 use tvf_core::discretization::{DiscretizationError, NodeKind, NodeSpace};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The nodes of each space of a complex that its boundary condition fixes to zero (indices into
 /// the space, any order). Their column of `d0` (potentials), row of `d0` and column of `d1`
@@ -42,7 +42,7 @@ impl FixedNodes {
 /// that is no node kind of the mesh, a fixed index out of range, a fixed node whose row or
 /// column is not empty.
 pub fn matrix_node_spaces(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     d0: &CsMat<f64>,
     d1: &CsMat<f64>,
     fixed: &FixedNodes,
@@ -133,7 +133,7 @@ pub fn implied_harmonic_dimension(spaces: &[NodeSpace; 3]) -> i64 {
 }
 
 /// The node space of `n` nodes on `mesh`: vertices, edges, faces or face frames by size.
-fn node_space(mesh: &SurfaceMesh, n: usize, what: &str) -> Result<NodeSpace, DiscretizationError> {
+fn node_space(mesh: &TriangleMesh, n: usize, what: &str) -> Result<NodeSpace, DiscretizationError> {
     let positions = mesh.positions();
     let centroid = |face: &[usize; 3]| {
         let p = face.map(|v| positions[v]);

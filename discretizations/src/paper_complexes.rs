@@ -8,7 +8,7 @@ use crate::{
     CrouzeixRaviart, FaceFields, FiniteElementComplex, FunctionSpace, LagrangeP1, MassLumping,
 };
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The mass matrices of the two function spaces of a paper complex.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -34,17 +34,17 @@ impl SpaceMasses {
 /// A function space of the paper's complexes, built on a mesh with its [`SpaceMasses`].
 pub trait PaperSpace: FunctionSpace + Sized {
     /// The space on `mesh` (face geometry `geometry`) with the mass matrix `masses` selects.
-    fn build(mesh: &SurfaceMesh, geometry: &FaceGeometry, masses: SpaceMasses) -> Self;
+    fn build(mesh: &TriangleMesh, geometry: &FaceGeometry, masses: SpaceMasses) -> Self;
 
     /// The space on `mesh` with its mass lumped by `lumping`; fails on a degenerate face.
-    fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+    fn new(mesh: &TriangleMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
         let geometry = FaceGeometry::new(mesh)?;
         Ok(Self::build(mesh, &geometry, SpaceMasses::Lumped(lumping)))
     }
 }
 
 impl PaperSpace for LagrangeP1 {
-    fn build(mesh: &SurfaceMesh, geometry: &FaceGeometry, masses: SpaceMasses) -> Self {
+    fn build(mesh: &TriangleMesh, geometry: &FaceGeometry, masses: SpaceMasses) -> Self {
         match masses {
             SpaceMasses::Lumped(lumping) => Self::from_geometry(mesh, geometry, lumping),
             SpaceMasses::Consistent => Self::with_consistent_mass(mesh, geometry),
@@ -53,7 +53,7 @@ impl PaperSpace for LagrangeP1 {
 }
 
 impl PaperSpace for CrouzeixRaviart {
-    fn build(mesh: &SurfaceMesh, geometry: &FaceGeometry, masses: SpaceMasses) -> Self {
+    fn build(mesh: &TriangleMesh, geometry: &FaceGeometry, masses: SpaceMasses) -> Self {
         let lumping = match masses {
             SpaceMasses::Lumped(lumping) => lumping,
             SpaceMasses::Consistent => MassLumping::Barycentric,
@@ -83,7 +83,7 @@ where
     /// The complex of `mesh` with the given mass lumping (for both function spaces), catalog id
     /// `{family}-{lumping}` (`conforming-barycentric`, `nonconforming-voronoi`, ...), default
     /// boundary condition. Fails on a degenerate face.
-    pub fn new(mesh: &SurfaceMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
+    pub fn new(mesh: &TriangleMesh, lumping: MassLumping) -> Result<Self, DiscretizationError> {
         Self::from_mesh(
             mesh,
             SpaceMasses::Lumped(lumping),
@@ -95,7 +95,7 @@ where
     /// gives: [`crate::Conforming`], [`crate::Nonconforming`]); `+{boundary}` is appended to
     /// the id on a mesh with boundary.
     pub fn with_boundary(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         lumping: MassLumping,
         boundary: BoundaryCondition,
     ) -> Result<Self, DiscretizationError> {
@@ -104,14 +104,14 @@ where
 
     /// The complex with the consistent (Galerkin) P1 mass ([`SpaceMasses::Consistent`]),
     /// catalog id `{family}-consistent`, default boundary condition.
-    pub fn consistent(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+    pub fn consistent(mesh: &TriangleMesh) -> Result<Self, DiscretizationError> {
         Self::from_mesh(mesh, SpaceMasses::Consistent, BoundaryCondition::default())
     }
 
     /// [`FiniteElementComplex::consistent`] with boundary condition `boundary` (`+{boundary}`
     /// appended to the id on a mesh with boundary). Fails on a degenerate face.
     pub fn consistent_with_boundary(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         boundary: BoundaryCondition,
     ) -> Result<Self, DiscretizationError> {
         Self::from_mesh(mesh, SpaceMasses::Consistent, boundary)
@@ -121,7 +121,7 @@ where
     /// catalog id `{family}-{masses}` (`+{boundary}` on a mesh with boundary). Fails on a
     /// degenerate face.
     pub fn from_mesh(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         masses: SpaceMasses,
         boundary: BoundaryCondition,
     ) -> Result<Self, DiscretizationError> {

@@ -12,7 +12,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
     NodeSpace, PointEvaluation,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The complex `0-forms (V) --d0--> 1-forms (E) --d1--> 2-forms (F)` of [`PrimalForms`] with
 /// masses chosen by the marker `M` ([`crate::HodgeStars`] for DEC, [`crate::GalerkinMasses`]
@@ -32,7 +32,7 @@ impl<M> PrimalFormComplex<M> {
     /// `masses` gives `[M0, M1, M2]` from the node spaces of the 0-, 1- and 2-forms.
     pub(crate) fn assemble(
         id: &str,
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         geometry: &FaceGeometry,
         boundary: BoundaryCondition,
         masses: impl FnOnce(&[NodeSpace; 3]) -> Result<[Mass; 3], DiscretizationError>,

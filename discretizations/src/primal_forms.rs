@@ -10,12 +10,12 @@ use crate::boundary_conditions::{
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{BoundaryCondition, NodeKind, NodeSpace, PointEvaluation};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The complex `0-forms (V) --d0--> 1-forms (E) --d1--> 2-forms (F)` without its masses.
 ///
 /// - A 1-form is `x_e = ∫_e ⟨v, t⟩`, the field integrated along edge `e = (a, b)`, `a < b`
-///   (edges numbered as [`SurfaceMesh::edges`]), from `a` to `b` (units length × field).
+///   (edges numbered as [`TriangleMesh::edges`]), from `a` to `b` (units length × field).
 /// - `d0` (`E × V`): row `e = (a, b)` has `−1` at `a` and `+1` at `b` (`(d0 f)_e = f_b − f_a`).
 /// - `d1` (`F × E`): row `t` has `±1` at its three edges, `+1` where the counter-clockwise
 ///   boundary of `t` runs `a → b` (the circulation around `t`). `d1 d0 = 0` exactly.
@@ -39,7 +39,7 @@ pub(crate) struct PrimalForms {
 impl PrimalForms {
     /// The incidences and node spaces of `mesh` with boundary condition `boundary` (ignored on a
     /// closed mesh).
-    pub fn new(mesh: &SurfaceMesh, boundary: BoundaryCondition) -> Self {
+    pub fn new(mesh: &TriangleMesh, boundary: BoundaryCondition) -> Self {
         let positions = mesh.positions();
         let components = mesh.component_count();
         let mut potential_nodes = NodeSpace::with_constant_kernel(
@@ -99,7 +99,7 @@ impl PrimalForms {
 }
 
 /// Signed vertex → edge incidence (`E × V`): `−1` at `a`, `+1` at `b` for edge `(a, b)`.
-fn vertex_edge_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
+fn vertex_edge_incidence(mesh: &TriangleMesh) -> CsMat<f64> {
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for (e, &[a, b]) in mesh.edges().iter().enumerate() {
         rows.extend([e, e]);
@@ -111,7 +111,7 @@ fn vertex_edge_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
 
 /// Signed edge → face incidence (`F × E`): `+1` where the face's counter-clockwise boundary runs
 /// along the edge's orientation `a → b`, `−1` where it runs against it.
-fn edge_face_incidence(mesh: &SurfaceMesh) -> CsMat<f64> {
+fn edge_face_incidence(mesh: &TriangleMesh) -> CsMat<f64> {
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for (t, (face, edges)) in mesh.faces().iter().zip(mesh.face_edges()).enumerate() {
         for c in 0..3 {
@@ -135,7 +135,7 @@ pub(crate) struct PrimalFormEvaluation {
 
 impl PrimalFormEvaluation {
     /// The evaluation on the faces of `mesh`.
-    pub fn new(mesh: &SurfaceMesh) -> Self {
+    pub fn new(mesh: &TriangleMesh) -> Self {
         Self {
             faces: mesh.faces().to_vec(),
         }

@@ -6,7 +6,7 @@ use crate::face_geometry::FaceGeometry;
 use crate::primal_form_complex::{inverse_face_areas, PrimalFormComplex};
 use crate::whitney_mass::whitney_mass;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The complex of Whitney forms with their `L²` (Galerkin) inner products, catalog id
 /// `whitney-galerkin`:
@@ -48,7 +48,7 @@ pub struct GalerkinMasses;
 impl PrimalFormComplex<GalerkinMasses> {
     /// The complex of `mesh` (the default boundary condition on a mesh with boundary). Fails on
     /// a degenerate face.
-    pub fn new(mesh: &SurfaceMesh) -> Result<Self, DiscretizationError> {
+    pub fn new(mesh: &TriangleMesh) -> Result<Self, DiscretizationError> {
         Self::with_boundary(mesh, BoundaryCondition::default())
     }
 
@@ -56,7 +56,7 @@ impl PrimalFormComplex<GalerkinMasses> {
     /// [`BoundaryCondition::Tangential`], relative forms for [`BoundaryCondition::Normal`]. The
     /// id gets `+{boundary}` appended on a mesh with boundary.
     pub fn with_boundary(
-        mesh: &SurfaceMesh,
+        mesh: &TriangleMesh,
         boundary: BoundaryCondition,
     ) -> Result<Self, DiscretizationError> {
         let geometry = FaceGeometry::new(mesh)?;

@@ -3,7 +3,7 @@
 use crate::face_geometry::FaceGeometry;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// `∫_T λ_a λ_b / |T| = (1 + δ_ab) / 12` for barycentric coordinates `a`, `b` of a triangle.
 fn barycentric_product(a: usize, b: usize) -> f64 {
@@ -39,14 +39,14 @@ fn whitney_element_mass(geometry: &FaceGeometry, t: usize) -> [[f64; 3]; 3] {
 
 /// The Whitney 1-form mass `M1[e, f] = Σ_T ∫_T ⟨W_e, W_f⟩` (`E × E`, symmetric, CSR) for the
 /// 1-forms of [`crate::WhitneyGalerkin`]: `W_e = W_(a,b) = λ_a ∇λ_b − λ_b ∇λ_a` for the edge
-/// `e = (a, b)`, `a < b`, as [`SurfaceMesh::edges`] numbers and orients it. `x ↦ xᵀ M1 x` is the
+/// `e = (a, b)`, `a < b`, as [`TriangleMesh::edges`] numbers and orients it. `x ↦ xᵀ M1 x` is the
 /// squared `L²` norm of the Whitney field of the 1-form `x`.
 ///
 /// Positive definite on every mesh without degenerate faces (each element mass is, and every
 /// edge has a face), with no condition on the angles; at most 5 entries per row on a closed
 /// mesh (the edge and the other two edges of each of its faces). `d0ᵀ M1 d0` is the cotan
 /// matrix: the Whitney field of `d0 f` is the gradient of the P1 function `f`.
-pub fn whitney_mass(mesh: &SurfaceMesh, geometry: &FaceGeometry) -> CsMat<f64> {
+pub fn whitney_mass(mesh: &TriangleMesh, geometry: &FaceGeometry) -> CsMat<f64> {
     let capacity = 9 * mesh.face_count();
     let (mut rows, mut cols, mut values) = (
         Vec::with_capacity(capacity),

@@ -6,7 +6,7 @@ use tvf_core::discretization::{
     check_face_vectors, DiscretizationError, FieldSampling, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Whitney interpolation of 1-forms on edges.
 ///
@@ -43,7 +43,7 @@ pub struct WhitneySampling {
 impl WhitneySampling {
     /// Precomputes the barycentric gradients of every face of `mesh`; the edges flagged in
     /// `fixed_edges` (`E` entries) are zero in every field.
-    pub fn new(mesh: &SurfaceMesh, geometry: &FaceGeometry, fixed_edges: Vec<bool>) -> Self {
+    pub fn new(mesh: &TriangleMesh, geometry: &FaceGeometry, fixed_edges: Vec<bool>) -> Self {
         assert_eq!(fixed_edges.len(), mesh.edge_count(), "one flag per edge");
         let barycentric_gradients = mesh
             .faces()

@@ -9,7 +9,7 @@ use tvf_core::discretization::{
 };
 use tvf_core::generate::{disk, icosphere, jitter, open_cylinder, torus};
 use tvf_core::geometry::{cross, dot, norm, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{
     catalog_entry, consistent_p1_mass, face_geometry::FaceGeometry, FunctionSpace, HodgeDecomposer,
     LagrangeP1, MassLumping, MatrixComplex, MatrixSampling, PaperSpace,
@@ -23,7 +23,7 @@ const CONSISTENT_ENTRIES: [&str; 3] = [
     "whitney-galerkin",
 ];
 
-fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
+fn corner_cotangent(mesh: &TriangleMesh, t: usize, c: usize) -> f64 {
     let o = mesh.corner(t, c);
     let u = sub(mesh.corner(t, (c + 1) % 3), o);
     let v = sub(mesh.corner(t, (c + 2) % 3), o);
@@ -39,7 +39,7 @@ struct ScalarProblem {
 }
 
 /// The cotan matrix with the consistent mass `|T| (1 + δ_ij)/12`, on vertices.
-fn p1_problem(mesh: &SurfaceMesh) -> ScalarProblem {
+fn p1_problem(mesh: &TriangleMesh) -> ScalarProblem {
     let n = mesh.vertex_count();
     let (mut stiffness, mut mass) = (Mat::zeros(n, n), Mat::zeros(n, n));
     for (t, face) in mesh.faces().iter().enumerate() {
@@ -71,7 +71,7 @@ fn p1_problem(mesh: &SurfaceMesh) -> ScalarProblem {
 
 /// The Crouzeix–Raviart stiffness (edges opposite corners `i`, `j` couple by `−2 cot θ_k`) with
 /// its mass `|T|/3` per face and edge (the basis is `L²`-orthogonal), on edges.
-fn crouzeix_raviart_problem(mesh: &SurfaceMesh) -> ScalarProblem {
+fn crouzeix_raviart_problem(mesh: &TriangleMesh) -> ScalarProblem {
     let n = mesh.edge_count();
     let (mut stiffness, mut mass) = (Mat::zeros(n, n), Mat::zeros(n, n));
     for (t, edges) in mesh.face_edges().iter().enumerate() {
@@ -133,7 +133,7 @@ fn hodge_spectrum(complex: &dyn HodgeComplex) -> Vec<f64> {
 /// spectrum of the P1 problem (Dirichlet if `p1_dirichlet`) joined with the CR problem (the
 /// other condition); returns the largest difference relative to `λ_max`.
 fn union_error(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     id: &str,
     boundary: BoundaryCondition,
     p1_dirichlet: bool,
@@ -271,10 +271,10 @@ fn nonconforming_consistent_stores_m2_as_its_sparse_inverse() {
 }
 
 /// `mesh` with `extra` vertices no face uses appended.
-fn with_unreferenced_vertices(mesh: &SurfaceMesh, extra: usize) -> SurfaceMesh {
+fn with_unreferenced_vertices(mesh: &TriangleMesh, extra: usize) -> TriangleMesh {
     let mut positions = mesh.positions().to_vec();
     positions.extend((0..extra).map(|k| [5.0 + k as f64, -3.0, 2.0]));
-    SurfaceMesh::new(positions, mesh.faces().to_vec()).expect("unreferenced vertices are valid")
+    TriangleMesh::new(positions, mesh.faces().to_vec()).expect("unreferenced vertices are valid")
 }
 
 #[test]

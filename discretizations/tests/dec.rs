@@ -6,13 +6,13 @@ use tvf_core::discretization::{
 };
 use tvf_core::generate::{bumpy_torus, genus_surface, icosphere, jitter, rigid_motion, torus};
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{
     Conforming, DecComplex, DecompositionError, HodgeDecomposer, MassLumping, DELAUNAY_TOLERANCE,
 };
 
 /// Cotangent of the angle at corner `c` of face `t`, from 3D positions.
-fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
+fn corner_cotangent(mesh: &TriangleMesh, t: usize, c: usize) -> f64 {
     let o = mesh.corner(t, c);
     let u = sub(mesh.corner(t, (c + 1) % 3), o);
     let v = sub(mesh.corner(t, (c + 2) % 3), o);
@@ -20,7 +20,7 @@ fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
 }
 
 /// `cot α + cot β` per edge, summed over the faces next to it.
-fn cotangent_sums(mesh: &SurfaceMesh) -> Vec<f64> {
+fn cotangent_sums(mesh: &TriangleMesh) -> Vec<f64> {
     let mut sums = vec![0.0; mesh.edge_count()];
     for (t, edges) in mesh.face_edges().iter().enumerate() {
         for (c, &e) in edges.iter().enumerate() {
@@ -32,7 +32,7 @@ fn cotangent_sums(mesh: &SurfaceMesh) -> Vec<f64> {
 
 /// A flat patch of near-equilateral triangles (a Delaunay triangulation of a parallelogram,
 /// `n × n` cells), tilted out of the coordinate planes.
-fn flat_patch(n: usize) -> SurfaceMesh {
+fn flat_patch(n: usize) -> TriangleMesh {
     let index = |i: usize, j: usize| j * (n + 1) + i;
     let positions = (0..=n)
         .flat_map(|j| {
@@ -49,13 +49,13 @@ fn flat_patch(n: usize) -> SurfaceMesh {
             faces.push([index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)]);
         }
     }
-    let patch = SurfaceMesh::new(positions, faces).expect("valid patch");
+    let patch = TriangleMesh::new(positions, faces).expect("valid patch");
     rigid_motion(&patch, [0.3, -0.8, 0.5], 0.7, [1.0, 2.0, -0.5]).expect("finite motion")
 }
 
 /// Delaunay meshes for the checks: icospheres (curved, closed), a jittered icosphere and the flat
 /// patch (with boundary).
-fn delaunay_meshes() -> Vec<(&'static str, SurfaceMesh)> {
+fn delaunay_meshes() -> Vec<(&'static str, TriangleMesh)> {
     vec![
         ("icosphere(1)", icosphere(1)),
         ("icosphere(2)", icosphere(2)),
@@ -67,7 +67,7 @@ fn delaunay_meshes() -> Vec<(&'static str, SurfaceMesh)> {
     ]
 }
 
-fn build(mesh: &SurfaceMesh) -> DecComplex {
+fn build(mesh: &TriangleMesh) -> DecComplex {
     DecComplex::new(mesh, MassLumping::Barycentric).expect("a Delaunay mesh builds")
 }
 

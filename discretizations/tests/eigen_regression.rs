@@ -13,11 +13,11 @@ use faer::{Mat, Par};
 use sprs::{CsMat, TriMat};
 use tvf_core::generate::{icosphere, torus};
 use tvf_core::geometry::{cross, dot, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_solvers::{dense_generalized_eigen, lowest_eigenpairs, EigenOptions};
 
 /// Cotan stiffness (integrated, positive semidefinite) and barycentric lumped masses.
-fn cotan_laplacian(mesh: &SurfaceMesh) -> (CsMat<f64>, Vec<f64>) {
+fn cotan_laplacian(mesh: &TriangleMesh) -> (CsMat<f64>, Vec<f64>) {
     let (positions, faces) = (mesh.positions(), mesh.faces());
     let n = positions.len();
     let mut stiffness = TriMat::new((n, n));

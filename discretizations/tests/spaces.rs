@@ -6,7 +6,7 @@ use tvf_core::discretization::{
     HodgeOperators,
 };
 use tvf_core::generate::{icosphere, torus};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{
     Conforming, CrouzeixRaviart, DecompositionError, FaceFields, FunctionSpace, HodgeDecomposer,
     LagrangeP1, MassLumping, Nonconforming, PaperSpace,
@@ -123,7 +123,7 @@ fn vectors_round_trip_and_normal_parts_are_reported() {
 
 #[test]
 fn degenerate_face_is_an_error() {
-    let mesh = SurfaceMesh::new(
+    let mesh = TriangleMesh::new(
         vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
@@ -142,7 +142,7 @@ fn degenerate_face_is_an_error() {
 #[test]
 fn open_mesh_decomposes_with_either_boundary_condition() {
     // A single square made of two triangles: every vertex and four edges on the boundary.
-    let mesh = SurfaceMesh::new(
+    let mesh = TriangleMesh::new(
         vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],

@@ -14,7 +14,7 @@ use tvf_core::generate::{
     torus,
 };
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{
     catalog_entry, consistent_p1_mass, face_geometry::FaceGeometry, whitney_mass, DecComplex,
     HodgeDecomposer, MassLumping, WhitneyGalerkin,
@@ -24,7 +24,7 @@ use tvf_discretizations::{
 /// a cell, with every vertex of ring 1 pulled to `thin` of its distance from the midpoint of
 /// the two ring-0 vertices it sits between: the strip between rings 0 and 1 is made of cap
 /// slivers (an angle near 180°, two near 0°), so the mesh is far from Delaunay.
-fn sliver_torus(around: usize, tube: usize, thin: f64) -> SurfaceMesh {
+fn sliver_torus(around: usize, tube: usize, thin: f64) -> TriangleMesh {
     let point = |ring: usize, i: usize| {
         let v = TAU * ring as f64 / tube as f64;
         let u = TAU * (i as f64 + 0.5 * (ring % 2) as f64) / around as f64;
@@ -46,11 +46,11 @@ fn sliver_torus(around: usize, tube: usize, thin: f64) -> SurfaceMesh {
             })
         })
         .collect();
-    SurfaceMesh::new(positions, staggered_ring_faces(around, tube, tube)).expect("valid torus")
+    TriangleMesh::new(positions, staggered_ring_faces(around, tube, tube)).expect("valid torus")
 }
 
 /// Meshes that are not Delaunay (DEC refuses each): jittered, slivers, quad tori, with boundary.
-fn non_delaunay_meshes() -> Vec<(&'static str, SurfaceMesh)> {
+fn non_delaunay_meshes() -> Vec<(&'static str, TriangleMesh)> {
     vec![
         (
             "jittered torus 16×8",
@@ -74,7 +74,7 @@ fn non_delaunay_meshes() -> Vec<(&'static str, SurfaceMesh)> {
 
 /// Every mesh of the checks: the non-Delaunay ones, a plain and a jittered icosphere and a disk
 /// (with boundary).
-fn meshes() -> Vec<(&'static str, SurfaceMesh)> {
+fn meshes() -> Vec<(&'static str, TriangleMesh)> {
     let mut meshes = non_delaunay_meshes();
     meshes.push(("icosphere(2)", icosphere(2)));
     meshes.push((
@@ -104,7 +104,7 @@ fn max_abs(m: &Mat<f64>) -> f64 {
 }
 
 /// Cotangent of the angle at corner `c` of face `t`, from the 3D positions.
-fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
+fn corner_cotangent(mesh: &TriangleMesh, t: usize, c: usize) -> f64 {
     let o = mesh.corner(t, c);
     let u = sub(mesh.corner(t, (c + 1) % 3), o);
     let v = sub(mesh.corner(t, (c + 2) % 3), o);
@@ -112,7 +112,7 @@ fn corner_cotangent(mesh: &SurfaceMesh, t: usize, c: usize) -> f64 {
 }
 
 /// The cotan matrix `−(cot α + cot β)/2` off the diagonal, rows summing to zero (dense).
-fn cotan_matrix(mesh: &SurfaceMesh) -> Mat<f64> {
+fn cotan_matrix(mesh: &TriangleMesh) -> Mat<f64> {
     let n = mesh.vertex_count();
     let mut s = Mat::zeros(n, n);
     for (t, face) in mesh.faces().iter().enumerate() {
@@ -134,7 +134,7 @@ const MIDPOINTS: [[f64; 3]; 3] = [[0.0, 0.5, 0.5], [0.5, 0.0, 0.5], [0.5, 0.5, 0
 
 /// The Whitney form `λ_p ∇λ_q − λ_q ∇λ_p` of the edge from corner `p` to corner `q` of face `t`
 /// at barycentric point `b`, with `∇λ_c = n × (p_{c+2} − p_{c+1}) / 2A` (3D).
-fn whitney_form(mesh: &SurfaceMesh, t: usize, p: usize, q: usize, b: [f64; 3]) -> [f64; 3] {
+fn whitney_form(mesh: &TriangleMesh, t: usize, p: usize, q: usize, b: [f64; 3]) -> [f64; 3] {
     let corner: [[f64; 3]; 3] = std::array::from_fn(|c| mesh.corner(t, c));
     let scaled_normal = cross(sub(corner[1], corner[0]), sub(corner[2], corner[0]));
     let gradient = |c: usize| {
@@ -174,7 +174,7 @@ fn element_masses_match_quadrature_of_the_whitney_forms() {
     let mut worst = 0.0f64;
     for (name, corners) in triangles {
         // Vertex numbers out of corner order, so that the edges run against the corners too.
-        let flat = SurfaceMesh::new(vec![corners[2], corners[0], corners[1]], vec![[1, 2, 0]])
+        let flat = TriangleMesh::new(vec![corners[2], corners[0], corners[1]], vec![[1, 2, 0]])
             .expect("one triangle");
         let mesh = rigid_motion(&flat, [0.3, -0.7, 0.2], 1.1, [0.5, 2.0, -1.0]).expect("finite");
         let geometry = FaceGeometry::new(&mesh).expect("not degenerate");
@@ -295,7 +295,7 @@ fn exact_family_is_p1_with_the_consistent_mass() {
 /// outward for `σ = +1`; `σ` is `+1` where the face's counter-clockwise boundary runs along the
 /// edge's orientation `a → b` (so the outward normal of one face is the global normal of the
 /// edge) and `−1` in the other face. Integrated by the edge-midpoint rule (exact).
-fn raviart_thomas_mass(mesh: &SurfaceMesh) -> (Mat<f64>, Mat<f64>) {
+fn raviart_thomas_mass(mesh: &TriangleMesh) -> (Mat<f64>, Mat<f64>) {
     let (e, f) = (mesh.edge_count(), mesh.face_count());
     let mut mass = Mat::zeros(e, e);
     let mut divergence = Mat::zeros(f, e);

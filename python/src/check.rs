@@ -15,14 +15,14 @@ use tvf_conformance::property_runner::{check_mesh, run_property, PropertyRequest
 use tvf_conformance::strategies::MeshNeeds;
 use tvf_core::discretization::PointEvaluation;
 use tvf_core::discretization::{ComplexParts, FieldRotation, FieldSampling, HodgeComplex};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,
 /// `detail`.
 /// The complex a Python builder makes on `mesh`.
 pub(crate) fn python_complex(
     build: &Py<PyAny>,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> Result<Box<dyn HodgeComplex>, String> {
     Python::attach(|py| {
         let (v, f) = mesh_arrays(py, mesh);
@@ -56,7 +56,7 @@ pub fn check_builder<'py>(
     mesh: Option<&Mesh>,
     delaunay: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let builder = |mesh: &SurfaceMesh| python_complex(&build, mesh);
+    let builder = |mesh: &TriangleMesh| python_complex(&build, mesh);
     let result = PyDict::new(py);
     if let Some(mesh) = mesh {
         let report = py.detach(|| check_mesh(&builder, &mesh.mesh, &[]));
@@ -98,7 +98,7 @@ pub fn check_builder<'py>(
 /// `(V, F)`: positions `n × 3` float64 and faces `m × 3` int64.
 pub(crate) fn mesh_arrays<'py>(
     py: Python<'py>,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> (Bound<'py, PyAny>, Bound<'py, PyAny>) {
     let faces = mesh.faces();
     let f = Array2::from_shape_fn((faces.len(), 3), |(t, c)| faces[t][c] as i64)

@@ -8,12 +8,12 @@ use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
 use tvf_core::io::load_mesh;
 use tvf_core::mesh::ValidationReport;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// A valid oriented manifold triangle mesh (see `tvf.Mesh` in Python for the documentation).
 #[pyclass(frozen, module = "tvf._native")]
 pub struct Mesh {
-    pub mesh: SurfaceMesh,
+    pub mesh: TriangleMesh,
     pub report: ValidationReport,
     pub label: String,
 }
@@ -50,7 +50,7 @@ impl Mesh {
             faces.push(converted);
         }
         let (mesh, report) = py
-            .detach(|| SurfaceMesh::validated(positions, faces))
+            .detach(|| TriangleMesh::validated(positions, faces))
             .map_err(|e| tvf_error(format!("{label}: {e}")))?;
         check_geometry_range(&mesh, &label)?;
         Ok(Self {
@@ -205,8 +205,8 @@ fn rows<T: Copy>(array: &numpy::ndarray::ArrayView2<'_, T>, what: &str) -> PyRes
 }
 
 /// The command line's refusal of meshes whose area overflows `f64`
-/// ([`SurfaceMesh::check_geometry_range`]), naming the mesh.
-fn check_geometry_range(mesh: &SurfaceMesh, label: &str) -> PyResult<()> {
+/// ([`TriangleMesh::check_geometry_range`]), naming the mesh.
+fn check_geometry_range(mesh: &TriangleMesh, label: &str) -> PyResult<()> {
     mesh.check_geometry_range()
         .map_err(|e| tvf_error(format!("{label}: {e}")))
 }

@@ -26,7 +26,7 @@ use std::path::PathBuf;
 use tvf_core::generate::{example_mesh, EXAMPLE_NAMES};
 use tvf_core::io::{load_mesh, LoadedMesh};
 use tvf_core::mesh::ValidationWarning;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// A mesh file or a built-in example; exactly one must be given.
 #[derive(Args, Debug, Clone)]
@@ -120,7 +120,7 @@ impl MeshInput {
                     );
                 };
                 let (mesh, report) =
-                    SurfaceMesh::validated(mesh.positions().to_vec(), mesh.faces().to_vec())
+                    TriangleMesh::validated(mesh.positions().to_vec(), mesh.faces().to_vec())
                         .with_context(|| format!("built-in example '{name}' is invalid"))?;
                 Ok(LoadedMesh { mesh, report })
             }

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use tvf_core::generate::torus;
 use tvf_core::io::write_obj;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_spectral::{write_face_vector_sequence, write_npy, NpyArray, NpyDtype};
 
 fn tvf<S: AsRef<OsStr>>(args: &[S]) -> Output {
@@ -32,7 +32,7 @@ fn assert_refused(output: &Output, needles: &[&str], what: &str) {
 
 struct Fixture {
     dir: tempfile::TempDir,
-    mesh: SurfaceMesh,
+    mesh: TriangleMesh,
     mesh_file: String,
     field: String,
 }

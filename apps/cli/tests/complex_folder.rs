@@ -13,7 +13,7 @@ use sprs::CsMat;
 use std::path::{Path, PathBuf};
 use tvf_core::generate::{disk, genus_surface, icosphere};
 use tvf_core::io::write_obj;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_spectral::{read_matrix_market, read_sparse_npz, write_sparse_npz};
 
 /// Runs `tvf args` with the cache in `cache`; returns the output (not checked).
@@ -47,7 +47,7 @@ struct Setup {
 }
 
 impl Setup {
-    fn new(mesh: &SurfaceMesh) -> Self {
+    fn new(mesh: &TriangleMesh) -> Self {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("mesh.obj");
         write_obj(&path, mesh).unwrap();
@@ -223,7 +223,7 @@ fn assert_close(found: &[f64], expected: &[f64], what: &str) {
 
 /// Operators → edit → spectrum (complete, uncached) and analyze (cached basis of 10 fields),
 /// twice with different edits, compared with the dense pencils of the edited files.
-fn round_trip(mesh: &SurfaceMesh, format: &str) {
+fn round_trip(mesh: &TriangleMesh, format: &str) {
     let setup = Setup::new(mesh);
     let folder = setup.operators("ops", format);
     let info: serde_json::Value = serde_json::from_str(

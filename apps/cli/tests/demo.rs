@@ -6,7 +6,7 @@ mod common;
 use common::{assert_success, tvf};
 use tvf_core::generate::genus_surface;
 use tvf_core::io::write_obj;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// The `src` attributes of every `<img>` in `page`.
 fn image_sources(page: &str) -> Vec<String> {
@@ -104,7 +104,7 @@ fn quick_demo_writes_a_page_with_existing_pictures_and_step_times() {
 fn demo_refuses_meshes_it_cannot_use() {
     let dir = tempfile::tempdir().unwrap();
     // Two triangles: too few eigenfields for the three pairs the demo shows.
-    let tiny = SurfaceMesh::new(
+    let tiny = TriangleMesh::new(
         vec![
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 use tvf_core::generate::{bumpy_torus, icosphere};
 use tvf_core::io::write_obj;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 fn tvf(args: &[&dyn AsRef<std::ffi::OsStr>]) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_tvf"));
@@ -26,7 +26,7 @@ fn succeeded(output: &Output, what: &str) -> String {
 }
 
 /// One 3D vector per face: a swirl about the z axis plus a wave (not tangent; tools project).
-fn write_field(path: &Path, mesh: &SurfaceMesh) {
+fn write_field(path: &Path, mesh: &TriangleMesh) {
     let p = mesh.positions();
     let text: String = mesh
         .faces()

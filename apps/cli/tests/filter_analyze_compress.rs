@@ -6,7 +6,7 @@ use std::process::{Command, Output};
 use tvf_core::discretization::FieldSampling;
 use tvf_core::generate::torus;
 use tvf_core::io::{load_mesh, write_obj};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{Conforming, FaceFields, MassLumping, Nonconforming};
 use tvf_spectral::{
     compute_basis, read_face_vectors, save_basis, write_face_vector_sequence, BasisFileKey,
@@ -18,7 +18,7 @@ struct Fixture {
     mesh: PathBuf,
     basis: PathBuf,
     field: PathBuf,
-    loaded: SurfaceMesh,
+    loaded: TriangleMesh,
 }
 
 impl Fixture {
@@ -29,7 +29,7 @@ impl Fixture {
 
 /// A smooth-ish field with a normal component (which the tools drop): a swirl about z, a wave,
 /// and a small normal part.
-fn swirl(mesh: &SurfaceMesh, phase: f64) -> Vec<[f64; 3]> {
+fn swirl(mesh: &TriangleMesh, phase: f64) -> Vec<[f64; 3]> {
     let p = mesh.positions();
     mesh.faces()
         .iter()

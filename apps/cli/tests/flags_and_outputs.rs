@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::{Command, Output};
 use tvf_core::generate::torus;
 use tvf_core::io::write_obj;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_spectral::{write_face_vector_sequence, NpyDtype};
 
 fn tvf<S: AsRef<OsStr>>(args: &[S]) -> Output {
@@ -24,14 +24,14 @@ fn succeeded(output: &Output, what: &str) -> (String, String) {
     (String::from_utf8_lossy(&output.stdout).into_owned(), stderr)
 }
 
-fn write_mesh(dir: &Path) -> (SurfaceMesh, String) {
+fn write_mesh(dir: &Path) -> (TriangleMesh, String) {
     let mesh = torus(1.0, 0.4, 16, 8).unwrap();
     let path = dir.join("torus.obj");
     write_obj(&path, &mesh).unwrap();
     (mesh, path.to_str().unwrap().to_string())
 }
 
-fn swirl_text(mesh: &SurfaceMesh, phase: f64) -> String {
+fn swirl_text(mesh: &TriangleMesh, phase: f64) -> String {
     let p = mesh.positions();
     mesh.faces()
         .iter()

@@ -11,7 +11,7 @@ use std::path::Path;
 use tvf_conformance::corpus::delaunay_flips;
 use tvf_core::generate::perforated_plate;
 use tvf_core::io::{load_mesh, write_obj};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 fn run(dir: &Path, args: &[&str]) -> std::process::Output {
     let output = tvf()
@@ -30,7 +30,7 @@ fn json(output: &std::process::Output) -> Value {
 
 /// Constraints at an interior vertex and an interior edge, or with `curl_on_faces` (DEC) face 7
 /// (boundary nodes are fixed by one of the boundary conditions).
-fn write_constraints(mesh: &SurfaceMesh, path: &Path, curl_on_faces: bool) {
+fn write_constraints(mesh: &TriangleMesh, path: &Path, curl_on_faces: bool) {
     let mut on_boundary = vec![false; mesh.vertex_count()];
     for e in mesh.boundary_edges() {
         for v in mesh.edges()[e] {

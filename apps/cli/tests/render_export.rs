@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 use tvf_core::generate::torus;
 use tvf_core::io::{load_mesh, write_obj};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 fn run(args: &[&std::ffi::OsStr]) -> Output {
     tvf().args(args).output().unwrap()
@@ -28,7 +28,7 @@ struct Fixture {
     dir: tempfile::TempDir,
     mesh_path: PathBuf,
     field_path: PathBuf,
-    mesh: SurfaceMesh,
+    mesh: TriangleMesh,
 }
 
 impl Fixture {

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 use tvf_core::io::load_mesh;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_solvers::{lowest_eigenpairs, EigenOptions};
 
 fn spectrum_json(mesh: &Path, k: usize, decomposition: &str) -> serde_json::Value {
@@ -33,7 +33,7 @@ fn spectrum_json(mesh: &Path, k: usize, decomposition: &str) -> serde_json::Valu
 }
 
 /// Cotan stiffness (vertices) and CR stiffness (edges) with barycentric masses, from angles.
-fn independent_problems(mesh: &SurfaceMesh) -> [(sprs::CsMat<f64>, Vec<f64>); 2] {
+fn independent_problems(mesh: &TriangleMesh) -> [(sprs::CsMat<f64>, Vec<f64>); 2] {
     let p = mesh.positions();
     let edge_index: std::collections::HashMap<(usize, usize), usize> = mesh
         .edges()

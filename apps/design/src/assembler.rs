@@ -9,7 +9,7 @@ use std::collections::{BTreeMap, HashSet};
 use tvf_core::discretization::{
     HodgeComplex, HodgeOperators, LinearOperator, NodeKind, NodeSpace, PointEvaluation,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Tolerance on `|Σ b − 1|` for barycentric coordinates.
 const BARYCENTRIC_TOLERANCE: f64 = 1e-9;
@@ -51,7 +51,7 @@ pub struct ConstraintAssembler<'a, H: HodgeComplex + ?Sized> {
 
 impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
     /// An assembler for `complex` (built on `mesh`); operators come from the complex's cache.
-    pub fn new(complex: &'a H, mesh: &SurfaceMesh) -> Self {
+    pub fn new(complex: &'a H, mesh: &TriangleMesh) -> Self {
         Self {
             complex,
             vertex_count: mesh.vertex_count(),

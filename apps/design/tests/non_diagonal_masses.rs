@@ -17,7 +17,7 @@ use tvf_core::discretization::{
     BoundaryCondition, HodgeComplex, HodgeOperators, NodeKind, NodeSpace,
 };
 use tvf_core::generate::{hemisphere, icosphere, jitter};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::{
     default_regularization, reference_spline, CompiledConstraint, Constraint, ConstraintAssembler,
     FactorParallelism, FillOrdering, FullSoftDesign, Location, OperatorFamily, ReducedBasis,
@@ -48,7 +48,7 @@ fn node_location(nodes: &NodeSpace, rng: &mut ChaCha8Rng) -> Location {
 /// rotation one divergence and one curl of the other family at points.
 fn constraints<H: HodgeComplex + ?Sized>(
     complex: &H,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     vectors: usize,
     seed: u64,
 ) -> Vec<CompiledConstraint> {
@@ -125,7 +125,7 @@ fn options<H: HodgeComplex + ?Sized>(complex: &H, omega: f64) -> SoftOptions {
 fn full_against_dense<H: HodgeComplex + ?Sized>(
     name: &str,
     complex: &H,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
 ) -> f64 {
     let compiled = constraints(complex, mesh, 6, 3);
     let mut worst = 0.0f64;
@@ -367,7 +367,7 @@ fn orderings_and_threading_give_the_same_field() {
 fn reference_spline_matches_the_dense_kkt_system() {
     let sphere = jitter(&icosphere(1), 0.2, 2).expect("mesh");
     let ico = icosphere(1);
-    let check = |name: &str, complex: &dyn HodgeComplex, mesh: &SurfaceMesh| {
+    let check = |name: &str, complex: &dyn HodgeComplex, mesh: &TriangleMesh| {
         let compiled = constraints(complex, mesh, 4, 6);
         for (omega, epsilon) in [(0.1, 0.0), (0.0, 0.0), (0.1, 1e-3)] {
             let spline = reference_spline(complex, omega, epsilon, &compiled).expect("spline");

@@ -19,7 +19,7 @@ fn options(complex: &Conforming, omega: f64) -> SoftOptions {
     }
 }
 
-fn full_vs_reduced(mesh: &tvf_core::SurfaceMesh, sizes: &[usize]) -> Vec<f64> {
+fn full_vs_reduced(mesh: &tvf_core::TriangleMesh, sizes: &[usize]) -> Vec<f64> {
     let complex = Conforming::new(mesh, MassLumping::Barycentric).expect("complex");
     let opts = options(&complex, 0.01);
     let assembler = ConstraintAssembler::new(&complex, mesh);

@@ -17,7 +17,7 @@ const OMEGA: f64 = 0.1;
 fn check_hard_constraints<H: HodgeComplex + ?Sized>(
     name: &str,
     complex: &H,
-    mesh: &tvf_core::SurfaceMesh,
+    mesh: &tvf_core::TriangleMesh,
     d: usize,
 ) {
     let basis = truncated(&spectral_basis(complex, None), d);
@@ -140,7 +140,7 @@ fn reduced_spline_approaches_the_full_spline_as_d_grows() {
     assert!(*errors.last().unwrap() < 1e-7, "{errors:?}");
 }
 
-fn sphere_session_setup() -> (tvf_core::SurfaceMesh, Conforming, ReducedBasis) {
+fn sphere_session_setup() -> (tvf_core::TriangleMesh, Conforming, ReducedBasis) {
     let mesh = icosphere(1);
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).expect("complex");
     let basis = ReducedBasis::from_spectral(&spectral_basis(&complex, None)).expect("basis");

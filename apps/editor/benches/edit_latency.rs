@@ -21,7 +21,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde_json::json;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::ReducedBasis;
 use tvf_discretizations::build_complex;
 use tvf_editor::{decode_field_frame, Editor, EditorServer, EditorSetup};
@@ -29,7 +29,7 @@ use tvf_editor::{decode_field_frame, Editor, EditorServer, EditorSetup};
 const D: usize = 1000;
 const CONSTRAINTS: usize = 30;
 
-fn synthetic_basis(mesh: &SurfaceMesh, d: usize) -> ReducedBasis {
+fn synthetic_basis(mesh: &TriangleMesh, d: usize) -> ReducedBasis {
     let n = 2 * mesh.face_count();
     let areas = mesh.face_areas();
     let mut rows = vec![0.0f64; n * d];
@@ -73,7 +73,7 @@ fn post(agent: &ureq::Agent, url: &str, body: &serde_json::Value) -> Vec<u8> {
     bytes
 }
 
-fn bench(name: &str, mesh: SurfaceMesh, rounds: usize) {
+fn bench(name: &str, mesh: TriangleMesh, rounds: usize) {
     let faces = mesh.face_count();
     let t = Instant::now();
     let basis = synthetic_basis(&mesh, D);

@@ -5,7 +5,7 @@ use std::sync::mpsc::{channel, Sender};
 use std::sync::Arc;
 
 use tvf_core::discretization::HodgeOperators;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::{ConstraintSet, ReducedBasis};
 use tvf_discretizations::BoxedComplex;
 
@@ -18,13 +18,13 @@ use crate::status::CheckReport;
 #[derive(Clone)]
 pub struct Editor {
     requests: Sender<Request>,
-    mesh: Arc<SurfaceMesh>,
+    mesh: Arc<TriangleMesh>,
 }
 
 /// What the engine starts from.
 pub struct EditorSetup {
     /// The mesh.
-    pub mesh: SurfaceMesh,
+    pub mesh: TriangleMesh,
     /// The basis `U` (`n1 × d`) with its eigenvalues.
     pub basis: ReducedBasis,
     /// Constraints and ω to start with (none and ω = 0.1 if `None`).
@@ -105,7 +105,7 @@ impl Editor {
     }
 
     /// The mesh being edited.
-    pub fn mesh(&self) -> &SurfaceMesh {
+    pub fn mesh(&self) -> &TriangleMesh {
         &self.mesh
     }
 

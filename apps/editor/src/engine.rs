@@ -13,7 +13,7 @@ use std::time::Instant;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{from_triplets, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::{
     checked_residuals, CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet,
     ReducedBasis, SplineSession,
@@ -84,7 +84,7 @@ struct PendingEdit {
 }
 
 pub(crate) fn run_engine(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     complex: &dyn HodgeComplex,
     full: ReducedBasis,
     initial: Snapshot,

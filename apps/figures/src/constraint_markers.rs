@@ -6,7 +6,7 @@ use crate::error::FigureError;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::geometry::{add, scale};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::{Constraint, ConstraintSet, Location, Target};
 use tvf_render::Marker;
 
@@ -15,7 +15,7 @@ const MARKER_RADIUS_AT_768: f64 = 6.0;
 
 /// The point of `mesh` where `constraint` applies: a face's barycentric point (centroid if
 /// none), a vertex, or an edge midpoint. `None` if an index is out of range.
-pub fn constraint_position(mesh: &SurfaceMesh, constraint: &Constraint) -> Option<[f64; 3]> {
+pub fn constraint_position(mesh: &TriangleMesh, constraint: &Constraint) -> Option<[f64; 3]> {
     let p = mesh.positions();
     match constraint.location {
         Location::Face { face, barycentric } => {
@@ -34,7 +34,7 @@ pub fn constraint_position(mesh: &SurfaceMesh, constraint: &Constraint) -> Optio
 /// Markers for constraints, coloured by kind (vector orange with its direction, source red,
 /// sink blue, vortex green), `radius_px` in output pixels.
 pub fn constraint_markers(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     constraints: &[Constraint],
     radius_px: f64,
 ) -> Vec<Marker> {
@@ -63,7 +63,7 @@ pub fn constraint_markers(
 /// it ([`ConstraintSet::load_for`]). A constraint without a place on the mesh is an error.
 pub fn constraint_file_markers<H: HodgeComplex + ?Sized>(
     path: &Path,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     complex: &H,
     image_height: u32,
 ) -> Result<Vec<Marker>, FigureError> {

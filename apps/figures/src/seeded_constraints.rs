@@ -4,7 +4,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::{HodgeComplex, NodeKind};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::{Constraint, Location, Target};
 
 /// Constraints of the designed fields of Figures 7–9 (soft design, seeded).
@@ -15,7 +15,7 @@ pub const DESIGNED_FIELD_CONSTRAINTS: usize = 12;
 /// sources/sinks, 3 vortices), each at a node of the complex's own space next to a random face
 /// (conforming: divergence at a vertex, curl at an edge; DEC: curl on the face).
 pub fn seeded_constraints(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     complex: &dyn HodgeComplex,
     count: usize,
     seed: u64,

@@ -4,13 +4,13 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use tvf_core::generate::icosphere;
 use tvf_core::geometry::cross;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_render::{
     render, trace_streamlines, ColorMap, FaceScalar, FieldLayer, FieldStyle, RenderOptions, Scene,
     StreamlineOptions,
 };
 
-fn rotation_field(mesh: &SurfaceMesh) -> Vec<[f64; 3]> {
+fn rotation_field(mesh: &TriangleMesh) -> Vec<[f64; 3]> {
     let p = mesh.positions();
     mesh.faces()
         .iter()

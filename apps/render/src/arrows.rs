@@ -1,7 +1,7 @@
 //! Arrow glyphs for a per-face field, and the arrow of a vector marker.
 
 use tvf_core::geometry::{add, cross, dot, norm, normalize, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 use crate::camera::Camera;
 use crate::overlay3d::{segment, triangle, Ink};
@@ -27,7 +27,7 @@ pub struct ArrowGlyph {
 /// face centroid, in the face plane, the longest `length_scale × spacing` long. Arrows of
 /// vanishing vectors are left out.
 pub fn arrow_glyphs(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     vectors: &[[f64; 3]],
     options: &ArrowOptions,
 ) -> Vec<ArrowGlyph> {

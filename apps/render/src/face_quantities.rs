@@ -155,7 +155,7 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
     use tvf_core::generate::{icosphere, torus};
-    use tvf_core::SurfaceMesh;
+    use tvf_core::TriangleMesh;
     use tvf_discretizations::{catalog_entry, BoxedComplex};
 
     fn random_field(n: usize) -> Vec<f64> {
@@ -163,11 +163,11 @@ mod tests {
         (0..n).map(|_| rng.random_range(-1.0..1.0)).collect()
     }
 
-    fn build(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
+    fn build(id: &str, mesh: &TriangleMesh) -> BoxedComplex {
         catalog_entry(id).unwrap().build(mesh).unwrap()
     }
 
-    fn check_energy(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {
+    fn check_energy(complex: &dyn HodgeComplex, mesh: &TriangleMesh) {
         let field = random_field(complex.field_dimension());
         let density = energy_density(complex, &field, mesh.face_count()).unwrap();
         let integrated: f64 = density

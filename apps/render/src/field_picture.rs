@@ -9,7 +9,7 @@ use crate::{
 };
 use image::RgbaImage;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Image size and camera.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -117,7 +117,7 @@ impl Overlays {
 /// coloured by `tint`, the field drawn in `style`, plus `overlays`. Needs the complex's
 /// sampling (and its point evaluation for divergence, curl and energy).
 pub fn draw_field(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     complex: &dyn HodgeComplex,
     field: Option<&[f64]>,
     tint: Tint,

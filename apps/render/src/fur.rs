@@ -4,7 +4,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::geometry::{add, norm, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 use crate::camera::bounding_box;
 use crate::error::{check_face_count, check_finite_vectors, RenderError};
@@ -46,7 +46,7 @@ impl Default for FurOptions {
 /// along the face normals by `lift · L · (s/L)²` at arc length `s`. Strands at faces
 /// where the field vanishes are left out. Deterministic for a given seed.
 pub fn grow_fur(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     face_vectors: &[[f64; 3]],
     options: &FurOptions,
 ) -> Result<Vec<Vec<[f64; 3]>>, RenderError> {
@@ -114,7 +114,7 @@ pub fn grow_fur(
 /// Resamples the surface path evenly in arc length and lifts each sample along the normal
 /// of the face it lies in.
 fn lift_resampled(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     points: &[[f64; 3]],
     faces: &[usize],
     options: &FurOptions,

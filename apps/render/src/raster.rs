@@ -2,7 +2,7 @@
 //! perspective-correct barycentric coordinates per sample), parallel over horizontal bands.
 
 use rayon::prelude::*;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 use crate::camera::Camera;
 
@@ -37,7 +37,12 @@ impl Frame {
 
 /// Rasterises every face of `mesh` seen by `camera` into a `width × height` sample grid.
 /// Both sides of a face are drawn (open meshes show their inside).
-pub(crate) fn rasterize(mesh: &SurfaceMesh, camera: &Camera, width: usize, height: usize) -> Frame {
+pub(crate) fn rasterize(
+    mesh: &TriangleMesh,
+    camera: &Camera,
+    width: usize,
+    height: usize,
+) -> Frame {
     let projected: Vec<[f64; 3]> = mesh
         .positions()
         .par_iter()

@@ -4,7 +4,7 @@
 use image::RgbaImage;
 use rayon::prelude::*;
 use tvf_core::geometry::{add, dot, norm, normalize, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 use crate::arrows::{arrow_glyphs, draw_arrow, draw_glyphs};
 use crate::camera::Camera;
@@ -22,7 +22,11 @@ fn unit(c: [u8; 3]) -> [f32; 3] {
     c.map(|v| v as f32 / 255.0)
 }
 
-fn validate(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Result<(), RenderError> {
+fn validate(
+    mesh: &TriangleMesh,
+    scene: &Scene,
+    options: &RenderOptions,
+) -> Result<(), RenderError> {
     let ok = |v: u32| (16..=16384).contains(&v);
     if !ok(options.width) || !ok(options.height) {
         return Err(RenderError::InvalidSize {
@@ -68,7 +72,7 @@ fn validate(mesh: &SurfaceMesh, scene: &Scene, options: &RenderOptions) -> Resul
 /// everything is supersampled `options.supersample²` times. Errors on per-face arrays of
 /// the wrong length, non-finite values and invalid options.
 pub fn render(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     scene: &Scene,
     options: &RenderOptions,
 ) -> Result<RgbaImage, RenderError> {
@@ -131,7 +135,7 @@ pub fn render(
 /// The line integral convolution textures of the scene's LIC layers (one value per output
 /// pixel, each `1 − strength + strength · LIC`), multiplied; `None` without LIC layers.
 fn lic_texture_product(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     scene: &Scene,
     frame: &Frame,
     ss: usize,
@@ -163,7 +167,7 @@ fn lic_texture_product(
 /// camera of the output image and that of the supersampled frame (`ss` samples per pixel and
 /// axis), and the mean edge length (depth offsets, streamline steps).
 struct Overlays3d<'a> {
-    mesh: &'a SurfaceMesh,
+    mesh: &'a TriangleMesh,
     camera: &'a Camera,
     sample_camera: &'a Camera,
     ss: f64,
@@ -274,7 +278,7 @@ impl Overlays3d<'_> {
 /// Each face's unit field direction in output-image coordinates (zero where the field
 /// vanishes or points at the viewer).
 fn screen_directions(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     vectors: &[[f64; 3]],
     camera: &Camera,
     edge: f64,
@@ -301,7 +305,7 @@ fn screen_directions(
 }
 
 fn shade(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     scene: &Scene,
     options: &RenderOptions,
     camera: &Camera,
@@ -372,7 +376,7 @@ fn shade(
 fn draw_streamlines(
     frame: &mut Frame,
     camera: &Camera,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     lines: &[Streamline],
     width: f64,
     color: [f32; 3],

@@ -8,7 +8,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::geometry::{add, dot, norm, normalize, scale, sub};
-use tvf_core::{SurfaceMesh, NO_FACE};
+use tvf_core::{TriangleMesh, NO_FACE};
 
 use crate::error::{check_face_count, check_finite_vectors, RenderError};
 use crate::spacing::{shuffled, PointGrid};
@@ -64,7 +64,7 @@ impl Default for StreamlineOptions {
 
 /// The walker: per-face unit tangent directions and barycentric gradients.
 pub(crate) struct FaceWalker<'a> {
-    mesh: &'a SurfaceMesh,
+    mesh: &'a TriangleMesh,
     directions: Vec<[f64; 3]>,
     grads: Vec<[[f64; 3]; 3]>,
     /// Steps shorter than this count as zero-length (vertex crossings).
@@ -74,7 +74,7 @@ pub(crate) struct FaceWalker<'a> {
 impl<'a> FaceWalker<'a> {
     /// Prepares walking along `field` (one vector per face, any length; the tangential
     /// part is used, and faces whose tangential part is below `1e-12 · max` are stagnant).
-    pub fn new(mesh: &'a SurfaceMesh, field: &[[f64; 3]]) -> Self {
+    pub fn new(mesh: &'a TriangleMesh, field: &[[f64; 3]]) -> Self {
         let tangent: Vec<[f64; 3]> = field
             .iter()
             .enumerate()
@@ -213,7 +213,7 @@ impl<'a> FaceWalker<'a> {
 /// traced backwards and forwards from its seed. Lines shorter than half the separation
 /// are dropped. Deterministic for a given mesh, field and options.
 pub fn trace_streamlines(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     field: &[[f64; 3]],
     options: &StreamlineOptions,
 ) -> Result<Vec<Streamline>, RenderError> {

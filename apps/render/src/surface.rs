@@ -3,10 +3,10 @@
 
 use rayon::prelude::*;
 use tvf_core::geometry::{cross, dot, norm, normalize, scale, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Mean edge length of `mesh` (mesh length units); `0` for a mesh without edges.
-pub fn mean_edge_length(mesh: &SurfaceMesh) -> f64 {
+pub fn mean_edge_length(mesh: &TriangleMesh) -> f64 {
     let p = mesh.positions();
     let edges = mesh.edges();
     if edges.is_empty() {
@@ -20,7 +20,7 @@ pub fn mean_edge_length(mesh: &SurfaceMesh) -> f64 {
 }
 
 /// Unit vertex normals: area-weighted averages of the adjacent face normals (`V` entries).
-pub fn vertex_normals(mesh: &SurfaceMesh) -> Vec<[f64; 3]> {
+pub fn vertex_normals(mesh: &TriangleMesh) -> Vec<[f64; 3]> {
     let mut normals = vec![[0.0; 3]; mesh.vertex_count()];
     for (t, f) in mesh.faces().iter().enumerate() {
         let n = mesh.face_normal_scaled(t);
@@ -41,7 +41,7 @@ pub fn tangential(v: [f64; 3], n: [f64; 3]) -> [f64; 3] {
 /// Gradients of the three barycentric coordinates of each face (`F × 3` vectors, units
 /// 1/length): `λ_c(x) = ∇λ_c · (x − p_{c+1})`, and `∇λ_c` points from the edge opposite
 /// corner `c` towards corner `c`.
-pub fn barycentric_gradients(mesh: &SurfaceMesh) -> Vec<[[f64; 3]; 3]> {
+pub fn barycentric_gradients(mesh: &TriangleMesh) -> Vec<[[f64; 3]; 3]> {
     (0..mesh.face_count())
         .into_par_iter()
         .map(|t| {
@@ -60,7 +60,7 @@ pub fn barycentric_gradients(mesh: &SurfaceMesh) -> Vec<[[f64; 3]; 3]> {
 }
 
 /// Barycentric coordinates of `x` in face `t` given the face's gradients.
-pub fn barycentric(mesh: &SurfaceMesh, grads: &[[f64; 3]; 3], t: usize, x: [f64; 3]) -> [f64; 3] {
+pub fn barycentric(mesh: &TriangleMesh, grads: &[[f64; 3]; 3], t: usize, x: [f64; 3]) -> [f64; 3] {
     let mut l = [0.0; 3];
     for (c, lc) in l.iter_mut().enumerate() {
         *lc = dot(grads[c], sub(x, mesh.corner(t, (c + 1) % 3)));
@@ -69,7 +69,7 @@ pub fn barycentric(mesh: &SurfaceMesh, grads: &[[f64; 3]; 3], t: usize, x: [f64;
 }
 
 /// The point with barycentric coordinates `l` in face `t`.
-pub fn point_at(mesh: &SurfaceMesh, t: usize, l: [f64; 3]) -> [f64; 3] {
+pub fn point_at(mesh: &TriangleMesh, t: usize, l: [f64; 3]) -> [f64; 3] {
     let a = mesh.corner(t, 0);
     let b = mesh.corner(t, 1);
     let c = mesh.corner(t, 2);
@@ -81,6 +81,6 @@ pub fn point_at(mesh: &SurfaceMesh, t: usize, l: [f64; 3]) -> [f64; 3] {
 }
 
 /// Centroid of face `t`.
-pub fn centroid(mesh: &SurfaceMesh, t: usize) -> [f64; 3] {
+pub fn centroid(mesh: &TriangleMesh, t: usize) -> [f64; 3] {
     point_at(mesh, t, [1.0 / 3.0; 3])
 }

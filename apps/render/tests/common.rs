@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 
 use image::RgbaImage;
 use tvf_core::geometry::cross;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Face centroids.
-pub fn centroids(mesh: &SurfaceMesh) -> Vec<[f64; 3]> {
+pub fn centroids(mesh: &TriangleMesh) -> Vec<[f64; 3]> {
     let p = mesh.positions();
     mesh.faces()
         .iter()
@@ -19,7 +19,7 @@ pub fn centroids(mesh: &SurfaceMesh) -> Vec<[f64; 3]> {
 }
 
 /// The rotation field `ω × c` at each face centroid `c`.
-pub fn rotation_field(mesh: &SurfaceMesh, omega: [f64; 3]) -> Vec<[f64; 3]> {
+pub fn rotation_field(mesh: &TriangleMesh, omega: [f64; 3]) -> Vec<[f64; 3]> {
     centroids(mesh)
         .into_iter()
         .map(|c| cross(omega, c))
@@ -28,7 +28,7 @@ pub fn rotation_field(mesh: &SurfaceMesh, omega: [f64; 3]) -> Vec<[f64; 3]> {
 
 /// The coordinate field `∂/∂v` around the tube of a torus of revolution about z
 /// (unit length), at face centroids.
-pub fn torus_tube_field(mesh: &SurfaceMesh, major: f64) -> Vec<[f64; 3]> {
+pub fn torus_tube_field(mesh: &TriangleMesh, major: f64) -> Vec<[f64; 3]> {
     centroids(mesh)
         .into_iter()
         .map(|c| {

@@ -5,13 +5,13 @@ mod common;
 use common::{rotation_field, torus_tube_field};
 use tvf_core::generate::{icosphere, torus};
 use tvf_core::geometry::{cross, dot, norm, sub};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_render::{
     grow_fur, mean_edge_length, trace_streamlines, FurOptions, RenderError, StreamlineOptions,
 };
 
 /// Barycentric coordinates of `x` in face `t` and the distance of `x` from the face plane.
-fn locate(mesh: &SurfaceMesh, t: usize, x: [f64; 3]) -> ([f64; 3], f64) {
+fn locate(mesh: &TriangleMesh, t: usize, x: [f64; 3]) -> ([f64; 3], f64) {
     let [a, b, c] = [0, 1, 2].map(|k| mesh.corner(t, k));
     let n = mesh.face_normal(t);
     let area2 = dot(cross(sub(b, a), sub(c, a)), n);
@@ -23,7 +23,7 @@ fn locate(mesh: &SurfaceMesh, t: usize, x: [f64; 3]) -> ([f64; 3], f64) {
     (l, dot(sub(x, a), n).abs())
 }
 
-fn assert_on_surface(mesh: &SurfaceMesh, lines: &[tvf_render::Streamline]) {
+fn assert_on_surface(mesh: &TriangleMesh, lines: &[tvf_render::Streamline]) {
     let h = mean_edge_length(mesh);
     for line in lines {
         assert_eq!(line.points.len(), line.faces.len() + 1);
@@ -126,7 +126,7 @@ fn streamlines_stop_at_boundaries() {
         .copied()
         .filter(|f| f.iter().all(|&v| full.positions()[v][1] >= -1e-12))
         .collect();
-    let mesh = SurfaceMesh::new(full.positions().to_vec(), keep).unwrap();
+    let mesh = TriangleMesh::new(full.positions().to_vec(), keep).unwrap();
     assert!(!mesh.is_closed());
     let field = rotation_field(&mesh, [0.0, 0.0, 1.0]);
     let lines = trace_streamlines(

@@ -9,11 +9,11 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use std::path::PathBuf;
 use std::time::Duration;
 use tvf_core::io::load_mesh;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{compute_basis, BasisRequest};
 
-fn shared_mesh(name: &str) -> Option<SurfaceMesh> {
+fn shared_mesh(name: &str) -> Option<TriangleMesh> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/meshes")
         .join(format!("{name}.obj"));

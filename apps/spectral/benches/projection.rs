@@ -23,7 +23,7 @@ use tvf_spectral::{FieldFamily, SpectralBasis};
 /// Basis size of the paper's measurement: 1000 integrable + 1000 co-integrable fields.
 const FIELDS: usize = 2000;
 
-fn hand_mesh() -> Option<tvf_core::SurfaceMesh> {
+fn hand_mesh() -> Option<tvf_core::TriangleMesh> {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/hand.obj");
     if !path.exists() {
         eprintln!(

@@ -5,7 +5,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{genus_surface, icosphere, torus};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{
     compute_basis, compute_eigenfunction_basis, eigen_residual, BasisRequest, FieldFamily,
@@ -98,7 +98,7 @@ fn random_field(n: usize, seed: u64) -> Vec<f64> {
     (0..n).map(|_| rng.random_range(-1.0..1.0)).collect()
 }
 
-fn check_complete<H: HodgeComplex + ?Sized>(complex: &H, mesh: &SurfaceMesh, what: &str) {
+fn check_complete<H: HodgeComplex + ?Sized>(complex: &H, mesh: &TriangleMesh, what: &str) {
     let basis = compute_basis(complex, &BasisRequest::complete()).unwrap();
     let faces = mesh.face_count();
     assert_eq!(basis.len(), 2 * faces, "{what}: complete basis size");

@@ -4,7 +4,7 @@
 
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::{genus_surface, icosphere, torus};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily, SpectralBasis};
 
@@ -163,7 +163,7 @@ fn bounds_on_sphere_and_torus_keep_exactly_the_eigenvalues_below_them() {
 }
 
 /// Two spheres of different sizes and a torus as one mesh.
-fn three_components() -> SurfaceMesh {
+fn three_components() -> TriangleMesh {
     let parts = [
         (icosphere(2), 1.0, [0.0, 0.0, 0.0]),
         (icosphere(1), 0.6, [3.0, 0.0, 0.0]),
@@ -179,7 +179,7 @@ fn three_components() -> SurfaceMesh {
         );
         faces.extend(mesh.faces().iter().map(|f| f.map(|v| v + base)));
     }
-    SurfaceMesh::new(positions, faces).unwrap()
+    TriangleMesh::new(positions, faces).unwrap()
 }
 
 #[test]

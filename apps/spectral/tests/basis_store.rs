@@ -181,7 +181,7 @@ fn a_basis_file_of_an_own_entry_reopens_through_its_catalog_only() {
 /// could not be used, if there was one.
 fn basis_of<H: HodgeComplex>(
     store: &BasisStore,
-    mesh: &tvf_core::SurfaceMesh,
+    mesh: &tvf_core::TriangleMesh,
     complex: &H,
 ) -> (SpectralBasis, Option<PathBuf>, Option<String>) {
     let (basis, origin) = store

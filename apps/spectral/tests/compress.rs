@@ -19,7 +19,7 @@ fn random_field(dimension: usize, seed: u64) -> Vec<f64> {
         .collect()
 }
 
-fn complete_basis() -> (tvf_core::SurfaceMesh, SpectralBasis) {
+fn complete_basis() -> (tvf_core::TriangleMesh, SpectralBasis) {
     let mesh = torus(1.0, 0.45, 9, 6).unwrap();
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let basis = compute_basis(&complex, &BasisRequest::complete()).unwrap();
@@ -27,7 +27,7 @@ fn complete_basis() -> (tvf_core::SurfaceMesh, SpectralBasis) {
 }
 
 /// Enough pairs to keep every field of the complete basis (each family is kept whole).
-fn all_pairs(mesh: &tvf_core::SurfaceMesh) -> usize {
+fn all_pairs(mesh: &tvf_core::TriangleMesh) -> usize {
     mesh.edge_count() - 1
 }
 

@@ -16,7 +16,7 @@ use tvf_spectral::{
 };
 
 fn setup() -> (
-    tvf_core::SurfaceMesh,
+    tvf_core::TriangleMesh,
     Conforming,
     SpectralBasis,
     BasisFileKey,

@@ -14,7 +14,7 @@ use tvf_spectral::{
     save_eigenfunction_basis, BasisFileError, BasisFileKey, BasisRequest,
 };
 
-fn conforming(mesh: &tvf_core::SurfaceMesh) -> Conforming {
+fn conforming(mesh: &tvf_core::TriangleMesh) -> Conforming {
     Conforming::new(mesh, MassLumping::Barycentric).unwrap()
 }
 

@@ -10,7 +10,7 @@ use common::{
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, Mass, MassStorage};
 use tvf_core::generate::{icosphere, torus};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{
     basis_id, compute_basis, compute_eigenfunction_basis, load_basis, read_basis_file,
@@ -19,7 +19,7 @@ use tvf_spectral::{
 };
 
 /// The conforming complex of `mesh` with its two coefficients per face coupled in `M1`.
-fn coupled(mesh: &SurfaceMesh) -> WithFieldMass<Conforming> {
+fn coupled(mesh: &TriangleMesh) -> WithFieldMass<Conforming> {
     let inner = Conforming::new(mesh, MassLumping::Barycentric).unwrap();
     let m1 = coupled_field_mass(inner.m1(), 0.3);
     WithFieldMass::new(inner, m1)

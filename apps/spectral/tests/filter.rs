@@ -13,7 +13,7 @@ use tvf_spectral::{
     SpectralFilter,
 };
 
-fn small_torus() -> tvf_core::SurfaceMesh {
+fn small_torus() -> tvf_core::TriangleMesh {
     torus(1.0, 0.45, 9, 6).expect("valid torus parameters")
 }
 

@@ -12,7 +12,7 @@ use tvf_spectral::{
 /// projected onto the faces).
 fn frames<H: HodgeComplex + ?Sized>(
     complex: &H,
-    mesh: &tvf_core::SurfaceMesh,
+    mesh: &tvf_core::TriangleMesh,
     count: usize,
 ) -> Vec<Vec<f64>> {
     (0..count)

@@ -5,7 +5,7 @@
 use crate::corpus::{sliver_torus, staggered_torus};
 use proptest::prelude::*;
 use tvf_core::generate::{genus_surface, icosphere, torus};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Largest genus the strategies draw.
 pub const MAX_GENUS: usize = 5;
@@ -72,7 +72,7 @@ impl ClosedShape {
     }
 
     /// The mesh.
-    pub fn build(&self) -> SurfaceMesh {
+    pub fn build(&self) -> TriangleMesh {
         match *self {
             ClosedShape::Sphere { level } => icosphere(level),
             ClosedShape::Torus { around, tube } => {

@@ -7,7 +7,7 @@ use super::open::{open_shapes, OpenShape};
 use super::perturbation::{jitters, rigid_motions, Jitter, RigidMotion, MAX_JITTER};
 use crate::corpus::{disjoint_union, is_delaunay, try_delaunay_flips, CorpusMesh};
 use proptest::prelude::*;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Largest jitter amplitude of the Delaunay variants (the flips repair what jitter breaks).
 pub const MAX_DELAUNAY_JITTER: f64 = 0.15;
@@ -42,7 +42,7 @@ impl Shape {
         !matches!(self, Shape::Closed(ClosedShape::SliverTorus { .. }))
     }
 
-    fn build(&self) -> SurfaceMesh {
+    fn build(&self) -> TriangleMesh {
         match self {
             Shape::Closed(shape) => shape.build(),
             Shape::Open(shape) => shape.build(),
@@ -78,7 +78,7 @@ impl MeshSpec {
     /// description. Fails when the Delaunay flips do not converge or leave a boundary edge with
     /// `cot α ≤ 0` (the strategies reject such draws), or a parameter is not finite.
     pub fn build(&self) -> Result<CorpusMesh, String> {
-        let mut mesh: Option<SurfaceMesh> = None;
+        let mut mesh: Option<TriangleMesh> = None;
         for (k, shape) in self.components.iter().enumerate() {
             let mut piece = shape.build();
             if shape.may_jitter() {
@@ -115,7 +115,7 @@ impl MeshSpec {
 }
 
 /// `piece` translated along x so that it starts 1 beyond the end of `previous`.
-fn beside(previous: &SurfaceMesh, piece: &SurfaceMesh) -> Result<SurfaceMesh, String> {
+fn beside(previous: &TriangleMesh, piece: &TriangleMesh) -> Result<TriangleMesh, String> {
     let end = previous
         .positions()
         .iter()

@@ -3,7 +3,7 @@
 
 use proptest::prelude::*;
 use tvf_core::generate::{disk, hemisphere, holed_torus, open_cylinder, perforated_plate};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// A connected surface with boundary.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,7 +66,7 @@ impl OpenShape {
     }
 
     /// The mesh.
-    pub fn build(&self) -> SurfaceMesh {
+    pub fn build(&self) -> TriangleMesh {
         match *self {
             OpenShape::Disk { rings } => disk(rings),
             OpenShape::Hemisphere { rings } => hemisphere(rings),

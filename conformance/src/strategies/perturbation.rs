@@ -4,7 +4,7 @@
 
 use proptest::prelude::*;
 use tvf_core::generate::{jitter, rigid_motion};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Largest jitter amplitude the strategies draw (a fraction of the shortest edge at a vertex;
 /// 0.2 keeps meshes with angles above ~20° valid, see [`tvf_core::generate::jitter`]).
@@ -21,7 +21,7 @@ pub struct Jitter {
 
 impl Jitter {
     /// The jittered mesh (the mesh itself for amplitude 0).
-    pub fn apply(&self, mesh: &SurfaceMesh) -> Result<SurfaceMesh, String> {
+    pub fn apply(&self, mesh: &TriangleMesh) -> Result<TriangleMesh, String> {
         if self.amplitude == 0.0 {
             return Ok(mesh.clone());
         }
@@ -51,7 +51,7 @@ pub struct RigidMotion {
 
 impl RigidMotion {
     /// The moved mesh.
-    pub fn apply(&self, mesh: &SurfaceMesh) -> Result<SurfaceMesh, String> {
+    pub fn apply(&self, mesh: &TriangleMesh) -> Result<TriangleMesh, String> {
         rigid_motion(mesh, self.axis, self.angle, self.translation)
             .map_err(|e| format!("rigid motion: {e}"))
     }

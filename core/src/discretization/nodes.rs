@@ -7,7 +7,7 @@ pub enum NodeKind {
     /// One node per vertex (P1 potentials, DEC 0-forms), numbered as the mesh's vertices.
     Vertices,
     /// One node per edge (Crouzeix–Raviart functions at edge midpoints, DEC 1-forms), numbered
-    /// as `SurfaceMesh::edges` (lexicographic `(a, b)`, `a < b`).
+    /// as `TriangleMesh::edges` (lexicographic `(a, b)`, `a < b`).
     Edges,
     /// One node per face (DEC 2-forms), numbered as the mesh's faces.
     Faces,

@@ -1,7 +1,7 @@
 //! A torus with smooth bumps on its tube, placed deterministically.
 
 use super::torus::torus_of_revolution;
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 use std::f64::consts::TAU;
 
 /// Torus of revolution around the z axis whose tube radius is modulated by `bump_count`
@@ -19,7 +19,7 @@ pub fn bumpy_torus(
     tube: usize,
     bump_count: usize,
     bump_height: f64,
-) -> Option<SurfaceMesh> {
+) -> Option<TriangleMesh> {
     let valid = around >= 3
         && tube >= 3
         && minor > 0.0

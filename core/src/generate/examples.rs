@@ -1,7 +1,7 @@
 //! The built-in example meshes, by name (the `tvf` CLI's `--example NAME`).
 
 use super::{bumpy_torus, genus_surface, hemisphere, icosphere, perforated_plate, torus};
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 
 /// Names accepted by [`example_mesh`].
 pub const EXAMPLE_NAMES: &[&str] = &[
@@ -18,7 +18,7 @@ pub const EXAMPLE_NAMES: &[&str] = &[
 ];
 
 /// Generates the built-in example called `name` (one of [`EXAMPLE_NAMES`]; `None` otherwise).
-pub fn example_mesh(name: &str) -> Option<SurfaceMesh> {
+pub fn example_mesh(name: &str) -> Option<TriangleMesh> {
     Some(match name {
         "icosphere" => icosphere(3),
         "torus" => torus(1.0, 0.4, 48, 24).expect("fixed torus parameters are valid"),

@@ -1,7 +1,7 @@
 //! A closed surface of any genus: the boundary of a thickened plate with `g` round holes.
 
 use super::quad_grid::{grid_cell, split_quad, Diagonal};
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -18,7 +18,7 @@ const HOLE_RADIUS: f64 = 0.75;
 /// at least 2). Sizes at resolution 8: 448 faces for genus 0, then 544 more per hole
 /// (genus 2: 1,184 faces); doubling the resolution roughly quadruples them. For resolutions
 /// 4 to 16 all angles lie between 23° and 102° (resolution 2 is coarse: 15.6° to 112.5°).
-pub fn genus_surface(genus: usize, resolution: usize) -> SurfaceMesh {
+pub fn genus_surface(genus: usize, resolution: usize) -> TriangleMesh {
     let k = resolution.max(2).div_ceil(2) * 2;
     let mut sheet = if genus == 0 {
         square_sheet(k)
@@ -206,7 +206,7 @@ fn soften_corners(sheet: &mut Sheet) {
 /// The closed surface around the sheet: top copy at `z = +h`, reversed bottom copy at `z = −h`,
 /// and along every boundary loop a wall whose profile is a half circle of radius `h` bulging
 /// away from the sheet, with `wall_layers` segments.
-fn thicken(sheet: &Sheet, wall_layers: usize) -> SurfaceMesh {
+fn thicken(sheet: &Sheet, wall_layers: usize) -> TriangleMesh {
     let h = HALF_THICKNESS;
     let n = sheet.points.len();
     let mut positions: Vec<[f64; 3]> = sheet.points.iter().map(|p| [p[0], p[1], h]).collect();
@@ -265,5 +265,5 @@ fn thicken(sheet: &Sheet, wall_layers: usize) -> SurfaceMesh {
             }
         }
     }
-    SurfaceMesh::new(positions, faces).expect("the thickened plate is a closed oriented manifold")
+    TriangleMesh::new(positions, faces).expect("the thickened plate is a closed oriented manifold")
 }

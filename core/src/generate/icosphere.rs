@@ -1,13 +1,13 @@
 //! The unit icosphere: a subdivided icosahedron projected onto the unit sphere.
 
 use crate::geometry::normalize;
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 use std::collections::HashMap;
 
 /// Unit icosphere after `level` 1-to-4 subdivisions: `20·4^level` faces, genus 0, outward normals.
 ///
 /// Level 0 has 12 vertices; level 2 has 320 faces (the mesh of the spectrum facts in `docs/conventions.md`).
-pub fn icosphere(level: u32) -> SurfaceMesh {
+pub fn icosphere(level: u32) -> TriangleMesh {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
     let mut positions: Vec<[f64; 3]> = [
         [-1.0, t, 0.0],
@@ -66,5 +66,5 @@ pub fn icosphere(level: u32) -> SurfaceMesh {
         }
         faces = refined;
     }
-    SurfaceMesh::new(positions, faces).expect("the icosphere construction is a valid closed mesh")
+    TriangleMesh::new(positions, faces).expect("the icosphere construction is a valid closed mesh")
 }

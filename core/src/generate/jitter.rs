@@ -1,7 +1,7 @@
 //! Seeded random vertex displacement, for property tests on perturbed meshes.
 
 use crate::geometry::{add, norm, scale, sub};
-use crate::{MeshError, SurfaceMesh};
+use crate::{MeshError, TriangleMesh};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -14,7 +14,7 @@ use rand_chacha::ChaCha8Rng;
 /// flipping (checked by the tests on icosphere, torus and genus surfaces). Larger amplitudes
 /// may produce degenerate or flipped faces; the result is not re-validated. Fails only if
 /// `amplitude` is not finite.
-pub fn jitter(mesh: &SurfaceMesh, amplitude: f64, seed: u64) -> Result<SurfaceMesh, MeshError> {
+pub fn jitter(mesh: &TriangleMesh, amplitude: f64, seed: u64) -> Result<TriangleMesh, MeshError> {
     let positions = mesh.positions();
     let mut shortest = vec![f64::INFINITY; positions.len()];
     for &[a, b] in mesh.edges() {
@@ -42,5 +42,5 @@ pub fn jitter(mesh: &SurfaceMesh, amplitude: f64, seed: u64) -> Result<SurfaceMe
             add(p, scale(offset, radius))
         })
         .collect();
-    SurfaceMesh::new(moved, mesh.faces().to_vec())
+    TriangleMesh::new(moved, mesh.faces().to_vec())
 }

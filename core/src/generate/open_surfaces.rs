@@ -3,7 +3,7 @@
 
 use super::genus_surface::perforated_plate_sheet;
 use super::staggered_ring_faces;
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// The ring triangulation of the unit disk in polar coordinates: a centre vertex and `rings`
@@ -50,18 +50,18 @@ fn polar_rings(rings: usize) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
 
 /// The unit disk in the plane `z = 0` (normal +z): a centre vertex and `rings` rings of `6i`
 /// vertices, `6·rings²` faces, one boundary loop (the unit circle, `6·rings` edges).
-pub fn disk(rings: usize) -> SurfaceMesh {
+pub fn disk(rings: usize) -> TriangleMesh {
     let (points, faces) = polar_rings(rings);
     let positions = points
         .iter()
         .map(|&[r, a]| [r * a.cos(), r * a.sin(), 0.0])
         .collect();
-    SurfaceMesh::new(positions, faces).expect("the ring disk is a valid mesh")
+    TriangleMesh::new(positions, faces).expect("the ring disk is a valid mesh")
 }
 
 /// The upper unit hemisphere `z ≥ 0` (outward normals): the ring disk of [`disk`] with radius `r`
 /// mapped to the polar angle `θ = r·π/2`; one boundary loop (the equator), `6·rings²` faces.
-pub fn hemisphere(rings: usize) -> SurfaceMesh {
+pub fn hemisphere(rings: usize) -> TriangleMesh {
     let (points, faces) = polar_rings(rings);
     let positions = points
         .iter()
@@ -70,13 +70,13 @@ pub fn hemisphere(rings: usize) -> SurfaceMesh {
             [theta.sin() * a.cos(), theta.sin() * a.sin(), theta.cos()]
         })
         .collect();
-    SurfaceMesh::new(positions, faces).expect("the ring hemisphere is a valid mesh")
+    TriangleMesh::new(positions, faces).expect("the ring hemisphere is a valid mesh")
 }
 
 /// An open cylinder (annulus) `x² + y² = 1`, `0 ≤ z ≤ height`, outward normals: `around ≥ 3`
 /// vertices per ring, `layers ≥ 1` layers of quads, every other ring shifted by half a cell so
 /// the triangles are near-isosceles. Two boundary loops; `2·around·layers` faces.
-pub fn open_cylinder(around: usize, layers: usize, height: f64) -> SurfaceMesh {
+pub fn open_cylinder(around: usize, layers: usize, height: f64) -> TriangleMesh {
     let (around, layers) = (around.max(3), layers.max(1));
     let positions = (0..=layers)
         .flat_map(|ring| {
@@ -88,32 +88,32 @@ pub fn open_cylinder(around: usize, layers: usize, height: f64) -> SurfaceMesh {
         })
         .collect();
     let faces = staggered_ring_faces(around, layers, layers + 1);
-    SurfaceMesh::new(positions, faces).expect("the open cylinder is a valid mesh")
+    TriangleMesh::new(positions, faces).expect("the open cylinder is a valid mesh")
 }
 
 /// A flat plate in `z = 0` (normal +z) of `holes ≥ 1` square cells of side 2 in a row, each
 /// with a round hole of radius 0.75 (the sheet of [`super::genus_surface`]): genus 0 with
 /// `holes + 1` boundary loops — an annulus for one hole, a pair of pants for two. `resolution`
 /// is the number of segments along each cell side (rounded up to even, at least 2).
-pub fn perforated_plate(holes: usize, resolution: usize) -> SurfaceMesh {
+pub fn perforated_plate(holes: usize, resolution: usize) -> TriangleMesh {
     let (points, faces) = perforated_plate_sheet(holes.max(1), resolution);
     let positions = points.iter().map(|p| [p[0], p[1], 0.0]).collect();
-    SurfaceMesh::new(positions, faces).expect("the perforated plate is a valid mesh")
+    TriangleMesh::new(positions, faces).expect("the perforated plate is a valid mesh")
 }
 
 /// A torus of revolution (as [`super::torus`]) with the two faces of one grid cell removed: genus
 /// 1, one boundary loop of four edges. `None` for invalid torus parameters.
-pub fn holed_torus(major: f64, minor: f64, around: usize, tube: usize) -> Option<SurfaceMesh> {
+pub fn holed_torus(major: f64, minor: f64, around: usize, tube: usize) -> Option<TriangleMesh> {
     let closed = super::torus(major, minor, around, tube)?;
     let faces = closed.faces()[2..].to_vec();
-    SurfaceMesh::new(closed.positions().to_vec(), faces).ok()
+    TriangleMesh::new(closed.positions().to_vec(), faces).ok()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn loops(mesh: &SurfaceMesh) -> usize {
+    fn loops(mesh: &TriangleMesh) -> usize {
         mesh.boundary_loops().len()
     }
 

@@ -1,7 +1,7 @@
 //! Rigid motions of a mesh (rotation about an axis through the origin, then translation).
 
 use crate::geometry::{add, cross, dot, norm, scale};
-use crate::{MeshError, SurfaceMesh};
+use crate::{MeshError, TriangleMesh};
 
 /// Rotates every vertex by `angle` radians about `axis` (right-hand rule, axis through the
 /// origin; need not be unit length), then adds `translation`. Faces and their numbering are
@@ -10,11 +10,11 @@ use crate::{MeshError, SurfaceMesh};
 /// A zero `axis` means no rotation. Fails only if the parameters are not finite
 /// ([`MeshError::NonFiniteCoordinate`]).
 pub fn rigid_motion(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     axis: [f64; 3],
     angle: f64,
     translation: [f64; 3],
-) -> Result<SurfaceMesh, MeshError> {
+) -> Result<TriangleMesh, MeshError> {
     let length = norm(axis);
     let unit = if length > 0.0 {
         scale(axis, 1.0 / length)
@@ -35,5 +35,5 @@ pub fn rigid_motion(
             add(rotated, translation)
         })
         .collect();
-    SurfaceMesh::new(positions, mesh.faces().to_vec())
+    TriangleMesh::new(positions, mesh.faces().to_vec())
 }

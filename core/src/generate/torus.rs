@@ -1,7 +1,7 @@
 //! A torus of revolution around the z axis.
 
 use super::quad_grid::{grid_cell, split_quad, Diagonal};
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 use std::f64::consts::TAU;
 
 /// Torus with major radius `major` (centre to tube centre) and minor radius `minor` (tube),
@@ -9,7 +9,7 @@ use std::f64::consts::TAU;
 /// (`2·around·tube` faces, genus 1, outward normals).
 ///
 /// Returns `None` unless `0 < minor < major` and both resolutions are at least 3.
-pub fn torus(major: f64, minor: f64, around: usize, tube: usize) -> Option<SurfaceMesh> {
+pub fn torus(major: f64, minor: f64, around: usize, tube: usize) -> Option<TriangleMesh> {
     let valid = minor > 0.0 && minor < major && around >= 3 && tube >= 3;
     if !valid || !major.is_finite() {
         return None;
@@ -25,7 +25,7 @@ pub(crate) fn torus_of_revolution(
     around: usize,
     tube: usize,
     tube_radius: impl Fn(f64, f64) -> f64,
-) -> Option<SurfaceMesh> {
+) -> Option<TriangleMesh> {
     let mut positions = Vec::with_capacity(around * tube);
     for i in 0..around {
         let u = TAU * i as f64 / around as f64;
@@ -40,5 +40,5 @@ pub(crate) fn torus_of_revolution(
     let faces = (0..around)
         .flat_map(|i| (0..tube).flat_map(move |j| split_quad(grid_cell(index, i, j), Diagonal::AC)))
         .collect();
-    SurfaceMesh::new(positions, faces).ok()
+    TriangleMesh::new(positions, faces).ok()
 }

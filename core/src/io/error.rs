@@ -5,7 +5,7 @@ use std::fmt;
 use std::path::PathBuf;
 use thiserror::Error;
 
-/// A mesh file could not be turned into a valid [`crate::SurfaceMesh`].
+/// A mesh file could not be turned into a valid [`crate::TriangleMesh`].
 ///
 /// Displays as `path:line: problem` (or `path: problem` where no line applies, e.g. binary
 /// PLY or whole-mesh checks).

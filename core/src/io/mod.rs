@@ -2,7 +2,7 @@
 //! output is written: atomically ([`write_atomically`], [`StagedFolder`] for folders), after
 //! [`check_output`], with interrupted and stale temporaries cleaned up ([`temporaries`]).
 //!
-//! Every reader goes through [`crate::SurfaceMesh::validated`], so a [`LoadedMesh`] is always a
+//! Every reader goes through [`crate::TriangleMesh::validated`], so a [`LoadedMesh`] is always a
 //! valid oriented manifold mesh, and a [`LoadError`] names the file, the line where one applies,
 //! and the problem ([`LoadErrorKind`]).
 //!

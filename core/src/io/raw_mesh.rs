@@ -3,7 +3,7 @@
 use super::error::{LoadError, LoadErrorKind};
 use super::folded_polygons::folded_polygons;
 use crate::mesh::{ValidationReport, ValidationWarning};
-use crate::{MeshError, SurfaceMesh};
+use crate::{MeshError, TriangleMesh};
 use std::path::Path;
 
 /// A problem found by a reader, with the 1-based line where one applies.
@@ -44,11 +44,11 @@ pub(crate) struct RawMesh {
     pub face_lines: Vec<usize>,
 }
 
-/// A mesh read from a file: the valid [`SurfaceMesh`] and what validation reported.
+/// A mesh read from a file: the valid [`TriangleMesh`] and what validation reported.
 #[derive(Debug, Clone)]
 pub struct LoadedMesh {
     /// The mesh (unreferenced vertices dropped).
-    pub mesh: SurfaceMesh,
+    pub mesh: TriangleMesh,
     /// Warnings, angle range and the map back to the file's vertex numbers.
     pub report: ValidationReport,
 }
@@ -64,7 +64,7 @@ impl RawMesh {
             face_lines,
         } = self;
         let folded = folded_polygons(&positions, &faces, &face_lines);
-        SurfaceMesh::validated(positions, faces)
+        TriangleMesh::validated(positions, faces)
             .map(|(mesh, mut report)| {
                 if let Some((count, first_line)) = folded {
                     report

@@ -1,6 +1,6 @@
 //! Writers: OBJ (text) and PLY (binary little-endian), always written atomically.
 
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -25,7 +25,7 @@ pub enum SaveError {
 }
 
 /// Writes `mesh` to `path` as OBJ or PLY, chosen by the extension (case-insensitive).
-pub fn save_mesh(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveError> {
+pub fn save_mesh(path: impl AsRef<Path>, mesh: &TriangleMesh) -> Result<(), SaveError> {
     let path = path.as_ref();
     let extension = path
         .extension()
@@ -42,7 +42,7 @@ pub fn save_mesh(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveE
 
 /// Writes Wavefront OBJ: `v x y z` (shortest decimal that reads back to the same `f64`) and
 /// 1-based `f i j k` lines, vertex and face order kept.
-pub fn write_obj(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveError> {
+pub fn write_obj(path: impl AsRef<Path>, mesh: &TriangleMesh) -> Result<(), SaveError> {
     write_atomically(path.as_ref(), |out| {
         writeln!(
             out,
@@ -62,7 +62,7 @@ pub fn write_obj(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveE
 
 /// Writes binary little-endian PLY: `double x, y, z` per vertex and a `uchar`-counted `uint`
 /// index list per face.
-pub fn write_ply(path: impl AsRef<Path>, mesh: &SurfaceMesh) -> Result<(), SaveError> {
+pub fn write_ply(path: impl AsRef<Path>, mesh: &TriangleMesh) -> Result<(), SaveError> {
     write_atomically(path.as_ref(), |out| {
         write!(
             out,

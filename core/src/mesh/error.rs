@@ -4,7 +4,7 @@ use thiserror::Error;
 
 /// A defect that makes a list of positions and faces unusable as a tvf surface mesh.
 ///
-/// Indices are 0-based positions in the arrays handed to [`crate::SurfaceMesh::new`].
+/// Indices are 0-based positions in the arrays handed to [`crate::TriangleMesh::new`].
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum MeshError {
     /// The mesh has no faces.

@@ -1,10 +1,10 @@
-//! [`SurfaceMesh::fingerprint`]: a 64-bit fingerprint of a mesh's numbers, which ties cached
+//! [`TriangleMesh::fingerprint`]: a 64-bit fingerprint of a mesh's numbers, which ties cached
 //! bases, compressed fields and constraint files to their mesh.
 
 use crate::hash64::Hash64;
-use crate::SurfaceMesh;
+use crate::TriangleMesh;
 
-impl SurfaceMesh {
+impl TriangleMesh {
     /// A 64-bit fingerprint of the mesh: the vertex and face counts, the exact `f64` bits of
     /// every vertex position and every face's vertex indices, in order. Equal meshes (same
     /// numbers, same order) have equal fingerprints; any change of a coordinate bit, an index or
@@ -31,7 +31,7 @@ impl SurfaceMesh {
 #[cfg(test)]
 mod tests {
     use crate::generate::icosphere;
-    use crate::SurfaceMesh;
+    use crate::TriangleMesh;
 
     #[test]
     fn the_fingerprint_sees_every_coordinate_and_index() {
@@ -40,11 +40,11 @@ mod tests {
         assert_eq!(base, icosphere(1).fingerprint());
         let mut positions = mesh.positions().to_vec();
         positions[17][2] = f64::from_bits(positions[17][2].to_bits() ^ 1);
-        let moved = SurfaceMesh::new(positions, mesh.faces().to_vec()).unwrap();
+        let moved = TriangleMesh::new(positions, mesh.faces().to_vec()).unwrap();
         assert_ne!(moved.fingerprint(), base);
         let mut faces = mesh.faces().to_vec();
         faces[3] = [faces[3][1], faces[3][2], faces[3][0]];
-        let rotated = SurfaceMesh::new(mesh.positions().to_vec(), faces).unwrap();
+        let rotated = TriangleMesh::new(mesh.positions().to_vec(), faces).unwrap();
         assert_ne!(rotated.fingerprint(), base);
     }
 }

@@ -1,6 +1,6 @@
 //! Geometric measures of a mesh: corner angles, angle range and enclosed (signed) volume.
 
-use super::surface_mesh::SurfaceMesh;
+use super::triangle_mesh::TriangleMesh;
 use crate::geometry::{cross, dot, norm, sub};
 
 /// Interior angles (radians) of the triangle `p`, `angles[c]` at corner `c`.
@@ -16,7 +16,7 @@ pub fn triangle_angles(p: [[f64; 3]; 3]) -> [f64; 3] {
     angles
 }
 
-impl SurfaceMesh {
+impl TriangleMesh {
     /// Interior angles (radians) of face `t`, `[α0, α1, α2]` at corners 0, 1, 2.
     pub fn corner_angles(&self, t: usize) -> [f64; 3] {
         triangle_angles(self.faces()[t].map(|i| self.positions()[i]))

@@ -1,7 +1,7 @@
 //! Edge numbering, face↔edge incidence and connected components, built from a face list.
 
 use super::error::MeshError;
-use super::surface_mesh::NO_FACE;
+use super::triangle_mesh::NO_FACE;
 
 /// The combinatorial structure derived from a face list.
 pub(crate) struct Topology {

@@ -1,12 +1,12 @@
-//! Full validation of positions and faces: every check [`SurfaceMesh::new`] makes, plus vertex
+//! Full validation of positions and faces: every check [`TriangleMesh::new`] makes, plus vertex
 //! manifoldness, orientability, zero-area faces, unreferenced and duplicate vertices.
 //!
-//! [`SurfaceMesh::new`] stays cheap and only guarantees what the topology tables need.
-//! [`SurfaceMesh::validated`] is the entry point for data from outside (files, user input);
+//! [`TriangleMesh::new`] stays cheap and only guarantees what the topology tables need.
+//! [`TriangleMesh::validated`] is the entry point for data from outside (files, user input);
 //! every reader in [`crate::io`] goes through it.
 
 use super::error::MeshError;
-use super::surface_mesh::SurfaceMesh;
+use super::triangle_mesh::TriangleMesh;
 use super::validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};
 use crate::geometry::{cross, dot, norm, sub};
 use std::collections::HashMap;
@@ -15,7 +15,7 @@ use std::collections::HashMap;
 /// reported as zero-area: collinear or coincident corners up to rounding (a 1e-12° angle).
 const ZERO_AREA_RELATIVE: f64 = 64.0 * f64::EPSILON;
 
-impl SurfaceMesh {
+impl TriangleMesh {
     /// Validates `positions` and `faces` (0-based, counter-clockwise) and builds the mesh.
     ///
     /// Errors, checked in this order: [`MeshError::NoFaces`], [`MeshError::NonFiniteCoordinate`],
@@ -30,7 +30,7 @@ impl SurfaceMesh {
     pub fn validated(
         positions: Vec<[f64; 3]>,
         faces: Vec<[usize; 3]>,
-    ) -> Result<(SurfaceMesh, ValidationReport), MeshError> {
+    ) -> Result<(TriangleMesh, ValidationReport), MeshError> {
         check_faces(&positions, &faces)?;
         let input_vertex_count = positions.len();
         let mut warnings = Vec::new();
@@ -60,7 +60,7 @@ impl SurfaceMesh {
             }
         }
         let faces = faces.into_iter().map(|f| f.map(|v| new_index[v])).collect();
-        let mesh = SurfaceMesh::new(kept_positions, faces)?;
+        let mesh = TriangleMesh::new(kept_positions, faces)?;
 
         if let Some(warning) = inward_components(&mesh) {
             warnings.push(warning);
@@ -88,7 +88,7 @@ impl SurfaceMesh {
 }
 
 /// The closed components of `mesh` whose signed volume is negative (normals inward), if any.
-fn inward_components(mesh: &SurfaceMesh) -> Option<ValidationWarning> {
+fn inward_components(mesh: &TriangleMesh) -> Option<ValidationWarning> {
     let count = mesh.component_count();
     let mut volume = vec![0.0; count];
     let mut first_face = vec![usize::MAX; count];
@@ -116,7 +116,7 @@ fn inward_components(mesh: &SurfaceMesh) -> Option<ValidationWarning> {
     })
 }
 
-/// Every error check of [`SurfaceMesh::validated`], without building anything.
+/// Every error check of [`TriangleMesh::validated`], without building anything.
 pub fn check_faces(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Result<(), MeshError> {
     if faces.is_empty() {
         return Err(MeshError::NoFaces);
@@ -363,7 +363,7 @@ mod tests {
 
     #[test]
     fn flipped_square_is_inconsistent_not_non_orientable() {
-        assert!(SurfaceMesh::validated(square(), vec![[0, 1, 2], [0, 2, 3]]).is_ok());
+        assert!(TriangleMesh::validated(square(), vec![[0, 1, 2], [0, 2, 3]]).is_ok());
         assert!(matches!(
             check_faces(&square(), &[[0, 1, 2], [0, 3, 2]]),
             Err(MeshError::InconsistentOrientation { a: 0, b: 2, .. })
@@ -385,7 +385,8 @@ mod tests {
     fn unreferenced_vertices_are_dropped_and_reported() {
         let mut positions = square();
         positions.insert(0, [5.0, 5.0, 5.0]);
-        let (mesh, report) = SurfaceMesh::validated(positions, vec![[1, 2, 3], [1, 3, 4]]).unwrap();
+        let (mesh, report) =
+            TriangleMesh::validated(positions, vec![[1, 2, 3], [1, 3, 4]]).unwrap();
         assert_eq!(mesh.vertex_count(), 4);
         assert_eq!(report.unreferenced_vertices(), 1);
         assert_eq!(report.original_vertex, vec![1, 2, 3, 4]);

@@ -28,7 +28,7 @@ pub enum ValidationWarning {
     InwardNormals {
         /// How many closed components point inward.
         components: usize,
-        /// The first of them (component ids as in [`crate::SurfaceMesh::face_components`]).
+        /// The first of them (component ids as in [`crate::TriangleMesh::face_components`]).
         first_component: usize,
         /// The lowest-numbered face of that component.
         first_face: usize,
@@ -105,7 +105,7 @@ impl fmt::Display for ValidationWarning {
     }
 }
 
-/// What [`crate::SurfaceMesh::validated`] found besides errors.
+/// What [`crate::TriangleMesh::validated`] found besides errors.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidationReport {
     /// Every non-fatal finding, in a fixed order (unreferenced, duplicates, normals, angles).

@@ -28,7 +28,7 @@
 use sprs::CsMat;
 use std::process::ExitCode;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, NodeKind};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::face_geometry::FaceGeometry;
 use tvf_discretizations::{
     complex_id, BoxedComplex, Catalog, CatalogEntry, CrouzeixRaviart, FaceFields,
@@ -86,7 +86,7 @@ pub fn blend_lumping(percent: u8) -> CatalogEntry {
 /// boundary).
 fn blended_complex(
     entry_id: &str,
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     boundary: BoundaryCondition,
     t: f64,
 ) -> Result<FiniteElementComplex<Blended<LagrangeP1>, Blended<CrouzeixRaviart>>, DiscretizationError>

@@ -20,7 +20,7 @@ use tvf_conformance::reference_report::catalog_reference_checks;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::Catalog;
 
 /// Arguments of `tvf check`.
@@ -83,7 +83,7 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
         (None, None) => return check_generated(&args, &id, catalog, report),
     };
     let mesh = input.load()?.mesh;
-    let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+    let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
         let flags = &args.discretization;
         flags
             .build(catalog, mesh, &input)
@@ -111,7 +111,7 @@ fn check_generated(
     }
     let request = entry_property_request(catalog.get(id)?, args.cases, args.seed);
     let boundary = args.discretization.boundary_condition();
-    let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+    let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
         catalog
             .build_complex(id, Some(boundary), mesh)
             .map_err(|e| e.to_string())

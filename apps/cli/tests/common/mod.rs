@@ -4,7 +4,7 @@
 
 use std::path::Path;
 use std::process::{Command, Output};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// A command running the `tvf` binary built for these tests.
 pub fn tvf() -> Command {
@@ -23,7 +23,7 @@ pub fn assert_success(output: &Output) {
 
 /// Writes a field with both families (a rotation about z plus a gradient-like part, one vector
 /// per face, as text) to `path`.
-pub fn write_field(mesh: &SurfaceMesh, path: &Path) {
+pub fn write_field(mesh: &TriangleMesh, path: &Path) {
     let field: String = mesh
         .faces()
         .iter()

@@ -4,7 +4,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::{
     default_regularization, CompiledConstraint, Constraint, ConstraintAssembler, Location,
     OperatorFamily, ReducedBasis, SoftOptions, Target,
@@ -39,7 +39,7 @@ pub fn truncated(basis: &SpectralBasis, d: usize) -> ReducedBasis {
 /// Seeded constraints of every kind, at well-separated random faces / vertices / edges of the
 /// conforming complex (divergence at vertices, curl at edges, one of each at a point, one
 /// divergence of the other family at a point).
-pub fn mixed_constraints(mesh: &SurfaceMesh, vectors: usize, seed: u64) -> Vec<Constraint> {
+pub fn mixed_constraints(mesh: &TriangleMesh, vectors: usize, seed: u64) -> Vec<Constraint> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut out = Vec::new();
     let mut faces: Vec<usize> = Vec::new();
@@ -112,7 +112,7 @@ pub struct FullDesignInputs {
 }
 
 impl FullDesignInputs {
-    pub fn new(mesh: &SurfaceMesh, vectors: usize, seeds: (u64, u64)) -> Self {
+    pub fn new(mesh: &TriangleMesh, vectors: usize, seeds: (u64, u64)) -> Self {
         let complex = Conforming::new(mesh, MassLumping::Barycentric).expect("complex");
         let dirichlet = complex.dirichlet_energy().as_sparse().unwrap().clone();
         let options = SoftOptions {

@@ -9,7 +9,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, FieldRotation, FieldSampling, HodgeComplex, HodgeOperators,
     Mass, PointEvaluation,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::{CompiledConstraint, SoftOptions};
 use tvf_discretizations::{Conforming, DecComplex, MassLumping, Nonconforming};
 
@@ -60,7 +60,7 @@ impl<H: HodgeComplex> HodgeComplex for Remassed<H> {
     }
 }
 
-fn area(mesh: &SurfaceMesh, face: [usize; 3]) -> f64 {
+fn area(mesh: &TriangleMesh, face: [usize; 3]) -> f64 {
     let p = face.map(|i| mesh.positions()[i]);
     let u = sub(p[1], p[0]);
     let v = sub(p[2], p[0]);
@@ -88,7 +88,7 @@ fn norm(a: [f64; 3]) -> f64 {
 }
 
 /// The consistent P1 mass `Σ_T |T| (1 + δ_ij) / 12` (`V × V`).
-pub fn consistent_p1_mass(mesh: &SurfaceMesh) -> CsMat<f64> {
+pub fn consistent_p1_mass(mesh: &TriangleMesh) -> CsMat<f64> {
     let n = mesh.vertex_count();
     let mut t = TriMat::new((n, n));
     for &f in mesh.faces() {
@@ -105,7 +105,7 @@ pub fn consistent_p1_mass(mesh: &SurfaceMesh) -> CsMat<f64> {
 
 /// The Whitney 1-form mass `∫ ⟨W_e, W_f⟩` (`E × E`) of the edges as DEC numbers and orients them
 /// (`W_(a,b) = λ_a ∇λ_b − λ_b ∇λ_a` for `a < b`).
-pub fn whitney_mass(mesh: &SurfaceMesh) -> CsMat<f64> {
+pub fn whitney_mass(mesh: &TriangleMesh) -> CsMat<f64> {
     let n = mesh.edge_count();
     let mut t = TriMat::new((n, n));
     for (face, edges) in mesh.faces().iter().zip(mesh.face_edges()) {
@@ -140,7 +140,7 @@ pub fn whitney_mass(mesh: &SurfaceMesh) -> CsMat<f64> {
 /// The face mass `M_X` plus `δ Σ_e w_e |v_t − v_u|²` over the interior edges (faces `t`, `u`;
 /// `v` the 3D vector of the face-frame coefficients, `w_e` a third of the two areas): sparse,
 /// symmetric positive definite, coupling the coefficients of faces that share an edge.
-pub fn coupled_face_mass(complex: &Conforming, mesh: &SurfaceMesh, delta: f64) -> CsMat<f64> {
+pub fn coupled_face_mass(complex: &Conforming, mesh: &TriangleMesh, delta: f64) -> CsMat<f64> {
     let sampling = complex.sampling().expect("face fields are sampled");
     let areas = complex.m1().diagonal_values().expect("lumped face mass");
     let n = 2 * mesh.face_count();
@@ -176,7 +176,7 @@ pub fn coupled_face_mass(complex: &Conforming, mesh: &SurfaceMesh, delta: f64) -
 
 /// Conforming (barycentric) with the consistent P1 mass as `M0`.
 pub fn conforming_consistent(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     boundary: BoundaryCondition,
 ) -> Remassed<Conforming> {
     let inner = Conforming::with_boundary(mesh, MassLumping::Barycentric, boundary).unwrap();
@@ -185,14 +185,14 @@ pub fn conforming_consistent(
 }
 
 /// Nonconforming (barycentric) with `M2⁻¹` the consistent P1 mass (`M2` dense).
-pub fn nonconforming_consistent(mesh: &SurfaceMesh) -> Remassed<Nonconforming> {
+pub fn nonconforming_consistent(mesh: &TriangleMesh) -> Remassed<Nonconforming> {
     let inner = Nonconforming::new(mesh, MassLumping::Barycentric).unwrap();
     let m2 = Mass::sparse_inverse("M2 (inverse consistent P1)", consistent_p1_mass(mesh)).unwrap();
     Remassed::new(inner, "nonconforming-consistent", [None, None, Some(m2)])
 }
 
 /// DEC with the consistent P1 mass as `M0` and the Whitney mass as `M1` (`M2 = ⋆2`).
-pub fn whitney_galerkin(mesh: &SurfaceMesh, boundary: BoundaryCondition) -> Remassed<DecComplex> {
+pub fn whitney_galerkin(mesh: &TriangleMesh, boundary: BoundaryCondition) -> Remassed<DecComplex> {
     let inner = DecComplex::with_boundary(mesh, MassLumping::Voronoi, boundary).unwrap();
     let m0 = Mass::sparse("M0 (consistent P1)", consistent_p1_mass(mesh)).unwrap();
     let m1 = Mass::sparse("M1 (Whitney)", whitney_mass(mesh)).unwrap();
@@ -201,14 +201,14 @@ pub fn whitney_galerkin(mesh: &SurfaceMesh, boundary: BoundaryCondition) -> Rema
 
 /// Conforming (barycentric) with `M1` the [`coupled_face_mass`] (`δ = 0.3`): a sparse field
 /// mass on face fields, so that the other family's operators are composed.
-pub fn conforming_coupled_fields(mesh: &SurfaceMesh) -> Remassed<Conforming> {
+pub fn conforming_coupled_fields(mesh: &TriangleMesh) -> Remassed<Conforming> {
     let inner = Conforming::new(mesh, MassLumping::Barycentric).unwrap();
     let m1 = Mass::sparse("M1 (coupled faces)", coupled_face_mass(&inner, mesh, 0.3)).unwrap();
     Remassed::new(inner, "conforming-coupled-fields", [None, Some(m1), None])
 }
 
 /// A flat patch of `2n²` equilateral triangles (Delaunay, one boundary loop).
-pub fn flat_patch(n: usize) -> SurfaceMesh {
+pub fn flat_patch(n: usize) -> TriangleMesh {
     let index = |i: usize, j: usize| j * (n + 1) + i;
     let positions = (0..=n)
         .flat_map(|j| {
@@ -222,7 +222,7 @@ pub fn flat_patch(n: usize) -> SurfaceMesh {
             faces.push([index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)]);
         }
     }
-    SurfaceMesh::new(positions, faces).expect("valid patch")
+    TriangleMesh::new(positions, faces).expect("valid patch")
 }
 
 /// The free field nodes of a complex.

@@ -9,7 +9,7 @@ use std::sync::Mutex;
 
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::generate::{icosphere, perforated_plate};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 use tvf_design::ReducedBasis;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 use tvf_editor::{Editor, EditorServer, EditorSetup};
@@ -83,7 +83,7 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
 /// boundary loops; Delaunay-flipped for entries that need it) with catalog entry `id`, boundary
 /// condition `boundary` and its 60 lowest eigenfields, served on 127.0.0.1; also returns the
 /// mesh.
-pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, SurfaceMesh) {
+pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, TriangleMesh) {
     let entry = catalog_entry(id).expect("catalog id");
     let mesh = if entry.needs_delaunay() {
         tvf_conformance::corpus::delaunay_flips(&perforated_plate(2, 8))

@@ -2,7 +2,7 @@
 //! `--mesh` works on any mesh.
 
 use tvf_core::geometry::{cross, dot, normalize};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 /// Faces seen near the given points of the picture: `targets` are positions in the image plane
 /// of a camera looking along `−to_eye` (with world +y up), in units of the half-extent of the
@@ -10,7 +10,7 @@ use tvf_core::SurfaceMesh;
 /// the facing face whose centroid projects closest is chosen (ties go to the face nearer the
 /// camera), without repeating faces.
 pub fn faces_at_screen_points(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     to_eye: [f64; 3],
     targets: &[[f64; 2]],
 ) -> Vec<usize> {

@@ -6,7 +6,7 @@ use crate::error::RenderError;
 use crate::face_quantities::{face_scalar, FaceQuantity};
 use crate::streamlines::{trace_streamlines, StreamlineOptions};
 use tvf_core::discretization::{DiscretizationError, HodgeComplex};
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 impl FaceData {
     /// The per-face data of `field` (`n1` coefficients of `complex`), whose 3D vectors at the
@@ -38,7 +38,7 @@ impl FaceData {
 /// in the direction of the field), `count` their density ([`StreamlineOptions::count`]; the
 /// other options are the defaults).
 pub fn streamline_polylines(
-    mesh: &SurfaceMesh,
+    mesh: &TriangleMesh,
     vectors: &[[f64; 3]],
     count: usize,
 ) -> Result<Vec<Vec<[f64; 3]>>, RenderError> {

@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 use super::atomic::write_atomically;
 use crate::error::RenderError;
@@ -13,7 +13,7 @@ use crate::error::RenderError;
 /// `l` line (1-based indices). Polylines with fewer than two points are skipped.
 pub fn write_obj(
     path: &Path,
-    mesh: Option<&SurfaceMesh>,
+    mesh: Option<&TriangleMesh>,
     polylines: &[Vec<[f64; 3]>],
 ) -> Result<(), RenderError> {
     if let Some((i, _)) = polylines

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 use super::atomic::write_atomically;
 use super::{check_data, FaceData};
@@ -13,7 +13,7 @@ use crate::error::RenderError;
 /// Writes `mesh` and `data` to `path` as ASCII PLY. Each face element carries
 /// `list uchar int vertex_indices`, then for every vector field `name` the double
 /// properties `name_x name_y name_z`, then one double property per scalar.
-pub fn write_ply(path: &Path, mesh: &SurfaceMesh, data: &FaceData) -> Result<(), RenderError> {
+pub fn write_ply(path: &Path, mesh: &TriangleMesh, data: &FaceData) -> Result<(), RenderError> {
     check_data(mesh, data, "PLY")?;
     write_atomically(path, |w| {
         writeln!(w, "ply")?;

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use tvf_core::SurfaceMesh;
+use tvf_core::TriangleMesh;
 
 use super::atomic::write_atomically;
 use super::{check_data, FaceData};
@@ -14,7 +14,7 @@ use crate::error::RenderError;
 /// (`DATASET POLYDATA`, `POINTS V double`, `POLYGONS F 4F`, `CELL_DATA F` with one
 /// `VECTORS name double` per vector field and one `SCALARS name double 1` per scalar).
 /// Names must be non-empty and contain no whitespace.
-pub fn write_vtk(path: &Path, mesh: &SurfaceMesh, data: &FaceData) -> Result<(), RenderError> {
+pub fn write_vtk(path: &Path, mesh: &TriangleMesh, data: &FaceData) -> Result<(), RenderError> {
     check_data(mesh, data, "VTK")?;
     write_atomically(path, |w| {
         writeln!(w, "# vtk DataFile Version 3.0")?;

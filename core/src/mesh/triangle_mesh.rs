@@ -1,10 +1,10 @@
-//! The [`SurfaceMesh`] type: an oriented, edge-manifold triangle mesh with its topology.
+//! The [`TriangleMesh`] type: an oriented, edge-manifold triangle mesh with its topology.
 
 use super::error::MeshError;
 use super::topology::build_topology;
 use crate::geometry::{cross, norm, sub};
 
-/// Marker in [`SurfaceMesh::edge_faces`] for the missing face of a boundary edge.
+/// Marker in [`TriangleMesh::edge_faces`] for the missing face of a boundary edge.
 pub const NO_FACE: usize = usize::MAX;
 
 /// An oriented, edge-manifold triangle mesh and the topology the discrete operators need.
@@ -14,9 +14,9 @@ pub const NO_FACE: usize = usize::MAX;
 /// - edge `e` is `(a, b)` with `a < b`, and edges are numbered in **lexicographic order of
 ///   `(a, b)`** (tools outside tvf rely on this);
 /// - in face `t = (i0, i1, i2)`, corner `c` is opposite the edge `{i_{c+1}, i_{c+2}}`, and
-///   [`SurfaceMesh::face_edges`]`[t][c]` is that edge.
+///   [`TriangleMesh::face_edges`]`[t][c]` is that edge.
 #[derive(Debug, Clone)]
-pub struct SurfaceMesh {
+pub struct TriangleMesh {
     positions: Vec<[f64; 3]>,
     faces: Vec<[usize; 3]>,
     edges: Vec<[usize; 2]>,
@@ -26,7 +26,7 @@ pub struct SurfaceMesh {
     component_count: usize,
 }
 
-impl SurfaceMesh {
+impl TriangleMesh {
     /// Builds a mesh from vertex positions and counter-clockwise faces (0-based indices).
     ///
     /// Fails on non-finite coordinates, out-of-range or repeated indices, non-manifold edges and
