@@ -19,5 +19,7 @@ pub mod io;
 pub mod mesh;
 
 pub use hash64::Hash64;
-pub use mesh::{MeshError, TriangleMesh, NO_FACE};
+pub use mesh::{
+    FaceList, MeshError, PolygonMesh, SurfaceMesh, SurfacePoint, TriangleMesh, NO_FACE,
+};
 pub use mesh::{ValidationReport, ValidationWarning};

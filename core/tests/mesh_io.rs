@@ -5,7 +5,7 @@ use tvf_core::generate::{genus_surface, icosphere};
 use tvf_core::io::{
     load_mesh, parse_mesh_bytes, save_mesh, write_obj, write_ply, LoadErrorKind, MeshFormat,
 };
-use tvf_core::{MeshError, ValidationWarning};
+use tvf_core::{FaceList, MeshError, ValidationWarning};
 
 const SQUARE_OFF: &str = "OFF\n# a unit square\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n\
                           3 0 1 2\n3 0 2 3\n";
@@ -19,7 +19,11 @@ fn obj_and_ply_round_trips_are_exact() {
         save_mesh(&path, &mesh).unwrap();
         let loaded = load_mesh(&path).unwrap();
         assert_eq!(loaded.mesh.positions(), mesh.positions(), "{name}");
-        assert_eq!(loaded.mesh.faces(), mesh.faces(), "{name}");
+        assert_eq!(
+            loaded.mesh.to_face_list(),
+            FaceList::from_triangles(mesh.faces()),
+            "{name}"
+        );
         assert!(loaded.report.warnings.is_empty());
     }
     // Only the final files exist: no temporary files are left behind.
@@ -66,7 +70,7 @@ fn off_ascii_ply_binary_ply_and_obj_agree() {
     let mut binary = b"ply\nformat binary_little_endian 1.0\nelement vertex 4\n\
                        property double x\nproperty double y\nproperty double z\n\
                        element edge 1\nproperty list uchar ushort vertex_pair\n\
-                       element face 2\nproperty list int uint vertex_indices\n\
+                       element face 1\nproperty list int uint vertex_indices\n\
                        property short flags\nend_header\n"
         .to_vec();
     for p in off.mesh.positions() {
@@ -75,20 +79,30 @@ fn off_ascii_ply_binary_ply_and_obj_agree() {
         }
     }
     binary.extend([2, 0, 0, 1, 0]);
-    for face in [[0u32, 1, 2], [0, 2, 3]] {
-        binary.extend(3i32.to_le_bytes());
+    for face in [[0u32, 1, 2, 3]] {
+        binary.extend(4i32.to_le_bytes());
         for v in face {
             binary.extend(v.to_le_bytes());
         }
         binary.extend(7i16.to_le_bytes());
     }
     let binary = parse_mesh_bytes(&binary, MeshFormat::Ply, "square_bin.ply").unwrap();
-    for other in [&ply, &obj, &binary] {
-        assert_eq!(other.mesh.positions(), off.mesh.positions());
-        assert_eq!(other.mesh.faces(), off.mesh.faces());
+    // The square is one quad in the OBJ and both PLYs (polygons are kept as polygons), two
+    // triangles in the OFF.
+    for other in [&ply, &binary] {
+        assert_eq!(other.mesh.positions(), obj.mesh.positions());
+        assert_eq!(other.mesh.to_face_list(), obj.mesh.to_face_list());
     }
-    assert_eq!(off.mesh.boundary_loops().len(), 1);
+    assert_eq!(obj.mesh.positions(), off.mesh.positions());
+    assert_eq!(obj.mesh.face_count(), 1);
+    assert!(!obj.mesh.is_triangle_mesh() && off.mesh.is_triangle_mesh());
+    assert_eq!(off.mesh.face_count(), 2);
+    for loaded in [&off, &obj] {
+        assert_eq!(loaded.mesh.boundary_loops().len(), 1);
+        assert!((loaded.mesh.total_area() - 1.0).abs() < 1e-15);
+    }
     assert!((off.report.max_angle_deg - 90.0).abs() < 1e-12);
+    assert!((obj.report.max_angle_deg - 90.0).abs() < 1e-12);
 }
 
 #[test]
@@ -236,7 +250,11 @@ fn a_leading_byte_order_mark_is_skipped_in_every_format() {
             plain.mesh.positions(),
             "{format:?}"
         );
-        assert_eq!(marked.mesh.faces(), plain.mesh.faces(), "{format:?}");
+        assert_eq!(
+            marked.mesh.to_face_list(),
+            plain.mesh.to_face_list(),
+            "{format:?}"
+        );
         assert_eq!(marked.report.warnings, plain.report.warnings, "{format:?}");
         assert!((marked.mesh.total_area() - 1.0).abs() < 1e-12, "{format:?}");
     }
@@ -353,7 +371,7 @@ fn big_endian_binary_ply_reads_like_little_endian() {
     )
     .unwrap();
     assert_eq!(big.mesh.positions(), little.mesh.positions());
-    assert_eq!(big.mesh.faces(), little.mesh.faces());
+    assert_eq!(big.mesh.to_face_list(), little.mesh.to_face_list());
     assert_eq!(big.mesh.positions()[3], [0.0, 0.0, 1.0]);
     assert!(big.mesh.is_closed());
     // The same bytes declared little-endian are refused (indices out of range).
@@ -382,7 +400,11 @@ fn odd_encodings_are_read_or_refused_clearly() {
         let read = parse_mesh_bytes(&bytes, MeshFormat::Obj, "odd.obj")
             .unwrap_or_else(|e| panic!("{what}: {e}"));
         assert_eq!(read.mesh.positions(), plain.mesh.positions(), "{what}");
-        assert_eq!(read.mesh.faces(), plain.mesh.faces(), "{what}");
+        assert_eq!(
+            read.mesh.to_face_list(),
+            plain.mesh.to_face_list(),
+            "{what}"
+        );
     }
     let utf16: Vec<u8> = [0xFF, 0xFE]
         .into_iter()

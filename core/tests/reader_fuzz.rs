@@ -29,10 +29,8 @@ fn parse_and_check(bytes: &[u8], format: MeshFormat) {
         Ok(loaded) => {
             let mesh = &loaded.mesh;
             assert!(mesh.face_count() > 0);
-            assert!(mesh
-                .faces()
-                .iter()
-                .flatten()
+            assert!((0..mesh.face_count())
+                .flat_map(|f| mesh.face(f))
                 .all(|&v| v < mesh.vertex_count()));
             assert!(mesh.positions().iter().flatten().all(|x| x.is_finite()));
             assert_eq!(loaded.report.original_vertex.len(), mesh.vertex_count());

@@ -4,7 +4,8 @@ use thiserror::Error;
 
 /// A defect that makes a list of positions and faces unusable as a tvf surface mesh.
 ///
-/// Indices are 0-based positions in the arrays handed to [`crate::TriangleMesh::new`].
+/// Indices are 0-based positions in the arrays handed to [`crate::TriangleMesh::new`] or
+/// [`crate::PolygonMesh::new`].
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum MeshError {
     /// The mesh has no faces.
@@ -78,10 +79,33 @@ pub enum MeshError {
         /// Face whose required orientation contradicts itself.
         face_b: usize,
     },
-    /// A face has zero area (collinear or coincident corners).
+    /// A face has zero area (collinear or coincident corners; for a polygon, a zero vector
+    /// area `½ Σ p_i × p_{i+1}`).
     #[error("face {face} has zero area")]
     ZeroAreaFace {
         /// Face index.
         face: usize,
+    },
+    /// A face lists fewer than three corners.
+    #[error("face {face} has {corners} corners (a face needs at least three)")]
+    TooFewCorners {
+        /// Face index.
+        face: usize,
+        /// Number of corners it lists.
+        corners: usize,
+    },
+    /// A polygon folds over itself: seen from its vector area, some triangle of its display
+    /// triangulation (corner `c`, corner `c + 1`, the polygon's centroid) faces the other way or
+    /// is flat, as for a polygon whose corners wind around its centroid more than once or
+    /// backwards.
+    #[error(
+        "face {face} folds over itself: the triangle from its corner {corner} to the next one and \
+         its centroid faces against the polygon's vector area"
+    )]
+    PolygonFolds {
+        /// Face index.
+        face: usize,
+        /// The first corner (0-based within the face) of a folding triangle.
+        corner: usize,
     },
 }

@@ -40,14 +40,6 @@ pub enum ValidationWarning {
         /// Number of such faces.
         faces: usize,
     },
-    /// Polygons of the file (more than three corners) that are not convex: their fan
-    /// triangulation folds over itself, so areas and everything computed on the mesh are wrong.
-    FoldedPolygons {
-        /// How many polygons fold.
-        count: usize,
-        /// The file line of the first.
-        first_line: usize,
-    },
 }
 
 /// Threshold (degrees) below which an angle is reported by [`ValidationWarning::SmallAngles`].
@@ -61,7 +53,6 @@ impl ValidationWarning {
             Self::DuplicateVertices { .. } => "duplicate_vertices",
             Self::InwardNormals { .. } => "inward_normals",
             Self::SmallAngles { .. } => "small_angles",
-            Self::FoldedPolygons { .. } => "folded_polygons",
         }
     }
 }
@@ -96,16 +87,12 @@ impl fmt::Display for ValidationWarning {
             Self::SmallAngles { faces } => {
                 write!(f, "{faces} faces have an angle below {SMALL_ANGLE_DEG}°")
             }
-            Self::FoldedPolygons { count, first_line } => write!(
-                f,
-                "{count} non-convex polygons were fan-triangulated into folded triangles \
-                 (first: line {first_line}); areas are wrong: triangulate them before loading"
-            ),
         }
     }
 }
 
-/// What [`crate::TriangleMesh::validated`] found besides errors.
+/// What [`crate::TriangleMesh::validated`] and [`crate::SurfaceMesh::validated`] found besides
+/// errors.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidationReport {
     /// Every non-fatal finding, in a fixed order (unreferenced, duplicates, normals, angles).
