@@ -137,7 +137,7 @@ fn own_entry() -> CatalogEntry {
         |mesh, boundary| -> Result<BoxedComplex, _> {
             let lumping = MassLumping::Voronoi;
             Ok(Box::new(FiniteElementComplex::from_spaces_with_boundary(
-                complex_id("own-voronoi", mesh, boundary),
+                complex_id("own-voronoi", mesh.topology(), boundary),
                 mesh,
                 LagrangeP1::new(mesh, lumping)?,
                 CrouzeixRaviart::new(mesh, lumping)?,

@@ -1,6 +1,6 @@
 //! Writers: OBJ (text) and PLY (binary little-endian), always written atomically.
 
-use crate::mesh::MeshFaces;
+use crate::mesh::Mesh;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -25,7 +25,7 @@ pub enum SaveError {
 }
 
 /// Writes `mesh` to `path` as OBJ or PLY, chosen by the extension (case-insensitive).
-pub fn save_mesh<M: MeshFaces + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
+pub fn save_mesh<M: Mesh + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
     let path = path.as_ref();
     let extension = path
         .extension()
@@ -42,8 +42,8 @@ pub fn save_mesh<M: MeshFaces + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Res
 
 /// Writes Wavefront OBJ: `v x y z` (shortest decimal that reads back to the same `f64`) and
 /// 1-based `f i j k …` lines (one per face, polygons as polygons), vertex and face order kept.
-pub fn write_obj<M: MeshFaces + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
-    let (positions, faces) = (mesh.vertex_positions(), mesh.face_corners());
+pub fn write_obj<M: Mesh + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
+    let (positions, faces) = (mesh.positions(), mesh.face_corners());
     write_atomically(path.as_ref(), |out| {
         writeln!(
             out,
@@ -67,8 +67,8 @@ pub fn write_obj<M: MeshFaces + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Res
 
 /// Writes binary little-endian PLY: `double x, y, z` per vertex and a `uchar`-counted `uint`
 /// index list per face (`uint`-counted when a face has more than 255 corners).
-pub fn write_ply<M: MeshFaces + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
-    let (positions, faces) = (mesh.vertex_positions(), mesh.face_corners());
+pub fn write_ply<M: Mesh + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
+    let (positions, faces) = (mesh.positions(), mesh.face_corners());
     let wide = (0..faces.face_count()).any(|f| faces.corners(f).len() > 255);
     write_atomically(path.as_ref(), |out| {
         write!(

@@ -19,16 +19,6 @@ pub trait FaceCorners {
     fn total_corners(&self) -> usize;
 }
 
-/// Vertex positions and faces as corner lists: what code needs that works the same on triangle,
-/// polygon and general meshes (the writers, exports).
-pub trait MeshFaces {
-    /// Vertex positions, `V` entries.
-    fn vertex_positions(&self) -> &[[f64; 3]];
-
-    /// The faces as corner lists.
-    fn face_corners(&self) -> &dyn FaceCorners;
-}
-
 impl FaceCorners for [[usize; 3]] {
     fn face_count(&self) -> usize {
         self.len()

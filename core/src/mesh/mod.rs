@@ -2,6 +2,7 @@
 //! complex is built on, either of them ([`SurfaceMesh`]); their topology, surface points,
 //! display triangulation, validation and errors.
 
+mod any_mesh;
 mod display_triangulation;
 mod error;
 mod face_list;
@@ -16,9 +17,10 @@ mod triangle_mesh;
 mod validate;
 mod validation_report;
 
+pub use any_mesh::Mesh;
 pub use display_triangulation::DisplayTriangulation;
 pub use error::MeshError;
-pub use face_list::{FaceCorners, FaceList, MeshFaces};
+pub use face_list::{FaceCorners, FaceList};
 pub use geometry_range::GeometryRangeError;
 pub use polygon_mesh::PolygonMesh;
 pub use quality::triangle_angles;

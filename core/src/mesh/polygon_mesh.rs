@@ -1,9 +1,10 @@
 //! The [`PolygonMesh`] type: an oriented, edge-manifold mesh of polygons of any size ≥ 3,
 //! possibly non-planar, with its topology and its display triangulation.
 
+use super::any_mesh::Mesh;
 use super::display_triangulation::DisplayTriangulation;
 use super::error::MeshError;
-use super::face_list::{FaceCorners, FaceList, MeshFaces};
+use super::face_list::{FaceCorners, FaceList};
 use super::topology::{build_topology, MeshTopology};
 use super::validate::{polygon_centroid, polygon_vector_area};
 use super::TriangleMesh;
@@ -135,12 +136,20 @@ impl PolygonMesh {
     }
 }
 
-impl MeshFaces for PolygonMesh {
-    fn vertex_positions(&self) -> &[[f64; 3]] {
+impl Mesh for PolygonMesh {
+    fn positions(&self) -> &[[f64; 3]] {
         &self.positions
     }
 
     fn face_corners(&self) -> &dyn FaceCorners {
         &self.faces
+    }
+
+    fn face_edge(&self, f: usize, c: usize) -> usize {
+        self.corner_edges[self.faces.corner_index(f, c)]
+    }
+
+    fn topology(&self) -> &MeshTopology {
+        &self.topology
     }
 }

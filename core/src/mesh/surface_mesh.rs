@@ -2,8 +2,9 @@
 //! a polygon mesh — with what both offer: topology, per-face geometry, surface points and a
 //! display triangulation.
 
+use super::any_mesh::Mesh;
 use super::error::MeshError;
-use super::face_list::{FaceCorners, FaceList, MeshFaces};
+use super::face_list::{FaceCorners, FaceList};
 use super::surface_point::{SurfacePoint, SurfacePointError};
 use super::topology::MeshTopology;
 use super::validate::{check_combinatorics, check_polygon_geometry, KeptVertices};
@@ -169,8 +170,8 @@ impl SurfaceMesh {
     /// The faces as corner lists.
     pub fn faces(&self) -> &dyn FaceCorners {
         match self {
-            Self::Triangles(mesh) => mesh.face_corners(),
-            Self::Polygons(mesh) => mesh.face_corners(),
+            Self::Triangles(mesh) => Mesh::face_corners(mesh),
+            Self::Polygons(mesh) => mesh.faces(),
         }
     }
 
@@ -244,16 +245,11 @@ impl SurfaceMesh {
         }
     }
 
-    /// The average of the corners of face `f`.
+    /// The average of the corners of face `f` (`(p_0 + … + p_{n−1}) / n`).
     pub fn face_centroid(&self, f: usize) -> [f64; 3] {
         let corners = self.face(f);
-        let mut sum = [0.0; 3];
-        for &v in corners {
-            for (k, s) in sum.iter_mut().enumerate() {
-                *s += self.positions()[v][k];
-            }
-        }
-        scale(sum, 1.0 / corners.len() as f64)
+        let n = corners.len() as f64;
+        std::array::from_fn(|k| corners.iter().map(|&v| self.positions()[v][k]).sum::<f64>() / n)
     }
 
     /// Whether the mesh has no boundary edge.
@@ -475,12 +471,20 @@ fn polygon_angle_range(mesh: &PolygonMesh) -> (f64, f64, usize) {
     (min, max, small)
 }
 
-impl MeshFaces for SurfaceMesh {
-    fn vertex_positions(&self) -> &[[f64; 3]] {
-        self.positions()
+impl Mesh for SurfaceMesh {
+    fn positions(&self) -> &[[f64; 3]] {
+        SurfaceMesh::positions(self)
     }
 
     fn face_corners(&self) -> &dyn FaceCorners {
-        self.faces()
+        SurfaceMesh::faces(self)
+    }
+
+    fn face_edge(&self, f: usize, c: usize) -> usize {
+        SurfaceMesh::face_edge(self, f, c)
+    }
+
+    fn topology(&self) -> &MeshTopology {
+        SurfaceMesh::topology(self)
     }
 }

@@ -1,7 +1,8 @@
 //! The [`TriangleMesh`] type: an oriented, edge-manifold triangle mesh with its topology.
 
+use super::any_mesh::Mesh;
 use super::error::MeshError;
-use super::face_list::{FaceCorners, MeshFaces};
+use super::face_list::FaceCorners;
 use super::topology::{build_topology, MeshTopology};
 use crate::geometry::{cross, norm, sub};
 
@@ -192,12 +193,20 @@ impl TriangleMesh {
     }
 }
 
-impl MeshFaces for TriangleMesh {
-    fn vertex_positions(&self) -> &[[f64; 3]] {
+impl Mesh for TriangleMesh {
+    fn positions(&self) -> &[[f64; 3]] {
         &self.positions
     }
 
     fn face_corners(&self) -> &dyn FaceCorners {
         &self.faces
+    }
+
+    fn face_edge(&self, f: usize, c: usize) -> usize {
+        self.face_edges[f][(c + 2) % 3]
+    }
+
+    fn topology(&self) -> &MeshTopology {
+        &self.topology
     }
 }

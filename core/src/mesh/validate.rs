@@ -419,10 +419,11 @@ pub fn polygon_vector_area(corners: &[[f64; 3]]) -> [f64; 3] {
     scale(sum, 0.5)
 }
 
-/// The average of a polygon's corners (its "centroid" in de Goes et al. 2020).
+/// The average of a polygon's corners, `(p_0 + … + p_{n−1}) / n` (its "centroid" in de Goes et
+/// al. 2020).
 pub fn polygon_centroid(corners: &[[f64; 3]]) -> [f64; 3] {
-    let sum = corners.iter().fold([0.0; 3], |s, &p| add(s, p));
-    scale(sum, 1.0 / corners.len() as f64)
+    let n = corners.len() as f64;
+    std::array::from_fn(|k| corners.iter().map(|p| p[k]).sum::<f64>() / n)
 }
 
 /// Reports referenced vertices whose position (bit for bit, `-0.0 = 0.0`) repeats an earlier one.
