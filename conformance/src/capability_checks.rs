@@ -10,7 +10,7 @@ use crate::reference_formulas::explicit_divergence_and_curl;
 use tvf_core::discretization::sparse::{mul_vec, product, transpose};
 use tvf_core::discretization::{FieldSampling, HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// Barycentric points every sampling check visits: the centroid, near each corner, on an edge.
 pub const SAMPLE_POINTS: [[f64; 3]; 5] = [
@@ -24,7 +24,7 @@ pub const SAMPLE_POINTS: [[f64; 3]; 5] = [
 /// The sampled vector `Σ w_i x_i` at a point.
 pub fn sample(sampling: &dyn FieldSampling, field: &[f64], face: usize, b: [f64; 3]) -> [f64; 3] {
     let mut v = [0.0; 3];
-    for (i, w) in sampling.sample_weights(face, b) {
+    for (i, w) in sampling.sample_weights(&SurfacePoint::barycentric(face, b)) {
         for k in 0..3 {
             v[k] += w[k] * field[i];
         }
@@ -73,9 +73,12 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
     }
     let random = random_field(complex, 5);
     for t in 0..mesh.face_count() {
-        let names_fixed = SAMPLE_POINTS
-            .iter()
-            .any(|&b| sampling.sample_weights(t, b).iter().any(|&(i, _)| fixed[i]));
+        let names_fixed = SAMPLE_POINTS.iter().any(|&b| {
+            sampling
+                .sample_weights(&SurfacePoint::barycentric(t, b))
+                .iter()
+                .any(|&(i, _)| fixed[i])
+        });
         assert!(
             !names_fixed,
             "a sampling weight of face {t} names a fixed field node"
@@ -199,12 +202,12 @@ pub fn check_point_evaluation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
             for (what, weights, n) in [
                 (
                     "potential",
-                    evaluation.potential_weights(t, b),
+                    evaluation.potential_weights(&SurfacePoint::barycentric(t, b)),
                     complex.potential_dimension(),
                 ),
                 (
                     "co-potential",
-                    evaluation.co_potential_weights(t, b),
+                    evaluation.co_potential_weights(&SurfacePoint::barycentric(t, b)),
                     complex.co_potential_dimension(),
                 ),
             ] {
@@ -221,7 +224,7 @@ pub fn check_point_evaluation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
             let point: [f64; 3] =
                 std::array::from_fn(|k| (0..3).map(|c| b[c] * mesh.corner(t, c)[k]).sum());
             let value: f64 = evaluation
-                .potential_weights(t, b)
+                .potential_weights(&SurfacePoint::barycentric(t, b))
                 .iter()
                 .map(|&(i, w)| w * values[i])
                 .sum();

@@ -23,7 +23,7 @@ use std::time::Instant;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{hemisphere, icosphere};
 use tvf_core::geometry::{norm, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_discretizations::CatalogEntry;
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily};
 
@@ -133,7 +133,7 @@ impl<'a> Candidate<'a> {
     pub fn from_entry(entry: &'a CatalogEntry) -> Self {
         Self::new(entry.id(), move |mesh, boundary| {
             entry
-                .build_with(mesh, boundary)
+                .build_with(&SurfaceMesh::from(mesh.clone()), boundary)
                 .map_err(|e| format!("cannot build (needs: {}): {e}", entry.preconditions()))
         })
     }

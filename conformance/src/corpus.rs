@@ -355,13 +355,20 @@ pub fn shared_corpus(corpus: Corpus) -> Vec<CorpusMesh> {
             eprintln!("skipping {}: not present", path.display());
             continue;
         }
-        match tvf_core::io::load_mesh(&path) {
-            Ok(loaded) if loaded.mesh.is_closed() => {
-                meshes.push(CorpusMesh::new(file, loaded.mesh, genus))
-            }
-            // The raw bunny: genus 0, 5 boundary loops, so 4 harmonic fields.
-            Ok(loaded) => meshes.push(CorpusMesh::open(file, loaded.mesh, genus, 4)),
+        let mesh = match tvf_core::io::load_mesh(&path) {
+            Ok(loaded) => match loaded.mesh {
+                tvf_core::SurfaceMesh::Triangles(mesh) => mesh,
+                tvf_core::SurfaceMesh::Polygons(_) => {
+                    panic!("{} is not a triangle mesh", path.display())
+                }
+            },
             Err(error) => panic!("{} exists but does not load: {error}", path.display()),
+        };
+        if mesh.is_closed() {
+            meshes.push(CorpusMesh::new(file, mesh, genus))
+        } else {
+            // The raw bunny: genus 0, 5 boundary loops, so 4 harmonic fields.
+            meshes.push(CorpusMesh::open(file, mesh, genus, 4))
         }
     }
     meshes

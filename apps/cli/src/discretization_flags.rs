@@ -11,7 +11,7 @@ use clap::error::ErrorKind;
 use clap::{ArgMatches, Args};
 use std::path::PathBuf;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     parse_boundary_condition, requested_catalog_id, BoxedComplex, Catalog, DEFAULT_DISCRETIZATION,
 };
@@ -78,7 +78,7 @@ impl DiscretizationFlags {
     pub fn build(
         &self,
         catalog: &Catalog,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         input: &MeshInput,
     ) -> Result<BoxedComplex> {
         if let Some(dir) = &self.complex {

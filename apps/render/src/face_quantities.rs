@@ -17,6 +17,7 @@ use tvf_core::discretization::{
     DiscretizationError, HodgeComplex, HodgeOperators, PointEvaluation,
 };
 use tvf_core::geometry::norm;
+use tvf_core::SurfaceMesh;
 
 /// Which per-face scalar colours the surface.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -75,18 +76,19 @@ enum Space {
     CoPotentials,
 }
 
-/// Values at each face's centroid of a nodal function of `space` (`F` entries).
+/// Values at each face's centroid of `mesh` of a nodal function of `space` (`F` entries).
 fn at_centroids(
     evaluation: &dyn PointEvaluation,
     space: Space,
     nodal: &[f64],
-    faces: usize,
+    mesh: &SurfaceMesh,
 ) -> Vec<f64> {
-    (0..faces)
+    (0..mesh.face_count())
         .map(|t| {
+            let centroid = mesh.centroid_point(t);
             let weights = match space {
-                Space::Potentials => evaluation.potential_weights(t, [1.0 / 3.0; 3]),
-                Space::CoPotentials => evaluation.co_potential_weights(t, [1.0 / 3.0; 3]),
+                Space::Potentials => evaluation.potential_weights(&centroid),
+                Space::CoPotentials => evaluation.co_potential_weights(&centroid),
             };
             weights.iter().map(|&(i, w)| w * nodal[i]).sum()
         })
@@ -103,40 +105,40 @@ fn nodal_curl<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> Vec<f64> 
     complex.co_potential_curl().apply(field)
 }
 
-/// The per-face scalar `kind` of `field` (`n1` coefficients of the complex) whose 3D vectors at
-/// the face centroids are `vectors`; `None` for [`FaceQuantity::None`]. Divergence, curl and energy
-/// need the complex's point evaluation.
+/// The per-face scalar `kind` of `field` (`n1` coefficients of the complex, built on `mesh`)
+/// whose 3D vectors at the face centroids are `vectors`; `None` for [`FaceQuantity::None`].
+/// Divergence, curl and energy need the complex's point evaluation.
 pub fn face_scalar<H: HodgeComplex + ?Sized>(
     complex: &H,
+    mesh: &SurfaceMesh,
     kind: FaceQuantity,
     field: &[f64],
     vectors: &[[f64; 3]],
 ) -> Result<Option<Vec<f64>>, DiscretizationError> {
-    let faces = vectors.len();
     Ok(match kind {
         FaceQuantity::Magnitude => Some(vectors.iter().map(|&v| norm(v)).collect()),
         FaceQuantity::Divergence => Some(at_centroids(
             complex.require_point_evaluation()?,
             Space::Potentials,
             &nodal_divergence(complex, field),
-            faces,
+            mesh,
         )),
         FaceQuantity::Curl => Some(at_centroids(
             complex.require_point_evaluation()?,
             Space::CoPotentials,
             &nodal_curl(complex, field),
-            faces,
+            mesh,
         )),
-        FaceQuantity::Energy => Some(energy_density(complex, field, faces)?),
+        FaceQuantity::Energy => Some(energy_density(complex, field, mesh)?),
         FaceQuantity::None => None,
     })
 }
 
-/// Dirichlet energy density per face (see the module documentation).
+/// Dirichlet energy density per face of `mesh` (see the module documentation).
 pub fn energy_density<H: HodgeComplex + ?Sized>(
     complex: &H,
     field: &[f64],
-    faces: usize,
+    mesh: &SurfaceMesh,
 ) -> Result<Vec<f64>, DiscretizationError> {
     let evaluation = complex.require_point_evaluation()?;
     let div2: Vec<f64> = nodal_divergence(complex, field)
@@ -144,8 +146,8 @@ pub fn energy_density<H: HodgeComplex + ?Sized>(
         .map(|x| x * x)
         .collect();
     let curl2: Vec<f64> = nodal_curl(complex, field).iter().map(|x| x * x).collect();
-    let a = at_centroids(evaluation, Space::Potentials, &div2, faces);
-    let b = at_centroids(evaluation, Space::CoPotentials, &curl2, faces);
+    let a = at_centroids(evaluation, Space::Potentials, &div2, mesh);
+    let b = at_centroids(evaluation, Space::CoPotentials, &curl2, mesh);
     Ok(a.iter().zip(&b).map(|(x, y)| x + y).collect())
 }
 

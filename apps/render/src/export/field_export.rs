@@ -6,14 +6,16 @@ use crate::error::RenderError;
 use crate::face_quantities::{face_scalar, FaceQuantity};
 use crate::streamlines::{trace_streamlines, StreamlineOptions};
 use tvf_core::discretization::{DiscretizationError, HodgeComplex};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 impl FaceData {
-    /// The per-face data of `field` (`n1` coefficients of `complex`), whose 3D vectors at the
-    /// face centroids are `vectors`: the vector `field`, then the scalars `magnitude`,
-    /// `divergence`, `curl` and `energy` (as `tvf render --color` draws them, [`face_scalar`]).
+    /// The per-face data of `field` (`n1` coefficients of `complex`, built on `mesh`), whose 3D
+    /// vectors at the face centroids are `vectors`: the vector `field`, then the scalars
+    /// `magnitude`, `divergence`, `curl` and `energy` (as `tvf render --color` draws them,
+    /// [`face_scalar`]).
     pub fn of_field<H: HodgeComplex + ?Sized>(
         complex: &H,
+        mesh: &SurfaceMesh,
         field: &[f64],
         vectors: Vec<[f64; 3]>,
     ) -> Result<Self, DiscretizationError> {
@@ -24,7 +26,7 @@ impl FaceData {
             FaceQuantity::Curl,
             FaceQuantity::Energy,
         ] {
-            let values = face_scalar(complex, kind, field, &vectors)?;
+            let values = face_scalar(complex, mesh, kind, field, &vectors)?;
             scalars.extend(values.map(|v| (kind.label().to_string(), v)));
         }
         Ok(Self {
@@ -34,11 +36,11 @@ impl FaceData {
     }
 }
 
-/// The streamlines of the face vectors `vectors` on `mesh` as polylines (points on the surface,
-/// in the direction of the field), `count` their density ([`StreamlineOptions::count`]; the
-/// other options are the defaults).
+/// The streamlines of the face vectors `vectors` (one per face of `mesh`) as polylines (points
+/// on the surface, in the direction of the field; traced on the display triangulation),
+/// `count` their density ([`StreamlineOptions::count`]; the other options are the defaults).
 pub fn streamline_polylines(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     vectors: &[[f64; 3]],
     count: usize,
 ) -> Result<Vec<Vec<[f64; 3]>>, RenderError> {
@@ -46,7 +48,7 @@ pub fn streamline_polylines(
         count,
         ..Default::default()
     };
-    let lines = trace_streamlines(mesh, vectors, &options)?;
+    let lines = trace_streamlines(mesh.display(), &mesh.on_display(vectors), &options)?;
     Ok(lines.into_iter().map(|line| line.points).collect())
 }
 

@@ -8,7 +8,7 @@ use crate::{load_basis, read_basis_header, BasisFileError, BasisFileKey, Spectra
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{split_complex_id, BoxedComplex, Catalog, CatalogBuildError};
 
 /// Why a basis file cannot be used on a mesh (every variant names the file).
@@ -96,7 +96,7 @@ pub fn basis_file_complex_id(
 pub fn basis_file_complex(
     catalog: &Catalog,
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     entry: Option<&str>,
     boundary: Option<BoundaryCondition>,
 ) -> Result<BoxedComplex, BasisFileUseError> {
@@ -117,7 +117,7 @@ pub fn basis_file_complex(
 pub fn open_basis_file(
     catalog: &Catalog,
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     entry: Option<&str>,
     boundary: Option<BoundaryCondition>,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
@@ -130,7 +130,7 @@ pub fn open_basis_file(
 /// ([`BasisFileError::WrongMatrices`] names the matrices that differ).
 pub fn open_basis_file_with(
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: BoxedComplex,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
     let basis = load_basis(
