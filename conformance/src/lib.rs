@@ -85,8 +85,9 @@
 //! # fn main() {}
 //! ```
 //!
-//! Every built-in entry has its suite line in `conformance/tests/conformance.rs` through
-//! [`catalog_suites!`], which fails when one is missing.
+//! Every built-in entry has its suite line in
+//! `conformance/tests/conformance/catalog_suites.rs` through [`catalog_suites!`], which fails
+//! when one is missing.
 //! Dense eigenvalue checks run when `n1 ≤` [`corpus::DENSE_LIMIT`], dense eigenvector checks when
 //! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; the kernel dimension on larger and real meshes is checked
 //! through the rank of harmonic projections.
