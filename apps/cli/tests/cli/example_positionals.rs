@@ -51,12 +51,6 @@ fn every_mesh_and_field_subcommand_takes_an_example_and_a_field() {
     let field = d("field.txt");
     write_field(&field, &mesh);
     let cache = d("cache");
-    let basis = [
-        &"-k" as &dyn AsRef<std::ffi::OsStr>,
-        &"24",
-        &"--cache-dir",
-        &cache,
-    ];
 
     // Same output with the example and with the file (decompose: deterministic files).
     for (source, out) in [("example", d("parts-example")), ("file", d("parts-file"))] {
@@ -82,86 +76,66 @@ fn every_mesh_and_field_subcommand_takes_an_example_and_a_field() {
         );
     }
 
-    let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![
-        &"coefficients",
-        &"--example",
-        &"icosphere",
-        &field,
-        &"--json",
+    // The subcommands that work in a basis, with `--example icosphere`, one positional and the
+    // basis flags; `@NAME` is the file NAME in the folder, and the file each must write (none for
+    // coefficients: its JSON on stdout). Compress runs before decompress, which reads its file.
+    let runs: [(&[&str], &str); 6] = [
+        (&["coefficients", "@field.txt", "--json"], ""),
+        (
+            &["filter", "@field.txt", "-o", "@filtered.npy"],
+            "filtered.npy",
+        ),
+        (
+            &["analyze", "@field.txt", "-o", "@analysis"],
+            "analysis/spectrum.png",
+        ),
+        (
+            &[
+                "compress",
+                "@field.txt",
+                "--pairs",
+                "8",
+                "-o",
+                "@field.tvfc",
+            ],
+            "field.tvfc",
+        ),
+        (
+            &["decompress", "@field.tvfc", "-o", "@decompressed.npy"],
+            "decompressed.npy",
+        ),
+        (
+            &[
+                "rate-distortion",
+                "@field.txt",
+                "--pairs",
+                "2,4",
+                "-o",
+                "@rd",
+            ],
+            "rd/rate_distortion.csv",
+        ),
     ];
-    args.extend(basis);
-    let json: serde_json::Value =
-        serde_json::from_str(&succeeded(&tvf(&args), "coefficients")).unwrap();
+    let mut coefficients = String::new();
+    for (args, written) in runs {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_tvf"));
+        command.arg(args[0]).args(["--example", "icosphere"]);
+        for arg in &args[1..] {
+            match arg.strip_prefix('@') {
+                Some(name) => command.arg(d(name)),
+                None => command.arg(arg),
+            };
+        }
+        command.args(["-k", "24", "--cache-dir"]).arg(&cache);
+        let stdout = succeeded(&command.output().unwrap(), args[0]);
+        if written.is_empty() {
+            coefficients = stdout;
+        } else {
+            assert!(d(written).is_file(), "{args:?}: no {written}");
+        }
+    }
+    let json: serde_json::Value = serde_json::from_str(&coefficients).unwrap();
     assert_eq!(json["coefficients"].as_array().unwrap().len(), 24);
-
-    let filtered = d("filtered.npy");
-    let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![
-        &"filter",
-        &"--example",
-        &"icosphere",
-        &field,
-        &"-o",
-        &filtered,
-    ];
-    args.extend(basis);
-    succeeded(&tvf(&args), "filter");
-    assert!(filtered.is_file());
-
-    let analysis = d("analysis");
-    let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![
-        &"analyze",
-        &"--example",
-        &"icosphere",
-        &field,
-        &"-o",
-        &analysis,
-    ];
-    args.extend(basis);
-    succeeded(&tvf(&args), "analyze");
-    assert!(analysis.join("spectrum.png").is_file());
-
-    let compressed = d("field.tvfc");
-    let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![
-        &"compress",
-        &"--example",
-        &"icosphere",
-        &field,
-        &"--pairs",
-        &"8",
-        &"-o",
-        &compressed,
-    ];
-    args.extend(basis);
-    succeeded(&tvf(&args), "compress");
-    assert!(compressed.is_file());
-
-    let decompressed = d("decompressed.npy");
-    let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![
-        &"decompress",
-        &"--example",
-        &"icosphere",
-        &compressed,
-        &"-o",
-        &decompressed,
-    ];
-    args.extend(basis);
-    succeeded(&tvf(&args), "decompress");
-    assert!(decompressed.is_file());
-
-    let rd = d("rd");
-    let mut args: Vec<&dyn AsRef<std::ffi::OsStr>> = vec![
-        &"rate-distortion",
-        &"--example",
-        &"icosphere",
-        &field,
-        &"--pairs",
-        &"2,4",
-        &"-o",
-        &rd,
-    ];
-    args.extend(basis);
-    succeeded(&tvf(&args), "rate-distortion");
-    assert!(rd.join("rate_distortion.csv").is_file());
 
     let vtk = d("field.vtk");
     succeeded(
@@ -207,72 +181,67 @@ fn render_takes_an_example_and_a_field() {
 /// usage errors with exit code 2 and a message.
 #[test]
 fn misusing_example_is_a_usage_error() {
-    let cases: [&[&str]; 6] = [
-        &[
-            "filter",
-            "--example",
-            "icosphere",
-            "a.npy",
-            "b.npy",
-            "-o",
-            "x.npy",
-        ],
-        &[
-            "render",
-            "--example",
-            "icosphere",
-            "a.npy",
-            "b.npy",
-            "-o",
-            "x.png",
-        ],
-        &["decompose", "--example", "icosphere", "-o", "parts"],
-        &["decompress", "--example", "icosphere", "-o", "x.npy"],
-        &[
-            "basis",
-            "mesh.obj",
-            "--example",
-            "icosphere",
-            "-k",
-            "4",
-            "-o",
-            "b.tvfb",
-        ],
-        &["render", "--example", "icosphere", "--parts", "-o", "x.png"],
+    // The arguments and what the message must name besides `error:`.
+    let cases: [(&[&str], &[&str]); 6] = [
+        (
+            &[
+                "filter",
+                "--example",
+                "icosphere",
+                "a.npy",
+                "b.npy",
+                "-o",
+                "x.npy",
+            ],
+            &["--example replaces MESH", "b.npy"],
+        ),
+        (
+            &[
+                "render",
+                "--example",
+                "icosphere",
+                "a.npy",
+                "b.npy",
+                "-o",
+                "x.png",
+            ],
+            &[],
+        ),
+        (
+            &["decompose", "--example", "icosphere", "-o", "parts"],
+            &["<FIELD>"],
+        ),
+        (
+            &["decompress", "--example", "icosphere", "-o", "x.npy"],
+            &[],
+        ),
+        (
+            &[
+                "basis",
+                "mesh.obj",
+                "--example",
+                "icosphere",
+                "-k",
+                "4",
+                "-o",
+                "b.tvfb",
+            ],
+            &[],
+        ),
+        (
+            &["render", "--example", "icosphere", "--parts", "-o", "x.png"],
+            &[],
+        ),
     ];
-    for args in cases {
+    for (args, names) in cases {
         let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
             .args(args)
             .output()
             .unwrap();
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
-        assert!(stderr.contains("error:"), "{args:?}: {stderr}");
+        for name in ["error:"].iter().chain(names) {
+            assert!(stderr.contains(name), "{args:?}: no {name} in {stderr}");
+        }
     }
-    let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
-        .args([
-            "filter",
-            "--example",
-            "icosphere",
-            "a.npy",
-            "b.npy",
-            "-o",
-            "x.npy",
-        ])
-        .output()
-        .unwrap();
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        stderr.contains("--example replaces MESH") && stderr.contains("b.npy"),
-        "{stderr}"
-    );
-    let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
-        .args(["decompose", "--example", "icosphere", "-o", "parts"])
-        .output()
-        .unwrap();
-    assert!(
-        String::from_utf8_lossy(&output.stderr).contains("<FIELD>"),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
 }

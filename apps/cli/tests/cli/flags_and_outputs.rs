@@ -47,64 +47,113 @@ fn json(stdout: &str) -> serde_json::Value {
 }
 
 /// `-k 12` means 12 eigenfields in `basis`, `spectrum`, the cached bases of `coefficients`
-/// and `filter`, and in `spline`: all see the same 12 lowest eigenvalues.
+/// and `filter`, and in `spline`: all see the same 12 lowest eigenvalues; `K ≥ 2F` is the
+/// complete basis.
 #[test]
 fn k_is_the_number_of_eigenfields_in_every_subcommand() {
     let dir = tempfile::tempdir().unwrap();
     let (mesh, m) = write_mesh(dir.path());
-    let field = dir.path().join("field.txt");
-    std::fs::write(&field, swirl_text(&mesh, 0.0)).unwrap();
-    let f = field.to_str().unwrap();
-    let cache = dir.path().join("cache");
-    let cache = cache.to_str().unwrap();
-
-    let (spectrum, _) = succeeded(&tvf(&["spectrum", &m, "-k", "12", "--json"]), "spectrum");
-    let spectrum: Vec<f64> = json(&spectrum)["eigenvalues"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|v| v.as_f64().unwrap())
-        .collect();
-    assert_eq!(spectrum.len(), 12);
-
-    let basis = dir.path().join("b.tvfb");
-    let b = basis.to_str().unwrap();
-    let (_, stderr) = succeeded(&tvf(&["basis", &m, "-k", "12", "-o", b]), "basis");
-    assert!(stderr.contains("12 fields"), "{stderr}");
-
-    let eigenvalues_of = |stdout: &str| -> Vec<f64> {
-        json(stdout)["coefficients"]
+    std::fs::write(dir.path().join("field.txt"), swirl_text(&mesh, 0.0)).unwrap();
+    std::fs::write(
+        dir.path().join("c.json"),
+        r#"{"constraints": [{"id": "a", "kind": "vector", "face": 5, "value": [1, 0, 0]}]}"#,
+    )
+    .unwrap();
+    let complete = format!("{} fields", 2 * mesh.face_count());
+    // The runs in order (after the subcommand comes the mesh; `@NAME` is the file NAME in the
+    // folder), what stdout and stderr must contain. The cache entry the first `-k 12` run with
+    // `--cache-dir` makes is reused by the later ones.
+    let runs: [(&[&str], &str, &str); 8] = [
+        (&["spectrum", "-k", "12", "--json"], "eigenvalues", ""),
+        (&["basis", "-k", "12", "-o", "@b.tvfb"], "", "12 fields"),
+        (
+            &["coefficients", "@field.txt", "--basis", "@b.tvfb", "--json"],
+            "coefficients",
+            "",
+        ),
+        (
+            &[
+                "coefficients",
+                "@field.txt",
+                "-k",
+                "12",
+                "--cache-dir",
+                "@cache",
+                "--json",
+            ],
+            "coefficients",
+            "cached basis in",
+        ),
+        (
+            &[
+                "filter",
+                "@field.txt",
+                "-k",
+                "12",
+                "--cache-dir",
+                "@cache",
+                "-o",
+                "@filtered.npy",
+            ],
+            "",
+            "using cached basis",
+        ),
+        (
+            &[
+                "spline",
+                "--constraints",
+                "@c.json",
+                "-k",
+                "12",
+                "--cache-dir",
+                "@cache",
+                "-o",
+                "@spline.npy",
+            ],
+            "d = 12",
+            "using cached basis",
+        ),
+        (
+            &["basis", "-k", "100000", "-o", "@complete.tvfb"],
+            "",
+            &complete,
+        ),
+        (&["spectrum", "-k", "100000", "--json"], "eigenvalues", ""),
+    ];
+    let mut stdouts = Vec::new();
+    for (args, on_stdout, on_stderr) in runs {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_tvf"));
+        command.arg(args[0]).arg(&m);
+        for arg in &args[1..] {
+            match arg.strip_prefix('@') {
+                Some(name) => command.arg(dir.path().join(name)),
+                None => command.arg(arg),
+            };
+        }
+        let (stdout, stderr) = succeeded(&command.output().unwrap(), args[0]);
+        assert!(stdout.contains(on_stdout), "{args:?}: {stdout}");
+        assert!(stderr.contains(on_stderr), "{args:?}: {stderr}");
+        stdouts.push(stdout);
+    }
+    let values = |stdout: &str, list: &str, key: Option<&str>| -> Vec<f64> {
+        json(stdout)[list]
             .as_array()
             .unwrap()
             .iter()
-            .map(|c| c["eigenvalue"].as_f64().unwrap())
+            .map(|v| key.map_or(v, |k| &v[k]).as_f64().unwrap())
             .collect()
     };
-    let (from_file, _) = succeeded(
-        &tvf(&["coefficients", &m, f, "--basis", b, "--json"]),
-        "coefficients --basis",
-    );
-    let (cached, stderr) = succeeded(
-        &tvf(&[
-            "coefficients",
-            &m,
-            f,
-            "-k",
-            "12",
-            "--cache-dir",
-            cache,
-            "--json",
-        ]),
-        "coefficients -k",
-    );
-    assert!(stderr.contains("cached basis in"), "{stderr}");
-    for eigenvalues in [eigenvalues_of(&from_file), eigenvalues_of(&cached)] {
+    let spectrum = values(&stdouts[0], "eigenvalues", None);
+    assert_eq!(spectrum.len(), 12);
+    for stdout in &stdouts[2..4] {
+        let eigenvalues = values(stdout, "coefficients", Some("eigenvalue"));
         assert_eq!(eigenvalues.len(), 12);
         for (a, b) in eigenvalues.iter().zip(&spectrum) {
             assert!((a - b).abs() <= 1e-8 * b.abs().max(1.0), "{a} vs {b}");
         }
     }
-    let names: Vec<String> = std::fs::read_dir(cache)
+    // One cache entry, named for the discretization and the 12 fields.
+    let names: Vec<String> = std::fs::read_dir(dir.path().join("cache"))
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
@@ -113,74 +162,8 @@ fn k_is_the_number_of_eigenfields_in_every_subcommand() {
         names[0].contains("-conforming-barycentric-") && names[0].ends_with("-d12.tvfb"),
         "{names:?}"
     );
-
-    // filter -k 12 reuses that cache entry.
-    let filtered = dir.path().join("filtered.npy");
-    let (_, stderr) = succeeded(
-        &tvf(&[
-            OsStr::new("filter"),
-            OsStr::new(&m),
-            OsStr::new(f),
-            OsStr::new("-k"),
-            OsStr::new("12"),
-            OsStr::new("--cache-dir"),
-            OsStr::new(cache),
-            OsStr::new("-o"),
-            filtered.as_os_str(),
-        ]),
-        "filter",
-    );
-    assert!(stderr.contains("using cached basis"), "{stderr}");
-
-    // spline -k 12 works in a basis of 12 fields (and reuses the same cache entry).
-    let constraints = dir.path().join("c.json");
-    std::fs::write(
-        &constraints,
-        r#"{"constraints": [{"id": "a", "kind": "vector", "face": 5, "value": [1, 0, 0]}]}"#,
-    )
-    .unwrap();
-    let spline = dir.path().join("spline.npy");
-    let (stdout, stderr) = succeeded(
-        &tvf(&[
-            OsStr::new("spline"),
-            OsStr::new(&m),
-            OsStr::new("--constraints"),
-            constraints.as_os_str(),
-            OsStr::new("-k"),
-            OsStr::new("12"),
-            OsStr::new("--cache-dir"),
-            OsStr::new(cache),
-            OsStr::new("-o"),
-            spline.as_os_str(),
-        ]),
-        "spline",
-    );
-    assert!(stdout.contains("d = 12"), "{stdout}");
-    assert!(stderr.contains("using cached basis"), "{stderr}");
-
-    // K ≥ 2F: the complete basis.
-    let complete = dir.path().join("complete.tvfb");
-    let (_, stderr) = succeeded(
-        &tvf(&[
-            OsStr::new("basis"),
-            OsStr::new(&m),
-            OsStr::new("-k"),
-            OsStr::new("100000"),
-            OsStr::new("-o"),
-            complete.as_os_str(),
-        ]),
-        "basis complete",
-    );
-    assert!(
-        stderr.contains(&format!("{} fields", 2 * mesh.face_count())),
-        "{stderr}"
-    );
-    let (all, _) = succeeded(
-        &tvf(&["spectrum", &m, "-k", "100000", "--json"]),
-        "spectrum complete",
-    );
     assert_eq!(
-        json(&all)["eigenvalues"].as_array().unwrap().len(),
+        values(&stdouts[7], "eigenvalues", None).len(),
         2 * mesh.face_count()
     );
 }
@@ -512,91 +495,67 @@ fn json_reports_are_one_object_on_stdout() {
 }
 
 /// The shared flags are spelled the same in every subcommand's help: `-o, --output`,
-/// `--decomposition`, `--mass`, `-k` meaning eigenfields, `--basis FILE`.
+/// `--decomposition`, `--mass`, `-k` meaning eigenfields, `--basis FILE` with `--cache-dir DIR`.
 #[test]
 fn shared_flags_are_spelled_the_same_everywhere() {
-    let help = |sub: &str| {
-        let output = tvf(&[sub, "--help"]);
-        String::from_utf8_lossy(&output.stdout).into_owned()
-    };
-    for sub in [
-        "operators",
-        "basis",
-        "decompose",
-        "filter",
-        "analyze",
-        "compress",
-        "decompress",
-        "rate-distortion",
-        "spline",
-        "design",
-        "render",
-        "export",
-        "demo",
-    ] {
-        let text = help(sub);
-        assert!(text.contains("-o, --output <"), "{sub}: no `-o, --output`");
+    /// Which shared flags a subcommand's help must show.
+    struct Flags {
+        output: bool,
+        discretization: bool,
+        k: bool,
+        basis: bool,
     }
-    for sub in [
-        "operators",
-        "basis",
-        "spectrum",
-        "decompose",
-        "coefficients",
-        "filter",
-        "analyze",
-        "compress",
-        "decompress",
-        "rate-distortion",
-        "spline",
-        "design",
-        "render",
-        "export",
-        "edit",
-    ] {
-        let text = help(sub);
-        assert!(text.contains("--decomposition <NAME>"), "{sub}");
-        assert!(text.contains("--mass <NAME>"), "{sub}");
+    const fn flags(output: bool, discretization: bool, k: bool, basis: bool) -> Flags {
+        Flags {
+            output,
+            discretization,
+            k,
+            basis,
+        }
     }
-    for sub in [
-        "basis",
-        "spectrum",
-        "coefficients",
-        "filter",
-        "analyze",
-        "compress",
-        "decompress",
-        "rate-distortion",
-        "spline",
-        "design",
-        "edit",
-        "demo",
-    ] {
-        let text = help(sub);
-        // The -k line and the next (short help keeps the text on the flag's line).
-        let line: String = text
-            .lines()
-            .skip_while(|l| !l.trim_start().starts_with("-k <K>"))
-            .take(2)
-            .collect();
-        assert!(
-            text.contains("-k <K>")
-                && (line.contains("eigenfields") || line.contains("eigenvalues")),
-            "{sub}: -k is not the number of eigenfields:\n{text}"
-        );
-    }
-    for sub in [
-        "coefficients",
-        "filter",
-        "analyze",
-        "compress",
-        "decompress",
-        "rate-distortion",
-        "spline",
-        "design",
-        "edit",
-    ] {
-        assert!(help(sub).contains("--basis <FILE>"), "{sub}");
-        assert!(help(sub).contains("--cache-dir <DIR>"), "{sub}");
+    let cases = [
+        ("operators", flags(true, true, false, false)),
+        ("basis", flags(true, true, true, false)),
+        ("spectrum", flags(false, true, true, false)),
+        ("decompose", flags(true, true, false, false)),
+        ("coefficients", flags(false, true, true, true)),
+        ("filter", flags(true, true, true, true)),
+        ("analyze", flags(true, true, true, true)),
+        ("compress", flags(true, true, true, true)),
+        ("decompress", flags(true, true, true, true)),
+        ("rate-distortion", flags(true, true, true, true)),
+        ("spline", flags(true, true, true, true)),
+        ("design", flags(true, true, true, true)),
+        ("render", flags(true, true, false, false)),
+        ("export", flags(true, true, false, false)),
+        ("edit", flags(false, true, true, true)),
+        ("demo", flags(true, false, true, false)),
+    ];
+    for (sub, expected) in cases {
+        let text = String::from_utf8_lossy(&tvf(&[sub, "--help"]).stdout).into_owned();
+        if expected.output {
+            assert!(text.contains("-o, --output <"), "{sub}: no `-o, --output`");
+        }
+        if expected.discretization {
+            assert!(text.contains("--decomposition <NAME>"), "{sub}");
+            assert!(text.contains("--mass <NAME>"), "{sub}");
+        }
+        if expected.k {
+            // The -k line and the next (short help keeps the text on the flag's line).
+            let line: String = text
+                .lines()
+                .skip_while(|l| !l.trim_start().starts_with("-k <K>"))
+                .take(2)
+                .collect();
+            assert!(
+                text.contains("-k <K>")
+                    && (line.contains("eigenfields") || line.contains("eigenvalues")),
+                "{sub}: -k is not the number of eigenfields:\n{text}"
+            );
+        }
+        if expected.basis {
+            assert!(text.contains("--basis <FILE>"), "{sub}");
+            assert!(text.contains("--cache-dir <DIR>"), "{sub}");
+        }
     }
 }
