@@ -70,7 +70,7 @@ fn harmonic_dimension_and_d1_d0_match_the_theory_on_every_open_mesh() {
             }
         }
     }
-    // The raw bunny (where ../shared/meshes exists): 5 boundary loops, unreferenced vertices.
+    // The raw bunny (from ../shared/meshes, required under CI=true): 5 boundary loops, unreferenced vertices.
     for mesh in shared_corpus(Corpus::Open) {
         for boundary in BoundaryCondition::ALL {
             let complex = catalog_entry("conforming-barycentric")

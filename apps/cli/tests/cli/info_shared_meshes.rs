@@ -4,17 +4,13 @@
 //! (bunny.obj has 1,113), so its `vertices` is compared with stats' `vertices −
 //! unreferenced_vertices`, and its `file_vertices` with stats' `vertices`. The two `-x4`
 //! meshes are not in stats.json; they are checked against the counts in the meshes README.
-//! Skips (with a message) where `../shared/meshes` does not exist.
+//! Skips (with a message) where `../shared/meshes` does not exist; under `CI=true` that is a
+//! failure.
 
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-fn shared_meshes() -> Option<PathBuf> {
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let dir = repo.join("../shared/meshes");
-    dir.join("stats.json").is_file().then_some(dir)
-}
+use tvf_test_support::{shared_mesh, shared_meshes};
 
 fn info(path: &Path) -> Value {
     let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
@@ -34,7 +30,6 @@ fn info(path: &Path) -> Value {
 #[test]
 fn shared_meshes_match_stats_json() {
     let Some(dir) = shared_meshes() else {
-        eprintln!("skipping: ../shared/meshes not found");
         return;
     };
     let stats: Value =
@@ -101,20 +96,14 @@ fn shared_meshes_match_stats_json() {
 
 #[test]
 fn shared_meshes_paper_scale_copies_load() {
-    let Some(dir) = shared_meshes() else {
-        eprintln!("skipping: ../shared/meshes not found");
-        return;
-    };
     // Counts from ../shared/meshes/README.md ("Paper-scale copies for timing").
     for (name, vertices, faces, genus) in [
         ("armadillo-x4.obj", 172_966, 345_928, 0),
         ("bumpy-torus-x4.obj", 63_504, 127_008, 1),
     ] {
-        let path = dir.join(name);
-        if !path.is_file() {
-            eprintln!("skipping {name}: not present");
+        let Some(path) = shared_mesh(name) else {
             continue;
-        }
+        };
         let report = info(&path);
         assert_eq!(report["vertices"], vertices, "{name}");
         assert_eq!(report["faces"], faces, "{name}");

@@ -1,7 +1,7 @@
 //! Meshes with boundary through the commands: a generated pair of pants (three boundary loops)
 //! with both boundary conditions, for the default finite-element entry and (Delaunay-flipped) for
 //! DEC, and the raw `bunny.obj` of `../shared/meshes` (five loops, unreferenced vertices) where it
-//! exists.
+//! exists (under `CI=true` it must).
 
 use crate::common::{assert_success, tvf, write_field};
 use serde_json::Value;
@@ -10,6 +10,7 @@ use tvf_conformance::corpus::delaunay_flips;
 use tvf_core::generate::perforated_plate;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_core::TriangleMesh;
+use tvf_test_support::shared_mesh;
 
 fn run(dir: &Path, args: &[&str]) -> std::process::Output {
     let output = tvf()
@@ -380,11 +381,9 @@ fn dec_runs_through_every_command_on_a_delaunay_pair_of_pants_with_both_boundary
 
 #[test]
 fn the_raw_bunny_runs_through_every_command() {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/bunny.obj");
-    if !path.exists() {
-        eprintln!("skipping: {} is not present", path.display());
+    let Some(path) = shared_mesh("bunny.obj") else {
         return;
-    }
+    };
     let temp = tempfile::tempdir().unwrap();
     let dir = temp.path();
     std::fs::copy(&path, dir.join("bunny.obj")).unwrap();

@@ -4,24 +4,20 @@
 //! before masses became SPD operators for the DEC entries on the Delaunay `eight`), to 1e-10.
 //! `recorded_spectra.rs` checks generated meshes the same way, without `../shared`.
 //!
-//! Uses `../shared/meshes`; skips (with a message) where that folder does not exist.
+//! Uses `../shared/meshes`; skips (with a message) where that folder does not exist, and fails
+//! there under `CI=true`.
 
 use crate::common::{assert_success, tvf};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use tvf_test_support::shared_meshes;
 
 /// Relative tolerance on each eigenvalue (absolute below 1e-6, for the harmonic zeros).
 const TOLERANCE: f64 = 1e-10;
 
-fn shared_meshes() -> Option<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes");
-    dir.join("kitten.obj").is_file().then_some(dir)
-}
-
 #[test]
 fn shared_meshes_spectra_equal_the_recorded_ones() {
     let Some(dir) = shared_meshes() else {
-        eprintln!("skipping: ../shared/meshes not found");
         return;
     };
     let fixture =
