@@ -98,8 +98,6 @@ pub mod capability_checks;
 pub mod check_outcome;
 pub mod check_report;
 pub mod check_run_report;
-pub mod convergence;
-pub mod convergence_table;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;

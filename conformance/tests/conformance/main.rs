@@ -4,7 +4,6 @@
 
 mod catalog_suites;
 mod conformance_reference;
-mod convergence;
 mod corpus;
 mod mutations;
 mod open_meshes;

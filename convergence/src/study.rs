@@ -16,10 +16,10 @@
 //! The meshes are inscribed (vertices on the surface), so their geometry converges at `O(h²)`
 //! too, and that error is part of what is measured.
 
-use crate::corpus::delaunay_flips;
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 use std::time::Instant;
+use tvf_conformance::corpus::delaunay_flips;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{hemisphere, icosphere};
 use tvf_core::geometry::{norm, sub};

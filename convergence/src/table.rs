@@ -1,9 +1,9 @@
-//! A convergence study ([`crate::convergence`]) as text: one Markdown table row per
+//! A convergence study ([`crate::study`]) as text: one Markdown table row per
 //! discretization, surface and level (errors of both families, the local order against the
 //! previous level, the basis time) and one line per fitted order. `tvf convergence` prints it and
 //! `papers/` writes it into its report.
 
-use crate::convergence::{ConvergenceReport, LevelRow, Surface};
+use crate::study::{ConvergenceReport, LevelRow, Surface};
 use tvf_spectral::FieldFamily;
 
 /// `sphere`, `hemisphere (tangential)`, `hemisphere (normal)`.
@@ -110,7 +110,7 @@ fn aligned(cells: &[Vec<String>]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::convergence::ObservedOrder;
+    use crate::study::ObservedOrder;
 
     fn row(level: u32, h: f64, e: f64) -> LevelRow {
         LevelRow {

@@ -2,7 +2,7 @@
 //! at order 2 on the unit sphere and the hemisphere, and a candidate that cannot be built stops
 //! the study with its name.
 
-use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
+use tvf_convergence::study::{run_convergence, Candidate, ConvergenceConfig, Surface};
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::TriangleMesh;
 use tvf_discretizations::Catalog;
