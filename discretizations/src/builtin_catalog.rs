@@ -1,6 +1,6 @@
 //! tvf's own discretizations, one [`CatalogEntry`] each, in the order `tvf discretizations`
 //! lists them ([`crate::Catalog::builtin`]). A new discretization of tvf's is one more entry
-//! here (and one suite line in `conformance/tests/conformance.rs`).
+//! here (and one suite line in `conformance/tests/conformance/catalog_suites.rs`).
 
 use crate::catalog_entry::{BoxedComplex, CatalogEntry};
 use crate::{

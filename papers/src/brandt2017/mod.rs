@@ -12,7 +12,7 @@ use crate::step_log::StepLog;
 use std::path::PathBuf;
 use std::time::Instant;
 use table1::{PaperTimings, Table1Repetitions, Table1Row};
-use tvf_conformance::convergence::ConvergenceReport;
+use tvf_convergence::study::ConvergenceReport;
 use tvf_core::io::load_mesh;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
