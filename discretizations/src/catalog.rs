@@ -9,7 +9,7 @@ use crate::complex_id::split_complex_id;
 use std::sync::OnceLock;
 use thiserror::Error;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError};
-use tvf_core::SurfaceMesh;
+use tvf_core::mesh::Mesh;
 
 /// The id used when none is given: the paper's conforming decomposition, barycentric masses.
 pub const DEFAULT_DISCRETIZATION: &str = "conforming-barycentric";
@@ -166,11 +166,11 @@ impl Catalog {
     /// Builds the complex named by `id` on `mesh`: an entry's id (built with `boundary`, the
     /// entry's default if `None`), or a complex id `{entry id}+{condition}` as basis files store
     /// it, whose own condition is used.
-    pub fn build_complex(
+    pub fn build_complex<M: Mesh>(
         &self,
         id: &str,
         boundary: Option<BoundaryCondition>,
-        mesh: &SurfaceMesh,
+        mesh: &M,
     ) -> Result<BoxedComplex, CatalogBuildError> {
         let (entry_id, named_boundary) = split_complex_id(id);
         let entry = self.get(entry_id)?;
@@ -217,10 +217,10 @@ pub fn catalog_entry(id: &str) -> Result<&'static CatalogEntry, UnknownDiscretiz
 }
 
 /// [`Catalog::build_complex`] on the built-in catalog.
-pub fn build_complex(
+pub fn build_complex<M: Mesh>(
     id: &str,
     boundary: Option<BoundaryCondition>,
-    mesh: &SurfaceMesh,
+    mesh: &M,
 ) -> Result<BoxedComplex, CatalogBuildError> {
     builtin_catalog().build_complex(id, boundary, mesh)
 }
@@ -233,7 +233,7 @@ mod tests {
 
     #[test]
     fn builtin_ids_are_unique_kebab_case_and_match_the_built_complex() {
-        let mesh = SurfaceMesh::from(icosphere(1));
+        let mesh = icosphere(1);
         let catalog = Catalog::builtin();
         assert!(!catalog.is_empty());
         assert_eq!(catalog.entries()[0].id(), DEFAULT_DISCRETIZATION);
@@ -279,16 +279,16 @@ mod tests {
         assert_eq!(entry.id(), "conforming-barycentric");
         // The entry offers no boundary condition: a mesh with boundary is refused, naming why.
         let refused = catalog
-            .build_complex("conforming-barycentric+normal", None, &disk(2).into())
+            .build_complex("conforming-barycentric+normal", None, &disk(2))
             .err()
             .unwrap();
         assert!(
             matches!(refused, CatalogBuildError::Refused { .. }),
             "{refused}"
         );
-        let open = build_complex("conforming-barycentric+normal", None, &disk(2).into()).unwrap();
+        let open = build_complex("conforming-barycentric+normal", None, &disk(2)).unwrap();
         assert_eq!(open.id(), "conforming-barycentric+normal");
-        let unknown = catalog.build_complex("dec-barycentric", None, &icosphere(1).into());
+        let unknown = catalog.build_complex("dec-barycentric", None, &icosphere(1));
         let message = unknown.err().unwrap().to_string();
         assert!(
             message.contains("unknown discretization 'dec-barycentric'")

@@ -5,7 +5,8 @@
 use crate::complex_id::complex_id;
 use std::sync::Arc;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, HodgeComplex};
-use tvf_core::{SurfaceMesh, TriangleMesh};
+use tvf_core::mesh::Mesh;
+use tvf_core::TriangleMesh;
 
 /// A complex built by a catalog entry, behind the object-safe seam.
 pub type BoxedComplex = Box<dyn HodgeComplex>;
@@ -13,9 +14,7 @@ pub type BoxedComplex = Box<dyn HodgeComplex>;
 /// What a catalog entry runs to build its complex: the mesh and the boundary condition in, the
 /// complex out. A closure, so that an entry can carry parameters (a blend factor, a scale).
 pub type EntryConstructor = Arc<
-    dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
-        + Send
-        + Sync,
+    dyn Fn(&dyn Mesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError> + Send + Sync,
 >;
 
 /// What an entry needs of the mesh unless it says otherwise.
@@ -72,28 +71,33 @@ impl CatalogEntry {
     {
         let id = id.into();
         let entry_id = id.clone();
-        let mut entry = Self::on_any_mesh(id, description, move |mesh, boundary| match mesh {
-            SurfaceMesh::Triangles(triangles) => constructor(triangles, boundary),
-            SurfaceMesh::Polygons(_) => Err(DiscretizationError::NeedsTriangles {
-                discretization: entry_id.clone(),
-                polygons: (0..mesh.face_count())
-                    .filter(|&f| mesh.face_size(f) > 3)
-                    .count(),
-            }),
+        let mut entry = Self::on_any_mesh(id, description, move |mesh, boundary| {
+            match mesh.as_triangles() {
+                Some(triangles) => constructor(triangles, boundary),
+                None => {
+                    let faces = mesh.face_corners();
+                    Err(DiscretizationError::NeedsTriangles {
+                        discretization: entry_id.clone(),
+                        polygons: (0..faces.face_count())
+                            .filter(|&f| faces.corners(f).len() > 3)
+                            .count(),
+                    })
+                }
+            }
         });
         entry.needs_triangles = true;
         entry
     }
 
-    /// Like [`CatalogEntry::new`] for a discretization that builds on every [`SurfaceMesh`]:
-    /// triangle and polygon meshes alike.
+    /// Like [`CatalogEntry::new`] for a discretization that builds on every [`Mesh`]: triangle
+    /// and polygon meshes alike.
     pub fn on_any_mesh<F>(
         id: impl Into<String>,
         description: impl Into<String>,
         constructor: F,
     ) -> Self
     where
-        F: Fn(&SurfaceMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
+        F: Fn(&dyn Mesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
             + Send
             + Sync
             + 'static,
@@ -199,7 +203,7 @@ impl CatalogEntry {
 
     /// Builds the complex of `mesh` (on a mesh with boundary with the entry's default boundary
     /// condition).
-    pub fn build(&self, mesh: &SurfaceMesh) -> Result<BoxedComplex, DiscretizationError> {
+    pub fn build<M: Mesh>(&self, mesh: &M) -> Result<BoxedComplex, DiscretizationError> {
         self.build_with(mesh, self.default_boundary())
     }
 
@@ -208,19 +212,19 @@ impl CatalogEntry {
     /// condition the entry does not offer on a mesh with boundary, with the constructor's error,
     /// or with [`DiscretizationError::Inconsistent`] if the complex's id is not
     /// [`complex_id`]`(id, mesh, boundary)` (basis files rebuild their complex from that id).
-    pub fn build_with(
+    pub fn build_with<M: Mesh>(
         &self,
-        mesh: &SurfaceMesh,
+        mesh: &M,
         boundary: BoundaryCondition,
     ) -> Result<BoxedComplex, DiscretizationError> {
-        if !mesh.is_closed() && !self.boundary_conditions.contains(&boundary) {
+        if !mesh.topology().is_closed() && !self.boundary_conditions.contains(&boundary) {
             return Err(DiscretizationError::UnsupportedBoundaryCondition {
                 discretization: self.id.clone(),
                 condition: boundary.name(),
                 reason: "its catalog entry does not offer it",
             });
         }
-        let complex = (self.constructor)(mesh, boundary)?;
+        let complex = (self.constructor)(mesh as &dyn Mesh, boundary)?;
         let expected = complex_id(&self.id, mesh.topology(), boundary);
         if complex.id() != expected {
             return Err(DiscretizationError::Inconsistent(format!(
@@ -253,7 +257,7 @@ pub(crate) mod tests {
 
     #[test]
     fn a_triangle_entry_refuses_a_polygon_mesh_naming_itself_and_the_cure() {
-        let quads = SurfaceMesh::from(quad_torus(1.0, 0.4, 8, 6).unwrap());
+        let quads = quad_torus(1.0, 0.4, 8, 6).unwrap();
         let error = conforming("conforming-barycentric")
             .build(&quads)
             .err()
@@ -281,7 +285,7 @@ pub(crate) mod tests {
 
     #[test]
     fn a_complex_must_carry_the_entry_id() {
-        let mesh = SurfaceMesh::from(icosphere(1));
+        let mesh = icosphere(1);
         assert!(conforming("conforming-barycentric").build(&mesh).is_ok());
         let error = conforming("other").build(&mesh).err().unwrap().to_string();
         assert!(error.contains("'conforming-barycentric'"), "{error}");
@@ -290,8 +294,8 @@ pub(crate) mod tests {
     #[test]
     fn a_condition_not_offered_is_refused_on_meshes_with_boundary_only() {
         let entry = conforming("conforming-barycentric");
-        let closed = SurfaceMesh::from(icosphere(1));
-        let open = SurfaceMesh::from(disk(2));
+        let closed = icosphere(1);
+        let open = disk(2);
         assert!(entry.build(&closed).is_ok());
         assert!(matches!(
             entry.build(&open),

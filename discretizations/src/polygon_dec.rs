@@ -11,7 +11,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
     PointEvaluation,
 };
-use tvf_core::SurfaceMesh;
+use tvf_core::mesh::Mesh;
 
 /// The default weight `β` of the stabilisation term of `M1` (de Goes et al. 2020 and Lagrange's
 /// `polyddg` use 1).
@@ -54,8 +54,8 @@ impl PolygonDec {
     /// stabilisation weight `beta`. The id is [`polygon_dec_id`]`(beta)`, with `+{boundary}`
     /// appended on a mesh with boundary. Fails for a `beta` that is not positive and finite, or
     /// a polygon of zero area.
-    pub fn with_boundary(
-        mesh: &SurfaceMesh,
+    pub fn with_boundary<M: Mesh + ?Sized>(
+        mesh: &M,
         boundary: BoundaryCondition,
         beta: f64,
     ) -> Result<Self, DiscretizationError> {
@@ -64,7 +64,7 @@ impl PolygonDec {
                 "polygon-dec needs a positive, finite stabilisation weight β, not {beta}"
             )));
         }
-        let operators: Vec<PolygonOperators> = (0..mesh.face_count())
+        let operators: Vec<PolygonOperators> = (0..mesh.face_corners().face_count())
             .map(|f| PolygonOperators::of(mesh, f))
             .collect();
         if let Some(face) = operators
@@ -122,10 +122,10 @@ pub fn polygon_dec_id(beta: f64) -> String {
 }
 
 /// `⋆0`: every polygon's area split equally among its corners (`V` entries, area).
-fn vertex_areas(mesh: &SurfaceMesh, operators: &[PolygonOperators]) -> Vec<f64> {
-    let mut areas = vec![0.0; mesh.vertex_count()];
+fn vertex_areas<M: Mesh + ?Sized>(mesh: &M, operators: &[PolygonOperators]) -> Vec<f64> {
+    let mut areas = vec![0.0; mesh.positions().len()];
     for (f, ops) in operators.iter().enumerate() {
-        let corners = mesh.face(f);
+        let corners = mesh.face_corners().corners(f);
         let share = ops.area / corners.len() as f64;
         for &v in corners {
             areas[v] += share;
@@ -135,8 +135,8 @@ fn vertex_areas(mesh: &SurfaceMesh, operators: &[PolygonOperators]) -> Vec<f64> 
 }
 
 /// `⋆1 = Σ_f M_f` scattered onto the mesh's edges (`E × E`, sparse, symmetric).
-fn one_form_inner_product(
-    mesh: &SurfaceMesh,
+fn one_form_inner_product<M: Mesh + ?Sized>(
+    mesh: &M,
     operators: &[PolygonOperators],
     beta: f64,
 ) -> sprs::CsMat<f64> {
@@ -152,7 +152,7 @@ fn one_form_inner_product(
             }
         }
     }
-    let e = mesh.edge_count();
+    let e = mesh.topology().edges().len();
     from_triplets(e, e, rows, cols, values)
 }
 

@@ -4,8 +4,8 @@
 //! `M_f = |a_f| U_fᵀ U_f + β P_fᵀ P_f`, all in the mesh's edge orientation.
 
 use tvf_core::geometry::{cross, dot, scale, sub};
+use tvf_core::mesh::Mesh;
 use tvf_core::mesh::{polygon_centroid, polygon_vector_area};
-use tvf_core::SurfaceMesh;
 
 /// The operators of one polygon with `n` corners `p_0 … p_{n−1}` (counter-clockwise), vector
 /// area `a_f = ½ Σ p_c × p_{c+1}`, area `A_f = |a_f|`, normal `n_f = a_f/A_f` and centroid
@@ -31,8 +31,8 @@ pub struct PolygonOperators {
 
 impl PolygonOperators {
     /// The operators of face `f` of `mesh`.
-    pub fn of(mesh: &SurfaceMesh, f: usize) -> Self {
-        let corners = mesh.face(f);
+    pub fn of<M: Mesh + ?Sized>(mesh: &M, f: usize) -> Self {
+        let corners = mesh.face_corners().corners(f);
         let points: Vec<[f64; 3]> = corners.iter().map(|&v| mesh.positions()[v]).collect();
         let n = points.len();
         let vector_area = polygon_vector_area(&points);
@@ -107,6 +107,7 @@ impl PolygonOperators {
 mod tests {
     use super::*;
     use tvf_core::generate::{cube_sphere, quad_torus};
+    use tvf_core::SurfaceMesh;
 
     /// `U_f V_f = I − n nᵀ` on every polygon, planar or not: the sharp of the flat of a vector
     /// is its projection onto the polygon's plane (de Goes et al. 2020, §4.3).

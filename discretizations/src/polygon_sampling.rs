@@ -8,7 +8,8 @@ use tvf_core::discretization::{
     TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, normalize, scale, sub};
-use tvf_core::{SurfaceMesh, SurfacePoint};
+use tvf_core::mesh::Mesh;
+use tvf_core::SurfacePoint;
 
 /// The sharp of polygonal DEC as a [`FieldSampling`]: the vector of polygon `f` is
 /// `U_f x_f = Σ_c U_f[:, c] x_{e_c}` over its sides' edges (constant on the polygon, in the plane
@@ -33,25 +34,26 @@ pub struct PolygonSampling {
 impl PolygonSampling {
     /// The sampling of `mesh` with the polygons' `operators`; `fixed_edges[e]` marks the edges
     /// the boundary condition fixes to zero.
-    pub(crate) fn new(
-        mesh: &SurfaceMesh,
+    pub(crate) fn new<M: Mesh + ?Sized>(
+        mesh: &M,
         operators: &[PolygonOperators],
         fixed_edges: Vec<bool>,
     ) -> Self {
+        let faces = mesh.face_corners();
         let mut frames = Vec::with_capacity(operators.len());
         let mut normals = Vec::with_capacity(operators.len());
         for (f, ops) in operators.iter().enumerate() {
             let n = scale(ops.vector_area, 1.0 / ops.area);
-            let corners = mesh.face(f);
+            let corners = faces.corners(f);
             let side = sub(mesh.positions()[corners[1]], mesh.positions()[corners[0]]);
             let e1 = normalize(sub(side, scale(n, dot(n, side))));
             frames.push([e1, cross(n, e1)]);
             normals.push(n);
         }
         Self {
-            side_edges: (0..mesh.face_count())
+            side_edges: (0..faces.face_count())
                 .map(|f| {
-                    (0..mesh.face_size(f))
+                    (0..faces.corners(f).len())
                         .map(|c| mesh.face_edge(f, c))
                         .collect()
                 })
@@ -59,7 +61,7 @@ impl PolygonSampling {
             sharp: operators.iter().map(|o| o.sharp.clone()).collect(),
             frames,
             normals,
-            edges: mesh.edges().to_vec(),
+            edges: mesh.topology().edges().to_vec(),
             positions: mesh.positions().to_vec(),
             fixed_edges,
         }
@@ -155,10 +157,11 @@ pub struct PolygonEvaluation {
 
 impl PolygonEvaluation {
     /// The evaluation on the faces of `mesh`.
-    pub(crate) fn new(mesh: &SurfaceMesh) -> Self {
+    pub(crate) fn new<M: Mesh + ?Sized>(mesh: &M) -> Self {
+        let faces = mesh.face_corners();
         Self {
-            faces: (0..mesh.face_count())
-                .map(|f| mesh.face(f).to_vec())
+            faces: (0..faces.face_count())
+                .map(|f| faces.corners(f).to_vec())
                 .collect(),
         }
     }

@@ -9,7 +9,8 @@ use std::collections::{BTreeMap, HashSet};
 use tvf_core::discretization::{
     HodgeComplex, HodgeOperators, LinearOperator, NodeKind, NodeSpace, PointEvaluation,
 };
-use tvf_core::{SurfaceMesh, SurfacePoint};
+use tvf_core::mesh::Mesh;
+use tvf_core::SurfacePoint;
 
 /// Tolerance on `|Σ b − 1|` for barycentric coordinates.
 const BARYCENTRIC_TOLERANCE: f64 = 1e-9;
@@ -51,7 +52,7 @@ pub struct ConstraintAssembler<'a, H: HodgeComplex + ?Sized> {
 
 impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
     /// An assembler for `complex` (built on `mesh`); operators come from the complex's cache.
-    pub fn new(complex: &'a H, mesh: &SurfaceMesh) -> Self {
+    pub fn new<M: Mesh + ?Sized>(complex: &'a H, mesh: &M) -> Self {
         Self {
             complex,
             vertex_count: mesh.vertex_count(),

@@ -63,7 +63,7 @@ mod tests {
 
     #[test]
     fn a_constraint_out_of_range_or_of_another_mesh_is_refused_naming_the_file() {
-        let mesh = icosphere(1);
+        let mesh = SurfaceMesh::from(icosphere(1));
         let complex = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)

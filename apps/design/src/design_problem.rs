@@ -263,7 +263,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.json");
         std::fs::write(&path, text).unwrap();
-        let loaded = DesignProblem::load(icosphere(1), "example:ico", &path);
+        let loaded = DesignProblem::load(icosphere(1).into(), "example:ico", &path);
         (dir, loaded)
     }
 

@@ -93,7 +93,7 @@ mod tests {
 
     #[test]
     fn a_checked_file_gives_one_marker_per_constraint_scaled_with_the_picture() {
-        let mesh = icosphere(1);
+        let mesh = SurfaceMesh::from(icosphere(1));
         let complex = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)

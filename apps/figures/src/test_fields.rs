@@ -352,7 +352,7 @@ mod tests {
 
     #[test]
     fn fields_are_seeded_finite_and_unit_rms() {
-        let mesh = torus(1.0, 0.4, 24, 12).unwrap();
+        let mesh = SurfaceMesh::from(torus(1.0, 0.4, 24, 12).unwrap());
         let boxed = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)
@@ -377,7 +377,7 @@ mod tests {
 
     #[test]
     fn spread_points_are_distinct() {
-        let mesh = torus(1.0, 0.4, 24, 12).unwrap();
+        let mesh = SurfaceMesh::from(torus(1.0, 0.4, 24, 12).unwrap());
         let points = spread_points(&mesh, 10);
         assert_eq!(points.len(), 10);
         for (k, p) in points.iter().enumerate() {

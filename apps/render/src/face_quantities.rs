@@ -157,7 +157,6 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
     use tvf_core::generate::{icosphere, torus};
-    use tvf_core::TriangleMesh;
     use tvf_discretizations::{catalog_entry, BoxedComplex};
 
     fn random_field(n: usize) -> Vec<f64> {
@@ -165,13 +164,13 @@ mod tests {
         (0..n).map(|_| rng.random_range(-1.0..1.0)).collect()
     }
 
-    fn build(id: &str, mesh: &TriangleMesh) -> BoxedComplex {
+    fn build(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
         catalog_entry(id).unwrap().build(mesh).unwrap()
     }
 
-    fn check_energy(complex: &dyn HodgeComplex, mesh: &TriangleMesh) {
+    fn check_energy(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {
         let field = random_field(complex.field_dimension());
-        let density = energy_density(complex, &field, mesh.face_count()).unwrap();
+        let density = energy_density(complex, &field, mesh).unwrap();
         let integrated: f64 = density
             .iter()
             .enumerate()
@@ -191,16 +190,16 @@ mod tests {
 
     #[test]
     fn energy_density_integrates_to_the_dirichlet_energy() {
-        let torus = torus(1.0, 0.4, 16, 8).unwrap();
+        let torus = SurfaceMesh::from(torus(1.0, 0.4, 16, 8).unwrap());
         for id in ["conforming-barycentric", "nonconforming-barycentric"] {
             check_energy(build(id, &torus).as_ref(), &torus);
         }
         // DEC needs a Delaunay mesh (the quad-grid torus has ⋆1 = 0 on its diagonals).
-        let sphere = icosphere(2);
+        let sphere = SurfaceMesh::from(icosphere(2));
         check_energy(build("dec-barycentric", &sphere).as_ref(), &sphere);
     }
 
-    fn check_gradients(complex: &dyn HodgeComplex) {
+    fn check_gradients(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {
         let sampling = complex.require_sampling().unwrap();
         let potential: Vec<f64> = complex
             .potential_nodes()
@@ -210,10 +209,10 @@ mod tests {
             .collect();
         let gradient = complex.gradient_field(&potential);
         let vectors = sampling.to_face_vectors(&gradient).unwrap();
-        let curl = face_scalar(complex, FaceQuantity::Curl, &gradient, &vectors)
+        let curl = face_scalar(complex, mesh, FaceQuantity::Curl, &gradient, &vectors)
             .unwrap()
             .unwrap();
-        let div = face_scalar(complex, FaceQuantity::Divergence, &gradient, &vectors)
+        let div = face_scalar(complex, mesh, FaceQuantity::Divergence, &gradient, &vectors)
             .unwrap()
             .unwrap();
         let largest = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -232,10 +231,10 @@ mod tests {
             .collect();
         let rotated = complex.co_gradient_field(&co_potential);
         let vectors = sampling.to_face_vectors(&rotated).unwrap();
-        let div = face_scalar(complex, FaceQuantity::Divergence, &rotated, &vectors)
+        let div = face_scalar(complex, mesh, FaceQuantity::Divergence, &rotated, &vectors)
             .unwrap()
             .unwrap();
-        let curl = face_scalar(complex, FaceQuantity::Curl, &rotated, &vectors)
+        let curl = face_scalar(complex, mesh, FaceQuantity::Curl, &rotated, &vectors)
             .unwrap()
             .unwrap();
         let largest = curl.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -245,9 +244,13 @@ mod tests {
 
     #[test]
     fn gradients_have_no_curl_and_co_gradients_no_divergence() {
-        let torus = torus(1.0, 0.4, 16, 8).unwrap();
-        check_gradients(build("conforming-barycentric", &torus).as_ref());
-        check_gradients(build("nonconforming-voronoi", &torus).as_ref());
-        check_gradients(build("dec-circumcentric", &icosphere(2)).as_ref());
+        let torus = SurfaceMesh::from(torus(1.0, 0.4, 16, 8).unwrap());
+        check_gradients(build("conforming-barycentric", &torus).as_ref(), &torus);
+        check_gradients(build("nonconforming-voronoi", &torus).as_ref(), &torus);
+        let sphere = SurfaceMesh::from(icosphere(2));
+        check_gradients(build("dec-circumcentric", &sphere).as_ref(), &sphere);
+        // Polygonal DEC on quads: gradients of x·z have no curl either.
+        let quads = SurfaceMesh::from(tvf_core::generate::quad_torus(1.0, 0.4, 16, 8).unwrap());
+        check_gradients(build("polygon-dec", &quads).as_ref(), &quads);
     }
 }

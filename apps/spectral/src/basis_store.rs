@@ -19,7 +19,7 @@ use crate::{
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::SurfaceMesh;
+use tvf_core::mesh::Mesh;
 
 /// A folder of computed bases (see the module documentation for the file names).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -61,9 +61,9 @@ impl BasisStore {
     }
 
     /// The file a basis of `size` for `complex` on `mesh` is kept in.
-    pub fn file<H: HodgeComplex + ?Sized>(
+    pub fn file<M: Mesh + ?Sized, H: HodgeComplex + ?Sized>(
         &self,
-        mesh: &SurfaceMesh,
+        mesh: &M,
         complex: &H,
         size: BasisSize,
     ) -> PathBuf {
@@ -88,9 +88,9 @@ impl BasisStore {
     /// basis. Errors are those of [`compute_basis`]; problems of the store itself (unreadable
     /// or mismatching files, a folder that cannot be written) are reported in the returned
     /// [`StoredBasisOrigin`], not as errors.
-    pub fn basis<H: HodgeComplex + ?Sized>(
+    pub fn basis<M: Mesh + ?Sized, H: HodgeComplex + ?Sized>(
         &self,
-        mesh: &SurfaceMesh,
+        mesh: &M,
         complex: &H,
         size: BasisSize,
         progress: Option<&dyn Fn(&BasisProgress)>,

@@ -7,7 +7,7 @@ use tvf_discretizations::{catalog_entry, BoxedComplex};
 
 /// The torus of radii 1 and 0.4 with 12 × 6 quads, and the catalog entry `id` built on it.
 pub fn torus_complex(id: &str) -> (SurfaceMesh, BoxedComplex) {
-    let mesh = torus(1.0, 0.4, 12, 6).unwrap();
+    let mesh = SurfaceMesh::from(torus(1.0, 0.4, 12, 6).unwrap());
     let complex = catalog_entry(id).unwrap().build(&mesh).unwrap();
     (mesh, complex)
 }

@@ -35,7 +35,7 @@ fn with_m1(mesh: &TriangleMesh, m1: Mass) -> Result<MatrixComplex, String> {
     let c = correct(mesh);
     MatrixComplex::new(
         "mutant",
-        mesh,
+        &mesh.clone().into(),
         c.d0().clone(),
         c.d1().clone(),
         c.m0().clone(),
@@ -96,7 +96,7 @@ fn one_flipped_sign_of_d1_is_refused_as_not_a_complex() {
     d1.data_mut()[0] *= -1.0;
     let refused = MatrixComplex::new(
         "mutant",
-        &mesh,
+        &mesh.clone().into(),
         c.d0().clone(),
         d1,
         c.m0().clone(),
@@ -178,7 +178,7 @@ fn a_builder_broken_above_100_faces_is_shrunk_to_a_small_failing_mesh() {
         m0[0] *= 2.0; // 1ᵀ M0 1 is no longer the area
         let mutant = MatrixComplex::new(
             "mutant",
-            mesh,
+            &mesh.clone().into(),
             c.d0().clone(),
             c.d1().clone(),
             Mass::diagonal("M0", m0).map_err(|e| e.to_string())?,

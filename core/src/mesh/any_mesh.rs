@@ -3,6 +3,7 @@
 
 use super::face_list::FaceCorners;
 use super::topology::MeshTopology;
+use super::TriangleMesh;
 
 /// Read access shared by [`crate::TriangleMesh`], [`crate::PolygonMesh`] and
 /// [`crate::SurfaceMesh`], for code that works the same on all of them (writers, the incidences
@@ -20,4 +21,26 @@ pub trait Mesh {
     /// The topology: edges `(a, b)`, `a < b`, in lexicographic order, their faces, components,
     /// boundary loops, genus.
     fn topology(&self) -> &MeshTopology;
+
+    /// The mesh as a triangle mesh, if every face is a triangle.
+    fn as_triangles(&self) -> Option<&TriangleMesh>;
+
+    /// A 64-bit hash of the vertex coordinates and the faces (order included); a triangle mesh
+    /// hashes the same whichever type holds it, and never like a polygon mesh.
+    fn fingerprint(&self) -> u64;
+
+    /// Number of vertices `V`.
+    fn vertex_count(&self) -> usize {
+        self.positions().len()
+    }
+
+    /// Number of edges `E`.
+    fn edge_count(&self) -> usize {
+        self.topology().edges().len()
+    }
+
+    /// Number of faces `F`.
+    fn face_count(&self) -> usize {
+        self.face_corners().face_count()
+    }
 }

@@ -152,4 +152,12 @@ impl Mesh for PolygonMesh {
     fn topology(&self) -> &MeshTopology {
         &self.topology
     }
+
+    fn as_triangles(&self) -> Option<&TriangleMesh> {
+        None
+    }
+
+    fn fingerprint(&self) -> u64 {
+        PolygonMesh::fingerprint(self)
+    }
 }

@@ -11,7 +11,6 @@ use super::validate::{check_combinatorics, check_polygon_geometry, KeptVertices}
 use super::validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};
 use super::{PolygonMesh, TriangleMesh};
 use crate::geometry::{dot, norm, scale, sub};
-use crate::hash64::Hash64;
 
 /// Tolerance on `|Σ w − 1|` of a [`SurfacePoint`]'s weights.
 pub const POINT_WEIGHT_TOLERANCE: f64 = 1e-9;
@@ -95,6 +94,14 @@ impl SurfaceMesh {
         match self {
             Self::Triangles(mesh) => Some(mesh),
             Self::Polygons(_) => None,
+        }
+    }
+
+    /// The triangle mesh, if every face is a triangle (the mesh itself back otherwise).
+    pub fn into_triangles(self) -> Result<TriangleMesh, Self> {
+        match self {
+            Self::Triangles(mesh) => Ok(mesh),
+            polygons => Err(polygons),
         }
     }
 
@@ -306,24 +313,7 @@ impl SurfaceMesh {
     pub fn fingerprint(&self) -> u64 {
         match self {
             Self::Triangles(mesh) => mesh.fingerprint(),
-            Self::Polygons(mesh) => {
-                let mut h = Hash64::new();
-                h.update(b"tvf-polygon-mesh");
-                h.update_u64(mesh.vertex_count() as u64);
-                h.update_u64(mesh.face_count() as u64);
-                for p in mesh.positions() {
-                    for &x in p {
-                        h.update_f64(x);
-                    }
-                }
-                for face in mesh.faces().iter() {
-                    h.update_u64(face.len() as u64);
-                    for &i in face {
-                        h.update_u64(i as u64);
-                    }
-                }
-                h.finish()
-            }
+            Self::Polygons(mesh) => mesh.fingerprint(),
         }
     }
 
@@ -486,5 +476,13 @@ impl Mesh for SurfaceMesh {
 
     fn topology(&self) -> &MeshTopology {
         SurfaceMesh::topology(self)
+    }
+
+    fn as_triangles(&self) -> Option<&TriangleMesh> {
+        SurfaceMesh::as_triangles(self)
+    }
+
+    fn fingerprint(&self) -> u64 {
+        SurfaceMesh::fingerprint(self)
     }
 }

@@ -209,4 +209,12 @@ impl Mesh for TriangleMesh {
     fn topology(&self) -> &MeshTopology {
         &self.topology
     }
+
+    fn as_triangles(&self) -> Option<&TriangleMesh> {
+        Some(self)
+    }
+
+    fn fingerprint(&self) -> u64 {
+        TriangleMesh::fingerprint(self)
+    }
 }

@@ -335,7 +335,7 @@ fn unreferenced_vertices_leave_the_masses() {
         .unwrap();
     let rebuilt = MatrixComplex::new(
         "whitney-from-matrices",
-        &padded,
+        &padded.clone().into(),
         whitney.d0().clone(),
         whitney.d1().clone(),
         whitney.m0().clone(),

@@ -6,7 +6,7 @@ use tvf_core::discretization::{
 };
 use tvf_core::generate::{bumpy_torus, genus_surface, icosphere, jitter, rigid_motion, torus};
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 use tvf_discretizations::{
     Conforming, DecComplex, DecompositionError, HodgeDecomposer, MassLumping, DELAUNAY_TOLERANCE,
 };
@@ -182,7 +182,7 @@ fn exact_stiffness_is_the_conforming_cotan_matrix() {
 /// The sampled vector `Σ w_i x_i` at a point.
 fn sample(sampling: &dyn FieldSampling, field: &[f64], face: usize, b: [f64; 3]) -> [f64; 3] {
     let mut v = [0.0; 3];
-    for (i, w) in sampling.sample_weights(face, b) {
+    for (i, w) in sampling.sample_weights(&SurfacePoint::barycentric(face, b)) {
         for k in 0..3 {
             v[k] += w[k] * field[i];
         }

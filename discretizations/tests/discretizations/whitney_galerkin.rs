@@ -14,7 +14,7 @@ use tvf_core::generate::{
     torus,
 };
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 use tvf_discretizations::{
     catalog_entry, consistent_p1_mass, face_geometry::FaceGeometry, whitney_mass, DecComplex,
     HodgeDecomposer, MassLumping, WhitneyGalerkin,
@@ -195,7 +195,7 @@ fn element_masses_match_quadrature_of_the_whitney_forms() {
                 })
                 .collect();
             let mut from_sampling = [[0.0; 3]; 3];
-            for (e, w) in sampling.sample_weights(0, b) {
+            for (e, w) in sampling.sample_weights(&SurfacePoint::barycentric(0, b)) {
                 from_sampling[e] = w;
             }
             for e in 0..3 {

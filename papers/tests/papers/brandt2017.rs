@@ -50,7 +50,15 @@ fn every_experiment_runs_on_a_generated_mesh_and_the_reports_list_every_result()
     let mut entry = EVERYTHING;
     let paper = MESHES[0].paper;
     entry.paper = paper;
-    run_mesh(&entry, &mesh.into(), &config, &progress, &mut results, &mut curves).unwrap();
+    run_mesh(
+        &entry,
+        &mesh.clone().into(),
+        &config,
+        &progress,
+        &mut results,
+        &mut curves,
+    )
+    .unwrap();
     assert_eq!(
         curves.len(),
         3,

@@ -26,7 +26,11 @@ fn basis_file_matches_the_library_and_belongs_to_its_mesh() {
     // Not a terminal: plain progress lines and a summary on stderr.
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("26 fields"), "{stderr}");
-    let mesh = load_mesh(&mesh_path).unwrap().mesh;
+    let mesh = load_mesh(&mesh_path)
+        .unwrap()
+        .mesh
+        .into_triangles()
+        .unwrap();
     let complex = Nonconforming::new(&mesh, MassLumping::Barycentric).unwrap();
     // The file holds the eigenfunctions: E + V values per pair of fields, not 4F.
     let header = read_basis_header(&out).unwrap();

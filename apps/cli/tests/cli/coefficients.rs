@@ -22,7 +22,11 @@ fn coefficients_of_a_combination_of_basis_fields() {
         .status()
         .unwrap();
     assert!(status.success());
-    let mesh = load_mesh(&mesh_path).unwrap().mesh;
+    let mesh = load_mesh(&mesh_path)
+        .unwrap()
+        .mesh
+        .into_triangles()
+        .unwrap();
     let (_, basis) = open_basis_file(
         tvf_discretizations::builtin_catalog(),
         &basis_path,

@@ -14,7 +14,11 @@ fn parts_sum_to_the_field_and_are_orthogonal() {
     let dir = tempfile::tempdir().unwrap();
     let mesh_path = dir.path().join("genus2.obj");
     write_obj(&mesh_path, &genus_surface(2, 4)).unwrap();
-    let mesh = load_mesh(&mesh_path).unwrap().mesh;
+    let mesh = load_mesh(&mesh_path)
+        .unwrap()
+        .mesh
+        .into_triangles()
+        .unwrap();
     let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
     let space = complex.face_fields();
     let field: Vec<f64> = (0..space.field_dimension())

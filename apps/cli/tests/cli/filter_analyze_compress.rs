@@ -56,7 +56,11 @@ fn fixture() -> Fixture {
     let mesh_path = dir.path().join("torus.obj");
     write_obj(&mesh_path, &torus(1.0, 0.45, 24, 12).unwrap()).unwrap();
     // The basis belongs to the mesh exactly as the tool will read it.
-    let loaded = load_mesh(&mesh_path).unwrap().mesh;
+    let loaded = load_mesh(&mesh_path)
+        .unwrap()
+        .mesh
+        .into_triangles()
+        .unwrap();
     let complex = Conforming::new(&loaded, MassLumping::Barycentric).unwrap();
     // The complete basis (dense eigensolvers, 2F = 576 fields): compression keeps only the
     // pairs asked for, and the tools see the same file format as for a truncated basis.

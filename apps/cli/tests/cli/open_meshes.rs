@@ -387,7 +387,7 @@ fn the_raw_bunny_runs_through_every_command() {
     let temp = tempfile::tempdir().unwrap();
     let dir = temp.path();
     std::fs::copy(&path, dir.join("bunny.obj")).unwrap();
-    let mesh = load_mesh(&path).unwrap().mesh;
+    let mesh = load_mesh(&path).unwrap().mesh.into_triangles().unwrap();
     write_field(&mesh, &dir.join("field.txt"));
     write_constraints(&mesh, &dir.join("c.json"), false);
     let info = json(&run(dir, &["info", "bunny.obj", "--json"]));

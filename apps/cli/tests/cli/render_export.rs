@@ -40,7 +40,11 @@ fn fixture() -> Fixture {
     let dir = tempfile::tempdir().unwrap();
     let mesh_path = dir.path().join("torus.obj");
     write_obj(&mesh_path, &torus(1.0, 0.4, 32, 16).unwrap()).unwrap();
-    let mesh = load_mesh(&mesh_path).unwrap().mesh;
+    let mesh = load_mesh(&mesh_path)
+        .unwrap()
+        .mesh
+        .into_triangles()
+        .unwrap();
     let p = mesh.positions();
     let text: String = mesh
         .faces()

@@ -95,7 +95,7 @@ fn independent_problems(mesh: &TriangleMesh) -> [(sprs::CsMat<f64>, Vec<f64>); 2
 
 fn check_mesh(path: &Path, genus: usize, k: usize) {
     let start = Instant::now();
-    let mesh = load_mesh(path).unwrap().mesh;
+    let mesh = load_mesh(path).unwrap().mesh.into_triangles().unwrap();
     let mut expected = vec![0.0; 2 * genus];
     for (stiffness, mass) in independent_problems(&mesh) {
         let pairs = lowest_eigenpairs(&stiffness, &mass, k + 1, &EigenOptions::default()).unwrap();

@@ -101,6 +101,7 @@ fn editor_page_edits_a_pair_of_pants_with_both_boundary_conditions() {
     {
         let prefix = format!("editor-pants-{id}-{}", boundary.name());
         let (server, mesh) = pants_server_for(id, boundary);
+        let mesh = mesh.as_triangles().expect("the pants are triangles");
         let client = Client::new(&server);
         let browser =
             Browser::start(&chromedriver, &chromium, 1200, 800).expect("headless chromium session");

@@ -4,13 +4,14 @@
 
 use crate::common::icosphere_basis_for;
 use tvf_core::generate::icosphere;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::builtin_catalog;
 use tvf_editor::{decode_field_frame, EditOp, Editor, EditorSetup};
 
 #[test]
 fn every_catalog_entry_edits_and_meets_its_constraints() {
     for entry in builtin_catalog() {
-        let mesh = icosphere(3);
+        let mesh = SurfaceMesh::from(icosphere(3));
         let faces = mesh.face_count();
         let complex = entry.build(&mesh).unwrap();
         let editor = Editor::start(EditorSetup {
@@ -71,10 +72,14 @@ fn meshes_with_boundary_edit_with_both_boundary_conditions() {
     let plate = perforated_plate(2, 8);
     for (id, mesh, boundary) in BoundaryCondition::ALL.into_iter().flat_map(|boundary| {
         [
-            ("conforming-barycentric", plate.clone(), boundary),
+            (
+                "conforming-barycentric",
+                SurfaceMesh::from(plate.clone()),
+                boundary,
+            ),
             (
                 "dec-circumcentric",
-                tvf_conformance::corpus::delaunay_flips(&plate),
+                SurfaceMesh::from(tvf_conformance::corpus::delaunay_flips(&plate)),
                 boundary,
             ),
         ]

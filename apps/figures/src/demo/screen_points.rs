@@ -69,20 +69,15 @@ mod tests {
 
     #[test]
     fn screen_points_pick_distinct_facing_faces_in_the_right_places() {
-        let mesh = torus(1.0, 0.4, 24, 12).unwrap();
+        let mesh = tvf_core::SurfaceMesh::from(torus(1.0, 0.4, 24, 12).unwrap());
         // Looking down the z axis (to_eye = +z): right = y × z = +x and up = z × x = +y.
         let to_eye = [0.0, 0.0, 1.0];
         let targets = [[-0.9, 0.0], [0.9, 0.0], [0.0, 0.9], [0.0, -0.9]];
         let faces = faces_at_screen_points(&mesh, to_eye, &targets);
         assert_eq!(faces.len(), 4);
-        let centroid = |t: usize| {
-            let f = mesh.faces()[t];
-            let p = mesh.positions();
-            std::array::from_fn::<f64, 3, _>(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0)
-        };
         for (&t, target) in faces.iter().zip(&targets) {
             assert!(dot(mesh.face_normal(t), to_eye) > 0.5);
-            let c = centroid(t);
+            let c = mesh.face_centroid(t);
             assert!(
                 c[0] * target[0] >= 0.0 && c[1] * target[1] >= 0.0,
                 "face {t} at {c:?}"

@@ -61,7 +61,7 @@ mod tests {
 
     #[test]
     fn a_field_gives_its_vectors_four_scalars_and_streamlines() {
-        let mesh = torus(1.0, 0.4, 16, 8).unwrap();
+        let mesh = SurfaceMesh::from(torus(1.0, 0.4, 16, 8).unwrap());
         let complex = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)
@@ -70,17 +70,13 @@ mod tests {
         // The field along the torus's axis of revolution, tangent to the tube's circles.
         let vectors: Vec<[f64; 3]> = (0..mesh.face_count())
             .map(|t| {
-                let f = mesh.faces()[t];
-                let c = (0..3).fold([0.0; 3], |a, k| {
-                    let p = mesh.positions()[f[k]];
-                    [a[0] + p[0] / 3.0, a[1] + p[1] / 3.0, a[2] + p[2] / 3.0]
-                });
+                let c = mesh.face_centroid(t);
                 [-c[1], c[0], 0.0]
             })
             .collect();
         let field = sampling.from_face_vectors(&vectors).unwrap().field;
         let tangent = sampling.to_face_vectors(&field).unwrap();
-        let data = FaceData::of_field(complex.as_ref(), &field, tangent.clone()).unwrap();
+        let data = FaceData::of_field(complex.as_ref(), &mesh, &field, tangent.clone()).unwrap();
         assert_eq!(data.vectors, vec![("field".to_string(), tangent.clone())]);
         let names: Vec<&str> = data.scalars.iter().map(|(n, _)| n.as_str()).collect();
         assert_eq!(names, ["magnitude", "divergence", "curl", "energy"]);

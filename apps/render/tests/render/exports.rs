@@ -1,6 +1,7 @@
 //! Exports parse back with the right counts; writes are atomic and refuse bad data.
 
 use tvf_core::generate::icosphere;
+use tvf_core::SurfaceMesh;
 use tvf_render::{
     trace_streamlines, write_obj, write_ply, write_vtk, FaceData, RenderError, StreamlineOptions,
 };
@@ -21,7 +22,7 @@ fn data(faces: usize) -> FaceData {
 #[test]
 fn vtk_has_points_polygons_and_cell_vectors() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = icosphere(2);
+    let mesh = SurfaceMesh::from(icosphere(2));
     let path = dir.path().join("field.vtk");
     write_vtk(&path, &mesh, &data(mesh.face_count())).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
@@ -44,12 +45,7 @@ fn vtk_has_points_polygons_and_cell_vectors() {
         .collect();
     assert_eq!(
         first,
-        vec![
-            3,
-            mesh.faces()[0][0],
-            mesh.faces()[0][1],
-            mesh.faces()[0][2]
-        ]
+        vec![3, mesh.face(0)[0], mesh.face(0)[1], mesh.face(0)[2]]
     );
     let vectors = find("VECTORS field double");
     assert_eq!(
@@ -68,7 +64,7 @@ fn vtk_has_points_polygons_and_cell_vectors() {
 #[test]
 fn ply_has_face_properties() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = icosphere(1);
+    let mesh = SurfaceMesh::from(icosphere(1));
     let path = dir.path().join("field.ply");
     write_ply(&path, &mesh, &data(mesh.face_count())).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
@@ -91,10 +87,10 @@ fn ply_has_face_properties() {
 #[test]
 fn obj_has_mesh_and_streamline_polylines() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = icosphere(3);
+    let mesh = SurfaceMesh::from(icosphere(3));
     let field: Vec<[f64; 3]> = (0..mesh.face_count()).map(|_| [0.0, 0.0, 1.0]).collect();
     let lines = trace_streamlines(
-        &mesh,
+        mesh.as_triangles().unwrap(),
         &field,
         &StreamlineOptions {
             count: 50,
@@ -129,7 +125,7 @@ fn obj_has_mesh_and_streamline_polylines() {
 #[test]
 fn failed_exports_leave_no_file_behind() {
     let dir = tempfile::tempdir().unwrap();
-    let mesh = icosphere(1);
+    let mesh = SurfaceMesh::from(icosphere(1));
     let path = dir.path().join("bad.vtk");
     let bad = FaceData {
         vectors: vec![("has space".into(), vec![[0.0; 3]; mesh.face_count()])],

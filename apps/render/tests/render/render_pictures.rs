@@ -211,7 +211,7 @@ fn markers_and_polylines_are_drawn_with_depth_test() {
     let mesh = icosphere(4);
     let field = rotation_field(&mesh, [0.0, 0.0, 1.0]);
     let fur = grow_fur(
-        &mesh,
+        &mesh.clone().into(),
         &field,
         &FurOptions {
             strand_count: 3000,

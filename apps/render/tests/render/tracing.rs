@@ -3,7 +3,7 @@
 use crate::common::{rotation_field, torus_tube_field};
 use tvf_core::generate::{icosphere, torus};
 use tvf_core::geometry::{cross, dot, norm, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_render::{
     grow_fur, mean_edge_length, trace_streamlines, FurOptions, RenderError, StreamlineOptions,
 };
@@ -143,8 +143,8 @@ fn streamlines_stop_at_boundaries() {
 
 #[test]
 fn fur_roots_on_the_surface_tips_above_it() {
-    let mesh = icosphere(4);
-    let field = rotation_field(&mesh, [0.0, 0.0, 1.0]);
+    let mesh = SurfaceMesh::from(icosphere(4));
+    let field = rotation_field(mesh.as_triangles().unwrap(), [0.0, 0.0, 1.0]);
     let options = FurOptions {
         strand_count: 2000,
         ..Default::default()
@@ -152,7 +152,7 @@ fn fur_roots_on_the_surface_tips_above_it() {
     let strands = grow_fur(&mesh, &field, &options).unwrap();
     // Strands only vanish near the poles where |ω × p| is tiny.
     assert!(strands.len() > 1900, "{} strands", strands.len());
-    let h = mean_edge_length(&mesh);
+    let h = mean_edge_length(mesh.as_triangles().unwrap());
     for s in &strands {
         assert_eq!(s.len(), options.points_per_strand);
         let root = norm(s[0]);

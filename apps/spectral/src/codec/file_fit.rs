@@ -63,7 +63,7 @@ mod tests {
             "{error}"
         );
         assert!(error.to_string().contains("whitney-galerkin"), "{error}");
-        let other = icosphere(1);
+        let other = SurfaceMesh::from(icosphere(1));
         let error = header.check_fits(&other, faces.as_ref()).unwrap_err();
         assert!(
             matches!(error, CompressionError::MeshMismatch { .. }),

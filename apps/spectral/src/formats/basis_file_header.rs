@@ -7,7 +7,8 @@ use super::basis_file_mass::StoredFieldMass;
 use std::io::Read;
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, MatrixHash};
-use tvf_core::{Hash64, SurfaceMesh};
+use tvf_core::mesh::Mesh;
+use tvf_core::Hash64;
 
 /// What a basis file must match to be used: the discretization, its matrices and the mesh.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -27,7 +28,7 @@ pub struct BasisFileKey {
 
 impl BasisFileKey {
     /// The key of a basis computed for `complex` on `mesh`.
-    pub fn new<H: HodgeComplex + ?Sized>(mesh: &SurfaceMesh, complex: &H) -> Self {
+    pub fn new<M: Mesh + ?Sized, H: HodgeComplex + ?Sized>(mesh: &M, complex: &H) -> Self {
         Self {
             discretization: complex.id().to_string(),
             mesh_fingerprint: mesh.fingerprint(),

@@ -103,13 +103,17 @@ mod tests {
     use super::*;
     use crate::formats::complex_folder::read_complex_folder;
     use tvf_core::generate::torus;
+    use tvf_core::FaceList;
     use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 
     #[test]
     fn a_written_folder_lists_its_files_and_reads_back() {
         let raw = torus(1.0, 0.4, 12, 6).unwrap();
-        let (mesh, report) =
-            SurfaceMesh::validated(raw.positions().to_vec(), raw.faces().to_vec()).unwrap();
+        let (mesh, report) = SurfaceMesh::validated(
+            raw.positions().to_vec(),
+            FaceList::from_triangles(raw.faces()),
+        )
+        .unwrap();
         let complex = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)

@@ -53,7 +53,7 @@ fn harmonic_fields_number_2g_on_the_real_meshes() {
         let Some(path) = shared_mesh(&format!("{name}.obj")) else {
             continue;
         };
-        let mesh = load_mesh(&path).unwrap().mesh;
+        let mesh = load_mesh(&path).unwrap().mesh.into_triangles().unwrap();
         assert_eq!(mesh.genus(), genus);
         let request = BasisRequest::pairs(10).with_seed(11);
         let conforming = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();

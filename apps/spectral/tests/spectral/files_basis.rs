@@ -199,7 +199,9 @@ fn version_two_files_written_by_tvf_load() {
     ] {
         let mesh = tvf_core::io::load_mesh(data.join(format!("{name}.obj")))
             .unwrap()
-            .mesh;
+            .mesh
+            .into_triangles()
+            .unwrap();
         let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
         let path = data.join(format!("{name}-v2.tvfb"));
         let header = read_basis_header(&path).unwrap();

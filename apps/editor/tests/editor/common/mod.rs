@@ -7,7 +7,7 @@ use std::sync::Mutex;
 
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::generate::{icosphere, perforated_plate};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_design::ReducedBasis;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 use tvf_editor::{Editor, EditorServer, EditorSetup};
@@ -25,7 +25,7 @@ pub fn icosphere_basis_for(id: &str) -> ReducedBasis {
         .get_or_insert_with(HashMap::new)
         .entry(id.to_string())
         .or_insert_with(|| {
-            let mesh = icosphere(3);
+            let mesh = SurfaceMesh::from(icosphere(3));
             let complex = catalog_entry(id)
                 .expect("catalog id")
                 .build(&mesh)
@@ -56,7 +56,7 @@ pub fn icosphere_server() -> EditorServer {
 
 /// [`icosphere_server`] with the catalog entry `id`.
 pub fn icosphere_server_for(id: &str) -> EditorServer {
-    let mesh = icosphere(3);
+    let mesh = SurfaceMesh::from(icosphere(3));
     let complex = catalog_entry(id)
         .expect("catalog id")
         .build(&mesh)
@@ -76,13 +76,13 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
 /// boundary loops; Delaunay-flipped for entries that need it) with catalog entry `id`, boundary
 /// condition `boundary` and its 60 lowest eigenfields, served on 127.0.0.1; also returns the
 /// mesh.
-pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, TriangleMesh) {
+pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer, SurfaceMesh) {
     let entry = catalog_entry(id).expect("catalog id");
-    let mesh = if entry.needs_delaunay() {
+    let mesh = SurfaceMesh::from(if entry.needs_delaunay() {
         tvf_conformance::corpus::delaunay_flips(&perforated_plate(2, 8))
     } else {
         perforated_plate(2, 8)
-    };
+    });
     let complex = entry.build_with(&mesh, boundary).expect("pants operators");
     let spectral = compute_basis(complex.as_ref(), &BasisRequest::fields(60)).expect("pants basis");
     let editor = Editor::start(EditorSetup {
