@@ -16,6 +16,7 @@ tvf_conformance::catalog_suites! {
     dec_barycentric => "dec-barycentric";
     dec_circumcentric => "dec-circumcentric";
     whitney_galerkin => "whitney-galerkin";
+    polygon_dec => "polygon-dec";
 }
 
 tvf_conformance::conformance_suite!(

@@ -1,7 +1,7 @@
 //! What a reader produces before validation, and the step from it to a [`LoadedMesh`].
 
 use super::error::{LoadError, LoadErrorKind};
-use crate::mesh::{FaceList, ValidationReport};
+use crate::mesh::{FaceList, ValidationReport, ValidationWarning};
 use crate::{MeshError, SurfaceMesh};
 use std::path::Path;
 
@@ -64,7 +64,19 @@ impl RawMesh {
             face_lines,
         } = self;
         SurfaceMesh::validated(positions, faces)
-            .map(|(mesh, report)| LoadedMesh { mesh, report })
+            .map(|(mesh, mut report)| {
+                for warning in &mut report.warnings {
+                    if let ValidationWarning::NonConvexPolygons {
+                        first_face,
+                        first_line,
+                        ..
+                    } = warning
+                    {
+                        *first_line = face_lines.get(*first_face).copied();
+                    }
+                }
+                LoadedMesh { mesh, report }
+            })
             .map_err(|error| {
                 let line = match &error {
                     MeshError::NonFiniteCoordinate { vertex }
@@ -73,7 +85,8 @@ impl RawMesh {
                     | MeshError::RepeatedVertexInFace { face, .. }
                     | MeshError::ZeroAreaFace { face }
                     | MeshError::TooFewCorners { face, .. }
-                    | MeshError::PolygonFolds { face, .. } => face_lines.get(*face),
+                    | MeshError::PolygonFolds { face, .. }
+                    | MeshError::PolygonNotTriangulable { face } => face_lines.get(*face),
                     MeshError::InconsistentOrientation { face_b, .. }
                     | MeshError::NonOrientable { face_b, .. } => face_lines.get(*face_b),
                     _ => None,

@@ -94,18 +94,31 @@ pub enum MeshError {
         /// Number of corners it lists.
         corners: usize,
     },
-    /// A polygon folds over itself: seen from its vector area, some triangle of its display
-    /// triangulation (corner `c`, corner `c + 1`, the polygon's centroid) faces the other way or
-    /// is flat, as for a polygon whose corners wind around its centroid more than once or
-    /// backwards.
+    /// A polygon that ear clipping of its own corners, seen along its vector area, cannot split
+    /// into triangles facing the way of the vector area (it is flat up to rounding, or folds).
     #[error(
-        "face {face} folds over itself: the triangle from its corner {corner} to the next one and \
-         its centroid faces against the polygon's vector area"
+        "face {face} cannot be split into triangles by its own corners: seen along its vector \
+         area it is flat or folds over itself"
+    )]
+    PolygonNotTriangulable {
+        /// Face index.
+        face: usize,
+    },
+    /// A polygon folds over itself: seen along its vector area (projected to the plane
+    /// orthogonal to it), two of its sides that are not neighbours meet, as for a polygon whose
+    /// corners wind around more than once or a bow tie. A simple non-convex polygon does not
+    /// fold.
+    #[error(
+        "face {face} folds over itself: seen along its vector area, its side from corner {side} \
+         and its side from corner {other_side} cross"
     )]
     PolygonFolds {
         /// Face index.
         face: usize,
-        /// The first corner (0-based within the face) of a folding triangle.
-        corner: usize,
+        /// The first side that meets another (side `c` joins corner `c` to corner `c + 1`,
+        /// 0-based within the face).
+        side: usize,
+        /// The side it meets.
+        other_side: usize,
     },
 }

@@ -9,6 +9,7 @@ mod face_list;
 mod fingerprint;
 mod geometry_range;
 mod polygon_mesh;
+mod polygon_outline;
 mod quality;
 mod surface_mesh;
 mod surface_point;

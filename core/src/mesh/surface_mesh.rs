@@ -7,7 +7,9 @@ use super::error::MeshError;
 use super::face_list::{FaceCorners, FaceList};
 use super::surface_point::{SurfacePoint, SurfacePointError};
 use super::topology::MeshTopology;
-use super::validate::{check_combinatorics, check_polygon_geometry, KeptVertices};
+use super::validate::{
+    check_combinatorics, check_polygon_geometry, non_convex_polygons, KeptVertices,
+};
 use super::validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};
 use super::{PolygonMesh, TriangleMesh};
 use crate::geometry::{dot, norm, scale, sub};
@@ -70,6 +72,7 @@ impl SurfaceMesh {
         }
         check_combinatorics(&positions, &faces)?;
         check_polygon_geometry(&positions, &faces)?;
+        let non_convex = non_convex_polygons(&positions, &faces);
         let kept = KeptVertices::of(&positions, &faces);
         let faces = faces.renumbered(&kept.new_index);
         let (positions, mut report) = kept.into_report(positions);
@@ -85,6 +88,13 @@ impl SurfaceMesh {
             report
                 .warnings
                 .push(ValidationWarning::SmallAngles { faces: small });
+        }
+        if let Some((count, first_face)) = non_convex {
+            report.warnings.push(ValidationWarning::NonConvexPolygons {
+                count,
+                first_face,
+                first_line: None,
+            });
         }
         Ok((mesh, report))
     }

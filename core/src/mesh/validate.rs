@@ -9,6 +9,7 @@
 
 use super::error::MeshError;
 use super::face_list::FaceCorners;
+use super::polygon_outline::PolygonOutline;
 use super::topology::check_corners;
 use super::triangle_mesh::TriangleMesh;
 use super::validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};
@@ -368,8 +369,8 @@ fn check_triangle_areas(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Result<
 
 /// Fails on the first polygon whose vector area is zero up to rounding (twice its length at most
 /// [`ZERO_AREA_RELATIVE`] times the longest squared side, as for triangles) or that folds over
-/// itself ([`MeshError::PolygonFolds`]: a triangle of its display triangulation — corner `c`,
-/// corner `c + 1`, the centroid — whose normal has no positive component along the vector area).
+/// itself ([`MeshError::PolygonFolds`]: seen along its vector area, two sides that are not
+/// neighbours meet).
 pub(crate) fn check_polygon_geometry<F: FaceCorners + ?Sized>(
     positions: &[[f64; 3]],
     faces: &F,
@@ -390,18 +391,34 @@ pub(crate) fn check_polygon_geometry<F: FaceCorners + ?Sized>(
         if n == 3 {
             continue;
         }
-        let centroid = polygon_centroid(&corners);
-        for c in 0..n {
-            let spoke = cross(
-                sub(corners[c], centroid),
-                sub(corners[(c + 1) % n], centroid),
-            );
-            if dot(spoke, area) <= 0.0 {
-                return Err(MeshError::PolygonFolds { face, corner: c });
-            }
+        if let Some((side, other_side)) = PolygonOutline::new(&corners, area).crossing_sides() {
+            return Err(MeshError::PolygonFolds {
+                face,
+                side,
+                other_side,
+            });
         }
     }
     Ok(())
+}
+
+/// The polygons (more than three corners) that are not convex seen along their vector area:
+/// how many, and the first.
+pub(crate) fn non_convex_polygons<F: FaceCorners + ?Sized>(
+    positions: &[[f64; 3]],
+    faces: &F,
+) -> Option<(usize, usize)> {
+    let mut found: Option<(usize, usize)> = None;
+    for face in 0..faces.face_count() {
+        let corners: Vec<[f64; 3]> = faces.corners(face).iter().map(|&v| positions[v]).collect();
+        if corners.len() > 3
+            && !PolygonOutline::new(&corners, polygon_vector_area(&corners)).is_convex()
+        {
+            let (count, first) = found.unwrap_or((0, face));
+            found = Some((count + 1, first));
+        }
+    }
+    found
 }
 
 /// The vector area `½ Σ_c p_c × p_{c+1}` of a polygon with corners `corners` (counter-clockwise),

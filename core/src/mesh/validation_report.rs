@@ -40,6 +40,18 @@ pub enum ValidationWarning {
         /// Number of such faces.
         faces: usize,
     },
+    /// Polygons (more than three corners) that are not convex seen along their vector area.
+    /// They are valid: polygon operators are defined on them, and they are drawn through an
+    /// ear-clipped triangulation of their own corners; an entry that needs triangles gets the
+    /// same triangulation.
+    NonConvexPolygons {
+        /// How many.
+        count: usize,
+        /// The first (face index).
+        first_face: usize,
+        /// The file line of the first, when the mesh was read from a text file.
+        first_line: Option<usize>,
+    },
 }
 
 /// Threshold (degrees) below which an angle is reported by [`ValidationWarning::SmallAngles`].
@@ -53,6 +65,7 @@ impl ValidationWarning {
             Self::DuplicateVertices { .. } => "duplicate_vertices",
             Self::InwardNormals { .. } => "inward_normals",
             Self::SmallAngles { .. } => "small_angles",
+            Self::NonConvexPolygons { .. } => "non_convex_polygons",
         }
     }
 }
@@ -87,6 +100,17 @@ impl fmt::Display for ValidationWarning {
             Self::SmallAngles { faces } => {
                 write!(f, "{faces} faces have an angle below {SMALL_ANGLE_DEG}°")
             }
+            Self::NonConvexPolygons {
+                count,
+                first_face,
+                first_line,
+            } => {
+                write!(f, "{count} non-convex polygons (first: face {first_face}")?;
+                if let Some(line) = first_line {
+                    write!(f, ", line {line}")?;
+                }
+                write!(f, "); they are drawn ear-clipped")
+            }
         }
     }
 }
@@ -95,7 +119,8 @@ impl fmt::Display for ValidationWarning {
 /// errors.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidationReport {
-    /// Every non-fatal finding, in a fixed order (unreferenced, duplicates, normals, angles).
+    /// Every non-fatal finding, in a fixed order (unreferenced, duplicates, normals, angles, non-convex
+    /// polygons).
     pub warnings: Vec<ValidationWarning>,
     /// `original_vertex[v]`: the input index of mesh vertex `v` (differs from `v` once
     /// unreferenced vertices were dropped), `V` entries.

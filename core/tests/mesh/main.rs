@@ -6,4 +6,5 @@ mod generated_order;
 mod generated_surfaces;
 mod malformed_inputs;
 mod mesh_io;
+mod polygon_meshes;
 mod reader_fuzz;

@@ -417,7 +417,8 @@ fn the_catalog_listing_names_both_boundary_conditions_and_what_they_fix() {
         );
         let id = entry["id"].as_str().unwrap();
         let normal = entry["boundary_meanings"]["normal"].as_str().unwrap();
-        let expected = if id.starts_with("dec-") || id == "whitney-galerkin" {
+        let expected = if id.starts_with("dec-") || id == "whitney-galerkin" || id == "polygon-dec"
+        {
             "relative forms"
         } else if id.starts_with("conforming-") {
             "P1 potentials zero"
