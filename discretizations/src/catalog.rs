@@ -14,6 +14,19 @@ use tvf_core::mesh::Mesh;
 /// The id used when none is given: the paper's conforming decomposition, barycentric masses.
 pub const DEFAULT_DISCRETIZATION: &str = "conforming-barycentric";
 
+/// The id used when none is given on a mesh with polygons: polygonal DEC (de Goes, Butts,
+/// Desbrun 2020), the built-in entry that works on them.
+pub const DEFAULT_POLYGON_DISCRETIZATION: &str = "polygon-dec";
+
+/// The id used when none is given on `mesh`: [`DEFAULT_DISCRETIZATION`] on a triangle mesh,
+/// [`DEFAULT_POLYGON_DISCRETIZATION`] on a mesh with polygons.
+pub fn default_discretization<M: Mesh + ?Sized>(mesh: &M) -> &'static str {
+    match mesh.as_triangles() {
+        Some(_) => DEFAULT_DISCRETIZATION,
+        None => DEFAULT_POLYGON_DISCRETIZATION,
+    }
+}
+
 /// A list of discretizations with unique kebab-case ids, in the order listings show them.
 /// Cheap to clone (the constructors are shared).
 ///

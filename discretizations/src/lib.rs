@@ -147,8 +147,9 @@ pub use boundary_conditions::{
 };
 pub use builtin_catalog::polygon_dec_entry;
 pub use catalog::{
-    build_complex, builtin_catalog, catalog_entry, is_kebab_case, Catalog, CatalogBuildError,
-    CatalogError, UnknownDiscretization, DEFAULT_DISCRETIZATION,
+    build_complex, builtin_catalog, catalog_entry, default_discretization, is_kebab_case, Catalog,
+    CatalogBuildError, CatalogError, UnknownDiscretization, DEFAULT_DISCRETIZATION,
+    DEFAULT_POLYGON_DISCRETIZATION,
 };
 pub use catalog_entry::{BoxedComplex, CatalogEntry, EntryConstructor, ANY_MESH};
 pub use catalog_ids::{

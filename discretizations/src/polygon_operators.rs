@@ -107,6 +107,7 @@ impl PolygonOperators {
 mod tests {
     use super::*;
     use tvf_core::generate::{cube_sphere, quad_torus};
+    use tvf_core::geometry::add;
     use tvf_core::SurfaceMesh;
 
     /// `U_f V_f = I − n nᵀ` on every polygon, planar or not: the sharp of the flat of a vector
@@ -122,12 +123,10 @@ mod tests {
                 let n = scale(ops.vector_area, 1.0 / ops.area);
                 let v = [0.3, -1.2, 0.8];
                 let flat: Vec<f64> = ops.flat.iter().map(|&row| dot(row, v)).collect();
-                let mut sharp = [0.0; 3];
-                for (c, &x) in flat.iter().enumerate() {
-                    for k in 0..3 {
-                        sharp[k] += ops.sharp[c][k] * x;
-                    }
-                }
+                let sharp = flat
+                    .iter()
+                    .zip(&ops.sharp)
+                    .fold([0.0; 3], |sum, (&x, &row)| add(sum, scale(row, x)));
                 let expected = sub(v, scale(n, dot(n, v)));
                 assert!(
                     tvf_core::geometry::norm(sub(sharp, expected)) < 1e-12,

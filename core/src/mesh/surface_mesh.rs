@@ -25,6 +25,10 @@ pub const POINT_WEIGHT_TOLERANCE: f64 = 1e-9;
 /// corner lists (edge `c` of a face joins corner `c` to `c + 1`), vector areas, normals and
 /// centroids, the topology, surface points and the display triangulation (a triangle mesh is
 /// its own).
+// A program holds one or two meshes, each owning megabytes of vertex and face arrays: the size
+// of the enum's inline part (hundreds of bytes) does not matter, and boxing would only add an
+// indirection to every access.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum SurfaceMesh {
     /// Every face a triangle.
@@ -108,6 +112,7 @@ impl SurfaceMesh {
     }
 
     /// The triangle mesh, if every face is a triangle (the mesh itself back otherwise).
+    #[allow(clippy::result_large_err)] // The error is the mesh itself, handed back whole.
     pub fn into_triangles(self) -> Result<TriangleMesh, Self> {
         match self {
             Self::Triangles(mesh) => Ok(mesh),

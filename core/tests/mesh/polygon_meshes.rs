@@ -7,6 +7,9 @@ use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_core::io::{load_mesh, parse_mesh_bytes, save_mesh, LoadErrorKind, MeshFormat};
 use tvf_core::{MeshError, SurfaceMesh, ValidationWarning};
 
+/// A file's text, the line its error must name (0: not checked) and the error it must be.
+type BadPolygonCase = (String, usize, fn(&MeshError) -> bool);
+
 fn parse(text: &str) -> Result<tvf_core::io::LoadedMesh, tvf_core::io::LoadError> {
     parse_mesh_bytes(text.as_bytes(), MeshFormat::Obj, "poly.obj")
 }
@@ -44,7 +47,7 @@ fn a_bad_polygon_is_an_error_naming_the_file_the_line_and_the_problem() {
             format!("v {} {} 0\n", angle.cos(), angle.sin())
         })
         .collect();
-    let cases: Vec<(String, usize, fn(&MeshError) -> bool)> = vec![
+    let cases: Vec<BadPolygonCase> = vec![
         (format!("{square}f 1 2 2 3\n"), 8, |e| {
             matches!(e, MeshError::RepeatedVertexInFace { face: 0, .. })
         }),

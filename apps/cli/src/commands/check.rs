@@ -21,7 +21,7 @@ use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
 use tvf_core::{SurfaceMesh, TriangleMesh};
-use tvf_discretizations::Catalog;
+use tvf_discretizations::{Catalog, DEFAULT_DISCRETIZATION};
 
 /// Arguments of `tvf check`.
 #[derive(Args)]
@@ -74,7 +74,10 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let catalog = context.catalog();
     let id = match &args.discretization.complex {
         Some(dir) => format!("the matrices of {}", dir.display()),
-        None => args.discretization.id(),
+        None => args
+            .discretization
+            .requested_id()
+            .unwrap_or_else(|| DEFAULT_DISCRETIZATION.to_string()),
     };
     let mut report = Report::new(args.json);
     let input = match (&args.mesh, &args.example) {
