@@ -5,7 +5,7 @@
 use super::crossings::Crossings;
 use super::error::IntrinsicError;
 use super::normal_coordinates::TriangleArcs;
-use super::surface_location::{segment_point_barycentric, vertex_barycentric, InputLocation};
+use super::surface_location::{location_barycentric, segment_point_barycentric, InputLocation};
 use super::triangulation::IntrinsicTriangulation;
 use crate::{TriangleMesh, NO_FACE};
 
@@ -274,14 +274,12 @@ impl CommonSubdivision {
             let [a, b] = self.input_edges[self.slot_input_edge[slot]];
             return segment_point_barycentric(face, a, b, self.slot_t[slot]);
         }
-        match self.vertex_locations[self.intrinsic_faces[t][code]] {
-            InputLocation::Vertex(v) => vertex_barycentric(face, v),
-            InputLocation::Edge { edge, t } => {
-                let [a, b] = self.input_edges[edge];
-                segment_point_barycentric(face, a, b, t)
-            }
-            InputLocation::Face(point) => (point.face == f).then_some(point.barycentric),
-        }
+        location_barycentric(
+            self.vertex_locations[self.intrinsic_faces[t][code]],
+            f,
+            &self.input_faces,
+            &self.input_edges,
+        )
     }
 
     /// Areas of all cells (in their input faces); fails if a corner is not on its cell's face.

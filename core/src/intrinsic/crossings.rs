@@ -63,6 +63,20 @@ impl Crossings {
     }
 }
 
+/// One crossing of a traced piece: the halfedge it enters and the position along it (from its
+/// tail), the fraction `sigma` along it, the input edge and the fraction `t` along that, and the
+/// input faces on the halfedge's tail and head sides of the crossing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CrossingRecord {
+    pub halfedge: usize,
+    pub position: i64,
+    pub sigma: f64,
+    pub input_edge: usize,
+    pub t: f64,
+    pub tail_face: usize,
+    pub head_face: usize,
+}
+
 impl IntrinsicTriangulation {
     /// Traces every piece of every input edge and records its crossings.
     pub(crate) fn trace_all_crossings(
@@ -112,7 +126,7 @@ impl IntrinsicTriangulation {
 
     /// Records the crossings of one traced piece that starts with input edge end `start_end`.
     /// `sides[0]`/`sides[1]` receive the input face before/after each slot.
-    pub(crate) fn record_piece(
+    fn record_piece(
         &self,
         path: &PiecePath,
         start_end: CurveEnd,
@@ -120,8 +134,37 @@ impl IntrinsicTriangulation {
         out: &mut Crossings,
         sides: [&mut Vec<usize>; 2],
     ) -> Result<(), IntrinsicError> {
+        let [before, after] = sides;
+        for record in self.piece_records(path, start_end, mesh)? {
+            let e = self.halfedge_edge[record.halfedge];
+            let reference = self.edge_halfedge[e] == record.halfedge;
+            let slot = out.slot(self, record.halfedge, record.position);
+            if out.input_edge[slot] != usize::MAX {
+                return Err(IntrinsicError::Inconsistent(format!(
+                    "two input edges traced through the same crossing of intrinsic edge {e}"
+                )));
+            }
+            out.input_edge[slot] = record.input_edge;
+            out.t[slot] = record.t;
+            (out.sigma[slot], before[slot], after[slot]) = if reference {
+                (record.sigma, record.tail_face, record.head_face)
+            } else {
+                (1.0 - record.sigma, record.head_face, record.tail_face)
+            };
+        }
+        Ok(())
+    }
+
+    /// The crossings of one traced piece that starts with input edge end `start_end`, with
+    /// their positions and the input faces on either side.
+    pub(crate) fn piece_records(
+        &self,
+        path: &PiecePath,
+        start_end: CurveEnd,
+        mesh: &TriangleMesh,
+    ) -> Result<Vec<CrossingRecord>, IntrinsicError> {
         let (Some(start), Some(end)) = (path.start, path.end) else {
-            return Ok(());
+            return Ok(Vec::new());
         };
         let edge = start_end.edge;
         let (_, end_end) = self.end_of_arc(end)?;
@@ -143,30 +186,28 @@ impl IntrinsicTriangulation {
             )));
         }
         let [left, right] = mesh.edge_faces()[edge];
-        let [before, after] = sides;
+        // The piece enters each crossed halfedge's face: the halfedge's tail side is on the
+        // piece's left, which is the left of a → b when the piece runs towards b.
+        let (tail_face, head_face) = if start_end.toward_b {
+            (left, right)
+        } else {
+            (right, left)
+        };
         let positions = self.piece_positions(path);
-        for (&(h, p), &(sigma, lambda)) in path.crossings.iter().zip(&positions) {
-            let e = self.halfedge_edge[h];
-            let reference = self.edge_halfedge[e] == h;
-            let slot = out.slot(self, h, p);
-            if out.input_edge[slot] != usize::MAX {
-                return Err(IntrinsicError::Inconsistent(format!(
-                    "two input edges traced through the same crossing of intrinsic edge {e}"
-                )));
-            }
-            out.input_edge[slot] = edge;
-            out.sigma[slot] = if reference { sigma } else { 1.0 - sigma };
-            out.t[slot] = t0 + lambda * (t1 - t0);
-            // Walking a → b, the edge crosses the reference halfedge from its right to its left
-            // exactly when the reference's tail side is on the left of a → b.
-            let tail_on_left = reference == start_end.toward_b;
-            (before[slot], after[slot]) = if tail_on_left {
-                (left, right)
-            } else {
-                (right, left)
-            };
-        }
-        Ok(())
+        Ok(path
+            .crossings
+            .iter()
+            .zip(&positions)
+            .map(|(&(halfedge, position), &(sigma, lambda))| CrossingRecord {
+                halfedge,
+                position,
+                sigma,
+                input_edge: edge,
+                t: t0 + lambda * (t1 - t0),
+                tail_face,
+                head_face,
+            })
+            .collect())
     }
 
     /// Input faces of the segments of every intrinsic edge that does not lie along an input
@@ -185,7 +226,7 @@ impl IntrinsicTriangulation {
                 continue;
             }
             let (first, last) = (out.offsets[e], out.offsets[e + 1]);
-            let tail_face = self.tail_sector_face(h, edge_faces, before, first, last);
+            let tail_face = self.first_segment_face(h, edge_faces);
             out.segment_face[first + e] = tail_face;
             for slot in first..last {
                 if before[slot] != out.segment_face[slot + e] {
@@ -199,22 +240,16 @@ impl IntrinsicTriangulation {
         Ok(())
     }
 
-    /// The input face in which halfedge `h` (not along an input edge) leaves its tail.
-    fn tail_sector_face(
-        &self,
-        h: usize,
-        edge_faces: &[[usize; 2]],
-        before: &[usize],
-        first: usize,
-        last: usize,
-    ) -> usize {
+    /// The input face in which halfedge `h` (not along an input edge) leaves its tail: the
+    /// sector between the input edges around the tail, or the face an inserted tail lies in
+    /// ([`NO_FACE`] for a vertex inserted on an input edge without ends, which cannot happen).
+    pub(crate) fn first_segment_face(&self, h: usize, edge_faces: &[[usize; 2]]) -> usize {
         let r = self.roundabout[h];
         if r != NO_END {
             return self.curve_ends.face_before(r, edge_faces);
         }
         match self.vertex_locations[self.tail(h)] {
             InputLocation::Face(point) => point.face,
-            _ if first < last => before[first],
             _ => NO_FACE,
         }
     }

@@ -17,6 +17,33 @@ use super::triangulation::{IntrinsicTriangulation, NO_HALFEDGE};
 /// this tolerance.
 pub const DELAUNAY_FLIP_TOLERANCE: f64 = 1e-12;
 
+/// A stack of edges, each at most once.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct EdgeQueue {
+    stack: Vec<usize>,
+    queued: Vec<bool>,
+}
+
+impl EdgeQueue {
+    /// Pushes `e` unless it is already queued.
+    pub fn push(&mut self, e: usize) {
+        if e >= self.queued.len() {
+            self.queued.resize(e + 1, false);
+        }
+        if !self.queued[e] {
+            self.queued[e] = true;
+            self.stack.push(e);
+        }
+    }
+
+    /// Takes the last edge pushed.
+    pub fn pop(&mut self) -> Option<usize> {
+        let e = self.stack.pop()?;
+        self.queued[e] = false;
+        Some(e)
+    }
+}
+
 impl IntrinsicTriangulation {
     /// Flips interior edges until every one is Delaunay (`cot α + cot β ≥ 0` up to
     /// [`DELAUNAY_FLIP_TOLERANCE`]); returns the number of flips made. Boundary edges are never
@@ -31,23 +58,23 @@ impl IntrinsicTriangulation {
     /// Fails with [`IntrinsicError::FlipLimit`] after `100 E + 100 000` flips, which exact
     /// arithmetic never needs on real meshes; it guards against round-off cycles.
     pub fn flip_to_delaunay(&mut self) -> Result<usize, IntrinsicError> {
-        let queue: Vec<usize> = (0..self.edge_count()).collect();
-        self.flip_queue_to_delaunay(queue)
+        let mut queue = EdgeQueue::default();
+        for e in 0..self.edge_count() {
+            queue.push(e);
+        }
+        self.flip_until_delaunay(&mut queue, None)
     }
 
-    /// [`IntrinsicTriangulation::flip_to_delaunay`] starting from the edges in `queue`.
-    pub(crate) fn flip_queue_to_delaunay(
+    /// Flips the non-Delaunay edges in `queue` and those that become non-Delaunay, until the
+    /// queue is empty; pushes every edge of a changed face to `touched`.
+    pub(crate) fn flip_until_delaunay(
         &mut self,
-        mut queue: Vec<usize>,
+        queue: &mut EdgeQueue,
+        mut touched: Option<&mut EdgeQueue>,
     ) -> Result<usize, IntrinsicError> {
         let limit = 100 * self.edge_count() + 100_000;
-        let mut queued = vec![false; self.edge_count()];
-        for &e in &queue {
-            queued[e] = true;
-        }
         let mut flips = 0;
         while let Some(e) = queue.pop() {
-            queued[e] = false;
             if !self.needs_flip(e) || !self.flip(e) {
                 continue;
             }
@@ -56,16 +83,19 @@ impl IntrinsicTriangulation {
                 return Err(IntrinsicError::FlipLimit { flips });
             }
             let h = self.edge_halfedge[e];
-            for g in [
-                self.next(h),
-                self.prev(h),
-                self.next(self.twin[h]),
-                self.prev(self.twin[h]),
-            ] {
-                let f = self.halfedge_edge[g];
-                if !queued[f] {
-                    queued[f] = true;
-                    queue.push(f);
+            let twin = self.twin[h];
+            for g in [self.next(h), self.prev(h), self.next(twin), self.prev(twin)] {
+                queue.push(self.halfedge_edge[g]);
+            }
+            if let Some(touched) = touched.as_deref_mut() {
+                for g in [
+                    h,
+                    self.next(h),
+                    self.prev(h),
+                    self.next(twin),
+                    self.prev(twin),
+                ] {
+                    touched.push(self.halfedge_edge[g]);
                 }
             }
         }
@@ -126,7 +156,7 @@ impl IntrinsicTriangulation {
         let roundabout_k = self.advance_roundabout(b, update.advance_at_k);
         let roundabout_l = self.advance_roundabout(d, update.advance_at_l);
 
-        self.relocate_outer_halfedges([a, b, c, d], [3 * t1 + 1, 3 * t2, 3 * t2 + 1, 3 * t1]);
+        self.relocate_outer_halfedges(&[a, b, c, d], &[3 * t1 + 1, 3 * t2, 3 * t2 + 1, 3 * t1]);
         self.faces[t1] = [k, l, j];
         self.faces[t2] = [l, k, i];
         let (new1, new2) = (3 * t1 + 2, 3 * t2 + 2);
@@ -157,23 +187,17 @@ impl IntrinsicTriangulation {
 
     /// Moves the data of halfedges `old[m]` (twin, edge, roundabout) to positions `new[m]`,
     /// fixing the twins' back pointers and the edges' reference halfedges.
-    pub(crate) fn relocate_outer_halfedges<const N: usize>(
-        &mut self,
-        old: [usize; N],
-        new: [usize; N],
-    ) {
-        let saved = old.map(|h| {
-            let edge = self.halfedge_edge[h];
-            (
-                self.twin[h],
-                edge,
-                self.roundabout[h],
-                self.edge_halfedge[edge] == h,
-            )
-        });
+    pub(crate) fn relocate_outer_halfedges(&mut self, old: &[usize], new: &[usize]) {
+        let saved: Vec<_> = old
+            .iter()
+            .map(|&h| {
+                let edge = self.halfedge_edge[h];
+                let reference = self.edge_halfedge[edge] == h;
+                (self.twin[h], edge, self.roundabout[h], reference)
+            })
+            .collect();
         let moved = |h: usize| old.iter().position(|&x| x == h).map_or(h, |m| new[m]);
-        for m in 0..N {
-            let (twin, edge, roundabout, reference) = saved[m];
+        for (m, &(twin, edge, roundabout, reference)) in saved.iter().enumerate() {
             let twin = if twin == NO_HALFEDGE {
                 twin
             } else {
@@ -186,10 +210,10 @@ impl IntrinsicTriangulation {
                 self.edge_halfedge[edge] = new[m];
             }
         }
-        for m in 0..N {
-            let twin = self.twin[new[m]];
+        for &position in new {
+            let twin = self.twin[position];
             if twin != NO_HALFEDGE {
-                self.twin[twin] = new[m];
+                self.twin[twin] = position;
             }
         }
     }

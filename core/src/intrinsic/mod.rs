@@ -25,6 +25,7 @@ mod common_subdivision;
 mod crossings;
 mod curve_ends;
 mod delaunay_flips;
+mod edge_split;
 mod error;
 mod intrinsic_geometry;
 #[cfg(test)]
@@ -32,6 +33,7 @@ mod invariants;
 mod length_geometry;
 mod normal_coordinates;
 mod point_mapping;
+mod refine;
 mod surface_location;
 #[cfg(test)]
 mod test_meshes;
@@ -45,5 +47,6 @@ pub use length_geometry::{
     corner_angles, corner_cotangents, is_triangle, mixed_voronoi_shares, triangle_area,
 };
 pub use normal_coordinates::ALONG_INPUT_EDGE;
+pub use refine::{RefineOptions, RefineReport, STRICT_DELAUNAY_MARGIN};
 pub use surface_location::{InputLocation, TrianglePoint};
 pub use triangulation::{IntrinsicTriangulation, NO_HALFEDGE};

@@ -51,3 +51,22 @@ pub(crate) fn vertex_barycentric(face: [usize; 3], v: usize) -> Option<[f64; 3]>
     bary[c] = 1.0;
     Some(bary)
 }
+
+/// Barycentric coordinates of `location` in input face `f` (corners `input_faces[f]`), `None`
+/// if it is not on that face.
+pub(crate) fn location_barycentric(
+    location: InputLocation,
+    f: usize,
+    input_faces: &[[usize; 3]],
+    input_edges: &[[usize; 2]],
+) -> Option<[f64; 3]> {
+    let face = input_faces[f];
+    match location {
+        InputLocation::Vertex(v) => vertex_barycentric(face, v),
+        InputLocation::Edge { edge, t } => {
+            let [a, b] = input_edges[edge];
+            segment_point_barycentric(face, a, b, t)
+        }
+        InputLocation::Face(point) => (point.face == f).then_some(point.barycentric),
+    }
+}

@@ -88,3 +88,31 @@ pub(crate) fn non_delaunay_meshes() -> Vec<(&'static str, TriangleMesh)> {
         ("pinched spheres", pinched_spheres()),
     ]
 }
+
+/// The unit square as an `n × n` grid of squares, each split by its diagonal from lower left to
+/// upper right: every diagonal is cocircular (`⋆1 = 0`) and every boundary triangle has a right
+/// angle.
+pub(crate) fn square_grid(n: usize) -> TriangleMesh {
+    let index = |i: usize, j: usize| i * (n + 1) + j;
+    let positions = (0..=n)
+        .flat_map(|i| (0..=n).map(move |j| [j as f64 / n as f64, i as f64 / n as f64, 0.0]))
+        .collect();
+    let mut faces = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            faces.push([index(i, j), index(i, j + 1), index(i + 1, j + 1)]);
+            faces.push([index(i, j), index(i + 1, j + 1), index(i + 1, j)]);
+        }
+    }
+    TriangleMesh::new(positions, faces).expect("a grid is a mesh")
+}
+
+/// One obtuse triangle (120° at corner 2): its longest side is a boundary edge no flip can fix.
+pub(crate) fn obtuse_triangle() -> TriangleMesh {
+    let h = 0.5 / 3f64.sqrt();
+    TriangleMesh::new(
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, h, 0.0]],
+        vec![[0, 1, 2]],
+    )
+    .expect("a triangle is a mesh")
+}
