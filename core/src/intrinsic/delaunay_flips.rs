@@ -166,7 +166,7 @@ impl IntrinsicTriangulation {
         self.halfedge_edge[new2] = e;
         self.edge_halfedge[e] = new1;
         self.lengths[e] = length;
-        self.normal[e] = update.new_edge;
+        self.set_normal(e, update.new_edge);
         self.roundabout[new1] = roundabout_k;
         self.roundabout[new2] = roundabout_l;
         self.flip_count += 1;

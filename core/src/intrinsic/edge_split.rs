@@ -83,7 +83,7 @@ impl IntrinsicTriangulation {
         };
         let e_mj = self.push_edge(normal_mj, (1.0 - placement.t) * length);
         self.lengths[e] = placement.t * length;
-        self.normal[e] = normal_im;
+        self.set_normal(e, normal_im);
         for _ in std::iter::once(first).chain(second) {
             self.faces.push([0; 3]);
             self.twin.extend([NO_HALFEDGE; 3]);
@@ -116,6 +116,7 @@ impl IntrinsicTriangulation {
     fn push_edge(&mut self, normal: i64, length: f64) -> usize {
         self.lengths.push(length);
         self.normal.push(normal);
+        self.crossing_total += normal.max(0) as usize;
         self.edge_halfedge.push(NO_HALFEDGE);
         self.lengths.len() - 1
     }

@@ -38,6 +38,13 @@ impl IntrinsicTriangulation {
         for h in 0..self.twin.len() {
             self.check_roundabout_step(h)?;
         }
+        let total: usize = self.normal.iter().map(|&n| n.max(0) as usize).sum();
+        if total != self.crossing_total {
+            return Err(format!(
+                "crossing total {} but the edges have {total}",
+                self.crossing_total
+            ));
+        }
         Ok(())
     }
 

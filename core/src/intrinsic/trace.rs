@@ -60,12 +60,7 @@ impl IntrinsicTriangulation {
         crossings: &mut Vec<(usize, i64)>,
     ) -> Result<CornerArc, IntrinsicError> {
         // A piece crosses every intrinsic edge at most as often as the edge is crossed at all.
-        let limit = crossings.len()
-            + self
-                .normal
-                .iter()
-                .map(|&n| n.max(0) as usize)
-                .sum::<usize>();
+        let limit = crossings.len() + self.crossing_total;
         loop {
             crossings.push((h, p));
             if crossings.len() > limit {

@@ -52,6 +52,8 @@ pub struct IntrinsicTriangulation {
     pub(crate) edge_halfedge: Vec<usize>,
     pub(crate) lengths: Vec<f64>,
     pub(crate) normal: Vec<i64>,
+    /// `Σ max(n_e, 0)`: every crossing of an input edge with an intrinsic edge.
+    pub(crate) crossing_total: usize,
     pub(crate) roundabout: Vec<usize>,
     pub(crate) curve_ends: CurveEnds,
     pub(crate) flip_count: usize,
@@ -110,6 +112,7 @@ impl IntrinsicTriangulation {
             edge_halfedge,
             lengths,
             normal: vec![ALONG_INPUT_EDGE; mesh.edge_count()],
+            crossing_total: 0,
             roundabout: vec![NO_END; 3 * face_count],
             curve_ends: CurveEnds::default(),
             flip_count: 0,
@@ -244,6 +247,13 @@ impl IntrinsicTriangulation {
     /// an input edge.
     pub fn normal_coordinate(&self, e: usize) -> i64 {
         self.normal[e]
+    }
+
+    /// Sets the normal coordinate of edge `e`, keeping the crossing total.
+    pub(crate) fn set_normal(&mut self, e: usize, value: i64) {
+        self.crossing_total =
+            self.crossing_total + value.max(0) as usize - self.normal[e].max(0) as usize;
+        self.normal[e] = value;
     }
 
     /// Fails unless `mesh` has the vertex, edge and face counts of the input this triangulation
