@@ -451,10 +451,10 @@ mod tests {
                     );
                 }
             }
-            for f in 0..mesh.face_count() {
+            for (f, &sum) in input_sums.iter().enumerate() {
                 let area = mesh.face_area(f);
                 assert!(
-                    (input_sums[f] - area).abs() < 1e-13 * area.max(scale * scale),
+                    (sum - area).abs() < 1e-13 * area.max(scale * scale),
                     "{name}: input face {f}"
                 );
                 let covered: f64 = overlay.input_face_overlaps(f).iter().map(|o| o.area).sum();
@@ -463,10 +463,10 @@ mod tests {
                     "{name}: input face {f}"
                 );
             }
-            for t in 0..tri.face_count() {
+            for (t, &sum) in intrinsic_sums.iter().enumerate() {
                 let area = tri.face_area(t);
                 assert!(
-                    (intrinsic_sums[t] - area).abs() < 1e-13 * area.max(scale * scale),
+                    (sum - area).abs() < 1e-13 * area.max(scale * scale),
                     "{name}: intrinsic face {t}"
                 );
             }

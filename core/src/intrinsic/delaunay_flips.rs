@@ -223,6 +223,7 @@ impl IntrinsicTriangulation {
 mod tests {
     use super::*;
     use crate::generate::{icosphere, torus};
+    use crate::geometry::{cross, dot, norm, sub};
     use crate::TriangleMesh;
 
     /// Two triangles forming a convex quadrilateral whose diagonal 0–1 is far from Delaunay.
@@ -263,12 +264,59 @@ mod tests {
         assert!((tri.lengths()[e] - 4.0).abs() < 1e-14);
     }
 
+    /// `(cot α + cot β) / 2` per edge from the 3D positions: the input's own cotan weights.
+    fn input_hodge_star(mesh: &TriangleMesh) -> Vec<f64> {
+        let mut star = vec![0.0; mesh.edge_count()];
+        for (t, face) in mesh.faces().iter().enumerate() {
+            let p = face.map(|v| mesh.positions()[v]);
+            for c in 0..3 {
+                let (u, v) = (sub(p[(c + 1) % 3], p[c]), sub(p[(c + 2) % 3], p[c]));
+                star[mesh.face_edges()[t][c]] += dot(u, v) / norm(cross(u, v)) / 2.0;
+            }
+        }
+        star
+    }
+
     #[test]
     fn a_delaunay_input_does_not_flip() {
-        for mesh in [icosphere(2), torus(3.0, 1.0, 24, 12).unwrap()] {
+        let meshes = [
+            icosphere(1),
+            icosphere(3),
+            // Every cell a cocircular trapezoid: ties, left as they are.
+            torus(3.0, 1.0, 24, 12).unwrap(),
+        ];
+        for mesh in meshes {
+            let star = input_hodge_star(&mesh);
+            assert!(
+                star.iter().all(|&s| s > -1e-12),
+                "the test mesh is Delaunay"
+            );
             let mut tri = IntrinsicTriangulation::new(&mesh).unwrap();
             assert_eq!(tri.flip_to_delaunay().unwrap(), 0);
+            // The triangulation is still the input, numbers and lengths bit for bit ...
             assert_eq!(tri.faces(), mesh.faces());
+            for (e, &[a, b]) in mesh.edges().iter().enumerate() {
+                assert_eq!(tri.edge_vertices(e), [a, b]);
+                let length = norm(sub(mesh.positions()[b], mesh.positions()[a]));
+                assert_eq!(tri.lengths()[e].to_bits(), length.to_bits());
+            }
+            // ... so its cotan weights are the input's computed from lengths, bit for bit, and
+            // agree with the ones computed from positions to round-off.
+            let mut from_lengths = vec![0.0; mesh.edge_count()];
+            for edges in mesh.face_edges() {
+                let lengths = edges.map(|e| {
+                    let [a, b] = mesh.edges()[e];
+                    norm(sub(mesh.positions()[b], mesh.positions()[a]))
+                });
+                let cot = super::super::length_geometry::corner_cotangents(lengths);
+                for c in 0..3 {
+                    from_lengths[edges[c]] += cot[c];
+                }
+            }
+            for (e, s) in tri.edge_hodge_star().iter().enumerate() {
+                assert_eq!(s.to_bits(), (from_lengths[e] / 2.0).to_bits());
+                assert!((s - star[e]).abs() < 1e-13 * star[e].abs().max(1.0));
+            }
         }
     }
 }

@@ -33,7 +33,11 @@ mod invariants;
 mod length_geometry;
 mod normal_coordinates;
 mod point_mapping;
+#[cfg(test)]
+mod property_tests;
 mod refine;
+#[cfg(test)]
+mod shared_mesh_tests;
 mod surface_location;
 #[cfg(test)]
 mod test_meshes;
