@@ -137,54 +137,81 @@ impl IntrinsicTriangulation {
             sub.cell_intrinsic_face.push(t);
         };
         // The corner of the middle region at corner c: c itself, or its innermost corner arc.
-        let middle_corner = |c: usize| -> Vec<usize> {
+        let middle_corner = |c: usize, out: &mut Corners| {
             let (s_in, s_out) = ((c + 1) % 3, (c + 2) % 3);
             match arcs.corner[c] {
-                0 => vec![c],
-                a => vec![slot(s_in, n[s_in] - a), slot(s_out, a - 1)],
+                0 => out.push(c),
+                a => {
+                    out.push(slot(s_in, n[s_in] - a));
+                    out.push(slot(s_out, a - 1));
+                }
             }
         };
         for c in 0..3 {
             let (s_in, s_out) = ((c + 1) % 3, (c + 2) % 3);
             for m in 0..arcs.corner[c] {
-                let inner = if m == 0 {
-                    vec![c, slot(s_out, 0)]
+                let mut corners = Corners::default();
+                if m == 0 {
+                    corners.push(c);
                 } else {
-                    vec![slot(s_out, m - 1), slot(s_out, m)]
-                };
-                let mut corners = inner;
+                    corners.push(slot(s_out, m - 1));
+                }
+                corners.push(slot(s_out, m));
                 corners.push(slot(s_in, n[s_in] - 1 - m));
                 if m > 0 {
                     corners.push(slot(s_in, n[s_in] - m));
                 }
-                push(&corners, face_of(s_out, m));
+                push(corners.as_slice(), face_of(s_out, m));
             }
         }
         match (0..3).find(|&c| arcs.emanating[c] > 0) {
             None => {
-                let corners: Vec<usize> = (0..3).flat_map(middle_corner).collect();
-                push(&corners, face_of(2, arcs.corner[0]));
+                let mut corners = Corners::default();
+                for c in 0..3 {
+                    middle_corner(c, &mut corners);
+                }
+                push(corners.as_slice(), face_of(2, arcs.corner[0]));
             }
             Some(c) => {
                 let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
                 let fan = arcs.emanating[c];
                 let ray = |m: i64| slot(c, arcs.corner[c1] + m);
                 for m in 0..=fan {
-                    let mut corners = vec![c];
+                    let mut corners = Corners::default();
+                    corners.push(c);
                     if m == 0 {
-                        corners.extend(middle_corner(c1));
+                        middle_corner(c1, &mut corners);
                     } else {
                         corners.push(ray(m - 1));
                     }
                     if m == fan {
-                        corners.extend(middle_corner(c2));
+                        middle_corner(c2, &mut corners);
                     } else {
                         corners.push(ray(m));
                     }
-                    push(&corners, face_of(c, arcs.corner[c1] + m));
+                    push(corners.as_slice(), face_of(c, arcs.corner[c1] + m));
                 }
             }
         }
+    }
+}
+
+/// The corner codes of one cell while it is built (at most 6: a triangle cut by three corner
+/// arcs).
+#[derive(Debug, Default)]
+struct Corners {
+    codes: [usize; 6],
+    len: usize,
+}
+
+impl Corners {
+    fn push(&mut self, code: usize) {
+        self.codes[self.len] = code;
+        self.len += 1;
+    }
+
+    fn as_slice(&self) -> &[usize] {
+        &self.codes[..self.len]
     }
 }
 
@@ -285,6 +312,7 @@ impl CommonSubdivision {
     /// Areas of all cells (in their input faces); fails if a corner is not on its cell's face.
     fn measure_cells(&mut self, input_areas: &[f64]) -> Result<(), IntrinsicError> {
         self.cell_area = Vec::with_capacity(self.cell_count());
+        let mut corners = Vec::with_capacity(6);
         for i in 0..self.cell_count() {
             let (f, t) = (self.cell_input_face[i], self.cell_intrinsic_face[i]);
             if f == NO_FACE {
@@ -292,7 +320,7 @@ impl CommonSubdivision {
                     "a cell of intrinsic face {t} lies in no input face"
                 )));
             }
-            let mut corners = Vec::with_capacity(8);
+            corners.clear();
             for &code in &self.cell_corners[self.cell_offsets[i]..self.cell_offsets[i + 1]] {
                 let bary = self.input_barycentric(code, t, f).ok_or_else(|| {
                     IntrinsicError::Inconsistent(format!(

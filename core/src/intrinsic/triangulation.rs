@@ -117,20 +117,18 @@ impl IntrinsicTriangulation {
             curve_ends: CurveEnds::default(),
             flip_count: 0,
         };
-        triangulation.build_input_fans(mesh);
+        triangulation.build_input_fans();
         Ok(triangulation)
     }
 
     /// The ends of the input edges around every input vertex, and the roundabouts of the
     /// halfedges (each is its own input edge's end at the start).
-    fn build_input_fans(&mut self, mesh: &TriangleMesh) {
-        let edges = mesh.edges();
-        let end_of = |h: usize, from: usize| {
-            let edge = self.halfedge_edge[h];
-            CurveEnd {
-                edge,
-                toward_b: edges[edge][0] == from,
-            }
+    fn build_input_fans(&mut self) {
+        // Input edges are (a, b) with a < b: an edge leaves `from` towards b when its other
+        // end is the larger.
+        let end_of = |h: usize, from: usize, to: usize| CurveEnd {
+            edge: self.halfedge_edge[h],
+            toward_b: from < to,
         };
         let mut visited = vec![false; self.twin.len()];
         let mut fan = Vec::new();
@@ -148,11 +146,11 @@ impl IntrinsicTriangulation {
             let mut h = start;
             let closed = loop {
                 visited[h] = true;
-                fan.push(end_of(h, v));
+                fan.push(end_of(h, v, self.head(h)));
                 fan_halfedges.push(h);
                 let p = self.prev(h);
                 if self.twin[p] == NO_HALFEDGE {
-                    fan.push(end_of(p, v));
+                    fan.push(end_of(p, v, self.tail(p)));
                     break false;
                 }
                 h = self.twin[p];
