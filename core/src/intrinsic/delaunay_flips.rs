@@ -102,6 +102,16 @@ impl IntrinsicTriangulation {
         Ok(flips)
     }
 
+    /// The interior edges that are not Delaunay (`cot α + cot β` below
+    /// `−DELAUNAY_FLIP_TOLERANCE · max(1, |cot α| + |cot β|)`), ascending: those
+    /// [`IntrinsicTriangulation::flip_to_delaunay`] would start by flipping. On a fresh
+    /// triangulation, the input's non-Delaunay edges.
+    pub fn non_delaunay_edges(&self) -> Vec<usize> {
+        (0..self.edge_count())
+            .filter(|&e| self.needs_flip(e))
+            .collect()
+    }
+
     /// Whether interior edge `e` is not Delaunay beyond the round-off allowance.
     pub(crate) fn needs_flip(&self, e: usize) -> bool {
         if self.is_boundary_edge(e) {
@@ -224,6 +234,7 @@ mod tests {
     use super::*;
     use crate::generate::{icosphere, torus};
     use crate::geometry::{cross, dot, norm, sub};
+    use crate::intrinsic::test_meshes::square_grid;
     use crate::TriangleMesh;
 
     /// Two triangles forming a convex quadrilateral whose diagonal 0–1 is far from Delaunay.
@@ -244,8 +255,10 @@ mod tests {
     fn flipping_a_kite() {
         let mesh = thin_kite();
         let mut tri = IntrinsicTriangulation::new(&mesh).unwrap();
+        assert_eq!(tri.non_delaunay_edges().len(), 1);
         let flips = tri.flip_to_delaunay().unwrap();
         assert_eq!(flips, 1);
+        assert!(tri.non_delaunay_edges().is_empty());
         tri.check_invariants().unwrap();
         let e = (0..tri.edge_count())
             .find(|&e| !tri.is_boundary_edge(e))
@@ -262,6 +275,33 @@ mod tests {
         tri.check_invariants().unwrap();
         assert_eq!(tri.normal_coordinate(e), -1);
         assert!((tri.lengths()[e] - 4.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn cocircular_ties_do_not_change_the_cotan_matrix() {
+        // Every diagonal of a square grid is a tie: flipping all of them changes the
+        // triangulation but not its cotan Laplacian.
+        let mesh = square_grid(4);
+        let tri = IntrinsicTriangulation::new(&mesh).unwrap();
+        assert!(tri.non_delaunay_edges().is_empty());
+        let mut other = tri.clone();
+        let ties: Vec<usize> = (0..tri.edge_count())
+            .filter(|&e| !tri.is_boundary_edge(e) && tri.cotan_sum_and_scale(e).0.abs() < 1e-12)
+            .collect();
+        assert_eq!(ties.len(), 16);
+        for &e in &ties {
+            assert!(other.flip(e));
+        }
+        other.check_invariants().unwrap();
+        let (a, b) = (tri.cotan_laplacian(), other.cotan_laplacian());
+        for (value, (i, j)) in a.iter() {
+            let w = b.get(i, j).copied().unwrap_or(0.0);
+            assert!((value - w).abs() < 1e-14, "({i}, {j}): {value} vs {w}");
+        }
+        for (value, (i, j)) in b.iter() {
+            let w = a.get(i, j).copied().unwrap_or(0.0);
+            assert!((value - w).abs() < 1e-14, "({i}, {j}): {value} vs {w}");
+        }
     }
 
     /// `(cot α + cot β) / 2` per edge from the 3D positions: the input's own cotan weights.

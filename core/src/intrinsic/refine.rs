@@ -93,9 +93,7 @@ impl IntrinsicTriangulation {
                 if report.inserted >= limit {
                     return Err(IntrinsicError::InsertionLimit {
                         inserted: report.inserted,
-                        remaining: (0..self.edge_count())
-                            .filter(|&e| self.needs_split(e))
-                            .count(),
+                        remaining: self.not_strictly_delaunay_edges().len(),
                     });
                 }
                 let h = self.edge_halfedge[e];
@@ -115,9 +113,7 @@ impl IntrinsicTriangulation {
                 }
                 report.flips += self.flip_until_delaunay(&mut flips, Some(&mut candidates))?;
             }
-            let left: Vec<usize> = (0..self.edge_count())
-                .filter(|&e| self.needs_split(e))
-                .collect();
+            let left = self.not_strictly_delaunay_edges();
             if left.is_empty() {
                 return Ok(report);
             }
@@ -125,6 +121,17 @@ impl IntrinsicTriangulation {
                 candidates.push(e);
             }
         }
+    }
+
+    /// The edges that are not strictly Delaunay, ascending: `cot α + cot β` (one cotangent on
+    /// the boundary) at most `STRICT_DELAUNAY_MARGIN · max(1, |cot α| + |cot β|)`. After
+    /// [`IntrinsicTriangulation::flip_to_delaunay`] these are the cocircular interior edges
+    /// (`⋆1 = 0` up to round-off) and the boundary edges opposite an obtuse or right angle: what
+    /// [`IntrinsicTriangulation::refine`] splits. Empty after refinement.
+    pub fn not_strictly_delaunay_edges(&self) -> Vec<usize> {
+        (0..self.edge_count())
+            .filter(|&e| self.needs_split(e))
+            .collect()
     }
 
     /// Whether edge `e` is not strictly Delaunay by [`STRICT_DELAUNAY_MARGIN`].
@@ -194,6 +201,7 @@ mod tests {
                 "{name}: edge {e}: {sum}"
             );
         }
+        assert!(tri.not_strictly_delaunay_edges().is_empty());
         assert!(tri.edge_hodge_star().iter().all(|&s| s > 0.0), "{name}");
         let area = mesh.total_area();
         assert!((tri.total_area() - area).abs() < 1e-12 * area, "{name}");

@@ -217,6 +217,14 @@ impl IntrinsicTriangulation {
         [self.tail(h), self.head(h)]
     }
 
+    /// Whether face `t` runs along each of its sides in the side's edge's reference direction
+    /// ([`IntrinsicTriangulation::edge_vertices`]): `true` for side `c` (opposite corner `c`)
+    /// when the face's counter-clockwise boundary goes from the edge's first vertex to its
+    /// second, the `+1` of DEC's `d1`.
+    pub fn face_edge_orientations(&self, t: usize) -> [bool; 3] {
+        std::array::from_fn(|c| self.edge_halfedge[self.halfedge_edge[3 * t + c]] == 3 * t + c)
+    }
+
     /// `[left, right]`: the face on the left of edge `e` in its reference direction
     /// ([`IntrinsicTriangulation::edge_vertices`]) and the face on its right ([`NO_FACE`] on the
     /// boundary). Both may be the same face.
@@ -322,6 +330,9 @@ mod tests {
         }
         for t in 0..mesh.face_count() {
             assert_eq!(tri.face_edges(t), mesh.face_edges()[t]);
+            // Forward exactly where the face is the edge's left face (it runs a → b).
+            let forward = mesh.face_edges()[t].map(|e| mesh.edge_faces()[e][0] == t);
+            assert_eq!(tri.face_edge_orientations(t), forward);
         }
         tri.check_invariants().unwrap();
     }
