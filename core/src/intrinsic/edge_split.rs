@@ -54,6 +54,13 @@ impl IntrinsicTriangulation {
     ) -> Result<usize, IntrinsicError> {
         let h = self.edge_halfedge[e];
         let h2 = self.twin[h];
+        if h2 != NO_HALFEDGE && h2 / 3 == h / 3 {
+            // Both sides in one face (an edge to a vertex of degree one): always Delaunay, never
+            // split by refinement.
+            return Err(IntrinsicError::Inconsistent(format!(
+                "edge {e} has the same face on both sides and cannot be split"
+            )));
+        }
         let placement = self.placement(h, t, mesh)?;
         let n = self.normal[e];
         let s = placement.crossings_before;

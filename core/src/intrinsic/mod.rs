@@ -3,22 +3,36 @@
 //!
 //! - [`IntrinsicTriangulation`]: connectivity (several edges between two vertices and edges from
 //!   a vertex to itself allowed), edge lengths, geometry from lengths (angles, areas, cotan
-//!   weights `⋆1`, vertex areas), and the integer coordinates that tie it to the input.
+//!   weights `⋆1`, vertex areas, the cotan Laplacian), and the integer coordinates that tie it to
+//!   the input (why integer coordinates rather than signposts: see its doc).
 //! - [`IntrinsicTriangulation::flip_to_delaunay`]: the intrinsic Delaunay triangulation by edge
-//!   flips (no vertex inserted); [`IntrinsicTriangulation::refine`] also splits the edges flips
-//!   cannot make strictly Delaunay.
+//!   flips, no vertex inserted; [`IntrinsicTriangulation::refine`] also splits the edges flips
+//!   cannot make strictly Delaunay (cocircular interior edges, boundary edges opposite obtuse
+//!   angles), inserting vertices with a place on the input ([`InputLocation`]).
 //! - [`CommonSubdivision`]: the overlay of the input and the intrinsic triangulation, with point
-//!   maps both ways and the area each intrinsic face covers of each input face.
+//!   maps both ways ([`TrianglePoint`]) and the area each intrinsic face covers of each input
+//!   face ([`Overlap`]).
+//! - The triangle formulas from three lengths ([`triangle_area`], [`corner_angles`],
+//!   [`corner_cotangents`], [`mixed_voronoi_shares`]).
 //!
 //! ```
 //! use tvf_core::generate::{icosphere, jitter};
-//! use tvf_core::intrinsic::IntrinsicTriangulation;
+//! use tvf_core::intrinsic::{IntrinsicTriangulation, TrianglePoint};
 //! let mesh = jitter(&icosphere(2), 0.4, 7).unwrap();
 //! let mut intrinsic = IntrinsicTriangulation::new(&mesh).unwrap();
 //! let flips = intrinsic.flip_to_delaunay().unwrap();
-//! assert!(intrinsic.edge_hodge_star().iter().all(|&s| s > -1e-12));
+//! assert!(flips > 0 && intrinsic.non_delaunay_edges().is_empty());
 //! assert!((intrinsic.total_area() - mesh.total_area()).abs() < 1e-12);
-//! # let _ = flips;
+//!
+//! // The centroid of input face 0 on the intrinsic triangulation, and back.
+//! let overlay = intrinsic.common_subdivision(&mesh).unwrap();
+//! let centroid = TrianglePoint { face: 0, barycentric: [1.0 / 3.0; 3] };
+//! let there = overlay.to_intrinsic(centroid).unwrap();
+//! let back = overlay.to_input(there).unwrap();
+//! assert_eq!(back.face, 0);
+//! // The intrinsic faces covering input face 0 cover all of it.
+//! let covered: f64 = overlay.input_face_overlaps(0).iter().map(|o| o.area).sum();
+//! assert!((covered - mesh.face_area(0)).abs() < 1e-12);
 //! ```
 
 mod common_subdivision;
@@ -53,4 +67,4 @@ pub use length_geometry::{
 pub use normal_coordinates::ALONG_INPUT_EDGE;
 pub use refine::{RefineOptions, RefineReport, STRICT_DELAUNAY_MARGIN};
 pub use surface_location::{InputLocation, TrianglePoint};
-pub use triangulation::{IntrinsicTriangulation, NO_HALFEDGE};
+pub use triangulation::IntrinsicTriangulation;

@@ -55,14 +55,20 @@ impl IntrinsicTriangulation {
     /// and a boundary edge opposite an obtuse or right angle (`cot γ ≤ 0`), which is never
     /// flipped. Each is split — a boundary edge at its midpoint, or at a power-of-two distance
     /// from an input vertex at its end (Shewchuk's concentric shells, so that splits near a
-    /// sharp boundary corner do not cascade), an interior edge near its midpoint (see [`SPLIT_SPREAD`]) —
-    /// and the faces around the new vertex are flipped back to Delaunay. New vertices lie on the
-    /// input surface (see [`IntrinsicTriangulation::vertex_location`]).
+    /// sharp boundary corner do not cascade); an interior edge at a fraction in `0.5 ± 0.1` of
+    /// its length drawn from a hash of the new vertex's number (deterministic; a fixed fraction
+    /// makes the cells of a regular grid cocircular again, at every scale) — and the faces
+    /// around the new vertex are flipped back to Delaunay. New vertices lie on the input surface
+    /// (see [`IntrinsicTriangulation::vertex_location`]); a split point is kept at least 1% of
+    /// the stretch between two crossings of input edges away from them.
     ///
     /// **Guarantee** on success: every edge, interior and boundary, has `cot α + cot β` (a
     /// single cotangent on the boundary) `> STRICT_DELAUNAY_MARGIN · max(1, |cot α| + |cot β|)`,
-    /// so `⋆1 > 0` on every edge with a margin above round-off; the surface, its total area and
-    /// the angle sums at input vertices are unchanged. Fails with
+    /// so `⋆1 > 5e-13` on every edge, a margin above round-off (DEC's `DELAUNAY_TOLERANCE` test
+    /// `2⋆1 > 1e-12` passes); interior edges stay Delaunay, the surface, its total area and the
+    /// angle sums at input vertices are unchanged (inserted vertices have `2π`, or `π` on the
+    /// boundary). Termination is not proven for every input (refinement near small boundary
+    /// angles is delicate); the insertion limit makes it fail instead. Fails with
     /// [`IntrinsicError::InsertionLimit`] rather than insert more than
     /// [`RefineOptions::max_insertions`] vertices, and with [`IntrinsicError::InputMismatch`]
     /// if `mesh` is not the input.

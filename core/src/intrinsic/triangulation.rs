@@ -10,22 +10,27 @@ use crate::geometry::{norm, sub};
 use crate::{TriangleMesh, NO_FACE};
 
 /// Marker for the missing twin of a boundary halfedge.
-pub const NO_HALFEDGE: usize = usize::MAX;
+pub(crate) const NO_HALFEDGE: usize = usize::MAX;
 
 /// A triangulation of the same surface as an input [`TriangleMesh`], known by its connectivity
 /// and edge lengths only (no positions), with its correspondence to the input.
 ///
-/// **Connectivity.** Face `t` has corners `faces()[t]`, counter-clockwise. Halfedge `3t + c` is
-/// the side of face `t` opposite corner `c`, from corner `c + 1` to corner `c + 2` (the same
-/// convention as [`TriangleMesh::face_edges`]); its twin is the same edge seen from the other
-/// face ([`NO_HALFEDGE`] on the boundary). Unlike a [`TriangleMesh`], an intrinsic triangulation
-/// may have several edges between the same two vertices, edges from a vertex to itself, and a
-/// face with a repeated corner; edges are numbered by index, not by their endpoints.
+/// **Connectivity.** Face `t` has corners `faces()[t]`, counter-clockwise, and
+/// `face_edges(t)[c]` is the edge opposite corner `c` (as in [`TriangleMesh::face_edges`]).
+/// Each edge has a reference direction, `edge_vertices(e) = [first, second]`, its faces
+/// `edge_faces(e) = [left, right]`, and `face_edge_orientations(t)` tells which sides a face runs
+/// along in that direction (DEC's `d0` and `d1`). Unlike a [`TriangleMesh`], an intrinsic
+/// triangulation may have several edges between the same two vertices, edges from a vertex to
+/// itself, and a face with a repeated corner: edges are known by index, not by their endpoints.
+/// Inside, it is a halfedge structure (halfedge `3t + c` is side `c` of face `t`, from corner
+/// `c + 1` to `c + 2`, with a twin across the edge), which takes vertices where several sheets of
+/// faces meet as they are.
 ///
 /// **Start.** [`IntrinsicTriangulation::new`] copies the input: vertex `v`, edge `e` and face `t`
-/// are the input's, with the input's edge numbering (lexicographic), and edge lengths
-/// `|p_b − p_a|`. Flips keep the numbers of the two faces and of the edge they flip; inserted
-/// vertices, edges and faces are appended.
+/// are the input's, with the input's edge numbering (lexicographic, reference direction
+/// `a → b`), and edge lengths `|p_b − p_a|`. Flips keep the numbers of the two faces and of the
+/// edge they flip; inserted vertices, edges and faces are appended. Methods that need the
+/// input's connectivity take the input mesh again and check that its counts match.
 ///
 /// **Correspondence: integer coordinates** (Gillespie, Sharp and Crane, *Integer Coordinates for
 /// Intrinsic Geometry Processing*, 2021), not signposts (Sharp, Soliman and Crane 2019). Each
