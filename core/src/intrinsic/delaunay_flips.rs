@@ -56,13 +56,31 @@ impl IntrinsicTriangulation {
     /// every edge starts in it, each flip queues the four edges around the flipped one. Each
     /// flip updates the lengths and the integer coordinates of two faces in constant time.
     /// Fails with [`IntrinsicError::FlipLimit`] after `100 E + 100 000` flips, which exact
-    /// arithmetic never needs on real meshes; it guards against round-off cycles.
+    /// arithmetic never needs on real meshes (it guards against round-off cycles), and with
+    /// [`IntrinsicError::DegenerateIntrinsicFace`] rather than leave a face whose lengths
+    /// round-off made non-triangular.
     pub fn flip_to_delaunay(&mut self) -> Result<usize, IntrinsicError> {
         let mut queue = EdgeQueue::default();
         for e in 0..self.edge_count() {
             queue.push(e);
         }
-        self.flip_until_delaunay(&mut queue, None)
+        let flips = self.flip_until_delaunay(&mut queue, None)?;
+        self.check_faces()?;
+        Ok(flips)
+    }
+
+    /// Fails with [`IntrinsicError::DegenerateIntrinsicFace`] on the first face whose lengths
+    /// are not a triangle's (or not finite).
+    pub(crate) fn check_faces(&self) -> Result<(), IntrinsicError> {
+        match (0..self.face_count())
+            .find(|&t| !super::length_geometry::is_triangle(self.face_lengths(t)))
+        {
+            Some(face) => Err(IntrinsicError::DegenerateIntrinsicFace {
+                face,
+                lengths: self.face_lengths(face),
+            }),
+            None => Ok(()),
+        }
     }
 
     /// Flips the non-Delaunay edges in `queue` and those that become non-Delaunay, until the

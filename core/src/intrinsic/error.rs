@@ -22,6 +22,16 @@ pub enum IntrinsicError {
         /// Input edge.
         edge: usize,
     },
+    /// Round-off in flips or splits of nearly flat faces left an intrinsic face whose lengths
+    /// are not those of a triangle (never seen on valid meshes; reported rather than returning
+    /// non-finite geometry).
+    #[error("intrinsic face {face} has lengths {lengths:?}, not those of a triangle (round-off on nearly flat input faces)")]
+    DegenerateIntrinsicFace {
+        /// Intrinsic face.
+        face: usize,
+        /// Its edge lengths.
+        lengths: [f64; 3],
+    },
     /// Delaunay flipping made its maximum number of flips without reaching a Delaunay
     /// triangulation (a guard against round-off cycles; exact arithmetic always terminates).
     #[error("intrinsic Delaunay flipping stopped after {flips} flips (its limit) with edges still to flip")]

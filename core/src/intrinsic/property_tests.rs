@@ -174,3 +174,37 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    /// Wild jitter (up to three local edge lengths) makes folded, needle and nearly flat faces:
+    /// every step either succeeds with a consistent result or returns an error, never panics.
+    #[test]
+    fn wild_meshes_give_results_or_errors((base, mesh) in wild_mesh()) {
+        let Some(mut tri) = intrinsic(&mesh) else { return Ok(()) };
+        if tri.flip_to_delaunay().is_ok() {
+            prop_assert_eq!(tri.check_invariants(), Ok(()), "{:?}", base);
+            if let Ok(overlay) = tri.common_subdivision(&mesh) {
+                let total = mesh.total_area();
+                for f in 0..mesh.face_count() {
+                    let covered: f64 = overlay.input_face_overlaps(f).iter().map(|o| o.area).sum();
+                    prop_assert!((covered - mesh.face_area(f)).abs() <= 1e-9 * total, "{:?}: face {}", base, f);
+                }
+            }
+        }
+        let Some(mut tri) = intrinsic(&mesh) else { return Ok(()) };
+        if tri.refine(&mesh, RefineOptions::default()).is_ok() {
+            prop_assert_eq!(tri.check_invariants(), Ok(()), "{:?}", base);
+            prop_assert!(tri.not_strictly_delaunay_edges().is_empty());
+        }
+    }
+}
+
+/// A base surface jittered by 0.5 to 3 local edge lengths.
+fn wild_mesh() -> impl Strategy<Value = (Base, TriangleMesh)> {
+    (base(), 0.5..3.0f64, any::<u64>()).prop_map(|(base, amplitude, seed)| {
+        (
+            base,
+            jitter(&base.mesh(), amplitude, seed).expect("finite amplitude"),
+        )
+    })
+}

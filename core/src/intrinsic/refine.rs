@@ -70,8 +70,9 @@ impl IntrinsicTriangulation {
     /// boundary). Termination is not proven for every input (refinement near small boundary
     /// angles is delicate); the insertion limit makes it fail instead. Fails with
     /// [`IntrinsicError::InsertionLimit`] rather than insert more than
-    /// [`RefineOptions::max_insertions`] vertices, and with [`IntrinsicError::InputMismatch`]
-    /// if `mesh` is not the input.
+    /// [`RefineOptions::max_insertions`] vertices, with [`IntrinsicError::InputMismatch`] if
+    /// `mesh` is not the input, and with the errors of
+    /// [`IntrinsicTriangulation::flip_to_delaunay`].
     pub fn refine(
         &mut self,
         mesh: &TriangleMesh,
@@ -121,6 +122,7 @@ impl IntrinsicTriangulation {
             }
             let left = self.not_strictly_delaunay_edges();
             if left.is_empty() {
+                self.check_faces()?;
                 return Ok(report);
             }
             for e in left {
