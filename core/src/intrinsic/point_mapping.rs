@@ -31,6 +31,49 @@ impl CommonSubdivision {
         self.map(point, Side::Intrinsic)
     }
 
+    /// A tangent vector of the intrinsic face of cell `cell`, given as a displacement of
+    /// barycentric coordinates in that face (three components summing to 0), as the same vector
+    /// in the cell's input face (its displacement of barycentric coordinates there). The map is
+    /// the linear part of the cell's isometry between the two faces, so lengths and angles are
+    /// kept: this is how a vector per intrinsic face is drawn on the input. `None` for a cell
+    /// index out of range.
+    pub fn to_input_displacement(&self, cell: usize, displacement: [f64; 3]) -> Option<[f64; 3]> {
+        self.map_displacement(cell, displacement, Side::Intrinsic)
+    }
+
+    /// The inverse of [`CommonSubdivision::to_input_displacement`]: a displacement of
+    /// barycentric coordinates in the input face of cell `cell` as one in its intrinsic face.
+    pub fn to_intrinsic_displacement(
+        &self,
+        cell: usize,
+        displacement: [f64; 3],
+    ) -> Option<[f64; 3]> {
+        self.map_displacement(cell, displacement, Side::Input)
+    }
+
+    fn map_displacement(&self, cell: usize, d: [f64; 3], from: Side) -> Option<[f64; 3]> {
+        if cell >= self.cell_count() {
+            return None;
+        }
+        let input = self.corners_2d(cell, Side::Input);
+        let intrinsic = self.corners_2d(cell, Side::Intrinsic);
+        let frame = largest_triangle(&input);
+        let (source, target) = match from {
+            Side::Input => (&input, &intrinsic),
+            Side::Intrinsic => (&intrinsic, &input),
+        };
+        let [a, b, c] = frame.map(|k| source[k]);
+        let w = triangle_weights(
+            [0.0, 0.0],
+            [b[0] - a[0], b[1] - a[1]],
+            [c[0] - a[0], c[1] - a[1]],
+            [d[1], d[2]],
+        );
+        let [x, y, z] = frame.map(|k| target[k]);
+        let q: [f64; 2] = std::array::from_fn(|k| w[1] * (y[k] - x[k]) + w[2] * (z[k] - x[k]));
+        Some([-q[0] - q[1], q[0], q[1]])
+    }
+
     fn map(&self, point: TrianglePoint, from: Side) -> Result<TrianglePoint, IntrinsicError> {
         let (face_count, cells) = match from {
             Side::Input => (self.input_face_count(), &self.input_face_cells),
@@ -210,6 +253,53 @@ mod tests {
                     );
                 }
             }
+        }
+    }
+
+    /// Vectors between corners of a cell map to the same vectors, with the same length.
+    #[test]
+    fn displacements_keep_their_length() {
+        use crate::intrinsic::length_geometry::layout;
+        for (name, mesh) in non_delaunay_meshes() {
+            let mut tri = IntrinsicTriangulation::new(&mesh).unwrap();
+            tri.flip_to_delaunay().unwrap();
+            let overlay = tri.common_subdivision(&mesh).unwrap();
+            let scale = mesh.total_area().sqrt();
+            for i in 0..overlay.cell_count() {
+                let cell = overlay.cell(i);
+                let k = cell.input_corners.len() - 1;
+                let d: [f64; 3] = std::array::from_fn(|c| {
+                    cell.intrinsic_corners[k][c] - cell.intrinsic_corners[0][c]
+                });
+                let mapped = overlay.to_input_displacement(i, d).unwrap();
+                let expected: [f64; 3] =
+                    std::array::from_fn(|c| cell.input_corners[k][c] - cell.input_corners[0][c]);
+                let p = mesh.faces()[cell.input_face].map(|v| mesh.positions()[v]);
+                let in_3d = |b: [f64; 3]| -> f64 {
+                    let v: [f64; 3] =
+                        std::array::from_fn(|x| b[0] * p[0][x] + b[1] * p[1][x] + b[2] * p[2][x]);
+                    crate::geometry::norm(v)
+                };
+                let q = layout(tri.face_lengths(cell.intrinsic_face));
+                let in_2d = |b: [f64; 3]| -> f64 {
+                    let v: [f64; 2] =
+                        std::array::from_fn(|x| b[0] * q[0][x] + b[1] * q[1][x] + b[2] * q[2][x]);
+                    v[0].hypot(v[1])
+                };
+                let diff: [f64; 3] = std::array::from_fn(|c| mapped[c] - expected[c]);
+                assert!(in_3d(diff) < 1e-12 * scale, "{name}: cell {i}");
+                assert!(
+                    (in_3d(mapped) - in_2d(d)).abs() < 1e-12 * scale,
+                    "{name}: cell {i}"
+                );
+                let back = overlay.to_intrinsic_displacement(i, mapped).unwrap();
+                let diff: [f64; 3] = std::array::from_fn(|c| back[c] - d[c]);
+                assert!(in_2d(diff) < 1e-13 * scale, "{name}: cell {i}");
+            }
+            assert_eq!(
+                overlay.to_input_displacement(overlay.cell_count(), [0.0; 3]),
+                None
+            );
         }
     }
 
