@@ -10,8 +10,8 @@
 //!   cannot make strictly Delaunay (cocircular interior edges, boundary edges opposite obtuse
 //!   angles), inserting vertices with a place on the input ([`InputLocation`]).
 //! - [`CommonSubdivision`]: the overlay of the input and the intrinsic triangulation, with point
-//!   maps both ways ([`TrianglePoint`]) and the area each intrinsic face covers of each input
-//!   face ([`Overlap`]).
+//!   and tangent-vector maps both ways ([`TrianglePoint`]) and the area each intrinsic face
+//!   covers of each input face ([`Overlap`]).
 //! - The triangle formulas from three lengths ([`triangle_area`], [`corner_angles`],
 //!   [`corner_cotangents`], [`mixed_voronoi_shares`]).
 //!
