@@ -15,6 +15,7 @@ pub mod discretization;
 pub mod generate;
 pub mod geometry;
 mod hash64;
+pub mod intrinsic;
 pub mod io;
 pub mod mesh;
 
