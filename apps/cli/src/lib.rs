@@ -55,6 +55,8 @@ enum Command {
     Basis(commands::basis::BasisArgs),
     /// The lowest K eigenvalues of the Hodge–Laplacian on tangent fields, labelled by family.
     Spectrum(commands::spectrum::SpectrumArgs),
+    /// Discretizations side by side on one mesh: basis times, eigenvalues, shared eigenfields.
+    Compare(commands::compare::CompareArgs),
     /// Hodge decomposition of a field: integrable, co-integrable and harmonic parts, potentials.
     Decompose(commands::decompose::DecomposeArgs),
     /// Fourier coefficients of a field in a basis file, and the rest field's share.
@@ -111,6 +113,7 @@ pub fn run(catalog: Catalog) -> ExitCode {
         Command::Discretizations(args) => commands::discretizations::run(args, context),
         Command::Basis(args) => commands::basis::run(args, context),
         Command::Spectrum(args) => commands::spectrum::run(args, context),
+        Command::Compare(args) => commands::compare::run(args, context),
         Command::Decompose(args) => commands::decompose::run(args, context),
         Command::Coefficients(args) => commands::coefficients::run(args, context),
         Command::Operators(args) => commands::operators::run(args, context),

@@ -31,6 +31,7 @@ mod analysis;
 mod analysis_report;
 mod basis;
 mod basis_cache_folder;
+mod basis_comparison;
 mod basis_error;
 mod basis_request;
 mod basis_resolution;
@@ -58,6 +59,7 @@ pub use analysis::{exact_hodge_energies, CoefficientEntry, EnergySplit, Spectral
 pub use analysis_report::AnalysisReport;
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_cache_folder::MESH_CACHE_FOLDER;
+pub use basis_comparison::{BasisComparison, BasisComparisonError, SampledBasis};
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use basis_resolution::{

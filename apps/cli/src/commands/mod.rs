@@ -4,6 +4,7 @@ pub mod analyze;
 pub mod basis;
 pub mod check;
 pub mod coefficients;
+pub mod compare;
 pub mod compress;
 pub mod convergence;
 pub mod decompose;

@@ -10,6 +10,7 @@ mod clear_errors;
 mod cli_conventions;
 mod coefficients;
 mod common;
+mod compare;
 mod complex_folder;
 mod convergence;
 mod dec_every_command;
