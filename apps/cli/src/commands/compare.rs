@@ -146,7 +146,7 @@ fn compute_entry(
     count: usize,
     input: &MeshInput,
 ) -> Result<ComparedEntry> {
-    let progress = Progress::new(&format!("compare {}", complex.id()));
+    let progress = Progress::new(format!("compare {}", complex.id()));
     let start = Instant::now();
     let basis = {
         let callback = progress.basis_callback();
