@@ -3,6 +3,7 @@
 //! display triangulation.
 
 use super::any_mesh::Mesh;
+use super::corner_triangulation::triangulate_by_corners;
 use super::error::MeshError;
 use super::face_list::{FaceCorners, FaceList};
 use super::surface_point::{SurfacePoint, SurfacePointError};
@@ -125,6 +126,29 @@ impl SurfaceMesh {
         match self {
             Self::Triangles(_) => None,
             Self::Polygons(mesh) => Some(mesh),
+        }
+    }
+
+    /// The mesh with every polygon split into triangles by its own corners, for the entries
+    /// that need triangles (`tvf triangulate`, `--triangulate`): no vertex is added or moved, so
+    /// vertex numbers, positions and per-vertex data carry over. A polygon of `n` corners becomes
+    /// the `n − 2` triangles of an ear clipping of its corners seen along its vector area (for a
+    /// convex polygon any such split; for a non-convex one, triangles that stay inside it), each
+    /// oriented like the polygon; triangles are listed face by face, a triangle face as itself.
+    /// A triangle mesh comes back unchanged.
+    ///
+    /// Unlike the [`SurfaceMesh::display`] triangulation (a fan around the corner average, a new
+    /// vertex per polygon) this is a mesh of the same vertices, which a triangle discretization
+    /// can be built on and whose vertex fields compare with the polygon mesh's. Fails with
+    /// [`MeshError::PolygonNotTriangulable`] on a polygon that folds over itself (the validation
+    /// of [`SurfaceMesh::validated`] already refuses those).
+    pub fn triangulated(&self) -> Result<TriangleMesh, MeshError> {
+        match self {
+            Self::Triangles(mesh) => Ok(mesh.clone()),
+            Self::Polygons(mesh) => {
+                let triangles = triangulate_by_corners(mesh.positions(), mesh.faces())?;
+                TriangleMesh::new(mesh.positions().to_vec(), triangles)
+            }
         }
     }
 

@@ -21,3 +21,4 @@ pub mod render;
 mod spectral_inputs;
 pub mod spectrum;
 pub mod spline;
+pub mod triangulate;
