@@ -246,6 +246,16 @@ impl SurfaceMesh {
         self.face(f).len()
     }
 
+    /// How many faces have each number of corners: `(size, count)` pairs, sizes ascending
+    /// (`[(3, F)]` for a triangle mesh, `[(4, 96)]` for a cube-sphere of 96 quads).
+    pub fn face_size_counts(&self) -> Vec<(usize, usize)> {
+        let mut counts = std::collections::BTreeMap::new();
+        for f in 0..self.face_count() {
+            *counts.entry(self.face_size(f)).or_insert(0) += 1;
+        }
+        counts.into_iter().collect()
+    }
+
     /// The edge joining corner `c` of face `f` to corner `c + 1` (cyclically).
     pub fn face_edge(&self, f: usize, c: usize) -> usize {
         match self {
