@@ -77,8 +77,8 @@ pub use field_picture::{
 };
 pub use fur::{grow_fur, FurOptions};
 pub use lic::LicOptions;
-pub use polygon_edges::polygon_edges;
 pub use plot::{Axis, AxisScale, Plot, Series, SeriesStyle, PALETTE};
+pub use polygon_edges::polygon_edges;
 pub use render::render;
 pub use scene::{
     ArrowOptions, FaceScalar, FieldLayer, FieldStyle, Marker, Polyline, RenderOptions, Scene,

@@ -64,8 +64,10 @@ impl LoadedMesh {
             return Ok(self);
         }
         let triangles = self.mesh.triangulated()?;
-        let (mesh, fresh) =
-            crate::TriangleMesh::validated(triangles.positions().to_vec(), triangles.faces().to_vec())?;
+        let (mesh, fresh) = crate::TriangleMesh::validated(
+            triangles.positions().to_vec(),
+            triangles.faces().to_vec(),
+        )?;
         let mut report = self.report;
         report.warnings.retain(|w| {
             !matches!(

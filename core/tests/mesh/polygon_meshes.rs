@@ -113,8 +113,7 @@ fn a_concave_polygon_is_kept_with_a_warning_and_drawn_without_folds() {
 
 #[test]
 fn triangulating_keeps_the_vertices_the_area_and_the_orientation_of_every_polygon() {
-    let notched =
-        parse("v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 1 0\nv 0 4 0\nf 1 2 3 4 5\n").unwrap();
+    let notched = parse("v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 1 0\nv 0 4 0\nf 1 2 3 4 5\n").unwrap();
     let meshes: Vec<(&str, SurfaceMesh)> = vec![
         ("quad-torus", quad_torus(1.0, 0.4, 12, 6).unwrap().into()),
         ("cube-sphere", cube_sphere(3).unwrap().into()),
@@ -125,7 +124,11 @@ fn triangulating_keeps_the_vertices_the_area_and_the_orientation_of_every_polygo
         let triangles = mesh.triangulated().unwrap();
         assert_eq!(triangles.positions(), mesh.positions(), "{name}");
         let corners: usize = (0..mesh.face_count()).map(|f| mesh.face_size(f)).sum();
-        assert_eq!(triangles.face_count(), corners - 2 * mesh.face_count(), "{name}");
+        assert_eq!(
+            triangles.face_count(),
+            corners - 2 * mesh.face_count(),
+            "{name}"
+        );
         assert_eq!(triangles.genus(), mesh.genus(), "{name}");
         assert_eq!(triangles.is_closed(), mesh.is_closed(), "{name}");
         // Face by face: the triangles of polygon f are the next n − 2, each a triangle of f's
@@ -141,7 +144,10 @@ fn triangulating_keeps_the_vertices_the_area_and_the_orientation_of_every_polygo
                 assert!(triangle.iter().all(|v| corners.contains(v)), "{name} {t}");
                 let [a, b, c] = triangle.map(|v| triangles.positions()[v]);
                 let area = cross(sub(b, a), sub(c, a));
-                assert!(dot(area, mesh.vector_area(f)) > 0.0, "{name}: triangle {t} flips");
+                assert!(
+                    dot(area, mesh.vector_area(f)) > 0.0,
+                    "{name}: triangle {t} flips"
+                );
                 sum = std::array::from_fn(|k| sum[k] + area[k] / 2.0);
                 t += 1;
             }

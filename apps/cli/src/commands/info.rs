@@ -80,7 +80,11 @@ pub fn run(args: InfoArgs) -> Result<()> {
             .iter()
             .map(|&(size, count)| format!("{} {count}", polygon_name(size)))
             .collect();
-        println!("faces          {} ({})", mesh.face_count(), sizes.join(", "));
+        println!(
+            "faces          {} ({})",
+            mesh.face_count(),
+            sizes.join(", ")
+        );
     }
     println!("components     {}", mesh.component_count());
     println!("boundary loops {}", mesh.boundary_loops().len());

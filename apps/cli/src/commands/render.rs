@@ -143,17 +143,15 @@ pub fn run(mut args: RenderArgs, context: &RunContext) -> Result<()> {
             &overlays,
             view(width, height),
         )?,
-        _ => {
-            draw_field(
-                &mesh,
-                discretization.as_ref(),
-                field.as_deref(),
-                color,
-                args.style,
-                overlays,
-                view(width, height),
-            )?
-        }
+        _ => draw_field(
+            &mesh,
+            discretization.as_ref(),
+            field.as_deref(),
+            color,
+            args.style,
+            overlays,
+            view(width, height),
+        )?,
     };
     save_png(&image, &args.output)?;
     note(format!(

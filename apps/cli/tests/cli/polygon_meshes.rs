@@ -35,7 +35,14 @@ fn triangulate_writes_the_same_vertices_with_two_triangles_per_quad() {
     let d = dir.path();
     let report = json(&run(
         d,
-        &["triangulate", "--example", "quad-torus", "-o", "t.obj", "--json"],
+        &[
+            "triangulate",
+            "--example",
+            "quad-torus",
+            "-o",
+            "t.obj",
+            "--json",
+        ],
     ));
     let quads = json(&run(d, &["info", "--example", "quad-torus", "--json"]));
     let triangles = json(&run(d, &["info", "t.obj", "--json"]));
@@ -57,10 +64,16 @@ fn triangulate_writes_the_same_vertices_with_two_triangles_per_quad() {
         assert_eq!(via_flag[key], triangles[key], "{key}");
     }
     // An output format it cannot write is refused before anything is written.
-    let output = run(d, &["triangulate", "--example", "quad-torus", "-o", "t.off"]);
+    let output = run(
+        d,
+        &["triangulate", "--example", "quad-torus", "-o", "t.off"],
+    );
     let message = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(1), "{message}");
-    assert!(message.contains("t.off") && message.contains(".obj or .ply"), "{message}");
+    assert!(
+        message.contains("t.off") && message.contains(".obj or .ply"),
+        "{message}"
+    );
     assert!(!d.join("t.off").exists());
 }
 
@@ -84,7 +97,11 @@ fn a_triangle_entry_on_quads_needs_triangulate_and_then_equals_it_on_the_triangu
             && message.contains("tvf triangulate"),
         "{message}"
     );
-    let flagged = eigenvalues(&json(&spectrum(&["--example", "quad-torus", "--triangulate"])));
+    let flagged = eigenvalues(&json(&spectrum(&[
+        "--example",
+        "quad-torus",
+        "--triangulate",
+    ])));
     assert_success(&run(
         d,
         &["triangulate", "--example", "quad-torus", "-o", "t.ply"],
@@ -100,7 +117,10 @@ fn a_triangle_entry_on_quads_needs_triangulate_and_then_equals_it_on_the_triangu
     ));
     assert_eq!(default["discretization"], "polygon-dec", "{default}");
     let values = eigenvalues(&default);
-    assert!(values[0].abs() < 1e-8 && values[1].abs() < 1e-8, "{values:?}");
+    assert!(
+        values[0].abs() < 1e-8 && values[1].abs() < 1e-8,
+        "{values:?}"
+    );
     assert!(values[2] > 1e-3, "{values:?}");
 }
 
@@ -157,11 +177,21 @@ fn the_complex_folder_of_a_polygon_mesh_says_so_and_reads_back_with_the_same_spe
     let read = eigenvalues(&json(&run(
         d,
         &[
-            "spectrum", "--example", "cube-sphere", "-k", "8", "--json", "--complex", "ops",
+            "spectrum",
+            "--example",
+            "cube-sphere",
+            "-k",
+            "8",
+            "--json",
+            "--complex",
+            "ops",
         ],
     )));
     for (a, b) in built.iter().zip(&read) {
-        assert!((a - b).abs() <= 1e-9 * (1.0 + a.abs()), "{built:?} vs {read:?}");
+        assert!(
+            (a - b).abs() <= 1e-9 * (1.0 + a.abs()),
+            "{built:?} vs {read:?}"
+        );
     }
 }
 
@@ -170,7 +200,15 @@ fn render_draws_the_polygon_edges_unless_told_not_to_and_none_on_triangles() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     let render = |out: &str, extra: &[&str]| {
-        let mut args = vec!["render", "--example", "quad-torus", "-o", out, "--size", "320x240"];
+        let mut args = vec![
+            "render",
+            "--example",
+            "quad-torus",
+            "-o",
+            out,
+            "--size",
+            "320x240",
+        ];
         args.extend_from_slice(extra);
         assert_success(&run(d, &args));
         image::open(d.join(out)).unwrap().to_rgba8()
