@@ -59,15 +59,23 @@ def test_every_function_runs_on_a_quad_torus():
     # The torus: two harmonic fields, then positive eigenvalues.
     assert np.all(np.abs(basis.eigenvalues[:2]) < 1e-8)
     assert np.all(basis.eigenvalues[2:] > 1e-3)
-    assert basis.fields.shape == (12, len(mesh.faces), 3)
+    assert basis.fields.shape == (len(mesh.faces), 3, 12)
     c = np.array([np.mean(mesh.positions[f], axis=0) for f in mesh.faces])
     field = np.stack([-c[:, 1], c[:, 0], 0.2 * c[:, 2]], axis=1)
     parts = tvf.decompose(mesh, field)
-    total = parts["integrable"] + parts["cointegrable"] + parts["harmonic"]
-    # The parts sum to the field as the sharp sees it (the field's 1-form sharpened).
-    again = tvf.decompose(mesh, total)
-    for name in ("integrable", "cointegrable", "harmonic"):
-        assert np.abs(again[name] - parts[name]).max() <= 1e-9 * np.abs(total).max(), name
+    assert parts["harmonic"].shape == field.shape
+    # On coefficients (E edge integrals): the three parts sum to the 1-form and are
+    # M1-orthogonal.
+    M1 = tvf.operators(mesh)["M1"]
+    x = np.random.default_rng(0).normal(size=len(mesh.edges))
+    parts = tvf.decompose(mesh, x)
+    pieces = [parts[name] for name in ("integrable", "cointegrable", "harmonic")]
+    assert np.abs(sum(pieces) - x).max() <= 1e-9 * np.abs(x).max()
+    norm = x @ (M1 @ x)
+    for i in range(3):
+        for j in range(i + 1, 3):
+            assert abs(pieces[i] @ (M1 @ pieces[j])) <= 1e-9 * norm, (i, j)
+    assert all(pieces[i] @ (M1 @ pieces[i]) > 1e-6 * norm for i in range(3))
     constraints = {"omega": 0.1, "constraints": [{"id": "a", "kind": "vector", "face": 3, "value": [0.0, 0.0, 1.0]}]}
     spline = tvf.spline(mesh, constraints, basis=basis)
     assert spline["field"].shape == (len(mesh.faces), 3)
@@ -93,7 +101,8 @@ def _lagrange_operators(V, faces):
     mesh.add_vertices(np.ascontiguousarray(V, dtype=np.float64))
     sizes = np.array([len(f) for f in faces], dtype=np.uint32)
     mesh.add_hybrid(sizes, np.concatenate(faces).astype(np.uint32))
-    return polyddg.DifferentialOperators(mesh)
+    # The operators refer to the mesh without owning it: both are returned, to live as long.
+    return mesh, polyddg.DifferentialOperators(mesh)
 
 
 def _edge_map(lagrange_d0, edges):
@@ -129,7 +138,7 @@ def test_the_five_matrices_equal_lagranges_polygonal_operators(name):
     tvf's order and orientation; faces and vertices are numbered alike."""
     V, faces = MESHES[name]
     mesh = tvf.Mesh(V, faces)
-    reference = _lagrange_operators(V, faces)
+    _lagrange_mesh, reference = _lagrange_operators(V, faces)
     S = _edge_map(reference.d0(), mesh.edges)
     for beta in (1.0, 0.3):
         ours = tvf.operators(mesh, "polygon-dec", beta=beta)
