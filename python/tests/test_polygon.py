@@ -76,6 +76,22 @@ def test_every_function_runs_on_a_quad_torus():
         for j in range(i + 1, 3):
             assert abs(pieces[i] @ (M1 @ pieces[j])) <= 1e-9 * norm, (i, j)
     assert all(pieces[i] @ (M1 @ pieces[i]) > 1e-6 * norm for i in range(3))
+    # Coefficients, filters and compression in the basis: a field in the span of the basis
+    # comes back whole.
+    inside = basis.coefficients @ np.arange(1.0, 13.0)
+    c, rest = tvf.coefficients(mesh, inside, basis)
+    assert rest <= 1e-9 and np.abs(c - np.arange(1.0, 13.0)).max() <= 1e-9 * 12
+    filtered, _ = tvf.filter(mesh, inside, basis)
+    assert np.abs(filtered - inside).max() <= 1e-9 * np.abs(inside).max()
+    # Compression keeps the harmonic fields and the lowest `pairs` of each family.
+    kept = np.zeros(12, dtype=bool)
+    for family in set(basis.families):
+        where = np.nonzero(basis.families == family)[0]
+        kept[where if family == "harmonic" else where[:3]] = True
+    compressible = basis.coefficients @ np.where(kept, np.arange(1.0, 13.0), 0.0)
+    data = tvf.compress(mesh, [compressible], basis, pairs=3)
+    back = tvf.decompress(mesh, data, basis, as_vectors=False)
+    assert np.abs(back[0] - compressible).max() <= 1e-9 * np.abs(compressible).max()
     constraints = {"omega": 0.1, "constraints": [{"id": "a", "kind": "vector", "face": 3, "value": [0.0, 0.0, 1.0]}]}
     spline = tvf.spline(mesh, constraints, basis=basis)
     assert spline["field"].shape == (len(mesh.faces), 3)
