@@ -7,9 +7,9 @@ from ._native import TvfError
 from .linear_operator import ComposedOperator
 from .mesh import Mesh
 
-# ``None``: the default of the mesh's kind, ``conforming-barycentric`` on a triangle mesh and
-# ``polygon-dec`` on a mesh with polygons (as on the command line).
-DEFAULT_DISCRETIZATION = None
+# The default on triangle meshes. Functions default to ``discretization=None``: this on a
+# triangle mesh, ``polygon-dec`` on a mesh with polygons (as on the command line).
+DEFAULT_DISCRETIZATION = "conforming-barycentric"
 
 
 def discretizations():
@@ -42,7 +42,7 @@ class Complex:
     stored).
     """
 
-    def __init__(self, mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", beta=None):
+    def __init__(self, mesh, discretization=None, boundary="tangential", beta=None):
         _check_mesh(mesh)
         self.mesh = mesh
         entry = None if discretization is None else str(discretization)
@@ -153,7 +153,7 @@ def _check_mesh(mesh):
         raise TypeError(f"expected a tvf.Mesh, got {type(mesh).__name__} (build one with tvf.Mesh(V, F))")
 
 
-def as_complex(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", beta=None):
+def as_complex(mesh, discretization=None, boundary="tangential", beta=None):
     """``mesh`` itself if it is a :class:`Complex`, else the catalog entry on it (``beta``:
     polygon-dec's stabilisation, see :class:`Complex`)."""
     if isinstance(mesh, Complex):
@@ -161,7 +161,7 @@ def as_complex(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential
     return Complex(mesh, discretization, boundary, beta)
 
 
-def operators(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", beta=None):
+def operators(mesh, discretization=None, boundary="tangential", beta=None):
     """Every matrix of a discretization, and the face frames.
 
     ``mesh`` is a :class:`Mesh` (then ``discretization`` and ``boundary`` choose the catalog

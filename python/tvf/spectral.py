@@ -94,7 +94,7 @@ def _field_out(complex_, coefficients, as_vectors):
     return coefficients
 
 
-def basis(mesh, k, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", seed=0, progress=None, beta=None):
+def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=None, beta=None):
     """The ``k`` eigenfields of lowest eigenvalue of the Hodge-Laplacian (``tvf basis -k K``).
 
     ``mesh``: a :class:`Mesh` (with ``discretization``, ``boundary``, ``beta`` as for
@@ -123,7 +123,7 @@ def basis(mesh, k, discretization=DEFAULT_DISCRETIZATION, boundary="tangential",
     )
 
 
-def decompose(mesh, field, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", beta=None):
+def decompose(mesh, field, discretization=None, boundary="tangential", beta=None):
     """The Hodge decomposition ``v = d0 f - M1^-1 d1^T g + h`` (``tvf decompose``).
 
     ``field``: ``(F, 3)`` face vectors (projected onto the face planes) or ``(n1,)``
