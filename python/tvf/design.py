@@ -6,7 +6,7 @@ import numpy as np
 
 from . import _native
 from ._native import TvfError
-from .complex import DEFAULT_DISCRETIZATION, as_complex
+from .complex import as_complex
 from .spectral import _complex_of, _field_out, basis as compute_basis
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from . import _native
 from ._arrays import float_array
 from ._native import TvfError
-from .complex import DEFAULT_DISCRETIZATION, Complex, as_complex
+from .complex import Complex, as_complex
 
 
 @dataclass
