@@ -33,12 +33,19 @@ fn main() {
     let mut counts = String::new();
     for _ in 0..runs.max(1) {
         let start = Instant::now();
-        let mesh = match tvf_core::io::load_mesh(&path) {
-            Ok(loaded) => loaded.mesh,
+        let loaded = match tvf_core::io::load_mesh(&path) {
+            Ok(loaded) => loaded,
             Err(error) => {
                 eprintln!("intrinsic_bench: {error}");
                 std::process::exit(1);
             }
+        };
+        let Ok(mesh) = loaded.mesh.into_triangles() else {
+            eprintln!(
+                "intrinsic_bench: {} has polygons; it needs triangles",
+                path.display()
+            );
+            std::process::exit(1);
         };
         times[0].push(start.elapsed().as_secs_f64());
 

@@ -22,7 +22,13 @@ fn shared_mesh(name: &str) -> Option<TriangleMesh> {
         return None;
     }
     match crate::io::load_mesh(&path) {
-        Ok(loaded) => Some(loaded.mesh),
+        Ok(loaded) => match loaded.mesh.into_triangles() {
+            Ok(mesh) => Some(mesh),
+            Err(_) => panic!(
+                "{} has polygons; these tests need triangles",
+                path.display()
+            ),
+        },
         Err(error) => panic!("{} does not load: {error}", path.display()),
     }
 }
