@@ -14,7 +14,8 @@ use pyo3::types::PyDict;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
-    builtin_catalog, catalog_entry, BoxedComplex, MatrixComplex, MatrixSampling,
+    builtin_catalog, catalog_entry, default_discretization, polygon_dec_entry, polygon_dec_id,
+    BoxedComplex, MatrixComplex, MatrixSampling, DEFAULT_STABILISATION,
 };
 use tvf_spectral::SpectralBasis;
 
@@ -29,10 +30,38 @@ pub struct Complex {
 #[pymethods]
 impl Complex {
     /// Catalog entry `discretization` on `mesh` with boundary condition `boundary`
-    /// (`tangential` or `normal`; only matters on meshes with boundary).
+    /// (`tangential` or `normal`; only matters on meshes with boundary). Without a
+    /// `discretization`, the default of the mesh's kind (`conforming-barycentric` on triangles,
+    /// `polygon-dec` on polygons). `beta` is polygon-dec's stabilisation weight (its default is
+    /// 1); giving it with another entry is an error.
     #[staticmethod]
-    fn build(py: Python<'_>, mesh: &Mesh, discretization: &str, boundary: &str) -> PyResult<Self> {
-        let entry = catalog_entry(discretization).map_err(|e| from_error(&e))?;
+    #[pyo3(signature = (mesh, discretization, boundary, beta = None))]
+    fn build(
+        py: Python<'_>,
+        mesh: &Mesh,
+        discretization: Option<&str>,
+        boundary: &str,
+        beta: Option<f64>,
+    ) -> PyResult<Self> {
+        let discretization = discretization.unwrap_or_else(|| default_discretization(&mesh.mesh));
+        let stabilised;
+        let entry = match beta {
+            None => catalog_entry(discretization).map_err(|e| from_error(&e))?,
+            Some(beta) if discretization == polygon_dec_id(DEFAULT_STABILISATION) => {
+                if !(beta.is_finite() && beta > 0.0) {
+                    return Err(tvf_error(format!(
+                        "beta = {beta}: polygon-dec's stabilisation weight must be a positive number"
+                    )));
+                }
+                stabilised = polygon_dec_entry(beta);
+                &stabilised
+            }
+            Some(_) => {
+                return Err(tvf_error(format!(
+                    "beta is the stabilisation weight of polygon-dec; '{discretization}' has none"
+                )))
+            }
+        };
         let condition = BoundaryCondition::from_name(boundary).ok_or_else(|| {
             tvf_error(format!(
                 "'{boundary}' is not a boundary condition: tangential or normal"
@@ -56,8 +85,8 @@ impl Complex {
 
     /// A complex from the five matrices on a closed `mesh`: the CSR parts of `d0`, `d1`; the
     /// masses `M0`, `M1` and either `M2` or its inverse `m2_inverse` (exactly one of them), each
-    /// a diagonal or CSR parts (see [`MassInput`]); `sampling` is `none`, `face-frames` or
-    /// `whitney`. Errors name the matrix: shapes, finite entries, symmetry, positive
+    /// a diagonal or CSR parts (see [`MassInput`]); `sampling` is `none`, `face-frames`,
+    /// `whitney` or `polygon-sharp`. Errors name the matrix: shapes, finite entries, symmetry, positive
     /// definiteness on the used nodes (a Cholesky factorization of each sparse mass),
     /// `d1 · d0 = 0`.
     #[staticmethod]
@@ -77,7 +106,7 @@ impl Complex {
     ) -> PyResult<Self> {
         let sampling = MatrixSampling::from_name(sampling).ok_or_else(|| {
             tvf_error(format!(
-                "'{sampling}' is not a sampling: none, face-frames or whitney"
+                "'{sampling}' is not a sampling: none, face-frames, whitney or polygon-sharp"
             ))
         })?;
         let labelled = |e: PyErr| tvf_error(format!("{}: {}", mesh.label, e.value(py)));

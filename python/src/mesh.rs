@@ -1,16 +1,16 @@
-//! `tvf.Mesh`: a validated triangle mesh, from arrays or a file, with the map back to the input's
+//! `tvf.Mesh`: a validated triangle or polygon mesh, from arrays or a file, with the map back to the input's
 //! vertex numbers.
 
 use crate::arrays::vectors_to_numpy;
 use crate::errors::{from_error, tvf_error};
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyReadonlyArray2};
+use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use tvf_core::io::load_mesh;
 use tvf_core::mesh::ValidationReport;
 use tvf_core::{FaceList, SurfaceMesh};
 
-/// A valid oriented manifold triangle mesh (see `tvf.Mesh` in Python for the documentation).
+/// A valid oriented manifold triangle or polygon mesh (see `tvf.Mesh` in Python for the documentation).
 #[pyclass(frozen, module = "tvf._native")]
 pub struct Mesh {
     pub mesh: SurfaceMesh,
@@ -20,37 +20,62 @@ pub struct Mesh {
 
 #[pymethods]
 impl Mesh {
-    /// Validates `positions` (`n × 3` float64) and `faces` (`m × 3` int64, 0-based) like the
-    /// command line's mesh readers; `label` names the mesh in error messages.
+    /// Validates `positions` (`n × 3` float64) and faces given as `corners` (every face's
+    /// 0-based vertex indices, one face after the other, int64) and `sizes` (the number of
+    /// corners of each face, int64) like the command line's mesh readers; `label` names the mesh
+    /// in error messages. Faces of three corners only make a triangle mesh, others a polygon
+    /// mesh.
     #[new]
-    #[pyo3(signature = (positions, faces, label = "mesh".to_string()))]
+    #[pyo3(signature = (positions, corners, sizes, label = "mesh".to_string()))]
     fn new(
         py: Python<'_>,
         positions: PyReadonlyArray2<'_, f64>,
-        faces: PyReadonlyArray2<'_, i64>,
+        corners: PyReadonlyArray1<'_, i64>,
+        sizes: PyReadonlyArray1<'_, i64>,
         label: String,
     ) -> PyResult<Self> {
         let positions: Vec<[f64; 3]> = rows(&positions.as_array(), "V")?;
-        let raw: Vec<[i64; 3]> = rows(&faces.as_array(), "F")?;
-        let mut faces = Vec::with_capacity(raw.len());
-        for (t, face) in raw.iter().enumerate() {
-            let mut converted = [0usize; 3];
-            for (c, &v) in face.iter().enumerate() {
-                converted[c] = usize::try_from(v)
-                    .ok()
-                    .filter(|&v| v < positions.len())
-                    .ok_or_else(|| {
-                        // Worded as the mesh readers word it (`tvf info mesh.off`).
-                        tvf_error(format!(
-                            "{label}: face {t}: vertex index {v} is out of range: the mesh has {} vertices",
-                            positions.len()
-                        ))
-                    })?;
+        let (corners, sizes) = (corners.as_array(), sizes.as_array());
+        let mut faces = FaceList::new();
+        let mut start = 0usize;
+        let mut face = Vec::new();
+        for (t, &size) in sizes.iter().enumerate() {
+            let end = usize::try_from(size)
+                .ok()
+                .and_then(|n| start.checked_add(n))
+                .filter(|&end| end <= corners.len())
+                .ok_or_else(|| {
+                    tvf_error(format!(
+                        "{label}: face {t}: {size} corners do not fit the {} corner indices given",
+                        corners.len()
+                    ))
+                })?;
+            face.clear();
+            for &v in corners.iter().skip(start).take(end - start) {
+                face.push(
+                    usize::try_from(v)
+                        .ok()
+                        .filter(|&v| v < positions.len())
+                        .ok_or_else(|| {
+                            // Worded as the mesh readers word it (`tvf info mesh.off`).
+                            tvf_error(format!(
+                                "{label}: face {t}: vertex index {v} is out of range: the mesh has {} vertices",
+                                positions.len()
+                            ))
+                        })?,
+                );
             }
-            faces.push(converted);
+            faces.push(&face);
+            start = end;
+        }
+        if start != corners.len() {
+            return Err(tvf_error(format!(
+                "{label}: the face sizes add up to {start} corners, but {} corner indices were given",
+                corners.len()
+            )));
         }
         let (mesh, report) = py
-            .detach(|| SurfaceMesh::validated(positions, FaceList::from_triangles(&faces)))
+            .detach(|| SurfaceMesh::validated(positions, faces))
             .map_err(|e| tvf_error(format!("{label}: {e}")))?;
         check_geometry_range(&mesh, &label)?;
         Ok(Self {

@@ -1,4 +1,4 @@
-"""tvf — spectral processing of tangential vector fields on triangle meshes, from Python.
+"""tvf — spectral processing of tangential vector fields on triangle and polygon meshes, from Python.
 
 numpy arrays and ``scipy.sparse`` matrices in and out (dense derived operators as
 ``scipy.sparse.linalg.LinearOperator``); the computations are tvf's Rust code

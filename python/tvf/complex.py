@@ -7,6 +7,8 @@ from ._native import TvfError
 from .linear_operator import ComposedOperator
 from .mesh import Mesh
 
+# The default on triangle meshes. Functions default to ``discretization=None``: this on a
+# triangle mesh, ``polygon-dec`` on a mesh with polygons (as on the command line).
 DEFAULT_DISCRETIZATION = "conforming-barycentric"
 
 
@@ -23,9 +25,14 @@ class Complex:
     diagonal or a sparse matrix; ``M2`` possibly given by its sparse inverse), with
     ``d1 @ d0 = 0``.
 
-    ``Complex(mesh, discretization="conforming-barycentric", boundary="tangential")`` builds a
-    catalog entry (:func:`discretizations`); ``boundary`` (``tangential`` or ``normal``) only
-    matters on meshes with boundary. :meth:`Complex.from_matrices` wraps matrices you assembled.
+    ``Complex(mesh, discretization=None, boundary="tangential", beta=None)`` builds a catalog
+    entry (:func:`discretizations`); without ``discretization``, ``conforming-barycentric`` on
+    a triangle mesh and ``polygon-dec`` on a polygon mesh (the triangle entries refuse polygon
+    meshes: triangulate those first, e.g. ``tvf triangulate MESH -o OUT``). ``boundary``
+    (``tangential`` or ``normal``) only matters on meshes with boundary. ``beta`` is
+    ``polygon-dec``'s stabilisation weight (> 0, default 1: ``M1 = sum_f |A_f| U_f^T U_f +
+    beta P_f^T P_f``; the id becomes ``polygon-dec-beta-...`` for another value); it is an error
+    with any other entry. :meth:`Complex.from_matrices` wraps matrices you assembled.
     Every function of the package takes a ``Complex`` wherever it takes a mesh and a
     ``discretization``.
 
@@ -35,10 +42,12 @@ class Complex:
     stored).
     """
 
-    def __init__(self, mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential"):
+    def __init__(self, mesh, discretization=None, boundary="tangential", beta=None):
         _check_mesh(mesh)
         self.mesh = mesh
-        self._native = _native.Complex.build(mesh._native, str(discretization), str(boundary))
+        entry = None if discretization is None else str(discretization)
+        beta = None if beta is None else float(beta)
+        self._native = _native.Complex.build(mesh._native, entry, str(boundary), beta)
 
     @classmethod
     def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None):
@@ -75,7 +84,8 @@ class Complex:
         - ``sampling``: ``"face-frames"`` (fields are ``2F`` coefficients, face ``t`` at
           ``2t, 2t+1`` in its frame ``e1 = normalize(p1 - p0)``, ``e2 = n x e1``; gives the
           rotation ``J`` too), ``"whitney"`` (fields are ``E`` edge integrals, Whitney
-          interpolation) or ``"none"``.
+          interpolation; triangle meshes), ``"polygon-sharp"`` (``E`` edge integrals, one vector
+          per face by polygonal DEC's sharp; polygon and triangle meshes) or ``"none"``.
         - ``id``: the name written into results and messages.
 
         The space of each node set is inferred from its size (V vertices, E edges, F faces,
@@ -143,20 +153,22 @@ def _check_mesh(mesh):
         raise TypeError(f"expected a tvf.Mesh, got {type(mesh).__name__} (build one with tvf.Mesh(V, F))")
 
 
-def as_complex(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential"):
-    """``mesh`` itself if it is a :class:`Complex`, else the catalog entry on it."""
+def as_complex(mesh, discretization=None, boundary="tangential", beta=None):
+    """``mesh`` itself if it is a :class:`Complex`, else the catalog entry on it (``beta``:
+    polygon-dec's stabilisation, see :class:`Complex`)."""
     if isinstance(mesh, Complex):
         return mesh
-    return Complex(mesh, discretization, boundary)
+    return Complex(mesh, discretization, boundary, beta)
 
 
-def operators(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential"):
+def operators(mesh, discretization=None, boundary="tangential", beta=None):
     """Every matrix of a discretization, and the face frames.
 
     ``mesh`` is a :class:`Mesh` (then ``discretization`` and ``boundary`` choose the catalog
-    entry) or a :class:`Complex`. Returns a dict (``n0``, ``n1``, ``n2``: potentials, field
-    coefficients, co-potentials; conforming: ``V``, ``2F``, ``E``; nonconforming: ``E``,
-    ``2F``, ``V``; DEC and ``whitney-galerkin``: ``V``, ``E``, ``F``). A value is a
+    entry, ``beta`` polygon-dec's stabilisation) or a :class:`Complex`. Returns a dict (``n0``,
+    ``n1``, ``n2``: potentials, field coefficients, co-potentials; conforming: ``V``, ``2F``,
+    ``E``; nonconforming: ``E``, ``2F``, ``V``; DEC, ``whitney-galerkin`` and ``polygon-dec``:
+    ``V``, ``E``, ``F``). A value is a
     ``scipy.sparse.csr_matrix`` where the matrix is sparse, and a
     :class:`tvf.ComposedOperator` (a ``scipy.sparse.linalg.LinearOperator`` applied by tvf,
     never formed) where it is dense:
@@ -200,7 +212,7 @@ def operators(mesh, discretization=DEFAULT_DISCRETIZATION, boundary="tangential"
     Vertex rows and columns are in mesh numbering (see ``Mesh.vertex_map``); edges as
     ``Mesh.edges``. The sparse entries equal those ``tvf operators`` writes (which writes
     ``M2_inverse`` in place of a dense ``M2`` and leaves dense derived matrices out)."""
-    complex_ = as_complex(mesh, discretization, boundary)
+    complex_ = as_complex(mesh, discretization, boundary, beta)
     raw = _native.operators(complex_._native)
     return {name: _operator(name, value) for name, value in raw.items()}
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from . import _native
 from ._native import TvfError
-from .complex import DEFAULT_DISCRETIZATION, as_complex
+from .complex import as_complex
 from .spectral import _complex_of, _field_out, basis as compute_basis
 
 
@@ -25,7 +25,7 @@ def _result(complex_, raw):
     return {"field": field, "coefficients": coefficients, "residuals": dict(raw["residuals"])}
 
 
-def spline(mesh, constraints, k=None, basis=None, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", seed=0, progress=None, origin="constraints"):
+def spline(mesh, constraints, k=None, basis=None, discretization=None, boundary="tangential", seed=0, progress=None, origin="constraints"):
     """A tangential vector field spline (``tvf spline``): minimises ``E_B + omega E_D`` in the
     basis of the ``k`` lowest eigenfields subject to the constraints, met exactly in that basis.
 
@@ -43,7 +43,7 @@ def spline(mesh, constraints, k=None, basis=None, discretization=DEFAULT_DISCRET
     return _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft=False)
 
 
-def design(mesh, constraints, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", origin="constraints", k=None, basis=None, seed=0, progress=None):
+def design(mesh, constraints, discretization=None, boundary="tangential", origin="constraints", k=None, basis=None, seed=0, progress=None):
     """Soft-constrained design (``tvf design``): minimises
     ``E_D + omega E_B + sum_i weight_i |C_i x - c_i|^2`` (plus a tiny screening
     ``eps x^T M1 x`` that pins harmonic fields the constraints leave free).

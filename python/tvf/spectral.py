@@ -9,7 +9,7 @@ import numpy as np
 from . import _native
 from ._arrays import float_array
 from ._native import TvfError
-from .complex import DEFAULT_DISCRETIZATION, Complex, as_complex
+from .complex import Complex, as_complex
 
 
 @dataclass
@@ -94,11 +94,11 @@ def _field_out(complex_, coefficients, as_vectors):
     return coefficients
 
 
-def basis(mesh, k, discretization=DEFAULT_DISCRETIZATION, boundary="tangential", seed=0, progress=None):
+def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=None, beta=None):
     """The ``k`` eigenfields of lowest eigenvalue of the Hodge-Laplacian (``tvf basis -k K``).
 
-    ``mesh``: a :class:`Mesh` (with ``discretization``, ``boundary``) or a :class:`Complex`.
-    ``k >= n1`` gives the complete basis (dense solvers: small meshes only). ``seed`` fixes the
+    ``mesh``: a :class:`Mesh` (with ``discretization``, ``boundary``, ``beta`` as for
+    :class:`Complex`) or a :class:`Complex`. ``k >= n1`` gives the complete basis (dense solvers: small meshes only). ``seed`` fixes the
     random start vectors (equal seeds, equal results). ``progress``: optional callable
     ``progress(stage, done, wanted)`` called from the computation (which runs without the GIL).
 
@@ -109,7 +109,7 @@ def basis(mesh, k, discretization=DEFAULT_DISCRETIZATION, boundary="tangential",
     matrix, and with a sparse ``M1`` the co-exact stiffness ``d1 M1^-1 d1^T`` (dense) is never
     formed (its shifts factor the sparse saddle matrix ``[[-M1, d1^T], [d1, -s M2^-1]]``). Signs of eigenfields are arbitrary; eigenfields of a repeated eigenvalue span its
     eigenspace in an arbitrary orthonormal basis. Returns a :class:`Basis`."""
-    complex_ = as_complex(mesh, discretization, boundary)
+    complex_ = as_complex(mesh, discretization, boundary, beta)
     k = int(k)
     if k < 0:
         raise TvfError(f"-k {k}: ask for at least one eigenfield")
@@ -123,15 +123,16 @@ def basis(mesh, k, discretization=DEFAULT_DISCRETIZATION, boundary="tangential",
     )
 
 
-def decompose(mesh, field, discretization=DEFAULT_DISCRETIZATION, boundary="tangential"):
+def decompose(mesh, field, discretization=None, boundary="tangential", beta=None):
     """The Hodge decomposition ``v = d0 f - M1^-1 d1^T g + h`` (``tvf decompose``).
 
     ``field``: ``(F, 3)`` face vectors (projected onto the face planes) or ``(n1,)``
     coefficients. Returns a dict with ``integrable`` (curl-free), ``cointegrable``
     (divergence-free; also under its earlier key ``co_integrable``), ``harmonic`` — in the form the field was given — and the ``potential``
     ``f`` (``n0``) and ``co_potential`` ``g`` (``n2``), each with zero mean per component. The
-    three parts are ``M1``-orthogonal and sum to the (projected) field."""
-    complex_ = as_complex(mesh, discretization, boundary)
+    three parts are ``M1``-orthogonal and sum to the (projected) field. ``beta``: polygon-dec's
+    stabilisation, as for :class:`Complex`."""
+    complex_ = as_complex(mesh, discretization, boundary, beta)
     values, as_vectors = _field_in(complex_, field)
     parts = _native.decompose(complex_._native, values)
     out = {name: _field_out(complex_, parts[name], as_vectors) for name in ("integrable", "cointegrable", "harmonic")}

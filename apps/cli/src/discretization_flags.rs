@@ -19,8 +19,9 @@ use tvf_discretizations::{
 /// The discretization flags shared by every subcommand that builds a complex.
 #[derive(Args, Debug, Clone, Default)]
 pub struct DiscretizationFlags {
-    /// Discretization: an id of the catalog (`tvf discretizations` lists them)
-    /// [default: conforming-barycentric, or the basis file's].
+    /// Discretization: an id of the catalog (`tvf discretizations` lists them) [default:
+    /// conforming-barycentric on triangle meshes, polygon-dec on polygon meshes, or the basis
+    /// file's].
     #[arg(long, value_name = "ID")]
     pub discretization: Option<String>,
     /// Shorthand for --discretization NAME-MASS: the decomposition part of the id

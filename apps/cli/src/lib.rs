@@ -32,7 +32,7 @@ use tvf_discretizations::Catalog;
 
 use context::RunContext;
 
-/// Spectral processing of tangential vector fields on triangle meshes.
+/// Spectral processing of tangential vector fields on triangle and polygon meshes.
 #[derive(clap::Parser)]
 #[command(name = "tvf", version, about, long_about = None)]
 struct Cli {
@@ -47,6 +47,8 @@ struct Cli {
 enum Command {
     /// Report a mesh's counts, topology, angles and validation findings.
     Info(commands::info::InfoArgs),
+    /// Split every polygon of a mesh into triangles by its own corners and write it (.obj, .ply).
+    Triangulate(commands::triangulate::TriangulateArgs),
     /// List the discretizations of the catalog (ids for --discretization).
     Discretizations(commands::discretizations::DiscretizationsArgs),
     /// Check a discretization: the conformance checks on a mesh, or on generated meshes with the minimal failing one written as OBJ.
@@ -110,6 +112,7 @@ pub fn run(catalog: Catalog) -> ExitCode {
     let context = &context;
     let result = match cli.command {
         Command::Info(args) => commands::info::run(args),
+        Command::Triangulate(args) => commands::triangulate::run(args),
         Command::Discretizations(args) => commands::discretizations::run(args, context),
         Command::Basis(args) => commands::basis::run(args, context),
         Command::Spectrum(args) => commands::spectrum::run(args, context),

@@ -40,6 +40,12 @@ pub struct MeshInput {
         value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
     )]
     pub example: Option<String>,
+    /// Split every polygon into triangles by its own corners (no new vertex) right after
+    /// loading, as `tvf triangulate` does, so that a triangle entry (conforming-*,
+    /// nonconforming-*, dec-*, whitney-*) can be built on a quad or polygon mesh. Without it a
+    /// polygon mesh is kept as polygons and gets polygon-dec. No effect on a triangle mesh.
+    #[arg(long)]
+    pub triangulate: bool,
     /// The input index of every mesh vertex (`ValidationReport::original_vertex`), recorded by
     /// [`MeshInput::load`]: what `--complex DIR`'s `vertex_map.npy` is checked against.
     #[arg(skip)]
@@ -52,6 +58,7 @@ impl MeshInput {
         Self {
             mesh: Some(path),
             example: None,
+            triangulate: false,
             original_vertex: Default::default(),
         }
     }
@@ -61,16 +68,24 @@ impl MeshInput {
         Self {
             mesh: None,
             example: Some(name.to_string()),
+            triangulate: false,
             original_vertex: Default::default(),
         }
     }
 
-    /// Loads and validates the mesh. File errors name the file, the line where one applies,
-    /// and the problem; examples are validated like files (their report has no warnings).
+    /// Loads and validates the mesh, then (with `--triangulate`) splits its polygons into
+    /// triangles ([`LoadedMesh::triangulated`]). File errors name the file, the line where one
+    /// applies, and the problem; examples are validated like files (their report has no
+    /// warnings).
     ///
     /// Both a mesh file and `--example` is a usage error (exit code 2).
     pub fn load(&self) -> Result<LoadedMesh> {
-        let loaded = self.load_and_validate()?;
+        let mut loaded = self.load_and_validate()?;
+        if self.triangulate {
+            loaded = loaded
+                .triangulated()
+                .with_context(|| format!("{}: cannot triangulate", self.label()))?;
+        }
         // A second load of the same input finds the same numbering.
         let _ = self
             .original_vertex

@@ -11,7 +11,7 @@ use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::HodgeDecomposer;
-use tvf_render::{draw_field, grid, FaceQuantity, Marker, Overlays, Style, Tint, View};
+use tvf_render::{draw_field, grid, FaceQuantity, Overlays, Style, Tint, View};
 
 /// Renders `field` (`n1` coefficients of `complex`) on `mesh` as a line integral convolution
 /// over `tint`, titled `title`.
@@ -35,14 +35,14 @@ pub fn field_panel(
 }
 
 /// `field` (`n1` coefficients of `complex`) and its integrable, co-integrable and harmonic parts
-/// (exact Hodge decomposition) as a 2×2 grid of titled panels drawn in `style` over `tint`, each
-/// with `markers`; `view` is the size of the whole grid.
+/// (exact Hodge decomposition) as a 2×2 grid of panels drawn in `style` over `tint`, each with
+/// `overlays` and its own title; `view` is the size of the whole grid.
 pub fn hodge_parts_grid(
     mesh: &SurfaceMesh,
     complex: &dyn HodgeComplex,
     field: &[f64],
     (tint, style): (Tint, Style),
-    markers: &[Marker],
+    overlays: &Overlays,
     view: View,
 ) -> Result<RgbaImage, FigureError> {
     let parts = HodgeDecomposer::new(complex)?.decompose(field)?;
@@ -55,9 +55,8 @@ pub fn hodge_parts_grid(
     let mut images = Vec::new();
     for (name, part) in panels {
         let overlays = Overlays {
-            markers: markers.to_vec(),
             title: Some(name.to_string()),
-            ..Default::default()
+            ..overlays.clone()
         };
         images.push(draw_field(
             mesh,

@@ -101,6 +101,9 @@ pub struct Overlays {
     pub polylines: Vec<Polyline>,
     /// Title at the top.
     pub title: Option<String>,
+    /// Leave out the edges of a polygon mesh ([`crate::polygon_edges`]), drawn by default over
+    /// its display triangulation (a triangle mesh has none drawn either way).
+    pub hide_polygon_edges: bool,
 }
 
 impl Overlays {
@@ -116,7 +119,8 @@ impl Overlays {
 /// Renders `mesh` with `field` (`n1` coefficients of `complex`, if any) over a surface
 /// coloured by `tint`, the field drawn in `style`, plus `overlays`. Needs the complex's
 /// sampling (and its point evaluation for divergence, curl and energy). A polygon mesh is drawn
-/// through its display triangulation, each triangle with its polygon's colour and vector.
+/// through its display triangulation, each triangle with its polygon's colour and vector, with
+/// the polygons' edges over it unless [`Overlays::hide_polygon_edges`].
 pub fn draw_field(
     mesh: &SurfaceMesh,
     complex: &dyn HodgeComplex,
@@ -126,9 +130,14 @@ pub fn draw_field(
     overlays: Overlays,
     view: View,
 ) -> Result<RgbaImage, RenderError> {
+    let mut polylines = overlays.polylines;
+    if !overlays.hide_polygon_edges {
+        let width_px = (view.width as f64 / 1024.0).clamp(0.5, 2.0);
+        polylines.extend(crate::polygon_edges(mesh, width_px));
+    }
     let mut scene = Scene {
         markers: overlays.markers,
-        polylines: overlays.polylines,
+        polylines,
         title: overlays.title,
         ..Default::default()
     };

@@ -53,6 +53,7 @@ mod fur;
 mod lic;
 mod overlay3d;
 mod plot;
+mod polygon_edges;
 mod raster;
 mod render;
 mod scene;
@@ -77,6 +78,7 @@ pub use field_picture::{
 pub use fur::{grow_fur, FurOptions};
 pub use lic::LicOptions;
 pub use plot::{Axis, AxisScale, Plot, Series, SeriesStyle, PALETTE};
+pub use polygon_edges::polygon_edges;
 pub use render::render;
 pub use scene::{
     ArrowOptions, FaceScalar, FieldLayer, FieldStyle, Marker, Polyline, RenderOptions, Scene,

@@ -53,6 +53,43 @@ pub struct LoadedMesh {
     pub report: ValidationReport,
 }
 
+impl LoadedMesh {
+    /// The mesh with every polygon split into triangles by its own corners
+    /// ([`SurfaceMesh::triangulated`]; a triangle mesh comes back as it is). The vertices and
+    /// their map back to the file are unchanged; the report's angle range and small-angle count
+    /// become the triangles', and the non-convex-polygon warning goes (there are no polygons
+    /// left).
+    pub fn triangulated(self) -> Result<LoadedMesh, MeshError> {
+        if self.mesh.is_triangle_mesh() {
+            return Ok(self);
+        }
+        let triangles = self.mesh.triangulated()?;
+        let (mesh, fresh) = crate::TriangleMesh::validated(
+            triangles.positions().to_vec(),
+            triangles.faces().to_vec(),
+        )?;
+        let mut report = self.report;
+        report.warnings.retain(|w| {
+            !matches!(
+                w,
+                ValidationWarning::SmallAngles { .. } | ValidationWarning::NonConvexPolygons { .. }
+            )
+        });
+        report.warnings.extend(
+            fresh
+                .warnings
+                .into_iter()
+                .filter(|w| matches!(w, ValidationWarning::SmallAngles { .. })),
+        );
+        report.min_angle_deg = fresh.min_angle_deg;
+        report.max_angle_deg = fresh.max_angle_deg;
+        Ok(LoadedMesh {
+            mesh: SurfaceMesh::Triangles(mesh),
+            report,
+        })
+    }
+}
+
 impl RawMesh {
     /// Validates the raw data; errors name `path` and, for text files, the line of the
     /// offending vertex or face.

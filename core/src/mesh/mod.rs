@@ -3,6 +3,7 @@
 //! display triangulation, validation and errors.
 
 mod any_mesh;
+mod corner_triangulation;
 mod display_triangulation;
 mod error;
 mod face_list;

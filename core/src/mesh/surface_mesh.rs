@@ -3,6 +3,7 @@
 //! display triangulation.
 
 use super::any_mesh::Mesh;
+use super::corner_triangulation::triangulate_by_corners;
 use super::error::MeshError;
 use super::face_list::{FaceCorners, FaceList};
 use super::surface_point::{SurfacePoint, SurfacePointError};
@@ -128,6 +129,29 @@ impl SurfaceMesh {
         }
     }
 
+    /// The mesh with every polygon split into triangles by its own corners, for the entries
+    /// that need triangles (`tvf triangulate`, `--triangulate`): no vertex is added or moved, so
+    /// vertex numbers, positions and per-vertex data carry over. A polygon of `n` corners becomes
+    /// the `n − 2` triangles of an ear clipping of its corners seen along its vector area (for a
+    /// convex polygon any such split; for a non-convex one, triangles that stay inside it), each
+    /// oriented like the polygon; triangles are listed face by face, a triangle face as itself.
+    /// A triangle mesh comes back unchanged.
+    ///
+    /// Unlike the [`SurfaceMesh::display`] triangulation (a fan around the corner average, a new
+    /// vertex per polygon) this is a mesh of the same vertices, which a triangle discretization
+    /// can be built on and whose vertex fields compare with the polygon mesh's. Fails with
+    /// [`MeshError::PolygonNotTriangulable`] on a polygon that folds over itself (the validation
+    /// of [`SurfaceMesh::validated`] already refuses those).
+    pub fn triangulated(&self) -> Result<TriangleMesh, MeshError> {
+        match self {
+            Self::Triangles(mesh) => Ok(mesh.clone()),
+            Self::Polygons(mesh) => {
+                let triangles = triangulate_by_corners(mesh.positions(), mesh.faces())?;
+                TriangleMesh::new(mesh.positions().to_vec(), triangles)
+            }
+        }
+    }
+
     /// Whether every face is a triangle.
     pub fn is_triangle_mesh(&self) -> bool {
         matches!(self, Self::Triangles(_))
@@ -220,6 +244,16 @@ impl SurfaceMesh {
     /// Number of corners of face `f`.
     pub fn face_size(&self, f: usize) -> usize {
         self.face(f).len()
+    }
+
+    /// How many faces have each number of corners: `(size, count)` pairs, sizes ascending
+    /// (`[(3, F)]` for a triangle mesh, `[(4, 96)]` for a cube-sphere of 96 quads).
+    pub fn face_size_counts(&self) -> Vec<(usize, usize)> {
+        let mut counts = std::collections::BTreeMap::new();
+        for f in 0..self.face_count() {
+            *counts.entry(self.face_size(f)).or_insert(0) += 1;
+        }
+        counts.into_iter().collect()
     }
 
     /// The edge joining corner `c` of face `f` to corner `c + 1` (cyclically).

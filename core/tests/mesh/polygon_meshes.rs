@@ -110,3 +110,52 @@ fn a_concave_polygon_is_kept_with_a_warning_and_drawn_without_folds() {
     }
     assert!((drawn_area - 10.0).abs() < 1e-12, "{drawn_area}");
 }
+
+#[test]
+fn triangulating_keeps_the_vertices_the_area_and_the_orientation_of_every_polygon() {
+    let notched = parse("v 0 0 0\nv 4 0 0\nv 4 4 0\nv 2 1 0\nv 0 4 0\nf 1 2 3 4 5\n").unwrap();
+    let meshes: Vec<(&str, SurfaceMesh)> = vec![
+        ("quad-torus", quad_torus(1.0, 0.4, 12, 6).unwrap().into()),
+        ("cube-sphere", cube_sphere(3).unwrap().into()),
+        ("dual", dual(&icosphere(1)).unwrap().into()),
+        ("notched", notched.mesh),
+    ];
+    for (name, mesh) in meshes {
+        let triangles = mesh.triangulated().unwrap();
+        assert_eq!(triangles.positions(), mesh.positions(), "{name}");
+        let corners: usize = (0..mesh.face_count()).map(|f| mesh.face_size(f)).sum();
+        assert_eq!(
+            triangles.face_count(),
+            corners - 2 * mesh.face_count(),
+            "{name}"
+        );
+        assert_eq!(triangles.genus(), mesh.genus(), "{name}");
+        assert_eq!(triangles.is_closed(), mesh.is_closed(), "{name}");
+        // Face by face: the triangles of polygon f are the next n − 2, each a triangle of f's
+        // corners facing the way of f's vector area, their vector areas summing to f's (exact
+        // for a planar polygon; for a non-planar one the sum of the triangles' vector areas is
+        // still the polygon's, as ½ Σ p_c × p_{c+1} telescopes over any split by diagonals).
+        let mut t = 0;
+        for f in 0..mesh.face_count() {
+            let corners = mesh.face(f);
+            let mut sum = [0.0; 3];
+            for _ in 0..corners.len() - 2 {
+                let triangle = triangles.faces()[t];
+                assert!(triangle.iter().all(|v| corners.contains(v)), "{name} {t}");
+                let [a, b, c] = triangle.map(|v| triangles.positions()[v]);
+                let area = cross(sub(b, a), sub(c, a));
+                assert!(
+                    dot(area, mesh.vector_area(f)) > 0.0,
+                    "{name}: triangle {t} flips"
+                );
+                sum = std::array::from_fn(|k| sum[k] + area[k] / 2.0);
+                t += 1;
+            }
+            let expected = mesh.vector_area(f);
+            assert!(
+                norm(sub(sum, expected)) <= 1e-12 * norm(expected),
+                "{name}: face {f}: {sum:?} vs {expected:?}"
+            );
+        }
+    }
+}

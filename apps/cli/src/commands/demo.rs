@@ -44,6 +44,10 @@ pub struct DemoArgs {
     /// picks the boundary condition).
     #[arg(long, value_name = "MESH")]
     mesh: Option<PathBuf>,
+    /// Split every polygon of --mesh into triangles by its own corners (as `tvf triangulate`),
+    /// for a triangle entry on a quad or polygon mesh.
+    #[arg(long, requires = "mesh")]
+    triangulate: bool,
     /// Basis size: the K lowest eigenfields, harmonic ones included (the paper's d)
     /// [default: 400; 60 with --quick].
     #[arg(short = 'k', value_name = "K")]
@@ -76,7 +80,8 @@ pub fn run(args: DemoArgs, context: &RunContext) -> Result<()> {
     };
     let (mesh, mesh_name) = match &args.mesh {
         Some(path) => {
-            let input = MeshInput::file(path.clone());
+            let mut input = MeshInput::file(path.clone());
+            input.triangulate = args.triangulate;
             (input.load()?.mesh, input.label())
         }
         None => default_mesh(args.quick)?,

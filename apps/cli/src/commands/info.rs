@@ -24,10 +24,12 @@ pub struct InfoArgs {
 /// file lists), `unreferenced_vertices`, `duplicate_vertices`, `euler_characteristic`,
 /// `component_genera`, `component_boundary_loops`, `harmonic_dimension` (per boundary condition,
 /// `{"tangential": h, "normal": h}`: `2g` per closed component, `2g + b − 1` per component with
-/// `b ≥ 1` boundary loops), `total_area` and `signed_volume`.
+/// `b ≥ 1` boundary loops), `total_area`, `signed_volume`, `mesh_kind` (`triangles` or
+/// `polygons`) and `face_sizes` (faces per number of corners, `{"4": 96}`).
 pub fn run(args: InfoArgs) -> Result<()> {
     let loaded = args.input.load()?;
     let (mesh, report) = (&loaded.mesh, &loaded.report);
+    let face_sizes = mesh.face_size_counts();
     let warnings: Vec<String> = report.warnings.iter().map(|w| w.to_string()).collect();
     let loops = tvf_discretizations::component_boundary_loops(mesh);
     let harmonic: Vec<(BoundaryCondition, usize)> = BoundaryCondition::ALL
@@ -40,6 +42,11 @@ pub fn run(args: InfoArgs) -> Result<()> {
             "vertices": mesh.vertex_count(),
             "edges": mesh.edge_count(),
             "faces": mesh.face_count(),
+            "mesh_kind": mesh.kind_name(),
+            "face_sizes": face_sizes
+                .iter()
+                .map(|(size, count)| (size.to_string(), json!(count)))
+                .collect::<serde_json::Map<_, _>>(),
             "components": mesh.component_count(),
             "boundary_loops": mesh.boundary_loops().len(),
             "genus": mesh.genus(),
@@ -66,7 +73,19 @@ pub fn run(args: InfoArgs) -> Result<()> {
     println!("mesh           {}", args.input.label());
     println!("vertices       {}", mesh.vertex_count());
     println!("edges          {}", mesh.edge_count());
-    println!("faces          {}", mesh.face_count());
+    if mesh.is_triangle_mesh() {
+        println!("faces          {}", mesh.face_count());
+    } else {
+        let sizes: Vec<String> = face_sizes
+            .iter()
+            .map(|&(size, count)| format!("{} {count}", polygon_name(size)))
+            .collect();
+        println!(
+            "faces          {} ({})",
+            mesh.face_count(),
+            sizes.join(", ")
+        );
+    }
     println!("components     {}", mesh.component_count());
     println!("boundary loops {}", mesh.boundary_loops().len());
     println!("genus          {}", mesh.genus());
@@ -97,4 +116,16 @@ pub fn run(args: InfoArgs) -> Result<()> {
         println!("warning        {warning}");
     }
     Ok(())
+}
+
+/// The plural name of polygons with `corners` corners: `triangles`, `quads`, `pentagons`,
+/// `hexagons`, then `7-gons`, `8-gons` ….
+fn polygon_name(corners: usize) -> String {
+    match corners {
+        3 => "triangles".to_string(),
+        4 => "quads".to_string(),
+        5 => "pentagons".to_string(),
+        6 => "hexagons".to_string(),
+        n => format!("{n}-gons"),
+    }
 }

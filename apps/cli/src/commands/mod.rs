@@ -22,3 +22,4 @@ pub mod render;
 mod spectral_inputs;
 pub mod spectrum;
 pub mod spline;
+pub mod triangulate;

@@ -75,6 +75,10 @@ pub struct RenderArgs {
     /// FIELD).
     #[arg(long)]
     parts: bool,
+    /// Leave out the polygon edges drawn over a quad or polygon mesh (its faces are shaded
+    /// through a display triangulation; the edges show the polygons). No effect on triangles.
+    #[arg(long)]
+    no_polygon_edges: bool,
     #[command(flatten)]
     discretization: DiscretizationFlags,
     /// Title printed at the top of the picture.
@@ -124,31 +128,30 @@ pub fn run(mut args: RenderArgs, context: &RunContext) -> Result<()> {
         pitch: args.view.1,
         zoom: args.zoom,
     };
+    let overlays = Overlays {
+        markers,
+        title: args.title.clone(),
+        hide_polygon_edges: args.no_polygon_edges,
+        ..Default::default()
+    };
     let image = match (&field, args.parts) {
         (Some(field), true) => hodge_parts_grid(
             &mesh,
             discretization.as_ref(),
             field,
             (color, args.style),
-            &markers,
+            &overlays,
             view(width, height),
         )?,
-        _ => {
-            let overlays = Overlays {
-                markers,
-                title: args.title.clone(),
-                ..Default::default()
-            };
-            draw_field(
-                &mesh,
-                discretization.as_ref(),
-                field.as_deref(),
-                color,
-                args.style,
-                overlays,
-                view(width, height),
-            )?
-        }
+        _ => draw_field(
+            &mesh,
+            discretization.as_ref(),
+            field.as_deref(),
+            color,
+            args.style,
+            overlays,
+            view(width, height),
+        )?,
     };
     save_png(&image, &args.output)?;
     note(format!(

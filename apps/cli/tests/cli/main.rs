@@ -28,6 +28,7 @@ mod numpy_outputs;
 mod open_meshes;
 mod operators;
 mod outputs;
+mod polygon_meshes;
 mod recorded_spectra;
 mod recorded_spectra_shared_meshes;
 mod render_export;

@@ -4,7 +4,9 @@
 //! the mesh's fingerprint. `docs/discretizations.md` lists the keys.
 
 use serde_json::{json, Map, Value};
-use tvf_core::discretization::{HodgeComplex, HodgeOperators, Mass, MassForm, NodeKind, NodeSpace};
+use tvf_core::discretization::{
+    HodgeComplex, HodgeOperators, Mass, MassForm, NodeKind, NodeSpace, SamplingReproduction,
+};
 use tvf_core::mesh::ValidationReport;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::MatrixSampling;
@@ -48,14 +50,28 @@ pub fn mass_file_name(name: &str, form: MassForm) -> String {
     }
 }
 
-/// How the fields of `complex` are sampled, as a [`MatrixSampling`]: face frames or Whitney
-/// interpolation by the kind of its field nodes if it samples fields, else none.
+/// How the fields of `complex` are sampled, as a [`MatrixSampling`]: face frames by the kind of
+/// its field nodes; on edges (1-forms) Whitney interpolation, or polygonal DEC's per-face sharp
+/// when the sampling states that it reproduces only linear gradients (what the sharp states and
+/// Whitney interpolation, which reproduces constant vectors, does not); none if it samples no
+/// fields.
 pub fn sampling_of(complex: &dyn HodgeComplex) -> MatrixSampling {
-    match (complex.sampling().is_some(), complex.field_nodes().kind) {
-        (true, NodeKind::FaceFrames) => MatrixSampling::FaceFrames,
-        (true, NodeKind::Edges) => MatrixSampling::Whitney,
+    match (complex.sampling(), complex.field_nodes().kind) {
+        (Some(_), NodeKind::FaceFrames) => MatrixSampling::FaceFrames,
+        (Some(sampling), NodeKind::Edges) => match sampling.reproduction() {
+            SamplingReproduction::LinearGradients => MatrixSampling::PolygonSharp,
+            SamplingReproduction::ConstantVectors => MatrixSampling::Whitney,
+        },
         _ => MatrixSampling::None,
     }
+}
+
+/// How many faces of each size `mesh` has, `{"3": triangles, "4": quads, …}`.
+fn face_size_counts(mesh: &SurfaceMesh) -> Map<String, Value> {
+    mesh.face_size_counts()
+        .into_iter()
+        .map(|(size, count)| (size.to_string(), json!(count)))
+        .collect()
 }
 
 /// The `info.json` of the folder `tvf operators` writes for `complex` on `mesh` (loaded with
@@ -97,6 +113,8 @@ pub fn complex_folder_info(
     json!({
         "discretization": complex.id(),
         "mesh_fingerprint": format!("{:016x}", mesh.fingerprint()),
+        "mesh_kind": mesh.kind_name(),
+        "face_sizes": face_size_counts(mesh),
         "vertices": mesh.vertex_count(),
         "input_vertices": report.input_vertex_count,
         "matrix_format": format.description(),
