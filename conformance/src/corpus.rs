@@ -51,12 +51,7 @@ impl<M> CorpusMesh<M> {
 
     /// A named mesh with boundary of total genus `genus` and harmonic dimension
     /// `harmonic_dimension`.
-    pub fn open(
-        name: impl Into<String>,
-        mesh: M,
-        genus: usize,
-        harmonic_dimension: usize,
-    ) -> Self {
+    pub fn open(name: impl Into<String>, mesh: M, genus: usize, harmonic_dimension: usize) -> Self {
         Self {
             name: name.into(),
             mesh,

@@ -63,7 +63,11 @@ fn side_condition(mesh: &SurfaceMesh, f: usize) -> f64 {
 }
 
 /// Whether the boundary condition fixes an edge or a vertex of face `f` (relative forms).
-fn touches_fixed_nodes<H: HodgeComplex + ?Sized>(complex: &H, mesh: &SurfaceMesh, f: usize) -> bool {
+fn touches_fixed_nodes<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    mesh: &SurfaceMesh,
+    f: usize,
+) -> bool {
     let (fields, potentials) = (complex.field_nodes(), complex.potential_nodes());
     let corners = mesh.face(f);
     let fixed_edge = fields.kind == NodeKind::Edges
@@ -164,11 +168,17 @@ pub fn measure_polygon_sampling<H: HodgeComplex + ?Sized>(
         }
         normal_parts = normal_parts
             .max((projection.normal_parts[f] - dot(CONSTANT, n)).abs() / norm(CONSTANT));
-        let expected = sub(CONSTANT, scale(n, dot(CONSTANT, n)));
+        // The polygon's plane is the mesh's: normal to the vector area of its corners.
+        let plane_normal = mesh.face_normal(f);
+        let expected = sub(CONSTANT, scale(plane_normal, dot(CONSTANT, plane_normal)));
         let free = !touches_fixed_nodes(complex, mesh, f);
         let condition = (side_condition(mesh, f) / 4.0).max(1.0);
         let points = polygon_points(mesh.face_size(f));
-        let first = sample(sampling, &random, &SurfacePoint::centroid(f, points[0].len()));
+        let first = sample(
+            sampling,
+            &random,
+            &SurfacePoint::centroid(f, points[0].len()),
+        );
         for weights in points {
             let point = SurfacePoint { face: f, weights };
             fixed_violations += sampling
@@ -186,7 +196,11 @@ pub fn measure_polygon_sampling<H: HodgeComplex + ?Sized>(
             tangent = tangent.max(dot(w, n).abs() / (1.0 + norm(w)));
         }
     }
-    let spread = if largest > 0.0 { spread / largest } else { spread };
+    let spread = if largest > 0.0 {
+        spread / largest
+    } else {
+        spread
+    };
     let measured = [
         ("frames", frames, "largest deviation of a frame from orthonormal, tangent, positive, normal along the vector area"),
         ("sharp_of_flat", sharp, "largest error of the sharp of a constant vector's 1-form against the vector projected onto the polygon's plane, over |v| max(1, κ/4)"),

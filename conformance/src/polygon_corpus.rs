@@ -8,8 +8,8 @@
 use crate::corpus::CorpusMesh;
 use crate::polygon_operations::{beside, jittered, quad_split, without_faces};
 use tvf_core::generate::{
-    cube_sphere, disk, dual, genus_surface, hemisphere, icosphere, open_cylinder,
-    perforated_plate, quad_torus, torus,
+    cube_sphere, disk, dual, genus_surface, hemisphere, icosphere, open_cylinder, perforated_plate,
+    quad_torus, torus,
 };
 use tvf_core::SurfaceMesh;
 

@@ -12,11 +12,7 @@ use tvf_core::mesh::{FaceList, Mesh};
 use tvf_core::SurfaceMesh;
 
 /// `positions` and `faces` validated into a mesh, the error worded with `what` made it.
-fn validated(
-    what: &str,
-    positions: Vec<[f64; 3]>,
-    faces: FaceList,
-) -> Result<SurfaceMesh, String> {
+fn validated(what: &str, positions: Vec<[f64; 3]>, faces: FaceList) -> Result<SurfaceMesh, String> {
     SurfaceMesh::validated(positions, faces)
         .map(|(mesh, _)| mesh)
         .map_err(|e| format!("{what}: {e}"))

@@ -51,7 +51,11 @@ pub fn polygon_mesh_suite(entry: &CatalogEntry, boundary: Option<BoundaryConditi
         if entry.needs_triangles() {
             match built {
                 Err(DiscretizationError::NeedsTriangles { discretization, .. }) => {
-                    assert_eq!(discretization, id, "{}: the error names the entry", mesh.name);
+                    assert_eq!(
+                        discretization, id,
+                        "{}: the error names the entry",
+                        mesh.name
+                    );
                     continue;
                 }
                 Err(e) => panic!("{}: {id} refused a polygon mesh with {e}", mesh.name),

@@ -6,8 +6,10 @@
 use crate::check_outcome::{CheckOutcome, CheckStatus};
 use crate::check_report::{core_check_report, CheckReport};
 use crate::corpus::CorpusMesh;
+use crate::polygon_capability_checks::{
+    measure_polygon_point_evaluation, measure_polygon_sampling,
+};
 use crate::reference_report::{measure_reference, ReferenceCheck};
-use crate::polygon_capability_checks::{measure_polygon_point_evaluation, measure_polygon_sampling};
 use crate::strategies::{mesh_specs, polygon_mesh_specs, MeshNeeds, MeshSpec, PolygonMeshSpec};
 use proptest::strategy::BoxedStrategy;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};

@@ -77,7 +77,11 @@ impl Surface {
     /// conditions.
     pub fn all_quads() -> Vec<Surface> {
         let mut surfaces = vec![Surface::QuadSphere];
-        surfaces.extend(BoundaryCondition::ALL.into_iter().map(Surface::QuadHemisphere));
+        surfaces.extend(
+            BoundaryCondition::ALL
+                .into_iter()
+                .map(Surface::QuadHemisphere),
+        );
         surfaces
     }
 

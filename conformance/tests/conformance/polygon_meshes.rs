@@ -64,7 +64,12 @@ fn a_failure_shrinks_to_a_minimal_polygon_mesh_written_with_its_polygons() {
     let request = PropertyRequest::new(64, 1, MeshNeeds::default());
     let report = run_polygon_property(&builder, &request, &|_| {});
     let counterexample = report.counterexample.expect("an open mesh is drawn");
-    assert_eq!(counterexample.spec.components.len(), 1, "{:?}", counterexample.spec);
+    assert_eq!(
+        counterexample.spec.components.len(),
+        1,
+        "{:?}",
+        counterexample.spec
+    );
     assert_eq!(counterexample.spec.jitter.amplitude, 0.0);
     assert_eq!(counterexample.spec.motion, None);
     assert_eq!(

@@ -183,7 +183,9 @@ fn check_generated(
         let builder = |mesh: &TriangleMesh| build(&SurfaceMesh::from(mesh.clone()));
         let outcome = run_property(&builder, &request, &on_progress);
         let run = PropertyRunReport::new(id, &request, &outcome, &args.output);
-        let mesh = outcome.counterexample.map(|c| SurfaceMesh::from(c.mesh.mesh));
+        let mesh = outcome
+            .counterexample
+            .map(|c| SurfaceMesh::from(c.mesh.mesh));
         (run, mesh)
     };
     progress.finish(format!(
