@@ -43,10 +43,10 @@ pub fn quad_split<M: Mesh + ?Sized>(mesh: &M) -> Result<SurfaceMesh, String> {
             .fold([0.0; 3], |sum, &c| add(sum, scale(p[c], 1.0 / n as f64)));
         positions.push(centre);
         let o = v + e + f;
-        for c in 0..n {
+        for (c, &corner) in corners.iter().enumerate() {
             let next_side = v + mesh.face_edge(f, c);
             let previous_side = v + mesh.face_edge(f, (c + n - 1) % n);
-            quads.push(&[corners[c], next_side, o, previous_side]);
+            quads.push(&[corner, next_side, o, previous_side]);
         }
     }
     validated("quad split", positions, quads)

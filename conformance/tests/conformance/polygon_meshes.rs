@@ -10,7 +10,6 @@ use tvf_conformance::proptest::prelude::*;
 use tvf_conformance::strategies::{polygon_mesh_specs, MeshNeeds, PolygonShape};
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::{dual, genus_surface};
-use tvf_core::mesh::Mesh;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog_entry, component_boundary_loops, HodgeDecomposer};
 
