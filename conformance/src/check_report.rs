@@ -34,6 +34,19 @@ impl CheckReport {
     pub fn failures(&self) -> Vec<&CheckOutcome> {
         self.outcomes.iter().filter(|o| o.failed_check()).collect()
     }
+
+    /// One line per failed outcome: `name = measured (limit limit): detail`.
+    pub fn failure_lines(&self) -> Vec<String> {
+        self.failures()
+            .iter()
+            .map(|o| {
+                format!(
+                    "{} = {:e} (limit {:e}): {}",
+                    o.name, o.measured, o.limit, o.detail
+                )
+            })
+            .collect()
+    }
 }
 
 /// Runs the core checks on `complex` built on `mesh`: `d1 d0 = 0` and integrable ⟂

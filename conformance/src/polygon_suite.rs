@@ -122,17 +122,7 @@ pub fn generated_polygon_meshes(entry: &CatalogEntry, cases: u32) {
         return;
     }
     if let Some(counterexample) = report.counterexample {
-        let failures: Vec<String> = counterexample
-            .report
-            .failures()
-            .iter()
-            .map(|o| {
-                format!(
-                    "{} = {:e} (limit {:e}): {}",
-                    o.name, o.measured, o.limit, o.detail
-                )
-            })
-            .collect();
+        let failures = counterexample.report.failure_lines();
         panic!(
             "minimal failing polygon mesh ({} faces): {}\n{}",
             counterexample.mesh.mesh.face_count(),

@@ -54,11 +54,7 @@ pub fn check_polygon_mesh(builder: SurfaceBuilder, mesh: &SurfaceMesh) -> CheckR
     guarded(|| {
         let complex = match builder(mesh) {
             Ok(complex) => complex,
-            Err(error) => {
-                return CheckReport {
-                    outcomes: vec![CheckOutcome::failed(CONSTRUCTION, error)],
-                }
-            }
+            Err(error) => return refusal(error),
         };
         let mut report = core_check_report(complex.as_ref(), mesh);
         report
@@ -69,6 +65,13 @@ pub fn check_polygon_mesh(builder: SurfaceBuilder, mesh: &SurfaceMesh) -> CheckR
             .extend(measure_polygon_point_evaluation(complex.as_ref(), mesh));
         report
     })
+}
+
+/// The report of a mesh the builder refused: one failed outcome named [`CONSTRUCTION`].
+fn refusal(error: String) -> CheckReport {
+    CheckReport {
+        outcomes: vec![CheckOutcome::failed(CONSTRUCTION, error)],
+    }
 }
 
 /// `checks()`, a panic turned into one failed outcome named [`PANIC`].
@@ -94,11 +97,7 @@ fn checks_on_mesh(
 ) -> CheckReport {
     let complex = match builder(mesh) {
         Ok(complex) => complex,
-        Err(error) => {
-            return CheckReport {
-                outcomes: vec![CheckOutcome::failed(CONSTRUCTION, error)],
-            }
-        }
+        Err(error) => return refusal(error),
     };
     let mut report = core_check_report(complex.as_ref(), mesh);
     for &check in reference {

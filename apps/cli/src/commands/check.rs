@@ -83,7 +83,7 @@ pub struct CheckArgs {
 /// `counterexample` (`path`, `faces`, `description`, `reproduce`, `checks`).
 pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let catalog = context.catalog();
-    let report = Report::new(args.json);
+    let mut report = Report::new(args.json);
     let input = match (&args.mesh, &args.example) {
         (Some(path), _) => MeshInput::file(path.clone()),
         (None, Some(name)) => MeshInput::example(name),
@@ -120,7 +120,6 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
         }
     };
     let checked = MeshCheckReport::new(&id, &input.label(), loaded.face_count(), checked);
-    let mut report = report;
     report.add(checked.lines(), &checked);
     finish(report, checked.failure_message())
 }
