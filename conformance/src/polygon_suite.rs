@@ -14,8 +14,11 @@ use crate::decomposition_checks::{
 use crate::open_suite::check_fields_vanish_on_fixed_nodes;
 use crate::polygon_capability_checks::{check_polygon_point_evaluation, check_polygon_sampling};
 use crate::polygon_corpus::{open_polygon_corpus, polygon_corpus, PolygonCorpusMesh};
+use crate::polygon_operations::moved;
 use crate::property_runner::{run_polygon_property, PropertyRequest};
-use crate::spectral_checks::{check_basis_orthonormal, check_lemma1, check_spectrum_union};
+use crate::spectral_checks::{
+    check_basis_orthonormal, check_lemma1, check_rigid_motion_invariance, check_spectrum_union,
+};
 use crate::strategies::MeshNeeds;
 use crate::suite::GENERATED_MESHES_SEED;
 use tvf_core::discretization::{
@@ -29,7 +32,8 @@ use tvf_discretizations::CatalogEntry;
 /// `d1 d0 = 0`, symmetry, semi-definiteness, sampling and point evaluation on polygons, the
 /// Hodge decomposition, `dim ker L = 2g` (`2g + b − 1` per component with boundary; dense and by
 /// harmonic projection), the spectrum union, Lemma 1, the complete orthonormal basis and, for
-/// relative forms, fields that vanish on the fixed boundary edges. An entry that does not offer
+/// relative forms, fields that vanish on the fixed boundary edges; on the closed meshes, the same
+/// stiffness matrices, masses and spectrum on a rigidly moved copy. An entry that does not offer
 /// `boundary` must refuse the open meshes with
 /// [`DiscretizationError::UnsupportedBoundaryCondition`]; an entry that needs triangles must
 /// refuse every polygon mesh with [`DiscretizationError::NeedsTriangles`].
@@ -71,8 +75,23 @@ pub fn polygon_mesh_suite(entry: &CatalogEntry, boundary: Option<BoundaryConditi
         }
         let complex = built.unwrap_or_else(|e| panic!("{}: {e}", mesh.name));
         polygon_core_checks(complex.as_ref(), &mesh);
+        if boundary.is_none() {
+            let moved = moved(&mesh.mesh, MOTION_AXIS, MOTION_ANGLE, MOTION_TRANSLATION)
+                .unwrap_or_else(|e| panic!("{}: {e}", mesh.name));
+            let moved = entry.build_with(&moved, condition).expect("built unmoved");
+            let dense = complex.field_dimension() <= DENSE_LIMIT;
+            check_rigid_motion_invariance(complex.as_ref(), moved.as_ref(), dense);
+        }
     }
 }
+
+/// The rigid motion the closed polygon meshes are checked to be invariant under (the generated
+/// polygon meshes draw others).
+const MOTION_AXIS: [f64; 3] = [1.0, -2.0, 0.5];
+/// Its angle, radians.
+const MOTION_ANGLE: f64 = 0.83;
+/// Its translation.
+const MOTION_TRANSLATION: [f64; 3] = [3.0, -1.0, 2.0];
 
 /// The core checks on one polygon mesh.
 fn polygon_core_checks(complex: &dyn HodgeComplex, mesh: &PolygonCorpusMesh) {
