@@ -16,7 +16,8 @@ use tvf_core::discretization::{
     HodgeComplex, HodgeOperators, LinearOperator, Mass, MassForm, MassStorage, NodeKind, NodeSpace,
     NO_COMPONENT,
 };
-use tvf_core::TriangleMesh;
+use tvf_core::geometry::{add, cross, scale};
+use tvf_core::mesh::Mesh;
 use tvf_solvers::SparseCholesky;
 
 /// Random probe vectors per check of an operator too large to form densely.
@@ -336,9 +337,9 @@ fn measure_mass(what: &str, mass: &Mass, nodes: &NodeSpace) -> CheckOutcome {
 /// The potential masses partition the area: `|1ᵀ M0 1 − area| ≤` [`AREA_TOLERANCE`] `· area`; and every mass is
 /// a positive diagonal on the nodes faces use, or a sparse matrix positive definite on the free
 /// nodes (one outcome per mass).
-pub fn measure_masses<H: HodgeComplex + ?Sized>(
+pub fn measure_masses<H: HodgeComplex + ?Sized, M: Mesh + ?Sized>(
     complex: &H,
-    mesh: &TriangleMesh,
+    mesh: &M,
 ) -> Vec<CheckOutcome> {
     let mut outcomes: Vec<CheckOutcome> = [
         ("M0", complex.m0(), complex.potential_nodes()),
@@ -348,7 +349,7 @@ pub fn measure_masses<H: HodgeComplex + ?Sized>(
     .into_iter()
     .map(|(what, mass, nodes)| measure_mass(what, mass, nodes))
     .collect();
-    let area = mesh.total_area();
+    let area = surface_area(mesh);
     let total = complex.total_area();
     outcomes.push(CheckOutcome::at_most(
         "potential_masses_sum_to_area",
@@ -359,8 +360,28 @@ pub fn measure_masses<H: HodgeComplex + ?Sized>(
     outcomes
 }
 
+/// The mesh's area: a triangle mesh's [`tvf_core::TriangleMesh::total_area`], otherwise the sum of the
+/// faces' vector-area lengths `|½ Σ_c p_c × p_{c+1}|` (units of length²).
+pub fn surface_area<M: Mesh + ?Sized>(mesh: &M) -> f64 {
+    if let Some(triangles) = mesh.as_triangles() {
+        return triangles.total_area();
+    }
+    let faces = mesh.face_corners();
+    (0..faces.face_count())
+        .map(|f| {
+            let corners = faces.corners(f);
+            let vector_area = (0..corners.len()).fold([0.0; 3], |sum, c| {
+                let p = mesh.positions()[corners[c]];
+                let q = mesh.positions()[corners[(c + 1) % corners.len()]];
+                add(sum, scale(cross(p, q), 0.5))
+            });
+            tvf_core::geometry::norm(vector_area)
+        })
+        .sum()
+}
+
 /// Number of nodes a space of kind `kind` has on `mesh`.
-fn expected_node_count(kind: NodeKind, mesh: &CorpusMesh) -> usize {
+fn expected_node_count<M: Mesh>(kind: NodeKind, mesh: &CorpusMesh<M>) -> usize {
     match kind {
         NodeKind::Vertices => mesh.mesh.vertex_count(),
         NodeKind::Edges => mesh.mesh.edge_count(),
@@ -369,8 +390,8 @@ fn expected_node_count(kind: NodeKind, mesh: &CorpusMesh) -> usize {
     }
 }
 
-fn check_node_space(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMesh) {
-    let components = mesh.mesh.component_count();
+fn check_node_space<M: Mesh>(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMesh<M>) {
+    let components = mesh.mesh.topology().component_count();
     assert_eq!(nodes.len(), size, "{what}: one node per row/column");
     assert_eq!(nodes.positions.len(), size, "{what}: one position per node");
     assert_eq!(
@@ -400,7 +421,7 @@ fn check_node_space(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMes
         components,
         "{what}: one constant-kernel flag per component"
     );
-    if mesh.mesh.is_closed() {
+    if mesh.mesh.topology().is_closed() {
         assert_eq!(
             nodes.dirichlet_count(),
             0,
@@ -420,7 +441,10 @@ fn check_node_space(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMes
 /// (`2g`, or `2g + b − 1` per component with boundary), and the
 /// potential masses partition the area: `1ᵀ M0 1 = total_area() = area` (relative
 /// [`AREA_TOLERANCE`]).
-pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized, M: Mesh>(
+    complex: &H,
+    mesh: &CorpusMesh<M>,
+) {
     let (n0, n1, n2) = (
         complex.potential_dimension(),
         complex.field_dimension(),
@@ -446,12 +470,16 @@ pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
     let topology = complex.topology();
     assert_eq!(
         topology.component_count,
-        mesh.mesh.component_count(),
+        mesh.mesh.topology().component_count(),
         "components"
     );
     assert_eq!(
         topology.harmonic_dimension, mesh.harmonic_dimension,
         "reported harmonic dimension"
     );
-    assert_eq!(topology.has_boundary, !mesh.mesh.is_closed(), "boundary");
+    assert_eq!(
+        topology.has_boundary,
+        !mesh.mesh.topology().is_closed(),
+        "boundary"
+    );
 }

@@ -11,7 +11,7 @@ use crate::corpus::{DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{measure_hodge_decomposition, measure_kernel_dimension_dense};
 use crate::spectral_checks::{measure_lemma1, measure_spectrum_union};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::Mesh;
 use tvf_discretizations::mesh_topology;
 
 /// Seed of the random fields of the decomposition checks.
@@ -34,6 +34,19 @@ impl CheckReport {
     pub fn failures(&self) -> Vec<&CheckOutcome> {
         self.outcomes.iter().filter(|o| o.failed_check()).collect()
     }
+
+    /// One line per failed outcome: `name = measured (limit limit): detail`.
+    pub fn failure_lines(&self) -> Vec<String> {
+        self.failures()
+            .iter()
+            .map(|o| {
+                format!(
+                    "{} = {:e} (limit {:e}): {}",
+                    o.name, o.measured, o.limit, o.detail
+                )
+            })
+            .collect()
+    }
 }
 
 /// Runs the core checks on `complex` built on `mesh`: `d1 d0 = 0` and integrable ⟂
@@ -43,7 +56,7 @@ impl CheckReport {
 /// semi-definiteness, `dim ker L` (the mesh's harmonic dimension) and the spectrum of `L` as the
 /// union of the two scalar spectra, when `n1 ≤` [`EIGENVECTOR_LIMIT`] Lemma 1's eigenfields
 /// (larger complexes get these reported as skipped).
-pub fn core_check_report(complex: &dyn HodgeComplex, mesh: &TriangleMesh) -> CheckReport {
+pub fn core_check_report<M: Mesh + ?Sized>(complex: &dyn HodgeComplex, mesh: &M) -> CheckReport {
     let harmonic_dimension =
         mesh_topology(mesh, complex.topology().boundary_condition).harmonic_dimension;
     let n1 = complex.field_dimension();

@@ -10,6 +10,7 @@ use crate::reference_report::catalog_reference_checks;
 use crate::strategies::MeshNeeds;
 use serde::Serialize;
 use std::path::Path;
+use tvf_core::mesh::Mesh;
 use tvf_discretizations::CatalogEntry;
 
 /// The checks of one discretization on one mesh. Serialized as `discretization`, `passed`,
@@ -114,10 +115,10 @@ pub struct CounterexampleReport {
 impl PropertyRunReport {
     /// The report of the property run `outcome` of `request` for the catalog entry
     /// `discretization`, its minimal failing mesh (if any) to be written to `counterexample`.
-    pub fn new(
+    pub fn new<Spec, M: Mesh>(
         discretization: &str,
         request: &PropertyRequest,
-        outcome: &PropertyReport,
+        outcome: &PropertyReport<Spec, M>,
         counterexample: &Path,
     ) -> Self {
         let failing = outcome.counterexample.as_ref();
@@ -355,7 +356,7 @@ mod tests {
 
     #[test]
     fn an_aborted_run_says_why_and_lists_no_worst_cases() {
-        let outcome = PropertyReport {
+        let outcome: PropertyReport = PropertyReport {
             cases_passed: 0,
             worst: outcomes(),
             counterexample: None,

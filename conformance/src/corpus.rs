@@ -9,6 +9,7 @@ use tvf_core::generate::{
     perforated_plate, rigid_motion, staggered_ring_faces, torus,
 };
 use tvf_core::geometry::{cross, dot, norm, sub};
+use tvf_core::mesh::Mesh;
 use tvf_core::TriangleMesh;
 use tvf_discretizations::{CatalogEntry, DELAUNAY_TOLERANCE};
 
@@ -19,13 +20,15 @@ pub const DENSE_LIMIT: usize = 1600;
 /// the orthonormality of the assembled basis), which cost several times more.
 pub const EIGENVECTOR_LIMIT: usize = 1000;
 
-/// A corpus entry: a mesh and what a correct discretization must find on it.
+/// A corpus entry: a mesh and what a correct discretization must find on it. The mesh is a
+/// [`TriangleMesh`] in the triangle corpora and a [`tvf_core::SurfaceMesh`] of polygons in the
+/// polygon corpus ([`crate::polygon_corpus`]).
 #[derive(Debug, Clone)]
-pub struct CorpusMesh {
+pub struct CorpusMesh<M = TriangleMesh> {
     /// Name for failure messages.
     pub name: String,
     /// The mesh.
-    pub mesh: TriangleMesh,
+    pub mesh: M,
     /// Its genus summed over components, stated independently of the mesh's own Euler
     /// characteristic.
     pub genus: usize,
@@ -35,9 +38,9 @@ pub struct CorpusMesh {
     pub harmonic_dimension: usize,
 }
 
-impl CorpusMesh {
+impl<M> CorpusMesh<M> {
     /// A named closed mesh of total genus `genus` (harmonic dimension `2·genus`).
-    pub fn new(name: impl Into<String>, mesh: TriangleMesh, genus: usize) -> Self {
+    pub fn new(name: impl Into<String>, mesh: M, genus: usize) -> Self {
         Self {
             name: name.into(),
             mesh,
@@ -48,12 +51,7 @@ impl CorpusMesh {
 
     /// A named mesh with boundary of total genus `genus` and harmonic dimension
     /// `harmonic_dimension`.
-    pub fn open(
-        name: impl Into<String>,
-        mesh: TriangleMesh,
-        genus: usize,
-        harmonic_dimension: usize,
-    ) -> Self {
+    pub fn open(name: impl Into<String>, mesh: M, genus: usize, harmonic_dimension: usize) -> Self {
         Self {
             name: name.into(),
             mesh,
@@ -61,13 +59,21 @@ impl CorpusMesh {
             harmonic_dimension,
         }
     }
+}
+
+impl<M: Mesh> CorpusMesh<M> {
+    /// The genus of every component from the mesh's own Euler characteristics.
+    pub fn component_genera(&self) -> Vec<usize> {
+        self.mesh
+            .topology()
+            .component_genera(self.mesh.face_corners())
+    }
 
     /// The harmonic dimension of every component from the mesh's own topology: `2g` on a closed
     /// component, `2g + b − 1` on one with `b ≥ 1` boundary loops.
     pub fn component_harmonic_dimensions(&self) -> Vec<usize> {
         let loops = tvf_discretizations::component_boundary_loops(&self.mesh);
-        self.mesh
-            .component_genera()
+        self.component_genera()
             .iter()
             .zip(&loops)
             .map(|(&g, &b)| if b == 0 { 2 * g } else { 2 * g + b - 1 })

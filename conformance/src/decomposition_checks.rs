@@ -8,6 +8,7 @@ use faer::{Mat, Side};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator};
+use tvf_core::mesh::Mesh;
 use tvf_discretizations::HodgeDecomposer;
 
 /// A seeded random field of the complex's space: `n1` coefficients uniform in `[−1, 1]`, zero
@@ -190,7 +191,7 @@ pub fn measure_kernel_dimension_dense<H: HodgeComplex + ?Sized>(
 
 /// `dim ker L` = the corpus mesh's harmonic dimension (`2g`; `2g + b − 1` per component with
 /// boundary) by dense eigenvalues of `(S, M1)` on the free field nodes (small meshes).
-pub fn check_kernel_is_2g_dense<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+pub fn check_kernel_is_2g_dense<H: HodgeComplex + ?Sized, M>(complex: &H, mesh: &CorpusMesh<M>) {
     assert_outcomes(&[measure_kernel_dimension_dense(
         complex,
         mesh.harmonic_dimension,
@@ -203,12 +204,12 @@ pub fn check_kernel_is_2g_dense<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Co
 /// matrix has exactly `h_c` eigenvalues above `1e-12 · |v|²` (`g_c`, `b_c` from the mesh, their
 /// `h_c` must sum to the corpus's stated harmonic dimension); the harmonic basis of the whole
 /// mesh is `M1`-orthonormal, `Σ h_c` fields, in the kernel of `L`.
-pub fn check_kernel_is_2g_sparse<H: HodgeComplex + ?Sized>(
+pub fn check_kernel_is_2g_sparse<H: HodgeComplex + ?Sized, M: Mesh>(
     complex: &H,
-    mesh: &CorpusMesh,
+    mesh: &CorpusMesh<M>,
     seed: u64,
 ) {
-    let genera = mesh.mesh.component_genera();
+    let genera = mesh.component_genera();
     assert_eq!(
         genera.iter().sum::<usize>(),
         mesh.genus,

@@ -38,6 +38,13 @@
 //! reference checks ([`reference_report`]) of a builder on `N` of them and shrinks a failure to a
 //! minimal failing mesh (`tvf check`, the Python package's `tvf.check` with a builder).
 //!
+//! Polygon meshes: an entry that accepts them (`polygon-dec`) is also checked on the polygon
+//! corpus ([`polygon_corpus`]: quad tori, cube-spheres, duals of triangle meshes, quad splits of
+//! genus-`g` surfaces, jittered non-planar polygons, holes, two components) and on generated
+//! polygon meshes ([`strategies::polygon_spec`], [`property_runner::run_polygon_property`]) by
+//! [`polygon_suite`], with sampling and point evaluation checked as such an entry states them
+//! ([`polygon_capability_checks`]); an entry that needs triangles must refuse them.
+//!
 //! The macro [`conformance_suite!`] instantiates the core suite (and any reference checks) for
 //! one constructor in one line, over a [`corpus::Corpus`]: the general one, or the Delaunay one
 //! for discretizations that need `cot α + cot β > 0`.
@@ -103,6 +110,10 @@ pub mod decomposition_checks;
 pub mod dense;
 pub mod galerkin_mass_checks;
 pub mod open_suite;
+pub mod polygon_capability_checks;
+pub mod polygon_corpus;
+pub mod polygon_operations;
+pub mod polygon_suite;
 pub mod property_runner;
 pub mod reference;
 pub mod reference_formulas;

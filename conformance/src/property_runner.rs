@@ -6,18 +6,26 @@
 use crate::check_outcome::{CheckOutcome, CheckStatus};
 use crate::check_report::{core_check_report, CheckReport};
 use crate::corpus::CorpusMesh;
+use crate::polygon_capability_checks::{
+    measure_polygon_point_evaluation, measure_polygon_sampling,
+};
 use crate::reference_report::{measure_reference, ReferenceCheck};
-use crate::strategies::{mesh_specs, MeshNeeds, MeshSpec};
+use crate::strategies::{mesh_specs, polygon_mesh_specs, MeshNeeds, MeshSpec, PolygonMeshSpec};
+use proptest::strategy::BoxedStrategy;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use std::cell::RefCell;
 use std::collections::BTreeMap;
+use std::fmt::Debug;
 use std::panic::AssertUnwindSafe;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 
 /// Builds the complex to check on a mesh (a catalog entry, a researcher's own matrices...); the
 /// error says why the mesh was refused.
 pub type Builder<'a> = &'a dyn Fn(&TriangleMesh) -> Result<Box<dyn HodgeComplex>, String>;
+
+/// Builds the complex to check on a mesh of any faces (a catalog entry that accepts polygons).
+pub type SurfaceBuilder<'a> = &'a dyn Fn(&SurfaceMesh) -> Result<Box<dyn HodgeComplex>, String>;
 
 /// Name of the outcome reporting that the builder refused a mesh.
 pub const CONSTRUCTION: &str = "construction";
@@ -35,9 +43,40 @@ pub fn check_mesh(
     mesh: &TriangleMesh,
     reference: &[ReferenceCheck],
 ) -> CheckReport {
-    let checked = std::panic::catch_unwind(AssertUnwindSafe(|| {
-        checks_on_mesh(builder, mesh, reference)
-    }));
+    guarded(|| checks_on_mesh(builder, mesh, reference))
+}
+
+/// The core checks ([`core_check_report`]) and the capability checks on polygons
+/// ([`measure_polygon_sampling`], [`measure_polygon_point_evaluation`]) on the complex `builder`
+/// makes of `mesh`, a mesh of any faces; a refused mesh and a panic are reported as by
+/// [`check_mesh`]. (The reference checks are formulas on triangles and do not run here.)
+pub fn check_polygon_mesh(builder: SurfaceBuilder, mesh: &SurfaceMesh) -> CheckReport {
+    guarded(|| {
+        let complex = match builder(mesh) {
+            Ok(complex) => complex,
+            Err(error) => return refusal(error),
+        };
+        let mut report = core_check_report(complex.as_ref(), mesh);
+        report
+            .outcomes
+            .extend(measure_polygon_sampling(complex.as_ref(), mesh));
+        report
+            .outcomes
+            .extend(measure_polygon_point_evaluation(complex.as_ref(), mesh));
+        report
+    })
+}
+
+/// The report of a mesh the builder refused: one failed outcome named [`CONSTRUCTION`].
+fn refusal(error: String) -> CheckReport {
+    CheckReport {
+        outcomes: vec![CheckOutcome::failed(CONSTRUCTION, error)],
+    }
+}
+
+/// `checks()`, a panic turned into one failed outcome named [`PANIC`].
+fn guarded(checks: impl FnOnce() -> CheckReport) -> CheckReport {
+    let checked = std::panic::catch_unwind(AssertUnwindSafe(checks));
     checked.unwrap_or_else(|payload| {
         let message = payload
             .downcast_ref::<String>()
@@ -58,11 +97,7 @@ fn checks_on_mesh(
 ) -> CheckReport {
     let complex = match builder(mesh) {
         Ok(complex) => complex,
-        Err(error) => {
-            return CheckReport {
-                outcomes: vec![CheckOutcome::failed(CONSTRUCTION, error)],
-            }
-        }
+        Err(error) => return refusal(error),
     };
     let mut report = core_check_report(complex.as_ref(), mesh);
     for &check in reference {
@@ -123,32 +158,33 @@ pub enum PropertyProgress {
     },
 }
 
-/// The minimal failing mesh proptest shrank a failure to.
+/// The minimal failing mesh proptest shrank a failure to: a triangle mesh drawn from a
+/// [`MeshSpec`], or a polygon mesh drawn from a [`PolygonMeshSpec`].
 #[derive(Debug, Clone)]
-pub struct Counterexample {
+pub struct Counterexample<Spec = MeshSpec, M = TriangleMesh> {
     /// Its description.
-    pub spec: MeshSpec,
+    pub spec: Spec,
     /// The mesh.
-    pub mesh: CorpusMesh,
+    pub mesh: CorpusMesh<M>,
     /// Every check measured on it (at least one failed).
     pub report: CheckReport,
 }
 
-/// The result of [`run_property`].
+/// The result of [`run_property`] (and of [`run_polygon_property`], on polygon meshes).
 #[derive(Debug, Clone)]
-pub struct PropertyReport {
+pub struct PropertyReport<Spec = MeshSpec, M = TriangleMesh> {
     /// Meshes checked before the first failure (all of them if none failed).
     pub cases_passed: u32,
     /// Per check, the outcome with the largest measured value relative to its limit over the
     /// passing cases (skipped checks once), in name order.
     pub worst: Vec<CheckOutcome>,
     /// The shrunk failing mesh, if a case failed.
-    pub counterexample: Option<Counterexample>,
+    pub counterexample: Option<Counterexample<Spec, M>>,
     /// Why the run stopped early without a counterexample (e.g. too many rejected draws).
     pub aborted: Option<String>,
 }
 
-impl PropertyReport {
+impl<Spec, M> PropertyReport<Spec, M> {
     /// Whether every case passed.
     pub fn passed(&self) -> bool {
         self.counterexample.is_none() && self.aborted.is_none()
@@ -164,6 +200,46 @@ pub fn run_property(
     request: &PropertyRequest,
     progress: &dyn Fn(PropertyProgress),
 ) -> PropertyReport {
+    run_specs(
+        mesh_specs(request.needs),
+        &MeshSpec::build,
+        &|mesh| check_mesh(builder, mesh, &request.reference),
+        request,
+        progress,
+    )
+}
+
+/// [`run_property`] on polygon meshes: `check_polygon_mesh(builder, mesh)` on `request.cases`
+/// meshes drawn from [`polygon_mesh_specs`]`(request.needs.closed_only)` (quad tori and
+/// surfaces, cube-spheres, duals, holes, several components, jitter, motions), shrinking a
+/// failure to a minimal failing polygon mesh. `request.needs.delaunay` and `request.reference`
+/// do not apply to polygons.
+pub fn run_polygon_property(
+    builder: SurfaceBuilder,
+    request: &PropertyRequest,
+    progress: &dyn Fn(PropertyProgress),
+) -> PropertyReport<PolygonMeshSpec, SurfaceMesh> {
+    run_specs(
+        polygon_mesh_specs(request.needs.closed_only),
+        &PolygonMeshSpec::build,
+        &|mesh| check_polygon_mesh(builder, mesh),
+        request,
+        progress,
+    )
+}
+
+/// A mesh description's mesh, or why it cannot be built.
+type SpecBuild<Spec, M> = dyn Fn(&Spec) -> Result<CorpusMesh<M>, String>;
+
+/// The property run shared by triangle and polygon meshes: `check` on the meshes `build` makes
+/// of descriptions drawn from `strategy`, shrinking a failure.
+fn run_specs<Spec: Clone + Debug, M>(
+    strategy: BoxedStrategy<Spec>,
+    build: &SpecBuild<Spec, M>,
+    check: &dyn Fn(&M) -> CheckReport,
+    request: &PropertyRequest,
+    progress: &dyn Fn(PropertyProgress),
+) -> PropertyReport<Spec, M> {
     let config = Config {
         cases: request.cases,
         max_shrink_iters: request.max_shrink_iters,
@@ -176,9 +252,9 @@ pub fn run_property(
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed);
     let mut runner = TestRunner::new_with_rng(config, rng);
     let state = RefCell::new(RunState::default());
-    let result = runner.run(&mesh_specs(request.needs), |spec| {
-        let mesh = spec.build().map_err(TestCaseError::reject)?;
-        let report = check_mesh(builder, &mesh.mesh, &request.reference);
+    let result = runner.run(&strategy, |spec| {
+        let mesh = build(&spec).map_err(TestCaseError::reject)?;
+        let report = check(&mesh.mesh);
         let mut state = state.borrow_mut();
         if state.shrinking {
             state.shrink_steps += 1;
@@ -203,7 +279,12 @@ pub fn run_property(
     let state = state.into_inner();
     let (counterexample, aborted) = match result {
         Ok(()) => (None, None),
-        Err(TestError::Fail(_, spec)) => (Some(counterexample(builder, request, spec)), None),
+        Err(TestError::Fail(_, spec)) => {
+            // Re-measured: proptest keeps only the description.
+            let mesh = build(&spec).expect("a description that failed was built before");
+            let report = check(&mesh.mesh);
+            (Some(Counterexample { spec, mesh, report }), None)
+        }
         Err(TestError::Abort(reason)) => (None, Some(reason.to_string())),
     };
     PropertyReport {
@@ -212,15 +293,6 @@ pub fn run_property(
         counterexample,
         aborted,
     }
-}
-
-/// The report of the shrunk description (re-measured: proptest keeps only the value).
-fn counterexample(builder: Builder, request: &PropertyRequest, spec: MeshSpec) -> Counterexample {
-    let mesh = spec
-        .build()
-        .expect("a description that failed was built before");
-    let report = check_mesh(builder, &mesh.mesh, &request.reference);
-    Counterexample { spec, mesh, report }
 }
 
 /// What the test closure of [`run_property`] accumulates.

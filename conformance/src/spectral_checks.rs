@@ -103,7 +103,7 @@ pub fn measure_spectrum_union<H: HodgeComplex + ?Sized>(
 }
 
 /// [`measure_spectrum_union`] with the corpus mesh's harmonic dimension, asserted.
-pub fn check_spectrum_union<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
+pub fn check_spectrum_union<H: HodgeComplex + ?Sized, M>(complex: &H, mesh: &CorpusMesh<M>) {
     assert_outcomes(&measure_spectrum_union(complex, mesh.harmonic_dimension));
 }
 

@@ -185,17 +185,7 @@ pub fn generated_meshes(constructor: Constructor, corpus: Corpus, cases: u32) {
         panic!("the property run stopped: {aborted}");
     }
     if let Some(counterexample) = report.counterexample {
-        let failures: Vec<String> = counterexample
-            .report
-            .failures()
-            .iter()
-            .map(|o| {
-                format!(
-                    "{} = {:e} (limit {:e}): {}",
-                    o.name, o.measured, o.limit, o.detail
-                )
-            })
-            .collect();
+        let failures = counterexample.report.failure_lines();
         panic!(
             "minimal failing mesh ({} faces): {}\n{}",
             counterexample.mesh.mesh.face_count(),

@@ -24,7 +24,10 @@
 ///   ([`Corpus::for_catalog_entry`](crate::corpus::Corpus::for_catalog_entry): the Delaunay one
 ///   when it needs Delaunay meshes), and a submodule `open_meshes` with one test per boundary
 ///   condition ([`crate::open_suite::open_mesh_suite`]: the core suite on meshes with boundary
-///   for a condition the entry offers; for one it does not, that the entry refuses it).
+///   for a condition the entry offers; for one it does not, that the entry refuses it), and a
+///   submodule `polygon_meshes`, the suite on polygon meshes ([`crate::polygon_suite`]: closed,
+///   with holes under each boundary condition, generated; an entry that needs triangles must
+///   refuse them).
 /// - `constructor`: `Fn(&TriangleMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
 ///   'static` or a `Box<dyn HodgeComplex>`; evaluated inside the generated module (which
 ///   imports `super::*`).
@@ -80,6 +83,39 @@ macro_rules! conformance_suite {
                     $crate::open_suite::open_mesh_suite(
                         &super::suite_entry(),
                         $crate::tvf_core::discretization::BoundaryCondition::Normal,
+                    );
+                }
+            }
+
+            /// The core suite on polygon meshes: closed, with holes under each boundary
+            /// condition, and generated (an entry that needs triangles must refuse them).
+            mod polygon_meshes {
+                #[test]
+                fn closed() {
+                    $crate::polygon_suite::polygon_mesh_suite(&super::suite_entry(), None);
+                }
+
+                #[test]
+                fn tangential() {
+                    $crate::polygon_suite::polygon_mesh_suite(
+                        &super::suite_entry(),
+                        Some($crate::tvf_core::discretization::BoundaryCondition::Tangential),
+                    );
+                }
+
+                #[test]
+                fn normal() {
+                    $crate::polygon_suite::polygon_mesh_suite(
+                        &super::suite_entry(),
+                        Some($crate::tvf_core::discretization::BoundaryCondition::Normal),
+                    );
+                }
+
+                #[test]
+                fn generated() {
+                    $crate::polygon_suite::generated_polygon_meshes(
+                        &super::suite_entry(),
+                        $crate::suite::property_cases($crate::suite::DEFAULT_CASES),
                     );
                 }
             }

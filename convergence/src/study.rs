@@ -13,16 +13,19 @@
 //! integrable family is Neumann and the co-integrable one Dirichlet; with `normal` the other way
 //! round.
 //!
-//! The meshes are inscribed (vertices on the surface), so their geometry converges at `O(h²)`
-//! too, and that error is part of what is measured.
+//! Each surface comes as triangle meshes (icospheres, ring hemispheres) and as quad meshes
+//! (refined cube-spheres and their upper halves), the latter for discretizations that accept
+//! polygon meshes (`polygon-dec`). The meshes are inscribed (vertices on the surface), so their
+//! geometry converges at `O(h²)` too, and that error is part of what is measured.
 
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 use std::time::Instant;
 use tvf_conformance::corpus::delaunay_flips;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
-use tvf_core::generate::{hemisphere, icosphere};
+use tvf_core::generate::{cube_sphere, hemisphere, icosphere};
 use tvf_core::geometry::{norm, sub};
+use tvf_core::mesh::{FaceList, Mesh};
 use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_discretizations::CatalogEntry;
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily};
@@ -37,23 +40,49 @@ pub enum Surface {
     /// made Delaunay by edge flips (so that entries needing a Delaunay mesh run too), under a
     /// boundary condition.
     Hemisphere(BoundaryCondition),
+    /// The unit sphere, by cube-spheres of `n = 2^(level+1)` quads along each cube edge (`6n²`
+    /// non-planar quads: 96, 384, 1536, 6144 for levels 1 to 4).
+    QuadSphere,
+    /// The upper unit hemisphere, by the upper halves of those cube-spheres (`3n²` quads: 48,
+    /// 192, 768, 3072 for levels 1 to 4; the equator is a line of the grid), under a boundary
+    /// condition.
+    QuadHemisphere(BoundaryCondition),
 }
 
 impl Surface {
-    /// `sphere` or `hemisphere`.
+    /// `sphere`, `hemisphere`, `quad-sphere` or `quad-hemisphere`.
     pub fn name(self) -> &'static str {
         match self {
             Surface::Sphere => "sphere",
             Surface::Hemisphere(_) => "hemisphere",
+            Surface::QuadSphere => "quad-sphere",
+            Surface::QuadHemisphere(_) => "quad-hemisphere",
         }
     }
 
     /// The boundary condition, on a surface with boundary.
     pub fn boundary(self) -> Option<BoundaryCondition> {
         match self {
-            Surface::Sphere => None,
-            Surface::Hemisphere(b) => Some(b),
+            Surface::Sphere | Surface::QuadSphere => None,
+            Surface::Hemisphere(b) | Surface::QuadHemisphere(b) => Some(b),
         }
+    }
+
+    /// Whether the surface is meshed by quads (for discretizations that accept polygons).
+    pub fn has_quads(self) -> bool {
+        matches!(self, Surface::QuadSphere | Surface::QuadHemisphere(_))
+    }
+
+    /// The quad surfaces of a full study: the quad sphere and the quad hemisphere under both
+    /// conditions.
+    pub fn all_quads() -> Vec<Surface> {
+        let mut surfaces = vec![Surface::QuadSphere];
+        surfaces.extend(
+            BoundaryCondition::ALL
+                .into_iter()
+                .map(Surface::QuadHemisphere),
+        );
+        surfaces
     }
 
     /// The surfaces of a full study: the sphere and the hemisphere under both conditions.
@@ -64,18 +93,21 @@ impl Surface {
     }
 
     /// The mesh of refinement `level` (`0` the coarsest).
-    pub fn mesh(self, level: u32) -> TriangleMesh {
+    pub fn mesh(self, level: u32) -> SurfaceMesh {
+        let quads = 2usize << level;
         match self {
-            Surface::Sphere => icosphere(level),
-            Surface::Hemisphere(_) => delaunay_flips(&hemisphere(2 << level)),
+            Surface::Sphere => icosphere(level).into(),
+            Surface::Hemisphere(_) => delaunay_flips(&hemisphere(2 << level)).into(),
+            Surface::QuadSphere => cube_sphere(quads).expect("n ≥ 2").into(),
+            Surface::QuadHemisphere(_) => upper_half(&cube_sphere(quads).expect("n ≥ 2").into()),
         }
     }
 
     /// The lowest `count` nonzero eigenvalues of `family`, ascending.
     pub fn exact_eigenvalues(self, family: FieldFamily, count: usize) -> Vec<f64> {
         let per_degree: Box<dyn Fn(usize) -> usize> = match (self, family) {
-            (Surface::Sphere, _) => Box::new(|l| 2 * l + 1),
-            (Surface::Hemisphere(boundary), family) => {
+            (Surface::Sphere | Surface::QuadSphere, _) => Box::new(|l| 2 * l + 1),
+            (Surface::Hemisphere(boundary) | Surface::QuadHemisphere(boundary), family) => {
                 let dirichlet = matches!(
                     (boundary, family),
                     (BoundaryCondition::Tangential, FieldFamily::Cointegrable)
@@ -95,10 +127,25 @@ impl Surface {
     }
 }
 
+/// The faces of `mesh` whose corners all have `z ≥ 0` (on an even cube-sphere, the upper
+/// hemisphere: the equator `z = 0` is a grid line).
+fn upper_half(mesh: &SurfaceMesh) -> SurfaceMesh {
+    let mut faces = FaceList::new();
+    for f in 0..mesh.face_count() {
+        let corners = mesh.face(f);
+        if corners.iter().all(|&v| mesh.positions()[v][2] >= -1e-12) {
+            faces.push(corners);
+        }
+    }
+    SurfaceMesh::validated(mesh.positions().to_vec(), faces)
+        .expect("the upper half of a cube-sphere is a valid mesh")
+        .0
+}
+
 /// What a candidate runs to build its complex on a mesh under a boundary condition; errors are
 /// reported with the candidate's name.
 pub type CandidateBuilder<'a> = Box<
-    dyn Fn(&TriangleMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
+    dyn Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
         + Send
         + Sync
         + 'a,
@@ -114,10 +161,25 @@ pub struct Candidate<'a> {
 }
 
 impl<'a> Candidate<'a> {
-    /// A candidate named `name` built by `build`.
+    /// A candidate named `name` built by `build` on triangle meshes (the quad surfaces are
+    /// refused with an error naming the candidate).
     pub fn new(
         name: impl Into<String>,
         build: impl Fn(&TriangleMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
+            + Send
+            + Sync
+            + 'a,
+    ) -> Self {
+        Self::on_any_mesh(name, move |mesh, boundary| match mesh.as_triangles() {
+            Some(triangles) => build(triangles, boundary),
+            None => Err("builds on triangle meshes only, not on the quad surfaces".to_string()),
+        })
+    }
+
+    /// A candidate named `name` built by `build` on meshes of any faces.
+    pub fn on_any_mesh(
+        name: impl Into<String>,
+        build: impl Fn(&SurfaceMesh, BoundaryCondition) -> Result<Box<dyn HodgeComplex>, String>
             + Send
             + Sync
             + 'a,
@@ -131,9 +193,9 @@ impl<'a> Candidate<'a> {
     /// The catalog entry `entry`, named by its id; a refused mesh is reported with what the
     /// entry needs.
     pub fn from_entry(entry: &'a CatalogEntry) -> Self {
-        Self::new(entry.id(), move |mesh, boundary| {
+        Self::on_any_mesh(entry.id(), move |mesh, boundary| {
             entry
-                .build_with(&SurfaceMesh::from(mesh.clone()), boundary)
+                .build_with(mesh, boundary)
                 .map_err(|e| format!("cannot build (needs: {}): {e}", entry.preconditions()))
         })
     }
@@ -329,7 +391,7 @@ fn measure(
     candidate: &Candidate<'_>,
     surface: Surface,
     level: u32,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     h: f64,
     count: usize,
 ) -> Result<LevelRow, ConvergenceError> {
@@ -443,9 +505,10 @@ pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
 }
 
 /// Mean edge length of `mesh`.
-pub fn mean_edge_length(mesh: &TriangleMesh) -> f64 {
+pub fn mean_edge_length<M: Mesh + ?Sized>(mesh: &M) -> f64 {
     let p = mesh.positions();
     let total: f64 = mesh
+        .topology()
         .edges()
         .iter()
         .map(|&[a, b]| norm(sub(p[a], p[b])))

@@ -7,7 +7,9 @@
 //! - [`open`]: surfaces with boundary (disk, hemisphere, cylinder, pants, holed torus);
 //! - [`perturbation`]: jitter and rigid motions;
 //! - [`mesh_spec`]: the whole description, its mesh, several components, the Delaunay-only
-//!   variants (edge flips) and [`mesh_specs`], the strategy a property runner draws from.
+//!   variants (edge flips) and [`mesh_specs`], the strategy a property runner draws from;
+//! - [`polygon_spec`]: polygon meshes (quad tori and surfaces, cube-spheres, duals, holes,
+//!   several components) and [`polygon_mesh_specs`], shrinking within polygon meshes.
 //!
 //! ```
 //! use tvf_conformance::proptest::strategy::{Strategy, ValueTree};
@@ -24,8 +26,10 @@ pub mod closed;
 pub mod mesh_spec;
 pub mod open;
 pub mod perturbation;
+pub mod polygon_spec;
 
 pub use closed::{closed_shapes, ClosedShape};
 pub use mesh_spec::{mesh_specs, MeshNeeds, MeshSpec, Shape};
 pub use open::{open_shapes, OpenShape};
 pub use perturbation::{jitters, rigid_motions, Jitter, RigidMotion};
+pub use polygon_spec::{polygon_mesh_specs, PolygonMeshSpec, PolygonShape};

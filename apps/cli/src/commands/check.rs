@@ -1,7 +1,8 @@
 //! `tvf check`: the conformance suite's core checks and a catalog entry's measured reference
-//! checks on one mesh, or property-based on generated meshes with the minimal failing mesh
-//! written as OBJ (the logic: `tvf_conformance::property_runner`; the report:
-//! `tvf_conformance::check_run_report`).
+//! checks on one mesh (on a polygon mesh: the core checks and the sampling and point evaluation
+//! checks on polygons), or property-based on generated triangle or polygon meshes with the
+//! minimal failing mesh written as OBJ (polygons kept as polygons; the logic:
+//! `tvf_conformance::property_runner`; the report: `tvf_conformance::check_run_report`).
 
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
@@ -15,13 +16,15 @@ use std::path::PathBuf;
 use tvf_conformance::check_run_report::{
     entry_property_request, MeshCheckReport, PropertyRunReport,
 };
-use tvf_conformance::property_runner::{check_mesh, run_property, PropertyProgress};
+use tvf_conformance::property_runner::{
+    check_mesh, check_polygon_mesh, run_polygon_property, run_property, PropertyProgress,
+};
 use tvf_conformance::reference_report::catalog_reference_checks;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
 use tvf_core::{SurfaceMesh, TriangleMesh};
-use tvf_discretizations::{Catalog, DEFAULT_DISCRETIZATION};
+use tvf_discretizations::{Catalog, CatalogEntry, DEFAULT_DISCRETIZATION};
 
 /// Arguments of `tvf check`.
 #[derive(Args)]
@@ -29,7 +32,9 @@ use tvf_discretizations::{Catalog, DEFAULT_DISCRETIZATION};
     tvf check bunny.obj --discretization dec-circumcentric\n  \
     tvf check --example genus2 --complex mine/\n  \
     tvf check --discretization conforming-voronoi --cases 64 --seed 1\n  \
-    tvf check --discretization whitney-galerkin --cases 16 -o minimal.obj --json")]
+    tvf check --discretization whitney-galerkin --cases 16 -o minimal.obj --json\n  \
+    tvf check quads.obj --discretization polygon-dec\n  \
+    tvf check --discretization polygon-dec --meshes polygons --cases 32")]
 pub struct CheckArgs {
     /// Mesh file (.obj, .off or .ply) to check the discretization on; omit to check it on
     /// --cases generated meshes instead.
@@ -52,6 +57,12 @@ pub struct CheckArgs {
     /// Without MESH: seed of the generated meshes (the same seed draws the same meshes).
     #[arg(long, value_name = "S", default_value_t = 0)]
     seed: u64,
+    /// Without MESH: generate `triangles` or `polygons` (quad tori and genus-g quad surfaces,
+    /// cube-spheres, duals of triangle meshes, jittered non-planar polygons, holes, several
+    /// components; shrinking keeps them polygon meshes) [default: polygons for an entry that
+    /// accepts them, such as polygon-dec, else triangles].
+    #[arg(long, value_name = "KIND", value_parser = PossibleValuesParser::new(["triangles", "polygons"]))]
+    meshes: Option<String>,
     /// Without MESH: where the minimal failing mesh is written (OBJ) when a case fails.
     #[arg(
         short = 'o',
@@ -72,39 +83,66 @@ pub struct CheckArgs {
 /// `counterexample` (`path`, `faces`, `description`, `reproduce`, `checks`).
 pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let catalog = context.catalog();
-    let id = match &args.discretization.complex {
-        Some(dir) => format!("the matrices of {}", dir.display()),
-        None => args
-            .discretization
-            .requested_id()
-            .unwrap_or_else(|| DEFAULT_DISCRETIZATION.to_string()),
-    };
     let mut report = Report::new(args.json);
     let input = match (&args.mesh, &args.example) {
         (Some(path), _) => MeshInput::file(path.clone()),
         (None, Some(name)) => MeshInput::example(name),
-        (None, None) => return check_generated(&args, &id, catalog, report),
+        (None, None) => {
+            let id = args
+                .discretization
+                .requested_id()
+                .unwrap_or_else(|| DEFAULT_DISCRETIZATION.to_string());
+            return check_generated(&args, &id, catalog, report);
+        }
     };
     let loaded = input.load()?.mesh;
-    let Some(mesh) = loaded.as_triangles() else {
-        bail!(
-            "{}: the conformance checks run on triangle meshes so far (this mesh has polygons)",
-            input.label()
-        );
+    let id = match &args.discretization.complex {
+        Some(dir) => format!("the matrices of {}", dir.display()),
+        None => args.discretization.id(&loaded),
     };
-    let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
-        let flags = &args.discretization;
-        flags
-            .build(catalog, &SurfaceMesh::from(mesh.clone()), &input)
-            .map_err(|e| format!("{e:#}"))
+    let flags = &args.discretization;
+    let checked = match loaded.as_triangles() {
+        Some(mesh) => {
+            let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
+                flags
+                    .build(catalog, &SurfaceMesh::from(mesh.clone()), &input)
+                    .map_err(|e| format!("{e:#}"))
+            };
+            check_mesh(&builder, mesh, catalog_reference_checks(&id))
+        }
+        None => {
+            let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+                flags
+                    .build(catalog, mesh, &input)
+                    .map_err(|e| format!("{e:#}"))
+            };
+            check_polygon_mesh(&builder, &loaded)
+        }
     };
-    let checked = check_mesh(&builder, mesh, catalog_reference_checks(&id));
-    let checked = MeshCheckReport::new(&id, &input.label(), mesh.face_count(), checked);
+    let checked = MeshCheckReport::new(&id, &input.label(), loaded.face_count(), checked);
     report.add(checked.lines(), &checked);
     finish(report, checked.failure_message())
 }
 
-/// The property run on `--cases` generated meshes (and the counterexample written as OBJ).
+/// Whether the property run draws polygon meshes: `--meshes`, else polygons for an entry that
+/// accepts them. Fails for polygons asked of an entry that needs triangles.
+fn generates_polygons(args: &CheckArgs, entry: &CatalogEntry) -> Result<bool> {
+    let polygons = match args.meshes.as_deref() {
+        Some(kind) => kind == "polygons",
+        None => !entry.needs_triangles(),
+    };
+    if polygons && entry.needs_triangles() {
+        bail!(
+            "--meshes polygons: the discretization '{}' needs triangle meshes \
+             (polygon-dec accepts polygons)",
+            entry.id()
+        );
+    }
+    Ok(polygons)
+}
+
+/// The property run on `--cases` generated meshes (and the counterexample written as OBJ, a
+/// polygon mesh with its polygons).
 fn check_generated(
     args: &CheckArgs,
     id: &str,
@@ -118,13 +156,10 @@ fn check_generated(
             dir.display()
         );
     }
-    let request = entry_property_request(catalog.get(id)?, args.cases, args.seed);
+    let entry = catalog.get(id)?;
+    let polygons = generates_polygons(args, entry)?;
+    let request = entry_property_request(entry, args.cases, args.seed);
     let boundary = args.discretization.boundary_condition();
-    let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
-        catalog
-            .build_complex(id, Some(boundary), &SurfaceMesh::from(mesh.clone()))
-            .map_err(|e| e.to_string())
-    };
     let progress = Progress::new("check");
     let on_progress = |event: PropertyProgress| match event {
         PropertyProgress::CasePassed { index } => {
@@ -134,19 +169,34 @@ fn check_generated(
             progress.update("shrinking the failing mesh", steps as usize, 512)
         }
     };
-    let outcome = run_property(&builder, &request, &on_progress);
+    let build = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+        catalog
+            .build_complex(id, Some(boundary), mesh)
+            .map_err(|e| e.to_string())
+    };
+    let (run, counterexample) = if polygons {
+        let outcome = run_polygon_property(&build, &request, &on_progress);
+        let run = PropertyRunReport::new(id, &request, &outcome, &args.output);
+        (run, outcome.counterexample.map(|c| c.mesh.mesh))
+    } else {
+        let builder = |mesh: &TriangleMesh| build(&SurfaceMesh::from(mesh.clone()));
+        let outcome = run_property(&builder, &request, &on_progress);
+        let run = PropertyRunReport::new(id, &request, &outcome, &args.output);
+        let mesh = outcome
+            .counterexample
+            .map(|c| SurfaceMesh::from(c.mesh.mesh));
+        (run, mesh)
+    };
     progress.finish(format!(
         "{} of {} meshes passed",
-        outcome.cases_passed, args.cases
+        run.cases_passed, args.cases
     ));
-    let run = PropertyRunReport::new(id, &request, &outcome, &args.output);
     report.add(run.lines(), &run);
     if let Some(message) = run.abort_message() {
         bail!(message);
     }
-    if let Some(counterexample) = &outcome.counterexample {
-        write_obj(&args.output, &counterexample.mesh.mesh)
-            .with_context(|| args.output.display().to_string())?;
+    if let Some(mesh) = &counterexample {
+        write_obj(&args.output, mesh).with_context(|| args.output.display().to_string())?;
         run.counterexample_lines()
             .iter()
             .for_each(|line| report.line(line));

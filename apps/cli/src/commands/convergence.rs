@@ -1,5 +1,6 @@
 //! `tvf convergence`: chosen discretizations on refinement sequences of surfaces with exact
-//! spectra (the unit sphere, the unit hemisphere under both boundary conditions); the relative
+//! spectra (the unit sphere, the unit hemisphere under both boundary conditions; by triangles,
+//! or by quads for discretizations that accept polygon meshes); the relative
 //! eigenvalue errors per level, the observed orders and the basis times as a table, JSON and a
 //! log–log plot. The study itself is [`tvf_convergence`].
 
@@ -18,7 +19,8 @@ use tvf_render::save_png;
 #[derive(Args)]
 #[command(
     after_help = "Examples:\n  tvf convergence --discretization conforming-barycentric --discretization nonconforming-barycentric\n  \
-tvf convergence --surface sphere --max-level 5 -o convergence.png --json\n\n\
+tvf convergence --surface sphere --max-level 5 -o convergence.png --json\n  \
+tvf convergence --discretization polygon-dec --surface quads\n\n\
 Exact spectra: on the unit sphere every l(l+1) (l ≥ 1) with multiplicity 2l+1 in each family; on the \
 upper unit hemisphere the family whose potentials are fixed (normal: integrable; tangential: \
 co-integrable) has the Dirichlet spectrum (l+m odd, l per degree), the other the Neumann spectrum \
@@ -31,10 +33,14 @@ With --json, prints {\"rows\": [{\"discretization\", \"surface\", \"boundary\", 
 \"order\"}, ...]}."
 )]
 pub struct ConvergenceArgs {
-    /// A catalog id to study (repeatable) [default: every entry of the catalog].
+    /// A catalog id to study (repeatable) [default: every entry of the catalog; on the quad
+    /// surfaces every entry that accepts polygon meshes].
     #[arg(long = "discretization", value_name = "ID")]
     discretizations: Vec<String>,
-    /// The surfaces: the sphere, the hemisphere (both boundary conditions), or all.
+    /// The surfaces: the sphere, the hemisphere (both boundary conditions), or all, meshed by
+    /// triangles; or quad-sphere (cube-spheres of 6n² quads, n = 2^(level+1)), quad-hemisphere
+    /// (their upper halves, both boundary conditions), or quads (both), for discretizations
+    /// that accept polygon meshes.
     #[arg(long, value_enum, default_value_t = SurfaceChoice::All)]
     surface: SurfaceChoice,
     /// The coarsest refinement level (icosphere level; the hemisphere has 2·2^level rings).
@@ -61,17 +67,29 @@ enum SurfaceChoice {
     Sphere,
     /// The unit hemisphere, tangential and normal boundary condition.
     Hemisphere,
-    /// Both.
+    /// The sphere and the hemisphere.
     All,
+    /// The unit sphere by cube-spheres (quads).
+    QuadSphere,
+    /// The unit hemisphere by upper halves of cube-spheres (quads), both boundary conditions.
+    QuadHemisphere,
+    /// The quad sphere and the quad hemisphere.
+    Quads,
 }
 
 impl SurfaceChoice {
     fn surfaces(self) -> Vec<Surface> {
         let hemispheres = BoundaryCondition::ALL.into_iter().map(Surface::Hemisphere);
+        let quad_hemispheres = BoundaryCondition::ALL
+            .into_iter()
+            .map(Surface::QuadHemisphere);
         match self {
             SurfaceChoice::Sphere => vec![Surface::Sphere],
             SurfaceChoice::Hemisphere => hemispheres.collect(),
             SurfaceChoice::All => Surface::all(),
+            SurfaceChoice::QuadSphere => vec![Surface::QuadSphere],
+            SurfaceChoice::QuadHemisphere => quad_hemispheres.collect(),
+            SurfaceChoice::Quads => Surface::all_quads(),
         }
     }
 }
@@ -98,10 +116,28 @@ pub fn run(args: ConvergenceArgs, context: &RunContext) -> Result<()> {
         tvf_core::io::check_output(output, &[])?;
     }
     let catalog = context.catalog();
-    let entries = catalog.selected(&args.discretizations)?;
+    let surfaces = args.surface.surfaces();
+    let mut entries = catalog.selected(&args.discretizations)?;
+    if surfaces.iter().any(|s| s.has_quads()) {
+        if args.discretizations.is_empty() {
+            entries.retain(|entry| !entry.needs_triangles());
+        } else if let Some(entry) = entries.iter().find(|entry| entry.needs_triangles()) {
+            bail!(
+                "--surface {}: the discretization '{}' needs triangle meshes; the quad surfaces \
+                 are for entries that accept polygons (polygon-dec)",
+                args.surface
+                    .to_possible_value()
+                    .map_or_else(String::new, |v| v.get_name().to_string()),
+                entry.id()
+            );
+        }
+        if entries.is_empty() {
+            bail!("no entry of the catalog accepts the polygon meshes of the quad surfaces");
+        }
+    }
     let candidates: Vec<Candidate<'_>> = entries.into_iter().map(Candidate::from_entry).collect();
     let config = ConvergenceConfig {
-        surfaces: args.surface.surfaces(),
+        surfaces,
         levels: (args.min_level..=args.max_level).collect(),
         eigenvalues: args.eigenvalues,
     };

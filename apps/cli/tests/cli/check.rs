@@ -1,5 +1,5 @@
 //! End-to-end: `tvf check` on a mesh file (text and JSON, measured numbers, exit 1 naming the
-//! failed check) and on generated meshes.
+//! failed check) and on generated meshes; on polygon meshes (a file, and generated ones).
 
 use crate::common::assert_success;
 use serde_json::Value;
@@ -76,4 +76,97 @@ fn generated_meshes_pass_and_write_no_counterexample() {
     assert_eq!(report["cases_passed"], 3);
     assert_eq!(report["passed"], true);
     assert!(!counterexample.exists());
+}
+
+fn polygon_mesh(dir: &std::path::Path) -> String {
+    let path = dir.join("cube-sphere.obj");
+    let mesh = tvf_core::generate::cube_sphere(2).unwrap();
+    tvf_core::io::write_obj(&path, &mesh).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn a_polygon_mesh_file_gets_polygon_dec_and_the_polygon_sampling_checks() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = polygon_mesh(dir.path());
+    let output = tvf(&["check", &mesh, "--json"]);
+    assert_success(&output);
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["discretization"], "polygon-dec");
+    assert_eq!(report["passed"], true);
+    let checks = report["checks"].as_array().unwrap();
+    for name in [
+        "d1_d0_zero",
+        "kernel dimension",
+        "polygon_sampling:sharp_of_flat",
+        "polygon_sampling:one_vector_per_polygon",
+        "polygon_point_evaluation:linear",
+    ] {
+        let check = checks
+            .iter()
+            .find(|c| c["name"] == name)
+            .unwrap_or_else(|| panic!("{name} missing: {checks:?}"));
+        assert_eq!(check["status"], "passed", "{check}");
+    }
+    let text = tvf(&["check", &mesh, "--discretization", "polygon-dec"]);
+    assert_success(&text);
+    assert!(String::from_utf8_lossy(&text.stdout).contains("(24 faces)"));
+}
+
+#[test]
+fn a_triangle_entry_on_a_polygon_mesh_exits_1_naming_the_construction() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = polygon_mesh(dir.path());
+    let output = tvf(&["check", &mesh, "--discretization", "conforming-barycentric"]);
+    assert_eq!(output.status.code(), Some(1));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(stdout.contains("conforming-barycentric"), "{stdout}");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("failed checks: construction"), "{stderr}");
+}
+
+#[test]
+fn generated_polygon_meshes_pass_for_polygon_dec_and_are_refused_to_triangle_entries() {
+    let dir = tempfile::tempdir().unwrap();
+    let counterexample = dir.path().join("ce.obj");
+    let output = tvf(&[
+        "check",
+        "--discretization",
+        "polygon-dec",
+        "--cases",
+        "4",
+        "--seed",
+        "3",
+        "--json",
+        "-q",
+        "-o",
+        counterexample.to_str().unwrap(),
+    ]);
+    assert_success(&output);
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["cases_passed"], 4);
+    assert_eq!(report["passed"], true);
+    let checks = report["checks"].as_array().unwrap();
+    assert!(
+        checks
+            .iter()
+            .any(|c| c["name"] == "polygon_sampling:sharp_of_flat" && c["status"] == "passed"),
+        "{checks:?}"
+    );
+    assert!(!counterexample.exists());
+    let refused = tvf(&[
+        "check",
+        "--discretization",
+        "dec-barycentric",
+        "--meshes",
+        "polygons",
+        "--cases",
+        "2",
+    ]);
+    assert_eq!(refused.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("--meshes polygons") && stderr.contains("dec-barycentric"),
+        "{stderr}"
+    );
 }

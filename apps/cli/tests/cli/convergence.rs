@@ -1,4 +1,5 @@
-//! `tvf convergence`: the table, the JSON of rows and orders, the plot, and refused arguments.
+//! `tvf convergence`: the table, the JSON of rows and orders, the plot, refused arguments, and
+//! the quad surfaces.
 
 use crate::common::{assert_success, tvf};
 
@@ -97,4 +98,53 @@ fn bad_arguments_are_refused_with_a_reason() {
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert!(stderr.contains(expected), "{args:?}: {stderr}");
     }
+}
+
+#[test]
+fn the_quad_surfaces_run_the_entries_that_accept_polygons_and_refuse_triangle_entries() {
+    let output = tvf()
+        .args([
+            "convergence",
+            "--surface",
+            "quads",
+            "--min-level",
+            "1",
+            "--max-level",
+            "3",
+            "-n",
+            "4",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert_success(&output);
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    // polygon-dec alone (the entries that accept polygons), three surfaces, three levels.
+    assert_eq!(rows.len(), 3 * 3);
+    assert!(rows.iter().all(|r| r["discretization"] == "polygon-dec"));
+    assert_eq!(rows[0]["surface"], "quad-sphere");
+    assert_eq!(rows[0]["faces"], 96);
+    assert_eq!(rows[3]["surface"], "quad-hemisphere");
+    assert_eq!(rows[3]["faces"], 48);
+    for order in json["orders"].as_array().unwrap() {
+        let order = order["order"].as_f64().unwrap();
+        assert!(order > 1.5, "{order}");
+    }
+    let refused = tvf()
+        .args([
+            "convergence",
+            "--surface",
+            "quad-sphere",
+            "--discretization",
+            "dec-barycentric",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(refused.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("quad-sphere") && stderr.contains("dec-barycentric"),
+        "{stderr}"
+    );
 }
