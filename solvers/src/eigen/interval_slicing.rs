@@ -740,45 +740,65 @@ fn solve_interval(
         }
         Err(SolverError::NoConvergence { .. }) if depth < MAX_SPLITS => {
             drop(factor);
-            // Not at σ itself: if σ sits on an eigenvalue (the likely cause), a boundary there
-            // would put that eigenvalue on an interval end. The halves get new midpoints.
-            let split = if lower.is_finite() {
-                lower + SPLIT_POINT * (upper - lower)
-            } else {
-                SPLIT_POINT * upper
-            };
-            let middle = pencil.count_below(split)?;
-            if middle.below < nu_lower || middle.below > nu_upper || middle.shift >= upper {
-                return Err(SolverError::NoConvergence {
-                    reason: format!(
-                        "the count {} at {:e} contradicts the interval's counts {nu_lower}..{nu_upper}",
-                        middle.below, middle.shift
-                    ),
-                });
-            }
-            let halves = [
-                Interval {
-                    lower: interval.lower,
-                    upper: (middle.shift, middle.below),
-                    stream: 2 * interval.stream + 1_000_003,
-                },
-                Interval {
-                    lower: (middle.shift, middle.below),
-                    upper: interval.upper,
-                    stream: 2 * interval.stream + 1_000_004,
-                },
-            ];
-            let lower_width = (middle.below - nu_lower).min(output.ncols());
-            let (lower_output, upper_output) = output.split_at_col_mut(lower_width);
-            let mut written = 0;
-            for (half, part) in halves.iter().zip([lower_output, upper_output]) {
-                written +=
-                    solve_interval(request, half, options, memory, depth + 1, report, out, part)?;
-            }
-            Ok(written)
+            solve_halves(
+                request, interval, options, memory, depth, report, out, output,
+            )
         }
         Err(e) => Err(e),
     }
+}
+
+/// [`solve_interval`] of an interval that failed at its midpoint: split near (not at) it, and
+/// each half solved into its part of `output` with a midpoint of its own (`depth` splits so
+/// far). Returns the number of columns written.
+#[allow(clippy::too_many_arguments)]
+fn solve_halves(
+    request: &EigenRequest<'_, '_>,
+    interval: &Interval,
+    options: &IntervalSettings,
+    memory: &mut SliceMemory,
+    depth: usize,
+    report: &dyn Fn(usize, usize),
+    out: &mut Vec<SolvedInterval>,
+    output: MatMut<'_, f64>,
+) -> Result<usize, SolverError> {
+    let (lower, nu_lower) = interval.lower;
+    let (upper, nu_upper) = interval.upper;
+    // Not at σ itself: if σ sits on an eigenvalue (the likely cause), a boundary there would
+    // put that eigenvalue on an interval end. The halves get new midpoints.
+    let split = if lower.is_finite() {
+        lower + SPLIT_POINT * (upper - lower)
+    } else {
+        SPLIT_POINT * upper
+    };
+    let middle = request.pencil.count_below(split)?;
+    if middle.below < nu_lower || middle.below > nu_upper || middle.shift >= upper {
+        return Err(SolverError::NoConvergence {
+            reason: format!(
+                "the count {} at {:e} contradicts the interval's counts {nu_lower}..{nu_upper}",
+                middle.below, middle.shift
+            ),
+        });
+    }
+    let halves = [
+        Interval {
+            lower: interval.lower,
+            upper: (middle.shift, middle.below),
+            stream: 2 * interval.stream + 1_000_003,
+        },
+        Interval {
+            lower: (middle.shift, middle.below),
+            upper: interval.upper,
+            stream: 2 * interval.stream + 1_000_004,
+        },
+    ];
+    let lower_width = (middle.below - nu_lower).min(output.ncols());
+    let (lower_output, upper_output) = output.split_at_col_mut(lower_width);
+    let mut written = 0;
+    for (half, part) in halves.iter().zip([lower_output, upper_output]) {
+        written += solve_interval(request, half, options, memory, depth + 1, report, out, part)?;
+    }
+    Ok(written)
 }
 
 /// The Krylov–Schur slice of `interval` at the shift of `factor` and its Rayleigh–Ritz against
