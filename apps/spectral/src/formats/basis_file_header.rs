@@ -2,12 +2,17 @@
 //! encoded and decoded with its checksum. The full layout is documented in
 //! [`crate::formats::basis_file`].
 
-use super::basis_file::{BasisFileError, BASIS_FILE_MAGIC, BASIS_FILE_VERSION};
+use super::basis_file_error::BasisFileError;
 use super::basis_file_mass::StoredFieldMass;
 use std::io::Read;
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, MatrixHash};
 use tvf_core::{Hash64, TriangleMesh};
+
+/// The magic bytes of a basis file.
+pub const BASIS_FILE_MAGIC: &[u8; 8] = b"TVFBASIS";
+/// The format version this build writes and the newest it reads.
+pub const BASIS_FILE_VERSION: u32 = 3;
 
 /// What a basis file must match to be used: the discretization, its matrices and the mesh.
 #[derive(Debug, Clone, PartialEq, Eq)]
