@@ -8,6 +8,7 @@ use pyo3::prelude::*;
 
 mod arrays;
 mod basis;
+mod basis_parts;
 mod check;
 mod complex;
 mod convergence;
