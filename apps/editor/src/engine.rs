@@ -208,8 +208,8 @@ enum Served {
     Failed(EditorError, Option<PendingEdit>),
 }
 
-/// Serves requests with one basis until the basis size changes (returns the rebuild) or every
-/// handle is gone (returns `None`).
+/// Serves requests with one basis until the basis size changes (returns the rebuild), every
+/// handle is gone, or the session for the new state cannot be built.
 fn serve(
     state: &mut State,
     basis: &ReducedBasis,
@@ -217,93 +217,21 @@ fn serve(
     inbox: &Receiver<Request>,
     started: &mut Option<Sender<Result<(), EditorError>>>,
 ) -> Served {
-    let Rebuild { target, edit } = rebuild;
     let mut mapper = FieldMapper::new(basis);
-    let compiled = match compile_all(state, &target.constraints) {
-        Ok(c) => c,
-        Err(e) => return Served::Failed(e, edit),
+    let mut session = match open_session(state, basis, &mut mapper, rebuild, started) {
+        Ok(session) => session,
+        Err(failed) => return failed,
     };
-    let mut session = match build_session(basis, target.omega, &compiled) {
-        Ok(s) => s,
-        Err(e) => return Served::Failed(e, edit),
-    };
-    // Going back to the state before a refused basis-size change (no edit waits, and the
-    // engine has started) shows the same field again: it keeps its version.
-    let restoring = edit.is_none() && started.is_none();
-    let version = state.version;
-    state.current = target;
-    state.compiled = compiled;
-    refresh(state, &mut session, &mut mapper, None);
-    if restoring {
-        state.version = version;
-    }
-    if let Some(edit) = edit {
-        if edit.record {
-            push_history(state, edit.previous);
-        }
-        let _ = edit.reply.send(Ok(frame(state, basis)));
-    }
-    if let Some(s) = started.take() {
-        let _ = s.send(Ok(()));
-    }
     while let Ok(request) = inbox.recv() {
         match request {
             Request::Edit(op, reply) => {
-                let gesture = op.gesture_key();
-                let record = gesture.is_none() || gesture != state.last_gesture;
-                state.last_gesture = gesture;
-                match op {
-                    EditOp::BasisSize(d) if d != state.current.basis_size => {
-                        if d == 0 || d > state.max_basis_size {
-                            let _ = reply.send(Err(EditorError::BadBasisSize {
-                                requested: d,
-                                available: state.max_basis_size,
-                            }));
-                            continue;
-                        }
-                        let target = Snapshot {
-                            basis_size: d,
-                            ..state.current.clone()
-                        };
-                        return Served::Rebuild(rebuild_to(state, target, record, reply));
-                    }
-                    EditOp::Undo => match state.history.pop() {
-                        None => {
-                            let _ = reply.send(Err(EditorError::NothingToUndo));
-                        }
-                        Some(previous) if previous.basis_size != state.current.basis_size => {
-                            return Served::Rebuild(rebuild_to(state, previous, false, reply));
-                        }
-                        Some(previous) => {
-                            let outcome = sync(state, &mut session, basis, previous);
-                            answer(
-                                state,
-                                &mut session,
-                                basis,
-                                &mut mapper,
-                                outcome,
-                                None,
-                                reply,
-                            );
-                        }
-                    },
-                    op => {
-                        let before = state.current.clone();
-                        let outcome = apply(state, &mut session, basis, op).and_then(|v| {
-                            refuse_non_finite(state, &mut session, basis, before.clone())
-                                .map(|()| v)
-                        });
-                        let record = record.then_some(before);
-                        answer(
-                            state,
-                            &mut session,
-                            basis,
-                            &mut mapper,
-                            outcome,
-                            record,
-                            reply,
-                        );
-                    }
+                let editing = Editing {
+                    session: &mut session,
+                    basis,
+                    mapper: &mut mapper,
+                };
+                if let Some(rebuild) = editing.edit(state, op, reply) {
+                    return Served::Rebuild(rebuild);
                 }
             }
             Request::Frame(reply) => {
@@ -332,6 +260,108 @@ fn serve(
         }
     }
     Served::Closed
+}
+
+/// The session of `basis` for the state `rebuild` leads to, made current and solved; answers
+/// the edit that asked for the rebuild (if any) and tells a starting engine that it runs.
+fn open_session<'b>(
+    state: &mut State,
+    basis: &'b ReducedBasis,
+    mapper: &mut FieldMapper,
+    rebuild: Rebuild,
+    started: &mut Option<Sender<Result<(), EditorError>>>,
+) -> Result<SplineSession<'b>, Served> {
+    let Rebuild { target, edit } = rebuild;
+    let compiled = match compile_all(state, &target.constraints) {
+        Ok(c) => c,
+        Err(e) => return Err(Served::Failed(e, edit)),
+    };
+    let mut session = match build_session(basis, target.omega, &compiled) {
+        Ok(s) => s,
+        Err(e) => return Err(Served::Failed(e, edit)),
+    };
+    // Going back to the state before a refused basis-size change (no edit waits, and the
+    // engine has started) shows the same field again: it keeps its version.
+    let restoring = edit.is_none() && started.is_none();
+    let version = state.version;
+    state.current = target;
+    state.compiled = compiled;
+    refresh(state, &mut session, mapper, None);
+    if restoring {
+        state.version = version;
+    }
+    if let Some(edit) = edit {
+        if edit.record {
+            push_history(state, edit.previous);
+        }
+        let _ = edit.reply.send(Ok(frame(state, basis)));
+    }
+    if let Some(s) = started.take() {
+        let _ = s.send(Ok(()));
+    }
+    Ok(session)
+}
+
+/// What an edit works on besides the state: the session of the current basis, the basis and
+/// the field mapper.
+struct Editing<'s, 'b> {
+    session: &'s mut SplineSession<'b>,
+    basis: &'b ReducedBasis,
+    mapper: &'s mut FieldMapper,
+}
+
+impl Editing<'_, '_> {
+    /// Applies `op` and replies; returns the rebuild when the edit changes the basis size (the
+    /// reply then waits for it).
+    fn edit(self, state: &mut State, op: EditOp, reply: Reply<Vec<u8>>) -> Option<Rebuild> {
+        let Self {
+            session,
+            basis,
+            mapper,
+        } = self;
+        let gesture = op.gesture_key();
+        let record = gesture.is_none() || gesture != state.last_gesture;
+        state.last_gesture = gesture;
+        match op {
+            EditOp::BasisSize(d) if d != state.current.basis_size => {
+                if d == 0 || d > state.max_basis_size {
+                    let _ = reply.send(Err(EditorError::BadBasisSize {
+                        requested: d,
+                        available: state.max_basis_size,
+                    }));
+                    return None;
+                }
+                let target = Snapshot {
+                    basis_size: d,
+                    ..state.current.clone()
+                };
+                Some(rebuild_to(state, target, record, reply))
+            }
+            EditOp::Undo => match state.history.pop() {
+                None => {
+                    let _ = reply.send(Err(EditorError::NothingToUndo));
+                    None
+                }
+                Some(previous) if previous.basis_size != state.current.basis_size => {
+                    Some(rebuild_to(state, previous, false, reply))
+                }
+                Some(previous) => {
+                    let outcome = sync(state, session, basis, previous);
+                    answer(state, session, basis, mapper, outcome, None, reply);
+                    None
+                }
+            },
+            op => {
+                let before = state.current.clone();
+                let outcome = apply(state, session, basis, op).and_then(|v| {
+                    refuse_non_finite(state, session, basis, before.clone()).map(|()| v)
+                });
+                let record = record.then_some(before);
+                answer(state, session, basis, mapper, outcome, record, reply);
+                None
+            }
+        }
+    }
 }
 
 fn rebuild_to(state: &State, target: Snapshot, record: bool, reply: Reply<Vec<u8>>) -> Rebuild {
