@@ -19,7 +19,10 @@ impl SoftOptions {
     ///
     /// Errors: [`DesignError::BadParameter`] naming the first weight that is not.
     pub(crate) fn check(self) -> Result<(), DesignError> {
-        for (what, value) in [("omega", self.omega), ("regularization", self.regularization)] {
+        for (what, value) in [
+            ("omega", self.omega),
+            ("regularization", self.regularization),
+        ] {
             if !(value.is_finite() && value >= 0.0) {
                 return Err(DesignError::BadParameter { what, value });
             }

@@ -370,78 +370,19 @@ fn read_basis(
     if let Some(key) = expected {
         key.check_file(path, &header.key)?;
     }
-    let invalid = |reason: String| BasisFileError::Invalid {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let promised = header
-        .payload_bytes()
-        .and_then(|payload| payload.checked_add(header_length))
-        .ok_or_else(|| invalid("sizes overflow".into()))?;
-    if size < promised {
-        return Err(BasisFileError::Truncated {
-            path: path.to_path_buf(),
-            expected: promised,
-            found: size,
-        });
-    }
-    if size > promised {
-        return Err(invalid(format!(
-            "{} bytes of trailing data",
-            size - promised
-        )));
-    }
-    let (n, d) = (header.key.field_dimension, header.field_count);
-    if let (
-        Some(forming),
-        BasisFileLayout::Eigenfunctions {
-            potential_dimension,
-            co_potential_dimension,
-        },
-    ) = (forming, header.layout)
-    {
-        if (potential_dimension, co_potential_dimension)
-            != (forming.potential_dimension, forming.co_potential_dimension)
-        {
-            return Err(invalid(format!(
-                "the file holds potentials of {potential_dimension} and co-potentials of \
-                 {co_potential_dimension} values, the complex's have {} and {}",
-                forming.potential_dimension, forming.co_potential_dimension
-            )));
-        }
+    check_file_size(path, &header, header_length, size)?;
+    if let Some(forming) = forming {
+        check_forming_dimensions(path, &header, forming)?;
     }
     let mut input = HashingReader {
         inner: reader,
         hash: Hash64::new(),
     };
+    let d = header.field_count;
     let eigenvalues = input.f64s(d).map_err(io(path))?;
     let mut codes = vec![0u8; d.div_ceil(8) * 8];
     input.read_exact(&mut codes).map_err(io(path))?;
-    let read_body = |input: &mut HashingReader<_>| -> std::io::Result<_> {
-        Ok(match (header.layout, forming) {
-            (BasisFileLayout::Fields, _) => {
-                let field_mass = FieldMassRead::read(input, header.field_mass, n)?;
-                let fields = input.matrix(n, d)?;
-                Body::Fields { field_mass, fields }
-            }
-            (
-                BasisFileLayout::Eigenfunctions {
-                    potential_dimension,
-                    co_potential_dimension,
-                },
-                None,
-            ) => Body::Eigenfunctions {
-                potentials: input.matrix(potential_dimension, header.integrable_count)?,
-                co_potentials: input.matrix(co_potential_dimension, header.cointegrable_count)?,
-                harmonic: input.matrix(n, header.harmonic_count)?,
-            },
-            (BasisFileLayout::Eigenfunctions { .. }, Some(forming)) => Body::Fields {
-                field_mass: Some(FieldMassRead::Complex(forming.field_mass.clone())),
-                fields: input.formed_fields(&header, &codes[..d], forming)?,
-            },
-        })
-    };
-    let body = read_body(&mut input).map_err(io(path))?;
+    let body = read_body(&mut input, &header, &codes[..d], forming).map_err(io(path))?;
     let computed = input.hash.finish();
     let mut stored = [0u8; 8];
     input.inner.read_exact(&mut stored).map_err(io(path))?;
@@ -451,35 +392,147 @@ fn read_basis(
             part: "payload",
         });
     }
-    let families = codes[..d]
+    let families = families_of(&codes[..d], &header).map_err(|r| invalid(path, r))?;
+    let stored =
+        stored_basis(&header, eigenvalues, families, body).map_err(|r| invalid(path, r))?;
+    Ok((header, stored))
+}
+
+/// An inconsistent basis file `path`, for `reason`.
+fn invalid(path: &Path, reason: String) -> BasisFileError {
+    BasisFileError::Invalid {
+        path: path.to_path_buf(),
+        reason,
+    }
+}
+
+/// Checks that the file's `size` is what `header` (of `header_length` bytes) promises.
+fn check_file_size(
+    path: &Path,
+    header: &BasisFileHeader,
+    header_length: u64,
+    size: u64,
+) -> Result<(), BasisFileError> {
+    let promised = header
+        .payload_bytes()
+        .and_then(|payload| payload.checked_add(header_length))
+        .ok_or_else(|| invalid(path, "sizes overflow".into()))?;
+    if size < promised {
+        return Err(BasisFileError::Truncated {
+            path: path.to_path_buf(),
+            expected: promised,
+            found: size,
+        });
+    }
+    if size > promised {
+        return Err(invalid(
+            path,
+            format!("{} bytes of trailing data", size - promised),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that the potentials and co-potentials of an eigenfunctions file have the dimensions
+/// of the complex that is to form its fields.
+fn check_forming_dimensions(
+    path: &Path,
+    header: &BasisFileHeader,
+    forming: &FieldForming<'_>,
+) -> Result<(), BasisFileError> {
+    if let BasisFileLayout::Eigenfunctions {
+        potential_dimension,
+        co_potential_dimension,
+    } = header.layout
+    {
+        if (potential_dimension, co_potential_dimension)
+            != (forming.potential_dimension, forming.co_potential_dimension)
+        {
+            return Err(invalid(
+                path,
+                format!(
+                    "the file holds potentials of {potential_dimension} and co-potentials of \
+                     {co_potential_dimension} values, the complex's have {} and {}",
+                    forming.potential_dimension, forming.co_potential_dimension
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The layout-specific part of the payload (after the eigenvalues and the family `codes`),
+/// with `forming` an eigenfunctions file's fields formed as they are read.
+fn read_body<R: Read>(
+    input: &mut HashingReader<R>,
+    header: &BasisFileHeader,
+    codes: &[u8],
+    forming: Option<&FieldForming<'_>>,
+) -> std::io::Result<Body> {
+    let (n, d) = (header.key.field_dimension, header.field_count);
+    Ok(match (header.layout, forming) {
+        (BasisFileLayout::Fields, _) => {
+            let field_mass = FieldMassRead::read(input, header.field_mass, n)?;
+            let fields = input.matrix(n, d)?;
+            Body::Fields { field_mass, fields }
+        }
+        (
+            BasisFileLayout::Eigenfunctions {
+                potential_dimension,
+                co_potential_dimension,
+            },
+            None,
+        ) => Body::Eigenfunctions {
+            potentials: input.matrix(potential_dimension, header.integrable_count)?,
+            co_potentials: input.matrix(co_potential_dimension, header.cointegrable_count)?,
+            harmonic: input.matrix(n, header.harmonic_count)?,
+        },
+        (BasisFileLayout::Eigenfunctions { .. }, Some(forming)) => Body::Fields {
+            field_mass: Some(FieldMassRead::Complex(forming.field_mass.clone())),
+            fields: input.formed_fields(header, codes, forming)?,
+        },
+    })
+}
+
+/// The families of the family `codes`, whose counts must be the header's.
+fn families_of(codes: &[u8], header: &BasisFileHeader) -> Result<Vec<FieldFamily>, String> {
+    let families = codes
         .iter()
         .map(|&c| match c {
             0 => Ok(FieldFamily::Harmonic),
             1 => Ok(FieldFamily::Integrable),
             2 => Ok(FieldFamily::Cointegrable),
-            other => Err(invalid(format!("unknown family code {other}"))),
+            other => Err(format!("unknown family code {other}")),
         })
         .collect::<Result<Vec<_>, _>>()?;
     let count = |family| families.iter().filter(|&&f| f == family).count();
     if count(FieldFamily::Harmonic) != header.harmonic_count
         || count(FieldFamily::Integrable) != header.integrable_count
     {
-        return Err(invalid("family counts differ from the header".into()));
+        return Err("family counts differ from the header".into());
     }
+    Ok(families)
+}
+
+/// The basis of a read payload: its values finite, a stored `M1` the one the header's matrix
+/// hash names.
+fn stored_basis(
+    header: &BasisFileHeader,
+    eigenvalues: Vec<f64>,
+    families: Vec<FieldFamily>,
+    body: Body,
+) -> Result<StoredBasis, String> {
     if let Some(problem) = body.non_finite() {
-        return Err(invalid(problem));
+        return Err(problem);
     }
-    let stored = match body {
+    match body {
         Body::Fields { field_mass, fields } => {
             let field_mass = field_mass
-                .ok_or_else(|| invalid("the fields layout holds no field mass".into()))?
-                .into_mass()
-                .map_err(invalid)?;
+                .ok_or_else(|| "the fields layout holds no field mass".to_string())?
+                .into_mass()?;
             let hash = header.key.matrix_hash.map(|h| h.m1);
             if hash.is_some_and(|m1| MatrixHash::of_mass(&field_mass) != m1) {
-                return Err(invalid(
-                    "the stored M1 is not the one the header's matrix hash names".into(),
-                ));
+                return Err("the stored M1 is not the one the header's matrix hash names".into());
             }
             SpectralBasis::new(eigenvalues, families, fields, field_mass)
                 .map(|basis| StoredBasis::Fields(Box::new(basis)))
@@ -497,8 +550,7 @@ fn read_basis(
         )
         .map(|basis| StoredBasis::Eigenfunctions(Box::new(basis))),
     }
-    .map_err(|e| invalid(e.to_string()))?;
-    Ok((header, stored))
+    .map_err(|e| e.to_string())
 }
 
 /// The layout-specific part of a basis file, as read.
