@@ -105,6 +105,22 @@ impl<'m> ColumnStore<'m> {
         MatRef::from_column_major_slice(&self.values[..len], self.n, self.columns)
     }
 
+    /// Appends the Ritz vectors `V y_j` for the columns `j ∈ chosen` of `y` (`V: n × m`,
+    /// `y: m × m`), formed in place.
+    fn append_ritz_vectors(
+        &mut self,
+        v: MatRef<'_, f64>,
+        y: &Mat<f64>,
+        chosen: &[usize],
+        par: Par,
+    ) {
+        if chosen.is_empty() {
+            return;
+        }
+        let y_chosen = Mat::from_fn(v.ncols(), chosen.len(), |i, j| y[(i, chosen[j])]);
+        self.append_product(v, y_chosen.as_ref(), par);
+    }
+
     /// Appends the columns of `V Y` (`V: n × m`, `Y: m × c`), formed in place.
     fn append_product(&mut self, v: MatRef<'_, f64>, y: MatRef<'_, f64>, par: Par) {
         let (start, end) = (self.n * self.columns, self.n * (self.columns + y.ncols()));
@@ -536,12 +552,7 @@ pub(crate) fn run_slice(
         let window = remaining(problem, found) + block;
         found.0 += pairs.inside.0;
         found.1 += pairs.inside.1;
-        if !pairs.lock.is_empty() {
-            let y_lock = Mat::from_fn(krylov.mv, pairs.lock.len(), |i, j| {
-                pairs.y[(i, pairs.lock[j])]
-            });
-            locked.append_product(basis.rb().subcols(0, krylov.mv), y_lock.as_ref(), par);
-        }
+        locked.append_ritz_vectors(basis.rb().subcols(0, krylov.mv), &pairs.y, &pairs.lock, par);
         on_restart(locked.columns, solves);
         check_lower_count(problem, found)?;
         if found.0 == problem.lower_needed && found.1 >= problem.upper_target {
