@@ -29,6 +29,7 @@
 //! assert_eq!(compiled.rows.len(), 1); // one row of div_h
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 mod assembler;
