@@ -18,7 +18,7 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
 use faer::MatMut;
 
-use crate::kernel_dispatch::{self, multiply_add, Kernel};
+use crate::kernel_dispatch::{fma_dispatch, multiply_add};
 use crate::packed_rows::{Row, WIDTH};
 
 /// Overwrites `rhs` (`n × r`) with the solution of `P L D Lᵀ Pᵀ X = rhs` for the supernodal
@@ -110,22 +110,7 @@ fn solve_packed_with(
 
 /// `x ← (L D Lᵀ)⁻¹ x` on packed rows.
 fn solve_rows(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    kernel_dispatch::run(SolveRows { factor, x });
-}
-
-/// [`solve_rows`] as a [`Kernel`].
-struct SolveRows<'a> {
-    factor: SupernodalLdltRef<'a, usize, f64>,
-    x: &'a mut [Row],
-}
-
-impl Kernel for SolveRows<'_> {
-    type Output = ();
-
-    #[inline(always)]
-    unsafe fn run<const FUSED: bool>(self) {
-        solve_rows_body::<FUSED>(self.factor, self.x);
-    }
+    fma_dispatch!(solve_rows_body(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
 }
 
 /// Columns of a supernode handled together: their values stay in registers while every row

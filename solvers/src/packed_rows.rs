@@ -2,7 +2,7 @@
 //! layout of the solver's hand-written loops (sparse products, Gram–Schmidt, triangular solves;
 //! their two compilations are chosen in `kernel_dispatch.rs`).
 
-use crate::kernel_dispatch::{self, Kernel};
+use crate::kernel_dispatch::fma_dispatch;
 
 /// Values per packed row.
 pub(crate) const WIDTH: usize = 8;
@@ -42,32 +42,11 @@ pub(crate) fn pack_columns(columns: &[&[f64]], rows: &mut [Row]) {
         "pack_columns: shapes do not match"
     );
     if let Ok(full) = <&[&[f64]; WIDTH]>::try_from(columns) {
-        kernel_dispatch::run(PackFull { full, rows });
+        fma_dispatch!(pack_full_avx2(full, rows) else pack_full_rows(full, rows, 0));
         return;
     }
     for (i, row) in rows.iter_mut().enumerate() {
         *row = std::array::from_fn(|j| if j < width { columns[j][i] } else { 0.0 });
-    }
-}
-
-/// [`pack_columns`] of [`WIDTH`] columns: with AVX2 ([`pack_full_avx2`]) where the CPU has it.
-struct PackFull<'a> {
-    full: &'a [&'a [f64]; WIDTH],
-    rows: &'a mut [Row],
-}
-
-impl Kernel for PackFull<'_> {
-    type Output = ();
-
-    #[inline(always)]
-    unsafe fn run<const FUSED: bool>(self) {
-        #[cfg(target_arch = "x86_64")]
-        if FUSED {
-            // SAFETY: `FUSED` only where the CPU has AVX2 (the kernel's contract).
-            unsafe { pack_full_avx2(self.full, self.rows) };
-            return;
-        }
-        pack_full_rows(self.full, self.rows, 0);
     }
 }
 

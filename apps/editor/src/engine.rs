@@ -225,7 +225,7 @@ fn serve(
     while let Ok(request) = inbox.recv() {
         match request {
             Request::Edit(op, reply) => {
-                let editing = Editing {
+                let mut editing = Editing {
                     session: &mut session,
                     basis,
                     mapper: &mut mapper,
@@ -313,12 +313,7 @@ struct Editing<'s, 'b> {
 impl Editing<'_, '_> {
     /// Applies `op` and replies; returns the rebuild when the edit changes the basis size (the
     /// reply then waits for it).
-    fn edit(self, state: &mut State, op: EditOp, reply: Reply<Vec<u8>>) -> Option<Rebuild> {
-        let Self {
-            session,
-            basis,
-            mapper,
-        } = self;
+    fn edit(&mut self, state: &mut State, op: EditOp, reply: Reply<Vec<u8>>) -> Option<Rebuild> {
         let gesture = op.gesture_key();
         let record = gesture.is_none() || gesture != state.last_gesture;
         state.last_gesture = gesture;
@@ -346,21 +341,149 @@ impl Editing<'_, '_> {
                     Some(rebuild_to(state, previous, false, reply))
                 }
                 Some(previous) => {
-                    let outcome = sync(state, session, basis, previous);
-                    answer(state, session, basis, mapper, outcome, None, reply);
+                    let outcome = self.sync(state, previous);
+                    self.answer(state, outcome, None, reply);
                     None
                 }
             },
             op => {
                 let before = state.current.clone();
-                let outcome = apply(state, session, basis, op).and_then(|v| {
-                    refuse_non_finite(state, session, basis, before.clone()).map(|()| v)
-                });
+                let outcome = self
+                    .apply(state, op)
+                    .and_then(|v| self.refuse_non_finite(state, before.clone()).map(|()| v));
                 let record = record.then_some(before);
-                answer(state, session, basis, mapper, outcome, record, reply);
+                self.answer(state, outcome, record, reply);
                 None
             }
         }
+    }
+
+    /// After an in-place edit: on success records the previous state (if asked), re-solves and
+    /// replies with the new frame; on failure restores the session from the unchanged state and
+    /// replies with the error.
+    fn answer(
+        &mut self,
+        state: &mut State,
+        outcome: Result<Option<usize>, EditorError>,
+        record: Option<Snapshot>,
+        reply: Reply<Vec<u8>>,
+    ) {
+        match outcome {
+            Ok(values_of) => {
+                if let Some(previous) = record {
+                    push_history(state, previous);
+                }
+                refresh(state, self.session, self.mapper, values_of);
+                let _ = reply.send(Ok(frame(state, self.basis)));
+            }
+            Err(error) => {
+                state.last_gesture = None;
+                // A multi-step edit (undo, load) may have failed half-way: rebuild from the
+                // unchanged state, which was accepted before, so this succeeds.
+                if let Ok(s) = build_session(self.basis, state.current.omega, &state.compiled) {
+                    *self.session = s;
+                }
+                let _ = reply.send(Err(error));
+            }
+        }
+    }
+
+    /// Applies an edit that keeps the basis. The state changes only if the session accepted it.
+    /// Returns the index of the constraint if only its values changed.
+    fn apply(&mut self, state: &mut State, op: EditOp) -> Result<Option<usize>, EditorError> {
+        match op {
+            EditOp::Add(c) => {
+                let compiled = state.assembler.compile(&c)?;
+                self.session.add(compiled.clone())?;
+                state.current.constraints.push(c);
+                state.compiled.push(compiled);
+            }
+            EditOp::Set(c) => {
+                let i = index_of(state, &c.id)?;
+                let compiled = state.assembler.compile(&c)?;
+                let values_only = state.compiled[i].rows == compiled.rows;
+                self.session.modify(compiled.clone())?;
+                state.current.constraints[i] = c;
+                state.compiled[i] = compiled;
+                return Ok(values_only.then_some(i));
+            }
+            EditOp::Remove(id) => {
+                let i = index_of(state, &id)?;
+                self.session.remove(&id)?;
+                state.current.constraints.remove(i);
+                state.compiled.remove(i);
+            }
+            EditOp::Clear => {
+                *self.session = SplineSession::new(self.basis, state.current.omega)?;
+                state.current.constraints.clear();
+                state.compiled.clear();
+            }
+            EditOp::Omega(omega) => {
+                *self.session = build_session(self.basis, omega, &state.compiled)?;
+                state.current.omega = omega;
+            }
+            EditOp::Load(set) => {
+                let compiled = compile_all(state, &set.constraints)?;
+                *self.session = build_session(self.basis, set.omega, &compiled)?;
+                state.current.constraints = set.constraints;
+                state.current.omega = set.omega;
+                state.compiled = compiled;
+            }
+            EditOp::BasisSize(_) | EditOp::Undo => {}
+        }
+        Ok(None)
+    }
+
+    /// Brings the session to `target` (same basis size) with as little work as possible: value
+    /// changes re-solve only, other differences add, remove or modify single constraints; a new ω
+    /// rebuilds.
+    fn sync(&mut self, state: &mut State, target: Snapshot) -> Result<Option<usize>, EditorError> {
+        let compiled = compile_all(state, &target.constraints)?;
+        if target.omega != state.current.omega {
+            *self.session = build_session(self.basis, target.omega, &compiled)?;
+        } else {
+            for c in &state.current.constraints {
+                if !target.constraints.iter().any(|t| t.id == c.id) {
+                    self.session.remove(&c.id)?;
+                }
+            }
+            for (c, cc) in target.constraints.iter().zip(&compiled) {
+                match state.current.constraints.iter().find(|o| o.id == c.id) {
+                    Some(old) if old == c => {}
+                    Some(_) => self.session.modify(cc.clone())?,
+                    None => self.session.add(cc.clone())?,
+                }
+            }
+        }
+        state.current = target;
+        state.compiled = compiled;
+        Ok(None)
+    }
+
+    /// After an edit was applied: if the session's solution is NaN or infinite (values or ω so
+    /// large that `f64` arithmetic overflows), goes back to `before` and returns the error naming
+    /// the constraint, so the editor never holds or shows a non-finite field.
+    fn refuse_non_finite(
+        &mut self,
+        state: &mut State,
+        before: Snapshot,
+    ) -> Result<(), EditorError> {
+        let coefficients = self.session.solve();
+        if coefficients.iter().all(|x| x.is_finite()) {
+            return Ok(());
+        }
+        let mut field = vec![0.0; self.basis.field_dimension()];
+        self.basis.map(&coefficients, &mut field)?;
+        let error = match checked_residuals(&field, &state.compiled, state.current.omega) {
+            Err(error) => EditorError::from(error),
+            Ok(_) => EditorError::Design(tvf_design::DesignError::NotFinite {
+                id: String::new(),
+                problem: "the solved field is not finite".into(),
+                cause: format!("omega is {:e}", state.current.omega),
+            }),
+        };
+        self.sync(state, before)?;
+        Err(error)
     }
 }
 
@@ -382,38 +505,6 @@ fn push_history(state: &mut State, snapshot: Snapshot) {
     state.history.push(snapshot);
 }
 
-/// After an in-place edit: on success records the previous state (if asked), re-solves and
-/// replies with the new frame; on failure restores the session from the unchanged state and
-/// replies with the error.
-fn answer<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    mapper: &mut FieldMapper,
-    outcome: Result<Option<usize>, EditorError>,
-    record: Option<Snapshot>,
-    reply: Reply<Vec<u8>>,
-) {
-    match outcome {
-        Ok(values_of) => {
-            if let Some(previous) = record {
-                push_history(state, previous);
-            }
-            refresh(state, session, mapper, values_of);
-            let _ = reply.send(Ok(frame(state, basis)));
-        }
-        Err(error) => {
-            state.last_gesture = None;
-            // A multi-step edit (undo, load) may have failed half-way: rebuild from the
-            // unchanged state, which was accepted before, so this succeeds.
-            if let Ok(s) = build_session(basis, state.current.omega, &state.compiled) {
-                *session = s;
-            }
-            let _ = reply.send(Err(error));
-        }
-    }
-}
-
 fn compile_all(
     state: &State,
     constraints: &[Constraint],
@@ -431,115 +522,6 @@ fn index_of(state: &State, id: &str) -> Result<usize, EditorError> {
         .iter()
         .position(|c| c.id == id)
         .ok_or_else(|| tvf_design::DesignError::UnknownId { id: id.to_string() }.into())
-}
-
-/// Applies an edit that keeps the basis. The state changes only if the session accepted it.
-/// Returns the index of the constraint if only its values changed.
-fn apply<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    op: EditOp,
-) -> Result<Option<usize>, EditorError> {
-    match op {
-        EditOp::Add(c) => {
-            let compiled = state.assembler.compile(&c)?;
-            session.add(compiled.clone())?;
-            state.current.constraints.push(c);
-            state.compiled.push(compiled);
-        }
-        EditOp::Set(c) => {
-            let i = index_of(state, &c.id)?;
-            let compiled = state.assembler.compile(&c)?;
-            let values_only = state.compiled[i].rows == compiled.rows;
-            session.modify(compiled.clone())?;
-            state.current.constraints[i] = c;
-            state.compiled[i] = compiled;
-            return Ok(values_only.then_some(i));
-        }
-        EditOp::Remove(id) => {
-            let i = index_of(state, &id)?;
-            session.remove(&id)?;
-            state.current.constraints.remove(i);
-            state.compiled.remove(i);
-        }
-        EditOp::Clear => {
-            *session = SplineSession::new(basis, state.current.omega)?;
-            state.current.constraints.clear();
-            state.compiled.clear();
-        }
-        EditOp::Omega(omega) => {
-            *session = build_session(basis, omega, &state.compiled)?;
-            state.current.omega = omega;
-        }
-        EditOp::Load(set) => {
-            let compiled = compile_all(state, &set.constraints)?;
-            *session = build_session(basis, set.omega, &compiled)?;
-            state.current.constraints = set.constraints;
-            state.current.omega = set.omega;
-            state.compiled = compiled;
-        }
-        EditOp::BasisSize(_) | EditOp::Undo => {}
-    }
-    Ok(None)
-}
-
-/// Brings the session to `target` (same basis size) with as little work as possible: value
-/// changes re-solve only, other differences add, remove or modify single constraints; a new ω
-/// rebuilds.
-fn sync<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    target: Snapshot,
-) -> Result<Option<usize>, EditorError> {
-    let compiled = compile_all(state, &target.constraints)?;
-    if target.omega != state.current.omega {
-        *session = build_session(basis, target.omega, &compiled)?;
-    } else {
-        for c in &state.current.constraints {
-            if !target.constraints.iter().any(|t| t.id == c.id) {
-                session.remove(&c.id)?;
-            }
-        }
-        for (c, cc) in target.constraints.iter().zip(&compiled) {
-            match state.current.constraints.iter().find(|o| o.id == c.id) {
-                Some(old) if old == c => {}
-                Some(_) => session.modify(cc.clone())?,
-                None => session.add(cc.clone())?,
-            }
-        }
-    }
-    state.current = target;
-    state.compiled = compiled;
-    Ok(None)
-}
-
-/// After an edit was applied: if the session's solution is NaN or infinite (values or ω so
-/// large that `f64` arithmetic overflows), goes back to `before` and returns the error naming
-/// the constraint, so the editor never holds or shows a non-finite field.
-fn refuse_non_finite<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    before: Snapshot,
-) -> Result<(), EditorError> {
-    let coefficients = session.solve();
-    if coefficients.iter().all(|x| x.is_finite()) {
-        return Ok(());
-    }
-    let mut field = vec![0.0; basis.field_dimension()];
-    basis.map(&coefficients, &mut field)?;
-    let error = match checked_residuals(&field, &state.compiled, state.current.omega) {
-        Err(error) => EditorError::from(error),
-        Ok(_) => EditorError::Design(tvf_design::DesignError::NotFinite {
-            id: String::new(),
-            problem: "the solved field is not finite".into(),
-            cause: format!("omega is {:e}", state.current.omega),
-        }),
-    };
-    sync(state, session, basis, before)?;
-    Err(error)
 }
 
 /// Solves the session and maps the coefficients to the `f32` field: through the drag cache

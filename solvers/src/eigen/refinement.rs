@@ -34,7 +34,7 @@ use super::symmetric_products::{
 };
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
-use crate::kernel_dispatch::{self, multiply_add, Kernel};
+use crate::kernel_dispatch::{fma_dispatch, multiply_add};
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, MatMut, MatRef, Par};
@@ -90,13 +90,13 @@ fn diagonal_chunk_residuals(
     x: &[Row],
     work: &mut [Vec<Row>; 3],
 ) -> Vec<FieldResidual> {
-    kernel_dispatch::run(ChunkResiduals {
-        pencil,
-        lambda,
-        width,
-        x,
-        work,
-    })
+    fma_dispatch!(chunk_residuals(
+        pencil: &ChunkPencil<'_>,
+        lambda: &Row,
+        width: usize,
+        x: &[Row],
+        work: &mut [Vec<Row>; 3],
+    ) -> Vec<FieldResidual>)
 }
 
 /// What [`field_residuals`] needs of the pencil, per chunk of columns.
@@ -111,24 +111,6 @@ struct ChunkPencil<'a> {
     norm_a: f64,
     /// Eigenvalues at most this have no eigenfield.
     floor: f64,
-}
-
-/// [`diagonal_chunk_residuals`] as a [`Kernel`].
-struct ChunkResiduals<'a> {
-    pencil: &'a ChunkPencil<'a>,
-    lambda: &'a Row,
-    width: usize,
-    x: &'a [Row],
-    work: &'a mut [Vec<Row>; 3],
-}
-
-impl Kernel for ChunkResiduals<'_> {
-    type Output = Vec<FieldResidual>;
-
-    #[inline(always)]
-    unsafe fn run<const FUSED: bool>(self) -> Vec<FieldResidual> {
-        chunk_residuals::<FUSED>(self.pencil, self.lambda, self.width, self.x, self.work)
-    }
 }
 
 /// The [`FieldResidual`]s of one packed chunk `x` (`n` rows, `width` columns used) with

@@ -11,7 +11,7 @@
 //! loops are compiled twice, with and without AVX2 + FMA, and the variant is chosen at run time
 //! (`kernel_dispatch.rs`).
 
-use crate::kernel_dispatch::{self, multiply_add, Kernel};
+use crate::kernel_dispatch::{fma_dispatch, multiply_add};
 use crate::packed_rows::{Row, WIDTH as CHUNK};
 use faer::MatRef;
 
@@ -29,23 +29,7 @@ pub(crate) fn inner_add(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]) {
         out.len() == b.ncols() && w.len() == b.nrows(),
         "inner_add: shapes do not match"
     );
-    kernel_dispatch::run(InnerAdd { out, b, w });
-}
-
-/// [`inner_add`] as a [`Kernel`].
-struct InnerAdd<'a> {
-    out: &'a mut [Row],
-    b: MatRef<'a, f64>,
-    w: &'a [Row],
-}
-
-impl Kernel for InnerAdd<'_> {
-    type Output = ();
-
-    #[inline(always)]
-    unsafe fn run<const FUSED: bool>(self) {
-        inner_add_body::<FUSED>(self.out, self.b, self.w);
-    }
+    fma_dispatch!(inner_add_body(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]));
 }
 
 /// `z[i] −= Σ_k b[i, k] · c[k]` for `b: rows × m` (column-major, contiguous columns),
@@ -55,52 +39,14 @@ pub(crate) fn subtract(z: &mut [Row], b: MatRef<'_, f64>, c: &[Row]) {
         c.len() == b.ncols() && z.len() == b.nrows(),
         "subtract: shapes do not match"
     );
-    kernel_dispatch::run(Subtract { z, b, c });
-}
-
-/// [`subtract`] as a [`Kernel`]: with intrinsics ([`subtract_fma`]) where the CPU has FMA.
-struct Subtract<'a> {
-    z: &'a mut [Row],
-    b: MatRef<'a, f64>,
-    c: &'a [Row],
-}
-
-impl Kernel for Subtract<'_> {
-    type Output = ();
-
-    #[inline(always)]
-    unsafe fn run<const FUSED: bool>(self) {
-        #[cfg(target_arch = "x86_64")]
-        if FUSED {
-            // SAFETY: `FUSED` only where the CPU has AVX2 + FMA (the kernel's contract).
-            unsafe { subtract_fma(self.z, self.b, self.c) };
-            return;
-        }
-        subtract_body::<false>(self.z, self.b, self.c);
-    }
+    fma_dispatch!(subtract_fma(z, b, c) else subtract_body::<false>(z, b, c));
 }
 
 /// `gram[a] += Σ_i z[i][a] · w[i]` for packed rows `z` and `w` (`rows` each): `Zᵀ W` of two
 /// packed blocks (`8 × 8`, row `a` in `gram[a]`).
 pub(crate) fn gram_add(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]) {
     assert!(z.len() == w.len(), "gram_add: shapes do not match");
-    kernel_dispatch::run(GramAdd { gram, z, w });
-}
-
-/// [`gram_add`] as a [`Kernel`].
-struct GramAdd<'a> {
-    gram: &'a mut [Row; CHUNK],
-    z: &'a [Row],
-    w: &'a [Row],
-}
-
-impl Kernel for GramAdd<'_> {
-    type Output = ();
-
-    #[inline(always)]
-    unsafe fn run<const FUSED: bool>(self) {
-        gram_add_body::<FUSED>(self.gram, self.z, self.w);
-    }
+    fma_dispatch!(gram_add_body(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]));
 }
 
 #[inline(always)]

@@ -231,10 +231,6 @@ struct RowSweep<'s, 'a> {
     project: &'s [MatRef<'a, f64>],
     mass: &'s [f64],
     with_gram: bool,
-    /// The chunk of the current block of rows, packed.
-    block: Vec<Row>,
-    /// The same rows times `M`.
-    weighted: Vec<Row>,
     /// `Bᵀ M z` for each basis `B` of `project`, per chunk of columns of `z` (`q` packed rows).
     sums: Vec<Vec<Vec<Row>>>,
     squared_norms: Vec<f64>,
@@ -259,15 +255,12 @@ impl<'s, 'a> RowSweep<'s, 'a> {
             .iter()
             .map(|b| vec![vec![[0.0; CHUNK]; b.ncols()]; chunks])
             .collect();
-        let block = vec![[0.0; CHUNK]; SWEEP_ROWS.min(z.nrows())];
         Self {
             subtract,
             packed_coefficients,
             project,
             mass,
             with_gram,
-            weighted: block.clone(),
-            block,
             sums,
             squared_norms: vec![0.0; z.ncols()],
             gram_rows: [[0.0; CHUNK]; CHUNK],
@@ -277,6 +270,9 @@ impl<'s, 'a> RowSweep<'s, 'a> {
     /// Sweeps the rows of `z`, which are rows `first_row..` of the bases and the mass.
     fn run(mut self, mut z: MatMut<'_, f64>, first_row: usize) -> Sweep {
         let r = z.ncols();
+        // The chunk of the current block of rows, packed, and the same rows times `M`.
+        let mut block = vec![[0.0; CHUNK]; SWEEP_ROWS.min(z.nrows())];
+        let mut weighted = block.clone();
         let mut start = 0;
         while start < z.nrows() {
             let rows = SWEEP_ROWS.min(z.nrows() - start);
@@ -287,7 +283,8 @@ impl<'s, 'a> RowSweep<'s, 'a> {
                     .rb_mut()
                     .subcols_mut(first, width)
                     .subrows_mut(start, rows);
-                self.chunk(part, first_row + start, chunk);
+                let (values, weights) = (&mut block[..rows], &mut weighted[..rows]);
+                self.chunk(part, first_row + start, chunk, values, weights);
             }
             start += rows;
         }
@@ -317,13 +314,19 @@ impl<'s, 'a> RowSweep<'s, 'a> {
     }
 
     /// One chunk `part` of a block of rows of `z` (its rows are rows `global..` of the bases
-    /// and the mass; its columns the chunk `chunk`): packed, updated by `subtract`, its M-norms
-    /// and products with the bases of `project` (and its Gram matrix) added to the sums, and
-    /// written back.
-    fn chunk(&mut self, part: MatMut<'_, f64>, global: usize, chunk: usize) {
+    /// and the mass; its columns the chunk `chunk`): packed into `values`, updated by
+    /// `subtract`, weighted by `M` into `weighted`, its M-norms and products with the bases of
+    /// `project` (and its Gram matrix) added to the sums, and written back.
+    fn chunk(
+        &mut self,
+        part: MatMut<'_, f64>,
+        global: usize,
+        chunk: usize,
+        values: &mut [Row],
+        weighted: &mut [Row],
+    ) {
         let (rows, width) = (part.nrows(), part.ncols());
         let first = chunk * CHUNK;
-        let values = &mut self.block[..rows];
         let columns: Vec<&[f64]> = (0..width).map(|j| contiguous(part.rb().col(j))).collect();
         pack_columns(&columns, values);
         for ((s, _), coefficients) in self.subtract.iter().zip(&self.packed_coefficients) {
@@ -332,14 +335,14 @@ impl<'s, 'a> RowSweep<'s, 'a> {
             }
         }
         let mut chunk_norms = [0.0; CHUNK];
-        for (i, (row, w)) in values.iter().zip(self.weighted.iter_mut()).enumerate() {
+        for (i, (row, w)) in values.iter().zip(weighted.iter_mut()).enumerate() {
             let m = self.mass[global + i];
             for j in 0..CHUNK {
                 w[j] = m * row[j];
                 chunk_norms[j] += w[j] * row[j];
             }
         }
-        let weighted = &self.weighted[..rows];
+        let weighted = &*weighted;
         if self.with_gram {
             tall_kernels::gram_add(&mut self.gram_rows, values, weighted);
         }
