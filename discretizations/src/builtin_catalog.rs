@@ -1,10 +1,12 @@
 //! tvf's own discretizations, one [`CatalogEntry`] each, in the order `tvf discretizations`
 //! lists them ([`crate::Catalog::builtin`]). A new discretization of tvf's is one more entry
-//! here (and one suite line in `conformance/tests/conformance.rs`).
+//! here (and one suite line in `conformance/tests/conformance/catalog_suites.rs`).
 
 use crate::catalog_entry::{BoxedComplex, CatalogEntry};
 use crate::MassLumping::{Barycentric, Voronoi};
-use crate::{Conforming, DecComplex, Nonconforming, WhitneyGalerkin};
+use crate::{
+    Conforming, DecComplex, Nonconforming, PolygonDec, WhitneyGalerkin, DEFAULT_STABILISATION,
+};
 use tvf_core::discretization::BoundaryCondition::{self, Normal, Tangential};
 use tvf_core::discretization::DiscretizationError;
 use tvf_core::TriangleMesh;
@@ -113,20 +115,45 @@ const BUILTIN: [Builtin; 9] = [
 /// What a DEC entry needs of the mesh.
 const DELAUNAY: &str = "a Delaunay mesh: cot α + cot β > 0 on every edge (⋆1 positive)";
 
-/// tvf's entries as catalog entries, [`crate::DEFAULT_DISCRETIZATION`] first: both boundary
-/// conditions each, with what they fix.
+/// tvf's entries as catalog entries, [`crate::DEFAULT_DISCRETIZATION`] first and polygonal DEC
+/// last: both boundary conditions each, with what they fix.
 pub(crate) fn builtin_entries() -> Vec<CatalogEntry> {
     BUILTIN
         .iter()
         .map(|builtin| {
-            let [tangential, normal] = builtin.family.boundary_meanings();
-            let entry = CatalogEntry::new(builtin.id, builtin.description, builtin.build)
-                .with_boundary_condition(Tangential, tangential)
-                .with_boundary_condition(Normal, normal);
+            let entry = CatalogEntry::new(builtin.id, builtin.description, builtin.build);
+            let entry = with_both_conditions(entry, builtin.family);
             match builtin.family {
                 Family::Dec => entry.with_preconditions(DELAUNAY).needing_delaunay(),
                 _ => entry,
             }
         })
+        .chain([polygon_dec_entry(DEFAULT_STABILISATION)])
         .collect()
+}
+
+/// `entry` offering both boundary conditions, `tangential` (the default) and `normal`, with
+/// what each fixes in `family`.
+fn with_both_conditions(entry: CatalogEntry, family: Family) -> CatalogEntry {
+    let [tangential, normal] = family.boundary_meanings();
+    entry
+        .with_boundary_condition(Tangential, tangential)
+        .with_boundary_condition(Normal, normal)
+}
+
+/// The catalog entry of polygonal DEC ([`PolygonDec`]) with stabilisation weight `beta`, id
+/// [`crate::polygon_dec_id`]`(beta)` (`polygon-dec` for the built-in `β = 1`); it builds on
+/// triangle and polygon meshes and has DEC's boundary conditions. Add it to a catalog for
+/// another `β`.
+pub fn polygon_dec_entry(beta: f64) -> CatalogEntry {
+    let entry = CatalogEntry::on_any_mesh(
+        crate::polygon_dec_id(beta),
+        format!(
+            "polygonal DEC (de Goes, Butts, Desbrun 2020) on polygon and triangle meshes: 0-forms on vertices, 1-forms on edges, 2-forms on faces; ⋆0 polygon areas split among corners, ⋆1 = Σ A_f U_fᵀU_f + β P_fᵀP_f (sparse, β = {beta}), ⋆2 = 1/area; one vector per polygon (the sharp)"
+        ),
+        move |mesh, boundary| -> Result<BoxedComplex, _> {
+            Ok(Box::new(PolygonDec::with_boundary(mesh, boundary, beta)?))
+        },
+    );
+    with_both_conditions(entry, Family::Dec)
 }

@@ -38,9 +38,9 @@
 //!   wait in a room of [`MAX_WAITING_CONNECTIONS`] seats in which a new one evicts the oldest
 //!   ([`crate::waiting_room`]), so they cannot keep the page's requests out; answered requests
 //!   are capped at [`MAX_CONNECTIONS`], uploads may not take the last [`RESERVED_CONNECTIONS`],
-//!   and threads at [`MAX_THREADS`] (503 beyond). `tests/security.rs` drives each of these over
-//!   loopback (foreign `Host`/`Origin`, no token, stalled uploads, idle connections, a stress
-//!   run with stalled uploads).
+//!   and threads at [`MAX_THREADS`] (503 beyond). `tests/editor/security.rs` drives each of
+//!   these over loopback (foreign `Host`/`Origin`, no token, stalled uploads, idle connections,
+//!   a stress run with stalled uploads).
 //!
 //! Not in the model: TLS (the traffic never leaves the machine), and a local attacker who can
 //! read the user's terminal or memory.
