@@ -220,7 +220,7 @@ fn serve(
     let mut mapper = FieldMapper::new(basis);
     let mut session = match open_session(state, basis, &mut mapper, rebuild, started) {
         Ok(session) => session,
-        Err(failed) => return failed,
+        Err(failed) => return *failed,
     };
     while let Ok(request) = inbox.recv() {
         match request {
@@ -263,22 +263,23 @@ fn serve(
 }
 
 /// The session of `basis` for the state `rebuild` leads to, made current and solved; answers
-/// the edit that asked for the rebuild (if any) and tells a starting engine that it runs.
+/// the edit that asked for the rebuild (if any) and tells a starting engine that it runs. On
+/// failure, what [`serve`] returns (boxed: an error and a waiting edit are large).
 fn open_session<'b>(
     state: &mut State,
     basis: &'b ReducedBasis,
     mapper: &mut FieldMapper,
     rebuild: Rebuild,
     started: &mut Option<Sender<Result<(), EditorError>>>,
-) -> Result<SplineSession<'b>, Served> {
+) -> Result<SplineSession<'b>, Box<Served>> {
     let Rebuild { target, edit } = rebuild;
     let compiled = match compile_all(state, &target.constraints) {
         Ok(c) => c,
-        Err(e) => return Err(Served::Failed(e, edit)),
+        Err(e) => return Err(Box::new(Served::Failed(e, edit))),
     };
     let mut session = match build_session(basis, target.omega, &compiled) {
         Ok(s) => s,
-        Err(e) => return Err(Served::Failed(e, edit)),
+        Err(e) => return Err(Box::new(Served::Failed(e, edit))),
     };
     // Going back to the state before a refused basis-size change (no edit waits, and the
     // engine has started) shows the same field again: it keeps its version.
