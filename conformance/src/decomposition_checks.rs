@@ -9,7 +9,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator};
 use tvf_core::mesh::Mesh;
-use tvf_discretizations::HodgeDecomposer;
+use tvf_discretizations::{HodgeDecomposer, HodgeParts};
 
 /// A seeded random field of the complex's space: `n1` coefficients uniform in `[−1, 1]`, zero
 /// on the Dirichlet field nodes (relative forms: boundary edges).
@@ -55,8 +55,20 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
         Ok(parts) => parts,
         Err(e) => return vec![CheckOutcome::failed("hodge_decomposition", e.to_string())],
     };
+    let mut outcomes = orthogonality_outcomes(complex, &field, &parts);
+    outcomes.extend(operator_outcomes(complex, &field, &parts));
+    outcomes.extend(known_parts_outcomes(complex, &decomposer, &parts, seed));
+    outcomes
+}
+
+/// The `parts` of `field` are mutually `M1`-orthogonal and sum back to it.
+fn orthogonality_outcomes<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    field: &[f64],
+    parts: &HodgeParts,
+) -> Vec<CheckOutcome> {
     let mut outcomes = Vec::new();
-    let norm = m1_norm(complex, &field);
+    let norm = m1_norm(complex, field);
     let named = [
         ("integrable", &parts.integrable),
         ("co-integrable", &parts.cointegrable),
@@ -92,14 +104,25 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
         1e-12,
         format!("max |Σ parts − v| / (1 + |v|) = {worst_sum:e}"),
     ));
+    outcomes
+}
+
+/// The curl kills the integrable and the harmonic part of `field`, the divergence the
+/// co-integrable and the harmonic part, and `L` the harmonic part (relative to how large the
+/// operator makes a field of the part's size).
+fn operator_outcomes<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    field: &[f64],
+    parts: &HodgeParts,
+) -> Vec<CheckOutcome> {
     let curl = complex.co_potential_curl();
     let divergence = complex.potential_divergence();
     let laplacian = complex.hodge_laplacian();
     // Operator scale: how large div/curl/L of a unit-size field can be.
     let scale = |operator: &LinearOperator, x: &[f64]| {
-        max_abs(&operator.apply(&field)) + max_abs(&operator.apply(x))
+        max_abs(&operator.apply(field)) + max_abs(&operator.apply(x))
     };
-    for (what, matrix, part) in [
+    [
         ("curl of the integrable part", curl, &parts.integrable),
         (
             "divergence of the co-integrable part",
@@ -117,17 +140,29 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
             laplacian,
             &parts.harmonic,
         ),
-    ] {
+    ]
+    .into_iter()
+    .map(|(what, matrix, part)| {
         let value = max_abs(&matrix.apply(part));
         let reference = scale(matrix, part);
-        outcomes.push(CheckOutcome::at_most(
+        CheckOutcome::at_most(
             what,
             value,
             1e-9 * reference,
             format!("{what}: {value:e} (scale {reference:e})"),
-        ));
-    }
-    // Known parts: v = d0 f − M1⁻¹ d1ᵀ g (+ harmonic h from the random field) is recovered.
+        )
+    })
+    .collect()
+}
+
+/// Known parts: `v = d0 f − M1⁻¹ d1ᵀ g + h` (seeded random `f`, `g`; `h` the harmonic part of
+/// the random field's `parts`) is split back into exactly these parts.
+fn known_parts_outcomes<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    decomposer: &HodgeDecomposer<'_, H>,
+    parts: &HodgeParts,
+    seed: u64,
+) -> Vec<CheckOutcome> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
     let f: Vec<f64> = (0..complex.potential_dimension())
         .map(|_| rng.random_range(-1.0..1.0))
@@ -137,32 +172,31 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
         .collect();
     let grad = complex.gradient_field(&f);
     let cograd = complex.co_gradient_field(&g);
-    let composed: Vec<f64> = (0..field.len())
+    let composed: Vec<f64> = (0..grad.len())
         .map(|i| grad[i] + cograd[i] + parts.harmonic[i])
         .collect();
     let again = match decomposer.decompose(&composed) {
         Ok(again) => again,
-        Err(e) => {
-            outcomes.push(CheckOutcome::failed("known parts recovered", e.to_string()));
-            return outcomes;
-        }
+        Err(e) => return vec![CheckOutcome::failed("known parts recovered", e.to_string())],
     };
     let scale = m1_norm(complex, &composed);
-    for (what, got, expected) in [
+    [
         ("integrable", &again.integrable, &grad),
         ("co-integrable", &again.cointegrable, &cograd),
         ("harmonic", &again.harmonic, &parts.harmonic),
-    ] {
+    ]
+    .into_iter()
+    .map(|(what, got, expected)| {
         let difference: Vec<f64> = got.iter().zip(expected).map(|(a, b)| a - b).collect();
         let error = m1_norm(complex, &difference);
-        outcomes.push(CheckOutcome::at_most(
+        CheckOutcome::at_most(
             format!("known {what} part recovered"),
             error,
             1e-9 * scale,
             format!("{what} part not recovered: error {error:e} (|v| = {scale:e})"),
-        ));
-    }
-    outcomes
+        )
+    })
+    .collect()
 }
 
 /// The checks of [`measure_hodge_decomposition`], asserted.

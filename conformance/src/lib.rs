@@ -98,6 +98,7 @@
 //! Dense eigenvalue checks run when `n1 ≤` [`corpus::DENSE_LIMIT`], dense eigenvector checks when
 //! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; the kernel dimension on larger and real meshes is checked
 //! through the rank of harmonic projections.
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod algebra_checks;

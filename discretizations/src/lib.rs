@@ -107,6 +107,7 @@
 //! assert_eq!(complex.dirichlet_energy().shape(), (640, 640));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 mod boundary_conditions;

@@ -20,6 +20,7 @@
 //! assert!(results.rows[1].integrable_error < results.rows[0].integrable_error);
 //! # Ok::<(), tvf_figures::FigureError>(())
 //! ```
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod brandt2017;

@@ -3,6 +3,7 @@
 //! ```text
 //! cargo run --release -p tvf-papers -- brandt2017 --meshes ../shared/meshes --out DIR [--large] [--quiet]
 //! ```
+#![forbid(unsafe_code)]
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;

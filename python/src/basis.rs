@@ -1,15 +1,15 @@
-//! `tvf.basis`: the Fourier basis of a complex; and the way back from Python's basis arrays to a
-//! [`SpectralBasis`] for the functions that work in a basis.
+//! `tvf.basis`: the Fourier basis of a complex (the way back from Python's arrays is
+//! `basis_parts.rs`).
 
-use crate::arrays::{face_fields_to_numpy, mat_to_numpy, numpy_to_mat};
+use crate::arrays::{face_fields_to_numpy, mat_to_numpy};
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
 use crate::progress::Progress;
-use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_spectral::{compute_basis, BasisRequest, FieldFamily, SpectralBasis};
+use tvf_core::discretization::HodgeOperators;
+use tvf_spectral::{compute_basis, BasisRequest};
 
 /// The `k` lowest eigenfields of `L` (the complete basis if `k ≥ n1`), as a dict:
 /// `eigenvalues` (`k`), `families` (list of `harmonic`/`integrable`/`cointegrable`),
@@ -67,51 +67,4 @@ pub fn basis<'py>(
     out.set_item("discretization", c.id())?;
     out.set_item("seconds", basis.report().map_or(0.0, |r| r.seconds))?;
     Ok(out)
-}
-
-/// Basis arrays as Python passes them: eigenvalues, families, `n1 × k` coefficients.
-pub type BasisParts<'py> = (
-    PyReadonlyArray1<'py, f64>,
-    Vec<String>,
-    PyReadonlyArray2<'py, f64>,
-);
-
-/// A [`SpectralBasis`] of `complex` from Python's arrays (eigenvalues, family names,
-/// `n1 × k` coefficients), checked against the complex.
-pub fn spectral_basis(
-    complex: &dyn HodgeComplex,
-    eigenvalues: PyReadonlyArray1<'_, f64>,
-    families: Vec<String>,
-    coefficients: PyReadonlyArray2<'_, f64>,
-) -> PyResult<SpectralBasis> {
-    let families = families
-        .iter()
-        .map(|name| match name.as_str() {
-            "harmonic" => Ok(FieldFamily::Harmonic),
-            "integrable" => Ok(FieldFamily::Integrable),
-            "cointegrable" => Ok(FieldFamily::Cointegrable),
-            other => Err(tvf_error(format!(
-                "basis: '{other}' is not a family: harmonic, integrable or cointegrable"
-            ))),
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    let fields = numpy_to_mat(&coefficients);
-    if fields.nrows() != complex.field_dimension() {
-        return Err(tvf_error(format!(
-            "basis: its fields have {} coefficients, the discretization '{}' has {}",
-            fields.nrows(),
-            complex.id(),
-            complex.field_dimension()
-        )));
-    }
-    if fields.col_iter().any(|c| c.iter().any(|x| !x.is_finite())) {
-        return Err(tvf_error("basis: its fields contain non-finite values"));
-    }
-    SpectralBasis::new(
-        eigenvalues.as_slice()?.to_vec(),
-        families,
-        fields,
-        complex.m1().clone(),
-    )
-    .map_err(|e| with_context("basis", &e))
 }

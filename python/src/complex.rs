@@ -2,7 +2,7 @@
 //! researcher assembled (`Complex.from_matrices`), behind the same seam.
 
 use crate::arrays::{csr_from_parts, CsrParts};
-use crate::basis::{spectral_basis, BasisParts};
+use crate::basis_parts::{spectral_basis, BasisParts};
 use crate::errors::{from_error, tvf_error};
 use crate::masses::{
     direct_co_potential_mass, mass_description, mass_from_input, Given, MassInput,

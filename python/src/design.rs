@@ -1,7 +1,7 @@
 //! `tvf.spline` and `tvf.design`: fields from constraint sets, in the JSON format of the
 //! command line's constraint files (Python passes the dict serialised as JSON).
 
-use crate::basis::BasisParts;
+use crate::basis_parts::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
 use numpy::IntoPyArray;

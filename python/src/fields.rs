@@ -1,7 +1,7 @@
 //! Field functions: the Hodge decomposition, Fourier coefficients, spectral filters and
 //! compression, on field coefficient vectors (`n1` entries; Python converts face vectors).
 
-use crate::basis::BasisParts;
+use crate::basis_parts::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};

@@ -3,11 +3,13 @@
 //! into `scipy.sparse.csr_matrix`, checks dtypes and shapes, and carries the documentation.
 //! Long computations release the GIL; errors are `tvf.TvfError` with the message the `tvf`
 //! command line prints for the same problem.
+#![forbid(unsafe_code)]
 
 use pyo3::prelude::*;
 
 mod arrays;
 mod basis;
+mod basis_parts;
 mod check;
 mod complex;
 mod convergence;

@@ -1,9 +1,21 @@
 //! Dense Cholesky factorization `A = L Lᵀ` with O(n²) modifications: rank-one update and
 //! downdate, and bordered updates (append or remove a row and column). Used by sessions that
 //! grow or shrink a small SPD system one constraint at a time (splines, soft design).
+//!
+//! The arithmetic is faer's: its `LLᵀ` factorization, its rank update of the factor (for the
+//! updates, the downdate and the removal of a row and column) and its triangular solves (for
+//! the solves and the new row of a bordered factor, which faer 0.24 does not insert). This
+//! type keeps the factor, checks its input, keeps the factor unchanged when an update fails,
+//! and turns faer's failures into [`SolverError`]s.
 
 use crate::error::SolverError;
-use faer::{Mat, MatRef, Side};
+use faer::linalg::cholesky::llt::factor::LltError;
+use faer::linalg::cholesky::llt::update;
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::reborrow::ReborrowMut;
+use faer::{Col, Mat, MatMut, MatRef, Par, Side};
 
 /// Lower-triangular Cholesky factor `L` of a dense symmetric positive-definite `n × n` matrix.
 #[derive(Debug, Clone)]
@@ -66,12 +78,10 @@ impl DenseCholesky {
             });
         }
         let llt = a.llt(Side::Lower).map_err(|e| match e {
-            faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
-                SolverError::NotPositiveDefinite {
-                    pivot: index,
-                    value: f64::NAN,
-                }
-            }
+            LltError::NonPositivePivot { index } => SolverError::NotPositiveDefinite {
+                pivot: index,
+                value: f64::NAN,
+            },
         })?;
         Ok(Self {
             l: llt.L().to_owned(),
@@ -94,7 +104,9 @@ impl DenseCholesky {
     pub fn rank_one_update(&mut self, v: &[f64]) -> Result<(), SolverError> {
         check_len("rank_one_update vector", self.dimension(), v.len())?;
         check_finite("rank_one_update vector", v)?;
-        update_in_place(&mut self.l, 0, v.to_vec());
+        let mut l = self.l.clone();
+        rank_one_update(l.as_mut(), v, 1.0)?;
+        self.l = l;
         Ok(())
     }
 
@@ -116,27 +128,9 @@ impl DenseCholesky {
                 value: 1.0 - norm2,
             });
         }
-        let mut x = v.to_vec();
-        for k in 0..n {
-            let lkk = self.l[(k, k)];
-            let r2 = lkk * lkk - x[k] * x[k];
-            if r2 <= 0.0 {
-                // excluded by the check above except for rounding at the very edge
-                return Err(SolverError::NotPositiveDefinite {
-                    pivot: k,
-                    value: r2,
-                });
-            }
-            let r = r2.sqrt();
-            let c = r / lkk;
-            let s = x[k] / lkk;
-            self.l[(k, k)] = r;
-            for i in k + 1..n {
-                let lik = (self.l[(i, k)] - s * x[i]) / c;
-                x[i] = c * x[i] - s * lik;
-                self.l[(i, k)] = lik;
-            }
-        }
+        let mut l = self.l.clone();
+        rank_one_update(l.as_mut(), v, -1.0)?;
+        self.l = l;
         Ok(())
     }
 
@@ -149,6 +143,8 @@ impl DenseCholesky {
         let n = self.dimension();
         check_len("append column (n + 1 entries)", n + 1, column.len())?;
         check_finite("append column", column)?;
+        // The new row of L is L⁻¹ a (a: the column above its diagonal), its diagonal entry
+        // √(a_nn − ‖L⁻¹ a‖²).
         let mut row = column[..n].to_vec();
         self.forward_substitute(&mut row);
         let d2 = column[n] - row.iter().map(|x| x * x).sum::<f64>();
@@ -158,18 +154,19 @@ impl DenseCholesky {
                 value: d2,
             });
         }
-        let mut l = Mat::<f64>::zeros(n + 1, n + 1);
-        l.as_mut().submatrix_mut(0, 0, n, n).copy_from(&self.l);
-        for (j, value) in row.iter().enumerate() {
-            l[(n, j)] = *value;
-        }
-        l[(n, n)] = d2.sqrt();
-        self.l = l;
+        let diagonal = d2.sqrt();
+        self.l
+            .resize_with(n + 1, n + 1, |i, j| match (i == n, j == n) {
+                (true, true) => diagonal,
+                (true, false) => row[j],
+                _ => 0.0,
+            });
         Ok(())
     }
 
-    /// Removes row and column `index` from `A` (the factor of the remaining matrix is obtained
-    /// with a rank-one update of the trailing block). O((n − index)²) plus a copy.
+    /// Removes row and column `index` from `A`: the factor of the remaining matrix is `L`
+    /// without them, its trailing block updated by the removed column's part below the
+    /// diagonal. O((n − index)²) plus a copy.
     ///
     /// Errors: [`SolverError::DimensionMismatch`] if `index ≥ n`.
     pub fn remove(&mut self, index: usize) -> Result<(), SolverError> {
@@ -183,8 +180,13 @@ impl DenseCholesky {
         }
         let keep = |i: usize| if i < index { i } else { i + 1 };
         let mut l = Mat::from_fn(n - 1, n - 1, |i, j| self.l[(keep(i), keep(j))]);
-        let v: Vec<f64> = (index + 1..n).map(|i| self.l[(i, index)]).collect();
-        update_in_place(&mut l, index, v);
+        let removed: Vec<f64> = (index + 1..n).map(|i| self.l[(i, index)]).collect();
+        let trailing = n - 1 - index;
+        rank_one_update(
+            l.as_mut().submatrix_mut(index, index, trailing, trailing),
+            &removed,
+            1.0,
+        )?;
         self.l = l;
         Ok(())
     }
@@ -204,45 +206,33 @@ impl DenseCholesky {
     pub fn solve_in_place(&self, rhs: &mut [f64]) -> Result<(), SolverError> {
         let n = self.dimension();
         check_len("solve right-hand side", n, rhs.len())?;
-        self.forward_substitute(rhs);
-        for i in (0..n).rev() {
-            let mut sum = rhs[i];
-            for k in i + 1..n {
-                sum -= self.l[(k, i)] * rhs[k];
-            }
-            rhs[i] = sum / self.l[(i, i)];
-        }
+        let mut x = MatMut::from_column_major_slice_mut(rhs, n, 1);
+        solve_lower_triangular_in_place(self.l.as_ref(), x.rb_mut(), Par::Seq);
+        solve_upper_triangular_in_place(self.l.transpose(), x, Par::Seq);
         Ok(())
     }
 
     /// `x ← L⁻¹ x`.
     fn forward_substitute(&self, x: &mut [f64]) {
         let n = self.dimension();
-        for j in 0..n {
-            x[j] /= self.l[(j, j)];
-            let xj = x[j];
-            for i in j + 1..n {
-                x[i] -= self.l[(i, j)] * xj;
-            }
-        }
+        let x = MatMut::from_column_major_slice_mut(x, n, 1);
+        solve_lower_triangular_in_place(self.l.as_ref(), x, Par::Seq);
     }
 }
 
-/// Rank-one update `L Lᵀ + v vᵀ` of the trailing block `L[start.., start..]`, where `v` has
-/// length `n − start` (Givens-like hyperbolic-free update, always stable).
-fn update_in_place(l: &mut Mat<f64>, start: usize, mut x: Vec<f64>) {
-    let n = l.nrows();
-    for k in start..n {
-        let xk = x[k - start];
-        let lkk = l[(k, k)];
-        let r = lkk.hypot(xk);
-        let c = r / lkk;
-        let s = xk / lkk;
-        l[(k, k)] = r;
-        for i in k + 1..n {
-            let lik = (l[(i, k)] + s * x[i - start]) / c;
-            x[i - start] = c * x[i - start] - s * lik;
-            l[(i, k)] = lik;
+/// `L ← chol(L Lᵀ + alpha · v vᵀ)` in place (faer's rank-one update of a Cholesky factor).
+///
+/// Errors: [`SolverError::NotPositiveDefinite`] when rounding leaves a pivot that is not
+/// positive (`L` is then clobbered: callers update a copy).
+fn rank_one_update(l: MatMut<'_, f64>, v: &[f64], alpha: f64) -> Result<(), SolverError> {
+    let mut w = Mat::from_fn(v.len(), 1, |i, _| v[i]);
+    let mut alpha = Col::from_fn(1, |_| alpha);
+    update::rank_r_update_clobber(l, w.as_mut(), alpha.as_mut().as_diagonal_mut()).map_err(|e| {
+        match e {
+            LltError::NonPositivePivot { index } => SolverError::NotPositiveDefinite {
+                pivot: index,
+                value: f64::NAN,
+            },
         }
-    }
+    })
 }

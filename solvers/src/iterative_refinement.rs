@@ -173,7 +173,6 @@ pub fn refined_solve(
     b: &[f64],
     solve: impl Fn(&[f64]) -> Vec<f64>,
 ) -> (Vec<f64>, SolveReport) {
-    let dot = |a: &[f64], c: &[f64]| a.iter().zip(c).map(|(x, y)| x * y).sum::<f64>();
     let norm_b = dot(b, b).sqrt();
     if norm_b == 0.0 {
         return (
@@ -228,14 +227,7 @@ pub fn refined_solve(
                     x = best_x;
                     residuals.push(best);
                 }
-                let rounding_floor = rounding_floor(&apply, &x, norm_b);
-                return (
-                    x,
-                    SolveReport {
-                        residuals,
-                        rounding_floor,
-                    },
-                );
+                return finished(x, residuals, &apply, norm_b);
             }
             best = true_residual;
             best_x.clone_from(&x);
@@ -261,7 +253,18 @@ pub fn refined_solve(
             *last = dot(&r, &r).sqrt() / norm_b;
         }
     }
-    let rounding_floor = rounding_floor(&apply, &x, norm_b);
+    finished(x, residuals, &apply, norm_b)
+}
+
+/// The refined solution `x` with its report: the relative `residuals` so far and the rounding
+/// floor of `x` (`apply(p)` = `A p`, `norm_b` = `‖b‖`).
+fn finished(
+    x: Vec<f64>,
+    residuals: Vec<f64>,
+    apply: &impl Fn(&[f64]) -> Vec<f64>,
+    norm_b: f64,
+) -> (Vec<f64>, SolveReport) {
+    let rounding_floor = rounding_floor(apply, &x, norm_b);
     (
         x,
         SolveReport {
@@ -269,6 +272,11 @@ pub fn refined_solve(
             rounding_floor,
         },
     )
+}
+
+/// `aᵀ c`.
+fn dot(a: &[f64], c: &[f64]) -> f64 {
+    a.iter().zip(c).map(|(x, y)| x * y).sum::<f64>()
 }
 
 #[cfg(test)]

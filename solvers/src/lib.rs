@@ -43,6 +43,7 @@ mod error;
 mod factor_parallelism;
 mod huge_pages;
 pub mod iterative_refinement;
+mod kernel_dispatch;
 pub mod ordering;
 mod packed_ldlt_solve;
 mod packed_rows;

@@ -10,7 +10,7 @@
 //! columns of a supernode go in groups of four (each row below them is loaded and stored once
 //! per group, not once per column), the diagonal scaling is folded
 //! into the forward pass, the permutation is applied while packing, and the loops are compiled
-//! with and without AVX2 + FMA (chosen at run time). Groups of six or eight columns, and an
+//! with and without AVX2 + FMA (chosen at run time, `kernel_dispatch.rs`). Groups of six or eight columns, and an
 //! AVX-512 build of the loops, were slower (timings in `docs/performance.md`).
 
 use faer::perm::PermRef;
@@ -18,7 +18,8 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
 use faer::MatMut;
 
-use crate::packed_rows::{has_avx2_fma, multiply_add, Row, WIDTH};
+use crate::kernel_dispatch::{fma_dispatch, multiply_add};
+use crate::packed_rows::{Row, WIDTH};
 
 /// Overwrites `rhs` (`n × r`) with the solution of `P L D Lᵀ Pᵀ X = rhs` for the supernodal
 /// factor (`symbolic`, `values`) and the fill-reducing permutation `perm` (`None`: identity;
@@ -109,19 +110,7 @@ fn solve_packed_with(
 
 /// `x ← (L D Lᵀ)⁻¹ x` on packed rows.
 fn solve_rows(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    #[cfg(target_arch = "x86_64")]
-    if has_avx2_fma() {
-        // SAFETY: the CPU supports the features the function is compiled for.
-        unsafe { solve_rows_fma(factor, x) };
-        return;
-    }
-    solve_rows_body::<false>(factor, x);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn solve_rows_fma(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    solve_rows_body::<true>(factor, x);
+    fma_dispatch!(solve_rows_body(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
 }
 
 /// Columns of a supernode handled together: their values stay in registers while every row

@@ -1,36 +1,14 @@
 //! Blocks of vectors packed in rows of [`WIDTH`] values (one 64-byte cache line per row): the
-//! layout of the solver's hand-written loops (sparse products, Gram–Schmidt, triangular solves),
-//! and the run-time choice of their AVX2 + FMA variants (the workspace is built for the
-//! baseline x86-64 target, so each loop is compiled twice: portable and with AVX2 + FMA).
+//! layout of the solver's hand-written loops (sparse products, Gram–Schmidt, triangular solves;
+//! their two compilations are chosen in `kernel_dispatch.rs`).
+
+use crate::kernel_dispatch::fma_dispatch;
 
 /// Values per packed row.
 pub(crate) const WIDTH: usize = 8;
 
 /// The values of up to [`WIDTH`] columns in one row (missing columns 0).
 pub(crate) type Row = [f64; WIDTH];
-
-/// Whether the loops compiled with AVX2 + FMA may run on this CPU.
-pub(crate) fn has_avx2_fma() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
-}
-
-/// `a + x · y`, fused when `FUSED` (only in functions compiled with FMA: elsewhere `mul_add`
-/// would call a slow library routine).
-#[inline(always)]
-pub(crate) fn multiply_add<const FUSED: bool>(x: f64, y: f64, a: f64) -> f64 {
-    if FUSED {
-        x.mul_add(y, a)
-    } else {
-        a + x * y
-    }
-}
 
 /// The values of a column with unit row stride (the blocks of the solver's loops are column-major
 /// with contiguous columns).
@@ -64,13 +42,7 @@ pub(crate) fn pack_columns(columns: &[&[f64]], rows: &mut [Row]) {
         "pack_columns: shapes do not match"
     );
     if let Ok(full) = <&[&[f64]; WIDTH]>::try_from(columns) {
-        #[cfg(target_arch = "x86_64")]
-        if has_avx2_fma() {
-            // SAFETY: the CPU supports the features the function is compiled for.
-            unsafe { pack_full_avx2(full, rows) };
-            return;
-        }
-        pack_full_rows(full, rows, 0);
+        fma_dispatch!(pack_full_avx2(full, rows) else pack_full_rows(full, rows, 0));
         return;
     }
     for (i, row) in rows.iter_mut().enumerate() {

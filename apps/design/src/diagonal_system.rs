@@ -5,7 +5,7 @@
 use crate::constraint::constraint_gram_entries;
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
-use crate::soft_full::SoftOptions;
+use crate::soft_options::SoftOptions;
 use crate::soft_system::{Factoring, SoftSystem};
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::Mat;

@@ -6,7 +6,7 @@ use crate::augmented_system::{assemble, AugmentedFactor, ConstraintTerms, Patter
 use crate::constraint::{CompiledConstraint, RowOrigin, SparseRow};
 use crate::error::DesignError;
 use crate::galerkin_blocks::{AuxKind, EnergyWeights, GalerkinBlocks};
-use crate::soft_full::SoftOptions;
+use crate::soft_options::SoftOptions;
 use crate::soft_system::{Factoring, SoftSystem};
 use std::time::Instant;
 use tvf_core::discretization::HodgeComplex;

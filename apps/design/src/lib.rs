@@ -29,6 +29,7 @@
 //! assert_eq!(compiled.rows.len(), 1); // one row of div_h
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 mod assembler;
@@ -46,6 +47,7 @@ mod reduced_basis;
 mod reference_spline;
 mod regularization;
 mod soft_full;
+mod soft_options;
 mod soft_reduced;
 mod soft_system;
 mod solution_check;
@@ -64,7 +66,8 @@ pub use error::{ConstraintError, ConstraintFileError, DesignError};
 pub use reduced_basis::{FieldScalar, ReducedBasis, ReducedBasisF32, RowMajorFields};
 pub use reference_spline::{reference_spline, ReferenceSpline};
 pub use regularization::default_regularization;
-pub use soft_full::{FactorTimings, FullSoftDesign, SoftOptions, DEFAULT_FULL_ORDERING};
+pub use soft_full::{FactorTimings, FullSoftDesign, DEFAULT_FULL_ORDERING};
+pub use soft_options::SoftOptions;
 pub use soft_reduced::ReducedSoftDesign;
 pub use solution_check::{checked_residuals, worst_residual};
 pub use spline::{residual, ConstraintResidual, SplineSession, DEFAULT_DEPENDENCY_TOLERANCE};

@@ -7,6 +7,7 @@ use crate::constraint::CompiledConstraint;
 use crate::diagonal_system::DiagonalSoftSystem;
 use crate::error::DesignError;
 use crate::galerkin_soft::GalerkinSoftSystem;
+use crate::soft_options::SoftOptions;
 use crate::soft_system::{Factoring, SoftSystem};
 use faer::Par;
 use sprs::CsMat;
@@ -15,17 +16,6 @@ use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_solvers::iterative_refinement::SolveReport;
 use tvf_solvers::FactorParallelism;
 use tvf_solvers::{FillOrdering, SparseLdlt};
-
-/// Parameters of soft design (full and reduced use the same ones, so that they agree).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SoftOptions {
-    /// Weight `ω ≥ 0` of the biharmonic term: energy `E_D + ω E_B`.
-    pub omega: f64,
-    /// `ε ≥ 0`: a screening term `ε M1` (units 1/length²) that makes the system definite on
-    /// the harmonic fields when the constraints do not fix them (genus > 0). See
-    /// [`crate::default_regularization`].
-    pub regularization: f64,
-}
 
 /// Wall-clock times of the last (re)factorization of a [`FullSoftDesign`].
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -156,7 +146,7 @@ impl FullSoftDesign {
             );
         }
         let start = Instant::now();
-        check_options(options)?;
+        options.check()?;
         check_columns(&constraints, complex.field_dimension())?;
         let factoring = Factoring {
             ordering,
@@ -215,7 +205,7 @@ impl FullSoftDesign {
         parallelism: FactorParallelism,
     ) -> Result<Self, DesignError> {
         let start = Instant::now();
-        check_options(options)?;
+        options.check()?;
         let n = dirichlet.rows();
         if mass.len() != n {
             return Err(DesignError::DimensionMismatch {
@@ -353,19 +343,6 @@ impl FullSoftDesign {
     fn factor(&self) -> &SparseLdlt {
         self.system.factor()
     }
-}
-
-/// Both weights finite and non-negative.
-fn check_options(options: SoftOptions) -> Result<(), DesignError> {
-    for (what, value) in [
-        ("omega", options.omega),
-        ("regularization", options.regularization),
-    ] {
-        if !(value.is_finite() && value >= 0.0) {
-            return Err(DesignError::BadParameter { what, value });
-        }
-    }
-    Ok(())
 }
 
 /// Every constraint column below `n` (the number of field coefficients `n1`).

@@ -5,7 +5,7 @@
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use crate::reduced_basis::ReducedBasis;
-use crate::soft_full::SoftOptions;
+use crate::soft_options::SoftOptions;
 use faer::linalg::cholesky::llt::update::rank_r_update_clobber;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
@@ -38,14 +38,7 @@ pub struct ReducedSoftDesign<'a> {
 impl<'a> ReducedSoftDesign<'a> {
     /// The system without constraints.
     pub fn new(basis: &'a ReducedBasis, options: SoftOptions) -> Result<Self, DesignError> {
-        for (what, value) in [
-            ("omega", options.omega),
-            ("regularization", options.regularization),
-        ] {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(DesignError::BadParameter { what, value });
-            }
-        }
+        options.check()?;
         let diagonal: Vec<f64> = basis
             .eigenvalues()
             .iter()

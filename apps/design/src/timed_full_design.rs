@@ -4,7 +4,8 @@
 //! keys of [`TimedFullDesign`] say what was done and how accurate the solve is.
 
 use crate::regularization::default_regularization;
-use crate::soft_full::{FullSoftDesign, SoftOptions};
+use crate::soft_full::FullSoftDesign;
+use crate::soft_options::SoftOptions;
 use crate::{CompiledConstraint, DesignError};
 use serde::Serialize;
 use std::time::Instant;

@@ -208,8 +208,8 @@ enum Served {
     Failed(EditorError, Option<PendingEdit>),
 }
 
-/// Serves requests with one basis until the basis size changes (returns the rebuild) or every
-/// handle is gone (returns `None`).
+/// Serves requests with one basis until the basis size changes (returns the rebuild), every
+/// handle is gone, or the session for the new state cannot be built.
 fn serve(
     state: &mut State,
     basis: &ReducedBasis,
@@ -217,93 +217,21 @@ fn serve(
     inbox: &Receiver<Request>,
     started: &mut Option<Sender<Result<(), EditorError>>>,
 ) -> Served {
-    let Rebuild { target, edit } = rebuild;
     let mut mapper = FieldMapper::new(basis);
-    let compiled = match compile_all(state, &target.constraints) {
-        Ok(c) => c,
-        Err(e) => return Served::Failed(e, edit),
+    let mut session = match open_session(state, basis, &mut mapper, rebuild, started) {
+        Ok(session) => session,
+        Err(failed) => return *failed,
     };
-    let mut session = match build_session(basis, target.omega, &compiled) {
-        Ok(s) => s,
-        Err(e) => return Served::Failed(e, edit),
-    };
-    // Going back to the state before a refused basis-size change (no edit waits, and the
-    // engine has started) shows the same field again: it keeps its version.
-    let restoring = edit.is_none() && started.is_none();
-    let version = state.version;
-    state.current = target;
-    state.compiled = compiled;
-    refresh(state, &mut session, &mut mapper, None);
-    if restoring {
-        state.version = version;
-    }
-    if let Some(edit) = edit {
-        if edit.record {
-            push_history(state, edit.previous);
-        }
-        let _ = edit.reply.send(Ok(frame(state, basis)));
-    }
-    if let Some(s) = started.take() {
-        let _ = s.send(Ok(()));
-    }
     while let Ok(request) = inbox.recv() {
         match request {
             Request::Edit(op, reply) => {
-                let gesture = op.gesture_key();
-                let record = gesture.is_none() || gesture != state.last_gesture;
-                state.last_gesture = gesture;
-                match op {
-                    EditOp::BasisSize(d) if d != state.current.basis_size => {
-                        if d == 0 || d > state.max_basis_size {
-                            let _ = reply.send(Err(EditorError::BadBasisSize {
-                                requested: d,
-                                available: state.max_basis_size,
-                            }));
-                            continue;
-                        }
-                        let target = Snapshot {
-                            basis_size: d,
-                            ..state.current.clone()
-                        };
-                        return Served::Rebuild(rebuild_to(state, target, record, reply));
-                    }
-                    EditOp::Undo => match state.history.pop() {
-                        None => {
-                            let _ = reply.send(Err(EditorError::NothingToUndo));
-                        }
-                        Some(previous) if previous.basis_size != state.current.basis_size => {
-                            return Served::Rebuild(rebuild_to(state, previous, false, reply));
-                        }
-                        Some(previous) => {
-                            let outcome = sync(state, &mut session, basis, previous);
-                            answer(
-                                state,
-                                &mut session,
-                                basis,
-                                &mut mapper,
-                                outcome,
-                                None,
-                                reply,
-                            );
-                        }
-                    },
-                    op => {
-                        let before = state.current.clone();
-                        let outcome = apply(state, &mut session, basis, op).and_then(|v| {
-                            refuse_non_finite(state, &mut session, basis, before.clone())
-                                .map(|()| v)
-                        });
-                        let record = record.then_some(before);
-                        answer(
-                            state,
-                            &mut session,
-                            basis,
-                            &mut mapper,
-                            outcome,
-                            record,
-                            reply,
-                        );
-                    }
+                let mut editing = Editing {
+                    session: &mut session,
+                    basis,
+                    mapper: &mut mapper,
+                };
+                if let Some(rebuild) = editing.edit(state, op, reply) {
+                    return Served::Rebuild(rebuild);
                 }
             }
             Request::Frame(reply) => {
@@ -334,6 +262,232 @@ fn serve(
     Served::Closed
 }
 
+/// The session of `basis` for the state `rebuild` leads to, made current and solved; answers
+/// the edit that asked for the rebuild (if any) and tells a starting engine that it runs. On
+/// failure, what [`serve`] returns (boxed: an error and a waiting edit are large).
+fn open_session<'b>(
+    state: &mut State,
+    basis: &'b ReducedBasis,
+    mapper: &mut FieldMapper,
+    rebuild: Rebuild,
+    started: &mut Option<Sender<Result<(), EditorError>>>,
+) -> Result<SplineSession<'b>, Box<Served>> {
+    let Rebuild { target, edit } = rebuild;
+    let compiled = match compile_all(state, &target.constraints) {
+        Ok(c) => c,
+        Err(e) => return Err(Box::new(Served::Failed(e, edit))),
+    };
+    let mut session = match build_session(basis, target.omega, &compiled) {
+        Ok(s) => s,
+        Err(e) => return Err(Box::new(Served::Failed(e, edit))),
+    };
+    // Going back to the state before a refused basis-size change (no edit waits, and the
+    // engine has started) shows the same field again: it keeps its version.
+    let restoring = edit.is_none() && started.is_none();
+    let version = state.version;
+    state.current = target;
+    state.compiled = compiled;
+    refresh(state, &mut session, mapper, None);
+    if restoring {
+        state.version = version;
+    }
+    if let Some(edit) = edit {
+        if edit.record {
+            push_history(state, edit.previous);
+        }
+        let _ = edit.reply.send(Ok(frame(state, basis)));
+    }
+    if let Some(s) = started.take() {
+        let _ = s.send(Ok(()));
+    }
+    Ok(session)
+}
+
+/// What an edit works on besides the state: the session of the current basis, the basis and
+/// the field mapper.
+struct Editing<'s, 'b> {
+    session: &'s mut SplineSession<'b>,
+    basis: &'b ReducedBasis,
+    mapper: &'s mut FieldMapper,
+}
+
+impl Editing<'_, '_> {
+    /// Applies `op` and replies; returns the rebuild when the edit changes the basis size (the
+    /// reply then waits for it).
+    fn edit(&mut self, state: &mut State, op: EditOp, reply: Reply<Vec<u8>>) -> Option<Rebuild> {
+        let gesture = op.gesture_key();
+        let record = gesture.is_none() || gesture != state.last_gesture;
+        state.last_gesture = gesture;
+        match op {
+            EditOp::BasisSize(d) if d != state.current.basis_size => {
+                if d == 0 || d > state.max_basis_size {
+                    let _ = reply.send(Err(EditorError::BadBasisSize {
+                        requested: d,
+                        available: state.max_basis_size,
+                    }));
+                    return None;
+                }
+                let target = Snapshot {
+                    basis_size: d,
+                    ..state.current.clone()
+                };
+                Some(rebuild_to(state, target, record, reply))
+            }
+            EditOp::Undo => match state.history.pop() {
+                None => {
+                    let _ = reply.send(Err(EditorError::NothingToUndo));
+                    None
+                }
+                Some(previous) if previous.basis_size != state.current.basis_size => {
+                    Some(rebuild_to(state, previous, false, reply))
+                }
+                Some(previous) => {
+                    let outcome = self.sync(state, previous);
+                    self.answer(state, outcome, None, reply);
+                    None
+                }
+            },
+            op => {
+                let before = state.current.clone();
+                let outcome = self
+                    .apply(state, op)
+                    .and_then(|v| self.refuse_non_finite(state, before.clone()).map(|()| v));
+                let record = record.then_some(before);
+                self.answer(state, outcome, record, reply);
+                None
+            }
+        }
+    }
+
+    /// After an in-place edit: on success records the previous state (if asked), re-solves and
+    /// replies with the new frame; on failure restores the session from the unchanged state and
+    /// replies with the error.
+    fn answer(
+        &mut self,
+        state: &mut State,
+        outcome: Result<Option<usize>, EditorError>,
+        record: Option<Snapshot>,
+        reply: Reply<Vec<u8>>,
+    ) {
+        match outcome {
+            Ok(values_of) => {
+                if let Some(previous) = record {
+                    push_history(state, previous);
+                }
+                refresh(state, self.session, self.mapper, values_of);
+                let _ = reply.send(Ok(frame(state, self.basis)));
+            }
+            Err(error) => {
+                state.last_gesture = None;
+                // A multi-step edit (undo, load) may have failed half-way: rebuild from the
+                // unchanged state, which was accepted before, so this succeeds.
+                if let Ok(s) = build_session(self.basis, state.current.omega, &state.compiled) {
+                    *self.session = s;
+                }
+                let _ = reply.send(Err(error));
+            }
+        }
+    }
+
+    /// Applies an edit that keeps the basis. The state changes only if the session accepted it.
+    /// Returns the index of the constraint if only its values changed.
+    fn apply(&mut self, state: &mut State, op: EditOp) -> Result<Option<usize>, EditorError> {
+        match op {
+            EditOp::Add(c) => {
+                let compiled = state.assembler.compile(&c)?;
+                self.session.add(compiled.clone())?;
+                state.current.constraints.push(c);
+                state.compiled.push(compiled);
+            }
+            EditOp::Set(c) => {
+                let i = index_of(state, &c.id)?;
+                let compiled = state.assembler.compile(&c)?;
+                let values_only = state.compiled[i].rows == compiled.rows;
+                self.session.modify(compiled.clone())?;
+                state.current.constraints[i] = c;
+                state.compiled[i] = compiled;
+                return Ok(values_only.then_some(i));
+            }
+            EditOp::Remove(id) => {
+                let i = index_of(state, &id)?;
+                self.session.remove(&id)?;
+                state.current.constraints.remove(i);
+                state.compiled.remove(i);
+            }
+            EditOp::Clear => {
+                *self.session = SplineSession::new(self.basis, state.current.omega)?;
+                state.current.constraints.clear();
+                state.compiled.clear();
+            }
+            EditOp::Omega(omega) => {
+                *self.session = build_session(self.basis, omega, &state.compiled)?;
+                state.current.omega = omega;
+            }
+            EditOp::Load(set) => {
+                let compiled = compile_all(state, &set.constraints)?;
+                *self.session = build_session(self.basis, set.omega, &compiled)?;
+                state.current.constraints = set.constraints;
+                state.current.omega = set.omega;
+                state.compiled = compiled;
+            }
+            EditOp::BasisSize(_) | EditOp::Undo => {}
+        }
+        Ok(None)
+    }
+
+    /// Brings the session to `target` (same basis size) with as little work as possible: value
+    /// changes re-solve only, other differences add, remove or modify single constraints; a new ω
+    /// rebuilds.
+    fn sync(&mut self, state: &mut State, target: Snapshot) -> Result<Option<usize>, EditorError> {
+        let compiled = compile_all(state, &target.constraints)?;
+        if target.omega != state.current.omega {
+            *self.session = build_session(self.basis, target.omega, &compiled)?;
+        } else {
+            for c in &state.current.constraints {
+                if !target.constraints.iter().any(|t| t.id == c.id) {
+                    self.session.remove(&c.id)?;
+                }
+            }
+            for (c, cc) in target.constraints.iter().zip(&compiled) {
+                match state.current.constraints.iter().find(|o| o.id == c.id) {
+                    Some(old) if old == c => {}
+                    Some(_) => self.session.modify(cc.clone())?,
+                    None => self.session.add(cc.clone())?,
+                }
+            }
+        }
+        state.current = target;
+        state.compiled = compiled;
+        Ok(None)
+    }
+
+    /// After an edit was applied: if the session's solution is NaN or infinite (values or ω so
+    /// large that `f64` arithmetic overflows), goes back to `before` and returns the error naming
+    /// the constraint, so the editor never holds or shows a non-finite field.
+    fn refuse_non_finite(
+        &mut self,
+        state: &mut State,
+        before: Snapshot,
+    ) -> Result<(), EditorError> {
+        let coefficients = self.session.solve();
+        if coefficients.iter().all(|x| x.is_finite()) {
+            return Ok(());
+        }
+        let mut field = vec![0.0; self.basis.field_dimension()];
+        self.basis.map(&coefficients, &mut field)?;
+        let error = match checked_residuals(&field, &state.compiled, state.current.omega) {
+            Err(error) => EditorError::from(error),
+            Ok(_) => EditorError::Design(tvf_design::DesignError::NotFinite {
+                id: String::new(),
+                problem: "the solved field is not finite".into(),
+                cause: format!("omega is {:e}", state.current.omega),
+            }),
+        };
+        self.sync(state, before)?;
+        Err(error)
+    }
+}
+
 fn rebuild_to(state: &State, target: Snapshot, record: bool, reply: Reply<Vec<u8>>) -> Rebuild {
     Rebuild {
         target,
@@ -350,38 +504,6 @@ fn push_history(state: &mut State, snapshot: Snapshot) {
         state.history.remove(0);
     }
     state.history.push(snapshot);
-}
-
-/// After an in-place edit: on success records the previous state (if asked), re-solves and
-/// replies with the new frame; on failure restores the session from the unchanged state and
-/// replies with the error.
-fn answer<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    mapper: &mut FieldMapper,
-    outcome: Result<Option<usize>, EditorError>,
-    record: Option<Snapshot>,
-    reply: Reply<Vec<u8>>,
-) {
-    match outcome {
-        Ok(values_of) => {
-            if let Some(previous) = record {
-                push_history(state, previous);
-            }
-            refresh(state, session, mapper, values_of);
-            let _ = reply.send(Ok(frame(state, basis)));
-        }
-        Err(error) => {
-            state.last_gesture = None;
-            // A multi-step edit (undo, load) may have failed half-way: rebuild from the
-            // unchanged state, which was accepted before, so this succeeds.
-            if let Ok(s) = build_session(basis, state.current.omega, &state.compiled) {
-                *session = s;
-            }
-            let _ = reply.send(Err(error));
-        }
-    }
 }
 
 fn compile_all(
@@ -401,115 +523,6 @@ fn index_of(state: &State, id: &str) -> Result<usize, EditorError> {
         .iter()
         .position(|c| c.id == id)
         .ok_or_else(|| tvf_design::DesignError::UnknownId { id: id.to_string() }.into())
-}
-
-/// Applies an edit that keeps the basis. The state changes only if the session accepted it.
-/// Returns the index of the constraint if only its values changed.
-fn apply<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    op: EditOp,
-) -> Result<Option<usize>, EditorError> {
-    match op {
-        EditOp::Add(c) => {
-            let compiled = state.assembler.compile(&c)?;
-            session.add(compiled.clone())?;
-            state.current.constraints.push(c);
-            state.compiled.push(compiled);
-        }
-        EditOp::Set(c) => {
-            let i = index_of(state, &c.id)?;
-            let compiled = state.assembler.compile(&c)?;
-            let values_only = state.compiled[i].rows == compiled.rows;
-            session.modify(compiled.clone())?;
-            state.current.constraints[i] = c;
-            state.compiled[i] = compiled;
-            return Ok(values_only.then_some(i));
-        }
-        EditOp::Remove(id) => {
-            let i = index_of(state, &id)?;
-            session.remove(&id)?;
-            state.current.constraints.remove(i);
-            state.compiled.remove(i);
-        }
-        EditOp::Clear => {
-            *session = SplineSession::new(basis, state.current.omega)?;
-            state.current.constraints.clear();
-            state.compiled.clear();
-        }
-        EditOp::Omega(omega) => {
-            *session = build_session(basis, omega, &state.compiled)?;
-            state.current.omega = omega;
-        }
-        EditOp::Load(set) => {
-            let compiled = compile_all(state, &set.constraints)?;
-            *session = build_session(basis, set.omega, &compiled)?;
-            state.current.constraints = set.constraints;
-            state.current.omega = set.omega;
-            state.compiled = compiled;
-        }
-        EditOp::BasisSize(_) | EditOp::Undo => {}
-    }
-    Ok(None)
-}
-
-/// Brings the session to `target` (same basis size) with as little work as possible: value
-/// changes re-solve only, other differences add, remove or modify single constraints; a new ω
-/// rebuilds.
-fn sync<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    target: Snapshot,
-) -> Result<Option<usize>, EditorError> {
-    let compiled = compile_all(state, &target.constraints)?;
-    if target.omega != state.current.omega {
-        *session = build_session(basis, target.omega, &compiled)?;
-    } else {
-        for c in &state.current.constraints {
-            if !target.constraints.iter().any(|t| t.id == c.id) {
-                session.remove(&c.id)?;
-            }
-        }
-        for (c, cc) in target.constraints.iter().zip(&compiled) {
-            match state.current.constraints.iter().find(|o| o.id == c.id) {
-                Some(old) if old == c => {}
-                Some(_) => session.modify(cc.clone())?,
-                None => session.add(cc.clone())?,
-            }
-        }
-    }
-    state.current = target;
-    state.compiled = compiled;
-    Ok(None)
-}
-
-/// After an edit was applied: if the session's solution is NaN or infinite (values or ω so
-/// large that `f64` arithmetic overflows), goes back to `before` and returns the error naming
-/// the constraint, so the editor never holds or shows a non-finite field.
-fn refuse_non_finite<'b>(
-    state: &mut State,
-    session: &mut SplineSession<'b>,
-    basis: &'b ReducedBasis,
-    before: Snapshot,
-) -> Result<(), EditorError> {
-    let coefficients = session.solve();
-    if coefficients.iter().all(|x| x.is_finite()) {
-        return Ok(());
-    }
-    let mut field = vec![0.0; basis.field_dimension()];
-    basis.map(&coefficients, &mut field)?;
-    let error = match checked_residuals(&field, &state.compiled, state.current.omega) {
-        Err(error) => EditorError::from(error),
-        Ok(_) => EditorError::Design(tvf_design::DesignError::NotFinite {
-            id: String::new(),
-            problem: "the solved field is not finite".into(),
-            cause: format!("omega is {:e}", state.current.omega),
-        }),
-    };
-    sync(state, session, basis, before)?;
-    Err(error)
 }
 
 /// Solves the session and maps the coefficients to the `f32` field: through the drag cache

@@ -6,6 +6,7 @@
 //! [`MAX_HEADERS`] headers in at most [`MAX_HEAD_BYTES`] bytes, and a body announced by
 //! `Content-Length` (chunked bodies are refused). A client that sends its head or body too slowly
 //! gets 408 when its deadline passes, so a stalled upload holds its connection for a bounded time.
+//! The threat model these caps serve, and why tvf has a server of its own, are in [`crate::server`].
 
 use std::io::{Read, Write};
 use std::net::{Shutdown, TcpStream};

@@ -39,6 +39,7 @@
 //! assert!(editor.check().unwrap().max_relative < 1e-9);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod access;

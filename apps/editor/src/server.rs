@@ -16,6 +16,46 @@
 //! `Host` (and `Origin`, if any): see [`crate::access`]; otherwise 403.
 //!
 //! Errors are answered with a 4xx/5xx status and a JSON body `{"error": "...", "ids": [...]}`.
+//!
+//! # Threat model
+//!
+//! The server is for the one user at this machine who ran `tvf edit`: it listens on 127.0.0.1
+//! only, and everything else that can reach that address is assumed hostile, namely other
+//! web pages in the user's browser and other local programs or users.
+//!
+//! - **Other web pages** can make the browser send requests to `127.0.0.1:PORT`. A page of
+//!   another origin is refused by its `Origin`, and a DNS-rebinding page (its name resolving to
+//!   127.0.0.1) by its `Host`; neither can read the page to learn the session token
+//!   ([`crate::access`]).
+//! - **Other local clients** need the session token (128 random bits, printed only to the
+//!   user's terminal) for the page and every API call; without it they get 403 and change
+//!   nothing.
+//! - **Exhaustion** by any client, token or not: every size is capped (request head
+//!   [`crate::http::MAX_HEAD_BYTES`] and [`crate::http::MAX_HEADERS`], body [`MAX_BODY_BYTES`],
+//!   fur [`MAX_STRANDS`] and [`MAX_FUR_LENGTH`]); a slow client (slowloris: a head or body sent
+//!   a byte at a time) is cut off at [`HEAD_DEADLINE`] or [`BODY_DEADLINE`] with 408, not at
+//!   an idle timeout it can keep resetting ([`crate::http`]); connections that send nothing
+//!   wait in a room of [`MAX_WAITING_CONNECTIONS`] seats in which a new one evicts the oldest
+//!   ([`crate::waiting_room`]), so they cannot keep the page's requests out; answered requests
+//!   are capped at [`MAX_CONNECTIONS`], uploads may not take the last [`RESERVED_CONNECTIONS`],
+//!   and threads at [`MAX_THREADS`] (503 beyond). `tests/editor/security.rs` drives each of
+//!   these over loopback (foreign `Host`/`Origin`, no token, stalled uploads, idle connections,
+//!   a stress run with stalled uploads).
+//!
+//! Not in the model: TLS (the traffic never leaves the machine), and a local attacker who can
+//! read the user's terminal or memory.
+//!
+//! # Why a server of its own
+//!
+//! It replaced `tiny_http` (0.12), which has neither a deadline for a request's head nor a
+//! cap on connections: it reads every head on a thread of its own for as long as the client
+//! takes, so idle or slow connections pile up threads without bound, and its request's body
+//! reader has no deadline either (a stalled upload held its thread, and with enough of them
+//! `/api/ping` went unanswered). `rouille` serves through `tiny_http`. `hyper` has a head
+//! timeout but runs on an async runtime (`tokio`) that nothing else in tvf needs, for a server
+//! that answers one user's page. What this one needs (one request per connection,
+//! `Content-Length` bodies, `Connection: close`) is the small part of HTTP/1.1 in
+//! [`crate::http`].
 
 use std::net::{Shutdown, SocketAddr, TcpListener, TcpStream};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};

@@ -9,7 +9,9 @@ use crate::panels::save_magnitude_row;
 use crate::test_fields::MovingFeatures;
 use rayon::prelude::*;
 use std::time::Instant;
-use tvf_spectral::{basis_id, compress_with_report, CoefficientCoding, FieldCodec};
+use tvf_spectral::{
+    basis_id, compress_with_report, CoefficientCoding, CompressionReport, FieldCodec,
+};
 
 /// Size of the sequence experiment.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,8 +39,6 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, FigureError> {
         .map(|k| moving.frame(x.complex, k as f64 / size.frames.max(1) as f64))
         .collect();
     let generate = start.elapsed().as_secs_f64();
-    let (fingerprint, id) = (x.mesh.fingerprint(), basis_id(x.basis));
-    let mass = x.basis.field_mass();
     let mut finding = Finding::new(
         "Section 8.6 / Figure 11",
         "Compressing a time-dependent field (sequence of frames) with one basis",
@@ -69,33 +69,7 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, FigureError> {
     }
     let mut larger_error = None;
     for (pairs, coding) in runs {
-        let codec = FieldCodec::new(x.basis, fingerprint, id, pairs, coding)?;
-        let start = Instant::now();
-        let (_, report) = compress_with_report(&codec, mass, &frames, x.mesh.vertex_count())?;
-        let elapsed = start.elapsed().as_secs_f64();
-        let label = match coding {
-            CoefficientCoding::Float64 => format!("{pairs} pairs, 64-bit coefficients"),
-            CoefficientCoding::Quantized { bits } => {
-                format!("{pairs} pairs, {bits}-bit quantised, range-coded")
-            }
-        };
-        finding.number(
-            format!("{label}: file size, rate against two f32 per face"),
-            format!(
-                "{} ({} bytes), {:.1}:1",
-                megabytes(report.bytes as f64),
-                thousands(report.bytes),
-                raw_floats / report.bytes as f64
-            ),
-        );
-        finding.number(
-            format!("{label}: mean / worst relative L2 error per frame"),
-            format!("{:.4} / {:.4}", report.mean_error(), report.worst_error()),
-        );
-        finding.number(
-            format!("{label}: compress + decode + measure, all frames"),
-            seconds(elapsed),
-        );
+        let (codec, report) = compress_once(x, &frames, pairs, coding, raw_floats, &mut finding)?;
         if pairs == larger {
             larger_error = Some(report.mean_error());
         } else if coding == CoefficientCoding::Float64 {
@@ -110,22 +84,7 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, FigureError> {
         format!("{kept}; {}", megabytes(f32_bytes)),
     );
     if let Some(codec) = codec64 {
-        let snapshot = size.frames * 3 / 10;
-        let original = &frames[snapshot];
-        let compressed = codec.decode(&codec.encode(original)?)?;
-        let file = "figure11_sequence_frame.png";
-        save_magnitude_row(
-            x,
-            file,
-            &[
-                (original, &format!("frame {snapshot}: uncompressed")),
-                (
-                    &compressed,
-                    &format!("frame {snapshot}: {kept} coefficients"),
-                ),
-            ],
-        )?;
-        finding.files.push(file.to_string());
+        finding.files.push(draw_snapshot(x, &codec, &frames, kept)?);
     }
     finding.paper = "Bumpy torus (140,240 faces), 500 frames: 560.96 MB as two f32 per face, 1 MB \
                      with 500 eigenfields (f32 coefficients), mean relative L2 error about 10 %."
@@ -147,4 +106,72 @@ pub fn run(x: &Experiment, size: SequenceSize) -> Result<Finding, FigureError> {
         ));
     }
     Ok(finding)
+}
+
+/// Compresses `frames` with `pairs` pairs and `coding` (file size, errors and time added to
+/// `finding`, rates against `raw_floats` bytes); returns the codec and what it did.
+fn compress_once<'a>(
+    x: &Experiment<'a>,
+    frames: &[Vec<f64>],
+    pairs: usize,
+    coding: CoefficientCoding,
+    raw_floats: f64,
+    finding: &mut Finding,
+) -> Result<(FieldCodec<'a>, CompressionReport), FigureError> {
+    let (fingerprint, id) = (x.mesh.fingerprint(), basis_id(x.basis));
+    let codec = FieldCodec::new(x.basis, fingerprint, id, pairs, coding)?;
+    let start = Instant::now();
+    let (_, report) =
+        compress_with_report(&codec, x.basis.field_mass(), frames, x.mesh.vertex_count())?;
+    let elapsed = start.elapsed().as_secs_f64();
+    let label = match coding {
+        CoefficientCoding::Float64 => format!("{pairs} pairs, 64-bit coefficients"),
+        CoefficientCoding::Quantized { bits } => {
+            format!("{pairs} pairs, {bits}-bit quantised, range-coded")
+        }
+    };
+    finding.number(
+        format!("{label}: file size, rate against two f32 per face"),
+        format!(
+            "{} ({} bytes), {:.1}:1",
+            megabytes(report.bytes as f64),
+            thousands(report.bytes),
+            raw_floats / report.bytes as f64
+        ),
+    );
+    finding.number(
+        format!("{label}: mean / worst relative L2 error per frame"),
+        format!("{:.4} / {:.4}", report.mean_error(), report.worst_error()),
+    );
+    finding.number(
+        format!("{label}: compress + decode + measure, all frames"),
+        seconds(elapsed),
+    );
+    Ok((codec, report))
+}
+
+/// Figure 11: the frame three tenths into the sequence, uncompressed beside its round trip
+/// through `codec` (`kept` coefficients); returns the picture's file name.
+fn draw_snapshot(
+    x: &Experiment,
+    codec: &FieldCodec<'_>,
+    frames: &[Vec<f64>],
+    kept: usize,
+) -> Result<String, FigureError> {
+    let snapshot = frames.len() * 3 / 10;
+    let original = &frames[snapshot];
+    let compressed = codec.decode(&codec.encode(original)?)?;
+    let file = "figure11_sequence_frame.png";
+    save_magnitude_row(
+        x,
+        file,
+        &[
+            (original, &format!("frame {snapshot}: uncompressed")),
+            (
+                &compressed,
+                &format!("frame {snapshot}: {kept} coefficients"),
+            ),
+        ],
+    )?;
+    Ok(file.to_string())
 }

@@ -34,6 +34,7 @@
 //! assert_eq!(field.len(), 2 * mesh.face_count());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod compression;

@@ -38,6 +38,7 @@
 //! let image = render(&mesh, &scene, &options).unwrap();
 //! assert_eq!(image.dimensions(), (320, 240));
 //! ```
+#![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 mod arrows;

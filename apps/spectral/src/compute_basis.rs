@@ -201,42 +201,14 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     report.factorizations = solver.factorizations();
     report.solves = solver.solves();
     report.eigensolver_calls = 2;
-    report.distinct_shifts = [&exact_pencil, &co_exact_pencil]
-        .iter()
-        .map(|pencil| {
-            let mut shifts: Vec<f64> = pencil.counted().iter().map(|c| c.shift).collect();
-            shifts.dedup();
-            shifts.len()
-        })
-        .sum();
+    report.distinct_shifts = distinct_shifts(&exact_pencil) + distinct_shifts(&co_exact_pencil);
     // Fails loudly if the eigensolver disagrees with the counts the selection below relies on.
     split.check(&exact, &a.values, ka)?;
     split.check(&co_exact, &b.values, kb)?;
     report.integrable_computed = a.values.len();
     report.cointegrable_computed = b.values.len();
 
-    // Merge, sort by eigenvalue (stable: harmonic first), select.
-    let mut entries: Vec<(f64, FieldFamily, usize)> = (0..harmonic.fields.ncols())
-        .map(|i| (0.0, FieldFamily::Harmonic, i))
-        .chain(
-            a.values
-                .iter()
-                .enumerate()
-                .map(|(i, &l)| (l, FieldFamily::Integrable, i)),
-        )
-        .chain(
-            b.values
-                .iter()
-                .enumerate()
-                .map(|(i, &l)| (l, FieldFamily::Cointegrable, i)),
-        )
-        .collect();
-    entries.sort_by(|x, y| x.0.total_cmp(&y.0));
-    match request.size {
-        BasisSize::Fields(d) => entries.truncate(d),
-        BasisSize::MaxEigenvalue(bound) => entries.retain(|e| e.0 <= bound),
-        BasisSize::Pairs(_) | BasisSize::Complete => {}
-    }
+    let entries = selected_entries(harmonic.fields.ncols(), &a.values, &b.values, request.size);
     let count = |family| entries.iter().filter(|e| e.1 == family).count();
     let (na, nb, nh) = (
         count(FieldFamily::Integrable),
@@ -260,6 +232,44 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         EigenfunctionBasis::new(entries, potentials, co_potentials, harmonic),
         report,
     ))
+}
+
+/// The basis's entries `(eigenvalue, family, index in the family)`: the `harmonic` fields
+/// (eigenvalue 0), the potential eigenvalues `integrable` and the co-potential ones
+/// `cointegrable`, merged and sorted by eigenvalue (stable: harmonic first), then cut to the
+/// request's `size`.
+fn selected_entries(
+    harmonic: usize,
+    integrable: &[f64],
+    cointegrable: &[f64],
+    size: BasisSize,
+) -> Vec<(f64, FieldFamily, usize)> {
+    let of_family = |values: &[f64], family| {
+        values
+            .iter()
+            .enumerate()
+            .map(move |(i, &l)| (l, family, i))
+            .collect::<Vec<_>>()
+    };
+    let mut entries: Vec<(f64, FieldFamily, usize)> = (0..harmonic)
+        .map(|i| (0.0, FieldFamily::Harmonic, i))
+        .chain(of_family(integrable, FieldFamily::Integrable))
+        .chain(of_family(cointegrable, FieldFamily::Cointegrable))
+        .collect();
+    entries.sort_by(|x, y| x.0.total_cmp(&y.0));
+    match size {
+        BasisSize::Fields(d) => entries.truncate(d),
+        BasisSize::MaxEigenvalue(bound) => entries.retain(|e| e.0 <= bound),
+        BasisSize::Pairs(_) | BasisSize::Complete => {}
+    }
+    entries
+}
+
+/// The shifts `pencil` counted, consecutive repeats counted once.
+fn distinct_shifts(pencil: &Pencil<'_>) -> usize {
+    let mut shifts: Vec<f64> = pencil.counted().iter().map(|c| c.shift).collect();
+    shifts.dedup();
+    shifts.len()
 }
 
 /// One family's eigenproblem for [`solve_both_families`]: `(problem, pencil, count, top, seed)`.

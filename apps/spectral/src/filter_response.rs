@@ -1,7 +1,7 @@
 //! [`FrequencyResponse`]: the gain a spectral filter applies to a coefficient, as a function of
 //! the frequency `√λ` of its basis field (Section 8.5 of the paper, the functions `F_α`, `F_β`).
 
-use crate::filter_spec::FilterSpecError;
+use crate::filter_spec_error::FilterSpecError;
 
 /// A gain as a function of frequency `f = √λ` (units 1/length; `λ` is an eigenvalue of the
 /// Hodge–Laplacian `L`). Every gain is finite and non-negative.

@@ -47,6 +47,7 @@ mod family_split;
 mod filter;
 mod filter_response;
 mod filter_spec;
+mod filter_spec_error;
 mod formats;
 mod fourier;
 mod harmonic_fields;
@@ -88,7 +89,8 @@ pub use computed_field::{check_computed_field, NonFiniteField};
 pub use eigenfunction_basis::EigenfunctionBasis;
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
-pub use filter_spec::{read_curve_file, FilterSpecError};
+pub use filter_spec::read_curve_file;
+pub use filter_spec_error::FilterSpecError;
 pub use formats::basis_arrays::write_basis_arrays;
 pub use formats::basis_file::{
     load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,

@@ -16,6 +16,51 @@ pub(crate) fn read_off(text: &str) -> Result<RawMesh, Located> {
         .enumerate()
         .map(|(i, l)| (i + 1, strip_comment(l).trim()))
         .filter(|(_, l)| !l.is_empty());
+    let (vertex_count, face_count, counts_line) = read_counts(&mut lines)?;
+    let mut raw = RawMesh::default();
+    let mut last_line = counts_line;
+    for v in 0..vertex_count {
+        let Some((line, text)) = lines.next() else {
+            return Err(at(
+                last_line,
+                LoadErrorKind::Truncated {
+                    message: format!("the header declares {vertex_count} vertices, found {v}"),
+                },
+            ));
+        };
+        last_line = line;
+        raw.positions.push(read_vertex(text, v, line)?);
+        raw.vertex_lines.push(line);
+    }
+    for f in 0..face_count {
+        let Some((line, text)) = lines.next() else {
+            return Err(at(
+                last_line,
+                LoadErrorKind::Truncated {
+                    message: format!("the header declares {face_count} faces, found {f}"),
+                },
+            ));
+        };
+        last_line = line;
+        let corners = read_face(text, vertex_count, line)?;
+        push_face(&corners, line, &mut raw.faces, &mut raw.face_lines);
+    }
+    if let Some((line, text)) = lines.next() {
+        return Err(at(
+            line,
+            LoadErrorKind::TrailingData {
+                message: format!("'{text}' after {vertex_count} vertices and {face_count} faces"),
+            },
+        ));
+    }
+    Ok(raw)
+}
+
+/// The header and the counts `V F [E]` (on the header's line or the next): the vertex and
+/// face counts and the line of the counts.
+fn read_counts<'t>(
+    lines: &mut impl Iterator<Item = (usize, &'t str)>,
+) -> Result<(usize, usize, usize), Located> {
     let Some((header_line, header)) = lines.next() else {
         return Err((None, LoadErrorKind::Empty));
     };
@@ -61,72 +106,47 @@ pub(crate) fn read_off(text: &str) -> Result<RawMesh, Located> {
         usize::try_from(value)
             .map_err(|_| parse_error(counts_line, format!("negative count {value}")))
     };
-    let (vertex_count, face_count) = (count(counts[0])?, count(counts[1])?);
+    Ok((count(counts[0])?, count(counts[1])?, counts_line))
+}
 
-    let mut raw = RawMesh::default();
-    let mut last_line = counts_line;
-    for v in 0..vertex_count {
-        let Some((line, text)) = lines.next() else {
-            return Err(at(
-                last_line,
-                LoadErrorKind::Truncated {
-                    message: format!("the header declares {vertex_count} vertices, found {v}"),
-                },
-            ));
-        };
-        last_line = line;
-        let values = text
-            .split_whitespace()
-            .take(3)
-            .map(|t| parse_coordinate(t, line))
-            .collect::<Result<Vec<_>, _>>()?;
-        let [x, y, z] = values[..] else {
-            return Err(parse_error(
-                line,
-                format!("a vertex needs 3 coordinates, found {}", values.len()),
-            ));
-        };
-        check_finite([x, y, z], v, line)?;
-        raw.positions.push([x, y, z]);
-        raw.vertex_lines.push(line);
-    }
-    for f in 0..face_count {
-        let Some((line, text)) = lines.next() else {
-            return Err(at(
-                last_line,
-                LoadErrorKind::Truncated {
-                    message: format!("the header declares {face_count} faces, found {f}"),
-                },
-            ));
-        };
-        last_line = line;
-        let mut tokens = text.split_whitespace();
-        let n = parse_integer(tokens.next().unwrap_or(""), line)?;
-        let n = usize::try_from(n).unwrap_or(0);
-        let corners = tokens
-            .take(n)
-            .map(|t| vertex_index(parse_integer(t, line)?, vertex_count, line))
-            .collect::<Result<Vec<_>, _>>()?;
-        if corners.len() < n {
-            return Err(parse_error(
-                line,
-                format!("the face declares {n} corners, found {}", corners.len()),
-            ));
-        }
-        if n < 3 {
-            return Err(at(line, LoadErrorKind::FaceTooSmall { corners: n }));
-        }
-        push_face(&corners, line, &mut raw.faces, &mut raw.face_lines);
-    }
-    if let Some((line, text)) = lines.next() {
-        return Err(at(
+/// Vertex `v` from its line `text` (line number `line`): three finite coordinates, further
+/// values ignored.
+fn read_vertex(text: &str, v: usize, line: usize) -> Result<[f64; 3], Located> {
+    let values = text
+        .split_whitespace()
+        .take(3)
+        .map(|t| parse_coordinate(t, line))
+        .collect::<Result<Vec<_>, _>>()?;
+    let [x, y, z] = values[..] else {
+        return Err(parse_error(
             line,
-            LoadErrorKind::TrailingData {
-                message: format!("'{text}' after {vertex_count} vertices and {face_count} faces"),
-            },
+            format!("a vertex needs 3 coordinates, found {}", values.len()),
+        ));
+    };
+    check_finite([x, y, z], v, line)?;
+    Ok([x, y, z])
+}
+
+/// The corners of a face from its line `text` (line number `line`): `n i_0 ... i_{n−1}`, at
+/// least three, each below `vertex_count`; a colour after them is ignored.
+fn read_face(text: &str, vertex_count: usize, line: usize) -> Result<Vec<usize>, Located> {
+    let mut tokens = text.split_whitespace();
+    let n = parse_integer(tokens.next().unwrap_or(""), line)?;
+    let n = usize::try_from(n).unwrap_or(0);
+    let corners = tokens
+        .take(n)
+        .map(|t| vertex_index(parse_integer(t, line)?, vertex_count, line))
+        .collect::<Result<Vec<_>, _>>()?;
+    if corners.len() < n {
+        return Err(parse_error(
+            line,
+            format!("the face declares {n} corners, found {}", corners.len()),
         ));
     }
-    Ok(raw)
+    if n < 3 {
+        return Err(at(line, LoadErrorKind::FaceTooSmall { corners: n }));
+    }
+    Ok(corners)
 }
 
 #[cfg(test)]

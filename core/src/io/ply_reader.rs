@@ -3,7 +3,7 @@
 //! property and element is read past and ignored.
 
 use super::error::LoadErrorKind;
-use super::ply_header::{read_header, Element, Encoding, Property, ScalarType};
+use super::ply_header::{read_header, Element, Encoding, Header, Property, ScalarType};
 use super::raw_mesh::{at, parse_error, Located, RawMesh};
 use super::text::{check_finite, push_face, vertex_index};
 use std::str::SplitWhitespace;
@@ -11,27 +11,7 @@ use std::str::SplitWhitespace;
 /// Parses a PLY file into positions and faces (polygons kept).
 pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
     let header = read_header(bytes)?;
-    let body = &bytes[header.body_start..];
-    let mut source = match header.encoding {
-        Encoding::Ascii => {
-            let text = std::str::from_utf8(body).map_err(|e| {
-                let valid = &body[..e.valid_up_to()];
-                let line = header.header_lines + 1 + valid.iter().filter(|&&b| b == b'\n').count();
-                at(line, LoadErrorKind::NotText)
-            })?;
-            Source::Ascii(AsciiBody::new(text, header.header_lines))
-        }
-        Encoding::BinaryLittleEndian => Source::Binary {
-            body,
-            offset: 0,
-            big_endian: false,
-        },
-        Encoding::BinaryBigEndian => Source::Binary {
-            body,
-            offset: 0,
-            big_endian: true,
-        },
-    };
+    let mut source = body_source(&header, bytes)?;
     let vertex_count = header
         .elements
         .iter()
@@ -49,45 +29,8 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
         }
         for instance in 0..element.count {
             let line = source.line();
-            let fail = |error: Option<Located>| {
-                error.unwrap_or_else(|| {
-                    let message = format!(
-                        "the data ends in element '{}' {instance} of {}",
-                        element.name, element.count
-                    );
-                    (line, LoadErrorKind::Truncated { message })
-                })
-            };
-            let mut xyz = [0.0; 3];
-            let mut corners = Vec::new();
-            for (p, property) in element.properties.iter().enumerate() {
-                match property {
-                    Property::Scalar { ty, .. } => {
-                        let value = source.number(*ty).map_err(fail)?;
-                        if let Role::Vertex(axes) = &role {
-                            if let Some(axis) = axes.iter().position(|&a| a == p) {
-                                xyz[axis] = value;
-                            }
-                        }
-                    }
-                    Property::List { count, item, .. } => {
-                        let n = source.number(*count).map_err(fail)?;
-                        let n = if n >= 0.0 { n as usize } else { 0 };
-                        let wanted = matches!(role, Role::Face(q) if q == p);
-                        if !wanted {
-                            source.skip(*item, n).map_err(fail)?;
-                            continue;
-                        }
-                        for _ in 0..n {
-                            let index = source.number(*item).map_err(fail)?;
-                            let line_or_0 = line.unwrap_or(0);
-                            let v = vertex_index(index as i64, vertex_count, line_or_0)
-                                .map_err(|(_, kind)| (line, kind))?;
-                            corners.push(v);
-                        }
-                    }
-                }
-            }
+            let (xyz, corners) =
+                read_instance(&mut source, element, &role, instance, line, vertex_count)?;
             match role {
                 Role::Vertex(_) => {
                     let vertex = raw.positions.len();
@@ -117,6 +60,84 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
     }
     source.finish()?;
     Ok(raw)
+}
+
+/// The values after the header, as the header's encoding reads them (ASCII must be UTF-8).
+fn body_source<'b>(header: &Header, bytes: &'b [u8]) -> Result<Source<'b>, Located> {
+    let body = &bytes[header.body_start..];
+    Ok(match header.encoding {
+        Encoding::Ascii => {
+            let text = std::str::from_utf8(body).map_err(|e| {
+                let valid = &body[..e.valid_up_to()];
+                let line = header.header_lines + 1 + valid.iter().filter(|&&b| b == b'\n').count();
+                at(line, LoadErrorKind::NotText)
+            })?;
+            Source::Ascii(AsciiBody::new(text, header.header_lines))
+        }
+        Encoding::BinaryLittleEndian => Source::Binary {
+            body,
+            offset: 0,
+            big_endian: false,
+        },
+        Encoding::BinaryBigEndian => Source::Binary {
+            body,
+            offset: 0,
+            big_endian: true,
+        },
+    })
+}
+
+/// Instance `instance` of `element` (starting on `line`, ASCII only): the position it holds if
+/// it is a vertex, the corners (each below `vertex_count`) if it is a face; everything else is
+/// read past.
+fn read_instance(
+    source: &mut Source<'_>,
+    element: &Element,
+    role: &Role,
+    instance: usize,
+    line: Option<usize>,
+    vertex_count: usize,
+) -> Result<([f64; 3], Vec<usize>), Located> {
+    let fail = |error: Option<Located>| {
+        error.unwrap_or_else(|| {
+            let message = format!(
+                "the data ends in element '{}' {instance} of {}",
+                element.name, element.count
+            );
+            (line, LoadErrorKind::Truncated { message })
+        })
+    };
+    let mut xyz = [0.0; 3];
+    let mut corners = Vec::new();
+    for (p, property) in element.properties.iter().enumerate() {
+        match property {
+            Property::Scalar { ty, .. } => {
+                let value = source.number(*ty).map_err(fail)?;
+                if let Role::Vertex(axes) = role {
+                    if let Some(axis) = axes.iter().position(|&a| a == p) {
+                        xyz[axis] = value;
+                    }
+                }
+            }
+            Property::List { count, item, .. } => {
+                let n = source.number(*count).map_err(fail)?;
+                let n = if n >= 0.0 { n as usize } else { 0 };
+                let wanted = matches!(role, Role::Face(q) if *q == p);
+                if !wanted {
+                    source.skip(*item, n).map_err(fail)?;
+                    continue;
+                }
+                for _ in 0..n {
+                    let index = source.number(*item).map_err(fail)?;
+                    let line_or_0 = line.unwrap_or(0);
+                    let v = vertex_index(index as i64, vertex_count, line_or_0)
+                        .map_err(|(_, kind)| (line, kind))?;
+                    corners.push(v);
+                }
+            }
+        }
+    }
+    Ok((xyz, corners))
 }
 
 /// What an element contributes.

@@ -24,6 +24,7 @@
 //!
 //! Its tests: the conformance suite on the entry in one line (below), and every command run
 //! through the binary (`tests/commands.rs`).
+#![forbid(unsafe_code)]
 
 use sprs::CsMat;
 use std::process::ExitCode;

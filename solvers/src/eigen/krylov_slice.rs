@@ -105,6 +105,22 @@ impl<'m> ColumnStore<'m> {
         MatRef::from_column_major_slice(&self.values[..len], self.n, self.columns)
     }
 
+    /// Appends the Ritz vectors `V y_j` for the columns `j ∈ chosen` of `y` (`V: n × m`,
+    /// `y: m × m`), formed in place.
+    fn append_ritz_vectors(
+        &mut self,
+        v: MatRef<'_, f64>,
+        y: &Mat<f64>,
+        chosen: &[usize],
+        par: Par,
+    ) {
+        if chosen.is_empty() {
+            return;
+        }
+        let y_chosen = Mat::from_fn(v.ncols(), chosen.len(), |i, j| y[(i, chosen[j])]);
+        self.append_product(v, y_chosen.as_ref(), par);
+    }
+
     /// Appends the columns of `V Y` (`V: n × m`, `Y: m × c`), formed in place.
     fn append_product(&mut self, v: MatRef<'_, f64>, y: MatRef<'_, f64>, par: Par) {
         let (start, end) = (self.n * self.columns, self.n * (self.columns + y.ncols()));
@@ -467,17 +483,8 @@ pub(crate) fn run_slice(
     let (mass, n) = krylov_mass(problem, permuted_mass.as_deref());
     let par = settings.parallelism;
     let block = settings.block_size.max(1);
-    let sigma = problem.sigma;
     let wanted = problem.lower_needed + problem.upper_target;
-    let room = n.saturating_sub(wanted + 3 * block);
-    let max_basis = settings.max_basis.min(room);
-    if max_basis < 2 * block {
-        return Err(SolverError::NoConvergence {
-            reason: format!(
-                "problem too small for the Krylov basis (n = {n}); use the dense solver"
-            ),
-        });
-    }
+    let max_basis = basis_limit(n, wanted, block, settings.max_basis)?;
 
     // Pairs locked so far in `(lower_bound, σ)` and in `[σ, upper_bound)`.
     let mut found = (0usize, 0usize);
@@ -506,6 +513,13 @@ pub(crate) fn run_slice(
             settings,
             found,
         )
+    };
+    let restart = Restart {
+        problem,
+        mass,
+        block,
+        max_basis,
+        par,
     };
     let mut restarted = false;
     for _restart in 0..settings.max_restarts {
@@ -538,29 +552,58 @@ pub(crate) fn run_slice(
         let window = remaining(problem, found) + block;
         found.0 += pairs.inside.0;
         found.1 += pairs.inside.1;
-        if !pairs.lock.is_empty() {
-            let y_lock = Mat::from_fn(krylov.mv, pairs.lock.len(), |i, j| {
-                pairs.y[(i, pairs.lock[j])]
-            });
-            locked.append_product(basis.rb().subcols(0, krylov.mv), y_lock.as_ref(), par);
-        }
+        locked.append_ritz_vectors(basis.rb().subcols(0, krylov.mv), &pairs.y, &pairs.lock, par);
         on_restart(locked.columns, solves);
-        if found.0 > problem.lower_needed {
-            return Err(SolverError::NoConvergence {
-                reason: format!(
-                    "inertia mismatch at shift {sigma:e}: found {} new eigenvalues below it, inertia allows {}",
-                    found.0, problem.lower_needed
-                ),
-            });
-        }
+        check_lower_count(problem, found)?;
         if found.0 == problem.lower_needed && found.1 >= problem.upper_target {
             return finish_slice(problem.factor, mass, locked, scratch, order, solves);
         }
 
-        // ---- thick restart ----
+        restart.run(
+            &mut krylov,
+            basis.rb_mut(),
+            pairs,
+            window,
+            found,
+            locked.view(),
+            rng,
+        )?;
+    }
+    Err(not_converged(problem, settings, found))
+}
+
+/// The thick restart of a slice after a Rayleigh–Ritz, with what stays fixed while the slice
+/// runs: its problem, `M` in the Krylov vectors' order, the block size, the largest expanded
+/// basis and the parallelism of the products.
+struct Restart<'a> {
+    problem: &'a SliceProblem<'a>,
+    mass: Mass<'a>,
+    block: usize,
+    max_basis: usize,
+    par: Par,
+}
+
+impl Restart<'_> {
+    /// Restarts `krylov` onto the best unconverged Ritz `pairs` (as many as `window`, the pairs
+    /// still wanted plus a block, and at least half the basis, leaving room for `U` and one
+    /// more block); where eigenvalues counted by inertia are still missing after the pairs
+    /// `found` and no Ritz value stands for them, adds a block of fresh random directions,
+    /// M-orthogonal to the `locked` vectors and the basis.
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &self,
+        krylov: &mut KrylovSchur,
+        mut basis: MatMut<'_, f64>,
+        pairs: RitzPairs,
+        window: usize,
+        found: (usize, usize),
+        locked: MatRef<'_, f64>,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<(), SolverError> {
+        let (problem, block, par) = (self.problem, self.block, self.par);
         let keep_target = window
-            .max(max_basis / 2)
-            .min(max_basis.saturating_sub(krylov.mu + block));
+            .max(self.max_basis / 2)
+            .min(self.max_basis.saturating_sub(krylov.mu + block));
         let mut keep = pairs.keep;
         keep.truncate(keep_target);
         krylov.thick_restart(
@@ -583,21 +626,69 @@ pub(crate) fn run_slice(
             && krylov.mu + block <= 3 * block
         {
             let current = basis.rb().subcols(0, krylov.mv + krylov.mu);
+            let n = basis.nrows();
             let fresh =
-                random_orthonormal_block(n, block, &[locked.view(), current], mass, rng, par)?;
+                random_orthonormal_block(n, block, &[locked, current], self.mass, rng, par)?;
             krylov.append_unexpanded(basis.rb_mut(), fresh.as_ref());
         }
+        Ok(())
     }
-    Err(SolverError::NoConvergence {
+}
+
+/// The largest expanded basis of a slice of dimension `n` that must lock `wanted` pairs with
+/// blocks of `block` vectors: `max_basis`, less where `n` leaves no room for it (the basis,
+/// the unexpanded blocks and the locked vectors must be linearly independent).
+///
+/// Errors: [`SolverError::NoConvergence`] when not even two blocks fit (the dense solver's
+/// problem).
+fn basis_limit(
+    n: usize,
+    wanted: usize,
+    block: usize,
+    max_basis: usize,
+) -> Result<usize, SolverError> {
+    let room = n.saturating_sub(wanted + 3 * block);
+    let max_basis = max_basis.min(room);
+    if max_basis < 2 * block {
+        return Err(SolverError::NoConvergence {
+            reason: format!(
+                "problem too small for the Krylov basis (n = {n}); use the dense solver"
+            ),
+        });
+    }
+    Ok(max_basis)
+}
+
+/// Checks the pairs `found` below σ against the inertia count, which they must not exceed.
+fn check_lower_count(problem: &SliceProblem<'_>, found: (usize, usize)) -> Result<(), SolverError> {
+    if found.0 > problem.lower_needed {
+        return Err(SolverError::NoConvergence {
+            reason: format!(
+                "inertia mismatch at shift {:e}: found {} new eigenvalues below it, inertia allows {}",
+                problem.sigma, found.0, problem.lower_needed
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The error of a slice that did not lock all its pairs within its restarts.
+fn not_converged(
+    problem: &SliceProblem<'_>,
+    settings: &SliceSettings,
+    found: (usize, usize),
+) -> SolverError {
+    SolverError::NoConvergence {
         reason: format!(
-            "slice at shift {sigma:e} did not converge in {} restarts (locked {} of {} eigenpairs below the shift, {} of {} above)",
+            "slice at shift {:e} did not converge in {} restarts (locked {} of {} eigenpairs below the shift, {} of {} above)",
+            problem.sigma,
             settings.max_restarts,
             found.0,
             problem.lower_needed,
             found.1,
             problem.upper_target
         ),
-    })
+    }
 }
 
 /// Pairs still missing after `found` `(below σ, above σ)` were locked: all below σ that the

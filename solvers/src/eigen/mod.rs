@@ -13,6 +13,7 @@ mod rayleigh_ritz;
 mod refinement;
 mod shift_factor;
 mod sparse_mass_products;
+mod sparse_summaries;
 mod spectrum_bound;
 mod statistics;
 mod stiffness;

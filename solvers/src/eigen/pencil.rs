@@ -19,8 +19,8 @@
 
 use super::mass::{symmetric_full, Mass, MassMatrix};
 use super::mixed_operator::MixedOperator;
-use super::refinement::{diagonal_of, max_column_sum};
 use super::shift_factor::{saddle_pattern, KrylovFrame, ShiftFactor};
+use super::sparse_summaries::{diagonal_of, max_column_sum};
 use super::spectrum_bound::{block_power_norm, hutchinson_trace, upper_bound_of};
 use super::statistics::{Phase, SolverStatistics};
 use super::stiffness::Stiffness;

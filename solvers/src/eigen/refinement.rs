@@ -26,6 +26,7 @@ use super::mass::{solve_mass_rows, Mass};
 use super::pencil::PencilOperators;
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::shift_factor::ShiftFactor;
+use super::sparse_summaries::{diagonal_of, max_column_sum};
 use super::statistics::ThreadClock;
 use super::stiffness::Stiffness;
 use super::symmetric_products::{
@@ -33,7 +34,7 @@ use super::symmetric_products::{
 };
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
-use crate::packed_rows::{has_avx2_fma, multiply_add};
+use crate::kernel_dispatch::{fma_dispatch, multiply_add};
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
 use faer::{Mat, MatMut, MatRef, Par};
@@ -89,12 +90,13 @@ fn diagonal_chunk_residuals(
     x: &[Row],
     work: &mut [Vec<Row>; 3],
 ) -> Vec<FieldResidual> {
-    #[cfg(target_arch = "x86_64")]
-    if has_avx2_fma() {
-        // SAFETY: the CPU supports the features the function is compiled for.
-        return unsafe { chunk_residuals_fma(pencil, lambda, width, x, work) };
-    }
-    chunk_residuals::<false>(pencil, lambda, width, x, work)
+    fma_dispatch!(chunk_residuals(
+        pencil: &ChunkPencil<'_>,
+        lambda: &Row,
+        width: usize,
+        x: &[Row],
+        work: &mut [Vec<Row>; 3],
+    ) -> Vec<FieldResidual>)
 }
 
 /// What [`field_residuals`] needs of the pencil, per chunk of columns.
@@ -109,18 +111,6 @@ struct ChunkPencil<'a> {
     norm_a: f64,
     /// Eigenvalues at most this have no eigenfield.
     floor: f64,
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn chunk_residuals_fma(
-    pencil: &ChunkPencil<'_>,
-    lambda: &Row,
-    width: usize,
-    x: &[Row],
-    work: &mut [Vec<Row>; 3],
-) -> Vec<FieldResidual> {
-    chunk_residuals::<true>(pencil, lambda, width, x, work)
 }
 
 /// The [`FieldResidual`]s of one packed chunk `x` (`n` rows, `width` columns used) with
@@ -263,34 +253,6 @@ fn general_chunk_residuals(
         noise,
     };
     sums.residuals(lambda, width, norm_a, floor)
-}
-
-/// The diagonal of the `n × n` sparse `a` (0 where no entry is stored).
-pub(crate) fn diagonal_of(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
-    let col_ptr = a.symbolic().col_ptr();
-    let row_idx = a.symbolic().row_idx();
-    (0..a.ncols())
-        .map(|c| {
-            (col_ptr[c]..col_ptr[c + 1])
-                .find(|&p| row_idx[p] == c)
-                .map_or(0.0, |p| a.val()[p])
-        })
-        .collect()
-}
-
-/// The maximum absolute column sum `‖A‖₁` (an upper bound of `‖A‖₂`), at least the smallest
-/// positive number.
-pub(crate) fn max_column_sum(a: SparseColMatRef<'_, usize, f64>) -> f64 {
-    let col_ptr = a.symbolic().col_ptr();
-    (0..a.ncols())
-        .map(|c| {
-            a.val()[col_ptr[c]..col_ptr[c + 1]]
-                .iter()
-                .map(|v| v.abs())
-                .sum::<f64>()
-        })
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE)
 }
 
 /// A relative eigenfield residual, its rounding floor and the pair's plain relative residual

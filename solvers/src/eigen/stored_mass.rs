@@ -3,7 +3,7 @@
 //! refinement, the eigenfield residuals and the spectrum bound) and its diagonal.
 
 use super::mass::{full_symmetric_mass, Mass, MassMatrix};
-use super::refinement::diagonal_of;
+use super::sparse_summaries::diagonal_of;
 use crate::convert::upper_triangle_csc;
 use crate::dense_eigen::check_mass;
 use crate::error::SolverError;

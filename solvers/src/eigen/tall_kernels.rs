@@ -9,9 +9,10 @@
 //! `Z − B C` (rates in `docs/performance.md`). A row of `W` (or `c`) is one or two vector registers wide and several columns of `B`
 //! are consumed at once, so every loaded value of `B` feeds eight fused multiply–adds. The
 //! loops are compiled twice, with and without AVX2 + FMA, and the variant is chosen at run time
-//! (the crates are built for the baseline x86-64 target).
+//! (`kernel_dispatch.rs`).
 
-use crate::packed_rows::{has_avx2_fma, multiply_add, Row, WIDTH as CHUNK};
+use crate::kernel_dispatch::{fma_dispatch, multiply_add};
+use crate::packed_rows::{Row, WIDTH as CHUNK};
 use faer::MatRef;
 
 /// Columns of `B` consumed together by [`inner_add`] (independent accumulators hide the FMA
@@ -28,13 +29,7 @@ pub(crate) fn inner_add(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]) {
         out.len() == b.ncols() && w.len() == b.nrows(),
         "inner_add: shapes do not match"
     );
-    #[cfg(target_arch = "x86_64")]
-    if has_avx2_fma() {
-        // SAFETY: the CPU supports the features the function is compiled for.
-        unsafe { inner_add_fma(out, b, w) };
-        return;
-    }
-    inner_add_body::<false>(out, b, w);
+    fma_dispatch!(inner_add_body(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]));
 }
 
 /// `z[i] −= Σ_k b[i, k] · c[k]` for `b: rows × m` (column-major, contiguous columns),
@@ -44,32 +39,14 @@ pub(crate) fn subtract(z: &mut [Row], b: MatRef<'_, f64>, c: &[Row]) {
         c.len() == b.ncols() && z.len() == b.nrows(),
         "subtract: shapes do not match"
     );
-    #[cfg(target_arch = "x86_64")]
-    if has_avx2_fma() {
-        // SAFETY: the CPU supports the features the function is compiled for.
-        unsafe { subtract_fma(z, b, c) };
-        return;
-    }
-    subtract_body::<false>(z, b, c);
+    fma_dispatch!(subtract_fma(z, b, c) else subtract_body::<false>(z, b, c));
 }
 
 /// `gram[a] += Σ_i z[i][a] · w[i]` for packed rows `z` and `w` (`rows` each): `Zᵀ W` of two
 /// packed blocks (`8 × 8`, row `a` in `gram[a]`).
 pub(crate) fn gram_add(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]) {
     assert!(z.len() == w.len(), "gram_add: shapes do not match");
-    #[cfg(target_arch = "x86_64")]
-    if has_avx2_fma() {
-        // SAFETY: the CPU supports the features the function is compiled for.
-        unsafe { gram_add_fma(gram, z, w) };
-        return;
-    }
-    gram_add_body::<false>(gram, z, w);
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn gram_add_fma(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]) {
-    gram_add_body::<true>(gram, z, w);
+    fma_dispatch!(gram_add_body(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row]));
 }
 
 #[inline(always)]
@@ -83,12 +60,6 @@ fn gram_add_body<const FUSED: bool>(gram: &mut [Row; CHUNK], z: &[Row], w: &[Row
         }
     }
     *gram = sums;
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-fn inner_add_fma(out: &mut [Row], b: MatRef<'_, f64>, w: &[Row]) {
-    inner_add_body::<true>(out, b, w);
 }
 
 /// [`subtract`] with AVX2 + FMA intrinsics: four columns of `b` at a time, whose negated

@@ -175,8 +175,10 @@ pub(crate) fn sweep(
     split_sweep(z, 0, subtract, project, mass, with_gram, parts)
 }
 
+/// [`sweep`] of the rows of `z` (row `first_row` onwards of the bases and the mass) split in
+/// `parts` ranges, each on its own thread, and their sums added up.
 fn split_sweep(
-    mut z: MatMut<'_, f64>,
+    z: MatMut<'_, f64>,
     first_row: usize,
     subtract: &[(MatRef<'_, f64>, MatRef<'_, f64>)],
     project: &[MatRef<'_, f64>],
@@ -184,97 +186,8 @@ fn split_sweep(
     with_gram: bool,
     parts: usize,
 ) -> Sweep {
-    let r = z.ncols();
     if parts <= 1 {
-        let mut inner: Vec<Mat<f64>> = project.iter().map(|b| Mat::zeros(b.ncols(), r)).collect();
-        let mut squared_norms = vec![0.0; r];
-        let mut gram_rows = [[0.0; CHUNK]; CHUNK];
-        let packed_coefficients: Vec<Vec<Vec<Row>>> = subtract
-            .iter()
-            .map(|(_, c)| {
-                (0..r.div_ceil(CHUNK))
-                    .map(|chunk| pack_chunk(*c, chunk))
-                    .collect()
-            })
-            .collect();
-        let mut sums: Vec<Vec<Vec<Row>>> = project
-            .iter()
-            .map(|b| vec![vec![[0.0; CHUNK]; b.ncols()]; r.div_ceil(CHUNK)])
-            .collect();
-        let mut block = vec![[0.0; CHUNK]; SWEEP_ROWS.min(z.nrows())];
-        let mut weighted = block.clone();
-        let mut start = 0;
-        while start < z.nrows() {
-            let rows = SWEEP_ROWS.min(z.nrows() - start);
-            let global = first_row + start;
-            for chunk in 0..r.div_ceil(CHUNK) {
-                let first = chunk * CHUNK;
-                let width = CHUNK.min(r - first);
-                let values = &mut block[..rows];
-                let columns: Vec<&[f64]> = (0..width)
-                    .map(|j| contiguous(z.rb().col(first + j).subrows(start, rows)))
-                    .collect();
-                pack_columns(&columns, values);
-                for ((s, _), coefficients) in subtract.iter().zip(&packed_coefficients) {
-                    if s.ncols() > 0 {
-                        tall_kernels::subtract(
-                            values,
-                            s.subrows(global, rows),
-                            &coefficients[chunk],
-                        );
-                    }
-                }
-                let mut chunk_norms = [0.0; CHUNK];
-                for (i, (row, w)) in values.iter().zip(weighted.iter_mut()).enumerate() {
-                    let m = mass[global + i];
-                    for j in 0..CHUNK {
-                        w[j] = m * row[j];
-                        chunk_norms[j] += w[j] * row[j];
-                    }
-                }
-                if with_gram {
-                    tall_kernels::gram_add(&mut gram_rows, values, &weighted[..rows]);
-                }
-                for j in 0..width {
-                    squared_norms[first + j] += chunk_norms[j];
-                }
-                for (b, sum) in project.iter().zip(sums.iter_mut()) {
-                    if b.ncols() > 0 {
-                        tall_kernels::inner_add(
-                            &mut sum[chunk],
-                            b.subrows(global, rows),
-                            &weighted[..rows],
-                        );
-                    }
-                }
-                let mut columns = contiguous_columns_mut(
-                    z.rb_mut()
-                        .subcols_mut(first, width)
-                        .subrows_mut(start, rows),
-                );
-                for (i, row) in values.iter().enumerate() {
-                    for (j, column) in columns.iter_mut().enumerate() {
-                        column[i] = row[j];
-                    }
-                }
-            }
-            start += rows;
-        }
-        for (total, sum) in inner.iter_mut().zip(&sums) {
-            for (chunk, rows) in sum.iter().enumerate() {
-                let first = chunk * CHUNK;
-                for j in 0..CHUNK.min(r - first) {
-                    for (k, row) in rows.iter().enumerate() {
-                        total[(k, first + j)] = row[j];
-                    }
-                }
-            }
-        }
-        return Sweep {
-            inner,
-            squared_norms,
-            gram: with_gram.then(|| Mat::from_fn(r, r, |a, b| gram_rows[a][b])),
-        };
+        return RowSweep::new(subtract, project, mass, with_gram, z.rb()).run(z, first_row);
     }
     let left_parts = parts / 2;
     let split = z.nrows() * left_parts / parts;
@@ -307,6 +220,147 @@ fn split_sweep(
         *x += y;
     }
     a
+}
+
+/// One thread's [`sweep`]: blocks of [`SWEEP_ROWS`] rows of `z`, each a chunk of [`CHUNK`]
+/// columns at a time packed in rows, updated, weighted by `M` and multiplied into the sums.
+struct RowSweep<'s, 'a> {
+    subtract: &'s [(MatRef<'a, f64>, MatRef<'a, f64>)],
+    /// The coefficients `C_i` of `subtract`, per chunk of columns of `z`, packed in rows.
+    packed_coefficients: Vec<Vec<Vec<Row>>>,
+    project: &'s [MatRef<'a, f64>],
+    mass: &'s [f64],
+    with_gram: bool,
+    /// `Bᵀ M z` for each basis `B` of `project`, per chunk of columns of `z` (`q` packed rows).
+    sums: Vec<Vec<Vec<Row>>>,
+    squared_norms: Vec<f64>,
+    gram_rows: [Row; CHUNK],
+}
+
+impl<'s, 'a> RowSweep<'s, 'a> {
+    /// Zero sums and buffers for the sweep of `z`.
+    fn new(
+        subtract: &'s [(MatRef<'a, f64>, MatRef<'a, f64>)],
+        project: &'s [MatRef<'a, f64>],
+        mass: &'s [f64],
+        with_gram: bool,
+        z: MatRef<'_, f64>,
+    ) -> Self {
+        let chunks = z.ncols().div_ceil(CHUNK);
+        let packed_coefficients = subtract
+            .iter()
+            .map(|(_, c)| (0..chunks).map(|chunk| pack_chunk(*c, chunk)).collect())
+            .collect();
+        let sums = project
+            .iter()
+            .map(|b| vec![vec![[0.0; CHUNK]; b.ncols()]; chunks])
+            .collect();
+        Self {
+            subtract,
+            packed_coefficients,
+            project,
+            mass,
+            with_gram,
+            sums,
+            squared_norms: vec![0.0; z.ncols()],
+            gram_rows: [[0.0; CHUNK]; CHUNK],
+        }
+    }
+
+    /// Sweeps the rows of `z`, which are rows `first_row..` of the bases and the mass.
+    fn run(mut self, mut z: MatMut<'_, f64>, first_row: usize) -> Sweep {
+        let r = z.ncols();
+        // The chunk of the current block of rows, packed, and the same rows times `M`.
+        let mut block = vec![[0.0; CHUNK]; SWEEP_ROWS.min(z.nrows())];
+        let mut weighted = block.clone();
+        let mut start = 0;
+        while start < z.nrows() {
+            let rows = SWEEP_ROWS.min(z.nrows() - start);
+            for chunk in 0..r.div_ceil(CHUNK) {
+                let first = chunk * CHUNK;
+                let width = CHUNK.min(r - first);
+                let part = z
+                    .rb_mut()
+                    .subcols_mut(first, width)
+                    .subrows_mut(start, rows);
+                let (values, weights) = (&mut block[..rows], &mut weighted[..rows]);
+                self.chunk(part, first_row + start, chunk, values, weights);
+            }
+            start += rows;
+        }
+        let mut inner: Vec<Mat<f64>> = self
+            .project
+            .iter()
+            .map(|b| Mat::zeros(b.ncols(), r))
+            .collect();
+        for (total, sum) in inner.iter_mut().zip(&self.sums) {
+            for (chunk, rows) in sum.iter().enumerate() {
+                let first = chunk * CHUNK;
+                for j in 0..CHUNK.min(r - first) {
+                    for (k, row) in rows.iter().enumerate() {
+                        total[(k, first + j)] = row[j];
+                    }
+                }
+            }
+        }
+        let gram_rows = self.gram_rows;
+        Sweep {
+            inner,
+            squared_norms: self.squared_norms,
+            gram: self
+                .with_gram
+                .then(|| Mat::from_fn(r, r, |a, b| gram_rows[a][b])),
+        }
+    }
+
+    /// One chunk `part` of a block of rows of `z` (its rows are rows `global..` of the bases
+    /// and the mass; its columns the chunk `chunk`): packed into `values`, updated by
+    /// `subtract`, weighted by `M` into `weighted`, its M-norms and products with the bases of
+    /// `project` (and its Gram matrix) added to the sums, and written back.
+    fn chunk(
+        &mut self,
+        part: MatMut<'_, f64>,
+        global: usize,
+        chunk: usize,
+        values: &mut [Row],
+        weighted: &mut [Row],
+    ) {
+        let (rows, width) = (part.nrows(), part.ncols());
+        let first = chunk * CHUNK;
+        let columns: Vec<&[f64]> = (0..width).map(|j| contiguous(part.rb().col(j))).collect();
+        pack_columns(&columns, values);
+        for ((s, _), coefficients) in self.subtract.iter().zip(&self.packed_coefficients) {
+            if s.ncols() > 0 {
+                tall_kernels::subtract(values, s.subrows(global, rows), &coefficients[chunk]);
+            }
+        }
+        let mut chunk_norms = [0.0; CHUNK];
+        for (i, (row, w)) in values.iter().zip(weighted.iter_mut()).enumerate() {
+            let m = self.mass[global + i];
+            for j in 0..CHUNK {
+                w[j] = m * row[j];
+                chunk_norms[j] += w[j] * row[j];
+            }
+        }
+        let weighted = &*weighted;
+        if self.with_gram {
+            tall_kernels::gram_add(&mut self.gram_rows, values, weighted);
+        }
+        for j in 0..width {
+            self.squared_norms[first + j] += chunk_norms[j];
+        }
+        for (b, sum) in self.project.iter().zip(self.sums.iter_mut()) {
+            if b.ncols() > 0 {
+                tall_kernels::inner_add(&mut sum[chunk], b.subrows(global, rows), weighted);
+            }
+        }
+        let mut columns = contiguous_columns_mut(part);
+        for (i, row) in values.iter().enumerate() {
+            for (j, column) in columns.iter_mut().enumerate() {
+                column[i] = row[j];
+            }
+        }
+    }
 }
 
 /// Columns `first..first + count` of `matrix`, moved to the front in place and the rest cut

@@ -4,6 +4,7 @@ use super::page::Section;
 use super::DemoConfig;
 use super::DemoHost;
 use crate::error::FigureError;
+use tvf_core::discretization::HodgeComplex;
 use tvf_discretizations::BoxedComplex;
 use tvf_render::save_png;
 use tvf_render::{draw_field, FaceQuantity, Overlays, Style, Tint, View};
@@ -66,12 +67,19 @@ pub fn run(
     save_png(&image, &config.output.join("mesh.png"))?;
     section.figure("mesh.png", "The mesh, shaded.");
 
+    add_basis_numbers(&mut section, discretization.as_ref(), &basis);
+    Ok((section, discretization, basis))
+}
+
+/// The basis's counts, eigenvalue range, worst eigen residual, harmonic orthonormality and
+/// computation cost, as numbers of the `section`.
+fn add_basis_numbers(section: &mut Section, complex: &dyn HodgeComplex, basis: &SpectralBasis) {
     let report = basis.report().cloned().unwrap_or_default();
     let worst_residual = (0..basis.len())
         .map(|j| {
             let u: Vec<f64> = basis.fields().col(j).iter().copied().collect();
             let lambda = basis.eigenvalues()[j];
-            eigen_residual(discretization.as_ref(), lambda, &u) / lambda.max(1.0)
+            eigen_residual(complex, lambda, &u) / lambda.max(1.0)
         })
         .fold(0.0, f64::max);
     let eigenvalues = basis.eigenvalues();
@@ -109,5 +117,4 @@ pub fn run(
             report.seconds, report.factorizations, report.solves
         ),
     );
-    Ok((section, discretization, basis))
 }

@@ -52,8 +52,11 @@
 //! than the file has is refused before anything is allocated for them.
 
 use crate::eigenfunction_basis::{field_of_stored_into, FIELD_CHUNK};
+pub use crate::formats::basis_file_error::BasisFileError;
 use crate::formats::basis_file_header::{encode_header, read_header};
-pub use crate::formats::basis_file_header::{BasisFileHeader, BasisFileKey, BasisFileLayout};
+pub use crate::formats::basis_file_header::{
+    BasisFileHeader, BasisFileKey, BasisFileLayout, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
+};
 pub use crate::formats::basis_file_mass::StoredFieldMass;
 use crate::formats::basis_file_mass::{write_field_mass, FieldMassRead};
 use crate::formats::stored_basis::StoredBasis;
@@ -62,109 +65,9 @@ use faer::reborrow::{IntoConst, ReborrowMut};
 use faer::{Mat, MatMut};
 use std::io::{Read, Write};
 use std::ops::Range;
-use std::path::{Path, PathBuf};
-use thiserror::Error;
+use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass, MatrixHash};
 use tvf_core::Hash64;
-
-/// The magic bytes of a basis file.
-pub const BASIS_FILE_MAGIC: &[u8; 8] = b"TVFBASIS";
-/// The format version this build writes and the newest it reads.
-pub const BASIS_FILE_VERSION: u32 = 3;
-
-/// Why a basis file could not be written or used (every variant names the file).
-#[derive(Debug, Error)]
-pub enum BasisFileError {
-    /// The operating system refused.
-    #[error("{}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The underlying error.
-        source: std::io::Error,
-    },
-    /// The file does not start with `TVFBASIS`.
-    #[error("{}: not a tvf basis file (.tvfb)", path.display())]
-    NotABasisFile {
-        /// The file.
-        path: PathBuf,
-    },
-    /// Written by a newer tvf.
-    #[error("{}: basis file format version {found} is newer than this tvf reads ({supported}); recompute the basis or update tvf", path.display())]
-    NewerFormat {
-        /// The file.
-        path: PathBuf,
-        /// Version in the file.
-        found: u32,
-        /// Newest version this build reads.
-        supported: u32,
-    },
-    /// Computed with another discretization or mass lumping.
-    #[error("{}: basis was computed for the {found} discretization, not {expected}", path.display())]
-    WrongDiscretization {
-        /// The file.
-        path: PathBuf,
-        /// Discretization in the file.
-        found: String,
-        /// Discretization asked for.
-        expected: String,
-    },
-    /// Computed for the same discretization id and mesh, but from other matrices (the
-    /// assembly changed since): the basis is not theirs.
-    #[error("{}: the basis was computed from other matrices of '{discretization}' than this complex has ({} differ{}: matrix hash {found:016x} in the file, {expected:016x} of the complex); recompute the basis", path.display(), differing.join(", "), if differing.len() == 1 { "s" } else { "" })]
-    WrongMatrices {
-        /// The file.
-        path: PathBuf,
-        /// The complex id (the same in the file and the complex).
-        discretization: String,
-        /// Names of the parts whose hashes differ ([`MatrixHash::PART_NAMES`]).
-        differing: Vec<&'static str>,
-        /// [`MatrixHash::value`] in the file.
-        found: u64,
-        /// [`MatrixHash::value`] of the complex.
-        expected: u64,
-    },
-    /// Computed for another mesh.
-    #[error("{}: basis belongs to another mesh ({found_faces} faces, fingerprint {found:016x}; this mesh: {expected_faces} faces, fingerprint {expected:016x})", path.display())]
-    WrongMesh {
-        /// The file.
-        path: PathBuf,
-        /// Fingerprint in the file.
-        found: u64,
-        /// Fingerprint of the mesh given.
-        expected: u64,
-        /// Faces in the file.
-        found_faces: usize,
-        /// Faces of the mesh given.
-        expected_faces: usize,
-    },
-    /// The file is shorter than its header says.
-    #[error("{}: truncated basis file ({found} bytes, the header promises {expected})", path.display())]
-    Truncated {
-        /// The file.
-        path: PathBuf,
-        /// Bytes the header promises.
-        expected: u64,
-        /// Bytes present.
-        found: u64,
-    },
-    /// The header or payload checksum does not match: the file is damaged.
-    #[error("{}: damaged basis file ({part} checksum mismatch)", path.display())]
-    Checksum {
-        /// The file.
-        path: PathBuf,
-        /// "header" or "payload".
-        part: &'static str,
-    },
-    /// Inconsistent content behind valid checksums (or a basis that cannot be saved).
-    #[error("{}: invalid basis file: {reason}", path.display())]
-    Invalid {
-        /// The file.
-        path: PathBuf,
-        /// What is inconsistent.
-        reason: String,
-    },
-}
 
 fn family_code(family: FieldFamily) -> u8 {
     match family {
@@ -467,78 +370,19 @@ fn read_basis(
     if let Some(key) = expected {
         key.check_file(path, &header.key)?;
     }
-    let invalid = |reason: String| BasisFileError::Invalid {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let promised = header
-        .payload_bytes()
-        .and_then(|payload| payload.checked_add(header_length))
-        .ok_or_else(|| invalid("sizes overflow".into()))?;
-    if size < promised {
-        return Err(BasisFileError::Truncated {
-            path: path.to_path_buf(),
-            expected: promised,
-            found: size,
-        });
-    }
-    if size > promised {
-        return Err(invalid(format!(
-            "{} bytes of trailing data",
-            size - promised
-        )));
-    }
-    let (n, d) = (header.key.field_dimension, header.field_count);
-    if let (
-        Some(forming),
-        BasisFileLayout::Eigenfunctions {
-            potential_dimension,
-            co_potential_dimension,
-        },
-    ) = (forming, header.layout)
-    {
-        if (potential_dimension, co_potential_dimension)
-            != (forming.potential_dimension, forming.co_potential_dimension)
-        {
-            return Err(invalid(format!(
-                "the file holds potentials of {potential_dimension} and co-potentials of \
-                 {co_potential_dimension} values, the complex's have {} and {}",
-                forming.potential_dimension, forming.co_potential_dimension
-            )));
-        }
+    check_file_size(path, &header, header_length, size)?;
+    if let Some(forming) = forming {
+        check_forming_dimensions(path, &header, forming)?;
     }
     let mut input = HashingReader {
         inner: reader,
         hash: Hash64::new(),
     };
+    let d = header.field_count;
     let eigenvalues = input.f64s(d).map_err(io(path))?;
     let mut codes = vec![0u8; d.div_ceil(8) * 8];
     input.read_exact(&mut codes).map_err(io(path))?;
-    let read_body = |input: &mut HashingReader<_>| -> std::io::Result<_> {
-        Ok(match (header.layout, forming) {
-            (BasisFileLayout::Fields, _) => {
-                let field_mass = FieldMassRead::read(input, header.field_mass, n)?;
-                let fields = input.matrix(n, d)?;
-                Body::Fields { field_mass, fields }
-            }
-            (
-                BasisFileLayout::Eigenfunctions {
-                    potential_dimension,
-                    co_potential_dimension,
-                },
-                None,
-            ) => Body::Eigenfunctions {
-                potentials: input.matrix(potential_dimension, header.integrable_count)?,
-                co_potentials: input.matrix(co_potential_dimension, header.cointegrable_count)?,
-                harmonic: input.matrix(n, header.harmonic_count)?,
-            },
-            (BasisFileLayout::Eigenfunctions { .. }, Some(forming)) => Body::Fields {
-                field_mass: Some(FieldMassRead::Complex(forming.field_mass.clone())),
-                fields: input.formed_fields(&header, &codes[..d], forming)?,
-            },
-        })
-    };
-    let body = read_body(&mut input).map_err(io(path))?;
+    let body = read_body(&mut input, &header, &codes[..d], forming).map_err(io(path))?;
     let computed = input.hash.finish();
     let mut stored = [0u8; 8];
     input.inner.read_exact(&mut stored).map_err(io(path))?;
@@ -548,35 +392,147 @@ fn read_basis(
             part: "payload",
         });
     }
-    let families = codes[..d]
+    let families = families_of(&codes[..d], &header).map_err(|r| invalid(path, r))?;
+    let stored =
+        stored_basis(&header, eigenvalues, families, body).map_err(|r| invalid(path, r))?;
+    Ok((header, stored))
+}
+
+/// An inconsistent basis file `path`, for `reason`.
+fn invalid(path: &Path, reason: String) -> BasisFileError {
+    BasisFileError::Invalid {
+        path: path.to_path_buf(),
+        reason,
+    }
+}
+
+/// Checks that the file's `size` is what `header` (of `header_length` bytes) promises.
+fn check_file_size(
+    path: &Path,
+    header: &BasisFileHeader,
+    header_length: u64,
+    size: u64,
+) -> Result<(), BasisFileError> {
+    let promised = header
+        .payload_bytes()
+        .and_then(|payload| payload.checked_add(header_length))
+        .ok_or_else(|| invalid(path, "sizes overflow".into()))?;
+    if size < promised {
+        return Err(BasisFileError::Truncated {
+            path: path.to_path_buf(),
+            expected: promised,
+            found: size,
+        });
+    }
+    if size > promised {
+        return Err(invalid(
+            path,
+            format!("{} bytes of trailing data", size - promised),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks that the potentials and co-potentials of an eigenfunctions file have the dimensions
+/// of the complex that is to form its fields.
+fn check_forming_dimensions(
+    path: &Path,
+    header: &BasisFileHeader,
+    forming: &FieldForming<'_>,
+) -> Result<(), BasisFileError> {
+    if let BasisFileLayout::Eigenfunctions {
+        potential_dimension,
+        co_potential_dimension,
+    } = header.layout
+    {
+        if (potential_dimension, co_potential_dimension)
+            != (forming.potential_dimension, forming.co_potential_dimension)
+        {
+            return Err(invalid(
+                path,
+                format!(
+                    "the file holds potentials of {potential_dimension} and co-potentials of \
+                     {co_potential_dimension} values, the complex's have {} and {}",
+                    forming.potential_dimension, forming.co_potential_dimension
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The layout-specific part of the payload (after the eigenvalues and the family `codes`),
+/// with `forming` an eigenfunctions file's fields formed as they are read.
+fn read_body<R: Read>(
+    input: &mut HashingReader<R>,
+    header: &BasisFileHeader,
+    codes: &[u8],
+    forming: Option<&FieldForming<'_>>,
+) -> std::io::Result<Body> {
+    let (n, d) = (header.key.field_dimension, header.field_count);
+    Ok(match (header.layout, forming) {
+        (BasisFileLayout::Fields, _) => {
+            let field_mass = FieldMassRead::read(input, header.field_mass, n)?;
+            let fields = input.matrix(n, d)?;
+            Body::Fields { field_mass, fields }
+        }
+        (
+            BasisFileLayout::Eigenfunctions {
+                potential_dimension,
+                co_potential_dimension,
+            },
+            None,
+        ) => Body::Eigenfunctions {
+            potentials: input.matrix(potential_dimension, header.integrable_count)?,
+            co_potentials: input.matrix(co_potential_dimension, header.cointegrable_count)?,
+            harmonic: input.matrix(n, header.harmonic_count)?,
+        },
+        (BasisFileLayout::Eigenfunctions { .. }, Some(forming)) => Body::Fields {
+            field_mass: Some(FieldMassRead::Complex(forming.field_mass.clone())),
+            fields: input.formed_fields(header, codes, forming)?,
+        },
+    })
+}
+
+/// The families of the family `codes`, whose counts must be the header's.
+fn families_of(codes: &[u8], header: &BasisFileHeader) -> Result<Vec<FieldFamily>, String> {
+    let families = codes
         .iter()
         .map(|&c| match c {
             0 => Ok(FieldFamily::Harmonic),
             1 => Ok(FieldFamily::Integrable),
             2 => Ok(FieldFamily::Cointegrable),
-            other => Err(invalid(format!("unknown family code {other}"))),
+            other => Err(format!("unknown family code {other}")),
         })
         .collect::<Result<Vec<_>, _>>()?;
     let count = |family| families.iter().filter(|&&f| f == family).count();
     if count(FieldFamily::Harmonic) != header.harmonic_count
         || count(FieldFamily::Integrable) != header.integrable_count
     {
-        return Err(invalid("family counts differ from the header".into()));
+        return Err("family counts differ from the header".into());
     }
+    Ok(families)
+}
+
+/// The basis of a read payload: its values finite, a stored `M1` the one the header's matrix
+/// hash names.
+fn stored_basis(
+    header: &BasisFileHeader,
+    eigenvalues: Vec<f64>,
+    families: Vec<FieldFamily>,
+    body: Body,
+) -> Result<StoredBasis, String> {
     if let Some(problem) = body.non_finite() {
-        return Err(invalid(problem));
+        return Err(problem);
     }
-    let stored = match body {
+    match body {
         Body::Fields { field_mass, fields } => {
             let field_mass = field_mass
-                .ok_or_else(|| invalid("the fields layout holds no field mass".into()))?
-                .into_mass()
-                .map_err(invalid)?;
+                .ok_or_else(|| "the fields layout holds no field mass".to_string())?
+                .into_mass()?;
             let hash = header.key.matrix_hash.map(|h| h.m1);
             if hash.is_some_and(|m1| MatrixHash::of_mass(&field_mass) != m1) {
-                return Err(invalid(
-                    "the stored M1 is not the one the header's matrix hash names".into(),
-                ));
+                return Err("the stored M1 is not the one the header's matrix hash names".into());
             }
             SpectralBasis::new(eigenvalues, families, fields, field_mass)
                 .map(|basis| StoredBasis::Fields(Box::new(basis)))
@@ -594,8 +550,7 @@ fn read_basis(
         )
         .map(|basis| StoredBasis::Eigenfunctions(Box::new(basis))),
     }
-    .map_err(|e| invalid(e.to_string()))?;
-    Ok((header, stored))
+    .map_err(|e| e.to_string())
 }
 
 /// The layout-specific part of a basis file, as read.

@@ -2,13 +2,18 @@
 //! encoded and decoded with its checksum. The full layout is documented in
 //! [`crate::formats::basis_file`].
 
-use super::basis_file::{BasisFileError, BASIS_FILE_MAGIC, BASIS_FILE_VERSION};
+use super::basis_file_error::BasisFileError;
 use super::basis_file_mass::StoredFieldMass;
 use std::io::Read;
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, MatrixHash};
 use tvf_core::mesh::Mesh;
 use tvf_core::Hash64;
+
+/// The magic bytes of a basis file.
+pub const BASIS_FILE_MAGIC: &[u8; 8] = b"TVFBASIS";
+/// The format version this build writes and the newest it reads.
+pub const BASIS_FILE_VERSION: u32 = 3;
 
 /// What a basis file must match to be used: the discretization, its matrices and the mesh.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -211,6 +216,23 @@ pub(crate) fn read_header(
     path: &Path,
     reader: &mut impl Read,
 ) -> Result<(BasisFileHeader, u64), BasisFileError> {
+    let (version, bytes) = read_checked_bytes(path, reader)?;
+    let header = HeaderBytes {
+        path,
+        version,
+        bytes: &bytes,
+    }
+    .decode()?;
+    Ok((header, bytes.len() as u64))
+}
+
+/// The header's bytes as the file holds them, magic to checksum, with its format version:
+/// the magic, the version (at most [`BASIS_FILE_VERSION`]), the length and the checksum
+/// checked.
+fn read_checked_bytes(
+    path: &Path,
+    reader: &mut impl Read,
+) -> Result<(u32, Vec<u8>), BasisFileError> {
     let io = |source| BasisFileError::Io {
         path: path.to_path_buf(),
         source,
@@ -240,10 +262,7 @@ pub(crate) fn read_header(
     }
     let name_at = name_length_at(version) + 4;
     let length = u32::from_le_bytes([fixed[12], fixed[13], fixed[14], fixed[15]]) as usize;
-    let damaged = || BasisFileError::Checksum {
-        path: path.to_path_buf(),
-        part: "header",
-    };
+    let damaged = || damaged_header(path);
     if version == 0 || !(name_at + 8..=1 << 20).contains(&length) {
         return Err(damaged());
     }
@@ -265,88 +284,138 @@ pub(crate) fn read_header(
     if Hash64::of(&bytes[..body]) != stored {
         return Err(damaged());
     }
-    let u64_at = |at: usize| {
-        let mut w = [0u8; 8];
-        w.copy_from_slice(&bytes[at..at + 8]);
-        u64::from_le_bytes(w)
-    };
-    let invalid = |reason: String| BasisFileError::Invalid {
+    Ok((version, bytes))
+}
+
+/// A header checksum mismatch (or a length no header can have) in the file `path`.
+fn damaged_header(path: &Path) -> BasisFileError {
+    BasisFileError::Checksum {
         path: path.to_path_buf(),
-        reason,
-    };
-    let word = |i: usize| {
-        usize::try_from(u64_at(COUNTS_AT + 8 * i))
-            .map_err(|_| invalid("a count does not fit this machine".into()))
-    };
-    let counts = (0..6).map(word).collect::<Result<Vec<_>, _>>()?;
-    let layout = if version == 1 {
-        BasisFileLayout::Fields
-    } else {
-        match u64_at(LAYOUT_AT) {
-            0 => BasisFileLayout::Fields,
-            1 => BasisFileLayout::Eigenfunctions {
-                potential_dimension: word(7)?,
-                co_potential_dimension: word(8)?,
-            },
-            other => return Err(invalid(format!("unknown layout code {other}"))),
+        part: "header",
+    }
+}
+
+/// The checked bytes of a header of format `version` (see [`read_checked_bytes`]), read from
+/// `path`, to be decoded.
+struct HeaderBytes<'a> {
+    path: &'a Path,
+    version: u32,
+    bytes: &'a [u8],
+}
+
+impl HeaderBytes<'_> {
+    /// The header the bytes hold, its counts, layout, field mass and id checked for
+    /// consistency.
+    fn decode(&self) -> Result<BasisFileHeader, BasisFileError> {
+        let counts = (0..6)
+            .map(|i| self.word(i))
+            .collect::<Result<Vec<_>, _>>()?;
+        let layout = self.layout()?;
+        let (matrix_hash, field_mass) = self.matrix_hash_and_field_mass(layout)?;
+        let discretization = self.discretization()?;
+        let consistent = counts[3]
+            .checked_add(counts[4])
+            .and_then(|sum| sum.checked_add(counts[5]))
+            == Some(counts[2]);
+        if !consistent {
+            return Err(self.invalid(format!("inconsistent counts {counts:?}")));
         }
-    };
-    let (matrix_hash, field_mass) = if version < 3 {
-        let field_mass = match layout {
-            BasisFileLayout::Fields => StoredFieldMass::Diagonal,
-            BasisFileLayout::Eigenfunctions { .. } => StoredFieldMass::FromComplex,
-        };
-        (None, field_mass)
-    } else {
-        let hash = std::array::from_fn(|i| u64_at(MATRIX_HASH_AT + 8 * i));
-        let mass = std::array::from_fn(|i| u64_at(FIELD_MASS_AT + 8 * i));
-        let field_mass = StoredFieldMass::from_words(mass).map_err(invalid)?;
+        Ok(BasisFileHeader {
+            version: self.version,
+            key: BasisFileKey {
+                discretization,
+                mesh_fingerprint: self.u64_at(16),
+                face_count: counts[0],
+                field_dimension: counts[1],
+                matrix_hash,
+            },
+            field_count: counts[2],
+            harmonic_count: counts[3],
+            integrable_count: counts[4],
+            cointegrable_count: counts[5],
+            layout,
+            field_mass,
+        })
+    }
+
+    /// The layout words (version 2 on; version 1 holds fields).
+    fn layout(&self) -> Result<BasisFileLayout, BasisFileError> {
+        if self.version == 1 {
+            return Ok(BasisFileLayout::Fields);
+        }
+        match self.u64_at(LAYOUT_AT) {
+            0 => Ok(BasisFileLayout::Fields),
+            1 => Ok(BasisFileLayout::Eigenfunctions {
+                potential_dimension: self.word(7)?,
+                co_potential_dimension: self.word(8)?,
+            }),
+            other => Err(self.invalid(format!("unknown layout code {other}"))),
+        }
+    }
+
+    /// The matrix hash and the field mass words (version 3 on; earlier versions have no hash,
+    /// and their mass follows from the layout), checked against the `layout`.
+    fn matrix_hash_and_field_mass(
+        &self,
+        layout: BasisFileLayout,
+    ) -> Result<(Option<MatrixHash>, StoredFieldMass), BasisFileError> {
+        if self.version < 3 {
+            let field_mass = match layout {
+                BasisFileLayout::Fields => StoredFieldMass::Diagonal,
+                BasisFileLayout::Eigenfunctions { .. } => StoredFieldMass::FromComplex,
+            };
+            return Ok((None, field_mass));
+        }
+        let hash = std::array::from_fn(|i| self.u64_at(MATRIX_HASH_AT + 8 * i));
+        let mass = std::array::from_fn(|i| self.u64_at(FIELD_MASS_AT + 8 * i));
+        let field_mass = StoredFieldMass::from_words(mass).map_err(|r| self.invalid(r))?;
         let from_complex = field_mass == StoredFieldMass::FromComplex;
         if from_complex != matches!(layout, BasisFileLayout::Eigenfunctions { .. }) {
-            return Err(invalid(format!(
+            return Err(self.invalid(format!(
                 "the field mass storage {field_mass:?} does not fit the layout {layout:?}"
             )));
         }
-        (Some(MatrixHash::from_parts(hash)), field_mass)
-    };
-    let name_length = u32::from_le_bytes(
-        bytes[name_at - 4..name_at]
-            .try_into()
-            .map_err(|_| damaged())?,
-    ) as usize;
-    if name_at + name_length != body {
-        return Err(invalid(
-            "header length does not match the discretization id".into(),
-        ));
+        Ok((Some(MatrixHash::from_parts(hash)), field_mass))
     }
-    let discretization = catalog_id_of(
-        &String::from_utf8(bytes[name_at..body].to_vec())
-            .map_err(|_| invalid("discretization id is not UTF-8".into()))?,
-    );
-    let consistent = counts[3]
-        .checked_add(counts[4])
-        .and_then(|sum| sum.checked_add(counts[5]))
-        == Some(counts[2]);
-    if !consistent {
-        return Err(invalid(format!("inconsistent counts {counts:?}")));
+
+    /// The discretization id (as the catalog names it), which must fill the header up to its
+    /// checksum.
+    fn discretization(&self) -> Result<String, BasisFileError> {
+        let name_at = name_length_at(self.version) + 4;
+        let body = self.bytes.len() - 8;
+        let name_length = u32::from_le_bytes(
+            self.bytes[name_at - 4..name_at]
+                .try_into()
+                .map_err(|_| damaged_header(self.path))?,
+        ) as usize;
+        if name_at + name_length != body {
+            return Err(self.invalid("header length does not match the discretization id".into()));
+        }
+        let stored = String::from_utf8(self.bytes[name_at..body].to_vec())
+            .map_err(|_| self.invalid("discretization id is not UTF-8".into()))?;
+        Ok(catalog_id_of(&stored))
     }
-    let header = BasisFileHeader {
-        version,
-        key: BasisFileKey {
-            discretization,
-            mesh_fingerprint: u64_at(16),
-            face_count: counts[0],
-            field_dimension: counts[1],
-            matrix_hash,
-        },
-        field_count: counts[2],
-        harmonic_count: counts[3],
-        integrable_count: counts[4],
-        cointegrable_count: counts[5],
-        layout,
-        field_mass,
-    };
-    Ok((header, length as u64))
+
+    /// The little-endian word at byte `at`.
+    fn u64_at(&self, at: usize) -> u64 {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(&self.bytes[at..at + 8]);
+        u64::from_le_bytes(w)
+    }
+
+    /// Word `i` of the counts and layout words, as a count.
+    fn word(&self, i: usize) -> Result<usize, BasisFileError> {
+        usize::try_from(self.u64_at(COUNTS_AT + 8 * i))
+            .map_err(|_| self.invalid("a count does not fit this machine".into()))
+    }
+
+    /// An inconsistent header, for `reason`.
+    fn invalid(&self, reason: String) -> BasisFileError {
+        BasisFileError::Invalid {
+            path: self.path.to_path_buf(),
+            reason,
+        }
+    }
 }
 
 /// The catalog id a stored discretization name stands for: files written before the catalog
