@@ -99,7 +99,9 @@ pub use formats::basis_file_complex::{
 };
 pub use formats::basis_id::basis_id;
 pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
-pub use formats::complex_folder::{read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID};
+pub use formats::complex_folder::{
+    read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID, MAX_INFO_BYTES,
+};
 pub use formats::complex_folder_info::{
     complex_folder_info, mass_file_name, sampling_of, MatrixFileFormat,
 };
@@ -123,7 +125,13 @@ pub use formats::folder_file::{
 pub use formats::hodge_parts_folder::write_hodge_parts;
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
-pub use formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};
+pub use formats::sparse_file_read::{
+    read_matrix_market, read_matrix_market_within, MatrixLimits, MIN_ENTRY_LINE_BYTES,
+};
+pub use formats::sparse_npz_read::{
+    read_index_npy, read_index_npy_within, read_sparse_npz, read_sparse_npz_within,
+    InflationBudget, NPZ_INFLATED_LIMIT,
+};
 pub use formats::stored_basis::StoredBasis;
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
