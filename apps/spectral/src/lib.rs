@@ -30,6 +30,7 @@
 mod analysis;
 mod analysis_report;
 mod basis;
+mod basis_cache_file;
 mod basis_cache_folder;
 mod basis_error;
 mod basis_request;
@@ -57,13 +58,14 @@ mod test_torus;
 pub use analysis::{exact_hodge_energies, CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use analysis_report::AnalysisReport;
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
-pub use basis_cache_folder::MESH_CACHE_FOLDER;
+pub use basis_cache_folder::{
+    check_cache_folder, prepare_private_folder, user_cache_folder_from, BasisCache, FolderCheck,
+};
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use basis_resolution::{
     cache_messages, cached_or_computed_basis, computed_basis_summary, open_checked_basis_file,
-    prepare_private_folder, user_cache_folder_from, BasisCache, BasisFromFile, BasisMessage,
-    CachedBasis,
+    BasisFromFile, BasisMessage, CachedBasis,
 };
 pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
 pub use basis_summary::{BasisSummary, FamilyCounts};
@@ -89,9 +91,9 @@ pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::{read_curve_file, FilterSpecError};
 pub use formats::basis_arrays::write_basis_arrays;
 pub use formats::basis_file::{
-    load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
-    BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, StoredFieldMass,
-    BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
+    load_basis, load_basis_from_file, read_basis_file, read_basis_header, read_basis_header_from,
+    save_basis, save_eigenfunction_basis, BasisFileError, BasisFileHeader, BasisFileKey,
+    BasisFileLayout, StoredFieldMass, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
 pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, open_basis_file_with,

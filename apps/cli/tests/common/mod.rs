@@ -6,9 +6,15 @@ use std::path::Path;
 use std::process::{Command, Output};
 use tvf_core::TriangleMesh;
 
-/// A command running the `tvf` binary built for these tests.
+/// A command running the `tvf` binary built for these tests, with the user's cache folder
+/// (the default basis cache) in the tests' temporary folder rather than the home folder.
 pub fn tvf() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tvf"))
+    let mut command = Command::new(env!("CARGO_BIN_EXE_tvf"));
+    command.env(
+        "XDG_CACHE_HOME",
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join("xdg-cache"),
+    );
+    command
 }
 
 /// Fails the test (at the caller's line) with the command's stderr unless it exited with 0.
@@ -35,4 +41,45 @@ pub fn write_field(mesh: &TriangleMesh, path: &Path) {
         })
         .collect();
     std::fs::write(path, field).unwrap();
+}
+
+/// Runs `command` to its end, or kills it after `seconds` and fails the test saying it hung
+/// (stdin closed, stdout and stderr captured).
+#[track_caller]
+pub fn output_within(command: &mut Command, seconds: u64) -> Output {
+    use std::process::Stdio;
+    let mut child = command
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the command starts");
+    // Read both pipes while waiting, so a chatty child cannot block on a full pipe.
+    let mut stdout = child.stdout.take().expect("piped");
+    let mut stderr = child.stderr.take().expect("piped");
+    let out = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut stdout, &mut bytes).map(|_| bytes)
+    });
+    let err = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut stderr, &mut bytes).map(|_| bytes)
+    });
+    let start = std::time::Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().expect("the child can be waited for") {
+            break status;
+        }
+        if start.elapsed() > std::time::Duration::from_secs(seconds) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{command:?} hung: killed after {seconds} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    Output {
+        status,
+        stdout: out.join().expect("reader").unwrap_or_default(),
+        stderr: err.join().expect("reader").unwrap_or_default(),
+    }
 }
