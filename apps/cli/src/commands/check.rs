@@ -109,6 +109,13 @@ fn check_generated(
             dir.display()
         );
     }
+    if args.cases == 0 {
+        bail!("--cases 0: check at least one generated mesh");
+    }
+    // The counterexample is written after the run, which can take hours: its path is checked
+    // first.
+    tvf_core::io::check_file_output(&args.output, &[])
+        .context("--output: where the minimal failing mesh would be written")?;
     let request = entry_property_request(catalog.get(id)?, args.cases, args.seed);
     let boundary = args.discretization.boundary_condition();
     let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
