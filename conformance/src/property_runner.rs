@@ -1,7 +1,13 @@
 //! The property runner: the core checks (and a catalog entry's measured reference checks) on one
 //! mesh ([`check_mesh`]) or on `N` meshes drawn from [`crate::strategies`] ([`run_property`]),
 //! with proptest's [`TestRunner`] on a fixed seed; on a failure, proptest shrinks the mesh
-//! description and the report holds the minimal failing mesh with its measured numbers.
+//! description and the report holds the minimal failing mesh with its measured numbers — the
+//! numbers of the run that failed, and whether the failure came back when that mesh was checked
+//! again (a builder whose result changes from call to call fails without reproducing).
+//!
+//! A builder or a check stops the whole run at once by unwinding with [`StopRun`] (the Python
+//! package does on Ctrl+C): the runner passes it on to its caller instead of counting a failed
+//! case.
 
 use crate::check_outcome::{CheckOutcome, CheckStatus};
 use crate::check_report::{core_check_report, CheckReport};
@@ -25,11 +31,17 @@ pub const CONSTRUCTION: &str = "construction";
 /// Name of the outcome reporting that the builder or a check panicked (its message the detail).
 pub const PANIC: &str = "panic";
 
+/// The payload a builder or a check unwinds with (`std::panic::resume_unwind(Box::new(StopRun))`)
+/// to stop a run at once — the user interrupted it: [`check_mesh`] and [`run_property`] pass it
+/// on to their caller (which catches it) instead of reporting a failed check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StopRun;
+
 /// Runs the core checks ([`core_check_report`]) and, on a closed mesh, the measured `reference`
 /// checks ([`measure_reference`]; the test suite runs them on closed meshes only, the stiffness
 /// formulas know no boundary conditions) on the complex `builder` makes of `mesh`. A refused mesh
 /// is one failed outcome named [`CONSTRUCTION`], a panic of the builder or of a check one named
-/// [`PANIC`].
+/// [`PANIC`]; [`StopRun`] unwinds on to the caller.
 pub fn check_mesh(
     builder: Builder,
     mesh: &TriangleMesh,
@@ -39,6 +51,9 @@ pub fn check_mesh(
         checks_on_mesh(builder, mesh, reference)
     }));
     checked.unwrap_or_else(|payload| {
+        if payload.is::<StopRun>() {
+            std::panic::resume_unwind(payload);
+        }
         let message = payload
             .downcast_ref::<String>()
             .cloned()
@@ -130,8 +145,11 @@ pub struct Counterexample {
     pub spec: MeshSpec,
     /// The mesh.
     pub mesh: CorpusMesh,
-    /// Every check measured on it (at least one failed).
+    /// Every check measured on it in the run that failed (at least one failed).
     pub report: CheckReport,
+    /// Whether it failed again when checked once more; `false`: the failure does not reproduce
+    /// (a builder or a check whose result changes from call to call), still a failure.
+    pub reproduced: bool,
 }
 
 /// The result of [`run_property`].
@@ -157,8 +175,11 @@ impl PropertyReport {
 
 /// Runs `check_mesh(builder, mesh, request.reference)` on `request.cases` meshes drawn from
 /// [`mesh_specs`]`(request.needs)` with a [`TestRunner`] seeded by `request.seed`; on a failure,
-/// proptest shrinks the description and the report holds the minimal failing mesh.
-/// `progress` is called after each case and each shrinking step.
+/// proptest shrinks the description and the report holds the minimal failing mesh, with the
+/// numbers of its failing run and whether a second check reproduced the failure.
+/// `progress` is called after each case and each shrinking step. A [`StopRun`] from the builder
+/// or a check ends the run (the remaining cases and shrinking steps pass at once) and unwinds
+/// on to the caller.
 pub fn run_property(
     builder: Builder,
     request: &PropertyRequest,
@@ -177,8 +198,21 @@ pub fn run_property(
     let mut runner = TestRunner::new_with_rng(config, rng);
     let state = RefCell::new(RunState::default());
     let result = runner.run(&mesh_specs(request.needs), |spec| {
+        if state.borrow().stopped {
+            return Ok(());
+        }
         let mesh = spec.build().map_err(TestCaseError::reject)?;
-        let report = check_mesh(builder, &mesh.mesh, &request.reference);
+        let checked = std::panic::catch_unwind(AssertUnwindSafe(|| {
+            check_mesh(builder, &mesh.mesh, &request.reference)
+        }));
+        let report = match checked {
+            Ok(report) => report,
+            Err(payload) if payload.is::<StopRun>() => {
+                state.borrow_mut().stopped = true;
+                return Ok(());
+            }
+            Err(payload) => std::panic::resume_unwind(payload),
+        };
         let mut state = state.borrow_mut();
         if state.shrinking {
             state.shrink_steps += 1;
@@ -197,13 +231,20 @@ pub fn run_property(
             Ok(())
         } else {
             let failed: Vec<String> = report.failures().iter().map(|o| o.name.clone()).collect();
+            state.last_failure = Some((spec, mesh, report));
             Err(TestCaseError::fail(failed.join(", ")))
         }
     });
-    let state = state.into_inner();
+    let mut state = state.into_inner();
+    if state.stopped {
+        std::panic::resume_unwind(Box::new(StopRun));
+    }
     let (counterexample, aborted) = match result {
         Ok(()) => (None, None),
-        Err(TestError::Fail(_, spec)) => (Some(counterexample(builder, request, spec)), None),
+        Err(TestError::Fail(_, spec)) => {
+            let last = state.last_failure.take();
+            (Some(counterexample(builder, request, spec, last)), None)
+        }
         Err(TestError::Abort(reason)) => (None, Some(reason.to_string())),
     };
     PropertyReport {
@@ -214,13 +255,40 @@ pub fn run_property(
     }
 }
 
-/// The report of the shrunk description (re-measured: proptest keeps only the value).
-fn counterexample(builder: Builder, request: &PropertyRequest, spec: MeshSpec) -> Counterexample {
-    let mesh = spec
-        .build()
-        .expect("a description that failed was built before");
-    let report = check_mesh(builder, &mesh.mesh, &request.reference);
-    Counterexample { spec, mesh, report }
+/// The counterexample of the shrunk description `spec`: the numbers of its failing run (`last`,
+/// the last failure the runner saw, which is the shrunk one), checked once more to tell whether
+/// the failure reproduces. Without them (never expected) it is measured again.
+fn counterexample(
+    builder: Builder,
+    request: &PropertyRequest,
+    spec: MeshSpec,
+    last: Option<(MeshSpec, CorpusMesh, CheckReport)>,
+) -> Counterexample {
+    let again = |mesh: &CorpusMesh| check_mesh(builder, &mesh.mesh, &request.reference);
+    match last.filter(|(failed, _, _)| *failed == spec) {
+        Some((spec, mesh, report)) => {
+            let reproduced = !again(&mesh).passed();
+            Counterexample {
+                spec,
+                mesh,
+                report,
+                reproduced,
+            }
+        }
+        None => {
+            let mesh = spec
+                .build()
+                .expect("a description that failed was built before");
+            let report = again(&mesh);
+            let reproduced = !report.passed();
+            Counterexample {
+                spec,
+                mesh,
+                report,
+                reproduced,
+            }
+        }
+    }
 }
 
 /// What the test closure of [`run_property`] accumulates.
@@ -230,6 +298,10 @@ struct RunState {
     shrinking: bool,
     shrink_steps: u32,
     worst: BTreeMap<String, CheckOutcome>,
+    /// The last failing case: its description, mesh and report.
+    last_failure: Option<(MeshSpec, CorpusMesh, CheckReport)>,
+    /// A builder or check stopped the run ([`StopRun`]).
+    stopped: bool,
 }
 
 impl RunState {

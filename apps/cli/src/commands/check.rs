@@ -69,7 +69,8 @@ pub struct CheckArgs {
 /// `discretization`, `passed`, `checks` (one object per check: `name`, `status`, `measured`,
 /// `limit`, `detail`), `failed` (names); for generated meshes also `cases`, `seed`,
 /// `cases_passed` (`checks` then holds each check's worst case) and, on a failure,
-/// `counterexample` (`path`, `faces`, `description`, `reproduce`, `checks`).
+/// `counterexample` (`path`, `faces`, `description`, `reproduce`, `checks`, `reproduced`: false for
+/// a failure that did not come back when the mesh was checked again).
 pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let catalog = context.catalog();
     let id = match &args.discretization.complex {
