@@ -1,8 +1,13 @@
 """tvf.check with a builder (V, F) -> matrices: a correct builder passes on generated meshes and
 on a given mesh; a builder broken only above 100 faces is caught and its failure shrunk to a
-small failing mesh; a builder that raises fails the construction check."""
+small failing mesh; a builder that raises fails the construction check, one that is wrong
+only sometimes fails too; Ctrl+C and SystemExit propagate; cases and seed are integers."""
+
+import os
+import signal
 
 import numpy as np
+import pytest
 import scipy.sparse as sp
 
 import tvf
@@ -67,3 +72,75 @@ def test_a_builder_that_raises_fails_construction():
     assert not report.passed
     failed = {o["name"]: o["detail"] for o in report.failures}
     assert "construction" in failed and "not on this mesh" in failed["construction"], failed
+
+
+def wrong_every_second_call():
+    """A builder whose M0 is wrong on every second call (a bug that depends on state)."""
+    calls = [0]
+
+    def flaky(V, F):
+        calls[0] += 1
+        parts = builder(V, F)
+        if calls[0] % 2 == 0:
+            M0 = np.array(parts["M0"].diagonal() if sp.issparse(parts["M0"]) else parts["M0"], dtype=float)
+            M0[0] *= 2.0
+            parts["M0"] = M0
+        return parts
+
+    return flaky
+
+
+def test_a_failure_that_does_not_reproduce_is_not_a_pass():
+    """It once passed with a counterexample whose second look passed."""
+    report = tvf.check(wrong_every_second_call(), cases=16, seed=2)
+    assert not report.passed, str(report)
+    assert report.counterexample is not None
+    failed = {o["name"] for o in report.failures}
+    assert "potential_masses_sum_to_area" in failed, str(report)
+    assert report.reproduced in (True, False)
+    if report.reproduced is False:
+        assert "non-deterministic" in str(report)
+
+
+def test_interrupts_and_exits_in_a_builder_propagate():
+    """Ctrl+C in a builder once became a failed construction check, and the run a pass."""
+    for exception in (KeyboardInterrupt, SystemExit):
+        def raising(V, F, exception=exception):
+            raise exception("stop")
+
+        with pytest.raises(exception):
+            tvf.check(raising, cases=8, seed=0)
+        with pytest.raises(exception):
+            tvf.check(raising, mesh=torus(n=10, m=5))
+    # An ordinary exception is a failed construction check, not raised.
+    def broken(V, F):
+        raise ValueError("my bug")
+
+    report = tvf.check(broken, cases=4, seed=0)
+    assert not report.passed
+    assert any(o["name"] == "construction" and "my bug" in o["detail"] for o in report.failures)
+
+
+def test_ctrl_c_during_a_property_run_raises():
+    """SIGINT while the checks run (without the GIL) stops the run with KeyboardInterrupt; it once
+    returned passed=True with the cases done so far."""
+    calls = [0]
+
+    def counting(V, F):
+        calls[0] += 1
+        if calls[0] == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+        return builder(V, F)
+
+    with pytest.raises(KeyboardInterrupt):
+        tvf.check(counting, cases=64, seed=0)
+    # The run stopped at the next call into Python: no further mesh was built.
+    assert calls[0] <= 4, calls[0]
+
+
+def test_cases_and_seed_must_be_integers():
+    for bad in (2.7, 3.0, "4"):
+        with pytest.raises(TypeError, match="cases must be an integer"):
+            tvf.check(builder, cases=bad)
+    with pytest.raises(TypeError, match="seed must be an integer"):
+        tvf.check(builder, cases=2, seed=0.5)
