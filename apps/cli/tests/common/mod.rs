@@ -83,3 +83,60 @@ pub fn output_within(command: &mut Command, seconds: u64) -> Output {
         stderr: err.join().expect("reader").unwrap_or_default(),
     }
 }
+
+/// [`output_within`], also returning the peak resident memory of the process in KiB (from
+/// `wait4`'s resource usage). The child is forked (not spawned sharing this process's memory,
+/// whose own peak would then count as the child's): its count starts from this process's
+/// current size, so a small test process measures the child.
+#[cfg(unix)]
+#[track_caller]
+pub fn output_and_peak_memory_within(command: &mut Command, seconds: u64) -> (Output, u64) {
+    use std::os::unix::process::{CommandExt, ExitStatusExt};
+    use std::process::Stdio;
+    // SAFETY: the hook does nothing; having one makes std fork and exec instead of posix_spawn.
+    unsafe {
+        command.pre_exec(|| Ok(()));
+    }
+    let mut child = command
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the command starts");
+    let mut stdout = child.stdout.take().expect("piped");
+    let mut stderr = child.stderr.take().expect("piped");
+    let out = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut stdout, &mut bytes).map(|_| bytes)
+    });
+    let err = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        std::io::Read::read_to_end(&mut stderr, &mut bytes).map(|_| bytes)
+    });
+    let pid = child.id() as libc::pid_t;
+    let start = std::time::Instant::now();
+    let (status, usage) = loop {
+        let mut status = 0;
+        // SAFETY: an all-zero rusage is valid, and wait4 writes it for our own child.
+        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+        // SAFETY: waits for our own child without blocking; both pointers are valid.
+        let reaped = unsafe { libc::wait4(pid, &mut status, libc::WNOHANG, &mut usage) };
+        if reaped == pid {
+            break (status, usage);
+        }
+        assert!(reaped == 0, "wait4: {}", std::io::Error::last_os_error());
+        if start.elapsed() > std::time::Duration::from_secs(seconds) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{command:?} hung: killed after {seconds} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    let output = Output {
+        status: std::process::ExitStatus::from_raw(status),
+        stdout: out.join().expect("reader").unwrap_or_default(),
+        stderr: err.join().expect("reader").unwrap_or_default(),
+    };
+    // ru_maxrss is in KiB on Linux.
+    (output, usage.ru_maxrss.max(0) as u64)
+}

@@ -89,6 +89,10 @@ pub fn read_matrix_market_within(
     let mut next_line = || -> Result<Option<(usize, String)>, String> {
         match lines.next() {
             Some((i, Ok(line))) => Ok(Some((i + 1, line))),
+            Some((i, Err(e))) if e.kind() == std::io::ErrorKind::InvalidData => Err(format!(
+                "line {}: not text (not UTF-8): not a Matrix Market file",
+                i + 1
+            )),
             Some((i, Err(e))) => Err(format!("line {}: {e}", i + 1)),
             None => Ok(None),
         }
