@@ -197,3 +197,180 @@ fn a_chosen_cache_folder_everyone_may_write_to_is_not_used() {
         );
     }
 }
+
+/// The sweep of hostile cache folders: whatever sits under the name of the next basis (a link
+/// to a file of yours, to `/dev/zero`, to a folder, a loop of links, a FIFO, a folder, another
+/// user's forged basis, a damaged or foreign file of yours, a hard link to a file of yours) and
+/// whatever the chosen cache folder is (everyone may write to it, another user's, a file, a
+/// link to a folder of yours), the run ends — killed after a minute otherwise — with the right
+/// basis, exit 0 and a warning that says what it found; nothing outside the cache folder
+/// changes, and a planted entry is replaced by a regular file or left alone with a warning.
+/// Prints the counts.
+#[test]
+fn hostile_cache_folders_sweep() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let field = d.join("f.txt");
+    std::fs::write(&field, "1 0 0\n".repeat(1280)).unwrap();
+    let name = cache_name(d, &field);
+    let good = d.join("learn").join(&name);
+    let expected = coefficients_in(&d.join("learn"), &field).stdout;
+    let victim = d.join("victim.txt");
+    std::fs::write(&victim, b"my precious file").unwrap();
+    let chown = |path: &Path| {
+        std::process::Command::new("chown")
+            .arg("12345")
+            .arg(path)
+            .status()
+            .is_ok_and(|s| s.success())
+    };
+    let plants: Vec<(&str, Box<dyn Fn(&Path)>, &str)> = vec![
+        (
+            "a link to a file of yours",
+            Box::new(|at: &Path| std::os::unix::fs::symlink(&victim, at).unwrap()),
+            "symbolic link",
+        ),
+        (
+            "a link to /dev/zero",
+            Box::new(|at: &Path| std::os::unix::fs::symlink("/dev/zero", at).unwrap()),
+            "symbolic link",
+        ),
+        (
+            "a link to a folder",
+            Box::new(|at: &Path| std::os::unix::fs::symlink(d, at).unwrap()),
+            "symbolic link",
+        ),
+        (
+            "a loop of links",
+            Box::new(|at: &Path| std::os::unix::fs::symlink(at, at).unwrap()),
+            "symbolic link",
+        ),
+        (
+            "a FIFO",
+            Box::new(|at: &Path| {
+                let made = std::process::Command::new("mkfifo").arg(at).status();
+                assert!(made.unwrap().success());
+            }),
+            "not a regular file",
+        ),
+        (
+            "a folder",
+            Box::new(|at: &Path| std::fs::create_dir(at).unwrap()),
+            "cannot cache the basis",
+        ),
+        (
+            "a damaged basis of yours",
+            Box::new(|at: &Path| {
+                let bytes = std::fs::read(&good).unwrap();
+                std::fs::write(at, &bytes[..bytes.len() / 2]).unwrap();
+            }),
+            "cached basis is unusable",
+        ),
+        (
+            "random bytes of yours",
+            Box::new(|at: &Path| std::fs::write(at, vec![0x5a; 4096]).unwrap()),
+            "cached basis is unusable",
+        ),
+        (
+            "a hard link to a file of yours",
+            Box::new(|at: &Path| std::fs::hard_link(&victim, at).unwrap()),
+            "cached basis is unusable",
+        ),
+        (
+            "another user's copy of the right basis",
+            Box::new(|at: &Path| {
+                std::fs::copy(&good, at).unwrap();
+                assert!(chown(at), "chown (the tests run as root)");
+            }),
+            "belongs to another user",
+        ),
+    ];
+    let mut counts = (0, 0);
+    for (k, (what, plant, said)) in plants.iter().enumerate() {
+        let shared = d.join(format!("shared-{k}"));
+        std::fs::create_dir(&shared).unwrap();
+        std::fs::set_permissions(&shared, std::fs::Permissions::from_mode(0o770)).unwrap();
+        let entry = shared.join(&name);
+        plant(&entry);
+        let output = coefficients_in(&shared, &field);
+        assert_success(&output);
+        assert_eq!(output.stdout, expected, "{what}: the coefficients");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(!stderr.contains("panicked"), "{what}: {stderr}");
+        assert!(
+            stderr.contains("warning: ") && stderr.contains(said),
+            "{what}: {stderr}"
+        );
+        let kind = std::fs::symlink_metadata(&entry).unwrap().file_type();
+        assert!(
+            kind.is_file() || *what == "a folder",
+            "{what}: the entry is still {kind:?}"
+        );
+        counts.0 += 1;
+    }
+    assert_eq!(std::fs::read(&victim).unwrap(), b"my precious file");
+    // Chosen folders that must not be used.
+    let folders: Vec<(&str, Box<dyn Fn(&Path)>, &str)> = vec![
+        (
+            "everyone may write to it",
+            Box::new(|at: &Path| {
+                std::fs::create_dir(at).unwrap();
+                std::fs::set_permissions(at, std::fs::Permissions::from_mode(0o777)).unwrap();
+            }),
+            "everyone may write",
+        ),
+        (
+            "a sticky folder everyone may write to",
+            Box::new(|at: &Path| {
+                std::fs::create_dir(at).unwrap();
+                std::fs::set_permissions(at, std::fs::Permissions::from_mode(0o1777)).unwrap();
+            }),
+            "everyone may write",
+        ),
+        (
+            "another user's",
+            Box::new(|at: &Path| {
+                std::fs::create_dir(at).unwrap();
+                assert!(chown(at), "chown (the tests run as root)");
+            }),
+            "another user",
+        ),
+        (
+            "a file",
+            Box::new(|at: &Path| std::fs::write(at, b"x").unwrap()),
+            "not a folder",
+        ),
+        (
+            "a link to /dev/null",
+            Box::new(|at: &Path| std::os::unix::fs::symlink("/dev/null", at).unwrap()),
+            "not a folder",
+        ),
+    ];
+    for (k, (what, make, said)) in folders.iter().enumerate() {
+        let chosen = d.join(format!("chosen-{k}"));
+        make(&chosen);
+        let output = coefficients_in(&chosen, &field);
+        assert_success(&output);
+        assert_eq!(output.stdout, expected, "{what}: the coefficients");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            stderr.contains("not using the basis cache") && stderr.contains(said),
+            "{what}: {stderr}"
+        );
+        if chosen.is_dir() {
+            assert_eq!(entries(&chosen), 0, "{what}: written into");
+        }
+        counts.1 += 1;
+    }
+    // A chosen link to a folder of yours is your word: followed and used.
+    let mine = d.join("mine");
+    std::fs::create_dir(&mine).unwrap();
+    std::os::unix::fs::symlink(&mine, d.join("to-mine")).unwrap();
+    assert_success(&coefficients_in(&d.join("to-mine"), &field));
+    assert_eq!(entries(&mine), 1);
+    println!(
+        "cache sweep: {} planted entries replaced or refused with a warning, {} chosen folders \
+         refused with a warning, 1 chosen link followed",
+        counts.0, counts.1
+    );
+}
