@@ -298,7 +298,9 @@ fn a_stop_ends_the_run_and_reaches_the_caller() {
     let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         run_property(&builder, &request, &|_| {})
     }));
-    let payload = run.err().expect("the run was stopped");
+    let Err(payload) = run else {
+        panic!("the run was not stopped")
+    };
     assert!(payload.is::<StopRun>());
     assert_eq!(calls.load(std::sync::atomic::Ordering::Relaxed), 3);
     // On one mesh too.
@@ -309,5 +311,8 @@ fn a_stop_ends_the_run_and_reaches_the_caller() {
             &[],
         )
     }));
-    assert!(stopped.err().expect("stopped").is::<StopRun>());
+    let Err(payload) = stopped else {
+        panic!("the check was not stopped")
+    };
+    assert!(payload.is::<StopRun>());
 }

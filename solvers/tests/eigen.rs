@@ -341,7 +341,9 @@ fn a_progress_callback_that_unwinds_stops_the_solve() {
     let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         lowest_eigenpairs(&a, &mass, 120, &options)
     }));
-    let payload = run.err().expect("the callback stopped the solve");
+    let Err(payload) = run else {
+        panic!("the callback did not stop the solve")
+    };
     assert!(
         payload.is::<Stop>(),
         "the caller gets the callback's payload"

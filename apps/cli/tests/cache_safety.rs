@@ -29,6 +29,9 @@ fn coefficients(dir: &Path, mesh: &[&str], field: &Path) -> Output {
         .expect("the tvf binary runs")
 }
 
+/// Makes something at a path (a link, a FIFO, a folder…).
+type Make<'a> = dyn Fn(&Path) + 'a;
+
 fn entries(folder: &Path) -> usize {
     std::fs::read_dir(folder).map_or(0, |e| e.count())
 }
@@ -136,7 +139,7 @@ fn planted_cache_entries_are_replaced_not_followed() {
     let name = cache_name(d, &field);
     let victim = d.join("victim.txt");
     std::fs::write(&victim, b"my precious file").unwrap();
-    let plants: [(&str, &dyn Fn(&Path)); 3] = [
+    let plants: [(&str, &Make<'_>); 3] = [
         ("a link to a file of yours", &|at| {
             std::os::unix::fs::symlink(&victim, at).unwrap()
         }),
@@ -224,7 +227,7 @@ fn hostile_cache_folders_sweep() {
             .status()
             .is_ok_and(|s| s.success())
     };
-    let plants: Vec<(&str, Box<dyn Fn(&Path)>, &str)> = vec![
+    let plants: Vec<(&str, Box<Make<'_>>, &str)> = vec![
         (
             "a link to a file of yours",
             Box::new(|at: &Path| std::os::unix::fs::symlink(&victim, at).unwrap()),
@@ -310,7 +313,7 @@ fn hostile_cache_folders_sweep() {
     }
     assert_eq!(std::fs::read(&victim).unwrap(), b"my precious file");
     // Chosen folders that must not be used.
-    let folders: Vec<(&str, Box<dyn Fn(&Path)>, &str)> = vec![
+    let folders: Vec<(&str, Box<Make<'_>>, &str)> = vec![
         (
             "everyone may write to it",
             Box::new(|at: &Path| {

@@ -1003,7 +1003,10 @@ mod tests {
                 std::panic::resume_unwind(Box::new(Stop))
             })
         }));
-        assert!(run.err().expect("stopped").is::<Stop>());
+        let Err(payload) = run else {
+            panic!("the jobs were not stopped")
+        };
+        assert!(payload.is::<Stop>());
         for (job, count) in steps.iter().enumerate() {
             let count = count.load(Ordering::Relaxed);
             assert!(count < STEPS, "job {job} ran all its {count} steps");

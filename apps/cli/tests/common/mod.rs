@@ -90,6 +90,8 @@ pub fn output_within(command: &mut Command, seconds: u64) -> Output {
 /// current size, so a small test process measures the child.
 #[cfg(unix)]
 #[track_caller]
+// The child is reaped by `wait4` (which also gives its resource usage), not `Child::wait`.
+#[allow(clippy::zombie_processes)]
 pub fn output_and_peak_memory_within(command: &mut Command, seconds: u64) -> (Output, u64) {
     use std::os::unix::process::{CommandExt, ExitStatusExt};
     use std::process::Stdio;

@@ -99,12 +99,15 @@ fn special_kind(metadata: &std::fs::Metadata) -> &'static str {
 /// Whether `name`, read from a file of a folder, names a file of that folder itself: a plain
 /// name, not absolute, without separators, and not `.` or `..`.
 pub(crate) fn is_plain_file_name(name: &str) -> bool {
-    !name.is_empty()
-        && name != "."
-        && name != ".."
-        && !name.contains(['/', '\\', '\0'])
-        && !Path::new(name).is_absolute()
-        && !(name.len() >= 2 && name.as_bytes()[1] == b':')
+    let leaves = [
+        name.is_empty(),
+        name == "." || name == "..",
+        name.contains(['/', '\\', '\0']),
+        Path::new(name).is_absolute(),
+        // A Windows drive (`C:x`).
+        name.as_bytes().get(1) == Some(&b':'),
+    ];
+    !leaves.contains(&true)
 }
 
 #[cfg(test)]
