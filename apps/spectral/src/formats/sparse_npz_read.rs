@@ -92,9 +92,14 @@ pub fn read_sparse_npz_within(
             } else {
                 (cols, rows)
             };
-            archive.expect_length("indices", entries, "data.npy")?;
+            let per_value = format!("data.npy has {entries} (one per value)");
+            archive.expect_length("indices", entries, &per_value)?;
             let pointers = outer.checked_add(1).ok_or("shape overflows")?;
-            archive.expect_length("indptr", pointers, "the shape's")?;
+            let per_line = match format.as_str() {
+                "csr" => format!("a matrix of {outer} rows needs {pointers} (rows + 1)"),
+                _ => format!("a matrix of {outer} columns needs {pointers} (columns + 1)"),
+            };
+            archive.expect_length("indptr", pointers, &per_line)?;
             let data = archive.floats()?;
             let indptr = archive.integers("indptr", Some(pointers))?;
             let indices = archive.integers("indices", Some(entries))?;
@@ -109,8 +114,9 @@ pub fn read_sparse_npz_within(
             Ok(matrix.to_csr())
         }
         "coo" => {
-            archive.expect_length("row", entries, "data.npy")?;
-            archive.expect_length("col", entries, "data.npy")?;
+            let per_value = format!("data.npy has {entries} (one per value)");
+            archive.expect_length("row", entries, &per_value)?;
+            archive.expect_length("col", entries, &per_value)?;
             let data = archive.floats()?;
             let row = archive.integers("row", Some(entries))?;
             let col = archive.integers("col", Some(entries))?;
@@ -160,14 +166,12 @@ impl<R: Read + Seek> Archive<'_, R> {
         one_dimensional(&header, name)
     }
 
-    /// Refuses the array `name` unless it has `expected` entries (`source` says where that
+    /// Refuses the array `name` unless it has `expected` entries (`why` says where that
     /// number comes from), reading only its header.
-    fn expect_length(&mut self, name: &str, expected: usize, source: &str) -> Result<(), String> {
+    fn expect_length(&mut self, name: &str, expected: usize, why: &str) -> Result<(), String> {
         let found = self.length(name)?;
         if found != expected {
-            return Err(format!(
-                "{name}.npy has {found} entries, {source} count is {expected}"
-            ));
+            return Err(format!("{name}.npy has {found} entries, but {why}"));
         }
         Ok(())
     }
