@@ -22,6 +22,21 @@ use tvf_solvers::SparseCholesky;
 /// Random probe vectors per check of an operator too large to form densely.
 pub const PROBES: usize = 4;
 
+/// Relative asymmetry allowed in a derived operator (round-off): `max |A − Aᵀ| ≤ this · max |A|`,
+/// or on probes `|xᵀ A y − yᵀ A x| ≤ this · max(|x| |A y|, |y| |A x|)`.
+pub const SYMMETRY_TOLERANCE: f64 = 1e-12;
+
+/// Negative eigenvalue allowed in a positive semi-definite pencil, relative to the largest:
+/// `λ_min ≥ −this · |λ_max|` (the dense eigensolver's round-off on the zero eigenvalues).
+pub const SEMIDEFINITE_TOLERANCE: f64 = 1e-10;
+
+/// `d1 · d0` and the cross products of the two families, relative to the product of the
+/// factors' largest entries (round-off of exact integer or geometric cancellation).
+pub const EXACTNESS_TOLERANCE: f64 = 1e-12;
+
+/// Relative difference allowed between `1ᵀ M0 1` and the mesh's area.
+pub const AREA_TOLERANCE: f64 = 1e-12;
+
 /// Largest absolute entry of a sparse matrix (0 if empty).
 pub fn max_abs(a: &CsMat<f64>) -> f64 {
     a.data().iter().fold(0.0, |m, x| m.max(x.abs()))
@@ -58,7 +73,7 @@ fn probes(n: usize, count: usize, seed: u64) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// `max |A − Aᵀ| ≤ 1e-12 · max |A|`, measured (a non-square matrix fails).
+/// `max |A − Aᵀ| ≤` [`SYMMETRY_TOLERANCE`] `· max |A|`, measured (a non-square matrix fails).
 pub fn measure_symmetric(what: &str, a: &CsMat<f64>) -> CheckOutcome {
     let name = format!("symmetric: {what}");
     if a.rows() != a.cols() {
@@ -66,7 +81,7 @@ pub fn measure_symmetric(what: &str, a: &CsMat<f64>) -> CheckOutcome {
     }
     let difference = &a.to_csr() - &transpose(a);
     let asymmetry = max_abs(&difference);
-    let limit = 1e-12 * max_abs(a);
+    let limit = SYMMETRY_TOLERANCE * max_abs(a);
     let detail = format!(
         "{what}: asymmetry {asymmetry:e} vs max entry {:e}",
         max_abs(a)
@@ -76,9 +91,9 @@ pub fn measure_symmetric(what: &str, a: &CsMat<f64>) -> CheckOutcome {
 
 /// A derived operator is symmetric: a sparse matrix entry by entry ([`measure_symmetric`]); a
 /// composed one formed densely when it has at most [`DENSE_LIMIT`] columns (`max |A − Aᵀ| ≤
-/// 1e-12 · max |A|`, the same criterion), else on [`PROBES`] seeded random pairs `x`, `y`:
-/// `|xᵀ A y − yᵀ A x| ≤ 1e-12 · max(|x| |A y|, |y| |A x|)` (the same relative round-off, measured
-/// on products instead of entries).
+/// tol · max |A|`, the same criterion), else on [`PROBES`] seeded random pairs `x`, `y`:
+/// `|xᵀ A y − yᵀ A x| ≤ tol · max(|x| |A y|, |y| |A x|)` (the same relative round-off, measured
+/// on products instead of entries); `tol` is [`SYMMETRY_TOLERANCE`].
 pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcome {
     if let Some(sparse) = a.as_sparse() {
         return measure_symmetric(what, sparse);
@@ -93,7 +108,7 @@ pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcom
         let asymmetry = max_abs_dense(&(&dense - dense.transpose()));
         let scale = max_abs_dense(&dense);
         let detail = format!("{what} (dense): asymmetry {asymmetry:e} vs max entry {scale:e}");
-        return CheckOutcome::at_most(name, asymmetry, 1e-12 * scale, detail);
+        return CheckOutcome::at_most(name, asymmetry, SYMMETRY_TOLERANCE * scale, detail);
     }
     let vectors = probes(cols, 2 * PROBES, 0x5e11);
     let (mut asymmetry, mut scale) = (0.0f64, 0.0f64);
@@ -104,11 +119,11 @@ pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcom
         scale = scale.max((norm(x) * norm(&ay)).max(norm(y) * norm(&ax)));
     }
     let detail = format!("{what} (probes): |xᵀAy − yᵀAx| = {asymmetry:e} vs |x| |Ay| = {scale:e}");
-    CheckOutcome::at_most(name, asymmetry, 1e-12 * scale, detail)
+    CheckOutcome::at_most(name, asymmetry, SYMMETRY_TOLERANCE * scale, detail)
 }
 
-/// Smallest generalized eigenvalue of `(A, M)` (dense, symmetric-definite) is `≥ −1e-10 ·
-/// largest`, measured as `−λ_min` against `1e-10 · |λ_max|`. An empty problem (a space without
+/// Smallest generalized eigenvalue of `(A, M)` (dense, symmetric-definite) is `≥ −tol ·
+/// largest`, measured as `−λ_min` against `tol · |λ_max|` (`tol` is [`SEMIDEFINITE_TOLERANCE`]). An empty problem (a space without
 /// free nodes, e.g. P1 co-potentials zero on the boundary of a mesh without interior vertices)
 /// passes with nothing measured.
 pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
@@ -128,7 +143,7 @@ pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
     CheckOutcome::at_most(
         format!("positive semi-definite: {what}"),
         -min,
-        1e-10 * max.abs(),
+        SEMIDEFINITE_TOLERANCE * max.abs(),
         detail,
     )
 }
@@ -184,11 +199,12 @@ pub fn check_psd_operators<H: HodgeComplex + ?Sized>(complex: &H) {
     assert_outcomes(&measure_psd_operators(complex));
 }
 
-/// `d1 · d0 = 0` up to round-off (`max |d1 d0| ≤ 1e-12 · max|d1| · max|d0|`), and, through the
+/// `d1 · d0 = 0` up to round-off (`max |d1 d0| ≤ tol · max|d1| · max|d0|`), and, through the
 /// co-gradient `−M1⁻¹ d1ᵀ` (a path that also involves `M1`), integrable ⟂ co-integrable:
-/// `(−M1⁻¹ d1ᵀ)ᵀ M1 d0 = 0` (`max` entry `≤ 1e-12 · max |co-gradient| · max |M1 d0|`; for a
+/// `(−M1⁻¹ d1ᵀ)ᵀ M1 d0 = 0` (`max` entry `≤ tol · max |co-gradient| · max |M1 d0|`; for a
 /// composed co-gradient measured on [`PROBES`] seeded random co-potentials `r`:
-/// `max |(M1 d0)ᵀ (−M1⁻¹ d1ᵀ r)| ≤ 1e-12 · max |M1 d0| · max |−M1⁻¹ d1ᵀ r|`).
+/// `max |(M1 d0)ᵀ (−M1⁻¹ d1ᵀ r)| ≤ tol · max |M1 d0| · max |−M1⁻¹ d1ᵀ r|`); `tol` is
+/// [`EXACTNESS_TOLERANCE`].
 pub fn measure_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
     if complex.d1().cols() != complex.d0().rows() {
         return vec![CheckOutcome::failed(
@@ -206,7 +222,7 @@ pub fn measure_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOut
     let first = CheckOutcome::at_most(
         "d1_d0_zero",
         error,
-        1e-12 * scale,
+        EXACTNESS_TOLERANCE * scale,
         format!("|d1 d0| = {error:e}, scale {scale:e}"),
     );
     let m1 = complex
@@ -232,7 +248,7 @@ pub fn measure_d1_d0_zero<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOut
     let second = CheckOutcome::at_most(
         "integrable_orthogonal_to_cointegrable",
         error,
-        1e-12 * scale,
+        EXACTNESS_TOLERANCE * scale,
         format!("|(M1⁻¹ d1ᵀ)ᵀ M1 d0| = {error:e}, scale {scale:e}"),
     );
     vec![first, second]
@@ -323,7 +339,7 @@ fn measure_mass(what: &str, mass: &Mass, nodes: &NodeSpace) -> CheckOutcome {
     }
 }
 
-/// The potential masses partition the area: `|1ᵀ M0 1 − area| ≤ 1e-12 · area`; and every mass is
+/// The potential masses partition the area: `|1ᵀ M0 1 − area| ≤` [`AREA_TOLERANCE`] `· area`; and every mass is
 /// a positive diagonal on the nodes faces use, or a sparse matrix positive definite on the free
 /// nodes (one outcome per mass).
 pub fn measure_masses<H: HodgeComplex + ?Sized>(
@@ -343,7 +359,7 @@ pub fn measure_masses<H: HodgeComplex + ?Sized>(
     outcomes.push(CheckOutcome::at_most(
         "potential_masses_sum_to_area",
         (total - area).abs(),
-        1e-12 * area,
+        AREA_TOLERANCE * area,
         format!("1ᵀ M0 1 = {total}, the mesh's area is {area}"),
     ));
     outcomes
@@ -408,7 +424,8 @@ fn check_node_space(what: &str, nodes: &NodeSpace, size: usize, mesh: &CorpusMes
 /// diagonal on the nodes faces use or a sparse matrix positive definite on the free nodes, the
 /// topology has the mesh's components, boundary and harmonic dimension
 /// (`2g`, or `2g + b − 1` per component with boundary), and the
-/// potential masses partition the area: `1ᵀ M0 1 = total_area() = area` (relative 1e-12).
+/// potential masses partition the area: `1ᵀ M0 1 = total_area() = area` (relative
+/// [`AREA_TOLERANCE`]).
 pub fn check_nodes_and_masses<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) {
     let (n0, n1, n2) = (
         complex.potential_dimension(),

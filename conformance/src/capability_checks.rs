@@ -8,9 +8,11 @@ use crate::corpus::CorpusMesh;
 use crate::decomposition_checks::random_field;
 use crate::reference_formulas::explicit_divergence_and_curl;
 use tvf_core::discretization::sparse::{mul_vec, product, transpose};
-use tvf_core::discretization::{FieldSampling, HodgeComplex, HodgeOperators, NodeKind};
+use tvf_core::discretization::{
+    FieldSampling, HodgeComplex, HodgeOperators, NodeKind, SamplingReproduction,
+};
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// Barycentric points every sampling check visits: the centroid, near each corner, on an edge.
 pub const SAMPLE_POINTS: [[f64; 3]; 5] = [
@@ -24,7 +26,7 @@ pub const SAMPLE_POINTS: [[f64; 3]; 5] = [
 /// The sampled vector `Σ w_i x_i` at a point.
 pub fn sample(sampling: &dyn FieldSampling, field: &[f64], face: usize, b: [f64; 3]) -> [f64; 3] {
     let mut v = [0.0; 3];
-    for (i, w) in sampling.sample_weights(face, b) {
+    for (i, w) in sampling.sample_weights(&SurfacePoint::barycentric(face, b)) {
         for k in 0..3 {
             v[k] += w[k] * field[i];
         }
@@ -44,7 +46,9 @@ fn assert_vectors_close(what: &str, a: [f64; 3], b: [f64; 3], tolerance: f64) {
 /// orthonormal, positively oriented (`e1 × e2 = n`) and tangent, the normal is the mesh's, every
 /// sampled vector is tangent, and a constant 3D vector turned into a field by
 /// `from_face_vectors` samples back to its projection onto each face at every point of
-/// [`SAMPLE_POINTS`] (to 1e-12 of its length), with its normal parts reported. Where the complex
+/// [`SAMPLE_POINTS`] (to 1e-12 of its length), with its normal parts reported — for a sampling
+/// that states [`SamplingReproduction::ConstantVectors`]; one that states
+/// [`SamplingReproduction::LinearGradients`] is held to [`check_gradient_sampling`] instead. Where the complex
 /// fixes field nodes to zero (relative forms: boundary edges), `from_face_vectors` gives 0 there,
 /// no sampling weight names them, the constant is reproduced in the faces whose weights name no
 /// fixed node, and [`check_relative_sampling`] holds.
@@ -59,6 +63,10 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
         complex.field_dimension(),
         "sampling: field dimension"
     );
+    let reproduces_constants = sampling.reproduction() == SamplingReproduction::ConstantVectors;
+    if !reproduces_constants {
+        check_gradient_sampling(complex, sampling, mesh);
+    }
     let constant = [0.3, -1.1, 0.6];
     let projection = sampling
         .from_face_vectors(&vec![constant; mesh.face_count()])
@@ -73,9 +81,12 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
     }
     let random = random_field(complex, 5);
     for t in 0..mesh.face_count() {
-        let names_fixed = SAMPLE_POINTS
-            .iter()
-            .any(|&b| sampling.sample_weights(t, b).iter().any(|&(i, _)| fixed[i]));
+        let names_fixed = SAMPLE_POINTS.iter().any(|&b| {
+            sampling
+                .sample_weights(&SurfacePoint::barycentric(t, b))
+                .iter()
+                .any(|&(i, _)| fixed[i])
+        });
         assert!(
             !names_fixed,
             "a sampling weight of face {t} names a fixed field node"
@@ -111,7 +122,7 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
         );
         let tangent = sub(constant, scale(n, normal_part));
         for b in SAMPLE_POINTS {
-            if !touches_fixed {
+            if reproduces_constants && !touches_fixed {
                 let v = sample(sampling, &projection.field, t, b);
                 assert_vectors_close(
                     &format!("constant field sampled in face {t} at {b:?}"),
@@ -129,7 +140,62 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
     }
 }
 
-/// Core, if the complex samples 1-forms on edges and fixes some edges (relative forms): a random
+/// Core, for a sampling that states [`SamplingReproduction::LinearGradients`]: the gradient
+/// `d0 φ` of the linear function `φ(x) = ⟨v, x⟩` at the potential nodes samples back to `v`
+/// projected onto each face's plane at every point of [`SAMPLE_POINTS`] in every face none of
+/// whose edges or vertices the boundary condition fixes, to `1e-12 · max(1, κ_f / 4)` of `|v|` with
+/// `κ_f = ℓ²_max / A_f` (the longest side squared over the area; `κ ≈ 2.3` on an equilateral
+/// triangle): the tolerance of the constant-vector check on well-shaped faces, growing on thin
+/// ones, where a sharp built from side vectors over the area, as the polygon sharp is, loses
+/// accuracy in that proportion.
+pub fn check_gradient_sampling<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    sampling: &dyn FieldSampling,
+    mesh: &TriangleMesh,
+) {
+    let v = [0.3, -1.1, 0.6];
+    let phi: Vec<f64> = complex
+        .potential_nodes()
+        .positions
+        .iter()
+        .map(|&p| dot(v, p))
+        .collect();
+    let gradient = mul_vec(complex.d0(), &phi);
+    let nodes = complex.field_nodes();
+    let potentials = complex.potential_nodes();
+    for t in 0..mesh.face_count() {
+        let fixed_edge = nodes.kind == NodeKind::Edges
+            && mesh.face_edges()[t].iter().any(|&e| nodes.dirichlet[e]);
+        let fixed_vertex = potentials.kind == NodeKind::Vertices
+            && mesh.faces()[t].iter().any(|&v| potentials.dirichlet[v]);
+        if fixed_edge || fixed_vertex {
+            continue;
+        }
+        let n = mesh.face_normal(t);
+        let tangent = sub(v, scale(n, dot(v, n)));
+        let corners = [0, 1, 2].map(|c| mesh.corner(t, c));
+        let longest_squared = (0..3)
+            .map(|c| {
+                let e = sub(corners[(c + 1) % 3], corners[c]);
+                dot(e, e)
+            })
+            .fold(0.0, f64::max);
+        let condition = longest_squared / mesh.face_area(t);
+        for b in SAMPLE_POINTS {
+            let sampled = sample(sampling, &gradient, t, b);
+            assert_vectors_close(
+                &format!("gradient of a linear function sampled in face {t} at {b:?}"),
+                sampled,
+                tangent,
+                1e-12 * (condition / 4.0).max(1.0) * norm(v),
+            );
+        }
+    }
+}
+
+/// Core, if the complex samples 1-forms on edges, states [`SamplingReproduction::ConstantVectors`]
+/// (Whitney-like interpolation, whose tangential component along an edge is the edge's value)
+/// and fixes some edges (relative forms): a random
 /// field of the space sampled at three points of each fixed edge, in its face, has no component
 /// along the edge (to 1e-12 of the largest sampled vector): relative 1-forms are normal to the
 /// boundary. At least one fixed edge must be a boundary edge of the mesh, and every fixed edge is.
@@ -138,7 +204,10 @@ pub fn check_relative_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Cor
         return;
     };
     let nodes = complex.field_nodes();
-    if nodes.kind != NodeKind::Edges || nodes.dirichlet_count() == 0 {
+    if nodes.kind != NodeKind::Edges
+        || nodes.dirichlet_count() == 0
+        || sampling.reproduction() != SamplingReproduction::ConstantVectors
+    {
         return;
     }
     let mesh = &mesh.mesh;
@@ -199,12 +268,12 @@ pub fn check_point_evaluation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
             for (what, weights, n) in [
                 (
                     "potential",
-                    evaluation.potential_weights(t, b),
+                    evaluation.potential_weights(&SurfacePoint::barycentric(t, b)),
                     complex.potential_dimension(),
                 ),
                 (
                     "co-potential",
-                    evaluation.co_potential_weights(t, b),
+                    evaluation.co_potential_weights(&SurfacePoint::barycentric(t, b)),
                     complex.co_potential_dimension(),
                 ),
             ] {
@@ -221,7 +290,7 @@ pub fn check_point_evaluation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
             let point: [f64; 3] =
                 std::array::from_fn(|k| (0..3).map(|c| b[c] * mesh.corner(t, c)[k]).sum());
             let value: f64 = evaluation
-                .potential_weights(t, b)
+                .potential_weights(&SurfacePoint::barycentric(t, b))
                 .iter()
                 .map(|&(i, w)| w * values[i])
                 .sum();

@@ -108,7 +108,7 @@ mod tests {
         let d0: CsMat<f64> = built.d0().clone();
         let broken = MatrixComplex::new(
             "broken",
-            &mesh,
+            &mesh.clone().into(),
             d0,
             built.d1().clone(),
             Mass::diagonal("M0", m0).unwrap(),

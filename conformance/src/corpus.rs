@@ -1,10 +1,9 @@
 //! The meshes every discretization is checked on: generated in code (always available) and the
-//! real meshes of `../shared/meshes` (used when present), in two corpora — the general one, and
-//! the Delaunay one for discretizations that need `cot α + cot β > 0` on every edge (DEC's
-//! diagonal `⋆1`).
+//! real meshes of `../shared/meshes` (used when present, required under `CI=true`), in two
+//! corpora — the general one, and the Delaunay one for discretizations that need
+//! `cot α + cot β > 0` on every edge (DEC's diagonal `⋆1`).
 
 use std::f64::consts::TAU;
-use std::path::PathBuf;
 use tvf_core::generate::{
     disk, genus_surface, hemisphere, holed_torus, icosphere, jitter, open_cylinder,
     perforated_plate, rigid_motion, staggered_ring_faces, torus,
@@ -337,11 +336,11 @@ pub fn open_delaunay_corpus() -> Vec<CorpusMesh> {
     ]
 }
 
-/// Meshes of `../shared/meshes` when present (a skip message for each missing one): for the
-/// general corpus `kitten` (genus 1), `eight` (genus 2) and `3holes` (genus 3); for the Delaunay
-/// corpus `eight` alone.
+/// Meshes of `../shared/meshes` when present (a skip message for each missing one; under
+/// `CI=true` a missing one panics, [`tvf_test_support::shared_mesh`]): for the general corpus
+/// `kitten` (genus 1), `eight` (genus 2) and `3holes` (genus 3); for the Delaunay corpus `eight`
+/// alone; for the open corpus the raw `bunny`.
 pub fn shared_corpus(corpus: Corpus) -> Vec<CorpusMesh> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../shared/meshes");
     let files: &[(&str, usize)] = match corpus {
         Corpus::General => &[("kitten.obj", 1), ("eight.obj", 2), ("3holes.obj", 3)],
         Corpus::Delaunay => &[("eight.obj", 2)],
@@ -350,18 +349,23 @@ pub fn shared_corpus(corpus: Corpus) -> Vec<CorpusMesh> {
     };
     let mut meshes = Vec::new();
     for &(file, genus) in files {
-        let path = dir.join(file);
-        if !path.exists() {
-            eprintln!("skipping {}: not present", path.display());
+        let Some(path) = tvf_test_support::shared_mesh(file) else {
             continue;
-        }
-        match tvf_core::io::load_mesh(&path) {
-            Ok(loaded) if loaded.mesh.is_closed() => {
-                meshes.push(CorpusMesh::new(file, loaded.mesh, genus))
-            }
-            // The raw bunny: genus 0, 5 boundary loops, so 4 harmonic fields.
-            Ok(loaded) => meshes.push(CorpusMesh::open(file, loaded.mesh, genus, 4)),
+        };
+        let mesh = match tvf_core::io::load_mesh(&path) {
+            Ok(loaded) => match loaded.mesh {
+                tvf_core::SurfaceMesh::Triangles(mesh) => mesh,
+                tvf_core::SurfaceMesh::Polygons(_) => {
+                    panic!("{} is not a triangle mesh", path.display())
+                }
+            },
             Err(error) => panic!("{} exists but does not load: {error}", path.display()),
+        };
+        if mesh.is_closed() {
+            meshes.push(CorpusMesh::new(file, mesh, genus))
+        } else {
+            // The raw bunny: genus 0, 5 boundary loops, so 4 harmonic fields.
+            meshes.push(CorpusMesh::open(file, mesh, genus, 4))
         }
     }
     meshes

@@ -8,7 +8,7 @@ use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{FieldSampling, HodgeComplex};
 use tvf_core::geometry::dot;
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// The edge midpoints of a triangle in barycentric coordinates: `∫_T g = |T|/3 Σ g(m)` holds
 /// exactly for polynomials `g` of degree at most 2, so for the product of two linear functions.
@@ -51,7 +51,7 @@ pub fn sampled_mass(mesh: &TriangleMesh, sampling: &dyn FieldSampling) -> CsMat<
     for t in 0..mesh.face_count() {
         let area = mesh.face_area(t);
         for b in EDGE_MIDPOINTS {
-            let w = sampling.sample_weights(t, b);
+            let w = sampling.sample_weights(&SurfacePoint::barycentric(t, b));
             for &(i, u) in &w {
                 for &(j, v) in &w {
                     rows.push(i);
@@ -101,9 +101,11 @@ pub fn measure_galerkin_masses<H: HodgeComplex + ?Sized>(
             "M0 and M1 must be stored directly and M2⁻¹ must be sparse".to_string(),
         )];
     };
-    let potentials = evaluated_mass(mesh, m0.rows(), |t, b| evaluation.potential_weights(t, b));
+    let potentials = evaluated_mass(mesh, m0.rows(), |t, b| {
+        evaluation.potential_weights(&SurfacePoint::barycentric(t, b))
+    });
     let co_potentials = evaluated_mass(mesh, co_mass.rows(), |t, b| {
-        evaluation.co_potential_weights(t, b)
+        evaluation.co_potential_weights(&SurfacePoint::barycentric(t, b))
     });
     let fields = sampled_mass(mesh, sampling);
     [

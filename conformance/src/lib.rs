@@ -85,8 +85,9 @@
 //! # fn main() {}
 //! ```
 //!
-//! Every built-in entry has its suite line in `conformance/tests/conformance.rs` through
-//! [`catalog_suites!`], which fails when one is missing.
+//! Every built-in entry has its suite line in
+//! `conformance/tests/conformance/catalog_suites.rs` through [`catalog_suites!`], which fails
+//! when one is missing.
 //! Dense eigenvalue checks run when `n1 ≤` [`corpus::DENSE_LIMIT`], dense eigenvector checks when
 //! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; the kernel dimension on larger and real meshes is checked
 //! through the rank of harmonic projections.
@@ -97,8 +98,6 @@ pub mod capability_checks;
 pub mod check_outcome;
 pub mod check_report;
 pub mod check_run_report;
-pub mod convergence;
-pub mod convergence_table;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;

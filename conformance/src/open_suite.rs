@@ -38,7 +38,7 @@ pub fn open_mesh_suite(entry: &CatalogEntry, boundary: BoundaryCondition) {
             mesh.name,
             mesh.mesh.face_count()
         );
-        let built = entry.build_with(&mesh.mesh, boundary);
+        let built = entry.build_with(&tvf_core::SurfaceMesh::from(mesh.mesh.clone()), boundary);
         if !entry.boundary_conditions().contains(&boundary) {
             match built {
                 Err(DiscretizationError::UnsupportedBoundaryCondition { .. }) => continue,

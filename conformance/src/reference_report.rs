@@ -89,8 +89,8 @@ const WHITNEY_GALERKIN: &[ReferenceCheck] = &[
 
 /// The reference checks catalog entry `id` (or a complex id `{id}+{boundary}`) opts into, in
 /// the order they run: the test suite's line of the entry ([`crate::catalog_suites!`], in
-/// `conformance/tests/conformance.rs`) runs them and `tvf check` measures them; none for an id
-/// the catalog does not know.
+/// `conformance/tests/conformance/catalog_suites.rs`) runs them and `tvf check` measures them;
+/// none for an id the catalog does not know.
 pub fn catalog_reference_checks(id: &str) -> &'static [ReferenceCheck] {
     match tvf_discretizations::split_complex_id(id).0 {
         "conforming-barycentric"

@@ -15,9 +15,12 @@ pub mod discretization;
 pub mod generate;
 pub mod geometry;
 mod hash64;
+pub mod intrinsic;
 pub mod io;
 pub mod mesh;
 
 pub use hash64::Hash64;
-pub use mesh::{MeshError, TriangleMesh, NO_FACE};
+pub use mesh::{
+    FaceList, MeshError, PolygonMesh, SurfaceMesh, SurfacePoint, TriangleMesh, NO_FACE,
+};
 pub use mesh::{ValidationReport, ValidationWarning};

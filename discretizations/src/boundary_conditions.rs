@@ -5,32 +5,34 @@
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{BoundaryCondition, ComplexTopology, NodeKind, NodeSpace};
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::Mesh;
 
 /// The topology of `mesh` as a complex with boundary condition `condition` sees it: components,
 /// boundary, and the harmonic dimension summed over the components — `2g` on a closed component,
 /// `2g + b − 1` on a component with `b ≥ 1` boundary loops (for both boundary conditions).
-pub fn mesh_topology(mesh: &TriangleMesh, condition: BoundaryCondition) -> ComplexTopology {
+pub fn mesh_topology<M: Mesh + ?Sized>(mesh: &M, condition: BoundaryCondition) -> ComplexTopology {
     let loops = component_boundary_loops(mesh);
-    let harmonic_dimension = mesh
-        .component_genera()
+    let topology = mesh.topology();
+    let harmonic_dimension = topology
+        .component_genera(mesh.face_corners())
         .iter()
         .zip(&loops)
         .map(|(&g, &b)| if b == 0 { 2 * g } else { 2 * g + b - 1 })
         .sum();
     ComplexTopology {
-        component_count: mesh.component_count(),
+        component_count: topology.component_count(),
         harmonic_dimension,
-        has_boundary: !mesh.is_closed(),
+        has_boundary: !topology.is_closed(),
         boundary_condition: condition,
     }
 }
 
 /// Number of boundary loops of every connected component (`component_count` entries).
-pub fn component_boundary_loops(mesh: &TriangleMesh) -> Vec<usize> {
-    let mut loops = vec![0; mesh.component_count()];
-    let vertex_component = mesh.vertex_components();
-    for cycle in mesh.boundary_loops() {
+pub fn component_boundary_loops<M: Mesh + ?Sized>(mesh: &M) -> Vec<usize> {
+    let topology = mesh.topology();
+    let mut loops = vec![0; topology.component_count()];
+    let vertex_component = topology.vertex_components(mesh.face_corners());
+    for cycle in topology.boundary_loops() {
         loops[vertex_component[cycle[0]]] += 1;
     }
     loops
@@ -38,28 +40,30 @@ pub fn component_boundary_loops(mesh: &TriangleMesh) -> Vec<usize> {
 
 /// The nodes of kind `kind` that lie on the boundary (`n` entries): vertices of boundary edges,
 /// boundary edges; never faces.
-pub fn boundary_nodes(mesh: &TriangleMesh, kind: NodeKind) -> Vec<bool> {
+pub fn boundary_nodes<M: Mesh + ?Sized>(mesh: &M, kind: NodeKind) -> Vec<bool> {
+    let topology = mesh.topology();
+    let face_count = mesh.face_corners().face_count();
     match kind {
         NodeKind::Vertices => {
-            let mut on_boundary = vec![false; mesh.vertex_count()];
-            for e in mesh.boundary_edges() {
-                for v in mesh.edges()[e] {
+            let mut on_boundary = vec![false; mesh.positions().len()];
+            for e in topology.boundary_edges() {
+                for v in topology.edges()[e] {
                     on_boundary[v] = true;
                 }
             }
             on_boundary
         }
-        NodeKind::Edges => (0..mesh.edge_count())
-            .map(|e| mesh.is_boundary_edge(e))
+        NodeKind::Edges => (0..topology.edges().len())
+            .map(|e| topology.is_boundary_edge(e))
             .collect(),
-        NodeKind::Faces => vec![false; mesh.face_count()],
-        NodeKind::FaceFrames => vec![false; 2 * mesh.face_count()],
+        NodeKind::Faces => vec![false; face_count],
+        NodeKind::FaceFrames => vec![false; 2 * face_count],
     }
 }
 
 /// `space` with every boundary node of `mesh` made a Dirichlet node (value fixed to zero); the
 /// constants stay in the kernel only on closed components.
-pub fn with_dirichlet_boundary(mut space: NodeSpace, mesh: &TriangleMesh) -> NodeSpace {
+pub fn with_dirichlet_boundary<M: Mesh + ?Sized>(mut space: NodeSpace, mesh: &M) -> NodeSpace {
     space.dirichlet = boundary_nodes(mesh, space.kind);
     let loops = component_boundary_loops(mesh);
     space.constant_kernel = loops.iter().map(|&b| b == 0).collect();

@@ -1,9 +1,12 @@
 //! tvf's own discretizations, one [`CatalogEntry`] each, in the order `tvf discretizations`
 //! lists them ([`crate::Catalog::builtin`]). A new discretization of tvf's is one more entry
-//! here (and one suite line in `conformance/tests/conformance.rs`).
+//! here (and one suite line in `conformance/tests/conformance/catalog_suites.rs`).
 
 use crate::catalog_entry::{BoxedComplex, CatalogEntry};
-use crate::{Conforming, DecComplex, MassLumping, Nonconforming, WhitneyGalerkin};
+use crate::{
+    Conforming, DecComplex, MassLumping, Nonconforming, PolygonDec, WhitneyGalerkin,
+    DEFAULT_STABILISATION,
+};
 use tvf_core::discretization::BoundaryCondition::{Normal, Tangential};
 
 const CONFORMING_BOUNDARY: [&str; 2] = [
@@ -127,5 +130,24 @@ pub(crate) fn builtin_entries() -> Vec<CatalogEntry> {
             ),
             DEC_BOUNDARY,
         ),
+        polygon_dec_entry(DEFAULT_STABILISATION),
     ]
+}
+
+/// The catalog entry of polygonal DEC ([`PolygonDec`]) with stabilisation weight `beta`, id
+/// [`crate::polygon_dec_id`]`(beta)` (`polygon-dec` for the built-in `β = 1`); it builds on
+/// triangle and polygon meshes. Add it to a catalog for another `β`.
+pub fn polygon_dec_entry(beta: f64) -> CatalogEntry {
+    both_conditions(
+        CatalogEntry::on_any_mesh(
+            crate::polygon_dec_id(beta),
+            format!(
+                "polygonal DEC (de Goes, Butts, Desbrun 2020) on polygon and triangle meshes: 0-forms on vertices, 1-forms on edges, 2-forms on faces; ⋆0 polygon areas split among corners, ⋆1 = Σ A_f U_fᵀU_f + β P_fᵀP_f (sparse, β = {beta}), ⋆2 = 1/area; one vector per polygon (the sharp)"
+            ),
+            move |mesh, boundary| -> Result<BoxedComplex, _> {
+                Ok(Box::new(PolygonDec::with_boundary(mesh, boundary, beta)?))
+            },
+        ),
+        DEC_BOUNDARY,
+    )
 }

@@ -9,10 +9,23 @@ use crate::complex_id::split_complex_id;
 use std::sync::OnceLock;
 use thiserror::Error;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError};
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::Mesh;
 
 /// The id used when none is given: the paper's conforming decomposition, barycentric masses.
 pub const DEFAULT_DISCRETIZATION: &str = "conforming-barycentric";
+
+/// The id used when none is given on a mesh with polygons: polygonal DEC (de Goes, Butts,
+/// Desbrun 2020), the built-in entry that works on them.
+pub const DEFAULT_POLYGON_DISCRETIZATION: &str = "polygon-dec";
+
+/// The id used when none is given on `mesh`: [`DEFAULT_DISCRETIZATION`] on a triangle mesh,
+/// [`DEFAULT_POLYGON_DISCRETIZATION`] on a mesh with polygons.
+pub fn default_discretization<M: Mesh + ?Sized>(mesh: &M) -> &'static str {
+    match mesh.as_triangles() {
+        Some(_) => DEFAULT_DISCRETIZATION,
+        None => DEFAULT_POLYGON_DISCRETIZATION,
+    }
+}
 
 /// A list of discretizations with unique kebab-case ids, in the order listings show them.
 /// Cheap to clone (the constructors are shared).
@@ -166,11 +179,11 @@ impl Catalog {
     /// Builds the complex named by `id` on `mesh`: an entry's id (built with `boundary`, the
     /// entry's default if `None`), or a complex id `{entry id}+{condition}` as basis files store
     /// it, whose own condition is used.
-    pub fn build_complex(
+    pub fn build_complex<M: Mesh>(
         &self,
         id: &str,
         boundary: Option<BoundaryCondition>,
-        mesh: &TriangleMesh,
+        mesh: &M,
     ) -> Result<BoxedComplex, CatalogBuildError> {
         let (entry_id, named_boundary) = split_complex_id(id);
         let entry = self.get(entry_id)?;
@@ -217,10 +230,10 @@ pub fn catalog_entry(id: &str) -> Result<&'static CatalogEntry, UnknownDiscretiz
 }
 
 /// [`Catalog::build_complex`] on the built-in catalog.
-pub fn build_complex(
+pub fn build_complex<M: Mesh>(
     id: &str,
     boundary: Option<BoundaryCondition>,
-    mesh: &TriangleMesh,
+    mesh: &M,
 ) -> Result<BoxedComplex, CatalogBuildError> {
     builtin_catalog().build_complex(id, boundary, mesh)
 }

@@ -5,6 +5,7 @@
 use crate::complex_id::complex_id;
 use std::sync::Arc;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, HodgeComplex};
+use tvf_core::mesh::Mesh;
 use tvf_core::TriangleMesh;
 
 /// A complex built by a catalog entry, behind the object-safe seam.
@@ -13,9 +14,7 @@ pub type BoxedComplex = Box<dyn HodgeComplex>;
 /// What a catalog entry runs to build its complex: the mesh and the boundary condition in, the
 /// complex out. A closure, so that an entry can carry parameters (a blend factor, a scale).
 pub type EntryConstructor = Arc<
-    dyn Fn(&TriangleMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
-        + Send
-        + Sync,
+    dyn Fn(&dyn Mesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError> + Send + Sync,
 >;
 
 /// What an entry needs of the mesh unless it says otherwise.
@@ -49,20 +48,56 @@ pub struct CatalogEntry {
     description: String,
     preconditions: String,
     needs_delaunay: bool,
+    needs_triangles: bool,
     boundary_conditions: Vec<BoundaryCondition>,
     boundary_meanings: Vec<String>,
     constructor: EntryConstructor,
 }
 
 impl CatalogEntry {
-    /// An entry with id `id` (checked when it is added to a catalog: lower case, see
-    /// [`crate::Catalog::add`]), a one-line `description` (potentials, fields, co-potentials and
-    /// masses) and its `constructor`, which must give its complex the id [`complex_id`]`(id,
-    /// mesh, boundary)` (checked by [`CatalogEntry::build_with`]). It needs nothing of the mesh
-    /// ([`ANY_MESH`]) and offers no boundary condition (closed meshes only) until told otherwise.
+    /// An entry of a discretization of **triangle** meshes with id `id` (checked when it is
+    /// added to a catalog: lower case, see [`crate::Catalog::add`]), a one-line `description`
+    /// (potentials, fields, co-potentials and masses) and its `constructor`, which must give its
+    /// complex the id [`complex_id`]`(id, mesh, boundary)` (checked by
+    /// [`CatalogEntry::build_with`]). On a polygon mesh the entry refuses with
+    /// [`DiscretizationError::NeedsTriangles`]. It needs nothing else of the mesh ([`ANY_MESH`])
+    /// and offers no boundary condition (closed meshes only) until told otherwise.
     pub fn new<F>(id: impl Into<String>, description: impl Into<String>, constructor: F) -> Self
     where
         F: Fn(&TriangleMesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
+            + Send
+            + Sync
+            + 'static,
+    {
+        let id = id.into();
+        let entry_id = id.clone();
+        let mut entry = Self::on_any_mesh(id, description, move |mesh, boundary| {
+            match mesh.as_triangles() {
+                Some(triangles) => constructor(triangles, boundary),
+                None => {
+                    let faces = mesh.face_corners();
+                    Err(DiscretizationError::NeedsTriangles {
+                        discretization: entry_id.clone(),
+                        polygons: (0..faces.face_count())
+                            .filter(|&f| faces.corners(f).len() > 3)
+                            .count(),
+                    })
+                }
+            }
+        });
+        entry.needs_triangles = true;
+        entry
+    }
+
+    /// Like [`CatalogEntry::new`] for a discretization that builds on every [`Mesh`]: triangle
+    /// and polygon meshes alike.
+    pub fn on_any_mesh<F>(
+        id: impl Into<String>,
+        description: impl Into<String>,
+        constructor: F,
+    ) -> Self
+    where
+        F: Fn(&dyn Mesh, BoundaryCondition) -> Result<BoxedComplex, DiscretizationError>
             + Send
             + Sync
             + 'static,
@@ -72,6 +107,7 @@ impl CatalogEntry {
             description: description.into(),
             preconditions: ANY_MESH.to_string(),
             needs_delaunay: false,
+            needs_triangles: false,
             boundary_conditions: Vec::new(),
             boundary_meanings: Vec::new(),
             constructor: Arc::new(constructor),
@@ -79,7 +115,8 @@ impl CatalogEntry {
     }
 
     /// The entry with `preconditions`: what the mesh must satisfy beyond being a valid oriented
-    /// manifold triangle mesh (shown in listings and in the error of a refused mesh).
+    /// manifold mesh of the kind the entry builds on (shown in listings and in the error of a
+    /// refused mesh).
     pub fn with_preconditions(mut self, preconditions: impl Into<String>) -> Self {
         self.preconditions = preconditions.into();
         self
@@ -124,9 +161,15 @@ impl CatalogEntry {
         &self.description
     }
 
-    /// What the mesh must satisfy beyond being a valid oriented manifold triangle mesh.
+    /// What the mesh must satisfy beyond being a valid oriented manifold mesh.
     pub fn preconditions(&self) -> &str {
         &self.preconditions
+    }
+
+    /// Whether the entry builds on triangle meshes only (made with [`CatalogEntry::new`]);
+    /// otherwise it builds on polygon meshes too ([`CatalogEntry::on_any_mesh`]).
+    pub fn needs_triangles(&self) -> bool {
+        self.needs_triangles
     }
 
     /// Whether construction needs a Delaunay mesh.
@@ -160,7 +203,7 @@ impl CatalogEntry {
 
     /// Builds the complex of `mesh` (on a mesh with boundary with the entry's default boundary
     /// condition).
-    pub fn build(&self, mesh: &TriangleMesh) -> Result<BoxedComplex, DiscretizationError> {
+    pub fn build<M: Mesh>(&self, mesh: &M) -> Result<BoxedComplex, DiscretizationError> {
         self.build_with(mesh, self.default_boundary())
     }
 
@@ -169,20 +212,20 @@ impl CatalogEntry {
     /// condition the entry does not offer on a mesh with boundary, with the constructor's error,
     /// or with [`DiscretizationError::Inconsistent`] if the complex's id is not
     /// [`complex_id`]`(id, mesh, boundary)` (basis files rebuild their complex from that id).
-    pub fn build_with(
+    pub fn build_with<M: Mesh>(
         &self,
-        mesh: &TriangleMesh,
+        mesh: &M,
         boundary: BoundaryCondition,
     ) -> Result<BoxedComplex, DiscretizationError> {
-        if !mesh.is_closed() && !self.boundary_conditions.contains(&boundary) {
+        if !mesh.topology().is_closed() && !self.boundary_conditions.contains(&boundary) {
             return Err(DiscretizationError::UnsupportedBoundaryCondition {
                 discretization: self.id.clone(),
                 condition: boundary.name(),
                 reason: "its catalog entry does not offer it",
             });
         }
-        let complex = (self.constructor)(mesh, boundary)?;
-        let expected = complex_id(&self.id, mesh, boundary);
+        let complex = (self.constructor)(mesh as &dyn Mesh, boundary)?;
+        let expected = complex_id(&self.id, mesh.topology(), boundary);
         if complex.id() != expected {
             return Err(DiscretizationError::Inconsistent(format!(
                 "the catalog entry '{}' built a complex with the id '{}'; it must be '{expected}' \
@@ -200,6 +243,7 @@ impl std::fmt::Debug for CatalogEntry {
         f.debug_struct("CatalogEntry")
             .field("id", &self.id)
             .field("needs_delaunay", &self.needs_delaunay)
+            .field("needs_triangles", &self.needs_triangles)
             .field("boundary_conditions", &self.boundary_conditions)
             .finish_non_exhaustive()
     }
@@ -209,7 +253,24 @@ impl std::fmt::Debug for CatalogEntry {
 pub(crate) mod tests {
     use super::*;
     use crate::{Conforming, MassLumping};
-    use tvf_core::generate::{disk, icosphere};
+    use tvf_core::generate::{disk, icosphere, quad_torus};
+
+    #[test]
+    fn a_triangle_entry_refuses_a_polygon_mesh_naming_itself_and_the_cure() {
+        let quads = quad_torus(1.0, 0.4, 8, 6).unwrap();
+        let error = conforming("conforming-barycentric")
+            .build(&quads)
+            .err()
+            .unwrap();
+        assert_eq!(
+            error,
+            DiscretizationError::NeedsTriangles {
+                discretization: "conforming-barycentric".to_string(),
+                polygons: 48
+            }
+        );
+        assert!(error.to_string().contains("--triangulate"), "{error}");
+    }
 
     /// An entry with id `id` that builds the barycentric conforming complex.
     pub(crate) fn conforming(id: &str) -> CatalogEntry {
@@ -233,9 +294,11 @@ pub(crate) mod tests {
     #[test]
     fn a_condition_not_offered_is_refused_on_meshes_with_boundary_only() {
         let entry = conforming("conforming-barycentric");
-        assert!(entry.build(&icosphere(1)).is_ok());
+        let closed = icosphere(1);
+        let open = disk(2);
+        assert!(entry.build(&closed).is_ok());
         assert!(matches!(
-            entry.build(&disk(2)),
+            entry.build(&open),
             Err(DiscretizationError::UnsupportedBoundaryCondition { .. })
         ));
         let entry = entry
@@ -247,7 +310,7 @@ pub(crate) mod tests {
             Some("replaced")
         );
         assert_eq!(entry.boundary_meaning(BoundaryCondition::Tangential), None);
-        let built = entry.build(&disk(2)).unwrap();
+        let built = entry.build(&open).unwrap();
         assert_eq!(built.id(), "conforming-barycentric+normal");
     }
 }

@@ -4,12 +4,13 @@
 //! back.
 
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::MeshTopology;
 
-/// The id of the complex of catalog entry `entry_id` on `mesh` with boundary condition
-/// `boundary`: `entry_id` on a closed mesh, `{entry_id}+{boundary}` on a mesh with boundary.
-pub fn complex_id(entry_id: &str, mesh: &TriangleMesh, boundary: BoundaryCondition) -> String {
-    if mesh.is_closed() {
+/// The id of the complex of catalog entry `entry_id` on a mesh of topology `topology`
+/// (`mesh.topology()`) with boundary condition `boundary`: `entry_id` on a closed mesh,
+/// `{entry_id}+{boundary}` on a mesh with boundary.
+pub fn complex_id(entry_id: &str, topology: &MeshTopology, boundary: BoundaryCondition) -> String {
+    if topology.is_closed() {
         entry_id.to_string()
     } else {
         format!("{entry_id}+{}", boundary.name())
@@ -38,9 +39,12 @@ mod tests {
     #[test]
     fn ids_name_the_condition_on_meshes_with_boundary_only_and_split_back() {
         let closed = icosphere(1);
-        assert_eq!(complex_id("x-y", &closed, BoundaryCondition::Normal), "x-y");
+        assert_eq!(
+            complex_id("x-y", closed.topology(), BoundaryCondition::Normal),
+            "x-y"
+        );
         let open = disk(2);
-        let id = complex_id("x-y", &open, BoundaryCondition::Normal);
+        let id = complex_id("x-y", open.topology(), BoundaryCondition::Normal);
         assert_eq!(id, "x-y+normal");
         assert_eq!(
             split_complex_id(&id),

@@ -7,7 +7,7 @@ use tvf_core::discretization::{
     TangentProjection,
 };
 use tvf_core::geometry::dot;
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// Piecewise constant tangent fields, one vector per face stored as `(x[2t], x[2t+1])` in the
 /// frame `e1 = normalize(p_{i1} − p_{i0})`, `e2 = n × e1` (pointwise coefficients);
@@ -67,14 +67,20 @@ impl FieldSampling for FaceFields {
         self.normals[face]
     }
 
+    fn centroid(&self, face: usize) -> SurfacePoint {
+        SurfacePoint::barycentric(face, [1.0 / 3.0; 3])
+    }
+
     /// `v = x[2t] e1 + x[2t+1] e2` anywhere in face `t`.
-    fn sample_weights(&self, face: usize, _barycentric: [f64; 3]) -> Vec<(usize, [f64; 3])> {
+    fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
+        let face = point.face;
         let [e1, e2] = self.frames[face];
         vec![(2 * face, e1), (2 * face + 1, e2)]
     }
 
     /// Exactly `(1, 0)` at `2t` and `(0, 1)` at `2t + 1`.
-    fn sample_frame_weights(&self, face: usize, _barycentric: [f64; 3]) -> Vec<(usize, [f64; 2])> {
+    fn sample_frame_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 2])> {
+        let face = point.face;
         vec![(2 * face, [1.0, 0.0]), (2 * face + 1, [0.0, 1.0])]
     }
 

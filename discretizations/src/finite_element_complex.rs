@@ -8,7 +8,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
     HodgeComplex, Mass, MassForm, MassStorage, NodeKind, NodeSpace, PointEvaluation,
 };
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// The Hodge complex `P --d0--> X_h --d1--> Q` of two function spaces over the face fields:
 /// `d0 = G_P`, `d1 = G_Qᵀ J M_X`, `M0 = mass(P)`, `M1 = M_X`, `M2 = mass(Q)⁻¹`, with each
@@ -210,11 +210,13 @@ where
     P: FunctionSpace + Send + Sync,
     Q: FunctionSpace + Send + Sync,
 {
-    fn potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)> {
-        self.potentials.interpolation_weights(face, barycentric)
+    fn potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)> {
+        self.potentials
+            .interpolation_weights(point.face, point.triangle_coordinates())
     }
 
-    fn co_potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)> {
-        self.co_potentials.interpolation_weights(face, barycentric)
+    fn co_potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)> {
+        self.co_potentials
+            .interpolation_weights(point.face, point.triangle_coordinates())
     }
 }

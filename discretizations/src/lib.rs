@@ -132,6 +132,9 @@ pub mod matrix_complex_nodes;
 mod mixed_poisson;
 mod paper_complexes;
 mod pinned_poisson;
+mod polygon_dec;
+mod polygon_operators;
+mod polygon_sampling;
 mod primal_form_complex;
 mod primal_forms;
 mod whitney_galerkin;
@@ -142,9 +145,11 @@ pub use boundary_conditions::{
     boundary_nodes, component_boundary_loops, drop_columns, drop_rows, mesh_topology,
     with_dirichlet_boundary,
 };
+pub use builtin_catalog::polygon_dec_entry;
 pub use catalog::{
-    build_complex, builtin_catalog, catalog_entry, is_kebab_case, Catalog, CatalogBuildError,
-    CatalogError, UnknownDiscretization, DEFAULT_DISCRETIZATION,
+    build_complex, builtin_catalog, catalog_entry, default_discretization, is_kebab_case, Catalog,
+    CatalogBuildError, CatalogError, UnknownDiscretization, DEFAULT_DISCRETIZATION,
+    DEFAULT_POLYGON_DISCRETIZATION,
 };
 pub use catalog_entry::{BoxedComplex, CatalogEntry, EntryConstructor, ANY_MESH};
 pub use catalog_ids::{
@@ -165,6 +170,9 @@ pub use matrix_complex::{ComplexMatrices, MatrixComplex, MatrixSampling, COMPLEX
 pub use matrix_complex_nodes::FixedNodes;
 pub use paper_complexes::{PaperPair, PaperSpace, SpaceMasses};
 pub use pinned_poisson::PinnedPoisson;
+pub use polygon_dec::{polygon_dec_id, PolygonDec, DEFAULT_STABILISATION};
+pub use polygon_operators::PolygonOperators;
+pub use polygon_sampling::{PolygonEvaluation, PolygonSampling};
 pub use primal_form_complex::PrimalFormComplex;
 pub use whitney_galerkin::{GalerkinMasses, WhitneyGalerkin};
 pub use whitney_mass::whitney_mass;

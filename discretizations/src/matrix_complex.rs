@@ -5,6 +5,8 @@
 use crate::face_fields::FaceFields;
 use crate::face_geometry::FaceGeometry;
 use crate::matrix_complex_nodes::{implied_harmonic_dimension, matrix_node_spaces, FixedNodes};
+use crate::polygon_operators::PolygonOperators;
+use crate::polygon_sampling::PolygonSampling;
 use crate::whitney_sampling::WhitneySampling;
 use sprs::CsMat;
 use tvf_core::discretization::check_length;
@@ -13,7 +15,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
     HodgeComplex, Mass, NodeKind, NodeSpace,
 };
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 /// `max |d1 d0|` above this times `max |d1| · max |d0|` is not a complex.
 pub const COMPLEX_TOLERANCE: f64 = 1e-10;
@@ -28,8 +30,11 @@ pub enum MatrixSampling {
     /// (`e1 = normalize(p1 − p0)`, `e2 = n × e1`): `n1 = 2F`; also gives the rotation `J`.
     FaceFrames,
     /// Fields are primal 1-forms (one integral per edge, from `a` to `b`, `a < b`), sampled by
-    /// Whitney interpolation: `n1 = E`.
+    /// Whitney interpolation: `n1 = E` (triangle meshes).
     Whitney,
+    /// Fields are primal 1-forms sampled by polygonal DEC's sharp, one vector per face
+    /// ([`crate::PolygonSampling`]): `n1 = E` (triangle and polygon meshes).
+    PolygonSharp,
 }
 
 impl MatrixSampling {
@@ -39,15 +44,17 @@ impl MatrixSampling {
             Self::None => "none",
             Self::FaceFrames => "face-frames",
             Self::Whitney => "whitney",
+            Self::PolygonSharp => "polygon-sharp",
         }
     }
 
-    /// The sampling named `name`: `none`, `face-frames` or `whitney`.
+    /// The sampling named `name`: `none`, `face-frames`, `whitney` or `polygon-sharp`.
     pub fn from_name(name: &str) -> Option<Self> {
         match name {
             "none" => Some(Self::None),
             "face-frames" => Some(Self::FaceFrames),
             "whitney" => Some(Self::Whitney),
+            "polygon-sharp" => Some(Self::PolygonSharp),
             _ => None,
         }
     }
@@ -58,6 +65,7 @@ enum Sampler {
     None,
     FaceFrames(FaceFields),
     Whitney(WhitneySampling),
+    PolygonSharp(PolygonSampling),
 }
 
 /// The five matrices of a complex: `d0` (`n1 × n0`), `d1` (`n2 × n1`) and the masses `M0`,
@@ -97,7 +105,7 @@ impl MatrixComplex {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         id: &str,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         d0: CsMat<f64>,
         d1: CsMat<f64>,
         m0: Mass,
@@ -124,7 +132,7 @@ impl MatrixComplex {
     /// how.
     pub fn with_boundary(
         id: &str,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         matrices: ComplexMatrices,
         fixed: &FixedNodes,
         condition: BoundaryCondition,
@@ -182,7 +190,7 @@ fn check_complex(d0: &CsMat<f64>, d1: &CsMat<f64>) -> Result<(), DiscretizationE
 
 /// The sampler `sampling` asks for, checked against the field nodes.
 fn sampler(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     sampling: MatrixSampling,
     field_nodes: &NodeSpace,
 ) -> Result<Sampler, DiscretizationError> {
@@ -190,10 +198,11 @@ fn sampler(
         MatrixSampling::None => Sampler::None,
         MatrixSampling::FaceFrames => {
             require_kind("face-frames sampling", field_nodes, NodeKind::FaceFrames)?;
-            Sampler::FaceFrames(FaceFields::new(mesh)?)
+            Sampler::FaceFrames(FaceFields::new(triangles(mesh, sampling)?)?)
         }
         MatrixSampling::Whitney => {
             require_kind("Whitney sampling", field_nodes, NodeKind::Edges)?;
+            let mesh = triangles(mesh, sampling)?;
             let geometry = FaceGeometry::new(mesh)?;
             Sampler::Whitney(WhitneySampling::new(
                 mesh,
@@ -201,6 +210,31 @@ fn sampler(
                 field_nodes.dirichlet.clone(),
             ))
         }
+        MatrixSampling::PolygonSharp => {
+            require_kind("polygon-sharp sampling", field_nodes, NodeKind::Edges)?;
+            let operators: Vec<PolygonOperators> = (0..mesh.face_count())
+                .map(|f| PolygonOperators::of(mesh, f))
+                .collect();
+            Sampler::PolygonSharp(PolygonSampling::new(
+                mesh,
+                &operators,
+                field_nodes.dirichlet.clone(),
+            ))
+        }
+    })
+}
+
+/// The triangle mesh a triangle sampling needs, or an error naming the sampling.
+fn triangles(
+    mesh: &SurfaceMesh,
+    sampling: MatrixSampling,
+) -> Result<&tvf_core::TriangleMesh, DiscretizationError> {
+    mesh.as_triangles().ok_or_else(|| {
+        DiscretizationError::Inconsistent(format!(
+            "{} sampling needs a triangle mesh; on a polygon mesh use polygon-sharp (1-forms) or \
+             none",
+            sampling.name()
+        ))
     })
 }
 
@@ -238,6 +272,7 @@ impl HodgeComplex for MatrixComplex {
             Sampler::None => None,
             Sampler::FaceFrames(fields) => Some(fields),
             Sampler::Whitney(whitney) => Some(whitney),
+            Sampler::PolygonSharp(sharp) => Some(sharp),
         }
     }
     fn rotation(&self) -> Option<&dyn FieldRotation> {
@@ -259,7 +294,7 @@ mod tests {
     type Parts = (CsMat<f64>, CsMat<f64>, Mass, Mass, Mass);
 
     /// The complex of built-in catalog entry `id` on `mesh`, default boundary condition.
-    fn catalog_complex(id: &str, mesh: &TriangleMesh) -> BoxedComplex {
+    fn catalog_complex(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
         catalog_entry(id).unwrap().build(mesh).unwrap()
     }
 
@@ -275,7 +310,7 @@ mod tests {
 
     /// [`MatrixComplex::new`] of `parts` on the closed `mesh`.
     fn closed_copy(
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         (d0, d1, m0, m1, m2): Parts,
         sampling: MatrixSampling,
     ) -> Result<MatrixComplex, DiscretizationError> {
@@ -284,7 +319,7 @@ mod tests {
 
     /// [`MatrixComplex::with_boundary`] of `parts` on `mesh` with `fixed` nodes, without sampling.
     fn copy_with_fixed(
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         (d0, d1, m0, m1, m2): Parts,
         fixed: &FixedNodes,
         condition: BoundaryCondition,
@@ -311,7 +346,7 @@ mod tests {
 
     #[test]
     fn rebuilds_a_catalog_complex_with_its_operators() {
-        let mesh = torus(1.0, 0.4, 12, 6).unwrap();
+        let mesh = SurfaceMesh::from(torus(1.0, 0.4, 12, 6).unwrap());
         let built = catalog_complex("conforming-barycentric", &mesh);
         let copy = closed_copy(&mesh, parts(built.as_ref()), MatrixSampling::FaceFrames).unwrap();
         assert_eq!(copy.potential_nodes().kind, NodeKind::Vertices);
@@ -332,7 +367,7 @@ mod tests {
     #[test]
     fn rebuilds_every_entry_with_its_fixed_nodes_and_kernels() {
         use crate::builtin_catalog;
-        let meshes = [icosphere(1), disk(3)];
+        let meshes = [SurfaceMesh::from(icosphere(1)), disk(3).into()];
         for mesh in &meshes {
             for entry in builtin_catalog() {
                 for condition in BoundaryCondition::ALL {
@@ -360,7 +395,7 @@ mod tests {
 
     #[test]
     fn an_open_mesh_needs_its_fixed_nodes() {
-        let mesh = disk(3);
+        let mesh = SurfaceMesh::from(disk(3));
         let built = catalog_complex("conforming-barycentric", &mesh);
         let refused_with = |fixed: &FixedNodes| {
             refusal(copy_with_fixed(
@@ -387,7 +422,7 @@ mod tests {
 
     #[test]
     fn whitney_sampling_needs_edge_fields() {
-        let mesh = icosphere(1);
+        let mesh = SurfaceMesh::from(icosphere(1));
         let dec = catalog_complex("dec-circumcentric", &mesh);
         let ok = closed_copy(&mesh, parts(dec.as_ref()), MatrixSampling::Whitney);
         assert!(ok.unwrap().sampling().is_some());
@@ -404,7 +439,7 @@ mod tests {
 
     #[test]
     fn refuses_broken_matrices_naming_them() {
-        let mesh = icosphere(1);
+        let mesh = SurfaceMesh::from(icosphere(1));
         let built = catalog_complex("conforming-barycentric", &mesh);
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let build = |d0: CsMat<f64>, m1: Mass| {

@@ -5,7 +5,7 @@
 use sprs::CsMat;
 use tvf_core::discretization::sparse::transpose;
 use tvf_core::discretization::{DiscretizationError, NodeKind, NodeSpace};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 /// The nodes of each space of a complex that its boundary condition fixes to zero (indices into
 /// the space, any order). Their column of `d0` (potentials), row of `d0` and column of `d1`
@@ -42,7 +42,7 @@ impl FixedNodes {
 /// that is no node kind of the mesh, a fixed index out of range, a fixed node whose row or
 /// column is not empty.
 pub fn matrix_node_spaces(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     d0: &CsMat<f64>,
     d1: &CsMat<f64>,
     fixed: &FixedNodes,
@@ -133,12 +133,9 @@ pub fn implied_harmonic_dimension(spaces: &[NodeSpace; 3]) -> i64 {
 }
 
 /// The node space of `n` nodes on `mesh`: vertices, edges, faces or face frames by size.
-fn node_space(mesh: &TriangleMesh, n: usize, what: &str) -> Result<NodeSpace, DiscretizationError> {
+fn node_space(mesh: &SurfaceMesh, n: usize, what: &str) -> Result<NodeSpace, DiscretizationError> {
     let positions = mesh.positions();
-    let centroid = |face: &[usize; 3]| {
-        let p = face.map(|v| positions[v]);
-        [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
-    };
+    let face_count = mesh.face_count();
     let (kind, positions, components) = if n == mesh.vertex_count() {
         (
             NodeKind::Vertices,
@@ -151,12 +148,18 @@ fn node_space(mesh: &TriangleMesh, n: usize, what: &str) -> Result<NodeSpace, Di
             .iter()
             .map(|&[a, b]| [0, 1, 2].map(|k| 0.5 * (positions[a][k] + positions[b][k])))
             .collect();
-        (NodeKind::Edges, midpoints, mesh.edge_components())
-    } else if n == mesh.face_count() {
-        let centroids = mesh.faces().iter().map(centroid).collect();
+        (
+            NodeKind::Edges,
+            midpoints,
+            mesh.topology().edge_components(),
+        )
+    } else if n == face_count {
+        let centroids = (0..face_count).map(|f| mesh.face_centroid(f)).collect();
         (NodeKind::Faces, centroids, mesh.face_components().to_vec())
-    } else if n == 2 * mesh.face_count() {
-        let centroids = mesh.faces().iter().flat_map(|f| [centroid(f); 2]).collect();
+    } else if n == 2 * face_count {
+        let centroids = (0..face_count)
+            .flat_map(|f| [mesh.face_centroid(f); 2])
+            .collect();
         let components = mesh
             .face_components()
             .iter()

@@ -128,7 +128,11 @@ where
         let geometry = FaceGeometry::new(mesh)?;
         let family = <(P, Q) as PaperPair>::FAMILY;
         Self::from_spaces_with_boundary(
-            complex_id(&format!("{family}-{}", masses.name()), mesh, boundary),
+            complex_id(
+                &format!("{family}-{}", masses.name()),
+                mesh.topology(),
+                boundary,
+            ),
             mesh,
             P::build(mesh, &geometry, masses),
             Q::build(mesh, &geometry, masses),

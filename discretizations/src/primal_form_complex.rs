@@ -42,7 +42,7 @@ impl<M> PrimalFormComplex<M> {
         let sampling = WhitneySampling::new(mesh, geometry, nodes[1].dirichlet.clone());
         Ok(Self {
             parts: ComplexParts::new(
-                complex_id(id, mesh, boundary),
+                complex_id(id, mesh.topology(), boundary),
                 d0,
                 d1,
                 masses,

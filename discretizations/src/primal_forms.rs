@@ -1,8 +1,9 @@
-//! [`PrimalForms`]: what every complex of primal forms on a triangle mesh shares — the signed
-//! incidences `d0`, `d1`, the node spaces of vertices, edges and faces with a boundary condition
-//! (absolute or relative forms), and point evaluation of 0- and 2-forms. DEC
-//! ([`crate::DecComplex`]) and Whitney forms with Galerkin masses ([`crate::WhitneyGalerkin`])
-//! differ only in their masses.
+//! [`PrimalForms`]: what every complex of primal forms shares — the signed incidences `d0`, `d1`,
+//! the node spaces of vertices, edges and faces with a boundary condition (absolute or relative
+//! forms), on triangle and polygon meshes alike — and point evaluation of 0- and 2-forms on
+//! triangles. DEC ([`crate::DecComplex`]) and Whitney forms with Galerkin masses
+//! ([`crate::WhitneyGalerkin`]) differ only in their masses; polygonal DEC
+//! ([`crate::PolygonDec`]) shares the incidences and nodes.
 
 use crate::boundary_conditions::{
     boundary_nodes, component_boundary_loops, drop_columns, drop_rows, with_dirichlet_boundary,
@@ -10,14 +11,15 @@ use crate::boundary_conditions::{
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{BoundaryCondition, NodeKind, NodeSpace, PointEvaluation};
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::Mesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// The complex `0-forms (V) --d0--> 1-forms (E) --d1--> 2-forms (F)` without its masses.
 ///
 /// - A 1-form is `x_e = ∫_e ⟨v, t⟩`, the field integrated along edge `e = (a, b)`, `a < b`
-///   (edges numbered as [`TriangleMesh::edges`]), from `a` to `b` (units length × field).
+///   (edges numbered as the mesh's: lexicographic), from `a` to `b` (units length × field).
 /// - `d0` (`E × V`): row `e = (a, b)` has `−1` at `a` and `+1` at `b` (`(d0 f)_e = f_b − f_a`).
-/// - `d1` (`F × E`): row `t` has `±1` at its three edges, `+1` where the counter-clockwise
+/// - `d1` (`F × E`): row `t` has `±1` at each of its edges, `+1` where the counter-clockwise
 ///   boundary of `t` runs `a → b` (the circulation around `t`). `d1 d0 = 0` exactly.
 ///
 /// On a mesh with boundary, [`BoundaryCondition::Tangential`] gives **absolute** forms (every
@@ -38,40 +40,44 @@ pub(crate) struct PrimalForms {
 
 impl PrimalForms {
     /// The incidences and node spaces of `mesh` with boundary condition `boundary` (ignored on a
-    /// closed mesh).
-    pub fn new(mesh: &TriangleMesh, boundary: BoundaryCondition) -> Self {
+    /// closed mesh). Face nodes sit at the faces' corner averages.
+    pub fn new<M: Mesh + ?Sized>(mesh: &M, boundary: BoundaryCondition) -> Self {
         let positions = mesh.positions();
-        let components = mesh.component_count();
+        let (topology, faces) = (mesh.topology(), mesh.face_corners());
+        let components = topology.component_count();
         let mut potential_nodes = NodeSpace::with_constant_kernel(
             NodeKind::Vertices,
             positions.to_vec(),
-            mesh.vertex_components(),
+            topology.vertex_components(faces),
             components,
         );
         let mut field_nodes = NodeSpace::with_constant_kernel(
             NodeKind::Edges,
-            mesh.edges()
+            topology
+                .edges()
                 .iter()
                 .map(|&[a, b]| std::array::from_fn(|k| (positions[a][k] + positions[b][k]) / 2.0))
                 .collect(),
-            mesh.edge_components(),
+            topology.edge_components(),
             components,
         );
         let mut co_potential_nodes = NodeSpace::with_constant_kernel(
             NodeKind::Faces,
-            mesh.faces()
-                .iter()
+            (0..faces.face_count())
                 .map(|f| {
-                    let p = f.map(|i| positions[i]);
-                    std::array::from_fn(|k| (p[0][k] + p[1][k] + p[2][k]) / 3.0)
+                    let corners = faces.corners(f);
+                    let n = corners.len() as f64;
+                    std::array::from_fn(|k| {
+                        corners.iter().map(|&i| positions[i][k]).sum::<f64>() / n
+                    })
                 })
                 .collect(),
-            mesh.face_components().to_vec(),
+            topology.face_components().to_vec(),
             components,
         );
         let mut d0 = vertex_edge_incidence(mesh);
         let mut d1 = edge_face_incidence(mesh);
-        let relative = !mesh.is_closed() && boundary == BoundaryCondition::Normal;
+        let relative = !topology.is_closed() && boundary == BoundaryCondition::Normal;
         if relative {
             // Relative forms: zero on boundary vertices and edges. A boundary edge joins two
             // boundary vertices, so dropping its row of d0 loses nothing; the face circulations
@@ -99,30 +105,34 @@ impl PrimalForms {
 }
 
 /// Signed vertex → edge incidence (`E × V`): `−1` at `a`, `+1` at `b` for edge `(a, b)`.
-fn vertex_edge_incidence(mesh: &TriangleMesh) -> CsMat<f64> {
+fn vertex_edge_incidence<M: Mesh + ?Sized>(mesh: &M) -> CsMat<f64> {
+    let edges = mesh.topology().edges();
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
-    for (e, &[a, b]) in mesh.edges().iter().enumerate() {
+    for (e, &[a, b]) in edges.iter().enumerate() {
         rows.extend([e, e]);
         cols.extend([a, b]);
         values.extend([-1.0, 1.0]);
     }
-    from_triplets(mesh.edge_count(), mesh.vertex_count(), rows, cols, values)
+    from_triplets(edges.len(), mesh.positions().len(), rows, cols, values)
 }
 
 /// Signed edge → face incidence (`F × E`): `+1` where the face's counter-clockwise boundary runs
 /// along the edge's orientation `a → b`, `−1` where it runs against it.
-fn edge_face_incidence(mesh: &TriangleMesh) -> CsMat<f64> {
+fn edge_face_incidence<M: Mesh + ?Sized>(mesh: &M) -> CsMat<f64> {
+    let faces = mesh.face_corners();
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
-    for (t, (face, edges)) in mesh.faces().iter().zip(mesh.face_edges()).enumerate() {
-        for c in 0..3 {
-            // The edge opposite corner c runs from corner c+1 to corner c+2.
-            let (from, to) = (face[(c + 1) % 3], face[(c + 2) % 3]);
-            rows.push(t);
-            cols.push(edges[c]);
+    for f in 0..faces.face_count() {
+        let corners = faces.corners(f);
+        for (c, &from) in corners.iter().enumerate() {
+            // Side c runs from corner c to corner c + 1.
+            let to = corners[(c + 1) % corners.len()];
+            rows.push(f);
+            cols.push(mesh.face_edge(f, c));
             values.push(if from < to { 1.0 } else { -1.0 });
         }
     }
-    from_triplets(mesh.face_count(), mesh.edge_count(), rows, cols, values)
+    let edge_count = mesh.topology().edges().len();
+    from_triplets(faces.face_count(), edge_count, rows, cols, values)
 }
 
 /// Point evaluation of primal forms: a 0-form is interpolated linearly (the Whitney 0-forms are
@@ -143,12 +153,12 @@ impl PrimalFormEvaluation {
 }
 
 impl PointEvaluation for PrimalFormEvaluation {
-    fn potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)> {
-        let nodes = self.faces[face];
+    fn potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)> {
+        let (nodes, barycentric) = (self.faces[point.face], point.triangle_coordinates());
         (0..3).map(|c| (nodes[c], barycentric[c])).collect()
     }
 
-    fn co_potential_weights(&self, face: usize, _barycentric: [f64; 3]) -> Vec<(usize, f64)> {
-        vec![(face, 1.0)]
+    fn co_potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)> {
+        vec![(point.face, 1.0)]
     }
 }

@@ -6,7 +6,7 @@ use tvf_core::discretization::{
     check_face_vectors, DiscretizationError, FieldSampling, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, scale, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// Whitney interpolation of 1-forms on edges.
 ///
@@ -89,7 +89,12 @@ impl FieldSampling for WhitneySampling {
         self.normals[face]
     }
 
-    fn sample_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, [f64; 3])> {
+    fn centroid(&self, face: usize) -> SurfacePoint {
+        SurfacePoint::barycentric(face, [1.0 / 3.0; 3])
+    }
+
+    fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
+        let (face, barycentric) = (point.face, point.triangle_coordinates());
         let corners = self.faces[face];
         let gradients = &self.barycentric_gradients[face];
         (0..3)

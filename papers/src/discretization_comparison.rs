@@ -1,6 +1,6 @@
 //! The discretization comparison: catalog entries (the built-in ones, [`crate::registry`], or
 //! any others) through the convergence study of `tvf convergence`
-//! ([`tvf_conformance::convergence`]) on icospheres under refinement — each family's lowest
+//! ([`tvf_convergence`]) on icospheres under refinement — each family's lowest
 //! eigenvalues against the unit sphere's `l(l+1)`, the orders and the time to build each basis —
 //! as the study's Markdown table and log–log plot.
 //!
@@ -8,7 +8,7 @@
 //! first `L` degrees are `L(L+2)` eigenvalues per family.
 
 use crate::step_log::StepLog;
-use tvf_conformance::convergence::{
+use tvf_convergence::study::{
     run_convergence, Candidate, ConvergenceConfig, ConvergenceReport, Surface,
 };
 use tvf_discretizations::CatalogEntry;

@@ -4,7 +4,7 @@
 //! [`brandt2017`] reproduces Brandt et al., "Spectral Processing of Tangential Vector Fields"
 //! (CGF 2017). [`discretization_comparison`] runs every discretization of the catalog
 //! ([`registry::compared_discretizations`]) through the convergence study of `tvf convergence`
-//! ([`tvf_conformance::convergence`]) on icospheres; a discretization added to the catalog is
+//! ([`tvf_convergence`]) on icospheres; a discretization added to the catalog is
 //! compared without another line.
 //!
 //! The pieces run on generated meshes as well as on the paper's:

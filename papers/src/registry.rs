@@ -5,7 +5,7 @@
 //! (`catalog.entries()`).
 
 use std::time::Instant;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{builtin_catalog, CatalogEntry};
 use tvf_figures::FigureError;
 use tvf_spectral::{compute_basis, BasisRequest, SpectralBasis};
@@ -27,7 +27,7 @@ pub fn compared_discretizations() -> &'static [CatalogEntry] {
 /// Builds `entry`'s complex on `mesh` and computes the requested basis, timing both together.
 pub fn basis_of(
     entry: &CatalogEntry,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     request: &BasisRequest<'_>,
 ) -> Result<TimedBasis, FigureError> {
     let start = Instant::now();

@@ -44,9 +44,12 @@ pub(crate) fn python_complex(
 /// `detail`.
 #[pyfunction]
 pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    let report = detached(py, || {
-        core_check_report(complex.complex.as_ref(), &complex.mesh)
-    })?;
+    let Some(mesh) = complex.mesh.as_triangles() else {
+        return Err(crate::errors::tvf_error(
+            "the conformance checks run on triangle meshes so far (this mesh has polygons)",
+        ));
+    };
+    let report = detached(py, || core_check_report(complex.complex.as_ref(), mesh))?;
     outcome_dicts(py, &report.outcomes)
 }
 
@@ -71,7 +74,12 @@ pub fn check_builder<'py>(
     let builder = |mesh: &TriangleMesh| python_complex(&build, mesh, &interruption);
     let result = PyDict::new(py);
     if let Some(mesh) = mesh {
-        let report = interruptible(py, &interruption, || check_mesh(&builder, &mesh.mesh, &[]))?;
+        let Some(triangles) = mesh.mesh.as_triangles() else {
+            return Err(crate::errors::tvf_error(
+                "the conformance checks run on triangle meshes so far (this mesh has polygons)",
+            ));
+        };
+        let report = interruptible(py, &interruption, || check_mesh(&builder, triangles, &[]))?;
         result.set_item("passed", report.passed())?;
         result.set_item("cases_passed", u32::from(report.passed()))?;
         result.set_item("outcomes", outcome_dicts(py, &report.outcomes)?)?;

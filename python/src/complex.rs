@@ -12,7 +12,7 @@ use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     builtin_catalog, catalog_entry, BoxedComplex, MatrixComplex, MatrixSampling,
 };
@@ -22,7 +22,7 @@ use tvf_spectral::SpectralBasis;
 #[pyclass(frozen, module = "tvf._native")]
 pub struct Complex {
     pub complex: BoxedComplex,
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     pub label: String,
 }
 

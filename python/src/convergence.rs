@@ -1,5 +1,5 @@
 //! `tvf.convergence`: catalog entries and Python builders through the convergence study of
-//! `tvf convergence` (`tvf_conformance::convergence`) against the exact spectra of the unit
+//! `tvf convergence` (`tvf_convergence`) against the exact spectra of the unit
 //! sphere and hemisphere.
 
 use crate::check::python_complex;
@@ -7,7 +7,7 @@ use crate::errors::{from_error, tvf_error};
 use crate::interrupt::{interruptible, Interruption};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tvf_conformance::convergence::{
+use tvf_convergence::study::{
     run_convergence, Candidate, ConvergenceConfig, ConvergenceReport, Surface,
 };
 use tvf_core::discretization::BoundaryCondition;

@@ -8,12 +8,12 @@ use numpy::{IntoPyArray, PyReadonlyArray2};
 use pyo3::prelude::*;
 use tvf_core::io::load_mesh;
 use tvf_core::mesh::ValidationReport;
-use tvf_core::TriangleMesh;
+use tvf_core::{FaceList, SurfaceMesh};
 
 /// A valid oriented manifold triangle mesh (see `tvf.Mesh` in Python for the documentation).
 #[pyclass(frozen, module = "tvf._native")]
 pub struct Mesh {
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     pub report: ValidationReport,
     pub label: String,
 }
@@ -50,7 +50,7 @@ impl Mesh {
             faces.push(converted);
         }
         let (mesh, report) = py
-            .detach(|| TriangleMesh::validated(positions, faces))
+            .detach(|| SurfaceMesh::validated(positions, FaceList::from_triangles(&faces)))
             .map_err(|e| tvf_error(format!("{label}: {e}")))?;
         check_geometry_range(&mesh, &label)?;
         Ok(Self {
@@ -66,13 +66,28 @@ impl Mesh {
         vectors_to_numpy(py, self.mesh.positions())
     }
 
-    /// Faces, `F × 3` int64, counter-clockwise seen from outside, 0-based indices into `positions`.
+    /// Faces, counter-clockwise seen from outside, 0-based indices into `positions`: an `F × 3`
+    /// int64 array for a triangle mesh, a list of `F` int64 arrays (one per polygon) otherwise.
     #[getter]
-    fn faces<'py>(&self, py: Python<'py>) -> Bound<'py, PyAny> {
-        let faces = self.mesh.faces();
-        Array2::from_shape_fn((faces.len(), 3), |(t, c)| faces[t][c] as i64)
-            .into_pyarray(py)
-            .into_any()
+    fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        match &self.mesh {
+            SurfaceMesh::Triangles(mesh) => {
+                let faces = mesh.faces();
+                Ok(
+                    Array2::from_shape_fn((faces.len(), 3), |(t, c)| faces[t][c] as i64)
+                        .into_pyarray(py)
+                        .into_any(),
+                )
+            }
+            SurfaceMesh::Polygons(mesh) => {
+                let polygons: Vec<Vec<i64>> = mesh
+                    .faces()
+                    .iter()
+                    .map(|f| f.iter().map(|&v| v as i64).collect())
+                    .collect();
+                Ok(pyo3::types::PyList::new(py, polygons)?.into_any())
+            }
+        }
     }
 
     /// Edges, `E × 2` int64, `(a, b)` with `a < b`, in lexicographic order.
@@ -216,8 +231,8 @@ fn rows<T: Copy>(array: &numpy::ndarray::ArrayView2<'_, T>, what: &str) -> PyRes
 }
 
 /// The command line's refusal of meshes whose area overflows `f64`
-/// ([`TriangleMesh::check_geometry_range`]), naming the mesh.
-fn check_geometry_range(mesh: &TriangleMesh, label: &str) -> PyResult<()> {
+/// ([`SurfaceMesh::check_geometry_range`]), naming the mesh.
+fn check_geometry_range(mesh: &SurfaceMesh, label: &str) -> PyResult<()> {
     mesh.check_geometry_range()
         .map_err(|e| tvf_error(format!("{label}: {e}")))
 }

@@ -102,6 +102,30 @@ def test_a_failure_that_does_not_reproduce_is_not_a_pass():
         assert "non-deterministic" in str(report)
 
 
+def test_a_failure_only_on_the_first_call_is_reported_as_non_deterministic():
+    """A builder wrong on its first call only: every later look at the failing mesh passes, so
+    shrinking cannot reproduce it. The verdict stays a failure, with that first mesh as the
+    counterexample, the numbers of the failing run, and the word that it did not reproduce."""
+    calls = [0]
+
+    def first_call_wrong(V, F):
+        calls[0] += 1
+        parts = builder(V, F)
+        if calls[0] == 1:
+            M0 = np.array(parts["M0"].diagonal() if sp.issparse(parts["M0"]) else parts["M0"], dtype=float)
+            M0[0] *= 2.0
+            parts["M0"] = M0
+        return parts
+
+    report = tvf.check(first_call_wrong, cases=4, seed=3)
+    assert calls[0] > 1, calls[0]
+    assert not report.passed, str(report)
+    assert report.reproduced is False, str(report)
+    assert report.counterexample is not None
+    assert "potential_masses_sum_to_area" in {o["name"] for o in report.failures}, str(report)
+    assert "non-deterministic" in str(report), str(report)
+
+
 def test_interrupts_and_exits_in_a_builder_propagate():
     """Ctrl+C in a builder once became a failed construction check, and the run a pass."""
     for exception in (KeyboardInterrupt, SystemExit):

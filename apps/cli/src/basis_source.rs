@@ -35,7 +35,7 @@ use crate::progress::{note, warn, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use std::path::PathBuf;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_spectral::{
     basis_file_complex, cached_or_computed_basis, compute_basis_of_size, computed_basis_summary,
@@ -95,7 +95,7 @@ impl BasisSource {
     pub fn resolve(
         &self,
         catalog: &Catalog,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         input: &MeshInput,
     ) -> Result<ResolvedBasis> {
         self.options.resolve(catalog, mesh, input, self.size())
@@ -108,7 +108,7 @@ pub struct ResolvedBasis {
     pub discretization: BoxedComplex,
     /// The basis.
     pub basis: SpectralBasis,
-    /// [`TriangleMesh::fingerprint`](tvf_core::TriangleMesh::fingerprint) of the mesh.
+    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
     pub mesh_fingerprint: u64,
 }
 
@@ -119,7 +119,7 @@ impl BasisOptions {
     pub fn resolve(
         &self,
         catalog: &Catalog,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         input: &MeshInput,
         size: BasisSize,
     ) -> Result<ResolvedBasis> {
@@ -136,7 +136,7 @@ impl BasisOptions {
     pub fn resolve_with(
         &self,
         catalog: &Catalog,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         input: &MeshInput,
         size: BasisSize,
         discretization: Option<BoxedComplex>,
@@ -187,7 +187,7 @@ impl BasisOptions {
     /// bar) and cached if the cache does not hold a usable one; stderr says which.
     fn cached(
         &self,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         discretization: &BoxedComplex,
         size: BasisSize,
     ) -> Result<SpectralBasis> {
@@ -223,7 +223,7 @@ impl BasisOptions {
     pub fn discretization(
         &self,
         catalog: &Catalog,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         input: &MeshInput,
     ) -> Result<BoxedComplex> {
         match &self.basis {

@@ -11,9 +11,9 @@ use clap::error::ErrorKind;
 use clap::{ArgMatches, Args};
 use std::path::PathBuf;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
-    parse_boundary_condition, requested_catalog_id, BoxedComplex, Catalog, DEFAULT_DISCRETIZATION,
+    default_discretization, parse_boundary_condition, requested_catalog_id, BoxedComplex, Catalog,
 };
 
 /// The discretization flags shared by every subcommand that builds a complex.
@@ -61,10 +61,11 @@ impl DiscretizationFlags {
         )
     }
 
-    /// The id to use: the flags', else [`DEFAULT_DISCRETIZATION`].
-    pub fn id(&self) -> String {
+    /// The id to use on `mesh`: the flags', else [`default_discretization`] (polygon-dec on a
+    /// mesh with polygons).
+    pub fn id(&self, mesh: &SurfaceMesh) -> String {
         self.requested_id()
-            .unwrap_or_else(|| DEFAULT_DISCRETIZATION.to_string())
+            .unwrap_or_else(|| default_discretization(mesh).to_string())
     }
 
     /// The boundary condition to use: the flag's, else the default (tangential).
@@ -78,7 +79,7 @@ impl DiscretizationFlags {
     pub fn build(
         &self,
         catalog: &Catalog,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         input: &MeshInput,
     ) -> Result<BoxedComplex> {
         if let Some(dir) = &self.complex {
@@ -89,7 +90,7 @@ impl DiscretizationFlags {
             return Ok(Box::new(complex));
         }
         catalog
-            .build_complex(&self.id(), Some(self.boundary_condition()), mesh)
+            .build_complex(&self.id(mesh), Some(self.boundary_condition()), mesh)
             .with_context(|| input.label())
     }
 }

@@ -25,8 +25,7 @@ use clap::{Args, CommandFactory};
 use std::path::PathBuf;
 use tvf_core::generate::{example_mesh, EXAMPLE_NAMES};
 use tvf_core::io::{load_mesh, LoadedMesh};
-use tvf_core::mesh::ValidationWarning;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 /// A mesh file or a built-in example; exactly one must be given.
 #[derive(Args, Debug, Clone)]
@@ -103,13 +102,6 @@ impl MeshInput {
                     .mesh
                     .check_geometry_range()
                     .map_err(|e| anyhow!("{label}: {e}"))?;
-                // Folded polygons make every result wrong: said by every subcommand, not only
-                // by `tvf info`.
-                for warning in &loaded.report.warnings {
-                    if let ValidationWarning::FoldedPolygons { .. } = warning {
-                        crate::progress::warn(format!("{label}: {warning}"));
-                    }
-                }
                 Ok(loaded)
             }
             (None, Some(name)) => {
@@ -120,7 +112,7 @@ impl MeshInput {
                     );
                 };
                 let (mesh, report) =
-                    TriangleMesh::validated(mesh.positions().to_vec(), mesh.faces().to_vec())
+                    SurfaceMesh::validated(mesh.positions().to_vec(), mesh.to_face_list())
                         .with_context(|| format!("built-in example '{name}' is invalid"))?;
                 Ok(LoadedMesh { mesh, report })
             }

@@ -9,7 +9,8 @@ use std::collections::{BTreeMap, HashSet};
 use tvf_core::discretization::{
     HodgeComplex, HodgeOperators, LinearOperator, NodeKind, NodeSpace, PointEvaluation,
 };
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::Mesh;
+use tvf_core::SurfacePoint;
 
 /// Tolerance on `|Σ b − 1|` for barycentric coordinates.
 const BARYCENTRIC_TOLERANCE: f64 = 1e-9;
@@ -51,7 +52,7 @@ pub struct ConstraintAssembler<'a, H: HodgeComplex + ?Sized> {
 
 impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
     /// An assembler for `complex` (built on `mesh`); operators come from the complex's cache.
-    pub fn new(complex: &'a H, mesh: &TriangleMesh) -> Self {
+    pub fn new<M: Mesh + ?Sized>(complex: &'a H, mesh: &M) -> Self {
         Self {
             complex,
             vertex_count: mesh.vertex_count(),
@@ -179,7 +180,11 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             .complex
             .require_sampling()
             .map_err(|e| unsupported(id, e))?;
-        let weights = sampling.sample_frame_weights(face, barycentric.unwrap_or([1.0 / 3.0; 3]));
+        let point = match barycentric {
+            Some(b) => SurfacePoint::barycentric(face, b),
+            None => sampling.centroid(face),
+        };
+        let weights = sampling.sample_frame_weights(&point);
         let [e1, e2] = sampling.frame(face);
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let row = |k: usize| -> SparseRow {
@@ -236,10 +241,14 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
                     .complex
                     .require_point_evaluation()
                     .map_err(|e| unsupported(&constraint.id, e))?;
-                let b = barycentric.unwrap_or([1.0 / 3.0; 3]);
+                let point = match (barycentric, self.complex.sampling()) {
+                    (Some(b), _) => SurfacePoint::barycentric(face, b),
+                    (None, Some(sampling)) => sampling.centroid(face),
+                    (None, None) => SurfacePoint::barycentric(face, [1.0 / 3.0; 3]),
+                };
                 match space {
-                    Space::Potentials => evaluation.potential_weights(face, b),
-                    Space::CoPotentials => evaluation.co_potential_weights(face, b),
+                    Space::Potentials => evaluation.potential_weights(&point),
+                    Space::CoPotentials => evaluation.co_potential_weights(&point),
                 }
             }
             Location::Vertex(node) => {

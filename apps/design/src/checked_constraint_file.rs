@@ -9,14 +9,14 @@ use crate::error::ConstraintFileError;
 use crate::CompiledConstraint;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 impl ConstraintSet {
     /// Loads the constraint file `path` ([`ConstraintSet::load`]) and checks it against `mesh`
     /// and `complex` ([`ConstraintSet::check_for`]).
     pub fn load_for<H: HodgeComplex + ?Sized>(
         path: &Path,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         complex: &H,
     ) -> Result<Self, ConstraintFileError> {
         let set = Self::load(path)?;
@@ -29,7 +29,7 @@ impl ConstraintSet {
     pub fn check_for<H: HodgeComplex + ?Sized>(
         &self,
         origin: &Path,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         complex: &H,
     ) -> Result<(), ConstraintFileError> {
         self.compile_for(origin, mesh, complex).map(|_| ())
@@ -42,7 +42,7 @@ impl ConstraintSet {
     pub fn compile_for<H: HodgeComplex + ?Sized>(
         &self,
         origin: &Path,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         complex: &H,
     ) -> Result<Vec<CompiledConstraint>, ConstraintFileError> {
         self.check_fingerprint(&format!("{:016x}", mesh.fingerprint()), origin)?;
@@ -63,7 +63,7 @@ mod tests {
 
     #[test]
     fn a_constraint_out_of_range_or_of_another_mesh_is_refused_naming_the_file() {
-        let mesh = icosphere(1);
+        let mesh = SurfaceMesh::from(icosphere(1));
         let complex = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)

@@ -51,7 +51,7 @@ pub enum Location {
     },
     /// A mesh vertex: a node of the Lagrange P1 space.
     Vertex(usize),
-    /// A mesh edge (numbered as in [`tvf_core::TriangleMesh::edges`]): a node of the
+    /// A mesh edge (numbered as in [`tvf_core::SurfaceMesh::edges`]): a node of the
     /// Crouzeix–Raviart space.
     Edge(usize),
 }

@@ -16,14 +16,14 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_solvers::{FactorParallelism, FillOrdering};
 
 /// A mesh and a constraint set that belongs to it.
 #[derive(Debug, Clone)]
 pub struct DesignProblem {
     /// The mesh.
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     /// How reports name the mesh (its file, or `example:NAME`).
     pub mesh_label: String,
     /// The constraint set (its mesh fingerprint, if any, matches the mesh).
@@ -126,7 +126,7 @@ impl DesignProblem {
     /// Loads the constraint file `constraints_path` for `mesh` (called `mesh_label` in
     /// reports), checking the file's mesh fingerprint if it has one.
     pub fn load(
-        mesh: TriangleMesh,
+        mesh: SurfaceMesh,
         mesh_label: impl Into<String>,
         constraints_path: &Path,
     ) -> Result<Self, ConstraintFileError> {
@@ -263,7 +263,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("c.json");
         std::fs::write(&path, text).unwrap();
-        let loaded = DesignProblem::load(icosphere(1), "example:ico", &path);
+        let loaded = DesignProblem::load(icosphere(1).into(), "example:ico", &path);
         (dir, loaded)
     }
 

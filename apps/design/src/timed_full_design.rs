@@ -173,7 +173,7 @@ mod tests {
 
     #[test]
     fn a_full_design_is_timed_reported_and_accurate() {
-        let mesh = icosphere(1);
+        let mesh = tvf_core::SurfaceMesh::from(icosphere(1));
         let entry = catalog_entry(DEFAULT_DISCRETIZATION).unwrap();
         let complex = entry.build(&mesh).unwrap();
         let source = Constraint::new("source", Target::Divergence(2.0), Location::Vertex(5));

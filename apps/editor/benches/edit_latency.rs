@@ -21,7 +21,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use serde_json::json;
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_design::ReducedBasis;
 use tvf_discretizations::build_complex;
 use tvf_editor::{decode_field_frame, Editor, EditorServer, EditorSetup};
@@ -79,6 +79,7 @@ fn bench(name: &str, mesh: TriangleMesh, rounds: usize) {
     let basis = synthetic_basis(&mesh, D);
     let basis_seconds = t.elapsed().as_secs_f64();
     let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let mesh = SurfaceMesh::from(mesh);
     let complex =
         build_complex(tvf_discretizations::DEFAULT_DISCRETIZATION, None, &mesh).expect("operators");
     let editor = Editor::start(EditorSetup {
@@ -202,6 +203,10 @@ fn main() {
             continue;
         }
         let mesh = tvf_core::io::load_mesh(&path).expect("mesh").mesh;
-        bench(file, mesh, rounds);
+        bench(
+            file,
+            mesh.into_triangles().expect("a triangle mesh"),
+            rounds,
+        );
     }
 }

@@ -5,7 +5,7 @@ use std::sync::mpsc::{channel, Sender};
 use std::sync::Arc;
 
 use tvf_core::discretization::HodgeOperators;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_design::{ConstraintSet, ReducedBasis};
 use tvf_discretizations::BoxedComplex;
 
@@ -18,13 +18,13 @@ use crate::status::CheckReport;
 #[derive(Clone)]
 pub struct Editor {
     requests: Sender<Request>,
-    mesh: Arc<TriangleMesh>,
+    mesh: Arc<SurfaceMesh>,
 }
 
 /// What the engine starts from.
 pub struct EditorSetup {
     /// The mesh.
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     /// The basis `U` (`n1 × d`) with its eigenvalues.
     pub basis: ReducedBasis,
     /// Constraints and ω to start with (none and ω = 0.1 if `None`).
@@ -51,6 +51,13 @@ impl Editor {
         complex
             .require_sampling()
             .map_err(|e| EditorError::Discretization(e.to_string()))?;
+        if !mesh.is_triangle_mesh() {
+            return Err(EditorError::Discretization(
+                "the editor draws triangle meshes only so far; triangulate the polygon mesh first \
+                 (tvf triangulate MESH -o OUT)"
+                    .to_string(),
+            ));
+        }
         if basis.field_dimension() != complex.field_dimension() {
             return Err(EditorError::BadRequest {
                 reason: format!(
@@ -105,7 +112,7 @@ impl Editor {
     }
 
     /// The mesh being edited.
-    pub fn mesh(&self) -> &TriangleMesh {
+    pub fn mesh(&self) -> &SurfaceMesh {
         &self.mesh
     }
 

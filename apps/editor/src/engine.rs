@@ -13,7 +13,7 @@ use std::time::Instant;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{from_triplets, mul_vec};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_design::{
     checked_residuals, CompiledConstraint, Constraint, ConstraintAssembler, ConstraintSet,
     ReducedBasis, SplineSession,
@@ -84,7 +84,7 @@ struct PendingEdit {
 }
 
 pub(crate) fn run_engine(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: &dyn HodgeComplex,
     full: ReducedBasis,
     initial: Snapshot,
@@ -628,7 +628,7 @@ fn display_map(complex: &dyn HodgeComplex) -> Option<CsMat<f64>> {
     let sampling = complex.sampling()?;
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
     for t in 0..sampling.face_count() {
-        for (i, w) in sampling.sample_frame_weights(t, [1.0 / 3.0; 3]) {
+        for (i, w) in sampling.sample_frame_weights(&sampling.centroid(t)) {
             for (k, &wk) in w.iter().enumerate() {
                 rows.push(2 * t + k);
                 cols.push(i);

@@ -16,7 +16,7 @@
 //! use tvf_design::ReducedBasis;
 //! use tvf_editor::{decode_field_frame, EditOp, Editor, EditorSetup};
 //!
-//! let mesh = icosphere(1);
+//! let mesh = tvf_core::SurfaceMesh::from(icosphere(1));
 //! let complex = tvf_discretizations::build_complex("conforming-barycentric", None, &mesh)?;
 //! // A toy basis for the example: the first 12 coordinate fields of the face frames
 //! // (a real one comes from tvf_spectral::compute_basis).

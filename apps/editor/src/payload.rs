@@ -11,7 +11,7 @@
 //!   (`3 s p`).
 
 use crate::error::EditorError;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 /// Magic number of a mesh payload (`"TVFM"` read as a little-endian `u32`).
 pub const MESH_MAGIC: u32 = u32::from_le_bytes(*b"TVFM");
@@ -27,7 +27,8 @@ fn count_u32(what: &'static str, n: usize) -> Result<u32, EditorError> {
 }
 
 /// The mesh payload of `mesh` (positions rounded to `f32`).
-pub fn encode_mesh(mesh: &TriangleMesh) -> Result<Vec<u8>, EditorError> {
+pub fn encode_mesh(mesh: &SurfaceMesh) -> Result<Vec<u8>, EditorError> {
+    let mesh = mesh.display();
     let mut out = Vec::with_capacity(12 + 12 * mesh.vertex_count() + 12 * mesh.face_count());
     push_u32(&mut out, MESH_MAGIC);
     push_u32(&mut out, count_u32("vertices", mesh.vertex_count())?);

@@ -3,7 +3,7 @@
 //! field against the constraints ([`CheckReport`], `GET /api/check`).
 
 use serde::Serialize;
-use tvf_core::{TriangleMesh, NO_FACE};
+use tvf_core::{SurfaceMesh, NO_FACE};
 use tvf_design::{CompiledConstraint, Constraint, ConstraintSet, Location, ReducedBasis};
 
 /// A point of the surface where a constraint is drawn: a face and barycentric coordinates.
@@ -24,7 +24,8 @@ pub struct Anchors {
 
 impl Anchors {
     /// Precomputes one incident face per vertex and per edge of `mesh`.
-    pub fn new(mesh: &TriangleMesh) -> Self {
+    pub fn new(mesh: &SurfaceMesh) -> Self {
+        let mesh = mesh.display();
         let mut vertex_face = vec![(0, 0); mesh.vertex_count()];
         for (t, f) in mesh.faces().iter().enumerate().rev() {
             for (c, &i) in f.iter().enumerate() {

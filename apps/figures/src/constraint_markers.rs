@@ -6,7 +6,7 @@ use crate::error::FigureError;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::geometry::{add, scale};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, SurfacePoint};
 use tvf_design::{Constraint, ConstraintSet, Location, Target};
 use tvf_render::Marker;
 
@@ -15,13 +15,18 @@ const MARKER_RADIUS_AT_768: f64 = 6.0;
 
 /// The point of `mesh` where `constraint` applies: a face's barycentric point (centroid if
 /// none), a vertex, or an edge midpoint. `None` if an index is out of range.
-pub fn constraint_position(mesh: &TriangleMesh, constraint: &Constraint) -> Option<[f64; 3]> {
+pub fn constraint_position(mesh: &SurfaceMesh, constraint: &Constraint) -> Option<[f64; 3]> {
     let p = mesh.positions();
     match constraint.location {
         Location::Face { face, barycentric } => {
-            let f = mesh.faces().get(face)?;
-            let l = barycentric.unwrap_or([1.0 / 3.0; 3]);
-            Some((0..3).fold([0.0; 3], |acc, c| add(acc, scale(p[f[c]], l[c]))))
+            if face >= mesh.face_count() {
+                return None;
+            }
+            let point = match barycentric {
+                Some(b) => SurfacePoint::barycentric(face, b),
+                None => mesh.centroid_point(face),
+            };
+            Some(mesh.point_position(&point))
         }
         Location::Vertex(v) => p.get(v).copied(),
         Location::Edge(e) => {
@@ -34,7 +39,7 @@ pub fn constraint_position(mesh: &TriangleMesh, constraint: &Constraint) -> Opti
 /// Markers for constraints, coloured by kind (vector orange with its direction, source red,
 /// sink blue, vortex green), `radius_px` in output pixels.
 pub fn constraint_markers(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     constraints: &[Constraint],
     radius_px: f64,
 ) -> Vec<Marker> {
@@ -63,7 +68,7 @@ pub fn constraint_markers(
 /// it ([`ConstraintSet::load_for`]). A constraint without a place on the mesh is an error.
 pub fn constraint_file_markers<H: HodgeComplex + ?Sized>(
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: &H,
     image_height: u32,
 ) -> Result<Vec<Marker>, FigureError> {
@@ -88,7 +93,7 @@ mod tests {
 
     #[test]
     fn a_checked_file_gives_one_marker_per_constraint_scaled_with_the_picture() {
-        let mesh = icosphere(1);
+        let mesh = SurfaceMesh::from(icosphere(1));
         let complex = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)

@@ -1,11 +1,11 @@
-//! The picture of a convergence study ([`tvf_conformance::convergence`]): per surface a log–log
+//! The picture of a convergence study ([`tvf_convergence`]): per surface a log–log
 //! plot of each discretization's eigenvalue error against the mean edge length, one colour per
 //! discretization, the integrable family as a line with markers and the co-integrable family as
 //! markers alone; the surfaces side by side.
 
 use crate::error::FigureError;
 use image::RgbaImage;
-use tvf_conformance::convergence::{ConvergenceReport, Surface};
+use tvf_convergence::study::{ConvergenceReport, Surface};
 use tvf_render::{grid, Axis, AxisScale, Plot, Series, SeriesStyle, PALETTE};
 use tvf_spectral::FieldFamily;
 

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_render::View;
 use tvf_spectral::SpectralBasis;
 
@@ -50,7 +50,7 @@ pub struct Experiment<'a> {
     /// Mesh name (file stem).
     pub name: &'a str,
     /// The mesh.
-    pub mesh: &'a TriangleMesh,
+    pub mesh: &'a SurfaceMesh,
     /// Its complex: the catalog's default, the paper's conforming decomposition with
     /// barycentric lumping.
     pub complex: &'a dyn HodgeComplex,

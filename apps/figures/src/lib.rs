@@ -27,7 +27,7 @@
 //! use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 //! use tvf_figures::test_fields::smooth_field;
 //!
-//! let mesh = icosphere(2);
+//! let mesh = tvf_core::SurfaceMesh::from(icosphere(2));
 //! let complex = catalog_entry(DEFAULT_DISCRETIZATION)?.build(&mesh)?;
 //! // A field with all three Hodge parts, one value per field coefficient of the complex.
 //! let field = smooth_field(complex.as_ref(), &mesh);

@@ -9,14 +9,14 @@ use image::RgbaImage;
 use std::io::Write as _;
 use std::path::Path;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::HodgeDecomposer;
 use tvf_render::{draw_field, grid, FaceQuantity, Marker, Overlays, Style, Tint, View};
 
 /// Renders `field` (`n1` coefficients of `complex`) on `mesh` as a line integral convolution
 /// over `tint`, titled `title`.
 pub fn field_panel(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: &dyn HodgeComplex,
     field: &[f64],
     title: &str,
@@ -38,7 +38,7 @@ pub fn field_panel(
 /// (exact Hodge decomposition) as a 2×2 grid of titled panels drawn in `style` over `tint`, each
 /// with `markers`; `view` is the size of the whole grid.
 pub fn hodge_parts_grid(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: &dyn HodgeComplex,
     field: &[f64],
     (tint, style): (Tint, Style),

@@ -4,7 +4,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::discretization::{HodgeComplex, NodeKind};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_design::{Constraint, Location, Target};
 
 /// Constraints of the designed fields of Figures 7–9 (soft design, seeded).
@@ -15,7 +15,7 @@ pub const DESIGNED_FIELD_CONSTRAINTS: usize = 12;
 /// sources/sinks, 3 vortices), each at a node of the complex's own space next to a random face
 /// (conforming: divergence at a vertex, curl at an edge; DEC: curl on the face).
 pub fn seeded_constraints(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: &dyn HodgeComplex,
     count: usize,
     seed: u64,
@@ -23,8 +23,9 @@ pub fn seeded_constraints(
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let vectors = count * 4 / 5;
     let node_next_to = |kind: NodeKind, face: usize| match kind {
-        NodeKind::Vertices => Location::Vertex(mesh.faces()[face][0]),
-        NodeKind::Edges => Location::Edge(mesh.face_edges()[face][0]),
+        NodeKind::Vertices => Location::Vertex(mesh.face(face)[0]),
+        // The side from corner 1 to corner 2: on a triangle, the edge opposite corner 0.
+        NodeKind::Edges => Location::Edge(mesh.face_edge(face, 1)),
         NodeKind::Faces | NodeKind::FaceFrames => Location::Face {
             face,
             barycentric: None,

@@ -11,14 +11,14 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::geometry::{dot, norm, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_design::{
     checked_residuals, default_regularization, ConstraintAssembler, FullSoftDesign, SoftOptions,
 };
 use tvf_render::bounding_box;
 
 /// Centre of the bounding box and its largest half-extent.
-fn frame_of(mesh: &TriangleMesh) -> ([f64; 3], f64) {
+fn frame_of(mesh: &SurfaceMesh) -> ([f64; 3], f64) {
     let (lo, hi) = bounding_box(mesh.positions());
     let centre = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
     let half = (0..3).map(|k| 0.5 * (hi[k] - lo[k])).fold(1e-300, f64::max);
@@ -26,16 +26,14 @@ fn frame_of(mesh: &TriangleMesh) -> ([f64; 3], f64) {
 }
 
 /// Face centroids.
-pub fn centroids(mesh: &TriangleMesh) -> Vec<[f64; 3]> {
-    let p = mesh.positions();
-    mesh.faces()
-        .iter()
-        .map(|f| std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0))
+pub fn centroids(mesh: &SurfaceMesh) -> Vec<[f64; 3]> {
+    (0..mesh.face_count())
+        .map(|t| mesh.face_centroid(t))
         .collect()
 }
 
 /// The coordinate axis along which the mesh is thinnest (a torus's axis of revolution).
-fn thinnest_axis(mesh: &TriangleMesh) -> usize {
+fn thinnest_axis(mesh: &SurfaceMesh) -> usize {
     let (lo, hi) = bounding_box(mesh.positions());
     (0..3)
         .min_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
@@ -54,7 +52,7 @@ fn unit_rms<H: HodgeComplex + ?Sized>(complex: &H, area: f64, x: &mut [f64]) {
 /// low-frequency trigonometric functions of the normalised coordinates on the potential and
 /// co-potential nodes, `P(swirl)` the tangential projection of the rotation about the thinnest
 /// axis (mostly harmonic on a torus around that axis).
-pub fn smooth_field<H: HodgeComplex + ?Sized>(complex: &H, mesh: &TriangleMesh) -> Vec<f64> {
+pub fn smooth_field<H: HodgeComplex + ?Sized>(complex: &H, mesh: &SurfaceMesh) -> Vec<f64> {
     let (centre, half) = frame_of(mesh);
     let local = |p: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| (p[k] - centre[k]) / half) };
     let f: Vec<f64> = complex
@@ -114,7 +112,7 @@ pub fn smooth_field<H: HodgeComplex + ?Sized>(complex: &H, mesh: &TriangleMesh) 
 /// consistent masses); a field or constraint residual that is not finite is an error.
 pub fn designed_field(
     complex: &dyn HodgeComplex,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     constraints: usize,
     omega: f64,
     seed: u64,
@@ -166,7 +164,7 @@ pub fn tangent_noise(
 }
 
 /// `count` face centroids spread by farthest-point sampling (Euclidean), starting at face 0.
-pub fn spread_points(mesh: &TriangleMesh, count: usize) -> Vec<[f64; 3]> {
+pub fn spread_points(mesh: &SurfaceMesh, count: usize) -> Vec<[f64; 3]> {
     let c = centroids(mesh);
     if c.is_empty() {
         return Vec::new();
@@ -217,7 +215,7 @@ pub fn gaussian_sum(points: &[[f64; 3]], centres: &[([f64; 3], f64)], sigma: f64
 /// `±(0.5..1)`), unit RMS.
 pub fn vortex_field<H: HodgeComplex + ?Sized>(
     complex: &H,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     count: usize,
     seed: u64,
 ) -> Vec<f64> {
@@ -264,7 +262,7 @@ impl MovingFeatures {
     /// `width_fraction` times the largest half-extent.
     pub fn new<H: HodgeComplex + ?Sized>(
         complex: &H,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         count: usize,
         width_fraction: f64,
         seed: u64,
@@ -354,7 +352,7 @@ mod tests {
 
     #[test]
     fn fields_are_seeded_finite_and_unit_rms() {
-        let mesh = torus(1.0, 0.4, 24, 12).unwrap();
+        let mesh = SurfaceMesh::from(torus(1.0, 0.4, 24, 12).unwrap());
         let boxed = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)
@@ -379,7 +377,7 @@ mod tests {
 
     #[test]
     fn spread_points_are_distinct() {
-        let mesh = torus(1.0, 0.4, 24, 12).unwrap();
+        let mesh = SurfaceMesh::from(torus(1.0, 0.4, 24, 12).unwrap());
         let points = spread_points(&mesh, 10);
         assert_eq!(points.len(), 10);
         for (k, p) in points.iter().enumerate() {

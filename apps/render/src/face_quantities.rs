@@ -17,6 +17,7 @@ use tvf_core::discretization::{
     DiscretizationError, HodgeComplex, HodgeOperators, PointEvaluation,
 };
 use tvf_core::geometry::norm;
+use tvf_core::SurfaceMesh;
 
 /// Which per-face scalar colours the surface.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -75,18 +76,19 @@ enum Space {
     CoPotentials,
 }
 
-/// Values at each face's centroid of a nodal function of `space` (`F` entries).
+/// Values at each face's centroid of `mesh` of a nodal function of `space` (`F` entries).
 fn at_centroids(
     evaluation: &dyn PointEvaluation,
     space: Space,
     nodal: &[f64],
-    faces: usize,
+    mesh: &SurfaceMesh,
 ) -> Vec<f64> {
-    (0..faces)
+    (0..mesh.face_count())
         .map(|t| {
+            let centroid = mesh.centroid_point(t);
             let weights = match space {
-                Space::Potentials => evaluation.potential_weights(t, [1.0 / 3.0; 3]),
-                Space::CoPotentials => evaluation.co_potential_weights(t, [1.0 / 3.0; 3]),
+                Space::Potentials => evaluation.potential_weights(&centroid),
+                Space::CoPotentials => evaluation.co_potential_weights(&centroid),
             };
             weights.iter().map(|&(i, w)| w * nodal[i]).sum()
         })
@@ -103,40 +105,40 @@ fn nodal_curl<H: HodgeComplex + ?Sized>(complex: &H, field: &[f64]) -> Vec<f64> 
     complex.co_potential_curl().apply(field)
 }
 
-/// The per-face scalar `kind` of `field` (`n1` coefficients of the complex) whose 3D vectors at
-/// the face centroids are `vectors`; `None` for [`FaceQuantity::None`]. Divergence, curl and energy
-/// need the complex's point evaluation.
+/// The per-face scalar `kind` of `field` (`n1` coefficients of the complex, built on `mesh`)
+/// whose 3D vectors at the face centroids are `vectors`; `None` for [`FaceQuantity::None`].
+/// Divergence, curl and energy need the complex's point evaluation.
 pub fn face_scalar<H: HodgeComplex + ?Sized>(
     complex: &H,
+    mesh: &SurfaceMesh,
     kind: FaceQuantity,
     field: &[f64],
     vectors: &[[f64; 3]],
 ) -> Result<Option<Vec<f64>>, DiscretizationError> {
-    let faces = vectors.len();
     Ok(match kind {
         FaceQuantity::Magnitude => Some(vectors.iter().map(|&v| norm(v)).collect()),
         FaceQuantity::Divergence => Some(at_centroids(
             complex.require_point_evaluation()?,
             Space::Potentials,
             &nodal_divergence(complex, field),
-            faces,
+            mesh,
         )),
         FaceQuantity::Curl => Some(at_centroids(
             complex.require_point_evaluation()?,
             Space::CoPotentials,
             &nodal_curl(complex, field),
-            faces,
+            mesh,
         )),
-        FaceQuantity::Energy => Some(energy_density(complex, field, faces)?),
+        FaceQuantity::Energy => Some(energy_density(complex, field, mesh)?),
         FaceQuantity::None => None,
     })
 }
 
-/// Dirichlet energy density per face (see the module documentation).
+/// Dirichlet energy density per face of `mesh` (see the module documentation).
 pub fn energy_density<H: HodgeComplex + ?Sized>(
     complex: &H,
     field: &[f64],
-    faces: usize,
+    mesh: &SurfaceMesh,
 ) -> Result<Vec<f64>, DiscretizationError> {
     let evaluation = complex.require_point_evaluation()?;
     let div2: Vec<f64> = nodal_divergence(complex, field)
@@ -144,8 +146,8 @@ pub fn energy_density<H: HodgeComplex + ?Sized>(
         .map(|x| x * x)
         .collect();
     let curl2: Vec<f64> = nodal_curl(complex, field).iter().map(|x| x * x).collect();
-    let a = at_centroids(evaluation, Space::Potentials, &div2, faces);
-    let b = at_centroids(evaluation, Space::CoPotentials, &curl2, faces);
+    let a = at_centroids(evaluation, Space::Potentials, &div2, mesh);
+    let b = at_centroids(evaluation, Space::CoPotentials, &curl2, mesh);
     Ok(a.iter().zip(&b).map(|(x, y)| x + y).collect())
 }
 
@@ -155,7 +157,6 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
     use tvf_core::generate::{icosphere, torus};
-    use tvf_core::TriangleMesh;
     use tvf_discretizations::{catalog_entry, BoxedComplex};
 
     fn random_field(n: usize) -> Vec<f64> {
@@ -163,13 +164,13 @@ mod tests {
         (0..n).map(|_| rng.random_range(-1.0..1.0)).collect()
     }
 
-    fn build(id: &str, mesh: &TriangleMesh) -> BoxedComplex {
+    fn build(id: &str, mesh: &SurfaceMesh) -> BoxedComplex {
         catalog_entry(id).unwrap().build(mesh).unwrap()
     }
 
-    fn check_energy(complex: &dyn HodgeComplex, mesh: &TriangleMesh) {
+    fn check_energy(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {
         let field = random_field(complex.field_dimension());
-        let density = energy_density(complex, &field, mesh.face_count()).unwrap();
+        let density = energy_density(complex, &field, mesh).unwrap();
         let integrated: f64 = density
             .iter()
             .enumerate()
@@ -189,16 +190,16 @@ mod tests {
 
     #[test]
     fn energy_density_integrates_to_the_dirichlet_energy() {
-        let torus = torus(1.0, 0.4, 16, 8).unwrap();
+        let torus = SurfaceMesh::from(torus(1.0, 0.4, 16, 8).unwrap());
         for id in ["conforming-barycentric", "nonconforming-barycentric"] {
             check_energy(build(id, &torus).as_ref(), &torus);
         }
         // DEC needs a Delaunay mesh (the quad-grid torus has ⋆1 = 0 on its diagonals).
-        let sphere = icosphere(2);
+        let sphere = SurfaceMesh::from(icosphere(2));
         check_energy(build("dec-barycentric", &sphere).as_ref(), &sphere);
     }
 
-    fn check_gradients(complex: &dyn HodgeComplex) {
+    fn check_gradients(complex: &dyn HodgeComplex, mesh: &SurfaceMesh) {
         let sampling = complex.require_sampling().unwrap();
         let potential: Vec<f64> = complex
             .potential_nodes()
@@ -208,10 +209,10 @@ mod tests {
             .collect();
         let gradient = complex.gradient_field(&potential);
         let vectors = sampling.to_face_vectors(&gradient).unwrap();
-        let curl = face_scalar(complex, FaceQuantity::Curl, &gradient, &vectors)
+        let curl = face_scalar(complex, mesh, FaceQuantity::Curl, &gradient, &vectors)
             .unwrap()
             .unwrap();
-        let div = face_scalar(complex, FaceQuantity::Divergence, &gradient, &vectors)
+        let div = face_scalar(complex, mesh, FaceQuantity::Divergence, &gradient, &vectors)
             .unwrap()
             .unwrap();
         let largest = div.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -230,10 +231,10 @@ mod tests {
             .collect();
         let rotated = complex.co_gradient_field(&co_potential);
         let vectors = sampling.to_face_vectors(&rotated).unwrap();
-        let div = face_scalar(complex, FaceQuantity::Divergence, &rotated, &vectors)
+        let div = face_scalar(complex, mesh, FaceQuantity::Divergence, &rotated, &vectors)
             .unwrap()
             .unwrap();
-        let curl = face_scalar(complex, FaceQuantity::Curl, &rotated, &vectors)
+        let curl = face_scalar(complex, mesh, FaceQuantity::Curl, &rotated, &vectors)
             .unwrap()
             .unwrap();
         let largest = curl.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -243,9 +244,13 @@ mod tests {
 
     #[test]
     fn gradients_have_no_curl_and_co_gradients_no_divergence() {
-        let torus = torus(1.0, 0.4, 16, 8).unwrap();
-        check_gradients(build("conforming-barycentric", &torus).as_ref());
-        check_gradients(build("nonconforming-voronoi", &torus).as_ref());
-        check_gradients(build("dec-circumcentric", &icosphere(2)).as_ref());
+        let torus = SurfaceMesh::from(torus(1.0, 0.4, 16, 8).unwrap());
+        check_gradients(build("conforming-barycentric", &torus).as_ref(), &torus);
+        check_gradients(build("nonconforming-voronoi", &torus).as_ref(), &torus);
+        let sphere = SurfaceMesh::from(icosphere(2));
+        check_gradients(build("dec-circumcentric", &sphere).as_ref(), &sphere);
+        // Polygonal DEC on quads: gradients of x·z have no curl either.
+        let quads = SurfaceMesh::from(tvf_core::generate::quad_torus(1.0, 0.4, 16, 8).unwrap());
+        check_gradients(build("polygon-dec", &quads).as_ref(), &quads);
     }
 }

@@ -9,7 +9,7 @@ use crate::{
 };
 use image::RgbaImage;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 /// Image size and camera.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,9 +115,10 @@ impl Overlays {
 
 /// Renders `mesh` with `field` (`n1` coefficients of `complex`, if any) over a surface
 /// coloured by `tint`, the field drawn in `style`, plus `overlays`. Needs the complex's
-/// sampling (and its point evaluation for divergence, curl and energy).
+/// sampling (and its point evaluation for divergence, curl and energy). A polygon mesh is drawn
+/// through its display triangulation, each triangle with its polygon's colour and vector.
 pub fn draw_field(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: &dyn HodgeComplex,
     field: Option<&[f64]>,
     tint: Tint,
@@ -145,12 +146,14 @@ pub fn draw_field(
     if let Some(field) = field {
         let vectors = complex.require_sampling()?.to_face_vectors(field)?;
         if let Tint::Quantity(quantity) = tint {
-            let values = face_scalar(complex, quantity, field, &vectors)?;
-            scene.face_scalar = values.map(|v| colored(quantity, v));
+            let values = face_scalar(complex, mesh, quantity, field, &vectors)?;
+            scene.face_scalar = values.map(|v| colored(quantity, mesh.on_display(&v)));
         }
-        scene.fields.extend(field_layer(vectors, style, view.width));
+        scene
+            .fields
+            .extend(field_layer(mesh.on_display(&vectors), style, view.width));
     }
-    render(mesh, &scene, &options)
+    render(mesh.display(), &scene, &options)
 }
 
 /// The layer drawing `vectors` (one per face) in `style`, sized for an image `width` pixels

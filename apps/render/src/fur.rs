@@ -4,7 +4,7 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use tvf_core::geometry::{add, norm, scale, sub};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 
 use crate::camera::bounding_box;
 use crate::error::{check_face_count, check_finite_vectors, RenderError};
@@ -40,17 +40,20 @@ impl Default for FurOptions {
     }
 }
 
-/// Grows fur along `face_vectors` (one vector per face, `F` entries; the tangential part is
-/// used): one polyline per strand with a root on the surface, following the field's
+/// Grows fur on `mesh` along `face_vectors` (one vector per face, `F` entries; the tangential
+/// part is used): one polyline per strand with a root on the surface, following the field's
 /// streamline for a length proportional to the field magnitude at the root, then lifted
 /// along the face normals by `lift · L · (s/L)²` at arc length `s`. Strands at faces
-/// where the field vanishes are left out. Deterministic for a given seed.
+/// where the field vanishes are left out. Deterministic for a given seed. A polygon mesh grows
+/// on its display triangulation, each triangle with its polygon's vector.
 pub fn grow_fur(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     face_vectors: &[[f64; 3]],
     options: &FurOptions,
 ) -> Result<Vec<Vec<[f64; 3]>>, RenderError> {
     check_face_count("fur field", mesh.face_count(), face_vectors.len())?;
+    let face_vectors = &mesh.on_display(face_vectors);
+    let mesh = mesh.display();
     check_finite_vectors("fur field", face_vectors)?;
     if options.points_per_strand < 2
         || options.length.is_nan()

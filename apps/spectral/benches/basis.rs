@@ -18,7 +18,7 @@ fn shared_mesh(name: &str) -> Option<TriangleMesh> {
         .join("../../../shared/meshes")
         .join(format!("{name}.obj"));
     match load_mesh(&path) {
-        Ok(loaded) => Some(loaded.mesh),
+        Ok(loaded) => loaded.mesh.into_triangles().ok(),
         Err(error) => {
             eprintln!("skipping {name}: {error}");
             None

@@ -33,7 +33,7 @@ fn hand_mesh() -> Option<tvf_core::TriangleMesh> {
         return None;
     }
     match tvf_core::io::load_mesh(&path) {
-        Ok(loaded) => Some(loaded.mesh),
+        Ok(loaded) => loaded.mesh.into_triangles().ok(),
         Err(error) => {
             eprintln!("skipping projection benchmark: {error}");
             None

@@ -12,7 +12,7 @@ use crate::{
 use std::path::Path;
 use std::time::Instant;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 
 /// Something to tell the user about a resolved basis (on stderr).
@@ -43,7 +43,7 @@ pub struct BasisFromFile {
 pub fn open_checked_basis_file(
     catalog: &Catalog,
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     entry: Option<&str>,
     boundary: Option<BoundaryCondition>,
     complex: Option<BoxedComplex>,
@@ -115,7 +115,7 @@ impl CachedBasis {
 /// there is no store.
 pub fn cached_or_computed_basis(
     store: Option<&BasisStore>,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     complex: &BoxedComplex,
     size: BasisSize,
     progress: Option<&dyn Fn(&BasisProgress)>,

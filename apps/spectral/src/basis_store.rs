@@ -2,7 +2,7 @@
 //! computed once per mesh, complex and size and then read back.
 //!
 //! A basis is kept as `{fingerprint}-{complex id}-{matrix hash}-{size}.tvfb`: the mesh
-//! fingerprint ([`TriangleMesh::fingerprint`], 16 hex digits), the complex's
+//! fingerprint ([`SurfaceMesh::fingerprint`], 16 hex digits), the complex's
 //! [`HodgeComplex::id`] (a catalog id, or `{catalog id}+{boundary}` on a mesh with boundary), the
 //! value of the complex's [`HodgeComplex::matrix_hash`] (16 hex digits: its five matrices and
 //! fixed nodes) and the size: `d{K}` for the `K` lowest fields, `p{P}` for `P` pairs, `l{bits}`
@@ -24,7 +24,7 @@ use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::Mesh;
 
 /// A folder of computed bases (see the module documentation for the file names).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -66,9 +66,9 @@ impl BasisStore {
     }
 
     /// The file a basis of `size` for `complex` on `mesh` is kept in.
-    pub fn file<H: HodgeComplex + ?Sized>(
+    pub fn file<M: Mesh + ?Sized, H: HodgeComplex + ?Sized>(
         &self,
-        mesh: &TriangleMesh,
+        mesh: &M,
         complex: &H,
         size: BasisSize,
     ) -> PathBuf {
@@ -93,9 +93,9 @@ impl BasisStore {
     /// basis. Errors are those of [`compute_basis`]; problems of the store itself (unreadable
     /// or mismatching files, a folder that cannot be written) are reported in the returned
     /// [`StoredBasisOrigin`], not as errors.
-    pub fn basis<H: HodgeComplex + ?Sized>(
+    pub fn basis<M: Mesh + ?Sized, H: HodgeComplex + ?Sized>(
         &self,
-        mesh: &TriangleMesh,
+        mesh: &M,
         complex: &H,
         size: BasisSize,
         progress: Option<&dyn Fn(&BasisProgress)>,

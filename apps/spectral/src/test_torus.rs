@@ -2,12 +2,12 @@
 //! harmonic fields) and a catalog entry built on it.
 
 use tvf_core::generate::torus;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog_entry, BoxedComplex};
 
 /// The torus of radii 1 and 0.4 with 12 × 6 quads, and the catalog entry `id` built on it.
-pub fn torus_complex(id: &str) -> (TriangleMesh, BoxedComplex) {
-    let mesh = torus(1.0, 0.4, 12, 6).unwrap();
+pub fn torus_complex(id: &str) -> (SurfaceMesh, BoxedComplex) {
+    let mesh = SurfaceMesh::from(torus(1.0, 0.4, 12, 6).unwrap());
     let complex = catalog_entry(id).unwrap().build(&mesh).unwrap();
     (mesh, complex)
 }

@@ -3,6 +3,7 @@
 //! [`super::HodgeComplex::rotation`] and [`super::HodgeComplex::point_evaluation`].
 
 use super::DiscretizationError;
+use crate::SurfacePoint;
 use sprs::CsMat;
 
 /// The result of turning 3D vectors (one per face) into a field.
@@ -22,9 +23,25 @@ impl TangentProjection {
     }
 }
 
-/// Sampling: a field seen as a 3D tangent vector at a point of a face, as a linear map, and its
-/// inverse on per-face vectors. It gives field I/O (one 3D vector per face), rendering, vector
-/// constraints and the editor.
+/// What a complex's sampling reproduces exactly, stated by the complex and checked by the
+/// conformance suite (`tvf-conformance`'s sampling checks) instead of assumed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SamplingReproduction {
+    /// The gradient `d0 φ` of a linear function `φ(x) = ⟨v, x⟩` (sampled at the potential
+    /// nodes) samples back to `v` projected onto each face's plane, at every point of the face;
+    /// and so does the field [`FieldSampling::from_face_vectors`] makes of the constant vector
+    /// `v` on every face (piecewise constant face fields, DEC and Whitney 1-forms on triangles).
+    ConstantVectors,
+    /// Only the first half: the gradient of a linear function samples back to `v` projected
+    /// onto each face's plane (for a polygon, the plane normal to its vector area: the sharp of
+    /// the 1-form of a constant field, de Goes, Butts, Desbrun 2020 §4); `from_face_vectors`
+    /// averages per-face projections, which agree with that only where faces are planar.
+    LinearGradients,
+}
+
+/// Sampling: a field seen as a 3D tangent vector at a point of a face ([`SurfacePoint`]: a face
+/// and weights over its corners), as a linear map, and its inverse on per-face vectors. It gives
+/// field I/O (one 3D vector per face), rendering, vector constraints and the editor.
 pub trait FieldSampling: Send + Sync {
     /// Number of faces `F` of the mesh.
     fn face_count(&self) -> usize;
@@ -32,27 +49,38 @@ pub trait FieldSampling: Send + Sync {
     /// Number of field coefficients `n1`.
     fn field_dimension(&self) -> usize;
 
-    /// An orthonormal, positively oriented frame `[e1, e2]` of face `t`'s plane (`e2 = n × e1`,
-    /// `e1 = normalize(p_{i1} − p_{i0})`).
+    /// An orthonormal, positively oriented frame `[e1, e2]` of face `t`'s plane (`e2 = n × e1`;
+    /// for a triangle `e1 = normalize(p_{i1} − p_{i0})`, for a polygon the first side projected
+    /// onto the plane normal to its vector area).
     fn frame(&self, face: usize) -> [[f64; 3]; 2];
 
-    /// The unit normal of face `t` (counter-clockwise orientation).
+    /// The unit normal of face `t` (counter-clockwise orientation; for a polygon, along its vector
+    /// area).
     fn normal(&self, face: usize) -> [f64; 3];
 
-    /// The sampled vector at the point of face `face` with barycentric coordinates `barycentric`
-    /// (w.r.t. the corners `i0, i1, i2`) as a linear map: `v = Σ w_i x_i` over the returned
-    /// `(i, w_i)`, `w_i` a 3D vector in the face plane (pointwise units). Panics if `face` is out
-    /// of range.
-    fn sample_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, [f64; 3])>;
+    /// The point of face `face` where [`FieldSampling::to_face_vectors`] samples: its corner
+    /// average (for a triangle its centroid, barycentric `[1/3; 3]`).
+    fn centroid(&self, face: usize) -> SurfacePoint;
+
+    /// What this sampling reproduces exactly ([`SamplingReproduction`]; the suite checks it).
+    fn reproduction(&self) -> SamplingReproduction {
+        SamplingReproduction::ConstantVectors
+    }
+
+    /// The sampled vector at `point` as a linear map: `v = Σ w_i x_i` over the returned
+    /// `(i, w_i)`, `w_i` a 3D vector in the face plane (pointwise units). Panics if the point's
+    /// face is out of range or its weights do not fit the face (callers check points with
+    /// [`crate::SurfaceMesh::check_point`]).
+    fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])>;
 
     /// The sampled vector in the coordinates of the face frame ([`FieldSampling::frame`]): the
     /// same linear map as [`FieldSampling::sample_weights`] with each weight `w_i` given as
     /// `(w_i·e1, w_i·e2)`. Discretizations whose coefficients are frame coordinates override it
     /// to return exact unit weights.
-    fn sample_frame_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, [f64; 2])> {
-        let [e1, e2] = self.frame(face);
+    fn sample_frame_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 2])> {
+        let [e1, e2] = self.frame(point.face);
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        self.sample_weights(face, barycentric)
+        self.sample_weights(point)
             .into_iter()
             .map(|(i, w)| (i, [dot(w, e1), dot(w, e2)]))
             .collect()
@@ -68,13 +96,14 @@ pub trait FieldSampling: Send + Sync {
         vectors: &[[f64; 3]],
     ) -> Result<TangentProjection, DiscretizationError>;
 
-    /// One 3D vector per face (`F` entries): the field sampled at each face's centroid.
+    /// One 3D vector per face (`F` entries): the field sampled at each face's centroid
+    /// ([`FieldSampling::centroid`]).
     fn to_face_vectors(&self, field: &[f64]) -> Result<Vec<[f64; 3]>, DiscretizationError> {
         check_length("field coefficients", self.field_dimension(), field.len())?;
         Ok((0..self.face_count())
             .map(|t| {
                 let mut v = [0.0; 3];
-                for (i, w) in self.sample_weights(t, [1.0 / 3.0; 3]) {
+                for (i, w) in self.sample_weights(&self.centroid(t)) {
                     for k in 0..3 {
                         v[k] += w[k] * field[i];
                     }
@@ -96,12 +125,12 @@ pub trait FieldRotation: Send + Sync {
 /// Evaluation of potentials and co-potentials at a point of a face: the interpolation weights of
 /// each space. Gives divergence and curl constraints at points, and face colours.
 pub trait PointEvaluation: Send + Sync {
-    /// The potential nodes whose basis functions are non-zero at the point of face `face` with
-    /// barycentric coordinates `barycentric`, with their values there (the weights sum to 1).
-    fn potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)>;
+    /// The potential nodes whose basis functions are non-zero at `point`, with their values
+    /// there (the weights sum to 1). Panics as [`FieldSampling::sample_weights`] does.
+    fn potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)>;
 
     /// The same for the co-potential space.
-    fn co_potential_weights(&self, face: usize, barycentric: [f64; 3]) -> Vec<(usize, f64)>;
+    fn co_potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)>;
 }
 
 /// Checks the input of [`FieldSampling::from_face_vectors`]: one vector per face (`face_count`

@@ -106,6 +106,19 @@ pub enum DiscretizationError {
         /// Its value.
         value: f64,
     },
+    /// A discretization of triangle meshes was asked to build on a polygon mesh.
+    #[error(
+        "the discretization '{discretization}' works on triangle meshes, and this mesh has \
+         {polygons} faces with more than three corners: triangulate it (`--triangulate`, or \
+         `tvf triangulate MESH -o OUT`) or choose a discretization of polygon meshes \
+         (polygon-dec)"
+    )]
+    NeedsTriangles {
+        /// The discretization's id.
+        discretization: String,
+        /// How many faces have more than three corners.
+        polygons: usize,
+    },
     /// The matrices of a complex do not fit together.
     #[error("inconsistent complex: {0}")]
     Inconsistent(String),

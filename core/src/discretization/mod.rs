@@ -88,7 +88,7 @@ pub mod sparse;
 
 pub use capabilities::{
     check_face_vectors, check_length, FieldRotation, FieldSampling, PointEvaluation,
-    TangentProjection,
+    SamplingReproduction, TangentProjection,
 };
 pub use complex_parts::ComplexParts;
 pub use error::DiscretizationError;

@@ -1,7 +1,10 @@
 //! The built-in example meshes, by name (the `tvf` CLI's `--example NAME`).
 
-use super::{bumpy_torus, genus_surface, hemisphere, icosphere, perforated_plate, torus};
-use crate::TriangleMesh;
+use super::{
+    bumpy_torus, cube_sphere, genus_surface, hemisphere, icosphere, perforated_plate, quad_torus,
+    torus,
+};
+use crate::SurfaceMesh;
 
 /// Names accepted by [`example_mesh`].
 pub const EXAMPLE_NAMES: &[&str] = &[
@@ -15,11 +18,13 @@ pub const EXAMPLE_NAMES: &[&str] = &[
     "genus4",
     "hemisphere",
     "pants",
+    "quad-torus",
+    "cube-sphere",
 ];
 
 /// Generates the built-in example called `name` (one of [`EXAMPLE_NAMES`]; `None` otherwise).
-pub fn example_mesh(name: &str) -> Option<TriangleMesh> {
-    Some(match name {
+pub fn example_mesh(name: &str) -> Option<SurfaceMesh> {
+    Some(SurfaceMesh::from(match name {
         "icosphere" => icosphere(3),
         "torus" => torus(1.0, 0.4, 48, 24).expect("fixed torus parameters are valid"),
         "bumpy-torus" => {
@@ -33,8 +38,13 @@ pub fn example_mesh(name: &str) -> Option<TriangleMesh> {
         // Meshes with boundary: one loop (2400 faces), three loops (a plate with two holes).
         "hemisphere" => hemisphere(20),
         "pants" => perforated_plate(2, 12),
+        // Polygon meshes: 1,536 planar quads of genus 1; 1,536 non-planar quads on the sphere.
+        "quad-torus" => {
+            return quad_torus(1.0, 0.4, 48, 32).map(SurfaceMesh::from);
+        }
+        "cube-sphere" => return cube_sphere(16).map(SurfaceMesh::from),
         _ => return None,
-    })
+    }))
 }
 
 #[cfg(test)]

@@ -26,6 +26,22 @@ pub(crate) fn torus_of_revolution(
     tube: usize,
     tube_radius: impl Fn(f64, f64) -> f64,
 ) -> Option<TriangleMesh> {
+    let (positions, quads) = torus_grid(major, around, tube, tube_radius);
+    let faces = quads
+        .into_iter()
+        .flat_map(|quad| split_quad(quad, Diagonal::AC))
+        .collect();
+    TriangleMesh::new(positions, faces).ok()
+}
+
+/// The vertices and the `around · tube` counter-clockwise quads of the grid of
+/// [`torus_of_revolution`].
+pub(crate) fn torus_grid(
+    major: f64,
+    around: usize,
+    tube: usize,
+    tube_radius: impl Fn(f64, f64) -> f64,
+) -> (Vec<[f64; 3]>, Vec<[usize; 4]>) {
     let mut positions = Vec::with_capacity(around * tube);
     for i in 0..around {
         let u = TAU * i as f64 / around as f64;
@@ -37,8 +53,8 @@ pub(crate) fn torus_of_revolution(
         }
     }
     let index = |i: usize, j: usize| (i % around) * tube + (j % tube);
-    let faces = (0..around)
-        .flat_map(|i| (0..tube).flat_map(move |j| split_quad(grid_cell(index, i, j), Diagonal::AC)))
+    let quads = (0..around)
+        .flat_map(|i| (0..tube).map(move |j| grid_cell(index, i, j)))
         .collect();
-    TriangleMesh::new(positions, faces).ok()
+    (positions, quads)
 }

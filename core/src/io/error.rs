@@ -96,8 +96,8 @@ pub enum LoadErrorKind {
         /// Number of corners found.
         corners: usize,
     },
-    /// The faces do not form a valid surface (indices are 0-based vertices and triangles of the
-    /// file, polygons fan-triangulated in order).
+    /// The faces do not form a valid surface (indices are the file's 0-based vertices and faces,
+    /// in order).
     #[error("{0}")]
     Mesh(#[from] MeshError),
 }

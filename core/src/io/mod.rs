@@ -19,7 +19,6 @@ mod atomic_write;
 mod bounded_read;
 mod early_writeback;
 mod error;
-mod folded_polygons;
 mod obj_reader;
 mod off_reader;
 mod output_path;

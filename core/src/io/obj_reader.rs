@@ -1,5 +1,5 @@
 //! Wavefront OBJ: `v x y z [w | r g b]` and `f i j k ...` lines (1-based or negative indices,
-//! `i/t/n` forms, polygons fan-triangulated), `#` comments; everything else is ignored.
+//! `i/t/n` forms, polygons kept as polygons), `#` comments; everything else is ignored.
 //!
 //! A hand-written parser, not `tobj`: tvf reads only `v` and `f` lines, and needs what `tobj`
 //! does not give: every error names its line (a malformed number, a zero or out-of-range
@@ -10,9 +10,10 @@
 
 use super::error::LoadErrorKind;
 use super::raw_mesh::{at, parse_error, Located, RawMesh};
-use super::text::{check_finite, parse_coordinate, parse_integer, push_fan, strip_comment};
+use super::text::{check_finite, parse_coordinate, parse_integer, push_face, strip_comment};
+use crate::mesh::FaceList;
 
-/// Parses OBJ text into positions and fan-triangulated faces.
+/// Parses OBJ text into positions and faces (polygons kept).
 pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
     let mut positions: Vec<[f64; 3]> = Vec::new();
     let mut vertex_lines = Vec::new();
@@ -81,7 +82,7 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
     // Positive indices may point forward in the file; check them against the final count.
     let vertex_count = positions.len();
     let mut face_lines = Vec::new();
-    let mut faces = Vec::new();
+    let mut faces = FaceList::new();
     for (line, corners) in &face_corners {
         let mut resolved = Vec::with_capacity(corners.len());
         for &index in corners {
@@ -99,7 +100,7 @@ pub(crate) fn read_obj(text: &str) -> Result<RawMesh, Located> {
                 }
             }
         }
-        push_fan(&resolved, *line, &mut faces, &mut face_lines);
+        push_face(&resolved, *line, &mut faces, &mut face_lines);
     }
     Ok(RawMesh {
         positions,
@@ -160,8 +161,8 @@ mod tests {
         let text = "# a square\nv 0 0 0\nv 1 0 0 # trailing comment\nv 1 1 0\nv 0 1 0\n\
                     f -4 -3 -2 -1\n";
         let raw = read_obj(text).unwrap();
-        assert_eq!(raw.faces, vec![[0, 1, 2], [0, 2, 3]]);
-        assert_eq!(raw.face_lines, vec![6, 6]);
+        assert_eq!(raw.faces, FaceList::from_polygons(&[[0, 1, 2, 3]]));
+        assert_eq!(raw.face_lines, vec![6]);
         assert_eq!(raw.vertex_lines, vec![2, 3, 4, 5]);
     }
 
@@ -170,7 +171,10 @@ mod tests {
         // Vertex 1 is used first, vertex 0 last: the file's numbering is kept all the same.
         let text = "v 0 0 0\nv 1 0 0\nv 1 0 0\nv 0 1 0\nf 2/1 4 1\nf 3 4 1\n";
         let raw = read_obj(text).unwrap();
-        assert_eq!(raw.faces, vec![[1, 3, 0], [2, 3, 0]]);
+        assert_eq!(
+            raw.faces.to_triangles().unwrap(),
+            vec![[1, 3, 0], [2, 3, 0]]
+        );
         assert_eq!(raw.positions.len(), 4);
     }
 
@@ -181,7 +185,10 @@ mod tests {
         let text = "o first\nv 0 0 0\nv 1 0 0\nf 1 2 3\ng second\nvt 0 0\nv 0 1 0\n\
                     vn 0 0 1\nv 1 1 0\nf 4/1/1 3//1 2\n";
         let raw = read_obj(text).unwrap();
-        assert_eq!(raw.faces, vec![[0, 1, 2], [3, 2, 1]]);
+        assert_eq!(
+            raw.faces.to_triangles().unwrap(),
+            vec![[0, 1, 2], [3, 2, 1]]
+        );
         assert_eq!(raw.face_lines, vec![4, 10]);
         assert_eq!(raw.vertex_lines, vec![2, 3, 7, 9]);
     }

@@ -5,10 +5,10 @@
 use super::error::LoadErrorKind;
 use super::raw_mesh::{at, parse_error, Located, RawMesh};
 use super::text::{
-    check_finite, parse_coordinate, parse_integer, push_fan, strip_comment, vertex_index,
+    check_finite, parse_coordinate, parse_integer, push_face, strip_comment, vertex_index,
 };
 
-/// Parses OFF text into positions and fan-triangulated faces.
+/// Parses OFF text into positions and faces (polygons kept).
 pub(crate) fn read_off(text: &str) -> Result<RawMesh, Located> {
     // Non-empty lines after comment removal, with their 1-based numbers.
     let mut lines = text
@@ -116,7 +116,7 @@ pub(crate) fn read_off(text: &str) -> Result<RawMesh, Located> {
         if n < 3 {
             return Err(at(line, LoadErrorKind::FaceTooSmall { corners: n }));
         }
-        push_fan(&corners, line, &mut raw.faces, &mut raw.face_lines);
+        push_face(&corners, line, &mut raw.faces, &mut raw.face_lines);
     }
     if let Some((line, text)) = lines.next() {
         return Err(at(
@@ -136,8 +136,8 @@ mod tests {
     #[test]
     fn square_with_counts_on_header_line() {
         let raw = read_off("OFF 4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n").unwrap();
-        assert_eq!(raw.faces, vec![[0, 1, 2], [0, 2, 3]]);
-        assert_eq!(raw.face_lines, vec![6, 6]);
+        assert_eq!(raw.faces, crate::FaceList::from_polygons(&[[0, 1, 2, 3]]));
+        assert_eq!(raw.face_lines, vec![6]);
     }
 
     #[test]

@@ -5,10 +5,10 @@
 use super::error::LoadErrorKind;
 use super::ply_header::{read_header, Element, Encoding, Property, ScalarType};
 use super::raw_mesh::{at, parse_error, Located, RawMesh};
-use super::text::{check_finite, push_fan, vertex_index};
+use super::text::{check_finite, push_face, vertex_index};
 use std::str::SplitWhitespace;
 
-/// Parses a PLY file into positions and fan-triangulated faces.
+/// Parses a PLY file into positions and faces (polygons kept).
 pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
     let header = read_header(bytes)?;
     let body = &bytes[header.body_start..];
@@ -101,7 +101,7 @@ pub(crate) fn read_ply(bytes: &[u8]) -> Result<RawMesh, Located> {
                         return Err((line, LoadErrorKind::FaceTooSmall { corners }));
                     }
                     let before = raw.face_lines.len();
-                    push_fan(
+                    push_face(
                         &corners,
                         line.unwrap_or(0),
                         &mut raw.faces,

@@ -1,9 +1,8 @@
 //! What a reader produces before validation, and the step from it to a [`LoadedMesh`].
 
 use super::error::{LoadError, LoadErrorKind};
-use super::folded_polygons::folded_polygons;
-use crate::mesh::{ValidationReport, ValidationWarning};
-use crate::{MeshError, TriangleMesh};
+use crate::mesh::{FaceList, ValidationReport, ValidationWarning};
+use crate::{MeshError, SurfaceMesh};
 use std::path::Path;
 
 /// A problem found by a reader, with the 1-based line where one applies.
@@ -33,22 +32,23 @@ pub(crate) fn parse_error(line: usize, message: impl Into<String>) -> Located {
     at(line, LoadErrorKind::Parse { message })
 }
 
-/// Positions and triangles exactly as a file lists them (0-based, polygons fan-triangulated).
+/// Positions and faces exactly as a file lists them (0-based; polygons as polygons).
 #[derive(Debug, Clone, Default)]
 pub(crate) struct RawMesh {
     pub positions: Vec<[f64; 3]>,
-    pub faces: Vec<[usize; 3]>,
+    pub faces: FaceList,
     /// 1-based line of every vertex, or empty for binary files.
     pub vertex_lines: Vec<usize>,
-    /// 1-based line of every triangle, or empty for binary files.
+    /// 1-based line of every face, or empty for binary files.
     pub face_lines: Vec<usize>,
 }
 
-/// A mesh read from a file: the valid [`TriangleMesh`] and what validation reported.
+/// A mesh read from a file: the valid [`SurfaceMesh`] (triangles if every face of the file is
+/// one, else polygons) and what validation reported.
 #[derive(Debug, Clone)]
 pub struct LoadedMesh {
     /// The mesh (unreferenced vertices dropped).
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     /// Warnings, angle range and the map back to the file's vertex numbers.
     pub report: ValidationReport,
 }
@@ -63,13 +63,17 @@ impl RawMesh {
             vertex_lines,
             face_lines,
         } = self;
-        let folded = folded_polygons(&positions, &faces, &face_lines);
-        TriangleMesh::validated(positions, faces)
+        SurfaceMesh::validated(positions, faces)
             .map(|(mesh, mut report)| {
-                if let Some((count, first_line)) = folded {
-                    report
-                        .warnings
-                        .push(ValidationWarning::FoldedPolygons { count, first_line });
+                for warning in &mut report.warnings {
+                    if let ValidationWarning::NonConvexPolygons {
+                        first_face,
+                        first_line,
+                        ..
+                    } = warning
+                    {
+                        *first_line = face_lines.get(*first_face).copied();
+                    }
                 }
                 LoadedMesh { mesh, report }
             })
@@ -79,7 +83,10 @@ impl RawMesh {
                     | MeshError::NonManifoldVertex { vertex, .. } => vertex_lines.get(*vertex),
                     MeshError::IndexOutOfRange { face, .. }
                     | MeshError::RepeatedVertexInFace { face, .. }
-                    | MeshError::ZeroAreaFace { face } => face_lines.get(*face),
+                    | MeshError::ZeroAreaFace { face }
+                    | MeshError::TooFewCorners { face, .. }
+                    | MeshError::PolygonFolds { face, .. }
+                    | MeshError::PolygonNotTriangulable { face } => face_lines.get(*face),
                     MeshError::InconsistentOrientation { face_b, .. }
                     | MeshError::NonOrientable { face_b, .. } => face_lines.get(*face_b),
                     _ => None,

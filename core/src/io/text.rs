@@ -2,6 +2,7 @@
 
 use super::error::LoadErrorKind;
 use super::raw_mesh::{at, parse_error, Located};
+use crate::mesh::FaceList;
 use std::borrow::Cow;
 
 /// The bytes as text. Comments (`#` to the end of the line) may hold any bytes (old tools write
@@ -106,15 +107,14 @@ pub(crate) fn vertex_index(index: i64, vertex_count: usize, line: usize) -> Resu
     }
 }
 
-/// Appends the fan triangulation `(c0, c_{k}, c_{k+1})` of a polygon, recording its line.
-pub(crate) fn push_fan(
+/// Appends a face with `corners` (already resolved to 0-based indices) read at `line` to
+/// `faces`, and its line to `face_lines`.
+pub(crate) fn push_face(
     corners: &[usize],
     line: usize,
-    faces: &mut Vec<[usize; 3]>,
+    faces: &mut FaceList,
     face_lines: &mut Vec<usize>,
 ) {
-    for k in 1..corners.len().saturating_sub(1) {
-        faces.push([corners[0], corners[k], corners[k + 1]]);
-        face_lines.push(line);
-    }
+    faces.push(corners);
+    face_lines.push(line);
 }

@@ -1,6 +1,6 @@
 //! Writers: OBJ (text) and PLY (binary little-endian), always written atomically.
 
-use crate::TriangleMesh;
+use crate::mesh::Mesh;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -25,7 +25,7 @@ pub enum SaveError {
 }
 
 /// Writes `mesh` to `path` as OBJ or PLY, chosen by the extension (case-insensitive).
-pub fn save_mesh(path: impl AsRef<Path>, mesh: &TriangleMesh) -> Result<(), SaveError> {
+pub fn save_mesh<M: Mesh + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
     let path = path.as_ref();
     let extension = path
         .extension()
@@ -41,45 +41,58 @@ pub fn save_mesh(path: impl AsRef<Path>, mesh: &TriangleMesh) -> Result<(), Save
 }
 
 /// Writes Wavefront OBJ: `v x y z` (shortest decimal that reads back to the same `f64`) and
-/// 1-based `f i j k` lines, vertex and face order kept.
-pub fn write_obj(path: impl AsRef<Path>, mesh: &TriangleMesh) -> Result<(), SaveError> {
+/// 1-based `f i j k …` lines (one per face, polygons as polygons), vertex and face order kept.
+pub fn write_obj<M: Mesh + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
+    let (positions, faces) = (mesh.positions(), mesh.face_corners());
     write_atomically(path.as_ref(), |out| {
         writeln!(
             out,
             "# tvf: {} vertices, {} faces",
-            mesh.vertex_count(),
-            mesh.face_count()
+            positions.len(),
+            faces.face_count()
         )?;
-        for p in mesh.positions() {
+        for p in positions {
             writeln!(out, "v {} {} {}", p[0], p[1], p[2])?;
         }
-        for f in mesh.faces() {
-            writeln!(out, "f {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1)?;
+        for f in 0..faces.face_count() {
+            write!(out, "f")?;
+            for &v in faces.corners(f) {
+                write!(out, " {}", v + 1)?;
+            }
+            writeln!(out)?;
         }
         Ok(())
     })
 }
 
 /// Writes binary little-endian PLY: `double x, y, z` per vertex and a `uchar`-counted `uint`
-/// index list per face.
-pub fn write_ply(path: impl AsRef<Path>, mesh: &TriangleMesh) -> Result<(), SaveError> {
+/// index list per face (`uint`-counted when a face has more than 255 corners).
+pub fn write_ply<M: Mesh + ?Sized>(path: impl AsRef<Path>, mesh: &M) -> Result<(), SaveError> {
+    let (positions, faces) = (mesh.positions(), mesh.face_corners());
+    let wide = (0..faces.face_count()).any(|f| faces.corners(f).len() > 255);
     write_atomically(path.as_ref(), |out| {
         write!(
             out,
             "ply\nformat binary_little_endian 1.0\ncomment written by tvf\n\
              element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
-             element face {}\nproperty list uchar uint vertex_indices\nend_header\n",
-            mesh.vertex_count(),
-            mesh.face_count()
+             element face {}\nproperty list {} uint vertex_indices\nend_header\n",
+            positions.len(),
+            faces.face_count(),
+            if wide { "uint" } else { "uchar" }
         )?;
-        for p in mesh.positions() {
+        for p in positions {
             for x in p {
                 out.write_all(&x.to_le_bytes())?;
             }
         }
-        for f in mesh.faces() {
-            out.write_all(&[3])?;
-            for &v in f {
+        for f in 0..faces.face_count() {
+            let corners = faces.corners(f);
+            if wide {
+                out.write_all(&(corners.len() as u32).to_le_bytes())?;
+            } else {
+                out.write_all(&[corners.len() as u8])?;
+            }
+            for &v in corners {
                 let v = u32::try_from(v).map_err(|_| {
                     std::io::Error::new(
                         std::io::ErrorKind::InvalidInput,

@@ -4,7 +4,8 @@ use thiserror::Error;
 
 /// A defect that makes a list of positions and faces unusable as a tvf surface mesh.
 ///
-/// Indices are 0-based positions in the arrays handed to [`crate::TriangleMesh::new`].
+/// Indices are 0-based positions in the arrays handed to [`crate::TriangleMesh::new`] or
+/// [`crate::PolygonMesh::new`].
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum MeshError {
     /// The mesh has no faces.
@@ -78,10 +79,46 @@ pub enum MeshError {
         /// Face whose required orientation contradicts itself.
         face_b: usize,
     },
-    /// A face has zero area (collinear or coincident corners).
+    /// A face has zero area (collinear or coincident corners; for a polygon, a zero vector
+    /// area `½ Σ p_i × p_{i+1}`).
     #[error("face {face} has zero area")]
     ZeroAreaFace {
         /// Face index.
         face: usize,
+    },
+    /// A face lists fewer than three corners.
+    #[error("face {face} has {corners} corners (a face needs at least three)")]
+    TooFewCorners {
+        /// Face index.
+        face: usize,
+        /// Number of corners it lists.
+        corners: usize,
+    },
+    /// A polygon that ear clipping of its own corners, seen along its vector area, cannot split
+    /// into triangles facing the way of the vector area (it is flat up to rounding, or folds).
+    #[error(
+        "face {face} cannot be split into triangles by its own corners: seen along its vector \
+         area it is flat or folds over itself"
+    )]
+    PolygonNotTriangulable {
+        /// Face index.
+        face: usize,
+    },
+    /// A polygon folds over itself: seen along its vector area (projected to the plane
+    /// orthogonal to it), two of its sides that are not neighbours meet, as for a polygon whose
+    /// corners wind around more than once or a bow tie. A simple non-convex polygon does not
+    /// fold.
+    #[error(
+        "face {face} folds over itself: seen along its vector area, its side from corner {side} \
+         and its side from corner {other_side} cross"
+    )]
+    PolygonFolds {
+        /// Face index.
+        face: usize,
+        /// The first side that meets another (side `c` joins corner `c` to corner `c + 1`,
+        /// 0-based within the face).
+        side: usize,
+        /// The side it meets.
+        other_side: usize,
     },
 }

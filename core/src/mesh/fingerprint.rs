@@ -1,8 +1,8 @@
-//! [`TriangleMesh::fingerprint`]: a 64-bit fingerprint of a mesh's numbers, which ties cached
-//! bases, compressed fields and constraint files to their mesh.
+//! [`TriangleMesh::fingerprint`] and [`PolygonMesh::fingerprint`]: a 64-bit fingerprint of a
+//! mesh's numbers, which ties cached bases, compressed fields and constraint files to their mesh.
 
 use crate::hash64::Hash64;
-use crate::TriangleMesh;
+use crate::{PolygonMesh, TriangleMesh};
 
 impl TriangleMesh {
     /// A 64-bit fingerprint of the mesh: the vertex and face counts, the exact `f64` bits of
@@ -21,6 +21,30 @@ impl TriangleMesh {
         }
         for f in self.faces() {
             for &i in f {
+                h.update_u64(i as u64);
+            }
+        }
+        h.finish()
+    }
+}
+
+impl PolygonMesh {
+    /// A 64-bit fingerprint like [`TriangleMesh::fingerprint`], hashing each face's size before
+    /// its vertex indices (and under another tag), so a polygon mesh never shares a fingerprint
+    /// with a triangle mesh.
+    pub fn fingerprint(&self) -> u64 {
+        let mut h = Hash64::new();
+        h.update(b"tvf-polygon-mesh");
+        h.update_u64(self.vertex_count() as u64);
+        h.update_u64(self.face_count() as u64);
+        for p in self.positions() {
+            for &x in p {
+                h.update_f64(x);
+            }
+        }
+        for face in self.faces().iter() {
+            h.update_u64(face.len() as u64);
+            for &i in face {
                 h.update_u64(i as u64);
             }
         }

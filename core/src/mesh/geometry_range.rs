@@ -1,8 +1,8 @@
-//! [`TriangleMesh::check_geometry_range`]: a valid mesh whose coordinates are so large that its
+//! [`SurfaceMesh::check_geometry_range`]: a valid mesh whose coordinates are so large that its
 //! areas overflow `f64` is refused, since angles and every operator built on it would be
 //! meaningless.
 
-use super::TriangleMesh;
+use super::SurfaceMesh;
 use thiserror::Error;
 
 /// The coordinates of a mesh are too large for `f64` arithmetic.
@@ -18,7 +18,7 @@ pub struct GeometryRangeError {
     pub area: f64,
 }
 
-impl TriangleMesh {
+impl SurfaceMesh {
     /// Refuses the mesh if its total area is not finite (its coordinates overflow `f64`
     /// arithmetic); the error gives the largest coordinate.
     pub fn check_geometry_range(&self) -> Result<(), GeometryRangeError> {
@@ -44,7 +44,7 @@ mod tests {
         let faces = vec![[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]];
         let tetrahedron = |s: f64| {
             let positions = vec![[s, 0.0, 0.0], [0.0, s, 0.0], [0.0, 0.0, s], [s, s, s]];
-            TriangleMesh::new(positions, faces.clone()).unwrap()
+            SurfaceMesh::from(crate::TriangleMesh::new(positions, faces.clone()).unwrap())
         };
         assert!(tetrahedron(1.0).check_geometry_range().is_ok());
         let error = tetrahedron(1e300).check_geometry_range().unwrap_err();

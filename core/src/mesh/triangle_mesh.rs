@@ -1,11 +1,10 @@
 //! The [`TriangleMesh`] type: an oriented, edge-manifold triangle mesh with its topology.
 
+use super::any_mesh::Mesh;
 use super::error::MeshError;
-use super::topology::build_topology;
+use super::face_list::FaceCorners;
+use super::topology::{build_topology, MeshTopology};
 use crate::geometry::{cross, norm, sub};
-
-/// Marker in [`TriangleMesh::edge_faces`] for the missing face of a boundary edge.
-pub const NO_FACE: usize = usize::MAX;
 
 /// An oriented, edge-manifold triangle mesh and the topology the discrete operators need.
 ///
@@ -19,11 +18,8 @@ pub const NO_FACE: usize = usize::MAX;
 pub struct TriangleMesh {
     positions: Vec<[f64; 3]>,
     faces: Vec<[usize; 3]>,
-    edges: Vec<[usize; 2]>,
     face_edges: Vec<[usize; 3]>,
-    edge_faces: Vec<[usize; 2]>,
-    face_component: Vec<usize>,
-    component_count: usize,
+    topology: MeshTopology,
 }
 
 impl TriangleMesh {
@@ -39,16 +35,25 @@ impl TriangleMesh {
         {
             return Err(MeshError::NonFiniteCoordinate { vertex });
         }
-        let topology = build_topology(positions.len(), &faces)?;
+        let built = build_topology(positions.len(), faces.as_slice())?;
+        // The general topology numbers the edge from corner c to corner c + 1; a triangle's
+        // edge opposite corner c is the one from corner c + 1.
+        let face_edges = built
+            .corner_edges
+            .chunks_exact(3)
+            .map(|e| [e[1], e[2], e[0]])
+            .collect();
         Ok(Self {
             positions,
             faces,
-            edges: topology.edges,
-            face_edges: topology.face_edges,
-            edge_faces: topology.edge_faces,
-            face_component: topology.face_component,
-            component_count: topology.component_count,
+            face_edges,
+            topology: built.topology,
         })
+    }
+
+    /// The topology: edges, their faces, components, boundary loops, genus.
+    pub fn topology(&self) -> &MeshTopology {
+        &self.topology
     }
 
     /// Number of vertices `V`.
@@ -58,7 +63,7 @@ impl TriangleMesh {
 
     /// Number of edges `E`.
     pub fn edge_count(&self) -> usize {
-        self.edges.len()
+        self.topology.edges().len()
     }
 
     /// Number of faces `F`.
@@ -78,7 +83,7 @@ impl TriangleMesh {
 
     /// Edges `(a, b)`, `a < b`, in lexicographic order, `E` entries.
     pub fn edges(&self) -> &[[usize; 2]] {
-        &self.edges
+        self.topology.edges()
     }
 
     /// `face_edges()[t][c]`: the edge opposite corner `c` of face `t`.
@@ -89,7 +94,7 @@ impl TriangleMesh {
     /// `edge_faces()[e] = [left, right]`: `left` traverses edge `(a, b)` as `a → b`, `right` as
     /// `b → a`; [`NO_FACE`] on the missing side of a boundary edge.
     pub fn edge_faces(&self) -> &[[usize; 2]] {
-        &self.edge_faces
+        self.topology.edge_faces()
     }
 
     /// Position of corner `c` of face `t`.
@@ -127,83 +132,43 @@ impl TriangleMesh {
 
     /// Whether edge `e` has only one face.
     pub fn is_boundary_edge(&self, e: usize) -> bool {
-        self.edge_faces[e].contains(&NO_FACE)
+        self.topology.is_boundary_edge(e)
     }
 
     /// Indices of the boundary edges, ascending.
     pub fn boundary_edges(&self) -> Vec<usize> {
-        (0..self.edge_count())
-            .filter(|&e| self.is_boundary_edge(e))
-            .collect()
+        self.topology.boundary_edges()
     }
 
     /// Whether the mesh has no boundary edge.
     pub fn is_closed(&self) -> bool {
-        self.edge_faces.iter().all(|f| !f.contains(&NO_FACE))
+        self.topology.is_closed()
     }
 
     /// Boundary loops as closed vertex cycles, each following the boundary orientation
     /// (the surface on the left).
     pub fn boundary_loops(&self) -> Vec<Vec<usize>> {
-        // The next boundary vertex after `v` along the orientation of the boundary face.
-        let mut next = std::collections::BTreeMap::new();
-        for (e, &[a, b]) in self.edges.iter().enumerate() {
-            match self.edge_faces[e] {
-                [left, NO_FACE] if left != NO_FACE => {
-                    next.entry(a).or_insert_with(Vec::new).push(b);
-                }
-                [NO_FACE, right] if right != NO_FACE => {
-                    next.entry(b).or_insert_with(Vec::new).push(a);
-                }
-                _ => {}
-            }
-        }
-        let mut loops = Vec::new();
-        while let Some((&start, _)) = next.iter().find(|(_, v)| !v.is_empty()) {
-            let mut cycle = vec![start];
-            let mut v = start;
-            while let Some(w) = next.get_mut(&v).and_then(|list| list.pop()) {
-                if w == start {
-                    break;
-                }
-                cycle.push(w);
-                v = w;
-            }
-            loops.push(cycle);
-        }
-        loops
+        self.topology.boundary_loops()
     }
 
     /// Number of edge-connected components.
     pub fn component_count(&self) -> usize {
-        self.component_count
+        self.topology.component_count()
     }
 
     /// Component id of every face, `F` entries, in `0..component_count()`.
     pub fn face_components(&self) -> &[usize] {
-        &self.face_component
+        self.topology.face_components()
     }
 
     /// Component id of every vertex (`usize::MAX` for a vertex no face uses), `V` entries.
     pub fn vertex_components(&self) -> Vec<usize> {
-        let mut component = vec![usize::MAX; self.vertex_count()];
-        for (t, face) in self.faces.iter().enumerate() {
-            for &v in face {
-                component[v] = self.face_component[t];
-            }
-        }
-        component
+        self.topology.vertex_components(self.faces.as_slice())
     }
 
     /// Component id of every edge, `E` entries.
     pub fn edge_components(&self) -> Vec<usize> {
-        self.edge_faces
-            .iter()
-            .map(|f| {
-                let t = if f[0] != NO_FACE { f[0] } else { f[1] };
-                self.face_component[t]
-            })
-            .collect()
+        self.topology.edge_components()
     }
 
     /// Euler characteristic `V − E + F` over referenced vertices.
@@ -213,37 +178,43 @@ impl TriangleMesh {
 
     /// Euler characteristic of every component.
     pub fn component_euler_characteristics(&self) -> Vec<i64> {
-        let mut chi = vec![0i64; self.component_count];
-        for c in self.vertex_components() {
-            if c != usize::MAX {
-                chi[c] += 1;
-            }
-        }
-        for c in self.edge_components() {
-            chi[c] -= 1;
-        }
-        for &c in &self.face_component {
-            chi[c] += 1;
-        }
-        chi
+        self.topology
+            .component_euler_characteristics(self.faces.as_slice())
     }
 
     /// Genus of every component, `(2 − b − χ)/2` with `b` its boundary loops.
     pub fn component_genera(&self) -> Vec<usize> {
-        let mut loops = vec![0i64; self.component_count];
-        let vertex_component = self.vertex_components();
-        for cycle in self.boundary_loops() {
-            loops[vertex_component[cycle[0]]] += 1;
-        }
-        self.component_euler_characteristics()
-            .iter()
-            .zip(&loops)
-            .map(|(&chi, &b)| ((2 - b - chi) / 2).max(0) as usize)
-            .collect()
+        self.topology.component_genera(self.faces.as_slice())
     }
 
     /// Total genus, summed over components. On a closed mesh the harmonic fields number `2·genus()`.
     pub fn genus(&self) -> usize {
         self.component_genera().iter().sum()
+    }
+}
+
+impl Mesh for TriangleMesh {
+    fn positions(&self) -> &[[f64; 3]] {
+        &self.positions
+    }
+
+    fn face_corners(&self) -> &dyn FaceCorners {
+        &self.faces
+    }
+
+    fn face_edge(&self, f: usize, c: usize) -> usize {
+        self.face_edges[f][(c + 2) % 3]
+    }
+
+    fn topology(&self) -> &MeshTopology {
+        &self.topology
+    }
+
+    fn as_triangles(&self) -> Option<&TriangleMesh> {
+        Some(self)
+    }
+
+    fn fingerprint(&self) -> u64 {
+        TriangleMesh::fingerprint(self)
     }
 }

@@ -1,14 +1,19 @@
 //! Full validation of positions and faces: every check [`TriangleMesh::new`] makes, plus vertex
-//! manifoldness, orientability, zero-area faces, unreferenced and duplicate vertices.
+//! manifoldness, orientability, zero-area faces, unreferenced and duplicate vertices — written
+//! once over [`FaceCorners`], so triangle and polygon lists get the same checks; polygons also
+//! get the fold check ([`MeshError::PolygonFolds`]).
 //!
 //! [`TriangleMesh::new`] stays cheap and only guarantees what the topology tables need.
-//! [`TriangleMesh::validated`] is the entry point for data from outside (files, user input);
-//! every reader in [`crate::io`] goes through it.
+//! [`TriangleMesh::validated`] and [`crate::SurfaceMesh::validated`] are the entry points for
+//! data from outside (files, user input); every reader in [`crate::io`] goes through the latter.
 
 use super::error::MeshError;
+use super::face_list::FaceCorners;
+use super::polygon_outline::PolygonOutline;
+use super::topology::check_corners;
 use super::triangle_mesh::TriangleMesh;
 use super::validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};
-use crate::geometry::{cross, dot, norm, sub};
+use crate::geometry::{add, cross, dot, norm, scale, sub};
 use std::collections::HashMap;
 
 /// A face whose `|(p1−p0)×(p2−p0)|` is at most this times its longest squared edge length is
@@ -32,38 +37,15 @@ impl TriangleMesh {
         faces: Vec<[usize; 3]>,
     ) -> Result<(TriangleMesh, ValidationReport), MeshError> {
         check_faces(&positions, &faces)?;
-        let input_vertex_count = positions.len();
-        let mut warnings = Vec::new();
-
-        let mut referenced = vec![false; positions.len()];
-        for face in &faces {
-            for &v in face {
-                referenced[v] = true;
-            }
-        }
-        if let Some(first) = referenced.iter().position(|&r| !r) {
-            let count = referenced.iter().filter(|&&r| !r).count();
-            warnings.push(ValidationWarning::UnreferencedVertices { count, first });
-        }
-        if let Some(warning) = duplicate_vertices(&positions, &referenced) {
-            warnings.push(warning);
-        }
-
-        let mut new_index = vec![usize::MAX; positions.len()];
-        let mut original_vertex = Vec::with_capacity(positions.len());
-        let mut kept_positions = Vec::with_capacity(positions.len());
-        for (v, p) in positions.into_iter().enumerate() {
-            if referenced[v] {
-                new_index[v] = original_vertex.len();
-                original_vertex.push(v);
-                kept_positions.push(p);
-            }
-        }
-        let faces = faces.into_iter().map(|f| f.map(|v| new_index[v])).collect();
-        let mesh = TriangleMesh::new(kept_positions, faces)?;
-
+        let kept = KeptVertices::of(&positions, faces.as_slice());
+        let faces = faces
+            .into_iter()
+            .map(|f| f.map(|v| kept.new_index[v]))
+            .collect();
+        let (positions, mut report) = kept.into_report(positions);
+        let mesh = TriangleMesh::new(positions, faces)?;
         if let Some(warning) = inward_components(&mesh) {
-            warnings.push(warning);
+            report.warnings.push(warning);
         }
         let (min_angle_deg, max_angle_deg) = mesh.angle_range_deg();
         let small = (0..mesh.face_count())
@@ -74,16 +56,77 @@ impl TriangleMesh {
             })
             .count();
         if small > 0 {
-            warnings.push(ValidationWarning::SmallAngles { faces: small });
+            report
+                .warnings
+                .push(ValidationWarning::SmallAngles { faces: small });
+        }
+        report.min_angle_deg = min_angle_deg;
+        report.max_angle_deg = max_angle_deg;
+        Ok((mesh, report))
+    }
+}
+
+/// Which vertices the faces use, their new numbers once the others are dropped, and the
+/// warnings about unreferenced and duplicate vertices.
+pub(crate) struct KeptVertices {
+    referenced: Vec<bool>,
+    /// The new index of every input vertex (`usize::MAX` for a dropped one).
+    pub new_index: Vec<usize>,
+    warnings: Vec<ValidationWarning>,
+}
+
+impl KeptVertices {
+    /// The vertices of `positions` that `faces` use (faces already checked: indices in range).
+    pub fn of<F: FaceCorners + ?Sized>(positions: &[[f64; 3]], faces: &F) -> Self {
+        let mut referenced = vec![false; positions.len()];
+        for f in 0..faces.face_count() {
+            for &v in faces.corners(f) {
+                referenced[v] = true;
+            }
+        }
+        let mut warnings = Vec::new();
+        if let Some(first) = referenced.iter().position(|&r| !r) {
+            let count = referenced.iter().filter(|&&r| !r).count();
+            warnings.push(ValidationWarning::UnreferencedVertices { count, first });
+        }
+        if let Some(warning) = duplicate_vertices(positions, &referenced) {
+            warnings.push(warning);
+        }
+        let mut new_index = vec![usize::MAX; positions.len()];
+        let mut next = 0;
+        for (v, &r) in referenced.iter().enumerate() {
+            if r {
+                new_index[v] = next;
+                next += 1;
+            }
+        }
+        Self {
+            referenced,
+            new_index,
+            warnings,
+        }
+    }
+
+    /// The kept positions (input order) and a report with the warnings so far, the map back to
+    /// input vertices, and no angle range yet (NaN until the caller measures it).
+    pub fn into_report(self, positions: Vec<[f64; 3]>) -> (Vec<[f64; 3]>, ValidationReport) {
+        let input_vertex_count = positions.len();
+        let mut original_vertex = Vec::with_capacity(positions.len());
+        let mut kept_positions = Vec::with_capacity(positions.len());
+        for (v, p) in positions.into_iter().enumerate() {
+            if self.referenced[v] {
+                original_vertex.push(v);
+                kept_positions.push(p);
+            }
         }
         let report = ValidationReport {
-            warnings,
+            warnings: self.warnings,
             original_vertex,
             input_vertex_count,
-            min_angle_deg,
-            max_angle_deg,
+            min_angle_deg: f64::NAN,
+            max_angle_deg: f64::NAN,
         };
-        Ok((mesh, report))
+        (kept_positions, report)
     }
 }
 
@@ -118,7 +161,18 @@ fn inward_components(mesh: &TriangleMesh) -> Option<ValidationWarning> {
 
 /// Every error check of [`TriangleMesh::validated`], without building anything.
 pub fn check_faces(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Result<(), MeshError> {
-    if faces.is_empty() {
+    check_combinatorics(positions, faces)?;
+    check_triangle_areas(positions, faces)
+}
+
+/// Every error check of a face list except the geometric ones: no faces, non-finite
+/// coordinates, corners out of range or repeated, non-manifold edges and vertices,
+/// non-orientable or inconsistently oriented surfaces.
+pub(crate) fn check_combinatorics<F: FaceCorners + ?Sized>(
+    positions: &[[f64; 3]],
+    faces: &F,
+) -> Result<(), MeshError> {
+    if faces.face_count() == 0 {
         return Err(MeshError::NoFaces);
     }
     if let Some(vertex) = positions
@@ -127,27 +181,12 @@ pub fn check_faces(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Result<(), M
     {
         return Err(MeshError::NonFiniteCoordinate { vertex });
     }
-    for (face, f) in faces.iter().enumerate() {
-        for (c, &index) in f.iter().enumerate() {
-            if index >= positions.len() {
-                return Err(MeshError::IndexOutOfRange {
-                    face,
-                    index,
-                    vertex_count: positions.len(),
-                });
-            }
-            if f[(c + 1) % 3] == index {
-                return Err(MeshError::RepeatedVertexInFace {
-                    face,
-                    vertex: index,
-                });
-            }
-        }
+    for face in 0..faces.face_count() {
+        check_corners(face, faces.corners(face), positions.len())?;
     }
     let pairs = face_pairs(faces)?;
     check_vertex_fans(positions.len(), faces, &pairs)?;
-    check_orientation(faces.len(), &pairs)?;
-    check_areas(positions, faces)
+    check_orientation(faces.face_count(), &pairs)
 }
 
 /// Two faces sharing the undirected edge `(a, b)`, `a < b`.
@@ -160,11 +199,13 @@ struct FacePair {
 }
 
 /// Groups directed half-edges by undirected edge; fails on edges with more than two faces.
-fn face_pairs(faces: &[[usize; 3]]) -> Result<Vec<FacePair>, MeshError> {
-    let mut half_edges: Vec<(usize, usize, usize, bool)> = Vec::with_capacity(3 * faces.len());
-    for (t, f) in faces.iter().enumerate() {
-        for c in 0..3 {
-            let (from, to) = (f[c], f[(c + 1) % 3]);
+fn face_pairs<F: FaceCorners + ?Sized>(faces: &F) -> Result<Vec<FacePair>, MeshError> {
+    let mut half_edges: Vec<(usize, usize, usize, bool)> =
+        Vec::with_capacity(faces.total_corners());
+    for t in 0..faces.face_count() {
+        let f = faces.corners(t);
+        for c in 0..f.len() {
+            let (from, to) = (f[c], f[(c + 1) % f.len()]);
             half_edges.push((from.min(to), from.max(to), t, from < to));
         }
     }
@@ -203,15 +244,19 @@ fn root(parent: &mut [usize], mut x: usize) -> usize {
 
 /// Fails if the faces around some vertex form more than one edge-connected fan.
 ///
-/// Union–find over corners `3t + c`: two faces sharing edge `(a, b)` join their corners at `a`
-/// and at `b`; a manifold vertex ends with all its corners in one set.
-fn check_vertex_fans(
+/// Union–find over corners (numbered by [`FaceCorners::corner_index`]): two faces sharing edge
+/// `(a, b)` join their corners at `a` and at `b`; a manifold vertex ends with all its corners in
+/// one set.
+fn check_vertex_fans<F: FaceCorners + ?Sized>(
     vertex_count: usize,
-    faces: &[[usize; 3]],
+    faces: &F,
     pairs: &[FacePair],
 ) -> Result<(), MeshError> {
-    let corner_of = |t: usize, v: usize| 3 * t + faces[t].iter().position(|&w| w == v).unwrap_or(0);
-    let mut parent: Vec<usize> = (0..3 * faces.len()).collect();
+    let corner_of = |t: usize, v: usize| {
+        let c = faces.corners(t).iter().position(|&w| w == v).unwrap_or(0);
+        faces.corner_index(t, c)
+    };
+    let mut parent: Vec<usize> = (0..faces.total_corners()).collect();
     for pair in pairs {
         let [t0, t1] = pair.faces;
         for v in [pair.a, pair.b] {
@@ -222,9 +267,12 @@ fn check_vertex_fans(
             parent[r0.max(r1)] = r0.min(r1);
         }
     }
-    let mut fans: Vec<(usize, usize)> = (0..3 * faces.len())
-        .map(|corner| (faces[corner / 3][corner % 3], root(&mut parent, corner)))
-        .collect();
+    let mut fans: Vec<(usize, usize)> = Vec::with_capacity(faces.total_corners());
+    for t in 0..faces.face_count() {
+        for (c, &v) in faces.corners(t).iter().enumerate() {
+            fans.push((v, root(&mut parent, faces.corner_index(t, c))));
+        }
+    }
     fans.sort_unstable();
     fans.dedup();
     let mut count = vec![0usize; vertex_count];
@@ -304,7 +352,7 @@ fn check_orientation(face_count: usize, pairs: &[FacePair]) -> Result<(), MeshEr
 }
 
 /// Fails on the first face whose area is zero up to rounding (see [`ZERO_AREA_RELATIVE`]).
-fn check_areas(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Result<(), MeshError> {
+fn check_triangle_areas(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Result<(), MeshError> {
     for (face, f) in faces.iter().enumerate() {
         let [p0, p1, p2] = f.map(|i| positions[i]);
         let twice_area = norm(cross(sub(p1, p0), sub(p2, p0)));
@@ -317,6 +365,82 @@ fn check_areas(positions: &[[f64; 3]], faces: &[[usize; 3]]) -> Result<(), MeshE
         }
     }
     Ok(())
+}
+
+/// Fails on the first polygon whose vector area is zero up to rounding (twice its length at most
+/// [`ZERO_AREA_RELATIVE`] times the longest squared side, as for triangles) or that folds over
+/// itself ([`MeshError::PolygonFolds`]: seen along its vector area, two sides that are not
+/// neighbours meet).
+pub(crate) fn check_polygon_geometry<F: FaceCorners + ?Sized>(
+    positions: &[[f64; 3]],
+    faces: &F,
+) -> Result<(), MeshError> {
+    for face in 0..faces.face_count() {
+        let corners: Vec<[f64; 3]> = faces.corners(face).iter().map(|&v| positions[v]).collect();
+        let area = polygon_vector_area(&corners);
+        let n = corners.len();
+        let longest_squared = (0..n)
+            .map(|c| {
+                let e = sub(corners[(c + 1) % n], corners[c]);
+                dot(e, e)
+            })
+            .fold(0.0, f64::max);
+        if 2.0 * norm(area) <= ZERO_AREA_RELATIVE * longest_squared {
+            return Err(MeshError::ZeroAreaFace { face });
+        }
+        if n == 3 {
+            continue;
+        }
+        if let Some((side, other_side)) = PolygonOutline::new(&corners, area).crossing_sides() {
+            return Err(MeshError::PolygonFolds {
+                face,
+                side,
+                other_side,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The polygons (more than three corners) that are not convex seen along their vector area:
+/// how many, and the first.
+pub(crate) fn non_convex_polygons<F: FaceCorners + ?Sized>(
+    positions: &[[f64; 3]],
+    faces: &F,
+) -> Option<(usize, usize)> {
+    let mut found: Option<(usize, usize)> = None;
+    for face in 0..faces.face_count() {
+        let corners: Vec<[f64; 3]> = faces.corners(face).iter().map(|&v| positions[v]).collect();
+        if corners.len() > 3
+            && !PolygonOutline::new(&corners, polygon_vector_area(&corners)).is_convex()
+        {
+            let (count, first) = found.unwrap_or((0, face));
+            found = Some((count + 1, first));
+        }
+    }
+    found
+}
+
+/// The vector area `½ Σ_c p_c × p_{c+1}` of a polygon with corners `corners` (counter-clockwise),
+/// summed relative to the first corner so that it does not depend on the origin: its direction is
+/// the polygon's normal and its length the area of a planar polygon (units of length²).
+pub fn polygon_vector_area(corners: &[[f64; 3]]) -> [f64; 3] {
+    let origin = corners[0];
+    let mut sum = [0.0; 3];
+    for c in 1..corners.len().saturating_sub(1) {
+        sum = add(
+            sum,
+            cross(sub(corners[c], origin), sub(corners[c + 1], origin)),
+        );
+    }
+    scale(sum, 0.5)
+}
+
+/// The average of a polygon's corners, `(p_0 + … + p_{n−1}) / n` (its "centroid" in de Goes et
+/// al. 2020).
+pub fn polygon_centroid(corners: &[[f64; 3]]) -> [f64; 3] {
+    let n = corners.len() as f64;
+    std::array::from_fn(|k| corners.iter().map(|p| p[k]).sum::<f64>() / n)
 }
 
 /// Reports referenced vertices whose position (bit for bit, `-0.0 = 0.0`) repeats an earlier one.

@@ -40,13 +40,17 @@ pub enum ValidationWarning {
         /// Number of such faces.
         faces: usize,
     },
-    /// Polygons of the file (more than three corners) that are not convex: their fan
-    /// triangulation folds over itself, so areas and everything computed on the mesh are wrong.
-    FoldedPolygons {
-        /// How many polygons fold.
+    /// Polygons (more than three corners) that are not convex seen along their vector area.
+    /// They are valid: polygon operators are defined on them, and they are drawn through an
+    /// ear-clipped triangulation of their own corners; an entry that needs triangles gets the
+    /// same triangulation.
+    NonConvexPolygons {
+        /// How many.
         count: usize,
-        /// The file line of the first.
-        first_line: usize,
+        /// The first (face index).
+        first_face: usize,
+        /// The file line of the first, when the mesh was read from a text file.
+        first_line: Option<usize>,
     },
 }
 
@@ -61,7 +65,7 @@ impl ValidationWarning {
             Self::DuplicateVertices { .. } => "duplicate_vertices",
             Self::InwardNormals { .. } => "inward_normals",
             Self::SmallAngles { .. } => "small_angles",
-            Self::FoldedPolygons { .. } => "folded_polygons",
+            Self::NonConvexPolygons { .. } => "non_convex_polygons",
         }
     }
 }
@@ -96,19 +100,27 @@ impl fmt::Display for ValidationWarning {
             Self::SmallAngles { faces } => {
                 write!(f, "{faces} faces have an angle below {SMALL_ANGLE_DEG}°")
             }
-            Self::FoldedPolygons { count, first_line } => write!(
-                f,
-                "{count} non-convex polygons were fan-triangulated into folded triangles \
-                 (first: line {first_line}); areas are wrong: triangulate them before loading"
-            ),
+            Self::NonConvexPolygons {
+                count,
+                first_face,
+                first_line,
+            } => {
+                write!(f, "{count} non-convex polygons (first: face {first_face}")?;
+                if let Some(line) = first_line {
+                    write!(f, ", line {line}")?;
+                }
+                write!(f, "); they are drawn ear-clipped")
+            }
         }
     }
 }
 
-/// What [`crate::TriangleMesh::validated`] found besides errors.
+/// What [`crate::TriangleMesh::validated`] and [`crate::SurfaceMesh::validated`] found besides
+/// errors.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValidationReport {
-    /// Every non-fatal finding, in a fixed order (unreferenced, duplicates, normals, angles).
+    /// Every non-fatal finding, in a fixed order (unreferenced, duplicates, normals, angles, non-convex
+    /// polygons).
     pub warnings: Vec<ValidationWarning>,
     /// `original_vertex[v]`: the input index of mesh vertex `v` (differs from `v` once
     /// unreferenced vertices were dropped), `V` entries.

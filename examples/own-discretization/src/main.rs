@@ -95,7 +95,7 @@ fn blended_complex(
     let p1 = |lumping| LagrangeP1::from_geometry(mesh, &geometry, lumping);
     let cr = |lumping| CrouzeixRaviart::from_geometry(mesh, &geometry, lumping);
     FiniteElementComplex::from_spaces_with_boundary(
-        complex_id(entry_id, mesh, boundary),
+        complex_id(entry_id, mesh.topology(), boundary),
         mesh,
         Blended::new(p1(MassLumping::Barycentric), &p1(MassLumping::Voronoi), t),
         Blended::new(cr(MassLumping::Barycentric), &cr(MassLumping::Voronoi), t),

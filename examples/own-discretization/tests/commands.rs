@@ -3,13 +3,11 @@
 //! the matrices (`M0` the blend of the two built-in lumpings'), the spectrum, a basis file that
 //! reopens with `--basis`, filters, a spline, and the editor over HTTP.
 
-use std::io::{BufRead, BufReader, Read, Write};
-use std::net::TcpStream;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
-use std::time::Duration;
+use std::process::{Command, Output};
 use tvf_core::generate::{disk, genus_surface};
 use tvf_core::io::write_obj;
+use tvf_test_support::{request, EditorProcess};
 
 const ENTRY: &str = "blend-lumping-50";
 
@@ -364,48 +362,12 @@ fn a_spline_meets_its_constraints_with_the_own_entry() {
     assert_eq!(read_field(&out).len(), 3 * genus_surface(1, 4).face_count());
 }
 
-/// Kills the editor when the test ends, passed or failed.
-struct Server(Child);
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        let _ = self.0.kill();
-        let _ = self.0.wait();
-    }
-}
-
-/// `method target` with the server's own Host, the session token and `body` → (status, body).
-fn request(address: &str, method: &str, target: &str, token: &str, body: &str) -> (u16, Vec<u8>) {
-    let mut stream = TcpStream::connect(address).expect("connect");
-    stream
-        .set_read_timeout(Some(Duration::from_secs(120)))
-        .unwrap();
-    write!(
-        stream,
-        "{method} {target} HTTP/1.1\r\nHost: {address}\r\nX-TVF-Token: {token}\r\nContent-Type: application/json\r\nContent-Length: {}\r\n\r\n{body}",
-        body.len()
-    )
-    .unwrap();
-    let mut answer = Vec::new();
-    stream.read_to_end(&mut answer).unwrap();
-    let split = answer
-        .windows(4)
-        .position(|w| w == b"\r\n\r\n")
-        .expect("a header");
-    let head = String::from_utf8_lossy(&answer[..split]).to_string();
-    let status = head
-        .split(' ')
-        .nth(1)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or_else(|| panic!("{head:?}"));
-    (status, answer[split + 4..].to_vec())
-}
-
 #[test]
 fn the_editor_edits_with_the_own_entry() {
     let (dir, mesh) = ring();
     let cache: PathBuf = dir.path().join("cache");
-    let child = example()
+    let mut command = example();
+    command
         .args([
             "-q",
             "edit",
@@ -416,32 +378,14 @@ fn the_editor_edits_with_the_own_entry() {
             ENTRY,
             "--cache-dir",
         ])
-        .arg(&cache)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .expect("the editor starts");
-    let mut server = Server(child);
-    let stdout = server.0.stdout.take().unwrap();
-    let mut printed = Vec::new();
-    let url = BufReader::new(stdout)
-        .lines()
-        .map_while(Result::ok)
-        .find_map(|line| {
-            let url = line
-                .split_whitespace()
-                .find(|w| w.starts_with("http://"))
-                .map(str::to_string);
-            if url.is_none() {
-                printed.push(line);
-            }
-            url
-        })
-        .unwrap_or_else(|| panic!("a URL on stdout (printed: {printed:?})"));
-    assert!(printed.join("\n").contains(ENTRY), "{printed:?}");
-    let rest = url.strip_prefix("http://").unwrap();
-    let (address, target) = rest.split_at(rest.find('/').unwrap());
-    let token = target.strip_prefix("/?token=").unwrap();
+        .arg(&cache);
+    let server = EditorProcess::start(command);
+    assert!(
+        server.printed.join("\n").contains(ENTRY),
+        "{:?}",
+        server.printed
+    );
+    let (address, token) = (server.address.as_str(), server.token.as_str());
     let (code, frame) = request(
         address,
         "POST",

@@ -12,9 +12,9 @@ use crate::step_log::StepLog;
 use std::path::PathBuf;
 use std::time::Instant;
 use table1::{PaperTimings, Table1Repetitions, Table1Row};
-use tvf_conformance::convergence::ConvergenceReport;
+use tvf_convergence::study::ConvergenceReport;
 use tvf_core::io::load_mesh;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 use tvf_figures::compression::{self, RateCurve};
 use tvf_figures::compression_sequence::{self, SequenceSize};
@@ -267,7 +267,7 @@ pub fn run(config: &Config, progress: &StepLog) -> Result<Results, FigureError> 
 /// Table 1 and every experiment of `entry.roles` on one mesh, with one basis.
 pub fn run_mesh(
     entry: &PaperMesh,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     config: &Config,
     progress: &StepLog,
     results: &mut Results,

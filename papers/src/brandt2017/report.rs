@@ -7,7 +7,7 @@ use super::Results;
 use crate::markdown::Table;
 use std::io::Write as _;
 use std::path::Path;
-use tvf_conformance::convergence_table::markdown_table;
+use tvf_convergence::table::markdown_table;
 use tvf_figures::finding::Finding;
 use tvf_figures::numbers::seconds;
 use tvf_figures::FigureError;

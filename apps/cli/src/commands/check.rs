@@ -20,8 +20,8 @@ use tvf_conformance::reference_report::catalog_reference_checks;
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
-use tvf_core::TriangleMesh;
-use tvf_discretizations::Catalog;
+use tvf_core::{SurfaceMesh, TriangleMesh};
+use tvf_discretizations::{Catalog, DEFAULT_DISCRETIZATION};
 
 /// Arguments of `tvf check`.
 #[derive(Args)]
@@ -75,7 +75,10 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let catalog = context.catalog();
     let id = match &args.discretization.complex {
         Some(dir) => format!("the matrices of {}", dir.display()),
-        None => args.discretization.id(),
+        None => args
+            .discretization
+            .requested_id()
+            .unwrap_or_else(|| DEFAULT_DISCRETIZATION.to_string()),
     };
     let mut report = Report::new(args.json);
     let input = match (&args.mesh, &args.example) {
@@ -83,14 +86,20 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
         (None, Some(name)) => MeshInput::example(name),
         (None, None) => return check_generated(&args, &id, catalog, report),
     };
-    let mesh = input.load()?.mesh;
+    let loaded = input.load()?.mesh;
+    let Some(mesh) = loaded.as_triangles() else {
+        bail!(
+            "{}: the conformance checks run on triangle meshes so far (this mesh has polygons)",
+            input.label()
+        );
+    };
     let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
         let flags = &args.discretization;
         flags
-            .build(catalog, mesh, &input)
+            .build(catalog, &SurfaceMesh::from(mesh.clone()), &input)
             .map_err(|e| format!("{e:#}"))
     };
-    let checked = check_mesh(&builder, &mesh, catalog_reference_checks(&id));
+    let checked = check_mesh(&builder, mesh, catalog_reference_checks(&id));
     let checked = MeshCheckReport::new(&id, &input.label(), mesh.face_count(), checked);
     report.add(checked.lines(), &checked);
     finish(report, checked.failure_message())
@@ -121,7 +130,7 @@ fn check_generated(
     let boundary = args.discretization.boundary_condition();
     let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
         catalog
-            .build_complex(id, Some(boundary), mesh)
+            .build_complex(id, Some(boundary), &SurfaceMesh::from(mesh.clone()))
             .map_err(|e| e.to_string())
     };
     let progress = Progress::new("check");

@@ -1,15 +1,15 @@
 //! `tvf convergence`: chosen discretizations on refinement sequences of surfaces with exact
 //! spectra (the unit sphere, the unit hemisphere under both boundary conditions); the relative
 //! eigenvalue errors per level, the observed orders and the basis times as a table, JSON and a
-//! log–log plot. The study itself is [`tvf_conformance::convergence`].
+//! log–log plot. The study itself is [`tvf_convergence`].
 
 use crate::context::RunContext;
 use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use tvf_conformance::convergence::{run_convergence, Candidate, ConvergenceConfig, Surface};
-use tvf_conformance::convergence_table::{markdown_table, orders_summary};
+use tvf_convergence::study::{run_convergence, Candidate, ConvergenceConfig, Surface};
+use tvf_convergence::table::{markdown_table, orders_summary};
 use tvf_core::discretization::BoundaryCondition;
 use tvf_figures::convergence_plot::convergence_figure;
 use tvf_render::save_png;

@@ -91,13 +91,14 @@ pub fn run(args: DemoArgs, context: &RunContext) -> Result<()> {
     }
     // The pages and pictures go to a temporary sibling folder, renamed into place at the end.
     let staged = stage(&args.output)?;
+    let discretization = args.discretization.id(&mesh);
     let config = DemoConfig {
         output: staged.path().to_path_buf(),
         mesh,
         mesh_name,
         fields,
         catalog: context.catalog().clone(),
-        discretization: args.discretization.id(),
+        discretization,
         width,
         height,
         fur_strands: if args.quick { 1500 } else { 25_000 },

@@ -81,7 +81,7 @@ pub fn run(mut args: ExportArgs, context: &RunContext) -> Result<()> {
     let vectors = discretization.require_sampling()?.to_face_vectors(&field)?;
     match format {
         Format::Vtk | Format::Ply => {
-            let data = FaceData::of_field(discretization.as_ref(), &field, vectors)?;
+            let data = FaceData::of_field(discretization.as_ref(), &mesh, &field, vectors)?;
             if format == Format::Vtk {
                 write_vtk(&args.output, &mesh, &data)?;
             } else {

@@ -12,7 +12,7 @@ use anyhow::Result;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::{FieldSampling, HodgeOperators};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 pub use tvf_spectral::exact_hodge_energies;
 use tvf_spectral::{read_field_file, read_field_frames, BasisSize, FrameSource, SpectralBasis};
@@ -83,14 +83,14 @@ impl FieldArgs {
 /// A mesh, its face fields and a basis that belongs to it.
 pub struct SpectralSetup {
     /// The mesh.
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     /// The discretization the basis belongs to.
     pub complex: BoxedComplex,
     /// The basis (from `--basis`, the cache, or computed).
     pub basis: SpectralBasis,
     /// The discretization the basis was computed with (its id, as in basis files).
     pub discretization: String,
-    /// [`TriangleMesh::fingerprint`](tvf_core::TriangleMesh::fingerprint) of the mesh.
+    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
     pub mesh_fingerprint: u64,
 }
 
@@ -99,7 +99,7 @@ pub struct SpectralSetup {
 /// that a bad input is refused before the expensive step and leaves no basis in the cache.
 pub struct SpectralInputs {
     /// The mesh.
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     /// The discretization (the `--basis` file's, read from its header, or the flags').
     pub complex: BoxedComplex,
 }
@@ -108,7 +108,7 @@ pub struct SpectralInputs {
 /// (see [`SpectralInputs`]).
 pub fn inputs_for_mesh(
     catalog: &Catalog,
-    mesh: TriangleMesh,
+    mesh: SurfaceMesh,
     input: &MeshInput,
     source: &BasisOptions,
 ) -> Result<SpectralInputs> {

@@ -3,7 +3,7 @@
 
 use crate::error::FigureError;
 use tvf_core::generate::bumpy_torus;
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 
 /// Vertices of the default bumpy torus around its axis (`2 · around · tube` faces).
 const TORUS_AROUND: usize = 120;
@@ -13,7 +13,7 @@ const TORUS_TUBE: usize = 60;
 
 /// The bumpy torus of the demo (`quick`: the small one for tests) turned so that its axis
 /// points up in pictures, and its name for the page.
-pub fn default_mesh(quick: bool) -> Result<(TriangleMesh, String), FigureError> {
+pub fn default_mesh(quick: bool) -> Result<(SurfaceMesh, String), FigureError> {
     let (mesh, name) = if quick {
         (
             bumpy_torus(1.0, 0.3, 40, 20, 12, 0.35),
@@ -30,13 +30,15 @@ pub fn default_mesh(quick: bool) -> Result<(TriangleMesh, String), FigureError> 
 
 /// The mesh turned so that its z axis points up in pictures (+y): `(x, y, z) ↦ (x, z, −y)`, a
 /// rotation, so orientation and intrinsic geometry are unchanged.
-fn upright(mesh: &TriangleMesh) -> Option<TriangleMesh> {
+fn upright(mesh: &TriangleMesh) -> Option<SurfaceMesh> {
     let positions = mesh
         .positions()
         .iter()
         .map(|p| [p[0], p[2], -p[1]])
         .collect();
-    TriangleMesh::new(positions, mesh.faces().to_vec()).ok()
+    TriangleMesh::new(positions, mesh.faces().to_vec())
+        .ok()
+        .map(SurfaceMesh::from)
 }
 
 #[cfg(test)]

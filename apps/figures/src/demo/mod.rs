@@ -27,7 +27,7 @@ use image::RgbaImage;
 use page::Section;
 use std::path::PathBuf;
 use std::time::Instant;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 use tvf_render::save_png;
 use tvf_render::View;
@@ -39,7 +39,7 @@ pub struct DemoConfig {
     /// Output folder.
     pub output: PathBuf,
     /// The mesh and its name for the page.
-    pub mesh: TriangleMesh,
+    pub mesh: SurfaceMesh,
     /// Name of the mesh on the page.
     pub mesh_name: String,
     /// Eigenfields of the basis (`-k`, harmonic ones included).
@@ -75,7 +75,7 @@ pub trait DemoHost {
 /// What every step can use: the mesh, the discretization, the basis, the output folder.
 pub struct Context<'a> {
     /// The mesh.
-    pub mesh: &'a TriangleMesh,
+    pub mesh: &'a SurfaceMesh,
     /// The (conforming, barycentric) discretization.
     pub discretization: &'a BoxedComplex,
     /// The basis.

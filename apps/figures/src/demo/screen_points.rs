@@ -2,7 +2,7 @@
 //! `--mesh` works on any mesh.
 
 use tvf_core::geometry::{cross, dot, normalize};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 /// Faces seen near the given points of the picture: `targets` are positions in the image plane
 /// of a camera looking along `−to_eye` (with world +y up), in units of the half-extent of the
@@ -10,34 +10,22 @@ use tvf_core::TriangleMesh;
 /// the facing face whose centroid projects closest is chosen (ties go to the face nearer the
 /// camera), without repeating faces.
 pub fn faces_at_screen_points(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     to_eye: [f64; 3],
     targets: &[[f64; 2]],
 ) -> Vec<usize> {
-    let p = mesh.positions();
     let right = normalize(cross([0.0, 1.0, 0.0], to_eye));
     let up = cross(to_eye, right);
-    let facing: Vec<(usize, [f64; 3])> = mesh
-        .faces()
-        .iter()
-        .enumerate()
-        .filter(|&(t, _)| dot(mesh.face_normal(t), to_eye) > 0.5)
-        .map(|(t, f)| {
+    let facing: Vec<(usize, [f64; 3])> = (0..mesh.face_count())
+        .filter(|&t| dot(mesh.face_normal(t), to_eye) > 0.5)
+        .map(|t| {
+            let centroid = mesh.face_centroid(t);
             (
                 t,
                 [
-                    dot(
-                        std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0),
-                        right,
-                    ),
-                    dot(
-                        std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0),
-                        up,
-                    ),
-                    dot(
-                        std::array::from_fn(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0),
-                        to_eye,
-                    ),
+                    dot(centroid, right),
+                    dot(centroid, up),
+                    dot(centroid, to_eye),
                 ],
             )
         })
@@ -81,20 +69,15 @@ mod tests {
 
     #[test]
     fn screen_points_pick_distinct_facing_faces_in_the_right_places() {
-        let mesh = torus(1.0, 0.4, 24, 12).unwrap();
+        let mesh = tvf_core::SurfaceMesh::from(torus(1.0, 0.4, 24, 12).unwrap());
         // Looking down the z axis (to_eye = +z): right = y × z = +x and up = z × x = +y.
         let to_eye = [0.0, 0.0, 1.0];
         let targets = [[-0.9, 0.0], [0.9, 0.0], [0.0, 0.9], [0.0, -0.9]];
         let faces = faces_at_screen_points(&mesh, to_eye, &targets);
         assert_eq!(faces.len(), 4);
-        let centroid = |t: usize| {
-            let f = mesh.faces()[t];
-            let p = mesh.positions();
-            std::array::from_fn::<f64, 3, _>(|k| (p[f[0]][k] + p[f[1]][k] + p[f[2]][k]) / 3.0)
-        };
         for (&t, target) in faces.iter().zip(&targets) {
             assert!(dot(mesh.face_normal(t), to_eye) > 0.5);
-            let c = centroid(t);
+            let c = mesh.face_centroid(t);
             assert!(
                 c[0] * target[0] >= 0.0 && c[1] * target[1] >= 0.0,
                 "face {t} at {c:?}"

@@ -18,7 +18,7 @@ use std::io::Write;
 use std::path::Path;
 
 use image::RgbaImage;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 use crate::error::{check_face_count, check_finite_scalars, check_finite_vectors, RenderError};
 
@@ -43,7 +43,7 @@ fn check_name(name: &str, format: &'static str) -> Result<(), RenderError> {
 }
 
 fn check_data(
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     data: &FaceData,
     format: &'static str,
 ) -> Result<(), RenderError> {

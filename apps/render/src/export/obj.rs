@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 use super::atomic::write_atomically;
 use crate::error::RenderError;
@@ -13,7 +13,7 @@ use crate::error::RenderError;
 /// `l` line (1-based indices). Polylines with fewer than two points are skipped.
 pub fn write_obj(
     path: &Path,
-    mesh: Option<&TriangleMesh>,
+    mesh: Option<&SurfaceMesh>,
     polylines: &[Vec<[f64; 3]>],
 ) -> Result<(), RenderError> {
     if let Some((i, _)) = polylines
@@ -33,8 +33,12 @@ pub fn write_obj(
             for p in mesh.positions() {
                 writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
             }
-            for f in mesh.faces() {
-                writeln!(w, "f {} {} {}", f[0] + 1, f[1] + 1, f[2] + 1)?;
+            for f in 0..mesh.face_count() {
+                write!(w, "f")?;
+                for v in mesh.face(f) {
+                    write!(w, " {}", v + 1)?;
+                }
+                writeln!(w)?;
             }
             offset += mesh.vertex_count();
         }

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 use super::atomic::write_atomically;
 use super::{check_data, FaceData};
@@ -13,7 +13,7 @@ use crate::error::RenderError;
 /// Writes `mesh` and `data` to `path` as ASCII PLY. Each face element carries
 /// `list uchar int vertex_indices`, then for every vector field `name` the double
 /// properties `name_x name_y name_z`, then one double property per scalar.
-pub fn write_ply(path: &Path, mesh: &TriangleMesh, data: &FaceData) -> Result<(), RenderError> {
+pub fn write_ply(path: &Path, mesh: &SurfaceMesh, data: &FaceData) -> Result<(), RenderError> {
     check_data(mesh, data, "PLY")?;
     write_atomically(path, |w| {
         writeln!(w, "ply")?;
@@ -24,7 +24,9 @@ pub fn write_ply(path: &Path, mesh: &TriangleMesh, data: &FaceData) -> Result<()
             writeln!(w, "property double {c}")?;
         }
         writeln!(w, "element face {}", mesh.face_count())?;
-        writeln!(w, "property list uchar int vertex_indices")?;
+        let wide = (0..mesh.face_count()).any(|f| mesh.face_size(f) > 255);
+        let count_type = if wide { "uint" } else { "uchar" };
+        writeln!(w, "property list {count_type} int vertex_indices")?;
         for (name, _) in &data.vectors {
             for c in ["x", "y", "z"] {
                 writeln!(w, "property double {name}_{c}")?;
@@ -37,8 +39,11 @@ pub fn write_ply(path: &Path, mesh: &TriangleMesh, data: &FaceData) -> Result<()
         for p in mesh.positions() {
             writeln!(w, "{} {} {}", p[0], p[1], p[2])?;
         }
-        for (t, f) in mesh.faces().iter().enumerate() {
-            write!(w, "3 {} {} {}", f[0], f[1], f[2])?;
+        for t in 0..mesh.face_count() {
+            write!(w, "{}", mesh.face_size(t))?;
+            for v in mesh.face(t) {
+                write!(w, " {v}")?;
+            }
             for (_, values) in &data.vectors {
                 let v = values[t];
                 write!(w, " {} {} {}", v[0], v[1], v[2])?;

@@ -4,7 +4,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 use super::atomic::write_atomically;
 use super::{check_data, FaceData};
@@ -14,7 +14,7 @@ use crate::error::RenderError;
 /// (`DATASET POLYDATA`, `POINTS V double`, `POLYGONS F 4F`, `CELL_DATA F` with one
 /// `VECTORS name double` per vector field and one `SCALARS name double 1` per scalar).
 /// Names must be non-empty and contain no whitespace.
-pub fn write_vtk(path: &Path, mesh: &TriangleMesh, data: &FaceData) -> Result<(), RenderError> {
+pub fn write_vtk(path: &Path, mesh: &SurfaceMesh, data: &FaceData) -> Result<(), RenderError> {
     check_data(mesh, data, "VTK")?;
     write_atomically(path, |w| {
         writeln!(w, "# vtk DataFile Version 3.0")?;
@@ -25,14 +25,19 @@ pub fn write_vtk(path: &Path, mesh: &TriangleMesh, data: &FaceData) -> Result<()
         for p in mesh.positions() {
             writeln!(w, "{} {} {}", p[0], p[1], p[2])?;
         }
+        let corners: usize = (0..mesh.face_count()).map(|f| mesh.face_size(f)).sum();
         writeln!(
             w,
             "POLYGONS {} {}",
             mesh.face_count(),
-            4 * mesh.face_count()
+            mesh.face_count() + corners
         )?;
-        for f in mesh.faces() {
-            writeln!(w, "3 {} {} {}", f[0], f[1], f[2])?;
+        for f in 0..mesh.face_count() {
+            write!(w, "{}", mesh.face_size(f))?;
+            for v in mesh.face(f) {
+                write!(w, " {v}")?;
+            }
+            writeln!(w)?;
         }
         if data.vectors.is_empty() && data.scalars.is_empty() {
             return Ok(());

@@ -5,14 +5,14 @@
 use crate::codec::compression_error::CompressionError;
 use crate::formats::compressed_file::TvfcHeader;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 impl TvfcHeader {
     /// Refuses a file made for another mesh (by fingerprint) or for fields of another size
     /// than those of `complex` on `mesh`.
     pub fn check_fits(
         &self,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         complex: &dyn HodgeComplex,
     ) -> Result<(), CompressionError> {
         let fingerprint = mesh.fingerprint();
@@ -63,7 +63,7 @@ mod tests {
             "{error}"
         );
         assert!(error.to_string().contains("whitney-galerkin"), "{error}");
-        let other = icosphere(1);
+        let other = SurfaceMesh::from(icosphere(1));
         let error = header.check_fits(&other, faces.as_ref()).unwrap_err();
         assert!(
             matches!(error, CompressionError::MeshMismatch { .. }),

@@ -8,7 +8,7 @@
 //! | 8 | magic `TVFBASIS` |
 //! | 4 | format version (`u32`, currently 3) |
 //! | 4 | header length `H` in bytes, from the magic to the payload (`u32`) |
-//! | 8 | mesh fingerprint ([`tvf_core::TriangleMesh::fingerprint`]) |
+//! | 8 | mesh fingerprint ([`tvf_core::SurfaceMesh::fingerprint`]) |
 //! | 8 × 6 | faces `F`, field dimension `n1` (`2F` for face fields, `E` for DEC 1-forms), fields `d`, harmonic `h`, integrable `a`, co-integrable `b` counts |
 //! | 8 × 3 | layout (`0` fields, `1` eigenfunctions), potential rows `n0`, co-potential rows `n2` (`0` for the fields layout) |
 //! | 8 × 6 | matrix hash of the complex ([`tvf_core::discretization::MatrixHash`]): the hashes of `d0`, `d1`, `M0`, `M1`, `M2` and of the fixed nodes |

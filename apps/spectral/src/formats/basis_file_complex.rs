@@ -8,7 +8,7 @@ use crate::{load_basis, read_basis_header, BasisFileError, BasisFileKey, Spectra
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::TriangleMesh;
+use tvf_core::mesh::Mesh;
 use tvf_discretizations::{split_complex_id, BoxedComplex, Catalog, CatalogBuildError};
 
 /// Why a basis file cannot be used on a mesh (every variant names the file).
@@ -93,10 +93,10 @@ pub fn basis_file_complex_id(
 
 /// The complex a basis file was computed for, built on `mesh` by the entry of `catalog` its
 /// stored id names (see [`basis_file_complex_id`] for `entry` and `boundary`).
-pub fn basis_file_complex(
+pub fn basis_file_complex<M: Mesh>(
     catalog: &Catalog,
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &M,
     entry: Option<&str>,
     boundary: Option<BoundaryCondition>,
 ) -> Result<BoxedComplex, BasisFileUseError> {
@@ -114,10 +114,10 @@ pub fn basis_file_complex(
 /// basis, checked to belong to the mesh and the complex — for a file of format version 3 to the
 /// complex's matrices too ([`BasisFileError::WrongMatrices`] otherwise; earlier files carry no
 /// matrix hash, see [`crate::formats::basis_file`]).
-pub fn open_basis_file(
+pub fn open_basis_file<M: Mesh>(
     catalog: &Catalog,
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &M,
     entry: Option<&str>,
     boundary: Option<BoundaryCondition>,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
@@ -128,9 +128,9 @@ pub fn open_basis_file(
 /// Reads the basis file `path` for `complex` on `mesh`: checked to belong to the mesh, to the
 /// complex's id and, for a file of format version 3, to its matrices
 /// ([`BasisFileError::WrongMatrices`] names the matrices that differ).
-pub fn open_basis_file_with(
+pub fn open_basis_file_with<M: Mesh + ?Sized>(
     path: &Path,
-    mesh: &TriangleMesh,
+    mesh: &M,
     complex: BoxedComplex,
 ) -> Result<(BoxedComplex, SpectralBasis), BasisFileUseError> {
     let basis = load_basis(

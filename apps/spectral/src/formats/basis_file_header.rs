@@ -7,14 +7,15 @@ use super::basis_file_mass::StoredFieldMass;
 use std::io::Read;
 use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, MatrixHash};
-use tvf_core::{Hash64, TriangleMesh};
+use tvf_core::mesh::Mesh;
+use tvf_core::Hash64;
 
 /// What a basis file must match to be used: the discretization, its matrices and the mesh.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct BasisFileKey {
     /// The catalog id of the discretization, [`HodgeComplex::id`] (names the mass lumping too).
     pub discretization: String,
-    /// [`TriangleMesh::fingerprint`](tvf_core::TriangleMesh::fingerprint) of the mesh.
+    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
     pub mesh_fingerprint: u64,
     /// Faces of the mesh.
     pub face_count: usize,
@@ -27,7 +28,7 @@ pub struct BasisFileKey {
 
 impl BasisFileKey {
     /// The key of a basis computed for `complex` on `mesh`.
-    pub fn new<H: HodgeComplex + ?Sized>(mesh: &TriangleMesh, complex: &H) -> Self {
+    pub fn new<M: Mesh + ?Sized, H: HodgeComplex + ?Sized>(mesh: &M, complex: &H) -> Self {
         Self {
             discretization: complex.id().to_string(),
             mesh_fingerprint: mesh.fingerprint(),

@@ -23,7 +23,7 @@ use thiserror::Error;
 use tvf_core::discretization::{
     BoundaryCondition, DiscretizationError, HodgeComplex, Mass, MassForm,
 };
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::{ComplexMatrices, FixedNodes, MatrixComplex, MatrixSampling};
 
 /// The id of a complex read from a folder (with `+tangential` / `+normal` on a mesh with
@@ -49,7 +49,7 @@ pub struct ComplexFolderError {
 /// one; `info.json`'s `mesh_fingerprint` is checked against `mesh`).
 pub fn read_complex_folder(
     dir: &Path,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     original_vertex: &[usize],
 ) -> Result<MatrixComplex, ComplexFolderError> {
     let folder = Folder::open(dir, mesh)?;
@@ -212,7 +212,7 @@ impl Folder {
     /// Checks `mesh_fingerprint` and `vertex_map.npy` against the mesh given.
     fn check_mesh(
         &self,
-        mesh: &TriangleMesh,
+        mesh: &SurfaceMesh,
         original_vertex: &[usize],
     ) -> Result<(), ComplexFolderError> {
         if let Some(stored) = self.string("mesh_fingerprint")? {

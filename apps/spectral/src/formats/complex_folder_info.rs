@@ -6,7 +6,7 @@
 use serde_json::{json, Map, Value};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, Mass, MassForm, NodeKind, NodeSpace};
 use tvf_core::mesh::ValidationReport;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 use tvf_discretizations::MatrixSampling;
 
 /// How the matrices of a complex folder are stored.
@@ -62,7 +62,7 @@ pub fn sampling_of(complex: &dyn HodgeComplex) -> MatrixSampling {
 /// `report`): `not_written` lists the derived matrices left out and why.
 pub fn complex_folder_info(
     complex: &dyn HodgeComplex,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     report: &ValidationReport,
     format: MatrixFileFormat,
     not_written: Map<String, Value>,

@@ -13,14 +13,14 @@ use std::io::Write;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::io::StagedFolder;
 use tvf_core::mesh::ValidationReport;
-use tvf_core::TriangleMesh;
+use tvf_core::SurfaceMesh;
 
 /// Writes every file of the complex folder of `complex` on `mesh` (loaded with `report`) into
 /// the staged `folder`, the matrices in `format`; returns the number of matrix files. Errors
 /// name the file in the output folder.
 pub fn write_complex_folder(
     complex: &dyn HodgeComplex,
-    mesh: &TriangleMesh,
+    mesh: &SurfaceMesh,
     report: &ValidationReport,
     format: MatrixFileFormat,
     folder: &StagedFolder,
@@ -103,13 +103,17 @@ mod tests {
     use super::*;
     use crate::formats::complex_folder::read_complex_folder;
     use tvf_core::generate::torus;
+    use tvf_core::FaceList;
     use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
 
     #[test]
     fn a_written_folder_lists_its_files_and_reads_back() {
         let raw = torus(1.0, 0.4, 12, 6).unwrap();
-        let (mesh, report) =
-            TriangleMesh::validated(raw.positions().to_vec(), raw.faces().to_vec()).unwrap();
+        let (mesh, report) = SurfaceMesh::validated(
+            raw.positions().to_vec(),
+            FaceList::from_triangles(raw.faces()),
+        )
+        .unwrap();
         let complex = catalog_entry(DEFAULT_DISCRETIZATION)
             .unwrap()
             .build(&mesh)

@@ -1,0 +1,149 @@
+//! End-to-end: `tvf check` on a mesh file (text and JSON, measured numbers, exit 1 naming the
+//! failed check) and on generated meshes.
+
+use crate::common::{self, assert_success};
+use serde_json::Value;
+use std::process::{Command, Output};
+
+fn tvf(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_tvf"))
+        .args(args)
+        .output()
+        .expect("the tvf binary runs")
+}
+
+fn quad_torus(dir: &std::path::Path) -> String {
+    let path = dir.join("torus.obj");
+    let mesh = tvf_core::generate::torus(1.0, 0.4, 8, 5).unwrap();
+    tvf_core::io::write_obj(&path, &mesh).unwrap();
+    path.display().to_string()
+}
+
+#[test]
+fn a_mesh_file_gets_every_check_with_its_measured_number() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = quad_torus(dir.path());
+    let output = tvf(&[
+        "check",
+        &mesh,
+        "--discretization",
+        "conforming-barycentric",
+        "--json",
+    ]);
+    assert_success(&output);
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["passed"], true);
+    let checks = report["checks"].as_array().unwrap();
+    let named = |name: &str| checks.iter().find(|c| c["name"] == name).cloned();
+    let j2 = named("rotation:J_squared").expect("a reference check of the entry");
+    assert_eq!(j2["measured"], 0.0);
+    let d1d0 = named("d1_d0_zero").expect("a core check");
+    assert!(d1d0["measured"].as_f64().unwrap() <= d1d0["limit"].as_f64().unwrap());
+    let text = tvf(&["check", &mesh, "--discretization", "conforming-barycentric"]);
+    assert_success(&text);
+    assert!(String::from_utf8_lossy(&text.stdout).contains("cotan_formula:potential"));
+}
+
+#[test]
+fn a_refused_mesh_exits_1_naming_the_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = quad_torus(dir.path());
+    let output = tvf(&["check", &mesh, "--discretization", "dec-barycentric"]);
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("failed checks: construction"), "{stderr}");
+}
+
+#[test]
+fn generated_meshes_pass_and_write_no_counterexample() {
+    let dir = tempfile::tempdir().unwrap();
+    let counterexample = dir.path().join("ce.obj");
+    let output = tvf(&[
+        "check",
+        "--discretization",
+        "dec-circumcentric",
+        "--cases",
+        "3",
+        "--seed",
+        "5",
+        "--json",
+        "-q",
+        "-o",
+        counterexample.to_str().unwrap(),
+    ]);
+    assert_success(&output);
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["cases_passed"], 3);
+    assert_eq!(report["passed"], true);
+    assert!(!counterexample.exists());
+}
+
+/// Arguments that make a generated run meaningless or lose its result are refused before any
+/// mesh is checked: `--cases 0` (once "passed" with exit 0), a counterexample path in a missing
+/// folder or naming a folder (once found out only when a failure was to be written).
+#[test]
+fn cases_and_the_counterexample_path_are_checked_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().display().to_string();
+    let missing = dir.path().join("no/x.obj").display().to_string();
+    for (args, said) in [
+        (vec!["--cases", "0"], "--cases 0"),
+        (vec!["--cases", "64", "-o", &missing], "does not exist"),
+        (vec!["--cases", "64", "-o", &folder], "is a folder"),
+    ] {
+        let output = common::output_within(
+            Command::new(env!("CARGO_BIN_EXE_tvf"))
+                .args(["check", "--discretization", "conforming-barycentric"])
+                .args(&args),
+            30,
+        );
+        assert_eq!(output.status.code(), Some(1), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains(said), "{args:?}: {stderr}");
+        assert!(!stderr.contains("meshes passed"), "{args:?} ran: {stderr}");
+    }
+}
+
+/// A complex whose eigenvalues cannot be computed (a field mass of denormal entries, `1e-310`:
+/// the scaled pencil overflows) fails its spectral checks with a sentence, not a caught panic
+/// and its backtrace.
+#[test]
+fn a_check_that_cannot_be_computed_fails_with_a_sentence() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = quad_torus(dir.path());
+    let ops = dir.path().join("ops");
+    let ops_text = ops.display().to_string();
+    assert_success(&tvf(&["operators", &mesh, "-o", &ops_text]));
+    let m1 = ops.join("M1.mtx");
+    let text = std::fs::read_to_string(&m1).unwrap();
+    let mut size_seen = false;
+    let scaled: Vec<String> = text
+        .lines()
+        .map(|line| {
+            if line.starts_with('%') || !size_seen {
+                size_seen |= !line.starts_with('%');
+                return line.to_string();
+            }
+            let words: Vec<&str> = line.split_whitespace().collect();
+            let value: f64 = words[2].parse().unwrap();
+            format!("{} {} {:e}", words[0], words[1], value * 1e-310)
+        })
+        .collect();
+    std::fs::write(&m1, scaled.join("\n") + "\n").unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
+        .args(["check", &mesh, "--complex", &ops_text])
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr),
+    );
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("backtrace"),
+        "{stderr}"
+    );
+    assert!(stdout.contains("cannot be computed"), "{stdout}");
+    assert!(stderr.contains("failed checks"), "{stderr}");
+}
