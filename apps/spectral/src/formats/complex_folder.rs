@@ -151,7 +151,7 @@ struct Folder {
 }
 
 impl Folder {
-    fn open(dir: &Path, mesh: &TriangleMesh) -> Result<Self, ComplexFolderError> {
+    fn open(dir: &Path, mesh: &SurfaceMesh) -> Result<Self, ComplexFolderError> {
         if !dir.is_dir() {
             return Err(error(
                 dir,
