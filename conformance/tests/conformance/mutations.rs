@@ -220,7 +220,7 @@ fn with_wrong_m0(mesh: &TriangleMesh) -> Result<BoxedComplex, String> {
     m0[0] *= 2.0;
     let mutant = MatrixComplex::new(
         "mutant",
-        mesh,
+        &mesh.clone().into(),
         c.d0().clone(),
         c.d1().clone(),
         Mass::diagonal("M0", m0).map_err(|e| e.to_string())?,
