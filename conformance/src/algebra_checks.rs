@@ -128,7 +128,13 @@ pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcom
 /// free nodes, e.g. P1 co-potentials zero on the boundary of a mesh without interior vertices)
 /// passes with nothing measured.
 pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
-    let eigenvalues = generalized_eigenvalues(a, mass);
+    let eigenvalues = match generalized_eigenvalues(a, mass) {
+        Ok(eigenvalues) => eigenvalues,
+        Err(reason) => {
+            let detail = format!("{what}: the eigenvalues cannot be computed: {reason}");
+            return CheckOutcome::failed(format!("positive semi-definite: {what}"), detail);
+        }
+    };
     if eigenvalues.is_empty() {
         let detail = format!("{what}: no free nodes, no eigenvalues");
         return CheckOutcome::at_most(format!("positive semi-definite: {what}"), 0.0, 0.0, detail);

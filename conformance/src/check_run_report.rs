@@ -97,7 +97,7 @@ pub struct PropertyRunReport {
 }
 
 /// The minimal failing mesh of a property run, written as OBJ. Serialized as `path`, `faces`,
-/// `description`, `reproduce` and `checks`.
+/// `description`, `reproduce`, `checks` and `reproduced`.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CounterexampleReport {
     /// Where the mesh is written.
@@ -108,8 +108,11 @@ pub struct CounterexampleReport {
     pub description: String,
     /// The command line that checks the written mesh again.
     pub reproduce: String,
-    /// Every outcome on the mesh.
+    /// Every outcome on the mesh, as measured in the run that failed.
     pub checks: Vec<CheckOutcome>,
+    /// Whether checking the mesh once more failed again (`false`: a non-deterministic failure,
+    /// the builder's or a check's result changes from call to call).
+    pub reproduced: bool,
 }
 
 impl PropertyRunReport {
@@ -138,6 +141,7 @@ impl PropertyRunReport {
                     counterexample.display()
                 ),
                 checks: failing.report.outcomes.clone(),
+                reproduced: failing.reproduced,
             }),
             failed: failing.map(|failing| failure_names(&failing.report)),
             aborted: outcome.aborted.clone(),
@@ -179,6 +183,14 @@ impl PropertyRunReport {
                 counterexample.path, counterexample.reproduce
             ),
         ];
+        if !counterexample.reproduced {
+            lines.push(
+                "  non-deterministic: checked once more, this mesh passed; the failure below is \
+                 from the run that failed (a builder or check whose result changes from call to \
+                 call)"
+                    .to_string(),
+            );
+        }
         lines.extend(outcome_lines(&counterexample.checks));
         lines
     }
@@ -325,6 +337,7 @@ mod tests {
             report: CheckReport {
                 outcomes: outcomes(),
             },
+            reproduced: false,
         };
         let outcome = PropertyReport {
             cases_passed: 3,
@@ -340,8 +353,13 @@ mod tests {
         let counterexample = report.counterexample_lines();
         assert_eq!(counterexample[0], "minimal failing mesh (20 faces): tiny");
         assert!(counterexample[1].ends_with("tvf check ce.obj --discretization mine"));
+        assert!(
+            counterexample[2].contains("non-deterministic"),
+            "{counterexample:?}"
+        );
         let keys = serde_json::to_value(&report).unwrap();
         assert_eq!(keys["counterexample"]["faces"], 20);
+        assert_eq!(keys["counterexample"]["reproduced"], false);
         assert_eq!(keys["failed"], serde_json::json!(["construction"]));
         assert!(report.abort_message().is_none());
         let passing = PropertyReport {

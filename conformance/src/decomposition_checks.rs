@@ -3,7 +3,7 @@
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
 use crate::corpus::CorpusMesh;
 use crate::dense::split_zeros;
-use crate::spectral_checks::hodge_spectrum;
+use crate::spectral_checks::measured_hodge_spectrum;
 use faer::{Mat, Side};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -210,7 +210,13 @@ pub fn measure_kernel_dimension_dense<H: HodgeComplex + ?Sized>(
     complex: &H,
     harmonic_dimension: usize,
 ) -> CheckOutcome {
-    let eigenvalues = hodge_spectrum(complex);
+    let eigenvalues = match measured_hodge_spectrum(complex) {
+        Ok(eigenvalues) => eigenvalues,
+        Err(reason) => {
+            let detail = format!("the spectrum of L cannot be computed: {reason}");
+            return CheckOutcome::failed("kernel dimension", detail);
+        }
+    };
     let (zeros, _) = split_zeros(&eigenvalues, 1e-9);
     CheckOutcome::count(
         "kernel dimension",

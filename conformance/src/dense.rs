@@ -83,16 +83,19 @@ fn pick(a: &Mat<f64>, keep: &[usize]) -> Mat<f64> {
 
 /// The symmetric matrix `C` with the eigenvalues of `(A, M)`, and how to map its eigenvectors
 /// back: `D^{-1/2} A D^{-1/2}` for a diagonal `M = D` (`D > 0`), `L⁻¹ A L⁻ᵀ` with the Cholesky
-/// factor `M = L Lᵀ` of a full one. Panics if `M` is not positive definite.
-fn transformed(a: &Mat<f64>, mass: &DenseMass) -> (Mat<f64>, Back) {
+/// factor `M = L Lᵀ` of a full one. An error if `M` is not positive definite or the transformed
+/// matrix is not finite (a mass so small, e.g. `1e-310`, that `1/√m` overflows).
+fn transformed(a: &Mat<f64>, mass: &DenseMass) -> Result<(Mat<f64>, Back), String> {
     let n = a.nrows();
     assert_eq!(mass.len(), n, "one mass row per row");
-    match mass {
+    let (c, back) = match mass {
         DenseMass::Diagonal(values) => {
-            assert!(
-                values.iter().all(|&m| m > 0.0),
-                "dense eigenproblems need a positive mass"
-            );
+            if let Some(i) = values.iter().position(|&m| m.is_nan() || m <= 0.0) {
+                return Err(format!(
+                    "the mass is not positive (entry {i} is {})",
+                    values[i]
+                ));
+            }
             let scale: Vec<f64> = values.iter().map(|m| 1.0 / m.sqrt()).collect();
             let c = Mat::from_fn(n, n, |i, j| a[(i, j)] * scale[i] * scale[j]);
             (c, Back::Scale(scale))
@@ -101,7 +104,7 @@ fn transformed(a: &Mat<f64>, mass: &DenseMass) -> (Mat<f64>, Back) {
             let symmetric = Mat::from_fn(n, n, |i, j| 0.5 * (m[(i, j)] + m[(j, i)]));
             let llt = symmetric
                 .llt(Side::Lower)
-                .expect("dense eigenproblems need a positive definite mass");
+                .map_err(|_| "the mass is not positive definite (no Cholesky factor)")?;
             let l = llt.L().to_owned();
             let mut y = a.clone();
             solve_lower_triangular_in_place(l.as_ref(), y.as_mut(), Par::Seq);
@@ -110,7 +113,17 @@ fn transformed(a: &Mat<f64>, mass: &DenseMass) -> (Mat<f64>, Back) {
             let c = Mat::from_fn(n, n, |i, j| 0.5 * (c[(i, j)] + c[(j, i)]));
             (c, Back::Cholesky(l))
         }
+    };
+    if c.col_iter()
+        .any(|column| column.iter().any(|x| !x.is_finite()))
+    {
+        return Err(
+            "the pencil scaled by the mass is not finite (a mass entry so small, or a stiffness \
+             entry so large, that the ratio overflows)"
+                .into(),
+        );
     }
+    Ok((c, back))
 }
 
 /// How eigenvectors of the transformed problem map back to those of `(A, M)`.
@@ -122,21 +135,26 @@ enum Back {
 }
 
 /// Eigenvalues (ascending) of the generalized problem `A x = λ M x`, `A` symmetric (`n × n`) and
-/// `M` positive definite, from the symmetric transformed problem (its lower triangle).
-pub fn generalized_eigenvalues(a: &Mat<f64>, mass: &DenseMass) -> Vec<f64> {
-    transformed(a, mass)
+/// `M` positive definite, from the symmetric transformed problem (its lower triangle); an error
+/// saying why they cannot be computed (a mass that is not positive definite, an overflow, no
+/// convergence).
+pub fn generalized_eigenvalues(a: &Mat<f64>, mass: &DenseMass) -> Result<Vec<f64>, String> {
+    transformed(a, mass)?
         .0
         .self_adjoint_eigenvalues(Side::Lower)
-        .expect("dense symmetric eigenvalues converge")
+        .map_err(|e| format!("the dense eigensolver did not converge ({e:?})"))
 }
 
 /// All eigenpairs of `A x = λ M x`, ascending: `(λ, X)` with the columns of `X` (`n × n`)
 /// `M`-orthonormal, from [`symmetric_eigen`] on the transformed problem (every pair with a
-/// round-off residual: faer's divide and conquer alone misses it on some close pairs).
-pub fn generalized_eigenpairs(a: &Mat<f64>, mass: &DenseMass) -> (Vec<f64>, Mat<f64>) {
-    let (c, back) = transformed(a, mass);
-    let (values, mut vectors) =
-        symmetric_eigen(c.as_ref()).expect("dense symmetric eigendecomposition converges");
+/// round-off residual: faer's divide and conquer alone misses it on some close pairs); an error
+/// as for [`generalized_eigenvalues`].
+pub fn generalized_eigenpairs(
+    a: &Mat<f64>,
+    mass: &DenseMass,
+) -> Result<(Vec<f64>, Mat<f64>), String> {
+    let (c, back) = transformed(a, mass)?;
+    let (values, mut vectors) = symmetric_eigen(c.as_ref()).map_err(|e| e.to_string())?;
     match back {
         Back::Scale(scale) => {
             for j in 0..vectors.ncols() {
@@ -149,7 +167,7 @@ pub fn generalized_eigenpairs(a: &Mat<f64>, mass: &DenseMass) -> (Vec<f64>, Mat<
             solve_upper_triangular_in_place(l.transpose(), vectors.as_mut(), Par::Seq)
         }
     }
-    (values, vectors)
+    Ok((values, vectors))
 }
 
 /// Splits ascending eigenvalues into (count of those `≤ tolerance · max`, the rest).
@@ -222,7 +240,7 @@ mod tests {
         let DenseMass::Diagonal(m) = &mass else {
             panic!("the Voronoi co-exact mass is diagonal")
         };
-        let (values, x) = generalized_eigenpairs(&a, &mass);
+        let (values, x) = generalized_eigenpairs(&a, &mass).unwrap();
         let max = values.last().copied().unwrap_or(0.0);
         let ax = &a * &x;
         for (k, lambda) in values.iter().enumerate() {
@@ -235,5 +253,25 @@ mod tests {
                 "pair {k} (λ = {lambda}): residual {residual:e}, λ_max {max}"
             );
         }
+    }
+
+    /// A mass of denormal entries (`1e-310`) overflows the scaled pencil: an error that says so,
+    /// not a panic (`tvf check` once printed a backtrace).
+    #[test]
+    fn an_overflowing_pencil_is_an_error() {
+        let a = Mat::from_fn(3, 3, |i, j| if i == j { 2.0 } else { -0.5 });
+        let tiny = DenseMass::Diagonal(vec![1e-310; 3]);
+        let message = generalized_eigenvalues(&a, &tiny).unwrap_err();
+        assert!(message.contains("not finite"), "{message}");
+        assert!(generalized_eigenpairs(&a, &tiny).is_err());
+        let negative = DenseMass::Diagonal(vec![1.0, -1.0, 1.0]);
+        let message = generalized_eigenvalues(&a, &negative).unwrap_err();
+        assert!(message.contains("entry 1"), "{message}");
+        assert_eq!(
+            generalized_eigenvalues(&a, &DenseMass::Diagonal(vec![1.0; 3]))
+                .unwrap()
+                .len(),
+            3
+        );
     }
 }

@@ -1,7 +1,13 @@
 //! The property runner: the core checks (and a catalog entry's measured reference checks) on one
 //! mesh ([`check_mesh`]) or on `N` meshes drawn from [`crate::strategies`] ([`run_property`]),
 //! with proptest's [`TestRunner`] on a fixed seed; on a failure, proptest shrinks the mesh
-//! description and the report holds the minimal failing mesh with its measured numbers.
+//! description and the report holds the minimal failing mesh with its measured numbers — the
+//! numbers of the run that failed, and whether the failure came back when that mesh was checked
+//! again (a builder whose result changes from call to call fails without reproducing).
+//!
+//! A builder or a check stops the whole run at once by unwinding with [`StopRun`] (the Python
+//! package does on Ctrl+C): the runner passes it on to its caller instead of counting a failed
+//! case.
 
 use crate::check_outcome::{CheckOutcome, CheckStatus};
 use crate::check_report::{core_check_report, CheckReport};
@@ -33,11 +39,17 @@ pub const CONSTRUCTION: &str = "construction";
 /// Name of the outcome reporting that the builder or a check panicked (its message the detail).
 pub const PANIC: &str = "panic";
 
+/// The payload a builder or a check unwinds with (`std::panic::resume_unwind(Box::new(StopRun))`)
+/// to stop a run at once — the user interrupted it: [`check_mesh`] and [`run_property`] pass it
+/// on to their caller (which catches it) instead of reporting a failed check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StopRun;
+
 /// Runs the core checks ([`core_check_report`]) and, on a closed mesh, the measured `reference`
 /// checks ([`measure_reference`]; the test suite runs them on closed meshes only, the stiffness
 /// formulas know no boundary conditions) on the complex `builder` makes of `mesh`. A refused mesh
 /// is one failed outcome named [`CONSTRUCTION`], a panic of the builder or of a check one named
-/// [`PANIC`].
+/// [`PANIC`]; [`StopRun`] unwinds on to the caller.
 pub fn check_mesh(
     builder: Builder,
     mesh: &TriangleMesh,
@@ -78,6 +90,9 @@ fn refusal(error: String) -> CheckReport {
 fn guarded(checks: impl FnOnce() -> CheckReport) -> CheckReport {
     let checked = std::panic::catch_unwind(AssertUnwindSafe(checks));
     checked.unwrap_or_else(|payload| {
+        if payload.is::<StopRun>() {
+            std::panic::resume_unwind(payload);
+        }
         let message = payload
             .downcast_ref::<String>()
             .cloned()
@@ -166,8 +181,11 @@ pub struct Counterexample<Spec = MeshSpec, M = TriangleMesh> {
     pub spec: Spec,
     /// The mesh.
     pub mesh: CorpusMesh<M>,
-    /// Every check measured on it (at least one failed).
+    /// Every check measured on it in the run that failed (at least one failed).
     pub report: CheckReport,
+    /// Whether it failed again when checked once more; `false`: the failure does not reproduce
+    /// (a builder or a check whose result changes from call to call), still a failure.
+    pub reproduced: bool,
 }
 
 /// The result of [`run_property`] (and of [`run_polygon_property`], on polygon meshes).
@@ -193,8 +211,11 @@ impl<Spec, M> PropertyReport<Spec, M> {
 
 /// Runs `check_mesh(builder, mesh, request.reference)` on `request.cases` meshes drawn from
 /// [`mesh_specs`]`(request.needs)` with a [`TestRunner`] seeded by `request.seed`; on a failure,
-/// proptest shrinks the description and the report holds the minimal failing mesh.
-/// `progress` is called after each case and each shrinking step.
+/// proptest shrinks the description and the report holds the minimal failing mesh, with the
+/// numbers of its failing run and whether a second check reproduced the failure.
+/// `progress` is called after each case and each shrinking step. A [`StopRun`] from the builder
+/// or a check ends the run (the remaining cases and shrinking steps pass at once) and unwinds
+/// on to the caller.
 pub fn run_property(
     builder: Builder,
     request: &PropertyRequest,
@@ -233,7 +254,7 @@ type SpecBuild<Spec, M> = dyn Fn(&Spec) -> Result<CorpusMesh<M>, String>;
 
 /// The property run shared by triangle and polygon meshes: `check` on the meshes `build` makes
 /// of descriptions drawn from `strategy`, shrinking a failure.
-fn run_specs<Spec: Clone + Debug, M>(
+fn run_specs<Spec: Clone + Debug + PartialEq, M>(
     strategy: BoxedStrategy<Spec>,
     build: &SpecBuild<Spec, M>,
     check: &dyn Fn(&M) -> CheckReport,
@@ -251,10 +272,21 @@ fn run_specs<Spec: Clone + Debug, M>(
     seed[..8].copy_from_slice(&request.seed.to_le_bytes());
     let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &seed);
     let mut runner = TestRunner::new_with_rng(config, rng);
-    let state = RefCell::new(RunState::default());
+    let state = RefCell::new(RunState::<Spec, M>::default());
     let result = runner.run(&strategy, |spec| {
+        if state.borrow().stopped {
+            return Ok(());
+        }
         let mesh = build(&spec).map_err(TestCaseError::reject)?;
-        let report = check(&mesh.mesh);
+        let checked = std::panic::catch_unwind(AssertUnwindSafe(|| check(&mesh.mesh)));
+        let report = match checked {
+            Ok(report) => report,
+            Err(payload) if payload.is::<StopRun>() => {
+                state.borrow_mut().stopped = true;
+                return Ok(());
+            }
+            Err(payload) => std::panic::resume_unwind(payload),
+        };
         let mut state = state.borrow_mut();
         if state.shrinking {
             state.shrink_steps += 1;
@@ -273,17 +305,19 @@ fn run_specs<Spec: Clone + Debug, M>(
             Ok(())
         } else {
             let failed: Vec<String> = report.failures().iter().map(|o| o.name.clone()).collect();
+            state.last_failure = Some((spec, mesh, report));
             Err(TestCaseError::fail(failed.join(", ")))
         }
     });
-    let state = state.into_inner();
+    let mut state = state.into_inner();
+    if state.stopped {
+        std::panic::resume_unwind(Box::new(StopRun));
+    }
     let (counterexample, aborted) = match result {
         Ok(()) => (None, None),
         Err(TestError::Fail(_, spec)) => {
-            // Re-measured: proptest keeps only the description.
-            let mesh = build(&spec).expect("a description that failed was built before");
-            let report = check(&mesh.mesh);
-            (Some(Counterexample { spec, mesh, report }), None)
+            let last = state.last_failure.take();
+            (Some(counterexample(build, check, spec, last)), None)
         }
         Err(TestError::Abort(reason)) => (None, Some(reason.to_string())),
     };
@@ -295,16 +329,65 @@ fn run_specs<Spec: Clone + Debug, M>(
     }
 }
 
+/// The counterexample of the shrunk description `spec`: the numbers of its failing run (`last`,
+/// the last failure the runner saw, which is the shrunk one), checked once more to tell whether
+/// the failure reproduces. Without them (never expected) it is measured again.
+fn counterexample<Spec: PartialEq, M>(
+    build: &SpecBuild<Spec, M>,
+    check: &dyn Fn(&M) -> CheckReport,
+    spec: Spec,
+    last: Option<(Spec, CorpusMesh<M>, CheckReport)>,
+) -> Counterexample<Spec, M> {
+    match last.filter(|(failed, _, _)| *failed == spec) {
+        Some((spec, mesh, report)) => {
+            let reproduced = !check(&mesh.mesh).passed();
+            Counterexample {
+                spec,
+                mesh,
+                report,
+                reproduced,
+            }
+        }
+        None => {
+            let mesh = build(&spec).expect("a description that failed was built before");
+            let report = check(&mesh.mesh);
+            let reproduced = !report.passed();
+            Counterexample {
+                spec,
+                mesh,
+                report,
+                reproduced,
+            }
+        }
+    }
+}
+
 /// What the test closure of [`run_property`] accumulates.
-#[derive(Default)]
-struct RunState {
+struct RunState<Spec, M> {
     cases_passed: u32,
     shrinking: bool,
     shrink_steps: u32,
     worst: BTreeMap<String, CheckOutcome>,
+    /// The last failing case: its description, mesh and report.
+    last_failure: Option<(Spec, CorpusMesh<M>, CheckReport)>,
+    /// A builder or check stopped the run ([`StopRun`]).
+    stopped: bool,
 }
 
-impl RunState {
+impl<Spec, M> Default for RunState<Spec, M> {
+    fn default() -> Self {
+        Self {
+            cases_passed: 0,
+            shrinking: false,
+            shrink_steps: 0,
+            worst: BTreeMap::new(),
+            last_failure: None,
+            stopped: false,
+        }
+    }
+}
+
+impl<Spec, M> RunState<Spec, M> {
     /// Counts a passing case and keeps, per check, its worst outcome.
     fn record(&mut self, report: &CheckReport) {
         self.cases_passed += 1;

@@ -16,7 +16,13 @@ const ZERO: f64 = 1e-9;
 /// The spectrum of `L`, ascending: the generalized eigenvalues of the symmetric-definite pencil
 /// `(S, M1)` (dense) on the free field nodes (every field node unless the complex fixes some,
 /// as relative forms fix boundary edges).
+/// Panics if it cannot be computed (the suite's use; [`measured_hodge_spectrum`] says why).
 pub fn hodge_spectrum<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<f64> {
+    measured_hodge_spectrum(complex).unwrap_or_else(|e| panic!("the spectrum of L: {e}"))
+}
+
+/// [`hodge_spectrum`], or why it cannot be computed.
+pub fn measured_hodge_spectrum<H: HodgeComplex + ?Sized>(complex: &H) -> Result<Vec<f64>, String> {
     let (s, m, _) = hodge_pencil(complex);
     generalized_eigenvalues(&s, &m)
 }
@@ -29,15 +35,28 @@ pub fn measure_spectrum_union<H: HodgeComplex + ?Sized>(
     complex: &H,
     harmonic_dimension: usize,
 ) -> Vec<CheckOutcome> {
-    let (l_zeros, l_rest) = split_zeros(&hodge_spectrum(complex), ZERO);
     let exact = complex.exact_eigenproblem();
     let co_exact = complex.co_exact_eigenproblem();
     let (potential_nodes, co_potential_nodes) =
         (complex.potential_nodes(), complex.co_potential_nodes());
-    let (a, m, _) = free_eigenproblem(&exact, potential_nodes);
-    let (e_zeros, e_rest) = split_zeros(&generalized_eigenvalues(&a, &m), ZERO);
-    let (a, m, _) = free_eigenproblem(&co_exact, co_potential_nodes);
-    let (c_zeros, c_rest) = split_zeros(&generalized_eigenvalues(&a, &m), ZERO);
+    let spectra = || -> Result<_, String> {
+        let l = measured_hodge_spectrum(complex).map_err(|e| format!("L: {e}"))?;
+        let (a, m, _) = free_eigenproblem(&exact, potential_nodes);
+        let e = generalized_eigenvalues(&a, &m).map_err(|e| format!("the exact pair: {e}"))?;
+        let (a, m, _) = free_eigenproblem(&co_exact, co_potential_nodes);
+        let c = generalized_eigenvalues(&a, &m).map_err(|e| format!("the co-exact pair: {e}"))?;
+        Ok((l, e, c))
+    };
+    let (l, e, c) = match spectra() {
+        Ok(spectra) => spectra,
+        Err(reason) => {
+            let detail = format!("the spectra cannot be computed: {reason}");
+            return vec![CheckOutcome::failed("spectrum union", detail)];
+        }
+    };
+    let (l_zeros, l_rest) = split_zeros(&l, ZERO);
+    let (e_zeros, e_rest) = split_zeros(&e, ZERO);
+    let (c_zeros, c_rest) = split_zeros(&c, ZERO);
     let mut outcomes = vec![
         CheckOutcome::count(
             "zeros of L",
@@ -109,8 +128,17 @@ pub fn check_spectrum_union<H: HodgeComplex + ?Sized, M>(complex: &H, mesh: &Cor
 
 /// The eigenfields of Lemma 1 with their eigenvalues: `d0 φ / √λ` for the nonzero eigenpairs
 /// `(λ, φ)` of the exact pair, then `−M1⁻¹ d1ᵀ ψ / √μ` for those `(μ, ψ)` of the co-exact pair
-/// (dense; `M0`- and `M2⁻¹`-orthonormal `φ`, `ψ`).
+/// (dense; `M0`- and `M2⁻¹`-orthonormal `φ`, `ψ`); panics if they cannot be computed (the
+/// suite's use; [`measured_lemma1_eigenfields`] says why).
 pub fn lemma1_eigenfields<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<(f64, Vec<f64>)> {
+    measured_lemma1_eigenfields(complex)
+        .unwrap_or_else(|e| panic!("the eigenfields of Lemma 1: {e}"))
+}
+
+/// [`lemma1_eigenfields`], or why they cannot be computed.
+pub fn measured_lemma1_eigenfields<H: HodgeComplex + ?Sized>(
+    complex: &H,
+) -> Result<Vec<(f64, Vec<f64>)>, String> {
     let mut fields = Vec::new();
     let exact = complex.exact_eigenproblem();
     let co_exact = complex.co_exact_eigenproblem();
@@ -119,7 +147,7 @@ pub fn lemma1_eigenfields<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<(f64, Ve
         (&co_exact, complex.co_potential_nodes(), false),
     ] {
         let (a, m, free) = free_eigenproblem(problem, nodes);
-        let (values, restricted) = generalized_eigenpairs(&a, &m);
+        let (values, restricted) = generalized_eigenpairs(&a, &m)?;
         let mut vectors = Mat::<f64>::zeros(nodes.len(), values.len());
         for (r, &i) in free.iter().enumerate() {
             for k in 0..values.len() {
@@ -140,14 +168,20 @@ pub fn lemma1_eigenfields<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<(f64, Ve
             fields.push((lambda, field));
         }
     }
-    fields
+    Ok(fields)
 }
 
 /// Lemma 1: every eigenfield of [`lemma1_eigenfields`] has unit `M1` norm (to 1e-9) and
 /// `‖L u − λ u‖_{M1} ≤ 1e-9 · λ_max`; measured as the worst of each.
 pub fn measure_lemma1<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
     let laplacian = complex.hodge_laplacian();
-    let fields = lemma1_eigenfields(complex);
+    let fields = match measured_lemma1_eigenfields(complex) {
+        Ok(fields) => fields,
+        Err(reason) => {
+            let detail = format!("the eigenfields cannot be computed: {reason}");
+            return vec![CheckOutcome::failed("Lemma 1: eigenfields of L", detail)];
+        }
+    };
     let max = fields.iter().fold(0.0f64, |m, (l, _)| m.max(*l));
     let (mut worst_norm, mut norm_at) = (0.0f64, 0);
     let (mut worst_residual, mut residual_at) = (0.0f64, 0);

@@ -347,6 +347,9 @@ pub enum ConvergenceError {
     /// A study needs levels and eigenvalues.
     #[error("a convergence study needs at least one level, surface and eigenvalue")]
     Empty,
+    /// Two candidates of one name (their rows could not be told apart).
+    #[error("'{0}' is given twice: name each discretization once")]
+    Duplicate(String),
 }
 
 /// Runs every candidate on every level of every surface of `config`; `progress` is called after
@@ -358,6 +361,13 @@ pub fn run_convergence(
 ) -> Result<ConvergenceReport, ConvergenceError> {
     if config.levels.is_empty() || config.surfaces.is_empty() || config.eigenvalues == 0 {
         return Err(ConvergenceError::Empty);
+    }
+    let repeated = candidates.iter().enumerate().find_map(|(k, candidate)| {
+        let seen = candidates[..k].iter().any(|c| c.name == candidate.name);
+        seen.then_some(candidate)
+    });
+    if let Some(candidate) = repeated {
+        return Err(ConvergenceError::Duplicate(candidate.name.clone()));
     }
     let total = candidates.len() * config.surfaces.len() * config.levels.len();
     let mut rows = Vec::new();
@@ -550,5 +560,30 @@ mod tests {
             .collect();
         assert!((fitted_order(&points) - 2.0).abs() < 1e-12);
         assert!(fitted_order(&points[..1]).is_nan());
+    }
+
+    /// The same discretization twice once interleaved duplicate rows and printed NaN orders:
+    /// refused before anything is computed.
+    #[test]
+    fn a_candidate_given_twice_is_refused() {
+        let never = |_: &TriangleMesh, _| -> Result<Box<dyn HodgeComplex>, String> {
+            panic!("nothing is built before the names are checked")
+        };
+        let candidates = [
+            Candidate::new("a", never),
+            Candidate::new("b", never),
+            Candidate::new("a", never),
+        ];
+        let config = ConvergenceConfig {
+            surfaces: vec![Surface::Sphere],
+            levels: vec![1, 2],
+            eigenvalues: 4,
+        };
+        let error = run_convergence(&candidates, &config, &|_, _, _| {}).unwrap_err();
+        assert!(
+            matches!(error, ConvergenceError::Duplicate(ref name) if name == "a"),
+            "{error}"
+        );
+        assert!(error.to_string().contains("'a' is given twice"), "{error}");
     }
 }

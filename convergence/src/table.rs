@@ -61,16 +61,20 @@ pub fn markdown_table(report: &ConvergenceReport) -> String {
     aligned(&cells)
 }
 
-/// One line per fitted order: `discretization, surface, family: order`.
+/// One line per fitted order: `discretization, surface, family: order` (or why there is none:
+/// an order needs two levels with non-zero errors).
 pub fn orders_summary(report: &ConvergenceReport) -> String {
     let mut out = String::new();
     for order in &report.orders {
+        let value = match order.order.is_finite() {
+            true => format!("order {:.2}", order.order),
+            false => "no order (it needs two levels or more with non-zero errors)".to_string(),
+        };
         out.push_str(&format!(
-            "{} on the {}, {}: order {:.2}\n",
+            "{} on the {}, {}: {value}\n",
             order.discretization,
             surface_label(order.surface),
             order.family.name(),
-            order.order
         ));
     }
     out
@@ -148,5 +152,22 @@ mod tests {
             orders_summary(&report),
             "x on the sphere, integrable: order 2.00\n"
         );
+    }
+
+    /// One level fits no order: the summary says so instead of printing "order NaN".
+    #[test]
+    fn a_single_level_has_no_order_and_says_why() {
+        let report = ConvergenceReport {
+            rows: vec![row(1, 0.4, 0.16)],
+            orders: vec![ObservedOrder {
+                discretization: "x".into(),
+                surface: Surface::Sphere,
+                family: FieldFamily::Integrable,
+                order: f64::NAN,
+            }],
+        };
+        let summary = orders_summary(&report);
+        assert!(!summary.contains("NaN"), "{summary}");
+        assert!(summary.contains("needs two levels"), "{summary}");
     }
 }

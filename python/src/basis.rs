@@ -4,6 +4,7 @@
 use crate::arrays::{face_fields_to_numpy, mat_to_numpy};
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
+use crate::interrupt::{interruptible, Interruption};
 use crate::progress::Progress;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
@@ -28,8 +29,9 @@ pub fn basis<'py>(
         return Err(tvf_error("-k 0: ask for at least one eigenfield"));
     }
     let c = complex.complex.as_ref();
-    let reporter = Progress::new(progress);
-    let computed = py.detach(|| {
+    let interruption = Interruption::default();
+    let reporter = Progress::new(progress, &interruption);
+    let computed = interruptible(py, &interruption, || {
         let callback =
             |p: &tvf_spectral::BasisProgress| reporter.report(p.stage.name(), p.done, p.wanted);
         let request = if k >= c.field_dimension() {
@@ -38,8 +40,7 @@ pub fn basis<'py>(
             BasisRequest::fields(k)
         };
         compute_basis(c, &request.with_seed(seed).with_progress(&callback))
-    });
-    reporter.finish()?;
+    })?;
     let basis = computed
         .map_err(|e| with_context(&format!("{}: cannot compute the basis", complex.label), &e))?;
     let out = PyDict::new(py);

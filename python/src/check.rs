@@ -1,9 +1,12 @@
 //! `tvf.check`: the core conformance checks of the test suite on a complex, as a report; and on
 //! a Python builder `(V, F) -> matrices`, on one mesh or property-based on generated meshes with
-//! the shrunk minimal failing mesh (`tvf_conformance::property_runner`).
+//! the shrunk minimal failing mesh (`tvf_conformance::property_runner`). A builder's ordinary
+//! exception is a failed `construction` check; `KeyboardInterrupt` (Ctrl+C), `SystemExit` and
+//! the other exceptions that are not an `Exception` stop the run and are raised.
 
 use crate::arrays::vectors_to_numpy;
 use crate::complex::Complex;
+use crate::interrupt::{detached, interruptible, Interruption};
 use crate::mesh::Mesh;
 use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
@@ -17,16 +20,18 @@ use tvf_core::discretization::PointEvaluation;
 use tvf_core::discretization::{ComplexParts, FieldRotation, FieldSampling, HodgeComplex};
 use tvf_core::TriangleMesh;
 
-/// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,
-/// `detail`.
-/// The complex a Python builder makes on `mesh`.
+/// The complex a Python builder makes on `mesh`; its exception as the error (one that is not an
+/// `Exception`, such as `KeyboardInterrupt`, stops the computation: [`Interruption::stop`]).
 pub(crate) fn python_complex(
     build: &Py<PyAny>,
     mesh: &TriangleMesh,
+    interruption: &Interruption,
 ) -> Result<Box<dyn HodgeComplex>, String> {
     Python::attach(|py| {
         let (v, f) = mesh_arrays(py, mesh);
-        let built = build.call1(py, (v, f)).map_err(|e| e.to_string())?;
+        let built = build
+            .call1(py, (v, f))
+            .map_err(|e| interruption.unless_stopping(py, e).to_string())?;
         let complex = built
             .bind(py)
             .cast::<Complex>()
@@ -35,6 +40,8 @@ pub(crate) fn python_complex(
     })
 }
 
+/// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,
+/// `detail`.
 #[pyfunction]
 pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let Some(mesh) = complex.mesh.as_triangles() else {
@@ -42,15 +49,17 @@ pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py,
             "the conformance checks run on triangle meshes so far (this mesh has polygons)",
         ));
     };
-    let report = py.detach(|| core_check_report(complex.complex.as_ref(), mesh));
+    let report = detached(py, || core_check_report(complex.complex.as_ref(), mesh))?;
     outcome_dicts(py, &report.outcomes)
 }
 
 /// The core checks of the complexes `build(V, F)` (a Python callable returning a native
 /// `Complex`) makes: on `mesh` if given, else on `cases` closed meshes drawn with `seed`
-/// (Delaunay ones if `delaunay`), shrinking a failure. A dict: `passed`, `cases_passed`,
-/// `outcomes` (the mesh's, or each check's worst case), `counterexample` (`(V, F)` or `None`)
-/// and `counterexample_outcomes`.
+/// (Delaunay ones if `delaunay`), shrinking a failure. A dict: `passed` (the verdict: false
+/// whenever a case failed, even if its counterexample passes when checked again),
+/// `cases_passed`, `outcomes` (the mesh's, or each check's worst case), `counterexample`
+/// (`(V, F)` or `None`), `counterexample_outcomes` (measured in the run that failed) and
+/// `reproduced` (whether the counterexample failed again; `None` without one).
 #[pyfunction]
 #[pyo3(signature = (build, cases, seed, mesh, delaunay))]
 pub fn check_builder<'py>(
@@ -61,7 +70,8 @@ pub fn check_builder<'py>(
     mesh: Option<&Mesh>,
     delaunay: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let builder = |mesh: &TriangleMesh| python_complex(&build, mesh);
+    let interruption = Interruption::default();
+    let builder = |mesh: &TriangleMesh| python_complex(&build, mesh, &interruption);
     let result = PyDict::new(py);
     if let Some(mesh) = mesh {
         let Some(triangles) = mesh.mesh.as_triangles() else {
@@ -69,12 +79,13 @@ pub fn check_builder<'py>(
                 "the conformance checks run on triangle meshes so far (this mesh has polygons)",
             ));
         };
-        let report = py.detach(|| check_mesh(&builder, triangles, &[]));
+        let report = interruptible(py, &interruption, || check_mesh(&builder, triangles, &[]))?;
         result.set_item("passed", report.passed())?;
         result.set_item("cases_passed", u32::from(report.passed()))?;
         result.set_item("outcomes", outcome_dicts(py, &report.outcomes)?)?;
         result.set_item("counterexample", py.None())?;
         result.set_item("counterexample_outcomes", Vec::<Bound<'py, PyDict>>::new())?;
+        result.set_item("reproduced", py.None())?;
         return Ok(result);
     }
     let needs = MeshNeeds {
@@ -82,7 +93,9 @@ pub fn check_builder<'py>(
         closed_only: true,
     };
     let request = PropertyRequest::new(cases, seed, needs);
-    let report = py.detach(|| run_property(&builder, &request, &|_| {}));
+    let report = interruptible(py, &interruption, || {
+        run_property(&builder, &request, &|_| {})
+    })?;
     if let Some(reason) = &report.aborted {
         return Err(crate::errors::tvf_error(format!(
             "the property run stopped: {reason}"
@@ -96,10 +109,12 @@ pub fn check_builder<'py>(
             result.set_item("counterexample", mesh_arrays(py, &counterexample.mesh.mesh))?;
             let outcomes = outcome_dicts(py, &counterexample.report.outcomes)?;
             result.set_item("counterexample_outcomes", outcomes)?;
+            result.set_item("reproduced", counterexample.reproduced)?;
         }
         None => {
             result.set_item("counterexample", py.None())?;
             result.set_item("counterexample_outcomes", Vec::<Bound<'py, PyDict>>::new())?;
+            result.set_item("reproduced", py.None())?;
         }
     }
     Ok(result)

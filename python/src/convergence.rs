@@ -4,6 +4,7 @@
 
 use crate::check::python_complex;
 use crate::errors::{from_error, tvf_error};
+use crate::interrupt::{interruptible, Interruption};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tvf_convergence::study::{
@@ -15,7 +16,8 @@ use tvf_discretizations::catalog_entry;
 /// Runs the study. `candidates` are `(name, id_or_builder)` pairs; `surfaces` names from
 /// `sphere`, `hemisphere-tangential`, `hemisphere-normal`. A dict `rows` (one dict per
 /// candidate, surface and level) and `orders` (one per candidate, surface and family), with
-/// the keys of `tvf convergence --json`.
+/// the keys of `tvf convergence --json`. Ctrl+C in a builder (or any exception that is not an
+/// `Exception`) stops the study and is raised as it is, not as a `TvfError`.
 #[pyfunction]
 #[pyo3(signature = (candidates, surfaces, levels, eigenvalues))]
 pub fn convergence<'py>(
@@ -34,7 +36,8 @@ pub fn convergence<'py>(
             "level {level}: at most 7 (1.3 million sphere faces)"
         )));
     }
-    let mut study: Vec<Candidate<'static>> = Vec::new();
+    let interruption = Interruption::default();
+    let mut study: Vec<Candidate<'_>> = Vec::new();
     for (name, source) in &candidates {
         if let Ok(id) = source.extract::<String>(py) {
             let entry = catalog_entry(&id).map_err(|e| from_error(&e))?;
@@ -48,8 +51,9 @@ pub fn convergence<'py>(
             )));
         }
         let build = source.clone_ref(py);
+        let interruption = &interruption;
         study.push(Candidate::new(name.clone(), move |mesh, _| {
-            python_complex(&build, mesh)
+            python_complex(&build, mesh, interruption)
         }));
     }
     let config = ConvergenceConfig {
@@ -58,9 +62,10 @@ pub fn convergence<'py>(
         eigenvalues,
     };
     // The study runs without the GIL; a Python builder takes it while it builds.
-    let report = py
-        .detach(|| run_convergence(&study, &config, &|_, _, _| {}))
-        .map_err(|e| tvf_error(e.to_string()))?;
+    let report = interruptible(py, &interruption, || {
+        run_convergence(&study, &config, &|_, _, _| {})
+    })?
+    .map_err(|e| tvf_error(e.to_string()))?;
     report_dict(py, &report)
 }
 

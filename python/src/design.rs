@@ -4,6 +4,7 @@
 use crate::basis_parts::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
+use crate::interrupt::detached;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -65,14 +66,14 @@ pub fn design<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
     let (set, compiled) = constraints(complex, constraints_json, origin)?;
-    let field = py.detach(|| -> Result<Vec<f64>, DesignError> {
+    let field = detached(py, || -> Result<Vec<f64>, DesignError> {
         let options = SoftOptions {
             omega: set.omega,
             regularization: default_regularization(c),
         };
         let design = FullSoftDesign::new(c, options, compiled.clone())?;
         Ok(design.solve().0)
-    });
+    })?;
     let field = field.map_err(|e| {
         with_context(
             &format!(
@@ -132,10 +133,10 @@ fn reduced_solve<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let (set, compiled) = constraints(complex, constraints_json, origin)?;
     let basis = complex.basis(basis)?;
-    let field = py.detach(|| {
+    let field = detached(py, || {
         let reduced = ReducedBasis::from_spectral(&basis)?;
         solve(&reduced, &set, &compiled)
-    });
+    })?;
     let field = field.map_err(|e| with_context(origin, &e))?;
     result(py, field, &compiled, set.omega, origin)
 }

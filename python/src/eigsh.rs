@@ -4,6 +4,7 @@
 
 use crate::arrays::{csr_from_parts, mat_to_numpy, CsrParts};
 use crate::errors::{tvf_error, with_context};
+use crate::interrupt::{interruptible, Interruption};
 use crate::masses::{mass_from_input, Given, MassInput};
 use crate::progress::Progress;
 use numpy::IntoPyArray;
@@ -36,8 +37,9 @@ pub fn eigsh<'py>(
             a.rows()
         )));
     }
-    let reporter = Progress::new(progress);
-    let pairs = py.detach(|| -> Result<Eigenpairs, SolverError> {
+    let interruption = Interruption::default();
+    let reporter = Progress::new(progress, &interruption);
+    let pairs = interruptible(py, &interruption, || -> Result<Eigenpairs, SolverError> {
         let callback =
             |p: &tvf_solvers::EigenProgress| reporter.report("eigenpairs", p.confirmed, p.wanted);
         let mut options = EigenOptions {
@@ -65,8 +67,7 @@ pub fn eigsh<'py>(
             .ok_or_else(|| SolverError::NoConvergence {
                 reason: "the driver returned no result".into(),
             })
-    });
-    reporter.finish()?;
+    })?;
     let pairs = pairs.map_err(|e| with_context("eigsh", &e))?;
     let finite = |values: &[f64]| values.iter().all(|v| v.is_finite());
     if !finite(&pairs.values)

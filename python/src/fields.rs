@@ -4,6 +4,7 @@
 use crate::basis_parts::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
+use crate::interrupt::detached;
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -64,14 +65,15 @@ pub fn decompose<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
     let values = complex.field(&field)?;
-    let parts = py
-        .detach(|| HodgeDecomposer::new(c).and_then(|d| d.decompose(&values)))
-        .map_err(|e| {
-            with_context(
-                &format!("{}: cannot decompose the field", complex.label),
-                &e,
-            )
-        })?;
+    let parts = detached(py, || {
+        HodgeDecomposer::new(c).and_then(|d| d.decompose(&values))
+    })?
+    .map_err(|e| {
+        with_context(
+            &format!("{}: cannot decompose the field", complex.label),
+            &e,
+        )
+    })?;
     let out = PyDict::new(py);
     out.set_item("integrable", parts.integrable.into_pyarray(py))?;
     out.set_item("cointegrable", parts.cointegrable.into_pyarray(py))?;

@@ -1,7 +1,7 @@
 //! `tvf._native`: the Rust half of the `tvf` Python package. Every function takes and returns
 //! numpy arrays and plain Python values; the Python half (`python/tvf/`) turns sparse matrices
 //! into `scipy.sparse.csr_matrix`, checks dtypes and shapes, and carries the documentation.
-//! Long computations release the GIL; errors are `tvf.TvfError` with the message the `tvf`
+//! Long computations release the GIL and stop on Ctrl+C (`interrupt`); errors are `tvf.TvfError` with the message the `tvf`
 //! command line prints for the same problem.
 #![forbid(unsafe_code)]
 
@@ -17,6 +17,7 @@ mod design;
 mod eigsh;
 mod errors;
 mod fields;
+mod interrupt;
 mod linear_operator;
 mod masses;
 mod mesh;

@@ -154,6 +154,17 @@ impl Mesh {
         self.label.clone()
     }
 
+    /// `(V, E, F)`: the numbers of vertices, edges and faces (the sizes a matrix of the mesh
+    /// may have, with `2F`).
+    #[getter]
+    fn sizes(&self) -> (usize, usize, usize) {
+        (
+            self.mesh.vertex_count(),
+            self.mesh.edge_count(),
+            self.mesh.face_count(),
+        )
+    }
+
     /// Genus summed over the connected components.
     #[getter]
     fn genus(&self) -> usize {

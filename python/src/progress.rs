@@ -1,46 +1,36 @@
 //! Progress reports to an optional Python callable, called with the GIL re-acquired from inside
-//! a computation that runs without it.
+//! a computation that runs without it; each report is also where the computation notices Ctrl+C
+//! ([`Interruption::poll`]).
 
+use crate::interrupt::Interruption;
 use pyo3::prelude::*;
-use std::sync::Mutex;
 
-/// An optional callback `progress(stage: str, done: int, wanted: int)`; the first exception it
-/// raises is kept and re-raised when the computation returns.
-pub struct Progress {
+/// An optional callback `progress(stage: str, done: int, wanted: int)`.
+pub struct Progress<'a> {
     callback: Option<Py<PyAny>>,
-    error: Mutex<Option<PyErr>>,
+    interruption: &'a Interruption,
 }
 
-impl Progress {
-    /// Wraps `callback` (`None`: silence).
-    pub fn new(callback: Option<Py<PyAny>>) -> Self {
+impl<'a> Progress<'a> {
+    /// Wraps `callback` (`None`: silence); stops through `interruption`.
+    pub fn new(callback: Option<Py<PyAny>>, interruption: &'a Interruption) -> Self {
         Self {
             callback,
-            error: Mutex::new(None),
+            interruption,
         }
     }
 
-    /// Calls the callback (after a failure it is not called again).
+    /// Handles pending signals, then calls the callback. An exception of either (Ctrl+C's
+    /// `KeyboardInterrupt`, or whatever the callback raises) stops the computation at once and
+    /// is raised when it has unwound ([`Interruption::stop`]).
     pub fn report(&self, stage: &str, done: usize, wanted: usize) {
+        self.interruption.poll();
         let Some(callback) = &self.callback else {
             return;
         };
-        let mut error = self.error.lock().unwrap_or_else(|e| e.into_inner());
-        if error.is_some() {
-            return;
-        }
-        Python::attach(|py| {
-            if let Err(e) = callback.call1(py, (stage, done, wanted)) {
-                *error = Some(e);
-            }
-        });
-    }
-
-    /// The callback's exception, if it raised one.
-    pub fn finish(self) -> PyResult<()> {
-        match self.error.into_inner().unwrap_or_else(|e| e.into_inner()) {
-            Some(e) => Err(e),
-            None => Ok(()),
+        let called = Python::attach(|py| callback.call1(py, (stage, done, wanted)).map(drop));
+        if let Err(error) = called {
+            self.interruption.stop(error);
         }
     }
 }

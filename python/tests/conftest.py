@@ -19,11 +19,13 @@ def tvf_bin():
 
 
 @pytest.fixture
-def run_tvf(tvf_bin):
-    """Runs the tvf command line; returns the CompletedProcess (text)."""
+def run_tvf(tvf_bin, tmp_path_factory):
+    """Runs the tvf command line; returns the CompletedProcess (text). Its default basis cache
+    (the user's cache folder) is in the tests' temporary folder, not the home folder."""
+    environment = {**os.environ, "XDG_CACHE_HOME": str(tmp_path_factory.getbasetemp() / "xdg-cache")}
 
     def run(*args, check=True):
-        result = subprocess.run([str(tvf_bin), *map(str, args)], capture_output=True, text=True)
+        result = subprocess.run([str(tvf_bin), *map(str, args)], capture_output=True, text=True, env=environment)
         if check and result.returncode != 0:
             raise AssertionError(f"tvf {' '.join(map(str, args))} failed: {result.stderr}")
         return result

@@ -145,3 +145,59 @@ def test_conflicting_constraints_match_the_command_line(tmp_path, run_tvf):
     expected = run_tvf("design", path, "--constraints", file, "--full", "-o", tmp_path / "d.npy", check=False)
     got = python_message(lambda: tvf.design(mesh, unknown, origin=str(file)))
     assert got == expected.stderr.strip().splitlines()[-1][len("error: "):]
+
+
+def run_isolated(code):
+    """Runs ``code`` in a fresh interpreter (a crash or an abort there cannot take the test run
+    with it); returns its stdout, failing on a crash, an exit code other than 0 or a hang."""
+    import pathlib
+    import subprocess
+    import sys
+
+    here = pathlib.Path(__file__).parent
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=here, timeout=120)
+    assert result.returncode == 0, f"exit {result.returncode}: {result.stderr[-2000:]}"
+    return result.stdout
+
+
+def test_from_matrices_checks_shapes_and_formats_before_converting():
+    """A 2-entry sparse M1 of shape (2e8, 2e8) once aborted the interpreter on an allocation
+    (its symmetry was checked before its shape); a CSR whose indptr points past its data once
+    corrupted the heap inside scipy's conversion. Both are TvfErrors naming the matrix, raised
+    before anything of their declared size is allocated."""
+    out = run_isolated(
+        """
+import numpy as np, scipy.sparse as sp, tvf
+from reference import icosphere, p1_cr_complex
+V, F = icosphere(1)
+mesh = tvf.Mesh(V, F)
+ref = p1_cr_complex(V, F)
+# COO: the test itself allocates nothing of the declared size.
+huge = sp.coo_matrix((np.ones(2), ([0, 1], [0, 1])), shape=(200_000_000, 200_000_000))
+for changes in (dict(M1=huge), dict(d0=sp.coo_matrix((200_000_000, len(V))))):
+    parts = dict(d0=ref["d0"], d1=ref["d1"], M0=ref["M0"], M1=ref["M1"], M2=ref["M2"])
+    parts.update(changes)
+    try:
+        tvf.Complex.from_matrices(mesh, **parts)
+    except tvf.TvfError as e:
+        print("refused:", e)
+broken = sp.diags(ref["M1"]).tocsr()
+broken.indptr[-1] = broken.nnz + 1000
+try:
+    tvf.Complex.from_matrices(mesh, ref["d0"], ref["d1"], ref["M0"], broken, ref["M2"])
+except tvf.TvfError as e:
+    print("refused:", e)
+A = (ref["d0"].T @ ref["d0"]).tocsc()
+A.indices[0] = 10**6
+try:
+    tvf.eigsh(A, np.ones(A.shape[0]), 3)
+except tvf.TvfError as e:
+    print("refused:", e)
+"""
+    )
+    lines = out.splitlines()
+    assert len(lines) == 4, out
+    assert "M1 has shape (200000000, 200000000)" in lines[0] or "200000000 nodes" in lines[0], out
+    assert "the field space has 200000000 nodes" in lines[1], out
+    assert "M1: not a valid CSR matrix" in lines[2], out
+    assert "A: not a valid CSC matrix: indices must be < 42" in lines[3], out

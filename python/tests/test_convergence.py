@@ -54,3 +54,18 @@ def test_bad_requests_are_refused_with_a_reason():
         tvf.convergence(["conforming-barycentric"], levels=(3, 1))
     with pytest.raises(ValueError, match="names must differ"):
         tvf.convergence(["conforming-barycentric", "conforming-barycentric"])
+
+
+def test_ctrl_c_in_a_builder_is_not_turned_into_a_tvf_error():
+    def interrupted(V, F):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        tvf.convergence([interrupted], surfaces=("sphere",), levels=(1, 2), eigenvalues=2)
+
+
+def test_levels_and_eigenvalues_must_be_integers():
+    with pytest.raises(TypeError, match="must be an integer"):
+        tvf.convergence(["conforming-barycentric"], levels=(1, 2.5))
+    with pytest.raises(TypeError, match="eigenvalues must be an integer"):
+        tvf.convergence(["conforming-barycentric"], levels=(1, 2), eigenvalues=3.5)

@@ -85,3 +85,13 @@ def test_eigsh_refuses_broken_sparse_masses():
         tvf.eigsh(A, M - 0.6 * sp.diags(M.diagonal()), 3)
     with pytest.raises(tvf.TvfError, match=r"M \(the mass matrix\) has 41 rows, A has 42"):
         tvf.eigsh(A, M[1:, 1:], 3)
+
+
+def test_k_must_be_an_integer():
+    """eigsh(k=3.5) once returned 3 eigenpairs."""
+    A = cotan_matrix(*icosphere(1))
+    n = A.shape[0]
+    for bad in (3.5, 3.0, "3"):
+        with pytest.raises(TypeError, match="k must be an integer"):
+            tvf.eigsh(A, np.ones(n), bad)
+    assert len(tvf.eigsh(A, np.ones(n), np.int64(3))[0]) == 3

@@ -1,8 +1,10 @@
 """Discretizations: the catalog, :class:`Complex` (catalog entries and your own matrices) and
 :func:`operators`."""
 
+import scipy.sparse.linalg as spla
+
 from . import _native
-from ._arrays import csr_parts, mass, to_csr
+from ._arrays import csr_parts, declared_shape, mass, to_csr
 from ._native import TvfError
 from .linear_operator import ComposedOperator
 from .mesh import Mesh
@@ -100,6 +102,8 @@ class Complex:
             raise TvfError("give the co-potential mass either as M2 or as its inverse M2_inverse, not both")
         if M2 is None and M2_inverse is None:
             raise TvfError("give the co-potential mass as M2 or as its inverse M2_inverse")
+        co_potential_mass = ("M2", M2) if M2 is not None else ("M2_inverse", M2_inverse)
+        _check_declared_shapes(mesh, d0, d1, M0, M1, co_potential_mass)
         complex_ = cls.__new__(cls)
         complex_.mesh = mesh
         complex_._native = _native.Complex.from_matrices(
@@ -146,6 +150,46 @@ class Complex:
 
     def __repr__(self):
         return repr(self._native)
+
+
+def _check_declared_shapes(mesh, d0, d1, M0, M1, co_potential_mass):
+    """Refuses shapes that cannot belong to ``mesh`` (every size one of its ``V``, ``E``, ``F``,
+    ``2F``; ``d0``, ``d1`` and the masses fitting together) from the shapes the arguments
+    declare, before anything of their size is converted or allocated (the native checks say the
+    same, later)."""
+    V, E, F = mesh._native.sizes
+    label = mesh.label
+
+    def matrix_shape(value, name):
+        shape = declared_shape(value)
+        if len(shape) != 2:
+            raise TvfError(f"{label}: {name} has shape {shape}: a matrix has two dimensions")
+        return shape
+
+    n1, n0 = matrix_shape(d0, "d0")
+    n2, d1_columns = matrix_shape(d1, "d1")
+    for n, space in [(n0, "potential space"), (n1, "field space"), (n2, "co-potential space")]:
+        if n not in (V, E, F, 2 * F):
+            raise TvfError(
+                f"{label}: the {space} has {n} nodes: not the mesh's {V} vertices, {E} edges, "
+                f"{F} faces or {2 * F} face-frame coefficients"
+            )
+    if d1_columns != n1:
+        raise TvfError(f"{label}: d1 is {n2} x {d1_columns}: its columns must be the {n1} rows of d0")
+    for (name, value), n, what in [
+        (("M0", M0), n0, "column of d0"),
+        (("M1", M1), n1, "row of d0"),
+        (co_potential_mass, n2, "row of d1"),
+    ]:
+        if isinstance(value, spla.LinearOperator):
+            continue  # refused as a mass by its type (mass())
+        shape = declared_shape(value)
+        if len(shape) == 1 and shape[0] != n:
+            raise TvfError(f"{label}: {name} (one entry per {what}): expected {n} entries, found {shape[0]}")
+        if len(shape) == 2 and shape[0] != shape[1]:
+            raise TvfError(f"{label}: {name} is {shape[0]} × {shape[1]}, not square")
+        if len(shape) not in (1, 2) or (len(shape) == 2 and shape != (n, n)):
+            raise TvfError(f"{label}: {name} has shape {shape}, but the complex needs {n} x {n} (one row per {what})")
 
 
 def _check_mesh(mesh):

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
 
 from . import _native
+from ._arrays import integer
 from .complex import Complex
 from .mesh import Mesh
 
@@ -23,12 +24,21 @@ class CheckReport:
     cases_passed: int = 1
     #: With a builder: the shrunk minimal failing mesh ``(V, F)``, or ``None``.
     counterexample: Optional[Tuple] = None
-    #: With a builder: every check measured on the counterexample.
+    #: With a builder: every check measured on the counterexample, in the run that failed.
     counterexample_outcomes: List[dict] = field(default_factory=list)
+    #: With a builder and a counterexample: whether it failed again when checked once more
+    #: (``False``: a non-deterministic failure, e.g. a builder whose result changes from call to
+    #: call; still a failure). ``None`` without a counterexample.
+    reproduced: Optional[bool] = None
+    #: The run's verdict where the native run gives one (a property run); else the outcomes'.
+    verdict: Optional[bool] = None
 
     @property
     def passed(self):
-        """Whether no check failed."""
+        """Whether every check of every case passed: false whenever a case failed, even when
+        its counterexample passes on a second look (:attr:`reproduced`)."""
+        if self.verdict is not None:
+            return self.verdict and not self.failures
         return not self.failures
 
     @property
@@ -41,6 +51,16 @@ class CheckReport:
         lines = [f"conformance of '{self.complex_id}': {'passed' if self.passed else 'FAILED'}"]
         for o in self.outcomes:
             lines.append(f"  {o['status']:<7} {o['name']}: {o['detail']}")
+        if self.counterexample is not None:
+            V, F = self.counterexample
+            lines.append(f"counterexample: {len(V)} vertices, {len(F)} faces")
+            if self.reproduced is False:
+                lines.append(
+                    "  non-deterministic: checked once more, this mesh passed; the failures below "
+                    "are from the run that failed"
+                )
+            for o in self.counterexample_outcomes:
+                lines.append(f"  {o['status']:<7} {o['name']}: {o['detail']}")
         return "\n".join(lines)
 
 
@@ -67,15 +87,21 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
       components, jittered, slivers, rigidly moved; only Delaunay ones with ``delaunay=True``).
       When a case fails, the mesh description is shrunk (fewer faces, lower genus, no jitter)
       and the report's ``counterexample`` is the minimal failing ``(V, F)`` with its checks in
-      ``counterexample_outcomes``; ``outcomes`` then hold each check's worst case over the
-      passing meshes. A builder that raises fails the check named ``construction``.
+      ``counterexample_outcomes`` (as measured in the run that failed); ``outcomes`` then hold
+      each check's worst case over the passing meshes. A failure that does not come back when
+      the counterexample is checked once more (a builder whose result changes from call to
+      call) is still a failure: ``passed`` is false and ``reproduced`` is ``False``. A builder
+      that raises an ``Exception`` fails the check named ``construction``;
+      ``KeyboardInterrupt`` (Ctrl+C, also between and inside the checks) and ``SystemExit``
+      stop the run and are raised.
 
-    Returns a :class:`CheckReport`; nothing raises for a failed check."""
+    ``cases`` and ``seed`` are integers (``cases=2.7`` is a TypeError). Returns a
+    :class:`CheckReport`; nothing raises for a failed check."""
     if isinstance(x, Complex):
         return CheckReport(x.id, [dict(o) for o in _native.check(x._native)])
     if not callable(x):
         raise TypeError(f"expected a tvf.Complex or a builder (V, F) -> dict, got {type(x).__name__}")
-    cases, seed = int(cases), int(seed)
+    cases, seed = integer(cases, "cases"), integer(seed, "seed")
     if cases < 1:
         raise ValueError(f"cases must be at least 1, got {cases}")
     if seed < 0:
@@ -89,6 +115,8 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
         cases_passed=result["cases_passed"],
         counterexample=result["counterexample"],
         counterexample_outcomes=[dict(o) for o in result["counterexample_outcomes"]],
+        reproduced=result["reproduced"],
+        verdict=bool(result["passed"]),
     )
 
 
@@ -123,12 +151,13 @@ def convergence(discretizations, surfaces=("sphere", "hemisphere-tangential", "h
     names = [name for name, _ in candidates]
     if len(set(names)) != len(names):
         raise ValueError(f"discretization names must differ: {names}")
-    levels = [int(level) for level in levels]
+    levels = [integer(level, "a level") for level in levels]
     if not levels or min(levels) < 0 or sorted(levels) != levels:
         raise ValueError(f"levels must be ascending non-negative integers, got {levels}")
-    if int(eigenvalues) < 1:
+    eigenvalues = integer(eigenvalues, "eigenvalues")
+    if eigenvalues < 1:
         raise ValueError(f"eigenvalues must be at least 1, got {eigenvalues}")
-    return _native.convergence(candidates, [str(s) for s in surfaces], levels, int(eigenvalues))
+    return _native.convergence(candidates, [str(s) for s in surfaces], levels, eigenvalues)
 
 
 def _native_builder(builder):

@@ -3,7 +3,7 @@
 import numpy as np
 
 from . import _native
-from ._arrays import csr_parts, mass
+from ._arrays import csr_parts, declared_shape, integer, mass
 from ._native import TvfError
 
 
@@ -37,13 +37,21 @@ def eigsh(A, M, k, seed=None, progress=None, return_residuals=False):
     matrices ``A - s M`` have the union of both patterns, and ``M^-1`` is a Cholesky solve.
     ``seed`` fixes the random start vectors. ``progress(stage, confirmed, wanted)`` is called
     as eigenpairs are confirmed. The GIL is released while it runs."""
-    parts = csr_parts(A, "A")
-    if parts[3][0] != parts[3][1]:
-        raise TvfError(f"A: expected a square matrix, got shape {parts[3]}")
-    k = int(k)
+    k = integer(k, "k")
     if k < 0:
         raise TvfError(f"k = {k}: ask for at least one eigenpair")
-    values, vectors, residuals = _native.eigsh(parts, mass(M, "M"), k, None if seed is None else int(seed), progress)
+    seed = None if seed is None else integer(seed, "seed")
+    shape = declared_shape(A)
+    if len(shape) != 2 or shape[0] != shape[1]:
+        raise TvfError(f"A: expected a square matrix, got shape {shape}")
+    n, mass_shape = shape[0], declared_shape(M)
+    if not mass_shape or mass_shape[0] != n:
+        rows = mass_shape[0] if mass_shape else 0
+        raise TvfError(f"M (the mass matrix) has {rows} rows, A has {n}")
+    if mass_shape not in ((n,), (n, n)):
+        raise TvfError(f"M (the mass matrix) has shape {mass_shape}: expected ({n},) or ({n}, {n})")
+    parts = csr_parts(A, "A")
+    values, vectors, residuals = _native.eigsh(parts, mass(M, "M"), k, seed, progress)
     values, vectors = np.asarray(values), np.asarray(vectors)
     if return_residuals:
         return values, vectors, np.asarray(residuals)

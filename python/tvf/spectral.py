@@ -7,7 +7,7 @@ from typing import Optional
 import numpy as np
 
 from . import _native
-from ._arrays import float_array
+from ._arrays import float_array, integer
 from ._native import TvfError
 from .complex import Complex, as_complex
 
@@ -110,10 +110,11 @@ def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=
     formed (its shifts factor the sparse saddle matrix ``[[-M1, d1^T], [d1, -s M2^-1]]``). Signs of eigenfields are arbitrary; eigenfields of a repeated eigenvalue span its
     eigenspace in an arbitrary orthonormal basis. Returns a :class:`Basis`."""
     complex_ = as_complex(mesh, discretization, boundary, beta)
-    k = int(k)
+    k = integer(k, "k")
     if k < 0:
         raise TvfError(f"-k {k}: ask for at least one eigenfield")
-    raw = _native.basis(complex_._native, k, int(seed), progress)
+    complex_ = as_complex(mesh, discretization, boundary)
+    raw = _native.basis(complex_._native, k, integer(seed, "seed"), progress)
     return Basis(
         eigenvalues=np.asarray(raw["eigenvalues"]),
         families=np.array(raw["families"], dtype=str),

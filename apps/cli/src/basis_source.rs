@@ -21,12 +21,11 @@
 //!   matrices: a file made with `--complex` is reopened by giving `--complex` again);
 //! - `--cache-dir DIR`, `--no-cache`: where computed bases are kept.
 //!
-//! The cache is a [`BasisStore`] (file names and keys are documented there) in `--cache-dir`,
-//! else `$TVF_CACHE_DIR`, else `.tvf-cache/` next to the mesh file; for a built-in `--example`
-//! mesh (no file to sit next to) in the user's cache folder
-//! ([`user_cache_folder`]). A default folder is created private and used only if it is safe
-//! ([`tvf_spectral::BasisCache`]; otherwise a warning, and the basis is computed without the
-//! cache). A cached basis is reused and stderr says so; a damaged or mismatching cache file is recomputed with a
+//! The cache is a [`tvf_spectral::BasisStore`] (file names and keys are documented there) in
+//! `--cache-dir`, else `$TVF_CACHE_DIR`, else the user's cache folder ([`user_cache_folder`]),
+//! never next to the mesh. A cache folder is created private and used only if it is safe
+//! ([`tvf_spectral::BasisCache`]: yours, not writable by everyone; otherwise a warning, and
+//! the basis is computed without the cache). A cached basis is reused and stderr says so; a damaged or mismatching cache file is recomputed with a
 //! warning. `-k` sizes are `BasisSize::Fields`; the pairs a compressed file needs when no `-k`
 //! is given are `BasisSize::Pairs`.
 
@@ -59,8 +58,9 @@ pub struct BasisOptions {
     pub basis: Option<PathBuf>,
     #[command(flatten)]
     pub discretization: DiscretizationFlags,
-    /// Folder of cached bases [default: $TVF_CACHE_DIR, else .tvf-cache/ next to the mesh, else
-    /// the user's cache folder (~/.cache/tvf) for --example meshes].
+    /// Folder of cached bases, yours and not writable by everyone (created private if missing)
+    /// [default: $TVF_CACHE_DIR, else the user's cache folder: $XDG_CACHE_HOME/tvf or
+    /// ~/.cache/tvf].
     #[arg(long, value_name = "DIR", conflicts_with = "basis")]
     pub cache_dir: Option<PathBuf>,
     /// Compute the basis without reading or writing the cache (overrides --cache-dir).
@@ -174,7 +174,7 @@ impl BasisOptions {
             None => self.discretization.build(catalog, mesh, input)?,
         };
         let basis = self
-            .cached(mesh, &discretization, size, input)
+            .cached(mesh, &discretization, size)
             .with_context(|| format!("{}: cannot compute the basis", input.label()))?;
         Ok(ResolvedBasis {
             discretization,
@@ -190,12 +190,9 @@ impl BasisOptions {
         mesh: &SurfaceMesh,
         discretization: &BoxedComplex,
         size: BasisSize,
-        input: &MeshInput,
     ) -> Result<SpectralBasis> {
-        let store = self.cache(input).store().unwrap_or_else(|warning| {
-            tell(warning);
-            None
-        });
+        let (store, messages) = self.cache().store();
+        messages.into_iter().for_each(tell);
         let progress = Progress::new("basis");
         let callback = progress.basis_callback();
         let cached =
@@ -210,16 +207,14 @@ impl BasisOptions {
     }
 
     /// The cache ([`BasisCache::choose`]): off with `--no-cache`; `--cache-dir` or
-    /// `$TVF_CACHE_DIR` (chosen), else `.tvf-cache/` next to the mesh file or, for built-in
-    /// examples, the user's cache folder (defaults, checked before use).
-    pub fn cache(&self, input: &MeshInput) -> BasisCache {
+    /// `$TVF_CACHE_DIR` (chosen), else the user's cache folder (both checked before use).
+    pub fn cache(&self) -> BasisCache {
         let from_environment = std::env::var_os(CACHE_DIR_VARIABLE).filter(|d| !d.is_empty());
         let chosen = self
             .cache_dir
             .clone()
             .or(from_environment.map(PathBuf::from));
-        let mesh_file = input.mesh.as_deref();
-        BasisCache::choose(self.no_cache, chosen, mesh_file, user_cache_folder)
+        BasisCache::choose(self.no_cache, chosen, user_cache_folder)
     }
 
     /// The discretization a basis would use, without computing or loading the basis: the
@@ -251,7 +246,7 @@ fn tell(message: BasisMessage) {
     }
 }
 
-/// The default cache folder for built-in example meshes: `$XDG_CACHE_HOME/tvf`, else
+/// The default cache folder: `$XDG_CACHE_HOME/tvf`, else
 /// `~/.cache/tvf` on Unix and `%LOCALAPPDATA%\tvf` on Windows, else `tvf-cache-USER` in the
 /// temporary folder ([`user_cache_folder_from`]).
 pub fn user_cache_folder() -> PathBuf {

@@ -99,7 +99,15 @@ pub fn run(catalog: Catalog) -> ExitCode {
     interrupt::install();
     test_faults::install();
     let mut command = Cli::command();
-    let matches = command.get_matches_mut();
+    let matches = command
+        .try_get_matches_from_mut(std::env::args_os())
+        .unwrap_or_else(|error| match cache_flag_refusal(&error, &command) {
+            Some(message) => {
+                eprintln!("error: {message}");
+                std::process::exit(2)
+            }
+            None => error.exit(),
+        });
     if let Err(error) = discretization_flags::check_ids(&mut command, &matches, &catalog) {
         error.exit();
     }
@@ -142,6 +150,43 @@ pub fn run(catalog: Catalog) -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// For `--no-cache` or `--cache-dir` given to a subcommand that keeps no basis cache, a clear
+/// refusal naming the subcommands that do (clap's own message suggests `-- --no-cache`, a
+/// positional argument).
+fn cache_flag_refusal(error: &clap::Error, command: &clap::Command) -> Option<String> {
+    use clap::error::{ContextKind, ContextValue};
+    if error.kind() != clap::error::ErrorKind::UnknownArgument {
+        return None;
+    }
+    let Some(ContextValue::String(argument)) = error.get(ContextKind::InvalidArg) else {
+        return None;
+    };
+    let flag = argument.split('=').next().unwrap_or_default();
+    if flag != "--no-cache" && flag != "--cache-dir" {
+        return None;
+    }
+    let given: Vec<String> = std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let subcommand = command
+        .get_subcommands()
+        .find(|s| given.iter().any(|a| a == s.get_name()))
+        .map_or("this subcommand".to_string(), |s| {
+            format!("tvf {}", s.get_name())
+        });
+    let caching: Vec<&str> = command
+        .get_subcommands()
+        .filter(|s| s.get_arguments().any(|a| a.get_id() == "no_cache"))
+        .map(|s| s.get_name())
+        .collect();
+    Some(format!(
+        "{flag}: {subcommand} keeps no basis cache (it computes what it needs every time), so \
+         there is nothing to turn off or move; leave {flag} out. The subcommands that reuse a \
+         cached basis take it: {}",
+        caching.join(", ")
+    ))
 }
 
 /// The error and its causes, joined by `": "`, leaving out a cause whose text the message

@@ -20,6 +20,14 @@ pub fn check_output(output: &Path, input: &MeshInput, others: &[Option<&Path>]) 
     Ok(tvf_core::io::check_output(output, &inputs)?)
 }
 
+/// [`check_output`] for an output that is one file: moreover not an existing folder
+/// ([`tvf_core::io::check_file_output`]).
+pub fn check_file_output(output: &Path, input: &MeshInput, others: &[Option<&Path>]) -> Result<()> {
+    check_output(output, input, others)?;
+    let inputs: Vec<&Path> = Vec::new();
+    Ok(tvf_core::io::check_file_output(output, &inputs)?)
+}
+
 /// Starts writing the folder output `out` in a temporary sibling
 /// ([`tvf_core::io::StagedFolder`]): it appears whole at [`commit`] or not at all.
 pub fn stage(out: &Path) -> Result<StagedFolder> {

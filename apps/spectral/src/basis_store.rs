@@ -10,12 +10,17 @@
 //! names mean bit-identical bases; a complex whose assembly changed has another name, and its
 //! basis is computed afresh. A file that is damaged, carries no matrix hash (format versions 1
 //! and 2) or does not hold what its name promises is recomputed (and the problem reported),
-//! never used. Files under the names of earlier versions (`{fingerprint}-{complex id}-{size}`)
+//! never used; so is anything under a basis's name that is not a regular file of the user (a
+//! link, a FIFO, another user's file: not followed, not read, replaced by a rename, see
+//! `basis_cache_file`). Files under the names of earlier versions (`{fingerprint}-{complex id}-{size}`)
 //! are never read; they may be deleted.
+use crate::basis_cache_file::{open_cache_file, put_cache_file, CacheEntry};
+use crate::formats::basis_file::{load_basis_from_file, read_basis_header_from};
 use crate::{
-    compute_basis, load_basis, read_basis_header, save_eigenfunction_basis, BasisError,
-    BasisFileKey, BasisProgress, BasisRequest, BasisSize, FieldFamily, SpectralBasis,
+    compute_basis, save_eigenfunction_basis, BasisError, BasisFileKey, BasisProgress, BasisRequest,
+    BasisSize, FieldFamily, SpectralBasis,
 };
+use std::fs::File;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
@@ -98,34 +103,23 @@ impl BasisStore {
         let file = self.file(mesh, complex, size);
         let key = BasisFileKey::new(mesh, complex);
         let mut unusable_file = None;
-        if file.exists() {
-            let start = Instant::now();
-            let read = read_basis_header(&file)
-                .map_err(|e| e.to_string())
-                .and_then(|header| match header.key.matrix_hash {
-                    Some(_) => Ok(()),
-                    None => Err(format!(
-                        "{}: format version {} predates matrix hashes",
-                        file.display(),
-                        header.version
-                    )),
-                })
-                .and_then(|()| load_basis(&file, &key, complex).map_err(|e| e.to_string()))
-                .and_then(|basis| {
-                    size_mismatch(size, complex.field_dimension(), &basis)
-                        .map_or(Ok(basis), |problem| {
-                            Err(format!("{}: {problem}", file.display()))
-                        })
-                });
-            match read {
-                Ok(basis) => {
-                    let origin = StoredBasisOrigin::Read {
-                        file,
-                        seconds: start.elapsed().as_secs_f64(),
-                    };
-                    return Ok((basis, origin));
+        match open_cache_file(&file) {
+            CacheEntry::Missing => {}
+            CacheEntry::Unusable(problem) => {
+                unusable_file = Some(format!("{}: {problem}", file.display()))
+            }
+            CacheEntry::Usable(handle) => {
+                let start = Instant::now();
+                match read_stored(&handle, &file, &key, complex, size) {
+                    Ok(basis) => {
+                        let origin = StoredBasisOrigin::Read {
+                            file,
+                            seconds: start.elapsed().as_secs_f64(),
+                        };
+                        return Ok((basis, origin));
+                    }
+                    Err(problem) => unusable_file = Some(problem),
                 }
-                Err(problem) => unusable_file = Some(problem),
             }
         }
         let mut request = size_request(size, complex.field_dimension(), progress);
@@ -133,14 +127,17 @@ impl BasisStore {
         let mut basis = compute_basis(complex, &request)?;
         // Saved in compact form (smaller, see `save_eigenfunction_basis`), which is then dropped
         // from memory: the basis handed out carries only its dense fields.
+        // Written under a private name and renamed onto the cache name, replacing whatever
+        // is there (see `basis_cache_file`).
         let saved = match basis.take_eigenfunctions() {
             Some(compact) => std::fs::create_dir_all(&self.folder)
                 .map_err(|e| format!("{}: {e}", self.folder.display()))
                 .and_then(|()| {
-                    save_eigenfunction_basis(&file, &compact, complex, &key)
-                        .map_err(|e| e.to_string())
-                })
-                .map(|()| file),
+                    put_cache_file(&self.folder, &file, |staged| {
+                        save_eigenfunction_basis(staged, &compact, complex, &key)
+                            .map_err(|e| e.to_string())
+                    })
+                }),
             None => Err(format!(
                 "{}: the compact basis was not kept",
                 file.display()
@@ -153,6 +150,33 @@ impl BasisStore {
                 saved,
             },
         ))
+    }
+}
+
+/// The basis in the cache file `handle` (opened from `path`), if it carries a matrix hash,
+/// belongs to `key` and `complex` and has the size its name promises; else why not.
+fn read_stored<H: HodgeComplex + ?Sized>(
+    handle: &File,
+    path: &Path,
+    key: &BasisFileKey,
+    complex: &H,
+    size: BasisSize,
+) -> Result<SpectralBasis, String> {
+    let header = read_basis_header_from(handle, path).map_err(|e| e.to_string())?;
+    if header.key.matrix_hash.is_none() {
+        return Err(format!(
+            "{}: format version {} predates matrix hashes",
+            path.display(),
+            header.version
+        ));
+    }
+    let handle = handle
+        .try_clone()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let basis = load_basis_from_file(handle, path, key, complex).map_err(|e| e.to_string())?;
+    match size_mismatch(size, complex.field_dimension(), &basis) {
+        Some(problem) => Err(format!("{}: {problem}", path.display())),
+        None => Ok(basis),
     }
 }
 

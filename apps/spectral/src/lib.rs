@@ -30,6 +30,7 @@
 mod analysis;
 mod analysis_report;
 mod basis;
+mod basis_cache_file;
 mod basis_cache_folder;
 mod basis_comparison;
 mod basis_error;
@@ -59,14 +60,15 @@ mod test_torus;
 pub use analysis::{exact_hodge_energies, CoefficientEntry, EnergySplit, SpectralAnalysis};
 pub use analysis_report::AnalysisReport;
 pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
-pub use basis_cache_folder::MESH_CACHE_FOLDER;
+pub use basis_cache_folder::{
+    check_cache_folder, prepare_private_folder, user_cache_folder_from, BasisCache, FolderCheck,
+};
 pub use basis_comparison::{BasisComparison, BasisComparisonError, SampledBasis};
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use basis_resolution::{
     cache_messages, cached_or_computed_basis, computed_basis_summary, open_checked_basis_file,
-    prepare_private_folder, user_cache_folder_from, BasisCache, BasisFromFile, BasisMessage,
-    CachedBasis,
+    BasisFromFile, BasisMessage, CachedBasis,
 };
 pub use basis_store::{compute_basis_of_size, BasisStore, StoredBasisOrigin};
 pub use basis_summary::{BasisSummary, FamilyCounts};
@@ -93,9 +95,9 @@ pub use filter_spec::read_curve_file;
 pub use filter_spec_error::FilterSpecError;
 pub use formats::basis_arrays::write_basis_arrays;
 pub use formats::basis_file::{
-    load_basis, read_basis_file, read_basis_header, save_basis, save_eigenfunction_basis,
-    BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, StoredFieldMass,
-    BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
+    load_basis, load_basis_from_file, read_basis_file, read_basis_header, read_basis_header_from,
+    save_basis, save_eigenfunction_basis, BasisFileError, BasisFileHeader, BasisFileKey,
+    BasisFileLayout, StoredFieldMass, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
 pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, open_basis_file_with,
@@ -103,7 +105,9 @@ pub use formats::basis_file_complex::{
 };
 pub use formats::basis_id::basis_id;
 pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
-pub use formats::complex_folder::{read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID};
+pub use formats::complex_folder::{
+    read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID, MAX_INFO_BYTES,
+};
 pub use formats::complex_folder_info::{
     complex_folder_info, mass_file_name, sampling_of, MatrixFileFormat,
 };
@@ -127,7 +131,13 @@ pub use formats::folder_file::{
 pub use formats::hodge_parts_folder::write_hodge_parts;
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
-pub use formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};
+pub use formats::sparse_file_read::{
+    read_matrix_market, read_matrix_market_within, MatrixLimits, MIN_ENTRY_LINE_BYTES,
+};
+pub use formats::sparse_npz_read::{
+    read_index_npy, read_index_npy_within, read_sparse_npz, read_sparse_npz_within,
+    InflationBudget, NPZ_INFLATED_LIMIT,
+};
 pub use formats::stored_basis::StoredBasis;
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};

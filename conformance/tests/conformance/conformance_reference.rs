@@ -12,7 +12,7 @@ use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
 /// The eigenvalues of a scalar eigenproblem on the free nodes of its space (dense).
 fn spectrum(problem: &Eigenproblem, nodes: &NodeSpace) -> Vec<f64> {
     let (a, m, _) = free_eigenproblem(problem, nodes);
-    generalized_eigenvalues(&a, &m)
+    generalized_eigenvalues(&a, &m).expect("the dense eigenvalues")
 }
 
 /// `docs/conventions.md`: on the 320-face icosphere (barycentric lumping) the lowest three nonzero P1

@@ -212,3 +212,107 @@ fn a_builder_broken_above_100_faces_is_shrunk_to_a_small_failing_mesh() {
         counterexample.spec
     );
 }
+
+/// The correct complex with `M0`'s first entry doubled (`1ᵀ M0 1` is no longer the area).
+fn with_wrong_m0(mesh: &TriangleMesh) -> Result<BoxedComplex, String> {
+    let c = correct(mesh);
+    let mut m0 = c.m0().diagonal_values().unwrap().to_vec();
+    m0[0] *= 2.0;
+    let mutant = MatrixComplex::new(
+        "mutant",
+        &mesh.clone().into(),
+        c.d0().clone(),
+        c.d1().clone(),
+        Mass::diagonal("M0", m0).map_err(|e| e.to_string())?,
+        c.m1().clone(),
+        c.m2().clone(),
+        MatrixSampling::FaceFrames,
+    )
+    .map_err(|e| e.to_string())?;
+    Ok(Box::new(mutant))
+}
+
+/// A builder wrong on every second call fails, even though its counterexample passes when
+/// checked once more: the failure is reported with the numbers of the run that failed and
+/// marked as not reproduced (it once came back with a passing counterexample).
+#[test]
+fn a_failure_that_does_not_reproduce_is_still_a_failure() {
+    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let builder = |mesh: &TriangleMesh| -> Result<BoxedComplex, String> {
+        match calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed) % 2 {
+            0 => Ok(correct(mesh)),
+            _ => with_wrong_m0(mesh),
+        }
+    };
+    let needs = MeshNeeds {
+        delaunay: false,
+        closed_only: true,
+    };
+    let report = run_property(&builder, &PropertyRequest::new(8, 3, needs), &|_| {});
+    assert!(!report.passed());
+    let counterexample = report.counterexample.expect("a failure was seen");
+    assert!(!counterexample.report.passed(), "the failing run's numbers");
+    let failed: Vec<&str> = counterexample
+        .report
+        .failures()
+        .iter()
+        .map(|o| o.name.as_str())
+        .collect();
+    assert!(
+        failed.contains(&"potential_masses_sum_to_area"),
+        "{failed:?}"
+    );
+    // Calls alternate: the check once more after the shrinking hits the other parity or not,
+    // and either way the verdict holds; a builder that fails only once never reproduces.
+    let once = std::sync::atomic::AtomicBool::new(false);
+    let builder_once = |mesh: &TriangleMesh| -> Result<BoxedComplex, String> {
+        match once.swap(true, std::sync::atomic::Ordering::Relaxed) {
+            false => with_wrong_m0(mesh),
+            true => Ok(correct(mesh)),
+        }
+    };
+    let report = run_property(&builder_once, &PropertyRequest::new(4, 3, needs), &|_| {});
+    assert!(!report.passed());
+    let counterexample = report.counterexample.expect("the first case failed");
+    assert!(!counterexample.reproduced);
+    assert!(!counterexample.report.passed());
+}
+
+/// A builder that unwinds with `StopRun` (Ctrl+C in Python) ends the run at once: the runner
+/// unwinds with it instead of counting a failure, shrinking or checking more meshes.
+#[test]
+fn a_stop_ends_the_run_and_reaches_the_caller() {
+    use tvf_conformance::property_runner::StopRun;
+    let calls = std::sync::atomic::AtomicUsize::new(0);
+    let builder = |mesh: &TriangleMesh| -> Result<BoxedComplex, String> {
+        if calls.fetch_add(1, std::sync::atomic::Ordering::Relaxed) == 2 {
+            std::panic::resume_unwind(Box::new(StopRun));
+        }
+        Ok(correct(mesh))
+    };
+    let needs = MeshNeeds {
+        delaunay: false,
+        closed_only: true,
+    };
+    let request = PropertyRequest::new(16, 5, needs);
+    let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        run_property(&builder, &request, &|_| {})
+    }));
+    let Err(payload) = run else {
+        panic!("the run was not stopped")
+    };
+    assert!(payload.is::<StopRun>());
+    assert_eq!(calls.load(std::sync::atomic::Ordering::Relaxed), 3);
+    // On one mesh too.
+    let stopped = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        check_mesh(
+            &|_| std::panic::resume_unwind(Box::new(StopRun)),
+            &mesh(),
+            &[],
+        )
+    }));
+    let Err(payload) = stopped else {
+        panic!("the check was not stopped")
+    };
+    assert!(payload.is::<StopRun>());
+}

@@ -36,7 +36,7 @@ pub use atomic_write::{write_atomically, AtomicWriter};
 pub use bounded_read::{read_at_most, read_exactly_at_most};
 pub use early_writeback::EarlyWriteback;
 pub use error::{LoadError, LoadErrorKind};
-pub use output_path::{check_output, OutputPathError};
+pub use output_path::{check_file_output, check_output, OutputPathError};
 pub use raw_mesh::LoadedMesh;
 pub use staged_file::StagedFile;
 pub use staged_folder::StagedFolder;

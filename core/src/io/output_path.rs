@@ -22,6 +22,12 @@ pub enum OutputPathError {
         /// The output.
         output: PathBuf,
     },
+    /// A file output names an existing folder.
+    #[error("cannot write {output}: it is a folder; give the name of a file to write")]
+    IsAFolder {
+        /// The output.
+        output: PathBuf,
+    },
 }
 
 /// Checks that `output` (a file or a folder to write) can be written without surprises: its
@@ -49,6 +55,18 @@ pub fn check_output(output: &Path, inputs: &[&Path]) -> Result<(), OutputPathErr
                 output: output.to_path_buf(),
             });
         }
+    }
+    Ok(())
+}
+
+/// [`check_output`] for an output that is one file: moreover it must not be an existing folder
+/// (after following links), which the write would only find out at the end.
+pub fn check_file_output(output: &Path, inputs: &[&Path]) -> Result<(), OutputPathError> {
+    check_output(output, inputs)?;
+    if std::fs::metadata(output).is_ok_and(|m| m.is_dir()) {
+        return Err(OutputPathError::IsAFolder {
+            output: output.to_path_buf(),
+        });
     }
     Ok(())
 }
@@ -97,6 +115,15 @@ mod tests {
         );
         // A bare file name goes into the current folder, which exists.
         assert_eq!(check_output(Path::new("plain.png"), &[]), Ok(()));
+        // A folder is a folder output's target, but never a file output's.
+        assert_eq!(check_output(dir.path(), &[]), Ok(()));
+        assert_eq!(
+            check_file_output(dir.path(), &[]),
+            Err(OutputPathError::IsAFolder {
+                output: dir.path().to_path_buf()
+            })
+        );
+        assert!(check_file_output(&missing, &[]).is_err());
     }
 
     #[cfg(unix)]

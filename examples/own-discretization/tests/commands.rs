@@ -11,8 +11,15 @@ use tvf_test_support::{request, EditorProcess};
 
 const ENTRY: &str = "blend-lumping-50";
 
+/// The example's command line, with the user's cache folder (the default basis cache) in the
+/// tests' temporary folder rather than the home folder.
 fn example() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_tvf-example-own-discretization"))
+    let mut command = Command::new(env!("CARGO_BIN_EXE_tvf-example-own-discretization"));
+    command.env(
+        "XDG_CACHE_HOME",
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join("xdg-cache"),
+    );
+    command
 }
 
 /// Runs the example with `args`; fails the test with its stderr unless it succeeded.
@@ -275,7 +282,8 @@ fn a_basis_file_reopens_with_the_own_entry_and_filters_with_it() {
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max);
     assert!(error < 1e-10, "{error}");
-    // A low-pass with a computed basis (cached in the folder) keeps fewer frequencies.
+    // A low-pass with a computed basis (cached in the user's cache folder) keeps fewer
+    // frequencies.
     let smooth = dir.path().join("smooth.txt");
     let report = json(&run(&[
         "-q",

@@ -873,6 +873,9 @@ fn solve_at_shift(
 /// One job: `(job index, progress report(locked, solves))`.
 type Job<'a, T> = dyn Fn(usize, &dyn Fn(usize, usize)) -> Result<T, RequestError> + Sync + 'a;
 
+/// The payload a job unwinds with when the calling thread is gone (see [`run_jobs`]).
+struct CallerGone;
+
 /// A message from a worker thread to the coordinating thread.
 enum Message<T> {
     Progress {
@@ -888,7 +891,8 @@ enum Message<T> {
 /// Runs `jobs` jobs, `threads` at a time as tasks of the current rayon pool, and returns their
 /// results in job order;
 /// `on_message(job, locked, done)` is called on the calling thread for every progress report and
-/// completion. Stops at the first error.
+/// completion. Stops at the first error; if `on_message` unwinds, every job stops at its next
+/// report and the unwinding goes on once they have.
 fn run_jobs<T: Send>(
     jobs: usize,
     threads: usize,
@@ -915,8 +919,12 @@ fn run_jobs<T: Send>(
                             break;
                         }
                         let report = |locked: usize, _solves: usize| {
-                            // The receiver outlives the workers inside the scope.
-                            let _ = sender.send(Message::Progress { job, locked });
+                            // The receiver outlives the workers unless the calling thread
+                            // unwound (its progress callback stopped the computation, e.g. on
+                            // Ctrl+C): then this job stops too, at its next report.
+                            if sender.send(Message::Progress { job, locked }).is_err() {
+                                std::panic::resume_unwind(Box::new(CallerGone));
+                            }
                         };
                         let result = work(job, &report);
                         if result.is_err() {
@@ -979,5 +987,40 @@ fn orthogonalize_neighbours(
             par,
         );
         start = middle;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// When `on_message` unwinds, every job stops at its next report instead of running to its
+    /// end (a Ctrl+C in Python once waited for every interval to finish).
+    #[test]
+    fn jobs_stop_at_their_next_report_when_the_caller_unwinds() {
+        struct Stop;
+        const STEPS: usize = 10_000;
+        let steps: Vec<AtomicUsize> = (0..4).map(|_| AtomicUsize::new(0)).collect();
+        let work = |job: usize, report: &dyn Fn(usize, usize)| -> Result<(), RequestError> {
+            for step in 0..STEPS {
+                steps[job].fetch_add(1, Ordering::Relaxed);
+                report(step, 0);
+                std::thread::yield_now();
+            }
+            Ok(())
+        };
+        let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            run_jobs(4, 4, &work, &mut |_, _, _| {
+                std::panic::resume_unwind(Box::new(Stop))
+            })
+        }));
+        let Err(payload) = run else {
+            panic!("the jobs were not stopped")
+        };
+        assert!(payload.is::<Stop>());
+        for (job, count) in steps.iter().enumerate() {
+            let count = count.load(Ordering::Relaxed);
+            assert!(count < STEPS, "job {job} ran all its {count} steps");
+        }
     }
 }

@@ -317,3 +317,47 @@ fn every_shift_is_factored_once_and_counted_shifts_are_reused() {
     check_against_oracle(&a, &mass, 120, &solution.pairs[0]);
     assert!(solution.pairs[0].field_residuals.iter().all(|r| *r <= 1e-9));
 }
+
+/// A progress callback that unwinds (the Python package stops a computation on Ctrl+C this way)
+/// stops the solve: its payload reaches the caller as it was, after the interval jobs running
+/// on other threads have stopped at their next report, and no further report is made.
+#[test]
+fn a_progress_callback_that_unwinds_stops_the_solve() {
+    struct Stop;
+    let a = grid_laplacian(40, 38, false);
+    let mass = irregular_masses(a.rows(), 7);
+    let calls = Cell::new(0usize);
+    let callback = |_: &tvf_solvers::EigenProgress| {
+        calls.set(calls.get() + 1);
+        std::panic::resume_unwind(Box::new(Stop));
+    };
+    let options = EigenOptions {
+        interval_size: 30,
+        threads: 3,
+        progress: Some(&callback),
+        ..Default::default()
+    };
+    let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        lowest_eigenpairs(&a, &mass, 120, &options)
+    }));
+    let Err(payload) = run else {
+        panic!("the callback did not stop the solve")
+    };
+    assert!(
+        payload.is::<Stop>(),
+        "the caller gets the callback's payload"
+    );
+    assert_eq!(calls.get(), 1);
+    // The solver is usable again afterwards (no poisoned state).
+    let options = EigenOptions {
+        interval_size: 30,
+        threads: 3,
+        ..Default::default()
+    };
+    check_against_oracle(
+        &a,
+        &mass,
+        120,
+        &lowest_eigenpairs(&a, &mass, 120, &options).unwrap(),
+    );
+}

@@ -4,7 +4,7 @@
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
-use crate::output_rules::check_output;
+use crate::output_rules::{check_file_output, check_output};
 use crate::progress::{note, Progress};
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -54,8 +54,11 @@ pub fn run(args: BasisArgs, context: &RunContext) -> Result<()> {
     if args.fields == 0 {
         bail!("-k 0: ask for at least one eigenfield");
     }
-    for output in args.output.iter().chain(&args.export) {
-        check_output(output, &args.input, &[])?;
+    if let Some(output) = &args.output {
+        check_file_output(output, &args.input, &[])?;
+    }
+    if let Some(export) = &args.export {
+        check_output(export, &args.input, &[])?;
     }
     let mesh = args.input.load()?.mesh;
     let discretization = args

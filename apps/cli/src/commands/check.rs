@@ -80,7 +80,8 @@ pub struct CheckArgs {
 /// `discretization`, `passed`, `checks` (one object per check: `name`, `status`, `measured`,
 /// `limit`, `detail`), `failed` (names); for generated meshes also `cases`, `seed`,
 /// `cases_passed` (`checks` then holds each check's worst case) and, on a failure,
-/// `counterexample` (`path`, `faces`, `description`, `reproduce`, `checks`).
+/// `counterexample` (`path`, `faces`, `description`, `reproduce`, `checks`, `reproduced`: false for
+/// a failure that did not come back when the mesh was checked again).
 pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let catalog = context.catalog();
     let mut report = Report::new(args.json);
@@ -156,6 +157,13 @@ fn check_generated(
             dir.display()
         );
     }
+    if args.cases == 0 {
+        bail!("--cases 0: check at least one generated mesh");
+    }
+    // The counterexample is written after the run, which can take hours: its path is checked
+    // first.
+    tvf_core::io::check_file_output(&args.output, &[])
+        .context("--output: where the minimal failing mesh would be written")?;
     let entry = catalog.get(id)?;
     let polygons = generates_polygons(args, entry)?;
     let request = entry_property_request(entry, args.cases, args.seed);

@@ -43,7 +43,7 @@ pub struct CompressArgs {
 
 /// Compresses the frames, writes the file and reports size and error.
 pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
-    let field = args.inputs.field_path_for(&args.output, &[])?;
+    let field = args.inputs.field_path_for_file(&args.output, &[])?;
     let size = args.inputs.basis.size_or(BasisSize::Pairs(args.pairs));
     let inputs = args.inputs.load(context.catalog())?;
     let (frames, source) = read_frames(&field, inputs.fields()?)?;

@@ -113,7 +113,7 @@ pub fn run(args: ConvergenceArgs, context: &RunContext) -> Result<()> {
         bail!("-n 0: compare at least one eigenvalue per family");
     }
     if let Some(output) = &args.output {
-        tvf_core::io::check_output(output, &[])?;
+        tvf_core::io::check_file_output(output, &[])?;
     }
     let catalog = context.catalog();
     let surfaces = args.surface.surfaces();

@@ -6,6 +6,7 @@ use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
+use tvf_core::discretization::HodgeOperators;
 use tvf_core::ValidationWarning;
 use tvf_design::ConstraintSet;
 use tvf_design::ReducedBasis;
@@ -42,6 +43,11 @@ pub fn run(args: EditArgs, context: &RunContext) -> Result<()> {
         .basis
         .options
         .discretization(context.catalog(), &mesh, &args.input)?;
+    // The editor draws fields in space: a complex that cannot sample them is refused now, not
+    // after its basis is computed.
+    complex
+        .require_sampling()
+        .context("the editor draws fields as vectors in space")?;
     let constraints = args
         .constraints
         .as_deref()

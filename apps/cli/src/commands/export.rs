@@ -5,7 +5,7 @@ use super::spectral_inputs::read_field;
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::MeshInput;
-use crate::output_rules::check_output;
+use crate::output_rules::check_file_output;
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
@@ -66,7 +66,7 @@ fn format_of(path: &Path) -> Option<Format> {
 /// Writes the export.
 pub fn run(mut args: ExportArgs, context: &RunContext) -> Result<()> {
     let field = args.input.required_second(args.field.take(), "FIELD");
-    check_output(&args.output, &args.input, &[Some(&field)])?;
+    check_file_output(&args.output, &args.input, &[Some(&field)])?;
     let mesh = args.input.load()?.mesh;
     let Some(format) = args.format.or_else(|| format_of(&args.output)) else {
         bail!(

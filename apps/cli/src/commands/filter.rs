@@ -63,7 +63,7 @@ fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
 /// Filters the field and writes the result.
 pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     let curves = [curve_file(&args.integrable), curve_file(&args.cointegrable)];
-    let field = args.inputs.field_path_for(&args.output, &curves)?;
+    let field = args.inputs.field_path_for_file(&args.output, &curves)?;
     for (name, gain) in [("--harmonic", args.harmonic), ("--rest", args.rest)] {
         if !gain.is_finite() || gain < 0.0 {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");

@@ -4,7 +4,7 @@ use super::spectral_inputs::read_field;
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
 use crate::mesh_input::{usage_error, MeshInput};
-use crate::output_rules::check_output;
+use crate::output_rules::check_file_output;
 use crate::picture_options::{face_quantity_arg, parse_size, parse_view, style_arg};
 use crate::progress::note;
 use anyhow::{bail, Result};
@@ -90,7 +90,7 @@ pub struct RenderArgs {
 pub fn run(mut args: RenderArgs, context: &RunContext) -> Result<()> {
     let field_path = args.input.optional_second(args.field.take(), "FIELD");
     let inputs = [field_path.as_deref(), args.constraints.as_deref()];
-    check_output(&args.output, &args.input, &inputs)?;
+    check_file_output(&args.output, &args.input, &inputs)?;
     if args.parts && field_path.is_none() {
         usage_error(
             ErrorKind::MissingRequiredArgument,

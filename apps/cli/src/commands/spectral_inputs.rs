@@ -6,7 +6,7 @@
 
 use crate::basis_source::{BasisOptions, BasisSource};
 use crate::mesh_input::MeshInput;
-use crate::output_rules::check_output;
+use crate::output_rules::{check_file_output, check_output};
 use crate::progress::note;
 use anyhow::Result;
 use clap::Args;
@@ -43,6 +43,18 @@ impl FieldArgs {
         let mut inputs = vec![Some(field.as_path()), self.basis_file()];
         inputs.extend_from_slice(others);
         check_output(output, &self.input, &inputs)?;
+        Ok(field)
+    }
+
+    /// [`FieldArgs::field_path_for`] for an output that is one file, which must not be an
+    /// existing folder either ([`check_file_output`]).
+    pub fn field_path_for_file(
+        &mut self,
+        output: &Path,
+        others: &[Option<&Path>],
+    ) -> Result<PathBuf> {
+        let field = self.field_path_for(output, others)?;
+        check_file_output(output, &self.input, &[])?;
         Ok(field)
     }
 

@@ -6,7 +6,7 @@
 use crate::basis_source::BasisSource;
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
-use crate::output_rules::check_output;
+use crate::output_rules::check_file_output;
 use crate::report::Report;
 use anyhow::Result;
 use clap::Args;
@@ -62,7 +62,7 @@ impl DesignOutputArgs {
         report: &mut Report,
     ) -> Result<(DesignProblem, BoxedComplex, Vec<CompiledConstraint>)> {
         let basis_file = self.basis.options.basis.as_deref();
-        check_output(&self.output, input, &[Some(constraints), basis_file])?;
+        check_file_output(&self.output, input, &[Some(constraints), basis_file])?;
         let problem = DesignProblem::load(input.load()?.mesh, input.label(), constraints)?;
         let summary = problem.summary();
         report.add(summary.lines(), &summary);

@@ -1,7 +1,7 @@
 //! End-to-end: `tvf check` on a mesh file (text and JSON, measured numbers, exit 1 naming the
 //! failed check) and on generated meshes; on polygon meshes (a file, and generated ones).
 
-use crate::common::assert_success;
+use crate::common::{self, assert_success};
 use serde_json::Value;
 use std::process::{Command, Output};
 
@@ -169,4 +169,74 @@ fn generated_polygon_meshes_pass_for_polygon_dec_and_are_refused_to_triangle_ent
         stderr.contains("--meshes polygons") && stderr.contains("dec-barycentric"),
         "{stderr}"
     );
+}
+
+/// Arguments that make a generated run meaningless or lose its result are refused before any
+/// mesh is checked: `--cases 0` (once "passed" with exit 0), a counterexample path in a missing
+/// folder or naming a folder (once found out only when a failure was to be written).
+#[test]
+fn cases_and_the_counterexample_path_are_checked_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().display().to_string();
+    let missing = dir.path().join("no/x.obj").display().to_string();
+    for (args, said) in [
+        (vec!["--cases", "0"], "--cases 0"),
+        (vec!["--cases", "64", "-o", &missing], "does not exist"),
+        (vec!["--cases", "64", "-o", &folder], "is a folder"),
+    ] {
+        let output = common::output_within(
+            Command::new(env!("CARGO_BIN_EXE_tvf"))
+                .args(["check", "--discretization", "conforming-barycentric"])
+                .args(&args),
+            30,
+        );
+        assert_eq!(output.status.code(), Some(1), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains(said), "{args:?}: {stderr}");
+        assert!(!stderr.contains("meshes passed"), "{args:?} ran: {stderr}");
+    }
+}
+
+/// A complex whose eigenvalues cannot be computed (a field mass of denormal entries, `1e-310`:
+/// the scaled pencil overflows) fails its spectral checks with a sentence, not a caught panic
+/// and its backtrace.
+#[test]
+fn a_check_that_cannot_be_computed_fails_with_a_sentence() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = quad_torus(dir.path());
+    let ops = dir.path().join("ops");
+    let ops_text = ops.display().to_string();
+    assert_success(&tvf(&["operators", &mesh, "-o", &ops_text]));
+    let m1 = ops.join("M1.mtx");
+    let text = std::fs::read_to_string(&m1).unwrap();
+    let mut size_seen = false;
+    let scaled: Vec<String> = text
+        .lines()
+        .map(|line| {
+            if line.starts_with('%') || !size_seen {
+                size_seen |= !line.starts_with('%');
+                return line.to_string();
+            }
+            let words: Vec<&str> = line.split_whitespace().collect();
+            let value: f64 = words[2].parse().unwrap();
+            format!("{} {} {:e}", words[0], words[1], value * 1e-310)
+        })
+        .collect();
+    std::fs::write(&m1, scaled.join("\n") + "\n").unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_tvf"))
+        .args(["check", &mesh, "--complex", &ops_text])
+        .env("RUST_BACKTRACE", "1")
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr),
+    );
+    assert!(
+        !stderr.contains("panicked") && !stderr.contains("backtrace"),
+        "{stderr}"
+    );
+    assert!(stdout.contains("cannot be computed"), "{stdout}");
+    assert!(stderr.contains("failed checks"), "{stderr}");
 }

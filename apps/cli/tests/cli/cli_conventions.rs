@@ -346,3 +346,54 @@ fn a_report_into_a_closed_pipe_ends_quietly() {
         output.status
     );
 }
+
+/// `--no-cache` and `--cache-dir` on a subcommand that keeps no basis cache (`spectrum`,
+/// `basis`, `check` …) are refused with a sentence that says so and names the subcommands that
+/// take them, not clap's advice to pass `-- --no-cache` as a positional argument; every
+/// subcommand that reuses a basis takes them.
+#[test]
+fn cache_flags_are_taken_where_a_cache_is_used_and_refused_clearly_elsewhere() {
+    for args in [
+        &["spectrum", "--example", "torus", "-k", "4", "--no-cache"][..],
+        &[
+            "basis",
+            "--example",
+            "torus",
+            "-k",
+            "4",
+            "--cache-dir=x",
+            "-o",
+            "b.tvfb",
+        ],
+        &["check", "--no-cache"],
+        &["convergence", "--no-cache"],
+    ] {
+        let output = tvf().args(args).output().unwrap();
+        assert_eq!(output.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            stderr.contains(&format!("tvf {} keeps no basis cache", args[0])),
+            "{args:?}: {stderr}"
+        );
+        assert!(stderr.contains("coefficients, "), "{stderr}");
+        assert!(!stderr.contains("-- --no-cache"), "{stderr}");
+    }
+    for sub in [
+        "coefficients",
+        "filter",
+        "analyze",
+        "compress",
+        "decompress",
+        "rate-distortion",
+        "spline",
+        "design",
+        "edit",
+    ] {
+        let help = tvf().args([sub, "--help"]).output().unwrap();
+        let help = String::from_utf8_lossy(&help.stdout);
+        assert!(
+            help.contains("--no-cache") && help.contains("--cache-dir"),
+            "{sub}"
+        );
+    }
+}

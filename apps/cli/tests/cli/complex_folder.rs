@@ -5,7 +5,7 @@
 //! folders are refused naming the file; filter, spline and render on an unedited folder give
 //! the very results of the catalog entry it was written from. Generated meshes only.
 
-use crate::common::{assert_success, tvf, write_field};
+use crate::common::{self, assert_success, tvf, write_field};
 use faer::{Mat, Side};
 use sprs::CsMat;
 use std::path::{Path, PathBuf};
@@ -338,10 +338,17 @@ fn broken_folders_are_refused_naming_the_file() {
         "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 1 1\n2 2 1\n3 3 1\n",
     )
     .unwrap();
+    check(&shape, "M0.mtx", "declares a 3 x 3 matrix, but each size");
+    // A size of the mesh (F = 80), but not the one M0 needs.
+    std::fs::write(
+        Path::new(&shape).join("M0.mtx"),
+        "%%MatrixMarket matrix coordinate real general\n80 80 1\n1 1 1\n",
+    )
+    .unwrap();
     check(
         &shape,
         "M0.mtx",
-        "M0 is 3 x 3, but the complex needs 42 x 42",
+        "M0 is 80 x 80, but the complex needs 42 x 42",
     );
 
     type Edit = fn(usize, usize, f64) -> f64;
@@ -538,4 +545,667 @@ fn commands_on_an_unedited_folder_match_the_catalog_entry() {
             b.display()
         );
     }
+}
+
+// ----- The sweep of hostile folders -----------------------------------------------------------
+
+/// Copies the files of folder `from` into a new folder `to`.
+fn copy_folder(from: &Path, to: &Path) {
+    std::fs::create_dir(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        std::fs::copy(entry.path(), to.join(entry.file_name())).unwrap();
+    }
+}
+
+/// Replaces the size line (the first line after the header and comments) of `name.mtx`.
+fn size_line(dir: &Path, name: &str, line: &str) {
+    let path = dir.join(format!("{name}.mtx"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut replaced = false;
+    let lines: Vec<String> = text
+        .lines()
+        .map(|l| {
+            if !replaced && !l.starts_with('%') {
+                replaced = true;
+                return line.to_string();
+            }
+            l.to_string()
+        })
+        .collect();
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+}
+
+/// Replaces the file `name` of `dir` by a symbolic link to `target`.
+#[cfg(unix)]
+fn link_in(dir: &Path, name: &str, target: &str) {
+    let _ = std::fs::remove_file(dir.join(name));
+    std::os::unix::fs::symlink(target, dir.join(name)).unwrap();
+}
+
+/// Replaces the file `name` of `dir` by a FIFO nobody writes to.
+fn fifo_in(dir: &Path, name: &str) {
+    let _ = std::fs::remove_file(dir.join(name));
+    let made = std::process::Command::new("mkfifo")
+        .arg(dir.join(name))
+        .status();
+    assert!(made.unwrap().success());
+}
+
+/// Edits `info.json` of `dir`.
+fn edit_info(dir: &Path, change: impl Fn(&mut serde_json::Value)) {
+    let path = dir.join("info.json");
+    let mut info: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    change(&mut info);
+    std::fs::write(&path, info.to_string()).unwrap();
+}
+
+/// An `.npy` file (format 1.0) with the header dictionary `dict` and the bytes `data` as they
+/// are.
+fn npy_raw(dict: &str, data: &[u8]) -> Vec<u8> {
+    let mut header = dict.as_bytes().to_vec();
+    while !(10 + header.len() + 1).is_multiple_of(64) {
+        header.push(b' ');
+    }
+    header.push(b'\n');
+    let mut out = b"\x93NUMPY\x01\x00".to_vec();
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend(header);
+    out.extend_from_slice(data);
+    out
+}
+
+/// A one-dimensional little-endian `.npy` of `i8` integers or `f8` floats.
+fn npy_ints(values: &[i64]) -> Vec<u8> {
+    let data: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
+    let dict = format!(
+        "{{'descr': '<i8', 'fortran_order': False, 'shape': ({},), }}",
+        values.len()
+    );
+    npy_raw(&dict, &data)
+}
+
+/// The members of the `.npz` file `name` of `dir` (name without `.npy`, bytes).
+fn npz_members(dir: &Path, name: &str) -> Vec<(String, Vec<u8>)> {
+    let file = std::fs::File::open(dir.join(format!("{name}.npz"))).unwrap();
+    let mut archive = zip::ZipArchive::new(file).unwrap();
+    (0..archive.len())
+        .map(|i| {
+            let mut member = archive.by_index(i).unwrap();
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(&mut member, &mut bytes).unwrap();
+            (member.name().trim_end_matches(".npy").to_string(), bytes)
+        })
+        .collect()
+}
+
+/// Writes `members` as the `.npz` file `name` of `dir`, deflated.
+fn write_npz(dir: &Path, name: &str, members: &[(String, Vec<u8>)]) {
+    let file = std::fs::File::create(dir.join(format!("{name}.npz"))).unwrap();
+    let mut zip = zip::ZipWriter::new(file);
+    let options = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    for (member, bytes) in members {
+        zip.start_file(format!("{member}.npy"), options).unwrap();
+        std::io::Write::write_all(&mut zip, bytes).unwrap();
+    }
+    zip.finish().unwrap();
+}
+
+/// Replaces (or adds, or with `None` removes) members of `name.npz` in `dir`.
+fn edit_npz(dir: &Path, name: &str, changes: &[(&str, Option<Vec<u8>>)]) {
+    let mut members = npz_members(dir, name);
+    for (member, bytes) in changes {
+        members.retain(|(m, _)| m != member);
+        if let Some(bytes) = bytes {
+            members.push((member.to_string(), bytes.clone()));
+        }
+    }
+    write_npz(dir, name, &members);
+}
+
+/// The data of a `.npy` member (its bytes after the header).
+fn npy_payload(bytes: &[u8]) -> Vec<u8> {
+    let header = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    bytes[10 + header..].to_vec()
+}
+
+/// A way to break a folder: its name, what it does to a copy of the folder, and what the
+/// refusal must say (`None`: the folder is fine and must give the unbroken spectrum).
+type Hostile = (&'static str, Box<dyn Fn(&Path)>, Option<&'static str>);
+
+/// The hostile variants of a Matrix Market folder (the mesh: `icosphere(3)`, V 642, E 1920,
+/// F 1280: M1 is 2560 × 2560).
+#[cfg(unix)]
+fn hostile_matrix_market_folders() -> Vec<Hostile> {
+    let each_size = Some("each size of a matrix of this mesh");
+    vec![
+        (
+            "M1 declares 4e9 x 4e9",
+            Box::new(|d: &Path| size_line(d, "M1", "4000000000 4000000000 2560")),
+            each_size,
+        ),
+        (
+            "M1 declares 5e8 x 5e8",
+            Box::new(|d: &Path| size_line(d, "M1", "500000000 500000000 2560")),
+            each_size,
+        ),
+        (
+            "M1 declares 1e12 entries",
+            Box::new(|d: &Path| size_line(d, "M1", "2560 2560 1000000000000")),
+            Some("holds at most"),
+        ),
+        (
+            "M1 declares 2^64-1 entries",
+            Box::new(|d: &Path| size_line(d, "M1", "2560 2560 18446744073709551615")),
+            Some("holds at most"),
+        ),
+        (
+            "M1 declares 2560 x 642",
+            Box::new(|d: &Path| size_line(d, "M1", "2560 642 2560")),
+            Some("column index"),
+        ),
+        (
+            "M1.mtx links to /dev/zero",
+            Box::new(|d: &Path| link_in(d, "M1.mtx", "/dev/zero")),
+            Some("character device"),
+        ),
+        (
+            "M1.mtx is a FIFO",
+            Box::new(|d: &Path| fifo_in(d, "M1.mtx")),
+            Some("a FIFO"),
+        ),
+        (
+            "M1.mtx is a folder",
+            Box::new(|d: &Path| {
+                std::fs::remove_file(d.join("M1.mtx")).unwrap();
+                std::fs::create_dir(d.join("M1.mtx")).unwrap();
+            }),
+            Some("a folder"),
+        ),
+        (
+            "M1.mtx is a loop of links",
+            Box::new(|d: &Path| link_in(d, "M1.mtx", "M1.mtx")),
+            Some("M1"),
+        ),
+        (
+            "info.json links to /dev/zero",
+            Box::new(|d: &Path| link_in(d, "info.json", "/dev/zero")),
+            Some("character device"),
+        ),
+        (
+            "info.json is a FIFO",
+            Box::new(|d: &Path| fifo_in(d, "info.json")),
+            Some("a FIFO"),
+        ),
+        (
+            "info.json is not JSON",
+            Box::new(|d: &Path| std::fs::write(d.join("info.json"), "{\"sampling\": ").unwrap()),
+            Some("not valid JSON"),
+        ),
+        (
+            "info.json names ../../../../etc/passwd",
+            Box::new(|d: &Path| {
+                edit_info(d, |i| {
+                    i["masses"]["M1"]["file"] = "../../../../etc/passwd".into()
+                })
+            }),
+            Some("masses/M1/file"),
+        ),
+        (
+            "info.json names /etc/passwd",
+            Box::new(|d: &Path| edit_info(d, |i| i["masses"]["M1"]["file"] = "/etc/passwd".into())),
+            Some("masses/M1/file"),
+        ),
+        (
+            "info.json gives a form 'sideways'",
+            Box::new(|d: &Path| edit_info(d, |i| i["masses"]["M1"]["form"] = "sideways".into())),
+            Some("direct or inverse"),
+        ),
+        (
+            "info.json calls the direct M1 an inverse file",
+            Box::new(|d: &Path| {
+                std::fs::rename(d.join("M1.mtx"), d.join("M1_inverse.mtx")).unwrap();
+                edit_info(d, |i| {
+                    i["masses"]["M1"]["file"] = "M1_inverse".into();
+                    i["masses"]["M1"]["form"] = "direct".into();
+                });
+            }),
+            Some("named as an inverse"),
+        ),
+        (
+            "info.json gives an unknown sampling",
+            Box::new(|d: &Path| edit_info(d, |i| i["sampling"] = "nearest".into())),
+            Some("sampling is 'nearest'"),
+        ),
+        (
+            "d0.mtx is binary",
+            Box::new(|d: &Path| std::fs::write(d.join("d0.mtx"), vec![0xAB; 100_000]).unwrap()),
+            Some("not a Matrix Market"),
+        ),
+        (
+            "M1.mtx has an index beyond its shape",
+            Box::new(|d: &Path| {
+                let path = d.join("M1.mtx");
+                let text = std::fs::read_to_string(&path).unwrap() + "2561 1 1.0\n";
+                std::fs::write(&path, text).unwrap();
+                let entries = std::fs::read_to_string(&path)
+                    .unwrap()
+                    .lines()
+                    .filter(|l| !l.starts_with('%'))
+                    .count()
+                    - 1;
+                size_line(d, "M1", &format!("2560 2560 {entries}"));
+            }),
+            Some("row index '2561'"),
+        ),
+        (
+            "both M1.mtx and M1.npz",
+            Box::new(|d: &Path| std::fs::write(d.join("M1.npz"), b"x").unwrap()),
+            Some("both M1.mtx and M1.npz"),
+        ),
+        (
+            "vertex_map.npy links to /dev/zero",
+            Box::new(|d: &Path| link_in(d, "vertex_map.npy", "/dev/zero")),
+            Some("character device"),
+        ),
+        (
+            "vertex_map.npy is a FIFO",
+            Box::new(|d: &Path| fifo_in(d, "vertex_map.npy")),
+            Some("a FIFO"),
+        ),
+        (
+            "vertex_map.npy declares 1e12 entries",
+            Box::new(|d: &Path| {
+                std::fs::write(
+                    d.join("vertex_map.npy"),
+                    npy_raw(
+                        "{'descr': '<i8', 'fortran_order': False, 'shape': (1000000000000,), }",
+                        &[0; 64],
+                    ),
+                )
+                .unwrap()
+            }),
+            Some("1000000000000 entries, 642 expected"),
+        ),
+        (
+            "vertex_map.npy declares a 4 GiB header",
+            Box::new(|d: &Path| {
+                let mut bytes = b"\x93NUMPY\x02\x00".to_vec();
+                bytes.extend_from_slice(&0xFFFF_FFF0u32.to_le_bytes());
+                std::fs::write(d.join("vertex_map.npy"), bytes).unwrap();
+            }),
+            Some("header of"),
+        ),
+        (
+            "info.json starts with a byte-order mark",
+            Box::new(|d: &Path| {
+                let text = std::fs::read(d.join("info.json")).unwrap();
+                std::fs::write(
+                    d.join("info.json"),
+                    [b"\xEF\xBB\xBF".as_slice(), &text].concat(),
+                )
+                .unwrap();
+            }),
+            None,
+        ),
+    ]
+}
+
+/// The hostile variants of an `.npz` folder.
+#[cfg(unix)]
+fn hostile_npz_folders() -> Vec<Hostile> {
+    let each_size = Some("each size of a matrix of this mesh");
+    let shape = |rows: i64, cols: i64| Some(npy_ints(&[rows, cols]));
+    vec![
+        (
+            "M1.npz data.npy 2-D in Fortran order",
+            Box::new(|d: &Path| {
+                let data = npy_payload(
+                    &npz_members(d, "M1")
+                        .into_iter()
+                        .find(|(m, _)| m == "data")
+                        .unwrap()
+                        .1,
+                );
+                let dict = format!(
+                    "{{'descr': '<f8', 'fortran_order': True, 'shape': (2, {}), }}",
+                    data.len() / 16
+                );
+                edit_npz(d, "M1", &[("data", Some(npy_raw(&dict, &data)))]);
+            }),
+            Some("in Fortran order"),
+        ),
+        (
+            "M1.npz data.npy 2-D",
+            Box::new(|d: &Path| {
+                let data = npy_payload(
+                    &npz_members(d, "M1")
+                        .into_iter()
+                        .find(|(m, _)| m == "data")
+                        .unwrap()
+                        .1,
+                );
+                let dict = format!(
+                    "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, 2), }}",
+                    data.len() / 16
+                );
+                edit_npz(d, "M1", &[("data", Some(npy_raw(&dict, &data)))]);
+            }),
+            Some("one-dimensional"),
+        ),
+        (
+            "M1.npz format.npy is an object array",
+            Box::new(|d: &Path| {
+                edit_npz(
+                    d,
+                    "M1",
+                    &[(
+                        "format",
+                        Some(npy_raw(
+                            "{'descr': '|O', 'fortran_order': False, 'shape': (), }",
+                            &[0; 8],
+                        )),
+                    )],
+                )
+            }),
+            Some("format.npy"),
+        ),
+        (
+            "M1.npz shape (4e9, 4e9), CSR",
+            Box::new(move |d: &Path| {
+                edit_npz(d, "M1", &[("shape", shape(4_000_000_000, 4_000_000_000))])
+            }),
+            each_size,
+        ),
+        (
+            "M1.npz shape (5e8, 5e8)",
+            Box::new(move |d: &Path| {
+                edit_npz(d, "M1", &[("shape", shape(500_000_000, 500_000_000))])
+            }),
+            each_size,
+        ),
+        (
+            "M1.npz CSC with 4e9 rows",
+            Box::new(move |d: &Path| {
+                edit_npz(
+                    d,
+                    "M1",
+                    &[
+                        (
+                            "format",
+                            Some(npy_raw(
+                                "{'descr': '|S3', 'fortran_order': False, 'shape': (), }",
+                                b"csc",
+                            )),
+                        ),
+                        ("shape", shape(4_000_000_000, 2560)),
+                    ],
+                )
+            }),
+            each_size,
+        ),
+        (
+            "M1.npz COO (4e9, 4e9)",
+            Box::new(move |d: &Path| {
+                edit_npz(
+                    d,
+                    "M1",
+                    &[
+                        (
+                            "format",
+                            Some(npy_raw(
+                                "{'descr': '|S3', 'fortran_order': False, 'shape': (), }",
+                                b"coo",
+                            )),
+                        ),
+                        ("shape", shape(4_000_000_000, 4_000_000_000)),
+                        ("row", Some(npy_ints(&[0]))),
+                        ("col", Some(npy_ints(&[0]))),
+                    ],
+                )
+            }),
+            each_size,
+        ),
+        (
+            "M1.npz indices of 64M entries (deflated to about 1 MB)",
+            Box::new(|d: &Path| {
+                let members = npz_members(d, "M1");
+                let file = std::fs::File::create(d.join("M1.npz")).unwrap();
+                let mut zip = zip::ZipWriter::new(file);
+                let options = zip::write::SimpleFileOptions::default()
+                    .compression_method(zip::CompressionMethod::Deflated);
+                for (member, bytes) in members.iter().filter(|(m, _)| m != "indices") {
+                    zip.start_file(format!("{member}.npy"), options).unwrap();
+                    std::io::Write::write_all(&mut zip, bytes).unwrap();
+                }
+                // Written a megabyte at a time: the test process stays small.
+                zip.start_file("indices.npy", options).unwrap();
+                let dict = "{'descr': '<i8', 'fortran_order': False, 'shape': (67108864,), }";
+                std::io::Write::write_all(&mut zip, &npy_raw(dict, &[])).unwrap();
+                let zeros = vec![0u8; 1 << 20];
+                for _ in 0..512 {
+                    std::io::Write::write_all(&mut zip, &zeros).unwrap();
+                }
+                zip.finish().unwrap();
+                assert!(std::fs::metadata(d.join("M1.npz")).unwrap().len() < 2 << 20);
+            }),
+            Some("indices.npy has 67108864 entries"),
+        ),
+        (
+            "M1.npz data.npy declares 1e12 entries",
+            Box::new(|d: &Path| {
+                edit_npz(
+                    d,
+                    "M1",
+                    &[(
+                        "data",
+                        Some(npy_raw(
+                            "{'descr': '<f8', 'fortran_order': False, 'shape': (1000000000000,), }",
+                            &[0; 64],
+                        )),
+                    )],
+                )
+            }),
+            Some("more than a 2560 x 2560 matrix has"),
+        ),
+        (
+            "M1.npz indptr points past its data",
+            Box::new(|d: &Path| {
+                let bytes = npz_members(d, "M1")
+                    .into_iter()
+                    .find(|(m, _)| m == "indptr")
+                    .unwrap()
+                    .1;
+                let mut pointers: Vec<i64> = npy_payload(&bytes)
+                    .chunks(8)
+                    .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
+                    .collect();
+                *pointers.last_mut().unwrap() += 1000;
+                edit_npz(d, "M1", &[("indptr", Some(npy_ints(&pointers)))]);
+            }),
+            Some("indptr.npy runs from"),
+        ),
+        (
+            "M1.npz lacks indices.npy",
+            Box::new(|d: &Path| edit_npz(d, "M1", &[("indices", None)])),
+            Some("no member indices.npy"),
+        ),
+        (
+            "M1.npz is text",
+            Box::new(|d: &Path| std::fs::write(d.join("M1.npz"), "%%MatrixMarket\n").unwrap()),
+            Some("not an .npz"),
+        ),
+        (
+            "M1.npz links to /dev/zero",
+            Box::new(|d: &Path| link_in(d, "M1.npz", "/dev/zero")),
+            Some("character device"),
+        ),
+        (
+            "M1.npz is a FIFO",
+            Box::new(|d: &Path| fifo_in(d, "M1.npz")),
+            Some("a FIFO"),
+        ),
+        (
+            "M1.npz member header of 4 GiB",
+            Box::new(|d: &Path| {
+                let mut bytes = b"\x93NUMPY\x02\x00".to_vec();
+                bytes.extend_from_slice(&0xFFFF_FFF0u32.to_le_bytes());
+                edit_npz(d, "M1", &[("data", Some(bytes))]);
+            }),
+            Some("header of"),
+        ),
+        (
+            "M1.npz format.npy as numpy.savez writes a str ('<U3')",
+            Box::new(|d: &Path| {
+                let utf32: Vec<u8> = "csr"
+                    .chars()
+                    .flat_map(|c| (c as u32).to_le_bytes())
+                    .collect();
+                edit_npz(
+                    d,
+                    "M1",
+                    &[(
+                        "format",
+                        Some(npy_raw(
+                            "{'descr': '<U3', 'fortran_order': False, 'shape': (), }",
+                            &utf32,
+                        )),
+                    )],
+                );
+            }),
+            None,
+        ),
+    ]
+}
+
+/// The sweep: every hostile folder (declared sizes, special files, links, names that leave the
+/// folder, array layouts, byte-order marks, string members) makes `tvf spectrum` end — within
+/// a minute, killed otherwise — in an error that names the folder's file and says what is wrong,
+/// without a panic, an abort or an allocation failure; or, for the few that are fine (a BOM, a
+/// unicode format string), in the very spectrum of the unbroken folder. No run takes more than
+/// twice the memory of the unbroken run plus 32 MiB (the refused sizes would take gigabytes).
+/// Special files also go through `tvf edit`, which once hung on them. Prints the counts.
+#[cfg(unix)]
+#[test]
+fn hostile_folders_end_in_clear_errors() {
+    let setup = Setup::new(&icosphere(3));
+    let cache = setup.cache();
+    let spectrum = |dir: &Path| {
+        let dir = dir.display().to_string();
+        common::output_and_peak_memory_within(
+            tvf()
+                .args(["spectrum", &setup.mesh, "--complex", &dir, "-k", "6"])
+                .env("TVF_CACHE_DIR", &cache),
+            60,
+        )
+    };
+    let mut counts = (0, 0, 0, 0u64, 0u64);
+    for (format, variants) in [
+        ("mtx", hostile_matrix_market_folders()),
+        ("npz", hostile_npz_folders()),
+    ] {
+        let good = PathBuf::from(setup.operators(&format!("good-{format}"), format));
+        let (baseline, baseline_peak) = spectrum(&good);
+        assert_success(&baseline);
+        counts.4 = counts.4.max(baseline_peak);
+        for (k, (name, make, says)) in variants.iter().enumerate() {
+            let dir = setup.path(&format!("hostile-{format}-{k}"));
+            copy_folder(&good, &dir);
+            make(&dir);
+            let (output, peak) = spectrum(&dir);
+            counts.3 = counts.3.max(peak);
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            for bad in ["panicked", "memory allocation", "RUST_BACKTRACE", "root:"] {
+                assert!(!stderr.contains(bad), "{name}: {stderr}");
+            }
+            assert!(
+                peak <= 2 * baseline_peak + 32 * 1024,
+                "{name}: {peak} KiB, the unbroken folder {baseline_peak} KiB"
+            );
+            assert!(
+                stderr.lines().all(|l| l.chars().count() < 600),
+                "{name}: {stderr}"
+            );
+            match says {
+                Some(needle) => {
+                    assert_eq!(output.status.code(), Some(1), "{name}: {stderr}");
+                    assert!(stderr.starts_with("error: "), "{name}: {stderr}");
+                    assert!(
+                        stderr.contains(&dir.display().to_string()),
+                        "{name}: {stderr}"
+                    );
+                    assert!(stderr.contains(needle), "{name}: {stderr}");
+                    counts.0 += 1;
+                }
+                None => {
+                    assert_success(&output);
+                    assert_eq!(output.stdout, baseline.stdout, "{name}");
+                    counts.1 += 1;
+                }
+            }
+            if name.contains("FIFO") || name.contains("/dev/zero") {
+                let dir = dir.display().to_string();
+                let (output, _) = common::output_and_peak_memory_within(
+                    tvf().args([
+                        "edit",
+                        &setup.mesh,
+                        "--complex",
+                        &dir,
+                        "-k",
+                        "6",
+                        "--no-cache",
+                    ]),
+                    60,
+                );
+                assert_eq!(output.status.code(), Some(1), "edit, {name}");
+                counts.2 += 1;
+            }
+        }
+    }
+    println!(
+        "sweep: {} hostile folders refused with a clear error, {} accepted with the unbroken \
+         spectrum, {} edit runs on special files refused; peak memory at most {} KiB (the \
+         unbroken runs: {} KiB)",
+        counts.0, counts.1, counts.2, counts.3, counts.4
+    );
+}
+
+/// `info.json`'s `form` is obeyed: a file holding the inverse of `M2` (the co-potential mass,
+/// under a name of the user's) with `"form": "inverse"` gives the spectrum of the unedited
+/// folder (the key was once ignored, and the inverse used as `M2`: a silent wrong answer).
+#[test]
+fn the_form_of_a_mass_in_info_json_is_obeyed() {
+    let setup = Setup::new(&icosphere(2));
+    let cache = setup.cache();
+    let good = setup.operators("good", "mtx");
+    let spectrum = |dir: &str| {
+        succeed(
+            &cache,
+            &[
+                "spectrum",
+                &setup.mesh,
+                "--complex",
+                dir,
+                "-k",
+                "12",
+                "--json",
+            ],
+        )
+    };
+    let expected = printed_spectrum(&spectrum(&good));
+    let dir = setup.path("inverse");
+    copy_folder(Path::new(&good), &dir);
+    std::fs::rename(dir.join("M2.mtx"), dir.join("co-area.mtx")).unwrap();
+    let folder = dir.display().to_string();
+    edit(&folder, "co-area", "mtx", |_, _, value| 1.0 / value);
+    edit_info(&dir, |info| {
+        info["masses"]["M2"] = serde_json::json!({"file": "co-area", "form": "inverse"});
+    });
+    assert_close(
+        &printed_spectrum(&spectrum(&folder)),
+        &expected,
+        "M2 given as its inverse",
+    );
 }

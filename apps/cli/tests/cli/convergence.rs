@@ -1,7 +1,7 @@
 //! `tvf convergence`: the table, the JSON of rows and orders, the plot, refused arguments, and
 //! the quad surfaces.
 
-use crate::common::{assert_success, tvf};
+use crate::common::{self, assert_success, tvf};
 
 #[test]
 fn json_has_rows_and_orders_and_the_plot_is_written() {
@@ -147,4 +147,46 @@ fn the_quad_surfaces_run_the_entries_that_accept_polygons_and_refuse_triangle_en
         stderr.contains("quad-sphere") && stderr.contains("dec-barycentric"),
         "{stderr}"
     );
+}
+
+/// A discretization given twice (once: duplicate rows and NaN orders, exit 0) and a plot path
+/// that is a folder (once refused only after computing) are refused before any basis; a single
+/// level says that it fits no order instead of printing "order NaN".
+#[test]
+fn duplicates_folders_and_single_levels_are_handled_up_front() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().display().to_string();
+    let id = "conforming-barycentric";
+    for (args, expected) in [
+        (
+            vec!["--discretization", id, "--discretization", id],
+            "given twice",
+        ),
+        (vec!["-o", &folder], "is a folder"),
+    ] {
+        let output = common::output_within(tvf().arg("convergence").args(&args), 30);
+        assert_eq!(output.status.code(), Some(1), "{args:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains(expected), "{args:?}: {stderr}");
+        assert!(
+            !stderr.contains("bases"),
+            "{args:?} computed first: {stderr}"
+        );
+    }
+    let output = tvf()
+        .args(["convergence", "--discretization", id])
+        .args([
+            "--surface",
+            "sphere",
+            "--min-level",
+            "1",
+            "--max-level",
+            "1",
+        ])
+        .output()
+        .unwrap();
+    assert_success(&output);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(!stdout.contains("NaN"), "{stdout}");
+    assert!(stdout.contains("no order (it needs two levels"), "{stdout}");
 }

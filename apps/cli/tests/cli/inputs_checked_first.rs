@@ -2,7 +2,7 @@
 //! a field of the wrong length, a compressed file of another mesh, a constraint out of range
 //! are refused at once, and no basis is left in the cache for a command that failed.
 
-use crate::common::{assert_success, tvf};
+use crate::common::{self, assert_success, tvf};
 use std::path::Path;
 use tvf_core::generate::{genus_surface, icosphere};
 use tvf_core::io::write_obj;
@@ -155,6 +155,80 @@ fn bad_inputs_are_refused_before_a_basis_is_computed() {
         let stderr = String::from_utf8_lossy(&output.stderr);
         assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
         assert!(stderr.contains(needle), "{args:?}: {stderr}");
+        assert_eq!(cached_bases(&cache), 0, "{args:?} computed a basis first");
+    }
+}
+
+/// A file output that names a folder (`-o DIR` for `filter`, `compress`, `spline`, `basis`)
+/// and an editor on a complex that cannot draw its fields (a complex folder saying
+/// `"sampling": "none"`) are refused before a basis is computed (they once were refused only
+/// after it, and the basis was cached).
+#[test]
+fn outputs_and_capabilities_are_refused_before_a_basis_is_computed() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    write_obj(d.join("ico.obj"), &icosphere(3)).unwrap();
+    std::fs::write(d.join("f.txt"), "1 0 0\n".repeat(1280)).unwrap();
+    std::fs::write(
+        d.join("c.json"),
+        r#"{"constraints": [{"id": "a", "kind": "vector", "face": 1, "value": [1, 0, 0]}]}"#,
+    )
+    .unwrap();
+    std::fs::create_dir(d.join("out")).unwrap();
+    assert_success(&run(d, &["operators", "ico.obj", "-o", "ops"]));
+    let info = d.join("ops/info.json");
+    let text = std::fs::read_to_string(&info).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    json["sampling"] = "none".into();
+    std::fs::write(&info, json.to_string()).unwrap();
+    let cache = d.join("cache");
+    let c = cache.display().to_string();
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec!["filter", "ico.obj", "f.txt", "-k", "20", "-o", "out"],
+            "is a folder",
+        ),
+        (
+            vec!["compress", "ico.obj", "f.txt", "--pairs", "4", "-o", "out"],
+            "is a folder",
+        ),
+        (
+            vec![
+                "spline",
+                "ico.obj",
+                "--constraints",
+                "c.json",
+                "-k",
+                "20",
+                "-o",
+                "out",
+            ],
+            "is a folder",
+        ),
+        (
+            vec!["basis", "ico.obj", "-k", "20", "-o", "out"],
+            "is a folder",
+        ),
+        (
+            vec!["edit", "ico.obj", "--complex", "ops", "-k", "20"],
+            "sampling fields",
+        ),
+    ];
+    for (args, needle) in cases {
+        let args = [&args[..], &["--cache-dir", &c][..]].concat();
+        let args = match args[0] {
+            // `tvf basis` keeps no cache.
+            "basis" => args[..args.len() - 2].to_vec(),
+            _ => args,
+        };
+        let output = common::output_within(tvf().current_dir(d).args(&args), 60);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+        assert!(
+            !stderr.contains("computed in"),
+            "{args:?} computed a basis: {stderr}"
+        );
         assert_eq!(cached_bases(&cache), 0, "{args:?} computed a basis first");
     }
 }

@@ -308,6 +308,18 @@ pub fn load_basis<H: HodgeComplex + ?Sized>(
     expected: &BasisFileKey,
     complex: &H,
 ) -> Result<SpectralBasis, BasisFileError> {
+    let file = std::fs::File::open(path).map_err(io(path))?;
+    load_basis_from_file(file, path, expected, complex)
+}
+
+/// [`load_basis`] from a file already opened (`path` names it in errors): the basis cache opens
+/// its files without following links.
+pub fn load_basis_from_file<H: HodgeComplex + ?Sized>(
+    file: std::fs::File,
+    path: &Path,
+    expected: &BasisFileKey,
+    complex: &H,
+) -> Result<SpectralBasis, BasisFileError> {
     let (d0, co_gradient) = (complex.d0(), complex.co_gradient());
     let forming = FieldForming {
         potential_dimension: complex.potential_dimension(),
@@ -316,7 +328,7 @@ pub fn load_basis<H: HodgeComplex + ?Sized>(
         d0,
         co_gradient,
     };
-    match read_basis(path, Some(expected), Some(&forming))? {
+    match read_basis(file, path, Some(expected), Some(&forming))? {
         (_, StoredBasis::Fields(basis)) => Ok(*basis),
         // Not returned when forming is given.
         (_, StoredBasis::Eigenfunctions(_)) => Err(BasisFileError::Invalid {
@@ -339,13 +351,25 @@ struct FieldForming<'a> {
 /// Loads a basis in the form the file holds it, without checking what it belongs to (integrity
 /// is still checked); returns its header too.
 pub fn read_basis_file(path: &Path) -> Result<(BasisFileHeader, StoredBasis), BasisFileError> {
-    read_basis(path, None, None)
+    let file = std::fs::File::open(path).map_err(io(path))?;
+    read_basis(file, path, None, None)
 }
 
 /// Reads only the header of a basis file (checked against its checksum).
 pub fn read_basis_header(path: &Path) -> Result<BasisFileHeader, BasisFileError> {
     let file = std::fs::File::open(path).map_err(io(path))?;
+    read_basis_header_from(&file, path)
+}
+
+/// [`read_basis_header`] from a file already opened (`path` names it in errors), read from its
+/// start.
+pub fn read_basis_header_from(
+    file: &std::fs::File,
+    path: &Path,
+) -> Result<BasisFileHeader, BasisFileError> {
+    use std::io::Seek;
     let mut reader = std::io::BufReader::new(file);
+    reader.rewind().map_err(io(path))?;
     read_header(path, &mut reader).map(|(header, _)| header)
 }
 
@@ -359,11 +383,12 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> BasisFileError + '_ {
 /// Reads a basis file (checked against `expected` if given); with `forming`, an eigenfunctions
 /// file is returned as dense fields.
 fn read_basis(
+    mut file: std::fs::File,
     path: &Path,
     expected: Option<&BasisFileKey>,
     forming: Option<&FieldForming<'_>>,
 ) -> Result<(BasisFileHeader, StoredBasis), BasisFileError> {
-    let file = std::fs::File::open(path).map_err(io(path))?;
+    std::io::Seek::rewind(&mut file).map_err(io(path))?;
     let size = file.metadata().map_err(io(path))?.len();
     let mut reader = std::io::BufReader::with_capacity(1 << 20, file);
     let (header, header_length) = read_header(path, &mut reader)?;

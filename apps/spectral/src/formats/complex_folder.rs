@@ -10,10 +10,13 @@
 //! the file it is about.
 
 use crate::formats::complex_folder_info::{mass_file_name, MatrixFileFormat};
-use crate::formats::sparse_file_read::{read_index_npy, read_matrix_market, read_sparse_npz};
+use crate::formats::folder_input::{is_plain_file_name, open_regular_file, read_small_file};
+use crate::formats::sparse_file_read::{read_matrix_market_within, MatrixLimits};
+use crate::formats::sparse_npz_read::{
+    read_index_npy_within, read_sparse_npz_within, InflationBudget, NPZ_INFLATED_LIMIT,
+};
 use serde_json::Value;
 use sprs::CsMat;
-use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -26,6 +29,10 @@ use tvf_discretizations::{ComplexMatrices, FixedNodes, MatrixComplex, MatrixSamp
 /// The id of a complex read from a folder (with `+tangential` / `+normal` on a mesh with
 /// boundary, like the catalog's ids).
 pub const COMPLEX_FOLDER_ID: &str = "matrices";
+
+/// The largest `info.json` read: 64 MiB (`tvf operators` writes a few kilobytes, plus the fixed
+/// nodes of a mesh with boundary).
+pub const MAX_INFO_BYTES: u64 = 64 << 20;
 
 /// A problem with a file of a complex folder.
 #[derive(Debug, Clone, Error)]
@@ -45,7 +52,7 @@ pub fn read_complex_folder(
     mesh: &SurfaceMesh,
     original_vertex: &[usize],
 ) -> Result<MatrixComplex, ComplexFolderError> {
-    let folder = Folder::open(dir)?;
+    let folder = Folder::open(dir, mesh)?;
     folder.check_mesh(mesh, original_vertex)?;
     let (d0_file, d0) = folder.matrix("d0")?;
     let (d1_file, d1) = folder.matrix("d1")?;
@@ -134,14 +141,17 @@ fn error(file: &Path, problem: impl Into<String>) -> ComplexFolderError {
     }
 }
 
-/// A complex folder and its `info.json` (`Value::Null` without one).
+/// A complex folder and its `info.json` (`Value::Null` without one); the sizes its matrices
+/// may have (the mesh's `V`, `E`, `F`, `2F`) and what its `.npz` files may still inflate to.
 struct Folder {
     dir: PathBuf,
     info: Value,
+    sizes: [(&'static str, usize); 4],
+    inflation: InflationBudget,
 }
 
 impl Folder {
-    fn open(dir: &Path) -> Result<Self, ComplexFolderError> {
+    fn open(dir: &Path, mesh: &SurfaceMesh) -> Result<Self, ComplexFolderError> {
         if !dir.is_dir() {
             return Err(error(
                 dir,
@@ -149,18 +159,30 @@ impl Folder {
             ));
         }
         let path = dir.join("info.json");
-        let info = match std::fs::read_to_string(&path) {
-            Ok(text) => serde_json::from_str(&text)
-                .map_err(|e| error(&path, format!("not valid JSON: {e}")))?,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Value::Null,
-            Err(e) => return Err(error(&path, e.to_string())),
+        let info = match path.exists() {
+            false => Value::Null,
+            true => {
+                let bytes = read_small_file(&path, MAX_INFO_BYTES).map_err(|e| error(&path, e))?;
+                // Some editors start a UTF-8 file with a byte-order mark; JSON has none.
+                let text = bytes.strip_prefix(tvf_core::io::UTF8_BOM).unwrap_or(&bytes);
+                serde_json::from_slice(text)
+                    .map_err(|e| error(&path, format!("not valid JSON: {e}")))?
+            }
         };
         if !(info.is_object() || info.is_null()) {
             return Err(error(&path, "not a JSON object"));
         }
+        let faces = mesh.face_count();
         Ok(Self {
             dir: dir.to_path_buf(),
             info,
+            sizes: [
+                ("V", mesh.vertex_count()),
+                ("E", mesh.edge_count()),
+                ("F", faces),
+                ("2F", 2 * faces),
+            ],
+            inflation: InflationBudget::new(NPZ_INFLATED_LIMIT),
         })
     }
 
@@ -210,24 +232,21 @@ impl Folder {
             }
         }
         let path = self.dir.join("vertex_map.npy");
-        let file = match File::open(&path) {
-            Ok(file) => file,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
-            Err(e) => return Err(error(&path, e.to_string())),
-        };
-        let map =
-            read_index_npy(BufReader::new(file), "vertex_map").map_err(|e| error(&path, e))?;
-        if map.len() != original_vertex.len() {
-            return Err(error(
-                &path,
-                format!(
-                    "maps {} mesh vertices, but the mesh given has {}: the folder was written \
-                     for another mesh",
-                    map.len(),
-                    original_vertex.len()
-                ),
-            ));
+        if !path.exists() {
+            return Ok(());
         }
+        let file = open_regular_file(&path).map_err(|e| error(&path, e))?;
+        let expected = Some(original_vertex.len());
+        let map = read_index_npy_within(BufReader::new(file.bounded()), "vertex_map", expected)
+            .map_err(|e| {
+                error(
+                    &path,
+                    format!(
+                        "{e} (one per vertex of the mesh given: was the folder written for \
+                         another mesh?)"
+                    ),
+                )
+            })?;
         if let Some(v) = (0..map.len()).find(|&v| map[v] != original_vertex[v]) {
             return Err(error(
                 &path,
@@ -252,7 +271,7 @@ impl Folder {
                 ),
             )
         })?;
-        let matrix = read_matrix_file(&file)?;
+        let matrix = self.read_matrix_file(&file)?;
         Ok((file, matrix))
     }
 
@@ -277,6 +296,15 @@ impl Folder {
     /// `masses/NAME/file`, else `NAME` or `NAME_inverse`), form and storage.
     fn mass(&self, name: &'static str, n: usize) -> Result<(PathBuf, Mass), ComplexFolderError> {
         let stem = match self.string(&format!("masses/{name}/file"))? {
+            Some(stem) if !is_plain_file_name(stem) => {
+                return Err(error(
+                    &self.info_path(),
+                    format!(
+                        "masses/{name}/file is '{stem}': the name of a file in this folder \
+                         (without extension, folders and '..')"
+                    ),
+                ))
+            }
             Some(stem) => stem.to_string(),
             None => {
                 let direct = self.find(name)?;
@@ -293,11 +321,7 @@ impl Folder {
                 }
             }
         };
-        let form = if stem.ends_with("_inverse") {
-            MassForm::Inverse
-        } else {
-            MassForm::Direct
-        };
+        let form = self.mass_form(name, &stem)?;
         let (file, matrix) = self.matrix(&stem)?;
         if matrix.shape() != (n, n) {
             return Err(error(
@@ -325,12 +349,76 @@ impl Folder {
             }
             None => off_diagonal(&matrix).is_none(),
         };
-        let what = match form {
-            MassForm::Direct => name,
-            MassForm::Inverse => "M2_inverse",
+        let what = match (form, name) {
+            (MassForm::Direct, _) => name,
+            (MassForm::Inverse, "M0") => "M0_inverse",
+            (MassForm::Inverse, "M1") => "M1_inverse",
+            (MassForm::Inverse, _) => "M2_inverse",
         };
         let mass = mass_from_matrix(what, matrix, diagonal, form).map_err(|e| error(&file, e))?;
         Ok((file, mass))
+    }
+
+    /// Whether the file `stem` holds the mass `name` or its inverse: `masses/NAME/form` if
+    /// given (`direct` or `inverse`), else the file name (`…_inverse`); an error if they
+    /// contradict each other.
+    fn mass_form(&self, name: &str, stem: &str) -> Result<MassForm, ComplexFolderError> {
+        let named = match stem.ends_with("_inverse") {
+            true => MassForm::Inverse,
+            false => MassForm::Direct,
+        };
+        let key = format!("masses/{name}/form");
+        let stated = match self.string(&key)? {
+            None => return Ok(named),
+            Some("direct") => MassForm::Direct,
+            Some("inverse") => MassForm::Inverse,
+            Some(other) => {
+                return Err(error(
+                    &self.info_path(),
+                    format!("{key} is '{other}': direct or inverse"),
+                ))
+            }
+        };
+        if stated == MassForm::Direct && named == MassForm::Inverse {
+            return Err(error(
+                &self.info_path(),
+                format!(
+                    "{key} is 'direct', but the file {stem} is named as an inverse: rename the \
+                     file or say 'inverse'"
+                ),
+            ));
+        }
+        Ok(stated)
+    }
+
+    /// Reads a `.mtx` or `.npz` matrix file of this folder (a regular file; its declared shape
+    /// one of the mesh's sizes, its entries what the file can hold, checked before anything
+    /// is allocated) and checks every stored entry finite.
+    fn read_matrix_file(&self, path: &Path) -> Result<CsMat<f64>, ComplexFolderError> {
+        let input = open_regular_file(path).map_err(|e| error(path, e))?;
+        let limits = MatrixLimits {
+            sizes: &self.sizes,
+            file_bytes: Some(input.bytes),
+        };
+        let reader = BufReader::new(input.bounded());
+        let matrix = match path.extension().and_then(|e| e.to_str()) {
+            Some("npz") => {
+                // The archive's directory is at its end: it needs a seekable file.
+                let file = reader.into_inner().into_inner();
+                read_sparse_npz_within(BufReader::new(file), &limits, &self.inflation)
+            }
+            _ => read_matrix_market_within(reader, &limits),
+        }
+        .map_err(|e| error(path, e))?;
+        for (&value, (i, j)) in matrix.iter() {
+            if !value.is_finite() {
+                return Err(error(
+                    path,
+                    format!("row {i} col {j} (0-based): not finite ({value})"),
+                ));
+            }
+        }
+        Ok(matrix)
     }
 
     /// `fixed_nodes/{potentials,fields,co_potentials}`: lists of indices (none if absent).
@@ -417,25 +505,6 @@ impl Folder {
         }
         Ok(())
     }
-}
-
-/// Reads a `.mtx` or `.npz` matrix file and checks every stored entry finite.
-fn read_matrix_file(path: &Path) -> Result<CsMat<f64>, ComplexFolderError> {
-    let file = File::open(path).map_err(|e| error(path, e.to_string()))?;
-    let matrix = match path.extension().and_then(|e| e.to_str()) {
-        Some("npz") => read_sparse_npz(BufReader::new(file)),
-        _ => read_matrix_market(BufReader::new(file)),
-    }
-    .map_err(|e| error(path, e))?;
-    for (&value, (i, j)) in matrix.iter() {
-        if !value.is_finite() {
-            return Err(error(
-                path,
-                format!("row {i} col {j} (0-based): not finite ({value})"),
-            ));
-        }
-    }
-    Ok(matrix)
 }
 
 /// The first stored nonzero off the diagonal, if any.
