@@ -9,7 +9,8 @@ use super::face_list::{FaceCorners, FaceList};
 use super::surface_point::{SurfacePoint, SurfacePointError};
 use super::topology::MeshTopology;
 use super::validate::{
-    check_combinatorics, check_polygon_geometry, non_convex_polygons, KeptVertices,
+    check_combinatorics, check_polygon_geometry, inward_normals_warning, non_convex_polygons,
+    KeptVertices,
 };
 use super::validation_report::{ValidationReport, ValidationWarning, SMALL_ANGLE_DEG};
 use super::{PolygonMesh, TriangleMesh};
@@ -465,23 +466,12 @@ impl SurfaceMesh {
             volume[c] += dot(self.face_centroid(f), self.vector_area(f)) / 3.0;
             first_face[c] = first_face[c].min(f);
         }
-        let mut open = vec![false; count];
-        let vertex_component = self.vertex_components();
-        for boundary in self.boundary_loops() {
-            for v in boundary {
-                open[vertex_component[v]] = true;
-            }
-        }
-        let inward: Vec<usize> = (0..count)
-            .filter(|&c| !open[c] && volume[c] < 0.0)
-            .collect();
-        let &first = inward.first()?;
-        Some(ValidationWarning::InwardNormals {
-            components: inward.len(),
-            first_component: first,
-            first_face: first_face[first],
-            signed_volume: volume[first],
-        })
+        inward_normals_warning(
+            &volume,
+            &first_face,
+            &self.vertex_components(),
+            &self.boundary_loops(),
+        )
     }
 }
 

@@ -140,14 +140,30 @@ fn inward_components(mesh: &TriangleMesh) -> Option<ValidationWarning> {
         volume[c] += dot(p0, cross(p1, p2)) / 6.0;
         first_face[c] = first_face[c].min(t);
     }
-    let mut open = vec![false; count];
-    let vertex_component = mesh.vertex_components();
-    for boundary in mesh.boundary_loops() {
-        for v in boundary {
+    inward_normals_warning(
+        &volume,
+        &first_face,
+        &mesh.vertex_components(),
+        &mesh.boundary_loops(),
+    )
+}
+
+/// [`ValidationWarning::InwardNormals`] for the closed components (no vertex on a boundary
+/// loop) whose signed volume `volume[c]` is negative, if any; `first_face[c]` is component
+/// `c`'s lowest face, `vertex_component[v]` the component of vertex `v`.
+pub(crate) fn inward_normals_warning(
+    volume: &[f64],
+    first_face: &[usize],
+    vertex_component: &[usize],
+    boundary_loops: &[Vec<usize>],
+) -> Option<ValidationWarning> {
+    let mut open = vec![false; volume.len()];
+    for boundary in boundary_loops {
+        for &v in boundary {
             open[vertex_component[v]] = true;
         }
     }
-    let inward: Vec<usize> = (0..count)
+    let inward: Vec<usize> = (0..volume.len())
         .filter(|&c| !open[c] && volume[c] < 0.0)
         .collect();
     let &first = inward.first()?;
