@@ -9,7 +9,7 @@ use crate::corpus::CorpusMesh;
 use crate::decomposition_checks::random_field;
 use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{
-    FieldSampling, HodgeComplex, HodgeOperators, NodeKind, SamplingReproduction,
+    FieldSampling, HodgeComplex, HodgeOperators, NodeKind, SamplingReproduction, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, norm, scale, sub};
 use tvf_core::{SurfaceMesh, SurfacePoint};
@@ -149,53 +149,16 @@ pub fn measure_polygon_sampling<H: HodgeComplex + ?Sized>(
         .zip(fixed)
         .filter(|(&x, &f)| f && x != 0.0)
         .count();
-    let (mut frames, mut sharp, mut spread, mut tangent, mut normal_parts) =
-        (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let mut largest = 0.0f64;
-    for f in 0..mesh.face_count() {
-        let [e1, e2] = sampling.frame(f);
-        let n = sampling.normal(f);
-        frames = frames.max(norm(sub(n, mesh.face_normal(f))));
-        for (value, expected) in [
-            (dot(e1, e1), 1.0),
-            (dot(e2, e2), 1.0),
-            (dot(e1, e2), 0.0),
-            (dot(e1, n), 0.0),
-            (dot(e2, n), 0.0),
-            (dot(cross(e1, e2), n), 1.0),
-        ] {
-            frames = frames.max((value - expected).abs());
-        }
-        normal_parts = normal_parts
-            .max((projection.normal_parts[f] - dot(CONSTANT, n)).abs() / norm(CONSTANT));
-        // The polygon's plane is the mesh's: normal to the vector area of its corners.
-        let plane_normal = mesh.face_normal(f);
-        let expected = sub(CONSTANT, scale(plane_normal, dot(CONSTANT, plane_normal)));
-        let free = !touches_fixed_nodes(complex, mesh, f);
-        let condition = (side_condition(mesh, f) / 4.0).max(1.0);
-        let points = polygon_points(mesh.face_size(f));
-        let first = sample(
-            sampling,
-            &random,
-            &SurfacePoint::centroid(f, points[0].len()),
-        );
-        for weights in points {
-            let point = SurfacePoint { face: f, weights };
-            fixed_violations += sampling
-                .sample_weights(&point)
-                .iter()
-                .filter(|&&(i, _)| fixed[i])
-                .count();
-            if free {
-                let error = norm(sub(sample(sampling, &flat, &point), expected));
-                sharp = sharp.max(error / (norm(CONSTANT) * condition));
-            }
-            let w = sample(sampling, &random, &point);
-            largest = largest.max(norm(w));
-            spread = spread.max(norm(sub(w, first)));
-            tangent = tangent.max(dot(w, n).abs() / (1.0 + norm(w)));
-        }
-    }
+    let FaceMeasures {
+        frames,
+        sharp,
+        spread,
+        tangent,
+        normal_parts,
+        largest,
+        fixed_violations: weight_violations,
+    } = measure_faces(complex, sampling, mesh, &flat, &random, &projection);
+    fixed_violations += weight_violations;
     let spread = if largest > 0.0 {
         spread / largest
     } else {
@@ -223,6 +186,89 @@ pub fn measure_polygon_sampling<H: HodgeComplex + ?Sized>(
         "sampling weights or flat values on nodes the boundary condition fixes".to_string(),
     ));
     outcomes
+}
+
+/// The largest deviations [`measure_polygon_sampling`] reports, over every face.
+struct FaceMeasures {
+    frames: f64,
+    sharp: f64,
+    spread: f64,
+    tangent: f64,
+    normal_parts: f64,
+    /// The largest sampled vector of the random field.
+    largest: f64,
+    /// Sampling weights that name a fixed node.
+    fixed_violations: usize,
+}
+
+/// Visits every face of `mesh` at the points of [`polygon_points`]: frames, the sharp of the
+/// flat `flat` of [`CONSTANT`], the random field `random` (one vector per polygon, tangent) and
+/// the normal parts `projection` reports.
+fn measure_faces<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    sampling: &dyn FieldSampling,
+    mesh: &SurfaceMesh,
+    flat: &[f64],
+    random: &[f64],
+    projection: &TangentProjection,
+) -> FaceMeasures {
+    let fixed = &complex.field_nodes().dirichlet;
+    let (mut frames, mut sharp, mut spread, mut tangent, mut normal_parts) =
+        (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let (mut largest, mut fixed_violations) = (0.0f64, 0usize);
+    for f in 0..mesh.face_count() {
+        let [e1, e2] = sampling.frame(f);
+        let n = sampling.normal(f);
+        frames = frames.max(norm(sub(n, mesh.face_normal(f))));
+        for (value, expected) in [
+            (dot(e1, e1), 1.0),
+            (dot(e2, e2), 1.0),
+            (dot(e1, e2), 0.0),
+            (dot(e1, n), 0.0),
+            (dot(e2, n), 0.0),
+            (dot(cross(e1, e2), n), 1.0),
+        ] {
+            frames = frames.max((value - expected).abs());
+        }
+        normal_parts = normal_parts
+            .max((projection.normal_parts[f] - dot(CONSTANT, n)).abs() / norm(CONSTANT));
+        // The polygon's plane is the mesh's: normal to the vector area of its corners.
+        let plane_normal = mesh.face_normal(f);
+        let expected = sub(CONSTANT, scale(plane_normal, dot(CONSTANT, plane_normal)));
+        let free = !touches_fixed_nodes(complex, mesh, f);
+        let condition = (side_condition(mesh, f) / 4.0).max(1.0);
+        let points = polygon_points(mesh.face_size(f));
+        let first = sample(
+            sampling,
+            random,
+            &SurfacePoint::centroid(f, points[0].len()),
+        );
+        for weights in points {
+            let point = SurfacePoint { face: f, weights };
+            fixed_violations += sampling
+                .sample_weights(&point)
+                .iter()
+                .filter(|&&(i, _)| fixed[i])
+                .count();
+            if free {
+                let error = norm(sub(sample(sampling, flat, &point), expected));
+                sharp = sharp.max(error / (norm(CONSTANT) * condition));
+            }
+            let w = sample(sampling, random, &point);
+            largest = largest.max(norm(w));
+            spread = spread.max(norm(sub(w, first)));
+            tangent = tangent.max(dot(w, n).abs() / (1.0 + norm(w)));
+        }
+    }
+    FaceMeasures {
+        frames,
+        sharp,
+        spread,
+        tangent,
+        normal_parts,
+        largest,
+        fixed_violations,
+    }
 }
 
 /// Measures point evaluation on a polygon mesh (a complex without it gives no outcome), at every
