@@ -3,6 +3,7 @@ or ``cargo build --release -p tvf-cli``; ``TVF_BIN`` overrides), and generated m
 
 import os
 import pathlib
+import signal
 import subprocess
 
 import pytest
@@ -31,3 +32,13 @@ def run_tvf(tvf_bin, tmp_path_factory):
         return result
 
     return run
+
+
+@pytest.fixture
+def sigint_raises_keyboard_interrupt():
+    """Python's own SIGINT handler for the test: a shell starts background jobs with SIGINT
+    ignored, and Python then never installs the handler that raises ``KeyboardInterrupt``, so the
+    interrupt tests would measure the shell instead of tvf."""
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)

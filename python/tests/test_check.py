@@ -145,7 +145,7 @@ def test_interrupts_and_exits_in_a_builder_propagate():
     assert any(o["name"] == "construction" and "my bug" in o["detail"] for o in report.failures)
 
 
-def test_ctrl_c_during_a_property_run_raises():
+def test_ctrl_c_during_a_property_run_raises(sigint_raises_keyboard_interrupt):
     """SIGINT while the checks run (without the GIL) stops the run with KeyboardInterrupt; it once
     returned passed=True with the cases done so far."""
     calls = [0]

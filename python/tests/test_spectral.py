@@ -126,7 +126,7 @@ def test_catalog_and_every_entry_builds():
         assert tvf.basis(mesh, 10, discretization=entry["id"]).eigenvalues[0] >= 0
 
 
-def test_ctrl_c_stops_a_basis_computation_before_its_end():
+def test_ctrl_c_stops_a_basis_computation_before_its_end(sigint_raises_keyboard_interrupt):
     """SIGINT during tvf.basis raises KeyboardInterrupt at the eigensolver's next progress report
     instead of after the whole computation (it was once ignored for the whole of a 10 s basis,
     then surfaced as a PanicException). Measured against an uninterrupted run of the same basis
