@@ -16,18 +16,17 @@ use faer::Mat;
 #[cfg(target_os = "linux")]
 const HUGE_PAGE: usize = 2 << 20;
 
-/// An `rows × columns` matrix of zeros whose memory was advised for transparent huge pages
-/// (see the module documentation) before the zeros touched it.
-pub(crate) fn zeros_on_huge_pages(rows: usize, columns: usize) -> Mat<f64> {
-    let mut matrix = Mat::<f64>::with_capacity(rows, columns);
+/// An empty `f64` matrix with room for `rows × columns` values, whose untouched memory is
+/// advised for transparent huge pages (see the module documentation): grow it with
+/// `resize_with`, which is when the memory is first touched.
+pub(crate) fn reserve_on_huge_pages(rows: usize, columns: usize) -> Mat<f64> {
+    let matrix = Mat::<f64>::with_capacity(rows, columns);
     let bytes = matrix.col_stride().unsigned_abs() * columns * std::mem::size_of::<f64>();
     advise_huge_pages(matrix.as_ptr() as usize, bytes);
-    matrix.resize_with(rows, columns, |_, _| 0.0);
     matrix
 }
 
-/// An empty vector with room for `len` values, advised like [`zeros_on_huge_pages`] (grow it
-/// with `resize`, which is when the memory is first touched).
+/// An empty vector with room for `len` values, advised like [`reserve_on_huge_pages`].
 pub(crate) fn reserve_values_on_huge_pages(len: usize) -> Vec<f64> {
     let values = Vec::<f64>::with_capacity(len);
     advise_huge_pages(values.as_ptr() as usize, len * std::mem::size_of::<f64>());

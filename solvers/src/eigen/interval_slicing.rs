@@ -40,10 +40,12 @@
 //! distance across a boundary, but that can be small).
 //!
 //! Memory: each job writes its refined eigenvectors straight into its columns of the pencil's
-//! `n × k` result (zeros made up front on huge pages: one pass of stores over memory the jobs
-//! would otherwise first touch, so that the jobs write into an initialised matrix through safe
-//! views; the cost in `docs/performance.md`), and a slice's Krylov basis, locked vectors and
-//! buffers are handed to the next job
+//! `n × k` result (reserved up front, so each column is touched once, by its job: the views over
+//! the reserved memory are the one `unsafe` step here, kept because making zeros up front for
+//! safe views touches the whole result before the jobs' own memory is released — the peak of
+//! `tvf basis bunny-closed.obj -k 1000` rose from 1.32 to 1.55 GiB with it; see
+//! `docs/performance.md`), and a slice's Krylov basis, locked vectors and buffers are handed to
+//! the next job
 //! ([`super::workspace_pool`]). Fresh memory is expensive: the kernel faults in and zeroes
 //! every new page on first touch, many times slower than a second pass over it, which made the
 //! per-slice bases and a copy of every interval's vectors a visible share of the processor
@@ -60,7 +62,7 @@ use super::tall_products::mass_inner;
 use super::types::{EigenOptions, EigenProgress, Eigenpairs};
 use super::workspace_pool::WorkspacePool;
 use crate::error::SolverError;
-use crate::huge_pages::zeros_on_huge_pages;
+use crate::huge_pages::reserve_on_huge_pages;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, Par};
@@ -134,13 +136,13 @@ pub fn lowest_eigenpairs_of(
     let clock = PhaseClock::start();
     let jobs = interval_jobs(requests, &plans);
     // Each plan's eigenvectors are written by the jobs straight into their columns of one
-    // matrix, as each interval is refined, and the jobs' own memory is recycled
-    // ([`WorkspacePool`]), so no interval holds a copy until the end.
+    // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
+    // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
     let mut eigenvectors: Vec<Mat<f64>> = plans
         .iter()
         .map(|plan| {
             let request = &requests[plan.request];
-            zeros_on_huge_pages(request.pencil.dimension(), request.count)
+            reserve_on_huge_pages(request.pencil.dimension(), request.count)
         })
         .collect();
     let intervals = solve_intervals(requests, options, &plans, &jobs, &mut eigenvectors)?;
@@ -291,9 +293,9 @@ fn interval_jobs(requests: &[EigenRequest<'_, '_>], plans: &[Plan]) -> Vec<(usiz
 }
 
 /// Phase 2, solving: runs every job (`options.threads` at a time, see [`run_jobs`]), each
-/// writing its eigenvectors into its columns of its plan's matrix in `eigenvectors` (`n × k`,
-/// one per plan); returns the solved intervals of each plan (in no particular order). On
-/// success every column `0..k` of every matrix was written.
+/// writing its eigenvectors into its columns of its plan's matrix in `eigenvectors` (reserved
+/// `n × k`, one per plan); returns the solved intervals of each plan (in no particular order).
+/// On success every column `0..k` of every matrix was written.
 fn solve_intervals(
     requests: &[EigenRequest<'_, '_>],
     options: &EigenOptions<'_>,
@@ -352,8 +354,16 @@ fn job_outputs<'m>(
 ) -> Vec<Mutex<Option<MatMut<'m, f64>>>> {
     let mut outputs: Vec<Option<MatMut<'m, f64>>> = jobs.iter().map(|_| None).collect();
     for (p, matrix) in eigenvectors.iter_mut().enumerate() {
-        let k = requests[plans[p].request].count;
-        let mut rest = matrix.as_mut();
+        let request = &requests[plans[p].request];
+        let (n, k) = (request.pencil.dimension(), request.count);
+        // SAFETY: the matrix has room for `k` columns of `n` rows at its column stride
+        // (reserved by the caller); the view only writes (each job its own columns, all of
+        // them, checked in `solve_job` before the columns become part of the matrix with
+        // `set_dims` in `assemble_plan`), and the matrix stays mutably borrowed while the
+        // views live.
+        let mut rest = unsafe {
+            MatMut::from_raw_parts_mut(matrix.as_ptr_mut(), n, k, 1, matrix.col_stride())
+        };
         let mut in_order: Vec<(usize, usize)> = jobs
             .iter()
             .enumerate()
@@ -484,7 +494,10 @@ fn assemble_plan(
     mut vectors: Mat<f64>,
     par: Par,
 ) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
-    let k = request.count;
+    let (n, k) = (request.pencil.dimension(), request.count);
+    // SAFETY: every job of the plan returned, and each wrote all the columns of its part of
+    // the reserved `n × k` (checked in `solve_job`); the parts cover columns `0..k`.
+    unsafe { vectors.set_dims(n, k) };
     parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
     orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass(), par);
     let mut values: Vec<f64> = parts
