@@ -5,7 +5,9 @@ use anyhow::Result;
 use clap::Args;
 use serde_json::json;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_discretizations::mesh_topology;
+use tvf_core::TriangleMesh;
+use tvf_discretizations::face_geometry::FaceGeometry;
+use tvf_discretizations::{edge_hodge_star, mesh_topology, DELAUNAY_TOLERANCE};
 
 /// Arguments of `tvf info`.
 #[derive(Args)]
@@ -25,10 +27,13 @@ pub struct InfoArgs {
 /// `component_genera`, `component_boundary_loops`, `harmonic_dimension` (per boundary condition,
 /// `{"tangential": h, "normal": h}`: `2g` per closed component, `2g + b − 1` per component with
 /// `b ≥ 1` boundary loops), `total_area`, `signed_volume`, `mesh_kind` (`triangles` or
-/// `polygons`) and `face_sizes` (faces per number of corners, `{"4": 96}`).
+/// `polygons`), `face_sizes` (faces per number of corners, `{"4": 96}`) and
+/// `non_delaunay_edges` (triangle meshes: edges with `cot α + cot β ≤ 1e-12`, where DEC's `⋆1`
+/// is refused and `--intrinsic-delaunay` helps; `null` on polygon meshes).
 pub fn run(args: InfoArgs) -> Result<()> {
     let loaded = args.input.load()?;
     let (mesh, report) = (&loaded.mesh, &loaded.report);
+    let non_delaunay = mesh.as_triangles().and_then(non_delaunay_edges);
     let face_sizes = mesh.face_size_counts();
     let warnings: Vec<String> = report.warnings.iter().map(|w| w.to_string()).collect();
     let loops = tvf_discretizations::component_boundary_loops(mesh);
@@ -66,6 +71,7 @@ pub fn run(args: InfoArgs) -> Result<()> {
                 .collect::<serde_json::Map<_, _>>(),
             "total_area": mesh.total_area(),
             "signed_volume": mesh.signed_volume(),
+            "non_delaunay_edges": non_delaunay,
         });
         println!("{}", serde_json::to_string_pretty(&value)?);
         return Ok(());
@@ -109,6 +115,14 @@ pub fn run(args: InfoArgs) -> Result<()> {
         "angles         {:.3}° .. {:.3}°",
         report.min_angle_deg, report.max_angle_deg
     );
+    match non_delaunay {
+        Some(0) => println!("delaunay       yes (cot α + cot β > 0 on every edge)"),
+        Some(count) => println!(
+            "delaunay       no: {count} edges have cot α + cot β ≤ {DELAUNAY_TOLERANCE:e} (DEC \
+             refuses them; --intrinsic-delaunay builds on the intrinsic Delaunay triangulation)"
+        ),
+        None => {}
+    }
     if warnings.is_empty() {
         println!("warnings       none");
     }
@@ -116,6 +130,14 @@ pub fn run(args: InfoArgs) -> Result<()> {
         println!("warning        {warning}");
     }
     Ok(())
+}
+
+/// Number of edges of `mesh` with `cot α + cot β ≤` [`DELAUNAY_TOLERANCE`] (DEC's test);
+/// `None` if a face is degenerate.
+fn non_delaunay_edges(mesh: &TriangleMesh) -> Option<usize> {
+    let geometry = FaceGeometry::new(mesh).ok()?;
+    let star = edge_hodge_star(mesh, &geometry);
+    Some(star.iter().filter(|&&s| 2.0 * s <= DELAUNAY_TOLERANCE).count())
 }
 
 /// The plural name of polygons with `corners` corners: `triangles`, `quads`, `pentagons`,
