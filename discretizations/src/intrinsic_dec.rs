@@ -196,7 +196,7 @@ fn node_spaces(
         input
             .overlay
             .to_input(TrianglePoint { face: t, barycentric })
-            .map(point_position)
+            .map(&point_position)
             .map_err(|error| DiscretizationError::Intrinsic(error.to_string()))
     };
     let mut vertex_positions = Vec::with_capacity(tri.vertex_count());
