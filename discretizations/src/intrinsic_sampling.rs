@@ -6,8 +6,8 @@
 use crate::face_geometry::FaceGeometry;
 use crate::intrinsic_delaunay::IntrinsicInput;
 use tvf_core::discretization::{
-    check_face_vectors, DiscretizationError, FieldSampling, PointEvaluation, SamplingReproduction,
-    TangentProjection,
+    check_face_vectors, check_length, DiscretizationError, FieldSampling, PointEvaluation,
+    SamplingReproduction, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, scale, sub};
 use tvf_core::intrinsic::corner_cotangents;
@@ -44,6 +44,9 @@ pub struct IntrinsicWhitneySampling {
     /// direction.
     signs: Vec<[f64; 3]>,
     fixed_edges: Vec<bool>,
+    /// [`FieldSampling::sample_weights`] at every input face's centroid, computed once: what
+    /// [`FieldSampling::to_face_vectors`] applies to every field (a basis converts hundreds).
+    centroid_weights: Vec<Vec<(usize, [f64; 3])>>,
 }
 
 impl IntrinsicWhitneySampling {
@@ -73,7 +76,7 @@ impl IntrinsicWhitneySampling {
         let signs = (0..tri.face_count())
             .map(|t| tri.face_edge_orientations(t).map(|f| if f { 1.0 } else { -1.0 }))
             .collect();
-        Ok(Self {
+        let mut sampling = Self {
             input: input.clone(),
             input_faces: mesh.faces().to_vec(),
             positions: mesh.positions().to_vec(),
@@ -82,7 +85,12 @@ impl IntrinsicWhitneySampling {
             input_gradients,
             signs,
             fixed_edges,
-        })
+            centroid_weights: Vec::new(),
+        };
+        sampling.centroid_weights = (0..mesh.face_count())
+            .map(|f| sampling.sample_weights(&sampling.centroid(f)))
+            .collect();
+        Ok(sampling)
     }
 
     /// A displacement of barycentric coordinates of input face `f` as a 3D vector.
@@ -185,6 +193,23 @@ impl FieldSampling for IntrinsicWhitneySampling {
                 (edges[c], self.input_vector(point.face, on_input))
             })
             .collect()
+    }
+
+    fn to_face_vectors(&self, field: &[f64]) -> Result<Vec<[f64; 3]>, DiscretizationError> {
+        check_length("field coefficients", self.field_dimension(), field.len())?;
+        Ok(self
+            .centroid_weights
+            .iter()
+            .map(|weights| {
+                let mut v = [0.0; 3];
+                for &(i, w) in weights {
+                    for k in 0..3 {
+                        v[k] += w[k] * field[i];
+                    }
+                }
+                v
+            })
+            .collect())
     }
 
     fn from_face_vectors(

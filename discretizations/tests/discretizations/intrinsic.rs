@@ -14,8 +14,8 @@ use tvf_core::generate::{
 use tvf_core::geometry::{dot, norm, sub};
 use tvf_core::{SurfacePoint, TriangleMesh};
 use tvf_discretizations::{
-    build_complex, catalog_entry, intrinsic_entry_id, Catalog, IntrinsicDelaunay,
-    DELAUNAY_TOLERANCE,
+    build_complex, catalog_entry, intrinsic_entry_id, Catalog, DecComplex, IntrinsicDec,
+    IntrinsicDelaunay, IntrinsicInput, MassLumping, DELAUNAY_TOLERANCE,
 };
 
 /// `mesh` with every position scaled by `factors` per axis (thin, obtuse, non-Delaunay faces).
@@ -131,8 +131,65 @@ fn same_as_input(mesh: &TriangleMesh, name: &str) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// `IntrinsicDec` built from the lengths of a Delaunay input (no flip) against `DecComplex` built
+/// from its positions: the same incidences bit for bit, the stars, node positions and sampled
+/// fields to round-off, for both lumpings and both boundary conditions.
+fn agrees_with_dec_from_positions(mesh: &TriangleMesh, name: &str) -> Result<(), TestCaseError> {
+    let input = IntrinsicInput::new(mesh, IntrinsicDelaunay::Flip).expect("builds");
+    prop_assert_eq!(input.triangulation.flip_count(), 0);
+    for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
+        for boundary in BoundaryCondition::ALL {
+            let Ok(expected) = DecComplex::with_boundary(mesh, lumping, boundary) else {
+                continue;
+            };
+            let id = expected.id().to_string();
+            let ours = IntrinsicDec::new(mesh, &input, &id, lumping, boundary)
+                .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
+            prop_assert_eq!(ours.d0(), expected.d0(), "{}", name);
+            prop_assert_eq!(ours.d1(), expected.d1(), "{}", name);
+            for (a, b) in [(ours.m0(), expected.m0()), (ours.m1(), expected.m1()), (ours.m2(), expected.m2())] {
+                let (a, b) = (a.diagonal_values().unwrap(), b.diagonal_values().unwrap());
+                let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (x, y) in a.iter().zip(b) {
+                    prop_assert!((x - y).abs() <= 1e-12 * scale, "{}: {} vs {}", name, x, y);
+                }
+            }
+            for (a, b) in [(ours.potential_nodes(), expected.potential_nodes()), (ours.field_nodes(), expected.field_nodes()), (ours.co_potential_nodes(), expected.co_potential_nodes())] {
+                prop_assert_eq!(&a.dirichlet, &b.dirichlet);
+                prop_assert_eq!(&a.components, &b.components);
+                for (p, q) in a.positions.iter().zip(&b.positions) {
+                    prop_assert!(norm(sub(*p, *q)) <= 1e-12 * (1.0 + norm(*q)), "{}: node {:?} vs {:?}", name, p, q);
+                }
+            }
+            let fixed = &expected.field_nodes().dirichlet;
+            let field: Vec<f64> = (0..expected.field_dimension())
+                .map(|i| if fixed[i] { 0.0 } else { (i as f64 * 0.71).cos() })
+                .collect();
+            let (sampled, reference) = (ours.sampling().unwrap(), expected.sampling().unwrap());
+            let a = sampled.to_face_vectors(&field).unwrap();
+            let b = reference.to_face_vectors(&field).unwrap();
+            let scale = b.iter().fold(0.0f64, |m, v| m.max(norm(*v)));
+            for (t, (v, w)) in a.iter().zip(&b).enumerate() {
+                prop_assert!(norm(sub(*v, *w)) <= 1e-10 * scale, "{}: face {}: {:?} vs {:?}", name, t, v, w);
+            }
+            let back = sampled.from_face_vectors(&b).unwrap().field;
+            let expected_back = reference.from_face_vectors(&b).unwrap().field;
+            let scale = expected_back.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for (x, y) in back.iter().zip(&expected_back) {
+                prop_assert!((x - y).abs() <= 1e-10 * scale, "{}: {} vs {}", name, x, y);
+            }
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(16))]
+
+    #[test]
+    fn intrinsic_dec_from_lengths_agrees_with_dec_from_positions((name, mesh) in delaunay_mesh()) {
+        agrees_with_dec_from_positions(&mesh, &name)?;
+    }
 
     #[test]
     fn on_a_delaunay_input_every_entry_is_the_input_complex_bit_for_bit((name, mesh) in delaunay_mesh()) {
