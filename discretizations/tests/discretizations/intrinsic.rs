@@ -94,20 +94,41 @@ fn non_delaunay_mesh() -> impl Strategy<Value = (String, TriangleMesh)> {
         })
 }
 
-/// Delaunay inputs: icospheres turned and moved rigidly, scaled.
+/// A flat patch of equilateral triangles (`n × n` rhombic cells) in the plane z = 0: Delaunay,
+/// with boundary (the boundary edges face 60° angles).
+fn lattice_patch(n: usize) -> TriangleMesh {
+    let index = |i: usize, j: usize| j * (n + 1) + i;
+    let positions = (0..=n)
+        .flat_map(|j| (0..=n).map(move |i| [i as f64 + 0.5 * j as f64, j as f64 * 0.75f64.sqrt(), 0.0]))
+        .collect();
+    let mut faces = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            faces.push([index(i, j), index(i + 1, j), index(i, j + 1)]);
+            faces.push([index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)]);
+        }
+    }
+    TriangleMesh::new(positions, faces).expect("valid patch")
+}
+
+/// Delaunay inputs: icospheres and flat lattice patches (with boundary), turned and moved
+/// rigidly, scaled.
 fn delaunay_mesh() -> impl Strategy<Value = (String, TriangleMesh)> {
+    let base = prop_oneof![
+        (0u32..=2).prop_map(|l| (format!("icosphere({l})"), icosphere(l))),
+        (1usize..=4).prop_map(|n| (format!("lattice_patch({n})"), lattice_patch(n))),
+    ];
     (
-        0u32..=2,
+        base,
         (-1.0..1.0f64, -1.0..1.0f64, 0.2..1.0f64),
         0.0..6.0f64,
         0.1..10.0f64,
     )
-        .prop_map(|(level, axis, angle, size)| {
-            let sphere = icosphere(level);
-            let scaled = stretched(&sphere, [size; 3]);
+        .prop_map(|((name, mesh), axis, angle, size)| {
+            let scaled = stretched(&mesh, [size; 3]);
             let axis = [axis.0, axis.1, axis.2];
             let moved = rigid_motion(&scaled, axis, angle, [0.5, -1.0, 2.0]).expect("finite");
-            (format!("icosphere({level}) size {size:.2}"), moved)
+            (format!("{name} size {size:.2}"), moved)
         })
 }
 
