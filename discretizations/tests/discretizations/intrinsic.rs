@@ -252,7 +252,7 @@ proptest! {
     /// back from `from_face_vectors` and the gradient of a linear function sampled at the
     /// potential nodes is that function's gradient, at every input face.
     #[test]
-    fn on_a_flat_mesh_constants_and_gradients_come_back(n in 2usize..=5, amplitude in 0.0..0.45f64, seed in any::<u64>(), refine in any::<bool>()) {
+    fn on_a_flat_mesh_constants_and_gradients_come_back(n in 2usize..=5, amplitude in 0.0..0.35f64, seed in any::<u64>(), refine in any::<bool>()) {
         let mesh = flat_grid(n, amplitude, seed);
         let mode = if refine { IntrinsicDelaunay::Refine } else { IntrinsicDelaunay::Flip };
         let entry = catalog_entry("dec-barycentric").expect("built in").on_intrinsic_delaunay(mode);
