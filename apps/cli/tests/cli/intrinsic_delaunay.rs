@@ -64,6 +64,19 @@ fn info_counts_the_edges_dec_refuses_and_dec_suggests_the_flag() {
         stderr.contains(&format!("{count} edges")) && stderr.contains("--intrinsic-delaunay"),
         "{stderr}"
     );
+    // With the flag, info builds the intrinsic triangulation: it flips, and after refinement
+    // no edge is left that DEC refuses.
+    for (mode, inserted) in [("flip", false), ("refine", true)] {
+        let flag = format!("--intrinsic-delaunay={mode}");
+        let info = json(&run(dir, &["info", "torus.obj", "--json", &flag]));
+        let summary = &info["intrinsic_delaunay"];
+        assert_eq!(summary["mode"], mode);
+        assert!(summary["flips"].as_u64().unwrap() > 0, "{summary}");
+        assert!(summary["cells"].as_u64().unwrap() >= info["faces"].as_u64().unwrap());
+        if inserted {
+            assert_eq!(summary["not_positive_edges"], 0, "{summary}");
+        }
+    }
     // A Delaunay mesh says so.
     write_obj(dir.join("sphere.obj"), &tvf_core::generate::icosphere(2)).unwrap();
     let info = json(&run(dir, &["info", "sphere.obj", "--json"]));
