@@ -2,7 +2,9 @@
 //! `dec-barycentric` and `dec-circumcentric` built from edge lengths, with sampling and point
 //! evaluation on the input mesh through the correspondence.
 
-use crate::boundary_conditions::{component_boundary_loops, drop_columns, drop_rows, mesh_topology};
+use crate::boundary_conditions::{
+    component_boundary_loops, drop_columns, drop_rows, mesh_topology,
+};
 use crate::intrinsic_delaunay::IntrinsicInput;
 use crate::intrinsic_sampling::{IntrinsicEvaluation, IntrinsicWhitneySampling};
 use crate::{MassLumping, DELAUNAY_TOLERANCE};
@@ -190,12 +192,19 @@ fn node_spaces(
     let positions = mesh.positions();
     let point_position = |p: TrianglePoint| -> [f64; 3] {
         let corners = mesh.faces()[p.face];
-        std::array::from_fn(|k| (0..3).map(|c| p.barycentric[c] * positions[corners[c]][k]).sum())
+        std::array::from_fn(|k| {
+            (0..3)
+                .map(|c| p.barycentric[c] * positions[corners[c]][k])
+                .sum()
+        })
     };
     let on_input = |t: usize, barycentric: [f64; 3]| {
         input
             .overlay
-            .to_input(TrianglePoint { face: t, barycentric })
+            .to_input(TrianglePoint {
+                face: t,
+                barycentric,
+            })
             .map(&point_position)
             .map_err(|error| DiscretizationError::Intrinsic(error.to_string()))
     };
@@ -231,7 +240,11 @@ fn node_spaces(
     let edge_components = (0..tri.edge_count())
         .map(|e| vertex_components[tri.edge_vertices(e)[0]])
         .collect();
-    let face_components = tri.faces().iter().map(|f| vertex_components[f[0]]).collect();
+    let face_components = tri
+        .faces()
+        .iter()
+        .map(|f| vertex_components[f[0]])
+        .collect();
     Ok([
         NodeSpace::with_constant_kernel(
             NodeKind::Vertices,
@@ -239,7 +252,17 @@ fn node_spaces(
             vertex_components,
             components,
         ),
-        NodeSpace::with_constant_kernel(NodeKind::Edges, edge_positions, edge_components, components),
-        NodeSpace::with_constant_kernel(NodeKind::Faces, face_positions, face_components, components),
+        NodeSpace::with_constant_kernel(
+            NodeKind::Edges,
+            edge_positions,
+            edge_components,
+            components,
+        ),
+        NodeSpace::with_constant_kernel(
+            NodeKind::Faces,
+            face_positions,
+            face_components,
+            components,
+        ),
     ])
 }

@@ -107,9 +107,8 @@ impl IntrinsicInput {
     /// subdivision. Fails with [`DiscretizationError::Intrinsic`] naming what failed (a
     /// degenerate face, a limit of flips or insertions).
     pub fn new(mesh: &TriangleMesh, mode: IntrinsicDelaunay) -> Result<Self, DiscretizationError> {
-        let failed = |e: tvf_core::intrinsic::IntrinsicError| {
-            DiscretizationError::Intrinsic(e.to_string())
-        };
+        let failed =
+            |e: tvf_core::intrinsic::IntrinsicError| DiscretizationError::Intrinsic(e.to_string());
         let mut triangulation = IntrinsicTriangulation::new(mesh).map_err(failed)?;
         match mode {
             IntrinsicDelaunay::Flip => {
@@ -295,6 +294,8 @@ mod tests {
         for mode in IntrinsicDelaunay::ALL {
             assert_eq!(parse_intrinsic_delaunay(mode.name()), Ok(mode));
         }
-        assert!(parse_intrinsic_delaunay("yes").unwrap_err().contains("flip or refine"));
+        assert!(parse_intrinsic_delaunay("yes")
+            .unwrap_err()
+            .contains("flip or refine"));
     }
 }

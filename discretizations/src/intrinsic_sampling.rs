@@ -74,7 +74,10 @@ impl IntrinsicWhitneySampling {
             .collect();
         let tri = &input.triangulation;
         let signs = (0..tri.face_count())
-            .map(|t| tri.face_edge_orientations(t).map(|f| if f { 1.0 } else { -1.0 }))
+            .map(|t| {
+                tri.face_edge_orientations(t)
+                    .map(|f| if f { 1.0 } else { -1.0 })
+            })
             .collect();
         let mut sampling = Self {
             input: input.clone(),

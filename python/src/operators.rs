@@ -76,13 +76,15 @@ pub fn operators<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Bound<'py,
     }
     if let Some(tri) = c.intrinsic_triangulation() {
         let faces = Array2::from_shape_fn((tri.face_count(), 3), |(t, c)| tri.faces()[t][c]);
-        let edges =
-            Array2::from_shape_fn((tri.edge_count(), 2), |(e, k)| tri.edge_vertices(e)[k]);
+        let edges = Array2::from_shape_fn((tri.edge_count(), 2), |(e, k)| tri.edge_vertices(e)[k]);
         let positions = &c.potential_nodes().positions;
         let vertices = Array2::from_shape_fn((positions.len(), 3), |(v, k)| positions[v][k]);
         out.set_item("intrinsic_faces", faces.into_pyarray(py))?;
         out.set_item("intrinsic_edges", edges.into_pyarray(py))?;
-        out.set_item("intrinsic_edge_lengths", tri.lengths().to_vec().into_pyarray(py))?;
+        out.set_item(
+            "intrinsic_edge_lengths",
+            tri.lengths().to_vec().into_pyarray(py),
+        )?;
         out.set_item("intrinsic_vertex_positions", vertices.into_pyarray(py))?;
     }
     Ok(out)

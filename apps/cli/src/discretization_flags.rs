@@ -14,9 +14,9 @@ use std::path::PathBuf;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
-    default_discretization, intrinsic_entry_id, parse_boundary_condition,
-    parse_intrinsic_delaunay, requested_catalog_id, split_complex_id, split_intrinsic_id,
-    BoxedComplex, Catalog, IntrinsicDelaunay,
+    default_discretization, intrinsic_entry_id, parse_boundary_condition, parse_intrinsic_delaunay,
+    requested_catalog_id, split_complex_id, split_intrinsic_id, BoxedComplex, Catalog,
+    IntrinsicDelaunay,
 };
 
 /// The discretization flags shared by every subcommand that builds a complex.

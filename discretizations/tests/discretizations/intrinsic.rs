@@ -5,18 +5,18 @@
 //! failure to the smallest mesh, jitter and stretch).
 
 use proptest::prelude::*;
+use tvf_core::discretization::sparse::{diagonal, product};
 use tvf_core::discretization::{
     BoundaryCondition, DiscretizationError, HodgeComplex, HodgeOperators,
 };
 use tvf_core::generate::{
     disk, genus_surface, hemisphere, icosphere, jitter, open_cylinder, rigid_motion, torus,
 };
-use tvf_core::discretization::sparse::{diagonal, product};
 use tvf_core::geometry::{dot, norm, sub};
 use tvf_core::{SurfacePoint, TriangleMesh};
 use tvf_discretizations::{
-    build_complex, catalog_entry, complex_id, intrinsic_entry_id, Catalog, DecComplex, IntrinsicDec,
-    IntrinsicDelaunay, IntrinsicInput, MassLumping, DELAUNAY_TOLERANCE,
+    build_complex, catalog_entry, complex_id, intrinsic_entry_id, Catalog, DecComplex,
+    IntrinsicDec, IntrinsicDelaunay, IntrinsicInput, MassLumping, DELAUNAY_TOLERANCE,
 };
 
 /// `mesh` with every position scaled by `factors` per axis (thin, obtuse, non-Delaunay faces).
@@ -56,7 +56,12 @@ fn flat_grid(n: usize, amplitude: f64, seed: u64) -> TriangleMesh {
     let mut faces = Vec::new();
     for j in 0..n {
         for i in 0..n {
-            let (a, b, c, d) = (index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
+            let (a, b, c, d) = (
+                index(i, j),
+                index(i + 1, j),
+                index(i + 1, j + 1),
+                index(i, j + 1),
+            );
             if (i + j) % 2 == 0 {
                 faces.extend([[a, b, c], [a, c, d]]);
             } else {
@@ -87,12 +92,22 @@ fn non_delaunay_mesh() -> impl Strategy<Value = (String, TriangleMesh)> {
         any::<u64>(),
         (0.3..3.0f64, 0.3..3.0f64, 0.3..3.0f64),
     )
-        .prop_filter_map("a face jitter made degenerate", |((name, mesh), a, seed, (x, y, z))| {
-            let jittered = jitter(&mesh, a, seed).ok()?;
-            let mesh = stretched(&jittered, [x, y, z]);
-            let degenerate = (0..mesh.face_count()).any(|t| !(mesh.face_area(t) > 1e-9));
-            (!degenerate).then(|| (format!("{name} jitter {a:.3} seed {seed} stretch [{x:.2}, {y:.2}, {z:.2}]"), mesh))
-        })
+        .prop_filter_map(
+            "a face jitter made degenerate",
+            |((name, mesh), a, seed, (x, y, z))| {
+                let jittered = jitter(&mesh, a, seed).ok()?;
+                let mesh = stretched(&jittered, [x, y, z]);
+                let degenerate = (0..mesh.face_count()).any(|t| !(mesh.face_area(t) > 1e-9));
+                (!degenerate).then(|| {
+                    (
+                        format!(
+                            "{name} jitter {a:.3} seed {seed} stretch [{x:.2}, {y:.2}, {z:.2}]"
+                        ),
+                        mesh,
+                    )
+                })
+            },
+        )
 }
 
 /// A flat patch of equilateral triangles (`n × n` rhombic cells) in the plane z = 0: Delaunay,
@@ -100,7 +115,9 @@ fn non_delaunay_mesh() -> impl Strategy<Value = (String, TriangleMesh)> {
 fn lattice_patch(n: usize) -> TriangleMesh {
     let index = |i: usize, j: usize| j * (n + 1) + i;
     let positions = (0..=n)
-        .flat_map(|j| (0..=n).map(move |i| [i as f64 + 0.5 * j as f64, j as f64 * 0.75f64.sqrt(), 0.0]))
+        .flat_map(|j| {
+            (0..=n).map(move |i| [i as f64 + 0.5 * j as f64, j as f64 * 0.75f64.sqrt(), 0.0])
+        })
         .collect();
     let mut faces = Vec::new();
     for j in 0..n {
@@ -147,7 +164,9 @@ fn same_as_input(mesh: &TriangleMesh, name: &str) -> Result<(), TestCaseError> {
             prop_assert_eq!(intrinsic.d0(), input.d0(), "{}: {}", name, entry.id());
             prop_assert_eq!(intrinsic.d1(), input.d1(), "{}: {}", name, entry.id());
             prop_assert_eq!(intrinsic.matrix_hash(), input.matrix_hash());
-            let tri = intrinsic.intrinsic_triangulation().expect("carries its triangulation");
+            let tri = intrinsic
+                .intrinsic_triangulation()
+                .expect("carries its triangulation");
             prop_assert_eq!(tri.flip_count(), 0);
             prop_assert_eq!(tri.inserted_vertex_count(), 0);
         }
@@ -172,28 +191,54 @@ fn agrees_with_dec_from_positions(mesh: &TriangleMesh, name: &str) -> Result<(),
             // The reference direction of a boundary edge whose face lies on the right of its
             // input direction a → b is b → a: compare through those signs.
             let signs: Vec<f64> = (0..mesh.edge_count())
-                .map(|e| if input.triangulation.edge_vertices(e) == mesh.edges()[e] { 1.0 } else { -1.0 })
+                .map(|e| {
+                    if input.triangulation.edge_vertices(e) == mesh.edges()[e] {
+                        1.0
+                    } else {
+                        -1.0
+                    }
+                })
                 .collect();
             let flip = diagonal(&signs);
             prop_assert_eq!(ours.d0(), &product(&flip, expected.d0()), "{}", name);
             prop_assert_eq!(ours.d1(), &product(expected.d1(), &flip), "{}", name);
-            for (a, b) in [(ours.m0(), expected.m0()), (ours.m1(), expected.m1()), (ours.m2(), expected.m2())] {
+            for (a, b) in [
+                (ours.m0(), expected.m0()),
+                (ours.m1(), expected.m1()),
+                (ours.m2(), expected.m2()),
+            ] {
                 let (a, b) = (a.diagonal_values().unwrap(), b.diagonal_values().unwrap());
                 let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
                 for (x, y) in a.iter().zip(b) {
                     prop_assert!((x - y).abs() <= 1e-12 * scale, "{}: {} vs {}", name, x, y);
                 }
             }
-            for (a, b) in [(ours.potential_nodes(), expected.potential_nodes()), (ours.field_nodes(), expected.field_nodes()), (ours.co_potential_nodes(), expected.co_potential_nodes())] {
+            for (a, b) in [
+                (ours.potential_nodes(), expected.potential_nodes()),
+                (ours.field_nodes(), expected.field_nodes()),
+                (ours.co_potential_nodes(), expected.co_potential_nodes()),
+            ] {
                 prop_assert_eq!(&a.dirichlet, &b.dirichlet);
                 prop_assert_eq!(&a.components, &b.components);
                 for (p, q) in a.positions.iter().zip(&b.positions) {
-                    prop_assert!(norm(sub(*p, *q)) <= 1e-12 * (1.0 + norm(*q)), "{}: node {:?} vs {:?}", name, p, q);
+                    prop_assert!(
+                        norm(sub(*p, *q)) <= 1e-12 * (1.0 + norm(*q)),
+                        "{}: node {:?} vs {:?}",
+                        name,
+                        p,
+                        q
+                    );
                 }
             }
             let fixed = &expected.field_nodes().dirichlet;
             let field: Vec<f64> = (0..expected.field_dimension())
-                .map(|i| if fixed[i] { 0.0 } else { (i as f64 * 0.71).cos() })
+                .map(|i| {
+                    if fixed[i] {
+                        0.0
+                    } else {
+                        (i as f64 * 0.71).cos()
+                    }
+                })
                 .collect();
             let (sampled, reference) = (ours.sampling().unwrap(), expected.sampling().unwrap());
             let signed: Vec<f64> = field.iter().zip(&signs).map(|(x, s)| x * s).collect();
@@ -201,13 +246,26 @@ fn agrees_with_dec_from_positions(mesh: &TriangleMesh, name: &str) -> Result<(),
             let b = reference.to_face_vectors(&field).unwrap();
             let scale = b.iter().fold(0.0f64, |m, v| m.max(norm(*v)));
             for (t, (v, w)) in a.iter().zip(&b).enumerate() {
-                prop_assert!(norm(sub(*v, *w)) <= 1e-10 * scale, "{}: face {}: {:?} vs {:?}", name, t, v, w);
+                prop_assert!(
+                    norm(sub(*v, *w)) <= 1e-10 * scale,
+                    "{}: face {}: {:?} vs {:?}",
+                    name,
+                    t,
+                    v,
+                    w
+                );
             }
             let back = sampled.from_face_vectors(&b).unwrap().field;
             let expected_back = reference.from_face_vectors(&b).unwrap().field;
             let scale = expected_back.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             for ((x, y), s) in back.iter().zip(&expected_back).zip(&signs) {
-                prop_assert!((x - s * y).abs() <= 1e-10 * scale, "{}: {} vs {}", name, x, y);
+                prop_assert!(
+                    (x - s * y).abs() <= 1e-10 * scale,
+                    "{}: {} vs {}",
+                    name,
+                    x,
+                    y
+                );
             }
         }
     }
@@ -332,11 +390,22 @@ fn check_dec(
     let sampling = complex.sampling().expect("samples");
     let fixed = &complex.field_nodes().dirichlet;
     let field: Vec<f64> = (0..complex.field_dimension())
-        .map(|i| if fixed[i] { 0.0 } else { (i as f64 * 0.37).sin() })
+        .map(|i| {
+            if fixed[i] {
+                0.0
+            } else {
+                (i as f64 * 0.37).sin()
+            }
+        })
         .collect();
     for (t, w) in sampling.to_face_vectors(&field).unwrap().iter().enumerate() {
         let normal = sampling.normal(t);
-        prop_assert!(dot(*w, normal).abs() <= 1e-9 * (1.0 + norm(*w)), "{}: face {}", name, t);
+        prop_assert!(
+            dot(*w, normal).abs() <= 1e-9 * (1.0 + norm(*w)),
+            "{}: face {}",
+            name,
+            t
+        );
     }
     Ok(())
 }

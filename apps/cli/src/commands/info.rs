@@ -177,7 +177,11 @@ pub fn run(args: InfoArgs) -> Result<()> {
 fn non_delaunay_edges(mesh: &TriangleMesh) -> Option<usize> {
     let geometry = FaceGeometry::new(mesh).ok()?;
     let star = edge_hodge_star(mesh, &geometry);
-    Some(star.iter().filter(|&&s| 2.0 * s <= DELAUNAY_TOLERANCE).count())
+    Some(
+        star.iter()
+            .filter(|&&s| 2.0 * s <= DELAUNAY_TOLERANCE)
+            .count(),
+    )
 }
 
 /// The intrinsic Delaunay triangulation of `mesh` made by `mode`, with its common subdivision,

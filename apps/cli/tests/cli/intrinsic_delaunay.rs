@@ -50,12 +50,20 @@ fn info_counts_the_edges_dec_refuses_and_dec_suggests_the_flag() {
     let text = run(dir, &["info", "torus.obj"]);
     let text = String::from_utf8_lossy(&text.stdout);
     assert!(
-        text.contains(&format!("delaunay       no: {count} edges")) && text.contains("--intrinsic-delaunay"),
+        text.contains(&format!("delaunay       no: {count} edges"))
+            && text.contains("--intrinsic-delaunay"),
         "{text}"
     );
     let refused = tvf()
         .current_dir(dir)
-        .args(["spectrum", "torus.obj", "-k", "4", "--discretization", "dec-circumcentric"])
+        .args([
+            "spectrum",
+            "torus.obj",
+            "-k",
+            "4",
+            "--discretization",
+            "dec-circumcentric",
+        ])
         .output()
         .unwrap();
     assert!(!refused.status.success());
@@ -106,10 +114,13 @@ fn dec_with_the_flag_runs_through_every_command_on_a_non_delaunay_torus() {
         {"id": "c", "kind": "curl", "face": 40, "value": -1.0}
     ]}"#;
     std::fs::write(dir.join("c.json"), constraints).unwrap();
-    let dec = ["--discretization", "dec-circumcentric", "--intrinsic-delaunay"];
-    let with = |args: &[&str]| -> Vec<String> {
-        args.iter().chain(&dec).map(|s| s.to_string()).collect()
-    };
+    let dec = [
+        "--discretization",
+        "dec-circumcentric",
+        "--intrinsic-delaunay",
+    ];
+    let with =
+        |args: &[&str]| -> Vec<String> { args.iter().chain(&dec).map(|s| s.to_string()).collect() };
     let go = |args: &[&str]| {
         let args = with(args);
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -118,48 +129,186 @@ fn dec_with_the_flag_runs_through_every_command_on_a_non_delaunay_torus() {
 
     // Genus 1: two harmonic fields, then positive eigenvalues.
     let spectrum = json(&go(&["spectrum", "torus.obj", "-k", "8", "--json"]));
-    assert_eq!(spectrum["discretization"], "dec-circumcentric+intrinsic-delaunay");
-    let labels: Vec<&str> = spectrum["labels"].as_array().unwrap().iter().map(|l| l.as_str().unwrap()).collect();
-    assert_eq!(labels.iter().filter(|&&l| l == "harmonic").count(), 2, "{spectrum}");
-    let values: Vec<f64> = spectrum["eigenvalues"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert_eq!(
+        spectrum["discretization"],
+        "dec-circumcentric+intrinsic-delaunay"
+    );
+    let labels: Vec<&str> = spectrum["labels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        labels.iter().filter(|&&l| l == "harmonic").count(),
+        2,
+        "{spectrum}"
+    );
+    let values: Vec<f64> = spectrum["eigenvalues"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
     assert!(values[2] > 1e-3, "{values:?}");
 
     go(&["basis", "torus.obj", "-k", "30", "-o", "b.tvfb"]);
     // The basis of the intrinsic complex is never taken for one of the input's.
     let other = tvf()
         .current_dir(dir)
-        .args(["coefficients", "torus.obj", "field.txt", "--basis", "b.tvfb", "--discretization", "dec-circumcentric", "--json"])
+        .args([
+            "coefficients",
+            "torus.obj",
+            "field.txt",
+            "--basis",
+            "b.tvfb",
+            "--discretization",
+            "dec-circumcentric",
+            "--json",
+        ])
         .output()
         .unwrap();
     assert!(!other.status.success());
     let stderr = String::from_utf8_lossy(&other.stderr);
-    assert!(stderr.contains("dec-circumcentric+intrinsic-delaunay"), "{stderr}");
-    let coefficients = json(&run(dir, &["coefficients", "torus.obj", "field.txt", "--basis", "b.tvfb", "--json"]));
-    assert_eq!(coefficients["discretization"], "dec-circumcentric+intrinsic-delaunay");
+    assert!(
+        stderr.contains("dec-circumcentric+intrinsic-delaunay"),
+        "{stderr}"
+    );
+    let coefficients = json(&run(
+        dir,
+        &[
+            "coefficients",
+            "torus.obj",
+            "field.txt",
+            "--basis",
+            "b.tvfb",
+            "--json",
+        ],
+    ));
+    assert_eq!(
+        coefficients["discretization"],
+        "dec-circumcentric+intrinsic-delaunay"
+    );
 
     go(&["decompose", "torus.obj", "field.txt", "-o", "parts"]);
-    assert_eq!(npy_rows(&dir.join("parts/integrable.npy")), mesh.face_count());
-    go(&["filter", "torus.obj", "field.txt", "-k", "30", "-o", "smooth.npy"]);
+    assert_eq!(
+        npy_rows(&dir.join("parts/integrable.npy")),
+        mesh.face_count()
+    );
+    go(&[
+        "filter",
+        "torus.obj",
+        "field.txt",
+        "-k",
+        "30",
+        "-o",
+        "smooth.npy",
+    ]);
     assert_eq!(npy_rows(&dir.join("smooth.npy")), mesh.face_count());
-    go(&["analyze", "torus.obj", "field.txt", "-k", "30", "-o", "analysis"]);
-    go(&["compress", "torus.obj", "field.txt", "--pairs", "10", "-o", "f.tvfc"]);
+    go(&[
+        "analyze",
+        "torus.obj",
+        "field.txt",
+        "-k",
+        "30",
+        "-o",
+        "analysis",
+    ]);
+    go(&[
+        "compress",
+        "torus.obj",
+        "field.txt",
+        "--pairs",
+        "10",
+        "-o",
+        "f.tvfc",
+    ]);
     go(&["decompress", "torus.obj", "f.tvfc", "-o", "back.npy"]);
     assert_eq!(npy_rows(&dir.join("back.npy")), mesh.face_count());
-    go(&["rate-distortion", "torus.obj", "field.txt", "--pairs", "5,10", "-o", "rd"]);
-    let spline = json(&go(&["spline", "torus.obj", "--constraints", "c.json", "-k", "40", "-o", "spline.npy", "--json"]));
-    assert_eq!(spline["discretization"], "dec-circumcentric+intrinsic-delaunay");
+    go(&[
+        "rate-distortion",
+        "torus.obj",
+        "field.txt",
+        "--pairs",
+        "5,10",
+        "-o",
+        "rd",
+    ]);
+    let spline = json(&go(&[
+        "spline",
+        "torus.obj",
+        "--constraints",
+        "c.json",
+        "-k",
+        "40",
+        "-o",
+        "spline.npy",
+        "--json",
+    ]));
+    assert_eq!(
+        spline["discretization"],
+        "dec-circumcentric+intrinsic-delaunay"
+    );
     assert_eq!(npy_rows(&dir.join("spline.npy")), mesh.face_count());
-    go(&["design", "torus.obj", "--constraints", "c.json", "--reduced", "-k", "40", "-o", "reduced.npy"]);
-    go(&["design", "torus.obj", "--constraints", "c.json", "--full", "-o", "full.npy"]);
-    go(&["render", "torus.obj", "spline.npy", "--color", "curl", "-o", "spline.png", "--size", "160x120"]);
-    go(&["export", "torus.obj", "spline.npy", "--format", "vtk", "-o", "spline.vtk"]);
+    go(&[
+        "design",
+        "torus.obj",
+        "--constraints",
+        "c.json",
+        "--reduced",
+        "-k",
+        "40",
+        "-o",
+        "reduced.npy",
+    ]);
+    go(&[
+        "design",
+        "torus.obj",
+        "--constraints",
+        "c.json",
+        "--full",
+        "-o",
+        "full.npy",
+    ]);
+    go(&[
+        "render",
+        "torus.obj",
+        "spline.npy",
+        "--color",
+        "curl",
+        "-o",
+        "spline.png",
+        "--size",
+        "160x120",
+    ]);
+    go(&[
+        "export",
+        "torus.obj",
+        "spline.npy",
+        "--format",
+        "vtk",
+        "-o",
+        "spline.vtk",
+    ]);
     go(&["operators", "torus.obj", "-o", "matrices"]);
     let info: Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("matrices/info.json")).unwrap())
             .unwrap();
-    assert_eq!(info["discretization"], "dec-circumcentric+intrinsic-delaunay");
+    assert_eq!(
+        info["discretization"],
+        "dec-circumcentric+intrinsic-delaunay"
+    );
     go(&["demo", "--quick", "--mesh", "torus.obj", "-o", "demo"]);
-    for file in ["analysis", "rd", "reduced.npy", "full.npy", "spline.png", "spline.vtk", "matrices/d0.mtx", "demo/index.html"] {
+    for file in [
+        "analysis",
+        "rd",
+        "reduced.npy",
+        "full.npy",
+        "spline.png",
+        "spline.vtk",
+        "matrices/d0.mtx",
+        "demo/index.html",
+    ] {
         assert!(dir.join(file).exists(), "{file} was not written");
     }
 }
@@ -171,13 +320,28 @@ fn refinement_runs_dec_on_an_open_mesh_with_both_boundary_conditions() {
     // A jittered, squashed hemisphere: boundary edges opposite obtuse angles, which flips never
     // cure.
     let mesh = jitter(&tvf_core::generate::hemisphere(4), 0.3, 5).unwrap();
-    let positions = mesh.positions().iter().map(|p| [p[0], p[1], 0.3 * p[2]]).collect();
+    let positions = mesh
+        .positions()
+        .iter()
+        .map(|p| [p[0], p[1], 0.3 * p[2]])
+        .collect();
     let mesh = TriangleMesh::new(positions, mesh.faces().to_vec()).unwrap();
     write_obj(dir.join("cap.obj"), &mesh).unwrap();
     for boundary in ["tangential", "normal"] {
         let spectrum = json(&run(
             dir,
-            &["spectrum", "cap.obj", "-k", "6", "--json", "--discretization", "dec-barycentric", "--intrinsic-delaunay=refine", "--boundary", boundary],
+            &[
+                "spectrum",
+                "cap.obj",
+                "-k",
+                "6",
+                "--json",
+                "--discretization",
+                "dec-barycentric",
+                "--intrinsic-delaunay=refine",
+                "--boundary",
+                boundary,
+            ],
         ));
         assert_eq!(
             spectrum["discretization"],

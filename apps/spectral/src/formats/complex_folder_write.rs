@@ -66,8 +66,14 @@ fn write_intrinsic_triangulation(
         .map(|v| v as i64)
         .collect();
     let files = [
-        ("intrinsic_faces.npy", npy_bytes(&NpyData::I64(&faces), &[tri.face_count(), 3])),
-        ("intrinsic_edges.npy", npy_bytes(&NpyData::I64(&edges), &[tri.edge_count(), 2])),
+        (
+            "intrinsic_faces.npy",
+            npy_bytes(&NpyData::I64(&faces), &[tri.face_count(), 3]),
+        ),
+        (
+            "intrinsic_edges.npy",
+            npy_bytes(&NpyData::I64(&edges), &[tri.edge_count(), 2]),
+        ),
         (
             "intrinsic_edge_lengths.npy",
             npy_bytes(&NpyData::F64(tri.lengths()), &[tri.edge_count()]),
