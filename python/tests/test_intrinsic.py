@@ -38,7 +38,7 @@ def test_the_flag_gives_the_id_and_dec_builds_on_a_non_delaunay_torus():
     basis = tvf.basis(mesh, 8, "dec-circumcentric", intrinsic_delaunay=True)
     assert basis.discretization == flipped.id
     assert np.all(np.abs(basis.eigenvalues[:2]) < 1e-8) and basis.eigenvalues[2] > 1e-3
-    assert basis.fields.shape == (8, len(mesh.faces), 3)
+    assert basis.fields.shape == (len(mesh.faces), 3, 8)
     parts = tvf.decompose(mesh, np.tile([1.0, 0.5, 0.0], (len(mesh.faces), 1)), "dec-circumcentric", intrinsic_delaunay=True)
     assert parts["integrable"].shape == (len(mesh.faces), 3)
 
