@@ -127,13 +127,16 @@ impl HodgeComplex for IntrinsicDec {
     }
 }
 
+/// `d0`, `d1` and the node spaces of the 0-, 1- and 2-forms.
+type Forms = (CsMat<f64>, CsMat<f64>, [NodeSpace; 3]);
+
 /// `d0` (`E × V`), `d1` (`F × E`) and the node spaces of vertices, edges and faces of the
 /// intrinsic triangulation, with boundary condition `boundary` as [`crate::DecComplex`] has it.
 fn intrinsic_forms(
     mesh: &TriangleMesh,
     input: &IntrinsicInput,
     boundary: BoundaryCondition,
-) -> Result<(CsMat<f64>, CsMat<f64>, [NodeSpace; 3]), DiscretizationError> {
+) -> Result<Forms, DiscretizationError> {
     let tri = &input.triangulation;
     let (v, e, f) = (tri.vertex_count(), tri.edge_count(), tri.face_count());
     let (mut rows, mut cols, mut values) = (Vec::new(), Vec::new(), Vec::new());
