@@ -6,6 +6,7 @@
 use crate::builtin_catalog::builtin_entries;
 use crate::catalog_entry::{BoxedComplex, CatalogEntry};
 use crate::complex_id::split_complex_id;
+use crate::intrinsic_delaunay::split_intrinsic_id;
 use std::sync::OnceLock;
 use thiserror::Error;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError};
@@ -139,9 +140,12 @@ impl Catalog {
     }
 
     /// The entry with id `id`. A complex's id on a mesh with boundary, `{entry id}+{condition}`,
-    /// also finds its entry (see [`split_complex_id`]). The error lists the known ids.
+    /// also finds its entry (see [`split_complex_id`]), and so does the id of the entry on the
+    /// intrinsic Delaunay triangulation, `{entry id}+intrinsic-delaunay` (see
+    /// [`split_intrinsic_id`]; [`Catalog::build_complex`] builds it). The error lists the known
+    /// ids.
     pub fn get(&self, id: &str) -> Result<&CatalogEntry, UnknownDiscretization> {
-        let id = split_complex_id(id).0;
+        let id = split_intrinsic_id(split_complex_id(id).0).0;
         self.entries
             .iter()
             .find(|entry| entry.id() == id)
@@ -178,7 +182,9 @@ impl Catalog {
 
     /// Builds the complex named by `id` on `mesh`: an entry's id (built with `boundary`, the
     /// entry's default if `None`), or a complex id `{entry id}+{condition}` as basis files store
-    /// it, whose own condition is used.
+    /// it, whose own condition is used; `{entry id}+intrinsic-delaunay` (or `…-refine`) builds
+    /// the entry on the intrinsic Delaunay triangulation
+    /// ([`CatalogEntry::on_intrinsic_delaunay`]).
     pub fn build_complex<M: Mesh>(
         &self,
         id: &str,
@@ -186,7 +192,10 @@ impl Catalog {
         mesh: &M,
     ) -> Result<BoxedComplex, CatalogBuildError> {
         let (entry_id, named_boundary) = split_complex_id(id);
+        let (entry_id, intrinsic) = split_intrinsic_id(entry_id);
         let entry = self.get(entry_id)?;
+        let modified = intrinsic.map(|mode| entry.on_intrinsic_delaunay(mode));
+        let entry = modified.as_ref().unwrap_or(entry);
         let boundary = named_boundary
             .or(boundary)
             .unwrap_or_else(|| entry.default_boundary());

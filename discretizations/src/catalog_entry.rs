@@ -3,6 +3,7 @@
 //! parameters (a closure).
 
 use crate::complex_id::complex_id;
+use crate::intrinsic_delaunay::{IntrinsicConstructor, IntrinsicInput};
 use std::sync::Arc;
 use tvf_core::discretization::{BoundaryCondition, DiscretizationError, HodgeComplex};
 use tvf_core::mesh::Mesh;
@@ -52,6 +53,7 @@ pub struct CatalogEntry {
     boundary_conditions: Vec<BoundaryCondition>,
     boundary_meanings: Vec<String>,
     constructor: EntryConstructor,
+    intrinsic: Option<IntrinsicConstructor>,
 }
 
 impl CatalogEntry {
@@ -111,6 +113,7 @@ impl CatalogEntry {
             boundary_conditions: Vec::new(),
             boundary_meanings: Vec::new(),
             constructor: Arc::new(constructor),
+            intrinsic: None,
         }
     }
 
@@ -149,6 +152,38 @@ impl CatalogEntry {
             }
         }
         self
+    }
+
+    /// The entry with a constructor from edge lengths: how it builds its complex on an
+    /// intrinsic triangulation ([`crate::IntrinsicConstructor`]), which
+    /// [`CatalogEntry::on_intrinsic_delaunay`] uses where flips or refinement changed the mesh.
+    /// The constructor must give its complex the id it is handed.
+    pub fn with_intrinsic_constructor<F>(mut self, constructor: F) -> Self
+    where
+        F: Fn(
+                &TriangleMesh,
+                &IntrinsicInput,
+                &str,
+                BoundaryCondition,
+            ) -> Result<BoxedComplex, DiscretizationError>
+            + Send
+            + Sync
+            + 'static,
+    {
+        self.intrinsic = Some(Arc::new(constructor));
+        self
+    }
+
+    /// The entry's constructor from edge lengths, if it has one.
+    pub fn intrinsic_constructor(&self) -> Option<&IntrinsicConstructor> {
+        self.intrinsic.as_ref()
+    }
+
+    /// Whether the entry builds on every intrinsic Delaunay triangulation (it has a constructor
+    /// from edge lengths); without one, [`CatalogEntry::on_intrinsic_delaunay`] builds only on
+    /// meshes that are their own intrinsic Delaunay triangulation.
+    pub fn builds_on_intrinsic(&self) -> bool {
+        self.intrinsic.is_some()
     }
 
     /// The stable id, used on command lines, in basis files and in cache names.
@@ -244,6 +279,7 @@ impl std::fmt::Debug for CatalogEntry {
             .field("id", &self.id)
             .field("needs_delaunay", &self.needs_delaunay)
             .field("needs_triangles", &self.needs_triangles)
+            .field("builds_on_intrinsic", &self.intrinsic.is_some())
             .field("boundary_conditions", &self.boundary_conditions)
             .finish_non_exhaustive()
     }

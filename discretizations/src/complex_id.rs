@@ -20,9 +20,11 @@ pub fn complex_id(entry_id: &str, topology: &MeshTopology, boundary: BoundaryCon
 /// Splits a complex id into the catalog entry's id and the boundary condition it names:
 /// `conforming-barycentric+normal` → (`conforming-barycentric`, `Some(Normal)`);
 /// `conforming-barycentric` → (`conforming-barycentric`, `None`) (a closed mesh). A suffix that
-/// names no boundary condition is part of the id.
+/// names no boundary condition is part of the id: the entry of
+/// `dec-barycentric+intrinsic-delaunay+normal` is `dec-barycentric+intrinsic-delaunay` (see
+/// [`crate::split_intrinsic_id`]).
 pub fn split_complex_id(id: &str) -> (&str, Option<BoundaryCondition>) {
-    match id.split_once('+') {
+    match id.rsplit_once('+') {
         Some((entry, boundary)) => match BoundaryCondition::from_name(boundary) {
             Some(condition) => (entry, Some(condition)),
             None => (id, None),
@@ -52,5 +54,9 @@ mod tests {
         );
         assert_eq!(split_complex_id("x-y"), ("x-y", None));
         assert_eq!(split_complex_id("x+z"), ("x+z", None));
+        assert_eq!(
+            split_complex_id("x-y+intrinsic-delaunay+normal"),
+            ("x-y+intrinsic-delaunay", Some(BoundaryCondition::Normal))
+        );
     }
 }

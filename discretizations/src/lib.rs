@@ -126,6 +126,9 @@ mod finite_element_complex;
 mod function_space;
 mod gradient_assembly;
 mod hodge_decomposition;
+mod intrinsic_dec;
+mod intrinsic_delaunay;
+mod intrinsic_sampling;
 mod lagrange_p1;
 mod mass_lumping;
 mod matrix_complex;
@@ -165,6 +168,12 @@ pub use face_fields::FaceFields;
 pub use finite_element_complex::{Conforming, FiniteElementComplex, Nonconforming};
 pub use function_space::FunctionSpace;
 pub use hodge_decomposition::{HodgeDecomposer, HodgeParts};
+pub use intrinsic_dec::IntrinsicDec;
+pub use intrinsic_delaunay::{
+    intrinsic_entry_id, parse_intrinsic_delaunay, split_intrinsic_id, IntrinsicConstructor,
+    IntrinsicDelaunay, IntrinsicInput,
+};
+pub use intrinsic_sampling::{IntrinsicEvaluation, IntrinsicWhitneySampling};
 pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use matrix_complex::{ComplexMatrices, MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};

@@ -14,8 +14,9 @@ use pyo3::types::PyDict;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
-    builtin_catalog, catalog_entry, default_discretization, polygon_dec_entry, polygon_dec_id,
-    BoxedComplex, MatrixComplex, MatrixSampling, DEFAULT_STABILISATION,
+    builtin_catalog, catalog_entry, default_discretization, parse_intrinsic_delaunay,
+    polygon_dec_entry, polygon_dec_id, split_intrinsic_id, BoxedComplex, MatrixComplex,
+    MatrixSampling, DEFAULT_STABILISATION,
 };
 use tvf_spectral::SpectralBasis;
 
@@ -34,16 +35,24 @@ impl Complex {
     /// `discretization`, the default of the mesh's kind (`conforming-barycentric` on triangles,
     /// `polygon-dec` on polygons). `beta` is polygon-dec's stabilisation weight (its default is
     /// 1); giving it with another entry is an error.
+    /// `intrinsic` (`flip` or `refine`) builds the entry on the intrinsic Delaunay
+    /// triangulation of the mesh, as an id ending in `+intrinsic-delaunay` (or `…-refine`) does.
     #[staticmethod]
-    #[pyo3(signature = (mesh, discretization, boundary, beta = None))]
+    #[pyo3(signature = (mesh, discretization, boundary, beta = None, intrinsic = None))]
     fn build(
         py: Python<'_>,
         mesh: &Mesh,
         discretization: Option<&str>,
         boundary: &str,
         beta: Option<f64>,
+        intrinsic: Option<&str>,
     ) -> PyResult<Self> {
         let discretization = discretization.unwrap_or_else(|| default_discretization(&mesh.mesh));
+        let (discretization, named_mode) = split_intrinsic_id(discretization);
+        let mode = match intrinsic {
+            Some(name) => Some(parse_intrinsic_delaunay(name).map_err(tvf_error)?),
+            None => named_mode,
+        };
         let stabilised;
         let entry = match beta {
             None => catalog_entry(discretization).map_err(|e| from_error(&e))?,
@@ -62,6 +71,9 @@ impl Complex {
                 )))
             }
         };
+        let modified = mode.map(|mode| entry.on_intrinsic_delaunay(mode));
+        let entry = modified.as_ref().unwrap_or(entry);
+        let discretization = entry.id();
         let condition = BoundaryCondition::from_name(boundary).ok_or_else(|| {
             tvf_error(format!(
                 "'{boundary}' is not a boundary condition: tangential or normal"
@@ -201,6 +213,7 @@ pub fn discretizations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
             d.set_item("description", entry.description())?;
             d.set_item("preconditions", entry.preconditions())?;
             d.set_item("needs_delaunay", entry.needs_delaunay())?;
+            d.set_item("builds_on_intrinsic", entry.builds_on_intrinsic())?;
             let conditions: Vec<&str> = entry
                 .boundary_conditions()
                 .iter()

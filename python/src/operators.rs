@@ -5,7 +5,7 @@ use crate::arrays::csr_to_parts;
 use crate::complex::Complex;
 use crate::linear_operator::Operator;
 use crate::masses::{named_masses, stored_key};
-use numpy::ndarray::Array3;
+use numpy::ndarray::{Array2, Array3};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -20,7 +20,11 @@ use tvf_core::discretization::{Factor, HodgeOperators, LinearOperator, MassForm}
 /// - `d0`, `d1`, `S0` (always sparse), `J` where the complex has a rotation (sparse);
 /// - `S2`, `S`, `L`, `B`, `div`, `curl` (and `div_other`, `curl_other` with a rotation): CSR
 ///   where every mass involved is diagonal, else an [`Operator`];
-/// - `frames` (`F × 2 × 3`) where the complex has a sampling.
+/// - `frames` (`F × 2 × 3`) where the complex has a sampling;
+/// - on an intrinsic triangulation: `intrinsic_faces` (`F_i × 3`, counter-clockwise vertex
+///   triples), `intrinsic_edges` (`E_i × 2`, the reference direction of each edge: `d0`'s
+///   `−1`, `+1`), `intrinsic_edge_lengths` (`E_i`) and `intrinsic_vertex_positions` (`V_i × 3`,
+///   where each intrinsic vertex sits on the input surface).
 #[pyfunction]
 pub fn operators<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Bound<'py, PyDict>> {
     let c = complex.complex.as_ref();
@@ -69,6 +73,19 @@ pub fn operators<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Bound<'py,
         let faces = sampling.face_count();
         let frames = Array3::from_shape_fn((faces, 2, 3), |(t, a, k)| sampling.frame(t)[a][k]);
         out.set_item("frames", frames.into_pyarray(py))?;
+    }
+    if let Some(tri) = c.intrinsic_triangulation() {
+        let faces = Array2::from_shape_fn((tri.face_count(), 3), |(t, c)| tri.faces()[t][c]);
+        let edges = Array2::from_shape_fn((tri.edge_count(), 2), |(e, k)| tri.edge_vertices(e)[k]);
+        let positions = &c.potential_nodes().positions;
+        let vertices = Array2::from_shape_fn((positions.len(), 3), |(v, k)| positions[v][k]);
+        out.set_item("intrinsic_faces", faces.into_pyarray(py))?;
+        out.set_item("intrinsic_edges", edges.into_pyarray(py))?;
+        out.set_item(
+            "intrinsic_edge_lengths",
+            tri.lengths().to_vec().into_pyarray(py),
+        )?;
+        out.set_item("intrinsic_vertex_positions", vertices.into_pyarray(py))?;
     }
     Ok(out)
 }

@@ -34,7 +34,11 @@ class Complex:
     (``tangential`` or ``normal``) only matters on meshes with boundary. ``beta`` is
     ``polygon-dec``'s stabilisation weight (> 0, default 1: ``M1 = sum_f |A_f| U_f^T U_f +
     beta P_f^T P_f``; the id becomes ``polygon-dec-beta-...`` for another value); it is an error
-    with any other entry. :meth:`Complex.from_matrices` wraps matrices you assembled.
+    with any other entry. ``intrinsic_delaunay`` (``True`` or ``"flip"``, or ``"refine"``)
+    builds the entry on the intrinsic Delaunay triangulation of the mesh (the id gets
+    ``+intrinsic-delaunay`` or ``+intrinsic-delaunay-refine``; DEC then builds on every mesh;
+    fields are still ``(F, 3)`` arrays over the input faces: see docs/discretizations.md); an id
+    with that suffix does the same. :meth:`Complex.from_matrices` wraps matrices you assembled.
     Every function of the package takes a ``Complex`` wherever it takes a mesh and a
     ``discretization``.
 
@@ -44,12 +48,13 @@ class Complex:
     stored).
     """
 
-    def __init__(self, mesh, discretization=None, boundary="tangential", beta=None):
+    def __init__(self, mesh, discretization=None, boundary="tangential", beta=None, *, intrinsic_delaunay=False):
         _check_mesh(mesh)
         self.mesh = mesh
         entry = None if discretization is None else str(discretization)
         beta = None if beta is None else float(beta)
-        self._native = _native.Complex.build(mesh._native, entry, str(boundary), beta)
+        mode = intrinsic_mode(intrinsic_delaunay)
+        self._native = _native.Complex.build(mesh._native, entry, str(boundary), beta, mode)
 
     @classmethod
     def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None):
@@ -197,15 +202,27 @@ def _check_mesh(mesh):
         raise TypeError(f"expected a tvf.Mesh, got {type(mesh).__name__} (build one with tvf.Mesh(V, F))")
 
 
-def as_complex(mesh, discretization=None, boundary="tangential", beta=None):
+def intrinsic_mode(intrinsic_delaunay):
+    """The mode of an ``intrinsic_delaunay`` argument: ``None`` for ``False``/``None``,
+    ``"flip"`` for ``True``, else ``"flip"`` or ``"refine"`` as given."""
+    if intrinsic_delaunay is None or intrinsic_delaunay is False:
+        return None
+    if intrinsic_delaunay is True:
+        return "flip"
+    if intrinsic_delaunay in ("flip", "refine"):
+        return intrinsic_delaunay
+    raise TvfError(f"intrinsic_delaunay={intrinsic_delaunay!r}: give True, False, 'flip' or 'refine'")
+
+
+def as_complex(mesh, discretization=None, boundary="tangential", beta=None, intrinsic_delaunay=False):
     """``mesh`` itself if it is a :class:`Complex`, else the catalog entry on it (``beta``:
-    polygon-dec's stabilisation, see :class:`Complex`)."""
+    polygon-dec's stabilisation; ``intrinsic_delaunay``: see :class:`Complex`)."""
     if isinstance(mesh, Complex):
         return mesh
-    return Complex(mesh, discretization, boundary, beta)
+    return Complex(mesh, discretization, boundary, beta, intrinsic_delaunay=intrinsic_delaunay)
 
 
-def operators(mesh, discretization=None, boundary="tangential", beta=None):
+def operators(mesh, discretization=None, boundary="tangential", beta=None, *, intrinsic_delaunay=False):
     """Every matrix of a discretization, and the face frames.
 
     ``mesh`` is a :class:`Mesh` (then ``discretization`` and ``boundary`` choose the catalog
@@ -243,6 +260,14 @@ def operators(mesh, discretization=None, boundary="tangential", beta=None):
     ``frames``        F x 2 x 3   ``frames[t] = [e1, e2]`` of face t                    ndarray
     ================  ==========  ====================================================  ========
 
+    On the intrinsic Delaunay triangulation (``intrinsic_delaunay``, see :class:`Complex`) the
+    nodes are the intrinsic vertices, edges and faces, and four more keys describe them:
+    ``intrinsic_faces`` (``(F_i, 3)`` int, counter-clockwise vertex triples; a vertex may
+    repeat), ``intrinsic_edges`` (``(E_i, 2)`` int, the direction of ``d0``'s ``-1, +1``),
+    ``intrinsic_edge_lengths`` (``(E_i,)``) and ``intrinsic_vertex_positions`` (``(V_i, 3)``,
+    where each vertex sits on the input surface; the input's vertices come first). ``frames``
+    stays per input face.
+
     A derived operator is a ``csr_matrix`` exactly where every mass it contains is diagonal
     (every lumped entry: all of them) or appears uninverted; it is a ComposedOperator where it
     contains ``M0^-1`` or ``M1^-1`` of a sparse mass or ``M2`` given by its inverse
@@ -256,13 +281,13 @@ def operators(mesh, discretization=None, boundary="tangential", beta=None):
     Vertex rows and columns are in mesh numbering (see ``Mesh.vertex_map``); edges as
     ``Mesh.edges``. The sparse entries equal those ``tvf operators`` writes (which writes
     ``M2_inverse`` in place of a dense ``M2`` and leaves dense derived matrices out)."""
-    complex_ = as_complex(mesh, discretization, boundary, beta)
+    complex_ = as_complex(mesh, discretization, boundary, beta, intrinsic_delaunay)
     raw = _native.operators(complex_._native)
     return {name: _operator(name, value) for name, value in raw.items()}
 
 
 def _operator(name, value):
-    if name == "frames":
+    if name == "frames" or name.startswith("intrinsic_"):
         return value
     if isinstance(value, _native.Operator):
         return ComposedOperator(value)

@@ -25,7 +25,7 @@ def _result(complex_, raw):
     return {"field": field, "coefficients": coefficients, "residuals": dict(raw["residuals"])}
 
 
-def spline(mesh, constraints, k=None, basis=None, discretization=None, boundary="tangential", seed=0, progress=None, origin="constraints"):
+def spline(mesh, constraints, k=None, basis=None, discretization=None, boundary="tangential", seed=0, progress=None, origin="constraints", *, intrinsic_delaunay=False):
     """A tangential vector field spline (``tvf spline``): minimises ``E_B + omega E_D`` in the
     basis of the ``k`` lowest eigenfields subject to the constraints, met exactly in that basis.
 
@@ -40,10 +40,10 @@ def spline(mesh, constraints, k=None, basis=None, discretization=None, boundary=
     ``coefficients`` (``n1``), ``residuals`` (``{id: (absolute, relative)}``)."""
     if basis is None and k is None:
         raise TvfError("spline: give k (the basis size) or a basis")
-    return _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft=False)
+    return _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft=False, intrinsic_delaunay=intrinsic_delaunay)
 
 
-def design(mesh, constraints, discretization=None, boundary="tangential", origin="constraints", k=None, basis=None, seed=0, progress=None):
+def design(mesh, constraints, discretization=None, boundary="tangential", origin="constraints", k=None, basis=None, seed=0, progress=None, *, intrinsic_delaunay=False):
     """Soft-constrained design (``tvf design``): minimises
     ``E_D + omega E_B + sum_i weight_i |C_i x - c_i|^2`` (plus a tiny screening
     ``eps x^T M1 x`` that pins harmonic fields the constraints leave free).
@@ -61,17 +61,17 @@ def design(mesh, constraints, discretization=None, boundary="tangential", origin
     ``constraints`` as for :func:`spline` (``weight`` > 0 per constraint, default 1). Returns
     the same dict as :func:`spline`."""
     if basis is None and k is None:
-        complex_ = as_complex(mesh, discretization, boundary)
+        complex_ = as_complex(mesh, discretization, boundary, intrinsic_delaunay=intrinsic_delaunay)
         raw = _native.design(complex_._native, _json(constraints), str(origin))
         return _result(complex_, raw)
-    return _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft=True)
+    return _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft=True, intrinsic_delaunay=intrinsic_delaunay)
 
 
-def _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft):
+def _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft, intrinsic_delaunay=False):
     """The spline (``soft`` false) or reduced soft design in ``basis``, or in the basis of the
     ``k`` lowest eigenfields computed here."""
     if basis is None:
-        complex_ = as_complex(mesh, discretization, boundary)
+        complex_ = as_complex(mesh, discretization, boundary, intrinsic_delaunay=intrinsic_delaunay)
         basis = compute_basis(complex_, k, seed=seed, progress=progress)
     else:
         complex_ = _complex_of(mesh, discretization, boundary, basis)

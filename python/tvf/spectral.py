@@ -61,7 +61,9 @@ def _complex_of(mesh, discretization, boundary, basis=None):
     if isinstance(mesh, Complex):
         complex_ = mesh
     elif basis is not None:
-        entry, _, condition = basis.discretization.partition("+")
+        entry, _, condition = basis.discretization.rpartition("+")
+        if condition not in ("tangential", "normal"):
+            entry, condition = basis.discretization, None
         complex_ = Complex(mesh, entry, condition or boundary)
     else:
         complex_ = Complex(mesh, discretization, boundary)
@@ -94,11 +96,11 @@ def _field_out(complex_, coefficients, as_vectors):
     return coefficients
 
 
-def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=None, beta=None):
+def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=None, beta=None, *, intrinsic_delaunay=False):
     """The ``k`` eigenfields of lowest eigenvalue of the Hodge-Laplacian (``tvf basis -k K``).
 
-    ``mesh``: a :class:`Mesh` (with ``discretization``, ``boundary``, ``beta`` as for
-    :class:`Complex`) or a :class:`Complex`. ``k >= n1`` gives the complete basis (dense solvers: small meshes only). ``seed`` fixes the
+    ``mesh``: a :class:`Mesh` (with ``discretization``, ``boundary``, ``beta``,
+    ``intrinsic_delaunay`` as for :class:`Complex`) or a :class:`Complex`. ``k >= n1`` gives the complete basis (dense solvers: small meshes only). ``seed`` fixes the
     random start vectors (equal seeds, equal results). ``progress``: optional callable
     ``progress(stage, done, wanted)`` called from the computation (which runs without the GIL).
 
@@ -109,11 +111,10 @@ def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=
     matrix, and with a sparse ``M1`` the co-exact stiffness ``d1 M1^-1 d1^T`` (dense) is never
     formed (its shifts factor the sparse saddle matrix ``[[-M1, d1^T], [d1, -s M2^-1]]``). Signs of eigenfields are arbitrary; eigenfields of a repeated eigenvalue span its
     eigenspace in an arbitrary orthonormal basis. Returns a :class:`Basis`."""
-    complex_ = as_complex(mesh, discretization, boundary, beta)
+    complex_ = as_complex(mesh, discretization, boundary, beta, intrinsic_delaunay)
     k = integer(k, "k")
     if k < 0:
         raise TvfError(f"-k {k}: ask for at least one eigenfield")
-    complex_ = as_complex(mesh, discretization, boundary)
     raw = _native.basis(complex_._native, k, integer(seed, "seed"), progress)
     return Basis(
         eigenvalues=np.asarray(raw["eigenvalues"]),
@@ -124,7 +125,7 @@ def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=
     )
 
 
-def decompose(mesh, field, discretization=None, boundary="tangential", beta=None):
+def decompose(mesh, field, discretization=None, boundary="tangential", beta=None, *, intrinsic_delaunay=False):
     """The Hodge decomposition ``v = d0 f - M1^-1 d1^T g + h`` (``tvf decompose``).
 
     ``field``: ``(F, 3)`` face vectors (projected onto the face planes) or ``(n1,)``
@@ -132,8 +133,8 @@ def decompose(mesh, field, discretization=None, boundary="tangential", beta=None
     (divergence-free; also under its earlier key ``co_integrable``), ``harmonic`` — in the form the field was given — and the ``potential``
     ``f`` (``n0``) and ``co_potential`` ``g`` (``n2``), each with zero mean per component. The
     three parts are ``M1``-orthogonal and sum to the (projected) field. ``beta``: polygon-dec's
-    stabilisation, as for :class:`Complex`."""
-    complex_ = as_complex(mesh, discretization, boundary, beta)
+    stabilisation, and ``intrinsic_delaunay``, as for :class:`Complex`."""
+    complex_ = as_complex(mesh, discretization, boundary, beta, intrinsic_delaunay)
     values, as_vectors = _field_in(complex_, field)
     parts = _native.decompose(complex_._native, values)
     out = {name: _field_out(complex_, parts[name], as_vectors) for name in ("integrable", "cointegrable", "harmonic")}

@@ -1,6 +1,7 @@
 //! `--discretization ID` (and its shorthands `--decomposition`, `--mass`): which entry of the
 //! program's catalog a subcommand builds; `--boundary` its boundary condition on meshes with
-//! boundary; or `--complex DIR`: the five matrices of a folder (`tvf operators -o DIR`, edited,
+//! boundary; `--intrinsic-delaunay[=flip|refine]` to build it on the intrinsic Delaunay
+//! triangulation; or `--complex DIR`: the five matrices of a folder (`tvf operators -o DIR`, edited,
 //! or made by hand), read by [`tvf_spectral::read_complex_folder`]. The catalog is a value given
 //! at run time ([`crate::run`]), which clap's value parsers cannot see: [`check_ids`] checks the
 //! ids right after parsing, as a usage error.
@@ -13,7 +14,9 @@ use std::path::PathBuf;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
-    default_discretization, parse_boundary_condition, requested_catalog_id, BoxedComplex, Catalog,
+    default_discretization, intrinsic_entry_id, parse_boundary_condition, parse_intrinsic_delaunay,
+    requested_catalog_id, split_complex_id, split_intrinsic_id, BoxedComplex, Catalog,
+    IntrinsicDelaunay,
 };
 
 /// The discretization flags shared by every subcommand that builds a complex.
@@ -38,6 +41,21 @@ pub struct DiscretizationFlags {
     /// meshes [default: tangential, or the basis file's].
     #[arg(long, value_name = "CONDITION", value_parser = parse_boundary_condition)]
     pub boundary: Option<BoundaryCondition>,
+    /// Build the discretization on the intrinsic Delaunay triangulation of the mesh (same
+    /// surface, edges flipped on their lengths until every edge is Delaunay): `flip` (the
+    /// default: flips only, no vertex inserted) or `refine` (also splits the edges flips cannot
+    /// make strictly Delaunay, inserting vertices). The id gets `+intrinsic-delaunay` (or
+    /// `+intrinsic-delaunay-refine`); fields are still read and written one vector per input
+    /// face. DEC runs on every mesh with it; see docs/discretizations.md.
+    #[arg(
+        long,
+        value_name = "MODE",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "flip",
+        value_parser = parse_intrinsic_delaunay
+    )]
+    pub intrinsic_delaunay: Option<IntrinsicDelaunay>,
     /// Your own matrices: the folder `tvf operators MESH -o DIR` writes (edited, or made by
     /// hand): d0, d1, M0, M1, M2 (or M2_inverse) as .mtx or .npz in the mesh's numbering, with
     /// optional info.json (sampling, fixed nodes, boundary condition) and vertex_map.npy.
@@ -45,7 +63,7 @@ pub struct DiscretizationFlags {
     #[arg(
         long,
         value_name = "DIR",
-        conflicts_with_all = ["discretization", "decomposition", "mass", "boundary"]
+        conflicts_with_all = ["discretization", "decomposition", "mass", "boundary", "intrinsic_delaunay"]
     )]
     pub complex: Option<PathBuf>,
 }
@@ -53,20 +71,34 @@ pub struct DiscretizationFlags {
 impl DiscretizationFlags {
     /// The id the flags ask for, if any flag was given (a shorthand fills the missing part
     /// with `conforming` / `barycentric`).
+    /// With `--intrinsic-delaunay` the id of the entry on the intrinsic Delaunay triangulation
+    /// (`{id}+intrinsic-delaunay`).
     pub fn requested_id(&self) -> Option<String> {
         let decomposition = self.decomposition.as_deref();
-        requested_catalog_id(
+        let id = requested_catalog_id(
             self.discretization.as_deref(),
             decomposition,
             self.mass.as_deref(),
-        )
+        )?;
+        Some(self.with_intrinsic(id))
     }
 
     /// The id to use on `mesh`: the flags', else [`default_discretization`] (polygon-dec on a
-    /// mesh with polygons).
+    /// mesh with polygons), on the intrinsic Delaunay triangulation with `--intrinsic-delaunay`.
     pub fn id(&self, mesh: &SurfaceMesh) -> String {
         self.requested_id()
-            .unwrap_or_else(|| default_discretization(mesh).to_string())
+            .unwrap_or_else(|| self.with_intrinsic(default_discretization(mesh).to_string()))
+    }
+
+    /// `id` with the intrinsic suffix of `--intrinsic-delaunay`, if given (and not already in
+    /// the id).
+    fn with_intrinsic(&self, id: String) -> String {
+        match self.intrinsic_delaunay {
+            Some(mode) if split_intrinsic_id(split_complex_id(&id).0).1.is_none() => {
+                intrinsic_entry_id(&id, mode)
+            }
+            _ => id,
+        }
     }
 
     /// The boundary condition to use: the flag's, else the default (tangential).

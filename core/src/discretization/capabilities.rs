@@ -37,6 +37,11 @@ pub enum SamplingReproduction {
     /// the 1-form of a constant field, de Goes, Butts, Desbrun 2020 §4); `from_face_vectors`
     /// averages per-face projections, which agree with that only where faces are planar.
     LinearGradients,
+    /// Neither exactly: the sampling of a complex on an intrinsic triangulation, which carries
+    /// vectors between intrinsic and input faces. Both halves hold where the input is flat
+    /// (within a planar region of the input); across creases they hold to the discretization's
+    /// order only. The conformance suite's reproduction checks do not apply.
+    Approximate,
 }
 
 /// Sampling: a field seen as a 3D tangent vector at a point of a face ([`SurfacePoint`]: a face

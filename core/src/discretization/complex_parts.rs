@@ -96,6 +96,21 @@ impl ComplexParts {
         )
     }
 
+    /// The same parts under id `id`, with a fresh cache: the matrices, nodes and topology bit
+    /// for bit.
+    pub fn renamed(&self, id: impl Into<String>) -> Self {
+        Self {
+            id: id.into(),
+            d0: self.d0.clone(),
+            d1: self.d1.clone(),
+            masses: self.masses.clone(),
+            nodes: self.nodes.clone(),
+            topology: self.topology,
+            cache: OperatorCache::default(),
+            matrix_hash: OnceLock::new(),
+        }
+    }
+
     /// The id.
     pub fn id(&self) -> &str {
         &self.id

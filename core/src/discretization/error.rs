@@ -65,7 +65,7 @@ pub enum DiscretizationError {
     },
     /// The diagonal Hodge star on edges (`(cot α + cot β)/2`) is not positive (at most a
     /// round-off tolerance): the mesh is not Delaunay.
-    #[error("the mesh is not Delaunay: {count} edges have cot α + cot β ≤ {tolerance:e} (the first is edge {first}, cot α + cot β = {value:.3e}); the diagonal Hodge star ⋆1 needs a Delaunay mesh")]
+    #[error("the mesh is not Delaunay: {count} edges have cot α + cot β ≤ {tolerance:e} (the first is edge {first}, cot α + cot β = {value:.3e}); the diagonal Hodge star ⋆1 needs a Delaunay mesh: build on the intrinsic Delaunay triangulation of the mesh instead (tvf: --intrinsic-delaunay, Python: intrinsic_delaunay=True)")]
     NotDelaunay {
         /// Number of edges with `cot α + cot β` at most the tolerance.
         count: usize,
@@ -75,6 +75,31 @@ pub enum DiscretizationError {
         value: f64,
         /// The tolerance below which `cot α + cot β` counts as not positive.
         tolerance: f64,
+    },
+    /// After intrinsic Delaunay flipping some edges still have `⋆1` at most the tolerance:
+    /// interior edges between cocircular triangles (`⋆1 = 0`: the dual edge has no length) or
+    /// boundary edges opposite an obtuse angle (never flipped). Refinement splits them.
+    #[error("after intrinsic Delaunay flipping {count} edges of the intrinsic triangulation still have cot α + cot β ≤ {tolerance:e} (the first {shown}: {edges:?}, the first with {value:.3e}): cocircular neighbours (⋆1 = 0) or boundary edges opposite an obtuse angle, on which DEC's ⋆1 is not positive; use intrinsic Delaunay refinement, which splits them (tvf: --intrinsic-delaunay=refine, Python: intrinsic_delaunay=\"refine\")", shown = .edges.len())]
+    NotStrictlyDelaunayAfterFlips {
+        /// Number of intrinsic edges with `cot α + cot β` at most the tolerance.
+        count: usize,
+        /// The first of them (at most 10), intrinsic edge indices.
+        edges: Vec<usize>,
+        /// `cot α + cot β` of the first.
+        value: f64,
+        /// The tolerance below which `cot α + cot β` counts as not positive.
+        tolerance: f64,
+    },
+    /// The intrinsic Delaunay triangulation of the mesh or its correspondence with the mesh
+    /// could not be computed.
+    #[error("the intrinsic Delaunay triangulation could not be built: {0}")]
+    Intrinsic(String),
+    /// A catalog entry without a constructor from edge lengths was asked to build on an
+    /// intrinsic triangulation the flips or refinement changed.
+    #[error("the discretization '{discretization}' cannot be built on an intrinsic triangulation: it reads vertex positions, and its catalog entry gives no constructor from edge lengths (`tvf discretizations` marks the entries that have one)")]
+    NotIntrinsic {
+        /// The entry's id.
+        discretization: String,
     },
     /// A command needs a capability the discretization does not offer.
     #[error("the discretization '{discretization}' does not offer {capability}")]

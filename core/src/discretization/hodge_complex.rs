@@ -5,6 +5,7 @@ use super::{
     ComplexParts, ComplexTopology, FieldRotation, FieldSampling, Mass, MatrixHash, NodeSpace,
     OperatorCache, PointEvaluation,
 };
+use crate::intrinsic::IntrinsicTriangulation;
 use sprs::CsMat;
 
 /// A discrete Hodge decomposition given as a short cochain complex with masses
@@ -115,6 +116,14 @@ pub trait HodgeComplex: Send + Sync {
 
     /// Evaluation of potentials and co-potentials at points, if the discretization offers it.
     fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
+        None
+    }
+
+    /// The intrinsic triangulation the complex was built on, if it was built on one (a catalog
+    /// entry with the intrinsic Delaunay modifier): its vertices, edges and faces are the nodes
+    /// of the complex's spaces, while sampling, point evaluation and field files speak of the
+    /// input mesh's faces.
+    fn intrinsic_triangulation(&self) -> Option<&IntrinsicTriangulation> {
         None
     }
 }

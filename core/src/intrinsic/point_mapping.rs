@@ -21,6 +21,17 @@ impl CommonSubdivision {
     /// The point of the intrinsic triangulation at the input point `point` (an input face and
     /// barycentric coordinates in it). Fails on a face out of range or non-finite coordinates.
     pub fn to_intrinsic(&self, point: TrianglePoint) -> Result<TrianglePoint, IntrinsicError> {
+        self.map(point, Side::Input).map(|(_, q)| q)
+    }
+
+    /// [`CommonSubdivision::to_intrinsic`] with the cell the point was mapped through: the cell
+    /// of its input face it lies in (the deepest inside, for a point on a cell's side), whose
+    /// isometry [`CommonSubdivision::to_input_displacement`] uses to carry tangent vectors of the
+    /// intrinsic face to the input face at that point.
+    pub fn locate_on_intrinsic(
+        &self,
+        point: TrianglePoint,
+    ) -> Result<(usize, TrianglePoint), IntrinsicError> {
         self.map(point, Side::Input)
     }
 
@@ -28,7 +39,7 @@ impl CommonSubdivision {
     /// and barycentric coordinates in it). Fails on a face out of range or non-finite
     /// coordinates.
     pub fn to_input(&self, point: TrianglePoint) -> Result<TrianglePoint, IntrinsicError> {
-        self.map(point, Side::Intrinsic)
+        self.map(point, Side::Intrinsic).map(|(_, q)| q)
     }
 
     /// A tangent vector of the intrinsic face of cell `cell`, given as a displacement of
@@ -74,7 +85,12 @@ impl CommonSubdivision {
         Some([-q[0] - q[1], q[0], q[1]])
     }
 
-    fn map(&self, point: TrianglePoint, from: Side) -> Result<TrianglePoint, IntrinsicError> {
+    /// The cell `point` (on side `from`) lies in and the point on the other side.
+    fn map(
+        &self,
+        point: TrianglePoint,
+        from: Side,
+    ) -> Result<(usize, TrianglePoint), IntrinsicError> {
         let (face_count, cells) = match from {
             Side::Input => (self.input_face_count(), &self.input_face_cells),
             Side::Intrinsic => (self.intrinsic_face_count(), &self.intrinsic_face_cells),
@@ -120,10 +136,8 @@ impl CommonSubdivision {
             w[0] * x[0] + w[1] * y[0] + w[2] * z[0],
             w[0] * x[1] + w[1] * y[1] + w[2] * z[1],
         ];
-        Ok(TrianglePoint {
-            face,
-            barycentric: [1.0 - q[0] - q[1], q[0], q[1]],
-        })
+        let barycentric = [1.0 - q[0] - q[1], q[0], q[1]];
+        Ok((cell, TrianglePoint { face, barycentric }))
     }
 
     /// The corners of cell `i` as `(b1, b2)` barycentric coordinates in its face on `side`.

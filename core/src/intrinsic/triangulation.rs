@@ -28,7 +28,9 @@ pub(crate) const NO_HALFEDGE: usize = usize::MAX;
 ///
 /// **Start.** [`IntrinsicTriangulation::new`] copies the input: vertex `v`, edge `e` and face `t`
 /// are the input's, with the input's edge numbering (lexicographic, reference direction
-/// `a → b`), and edge lengths `|p_b − p_a|`. Flips keep the numbers of the two faces and of the
+/// `a → b`, except on a boundary edge whose face lies on the right of `a → b`: a reference
+/// direction is one of the edge's halfedges, and that edge has only the one `b → a`), and edge
+/// lengths `|p_b − p_a|`. Flips keep the numbers of the two faces and of the
 /// edge they flip; inserted vertices, edges and faces are appended. Methods that need the
 /// input's connectivity take the input mesh again and check that its counts match.
 ///

@@ -13,7 +13,7 @@ use tvf_discretizations::{CatalogEntry, DEFAULT_DISCRETIZATION};
 preconditions on the mesh. --decomposition NAME --mass MASS is a shorthand for the id NAME-MASS."
 )]
 pub struct DiscretizationsArgs {
-    /// Print JSON to stdout: {"default": ID, "discretizations": [{"id", "description", "preconditions", "boundary_conditions", "boundary_meanings": {CONDITION: TEXT}}, ...]}.
+    /// Print JSON to stdout: {"default": ID, "discretizations": [{"id", "description", "preconditions", "boundary_conditions", "boundary_meanings": {CONDITION: TEXT}, "builds_on_intrinsic"}, ...]}.
     #[arg(long)]
     json: bool,
 }
@@ -35,6 +35,7 @@ pub fn run(args: DiscretizationsArgs, context: &RunContext) -> Result<()> {
                         .iter()
                         .map(|&b| (b.name().to_string(), json!(e.boundary_meaning(b))))
                         .collect::<serde_json::Map<_, _>>(),
+                    "builds_on_intrinsic": e.builds_on_intrinsic(),
                 })
             })
             .collect();
@@ -50,8 +51,13 @@ pub fn run(args: DiscretizationsArgs, context: &RunContext) -> Result<()> {
         } else {
             ""
         };
+        let intrinsic = if entry.builds_on_intrinsic() {
+            " Builds on the intrinsic Delaunay triangulation of any mesh (--intrinsic-delaunay)."
+        } else {
+            ""
+        };
         println!(
-            "{}{default} — {}. Preconditions: {}. Boundary conditions on meshes with boundary: {}.",
+            "{}{default} — {}. Preconditions: {}. Boundary conditions on meshes with boundary: {}.{intrinsic}",
             entry.id(),
             entry.description(),
             entry.preconditions(),

@@ -1,21 +1,42 @@
 //! `tvf info`: a mesh report (counts, topology, angles, validation findings).
 
 use crate::mesh_input::MeshInput;
-use anyhow::Result;
+use anyhow::{bail, Context, Result};
 use clap::Args;
-use serde_json::json;
+use serde_json::{json, Value};
+use std::time::Instant;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_discretizations::mesh_topology;
+use tvf_core::TriangleMesh;
+use tvf_discretizations::face_geometry::FaceGeometry;
+use tvf_discretizations::{
+    edge_hodge_star, mesh_topology, parse_intrinsic_delaunay, IntrinsicDelaunay, IntrinsicInput,
+    DELAUNAY_TOLERANCE,
+};
 
 /// Arguments of `tvf info`.
 #[derive(Args)]
-#[command(after_help = "Examples:\n  tvf info bunny.obj\n  tvf info --example genus2 --json")]
+#[command(
+    after_help = "Examples:\n  tvf info bunny.obj\n  tvf info --example genus2 --json\n  tvf info bunny.obj --intrinsic-delaunay=refine"
+)]
 pub struct InfoArgs {
     #[command(flatten)]
     input: MeshInput,
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
     json: bool,
+    /// Also build the intrinsic Delaunay triangulation of the (triangle) mesh with its
+    /// correspondence — `flip` (the default) or `refine`, as --intrinsic-delaunay of the
+    /// commands that build a complex — and report it: flips, inserted vertices, edges, the edges
+    /// still with cot α + cot β ≤ 1e-12, cells of the common subdivision, seconds.
+    #[arg(
+        long,
+        value_name = "MODE",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "flip",
+        value_parser = parse_intrinsic_delaunay
+    )]
+    intrinsic_delaunay: Option<IntrinsicDelaunay>,
 }
 
 /// Prints the report. JSON keys: `vertices` (referenced vertices, after dropping unreferenced
@@ -25,10 +46,26 @@ pub struct InfoArgs {
 /// `component_genera`, `component_boundary_loops`, `harmonic_dimension` (per boundary condition,
 /// `{"tangential": h, "normal": h}`: `2g` per closed component, `2g + b − 1` per component with
 /// `b ≥ 1` boundary loops), `total_area`, `signed_volume`, `mesh_kind` (`triangles` or
-/// `polygons`) and `face_sizes` (faces per number of corners, `{"4": 96}`).
+/// `polygons`), `face_sizes` (faces per number of corners, `{"4": 96}`) and
+/// `non_delaunay_edges` (triangle meshes: edges with `cot α + cot β ≤ 1e-12`, where DEC's `⋆1`
+/// is refused and `--intrinsic-delaunay` helps; `null` on polygon meshes) and, with
+/// `--intrinsic-delaunay`, `intrinsic_delaunay` (see [`intrinsic_summary`]; `null` without).
 pub fn run(args: InfoArgs) -> Result<()> {
     let loaded = args.input.load()?;
     let (mesh, report) = (&loaded.mesh, &loaded.report);
+    let non_delaunay = mesh.as_triangles().and_then(non_delaunay_edges);
+    let intrinsic = match (args.intrinsic_delaunay, mesh.as_triangles()) {
+        (Some(mode), Some(triangles)) => Some(
+            intrinsic_summary(triangles, mode)
+                .with_context(|| format!("{}: --intrinsic-delaunay", args.input.label()))?,
+        ),
+        (Some(_), None) => bail!(
+            "{}: --intrinsic-delaunay needs a triangle mesh (triangulate it first: tvf \
+             triangulate MESH -o OUT)",
+            args.input.label()
+        ),
+        (None, _) => None,
+    };
     let face_sizes = mesh.face_size_counts();
     let warnings: Vec<String> = report.warnings.iter().map(|w| w.to_string()).collect();
     let loops = tvf_discretizations::component_boundary_loops(mesh);
@@ -66,6 +103,8 @@ pub fn run(args: InfoArgs) -> Result<()> {
                 .collect::<serde_json::Map<_, _>>(),
             "total_area": mesh.total_area(),
             "signed_volume": mesh.signed_volume(),
+            "non_delaunay_edges": non_delaunay,
+            "intrinsic_delaunay": intrinsic,
         });
         println!("{}", serde_json::to_string_pretty(&value)?);
         return Ok(());
@@ -109,6 +148,21 @@ pub fn run(args: InfoArgs) -> Result<()> {
         "angles         {:.3}° .. {:.3}°",
         report.min_angle_deg, report.max_angle_deg
     );
+    match non_delaunay {
+        Some(0) => println!("delaunay       yes (cot α + cot β > 0 on every edge)"),
+        Some(count) => println!(
+            "delaunay       no: {count} edges have cot α + cot β ≤ {DELAUNAY_TOLERANCE:e} (DEC \
+             refuses them; --intrinsic-delaunay builds on the intrinsic Delaunay triangulation)"
+        ),
+        None => {}
+    }
+    if let Some(summary) = &intrinsic {
+        println!(
+            "intrinsic      {} flips, {} inserted vertices, {} edges, {} with cot α + cot β ≤ 1e-12, {} cells of the common subdivision ({:.3} s)",
+            summary["flips"], summary["inserted_vertices"], summary["edges"],
+            summary["not_positive_edges"], summary["cells"], summary["seconds"].as_f64().unwrap_or(0.0)
+        );
+    }
     if warnings.is_empty() {
         println!("warnings       none");
     }
@@ -116,6 +170,45 @@ pub fn run(args: InfoArgs) -> Result<()> {
         println!("warning        {warning}");
     }
     Ok(())
+}
+
+/// Number of edges of `mesh` with `cot α + cot β ≤` [`DELAUNAY_TOLERANCE`] (DEC's test);
+/// `None` if a face is degenerate.
+fn non_delaunay_edges(mesh: &TriangleMesh) -> Option<usize> {
+    let geometry = FaceGeometry::new(mesh).ok()?;
+    let star = edge_hodge_star(mesh, &geometry);
+    Some(
+        star.iter()
+            .filter(|&&s| 2.0 * s <= DELAUNAY_TOLERANCE)
+            .count(),
+    )
+}
+
+/// The intrinsic Delaunay triangulation of `mesh` made by `mode`, with its common subdivision,
+/// as JSON: `mode`, `flips`, `inserted_vertices`, `vertices`, `edges`, `faces`,
+/// `not_positive_edges` (cot α + cot β ≤ [`DELAUNAY_TOLERANCE`]: cocircular or boundary edges
+/// that DEC refuses under `flip`), `cells` and `seconds` (building both).
+fn intrinsic_summary(mesh: &TriangleMesh, mode: IntrinsicDelaunay) -> Result<Value> {
+    let start = Instant::now();
+    let input = IntrinsicInput::new(mesh, mode)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let tri = &input.triangulation;
+    let not_positive = tri
+        .cotan_sums()
+        .iter()
+        .filter(|&&s| s <= DELAUNAY_TOLERANCE)
+        .count();
+    Ok(json!({
+        "mode": mode.name(),
+        "flips": tri.flip_count(),
+        "inserted_vertices": tri.inserted_vertex_count(),
+        "vertices": tri.vertex_count(),
+        "edges": tri.edge_count(),
+        "faces": tri.face_count(),
+        "not_positive_edges": not_positive,
+        "cells": input.overlay.cell_count(),
+        "seconds": seconds,
+    }))
 }
 
 /// The plural name of polygons with `corners` corners: `triangles`, `quads`, `pentagons`,

@@ -23,6 +23,7 @@ mod flags_and_outputs;
 mod info;
 mod info_shared_meshes;
 mod inputs_checked_first;
+mod intrinsic_delaunay;
 mod non_finite;
 mod numpy_outputs;
 mod open_meshes;

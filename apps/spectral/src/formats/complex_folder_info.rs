@@ -54,13 +54,15 @@ pub fn mass_file_name(name: &str, form: MassForm) -> String {
 /// its field nodes; on edges (1-forms) Whitney interpolation, or polygonal DEC's per-face sharp
 /// when the sampling states that it reproduces only linear gradients (what the sharp states and
 /// Whitney interpolation, which reproduces constant vectors, does not); none if it samples no
-/// fields.
+/// fields or samples them through an intrinsic triangulation (which a folder does not hold).
 pub fn sampling_of(complex: &dyn HodgeComplex) -> MatrixSampling {
     match (complex.sampling(), complex.field_nodes().kind) {
         (Some(_), NodeKind::FaceFrames) => MatrixSampling::FaceFrames,
         (Some(sampling), NodeKind::Edges) => match sampling.reproduction() {
             SamplingReproduction::LinearGradients => MatrixSampling::PolygonSharp,
             SamplingReproduction::ConstantVectors => MatrixSampling::Whitney,
+            // On an intrinsic triangulation: no sampling the folder's matrices can rebuild.
+            SamplingReproduction::Approximate => MatrixSampling::None,
         },
         _ => MatrixSampling::None,
     }
@@ -141,6 +143,14 @@ pub fn complex_folder_info(
             "fields": fixed(spaces[1]),
             "co_potentials": fixed(spaces[2]),
         },
+        "intrinsic_triangulation": complex.intrinsic_triangulation().map(|tri| json!({
+            "about": "the complex is built on this intrinsic triangulation of the mesh (edge lengths only): intrinsic_faces.npy, intrinsic_edges.npy, intrinsic_edge_lengths.npy; its vertices are the mesh's, then the inserted ones",
+            "vertices": tri.vertex_count(),
+            "inserted_vertices": tri.inserted_vertex_count(),
+            "edges": tri.edge_count(),
+            "faces": tri.face_count(),
+            "flips": tri.flip_count(),
+        })),
         "matrices": matrix_descriptions(complex, [n0, n1, n2]),
         "masses": masses,
         "not_written": not_written,

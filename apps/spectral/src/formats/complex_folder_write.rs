@@ -1,8 +1,8 @@
 //! Writing a complex folder (`tvf operators MESH -o DIR`, read back by
 //! [`crate::read_complex_folder`]): the five matrices `d0`, `d1`, `M0`, `M1`, `M2` (a mass stored
 //! as its inverse gets the file name `M*_inverse`), the derived `S0`, and `S2`, `S`, `B` where
-//! they are sparse, the rotation `J` where the complex has one, `vertex_map.npy` and
-//! `info.json` ([`crate::complex_folder_info`]).
+//! they are sparse, the rotation `J` where the complex has one, `vertex_map.npy`, the intrinsic
+//! triangulation of a complex built on one, and `info.json` ([`crate::complex_folder_info`]).
 
 use crate::formats::complex_folder_info::{complex_folder_info, mass_file_name, MatrixFileFormat};
 use crate::formats::folder_file::{write_folder_bytes, write_folder_file, FolderFileError};
@@ -40,12 +40,49 @@ pub fn write_complex_folder(
     let vertex_map: Vec<i64> = report.original_vertex.iter().map(|&v| v as i64).collect();
     let npy = npy_bytes(&NpyData::I64(&vertex_map), &[vertex_map.len()]);
     write_folder_bytes(folder, "vertex_map.npy", &npy)?;
+    write_intrinsic_triangulation(complex, folder)?;
     let info = complex_folder_info(complex, mesh, report, format, not_written);
     let text = serde_json::to_string_pretty(&info)
         .map_err(|e| FolderFileError::new(folder, "info.json", e))?
         + "\n";
     write_folder_bytes(folder, "info.json", text.as_bytes())?;
     Ok(matrices.len())
+}
+
+/// On a complex built on an intrinsic triangulation, its connectivity and lengths:
+/// `intrinsic_faces.npy` (`F_i × 3` int64, counter-clockwise vertex triples),
+/// `intrinsic_edges.npy` (`E_i × 2` int64, each edge's reference direction: `d0`'s `−1`, `+1`)
+/// and `intrinsic_edge_lengths.npy` (`E_i` float64). Nothing otherwise.
+fn write_intrinsic_triangulation(
+    complex: &dyn HodgeComplex,
+    folder: &StagedFolder,
+) -> Result<(), FolderFileError> {
+    let Some(tri) = complex.intrinsic_triangulation() else {
+        return Ok(());
+    };
+    let faces: Vec<i64> = tri.faces().iter().flatten().map(|&v| v as i64).collect();
+    let edges: Vec<i64> = (0..tri.edge_count())
+        .flat_map(|e| tri.edge_vertices(e))
+        .map(|v| v as i64)
+        .collect();
+    let files = [
+        (
+            "intrinsic_faces.npy",
+            npy_bytes(&NpyData::I64(&faces), &[tri.face_count(), 3]),
+        ),
+        (
+            "intrinsic_edges.npy",
+            npy_bytes(&NpyData::I64(&edges), &[tri.edge_count(), 2]),
+        ),
+        (
+            "intrinsic_edge_lengths.npy",
+            npy_bytes(&NpyData::F64(tri.lengths()), &[tri.edge_count()]),
+        ),
+    ];
+    for (name, bytes) in files {
+        write_folder_bytes(folder, name, &bytes)?;
+    }
+    Ok(())
 }
 
 /// Matrices by file name (without extension), in the order they are written.
