@@ -68,8 +68,8 @@ function updateFieldLayers() {
     $('color-range').textContent = `${min.toPrecision(3)} … ${max.toPrecision(3)}`;
   }
   // Arrows (one per face, at its corner average) at up to ~2500 faces (a fixed stride through
-  // the faces), scaled so the longest
-  // arrow is about the sample spacing, lifted a little off the surface.
+  // the faces), scaled so the longest arrow is about the sample spacing, lifted a little off
+  // the surface.
   const stride = Math.max(1, Math.floor(mesh.faceCount / 2500));
   let largest = 0;
   for (let t = 0; t < mesh.faceCount; t++) largest = Math.max(largest, Math.hypot(vectors[3 * t], vectors[3 * t + 1], vectors[3 * t + 2]));
