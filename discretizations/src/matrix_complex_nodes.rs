@@ -198,7 +198,7 @@ fn node_kind(
 }
 
 /// Where node kinds are stated, in an ambiguity error.
-pub const AMBIGUITY_HINT: &str =
+const AMBIGUITY_HINT: &str =
     "info.json's nodes/potentials, nodes/fields, nodes/co_potentials; nodes= in Python";
 
 /// The node space of `n` nodes on `mesh`, of kind `stated` or inferred ([`node_kind`]).
