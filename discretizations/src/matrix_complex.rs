@@ -180,7 +180,9 @@ impl MatrixComplex {
         check_finite("d1", &d1)?;
         // The sampling's field kind settles a size two kinds share (E = 2F on closed quad
         // meshes); a sampling that does not fit the size is refused below, naming it.
-        let sampled = sampling.field_kind().filter(|&kind| kind_size(mesh, kind) == n1);
+        let sampled = sampling
+            .field_kind()
+            .filter(|&kind| kind_size(mesh, kind) == n1);
         let mut stated = *stated;
         stated[1] = stated[1].or(sampled);
         let spaces = matrix_node_spaces(mesh, &d0, &d1, &stated, fixed)?;
@@ -489,18 +491,23 @@ mod tests {
         assert_eq!(copy.potential_nodes().kind, NodeKind::Vertices);
         assert_eq!(copy.field_nodes().kind, NodeKind::Edges);
         assert_eq!(copy.co_potential_nodes().kind, NodeKind::Faces);
-        assert_eq!(copy.co_potential_nodes().positions, built.co_potential_nodes().positions);
+        assert_eq!(
+            copy.co_potential_nodes().positions,
+            built.co_potential_nodes().positions
+        );
         assert_eq!(copy.topology().harmonic_dimension, 2);
         assert_eq!(copy.matrix_hash(), built.matrix_hash());
         let wrong = [Some(NodeKind::Edges), None, None];
         let (d0, d1, m0, m1, m2) = parts(built.as_ref());
         let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
-        let message = MatrixComplex::with_node_kinds("copy", &mesh, matrices, &wrong, MatrixSampling::None)
-            .err()
-            .unwrap()
-            .to_string();
+        let message =
+            MatrixComplex::with_node_kinds("copy", &mesh, matrices, &wrong, MatrixSampling::None)
+                .err()
+                .unwrap()
+                .to_string();
         assert!(
-            message.contains("has 64 nodes, but its nodes are stated to be edges: the mesh has 128"),
+            message
+                .contains("has 64 nodes, but its nodes are stated to be edges: the mesh has 128"),
             "{message}"
         );
     }

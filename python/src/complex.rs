@@ -131,9 +131,7 @@ impl Complex {
         .map_err(labelled)?;
         let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
         let complex = py
-            .detach(|| {
-                MatrixComplex::with_node_kinds(id, &mesh.mesh, matrices, &stated, sampling)
-            })
+            .detach(|| MatrixComplex::with_node_kinds(id, &mesh.mesh, matrices, &stated, sampling))
             .map_err(|e| tvf_error(format!("{}: {e}", mesh.label)))?;
         Ok(Self {
             complex: Box::new(complex),

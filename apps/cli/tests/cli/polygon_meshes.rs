@@ -159,7 +159,10 @@ fn the_complex_folder_of_a_polygon_mesh_says_so_and_reads_back_with_the_same_spe
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     // A quad torus: V = F and E = 2F, so only info.json's node kinds tell the spaces apart.
-    assert_success(&run(d, &["operators", "--example", "quad-torus", "-o", "ops"]));
+    assert_success(&run(
+        d,
+        &["operators", "--example", "quad-torus", "-o", "ops"],
+    ));
     let info_path = d.join("ops/info.json");
     let mut info: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&info_path).unwrap()).unwrap();
@@ -191,8 +194,10 @@ fn the_complex_folder_of_a_polygon_mesh_says_so_and_reads_back_with_the_same_spe
     let kinds = info["nodes"].take();
     let message = refusal(&info);
     assert!(
-        message.contains("info.json: the potential space (columns of d0) has 1536 nodes, which \
-             is ambiguous: the mesh has 1536 vertices and 1536 faces"),
+        message.contains(
+            "info.json: inconsistent complex: the potential space (columns of d0) \
+             has 1536 nodes, which is ambiguous: the mesh has 1536 vertices and 1536 faces"
+        ),
         "{message}"
     );
     // A stated kind that does not fit the size is refused too.
@@ -200,8 +205,10 @@ fn the_complex_folder_of_a_polygon_mesh_says_so_and_reads_back_with_the_same_spe
     info["nodes"]["co_potentials"] = "edges".into();
     let message = refusal(&info);
     assert!(
-        message.contains("info.json: the co-potential space (rows of d1) has 1536 nodes, but its \
-             nodes are stated to be edges: the mesh has 3072"),
+        message.contains(
+            "info.json: inconsistent complex: the co-potential space (rows of d1) \
+             has 1536 nodes, but its nodes are stated to be edges: the mesh has 3072"
+        ),
         "{message}"
     );
     info["nodes"]["co_potentials"] = "corners".into();

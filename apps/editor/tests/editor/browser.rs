@@ -431,7 +431,11 @@ fn editor_page_edits_the_quads_of_a_cube_sphere() {
     for record in saved["constraints"].as_array().unwrap() {
         let face = record["face"].as_u64().unwrap() as usize;
         assert!(face < 150, "{saved}");
-        assert_eq!(record["barycentric"].as_array().unwrap().len(), 4, "{saved}");
+        assert_eq!(
+            record["barycentric"].as_array().unwrap().len(),
+            4,
+            "{saved}"
+        );
     }
     assert_eq!(saved["constraints"][0]["face"], pick[0], "{saved}");
     let shown = browser

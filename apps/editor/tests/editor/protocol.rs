@@ -379,7 +379,10 @@ fn edits_polygons_at_points_given_by_corner_weights() {
     let (status, payload) = client.get("/api/mesh");
     assert_eq!(status, 200);
     let (v, t) = (display.vertex_count(), display.face_count());
-    assert_eq!(payload_words(&payload, 0, 3), [MESH_MAGIC, v as u32, t as u32]);
+    assert_eq!(
+        payload_words(&payload, 0, 3),
+        [MESH_MAGIC, v as u32, t as u32]
+    );
     let at = 3 + 3 * v + 3 * t;
     assert_eq!(payload.len(), 4 * (at + 2 + faces + corners + t));
     assert_eq!(
@@ -387,7 +390,10 @@ fn edits_polygons_at_points_given_by_corner_weights() {
         [faces as u32, corners as u32]
     );
     let sizes = payload_words(&payload, at + 2, faces);
-    assert!(sizes.iter().enumerate().all(|(f, &n)| n as usize == mesh.face_size(f)));
+    assert!(sizes
+        .iter()
+        .enumerate()
+        .all(|(f, &n)| n as usize == mesh.face_size(f)));
     let listed = payload_words(&payload, at + 2 + faces, corners);
     let expected: Vec<u32> = (0..faces)
         .flat_map(|f| mesh.face(f).iter().map(|&i| i as u32))
@@ -443,7 +449,11 @@ fn edits_polygons_at_points_given_by_corner_weights() {
     // The vertex constraint is drawn at its corner of a polygon that has the vertex.
     let anchor = &last.status["anchors"][3];
     let face = anchor["face"].as_u64().unwrap() as usize;
-    let corner = mesh.face(face).iter().position(|&i| i == 3).expect("a face at vertex 3");
+    let corner = mesh
+        .face(face)
+        .iter()
+        .position(|&i| i == 3)
+        .expect("a face at vertex 3");
     assert_eq!(anchor["barycentric"][corner], 1.0);
 
     // Three weights on a hexagon: refused, naming the face and its corner count.
@@ -451,7 +461,9 @@ fn edits_polygons_at_points_given_by_corner_weights() {
         {"id": "bad", "kind": "curl", "face": hexagon, "barycentric": [0.2, 0.3, 0.5], "value": 1.0}}));
     assert_eq!(s, 400);
     assert!(
-        error_message(&b).contains(&format!("face {hexagon} has 6 corners, but \"barycentric\" gives 3 weights")),
+        error_message(&b).contains(&format!(
+            "face {hexagon} has 6 corners, but \"barycentric\" gives 3 weights"
+        )),
         "{}",
         error_message(&b)
     );

@@ -479,9 +479,7 @@ impl Folder {
             Some(name) => MatrixSampling::from_name(name).ok_or_else(|| {
                 error(
                     &self.info_path(),
-                    format!(
-                        "sampling is '{name}': none, face-frames, whitney or polygon-sharp"
-                    ),
+                    format!("sampling is '{name}': none, face-frames, whitney or polygon-sharp"),
                 )
             }),
         }
@@ -491,7 +489,10 @@ impl Folder {
     /// `edges`, `faces` or `face-frames`), `None` where absent (then inferred from the size).
     fn node_kinds(&self) -> Result<StatedNodeKinds, ComplexFolderError> {
         let mut stated = [None; 3];
-        for (kind, space) in stated.iter_mut().zip(["potentials", "fields", "co_potentials"]) {
+        for (kind, space) in stated
+            .iter_mut()
+            .zip(["potentials", "fields", "co_potentials"])
+        {
             let key = format!("nodes/{space}");
             if let Some(name) = self.string(&key)? {
                 *kind = Some(NodeKind::from_name(name).ok_or_else(|| {
