@@ -177,7 +177,7 @@ pub use intrinsic_sampling::{IntrinsicEvaluation, IntrinsicWhitneySampling};
 pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use matrix_complex::{ComplexMatrices, MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};
-pub use matrix_complex_nodes::FixedNodes;
+pub use matrix_complex_nodes::{FixedNodes, StatedNodeKinds};
 pub use paper_complexes::{PaperPair, PaperSpace, SpaceMasses};
 pub use pinned_poisson::PinnedPoisson;
 pub use polygon_dec::{polygon_dec_id, PolygonDec, DEFAULT_STABILISATION};

@@ -4,7 +4,9 @@
 
 use crate::face_fields::FaceFields;
 use crate::face_geometry::FaceGeometry;
-use crate::matrix_complex_nodes::{implied_harmonic_dimension, matrix_node_spaces, FixedNodes};
+use crate::matrix_complex_nodes::{
+    implied_harmonic_dimension, kind_size, matrix_node_spaces, FixedNodes, StatedNodeKinds,
+};
 use crate::polygon_operators::PolygonOperators;
 use crate::polygon_sampling::PolygonSampling;
 use crate::whitney_sampling::WhitneySampling;
@@ -35,6 +37,17 @@ pub enum MatrixSampling {
     /// Fields are primal 1-forms sampled by polygonal DEC's sharp, one vector per face
     /// ([`crate::PolygonSampling`]): `n1 = E` (triangle and polygon meshes).
     PolygonSharp,
+}
+
+impl MatrixSampling {
+    /// The kind of field nodes this sampling needs, if it needs any.
+    pub fn field_kind(self) -> Option<NodeKind> {
+        match self {
+            Self::None => None,
+            Self::FaceFrames => Some(NodeKind::FaceFrames),
+            Self::Whitney | Self::PolygonSharp => Some(NodeKind::Edges),
+        }
+    }
 }
 
 impl MatrixSampling {
@@ -86,9 +99,11 @@ pub struct ComplexMatrices {
 
 /// A [`HodgeComplex`] from five matrices ([`ComplexMatrices`]) on a mesh, with the nodes a
 /// boundary condition fixes ([`FixedNodes`]) on a mesh with boundary. The node kind of each
-/// space follows from its size (`V` vertices, `E` edges, `F` faces, `2F` face frames; checked
-/// in that order), node positions and components from the mesh, and which constants lie in the
-/// kernel of each stiffness from the matrices ([`crate::matrix_complex_nodes`]).
+/// space is the one stated ([`StatedNodeKinds`]; the field nodes a sampling needs are stated by
+/// it when the size fits), else the one kind of its size (`V` vertices, `E` edges, `F` faces, `2F` face frames; a
+/// size several kinds share, `V = F` on a quad torus, is an error asking for the kind); node
+/// positions and components come from the mesh, and which constants lie in the kernel of each
+/// stiffness from the matrices ([`crate::matrix_complex_nodes`]).
 /// [`MatrixComplex::with_boundary`] checks everything the seam promises: shapes, finite entries,
 /// fixed nodes with empty rows and columns, masses symmetric positive definite on the free nodes
 /// (a diagonal may be zero where no face uses the node), `d1 · d0 = 0` (relative
@@ -100,8 +115,9 @@ pub struct MatrixComplex {
 }
 
 impl MatrixComplex {
-    /// Checks and wraps the matrices on a **closed** mesh (no fixed nodes); `id` names the
-    /// complex in basis files and messages. Errors say which matrix is wrong and how.
+    /// Checks and wraps the matrices on a **closed** mesh (no fixed nodes), each node kind from
+    /// its size or the sampling; `id` names the complex in basis files and messages. Errors say
+    /// which matrix is wrong and how.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         id: &str,
@@ -113,6 +129,19 @@ impl MatrixComplex {
         m2: Mass,
         sampling: MatrixSampling,
     ) -> Result<Self, DiscretizationError> {
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+        Self::with_node_kinds(id, mesh, matrices, &[None; 3], sampling)
+    }
+
+    /// [`MatrixComplex::new`] with the node kinds `stated` (a space with `None` gets the one
+    /// kind of its size).
+    pub fn with_node_kinds(
+        id: &str,
+        mesh: &SurfaceMesh,
+        matrices: ComplexMatrices,
+        stated: &StatedNodeKinds,
+        sampling: MatrixSampling,
+    ) -> Result<Self, DiscretizationError> {
         if !mesh.is_closed() {
             return Err(DiscretizationError::Inconsistent(
                 "a complex from matrices without fixed nodes needs a closed mesh (the boundary \
@@ -121,12 +150,13 @@ impl MatrixComplex {
                     .to_string(),
             ));
         }
-        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
         let fixed = FixedNodes::default();
-        Self::with_boundary(id, mesh, matrices, &fixed, Default::default(), sampling)
+        let condition = Default::default();
+        Self::with_boundary(id, mesh, matrices, stated, &fixed, condition, sampling)
     }
 
-    /// Checks and wraps the matrices on any mesh: `fixed` are the nodes the boundary condition
+    /// Checks and wraps the matrices on any mesh, with the node kinds `stated` (a space with
+    /// `None` gets the one kind of its size): `fixed` are the nodes the boundary condition
     /// `condition` fixes to zero (none on a closed mesh; `condition` only matters on a mesh with
     /// boundary, where it is recorded in the topology). Errors say which matrix is wrong and
     /// how.
@@ -134,6 +164,7 @@ impl MatrixComplex {
         id: &str,
         mesh: &SurfaceMesh,
         matrices: ComplexMatrices,
+        stated: &StatedNodeKinds,
         fixed: &FixedNodes,
         condition: BoundaryCondition,
         sampling: MatrixSampling,
@@ -147,7 +178,14 @@ impl MatrixComplex {
         check_length("M2 (one entry per row of d1)", n2, m2.len())?;
         check_finite("d0", &d0)?;
         check_finite("d1", &d1)?;
-        let spaces = matrix_node_spaces(mesh, &d0, &d1, fixed)?;
+        // The sampling's field kind settles a size two kinds share (E = 2F on closed quad
+        // meshes); a sampling that does not fit the size is refused below, naming it.
+        let sampled = sampling
+            .field_kind()
+            .filter(|&kind| kind_size(mesh, kind) == n1);
+        let mut stated = *stated;
+        stated[1] = stated[1].or(sampled);
+        let spaces = matrix_node_spaces(mesh, &d0, &d1, &stated, fixed)?;
         check_complex(&d0, &d1)?;
         let topology = crate::mesh_topology(mesh, condition);
         let implied = implied_harmonic_dimension(&spaces);
@@ -329,6 +367,7 @@ mod tests {
             "copy",
             mesh,
             matrices,
+            &[None; 3],
             fixed,
             condition,
             MatrixSampling::None,
@@ -416,6 +455,59 @@ mod tests {
         });
         assert!(
             message.contains("fixed potential node 0 has a nonzero column of d0"),
+            "{message}"
+        );
+    }
+
+    /// On a quad torus `V = F` and `E = 2F`: the sizes alone cannot tell vertices from faces,
+    /// so a complex without stated node kinds is refused naming the ambiguity, and with them it
+    /// is the catalog's polygon-dec (same matrices, node kinds and harmonic dimension).
+    #[test]
+    fn a_size_two_kinds_share_needs_the_stated_kind() {
+        let mesh = SurfaceMesh::from(tvf_core::generate::quad_torus(1.0, 0.4, 8, 8).unwrap());
+        assert_eq!(mesh.vertex_count(), mesh.face_count());
+        let built = catalog_complex("polygon-dec", &mesh);
+        let message = refusal(closed_copy(
+            &mesh,
+            parts(built.as_ref()),
+            MatrixSampling::PolygonSharp,
+        ));
+        assert!(
+            message.contains("potential space (columns of d0) has 64 nodes, which is ambiguous")
+                && message.contains("64 vertices and 64 faces"),
+            "{message}"
+        );
+        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+        let stated = [Some(NodeKind::Vertices), None, Some(NodeKind::Faces)];
+        let copy = MatrixComplex::with_node_kinds(
+            "copy",
+            &mesh,
+            matrices,
+            &stated,
+            MatrixSampling::PolygonSharp,
+        )
+        .unwrap();
+        assert_eq!(copy.potential_nodes().kind, NodeKind::Vertices);
+        assert_eq!(copy.field_nodes().kind, NodeKind::Edges);
+        assert_eq!(copy.co_potential_nodes().kind, NodeKind::Faces);
+        assert_eq!(
+            copy.co_potential_nodes().positions,
+            built.co_potential_nodes().positions
+        );
+        assert_eq!(copy.topology().harmonic_dimension, 2);
+        assert_eq!(copy.matrix_hash(), built.matrix_hash());
+        let wrong = [Some(NodeKind::Edges), None, None];
+        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+        let message =
+            MatrixComplex::with_node_kinds("copy", &mesh, matrices, &wrong, MatrixSampling::None)
+                .err()
+                .unwrap()
+                .to_string();
+        assert!(
+            message
+                .contains("has 64 nodes, but its nodes are stated to be edges: the mesh has 128"),
             "{message}"
         );
     }

@@ -1,6 +1,7 @@
-//! The node spaces of a [`crate::MatrixComplex`]: the node kind of each space from its size, the
-//! nodes a boundary condition fixes ([`FixedNodes`], checked against the matrices), and which
-//! constants lie in the kernel of each stiffness, computed from the matrices.
+//! The node spaces of a [`crate::MatrixComplex`]: the node kind of each space (as stated, else
+//! from its size when only one kind has it), the nodes a boundary condition fixes
+//! ([`FixedNodes`], checked against the matrices), and which constants lie in the kernel of each
+//! stiffness, computed from the matrices.
 
 use sprs::CsMat;
 use tvf_core::discretization::sparse::transpose;
@@ -37,22 +38,29 @@ impl FixedNodes {
     }
 }
 
-/// The three node spaces of `d0` (`n1 × n0`) and `d1` (`n2 × n1`) on `mesh`, with `fixed` as
-/// their Dirichlet nodes and the constant kernels computed ([`constant_kernel`]). Errors: a size
-/// that is no node kind of the mesh, a fixed index out of range, a fixed node whose row or
-/// column is not empty.
+/// The node kind of each space of a complex (potentials, fields, co-potentials) where it is
+/// stated (`info.json`'s `nodes`, Python's `nodes=`, or the sampling's field nodes); a space
+/// whose kind is `None` gets the one kind of its size.
+pub type StatedNodeKinds = [Option<NodeKind>; 3];
+
+/// The three node spaces of `d0` (`n1 × n0`) and `d1` (`n2 × n1`) on `mesh`, of the `stated`
+/// kinds (the others inferred from their sizes), with `fixed` as their Dirichlet nodes and the
+/// constant kernels computed ([`constant_kernel`]). Errors: a size that is no node kind of the
+/// mesh, not the stated kind's, or several kinds' with none stated; a fixed index out of range;
+/// a fixed node whose row or column is not empty.
 pub fn matrix_node_spaces(
     mesh: &SurfaceMesh,
     d0: &CsMat<f64>,
     d1: &CsMat<f64>,
+    stated: &StatedNodeKinds,
     fixed: &FixedNodes,
 ) -> Result<[NodeSpace; 3], DiscretizationError> {
     let (n1, n0) = d0.shape();
     let n2 = d1.rows();
     let mut spaces = [
-        node_space(mesh, n0, "potential space (columns of d0)")?,
-        node_space(mesh, n1, "field space (rows of d0)")?,
-        node_space(mesh, n2, "co-potential space (rows of d1)")?,
+        node_space(mesh, n0, stated[0], "potential space (columns of d0)")?,
+        node_space(mesh, n1, stated[1], "field space (rows of d0)")?,
+        node_space(mesh, n2, stated[2], "co-potential space (rows of d1)")?,
     ];
     let lists = [&fixed.potentials, &fixed.fields, &fixed.co_potentials];
     for ((space, list), name) in spaces.iter_mut().zip(lists).zip(SPACE_NAMES) {
@@ -132,49 +140,102 @@ pub fn implied_harmonic_dimension(spaces: &[NodeSpace; 3]) -> i64 {
     spaces[1].free_count() as i64 - rank(&spaces[0]) - rank(&spaces[2])
 }
 
-/// The node space of `n` nodes on `mesh`: vertices, edges, faces or face frames by size.
-fn node_space(mesh: &SurfaceMesh, n: usize, what: &str) -> Result<NodeSpace, DiscretizationError> {
-    let positions = mesh.positions();
-    let face_count = mesh.face_count();
-    let (kind, positions, components) = if n == mesh.vertex_count() {
-        (
-            NodeKind::Vertices,
-            positions.to_vec(),
-            mesh.vertex_components(),
-        )
-    } else if n == mesh.edge_count() {
-        let midpoints = mesh
-            .edges()
-            .iter()
-            .map(|&[a, b]| [0, 1, 2].map(|k| 0.5 * (positions[a][k] + positions[b][k])))
-            .collect();
-        (
-            NodeKind::Edges,
-            midpoints,
-            mesh.topology().edge_components(),
-        )
-    } else if n == face_count {
-        let centroids = (0..face_count).map(|f| mesh.face_centroid(f)).collect();
-        (NodeKind::Faces, centroids, mesh.face_components().to_vec())
-    } else if n == 2 * face_count {
-        let centroids = (0..face_count)
-            .flat_map(|f| [mesh.face_centroid(f); 2])
-            .collect();
-        let components = mesh
-            .face_components()
-            .iter()
-            .flat_map(|&c| [c; 2])
-            .collect();
-        (NodeKind::FaceFrames, centroids, components)
-    } else {
-        return Err(DiscretizationError::Inconsistent(format!(
+/// How many nodes a space of `kind` has on `mesh`.
+pub(crate) fn kind_size(mesh: &SurfaceMesh, kind: NodeKind) -> usize {
+    match kind {
+        NodeKind::Vertices => mesh.vertex_count(),
+        NodeKind::Edges => mesh.edge_count(),
+        NodeKind::Faces => mesh.face_count(),
+        NodeKind::FaceFrames => 2 * mesh.face_count(),
+    }
+}
+
+/// `n`'s node kind on `mesh`: `stated` if given (checked against `n`), else the one kind of
+/// that size. Errors: a size that is no kind's, or the stated kind's size, or that is several
+/// kinds' (`V = F` on a torus of quads, `E = 2F` on any closed quad mesh).
+fn node_kind(
+    mesh: &SurfaceMesh,
+    n: usize,
+    stated: Option<NodeKind>,
+    what: &str,
+) -> Result<NodeKind, DiscretizationError> {
+    if let Some(kind) = stated {
+        let size = kind_size(mesh, kind);
+        return match n == size {
+            true => Ok(kind),
+            false => Err(DiscretizationError::Inconsistent(format!(
+                "the {what} has {n} nodes, but its nodes are stated to be {}: the mesh has {size}",
+                kind.name()
+            ))),
+        };
+    }
+    let candidates: Vec<NodeKind> = NodeKind::ALL
+        .into_iter()
+        .filter(|&kind| kind_size(mesh, kind) == n)
+        .collect();
+    match candidates[..] {
+        [kind] => Ok(kind),
+        [] => Err(DiscretizationError::Inconsistent(format!(
             "the {what} has {n} nodes: not the mesh's {} vertices, {} edges, {} faces or {} \
              face-frame coefficients",
             mesh.vertex_count(),
             mesh.edge_count(),
             mesh.face_count(),
             2 * mesh.face_count()
-        )));
+        ))),
+        _ => {
+            let kinds: Vec<String> = candidates
+                .iter()
+                .map(|kind| format!("{n} {}", kind.name()))
+                .collect();
+            Err(DiscretizationError::Inconsistent(format!(
+                "the {what} has {n} nodes, which is ambiguous: the mesh has {}; state the node \
+                 kind of each space ({AMBIGUITY_HINT})",
+                kinds.join(" and ")
+            )))
+        }
+    }
+}
+
+/// Where node kinds are stated, in an ambiguity error.
+const AMBIGUITY_HINT: &str =
+    "info.json's nodes/potentials, nodes/fields, nodes/co_potentials; nodes= in Python";
+
+/// The node space of `n` nodes on `mesh`, of kind `stated` or inferred ([`node_kind`]).
+fn node_space(
+    mesh: &SurfaceMesh,
+    n: usize,
+    stated: Option<NodeKind>,
+    what: &str,
+) -> Result<NodeSpace, DiscretizationError> {
+    let positions = mesh.positions();
+    let face_count = mesh.face_count();
+    let kind = node_kind(mesh, n, stated, what)?;
+    let (positions, components) = match kind {
+        NodeKind::Vertices => (positions.to_vec(), mesh.vertex_components()),
+        NodeKind::Edges => {
+            let midpoints = mesh
+                .edges()
+                .iter()
+                .map(|&[a, b]| [0, 1, 2].map(|k| 0.5 * (positions[a][k] + positions[b][k])))
+                .collect();
+            (midpoints, mesh.topology().edge_components())
+        }
+        NodeKind::Faces => {
+            let centroids = (0..face_count).map(|f| mesh.face_centroid(f)).collect();
+            (centroids, mesh.face_components().to_vec())
+        }
+        NodeKind::FaceFrames => {
+            let centroids = (0..face_count)
+                .flat_map(|f| [mesh.face_centroid(f); 2])
+                .collect();
+            let components = mesh
+                .face_components()
+                .iter()
+                .flat_map(|&c| [c; 2])
+                .collect();
+            (centroids, components)
+        }
     };
     Ok(NodeSpace::with_constant_kernel(
         kind,

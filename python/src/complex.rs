@@ -11,12 +11,12 @@ use crate::mesh::Mesh;
 use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
+use tvf_core::discretization::{BoundaryCondition, HodgeOperators, NodeKind};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     builtin_catalog, catalog_entry, default_discretization, parse_intrinsic_delaunay,
-    polygon_dec_entry, polygon_dec_id, split_intrinsic_id, BoxedComplex, MatrixComplex,
-    MatrixSampling, DEFAULT_STABILISATION,
+    polygon_dec_entry, polygon_dec_id, split_intrinsic_id, BoxedComplex, ComplexMatrices,
+    MatrixComplex, MatrixSampling, StatedNodeKinds, DEFAULT_STABILISATION,
 };
 use tvf_spectral::SpectralBasis;
 
@@ -98,11 +98,13 @@ impl Complex {
     /// A complex from the five matrices on a closed `mesh`: the CSR parts of `d0`, `d1`; the
     /// masses `M0`, `M1` and either `M2` or its inverse `m2_inverse` (exactly one of them), each
     /// a diagonal or CSR parts (see [`MassInput`]); `sampling` is `none`, `face-frames`,
-    /// `whitney` or `polygon-sharp`. Errors name the matrix: shapes, finite entries, symmetry, positive
-    /// definiteness on the used nodes (a Cholesky factorization of each sparse mass),
-    /// `d1 · d0 = 0`.
+    /// `whitney` or `polygon-sharp`; `nodes` the node kinds of the three spaces, where stated
+    /// (`vertices`, `edges`, `faces`, `face-frames`; the others from their sizes). Errors name
+    /// the matrix: shapes, finite entries, symmetry, positive definiteness on the used nodes (a
+    /// Cholesky factorization of each sparse mass), `d1 · d0 = 0`; a size two node kinds share
+    /// with no kind stated.
     #[staticmethod]
-    #[pyo3(signature = (mesh, d0, d1, m0, m1, m2, m2_inverse, sampling, id))]
+    #[pyo3(signature = (mesh, d0, d1, m0, m1, m2, m2_inverse, sampling, id, nodes = None))]
     #[allow(clippy::too_many_arguments)]
     fn from_matrices(
         py: Python<'_>,
@@ -115,7 +117,9 @@ impl Complex {
         m2_inverse: Option<MassInput<'_>>,
         sampling: &str,
         id: &str,
+        nodes: Option<StatedNodeNames>,
     ) -> PyResult<Self> {
+        let stated = stated_node_kinds(nodes)?;
         let sampling = MatrixSampling::from_name(sampling).ok_or_else(|| {
             tvf_error(format!(
                 "'{sampling}' is not a sampling: none, face-frames, whitney or polygon-sharp"
@@ -136,8 +140,9 @@ impl Complex {
             )),
         }
         .map_err(labelled)?;
+        let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
         let complex = py
-            .detach(|| MatrixComplex::new(id, &mesh.mesh, d0, d1, m0, m1, m2, sampling))
+            .detach(|| MatrixComplex::with_node_kinds(id, &mesh.mesh, matrices, &stated, sampling))
             .map_err(|e| tvf_error(format!("{}: {e}", mesh.label)))?;
         Ok(Self {
             complex: Box::new(complex),
@@ -199,6 +204,27 @@ impl Complex {
             self.label
         )
     }
+}
+
+/// The node kinds `from_matrices` is given: one name or `None` per space.
+type StatedNodeNames = (Option<String>, Option<String>, Option<String>);
+
+/// The [`StatedNodeKinds`] named by `nodes` (none stated without it).
+fn stated_node_kinds(nodes: Option<StatedNodeNames>) -> PyResult<StatedNodeKinds> {
+    let Some((potentials, fields, co_potentials)) = nodes else {
+        return Ok([None; 3]);
+    };
+    let kind = |name: Option<String>| -> PyResult<Option<NodeKind>> {
+        name.map(|name| {
+            NodeKind::from_name(&name).ok_or_else(|| {
+                tvf_error(format!(
+                    "nodes: '{name}' is not a node kind: vertices, edges, faces or face-frames"
+                ))
+            })
+        })
+        .transpose()
+    };
+    Ok([kind(potentials)?, kind(fields)?, kind(co_potentials)?])
 }
 
 /// The built-in catalog: one dict per entry (`id`, `description`, `preconditions`, `needs_delaunay`,

@@ -108,6 +108,24 @@ def test_your_own_matrices_on_a_polygon_mesh_give_polygon_dec_back():
     assert np.abs(ours - built).max() <= 1e-9 * np.abs(built).max()
 
 
+def test_your_own_matrices_on_a_quad_torus_need_their_node_kinds():
+    # V = F on a quad torus: the sizes cannot tell vertices from faces.
+    mesh = tvf.Mesh(*MESHES["quad-torus"])
+    assert len(mesh.vertices) == len(mesh.faces)
+    ops = tvf.operators(mesh)
+    parts = (mesh, ops["d0"], ops["d1"], ops["M0"], ops["M1"], ops["M2"])
+    with pytest.raises(tvf.TvfError, match="72 nodes, which is ambiguous: the mesh has 72 vertices and 72 faces"):
+        tvf.Complex.from_matrices(*parts, sampling="polygon-sharp")
+    with pytest.raises(tvf.TvfError, match="'corners' is not a node kind"):
+        tvf.Complex.from_matrices(*parts, sampling="polygon-sharp", nodes=("corners", None, None))
+    own = tvf.Complex.from_matrices(*parts, sampling="polygon-sharp", id="mine", nodes=("vertices", None, "faces"))
+    assert own.node_kinds == ("vertices", "edges", "faces")
+    assert own.harmonic_dimension == 2
+    ours = tvf.basis(own, 10).eigenvalues
+    built = tvf.basis(mesh, 10).eigenvalues
+    assert np.abs(ours - built).max() <= 1e-9 * np.abs(built).max()
+
+
 def _lagrange_operators(V, faces):
     # Installed by scripts/test (pip package adobe-lagrange); missing, the test fails.
     import lagrange

@@ -57,7 +57,7 @@ class Complex:
         self._native = _native.Complex.build(mesh._native, entry, str(boundary), beta, mode)
 
     @classmethod
-    def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None):
+    def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None, nodes=None):
         """Your own discretization: the five matrices, run through the same Rust code as the
         built-in ones (basis, decomposition, coefficients, filter, compression, spline, design —
         the full one with diagonal masses, the reduced one always —, :func:`tvf.check`).
@@ -95,8 +95,14 @@ class Complex:
           per face by polygonal DEC's sharp; polygon and triangle meshes) or ``"none"``.
         - ``id``: the name written into results and messages.
 
-        The space of each node set is inferred from its size (V vertices, E edges, F faces,
-        2F face frames). Checked, each failure a :class:`tvf.TvfError` whose message names the
+        - ``nodes`` (keyword only): the node kinds of the three spaces, a tuple such as
+          ``("vertices", "edges", "faces")`` (each ``"vertices"``, ``"edges"``, ``"faces"``,
+          ``"face-frames"`` or ``None``), checked against the sizes.
+
+        A space whose kind ``nodes`` does not give gets the one kind of its size (V vertices, E
+        edges, F faces, 2F face frames; the field space the kind its sampling needs, where that
+        fits). A size two kinds share (``V = F`` on a quad torus) is refused asking for
+        ``nodes``, since guessing would place the co-potentials at the wrong points. Checked, each failure a :class:`tvf.TvfError` whose message names the
         matrix (``d0``, ``d1``, ``M0``, ``M1``, ``M2``, ``M2_inverse (M2⁻¹)``): shapes (square
         masses of the right size), finite entries, symmetry, positive definiteness (a diagonal
         positive on every node a face uses; a sparse mass by the sparse Cholesky factorization
@@ -121,6 +127,7 @@ class Complex:
             None if M2_inverse is None else mass(M2_inverse, "M2_inverse"),
             str(sampling),
             str(id),
+            None if nodes is None else tuple(None if kind is None else str(kind) for kind in nodes),
         )
         return complex_
 

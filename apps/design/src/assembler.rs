@@ -47,7 +47,8 @@ pub struct ConstraintAssembler<'a, H: HodgeComplex + ?Sized> {
     complex: &'a H,
     vertex_count: usize,
     edge_count: usize,
-    face_count: usize,
+    /// The number of corners of every face (what `barycentric` must have).
+    face_sizes: Vec<usize>,
 }
 
 impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
@@ -57,13 +58,15 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             complex,
             vertex_count: mesh.vertex_count(),
             edge_count: mesh.edge_count(),
-            face_count: mesh.face_count(),
+            face_sizes: (0..mesh.face_count())
+                .map(|f| mesh.face_corners().corners(f).len())
+                .collect(),
         }
     }
 
     /// Number of faces `F`.
     pub fn face_count(&self) -> usize {
-        self.face_count
+        self.face_sizes.len()
     }
 
     /// Checks `constraint` against the mesh (indices, barycentric coordinates, finiteness) and
@@ -84,10 +87,10 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
                 extra: "",
             });
         }
-        self.check_location(id, constraint.location)?;
+        self.check_location(id, &constraint.location)?;
         let (rows, values, origins) = match constraint.target {
             Target::Vector(v) => {
-                let (rows, values) = self.vector_rows(id, constraint.location, v)?;
+                let (rows, values) = self.vector_rows(id, &constraint.location, v)?;
                 (rows, values, vec![RowOrigin::Field; 2])
             }
             Target::Divergence(s) => {
@@ -136,7 +139,7 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             .collect()
     }
 
-    fn check_location(&self, id: &str, location: Location) -> Result<(), ConstraintError> {
+    fn check_location(&self, id: &str, location: &Location) -> Result<(), ConstraintError> {
         let range = |what, index: usize, count: usize| {
             if index < count {
                 Ok(())
@@ -149,11 +152,23 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
                 })
             }
         };
-        match location {
-            Location::Face { face, barycentric } => {
-                range("face", face, self.face_count)?;
+        match *location {
+            Location::Face {
+                face,
+                ref barycentric,
+            } => {
+                range("face", face, self.face_count())?;
                 if let Some(b) = barycentric {
                     check_barycentric(id, b)?;
+                    let corners = self.face_sizes[face];
+                    if b.len() != corners {
+                        return Err(ConstraintError::WrongCornerCount {
+                            id: id.to_string(),
+                            face,
+                            corners,
+                            weights: b.len(),
+                        });
+                    }
                 }
                 Ok(())
             }
@@ -165,10 +180,14 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
     fn vector_rows(
         &self,
         id: &str,
-        location: Location,
+        location: &Location,
         value: [f64; 3],
     ) -> Result<(Vec<SparseRow>, Vec<f64>), ConstraintError> {
-        let Location::Face { face, barycentric } = location else {
+        let &Location::Face {
+            face,
+            ref barycentric,
+        } = location
+        else {
             return Err(ConstraintError::BadLocation {
                 id: id.to_string(),
                 problem:
@@ -181,7 +200,10 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             .require_sampling()
             .map_err(|e| unsupported(id, e))?;
         let point = match barycentric {
-            Some(b) => SurfacePoint::barycentric(face, b),
+            Some(weights) => SurfacePoint {
+                face,
+                weights: weights.clone(),
+            },
             None => sampling.centroid(face),
         };
         let weights = sampling.sample_frame_weights(&point);
@@ -236,15 +258,21 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
     ) -> Result<(SparseRow, RowOrigin), ConstraintError> {
         let (matrix, nodes) = self.operator(constraint, kind, space)?;
         let weights: Vec<(usize, f64)> = match constraint.location {
-            Location::Face { face, barycentric } => {
+            Location::Face {
+                face,
+                ref barycentric,
+            } => {
                 let evaluation: &dyn PointEvaluation = self
                     .complex
                     .require_point_evaluation()
                     .map_err(|e| unsupported(&constraint.id, e))?;
                 let point = match (barycentric, self.complex.sampling()) {
-                    (Some(b), _) => SurfacePoint::barycentric(face, b),
+                    (Some(weights), _) => SurfacePoint {
+                        face,
+                        weights: weights.clone(),
+                    },
                     (None, Some(sampling)) => sampling.centroid(face),
-                    (None, None) => SurfacePoint::barycentric(face, [1.0 / 3.0; 3]),
+                    (None, None) => SurfacePoint::centroid(face, self.face_sizes[face]),
                 };
                 match space {
                     Space::Potentials => evaluation.potential_weights(&point),
@@ -376,16 +404,17 @@ fn unsupported(id: &str, error: impl std::fmt::Display) -> ConstraintError {
     }
 }
 
-/// Checks that `b` is finite, non-negative and sums to 1 (to 1e-9).
-pub(crate) fn check_barycentric(id: &str, b: [f64; 3]) -> Result<(), ConstraintError> {
-    let ok = b.iter().all(|x| x.is_finite() && *x >= 0.0)
+/// Checks that `b` has at least three entries, finite, non-negative and summing to 1 (to 1e-9).
+pub(crate) fn check_barycentric(id: &str, b: &[f64]) -> Result<(), ConstraintError> {
+    let ok = b.len() >= 3
+        && b.iter().all(|x| x.is_finite() && *x >= 0.0)
         && (b.iter().sum::<f64>() - 1.0).abs() <= BARYCENTRIC_TOLERANCE;
     if ok {
         Ok(())
     } else {
         Err(ConstraintError::BadBarycentric {
             id: id.to_string(),
-            values: b,
+            values: b.to_vec(),
         })
     }
 }

@@ -36,18 +36,20 @@ impl Target {
 }
 
 /// Where a constraint applies.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Location {
-    /// Face `face`, optionally at the point with barycentric coordinates `barycentric` (w.r.t. the
-    /// face's corners `i0, i1, i2`; non-negative, summing to 1). A vector constraint is the same
-    /// at every point of its face (fields are piecewise constant); a divergence or curl at a point
-    /// mixes the nodal rows with the interpolation weights of the family's function space
-    /// (face centroid when `barycentric` is absent).
+    /// Face `face`, optionally at the point with weights `barycentric` over the face's corners
+    /// (one per corner, in the face's corner order, non-negative, summing to 1: a triangle's
+    /// barycentric coordinates, a polygon's generalised ones — the weights of a
+    /// [`tvf_core::SurfacePoint`]). A vector constraint is the same at every point of its face
+    /// for face fields; a divergence or curl at a point mixes the nodal rows with the
+    /// interpolation weights of the family's function space (face centroid when `barycentric`
+    /// is absent).
     Face {
         /// Face index.
         face: usize,
-        /// Barycentric coordinates of the point, if any.
-        barycentric: Option<[f64; 3]>,
+        /// Weights of the point over the face's corners, if any.
+        barycentric: Option<Vec<f64>>,
     },
     /// A mesh vertex: a node of the Lagrange P1 space.
     Vertex(usize),

@@ -61,7 +61,7 @@ struct ConstraintRecord {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     edge: Option<i64>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    barycentric: Option<[f64; 3]>,
+    barycentric: Option<Vec<f64>>,
     value: ValueRecord,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     weight: Option<f64>,
@@ -241,7 +241,7 @@ fn location_of(c: &ConstraintRecord) -> Result<Location, ConstraintError> {
         id: id.clone(),
         problem: problem.to_string(),
     };
-    if let Some(b) = c.barycentric {
+    if let Some(b) = &c.barycentric {
         if c.face.is_none() {
             return Err(bad("\"barycentric\" needs a \"face\""));
         }
@@ -250,7 +250,7 @@ fn location_of(c: &ConstraintRecord) -> Result<Location, ConstraintError> {
     match (c.face, c.vertex, c.edge) {
         (Some(f), None, None) => Ok(Location::Face {
             face: index("face", f)?,
-            barycentric: c.barycentric,
+            barycentric: c.barycentric.clone(),
         }),
         (None, Some(v), None) => Ok(Location::Vertex(index("vertex", v)?)),
         (None, None, Some(e)) => Ok(Location::Edge(index("edge", e)?)),
@@ -261,10 +261,12 @@ fn location_of(c: &ConstraintRecord) -> Result<Location, ConstraintError> {
 
 fn to_record(c: &Constraint) -> ConstraintRecord {
     let as_i64 = |i: usize| i64::try_from(i).unwrap_or(i64::MAX);
-    let (face, vertex, edge, barycentric) = match c.location {
-        Location::Face { face, barycentric } => (Some(as_i64(face)), None, None, barycentric),
-        Location::Vertex(v) => (None, Some(as_i64(v)), None, None),
-        Location::Edge(e) => (None, None, Some(as_i64(e)), None),
+    let (face, vertex, edge, barycentric) = match &c.location {
+        Location::Face { face, barycentric } => {
+            (Some(as_i64(*face)), None, None, barycentric.clone())
+        }
+        Location::Vertex(v) => (None, Some(as_i64(*v)), None, None),
+        Location::Edge(e) => (None, None, Some(as_i64(*e)), None),
     };
     let value = match c.target {
         Target::Vector(v) => ValueRecord::Vector(v),

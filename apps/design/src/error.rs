@@ -38,15 +38,32 @@ pub enum ConstraintError {
         /// The index given.
         index: i64,
     },
-    /// Barycentric coordinates that are negative, non-finite or do not sum to 1.
+    /// Barycentric coordinates (corner weights) that are negative, non-finite, fewer than
+    /// three or do not sum to 1.
     #[error(
-        "constraint '{id}': barycentric coordinates {values:?} must be non-negative and sum to 1"
+        "constraint '{id}': barycentric coordinates {values:?} must be non-negative and sum to 1 \
+         (one per corner of the face, at least three)"
     )]
     BadBarycentric {
         /// Constraint id.
         id: String,
         /// The coordinates given.
-        values: [f64; 3],
+        values: Vec<f64>,
+    },
+    /// Barycentric coordinates whose number is not the face's number of corners.
+    #[error(
+        "constraint '{id}': face {face} has {corners} corners, but \"barycentric\" gives \
+         {weights} weights (one per corner, in the face's corner order)"
+    )]
+    WrongCornerCount {
+        /// Constraint id.
+        id: String,
+        /// The face.
+        face: usize,
+        /// Its corners.
+        corners: usize,
+        /// Weights given.
+        weights: usize,
     },
     /// A value or weight is NaN or infinite (or a weight is not positive).
     #[error("constraint '{id}': {what} must be finite{extra}")]

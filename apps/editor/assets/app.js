@@ -3,7 +3,7 @@
 
 import { MeshData, vec } from './mesh.js';
 import { OrbitCamera } from './camera.js';
-import { Renderer, faceColors } from './gl.js';
+import { Renderer, scalarColors } from './gl.js';
 import { EditQueue, TOKEN, apiFetch, getBinary, parseFieldFrame } from './net.js';
 
 const $ = (id) => document.getElementById(id);
@@ -30,8 +30,17 @@ function nextId(prefix) {
   for (let i = 1; ; i++) if (!used.has(prefix + i)) return prefix + i;
 }
 
+// Where constraint c is drawn: {face, barycentric} (weights over the face's corners). A face
+// constraint carries it; a vertex or edge constraint has the server's anchor.
+function anchorOf(c) {
+  if (c.face !== undefined) return { face: c.face, barycentric: c.barycentric || app.mesh.centroidWeights(c.face) };
+  const i = app.status ? app.status.constraints.findIndex((x) => x.id === c.id) : -1;
+  return i >= 0 ? app.status.anchors[i] : { face: 0, barycentric: null };
+}
+
 function constraintPoint(c) {
-  return app.mesh.pointAt(c.face, c.barycentric || [1 / 3, 1 / 3, 1 / 3]);
+  const a = anchorOf(c);
+  return app.mesh.pointAt(a.face, a.barycentric);
 }
 
 // The constraints to draw: the server's, with the one being dragged replaced by its local state.
@@ -51,15 +60,16 @@ function updateFieldLayers() {
   let largestValue = 0;
   for (let k = 0; k < vectors.length; k++) largestValue = Math.max(largestValue, Math.abs(vectors[k]));
   if (mode === 'none' || largestValue === 0) {
-    renderer.setFaceColors(new Float32Array(3 * mesh.faceCount).fill(0.82));
+    renderer.setTriangleColors(new Float32Array(3 * mesh.triangleCount).fill(0.82));
     $('color-range').textContent = '–';
   } else {
-    const { colors, min, max } = faceColors(mesh.faceScalar(mode, vectors), mode !== 'magnitude');
-    renderer.setFaceColors(colors);
+    const { colors, min, max } = scalarColors(mesh.triangleScalar(mode, vectors), mode !== 'magnitude');
+    renderer.setTriangleColors(colors);
     $('color-range').textContent = `${min.toPrecision(3)} … ${max.toPrecision(3)}`;
   }
-  // Arrows at up to ~2500 faces (a fixed stride through the faces), scaled so the longest
-  // arrow is about the sample spacing, lifted a little off the surface.
+  // Arrows (one per face, at its corner average) at up to ~2500 faces (a fixed stride through
+  // the faces), scaled so the longest arrow is about the sample spacing, lifted a little off
+  // the surface.
   const stride = Math.max(1, Math.floor(mesh.faceCount / 2500));
   let largest = 0;
   for (let t = 0; t < mesh.faceCount; t++) largest = Math.max(largest, Math.hypot(vectors[3 * t], vectors[3 * t + 1], vectors[3 * t + 2]));
@@ -98,7 +108,7 @@ function updateConstraintLayers() {
   const points = [], pointColors = [], lines = [], lineColors = [];
   const lift = 0.004 * mesh.radius;
   for (const c of shownConstraints()) {
-    const n = mesh.normal(c.face);
+    const n = mesh.normal(anchorOf(c).face);
     const p = constraintPoint(c).map((x, k) => x + lift * n[k]);
     const color = c.id === app.selected ? [0.95, 0.1, 0.85] : KIND_COLORS[constraintLook(c)];
     points.push(...p);
@@ -133,7 +143,8 @@ function updatePanel() {
   if (s.omega > 0) $('omega').value = String(Math.log10(s.omega));
   const c = s.constraints.find((x) => x.id === app.selected);
   if (!c) app.selected = null;
-  $('selection').textContent = c ? `${c.id}: ${constraintLook(c)} in face ${c.face}` : 'no constraint selected';
+  const where = c && (c.face !== undefined ? `face ${c.face}` : c.vertex !== undefined ? `vertex ${c.vertex}` : `edge ${c.edge}`);
+  $('selection').textContent = c ? `${c.id}: ${constraintLook(c)} at ${where}` : 'no constraint selected';
   $('value-row').hidden = !c || c.kind === 'vector';
   if (c && c.kind !== 'vector' && document.activeElement !== $('value')) $('value').value = String(c.value);
   document.body.dataset.version = String(s.version);
@@ -358,6 +369,7 @@ $('basis').addEventListener('input', () => {
 });
 $('color-mode').addEventListener('change', () => { updateFieldLayers(); requestRedraw(); });
 $('arrows').addEventListener('change', () => { app.renderer.setVisible('arrows', $('arrows').checked); requestRedraw(); });
+$('outlines').addEventListener('change', () => { app.renderer.setVisible('outlines', $('outlines').checked); requestRedraw(); });
 $('fur').addEventListener('change', () => {
   if ($('fur').checked) requestFur(); else app.renderer.setVisible('fur', false);
   requestRedraw();
@@ -399,7 +411,17 @@ async function start() {
     app.mesh = new MeshData(await getBinary('/api/mesh'));
     app.camera = new OrbitCamera(app.mesh.center, app.mesh.radius);
     app.renderer.setMesh(app.mesh);
-    $('mesh-info').textContent = `${app.mesh.vertexCount} V, ${app.mesh.faceCount} F`;
+    const { mesh } = app;
+    $('mesh-info').textContent = mesh.isTriangleMesh
+      ? `${mesh.vertexCount} V, ${mesh.faceCount} F`
+      : `${mesh.faceCount} polygons (${mesh.triangleCount} triangles drawn)`;
+    // A polygon mesh shows its polygons' sides (the display triangles' inner edges are not drawn).
+    $('outlines-row').hidden = mesh.isTriangleMesh;
+    if (!mesh.isTriangleMesh) {
+      const segments = mesh.outlineSegments(0.001 * mesh.radius);
+      app.renderer.setLayer('outlines', segments, new Float32Array(segments.length).fill(0.15));
+      app.renderer.setVisible('outlines', $('outlines').checked);
+    }
     acceptField(parseFieldFrame(await getBinary('/api/field')));
     redraw();
     // For scripting the page (the browser test uses it): the state and the projection.

@@ -1,5 +1,5 @@
-// WebGL2 drawing: the shaded surface with a per-face colour, line sets (arrows, fur,
-// constraint glyphs) and point markers.
+// WebGL2 drawing: the shaded surface (the display triangles) with a colour per triangle, line
+// sets (arrows, fur, polygon outlines, constraint glyphs) and point markers.
 
 const SURFACE_VS = `#version 300 es
 in vec3 position; in vec3 normal; in vec3 color;
@@ -73,21 +73,21 @@ export class Renderer {
     gl.vertexAttribPointer(loc, 3, gl.FLOAT, false, 0, 0);
   }
 
-  // Uploads the mesh as unindexed flat-shaded triangles (3 vertices per face).
+  // Uploads the mesh's display triangles as unindexed flat-shaded triangles (3 vertices each).
   setMesh(mesh) {
     const gl = this.gl;
-    const F = mesh.faceCount;
+    const F = mesh.triangleCount;
     const pos = new Float32Array(9 * F), nor = new Float32Array(9 * F);
     for (let t = 0; t < F; t++) {
       for (let c = 0; c < 3; c++) {
-        const i = mesh.faces[3 * t + c];
+        const i = mesh.triangles[3 * t + c];
         for (let k = 0; k < 3; k++) {
           pos[9 * t + 3 * c + k] = mesh.positions[3 * i + k];
-          nor[9 * t + 3 * c + k] = mesh.normals[3 * t + k];
+          nor[9 * t + 3 * c + k] = mesh.triangleNormals[3 * t + k];
         }
       }
     }
-    this.faceCount = F;
+    this.triangleCount = F;
     this.surfaceVao = gl.createVertexArray();
     gl.bindVertexArray(this.surfaceVao);
     this.attribute(this.surface, 'position', this.buffer(pos));
@@ -97,13 +97,13 @@ export class Renderer {
     gl.bindVertexArray(null);
   }
 
-  // faceColors: Float32Array of 3 floats (rgb in [0, 1]) per face.
-  setFaceColors(faceColors) {
+  // triangleColors: Float32Array of 3 floats (rgb in [0, 1]) per display triangle.
+  setTriangleColors(triangleColors) {
     const gl = this.gl;
-    const F = this.faceCount;
+    const F = this.triangleCount;
     const data = new Float32Array(9 * F);
     for (let t = 0; t < F; t++) {
-      for (let c = 0; c < 3; c++) for (let k = 0; k < 3; k++) data[9 * t + 3 * c + k] = faceColors[3 * t + k];
+      for (let c = 0; c < 3; c++) for (let k = 0; k < 3; k++) data[9 * t + 3 * c + k] = triangleColors[3 * t + k];
     }
     gl.bindBuffer(gl.ARRAY_BUFFER, this.colorBuffer);
     gl.bufferData(gl.ARRAY_BUFFER, data, gl.DYNAMIC_DRAW);
@@ -153,7 +153,7 @@ export class Renderer {
       gl.enable(gl.POLYGON_OFFSET_FILL);
       gl.polygonOffset(1, 1);
       gl.bindVertexArray(this.surfaceVao);
-      gl.drawArrays(gl.TRIANGLES, 0, 3 * this.faceCount);
+      gl.drawArrays(gl.TRIANGLES, 0, 3 * this.triangleCount);
       gl.disable(gl.POLYGON_OFFSET_FILL);
     }
     gl.useProgram(this.lines);
@@ -181,9 +181,9 @@ export function colorMap(diverging, t) {
   return [0, 1, 2].map((k) => (table[i][k] * (1 - f) + table[i + 1][k] * f) / 255);
 }
 
-// Per-face colours for a scalar, with the range fitted as tvf-render does ([min, max], or
+// Colours for a scalar per triangle, with the range fitted as tvf-render does ([min, max], or
 // [-m, m] for a diverging map). Returns {colors, min, max}.
-export function faceColors(values, diverging) {
+export function scalarColors(values, diverging) {
   let lo = Infinity, hi = -Infinity;
   for (const v of values) { if (Number.isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } }
   if (lo > hi) { lo = diverging ? -1 : 0; hi = 1; }

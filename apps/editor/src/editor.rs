@@ -51,13 +51,6 @@ impl Editor {
         complex
             .require_sampling()
             .map_err(|e| EditorError::Discretization(e.to_string()))?;
-        if !mesh.is_triangle_mesh() {
-            return Err(EditorError::Discretization(
-                "the editor draws triangle meshes only so far; triangulate the polygon mesh first \
-                 (tvf triangulate MESH -o OUT)"
-                    .to_string(),
-            ));
-        }
         if basis.field_dimension() != complex.field_dimension() {
             return Err(EditorError::BadRequest {
                 reason: format!(

@@ -1,12 +1,18 @@
 //! The binary payloads the page reads: the mesh once, then a field frame after every edit.
 //!
 //! All numbers are little-endian.
-//! - Mesh (`GET /api/mesh`): `u32` magic `"TVFM"`, `u32 V`, `u32 F`, `f32` positions (`3V`),
-//!   `u32` corner indices (`3F`, counter-clockwise).
+//! - Mesh (`GET /api/mesh`): `u32` magic `"TVFM"`, `u32 V`, `u32 T`, `f32` positions (`3V`),
+//!   `u32` corner indices (`3T`, counter-clockwise): the display triangulation
+//!   ([`SurfaceMesh::display`]; on a polygon mesh its vertices are the mesh's, then one corner
+//!   average per fanned polygon). Then the faces the fields and constraints refer to: `u32 F`,
+//!   `u32 C` (corners in all), `u32` corner counts (`F`), `u32` corners (`C`, face by face,
+//!   counter-clockwise, indices of the mesh's vertices), and `u32` the face of every display
+//!   triangle (`T`). On a triangle mesh the faces are the display triangles.
 //! - Field frame (`GET /api/field`, `POST /api/edit`): `u32` magic `"TVFF"`, `u32` length `n` of
 //!   the status JSON, the JSON (UTF-8) padded with spaces to a multiple of 4 bytes, then `2F`
-//!   `f32` coefficients of the field in the face frames `e1 = normalize(p1 − p0)`, `e2 = n × e1`
-//!   (pointwise values, as in `docs/conventions.md`).
+//!   `f32` coefficients of the field in the face frames `e1 = normalize(p1 − p0)` projected onto
+//!   the face's plane (normal to its vector area), `e2 = n × e1` (pointwise values, as in
+//!   `docs/conventions.md`; on a triangle `e1` lies in the plane already).
 //! - Fur (`GET /api/fur`): `u32` strand count `s`, `u32` points per strand `p`, `f32` points
 //!   (`3 s p`).
 
@@ -26,22 +32,39 @@ fn count_u32(what: &'static str, n: usize) -> Result<u32, EditorError> {
     u32::try_from(n).map_err(|_| EditorError::TooLarge { what, count: n })
 }
 
-/// The mesh payload of `mesh` (positions rounded to `f32`).
+/// The mesh payload of `mesh` (positions rounded to `f32`): its display triangulation, then its
+/// faces and the face of every display triangle.
 pub fn encode_mesh(mesh: &SurfaceMesh) -> Result<Vec<u8>, EditorError> {
-    let mesh = mesh.display();
-    let mut out = Vec::with_capacity(12 + 12 * mesh.vertex_count() + 12 * mesh.face_count());
+    let display = mesh.display();
+    let (triangles, corners) = (display.face_count(), mesh.faces().total_corners());
+    let mut out = Vec::with_capacity(
+        20 + 12 * display.vertex_count() + 16 * triangles + 4 * (mesh.face_count() + corners),
+    );
     push_u32(&mut out, MESH_MAGIC);
-    push_u32(&mut out, count_u32("vertices", mesh.vertex_count())?);
-    push_u32(&mut out, count_u32("faces", mesh.face_count())?);
-    for p in mesh.positions() {
+    push_u32(&mut out, count_u32("vertices", display.vertex_count())?);
+    push_u32(&mut out, count_u32("display triangles", triangles)?);
+    for p in display.positions() {
         for x in p {
             out.extend_from_slice(&(*x as f32).to_le_bytes());
         }
     }
-    for f in mesh.faces() {
+    for f in display.faces() {
         for &i in f {
             push_u32(&mut out, count_u32("vertex index", i)?);
         }
+    }
+    push_u32(&mut out, count_u32("faces", mesh.face_count())?);
+    push_u32(&mut out, count_u32("corners", corners)?);
+    for f in 0..mesh.face_count() {
+        push_u32(&mut out, count_u32("corner count", mesh.face_size(f))?);
+    }
+    for f in 0..mesh.face_count() {
+        for &i in mesh.face(f) {
+            push_u32(&mut out, count_u32("vertex index", i)?);
+        }
+    }
+    for t in 0..triangles {
+        push_u32(&mut out, count_u32("face index", mesh.display_face(t))?);
     }
     Ok(out)
 }

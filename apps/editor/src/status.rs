@@ -3,46 +3,57 @@
 //! field against the constraints ([`CheckReport`], `GET /api/check`).
 
 use serde::Serialize;
-use tvf_core::{SurfaceMesh, NO_FACE};
+use tvf_core::SurfaceMesh;
 use tvf_design::{CompiledConstraint, Constraint, ConstraintSet, Location, ReducedBasis};
 
-/// A point of the surface where a constraint is drawn: a face and barycentric coordinates.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// A point of the surface where a constraint is drawn: a face and the point's weights over its
+/// corners (a [`tvf_core::SurfacePoint`]; barycentric coordinates on a triangle).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Anchor {
     /// Face index.
     pub face: usize,
-    /// Barycentric coordinates w.r.t. the face's corners.
-    pub barycentric: [f64; 3],
+    /// Weights over the face's corners, in its corner order.
+    pub barycentric: Vec<f64>,
+}
+
+impl Anchor {
+    /// The point of `face` (with `corners` corners) whose weight is spread evenly over the
+    /// corners `listed`: a corner (`[c]`) or the midpoint of a side (`[c, c + 1]`).
+    fn at_corners(face: usize, corners: usize, listed: &[usize]) -> Self {
+        let mut barycentric = vec![0.0; corners];
+        for &c in listed {
+            barycentric[c] = 1.0 / listed.len() as f64;
+        }
+        Self { face, barycentric }
+    }
 }
 
 /// Maps constraint locations to anchors (vertices and edges to a face that contains them).
 #[derive(Debug, Clone)]
 pub struct Anchors {
+    /// Corner count of every face.
+    face_sizes: Vec<usize>,
+    /// A face at every vertex, and the vertex's corner in it.
     vertex_face: Vec<(usize, usize)>,
-    edge_face: Vec<(usize, [f64; 3])>,
+    /// A face at every edge, and the edge's first corner in it (the side from that corner to
+    /// the next).
+    edge_face: Vec<(usize, usize)>,
 }
 
 impl Anchors {
     /// Precomputes one incident face per vertex and per edge of `mesh`.
     pub fn new(mesh: &SurfaceMesh) -> Self {
-        let mesh = mesh.display();
+        let face_sizes: Vec<usize> = (0..mesh.face_count()).map(|f| mesh.face_size(f)).collect();
         let mut vertex_face = vec![(0, 0); mesh.vertex_count()];
-        for (t, f) in mesh.faces().iter().enumerate().rev() {
-            for (c, &i) in f.iter().enumerate() {
-                vertex_face[i] = (t, c);
+        let mut edge_face = vec![(0, 0); mesh.edge_count()];
+        for f in (0..mesh.face_count()).rev() {
+            for (c, &i) in mesh.face(f).iter().enumerate() {
+                vertex_face[i] = (f, c);
+                edge_face[mesh.face_edge(f, c)] = (f, c);
             }
         }
-        let edge_face = mesh
-            .edge_faces()
-            .iter()
-            .zip(mesh.edges())
-            .map(|(pair, &[a, b])| {
-                let t = if pair[0] != NO_FACE { pair[0] } else { pair[1] };
-                let f = mesh.faces()[t];
-                (t, f.map(|i| if i == a || i == b { 0.5 } else { 0.0 }))
-            })
-            .collect();
         Self {
+            face_sizes,
             vertex_face,
             edge_face,
         }
@@ -50,20 +61,22 @@ impl Anchors {
 
     /// Where `constraint` is drawn (the face centroid for a face without barycentric point).
     pub fn of(&self, constraint: &Constraint) -> Anchor {
-        match constraint.location {
+        match &constraint.location {
             Location::Face { face, barycentric } => Anchor {
-                face,
-                barycentric: barycentric.unwrap_or([1.0 / 3.0; 3]),
+                face: *face,
+                barycentric: barycentric.clone().unwrap_or_else(|| {
+                    let n = self.face_sizes[*face];
+                    vec![1.0 / n as f64; n]
+                }),
             },
             Location::Vertex(v) => {
-                let (face, corner) = self.vertex_face[v];
-                let mut barycentric = [0.0; 3];
-                barycentric[corner] = 1.0;
-                Anchor { face, barycentric }
+                let (face, corner) = self.vertex_face[*v];
+                Anchor::at_corners(face, self.face_sizes[face], &[corner])
             }
             Location::Edge(e) => {
-                let (face, barycentric) = self.edge_face[e];
-                Anchor { face, barycentric }
+                let (face, corner) = self.edge_face[*e];
+                let n = self.face_sizes[face];
+                Anchor::at_corners(face, n, &[corner, (corner + 1) % n])
             }
         }
     }

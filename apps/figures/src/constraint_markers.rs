@@ -18,14 +18,21 @@ const MARKER_RADIUS_AT_768: f64 = 6.0;
 pub fn constraint_position(mesh: &SurfaceMesh, constraint: &Constraint) -> Option<[f64; 3]> {
     let p = mesh.positions();
     match constraint.location {
-        Location::Face { face, barycentric } => {
+        Location::Face {
+            face,
+            ref barycentric,
+        } => {
             if face >= mesh.face_count() {
                 return None;
             }
             let point = match barycentric {
-                Some(b) => SurfacePoint::barycentric(face, b),
+                Some(weights) => SurfacePoint {
+                    face,
+                    weights: weights.clone(),
+                },
                 None => mesh.centroid_point(face),
             };
+            mesh.check_point(&point).ok()?;
             Some(mesh.point_position(&point))
         }
         Location::Vertex(v) => p.get(v).copied(),

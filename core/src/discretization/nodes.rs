@@ -17,6 +17,19 @@ pub enum NodeKind {
 }
 
 impl NodeKind {
+    /// Every kind, in the order a complex from matrices tries them by size.
+    pub const ALL: [NodeKind; 4] = [
+        NodeKind::Vertices,
+        NodeKind::Edges,
+        NodeKind::Faces,
+        NodeKind::FaceFrames,
+    ];
+
+    /// The kind named `name` ([`NodeKind::name`]), if any.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|kind| kind.name() == name)
+    }
+
     /// Lower-case name for messages and file headers: `vertices`, `edges`, `faces`,
     /// `face-frames`.
     pub fn name(self) -> &'static str {

@@ -158,41 +158,65 @@ fn info_counts_faces_by_size() {
 fn the_complex_folder_of_a_polygon_mesh_says_so_and_reads_back_with_the_same_spectrum() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    // The cube-sphere (V = F + 2): on a quad torus V = F, and the folder reader, which tells
-    // vertex from face nodes by their count, cannot tell them apart.
+    // A quad torus: V = F and E = 2F, so only info.json's node kinds tell the spaces apart.
     assert_success(&run(
         d,
-        &["operators", "--example", "cube-sphere", "-o", "ops"],
+        &["operators", "--example", "quad-torus", "-o", "ops"],
     ));
-    let info: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("ops/info.json")).unwrap()).unwrap();
+    let info_path = d.join("ops/info.json");
+    let mut info: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&info_path).unwrap()).unwrap();
     assert_eq!(info["mesh_kind"], "polygons", "{info}");
     assert_eq!(info["face_sizes"], serde_json::json!({"4": 1536}));
+    assert_eq!(info["vertices"], info["faces"]);
     assert_eq!(info["sampling"], "polygon-sharp");
     assert_eq!(info["discretization"], "polygon-dec");
-    let built = eigenvalues(&json(&run(
-        d,
-        &["spectrum", "--example", "cube-sphere", "-k", "8", "--json"],
-    )));
-    let read = eigenvalues(&json(&run(
-        d,
-        &[
-            "spectrum",
-            "--example",
-            "cube-sphere",
-            "-k",
-            "8",
-            "--json",
-            "--complex",
-            "ops",
-        ],
-    )));
+    let spectrum = |extra: &[&str]| {
+        let mut args = vec!["spectrum", "--example", "quad-torus", "-k", "8", "--json"];
+        args.extend_from_slice(extra);
+        run(d, &args)
+    };
+    let built = eigenvalues(&json(&spectrum(&[])));
+    let read = eigenvalues(&json(&spectrum(&["--complex", "ops"])));
     for (a, b) in built.iter().zip(&read) {
         assert!(
             (a - b).abs() <= 1e-9 * (1.0 + a.abs()),
             "{built:?} vs {read:?}"
         );
     }
+    let refusal = |info: &serde_json::Value| {
+        std::fs::write(&info_path, serde_json::to_string_pretty(info).unwrap()).unwrap();
+        let output = spectrum(&["--complex", "ops"]);
+        assert!(!output.status.success());
+        String::from_utf8_lossy(&output.stderr).into_owned()
+    };
+    // Without the node kinds, the sizes are ambiguous: refused naming info.json.
+    let kinds = info["nodes"].take();
+    let message = refusal(&info);
+    assert!(
+        message.contains(
+            "info.json: inconsistent complex: the potential space (columns of d0) \
+             has 1536 nodes, which is ambiguous: the mesh has 1536 vertices and 1536 faces"
+        ),
+        "{message}"
+    );
+    // A stated kind that does not fit the size is refused too.
+    info["nodes"] = kinds;
+    info["nodes"]["co_potentials"] = "edges".into();
+    let message = refusal(&info);
+    assert!(
+        message.contains(
+            "info.json: inconsistent complex: the co-potential space (rows of d1) \
+             has 1536 nodes, but its nodes are stated to be edges: the mesh has 3072"
+        ),
+        "{message}"
+    );
+    info["nodes"]["co_potentials"] = "corners".into();
+    let message = refusal(&info);
+    assert!(
+        message.contains("info.json: nodes/co_potentials is 'corners'"),
+        "{message}"
+    );
 }
 
 #[test]

@@ -33,7 +33,7 @@ fn the_documented_example_compiles_on_an_icosphere() {
         set.constraints[1].location,
         Location::Face {
             face: 30,
-            barycentric: Some([0.2, 0.3, 0.5])
+            barycentric: Some(vec![0.2, 0.3, 0.5])
         }
     );
     let mesh = icosphere(2);
@@ -231,7 +231,7 @@ fn mesh_checks_and_node_kinds() {
     let corner = mesh.faces()[5][1];
     let at_corner = Location::Face {
         face: 5,
-        barycentric: Some([0.0, 1.0, 0.0]),
+        barycentric: Some(vec![0.0, 1.0, 0.0]),
     };
     let point = assembler
         .compile(&Constraint::new("p", Target::Divergence(1.0), at_corner))

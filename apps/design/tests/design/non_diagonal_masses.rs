@@ -54,7 +54,7 @@ fn constraints<H: HodgeComplex + ?Sized>(
         let (a, b) = (rng.random_range(0.1..0.5), rng.random_range(0.1..0.4));
         Location::Face {
             face: rng.random_range(0..mesh.face_count()),
-            barycentric: Some([a, b, 1.0 - a - b]),
+            barycentric: Some(vec![a, b, 1.0 - a - b]),
         }
     };
     let mut list = Vec::new();
@@ -499,7 +499,7 @@ fn editing_a_session_with_dense_rows_keeps_the_field_finite_and_exact() {
                 Target::Curl(0.3),
                 Location::Face {
                     face: 11,
-                    barycentric: Some([0.5, 0.25, 0.25]),
+                    barycentric: Some(vec![0.5, 0.25, 0.25]),
                 },
             )
             .with_family(OperatorFamily::Other),

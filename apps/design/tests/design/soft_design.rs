@@ -147,7 +147,7 @@ fn changing_constraints_reuses_the_symbolic_factorization() {
         tvf_design::Target::Divergence(1.0),
         tvf_design::Location::Face {
             face: 7,
-            barycentric: Some([0.3, 0.3, 0.4]),
+            barycentric: Some(vec![0.3, 0.3, 0.4]),
         },
     );
     let first = vec![assembler.compile(&point).unwrap()];

@@ -157,14 +157,14 @@ fn the_same_vector_twice_is_reported_by_id() {
         .compile(&Constraint::new(
             "first",
             Target::Vector([1.0, 0.0, 0.0]),
-            at,
+            at.clone(),
         ))
         .unwrap();
     let clash = assembler
         .compile(&Constraint::new(
             "clash",
             Target::Vector([0.0, 1.0, 0.0]),
-            at,
+            at.clone(),
         ))
         .unwrap();
     let again = assembler

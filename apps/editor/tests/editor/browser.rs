@@ -3,7 +3,10 @@
 //! the canvas, check that the server's field satisfies it and that the page shows the update;
 //! then trigger a conflicting constraint (the page must show the error) and fur mode. On a mesh
 //! with boundary (a pair of pants), with both boundary conditions: place a vector constraint and
-//! a source by mouse and check that the page shows the server's finite field.
+//! a source by mouse and check that the page shows the server's finite field. On a cube-sphere of
+//! quads (polygon-dec): the page draws the polygons' sides, a drag adds a vector constraint at a
+//! point of the quad under the cursor (four corner weights, the point the ray hits on the drawn
+//! surface), a click a source; the server's field satisfies both.
 //!
 //! Skips with a message when chromium or chromedriver are not installed (`.ci/browser-setup`
 //! installs them). Screenshots go to `$TVF_SCREENSHOT_DIR` (default: the target's temp dir).
@@ -14,7 +17,7 @@ mod webdriver;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use crate::common::{icosphere_server_for, pants_server_for, Client};
+use crate::common::{icosphere_server_for, pants_server_for, polygon_server, Client};
 use tvf_core::discretization::BoundaryCondition;
 use tvf_discretizations::DEFAULT_DISCRETIZATION;
 use webdriver::{find_executable, Browser};
@@ -338,4 +341,119 @@ fn drive_the_editor(id: &str, prefix: &str) {
         "browser test on {id} took {:.1} s",
         started.elapsed().as_secs_f64()
     );
+}
+
+/// On a cube-sphere of non-planar quads with polygon-dec: the page starts with the quads as faces
+/// (150 quads drawn as 600 fan triangles; odd, so that the view's centre is inside a quad) and their sides drawn; a pick at the canvas centre is a
+/// point of a quad with four corner weights at the point the ray hits on the drawn surface; a drag
+/// there adds a vector constraint and a click with the source tool a divergence constraint; the
+/// server's field satisfies both and the page shows it, one finite vector per quad.
+#[test]
+fn editor_page_edits_the_quads_of_a_cube_sphere() {
+    let Some((chromium, chromedriver)) = browser_executables("a quad mesh") else {
+        return;
+    };
+    let mesh = tvf_core::SurfaceMesh::from(tvf_core::generate::cube_sphere(5).expect("quads"));
+    let server = polygon_server(&mesh);
+    let client = Client::new(&server);
+    let browser =
+        Browser::start(&chromedriver, &chromium, 1200, 800).expect("headless chromium session");
+    browser.goto(&server.url()).expect("open the page");
+    let ready = browser
+        .wait_for("return document.body.dataset.ready || (document.body.dataset.error ? 'error: ' + document.body.dataset.error : null);", Duration::from_secs(20))
+        .expect("page starts");
+    assert_eq!(ready, "true", "the page failed to start: {ready}");
+    let before = browser.screenshot().expect("screenshot");
+    save("editor-quads-1-loaded.png", &before);
+    let layout = browser
+        .script(
+            "const { app } = window.tvfEditor; const m = app.mesh; \
+             const outlines = app.renderer.layers.get('outlines'); \
+             return [m.isTriangleMesh, m.faceCount, m.triangleCount, outlines ? outlines.count : 0, \
+                     document.getElementById('outlines-row').hidden, app.vectors.length];",
+        )
+        .unwrap();
+    assert_eq!(
+        layout,
+        serde_json::json!([false, 150, 600, 2 * 4 * 150, false, 3 * 150])
+    );
+    // The pick at the canvas centre: a quad, four weights, at the ray's hit on the surface.
+    let pick = browser
+        .script(
+            "const { app } = window.tvfEditor; const c = document.getElementById('view'); \
+             const { origin, dir } = app.camera.ray(c.clientWidth / 2, c.clientHeight / 2, c.clientWidth, c.clientHeight); \
+             const hit = app.mesh.pick(origin, dir); \
+             const onRay = origin.map((x, k) => x + hit.distance * dir[k]); \
+             const gap = Math.hypot(...onRay.map((x, k) => x - hit.point[k])); \
+             return [hit.face, hit.barycentric, gap / app.mesh.radius];",
+        )
+        .unwrap();
+    let weights: Vec<f64> = pick[1]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_f64().unwrap())
+        .collect();
+    assert_eq!(weights.len(), 4, "{pick}");
+    assert!(weights.iter().all(|&w| w >= 0.0), "{pick}");
+    assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-12, "{pick}");
+    assert!(pick[2].as_f64().unwrap() < 1e-5, "{pick}");
+    let centre = browser
+        .script("const r = document.getElementById('view').getBoundingClientRect(); return [Math.round(r.left + r.width / 2), Math.round(r.top + r.height / 2)];")
+        .expect("canvas position");
+    let (cx, cy) = (centre[0].as_i64().unwrap(), centre[1].as_i64().unwrap());
+    browser
+        .drag((cx, cy), (cx + 90, cy - 30))
+        .expect("drag on the canvas");
+    browser
+        .wait_for("return document.getElementById('constraint-count').textContent === '1' && !document.querySelector('#error:not([hidden])');", Duration::from_secs(10))
+        .expect("the page shows one constraint");
+    browser
+        .click(&browser.element("button[data-tool=source]").unwrap())
+        .unwrap();
+    browser
+        .drag((cx - 110, cy + 60), (cx - 110, cy + 60))
+        .expect("click for a source");
+    browser
+        .wait_for(
+            "return document.getElementById('constraint-count').textContent === '2' && !document.querySelector('#error:not([hidden])');",
+            Duration::from_secs(10),
+        )
+        .expect("the source is added");
+    let check = wait_until_the_page_shows_the_server_field(&browser, &client);
+    assert_eq!(check["constraints"].as_array().unwrap().len(), 2, "{check}");
+    assert!(
+        check["max_relative"].as_f64().unwrap() < 1e-9,
+        "the held field misses the constraints: {check}"
+    );
+    let (_, saved) = client.get("/api/constraints");
+    let saved: serde_json::Value = serde_json::from_slice(&saved).unwrap();
+    for record in saved["constraints"].as_array().unwrap() {
+        let face = record["face"].as_u64().unwrap() as usize;
+        assert!(face < 150, "{saved}");
+        assert_eq!(
+            record["barycentric"].as_array().unwrap().len(),
+            4,
+            "{saved}"
+        );
+    }
+    assert_eq!(saved["constraints"][0]["face"], pick[0], "{saved}");
+    let shown = browser
+        .script(
+            "const v = window.tvfEditor.app.vectors; let finite = true, largest = 0; \
+             for (const x of v) { finite = finite && Number.isFinite(x); largest = Math.max(largest, Math.abs(x)); } \
+             return [document.body.dataset.version, finite, largest];",
+        )
+        .unwrap();
+    assert_eq!(
+        shown[0].as_str().unwrap(),
+        check["version"].as_u64().unwrap().to_string()
+    );
+    assert_eq!(shown[1], true);
+    assert!(shown[2].as_f64().unwrap() > 0.0);
+    let after = browser.screenshot().expect("screenshot");
+    save("editor-quads-2-constraints.png", &after);
+    assert_ne!(before, after, "the picture changed");
+    drop(browser);
+    server.shutdown();
 }

@@ -1,7 +1,7 @@
 //! The editor's HTTP API driven by a scripted client (no browser): every edit answers with a
 //! field that satisfies the constraints, refused edits answer 4xx and leave the state alone.
 
-use crate::common::{error_message, icosphere_server, Client, FACES};
+use crate::common::{error_message, icosphere_server, polygon_server, Client, FACES};
 use serde_json::json;
 use tvf_core::generate::icosphere;
 use tvf_editor::decode_field_frame;
@@ -54,7 +54,14 @@ fn serves_the_page_and_the_mesh() {
     let word = |k: usize| u32::from_le_bytes(mesh[4 * k..4 * k + 4].try_into().unwrap());
     assert_eq!(word(0), MESH_MAGIC);
     assert_eq!((word(1), word(2)), (642, FACES as u32));
-    assert_eq!(mesh.len(), 12 + 12 * 642 + 12 * FACES);
+    // The display triangles, then the faces (here the same triangles) and each triangle's face.
+    assert_eq!(
+        mesh.len(),
+        12 + 12 * 642 + 12 * FACES + 8 + 4 * FACES + 12 * FACES + 4 * FACES
+    );
+    let at = 3 + 3 * 642 + 3 * FACES;
+    assert_eq!((word(at), word(at + 1)), (FACES as u32, 3 * FACES as u32));
+    assert!((0..FACES).all(|t| word(at + 2 + t) == 3 && word(at + 2 + 4 * FACES + t) == t as u32));
     let (status, field) = client.get("/api/field");
     let initial = frame(status, &field);
     assert_eq!(
@@ -347,5 +354,119 @@ fn many_concurrent_requests_are_all_answered() {
             .unwrap()
             < 1e-9
     );
+    server.shutdown();
+}
+
+/// The words of a mesh payload from `k` on.
+fn payload_words(bytes: &[u8], k: usize, n: usize) -> Vec<u32> {
+    (k..k + n)
+        .map(|i| u32::from_le_bytes(bytes[4 * i..4 * i + 4].try_into().unwrap()))
+        .collect()
+}
+
+/// On a polygon mesh (the dual of an icosphere: pentagons and hexagons, not planar) the editor
+/// starts with polygon-dec, sends the display triangles and the polygons, a field frame of one
+/// vector per polygon in its frame, and takes constraints at points of polygons given by one
+/// weight per corner; a point with the wrong number of weights is refused naming the face.
+#[test]
+fn edits_polygons_at_points_given_by_corner_weights() {
+    let dual = tvf_core::generate::dual(&icosphere(2)).expect("the dual");
+    let mesh = tvf_core::SurfaceMesh::from(dual);
+    let (faces, display) = (mesh.face_count(), mesh.display());
+    let corners: usize = (0..faces).map(|f| mesh.face_size(f)).sum();
+    let server = polygon_server(&mesh);
+    let client = Client::new(&server);
+    let (status, payload) = client.get("/api/mesh");
+    assert_eq!(status, 200);
+    let (v, t) = (display.vertex_count(), display.face_count());
+    assert_eq!(
+        payload_words(&payload, 0, 3),
+        [MESH_MAGIC, v as u32, t as u32]
+    );
+    let at = 3 + 3 * v + 3 * t;
+    assert_eq!(payload.len(), 4 * (at + 2 + faces + corners + t));
+    assert_eq!(
+        payload_words(&payload, at, 2),
+        [faces as u32, corners as u32]
+    );
+    let sizes = payload_words(&payload, at + 2, faces);
+    assert!(sizes
+        .iter()
+        .enumerate()
+        .all(|(f, &n)| n as usize == mesh.face_size(f)));
+    let listed = payload_words(&payload, at + 2 + faces, corners);
+    let expected: Vec<u32> = (0..faces)
+        .flat_map(|f| mesh.face(f).iter().map(|&i| i as u32))
+        .collect();
+    assert_eq!(listed, expected);
+    let face_of = payload_words(&payload, at + 2 + faces + corners, t);
+    assert!((0..t).all(|k| face_of[k] as usize == mesh.display_face(k)));
+
+    // A vector at a point of a hexagon, a source and a vortex at points of others: the field
+    // (one vector per polygon, in its frame) meets them.
+    let hexagon = (0..faces).find(|&f| mesh.face_size(f) == 6).unwrap();
+    let weights = [0.3, 0.1, 0.1, 0.2, 0.2, 0.1];
+    let vector = json!({"id": "a", "kind": "vector", "face": hexagon, "barycentric": weights, "value": [1.0, 0.5, -0.25]});
+    let first = frame_ok(client.edit(json!({"op": "add", "constraint": vector})));
+    assert_eq!(first.coefficients.len(), 2 * faces);
+    assert_eq!(first.status["faces"], faces);
+    assert_eq!(first.status["anchors"][0]["face"], hexagon);
+    assert_eq!(first.status["anchors"][0]["barycentric"], json!(weights));
+    let pentagon = (0..faces).find(|&f| mesh.face_size(f) == 5).unwrap();
+    let far = (0..faces).rev().find(|&f| mesh.face_size(f) == 6).unwrap();
+    for c in [
+        json!({"id": "s", "kind": "divergence", "face": pentagon, "barycentric": [0.2, 0.2, 0.2, 0.2, 0.2], "value": 2.0}),
+        json!({"id": "r", "kind": "curl", "face": far, "value": -1.5}),
+        json!({"id": "k", "kind": "divergence", "vertex": 3, "value": -1.0}),
+    ] {
+        frame_ok(client.edit(json!({"op": "add", "constraint": c})));
+    }
+    let check = client.check();
+    assert_eq!(check["constraints"].as_array().unwrap().len(), 4);
+    assert!(check["max_relative"].as_f64().unwrap() < 1e-9, "{check}");
+    // The field frame carries, in the hexagon's frame (e1 its first side projected onto its
+    // plane, normal to its vector area; e2 = n × e1), the constraint's value projected there.
+    let (_, body) = client.get("/api/field");
+    let last = decode_field_frame(&body).unwrap();
+    let (n, p) = (mesh.face_normal(hexagon), mesh.positions());
+    let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let corners = mesh.face(hexagon);
+    let side = tvf_core::geometry::sub(p[corners[1]], p[corners[0]]);
+    let e1 = tvf_core::geometry::normalize(tvf_core::geometry::sub(
+        side,
+        tvf_core::geometry::scale(n, dot(n, side)),
+    ));
+    let e2 = tvf_core::geometry::cross(n, e1);
+    let value = [1.0, 0.5, -0.25];
+    let (a, c) = (
+        last.coefficients[2 * hexagon] as f64,
+        last.coefficients[2 * hexagon + 1] as f64,
+    );
+    assert!(
+        (a - dot(value, e1)).abs() < 1e-5 && (c - dot(value, e2)).abs() < 1e-5,
+        "{a} {c}"
+    );
+    // The vertex constraint is drawn at its corner of a polygon that has the vertex.
+    let anchor = &last.status["anchors"][3];
+    let face = anchor["face"].as_u64().unwrap() as usize;
+    let corner = mesh
+        .face(face)
+        .iter()
+        .position(|&i| i == 3)
+        .expect("a face at vertex 3");
+    assert_eq!(anchor["barycentric"][corner], 1.0);
+
+    // Three weights on a hexagon: refused, naming the face and its corner count.
+    let (s, b) = client.edit(json!({"op": "add", "constraint":
+        {"id": "bad", "kind": "curl", "face": hexagon, "barycentric": [0.2, 0.3, 0.5], "value": 1.0}}));
+    assert_eq!(s, 400);
+    assert!(
+        error_message(&b).contains(&format!(
+            "face {hexagon} has 6 corners, but \"barycentric\" gives 3 weights"
+        )),
+        "{}",
+        error_message(&b)
+    );
+    assert_eq!(client.check()["constraints"].as_array().unwrap().len(), 4);
     server.shutdown();
 }

@@ -20,11 +20,11 @@ use sprs::CsMat;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 use thiserror::Error;
-use tvf_core::discretization::{
-    BoundaryCondition, DiscretizationError, HodgeComplex, Mass, MassForm,
-};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass, MassForm, NodeKind};
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{ComplexMatrices, FixedNodes, MatrixComplex, MatrixSampling};
+use tvf_discretizations::{
+    ComplexMatrices, FixedNodes, MatrixComplex, MatrixSampling, StatedNodeKinds,
+};
 
 /// The id of a complex read from a folder (with `+tangential` / `+normal` on a mesh with
 /// boundary, like the catalog's ids).
@@ -80,22 +80,23 @@ pub fn read_complex_folder(
     let fixed = folder.fixed_nodes()?;
     let condition = folder.boundary_condition()?;
     let sampling = folder.sampling()?;
+    let stated = folder.node_kinds()?;
     let id = match mesh.is_closed() {
         true => COMPLEX_FOLDER_ID.to_string(),
         false => format!("{COMPLEX_FOLDER_ID}+{}", condition.name()),
     };
     let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
-    let complex = MatrixComplex::with_boundary(&id, mesh, matrices, &fixed, condition, sampling)
-        .map_err(|e| {
+    MatrixComplex::with_boundary(&id, mesh, matrices, &stated, &fixed, condition, sampling).map_err(
+        |e| {
             let file = blamed_file(&e, &folder, [&d0_file, &d1_file], &mass_files);
             error(&file, e.to_string())
-        })?;
-    folder.check_node_kinds(&complex)?;
-    Ok(complex)
+        },
+    )
 }
 
 /// The file an error of [`MatrixComplex::with_boundary`] is about: the mass it names, both
-/// `d` files for `d1 · d0`, `info.json` for fixed nodes, else the folder.
+/// `d` files for `d1 · d0`, `info.json` for fixed nodes and node kinds (stated or missing where
+/// a size is ambiguous), else the folder.
 fn blamed_file(
     e: &DiscretizationError,
     folder: &Folder,
@@ -116,7 +117,11 @@ fn blamed_file(
         | DiscretizationError::NonFinite { what, .. } => {
             mass_named(what).unwrap_or_else(|| folder.dir.clone())
         }
-        DiscretizationError::Inconsistent(message) if message.starts_with("fixed") => {
+        DiscretizationError::Inconsistent(message)
+            if message.starts_with("fixed")
+                || message.contains("ambiguous")
+                || message.contains("stated to be") =>
+        {
             folder.info_path()
         }
         DiscretizationError::Inconsistent(message) if message.contains("co-potential space") => {
@@ -474,36 +479,31 @@ impl Folder {
             Some(name) => MatrixSampling::from_name(name).ok_or_else(|| {
                 error(
                     &self.info_path(),
-                    format!("sampling is '{name}': none, face-frames or whitney"),
+                    format!("sampling is '{name}': none, face-frames, whitney or polygon-sharp"),
                 )
             }),
         }
     }
 
-    /// Checks `nodes/{potentials,fields,co_potentials}`, if given, against the kinds the
-    /// matrices' sizes give.
-    fn check_node_kinds(&self, complex: &MatrixComplex) -> Result<(), ComplexFolderError> {
-        let found = [
-            complex.potential_nodes(),
-            complex.field_nodes(),
-            complex.co_potential_nodes(),
-        ];
-        for (space, nodes) in ["potentials", "fields", "co_potentials"].iter().zip(found) {
-            if let Some(stated) = self.string(&format!("nodes/{space}"))? {
-                if stated != nodes.kind.name() {
-                    return Err(error(
+    /// `nodes/{potentials,fields,co_potentials}`: the node kind of each space (`vertices`,
+    /// `edges`, `faces` or `face-frames`), `None` where absent (then inferred from the size).
+    fn node_kinds(&self) -> Result<StatedNodeKinds, ComplexFolderError> {
+        let mut stated = [None; 3];
+        for (kind, space) in stated
+            .iter_mut()
+            .zip(["potentials", "fields", "co_potentials"])
+        {
+            let key = format!("nodes/{space}");
+            if let Some(name) = self.string(&key)? {
+                *kind = Some(NodeKind::from_name(name).ok_or_else(|| {
+                    error(
                         &self.info_path(),
-                        format!(
-                            "nodes/{space} says '{stated}', but the matrices have {} {space} \
-                             nodes: the mesh's {}",
-                            nodes.len(),
-                            nodes.kind.name()
-                        ),
-                    ));
-                }
+                        format!("{key} is '{name}': vertices, edges, faces or face-frames"),
+                    )
+                })?);
             }
         }
-        Ok(())
+        Ok(stated)
     }
 }
 

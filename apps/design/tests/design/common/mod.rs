@@ -77,9 +77,13 @@ pub fn mixed_constraints(mesh: &TriangleMesh, vectors: usize, seed: u64) -> Vec<
     ));
     let point = Location::Face {
         face: faces[vectors + 2],
-        barycentric: Some([0.2, 0.3, 0.5]),
+        barycentric: Some(vec![0.2, 0.3, 0.5]),
     };
-    out.push(Constraint::new("curl-point", Target::Curl(1.0), point));
+    out.push(Constraint::new(
+        "curl-point",
+        Target::Curl(1.0),
+        point.clone(),
+    ));
     out.push(
         Constraint::new("div-other", Target::Divergence(-0.5), point)
             .with_family(OperatorFamily::Other),

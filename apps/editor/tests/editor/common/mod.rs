@@ -1,5 +1,6 @@
-//! Shared set-up of the editor's integration tests: an editor on an icosphere with a real
-//! spectral basis, served on a free loopback port, and a small HTTP client.
+//! Shared set-up of the editor's integration tests: an editor on an icosphere, a pair of pants or
+//! a polygon mesh with a real spectral basis, served on a free loopback port, and a small HTTP
+//! client.
 
 use std::collections::HashMap;
 use std::io::Read;
@@ -94,6 +95,27 @@ pub fn pants_server_for(id: &str, boundary: BoundaryCondition) -> (EditorServer,
     })
     .expect("editor starts");
     (EditorServer::start(editor, 0).expect("server starts"), mesh)
+}
+
+/// The editor on the polygon mesh `mesh` with `polygon-dec` (its default there) and the 60
+/// lowest eigenfields, served on 127.0.0.1.
+pub fn polygon_server(mesh: &SurfaceMesh) -> EditorServer {
+    assert!(!mesh.is_triangle_mesh());
+    let complex = catalog_entry("polygon-dec")
+        .expect("catalog id")
+        .build(mesh)
+        .expect("polygon-dec operators");
+    let spectral =
+        compute_basis(complex.as_ref(), &BasisRequest::fields(60)).expect("polygon basis");
+    let editor = Editor::start(EditorSetup {
+        mesh: mesh.clone(),
+        basis: ReducedBasis::from_spectral(&spectral).expect("reduced basis"),
+        constraints: None,
+        basis_size: None,
+        complex,
+    })
+    .expect("editor starts on a polygon mesh");
+    EditorServer::start(editor, 0).expect("server starts")
 }
 
 /// A blocking HTTP client for one server that returns every status (no error on 4xx) and sends
