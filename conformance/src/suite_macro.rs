@@ -2,7 +2,9 @@
 //! [`catalog_suites!`](crate::catalog_suites) macros.
 
 /// Instantiates the conformance suite for one discretization: a module `name` with one `#[test]`
-/// per core check of [`crate::suite`] (three of them properties over random draws), and a
+/// per core check of [`crate::suite`] (three of them properties over random draws), one,
+/// `accuracy`, running the accuracy checks ([`crate::suite::accuracy`]: consistency on patches,
+/// convergence on the sphere and hemisphere), and a
 /// submodule `reference` with one `#[test]` per named check of [`crate::reference`] and one,
 /// `listed`, that runs a list of them given as a value.
 ///
@@ -27,7 +29,8 @@
 ///   for a condition the entry offers; for one it does not, that the entry refuses it), and a
 ///   submodule `polygon_meshes`, the suite on polygon meshes ([`crate::polygon_suite`]: closed,
 ///   with holes under each boundary condition, generated; an entry that needs triangles must
-///   refuse them).
+///   refuse them), and its accuracy checks on quad meshes
+///   ([`crate::polygon_suite::polygon_accuracy`]).
 /// - `constructor`: `Fn(&TriangleMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
 ///   'static` or a `Box<dyn HodgeComplex>`; evaluated inside the generated module (which
 ///   imports `super::*`).
@@ -117,6 +120,11 @@ macro_rules! conformance_suite {
                         &super::suite_entry(),
                         $crate::suite::property_cases($crate::suite::DEFAULT_CASES),
                     );
+                }
+
+                #[test]
+                fn accuracy() {
+                    $crate::polygon_suite::polygon_accuracy(&super::suite_entry());
                 }
             }
         }
@@ -218,6 +226,11 @@ macro_rules! conformance_suite {
             #[test]
             fn generated_meshes() {
                 $crate::suite::generated_meshes(&build_complex, corpus(), cases());
+            }
+
+            #[test]
+            fn accuracy() {
+                $crate::suite::accuracy(&build_complex);
             }
 
             $crate::proptest::proptest! {

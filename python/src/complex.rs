@@ -15,7 +15,8 @@ use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     builtin_catalog, catalog_entry, default_discretization, polygon_dec_entry, polygon_dec_id,
-    BoxedComplex, MatrixComplex, MatrixSampling, DEFAULT_STABILISATION,
+    BoxedComplex, ComplexMatrices, FixedNodes, MatrixComplex, MatrixSampling,
+    DEFAULT_STABILISATION,
 };
 use tvf_spectral::SpectralBasis;
 
@@ -89,8 +90,12 @@ impl Complex {
     /// `whitney` or `polygon-sharp`. Errors name the matrix: shapes, finite entries, symmetry, positive
     /// definiteness on the used nodes (a Cholesky factorization of each sparse mass),
     /// `d1 · d0 = 0`.
+    ///
+    /// `fixed` (potentials, fields, co-potentials: the node indices the boundary condition fixes
+    /// to zero) and `boundary` (`tangential` or `normal`, recorded in the id and topology) as
+    /// the folder format's `fixed_nodes` and `boundary_condition`; both `None` on a closed mesh.
     #[staticmethod]
-    #[pyo3(signature = (mesh, d0, d1, m0, m1, m2, m2_inverse, sampling, id))]
+    #[pyo3(signature = (mesh, d0, d1, m0, m1, m2, m2_inverse, sampling, id, fixed=None, boundary=None))]
     #[allow(clippy::too_many_arguments)]
     fn from_matrices(
         py: Python<'_>,
@@ -103,6 +108,8 @@ impl Complex {
         m2_inverse: Option<MassInput<'_>>,
         sampling: &str,
         id: &str,
+        fixed: Option<(Vec<usize>, Vec<usize>, Vec<usize>)>,
+        boundary: Option<&str>,
     ) -> PyResult<Self> {
         let sampling = MatrixSampling::from_name(sampling).ok_or_else(|| {
             tvf_error(format!(
@@ -124,8 +131,28 @@ impl Complex {
             )),
         }
         .map_err(labelled)?;
+        let condition = match boundary {
+            None => BoundaryCondition::default(),
+            Some(name) => BoundaryCondition::from_name(name).ok_or_else(|| {
+                tvf_error(format!(
+                    "boundary_condition '{name}': tangential or normal"
+                ))
+            })?,
+        };
         let complex = py
-            .detach(|| MatrixComplex::new(id, &mesh.mesh, d0, d1, m0, m1, m2, sampling))
+            .detach(|| match (fixed, boundary) {
+                (None, None) => MatrixComplex::new(id, &mesh.mesh, d0, d1, m0, m1, m2, sampling),
+                (fixed, _) => {
+                    let (potentials, fields, co_potentials) = fixed.unwrap_or_default();
+                    let fixed = FixedNodes {
+                        potentials,
+                        fields,
+                        co_potentials,
+                    };
+                    let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
+                    MatrixComplex::with_boundary(id, &mesh.mesh, matrices, &fixed, condition, sampling)
+                }
+            })
             .map_err(|e| tvf_error(format!("{}: {e}", mesh.label)))?;
         Ok(Self {
             complex: Box::new(complex),

@@ -240,3 +240,142 @@ fn a_check_that_cannot_be_computed_fails_with_a_sentence() {
     assert!(stdout.contains("cannot be computed"), "{stdout}");
     assert!(stderr.contains("failed checks"), "{stderr}");
 }
+
+/// The accuracy checks run by default and are reported with their numbers: the consistency
+/// checks on the checked mesh and on the patches, the convergence orders with their tables.
+#[test]
+fn the_accuracy_checks_run_by_default_with_orders_and_tables() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sphere.obj");
+    tvf_core::io::write_obj(&path, &tvf_core::generate::icosphere(2)).unwrap();
+    let mesh = path.display().to_string();
+    let output = tvf(&[
+        "check",
+        &mesh,
+        "--discretization",
+        "dec-circumcentric",
+        "--json",
+        "-q",
+    ]);
+    assert_success(&output);
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let checks = report["checks"].as_array().unwrap();
+    let named = |name: &str| {
+        checks
+            .iter()
+            .find(|c| c["name"] == name)
+            .cloned()
+            .unwrap_or_else(|| panic!("no check {name}"))
+    };
+    let order = named("convergence:jittered hemisphere:integrable");
+    assert_eq!(order["status"], "passed");
+    assert_eq!(order["comparison"], "at_least");
+    assert!(order["measured"].as_f64().unwrap() >= 1.5, "{order}");
+    assert!(order["detail"].as_str().unwrap().contains("1536 faces"));
+    let energy = named("consistency:energy_of_linear:checked mesh");
+    assert_eq!(energy["status"], "passed");
+    // DEC co-potentials are 2-forms on faces: the co-potential patch test does not apply.
+    let co = named("consistency:co_laplacian_of_linear:flat box");
+    assert_eq!(co["status"], "not applicable");
+    assert!(co["detail"].as_str().unwrap().contains("faces"), "{co}");
+    let skipped = tvf(&[
+        "check",
+        &mesh,
+        "--discretization",
+        "dec-circumcentric",
+        "--no-accuracy",
+        "--json",
+        "-q",
+    ]);
+    assert_success(&skipped);
+    let report: Value = serde_json::from_slice(&skipped.stdout).unwrap();
+    let names: Vec<&str> = report["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["name"].as_str().unwrap())
+        .collect();
+    assert!(!names.iter().any(|n| n.starts_with("convergence:")));
+}
+
+/// A Hodge star inverted by mistake (`M1 = primal/dual`, every entry of a DEC star replaced by
+/// its reciprocal) in a `--complex` folder passes every structural check but fails the energy
+/// of a linear function on the mesh; the convergence checks cannot run on a folder and say why.
+#[test]
+fn an_inverted_star_in_a_folder_fails_naming_the_consistency_check() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("sphere.obj");
+    tvf_core::io::write_obj(&path, &tvf_core::generate::icosphere(2)).unwrap();
+    let mesh = path.display().to_string();
+    let folder = dir.path().join("ops").display().to_string();
+    let written = tvf(&[
+        "operators",
+        &mesh,
+        "--discretization",
+        "dec-barycentric",
+        "--format",
+        "mtx",
+        "-o",
+        &folder,
+        "-q",
+    ]);
+    assert_success(&written);
+    let m1 = std::path::Path::new(&folder).join("M1.mtx");
+    let text = std::fs::read_to_string(&m1).unwrap();
+    let mut size_seen = false;
+    let inverted: Vec<String> = text
+        .lines()
+        .map(|line| {
+            if line.starts_with('%') || !size_seen {
+                size_seen |= !line.starts_with('%');
+                return line.to_string();
+            }
+            let w: Vec<&str> = line.split_whitespace().collect();
+            let value: f64 = w[2].parse().unwrap();
+            format!("{} {} {:e}", w[0], w[1], 1.0 / value)
+        })
+        .collect();
+    std::fs::write(&m1, inverted.join("\n") + "\n").unwrap();
+    let output = tvf(&["check", &mesh, "--complex", &folder, "--json", "-q"]);
+    assert_eq!(output.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("consistency:energy_of_linear:checked mesh"),
+        "{stderr}"
+    );
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let checks = report["checks"].as_array().unwrap();
+    let structural_failures: Vec<&Value> = checks
+        .iter()
+        .filter(|c| c["status"] == "failed")
+        .filter(|c| !c["name"].as_str().unwrap().starts_with("consistency:"))
+        .collect();
+    assert!(structural_failures.is_empty(), "{structural_failures:?}");
+    let order = checks
+        .iter()
+        .find(|c| c["name"] == "convergence:sphere:integrable")
+        .unwrap();
+    assert_eq!(order["status"], "not applicable");
+    assert!(order["detail"].as_str().unwrap().contains("one mesh"));
+}
+
+/// A passing property run ends its progress with `N of N meshes passed` (a failing one with
+/// `K meshes passed, mesh K+1 of N failed`: `PropertyRunReport::cases_summary`).
+#[test]
+fn a_passing_run_counts_its_meshes() {
+    let dir = tempfile::tempdir().unwrap();
+    let counterexample = dir.path().join("ce.obj");
+    let output = tvf(&[
+        "check",
+        "--discretization",
+        "conforming-barycentric",
+        "--cases",
+        "2",
+        "--no-accuracy",
+        "-o",
+        counterexample.to_str().unwrap(),
+    ]);
+    assert_success(&output);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("2 of 2 meshes passed"), "{stderr}");
+}

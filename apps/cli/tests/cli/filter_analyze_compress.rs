@@ -153,6 +153,54 @@ fn filter_identity_returns_the_tangent_field_and_low_pass_smooths() {
     let filtered = tangent(&fields, &smooth);
     assert!(norm(&fields, &filtered) < norm(&fields, &input));
 
+    // Without --rest the rest gets the low-pass's gain at the basis's top frequency: the
+    // unrepresented high frequencies are removed (the README's example once kept them as noise).
+    let default_rest = fx.path("default-rest.txt");
+    let stdout = succeeded(&tvf(&[
+        &"filter",
+        &fx.mesh,
+        &fx.field,
+        &"--basis",
+        &fx.basis,
+        &"--integrable",
+        &"lowpass:t=5",
+        &"--cointegrable",
+        &"lowpass:t=5",
+        &"-o",
+        &default_rest,
+    ]));
+    assert!(
+        stdout.contains("(the filters' gain at the basis's highest frequency)"),
+        "{stdout}"
+    );
+    let kept_rest = fx.path("kept-rest.txt");
+    succeeded(&tvf(&[
+        &"filter",
+        &fx.mesh,
+        &fx.field,
+        &"--basis",
+        &fx.basis,
+        &"--integrable",
+        &"lowpass:t=5",
+        &"--cointegrable",
+        &"lowpass:t=5",
+        &"--rest",
+        &"1",
+        &"-o",
+        &kept_rest,
+    ]));
+    let (removed, kept) = (
+        tangent(&fields, &default_rest),
+        tangent(&fields, &kept_rest),
+    );
+    let difference = relative_error(&fields, &kept, &removed);
+    assert!(
+        norm(&fields, &removed) < norm(&fields, &kept) && difference > 1e-3,
+        "the default removed the rest: {} vs {} (difference {difference:e})",
+        norm(&fields, &removed),
+        norm(&fields, &kept)
+    );
+
     let error = failed(&tvf(&[
         &"filter",
         &fx.mesh,
