@@ -31,7 +31,6 @@ use tvf_core::discretization::{
     FieldSampling, HodgeComplex, HodgeOperators, LinearOperator, NodeKind, NodeSpace,
 };
 use tvf_core::geometry::{dot, norm, scale, sub};
-use tvf_core::mesh::Mesh;
 use tvf_core::SurfaceMesh;
 
 /// Relative tolerance of the sampled gradient of a linear function.

@@ -280,8 +280,10 @@ fn union_outcome(
     let mut detail = Vec::new();
     for &shift in &shifts {
         let l = field.count_below(shift)?;
-        let integrable = potential.count_below(shift)? - potential.kernel;
-        let cointegrable = co_potential.count_below(shift)? - co_potential.kernel;
+        let integrable = potential.count_below(shift)?.saturating_sub(potential.kernel);
+        let cointegrable = co_potential
+            .count_below(shift)?
+            .saturating_sub(co_potential.kernel);
         let expected = harmonic_dimension + integrable + cointegrable;
         worst = worst.max(l.abs_diff(expected));
         detail.push(format!("σ = {shift:.3e}: L {l}, {harmonic_dimension} + {integrable} + {cointegrable}"));

@@ -360,3 +360,23 @@ def test_hostile_builders_never_pass_and_never_crash():
         else:
             assert verdict == "passed=False" and failed, (name, verdict, failed)
     print(f"builder sweep: {len(lines)} hostile builders, none passed, none crashed")
+
+
+def test_compare_takes_complexes_ids_and_builders_alike():
+    """tvf.compare: a catalog id, a builder and a complex side by side; the builder of the
+    conforming complex agrees with its catalog entry exactly."""
+    V, F = torus(n=12, m=6)
+    mesh = tvf.Mesh(V, F)
+    dec = tvf.Complex(mesh, "nonconforming-barycentric")
+    result = tvf.compare(["conforming-barycentric", builder, dec], k=10, mesh=mesh)
+    assert result["reference"] == "conforming-barycentric"
+    assert [e["discretization"] for e in result["entries"]][1:] == ["builder", "nonconforming-barycentric"]
+    same = result["comparisons"][0]
+    assert max(same["eigenvalue_differences"]) < 1e-9, same
+    # Degenerate eigenspaces may be cut at k differently: shares lie in [0, 1].
+    assert all(-1e-9 <= x <= 1 + 1e-9 for x in same["second_in_first"])
+    other = result["comparisons"][1]
+    assert 0 < max(other["eigenvalue_differences"]) < 0.2
+    assert all(e["basis_seconds"] >= 0 for e in result["entries"])
+    with pytest.raises(TypeError, match="needs mesh"):
+        tvf.compare(["conforming-barycentric", builder], k=4)

@@ -1,6 +1,7 @@
 """The conformance suite's core checks on any complex, or property-based on a builder of
 complexes over generated meshes with a shrunk counterexample (:func:`check`); the convergence
-study against exact spectra (:func:`convergence`)."""
+study against exact spectra (:func:`convergence`); discretizations side by side on one mesh
+(:func:`compare`)."""
 
 from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
@@ -196,3 +197,35 @@ def _native_builder(builder):
         return Complex.from_matrices(Mesh(V, F, label="generated mesh"), **parts)._native
 
     return build
+
+
+def compare(entries, k, mesh=None):
+    """Discretizations side by side on one mesh, as ``tvf compare`` does: each entry's basis of
+    the ``k`` lowest fields (timed), its eigenvalues against the first entry's, and how much of
+    each eigenfield's squared norm lies in the span of the other's ``k`` fields (fields compared
+    as one tangent vector per face at its centroid, area-weighted; every entry must sample).
+
+    ``entries`` (at least two; the first is the reference) are :class:`Complex` objects, catalog
+    ids, or builders ``(V, F) -> dict`` as for :func:`check`; ids and builders need ``mesh``
+    (a :class:`Mesh`), complexes must all be on one mesh. Returns a dict: ``reference`` (id),
+    ``entries`` (per entry ``discretization``, ``field_dimension``, ``eigenvalues``,
+    ``basis_seconds``) and ``comparisons`` (per entry after the first: ``first``, ``second``,
+    ``eigenvalue_differences`` ``|la - lb| / max(la, lb)`` index by index, ``second_in_first``,
+    ``first_in_second``)."""
+    k = integer(k, "k")
+    complexes = []
+    for entry in entries:
+        if isinstance(entry, Complex):
+            complexes.append(entry)
+            continue
+        if mesh is None:
+            raise TypeError("compare: a catalog id or a builder needs mesh=tvf.Mesh(V, F)")
+        if isinstance(entry, str):
+            complexes.append(Complex(mesh, entry))
+        elif callable(entry):
+            parts = dict(entry(mesh.positions, mesh.faces))
+            parts.setdefault("id", getattr(entry, "__name__", "builder"))
+            complexes.append(Complex.from_matrices(mesh, **parts))
+        else:
+            raise TypeError(f"compare: expected a tvf.Complex, a catalog id or a builder, got {type(entry).__name__}")
+    return _native.compare([c._native for c in complexes], k)

@@ -1,5 +1,6 @@
 //! End-to-end: `tvf check` on a mesh file (text and JSON, measured numbers, exit 1 naming the
-//! failed check) and on generated meshes; on polygon meshes (a file, and generated ones).
+//! failed check) and on generated meshes; on polygon meshes (a file, and generated ones); the
+//! accuracy checks (by default; the tests of other checks pass `--no-accuracy` to stay quick).
 
 use crate::common::{self, assert_success};
 use serde_json::Value;
@@ -25,6 +26,7 @@ fn a_mesh_file_gets_every_check_with_its_measured_number() {
     let mesh = quad_torus(dir.path());
     let output = tvf(&[
         "check",
+        "--no-accuracy",
         &mesh,
         "--discretization",
         "conforming-barycentric",
@@ -39,7 +41,7 @@ fn a_mesh_file_gets_every_check_with_its_measured_number() {
     assert_eq!(j2["measured"], 0.0);
     let d1d0 = named("d1_d0_zero").expect("a core check");
     assert!(d1d0["measured"].as_f64().unwrap() <= d1d0["limit"].as_f64().unwrap());
-    let text = tvf(&["check", &mesh, "--discretization", "conforming-barycentric"]);
+    let text = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "conforming-barycentric"]);
     assert_success(&text);
     assert!(String::from_utf8_lossy(&text.stdout).contains("cotan_formula:potential"));
 }
@@ -48,7 +50,7 @@ fn a_mesh_file_gets_every_check_with_its_measured_number() {
 fn a_refused_mesh_exits_1_naming_the_check() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = quad_torus(dir.path());
-    let output = tvf(&["check", &mesh, "--discretization", "dec-barycentric"]);
+    let output = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "dec-barycentric"]);
     assert_eq!(output.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("failed checks: construction"), "{stderr}");
@@ -60,6 +62,7 @@ fn generated_meshes_pass_and_write_no_counterexample() {
     let counterexample = dir.path().join("ce.obj");
     let output = tvf(&[
         "check",
+        "--no-accuracy",
         "--discretization",
         "dec-circumcentric",
         "--cases",
@@ -89,7 +92,7 @@ fn polygon_mesh(dir: &std::path::Path) -> String {
 fn a_polygon_mesh_file_gets_polygon_dec_and_the_polygon_sampling_checks() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = polygon_mesh(dir.path());
-    let output = tvf(&["check", &mesh, "--json"]);
+    let output = tvf(&["check", "--no-accuracy", &mesh, "--json"]);
     assert_success(&output);
     let report: Value = serde_json::from_slice(&output.stdout).unwrap();
     assert_eq!(report["discretization"], "polygon-dec");
@@ -108,7 +111,7 @@ fn a_polygon_mesh_file_gets_polygon_dec_and_the_polygon_sampling_checks() {
             .unwrap_or_else(|| panic!("{name} missing: {checks:?}"));
         assert_eq!(check["status"], "passed", "{check}");
     }
-    let text = tvf(&["check", &mesh, "--discretization", "polygon-dec"]);
+    let text = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "polygon-dec"]);
     assert_success(&text);
     assert!(String::from_utf8_lossy(&text.stdout).contains("(24 faces)"));
 }
@@ -117,7 +120,7 @@ fn a_polygon_mesh_file_gets_polygon_dec_and_the_polygon_sampling_checks() {
 fn a_triangle_entry_on_a_polygon_mesh_exits_1_naming_the_construction() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = polygon_mesh(dir.path());
-    let output = tvf(&["check", &mesh, "--discretization", "conforming-barycentric"]);
+    let output = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "conforming-barycentric"]);
     assert_eq!(output.status.code(), Some(1));
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("conforming-barycentric"), "{stdout}");
@@ -131,6 +134,7 @@ fn generated_polygon_meshes_pass_for_polygon_dec_and_are_refused_to_triangle_ent
     let counterexample = dir.path().join("ce.obj");
     let output = tvf(&[
         "check",
+        "--no-accuracy",
         "--discretization",
         "polygon-dec",
         "--cases",
@@ -156,6 +160,7 @@ fn generated_polygon_meshes_pass_for_polygon_dec_and_are_refused_to_triangle_ent
     assert!(!counterexample.exists());
     let refused = tvf(&[
         "check",
+        "--no-accuracy",
         "--discretization",
         "dec-barycentric",
         "--meshes",
