@@ -9,7 +9,7 @@
 //! meshes run on them too. The meshes are inscribed: their own geometric error is `O(h²)` and
 //! part of what the convergence checks measure.
 
-use crate::corpus::try_delaunay_flips;
+use crate::corpus::{delaunay_flips, try_delaunay_flips};
 use crate::polygon_operations::jittered;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -135,7 +135,8 @@ fn on_surface(mesh: &SurfaceMesh, seed: u64, equator: bool) -> Result<SurfaceMes
 /// The closed box `[−1, 1]³` with every cube face an `n × n` grid (`n` = [`BOX_CELLS`]) of
 /// planar quads (`quads`) or of triangles (each quad split along alternating diagonals), the
 /// grid vertices strictly inside a cube face moved within that face by up to [`JITTER`] of the
-/// grid spacing: six flat, irregular patches joined along the cube's edges.
+/// grid spacing, triangles made Delaunay by flips: six flat, irregular patches joined along the
+/// cube's edges.
 pub fn flat_box(quads: bool, seed: u64) -> SurfaceMesh {
     let n = BOX_CELLS;
     let spacing = 2.0 / n as f64;
@@ -190,7 +191,13 @@ pub fn flat_box(quads: bool, seed: u64) -> SurfaceMesh {
             }
         }
     }
-    SurfaceMesh::new(positions, faces).expect("the jittered box is a valid closed mesh")
+    let mesh = SurfaceMesh::new(positions, faces).expect("the jittered box is a valid closed mesh");
+    // Delaunay by flips, so that entries needing Delaunay meshes build on it; a flip changes
+    // the surface only at the cube's edges (a diagonal inside a planar face stays in the face).
+    match mesh.as_triangles() {
+        Some(triangles) => delaunay_flips(triangles).into(),
+        None => mesh,
+    }
 }
 
 /// The unit vector along coordinate `axis`.

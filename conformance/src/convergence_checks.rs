@@ -22,7 +22,7 @@ use crate::accuracy_meshes::{Sequence, LEVELS};
 use crate::check_outcome::CheckOutcome;
 use crate::dense::{free_eigenproblem, generalized_eigenvalues};
 use crate::property_runner::SurfaceBuilder;
-use tvf_core::discretization::{Eigenproblem, HodgeComplex, HodgeOperators, NodeSpace};
+use tvf_core::discretization::{Eigenproblem, HodgeOperators, NodeSpace};
 use tvf_core::geometry::{norm, sub};
 use tvf_core::mesh::Mesh;
 

@@ -16,7 +16,8 @@
 /// conformance_suite!(name, constructor, corpus = Corpus::Delaunay);
 /// conformance_suite!(name, constructor, reference = [cotan_formula, rotation]);
 /// conformance_suite!(name, constructor, cases = 16);
-/// conformance_suite!(name, constructor, corpus = ..., reference = [...], reference_checks = ..., cases = ...);
+/// conformance_suite!(name, constructor, accuracy = false);
+/// conformance_suite!(name, constructor, corpus = ..., reference = [...], reference_checks = ..., cases = ..., accuracy = ...);
 /// ```
 ///
 /// - `entry`: an expression of type [`CatalogEntry`](tvf_discretizations::CatalogEntry) (of any
@@ -45,6 +46,10 @@
 ///   `generated_meshes`), default [`crate::suite::DEFAULT_CASES`] (64). The environment variable
 ///   `PROPTEST_CASES`, which proptest reads, can lower it (never raise it):
 ///   [`crate::suite::property_cases`].
+/// - `accuracy = false`: no `accuracy` test, for a complex that by design does not approximate
+///   the smooth operators (a wrapper that rescales an inner product, as
+///   [`crate::scaled_co_potentials::ScaledCoPotentials`] does); every entry that is meant to be
+///   a discretization keeps it.
 #[macro_export]
 macro_rules! conformance_suite {
     (
@@ -136,6 +141,7 @@ macro_rules! conformance_suite {
         $(, reference = [$($check:ident),* $(,)?])?
         $(, reference_checks = $checks:expr)?
         $(, cases = $cases:expr)?
+        $(, accuracy = $accuracy:literal)?
         $(,)?
     ) => {
         mod $name {
@@ -228,10 +234,7 @@ macro_rules! conformance_suite {
                 $crate::suite::generated_meshes(&build_complex, corpus(), cases());
             }
 
-            #[test]
-            fn accuracy() {
-                $crate::suite::accuracy(&build_complex);
-            }
+            $crate::__accuracy_test!($($accuracy)?);
 
             $crate::proptest::proptest! {
                 #![proptest_config($crate::proptest::prelude::ProptestConfig::with_cases(cases()))]
@@ -267,6 +270,19 @@ macro_rules! conformance_suite {
 
                 $crate::__listed_reference_checks!($($checks)?);
             }
+        }
+    };
+}
+
+/// The test `accuracy` of a suite line: there unless the line says `accuracy = false`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __accuracy_test {
+    (false) => {};
+    ($($on:literal)?) => {
+        #[test]
+        fn accuracy() {
+            $crate::suite::accuracy(&build_complex);
         }
     };
 }

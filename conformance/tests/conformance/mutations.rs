@@ -424,3 +424,27 @@ fn the_suite_macro_fails_the_inverted_star() {
         "{message}"
     );
 }
+
+/// A co-potential inner product scaled by 2 (the seam's documented wrapper) halves every
+/// co-integrable eigenvalue: structure intact, the co-integrable convergence fails with a
+/// relative error stuck at 1/2 while the integrable family converges.
+#[test]
+fn a_scaled_inner_product_fails_the_co_integrable_convergence() {
+    use tvf_conformance::accuracy_meshes::Sequence;
+    use tvf_conformance::convergence_checks::measure_convergence;
+    use tvf_conformance::scaled_co_potentials::ScaledCoPotentials;
+    use tvf_core::SurfaceMesh;
+    use tvf_discretizations::{Conforming, MassLumping};
+    let builder = |mesh: &SurfaceMesh| -> Result<BoxedComplex, String> {
+        let conforming = Conforming::new(mesh.as_triangles().unwrap(), MassLumping::Barycentric)
+            .map_err(|e| e.to_string())?;
+        let scaled = ScaledCoPotentials::new(conforming, 2.0).map_err(|e| e.to_string())?;
+        Ok(Box::new(scaled))
+    };
+    let [integrable, cointegrable]: [_; 2] = measure_convergence(&builder, Sequence::Sphere(false))
+        .try_into()
+        .unwrap();
+    assert!(!integrable.failed_check(), "{integrable:?}");
+    assert!(cointegrable.failed_check(), "{cointegrable:?}");
+    assert!(cointegrable.detail.contains("4.98e-1 (1280 faces"), "{cointegrable:?}");
+}
