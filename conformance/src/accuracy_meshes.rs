@@ -210,7 +210,10 @@ fn unit(axis: usize) -> [f64; 3] {
 /// Whether `point` lies inside one face of the box of [`flat_box`], at least `margin` from the
 /// cube's edges: on a flat patch, with every node within `margin` of it on that patch too.
 pub fn deep_inside_a_box_face(point: [f64; 3], margin: f64) -> bool {
-    let on_face = point.iter().filter(|x| (x.abs() - 1.0).abs() < 1e-12).count();
+    let on_face = point
+        .iter()
+        .filter(|x| (x.abs() - 1.0).abs() < 1e-12)
+        .count();
     let inner = point.iter().filter(|x| x.abs() <= 1.0 - margin).count();
     on_face == 1 && inner == 2
 }

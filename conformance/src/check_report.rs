@@ -35,7 +35,8 @@ pub const DENSE_CHECK_NAMES: [&str; 9] = [
 
 /// The names of the outcomes of the Lemma 1 check, as measured and as skipped above
 /// [`EIGENVECTOR_LIMIT`].
-pub const LEMMA1_CHECK_NAMES: [&str; 2] = ["Lemma 1: unit eigenfields", "Lemma 1: eigenfields of L"];
+pub const LEMMA1_CHECK_NAMES: [&str; 2] =
+    ["Lemma 1: unit eigenfields", "Lemma 1: eigenfields of L"];
 
 /// Every outcome of [`core_check_report`], in a fixed order.
 #[derive(Debug, Clone, PartialEq)]
@@ -119,7 +120,10 @@ pub fn core_check_report<M: Mesh + ?Sized>(complex: &dyn HodgeComplex, mesh: &M)
                     .iter()
                     .chain(&LEMMA1_CHECK_NAMES)
                     .map(|name| {
-                        CheckOutcome::skipped(*name, format!("{}; {reason}", too_large(DENSE_LIMIT)))
+                        CheckOutcome::skipped(
+                            *name,
+                            format!("{}; {reason}", too_large(DENSE_LIMIT)),
+                        )
                     }),
             ),
         }

@@ -408,7 +408,10 @@ mod tests {
             &outcome,
             Path::new("ce.obj"),
         );
-        assert_eq!(report.cases_summary(), "3 meshes passed, mesh 4 of 8 failed");
+        assert_eq!(
+            report.cases_summary(),
+            "3 meshes passed, mesh 4 of 8 failed"
+        );
         let lines = report.lines();
         assert_eq!(lines[0], "mine on 8 generated meshes (seed 1): FAILED");
         assert_eq!(lines.len(), 3);
@@ -444,7 +447,10 @@ mod tests {
         );
         let keys = serde_json::to_value(&report).unwrap();
         assert_eq!(keys["accuracy"][0]["comparison"], "at_least");
-        assert!(report.lines().iter().any(|l| l.contains("0.1") || l.contains("1.000e-1")));
+        assert!(report
+            .lines()
+            .iter()
+            .any(|l| l.contains("0.1") || l.contains("1.000e-1")));
     }
 
     #[test]

@@ -178,9 +178,7 @@ pub fn measure_convergence(builder: SurfaceBuilder, sequence: Sequence) -> Vec<C
             Err(reason) => {
                 return names
                     .into_iter()
-                    .map(|name| {
-                        CheckOutcome::failed(name, format!("level {level}: {reason}"))
-                    })
+                    .map(|name| CheckOutcome::failed(name, format!("level {level}: {reason}")))
                     .collect()
             }
         }
@@ -192,12 +190,7 @@ pub fn measure_convergence(builder: SurfaceBuilder, sequence: Sequence) -> Vec<C
             let points: Vec<(f64, f64)> = levels.iter().map(|l| (l.h, l.errors[family])).collect();
             let table: Vec<String> = levels
                 .iter()
-                .map(|l| {
-                    format!(
-                        "{:.2e} ({} faces, h {:.3})",
-                        l.errors[family], l.faces, l.h
-                    )
-                })
+                .map(|l| format!("{:.2e} ({} faces, h {:.3})", l.errors[family], l.faces, l.h))
                 .collect();
             CheckOutcome::at_least(
                 name,

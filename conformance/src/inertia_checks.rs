@@ -61,7 +61,9 @@ impl FreePencil {
         let csr = self.stiffness.to_csr();
         (0..csr.rows())
             .map(|i| {
-                let row: f64 = csr.outer_view(i).map_or(0.0, |r| r.iter().map(|(_, v)| v.abs()).sum());
+                let row: f64 = csr
+                    .outer_view(i)
+                    .map_or(0.0, |r| r.iter().map(|(_, v)| v.abs()).sum());
                 row / self.mass[i]
             })
             .fold(0.0, f64::max)
@@ -136,11 +138,15 @@ pub const CHECK_NAMES: [&str; 11] = [
 
 /// Why the checks cannot run on `complex`: a mass that is not diagonal.
 pub fn unsupported_reason(complex: &dyn HodgeComplex) -> Option<String> {
-    let sparse: Vec<&str> = [("M0", complex.m0()), ("M1", complex.m1()), ("M2", complex.m2())]
-        .into_iter()
-        .filter(|(_, m)| !m.is_diagonal())
-        .map(|(name, _)| name)
-        .collect();
+    let sparse: Vec<&str> = [
+        ("M0", complex.m0()),
+        ("M1", complex.m1()),
+        ("M2", complex.m2()),
+    ]
+    .into_iter()
+    .filter(|(_, m)| !m.is_diagonal())
+    .map(|(name, _)| name)
+    .collect();
     (!sparse.is_empty()).then(|| {
         format!(
             "{} not diagonal: L's stiffness holds a dense inverse mass, so the sparse inertia \
@@ -158,10 +164,15 @@ pub fn measure_inertia_checks(
 ) -> Vec<CheckOutcome> {
     let run = || -> Result<Vec<CheckOutcome>, String> {
         let diagonal = |m: &tvf_core::discretization::Mass| {
-            m.diagonal_values().map(<[f64]>::to_vec).ok_or("a mass is not diagonal")
+            m.diagonal_values()
+                .map(<[f64]>::to_vec)
+                .ok_or("a mass is not diagonal")
         };
         let (m0, m1) = (diagonal(complex.m0())?, diagonal(complex.m1())?);
-        let m2_inverse = complex.m2().inverse_diagonal().ok_or("M2 is not diagonal")?;
+        let m2_inverse = complex
+            .m2()
+            .inverse_diagonal()
+            .ok_or("M2 is not diagonal")?;
         let laplacian = complex
             .dirichlet_energy()
             .as_sparse()
@@ -173,8 +184,13 @@ pub fn measure_inertia_checks(
             .ok_or("the co-potential stiffness is not a sparse matrix")?
             .clone();
         let field = FreePencil::new(&laplacian, &m1, complex.field_nodes());
-        let potential = FreePencil::new(complex.potential_stiffness(), &m0, complex.potential_nodes());
-        let co_potential = FreePencil::new(&co_stiffness, &m2_inverse, complex.co_potential_nodes());
+        let potential = FreePencil::new(
+            complex.potential_stiffness(),
+            &m0,
+            complex.potential_nodes(),
+        );
+        let co_potential =
+            FreePencil::new(&co_stiffness, &m2_inverse, complex.co_potential_nodes());
         let integrable = potential.lowest_nonzero(SCALAR_PAIRS)?;
         let cointegrable = co_potential.lowest_nonzero(SCALAR_PAIRS)?;
         let mut merged: Vec<f64> = integrable
@@ -183,7 +199,10 @@ pub fn measure_inertia_checks(
             .map(|p| p.0)
             .collect();
         merged.sort_by(f64::total_cmp);
-        let lowest = merged.first().copied().ok_or("no nonzero scalar eigenvalue")?;
+        let lowest = merged
+            .first()
+            .copied()
+            .ok_or("no nonzero scalar eigenvalue")?;
         let mut outcomes = semidefinite_outcomes([&field, &potential, &co_potential])?;
         outcomes.extend(zero_outcomes(
             [&field, &potential, &co_potential],
@@ -195,7 +214,13 @@ pub fn measure_inertia_checks(
             &merged,
             harmonic_dimension,
         )?);
-        outcomes.extend(lemma1_outcomes(complex, &laplacian, &m1, &integrable, &cointegrable));
+        outcomes.extend(lemma1_outcomes(
+            complex,
+            &laplacian,
+            &m1,
+            &integrable,
+            &cointegrable,
+        ));
         Ok(outcomes)
     };
     run().unwrap_or_else(|reason| all_failed(&format!("the sparse checks failed: {reason}")))
@@ -243,7 +268,12 @@ fn zero_outcomes(
         field.free.len()
     );
     let mut outcomes = vec![
-        CheckOutcome::count("kernel dimension", below, harmonic_dimension, detail.clone()),
+        CheckOutcome::count(
+            "kernel dimension",
+            below,
+            harmonic_dimension,
+            detail.clone(),
+        ),
         CheckOutcome::count("zeros of L", below, harmonic_dimension, detail),
     ];
     for (pencil, which) in [(potential, "exact"), (co_potential, "co-exact")] {
@@ -275,18 +305,27 @@ fn union_outcome(
         .map(|i| (merged[i - 1] * merged[i]).sqrt())
         .collect();
     let step = (gaps.len() / UNION_SHIFTS).max(1);
-    let shifts: Vec<f64> = gaps.iter().copied().step_by(step).take(UNION_SHIFTS).collect();
+    let shifts: Vec<f64> = gaps
+        .iter()
+        .copied()
+        .step_by(step)
+        .take(UNION_SHIFTS)
+        .collect();
     let mut worst = 0usize;
     let mut detail = Vec::new();
     for &shift in &shifts {
         let l = field.count_below(shift)?;
-        let integrable = potential.count_below(shift)?.saturating_sub(potential.kernel);
+        let integrable = potential
+            .count_below(shift)?
+            .saturating_sub(potential.kernel);
         let cointegrable = co_potential
             .count_below(shift)?
             .saturating_sub(co_potential.kernel);
         let expected = harmonic_dimension + integrable + cointegrable;
         worst = worst.max(l.abs_diff(expected));
-        detail.push(format!("σ = {shift:.3e}: L {l}, {harmonic_dimension} + {integrable} + {cointegrable}"));
+        detail.push(format!(
+            "σ = {shift:.3e}: L {l}, {harmonic_dimension} + {integrable} + {cointegrable}"
+        ));
     }
     Ok(CheckOutcome::count(
         "spectrum union",
@@ -310,7 +349,9 @@ fn lemma1_outcomes(
 ) -> Vec<CheckOutcome> {
     let lambda_max = (0..laplacian.rows())
         .map(|i| {
-            let row = laplacian.outer_view(i).map_or(0.0, |r| r.iter().map(|(_, v)| v.abs()).sum());
+            let row = laplacian
+                .outer_view(i)
+                .map_or(0.0, |r| r.iter().map(|(_, v)| v.abs()).sum());
             if m1[i] > 0.0 {
                 row / m1[i]
             } else {
@@ -324,7 +365,11 @@ fn lemma1_outcomes(
         .iter()
         .map(|(l, phi)| (*l, mul_vec(complex.d0(), phi)))
         .chain(cointegrable.iter().map(|(l, psi)| {
-            let u: Vec<f64> = mul_vec(&d1t, psi).iter().zip(m1).map(|(x, m)| -x / m).collect();
+            let u: Vec<f64> = mul_vec(&d1t, psi)
+                .iter()
+                .zip(m1)
+                .map(|(x, m)| -x / m)
+                .collect();
             (*l, u)
         }));
     let (mut worst_norm, mut worst_residual) = (0.0f64, 0.0f64);
@@ -347,7 +392,9 @@ fn lemma1_outcomes(
             "Lemma 1: unit eigenfields",
             worst_norm,
             1e-9,
-            format!("{count} eigenfields of the lowest scalar pairs: M1 norm off by {worst_norm:e}"),
+            format!(
+                "{count} eigenfields of the lowest scalar pairs: M1 norm off by {worst_norm:e}"
+            ),
         ),
         CheckOutcome::at_most(
             "Lemma 1: eigenfields of L",
@@ -374,7 +421,11 @@ mod tests {
     #[test]
     fn large_complexes_get_every_check_by_inertia() {
         let mesh = staggered_torus(1.0, 0.4, 40, 16);
-        for id in ["conforming-barycentric", "dec-circumcentric", "nonconforming-voronoi"] {
+        for id in [
+            "conforming-barycentric",
+            "dec-circumcentric",
+            "nonconforming-voronoi",
+        ] {
             let built = catalog_entry(id).unwrap().build(&mesh).unwrap();
             assert!(built.field_dimension() > crate::corpus::DENSE_LIMIT);
             let report = core_check_report(built.as_ref(), &mesh);
@@ -394,7 +445,9 @@ mod tests {
                 .collect();
             assert!(
                 failed.contains(&("kernel dimension", 2.0))
-                    && failed.iter().any(|(n, m)| *n == "spectrum union" && *m == 2.0),
+                    && failed
+                        .iter()
+                        .any(|(n, m)| *n == "spectrum union" && *m == 2.0),
                 "{id}: {failed:?}"
             );
         }
@@ -404,7 +457,10 @@ mod tests {
     #[test]
     fn sparse_masses_are_named_as_the_reason() {
         let mesh = staggered_torus(1.0, 0.4, 40, 16);
-        let built = catalog_entry("whitney-galerkin").unwrap().build(&mesh).unwrap();
+        let built = catalog_entry("whitney-galerkin")
+            .unwrap()
+            .build(&mesh)
+            .unwrap();
         let reason = unsupported_reason(built.as_ref()).unwrap();
         assert!(reason.contains("M0, M1 not diagonal"), "{reason}");
     }

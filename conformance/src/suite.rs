@@ -5,8 +5,8 @@ use crate::accuracy::{accuracy_report, AccuracyRequest};
 use crate::algebra_checks::{
     check_d1_d0_zero, check_nodes_and_masses, check_psd_operators, check_symmetric_operators,
 };
-use crate::check_outcome::assert_outcomes;
 use crate::capability_checks::{check_point_evaluation, check_sampling};
+use crate::check_outcome::assert_outcomes;
 use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{
     check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
@@ -17,8 +17,8 @@ use crate::spectral_checks::{
 };
 use crate::strategies::MeshNeeds;
 use crate::{build, for_each_mesh, Constructor};
-use tvf_core::SurfaceMesh;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::SurfaceMesh;
 
 /// Cases per property of a suite line unless its `cases = N` says otherwise.
 pub const DEFAULT_CASES: u32 = 64;

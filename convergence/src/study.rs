@@ -86,7 +86,10 @@ impl Surface {
 
     /// Whether the refinements are jittered (irregular).
     pub fn is_jittered(self) -> bool {
-        matches!(self, Surface::JitteredSphere | Surface::JitteredHemisphere(_))
+        matches!(
+            self,
+            Surface::JitteredSphere | Surface::JitteredHemisphere(_)
+        )
     }
 
     /// The jittered surfaces: the sphere and the hemisphere under both conditions.

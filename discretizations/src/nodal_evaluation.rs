@@ -25,7 +25,9 @@ impl Interpolation {
     fn of(kind: NodeKind, mesh: &SurfaceMesh) -> Option<Self> {
         match kind {
             NodeKind::Vertices => Some(Self::Corners),
-            NodeKind::Edges => Some(Self::EdgeMidpoints(mesh.as_triangles()?.face_edges().to_vec())),
+            NodeKind::Edges => Some(Self::EdgeMidpoints(
+                mesh.as_triangles()?.face_edges().to_vec(),
+            )),
             NodeKind::Faces => Some(Self::Faces),
             NodeKind::FaceFrames => None,
         }
@@ -112,15 +114,19 @@ mod tests {
             let lambda = [0.2, 0.5, 0.3];
             let point = SurfacePoint::barycentric(face, lambda);
             let corners = triangles.faces()[face];
-            let position: [f64; 3] = std::array::from_fn(|k| {
-                (0..3).map(|c| lambda[c] * p[corners[c]][k]).sum::<f64>()
-            });
+            let position: [f64; 3] =
+                std::array::from_fn(|k| (0..3).map(|c| lambda[c] * p[corners[c]][k]).sum::<f64>());
             let at = |weights: Vec<(usize, f64)>, values: &[f64]| -> f64 {
                 weights.iter().map(|&(i, w)| w * values[i]).sum()
             };
             let expected = linear(position);
-            assert!((at(evaluation.potential_weights(&point), &vertex_values) - expected).abs() < 1e-14);
-            assert!((at(evaluation.co_potential_weights(&point), &edge_values) - expected).abs() < 1e-14);
+            assert!(
+                (at(evaluation.potential_weights(&point), &vertex_values) - expected).abs() < 1e-14
+            );
+            assert!(
+                (at(evaluation.co_potential_weights(&point), &edge_values) - expected).abs()
+                    < 1e-14
+            );
         }
         let faces = NodalEvaluation::new(&mesh, NodeKind::Vertices, NodeKind::Faces).unwrap();
         assert_eq!(

@@ -134,9 +134,7 @@ impl Complex {
         let condition = match boundary {
             None => BoundaryCondition::default(),
             Some(name) => BoundaryCondition::from_name(name).ok_or_else(|| {
-                tvf_error(format!(
-                    "boundary_condition '{name}': tangential or normal"
-                ))
+                tvf_error(format!("boundary_condition '{name}': tangential or normal"))
             })?,
         };
         let complex = py
@@ -150,7 +148,9 @@ impl Complex {
                         co_potentials,
                     };
                     let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
-                    MatrixComplex::with_boundary(id, &mesh.mesh, matrices, &fixed, condition, sampling)
+                    MatrixComplex::with_boundary(
+                        id, &mesh.mesh, matrices, &fixed, condition, sampling,
+                    )
                 }
             })
             .map_err(|e| tvf_error(format!("{}: {e}", mesh.label)))?;

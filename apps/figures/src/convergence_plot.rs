@@ -132,7 +132,11 @@ fn discretizations(report: &ConvergenceReport) -> Vec<String> {
 
 /// `Unit sphere`, `Unit hemisphere, tangential`, `Jittered unit sphere`, …
 fn surface_title(surface: Surface) -> String {
-    let jittered = if surface.is_jittered() { "Jittered u" } else { "U" };
+    let jittered = if surface.is_jittered() {
+        "Jittered u"
+    } else {
+        "U"
+    };
     let quads = if surface.has_quads() { " (quads)" } else { "" };
     match surface.boundary() {
         None => format!("{jittered}nit sphere{quads}"),
@@ -195,7 +199,10 @@ mod tests {
         assert_eq!(reference.color, Some(REFERENCE_GREY));
         let [(f0, e0), (f1, e1)] = [reference.points[0], reference.points[1]];
         assert_eq!((f0, f1), (80.0, 320.0));
-        assert!(((e1 / e0).ln() / (f1 / f0).ln() + 1.0).abs() < 1e-12, "slope −1");
+        assert!(
+            ((e1 / e0).ln() / (f1 / f0).ln() + 1.0).abs() < 1e-12,
+            "slope −1"
+        );
         let (lo, hi) = plot.y.range.unwrap();
         assert!(lo >= 1e-3 && hi <= 0.2, "{lo} – {hi}");
         plot.render().unwrap();

@@ -338,7 +338,10 @@ fn inverted_barycentric_star(mesh: &TriangleMesh) -> Result<BoxedComplex, String
         );
         for &e in &mesh.face_edges()[t] {
             let [a, b] = mesh.edges()[e];
-            let midpoint = scale([p[a][0] + p[b][0], p[a][1] + p[b][1], p[a][2] + p[b][2]], 0.5);
+            let midpoint = scale(
+                [p[a][0] + p[b][0], p[a][1] + p[b][1], p[a][2] + p[b][2]],
+                0.5,
+            );
             dual[e] += norm(sub(barycentre, midpoint));
         }
     }
@@ -396,7 +399,11 @@ fn the_inverted_star_fails_the_accuracy_checks() {
         .find(|o| o.name == "convergence:sphere:integrable")
         .unwrap();
     assert!(order.measured < 1.0, "{order:?}");
-    assert!(order.detail.contains("faces, h"), "the table: {}", order.detail);
+    assert!(
+        order.detail.contains("faces, h"),
+        "the table: {}",
+        order.detail
+    );
     // Whitney sampling reproduces gradients whatever the star: that check passes.
     let gradient = report
         .outcomes
@@ -446,5 +453,8 @@ fn a_scaled_inner_product_fails_the_co_integrable_convergence() {
         .unwrap();
     assert!(!integrable.failed_check(), "{integrable:?}");
     assert!(cointegrable.failed_check(), "{cointegrable:?}");
-    assert!(cointegrable.detail.contains("4.98e-1 (1280 faces"), "{cointegrable:?}");
+    assert!(
+        cointegrable.detail.contains("4.98e-1 (1280 faces"),
+        "{cointegrable:?}"
+    );
 }

@@ -125,9 +125,8 @@ pub fn run(args: CompareArgs, context: &RunContext) -> Result<()> {
                 .build_complex(id, Some(args.boundary.unwrap_or_default()), &mesh)
                 .with_context(|| input.label())?,
             EntryName::Folder(dir) => Box::new(
-                tvf_spectral::read_complex_folder(dir, &mesh, &original_vertex).with_context(
-                    || format!("--complex {} on {}", dir.display(), input.label()),
-                )?,
+                tvf_spectral::read_complex_folder(dir, &mesh, &original_vertex)
+                    .with_context(|| format!("--complex {} on {}", dir.display(), input.label()))?,
             ),
         };
         entries.push(compute_entry(complex, label, args.count, &input)?);

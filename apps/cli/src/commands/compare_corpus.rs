@@ -301,11 +301,17 @@ mod tests {
         assert_eq!(summaries[0].median_relative_difference, None);
         assert_eq!(summaries[1].succeeded, 1);
         assert_eq!(summaries[1].success_rate, 0.5);
-        assert_eq!(summaries[1].failures, vec![("m2".to_string(), "refused".to_string())]);
+        assert_eq!(
+            summaries[1].failures,
+            vec![("m2".to_string(), "refused".to_string())]
+        );
         let d = summaries[1].median_relative_difference.unwrap();
         assert!((d - 0.1 / 1.1).abs() < 1e-12);
         let lines = summary_lines(&summaries, "a");
-        assert!(lines[2].contains("1/2") && lines[2].contains("50.0%"), "{lines:?}");
+        assert!(
+            lines[2].contains("1/2") && lines[2].contains("50.0%"),
+            "{lines:?}"
+        );
         assert!(lines.iter().any(|l| l == "  m2: refused"), "{lines:?}");
     }
 }

@@ -41,7 +41,13 @@ fn a_mesh_file_gets_every_check_with_its_measured_number() {
     assert_eq!(j2["measured"], 0.0);
     let d1d0 = named("d1_d0_zero").expect("a core check");
     assert!(d1d0["measured"].as_f64().unwrap() <= d1d0["limit"].as_f64().unwrap());
-    let text = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "conforming-barycentric"]);
+    let text = tvf(&[
+        "check",
+        "--no-accuracy",
+        &mesh,
+        "--discretization",
+        "conforming-barycentric",
+    ]);
     assert_success(&text);
     assert!(String::from_utf8_lossy(&text.stdout).contains("cotan_formula:potential"));
 }
@@ -50,7 +56,13 @@ fn a_mesh_file_gets_every_check_with_its_measured_number() {
 fn a_refused_mesh_exits_1_naming_the_check() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = quad_torus(dir.path());
-    let output = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "dec-barycentric"]);
+    let output = tvf(&[
+        "check",
+        "--no-accuracy",
+        &mesh,
+        "--discretization",
+        "dec-barycentric",
+    ]);
     assert_eq!(output.status.code(), Some(1));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("failed checks: construction"), "{stderr}");
@@ -111,7 +123,13 @@ fn a_polygon_mesh_file_gets_polygon_dec_and_the_polygon_sampling_checks() {
             .unwrap_or_else(|| panic!("{name} missing: {checks:?}"));
         assert_eq!(check["status"], "passed", "{check}");
     }
-    let text = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "polygon-dec"]);
+    let text = tvf(&[
+        "check",
+        "--no-accuracy",
+        &mesh,
+        "--discretization",
+        "polygon-dec",
+    ]);
     assert_success(&text);
     assert!(String::from_utf8_lossy(&text.stdout).contains("(24 faces)"));
 }
@@ -120,7 +138,13 @@ fn a_polygon_mesh_file_gets_polygon_dec_and_the_polygon_sampling_checks() {
 fn a_triangle_entry_on_a_polygon_mesh_exits_1_naming_the_construction() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = polygon_mesh(dir.path());
-    let output = tvf(&["check", "--no-accuracy", &mesh, "--discretization", "conforming-barycentric"]);
+    let output = tvf(&[
+        "check",
+        "--no-accuracy",
+        &mesh,
+        "--discretization",
+        "conforming-barycentric",
+    ]);
     assert_eq!(output.status.code(), Some(1));
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(stdout.contains("conforming-barycentric"), "{stdout}");

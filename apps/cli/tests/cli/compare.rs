@@ -132,8 +132,11 @@ fn a_corpus_gives_success_rates_and_failure_reasons() {
     let dir = tempfile::tempdir().unwrap();
     let corpus = dir.path().join("corpus");
     std::fs::create_dir(&corpus).unwrap();
-    tvf_core::io::write_obj(&corpus.join("a-sphere.obj"), &tvf_core::generate::icosphere(2))
-        .unwrap();
+    tvf_core::io::write_obj(
+        &corpus.join("a-sphere.obj"),
+        &tvf_core::generate::icosphere(2),
+    )
+    .unwrap();
     // Rectangles split by a diagonal: cot α + cot β = 0, refused by DEC.
     let torus = tvf_core::generate::torus(1.0, 0.4, 8, 5).unwrap();
     tvf_core::io::write_obj(&corpus.join("b-torus.obj"), &torus).unwrap();
@@ -160,7 +163,10 @@ fn a_corpus_gives_success_rates_and_failure_reasons() {
     let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     assert_eq!(report["reference"], "conforming-barycentric");
     let entries = report["entries"].as_array().unwrap();
-    assert_eq!(entries[0]["meshes"], 3, "three mesh files, the text file left out");
+    assert_eq!(
+        entries[0]["meshes"], 3,
+        "three mesh files, the text file left out"
+    );
     assert_eq!(entries[0]["succeeded"], 2);
     assert_eq!(entries[1]["succeeded"], 1);
     let failures = entries[1]["failures"].as_array().unwrap();
@@ -169,11 +175,15 @@ fn a_corpus_gives_success_rates_and_failure_reasons() {
         .map(|f| format!("{} {}", f[0].as_str().unwrap(), f[1].as_str().unwrap()))
         .collect();
     assert!(
-        reasons.iter().any(|r| r.contains("b-torus.obj") && r.contains("Delaunay")),
+        reasons
+            .iter()
+            .any(|r| r.contains("b-torus.obj") && r.contains("Delaunay")),
         "{reasons:?}"
     );
     assert!(
-        reasons.iter().any(|r| r.contains("c-broken.obj") && r.contains("cannot load")),
+        reasons
+            .iter()
+            .any(|r| r.contains("c-broken.obj") && r.contains("cannot load")),
         "{reasons:?}"
     );
     let difference = entries[1]["median_relative_difference"].as_f64().unwrap();
@@ -194,5 +204,8 @@ fn a_corpus_gives_success_rates_and_failure_reasons() {
         .unwrap();
     assert_success(&text);
     let stdout = String::from_utf8_lossy(&text.stdout);
-    assert!(stdout.contains("1/3") && stdout.contains("33.3%"), "{stdout}");
+    assert!(
+        stdout.contains("1/3") && stdout.contains("33.3%"),
+        "{stdout}"
+    );
 }
