@@ -140,11 +140,11 @@ pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
         return CheckOutcome::at_most(format!("positive semi-definite: {what}"), 0.0, 0.0, detail);
     }
     let (min, max) = (eigenvalues[0], eigenvalues[eigenvalues.len() - 1]);
-    let detail = format!("{what}: eigenvalue {min:e} (largest {max:e})");
-    CheckOutcome::at_most(
+    let detail = format!("{what}: lowest eigenvalue {min:e} (largest {max:e})");
+    CheckOutcome::at_least(
         format!("positive semi-definite: {what}"),
-        -min,
-        SEMIDEFINITE_TOLERANCE * max.abs(),
+        min,
+        -SEMIDEFINITE_TOLERANCE * max.abs(),
         detail,
     )
 }

@@ -14,15 +14,19 @@ pub enum CheckStatus {
     Failed,
     /// Not run (a dense check on a complex too large for it).
     Skipped,
+    /// Cannot run on this complex: it lacks what the check needs (a capability, a builder for
+    /// other meshes, nodes where a linear function has values); the detail says what.
+    NotApplicable,
 }
 
 impl CheckStatus {
-    /// Lower-case name: `passed`, `failed`, `skipped`.
+    /// Lower-case name: `passed`, `failed`, `skipped`, `not applicable`.
     pub fn name(self) -> &'static str {
         match self {
             CheckStatus::Passed => "passed",
             CheckStatus::Failed => "failed",
             CheckStatus::Skipped => "skipped",
+            CheckStatus::NotApplicable => "not applicable",
         }
     }
 }
@@ -35,22 +39,27 @@ pub enum Comparison {
     AtMost,
     /// Passes when `measured = limit` (a count against the expected count).
     Equals,
+    /// Passes when `measured ≥ limit` (an observed order of convergence against the least
+    /// order accepted).
+    AtLeast,
 }
 
 impl Comparison {
-    /// Lower-case name, as in JSON: `at_most`, `equals`.
+    /// Lower-case name, as in JSON: `at_most`, `equals`, `at_least`.
     pub fn name(self) -> &'static str {
         match self {
             Comparison::AtMost => "at_most",
             Comparison::Equals => "equals",
+            Comparison::AtLeast => "at_least",
         }
     }
 
-    /// The sign between the measured value and the limit: `≤` or `=`.
+    /// The sign between the measured value and the limit: `≤`, `=` or `≥`.
     pub fn symbol(self) -> &'static str {
         match self {
             Comparison::AtMost => "≤",
             Comparison::Equals => "=",
+            Comparison::AtLeast => "≥",
         }
     }
 }
@@ -104,6 +113,20 @@ impl CheckOutcome {
             detail,
         )
         .compared(Comparison::Equals)
+    }
+
+    /// Passes when `measured ≥ limit` (a NaN measurement fails).
+    pub fn at_least(name: impl Into<String>, measured: f64, limit: f64, detail: String) -> Self {
+        let passed = measured >= limit;
+        Self::new(name, passed, measured, limit, detail).compared(Comparison::AtLeast)
+    }
+
+    /// A check that cannot run on this complex; `reason` says what it lacks.
+    pub fn not_applicable(name: impl Into<String>, reason: String) -> Self {
+        Self {
+            status: CheckStatus::NotApplicable,
+            ..Self::skipped(name, reason)
+        }
     }
 
     /// A check that failed before it could measure anything (e.g. a factorization failed).

@@ -9,6 +9,7 @@ use crate::algebra_checks::{
 use crate::check_outcome::CheckOutcome;
 use crate::corpus::{DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{measure_hodge_decomposition, measure_kernel_dimension_dense};
+use crate::inertia_checks::{measure_inertia_checks, unsupported_reason};
 use crate::spectral_checks::{measure_lemma1, measure_spectrum_union};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::mesh::Mesh;
@@ -16,6 +17,26 @@ use tvf_discretizations::mesh_topology;
 
 /// Seed of the random fields of the decomposition checks.
 const SEED: u64 = 17;
+
+/// The names of the outcomes of the dense eigenvalue checks (semi-definiteness, the kernel, the
+/// spectrum union), as measured and as skipped above [`DENSE_LIMIT`]: one name per check, so
+/// that a run over meshes of both sizes reports each check once.
+pub const DENSE_CHECK_NAMES: [&str; 9] = [
+    "positive semi-definite: S",
+    "positive semi-definite: B",
+    "positive semi-definite: exact eigenproblem",
+    "positive semi-definite: co-exact eigenproblem",
+    "kernel dimension",
+    "zeros of L",
+    "zeros of the exact pair",
+    "zeros of the co-exact pair",
+    "spectrum union",
+];
+
+/// The names of the outcomes of the Lemma 1 check, as measured and as skipped above
+/// [`EIGENVECTOR_LIMIT`].
+pub const LEMMA1_CHECK_NAMES: [&str; 2] =
+    ["Lemma 1: unit eigenfields", "Lemma 1: eigenfields of L"];
 
 /// Every outcome of [`core_check_report`], in a fixed order.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,8 +75,11 @@ impl CheckReport {
 /// free nodes) with `1ᵀ M0 1 = area`; `S`, `B` and both stiffness matrices symmetric; the Hodge
 /// decomposition; and, when `n1 ≤` [`DENSE_LIMIT`], positive
 /// semi-definiteness, `dim ker L` (the mesh's harmonic dimension) and the spectrum of `L` as the
-/// union of the two scalar spectra, when `n1 ≤` [`EIGENVECTOR_LIMIT`] Lemma 1's eigenfields
-/// (larger complexes get these reported as skipped).
+/// union of the two scalar spectra, and Lemma 1's eigenfields, densely when
+/// `n1 ≤` [`EIGENVECTOR_LIMIT`]; above it, for complexes with diagonal masses, the same checks by
+/// the sparse eigensolver and inertia counts ([`crate::inertia_checks`]); a complex with a sparse
+/// mass keeps the dense checks up to [`DENSE_LIMIT`] (Lemma 1 up to [`EIGENVECTOR_LIMIT`]) and
+/// gets the others reported as skipped, saying why.
 pub fn core_check_report<M: Mesh + ?Sized>(complex: &dyn HodgeComplex, mesh: &M) -> CheckReport {
     let harmonic_dimension =
         mesh_topology(mesh, complex.topology().boundary_condition).harmonic_dimension;
@@ -74,26 +98,35 @@ pub fn core_check_report<M: Mesh + ?Sized>(complex: &dyn HodgeComplex, mesh: &M)
     outcomes.extend(measure_symmetric_operators(complex));
     outcomes.extend(measure_hodge_decomposition(complex, SEED));
     let too_large = |limit: usize| format!("n1 = {n1} is above the dense limit {limit}");
-    if n1 <= DENSE_LIMIT {
+    let sparse_reason = unsupported_reason(complex);
+    if n1 <= EIGENVECTOR_LIMIT || (n1 <= DENSE_LIMIT && sparse_reason.is_some()) {
         outcomes.extend(measure_psd_operators(complex));
         outcomes.push(measure_kernel_dimension_dense(complex, harmonic_dimension));
         outcomes.extend(measure_spectrum_union(complex, harmonic_dimension));
-    } else {
-        for name in [
-            "positive semi-definite operators",
-            "kernel dimension",
-            "spectrum union",
-        ] {
-            outcomes.push(CheckOutcome::skipped(name, too_large(DENSE_LIMIT)));
+        if n1 <= EIGENVECTOR_LIMIT {
+            outcomes.extend(measure_lemma1(complex));
+        } else {
+            let reason = sparse_reason.unwrap_or_default();
+            outcomes.extend(LEMMA1_CHECK_NAMES.iter().map(|name| {
+                CheckOutcome::skipped(*name, format!("{}; {reason}", too_large(EIGENVECTOR_LIMIT)))
+            }));
         }
-    }
-    if n1 <= EIGENVECTOR_LIMIT {
-        outcomes.extend(measure_lemma1(complex));
     } else {
-        outcomes.push(CheckOutcome::skipped(
-            "Lemma 1",
-            too_large(EIGENVECTOR_LIMIT),
-        ));
+        match sparse_reason {
+            // Real-mesh sizes: the sparse eigensolver and inertia counts.
+            None => outcomes.extend(measure_inertia_checks(complex, harmonic_dimension)),
+            Some(reason) => outcomes.extend(
+                DENSE_CHECK_NAMES
+                    .iter()
+                    .chain(&LEMMA1_CHECK_NAMES)
+                    .map(|name| {
+                        CheckOutcome::skipped(
+                            *name,
+                            format!("{}; {reason}", too_large(DENSE_LIMIT)),
+                        )
+                    }),
+            ),
+        }
     }
     CheckReport { outcomes }
 }
@@ -116,6 +149,13 @@ mod tests {
         let report = core_check_report(built.as_ref(), &mesh);
         assert!(report.passed(), "{:?}", report.failures());
         assert!(report.outcomes.len() >= 20);
+        // The measured names are the ones a check skipped for size is reported under.
+        for name in DENSE_CHECK_NAMES.iter().chain(&LEMMA1_CHECK_NAMES) {
+            assert!(
+                report.outcomes.iter().any(|o| o.name == *name),
+                "no outcome named {name}"
+            );
+        }
         let mut m0 = built.m0().diagonal_values().unwrap().to_vec();
         m0[3] *= 1.5; // 1ᵀ M0 1 no longer the area
         let d0: CsMat<f64> = built.d0().clone();

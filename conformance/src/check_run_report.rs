@@ -94,6 +94,10 @@ pub struct PropertyRunReport {
     /// Why the run stopped without a counterexample, if it did.
     #[serde(skip)]
     pub aborted: Option<String>,
+    /// The accuracy checks ([`crate::accuracy`]), run once besides the generated meshes (empty
+    /// when not run; serialized only when run).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub accuracy: Vec<CheckOutcome>,
 }
 
 /// The minimal failing mesh of a property run, written as OBJ. Serialized as `path`, `faces`,
@@ -117,8 +121,11 @@ pub struct CounterexampleReport {
 
 impl PropertyRunReport {
     /// The report of the property run `outcome` of `request` for the catalog entry
-    /// `discretization`, its minimal failing mesh (if any) to be written to `counterexample`.
+    /// `discretization`, its minimal failing mesh (if any) to be written to `counterexample`
+    /// and checked again by the command line program `program` (`tvf`, or a program of your own
+    /// with its own catalog).
     pub fn new<Spec, M: Mesh>(
+        program: &str,
         discretization: &str,
         request: &PropertyRequest,
         outcome: &PropertyReport<Spec, M>,
@@ -137,7 +144,7 @@ impl PropertyRunReport {
                 faces: failing.mesh.mesh.face_count(),
                 description: failing.mesh.name.clone(),
                 reproduce: format!(
-                    "tvf check {} --discretization {discretization}",
+                    "{program} check {} --discretization {discretization}",
                     counterexample.display()
                 ),
                 checks: failing.report.outcomes.clone(),
@@ -145,7 +152,37 @@ impl PropertyRunReport {
             }),
             failed: failing.map(|failing| failure_names(&failing.report)),
             aborted: outcome.aborted.clone(),
+            accuracy: Vec::new(),
         }
+    }
+
+    /// The report with the accuracy checks `accuracy` added: a failed one fails the run and is
+    /// named among `failed`.
+    pub fn with_accuracy(mut self, accuracy: Vec<CheckOutcome>) -> Self {
+        let failed: Vec<String> = accuracy
+            .iter()
+            .filter(|o| o.failed_check())
+            .map(|o| o.name.clone())
+            .collect();
+        if !failed.is_empty() {
+            self.passed = false;
+            self.failed.get_or_insert_with(Vec::new).extend(failed);
+        }
+        self.accuracy = accuracy;
+        self
+    }
+
+    /// The accuracy checks' heading and one line per check; none when they did not run.
+    pub fn accuracy_lines(&self) -> Vec<String> {
+        if self.accuracy.is_empty() {
+            return Vec::new();
+        }
+        let mut lines = vec![format!(
+            "accuracy checks (consistency on patches, convergence on the sphere and hemisphere): {}",
+            verdict(!self.accuracy.iter().any(CheckOutcome::failed_check))
+        )];
+        lines.extend(outcome_lines(&self.accuracy));
+        lines
     }
 
     /// The verdict, then (unless the run was aborted) each check's worst case.
@@ -164,6 +201,7 @@ impl PropertyRunReport {
             ));
             lines.extend(outcome_lines(&self.checks));
         }
+        lines.extend(self.accuracy_lines());
         lines
     }
 
@@ -193,6 +231,23 @@ impl PropertyRunReport {
         }
         lines.extend(outcome_lines(&counterexample.checks));
         lines
+    }
+
+    /// How many generated meshes passed, for the end of a progress bar: `N of N meshes passed`,
+    /// or, after a failure, `K meshes passed, mesh K+1 of N failed` (a run stops at its first
+    /// failing mesh and shrinks it).
+    pub fn cases_summary(&self) -> String {
+        if self.counterexample.is_some() {
+            let plural = if self.cases_passed == 1 { "" } else { "es" };
+            format!(
+                "{} mesh{plural} passed, mesh {} of {} failed",
+                self.cases_passed,
+                self.cases_passed + 1,
+                self.cases
+            )
+        } else {
+            format!("{} of {} meshes passed", self.cases_passed, self.cases)
+        }
     }
 
     /// `the property run stopped: REASON` if the run was aborted.
@@ -346,13 +401,24 @@ mod tests {
             aborted: None,
         };
         let request = PropertyRequest::new(8, 1, MeshNeeds::default());
-        let report = PropertyRunReport::new("mine", &request, &outcome, Path::new("ce.obj"));
+        let report = PropertyRunReport::new(
+            "tvf-example-own-discretization",
+            "mine",
+            &request,
+            &outcome,
+            Path::new("ce.obj"),
+        );
+        assert_eq!(
+            report.cases_summary(),
+            "3 meshes passed, mesh 4 of 8 failed"
+        );
         let lines = report.lines();
         assert_eq!(lines[0], "mine on 8 generated meshes (seed 1): FAILED");
         assert_eq!(lines.len(), 3);
         let counterexample = report.counterexample_lines();
         assert_eq!(counterexample[0], "minimal failing mesh (20 faces): tiny");
-        assert!(counterexample[1].ends_with("tvf check ce.obj --discretization mine"));
+        assert!(counterexample[1]
+            .ends_with("tvf-example-own-discretization check ce.obj --discretization mine"));
         assert!(
             counterexample[2].contains("non-deterministic"),
             "{counterexample:?}"
@@ -366,10 +432,25 @@ mod tests {
             counterexample: None,
             ..outcome
         };
-        let report = PropertyRunReport::new("mine", &request, &passing, Path::new("ce.obj"));
+        let report = PropertyRunReport::new("tvf", "mine", &request, &passing, Path::new("ce.obj"));
+        assert_eq!(report.cases_summary(), "3 of 8 meshes passed");
         let keys = serde_json::to_value(&report).unwrap();
         assert!(keys.get("failed").is_none() && keys.get("counterexample").is_none());
+        assert!(keys.get("accuracy").is_none());
         assert!(report.counterexample_lines().is_empty() && report.failure_message().is_none());
+        let order = CheckOutcome::at_least("convergence:sphere:integrable", 0.1, 1.5, "t".into());
+        let report = report.with_accuracy(vec![order]);
+        assert!(!report.passed);
+        assert_eq!(
+            report.failure_message().as_deref(),
+            Some("failed checks: convergence:sphere:integrable")
+        );
+        let keys = serde_json::to_value(&report).unwrap();
+        assert_eq!(keys["accuracy"][0]["comparison"], "at_least");
+        assert!(report
+            .lines()
+            .iter()
+            .any(|l| l.contains("0.1") || l.contains("1.000e-1")));
     }
 
     #[test]
@@ -381,7 +462,7 @@ mod tests {
             aborted: Some("too many rejects".into()),
         };
         let request = PropertyRequest::new(4, 0, MeshNeeds::default());
-        let report = PropertyRunReport::new("mine", &request, &outcome, Path::new("x.obj"));
+        let report = PropertyRunReport::new("tvf", "mine", &request, &outcome, Path::new("x.obj"));
         assert_eq!(report.lines().len(), 1);
         assert_eq!(
             report.abort_message().as_deref(),

@@ -13,6 +13,12 @@
 //!   Lemma 1 eigenfields; the spectrum of `L` as the union of the two scalar spectra; a complete
 //!   orthonormal eigenfield basis; sampling and point evaluation where offered; invariance under
 //!   rigid motions and on jittered meshes (proptest);
+//! - **accuracy checks** ([`accuracy`]) every builder of complexes gets by default, whatever its
+//!   origin: consistency (patch) tests of linear functions on flat and curved patches
+//!   ([`consistency_checks`]) and convergence of the lowest eigenvalues of both families on
+//!   regular and jittered refinements of the sphere and the hemisphere, observed order ≥ 1.5
+//!   ([`convergence_checks`]); what an entry lacks the capability for is reported as not
+//!   applicable;
 //! - **reference checks** ([`reference`](mod@reference)) a complex opts into: `cotan_formula` (stiffness
 //!   matrices against the cotan, Crouzeix–Raviart or dual-graph formulas) or
 //!   `potential_cotan_formula` (the potential stiffness alone), `rotation` (`J² = −I`,
@@ -96,20 +102,28 @@
 //! `conformance/tests/conformance/catalog_suites.rs` through [`catalog_suites!`], which fails
 //! when one is missing.
 //! Dense eigenvalue checks run when `n1 ≤` [`corpus::DENSE_LIMIT`], dense eigenvector checks when
-//! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; the kernel dimension on larger and real meshes is checked
-//! through the rank of harmonic projections.
+//! `n1 ≤` [`corpus::EIGENVECTOR_LIMIT`]; on larger and real meshes the kernel dimension is checked
+//! through the rank of harmonic projections (the suite) and, in [`check_report`] (`tvf check`,
+//! `tvf.check`), every eigenvalue check through the sparse eigensolver and inertia counts
+//! ([`inertia_checks`]: semi-definiteness, the kernel, the spectrum union as counting functions,
+//! Lemma 1 on the lowest eigenpairs; for complexes with diagonal masses).
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod accuracy;
+pub mod accuracy_meshes;
 pub mod algebra_checks;
 pub mod capability_checks;
 pub mod check_outcome;
 pub mod check_report;
 pub mod check_run_report;
+pub mod consistency_checks;
+pub mod convergence_checks;
 pub mod corpus;
 pub mod decomposition_checks;
 pub mod dense;
 pub mod galerkin_mass_checks;
+pub mod inertia_checks;
 pub mod open_suite;
 pub mod polygon_capability_checks;
 pub mod polygon_corpus;

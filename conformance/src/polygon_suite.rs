@@ -150,3 +150,29 @@ pub fn generated_polygon_meshes(entry: &CatalogEntry, cases: u32) {
         );
     }
 }
+
+/// The accuracy checks on polygon meshes ([`crate::accuracy::accuracy_report`] with polygons
+/// only: the flat box of quads, the regular and jittered quad spheres) for an entry that accepts
+/// polygons; an entry that needs triangles must refuse the quad box
+/// ([`crate::accuracy::AccuracyRequest`] then has nothing to check on polygons).
+pub fn polygon_accuracy(entry: &CatalogEntry) {
+    let builder = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+        entry.build(mesh).map_err(|e| e.to_string())
+    };
+    if entry.needs_triangles() {
+        let refused = entry.build(&crate::accuracy_meshes::flat_box(true, 0));
+        assert!(
+            matches!(refused, Err(DiscretizationError::NeedsTriangles { .. })),
+            "{} needs triangles: it must refuse the quad box",
+            entry.id()
+        );
+        return;
+    }
+    let request = crate::accuracy::AccuracyRequest {
+        triangles: false,
+        polygons: true,
+        open_meshes: true,
+    };
+    let report = crate::accuracy::accuracy_report(&builder, &request);
+    crate::check_outcome::assert_outcomes(&report.outcomes);
+}

@@ -9,7 +9,7 @@
 //! package does on Ctrl+C): the runner passes it on to its caller instead of counting a failed
 //! case.
 
-use crate::check_outcome::{CheckOutcome, CheckStatus};
+use crate::check_outcome::{CheckOutcome, CheckStatus, Comparison};
 use crate::check_report::{core_check_report, CheckReport};
 use crate::corpus::CorpusMesh;
 use crate::polygon_capability_checks::{
@@ -404,10 +404,12 @@ impl<Spec, M> RunState<Spec, M> {
 }
 
 /// How close an outcome came to failing: `measured / limit` (the measured value itself for a
-/// zero limit; −1 for skipped ones, so any measurement replaces them).
+/// zero limit; `limit − measured` for a lower bound; −1 for skipped ones, so any measurement
+/// replaces them).
 fn badness(outcome: &CheckOutcome) -> f64 {
     match outcome.status {
-        CheckStatus::Skipped => -1.0,
+        CheckStatus::Skipped | CheckStatus::NotApplicable => -1.0,
+        _ if outcome.comparison == Comparison::AtLeast => outcome.limit - outcome.measured,
         _ if outcome.limit > 0.0 => outcome.measured / outcome.limit,
         _ => outcome.measured,
     }

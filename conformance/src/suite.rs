@@ -1,10 +1,12 @@
 //! The core suite: one function per test of [`crate::conformance_suite!`], each running one group
 //! of core checks on every mesh of a corpus. Every complex must pass all of them.
 
+use crate::accuracy::{accuracy_report, AccuracyRequest};
 use crate::algebra_checks::{
     check_d1_d0_zero, check_nodes_and_masses, check_psd_operators, check_symmetric_operators,
 };
 use crate::capability_checks::{check_point_evaluation, check_sampling};
+use crate::check_outcome::assert_outcomes;
 use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{
     check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
@@ -16,6 +18,7 @@ use crate::spectral_checks::{
 use crate::strategies::MeshNeeds;
 use crate::{build, for_each_mesh, Constructor};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::SurfaceMesh;
 
 /// Cases per property of a suite line unless its `cases = N` says otherwise.
 pub const DEFAULT_CASES: u32 = 64;
@@ -193,4 +196,26 @@ pub fn generated_meshes(constructor: Constructor, corpus: Corpus, cases: u32) {
             failures.join("\n")
         );
     }
+}
+
+/// The accuracy checks ([`accuracy_report`]) of the complexes `constructor` makes, on triangle
+/// meshes (with boundary too): consistency on flat and curved patches, convergence on regular
+/// and jittered refinements of the sphere and the hemisphere; panics naming every failed check
+/// with its numbers.
+pub fn accuracy(constructor: Constructor) {
+    let builder = |mesh: &SurfaceMesh| match mesh.as_triangles() {
+        Some(triangles) => constructor(triangles),
+        None => Err("the suite line's constructor builds on triangle meshes".to_string()),
+    };
+    let report = accuracy_report(&builder, &AccuracyRequest::new(false));
+    for outcome in &report.outcomes {
+        eprintln!(
+            "  {} {}: {:.3e} ({})",
+            outcome.status.name(),
+            outcome.name,
+            outcome.measured,
+            outcome.detail
+        );
+    }
+    assert_outcomes(&report.outcomes);
 }

@@ -2,7 +2,9 @@
 //! [`catalog_suites!`](crate::catalog_suites) macros.
 
 /// Instantiates the conformance suite for one discretization: a module `name` with one `#[test]`
-/// per core check of [`crate::suite`] (three of them properties over random draws), and a
+/// per core check of [`crate::suite`] (three of them properties over random draws), one,
+/// `accuracy`, running the accuracy checks ([`crate::suite::accuracy`]: consistency on patches,
+/// convergence on the sphere and hemisphere), and a
 /// submodule `reference` with one `#[test]` per named check of [`crate::reference`] and one,
 /// `listed`, that runs a list of them given as a value.
 ///
@@ -14,7 +16,8 @@
 /// conformance_suite!(name, constructor, corpus = Corpus::Delaunay);
 /// conformance_suite!(name, constructor, reference = [cotan_formula, rotation]);
 /// conformance_suite!(name, constructor, cases = 16);
-/// conformance_suite!(name, constructor, corpus = ..., reference = [...], reference_checks = ..., cases = ...);
+/// conformance_suite!(name, constructor, accuracy = false);
+/// conformance_suite!(name, constructor, corpus = ..., reference = [...], reference_checks = ..., cases = ..., accuracy = ...);
 /// ```
 ///
 /// - `entry`: an expression of type [`CatalogEntry`](tvf_discretizations::CatalogEntry) (of any
@@ -27,7 +30,8 @@
 ///   for a condition the entry offers; for one it does not, that the entry refuses it), and a
 ///   submodule `polygon_meshes`, the suite on polygon meshes ([`crate::polygon_suite`]: closed,
 ///   with holes under each boundary condition, generated; an entry that needs triangles must
-///   refuse them).
+///   refuse them), and its accuracy checks on quad meshes
+///   ([`crate::polygon_suite::polygon_accuracy`]).
 /// - `constructor`: `Fn(&TriangleMesh) -> Result<H, E>`, `E: Debug`, `H` a `HodgeComplex +
 ///   'static` or a `Box<dyn HodgeComplex>`; evaluated inside the generated module (which
 ///   imports `super::*`).
@@ -42,6 +46,10 @@
 ///   `generated_meshes`), default [`crate::suite::DEFAULT_CASES`] (64). The environment variable
 ///   `PROPTEST_CASES`, which proptest reads, can lower it (never raise it):
 ///   [`crate::suite::property_cases`].
+/// - `accuracy = false`: no `accuracy` test, for a complex that by design does not approximate
+///   the smooth operators (a wrapper that rescales an inner product, as
+///   [`crate::scaled_co_potentials::ScaledCoPotentials`] does); every entry that is meant to be
+///   a discretization keeps it.
 #[macro_export]
 macro_rules! conformance_suite {
     (
@@ -118,6 +126,11 @@ macro_rules! conformance_suite {
                         $crate::suite::property_cases($crate::suite::DEFAULT_CASES),
                     );
                 }
+
+                #[test]
+                fn accuracy() {
+                    $crate::polygon_suite::polygon_accuracy(&super::suite_entry());
+                }
             }
         }
     };
@@ -128,6 +141,7 @@ macro_rules! conformance_suite {
         $(, reference = [$($check:ident),* $(,)?])?
         $(, reference_checks = $checks:expr)?
         $(, cases = $cases:expr)?
+        $(, accuracy = $accuracy:literal)?
         $(,)?
     ) => {
         mod $name {
@@ -220,6 +234,8 @@ macro_rules! conformance_suite {
                 $crate::suite::generated_meshes(&build_complex, corpus(), cases());
             }
 
+            $crate::__accuracy_test!($($accuracy)?);
+
             $crate::proptest::proptest! {
                 #![proptest_config($crate::proptest::prelude::ProptestConfig::with_cases(cases()))]
 
@@ -254,6 +270,19 @@ macro_rules! conformance_suite {
 
                 $crate::__listed_reference_checks!($($checks)?);
             }
+        }
+    };
+}
+
+/// The test `accuracy` of a suite line: there unless the line says `accuracy = false`.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __accuracy_test {
+    (false) => {};
+    ($($on:literal)?) => {
+        #[test]
+        fn accuracy() {
+            $crate::suite::accuracy(&build_complex);
         }
     };
 }

@@ -21,11 +21,13 @@
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 use std::time::Instant;
+use tvf_conformance::accuracy_meshes::Sequence;
+use tvf_conformance::convergence_checks::spherical_eigenvalues;
+pub use tvf_conformance::convergence_checks::{fitted_order, mean_edge_length};
 use tvf_conformance::corpus::delaunay_flips;
 use tvf_core::discretization::{BoundaryCondition, HodgeComplex};
 use tvf_core::generate::{cube_sphere, hemisphere, icosphere};
-use tvf_core::geometry::{norm, sub};
-use tvf_core::mesh::{FaceList, Mesh};
+use tvf_core::mesh::FaceList;
 use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_discretizations::CatalogEntry;
 use tvf_spectral::{compute_basis, BasisRequest, FieldFamily};
@@ -47,25 +49,58 @@ pub enum Surface {
     /// 192, 768, 3072 for levels 1 to 4; the equator is a line of the grid), under a boundary
     /// condition.
     QuadHemisphere(BoundaryCondition),
+    /// The unit sphere by the icospheres of [`Surface::Sphere`] with every vertex moved by up to
+    /// 0.3 of its shortest edge and put back on the sphere, made Delaunay by flips: irregular
+    /// refinements (an icosphere's near-equilateral triangles favour stars that are exact on
+    /// equilateral triangles). A new random draw per level
+    /// (`tvf_conformance::accuracy_meshes::Sequence`).
+    JitteredSphere,
+    /// The hemisphere of [`Surface::Hemisphere`] jittered the same way (equator vertices stay on
+    /// the equator), under a boundary condition.
+    JitteredHemisphere(BoundaryCondition),
 }
 
 impl Surface {
-    /// `sphere`, `hemisphere`, `quad-sphere` or `quad-hemisphere`.
+    /// `sphere`, `hemisphere`, `quad-sphere`, `quad-hemisphere`, `jittered-sphere` or
+    /// `jittered-hemisphere`.
     pub fn name(self) -> &'static str {
         match self {
             Surface::Sphere => "sphere",
             Surface::Hemisphere(_) => "hemisphere",
             Surface::QuadSphere => "quad-sphere",
             Surface::QuadHemisphere(_) => "quad-hemisphere",
+            Surface::JitteredSphere => "jittered-sphere",
+            Surface::JitteredHemisphere(_) => "jittered-hemisphere",
         }
     }
 
     /// The boundary condition, on a surface with boundary.
     pub fn boundary(self) -> Option<BoundaryCondition> {
         match self {
-            Surface::Sphere | Surface::QuadSphere => None,
-            Surface::Hemisphere(b) | Surface::QuadHemisphere(b) => Some(b),
+            Surface::Sphere | Surface::QuadSphere | Surface::JitteredSphere => None,
+            Surface::Hemisphere(b)
+            | Surface::QuadHemisphere(b)
+            | Surface::JitteredHemisphere(b) => Some(b),
         }
+    }
+
+    /// Whether the refinements are jittered (irregular).
+    pub fn is_jittered(self) -> bool {
+        matches!(
+            self,
+            Surface::JitteredSphere | Surface::JitteredHemisphere(_)
+        )
+    }
+
+    /// The jittered surfaces: the sphere and the hemisphere under both conditions.
+    pub fn all_jittered() -> Vec<Surface> {
+        let mut surfaces = vec![Surface::JitteredSphere];
+        surfaces.extend(
+            BoundaryCondition::ALL
+                .into_iter()
+                .map(Surface::JitteredHemisphere),
+        );
+        surfaces
     }
 
     /// Whether the surface is meshed by quads (for discretizations that accept polygons).
@@ -100,30 +135,27 @@ impl Surface {
             Surface::Hemisphere(_) => delaunay_flips(&hemisphere(2 << level)).into(),
             Surface::QuadSphere => cube_sphere(quads).expect("n ≥ 2").into(),
             Surface::QuadHemisphere(_) => upper_half(&cube_sphere(quads).expect("n ≥ 2").into()),
+            Surface::JitteredSphere => Sequence::Sphere(true)
+                .mesh(level)
+                .expect("a jittered icosphere is a valid mesh"),
+            Surface::JitteredHemisphere(_) => Sequence::Hemisphere(true)
+                .mesh(level)
+                .expect("a jittered ring hemisphere is a valid mesh"),
         }
     }
 
-    /// The lowest `count` nonzero eigenvalues of `family`, ascending.
+    /// The lowest `count` nonzero eigenvalues of `family`, ascending: the family whose
+    /// potentials the boundary condition fixes gets the Dirichlet spectrum of the hemisphere
+    /// ([`spherical_eigenvalues`]).
     pub fn exact_eigenvalues(self, family: FieldFamily, count: usize) -> Vec<f64> {
-        let per_degree: Box<dyn Fn(usize) -> usize> = match (self, family) {
-            (Surface::Sphere | Surface::QuadSphere, _) => Box::new(|l| 2 * l + 1),
-            (Surface::Hemisphere(boundary) | Surface::QuadHemisphere(boundary), family) => {
-                let dirichlet = matches!(
-                    (boundary, family),
-                    (BoundaryCondition::Tangential, FieldFamily::Cointegrable)
-                        | (BoundaryCondition::Normal, FieldFamily::Integrable)
-                );
-                if dirichlet {
-                    Box::new(|l| l)
-                } else {
-                    Box::new(|l| l + 1)
-                }
-            }
-        };
-        (1..)
-            .flat_map(|l| std::iter::repeat_n((l * (l + 1)) as f64, per_degree(l)))
-            .take(count)
-            .collect()
+        let dirichlet = self.boundary().map(|boundary| {
+            matches!(
+                (boundary, family),
+                (BoundaryCondition::Tangential, FieldFamily::Cointegrable)
+                    | (BoundaryCondition::Normal, FieldFamily::Integrable)
+            )
+        });
+        spherical_eigenvalues(dirichlet, count)
     }
 }
 
@@ -491,41 +523,6 @@ fn observed_orders(
     orders
 }
 
-/// The least-squares slope of `log e` against `log h` (the coarsest point dropped when there
-/// are three or more: it is furthest from the asymptotic regime); NaN with fewer than two
-/// usable points (an error of exactly zero has no logarithm).
-pub fn fitted_order(points: &[(f64, f64)]) -> f64 {
-    let skip = usize::from(points.len() >= 3);
-    let logs: Vec<(f64, f64)> = points[skip..]
-        .iter()
-        .filter(|(h, e)| *h > 0.0 && *e > 0.0)
-        .map(|(h, e)| (h.ln(), e.ln()))
-        .collect();
-    if logs.len() < 2 {
-        return f64::NAN;
-    }
-    let n = logs.len() as f64;
-    let (mx, my) = (
-        logs.iter().map(|p| p.0).sum::<f64>() / n,
-        logs.iter().map(|p| p.1).sum::<f64>() / n,
-    );
-    let sxy: f64 = logs.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = logs.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
-    sxy / sxx
-}
-
-/// Mean edge length of `mesh`.
-pub fn mean_edge_length<M: Mesh + ?Sized>(mesh: &M) -> f64 {
-    let p = mesh.positions();
-    let total: f64 = mesh
-        .topology()
-        .edges()
-        .iter()
-        .map(|&[a, b]| norm(sub(p[a], p[b])))
-        .sum();
-    total / mesh.edge_count().max(1) as f64
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -550,16 +547,6 @@ mod tests {
             normal.exact_eigenvalues(FieldFamily::Integrable, 3),
             vec![2.0, 6.0, 6.0]
         );
-    }
-
-    #[test]
-    fn fitted_orders_follow_the_slope() {
-        let points: Vec<(f64, f64)> = [0.4, 0.2, 0.1, 0.05]
-            .iter()
-            .map(|&h: &f64| (h, 3.0 * h * h * (1.0 + if h > 0.3 { 0.5 } else { 0.0 })))
-            .collect();
-        assert!((fitted_order(&points) - 2.0).abs() < 1e-12);
-        assert!(fitted_order(&points[..1]).is_nan());
     }
 
     /// The same discretization twice once interleaved duplicate rows and printed NaN orders:

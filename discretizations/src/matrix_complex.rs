@@ -7,6 +7,7 @@ use crate::face_geometry::FaceGeometry;
 use crate::matrix_complex_nodes::{
     implied_harmonic_dimension, kind_size, matrix_node_spaces, FixedNodes, StatedNodeKinds,
 };
+use crate::nodal_evaluation::NodalEvaluation;
 use crate::polygon_operators::PolygonOperators;
 use crate::polygon_sampling::PolygonSampling;
 use crate::whitney_sampling::WhitneySampling;
@@ -15,7 +16,7 @@ use tvf_core::discretization::check_length;
 use tvf_core::discretization::sparse::product;
 use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, DiscretizationError, FieldRotation, FieldSampling,
-    HodgeComplex, Mass, NodeKind, NodeSpace,
+    HodgeComplex, Mass, NodeKind, NodeSpace, PointEvaluation,
 };
 use tvf_core::SurfaceMesh;
 
@@ -112,6 +113,7 @@ pub struct ComplexMatrices {
 pub struct MatrixComplex {
     parts: ComplexParts,
     sampler: Sampler,
+    evaluation: Option<NodalEvaluation>,
 }
 
 impl MatrixComplex {
@@ -190,6 +192,9 @@ impl MatrixComplex {
         let topology = crate::mesh_topology(mesh, condition);
         let implied = implied_harmonic_dimension(&spaces);
         if implied != topology.harmonic_dimension as i64 {
+            if let Some(orientation) = face_orientation_error(&d1, &spaces[2]) {
+                return Err(DiscretizationError::Inconsistent(orientation));
+            }
             return Err(DiscretizationError::Inconsistent(format!(
                 "the matrices leave {implied} harmonic fields (free field nodes minus the ranks \
                  of d0 and d1, whose kernels are the constants found on each component), but the \
@@ -204,11 +209,54 @@ impl MatrixComplex {
             )));
         }
         let sampler = sampler(mesh, sampling, &spaces[1])?;
+        let evaluation = NodalEvaluation::new(mesh, spaces[0].kind, spaces[2].kind);
         Ok(Self {
             parts: ComplexParts::new(id, d0, d1, [m0, m1, m2], spaces, topology)?,
             sampler,
+            evaluation,
         })
     }
+}
+
+/// For co-potentials on faces (2-forms): the error naming the face whose row of `d1` disagrees
+/// with its neighbours when `d1ᵀ·1 ≠ 0` on edges shared by two faces — there the two faces'
+/// counter-clockwise boundaries run along the edge in opposite directions, so their rows must
+/// give it opposite signs, and a face row negated (or a face oriented against its neighbours)
+/// takes the constants out of the kernel of `d1ᵀ`. `None` for other node kinds, or when every
+/// shared edge sums to zero.
+fn face_orientation_error(d1: &CsMat<f64>, co_potential_nodes: &NodeSpace) -> Option<String> {
+    if co_potential_nodes.kind != NodeKind::Faces {
+        return None;
+    }
+    let scale = max_abs(d1);
+    let mut sums = vec![0.0; d1.cols()];
+    let mut faces_of_edge = vec![0usize; d1.cols()];
+    for (&value, (_, e)) in d1.iter() {
+        sums[e] += value;
+        faces_of_edge[e] += 1;
+    }
+    let disagreeing: Vec<bool> = (0..d1.cols())
+        .map(|e| faces_of_edge[e] == 2 && sums[e].abs() > COMPLEX_TOLERANCE * scale)
+        .collect();
+    let count = disagreeing.iter().filter(|&&d| d).count();
+    if count == 0 {
+        return None;
+    }
+    let mut per_face = vec![(0usize, 0usize); d1.rows()];
+    for (_, (t, e)) in d1.iter() {
+        per_face[t].1 += 1;
+        if disagreeing[e] {
+            per_face[t].0 += 1;
+        }
+    }
+    let (face, (bad, edges)) = per_face
+        .iter()
+        .enumerate()
+        .max_by_key(|(_, (bad, _))| *bad)
+        .map(|(t, &counts)| (t, counts))?;
+    Some(format!(
+        "d1ᵀ·1 ≠ 0 on {count} edges shared by two faces (their rows of d1 give each such edge          the same sign, but the counter-clockwise boundaries of two neighbouring faces run along          it in opposite directions): face {face} disagrees with its neighbours on {bad} of its          {edges} edges — is its row of d1 negated?"
+    ))
 }
 
 /// Checks `d1 · d0 = 0` relative to `max |d1| · max |d0|`.
@@ -319,6 +367,12 @@ impl HodgeComplex for MatrixComplex {
             _ => None,
         }
     }
+
+    /// Evaluation by the node kinds ([`NodalEvaluation`]): vertex values linearly, edge values
+    /// by Crouzeix–Raviart on triangles, face values constant; none for face frames.
+    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
+        self.evaluation.as_ref().map(|e| e as &dyn PointEvaluation)
+    }
 }
 
 #[cfg(test)]
@@ -381,6 +435,34 @@ mod tests {
 
     fn diagonal(mass: &Mass) -> Vec<f64> {
         mass.diagonal_values().unwrap().to_vec()
+    }
+
+    /// A `d1` with one face row negated still has `d1 d0 = 0` but leaves the constants of the
+    /// 2-forms out of its kernel: the refusal names `d1ᵀ·1 ≠ 0` and the face, not only a wrong
+    /// count of harmonic fields.
+    #[test]
+    fn a_negated_face_row_of_d1_is_named() {
+        let mesh = SurfaceMesh::from(icosphere(1));
+        let built = catalog_complex("dec-barycentric", &mesh);
+        let (d0, d1, m0, m1, m2) = parts(built.as_ref());
+        let mut d1 = d1.to_csr();
+        let row = {
+            let indptr = d1.indptr();
+            let starts = indptr.raw_storage();
+            starts[7]..starts[8]
+        };
+        for value in &mut d1.data_mut()[row] {
+            *value = -*value;
+        }
+        let message = refusal(closed_copy(
+            &mesh,
+            (d0, d1, m0, m1, m2),
+            MatrixSampling::Whitney,
+        ));
+        assert!(
+            message.contains("d1ᵀ·1 ≠ 0 on 3 edges") && message.contains("face 7 disagrees"),
+            "{message}"
+        );
     }
 
     #[test]

@@ -1,6 +1,9 @@
 //! [`PrimalFormComplex`]: a complex of primal forms ([`PrimalForms`]) with its three masses,
 //! Whitney sampling and point evaluation — the one type behind [`crate::DecComplex`] and
-//! [`crate::WhitneyGalerkin`], which differ only in the masses (the marker `M`).
+//! [`crate::WhitneyGalerkin`], which differ only in the masses (the marker `M`). A crate of your
+//! own makes a DEC-like discretization the same way: a marker type of its own and
+//! [`PrimalFormComplex::assemble`] with its masses (the example crate `own-discretization` does,
+//! with a Hodge star of its own).
 
 use crate::boundary_conditions::mesh_topology;
 use crate::complex_id::complex_id;
@@ -27,10 +30,14 @@ pub struct PrimalFormComplex<M> {
 }
 
 impl<M> PrimalFormComplex<M> {
-    /// Assembles the complex of `mesh` (face geometry `geometry`) with boundary condition
-    /// `boundary` and catalog id `id` (`+{boundary}` appended on a mesh with boundary);
-    /// `masses` gives `[M0, M1, M2]` from the node spaces of the 0-, 1- and 2-forms.
-    pub(crate) fn assemble(
+    /// Assembles the complex of `mesh` (face geometry `geometry`, [`FaceGeometry::new`]) with
+    /// boundary condition `boundary` and catalog id `id` (`+{boundary}` appended on a mesh with
+    /// boundary); `masses` gives `[M0, M1, M2]` (`V × V`, `E × E`, `F × F`; see
+    /// [`HodgeComplex`] for their units) from the node spaces of the 0-, 1- and 2-forms
+    /// ([`PrimalForms::nodes`]: use their `components` for
+    /// [`Mass::diagonal_positive_on_used_nodes`]). Fails with the masses' error, or when
+    /// [`ComplexParts::new`] refuses the parts (shapes, `d1 d0 ≠ 0`).
+    pub fn assemble(
         id: &str,
         mesh: &TriangleMesh,
         geometry: &FaceGeometry,
@@ -56,9 +63,10 @@ impl<M> PrimalFormComplex<M> {
     }
 }
 
-/// `M2 = 1/area` per face (diagonal), named `what` in errors: a 2-form is stored by its
-/// integral, and `M2⁻¹ = |T|` is the `L²` mass of the piecewise constants.
-pub(crate) fn inverse_face_areas(
+/// `M2 = 1/area` per face (diagonal, `F` entries, 1/area), named `what` in errors: a 2-form is
+/// stored by its integral, and `M2⁻¹ = |T|` is the `L²` mass of the piecewise constants.
+/// `face_nodes` are the 2-forms' nodes ([`PrimalForms::nodes`]`[2]`).
+pub fn inverse_face_areas(
     what: &'static str,
     geometry: &FaceGeometry,
     face_nodes: &NodeSpace,

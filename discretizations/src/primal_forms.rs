@@ -28,8 +28,11 @@ use tvf_core::{SurfacePoint, TriangleMesh};
 /// the 0-forms (zero columns of `d0`), boundary edges Dirichlet nodes of the 1-forms (zero rows
 /// of `d0`, zero columns of `d1`); every face stays and the 2-forms have the constants in their
 /// kernel.
+///
+/// Public for discretizations of your own on primal forms ([`crate::PrimalFormComplex`]
+/// assembles them with your masses).
 #[derive(Debug, Clone)]
-pub(crate) struct PrimalForms {
+pub struct PrimalForms {
     /// `d0` (`E × V`).
     pub d0: CsMat<f64>,
     /// `d1` (`F × E`).
@@ -135,11 +138,12 @@ fn edge_face_incidence<M: Mesh + ?Sized>(mesh: &M) -> CsMat<f64> {
     from_triplets(faces.face_count(), edge_count, rows, cols, values)
 }
 
-/// Point evaluation of primal forms: a 0-form is interpolated linearly (the Whitney 0-forms are
-/// the hat functions), a 2-form's pointwise value (`M2` times its integral) is constant on its
-/// face.
+/// Point evaluation of primal forms on a triangle mesh: a 0-form is interpolated linearly (the
+/// Whitney 0-forms are the hat functions: weights the point's barycentric coordinates), a
+/// 2-form's coefficient is constant on its face (weight 1 at the point's face). The
+/// [`PointEvaluation`] of every [`crate::PrimalFormComplex`].
 #[derive(Debug, Clone)]
-pub(crate) struct PrimalFormEvaluation {
+pub struct PrimalFormEvaluation {
     faces: Vec<[usize; 3]>,
 }
 

@@ -12,13 +12,14 @@ use numpy::ndarray::Array2;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use tvf_conformance::accuracy::{accuracy_report, consistency_on_mesh, AccuracyRequest};
 use tvf_conformance::check_outcome::CheckOutcome;
 use tvf_conformance::check_report::core_check_report;
 use tvf_conformance::property_runner::{check_mesh, run_property, PropertyRequest};
 use tvf_conformance::strategies::MeshNeeds;
 use tvf_core::discretization::PointEvaluation;
 use tvf_core::discretization::{ComplexParts, FieldRotation, FieldSampling, HodgeComplex};
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 
 /// The complex a Python builder makes on `mesh`; its exception as the error (one that is not an
 /// `Exception`, such as `KeyboardInterrupt`, stops the computation: [`Interruption::stop`]).
@@ -40,8 +41,9 @@ pub(crate) fn python_complex(
     })
 }
 
-/// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`), `measured`, `limit`,
-/// `detail`.
+/// One dict per check: `name`, `status` (`passed`/`failed`/`skipped`/`not applicable`),
+/// `measured`, `limit`, `comparison`, `detail`: the core checks, then the consistency checks of
+/// linear functions on the complex's own mesh.
 #[pyfunction]
 pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py, PyDict>>> {
     let Some(mesh) = complex.mesh.as_triangles() else {
@@ -49,8 +51,32 @@ pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py,
             "the conformance checks run on triangle meshes so far (this mesh has polygons)",
         ));
     };
-    let report = detached(py, || core_check_report(complex.complex.as_ref(), mesh))?;
+    let report = detached(py, || {
+        let mut report = core_check_report(complex.complex.as_ref(), mesh);
+        let consistency = consistency_on_mesh(complex.complex.as_ref(), &complex.mesh);
+        report.outcomes.extend(consistency);
+        report
+    })?;
     outcome_dicts(py, &report.outcomes)
+}
+
+/// The accuracy checks of a Python builder (triangle meshes; on meshes with boundary too if
+/// `open_meshes`, else the hemisphere sequences are reported as not applicable).
+fn builder_accuracy(
+    build: &Py<PyAny>,
+    interruption: &Interruption,
+    open_meshes: bool,
+) -> tvf_conformance::check_report::CheckReport {
+    let builder = |mesh: &SurfaceMesh| match mesh.as_triangles() {
+        Some(triangles) => python_complex(build, triangles, interruption),
+        None => Err("a Python builder builds on triangle meshes".to_string()),
+    };
+    let request = AccuracyRequest {
+        triangles: true,
+        polygons: false,
+        open_meshes,
+    };
+    accuracy_report(&builder, &request)
 }
 
 /// The core checks of the complexes `build(V, F)` (a Python callable returning a native
@@ -58,10 +84,14 @@ pub fn check<'py>(py: Python<'py>, complex: &Complex) -> PyResult<Vec<Bound<'py,
 /// (Delaunay ones if `delaunay`), shrinking a failure. A dict: `passed` (the verdict: false
 /// whenever a case failed, even if its counterexample passes when checked again),
 /// `cases_passed`, `outcomes` (the mesh's, or each check's worst case), `counterexample`
-/// (`(V, F)` or `None`), `counterexample_outcomes` (measured in the run that failed) and
-/// `reproduced` (whether the counterexample failed again; `None` without one).
+/// (`(V, F)` or `None`), `counterexample_outcomes` (measured in the run that failed),
+/// `reproduced` (whether the counterexample failed again; `None` without one) and `accuracy`
+/// (the accuracy checks' outcomes if `accuracy`, else empty; a failed one makes `passed` false).
+/// With `open_meshes` the generated meshes and the accuracy sequences include meshes with
+/// boundary (the builder then gives `fixed_nodes` and `boundary_condition`).
 #[pyfunction]
-#[pyo3(signature = (build, cases, seed, mesh, delaunay))]
+#[pyo3(signature = (build, cases, seed, mesh, delaunay, accuracy, open_meshes))]
+#[allow(clippy::too_many_arguments)]
 pub fn check_builder<'py>(
     py: Python<'py>,
     build: Py<PyAny>,
@@ -69,10 +99,22 @@ pub fn check_builder<'py>(
     seed: u64,
     mesh: Option<&Mesh>,
     delaunay: bool,
+    accuracy: bool,
+    open_meshes: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let interruption = Interruption::default();
+    let accuracy_outcomes = if accuracy {
+        interruptible(py, &interruption, || {
+            builder_accuracy(&build, &interruption, open_meshes)
+        })?
+        .outcomes
+    } else {
+        Vec::new()
+    };
+    let accurate = !accuracy_outcomes.iter().any(CheckOutcome::failed_check);
     let builder = |mesh: &TriangleMesh| python_complex(&build, mesh, &interruption);
     let result = PyDict::new(py);
+    result.set_item("accuracy", outcome_dicts(py, &accuracy_outcomes)?)?;
     if let Some(mesh) = mesh {
         let Some(triangles) = mesh.mesh.as_triangles() else {
             return Err(crate::errors::tvf_error(
@@ -80,7 +122,7 @@ pub fn check_builder<'py>(
             ));
         };
         let report = interruptible(py, &interruption, || check_mesh(&builder, triangles, &[]))?;
-        result.set_item("passed", report.passed())?;
+        result.set_item("passed", report.passed() && accurate)?;
         result.set_item("cases_passed", u32::from(report.passed()))?;
         result.set_item("outcomes", outcome_dicts(py, &report.outcomes)?)?;
         result.set_item("counterexample", py.None())?;
@@ -90,7 +132,7 @@ pub fn check_builder<'py>(
     }
     let needs = MeshNeeds {
         delaunay,
-        closed_only: true,
+        closed_only: !open_meshes,
     };
     let request = PropertyRequest::new(cases, seed, needs);
     let report = interruptible(py, &interruption, || {
@@ -101,7 +143,7 @@ pub fn check_builder<'py>(
             "the property run stopped: {reason}"
         )));
     }
-    result.set_item("passed", report.passed())?;
+    result.set_item("passed", report.passed() && accurate)?;
     result.set_item("cases_passed", report.cases_passed)?;
     result.set_item("outcomes", outcome_dicts(py, &report.worst)?)?;
     match &report.counterexample {

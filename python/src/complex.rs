@@ -16,7 +16,7 @@ use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     builtin_catalog, catalog_entry, default_discretization, parse_intrinsic_delaunay,
     polygon_dec_entry, polygon_dec_id, split_intrinsic_id, BoxedComplex, ComplexMatrices,
-    MatrixComplex, MatrixSampling, StatedNodeKinds, DEFAULT_STABILISATION,
+    FixedNodes, MatrixComplex, MatrixSampling, StatedNodeKinds, DEFAULT_STABILISATION,
 };
 use tvf_spectral::SpectralBasis;
 
@@ -103,8 +103,12 @@ impl Complex {
     /// the matrix: shapes, finite entries, symmetry, positive definiteness on the used nodes (a
     /// Cholesky factorization of each sparse mass), `d1 · d0 = 0`; a size two node kinds share
     /// with no kind stated.
+    ///
+    /// `fixed` (potentials, fields, co-potentials: the node indices the boundary condition fixes
+    /// to zero) and `boundary` (`tangential` or `normal`, recorded in the id and topology) as
+    /// the folder format's `fixed_nodes` and `boundary_condition`; both `None` on a closed mesh.
     #[staticmethod]
-    #[pyo3(signature = (mesh, d0, d1, m0, m1, m2, m2_inverse, sampling, id, nodes = None))]
+    #[pyo3(signature = (mesh, d0, d1, m0, m1, m2, m2_inverse, sampling, id, nodes = None, fixed = None, boundary = None))]
     #[allow(clippy::too_many_arguments)]
     fn from_matrices(
         py: Python<'_>,
@@ -118,6 +122,8 @@ impl Complex {
         sampling: &str,
         id: &str,
         nodes: Option<StatedNodeNames>,
+        fixed: Option<(Vec<usize>, Vec<usize>, Vec<usize>)>,
+        boundary: Option<&str>,
     ) -> PyResult<Self> {
         let stated = stated_node_kinds(nodes)?;
         let sampling = MatrixSampling::from_name(sampling).ok_or_else(|| {
@@ -140,9 +146,30 @@ impl Complex {
             )),
         }
         .map_err(labelled)?;
+        let condition = match boundary {
+            None => BoundaryCondition::default(),
+            Some(name) => BoundaryCondition::from_name(name).ok_or_else(|| {
+                tvf_error(format!("boundary_condition '{name}': tangential or normal"))
+            })?,
+        };
         let matrices = ComplexMatrices { d0, d1, m0, m1, m2 };
         let complex = py
-            .detach(|| MatrixComplex::with_node_kinds(id, &mesh.mesh, matrices, &stated, sampling))
+            .detach(|| match (fixed, boundary) {
+                (None, None) => {
+                    MatrixComplex::with_node_kinds(id, &mesh.mesh, matrices, &stated, sampling)
+                }
+                (fixed, _) => {
+                    let (potentials, fields, co_potentials) = fixed.unwrap_or_default();
+                    let fixed = FixedNodes {
+                        potentials,
+                        fields,
+                        co_potentials,
+                    };
+                    MatrixComplex::with_boundary(
+                        id, &mesh.mesh, matrices, &stated, &fixed, condition, sampling,
+                    )
+                }
+            })
             .map_err(|e| tvf_error(format!("{}: {e}", mesh.label)))?;
         Ok(Self {
             complex: Box::new(complex),

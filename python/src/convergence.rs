@@ -69,20 +69,30 @@ pub fn convergence<'py>(
     report_dict(py, &report)
 }
 
-/// `sphere`, `hemisphere-tangential` or `hemisphere-normal`.
+/// `sphere`, `hemisphere-tangential` or `hemisphere-normal`, each also `jittered-…` (irregular
+/// refinements).
 fn surface(name: &str) -> PyResult<Surface> {
-    match name.strip_prefix("hemisphere-") {
-        None if name == "sphere" => Ok(Surface::Sphere),
-        Some(condition) => BoundaryCondition::from_name(condition)
-            .map(Surface::Hemisphere)
+    let (jittered, plain) = match name.strip_prefix("jittered-") {
+        Some(plain) => (true, plain),
+        None => (false, name),
+    };
+    match (plain.strip_prefix("hemisphere-"), jittered) {
+        (None, false) if plain == "sphere" => Ok(Surface::Sphere),
+        (None, true) if plain == "sphere" => Ok(Surface::JitteredSphere),
+        (Some(condition), _) => BoundaryCondition::from_name(condition)
+            .map(|b| match jittered {
+                true => Surface::JitteredHemisphere(b),
+                false => Surface::Hemisphere(b),
+            })
             .ok_or_else(|| unknown_surface(name)),
-        None => Err(unknown_surface(name)),
+        (None, _) => Err(unknown_surface(name)),
     }
 }
 
 fn unknown_surface(name: &str) -> PyErr {
     tvf_error(format!(
-        "'{name}' is not a surface: sphere, hemisphere-tangential or hemisphere-normal"
+        "'{name}' is not a surface: sphere, hemisphere-tangential or hemisphere-normal, each \
+         also jittered- (e.g. jittered-sphere)"
     ))
 }
 

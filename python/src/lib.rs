@@ -11,6 +11,7 @@ mod arrays;
 mod basis;
 mod basis_parts;
 mod check;
+mod compare;
 mod complex;
 mod convergence;
 mod design;
@@ -48,5 +49,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check::check, m)?)?;
     m.add_function(wrap_pyfunction!(convergence::convergence, m)?)?;
     m.add_function(wrap_pyfunction!(check::check_builder, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::compare, m)?)?;
     Ok(())
 }

@@ -1,5 +1,6 @@
 """tvf.check with a builder (V, F) -> matrices: a correct builder passes on generated meshes and
-on a given mesh; a builder broken only above 100 faces is caught and its failure shrunk to a
+on a given mesh, and the accuracy checks; a DEC star inverted by mistake passes every structural
+check and fails the accuracy checks; a builder broken only above 100 faces is caught and its failure shrunk to a
 small failing mesh; a builder that raises fails the construction check, one that is wrong
 only sometimes fails too; Ctrl+C and SystemExit propagate; cases and seed are integers."""
 
@@ -11,7 +12,7 @@ import pytest
 import scipy.sparse as sp
 
 import tvf
-from reference import p1_cr_complex, torus
+from reference import edges, p1_cr_complex, torus, whitney_complex
 
 
 def builder(V, F):
@@ -31,6 +32,9 @@ def broken_above_100_faces(V, F):
 def test_a_correct_builder_passes_on_generated_meshes():
     report = tvf.check(builder, cases=12, seed=1)
     assert report.passed, str(report)
+    accuracy = {o["name"]: o for o in report.accuracy}
+    assert accuracy["convergence:jittered sphere:cointegrable"]["status"] == "passed", str(report)
+    assert accuracy["consistency:co_laplacian_of_linear:flat box"]["status"] == "passed", str(report)
     assert report.cases_passed == 12
     assert report.counterexample is None
     names = {o["name"] for o in report.outcomes}
@@ -64,6 +68,98 @@ def test_a_builder_broken_above_100_faces_is_caught_and_shrunk():
     assert not again.passed
 
 
+def barycentric_dec(V, F, inverted):
+    """DEC with barycentric duals: ``M1`` per edge the barycentric dual length (edge midpoint
+    to the barycentres of its faces) over the primal length, or (``inverted``, the bug) primal
+    over dual; ``M0`` barycentric vertex areas, ``M2 = 1/area``; Whitney sampling."""
+    ref = whitney_complex(V, F)
+    E = ref["edges"]
+    _, opposite = edges(F)
+    area = 1.0 / ref["M2"]
+    dual = np.zeros(len(E))
+    centres = V[F].mean(axis=1)
+    for c in range(3):
+        e = opposite[:, c]
+        midpoints = 0.5 * (V[E[e, 0]] + V[E[e, 1]])
+        np.add.at(dual, e, np.linalg.norm(centres - midpoints, axis=1))
+    primal = np.linalg.norm(V[E[:, 1]] - V[E[:, 0]], axis=1)
+    M0 = np.bincount(F.ravel(), weights=np.repeat(area / 3, 3), minlength=len(V))
+    M1 = primal / dual if inverted else dual / primal
+    return dict(d0=ref["d0"], d1=ref["d1"], M0=M0, M1=M1, M2=ref["M2"], sampling="whitney")
+
+
+def test_an_inverted_star_passes_the_structure_and_fails_the_accuracy_checks():
+    """The researcher's bug: ``M1 = primal/dual``. Symmetric, positive, the right kernel on
+    every generated mesh; the accuracy checks name the patch test, the energy of a linear
+    function and the convergence order (with its table of errors)."""
+    inverted = lambda V, F: barycentric_dec(V, F, inverted=True)
+    report = tvf.check(inverted, cases=4, seed=1)
+    assert report.counterexample is None, str(report)
+    assert not report.passed
+    failed = {o["name"]: o for o in report.failures}
+    for name in (
+        "consistency:laplacian_of_linear:flat box",
+        "consistency:energy_of_linear:curved sphere",
+        "convergence:sphere:integrable",
+        "convergence:jittered sphere:integrable",
+    ):
+        assert name in failed, sorted(failed)
+    order = failed["convergence:sphere:integrable"]
+    assert order["comparison"] == "at_least" and order["measured"] < 1.0, order
+    assert "faces, h" in order["detail"]
+    not_applicable = {o["name"] for o in report.accuracy if o["status"] == "not applicable"}
+    assert "convergence:hemisphere:integrable" in not_applicable
+    assert "convergence:sphere:integrable" in str(report)
+    # The same matrices as one complex: the energy of a linear function on its own mesh fails.
+    V, F = torus(n=12, m=6)
+    complex = tvf.Complex.from_matrices(tvf.Mesh(V, F), **barycentric_dec(V, F, inverted=True))
+    single = tvf.check(complex)
+    assert "consistency:energy_of_linear:checked mesh" in {o["name"] for o in single.failures}
+
+
+def p1_cr_with_boundary(V, F):
+    """The conforming complex under the tangential condition on a mesh with boundary: the
+    Crouzeix-Raviart co-potentials of boundary edges fixed to zero (their rows of ``d1``
+    emptied), given as ``fixed_nodes`` as a ``--complex`` folder gives them."""
+    parts = builder(V, F)
+    E, opposite = edges(F)
+    boundary = np.flatnonzero(np.bincount(opposite.ravel(), minlength=len(E)) == 1)
+    if len(boundary) == 0:
+        return parts
+    keep = np.ones(len(E))
+    keep[boundary] = 0.0
+    parts["d1"] = (sp.diags(keep) @ parts["d1"]).tocsr()
+    parts["fixed_nodes"] = dict(co_potentials=boundary.tolist())
+    parts["boundary_condition"] = "tangential"
+    return parts
+
+
+def test_a_builder_with_boundary_conditions_passes_on_open_meshes():
+    """Python with boundary: the builder gives fixed nodes and the condition; the generated
+    meshes include meshes with boundary, and the accuracy checks the hemispheres."""
+    report = tvf.check(p1_cr_with_boundary, cases=10, seed=4, open_meshes=True)
+    assert report.passed, str(report)
+    accuracy = {o["name"]: o for o in report.accuracy}
+    hemisphere = accuracy["convergence:jittered hemisphere:cointegrable"]
+    assert hemisphere["status"] == "passed" and hemisphere["measured"] >= 1.5, hemisphere
+    # Without the fixed nodes the open mesh's matrices leave too many harmonic fields.
+    n = 6
+    x, y = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
+    V = np.stack([x.ravel(), y.ravel(), 0.1 * (x * y).ravel()], axis=1)
+    index = lambda i, j: i * (n + 1) + j
+    F = np.array(
+        [[index(i, j), index(i, j + 1), index(i + 1, j + 1)] for i in range(n) for j in range(n)]
+        + [[index(i, j), index(i + 1, j + 1), index(i + 1, j)] for i in range(n) for j in range(n)],
+        dtype=np.int64,
+    )
+    parts = builder(V, F)
+    with pytest.raises(tvf.TvfError, match="harmonic fields"):
+        tvf.Complex.from_matrices(tvf.Mesh(V, F), **parts)
+    complex = tvf.Complex.from_matrices(tvf.Mesh(V, F), **p1_cr_with_boundary(V, F))
+    assert complex.id.endswith("+tangential"), complex.id
+    assert tvf.check(complex).passed
+
+
 def test_a_builder_that_raises_fails_construction():
     def raising(V, F):
         raise RuntimeError("not on this mesh")
@@ -92,7 +188,7 @@ def wrong_every_second_call():
 
 def test_a_failure_that_does_not_reproduce_is_not_a_pass():
     """It once passed with a counterexample whose second look passed."""
-    report = tvf.check(wrong_every_second_call(), cases=16, seed=2)
+    report = tvf.check(wrong_every_second_call(), cases=16, seed=2, accuracy=False)
     assert not report.passed, str(report)
     assert report.counterexample is not None
     failed = {o["name"] for o in report.failures}
@@ -117,7 +213,7 @@ def test_a_failure_only_on_the_first_call_is_reported_as_non_deterministic():
             parts["M0"] = M0
         return parts
 
-    report = tvf.check(first_call_wrong, cases=4, seed=3)
+    report = tvf.check(first_call_wrong, cases=4, seed=3, accuracy=False)
     assert calls[0] > 1, calls[0]
     assert not report.passed, str(report)
     assert report.reproduced is False, str(report)
@@ -264,3 +360,23 @@ def test_hostile_builders_never_pass_and_never_crash():
         else:
             assert verdict == "passed=False" and failed, (name, verdict, failed)
     print(f"builder sweep: {len(lines)} hostile builders, none passed, none crashed")
+
+
+def test_compare_takes_complexes_ids_and_builders_alike():
+    """tvf.compare: a catalog id, a builder and a complex side by side; the builder of the
+    conforming complex agrees with its catalog entry exactly."""
+    V, F = torus(n=12, m=6)
+    mesh = tvf.Mesh(V, F)
+    dec = tvf.Complex(mesh, "nonconforming-barycentric")
+    result = tvf.compare(["conforming-barycentric", builder, dec], k=10, mesh=mesh)
+    assert result["reference"] == "conforming-barycentric"
+    assert [e["discretization"] for e in result["entries"]][1:] == ["builder", "nonconforming-barycentric"]
+    same = result["comparisons"][0]
+    assert max(same["eigenvalue_differences"]) < 1e-9, same
+    # Degenerate eigenspaces may be cut at k differently: shares lie in [0, 1].
+    assert all(-1e-9 <= x <= 1 + 1e-9 for x in same["second_in_first"])
+    other = result["comparisons"][1]
+    assert 0 < max(other["eigenvalue_differences"]) < 0.2
+    assert all(e["basis_seconds"] >= 0 for e in result["entries"])
+    with pytest.raises(TypeError, match="needs mesh"):
+        tvf.compare(["conforming-barycentric", builder], k=4)

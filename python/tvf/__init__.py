@@ -22,7 +22,7 @@ from .linear_operator import ComposedOperator
 from .spectral import Basis, basis, decompose, coefficients, filter, compress, decompress
 from .design import spline, design
 from .solvers import eigsh
-from .conformance import CheckReport, check, convergence
+from .conformance import CheckReport, check, compare, convergence
 
 __all__ = [
     "TvfError",
@@ -45,5 +45,6 @@ __all__ = [
     "eigsh",
     "CheckReport",
     "check",
+    "compare",
     "convergence",
 ]

@@ -1,6 +1,7 @@
 """Discretizations: the catalog, :class:`Complex` (catalog entries and your own matrices) and
 :func:`operators`."""
 
+import numpy as np
 import scipy.sparse.linalg as spla
 
 from . import _native
@@ -57,13 +58,15 @@ class Complex:
         self._native = _native.Complex.build(mesh._native, entry, str(boundary), beta, mode)
 
     @classmethod
-    def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None, nodes=None):
+    def from_matrices(cls, mesh, d0, d1, M0, M1, M2=None, sampling="face-frames", id="custom", *, M2_inverse=None,
+                      nodes=None, fixed_nodes=None, boundary_condition=None):
         """Your own discretization: the five matrices, run through the same Rust code as the
         built-in ones (basis, decomposition, coefficients, filter, compression, spline, design —
         the full one with diagonal masses, the reduced one always —, :func:`tvf.check`).
 
-        - ``mesh``: a closed :class:`Mesh` (with boundary, the boundary condition would have to
-          be given too: use a catalog entry there).
+        - ``mesh``: a :class:`Mesh`. On a mesh with boundary, give what the boundary condition
+          does, as a ``--complex`` folder's ``info.json`` does: ``fixed_nodes`` and
+          ``boundary_condition`` (below).
         - ``d0`` (``n1 x n0``, the gradient: potentials to fields, pointwise) and ``d1``
           (``n2 x n1``, the integrated curl: fields to co-potentials): any ``scipy.sparse``
           matrix or dense array.
@@ -94,6 +97,14 @@ class Complex:
           interpolation; triangle meshes), ``"polygon-sharp"`` (``E`` edge integrals, one vector
           per face by polygonal DEC's sharp; polygon and triangle meshes) or ``"none"``.
         - ``id``: the name written into results and messages.
+        - ``fixed_nodes`` (keyword only): ``dict(potentials=[...], fields=[...],
+          co_potentials=[...])``, the node indices the boundary condition fixes to zero (each
+          key optional, default none); their column of ``d0`` (potentials), row of ``d0`` and
+          column of ``d1`` (fields), row of ``d1`` (co-potentials) must be empty. Without them
+          on a mesh with boundary, the matrices usually leave too many harmonic fields, which
+          is refused.
+        - ``boundary_condition`` (keyword only): ``"tangential"`` or ``"normal"``, recorded in
+          the complex's id and topology (default ``"tangential"``).
 
         - ``nodes`` (keyword only): the node kinds of the three spaces, a tuple such as
           ``("vertices", "edges", "faces")`` (each ``"vertices"``, ``"edges"``, ``"faces"``,
@@ -128,6 +139,8 @@ class Complex:
             str(sampling),
             str(id),
             None if nodes is None else tuple(None if kind is None else str(kind) for kind in nodes),
+            _fixed_nodes(fixed_nodes),
+            None if boundary_condition is None else str(boundary_condition),
         )
         return complex_
 
@@ -202,6 +215,26 @@ def _check_declared_shapes(mesh, d0, d1, M0, M1, co_potential_mass):
             raise TvfError(f"{label}: {name} is {shape[0]} × {shape[1]}, not square")
         if len(shape) not in (1, 2) or (len(shape) == 2 and shape != (n, n)):
             raise TvfError(f"{label}: {name} has shape {shape}, but the complex needs {n} x {n} (one row per {what})")
+
+
+def _fixed_nodes(fixed_nodes):
+    """``fixed_nodes`` (a dict with ``potentials``, ``fields``, ``co_potentials``) as the native
+    triple of index lists, or ``None``."""
+    if fixed_nodes is None:
+        return None
+    if not isinstance(fixed_nodes, dict):
+        raise TypeError(f"fixed_nodes: expected a dict, got {type(fixed_nodes).__name__}")
+    keys = ("potentials", "fields", "co_potentials")
+    unknown = set(fixed_nodes) - set(keys)
+    if unknown:
+        raise TvfError(f"fixed_nodes: unknown key(s) {sorted(unknown)}: potentials, fields, co_potentials")
+    lists = []
+    for key in keys:
+        values = np.asarray(fixed_nodes.get(key, []))
+        if values.size and (values.ndim != 1 or not np.issubdtype(values.dtype, np.integer) or values.min() < 0):
+            raise TvfError(f"fixed_nodes['{key}']: expected non-negative integer indices")
+        lists.append([int(v) for v in values.ravel()])
+    return tuple(lists)
 
 
 def _check_mesh(mesh):

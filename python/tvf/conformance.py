@@ -1,6 +1,7 @@
 """The conformance suite's core checks on any complex, or property-based on a builder of
 complexes over generated meshes with a shrunk counterexample (:func:`check`); the convergence
-study against exact spectra (:func:`convergence`)."""
+study against exact spectra (:func:`convergence`); discretizations side by side on one mesh
+(:func:`compare`)."""
 
 from dataclasses import dataclass, field
 from typing import List, Optional, Tuple
@@ -14,9 +15,11 @@ from .mesh import Mesh
 @dataclass
 class CheckReport:
     """What :func:`check` measured: ``outcomes`` is a list of dicts with ``name``, ``status``
-    (``passed``, ``failed`` or ``skipped``), ``measured``, ``limit`` (the largest passing
-    value; for counts the expected count), ``comparison`` (``at_most``, or ``equals`` for
-    counts) and ``detail`` (one line)."""
+    (``passed``, ``failed``, ``skipped`` or ``not applicable``), ``measured``, ``limit`` (the
+    largest passing value; for counts the expected count; for lower bounds the least passing
+    value), ``comparison`` (``at_most``, ``equals`` for counts, ``at_least`` for lower bounds
+    such as an observed order of convergence) and ``detail`` (one line). ``accuracy`` holds the
+    accuracy checks of a builder in the same form."""
 
     complex_id: str
     outcomes: List[dict]
@@ -32,6 +35,10 @@ class CheckReport:
     reproduced: Optional[bool] = None
     #: The run's verdict where the native run gives one (a property run); else the outcomes'.
     verdict: Optional[bool] = None
+    #: With a builder: the accuracy checks (consistency of linear functions on a flat box and a
+    #: curved sphere; convergence of the lowest eigenvalues on regular and jittered spheres,
+    #: observed order >= 1.5), run once; empty with ``accuracy=False``.
+    accuracy: List[dict] = field(default_factory=list)
 
     @property
     def passed(self):
@@ -44,7 +51,7 @@ class CheckReport:
     @property
     def failures(self):
         """The failed outcomes (on the counterexample, if there is one)."""
-        outcomes = self.outcomes + self.counterexample_outcomes
+        outcomes = self.outcomes + self.counterexample_outcomes + self.accuracy
         return [o for o in outcomes if o["status"] == "failed"]
 
     def __str__(self):
@@ -61,10 +68,14 @@ class CheckReport:
                 )
             for o in self.counterexample_outcomes:
                 lines.append(f"  {o['status']:<7} {o['name']}: {o['detail']}")
+        if self.accuracy:
+            lines.append("accuracy checks:")
+            for o in self.accuracy:
+                lines.append(f"  {o['status']:<7} {o['name']} = {o['measured']:.3g}: {o['detail']}")
         return "\n".join(lines)
 
 
-def check(x, cases=64, seed=0, mesh=None, delaunay=False):
+def check(x, cases=64, seed=0, mesh=None, delaunay=False, accuracy=True, open_meshes=False):
     """Runs the core checks of tvf's conformance suite (the same code the Rust test suite
     asserts with):
 
@@ -84,7 +95,10 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
       arguments of :meth:`Complex.from_matrices`; ``M2_inverse=`` instead of ``M2=``, ``id=``
       optional; scipy.sparse or numpy). With ``mesh=(V, F)`` it is checked on that mesh;
       otherwise on ``cases`` closed meshes generated from ``seed`` (genus 0–5, several
-      components, jittered, slivers, rigidly moved; only Delaunay ones with ``delaunay=True``).
+      components, jittered, slivers, rigidly moved; only Delaunay ones with ``delaunay=True``);
+      with ``open_meshes=True`` also meshes with boundary (disks, cylinders, hemispheres,
+      surfaces with holes), for a builder that returns ``fixed_nodes=`` and
+      ``boundary_condition=`` (see :meth:`Complex.from_matrices`) where the mesh has a boundary.
       When a case fails, the mesh description is shrunk (fewer faces, lower genus, no jitter)
       and the report's ``counterexample`` is the minimal failing ``(V, F)`` with its checks in
       ``counterexample_outcomes`` (as measured in the run that failed); ``outcomes`` then hold
@@ -94,6 +108,17 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
       that raises an ``Exception`` fails the check named ``construction``;
       ``KeyboardInterrupt`` (Ctrl+C, also between and inside the checks) and ``SystemExit``
       stop the run and are raised.
+
+    Accuracy: a :class:`Complex` also gets the consistency checks of linear functions on its
+    own mesh (the gradient sampled exactly; the energy ``phi' S phi`` of a linear ``phi`` equal
+    to the piecewise flat surface's). A builder also gets, once and unless ``accuracy=False``,
+    the accuracy checks in :attr:`CheckReport.accuracy`: on a closed box of six flat jittered
+    patches and on a jittered sphere, the gradient of a linear function, both patch tests (the
+    stiffness of each nodal space annihilates linear functions inside flat faces) and the energy
+    of a linear function; and the relative error of the lowest eigenvalues of both families on
+    icospheres of levels 1-3, regular and jittered, with an observed order of at least 1.5, and
+    with ``open_meshes=True`` on ring hemispheres too (without it: not applicable). Checks a complex cannot run (no
+    sampling, values on faces) are ``not applicable`` with the reason.
 
     ``cases`` and ``seed`` are integers (``cases=2.7`` is a TypeError). Returns a
     :class:`CheckReport`; nothing raises for a failed check."""
@@ -108,7 +133,9 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
         raise ValueError(f"seed must be non-negative, got {seed}")
     native_mesh = None if mesh is None else Mesh(*mesh, label="mesh")._native
 
-    result = _native.check_builder(_native_builder(x), cases, seed, native_mesh, bool(delaunay))
+    result = _native.check_builder(
+        _native_builder(x), cases, seed, native_mesh, bool(delaunay), bool(accuracy), bool(open_meshes)
+    )
     return CheckReport(
         getattr(x, "__name__", "builder"),
         [dict(o) for o in result["outcomes"]],
@@ -117,6 +144,7 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False):
         counterexample_outcomes=[dict(o) for o in result["counterexample_outcomes"]],
         reproduced=result["reproduced"],
         verdict=bool(result["passed"]),
+        accuracy=[dict(o) for o in result["accuracy"]],
     )
 
 
@@ -169,3 +197,35 @@ def _native_builder(builder):
         return Complex.from_matrices(Mesh(V, F, label="generated mesh"), **parts)._native
 
     return build
+
+
+def compare(entries, k, mesh=None):
+    """Discretizations side by side on one mesh, as ``tvf compare`` does: each entry's basis of
+    the ``k`` lowest fields (timed), its eigenvalues against the first entry's, and how much of
+    each eigenfield's squared norm lies in the span of the other's ``k`` fields (fields compared
+    as one tangent vector per face at its centroid, area-weighted; every entry must sample).
+
+    ``entries`` (at least two; the first is the reference) are :class:`Complex` objects, catalog
+    ids, or builders ``(V, F) -> dict`` as for :func:`check`; ids and builders need ``mesh``
+    (a :class:`Mesh`), complexes must all be on one mesh. Returns a dict: ``reference`` (id),
+    ``entries`` (per entry ``discretization``, ``field_dimension``, ``eigenvalues``,
+    ``basis_seconds``) and ``comparisons`` (per entry after the first: ``first``, ``second``,
+    ``eigenvalue_differences`` ``|la - lb| / max(la, lb)`` index by index, ``second_in_first``,
+    ``first_in_second``)."""
+    k = integer(k, "k")
+    complexes = []
+    for entry in entries:
+        if isinstance(entry, Complex):
+            complexes.append(entry)
+            continue
+        if mesh is None:
+            raise TypeError("compare: a catalog id or a builder needs mesh=tvf.Mesh(V, F)")
+        if isinstance(entry, str):
+            complexes.append(Complex(mesh, entry))
+        elif callable(entry):
+            parts = dict(entry(mesh.positions, mesh.faces))
+            parts.setdefault("id", getattr(entry, "__name__", "builder"))
+            complexes.append(Complex.from_matrices(mesh, **parts))
+        else:
+            raise TypeError(f"compare: expected a tvf.Complex, a catalog id or a builder, got {type(entry).__name__}")
+    return _native.compare([c._native for c in complexes], k)

@@ -280,12 +280,12 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
                 }
             }
             Location::Vertex(node) => {
-                self.check_node_kind(constraint, kind, nodes.kind, NodeKind::Vertices)?;
+                self.check_node_kind(constraint, kind, space, nodes.kind, NodeKind::Vertices)?;
                 self.check_not_dirichlet(constraint, kind, nodes, node)?;
                 vec![(node, 1.0)]
             }
             Location::Edge(node) => {
-                self.check_node_kind(constraint, kind, nodes.kind, NodeKind::Edges)?;
+                self.check_node_kind(constraint, kind, space, nodes.kind, NodeKind::Edges)?;
                 self.check_not_dirichlet(constraint, kind, nodes, node)?;
                 vec![(node, 1.0)]
             }
@@ -354,10 +354,15 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
         })
     }
 
+    /// Fails unless the constraint's node kind `given` is that of its operator's space
+    /// (`nodes`, the nodes of `space`); the error says which key to use instead, and suggests the
+    /// other family only where it exists (a complex with a rotation `J`, or back to the
+    /// decomposition) and lives on the nodes given.
     fn check_node_kind(
         &self,
         constraint: &Constraint,
         kind: &'static str,
+        space: Space,
         nodes: NodeKind,
         given: NodeKind,
     ) -> Result<(), ConstraintError> {
@@ -369,20 +374,30 @@ impl<'a, H: HodgeComplex + ?Sized> ConstraintAssembler<'a, H> {
             NodeKind::Edges => "edge",
             NodeKind::Faces | NodeKind::FaceFrames => "face",
         };
-        let other_family = match constraint.family {
-            OperatorFamily::Decomposition => OperatorFamily::Other,
-            OperatorFamily::Other => OperatorFamily::Decomposition,
+        let (other_family, available) = match constraint.family {
+            OperatorFamily::Decomposition => {
+                (OperatorFamily::Other, self.complex.rotation().is_some())
+            }
+            OperatorFamily::Other => (OperatorFamily::Decomposition, true),
+        };
+        let other_nodes = match space {
+            Space::Potentials => self.complex.co_potential_nodes().kind,
+            Space::CoPotentials => self.complex.potential_nodes().kind,
+        };
+        let alternative = if available && other_nodes == given {
+            format!(" (or \"family\": \"{}\")", other_family.name())
+        } else {
+            String::new()
         };
         Err(ConstraintError::NodeKindMismatch {
             id: constraint.id.clone(),
             detail: format!(
-                "the {} {kind} of '{}' lives on {}, not on the {} given; use \"{}\" (or \"family\": \"{}\")",
+                "the {} {kind} of '{}' lives on {}, not on the {} given; use \"{}\"{alternative}",
                 constraint.family.name(),
                 self.complex.id(),
                 nodes.name(),
                 key(given),
                 key(nodes),
-                other_family.name()
             ),
         })
     }

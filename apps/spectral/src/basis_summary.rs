@@ -36,15 +36,29 @@ impl FamilyCounts {
 }
 
 impl BasisReport {
-    /// What a person may want to know of the computation besides the counts, one line each:
-    /// the eigenpairs computed and the threshold that split the families (when inertia counts
-    /// chose it), and the accuracy of the harmonic fields (when there are any).
-    pub fn notes(&self) -> Vec<String> {
+    /// What a person may want to know of the computation besides the counts of the basis
+    /// (`kept`), one line each: the eigenpairs computed and the threshold that split the
+    /// families (when inertia counts chose it) — computed pairs the basis does not keep (a
+    /// cluster straddling its last eigenvalue is computed whole) are said to be dropped, so the
+    /// two counts never read as two answers —, and the accuracy of the harmonic fields (when
+    /// there are any).
+    pub fn notes(&self, kept: FamilyCounts) -> Vec<String> {
         let mut notes = Vec::new();
         if let Some(threshold) = self.split_threshold {
+            let dropped = (self.integrable_computed + self.cointegrable_computed)
+                .saturating_sub(kept.integrable + kept.cointegrable);
+            let keeping = if dropped == 0 {
+                "all kept".to_string()
+            } else {
+                format!(
+                    "the basis keeps the lowest {} + {} (the {dropped} above are dropped)",
+                    kept.integrable, kept.cointegrable
+                )
+            };
             notes.push(format!(
                 "eigenpairs computed: {} integrable + {} co-integrable, all below λ = \
-                 {threshold:.6e} (split counted by {} inertia factorizations in {:.2} s)",
+                 {threshold:.6e} (split counted by {} inertia factorizations in {:.2} s); \
+                 {keeping}",
                 self.integrable_computed,
                 self.cointegrable_computed,
                 self.counting_factorizations,
@@ -251,8 +265,21 @@ mod tests {
         );
         // A genus-1 torus: the harmonic fields' accuracy is noted.
         assert!(report
-            .notes()
+            .notes(counts)
             .iter()
             .any(|n| n.starts_with("harmonic fields: dimension 2")));
+        // Computed pairs above the basis are said to be dropped, with the kept counts.
+        let mut more = report.clone();
+        more.split_threshold = Some(10.0);
+        more.integrable_computed = counts.integrable + 1;
+        more.cointegrable_computed = counts.cointegrable;
+        let note = more.notes(counts).remove(0);
+        assert!(
+            note.contains(&format!(
+                "the basis keeps the lowest {} + {} (the 1 above are dropped)",
+                counts.integrable, counts.cointegrable
+            )),
+            "{note}"
+        );
     }
 }

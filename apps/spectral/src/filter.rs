@@ -91,6 +91,25 @@ impl SpectralFilter {
         }
     }
 
+    /// The gain the rest field (the part above the basis) gets when none is given: the
+    /// responses continued beyond the basis, their gain at its highest frequency `√λ_max`, the
+    /// larger of the two families' (1 for identity responses, so that filtering with every
+    /// default returns the field; about `e^(−t·λ_max)` for a low-pass, which then removes the
+    /// high frequencies the basis cannot represent instead of keeping them as noise).
+    pub fn continued_rest_gain(
+        integrable: &FrequencyResponse,
+        cointegrable: &FrequencyResponse,
+        basis: &SpectralBasis,
+    ) -> f64 {
+        let top = basis
+            .eigenvalues()
+            .iter()
+            .copied()
+            .fold(0.0f64, f64::max)
+            .sqrt();
+        integrable.gain(top).max(cointegrable.gain(top))
+    }
+
     /// The gain of every basis field (`d` entries).
     pub fn gains(&self, basis: &SpectralBasis) -> Vec<f64> {
         basis

@@ -316,3 +316,145 @@ fn a_stop_ends_the_run_and_reaches_the_caller() {
     };
     assert!(payload.is::<StopRun>());
 }
+
+/// `dec-barycentric` with its edge star inverted as a researcher once wrote it: `M1 = primal /
+/// dual` instead of `dual / primal`, the dual edge the barycentric one (edge midpoint to the
+/// barycentres of its faces). Symmetric, positive, the right kernel: only accuracy tells.
+fn inverted_barycentric_star(mesh: &TriangleMesh) -> Result<BoxedComplex, String> {
+    use tvf_core::geometry::{norm, scale, sub};
+    let dec = catalog_entry("dec-barycentric")
+        .unwrap()
+        .build(mesh)
+        .map_err(|e| e.to_string())?;
+    let p = mesh.positions();
+    let mut dual = vec![0.0; mesh.edge_count()];
+    for (t, face) in mesh.faces().iter().enumerate() {
+        let barycentre = scale(
+            [0, 1, 2].iter().fold([0.0; 3], |s, &c| {
+                let q = p[face[c]];
+                [s[0] + q[0], s[1] + q[1], s[2] + q[2]]
+            }),
+            1.0 / 3.0,
+        );
+        for &e in &mesh.face_edges()[t] {
+            let [a, b] = mesh.edges()[e];
+            let midpoint = scale(
+                [p[a][0] + p[b][0], p[a][1] + p[b][1], p[a][2] + p[b][2]],
+                0.5,
+            );
+            dual[e] += norm(sub(barycentre, midpoint));
+        }
+    }
+    let star: Vec<f64> = mesh
+        .edges()
+        .iter()
+        .zip(&dual)
+        .map(|(&[a, b], d)| norm(sub(p[a], p[b])) / d)
+        .collect();
+    let complex = MatrixComplex::new(
+        "inverted-star",
+        &mesh.clone().into(),
+        dec.d0().clone(),
+        dec.d1().clone(),
+        dec.m0().clone(),
+        Mass::diagonal("M1", star).map_err(|e| e.to_string())?,
+        dec.m2().clone(),
+        MatrixSampling::Whitney,
+    )
+    .map_err(|e| e.to_string())?;
+    Ok(Box::new(complex))
+}
+
+/// The inverted star passes the core checks on a sphere (structure is all they see)...
+#[test]
+fn the_inverted_star_passes_the_core_checks() {
+    let mesh = tvf_core::generate::icosphere(2);
+    let report = check_mesh(&inverted_barycentric_star, &mesh, &[]);
+    assert!(report.passed(), "{:?}", report.failure_lines());
+}
+
+/// ...and fails the accuracy checks, each named with its numbers: the patch test and the energy
+/// of a linear function, and the convergence of the integrable eigenvalues on every sequence
+/// (an observed order far below 1.5).
+#[test]
+fn the_inverted_star_fails_the_accuracy_checks() {
+    use tvf_conformance::accuracy::{accuracy_report, AccuracyRequest};
+    use tvf_core::SurfaceMesh;
+    let builder = |mesh: &SurfaceMesh| inverted_barycentric_star(mesh.as_triangles().unwrap());
+    let report = accuracy_report(&builder, &AccuracyRequest::new(false));
+    let failed: Vec<&str> = report.failures().iter().map(|o| o.name.as_str()).collect();
+    for name in [
+        "consistency:laplacian_of_linear:flat box",
+        "consistency:energy_of_linear:flat box",
+        "consistency:energy_of_linear:curved sphere",
+        "convergence:sphere:integrable",
+        "convergence:jittered sphere:integrable",
+        "convergence:jittered hemisphere:integrable",
+    ] {
+        assert!(failed.contains(&name), "{name} not among {failed:?}");
+    }
+    let order = report
+        .outcomes
+        .iter()
+        .find(|o| o.name == "convergence:sphere:integrable")
+        .unwrap();
+    assert!(order.measured < 1.0, "{order:?}");
+    assert!(
+        order.detail.contains("faces, h"),
+        "the table: {}",
+        order.detail
+    );
+    // Whitney sampling reproduces gradients whatever the star: that check passes.
+    let gradient = report
+        .outcomes
+        .iter()
+        .find(|o| o.name == "consistency:gradient_of_linear:curved sphere")
+        .unwrap();
+    assert!(!gradient.failed_check(), "{gradient:?}");
+}
+
+/// The suite macro's `accuracy` test (`tvf_conformance::suite::accuracy`) fails on it, naming
+/// the checks.
+#[test]
+fn the_suite_macro_fails_the_inverted_star() {
+    let builder =
+        |mesh: &TriangleMesh| -> Result<BoxedComplex, String> { inverted_barycentric_star(mesh) };
+    let failure = std::panic::catch_unwind(|| tvf_conformance::suite::accuracy(&builder))
+        .expect_err("the accuracy test of the suite must fail");
+    let message = failure
+        .downcast_ref::<String>()
+        .cloned()
+        .unwrap_or_default();
+    assert!(
+        message.contains("consistency:laplacian_of_linear:flat box")
+            && message.contains("convergence:sphere:integrable"),
+        "{message}"
+    );
+}
+
+/// A co-potential inner product scaled by 2 (the seam's documented wrapper) halves every
+/// co-integrable eigenvalue: structure intact, the co-integrable convergence fails with a
+/// relative error stuck at 1/2 while the integrable family converges.
+#[test]
+fn a_scaled_inner_product_fails_the_co_integrable_convergence() {
+    use tvf_conformance::accuracy_meshes::Sequence;
+    use tvf_conformance::convergence_checks::measure_convergence;
+    use tvf_conformance::scaled_co_potentials::ScaledCoPotentials;
+    use tvf_core::SurfaceMesh;
+    use tvf_discretizations::{Conforming, MassLumping};
+    let builder = |mesh: &SurfaceMesh| -> Result<BoxedComplex, String> {
+        let conforming = Conforming::new(mesh.as_triangles().unwrap(), MassLumping::Barycentric)
+            .map_err(|e| e.to_string())?;
+        let scaled = ScaledCoPotentials::new(conforming, 2.0).map_err(|e| e.to_string())?;
+        Ok(Box::new(scaled))
+    };
+    let [integrable, cointegrable]: [_; 2] = measure_convergence(&builder, Sequence::Sphere(false))
+        .try_into()
+        .unwrap();
+    assert!(!integrable.failed_check(), "{integrable:?}");
+    assert!(cointegrable.failed_check(), "{cointegrable:?}");
+    assert!(
+        cointegrable.detail.contains("4.98e-1 (1280 faces"),
+        "{cointegrable:?}"
+    );
+}

@@ -22,9 +22,15 @@
 //! tvf-example-own-discretization edit mesh.obj --discretization blend-lumping-25
 //! ```
 //!
-//! Its tests: the conformance suite on the entry in one line (below), and every command run
-//! through the binary (`tests/commands.rs`).
+//! A second entry, `dec-length-star` ([`length_star`]), is DEC-like: tvf's primal forms
+//! (incidences, nodes, boundary conditions, Whitney sampling) with Hodge stars this crate
+//! computes itself, from the edge lengths.
+//!
+//! Its tests: the conformance suite on each entry in one line (below; the accuracy checks
+//! included), and every command run through the binary (`tests/commands.rs`).
 #![forbid(unsafe_code)]
+
+pub mod length_star;
 
 use sprs::CsMat;
 use std::process::ExitCode;
@@ -41,8 +47,12 @@ const REGISTERED_PERCENTS: [u8; 3] = [25, 50, 75];
 
 fn main() -> ExitCode {
     let mut catalog = Catalog::builtin();
-    for percent in REGISTERED_PERCENTS {
-        if let Err(error) = catalog.add(blend_lumping(percent)) {
+    let entries = REGISTERED_PERCENTS
+        .into_iter()
+        .map(blend_lumping)
+        .chain([length_star::length_star_entry()]);
+    for entry in entries {
+        if let Err(error) = catalog.add(entry) {
             eprintln!("error: {error}");
             return ExitCode::FAILURE;
         }
@@ -163,6 +173,9 @@ impl<S: FunctionSpace> FunctionSpace for Blended<S> {
 // meshes with boundary: one line.
 #[cfg(test)]
 tvf_conformance::conformance_suite!(blend_lumping_50, entry = blend_lumping(50));
+
+#[cfg(test)]
+tvf_conformance::conformance_suite!(dec_length_star, entry = length_star::length_star_entry());
 
 #[cfg(test)]
 mod tests {

@@ -57,11 +57,16 @@ fn the_listing_has_the_own_entries_after_the_built_in_ones() {
         .map(|e| e["id"].as_str().unwrap())
         .collect();
     let builtin: Vec<&str> = tvf_discretizations::builtin_catalog().ids().collect();
-    assert_eq!(ids.len(), builtin.len() + 3, "{ids:?}");
+    assert_eq!(ids.len(), builtin.len() + 4, "{ids:?}");
     assert_eq!(&ids[..builtin.len()], builtin.as_slice());
     assert_eq!(
         &ids[builtin.len()..],
-        ["blend-lumping-25", "blend-lumping-50", "blend-lumping-75"]
+        [
+            "blend-lumping-25",
+            "blend-lumping-50",
+            "blend-lumping-75",
+            "dec-length-star"
+        ]
     );
     let entry = &listing["discretizations"][builtin.len() + 1];
     assert_eq!(
@@ -400,4 +405,30 @@ fn the_editor_edits_with_the_own_entry() {
     assert_eq!(check["constraints"].as_array().unwrap().len(), 1, "{check}");
     assert!(check["max_relative"].as_f64().unwrap() < 1e-9, "{check}");
     drop(server);
+}
+
+/// `check` with the DEC-like entry of this crate: the core checks and the accuracy checks
+/// (consistency on patches, convergence on the sphere and hemisphere) pass, the convergence
+/// orders reported at least 1.5.
+#[test]
+fn the_dec_like_entry_passes_check_with_its_accuracy_checks() {
+    let output = run(&[
+        "check",
+        "--example",
+        "icosphere",
+        "--discretization",
+        "dec-length-star",
+        "--json",
+    ]);
+    let report = json(&output);
+    assert_eq!(report["passed"], true);
+    let orders: Vec<f64> = report["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["name"].as_str().unwrap().starts_with("convergence:"))
+        .map(|c| c["measured"].as_f64().unwrap())
+        .collect();
+    assert_eq!(orders.len(), 8, "two families on four sequences");
+    assert!(orders.iter().all(|&p| p >= 1.5), "{orders:?}");
 }

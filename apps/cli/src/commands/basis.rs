@@ -92,7 +92,8 @@ pub fn run(args: BasisArgs, context: &RunContext) -> Result<()> {
         arrays: args.export.as_deref(),
     };
     progress.finish(summary.headline());
-    report.notes().into_iter().for_each(note);
+    let kept = tvf_spectral::FamilyCounts::of(basis.families());
+    report.notes(kept).into_iter().for_each(note);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary.to_json())?);
     }

@@ -2,7 +2,9 @@
 //! checks on one mesh (on a polygon mesh: the core checks and the sampling and point evaluation
 //! checks on polygons), or property-based on generated triangle or polygon meshes with the
 //! minimal failing mesh written as OBJ (polygons kept as polygons; the logic:
-//! `tvf_conformance::property_runner`; the report: `tvf_conformance::check_run_report`).
+//! `tvf_conformance::property_runner`; the report: `tvf_conformance::check_run_report`); in both
+//! cases the accuracy checks (`tvf_conformance::accuracy`: consistency on patches, convergence on
+//! the sphere and hemisphere) unless `--no-accuracy`.
 
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
@@ -13,6 +15,10 @@ use anyhow::{bail, Context, Result};
 use clap::builder::PossibleValuesParser;
 use clap::Args;
 use std::path::PathBuf;
+use tvf_conformance::accuracy::{
+    accuracy_report, consistency_on_mesh, convergence_not_applicable, AccuracyRequest,
+};
+use tvf_conformance::check_outcome::CheckOutcome;
 use tvf_conformance::check_run_report::{
     entry_property_request, MeshCheckReport, PropertyRunReport,
 };
@@ -74,6 +80,11 @@ pub struct CheckArgs {
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
     json: bool,
+    /// Skip the accuracy checks (consistency of linear functions on flat and curved patches,
+    /// convergence of the lowest eigenvalues on regular and jittered refinements of the sphere
+    /// and hemisphere, observed order ≥ 1.5), which run by default.
+    #[arg(long)]
+    no_accuracy: bool,
 }
 
 /// Runs the checks; exits with an error naming the failed checks if any fails. JSON keys:
@@ -102,7 +113,7 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
         None => args.discretization.id(&loaded),
     };
     let flags = &args.discretization;
-    let checked = match loaded.as_triangles() {
+    let mut checked = match loaded.as_triangles() {
         Some(mesh) => {
             let builder = |mesh: &TriangleMesh| -> Result<Box<dyn HodgeComplex>, String> {
                 flags
@@ -120,9 +131,68 @@ pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
             check_polygon_mesh(&builder, &loaded)
         }
     };
+    if !args.no_accuracy {
+        let complex = flags.build(catalog, &loaded, &input);
+        let on_mesh = match &complex {
+            Ok(complex) => consistency_on_mesh(complex.as_ref(), &loaded),
+            // The core checks report the refusal.
+            Err(_) => Vec::new(),
+        };
+        checked.outcomes.extend(on_mesh);
+        checked.outcomes.extend(accuracy(&args, catalog, &id)?);
+    }
     let checked = MeshCheckReport::new(&id, &input.label(), loaded.face_count(), checked);
     report.add(checked.lines(), &checked);
     finish(report, checked.failure_message())
+}
+
+/// The accuracy checks of the discretization `id` built by `catalog` with the flags' boundary
+/// condition; for a `--complex` folder, the convergence checks as not applicable (a folder holds
+/// the matrices of one mesh).
+fn accuracy(args: &CheckArgs, catalog: &Catalog, id: &str) -> Result<Vec<CheckOutcome>> {
+    if args.discretization.complex.is_some() {
+        return Ok(convergence_not_applicable(
+            "a folder holds the matrices of one mesh: the refinement sequences need a \
+             discretization that builds on any mesh (a catalog entry)",
+        ));
+    }
+    let entry = catalog.get(id)?;
+    let boundary = args.discretization.boundary_condition();
+    let build = |mesh: &SurfaceMesh| -> Result<Box<dyn HodgeComplex>, String> {
+        catalog
+            .build_complex(id, Some(boundary), mesh)
+            .map_err(|e| e.to_string())
+    };
+    let progress = Progress::new("check");
+    progress.update(
+        "accuracy checks (patches; sphere and hemisphere refinements)",
+        0,
+        1,
+    );
+    let request = AccuracyRequest::new(!entry.needs_triangles());
+    let report = accuracy_report(&build, &request);
+    progress.finish(format!(
+        "accuracy checks: {} of {} passed",
+        report
+            .outcomes
+            .iter()
+            .filter(|o| o.status == tvf_conformance::check_outcome::CheckStatus::Passed)
+            .count(),
+        report.outcomes.len()
+    ));
+    Ok(report.outcomes)
+}
+
+/// The name the running program was called by (`tvf`, or a program of your own that runs tvf's
+/// command line with its catalog), for commands it prints to be run again.
+fn program_name() -> String {
+    std::env::args_os()
+        .next()
+        .and_then(|arg0| {
+            let path = PathBuf::from(arg0);
+            path.file_stem().map(|s| s.to_string_lossy().into_owned())
+        })
+        .unwrap_or_else(|| "tvf".to_string())
 }
 
 /// Whether the property run draws polygon meshes: `--meshes`, else polygons for an entry that
@@ -182,23 +252,26 @@ fn check_generated(
             .build_complex(id, Some(boundary), mesh)
             .map_err(|e| e.to_string())
     };
+    let program = program_name();
     let (run, counterexample) = if polygons {
         let outcome = run_polygon_property(&build, &request, &on_progress);
-        let run = PropertyRunReport::new(id, &request, &outcome, &args.output);
+        let run = PropertyRunReport::new(&program, id, &request, &outcome, &args.output);
         (run, outcome.counterexample.map(|c| c.mesh.mesh))
     } else {
         let builder = |mesh: &TriangleMesh| build(&SurfaceMesh::from(mesh.clone()));
         let outcome = run_property(&builder, &request, &on_progress);
-        let run = PropertyRunReport::new(id, &request, &outcome, &args.output);
+        let run = PropertyRunReport::new(&program, id, &request, &outcome, &args.output);
         let mesh = outcome
             .counterexample
             .map(|c| SurfaceMesh::from(c.mesh.mesh));
         (run, mesh)
     };
-    progress.finish(format!(
-        "{} of {} meshes passed",
-        run.cases_passed, args.cases
-    ));
+    progress.finish(run.cases_summary());
+    let run = if args.no_accuracy || run.aborted.is_some() {
+        run
+    } else {
+        run.with_accuracy(accuracy(args, catalog, id)?)
+    };
     report.add(run.lines(), &run);
     if let Some(message) = run.abort_message() {
         bail!(message);
@@ -218,5 +291,19 @@ fn finish(report: Report, failure: Option<String>) -> Result<()> {
     match failure {
         Some(message) => bail!(message),
         None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The reproduce command names the program that runs, not `tvf` (a program of your own
+    /// with its own catalog, such as the example crate's, runs this code too).
+    #[test]
+    fn the_program_name_is_the_running_binary() {
+        let exe = std::env::current_exe().unwrap();
+        let stem = exe.file_stem().unwrap().to_string_lossy();
+        assert_eq!(program_name(), stem);
     }
 }

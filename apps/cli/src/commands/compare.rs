@@ -3,15 +3,18 @@
 //! of each one's eigenfields lies in the span of the first's and back
 //! ([`tvf_spectral::BasisComparison`]).
 
+use super::compare_corpus::{run_corpus, summarize, summary_lines, CorpusRequest};
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
+use clap::builder::PossibleValuesParser;
 use clap::Args;
 use serde_json::json;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
+use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{parse_boundary_condition, BoxedComplex};
 use tvf_spectral::{compute_basis, BasisComparison, BasisRequest, SampledBasis};
@@ -21,7 +24,9 @@ use tvf_spectral::{compute_basis, BasisComparison, BasisRequest, SampledBasis};
 #[command(
     after_help = "Examples:\n  tvf compare bunny-closed.obj -k 100 --discretization \
 conforming-barycentric --discretization dec-circumcentric --discretization whitney-galerkin\n  \
-tvf compare --example genus2 -k 60 --discretization dec-circumcentric --complex my-dec/\n\n\
+tvf compare --example genus2 -k 60 --discretization dec-circumcentric --complex my-dec/\n  \
+tvf compare --corpus meshes/ -k 50 --discretization conforming-barycentric --discretization \
+whitney-galerkin --json\n\n\
 The first entry is the reference. For each other entry the report gives the relative \
 eigenvalue difference |λa − λb| / max(λa, λb) index by index (median and largest), and the \
 fraction of each eigenfield's squared norm that lies in the span of the other's K fields (mean \
@@ -34,8 +39,29 @@ are the basis computation of each entry, as a ratio to the first's in the same r
 --json, prints all of it (per index) as one JSON object."
 )]
 pub struct CompareArgs {
-    #[command(flatten)]
-    input: MeshInput,
+    /// Mesh file (.obj, .off or .ply); omit with --example or --corpus.
+    #[arg(value_name = "MESH", required_unless_present_any = ["example", "corpus"])]
+    mesh: Option<PathBuf>,
+    /// A built-in example mesh instead of a file.
+    #[arg(
+        long,
+        value_name = "NAME",
+        conflicts_with = "mesh",
+        value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
+    )]
+    example: Option<String>,
+    /// Split every polygon into triangles after loading (as for other commands' --triangulate).
+    #[arg(long)]
+    triangulate: bool,
+    /// Every mesh file (.obj, .off, .ply) of FOLDER instead of one mesh: each entry on each mesh
+    /// on local threads, reported as the entry's success rate with the reason of every failure,
+    /// its median basis time and its eigenvalues against the first entry's (catalog ids only:
+    /// a --complex folder belongs to one mesh).
+    #[arg(long, value_name = "FOLDER", conflicts_with_all = ["mesh", "example", "complexes"])]
+    corpus: Option<PathBuf>,
+    /// With --corpus: worker threads [default: one per core].
+    #[arg(long, value_name = "N", requires = "corpus")]
+    threads: Option<usize>,
     /// A catalog id to compare; repeat the flag (the first entry given is the reference).
     #[arg(long = "discretization", value_name = "ID")]
     discretizations: Vec<String>,
@@ -62,16 +88,31 @@ struct ComparedEntry {
     seconds: f64,
 }
 
+/// The one mesh of the arguments (a file or an example).
+fn mesh_input(args: &CompareArgs) -> MeshInput {
+    let mut input = match (&args.mesh, &args.example) {
+        (Some(path), _) => MeshInput::file(path.clone()),
+        (None, Some(name)) => MeshInput::example(name),
+        (None, None) => MeshInput::file(PathBuf::new()),
+    };
+    input.triangulate = args.triangulate;
+    input
+}
+
 /// Builds every entry, computes and samples its basis, and prints the comparison.
 pub fn run(args: CompareArgs, context: &RunContext) -> Result<()> {
     if args.count == 0 {
         bail!("-k 0: ask for at least one field");
     }
     let names = entry_names(&args)?;
-    let loaded = args.input.load()?;
+    if let Some(folder) = &args.corpus {
+        return run_corpus_comparison(&args, folder, context);
+    }
+    let input = mesh_input(&args);
+    let loaded = input.load()?;
     let mesh = loaded.mesh;
     let identity: Vec<usize> = (0..mesh.vertex_count()).collect();
-    let original_vertex = args.input.original_vertex().unwrap_or(&identity).to_vec();
+    let original_vertex = input.original_vertex().unwrap_or(&identity).to_vec();
     let mut entries = Vec::with_capacity(names.len());
     for name in &names {
         let label = match name {
@@ -82,26 +123,63 @@ pub fn run(args: CompareArgs, context: &RunContext) -> Result<()> {
             EntryName::Catalog(id) => context
                 .catalog()
                 .build_complex(id, Some(args.boundary.unwrap_or_default()), &mesh)
-                .with_context(|| args.input.label())?,
+                .with_context(|| input.label())?,
             EntryName::Folder(dir) => Box::new(
-                tvf_spectral::read_complex_folder(dir, &mesh, &original_vertex).with_context(
-                    || format!("--complex {} on {}", dir.display(), args.input.label()),
-                )?,
+                tvf_spectral::read_complex_folder(dir, &mesh, &original_vertex)
+                    .with_context(|| format!("--complex {} on {}", dir.display(), input.label()))?,
             ),
         };
-        entries.push(compute_entry(complex, label, args.count, &args.input)?);
+        entries.push(compute_entry(complex, label, args.count, &input)?);
     }
     let comparisons = entries[1..]
         .iter()
         .map(|entry| BasisComparison::new(&mesh, &entries[0].sampled, &entry.sampled))
         .collect::<Result<Vec<_>, _>>()
-        .with_context(|| args.input.label())?;
+        .with_context(|| input.label())?;
     if args.json {
-        print_json(&args, &mesh, &entries, &comparisons)
+        print_json(&args, &input, &mesh, &entries, &comparisons)
     } else {
-        print_tables(&args, &mesh, &entries, &comparisons);
+        print_tables(&args, &input, &mesh, &entries, &comparisons);
         Ok(())
     }
+}
+
+/// `--corpus FOLDER`: every mesh × entry, the per-entry success rates and failures.
+fn run_corpus_comparison(args: &CompareArgs, folder: &Path, context: &RunContext) -> Result<()> {
+    if args.threads == Some(0) {
+        bail!("--threads 0: give at least one thread");
+    }
+    let request = CorpusRequest {
+        folder,
+        ids: &args.discretizations,
+        boundary: args.boundary.unwrap_or_default(),
+        count: args.count,
+        triangulate: args.triangulate,
+        threads: args.threads,
+    };
+    let runs = run_corpus(&request, context.catalog())?;
+    let summaries = summarize(&args.discretizations, &runs);
+    if args.json {
+        let out = json!({
+            "corpus": folder.display().to_string(),
+            "fields": args.count,
+            "reference": args.discretizations[0],
+            "entries": summaries,
+            "runs": runs,
+        });
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        println!(
+            "corpus {} ({} meshes), K = {} fields",
+            folder.display(),
+            runs.len() / args.discretizations.len().max(1),
+            args.count
+        );
+        for line in summary_lines(&summaries, &args.discretizations[0]) {
+            println!("{line}");
+        }
+    }
+    Ok(())
 }
 
 /// What the flags name: catalog ids first, then folders.
@@ -191,13 +269,14 @@ fn mean_and_min(values: &[f64]) -> (f64, f64) {
 
 fn print_tables(
     args: &CompareArgs,
+    input: &MeshInput,
     mesh: &SurfaceMesh,
     entries: &[ComparedEntry],
     comparisons: &[BasisComparison],
 ) {
     println!(
         "mesh {} ({} faces), K = {} fields",
-        args.input.label(),
+        input.label(),
         mesh.face_count(),
         args.count
     );
@@ -236,6 +315,7 @@ fn print_tables(
 
 fn print_json(
     args: &CompareArgs,
+    input: &MeshInput,
     mesh: &SurfaceMesh,
     entries: &[ComparedEntry],
     comparisons: &[BasisComparison],
@@ -266,7 +346,7 @@ fn print_json(
         })
         .collect();
     let out = json!({
-        "mesh": args.input.label(),
+        "mesh": input.label(),
         "faces": mesh.face_count(),
         "fields": args.count,
         "entries": entries,

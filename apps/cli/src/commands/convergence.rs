@@ -40,7 +40,8 @@ pub struct ConvergenceArgs {
     /// The surfaces: the sphere, the hemisphere (both boundary conditions), or all, meshed by
     /// triangles; or quad-sphere (cube-spheres of 6n² quads, n = 2^(level+1)), quad-hemisphere
     /// (their upper halves, both boundary conditions), or quads (both), for discretizations
-    /// that accept polygon meshes.
+    /// that accept polygon meshes; or jittered (irregular refinements of the sphere and the
+    /// hemisphere).
     #[arg(long, value_enum, default_value_t = SurfaceChoice::All)]
     surface: SurfaceChoice,
     /// The coarsest refinement level (icosphere level; the hemisphere has 2·2^level rings).
@@ -52,7 +53,8 @@ pub struct ConvergenceArgs {
     /// Eigenvalues compared per family (the lowest nonzero ones).
     #[arg(short = 'n', long, value_name = "N", default_value_t = 24)]
     eigenvalues: usize,
-    /// Write the log–log plot (error against mean edge length, one colour per discretization).
+    /// Write the log–log plot (error against the number of faces, one colour per
+    /// discretization, co-integrable series as plain lines, a grey order-2 reference).
     #[arg(short, long, value_name = "PNG")]
     output: Option<PathBuf>,
     /// Print JSON to stdout instead of the table.
@@ -75,6 +77,10 @@ enum SurfaceChoice {
     QuadHemisphere,
     /// The quad sphere and the quad hemisphere.
     Quads,
+    /// Irregular refinements: the sphere and the hemisphere (both boundary conditions) with
+    /// every vertex jittered by up to 0.3 of its shortest edge, back on the surface, made
+    /// Delaunay by flips (a new draw per level).
+    Jittered,
 }
 
 impl SurfaceChoice {
@@ -90,6 +96,7 @@ impl SurfaceChoice {
             SurfaceChoice::QuadSphere => vec![Surface::QuadSphere],
             SurfaceChoice::QuadHemisphere => quad_hemispheres.collect(),
             SurfaceChoice::Quads => Surface::all_quads(),
+            SurfaceChoice::Jittered => Surface::all_jittered(),
         }
     }
 }

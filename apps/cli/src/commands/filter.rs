@@ -27,9 +27,12 @@ pub struct FilterArgs {
     /// Gain of the harmonic part.
     #[arg(long, value_name = "GAIN", default_value_t = 1.0)]
     harmonic: f64,
-    /// Gain of the rest field (the part the truncated basis cannot represent).
-    #[arg(long, value_name = "GAIN", default_value_t = 1.0)]
-    rest: f64,
+    /// Gain of the rest field (the part the truncated basis cannot represent, all above its
+    /// highest frequency) [default: the filters' gain at the basis's highest frequency, the
+    /// larger of the two families': 1 for identity filters, so the field comes back unchanged;
+    /// near 0 for a low-pass, which removes the unrepresented high frequencies].
+    #[arg(long, value_name = "GAIN")]
+    rest: Option<f64>,
     /// Output field file (.npy or text, by extension).
     #[arg(short, long, value_name = "OUT")]
     output: PathBuf,
@@ -64,7 +67,8 @@ fn response(flag: &str, spec: &str) -> Result<FrequencyResponse> {
 pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     let curves = [curve_file(&args.integrable), curve_file(&args.cointegrable)];
     let field = args.inputs.field_path_for_file(&args.output, &curves)?;
-    for (name, gain) in [("--harmonic", args.harmonic), ("--rest", args.rest)] {
+    for (name, gain) in [("--harmonic", Some(args.harmonic)), ("--rest", args.rest)] {
+        let Some(gain) = gain else { continue };
         if !gain.is_finite() || gain < 0.0 {
             bail!("{name} {gain}: a gain must be a finite number ≥ 0");
         }
@@ -76,17 +80,20 @@ pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     let setup = args
         .inputs
         .setup(context.catalog(), inputs, args.inputs.basis.size())?;
+    let rest_gain = args.rest.unwrap_or_else(|| {
+        SpectralFilter::continued_rest_gain(&integrable, &cointegrable, &setup.basis)
+    });
     let filter = SpectralFilter {
         integrable,
         cointegrable,
         harmonic_gain: args.harmonic,
-        rest_gain: args.rest,
+        rest_gain,
     };
     let filtered = filter.apply(&setup.basis, &field)?;
     let cause = format!(
         "the gains times the field's coefficients overflow f64 arithmetic: --integrable {}, \
-         --cointegrable {}, --harmonic {}, --rest {}",
-        args.integrable, args.cointegrable, args.harmonic, args.rest
+         --cointegrable {}, --harmonic {}, --rest {rest_gain}",
+        args.integrable, args.cointegrable, args.harmonic
     );
     check_computed_field(&filtered.field, "the filtered field", &cause)?;
     let norm = |v: &[f64]| setup.basis.inner_product(v, v).sqrt();
@@ -106,12 +113,21 @@ pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     ));
     report.line(format!("input norm     {input_norm:.6e}"));
     report.line(format!("rest norm      {:.6e}", filtered.rest_norm));
+    report.line(format!(
+        "rest gain      {rest_gain:.6e}{}",
+        if args.rest.is_some() {
+            ""
+        } else {
+            " (the filters' gain at the basis's highest frequency)"
+        }
+    ));
     report.line(format!("output norm    {output_norm:.6e}"));
     report.line(format!("wrote          {}", args.output.display()));
     report.set("basis_fields", setup.basis.len());
     report.set("discretization", &setup.discretization);
     report.set("input_norm", input_norm);
     report.set("rest_norm", filtered.rest_norm);
+    report.set("rest_gain", rest_gain);
     report.set("output_norm", output_norm);
     report.set("output", args.output.display().to_string());
     report.finish()

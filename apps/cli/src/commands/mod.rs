@@ -5,6 +5,7 @@ pub mod basis;
 pub mod check;
 pub mod coefficients;
 pub mod compare;
+pub mod compare_corpus;
 pub mod compress;
 pub mod convergence;
 pub mod decompose;

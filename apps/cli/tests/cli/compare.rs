@@ -123,3 +123,90 @@ fn fewer_than_two_or_repeated_entries_and_k_zero_are_refused() {
         assert!(message.contains(expected), "{args:?}: {message}");
     }
 }
+
+/// `--corpus FOLDER`: every mesh × entry; the success rate of each entry with the reason of each
+/// failure (a mesh that does not load, DEC refusing a mesh that is not Delaunay), and the
+/// eigenvalues against the first entry where both succeeded. K = 6 ends at the sphere's first
+/// gap (its l = 1 eigenspaces).
+#[test]
+fn a_corpus_gives_success_rates_and_failure_reasons() {
+    let dir = tempfile::tempdir().unwrap();
+    let corpus = dir.path().join("corpus");
+    std::fs::create_dir(&corpus).unwrap();
+    tvf_core::io::write_obj(
+        &corpus.join("a-sphere.obj"),
+        &tvf_core::generate::icosphere(2),
+    )
+    .unwrap();
+    // Rectangles split by a diagonal: cot α + cot β = 0, refused by DEC.
+    let torus = tvf_core::generate::torus(1.0, 0.4, 8, 5).unwrap();
+    tvf_core::io::write_obj(&corpus.join("b-torus.obj"), &torus).unwrap();
+    std::fs::write(corpus.join("c-broken.obj"), "v 0 0 0\nf 1 2 3\n").unwrap();
+    std::fs::write(corpus.join("notes.txt"), "not a mesh").unwrap();
+    let output = tvf()
+        .args(["compare", "--corpus"])
+        .arg(&corpus)
+        .args([
+            "-k",
+            "6",
+            "--discretization",
+            "conforming-barycentric",
+            "--discretization",
+            "dec-circumcentric",
+            "--threads",
+            "2",
+            "--json",
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    assert_success(&output);
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["reference"], "conforming-barycentric");
+    let entries = report["entries"].as_array().unwrap();
+    assert_eq!(
+        entries[0]["meshes"], 3,
+        "three mesh files, the text file left out"
+    );
+    assert_eq!(entries[0]["succeeded"], 2);
+    assert_eq!(entries[1]["succeeded"], 1);
+    let failures = entries[1]["failures"].as_array().unwrap();
+    let reasons: Vec<String> = failures
+        .iter()
+        .map(|f| format!("{} {}", f[0].as_str().unwrap(), f[1].as_str().unwrap()))
+        .collect();
+    assert!(
+        reasons
+            .iter()
+            .any(|r| r.contains("b-torus.obj") && r.contains("Delaunay")),
+        "{reasons:?}"
+    );
+    assert!(
+        reasons
+            .iter()
+            .any(|r| r.contains("c-broken.obj") && r.contains("cannot load")),
+        "{reasons:?}"
+    );
+    let difference = entries[1]["median_relative_difference"].as_f64().unwrap();
+    assert!(difference > 0.0 && difference < 0.05, "{difference}");
+    let text = tvf()
+        .args(["compare", "--corpus"])
+        .arg(&corpus)
+        .args([
+            "-k",
+            "6",
+            "--discretization",
+            "conforming-barycentric",
+            "--discretization",
+            "dec-circumcentric",
+            "--quiet",
+        ])
+        .output()
+        .unwrap();
+    assert_success(&text);
+    let stdout = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        stdout.contains("1/3") && stdout.contains("33.3%"),
+        "{stdout}"
+    );
+}

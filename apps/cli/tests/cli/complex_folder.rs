@@ -490,9 +490,10 @@ fn commands_on_an_unedited_folder_match_the_catalog_entry() {
             {"id": "north", "kind": "vector", "face": 100, "value": [0, 1, 0]}]}"#,
     )
     .unwrap();
-    let outputs = |tag: &str, flags: &[&str]| -> [PathBuf; 3] {
-        let [filtered, spline, picture] = ["filtered.txt", "spline.txt", "picture.png"]
-            .map(|n| setup.path(&format!("{tag}-{n}")));
+    let outputs = |tag: &str, flags: &[&str]| -> [PathBuf; 4] {
+        let [filtered, spline, picture, curl] =
+            ["filtered.txt", "spline.txt", "picture.png", "curl.png"]
+                .map(|n| setup.path(&format!("{tag}-{n}")));
         let with = |args: Vec<&str>| {
             let mut args: Vec<String> = args.into_iter().map(String::from).collect();
             args.extend(flags.iter().map(|f| f.to_string()));
@@ -530,7 +531,19 @@ fn commands_on_an_unedited_folder_match_the_catalog_entry() {
             "-o",
             picture.to_str().unwrap(),
         ]);
-        [filtered, spline, picture]
+        // Face colours of potentials: the folder evaluates them by its node kinds.
+        with(vec![
+            "render",
+            &setup.mesh,
+            field,
+            "--color",
+            "curl",
+            "--size",
+            "160x120",
+            "-o",
+            curl.to_str().unwrap(),
+        ]);
+        [filtered, spline, picture, curl]
     };
     let ours = outputs("folder", &["--complex", &folder]);
     let catalog = outputs("catalog", &["--discretization", "conforming-barycentric"]);
@@ -773,6 +786,11 @@ fn hostile_matrix_market_folders() -> Vec<Hostile> {
                 });
             }),
             Some("named as an inverse"),
+        ),
+        (
+            "info.json calls the diagonal M1 sparse",
+            Box::new(|d: &Path| edit_info(d, |i| i["masses"]["M1"]["storage"] = "sparse".into())),
+            Some("holds a diagonal matrix"),
         ),
         (
             "info.json gives an unknown sampling",

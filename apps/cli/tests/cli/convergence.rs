@@ -190,3 +190,42 @@ fn duplicates_folders_and_single_levels_are_handled_up_front() {
     assert!(!stdout.contains("NaN"), "{stdout}");
     assert!(stdout.contains("no order (it needs two levels"), "{stdout}");
 }
+
+/// Irregular refinements: `--surface jittered` runs the jittered sphere and hemisphere (both
+/// conditions), and a consistent entry still converges at second order there; the plot is
+/// written.
+#[test]
+fn jittered_refinements_converge_for_a_consistent_entry() {
+    let dir = tempfile::tempdir().unwrap();
+    let plot = dir.path().join("jittered.png");
+    let output = tvf()
+        .args([
+            "convergence",
+            "--surface",
+            "jittered",
+            "--discretization",
+            "conforming-barycentric",
+            "--min-level",
+            "1",
+            "--max-level",
+            "3",
+            "-n",
+            "6",
+            "--json",
+            "-o",
+        ])
+        .arg(&plot)
+        .output()
+        .unwrap();
+    assert_success(&output);
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 3 * 3);
+    assert_eq!(rows[0]["surface"], "jittered-sphere");
+    assert_eq!(rows[3]["surface"], "jittered-hemisphere");
+    for order in json["orders"].as_array().unwrap() {
+        let value = order["order"].as_f64().unwrap();
+        assert!(value > 1.5, "{order}");
+    }
+    assert!(image::open(&plot).is_ok());
+}

@@ -153,6 +153,35 @@ fn filter_identity_returns_the_tangent_field_and_low_pass_smooths() {
     let filtered = tangent(&fields, &smooth);
     assert!(norm(&fields, &filtered) < norm(&fields, &input));
 
+    // Without --rest the rest gets the low-pass's gain at the basis's top frequency: the
+    // unrepresented high frequencies are removed (the README's example once kept them as noise).
+    let default_rest = fx.path("default-rest.txt");
+    let stdout = succeeded(&tvf(&[
+        &"filter",
+        &fx.mesh,
+        &fx.field,
+        &"--basis",
+        &fx.basis,
+        &"--integrable",
+        &"lowpass:t=5",
+        &"--cointegrable",
+        &"lowpass:t=5",
+        &"-o",
+        &default_rest,
+    ]));
+    // The fixture's basis represents its field whole (no rest to see removed): the default
+    // gain itself is checked, e^(-5 λ_max) against the 1 that kept the rest before.
+    let gain: f64 = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("rest gain"))
+        .and_then(|l| l.split_whitespace().next())
+        .and_then(|g| g.parse().ok())
+        .unwrap_or_else(|| panic!("no rest gain: {stdout}"));
+    assert!(
+        stdout.contains("(the filters' gain at the basis's highest frequency)") && gain < 1e-3,
+        "{stdout}"
+    );
+
     let error = failed(&tvf(&[
         &"filter",
         &fx.mesh,

@@ -200,6 +200,17 @@ fn mesh_checks_and_node_kinds() {
         .unwrap_err();
     assert!(matches!(wrong, ConstraintError::NodeKindMismatch { .. }));
     assert!(wrong.to_string().contains("\"edge\""), "{wrong}");
+    assert!(
+        wrong.to_string().contains("\"family\": \"other\""),
+        "the conforming complex has the other family: {wrong}"
+    );
+    // DEC has no rotation, hence no other family: the advice does not offer it.
+    let dec = tvf_discretizations::DecComplex::new(&mesh, MassLumping::Voronoi).unwrap();
+    let on_edge = ConstraintAssembler::new(&dec, &mesh)
+        .compile(&Constraint::new("e", Target::Curl(1.0), Location::Edge(3)))
+        .unwrap_err();
+    assert!(on_edge.to_string().contains("use \"face\""), "{on_edge}");
+    assert!(!on_edge.to_string().contains("other"), "{on_edge}");
     let other = Constraint::new("w", Target::Curl(1.0), Location::Vertex(3))
         .with_family(OperatorFamily::Other);
     assert_eq!(assembler.compile(&other).unwrap().rows.len(), 1);

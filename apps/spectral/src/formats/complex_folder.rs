@@ -343,16 +343,32 @@ impl Folder {
                 ),
             ));
         }
-        let diagonal = match self.string(&format!("masses/{name}/storage"))? {
-            Some("diagonal") => true,
-            Some("sparse") => false,
-            Some(other) => {
+        // The file decides what the matrix is; a storage in info.json must agree with it (a
+        // 'diagonal' mass with an entry off the diagonal is refused by `mass_from_matrix`).
+        let diagonal = match (
+            self.string(&format!("masses/{name}/storage"))?,
+            off_diagonal(&matrix),
+        ) {
+            (Some("diagonal"), _) => true,
+            (Some("sparse"), Some(_)) => false,
+            (Some("sparse"), None) => {
+                return Err(error(
+                    &self.info_path(),
+                    format!(
+                        "masses/{name}/storage is 'sparse', but {} holds a diagonal matrix (a \
+                         sparse mass is factorized and solved with, for nothing): the file \
+                         decides; say 'diagonal' or remove the key",
+                        file.display()
+                    ),
+                ))
+            }
+            (Some(other), _) => {
                 return Err(error(
                     &self.info_path(),
                     format!("masses/{name}/storage is '{other}': diagonal or sparse"),
                 ))
             }
-            None => off_diagonal(&matrix).is_none(),
+            (None, off) => off.is_none(),
         };
         let what = match (form, name) {
             (MassForm::Direct, _) => name,
