@@ -28,7 +28,7 @@ pub struct CorpusRequest<'a> {
     pub count: usize,
     /// Split polygons into triangles after loading.
     pub triangulate: bool,
-    /// Worker threads (`None`: rayon's default, one per core).
+    /// Worker threads (`None`: one per core).
     pub threads: Option<usize>,
 }
 
@@ -160,14 +160,16 @@ pub fn run_corpus(request: &CorpusRequest, catalog: &Catalog) -> Result<Vec<Corp
             })
             .collect()
     };
-    let runs = match request.threads {
-        Some(threads) => rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .context("--threads: cannot start the worker threads")?
-            .install(work),
-        None => work(),
-    };
+    // Always a pool of its own: the meshes' eigensolvers hand work to rayon's global pool and
+    // wait for it, which deadlocks when the meshes themselves occupy every global worker.
+    let threads = request
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let runs = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .context("--threads: cannot start the worker threads")?
+        .install(work);
     let failed = runs.iter().filter(|r| !r.succeeded).count();
     progress.finish(format!(
         "{} runs on {} meshes, {failed} failed",
