@@ -141,7 +141,7 @@ macro_rules! conformance_suite {
         $(, reference = [$($check:ident),* $(,)?])?
         $(, reference_checks = $checks:expr)?
         $(, cases = $cases:expr)?
-        $(, accuracy = $accuracy:literal)?
+        $(, accuracy = $accuracy:tt)?
         $(,)?
     ) => {
         mod $name {
@@ -279,7 +279,7 @@ macro_rules! conformance_suite {
 #[macro_export]
 macro_rules! __accuracy_test {
     (false) => {};
-    ($($on:literal)?) => {
+    ($($on:tt)?) => {
         #[test]
         fn accuracy() {
             $crate::suite::accuracy(&build_complex);

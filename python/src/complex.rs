@@ -165,8 +165,13 @@ impl Complex {
                         fields,
                         co_potentials,
                     };
+                    // As a folder's id: the condition named where the mesh has a boundary.
+                    let id = match mesh.mesh.is_closed() {
+                        true => id.to_string(),
+                        false => format!("{id}+{}", condition.name()),
+                    };
                     MatrixComplex::with_boundary(
-                        id, &mesh.mesh, matrices, &stated, &fixed, condition, sampling,
+                        &id, &mesh.mesh, matrices, &stated, &fixed, condition, sampling,
                     )
                 }
             })

@@ -142,7 +142,7 @@ def test_a_builder_with_boundary_conditions_passes_on_open_meshes():
     accuracy = {o["name"]: o for o in report.accuracy}
     hemisphere = accuracy["convergence:jittered hemisphere:cointegrable"]
     assert hemisphere["status"] == "passed" and hemisphere["measured"] >= 1.5, hemisphere
-    # Without the fixed nodes the open mesh's matrices leave too many harmonic fields.
+    # Without fixed nodes, matrices on an open mesh are refused: they cannot state its boundary condition.
     n = 6
     x, y = np.meshgrid(np.linspace(0, 1, n + 1), np.linspace(0, 1, n + 1))
     V = np.stack([x.ravel(), y.ravel(), 0.1 * (x * y).ravel()], axis=1)
@@ -153,7 +153,7 @@ def test_a_builder_with_boundary_conditions_passes_on_open_meshes():
         dtype=np.int64,
     )
     parts = builder(V, F)
-    with pytest.raises(tvf.TvfError, match="harmonic fields"):
+    with pytest.raises(tvf.TvfError, match="without fixed nodes needs a closed mesh"):
         tvf.Complex.from_matrices(tvf.Mesh(V, F), **parts)
     complex = tvf.Complex.from_matrices(tvf.Mesh(V, F), **p1_cr_with_boundary(V, F))
     assert complex.id.endswith("+tangential"), complex.id

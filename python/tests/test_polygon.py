@@ -111,7 +111,7 @@ def test_your_own_matrices_on_a_polygon_mesh_give_polygon_dec_back():
 def test_your_own_matrices_on_a_quad_torus_need_their_node_kinds():
     # V = F on a quad torus: the sizes cannot tell vertices from faces.
     mesh = tvf.Mesh(*MESHES["quad-torus"])
-    assert len(mesh.vertices) == len(mesh.faces)
+    assert len(mesh.positions) == len(mesh.faces)
     ops = tvf.operators(mesh)
     parts = (mesh, ops["d0"], ops["d1"], ops["M0"], ops["M1"], ops["M2"])
     with pytest.raises(tvf.TvfError, match="72 nodes, which is ambiguous: the mesh has 72 vertices and 72 faces"):

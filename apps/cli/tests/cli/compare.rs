@@ -134,13 +134,13 @@ fn a_corpus_gives_success_rates_and_failure_reasons() {
     let corpus = dir.path().join("corpus");
     std::fs::create_dir(&corpus).unwrap();
     tvf_core::io::write_obj(
-        &corpus.join("a-sphere.obj"),
+        corpus.join("a-sphere.obj"),
         &tvf_core::generate::icosphere(2),
     )
     .unwrap();
     // Rectangles split by a diagonal: cot α + cot β = 0, refused by DEC.
     let torus = tvf_core::generate::torus(1.0, 0.4, 8, 5).unwrap();
-    tvf_core::io::write_obj(&corpus.join("b-torus.obj"), &torus).unwrap();
+    tvf_core::io::write_obj(corpus.join("b-torus.obj"), &torus).unwrap();
     std::fs::write(corpus.join("c-broken.obj"), "v 0 0 0\nf 1 2 3\n").unwrap();
     std::fs::write(corpus.join("notes.txt"), "not a mesh").unwrap();
     let output = tvf()
