@@ -6,7 +6,7 @@ use clap::Args;
 use serde_json::{json, Value};
 use std::time::Instant;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::TriangleMesh;
+use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_discretizations::face_geometry::FaceGeometry;
 use tvf_discretizations::{
     edge_hodge_star, mesh_topology, parse_intrinsic_delaunay, IntrinsicDelaunay, IntrinsicInput,
@@ -54,18 +54,7 @@ pub fn run(args: InfoArgs) -> Result<()> {
     let loaded = args.input.load()?;
     let (mesh, report) = (&loaded.mesh, &loaded.report);
     let non_delaunay = mesh.as_triangles().and_then(non_delaunay_edges);
-    let intrinsic = match (args.intrinsic_delaunay, mesh.as_triangles()) {
-        (Some(mode), Some(triangles)) => Some(
-            intrinsic_summary(triangles, mode)
-                .with_context(|| format!("{}: --intrinsic-delaunay", args.input.label()))?,
-        ),
-        (Some(_), None) => bail!(
-            "{}: --intrinsic-delaunay needs a triangle mesh (triangulate it first: tvf \
-             triangulate MESH -o OUT)",
-            args.input.label()
-        ),
-        (None, _) => None,
-    };
+    let intrinsic = intrinsic_report(&args, mesh)?;
     let face_sizes = mesh.face_size_counts();
     let warnings: Vec<String> = report.warnings.iter().map(|w| w.to_string()).collect();
     let loops = tvf_discretizations::component_boundary_loops(mesh);
@@ -148,6 +137,35 @@ pub fn run(args: InfoArgs) -> Result<()> {
         "angles         {:.3}° .. {:.3}°",
         report.min_angle_deg, report.max_angle_deg
     );
+    print_delaunay_lines(non_delaunay, intrinsic.as_ref());
+    if warnings.is_empty() {
+        println!("warnings       none");
+    }
+    for warning in &warnings {
+        println!("warning        {warning}");
+    }
+    Ok(())
+}
+
+/// The `--intrinsic-delaunay` summary of `mesh` ([`intrinsic_summary`]), `None` without the
+/// flag; an error on a polygon mesh.
+fn intrinsic_report(args: &InfoArgs, mesh: &SurfaceMesh) -> Result<Option<Value>> {
+    match (args.intrinsic_delaunay, mesh.as_triangles()) {
+        (Some(mode), Some(triangles)) => Ok(Some(
+            intrinsic_summary(triangles, mode)
+                .with_context(|| format!("{}: --intrinsic-delaunay", args.input.label()))?,
+        )),
+        (Some(_), None) => bail!(
+            "{}: --intrinsic-delaunay needs a triangle mesh (triangulate it first: tvf \
+             triangulate MESH -o OUT)",
+            args.input.label()
+        ),
+        (None, _) => Ok(None),
+    }
+}
+
+/// The report's `delaunay` line (triangle meshes) and `intrinsic` line (with the flag).
+fn print_delaunay_lines(non_delaunay: Option<usize>, intrinsic: Option<&Value>) {
     match non_delaunay {
         Some(0) => println!("delaunay       yes (cot α + cot β > 0 on every edge)"),
         Some(count) => println!(
@@ -156,20 +174,13 @@ pub fn run(args: InfoArgs) -> Result<()> {
         ),
         None => {}
     }
-    if let Some(summary) = &intrinsic {
+    if let Some(summary) = intrinsic {
         println!(
             "intrinsic      {} flips, {} inserted vertices, {} edges, {} with cot α + cot β ≤ 1e-12, {} cells of the common subdivision ({:.3} s)",
             summary["flips"], summary["inserted_vertices"], summary["edges"],
             summary["not_positive_edges"], summary["cells"], summary["seconds"].as_f64().unwrap_or(0.0)
         );
     }
-    if warnings.is_empty() {
-        println!("warnings       none");
-    }
-    for warning in &warnings {
-        println!("warning        {warning}");
-    }
-    Ok(())
 }
 
 /// Number of edges of `mesh` with `cot α + cot β ≤` [`DELAUNAY_TOLERANCE`] (DEC's test);
