@@ -3,6 +3,7 @@
 //! and per-input-face vectors as 1-forms) and [`IntrinsicEvaluation`] (0- and 2-forms at input
 //! points), both through the common subdivision.
 
+use crate::edge_averages::EdgeAverages;
 use crate::face_geometry::FaceGeometry;
 use crate::intrinsic_delaunay::IntrinsicInput;
 use tvf_core::discretization::{
@@ -222,8 +223,7 @@ impl FieldSampling for IntrinsicWhitneySampling {
         check_face_vectors(self.face_count(), vectors)?;
         let tri = &self.input.triangulation;
         let face_vectors = self.intrinsic_face_vectors(vectors);
-        let mut sums = vec![0.0; tri.edge_count()];
-        let mut counts = vec![0u32; tri.edge_count()];
+        let mut averages = EdgeAverages::new(tri.edge_count());
         for (t, u) in face_vectors.iter().enumerate() {
             let l2 = tri.face_lengths(t).map(|l| l * l);
             for (c, e) in tri.face_edges(t).into_iter().enumerate() {
@@ -231,22 +231,10 @@ impl FieldSampling for IntrinsicWhitneySampling {
                 // ⟨u, p_k − p_j⟩ with u = Σ u_m (p_m − p_j): |p_k − p_j|² = l_c², and
                 // ⟨p_c − p_j, p_k − p_j⟩ = (l_k² + l_c² − l_j²) / 2.
                 let along = u[k] * l2[c] + u[c] * (l2[k] + l2[c] - l2[j]) / 2.0;
-                sums[e] += self.signs[t][c] * along;
-                counts[e] += 1;
+                averages.add(e, self.signs[t][c] * along);
             }
         }
-        let field = sums
-            .iter()
-            .zip(&counts)
-            .zip(&self.fixed_edges)
-            .map(|((&s, &n), &fixed)| {
-                if n > 0 && !fixed {
-                    s / f64::from(n)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+        let field = averages.means(&self.fixed_edges);
         let normal_parts = vectors
             .iter()
             .zip(&self.normals)

@@ -119,6 +119,7 @@ mod complex_id;
 mod consistent_mass;
 mod crouzeix_raviart;
 mod dec_complex;
+mod edge_averages;
 mod error;
 mod face_fields;
 pub mod face_geometry;

@@ -2,6 +2,7 @@
 //! tangent vector per polygon (its sharp), per-face vectors turned into a 1-form (the flat), and
 //! 0- and 2-forms at points.
 
+use crate::edge_averages::EdgeAverages;
 use crate::polygon_operators::PolygonOperators;
 use tvf_core::discretization::{
     check_face_vectors, DiscretizationError, FieldSampling, PointEvaluation, SamplingReproduction,
@@ -113,8 +114,7 @@ impl FieldSampling for PolygonSampling {
         vectors: &[[f64; 3]],
     ) -> Result<TangentProjection, DiscretizationError> {
         check_face_vectors(self.face_count(), vectors)?;
-        let mut sums = vec![0.0; self.edges.len()];
-        let mut counts = vec![0u32; self.edges.len()];
+        let mut averages = EdgeAverages::new(self.edges.len());
         let mut normal_parts = Vec::with_capacity(vectors.len());
         for (f, &v) in vectors.iter().enumerate() {
             let n = self.normals[f];
@@ -123,22 +123,10 @@ impl FieldSampling for PolygonSampling {
             normal_parts.push(normal_part);
             for &e in &self.side_edges[f] {
                 let [a, b] = self.edges[e];
-                sums[e] += dot(tangent, sub(self.positions[b], self.positions[a]));
-                counts[e] += 1;
+                averages.add(e, dot(tangent, sub(self.positions[b], self.positions[a])));
             }
         }
-        let field = sums
-            .iter()
-            .zip(&counts)
-            .zip(&self.fixed_edges)
-            .map(|((&s, &n), &fixed)| {
-                if n > 0 && !fixed {
-                    s / f64::from(n)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+        let field = averages.means(&self.fixed_edges);
         Ok(TangentProjection {
             field,
             normal_parts,

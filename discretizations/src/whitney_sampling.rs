@@ -1,6 +1,7 @@
 //! [`WhitneySampling`]: DEC 1-forms seen as tangent vectors through Whitney interpolation, and
 //! per-face vectors turned into 1-forms by the de Rham map.
 
+use crate::edge_averages::EdgeAverages;
 use crate::face_geometry::FaceGeometry;
 use tvf_core::discretization::{
     check_face_vectors, DiscretizationError, FieldSampling, TangentProjection,
@@ -115,27 +116,14 @@ impl FieldSampling for WhitneySampling {
         vectors: &[[f64; 3]],
     ) -> Result<TangentProjection, DiscretizationError> {
         check_face_vectors(self.face_count(), vectors)?;
-        let mut sums = vec![0.0; self.edges.len()];
-        let mut counts = vec![0u32; self.edges.len()];
+        let mut averages = EdgeAverages::new(self.edges.len());
         for (t, &v) in vectors.iter().enumerate() {
             for &e in &self.face_edges[t] {
                 let [a, b] = self.edges[e];
-                sums[e] += dot(v, sub(self.positions[b], self.positions[a]));
-                counts[e] += 1;
+                averages.add(e, dot(v, sub(self.positions[b], self.positions[a])));
             }
         }
-        let field = sums
-            .iter()
-            .zip(&counts)
-            .zip(&self.fixed_edges)
-            .map(|((&s, &n), &fixed)| {
-                if n > 0 && !fixed {
-                    s / f64::from(n)
-                } else {
-                    0.0
-                }
-            })
-            .collect();
+        let field = averages.means(&self.fixed_edges);
         let normal_parts = vectors
             .iter()
             .zip(&self.normals)

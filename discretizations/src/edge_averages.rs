@@ -1,0 +1,42 @@
+//! Edge values of a 1-form from per-face contributions: the mean over the faces that share an
+//! edge, zero on edges a boundary condition fixes. Used by every sampling that turns face
+//! vectors into edge integrals (Whitney, polygonal DEC's sharp, the intrinsic triangulation's).
+
+/// Sums and counts of the contributions to each edge (`E` of each).
+pub(crate) struct EdgeAverages {
+    sums: Vec<f64>,
+    counts: Vec<u32>,
+}
+
+impl EdgeAverages {
+    /// No contributions yet on `edge_count` edges.
+    pub(crate) fn new(edge_count: usize) -> Self {
+        Self {
+            sums: vec![0.0; edge_count],
+            counts: vec![0; edge_count],
+        }
+    }
+
+    /// One face's contribution `value` to edge `e`.
+    pub(crate) fn add(&mut self, e: usize, value: f64) {
+        self.sums[e] += value;
+        self.counts[e] += 1;
+    }
+
+    /// The mean contribution of each edge (`E` values); 0 where an edge had none or is fixed
+    /// (`fixed_edges`, `E` flags).
+    pub(crate) fn means(self, fixed_edges: &[bool]) -> Vec<f64> {
+        self.sums
+            .iter()
+            .zip(&self.counts)
+            .zip(fixed_edges)
+            .map(|((&s, &n), &fixed)| {
+                if n > 0 && !fixed {
+                    s / f64::from(n)
+                } else {
+                    0.0
+                }
+            })
+            .collect()
+    }
+}
