@@ -40,10 +40,12 @@ mod basis_store;
 mod basis_summary;
 mod codec;
 mod coefficient_report;
+mod comparison_report;
 mod compute_basis;
 mod computed_field;
 mod dense_memory;
 mod eigenfunction_basis;
+pub mod eigenspace_angles;
 mod family_split;
 mod filter;
 mod filter_response;
@@ -53,6 +55,7 @@ mod formats;
 mod fourier;
 mod harmonic_fields;
 mod laplacian_apply;
+mod resident_peak;
 mod scalar_spectrum;
 #[cfg(test)]
 mod test_torus;
@@ -63,8 +66,12 @@ pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_cache_folder::{
     check_cache_folder, prepare_private_folder, user_cache_folder_from, BasisCache, FolderCheck,
 };
-pub use basis_comparison::{BasisComparison, BasisComparisonError, SampledBasis};
+pub use basis_comparison::{
+    area_weights, relative_differences, BasisComparison, BasisComparisonError, ClusterComparison, SampledBasis,
+};
 pub use basis_error::BasisError;
+pub use comparison_report::{ComparedEntry, ComparisonReport, EntryMeasurements};
+pub use resident_peak::ResidentPeak;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use basis_resolution::{
     cache_messages, cached_or_computed_basis, computed_basis_summary, open_checked_basis_file,

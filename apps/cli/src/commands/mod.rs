@@ -6,6 +6,8 @@ pub mod check;
 pub mod coefficients;
 pub mod compare;
 pub mod compare_corpus;
+mod compare_pictures;
+mod compare_scheduler;
 pub mod compress;
 pub mod convergence;
 pub mod decompose;
