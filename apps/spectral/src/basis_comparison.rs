@@ -230,7 +230,7 @@ fn cluster_comparisons(
 ) -> Result<Vec<ClusterComparison>, BasisComparisonError> {
     eigen_clusters(&a.eigenvalues, &a.families, tolerance)
         .into_iter()
-        .map(|cluster| {
+        .map(|cluster| -> Result<ClusterComparison, BasisComparisonError> {
             let other_columns =
                 family_columns(&b.families, cluster.family, cluster.first, cluster.size());
             let angles = match &other_columns {
@@ -325,7 +325,7 @@ mod tests {
             .iter()
             .map(|c| (c.cluster.family, c.cluster.size()))
             .collect();
-        use FieldFamily::{Cointegrable, Integrable};
+        use crate::basis::FieldFamily::{Cointegrable, Integrable};
         assert_eq!(
             shapes,
             [(Integrable, 3), (Integrable, 5), (Cointegrable, 3), (Cointegrable, 5)]

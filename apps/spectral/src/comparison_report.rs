@@ -301,7 +301,7 @@ impl ComparisonReport {
                 out,
                 "| {} | {} | {} | {} | {} / {} / {} | {:.3} ({:.2}×) | {:.3} ({:.2}×) | {} | {} \
                  / {} / {} | {} | {} | {} | {} of {} |",
-                m.label,
+                markdown_cell(&m.label),
                 m.sizes[0],
                 m.sizes[1],
                 m.sizes[2],
@@ -336,7 +336,7 @@ impl ComparisonReport {
             self.cluster_tolerance
         );
         for entry in &self.entries {
-            let _ = write!(out, " {} |", entry.measurements.label);
+            let _ = write!(out, " {} |", markdown_cell(&entry.measurements.label));
         }
         out.push_str("\n|---|---|---|---|");
         out.push_str(&"---:|".repeat(self.entries.len()));
@@ -500,11 +500,66 @@ fn median_and_max(values: &[f64]) -> Option<(f64, f64)> {
     Some((*sorted.get(sorted.len() / 2)?, *sorted.last()?))
 }
 
+/// `text` as one cell of a Markdown table (its `|` escaped).
+fn markdown_cell(text: &str) -> String {
+    text.replace('|', "\\|")
+}
+
 /// `text` as one CSV field (quoted where it holds a comma, quote or line break).
 fn csv_field(text: &str) -> String {
     if text.contains([',', '"', '\n', '\r']) {
         format!("\"{}\"", text.replace('"', "\"\""))
     } else {
         text.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{compute_basis, BasisRequest};
+    use tvf_core::generate::icosphere;
+    use tvf_discretizations::catalog_entry;
+
+    fn entry(id: &str, mesh: &SurfaceMesh, seconds: f64) -> ComparedEntry {
+        let complex = catalog_entry(id).unwrap().build(mesh).unwrap();
+        let basis = compute_basis(complex.as_ref(), &BasisRequest::fields(6)).unwrap();
+        let sampled = SampledBasis::new(complex.as_ref(), &basis).unwrap();
+        let measurements =
+            EntryMeasurements::new(id.to_string(), complex.as_ref(), seconds, seconds, None);
+        ComparedEntry {
+            measurements,
+            sampled,
+        }
+    }
+
+    #[test]
+    fn the_tables_have_one_line_per_entry_and_ratios_to_the_reference() {
+        let mesh = SurfaceMesh::from(icosphere(2));
+        let entries = vec![
+            entry("conforming-barycentric", &mesh, 2.0),
+            entry("dec-circumcentric", &mesh, 1.0),
+        ];
+        let report = ComparisonReport::new("sphere".into(), &mesh, 6, 0.01, 1, entries).unwrap();
+        let json = report.to_json();
+        assert_eq!(json["reference"], "dec-circumcentric");
+        let first = &json["entries"][0];
+        assert_eq!(first["basis_ratio"], 2.0);
+        assert_eq!(first["n0"], mesh.vertex_count());
+        assert_eq!(first["n1"], 2 * mesh.face_count());
+        assert_eq!(first["peak_bytes"], Value::Null);
+        // K = 6 fields: the l = 1 eigenspace of each family, one cluster of 3 each.
+        assert_eq!(first["principal_angles"].as_array().unwrap().len(), 6);
+        assert_eq!(first["clusters"].as_array().unwrap().len(), 2);
+        let csv = report.entries_csv();
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), 3);
+        let columns = lines[0].split(',').count();
+        assert!(lines.iter().all(|l| l.split(',').count() == columns), "{csv}");
+        let markdown = report.markdown();
+        assert!(markdown.contains("| dec-circumcentric | 162 |"), "{markdown}");
+        assert!(markdown.contains("(2.00×)"), "{markdown}");
+        assert_eq!(report.eigenvalues_csv().lines().count(), 1 + 3 + 3);
+        assert_eq!(report.clusters_csv().lines().count(), 1 + 2);
     }
 }

@@ -149,7 +149,8 @@ pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>, weights: &[f64])
     cosines.sort_by(|x, y| y.total_cmp(x));
     // R = Q_a − Q_b (Q_bᵀ W Q_a): the part of span(Q_a) outside span(Q_b); the eigenvalues of
     // Rᵀ W R are the squared sines of the p angles.
-    let residual = &qa - &qb * cross.transpose();
+    let inside = &qb * cross.transpose();
+    let residual = &qa - &inside;
     let wr = Mat::from_fn(residual.nrows(), residual.ncols(), |r, c| {
         weights[r] * residual[(r, c)]
     });
@@ -225,7 +226,7 @@ mod tests {
     use super::*;
     use std::f64::consts::FRAC_PI_2;
 
-    use FieldFamily::{Cointegrable as C, Harmonic as H, Integrable as I};
+    use crate::basis::FieldFamily::{Cointegrable as C, Harmonic as H, Integrable as I};
 
     #[test]
     fn near_equal_eigenvalues_of_one_family_form_a_cluster_and_families_are_apart() {
