@@ -7,26 +7,25 @@
 //! `--corpus FOLDER` runs every mesh × entry instead ([`super::compare_corpus`]).
 
 use super::compare_corpus::{run_corpus_comparison, CorpusOptions};
+use super::compare_entries::{
+    build_entry, entry_names, measure_entry, reference_position,
+};
 use super::compare_pictures::{write_pictures, PictureRequest};
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use crate::picture_options::{parse_size, parse_view};
-use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use clap::builder::PossibleValuesParser;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
+use tvf_core::discretization::BoundaryCondition;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{parse_boundary_condition, BoxedComplex};
+use tvf_discretizations::parse_boundary_condition;
 use tvf_spectral::eigenspace_angles::DEFAULT_CLUSTER_TOLERANCE;
-use tvf_spectral::{
-    compute_basis, write_folder_bytes, BasisRequest, ComparedEntry, ComparisonReport,
-    EntryMeasurements, ResidentPeak, SampledBasis,
-};
+use tvf_spectral::{write_folder_bytes, ComparisonReport, ResidentPeak};
 
 const AFTER_HELP: &str = "Examples:
   tvf compare bunny-closed.obj -k 60 --discretization conforming-barycentric \\
@@ -91,19 +90,19 @@ pub struct CompareArgs {
     /// A catalog id to compare (with its modifiers, e.g. dec-circumcentric+intrinsic-delaunay);
     /// repeat the flag.
     #[arg(long = "discretization", value_name = "ID")]
-    discretizations: Vec<String>,
+    pub(super) discretizations: Vec<String>,
     /// A folder of your own matrices (as for `--complex` of other commands), compared after
     /// the catalog ids; repeat the flag for several.
     #[arg(long = "complex", value_name = "DIR")]
-    complexes: Vec<PathBuf>,
+    pub(super) complexes: Vec<PathBuf>,
     /// The entry the others are compared with: one of the --discretization ids or --complex
     /// folders as given [default: the first entry].
     #[arg(long, value_name = "ID")]
-    reference: Option<String>,
+    pub(super) reference: Option<String>,
     /// Boundary condition of the catalog entries on meshes with boundary (tangential or
     /// normal) [default: tangential].
     #[arg(long, value_name = "CONDITION", value_parser = parse_boundary_condition)]
-    boundary: Option<BoundaryCondition>,
+    pub(super) boundary: Option<BoundaryCondition>,
     /// Basis size: the K lowest eigenfields of every entry, harmonic ones included.
     #[arg(short = 'k', value_name = "K")]
     count: usize,
@@ -242,131 +241,4 @@ fn write_report_folder(
     }
     write_pictures(&staged, report, mesh, pictures)?;
     commit(staged)
-}
-
-/// What the flags name: catalog ids first, then folders.
-enum EntryName {
-    Catalog(String),
-    Folder(PathBuf),
-}
-
-impl EntryName {
-    /// The entry as the user gave it.
-    fn label(&self) -> String {
-        match self {
-            EntryName::Catalog(id) => id.clone(),
-            EntryName::Folder(dir) => dir.display().to_string(),
-        }
-    }
-}
-
-/// The entries in order, at least two, none twice.
-fn entry_names(args: &CompareArgs) -> Result<Vec<EntryName>> {
-    let mut names: Vec<EntryName> = args
-        .discretizations
-        .iter()
-        .cloned()
-        .map(EntryName::Catalog)
-        .collect();
-    names.extend(args.complexes.iter().cloned().map(EntryName::Folder));
-    if names.len() < 2 {
-        bail!(
-            "compare needs at least two entries: give --discretization ID (and/or --complex DIR) \
-             two or more times"
-        );
-    }
-    for (i, id) in args.discretizations.iter().enumerate() {
-        if args.discretizations[..i].contains(id) {
-            bail!("--discretization {id} is given twice");
-        }
-    }
-    for (i, dir) in args.complexes.iter().enumerate() {
-        if args.complexes[..i].contains(dir) {
-            bail!("--complex {} is given twice", dir.display());
-        }
-    }
-    Ok(names)
-}
-
-/// The position of `--reference` among `names` (0 without it).
-fn reference_position(args: &CompareArgs, names: &[EntryName]) -> Result<usize> {
-    let Some(wanted) = &args.reference else {
-        return Ok(0);
-    };
-    let labels: Vec<String> = names.iter().map(EntryName::label).collect();
-    labels.iter().position(|l| l == wanted).with_context(|| {
-        format!(
-            "--reference {wanted}: not one of the compared entries ({})",
-            labels.join(", ")
-        )
-    })
-}
-
-/// The complex `name` names, built on `mesh` (a catalog entry) or read (a folder).
-fn build_entry(
-    name: &EntryName,
-    args: &CompareArgs,
-    context: &RunContext,
-    mesh: &SurfaceMesh,
-    original_vertex: &[usize],
-    input: &MeshInput,
-) -> Result<BoxedComplex> {
-    Ok(match name {
-        EntryName::Catalog(id) => context
-            .catalog()
-            .build_complex(id, Some(args.boundary.unwrap_or_default()), mesh)
-            .with_context(|| input.label())?,
-        EntryName::Folder(dir) => Box::new(
-            tvf_spectral::read_complex_folder(dir, mesh, original_vertex)
-                .with_context(|| format!("--complex {} on {}", dir.display(), input.label()))?,
-        ),
-    })
-}
-
-/// Computes the basis of `count` fields of `complex` (timed, with progress), samples it and
-/// measures the entry; `label` names it in the report, `peak` was started before it was built.
-fn measure_entry(
-    complex: BoxedComplex,
-    label: String,
-    assembly_seconds: f64,
-    peak: Option<ResidentPeak>,
-    count: usize,
-    input: &MeshInput,
-) -> Result<ComparedEntry> {
-    let progress = Progress::new(format!("compare {}", complex.id()));
-    let start = Instant::now();
-    let basis = {
-        let callback = progress.basis_callback();
-        let request =
-            BasisRequest::lowest(count, complex.field_dimension()).with_progress(&callback);
-        compute_basis(complex.as_ref(), &request).with_context(|| {
-            format!(
-                "{}: cannot compute the basis of '{}'",
-                input.label(),
-                complex.id()
-            )
-        })?
-    };
-    let basis_seconds = start.elapsed().as_secs_f64();
-    progress.finish(format!(
-        "{} fields of {} in {basis_seconds:.2} s",
-        basis.len(),
-        complex.id()
-    ));
-    let mut sampled = SampledBasis::new(complex.as_ref(), &basis)
-        .with_context(|| format!("{}: '{}'", input.label(), complex.id()))?;
-    sampled.id = label.clone();
-    drop(basis);
-    let peak_bytes = peak.and_then(|p| p.added_bytes());
-    let measurements = EntryMeasurements::new(
-        label,
-        complex.as_ref(),
-        assembly_seconds,
-        basis_seconds,
-        peak_bytes,
-    );
-    Ok(ComparedEntry {
-        measurements,
-        sampled,
-    })
 }
