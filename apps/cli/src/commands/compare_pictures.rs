@@ -9,6 +9,7 @@
 //! reference's field and that span (radians). Panels are coloured by the magnitude of the
 //! drawn field (each panel scaled to its own field), with streamlines.
 
+use crate::progress::Progress;
 use anyhow::{Context, Result};
 use tvf_core::io::StagedFolder;
 use tvf_core::SurfaceMesh;
@@ -37,24 +38,31 @@ pub fn write_pictures(
     request: &PictureRequest,
 ) -> Result<()> {
     let reference = &report.entries[report.reference].sampled;
-    for family in [
+    let pictures: Vec<(FieldFamily, usize, usize)> = [
         FieldFamily::Harmonic,
         FieldFamily::Integrable,
         FieldFamily::Cointegrable,
-    ] {
-        for position in 0..request.per_family {
-            let Some(column) = family_columns(&reference.families, family, position, 1) else {
-                break;
-            };
-            let panels = (0..report.entries.len())
-                .map(|entry| panel(report, mesh, request, entry, column[0]))
-                .collect::<Result<Vec<_>>>()?;
-            let name = format!("eigenfield-{}-{position}.png", family.name());
-            let image = grid(&panels, panels.len());
-            save_png(&image, &folder.path().join(&name))
-                .with_context(|| format!("cannot write {}", folder.target().join(&name).display()))?;
-        }
+    ]
+    .into_iter()
+    .flat_map(|family| {
+        (0..request.per_family).filter_map(move |position| {
+            family_columns(&reference.families, family, position, 1)
+                .map(|column| (family, position, column[0]))
+        })
+    })
+    .collect();
+    let progress = Progress::new("compare pictures");
+    for (done, &(family, position, column)) in pictures.iter().enumerate() {
+        progress.update("pictures", done, pictures.len());
+        let panels = (0..report.entries.len())
+            .map(|entry| panel(report, mesh, request, entry, column))
+            .collect::<Result<Vec<_>>>()?;
+        let name = format!("eigenfield-{}-{position}.png", family.name());
+        let image = grid(&panels, panels.len());
+        save_png(&image, &folder.path().join(&name))
+            .with_context(|| format!("cannot write {}", folder.target().join(&name).display()))?;
     }
+    progress.finish(format!("{} pictures", pictures.len()));
     Ok(())
 }
 
