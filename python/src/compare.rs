@@ -11,8 +11,8 @@ use pyo3::prelude::*;
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
 use tvf_spectral::{
-    compute_basis, BasisRequest, ComparedEntry, ComparisonReport, EntryMeasurements,
-    ResidentPeak, SampledBasis,
+    compute_basis, BasisRequest, ComparedEntry, ComparisonReport, EntryMeasurements, ResidentPeak,
+    SampledBasis,
 };
 
 /// Compares `complexes` (at least two, all on one mesh; `reference` the position of the one

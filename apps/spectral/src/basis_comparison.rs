@@ -230,26 +230,28 @@ fn cluster_comparisons(
 ) -> Result<Vec<ClusterComparison>, BasisComparisonError> {
     eigen_clusters(&a.eigenvalues, &a.families, tolerance)
         .into_iter()
-        .map(|cluster| -> Result<ClusterComparison, BasisComparisonError> {
-            let other_columns =
-                family_columns(&b.families, cluster.family, cluster.first, cluster.size());
-            let angles = match &other_columns {
-                Some(columns) => {
-                    let (va, vb) = (a.columns(&cluster.columns), b.columns(columns));
-                    principal_angles(va.as_ref(), vb.as_ref(), weights).ok_or_else(|| {
-                        BasisComparisonError::DependentFields {
-                            id: format!("{} or {}", a.id, b.id),
-                        }
-                    })?
-                }
-                None => Vec::new(),
-            };
-            Ok(ClusterComparison {
-                cluster,
-                other_columns,
-                angles,
-            })
-        })
+        .map(
+            |cluster| -> Result<ClusterComparison, BasisComparisonError> {
+                let other_columns =
+                    family_columns(&b.families, cluster.family, cluster.first, cluster.size());
+                let angles = match &other_columns {
+                    Some(columns) => {
+                        let (va, vb) = (a.columns(&cluster.columns), b.columns(columns));
+                        principal_angles(va.as_ref(), vb.as_ref(), weights).ok_or_else(|| {
+                            BasisComparisonError::DependentFields {
+                                id: format!("{} or {}", a.id, b.id),
+                            }
+                        })?
+                    }
+                    None => Vec::new(),
+                };
+                Ok(ClusterComparison {
+                    cluster,
+                    other_columns,
+                    angles,
+                })
+            },
+        )
         .collect()
 }
 
@@ -328,7 +330,12 @@ mod tests {
         use crate::basis::FieldFamily::{Cointegrable, Integrable};
         assert_eq!(
             shapes,
-            [(Integrable, 3), (Integrable, 5), (Cointegrable, 3), (Cointegrable, 5)]
+            [
+                (Integrable, 3),
+                (Integrable, 5),
+                (Cointegrable, 3),
+                (Cointegrable, 5)
+            ]
         );
         for c in &other.clusters {
             let largest = c.largest_angle().unwrap();

@@ -47,7 +47,11 @@ impl EntryMeasurements {
         EntryMeasurements {
             label,
             id: complex.id().to_string(),
-            sizes: [complex.d0().cols(), complex.d0().rows(), complex.d1().rows()],
+            sizes: [
+                complex.d0().cols(),
+                complex.d0().rows(),
+                complex.d1().rows(),
+            ],
             mass_nonzeros: [complex.m0(), complex.m1(), complex.m2()].map(stored_nonzeros),
             assembly_seconds,
             basis_seconds,
@@ -265,11 +269,17 @@ impl ComparisonReport {
                 cluster.size(),
                 cluster.eigenvalues.0,
                 cluster.eigenvalues.1,
-                cluster.gap_above.map_or(String::new(), |g| format!("{g:e}"))
+                cluster
+                    .gap_above
+                    .map_or(String::new(), |g| format!("{g:e}"))
             );
             for comparison in &self.comparisons {
                 let angle = comparison.clusters[k].largest_angle();
-                let _ = write!(out, ",{}", angle.map_or(String::new(), |a| format!("{a:e}")));
+                let _ = write!(
+                    out,
+                    ",{}",
+                    angle.map_or(String::new(), |a| format!("{a:e}"))
+                );
             }
             out.push('\n');
         }
@@ -362,7 +372,11 @@ impl ComparisonReport {
             );
             for comparison in &self.comparisons {
                 let angle = comparison.clusters[k].largest_angle();
-                let _ = write!(out, " {} |", angle.map_or("–".into(), |a| format!("{a:.2e}")));
+                let _ = write!(
+                    out,
+                    " {} |",
+                    angle.map_or("–".into(), |a| format!("{a:.2e}"))
+                );
             }
             out.push('\n');
         }
@@ -403,7 +417,14 @@ impl<'a> SummaryRow<'a> {
         reference: &EntryMeasurements,
     ) -> Self {
         let m = &entry.measurements;
-        let count = |family| entry.sampled.families.iter().filter(|&&f| f == family).count();
+        let count = |family| {
+            entry
+                .sampled
+                .families
+                .iter()
+                .filter(|&&f| f == family)
+                .count()
+        };
         let largest: Vec<f64> = comparison
             .clusters
             .iter()
@@ -555,9 +576,15 @@ mod tests {
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3);
         let columns = lines[0].split(',').count();
-        assert!(lines.iter().all(|l| l.split(',').count() == columns), "{csv}");
+        assert!(
+            lines.iter().all(|l| l.split(',').count() == columns),
+            "{csv}"
+        );
         let markdown = report.markdown();
-        assert!(markdown.contains("| dec-circumcentric | 162 |"), "{markdown}");
+        assert!(
+            markdown.contains("| dec-circumcentric | 162 |"),
+            "{markdown}"
+        );
         assert!(markdown.contains("(2.00×)"), "{markdown}");
         assert_eq!(report.eigenvalues_csv().lines().count(), 1 + 3 + 3);
         assert_eq!(report.clusters_csv().lines().count(), 1 + 2);

@@ -81,7 +81,11 @@ pub fn eigen_clusters(
             let mut end = start + 1;
             while end < columns.len()
                 && (family == FieldFamily::Harmonic
-                    || joins(eigenvalues[columns[end - 1]], eigenvalues[columns[end]], tolerance))
+                    || joins(
+                        eigenvalues[columns[end - 1]],
+                        eigenvalues[columns[end]],
+                        tolerance,
+                    ))
             {
                 end += 1;
             }
@@ -135,7 +139,11 @@ pub fn family_columns(
 /// spans of the columns of `a` and of `b` (both `n × ·`), in the inner product
 /// `⟨u, v⟩ = Σ_r weights[r] u_r v_r` (`weights` positive, `n` entries). `None` if the columns of
 /// either are linearly dependent (a column in the span of the others, or zero).
-pub fn principal_angles(a: MatRef<'_, f64>, b: MatRef<'_, f64>, weights: &[f64]) -> Option<Vec<f64>> {
+pub fn principal_angles(
+    a: MatRef<'_, f64>,
+    b: MatRef<'_, f64>,
+    weights: &[f64],
+) -> Option<Vec<f64>> {
     let qa = weighted_orthonormal(a, weights)?;
     let qb = weighted_orthonormal(b, weights)?;
     let (qa, qb) = if qa.ncols() <= qb.ncols() {
@@ -259,8 +267,13 @@ mod tests {
     /// A weighted-orthonormal 4-dimensional frame in R^12 and its weights.
     fn frame() -> (Mat<f64>, Vec<f64>) {
         let weights: Vec<f64> = (0..12).map(|r| 0.5 + (r % 5) as f64 * 0.3).collect();
-        let raw = Mat::from_fn(12, 4, |r, c| ((r * 7 + c * 3) as f64 * 0.37).sin() + (c == r) as u8 as f64);
-        (weighted_orthonormal(raw.as_ref(), &weights).unwrap(), weights)
+        let raw = Mat::from_fn(12, 4, |r, c| {
+            ((r * 7 + c * 3) as f64 * 0.37).sin() + (c == r) as u8 as f64
+        });
+        (
+            weighted_orthonormal(raw.as_ref(), &weights).unwrap(),
+            weights,
+        )
     }
 
     #[test]
@@ -285,11 +298,17 @@ mod tests {
             _ => 0.3f64.cos() * q[(r, 1)] + 0.3f64.sin() * q[(r, 3)],
         });
         let angles = principal_angles(q.subcols(0, 2), tilted.as_ref(), &weights).unwrap();
-        assert!(angles[0].abs() < 1e-12 && (angles[1] - 0.3).abs() < 1e-12, "{angles:?}");
+        assert!(
+            angles[0].abs() < 1e-12 && (angles[1] - 0.3).abs() < 1e-12,
+            "{angles:?}"
+        );
         // The projection of q3 + 2 q0 onto span(q0, q1) is 2 q0.
         let v: Vec<f64> = (0..12).map(|r| q[(r, 3)] + 2.0 * q[(r, 0)]).collect();
         let p = weighted_projection(q.subcols(0, 2), &weights, &v).unwrap();
-        assert!((0..12).all(|r| (p[r] - 2.0 * q[(r, 0)]).abs() < 1e-12), "{p:?}");
+        assert!(
+            (0..12).all(|r| (p[r] - 2.0 * q[(r, 0)]).abs() < 1e-12),
+            "{p:?}"
+        );
         // Dependent columns have no orthonormal basis.
         let dependent = Mat::from_fn(12, 2, |r, _| q[(r, 0)]);
         assert!(principal_angles(dependent.as_ref(), space, &weights).is_none());

@@ -67,11 +67,10 @@ pub use basis_cache_folder::{
     check_cache_folder, prepare_private_folder, user_cache_folder_from, BasisCache, FolderCheck,
 };
 pub use basis_comparison::{
-    area_weights, relative_differences, BasisComparison, BasisComparisonError, ClusterComparison, SampledBasis,
+    area_weights, relative_differences, BasisComparison, BasisComparisonError, ClusterComparison,
+    SampledBasis,
 };
 pub use basis_error::BasisError;
-pub use comparison_report::{ComparedEntry, ComparisonReport, EntryMeasurements};
-pub use resident_peak::ResidentPeak;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use basis_resolution::{
     cache_messages, cached_or_computed_basis, computed_basis_summary, open_checked_basis_file,
@@ -93,6 +92,7 @@ pub use codec::sequence::{
     CompressionReport,
 };
 pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
+pub use comparison_report::{ComparedEntry, ComparisonReport, EntryMeasurements};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
 pub use computed_field::{check_computed_field, NonFiniteField};
 pub use eigenfunction_basis::EigenfunctionBasis;
@@ -149,5 +149,6 @@ pub use formats::stored_basis::StoredBasis;
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
+pub use resident_peak::ResidentPeak;
 /// The eigensolver's cost by phase, as [`BasisReport`] gives it.
 pub use tvf_solvers::{process_cpu_seconds, PhaseStatistics, SolverStatistics};

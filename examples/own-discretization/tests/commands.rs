@@ -460,7 +460,10 @@ fn compare_takes_the_own_entries_on_one_mesh_and_over_a_folder() {
         .map(|a| a.as_f64().unwrap())
         .collect();
     assert_eq!(angles.len(), 16);
-    assert!(angles.iter().all(|&a| (0.0..0.2).contains(&a)), "{angles:?}");
+    assert!(
+        angles.iter().all(|&a| (0.0..0.2).contains(&a)),
+        "{angles:?}"
+    );
     let (dir, _) = ring();
     let folder = dir.path().display().to_string();
     let corpus = json(&run(&[

@@ -7,9 +7,7 @@
 //! `--corpus FOLDER` runs every mesh × entry instead ([`super::compare_corpus`]).
 
 use super::compare_corpus::{run_corpus_comparison, CorpusOptions};
-use super::compare_entries::{
-    build_entry, entry_names, measure_entry, reference_position,
-};
+use super::compare_entries::{build_entry, entry_names, measure_entry, reference_position};
 use super::compare_pictures::{write_pictures, PictureRequest};
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
@@ -79,7 +77,12 @@ pub struct CompareArgs {
     #[arg(long, value_name = "FOLDER", conflicts_with_all = ["mesh", "example", "complexes"])]
     corpus: Option<PathBuf>,
     /// With --corpus: worker threads [default: one per core].
-    #[arg(long, value_name = "N", requires = "corpus", conflicts_with = "scheduler")]
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "corpus",
+        conflicts_with = "scheduler"
+    )]
     threads: Option<usize>,
     /// With --corpus: run the mesh × entry tasks on the Dask cluster whose scheduler is at
     /// ADDRESS (e.g. tcp://HOST:8786) instead of local threads. Runs the Python package's
@@ -121,7 +124,12 @@ pub struct CompareArgs {
     #[arg(long, value_name = "WxH", default_value = "480x360")]
     size: String,
     /// With -o: the camera of the pictures, as `tvf render --view`.
-    #[arg(long, value_name = "YAW,PITCH", default_value = "30,20", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "YAW,PITCH",
+        default_value = "30,20",
+        allow_hyphen_values = true
+    )]
     view: String,
     /// Print JSON to stdout instead of tables.
     #[arg(long)]
@@ -169,7 +177,8 @@ pub fn run(args: CompareArgs, context: &RunContext) -> Result<()> {
     }
     let input = mesh_input(&args);
     if let Some(out) = &args.output {
-        let folders: Vec<Option<&Path>> = args.complexes.iter().map(|d| Some(d.as_path())).collect();
+        let folders: Vec<Option<&Path>> =
+            args.complexes.iter().map(|d| Some(d.as_path())).collect();
         check_output(out, &input, &folders)?;
     }
     let view = parse_view(&args.view)?;

@@ -86,7 +86,9 @@ pub fn run_corpus_comparison(options: &CorpusOptions, context: &RunContext) -> R
         options.folder.display(),
         runs.len() / options.ids.len().max(1),
         options.count,
-        options.scheduler.map_or(String::new(), |a| format!(", on the Dask cluster at {a}"))
+        options
+            .scheduler
+            .map_or(String::new(), |a| format!(", on the Dask cluster at {a}"))
     );
     for line in summary_lines(&summaries, options.reference) {
         text.push_str(&line);

@@ -102,11 +102,11 @@ fn panel(
             let eigenvalue = family_columns(&sampled.families, family, position, 1)
                 .map_or(f64::NAN, |c| sampled.eigenvalues[c[0]]);
             let role = if entry == report.reference {
-                " (reference)"
+                " (ref.)"
             } else {
                 ""
             };
-            let title = format!("{label}{role}: lambda {eigenvalue:.5}, angle {angle:.3}");
+            let title = format!("{label}{role}  lambda {eigenvalue:.4}  angle {angle:.3}");
             (projection, title)
         }
         None => (
