@@ -238,7 +238,7 @@ mod tests {
 
     #[test]
     fn near_equal_eigenvalues_of_one_family_form_a_cluster_and_families_are_apart() {
-        let eigenvalues = [0.0, 0.0, 2.0, 2.0, 2.01, 2.0101, 6.0, 6.05];
+        let eigenvalues = [0.0, 0.0, 2.0, 2.0, 2.01, 2.0101, 6.0, 6.2];
         let families = [H, H, I, C, I, C, I, I];
         let clusters = eigen_clusters(&eigenvalues, &families, 0.01);
         let shapes: Vec<(FieldFamily, usize, Vec<usize>)> = clusters
