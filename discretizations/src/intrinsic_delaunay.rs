@@ -168,7 +168,10 @@ impl CatalogEntry {
     /// constructor builds the complex on the mesh and only the id changes: every matrix is the
     /// input complex's bit for bit. Otherwise the entry's constructor from edge lengths
     /// ([`CatalogEntry::with_intrinsic_constructor`]) builds it, and an entry without one fails
-    /// with [`DiscretizationError::NotIntrinsic`]. Under [`IntrinsicDelaunay::Flip`] a
+    /// with [`DiscretizationError::NotIntrinsic`]. An entry of polygon meshes without one
+    /// (polygonal DEC, which reads positions and vector areas, and whose stabilised `⋆1` needs
+    /// no Delaunay mesh) fails on every mesh with
+    /// [`DiscretizationError::PolygonEntryNotIntrinsic`]. Under [`IntrinsicDelaunay::Flip`] a
     /// discretization that refuses non-positive `⋆1` ([`DiscretizationError::NotDelaunay`])
     /// fails with [`DiscretizationError::NotStrictlyDelaunayAfterFlips`], which names the edges
     /// and suggests refinement.
@@ -176,7 +179,13 @@ impl CatalogEntry {
         let id = intrinsic_entry_id(self.id(), mode);
         let base = self.clone();
         let entry_id = id.clone();
+        let polygon_entry = !self.needs_triangles() && !self.builds_on_intrinsic();
         let construct = move |mesh: &TriangleMesh, boundary| {
+            if polygon_entry {
+                return Err(DiscretizationError::PolygonEntryNotIntrinsic {
+                    discretization: base.id().to_string(),
+                });
+            }
             let input = IntrinsicInput::new(mesh, mode)?;
             let complex_id = complex_id(&entry_id, mesh.topology(), boundary);
             let built = if input.is_input() {
