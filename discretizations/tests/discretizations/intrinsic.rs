@@ -180,10 +180,13 @@ fn same_as_input(mesh: &TriangleMesh, name: &str) -> Result<(), TestCaseError> {
 
 /// `IntrinsicDec` built from the lengths of a Delaunay input (no flip) against `DecComplex` built
 /// from its positions: the same incidences bit for bit, the stars, node positions and sampled
-/// fields to round-off, for both lumpings and both boundary conditions.
+/// fields to round-off ([`agrees_with_positions`]), for both lumpings and both boundary
+/// conditions.
 fn agrees_with_dec_from_positions(mesh: &TriangleMesh, name: &str) -> Result<(), TestCaseError> {
     let input = IntrinsicInput::new(mesh, IntrinsicDelaunay::Flip).expect("builds");
     prop_assert_eq!(input.triangulation.flip_count(), 0);
+    let signs = reversed_edge_signs(mesh, &input);
+    let flip = diagonal(&signs);
     for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
         for boundary in BoundaryCondition::ALL {
             let Ok(expected) = DecComplex::with_boundary(mesh, lumping, boundary) else {
@@ -192,88 +195,27 @@ fn agrees_with_dec_from_positions(mesh: &TriangleMesh, name: &str) -> Result<(),
             let id = expected.id().to_string();
             let ours = IntrinsicDec::new(mesh, &input, &id, lumping, boundary)
                 .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
-            // The reference direction of a boundary edge whose face lies on the right of its
-            // input direction a → b is b → a: compare through those signs.
-            let signs: Vec<f64> = (0..mesh.edge_count())
-                .map(|e| {
-                    if input.triangulation.edge_vertices(e) == mesh.edges()[e] {
-                        1.0
-                    } else {
-                        -1.0
-                    }
-                })
-                .collect();
-            let flip = diagonal(&signs);
             prop_assert_eq!(ours.d0(), &product(&flip, expected.d0()), "{}", name);
             prop_assert_eq!(ours.d1(), &product(expected.d1(), &flip), "{}", name);
-            for (a, b) in [
-                (ours.m0(), expected.m0()),
-                (ours.m1(), expected.m1()),
-                (ours.m2(), expected.m2()),
-            ] {
-                let (a, b) = (a.diagonal_values().unwrap(), b.diagonal_values().unwrap());
-                let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                for (x, y) in a.iter().zip(b) {
-                    prop_assert!((x - y).abs() <= 1e-12 * scale, "{}: {} vs {}", name, x, y);
-                }
-            }
-            for (a, b) in [
-                (ours.potential_nodes(), expected.potential_nodes()),
-                (ours.field_nodes(), expected.field_nodes()),
-                (ours.co_potential_nodes(), expected.co_potential_nodes()),
-            ] {
-                prop_assert_eq!(&a.dirichlet, &b.dirichlet);
-                prop_assert_eq!(&a.components, &b.components);
-                for (p, q) in a.positions.iter().zip(&b.positions) {
-                    prop_assert!(
-                        norm(sub(*p, *q)) <= 1e-12 * (1.0 + norm(*q)),
-                        "{}: node {:?} vs {:?}",
-                        name,
-                        p,
-                        q
-                    );
-                }
-            }
-            let fixed = &expected.field_nodes().dirichlet;
-            let field: Vec<f64> = (0..expected.field_dimension())
-                .map(|i| {
-                    if fixed[i] {
-                        0.0
-                    } else {
-                        (i as f64 * 0.71).cos()
-                    }
-                })
-                .collect();
-            let (sampled, reference) = (ours.sampling().unwrap(), expected.sampling().unwrap());
-            let signed: Vec<f64> = field.iter().zip(&signs).map(|(x, s)| x * s).collect();
-            let a = sampled.to_face_vectors(&signed).unwrap();
-            let b = reference.to_face_vectors(&field).unwrap();
-            let scale = b.iter().fold(0.0f64, |m, v| m.max(norm(*v)));
-            for (t, (v, w)) in a.iter().zip(&b).enumerate() {
-                prop_assert!(
-                    norm(sub(*v, *w)) <= 1e-10 * scale,
-                    "{}: face {}: {:?} vs {:?}",
-                    name,
-                    t,
-                    v,
-                    w
-                );
-            }
-            let back = sampled.from_face_vectors(&b).unwrap().field;
-            let expected_back = reference.from_face_vectors(&b).unwrap().field;
-            let scale = expected_back.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            for ((x, y), s) in back.iter().zip(&expected_back).zip(&signs) {
-                prop_assert!(
-                    (x - s * y).abs() <= 1e-10 * scale,
-                    "{}: {} vs {}",
-                    name,
-                    x,
-                    y
-                );
-            }
+            agrees_with_positions(&ours, &expected, &signs, name)?;
         }
     }
     Ok(())
+}
+
+/// `+1` per edge of `mesh` whose reference direction in the (unflipped) intrinsic triangulation
+/// of `input` is the input's `a → b`, `−1` where it is reversed (a boundary edge whose face lies
+/// on the right of `a → b`).
+fn reversed_edge_signs(mesh: &TriangleMesh, input: &IntrinsicInput) -> Vec<f64> {
+    (0..mesh.edge_count())
+        .map(|e| {
+            if input.triangulation.edge_vertices(e) == mesh.edges()[e] {
+                1.0
+            } else {
+                -1.0
+            }
+        })
+        .collect()
 }
 
 /// The largest entry of `|a − b|` over the largest entry of `|b|` (0 for two zero matrices).
@@ -418,15 +360,7 @@ fn finite_elements_and_whitney_agree_with_positions(
 ) -> Result<(), TestCaseError> {
     let input = IntrinsicInput::new(mesh, IntrinsicDelaunay::Flip).expect("builds");
     prop_assert_eq!(input.triangulation.flip_count(), 0);
-    let edge_signs: Vec<f64> = (0..mesh.edge_count())
-        .map(|e| {
-            if input.triangulation.edge_vertices(e) == mesh.edges()[e] {
-                1.0
-            } else {
-                -1.0
-            }
-        })
-        .collect();
+    let edge_signs = reversed_edge_signs(mesh, &input);
     let frame_signs = vec![1.0; 2 * mesh.face_count()];
     let failed = |e: DiscretizationError| TestCaseError::fail(format!("{name}: {e}"));
     let masses = [
