@@ -179,13 +179,7 @@ impl CatalogEntry {
         let id = intrinsic_entry_id(self.id(), mode);
         let base = self.clone();
         let entry_id = id.clone();
-        let polygon_entry = !self.needs_triangles() && !self.builds_on_intrinsic();
         let construct = move |mesh: &TriangleMesh, boundary| {
-            if polygon_entry {
-                return Err(DiscretizationError::PolygonEntryNotIntrinsic {
-                    discretization: base.id().to_string(),
-                });
-            }
             let input = IntrinsicInput::new(mesh, mode)?;
             let complex_id = complex_id(&entry_id, mesh.topology(), boundary);
             let built = if input.is_input() {
@@ -210,7 +204,17 @@ impl CatalogEntry {
                 IntrinsicDelaunay::Refine => "flips and refinement",
             }
         );
-        let mut entry = CatalogEntry::new(id, description, construct);
+        let mut entry = if !self.needs_triangles() && !self.builds_on_intrinsic() {
+            // An entry of polygon meshes: refused on every mesh, polygons included.
+            let discretization = self.id().to_string();
+            CatalogEntry::on_any_mesh(id, description, move |_, _| {
+                Err(DiscretizationError::PolygonEntryNotIntrinsic {
+                    discretization: discretization.clone(),
+                })
+            })
+        } else {
+            CatalogEntry::new(id, description, construct)
+        };
         for &condition in self.boundary_conditions() {
             let meaning = self.boundary_meaning(condition).unwrap_or_default();
             entry = entry.with_boundary_condition(condition, meaning.to_string());

@@ -543,3 +543,31 @@ fn check_dec(
     }
     Ok(())
 }
+
+/// `polygon-dec` reads positions and vector areas: with the modifier it is refused on every mesh,
+/// triangles and polygons alike, with the error that says why and what to do.
+#[test]
+fn polygon_dec_is_refused_on_every_mesh_with_the_modifier() {
+    let quads = tvf_core::SurfaceMesh::from(
+        tvf_core::generate::quad_torus(1.0, 0.4, 8, 4).expect("a quad torus"),
+    );
+    let triangles = tvf_core::SurfaceMesh::from(icosphere(1));
+    let entry = catalog_entry("polygon-dec").expect("built in");
+    assert!(!entry.builds_on_intrinsic());
+    for mode in IntrinsicDelaunay::ALL {
+        for mesh in [&quads, &triangles] {
+            match entry.on_intrinsic_delaunay(mode).build(mesh) {
+                Err(DiscretizationError::PolygonEntryNotIntrinsic { discretization }) => {
+                    assert_eq!(discretization, "polygon-dec");
+                }
+                Err(other) => panic!("{other}"),
+                Ok(_) => panic!("polygon-dec built on an intrinsic triangulation"),
+            }
+        }
+    }
+    let error = build_complex("polygon-dec+intrinsic-delaunay", None, &triangles)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(error.contains("vector areas"), "{error}");
+}
