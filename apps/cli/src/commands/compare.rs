@@ -21,7 +21,10 @@ use std::time::Instant;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::parse_boundary_condition;
+use tvf_discretizations::{
+    intrinsic_entry_id, parse_boundary_condition, parse_intrinsic_delaunay, split_complex_id,
+    split_intrinsic_id, IntrinsicDelaunay,
+};
 use tvf_spectral::eigenspace_angles::DEFAULT_CLUSTER_TOLERANCE;
 use tvf_spectral::{write_folder_bytes, ComparisonReport, ResidentPeak};
 
@@ -106,6 +109,19 @@ pub struct CompareArgs {
     /// normal) [default: tangential].
     #[arg(long, value_name = "CONDITION", value_parser = parse_boundary_condition)]
     pub(super) boundary: Option<BoundaryCondition>,
+    /// Every catalog entry on the intrinsic Delaunay triangulation of the mesh (`flip`, the
+    /// default, or `refine`, as for other commands): each id without an intrinsic suffix of
+    /// its own gets `+intrinsic-delaunay` (or `-refine`). To compare an entry on the input with
+    /// the same entry on the intrinsic triangulation, give the suffixed id instead.
+    #[arg(
+        long,
+        value_name = "MODE",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "flip",
+        value_parser = parse_intrinsic_delaunay
+    )]
+    intrinsic_delaunay: Option<IntrinsicDelaunay>,
     /// Basis size: the K lowest eigenfields of every entry, harmonic ones included.
     #[arg(short = 'k', value_name = "K")]
     count: usize,
@@ -147,8 +163,28 @@ fn mesh_input(args: &CompareArgs) -> MeshInput {
     input
 }
 
+/// `--intrinsic-delaunay` applied to every catalog id without an intrinsic suffix of its own,
+/// and to `--reference` where it names one of those ids.
+fn with_intrinsic_flag(mut args: CompareArgs) -> CompareArgs {
+    let Some(mode) = args.intrinsic_delaunay else {
+        return args;
+    };
+    let apply = |id: &String| match split_intrinsic_id(split_complex_id(id).0).1 {
+        None => intrinsic_entry_id(id, mode),
+        Some(_) => id.clone(),
+    };
+    if let Some(reference) = &args.reference {
+        if args.discretizations.contains(reference) {
+            args.reference = Some(apply(reference));
+        }
+    }
+    args.discretizations = args.discretizations.iter().map(apply).collect();
+    args
+}
+
 /// Builds every entry, computes and samples its basis, and reports the comparison.
 pub fn run(args: CompareArgs, context: &RunContext) -> Result<()> {
+    let args = with_intrinsic_flag(args);
     if args.count == 0 {
         bail!("-k 0: ask for at least one field");
     }

@@ -372,3 +372,39 @@ fn a_corpus_gives_success_rates_and_failure_reasons() {
         "{stdout}"
     );
 }
+
+#[test]
+fn the_intrinsic_flag_suffixes_every_catalog_id_without_one_and_the_reference() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = compare_json(
+        dir.path(),
+        &[
+            "-k",
+            "6",
+            "--discretization",
+            "conforming-barycentric",
+            "--discretization",
+            "dec-circumcentric+intrinsic-delaunay-refine",
+            "--intrinsic-delaunay",
+            "--reference",
+            "conforming-barycentric",
+        ],
+    );
+    assert_eq!(
+        report["reference"],
+        "conforming-barycentric+intrinsic-delaunay"
+    );
+    let ids: Vec<&str> = report["entries"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["discretization"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        ids,
+        [
+            "conforming-barycentric+intrinsic-delaunay",
+            "dec-circumcentric+intrinsic-delaunay-refine"
+        ]
+    );
+}
