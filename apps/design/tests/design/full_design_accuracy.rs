@@ -8,7 +8,8 @@
 //! field block singular up to `εM1` on the gradients, these solves stalled at relative residuals
 //! of 1e-2 (polygon-dec) and 5e-2 (whitney-galerkin).
 
-use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind, NodeSpace};
+use crate::common::node_location;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::generate::{quad_torus, torus};
 use tvf_core::mesh::Mesh;
 use tvf_core::SurfaceMesh;
@@ -17,18 +18,6 @@ use tvf_design::{
     Location, SoftOptions, SolveReport, Target, FULL_SOLVE_TARGET,
 };
 use tvf_discretizations::catalog_entry;
-
-/// Node `i` of `nodes` as a constraint location (a face for face nodes).
-fn location(nodes: &NodeSpace, i: usize) -> Location {
-    match nodes.kind {
-        NodeKind::Vertices => Location::Vertex(i),
-        NodeKind::Edges => Location::Edge(i),
-        NodeKind::Faces | NodeKind::FaceFrames => Location::Face {
-            face: i,
-            barycentric: None,
-        },
-    }
-}
 
 /// A vector at a point of the first face and one in a face halfway around, a divergence at a
 /// potential node and a curl at a co-potential node, as `tvf design` reads them.
@@ -61,12 +50,12 @@ fn constraints<M: Mesh + ?Sized>(
         Constraint::new(
             "source",
             Target::Divergence(2.0),
-            location(potentials, potentials.len() / 3),
+            node_location(potentials, potentials.len() / 3),
         ),
         Constraint::new(
             "vortex",
             Target::Curl(-1.5),
-            location(co_potentials, co_potentials.len() / 4),
+            node_location(co_potentials, co_potentials.len() / 4),
         ),
     ];
     ConstraintAssembler::new(complex, mesh)
