@@ -10,6 +10,7 @@ use super::compare_corpus::{run_corpus_comparison, CorpusOptions};
 use super::compare_entries::{build_entry, entry_names, measure_entry, reference_position};
 use super::compare_pictures::{write_pictures, PictureRequest};
 use crate::context::RunContext;
+use crate::discretization_flags::with_intrinsic_suffix;
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use crate::picture_options::{parse_size, parse_view};
@@ -21,10 +22,7 @@ use std::time::Instant;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{
-    intrinsic_entry_id, parse_boundary_condition, parse_intrinsic_delaunay, split_complex_id,
-    split_intrinsic_id, IntrinsicDelaunay,
-};
+use tvf_discretizations::{parse_boundary_condition, parse_intrinsic_delaunay, IntrinsicDelaunay};
 use tvf_spectral::eigenspace_angles::DEFAULT_CLUSTER_TOLERANCE;
 use tvf_spectral::{write_folder_bytes, ComparisonReport, ResidentPeak};
 
@@ -166,13 +164,8 @@ fn mesh_input(args: &CompareArgs) -> MeshInput {
 /// `--intrinsic-delaunay` applied to every catalog id without an intrinsic suffix of its own,
 /// and to `--reference` where it names one of those ids.
 fn with_intrinsic_flag(mut args: CompareArgs) -> CompareArgs {
-    let Some(mode) = args.intrinsic_delaunay else {
-        return args;
-    };
-    let apply = |id: &String| match split_intrinsic_id(split_complex_id(id).0).1 {
-        None => intrinsic_entry_id(id, mode),
-        Some(_) => id.clone(),
-    };
+    let mode = args.intrinsic_delaunay;
+    let apply = |id: &String| with_intrinsic_suffix(id.clone(), mode);
     if let Some(reference) = &args.reference {
         if args.discretizations.contains(reference) {
             args.reference = Some(apply(reference));
