@@ -4,7 +4,6 @@
 //! `[--block B] [--tol T] [--interval I] [--concurrent C (intervals at a time)] [--threads T]`
 //! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes.
 
-#[path = "../benches/mesh_matrices/mod.rs"]
 #[allow(dead_code)]
 mod mesh_matrices;
 

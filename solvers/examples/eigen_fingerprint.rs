@@ -5,7 +5,6 @@
 //!
 //! `cargo run --release -p tvf-solvers --example eigen_fingerprint`
 
-#[path = "../benches/mesh_matrices/mod.rs"]
 #[allow(dead_code)]
 mod mesh_matrices;
 

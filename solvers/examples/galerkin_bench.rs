@@ -14,7 +14,6 @@
 //! [--galerkin-only]` (default: `../shared/meshes/bunny-closed.obj`, `K = 500` per problem;
 //! `--galerkin-only` skips the lumped problems, e.g. for a profile).
 
-#[path = "../benches/mesh_matrices/mod.rs"]
 #[allow(dead_code)]
 mod mesh_matrices;
 

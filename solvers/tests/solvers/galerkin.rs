@@ -4,7 +4,7 @@
 //! Whitney 1-form mass `W` with the face–edge incidence `d1` and face masses `N`.
 #![allow(clippy::needless_range_loop)] // index loops mirror the matrix formulas
 
-#[path = "../../benches/mesh_matrices/mod.rs"]
+#[path = "../../examples/mesh_matrices/mod.rs"]
 #[allow(dead_code)]
 mod mesh_matrices;
 

@@ -3,10 +3,9 @@
 //! basis on kitten, and reconstruction from the dense (f64, f32) and the eigenfunction forms.
 //!
 //! Meshes come from `../shared/meshes`; a missing mesh is skipped with a message.
-//! Run: `cargo bench -p tvf-spectral --bench basis` (bunny-closed takes minutes per sample).
+//! Run: `cargo bench -p tvf-benches --bench basis` (bunny-closed takes minutes per sample).
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use std::path::PathBuf;
 use std::time::Duration;
 use tvf_core::io::load_mesh;
 use tvf_core::TriangleMesh;
@@ -14,9 +13,7 @@ use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{compute_basis, BasisRequest};
 
 fn shared_mesh(name: &str) -> Option<TriangleMesh> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/meshes")
-        .join(format!("{name}.obj"));
+    let path = tvf_test_support::shared_mesh(&format!("{name}.obj"))?;
     match load_mesh(&path) {
         Ok(loaded) => loaded.mesh.into_triangles().ok(),
         Err(error) => {

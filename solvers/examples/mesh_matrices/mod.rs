@@ -1,5 +1,5 @@
 //! Self-contained OBJ reader and P1 (cotan) / Crouzeix–Raviart stiffness–mass assembly for
-//! the solver benchmarks (tvf-solvers cannot depend on the mesh crates).
+//! the solver examples and tests (tvf-solvers cannot depend on the mesh crates).
 //! Conventions follow `docs/conventions.md`: `S_ij = −(cot α + cot β)/2`, `M_ii = Σ A_t/3`,
 //! CR basis `1 − 2φ_c` on the edge opposite corner `c`, `M*_ee = Σ A_t/3`.
 

@@ -14,7 +14,6 @@ use faer::Mat;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::hint::black_box;
-use std::path::PathBuf;
 use std::time::Duration;
 use tvf_core::discretization::{HodgeComplex, Mass};
 use tvf_discretizations::{Conforming, MassLumping};
@@ -24,14 +23,7 @@ use tvf_spectral::{FieldFamily, SpectralBasis};
 const FIELDS: usize = 2000;
 
 fn hand_mesh() -> Option<tvf_core::TriangleMesh> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/meshes/hand.obj");
-    if !path.exists() {
-        eprintln!(
-            "skipping projection benchmark: {} not found",
-            path.display()
-        );
-        return None;
-    }
+    let path = tvf_test_support::shared_mesh("hand.obj")?;
     match tvf_core::io::load_mesh(&path) {
         Ok(loaded) => loaded.mesh.into_triangles().ok(),
         Err(error) => {
