@@ -224,8 +224,14 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     report.max_field_residual_floor = a.max_field_residual_floor.max(b.max_field_residual_floor);
 
     let gradient = LinearOperator::Sparse(complex.d0().clone());
-    let potentials = normalised(&gradient, complex.m1(), a.vectors, na);
-    let co_potentials = normalised(complex.co_gradient(), complex.m1(), b.vectors, nb);
+    let potentials = normalised(&gradient, complex.m1(), (&exact, &a.values), a.vectors, na);
+    let co_potentials = normalised(
+        complex.co_gradient(),
+        complex.m1(),
+        (&co_exact, &b.values),
+        b.vectors,
+        nb,
+    );
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
     report.seconds = start.elapsed().as_secs_f64();
     Ok((
@@ -351,19 +357,28 @@ fn solve_both_families(
 
 /// The first `count` columns of `functions`, each divided by the `M1` norm of `gradient · φ`,
 /// so that `gradient · φ̃` is `M1`-unit. `gradient` is `n1 × n` (the complex's `d0` or its
-/// co-gradient `−M1⁻¹ d1ᵀ`). Works in place (no second copy of the eigenfunctions) where the
-/// gradient is a sparse matrix and `M1` diagonal; otherwise the fields are formed a block at a
-/// time.
+/// co-gradient `−M1⁻¹ d1ᵀ`); `spectrum` is the family's eigenproblem with the eigenvalues of
+/// the columns. Works in place (no second copy of the eigenfunctions). Where the gradient is a
+/// sparse matrix and `M1` diagonal the norms are taken from the fields as they are formed
+/// ([`field_norms`]); otherwise (a non-diagonal `M1`: its inverse or its products would be
+/// block solves or sparse products with every field) from the eigenvalues,
+/// `‖gradient · φ‖²_{M1} = φᵀ A φ = λ φᵀ M φ` ([`ScalarSpectrum::energy_norms`]).
 fn normalised(
     gradient: &LinearOperator,
     m1: &Mass,
+    (spectrum, values): (&ScalarSpectrum, &[f64]),
     mut functions: Mat<f64>,
     count: usize,
 ) -> Mat<f64> {
     let rows = functions.nrows();
     functions.truncate(rows, count.min(functions.ncols()));
     let (Some(gradient), Some(m1)) = (gradient.as_sparse(), m1.diagonal_values()) else {
-        return normalised_through_fields(gradient, m1, functions);
+        let norms = spectrum.energy_norms(values, functions.as_ref());
+        functions
+            .par_col_iter_mut()
+            .zip(norms)
+            .for_each(|(column, norm)| column.iter_mut().for_each(|x| *x /= norm));
+        return functions;
     };
     let gradient = to_csr(gradient);
     functions
@@ -377,39 +392,6 @@ fn normalised(
         });
     functions
 }
-
-/// [`normalised`] for a gradient or a field mass that is not a sparse matrix or not diagonal:
-/// the fields of [`FIELD_BLOCK`] columns at a time are formed (`gradient · φ`), their `M1` norms
-/// taken and the columns divided.
-fn normalised_through_fields(
-    gradient: &LinearOperator,
-    m1: &Mass,
-    mut functions: Mat<f64>,
-) -> Mat<f64> {
-    let columns = functions.ncols();
-    let mut first = 0;
-    while first < columns {
-        let width = FIELD_BLOCK.min(columns - first);
-        let block = functions.as_ref().subcols(first, width);
-        let fields = gradient.apply_block(block);
-        let weighted = m1.apply_block(fields.as_ref());
-        for j in 0..width {
-            let squared: f64 = (0..fields.nrows())
-                .map(|i| fields[(i, j)] * weighted[(i, j)])
-                .sum();
-            let norm = squared.sqrt();
-            functions
-                .col_mut(first + j)
-                .iter_mut()
-                .for_each(|x| *x /= norm);
-        }
-        first += width;
-    }
-    functions
-}
-
-/// Fields formed at a time by [`normalised_through_fields`].
-const FIELD_BLOCK: usize = 64;
 
 /// Columns per task of [`normalised`]: their values packed in rows of this many, so that one
 /// pass over the gradient serves them all (and each task divides its own columns).

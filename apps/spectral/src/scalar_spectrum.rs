@@ -2,9 +2,10 @@
 //! potential or the co-potential eigenproblem), with its kernel removed by count.
 
 use crate::BasisError;
-use faer::Mat;
+use faer::{Mat, MatRef};
+use rayon::prelude::*;
 use sprs::CsMat;
-use tvf_core::discretization::sparse::from_triplets;
+use tvf_core::discretization::sparse::{from_triplets, mul_vec};
 use tvf_core::discretization::{EigenStiffness, Eigenproblem, NodeSpace};
 use tvf_solvers::{keep_columns, Eigenpairs, MassMatrix, Pencil};
 
@@ -180,6 +181,42 @@ impl ScalarSpectrum {
             }
             _ => pencil.spectrum_upper_bound(),
         }
+    }
+
+    /// `√(λ_j · x_jᵀ M x_j)` for the eigenpairs `(λ_j, x_j)` of `(A, M)` given as `values` and the
+    /// columns of `vectors` (`full_dimension × k` in the full node numbering, zero on the nodes
+    /// that are not free, as [`ScalarSpectrum::nonzero`] returns them; `k ≤ values.len()`).
+    ///
+    /// That is the `A`-norm `√(x_jᵀ A x_j)`: the eigenvalues the solver returns are the Rayleigh
+    /// quotients `x_jᵀ A x_j / x_jᵀ M x_j` of its vectors (each interval's Rayleigh–Ritz; the
+    /// M-orthogonalisation across interval boundaries changes a vector by the size of its residual
+    /// and its Rayleigh quotient only by the square of that). Since `A = Dᵀ M1 D` for the gradient
+    /// `D` of either family (`d0`, or the co-gradient `−M1⁻¹ d1ᵀ` with `A = d1 M1⁻¹ d1ᵀ`), it is
+    /// the `M1` norm of the eigenfield `D x_j` without forming it: for a non-diagonal `M1` forming
+    /// and weighting the fields took a block solve with `M1` per family.
+    pub fn energy_norms(&self, values: &[f64], vectors: MatRef<'_, f64>) -> Vec<f64> {
+        let restricted = |j: usize| -> Vec<f64> {
+            let column = vectors.col(j);
+            match &self.used {
+                None => column.iter().copied().collect(),
+                Some(used) => used.iter().map(|&i| column[i]).collect(),
+            }
+        };
+        (0..vectors.ncols())
+            .into_par_iter()
+            .map(|j| {
+                let x = restricted(j);
+                let squared: f64 = match &self.mass {
+                    RestrictedMass::Diagonal(mass) => {
+                        x.iter().zip(mass).map(|(x, m)| x * x * m).sum()
+                    }
+                    RestrictedMass::Sparse(m) => {
+                        x.iter().zip(mul_vec(m, &x)).map(|(x, y)| x * y).sum()
+                    }
+                };
+                (values[j] * squared).sqrt()
+            })
+            .collect()
     }
 
     /// The lowest `count` non-zero eigenpairs from the solver's lowest `count + components()`

@@ -5,6 +5,7 @@
 mod analysis;
 mod basis_properties;
 mod basis_real_meshes;
+mod basis_sparse_field_mass;
 mod basis_sphere_convergence;
 mod basis_split;
 mod basis_store;
