@@ -58,6 +58,23 @@ pub struct HodgeStars;
 /// meaningless co-exact stiffness, so they are refused with the truly negative ones.
 pub const DELAUNAY_TOLERANCE: f64 = 1e-12;
 
+/// `Ok` if every edge is Delaunay by the edge star `edge_star` (`⋆1 = (cot α + cot β) / 2`, one
+/// entry per edge): `cot α + cot β > DELAUNAY_TOLERANCE`; otherwise
+/// [`DiscretizationError::NotDelaunay`] with the number of such edges, the first one and its
+/// `cot α + cot β`.
+pub(crate) fn require_delaunay(edge_star: &[f64]) -> Result<(), DiscretizationError> {
+    let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
+    match edge_star.iter().position(|&s| not_delaunay(s)) {
+        Some(first) => Err(DiscretizationError::NotDelaunay {
+            count: edge_star.iter().filter(|&&s| not_delaunay(s)).count(),
+            first,
+            value: 2.0 * edge_star[first],
+            tolerance: DELAUNAY_TOLERANCE,
+        }),
+        None => Ok(()),
+    }
+}
+
 impl PrimalFormComplex<HodgeStars> {
     /// The DEC complex of `mesh` with vertex areas `⋆0` by `lumping`, catalog id
     /// `dec-barycentric` or `dec-circumcentric` (for [`MassLumping::Voronoi`]). Fails on a
@@ -81,15 +98,7 @@ impl PrimalFormComplex<HodgeStars> {
         };
         let geometry = FaceGeometry::new(mesh)?;
         let edge_star = edge_hodge_star(mesh, &geometry);
-        let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
-        if let Some(first) = edge_star.iter().position(|&s| not_delaunay(s)) {
-            return Err(DiscretizationError::NotDelaunay {
-                count: edge_star.iter().filter(|&&s| not_delaunay(s)).count(),
-                first,
-                value: 2.0 * edge_star[first],
-                tolerance: DELAUNAY_TOLERANCE,
-            });
-        }
+        require_delaunay(&edge_star)?;
         Self::assemble(id, mesh, &geometry, boundary, |[vertices, edges, faces]| {
             Ok([
                 Mass::diagonal_positive_on_used_nodes(
