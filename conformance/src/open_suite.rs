@@ -19,6 +19,7 @@ use tvf_core::discretization::{
 };
 use tvf_core::geometry::{dot, norm, sub};
 use tvf_core::mesh::Mesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::CatalogEntry;
 
 /// Runs every core check on every mesh of the open corpus of catalog entry `entry` (and the raw
@@ -94,6 +95,23 @@ pub fn check_decomposition_and_spectrum<M: Mesh>(complex: &dyn HodgeComplex, mes
     }
 }
 
+/// Every boundary edge `(a, b)` of `mesh` as its one face and its unit direction from vertex `a`
+/// to vertex `b` (`a < b`), in edge order.
+pub fn boundary_edge_directions(mesh: &TriangleMesh) -> Vec<(usize, [f64; 3])> {
+    mesh.boundary_edges()
+        .into_iter()
+        .map(|e| {
+            let [a, b] = mesh.edges()[e];
+            let t = mesh.edge_faces()[e]
+                .into_iter()
+                .find(|&t| t < mesh.face_count())
+                .expect("a boundary edge has one face");
+            let d = sub(mesh.positions()[b], mesh.positions()[a]);
+            (t, d.map(|x| x / norm(d)))
+        })
+        .collect()
+}
+
 /// Where the complex fixes field nodes (relative forms: boundary edges), every eigenfield of
 /// Lemma 1 and every harmonic basis field is zero there, to round-off (`1e-12` of its largest
 /// coefficient); at least one field is checked.
@@ -156,19 +174,7 @@ pub fn check_essential_boundary_conditions(complex: &dyn HodgeComplex, mesh: &Co
         let p = complex.potential_nodes();
         p.free_count() - p.kernel_dimension()
     };
-    let boundary: Vec<(usize, [f64; 3])> = mesh
-        .boundary_edges()
-        .into_iter()
-        .map(|e| {
-            let [a, b] = mesh.edges()[e];
-            let t = mesh.edge_faces()[e]
-                .into_iter()
-                .find(|&t| t < mesh.face_count())
-                .expect("a boundary edge has one face");
-            let d = sub(mesh.positions()[b], mesh.positions()[a]);
-            (t, d.map(|x| x / norm(d)))
-        })
-        .collect();
+    let boundary = boundary_edge_directions(mesh);
     let mut checked = 0;
     for (k, (lambda, field)) in fields.iter().enumerate() {
         let integrable = k < integrable_count;
