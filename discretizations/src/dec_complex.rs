@@ -2,9 +2,9 @@
 //! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
 
 use crate::face_geometry::FaceGeometry;
-use crate::primal_form_complex::{inverse_face_areas, PrimalFormComplex};
+use crate::primal_form_complex::PrimalFormComplex;
 use crate::MassLumping;
-use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass, NodeSpace};
 use tvf_core::TriangleMesh;
 
 /// The DEC complex of primal forms (Desbrun, Kanso, Tong 2008; the setting of Fisher et al.
@@ -99,22 +99,38 @@ impl PrimalFormComplex<HodgeStars> {
         let geometry = FaceGeometry::new(mesh)?;
         let edge_star = edge_hodge_star(mesh, &geometry);
         require_delaunay(&edge_star)?;
-        Self::assemble(id, mesh, &geometry, boundary, |[vertices, edges, faces]| {
-            Ok([
-                Mass::diagonal_positive_on_used_nodes(
-                    "M0 (⋆0, vertex areas)",
-                    lumping.vertex_masses(mesh, &geometry),
-                    &vertices.components,
-                )?,
-                Mass::diagonal_positive_on_used_nodes(
-                    "M1 (⋆1, the edge Hodge star)",
-                    edge_star,
-                    &edges.components,
-                )?,
-                inverse_face_areas("M2 (⋆2, inverse face areas)", &geometry, faces)?,
-            ])
+        Self::assemble(id, mesh, &geometry, boundary, |nodes| {
+            let vertex_areas = lumping.vertex_masses(mesh, &geometry);
+            let inverse_areas = geometry.areas.iter().map(|a| 1.0 / a).collect();
+            hodge_star_masses([vertex_areas, edge_star, inverse_areas], nodes)
         })
     }
+}
+
+/// The masses of DEC, diagonal Hodge stars on the node spaces `[vertices, edges, faces]`: `⋆0`
+/// the vertex areas (`V` entries), `⋆1` the edge star (`E`), `⋆2` the inverse face areas (`F`),
+/// each checked positive on the nodes its space uses.
+pub(crate) fn hodge_star_masses(
+    [vertex_areas, edge_star, inverse_face_areas]: [Vec<f64>; 3],
+    [vertices, edges, faces]: &[NodeSpace; 3],
+) -> Result<[Mass; 3], DiscretizationError> {
+    Ok([
+        Mass::diagonal_positive_on_used_nodes(
+            "M0 (⋆0, vertex areas)",
+            vertex_areas,
+            &vertices.components,
+        )?,
+        Mass::diagonal_positive_on_used_nodes(
+            "M1 (⋆1, the edge Hodge star)",
+            edge_star,
+            &edges.components,
+        )?,
+        Mass::diagonal_positive_on_used_nodes(
+            "M2 (⋆2, inverse face areas)",
+            inverse_face_areas,
+            &faces.components,
+        )?,
+    ])
 }
 
 /// `(cot α + cot β)/2` per edge: the cotangents of the corners opposite the edge in its faces.

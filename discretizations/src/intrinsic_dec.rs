@@ -2,11 +2,11 @@
 //! `dec-barycentric` and `dec-circumcentric` built from edge lengths, with sampling and point
 //! evaluation on the input mesh through the correspondence.
 
-use crate::dec_complex::require_delaunay;
+use crate::dec_complex::{hodge_star_masses, require_delaunay};
 use crate::intrinsic_delaunay::IntrinsicInput;
 use crate::intrinsic_primal_forms::IntrinsicPrimalFormComplex;
 use crate::{HodgeStars, MassLumping};
-use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError};
 use tvf_core::TriangleMesh;
 
 /// The DEC complex of primal forms on an intrinsic triangulation (`dec-barycentric` or
@@ -46,24 +46,9 @@ impl IntrinsicPrimalFormComplex<HodgeStars> {
             MassLumping::Barycentric => tri.barycentric_vertex_areas(),
             MassLumping::Voronoi => tri.mixed_voronoi_vertex_areas(),
         };
-        Self::assemble(mesh, input, id, boundary, |[vertices, edges, faces]| {
-            Ok([
-                Mass::diagonal_positive_on_used_nodes(
-                    "M0 (⋆0, vertex areas)",
-                    vertex_areas,
-                    &vertices.components,
-                )?,
-                Mass::diagonal_positive_on_used_nodes(
-                    "M1 (⋆1, the edge Hodge star)",
-                    edge_star,
-                    &edges.components,
-                )?,
-                Mass::diagonal_positive_on_used_nodes(
-                    "M2 (⋆2, inverse face areas)",
-                    tri.face_areas().iter().map(|a| 1.0 / a).collect(),
-                    &faces.components,
-                )?,
-            ])
+        Self::assemble(mesh, input, id, boundary, |nodes| {
+            let inverse_areas = tri.face_areas().iter().map(|a| 1.0 / a).collect();
+            hodge_star_masses([vertex_areas, edge_star, inverse_areas], nodes)
         })
     }
 }
