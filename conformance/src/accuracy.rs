@@ -22,8 +22,7 @@ use crate::check_outcome::CheckOutcome;
 use crate::check_report::CheckReport;
 use crate::consistency_checks::measure_consistency;
 use crate::convergence_checks::{convergence_names, measure_convergence};
-use crate::property_runner::{StopRun, SurfaceBuilder, PANIC};
-use std::panic::AssertUnwindSafe;
+use crate::property_runner::{catch_check_panic, SurfaceBuilder, PANIC};
 use tvf_core::discretization::HodgeComplex;
 use tvf_core::SurfaceMesh;
 
@@ -60,20 +59,11 @@ impl AccuracyRequest {
     }
 }
 
-/// Runs `measure`, a panic turned into one failed outcome named [`PANIC`] (a [`StopRun`] unwinds
+/// Runs `measure`, a panic turned into one failed outcome named [`PANIC`] (a [`StopRun`](crate::property_runner::StopRun) unwinds
 /// on).
 fn guarded(what: &str, measure: impl FnOnce() -> Vec<CheckOutcome>) -> Vec<CheckOutcome> {
-    std::panic::catch_unwind(AssertUnwindSafe(measure)).unwrap_or_else(|payload| {
-        if payload.is::<StopRun>() {
-            std::panic::resume_unwind(payload);
-        }
-        let message = payload
-            .downcast_ref::<String>()
-            .cloned()
-            .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-            .unwrap_or_else(|| "a panic without a message".to_string());
-        vec![CheckOutcome::failed(PANIC, format!("{what}: {message}"))]
-    })
+    catch_check_panic(measure)
+        .unwrap_or_else(|message| vec![CheckOutcome::failed(PANIC, format!("{what}: {message}"))])
 }
 
 /// The consistency checks on the patch `patch` (`mesh`), the patch tests inside the box's faces

@@ -101,14 +101,7 @@ pub fn check_sampling<H: HodgeComplex + ?Sized>(complex: &H, mesh: &CorpusMesh) 
             mesh.face_normal(t),
             1e-12,
         );
-        for (value, expected) in [
-            (dot(e1, e1), 1.0),
-            (dot(e2, e2), 1.0),
-            (dot(e1, e2), 0.0),
-            (dot(e1, n), 0.0),
-            (dot(e2, n), 0.0),
-            (dot(cross(e1, e2), n), 1.0),
-        ] {
+        for (value, expected) in frame_conditions(e1, e2, n) {
             assert!(
                 (value - expected).abs() < 1e-12,
                 "frame of face {t} not orthonormal, tangent and positive"
@@ -254,15 +247,7 @@ pub fn check_point_evaluation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
         return;
     };
     let mesh = &mesh.mesh;
-    let a = [0.3, -1.2, 0.7];
-    let linear = |p: [f64; 3]| dot(a, p) + 2.5;
-    let values: Vec<f64> = complex
-        .potential_nodes()
-        .positions
-        .iter()
-        .map(|&p| linear(p))
-        .collect();
-    let scale = values.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let probe = LinearProbe::on_potential_nodes(complex);
     for t in 0..mesh.face_count() {
         for b in SAMPLE_POINTS {
             for (what, weights, n) in [
@@ -289,17 +274,61 @@ pub fn check_point_evaluation<H: HodgeComplex + ?Sized>(complex: &H, mesh: &Corp
             }
             let point: [f64; 3] =
                 std::array::from_fn(|k| (0..3).map(|c| b[c] * mesh.corner(t, c)[k]).sum());
-            let value: f64 = evaluation
-                .potential_weights(&SurfacePoint::barycentric(t, b))
-                .iter()
-                .map(|&(i, w)| w * values[i])
-                .sum();
+            let value =
+                probe.evaluate(&evaluation.potential_weights(&SurfacePoint::barycentric(t, b)));
             assert!(
-                (value - linear(point)).abs() <= 1e-12 * scale,
+                (value - LinearProbe::at(point)).abs() <= 1e-12 * probe.scale,
                 "potential interpolation in face {t}: {value} vs {}",
-                linear(point)
+                LinearProbe::at(point)
             );
         }
+    }
+}
+
+/// The six conditions on a face frame `(e1, e2)` with normal `n` as `(value, expected)`:
+/// unit `e1` and `e2`, orthogonal to each other and to `n`, and `e1 × e2 = n` (positive).
+pub fn frame_conditions(e1: [f64; 3], e2: [f64; 3], n: [f64; 3]) -> [(f64, f64); 6] {
+    [
+        (dot(e1, e1), 1.0),
+        (dot(e2, e2), 1.0),
+        (dot(e1, e2), 0.0),
+        (dot(e1, n), 0.0),
+        (dot(e2, n), 0.0),
+        (dot(cross(e1, e2), n), 1.0),
+    ]
+}
+
+/// The linear function `φ(p) = ⟨a, p⟩ + 2.5`, `a = (0.3, −1.2, 0.7)`, given at the potential
+/// nodes of a complex: what the point-evaluation checks on triangle and polygon meshes
+/// interpolate.
+pub struct LinearProbe {
+    /// `φ` at each potential node, `n0` entries.
+    pub values: Vec<f64>,
+    /// `max(1, max |φ|)` over the nodes: the scale of the interpolation error.
+    pub scale: f64,
+}
+
+impl LinearProbe {
+    /// `φ` at the potential nodes' positions of `complex`.
+    pub fn on_potential_nodes<H: HodgeComplex + ?Sized>(complex: &H) -> Self {
+        let values: Vec<f64> = complex
+            .potential_nodes()
+            .positions
+            .iter()
+            .map(|&p| Self::at(p))
+            .collect();
+        let scale = values.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        Self { values, scale }
+    }
+
+    /// `φ(p)`.
+    pub fn at(p: [f64; 3]) -> f64 {
+        dot([0.3, -1.2, 0.7], p) + 2.5
+    }
+
+    /// `Σ w φ_i` over the node weights `(i, w)` of a point.
+    pub fn evaluate(&self, weights: &[(usize, f64)]) -> f64 {
+        weights.iter().map(|&(i, w)| w * self.values[i]).sum()
     }
 }
 

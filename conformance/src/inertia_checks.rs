@@ -21,6 +21,7 @@
 //! dense checks' limit and report these checks as skipped with that reason.
 
 use crate::check_outcome::CheckOutcome;
+use crate::check_report::{DENSE_CHECK_NAMES, LEMMA1_CHECK_NAMES};
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{mul_vec, transpose};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeSpace};
@@ -114,27 +115,12 @@ fn restricted(a: &CsMat<f64>, keep: &[usize]) -> CsMat<f64> {
 
 /// The outcomes of the eigenvalue checks under their names, all failed with `reason`.
 fn all_failed(reason: &str) -> Vec<CheckOutcome> {
-    CHECK_NAMES
+    DENSE_CHECK_NAMES
         .iter()
+        .chain(&LEMMA1_CHECK_NAMES)
         .map(|name| CheckOutcome::failed(*name, reason.to_string()))
         .collect()
 }
-
-/// The names of the outcomes of [`measure_inertia_checks`]: the dense checks' names
-/// ([`crate::check_report::DENSE_CHECK_NAMES`], [`crate::check_report::LEMMA1_CHECK_NAMES`]).
-pub const CHECK_NAMES: [&str; 11] = [
-    "positive semi-definite: S",
-    "positive semi-definite: B",
-    "positive semi-definite: exact eigenproblem",
-    "positive semi-definite: co-exact eigenproblem",
-    "kernel dimension",
-    "zeros of L",
-    "zeros of the exact pair",
-    "zeros of the co-exact pair",
-    "spectrum union",
-    "Lemma 1: unit eigenfields",
-    "Lemma 1: eigenfields of L",
-];
 
 /// Why the checks cannot run on `complex`: a mass that is not diagonal.
 pub fn unsupported_reason(complex: &dyn HodgeComplex) -> Option<String> {

@@ -18,6 +18,8 @@ use tvf_core::discretization::{
     BoundaryCondition, DiscretizationError, HodgeComplex, HodgeOperators, NodeKind,
 };
 use tvf_core::geometry::{dot, norm, sub};
+use tvf_core::mesh::Mesh;
+use tvf_core::TriangleMesh;
 use tvf_discretizations::CatalogEntry;
 
 /// Runs every core check on every mesh of the open corpus of catalog entry `entry` (and the raw
@@ -55,12 +57,29 @@ pub fn open_mesh_suite(entry: &CatalogEntry, boundary: BoundaryCondition) {
 }
 
 fn run_core_checks(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
-    check_nodes_and_masses(complex, mesh);
-    check_d1_d0_zero(complex);
-    check_symmetric_operators(complex);
+    check_operator_algebra(complex, mesh);
     check_sampling(complex, mesh);
     check_relative_sampling(complex, mesh);
     check_point_evaluation(complex, mesh);
+    check_decomposition_and_spectrum(complex, mesh);
+    if complex.field_dimension() <= EIGENVECTOR_LIMIT {
+        check_essential_boundary_conditions(complex, mesh);
+    }
+}
+
+/// The core checks before the capability checks, on a mesh of any kind: shapes and masses,
+/// `d1 d0 = 0`, symmetric operators.
+pub fn check_operator_algebra<M: Mesh>(complex: &dyn HodgeComplex, mesh: &CorpusMesh<M>) {
+    check_nodes_and_masses(complex, mesh);
+    check_d1_d0_zero(complex);
+    check_symmetric_operators(complex);
+}
+
+/// The core checks after the capability checks, on a mesh of any kind: the Hodge decomposition,
+/// `dim ker L` by harmonic projection; up to [`DENSE_LIMIT`] field nodes semi-definiteness, the
+/// dense kernel and the spectrum union; up to [`EIGENVECTOR_LIMIT`] Lemma 1, the complete
+/// orthonormal basis and fields that vanish on fixed nodes.
+pub fn check_decomposition_and_spectrum<M: Mesh>(complex: &dyn HodgeComplex, mesh: &CorpusMesh<M>) {
     check_hodge_decomposition(complex, 17);
     check_kernel_is_2g_sparse(complex, mesh, 23);
     let n1 = complex.field_dimension();
@@ -72,9 +91,25 @@ fn run_core_checks(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
     if n1 <= EIGENVECTOR_LIMIT {
         check_lemma1(complex);
         check_basis_orthonormal(complex, 29);
-        check_essential_boundary_conditions(complex, mesh);
         check_fields_vanish_on_fixed_nodes(complex);
     }
+}
+
+/// Every boundary edge `(a, b)` of `mesh` as its one face and its unit direction from vertex `a`
+/// to vertex `b` (`a < b`), in edge order.
+pub fn boundary_edge_directions(mesh: &TriangleMesh) -> Vec<(usize, [f64; 3])> {
+    mesh.boundary_edges()
+        .into_iter()
+        .map(|e| {
+            let [a, b] = mesh.edges()[e];
+            let t = mesh.edge_faces()[e]
+                .into_iter()
+                .find(|&t| t < mesh.face_count())
+                .expect("a boundary edge has one face");
+            let d = sub(mesh.positions()[b], mesh.positions()[a]);
+            (t, d.map(|x| x / norm(d)))
+        })
+        .collect()
 }
 
 /// Where the complex fixes field nodes (relative forms: boundary edges), every eigenfield of
@@ -139,19 +174,7 @@ pub fn check_essential_boundary_conditions(complex: &dyn HodgeComplex, mesh: &Co
         let p = complex.potential_nodes();
         p.free_count() - p.kernel_dimension()
     };
-    let boundary: Vec<(usize, [f64; 3])> = mesh
-        .boundary_edges()
-        .into_iter()
-        .map(|e| {
-            let [a, b] = mesh.edges()[e];
-            let t = mesh.edge_faces()[e]
-                .into_iter()
-                .find(|&t| t < mesh.face_count())
-                .expect("a boundary edge has one face");
-            let d = sub(mesh.positions()[b], mesh.positions()[a]);
-            (t, d.map(|x| x / norm(d)))
-        })
-        .collect();
+    let boundary = boundary_edge_directions(mesh);
     let mut checked = 0;
     for (k, (lambda, field)) in fields.iter().enumerate() {
         let integrable = k < integrable_count;

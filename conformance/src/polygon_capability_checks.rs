@@ -4,6 +4,7 @@
 //! ([`check_polygon_sampling`], [`check_polygon_point_evaluation`]). A polygon's points are
 //! [`SurfacePoint`]s: the face and one weight per corner ([`polygon_points`]).
 
+use crate::capability_checks::{frame_conditions, LinearProbe};
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
 use crate::corpus::CorpusMesh;
 use crate::decomposition_checks::random_field;
@@ -11,7 +12,7 @@ use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{
     FieldSampling, HodgeComplex, HodgeOperators, NodeKind, SamplingReproduction, TangentProjection,
 };
-use tvf_core::geometry::{cross, dot, norm, scale, sub};
+use tvf_core::geometry::{dot, norm, scale, sub};
 use tvf_core::{SurfaceMesh, SurfacePoint};
 
 /// The constant vector the sampling checks turn into a 1-form.
@@ -220,14 +221,7 @@ fn measure_faces<H: HodgeComplex + ?Sized>(
         let [e1, e2] = sampling.frame(f);
         let n = sampling.normal(f);
         frames = frames.max(norm(sub(n, mesh.face_normal(f))));
-        for (value, expected) in [
-            (dot(e1, e1), 1.0),
-            (dot(e2, e2), 1.0),
-            (dot(e1, e2), 0.0),
-            (dot(e1, n), 0.0),
-            (dot(e2, n), 0.0),
-            (dot(cross(e1, e2), n), 1.0),
-        ] {
+        for (value, expected) in frame_conditions(e1, e2, n) {
             frames = frames.max((value - expected).abs());
         }
         normal_parts = normal_parts
@@ -287,15 +281,7 @@ pub fn measure_polygon_point_evaluation<H: HodgeComplex + ?Sized>(
     let Some(evaluation) = complex.point_evaluation() else {
         return Vec::new();
     };
-    let a = [0.3, -1.2, 0.7];
-    let linear = |p: [f64; 3]| dot(a, p) + 2.5;
-    let values: Vec<f64> = complex
-        .potential_nodes()
-        .positions
-        .iter()
-        .map(|&p| linear(p))
-        .collect();
-    let size = values.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+    let probe = LinearProbe::on_potential_nodes(complex);
     let (mut bad_weights, mut error) = (0usize, 0.0f64);
     for f in 0..mesh.face_count() {
         for weights in polygon_points(mesh.face_size(f)) {
@@ -311,9 +297,9 @@ pub fn measure_polygon_point_evaluation<H: HodgeComplex + ?Sized>(
                     bad_weights += 1;
                 }
             }
-            let value: f64 = potential.iter().map(|&(i, w)| w * values[i]).sum();
-            let expected = linear(mesh.point_position(&point));
-            error = error.max((value - expected).abs() / size);
+            let value = probe.evaluate(&potential);
+            let expected = LinearProbe::at(mesh.point_position(&point));
+            error = error.max((value - expected).abs() / probe.scale);
         }
     }
     vec![

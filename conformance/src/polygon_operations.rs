@@ -7,7 +7,8 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::geometry::{add, cross, dot, norm, scale, sub};
+use tvf_core::generate::rigidly_moved;
+use tvf_core::geometry::{add, norm, scale, sub};
 use tvf_core::mesh::{FaceList, Mesh};
 use tvf_core::SurfaceMesh;
 
@@ -97,25 +98,7 @@ pub fn moved(
     angle: f64,
     translation: [f64; 3],
 ) -> Result<SurfaceMesh, String> {
-    let length = norm(axis);
-    let (k, angle) = if length > 0.0 {
-        (scale(axis, 1.0 / length), angle)
-    } else {
-        ([0.0, 0.0, 1.0], 0.0)
-    };
-    let (sin, cos) = angle.sin_cos();
-    // Rodrigues: p cos + (k × p) sin + k (k·p)(1 − cos).
-    let positions = mesh
-        .positions()
-        .iter()
-        .map(|&p| {
-            let rotated = add(
-                add(scale(p, cos), scale(cross(k, p), sin)),
-                scale(k, dot(k, p) * (1.0 - cos)),
-            );
-            add(rotated, translation)
-        })
-        .collect();
+    let positions = rigidly_moved(mesh.positions(), axis, angle, translation);
     validated("rigid motion", positions, mesh.to_face_list())
 }
 

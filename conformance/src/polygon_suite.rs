@@ -4,23 +4,15 @@
 //! ([`generated_polygon_meshes`]). An entry that needs triangles is checked to refuse every
 //! polygon mesh with [`DiscretizationError::NeedsTriangles`] naming it.
 
-use crate::algebra_checks::{
-    check_d1_d0_zero, check_nodes_and_masses, check_psd_operators, check_symmetric_operators,
-};
-use crate::corpus::{DENSE_LIMIT, EIGENVECTOR_LIMIT};
-use crate::decomposition_checks::{
-    check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
-};
-use crate::open_suite::check_fields_vanish_on_fixed_nodes;
+use crate::corpus::DENSE_LIMIT;
+use crate::open_suite::{check_decomposition_and_spectrum, check_operator_algebra};
 use crate::polygon_capability_checks::{check_polygon_point_evaluation, check_polygon_sampling};
 use crate::polygon_corpus::{open_polygon_corpus, polygon_corpus, PolygonCorpusMesh};
 use crate::polygon_operations::moved;
 use crate::property_runner::{run_polygon_property, PropertyRequest};
-use crate::spectral_checks::{
-    check_basis_orthonormal, check_lemma1, check_rigid_motion_invariance, check_spectrum_union,
-};
+use crate::spectral_checks::check_rigid_motion_invariance;
 use crate::strategies::MeshNeeds;
-use crate::suite::GENERATED_MESHES_SEED;
+use crate::suite::{panic_with_counterexample, GENERATED_MESHES_SEED};
 use tvf_core::discretization::{
     BoundaryCondition, DiscretizationError, HodgeComplex, HodgeOperators,
 };
@@ -95,24 +87,10 @@ const MOTION_TRANSLATION: [f64; 3] = [3.0, -1.0, 2.0];
 
 /// The core checks on one polygon mesh.
 fn polygon_core_checks(complex: &dyn HodgeComplex, mesh: &PolygonCorpusMesh) {
-    check_nodes_and_masses(complex, mesh);
-    check_d1_d0_zero(complex);
-    check_symmetric_operators(complex);
+    check_operator_algebra(complex, mesh);
     check_polygon_sampling(complex, mesh);
     check_polygon_point_evaluation(complex, mesh);
-    check_hodge_decomposition(complex, 17);
-    check_kernel_is_2g_sparse(complex, mesh, 23);
-    let n1 = complex.field_dimension();
-    if n1 <= DENSE_LIMIT {
-        check_psd_operators(complex);
-        check_kernel_is_2g_dense(complex, mesh);
-        check_spectrum_union(complex, mesh);
-    }
-    if n1 <= EIGENVECTOR_LIMIT {
-        check_lemma1(complex);
-        check_basis_orthonormal(complex, 29);
-        check_fields_vanish_on_fixed_nodes(complex);
-    }
+    check_decomposition_and_spectrum(complex, mesh);
 }
 
 /// The core checks and the polygon capability checks on `cases` polygon meshes drawn from
@@ -140,15 +118,7 @@ pub fn generated_polygon_meshes(entry: &CatalogEntry, cases: u32) {
         );
         return;
     }
-    if let Some(counterexample) = report.counterexample {
-        let failures = counterexample.report.failure_lines();
-        panic!(
-            "minimal failing polygon mesh ({} faces): {}\n{}",
-            counterexample.mesh.mesh.face_count(),
-            counterexample.mesh.name,
-            failures.join("\n")
-        );
-    }
+    panic_with_counterexample(report.counterexample, "polygon mesh");
 }
 
 /// The accuracy checks on polygon meshes ([`crate::accuracy::accuracy_report`] with polygons

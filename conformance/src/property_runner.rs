@@ -88,19 +88,23 @@ fn refusal(error: String) -> CheckReport {
 
 /// `checks()`, a panic turned into one failed outcome named [`PANIC`].
 fn guarded(checks: impl FnOnce() -> CheckReport) -> CheckReport {
-    let checked = std::panic::catch_unwind(AssertUnwindSafe(checks));
-    checked.unwrap_or_else(|payload| {
+    catch_check_panic(checks).unwrap_or_else(|message| CheckReport {
+        outcomes: vec![CheckOutcome::failed(PANIC, message)],
+    })
+}
+
+/// Runs `run`; a panic comes back as its message (`"a panic without a message"` when its
+/// payload is neither a `String` nor a `&str`), except a [`StopRun`], which unwinds on.
+pub(crate) fn catch_check_panic<T>(run: impl FnOnce() -> T) -> Result<T, String> {
+    std::panic::catch_unwind(AssertUnwindSafe(run)).map_err(|payload| {
         if payload.is::<StopRun>() {
             std::panic::resume_unwind(payload);
         }
-        let message = payload
+        payload
             .downcast_ref::<String>()
             .cloned()
             .or_else(|| payload.downcast_ref::<&str>().map(|s| s.to_string()))
-            .unwrap_or_else(|| "a panic without a message".to_string());
-        CheckReport {
-            outcomes: vec![CheckOutcome::failed(PANIC, message)],
-        }
+            .unwrap_or_else(|| "a panic without a message".to_string())
     })
 }
 

@@ -11,13 +11,14 @@ use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{
     check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
 };
-use crate::property_runner::{run_property, PropertyRequest};
+use crate::property_runner::{run_property, Counterexample, PropertyRequest};
 use crate::spectral_checks::{
     check_basis_orthonormal, check_lemma1, check_rigid_motion_invariance, check_spectrum_union,
 };
 use crate::strategies::MeshNeeds;
 use crate::{build, for_each_mesh, Constructor};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::mesh::Mesh;
 use tvf_core::SurfaceMesh;
 
 /// Cases per property of a suite line unless its `cases = N` says otherwise.
@@ -187,10 +188,19 @@ pub fn generated_meshes(constructor: Constructor, corpus: Corpus, cases: u32) {
     if let Some(aborted) = report.aborted {
         panic!("the property run stopped: {aborted}");
     }
-    if let Some(counterexample) = report.counterexample {
+    panic_with_counterexample(report.counterexample, "mesh");
+}
+
+/// Panics with the shrunk minimal failing `what` (e.g. `"polygon mesh"`) of a property run, if
+/// there is one: its face count, its name and its failed checks, one a line.
+pub(crate) fn panic_with_counterexample<Spec, M: Mesh>(
+    counterexample: Option<Counterexample<Spec, M>>,
+    what: &str,
+) {
+    if let Some(counterexample) = counterexample {
         let failures = counterexample.report.failure_lines();
         panic!(
-            "minimal failing mesh ({} faces): {}\n{}",
+            "minimal failing {what} ({} faces): {}\n{}",
             counterexample.mesh.mesh.face_count(),
             counterexample.mesh.name,
             failures.join("\n")

@@ -2,9 +2,9 @@
 //! as 1-forms on edges, co-potentials on faces, with diagonal Hodge stars.
 
 use crate::face_geometry::FaceGeometry;
-use crate::primal_form_complex::{inverse_face_areas, PrimalFormComplex};
+use crate::primal_form_complex::PrimalFormComplex;
 use crate::MassLumping;
-use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass, NodeSpace};
 use tvf_core::TriangleMesh;
 
 /// The DEC complex of primal forms (Desbrun, Kanso, Tong 2008; the setting of Fisher et al.
@@ -58,6 +58,23 @@ pub struct HodgeStars;
 /// meaningless co-exact stiffness, so they are refused with the truly negative ones.
 pub const DELAUNAY_TOLERANCE: f64 = 1e-12;
 
+/// `Ok` if every edge is Delaunay by the edge star `edge_star` (`⋆1 = (cot α + cot β) / 2`, one
+/// entry per edge): `cot α + cot β > DELAUNAY_TOLERANCE`; otherwise
+/// [`DiscretizationError::NotDelaunay`] with the number of such edges, the first one and its
+/// `cot α + cot β`.
+pub(crate) fn require_delaunay(edge_star: &[f64]) -> Result<(), DiscretizationError> {
+    let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
+    match edge_star.iter().position(|&s| not_delaunay(s)) {
+        Some(first) => Err(DiscretizationError::NotDelaunay {
+            count: edge_star.iter().filter(|&&s| not_delaunay(s)).count(),
+            first,
+            value: 2.0 * edge_star[first],
+            tolerance: DELAUNAY_TOLERANCE,
+        }),
+        None => Ok(()),
+    }
+}
+
 impl PrimalFormComplex<HodgeStars> {
     /// The DEC complex of `mesh` with vertex areas `⋆0` by `lumping`, catalog id
     /// `dec-barycentric` or `dec-circumcentric` (for [`MassLumping::Voronoi`]). Fails on a
@@ -81,31 +98,39 @@ impl PrimalFormComplex<HodgeStars> {
         };
         let geometry = FaceGeometry::new(mesh)?;
         let edge_star = edge_hodge_star(mesh, &geometry);
-        let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
-        if let Some(first) = edge_star.iter().position(|&s| not_delaunay(s)) {
-            return Err(DiscretizationError::NotDelaunay {
-                count: edge_star.iter().filter(|&&s| not_delaunay(s)).count(),
-                first,
-                value: 2.0 * edge_star[first],
-                tolerance: DELAUNAY_TOLERANCE,
-            });
-        }
-        Self::assemble(id, mesh, &geometry, boundary, |[vertices, edges, faces]| {
-            Ok([
-                Mass::diagonal_positive_on_used_nodes(
-                    "M0 (⋆0, vertex areas)",
-                    lumping.vertex_masses(mesh, &geometry),
-                    &vertices.components,
-                )?,
-                Mass::diagonal_positive_on_used_nodes(
-                    "M1 (⋆1, the edge Hodge star)",
-                    edge_star,
-                    &edges.components,
-                )?,
-                inverse_face_areas("M2 (⋆2, inverse face areas)", &geometry, faces)?,
-            ])
+        require_delaunay(&edge_star)?;
+        Self::assemble(id, mesh, &geometry, boundary, |nodes| {
+            let vertex_areas = lumping.vertex_masses(mesh, &geometry);
+            let inverse_areas = geometry.areas.iter().map(|a| 1.0 / a).collect();
+            hodge_star_masses([vertex_areas, edge_star, inverse_areas], nodes)
         })
     }
+}
+
+/// The masses of DEC, diagonal Hodge stars on the node spaces `[vertices, edges, faces]`: `⋆0`
+/// the vertex areas (`V` entries), `⋆1` the edge star (`E`), `⋆2` the inverse face areas (`F`),
+/// each checked positive on the nodes its space uses.
+pub(crate) fn hodge_star_masses(
+    [vertex_areas, edge_star, inverse_face_areas]: [Vec<f64>; 3],
+    [vertices, edges, faces]: &[NodeSpace; 3],
+) -> Result<[Mass; 3], DiscretizationError> {
+    Ok([
+        Mass::diagonal_positive_on_used_nodes(
+            "M0 (⋆0, vertex areas)",
+            vertex_areas,
+            &vertices.components,
+        )?,
+        Mass::diagonal_positive_on_used_nodes(
+            "M1 (⋆1, the edge Hodge star)",
+            edge_star,
+            &edges.components,
+        )?,
+        Mass::diagonal_positive_on_used_nodes(
+            "M2 (⋆2, inverse face areas)",
+            inverse_face_areas,
+            &faces.components,
+        )?,
+    ])
 }
 
 /// `(cot α + cot β)/2` per edge: the cotangents of the corners opposite the edge in its faces.

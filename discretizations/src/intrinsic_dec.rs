@@ -2,10 +2,11 @@
 //! `dec-barycentric` and `dec-circumcentric` built from edge lengths, with sampling and point
 //! evaluation on the input mesh through the correspondence.
 
+use crate::dec_complex::{hodge_star_masses, require_delaunay};
 use crate::intrinsic_delaunay::IntrinsicInput;
 use crate::intrinsic_primal_forms::IntrinsicPrimalFormComplex;
-use crate::{HodgeStars, MassLumping, DELAUNAY_TOLERANCE};
-use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
+use crate::{HodgeStars, MassLumping};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError};
 use tvf_core::TriangleMesh;
 
 /// The DEC complex of primal forms on an intrinsic triangulation (`dec-barycentric` or
@@ -19,7 +20,7 @@ use tvf_core::TriangleMesh;
 ///   the input's.
 /// - `⋆1 = (cot α + cot β)/2` ([`IntrinsicTriangulation::edge_hodge_star`]): construction fails
 ///   with [`DiscretizationError::NotDelaunay`] if some edge has `cot α + cot β ≤`
-///   [`DELAUNAY_TOLERANCE`] (after flips only: cocircular neighbours, boundary edges opposite an
+///   [`DELAUNAY_TOLERANCE`](crate::DELAUNAY_TOLERANCE) (after flips only: cocircular neighbours, boundary edges opposite an
 ///   obtuse angle; never after refinement).
 /// - `⋆2 = 1/area` per intrinsic face.
 ///
@@ -40,37 +41,14 @@ impl IntrinsicPrimalFormComplex<HodgeStars> {
     ) -> Result<Self, DiscretizationError> {
         let tri = &input.triangulation;
         let edge_star = tri.edge_hodge_star();
-        let not_delaunay = |s: f64| 2.0 * s <= DELAUNAY_TOLERANCE;
-        if let Some(first) = edge_star.iter().position(|&s| not_delaunay(s)) {
-            return Err(DiscretizationError::NotDelaunay {
-                count: edge_star.iter().filter(|&&s| not_delaunay(s)).count(),
-                first,
-                value: 2.0 * edge_star[first],
-                tolerance: DELAUNAY_TOLERANCE,
-            });
-        }
+        require_delaunay(&edge_star)?;
         let vertex_areas = match lumping {
             MassLumping::Barycentric => tri.barycentric_vertex_areas(),
             MassLumping::Voronoi => tri.mixed_voronoi_vertex_areas(),
         };
-        Self::assemble(mesh, input, id, boundary, |[vertices, edges, faces]| {
-            Ok([
-                Mass::diagonal_positive_on_used_nodes(
-                    "M0 (⋆0, vertex areas)",
-                    vertex_areas,
-                    &vertices.components,
-                )?,
-                Mass::diagonal_positive_on_used_nodes(
-                    "M1 (⋆1, the edge Hodge star)",
-                    edge_star,
-                    &edges.components,
-                )?,
-                Mass::diagonal_positive_on_used_nodes(
-                    "M2 (⋆2, inverse face areas)",
-                    tri.face_areas().iter().map(|a| 1.0 / a).collect(),
-                    &faces.components,
-                )?,
-            ])
+        Self::assemble(mesh, input, id, boundary, |nodes| {
+            let inverse_areas = tri.face_areas().iter().map(|a| 1.0 / a).collect();
+            hodge_star_masses([vertex_areas, edge_star, inverse_areas], nodes)
         })
     }
 }

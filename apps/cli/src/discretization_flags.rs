@@ -41,6 +41,24 @@ pub struct DiscretizationFlags {
     /// meshes [default: tangential, or the basis file's].
     #[arg(long, value_name = "CONDITION", value_parser = parse_boundary_condition)]
     pub boundary: Option<BoundaryCondition>,
+    #[command(flatten)]
+    pub intrinsic: IntrinsicDelaunayFlag,
+    /// Your own matrices: the folder `tvf operators MESH -o DIR` writes (edited, or made by
+    /// hand): d0, d1, M0, M1, M2 (or M2_inverse) as .mtx or .npz in the mesh's numbering, with
+    /// optional info.json (sampling, fixed nodes, boundary condition) and vertex_map.npy.
+    /// Derived files (S, S0, S2, B, J) are ignored.
+    #[arg(
+        long,
+        value_name = "DIR",
+        conflicts_with_all = ["discretization", "decomposition", "mass", "boundary", "intrinsic_delaunay"]
+    )]
+    pub complex: Option<PathBuf>,
+}
+
+/// `--intrinsic-delaunay[=flip|refine]`, written once: [`DiscretizationFlags`] flattens it, and
+/// so do `tvf info` and `tvf compare`, which give it their own help text with clap's `mut_arg`.
+#[derive(Args, Debug, Clone, Copy, Default)]
+pub struct IntrinsicDelaunayFlag {
     /// Build the discretization on the intrinsic Delaunay triangulation of the mesh (same
     /// surface, edges flipped on their lengths until every edge is Delaunay): `flip` (the
     /// default: flips only, no vertex inserted) or `refine` (also splits the edges flips cannot
@@ -56,16 +74,6 @@ pub struct DiscretizationFlags {
         value_parser = parse_intrinsic_delaunay
     )]
     pub intrinsic_delaunay: Option<IntrinsicDelaunay>,
-    /// Your own matrices: the folder `tvf operators MESH -o DIR` writes (edited, or made by
-    /// hand): d0, d1, M0, M1, M2 (or M2_inverse) as .mtx or .npz in the mesh's numbering, with
-    /// optional info.json (sampling, fixed nodes, boundary condition) and vertex_map.npy.
-    /// Derived files (S, S0, S2, B, J) are ignored.
-    #[arg(
-        long,
-        value_name = "DIR",
-        conflicts_with_all = ["discretization", "decomposition", "mass", "boundary", "intrinsic_delaunay"]
-    )]
-    pub complex: Option<PathBuf>,
 }
 
 impl DiscretizationFlags {
@@ -93,7 +101,7 @@ impl DiscretizationFlags {
     /// `id` with the intrinsic suffix of `--intrinsic-delaunay`, if given (and not already in
     /// the id).
     fn with_intrinsic(&self, id: String) -> String {
-        with_intrinsic_suffix(id, self.intrinsic_delaunay)
+        with_intrinsic_suffix(id, self.intrinsic.intrinsic_delaunay)
     }
 
     /// The boundary condition to use: the flag's, else the default (tangential).

@@ -8,13 +8,14 @@ use tvf_conformance::corpus::{
     delaunay_flips, open_corpus, open_delaunay_corpus, shared_corpus, Corpus,
 };
 use tvf_conformance::dense::split_zeros;
+use tvf_conformance::open_suite::boundary_edge_directions;
 use tvf_conformance::spectral_checks::hodge_spectrum;
 use tvf_core::discretization::sparse::product;
 use tvf_core::discretization::{
     BoundaryCondition, Eigenproblem, HodgeComplex, HodgeOperators, NodeKind, NodeSpace,
 };
 use tvf_core::generate::hemisphere;
-use tvf_core::geometry::{cross, dot, norm, sub};
+use tvf_core::geometry::{cross, dot};
 use tvf_discretizations::catalog_entry;
 use tvf_solvers::{lowest_eigenpairs, EigenOptions};
 
@@ -258,19 +259,7 @@ fn natural_boundary_conditions_hold_weakly_and_the_forbidden_part_shrinks() {
                 };
                 let complex = entry.build_with(&mesh, boundary).unwrap();
                 let sampling = complex.sampling().expect("sampling");
-                let boundary_faces: Vec<(usize, [f64; 3])> = mesh
-                    .boundary_edges()
-                    .into_iter()
-                    .map(|e| {
-                        let [a, b] = mesh.edges()[e];
-                        let t = mesh.edge_faces()[e]
-                            .into_iter()
-                            .find(|&t| t < mesh.face_count())
-                            .unwrap();
-                        let d = sub(mesh.positions()[b], mesh.positions()[a]);
-                        (t, d.map(|x| x / norm(d)))
-                    })
-                    .collect();
+                let boundary_faces = boundary_edge_directions(&mesh);
                 for (k, (problem, nodes)) in [
                     (complex.exact_eigenproblem(), complex.potential_nodes()),
                     (

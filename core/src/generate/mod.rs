@@ -19,6 +19,6 @@ pub use icosphere::icosphere;
 pub use jitter::jitter;
 pub use open_surfaces::{disk, hemisphere, holed_torus, open_cylinder, perforated_plate};
 pub use polygon_meshes::{cube_sphere, dual, quad_torus};
-pub use rigid_motion::rigid_motion;
+pub use rigid_motion::{rigid_motion, rigidly_moved};
 pub use staggered_rings::staggered_ring_faces;
 pub use torus::torus;

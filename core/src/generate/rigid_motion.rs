@@ -15,6 +15,19 @@ pub fn rigid_motion(
     angle: f64,
     translation: [f64; 3],
 ) -> Result<TriangleMesh, MeshError> {
+    let positions = rigidly_moved(mesh.positions(), axis, angle, translation);
+    TriangleMesh::new(positions, mesh.faces().to_vec())
+}
+
+/// The positions `positions` rotated by `angle` radians about `axis` (right-hand rule, axis
+/// through the origin; need not be unit length; a zero axis means no rotation), then translated
+/// by `translation`: the vertices of [`rigid_motion`], for a mesh of any kind.
+pub fn rigidly_moved(
+    positions: &[[f64; 3]],
+    axis: [f64; 3],
+    angle: f64,
+    translation: [f64; 3],
+) -> Vec<[f64; 3]> {
     let length = norm(axis);
     let unit = if length > 0.0 {
         scale(axis, 1.0 / length)
@@ -24,8 +37,7 @@ pub fn rigid_motion(
     let angle = if length > 0.0 { angle } else { 0.0 };
     let (sin, cos) = angle.sin_cos();
     // Rodrigues: p cos + (k × p) sin + k (k·p)(1 − cos).
-    let positions = mesh
-        .positions()
+    positions
         .iter()
         .map(|&p| {
             let rotated = add(
@@ -34,6 +46,5 @@ pub fn rigid_motion(
             );
             add(rotated, translation)
         })
-        .collect();
-    TriangleMesh::new(positions, mesh.faces().to_vec())
+        .collect()
 }

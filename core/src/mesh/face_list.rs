@@ -37,21 +37,22 @@ impl FaceCorners for [[usize; 3]] {
     }
 }
 
+/// A triangle list in a `Vec`: its slice's answers.
 impl FaceCorners for Vec<[usize; 3]> {
     fn face_count(&self) -> usize {
-        self.len()
+        self.as_slice().face_count()
     }
 
     fn corners(&self, f: usize) -> &[usize] {
-        &self[f]
+        self.as_slice().corners(f)
     }
 
     fn corner_index(&self, f: usize, c: usize) -> usize {
-        3 * f + c
+        self.as_slice().corner_index(f, c)
     }
 
     fn total_corners(&self) -> usize {
-        3 * self.len()
+        self.as_slice().total_corners()
     }
 }
 

@@ -10,7 +10,7 @@ use super::compare_corpus::{run_corpus_comparison, CorpusOptions};
 use super::compare_entries::{build_entry, entry_names, measure_entry, reference_position};
 use super::compare_pictures::{write_pictures, PictureRequest};
 use crate::context::RunContext;
-use crate::discretization_flags::with_intrinsic_suffix;
+use crate::discretization_flags::{with_intrinsic_suffix, IntrinsicDelaunayFlag};
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_output, commit, stage};
 use crate::picture_options::{parse_size, parse_view};
@@ -22,7 +22,7 @@ use std::time::Instant;
 use tvf_core::discretization::BoundaryCondition;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{parse_boundary_condition, parse_intrinsic_delaunay, IntrinsicDelaunay};
+use tvf_discretizations::parse_boundary_condition;
 use tvf_spectral::eigenspace_angles::DEFAULT_CLUSTER_TOLERANCE;
 use tvf_spectral::{write_folder_bytes, ComparisonReport, ResidentPeak};
 
@@ -53,9 +53,18 @@ compare.json (what --json prints) and eigenfield-FAMILY-N.png: the reference's N
 family beside each entry's nearest field of the matching eigenspace (its projection onto that
 cluster's span), for the --pictures lowest of each family. The folder appears whole at the end.";
 
+/// What `--intrinsic-delaunay` ([`IntrinsicDelaunayFlag`]) does for `tvf compare`: its help text.
+const INTRINSIC_DELAUNAY_HELP: &str = "Every catalog entry on the intrinsic Delaunay triangulation of the mesh (`flip`, the default, \
+    or `refine`, as for other commands): each id without an intrinsic suffix of its own gets \
+    `+intrinsic-delaunay` (or `-refine`). To compare an entry on the input with the same entry on \
+    the intrinsic triangulation, give the suffixed id instead";
+
 /// Arguments of `tvf compare`.
 #[derive(Args)]
-#[command(after_help = AFTER_HELP)]
+#[command(
+    after_help = AFTER_HELP,
+    mut_arg("intrinsic_delaunay", |arg| arg.help(INTRINSIC_DELAUNAY_HELP))
+)]
 pub struct CompareArgs {
     /// Mesh file (.obj, .off or .ply); omit with --example or --corpus.
     #[arg(value_name = "MESH", required_unless_present_any = ["example", "corpus"])]
@@ -107,19 +116,8 @@ pub struct CompareArgs {
     /// normal) [default: tangential].
     #[arg(long, value_name = "CONDITION", value_parser = parse_boundary_condition)]
     pub(super) boundary: Option<BoundaryCondition>,
-    /// Every catalog entry on the intrinsic Delaunay triangulation of the mesh (`flip`, the
-    /// default, or `refine`, as for other commands): each id without an intrinsic suffix of
-    /// its own gets `+intrinsic-delaunay` (or `-refine`). To compare an entry on the input with
-    /// the same entry on the intrinsic triangulation, give the suffixed id instead.
-    #[arg(
-        long,
-        value_name = "MODE",
-        num_args = 0..=1,
-        require_equals = true,
-        default_missing_value = "flip",
-        value_parser = parse_intrinsic_delaunay
-    )]
-    intrinsic_delaunay: Option<IntrinsicDelaunay>,
+    #[command(flatten)]
+    intrinsic: IntrinsicDelaunayFlag,
     /// Basis size: the K lowest eigenfields of every entry, harmonic ones included.
     #[arg(short = 'k', value_name = "K")]
     count: usize,
@@ -164,7 +162,7 @@ fn mesh_input(args: &CompareArgs) -> MeshInput {
 /// `--intrinsic-delaunay` applied to every catalog id without an intrinsic suffix of its own,
 /// and to `--reference` where it names one of those ids.
 fn with_intrinsic_flag(mut args: CompareArgs) -> CompareArgs {
-    let mode = args.intrinsic_delaunay;
+    let mode = args.intrinsic.intrinsic_delaunay;
     let apply = |id: &String| with_intrinsic_suffix(id.clone(), mode);
     if let Some(reference) = &args.reference {
         if args.discretizations.contains(reference) {

@@ -1,5 +1,6 @@
 //! `tvf info`: a mesh report (counts, topology, angles, validation findings).
 
+use crate::discretization_flags::IntrinsicDelaunayFlag;
 use crate::mesh_input::MeshInput;
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -9,14 +10,20 @@ use tvf_core::discretization::BoundaryCondition;
 use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_discretizations::face_geometry::FaceGeometry;
 use tvf_discretizations::{
-    edge_hodge_star, mesh_topology, parse_intrinsic_delaunay, IntrinsicDelaunay, IntrinsicInput,
-    DELAUNAY_TOLERANCE,
+    edge_hodge_star, mesh_topology, IntrinsicDelaunay, IntrinsicInput, DELAUNAY_TOLERANCE,
 };
+
+/// What `--intrinsic-delaunay` ([`IntrinsicDelaunayFlag`]) does for `tvf info`: its help text.
+const INTRINSIC_DELAUNAY_HELP: &str = "Also build the intrinsic Delaunay triangulation of the (triangle) mesh with its correspondence \
+    — `flip` (the default) or `refine`, as --intrinsic-delaunay of the commands that build a \
+    complex — and report it: flips, inserted vertices, edges, the edges still with cot α + cot β ≤ \
+    1e-12, cells of the common subdivision, seconds";
 
 /// Arguments of `tvf info`.
 #[derive(Args)]
 #[command(
-    after_help = "Examples:\n  tvf info bunny.obj\n  tvf info --example genus2 --json\n  tvf info bunny.obj --intrinsic-delaunay=refine"
+    after_help = "Examples:\n  tvf info bunny.obj\n  tvf info --example genus2 --json\n  tvf info bunny.obj --intrinsic-delaunay=refine",
+    mut_arg("intrinsic_delaunay", |arg| arg.help(INTRINSIC_DELAUNAY_HELP))
 )]
 pub struct InfoArgs {
     #[command(flatten)]
@@ -24,19 +31,8 @@ pub struct InfoArgs {
     /// Print the report as one JSON object instead of text.
     #[arg(long)]
     json: bool,
-    /// Also build the intrinsic Delaunay triangulation of the (triangle) mesh with its
-    /// correspondence — `flip` (the default) or `refine`, as --intrinsic-delaunay of the
-    /// commands that build a complex — and report it: flips, inserted vertices, edges, the edges
-    /// still with cot α + cot β ≤ 1e-12, cells of the common subdivision, seconds.
-    #[arg(
-        long,
-        value_name = "MODE",
-        num_args = 0..=1,
-        require_equals = true,
-        default_missing_value = "flip",
-        value_parser = parse_intrinsic_delaunay
-    )]
-    intrinsic_delaunay: Option<IntrinsicDelaunay>,
+    #[command(flatten)]
+    intrinsic: IntrinsicDelaunayFlag,
 }
 
 /// Prints the report. JSON keys: `vertices` (referenced vertices, after dropping unreferenced
@@ -150,7 +146,7 @@ pub fn run(args: InfoArgs) -> Result<()> {
 /// The `--intrinsic-delaunay` summary of `mesh` ([`intrinsic_summary`]), `None` without the
 /// flag; an error on a polygon mesh.
 fn intrinsic_report(args: &InfoArgs, mesh: &SurfaceMesh) -> Result<Option<Value>> {
-    match (args.intrinsic_delaunay, mesh.as_triangles()) {
+    match (args.intrinsic.intrinsic_delaunay, mesh.as_triangles()) {
         (Some(mode), Some(triangles)) => Ok(Some(
             intrinsic_summary(triangles, mode)
                 .with_context(|| format!("{}: --intrinsic-delaunay", args.input.label()))?,
