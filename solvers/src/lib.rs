@@ -57,7 +57,7 @@ pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
 pub use eigen::{
     keep_columns, lowest_eigenpairs, lowest_eigenpairs_of, process_cpu_seconds, EigenOptions,
-    EigenProgress, EigenRequest, EigenSolution, Eigenpairs, MassMatrix, Pencil, Phase,
+    EigenProgress, EigenRequest, EigenSolution, Eigenpairs, FinishedEigenvectors, MassMatrix, Pencil, Phase,
     PhaseStatistics, RequestError, ShiftCount, SolverStatistics,
 };
 pub use error::SolverError;

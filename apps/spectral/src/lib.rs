@@ -105,6 +105,7 @@ pub use formats::basis_file_complex::{
 };
 pub use formats::basis_id::basis_id;
 pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
+pub use formats::streamed_basis_file::{save_computed_basis, SavedBasis, SavedBasisError};
 pub use formats::complex_folder::{
     read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID, MAX_INFO_BYTES,
 };

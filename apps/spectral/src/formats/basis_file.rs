@@ -50,6 +50,14 @@
 //! file its eigenfunctions and so the very fields the basis had in memory. Saving is atomic;
 //! loading streams (no second copy in memory), and a header whose counts promise more bytes
 //! than the file has is refused before anything is allocated for them.
+//!
+//! **Written while computed.** Nothing in the layout needs the eigenfunctions in order: the
+//! header holds only counts (fixed by the inertia counts before anything is solved), and every
+//! column has a fixed place. So `tvf basis -o` writes each finished interval's eigenfunctions
+//! to its place as the eigensolver hands them on, the eigenvalues and families last, and the
+//! checksum after reading the payload back
+//! ([`crate::formats::streamed_basis_file::save_computed_basis`]): the same bytes as saving the
+//! basis computed in memory, without ever holding all its eigenfunctions.
 
 use crate::eigenfunction_basis::{field_of_stored_into, FIELD_CHUNK};
 pub use crate::formats::basis_file_error::BasisFileError;
@@ -69,7 +77,8 @@ use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass, MatrixHash};
 use tvf_core::Hash64;
 
-fn family_code(family: FieldFamily) -> u8 {
+/// The byte a basis file stores for `family`.
+pub(crate) fn family_code(family: FieldFamily) -> u8 {
     match family {
         FieldFamily::Harmonic => 0,
         FieldFamily::Integrable => 1,

@@ -25,3 +25,4 @@ pub(crate) mod numpy_export;
 pub(crate) mod sparse_file_read;
 pub(crate) mod sparse_npz_read;
 pub(crate) mod stored_basis;
+pub(crate) mod streamed_basis_file;

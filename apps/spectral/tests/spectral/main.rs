@@ -14,6 +14,7 @@ mod compress_entropy;
 mod files_basis;
 mod files_basis_matrices;
 mod files_basis_sparse_mass;
+mod files_basis_streamed;
 mod files_fields;
 mod filter;
 mod parser_fuzz;
