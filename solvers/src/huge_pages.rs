@@ -69,10 +69,7 @@ const PAGE: usize = 4096;
 pub(crate) unsafe fn release_pages(start: usize, bytes: usize) {
     #[cfg(target_os = "linux")]
     {
-        let (first, end) = (
-            start.next_multiple_of(PAGE),
-            (start + bytes) / PAGE * PAGE,
-        );
+        let (first, end) = (start.next_multiple_of(PAGE), (start + bytes) / PAGE * PAGE);
         if end > first {
             // Failure only means the pages stay resident.
             libc::madvise(first as *mut libc::c_void, end - first, libc::MADV_DONTNEED);

@@ -153,7 +153,12 @@ pub(crate) fn kept_in_memory<H: HodgeComplex + ?Sized>(
     solved: SolvedBasis,
 ) -> (EigenfunctionBasis, BasisReport) {
     let gradient = LinearOperator::Sparse(complex.d0().clone());
-    let potentials = normalised(&gradient, complex.m1(), solved.potential.vectors, solved.kept.0);
+    let potentials = normalised(
+        &gradient,
+        complex.m1(),
+        solved.potential.vectors,
+        solved.kept.0,
+    );
     let co_potentials = normalised(
         complex.co_gradient(),
         complex.m1(),
@@ -368,7 +373,10 @@ impl<'a> ColumnStreaming<'a> {
         Self {
             spectra,
             gradients: [to_csr(complex.d0()), to_csr(co_gradient)],
-            m1: complex.m1().diagonal_values().expect("streams_columns holds"),
+            m1: complex
+                .m1()
+                .diagonal_values()
+                .expect("streams_columns holds"),
             kept,
             sink,
         }

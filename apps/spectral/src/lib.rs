@@ -105,7 +105,6 @@ pub use formats::basis_file_complex::{
 };
 pub use formats::basis_id::basis_id;
 pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
-pub use formats::streamed_basis_file::{save_computed_basis, SavedBasis, SavedBasisError};
 pub use formats::complex_folder::{
     read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID, MAX_INFO_BYTES,
 };
@@ -140,6 +139,7 @@ pub use formats::sparse_npz_read::{
     InflationBudget, NPZ_INFLATED_LIMIT,
 };
 pub use formats::stored_basis::StoredBasis;
+pub use formats::streamed_basis_file::{save_computed_basis, SavedBasis, SavedBasisError};
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};

@@ -55,6 +55,8 @@
 //! per-slice bases and a copy of every interval's vectors a visible share of the processor
 //! time (numbers in `docs/performance.md`).
 
+use super::file_backed_columns::FileBackedColumns;
+use super::interval_stream::{IntervalStream, RawColumns, SolvedPart};
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::mass::Mass;
 use super::pencil::{Pencil, ShiftCount};
@@ -65,7 +67,6 @@ use super::refinement::{
 use super::shift_factor::ShiftFactor;
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::mass_inner;
-use super::interval_stream::{IntervalStream, RawColumns, SolvedPart};
 use super::types::{EigenOptions, EigenProgress, Eigenpairs, FinishedEigenvectors};
 use super::workspace_pool::WorkspacePool;
 use crate::error::SolverError;
@@ -145,15 +146,39 @@ pub fn lowest_eigenpairs_of(
     // Each plan's eigenvectors are written by the jobs straight into their columns of one
     // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
     // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
-    let mut eigenvectors: Vec<Mat<f64>> = plans
+    // Streamed, they are in a mapped temporary file instead, where an interval that waits for
+    // an earlier one to be handed on can leave memory ([`FileBackedColumns`]).
+    let streaming = options.finished.is_some();
+    let (mut eigenvectors, mut files): (Vec<Mat<f64>>, Vec<FileBackedColumns>) = (vec![], vec![]);
+    for plan in &plans {
+        let request = &requests[plan.request];
+        let (n, k) = (request.pencil.dimension(), request.count);
+        if streaming {
+            files.push(FileBackedColumns::new(n, k));
+        } else {
+            eigenvectors.push(reserve_on_huge_pages(n, k));
+        }
+    }
+    let columns: Vec<RawColumns> = plans
         .iter()
-        .map(|plan| {
+        .enumerate()
+        .map(|(p, plan)| {
             let request = &requests[plan.request];
-            reserve_on_huge_pages(request.pencil.dimension(), request.count)
+            let (n, k) = (request.pencil.dimension(), request.count);
+            match streaming {
+                true => files[p].raw(k),
+                false => RawColumns {
+                    ptr: eigenvectors[p].as_ptr_mut(),
+                    rows: n,
+                    col_stride: eigenvectors[p].col_stride().unsigned_abs(),
+                    k,
+                    file: None,
+                },
+            }
         })
         .collect();
-    let (intervals, streamed) =
-        solve_intervals(requests, options, &plans, &jobs, &mut eigenvectors)?;
+    let (intervals, streamed) = solve_intervals(requests, options, &plans, &jobs, &columns)?;
+    drop(files);
     for part in intervals.iter().flatten() {
         statistics.refined_pairs += part.refinement.refined;
         statistics.refinement.wall_seconds += part.refinement.wall_seconds;
@@ -184,7 +209,13 @@ pub fn lowest_eigenpairs_of(
         let found = match (options.finished, found, field) {
             // Solved densely (or nothing wanted): handed on whole.
             (Some(sink), Some((values, vectors)), None) => {
-                let result = finish_request(request, Some((values, vectors)), None, &mut statistics, options.parallelism);
+                let result = finish_request(
+                    request,
+                    Some((values, vectors)),
+                    None,
+                    &mut statistics,
+                    options.parallelism,
+                );
                 hand_on_whole(sink, r, result).map_err(fail(r))?
             }
             (_, found, field) => {
@@ -353,9 +384,9 @@ fn interval_jobs(
 }
 
 /// Phase 2, solving: runs every job (`options.threads` at a time, see [`run_jobs`]), each
-/// writing its eigenvectors into its columns of its plan's matrix in `eigenvectors` (reserved
+/// writing its eigenvectors into its columns of its plan's memory `columns[p]` (reserved
 /// `n × k`, one per plan); returns the solved intervals of each plan (in no particular order).
-/// On success every column `0..k` of every matrix was written; with
+/// On success every column `0..k` of every plan was written; with
 /// [`EigenOptions::finished`], every column was handed to it instead (and released), and the
 /// second result holds each plan's eigenvalues and field residuals ([`IntervalStream`]).
 #[allow(clippy::type_complexity)]
@@ -364,7 +395,7 @@ fn solve_intervals(
     options: &EigenOptions<'_>,
     plans: &[Plan],
     jobs: &[(usize, usize)],
-    eigenvectors: &mut [Mat<f64>],
+    columns: &[RawColumns],
 ) -> Result<
     (
         Vec<Vec<SolvedInterval>>,
@@ -379,11 +410,11 @@ fn solve_intervals(
         parallelism: options.parallelism,
         refinement_target: options.refinement_target,
     };
-    let (outputs, columns) = job_outputs(requests, plans, jobs, eigenvectors);
+    let outputs = job_outputs(plans, jobs, columns);
     let mut stream = options.finished.map(|sink| {
         let streams = plans
             .iter()
-            .zip(&columns)
+            .zip(columns)
             .map(|(plan, &columns)| (plan.request, requests[plan.request].pencil, columns))
             .collect();
         IntervalStream::new(streams, jobs, sink, options.parallelism)
@@ -423,9 +454,12 @@ fn solve_intervals(
                 values: part.values.clone(),
             })
             .collect();
+        let (p, i) = jobs[job];
+        let (counts, k) = (&plans[p].counts, columns[p].k);
+        let range = (counts[i].min(k), counts[i + 1].min(k) - counts[i].min(k));
         // SAFETY: the job has returned, so its view of its columns is gone; views of finished
         // jobs' columns live only inside the stream's calls.
-        unsafe { stream.job_done(job, parts) }.map_err(fail(plans[jobs[job].0].request))
+        unsafe { stream.job_done(job, parts, range) }.map_err(fail(plans[p].request))
     };
     let solved = run_jobs(
         jobs.len(),
@@ -442,34 +476,22 @@ fn solve_intervals(
 }
 
 /// The output columns of each job: job `(p, i)` gets the columns of plan `p`'s eigenvectors
-/// that interval `i` fills (`counts[i]..counts[i + 1]`, cut at the request's `k`), as a view
-/// that a job takes once; and each plan's whole reserved matrix as raw columns (for the
-/// [`IntervalStream`], which reads a job's columns only after the job has finished).
+/// (`columns[p]`, reserved `n × k`) that interval `i` fills (`counts[i]..counts[i + 1]`, cut at
+/// the request's `k`), as a view that a job takes once.
 fn job_outputs<'m>(
-    requests: &[EigenRequest<'_, '_>],
     plans: &[Plan],
     jobs: &[(usize, usize)],
-    eigenvectors: &'m mut [Mat<f64>],
-) -> (Vec<Mutex<Option<MatMut<'m, f64>>>>, Vec<RawColumns>) {
+    columns: &'m [RawColumns],
+) -> Vec<Mutex<Option<MatMut<'m, f64>>>> {
     let mut outputs: Vec<Option<MatMut<'m, f64>>> = jobs.iter().map(|_| None).collect();
-    let mut raw = Vec::with_capacity(eigenvectors.len());
-    for (p, matrix) in eigenvectors.iter_mut().enumerate() {
-        let request = &requests[plans[p].request];
-        let (n, k) = (request.pencil.dimension(), request.count);
-        let columns = RawColumns {
-            ptr: matrix.as_ptr_mut(),
-            rows: n,
-            col_stride: matrix.col_stride().unsigned_abs(),
-            k,
-        };
-        raw.push(columns);
-        // SAFETY: the matrix has room for `k` columns of `n` rows at its column stride
-        // (reserved by the caller); the view only writes (each job its own columns, all of
-        // them, checked in `solve_job` before the columns become part of the matrix with
-        // `set_dims` in `assemble_plan`), and the matrix stays mutably borrowed while the
-        // views live.
+    for (p, raw) in columns.iter().enumerate() {
+        // SAFETY: the memory has room for `k` columns of `n` rows at its column stride
+        // (reserved by the caller, and kept until the jobs are done); the views only write
+        // (each job its own columns, all of them, checked in `solve_job` before the columns
+        // become part of a matrix with `set_dims` in `assemble_plan` or are handed on by the
+        // [`IntervalStream`]).
         let mut rest = unsafe {
-            MatMut::from_raw_parts_mut(columns.ptr, n, k, 1, matrix.col_stride())
+            MatMut::from_raw_parts_mut(raw.ptr, raw.rows, raw.k, 1, raw.col_stride as isize)
         };
         let mut in_order: Vec<(usize, usize)> = jobs
             .iter()
@@ -480,13 +502,13 @@ fn job_outputs<'m>(
         in_order.sort_unstable();
         for (i, job) in in_order {
             let counts = &plans[p].counts;
-            let width = counts[i + 1].min(k) - counts[i].min(k);
+            let width = counts[i + 1].min(raw.k) - counts[i].min(raw.k);
             let (columns, tail) = rest.split_at_col_mut(width);
             outputs[job] = Some(columns);
             rest = tail;
         }
     }
-    (outputs.into_iter().map(Mutex::new).collect(), raw)
+    outputs.into_iter().map(Mutex::new).collect()
 }
 
 /// One job of phase 2: solves interval `i` of `plan` into `output` (its columns of the

@@ -8,16 +8,16 @@
 //! jobs finish (the jobs of a streamed call run in that order, see `interval_jobs`): each part
 //! (an interval, or a half of a split one) is orthogonalised against the part before it, which
 //! is then handed on. The same products on the same columns as the assembly of a whole matrix
-//! give the same vectors bit for bit. Handed-on columns are released with
-//! `madvise(MADV_DONTNEED)` (their reserved memory is never read again).
+//! give the same vectors bit for bit. Handed-on columns are given back, and an interval that
+//! must wait for an earlier one waits on disk ([`super::file_backed_columns`]).
 
+use super::file_backed_columns::{drop_columns, park_columns};
 use super::mass::Mass;
 use super::pencil::Pencil;
 use super::refinement::{field_residuals, FieldResidual};
 use super::tall_products::mass_inner;
 use super::types::FinishedEigenvectors;
 use crate::error::SolverError;
-use crate::huge_pages::release_pages;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, MatMut, MatRef, Par};
@@ -30,6 +30,9 @@ pub(crate) struct RawColumns {
     pub rows: usize,
     pub col_stride: usize,
     pub k: usize,
+    /// The descriptor of the file the columns are a shared mapping of, if they are
+    /// ([`super::file_backed_columns`]).
+    pub file: Option<i32>,
 }
 
 impl RawColumns {
@@ -141,8 +144,10 @@ impl<'s> IntervalStream<'s> {
         }
     }
 
-    /// Job `job` finished with `parts`: places every interval that is now next in its plan and
-    /// hands on what became final (all that is left when the plan's last interval is placed).
+    /// Job `job` finished with `parts` in its columns `first..first + width`: places every
+    /// interval that is now next in its plan and hands on what became final (all that is left
+    /// when the plan's last interval is placed); if the job's interval must wait for an earlier
+    /// one, its columns leave memory until then ([`park_columns`]).
     ///
     /// # Safety
     /// `job` has finished writing its columns, and no view of a finished job's columns is alive.
@@ -150,6 +155,7 @@ impl<'s> IntervalStream<'s> {
         &mut self,
         job: usize,
         mut parts: Vec<SolvedPart>,
+        (first, width): (usize, usize),
     ) -> Result<(), SolverError> {
         let (sink, par) = (self.sink, self.par);
         let plan = &mut self.plans[self.jobs[job].0];
@@ -163,6 +169,9 @@ impl<'s> IntervalStream<'s> {
                 plan.place(part, sink, par)?;
             }
             plan.next += 1;
+        }
+        if plan.waiting.contains_key(&job) {
+            park_columns(&plan.columns, first, width);
         }
         if plan.next == plan.order.len() {
             if let Some((first, count)) = plan.held.take() {
@@ -251,11 +260,7 @@ impl PlanStream<'_> {
             vectors,
         })
         .map_err(|reason| SolverError::Stopped { reason })?;
-        let stride = self.columns.col_stride * std::mem::size_of::<f64>();
-        release_pages(
-            self.columns.ptr.add(first * self.columns.col_stride) as usize,
-            width * stride,
-        );
+        drop_columns(&self.columns, first, width);
         Ok(())
     }
 }

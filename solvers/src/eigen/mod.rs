@@ -2,6 +2,7 @@
 //! kinds of pencils ([`Pencil`]): a diagonal mass, a sparse SPD mass, and the mixed pencils
 //! `d1 W⁻¹ d1ᵀ ψ = μ N ψ` solved through a saddle-point matrix.
 
+mod file_backed_columns;
 mod interval_slicing;
 mod interval_stream;
 mod krylov_slice;

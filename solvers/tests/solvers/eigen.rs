@@ -409,7 +409,12 @@ fn eigenvectors_handed_on_as_they_finish_are_those_of_the_whole_result() {
     let sink = |finished: &tvf_solvers::FinishedEigenvectors<'_>| {
         let mut handed = handed.borrow_mut();
         for j in 0..finished.vectors.ncols() {
-            let bits = finished.vectors.col(j).iter().map(|x| x.to_bits()).collect();
+            let bits = finished
+                .vectors
+                .col(j)
+                .iter()
+                .map(|x| x.to_bits())
+                .collect();
             handed[finished.request].push((finished.first + j, bits));
         }
         Ok(())
@@ -426,15 +431,26 @@ fn eigenvectors_handed_on_as_they_finish_are_those_of_the_whole_result() {
     for (r, (pairs, streamed)) in whole.pairs.iter().zip(&streamed.pairs).enumerate() {
         assert_eq!(streamed.vectors.ncols(), 0, "request {r}");
         assert_eq!(streamed.values, pairs.values, "request {r}");
-        assert_eq!(streamed.field_residuals, pairs.field_residuals, "request {r}");
+        assert_eq!(
+            streamed.field_residuals, pairs.field_residuals,
+            "request {r}"
+        );
         let columns: Vec<usize> = handed[r].iter().map(|(j, _)| *j).collect();
-        assert_eq!(columns, (0..pairs.values.len()).collect::<Vec<_>>(), "request {r}");
+        assert_eq!(
+            columns,
+            (0..pairs.values.len()).collect::<Vec<_>>(),
+            "request {r}"
+        );
         for (j, bits) in &handed[r] {
             let expected: Vec<u64> = pairs.vectors.col(*j).iter().map(|x| x.to_bits()).collect();
             assert!(bits == &expected, "request {r}, column {j} differs");
         }
     }
-    assert!(whole.statistics.solving.factorizations >= 6, "{:?}", whole.statistics);
+    assert!(
+        whole.statistics.solving.factorizations >= 6,
+        "{:?}",
+        whole.statistics
+    );
 
     let failing = |_: &tvf_solvers::FinishedEigenvectors<'_>| Err("disk full".to_string());
     let error = solve(

@@ -79,7 +79,9 @@ pub fn run(args: BasisArgs, context: &RunContext) -> Result<()> {
             (Some(output), None) => {
                 save_computed_basis(output, discretization.as_ref(), &request, &key).map_err(
                     |e| match e {
-                        SavedBasisError::Compute(e) => anyhow::Error::new(e).context(cannot_compute()),
+                        SavedBasisError::Compute(e) => {
+                            anyhow::Error::new(e).context(cannot_compute())
+                        }
                         SavedBasisError::File(e) => anyhow::Error::new(e),
                     },
                 )?

@@ -30,7 +30,10 @@ fn streamed_equals_in_memory(
         header.layout,
         BasisFileLayout::Eigenfunctions { .. }
     ));
-    let (expected, found) = (std::fs::read(&in_memory).unwrap(), std::fs::read(&path).unwrap());
+    let (expected, found) = (
+        std::fs::read(&in_memory).unwrap(),
+        std::fs::read(&path).unwrap(),
+    );
     assert_eq!(expected.len(), found.len());
     assert!(expected == found, "the streamed file differs");
     assert_eq!(saved.eigenvalues, basis.eigenvalues());
@@ -55,9 +58,12 @@ fn a_basis_streamed_to_its_file_is_the_in_memory_one_bit_for_bit() {
 
     let dir = tempfile::tempdir().unwrap();
     let mesh = hemisphere(30);
-    let complex =
-        Conforming::with_boundary(&mesh, MassLumping::Barycentric, BoundaryCondition::Tangential)
-            .unwrap();
+    let complex = Conforming::with_boundary(
+        &mesh,
+        MassLumping::Barycentric,
+        BoundaryCondition::Tangential,
+    )
+    .unwrap();
     streamed_equals_in_memory(&mesh, &complex, &BasisRequest::pairs(250), dir.path());
 }
 
@@ -127,7 +133,13 @@ fn a_damaged_streamed_file_is_refused_naming_it() {
     std::fs::write(&path, &flipped).unwrap();
     let error = load_basis(&path, &key, &complex).unwrap_err();
     assert!(
-        matches!(error, BasisFileError::Checksum { part: "payload", .. }),
+        matches!(
+            error,
+            BasisFileError::Checksum {
+                part: "payload",
+                ..
+            }
+        ),
         "{error}"
     );
     assert!(error.to_string().contains("basis.tvfb"), "{error}");
