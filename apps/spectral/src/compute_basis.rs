@@ -173,7 +173,8 @@ pub(crate) fn kept_in_memory<H: HodgeComplex + ?Sized>(
 /// (see [`crate::save_computed_basis`]).
 pub(crate) trait EigenfunctionSink: Sync {
     /// Called once, before any column, with the number of integrable, co-integrable and
-    /// harmonic fields the basis will have (the computation fails if it ends up with others);
+    /// harmonic columns that will come: the basis keeps the first ones of each family, at most
+    /// that many (the exact harmonic count; the computation fails if it ends up with more);
     /// `false` declines the columns (they are then kept in memory).
     fn begin(&self, counts: (usize, usize, usize)) -> Result<bool, String>;
 
@@ -292,7 +293,8 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
         count(FieldFamily::Cointegrable),
         count(FieldFamily::Harmonic),
     );
-    if streaming.is_some() && counts != Some((na, nb, nh)) {
+    let within = |(a, b, h): (usize, usize, usize)| na <= a && nb <= b && nh == h;
+    if streaming.is_some() && !counts.is_some_and(within) {
         return Err(BasisError::InvalidRequest(format!(
             "the basis kept {na} + {nb} + {nh} fields, not the {counts:?} its eigenfunctions              were written for"
         )));
@@ -316,18 +318,18 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
     })
 }
 
-/// The (integrable, co-integrable, harmonic) counts of the basis of `size` from `harmonic`
-/// fields and `kept` eigenpairs of each family, where the selection keeps them all; `None`
-/// where only the eigenvalues can tell (a bound, or fewer fields wanted than computed).
+/// Bounds of the (integrable, co-integrable, harmonic) counts of the basis of `size` from
+/// `harmonic` fields and `kept` eigenpairs of each family: the first two are upper bounds (the
+/// selection of `d` fields may drop the highest of each family), the harmonic count is exact;
+/// `None` where only the eigenvalues can tell (a bound on them).
 fn predicted_counts(
     size: BasisSize,
     harmonic: usize,
     kept: (usize, usize),
 ) -> Option<(usize, usize, usize)> {
-    let all = (kept.0, kept.1, harmonic);
     match size {
-        BasisSize::Fields(d) => (kept.0 + kept.1 + harmonic <= d).then_some(all),
-        BasisSize::Pairs(_) | BasisSize::Complete => Some(all),
+        BasisSize::Fields(d) => Some((kept.0, kept.1, harmonic.min(d))),
+        BasisSize::Pairs(_) | BasisSize::Complete => Some((kept.0, kept.1, harmonic)),
         BasisSize::MaxEigenvalue(_) => None,
     }
 }

@@ -5,8 +5,9 @@
 //!
 //! The file is the one [`crate::compute_eigenfunction_basis`] and
 //! [`crate::save_eigenfunction_basis`] write, byte for byte. Its header needs only the counts
-//! of each family, which the inertia counts fix before anything is solved, so it is written
-//! first; the columns go to their places as they come (in no particular order); the
+//! of each family, which the inertia counts bound before anything is solved (where they count
+//! a few pairs more than the basis keeps, the families' kept columns are moved down to their
+//! places at the end, and the file cut: one more pass over it), so it is written first; the columns go to their places as they come (in no particular order); the
 //! eigenvalues and families (known at the end) and the harmonic fields fill their places last,
 //! and the payload's checksum is then taken by reading the payload back (the hash runs in file
 //! order) and written at the end. Everything goes to a staged temporary file
@@ -46,6 +47,9 @@ pub struct SavedBasis {
     pub families: Vec<FieldFamily>,
     /// How the computation went.
     pub report: BasisReport,
+    /// Whether the eigenfunctions went to the file as they were computed (else the basis was
+    /// computed in memory and saved, see the module documentation).
+    pub streamed: bool,
     /// What finishing the file cost after the eigensolver (its front, the harmonic fields, the
     /// checksum pass; or the whole save where the basis was computed in memory).
     pub writing: PhaseStatistics,
@@ -128,6 +132,7 @@ pub fn save_computed_basis<H: HodgeComplex + ?Sized>(
         eigenvalues,
         families,
         report,
+        streamed: true,
         writing: PhaseStatistics {
             wall_seconds: writing_start.elapsed().as_secs_f64(),
             cpu_seconds: process_cpu_seconds() - writing_cpu,
@@ -153,6 +158,7 @@ fn saved_in_memory<H: HodgeComplex + ?Sized>(
         eigenvalues: basis.eigenvalues().to_vec(),
         families: basis.families().to_vec(),
         report,
+        streamed: false,
         writing: PhaseStatistics {
             wall_seconds: writing_start.elapsed().as_secs_f64(),
             cpu_seconds: process_cpu_seconds() - cpu,
@@ -190,6 +196,93 @@ impl StreamedBasisFile {
         }
     }
 
+    /// The header and layout of a file with `counts` (integrable, co-integrable, harmonic)
+    /// fields; `None` for a key without a matrix hash.
+    fn layout_of(&self, counts: (usize, usize, usize)) -> Option<(Vec<u8>, FileLayout)> {
+        let (n0, n2, _) = self.dimensions;
+        let (na, nb, nh) = counts;
+        let d = na + nb + nh;
+        let header = encode_header(
+            &BasisFileHeader {
+                version: BASIS_FILE_VERSION,
+                key: self.key.clone(),
+                field_count: d,
+                harmonic_count: nh,
+                integrable_count: na,
+                cointegrable_count: nb,
+                layout: BasisFileLayout::Eigenfunctions {
+                    potential_dimension: n0,
+                    co_potential_dimension: n2,
+                },
+                field_mass: StoredFieldMass::FromComplex,
+            },
+            &self.key.matrix_hash?,
+        );
+        let header_length = header.len() as u64;
+        let layout = FileLayout {
+            header_length,
+            counts,
+            body_start: header_length + 8 * d as u64 + d.div_ceil(8) as u64 * 8,
+        };
+        Some((header, layout))
+    }
+
+    /// Moves the kept columns of a file written for `written` counts to their places in a file
+    /// of `kept` counts (each family's first columns kept; everything moves towards the start,
+    /// so copying forward in blocks never overwrites what is still to be read) and writes its
+    /// header; returns its layout.
+    fn relayout(
+        &self,
+        written: &FileLayout,
+        kept: (usize, usize, usize),
+    ) -> Result<FileLayout, BasisFileError> {
+        let (na, nb, nh) = kept;
+        let (wa, wb, wh) = written.counts;
+        if na > wa || nb > wb || nh != wh {
+            return Err(BasisFileError::Invalid {
+                path: self.path.clone(),
+                reason: format!(
+                    "the basis kept {na} + {nb} + {nh} fields, more than the {wa} + {wb} + {wh} \
+                     written"
+                ),
+            });
+        }
+        let (header, layout) = self
+            .layout_of(kept)
+            .ok_or_else(|| BasisFileError::Invalid {
+                path: self.path.clone(),
+                reason: "the key carries no matrix hash".into(),
+            })?;
+        let error = |e| self.error(e);
+        let (n0, n2, _) = self.dimensions;
+        let mut block = vec![0u8; CHECKSUM_BLOCK];
+        for (family, count, rows) in [
+            (FieldFamily::Integrable, na, n0),
+            (FieldFamily::Cointegrable, nb, n2),
+        ] {
+            let (from, to) = (
+                self.offset(written, family, 0),
+                self.offset(&layout, family, 0),
+            );
+            let bytes = 8 * (count * rows) as u64;
+            let mut done = 0;
+            while done < bytes {
+                let length = (bytes - done).min(CHECKSUM_BLOCK as u64) as usize;
+                self.file
+                    .read_exact_at(&mut block[..length], from + done)
+                    .map_err(error)?;
+                self.file
+                    .write_all_at(&block[..length], to + done)
+                    .map_err(error)?;
+                done += length as u64;
+            }
+        }
+        self.file.write_all_at(&header, 0).map_err(error)?;
+        let end = self.offset(&layout, FieldFamily::Harmonic, nh);
+        self.file.set_len(end + 8).map_err(error)?;
+        Ok(layout)
+    }
+
     /// Offset of column `index` of `family`.
     fn offset(&self, layout: &FileLayout, family: FieldFamily, index: usize) -> u64 {
         let (n0, n2, n1) = self.dimensions;
@@ -216,11 +309,24 @@ impl StreamedBasisFile {
         families: &[FieldFamily],
         harmonic: MatRef<'_, f64>,
     ) -> Result<(), BasisFileError> {
-        let Some(layout) = self.layout.get() else {
+        let Some(written) = self.layout.get() else {
             return Err(BasisFileError::Invalid {
                 path: self.path.clone(),
                 reason: "no column was written".into(),
             });
+        };
+        let count = |family| families.iter().filter(|&&f| f == family).count();
+        let kept = (
+            count(FieldFamily::Integrable),
+            count(FieldFamily::Cointegrable),
+            count(FieldFamily::Harmonic),
+        );
+        let moved;
+        let layout = if kept == written.counts {
+            written
+        } else {
+            moved = self.relayout(written, kept)?;
+            &moved
         };
         let mut front: Vec<u8> = eigenvalues.iter().flat_map(|x| x.to_le_bytes()).collect();
         front.extend(families.iter().map(|&f| family_code(f)));
@@ -266,34 +372,12 @@ impl EigenfunctionSink for StreamedBasisFile {
         if n0 * na + n2 * nb + n1 * nh >= n1 * d {
             return Ok(false);
         }
-        let Some(matrix_hash) = self.key.matrix_hash else {
+        let Some((header, layout)) = self.layout_of(counts) else {
             return Ok(false);
         };
-        let header = encode_header(
-            &BasisFileHeader {
-                version: BASIS_FILE_VERSION,
-                key: self.key.clone(),
-                field_count: d,
-                harmonic_count: nh,
-                integrable_count: na,
-                cointegrable_count: nb,
-                layout: BasisFileLayout::Eigenfunctions {
-                    potential_dimension: n0,
-                    co_potential_dimension: n2,
-                },
-                field_mass: StoredFieldMass::FromComplex,
-            },
-            &matrix_hash,
-        );
-        let header_length = header.len() as u64;
         self.file
             .write_all_at(&header, 0)
             .map_err(|e| self.error(e).to_string())?;
-        let layout = FileLayout {
-            header_length,
-            counts,
-            body_start: header_length + 8 * d as u64 + d.div_ceil(8) as u64 * 8,
-        };
         self.layout
             .set(layout)
             .map_err(|_| "the file's layout was set twice".to_string())?;
