@@ -102,6 +102,7 @@ pub fn run(args: BasisArgs, context: &RunContext) -> Result<()> {
                     eigenvalues: basis.eigenvalues().to_vec(),
                     families: basis.families().to_vec(),
                     report,
+                    streamed: false,
                     writing,
                 }
             }
