@@ -16,7 +16,7 @@ use tvf_core::discretization::sparse::to_csr;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass};
 use tvf_solvers::{
     lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress, EigenRequest,
-    FinishedEigenvectors, Pencil, PhaseStatistics, ShiftCount, SolverStatistics,
+    EigenvectorSink, FinishedEigenvectors, Pencil, PhaseStatistics, ShiftCount, SolverStatistics,
 };
 
 /// How a basis computation went: sizes, accuracy and cost.
@@ -511,7 +511,7 @@ fn solve_both_families(
         })
         .collect();
     let finished = |f: &FinishedEigenvectors<'_>| streaming.map_or(Ok(()), |s| s.hand_on(f));
-    let sink: &dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String> = &finished;
+    let sink: &EigenvectorSink<'_> = &finished;
     let options = EigenOptions {
         progress: Some(&progress),
         finished: streaming.is_some().then_some(sink),

@@ -67,7 +67,9 @@ use super::refinement::{
 use super::shift_factor::ShiftFactor;
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::mass_inner;
-use super::types::{EigenOptions, EigenProgress, Eigenpairs, FinishedEigenvectors};
+use super::types::{
+    EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors,
+};
 use super::workspace_pool::WorkspacePool;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_on_huge_pages;
@@ -233,7 +235,7 @@ pub fn lowest_eigenpairs_of(
 
 /// `result` with its vectors handed to `sink` (request `request`, from column 0) and dropped.
 fn hand_on_whole(
-    sink: &dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String>,
+    sink: &EigenvectorSink<'_>,
     request: usize,
     mut result: Eigenpairs,
 ) -> Result<Eigenpairs, SolverError> {

@@ -16,7 +16,7 @@ use super::mass::Mass;
 use super::pencil::Pencil;
 use super::refinement::{field_residuals, FieldResidual};
 use super::tall_products::mass_inner;
-use super::types::FinishedEigenvectors;
+use super::types::{EigenvectorSink, FinishedEigenvectors};
 use crate::error::SolverError;
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -99,7 +99,7 @@ pub(crate) struct IntervalStream<'s> {
     plans: Vec<PlanStream<'s>>,
     /// Plan and interval of each job.
     jobs: &'s [(usize, usize)],
-    sink: &'s dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String>,
+    sink: &'s EigenvectorSink<'s>,
     par: Par,
 }
 
@@ -109,7 +109,7 @@ impl<'s> IntervalStream<'s> {
     pub(crate) fn new(
         plans: Vec<(usize, &'s Pencil<'s>, RawColumns)>,
         jobs: &'s [(usize, usize)],
-        sink: &'s dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String>,
+        sink: &'s EigenvectorSink<'s>,
         par: Par,
     ) -> Self {
         let plans = plans
@@ -198,7 +198,7 @@ impl PlanStream<'_> {
     unsafe fn place(
         &mut self,
         part: SolvedPart,
-        sink: &dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String>,
+        sink: &EigenvectorSink<'_>,
         par: Par,
     ) -> Result<(), SolverError> {
         let k = self.columns.k;
@@ -235,7 +235,7 @@ impl PlanStream<'_> {
         &mut self,
         first: usize,
         count: usize,
-        sink: &dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String>,
+        sink: &EigenvectorSink<'_>,
         par: Par,
     ) -> Result<(), SolverError> {
         let k = self.columns.k;

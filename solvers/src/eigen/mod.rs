@@ -32,4 +32,4 @@ pub use mass::MassMatrix;
 pub use pencil::{Pencil, ShiftCount};
 pub use statistics::{process_cpu_seconds, Phase, PhaseStatistics, SolverStatistics};
 pub use tall_products::keep_columns;
-pub use types::{EigenOptions, EigenProgress, Eigenpairs, FinishedEigenvectors};
+pub use types::{EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors};

@@ -78,8 +78,12 @@ pub struct EigenOptions<'a> {
     /// columns (`n × 0`); eigenvalues, residuals and statistics are returned as without one,
     /// and the vectors handed over are bit for bit those the result would hold. An error of the
     /// sink stops the computation with [`crate::SolverError::Stopped`].
-    pub finished: Option<&'a dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String>>,
+    pub finished: Option<&'a EigenvectorSink<'a>>,
 }
+
+/// What [`EigenOptions::finished`] calls with each batch of final eigenvectors; an error
+/// stops the computation.
+pub type EigenvectorSink<'a> = dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String> + 'a;
 
 /// Final eigenvectors handed to [`EigenOptions::finished`]: columns
 /// `first..first + values.len()` of request `request`'s result (kernel included).

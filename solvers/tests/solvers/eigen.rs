@@ -404,8 +404,9 @@ fn eigenvectors_handed_on_as_they_finish_are_those_of_the_whole_result() {
     };
     let whole = solve(&pencils(), &options).unwrap();
 
-    let handed: std::cell::RefCell<Vec<Vec<(usize, Vec<u64>)>>> =
-        std::cell::RefCell::new(vec![Vec::new(); 3]);
+    // The (column, bits of the vector) handed over, per request.
+    type Handed = Vec<Vec<(usize, Vec<u64>)>>;
+    let handed = std::cell::RefCell::new(Handed::from(vec![Vec::new(); 3]));
     let sink = |finished: &tvf_solvers::FinishedEigenvectors<'_>| {
         let mut handed = handed.borrow_mut();
         for j in 0..finished.vectors.ncols() {
