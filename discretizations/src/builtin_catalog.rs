@@ -4,9 +4,10 @@
 
 use crate::catalog_entry::{BoxedComplex, CatalogEntry};
 use crate::MassLumping::{Barycentric, Voronoi};
+use crate::SpaceMasses::{self, Lumped};
 use crate::{
-    Conforming, DecComplex, IntrinsicDec, IntrinsicInput, Nonconforming, PolygonDec,
-    WhitneyGalerkin, DEFAULT_STABILISATION,
+    Conforming, DecComplex, ElementFamily, IntrinsicDec, IntrinsicFiniteElement, IntrinsicInput,
+    IntrinsicWhitneyGalerkin, Nonconforming, PolygonDec, WhitneyGalerkin, DEFAULT_STABILISATION,
 };
 use tvf_core::discretization::BoundaryCondition::{self, Normal, Tangential};
 use tvf_core::discretization::DiscretizationError;
@@ -56,13 +57,13 @@ type IntrinsicBuild = fn(
 ) -> Result<BoxedComplex, DiscretizationError>;
 
 /// One of tvf's entries: id, family, one-line description, constructor, and constructor from
-/// edge lengths if it has one.
+/// edge lengths (every triangle entry of tvf's has one).
 struct Builtin {
     id: &'static str,
     family: Family,
     description: &'static str,
     build: Build,
-    intrinsic: Option<IntrinsicBuild>,
+    intrinsic: IntrinsicBuild,
 }
 
 /// tvf's entries, [`crate::DEFAULT_DISCRETIZATION`] first.
@@ -72,63 +73,63 @@ const BUILTIN: [Builtin; 9] = [
         family: Family::Conforming,
         description: "the paper's conforming decomposition: P1 potentials, face fields, Crouzeix–Raviart co-potentials; barycentric lumped masses",
         build: |mesh, boundary| Ok(Box::new(Conforming::with_boundary(mesh, Barycentric, boundary)?)),
-        intrinsic: None,
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicFiniteElement::new(mesh, input, id, ElementFamily::Conforming, Lumped(Barycentric), boundary)?)),
     },
     Builtin {
         id: "conforming-voronoi",
         family: Family::Conforming,
         description: "the conforming decomposition with mixed-Voronoi vertex and midpoint-Voronoi edge masses",
         build: |mesh, boundary| Ok(Box::new(Conforming::with_boundary(mesh, Voronoi, boundary)?)),
-        intrinsic: None,
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicFiniteElement::new(mesh, input, id, ElementFamily::Conforming, Lumped(Voronoi), boundary)?)),
     },
     Builtin {
         id: "conforming-consistent",
         family: Family::Conforming,
         description: "the conforming decomposition with Galerkin masses: the consistent P1 mass ∫φᵢφⱼ (sparse) as M0, the Crouzeix–Raviart mass (diagonal, already consistent)",
         build: |mesh, boundary| Ok(Box::new(Conforming::consistent_with_boundary(mesh, boundary)?)),
-        intrinsic: None,
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicFiniteElement::new(mesh, input, id, ElementFamily::Conforming, SpaceMasses::Consistent, boundary)?)),
     },
     Builtin {
         id: "nonconforming-barycentric",
         family: Family::Nonconforming,
         description: "the nonconforming decomposition: Crouzeix–Raviart potentials, face fields, P1 co-potentials; barycentric lumped masses",
         build: |mesh, boundary| Ok(Box::new(Nonconforming::with_boundary(mesh, Barycentric, boundary)?)),
-        intrinsic: None,
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicFiniteElement::new(mesh, input, id, ElementFamily::Nonconforming, Lumped(Barycentric), boundary)?)),
     },
     Builtin {
         id: "nonconforming-voronoi",
         family: Family::Nonconforming,
         description: "the nonconforming decomposition with mixed-Voronoi vertex and midpoint-Voronoi edge masses",
         build: |mesh, boundary| Ok(Box::new(Nonconforming::with_boundary(mesh, Voronoi, boundary)?)),
-        intrinsic: None,
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicFiniteElement::new(mesh, input, id, ElementFamily::Nonconforming, Lumped(Voronoi), boundary)?)),
     },
     Builtin {
         id: "nonconforming-consistent",
         family: Family::Nonconforming,
         description: "the nonconforming decomposition with Galerkin masses: the Crouzeix–Raviart mass (diagonal, already consistent) as M0, the consistent P1 mass as co-potential mass (M2 stored as its sparse inverse)",
         build: |mesh, boundary| Ok(Box::new(Nonconforming::consistent_with_boundary(mesh, boundary)?)),
-        intrinsic: None,
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicFiniteElement::new(mesh, input, id, ElementFamily::Nonconforming, SpaceMasses::Consistent, boundary)?)),
     },
     Builtin {
         id: "dec-barycentric",
         family: Family::Dec,
         description: "DEC 1-forms: 0-forms on vertices, 1-forms on edges, 2-forms on faces; ⋆0 barycentric vertex areas, ⋆1 cotan weights, ⋆2 = 1/area; Whitney sampling",
         build: |mesh, boundary| Ok(Box::new(DecComplex::with_boundary(mesh, Barycentric, boundary)?)),
-        intrinsic: Some(|mesh, input, id, boundary| Ok(Box::new(IntrinsicDec::new(mesh, input, id, Barycentric, boundary)?))),
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicDec::new(mesh, input, id, Barycentric, boundary)?)),
     },
     Builtin {
         id: "dec-circumcentric",
         family: Family::Dec,
         description: "DEC 1-forms with ⋆0 the mixed-Voronoi (circumcentric on non-obtuse triangles) vertex areas; ⋆1 cotan weights, ⋆2 = 1/area; Whitney sampling",
         build: |mesh, boundary| Ok(Box::new(DecComplex::with_boundary(mesh, Voronoi, boundary)?)),
-        intrinsic: Some(|mesh, input, id, boundary| Ok(Box::new(IntrinsicDec::new(mesh, input, id, Voronoi, boundary)?))),
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicDec::new(mesh, input, id, Voronoi, boundary)?)),
     },
     Builtin {
         id: "whitney-galerkin",
         family: Family::Whitney,
         description: "Whitney forms with Galerkin masses (FEEC's lowest order): DEC's d0, d1 and Whitney sampling; M0 the consistent P1 mass, M1 the Whitney mass ∫⟨W_e, W_f⟩ (sparse, positive definite on every mesh), M2 = 1/area",
         build: |mesh, boundary| Ok(Box::new(WhitneyGalerkin::with_boundary(mesh, boundary)?)),
-        intrinsic: None,
+        intrinsic: |mesh, input, id, boundary| Ok(Box::new(IntrinsicWhitneyGalerkin::new(mesh, input, id, boundary)?)),
     },
 ];
 
@@ -141,10 +142,8 @@ pub(crate) fn builtin_entries() -> Vec<CatalogEntry> {
     BUILTIN
         .iter()
         .map(|builtin| {
-            let mut entry = CatalogEntry::new(builtin.id, builtin.description, builtin.build);
-            if let Some(intrinsic) = builtin.intrinsic {
-                entry = entry.with_intrinsic_constructor(intrinsic);
-            }
+            let entry = CatalogEntry::new(builtin.id, builtin.description, builtin.build)
+                .with_intrinsic_constructor(builtin.intrinsic);
             let entry = with_both_conditions(entry, builtin.family);
             match builtin.family {
                 Family::Dec => entry.with_preconditions(DELAUNAY).needing_delaunay(),

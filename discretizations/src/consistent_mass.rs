@@ -13,13 +13,24 @@ use tvf_core::TriangleMesh;
 /// vertices faces use (each face's `|T|/12 · [[2, 1, 1], [1, 2, 1], [1, 1, 2]]` is, with
 /// eigenvalues `|T|/12 · (4, 1, 1)`); a vertex no face uses has an empty row and column.
 pub fn consistent_p1_mass(mesh: &TriangleMesh, geometry: &FaceGeometry) -> CsMat<f64> {
-    let capacity = 9 * mesh.face_count();
+    assemble_consistent_p1_mass(mesh.vertex_count(), mesh.faces(), &geometry.areas)
+}
+
+/// [`consistent_p1_mass`] of `vertex_count` vertices and the faces `faces` with areas `areas`
+/// (one each): the mesh's, or an intrinsic triangulation's (where a face may repeat a corner,
+/// whose entries then add up).
+pub(crate) fn assemble_consistent_p1_mass(
+    vertex_count: usize,
+    faces: &[[usize; 3]],
+    areas: &[f64],
+) -> CsMat<f64> {
+    let capacity = 9 * faces.len();
     let (mut rows, mut cols, mut values) = (
         Vec::with_capacity(capacity),
         Vec::with_capacity(capacity),
         Vec::with_capacity(capacity),
     );
-    for (face, &area) in mesh.faces().iter().zip(&geometry.areas) {
+    for (face, &area) in faces.iter().zip(areas) {
         for a in 0..3 {
             for b in 0..3 {
                 rows.push(face[a]);
@@ -28,6 +39,5 @@ pub fn consistent_p1_mass(mesh: &TriangleMesh, geometry: &FaceGeometry) -> CsMat
             }
         }
     }
-    let n = mesh.vertex_count();
-    from_triplets(n, n, rows, cols, values)
+    from_triplets(vertex_count, vertex_count, rows, cols, values)
 }

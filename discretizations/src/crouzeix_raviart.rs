@@ -2,6 +2,7 @@
 
 use crate::face_geometry::FaceGeometry;
 use crate::gradient_assembly::assemble_gradient;
+use crate::planar_triangle::PlanarTriangle;
 use crate::FunctionSpace;
 use crate::MassLumping;
 use sprs::CsMat;
@@ -34,11 +35,7 @@ impl CrouzeixRaviart {
         let gradient = assemble_gradient(
             mesh.edge_count(),
             mesh.face_edges().iter().copied(),
-            (0..mesh.face_count()).map(|t| {
-                geometry
-                    .hat_gradients(t)
-                    .map(|g| [-2.0 * g[0], -2.0 * g[1]])
-            }),
+            (0..mesh.face_count()).map(|t| edge_basis_gradients(&geometry.triangle(t))),
         );
         let p = mesh.positions();
         let midpoints = mesh
@@ -55,6 +52,12 @@ impl CrouzeixRaviart {
             component_count: mesh.component_count(),
         }
     }
+}
+
+/// In-frame gradients of the three Crouzeix–Raviart basis functions of `triangle`, that of the
+/// side opposite corner `c` is `−2 grad φ_c` (1/length).
+pub(crate) fn edge_basis_gradients(triangle: &PlanarTriangle) -> [[f64; 2]; 3] {
+    triangle.hat_gradients().map(|g| [-2.0 * g[0], -2.0 * g[1]])
 }
 
 impl FunctionSpace for CrouzeixRaviart {

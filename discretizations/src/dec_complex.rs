@@ -112,7 +112,7 @@ impl PrimalFormComplex<HodgeStars> {
 pub fn edge_hodge_star(mesh: &TriangleMesh, geometry: &FaceGeometry) -> Vec<f64> {
     let mut star = vec![0.0; mesh.edge_count()];
     for (t, edges) in mesh.face_edges().iter().enumerate() {
-        let cot = geometry.cotangents(t);
+        let cot = geometry.triangle(t).cotangents();
         for c in 0..3 {
             star[edges[c]] += cot[c] / 2.0;
         }

@@ -1,6 +1,7 @@
 //! Per-face geometry shared by every space: frames, normals, areas and the corners in 2D frame
-//! coordinates, computed once per mesh.
+//! coordinates, computed once per mesh; each face as a [`PlanarTriangle`].
 
+use crate::planar_triangle::PlanarTriangle;
 use tvf_core::discretization::DiscretizationError;
 use tvf_core::geometry::{cross, dot, normalize, sub};
 use tvf_core::TriangleMesh;
@@ -54,40 +55,11 @@ impl FaceGeometry {
         })
     }
 
-    /// Gradients of the three P1 hat functions of face `t` in its frame (pointwise, 1/length):
-    /// `grad φ_c = J (p_{c+2} − p_{c+1}) / (2 A_t)`.
-    pub fn hat_gradients(&self, t: usize) -> [[f64; 2]; 3] {
-        let p = &self.corners[t];
-        let two_area = 2.0 * self.areas[t];
-        std::array::from_fn(|c| {
-            let a = p[(c + 1) % 3];
-            let b = p[(c + 2) % 3];
-            let e = [b[0] - a[0], b[1] - a[1]];
-            [-e[1] / two_area, e[0] / two_area]
-        })
-    }
-
-    /// Cotangent of the interior angle at every corner of face `t`.
-    pub fn cotangents(&self, t: usize) -> [f64; 3] {
-        let p = &self.corners[t];
-        let two_area = 2.0 * self.areas[t];
-        std::array::from_fn(|c| {
-            let a = p[(c + 1) % 3];
-            let b = p[(c + 2) % 3];
-            let o = p[c];
-            let u = [a[0] - o[0], a[1] - o[1]];
-            let v = [b[0] - o[0], b[1] - o[1]];
-            (u[0] * v[0] + u[1] * v[1]) / two_area
-        })
-    }
-
-    /// Squared length of the edge opposite every corner of face `t`.
-    pub fn squared_edge_lengths(&self, t: usize) -> [f64; 3] {
-        let p = &self.corners[t];
-        std::array::from_fn(|c| {
-            let a = p[(c + 1) % 3];
-            let b = p[(c + 2) % 3];
-            (b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)
-        })
+    /// Face `t` laid out in its frame: its corners there and its area.
+    pub fn triangle(&self, t: usize) -> PlanarTriangle {
+        PlanarTriangle {
+            corners: self.corners[t],
+            area: self.areas[t],
+        }
     }
 }

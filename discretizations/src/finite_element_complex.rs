@@ -142,7 +142,7 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
             fields.mass().to_vec(),
             &field_nodes.components,
         )?;
-        let m2 = inverse_co_potential_mass(&co_potentials)?;
+        let m2 = inverse_co_potential_mass(co_potentials.mass_matrix("co-potential mass")?)?;
         Ok(Self {
             parts: ComplexParts::new(
                 id,
@@ -164,11 +164,10 @@ impl<P: FunctionSpace, Q: FunctionSpace> FiniteElementComplex<P, Q> {
     }
 }
 
-/// `M2`, the inverse of the co-potential space's mass matrix, in the form in which it is sparse:
-/// the reciprocal of a lumped diagonal, or a consistent mass stored as `M2⁻¹`
-/// ([`Mass::sparse_inverse`]). Fails if the mass is not positive on a node some face uses.
-fn inverse_co_potential_mass(space: &impl FunctionSpace) -> Result<Mass, DiscretizationError> {
-    let mass = space.mass_matrix("co-potential mass")?;
+/// `M2`, the inverse of the co-potential space's mass matrix `mass`, in the form in which it is
+/// sparse: the reciprocal of a lumped diagonal, or a consistent mass stored as `M2⁻¹`
+/// ([`Mass::sparse_inverse`]).
+pub(crate) fn inverse_co_potential_mass(mass: Mass) -> Result<Mass, DiscretizationError> {
     match (mass.storage(), mass.form()) {
         (MassStorage::Diagonal(values), _) => {
             Mass::diagonal("M2 (inverse co-potential mass)", reciprocal(values))

@@ -168,7 +168,10 @@ impl CatalogEntry {
     /// constructor builds the complex on the mesh and only the id changes: every matrix is the
     /// input complex's bit for bit. Otherwise the entry's constructor from edge lengths
     /// ([`CatalogEntry::with_intrinsic_constructor`]) builds it, and an entry without one fails
-    /// with [`DiscretizationError::NotIntrinsic`]. Under [`IntrinsicDelaunay::Flip`] a
+    /// with [`DiscretizationError::NotIntrinsic`]. An entry of polygon meshes without one
+    /// (polygonal DEC, which reads positions and vector areas, and whose stabilised `⋆1` needs
+    /// no Delaunay mesh) fails on every mesh with
+    /// [`DiscretizationError::PolygonEntryNotIntrinsic`]. Under [`IntrinsicDelaunay::Flip`] a
     /// discretization that refuses non-positive `⋆1` ([`DiscretizationError::NotDelaunay`])
     /// fails with [`DiscretizationError::NotStrictlyDelaunayAfterFlips`], which names the edges
     /// and suggests refinement.
@@ -201,7 +204,17 @@ impl CatalogEntry {
                 IntrinsicDelaunay::Refine => "flips and refinement",
             }
         );
-        let mut entry = CatalogEntry::new(id, description, construct);
+        let mut entry = if !self.needs_triangles() && !self.builds_on_intrinsic() {
+            // An entry of polygon meshes: refused on every mesh, polygons included.
+            let discretization = self.id().to_string();
+            CatalogEntry::on_any_mesh(id, description, move |_, _| {
+                Err(DiscretizationError::PolygonEntryNotIntrinsic {
+                    discretization: discretization.clone(),
+                })
+            })
+        } else {
+            CatalogEntry::new(id, description, construct)
+        };
         for &condition in self.boundary_conditions() {
             let meaning = self.boundary_meaning(condition).unwrap_or_default();
             entry = entry.with_boundary_condition(condition, meaning.to_string());

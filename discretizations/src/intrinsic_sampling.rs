@@ -1,16 +1,15 @@
 //! Fields and potentials of a complex on an intrinsic triangulation, seen on the input mesh:
 //! [`IntrinsicWhitneySampling`] (1-forms on intrinsic edges as tangent vectors at input points,
-//! and per-input-face vectors as 1-forms) and [`IntrinsicEvaluation`] (0- and 2-forms at input
-//! points), both through the common subdivision.
+//! and per-input-face vectors as 1-forms) and [`IntrinsicEvaluation`] (potentials and
+//! co-potentials at input points), both through the common subdivision.
 
 use crate::edge_averages::EdgeAverages;
-use crate::face_geometry::FaceGeometry;
 use crate::intrinsic_delaunay::IntrinsicInput;
+use crate::intrinsic_input_faces::InputFaces;
 use tvf_core::discretization::{
-    check_face_vectors, check_length, DiscretizationError, FieldSampling, PointEvaluation,
-    SamplingReproduction, TangentProjection,
+    check_face_vectors, check_length, DiscretizationError, FieldSampling, NodeKind,
+    PointEvaluation, SamplingReproduction, TangentProjection,
 };
-use tvf_core::geometry::{cross, dot, scale, sub};
 use tvf_core::intrinsic::corner_cotangents;
 use tvf_core::{SurfacePoint, TriangleMesh};
 
@@ -34,13 +33,7 @@ use tvf_core::{SurfacePoint, TriangleMesh};
 /// [`crate::WhitneySampling`].
 #[derive(Debug, Clone)]
 pub struct IntrinsicWhitneySampling {
-    input: IntrinsicInput,
-    input_faces: Vec<[usize; 3]>,
-    positions: Vec<[f64; 3]>,
-    frames: Vec<[[f64; 3]; 2]>,
-    normals: Vec<[f64; 3]>,
-    /// `∇λ_c` of the corners of every input face (3D, in the face plane, 1/length).
-    input_gradients: Vec<[[f64; 3]; 3]>,
+    faces: InputFaces,
     /// `±1` per side of every intrinsic face: `+1` where it runs along its edge's reference
     /// direction.
     signs: Vec<[f64; 3]>,
@@ -59,20 +52,6 @@ impl IntrinsicWhitneySampling {
         input: &IntrinsicInput,
         fixed_edges: Vec<bool>,
     ) -> Result<Self, DiscretizationError> {
-        let geometry = FaceGeometry::new(mesh)?;
-        let input_gradients = mesh
-            .faces()
-            .iter()
-            .enumerate()
-            .map(|(t, face)| {
-                let p = face.map(|i| mesh.positions()[i]);
-                let two_area = 2.0 * geometry.areas[t];
-                std::array::from_fn(|c| {
-                    let opposite = sub(p[(c + 2) % 3], p[(c + 1) % 3]);
-                    scale(cross(geometry.normals[t], opposite), 1.0 / two_area)
-                })
-            })
-            .collect();
         let tri = &input.triangulation;
         let signs = (0..tri.face_count())
             .map(|t| {
@@ -81,57 +60,41 @@ impl IntrinsicWhitneySampling {
             })
             .collect();
         let mut sampling = Self {
-            input: input.clone(),
-            input_faces: mesh.faces().to_vec(),
-            positions: mesh.positions().to_vec(),
-            frames: geometry.frames,
-            normals: geometry.normals,
-            input_gradients,
+            faces: InputFaces::new(mesh, input)?,
             signs,
             fixed_edges,
             centroid_weights: Vec::new(),
         };
-        sampling.centroid_weights = (0..mesh.face_count())
-            .map(|f| sampling.sample_weights(&sampling.centroid(f)))
-            .collect();
+        sampling.centroid_weights = centroid_weights(&sampling);
         Ok(sampling)
     }
+}
 
-    /// A displacement of barycentric coordinates of input face `f` as a 3D vector.
-    fn input_vector(&self, f: usize, d: [f64; 3]) -> [f64; 3] {
-        let p = self.input_faces[f].map(|i| self.positions[i]);
-        std::array::from_fn(|k| d[0] * p[0][k] + d[1] * p[1][k] + d[2] * p[2][k])
-    }
+/// [`FieldSampling::sample_weights`] of `sampling` at the centroid of every input face.
+pub(crate) fn centroid_weights(sampling: &dyn FieldSampling) -> Vec<Vec<(usize, [f64; 3])>> {
+    (0..sampling.face_count())
+        .map(|f| sampling.sample_weights(&sampling.centroid(f)))
+        .collect()
+}
 
-    /// The tangent vector of every intrinsic face (as a displacement of its barycentric
-    /// coordinates): the area average of the input faces' vectors `vectors` over the cells of
-    /// the face.
-    fn intrinsic_face_vectors(&self, vectors: &[[f64; 3]]) -> Vec<[f64; 3]> {
-        let overlay = &self.input.overlay;
-        (0..overlay.intrinsic_face_count())
-            .map(|t| {
-                let mut sum = [0.0; 3];
-                let mut area = 0.0;
-                for &i in overlay.intrinsic_face_cells(t) {
-                    let cell = overlay.cell(i);
-                    let gradients = &self.input_gradients[cell.input_face];
-                    let v = vectors[cell.input_face];
-                    let d: [f64; 3] = std::array::from_fn(|c| dot(gradients[c], v));
-                    if let Some(there) = overlay.to_intrinsic_displacement(i, d) {
-                        for k in 0..3 {
-                            sum[k] += cell.area * there[k];
-                        }
-                        area += cell.area;
-                    }
+/// The field `field` sampled at every input face's centroid by the precomputed `weights`
+/// ([`centroid_weights`]).
+pub(crate) fn apply_centroid_weights(
+    weights: &[Vec<(usize, [f64; 3])>],
+    field: &[f64],
+) -> Vec<[f64; 3]> {
+    weights
+        .iter()
+        .map(|weights| {
+            let mut v = [0.0; 3];
+            for &(i, w) in weights {
+                for k in 0..3 {
+                    v[k] += w[k] * field[i];
                 }
-                if area > 0.0 {
-                    sum.map(|x| x / area)
-                } else {
-                    [0.0; 3]
-                }
-            })
-            .collect()
-    }
+            }
+            v
+        })
+        .collect()
 }
 
 /// `⟨∇λ_i, ∇λ_j⟩` of a triangle with side lengths `lengths` (`l_c` opposite corner `c`), from its
@@ -152,19 +115,19 @@ fn barycentric_gram(lengths: [f64; 3]) -> [[f64; 3]; 3] {
 
 impl FieldSampling for IntrinsicWhitneySampling {
     fn face_count(&self) -> usize {
-        self.input_faces.len()
+        self.faces.count()
     }
 
     fn field_dimension(&self) -> usize {
-        self.input.triangulation.edge_count()
+        self.faces.input.triangulation.edge_count()
     }
 
     fn frame(&self, face: usize) -> [[f64; 3]; 2] {
-        self.frames[face]
+        self.faces.frames[face]
     }
 
     fn normal(&self, face: usize) -> [f64; 3] {
-        self.normals[face]
+        self.faces.normals[face]
     }
 
     fn centroid(&self, face: usize) -> SurfacePoint {
@@ -176,8 +139,9 @@ impl FieldSampling for IntrinsicWhitneySampling {
     }
 
     fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
-        let (cell, q) = self.input.locate(point.face, point.triangle_coordinates());
-        let tri = &self.input.triangulation;
+        let input = &self.faces.input;
+        let (cell, q) = input.locate(point.face, point.triangle_coordinates());
+        let tri = &input.triangulation;
         let t = q.face;
         let b = q.barycentric;
         let gram = barycentric_gram(tri.face_lengths(t));
@@ -189,31 +153,18 @@ impl FieldSampling for IntrinsicWhitneySampling {
                 let sign = self.signs[t][c];
                 let d: [f64; 3] =
                     std::array::from_fn(|m| sign * (b[j] * gram[m][k] - b[k] * gram[m][j]));
-                let on_input = self
-                    .input
+                let on_input = input
                     .overlay
                     .to_input_displacement(cell, d)
                     .unwrap_or([0.0; 3]);
-                (edges[c], self.input_vector(point.face, on_input))
+                (edges[c], self.faces.input_vector(point.face, on_input))
             })
             .collect()
     }
 
     fn to_face_vectors(&self, field: &[f64]) -> Result<Vec<[f64; 3]>, DiscretizationError> {
         check_length("field coefficients", self.field_dimension(), field.len())?;
-        Ok(self
-            .centroid_weights
-            .iter()
-            .map(|weights| {
-                let mut v = [0.0; 3];
-                for &(i, w) in weights {
-                    for k in 0..3 {
-                        v[k] += w[k] * field[i];
-                    }
-                }
-                v
-            })
-            .collect())
+        Ok(apply_centroid_weights(&self.centroid_weights, field))
     }
 
     fn from_face_vectors(
@@ -221,8 +172,8 @@ impl FieldSampling for IntrinsicWhitneySampling {
         vectors: &[[f64; 3]],
     ) -> Result<TangentProjection, DiscretizationError> {
         check_face_vectors(self.face_count(), vectors)?;
-        let tri = &self.input.triangulation;
-        let face_vectors = self.intrinsic_face_vectors(vectors);
+        let tri = &self.faces.input.triangulation;
+        let face_vectors = self.faces.intrinsic_face_displacements(vectors);
         let mut averages = EdgeAverages::new(tri.edge_count());
         for (t, u) in face_vectors.iter().enumerate() {
             let l2 = tri.face_lengths(t).map(|l| l * l);
@@ -234,45 +185,67 @@ impl FieldSampling for IntrinsicWhitneySampling {
                 averages.add(e, self.signs[t][c] * along);
             }
         }
-        let field = averages.means(&self.fixed_edges);
-        let normal_parts = vectors
-            .iter()
-            .zip(&self.normals)
-            .map(|(&v, &n)| dot(v, n))
-            .collect();
         Ok(TangentProjection {
-            field,
-            normal_parts,
+            field: averages.means(&self.fixed_edges),
+            normal_parts: self.faces.normal_parts(vectors),
         })
     }
 }
 
-/// Point evaluation of the 0- and 2-forms of a complex on an intrinsic triangulation at points of
-/// the input faces: a 0-form is interpolated linearly in the intrinsic face the point lies in
-/// (its corners, which may include inserted vertices), a 2-form is constant on it.
+/// Point evaluation of the potentials and co-potentials of a complex on an intrinsic
+/// triangulation at points of the input faces, in the intrinsic face the point lies in: nodes on
+/// vertices (0-forms, P1) are interpolated linearly (its corners, which may include inserted
+/// vertices), nodes on edges (Crouzeix–Raviart) by `1 − 2λ_c` for the side opposite corner `c`,
+/// nodes on faces (2-forms) are constant on it.
 #[derive(Debug, Clone)]
 pub struct IntrinsicEvaluation {
     input: IntrinsicInput,
+    /// The node kinds of the potentials and of the co-potentials.
+    kinds: [NodeKind; 2],
 }
 
 impl IntrinsicEvaluation {
-    /// The evaluation at the input points of `input`.
+    /// The evaluation of primal forms (0-forms on vertices, 2-forms on faces) at the input points
+    /// of `input`.
     pub fn new(input: &IntrinsicInput) -> Self {
+        Self::with_node_kinds(input, [NodeKind::Vertices, NodeKind::Faces])
+    }
+
+    /// The evaluation of potentials and co-potentials on the node kinds `kinds` (each
+    /// [`NodeKind::Vertices`], [`NodeKind::Edges`] or [`NodeKind::Faces`]) at the input points of
+    /// `input`.
+    pub fn with_node_kinds(input: &IntrinsicInput, kinds: [NodeKind; 2]) -> Self {
         Self {
             input: input.clone(),
+            kinds,
+        }
+    }
+
+    /// The nodes of kind `kind` non-zero at `point` with their values there.
+    fn weights(&self, kind: NodeKind, point: &SurfacePoint) -> Vec<(usize, f64)> {
+        let (_, q) = self.input.locate(point.face, point.triangle_coordinates());
+        let tri = &self.input.triangulation;
+        let b = q.barycentric;
+        match kind {
+            NodeKind::Vertices => {
+                let corners = tri.faces()[q.face];
+                (0..3).map(|c| (corners[c], b[c])).collect()
+            }
+            NodeKind::Edges => {
+                let edges = tri.face_edges(q.face);
+                (0..3).map(|c| (edges[c], 1.0 - 2.0 * b[c])).collect()
+            }
+            NodeKind::Faces | NodeKind::FaceFrames => vec![(q.face, 1.0)],
         }
     }
 }
 
 impl PointEvaluation for IntrinsicEvaluation {
     fn potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)> {
-        let (_, q) = self.input.locate(point.face, point.triangle_coordinates());
-        let corners = self.input.triangulation.faces()[q.face];
-        (0..3).map(|c| (corners[c], q.barycentric[c])).collect()
+        self.weights(self.kinds[0], point)
     }
 
     fn co_potential_weights(&self, point: &SurfacePoint) -> Vec<(usize, f64)> {
-        let (_, q) = self.input.locate(point.face, point.triangle_coordinates());
-        vec![(q.face, 1.0)]
+        self.weights(self.kinds[1], point)
     }
 }

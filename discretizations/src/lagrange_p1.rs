@@ -37,7 +37,7 @@ impl LagrangeP1 {
         let gradient = assemble_gradient(
             mesh.vertex_count(),
             mesh.faces().iter().copied(),
-            (0..mesh.face_count()).map(|t| geometry.hat_gradients(t)),
+            (0..mesh.face_count()).map(|t| geometry.triangle(t).hat_gradients()),
         );
         Self {
             faces: mesh.faces().to_vec(),

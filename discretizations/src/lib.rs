@@ -13,6 +13,10 @@
 //!   masses: discrete exterior calculus, [`DecComplex`] (diagonal Hodge stars, Delaunay meshes),
 //!   and [`WhitneyGalerkin`] (the consistent P1 mass, the Whitney mass [`whitney_mass`] and
 //!   `1/area`: Galerkin masses, every mesh);
+//! - every triangle entry on the intrinsic Delaunay triangulation of the mesh
+//!   ([`CatalogEntry::on_intrinsic_delaunay`]), built from its edge lengths: [`IntrinsicDec`],
+//!   [`IntrinsicWhitneyGalerkin`], [`IntrinsicFiniteElement`], each face laid out as a
+//!   [`PlanarTriangle`], fields sampled on the input faces through the correspondence;
 //! - [`MatrixComplex`]: a complex from five matrices assembled elsewhere (checked);
 //! - the Hodge decomposition [`HodgeDecomposer`] of any complex.
 //!
@@ -129,7 +133,13 @@ mod gradient_assembly;
 mod hodge_decomposition;
 mod intrinsic_dec;
 mod intrinsic_delaunay;
+mod intrinsic_face_sampling;
+mod intrinsic_finite_element;
+mod intrinsic_input_faces;
+mod intrinsic_nodes;
+mod intrinsic_primal_forms;
 mod intrinsic_sampling;
+mod intrinsic_whitney_galerkin;
 mod lagrange_p1;
 mod mass_lumping;
 mod matrix_complex;
@@ -138,6 +148,7 @@ mod mixed_poisson;
 mod nodal_evaluation;
 mod paper_complexes;
 mod pinned_poisson;
+mod planar_triangle;
 mod polygon_dec;
 mod polygon_operators;
 mod polygon_sampling;
@@ -175,7 +186,11 @@ pub use intrinsic_delaunay::{
     intrinsic_entry_id, parse_intrinsic_delaunay, split_intrinsic_id, IntrinsicConstructor,
     IntrinsicDelaunay, IntrinsicInput,
 };
+pub use intrinsic_face_sampling::IntrinsicFaceSampling;
+pub use intrinsic_finite_element::{ElementFamily, IntrinsicFiniteElement};
+pub use intrinsic_primal_forms::IntrinsicPrimalFormComplex;
 pub use intrinsic_sampling::{IntrinsicEvaluation, IntrinsicWhitneySampling};
+pub use intrinsic_whitney_galerkin::IntrinsicWhitneyGalerkin;
 pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use matrix_complex::{ComplexMatrices, MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};
@@ -183,6 +198,7 @@ pub use matrix_complex_nodes::{FixedNodes, StatedNodeKinds};
 pub use nodal_evaluation::NodalEvaluation;
 pub use paper_complexes::{PaperPair, PaperSpace, SpaceMasses};
 pub use pinned_poisson::PinnedPoisson;
+pub use planar_triangle::PlanarTriangle;
 pub use polygon_dec::{polygon_dec_id, PolygonDec, DEFAULT_STABILISATION};
 pub use polygon_operators::PolygonOperators;
 pub use polygon_sampling::{PolygonEvaluation, PolygonSampling};

@@ -5,6 +5,7 @@
 //! three nodes, so masses are positive and sum to the total area.
 
 use crate::face_geometry::FaceGeometry;
+use crate::planar_triangle::PlanarTriangle;
 use tvf_core::TriangleMesh;
 
 /// A rule that splits each triangle's area among the nodes of a function space.
@@ -36,14 +37,14 @@ impl MassLumping {
         }
     }
 
-    /// The share of face `t`'s area of each corner vertex (P1 nodes), summing to `A_t`.
-    pub fn vertex_shares(self, geometry: &FaceGeometry, t: usize) -> [f64; 3] {
-        let area = geometry.areas[t];
+    /// The share of `triangle`'s area of each corner vertex (P1 nodes), summing to its area.
+    pub fn vertex_shares(self, triangle: &PlanarTriangle) -> [f64; 3] {
+        let area = triangle.area;
         match self {
             MassLumping::Barycentric => [area / 3.0; 3],
             MassLumping::Voronoi => {
-                let cot = geometry.cotangents(t);
-                let len2 = geometry.squared_edge_lengths(t);
+                let cot = triangle.cotangents();
+                let len2 = triangle.squared_edge_lengths();
                 match (0..3).find(|&c| cot[c] < 0.0) {
                     Some(obtuse) => {
                         std::array::from_fn(|c| if c == obtuse { area / 2.0 } else { area / 4.0 })
@@ -58,13 +59,14 @@ impl MassLumping {
         }
     }
 
-    /// The share of face `t`'s area of the edge opposite each corner (CR nodes), summing to `A_t`.
-    pub fn edge_shares(self, geometry: &FaceGeometry, t: usize) -> [f64; 3] {
-        let area = geometry.areas[t];
+    /// The share of `triangle`'s area of the side opposite each corner (CR nodes), summing to
+    /// its area.
+    pub fn edge_shares(self, triangle: &PlanarTriangle) -> [f64; 3] {
+        let area = triangle.area;
         match self {
             MassLumping::Barycentric => [area / 3.0; 3],
             MassLumping::Voronoi => {
-                let p = &geometry.corners[t];
+                let p = &triangle.corners;
                 let midpoints: [[f64; 2]; 3] = std::array::from_fn(|c| {
                     let (a, b) = (p[(c + 1) % 3], p[(c + 2) % 3]);
                     [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]
@@ -82,27 +84,37 @@ impl MassLumping {
 
     /// Lumped P1 masses (`V` entries, area); zero for a vertex no face uses.
     pub fn vertex_masses(self, mesh: &TriangleMesh, geometry: &FaceGeometry) -> Vec<f64> {
-        let mut mass = vec![0.0; mesh.vertex_count()];
-        for (t, face) in mesh.faces().iter().enumerate() {
-            let shares = self.vertex_shares(geometry, t);
-            for c in 0..3 {
-                mass[face[c]] += shares[c];
-            }
-        }
-        mass
+        lumped_masses(
+            mesh.vertex_count(),
+            mesh.faces().iter().copied(),
+            (0..mesh.face_count()).map(|t| self.vertex_shares(&geometry.triangle(t))),
+        )
     }
 
     /// Lumped Crouzeix–Raviart masses (`E` entries, area).
     pub fn edge_masses(self, mesh: &TriangleMesh, geometry: &FaceGeometry) -> Vec<f64> {
-        let mut mass = vec![0.0; mesh.edge_count()];
-        for (t, edges) in mesh.face_edges().iter().enumerate() {
-            let shares = self.edge_shares(geometry, t);
-            for c in 0..3 {
-                mass[edges[c]] += shares[c];
-            }
-        }
-        mass
+        lumped_masses(
+            mesh.edge_count(),
+            mesh.face_edges().iter().copied(),
+            (0..mesh.face_count()).map(|t| self.edge_shares(&geometry.triangle(t))),
+        )
     }
+}
+
+/// The lumped mass of each of `node_count` nodes (area): the sum of the shares `shares[t][c]` of
+/// every face `t` whose corner (or side) `c` is node `nodes[t][c]`.
+pub(crate) fn lumped_masses(
+    node_count: usize,
+    nodes: impl Iterator<Item = [usize; 3]>,
+    shares: impl Iterator<Item = [f64; 3]>,
+) -> Vec<f64> {
+    let mut mass = vec![0.0; node_count];
+    for (face_nodes, face_shares) in nodes.zip(shares) {
+        for c in 0..3 {
+            mass[face_nodes[c]] += face_shares[c];
+        }
+    }
+    mass
 }
 
 /// The part of a convex polygon closer to `keep` than to `other` (Sutherland–Hodgman against the
@@ -162,8 +174,8 @@ mod tests {
         for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
             for t in 0..mesh.face_count() {
                 let area = geometry.areas[t];
-                let v: f64 = lumping.vertex_shares(&geometry, t).iter().sum();
-                let e: f64 = lumping.edge_shares(&geometry, t).iter().sum();
+                let v: f64 = lumping.vertex_shares(&geometry.triangle(t)).iter().sum();
+                let e: f64 = lumping.edge_shares(&geometry.triangle(t)).iter().sum();
                 assert!((v - area).abs() < 1e-14 * area.max(1.0));
                 assert!((e - area).abs() < 1e-14 * area.max(1.0));
             }
@@ -175,12 +187,12 @@ mod tests {
         // Legs 2, area 2. Right angle at corner 0: Meyer's rule gives the Voronoi split
         // (cot 90° = 0): corner 0 gets (4·1 + 4·1)/8 = 1, the others 1/2 each.
         let (_, geometry) = right_triangle_geometry();
-        let v = MassLumping::Voronoi.vertex_shares(&geometry, 0);
+        let v = MassLumping::Voronoi.vertex_shares(&geometry.triangle(0));
         assert!((v[0] - 1.0).abs() < 1e-14 && (v[1] - 0.5).abs() < 1e-14);
         // Midpoints (1,1) [hypotenuse, opposite corner 0], (0,1), (1,0). The hypotenuse
         // midpoint's cell is {x ≥ 1/2, y ≥ 1/2} inside the triangle: a right triangle with legs
         // 1, area 1/2; the two legs' cells share the remaining 3/2 equally.
-        let e = MassLumping::Voronoi.edge_shares(&geometry, 0);
+        let e = MassLumping::Voronoi.edge_shares(&geometry.triangle(0));
         assert!((e[0] - 0.5).abs() < 1e-14, "{e:?}");
         assert!((e[1] - e[2]).abs() < 1e-14);
         assert!((e[1] - 0.75).abs() < 1e-14);

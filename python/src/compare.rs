@@ -1,41 +1,53 @@
 //! `tvf.compare`: discretizations side by side on one mesh, as `tvf compare` does — each
-//! complex's basis of the K lowest fields (timed), its eigenvalues against the first's index by
-//! index, and how much of each eigenfield lies in the span of the other's fields
-//! (`tvf_spectral::BasisComparison`).
+//! complex's basis of the K lowest fields (timed, its peak memory measured), and the report of
+//! `tvf compare --json` (`tvf_spectral::ComparisonReport`): sizes, mass non-zeros, times and
+//! ratios, eigenvalues per family against the reference's, principal angles between
+//! eigenspace clusters.
 
 use crate::complex::Complex;
 use crate::errors::tvf_error;
 use crate::interrupt::detached;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 use std::time::Instant;
 use tvf_core::discretization::HodgeOperators;
-use tvf_spectral::{compute_basis, BasisComparison, BasisRequest, SampledBasis};
+use tvf_spectral::{
+    compute_basis, BasisRequest, ComparedEntry, ComparisonReport, EntryMeasurements, ResidentPeak,
+    SampledBasis,
+};
 
-/// One compared complex: its sampled basis and the seconds its basis took.
-struct Compared {
-    sampled: SampledBasis,
-    field_dimension: usize,
-    seconds: f64,
-}
-
-/// Compares `complexes` (at least two, all on one mesh; the first is the reference) with bases
-/// of `count` fields. A dict: `reference` (id), `entries` (per complex: `discretization`,
-/// `field_dimension`, `eigenvalues`, `basis_seconds`), `comparisons` (per complex after the
-/// first: `first`, `second`, `eigenvalue_differences`, `second_in_first`, `first_in_second`).
+/// Compares `complexes` (at least two, all on one mesh; `reference` the position of the one
+/// the others are compared with) with bases of `count` fields, clusters of relative gap at most
+/// `cluster_tolerance`; `assembly_seconds` (one per complex, NaN where unknown) are the times
+/// their complexes took to build. Returns the JSON text of `tvf compare --json`.
 #[pyfunction]
 pub fn compare<'py>(
     py: Python<'py>,
     complexes: Vec<PyRef<'py, Complex>>,
     count: usize,
-) -> PyResult<Bound<'py, PyDict>> {
+    reference: usize,
+    cluster_tolerance: f64,
+    assembly_seconds: Vec<f64>,
+) -> PyResult<String> {
     if complexes.len() < 2 {
         return Err(tvf_error("compare needs at least two complexes"));
     }
     if count == 0 {
         return Err(tvf_error("k = 0: ask for at least one field"));
     }
+    if reference >= complexes.len() || assembly_seconds.len() != complexes.len() {
+        return Err(tvf_error(format!(
+            "reference {reference} and {} assembly times for {} complexes",
+            assembly_seconds.len(),
+            complexes.len()
+        )));
+    }
+    if !(0.0..1.0).contains(&cluster_tolerance) {
+        return Err(tvf_error(format!(
+            "cluster_tolerance {cluster_tolerance}: give a relative gap in [0, 1)"
+        )));
+    }
     let mesh = complexes[0].mesh.clone();
+    let mesh_label = complexes[0].label.clone();
     if let Some(other) = complexes[1..]
         .iter()
         .find(|c| c.mesh.fingerprint() != mesh.fingerprint())
@@ -47,62 +59,46 @@ pub fn compare<'py>(
         )));
     }
     let parts: Vec<&Complex> = complexes.iter().map(|c| &**c).collect();
-    let result = detached(py, || -> Result<_, String> {
-        let compared = parts
+    let result = detached(py, || -> Result<String, String> {
+        let entries = parts
             .iter()
-            .map(|c| {
-                let start = Instant::now();
-                let request = BasisRequest::lowest(count, c.complex.field_dimension());
-                let basis = compute_basis(c.complex.as_ref(), &request)
-                    .map_err(|e| format!("'{}': {e}", c.complex.id()))?;
-                let seconds = start.elapsed().as_secs_f64();
-                let sampled = SampledBasis::new(c.complex.as_ref(), &basis)
-                    .map_err(|e| format!("'{}': {e}", c.complex.id()))?;
-                Ok(Compared {
-                    sampled,
-                    field_dimension: c.complex.field_dimension(),
-                    seconds,
-                })
-            })
+            .zip(&assembly_seconds)
+            .map(|(c, &assembly)| measure(c, count, assembly))
             .collect::<Result<Vec<_>, String>>()?;
-        let comparisons = compared[1..]
-            .iter()
-            .map(|c| BasisComparison::new(&mesh, &compared[0].sampled, &c.sampled))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| e.to_string())?;
-        Ok((compared, comparisons))
+        let report = ComparisonReport::new(
+            mesh_label,
+            &mesh,
+            count,
+            cluster_tolerance,
+            reference,
+            entries,
+        )
+        .map_err(|e| e.to_string())?;
+        serde_json::to_string(&report.to_json()).map_err(|e| e.to_string())
     })?;
-    let (compared, comparisons) = result.map_err(tvf_error)?;
-    let out = PyDict::new(py);
-    out.set_item("reference", &compared[0].sampled.id)?;
-    out.set_item("entries", entry_dicts(py, &compared)?)?;
-    let comparison_dicts = comparisons
-        .iter()
-        .map(|c| {
-            let d = PyDict::new(py);
-            d.set_item("first", &c.first)?;
-            d.set_item("second", &c.second)?;
-            d.set_item("eigenvalue_differences", c.eigenvalue_differences.clone())?;
-            d.set_item("second_in_first", c.second_in_first.clone())?;
-            d.set_item("first_in_second", c.first_in_second.clone())?;
-            Ok(d)
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    out.set_item("comparisons", comparison_dicts)?;
-    Ok(out)
+    result.map_err(tvf_error)
 }
 
-/// One dict per compared complex.
-fn entry_dicts<'py>(py: Python<'py>, compared: &[Compared]) -> PyResult<Vec<Bound<'py, PyDict>>> {
-    compared
-        .iter()
-        .map(|c| {
-            let d = PyDict::new(py);
-            d.set_item("discretization", &c.sampled.id)?;
-            d.set_item("field_dimension", c.field_dimension)?;
-            d.set_item("eigenvalues", c.sampled.eigenvalues.clone())?;
-            d.set_item("basis_seconds", c.seconds)?;
-            Ok(d)
-        })
-        .collect()
+/// The basis of `count` fields of `c`, timed, with the resident memory it added at its peak.
+fn measure(c: &Complex, count: usize, assembly_seconds: f64) -> Result<ComparedEntry, String> {
+    let peak = ResidentPeak::start();
+    let start = Instant::now();
+    let request = BasisRequest::lowest(count, c.complex.field_dimension());
+    let basis = compute_basis(c.complex.as_ref(), &request)
+        .map_err(|e| format!("'{}': {e}", c.complex.id()))?;
+    let basis_seconds = start.elapsed().as_secs_f64();
+    let sampled = SampledBasis::new(c.complex.as_ref(), &basis)
+        .map_err(|e| format!("'{}': {e}", c.complex.id()))?;
+    drop(basis);
+    let measurements = EntryMeasurements::new(
+        sampled.id.clone(),
+        c.complex.as_ref(),
+        assembly_seconds,
+        basis_seconds,
+        peak.and_then(|p| p.added_bytes()),
+    );
+    Ok(ComparedEntry {
+        measurements,
+        sampled,
+    })
 }

@@ -364,19 +364,34 @@ def test_hostile_builders_never_pass_and_never_crash():
 
 def test_compare_takes_complexes_ids_and_builders_alike():
     """tvf.compare: a catalog id, a builder and a complex side by side; the builder of the
-    conforming complex agrees with its catalog entry exactly."""
+    conforming complex agrees with its catalog entry exactly (eigenvalues, and every eigenspace
+    cluster at angle 0); the report has the keys of ``tvf compare --json``."""
     V, F = torus(n=12, m=6)
     mesh = tvf.Mesh(V, F)
     dec = tvf.Complex(mesh, "nonconforming-barycentric")
     result = tvf.compare(["conforming-barycentric", builder, dec], k=10, mesh=mesh)
     assert result["reference"] == "conforming-barycentric"
-    assert [e["discretization"] for e in result["entries"]][1:] == ["builder", "nonconforming-barycentric"]
-    same = result["comparisons"][0]
-    assert max(same["eigenvalue_differences"]) < 1e-9, same
-    # Degenerate eigenspaces may be cut at k differently: shares lie in [0, 1].
-    assert all(-1e-9 <= x <= 1 + 1e-9 for x in same["second_in_first"])
-    other = result["comparisons"][1]
-    assert 0 < max(other["eigenvalue_differences"]) < 0.2
-    assert all(e["basis_seconds"] >= 0 for e in result["entries"])
+    entries = result["entries"]
+    assert [e["discretization"] for e in entries][1:] == ["builder", "nonconforming-barycentric"]
+    same = entries[1]
+    assert max(same["relative_difference"]) < 1e-9, same
+    assert len(same["principal_angles"]) == 10
+    # Clusters known complete (a computed eigenvalue above them): the same spaces. The last
+    # cluster of a family may be cut by k differently, so it is not asserted.
+    complete = [c for c in same["clusters"] if c["gap_above"] is not None]
+    assert complete and max(max(c["angles"]) for c in complete) < 1e-6, same["clusters"]
+    other = entries[2]
+    assert 0 < max(other["relative_difference"]) < 0.2
+    assert all(0 <= a <= np.pi / 2 + 1e-12 for a in other["principal_angles"])
+    assert [e["harmonic"] for e in entries] == [2, 2, 2]
+    assert entries[0]["n1"] == 2 * F.shape[0] and other["n1"] == 2 * F.shape[0]
+    assert all(e["basis_seconds"] >= 0 for e in entries)
+    assert entries[0]["assembly_seconds"] >= 0 and other["assembly_seconds"] is None
+    # Another reference, by id.
+    again = tvf.compare(["conforming-barycentric", dec], k=10, mesh=mesh, reference="nonconforming-barycentric")
+    assert again["reference"] == "nonconforming-barycentric"
+    assert again["entries"][1]["basis_ratio"] == 1.0
+    with pytest.raises(ValueError, match="not one of the entries"):
+        tvf.compare(["conforming-barycentric", dec], k=4, mesh=mesh, reference="whitney-galerkin")
     with pytest.raises(TypeError, match="needs mesh"):
         tvf.compare(["conforming-barycentric", builder], k=4)

@@ -74,3 +74,44 @@ def test_corpus_spectra_on_two_worker_processes(corpus, tmp_path):
     assert np.allclose(local, remote, rtol=1e-12, atol=1e-12)
     # The work was spread over two worker processes.
     assert len({r["worker"] for r in table}) >= 2
+
+
+def test_the_command_line_runs_a_corpus_on_a_dask_cluster_as_on_local_threads(corpus, tvf_bin, tmp_path):
+    """``tvf compare --corpus FOLDER --scheduler ADDRESS`` runs the package's driver
+    (``python -m tvf.corpus``, here this interpreter through TVF_PYTHON) against a LocalCluster
+    of two worker processes: the same runs, outcomes, reasons and eigenvalues as on local
+    threads, and each failure's cause said once."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from dask.distributed import LocalCluster
+
+    flags = ["compare", "--corpus", str(corpus), "-k", "8", "--json", "--quiet"]
+    for d in ("conforming-barycentric", "dec-circumcentric"):
+        flags += ["--discretization", d]
+    environment = {**os.environ, "TVF_PYTHON": sys.executable, "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster:
+        address = cluster.scheduler_address
+        remote = subprocess.run([str(tvf_bin), *flags, "--scheduler", address], capture_output=True, text=True, env=environment)
+    assert remote.returncode == 0, remote.stderr
+    local = subprocess.run([str(tvf_bin), *flags, "--threads", "2"], capture_output=True, text=True, env=environment)
+    assert local.returncode == 0, local.stderr
+    remote, local = json.loads(remote.stdout), json.loads(local.stdout)
+    assert remote["scheduler"] == address and local["scheduler"] is None
+    key = lambda r: (r["mesh"], r["discretization"], r["succeeded"], r["faces"])
+    assert [key(r) for r in remote["runs"]] == [key(r) for r in local["runs"]]
+    for a, b in zip(remote["runs"], local["runs"]):
+        assert np.allclose(a["eigenvalues"], b["eigenvalues"], rtol=1e-9, atol=1e-12), (a, b)
+    for a, b in zip(remote["entries"], local["entries"]):
+        assert (a["discretization"], a["meshes"], a["succeeded"]) == (b["discretization"], b["meshes"], b["succeeded"])
+    # Five mesh files: the broken one fails everywhere, DEC refuses the two voxel plates.
+    assert [e["succeeded"] for e in remote["entries"]] == [4, 2]
+    reasons = dict(((pathlib.Path(m).name, d), r) for d, e in zip(["conforming-barycentric", "dec-circumcentric"], remote["entries"]) for m, r in e["failures"])
+    assert "vertex index 7 is out of range" in reasons[("broken.obj", "dec-circumcentric")]
+    plate = reasons[("genus2.obj", "dec-circumcentric")]
+    assert "not Delaunay" in plate
+    local_plate = dict((pathlib.Path(m).name, r) for m, r in local["entries"][1]["failures"])["genus2.obj"]
+    for reason in (plate, local_plate):
+        assert reason.count("not Delaunay") == 1, reason

@@ -2,7 +2,8 @@
 ids, the intrinsic connectivity and lengths from ``tvf.operators``, DEC on a non-Delaunay torus
 with its two harmonic fields, fields over the input faces, and the cotan matrix and masses
 against libigl's flip-only intrinsic Delaunay triangulation (``igl.intrinsic_delaunay_cotmatrix``,
-an independent implementation)."""
+an independent implementation), for DEC and for the finite element and Whitney entries built from
+the intrinsic lengths."""
 
 import igl
 import numpy as np
@@ -33,7 +34,11 @@ def test_the_flag_gives_the_id_and_dec_builds_on_a_non_delaunay_torus():
     with pytest.raises(tvf.TvfError, match="flip' or 'refine"):
         tvf.Complex(mesh, "dec-circumcentric", intrinsic_delaunay="yes")
     listed = {d["id"]: d["builds_on_intrinsic"] for d in tvf.discretizations()}
-    assert listed["dec-circumcentric"] and not listed["conforming-barycentric"]
+    # Every triangle entry has a constructor from edge lengths; polygonal DEC has none.
+    assert all(built for id, built in listed.items() if id != "polygon-dec")
+    assert not listed["polygon-dec"]
+    with pytest.raises(tvf.TvfError, match="vector areas"):
+        tvf.Complex(mesh, "polygon-dec", intrinsic_delaunay=True)
     # Genus 1: two harmonic fields; fields are per input face.
     basis = tvf.basis(mesh, 8, "dec-circumcentric", intrinsic_delaunay=True)
     assert basis.discretization == flipped.id
@@ -85,3 +90,30 @@ def test_the_cotan_matrix_and_masses_agree_with_libigl():
     np.add.at(bary, F_igl.ravel(), np.repeat(areas / 3, 3))
     ours = tvf.operators(mesh, "dec-barycentric", intrinsic_delaunay=True)["M0"].diagonal()
     assert np.abs(ours - bary).max() <= 1e-12 * bary.max()
+
+
+def test_finite_elements_and_whitney_forms_from_lengths_agree_with_libigl():
+    """P1 stiffness G^T M_X G of the conforming entries and d0^T M1 d0 of Whitney forms are the
+    cotan matrix of the intrinsic Delaunay triangulation; the consistent P1 mass is assembled
+    here from libigl's intrinsic lengths."""
+    V, F = jittered_torus()
+    mesh = tvf.Mesh(V, F)
+    L, l_igl, F_igl = igl.intrinsic_delaunay_cotmatrix(V, F)
+    scale = abs(L).max()
+    for id in ["conforming-barycentric", "conforming-voronoi", "conforming-consistent", "whitney-galerkin"]:
+        ops = tvf.operators(mesh, id, intrinsic_delaunay=True)
+        assert abs(ops["S0"] + L).max() <= 1e-12 * scale, id
+    s = l_igl.sum(axis=1) / 2
+    areas = np.sqrt(np.maximum(s * (s - l_igl[:, 0]) * (s - l_igl[:, 1]) * (s - l_igl[:, 2]), 0))
+    rows = np.repeat(F_igl, 3, axis=1).ravel()
+    cols = np.tile(F_igl, (1, 3)).ravel()
+    values = (np.repeat(areas, 9) / 12) * np.tile((1 + np.eye(3)).ravel(), len(F_igl))
+    consistent = sp.csr_matrix((values, (rows, cols)), shape=(len(V), len(V)))
+    for id in ["conforming-consistent", "whitney-galerkin"]:
+        M0 = sp.csr_matrix(tvf.operators(mesh, id, intrinsic_delaunay=True)["M0"])
+        assert abs(M0 - consistent).max() <= 1e-12 * consistent.max(), id
+    # Genus 1: two harmonic fields, one vector per input face, for a face-field entry too.
+    basis = tvf.basis(mesh, 6, "nonconforming-barycentric", intrinsic_delaunay=True)
+    assert basis.discretization == "nonconforming-barycentric+intrinsic-delaunay"
+    assert np.all(np.abs(basis.eigenvalues[:2]) < 1e-8) and basis.eigenvalues[2] > 1e-3
+    assert basis.fields.shape == (len(F), 3, 6)

@@ -199,27 +199,42 @@ def _native_builder(builder):
     return build
 
 
-def compare(entries, k, mesh=None):
+def compare(entries, k, mesh=None, reference=None, cluster_tolerance=0.01):
     """Discretizations side by side on one mesh, as ``tvf compare`` does: each entry's basis of
-    the ``k`` lowest fields (timed), its eigenvalues against the first entry's, and how much of
-    each eigenfield's squared norm lies in the span of the other's ``k`` fields (fields compared
-    as one tangent vector per face at its centroid, area-weighted; every entry must sample).
+    the ``k`` lowest fields (timed, with its peak memory), its eigenvalues per family against the
+    reference's, and the principal angles between their eigenspaces (clusters of near-equal
+    eigenvalues compared as subspaces; fields compared as one tangent vector per face at its
+    centroid, area-weighted; every entry must sample).
 
-    ``entries`` (at least two; the first is the reference) are :class:`Complex` objects, catalog
-    ids, or builders ``(V, F) -> dict`` as for :func:`check`; ids and builders need ``mesh``
-    (a :class:`Mesh`), complexes must all be on one mesh. Returns a dict: ``reference`` (id),
-    ``entries`` (per entry ``discretization``, ``field_dimension``, ``eigenvalues``,
-    ``basis_seconds``) and ``comparisons`` (per entry after the first: ``first``, ``second``,
-    ``eigenvalue_differences`` ``|la - lb| / max(la, lb)`` index by index, ``second_in_first``,
-    ``first_in_second``)."""
+    ``entries`` (at least two) are :class:`Complex` objects, catalog ids, or builders
+    ``(V, F) -> dict`` as for :func:`check`; ids and builders need ``mesh`` (a :class:`Mesh`),
+    complexes must all be on one mesh. ``reference`` is the entry the others are compared with
+    (its position, or its id; default the first); ``cluster_tolerance`` the largest relative gap
+    of consecutive eigenvalues of one family inside a cluster.
+
+    Returns the dict ``tvf compare --json`` prints: ``reference`` (id), ``entries`` (per entry
+    ``discretization``, ``n0``/``n1``/``n2``, ``mass_nonzeros``, ``assembly_seconds`` (building
+    the complex here; ``None`` for a complex passed in built), ``basis_seconds``, their ratios to
+    the reference's, ``peak_bytes`` (resident bytes the basis computation added at its peak;
+    ``None`` where not measurable), ``harmonic``/``integrable``/``cointegrable`` counts,
+    ``eigenvalues``, ``relative_difference`` ``|la - lb| / max(la, lb)`` index by index,
+    ``families`` (per family its eigenvalues and relative differences), ``principal_angles``
+    (radians, every cluster's in order), ``clusters`` (family, positions, eigenvalues, gap to the
+    next, angles), ``in_reference_span`` and ``reference_in_span`` (share of each field's squared
+    norm in the other's span))."""
+    import json
+    import time
+
     k = integer(k, "k")
-    complexes = []
+    complexes, seconds = [], []
     for entry in entries:
         if isinstance(entry, Complex):
             complexes.append(entry)
+            seconds.append(float("nan"))
             continue
         if mesh is None:
             raise TypeError("compare: a catalog id or a builder needs mesh=tvf.Mesh(V, F)")
+        start = time.perf_counter()
         if isinstance(entry, str):
             complexes.append(Complex(mesh, entry))
         elif callable(entry):
@@ -228,4 +243,17 @@ def compare(entries, k, mesh=None):
             complexes.append(Complex.from_matrices(mesh, **parts))
         else:
             raise TypeError(f"compare: expected a tvf.Complex, a catalog id or a builder, got {type(entry).__name__}")
-    return _native.compare([c._native for c in complexes], k)
+        seconds.append(time.perf_counter() - start)
+    ids = [c.id for c in complexes]
+    if reference is None:
+        position = 0
+    elif isinstance(reference, str):
+        if reference not in ids:
+            raise ValueError(f"compare: reference {reference!r} is not one of the entries {ids}")
+        position = ids.index(reference)
+    else:
+        position = integer(reference, "reference")
+        if not 0 <= position < len(complexes):
+            raise ValueError(f"compare: reference {position} is not a position among {len(complexes)} entries")
+    text = _native.compare([c._native for c in complexes], k, position, float(cluster_tolerance), seconds)
+    return json.loads(text)

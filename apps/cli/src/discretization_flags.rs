@@ -93,12 +93,7 @@ impl DiscretizationFlags {
     /// `id` with the intrinsic suffix of `--intrinsic-delaunay`, if given (and not already in
     /// the id).
     fn with_intrinsic(&self, id: String) -> String {
-        match self.intrinsic_delaunay {
-            Some(mode) if split_intrinsic_id(split_complex_id(&id).0).1.is_none() => {
-                intrinsic_entry_id(&id, mode)
-            }
-            _ => id,
-        }
+        with_intrinsic_suffix(id, self.intrinsic_delaunay)
     }
 
     /// The boundary condition to use: the flag's, else the default (tangential).
@@ -167,4 +162,15 @@ pub fn check_ids(
         }
     }
     Ok(())
+}
+
+/// `id` with the suffix of intrinsic Delaunay `mode` (`+intrinsic-delaunay` or `-refine`), unless
+/// `mode` is `None` or the id carries an intrinsic suffix of its own.
+pub fn with_intrinsic_suffix(id: String, mode: Option<IntrinsicDelaunay>) -> String {
+    match mode {
+        Some(mode) if split_intrinsic_id(split_complex_id(&id).0).1.is_none() => {
+            intrinsic_entry_id(&id, mode)
+        }
+        _ => id,
+    }
 }

@@ -191,7 +191,7 @@ fn cache_flag_refusal(error: &clap::Error, command: &clap::Command) -> Option<St
 
 /// The error and its causes, joined by `": "`, leaving out a cause whose text the message
 /// already holds (typed errors often print their source themselves).
-fn error_message(error: &anyhow::Error) -> String {
+pub(crate) fn error_message(error: &anyhow::Error) -> String {
     let mut message = String::new();
     for cause in error.chain() {
         let text = cause.to_string();

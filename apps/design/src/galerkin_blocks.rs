@@ -75,8 +75,7 @@ pub(crate) enum AuxKind {
 /// nodal quantity `D⁻¹ R x` becomes an auxiliary unknown of the augmented systems.
 ///
 /// Potentials: `R = d0ᵀ M1`, `D = M0`, where `M0` is stored directly and is sparse (`M0⁻¹`
-/// dense), or is diagonal while `M1` is not (then `M1 d0 M0⁻¹ d0ᵀ M1` is sparse but couples far
-/// more fields than `R` does). Co-potentials: `R = d1`, `D = M2⁻¹`, where the co-potential mass is
+/// dense). Co-potentials: `R = d1`, `D = M2⁻¹`, where the co-potential mass is
 /// stored as its sparse inverse (`M2` dense). Both restricted to the free nodes of the space
 /// (rows) and of the fields (columns).
 #[derive(Debug, Clone)]
@@ -117,8 +116,8 @@ pub(crate) struct EnergyWeights {
 /// field nodes (`n1f` of the `n1`; a field is zero on the others):
 ///
 /// - `direct`: the terms of `S` kept as sparse matrices (a mass with a sparse inverse in the
-///   middle: a diagonal, or a co-potential mass stored directly; for the potentials only with a
-///   diagonal `M1` or an `M0` stored as its inverse);
+///   middle: a diagonal, a potential mass stored as its inverse, or a co-potential mass stored
+///   directly);
 /// - `aux`: the other terms, `Rᵀ D⁻¹ R` per [`AuxSpace`];
 /// - `field_mass`: `M1` (diagonal or sparse).
 ///
@@ -151,12 +150,12 @@ impl GalerkinBlocks {
         let n1f = field.len();
         let mut direct: CsMat<f64> = CsMat::zero((n1f, n1f));
         let mut aux = Vec::new();
-        // With a non-diagonal M1 the sparse M1 d0 M0⁻¹ d0ᵀ M1 of a diagonal M0 couples fields
-        // much farther than d0ᵀ M1 does: it goes through p as well when M0 itself is sparse.
-        let potential_direct = m0
-            .sparse_inverse_matrix()
-            .filter(|_| m1.is_diagonal() || m0.sparse_matrix().is_none());
-        match potential_direct {
+        // Wherever M0⁻¹ is sparse its term stays in the field block, also with a sparse M1
+        // (polygon-dec), although M1 d0 M0⁻¹ d0ᵀ M1 couples fields farther than d0ᵀ M1 does
+        // (3× the factorization's flops on a quad torus): through p instead, the field block is
+        // singular up to εM1 on every gradient, the factorization meets pivots of that size,
+        // and its solves are wrong in the fourth digit (see `crate::augmented_system`).
+        match m0.sparse_inverse_matrix() {
             Some(m0_inverse) => {
                 // M1 d0 M0⁻¹ d0ᵀ M1.
                 let gradient = product(&m1_matrix, d0);

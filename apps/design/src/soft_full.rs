@@ -78,7 +78,11 @@ pub const DEFAULT_FULL_ORDERING: FillOrdering = FillOrdering::NestedDissection;
 ///   system is not quasi-definite (the `s` block is zero), but with each `p_i` eliminated before
 ///   its `s_i` an `LDLᵀ` exists with positive pivots on `x, p` and negative ones on `y, s, λ`;
 ///   the ordering groups the unknowns per field element and per scalar node to that end, and the
-///   inertia is checked.
+///   inertia is checked. A term of `S` with a sparse middle mass stays in `S_d` (so the potentials
+///   of polygon-dec's diagonal `M0` with its sparse `M1`): through `(p, s)` the field block would
+///   be singular up to `εM1` on those fields and the factorization inaccurate. Where a term must
+///   go through `(p, s)`, the factored system uses a larger screening (1e-6 of the mean
+///   eigenvalue) for the same reason, and the refinement removes it.
 ///
 /// Every solve is refined on the original system `A` (applied as `S x + ω S M1⁻¹ S x + ...`
 /// through sparse products and mass solves, `B` is never formed), with residuals in

@@ -158,17 +158,7 @@ impl<'a> FaceWalker<'a> {
                 y = point_at(mesh, t, ly);
             }
             let step = norm(sub(y, x));
-            // Probe the separation along the segment.
-            let mut stop = false;
-            let pieces = (step / probe.max(1e-300)).ceil().max(1.0) as usize;
-            for k in 1..=pieces {
-                let q = add(x, scale(sub(y, x), k as f64 / pieces as f64));
-                if !keep_going(q) {
-                    stop = true;
-                    break;
-                }
-            }
-            if stop {
+            if !segment_keeps_going(x, y, step, probe, keep_going) {
                 break;
             }
             if step > self.tiny {
@@ -204,6 +194,19 @@ impl<'a> FaceWalker<'a> {
         }
         line
     }
+}
+
+/// Whether `keep_going` accepts every probe point along the segment from `x` to `y` (of length
+/// `step`), taken at most `probe` apart, `y` included: the separation test of a streamline step.
+fn segment_keeps_going(
+    x: [f64; 3],
+    y: [f64; 3],
+    step: f64,
+    probe: f64,
+    keep_going: &mut dyn FnMut([f64; 3]) -> bool,
+) -> bool {
+    let pieces = (step / probe.max(1e-300)).ceil().max(1.0) as usize;
+    (1..=pieces).all(|k| keep_going(add(x, scale(sub(y, x), k as f64 / pieces as f64))))
 }
 
 /// Evenly spaced streamlines of `field` (one vector per face, `F` entries) on `mesh`.

@@ -1,6 +1,7 @@
 //! [`BasisComparison`]: how two discretizations' Fourier bases of the same mesh agree — their
-//! eigenvalues index by index, and how much of each eigenfield of one lies in the span of the
-//! other's. Fields of different discretizations live in different coefficient spaces, so both
+//! eigenvalues index by index (overall and within each family), how much of each eigenfield of
+//! one lies in the span of the other's, and the principal angles between their eigenspaces,
+//! cluster by cluster ([`crate::eigenspace_angles`]). Fields of different discretizations live in different coefficient spaces, so both
 //! are compared as what they mean on the surface: one tangent vector per face, sampled at the
 //! face's centroid, with the area-weighted inner product `⟨u, v⟩ = Σ_f |A_f| ⟨u_f, v_f⟩`.
 
@@ -10,7 +11,8 @@ use thiserror::Error;
 use tvf_core::discretization::{DiscretizationError, HodgeComplex, HodgeOperators};
 use tvf_core::SurfaceMesh;
 
-use crate::basis::SpectralBasis;
+use crate::basis::{FieldFamily, SpectralBasis};
+use crate::eigenspace_angles::{eigen_clusters, family_columns, principal_angles, EigenCluster};
 
 /// Eigenvalues at most this fraction of the largest compared one count as zero (harmonic) on
 /// both sides: their relative difference is reported as 0.
@@ -42,12 +44,15 @@ pub enum BasisComparisonError {
 }
 
 /// A basis as vectors on the surface: `3F × d`, column `j` the sampled field `j` (rows
-/// `3f..3f+3` its vector at face `f`'s centroid), with its eigenvalues (`d`, ascending).
+/// `3f..3f+3` its vector at face `f`'s centroid), with its eigenvalues (`d`, ascending) and
+/// their families.
 pub struct SampledBasis {
     /// What names the basis in comparisons: the complex's id unless the caller renames it.
     pub id: String,
     /// Eigenvalues, ascending, in 1/length².
     pub eigenvalues: Vec<f64>,
+    /// The family of each field (`d`).
+    pub families: Vec<FieldFamily>,
     /// The sampled fields, `3F × d`.
     pub vectors: Mat<f64>,
 }
@@ -81,8 +86,47 @@ impl SampledBasis {
         Ok(Self {
             id: complex.id().to_string(),
             eigenvalues: basis.eigenvalues().to_vec(),
+            families: basis.families().to_vec(),
             vectors,
         })
+    }
+
+    /// The sampled fields at `columns`, `3F × columns.len()`.
+    pub fn columns(&self, columns: &[usize]) -> Mat<f64> {
+        Mat::from_fn(self.vectors.nrows(), columns.len(), |r, c| {
+            self.vectors[(r, columns[c])]
+        })
+    }
+
+    /// The eigenvalues of the fields of `family`, ascending.
+    pub fn family_eigenvalues(&self, family: FieldFamily) -> Vec<f64> {
+        self.eigenvalues
+            .iter()
+            .zip(&self.families)
+            .filter(|(_, &f)| f == family)
+            .map(|(&x, _)| x)
+            .collect()
+    }
+}
+
+/// One cluster of near-equal eigenvalues of the first basis compared as a subspace with the
+/// second basis's fields at the same positions of the family.
+#[derive(Debug, Clone)]
+pub struct ClusterComparison {
+    /// The cluster of the first basis.
+    pub cluster: EigenCluster,
+    /// Columns of the second basis at the cluster's family positions; `None` where the second
+    /// basis has fewer fields of the family (its K lowest fields split differently).
+    pub other_columns: Option<Vec<usize>>,
+    /// Principal angles between the two spans, radians, ascending (`cluster.size()` of them);
+    /// empty where `other_columns` is `None`.
+    pub angles: Vec<f64>,
+}
+
+impl ClusterComparison {
+    /// The largest principal angle (radians), `None` if the cluster was not compared.
+    pub fn largest_angle(&self) -> Option<f64> {
+        self.angles.iter().copied().reduce(f64::max)
     }
 }
 
@@ -100,19 +144,28 @@ pub struct BasisComparison {
     pub first_in_second: Vec<f64>,
     /// The same with the roles exchanged.
     pub second_in_first: Vec<f64>,
+    /// Per family (integrable, co-integrable), the relative differences of the family's
+    /// eigenvalues position by position (as many as the smaller basis has of it).
+    pub integrable_differences: Vec<f64>,
+    /// The same for the co-integrable family.
+    pub cointegrable_differences: Vec<f64>,
+    /// Every cluster of the first basis (harmonic, integrable, co-integrable; see
+    /// [`crate::eigenspace_angles`]) with its principal angles to the second's span.
+    pub clusters: Vec<ClusterComparison>,
 }
 
 impl BasisComparison {
-    /// Compares `a` and `b`, sampled on `mesh`.
+    /// Compares `a` and `b`, sampled on `mesh`; `cluster_tolerance` is the largest relative gap
+    /// of eigenvalues within a cluster of `a` (e.g.
+    /// [`crate::eigenspace_angles::DEFAULT_CLUSTER_TOLERANCE`]).
     pub fn new(
         mesh: &SurfaceMesh,
         a: &SampledBasis,
         b: &SampledBasis,
+        cluster_tolerance: f64,
     ) -> Result<Self, BasisComparisonError> {
         let d = a.eigenvalues.len().min(b.eigenvalues.len());
-        let weights: Vec<f64> = (0..mesh.face_count())
-            .flat_map(|f| [mesh.face_area(f); 3])
-            .collect();
+        let weights = area_weights(mesh);
         let weighted = |m: &Mat<f64>| Mat::from_fn(m.nrows(), d, |r, c| weights[r] * m[(r, c)]);
         let va = a.vectors.subcols(0, d).to_owned();
         let vb = b.vectors.subcols(0, d).to_owned();
@@ -122,29 +175,84 @@ impl BasisComparison {
         let cross = vb.transpose() * &wa; // d × d: ⟨b_i, a_j⟩
         let first_in_second = captured(&gram_b, &cross, &gram_a, &b.id)?;
         let second_in_first = captured(&gram_a, &cross.transpose().to_owned(), &gram_b, &a.id)?;
-        let largest = a.eigenvalues[..d]
-            .iter()
-            .chain(&b.eigenvalues[..d])
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-        let eigenvalue_differences = (0..d)
-            .map(|i| {
-                let (x, y) = (a.eigenvalues[i], b.eigenvalues[i]);
-                let scale = x.abs().max(y.abs());
-                if scale <= ZERO_EIGENVALUE_RELATIVE * largest {
-                    0.0
-                } else {
-                    (x - y).abs() / scale
-                }
-            })
-            .collect();
+        let family_differences = |family| {
+            relative_differences(&a.family_eigenvalues(family), &b.family_eigenvalues(family))
+        };
         Ok(Self {
             first: a.id.clone(),
             second: b.id.clone(),
-            eigenvalue_differences,
+            eigenvalue_differences: relative_differences(&a.eigenvalues, &b.eigenvalues),
             first_in_second,
             second_in_first,
+            integrable_differences: family_differences(FieldFamily::Integrable),
+            cointegrable_differences: family_differences(FieldFamily::Cointegrable),
+            clusters: cluster_comparisons(a, b, &weights, cluster_tolerance)?,
         })
     }
+}
+
+/// The weights of the area-weighted inner product of sampled fields (`3F`: each face's area
+/// three times, one per component of its vector).
+pub fn area_weights(mesh: &SurfaceMesh) -> Vec<f64> {
+    (0..mesh.face_count())
+        .flat_map(|f| [mesh.face_area(f); 3])
+        .collect()
+}
+
+/// `|x − y| / max(|x|, |y|)` position by position over the shorter of `a` and `b`, 0 where both
+/// are zero to `ZERO_EIGENVALUE_RELATIVE` of the largest compared value.
+pub fn relative_differences(a: &[f64], b: &[f64]) -> Vec<f64> {
+    let d = a.len().min(b.len());
+    let largest = a[..d]
+        .iter()
+        .chain(&b[..d])
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    (0..d)
+        .map(|i| {
+            let (x, y) = (a[i], b[i]);
+            let scale = x.abs().max(y.abs());
+            if scale <= ZERO_EIGENVALUE_RELATIVE * largest {
+                0.0
+            } else {
+                (x - y).abs() / scale
+            }
+        })
+        .collect()
+}
+
+/// The clusters of `a` and their principal angles to `b`'s fields at the same family
+/// positions, in the inner product with per-row `weights`.
+fn cluster_comparisons(
+    a: &SampledBasis,
+    b: &SampledBasis,
+    weights: &[f64],
+    tolerance: f64,
+) -> Result<Vec<ClusterComparison>, BasisComparisonError> {
+    eigen_clusters(&a.eigenvalues, &a.families, tolerance)
+        .into_iter()
+        .map(
+            |cluster| -> Result<ClusterComparison, BasisComparisonError> {
+                let other_columns =
+                    family_columns(&b.families, cluster.family, cluster.first, cluster.size());
+                let angles = match &other_columns {
+                    Some(columns) => {
+                        let (va, vb) = (a.columns(&cluster.columns), b.columns(columns));
+                        principal_angles(va.as_ref(), vb.as_ref(), weights).ok_or_else(|| {
+                            BasisComparisonError::DependentFields {
+                                id: format!("{} or {}", a.id, b.id),
+                            }
+                        })?
+                    }
+                    None => Vec::new(),
+                };
+                Ok(ClusterComparison {
+                    cluster,
+                    other_columns,
+                    angles,
+                })
+            },
+        )
+        .collect()
 }
 
 /// For each column `j`: `c_jᵀ G⁻¹ c_j / n_jj`, the fraction of field `j`'s squared norm
@@ -189,7 +297,7 @@ mod tests {
     fn a_basis_agrees_with_itself_and_two_discretizations_nearly_agree_on_a_sphere() {
         let mesh = SurfaceMesh::from(icosphere(3));
         let conforming = sampled("conforming-barycentric", &mesh, 16);
-        let same = BasisComparison::new(&mesh, &conforming, &conforming).unwrap();
+        let same = BasisComparison::new(&mesh, &conforming, &conforming, 0.01).unwrap();
         assert!(same.eigenvalue_differences.iter().all(|&x| x == 0.0));
         assert!(same
             .first_in_second
@@ -199,7 +307,7 @@ mod tests {
         // 6 and 10 fields): whole eigenspaces, so each discretization's fields lie almost
         // entirely in the other's span, and the eigenvalues agree to the discretization error.
         let whitney = sampled("whitney-galerkin", &mesh, 16);
-        let other = BasisComparison::new(&mesh, &conforming, &whitney).unwrap();
+        let other = BasisComparison::new(&mesh, &conforming, &whitney, 0.01).unwrap();
         let worst = other
             .eigenvalue_differences
             .iter()
@@ -211,5 +319,33 @@ mod tests {
                 "{captured:?}"
             );
         }
+        // The icosahedral symmetry keeps l = 1 and l = 2 exactly degenerate: per family one
+        // cluster of 3 and one of 5, each compared as a whole with small angles; the last
+        // clusters end the basis, so their gap above is unknown.
+        let shapes: Vec<(FieldFamily, usize)> = other
+            .clusters
+            .iter()
+            .map(|c| (c.cluster.family, c.cluster.size()))
+            .collect();
+        use crate::basis::FieldFamily::{Cointegrable, Integrable};
+        assert_eq!(
+            shapes,
+            [
+                (Integrable, 3),
+                (Integrable, 5),
+                (Cointegrable, 3),
+                (Cointegrable, 5)
+            ]
+        );
+        for c in &other.clusters {
+            let largest = c.largest_angle().unwrap();
+            assert!(largest > 0.0 && largest < 0.1, "{c:?}");
+            assert_eq!(c.cluster.gap_above.is_some(), c.cluster.size() == 3);
+        }
+        for c in &same.clusters {
+            assert!(c.largest_angle().unwrap() < 1e-10, "{c:?}");
+        }
+        assert_eq!(other.integrable_differences.len(), 8);
+        assert_eq!(other.cointegrable_differences.len(), 8);
     }
 }

@@ -40,10 +40,12 @@ mod basis_store;
 mod basis_summary;
 mod codec;
 mod coefficient_report;
+mod comparison_report;
 mod compute_basis;
 mod computed_field;
 mod dense_memory;
 mod eigenfunction_basis;
+pub mod eigenspace_angles;
 mod family_split;
 mod filter;
 mod filter_response;
@@ -53,6 +55,7 @@ mod formats;
 mod fourier;
 mod harmonic_fields;
 mod laplacian_apply;
+mod resident_peak;
 mod scalar_spectrum;
 #[cfg(test)]
 mod test_torus;
@@ -63,7 +66,10 @@ pub use basis::{FieldFamily, SpectralBasis, SpectralBasisError};
 pub use basis_cache_folder::{
     check_cache_folder, prepare_private_folder, user_cache_folder_from, BasisCache, FolderCheck,
 };
-pub use basis_comparison::{BasisComparison, BasisComparisonError, SampledBasis};
+pub use basis_comparison::{
+    area_weights, relative_differences, BasisComparison, BasisComparisonError, ClusterComparison,
+    SampledBasis,
+};
 pub use basis_error::BasisError;
 pub use basis_request::{BasisProgress, BasisRequest, BasisSize, BasisStage};
 pub use basis_resolution::{
@@ -86,6 +92,7 @@ pub use codec::sequence::{
     CompressionReport,
 };
 pub use codec::symbol_coder::{decode_symbols, encode_symbols, max_magnitude, SymbolCodingError};
+pub use comparison_report::{ComparedEntry, ComparisonReport, EntryMeasurements};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
 pub use computed_field::{check_computed_field, NonFiniteField};
 pub use eigenfunction_basis::EigenfunctionBasis;
@@ -143,5 +150,6 @@ pub use formats::streamed_basis_file::{save_computed_basis, SavedBasis, SavedBas
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
+pub use resident_peak::ResidentPeak;
 /// The eigensolver's cost by phase, as [`BasisReport`] gives it.
 pub use tvf_solvers::{process_cpu_seconds, PhaseStatistics, SolverStatistics};

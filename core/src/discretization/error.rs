@@ -101,6 +101,13 @@ pub enum DiscretizationError {
         /// The entry's id.
         discretization: String,
     },
+    /// A discretization of polygon meshes without a constructor from edge lengths (polygonal
+    /// DEC) was asked to build on an intrinsic triangulation: it is refused on every mesh.
+    #[error("the discretization '{discretization}' does not build on an intrinsic triangulation: it reads vertex positions and the polygons' vector areas, which an intrinsic triangulation (edge lengths only) does not have; it needs none either: its stabilised ⋆1 is positive definite on every mesh, Delaunay or not, so build it on the mesh itself (without --intrinsic-delaunay)")]
+    PolygonEntryNotIntrinsic {
+        /// The entry's id.
+        discretization: String,
+    },
     /// A command needs a capability the discretization does not offer.
     #[error("the discretization '{discretization}' does not offer {capability}")]
     MissingCapability {

@@ -5,7 +5,8 @@
 //! failure to the smallest mesh, jitter and stretch).
 
 use proptest::prelude::*;
-use tvf_core::discretization::sparse::{diagonal, product};
+use sprs::CsMat;
+use tvf_core::discretization::sparse::{diagonal, linear_combination, product};
 use tvf_core::discretization::{
     BoundaryCondition, DiscretizationError, HodgeComplex, HodgeOperators,
 };
@@ -15,8 +16,10 @@ use tvf_core::generate::{
 use tvf_core::geometry::{dot, norm, sub};
 use tvf_core::{SurfacePoint, TriangleMesh};
 use tvf_discretizations::{
-    build_complex, catalog_entry, complex_id, intrinsic_entry_id, Catalog, DecComplex,
-    IntrinsicDec, IntrinsicDelaunay, IntrinsicInput, MassLumping, DELAUNAY_TOLERANCE,
+    build_complex, catalog_entry, complex_id, intrinsic_entry_id, Catalog, Conforming, DecComplex,
+    ElementFamily, IntrinsicDec, IntrinsicDelaunay, IntrinsicFiniteElement, IntrinsicInput,
+    IntrinsicWhitneyGalerkin, MassLumping, Nonconforming, SpaceMasses, WhitneyGalerkin,
+    DELAUNAY_TOLERANCE,
 };
 
 /// `mesh` with every position scaled by `factors` per axis (thin, obtuse, non-Delaunay faces).
@@ -177,10 +180,13 @@ fn same_as_input(mesh: &TriangleMesh, name: &str) -> Result<(), TestCaseError> {
 
 /// `IntrinsicDec` built from the lengths of a Delaunay input (no flip) against `DecComplex` built
 /// from its positions: the same incidences bit for bit, the stars, node positions and sampled
-/// fields to round-off, for both lumpings and both boundary conditions.
+/// fields to round-off ([`agrees_with_positions`]), for both lumpings and both boundary
+/// conditions.
 fn agrees_with_dec_from_positions(mesh: &TriangleMesh, name: &str) -> Result<(), TestCaseError> {
     let input = IntrinsicInput::new(mesh, IntrinsicDelaunay::Flip).expect("builds");
     prop_assert_eq!(input.triangulation.flip_count(), 0);
+    let signs = reversed_edge_signs(mesh, &input);
+    let flip = diagonal(&signs);
     for lumping in [MassLumping::Barycentric, MassLumping::Voronoi] {
         for boundary in BoundaryCondition::ALL {
             let Ok(expected) = DecComplex::with_boundary(mesh, lumping, boundary) else {
@@ -189,91 +195,218 @@ fn agrees_with_dec_from_positions(mesh: &TriangleMesh, name: &str) -> Result<(),
             let id = expected.id().to_string();
             let ours = IntrinsicDec::new(mesh, &input, &id, lumping, boundary)
                 .map_err(|e| TestCaseError::fail(format!("{name}: {e}")))?;
-            // The reference direction of a boundary edge whose face lies on the right of its
-            // input direction a → b is b → a: compare through those signs.
-            let signs: Vec<f64> = (0..mesh.edge_count())
-                .map(|e| {
-                    if input.triangulation.edge_vertices(e) == mesh.edges()[e] {
-                        1.0
-                    } else {
-                        -1.0
-                    }
-                })
-                .collect();
-            let flip = diagonal(&signs);
             prop_assert_eq!(ours.d0(), &product(&flip, expected.d0()), "{}", name);
             prop_assert_eq!(ours.d1(), &product(expected.d1(), &flip), "{}", name);
-            for (a, b) in [
-                (ours.m0(), expected.m0()),
-                (ours.m1(), expected.m1()),
-                (ours.m2(), expected.m2()),
-            ] {
-                let (a, b) = (a.diagonal_values().unwrap(), b.diagonal_values().unwrap());
-                let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                for (x, y) in a.iter().zip(b) {
-                    prop_assert!((x - y).abs() <= 1e-12 * scale, "{}: {} vs {}", name, x, y);
-                }
-            }
-            for (a, b) in [
-                (ours.potential_nodes(), expected.potential_nodes()),
-                (ours.field_nodes(), expected.field_nodes()),
-                (ours.co_potential_nodes(), expected.co_potential_nodes()),
-            ] {
-                prop_assert_eq!(&a.dirichlet, &b.dirichlet);
-                prop_assert_eq!(&a.components, &b.components);
-                for (p, q) in a.positions.iter().zip(&b.positions) {
-                    prop_assert!(
-                        norm(sub(*p, *q)) <= 1e-12 * (1.0 + norm(*q)),
-                        "{}: node {:?} vs {:?}",
-                        name,
-                        p,
-                        q
-                    );
-                }
-            }
-            let fixed = &expected.field_nodes().dirichlet;
-            let field: Vec<f64> = (0..expected.field_dimension())
-                .map(|i| {
-                    if fixed[i] {
-                        0.0
-                    } else {
-                        (i as f64 * 0.71).cos()
-                    }
-                })
-                .collect();
-            let (sampled, reference) = (ours.sampling().unwrap(), expected.sampling().unwrap());
-            let signed: Vec<f64> = field.iter().zip(&signs).map(|(x, s)| x * s).collect();
-            let a = sampled.to_face_vectors(&signed).unwrap();
-            let b = reference.to_face_vectors(&field).unwrap();
-            let scale = b.iter().fold(0.0f64, |m, v| m.max(norm(*v)));
-            for (t, (v, w)) in a.iter().zip(&b).enumerate() {
-                prop_assert!(
-                    norm(sub(*v, *w)) <= 1e-10 * scale,
-                    "{}: face {}: {:?} vs {:?}",
-                    name,
-                    t,
-                    v,
-                    w
-                );
-            }
-            let back = sampled.from_face_vectors(&b).unwrap().field;
-            let expected_back = reference.from_face_vectors(&b).unwrap().field;
-            let scale = expected_back.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-            for ((x, y), s) in back.iter().zip(&expected_back).zip(&signs) {
-                prop_assert!(
-                    (x - s * y).abs() <= 1e-10 * scale,
-                    "{}: {} vs {}",
-                    name,
-                    x,
-                    y
-                );
-            }
+            agrees_with_positions(&ours, &expected, &signs, name)?;
         }
     }
     Ok(())
 }
 
+/// `+1` per edge of `mesh` whose reference direction in the (unflipped) intrinsic triangulation
+/// of `input` is the input's `a → b`, `−1` where it is reversed (a boundary edge whose face lies
+/// on the right of `a → b`).
+fn reversed_edge_signs(mesh: &TriangleMesh, input: &IntrinsicInput) -> Vec<f64> {
+    (0..mesh.edge_count())
+        .map(|e| {
+            if input.triangulation.edge_vertices(e) == mesh.edges()[e] {
+                1.0
+            } else {
+                -1.0
+            }
+        })
+        .collect()
+}
+
+/// The largest entry of `|a − b|` over the largest entry of `|b|` (0 for two zero matrices).
+fn relative_difference(a: &CsMat<f64>, b: &CsMat<f64>) -> f64 {
+    let difference = linear_combination(1.0, a, -1.0, b);
+    let largest = |m: &CsMat<f64>| m.data().iter().fold(0.0f64, |x, y| x.max(y.abs()));
+    let scale = largest(b);
+    if scale == 0.0 {
+        largest(&difference)
+    } else {
+        largest(&difference) / scale
+    }
+}
+
+/// `ours` (built from the lengths of a Delaunay input) against `expected` (built from its
+/// positions): `d0`, `d1`, the three stored masses and `J` to 1e-12 relative, with the field
+/// coefficients of `ours` multiplied by `field_signs` (the boundary edges whose reference
+/// direction is reversed, for 1-forms; all `+1` for face fields); the nodes; fields sampled at the
+/// input faces and turned back into fields; potentials evaluated at input points.
+fn agrees_with_positions(
+    ours: &dyn HodgeComplex,
+    expected: &dyn HodgeComplex,
+    field_signs: &[f64],
+    name: &str,
+) -> Result<(), TestCaseError> {
+    let s = diagonal(field_signs);
+    let pairs = [
+        ("d0", ours.d0().clone(), product(&s, expected.d0())),
+        ("d1", ours.d1().clone(), product(expected.d1(), &s)),
+        (
+            "M0",
+            ours.m0().stored_matrix(),
+            expected.m0().stored_matrix(),
+        ),
+        (
+            "M1",
+            ours.m1().stored_matrix(),
+            product(&s, &product(&expected.m1().stored_matrix(), &s)),
+        ),
+        (
+            "M2",
+            ours.m2().stored_matrix(),
+            expected.m2().stored_matrix(),
+        ),
+    ];
+    for (what, a, b) in pairs {
+        prop_assert_eq!(a.shape(), b.shape(), "{}: {} shape", name, what);
+        let error = relative_difference(&a, &b);
+        prop_assert!(error <= 1e-12, "{}: {} differs by {:e}", name, what, error);
+    }
+    prop_assert_eq!(ours.m0().form(), expected.m0().form());
+    prop_assert_eq!(ours.m2().form(), expected.m2().form());
+    prop_assert_eq!(ours.rotation().is_some(), expected.rotation().is_some());
+    if let (Some(a), Some(b)) = (ours.rotation(), expected.rotation()) {
+        prop_assert_eq!(a.rotation(), b.rotation());
+    }
+    for (a, b) in [
+        (ours.potential_nodes(), expected.potential_nodes()),
+        (ours.field_nodes(), expected.field_nodes()),
+        (ours.co_potential_nodes(), expected.co_potential_nodes()),
+    ] {
+        prop_assert_eq!(a.kind, b.kind);
+        prop_assert_eq!(&a.dirichlet, &b.dirichlet);
+        prop_assert_eq!(&a.components, &b.components);
+        prop_assert_eq!(&a.constant_kernel, &b.constant_kernel);
+        for (p, q) in a.positions.iter().zip(&b.positions) {
+            prop_assert!(
+                norm(sub(*p, *q)) <= 1e-12 * (1.0 + norm(*q)),
+                "{}: node",
+                name
+            );
+        }
+    }
+    prop_assert_eq!(ours.topology(), expected.topology());
+    let fixed = &expected.field_nodes().dirichlet;
+    let field: Vec<f64> = (0..expected.field_dimension())
+        .map(|i| {
+            if fixed[i] {
+                0.0
+            } else {
+                (i as f64 * 0.71).cos()
+            }
+        })
+        .collect();
+    let signed: Vec<f64> = field.iter().zip(field_signs).map(|(x, s)| x * s).collect();
+    let (sampled, reference) = (ours.sampling().unwrap(), expected.sampling().unwrap());
+    let a = sampled.to_face_vectors(&signed).unwrap();
+    let b = reference.to_face_vectors(&field).unwrap();
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(norm(*v)));
+    for (v, w) in a.iter().zip(&b) {
+        prop_assert!(
+            norm(sub(*v, *w)) <= 1e-10 * scale,
+            "{}: {:?} vs {:?}",
+            name,
+            v,
+            w
+        );
+    }
+    let back = sampled.from_face_vectors(&b).unwrap().field;
+    let expected_back = reference.from_face_vectors(&b).unwrap().field;
+    let scale = expected_back.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for ((x, y), s) in back.iter().zip(&expected_back).zip(field_signs) {
+        prop_assert!(
+            (x - s * y).abs() <= 1e-10 * scale,
+            "{}: {} vs {}",
+            name,
+            x,
+            y
+        );
+    }
+    let (ours_at, expected_at) = (
+        ours.point_evaluation().unwrap(),
+        expected.point_evaluation().unwrap(),
+    );
+    let point = SurfacePoint::barycentric(0, [0.2, 0.5, 0.3]);
+    for (mut a, mut b) in [
+        (
+            ours_at.potential_weights(&point),
+            expected_at.potential_weights(&point),
+        ),
+        (
+            ours_at.co_potential_weights(&point),
+            expected_at.co_potential_weights(&point),
+        ),
+    ] {
+        a.sort_by_key(|&(i, _)| i);
+        b.sort_by_key(|&(i, _)| i);
+        prop_assert_eq!(a.len(), b.len());
+        for ((i, x), (j, y)) in a.into_iter().zip(b) {
+            prop_assert!(i == j && (x - y).abs() <= 1e-12, "{}: weights", name);
+        }
+    }
+    Ok(())
+}
+
+/// The finite element complexes and Whitney forms built from the lengths of a Delaunay input (no
+/// flip) against the same complexes built from its positions, for every mass choice and both
+/// boundary conditions.
+fn finite_elements_and_whitney_agree_with_positions(
+    mesh: &TriangleMesh,
+    name: &str,
+) -> Result<(), TestCaseError> {
+    let input = IntrinsicInput::new(mesh, IntrinsicDelaunay::Flip).expect("builds");
+    prop_assert_eq!(input.triangulation.flip_count(), 0);
+    let edge_signs = reversed_edge_signs(mesh, &input);
+    let frame_signs = vec![1.0; 2 * mesh.face_count()];
+    let failed = |e: DiscretizationError| TestCaseError::fail(format!("{name}: {e}"));
+    let masses = [
+        SpaceMasses::Lumped(MassLumping::Barycentric),
+        SpaceMasses::Lumped(MassLumping::Voronoi),
+        SpaceMasses::Consistent,
+    ];
+    for boundary in BoundaryCondition::ALL {
+        for masses in masses {
+            for family in [ElementFamily::Conforming, ElementFamily::Nonconforming] {
+                let expected: Box<dyn HodgeComplex> = match family {
+                    ElementFamily::Conforming => {
+                        Box::new(Conforming::from_mesh(mesh, masses, boundary).map_err(failed)?)
+                    }
+                    ElementFamily::Nonconforming => {
+                        Box::new(Nonconforming::from_mesh(mesh, masses, boundary).map_err(failed)?)
+                    }
+                };
+                let ours = IntrinsicFiniteElement::new(
+                    mesh,
+                    &input,
+                    expected.id(),
+                    family,
+                    masses,
+                    boundary,
+                )
+                .map_err(failed)?;
+                let what = format!("{name}: {family:?} {masses:?} {boundary:?}");
+                agrees_with_positions(&ours, expected.as_ref(), &frame_signs, &what)?;
+            }
+        }
+        let expected = WhitneyGalerkin::with_boundary(mesh, boundary).map_err(failed)?;
+        let ours =
+            IntrinsicWhitneyGalerkin::new(mesh, &input, expected.id(), boundary).map_err(failed)?;
+        let what = format!("{name}: whitney-galerkin {boundary:?}");
+        agrees_with_positions(&ours, &expected, &edge_signs, &what)?;
+    }
+    Ok(())
+}
+
 proptest! {
+    #[test]
+    fn finite_elements_and_whitney_from_lengths_agree_with_positions((name, mesh) in delaunay_mesh()) {
+        finite_elements_and_whitney_agree_with_positions(&mesh, &name)?;
+    }
+
     #[test]
     fn intrinsic_dec_from_lengths_agrees_with_dec_from_positions((name, mesh) in delaunay_mesh()) {
         agrees_with_dec_from_positions(&mesh, &name)?;
@@ -409,4 +542,32 @@ fn check_dec(
         );
     }
     Ok(())
+}
+
+/// `polygon-dec` reads positions and vector areas: with the modifier it is refused on every mesh,
+/// triangles and polygons alike, with the error that says why and what to do.
+#[test]
+fn polygon_dec_is_refused_on_every_mesh_with_the_modifier() {
+    let quads = tvf_core::SurfaceMesh::from(
+        tvf_core::generate::quad_torus(1.0, 0.4, 8, 4).expect("a quad torus"),
+    );
+    let triangles = tvf_core::SurfaceMesh::from(icosphere(1));
+    let entry = catalog_entry("polygon-dec").expect("built in");
+    assert!(!entry.builds_on_intrinsic());
+    for mode in IntrinsicDelaunay::ALL {
+        for mesh in [&quads, &triangles] {
+            match entry.on_intrinsic_delaunay(mode).build(mesh) {
+                Err(DiscretizationError::PolygonEntryNotIntrinsic { discretization }) => {
+                    assert_eq!(discretization, "polygon-dec");
+                }
+                Err(other) => panic!("{other}"),
+                Ok(_) => panic!("polygon-dec built on an intrinsic triangulation"),
+            }
+        }
+    }
+    let error = build_complex("polygon-dec+intrinsic-delaunay", None, &triangles)
+        .err()
+        .expect("refused")
+        .to_string();
+    assert!(error.contains("vector areas"), "{error}");
 }

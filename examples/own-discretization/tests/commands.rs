@@ -432,3 +432,56 @@ fn the_dec_like_entry_passes_check_with_its_accuracy_checks() {
     assert_eq!(orders.len(), 8, "two families on four sequences");
     assert!(orders.iter().all(|&p| p >= 1.5), "{orders:?}");
 }
+
+/// `compare` takes this crate's entries like tvf's own: on the icosphere the DEC-like entry
+/// against `dec-circumcentric` (both spectra near the sphere's, the l = 1, 2 eigenspaces at
+/// small angles), and over a folder on local threads with the blended entry.
+#[test]
+fn compare_takes_the_own_entries_on_one_mesh_and_over_a_folder() {
+    let report = json(&run(&[
+        "compare",
+        "--example",
+        "icosphere",
+        "-k",
+        "16",
+        "--discretization",
+        "dec-circumcentric",
+        "--discretization",
+        "dec-length-star",
+        "--json",
+        "--quiet",
+    ]));
+    let own = &report["entries"][1];
+    assert_eq!(own["discretization"], "dec-length-star");
+    let angles: Vec<f64> = own["principal_angles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| a.as_f64().unwrap())
+        .collect();
+    assert_eq!(angles.len(), 16);
+    assert!(
+        angles.iter().all(|&a| (0.0..0.2).contains(&a)),
+        "{angles:?}"
+    );
+    let (dir, _) = ring();
+    let folder = dir.path().display().to_string();
+    let corpus = json(&run(&[
+        "compare",
+        "--corpus",
+        &folder,
+        "-k",
+        "8",
+        "--discretization",
+        "conforming-barycentric",
+        "--discretization",
+        ENTRY,
+        "--json",
+        "--quiet",
+    ]));
+    let entries = corpus["entries"].as_array().unwrap();
+    assert_eq!(entries[1]["discretization"], ENTRY);
+    assert_eq!(entries[1]["succeeded"], 1, "{corpus}");
+    let difference = entries[1]["median_relative_difference"].as_f64().unwrap();
+    assert!(difference > 0.0 && difference < 0.2, "{difference}");
+}

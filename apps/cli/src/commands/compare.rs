@@ -1,43 +1,61 @@
-//! `tvf compare`: discretizations side by side on one mesh — the time each takes for a basis of
-//! K fields (as a ratio to the first, same run), their eigenvalues index by index, and how much
-//! of each one's eigenfields lies in the span of the first's and back
-//! ([`tvf_spectral::BasisComparison`]).
+//! `tvf compare`: discretizations side by side on one mesh — per entry its sizes, mass
+//! non-zeros, assembly and basis times (as ratios to the reference, same run), peak memory,
+//! family counts, its eigenvalues against the reference's per family, and the principal angles
+//! between the eigenspaces of clusters of near-equal eigenvalues
+//! ([`tvf_spectral::ComparisonReport`]); with `-o DIR` the tables (Markdown, CSV, JSON) and
+//! side-by-side pictures of corresponding eigenfields ([`super::compare_pictures`]).
+//! `--corpus FOLDER` runs every mesh × entry instead ([`super::compare_corpus`]).
 
-use super::compare_corpus::{run_corpus, summarize, summary_lines, CorpusRequest};
+use super::compare_corpus::{run_corpus_comparison, CorpusOptions};
+use super::compare_entries::{build_entry, entry_names, measure_entry, reference_position};
+use super::compare_pictures::{write_pictures, PictureRequest};
 use crate::context::RunContext;
+use crate::discretization_flags::with_intrinsic_suffix;
 use crate::mesh_input::MeshInput;
-use crate::progress::Progress;
+use crate::output_rules::{check_output, commit, stage};
+use crate::picture_options::{parse_size, parse_view};
 use anyhow::{bail, Context, Result};
 use clap::builder::PossibleValuesParser;
 use clap::Args;
-use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
+use tvf_core::discretization::BoundaryCondition;
 use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::SurfaceMesh;
-use tvf_discretizations::{parse_boundary_condition, BoxedComplex};
-use tvf_spectral::{compute_basis, BasisComparison, BasisRequest, SampledBasis};
+use tvf_discretizations::{parse_boundary_condition, parse_intrinsic_delaunay, IntrinsicDelaunay};
+use tvf_spectral::eigenspace_angles::DEFAULT_CLUSTER_TOLERANCE;
+use tvf_spectral::{write_folder_bytes, ComparisonReport, ResidentPeak};
+
+const AFTER_HELP: &str = "Examples:
+  tvf compare bunny-closed.obj -k 60 --discretization conforming-barycentric \\
+      --discretization whitney-galerkin --discretization dec-circumcentric+intrinsic-delaunay -o cmp/
+  tvf compare --example genus2 -k 60 --discretization dec-circumcentric --complex my-dec/ --json
+  tvf compare --corpus meshes/ -k 50 --discretization conforming-barycentric \\
+      --discretization whitney-galerkin [--scheduler tcp://HOST:8786]
+
+The reference is the first entry unless --reference names another. Per entry: n0, n1, n2; the
+non-zeros of M0, M1, M2 as stored; the seconds to assemble the matrices and to compute the
+basis, each also as a ratio to the reference's in the same run; peak memory (the resident bytes
+added at the peak while the entry ran: Linux VmHWM, reset per entry); the harmonic, integrable
+and co-integrable fields among the K lowest; per family the relative eigenvalue differences
+|la - lb| / max(la, lb) to the reference position by position (median / largest); and the
+principal angles (radians) between eigenspaces: the reference's eigenvalues of each family are
+grouped into clusters (consecutive eigenvalues whose relative gap is at most
+--cluster-tolerance), and each cluster's span is compared with the other entry's fields at the
+same positions of the family, so that degenerate eigenvalues do not produce noise. Fields are
+compared as one tangent vector per face at its centroid with the area-weighted inner product,
+so entries with different field spaces compare. A cluster cut by K (marked 'basis ends') may be
+incomplete.
+
+With -o DIR: compare.md, compare.csv (one line per entry), eigenvalues.csv (every family
+eigenvalue of every entry), clusters.csv (every cluster's largest angle per entry),
+compare.json (what --json prints) and eigenfield-FAMILY-N.png: the reference's N-th field of a
+family beside each entry's nearest field of the matching eigenspace (its projection onto that
+cluster's span), for the --pictures lowest of each family. The folder appears whole at the end.";
 
 /// Arguments of `tvf compare`.
 #[derive(Args)]
-#[command(
-    after_help = "Examples:\n  tvf compare bunny-closed.obj -k 100 --discretization \
-conforming-barycentric --discretization dec-circumcentric --discretization whitney-galerkin\n  \
-tvf compare --example genus2 -k 60 --discretization dec-circumcentric --complex my-dec/\n  \
-tvf compare --corpus meshes/ -k 50 --discretization conforming-barycentric --discretization \
-whitney-galerkin --json\n\n\
-The first entry is the reference. For each other entry the report gives the relative \
-eigenvalue difference |λa − λb| / max(λa, λb) index by index (median and largest), and the \
-fraction of each eigenfield's squared norm that lies in the span of the other's K fields (mean \
-and smallest, both ways): fields are compared as one tangent vector per face at its centroid \
-with the area-weighted inner product, so entries with different field spaces compare. Choose K \
-at a gap of the spectrum: where K cuts through a multiple eigenvalue (e.g. on a sphere), the \
-entries may keep different fields of that eigenspace, which then lie partly outside each \
-other's span. Times \
-are the basis computation of each entry, as a ratio to the first's in the same run. With \
---json, prints all of it (per index) as one JSON object."
-)]
+#[command(after_help = AFTER_HELP)]
 pub struct CompareArgs {
     /// Mesh file (.obj, .off or .ply); omit with --example or --corpus.
     #[arg(value_name = "MESH", required_unless_present_any = ["example", "corpus"])]
@@ -53,39 +71,83 @@ pub struct CompareArgs {
     /// Split every polygon into triangles after loading (as for other commands' --triangulate).
     #[arg(long)]
     triangulate: bool,
-    /// Every mesh file (.obj, .off, .ply) of FOLDER instead of one mesh: each entry on each mesh
-    /// on local threads, reported as the entry's success rate with the reason of every failure,
-    /// its median basis time and its eigenvalues against the first entry's (catalog ids only:
-    /// a --complex folder belongs to one mesh).
+    /// Every mesh file (.obj, .off, .ply) of FOLDER instead of one mesh: each entry on each mesh,
+    /// reported as the entry's success rate with the reason of every failure, its median basis
+    /// time and its eigenvalues against the reference's (catalog ids only: a --complex folder
+    /// belongs to one mesh).
     #[arg(long, value_name = "FOLDER", conflicts_with_all = ["mesh", "example", "complexes"])]
     corpus: Option<PathBuf>,
     /// With --corpus: worker threads [default: one per core].
-    #[arg(long, value_name = "N", requires = "corpus")]
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "corpus",
+        conflicts_with = "scheduler"
+    )]
     threads: Option<usize>,
-    /// A catalog id to compare; repeat the flag (the first entry given is the reference).
+    /// With --corpus: run the mesh × entry tasks on the Dask cluster whose scheduler is at
+    /// ADDRESS (e.g. tcp://HOST:8786) instead of local threads. Runs the Python package's
+    /// driver (`python3 -m tvf.corpus`; TVF_PYTHON names another interpreter): the workers need
+    /// the package and the mesh folder at the same path, and know tvf's own catalog ids.
+    #[arg(long, value_name = "ADDRESS", requires = "corpus")]
+    scheduler: Option<String>,
+    /// A catalog id to compare (with its modifiers, e.g. dec-circumcentric+intrinsic-delaunay);
+    /// repeat the flag.
     #[arg(long = "discretization", value_name = "ID")]
-    discretizations: Vec<String>,
+    pub(super) discretizations: Vec<String>,
     /// A folder of your own matrices (as for `--complex` of other commands), compared after
     /// the catalog ids; repeat the flag for several.
     #[arg(long = "complex", value_name = "DIR")]
-    complexes: Vec<PathBuf>,
+    pub(super) complexes: Vec<PathBuf>,
+    /// The entry the others are compared with: one of the --discretization ids or --complex
+    /// folders as given [default: the first entry].
+    #[arg(long, value_name = "ID")]
+    pub(super) reference: Option<String>,
     /// Boundary condition of the catalog entries on meshes with boundary (tangential or
     /// normal) [default: tangential].
     #[arg(long, value_name = "CONDITION", value_parser = parse_boundary_condition)]
-    boundary: Option<BoundaryCondition>,
+    pub(super) boundary: Option<BoundaryCondition>,
+    /// Every catalog entry on the intrinsic Delaunay triangulation of the mesh (`flip`, the
+    /// default, or `refine`, as for other commands): each id without an intrinsic suffix of
+    /// its own gets `+intrinsic-delaunay` (or `-refine`). To compare an entry on the input with
+    /// the same entry on the intrinsic triangulation, give the suffixed id instead.
+    #[arg(
+        long,
+        value_name = "MODE",
+        num_args = 0..=1,
+        require_equals = true,
+        default_missing_value = "flip",
+        value_parser = parse_intrinsic_delaunay
+    )]
+    intrinsic_delaunay: Option<IntrinsicDelaunay>,
     /// Basis size: the K lowest eigenfields of every entry, harmonic ones included.
     #[arg(short = 'k', value_name = "K")]
     count: usize,
+    /// Largest relative gap (λ_next − λ) / λ_next between consecutive eigenvalues of one family
+    /// inside one eigenspace cluster.
+    #[arg(long, value_name = "GAP", default_value_t = DEFAULT_CLUSTER_TOLERANCE)]
+    cluster_tolerance: f64,
+    /// Output folder: the tables (Markdown, CSV, JSON) and the pictures; with --corpus, the
+    /// corpus report (corpus.md, corpus.json).
+    #[arg(short, long, value_name = "DIR")]
+    output: Option<PathBuf>,
+    /// With -o: pictures of the N lowest fields of each family (0: none).
+    #[arg(long, value_name = "N", default_value_t = 2)]
+    pictures: usize,
+    /// With -o: size of one panel of a picture.
+    #[arg(long, value_name = "WxH", default_value = "480x360")]
+    size: String,
+    /// With -o: the camera of the pictures, as `tvf render --view`.
+    #[arg(
+        long,
+        value_name = "YAW,PITCH",
+        default_value = "30,20",
+        allow_hyphen_values = true
+    )]
+    view: String,
     /// Print JSON to stdout instead of tables.
     #[arg(long)]
     json: bool,
-}
-
-/// One compared entry: its complex, the sampled basis and the time the basis took.
-struct ComparedEntry {
-    complex: BoxedComplex,
-    sampled: SampledBasis,
-    seconds: f64,
 }
 
 /// The one mesh of the arguments (a file or an example).
@@ -99,259 +161,122 @@ fn mesh_input(args: &CompareArgs) -> MeshInput {
     input
 }
 
-/// Builds every entry, computes and samples its basis, and prints the comparison.
+/// `--intrinsic-delaunay` applied to every catalog id without an intrinsic suffix of its own,
+/// and to `--reference` where it names one of those ids.
+fn with_intrinsic_flag(mut args: CompareArgs) -> CompareArgs {
+    let mode = args.intrinsic_delaunay;
+    let apply = |id: &String| with_intrinsic_suffix(id.clone(), mode);
+    if let Some(reference) = &args.reference {
+        if args.discretizations.contains(reference) {
+            args.reference = Some(apply(reference));
+        }
+    }
+    args.discretizations = args.discretizations.iter().map(apply).collect();
+    args
+}
+
+/// Builds every entry, computes and samples its basis, and reports the comparison.
 pub fn run(args: CompareArgs, context: &RunContext) -> Result<()> {
+    let args = with_intrinsic_flag(args);
     if args.count == 0 {
         bail!("-k 0: ask for at least one field");
     }
+    if !(args.cluster_tolerance >= 0.0 && args.cluster_tolerance < 1.0) {
+        bail!(
+            "--cluster-tolerance {}: give a relative gap in [0, 1)",
+            args.cluster_tolerance
+        );
+    }
     let names = entry_names(&args)?;
+    let reference = reference_position(&args, &names)?;
     if let Some(folder) = &args.corpus {
-        return run_corpus_comparison(&args, folder, context);
+        let options = CorpusOptions {
+            folder,
+            ids: &args.discretizations,
+            reference: &args.discretizations[reference],
+            boundary: args.boundary.unwrap_or_default(),
+            count: args.count,
+            triangulate: args.triangulate,
+            threads: args.threads,
+            scheduler: args.scheduler.as_deref(),
+            output: args.output.as_deref(),
+            json: args.json,
+        };
+        return run_corpus_comparison(&options, context);
     }
     let input = mesh_input(&args);
-    let loaded = input.load()?;
-    let mesh = loaded.mesh;
+    if let Some(out) = &args.output {
+        let folders: Vec<Option<&Path>> =
+            args.complexes.iter().map(|d| Some(d.as_path())).collect();
+        check_output(out, &input, &folders)?;
+    }
+    let view = parse_view(&args.view)?;
+    let size = parse_size(&args.size)?;
+    let mesh = input.load()?.mesh;
     let identity: Vec<usize> = (0..mesh.vertex_count()).collect();
     let original_vertex = input.original_vertex().unwrap_or(&identity).to_vec();
     let mut entries = Vec::with_capacity(names.len());
     for name in &names {
-        let label = match name {
-            EntryName::Catalog(id) => id.clone(),
-            EntryName::Folder(dir) => dir.display().to_string(),
-        };
-        let complex = match name {
-            EntryName::Catalog(id) => context
-                .catalog()
-                .build_complex(id, Some(args.boundary.unwrap_or_default()), &mesh)
-                .with_context(|| input.label())?,
-            EntryName::Folder(dir) => Box::new(
-                tvf_spectral::read_complex_folder(dir, &mesh, &original_vertex)
-                    .with_context(|| format!("--complex {} on {}", dir.display(), input.label()))?,
-            ),
-        };
-        entries.push(compute_entry(complex, label, args.count, &input)?);
+        let peak = ResidentPeak::start();
+        let start = Instant::now();
+        let complex = build_entry(name, &args, context, &mesh, &original_vertex, &input)?;
+        let assembly_seconds = start.elapsed().as_secs_f64();
+        entries.push(measure_entry(
+            complex,
+            name.label(),
+            assembly_seconds,
+            peak,
+            args.count,
+            &input,
+        )?);
     }
-    let comparisons = entries[1..]
-        .iter()
-        .map(|entry| BasisComparison::new(&mesh, &entries[0].sampled, &entry.sampled))
-        .collect::<Result<Vec<_>, _>>()
-        .with_context(|| input.label())?;
-    if args.json {
-        print_json(&args, &input, &mesh, &entries, &comparisons)
-    } else {
-        print_tables(&args, &input, &mesh, &entries, &comparisons);
-        Ok(())
-    }
-}
-
-/// `--corpus FOLDER`: every mesh × entry, the per-entry success rates and failures.
-fn run_corpus_comparison(args: &CompareArgs, folder: &Path, context: &RunContext) -> Result<()> {
-    if args.threads == Some(0) {
-        bail!("--threads 0: give at least one thread");
-    }
-    let request = CorpusRequest {
-        folder,
-        ids: &args.discretizations,
-        boundary: args.boundary.unwrap_or_default(),
-        count: args.count,
-        triangulate: args.triangulate,
-        threads: args.threads,
-    };
-    let runs = run_corpus(&request, context.catalog())?;
-    let summaries = summarize(&args.discretizations, &runs);
-    if args.json {
-        let out = json!({
-            "corpus": folder.display().to_string(),
-            "fields": args.count,
-            "reference": args.discretizations[0],
-            "entries": summaries,
-            "runs": runs,
-        });
-        println!("{}", serde_json::to_string_pretty(&out)?);
-    } else {
-        println!(
-            "corpus {} ({} meshes), K = {} fields",
-            folder.display(),
-            runs.len() / args.discretizations.len().max(1),
-            args.count
-        );
-        for line in summary_lines(&summaries, &args.discretizations[0]) {
-            println!("{line}");
-        }
-    }
-    Ok(())
-}
-
-/// What the flags name: catalog ids first, then folders.
-enum EntryName {
-    Catalog(String),
-    Folder(PathBuf),
-}
-
-/// The entries in order, at least two, none twice.
-fn entry_names(args: &CompareArgs) -> Result<Vec<EntryName>> {
-    let mut names: Vec<EntryName> = args
-        .discretizations
-        .iter()
-        .cloned()
-        .map(EntryName::Catalog)
-        .collect();
-    names.extend(args.complexes.iter().cloned().map(EntryName::Folder));
-    if names.len() < 2 {
-        bail!(
-            "compare needs at least two entries: give --discretization ID (and/or --complex DIR) \
-             two or more times"
-        );
-    }
-    for (i, id) in args.discretizations.iter().enumerate() {
-        if args.discretizations[..i].contains(id) {
-            bail!("--discretization {id} is given twice");
-        }
-    }
-    for (i, dir) in args.complexes.iter().enumerate() {
-        if args.complexes[..i].contains(dir) {
-            bail!("--complex {} is given twice", dir.display());
-        }
-    }
-    Ok(names)
-}
-
-/// Computes the basis of `count` fields of `complex` (timed, with progress) and samples it;
-/// `label` names the entry in the report (the catalog id, or the folder).
-fn compute_entry(
-    complex: BoxedComplex,
-    label: String,
-    count: usize,
-    input: &MeshInput,
-) -> Result<ComparedEntry> {
-    let progress = Progress::new(format!("compare {}", complex.id()));
-    let start = Instant::now();
-    let basis = {
-        let callback = progress.basis_callback();
-        let request =
-            BasisRequest::lowest(count, complex.field_dimension()).with_progress(&callback);
-        compute_basis(complex.as_ref(), &request).with_context(|| {
-            format!(
-                "{}: cannot compute the basis of '{}'",
-                input.label(),
-                complex.id()
-            )
-        })?
-    };
-    let seconds = start.elapsed().as_secs_f64();
-    progress.finish(format!(
-        "{} fields of {} in {seconds:.2} s",
-        basis.len(),
-        complex.id()
-    ));
-    let mut sampled = SampledBasis::new(complex.as_ref(), &basis)
-        .with_context(|| format!("{}: '{}'", input.label(), complex.id()))?;
-    sampled.id = label;
-    Ok(ComparedEntry {
-        complex,
-        sampled,
-        seconds,
-    })
-}
-
-/// Median and largest of `values` (not empty).
-fn median_and_max(values: &[f64]) -> (f64, f64) {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    (sorted[sorted.len() / 2], sorted[sorted.len() - 1])
-}
-
-/// Mean and smallest of `values` (not empty).
-fn mean_and_min(values: &[f64]) -> (f64, f64) {
-    let mean = values.iter().sum::<f64>() / values.len() as f64;
-    (mean, values.iter().copied().fold(f64::INFINITY, f64::min))
-}
-
-fn print_tables(
-    args: &CompareArgs,
-    input: &MeshInput,
-    mesh: &SurfaceMesh,
-    entries: &[ComparedEntry],
-    comparisons: &[BasisComparison],
-) {
-    println!(
-        "mesh {} ({} faces), K = {} fields",
+    let report = ComparisonReport::new(
         input.label(),
-        mesh.face_count(),
-        args.count
-    );
-    println!(
-        "{:<34} {:>10} {:>12} {:>10}",
-        "entry", "n1", "basis time", "vs first"
-    );
-    for entry in entries {
-        println!(
-            "{:<34} {:>10} {:>10.2} s {:>9.2}x",
-            entry.sampled.id,
-            entry.complex.field_dimension(),
-            entry.seconds,
-            entry.seconds / entries[0].seconds
-        );
+        &mesh,
+        args.count,
+        args.cluster_tolerance,
+        reference,
+        entries,
+    )
+    .with_context(|| input.label())?;
+    let json = serde_json::to_string_pretty(&report.to_json())?;
+    if let Some(out) = &args.output {
+        let pictures = PictureRequest {
+            per_family: args.pictures,
+            panel: size,
+            view,
+        };
+        write_report_folder(out, &report, &json, &mesh, &pictures)?;
     }
-    println!(
-        "\ncompared with {} (relative eigenvalue difference; share of an eigenfield in the \
-         other's span)",
-        entries[0].sampled.id
-    );
-    println!(
-        "{:<34} {:>21} {:>21} {:>21}",
-        "entry", "eigenvalues med/max", "in first mean/min", "first in it mean/min"
-    );
-    for comparison in comparisons {
-        let (median, max) = median_and_max(&comparison.eigenvalue_differences);
-        let (in_first, in_first_min) = mean_and_min(&comparison.second_in_first);
-        let (first_in, first_in_min) = mean_and_min(&comparison.first_in_second);
-        println!(
-            "{:<34} {:>10.2e}/{:<10.2e} {:>10.6}/{:<10.6} {:>10.6}/{:<10.6}",
-            comparison.second, median, max, in_first, in_first_min, first_in, first_in_min
-        );
+    if args.json {
+        println!("{json}");
+    } else {
+        print!("{}", report.markdown());
+        if let Some(out) = &args.output {
+            println!("\nwrote {}", out.display());
+        }
     }
+    Ok(())
 }
 
-fn print_json(
-    args: &CompareArgs,
-    input: &MeshInput,
+/// Writes the tables and pictures of `report` into the folder `out`, which appears whole.
+fn write_report_folder(
+    out: &Path,
+    report: &ComparisonReport,
+    json: &str,
     mesh: &SurfaceMesh,
-    entries: &[ComparedEntry],
-    comparisons: &[BasisComparison],
+    pictures: &PictureRequest,
 ) -> Result<()> {
-    let entries: Vec<_> = entries
-        .iter()
-        .map(|entry| {
-            json!({
-                "entry": entry.sampled.id,
-                "id": entry.complex.id(),
-                "field_dimension": entry.complex.field_dimension(),
-                "eigenvalues": entry.sampled.eigenvalues,
-                "seconds": entry.seconds,
-                "time_ratio_to_first": entry.seconds / entries[0].seconds,
-            })
-        })
-        .collect();
-    let comparisons: Vec<_> = comparisons
-        .iter()
-        .map(|c| {
-            json!({
-                "first": c.first,
-                "second": c.second,
-                "eigenvalue_differences": c.eigenvalue_differences,
-                "second_in_first": c.second_in_first,
-                "first_in_second": c.first_in_second,
-            })
-        })
-        .collect();
-    let out = json!({
-        "mesh": input.label(),
-        "faces": mesh.face_count(),
-        "fields": args.count,
-        "entries": entries,
-        "comparisons": comparisons,
-    });
-    println!("{}", serde_json::to_string_pretty(&out)?);
-    Ok(())
+    let staged = stage(out)?;
+    for (name, text) in [
+        ("compare.md", report.markdown()),
+        ("compare.csv", report.entries_csv()),
+        ("eigenvalues.csv", report.eigenvalues_csv()),
+        ("clusters.csv", report.clusters_csv()),
+        ("compare.json", format!("{json}\n")),
+    ] {
+        write_folder_bytes(&staged, name, text.as_bytes())?;
+    }
+    write_pictures(&staged, report, mesh, pictures)?;
+    commit(staged)
 }

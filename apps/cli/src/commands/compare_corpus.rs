@@ -1,20 +1,112 @@
 //! `tvf compare --corpus FOLDER`: every mesh file of a folder × every entry, on local threads
-//! (one mesh per task): for each entry its success rate with the reason of every failure (a
-//! mesh that does not load, an entry that refuses it, a basis that cannot be computed), its
-//! basis times, and its eigenvalues against the first entry's on the meshes where both
-//! succeeded (relative difference `|λa − λb| / max(λa, λb)`, index by index).
+//! (one mesh per task) or on a Dask cluster ([`super::compare_scheduler`]): for each entry its
+//! success rate with the reason of every failure (a mesh that does not load, an entry that
+//! refuses it, a basis that cannot be computed), its basis times, and its eigenvalues against
+//! the reference's on the meshes where both succeeded (relative difference
+//! `|λa − λb| / max(λa, λb)`, index by index).
 
+use super::compare_scheduler::runs_on_cluster;
+use crate::context::RunContext;
+use crate::error_message;
 use crate::mesh_input::MeshInput;
+use crate::output_rules::{commit, stage};
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators};
 use tvf_discretizations::Catalog;
-use tvf_spectral::{compute_basis, BasisRequest};
+use tvf_spectral::{compute_basis, write_folder_bytes, BasisRequest};
+
+/// What `tvf compare --corpus` was asked.
+pub struct CorpusOptions<'a> {
+    /// The folder of mesh files.
+    pub folder: &'a Path,
+    /// Catalog ids.
+    pub ids: &'a [String],
+    /// The id the others are compared with (one of `ids`).
+    pub reference: &'a str,
+    /// Boundary condition on meshes with boundary.
+    pub boundary: BoundaryCondition,
+    /// Basis size.
+    pub count: usize,
+    /// Split polygons into triangles after loading.
+    pub triangulate: bool,
+    /// Local worker threads (`None`: one per core).
+    pub threads: Option<usize>,
+    /// A Dask scheduler's address: the runs go to its cluster instead of local threads.
+    pub scheduler: Option<&'a str>,
+    /// A folder for `corpus.md` and `corpus.json`.
+    pub output: Option<&'a Path>,
+    /// Print JSON instead of the table.
+    pub json: bool,
+}
+
+/// Runs the corpus comparison of `options` and reports it.
+pub fn run_corpus_comparison(options: &CorpusOptions, context: &RunContext) -> Result<()> {
+    if options.threads == Some(0) {
+        bail!("--threads 0: give at least one thread");
+    }
+    if let Some(out) = options.output {
+        tvf_core::io::check_output(out, &[options.folder])?;
+    }
+    for id in options.ids {
+        context.catalog().get(id)?;
+    }
+    let runs = match options.scheduler {
+        Some(address) => runs_on_cluster(options, address)?,
+        None => {
+            let request = CorpusRequest {
+                folder: options.folder,
+                ids: options.ids,
+                boundary: options.boundary,
+                count: options.count,
+                triangulate: options.triangulate,
+                threads: options.threads,
+            };
+            run_corpus(&request, context.catalog())?
+        }
+    };
+    let summaries = summarize(options.ids, options.reference, &runs);
+    let report = json!({
+        "corpus": options.folder.display().to_string(),
+        "fields": options.count,
+        "reference": options.reference,
+        "scheduler": options.scheduler,
+        "entries": summaries,
+        "runs": runs,
+    });
+    let json = serde_json::to_string_pretty(&report)?;
+    let mut text = format!(
+        "corpus {} ({} meshes), K = {} fields{}\n",
+        options.folder.display(),
+        runs.len() / options.ids.len().max(1),
+        options.count,
+        options
+            .scheduler
+            .map_or(String::new(), |a| format!(", on the Dask cluster at {a}"))
+    );
+    for line in summary_lines(&summaries, options.reference) {
+        text.push_str(&line);
+        text.push('\n');
+    }
+    if let Some(out) = options.output {
+        let staged = stage(out)?;
+        write_folder_bytes(&staged, "corpus.md", text.as_bytes())?;
+        write_folder_bytes(&staged, "corpus.json", format!("{json}\n").as_bytes())?;
+        commit(staged)?;
+    }
+    if options.json {
+        println!("{json}");
+    } else {
+        print!("{text}");
+    }
+    Ok(())
+}
 
 /// What a corpus comparison runs.
 pub struct CorpusRequest<'a> {
@@ -33,8 +125,8 @@ pub struct CorpusRequest<'a> {
 }
 
 /// One mesh × entry. Serialized with the keys of its fields (`eigenvalues` empty and `reason`
-/// set on a failure).
-#[derive(Debug, Clone, Serialize)]
+/// set on a failure); the Dask driver (`python -m tvf.corpus`) prints rows with these keys.
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct CorpusRun {
     /// The mesh file.
     pub mesh: String,
@@ -114,7 +206,10 @@ fn runs_on_mesh(path: &Path, request: &CorpusRequest, catalog: &Catalog) -> Vec<
             };
             let (faces, result) = match &loaded {
                 Ok(loaded) => (loaded.mesh.face_count(), run(&loaded.mesh)),
-                Err(error) => (0, Err(anyhow::anyhow!("cannot load: {error:#}"))),
+                Err(error) => (
+                    0,
+                    Err(anyhow::anyhow!("cannot load: {}", error_message(error))),
+                ),
             };
             let seconds = start.elapsed().as_secs_f64();
             match result {
@@ -132,7 +227,7 @@ fn runs_on_mesh(path: &Path, request: &CorpusRequest, catalog: &Catalog) -> Vec<
                     faces,
                     discretization: id.clone(),
                     succeeded: false,
-                    reason: Some(format!("{error:#}")),
+                    reason: Some(error_message(&error)),
                     seconds,
                     eigenvalues: Vec::new(),
                 },
@@ -143,9 +238,6 @@ fn runs_on_mesh(path: &Path, request: &CorpusRequest, catalog: &Catalog) -> Vec<
 
 /// Runs every mesh × entry of `request` (meshes in parallel on `request.threads` threads).
 pub fn run_corpus(request: &CorpusRequest, catalog: &Catalog) -> Result<Vec<CorpusRun>> {
-    for id in request.ids {
-        catalog.get(id)?;
-    }
     let files = mesh_files(request.folder)?;
     let progress = Progress::new("compare corpus");
     let done = AtomicUsize::new(0);
@@ -200,25 +292,24 @@ fn median(mut values: Vec<f64>) -> Option<f64> {
     values.get(values.len() / 2).copied()
 }
 
-/// Per entry of `ids`, its summary over `runs` (the first id the reference).
-pub fn summarize(ids: &[String], runs: &[CorpusRun]) -> Vec<EntrySummary> {
-    let reference = ids.first();
+/// Per entry of `ids`, its summary over `runs`, compared with the entry `reference`.
+pub fn summarize(ids: &[String], reference: &str, runs: &[CorpusRun]) -> Vec<EntrySummary> {
     ids.iter()
         .map(|id| {
             let own: Vec<&CorpusRun> = runs.iter().filter(|r| &r.discretization == id).collect();
             let succeeded = own.iter().filter(|r| r.succeeded).count();
-            let differences: Vec<f64> = match reference {
-                Some(reference) if reference != id => own
-                    .iter()
+            let differences: Vec<f64> = if id == reference {
+                Vec::new()
+            } else {
+                own.iter()
                     .filter(|r| r.succeeded)
                     .filter_map(|r| {
                         runs.iter()
-                            .find(|o| &o.discretization == reference && o.mesh == r.mesh)
+                            .find(|o| o.discretization == reference && o.mesh == r.mesh)
                             .filter(|o| o.succeeded)
                             .map(|o| largest_relative_difference(&o.eigenvalues, &r.eigenvalues))
                     })
-                    .collect(),
-                _ => Vec::new(),
+                    .collect()
             };
             EntrySummary {
                 discretization: id.clone(),
@@ -246,7 +337,7 @@ pub fn summarize(ids: &[String], runs: &[CorpusRun]) -> Vec<EntrySummary> {
 pub fn summary_lines(summaries: &[EntrySummary], reference: &str) -> Vec<String> {
     let mut lines = vec![format!(
         "{:<34} {:>12} {:>8} {:>14} {:>22}",
-        "entry", "succeeded", "rate", "median time", "eigenvalues vs first"
+        "entry", "succeeded", "rate", "median time", "eigenvalues vs ref."
     )];
     for s in summaries {
         let difference = match s.median_relative_difference {
@@ -298,7 +389,7 @@ mod tests {
             run("m2", "a", Some(vec![1.0])),
             run("m2", "b", None),
         ];
-        let summaries = summarize(&ids, &runs);
+        let summaries = summarize(&ids, "a", &runs);
         assert_eq!(summaries[0].succeeded, 2);
         assert_eq!(summaries[0].median_relative_difference, None);
         assert_eq!(summaries[1].succeeded, 1);

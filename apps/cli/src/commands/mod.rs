@@ -1,4 +1,4 @@
-//! One module per subcommand.
+//! One module per subcommand; a large one has its parts beside it (`compare_*.rs`).
 
 pub mod analyze;
 pub mod basis;
@@ -6,6 +6,9 @@ pub mod check;
 pub mod coefficients;
 pub mod compare;
 pub mod compare_corpus;
+mod compare_entries;
+mod compare_pictures;
+mod compare_scheduler;
 pub mod compress;
 pub mod convergence;
 pub mod decompose;

@@ -2,7 +2,7 @@
 //! a complex, on the Delaunay icosphere(3), with nothing in the commands special to it: the
 //! catalog line is all it takes.
 
-use crate::common::{assert_success, tvf};
+use crate::common::{assert_success, tvf, write_field_and_constraints};
 use serde_json::Value;
 use std::path::Path;
 use tvf_core::generate::icosphere;
@@ -31,24 +31,7 @@ fn dec_runs_through_every_command() {
     let dir = temp.path();
     let mesh = icosphere(3);
     write_obj(dir.join("sphere.obj"), &mesh).unwrap();
-    // A rotation field about z plus a gradient-like component: both families present.
-    let field: String = mesh
-        .faces()
-        .iter()
-        .map(|f| {
-            let c: [f64; 3] = std::array::from_fn(|k| {
-                f.iter().map(|&v| mesh.positions()[v][k]).sum::<f64>() / 3.0
-            });
-            format!("{} {} {}\n", -c[1] + 0.3 * c[2], c[0], -0.3 * c[0])
-        })
-        .collect();
-    std::fs::write(dir.join("field.txt"), field).unwrap();
-    let constraints = r#"{"constraints": [
-        {"id": "v", "kind": "vector", "face": 12, "value": [1.0, 0.0, 0.0]},
-        {"id": "s", "kind": "divergence", "vertex": 5, "value": 2.0},
-        {"id": "c", "kind": "curl", "face": 40, "value": -1.0}
-    ]}"#;
-    std::fs::write(dir.join("c.json"), constraints).unwrap();
+    write_field_and_constraints(&mesh, dir);
 
     // spectrum: the sphere's l = 1 level (eigenvalue ≈ 2) three times in each family.
     let spectrum = json(&run(dir, &["spectrum", "sphere.obj", "-k", "6", "--json"]));

@@ -3,7 +3,7 @@
 //! counting the non-Delaunay edges and the DEC refusal suggesting the flag; ids, basis files and
 //! complex folders carrying the modifier.
 
-use crate::common::{assert_success, tvf};
+use crate::common::{run_quiet, stdout_json, tvf, write_field_and_constraints};
 use serde_json::Value;
 use std::path::Path;
 use tvf_core::generate::{jitter, torus};
@@ -14,21 +14,6 @@ use tvf_core::TriangleMesh;
 /// non-Delaunay (`cot α + cot β < 0`) and none cocircular.
 fn jittered_torus() -> TriangleMesh {
     jitter(&torus(1.0, 0.4, 18, 9).unwrap(), 0.3, 11).unwrap()
-}
-
-fn run(dir: &Path, args: &[&str]) -> std::process::Output {
-    let output = tvf()
-        .current_dir(dir)
-        .args(args)
-        .arg("--quiet")
-        .output()
-        .expect("the tvf binary runs");
-    assert_success(&output);
-    output
-}
-
-fn json(output: &std::process::Output) -> Value {
-    serde_json::from_slice(&output.stdout).expect("JSON on stdout")
 }
 
 /// The number of rows of a `.npy` array of shape `(rows, 3)`.
@@ -44,10 +29,10 @@ fn info_counts_the_edges_dec_refuses_and_dec_suggests_the_flag() {
     let temp = tempfile::tempdir().unwrap();
     let dir = temp.path();
     write_obj(dir.join("torus.obj"), &jittered_torus()).unwrap();
-    let info = json(&run(dir, &["info", "torus.obj", "--json"]));
+    let info = stdout_json(&run_quiet(dir, &["info", "torus.obj", "--json"]));
     let count = info["non_delaunay_edges"].as_u64().unwrap();
     assert!(count > 0, "{info}");
-    let text = run(dir, &["info", "torus.obj"]);
+    let text = run_quiet(dir, &["info", "torus.obj"]);
     let text = String::from_utf8_lossy(&text.stdout);
     assert!(
         text.contains(&format!("delaunay       no: {count} edges"))
@@ -76,7 +61,7 @@ fn info_counts_the_edges_dec_refuses_and_dec_suggests_the_flag() {
     // no edge is left that DEC refuses.
     for (mode, inserted) in [("flip", false), ("refine", true)] {
         let flag = format!("--intrinsic-delaunay={mode}");
-        let info = json(&run(dir, &["info", "torus.obj", "--json", &flag]));
+        let info = stdout_json(&run_quiet(dir, &["info", "torus.obj", "--json", &flag]));
         let summary = &info["intrinsic_delaunay"];
         assert_eq!(summary["mode"], mode);
         assert!(summary["flips"].as_u64().unwrap() > 0, "{summary}");
@@ -87,7 +72,7 @@ fn info_counts_the_edges_dec_refuses_and_dec_suggests_the_flag() {
     }
     // A Delaunay mesh says so.
     write_obj(dir.join("sphere.obj"), &tvf_core::generate::icosphere(2)).unwrap();
-    let info = json(&run(dir, &["info", "sphere.obj", "--json"]));
+    let info = stdout_json(&run_quiet(dir, &["info", "sphere.obj", "--json"]));
     assert_eq!(info["non_delaunay_edges"], 0);
 }
 
@@ -97,23 +82,7 @@ fn dec_with_the_flag_runs_through_every_command_on_a_non_delaunay_torus() {
     let dir = temp.path();
     let mesh = jittered_torus();
     write_obj(dir.join("torus.obj"), &mesh).unwrap();
-    let field: String = mesh
-        .faces()
-        .iter()
-        .map(|f| {
-            let c: [f64; 3] = std::array::from_fn(|k| {
-                f.iter().map(|&v| mesh.positions()[v][k]).sum::<f64>() / 3.0
-            });
-            format!("{} {} {}\n", -c[1] + 0.3 * c[2], c[0], -0.3 * c[0])
-        })
-        .collect();
-    std::fs::write(dir.join("field.txt"), field).unwrap();
-    let constraints = r#"{"constraints": [
-        {"id": "v", "kind": "vector", "face": 12, "value": [1.0, 0.0, 0.0]},
-        {"id": "s", "kind": "divergence", "vertex": 5, "value": 2.0},
-        {"id": "c", "kind": "curl", "face": 40, "value": -1.0}
-    ]}"#;
-    std::fs::write(dir.join("c.json"), constraints).unwrap();
+    write_field_and_constraints(&mesh, dir);
     let dec = [
         "--discretization",
         "dec-circumcentric",
@@ -124,11 +93,11 @@ fn dec_with_the_flag_runs_through_every_command_on_a_non_delaunay_torus() {
     let go = |args: &[&str]| {
         let args = with(args);
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-        run(dir, &refs)
+        run_quiet(dir, &refs)
     };
 
     // Genus 1: two harmonic fields, then positive eigenvalues.
-    let spectrum = json(&go(&["spectrum", "torus.obj", "-k", "8", "--json"]));
+    let spectrum = stdout_json(&go(&["spectrum", "torus.obj", "-k", "8", "--json"]));
     assert_eq!(
         spectrum["discretization"],
         "dec-circumcentric+intrinsic-delaunay"
@@ -174,7 +143,7 @@ fn dec_with_the_flag_runs_through_every_command_on_a_non_delaunay_torus() {
         stderr.contains("dec-circumcentric+intrinsic-delaunay"),
         "{stderr}"
     );
-    let coefficients = json(&run(
+    let coefficients = stdout_json(&run_quiet(
         dir,
         &[
             "coefficients",
@@ -234,7 +203,7 @@ fn dec_with_the_flag_runs_through_every_command_on_a_non_delaunay_torus() {
         "-o",
         "rd",
     ]);
-    let spline = json(&go(&[
+    let spline = stdout_json(&go(&[
         "spline",
         "torus.obj",
         "--constraints",
@@ -328,7 +297,7 @@ fn refinement_runs_dec_on_an_open_mesh_with_both_boundary_conditions() {
     let mesh = TriangleMesh::new(positions, mesh.faces().to_vec()).unwrap();
     write_obj(dir.join("cap.obj"), &mesh).unwrap();
     for boundary in ["tangential", "normal"] {
-        let spectrum = json(&run(
+        let spectrum = stdout_json(&run_quiet(
             dir,
             &[
                 "spectrum",

@@ -24,6 +24,7 @@ mod info;
 mod info_shared_meshes;
 mod inputs_checked_first;
 mod intrinsic_delaunay;
+mod intrinsic_shared_meshes;
 mod non_finite;
 mod numpy_outputs;
 mod open_meshes;

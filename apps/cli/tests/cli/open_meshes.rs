@@ -3,7 +3,7 @@
 //! DEC, and the raw `bunny.obj` of `../shared/meshes` (five loops, unreferenced vertices) where it
 //! exists (under `CI=true` it must).
 
-use crate::common::{assert_success, tvf, write_field};
+use crate::common::{run_quiet, stdout_json, tvf, write_field};
 use serde_json::Value;
 use std::path::Path;
 use tvf_conformance::corpus::delaunay_flips;
@@ -11,21 +11,6 @@ use tvf_core::generate::perforated_plate;
 use tvf_core::io::{load_mesh, write_obj};
 use tvf_core::TriangleMesh;
 use tvf_test_support::shared_mesh;
-
-fn run(dir: &Path, args: &[&str]) -> std::process::Output {
-    let output = tvf()
-        .current_dir(dir)
-        .args(args)
-        .arg("--quiet")
-        .output()
-        .expect("the tvf binary runs");
-    assert_success(&output);
-    output
-}
-
-fn json(output: &std::process::Output) -> Value {
-    serde_json::from_slice(&output.stdout).expect("JSON on stdout")
-}
 
 /// Constraints at an interior vertex and an interior edge, or with `curl_on_faces` (DEC) face 7
 /// (boundary nodes are fixed by one of the boundary conditions).
@@ -71,7 +56,7 @@ fn every_command(
     let boundary = format!("{discretization}-{boundary}");
     let boundary = boundary.as_str();
     let basis_file = format!("{boundary}.tvfb");
-    let basis = json(&run(
+    let basis = stdout_json(&run_quiet(
         dir,
         &[
             &["basis", name, "-k", k, "-o", &basis_file, "--json"][..],
@@ -83,7 +68,7 @@ fn every_command(
     assert_eq!(basis["discretization"], expected_id.as_str());
     assert_eq!(basis["harmonic"], harmonic);
     // The basis file brings its boundary condition back without the flag.
-    let coefficients = json(&run(
+    let coefficients = stdout_json(&run_quiet(
         dir,
         &[
             "coefficients",
@@ -95,7 +80,7 @@ fn every_command(
         ],
     ));
     assert_eq!(coefficients["discretization"], expected_id.as_str());
-    let decompose = json(&run(
+    let decompose = stdout_json(&run_quiet(
         dir,
         &[
             &[
@@ -116,7 +101,7 @@ fn every_command(
         "{decompose}"
     );
     assert!(dir.join(format!("parts-{boundary}/harmonic.npy")).is_file());
-    run(
+    run_quiet(
         dir,
         &[
             "filter",
@@ -128,7 +113,7 @@ fn every_command(
             "smooth.npy",
         ],
     );
-    let spline = json(&run(
+    let spline = stdout_json(&run_quiet(
         dir,
         &[
             &[
@@ -147,7 +132,7 @@ fn every_command(
         .concat(),
     ));
     assert_eq!(spline["discretization"], expected_id.as_str());
-    run(
+    run_quiet(
         dir,
         &[
             &[
@@ -165,7 +150,7 @@ fn every_command(
         ]
         .concat(),
     );
-    run(
+    run_quiet(
         dir,
         &[
             &[
@@ -181,7 +166,7 @@ fn every_command(
         ]
         .concat(),
     );
-    run(
+    run_quiet(
         dir,
         &[
             &[
@@ -199,7 +184,7 @@ fn every_command(
     );
     // Analysis, compression and export with the basis file's boundary condition.
     let analysis = format!("analysis-{boundary}");
-    run(
+    run_quiet(
         dir,
         &[
             "analyze",
@@ -213,7 +198,7 @@ fn every_command(
     );
     assert!(dir.join(&analysis).is_dir());
     let compressed = format!("f-{boundary}.tvfc");
-    run(
+    run_quiet(
         dir,
         &[
             "compress",
@@ -227,7 +212,7 @@ fn every_command(
             &compressed,
         ],
     );
-    run(
+    run_quiet(
         dir,
         &[
             "decompress",
@@ -241,7 +226,7 @@ fn every_command(
     );
     assert!(dir.join("back.npy").is_file());
     let curves = format!("rd-{boundary}");
-    run(
+    run_quiet(
         dir,
         &[
             "rate-distortion",
@@ -256,7 +241,7 @@ fn every_command(
         ],
     );
     assert!(dir.join(&curves).is_dir());
-    run(
+    run_quiet(
         dir,
         &[
             &[
@@ -275,7 +260,7 @@ fn every_command(
     assert!(dir.join("spline.vtk").is_file());
     // The demo's tour on the open mesh.
     let demo = format!("demo-{boundary}");
-    run(
+    run_quiet(
         dir,
         &[&["demo", "--quick", "--mesh", name, "-o", &demo][..], &b].concat(),
     );
@@ -291,7 +276,7 @@ fn a_pair_of_pants_runs_through_every_command_with_both_boundary_conditions() {
     write_obj(dir.join("pants.obj"), &mesh).unwrap();
     write_field(&mesh, &dir.join("field.txt"));
     write_constraints(&mesh, &dir.join("c.json"), false);
-    let info = json(&run(dir, &["info", "pants.obj", "--json"]));
+    let info = stdout_json(&run_quiet(dir, &["info", "pants.obj", "--json"]));
     assert_eq!(info["boundary_loops"], 3);
     assert_eq!(info["harmonic_dimension"]["tangential"], 2);
     assert_eq!(info["harmonic_dimension"]["normal"], 2);
@@ -337,7 +322,7 @@ fn dec_runs_through_every_command_on_a_delaunay_pair_of_pants_with_both_boundary
         every_command(dir, "pants.obj", "dec-circumcentric", boundary, "30", 2);
     }
     // The exported matrices say which nodes relative forms fix: boundary vertices and edges.
-    run(
+    run_quiet(
         dir,
         &[
             "operators",
@@ -390,7 +375,7 @@ fn the_raw_bunny_runs_through_every_command() {
     let mesh = load_mesh(&path).unwrap().mesh.into_triangles().unwrap();
     write_field(&mesh, &dir.join("field.txt"));
     write_constraints(&mesh, &dir.join("c.json"), false);
-    let info = json(&run(dir, &["info", "bunny.obj", "--json"]));
+    let info = stdout_json(&run_quiet(dir, &["info", "bunny.obj", "--json"]));
     assert_eq!(info["boundary_loops"], 5);
     assert_eq!(info["harmonic_dimension"]["tangential"], 4);
     every_command(
@@ -406,7 +391,7 @@ fn the_raw_bunny_runs_through_every_command() {
 #[test]
 fn the_catalog_listing_names_both_boundary_conditions_and_what_they_fix() {
     let temp = tempfile::tempdir().unwrap();
-    let listing = json(&run(temp.path(), &["discretizations", "--json"]));
+    let listing = stdout_json(&run_quiet(temp.path(), &["discretizations", "--json"]));
     let entries = listing["discretizations"].as_array().unwrap();
     assert_eq!(entries.len(), tvf_discretizations::builtin_catalog().len());
     for entry in entries {
@@ -427,7 +412,7 @@ fn the_catalog_listing_names_both_boundary_conditions_and_what_they_fix() {
         };
         assert!(normal.contains(expected), "{id}: {normal}");
     }
-    let text = String::from_utf8(run(temp.path(), &["discretizations"]).stdout).unwrap();
+    let text = String::from_utf8(run_quiet(temp.path(), &["discretizations"]).stdout).unwrap();
     let dec = text
         .lines()
         .find(|l| l.starts_with("dec-circumcentric"))

@@ -5,6 +5,7 @@
 mod common;
 mod constraint_file;
 mod constraint_fuzz;
+mod full_design_accuracy;
 mod full_ordering;
 mod full_parallelism;
 mod non_diagonal;

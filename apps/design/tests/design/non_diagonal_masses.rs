@@ -3,16 +3,14 @@
 //! references, constraint rows through the nodal unknowns, refactorizations, orderings, and the
 //! reduced solvers on complete eigenbases.
 
-use crate::common::truncated;
+use crate::common::{node_location, truncated};
 use crate::non_diagonal::{
     conforming_consistent, conforming_coupled_fields, dense_soft_design, dense_spline, flat_patch,
     mass_relative_difference, nonconforming_consistent, whitney_galerkin,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::{
-    BoundaryCondition, HodgeComplex, HodgeOperators, NodeKind, NodeSpace,
-};
+use tvf_core::discretization::{BoundaryCondition, HodgeComplex, HodgeOperators, NodeSpace};
 use tvf_core::generate::{hemisphere, icosphere, jitter};
 use tvf_core::TriangleMesh;
 use tvf_design::{
@@ -23,20 +21,12 @@ use tvf_design::{
 use tvf_spectral::{compute_basis, BasisRequest};
 
 /// A free node of `nodes` as a location (vertex or edge key; a face for face nodes).
-fn node_location(nodes: &NodeSpace, rng: &mut ChaCha8Rng) -> Location {
+fn free_node_location(nodes: &NodeSpace, rng: &mut ChaCha8Rng) -> Location {
     loop {
         let i = rng.random_range(0..nodes.len());
-        if !nodes.is_free(i) {
-            continue;
+        if nodes.is_free(i) {
+            return node_location(nodes, i);
         }
-        return match nodes.kind {
-            NodeKind::Vertices => Location::Vertex(i),
-            NodeKind::Edges => Location::Edge(i),
-            NodeKind::Faces | NodeKind::FaceFrames => Location::Face {
-                face: i,
-                barycentric: None,
-            },
-        };
     }
 }
 
@@ -81,9 +71,9 @@ fn constraints<H: HodgeComplex + ?Sized>(
             location,
         ));
     }
-    let source = node_location(complex.potential_nodes(), &mut rng);
+    let source = free_node_location(complex.potential_nodes(), &mut rng);
     list.push(Constraint::new("source", Target::Divergence(2.0), source));
-    let vortex = node_location(complex.co_potential_nodes(), &mut rng);
+    let vortex = free_node_location(complex.co_potential_nodes(), &mut rng);
     list.push(Constraint::new("vortex", Target::Curl(-1.5), vortex));
     list.push(Constraint::new(
         "div-point",

@@ -1,5 +1,5 @@
 //! Shared helpers of the CLI end-to-end tests: the `tvf` binary, the check that it succeeded,
-//! and a test field file.
+//! a quiet run and its JSON, and test field and constraint files.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -24,6 +24,47 @@ pub fn assert_success(output: &Output) {
         "{}",
         String::from_utf8_lossy(&output.stderr)
     );
+}
+
+/// Runs `tvf ARGS --quiet` in `dir` and fails the test unless it succeeded.
+#[track_caller]
+pub fn run_quiet(dir: &Path, args: &[&str]) -> Output {
+    let output = tvf()
+        .current_dir(dir)
+        .args(args)
+        .arg("--quiet")
+        .output()
+        .expect("the tvf binary runs");
+    assert_success(&output);
+    output
+}
+
+/// The JSON a command printed on stdout.
+pub fn stdout_json(output: &Output) -> serde_json::Value {
+    serde_json::from_slice(&output.stdout).expect("JSON on stdout")
+}
+
+/// Writes `field.txt` (a rotation about z plus a gradient-like part, one vector per face) and
+/// `c.json` (a vector at face 12, a divergence at vertex 5, a curl at face 40) into `dir`: the
+/// inputs of the every-command tests.
+pub fn write_field_and_constraints(mesh: &TriangleMesh, dir: &Path) {
+    let field: String = mesh
+        .faces()
+        .iter()
+        .map(|f| {
+            let c: [f64; 3] = std::array::from_fn(|k| {
+                f.iter().map(|&v| mesh.positions()[v][k]).sum::<f64>() / 3.0
+            });
+            format!("{} {} {}\n", -c[1] + 0.3 * c[2], c[0], -0.3 * c[0])
+        })
+        .collect();
+    std::fs::write(dir.join("field.txt"), field).unwrap();
+    let constraints = r#"{"constraints": [
+        {"id": "v", "kind": "vector", "face": 12, "value": [1.0, 0.0, 0.0]},
+        {"id": "s", "kind": "divergence", "vertex": 5, "value": 2.0},
+        {"id": "c", "kind": "curl", "face": 40, "value": -1.0}
+    ]}"#;
+    std::fs::write(dir.join("c.json"), constraints).unwrap();
 }
 
 /// Writes a field with both families (a rotation about z plus a gradient-like part, one vector

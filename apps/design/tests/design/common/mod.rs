@@ -2,7 +2,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeKind, NodeSpace};
 use tvf_core::TriangleMesh;
 use tvf_design::{
     default_regularization, CompiledConstraint, Constraint, ConstraintAssembler, Location,
@@ -10,6 +10,19 @@ use tvf_design::{
 };
 use tvf_discretizations::{Conforming, MassLumping};
 use tvf_spectral::{compute_basis, BasisRequest, SpectralBasis};
+
+/// Node `i` of `nodes` as a constraint location (a vertex or an edge key; a face for face
+/// nodes).
+pub fn node_location(nodes: &NodeSpace, i: usize) -> Location {
+    match nodes.kind {
+        NodeKind::Vertices => Location::Vertex(i),
+        NodeKind::Edges => Location::Edge(i),
+        NodeKind::Faces | NodeKind::FaceFrames => Location::Face {
+            face: i,
+            barycentric: None,
+        },
+    }
+}
 
 /// The `d` lowest eigenfields (`None`: the complete basis).
 pub fn spectral_basis<H: HodgeComplex + ?Sized>(complex: &H, d: Option<usize>) -> SpectralBasis {
