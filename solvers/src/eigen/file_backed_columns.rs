@@ -122,18 +122,49 @@ fn byte_range(columns: &RawColumns, first: usize, width: usize) -> (usize, usize
     (first * stride, width * stride)
 }
 
-/// Moves columns `first..first + width` out of memory until they are read again: written to
-/// the file (the writeback started now) and unmapped. Nothing for anonymous memory.
-///
-/// # Safety
-/// The columns lie inside `columns`, and no view of them is alive.
-pub(crate) unsafe fn park_columns(columns: &RawColumns, first: usize, width: usize) {
-    #[cfg(target_os = "linux")]
-    if let Some(fd) = columns.file {
+/// Columns of a file mapping, as plain numbers (so that the thread that solved them can move
+/// them out of memory, [`ParkedColumns::park`]).
+#[derive(Clone, Copy)]
+pub(crate) struct ParkedColumns {
+    /// Address of the first column.
+    start: usize,
+    /// Its offset in the file, and the bytes of the columns.
+    offset: usize,
+    bytes: usize,
+    fd: i32,
+}
+
+impl ParkedColumns {
+    /// Columns `first..first + width` of `columns`; `None` for anonymous memory (nothing to
+    /// park).
+    pub(crate) fn of(columns: &RawColumns, first: usize, width: usize) -> Option<Self> {
+        let fd = columns.file?;
         let (offset, bytes) = byte_range(columns, first, width);
-        // Failures only mean the pages stay in memory.
-        libc::sync_file_range(fd, offset as i64, bytes as i64, libc::SYNC_FILE_RANGE_WRITE);
-        unmap(columns.ptr as usize + offset, bytes);
+        Some(Self {
+            start: columns.ptr as usize + offset,
+            offset,
+            bytes,
+            fd,
+        })
+    }
+
+    /// Moves the columns out of memory until they are read again: written to the file (the
+    /// writeback started now) and unmapped.
+    ///
+    /// # Safety
+    /// The columns still lie inside their mapping, and no view of them is alive.
+    pub(crate) unsafe fn park(&self) {
+        #[cfg(target_os = "linux")]
+        {
+            // Failures only mean the pages stay in memory.
+            libc::sync_file_range(
+                self.fd,
+                self.offset as i64,
+                self.bytes as i64,
+                libc::SYNC_FILE_RANGE_WRITE,
+            );
+            unmap(self.start, self.bytes);
+        }
     }
 }
 

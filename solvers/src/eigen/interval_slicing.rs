@@ -55,7 +55,7 @@
 //! per-slice bases and a copy of every interval's vectors a visible share of the processor
 //! time (numbers in `docs/performance.md`).
 
-use super::file_backed_columns::FileBackedColumns;
+use super::file_backed_columns::{FileBackedColumns, ParkedColumns};
 use super::interval_stream::{IntervalStream, RawColumns, SolvedPart};
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::mass::Mass;
@@ -422,6 +422,19 @@ fn solve_intervals(
         IntervalStream::new(streams, jobs, sink, options.parallelism)
     });
     let slice_memory = WorkspacePool::<SliceMemory>::new(jobs.len());
+    // Streamed, each job's columns leave memory as it finishes, on the job's thread: the
+    // calling thread places them only when its products get a worker of the pool the jobs
+    // occupy (`interval_stream.rs`), which at a million faces took minutes.
+    let parked: Vec<Option<ParkedColumns>> = jobs
+        .iter()
+        .enumerate()
+        .map(|(job, &(p, _))| {
+            let (first, width) = job_columns(plans, columns, jobs, job);
+            stream
+                .as_ref()
+                .and(ParkedColumns::of(&columns[p], first, width))
+        })
+        .collect();
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
         let plan = &plans[p];
@@ -441,6 +454,11 @@ fn solve_intervals(
             output,
         );
         slice_memory.give_back(memory);
+        if let (Ok(_), Some(parked)) = (&result, parked[job]) {
+            // SAFETY: the job has returned, so its view of its columns is gone; the calling
+            // thread reads them only once this job's result has reached it.
+            unsafe { parked.park() };
+        }
         result.map_err(fail(plan.request))
     };
     let mut board = ProgressBoard::new(requests, plans, jobs, options.progress);
@@ -456,12 +474,10 @@ fn solve_intervals(
                 values: part.values.clone(),
             })
             .collect();
-        let (p, i) = jobs[job];
-        let (counts, k) = (&plans[p].counts, columns[p].k);
-        let range = (counts[i].min(k), counts[i + 1].min(k) - counts[i].min(k));
+        let p = jobs[job].0;
         // SAFETY: the job has returned, so its view of its columns is gone; views of finished
         // jobs' columns live only inside the stream's calls.
-        unsafe { stream.job_done(job, parts, range) }.map_err(fail(plans[p].request))
+        unsafe { stream.job_done(job, parts) }.map_err(fail(plans[p].request))
     };
     let solved = run_jobs(
         jobs.len(),
@@ -475,6 +491,19 @@ fn solve_intervals(
         intervals[p].extend(parts);
     }
     Ok((intervals, stream.map(IntervalStream::into_results)))
+}
+
+/// The columns `(first, width)` of plan `p`'s eigenvectors that job `job = (p, i)` fills:
+/// `counts[i]..counts[i + 1]`, cut at the request's `k`.
+fn job_columns(
+    plans: &[Plan],
+    columns: &[RawColumns],
+    jobs: &[(usize, usize)],
+    job: usize,
+) -> (usize, usize) {
+    let (p, i) = jobs[job];
+    let (counts, k) = (&plans[p].counts, columns[p].k);
+    (counts[i].min(k), counts[i + 1].min(k) - counts[i].min(k))
 }
 
 /// The output columns of each job: job `(p, i)` gets the columns of plan `p`'s eigenvectors

@@ -8,10 +8,13 @@
 //! jobs finish (the jobs of a streamed call run in that order, see `interval_jobs`): each part
 //! (an interval, or a half of a split one) is orthogonalised against the part before it, which
 //! is then handed on. The same products on the same columns as the assembly of a whole matrix
-//! give the same vectors bit for bit. Handed-on columns are given back, and an interval that
-//! must wait for an earlier one waits on disk ([`super::file_backed_columns`]).
+//! give the same vectors bit for bit. Every job's columns leave memory as the job finishes (on
+//! its own thread: the calling thread that places the intervals shares rayon's pool with the
+//! jobs, and its products can wait minutes for a free worker, so Done messages queue up), an
+//! interval waits on disk until it is placed, and handed-on columns are given back
+//! ([`super::file_backed_columns`]).
 
-use super::file_backed_columns::{drop_columns, park_columns};
+use super::file_backed_columns::{drop_columns, ParkedColumns};
 use super::mass::Mass;
 use super::pencil::Pencil;
 use super::refinement::{field_residuals, FieldResidual};
@@ -144,10 +147,12 @@ impl<'s> IntervalStream<'s> {
         }
     }
 
-    /// Job `job` finished with `parts` in its columns `first..first + width`: places every
-    /// interval that is now next in its plan and hands on what became final (all that is left
-    /// when the plan's last interval is placed); if the job's interval must wait for an earlier
-    /// one, its columns leave memory until then ([`park_columns`]).
+    /// Job `job` finished with `parts` in its columns: places every interval that is now next
+    /// in its plan and hands on what became final (all that is left when the plan's last
+    /// interval is placed). The job's columns left memory when it finished (the job parked
+    /// them, see `interval_slicing.rs`), so an interval that waits for an earlier one waits on
+    /// disk; they fault back in when placed, and the part held for the next one is parked
+    /// again.
     ///
     /// # Safety
     /// `job` has finished writing its columns, and no view of a finished job's columns is alive.
@@ -155,7 +160,6 @@ impl<'s> IntervalStream<'s> {
         &mut self,
         job: usize,
         mut parts: Vec<SolvedPart>,
-        (first, width): (usize, usize),
     ) -> Result<(), SolverError> {
         let (sink, par) = (self.sink, self.par);
         let plan = &mut self.plans[self.jobs[job].0];
@@ -170,12 +174,16 @@ impl<'s> IntervalStream<'s> {
             }
             plan.next += 1;
         }
-        if plan.waiting.contains_key(&job) {
-            park_columns(&plan.columns, first, width);
-        }
         if plan.next == plan.order.len() {
             if let Some((first, count)) = plan.held.take() {
                 plan.hand_on(first, count, sink, par)?;
+            }
+        }
+        // The part held for the next one waits on disk too (placing faulted it back in).
+        if let Some((first, count)) = plan.held {
+            let width = (first + count).min(plan.columns.k).saturating_sub(first);
+            if let Some(parked) = ParkedColumns::of(&plan.columns, first, width) {
+                parked.park();
             }
         }
         Ok(())

@@ -58,6 +58,12 @@
 //! checksum after reading the payload back
 //! ([`crate::formats::streamed_basis_file::save_computed_basis`]): the same bytes as saving the
 //! basis computed in memory, without ever holding all its eigenfunctions.
+//!
+//! **Read in blocks.** For the same reason, projections `Uᵀ M1 v` and syntheses `U c` need no
+//! more than one family's columns at a time, in file order: [`crate::BasisFileBlocks`] checks
+//! an eigenfunctions file whole (key, size, payload checksum, finite values) and then reads its
+//! stored columns a block at a time (`tvf filter` and `tvf coefficients` use it), so a basis
+//! larger than memory can be used as well as computed.
 
 use crate::eigenfunction_basis::{field_of_stored_into, FIELD_CHUNK};
 pub use crate::formats::basis_file_error::BasisFileError;
@@ -441,7 +447,7 @@ fn invalid(path: &Path, reason: String) -> BasisFileError {
 }
 
 /// Checks that the file's `size` is what `header` (of `header_length` bytes) promises.
-fn check_file_size(
+pub(crate) fn check_file_size(
     path: &Path,
     header: &BasisFileHeader,
     header_length: u64,

@@ -5,6 +5,7 @@
 
 pub(crate) mod basis_arrays;
 pub(crate) mod basis_file;
+pub(crate) mod basis_file_blocks;
 pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_error;
 pub(crate) mod basis_file_header;

@@ -12,6 +12,7 @@ mod common;
 mod compress;
 mod compress_entropy;
 mod files_basis;
+mod files_basis_blocks;
 mod files_basis_matrices;
 mod files_basis_sparse_mass;
 mod files_basis_streamed;
