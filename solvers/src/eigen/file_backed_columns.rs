@@ -1,14 +1,15 @@
 //! [`FileBackedColumns`]: the `n × k` eigenvectors of a streamed call
 //! ([`EigenOptions::finished`](super::types::EigenOptions::finished)) in a shared mapping of an
-//! unnamed temporary file instead of anonymous memory, so that an interval that finished
-//! before an earlier one (and must wait for it to be handed on, see
-//! [`super::interval_stream`]) can leave memory: its pages are unmapped and written to the file
-//! ([`park_columns`]), and fault back in when it is its turn. Handed-on columns are unmapped and
-//! their part of the file punched out ([`drop_columns`]), so neither memory nor disk holds
-//! them. Without this, on `tvf basis bunny-closed.obj -k 1000` the lowest interval of the larger
-//! family finished last and every other interval waited for it in memory: the peak did not
-//! move (1,384 against 1,372 MB). Linux only; elsewhere, or where no temporary file can be made,
-//! the columns are anonymous memory and parking does nothing.
+//! unnamed temporary file instead of anonymous memory, so that finished intervals can leave
+//! memory until they are handed on ([`super::interval_stream`]): their pages are written to the
+//! file and unmapped ([`ParkedColumns::park`], by the job that solved them, as it finishes),
+//! and fault back in when it is their turn. Handed-on columns are unmapped and their part of
+//! the file punched out ([`drop_columns`]), so neither memory nor disk holds them. Parked pages
+//! stay in the page cache while memory is plentiful, where they no longer count as the
+//! process's and the kernel can drop them once written. Measured in `docs/performance.md`:
+//! without the parking, every interval waited in memory for the lowest one of its family.
+//! Linux only; elsewhere, or where no temporary file can be made, the columns are anonymous
+//! memory and parking does nothing.
 
 use super::interval_stream::RawColumns;
 use crate::huge_pages::{release_pages, reserve_on_huge_pages};
