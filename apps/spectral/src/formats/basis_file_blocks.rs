@@ -15,8 +15,10 @@
 //! which are the dense basis's products in another summation order (equal to round-off; the
 //! tests bound the difference). Opening checks everything [`crate::load_basis`] checks before
 //! anything is computed: the key (mesh, discretization, matrices), the size the header promises,
-//! the payload checksum (read through once, in blocks) and that every stored value is finite; a
-//! file that changes afterwards is not re-checked.
+//! the payload checksum (read through once, in blocks) and that every stored value is finite.
+//! Each product then checks that the file's size and modification time are still those it was
+//! checked with, and every value it reads for being finite (a file changed in place since is
+//! refused, naming it, where that shows).
 
 use super::basis_file::{check_file_size, family_code};
 use super::basis_file_header::read_header;
@@ -53,6 +55,8 @@ pub struct BasisFileBlocks {
     sections: [Section; 3],
     /// Largest block read at a time ([`BLOCK_BYTES`] unless changed).
     block_bytes: usize,
+    /// Size and modification time of the file when it was checked.
+    checked: (u64, Option<std::time::SystemTime>),
 }
 
 /// The stored columns of one family.
@@ -77,7 +81,8 @@ impl BasisFileBlocks {
             source,
         };
         let file = File::open(path).map_err(io)?;
-        let size = file.metadata().map_err(io)?.len();
+        let metadata = file.metadata().map_err(io)?;
+        let size = metadata.len();
         let (header, header_length) = read_header(path, &mut std::io::BufReader::new(&file))?;
         expected.check_file(path, &header.key)?;
         check_file_size(path, &header, header_length, size)?;
@@ -141,6 +146,7 @@ impl BasisFileBlocks {
             slots,
             sections,
             block_bytes: BLOCK_BYTES,
+            checked: (size, metadata.modified().ok()),
         }))
     }
 
@@ -206,6 +212,14 @@ impl BasisFileBlocks {
         if section.rows == 0 || section.count == 0 {
             return Ok(());
         }
+        let error = |reason: String| SpectralBasisError::Read {
+            path: self.path.clone(),
+            reason,
+        };
+        let now = self.file.metadata().map_err(|e| error(e.to_string()))?;
+        if (now.len(), now.modified().ok()) != self.checked {
+            return Err(error("the file changed since it was checked".into()));
+        }
         let per_block = (self.block_bytes / (8 * section.rows)).clamp(1, section.count);
         let mut bytes = vec![0u8; 8 * section.rows * per_block];
         let mut values = vec![0.0f64; section.rows * per_block];
@@ -215,14 +229,14 @@ impl BasisFileBlocks {
             let offset = section.offset + (8 * section.rows * first) as u64;
             self.file
                 .read_exact_at(&mut bytes[..length], offset)
-                .map_err(|e| SpectralBasisError::Read {
-                    path: self.path.clone(),
-                    reason: e.to_string(),
-                })?;
+                .map_err(|e| error(e.to_string()))?;
             values[..length / 8]
                 .par_iter_mut()
                 .zip(bytes[..length].par_chunks_exact(8))
                 .for_each(|(value, b)| *value = f64::from_le_bytes(b.try_into().unwrap_or([0; 8])));
+            if values[..length / 8].par_iter().any(|v| !v.is_finite()) {
+                return Err(error("a stored value is no longer finite".into()));
+            }
             visit(&values[..length / 8]);
         }
         Ok(())

@@ -92,7 +92,8 @@ fn blocks_of_a_basis_file_equal_the_basis_loaded_whole() {
 }
 
 /// Cut short, one payload bit flipped, or a value made non-finite behind a valid checksum: each
-/// refused when opened, with an error naming the file. A fields-layout file is not opened in
+/// refused when opened, with an error naming the file; changed after it was opened, refused by
+/// the next product. A fields-layout file is not opened in
 /// blocks (`None`).
 #[test]
 fn damaged_files_are_refused_before_blocks_are_read() {
@@ -118,11 +119,21 @@ fn damaged_files_are_refused_before_blocks_are_read() {
     let error = refused(&flipped);
     assert!(matches!(error, BasisFileError::Checksum { .. }), "{error}");
     let mut not_finite = bytes.clone();
-    let at = (not_finite.len() - 8 - 160) / 8 * 8;
+    // Stored values end where the checksum starts.
+    let at = not_finite.len() - 8 - 8 * 20;
     not_finite[at..at + 8].copy_from_slice(&f64::NAN.to_le_bytes());
     reseal_payload(&mut not_finite);
     let error = refused(&not_finite);
     assert!(error.to_string().contains("not finite"), "{error}");
+
+    // Opened, and then changed in place: the next product refuses it.
+    std::fs::write(&path, &bytes).unwrap();
+    let blocks = BasisFileBlocks::open(&path, &key, complex()).unwrap().unwrap();
+    let mut longer = bytes.clone();
+    longer.push(0);
+    std::fs::write(&path, &longer).unwrap();
+    let error = blocks.coefficients(&vec![1.0; blocks.field_dimension()]).unwrap_err();
+    assert!(error.to_string().contains("basis.tvfb") && error.to_string().contains("changed"));
 
     let fields = dir.path().join("fields.tvfb");
     let (basis, _) =
