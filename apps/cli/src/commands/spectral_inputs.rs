@@ -94,13 +94,17 @@ impl FieldArgs {
         size: BasisSize,
     ) -> Result<ProjectionBasis> {
         let Some(path) = self.basis_file() else {
-            return Ok(ProjectionBasis::Whole(self.setup(catalog, inputs, size)?));
+            return Ok(ProjectionBasis::Whole(Box::new(
+                self.setup(catalog, inputs, size)?,
+            )));
         };
         let header = read_basis_header(path)?;
         let blocks = matches!(header.layout, BasisFileLayout::Eigenfunctions { .. })
             && header.key.matrix_hash.is_some();
         if !blocks {
-            return Ok(ProjectionBasis::Whole(self.setup(catalog, inputs, size)?));
+            return Ok(ProjectionBasis::Whole(Box::new(
+                self.setup(catalog, inputs, size)?,
+            )));
         }
         let key = BasisFileKey::new(&inputs.mesh, inputs.complex.as_ref());
         let start = std::time::Instant::now();
@@ -113,7 +117,7 @@ impl FieldArgs {
                     blocks.len(),
                     start.elapsed().as_secs_f64()
                 ));
-                Ok(ProjectionBasis::Blocks(blocks))
+                Ok(ProjectionBasis::Blocks(Box::new(blocks)))
             }
             None => anyhow::bail!(
                 "{}: the basis file changed while it was read (its layout)",
@@ -126,16 +130,16 @@ impl FieldArgs {
 /// A basis for projections and syntheses ([`FieldArgs::projection_basis`]).
 pub enum ProjectionBasis {
     /// A basis file read a block of columns at a time.
-    Blocks(BasisFileBlocks),
+    Blocks(Box<BasisFileBlocks>),
     /// A basis in memory, with its mesh and discretization.
-    Whole(SpectralSetup),
+    Whole(Box<SpectralSetup>),
 }
 
 impl ProjectionBasis {
     /// The basis.
     pub fn basis(&self) -> &dyn FieldBasis {
         match self {
-            Self::Blocks(blocks) => blocks,
+            Self::Blocks(blocks) => blocks.as_ref(),
             Self::Whole(setup) => &setup.basis,
         }
     }

@@ -128,11 +128,15 @@ fn damaged_files_are_refused_before_blocks_are_read() {
 
     // Opened, and then changed in place: the next product refuses it.
     std::fs::write(&path, &bytes).unwrap();
-    let blocks = BasisFileBlocks::open(&path, &key, complex()).unwrap().unwrap();
+    let blocks = BasisFileBlocks::open(&path, &key, complex())
+        .unwrap()
+        .unwrap();
     let mut longer = bytes.clone();
     longer.push(0);
     std::fs::write(&path, &longer).unwrap();
-    let error = blocks.coefficients(&vec![1.0; blocks.field_dimension()]).unwrap_err();
+    let error = blocks
+        .coefficients(&vec![1.0; blocks.field_dimension()])
+        .unwrap_err();
     assert!(error.to_string().contains("basis.tvfb") && error.to_string().contains("changed"));
 
     let fields = dir.path().join("fields.tvfb");
