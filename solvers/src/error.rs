@@ -93,6 +93,13 @@ pub enum SolverError {
         /// Human-readable description of what failed.
         reason: String,
     },
+    /// The caller's sink of finished eigenvectors ([`crate::EigenOptions::finished`]) failed,
+    /// e.g. writing them to a file.
+    #[error("{reason}")]
+    Stopped {
+        /// What the sink said.
+        reason: String,
+    },
     /// faer reported an allocation or index overflow failure.
     #[error("sparse factorization failed: {0}")]
     Factorization(String),

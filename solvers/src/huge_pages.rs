@@ -54,3 +54,27 @@ fn advise_huge_pages(start: usize, bytes: usize) {
     #[cfg(not(target_os = "linux"))]
     let _ = (start, bytes);
 }
+
+/// Size of the smallest page the kernel releases.
+#[cfg(target_os = "linux")]
+const PAGE: usize = 4096;
+
+/// Gives the whole pages inside `[start, start + bytes)` back to the kernel
+/// (`madvise(MADV_DONTNEED)`): the memory stays reserved, reads as zeros from then on, and no
+/// longer counts as resident. A no-op elsewhere than Linux.
+///
+/// # Safety
+/// `[start, start + bytes)` lies inside an allocation the caller owns, and nothing reads its
+/// contents again (nor writes them while this runs).
+pub(crate) unsafe fn release_pages(start: usize, bytes: usize) {
+    #[cfg(target_os = "linux")]
+    {
+        let (first, end) = (start.next_multiple_of(PAGE), (start + bytes) / PAGE * PAGE);
+        if end > first {
+            // Failure only means the pages stay resident.
+            libc::madvise(first as *mut libc::c_void, end - first, libc::MADV_DONTNEED);
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = (start, bytes);
+}

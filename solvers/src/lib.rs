@@ -57,8 +57,8 @@ pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
 pub use eigen::{
     keep_columns, lowest_eigenpairs, lowest_eigenpairs_of, process_cpu_seconds, EigenOptions,
-    EigenProgress, EigenRequest, EigenSolution, Eigenpairs, MassMatrix, Pencil, Phase,
-    PhaseStatistics, RequestError, ShiftCount, SolverStatistics,
+    EigenProgress, EigenRequest, EigenSolution, Eigenpairs, EigenvectorSink, FinishedEigenvectors,
+    MassMatrix, Pencil, Phase, PhaseStatistics, RequestError, ShiftCount, SolverStatistics,
 };
 pub use error::SolverError;
 pub use factor_parallelism::{FactorParallelism, SEQUENTIAL_FLOP_LIMIT};

@@ -51,6 +51,14 @@ pub enum SpectralBasisError {
         /// The offending value.
         value: f64,
     },
+    /// A basis read from its file block by block could not read a block.
+    #[error("{}: cannot read the basis file: {reason}", path.display())]
+    Read {
+        /// The basis file.
+        path: std::path::PathBuf,
+        /// What went wrong.
+        reason: String,
+    },
 }
 
 /// `d` eigenfields of the Hodge–Laplacian `L` of one discretization, `M_X`-orthonormal.

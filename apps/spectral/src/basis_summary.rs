@@ -138,8 +138,10 @@ pub struct BasisSummary<'a> {
     pub mesh: &'a str,
     /// The catalog id of the discretization.
     pub discretization: &'a str,
-    /// The basis.
-    pub basis: &'a EigenfunctionBasis,
+    /// The eigenvalues of the basis fields, ascending.
+    pub eigenvalues: &'a [f64],
+    /// The family of each basis field.
+    pub families: &'a [FieldFamily],
     /// How its computation went.
     pub report: &'a BasisReport,
     /// The cost of saving it.
@@ -153,7 +155,7 @@ pub struct BasisSummary<'a> {
 impl BasisSummary<'_> {
     /// One line: the fields by family, the discretization, the seconds, the outputs.
     pub fn headline(&self) -> String {
-        let counts = FamilyCounts::of(self.basis.families());
+        let counts = FamilyCounts::of(self.families);
         let written: Vec<String> = self
             .file
             .iter()
@@ -162,7 +164,7 @@ impl BasisSummary<'_> {
             .collect();
         format!(
             "{} fields ({} harmonic, {} integrable, {} co-integrable; {}) in {:.2} s -> {}",
-            self.basis.len(),
+            self.eigenvalues.len(),
             counts.harmonic,
             counts.integrable,
             counts.cointegrable,
@@ -179,9 +181,9 @@ impl BasisSummary<'_> {
     /// `factorizations`, `distinct_shifts`, `refined_pairs`, `max_field_residual`,
     /// `max_field_residual_floor`, `output` and `export` (paths or null).
     pub fn to_json(&self) -> Value {
-        let (basis, report) = (self.basis, self.report);
-        let counts = FamilyCounts::of(basis.families());
-        let labels: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
+        let report = self.report;
+        let counts = FamilyCounts::of(self.families);
+        let labels: Vec<&str> = self.families.iter().map(|f| f.name()).collect();
         let phases: serde_json::Map<String, Value> = report
             .phases(self.writing)
             .iter()
@@ -191,11 +193,11 @@ impl BasisSummary<'_> {
         json!({
             "mesh": self.mesh,
             "discretization": self.discretization,
-            "fields": basis.len(),
+            "fields": self.eigenvalues.len(),
             "harmonic": counts.harmonic,
             "integrable": counts.integrable,
             "cointegrable": counts.cointegrable,
-            "eigenvalues": basis.eigenvalues(),
+            "eigenvalues": self.eigenvalues,
             "labels": labels,
             "seconds": report.seconds,
             "computed": {
@@ -234,7 +236,8 @@ mod tests {
         let summary = BasisSummary {
             mesh: "example:torus",
             discretization: DEFAULT_DISCRETIZATION,
-            basis: &basis,
+            eigenvalues: basis.eigenvalues(),
+            families: basis.families(),
             report: &report,
             writing: PhaseStatistics::default(),
             file: Some(Path::new("b.tvfb")),

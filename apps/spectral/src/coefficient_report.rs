@@ -1,8 +1,9 @@
 //! A field's Fourier coefficients as `tvf coefficients` prints them: a table for people
 //! ([`FourierAnalysis::table`]) or JSON for programs ([`FourierAnalysis::to_json`]).
 
-use crate::basis::{FieldFamily, SpectralBasis};
+use crate::basis::FieldFamily;
 use crate::fourier::FourierAnalysis;
+use crate::FieldBasis;
 use serde_json::{json, Value};
 use std::fmt::Write as _;
 
@@ -11,7 +12,7 @@ impl FourierAnalysis {
     /// frequency `√λ` (`basis` is the basis the analysis was made in).
     fn rows<'a>(
         &'a self,
-        basis: &'a SpectralBasis,
+        basis: &'a (impl FieldBasis + ?Sized),
     ) -> impl Iterator<Item = (usize, FieldFamily, f64, f64)> + 'a {
         self.coefficients
             .iter()
@@ -24,7 +25,7 @@ impl FourierAnalysis {
     /// The analysis as JSON: `coefficients` (`[{index, family, eigenvalue, frequency,
     /// coefficient}, ...]` in basis order), `alpha`, `beta`, `gamma` (the coefficients of each
     /// family), `norm` (`‖v‖_{M_X}`) and `relative_rest_norm`.
-    pub fn to_json(&self, basis: &SpectralBasis) -> Value {
+    pub fn to_json(&self, basis: &(impl FieldBasis + ?Sized)) -> Value {
         let entries: Vec<Value> = self
             .rows(basis)
             .map(|(index, family, lambda, c)| {
@@ -51,7 +52,7 @@ impl FourierAnalysis {
     /// The analysis as a table, one line each (every line ends in a newline): a header, one
     /// row per coefficient (index, family, eigenvalue, frequency, coefficient), the energy of
     /// each family with its share of `‖v‖²`, and the rest field's relative norm.
-    pub fn table(&self, basis: &SpectralBasis) -> String {
+    pub fn table(&self, basis: &(impl FieldBasis + ?Sized)) -> String {
         let mut text = format!(
             "{:>6}  {:<12}  {:>14}  {:>14}  {:>22}\n",
             "index", "family", "eigenvalue", "frequency", "coefficient"

@@ -15,8 +15,8 @@ use std::time::Instant;
 use tvf_core::discretization::sparse::to_csr;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass};
 use tvf_solvers::{
-    lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress, EigenRequest, Pencil,
-    PhaseStatistics, ShiftCount, SolverStatistics,
+    lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenProgress, EigenRequest,
+    EigenvectorSink, FinishedEigenvectors, Pencil, PhaseStatistics, ShiftCount, SolverStatistics,
 };
 
 /// How a basis computation went: sizes, accuracy and cost.
@@ -140,6 +140,80 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     request: &BasisRequest<'_>,
 ) -> Result<(EigenfunctionBasis, BasisReport), BasisError> {
     let start = Instant::now();
+    let solved = solve_basis(complex, request, None)?;
+    let (basis, mut report) = kept_in_memory(complex, solved);
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok((basis, report))
+}
+
+/// The basis of `solved` (whose eigenfunctions were kept, not streamed) with its eigenfunctions
+/// normalised, and its report (without its seconds).
+pub(crate) fn kept_in_memory<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    solved: SolvedBasis,
+) -> (EigenfunctionBasis, BasisReport) {
+    let gradient = LinearOperator::Sparse(complex.d0().clone());
+    let (potential_norms, co_potential_norms) = solved.energy_norms.unzip();
+    let potentials = normalised(
+        &gradient,
+        complex.m1(),
+        potential_norms,
+        solved.potential.vectors,
+        solved.kept.0,
+    );
+    let co_potentials = normalised(
+        complex.co_gradient(),
+        complex.m1(),
+        co_potential_norms,
+        solved.co_potential.vectors,
+        solved.kept.1,
+    );
+    let basis = EigenfunctionBasis::new(solved.entries, potentials, co_potentials, solved.harmonic);
+    (basis, solved.report)
+}
+
+/// Where [`solve_basis`] hands the eigenfunctions as they are computed, instead of keeping them
+/// (see [`crate::save_computed_basis`]).
+pub(crate) trait EigenfunctionSink: Sync {
+    /// Called once, before any column, with the number of integrable, co-integrable and
+    /// harmonic columns that will come: the basis keeps the first ones of each family, at most
+    /// that many (the exact harmonic count; the computation fails if it ends up with more);
+    /// `false` declines the columns (they are then kept in memory).
+    fn begin(&self, counts: (usize, usize, usize)) -> Result<bool, String>;
+
+    /// Column `index` of `family`'s matrix of [`EigenfunctionBasis`]: a potential (`n0`
+    /// values) or a co-potential (`n2`), normalised as there, bit for bit. Each column comes
+    /// once, in no particular order.
+    fn column(&self, family: FieldFamily, index: usize, values: &[f64]) -> Result<(), String>;
+}
+
+/// What [`solve_basis`] found: the basis entries, the eigenpairs of both scalar problems (their
+/// vectors `n × 0` where they went to a sink), the number of each family's columns kept
+/// (integrable, co-integrable), the harmonic fields kept and the report (without its seconds).
+pub(crate) struct SolvedBasis {
+    pub entries: Vec<(f64, FieldFamily, usize)>,
+    pub potential: ScalarEigenpairs,
+    pub co_potential: ScalarEigenpairs,
+    pub kept: (usize, usize),
+    pub harmonic: Mat<f64>,
+    /// The `M1` norms of the kept potentials' and co-potentials' fields, from their eigenvalues,
+    /// where the fields cannot be normalised column by column (a non-diagonal `M1`, or a
+    /// co-gradient that is not a sparse matrix); `None` otherwise.
+    pub energy_norms: Option<(Vec<f64>, Vec<f64>)>,
+    pub report: BasisReport,
+    /// Whether the eigenfunctions went to the sink (a sink is used only when the counts of
+    /// every family are known before solving and the normalisation works column by column).
+    pub streamed: bool,
+}
+
+/// The steps of [`compute_eigenfunction_basis`] up to the normalisation of the eigenfunctions,
+/// which is done here, column by column as the eigensolver hands them on, for a `sink` that
+/// can be used (see [`SolvedBasis::streamed`]).
+pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    request: &BasisRequest<'_>,
+    sink: Option<&dyn EigenfunctionSink>,
+) -> Result<SolvedBasis, BasisError> {
     let (potential_nodes, co_potential_nodes) =
         (complex.potential_nodes(), complex.co_potential_nodes());
     let free_fields = free_nodes(complex.field_nodes());
@@ -187,6 +261,16 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         counting_cpu_seconds,
         ..BasisReport::default()
     };
+    // The columns each family keeps, and so the basis's counts, when they are known now.
+    let kept = (ka.min(exact.available()), kb.min(co_exact.available()));
+    let counts = predicted_counts(request.size, harmonic.fields.ncols(), kept);
+    let streaming = match (sink, counts) {
+        (Some(sink), Some(counts)) if streams_columns(complex) => sink
+            .begin(counts)
+            .map_err(stopped("potential"))?
+            .then(|| ColumnStreaming::new(complex, [&exact, &co_exact], kept, sink)),
+        _ => None,
+    };
     // Each family's eigensolver gets its own seed, derived from the request's with a fixed salt
     // per family: the same request seed gives the same bases (and so the same cached files and
     // recorded results), so the salts must not change.
@@ -196,6 +280,7 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         (&exact, &exact_pencil, ka, tops.0, family_seed(2)),
         (&co_exact, &co_exact_pencil, kb, tops.1, family_seed(3)),
         request,
+        streaming.as_ref(),
     )?;
     report.solver = solver;
     report.factorizations = solver.factorizations();
@@ -215,6 +300,12 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
         count(FieldFamily::Cointegrable),
         count(FieldFamily::Harmonic),
     );
+    let within = |(a, b, h): (usize, usize, usize)| na <= a && nb <= b && nh == h;
+    if streaming.is_some() && !counts.is_some_and(within) {
+        return Err(BasisError::InvalidRequest(format!(
+            "the basis kept {na} + {nb} + {nh} fields, not the {counts:?} its eigenfunctions              were written for"
+        )));
+    }
     report.integrable_count = na;
     report.cointegrable_count = nb;
     report.potential_kernel_eigenvalues = a.kernel_values.clone();
@@ -222,22 +313,127 @@ pub fn compute_eigenfunction_basis<H: HodgeComplex + ?Sized>(
     report.max_solver_residual = a.max_residual.max(b.max_residual);
     report.max_field_residual = a.max_field_residual.max(b.max_field_residual);
     report.max_field_residual_floor = a.max_field_residual_floor.max(b.max_field_residual_floor);
-
-    let gradient = LinearOperator::Sparse(complex.d0().clone());
-    let potentials = normalised(&gradient, complex.m1(), (&exact, &a.values), a.vectors, na);
-    let co_potentials = normalised(
-        complex.co_gradient(),
-        complex.m1(),
-        (&co_exact, &b.values),
-        b.vectors,
-        nb,
-    );
+    // Where the fields cannot be normalised column by column, their norms come from the
+    // eigenvalues ([`ScalarSpectrum::energy_norms`]) while the spectra are at hand.
+    let energy_norms = (!streams_columns(complex)).then(|| {
+        let kept = |pairs: &ScalarEigenpairs, n: usize| {
+            pairs.vectors.as_ref().subcols(0, n.min(pairs.vectors.ncols()))
+        };
+        (
+            exact.energy_norms(&a.values, kept(&a, na)),
+            co_exact.energy_norms(&b.values, kept(&b, nb)),
+        )
+    });
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
-    report.seconds = start.elapsed().as_secs_f64();
-    Ok((
-        EigenfunctionBasis::new(entries, potentials, co_potentials, harmonic),
+    Ok(SolvedBasis {
+        entries,
+        potential: a,
+        co_potential: b,
+        kept: (na, nb),
+        harmonic,
+        energy_norms,
         report,
-    ))
+        streamed: streaming.is_some(),
+    })
+}
+
+/// Bounds of the (integrable, co-integrable, harmonic) counts of the basis of `size` from
+/// `harmonic` fields and `kept` eigenpairs of each family: the first two are upper bounds (the
+/// selection of `d` fields may drop the highest of each family), the harmonic count is exact;
+/// `None` where only the eigenvalues can tell (a bound on them).
+fn predicted_counts(
+    size: BasisSize,
+    harmonic: usize,
+    kept: (usize, usize),
+) -> Option<(usize, usize, usize)> {
+    match size {
+        BasisSize::Fields(d) => Some((kept.0, kept.1, harmonic.min(d))),
+        BasisSize::Pairs(_) | BasisSize::Complete => Some((kept.0, kept.1, harmonic)),
+        BasisSize::MaxEigenvalue(_) => None,
+    }
+}
+
+/// Whether [`normalised`] works column by column for `complex` (a sparse co-gradient and a
+/// diagonal `M1`), so that eigenfunctions can be normalised as they come.
+fn streams_columns<H: HodgeComplex + ?Sized>(complex: &H) -> bool {
+    complex.co_gradient().as_sparse().is_some() && complex.m1().diagonal_values().is_some()
+}
+
+/// The error of a sink that failed, for the eigenproblem `problem`.
+fn stopped(problem: &'static str) -> impl Fn(String) -> BasisError {
+    move |reason| BasisError::Eigen {
+        problem,
+        source: tvf_solvers::SolverError::Stopped { reason },
+    }
+}
+
+/// The eigensolver's finished eigenvectors turned into [`EigenfunctionSink`] columns: kernel
+/// columns and columns past a family's kept count dropped, the others taken to the full node
+/// numbering and normalised as [`normalised`] does (the same arithmetic per column).
+struct ColumnStreaming<'a> {
+    spectra: [&'a ScalarSpectrum; 2],
+    /// `d0` and the co-gradient as CSR matrices.
+    gradients: [sprs::CsMat<f64>; 2],
+    m1: &'a [f64],
+    kept: (usize, usize),
+    sink: &'a dyn EigenfunctionSink,
+}
+
+impl<'a> ColumnStreaming<'a> {
+    /// For a complex where [`streams_columns`] holds.
+    fn new<H: HodgeComplex + ?Sized>(
+        complex: &'a H,
+        spectra: [&'a ScalarSpectrum; 2],
+        kept: (usize, usize),
+        sink: &'a dyn EigenfunctionSink,
+    ) -> Self {
+        let co_gradient = complex
+            .co_gradient()
+            .as_sparse()
+            .expect("streams_columns holds");
+        Self {
+            spectra,
+            gradients: [to_csr(complex.d0()), to_csr(co_gradient)],
+            m1: complex
+                .m1()
+                .diagonal_values()
+                .expect("streams_columns holds"),
+            kept,
+            sink,
+        }
+    }
+
+    /// Hands the kept columns of `finished` (request 0: potentials, 1: co-potentials) to the sink.
+    fn hand_on(&self, finished: &FinishedEigenvectors<'_>) -> Result<(), String> {
+        let r = finished.request;
+        let (spectrum, family) = match r {
+            0 => (self.spectra[0], FieldFamily::Integrable),
+            _ => (self.spectra[1], FieldFamily::Cointegrable),
+        };
+        let kept = if r == 0 { self.kept.0 } else { self.kept.1 };
+        let components = spectrum.components();
+        // Columns of `finished` that are kept, with their index in the family.
+        let columns: Vec<(usize, usize)> = (0..finished.vectors.ncols())
+            .filter_map(|j| {
+                let index = (finished.first + j).checked_sub(components)?;
+                (index < kept).then_some((j, index))
+            })
+            .collect();
+        columns.par_chunks(NORM_CHUNK).try_for_each(|chunk| {
+            let mut functions = Mat::<f64>::zeros(spectrum.full_dimension(), chunk.len());
+            for (c, &(j, _)) in chunk.iter().enumerate() {
+                spectrum.to_full(finished.vectors.col(j), functions.col_mut(c));
+            }
+            let norms = field_norms(&self.gradients[r.min(1)], self.m1, functions.as_ref());
+            let mut values = Vec::with_capacity(functions.nrows());
+            for (c, (&(_, index), norm)) in chunk.iter().zip(norms).enumerate() {
+                values.clear();
+                values.extend(functions.col(c).iter().map(|x| x / norm));
+                self.sink.column(family, index, &values)?;
+            }
+            Ok(())
+        })
+    }
 }
 
 /// The basis's entries `(eigenvalue, family, index in the family)`: the `harmonic` fields
@@ -294,11 +490,13 @@ type Family<'p, 'a> = (
 ///
 /// Each family is `(problem, pencil, count, top, seed)` with `top` the count at the split's
 /// threshold (kernel included); returns the potential and the co-potential eigenpairs and the
-/// solver's statistics.
+/// solver's statistics. With `streaming`, the eigenvectors go to its sink as they are final
+/// (and the returned ones have no columns).
 fn solve_both_families(
     potential: Family<'_, '_>,
     co_potential: Family<'_, '_>,
     request: &BasisRequest<'_>,
+    streaming: Option<&ColumnStreaming<'_>>,
 ) -> Result<(ScalarEigenpairs, ScalarEigenpairs, SolverStatistics), BasisError> {
     let families = [potential, co_potential];
     let counts: Vec<usize> = families
@@ -331,8 +529,11 @@ fn solve_both_families(
             seed: *seed,
         })
         .collect();
+    let finished = |f: &FinishedEigenvectors<'_>| streaming.map_or(Ok(()), |s| s.hand_on(f));
+    let sink: &EigenvectorSink<'_> = &finished;
     let options = EigenOptions {
         progress: Some(&progress),
+        finished: streaming.is_some().then_some(sink),
         ..EigenOptions::default()
     };
     let solution = lowest_eigenpairs_of(&requests, &options).map_err(|e| BasisError::Eigen {
@@ -357,23 +558,23 @@ fn solve_both_families(
 
 /// The first `count` columns of `functions`, each divided by the `M1` norm of `gradient · φ`,
 /// so that `gradient · φ̃` is `M1`-unit. `gradient` is `n1 × n` (the complex's `d0` or its
-/// co-gradient `−M1⁻¹ d1ᵀ`); `spectrum` is the family's eigenproblem with the eigenvalues of
-/// the columns. Works in place (no second copy of the eigenfunctions). Where the gradient is a
-/// sparse matrix and `M1` diagonal the norms are taken from the fields as they are formed
-/// ([`field_norms`]); otherwise (a non-diagonal `M1`: its inverse or its products would be
-/// block solves or sparse products with every field) from the eigenvalues,
-/// `‖gradient · φ‖²_{M1} = φᵀ A φ = λ φᵀ M φ` ([`ScalarSpectrum::energy_norms`]).
+/// co-gradient `−M1⁻¹ d1ᵀ`). Works in place (no second copy of the eigenfunctions). Where the
+/// gradient is a sparse matrix and `M1` diagonal the norms are taken from the fields as they are
+/// formed ([`field_norms`]); otherwise (a non-diagonal `M1`: its inverse or its products would be
+/// block solves or sparse products with every field) they are `energy_norms`, one per kept
+/// column, computed from the eigenvalues, `‖gradient · φ‖²_{M1} = φᵀ A φ = λ φᵀ M φ`
+/// ([`ScalarSpectrum::energy_norms`]).
 fn normalised(
     gradient: &LinearOperator,
     m1: &Mass,
-    (spectrum, values): (&ScalarSpectrum, &[f64]),
+    energy_norms: Option<Vec<f64>>,
     mut functions: Mat<f64>,
     count: usize,
 ) -> Mat<f64> {
     let rows = functions.nrows();
     functions.truncate(rows, count.min(functions.ncols()));
     let (Some(gradient), Some(m1)) = (gradient.as_sparse(), m1.diagonal_values()) else {
-        let norms = spectrum.energy_norms(values, functions.as_ref());
+        let norms = energy_norms.expect("energy norms where M1 is not diagonal");
         functions
             .par_col_iter_mut()
             .zip(norms)

@@ -2,8 +2,9 @@
 //! the integrable and one for the co-integrable family, a constant for the harmonic part and one
 //! for the rest field (Section 8.5 of the paper).
 
-use crate::basis::{FieldFamily, SpectralBasis, SpectralBasisError};
+use crate::basis::{FieldFamily, SpectralBasisError};
 use crate::filter_response::FrequencyResponse;
+use crate::FieldBasis;
 use thiserror::Error;
 
 /// Why a filter could not be applied.
@@ -99,7 +100,7 @@ impl SpectralFilter {
     pub fn continued_rest_gain(
         integrable: &FrequencyResponse,
         cointegrable: &FrequencyResponse,
-        basis: &SpectralBasis,
+        basis: &(impl FieldBasis + ?Sized),
     ) -> f64 {
         let top = basis
             .eigenvalues()
@@ -111,7 +112,7 @@ impl SpectralFilter {
     }
 
     /// The gain of every basis field (`d` entries).
-    pub fn gains(&self, basis: &SpectralBasis) -> Vec<f64> {
+    pub fn gains(&self, basis: &(impl FieldBasis + ?Sized)) -> Vec<f64> {
         basis
             .families()
             .iter()
@@ -127,7 +128,7 @@ impl SpectralFilter {
     /// Filters `field` (`n1` pointwise coefficients) in `basis`.
     pub fn apply(
         &self,
-        basis: &SpectralBasis,
+        basis: &(impl FieldBasis + ?Sized),
         field: &[f64],
     ) -> Result<FilteredField, FilterError> {
         for (what, value) in [("harmonic", self.harmonic_gain), ("rest", self.rest_gain)] {

@@ -1,7 +1,7 @@
-//! Fourier analysis of a field in a [`SpectralBasis`]: the coefficients `α`, `β`, `γ` by family,
+//! Fourier analysis of a field in a [`crate::SpectralBasis`] (or any [`FieldBasis`]): the coefficients `α`, `β`, `γ` by family,
 //! reconstruction, and the rest field the truncated basis cannot represent.
 
-use crate::{FieldFamily, SpectralBasis, SpectralBasisError};
+use crate::{FieldBasis, FieldFamily, SpectralBasisError};
 
 /// The Fourier representation of one field `v` (equation (11) of the paper) in a basis `U`.
 #[derive(Debug, Clone, PartialEq)]
@@ -26,7 +26,10 @@ pub struct FourierAnalysis {
 
 impl FourierAnalysis {
     /// Analyses `field` (`n1` pointwise coefficients) in `basis`.
-    pub fn new(basis: &SpectralBasis, field: &[f64]) -> Result<Self, SpectralBasisError> {
+    pub fn new<B: FieldBasis + ?Sized>(
+        basis: &B,
+        field: &[f64],
+    ) -> Result<Self, SpectralBasisError> {
         let coefficients = basis.coefficients(field)?;
         let projection = basis.reconstruct(&coefficients)?;
         let rest: Vec<f64> = field.iter().zip(&projection).map(|(v, p)| v - p).collect();
@@ -63,8 +66,8 @@ impl FourierAnalysis {
 
 /// The field `U c + rest` from coefficients `c` (`d` entries) and an optional rest field: the
 /// inverse of [`FourierAnalysis::new`] when given its coefficients and rest.
-pub fn reconstruct_with_rest(
-    basis: &SpectralBasis,
+pub fn reconstruct_with_rest<B: FieldBasis + ?Sized>(
+    basis: &B,
     coefficients: &[f64],
     rest: Option<&[f64]>,
 ) -> Result<Vec<f64>, SpectralBasisError> {

@@ -47,6 +47,7 @@ mod dense_memory;
 mod eigenfunction_basis;
 pub mod eigenspace_angles;
 mod family_split;
+mod field_basis;
 mod filter;
 mod filter_response;
 mod filter_spec;
@@ -96,6 +97,7 @@ pub use comparison_report::{ComparedEntry, ComparisonReport, EntryMeasurements};
 pub use compute_basis::{compute_basis, compute_eigenfunction_basis, BasisReport};
 pub use computed_field::{check_computed_field, NonFiniteField};
 pub use eigenfunction_basis::EigenfunctionBasis;
+pub use field_basis::FieldBasis;
 pub use filter::{FilterError, FilteredField, SpectralFilter};
 pub use filter_response::{FrequencyResponse, PiecewiseLinear};
 pub use filter_spec::read_curve_file;
@@ -106,6 +108,7 @@ pub use formats::basis_file::{
     save_basis, save_eigenfunction_basis, BasisFileError, BasisFileHeader, BasisFileKey,
     BasisFileLayout, StoredFieldMass, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
+pub use formats::basis_file_blocks::{BasisFileBlocks, BLOCK_BYTES};
 pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, open_basis_file_with,
     BasisFileUseError,
@@ -146,6 +149,7 @@ pub use formats::sparse_npz_read::{
     InflationBudget, NPZ_INFLATED_LIMIT,
 };
 pub use formats::stored_basis::StoredBasis;
+pub use formats::streamed_basis_file::{save_computed_basis, SavedBasis, SavedBasisError};
 pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};

@@ -2,7 +2,7 @@
 //! potential or the co-potential eigenproblem), with its kernel removed by count.
 
 use crate::BasisError;
-use faer::{Mat, MatRef};
+use faer::{ColMut, ColRef, Mat, MatRef};
 use rayon::prelude::*;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{from_triplets, mul_vec};
@@ -47,7 +47,8 @@ enum RestrictedMass {
 pub(crate) struct ScalarEigenpairs {
     /// Non-zero eigenvalues, ascending.
     pub values: Vec<f64>,
-    /// `n × k` eigenvectors in the full node numbering (zero on unused nodes), `M`-orthonormal.
+    /// `n × k` eigenvectors in the full node numbering (zero on unused nodes), `M`-orthonormal;
+    /// `n × 0` where they went to the eigensolver's sink as they were computed.
     pub vectors: Mat<f64>,
     /// The dropped kernel eigenvalues (one per component with constants in the kernel), for the
     /// report.
@@ -219,6 +220,25 @@ impl ScalarSpectrum {
             .collect()
     }
 
+    /// Number of nodes of the space, free or not: the rows of the eigenvectors in the full
+    /// numbering.
+    pub fn full_dimension(&self) -> usize {
+        self.full_dimension
+    }
+
+    /// Writes the eigenvector `restricted` (on the free nodes) into `full` (the full numbering,
+    /// zero on the other nodes: `full` must be zero there already).
+    pub fn to_full(&self, restricted: ColRef<'_, f64>, mut full: ColMut<'_, f64>) {
+        match &self.used {
+            None => full.copy_from(restricted),
+            Some(used) => {
+                for (r, &i) in used.iter().enumerate() {
+                    full[i] = restricted[r];
+                }
+            }
+        }
+    }
+
     /// The lowest `count` non-zero eigenpairs from the solver's lowest `count + components()`
     /// eigenpairs `pairs` of [`ScalarSpectrum::pencil`]. The `components` lowest are the kernel
     /// (constants per component) and are dropped by count; they are checked to be small against
@@ -255,6 +275,8 @@ impl ScalarSpectrum {
         }
         let n = self.full_dimension;
         let vectors = match &self.used {
+            // The vectors went to the eigensolver's sink of finished eigenvectors.
+            _ if all_vectors.ncols() < all_values.len() => Mat::zeros(n, 0),
             None => keep_columns(all_vectors, self.components, count),
             Some(used) => {
                 let mut full = Mat::zeros(n, count);

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use super::output_path::through_links;
 use super::staged_folder::StagedFolder;
 use super::temporaries::commit_uninterrupted;
+use super::write_faults::apply_injected_fault;
 
 /// A file being written; see the [module](self).
 #[derive(Debug)]
@@ -51,12 +52,16 @@ impl StagedFile {
     }
 
     /// Puts the complete file into place (uninterrupted, see
-    /// [`super::temporaries::commit_uninterrupted`]).
+    /// [`super::temporaries::commit_uninterrupted`]). An injected write fault
+    /// ([`super::inject_write_faults`]) for the target is applied first, as
+    /// [`super::write_atomically`] applies it before its rename (content written in place by
+    /// the caller, as a basis computed into its file is, gets it only here).
     pub fn commit(self) -> std::io::Result<()> {
         let content = self.path();
         let Some(staging) = self.staging else {
             return Ok(());
         };
+        apply_injected_fault(&self.target)?;
         commit_uninterrupted(|| std::fs::rename(&content, &self.target))?;
         // The now empty staging folder is removed when dropped here.
         drop(staging);

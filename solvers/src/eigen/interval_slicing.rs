@@ -46,20 +46,30 @@
 //! `tvf basis bunny-closed.obj -k 1000` rose from 1.32 to 1.55 GiB with it; see
 //! `docs/performance.md`), and a slice's Krylov basis, locked vectors and buffers are handed to
 //! the next job
-//! ([`super::workspace_pool`]). Fresh memory is expensive: the kernel faults in and zeroes
+//! ([`super::workspace_pool`]). With [`EigenOptions::finished`] the jobs run plan by plan in
+//! ascending interval order, and each interval's vectors, once orthogonalised against the
+//! previous interval's and used for the next one's, are handed to the caller and their pages
+//! given back ([`super::interval_stream`]): then only the intervals being solved or waiting
+//! for an earlier one are in memory, never the whole `n × k`. Fresh memory is expensive: the kernel faults in and zeroes
 //! every new page on first touch, many times slower than a second pass over it, which made the
 //! per-slice bases and a copy of every interval's vectors a visible share of the processor
 //! time (numbers in `docs/performance.md`).
 
+use super::file_backed_columns::{FileBackedColumns, ParkedColumns};
+use super::interval_stream::{IntervalStream, RawColumns, SolvedPart};
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::mass::Mass;
 use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
-use super::refinement::{field_residuals, refine_interval, Refinement, RefinementSettings};
+use super::refinement::{
+    field_residuals, refine_interval, FieldResidual, Refinement, RefinementSettings,
+};
 use super::shift_factor::ShiftFactor;
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::mass_inner;
-use super::types::{EigenOptions, EigenProgress, Eigenpairs};
+use super::types::{
+    EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors,
+};
 use super::workspace_pool::WorkspacePool;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_on_huge_pages;
@@ -134,41 +144,112 @@ pub fn lowest_eigenpairs_of(
     clock.stop(&mut statistics.counting);
 
     let clock = PhaseClock::start();
-    let jobs = interval_jobs(requests, &plans);
+    let jobs = interval_jobs(requests, &plans, options.finished.is_some());
     // Each plan's eigenvectors are written by the jobs straight into their columns of one
     // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
     // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
-    let mut eigenvectors: Vec<Mat<f64>> = plans
+    // Streamed, they are in a mapped temporary file instead, where an interval that waits for
+    // an earlier one to be handed on can leave memory ([`FileBackedColumns`]).
+    let streaming = options.finished.is_some();
+    let (mut eigenvectors, mut files): (Vec<Mat<f64>>, Vec<FileBackedColumns>) = (vec![], vec![]);
+    for plan in &plans {
+        let request = &requests[plan.request];
+        let (n, k) = (request.pencil.dimension(), request.count);
+        if streaming {
+            files.push(FileBackedColumns::new(n, k));
+        } else {
+            eigenvectors.push(reserve_on_huge_pages(n, k));
+        }
+    }
+    let columns: Vec<RawColumns> = plans
         .iter()
-        .map(|plan| {
+        .enumerate()
+        .map(|(p, plan)| {
             let request = &requests[plan.request];
-            reserve_on_huge_pages(request.pencil.dimension(), request.count)
+            let (n, k) = (request.pencil.dimension(), request.count);
+            match streaming {
+                true => files[p].raw(k),
+                false => RawColumns {
+                    ptr: eigenvectors[p].as_ptr_mut(),
+                    rows: n,
+                    col_stride: eigenvectors[p].col_stride().unsigned_abs(),
+                    k,
+                    file: None,
+                },
+            }
         })
         .collect();
-    let intervals = solve_intervals(requests, options, &plans, &jobs, &mut eigenvectors)?;
+    let (intervals, streamed) = solve_intervals(requests, options, &plans, &jobs, &columns)?;
+    drop(files);
     for part in intervals.iter().flatten() {
         statistics.refined_pairs += part.refinement.refined;
         statistics.refinement.wall_seconds += part.refinement.wall_seconds;
         statistics.refinement.cpu_seconds += part.refinement.cpu_seconds;
     }
-    for ((plan, parts), vectors) in plans.iter().zip(intervals).zip(eigenvectors) {
-        let request = &requests[plan.request];
-        let assembled = assemble_plan(plan, request, parts, vectors, options.parallelism)
-            .map_err(fail(plan.request))?;
-        pairs[plan.request] = Some(assembled);
+    let mut residuals: Vec<Option<Vec<FieldResidual>>> = vec![None; requests.len()];
+    match streamed {
+        Some(streamed) => {
+            for (plan, (values, field)) in plans.iter().zip(streamed) {
+                let request = &requests[plan.request];
+                let values = checked_values(plan, request, values).map_err(fail(plan.request))?;
+                let vectors = Mat::zeros(request.pencil.dimension(), 0);
+                pairs[plan.request] = Some((values, vectors));
+                residuals[plan.request] = Some(field);
+            }
+        }
+        None => {
+            for ((plan, parts), vectors) in plans.iter().zip(intervals).zip(eigenvectors) {
+                let request = &requests[plan.request];
+                let assembled = assemble_plan(plan, request, parts, vectors, options.parallelism)
+                    .map_err(fail(plan.request))?;
+                pairs[plan.request] = Some(assembled);
+            }
+        }
     }
-    let results = requests
-        .iter()
-        .zip(pairs)
-        .map(|(request, found)| {
-            finish_request(request, found, &mut statistics, options.parallelism)
-        })
-        .collect();
+    let mut results = Vec::with_capacity(requests.len());
+    for (r, ((request, found), field)) in requests.iter().zip(pairs).zip(residuals).enumerate() {
+        let found = match (options.finished, found, field) {
+            // Solved densely (or nothing wanted): handed on whole.
+            (Some(sink), Some((values, vectors)), None) => {
+                let result = finish_request(
+                    request,
+                    Some((values, vectors)),
+                    None,
+                    &mut statistics,
+                    options.parallelism,
+                );
+                hand_on_whole(sink, r, result).map_err(fail(r))?
+            }
+            (_, found, field) => {
+                finish_request(request, found, field, &mut statistics, options.parallelism)
+            }
+        };
+        results.push(found);
+    }
     clock.stop(&mut statistics.solving);
     Ok(EigenSolution {
         pairs: results,
         statistics,
     })
+}
+
+/// `result` with its vectors handed to `sink` (request `request`, from column 0) and dropped.
+fn hand_on_whole(
+    sink: &EigenvectorSink<'_>,
+    request: usize,
+    mut result: Eigenpairs,
+) -> Result<Eigenpairs, SolverError> {
+    if !result.values.is_empty() {
+        sink(&FinishedEigenvectors {
+            request,
+            first: 0,
+            values: &result.values,
+            vectors: result.vectors.as_ref(),
+        })
+        .map_err(|reason| SolverError::Stopped { reason })?;
+    }
+    result.vectors = Mat::zeros(result.vectors.nrows(), 0);
+    Ok(result)
 }
 
 /// Turns a [`SolverError`] of request `request` into a [`RequestError`].
@@ -273,8 +354,15 @@ fn count_boundaries(
 
 /// The jobs of phase 2: `(plan, interval)` for every interval that holds eigenvalues, the
 /// largest first (dimension × eigenpairs), so that the pool ends on small ones and no thread
-/// idles long while the last big interval finishes.
-fn interval_jobs(requests: &[EigenRequest<'_, '_>], plans: &[Plan]) -> Vec<(usize, usize)> {
+/// idles long while the last big interval finishes. With `in_column_order` (eigenvectors
+/// handed on as they become final, see [`IntervalStream`]) the plans of larger dimension first
+/// and each plan's intervals in ascending order, so that each finished interval soon becomes
+/// final and few wait in memory for an earlier one.
+fn interval_jobs(
+    requests: &[EigenRequest<'_, '_>],
+    plans: &[Plan],
+    in_column_order: bool,
+) -> Vec<(usize, usize)> {
     let mut jobs: Vec<(usize, usize)> = plans
         .iter()
         .enumerate()
@@ -284,25 +372,39 @@ fn interval_jobs(requests: &[EigenRequest<'_, '_>], plans: &[Plan]) -> Vec<(usiz
                 .map(move |i| (p, i))
         })
         .collect();
+    let dimension = |p: usize| requests[plans[p].request].pencil.dimension();
+    if in_column_order {
+        jobs.sort_by_key(|&(p, i)| (std::cmp::Reverse(dimension(p)), p, i));
+        return jobs;
+    }
     let size = |&(p, i): &(usize, usize)| {
         let plan = &plans[p];
-        requests[plan.request].pencil.dimension() * (plan.counts[i + 1] - plan.counts[i])
+        dimension(p) * (plan.counts[i + 1] - plan.counts[i])
     };
     jobs.sort_by_key(|job| std::cmp::Reverse(size(job)));
     jobs
 }
 
 /// Phase 2, solving: runs every job (`options.threads` at a time, see [`run_jobs`]), each
-/// writing its eigenvectors into its columns of its plan's matrix in `eigenvectors` (reserved
+/// writing its eigenvectors into its columns of its plan's memory `columns[p]` (reserved
 /// `n × k`, one per plan); returns the solved intervals of each plan (in no particular order).
-/// On success every column `0..k` of every matrix was written.
+/// On success every column `0..k` of every plan was written; with
+/// [`EigenOptions::finished`], every column was handed to it instead (and released), and the
+/// second result holds each plan's eigenvalues and field residuals ([`IntervalStream`]).
+#[allow(clippy::type_complexity)]
 fn solve_intervals(
     requests: &[EigenRequest<'_, '_>],
     options: &EigenOptions<'_>,
     plans: &[Plan],
     jobs: &[(usize, usize)],
-    eigenvectors: &mut [Mat<f64>],
-) -> Result<Vec<Vec<SolvedInterval>>, RequestError> {
+    columns: &[RawColumns],
+) -> Result<
+    (
+        Vec<Vec<SolvedInterval>>,
+        Option<Vec<(Vec<f64>, Vec<FieldResidual>)>>,
+    ),
+    RequestError,
+> {
     let settings = IntervalSettings {
         tolerance: options.tolerance,
         block_size: options.block_size,
@@ -310,8 +412,29 @@ fn solve_intervals(
         parallelism: options.parallelism,
         refinement_target: options.refinement_target,
     };
-    let outputs = job_outputs(requests, plans, jobs, eigenvectors);
+    let outputs = job_outputs(plans, jobs, columns);
+    let mut stream = options.finished.map(|sink| {
+        let streams = plans
+            .iter()
+            .zip(columns)
+            .map(|(plan, &columns)| (plan.request, requests[plan.request].pencil, columns))
+            .collect();
+        IntervalStream::new(streams, jobs, sink, options.parallelism)
+    });
     let slice_memory = WorkspacePool::<SliceMemory>::new(jobs.len());
+    // Streamed, each job's columns leave memory as it finishes, on the job's thread: the
+    // calling thread places them only when its products get a worker of the pool the jobs
+    // occupy (`interval_stream.rs`), which at a million faces took minutes.
+    let parked: Vec<Option<ParkedColumns>> = jobs
+        .iter()
+        .enumerate()
+        .map(|(job, &(p, _))| {
+            let (first, width) = job_columns(plans, columns, jobs, job);
+            stream
+                .as_ref()
+                .and(ParkedColumns::of(&columns[p], first, width))
+        })
+        .collect();
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
         let plan = &plans[p];
@@ -331,38 +454,75 @@ fn solve_intervals(
             output,
         );
         slice_memory.give_back(memory);
+        if let (Ok(_), Some(parked)) = (&result, parked[job]) {
+            // SAFETY: the job has returned, so its view of its columns is gone; the calling
+            // thread reads them only once this job's result has reached it.
+            unsafe { parked.park() };
+        }
         result.map_err(fail(plan.request))
     };
     let mut board = ProgressBoard::new(requests, plans, jobs, options.progress);
     let mut on_message = |job: usize, found: usize, done: bool| board.record(job, found, done);
-    let solved = run_jobs(jobs.len(), options.threads, &solve_job, &mut on_message)?;
+    let mut on_result = |job: usize, parts: &Vec<SolvedInterval>| {
+        let Some(stream) = stream.as_mut() else {
+            return Ok(());
+        };
+        let parts = parts
+            .iter()
+            .map(|part| SolvedPart {
+                lower: part.lower,
+                values: part.values.clone(),
+            })
+            .collect();
+        let p = jobs[job].0;
+        // SAFETY: the job has returned, so its view of its columns is gone; views of finished
+        // jobs' columns live only inside the stream's calls.
+        unsafe { stream.job_done(job, parts) }.map_err(fail(plans[p].request))
+    };
+    let solved = run_jobs(
+        jobs.len(),
+        options.threads,
+        &solve_job,
+        &mut on_message,
+        &mut on_result,
+    )?;
     let mut intervals: Vec<Vec<SolvedInterval>> = plans.iter().map(|_| Vec::new()).collect();
     for (&(p, _), parts) in jobs.iter().zip(solved) {
         intervals[p].extend(parts);
     }
-    Ok(intervals)
+    Ok((intervals, stream.map(IntervalStream::into_results)))
+}
+
+/// The columns `(first, width)` of plan `p`'s eigenvectors that job `job = (p, i)` fills:
+/// `counts[i]..counts[i + 1]`, cut at the request's `k`.
+fn job_columns(
+    plans: &[Plan],
+    columns: &[RawColumns],
+    jobs: &[(usize, usize)],
+    job: usize,
+) -> (usize, usize) {
+    let (p, i) = jobs[job];
+    let (counts, k) = (&plans[p].counts, columns[p].k);
+    (counts[i].min(k), counts[i + 1].min(k) - counts[i].min(k))
 }
 
 /// The output columns of each job: job `(p, i)` gets the columns of plan `p`'s eigenvectors
-/// that interval `i` fills (`counts[i]..counts[i + 1]`, cut at the request's `k`), as a view
-/// that a job takes once.
+/// (`columns[p]`, reserved `n × k`) that interval `i` fills (`counts[i]..counts[i + 1]`, cut at
+/// the request's `k`), as a view that a job takes once.
 fn job_outputs<'m>(
-    requests: &[EigenRequest<'_, '_>],
     plans: &[Plan],
     jobs: &[(usize, usize)],
-    eigenvectors: &'m mut [Mat<f64>],
+    columns: &'m [RawColumns],
 ) -> Vec<Mutex<Option<MatMut<'m, f64>>>> {
     let mut outputs: Vec<Option<MatMut<'m, f64>>> = jobs.iter().map(|_| None).collect();
-    for (p, matrix) in eigenvectors.iter_mut().enumerate() {
-        let request = &requests[plans[p].request];
-        let (n, k) = (request.pencil.dimension(), request.count);
-        // SAFETY: the matrix has room for `k` columns of `n` rows at its column stride
-        // (reserved by the caller); the view only writes (each job its own columns, all of
-        // them, checked in `solve_job` before the columns become part of the matrix with
-        // `set_dims` in `assemble_plan`), and the matrix stays mutably borrowed while the
-        // views live.
+    for (p, raw) in columns.iter().enumerate() {
+        // SAFETY: the memory has room for `k` columns of `n` rows at its column stride
+        // (reserved by the caller, and kept until the jobs are done); the views only write
+        // (each job its own columns, all of them, checked in `solve_job` before the columns
+        // become part of a matrix with `set_dims` in `assemble_plan` or are handed on by the
+        // [`IntervalStream`]).
         let mut rest = unsafe {
-            MatMut::from_raw_parts_mut(matrix.as_ptr_mut(), n, k, 1, matrix.col_stride())
+            MatMut::from_raw_parts_mut(raw.ptr, raw.rows, raw.k, 1, raw.col_stride as isize)
         };
         let mut in_order: Vec<(usize, usize)> = jobs
             .iter()
@@ -373,7 +533,7 @@ fn job_outputs<'m>(
         in_order.sort_unstable();
         for (i, job) in in_order {
             let counts = &plans[p].counts;
-            let width = counts[i + 1].min(k) - counts[i].min(k);
+            let width = counts[i + 1].min(raw.k) - counts[i].min(raw.k);
             let (columns, tail) = rest.split_at_col_mut(width);
             outputs[job] = Some(columns);
             rest = tail;
@@ -500,10 +660,20 @@ fn assemble_plan(
     unsafe { vectors.set_dims(n, k) };
     parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
     orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass(), par);
-    let mut values: Vec<f64> = parts
+    let values: Vec<f64> = parts
         .iter()
         .flat_map(|part| part.values.iter().copied())
         .collect();
+    Ok((checked_values(plan, request, values)?, vectors))
+}
+
+/// The eigenvalues of every interval of `plan` in order, checked against its top count (all of
+/// them, ascending) and cut to the request's `k`.
+fn checked_values(
+    plan: &Plan,
+    request: &EigenRequest<'_, '_>,
+    mut values: Vec<f64>,
+) -> Result<Vec<f64>, SolverError> {
     let top = plan.counts[plan.counts.len() - 1];
     if values.len() != top || values.windows(2).any(|w| w[1] < w[0]) {
         return Err(SolverError::NoConvergence {
@@ -513,15 +683,17 @@ fn assemble_plan(
             ),
         });
     }
-    values.truncate(k);
-    Ok((values, vectors))
+    values.truncate(request.count);
+    Ok(values)
 }
 
 /// The result of one request from its assembled (or dense, or empty) pairs, with the field
-/// residuals of every pair; adds the pencil's factorizations and solves to `statistics`.
+/// residuals of every pair (`field`, if they were taken as the vectors were handed on, else
+/// computed here); adds the pencil's factorizations and solves to `statistics`.
 fn finish_request(
     request: &EigenRequest<'_, '_>,
     found: Option<(Vec<f64>, Mat<f64>)>,
+    field: Option<Vec<FieldResidual>>,
     statistics: &mut SolverStatistics,
     par: Par,
 ) -> Eigenpairs {
@@ -534,8 +706,10 @@ fn finish_request(
     statistics.solving.solves += pencil.statistics().solving.solves;
     statistics.refinement.factorizations += pencil.statistics().refinement.factorizations;
     statistics.refinement.solves += pencil.statistics().refinement.solves;
-    let floor = 1e-8 * pencil.mean_eigenvalue.abs();
-    let field = field_residuals(&pencil.operators(), &values, vectors.as_ref(), floor, par);
+    let field = field.unwrap_or_else(|| {
+        let floor = 1e-8 * pencil.mean_eigenvalue.abs();
+        field_residuals(&pencil.operators(), &values, vectors.as_ref(), floor, par)
+    });
     Eigenpairs::new(
         pencil,
         values,
@@ -904,13 +1078,15 @@ enum Message<T> {
 /// Runs `jobs` jobs, `threads` at a time as tasks of the current rayon pool, and returns their
 /// results in job order;
 /// `on_message(job, locked, done)` is called on the calling thread for every progress report and
-/// completion. Stops at the first error; if `on_message` unwinds, every job stops at its next
-/// report and the unwinding goes on once they have.
+/// completion, and `on_result(job, result)` with every successful result as it arrives. Stops
+/// at the first error (of a job or of `on_result`); if `on_message` unwinds, every job stops at
+/// its next report and the unwinding goes on once they have.
 fn run_jobs<T: Send>(
     jobs: usize,
     threads: usize,
     work: &Job<'_, T>,
     on_message: &mut dyn FnMut(usize, usize, bool),
+    on_result: &mut dyn FnMut(usize, &T) -> Result<(), RequestError>,
 ) -> Result<Vec<T>, RequestError> {
     let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
@@ -953,6 +1129,10 @@ fn run_jobs<T: Send>(
                 Message::Progress { job, locked } => on_message(job, locked, false),
                 Message::Done { job, result } => {
                     on_message(job, 0, true);
+                    let result = result.and_then(|value| on_result(job, &value).map(|()| value));
+                    if result.is_err() {
+                        failed.store(true, Ordering::Relaxed);
+                    }
                     results[job] = Some(result);
                 }
             }
@@ -1023,9 +1203,13 @@ mod tests {
             Ok(())
         };
         let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            run_jobs(4, 4, &work, &mut |_, _, _| {
-                std::panic::resume_unwind(Box::new(Stop))
-            })
+            run_jobs(
+                4,
+                4,
+                &work,
+                &mut |_, _, _| std::panic::resume_unwind(Box::new(Stop)),
+                &mut |_, _| Ok(()),
+            )
         }));
         let Err(payload) = run else {
             panic!("the jobs were not stopped")

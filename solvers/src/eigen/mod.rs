@@ -2,7 +2,9 @@
 //! kinds of pencils ([`Pencil`]): a diagonal mass, a sparse SPD mass, and the mixed pencils
 //! `d1 W⁻¹ d1ᵀ ψ = μ N ψ` solved through a saddle-point matrix.
 
+mod file_backed_columns;
 mod interval_slicing;
+mod interval_stream;
 mod krylov_slice;
 mod lowest;
 mod mass;
@@ -30,4 +32,4 @@ pub use mass::MassMatrix;
 pub use pencil::{Pencil, ShiftCount};
 pub use statistics::{process_cpu_seconds, Phase, PhaseStatistics, SolverStatistics};
 pub use tall_products::keep_columns;
-pub use types::{EigenOptions, EigenProgress, Eigenpairs};
+pub use types::{EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors};

@@ -3,7 +3,7 @@
 
 use super::pencil::Pencil;
 use super::statistics::SolverStatistics;
-use faer::{Mat, Par};
+use faer::{Mat, MatRef, Par};
 use std::fmt;
 
 /// Progress of one request of [`crate::lowest_eigenpairs_of`], reported after every restart of
@@ -70,6 +70,33 @@ pub struct EigenOptions<'a> {
     /// Called on the calling thread with a progress report after every restart; `None` for
     /// silence.
     pub progress: Option<&'a dyn Fn(&EigenProgress)>,
+    /// Where eigenvectors go as soon as they are final, while other intervals are still being
+    /// solved, so that they are never all in memory: `None` (the default) keeps them all in
+    /// [`Eigenpairs::vectors`]. With a sink, every request's first `count` eigenvectors are
+    /// handed to it once each, in ascending column order per request (called on the calling
+    /// thread), their memory is given back right after, and [`Eigenpairs::vectors`] has no
+    /// columns (`n × 0`); eigenvalues, residuals and statistics are returned as without one,
+    /// and the vectors handed over are bit for bit those the result would hold. An error of the
+    /// sink stops the computation with [`crate::SolverError::Stopped`].
+    pub finished: Option<&'a EigenvectorSink<'a>>,
+}
+
+/// What [`EigenOptions::finished`] calls with each batch of final eigenvectors; an error
+/// stops the computation.
+pub type EigenvectorSink<'a> = dyn Fn(&FinishedEigenvectors<'_>) -> Result<(), String> + 'a;
+
+/// Final eigenvectors handed to [`EigenOptions::finished`]: columns
+/// `first..first + values.len()` of request `request`'s result (kernel included).
+#[derive(Debug, Clone, Copy)]
+pub struct FinishedEigenvectors<'v> {
+    /// Index of the request.
+    pub request: usize,
+    /// Column of the first of them in the request's result.
+    pub first: usize,
+    /// Their eigenvalues, ascending.
+    pub values: &'v [f64],
+    /// The eigenvectors, `n × values.len()`, `M`-orthonormal.
+    pub vectors: MatRef<'v, f64>,
 }
 
 impl Default for EigenOptions<'_> {
@@ -85,6 +112,7 @@ impl Default for EigenOptions<'_> {
             interval_size: 96,
             refinement_target: 1e-9,
             progress: None,
+            finished: None,
         }
     }
 }
@@ -102,6 +130,7 @@ impl fmt::Debug for EigenOptions<'_> {
             .field("interval_size", &self.interval_size)
             .field("refinement_target", &self.refinement_target)
             .field("progress", &self.progress.map(|_| "callback"))
+            .field("finished", &self.finished.map(|_| "sink"))
             .finish()
     }
 }
@@ -112,7 +141,8 @@ pub struct Eigenpairs {
     /// Eigenvalues in ascending order (length `k`).
     pub values: Vec<f64>,
     /// `n × k` eigenvectors, column `j` for `values[j]`, M-orthonormal: `Xᵀ M X = I` (for a
-    /// mixed pencil the `n2 × k` vectors ψ, N-orthonormal).
+    /// mixed pencil the `n2 × k` vectors ψ, N-orthonormal); `n × 0` when they went to
+    /// [`EigenOptions::finished`] instead.
     pub vectors: Mat<f64>,
     /// Relative residuals `‖A x_j − λ_j M x_j‖₂ / (‖A‖ ‖x_j‖₂)`. For a pencil with a stored `A`
     /// (diagonal or sparse mass) `‖A‖ = ‖A‖₁`, the maximum absolute column sum (an upper bound

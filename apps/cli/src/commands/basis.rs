@@ -11,7 +11,8 @@ use clap::Args;
 use std::path::PathBuf;
 use tvf_core::discretization::HodgeOperators;
 use tvf_spectral::{
-    compute_eigenfunction_basis, save_basis_outputs, BasisFileKey, BasisRequest, BasisSummary,
+    compute_eigenfunction_basis, save_basis_outputs, save_computed_basis, BasisFileKey,
+    BasisRequest, BasisSummary, SavedBasis, SavedBasisError,
 };
 
 /// Arguments of `tvf basis`.
@@ -65,35 +66,61 @@ pub fn run(args: BasisArgs, context: &RunContext) -> Result<()> {
         .discretization
         .build(context.catalog(), &mesh, &args.input)?;
     let progress = Progress::new("basis");
-    let (basis, report) = {
+    let key = BasisFileKey::new(&mesh, discretization.as_ref());
+    let cannot_compute = || format!("{}: cannot compute the basis", args.input.label());
+    let saved = {
         let callback = progress.basis_callback();
         let request = BasisRequest::lowest(args.fields, discretization.field_dimension())
             .with_seed(args.seed)
             .with_progress(&callback);
-        compute_eigenfunction_basis(discretization.as_ref(), &request)
-            .with_context(|| format!("{}: cannot compute the basis", args.input.label()))?
+        match (&args.output, &args.export) {
+            // Without arrays to export, each finished interval's eigenfunctions go straight to
+            // the file, so they are never all in memory.
+            (Some(output), None) => {
+                save_computed_basis(output, discretization.as_ref(), &request, &key).map_err(
+                    |e| match e {
+                        SavedBasisError::Compute(e) => {
+                            anyhow::Error::new(e).context(cannot_compute())
+                        }
+                        SavedBasisError::File(e) => anyhow::Error::new(e),
+                    },
+                )?
+            }
+            _ => {
+                let (basis, report) =
+                    compute_eigenfunction_basis(discretization.as_ref(), &request)
+                        .with_context(cannot_compute)?;
+                // The file holds the eigenfunctions (about half the bytes of the dense fields).
+                let writing = save_basis_outputs(
+                    &basis,
+                    discretization.as_ref(),
+                    &key,
+                    args.output.as_deref(),
+                    args.export.as_deref(),
+                )?;
+                SavedBasis {
+                    eigenvalues: basis.eigenvalues().to_vec(),
+                    families: basis.families().to_vec(),
+                    report,
+                    streamed: false,
+                    writing,
+                }
+            }
+        }
     };
-    let key = BasisFileKey::new(&mesh, discretization.as_ref());
-    // The file holds the eigenfunctions (about half the bytes of the dense fields).
-    let writing = save_basis_outputs(
-        &basis,
-        discretization.as_ref(),
-        &key,
-        args.output.as_deref(),
-        args.export.as_deref(),
-    )?;
     let summary = BasisSummary {
         mesh: &args.input.label(),
         discretization: &key.discretization,
-        basis: &basis,
-        report: &report,
-        writing,
+        eigenvalues: &saved.eigenvalues,
+        families: &saved.families,
+        report: &saved.report,
+        writing: saved.writing,
         file: args.output.as_deref(),
         arrays: args.export.as_deref(),
     };
     progress.finish(summary.headline());
-    let kept = tvf_spectral::FamilyCounts::of(basis.families());
-    report.notes(kept).into_iter().for_each(note);
+    let kept = tvf_spectral::FamilyCounts::of(&saved.families);
+    saved.report.notes(kept).into_iter().for_each(note);
     if args.json {
         println!("{}", serde_json::to_string_pretty(&summary.to_json())?);
     }

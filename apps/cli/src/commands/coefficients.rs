@@ -29,17 +29,17 @@ pub fn run(mut args: CoefficientsArgs, context: &RunContext) -> Result<()> {
     let field = args.inputs.field_path();
     let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = args
-        .inputs
-        .setup(context.catalog(), inputs, args.inputs.basis.size())?;
-    let analysis = FourierAnalysis::new(&setup.basis, &field)?;
+    let setup =
+        args.inputs
+            .projection_basis(context.catalog(), inputs, args.inputs.basis.size())?;
+    let analysis = FourierAnalysis::new(setup.basis(), &field)?;
     if args.json {
-        let mut out = analysis.to_json(&setup.basis);
+        let mut out = analysis.to_json(setup.basis());
         out["mesh"] = json!(args.inputs.input.label());
-        out["discretization"] = json!(setup.discretization);
+        out["discretization"] = json!(setup.discretization());
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
-        print!("{}", analysis.table(&setup.basis));
+        print!("{}", analysis.table(setup.basis()));
     }
     Ok(())
 }

@@ -77,26 +77,27 @@ pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     let cointegrable = response("cointegrable", &args.cointegrable)?;
     let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = args
-        .inputs
-        .setup(context.catalog(), inputs, args.inputs.basis.size())?;
-    let rest_gain = args.rest.unwrap_or_else(|| {
-        SpectralFilter::continued_rest_gain(&integrable, &cointegrable, &setup.basis)
-    });
+    let setup =
+        args.inputs
+            .projection_basis(context.catalog(), inputs, args.inputs.basis.size())?;
+    let basis = setup.basis();
+    let rest_gain = args
+        .rest
+        .unwrap_or_else(|| SpectralFilter::continued_rest_gain(&integrable, &cointegrable, basis));
     let filter = SpectralFilter {
         integrable,
         cointegrable,
         harmonic_gain: args.harmonic,
         rest_gain,
     };
-    let filtered = filter.apply(&setup.basis, &field)?;
+    let filtered = filter.apply(basis, &field)?;
     let cause = format!(
         "the gains times the field's coefficients overflow f64 arithmetic: --integrable {}, \
          --cointegrable {}, --harmonic {}, --rest {rest_gain}",
         args.integrable, args.cointegrable, args.harmonic
     );
     check_computed_field(&filtered.field, "the filtered field", &cause)?;
-    let norm = |v: &[f64]| setup.basis.inner_product(v, v).sqrt();
+    let norm = |v: &[f64]| basis.inner_product(v, v).sqrt();
     let (input_norm, output_norm) = (norm(&field), norm(&filtered.field));
     if !output_norm.is_finite() {
         bail!(
@@ -108,8 +109,8 @@ pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     let mut report = Report::new(args.json);
     report.line(format!(
         "basis          {} fields ({})",
-        setup.basis.len(),
-        setup.discretization
+        basis.len(),
+        setup.discretization()
     ));
     report.line(format!("input norm     {input_norm:.6e}"));
     report.line(format!("rest norm      {:.6e}", filtered.rest_norm));
@@ -123,8 +124,8 @@ pub fn run(mut args: FilterArgs, context: &RunContext) -> Result<()> {
     ));
     report.line(format!("output norm    {output_norm:.6e}"));
     report.line(format!("wrote          {}", args.output.display()));
-    report.set("basis_fields", setup.basis.len());
-    report.set("discretization", &setup.discretization);
+    report.set("basis_fields", basis.len());
+    report.set("discretization", setup.discretization());
     report.set("input_norm", input_norm);
     report.set("rest_norm", filtered.rest_norm);
     report.set("rest_gain", rest_gain);

@@ -1,8 +1,9 @@
 //! What `filter`, `analyze`, `compress`, `decompress`, `rate-distortion` and `coefficients`
 //! share: their `MESH FIELD` and basis flags ([`FieldArgs`]); a mesh with its discretization, against which the other inputs are checked first
 //! ([`SpectralInputs`]), then its basis (a basis file checked to belong to the mesh, or a cached
-//! or computed basis, see [`crate::basis_source`]); field files (one field, or a sequence of
-//! frames) read as tangent fields.
+//! or computed basis, see [`crate::basis_source`]; for the commands that only project and
+//! synthesise, a basis file of eigenfunctions read in blocks: [`ProjectionBasis`]); field files
+//! (one field, or a sequence of frames) read as tangent fields.
 
 use crate::basis_source::{BasisOptions, BasisSource};
 use crate::mesh_input::MeshInput;
@@ -15,7 +16,10 @@ use tvf_core::discretization::{FieldSampling, HodgeOperators};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{BoxedComplex, Catalog};
 pub use tvf_spectral::exact_hodge_energies;
-use tvf_spectral::{read_field_file, read_field_frames, BasisSize, FrameSource, SpectralBasis};
+use tvf_spectral::{
+    read_basis_header, read_field_file, read_field_frames, BasisFileBlocks, BasisFileKey,
+    BasisFileLayout, BasisSize, FieldBasis, FrameSource, SpectralBasis,
+};
 
 /// `MESH FIELD` (or `--example NAME FIELD`) and where the basis comes from.
 #[derive(Args)]
@@ -77,6 +81,83 @@ impl FieldArgs {
         size: BasisSize,
     ) -> Result<SpectralSetup> {
         inputs.with_basis(catalog, &self.input, &self.basis.options, size)
+    }
+
+    /// The basis of a command that only projects fields on it and synthesises fields from it
+    /// (`filter`, `coefficients`): a `--basis` file in the eigenfunctions layout (format
+    /// version 3) is checked whole and then read a block of columns at a time, never loaded;
+    /// any other basis as [`FieldArgs::setup`] gives it.
+    pub fn projection_basis(
+        &self,
+        catalog: &Catalog,
+        inputs: SpectralInputs,
+        size: BasisSize,
+    ) -> Result<ProjectionBasis> {
+        let Some(path) = self.basis_file() else {
+            return Ok(ProjectionBasis::Whole(Box::new(
+                self.setup(catalog, inputs, size)?,
+            )));
+        };
+        let header = read_basis_header(path)?;
+        let blocks = matches!(header.layout, BasisFileLayout::Eigenfunctions { .. })
+            && header.key.matrix_hash.is_some();
+        if !blocks {
+            return Ok(ProjectionBasis::Whole(Box::new(
+                self.setup(catalog, inputs, size)?,
+            )));
+        }
+        let key = BasisFileKey::new(&inputs.mesh, inputs.complex.as_ref());
+        let start = std::time::Instant::now();
+        let id = inputs.complex.id().to_string();
+        match BasisFileBlocks::open(path, &key, inputs.complex)? {
+            Some(blocks) => {
+                note(format!(
+                    "using basis {} ({} fields, {id}, checked in {:.2} s, read in blocks)",
+                    path.display(),
+                    blocks.len(),
+                    start.elapsed().as_secs_f64()
+                ));
+                Ok(ProjectionBasis::Blocks(Box::new(blocks)))
+            }
+            None => anyhow::bail!(
+                "{}: the basis file changed while it was read (its layout)",
+                path.display()
+            ),
+        }
+    }
+}
+
+/// A basis for projections and syntheses ([`FieldArgs::projection_basis`]).
+pub enum ProjectionBasis {
+    /// A basis file read a block of columns at a time.
+    Blocks(Box<BasisFileBlocks>),
+    /// A basis in memory, with its mesh and discretization.
+    Whole(Box<SpectralSetup>),
+}
+
+impl ProjectionBasis {
+    /// The basis.
+    pub fn basis(&self) -> &dyn FieldBasis {
+        match self {
+            Self::Blocks(blocks) => blocks.as_ref(),
+            Self::Whole(setup) => &setup.basis,
+        }
+    }
+
+    /// How fields of the discretization are read and written as per-face vectors.
+    pub fn fields(&self) -> Result<&dyn FieldSampling> {
+        match self {
+            Self::Blocks(blocks) => Ok(blocks.complex().require_sampling()?),
+            Self::Whole(setup) => setup.fields(),
+        }
+    }
+
+    /// The discretization the basis was computed with (its id, as in basis files).
+    pub fn discretization(&self) -> String {
+        match self {
+            Self::Blocks(blocks) => blocks.complex().id().to_string(),
+            Self::Whole(setup) => setup.discretization.clone(),
+        }
     }
 }
 

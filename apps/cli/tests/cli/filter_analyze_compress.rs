@@ -463,3 +463,71 @@ fn rate_distortion_writes_csv_and_plot() {
     let png = std::fs::read(dir.join("rate_distortion.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
 }
+
+/// A basis file of eigenfunctions (`tvf basis -o`) is read in blocks by `filter` and
+/// `coefficients`; the results are those of the same basis loaded whole (its fields layout) to
+/// round-off (another summation order).
+#[test]
+fn filter_and_coefficients_read_an_eigenfunctions_file_in_blocks() {
+    let fx = fixture();
+    let blocks = fx.path("eigenfunctions.tvfb");
+    succeeded(&tvf(&[
+        &"basis", &fx.mesh, &"-k", &"60", &"--quiet", &"-o", &blocks,
+    ]));
+    let complex = Conforming::new(&fx.loaded, MassLumping::Barycentric).unwrap();
+    let key = BasisFileKey::new(&fx.loaded, &complex);
+    let whole = fx.path("fields.tvfb");
+    let basis = tvf_spectral::load_basis(&blocks, &key, &complex).unwrap();
+    save_basis(&whole, &basis, &key).unwrap();
+    let fields = FaceFields::new(&fx.loaded).unwrap();
+    let mut filtered = Vec::new();
+    for (basis, name) in [(&blocks, "blocks.npy"), (&whole, "whole.npy")] {
+        let out = fx.path(name);
+        let output = tvf(&[
+            &"filter",
+            &fx.mesh,
+            &fx.field,
+            &"--basis",
+            basis,
+            &"--integrable",
+            &"lowpass:t=0.01",
+            &"--rest",
+            &"0",
+            &"-o",
+            &out,
+        ]);
+        succeeded(&output);
+        let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+        assert_eq!(
+            stderr.contains("read in blocks"),
+            name == "blocks.npy",
+            "{stderr}"
+        );
+        filtered.push(tangent(&fields, &out));
+    }
+    assert!(relative_error(&fields, &filtered[1], &filtered[0]) < 1e-12);
+    let coefficients: Vec<Vec<f64>> = [&blocks, &whole]
+        .iter()
+        .map(|basis| {
+            let output = tvf(&[
+                &"coefficients",
+                &fx.mesh,
+                &fx.field,
+                &"--basis",
+                basis,
+                &"--json",
+            ]);
+            let json: serde_json::Value = serde_json::from_str(&succeeded(&output)).unwrap();
+            json["coefficients"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|entry| entry["coefficient"].as_f64().unwrap())
+                .collect()
+        })
+        .collect();
+    let scale = coefficients[1].iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    for (a, b) in coefficients[0].iter().zip(&coefficients[1]) {
+        assert!((a - b).abs() <= 1e-12 * scale, "{a} against {b}");
+    }
+}

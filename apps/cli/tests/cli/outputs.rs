@@ -369,9 +369,10 @@ fn interrupted_writes_leave_no_temporaries_and_stale_ones_are_swept() {
     let dir = workspace();
     let d = dir.path();
     std::fs::create_dir(d.join("d")).unwrap();
+    // A basis is computed into its file inside a staging folder.
     let basis = ["basis", "--example", "torus", "-k", "10", "-o", "d/x.tvfb"];
     for (signal, code) in [(libc::SIGINT, 130), (libc::SIGTERM, 143)] {
-        let exit = interrupt_while_writing(d, &basis, "x.tvfb", ".tvf-write-", signal);
+        let exit = interrupt_while_writing(d, &basis, "x.tvfb", ".tvf-folder-", signal);
         assert_eq!(exit, Some(code));
         assert!(
             temporaries(&d.join("d")).is_empty(),

@@ -50,6 +50,20 @@
 //! file its eigenfunctions and so the very fields the basis had in memory. Saving is atomic;
 //! loading streams (no second copy in memory), and a header whose counts promise more bytes
 //! than the file has is refused before anything is allocated for them.
+//!
+//! **Written while computed.** Nothing in the layout needs the eigenfunctions in order: the
+//! header holds only counts (fixed by the inertia counts before anything is solved), and every
+//! column has a fixed place. So `tvf basis -o` writes each finished interval's eigenfunctions
+//! to its place as the eigensolver hands them on, the eigenvalues and families last, and the
+//! checksum after reading the payload back
+//! ([`crate::formats::streamed_basis_file::save_computed_basis`]): the same bytes as saving the
+//! basis computed in memory, without ever holding all its eigenfunctions.
+//!
+//! **Read in blocks.** For the same reason, projections `Uᵀ M1 v` and syntheses `U c` need no
+//! more than one family's columns at a time, in file order: [`crate::BasisFileBlocks`] checks
+//! an eigenfunctions file whole (key, size, payload checksum, finite values) and then reads its
+//! stored columns a block at a time (`tvf filter` and `tvf coefficients` use it), so a basis
+//! larger than memory can be used as well as computed.
 
 use crate::eigenfunction_basis::{field_of_stored_into, FIELD_CHUNK};
 pub use crate::formats::basis_file_error::BasisFileError;
@@ -69,7 +83,8 @@ use std::path::Path;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, LinearOperator, Mass, MatrixHash};
 use tvf_core::Hash64;
 
-fn family_code(family: FieldFamily) -> u8 {
+/// The byte a basis file stores for `family`.
+pub(crate) fn family_code(family: FieldFamily) -> u8 {
     match family {
         FieldFamily::Harmonic => 0,
         FieldFamily::Integrable => 1,
@@ -432,7 +447,7 @@ fn invalid(path: &Path, reason: String) -> BasisFileError {
 }
 
 /// Checks that the file's `size` is what `header` (of `header_length` bytes) promises.
-fn check_file_size(
+pub(crate) fn check_file_size(
     path: &Path,
     header: &BasisFileHeader,
     header_length: u64,

@@ -5,6 +5,7 @@
 
 pub(crate) mod basis_arrays;
 pub(crate) mod basis_file;
+pub(crate) mod basis_file_blocks;
 pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_error;
 pub(crate) mod basis_file_header;
@@ -25,3 +26,4 @@ pub(crate) mod numpy_export;
 pub(crate) mod sparse_file_read;
 pub(crate) mod sparse_npz_read;
 pub(crate) mod stored_basis;
+pub(crate) mod streamed_basis_file;

@@ -1,0 +1,425 @@
+//! [`BasisFileBlocks`]: a basis file in the eigenfunctions layout used where it lies, a block of
+//! stored columns at a time, so that a basis larger than memory can project and synthesise
+//! fields (`tvf filter`, `tvf coefficients`): only `n1`-vectors, the `d` eigenvalues and one
+//! block of columns (at most [`BLOCK_BYTES`]) are ever in memory, never the `n1 × d` fields
+//! [`crate::load_basis`] forms.
+//!
+//! The products go through the stored eigenfunctions and the complex's sparse operators, as
+//! [`crate::EigenfunctionBasis`] computes them: with `Φ_i = d0 φ̃_i`, `Ψ_j = −M1⁻¹ d1ᵀ ψ̃_j`,
+//!
+//! ```text
+//! α_i = φ̃_iᵀ (d0ᵀ M1 v),   β_j = ψ̃_jᵀ (−d1 v),   γ_k = Γ_kᵀ M1 v,
+//! U c = d0 (Σ α_i φ̃_i) − M1⁻¹ d1ᵀ (Σ β_j ψ̃_j) + Σ γ_k Γ_k,
+//! ```
+//!
+//! which are the dense basis's products in another summation order (equal to round-off; the
+//! tests bound the difference). Opening checks everything [`crate::load_basis`] checks before
+//! anything is computed: the key (mesh, discretization, matrices), the size the header promises,
+//! the payload checksum (read through once, in blocks) and that every stored value is finite.
+//! Each product then checks that the file's size and modification time are still those it was
+//! checked with, and every value it reads for being finite (a file changed in place since is
+//! refused, naming it, where that shows).
+
+use super::basis_file::{check_file_size, family_code};
+use super::basis_file_header::read_header;
+use crate::basis::{check_eigenvalues, check_length};
+use crate::{
+    BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, FieldBasis, FieldFamily,
+    SpectralBasisError,
+};
+use rayon::prelude::*;
+use std::fs::File;
+use std::os::unix::fs::FileExt;
+use std::path::{Path, PathBuf};
+use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
+use tvf_core::discretization::HodgeOperators;
+use tvf_core::Hash64;
+use tvf_discretizations::BoxedComplex;
+
+/// Largest block of stored columns read at a time (64 MiB: one potential of a million-face
+/// mesh is 4 MiB, so sixteen at a time; the products are bound by reading, not by arithmetic).
+pub const BLOCK_BYTES: usize = 64 << 20;
+
+/// A basis file in the eigenfunctions layout, checked and read in blocks (see the module
+/// documentation), with the complex it belongs to.
+pub struct BasisFileBlocks {
+    file: File,
+    path: PathBuf,
+    complex: BoxedComplex,
+    eigenvalues: Vec<f64>,
+    families: Vec<FieldFamily>,
+    /// Position of each basis field among the stored columns of its family.
+    slots: Vec<usize>,
+    /// Per family (integrable, co-integrable, harmonic): offset of its first stored column,
+    /// rows of a column, stored columns.
+    sections: [Section; 3],
+    /// Largest block read at a time ([`BLOCK_BYTES`] unless changed).
+    block_bytes: usize,
+    /// Size and modification time of the file when it was checked.
+    checked: (u64, Option<std::time::SystemTime>),
+}
+
+/// The stored columns of one family.
+#[derive(Clone, Copy)]
+struct Section {
+    offset: u64,
+    rows: usize,
+    count: usize,
+}
+
+impl BasisFileBlocks {
+    /// Opens the basis file `path` for `complex` (which must be the complex `expected` was made
+    /// from): `Ok(None)` for a file in the fields layout (load it whole with
+    /// [`crate::load_basis`]); errors name the file.
+    pub fn open(
+        path: &Path,
+        expected: &BasisFileKey,
+        complex: BoxedComplex,
+    ) -> Result<Option<Self>, BasisFileError> {
+        let io = |source| BasisFileError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let file = File::open(path).map_err(io)?;
+        let metadata = file.metadata().map_err(io)?;
+        let size = metadata.len();
+        let (header, header_length) = read_header(path, &mut std::io::BufReader::new(&file))?;
+        expected.check_file(path, &header.key)?;
+        check_file_size(path, &header, header_length, size)?;
+        let BasisFileLayout::Eigenfunctions {
+            potential_dimension,
+            co_potential_dimension,
+        } = header.layout
+        else {
+            return Ok(None);
+        };
+        let invalid = |reason: String| BasisFileError::Invalid {
+            path: path.to_path_buf(),
+            reason,
+        };
+        if (potential_dimension, co_potential_dimension)
+            != (
+                complex.potential_dimension(),
+                complex.co_potential_dimension(),
+            )
+        {
+            return Err(invalid(format!(
+                "the file holds potentials of {potential_dimension} and co-potentials of \
+                 {co_potential_dimension} values, the complex's have {} and {}",
+                complex.potential_dimension(),
+                complex.co_potential_dimension()
+            )));
+        }
+        let d = header.field_count;
+        let payload_end = size - 8;
+        check_payload(&file, path, header_length, d, payload_end)?;
+        let mut front = vec![0u8; 8 * d + d.div_ceil(8) * 8];
+        file.read_exact_at(&mut front, header_length).map_err(io)?;
+        let eigenvalues: Vec<f64> = front[..8 * d]
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+            .collect();
+        check_eigenvalues(&eigenvalues).map_err(|e| invalid(e.to_string()))?;
+        let families = families_of(&front[8 * d..8 * d + d], &header).map_err(invalid)?;
+        let body_start = header_length + front.len() as u64;
+        let sections = sections_of(
+            &header,
+            body_start,
+            potential_dimension,
+            co_potential_dimension,
+        );
+        let mut seen = [0usize; 3];
+        let slots = families
+            .iter()
+            .map(|&family| {
+                let slot = seen[section_index(family)];
+                seen[section_index(family)] += 1;
+                slot
+            })
+            .collect();
+        Ok(Some(Self {
+            file,
+            path: path.to_path_buf(),
+            complex,
+            eigenvalues,
+            families,
+            slots,
+            sections,
+            block_bytes: BLOCK_BYTES,
+            checked: (size, metadata.modified().ok()),
+        }))
+    }
+
+    /// The same basis read in blocks of at most `bytes` (at least one column at a time); the
+    /// results do not depend on it, bit for bit.
+    pub fn with_block_bytes(mut self, bytes: usize) -> Self {
+        self.block_bytes = bytes;
+        self
+    }
+
+    /// The complex the basis belongs to.
+    pub fn complex(&self) -> &BoxedComplex {
+        &self.complex
+    }
+
+    /// `Xᵀ x` for the stored columns `X` of `section` (`rows` each) and `x` (`rows` values),
+    /// read a block at a time.
+    fn transpose_times(&self, section: Section, x: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        let mut products = Vec::with_capacity(section.count);
+        self.for_each_block(section, |block| {
+            products.par_extend(
+                block
+                    .par_chunks_exact(section.rows)
+                    .map(|column| column.iter().zip(x).map(|(a, b)| a * b).sum::<f64>()),
+            );
+        })?;
+        Ok(products)
+    }
+
+    /// `X c` for the stored columns `X` of `section` and `c` (one coefficient per column),
+    /// read a block at a time; `rows` values.
+    fn times(&self, section: Section, c: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        const ROWS: usize = 4096;
+        let mut combined = vec![0.0; section.rows];
+        let mut first = 0;
+        self.for_each_block(section, |block| {
+            let columns = block.len() / section.rows.max(1);
+            let coefficients = &c[first..first + columns];
+            combined
+                .par_chunks_mut(ROWS)
+                .enumerate()
+                .for_each(|(chunk, out)| {
+                    let start = chunk * ROWS;
+                    for (column, &c) in block.chunks_exact(section.rows).zip(coefficients) {
+                        if c != 0.0 {
+                            let column = &column[start..start + out.len()];
+                            out.iter_mut().zip(column).for_each(|(o, x)| *o += c * x);
+                        }
+                    }
+                });
+            first += columns;
+        })?;
+        Ok(combined)
+    }
+
+    /// Calls `visit` with the stored columns of `section` a block at a time, in order (each
+    /// block `rows × columns` values, column by column).
+    fn for_each_block(
+        &self,
+        section: Section,
+        mut visit: impl FnMut(&[f64]),
+    ) -> Result<(), SpectralBasisError> {
+        if section.rows == 0 || section.count == 0 {
+            return Ok(());
+        }
+        let error = |reason: String| SpectralBasisError::Read {
+            path: self.path.clone(),
+            reason,
+        };
+        let now = self.file.metadata().map_err(|e| error(e.to_string()))?;
+        if (now.len(), now.modified().ok()) != self.checked {
+            return Err(error("the file changed since it was checked".into()));
+        }
+        let per_block = (self.block_bytes / (8 * section.rows)).clamp(1, section.count);
+        let mut bytes = vec![0u8; 8 * section.rows * per_block];
+        let mut values = vec![0.0f64; section.rows * per_block];
+        for first in (0..section.count).step_by(per_block) {
+            let columns = per_block.min(section.count - first);
+            let length = 8 * section.rows * columns;
+            let offset = section.offset + (8 * section.rows * first) as u64;
+            self.file
+                .read_exact_at(&mut bytes[..length], offset)
+                .map_err(|e| error(e.to_string()))?;
+            values[..length / 8]
+                .par_iter_mut()
+                .zip(bytes[..length].par_chunks_exact(8))
+                .for_each(|(value, b)| *value = f64::from_le_bytes(b.try_into().unwrap_or([0; 8])));
+            if values[..length / 8].par_iter().any(|v| !v.is_finite()) {
+                return Err(error("a stored value is no longer finite".into()));
+            }
+            visit(&values[..length / 8]);
+        }
+        Ok(())
+    }
+
+    /// The coefficients `c` (basis order) split by family, in stored order.
+    fn by_family(&self, coefficients: &[f64]) -> [Vec<f64>; 3] {
+        let mut split = self.sections.map(|s| vec![0.0; s.count]);
+        for (i, &c) in coefficients.iter().enumerate() {
+            split[section_index(self.families[i])][self.slots[i]] = c;
+        }
+        split
+    }
+}
+
+impl FieldBasis for BasisFileBlocks {
+    fn len(&self) -> usize {
+        self.eigenvalues.len()
+    }
+
+    fn field_dimension(&self) -> usize {
+        self.complex.field_dimension()
+    }
+
+    fn eigenvalues(&self) -> &[f64] {
+        &self.eigenvalues
+    }
+
+    fn families(&self) -> &[FieldFamily] {
+        &self.families
+    }
+
+    fn coefficients(&self, field: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        check_length("field", self.field_dimension(), field.len())?;
+        let complex = &self.complex;
+        let weighted = complex.m1().apply(field);
+        let divergence = mul_transpose_vec(complex.d0(), &weighted);
+        let curl: Vec<f64> = mul_vec(complex.d1(), field).iter().map(|x| -x).collect();
+        let [integrable, cointegrable, harmonic] = self.sections;
+        let products = [
+            self.transpose_times(integrable, &divergence)?,
+            self.transpose_times(cointegrable, &curl)?,
+            self.transpose_times(harmonic, &weighted)?,
+        ];
+        Ok((0..self.len())
+            .map(|i| products[section_index(self.families[i])][self.slots[i]])
+            .collect())
+    }
+
+    fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        check_length("coefficients", self.len(), coefficients.len())?;
+        let [alpha, beta, gamma] = self.by_family(coefficients);
+        let [integrable, cointegrable, harmonic] = self.sections;
+        let exact = self
+            .complex
+            .gradient_field(&self.times(integrable, &alpha)?);
+        let co_exact = self
+            .complex
+            .co_gradient_field(&self.times(cointegrable, &beta)?);
+        let harmonic = self.times(harmonic, &gamma)?;
+        Ok(exact
+            .iter()
+            .zip(&co_exact)
+            .zip(&harmonic)
+            .map(|((a, b), h)| a + b + h)
+            .collect())
+    }
+
+    fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
+        let mass = self.complex.m1();
+        match mass.diagonal_values() {
+            Some(mass) => a.iter().zip(b).zip(mass).map(|((x, y), m)| x * m * y).sum(),
+            None => mass.inner(a, b),
+        }
+    }
+}
+
+/// Position of `family` in per-family arrays: integrable, co-integrable, harmonic.
+fn section_index(family: FieldFamily) -> usize {
+    match family {
+        FieldFamily::Integrable => 0,
+        FieldFamily::Cointegrable => 1,
+        FieldFamily::Harmonic => 2,
+    }
+}
+
+/// Where each family's stored columns are in a file with `header` whose body starts at
+/// `body_start`.
+fn sections_of(header: &BasisFileHeader, body_start: u64, n0: usize, n2: usize) -> [Section; 3] {
+    let integrable = Section {
+        offset: body_start,
+        rows: n0,
+        count: header.integrable_count,
+    };
+    let cointegrable = Section {
+        offset: integrable.offset + (8 * n0 * integrable.count) as u64,
+        rows: n2,
+        count: header.cointegrable_count,
+    };
+    let harmonic = Section {
+        offset: cointegrable.offset + (8 * n2 * cointegrable.count) as u64,
+        rows: header.key.field_dimension,
+        count: header.harmonic_count,
+    };
+    [integrable, cointegrable, harmonic]
+}
+
+/// The families of the family `codes` (`d` bytes), their counts the header's.
+fn families_of(codes: &[u8], header: &BasisFileHeader) -> Result<Vec<FieldFamily>, String> {
+    let families = codes
+        .iter()
+        .map(|&code| {
+            [
+                FieldFamily::Harmonic,
+                FieldFamily::Integrable,
+                FieldFamily::Cointegrable,
+            ]
+            .into_iter()
+            .find(|&f| family_code(f) == code)
+            .ok_or_else(|| format!("unknown family code {code}"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let count = |family| families.iter().filter(|&&f| f == family).count();
+    if (
+        count(FieldFamily::Integrable),
+        count(FieldFamily::Cointegrable),
+        count(FieldFamily::Harmonic),
+    ) != (
+        header.integrable_count,
+        header.cointegrable_count,
+        header.harmonic_count,
+    ) {
+        return Err("family counts differ from the header".into());
+    }
+    Ok(families)
+}
+
+/// Checks the payload `[start, end)` of `file` (`d` eigenvalues and family codes, then stored
+/// columns) against the checksum stored at `end`, reading it once in blocks, and that every
+/// stored column value is finite.
+fn check_payload(
+    file: &File,
+    path: &Path,
+    start: u64,
+    d: usize,
+    end: u64,
+) -> Result<(), BasisFileError> {
+    let io = |source| BasisFileError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let body_start = start + (8 * d + d.div_ceil(8) * 8) as u64;
+    let mut hash = Hash64::new();
+    let mut block = vec![0u8; BLOCK_BYTES];
+    let mut non_finite = None;
+    let mut at = start;
+    while at < end {
+        let length = (end - at).min(BLOCK_BYTES as u64) as usize;
+        file.read_exact_at(&mut block[..length], at).map_err(io)?;
+        hash.update(&block[..length]);
+        // The front is whole words, so the body's values start at a multiple of 8 bytes.
+        let skip = body_start.saturating_sub(at).min(length as u64);
+        if non_finite.is_none() {
+            non_finite = block[skip as usize..length]
+                .chunks_exact(8)
+                .position(|c| !f64::from_le_bytes(c.try_into().unwrap_or([0; 8])).is_finite())
+                .map(|word| (at + skip - body_start) / 8 + word as u64);
+        }
+        at += length as u64;
+    }
+    let mut stored = [0u8; 8];
+    file.read_exact_at(&mut stored, end).map_err(io)?;
+    if u64::from_le_bytes(stored) != hash.finish() {
+        return Err(BasisFileError::Checksum {
+            path: path.to_path_buf(),
+            part: "payload",
+        });
+    }
+    match non_finite {
+        Some(word) => Err(BasisFileError::Invalid {
+            path: path.to_path_buf(),
+            reason: format!("stored value {word} of the eigenfunctions is not finite"),
+        }),
+        None => Ok(()),
+    }
+}

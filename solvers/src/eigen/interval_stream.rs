@@ -1,0 +1,274 @@
+//! [`IntervalStream`]: the eigenvectors of solved intervals handed to the caller's sink
+//! ([`EigenOptions::finished`](super::types::EigenOptions::finished)) as soon as they are final,
+//! and their memory given back, so that a request's `n × k` eigenvectors are never all in memory.
+//!
+//! A vector is final once it is M-orthogonalised against the previous interval (the assembly of
+//! `interval_slicing.rs`, `orthogonalize_neighbours`) and the next interval has been
+//! orthogonalised against it. So the intervals of a plan are taken in ascending order as their
+//! jobs finish (the jobs of a streamed call run in that order, see `interval_jobs`): each part
+//! (an interval, or a half of a split one) is orthogonalised against the part before it, which
+//! is then handed on. The same products on the same columns as the assembly of a whole matrix
+//! give the same vectors bit for bit. Every job's columns leave memory as the job finishes (on
+//! its own thread: the calling thread that places the intervals shares rayon's pool with the
+//! jobs, and its products can wait minutes for a free worker, so Done messages queue up), an
+//! interval waits on disk until it is placed, and handed-on columns are given back
+//! ([`super::file_backed_columns`]).
+
+use super::file_backed_columns::{drop_columns, ParkedColumns};
+use super::mass::Mass;
+use super::pencil::Pencil;
+use super::refinement::{field_residuals, FieldResidual};
+use super::tall_products::mass_inner;
+use super::types::{EigenvectorSink, FinishedEigenvectors};
+use crate::error::SolverError;
+use faer::linalg::matmul::matmul;
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{Accum, MatMut, MatRef, Par};
+use std::collections::HashMap;
+
+/// A plan's reserved `rows × k` eigenvector matrix, as the raw columns the jobs write.
+#[derive(Clone, Copy)]
+pub(crate) struct RawColumns {
+    pub ptr: *mut f64,
+    pub rows: usize,
+    pub col_stride: usize,
+    pub k: usize,
+    /// The descriptor of the file the columns are a shared mapping of, if they are
+    /// ([`super::file_backed_columns`]).
+    pub file: Option<i32>,
+}
+
+impl RawColumns {
+    /// Columns `first..first + width` (inside `0..k`), to read.
+    ///
+    /// # Safety
+    /// Every job that writes these columns has finished, and no mutable view of them is alive.
+    unsafe fn columns<'m>(&self, first: usize, width: usize) -> MatRef<'m, f64> {
+        debug_assert!(first + width <= self.k);
+        MatRef::from_raw_parts(
+            self.ptr.add(first * self.col_stride),
+            self.rows,
+            width,
+            1,
+            self.col_stride as isize,
+        )
+    }
+
+    /// Columns `first..first + width` (inside `0..k`), to change.
+    ///
+    /// # Safety
+    /// Every job that writes these columns has finished, and no other view of them is alive.
+    unsafe fn columns_mut<'m>(&self, first: usize, width: usize) -> MatMut<'m, f64> {
+        debug_assert!(first + width <= self.k);
+        MatMut::from_raw_parts_mut(
+            self.ptr.add(first * self.col_stride),
+            self.rows,
+            width,
+            1,
+            self.col_stride as isize,
+        )
+    }
+}
+
+/// One solved part of an interval: its lower end (the parts of an interval are ordered by it)
+/// and its eigenvalues.
+pub(crate) struct SolvedPart {
+    pub lower: f64,
+    pub values: Vec<f64>,
+}
+
+/// The stream of one plan (one request solved by intervals).
+struct PlanStream<'p> {
+    request: usize,
+    pencil: &'p Pencil<'p>,
+    columns: RawColumns,
+    /// The plan's jobs `(interval, job)`, ascending in interval.
+    order: Vec<(usize, usize)>,
+    /// Position in `order` of the next interval to place.
+    next: usize,
+    /// Solved intervals waiting for an earlier one, by job.
+    waiting: HashMap<usize, Vec<SolvedPart>>,
+    /// The last part placed, `(first column, eigenpairs)`: final once the next part is
+    /// orthogonalised against it.
+    held: Option<(usize, usize)>,
+    /// Eigenvalues of the placed parts, in column order.
+    values: Vec<f64>,
+    /// Field residuals of the columns handed on, in column order.
+    residuals: Vec<FieldResidual>,
+}
+
+/// The streams of every plan of a call, fed with each job's parts as it finishes.
+pub(crate) struct IntervalStream<'s> {
+    plans: Vec<PlanStream<'s>>,
+    /// Plan and interval of each job.
+    jobs: &'s [(usize, usize)],
+    sink: &'s EigenvectorSink<'s>,
+    par: Par,
+}
+
+impl<'s> IntervalStream<'s> {
+    /// Streams for the plans of `requests` (`plans[p] = (request, pencil, columns)`) and
+    /// `jobs` (plan and interval of each).
+    pub(crate) fn new(
+        plans: Vec<(usize, &'s Pencil<'s>, RawColumns)>,
+        jobs: &'s [(usize, usize)],
+        sink: &'s EigenvectorSink<'s>,
+        par: Par,
+    ) -> Self {
+        let plans = plans
+            .into_iter()
+            .enumerate()
+            .map(|(p, (request, pencil, columns))| {
+                let mut order: Vec<(usize, usize)> = jobs
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, &(q, _))| q == p)
+                    .map(|(job, &(_, i))| (i, job))
+                    .collect();
+                order.sort_unstable();
+                PlanStream {
+                    request,
+                    pencil,
+                    columns,
+                    order,
+                    next: 0,
+                    waiting: HashMap::new(),
+                    held: None,
+                    values: Vec::new(),
+                    residuals: Vec::new(),
+                }
+            })
+            .collect();
+        Self {
+            plans,
+            jobs,
+            sink,
+            par,
+        }
+    }
+
+    /// Job `job` finished with `parts` in its columns: places every interval that is now next
+    /// in its plan and hands on what became final (all that is left when the plan's last
+    /// interval is placed). The job's columns left memory when it finished (the job parked
+    /// them, see `interval_slicing.rs`), so an interval that waits for an earlier one waits on
+    /// disk; they fault back in when placed, and the part held for the next one is parked
+    /// again.
+    ///
+    /// # Safety
+    /// `job` has finished writing its columns, and no view of a finished job's columns is alive.
+    pub(crate) unsafe fn job_done(
+        &mut self,
+        job: usize,
+        mut parts: Vec<SolvedPart>,
+    ) -> Result<(), SolverError> {
+        let (sink, par) = (self.sink, self.par);
+        let plan = &mut self.plans[self.jobs[job].0];
+        parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
+        plan.waiting.insert(job, parts);
+        while let Some(&(_, next_job)) = plan.order.get(plan.next) {
+            let Some(parts) = plan.waiting.remove(&next_job) else {
+                break;
+            };
+            for part in parts {
+                plan.place(part, sink, par)?;
+            }
+            plan.next += 1;
+        }
+        if plan.next == plan.order.len() {
+            if let Some((first, count)) = plan.held.take() {
+                plan.hand_on(first, count, sink, par)?;
+            }
+        }
+        // The part held for the next one waits on disk too (placing faulted it back in).
+        if let Some((first, count)) = plan.held {
+            let width = (first + count).min(plan.columns.k).saturating_sub(first);
+            if let Some(parked) = ParkedColumns::of(&plan.columns, first, width) {
+                parked.park();
+            }
+        }
+        Ok(())
+    }
+
+    /// The eigenvalues (all placed, in column order) and the field residuals (of the columns
+    /// handed on) of each plan.
+    pub(crate) fn into_results(self) -> Vec<(Vec<f64>, Vec<FieldResidual>)> {
+        self.plans
+            .into_iter()
+            .map(|plan| (plan.values, plan.residuals))
+            .collect()
+    }
+}
+
+impl PlanStream<'_> {
+    /// Places `part` after the parts before it: orthogonalises it against the held part (as
+    /// `orthogonalize_neighbours` does, columns past `k` left out), which is then final and
+    /// handed on.
+    unsafe fn place(
+        &mut self,
+        part: SolvedPart,
+        sink: &EigenvectorSink<'_>,
+        par: Par,
+    ) -> Result<(), SolverError> {
+        let k = self.columns.k;
+        let start = self.values.len();
+        if let Some((first, count)) = self.held.take() {
+            if start < k {
+                let current = part.values.len().min(k - start);
+                let earlier = self.columns.columns(first, count);
+                let mut current = self.columns.columns_mut(start, current);
+                let overlap = mass_inner(earlier, self.mass(), current.rb(), par);
+                matmul(
+                    current.rb_mut(),
+                    Accum::Add,
+                    earlier,
+                    overlap.as_ref(),
+                    -1.0,
+                    par,
+                );
+            }
+            self.hand_on(first, count, sink, par)?;
+        }
+        self.held = Some((start, part.values.len()));
+        self.values.extend(part.values);
+        Ok(())
+    }
+
+    fn mass(&self) -> Mass<'_> {
+        self.pencil.mass()
+    }
+
+    /// Hands columns `first..first + count` (cut at `k`) to `sink` with their field residuals,
+    /// then releases their memory.
+    unsafe fn hand_on(
+        &mut self,
+        first: usize,
+        count: usize,
+        sink: &EigenvectorSink<'_>,
+        par: Par,
+    ) -> Result<(), SolverError> {
+        let k = self.columns.k;
+        let width = (first + count).min(k).saturating_sub(first);
+        if width == 0 {
+            return Ok(());
+        }
+        let vectors = self.columns.columns(first, width);
+        let values = &self.values[first..first + width];
+        let floor = 1e-8 * self.pencil.mean_eigenvalue.abs();
+        self.residuals.extend(field_residuals(
+            &self.pencil.operators(),
+            values,
+            vectors,
+            floor,
+            par,
+        ));
+        sink(&FinishedEigenvectors {
+            request: self.request,
+            first,
+            values,
+            vectors,
+        })
+        .map_err(|reason| SolverError::Stopped { reason })?;
+        drop_columns(&self.columns, first, width);
+        Ok(())
+    }
+}
