@@ -316,13 +316,14 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
     // Where the fields cannot be normalised column by column, their norms come from the
     // eigenvalues ([`ScalarSpectrum::energy_norms`]) while the spectra are at hand.
     let energy_norms = (!streams_columns(complex)).then(|| {
-        let kept = |pairs: &ScalarEigenpairs, n: usize| {
-            pairs.vectors.as_ref().subcols(0, n.min(pairs.vectors.ncols()))
+        let norms = |spectrum: &ScalarSpectrum, pairs: &ScalarEigenpairs, n: usize| {
+            let kept = pairs
+                .vectors
+                .as_ref()
+                .subcols(0, n.min(pairs.vectors.ncols()));
+            spectrum.energy_norms(&pairs.values, kept)
         };
-        (
-            exact.energy_norms(&a.values, kept(&a, na)),
-            co_exact.energy_norms(&b.values, kept(&b, nb)),
-        )
+        (norms(&exact, &a, na), norms(&co_exact, &b, nb))
     });
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
     Ok(SolvedBasis {
