@@ -56,7 +56,7 @@
 //! time (numbers in `docs/performance.md`).
 
 use super::file_backed_columns::{FileBackedColumns, ParkedColumns};
-use super::interval_stream::{IntervalStream, RawColumns, SolvedPart};
+use super::interval_stream::{jobs_in_interval_order, IntervalStream, RawColumns, SolvedPart};
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::mass::Mass;
 use super::pencil::{Pencil, ShiftCount};
@@ -524,14 +524,7 @@ fn job_outputs<'m>(
         let mut rest = unsafe {
             MatMut::from_raw_parts_mut(raw.ptr, raw.rows, raw.k, 1, raw.col_stride as isize)
         };
-        let mut in_order: Vec<(usize, usize)> = jobs
-            .iter()
-            .enumerate()
-            .filter(|(_, &(q, _))| q == p)
-            .map(|(job, &(_, i))| (i, job))
-            .collect();
-        in_order.sort_unstable();
-        for (i, job) in in_order {
+        for (i, job) in jobs_in_interval_order(jobs, p) {
             let counts = &plans[p].counts;
             let width = counts[i + 1].min(raw.k) - counts[i].min(raw.k);
             let (columns, tail) = rest.split_at_col_mut(width);

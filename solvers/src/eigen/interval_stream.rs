@@ -119,13 +119,7 @@ impl<'s> IntervalStream<'s> {
             .into_iter()
             .enumerate()
             .map(|(p, (request, pencil, columns))| {
-                let mut order: Vec<(usize, usize)> = jobs
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, &(q, _))| q == p)
-                    .map(|(job, &(_, i))| (i, job))
-                    .collect();
-                order.sort_unstable();
+                let order = jobs_in_interval_order(jobs, p);
                 PlanStream {
                     request,
                     pencil,
@@ -271,4 +265,17 @@ impl PlanStream<'_> {
         drop_columns(&self.columns, first, width);
         Ok(())
     }
+}
+
+/// The jobs of plan `p` as `(interval, job)` pairs in ascending interval order, where `jobs`
+/// holds each job's `(plan, interval)`.
+pub(super) fn jobs_in_interval_order(jobs: &[(usize, usize)], p: usize) -> Vec<(usize, usize)> {
+    let mut order: Vec<(usize, usize)> = jobs
+        .iter()
+        .enumerate()
+        .filter(|(_, &(q, _))| q == p)
+        .map(|(job, &(_, i))| (i, job))
+        .collect();
+    order.sort_unstable();
+    order
 }
