@@ -81,6 +81,39 @@ pub struct BasisReport {
     pub seconds: f64,
 }
 
+impl BasisReport {
+    /// The eigensolver's statistics of one call over both families' pencils.
+    fn record_solver(
+        &mut self,
+        solver: SolverStatistics,
+        exact: &Pencil<'_>,
+        co_exact: &Pencil<'_>,
+    ) {
+        self.solver = solver;
+        self.factorizations = solver.factorizations();
+        self.solves = solver.solves();
+        self.eigensolver_calls = 2;
+        self.distinct_shifts = distinct_shifts(exact) + distinct_shifts(co_exact);
+    }
+
+    /// The counts, kernels and residuals of the two families' eigenpairs `a` (potentials) and
+    /// `b` (co-potentials), of which the basis keeps `kept`.
+    fn record_families(
+        &mut self,
+        a: &ScalarEigenpairs,
+        b: &ScalarEigenpairs,
+        kept: (usize, usize),
+    ) {
+        self.integrable_count = kept.0;
+        self.cointegrable_count = kept.1;
+        self.potential_kernel_eigenvalues = a.kernel_values.clone();
+        self.co_potential_kernel_eigenvalues = b.kernel_values.clone();
+        self.max_solver_residual = a.max_residual.max(b.max_residual);
+        self.max_field_residual = a.max_field_residual.max(b.max_field_residual);
+        self.max_field_residual_floor = a.max_field_residual_floor.max(b.max_field_residual_floor);
+    }
+}
+
 /// The Fourier basis of `complex` as requested, with dense `n1 × d` fields (the eigenfunctions
 /// and an `f32` copy too if the request asks for them), sorted by eigenvalue and labelled.
 ///
@@ -214,23 +247,7 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
     request: &BasisRequest<'_>,
     sink: Option<&dyn EigenfunctionSink>,
 ) -> Result<SolvedBasis, BasisError> {
-    let (potential_nodes, co_potential_nodes) =
-        (complex.potential_nodes(), complex.co_potential_nodes());
-    let free_fields = free_nodes(complex.field_nodes());
-    let exact = ScalarSpectrum::new(
-        "potential",
-        complex.exact_eigenproblem(),
-        &free_nodes(potential_nodes),
-        &free_fields,
-        potential_nodes.kernel_dimension(),
-    );
-    let co_exact = ScalarSpectrum::new(
-        "co-potential",
-        complex.co_exact_eigenproblem(),
-        &free_nodes(co_potential_nodes),
-        &free_fields,
-        co_potential_nodes.kernel_dimension(),
-    );
+    let (exact, co_exact) = scalar_spectra(complex);
     let h = complex.topology().harmonic_dimension;
     let area = complex.total_area();
     let (exact_pencil, co_exact_pencil) = (exact.pencil()?, co_exact.pencil()?);
@@ -282,11 +299,7 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
         request,
         streaming.as_ref(),
     )?;
-    report.solver = solver;
-    report.factorizations = solver.factorizations();
-    report.solves = solver.solves();
-    report.eigensolver_calls = 2;
-    report.distinct_shifts = distinct_shifts(&exact_pencil) + distinct_shifts(&co_exact_pencil);
+    report.record_solver(solver, &exact_pencil, &co_exact_pencil);
     // Fails loudly if the eigensolver disagrees with the counts the selection below relies on.
     split.check(&exact, &a.values, ka)?;
     split.check(&co_exact, &b.values, kb)?;
@@ -303,27 +316,18 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
     let within = |(a, b, h): (usize, usize, usize)| na <= a && nb <= b && nh == h;
     if streaming.is_some() && !counts.is_some_and(within) {
         return Err(BasisError::InvalidRequest(format!(
-            "the basis kept {na} + {nb} + {nh} fields, not the {counts:?} its eigenfunctions              were written for"
+            "the basis kept {na} + {nb} + {nh} fields, not the {counts:?} its eigenfunctions were \
+             written for"
         )));
     }
-    report.integrable_count = na;
-    report.cointegrable_count = nb;
-    report.potential_kernel_eigenvalues = a.kernel_values.clone();
-    report.co_potential_kernel_eigenvalues = b.kernel_values.clone();
-    report.max_solver_residual = a.max_residual.max(b.max_residual);
-    report.max_field_residual = a.max_field_residual.max(b.max_field_residual);
-    report.max_field_residual_floor = a.max_field_residual_floor.max(b.max_field_residual_floor);
+    report.record_families(&a, &b, (na, nb));
     // Where the fields cannot be normalised column by column, their norms come from the
-    // eigenvalues ([`ScalarSpectrum::energy_norms`]) while the spectra are at hand.
+    // eigenvalues while the spectra are at hand.
     let energy_norms = (!streams_columns(complex)).then(|| {
-        let norms = |spectrum: &ScalarSpectrum, pairs: &ScalarEigenpairs, n: usize| {
-            let kept = pairs
-                .vectors
-                .as_ref()
-                .subcols(0, n.min(pairs.vectors.ncols()));
-            spectrum.energy_norms(&pairs.values, kept)
-        };
-        (norms(&exact, &a, na), norms(&co_exact, &b, nb))
+        (
+            kept_energy_norms(&exact, &a, na),
+            kept_energy_norms(&co_exact, &b, nb),
+        )
     });
     let harmonic = harmonic.fields.as_ref().subcols(0, nh).to_owned();
     Ok(SolvedBasis {
@@ -336,6 +340,38 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
         report,
         streamed: streaming.is_some(),
     })
+}
+
+/// The potential and the co-potential eigenproblems of `complex` on their free nodes.
+fn scalar_spectra<H: HodgeComplex + ?Sized>(complex: &H) -> (ScalarSpectrum, ScalarSpectrum) {
+    let (potential_nodes, co_potential_nodes) =
+        (complex.potential_nodes(), complex.co_potential_nodes());
+    let free_fields = free_nodes(complex.field_nodes());
+    let exact = ScalarSpectrum::new(
+        "potential",
+        complex.exact_eigenproblem(),
+        &free_nodes(potential_nodes),
+        &free_fields,
+        potential_nodes.kernel_dimension(),
+    );
+    let co_exact = ScalarSpectrum::new(
+        "co-potential",
+        complex.co_exact_eigenproblem(),
+        &free_nodes(co_potential_nodes),
+        &free_fields,
+        co_potential_nodes.kernel_dimension(),
+    );
+    (exact, co_exact)
+}
+
+/// The `M1` norms of the fields of the first `kept` eigenfunctions of `pairs`, from their
+/// eigenvalues ([`ScalarSpectrum::energy_norms`]).
+fn kept_energy_norms(spectrum: &ScalarSpectrum, pairs: &ScalarEigenpairs, kept: usize) -> Vec<f64> {
+    let columns = pairs
+        .vectors
+        .as_ref()
+        .subcols(0, kept.min(pairs.vectors.ncols()));
+    spectrum.energy_norms(&pairs.values, columns)
 }
 
 /// Bounds of the (integrable, co-integrable, harmonic) counts of the basis of `size` from
