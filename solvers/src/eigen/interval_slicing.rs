@@ -66,16 +66,15 @@ use super::refinement::{
 };
 use super::shift_factor::ShiftFactor;
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
-use super::tall_products::mass_inner;
+use super::tall_products::remove_mass_projection;
 use super::types::{
     EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors,
 };
 use super::workspace_pool::WorkspacePool;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_on_huge_pages;
-use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::{Accum, Mat, MatMut, Par};
+use faer::{Mat, MatMut, Par};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -1162,16 +1161,8 @@ fn orthogonalize_neighbours(
         }
         let (before, after) = vectors.rb_mut().split_at_col_mut(middle);
         let earlier = before.rb().subcols(start, earlier);
-        let mut current = after.subcols_mut(0, current.min(k - middle));
-        let overlap = mass_inner(earlier, mass, current.rb(), par);
-        matmul(
-            current.rb_mut(),
-            Accum::Add,
-            earlier,
-            overlap.as_ref(),
-            -1.0,
-            par,
-        );
+        let current = after.subcols_mut(0, current.min(k - middle));
+        remove_mass_projection(current, earlier, mass, par);
         start = middle;
     }
 }

@@ -18,12 +18,10 @@ use super::file_backed_columns::{drop_columns, ParkedColumns};
 use super::mass::Mass;
 use super::pencil::Pencil;
 use super::refinement::{field_residuals, FieldResidual};
-use super::tall_products::mass_inner;
+use super::tall_products::remove_mass_projection;
 use super::types::{EigenvectorSink, FinishedEigenvectors};
 use crate::error::SolverError;
-use faer::linalg::matmul::matmul;
-use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::{Accum, MatMut, MatRef, Par};
+use faer::{MatMut, MatRef, Par};
 use std::collections::HashMap;
 
 /// A plan's reserved `rows × k` eigenvector matrix, as the raw columns the jobs write.
@@ -209,16 +207,8 @@ impl PlanStream<'_> {
             if start < k {
                 let current = part.values.len().min(k - start);
                 let earlier = self.columns.columns(first, count);
-                let mut current = self.columns.columns_mut(start, current);
-                let overlap = mass_inner(earlier, self.mass(), current.rb(), par);
-                matmul(
-                    current.rb_mut(),
-                    Accum::Add,
-                    earlier,
-                    overlap.as_ref(),
-                    -1.0,
-                    par,
-                );
+                let current = self.columns.columns_mut(start, current);
+                remove_mass_projection(current, earlier, self.mass(), par);
             }
             self.hand_on(first, count, sink, par)?;
         }

@@ -399,6 +399,19 @@ pub(crate) fn mass_inner(
     }
 }
 
+/// Removes from `Z` (`n × r`, in place) its `M`-projection onto the columns of `B` (`n × p`,
+/// `M`-orthonormal): `Z ← Z − B (Bᵀ M Z)`, the step that keeps eigenvectors of neighbouring
+/// spectrum-slicing intervals `M`-orthogonal. Costs the two `n × p × r` products.
+pub(crate) fn remove_mass_projection(
+    mut z: MatMut<'_, f64>,
+    b: MatRef<'_, f64>,
+    mass: Mass<'_>,
+    par: Par,
+) {
+    let overlap = mass_inner(b, mass, z.rb(), par);
+    matmul(z.rb_mut(), Accum::Add, b, overlap.as_ref(), -1.0, par);
+}
+
 /// `Bᵀ Z` (`p × r`) for `B: n × p`, `Z: n × r`, rows split as in [`mass_inner`].
 pub(crate) fn tall_inner(b: MatRef<'_, f64>, z: MatRef<'_, f64>, par: Par) -> Mat<f64> {
     split_inner(b, None, z, row_parts(b.nrows(), par))
