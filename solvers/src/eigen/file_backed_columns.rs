@@ -2,16 +2,19 @@
 //! ([`EigenOptions::finished`](super::types::EigenOptions::finished)) in a shared mapping of an
 //! unnamed temporary file instead of anonymous memory, so that finished intervals can leave
 //! memory until they are handed on ([`super::interval_stream`]): their pages are written to the
-//! file and unmapped ([`ParkedColumns::park`], by the job that solved them, as it finishes),
-//! and fault back in when it is their turn. Handed-on columns are unmapped and their part of
+//! file and released ([`ParkedColumns::park`], by the job that solved them, as it finishes),
+//! and fault back in when it is their turn. Handed-on columns are released and their part of
 //! the file punched out ([`drop_columns`]), so neither memory nor disk holds them. Parked pages
 //! stay in the page cache while memory is plentiful, where they no longer count as the
 //! process's and the kernel can drop them once written. Measured in `docs/performance.md`:
 //! without the parking, every interval waited in memory for the lowest one of its family.
-//! Linux only; elsewhere, or where no temporary file can be made, the columns are anonymous
-//! memory and parking does nothing.
+//! The file and its system calls are [`super::temporary_file_mapping`]'s, on Linux only;
+//! elsewhere, or where no temporary file can be made, the columns are anonymous memory
+//! ([`FileBackedColumns::in_memory`]) and parking does nothing. The tests run both on Linux.
 
 use super::interval_stream::RawColumns;
+#[cfg(target_os = "linux")]
+use super::temporary_file_mapping::{punch_out, write_back_and_release, TemporaryFileMapping};
 use crate::huge_pages::{release_pages, reserve_on_huge_pages};
 use faer::Mat;
 
@@ -19,9 +22,7 @@ use faer::Mat;
 pub(crate) enum FileBackedColumns {
     #[cfg(target_os = "linux")]
     Mapped {
-        file: std::fs::File,
-        ptr: *mut f64,
-        bytes: usize,
+        mapping: TemporaryFileMapping,
         rows: usize,
     },
     /// Reserved, untouched anonymous memory (`rows` rows).
@@ -29,71 +30,40 @@ pub(crate) enum FileBackedColumns {
 }
 
 impl FileBackedColumns {
-    /// Room for `rows × columns` values, all zero until written (a sparse file: nothing is on
-    /// disk or in memory before it is written).
+    /// Room for `rows × columns` values, all zero until written: a temporary file where one can
+    /// be made (Linux), anonymous memory ([`FileBackedColumns::in_memory`]) otherwise.
     pub(crate) fn new(rows: usize, columns: usize) -> Self {
         #[cfg(target_os = "linux")]
-        if let Some(mapped) = Self::mapped(rows, columns) {
-            return mapped;
+        if let Some(mapping) = rows
+            .checked_mul(columns)
+            .and_then(|values| values.checked_mul(std::mem::size_of::<f64>()))
+            .and_then(TemporaryFileMapping::new)
+        {
+            return Self::Mapped { mapping, rows };
         }
+        Self::in_memory(rows, columns)
+    }
+
+    /// The fallback: room for `rows × columns` values in reserved anonymous memory, where
+    /// parking does nothing.
+    pub(crate) fn in_memory(rows: usize, columns: usize) -> Self {
         Self::Memory {
             matrix: reserve_on_huge_pages(rows, columns),
             rows,
         }
     }
 
-    #[cfg(target_os = "linux")]
-    fn mapped(rows: usize, columns: usize) -> Option<Self> {
-        use std::os::unix::fs::OpenOptionsExt;
-        use std::os::unix::io::AsRawFd;
-        let bytes = rows.checked_mul(columns)?.checked_mul(8)?;
-        if bytes == 0 {
-            return None;
-        }
-        let file = std::fs::OpenOptions::new()
-            .read(true)
-            .write(true)
-            .mode(0o600)
-            .custom_flags(libc::O_TMPFILE)
-            .open(std::env::temp_dir())
-            .ok()?;
-        file.set_len(bytes as u64).ok()?;
-        // SAFETY: a fresh shared mapping of the whole file, owned by the returned value and
-        // unmapped when it is dropped.
-        let ptr = unsafe {
-            libc::mmap(
-                std::ptr::null_mut(),
-                bytes,
-                libc::PROT_READ | libc::PROT_WRITE,
-                libc::MAP_SHARED,
-                file.as_raw_fd(),
-                0,
-            )
-        };
-        (ptr != libc::MAP_FAILED).then_some(Self::Mapped {
-            file,
-            ptr: ptr as *mut f64,
-            bytes,
-            rows,
-        })
-    }
-
     /// The columns, for [`RawColumns`] views (`k` columns used).
     pub(crate) fn raw(&mut self, k: usize) -> RawColumns {
         match self {
             #[cfg(target_os = "linux")]
-            Self::Mapped {
-                file, ptr, rows, ..
-            } => {
-                use std::os::unix::io::AsRawFd;
-                RawColumns {
-                    ptr: *ptr,
-                    rows: *rows,
-                    col_stride: *rows,
-                    k,
-                    file: Some(file.as_raw_fd()),
-                }
-            }
+            Self::Mapped { mapping, rows } => RawColumns {
+                ptr: mapping.ptr(),
+                rows: *rows,
+                col_stride: *rows,
+                k,
+                file: Some(mapping.descriptor()),
+            },
             Self::Memory { matrix, rows } => RawColumns {
                 ptr: matrix.as_ptr_mut(),
                 rows: *rows,
@@ -101,18 +71,6 @@ impl FileBackedColumns {
                 k,
                 file: None,
             },
-        }
-    }
-}
-
-impl Drop for FileBackedColumns {
-    fn drop(&mut self) {
-        #[cfg(target_os = "linux")]
-        if let Self::Mapped { ptr, bytes, .. } = self {
-            // SAFETY: the mapping made in `mapped`, no view of it outlives the call that made it.
-            unsafe {
-                libc::munmap(*ptr as *mut libc::c_void, *bytes);
-            }
         }
     }
 }
@@ -150,50 +108,106 @@ impl ParkedColumns {
     }
 
     /// Moves the columns out of memory until they are read again: written to the file (the
-    /// writeback started now) and unmapped.
+    /// writeback started now) and their pages released.
     ///
     /// # Safety
     /// The columns still lie inside their mapping, and no view of them is alive.
     pub(crate) unsafe fn park(&self) {
         #[cfg(target_os = "linux")]
-        {
-            // Failures only mean the pages stay in memory.
-            libc::sync_file_range(
-                self.fd,
-                self.offset as i64,
-                self.bytes as i64,
-                libc::SYNC_FILE_RANGE_WRITE,
-            );
-            unmap(self.start, self.bytes);
-        }
+        write_back_and_release(self.fd, self.start, self.offset, self.bytes);
     }
 }
 
-/// Gives columns `first..first + width` back for good: unmapped, and for a file their part
+/// Gives columns `first..first + width` back for good: their pages released, and for a file their part
 /// punched out (no longer on disk nor in the page cache); released pages of anonymous memory.
 ///
 /// # Safety
 /// The columns lie inside `columns`, and nothing reads them again.
 pub(crate) unsafe fn drop_columns(columns: &RawColumns, first: usize, width: usize) {
     let (offset, bytes) = byte_range(columns, first, width);
+    let start = columns.ptr as usize + offset;
     match columns.file {
         #[cfg(target_os = "linux")]
-        Some(fd) => {
-            unmap(columns.ptr as usize + offset, bytes);
-            libc::fallocate(
-                fd,
-                libc::FALLOC_FL_PUNCH_HOLE | libc::FALLOC_FL_KEEP_SIZE,
-                offset as i64,
-                bytes as i64,
-            );
-        }
-        _ => release_pages(columns.ptr as usize + offset, bytes),
+        Some(fd) => punch_out(fd, start, offset, bytes),
+        _ => release_pages(start, bytes),
     }
 }
 
-/// Unmaps the whole pages inside `[start, start + bytes)` of a shared file mapping (their
-/// contents stay in the file).
-#[cfg(target_os = "linux")]
-unsafe fn unmap(start: usize, bytes: usize) {
-    release_pages(start, bytes);
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The value every test writes at row `i` of column `j`.
+    fn value(i: usize, j: usize) -> f64 {
+        (i * 7 + j) as f64 + 0.5
+    }
+
+    /// Entry `(i, j)` of `columns`.
+    ///
+    /// # Safety
+    /// `(i, j)` lies inside `columns`.
+    unsafe fn entry(columns: &RawColumns, i: usize, j: usize) -> *mut f64 {
+        columns.ptr.add(j * columns.col_stride + i)
+    }
+
+    /// Fills four columns of 3,000 rows (24 kB each: whole pages inside every one), parks
+    /// columns 1 and 2, checks every value read back, drops column 1 and checks that its whole
+    /// pages read as zeros while the other columns keep their values.
+    fn parked_columns_read_back_and_dropped_ones_are_zero(mut storage: FileBackedColumns) {
+        let (rows, k) = (3000, 4);
+        let columns = storage.raw(k);
+        // SAFETY: every entry written lies inside the `rows × k` columns; no view is alive.
+        unsafe {
+            for j in 0..k {
+                for i in 0..rows {
+                    entry(&columns, i, j).write(value(i, j));
+                }
+            }
+            let parked = ParkedColumns::of(&columns, 1, 2);
+            assert_eq!(parked.is_some(), columns.file.is_some());
+            if let Some(parked) = parked {
+                parked.park();
+            }
+            for j in 0..k {
+                for i in 0..rows {
+                    assert_eq!(entry(&columns, i, j).read(), value(i, j), "({i}, {j})");
+                }
+            }
+            drop_columns(&columns, 1, 1);
+            let page_values = 4096 / std::mem::size_of::<f64>();
+            let column_start = columns.ptr as usize + columns.col_stride * 8;
+            let first_whole = (column_start.next_multiple_of(4096) - column_start) / 8;
+            let zeros = (first_whole..rows).take(page_values);
+            assert!(zeros.len() == page_values, "a whole page inside column 1");
+            for i in zeros {
+                assert_eq!(
+                    entry(&columns, i, 1).read(),
+                    0.0,
+                    "row {i} of the dropped column"
+                );
+            }
+            for j in [0, 2, 3] {
+                for i in 0..rows {
+                    assert_eq!(entry(&columns, i, j).read(), value(i, j), "({i}, {j})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn anonymous_memory_fallback_keeps_values_and_releases_dropped_columns() {
+        parked_columns_read_back_and_dropped_ones_are_zero(FileBackedColumns::in_memory(3000, 4));
+    }
+
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn a_temporary_file_parks_columns_and_punches_out_dropped_ones() {
+        let storage = FileBackedColumns::new(3000, 4);
+        assert!(
+            matches!(storage, FileBackedColumns::Mapped { .. }),
+            "no temporary file could be mapped in {}",
+            std::env::temp_dir().display()
+        );
+        parked_columns_read_back_and_dropped_ones_are_zero(storage);
+    }
 }

@@ -23,6 +23,8 @@ mod stored_mass;
 mod symmetric_products;
 mod tall_kernels;
 mod tall_products;
+#[cfg(target_os = "linux")]
+mod temporary_file_mapping;
 mod types;
 mod workspace_pool;
 
