@@ -3,6 +3,7 @@
 
 use crate::basis_request::{BasisRequest, BasisSize, BasisStage};
 use crate::eigenfunction_basis::EigenfunctionBasis;
+use crate::eigenfunction_sink::EigenfunctionSink;
 use crate::family_split::split_families;
 use crate::harmonic_fields::harmonic_fields;
 use crate::scalar_spectrum::{free_nodes, ScalarEigenpairs, ScalarSpectrum};
@@ -203,21 +204,6 @@ pub(crate) fn kept_in_memory<H: HodgeComplex + ?Sized>(
     );
     let basis = EigenfunctionBasis::new(solved.entries, potentials, co_potentials, solved.harmonic);
     (basis, solved.report)
-}
-
-/// Where [`solve_basis`] hands the eigenfunctions as they are computed, instead of keeping them
-/// (see [`crate::save_computed_basis`]).
-pub(crate) trait EigenfunctionSink: Sync {
-    /// Called once, before any column, with the number of integrable, co-integrable and
-    /// harmonic columns that will come: the basis keeps the first ones of each family, at most
-    /// that many (the exact harmonic count; the computation fails if it ends up with more);
-    /// `false` declines the columns (they are then kept in memory).
-    fn begin(&self, counts: (usize, usize, usize)) -> Result<bool, String>;
-
-    /// Column `index` of `family`'s matrix of [`EigenfunctionBasis`]: a potential (`n0`
-    /// values) or a co-potential (`n2`), normalised as there, bit for bit. Each column comes
-    /// once, in no particular order.
-    fn column(&self, family: FieldFamily, index: usize, values: &[f64]) -> Result<(), String>;
 }
 
 /// What [`solve_basis`] found: the basis entries, the eigenpairs of both scalar problems (their

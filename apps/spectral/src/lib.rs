@@ -45,6 +45,7 @@ mod compute_basis;
 mod computed_field;
 mod dense_memory;
 mod eigenfunction_basis;
+mod eigenfunction_sink;
 pub mod eigenspace_angles;
 mod family_split;
 mod field_basis;

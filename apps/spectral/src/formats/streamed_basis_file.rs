@@ -19,7 +19,8 @@
 //! non-diagonal `M1`), the eigenfunctions layout is not the smaller, or the target is not a
 //! regular file, the basis is computed in memory and saved as before.
 
-use crate::compute_basis::{kept_in_memory, solve_basis, EigenfunctionSink, SolvedBasis};
+use crate::compute_basis::{kept_in_memory, solve_basis, SolvedBasis};
+use crate::eigenfunction_sink::EigenfunctionSink;
 use crate::formats::basis_file::{family_code, save_eigenfunction_basis, BasisFileError};
 use crate::formats::basis_file_header::{
     encode_header, BasisFileHeader, BasisFileKey, BasisFileLayout, BASIS_FILE_VERSION,
