@@ -68,24 +68,3 @@ fn estimated_trace<H: HodgeComplex + ?Sized>(complex: &H) -> f64 {
         dirichlet.rows() as f64 * energy / mass
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use tvf_core::generate::{icosphere, jitter};
-    use tvf_discretizations::catalog_entry;
-
-    #[test]
-    fn the_probe_estimate_is_close_to_the_exact_trace() {
-        let mesh = jitter(&icosphere(2), 0.2, 5).expect("mesh");
-        let complex = catalog_entry("conforming-barycentric")
-            .expect("in the catalog")
-            .build(&mesh)
-            .expect("complex");
-        let complex = complex.as_ref();
-        let exact = default_regularization(complex) * 1e10 * complex.field_dimension() as f64;
-        let estimate = estimated_trace(complex);
-        let relative = (estimate - exact).abs() / exact;
-        assert!(relative < 0.1, "estimate {estimate:e}, exact {exact:e}");
-    }
-}

@@ -1,12 +1,16 @@
-//! The JSON constraint-set format: the documented example, round trips and every error.
+//! The JSON constraint-set format: the documented example, round trips and every error, and a
+//! set checked against a mesh and a complex.
 
 use std::path::Path;
 use tvf_core::generate::icosphere;
+use tvf_core::SurfaceMesh;
 use tvf_design::{
     Constraint, ConstraintAssembler, ConstraintError, ConstraintFileError, ConstraintSet, Location,
     OperatorFamily, Target,
 };
-use tvf_discretizations::{Conforming, MassLumping, Nonconforming};
+use tvf_discretizations::{
+    catalog_entry, Conforming, MassLumping, Nonconforming, DEFAULT_DISCRETIZATION,
+};
 
 fn example_path() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/constraints.json")
@@ -255,4 +259,34 @@ fn mesh_checks_and_node_kinds() {
         ))
         .unwrap();
     assert_eq!(point.rows, node.rows);
+}
+
+#[test]
+fn a_constraint_out_of_range_or_of_another_mesh_is_refused_naming_the_file() {
+    let mesh = SurfaceMesh::from(icosphere(1));
+    let complex = catalog_entry(DEFAULT_DISCRETIZATION)
+        .unwrap()
+        .build(&mesh)
+        .unwrap();
+    let origin = Path::new("c.json");
+    let check = |text: &str| {
+        let set = ConstraintSet::parse(text, origin).unwrap();
+        set.check_for(origin, &mesh, complex.as_ref())
+    };
+    let good = r#"{"constraints": [{"id": "a", "kind": "vector", "face": 3, "value": [1, 0, 0]}]}"#;
+    assert!(check(good).is_ok());
+    let far = r#"{"constraints": [{"id": "b", "kind": "divergence", "vertex": 9999, "value": 1}]}"#;
+    let error = check(far).unwrap_err();
+    assert!(
+        matches!(error, ConstraintFileError::Invalid { .. }),
+        "{error}"
+    );
+    let text = error.to_string();
+    assert!(text.starts_with("c.json: constraint 'b'"), "{text}");
+    let other = r#"{"mesh_fingerprint": "0000000000000001", "constraints": []}"#;
+    let error = check(other).unwrap_err();
+    assert!(
+        matches!(error, ConstraintFileError::FingerprintMismatch { .. }),
+        "{error}"
+    );
 }
