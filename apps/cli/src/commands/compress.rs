@@ -8,8 +8,8 @@ use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 use tvf_spectral::{
-    basis_id, compress_with_progress, BasisSize, CoefficientCoding, CompressionSummary, FieldCodec,
-    FrameSource,
+    compress_with_progress, field_basis_id, BasisSize, CoefficientCoding, CompressionSummary,
+    FieldCodec, FrameSource,
 };
 
 /// Arguments of `tvf compress`.
@@ -47,13 +47,18 @@ pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
     let size = args.inputs.basis.size_or(BasisSize::Pairs(args.pairs));
     let inputs = args.inputs.load(context.catalog())?;
     let (frames, source) = read_frames(&field, inputs.fields()?)?;
-    let setup = args.inputs.setup(context.catalog(), inputs, size)?;
+    let (vertex_count, mesh_fingerprint) = (inputs.mesh.vertex_count(), inputs.mesh.fingerprint());
+    // A `--basis` file of eigenfunctions is read in blocks, never loaded whole.
+    let setup = args
+        .inputs
+        .projection_basis(context.catalog(), inputs, size)?;
+    let basis = setup.basis();
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },
         None => CoefficientCoding::Float64,
     };
-    let id = basis_id(&setup.basis);
-    let codec = FieldCodec::new(&setup.basis, setup.mesh_fingerprint, id, args.pairs, coding)?;
+    let id = field_basis_id(basis)?;
+    let codec = FieldCodec::new(basis, mesh_fingerprint, id, args.pairs, coding)?;
     // A progress bar for sequences (plain lines off a terminal, nothing with `--quiet`).
     let progress = (frames.len() > 1).then(|| Progress::new("compress"));
     let on_frame = |done| {
@@ -61,8 +66,7 @@ pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
             progress.update("frames", done, frames.len());
         }
     };
-    let mass = setup.basis.field_mass();
-    let vertex_count = setup.mesh.vertex_count();
+    let mass = basis.field_mass();
     let (file, report) = compress_with_progress(&codec, mass, &frames, vertex_count, &on_frame)?;
     if let Some(progress) = &progress {
         progress.finish(format!(

@@ -1,8 +1,10 @@
 //! [`BasisFileBlocks`]: a basis file in the eigenfunctions layout used where it lies, a block of
 //! stored columns at a time, so that a basis larger than memory can project and synthesise
-//! fields (`tvf filter`, `tvf coefficients`): only `n1`-vectors, the `d` eigenvalues and one
-//! block of columns (at most [`BLOCK_BYTES`]) are ever in memory, never the `n1 × d` fields
-//! [`crate::load_basis`] forms.
+//! fields (`tvf filter`, `tvf coefficients`, `tvf compress`), give the rows of `U` a spline's or
+//! soft design's constraints touch (`tvf spline`, `tvf design --reduced`) and every field once
+//! for the basis id of compressed files: only `n1`-vectors, the `d` eigenvalues, the requested
+//! rows and one block of columns (at most [`BLOCK_BYTES`], with its formed fields) are ever in
+//! memory, never the `n1 × d` fields [`crate::load_basis`] forms.
 //!
 //! The products go through the stored eigenfunctions and the complex's sparse operators, as
 //! [`crate::EigenfunctionBasis`] computes them: with `Φ_i = d0 φ̃_i`, `Ψ_j = −M1⁻¹ d1ᵀ ψ̃_j`,
@@ -13,7 +15,11 @@
 //! ```
 //!
 //! which are the dense basis's products in another summation order (equal to round-off; the
-//! tests bound the difference). Opening checks everything [`crate::load_basis`] checks before
+//! tests bound the difference). The fields [`FieldBasis::visit_fields`] hands out are formed as
+//! [`crate::load_basis`] forms them, bit for bit (so the basis id is the loaded basis's), and so
+//! are the rows of [`FieldBasis::rows`] where the co-gradient is a sparse matrix (a diagonal
+//! `M1`); with a non-diagonal `M1` the co-integrable rows are `ψ̃_jᵀ (−d1 M1⁻¹ e_r)`, one mass
+//! solve per row, equal to round-off. Opening checks everything [`crate::load_basis`] checks before
 //! anything is computed: the key (mesh, discretization, matrices), the size the header promises,
 //! the payload checksum (read through once, in blocks) and that every stored value is finite.
 //! Each product then checks that the file's size and modification time are still those it was
@@ -23,16 +29,20 @@
 use super::basis_file::{check_file_size, family_code};
 use super::basis_file_header::read_header;
 use crate::basis::{check_eigenvalues, check_length};
+use crate::eigenfunction_basis::field_of_stored_into;
+use crate::field_basis::check_rows;
 use crate::{
     BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, FieldBasis, FieldFamily,
     SpectralBasisError,
 };
+use faer::MatRef;
 use rayon::prelude::*;
+use sprs::CsMat;
 use std::fs::File;
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
-use tvf_core::discretization::HodgeOperators;
+use tvf_core::discretization::{HodgeOperators, Mass};
 use tvf_core::Hash64;
 use tvf_discretizations::BoxedComplex;
 
@@ -242,6 +252,35 @@ impl BasisFileBlocks {
         Ok(())
     }
 
+    /// Per family (in stored section order), the basis index of each stored column.
+    fn basis_indices(&self) -> [Vec<usize>; 3] {
+        let mut indices = self.sections.map(|s| vec![0; s.count]);
+        for (i, (&family, &slot)) in self.families.iter().zip(&self.slots).enumerate() {
+            indices[section_index(family)][slot] = i;
+        }
+        indices
+    }
+
+    /// Field coefficients `rows` of `family`'s fields as functionals of its stored columns.
+    fn row_functionals(&self, family: FieldFamily, rows: &[usize]) -> Vec<RowFunctional> {
+        let complex = &self.complex;
+        match family {
+            FieldFamily::Integrable => sparse_rows(complex.d0(), rows),
+            FieldFamily::Cointegrable => match complex.co_gradient().as_sparse() {
+                Some(matrix) => sparse_rows(matrix, rows),
+                None => rows
+                    .par_iter()
+                    .map(|&r| {
+                        let mut unit = vec![0.0; complex.field_dimension()];
+                        unit[r] = 1.0;
+                        RowFunctional::Dense(complex.co_gradient().apply_transpose(&unit))
+                    })
+                    .collect(),
+            },
+            FieldFamily::Harmonic => rows.iter().map(|&r| RowFunctional::Entry(r)).collect(),
+        }
+    }
+
     /// The coefficients `c` (basis order) split by family, in stored order.
     fn by_family(&self, coefficients: &[f64]) -> [Vec<f64>; 3] {
         let mut split = self.sections.map(|s| vec![0.0; s.count]);
@@ -312,6 +351,127 @@ impl FieldBasis for BasisFileBlocks {
             None => mass.inner(a, b),
         }
     }
+
+    fn field_mass(&self) -> &Mass {
+        self.complex.m1()
+    }
+
+    fn rows(&self, rows: &[usize]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        check_rows(rows, self.field_dimension())?;
+        let mut out = vec![vec![0.0; self.len()]; rows.len()];
+        let indices = self.basis_indices();
+        for (k, family) in FAMILIES.into_iter().enumerate() {
+            let functionals = self.row_functionals(family, rows);
+            let section = self.sections[k];
+            let mut first = 0;
+            self.for_each_block(section, |block| {
+                let values: Vec<Vec<f64>> = block
+                    .par_chunks_exact(section.rows)
+                    .map(|stored| functionals.iter().map(|f| f.apply(stored)).collect())
+                    .collect();
+                for (j, column) in values.iter().enumerate() {
+                    let i = indices[k][first + j];
+                    for (row, &value) in out.iter_mut().zip(column) {
+                        row[i] = value;
+                    }
+                }
+                first += values.len();
+            })?;
+        }
+        Ok(out)
+    }
+
+    fn visit_fields(
+        &self,
+        visit: &(dyn Fn(usize, &[f64]) + Sync),
+    ) -> Result<(), SpectralBasisError> {
+        let indices = self.basis_indices();
+        let (d0, co_gradient) = (self.complex.d0(), self.complex.co_gradient());
+        let n1 = self.field_dimension();
+        for (k, family) in FAMILIES.into_iter().enumerate() {
+            let section = self.sections[k];
+            let mut first = 0;
+            self.for_each_block(section, |block| {
+                let columns = block.len() / section.rows;
+                let targets = &indices[k][first..first + columns];
+                if family == FieldFamily::Cointegrable && !co_gradient.is_sparse() {
+                    // One block solve, as the loaded basis forms its co-exact fields.
+                    let stored = MatRef::from_column_major_slice(block, section.rows, columns);
+                    let fields = co_gradient.apply_block(stored);
+                    targets.par_iter().enumerate().for_each(|(j, &i)| {
+                        visit(i, &fields.col(j).iter().copied().collect::<Vec<f64>>())
+                    });
+                } else {
+                    block
+                        .par_chunks_exact(section.rows)
+                        .zip(targets)
+                        .for_each_init(
+                            || vec![0.0; n1],
+                            |field, (stored, &i)| {
+                                field_of_stored_into(d0, co_gradient, family, stored, field);
+                                visit(i, field);
+                            },
+                        );
+                }
+                first += columns;
+            })?;
+        }
+        Ok(())
+    }
+}
+
+/// The families in the order of the stored sections.
+const FAMILIES: [FieldFamily; 3] = [
+    FieldFamily::Integrable,
+    FieldFamily::Cointegrable,
+    FieldFamily::Harmonic,
+];
+
+/// Field coefficient `r` of the field of a stored column `s`, as a functional of `s`: a row of a
+/// sparse operator (`d0`, or the co-gradient of a diagonal `M1`) summed in the order the field
+/// is formed in, a dense vector `w` (the co-gradient's transpose applied to `e_r`), or the stored
+/// value itself (harmonic fields).
+enum RowFunctional {
+    /// The stored entries of the row, by ascending column, and whether the operator is stored
+    /// by rows (summed as `mul_vec` sums it: by rows from `Sum`, by columns from `0.0`).
+    Sparse(Vec<(usize, f64)>, bool),
+    /// `wᵀ s`.
+    Dense(Vec<f64>),
+    /// `s[r]`.
+    Entry(usize),
+}
+
+impl RowFunctional {
+    fn apply(&self, stored: &[f64]) -> f64 {
+        match self {
+            Self::Sparse(entries, true) => entries.iter().map(|&(j, a)| a * stored[j]).sum(),
+            Self::Sparse(entries, false) => {
+                entries.iter().fold(0.0, |sum, &(j, a)| sum + a * stored[j])
+            }
+            Self::Dense(w) => w.iter().zip(stored).map(|(a, b)| a * b).sum(),
+            Self::Entry(r) => stored[*r],
+        }
+    }
+}
+
+/// The entries of rows `rows` of `matrix`, by ascending column.
+fn sparse_rows(matrix: &CsMat<f64>, rows: &[usize]) -> Vec<RowFunctional> {
+    let by_rows;
+    let csr = if matrix.is_csr() {
+        matrix
+    } else {
+        by_rows = matrix.to_csr();
+        &by_rows
+    };
+    rows.iter()
+        .map(|&r| {
+            let entries = csr
+                .outer_view(r)
+                .map(|row| row.iter().map(|(j, &a)| (j, a)).collect())
+                .unwrap_or_default();
+            RowFunctional::Sparse(entries, matrix.is_csr())
+        })
+        .collect()
 }
 
 /// Position of `family` in per-family arrays: integrable, co-integrable, harmonic.
