@@ -5,7 +5,6 @@
 //! basis file a block of columns at a time ([`crate::BasisFileBlocks`]). Filters, Fourier
 //! analyses, the codec and the reduced solvers take any of them.
 
-use crate::basis::check_length;
 use crate::{FieldFamily, SpectralBasis, SpectralBasisError};
 use rayon::prelude::*;
 use tvf_core::discretization::Mass;
@@ -56,7 +55,11 @@ pub trait FieldBasis: Send + Sync {
 /// Checks that every row index of `rows` is below `n1`.
 pub(crate) fn check_rows(rows: &[usize], n1: usize) -> Result<(), SpectralBasisError> {
     match rows.iter().find(|&&r| r >= n1) {
-        Some(&r) => check_length("row of the fields (must be below n1)", n1, r),
+        Some(&r) => Err(SpectralBasisError::LengthMismatch {
+            what: "row of the fields (must be below the field dimension n1)",
+            expected: n1,
+            actual: r,
+        }),
         None => Ok(()),
     }
 }

@@ -15,11 +15,15 @@
 //! ```
 //!
 //! which are the dense basis's products in another summation order (equal to round-off; the
-//! tests bound the difference). The fields [`FieldBasis::visit_fields`] hands out are formed as
-//! [`crate::load_basis`] forms them, bit for bit (so the basis id is the loaded basis's), and so
-//! are the rows of [`FieldBasis::rows`] where the co-gradient is a sparse matrix (a diagonal
-//! `M1`); with a non-diagonal `M1` the co-integrable rows are `ψ̃_jᵀ (−d1 M1⁻¹ e_r)`, one mass
-//! solve per row, equal to round-off. Opening checks everything [`crate::load_basis`] checks before
+//! tests bound the difference). Where the co-gradient is a sparse matrix (a diagonal `M1`), the
+//! fields [`FieldBasis::visit_fields`] hands out are formed as [`crate::load_basis`] forms them,
+//! bit for bit (so the basis id is the loaded basis's), and so are the rows of
+//! [`FieldBasis::rows`]. With a non-diagonal `M1`, the loaded basis forms its co-integrable
+//! fields by one mass solve with every co-potential as right-hand side, and a solve of another
+//! block of columns differs from it in round-off: the fields visited are the loaded basis's
+//! bit for bit only where the co-potentials fit one block
+//! ([`BasisFileBlocks::forms_fields_as_loaded`]), and the co-integrable rows are
+//! `ψ̃_jᵀ (−d1 M1⁻¹ e_r)`, one mass solve per row, equal to round-off. Opening checks everything [`crate::load_basis`] checks before
 //! anything is computed: the key (mesh, discretization, matrices), the size the header promises,
 //! the payload checksum (read through once, in blocks) and that every stored value is finite.
 //! Each product then checks that the file's size and modification time are still those it was
@@ -170,6 +174,22 @@ impl BasisFileBlocks {
     /// The complex the basis belongs to.
     pub fn complex(&self) -> &BoxedComplex {
         &self.complex
+    }
+
+    /// The complex the basis belongs to, the file closed.
+    pub fn into_complex(self) -> BoxedComplex {
+        self.complex
+    }
+
+    /// Whether [`FieldBasis::visit_fields`] forms every field as [`crate::load_basis`] does, bit
+    /// for bit (so that [`crate::field_basis_id`] is the loaded basis's id): always with a
+    /// diagonal `M1`; with a non-diagonal one only where the co-potentials fit one block (see
+    /// the module documentation).
+    pub fn forms_fields_as_loaded(&self) -> bool {
+        let co_potentials = self.sections[section_index(FieldFamily::Cointegrable)];
+        self.complex.co_gradient().is_sparse()
+            || co_potentials.count <= 1
+            || 8 * co_potentials.rows * co_potentials.count <= self.block_bytes
     }
 
     /// `Xᵀ x` for the stored columns `X` of `section` (`rows` each) and `x` (`rows` values),

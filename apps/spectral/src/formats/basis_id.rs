@@ -38,7 +38,8 @@ pub fn basis_id(basis: &SpectralBasis) -> u64 {
 
 /// [`basis_id`] of any [`FieldBasis`], its fields visited once
 /// ([`FieldBasis::visit_fields`]); equal to the id of the same basis loaded whole where the
-/// fields are formed as the loaded basis forms them.
+/// fields are formed as the loaded basis forms them (for a basis file read in blocks:
+/// [`crate::BasisFileBlocks::forms_fields_as_loaded`]).
 pub fn field_basis_id(basis: &dyn FieldBasis) -> Result<u64, SpectralBasisError> {
     let column_hashes: Vec<AtomicU64> = (0..basis.len()).map(|_| AtomicU64::new(0)).collect();
     basis.visit_fields(&|j, field| {
