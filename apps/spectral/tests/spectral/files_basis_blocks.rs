@@ -64,7 +64,10 @@ fn blocks_equal_whole(mesh: &tvf_core::TriangleMesh, complex: BoxedComplex, path
     );
     assert!(relative_difference(&found, &expected) < 1e-13);
     if diagonal {
-        assert_eq!(found, expected, "the synthesis of a diagonal M1, bit for bit");
+        assert_eq!(
+            found, expected,
+            "the synthesis of a diagonal M1, bit for bit"
+        );
     }
 
     let filter = SpectralFilter::both(FrequencyResponse::LowPass { t: 0.01 }, 0.0);
