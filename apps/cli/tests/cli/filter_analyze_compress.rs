@@ -561,6 +561,64 @@ fn eigenfunctions_and_fields_files(fx: &Fixture) -> (PathBuf, PathBuf) {
     (blocks, whole)
 }
 
+/// The arguments of `compress` (20 pairs), `spline` and `design --reduced` of the fixture with
+/// `basis`, writing `outputs` (in that order).
+fn consumer_runs(
+    fx: &Fixture,
+    constraints: &Path,
+    basis: &Path,
+    outputs: [&Path; 3],
+) -> [Vec<std::ffi::OsString>; 3] {
+    let [compressed, spline, design] = outputs;
+    let (mesh, field) = (fx.mesh.as_os_str(), fx.field.as_os_str());
+    let constrained = ["--constraints".as_ref(), constraints.as_os_str()];
+    let basis = ["--basis".as_ref(), basis.as_os_str()];
+    let args = |parts: &[&std::ffi::OsStr]| parts.iter().map(|&p| p.to_owned()).collect();
+    [
+        args(
+            &[
+                &[
+                    "compress".as_ref(),
+                    mesh,
+                    field,
+                    "--pairs".as_ref(),
+                    "20".as_ref(),
+                ],
+                &basis[..],
+                &["-o".as_ref(), compressed.as_os_str()],
+            ]
+            .concat(),
+        ),
+        args(
+            &[
+                &["spline".as_ref(), mesh],
+                &constrained[..],
+                &basis[..],
+                &["-o".as_ref(), spline.as_os_str()],
+            ]
+            .concat(),
+        ),
+        args(
+            &[
+                &["design".as_ref(), mesh, "--reduced".as_ref()],
+                &constrained[..],
+                &basis[..],
+                &["-o".as_ref(), design.as_os_str()],
+            ]
+            .concat(),
+        ),
+    ]
+}
+
+/// Runs `tvf` with owned arguments.
+fn tvf_owned(args: &[std::ffi::OsString]) -> Output {
+    let args: Vec<&dyn AsRef<std::ffi::OsStr>> = args
+        .iter()
+        .map(|a| a as &dyn AsRef<std::ffi::OsStr>)
+        .collect();
+    tvf(&args)
+}
+
 /// `compress`, `spline` and `design --reduced` read an eigenfunctions file in blocks too (said
 /// on stderr): a `.tvfc` made in blocks decodes with the basis loaded whole (the same basis id)
 /// to the field of the whole basis's file to round-off (the coefficients' projection sums in
@@ -578,42 +636,9 @@ fn compress_spline_and_design_read_an_eigenfunctions_file_in_blocks() {
         let compressed = fx.path(&format!("{name}.tvfc"));
         let spline = fx.path(&format!("{name}-spline.npy"));
         let design = fx.path(&format!("{name}-design.npy"));
-        let runs: [&[&dyn AsRef<std::ffi::OsStr>]; 3] = [
-            &[
-                &"compress",
-                &fx.mesh,
-                &fx.field,
-                &"--basis",
-                basis,
-                &"--pairs",
-                &"20",
-                &"-o",
-                &compressed,
-            ],
-            &[
-                &"spline",
-                &fx.mesh,
-                &"--constraints",
-                &constraints,
-                &"--basis",
-                basis,
-                &"-o",
-                &spline,
-            ],
-            &[
-                &"design",
-                &fx.mesh,
-                &"--constraints",
-                &constraints,
-                &"--reduced",
-                &"--basis",
-                basis,
-                &"-o",
-                &design,
-            ],
-        ];
-        for args in runs {
-            let output = tvf(args);
+        let runs = consumer_runs(&fx, &constraints, basis, [&compressed, &spline, &design]);
+        for args in &runs {
+            let output = tvf_owned(args);
             succeeded(&output);
             let stderr = String::from_utf8_lossy(&output.stderr).to_string();
             assert_eq!(
@@ -662,42 +687,9 @@ fn damaged_eigenfunctions_files_are_refused_by_compress_spline_and_design() {
     std::fs::write(&flipped, &flipped_bytes).unwrap();
     let out = fx.path("out");
     for (damaged, problem) in [(&truncated, "truncated"), (&flipped, "checksum")] {
-        let runs: [&[&dyn AsRef<std::ffi::OsStr>]; 3] = [
-            &[
-                &"compress",
-                &fx.mesh,
-                &fx.field,
-                &"--basis",
-                damaged,
-                &"--pairs",
-                &"20",
-                &"-o",
-                &out,
-            ],
-            &[
-                &"spline",
-                &fx.mesh,
-                &"--constraints",
-                &constraints,
-                &"--basis",
-                damaged,
-                &"-o",
-                &out,
-            ],
-            &[
-                &"design",
-                &fx.mesh,
-                &"--constraints",
-                &constraints,
-                &"--reduced",
-                &"--basis",
-                damaged,
-                &"-o",
-                &out,
-            ],
-        ];
-        for args in runs {
-            let output = tvf(args);
+        let runs = consumer_runs(&fx, &constraints, damaged, [&out, &out, &out]);
+        for args in &runs {
+            let output = tvf_owned(args);
             let stderr = String::from_utf8_lossy(&output.stderr).to_lowercase();
             assert!(!output.status.success(), "{stderr}");
             let name = damaged.file_name().unwrap().to_string_lossy().to_string();
