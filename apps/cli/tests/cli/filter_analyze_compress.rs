@@ -470,15 +470,7 @@ fn rate_distortion_writes_csv_and_plot() {
 #[test]
 fn filter_and_coefficients_read_an_eigenfunctions_file_in_blocks() {
     let fx = fixture();
-    let blocks = fx.path("eigenfunctions.tvfb");
-    succeeded(&tvf(&[
-        &"basis", &fx.mesh, &"-k", &"60", &"--quiet", &"-o", &blocks,
-    ]));
-    let complex = Conforming::new(&fx.loaded, MassLumping::Barycentric).unwrap();
-    let key = BasisFileKey::new(&fx.loaded, &complex);
-    let whole = fx.path("fields.tvfb");
-    let basis = tvf_spectral::load_basis(&blocks, &key, &complex).unwrap();
-    save_basis(&whole, &basis, &key).unwrap();
+    let (blocks, whole) = eigenfunctions_and_fields_files(&fx);
     let fields = FaceFields::new(&fx.loaded).unwrap();
     let mut filtered = Vec::new();
     for (basis, name) in [(&blocks, "blocks.npy"), (&whole, "whole.npy")] {
