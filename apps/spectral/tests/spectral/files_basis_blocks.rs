@@ -85,9 +85,11 @@ fn blocks_equal_whole(mesh: &tvf_core::TriangleMesh, complex: BoxedComplex, path
         ) < 1e-12
     );
 
+    assert!(blocks.forms_fields_as_loaded());
     compression_equals_whole(&whole, &blocks, &field);
     // A block of 3 columns or fewer: many blocks per family, the same arithmetic per column.
     let small = blocks.with_block_bytes(3 * 8 * 642);
+    assert_eq!(small.forms_fields_as_loaded(), diagonal);
     let coefficients = small.coefficients(&field).unwrap();
     assert_eq!(coefficients, found.coefficients);
     let small_field = filter.apply(&small, &field).unwrap();
