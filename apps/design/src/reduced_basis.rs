@@ -1,11 +1,15 @@
 //! [`ReducedBasis`]: the eigenfields `U` stored row by row, with the eigenvalues, for the reduced
-//! solvers; and [`RowMajorFields`], the row-major `U` in `f64` or `f32` with the one
-//! multithreaded map `x = U v` both precisions share.
+//! solvers — every row, or only the rows the constraints touch with the map `x = U v` through a
+//! [`FieldBasis`] (a basis file read in blocks: a basis larger than memory); and
+//! [`RowMajorFields`], the row-major `U` in `f64` or `f32` with the one multithreaded map
+//! `x = U v` both precisions share.
 
 use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use rayon::prelude::*;
-use tvf_spectral::{FieldFamily, SpectralBasis};
+use std::collections::HashMap;
+use std::sync::Arc;
+use tvf_spectral::{FieldBasis, FieldFamily, SpectralBasis};
 
 /// Rows per parallel task in the maps `x = U v`.
 const ROWS_PER_TASK: usize = 2048;
@@ -19,9 +23,38 @@ const ROWS_PER_TASK: usize = 2048;
 /// per output coefficient, streaming `U` exactly once.
 #[derive(Debug, Clone)]
 pub struct ReducedBasis {
-    fields: RowMajorFields<f64>,
+    fields: ReducedFields,
     eigenvalues: Vec<f64>,
     harmonic: Vec<bool>,
+}
+
+/// The rows of `U` a [`ReducedBasis`] holds.
+#[derive(Debug, Clone)]
+enum ReducedFields {
+    /// Every row.
+    All(RowMajorFields<f64>),
+    /// Some rows, and the basis they came from for `x = U v`.
+    Sampled(SampledRows),
+}
+
+/// Rows of `U` at some field coefficients, with the basis that maps coefficients to fields.
+#[derive(Clone)]
+struct SampledRows {
+    /// Position in `rows` of the row of each sampled field coefficient.
+    index: HashMap<usize, usize>,
+    /// The sampled rows, `d` values each.
+    rows: Vec<Vec<f64>>,
+    /// The basis (`x = U v` is its synthesis).
+    basis: Arc<dyn FieldBasis>,
+}
+
+impl std::fmt::Debug for SampledRows {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SampledRows")
+            .field("rows", &self.rows.len())
+            .field("field_dimension", &self.basis.field_dimension())
+            .finish()
+    }
 }
 
 /// `U` (`n × d`) stored row-major in precision `T` (`f64`, or `f32` for the fast map with half
@@ -70,11 +103,7 @@ impl ReducedBasis {
                     }
                 }
             });
-        let harmonic = basis
-            .families()
-            .iter()
-            .map(|f| *f == FieldFamily::Harmonic)
-            .collect();
+        let harmonic = harmonic_flags(basis.families());
         Self::from_row_major(rows, n, basis.eigenvalues().to_vec(), harmonic)
     }
 
@@ -85,21 +114,69 @@ impl ReducedBasis {
         rows: Vec<f64>,
         field_dimension: usize,
         eigenvalues: Vec<f64>,
-        mut harmonic: Vec<bool>,
+        harmonic: Vec<bool>,
     ) -> Result<Self, DesignError> {
         let d = eigenvalues.len();
-        if harmonic.len() != d {
-            return Err(DesignError::DimensionMismatch {
-                what: "harmonic flags",
-                expected: d,
-                actual: harmonic.len(),
-            });
-        }
         if rows.len() != field_dimension * d {
             return Err(DesignError::DimensionMismatch {
                 what: "basis values (n1 × d)",
                 expected: field_dimension * d,
                 actual: rows.len(),
+            });
+        }
+        let fields = ReducedFields::All(RowMajorFields {
+            rows,
+            len: d,
+            field_dimension,
+        });
+        Self::with_spectrum(fields, eigenvalues, harmonic)
+    }
+
+    /// The rows of `basis` at the field coefficients the rows of `constraints` touch
+    /// ([`ReducedBasis::touched_rows`]), read once, with `basis` mapping reduced coefficients to
+    /// fields: a reduced basis whose memory is these rows, not `U`. The constraint rows `C̃ U`
+    /// are the whole basis's bit for bit where `basis` gives the rows it holds (see
+    /// [`FieldBasis::rows`]); `x = U v` is `basis`'s synthesis, equal to the row-major map's to
+    /// round-off (another summation order). Constraints touching other rows are refused by
+    /// [`ReducedBasis::reduce_constraint`].
+    pub fn from_field_basis(
+        basis: Arc<dyn FieldBasis>,
+        constraints: &[CompiledConstraint],
+    ) -> Result<Self, DesignError> {
+        let touched = Self::touched_rows(constraints);
+        let rows = basis
+            .rows(&touched)
+            .map_err(|e| DesignError::BadBasis(e.to_string()))?;
+        let index = touched.iter().enumerate().map(|(k, &r)| (r, k)).collect();
+        let harmonic = harmonic_flags(basis.families());
+        let eigenvalues = basis.eigenvalues().to_vec();
+        let fields = ReducedFields::Sampled(SampledRows { index, rows, basis });
+        Self::with_spectrum(fields, eigenvalues, harmonic)
+    }
+
+    /// The field coefficients the rows of `constraints` touch, ascending, each once.
+    pub fn touched_rows(constraints: &[CompiledConstraint]) -> Vec<usize> {
+        let mut touched: Vec<usize> = constraints
+            .iter()
+            .flat_map(|c| c.rows.iter().flatten().map(|&(j, _)| j))
+            .collect();
+        touched.sort_unstable();
+        touched.dedup();
+        touched
+    }
+
+    /// A basis of `fields` with `eigenvalues` (finite, non-negative) and `harmonic` flags (`d`
+    /// each); small eigenvalues are flagged harmonic as in [`ReducedBasis::from_spectral`].
+    fn with_spectrum(
+        fields: ReducedFields,
+        eigenvalues: Vec<f64>,
+        mut harmonic: Vec<bool>,
+    ) -> Result<Self, DesignError> {
+        if harmonic.len() != eigenvalues.len() {
+            return Err(DesignError::DimensionMismatch {
+                what: "harmonic flags",
+                expected: eigenvalues.len(),
+                actual: harmonic.len(),
             });
         }
         if let Some(&bad) = eigenvalues.iter().find(|l| !(l.is_finite() && **l >= 0.0)) {
@@ -113,11 +190,7 @@ impl ReducedBasis {
             *flag |= l <= 1e-10 * max;
         }
         Ok(Self {
-            fields: RowMajorFields {
-                rows,
-                len: d,
-                field_dimension,
-            },
+            fields,
             eigenvalues,
             harmonic,
         })
@@ -135,7 +208,10 @@ impl ReducedBasis {
 
     /// Dimension `n1` of the field space.
     pub fn field_dimension(&self) -> usize {
-        self.fields.field_dimension
+        match &self.fields {
+            ReducedFields::All(fields) => fields.field_dimension,
+            ReducedFields::Sampled(sampled) => sampled.basis.field_dimension(),
+        }
     }
 
     /// Eigenvalues `λ_i` (`d` entries, 1/length²).
@@ -149,9 +225,18 @@ impl ReducedBasis {
     }
 
     /// Row `r` of `U` (`d` values): coefficient `r` of every basis field.
+    ///
+    /// # Panics
+    /// If the basis holds only some rows ([`ReducedBasis::from_field_basis`]) and `r` is not one
+    /// of them (a programming error: [`ReducedBasis::reduce_constraint`] checks its rows).
     pub fn row(&self, r: usize) -> &[f64] {
-        let d = self.len();
-        &self.fields.rows[r * d..(r + 1) * d]
+        match &self.fields {
+            ReducedFields::All(fields) => {
+                let d = self.len();
+                &fields.rows[r * d..(r + 1) * d]
+            }
+            ReducedFields::Sampled(sampled) => &sampled.rows[sampled.index[&r]],
+        }
     }
 
     /// The eigenvalues with harmonic ones (0) replaced by a tenth of the lowest non-harmonic
@@ -202,22 +287,62 @@ impl ReducedBasis {
                 actual: j,
             });
         }
+        if let ReducedFields::Sampled(sampled) = &self.fields {
+            let held = |j: &usize| sampled.index.contains_key(j);
+            if let Some(&(j, _)) = constraint.rows.iter().flatten().find(|(j, _)| !held(j)) {
+                return Err(DesignError::BadBasis(format!(
+                    "constraint '{}' touches field coefficient {j}, whose row of the basis was                      not read (the basis holds the rows of the constraints it was made for)",
+                    constraint.id
+                )));
+            }
+        }
         Ok(constraint.rows.iter().map(|r| self.reduce_row(r)).collect())
     }
 
-    /// `x = U v` (`n1` values, multithreaded): one dot product per coefficient.
+    /// `x = U v` (`n1` values, multithreaded): one dot product per coefficient, or the
+    /// synthesis of the basis the rows were read from.
     pub fn map(&self, coefficients: &[f64], field: &mut [f64]) -> Result<(), DesignError> {
-        self.fields.map(coefficients, field)
-    }
-
-    /// A single-precision copy of `U` for the fast map `x = U v`.
-    pub fn to_f32(&self) -> ReducedBasisF32 {
-        RowMajorFields {
-            rows: self.fields.rows.par_iter().map(|&x| x as f32).collect(),
-            len: self.fields.len,
-            field_dimension: self.fields.field_dimension,
+        match &self.fields {
+            ReducedFields::All(fields) => fields.map(coefficients, field),
+            ReducedFields::Sampled(sampled) => {
+                check_map(
+                    self.len(),
+                    self.field_dimension(),
+                    coefficients.len(),
+                    field.len(),
+                )?;
+                let mapped = sampled
+                    .basis
+                    .reconstruct(coefficients)
+                    .map_err(|e| DesignError::BadBasis(e.to_string()))?;
+                field.copy_from_slice(&mapped);
+                Ok(())
+            }
         }
     }
+
+    /// A single-precision copy of `U` for the fast map `x = U v`; refused for a basis that holds
+    /// only some rows.
+    pub fn to_f32(&self) -> Result<ReducedBasisF32, DesignError> {
+        match &self.fields {
+            ReducedFields::All(fields) => Ok(RowMajorFields {
+                rows: fields.rows.par_iter().map(|&x| x as f32).collect(),
+                len: fields.len,
+                field_dimension: fields.field_dimension,
+            }),
+            ReducedFields::Sampled(_) => Err(DesignError::BadBasis(
+                "a basis of the constraints' rows has no row-major copy".into(),
+            )),
+        }
+    }
+}
+
+/// Whether each field of `families` is harmonic.
+fn harmonic_flags(families: &[FieldFamily]) -> Vec<bool> {
+    families
+        .iter()
+        .map(|f| *f == FieldFamily::Harmonic)
+        .collect()
 }
 
 impl<T: FieldScalar> RowMajorFields<T> {

@@ -1,12 +1,16 @@
 //! [`FieldBasis`]: what spectral processing needs of a Fourier basis — its eigenvalues and
-//! families, the projection `Uᵀ M1 v` and the synthesis `U c` — whether its fields are held in
-//! memory ([`crate::SpectralBasis`]) or read from a basis file a block of columns at a time
-//! ([`crate::BasisFileBlocks`]). Filters and Fourier analyses take any of them.
+//! families, the projection `Uᵀ M1 v`, the synthesis `U c`, a few rows of `U` (the reduced
+//! constraints of splines and soft design) and every field once (the basis id of compressed
+//! files) — whether its fields are held in memory ([`crate::SpectralBasis`]) or read from a
+//! basis file a block of columns at a time ([`crate::BasisFileBlocks`]). Filters, Fourier
+//! analyses, the codec and the reduced solvers take any of them.
 
 use crate::{FieldFamily, SpectralBasis, SpectralBasisError};
+use rayon::prelude::*;
+use tvf_core::discretization::Mass;
 
 /// A Fourier basis `U` (`n1 × d`, `Uᵀ M1 U = I`) seen through its products.
-pub trait FieldBasis {
+pub trait FieldBasis: Send + Sync {
     /// Number of basis fields `d`.
     fn len(&self) -> usize;
 
@@ -32,6 +36,32 @@ pub trait FieldBasis {
 
     /// `M1` inner product `aᵀ M1 b` of two fields (`n1` entries each).
     fn inner_product(&self, a: &[f64], b: &[f64]) -> f64;
+
+    /// The field mass `M1` (`n1 × n1`) the basis is orthonormal in.
+    fn field_mass(&self) -> &Mass;
+
+    /// Rows `U[r, ·]` of the fields (`d` values each, in basis order) for the field coefficients
+    /// `r` of `rows` (each `< n1`): what a constraint row `C̃ U` needs.
+    fn rows(&self, rows: &[usize]) -> Result<Vec<Vec<f64>>, SpectralBasisError>;
+
+    /// Calls `visit(i, U[·, i])` once with every basis field `i` (`n1` values), from several
+    /// threads and in no fixed order.
+    fn visit_fields(
+        &self,
+        visit: &(dyn Fn(usize, &[f64]) + Sync),
+    ) -> Result<(), SpectralBasisError>;
+}
+
+/// Checks that every row index of `rows` is below `n1`.
+pub(crate) fn check_rows(rows: &[usize], n1: usize) -> Result<(), SpectralBasisError> {
+    match rows.iter().find(|&&r| r >= n1) {
+        Some(&r) => Err(SpectralBasisError::LengthMismatch {
+            what: "row of the fields (must be below the field dimension n1)",
+            expected: n1,
+            actual: r,
+        }),
+        None => Ok(()),
+    }
 }
 
 impl FieldBasis for SpectralBasis {
@@ -61,5 +91,33 @@ impl FieldBasis for SpectralBasis {
 
     fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
         SpectralBasis::inner_product(self, a, b)
+    }
+
+    fn field_mass(&self) -> &Mass {
+        SpectralBasis::field_mass(self)
+    }
+
+    fn rows(&self, rows: &[usize]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        check_rows(rows, self.field_dimension())?;
+        let fields = self.fields();
+        Ok(rows
+            .iter()
+            .map(|&r| (0..self.len()).map(|i| fields[(r, i)]).collect())
+            .collect())
+    }
+
+    fn visit_fields(
+        &self,
+        visit: &(dyn Fn(usize, &[f64]) + Sync),
+    ) -> Result<(), SpectralBasisError> {
+        let fields = self.fields();
+        (0..self.len()).into_par_iter().for_each(|i| {
+            let column = fields.col(i);
+            match column.try_as_col_major() {
+                Some(column) => visit(i, column.as_slice()),
+                None => visit(i, &column.iter().copied().collect::<Vec<f64>>()),
+            }
+        });
+        Ok(())
     }
 }

@@ -114,7 +114,7 @@ pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, open_basis_file_with,
     BasisFileUseError,
 };
-pub use formats::basis_id::basis_id;
+pub use formats::basis_id::{basis_id, field_basis_id};
 pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
 pub use formats::complex_folder::{
     read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID, MAX_INFO_BYTES,

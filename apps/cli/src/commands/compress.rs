@@ -1,15 +1,16 @@
 //! `tvf compress`: a field, or a time-dependent sequence of fields, as the lowest `k` pairs of
 //! Fourier coefficients in a `.tvfc` file.
 
-use super::spectral_inputs::{read_frames, FieldArgs};
+use super::spectral_inputs::{read_frames, FieldArgs, ProjectionBasis};
 use crate::context::RunContext;
+use crate::progress::note;
 use crate::progress::Progress;
 use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 use tvf_spectral::{
-    basis_id, compress_with_progress, BasisSize, CoefficientCoding, CompressionSummary, FieldCodec,
-    FrameSource,
+    compress_with_progress, field_basis_id, BasisSize, CoefficientCoding, CompressionSummary,
+    FieldCodec, FrameSource,
 };
 
 /// Arguments of `tvf compress`.
@@ -47,13 +48,35 @@ pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
     let size = args.inputs.basis.size_or(BasisSize::Pairs(args.pairs));
     let inputs = args.inputs.load(context.catalog())?;
     let (frames, source) = read_frames(&field, inputs.fields()?)?;
-    let setup = args.inputs.setup(context.catalog(), inputs, size)?;
+    let (vertex_count, mesh_fingerprint) = (inputs.mesh.vertex_count(), inputs.mesh.fingerprint());
+    // A `--basis` file of eigenfunctions is read in blocks, never loaded whole, unless its
+    // fields would not get the basis id of the loaded basis (a non-diagonal `M1` whose
+    // co-potentials do not fit one block), which `tvf decompress` checks.
+    let setup = match args
+        .inputs
+        .projection_basis(context.catalog(), inputs, size)?
+    {
+        ProjectionBasis::Blocks(blocks) if !blocks.forms_fields_as_loaded() => {
+            note(
+                "the basis has a non-diagonal M1 and more co-integrable fields than one block \
+                  holds: loaded whole, so that its id is the one `tvf decompress` checks",
+            );
+            let inputs = args.inputs.load(context.catalog())?;
+            ProjectionBasis::Whole(Box::new(args.inputs.setup(
+                context.catalog(),
+                inputs,
+                size,
+            )?))
+        }
+        setup => setup,
+    };
+    let basis = setup.basis();
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },
         None => CoefficientCoding::Float64,
     };
-    let id = basis_id(&setup.basis);
-    let codec = FieldCodec::new(&setup.basis, setup.mesh_fingerprint, id, args.pairs, coding)?;
+    let id = field_basis_id(basis)?;
+    let codec = FieldCodec::new(basis, mesh_fingerprint, id, args.pairs, coding)?;
     // A progress bar for sequences (plain lines off a terminal, nothing with `--quiet`).
     let progress = (frames.len() > 1).then(|| Progress::new("compress"));
     let on_frame = |done| {
@@ -61,8 +84,7 @@ pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
             progress.update("frames", done, frames.len());
         }
     };
-    let mass = setup.basis.field_mass();
-    let vertex_count = setup.mesh.vertex_count();
+    let mass = basis.field_mass();
     let (file, report) = compress_with_progress(&codec, mass, &frames, vertex_count, &on_frame)?;
     if let Some(progress) = &progress {
         progress.finish(format!(

@@ -97,9 +97,9 @@ pub fn run(args: DesignArgs, context: &RunContext) -> Result<()> {
         }
         (solved.field, residuals)
     } else {
-        let basis = args
-            .design
-            .reduced_basis(catalog, &problem, &args.input, &mut report)?;
+        let basis =
+            args.design
+                .reduced_basis(catalog, &problem, &args.input, &constraints, &mut report)?;
         let solved = problem.reduced_design(complex.as_ref(), &basis, &constraints)?;
         report.add(
             solved.reduced_design_lines(basis.len()),

@@ -98,32 +98,50 @@ impl FieldArgs {
                 self.setup(catalog, inputs, size)?,
             )));
         };
-        let header = read_basis_header(path)?;
-        let blocks = matches!(header.layout, BasisFileLayout::Eigenfunctions { .. })
-            && header.key.matrix_hash.is_some();
-        if !blocks {
+        if !readable_in_blocks(path)? {
             return Ok(ProjectionBasis::Whole(Box::new(
                 self.setup(catalog, inputs, size)?,
             )));
         }
-        let key = BasisFileKey::new(&inputs.mesh, inputs.complex.as_ref());
-        let start = std::time::Instant::now();
-        let id = inputs.complex.id().to_string();
-        match BasisFileBlocks::open(path, &key, inputs.complex)? {
-            Some(blocks) => {
-                note(format!(
-                    "using basis {} ({} fields, {id}, checked in {:.2} s, read in blocks)",
-                    path.display(),
-                    blocks.len(),
-                    start.elapsed().as_secs_f64()
-                ));
-                Ok(ProjectionBasis::Blocks(Box::new(blocks)))
-            }
-            None => anyhow::bail!(
-                "{}: the basis file changed while it was read (its layout)",
-                path.display()
-            ),
+        let blocks = open_basis_blocks(path, &inputs.mesh, inputs.complex)?;
+        Ok(ProjectionBasis::Blocks(Box::new(blocks)))
+    }
+}
+
+/// Whether the basis file `path` is read in blocks ([`BasisFileBlocks`]): a file in the
+/// eigenfunctions layout with matrix hashes (format version 3); any other is loaded whole.
+pub fn readable_in_blocks(path: &Path) -> Result<bool> {
+    let header = read_basis_header(path)?;
+    Ok(
+        matches!(header.layout, BasisFileLayout::Eigenfunctions { .. })
+            && header.key.matrix_hash.is_some(),
+    )
+}
+
+/// The basis file `path` of `mesh` and `complex` (one [`readable_in_blocks`]), checked and
+/// opened to be read in blocks; noted on stderr.
+pub fn open_basis_blocks(
+    path: &Path,
+    mesh: &SurfaceMesh,
+    complex: BoxedComplex,
+) -> Result<BasisFileBlocks> {
+    let key = BasisFileKey::new(mesh, complex.as_ref());
+    let start = std::time::Instant::now();
+    let id = complex.id().to_string();
+    match BasisFileBlocks::open(path, &key, complex)? {
+        Some(blocks) => {
+            note(format!(
+                "using basis {} ({} fields, {id}, checked in {:.2} s, read in blocks)",
+                path.display(),
+                blocks.len(),
+                start.elapsed().as_secs_f64()
+            ));
+            Ok(blocks)
         }
+        None => anyhow::bail!(
+            "{}: the basis file changed while it was read (its layout)",
+            path.display()
+        ),
     }
 }
 

@@ -3,6 +3,7 @@
 //! shares with `tvf design` ([`DesignOutputArgs`]). The problem, the solves and their reports
 //! are `tvf_design::DesignProblem`'s.
 
+use super::spectral_inputs::{open_basis_blocks, readable_in_blocks};
 use crate::basis_source::BasisSource;
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
@@ -11,11 +12,12 @@ use crate::report::Report;
 use anyhow::Result;
 use clap::Args;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use std::time::Instant;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_design::{CompiledConstraint, DesignProblem, ReducedBasis, ResidualReport};
 use tvf_discretizations::{BoxedComplex, Catalog};
-use tvf_spectral::write_tangent_field;
+use tvf_spectral::{write_tangent_field, FieldBasis};
 
 /// Arguments of `tvf spline`.
 #[derive(Args)]
@@ -75,26 +77,44 @@ impl DesignOutputArgs {
     }
 
     /// The basis (loaded, cached or computed; see [`crate::basis_source`]), row-major for the
-    /// solvers.
+    /// solvers; a `--basis` file of eigenfunctions is read in blocks instead, only the rows of
+    /// `U` the `constraints` touch held in memory ([`ReducedBasis::from_field_basis`]).
     pub fn reduced_basis(
         &self,
         catalog: &Catalog,
         problem: &DesignProblem,
         input: &MeshInput,
+        constraints: &[CompiledConstraint],
         report: &mut Report,
     ) -> Result<ReducedBasis> {
         let start = Instant::now();
-        let resolved = self.basis.resolve(catalog, &problem.mesh, input)?;
+        let (basis, how, discretization) = match self.basis.options.basis.as_deref() {
+            Some(path) if readable_in_blocks(path)? => {
+                let complex = self
+                    .basis
+                    .options
+                    .discretization(catalog, &problem.mesh, input)?;
+                let blocks = open_basis_blocks(path, &problem.mesh, complex)?;
+                let discretization = blocks.complex().id().to_string();
+                let blocks: Arc<dyn FieldBasis> = Arc::new(blocks);
+                let reduced = ReducedBasis::from_field_basis(blocks, constraints)?;
+                (reduced, " (read in blocks)", discretization)
+            }
+            _ => {
+                let resolved = self.basis.resolve(catalog, &problem.mesh, input)?;
+                let reduced = ReducedBasis::from_spectral(&resolved.basis)?;
+                (reduced, "", resolved.discretization.id().to_string())
+            }
+        };
         let seconds = start.elapsed().as_secs_f64();
         report.line(format!(
-            "basis           {} fields of {} ready in {seconds:.3} s",
-            resolved.basis.len(),
-            resolved.discretization.id(),
+            "basis           {} fields of {discretization} ready in {seconds:.3} s{how}",
+            basis.len(),
         ));
-        report.set("basis_fields", resolved.basis.len());
-        report.set("discretization", resolved.discretization.id());
+        report.set("basis_fields", basis.len());
+        report.set("discretization", discretization);
         report.set("basis_seconds", seconds);
-        Ok(ReducedBasis::from_spectral(&resolved.basis)?)
+        Ok(basis)
     }
 
     /// Reports the `residuals`, writes the solved `field` of `complex` and prints the report.
@@ -120,9 +140,9 @@ pub fn run(args: SplineArgs, context: &RunContext) -> Result<()> {
     let (problem, complex, constraints) =
         args.design
             .load(catalog, &args.input, &args.constraints, &mut report)?;
-    let basis = args
-        .design
-        .reduced_basis(catalog, &problem, &args.input, &mut report)?;
+    let basis =
+        args.design
+            .reduced_basis(catalog, &problem, &args.input, &constraints, &mut report)?;
     let solved = problem.spline(&basis, &constraints)?;
     report.add(solved.spline_lines(constraints.len(), basis.len()), &solved);
     let residuals = problem.residuals(&solved.field, &constraints)?;

@@ -470,15 +470,7 @@ fn rate_distortion_writes_csv_and_plot() {
 #[test]
 fn filter_and_coefficients_read_an_eigenfunctions_file_in_blocks() {
     let fx = fixture();
-    let blocks = fx.path("eigenfunctions.tvfb");
-    succeeded(&tvf(&[
-        &"basis", &fx.mesh, &"-k", &"60", &"--quiet", &"-o", &blocks,
-    ]));
-    let complex = Conforming::new(&fx.loaded, MassLumping::Barycentric).unwrap();
-    let key = BasisFileKey::new(&fx.loaded, &complex);
-    let whole = fx.path("fields.tvfb");
-    let basis = tvf_spectral::load_basis(&blocks, &key, &complex).unwrap();
-    save_basis(&whole, &basis, &key).unwrap();
+    let (blocks, whole) = eigenfunctions_and_fields_files(&fx);
     let fields = FaceFields::new(&fx.loaded).unwrap();
     let mut filtered = Vec::new();
     for (basis, name) in [(&blocks, "blocks.npy"), (&whole, "whole.npy")] {
@@ -529,5 +521,175 @@ fn filter_and_coefficients_read_an_eigenfunctions_file_in_blocks() {
     let scale = coefficients[1].iter().fold(0.0f64, |m, c| m.max(c.abs()));
     for (a, b) in coefficients[0].iter().zip(&coefficients[1]) {
         assert!((a - b).abs() <= 1e-12 * scale, "{a} against {b}");
+    }
+}
+
+/// Writes a constraint file for the fixture's torus (576 faces, 288 vertices): two vectors, a
+/// source and a vortex.
+fn torus_constraints(path: &Path) {
+    std::fs::write(
+        path,
+        r#"{"omega": 0.1, "constraints": [
+ {"id": "v1", "kind": "vector", "face": 10, "value": [0.0, 1.0, 0.0]},
+ {"id": "v2", "kind": "vector", "face": 300, "value": [1.0, 0.0, 0.0]},
+ {"id": "source", "kind": "divergence", "vertex": 50, "value": 2.0},
+ {"id": "vortex", "kind": "curl", "face": 200, "value": 2.0}]}"#,
+    )
+    .unwrap();
+}
+
+/// An eigenfunctions file of the fixture (`tvf basis -k 60 -o`) and the same basis loaded and
+/// saved whole (the fields layout, which every command loads whole).
+fn eigenfunctions_and_fields_files(fx: &Fixture) -> (PathBuf, PathBuf) {
+    let blocks = fx.path("eigenfunctions.tvfb");
+    succeeded(&tvf(&[
+        &"basis", &fx.mesh, &"-k", &"60", &"--quiet", &"-o", &blocks,
+    ]));
+    let complex = Conforming::new(&fx.loaded, MassLumping::Barycentric).unwrap();
+    let key = BasisFileKey::new(&fx.loaded, &complex);
+    let whole = fx.path("fields.tvfb");
+    let basis = tvf_spectral::load_basis(&blocks, &key, &complex).unwrap();
+    save_basis(&whole, &basis, &key).unwrap();
+    (blocks, whole)
+}
+
+/// The arguments of `compress` (20 pairs), `spline` and `design --reduced` of the fixture with
+/// `basis`, writing `outputs` (in that order).
+fn consumer_runs(
+    fx: &Fixture,
+    constraints: &Path,
+    basis: &Path,
+    outputs: [&Path; 3],
+) -> [Vec<std::ffi::OsString>; 3] {
+    let [compressed, spline, design] = outputs;
+    let (mesh, field) = (fx.mesh.as_os_str(), fx.field.as_os_str());
+    let constrained = ["--constraints".as_ref(), constraints.as_os_str()];
+    let basis = ["--basis".as_ref(), basis.as_os_str()];
+    let args = |parts: &[&std::ffi::OsStr]| parts.iter().map(|&p| p.to_owned()).collect();
+    [
+        args(
+            &[
+                &[
+                    "compress".as_ref(),
+                    mesh,
+                    field,
+                    "--pairs".as_ref(),
+                    "20".as_ref(),
+                ],
+                &basis[..],
+                &["-o".as_ref(), compressed.as_os_str()],
+            ]
+            .concat(),
+        ),
+        args(
+            &[
+                &["spline".as_ref(), mesh],
+                &constrained[..],
+                &basis[..],
+                &["-o".as_ref(), spline.as_os_str()],
+            ]
+            .concat(),
+        ),
+        args(
+            &[
+                &["design".as_ref(), mesh, "--reduced".as_ref()],
+                &constrained[..],
+                &basis[..],
+                &["-o".as_ref(), design.as_os_str()],
+            ]
+            .concat(),
+        ),
+    ]
+}
+
+/// Runs `tvf` with owned arguments.
+fn tvf_owned(args: &[std::ffi::OsString]) -> Output {
+    let args: Vec<&dyn AsRef<std::ffi::OsStr>> = args
+        .iter()
+        .map(|a| a as &dyn AsRef<std::ffi::OsStr>)
+        .collect();
+    tvf(&args)
+}
+
+/// `compress`, `spline` and `design --reduced` read an eigenfunctions file in blocks too (said
+/// on stderr): a `.tvfc` made in blocks decodes with the basis loaded whole (the same basis id)
+/// to the field of the whole basis's file to round-off (the coefficients' projection sums in
+/// another order: 1e-13), and splines and soft designs equal the whole basis's to round-off
+/// (their reduced systems are the same bit for bit; the synthesis sums in another order: 1e-13).
+#[test]
+fn compress_spline_and_design_read_an_eigenfunctions_file_in_blocks() {
+    let fx = fixture();
+    let (blocks, whole) = eigenfunctions_and_fields_files(&fx);
+    let constraints = fx.path("c.json");
+    torus_constraints(&constraints);
+    let fields = FaceFields::new(&fx.loaded).unwrap();
+    let mut solved = Vec::new();
+    for (basis, name) in [(&blocks, "blocks"), (&whole, "whole")] {
+        let compressed = fx.path(&format!("{name}.tvfc"));
+        let spline = fx.path(&format!("{name}-spline.npy"));
+        let design = fx.path(&format!("{name}-design.npy"));
+        let runs = consumer_runs(&fx, &constraints, basis, [&compressed, &spline, &design]);
+        for args in &runs {
+            let output = tvf_owned(args);
+            succeeded(&output);
+            let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+            assert_eq!(
+                stderr.contains("read in blocks"),
+                name == "blocks",
+                "{stderr}"
+            );
+        }
+        let decoded = fx.path(&format!("{name}-decoded.npy"));
+        succeeded(&tvf(&[
+            &"decompress",
+            &fx.mesh,
+            &compressed,
+            &"--basis",
+            &whole,
+            &"-o",
+            &decoded,
+        ]));
+        solved.push([decoded, spline, design].map(|path| tangent(&fields, &path)));
+    }
+    for (what, (found, expected)) in ["decoded", "spline", "design"]
+        .iter()
+        .zip(solved[0].iter().zip(&solved[1]))
+    {
+        let error = relative_error(&fields, expected, found);
+        assert!(error < 1e-13, "{what}: {error:e}");
+    }
+}
+
+/// A truncated eigenfunctions file, and one with a payload bit flipped, are refused by
+/// `compress`, `spline` and `design --reduced` with an error naming the file, and nothing is
+/// written.
+#[test]
+fn damaged_eigenfunctions_files_are_refused_by_compress_spline_and_design() {
+    let fx = fixture();
+    let (blocks, _) = eigenfunctions_and_fields_files(&fx);
+    let constraints = fx.path("c.json");
+    torus_constraints(&constraints);
+    let bytes = std::fs::read(&blocks).unwrap();
+    let truncated = fx.path("truncated.tvfb");
+    std::fs::write(&truncated, &bytes[..bytes.len() - 100]).unwrap();
+    let mut flipped_bytes = bytes.clone();
+    let at = bytes.len() - 200;
+    flipped_bytes[at] ^= 0x01;
+    let flipped = fx.path("flipped.tvfb");
+    std::fs::write(&flipped, &flipped_bytes).unwrap();
+    let out = fx.path("out");
+    for (damaged, problem) in [(&truncated, "truncated"), (&flipped, "checksum")] {
+        let runs = consumer_runs(&fx, &constraints, damaged, [&out, &out, &out]);
+        for args in &runs {
+            let output = tvf_owned(args);
+            let stderr = String::from_utf8_lossy(&output.stderr).to_lowercase();
+            assert!(!output.status.success(), "{stderr}");
+            let name = damaged.file_name().unwrap().to_string_lossy().to_string();
+            assert!(
+                stderr.contains(&name) && stderr.contains(problem),
+                "{stderr}"
+            );
+            assert!(!out.exists());
+        }
     }
 }

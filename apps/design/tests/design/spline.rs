@@ -296,7 +296,7 @@ fn single_precision_map_agrees_with_double() {
     }
     let v = session.solve();
     let x = session.field();
-    let single = basis.to_f32();
+    let single = basis.to_f32().unwrap();
     let v32: Vec<f32> = v.iter().map(|&a| a as f32).collect();
     let mut x32 = vec![0.0f32; x.len()];
     single.map(&v32, &mut x32).unwrap();
@@ -304,4 +304,126 @@ fn single_precision_map_agrees_with_double() {
     let difference = relative_difference(&x32, &x, complex.m1().diagonal_values().unwrap());
     assert!(difference < 1e-5, "f32 vs f64 map: {difference:e}");
     assert!(basis.map(&v[1..], &mut vec![0.0; x.len()]).is_err());
+}
+
+/// A spline and a reduced soft design in a basis file read in blocks (only the rows of `U` the
+/// constraints touch held, [`ReducedBasis::from_field_basis`]) against the same file loaded
+/// whole: the reduced coefficients bit for bit (the rows are the loaded basis's, summed in the
+/// same order), the fields to round-off (`1e-13` of the largest coefficient: the synthesis
+/// sums in another order); a lumped and a Galerkin (non-diagonal `M1`: co-integrable rows by
+/// mass solves, to round-off, so the coefficients and fields to `1e-11` relative: the
+/// constrained solve amplifies the rows' round-off) complex; a constraint touching a row that
+/// was not read is refused.
+#[test]
+fn splines_and_reduced_designs_in_a_basis_file_read_in_blocks_equal_the_loaded_basis() {
+    use std::sync::Arc;
+    use tvf_core::discretization::HodgeOperators;
+    use tvf_design::{timed_reduced_design, timed_spline, SoftOptions};
+    use tvf_discretizations::{BoxedComplex, WhitneyGalerkin};
+    use tvf_spectral::{load_basis, save_computed_basis, BasisFileBlocks, BasisFileKey};
+
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = genus_surface(1, 4);
+    let lumped: BoxedComplex = Box::new(Conforming::new(&mesh, MassLumping::Barycentric).unwrap());
+    let galerkin: BoxedComplex = Box::new(WhitneyGalerkin::new(&mesh).unwrap());
+    for (name, complex, exact) in [("lumped", lumped, true), ("galerkin", galerkin, false)] {
+        let path = dir.path().join(format!("{name}.tvfb"));
+        let key = BasisFileKey::new(&mesh, complex.as_ref());
+        let request = tvf_spectral::BasisRequest::fields(80);
+        save_computed_basis(&path, complex.as_ref(), &request, &key).unwrap();
+        let loaded = load_basis(&path, &key, complex.as_ref()).unwrap();
+        // The constraints the complex takes (Whitney forms have no curl at an edge).
+        let compiled = |seed| -> Vec<_> {
+            let assembler = ConstraintAssembler::new(complex.as_ref(), &mesh);
+            let all = mixed_constraints(&mesh, 6, seed);
+            all.iter()
+                .filter_map(|c| assembler.compile(c).ok())
+                .collect()
+        };
+        let constraints = compiled(11);
+        assert!(constraints.len() >= 6);
+        // A vector at a face no constraint touches (on this small mesh the Galerkin
+        // divergence's row, through the Whitney mass, touches nearly every edge: lumped only).
+        let assembler = ConstraintAssembler::new(complex.as_ref(), &mesh);
+        let touched = ReducedBasis::touched_rows(&constraints);
+        let faces = if exact { 0..mesh.face_count() } else { 0..0 };
+        let untouched = faces
+            .map(|face| {
+                let location = Location::Face {
+                    face,
+                    barycentric: None,
+                };
+                let far = Constraint::new("far", Target::Vector([1.0, 0.0, 0.0]), location);
+                assembler.compile(&far).unwrap()
+            })
+            .find(|c| c.rows.iter().flatten().all(|(j, _)| !touched.contains(j)));
+        let whole = ReducedBasis::from_spectral(&loaded).unwrap();
+        let n1 = complex.field_dimension();
+        let blocks = BasisFileBlocks::open(&path, &key, complex)
+            .unwrap()
+            .unwrap();
+        let blocks = ReducedBasis::from_field_basis(Arc::new(blocks), &constraints).unwrap();
+        assert_eq!(blocks.eigenvalues(), whole.eigenvalues());
+        assert_eq!(blocks.harmonic(), whole.harmonic());
+
+        let solve = |basis: &ReducedBasis| {
+            let mut session = SplineSession::new(basis, OMEGA).unwrap();
+            for c in constraints.iter().cloned() {
+                session.add(c).unwrap();
+            }
+            session.solve()
+        };
+        let (expected, found) = (solve(&whole), solve(&blocks));
+        if exact {
+            assert_eq!(found, expected, "{name}: reduced spline coefficients");
+        } else {
+            let scale = expected.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let worst = found
+                .iter()
+                .zip(&expected)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(
+                worst <= 1e-11 * scale,
+                "{name}: coefficients differ by {worst:e}"
+            );
+        }
+        // The synthesis's round-off alone (1e-13), or with the coefficients' (1e-11).
+        let tolerance = if exact { 1e-13 } else { 1e-11 };
+        let close = |a: &[f64], b: &[f64]| {
+            let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let worst = a
+                .iter()
+                .zip(b)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            println!(
+                "{name}: fields differ by {:.1e} of the largest",
+                worst / scale
+            );
+            worst <= tolerance * scale
+        };
+        let spline = timed_spline(&blocks, OMEGA, &constraints).unwrap();
+        let spline_whole = timed_spline(&whole, OMEGA, &constraints).unwrap();
+        assert!(
+            close(&spline.field, &spline_whole.field),
+            "{name}: spline field"
+        );
+        let options = SoftOptions {
+            omega: OMEGA,
+            regularization: 1e-3,
+        };
+        let design = timed_reduced_design(&blocks, options, &constraints).unwrap();
+        let design_whole = timed_reduced_design(&whole, options, &constraints).unwrap();
+        assert!(
+            close(&design.field, &design_whole.field),
+            "{name}: design field"
+        );
+        assert_eq!(spline.field.len(), n1);
+
+        if exact {
+            let untouched = untouched.expect("a face whose rows no constraint touches");
+            let mut session = SplineSession::new(&blocks, OMEGA).unwrap();
+            let error = session.add(untouched).unwrap_err();
+            assert!(error.to_string().contains("not read"), "{error}");
+        }
+    }
 }

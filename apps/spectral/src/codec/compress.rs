@@ -2,13 +2,14 @@
 //! (Section 8.6 of the paper), with the coefficients stored as `f64` (the paper) or quantised and
 //! range-coded (beyond the paper).
 
-use crate::basis::{FieldFamily, SpectralBasis};
+use crate::basis::FieldFamily;
 use crate::codec::compression_error::CompressionError;
 use crate::codec::quantization::UniformQuantizer;
 use crate::codec::symbol_coder::{decode_symbols, encode_symbols};
 use crate::formats::compressed_file::{
     CoefficientCoding, CompressedFields, FramePayload, TvfcHeader,
 };
+use crate::FieldBasis;
 use rayon::prelude::*;
 
 /// The basis fields kept when compressing with `pairs` pairs: the lowest `pairs` integrable, the
@@ -16,7 +17,10 @@ use rayon::prelude::*;
 /// (`2·pairs + h` of them; the paper's rate `2·64·k/V` bits per vertex counts these pairs).
 /// A family with fewer than `pairs` fields is kept whole (so a large enough `pairs` keeps a
 /// complete basis whole); `pairs` beyond both families is an error.
-pub fn pair_selection(basis: &SpectralBasis, pairs: usize) -> Result<Vec<usize>, CompressionError> {
+pub fn pair_selection(
+    basis: &dyn FieldBasis,
+    pairs: usize,
+) -> Result<Vec<usize>, CompressionError> {
     let mut integrable = 0;
     let mut cointegrable = 0;
     let mut selection = Vec::with_capacity(2 * pairs + 8);
@@ -57,19 +61,33 @@ pub fn pair_selection(basis: &SpectralBasis, pairs: usize) -> Result<Vec<usize>,
 /// kept basis fields `S` ([`pair_selection`]); decoding returns `U_S ĉ`. With `f64` storage
 /// `ĉ = c` bit-exactly; with quantisation `|ĉ_i − c_i| ≤ step/2`, so the decoded field is within
 /// `(step/2)·√|S|` (`M_X` norm) of the projection `U_S c`.
-#[derive(Debug, Clone)]
+///
+/// The basis is any [`FieldBasis`]: in memory, or a basis file read in blocks (whose
+/// coefficients and syntheses equal the loaded basis's to round-off, see
+/// [`crate::BasisFileBlocks`]).
+#[derive(Clone)]
 pub struct FieldCodec<'a> {
-    basis: &'a SpectralBasis,
+    basis: &'a dyn FieldBasis,
     header: TvfcHeader,
     selection: Vec<usize>,
 }
 
+impl std::fmt::Debug for FieldCodec<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("FieldCodec")
+            .field("basis_fields", &self.basis.len())
+            .field("header", &self.header)
+            .field("selection", &self.selection)
+            .finish()
+    }
+}
+
 impl<'a> FieldCodec<'a> {
     /// A codec keeping `pairs` pairs of `basis`, for files stamped with the mesh fingerprint and
-    /// the basis id ([`basis_id`](crate::formats::basis_id) of `basis`, passed in because it hashes the
-    /// whole basis).
+    /// the basis id ([`basis_id`](crate::formats::basis_id) of `basis`, or
+    /// [`field_basis_id`](crate::field_basis_id), passed in because it hashes the whole basis).
     pub fn new(
-        basis: &'a SpectralBasis,
+        basis: &'a dyn FieldBasis,
         mesh_fingerprint: u64,
         basis_id: u64,
         pairs: usize,
@@ -101,7 +119,7 @@ impl<'a> FieldCodec<'a> {
     /// The codec that decodes `file`, after checking that it was made on this mesh (fingerprint)
     /// with this basis (id, dimension, coefficient count).
     pub fn for_file(
-        basis: &'a SpectralBasis,
+        basis: &'a dyn FieldBasis,
         mesh_fingerprint: u64,
         basis_id: u64,
         file: &TvfcHeader,

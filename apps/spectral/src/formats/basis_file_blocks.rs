@@ -1,19 +1,34 @@
 //! [`BasisFileBlocks`]: a basis file in the eigenfunctions layout used where it lies, a block of
 //! stored columns at a time, so that a basis larger than memory can project and synthesise
-//! fields (`tvf filter`, `tvf coefficients`): only `n1`-vectors, the `d` eigenvalues and one
-//! block of columns (at most [`BLOCK_BYTES`]) are ever in memory, never the `n1 × d` fields
-//! [`crate::load_basis`] forms.
+//! fields (`tvf filter`, `tvf coefficients`, `tvf compress`), give the rows of `U` a spline's or
+//! soft design's constraints touch (`tvf spline`, `tvf design --reduced`) and every field once
+//! for the basis id of compressed files: only `n1`-vectors, the `d` eigenvalues, the requested
+//! rows and one block of columns (at most [`BLOCK_BYTES`], with its formed fields) are ever in
+//! memory, never the `n1 × d` fields [`crate::load_basis`] forms.
 //!
-//! The products go through the stored eigenfunctions and the complex's sparse operators, as
-//! [`crate::EigenfunctionBasis`] computes them: with `Φ_i = d0 φ̃_i`, `Ψ_j = −M1⁻¹ d1ᵀ ψ̃_j`,
+//! The projection goes through the stored eigenfunctions and the complex's sparse operators, as
+//! [`crate::EigenfunctionBasis`] computes it: with `Φ_i = d0 φ̃_i`, `Ψ_j = −M1⁻¹ d1ᵀ ψ̃_j`,
 //!
 //! ```text
 //! α_i = φ̃_iᵀ (d0ᵀ M1 v),   β_j = ψ̃_jᵀ (−d1 v),   γ_k = Γ_kᵀ M1 v,
-//! U c = d0 (Σ α_i φ̃_i) − M1⁻¹ d1ᵀ (Σ β_j ψ̃_j) + Σ γ_k Γ_k,
 //! ```
 //!
-//! which are the dense basis's products in another summation order (equal to round-off; the
-//! tests bound the difference). Opening checks everything [`crate::load_basis`] checks before
+//! the dense basis's product in another summation order (equal to round-off; the tests bound
+//! the difference). The synthesis `U c = Σ_i c_i U_i` forms the fields of a block of basis
+//! indices from their stored columns and adds them in basis order, as the loaded basis does:
+//! summing the potentials first and taking one gradient (`d0 Σ α_i φ̃_i`) would be cheaper but
+//! loses digits to cancellation (on the 1000-field basis of `bunny-closed.obj`, a spline's
+//! field differed from the loaded basis's by 3.6·10⁻¹² relative, its constraint residuals grew
+//! from 2·10⁻¹⁵ to 2·10⁻¹³). Where the co-gradient is a sparse matrix (a diagonal `M1`), the
+//! fields are formed as [`crate::load_basis`] forms them, bit for bit: the synthesis, the
+//! fields [`FieldBasis::visit_fields`] hands out (so the basis id is the loaded basis's) and
+//! the rows of [`FieldBasis::rows`] are the loaded basis's bit for bit. With a non-diagonal
+//! `M1`, the loaded basis forms its co-integrable fields by one mass solve with every
+//! co-potential as right-hand side, and a solve of another block of columns differs from it in
+//! round-off: the fields are the loaded basis's bit for bit only where the co-potentials fit
+//! one block ([`BasisFileBlocks::forms_fields_as_loaded`]), and the co-integrable rows are
+//! `ψ̃_jᵀ (−d1 M1⁻¹ e_r)`, one mass solve per row, equal to round-off. Opening checks
+//! everything [`crate::load_basis`] checks before
 //! anything is computed: the key (mesh, discretization, matrices), the size the header promises,
 //! the payload checksum (read through once, in blocks) and that every stored value is finite.
 //! Each product then checks that the file's size and modification time are still those it was
@@ -23,16 +38,20 @@
 use super::basis_file::{check_file_size, family_code};
 use super::basis_file_header::read_header;
 use crate::basis::{check_eigenvalues, check_length};
+use crate::eigenfunction_basis::field_of_stored_into;
+use crate::field_basis::check_rows;
 use crate::{
     BasisFileError, BasisFileHeader, BasisFileKey, BasisFileLayout, FieldBasis, FieldFamily,
     SpectralBasisError,
 };
+use faer::MatRef;
 use rayon::prelude::*;
+use sprs::CsMat;
 use std::fs::File;
 use std::os::unix::fs::FileExt;
 use std::path::{Path, PathBuf};
 use tvf_core::discretization::sparse::{mul_transpose_vec, mul_vec};
-use tvf_core::discretization::HodgeOperators;
+use tvf_core::discretization::{HodgeOperators, Mass};
 use tvf_core::Hash64;
 use tvf_discretizations::BoxedComplex;
 
@@ -162,6 +181,22 @@ impl BasisFileBlocks {
         &self.complex
     }
 
+    /// The complex the basis belongs to, the file closed.
+    pub fn into_complex(self) -> BoxedComplex {
+        self.complex
+    }
+
+    /// Whether [`FieldBasis::visit_fields`] forms every field as [`crate::load_basis`] does, bit
+    /// for bit (so that [`crate::field_basis_id`] is the loaded basis's id): always with a
+    /// diagonal `M1`; with a non-diagonal one only where the co-potentials fit one block (see
+    /// the module documentation).
+    pub fn forms_fields_as_loaded(&self) -> bool {
+        let co_potentials = self.sections[section_index(FieldFamily::Cointegrable)];
+        self.complex.co_gradient().is_sparse()
+            || co_potentials.count <= 1
+            || 8 * co_potentials.rows * co_potentials.count <= self.block_bytes
+    }
+
     /// `Xᵀ x` for the stored columns `X` of `section` (`rows` each) and `x` (`rows` values),
     /// read a block at a time.
     fn transpose_times(&self, section: Section, x: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
@@ -176,32 +211,6 @@ impl BasisFileBlocks {
         Ok(products)
     }
 
-    /// `X c` for the stored columns `X` of `section` and `c` (one coefficient per column),
-    /// read a block at a time; `rows` values.
-    fn times(&self, section: Section, c: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
-        const ROWS: usize = 4096;
-        let mut combined = vec![0.0; section.rows];
-        let mut first = 0;
-        self.for_each_block(section, |block| {
-            let columns = block.len() / section.rows.max(1);
-            let coefficients = &c[first..first + columns];
-            combined
-                .par_chunks_mut(ROWS)
-                .enumerate()
-                .for_each(|(chunk, out)| {
-                    let start = chunk * ROWS;
-                    for (column, &c) in block.chunks_exact(section.rows).zip(coefficients) {
-                        if c != 0.0 {
-                            let column = &column[start..start + out.len()];
-                            out.iter_mut().zip(column).for_each(|(o, x)| *o += c * x);
-                        }
-                    }
-                });
-            first += columns;
-        })?;
-        Ok(combined)
-    }
-
     /// Calls `visit` with the stored columns of `section` a block at a time, in order (each
     /// block `rows × columns` values, column by column).
     fn for_each_block(
@@ -212,43 +221,178 @@ impl BasisFileBlocks {
         if section.rows == 0 || section.count == 0 {
             return Ok(());
         }
-        let error = |reason: String| SpectralBasisError::Read {
-            path: self.path.clone(),
-            reason,
-        };
-        let now = self.file.metadata().map_err(|e| error(e.to_string()))?;
-        if (now.len(), now.modified().ok()) != self.checked {
-            return Err(error("the file changed since it was checked".into()));
-        }
+        self.check_unchanged()?;
         let per_block = (self.block_bytes / (8 * section.rows)).clamp(1, section.count);
-        let mut bytes = vec![0u8; 8 * section.rows * per_block];
-        let mut values = vec![0.0f64; section.rows * per_block];
+        let mut buffers = ReadBuffers::default();
         for first in (0..section.count).step_by(per_block) {
             let columns = per_block.min(section.count - first);
-            let length = 8 * section.rows * columns;
-            let offset = section.offset + (8 * section.rows * first) as u64;
-            self.file
-                .read_exact_at(&mut bytes[..length], offset)
-                .map_err(|e| error(e.to_string()))?;
-            values[..length / 8]
-                .par_iter_mut()
-                .zip(bytes[..length].par_chunks_exact(8))
-                .for_each(|(value, b)| *value = f64::from_le_bytes(b.try_into().unwrap_or([0; 8])));
-            if values[..length / 8].par_iter().any(|v| !v.is_finite()) {
-                return Err(error("a stored value is no longer finite".into()));
-            }
-            visit(&values[..length / 8]);
+            visit(self.read_columns(section, first..first + columns, &mut buffers)?);
         }
         Ok(())
     }
 
-    /// The coefficients `c` (basis order) split by family, in stored order.
-    fn by_family(&self, coefficients: &[f64]) -> [Vec<f64>; 3] {
-        let mut split = self.sections.map(|s| vec![0.0; s.count]);
-        for (i, &c) in coefficients.iter().enumerate() {
-            split[section_index(self.families[i])][self.slots[i]] = c;
+    /// An error reading the file, for `reason`.
+    fn read_error(&self, reason: String) -> SpectralBasisError {
+        SpectralBasisError::Read {
+            path: self.path.clone(),
+            reason,
         }
-        split
+    }
+
+    /// Checks that the file's size and modification time are those it was checked with.
+    fn check_unchanged(&self) -> Result<(), SpectralBasisError> {
+        let now = self
+            .file
+            .metadata()
+            .map_err(|e| self.read_error(e.to_string()))?;
+        if (now.len(), now.modified().ok()) != self.checked {
+            return Err(self.read_error("the file changed since it was checked".into()));
+        }
+        Ok(())
+    }
+
+    /// The stored columns `columns` of `section` (`rows × columns.len()` values, column by
+    /// column), read into `buffers`, each checked for being finite.
+    fn read_columns<'b>(
+        &self,
+        section: Section,
+        columns: std::ops::Range<usize>,
+        buffers: &'b mut ReadBuffers,
+    ) -> Result<&'b [f64], SpectralBasisError> {
+        let count = 8 * section.rows * columns.len();
+        let offset = section.offset + (8 * section.rows * columns.start) as u64;
+        buffers.bytes.resize(count, 0);
+        buffers.values.resize(count / 8, 0.0);
+        let (bytes, values) = (
+            &mut buffers.bytes[..count],
+            &mut buffers.values[..count / 8],
+        );
+        self.file
+            .read_exact_at(bytes, offset)
+            .map_err(|e| self.read_error(e.to_string()))?;
+        values
+            .par_iter_mut()
+            .zip(bytes.par_chunks_exact(8))
+            .for_each(|(value, b)| *value = f64::from_le_bytes(b.try_into().unwrap_or([0; 8])));
+        if values.par_iter().any(|v| !v.is_finite()) {
+            return Err(self.read_error("a stored value is no longer finite".into()));
+        }
+        Ok(values)
+    }
+
+    /// `U c` (`n1` values) summed field by field in basis order, as the loaded basis sums it
+    /// (`Σ_i c_i U[·, i]`, rows in chunks of [`ROW_CHUNK`], fields with `c_i = 0` skipped): the
+    /// fields of a chunk of basis indices formed from their stored columns (at most a block of
+    /// fields at a time), then added.
+    fn combine_fields(&self, c: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        let n1 = self.field_dimension();
+        let mut combined = vec![0.0; n1];
+        if n1 == 0 {
+            return Ok(combined);
+        }
+        self.check_unchanged()?;
+        let per_chunk = (self.block_bytes / (8 * n1)).clamp(1, self.len().max(1));
+        let mut buffers: [ReadBuffers; 3] = Default::default();
+        let mut fields = vec![0.0; n1 * per_chunk.min(self.len())];
+        for first in (0..self.len()).step_by(per_chunk) {
+            let chunk = first..(first + per_chunk).min(self.len());
+            if c[chunk.clone()].iter().all(|&x| x == 0.0) {
+                continue;
+            }
+            let fields = &mut fields[..n1 * chunk.len()];
+            self.form_fields(chunk.clone(), &mut buffers, fields)?;
+            let coefficients = &c[chunk];
+            combined
+                .par_chunks_mut(ROW_CHUNK)
+                .enumerate()
+                .for_each(|(block, out)| {
+                    let start = block * ROW_CHUNK;
+                    for (field, &c) in fields.chunks_exact(n1).zip(coefficients) {
+                        if c != 0.0 {
+                            let column = &field[start..start + out.len()];
+                            out.iter_mut().zip(column).for_each(|(o, x)| *o += c * x);
+                        }
+                    }
+                });
+        }
+        Ok(combined)
+    }
+
+    /// The fields of the basis indices `chunk` (`n1` values each, column by column) into
+    /// `fields`, formed from their stored columns as [`FieldBasis::visit_fields`] forms them.
+    fn form_fields(
+        &self,
+        chunk: std::ops::Range<usize>,
+        buffers: &mut [ReadBuffers; 3],
+        fields: &mut [f64],
+    ) -> Result<(), SpectralBasisError> {
+        let n1 = self.field_dimension();
+        let (d0, co_gradient) = (self.complex.d0(), self.complex.co_gradient());
+        for (k, family) in FAMILIES.into_iter().enumerate() {
+            // The chunk's fields of this family are consecutive stored columns.
+            let members: Vec<usize> = chunk
+                .clone()
+                .filter(|&i| self.families[i] == family)
+                .collect();
+            let (Some(&low), Some(&high)) = (members.first(), members.last()) else {
+                continue;
+            };
+            let section = self.sections[k];
+            let slots = self.slots[low]..self.slots[high] + 1;
+            let stored = self.read_columns(section, slots, &mut buffers[k])?;
+            let targets: Vec<usize> = members.iter().map(|&i| i - chunk.start).collect();
+            if family == FieldFamily::Cointegrable && !co_gradient.is_sparse() {
+                let stored = MatRef::from_column_major_slice(stored, section.rows, targets.len());
+                let formed = co_gradient.apply_block(stored);
+                for (j, &target) in targets.iter().enumerate() {
+                    let field = &mut fields[target * n1..(target + 1) * n1];
+                    field
+                        .iter_mut()
+                        .zip(formed.col(j).iter())
+                        .for_each(|(f, x)| *f = *x);
+                }
+                continue;
+            }
+            let mut outputs: Vec<(usize, &mut [f64])> =
+                fields.chunks_exact_mut(n1).enumerate().collect();
+            outputs.retain(|(j, _)| targets.binary_search(j).is_ok());
+            outputs
+                .into_par_iter()
+                .zip(stored.par_chunks_exact(section.rows))
+                .for_each(|((_, field), stored)| {
+                    field_of_stored_into(d0, co_gradient, family, stored, field)
+                });
+        }
+        Ok(())
+    }
+
+    /// Per family (in stored section order), the basis index of each stored column.
+    fn basis_indices(&self) -> [Vec<usize>; 3] {
+        let mut indices = self.sections.map(|s| vec![0; s.count]);
+        for (i, (&family, &slot)) in self.families.iter().zip(&self.slots).enumerate() {
+            indices[section_index(family)][slot] = i;
+        }
+        indices
+    }
+
+    /// Field coefficients `rows` of `family`'s fields as functionals of its stored columns.
+    fn row_functionals(&self, family: FieldFamily, rows: &[usize]) -> Vec<RowFunctional> {
+        let complex = &self.complex;
+        match family {
+            FieldFamily::Integrable => sparse_rows(complex.d0(), rows),
+            FieldFamily::Cointegrable => match complex.co_gradient().as_sparse() {
+                Some(matrix) => sparse_rows(matrix, rows),
+                None => rows
+                    .par_iter()
+                    .map(|&r| {
+                        let mut unit = vec![0.0; complex.field_dimension()];
+                        unit[r] = 1.0;
+                        RowFunctional::Dense(complex.co_gradient().apply_transpose(&unit))
+                    })
+                    .collect(),
+            },
+            FieldFamily::Harmonic => rows.iter().map(|&r| RowFunctional::Entry(r)).collect(),
+        }
     }
 }
 
@@ -288,21 +432,7 @@ impl FieldBasis for BasisFileBlocks {
 
     fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
         check_length("coefficients", self.len(), coefficients.len())?;
-        let [alpha, beta, gamma] = self.by_family(coefficients);
-        let [integrable, cointegrable, harmonic] = self.sections;
-        let exact = self
-            .complex
-            .gradient_field(&self.times(integrable, &alpha)?);
-        let co_exact = self
-            .complex
-            .co_gradient_field(&self.times(cointegrable, &beta)?);
-        let harmonic = self.times(harmonic, &gamma)?;
-        Ok(exact
-            .iter()
-            .zip(&co_exact)
-            .zip(&harmonic)
-            .map(|((a, b), h)| a + b + h)
-            .collect())
+        self.combine_fields(coefficients)
     }
 
     fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
@@ -312,6 +442,139 @@ impl FieldBasis for BasisFileBlocks {
             None => mass.inner(a, b),
         }
     }
+
+    fn field_mass(&self) -> &Mass {
+        self.complex.m1()
+    }
+
+    fn rows(&self, rows: &[usize]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        check_rows(rows, self.field_dimension())?;
+        let mut out = vec![vec![0.0; self.len()]; rows.len()];
+        let indices = self.basis_indices();
+        for (k, family) in FAMILIES.into_iter().enumerate() {
+            let functionals = self.row_functionals(family, rows);
+            let section = self.sections[k];
+            let mut first = 0;
+            self.for_each_block(section, |block| {
+                let values: Vec<Vec<f64>> = block
+                    .par_chunks_exact(section.rows)
+                    .map(|stored| functionals.iter().map(|f| f.apply(stored)).collect())
+                    .collect();
+                for (j, column) in values.iter().enumerate() {
+                    let i = indices[k][first + j];
+                    for (row, &value) in out.iter_mut().zip(column) {
+                        row[i] = value;
+                    }
+                }
+                first += values.len();
+            })?;
+        }
+        Ok(out)
+    }
+
+    fn visit_fields(
+        &self,
+        visit: &(dyn Fn(usize, &[f64]) + Sync),
+    ) -> Result<(), SpectralBasisError> {
+        let indices = self.basis_indices();
+        let (d0, co_gradient) = (self.complex.d0(), self.complex.co_gradient());
+        let n1 = self.field_dimension();
+        for (k, family) in FAMILIES.into_iter().enumerate() {
+            let section = self.sections[k];
+            let mut first = 0;
+            self.for_each_block(section, |block| {
+                let columns = block.len() / section.rows;
+                let targets = &indices[k][first..first + columns];
+                if family == FieldFamily::Cointegrable && !co_gradient.is_sparse() {
+                    // One block solve, as the loaded basis forms its co-exact fields.
+                    let stored = MatRef::from_column_major_slice(block, section.rows, columns);
+                    let fields = co_gradient.apply_block(stored);
+                    targets.par_iter().enumerate().for_each(|(j, &i)| {
+                        visit(i, &fields.col(j).iter().copied().collect::<Vec<f64>>())
+                    });
+                } else {
+                    block
+                        .par_chunks_exact(section.rows)
+                        .zip(targets)
+                        .for_each_init(
+                            || vec![0.0; n1],
+                            |field, (stored, &i)| {
+                                field_of_stored_into(d0, co_gradient, family, stored, field);
+                                visit(i, field);
+                            },
+                        );
+                }
+                first += columns;
+            })?;
+        }
+        Ok(())
+    }
+}
+
+/// Reusable buffers of [`BasisFileBlocks::read_columns`]: the bytes read and their values.
+#[derive(Default)]
+struct ReadBuffers {
+    bytes: Vec<u8>,
+    values: Vec<f64>,
+}
+
+/// Rows of the field summed together by one thread in [`BasisFileBlocks::combine_fields`], as
+/// the loaded basis's synthesis takes them (4096 rows of `f64`, 32 KiB, stay in cache while
+/// every field adds its slice).
+const ROW_CHUNK: usize = 4096;
+
+/// The families in the order of the stored sections.
+const FAMILIES: [FieldFamily; 3] = [
+    FieldFamily::Integrable,
+    FieldFamily::Cointegrable,
+    FieldFamily::Harmonic,
+];
+
+/// Field coefficient `r` of the field of a stored column `s`, as a functional of `s`: a row of a
+/// sparse operator (`d0`, or the co-gradient of a diagonal `M1`) summed in the order the field
+/// is formed in, a dense vector `w` (the co-gradient's transpose applied to `e_r`), or the stored
+/// value itself (harmonic fields).
+enum RowFunctional {
+    /// The stored entries of the row, by ascending column, and whether the operator is stored
+    /// by rows (summed as `mul_vec` sums it: by rows from `Sum`, by columns from `0.0`).
+    Sparse(Vec<(usize, f64)>, bool),
+    /// `wᵀ s`.
+    Dense(Vec<f64>),
+    /// `s[r]`.
+    Entry(usize),
+}
+
+impl RowFunctional {
+    fn apply(&self, stored: &[f64]) -> f64 {
+        match self {
+            Self::Sparse(entries, true) => entries.iter().map(|&(j, a)| a * stored[j]).sum(),
+            Self::Sparse(entries, false) => {
+                entries.iter().fold(0.0, |sum, &(j, a)| sum + a * stored[j])
+            }
+            Self::Dense(w) => w.iter().zip(stored).map(|(a, b)| a * b).sum(),
+            Self::Entry(r) => stored[*r],
+        }
+    }
+}
+
+/// The entries of rows `rows` of `matrix`, by ascending column.
+fn sparse_rows(matrix: &CsMat<f64>, rows: &[usize]) -> Vec<RowFunctional> {
+    let by_rows;
+    let csr = if matrix.is_csr() {
+        matrix
+    } else {
+        by_rows = matrix.to_csr();
+        &by_rows
+    };
+    rows.iter()
+        .map(|&r| {
+            let entries = csr
+                .outer_view(r)
+                .map(|row| row.iter().map(|(j, &a)| (j, a)).collect())
+                .unwrap_or_default();
+            RowFunctional::Sparse(entries, matrix.is_csr())
+        })
+        .collect()
 }
 
 /// Position of `family` in per-family arrays: integrable, co-integrable, harmonic.

@@ -1,8 +1,11 @@
 //! [`basis_id`]: a 64-bit fingerprint of a [`SpectralBasis`], stored in compressed files so that
-//! coefficients are never decoded with another basis.
+//! coefficients are never decoded with another basis; [`field_basis_id`]: the same of any
+//! [`FieldBasis`] (a basis file read in blocks gets the id of the same file loaded whole).
 
 use crate::basis::{FieldFamily, SpectralBasis};
+use crate::{FieldBasis, SpectralBasisError};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 use tvf_core::discretization::MassStorage;
 
 /// Multiplier of the word mixing (a 64-bit odd constant from the golden ratio).
@@ -28,15 +31,33 @@ pub fn basis_id(basis: &SpectralBasis) -> u64 {
     let fields = basis.fields();
     let column_hashes: Vec<u64> = (0..basis.len())
         .into_par_iter()
-        .map(|j| {
-            let column = fields.col(j);
-            let mut state = absorb(MIX, j as u64);
-            for i in 0..column.nrows() {
-                state = absorb(state, column[i].to_bits());
-            }
-            finalize(state)
-        })
+        .map(|j| column_hash(j, fields.col(j).iter().copied()))
         .collect();
+    combined_id(basis, &column_hashes)
+}
+
+/// [`basis_id`] of any [`FieldBasis`], its fields visited once
+/// ([`FieldBasis::visit_fields`]); equal to the id of the same basis loaded whole where the
+/// fields are formed as the loaded basis forms them (for a basis file read in blocks:
+/// [`crate::BasisFileBlocks::forms_fields_as_loaded`]).
+pub fn field_basis_id(basis: &dyn FieldBasis) -> Result<u64, SpectralBasisError> {
+    let column_hashes: Vec<AtomicU64> = (0..basis.len()).map(|_| AtomicU64::new(0)).collect();
+    basis.visit_fields(&|j, field| {
+        column_hashes[j].store(column_hash(j, field.iter().copied()), Ordering::Relaxed)
+    })?;
+    let column_hashes: Vec<u64> = column_hashes.into_iter().map(|h| h.into_inner()).collect();
+    Ok(combined_id(basis, &column_hashes))
+}
+
+/// The hash of field `j` with the values `column`.
+fn column_hash(j: usize, column: impl Iterator<Item = f64>) -> u64 {
+    finalize(column.fold(absorb(MIX, j as u64), |state, value| {
+        absorb(state, value.to_bits())
+    }))
+}
+
+/// The id of `basis` with the hashes of its fields.
+fn combined_id(basis: &dyn FieldBasis, column_hashes: &[u64]) -> u64 {
     let mut state = absorb(
         absorb(0, basis.field_dimension() as u64),
         basis.len() as u64,
@@ -62,7 +83,7 @@ pub fn basis_id(basis: &SpectralBasis) -> u64 {
             }
         }
     }
-    for h in column_hashes {
+    for &h in column_hashes {
         state = absorb(state, h);
     }
     finalize(state)

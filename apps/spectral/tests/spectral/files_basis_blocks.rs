@@ -1,17 +1,21 @@
-//! Basis files used in blocks ([`BasisFileBlocks`]): projections, syntheses and filters equal
-//! those of the basis loaded whole (to round-off: another summation order, bounded here), and
-//! do not depend on the block size (bit for bit); a damaged file is refused before use, naming
+//! Basis files used in blocks ([`BasisFileBlocks`]): projections, syntheses, filters and
+//! compression equal those of the basis loaded whole (to round-off: another summation order,
+//! bounded here), and do not depend on the block size (bit for bit); the fields visited, the
+//! basis id and the rows of `U` are the loaded basis's bit for bit (the co-integrable rows of a
+//! non-diagonal `M1` to round-off: mass solves); a damaged file is refused before use, naming
 //! it; a file in the fields layout is left to the whole load.
 
 use super::common::reseal_payload;
 use std::path::Path;
+use std::sync::Mutex;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::generate::icosphere;
 use tvf_discretizations::{BoxedComplex, Conforming, MassLumping, WhitneyGalerkin};
 use tvf_spectral::{
-    compute_eigenfunction_basis, load_basis, save_basis, save_computed_basis, BasisFileBlocks,
-    BasisFileError, BasisFileKey, BasisRequest, FieldBasis, FourierAnalysis, FrequencyResponse,
-    SpectralFilter,
+    basis_id, compress_with_report, compute_eigenfunction_basis, field_basis_id, load_basis,
+    save_basis, save_computed_basis, BasisFileBlocks, BasisFileError, BasisFileKey, BasisRequest,
+    CoefficientCoding, FieldBasis, FieldCodec, FieldFamily, FourierAnalysis, FrequencyResponse,
+    SpectralBasis, SpectralFilter,
 };
 
 /// A smooth field with a part outside any truncated basis (`n1` values).
@@ -34,7 +38,10 @@ fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
 
 /// Saves the basis of `request` for `complex` to `path` (streamed where it can be) and checks
 /// that its blocks give the whole basis's coefficients, syntheses and filtered field to
-/// `1e-13` relative, and the same results bit for bit with blocks of a few columns.
+/// `1e-13` relative — the synthesis bit for bit where `M1` is diagonal (the fields formed and
+/// added as the loaded basis does) — and the same results with blocks of a few columns (bit for
+/// bit where `M1` is diagonal; else to `1e-13`: the co-integrable fields through mass solves of
+/// other blocks of columns).
 fn blocks_equal_whole(mesh: &tvf_core::TriangleMesh, complex: BoxedComplex, path: &Path) {
     let key = BasisFileKey::new(mesh, complex.as_ref());
     save_computed_basis(path, complex.as_ref(), &BasisRequest::fields(120), &key).unwrap();
@@ -50,11 +57,18 @@ fn blocks_equal_whole(mesh: &tvf_core::TriangleMesh, complex: BoxedComplex, path
         blocks.coefficients(&field).unwrap(),
     );
     assert!(relative_difference(&found, &expected) < 1e-13);
+    let diagonal = whole.field_mass().diagonal_values().is_some();
     let (expected, found) = (
         whole.reconstruct(&expected).unwrap(),
         blocks.reconstruct(&expected).unwrap(),
     );
     assert!(relative_difference(&found, &expected) < 1e-13);
+    if diagonal {
+        assert_eq!(
+            found, expected,
+            "the synthesis of a diagonal M1, bit for bit"
+        );
+    }
 
     let filter = SpectralFilter::both(FrequencyResponse::LowPass { t: 0.01 }, 0.0);
     let (expected, found) = (
@@ -71,12 +85,90 @@ fn blocks_equal_whole(mesh: &tvf_core::TriangleMesh, complex: BoxedComplex, path
         ) < 1e-12
     );
 
+    assert!(blocks.forms_fields_as_loaded());
+    compression_equals_whole(&whole, &blocks, &field);
     // A block of 3 columns or fewer: many blocks per family, the same arithmetic per column.
     let small = blocks.with_block_bytes(3 * 8 * 642);
+    assert_eq!(small.forms_fields_as_loaded(), diagonal);
     let coefficients = small.coefficients(&field).unwrap();
     assert_eq!(coefficients, found.coefficients);
     let small_field = filter.apply(&small, &field).unwrap();
-    assert_eq!(small_field.field, found.field);
+    if diagonal {
+        assert_eq!(small_field.field, found.field);
+    } else {
+        assert!(relative_difference(&small_field.field, &found.field) < 1e-13);
+    }
+    fields_rows_and_id_equal_whole(&whole, &small);
+}
+
+/// Read in blocks of a few columns: the fields [`FieldBasis::visit_fields`] hands out, the basis
+/// id and the rows of `U` are the loaded basis's bit for bit where `M1` is diagonal; with a
+/// non-diagonal `M1` the co-integrable fields and rows come from mass solves of other blocks of
+/// columns than the loaded basis's one solve, equal to `1e-13` of the largest entry (and so the
+/// basis id differs).
+fn fields_rows_and_id_equal_whole(whole: &SpectralBasis, blocks: &BasisFileBlocks) {
+    let n1 = whole.field_dimension();
+    let exact_cointegrable = whole.field_mass().diagonal_values().is_some();
+    let visited = Mutex::new(vec![Vec::new(); whole.len()]);
+    blocks
+        .visit_fields(&|i, field| visited.lock().unwrap()[i] = field.to_vec())
+        .unwrap();
+    for (i, field) in visited.into_inner().unwrap().iter().enumerate() {
+        let expected: Vec<f64> = whole.fields().col(i).iter().copied().collect();
+        let family = whole.families()[i];
+        if exact_cointegrable || family != FieldFamily::Cointegrable {
+            let same = field.iter().zip(&expected);
+            assert!(
+                same.clone().all(|(a, b)| a.to_bits() == b.to_bits()),
+                "field {i} ({family:?}) differs from the loaded one"
+            );
+        } else {
+            assert!(relative_difference(field, &expected) < 1e-13, "field {i}");
+        }
+    }
+    if exact_cointegrable {
+        assert_eq!(field_basis_id(blocks).unwrap(), basis_id(whole));
+    }
+    assert_eq!(field_basis_id(whole).unwrap(), basis_id(whole));
+
+    let rows = [0, 7, n1 / 2, n1 - 1];
+    let (expected, found) = (whole.rows(&rows).unwrap(), blocks.rows(&rows).unwrap());
+    let exact_cointegrable = whole.field_mass().diagonal_values().is_some();
+    for (expected, found) in expected.iter().zip(&found) {
+        let scale = expected.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (i, (a, b)) in found.iter().zip(expected).enumerate() {
+            if exact_cointegrable || whole.families()[i] != FieldFamily::Cointegrable {
+                assert_eq!(a, b, "entry {i} of a row");
+            } else {
+                assert!((a - b).abs() <= 1e-13 * scale, "entry {i}: {a} against {b}");
+            }
+        }
+    }
+    assert!(blocks.rows(&[n1]).is_err());
+}
+
+/// A field compressed with the basis in blocks (one block: with a non-diagonal `M1` the
+/// co-integrable fields are then formed by the loaded basis's one mass solve): the same basis
+/// id, so a file made with either decodes with the other; coefficients and decoded fields equal
+/// to round-off (`1e-13`).
+fn compression_equals_whole(whole: &SpectralBasis, blocks: &BasisFileBlocks, field: &[f64]) {
+    let id = basis_id(whole);
+    let coding = CoefficientCoding::Float64;
+    let whole_codec = FieldCodec::new(whole, 1, id, 20, coding).unwrap();
+    let blocks_codec = FieldCodec::new(blocks, 1, field_basis_id(blocks).unwrap(), 20, coding);
+    let blocks_codec = blocks_codec.unwrap();
+    assert_eq!(whole_codec.header(), blocks_codec.header());
+    assert_eq!(whole_codec.selection(), blocks_codec.selection());
+    let fields = [field.to_vec()];
+    let (expected, expected_report) =
+        compress_with_report(&whole_codec, whole.field_mass(), &fields, 642).unwrap();
+    let (found, found_report) =
+        compress_with_report(&blocks_codec, blocks.field_mass(), &fields, 642).unwrap();
+    let relative_error = found_report.relative_errors[0];
+    assert!((relative_error - expected_report.relative_errors[0]).abs() <= 1e-13);
+    let decoded = whole_codec.decompress(&found).unwrap();
+    let expected_field = blocks_codec.decompress(&expected).unwrap();
+    assert!(relative_difference(&decoded[0], &expected_field[0]) < 1e-13);
 }
 
 /// A lumped complex (diagonal `M1`, the basis streamed to its file) and the Galerkin masses
