@@ -226,6 +226,7 @@ pub fn hodge_pencil<H: HodgeComplex + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use tvf_core::discretization::HodgeOperators;
     use tvf_core::generate::genus_surface;
     use tvf_discretizations::build_complex;
 

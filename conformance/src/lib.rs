@@ -125,6 +125,7 @@ pub mod decomposition_checks;
 pub mod dense;
 pub mod galerkin_mass_checks;
 pub mod inertia_checks;
+pub mod lawson_flips;
 pub mod lowest_eigenvalues;
 pub mod open_suite;
 pub mod polygon_capability_checks;
