@@ -1,6 +1,6 @@
 //! [`CheckCache`]: what several core checks of one complex compute alike — the dense spectra of
-//! `L` and of the two scalar pencils, the eigenfields of Lemma 1, the prefactored Hodge
-//! decomposer — computed once, on first use, and read by every check after.
+//! `L` and of the two scalar pencils, `S` and `B` formed densely, the eigenfields of Lemma 1, the
+//! prefactored Hodge decomposer — computed once, on first use, and read by every check after.
 //!
 //! The checks themselves are unchanged: each still measures what it measured, on the same
 //! numbers. Without the cache the spectrum of `L` (the largest dense problem, `n1` free field
@@ -22,6 +22,7 @@ use tvf_discretizations::HodgeDecomposer;
 pub struct CheckCache<'a, H: HodgeComplex + ?Sized> {
     complex: &'a H,
     dirichlet_energy: OnceCell<Mat<f64>>,
+    biharmonic_energy: OnceCell<Mat<f64>>,
     hodge_spectrum: OnceCell<Result<Vec<f64>, String>>,
     exact_spectrum: OnceCell<Result<Vec<f64>, String>>,
     co_exact_spectrum: OnceCell<Result<Vec<f64>, String>>,
@@ -35,6 +36,7 @@ impl<'a, H: HodgeComplex + ?Sized> CheckCache<'a, H> {
         Self {
             complex,
             dirichlet_energy: OnceCell::new(),
+            biharmonic_energy: OnceCell::new(),
             hodge_spectrum: OnceCell::new(),
             exact_spectrum: OnceCell::new(),
             co_exact_spectrum: OnceCell::new(),
@@ -52,6 +54,12 @@ impl<'a, H: HodgeComplex + ?Sized> CheckCache<'a, H> {
     pub fn dirichlet_energy(&self) -> &Mat<f64> {
         self.dirichlet_energy
             .get_or_init(|| self.complex.dirichlet_energy().to_dense())
+    }
+
+    /// `B` formed densely (`n1 × n1`, every field node).
+    pub fn biharmonic_energy(&self) -> &Mat<f64> {
+        self.biharmonic_energy
+            .get_or_init(|| self.complex.biharmonic_energy().to_dense())
     }
 
     /// The spectrum of `L`, ascending: the dense generalized eigenvalues of `(S, M1)` on the free
