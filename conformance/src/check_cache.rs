@@ -16,6 +16,9 @@ use std::cell::OnceCell;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_discretizations::HodgeDecomposer;
 
+/// An eigenfield of Lemma 1 with its eigenvalue: `(λ, u)`, `u` of `n1` coefficients.
+pub type Eigenfield = (f64, Vec<f64>);
+
 /// The shared computations of the checks of one complex (see the module documentation). Each is
 /// computed on its first use; an error (why a spectrum cannot be computed) is kept and returned
 /// to every check that asks, as each check reported it before.
@@ -26,7 +29,7 @@ pub struct CheckCache<'a, H: HodgeComplex + ?Sized> {
     hodge_spectrum: OnceCell<Result<Vec<f64>, String>>,
     exact_spectrum: OnceCell<Result<Vec<f64>, String>>,
     co_exact_spectrum: OnceCell<Result<Vec<f64>, String>>,
-    eigenfields: OnceCell<Result<Vec<(f64, Vec<f64>)>, String>>,
+    eigenfields: OnceCell<Result<Vec<Eigenfield>, String>>,
     decomposer: OnceCell<Result<HodgeDecomposer<'a, H>, String>>,
 }
 
@@ -107,7 +110,7 @@ impl<'a, H: HodgeComplex + ?Sized> CheckCache<'a, H> {
     /// The eigenfields of Lemma 1 with their eigenvalues
     /// ([`crate::spectral_checks::measured_lemma1_eigenfields`]), or why they cannot be
     /// computed.
-    pub fn lemma1_eigenfields(&self) -> Result<&[(f64, Vec<f64>)], String> {
+    pub fn lemma1_eigenfields(&self) -> Result<&[Eigenfield], String> {
         self.eigenfields
             .get_or_init(|| crate::spectral_checks::measured_lemma1_eigenfields(self.complex))
             .as_deref()
