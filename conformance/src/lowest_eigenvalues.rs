@@ -50,7 +50,7 @@ pub fn lowest_free_eigenvalues(
             MassMatrix::Diagonal(&diagonal)
         }
         (None, Some(m)) => {
-            sparse_mass = restricted(&m, &free, &free, (n, n));
+            sparse_mass = restricted_to(&m, &free, &free, (n, n));
             MassMatrix::Sparse(&sparse_mass)
         }
         (None, None) => return Err("the eigenproblem's mass is stored as its inverse".into()),
@@ -58,7 +58,7 @@ pub fn lowest_free_eigenvalues(
     let stiffness: CsMat<f64>;
     let pencil = match &problem.stiffness {
         EigenStiffness::Sparse(a) => {
-            stiffness = restricted(a, &free, &free, (n, n));
+            stiffness = restricted_to(a, &free, &free, (n, n));
             Pencil::with_mass(&stiffness, mass)
         }
         EigenStiffness::Mixed { field_mass, d1 } => {
@@ -67,8 +67,8 @@ pub fn lowest_free_eigenvalues(
             let w = field_mass
                 .sparse_matrix()
                 .ok_or("the field mass of a mixed stiffness is stored as its inverse")?;
-            let w = restricted(&w, &fields, &fields, (n1, n1));
-            Pencil::mixed(&w, &restricted(d1, &free, &fields, (n, n1)), mass)
+            let w = restricted_to(&w, &fields, &fields, (n1, n1));
+            Pencil::mixed(&w, &restricted_to(d1, &free, &fields, (n, n1)), mass)
         }
     }
     .map_err(|e| e.to_string())?;
@@ -107,9 +107,14 @@ fn positions(nodes: &NodeSpace) -> Vec<usize> {
         .collect()
 }
 
-/// The entries of `a` whose row and column have a position (`rows`, `cols`), at those positions,
-/// as a `shape` matrix.
-fn restricted(a: &CsMat<f64>, rows: &[usize], cols: &[usize], shape: (usize, usize)) -> CsMat<f64> {
+/// The entries of `a` whose row and column have a position (`rows`, `cols`: the new index of
+/// every old one, `usize::MAX` for none), at those positions, as a `shape` matrix (CSR).
+pub(crate) fn restricted_to(
+    a: &CsMat<f64>,
+    rows: &[usize],
+    cols: &[usize],
+    shape: (usize, usize),
+) -> CsMat<f64> {
     let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
     for (&value, (i, j)) in a.iter() {
         if rows[i] != usize::MAX && cols[j] != usize::MAX {
