@@ -2,11 +2,10 @@
 //! (positive diagonals, or sparse matrices positive definite on the free nodes), symmetry and
 //! semi-definiteness of the derived operators.
 
+use crate::check_cache::CheckCache;
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
 use crate::corpus::{CorpusMesh, DENSE_LIMIT};
-use crate::dense::{
-    free_eigenproblem, generalized_eigenvalues, hodge_pencil, restrict_to_free, DenseMass,
-};
+use crate::dense::{generalized_eigenvalues, restrict_to_free, DenseMass};
 use faer::Mat;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -80,8 +79,7 @@ pub fn measure_symmetric(what: &str, a: &CsMat<f64>) -> CheckOutcome {
     if a.rows() != a.cols() {
         return CheckOutcome::failed(name, format!("{what}: not square {:?}", a.shape()));
     }
-    let difference = &a.to_csr() - &transpose(a);
-    let asymmetry = max_abs(&difference);
+    let asymmetry = largest_asymmetry(a);
     let limit = SYMMETRY_TOLERANCE * max_abs(a);
     let detail = format!(
         "{what}: asymmetry {asymmetry:e} vs max entry {:e}",
@@ -90,12 +88,45 @@ pub fn measure_symmetric(what: &str, a: &CsMat<f64>) -> CheckOutcome {
     CheckOutcome::at_most(name, asymmetry, limit, detail)
 }
 
+/// `max |A − Aᵀ|` of a square sparse matrix, row by row: row `i` of `A` minus row `i` of `Aᵀ`
+/// accumulated in a dense row (the entries `a_ij − a_ji` of the difference, without forming it:
+/// on the raw bunny's `B` forming `A − Aᵀ` was a fifth of an open-mesh test).
+fn largest_asymmetry(a: &CsMat<f64>) -> f64 {
+    let a = a.to_csr();
+    let t = transpose(&a);
+    let mut row = vec![0.0; a.cols()];
+    let mut largest = 0.0f64;
+    for (a_row, t_row) in a.outer_iterator().zip(t.outer_iterator()) {
+        for (j, &v) in a_row.iter() {
+            row[j] += v;
+        }
+        for (j, &v) in t_row.iter() {
+            row[j] -= v;
+        }
+        for j in a_row.indices().iter().chain(t_row.indices()) {
+            largest = largest.max(row[*j].abs());
+            row[*j] = 0.0;
+        }
+    }
+    largest
+}
+
 /// A derived operator is symmetric: a sparse matrix entry by entry ([`measure_symmetric`]); a
 /// composed one formed densely when it has at most [`DENSE_LIMIT`] columns (`max |A − Aᵀ| ≤
 /// tol · max |A|`, the same criterion), else on [`PROBES`] seeded random pairs `x`, `y`:
 /// `|xᵀ A y − yᵀ A x| ≤ tol · max(|x| |A y|, |y| |A x|)` (the same relative round-off, measured
 /// on products instead of entries); `tol` is [`SYMMETRY_TOLERANCE`].
 pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcome {
+    measure_symmetric_operator_formed(what, a, None)
+}
+
+/// [`measure_symmetric_operator`], with the composed operator's dense form given if it was
+/// formed already (`a.to_dense()`).
+fn measure_symmetric_operator_formed(
+    what: &str,
+    a: &LinearOperator,
+    formed: Option<&Mat<f64>>,
+) -> CheckOutcome {
     if let Some(sparse) = a.as_sparse() {
         return measure_symmetric(what, sparse);
     }
@@ -105,9 +136,16 @@ pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcom
         return CheckOutcome::failed(name, format!("{what}: not square {:?}", a.shape()));
     }
     if cols <= DENSE_LIMIT {
-        let dense = a.to_dense();
-        let asymmetry = max_abs_dense(&(&dense - dense.transpose()));
-        let scale = max_abs_dense(&dense);
+        let owned;
+        let dense = match formed {
+            Some(dense) => dense,
+            None => {
+                owned = a.to_dense();
+                &owned
+            }
+        };
+        let asymmetry = max_abs_dense(&(dense - dense.transpose()));
+        let scale = max_abs_dense(dense);
         let detail = format!("{what} (dense): asymmetry {asymmetry:e} vs max entry {scale:e}");
         return CheckOutcome::at_most(name, asymmetry, SYMMETRY_TOLERANCE * scale, detail);
     }
@@ -128,7 +166,13 @@ pub fn measure_symmetric_operator(what: &str, a: &LinearOperator) -> CheckOutcom
 /// free nodes, e.g. P1 co-potentials zero on the boundary of a mesh without interior vertices)
 /// passes with nothing measured.
 pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
-    let eigenvalues = match generalized_eigenvalues(a, mass) {
+    psd_outcome(what, generalized_eigenvalues(a, mass).as_deref())
+}
+
+/// [`measure_psd`] of a pencil whose eigenvalues (ascending) are given, or why they could not be
+/// computed.
+fn psd_outcome(what: &str, eigenvalues: Result<&[f64], &String>) -> CheckOutcome {
+    let eigenvalues = match eigenvalues {
         Ok(eigenvalues) => eigenvalues,
         Err(reason) => {
             let detail = format!("{what}: the eigenvalues cannot be computed: {reason}");
@@ -152,6 +196,19 @@ pub fn measure_psd(what: &str, a: &Mat<f64>, mass: &DenseMass) -> CheckOutcome {
 /// [`measure_symmetric`] of the potential stiffness (always sparse) and
 /// [`measure_symmetric_operator`] of the co-potential stiffness, `S` and `B`.
 pub fn measure_symmetric_operators<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
+    measure_symmetric_operators_with(&CheckCache::new(complex))
+}
+
+/// [`measure_symmetric_operators`], a composed `S` and `B` formed once for this and the other
+/// checks of `cache`.
+pub fn measure_symmetric_operators_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+) -> Vec<CheckOutcome> {
+    let complex = cache.complex();
+    let (s, b) = (complex.dirichlet_energy(), complex.biharmonic_energy());
+    let composed = |a: &LinearOperator| a.as_sparse().is_none() && a.shape().1 <= DENSE_LIMIT;
+    let formed_s = composed(s).then(|| cache.dirichlet_energy());
+    let formed_b = composed(b).then(|| cache.biharmonic_energy());
     vec![
         measure_symmetric(
             "potential stiffness d0ᵀ M1 d0",
@@ -161,31 +218,39 @@ pub fn measure_symmetric_operators<H: HodgeComplex + ?Sized>(complex: &H) -> Vec
             "co-potential stiffness d1 M1⁻¹ d1ᵀ",
             complex.co_potential_stiffness(),
         ),
-        measure_symmetric_operator("Dirichlet energy S", complex.dirichlet_energy()),
-        measure_symmetric_operator("biharmonic energy B", complex.biharmonic_energy()),
+        measure_symmetric_operator_formed("Dirichlet energy S", s, formed_s),
+        measure_symmetric_operator_formed("biharmonic energy B", b, formed_b),
     ]
 }
 
 /// [`measure_psd`] of `S` and `B` (w.r.t. `M1`, on the free field nodes) and of both scalar
 /// eigenproblems (on the free nodes of their spaces), all formed densely.
 pub fn measure_psd_operators<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
-    let (s, m1, _) = hodge_pencil(complex);
-    let (b, _, _) = restrict_to_free(
-        &complex.biharmonic_energy().to_dense(),
+    measure_psd_operators_with(&CheckCache::new(complex))
+}
+
+/// [`measure_psd_operators`] on the spectra of `cache` (shared with the kernel and spectrum
+/// union checks).
+pub fn measure_psd_operators_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+) -> Vec<CheckOutcome> {
+    let complex = cache.complex();
+    let (b, m1, _) = restrict_to_free(
+        cache.biharmonic_energy(),
         &DenseMass::of(complex.m1()),
         complex.field_nodes(),
     );
-    let (exact, exact_mass, _) =
-        free_eigenproblem(&complex.exact_eigenproblem(), complex.potential_nodes());
-    let (co_exact, co_exact_mass, _) = free_eigenproblem(
-        &complex.co_exact_eigenproblem(),
-        complex.co_potential_nodes(),
-    );
     vec![
-        measure_psd("S", &s, &m1),
+        psd_outcome("S", cache.hodge_spectrum().as_ref().map(|v| *v)),
         measure_psd("B", &b, &m1),
-        measure_psd("exact eigenproblem", &exact, &exact_mass),
-        measure_psd("co-exact eigenproblem", &co_exact, &co_exact_mass),
+        psd_outcome(
+            "exact eigenproblem",
+            cache.exact_spectrum().as_ref().map(|v| *v),
+        ),
+        psd_outcome(
+            "co-exact eigenproblem",
+            cache.co_exact_spectrum().as_ref().map(|v| *v),
+        ),
     ]
 }
 

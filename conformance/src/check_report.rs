@@ -4,13 +4,17 @@
 //! `tvf.check` on a researcher's own matrices).
 
 use crate::algebra_checks::{
-    measure_d1_d0_zero, measure_masses, measure_psd_operators, measure_symmetric_operators,
+    measure_d1_d0_zero, measure_masses, measure_psd_operators_with,
+    measure_symmetric_operators_with,
 };
+use crate::check_cache::CheckCache;
 use crate::check_outcome::CheckOutcome;
 use crate::corpus::{DENSE_LIMIT, EIGENVECTOR_LIMIT};
-use crate::decomposition_checks::{measure_hodge_decomposition, measure_kernel_dimension_dense};
+use crate::decomposition_checks::{
+    measure_hodge_decomposition_with, measure_kernel_dimension_dense_with,
+};
 use crate::inertia_checks::{measure_inertia_checks, unsupported_reason};
-use crate::spectral_checks::{measure_lemma1, measure_spectrum_union};
+use crate::spectral_checks::{measure_lemma1_with, measure_spectrum_union_with};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_core::mesh::Mesh;
 use tvf_discretizations::mesh_topology;
@@ -79,8 +83,10 @@ impl CheckReport {
 /// `n1 ≤` [`EIGENVECTOR_LIMIT`]; above it, for complexes with diagonal masses, the same checks by
 /// the sparse eigensolver and inertia counts ([`crate::inertia_checks`]); a complex with a sparse
 /// mass keeps the dense checks up to [`DENSE_LIMIT`] (Lemma 1 up to [`EIGENVECTOR_LIMIT`]) and
-/// gets the others reported as skipped, saying why.
+/// gets the others reported as skipped, saying why. The spectra, eigenfields and the decomposer
+/// these checks share are computed once ([`CheckCache`]).
 pub fn core_check_report<M: Mesh + ?Sized>(complex: &dyn HodgeComplex, mesh: &M) -> CheckReport {
+    let cache = CheckCache::new(complex);
     let harmonic_dimension =
         mesh_topology(mesh, complex.topology().boundary_condition).harmonic_dimension;
     let n1 = complex.field_dimension();
@@ -95,16 +101,19 @@ pub fn core_check_report<M: Mesh + ?Sized>(complex: &dyn HodgeComplex, mesh: &M)
             complex.topology().harmonic_dimension
         ),
     ));
-    outcomes.extend(measure_symmetric_operators(complex));
-    outcomes.extend(measure_hodge_decomposition(complex, SEED));
+    outcomes.extend(measure_symmetric_operators_with(&cache));
+    outcomes.extend(measure_hodge_decomposition_with(&cache, SEED));
     let too_large = |limit: usize| format!("n1 = {n1} is above the dense limit {limit}");
     let sparse_reason = unsupported_reason(complex);
     if n1 <= EIGENVECTOR_LIMIT || (n1 <= DENSE_LIMIT && sparse_reason.is_some()) {
-        outcomes.extend(measure_psd_operators(complex));
-        outcomes.push(measure_kernel_dimension_dense(complex, harmonic_dimension));
-        outcomes.extend(measure_spectrum_union(complex, harmonic_dimension));
+        outcomes.extend(measure_psd_operators_with(&cache));
+        outcomes.push(measure_kernel_dimension_dense_with(
+            &cache,
+            harmonic_dimension,
+        ));
+        outcomes.extend(measure_spectrum_union_with(&cache, harmonic_dimension));
         if n1 <= EIGENVECTOR_LIMIT {
-            outcomes.extend(measure_lemma1(complex));
+            outcomes.extend(measure_lemma1_with(&cache));
         } else {
             let reason = sparse_reason.unwrap_or_default();
             outcomes.extend(LEMMA1_CHECK_NAMES.iter().map(|name| {

@@ -9,7 +9,8 @@
 //! levels, [`fitted_order`]); the detail is the table of errors, faces and mean edge lengths per
 //! level. Integrable eigenvalues are those of the potential pencil `(d0ᵀ M1 d0, M0)`,
 //! co-integrable ones those of the co-potential pencil `(d1 M1⁻¹ d1ᵀ, M2⁻¹)` (Lemma 1), both on
-//! the free nodes, solved densely, their kernels (the constants of a space without Dirichlet
+//! the free nodes, the lowest of them by the sparse eigensolver
+//! ([`crate::lowest_eigenvalues`]), their kernels (the constants of a space without Dirichlet
 //! nodes) left out.
 //!
 //! On the sphere every eigenvalue `l(l+1)` of the Laplace–Beltrami operator appears `2l + 1`
@@ -20,7 +21,7 @@
 
 use crate::accuracy_meshes::{Sequence, LEVELS};
 use crate::check_outcome::CheckOutcome;
-use crate::dense::{free_eigenproblem, generalized_eigenvalues};
+use crate::lowest_eigenvalues::lowest_free_eigenvalues;
 use crate::property_runner::SurfaceBuilder;
 use tvf_core::discretization::{Eigenproblem, HodgeOperators, NodeSpace};
 use tvf_core::geometry::{norm, sub};
@@ -105,12 +106,12 @@ pub struct LevelErrors {
 fn family_error(
     problem: &Eigenproblem,
     nodes: &NodeSpace,
+    field_nodes: &NodeSpace,
     closed: bool,
     count: usize,
 ) -> Result<f64, String> {
-    let (a, mass, _) = free_eigenproblem(problem, nodes);
-    let values = generalized_eigenvalues(&a, &mass)?;
     let kernel = nodes.kernel_dimension();
+    let values = lowest_free_eigenvalues(problem, nodes, field_nodes, kernel + count)?;
     let dirichlet = (!closed).then(|| nodes.constant_kernel.iter().any(|&k| !k));
     let exact = spherical_eigenvalues(dirichlet, count);
     let computed = values
@@ -145,12 +146,14 @@ pub fn level_errors(
     let integrable = family_error(
         &complex.exact_eigenproblem(),
         complex.potential_nodes(),
+        complex.field_nodes(),
         closed,
         count,
     )?;
     let cointegrable = family_error(
         &complex.co_exact_eigenproblem(),
         complex.co_potential_nodes(),
+        complex.field_nodes(),
         closed,
         count,
     )?;

@@ -3,6 +3,7 @@
 //! corpora — the general one, and the Delaunay one for discretizations that need
 //! `cot α + cot β > 0` on every edge (DEC's diagonal `⋆1`).
 
+use crate::lawson_flips::LawsonFlips;
 use std::f64::consts::TAU;
 use tvf_core::generate::{
     disk, genus_surface, hemisphere, holed_torus, icosphere, jitter, open_cylinder,
@@ -463,34 +464,15 @@ pub fn delaunay_flips(mesh: &TriangleMesh) -> TriangleMesh {
 
 /// [`delaunay_flips`], with an error instead of a panic when a flip would break the mesh (e.g.
 /// two faces that would share both vertices of the new diagonal) or when 10·E flips do not make
-/// it Delaunay (the mesh strategies reject such draws).
+/// it Delaunay (the mesh strategies reject such draws). The flips are kept up to date edge by
+/// edge ([`LawsonFlips`]: the same flips as recomputing every sum after each).
 pub fn try_delaunay_flips(mesh: &TriangleMesh) -> Result<TriangleMesh, String> {
-    let mut current = mesh.clone();
+    let mut flips = LawsonFlips::new(mesh);
     for _ in 0..10 * mesh.edge_count() {
-        let sums = cotangent_sums(&current);
-        let worst = (0..sums.len())
-            .filter(|&e| !current.is_boundary_edge(e))
-            .min_by(|&a, &b| sums[a].total_cmp(&sums[b]))
-            .filter(|&e| sums[e] <= DELAUNAY_TOLERANCE);
-        let Some(edge) = worst else {
-            return Ok(current);
+        let Some(edge) = flips.worst() else {
+            return flips.into_mesh();
         };
-        let mut faces = current.faces().to_vec();
-        let [s, t] = current.edge_faces()[edge];
-        let corner = |f: usize| {
-            current.face_edges()[f]
-                .iter()
-                .position(|&e| e == edge)
-                .expect("an edge's face contains it")
-        };
-        let (cs, ct) = (corner(s), corner(t));
-        let (p, a, b) = (faces[s][cs], faces[s][(cs + 1) % 3], faces[s][(cs + 2) % 3]);
-        let q = faces[t][ct];
-        // (p, a, b) and (q, b, a) become (p, a, q) and (q, b, p): same orientation.
-        faces[s] = [p, a, q];
-        faces[t] = [q, b, p];
-        current = TriangleMesh::new(current.positions().to_vec(), faces)
-            .map_err(|e| format!("flipping edge {edge} broke the mesh: {e}"))?;
+        flips.flip(edge)?;
     }
     Err("Lawson flips did not converge".to_string())
 }

@@ -1,9 +1,9 @@
 //! Core checks of the Hodge decomposition and of the harmonic space.
 
+use crate::check_cache::CheckCache;
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
 use crate::corpus::CorpusMesh;
 use crate::dense::split_zeros;
-use crate::spectral_checks::measured_hodge_spectrum;
 use faer::{Mat, Side};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -46,9 +46,19 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
     complex: &H,
     seed: u64,
 ) -> Vec<CheckOutcome> {
-    let decomposer = match HodgeDecomposer::new(complex) {
+    measure_hodge_decomposition_with(&CheckCache::new(complex), seed)
+}
+
+/// [`measure_hodge_decomposition`] with the decomposer of `cache` (factored once for every
+/// check of its complex).
+pub fn measure_hodge_decomposition_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+    seed: u64,
+) -> Vec<CheckOutcome> {
+    let complex = cache.complex();
+    let decomposer = match cache.decomposer() {
         Ok(decomposer) => decomposer,
-        Err(e) => return vec![CheckOutcome::failed("hodge_decomposition", e.to_string())],
+        Err(e) => return vec![CheckOutcome::failed("hodge_decomposition", e)],
     };
     let field = random_field(complex, seed);
     let parts = match decomposer.decompose(&field) {
@@ -57,7 +67,7 @@ pub fn measure_hodge_decomposition<H: HodgeComplex + ?Sized>(
     };
     let mut outcomes = orthogonality_outcomes(complex, &field, &parts);
     outcomes.extend(operator_outcomes(complex, &field, &parts));
-    outcomes.extend(known_parts_outcomes(complex, &decomposer, &parts, seed));
+    outcomes.extend(known_parts_outcomes(complex, decomposer, &parts, seed));
     outcomes
 }
 
@@ -201,7 +211,15 @@ fn known_parts_outcomes<H: HodgeComplex + ?Sized>(
 
 /// The checks of [`measure_hodge_decomposition`], asserted.
 pub fn check_hodge_decomposition<H: HodgeComplex + ?Sized>(complex: &H, seed: u64) {
-    assert_outcomes(&measure_hodge_decomposition(complex, seed));
+    check_hodge_decomposition_with(&CheckCache::new(complex), seed);
+}
+
+/// [`check_hodge_decomposition`] with the decomposer of `cache`.
+pub fn check_hodge_decomposition_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+    seed: u64,
+) {
+    assert_outcomes(&measure_hodge_decomposition_with(cache, seed));
 }
 
 /// `dim ker L` = `harmonic_dimension` by dense eigenvalues of `(S, M1)` (small meshes),
@@ -210,14 +228,22 @@ pub fn measure_kernel_dimension_dense<H: HodgeComplex + ?Sized>(
     complex: &H,
     harmonic_dimension: usize,
 ) -> CheckOutcome {
-    let eigenvalues = match measured_hodge_spectrum(complex) {
+    measure_kernel_dimension_dense_with(&CheckCache::new(complex), harmonic_dimension)
+}
+
+/// [`measure_kernel_dimension_dense`] on the spectrum of `L` of `cache`.
+pub fn measure_kernel_dimension_dense_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+    harmonic_dimension: usize,
+) -> CheckOutcome {
+    let eigenvalues = match cache.hodge_spectrum() {
         Ok(eigenvalues) => eigenvalues,
         Err(reason) => {
             let detail = format!("the spectrum of L cannot be computed: {reason}");
             return CheckOutcome::failed("kernel dimension", detail);
         }
     };
-    let (zeros, _) = split_zeros(&eigenvalues, 1e-9);
+    let (zeros, _) = split_zeros(eigenvalues, 1e-9);
     CheckOutcome::count(
         "kernel dimension",
         zeros,
@@ -232,8 +258,16 @@ pub fn measure_kernel_dimension_dense<H: HodgeComplex + ?Sized>(
 /// `dim ker L` = the corpus mesh's harmonic dimension (`2g`; `2g + b − 1` per component with
 /// boundary) by dense eigenvalues of `(S, M1)` on the free field nodes (small meshes).
 pub fn check_kernel_is_2g_dense<H: HodgeComplex + ?Sized, M>(complex: &H, mesh: &CorpusMesh<M>) {
-    assert_outcomes(&[measure_kernel_dimension_dense(
-        complex,
+    check_kernel_is_2g_dense_with(&CheckCache::new(complex), mesh);
+}
+
+/// [`check_kernel_is_2g_dense`] on the spectrum of `L` of `cache`.
+pub fn check_kernel_is_2g_dense_with<H: HodgeComplex + ?Sized, M>(
+    cache: &CheckCache<'_, H>,
+    mesh: &CorpusMesh<M>,
+) {
+    assert_outcomes(&[measure_kernel_dimension_dense_with(
+        cache,
         mesh.harmonic_dimension,
     )]);
 }
@@ -251,6 +285,16 @@ pub fn check_kernel_is_2g_sparse<H: HodgeComplex + ?Sized, M: Mesh>(
     mesh: &CorpusMesh<M>,
     seed: u64,
 ) {
+    check_kernel_is_2g_sparse_with(&CheckCache::new(complex), mesh, seed);
+}
+
+/// [`check_kernel_is_2g_sparse`] with the decomposer of `cache`.
+pub fn check_kernel_is_2g_sparse_with<H: HodgeComplex + ?Sized, M: Mesh>(
+    cache: &CheckCache<'_, H>,
+    mesh: &CorpusMesh<M>,
+    seed: u64,
+) {
+    let complex = cache.complex();
     let genera = mesh.component_genera();
     assert_eq!(
         genera.iter().sum::<usize>(),
@@ -263,7 +307,9 @@ pub fn check_kernel_is_2g_sparse<H: HodgeComplex + ?Sized, M: Mesh>(
         mesh.harmonic_dimension,
         "the corpus harmonic dimension disagrees with the mesh's topology"
     );
-    let decomposer = HodgeDecomposer::new(complex).expect("decomposer factors");
+    let decomposer = cache
+        .decomposer()
+        .unwrap_or_else(|e| panic!("decomposer factors: {e}"));
     let field_components = &complex.field_nodes().components;
     for (component, &dimension) in dimensions.iter().enumerate() {
         let samples = dimension + 1;

@@ -8,7 +8,7 @@ use faer::linalg::triangular_solve::{
 use faer::{Mat, Par, Side};
 use sprs::CsMat;
 use tvf_core::discretization::{
-    EigenStiffness, Eigenproblem, HodgeComplex, HodgeOperators, LinearOperator, Mass, NodeSpace,
+    EigenStiffness, Eigenproblem, HodgeComplex, LinearOperator, Mass, NodeSpace,
 };
 use tvf_solvers::symmetric_eigen;
 
@@ -210,10 +210,14 @@ pub fn free_eigenproblem(
 }
 
 /// The dense problem `(S, M1)` of the Hodge–Laplacian `L = M1⁻¹ S`, restricted to the free field
-/// nodes: its eigenvalues are the spectrum of `L`.
-pub fn hodge_pencil<H: HodgeComplex + ?Sized>(complex: &H) -> (Mat<f64>, DenseMass, Vec<usize>) {
+/// nodes: its eigenvalues are the spectrum of `L`. `dirichlet_energy` is `S` formed densely
+/// (`complex.dirichlet_energy().to_dense()`, `n1 × n1`).
+pub fn hodge_pencil<H: HodgeComplex + ?Sized>(
+    complex: &H,
+    dirichlet_energy: &Mat<f64>,
+) -> (Mat<f64>, DenseMass, Vec<usize>) {
     restrict_to_free(
-        &complex.dirichlet_energy().to_dense(),
+        dirichlet_energy,
         &DenseMass::of(complex.m1()),
         complex.field_nodes(),
     )
@@ -222,6 +226,7 @@ pub fn hodge_pencil<H: HodgeComplex + ?Sized>(complex: &H) -> (Mat<f64>, DenseMa
 #[cfg(test)]
 mod tests {
     use super::*;
+    use tvf_core::discretization::HodgeOperators;
     use tvf_core::generate::genus_surface;
     use tvf_discretizations::build_complex;
 

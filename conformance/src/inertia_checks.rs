@@ -22,6 +22,7 @@
 
 use crate::check_outcome::CheckOutcome;
 use crate::check_report::{DENSE_CHECK_NAMES, LEMMA1_CHECK_NAMES};
+use crate::lowest_eigenvalues::restricted_to;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::{mul_vec, transpose};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeSpace};
@@ -103,14 +104,7 @@ fn restricted(a: &CsMat<f64>, keep: &[usize]) -> CsMat<f64> {
     for (r, &i) in keep.iter().enumerate() {
         position[i] = r;
     }
-    let mut triplets = sprs::TriMat::new((keep.len(), keep.len()));
-    for (&v, (i, j)) in a.iter() {
-        let (r, c) = (position[i], position[j]);
-        if r != usize::MAX && c != usize::MAX {
-            triplets.add_triplet(r, c, v);
-        }
-    }
-    triplets.to_csr()
+    restricted_to(a, &position, &position, (keep.len(), keep.len()))
 }
 
 /// The outcomes of the eigenvalue checks under their names, all failed with `reason`.

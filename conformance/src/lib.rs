@@ -107,6 +107,13 @@
 //! `tvf.check`), every eigenvalue check through the sparse eigensolver and inertia counts
 //! ([`inertia_checks`]: semi-definiteness, the kernel, the spectrum union as counting functions,
 //! Lemma 1 on the lowest eigenpairs; for complexes with diagonal masses).
+//!
+//! What the checks of one complex compute alike — its dense spectra, `S` and `B` formed densely,
+//! the eigenfields of Lemma 1, the prefactored Hodge decomposer — is computed once per complex
+//! and shared ([`check_cache::CheckCache`]); the convergence checks take the lowest eigenvalues
+//! from the sparse eigensolver ([`lowest_eigenvalues`]); the Delaunay flips of the corpora and
+//! strategies are updated edge by edge ([`lawson_flips`]). Where the test binary's time goes:
+//! `docs/performance.md`, "The conformance tests".
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -114,6 +121,7 @@ pub mod accuracy;
 pub mod accuracy_meshes;
 pub mod algebra_checks;
 pub mod capability_checks;
+pub mod check_cache;
 pub mod check_outcome;
 pub mod check_report;
 pub mod check_run_report;
@@ -124,6 +132,8 @@ pub mod decomposition_checks;
 pub mod dense;
 pub mod galerkin_mass_checks;
 pub mod inertia_checks;
+pub mod lawson_flips;
+pub mod lowest_eigenvalues;
 pub mod open_suite;
 pub mod polygon_capability_checks;
 pub mod polygon_corpus;

@@ -4,15 +4,19 @@
 //! ([`check_essential_boundary_conditions`]).
 
 use crate::algebra_checks::{
-    check_d1_d0_zero, check_nodes_and_masses, check_psd_operators, check_symmetric_operators,
+    check_d1_d0_zero, check_nodes_and_masses, measure_psd_operators_with,
+    measure_symmetric_operators_with,
 };
 use crate::capability_checks::{check_point_evaluation, check_relative_sampling, check_sampling};
+use crate::check_cache::CheckCache;
+use crate::check_outcome::assert_outcomes;
 use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{
-    check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
+    check_hodge_decomposition_with, check_kernel_is_2g_dense_with, check_kernel_is_2g_sparse_with,
 };
 use crate::spectral_checks::{
-    check_basis_orthonormal, check_lemma1, check_spectrum_union, lemma1_eigenfields,
+    check_basis_orthonormal_with, check_lemma1_with, check_spectrum_union_with,
+    lemma1_eigenfields_of,
 };
 use tvf_core::discretization::{
     BoundaryCondition, DiscretizationError, HodgeComplex, HodgeOperators, NodeKind,
@@ -56,23 +60,36 @@ pub fn open_mesh_suite(entry: &CatalogEntry, boundary: BoundaryCondition) {
     }
 }
 
+/// Every core check of `complex` on `mesh`, the spectra, eigenfields and decomposer they share
+/// computed once ([`CheckCache`]).
 fn run_core_checks(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
-    check_operator_algebra(complex, mesh);
+    let cache = CheckCache::new(complex);
+    check_operator_algebra_with(&cache, mesh);
     check_sampling(complex, mesh);
     check_relative_sampling(complex, mesh);
     check_point_evaluation(complex, mesh);
-    check_decomposition_and_spectrum(complex, mesh);
+    check_decomposition_and_spectrum_with(&cache, mesh);
     if complex.field_dimension() <= EIGENVECTOR_LIMIT {
-        check_essential_boundary_conditions(complex, mesh);
+        check_essential_boundary_conditions_with(&cache, mesh);
     }
 }
 
 /// The core checks before the capability checks, on a mesh of any kind: shapes and masses,
 /// `d1 d0 = 0`, symmetric operators.
 pub fn check_operator_algebra<M: Mesh>(complex: &dyn HodgeComplex, mesh: &CorpusMesh<M>) {
+    check_operator_algebra_with(&CheckCache::new(complex), mesh);
+}
+
+/// [`check_operator_algebra`], a composed `S` formed once for these and the later checks of
+/// `cache`.
+pub fn check_operator_algebra_with<M: Mesh>(
+    cache: &CheckCache<'_, dyn HodgeComplex + '_>,
+    mesh: &CorpusMesh<M>,
+) {
+    let complex = cache.complex();
     check_nodes_and_masses(complex, mesh);
     check_d1_d0_zero(complex);
-    check_symmetric_operators(complex);
+    assert_outcomes(&measure_symmetric_operators_with(cache));
 }
 
 /// The core checks after the capability checks, on a mesh of any kind: the Hodge decomposition,
@@ -80,18 +97,27 @@ pub fn check_operator_algebra<M: Mesh>(complex: &dyn HodgeComplex, mesh: &Corpus
 /// dense kernel and the spectrum union; up to [`EIGENVECTOR_LIMIT`] Lemma 1, the complete
 /// orthonormal basis and fields that vanish on fixed nodes.
 pub fn check_decomposition_and_spectrum<M: Mesh>(complex: &dyn HodgeComplex, mesh: &CorpusMesh<M>) {
-    check_hodge_decomposition(complex, 17);
-    check_kernel_is_2g_sparse(complex, mesh, 23);
-    let n1 = complex.field_dimension();
+    check_decomposition_and_spectrum_with(&CheckCache::new(complex), mesh);
+}
+
+/// [`check_decomposition_and_spectrum`], each spectrum, the eigenfields and the decomposer
+/// computed once for all of these checks (and those of `cache` before and after).
+pub fn check_decomposition_and_spectrum_with<M: Mesh>(
+    cache: &CheckCache<'_, dyn HodgeComplex + '_>,
+    mesh: &CorpusMesh<M>,
+) {
+    check_hodge_decomposition_with(cache, 17);
+    check_kernel_is_2g_sparse_with(cache, mesh, 23);
+    let n1 = cache.complex().field_dimension();
     if n1 <= DENSE_LIMIT {
-        check_psd_operators(complex);
-        check_kernel_is_2g_dense(complex, mesh);
-        check_spectrum_union(complex, mesh);
+        assert_outcomes(&measure_psd_operators_with(cache));
+        check_kernel_is_2g_dense_with(cache, mesh);
+        check_spectrum_union_with(cache, mesh);
     }
     if n1 <= EIGENVECTOR_LIMIT {
-        check_lemma1(complex);
-        check_basis_orthonormal(complex, 29);
-        check_fields_vanish_on_fixed_nodes(complex);
+        check_lemma1_with(cache);
+        check_basis_orthonormal_with(cache, 29);
+        check_fields_vanish_on_fixed_nodes_with(cache);
     }
 }
 
@@ -116,17 +142,24 @@ pub fn boundary_edge_directions(mesh: &TriangleMesh) -> Vec<(usize, [f64; 3])> {
 /// Lemma 1 and every harmonic basis field is zero there, to round-off (`1e-12` of its largest
 /// coefficient); at least one field is checked.
 pub fn check_fields_vanish_on_fixed_nodes(complex: &dyn HodgeComplex) {
+    check_fields_vanish_on_fixed_nodes_with(&CheckCache::new(complex));
+}
+
+/// [`check_fields_vanish_on_fixed_nodes`] with the eigenfields and the decomposer of `cache`.
+pub fn check_fields_vanish_on_fixed_nodes_with(cache: &CheckCache<'_, dyn HodgeComplex + '_>) {
+    let complex = cache.complex();
     let nodes = complex.field_nodes();
     if nodes.dirichlet_count() == 0 {
         return;
     }
-    let mut fields: Vec<Vec<f64>> = lemma1_eigenfields(complex)
-        .into_iter()
-        .map(|(_, u)| u)
+    let mut fields: Vec<Vec<f64>> = lemma1_eigenfields_of(cache)
+        .iter()
+        .map(|(_, u)| u.clone())
         .collect();
     fields.extend(
-        tvf_discretizations::HodgeDecomposer::new(complex)
-            .expect("decomposer factors")
+        cache
+            .decomposer()
+            .unwrap_or_else(|e| panic!("decomposer factors: {e}"))
             .harmonic_basis(31)
             .expect("harmonic basis"),
     );
@@ -154,6 +187,15 @@ pub fn check_fields_vanish_on_fixed_nodes(complex: &dyn HodgeComplex) {
 /// Neumann potentials, Crouzeix–Raviart values fixed at midpoints only — hold weakly and are not
 /// pointwise.)
 pub fn check_essential_boundary_conditions(complex: &dyn HodgeComplex, mesh: &CorpusMesh) {
+    check_essential_boundary_conditions_with(&CheckCache::new(complex), mesh);
+}
+
+/// [`check_essential_boundary_conditions`] with the eigenfields of `cache`.
+pub fn check_essential_boundary_conditions_with(
+    cache: &CheckCache<'_, dyn HodgeComplex + '_>,
+    mesh: &CorpusMesh,
+) {
+    let complex = cache.complex();
     let Some(sampling) = complex.sampling() else {
         return;
     };
@@ -169,7 +211,7 @@ pub fn check_essential_boundary_conditions(complex: &dyn HodgeComplex, mesh: &Co
     if !integrable_normal && !cointegrable_tangential {
         return;
     }
-    let fields = lemma1_eigenfields(complex);
+    let fields = lemma1_eigenfields_of(cache);
     let integrable_count = {
         let p = complex.potential_nodes();
         p.free_count() - p.kernel_dimension()

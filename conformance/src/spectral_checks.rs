@@ -1,14 +1,12 @@
 //! Spectral checks (dense, small meshes) and intrinsic invariance.
 
+use crate::check_cache::CheckCache;
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
 use crate::corpus::CorpusMesh;
-use crate::dense::{
-    free_eigenproblem, generalized_eigenpairs, generalized_eigenvalues, hodge_pencil, split_zeros,
-};
+use crate::dense::{free_eigenproblem, generalized_eigenpairs, split_zeros};
 use crate::reference_formulas::{assert_matrices_close, assert_operators_close};
 use faer::Mat;
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, Mass, MassStorage};
-use tvf_discretizations::HodgeDecomposer;
 
 /// Relative threshold (of the largest eigenvalue) below which an eigenvalue counts as zero.
 const ZERO: f64 = 1e-9;
@@ -23,8 +21,9 @@ pub fn hodge_spectrum<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<f64> {
 
 /// [`hodge_spectrum`], or why it cannot be computed.
 pub fn measured_hodge_spectrum<H: HodgeComplex + ?Sized>(complex: &H) -> Result<Vec<f64>, String> {
-    let (s, m, _) = hodge_pencil(complex);
-    generalized_eigenvalues(&s, &m)
+    CheckCache::new(complex)
+        .hodge_spectrum()
+        .map(<[f64]>::to_vec)
 }
 
 /// The nonzero spectrum of `L` is the union of the nonzero spectra of the exact pair
@@ -35,16 +34,25 @@ pub fn measure_spectrum_union<H: HodgeComplex + ?Sized>(
     complex: &H,
     harmonic_dimension: usize,
 ) -> Vec<CheckOutcome> {
-    let exact = complex.exact_eigenproblem();
-    let co_exact = complex.co_exact_eigenproblem();
+    measure_spectrum_union_with(&CheckCache::new(complex), harmonic_dimension)
+}
+
+/// [`measure_spectrum_union`] on the spectra of `cache`.
+pub fn measure_spectrum_union_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+    harmonic_dimension: usize,
+) -> Vec<CheckOutcome> {
+    let complex = cache.complex();
     let (potential_nodes, co_potential_nodes) =
         (complex.potential_nodes(), complex.co_potential_nodes());
     let spectra = || -> Result<_, String> {
-        let l = measured_hodge_spectrum(complex).map_err(|e| format!("L: {e}"))?;
-        let (a, m, _) = free_eigenproblem(&exact, potential_nodes);
-        let e = generalized_eigenvalues(&a, &m).map_err(|e| format!("the exact pair: {e}"))?;
-        let (a, m, _) = free_eigenproblem(&co_exact, co_potential_nodes);
-        let c = generalized_eigenvalues(&a, &m).map_err(|e| format!("the co-exact pair: {e}"))?;
+        let l = cache.hodge_spectrum().map_err(|e| format!("L: {e}"))?;
+        let e = cache
+            .exact_spectrum()
+            .map_err(|e| format!("the exact pair: {e}"))?;
+        let c = cache
+            .co_exact_spectrum()
+            .map_err(|e| format!("the co-exact pair: {e}"))?;
         Ok((l, e, c))
     };
     let (l, e, c) = match spectra() {
@@ -54,9 +62,9 @@ pub fn measure_spectrum_union<H: HodgeComplex + ?Sized>(
             return vec![CheckOutcome::failed("spectrum union", detail)];
         }
     };
-    let (l_zeros, l_rest) = split_zeros(&l, ZERO);
-    let (e_zeros, e_rest) = split_zeros(&e, ZERO);
-    let (c_zeros, c_rest) = split_zeros(&c, ZERO);
+    let (l_zeros, l_rest) = split_zeros(l, ZERO);
+    let (e_zeros, e_rest) = split_zeros(e, ZERO);
+    let (c_zeros, c_rest) = split_zeros(c, ZERO);
     let mut outcomes = vec![
         CheckOutcome::count(
             "zeros of L",
@@ -123,7 +131,15 @@ pub fn measure_spectrum_union<H: HodgeComplex + ?Sized>(
 
 /// [`measure_spectrum_union`] with the corpus mesh's harmonic dimension, asserted.
 pub fn check_spectrum_union<H: HodgeComplex + ?Sized, M>(complex: &H, mesh: &CorpusMesh<M>) {
-    assert_outcomes(&measure_spectrum_union(complex, mesh.harmonic_dimension));
+    check_spectrum_union_with(&CheckCache::new(complex), mesh);
+}
+
+/// [`check_spectrum_union`] on the spectra of `cache`.
+pub fn check_spectrum_union_with<H: HodgeComplex + ?Sized, M>(
+    cache: &CheckCache<'_, H>,
+    mesh: &CorpusMesh<M>,
+) {
+    assert_outcomes(&measure_spectrum_union_with(cache, mesh.harmonic_dimension));
 }
 
 /// The eigenfields of Lemma 1 with their eigenvalues: `d0 φ / √λ` for the nonzero eigenpairs
@@ -132,6 +148,15 @@ pub fn check_spectrum_union<H: HodgeComplex + ?Sized, M>(complex: &H, mesh: &Cor
 /// suite's use; [`measured_lemma1_eigenfields`] says why).
 pub fn lemma1_eigenfields<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<(f64, Vec<f64>)> {
     measured_lemma1_eigenfields(complex)
+        .unwrap_or_else(|e| panic!("the eigenfields of Lemma 1: {e}"))
+}
+
+/// [`lemma1_eigenfields`] of `cache` (computed once for every check of its complex).
+pub fn lemma1_eigenfields_of<'c, H: HodgeComplex + ?Sized>(
+    cache: &'c CheckCache<'_, H>,
+) -> &'c [(f64, Vec<f64>)] {
+    cache
+        .lemma1_eigenfields()
         .unwrap_or_else(|e| panic!("the eigenfields of Lemma 1: {e}"))
 }
 
@@ -174,8 +199,16 @@ pub fn measured_lemma1_eigenfields<H: HodgeComplex + ?Sized>(
 /// Lemma 1: every eigenfield of [`lemma1_eigenfields`] has unit `M1` norm (to 1e-9) and
 /// `‖L u − λ u‖_{M1} ≤ 1e-9 · λ_max`; measured as the worst of each.
 pub fn measure_lemma1<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome> {
+    measure_lemma1_with(&CheckCache::new(complex))
+}
+
+/// [`measure_lemma1`] on the eigenfields of `cache`.
+pub fn measure_lemma1_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+) -> Vec<CheckOutcome> {
+    let complex = cache.complex();
     let laplacian = complex.hodge_laplacian();
-    let fields = match measured_lemma1_eigenfields(complex) {
+    let fields = match cache.lemma1_eigenfields() {
         Ok(fields) => fields,
         Err(reason) => {
             let detail = format!("the eigenfields cannot be computed: {reason}");
@@ -185,13 +218,17 @@ pub fn measure_lemma1<H: HodgeComplex + ?Sized>(complex: &H) -> Vec<CheckOutcome
     let max = fields.iter().fold(0.0f64, |m, (l, _)| m.max(*l));
     let (mut worst_norm, mut norm_at) = (0.0f64, 0);
     let (mut worst_residual, mut residual_at) = (0.0f64, 0);
+    // `L u` of every field at once: one block solve with a sparse `M1` instead of one per field.
+    let n1 = complex.field_dimension();
+    let block = Mat::<f64>::from_fn(n1, fields.len(), |i, k| fields[k].1[i]);
+    let applied = laplacian.apply_block(block.as_ref());
     for (k, (lambda, u)) in fields.iter().enumerate() {
         let norm = complex.field_inner(u, u).sqrt();
         if (norm - 1.0).abs() > worst_norm || norm.is_nan() {
             (worst_norm, norm_at) = ((norm - 1.0).abs(), k);
         }
-        let residual: Vec<f64> = laplacian
-            .apply(u)
+        let residual: Vec<f64> = applied
+            .col(k)
             .iter()
             .zip(u)
             .map(|(lu, x)| lu - lambda * x)
@@ -223,16 +260,31 @@ pub fn check_lemma1<H: HodgeComplex + ?Sized>(complex: &H) {
     assert_outcomes(&measure_lemma1(complex));
 }
 
+/// [`check_lemma1`] on the eigenfields of `cache`.
+pub fn check_lemma1_with<H: HodgeComplex + ?Sized>(cache: &CheckCache<'_, H>) {
+    assert_outcomes(&measure_lemma1_with(cache));
+}
+
 /// Lemma 2: the eigenfields of both scalar problems and an `M1`-orthonormal harmonic basis
 /// together are as many fields as there are free field nodes (`n1` unless the complex fixes
 /// some), with `Uᵀ M1 U = I` (max deviation ≤ 1e-9): a complete orthonormal basis of the fields.
 pub fn check_basis_orthonormal<H: HodgeComplex + ?Sized>(complex: &H, seed: u64) {
-    let mut basis: Vec<Vec<f64>> = lemma1_eigenfields(complex)
-        .into_iter()
-        .map(|(_, u)| u)
+    check_basis_orthonormal_with(&CheckCache::new(complex), seed);
+}
+
+/// [`check_basis_orthonormal`] with the eigenfields and the decomposer of `cache`.
+pub fn check_basis_orthonormal_with<H: HodgeComplex + ?Sized>(
+    cache: &CheckCache<'_, H>,
+    seed: u64,
+) {
+    let complex = cache.complex();
+    let mut basis: Vec<Vec<f64>> = lemma1_eigenfields_of(cache)
+        .iter()
+        .map(|(_, u)| u.clone())
         .collect();
-    let harmonic = HodgeDecomposer::new(complex)
-        .expect("decomposer factors")
+    let harmonic = cache
+        .decomposer()
+        .unwrap_or_else(|e| panic!("decomposer factors: {e}"))
         .harmonic_basis(seed)
         .expect("harmonic basis");
     basis.extend(harmonic);

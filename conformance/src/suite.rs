@@ -6,14 +6,17 @@ use crate::algebra_checks::{
     check_d1_d0_zero, check_nodes_and_masses, check_psd_operators, check_symmetric_operators,
 };
 use crate::capability_checks::{check_point_evaluation, check_sampling};
+use crate::check_cache::CheckCache;
 use crate::check_outcome::assert_outcomes;
 use crate::corpus::{Corpus, CorpusMesh, DENSE_LIMIT, EIGENVECTOR_LIMIT};
 use crate::decomposition_checks::{
-    check_hodge_decomposition, check_kernel_is_2g_dense, check_kernel_is_2g_sparse,
+    check_hodge_decomposition, check_hodge_decomposition_with, check_kernel_is_2g_dense,
+    check_kernel_is_2g_dense_with, check_kernel_is_2g_sparse,
 };
 use crate::property_runner::{run_property, Counterexample, PropertyRequest};
 use crate::spectral_checks::{
     check_basis_orthonormal, check_lemma1, check_rigid_motion_invariance, check_spectrum_union,
+    check_spectrum_union_with,
 };
 use crate::strategies::MeshNeeds;
 use crate::{build, for_each_mesh, Constructor};
@@ -168,11 +171,13 @@ pub fn jittered_mesh(constructor: Constructor, corpus: Corpus, seed: u64) {
     let mesh = corpus.jittered_mesh(seed);
     let complex = build(constructor, &mesh);
     let complex = complex.as_ref();
+    // The spectrum of L is computed once for the kernel and the union.
+    let cache = CheckCache::new(complex);
     check_d1_d0_zero(complex);
     check_nodes_and_masses(complex, &mesh);
-    check_kernel_is_2g_dense(complex, &mesh);
-    check_hodge_decomposition(complex, seed);
-    check_spectrum_union(complex, &mesh);
+    check_kernel_is_2g_dense_with(&cache, &mesh);
+    check_hodge_decomposition_with(&cache, seed);
+    check_spectrum_union_with(&cache, &mesh);
 }
 
 /// The core checks on `cases` meshes drawn from [`crate::strategies::mesh_specs`] (Delaunay ones
