@@ -150,9 +150,9 @@ impl<'a, H: HodgeComplex + ?Sized> HodgeDecomposer<'a, H> {
     }
 
     /// An `M1`-orthonormal basis of the harmonic fields (`harmonic_dimension()` fields of length
-    /// `n1`): random fields (seeded, zero on the Dirichlet field nodes) projected onto `H`,
-    /// Gram–Schmidt in `M1`, each re-projected once after orthogonalisation for accuracy
-    /// (`docs/conventions.md`).
+    /// `n1`): random fields (seeded, zero on the Dirichlet field nodes) projected onto `H`, then
+    /// two passes of Gram–Schmidt in `M1` against the fields before, each followed by a
+    /// re-projection onto `H` for accuracy (`docs/conventions.md`): three decompositions a field.
     pub fn harmonic_basis(&self, seed: u64) -> Result<Vec<Vec<f64>>, DecompositionError> {
         let c = self.complex;
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
