@@ -88,9 +88,10 @@ fn builder_accuracy(
 /// `reproduced` (whether the counterexample failed again; `None` without one) and `accuracy`
 /// (the accuracy checks' outcomes if `accuracy`, else empty; a failed one makes `passed` false).
 /// With `open_meshes` the generated meshes and the accuracy sequences include meshes with
-/// boundary (the builder then gives `fixed_nodes` and `boundary_condition`).
+/// boundary (the builder then gives `fixed_nodes` and `boundary_condition`). Shrinking a failure
+/// takes at most `shrink_steps` steps (each a run of the core checks on a smaller mesh).
 #[pyfunction]
-#[pyo3(signature = (build, cases, seed, mesh, delaunay, accuracy, open_meshes))]
+#[pyo3(signature = (build, cases, seed, mesh, delaunay, accuracy, open_meshes, shrink_steps))]
 #[allow(clippy::too_many_arguments)]
 pub fn check_builder<'py>(
     py: Python<'py>,
@@ -101,6 +102,7 @@ pub fn check_builder<'py>(
     delaunay: bool,
     accuracy: bool,
     open_meshes: bool,
+    shrink_steps: u32,
 ) -> PyResult<Bound<'py, PyDict>> {
     let interruption = Interruption::default();
     let accuracy_outcomes = if accuracy {
@@ -134,7 +136,10 @@ pub fn check_builder<'py>(
         delaunay,
         closed_only: !open_meshes,
     };
-    let request = PropertyRequest::new(cases, seed, needs);
+    let request = PropertyRequest {
+        max_shrink_iters: shrink_steps,
+        ..PropertyRequest::new(cases, seed, needs)
+    };
     let report = interruptible(py, &interruption, || {
         run_property(&builder, &request, &|_| {})
     })?;

@@ -75,7 +75,7 @@ class CheckReport:
         return "\n".join(lines)
 
 
-def check(x, cases=64, seed=0, mesh=None, delaunay=False, accuracy=True, open_meshes=False):
+def check(x, cases=64, seed=0, mesh=None, delaunay=False, accuracy=True, open_meshes=False, shrink_steps=512):
     """Runs the core checks of tvf's conformance suite (the same code the Rust test suite
     asserts with):
 
@@ -99,8 +99,10 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False, accuracy=True, open_me
       with ``open_meshes=True`` also meshes with boundary (disks, cylinders, hemispheres,
       surfaces with holes), for a builder that returns ``fixed_nodes=`` and
       ``boundary_condition=`` (see :meth:`Complex.from_matrices`) where the mesh has a boundary.
-      When a case fails, the mesh description is shrunk (fewer faces, lower genus, no jitter)
-      and the report's ``counterexample`` is the minimal failing ``(V, F)`` with its checks in
+      When a case fails, the mesh description is shrunk (fewer faces, lower genus, no jitter;
+      at most ``shrink_steps`` steps, each a run of the core checks on a smaller mesh: ``0``
+      keeps the first failing mesh) and the report's ``counterexample`` is the minimal failing
+      ``(V, F)`` with its checks in
       ``counterexample_outcomes`` (as measured in the run that failed); ``outcomes`` then hold
       each check's worst case over the passing meshes. A failure that does not come back when
       the counterexample is checked once more (a builder whose result changes from call to
@@ -120,21 +122,25 @@ def check(x, cases=64, seed=0, mesh=None, delaunay=False, accuracy=True, open_me
     with ``open_meshes=True`` on ring hemispheres too (without it: not applicable). Checks a complex cannot run (no
     sampling, values on faces) are ``not applicable`` with the reason.
 
-    ``cases`` and ``seed`` are integers (``cases=2.7`` is a TypeError). Returns a
+    ``cases``, ``seed`` and ``shrink_steps`` are integers (``cases=2.7`` is a TypeError). Returns a
     :class:`CheckReport`; nothing raises for a failed check."""
     if isinstance(x, Complex):
         return CheckReport(x.id, [dict(o) for o in _native.check(x._native)])
     if not callable(x):
         raise TypeError(f"expected a tvf.Complex or a builder (V, F) -> dict, got {type(x).__name__}")
     cases, seed = integer(cases, "cases"), integer(seed, "seed")
+    shrink_steps = integer(shrink_steps, "shrink_steps")
     if cases < 1:
         raise ValueError(f"cases must be at least 1, got {cases}")
     if seed < 0:
         raise ValueError(f"seed must be non-negative, got {seed}")
+    if not 0 <= shrink_steps < 2**32:
+        raise ValueError(f"shrink_steps must be in 0..2**32, got {shrink_steps}")
     native_mesh = None if mesh is None else Mesh(*mesh, label="mesh")._native
 
     result = _native.check_builder(
-        _native_builder(x), cases, seed, native_mesh, bool(delaunay), bool(accuracy), bool(open_meshes)
+        _native_builder(x), cases, seed, native_mesh, bool(delaunay), bool(accuracy), bool(open_meshes),
+        shrink_steps,
     )
     return CheckReport(
         getattr(x, "__name__", "builder"),
