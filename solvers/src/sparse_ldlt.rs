@@ -13,7 +13,7 @@
 
 use crate::error::SolverError;
 use crate::ordering::{inverse_permutation, is_permutation, nested_dissection, FillOrdering};
-use crate::packed_ldlt_solve::{solve_packed, solve_packed_rows};
+use crate::packed_ldlt_solve::{inverse_energy_rows, solve_packed, solve_packed_rows};
 use crate::packed_rows::{Row, WIDTH};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
@@ -506,6 +506,32 @@ impl SparseLdlt {
         for (i, row) in rows.iter_mut().enumerate() {
             *row = std::array::from_fn(|j| block[(i, j)]);
         }
+    }
+
+    /// `bᵀ A⁻¹ b` for each packed column `b` of `rows` (`n` rows in elimination order, as
+    /// [`Self::solve_rows_in_elimination_order`] takes them; overwritten with scratch values),
+    /// `A = L D Lᵀ` the factored matrix: on one thread the forward pass alone
+    /// ([`inverse_energy_rows`]), otherwise a solve and the products.
+    pub(crate) fn inverse_energy_rows_in_elimination_order(&self, rows: &mut [Row]) -> Row {
+        assert_eq!(
+            rows.len(),
+            self.dimension(),
+            "right-hand side has the wrong number of rows"
+        );
+        if let (SymbolicCholeskyRaw::Supernodal(symbolic), 1) =
+            (self.symbolic.raw(), self.parallelism.degree())
+        {
+            return inverse_energy_rows(symbolic, &self.values, rows);
+        }
+        let right = rows.to_vec();
+        self.solve_rows_in_elimination_order(rows);
+        let mut energy = [0.0; WIDTH];
+        for (b, x) in right.iter().zip(rows.iter()) {
+            for j in 0..WIDTH {
+                energy[j] += b[j] * x[j];
+            }
+        }
+        energy
     }
 
     /// Solves the columns of `rhs` in `groups` concurrent groups, each sequentially.
