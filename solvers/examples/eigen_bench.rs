@@ -1,38 +1,74 @@
-//! Plain timed run of the eigensolver on the benchmark meshes (numbers for the report).
+//! Timed runs of the eigensolver on the benchmark meshes (numbers for the report): each mesh
+//! and kind of pencil solved in `--runs` processes of their own; the first run's report (sizes,
+//! factorizations, solves, accuracy, phases) and the median wall and processor seconds of the
+//! solve over the runs, with the machine's load before and after.
 //!
 //! `cargo run --release -p tvf-solvers --example eigen_bench -- [MESH.obj ...] [--k K] [--kind cotan|cr|both]`
-//! `[--block B] [--tol T] [--interval I] [--concurrent C (intervals at a time)] [--threads T]`
-//! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes.
+//! `[--runs N] [--block B] [--tol T] [--interval I] [--concurrent C (intervals at a time)] [--threads T]`
+//! Without mesh arguments it uses bunny-closed.obj and armadillo-x4.obj from ../shared/meshes;
+//! 3 runs by default.
 
+#[allow(dead_code)]
+mod bench_runs;
 #[allow(dead_code)]
 mod mesh_matrices;
 
+use bench_runs::{median, range, run_child, Timing};
 use std::path::PathBuf;
 use std::time::Instant;
-use tvf_solvers::{convert::shifted_upper_triangle, lowest_eigenpairs, EigenOptions, SparseLdlt};
+use tvf_solvers::{
+    convert::shifted_upper_triangle, lowest_eigenpairs, process_cpu_seconds, EigenOptions,
+    SparseLdlt,
+};
+
+/// The internal flag of a child process: solve the given meshes and kind once, here.
+const CHILD: &str = "--child";
 
 fn main() {
     let mut args = std::env::args().skip(1);
     let mut meshes: Vec<PathBuf> = Vec::new();
     let mut k = 500;
     let mut kind = String::from("both");
+    let mut runs = 3;
+    let mut child = false;
+    // The options as given, for the child processes.
+    let mut passed: Vec<String> = Vec::new();
     let mut options = EigenOptions::default();
     while let Some(arg) = args.next() {
+        let mut value = || passed_value(&mut args, &arg, &mut passed);
         match arg.as_str() {
-            "--k" => k = next_value(&mut args, k),
+            "--k" => k = value().and_then(|v| v.parse().ok()).unwrap_or(k),
             "--kind" => kind = args.next().unwrap_or(kind),
-            "--block" => options.block_size = next_value(&mut args, options.block_size),
+            "--runs" => runs = args.next().and_then(|s| s.parse().ok()).unwrap_or(runs),
+            CHILD => child = true,
+            "--block" => {
+                options.block_size = value()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(options.block_size)
+            }
             "--threads" => {
-                let threads: usize = next_value(&mut args, 1);
+                let threads: usize = value().and_then(|v| v.parse().ok()).unwrap_or(1);
                 options.parallelism = if threads > 1 {
                     faer::Par::rayon(threads)
                 } else {
                     faer::Par::Seq
                 };
             }
-            "--concurrent" => options.threads = next_value(&mut args, options.threads),
-            "--interval" => options.interval_size = next_value(&mut args, options.interval_size),
-            "--tol" => options.tolerance = next_value(&mut args, options.tolerance),
+            "--concurrent" => {
+                options.threads = value()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(options.threads)
+            }
+            "--interval" => {
+                options.interval_size = value()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(options.interval_size)
+            }
+            "--tol" => {
+                options.tolerance = value()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(options.tolerance)
+            }
             other => meshes.push(PathBuf::from(other)),
         }
     }
@@ -45,6 +81,21 @@ fn main() {
             println!("eigen_bench: ../shared/meshes not found, nothing to do");
             return;
         }
+    }
+    if !child {
+        for mesh in &meshes {
+            let kinds: &[&str] = match kind.as_str() {
+                "both" => &["cotan", "cr"],
+                "cr" => &["cr"],
+                _ => &["cotan"],
+            };
+            for name in kinds {
+                if let Err(e) = timed_runs(mesh, name, &passed, runs.max(1)) {
+                    eprintln!("eigen_bench: {e}");
+                }
+            }
+        }
+        return;
     }
     for mesh in &meshes {
         let (positions, faces) = match mesh_matrices::read_obj(mesh) {
@@ -75,10 +126,14 @@ fn main() {
             let start = Instant::now();
             ldlt.refactor(upper.as_ref()).expect("refactor");
             let numeric = start.elapsed().as_secs_f64();
-            let start = Instant::now();
+            let (start, cpu) = (Instant::now(), process_cpu_seconds());
             let result =
                 lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &options).expect("eigensolver");
             let seconds = start.elapsed().as_secs_f64();
+            let timing = Timing {
+                wall: seconds,
+                cpu: process_cpu_seconds() - cpu,
+            };
             let worst = result.residuals.iter().fold(0.0f64, |m, r| m.max(*r));
             // M-orthonormality across slices/intervals (outside the timed region)
             let x = &result.vectors;
@@ -107,11 +162,55 @@ fn main() {
                 "  refined pairs {}, max relative field residual {max_field:.1e}",
                 statistics.refined_pairs
             );
+            bench_runs::report_child(timing);
         }
     }
 }
 
-/// The next argument parsed as a `T`, or `current` if it is missing or does not parse.
-fn next_value<T: std::str::FromStr>(args: &mut impl Iterator<Item = String>, current: T) -> T {
-    args.next().and_then(|s| s.parse().ok()).unwrap_or(current)
+/// `runs` child processes solving `kind` ("cotan" or "cr") on `mesh` with the options `passed`:
+/// the first one's report, then the medians.
+fn timed_runs(
+    mesh: &std::path::Path,
+    kind: &str,
+    passed: &[String],
+    runs: usize,
+) -> Result<(), String> {
+    let load_before = bench_runs::load();
+    let mut args = vec![
+        mesh.display().to_string(),
+        "--kind".into(),
+        kind.into(),
+        CHILD.into(),
+    ];
+    args.extend(passed.iter().cloned());
+    let mut timings: Vec<Timing> = Vec::new();
+    for run in 0..runs {
+        let (timing, output) = run_child(&args)?;
+        if run == 0 {
+            print!("{output}");
+        }
+        timings.push(timing);
+    }
+    let walls: Vec<f64> = timings.iter().map(|t| t.wall).collect();
+    let cpus: Vec<f64> = timings.iter().map(|t| t.cpu).collect();
+    let (lo, hi) = range(&walls);
+    println!(
+        "  {kind}, {runs} processes: median {:.2} s wall ({lo:.2}–{hi:.2}), {:.2} s processor; \
+         load {load_before} → {}",
+        median(&walls),
+        median(&cpus),
+        bench_runs::load()
+    );
+    Ok(())
+}
+
+/// The value after option `option`, recorded with it in `passed` (for the child processes).
+fn passed_value(
+    args: &mut impl Iterator<Item = String>,
+    option: &str,
+    passed: &mut Vec<String>,
+) -> Option<String> {
+    let value = args.next()?;
+    passed.extend([option.to_owned(), value.clone()]);
+    Some(value)
 }

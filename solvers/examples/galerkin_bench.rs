@@ -1,5 +1,5 @@
-//! One timed run of the two eigenproblems of a Whitney basis against the lumped (conforming)
-//! ones of the same mesh, in the same process:
+//! The two eigenproblems of a Whitney basis against the lumped ones of the same mesh, each
+//! kind timed in a process of its own, over several rounds:
 //!
 //! - lumped: cotan stiffness with the barycentric lumped mass (vertices) and the
 //!   Crouzeix–Raviart stiffness with its lumped mass (edges), solved together;
@@ -7,16 +7,24 @@
 //!   pencil `d1 W⁻¹ d1ᵀ ψ = μ N ψ` (`W` the Whitney 1-form mass on edges, `d1` the face–edge
 //!   incidence, `N` the face areas), solved together.
 //!
-//! Also one factorization and one blocked solve (8 right-hand sides) of each kind of shifted
-//! matrix, for where the time goes.
+//! Prints each round's wall and processor seconds (the lumped and the Galerkin process in
+//! alternating order), then the figures `docs/performance.md` cites: the Galerkin / lumped ratio
+//! of the median wall times (and the range of the rounds' ratios), the ratio of the median
+//! processor times, and the machine's load before and after. The first round also prints each
+//! solve's phases and residuals, and one factorization and one blocked solve (8 right-hand
+//! sides) of each kind of shifted matrix, for where the time goes.
 //!
 //! `cargo run --release -p tvf-solvers --example galerkin_bench -- [MESH.obj] [--k K]
-//! [--galerkin-only]` (default: `../shared/meshes/bunny-closed.obj`, `K = 500` per problem;
-//! `--galerkin-only` skips the lumped problems, e.g. for a profile).
+//! [--runs N] [--galerkin-only]` (default: `../shared/meshes/bunny-closed.obj`, `K = 500` per
+//! problem, 3 rounds; `--galerkin-only` runs the Galerkin problems once in this process, e.g.
+//! for a profile).
 
+#[allow(dead_code)]
+mod bench_runs;
 #[allow(dead_code)]
 mod mesh_matrices;
 
+use bench_runs::{median, range, run_child, Timing};
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 use std::path::PathBuf;
@@ -27,15 +35,20 @@ use tvf_solvers::{
     Pencil, SolverStatistics, SparseLdlt,
 };
 
+/// The internal flag of a child process: `--only lumped` or `--only galerkin`.
+const ONLY: &str = "--only";
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let mut mesh: Option<PathBuf> = None;
-    let mut k = 500;
-    let mut galerkin_only = false;
+    let (mut k, mut runs) = (500, 3);
+    let mut only: Option<String> = None;
     while let Some(arg) = args.next() {
         match arg.as_str() {
             "--k" => k = args.next().and_then(|s| s.parse().ok()).unwrap_or(k),
-            "--galerkin-only" => galerkin_only = true,
+            "--runs" => runs = args.next().and_then(|s| s.parse().ok()).unwrap_or(runs),
+            "--galerkin-only" => only = Some("galerkin".into()),
+            ONLY => only = args.next(),
             other => mesh = Some(PathBuf::from(other)),
         }
     }
@@ -43,74 +56,155 @@ fn main() {
         println!("galerkin_bench: ../shared/meshes not found, nothing to do");
         return;
     };
-    let (positions, faces) = match mesh_matrices::read_obj(&mesh) {
-        Ok(m) => m,
-        Err(e) => {
-            eprintln!("galerkin_bench: {e}");
-            return;
+    match only.as_deref() {
+        Some(kind) => {
+            if let Err(e) = solve_one(&mesh, k, kind) {
+                eprintln!("galerkin_bench: {e}");
+                std::process::exit(1);
+            }
         }
-    };
-    let cotan = mesh_matrices::cotan(&positions, &faces);
-    let cr = mesh_matrices::crouzeix_raviart(&positions, &faces);
-    let consistent = mesh_matrices::consistent_mass(&positions, &faces);
-    let whitney = mesh_matrices::whitney(&positions, &faces);
-    println!(
-        "{}: {} vertices, {} edges, {} faces, k = {k} per problem",
-        mesh.display(),
-        cotan.mass.len(),
-        whitney.edges.len(),
-        faces.len()
-    );
-    where_the_time_goes(&cr, &whitney);
+        None => {
+            if let Err(e) = compare(&mesh, k, runs.max(1)) {
+                eprintln!("galerkin_bench: {e}");
+                std::process::exit(1);
+            }
+        }
+    }
+}
 
-    let options = EigenOptions::default();
-    let (mut lumped_seconds, mut lumped_cpu) = (f64::NAN, f64::NAN);
-    if !galerkin_only {
-        let start = Instant::now();
-        let cpu = process_cpu_seconds();
-        let (vertex, edge) = (
-            Pencil::new(&cotan.stiffness, &cotan.mass).expect("valid pencil"),
-            Pencil::new(&cr.stiffness, &cr.mass).expect("valid pencil"),
-        );
-        let lumped = solve(&[&vertex, &edge], k, &options);
-        lumped_seconds = start.elapsed().as_secs_f64();
-        lumped_cpu = process_cpu_seconds() - cpu;
-        report(
-            "lumped (cotan, Crouzeix–Raviart)",
-            (lumped_seconds, lumped_cpu),
-            &lumped,
+/// `runs` rounds of one lumped and one Galerkin process (alternating which goes first), and
+/// the medians and ratios over them.
+fn compare(mesh: &std::path::Path, k: usize, runs: usize) -> Result<(), String> {
+    let load_before = bench_runs::load();
+    let child = |kind: &str| {
+        run_child(&[
+            mesh.display().to_string(),
+            "--k".into(),
+            k.to_string(),
+            ONLY.into(),
+            kind.into(),
+        ])
+    };
+    let (mut lumped, mut galerkin): (Vec<Timing>, Vec<Timing>) = (Vec::new(), Vec::new());
+    for round in 0..runs {
+        let order = if round % 2 == 0 {
+            ["lumped", "galerkin"]
+        } else {
+            ["galerkin", "lumped"]
+        };
+        for kind in order {
+            let (timing, output) = child(kind)?;
+            if round == 0 {
+                print!("{output}");
+            }
+            match kind {
+                "lumped" => lumped.push(timing),
+                _ => galerkin.push(timing),
+            }
+        }
+        let (l, g) = (lumped[round], galerkin[round]);
+        println!(
+            "round {}: lumped {:.2} s wall, {:.2} s processor; Galerkin {:.2} s wall, {:.2} s \
+             processor; wall ratio {:.3}",
+            round + 1,
+            l.wall,
+            l.cpu,
+            g.wall,
+            g.cpu,
+            g.wall / l.wall
         );
     }
+    let walls = |t: &[Timing]| t.iter().map(|t| t.wall).collect::<Vec<_>>();
+    let cpus = |t: &[Timing]| t.iter().map(|t| t.cpu).collect::<Vec<_>>();
+    let ratios: Vec<f64> = galerkin
+        .iter()
+        .zip(&lumped)
+        .map(|(g, l)| g.wall / l.wall)
+        .collect();
+    let (lo, hi) = range(&ratios);
+    let (g_wall, l_wall) = (median(&walls(&galerkin)), median(&walls(&lumped)));
+    let (g_cpu, l_cpu) = (median(&cpus(&galerkin)), median(&cpus(&lumped)));
+    println!(
+        "Galerkin / lumped, {runs} rounds, one process each: wall ratio {:.3} ({lo:.3}–{hi:.3}), \
+         medians {g_wall:.2} s and {l_wall:.2} s; processor ratio {:.3} (medians {g_cpu:.2} s and \
+         {l_cpu:.2} s); load {load_before} → {}",
+        g_wall / l_wall,
+        g_cpu / l_cpu,
+        bench_runs::load()
+    );
+    Ok(())
+}
 
-    let start = Instant::now();
-    let cpu = process_cpu_seconds();
-    let exact =
-        Pencil::with_mass(&cotan.stiffness, MassMatrix::Sparse(&consistent)).expect("valid pencil");
-    let exact_setup = start.elapsed().as_secs_f64();
-    let coexact = Pencil::mixed(
-        &whitney.mass,
-        &whitney.d1,
-        MassMatrix::Diagonal(&whitney.face_areas),
-    )
-    .expect("valid pencil");
-    let setup = start.elapsed().as_secs_f64();
-    let galerkin = solve(&[&exact, &coexact], k, &options);
-    let galerkin_seconds = start.elapsed().as_secs_f64();
-    let galerkin_cpu = process_cpu_seconds() - cpu;
-    println!(
-        "  Galerkin pencils made (Cholesky of M and W, Lanczos bounds) in {setup:.2} s \
-         ({exact_setup:.2} s the consistent-mass one)"
-    );
-    report(
-        "Galerkin (consistent P1, mixed Whitney)",
-        (galerkin_seconds, galerkin_cpu),
-        &galerkin,
-    );
-    println!(
-        "Galerkin / lumped: wall time {:.2}, processor time {:.2}",
-        galerkin_seconds / lumped_seconds,
-        galerkin_cpu / lumped_cpu
-    );
+/// One timed solve of the `kind` ("lumped" or "galerkin") problems of `mesh` in this process,
+/// its report and its [`Timing`] line.
+fn solve_one(mesh: &std::path::Path, k: usize, kind: &str) -> Result<(), String> {
+    let (positions, faces) = mesh_matrices::read_obj(mesh)?;
+    let cotan = mesh_matrices::cotan(&positions, &faces);
+    let options = EigenOptions::default();
+    match kind {
+        "lumped" => {
+            let cr = mesh_matrices::crouzeix_raviart(&positions, &faces);
+            let start = Instant::now();
+            let cpu = process_cpu_seconds();
+            let (vertex, edge) = (
+                Pencil::new(&cotan.stiffness, &cotan.mass).expect("valid pencil"),
+                Pencil::new(&cr.stiffness, &cr.mass).expect("valid pencil"),
+            );
+            let lumped = solve(&[&vertex, &edge], k, &options);
+            let timing = Timing {
+                wall: start.elapsed().as_secs_f64(),
+                cpu: process_cpu_seconds() - cpu,
+            };
+            report(
+                "lumped (cotan, Crouzeix–Raviart)",
+                (timing.wall, timing.cpu),
+                &lumped,
+            );
+            where_the_time_goes_lumped(&cr);
+            bench_runs::report_child(timing);
+        }
+        "galerkin" => {
+            let consistent = mesh_matrices::consistent_mass(&positions, &faces);
+            let whitney = mesh_matrices::whitney(&positions, &faces);
+            println!(
+                "{}: {} vertices, {} edges, {} faces, k = {k} per problem",
+                mesh.display(),
+                cotan.mass.len(),
+                whitney.edges.len(),
+                faces.len()
+            );
+            let start = Instant::now();
+            let cpu = process_cpu_seconds();
+            let exact = Pencil::with_mass(&cotan.stiffness, MassMatrix::Sparse(&consistent))
+                .expect("valid pencil");
+            let exact_setup = start.elapsed().as_secs_f64();
+            let coexact = Pencil::mixed(
+                &whitney.mass,
+                &whitney.d1,
+                MassMatrix::Diagonal(&whitney.face_areas),
+            )
+            .expect("valid pencil");
+            let setup = start.elapsed().as_secs_f64();
+            let galerkin = solve(&[&exact, &coexact], k, &options);
+            let timing = Timing {
+                wall: start.elapsed().as_secs_f64(),
+                cpu: process_cpu_seconds() - cpu,
+            };
+            println!(
+                "  Galerkin pencils made (Cholesky of M and W, Lanczos bounds) in {setup:.2} s \
+                 ({exact_setup:.2} s the consistent-mass one)"
+            );
+            report(
+                "Galerkin (consistent P1, mixed Whitney)",
+                (timing.wall, timing.cpu),
+                &galerkin,
+            );
+            where_the_time_goes_galerkin(&whitney);
+            bench_runs::report_child(timing);
+        }
+        other => return Err(format!("unknown kind {other:?} (lumped or galerkin)")),
+    }
+    Ok(())
 }
 
 fn solve(pencils: &[&Pencil<'_>], k: usize, options: &EigenOptions<'_>) -> Vec<Eigenpairs> {
@@ -163,12 +257,20 @@ fn report(name: &str, (seconds, cpu): (f64, f64), pairs: &[Eigenpairs]) {
     }
 }
 
-/// Fill, factorization and blocked-solve times of `A − σM` (Crouzeix–Raviart, lumped) and of
-/// the saddle matrix `K(σ)` of the mixed pencil, at a small positive shift.
-fn where_the_time_goes(cr: &mesh_matrices::StiffnessMass, whitney: &mesh_matrices::Whitney) {
-    let sigma = 1e-3;
-    let upper = shifted_upper_triangle(&cr.stiffness, &cr.mass, sigma).expect("valid");
+/// Shift of the factorizations of [`where_the_time_goes_lumped`] and
+/// [`where_the_time_goes_galerkin`].
+const SIGMA: f64 = 1e-3;
+
+/// Fill, factorization and blocked-solve times of `A − σM` (Crouzeix–Raviart, lumped) at a
+/// small positive shift.
+fn where_the_time_goes_lumped(cr: &mesh_matrices::StiffnessMass) {
+    let upper = shifted_upper_triangle(&cr.stiffness, &cr.mass, SIGMA).expect("valid");
     time_factor("Crouzeix–Raviart A − σM", &upper);
+}
+
+/// The same for the saddle matrix `K(σ)` of the mixed pencil.
+fn where_the_time_goes_galerkin(whitney: &mesh_matrices::Whitney) {
+    let sigma = SIGMA;
     let (n1, n2) = (whitney.edges.len(), whitney.face_areas.len());
     let total = n1 + n2;
     let mut base = Vec::new();

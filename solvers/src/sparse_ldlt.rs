@@ -13,7 +13,7 @@
 
 use crate::error::SolverError;
 use crate::ordering::{inverse_permutation, is_permutation, nested_dissection, FillOrdering};
-use crate::packed_ldlt_solve::{solve_packed, solve_packed_rows};
+use crate::packed_ldlt_solve::{inverse_energy_rows, solve_packed, solve_packed_rows};
 use crate::packed_rows::{Row, WIDTH};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
@@ -452,14 +452,7 @@ impl SparseLdlt {
     /// # Panics
     /// If `rhs.nrows() != self.dimension()` (a programming error).
     pub fn solve_in_elimination_order(&self, mut rhs: MatMut<'_, f64>) {
-        assert_eq!(
-            rhs.nrows(),
-            self.dimension(),
-            "right-hand side has the wrong number of rows"
-        );
-        if let (SymbolicCholeskyRaw::Supernodal(symbolic), 1) =
-            (self.symbolic.raw(), self.parallelism.degree())
-        {
+        if let Some(symbolic) = self.packed_symbolic(rhs.nrows()) {
             solve_packed(symbolic, &self.values, None, rhs);
             return;
         }
@@ -490,14 +483,7 @@ impl SparseLdlt {
     /// # Panics
     /// If `rows.len() != self.dimension()` (a programming error).
     pub(crate) fn solve_rows_in_elimination_order(&self, rows: &mut [Row]) {
-        assert_eq!(
-            rows.len(),
-            self.dimension(),
-            "right-hand side has the wrong number of rows"
-        );
-        if let (SymbolicCholeskyRaw::Supernodal(symbolic), 1) =
-            (self.symbolic.raw(), self.parallelism.degree())
-        {
+        if let Some(symbolic) = self.packed_symbolic(rows.len()) {
             solve_packed_rows(symbolic, &self.values, rows);
             return;
         }
@@ -505,6 +491,47 @@ impl SparseLdlt {
         self.solve_in_elimination_order(block.as_mut());
         for (i, row) in rows.iter_mut().enumerate() {
             *row = std::array::from_fn(|j| block[(i, j)]);
+        }
+    }
+
+    /// `bᵀ A⁻¹ b` for each packed column `b` of `rows` (`n` rows in elimination order, as
+    /// [`Self::solve_rows_in_elimination_order`] takes them; overwritten with scratch values),
+    /// `A = L D Lᵀ` the factored matrix: on one thread the forward pass alone
+    /// ([`inverse_energy_rows`]), otherwise a solve and the products.
+    pub(crate) fn inverse_energy_rows_in_elimination_order(&self, rows: &mut [Row]) -> Row {
+        if let Some(symbolic) = self.packed_symbolic(rows.len()) {
+            return inverse_energy_rows(symbolic, &self.values, rows);
+        }
+        let right = rows.to_vec();
+        self.solve_rows_in_elimination_order(rows);
+        let mut energy = [0.0; WIDTH];
+        for (b, x) in right.iter().zip(rows.iter()) {
+            for j in 0..WIDTH {
+                energy[j] += b[j] * x[j];
+            }
+        }
+        energy
+    }
+
+    /// The symbolic part of a supernodal factor solved on one thread, which the packed loops
+    /// handle (`None`: another kind of factor or solve), after checking that right-hand sides of
+    /// `rows` rows fit.
+    ///
+    /// # Panics
+    /// If `rows != self.dimension()` (a programming error).
+    fn packed_symbolic(
+        &self,
+        rows: usize,
+    ) -> Option<&faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize>>
+    {
+        assert_eq!(
+            rows,
+            self.dimension(),
+            "right-hand side has the wrong number of rows"
+        );
+        match (self.symbolic.raw(), self.parallelism.degree()) {
+            (SymbolicCholeskyRaw::Supernodal(symbolic), 1) => Some(symbolic),
+            _ => None,
         }
     }
 

@@ -236,7 +236,10 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
     let (exact, co_exact) = scalar_spectra(complex);
     let h = complex.topology().harmonic_dimension;
     let area = complex.total_area();
-    let (exact_pencil, co_exact_pencil) = (exact.pencil()?, co_exact.pencil()?);
+    // Both pencils at once: a sparse mass or a mixed pencil is factored and estimated as it is
+    // made, on one core each.
+    let (exact_pencil, co_exact_pencil) = rayon::join(|| exact.pencil(), || co_exact.pencil());
+    let (exact_pencil, co_exact_pencil) = (exact_pencil?, co_exact_pencil?);
     // Exact counts per family up front (inertia), so each family is solved once; the pencils
     // remember the counted shifts, so the eigensolver factors none of them again.
     let cpu = process_cpu_seconds();

@@ -102,7 +102,8 @@ impl FamilySplit {
 /// - `Pairs(k)`: `k` of each (fewer if a family has fewer); `Complete`: all of both.
 /// - `Fields(d)`, `m = d − 2g`: a threshold `t` with at least `m` non-zero eigenvalues of the
 ///   two families below it, found by inertia counts (both families factored in parallel) from
-///   Weyl's estimate `t ≈ 2πm / area` by secant steps and bisection, aiming at an excess of at
+///   Weyl's estimate `t ≈ 2πm / area` (counted while the upper bound of both spectra is
+///   estimated, and used unless it lies above half that bound) by secant steps and bisection, aiming at an excess of at
 ///   most `max(1, m/250)` eigenpairs and stopping early once the bracket around the `m`-th
 ///   eigenvalue is about one eigenvalue wide (Weyl), when a cluster straddles position `m`;
 ///   each family's count below `t`.
@@ -130,12 +131,14 @@ pub(crate) fn split_families(
         potential: (potential, potential_pencil),
         co_potential: (co_potential, co_potential_pencil),
     };
-    // Above every eigenvalue of both families: all eigenvalues are below it, uncounted.
+    // Above every eigenvalue of both families: all eigenvalues are below it, uncounted. Both
+    // bounds at once: without a diagonal mass each is a Lanczos run of its own.
     let ceiling = || {
-        potential
-            .eigenvalue_upper_bound(potential_pencil)
-            .max(co_potential.eigenvalue_upper_bound(co_potential_pencil))
-            * (1.0 + INCLUSIVE_MARGIN)
+        let (a, b) = rayon::join(
+            || potential.eigenvalue_upper_bound(potential_pencil),
+            || co_potential.eigenvalue_upper_bound(co_potential_pencil),
+        );
+        a.max(b) * (1.0 + INCLUSIVE_MARGIN)
     };
     let (threshold, counts) = match size {
         BasisSize::Pairs(k) => {
@@ -159,7 +162,11 @@ pub(crate) fn split_families(
             if tiny || m >= available_a + available_b {
                 return Ok(FamilySplit::fixed(available_a, available_b));
             }
-            counter.threshold_for(m, area, ceiling())?
+            // Weyl's first trial is counted while the ceiling is estimated (a Lanczos run on one
+            // core for a pencil without a diagonal mass, while the other factors a pencil).
+            let weyl = weyl_shift(m, area);
+            let (ceiling, first) = rayon::join(ceiling, || counter.nonzero_below(weyl));
+            counter.threshold_for(m, ceiling, (weyl, first))?
         }
         BasisSize::MaxEigenvalue(bound) => {
             if !bound.is_finite() || bound < 0.0 {
@@ -201,6 +208,20 @@ pub(crate) fn split_families(
         tops: Some(tops),
         seconds: start.elapsed().as_secs_f64(),
     })
+}
+
+/// The first trial threshold for `m` non-zero eigenvalues of both families on a surface of total
+/// area `area`: by Weyl's law on a closed surface each family has about `area·t/(4π)` eigenvalues
+/// below `t`, aiming at `m` plus half the search's slack (see [`PairCounter::threshold_for`]).
+fn weyl_shift(m: usize, area: f64) -> f64 {
+    search_goal(m).1 * 2.0 * PI / area
+}
+
+/// The excess of eigenpairs the threshold search for `m` accepts (`max(1, m/250)`) and the count
+/// it aims at, `m` plus half that.
+fn search_goal(m: usize) -> (usize, f64) {
+    let slack = (m / 250).max(1);
+    (slack, m as f64 + slack as f64 / 2.0)
 }
 
 /// Counts of both families at the same shift, computed in parallel by their pencils (which
@@ -257,26 +278,31 @@ impl PairCounter<'_, '_> {
     }
 
     /// `(t, (a, b))` with `a + b ≥ m` non-zero eigenvalues of the two families below `t` and
-    /// `a + b − m` small (see [`split_families`]). `ceiling` is above every eigenvalue of both.
+    /// `a + b − m` small (see [`split_families`]). `ceiling` is above every eigenvalue of both;
+    /// `weyl` is [`weyl_shift`] and its count ([`Self::nonzero_below`]), made beforehand: the
+    /// first evaluation unless that shift is above half the ceiling (then the search starts
+    /// there instead, and the count at `weyl` is not used).
     fn threshold_for(
         &self,
         m: usize,
-        area: f64,
         ceiling: f64,
+        weyl: (f64, Result<(f64, usize, usize), BasisError>),
     ) -> Result<(f64, (usize, usize)), BasisError> {
         let all = (
             self.potential.0.available(),
             self.co_potential.0.available(),
         );
-        let slack = (m / 250).max(1);
-        let goal = m as f64 + slack as f64 / 2.0;
+        let (slack, goal) = search_goal(m);
         // Lowest shift with at least m below it (the ceiling has all), highest with fewer.
         let mut high = (ceiling, all);
         let mut low: Option<(f64, usize)> = None;
-        // Weyl's law on a closed surface: each family has about area·t/(4π) eigenvalues below t.
-        let mut t = (goal * 2.0 * PI / area).min(0.5 * ceiling);
+        let mut t = weyl.0.min(0.5 * ceiling);
+        let mut counted = Some(weyl).filter(|(shift, _)| *shift == t);
         for evaluation in 0..MAX_EVALUATIONS {
-            let (shift, a, b) = self.nonzero_below(t)?;
+            let (shift, a, b) = match counted.take() {
+                Some((_, count)) => count?,
+                None => self.nonzero_below(t)?,
+            };
             let count = a + b;
             if count >= m {
                 if shift < high.0 {
@@ -391,16 +417,21 @@ mod tests {
                 potential: (&a, &pa),
                 co_potential: (&b, &pb),
             };
-            // Weyl's law does not hold for paths: the search must still get there.
-            let (t, (below_a, below_b)) = counter.threshold_for(m, 1.0, ceiling).unwrap();
+            // Weyl's law does not hold for paths: the search must still get there. As in
+            // `split_families`, Weyl's shift is counted beforehand.
+            let weyl = weyl_shift(m, 1.0);
+            let first = counter.nonzero_below(weyl);
+            let (t, (below_a, below_b)) = counter.threshold_for(m, ceiling, (weyl, first)).unwrap();
             assert_eq!(below_a, nonzero_eigenvalues_below(120, t), "m = {m}");
             assert_eq!(below_b, nonzero_eigenvalues_below(300, t), "m = {m}");
             assert!(below_a + below_b >= m, "m = {m}");
             assert!(below_a + below_b <= m + 3, "m = {m}: {below_a} + {below_b}");
             // At most MAX_EVALUATIONS counts, plus a nudge or two where bisection lands on
-            // eigenvalues with simple closed forms (1, 2, 3 are eigenvalues of both paths).
+            // eigenvalues with simple closed forms (1, 2, 3 are eigenvalues of both paths), plus
+            // the count at Weyl's shift where that is above half the ceiling (large m here) and
+            // so not used by the search.
             assert!(
-                counter.factorizations() <= 2 * (MAX_EVALUATIONS + 2),
+                counter.factorizations() <= 2 * (MAX_EVALUATIONS + 3),
                 "m = {m}"
             );
         }

@@ -102,6 +102,15 @@ impl MixedOperator {
         gather_times_and_magnitudes(self.by_face.as_ref(), work, out, magnitudes);
     }
 
+    /// `xᵀ A x = (d1ᵀ x)ᵀ W⁻¹ (d1ᵀ x)` for each column of the packed chunk `x` (`n2` rows),
+    /// with `work` (resized to `n1` rows) for `d1ᵀ x`: the forward half of a solve with `W`
+    /// (see [`SparseLdlt::inverse_energy_rows_in_elimination_order`]), not a solve and a product.
+    pub(crate) fn energy_rows(&self, x: &[Row], work: &mut Vec<Row>) -> Row {
+        work.resize(self.inner_dimension(), [0.0; 8]);
+        gather_times(self.by_edge.as_ref(), x, work);
+        self.w.inverse_energy_rows_in_elimination_order(work)
+    }
+
     /// `work ← W⁻¹ d1ᵀ x` (rows in `W`'s elimination order).
     fn solve_inner(&self, x: &[Row], work: &mut Vec<Row>) {
         work.resize(self.inner_dimension(), [0.0; 8]);

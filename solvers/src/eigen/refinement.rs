@@ -234,13 +234,12 @@ fn general_chunk_residuals(
             }
         }
     }
-    operators.stiffness.times_rows(s, a_s, &mut scratch);
-    let (mut energy, mut noise) = ([0.0; CHUNK], [0.0; CHUNK]);
+    let energy = operators.stiffness.energy_rows(s, a_s, &mut scratch);
+    let mut noise = [0.0; CHUNK];
     for i in 0..x.len() {
         let weight = operators.stiffness_diagonal[i].max(0.0);
         let inverse = operators.mass_diagonal[i].recip();
         for j in 0..CHUNK {
-            energy[j] += s[i][j] * a_s[i][j];
             let e = f64::EPSILON * (abs_ax[i][j] * inverse + lambda[j] * x[i][j].abs());
             noise[j] += weight * e * e;
         }

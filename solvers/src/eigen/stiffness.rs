@@ -46,6 +46,23 @@ impl Stiffness<'_> {
         }
     }
 
+    /// `xᵀ A x` for each column of the packed chunk `x` (`n` rows); `out` and `work` are
+    /// scratch space (`out`: `n` rows, contents unspecified afterwards). For the mixed operator
+    /// without forming `A x` ([`MixedOperator::energy_rows`]).
+    pub(crate) fn energy_rows(self, x: &[Row], out: &mut [Row], work: &mut Vec<Row>) -> Row {
+        if let Stiffness::Mixed(operator) = self {
+            return operator.energy_rows(x, work);
+        }
+        self.times_rows(x, out, work);
+        let mut energy = [0.0; 8];
+        for (x, ax) in x.iter().zip(out.iter()) {
+            for j in 0..8 {
+                energy[j] += x[j] * ax[j];
+            }
+        }
+        energy
+    }
+
     /// `out ← A x` (`n × s`), in parallel over chunks of columns under `par`.
     pub(crate) fn times(self, out: MatMut<'_, f64>, x: MatRef<'_, f64>, par: Par) {
         let operator = match self {
