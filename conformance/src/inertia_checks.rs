@@ -22,9 +22,8 @@
 
 use crate::check_outcome::CheckOutcome;
 use crate::check_report::{DENSE_CHECK_NAMES, LEMMA1_CHECK_NAMES};
-use crate::lowest_eigenvalues::restricted_to;
 use sprs::CsMat;
-use tvf_core::discretization::sparse::{mul_vec, transpose};
+use tvf_core::discretization::sparse::{mul_vec, restricted_to, transpose};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators, NodeSpace};
 use tvf_solvers::convert::shifted_upper_triangle;
 use tvf_solvers::{lowest_eigenpairs, EigenOptions, SparseLdlt};

@@ -15,7 +15,7 @@
 //! relative at the least against errors of `1e-4` and above).
 
 use sprs::CsMat;
-use tvf_core::discretization::sparse::from_triplets;
+use tvf_core::discretization::sparse::restricted_to;
 use tvf_core::discretization::{EigenStiffness, Eigenproblem, NodeSpace};
 use tvf_solvers::{lowest_eigenpairs_of, EigenOptions, EigenRequest, MassMatrix, Pencil};
 
@@ -105,23 +105,4 @@ fn positions(nodes: &NodeSpace) -> Vec<usize> {
             }
         })
         .collect()
-}
-
-/// The entries of `a` whose row and column have a position (`rows`, `cols`: the new index of
-/// every old one, `usize::MAX` for none), at those positions, as a `shape` matrix (CSR).
-pub(crate) fn restricted_to(
-    a: &CsMat<f64>,
-    rows: &[usize],
-    cols: &[usize],
-    shape: (usize, usize),
-) -> CsMat<f64> {
-    let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
-    for (&value, (i, j)) in a.iter() {
-        if rows[i] != usize::MAX && cols[j] != usize::MAX {
-            r.push(rows[i]);
-            c.push(cols[j]);
-            v.push(value);
-        }
-    }
-    from_triplets(shape.0, shape.1, r, c, v)
 }

@@ -5,7 +5,7 @@ use crate::BasisError;
 use faer::{ColMut, ColRef, Mat, MatRef};
 use rayon::prelude::*;
 use sprs::CsMat;
-use tvf_core::discretization::sparse::{from_triplets, mul_vec};
+use tvf_core::discretization::sparse::{mul_vec, restricted_to};
 use tvf_core::discretization::{EigenStiffness, Eigenproblem, NodeSpace};
 use tvf_solvers::{keep_columns, Eigenpairs, MassMatrix, Pencil};
 
@@ -81,22 +81,11 @@ impl ScalarSpectrum {
         let everything = free.iter().all(|&f| f);
         let used: Vec<usize> = (0..full_dimension).filter(|&i| free[i]).collect();
         let position = positions(free);
-        let restrict = |a: &CsMat<f64>, rows: &[usize], cols: &[usize], n: (usize, usize)| {
-            let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
-            for (&value, (i, j)) in a.iter() {
-                if rows[i] != usize::MAX && cols[j] != usize::MAX {
-                    r.push(rows[i]);
-                    c.push(cols[j]);
-                    v.push(value);
-                }
-            }
-            from_triplets(n.0, n.1, r, c, v)
-        };
         let n = used.len();
         let stiffness = match problem.stiffness {
             EigenStiffness::Sparse(a) if everything => RestrictedStiffness::Sparse(a),
             EigenStiffness::Sparse(a) => {
-                RestrictedStiffness::Sparse(restrict(&a, &position, &position, (n, n)))
+                RestrictedStiffness::Sparse(restricted_to(&a, &position, &position, (n, n)))
             }
             EigenStiffness::Mixed { field_mass, d1 } => {
                 let field_position = positions(free_fields);
@@ -105,8 +94,8 @@ impl ScalarSpectrum {
                     .sparse_matrix()
                     .expect("a field mass is stored directly");
                 RestrictedStiffness::Mixed {
-                    w: restrict(&w, &field_position, &field_position, (n1, n1)),
-                    d1: restrict(&d1, &position, &field_position, (n, n1)),
+                    w: restricted_to(&w, &field_position, &field_position, (n1, n1)),
+                    d1: restricted_to(&d1, &position, &field_position, (n, n1)),
                 }
             }
         };
@@ -115,7 +104,9 @@ impl ScalarSpectrum {
             (Some(values), _) => {
                 RestrictedMass::Diagonal(used.iter().map(|&i| values[i]).collect())
             }
-            (None, Some(m)) => RestrictedMass::Sparse(restrict(&m, &position, &position, (n, n))),
+            (None, Some(m)) => {
+                RestrictedMass::Sparse(restricted_to(&m, &position, &position, (n, n)))
+            }
             (None, None) => unreachable!("an eigenproblem's mass is stored directly"),
         };
         Self {

@@ -114,6 +114,26 @@ pub fn from_triplets(
     TriMat::from_triplets((rows, cols), row_indices, col_indices, values).to_csr()
 }
 
+/// The submatrix of `a` on the kept rows and columns, renumbered: `rows[i]` (`cols[j]`) is the
+/// new index of old row `i` (column `j`), `usize::MAX` for one that is dropped; the result is a
+/// `shape` CSR matrix (e.g. a stiffness restricted to the free nodes of a boundary condition).
+pub fn restricted_to(
+    a: &CsMat<f64>,
+    rows: &[usize],
+    cols: &[usize],
+    shape: (usize, usize),
+) -> CsMat<f64> {
+    let (mut r, mut c, mut v) = (Vec::new(), Vec::new(), Vec::new());
+    for (&value, (i, j)) in a.iter() {
+        if rows[i] != usize::MAX && cols[j] != usize::MAX {
+            r.push(rows[i]);
+            c.push(cols[j]);
+            v.push(value);
+        }
+    }
+    from_triplets(shape.0, shape.1, r, c, v)
+}
+
 /// The same matrix in CSR storage (a copy if it already is).
 pub fn to_csr(a: &CsMat<f64>) -> CsMat<f64> {
     if a.is_csr() {
