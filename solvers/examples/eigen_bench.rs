@@ -24,7 +24,19 @@ use tvf_solvers::{
 /// The internal flag of a child process: solve the given meshes and kind once, here.
 const CHILD: &str = "--child";
 
-fn main() {
+/// The command line: meshes, `--k`, `--kind`, `--runs`, the child flag, the solver options and
+/// the options as given (for the child processes).
+struct Arguments {
+    meshes: Vec<PathBuf>,
+    k: usize,
+    kind: String,
+    runs: usize,
+    child: bool,
+    passed: Vec<String>,
+    options: EigenOptions<'static>,
+}
+
+fn parse_arguments() -> Arguments {
     let mut args = std::env::args().skip(1);
     let mut meshes: Vec<PathBuf> = Vec::new();
     let mut k = 500;
@@ -72,6 +84,27 @@ fn main() {
             other => meshes.push(PathBuf::from(other)),
         }
     }
+    Arguments {
+        meshes,
+        k,
+        kind,
+        runs,
+        child,
+        passed,
+        options,
+    }
+}
+
+fn main() {
+    let Arguments {
+        mut meshes,
+        k,
+        kind,
+        runs,
+        child,
+        passed,
+        options,
+    } = parse_arguments();
     if meshes.is_empty() {
         meshes = ["bunny-closed.obj", "armadillo-x4.obj"]
             .iter()
@@ -98,72 +131,78 @@ fn main() {
         return;
     }
     for mesh in &meshes {
-        let (positions, faces) = match mesh_matrices::read_obj(mesh) {
-            Ok(m) => m,
-            Err(e) => {
-                eprintln!("eigen_bench: {e}");
-                continue;
-            }
+        solve_mesh(mesh, &kind, k, &options);
+    }
+}
+
+/// One child's work on `mesh`: the factorization's times and `lowest_eigenpairs` of the `kind`
+/// pencils ("cotan", "cr" or "both"), with their statistics and accuracy, then the timing line.
+fn solve_mesh(mesh: &std::path::Path, kind: &str, k: usize, options: &EigenOptions<'_>) {
+    let (positions, faces) = match mesh_matrices::read_obj(mesh) {
+        Ok(m) => m,
+        Err(e) => {
+            eprintln!("eigen_bench: {e}");
+            return;
+        }
+    };
+    let mut pairs = Vec::new();
+    if kind == "cotan" || kind == "both" {
+        pairs.push(("cotan", mesh_matrices::cotan(&positions, &faces)));
+    }
+    if kind == "cr" || kind == "both" {
+        pairs.push((
+            "crouzeix-raviart",
+            mesh_matrices::crouzeix_raviart(&positions, &faces),
+        ));
+    }
+    for (name, pair) in pairs {
+        let n = pair.mass.len();
+        let upper = shifted_upper_triangle(&pair.stiffness, &pair.mass, -1e-6)
+            .expect("assembled matrix is valid");
+        let start = Instant::now();
+        let ldlt = SparseLdlt::new(upper.as_ref()).expect("shifted Laplacian factors");
+        let analyse = start.elapsed().as_secs_f64();
+        let mut ldlt = ldlt;
+        let start = Instant::now();
+        ldlt.refactor(upper.as_ref()).expect("refactor");
+        let numeric = start.elapsed().as_secs_f64();
+        let (start, cpu) = (Instant::now(), process_cpu_seconds());
+        let result =
+            lowest_eigenpairs(&pair.stiffness, &pair.mass, k, options).expect("eigensolver");
+        let seconds = start.elapsed().as_secs_f64();
+        let timing = Timing {
+            wall: seconds,
+            cpu: process_cpu_seconds() - cpu,
         };
-        let mut pairs = Vec::new();
-        if kind == "cotan" || kind == "both" {
-            pairs.push(("cotan", mesh_matrices::cotan(&positions, &faces)));
-        }
-        if kind == "cr" || kind == "both" {
-            pairs.push((
-                "crouzeix-raviart",
-                mesh_matrices::crouzeix_raviart(&positions, &faces),
-            ));
-        }
-        for (name, pair) in pairs {
-            let n = pair.mass.len();
-            let upper = shifted_upper_triangle(&pair.stiffness, &pair.mass, -1e-6)
-                .expect("assembled matrix is valid");
-            let start = Instant::now();
-            let ldlt = SparseLdlt::new(upper.as_ref()).expect("shifted Laplacian factors");
-            let analyse = start.elapsed().as_secs_f64();
-            let mut ldlt = ldlt;
-            let start = Instant::now();
-            ldlt.refactor(upper.as_ref()).expect("refactor");
-            let numeric = start.elapsed().as_secs_f64();
-            let (start, cpu) = (Instant::now(), process_cpu_seconds());
-            let result =
-                lowest_eigenpairs(&pair.stiffness, &pair.mass, k, &options).expect("eigensolver");
-            let seconds = start.elapsed().as_secs_f64();
-            let timing = Timing {
-                wall: seconds,
-                cpu: process_cpu_seconds() - cpu,
-            };
-            let worst = result.residuals.iter().fold(0.0f64, |m, r| m.max(*r));
-            // M-orthonormality across slices/intervals (outside the timed region)
-            let x = &result.vectors;
-            let mx = faer::Mat::from_fn(n, x.ncols(), |i, j| pair.mass[i] * x[(i, j)]);
-            let gram = x.transpose() * &mx;
-            let mut gram_error = 0.0f64;
-            for j in 0..gram.ncols() {
-                for i in 0..gram.nrows() {
-                    let target = if i == j { 1.0 } else { 0.0 };
-                    gram_error = gram_error.max((gram[(i, j)] - target).abs());
-                }
+        let worst = result.residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+        // M-orthonormality across slices/intervals (outside the timed region)
+        let x = &result.vectors;
+        let mx = faer::Mat::from_fn(n, x.ncols(), |i, j| pair.mass[i] * x[(i, j)]);
+        let gram = x.transpose() * &mx;
+        let mut gram_error = 0.0f64;
+        for j in 0..gram.ncols() {
+            for i in 0..gram.nrows() {
+                let target = if i == j { 1.0 } else { 0.0 };
+                gram_error = gram_error.max((gram[(i, j)] - target).abs());
             }
-            println!(
-                "{} {name}: n = {n}, nnz(L) = {}, analyse+factor {analyse:.3} s, refactor {numeric:.3} s | k = {k}: {seconds:.2} s, {} factorizations, {} solves, λ ∈ [{:.3e}, {:.3e}], max residual {worst:.1e}, max |XᵀMX − I| {gram_error:.1e}",
-                mesh.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
-                ldlt.factor_len(),
-                result.statistics.factorizations(),
-                result.statistics.solves(),
-                result.values.first().copied().unwrap_or(0.0),
-                result.values.last().copied().unwrap_or(0.0),
-            );
-            let statistics = result.statistics;
-            let max_field = result.field_residuals.iter().fold(0.0f64, |m, r| m.max(*r));
-            print!("{}", statistics.phase_table());
-            println!(
-                "  refined pairs {}, max relative field residual {max_field:.1e}",
-                statistics.refined_pairs
-            );
-            bench_runs::report_child(timing);
         }
+        println!(
+            "{} {name}: n = {n}, nnz(L) = {}, analyse+factor {analyse:.3} s, refactor {numeric:.3} s | k = {k}: {seconds:.2} s, {} factorizations, {} solves, λ ∈ [{:.3e}, {:.3e}], max residual {worst:.1e}, max |XᵀMX − I| {gram_error:.1e}",
+            mesh.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            ldlt.factor_len(),
+            result.statistics.factorizations(),
+            result.statistics.solves(),
+            result.values.first().copied().unwrap_or(0.0),
+            result.values.last().copied().unwrap_or(0.0),
+        );
+        let statistics = result.statistics;
+        let max_field = result.field_residuals.iter().fold(0.0f64, |m, r| m.max(*r));
+        print!("{}", statistics.phase_table());
+        println!(
+            "  refined pairs {}, max relative field residual {max_field:.1e}",
+            statistics.refined_pairs
+        );
+        bench_runs::report_child(timing);
     }
 }
 

@@ -225,6 +225,30 @@ pub(crate) struct SolvedBasis {
     pub streamed: bool,
 }
 
+/// How many fields of each family `entries` keeps (integrable, co-integrable, harmonic). For a
+/// basis whose eigenfunctions went to a sink (`streamed_for`: the counts announced to it), fails
+/// unless they fit what was written: at most the announced integrable and co-integrable
+/// columns, exactly the announced harmonic ones.
+fn kept_counts(
+    entries: &[(f64, FieldFamily, usize)],
+    streamed_for: Option<Option<(usize, usize, usize)>>,
+) -> Result<(usize, usize, usize), BasisError> {
+    let count = |family| entries.iter().filter(|e| e.1 == family).count();
+    let (na, nb, nh) = (
+        count(FieldFamily::Integrable),
+        count(FieldFamily::Cointegrable),
+        count(FieldFamily::Harmonic),
+    );
+    let within = |(a, b, h): (usize, usize, usize)| na <= a && nb <= b && nh == h;
+    match streamed_for {
+        Some(counts) if !counts.is_some_and(within) => Err(BasisError::InvalidRequest(format!(
+            "the basis kept {na} + {nb} + {nh} fields, not the {counts:?} its eigenfunctions were \
+             written for"
+        ))),
+        _ => Ok((na, nb, nh)),
+    }
+}
+
 /// The steps of [`compute_eigenfunction_basis`] up to the normalisation of the eigenfunctions,
 /// which is done here, column by column as the eigensolver hands them on, for a `sink` that
 /// can be used (see [`SolvedBasis::streamed`]).
@@ -296,19 +320,7 @@ pub(crate) fn solve_basis<H: HodgeComplex + ?Sized>(
     report.cointegrable_computed = b.values.len();
 
     let entries = selected_entries(harmonic.fields.ncols(), &a.values, &b.values, request.size);
-    let count = |family| entries.iter().filter(|e| e.1 == family).count();
-    let (na, nb, nh) = (
-        count(FieldFamily::Integrable),
-        count(FieldFamily::Cointegrable),
-        count(FieldFamily::Harmonic),
-    );
-    let within = |(a, b, h): (usize, usize, usize)| na <= a && nb <= b && nh == h;
-    if streaming.is_some() && !counts.is_some_and(within) {
-        return Err(BasisError::InvalidRequest(format!(
-            "the basis kept {na} + {nb} + {nh} fields, not the {counts:?} its eigenfunctions were \
-             written for"
-        )));
-    }
+    let (na, nb, nh) = kept_counts(&entries, streaming.is_some().then_some(counts))?;
     report.record_families(&a, &b, (na, nb));
     // Where the fields cannot be normalised column by column, their norms come from the
     // eigenvalues while the spectra are at hand.
