@@ -8,6 +8,7 @@ use tvf_core::discretization::{
     BoundaryCondition, ComplexParts, FieldRotation, FieldSampling, HodgeComplex, HodgeOperators,
     Mass, PointEvaluation,
 };
+use tvf_core::geometry::{cross, dot, norm, sub};
 use tvf_core::TriangleMesh;
 use tvf_design::{CompiledConstraint, SoftOptions};
 use tvf_discretizations::{Conforming, DecComplex, MassLumping, Nonconforming};
@@ -64,26 +65,6 @@ fn area(mesh: &TriangleMesh, face: [usize; 3]) -> f64 {
     let u = sub(p[1], p[0]);
     let v = sub(p[2], p[0]);
     0.5 * norm(cross(u, v))
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
 }
 
 /// The consistent P1 mass `Σ_T |T| (1 + δ_ij) / 12` (`V × V`).
