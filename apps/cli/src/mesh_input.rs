@@ -2,7 +2,7 @@
 //! (`--example NAME`). Every subcommand that takes a mesh flattens [`MeshInput`] into its
 //! arguments and calls [`MeshInput::load`]:
 //!
-//! ```ignore
+//! ```text
 //! #[derive(clap::Args)]
 //! pub struct MyArgs {
 //!     #[command(flatten)]

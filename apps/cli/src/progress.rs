@@ -3,7 +3,7 @@
 //! basis computations and by sequence compression and decompression (one step per frame;
 //! [`Progress::update`] may be called from several threads).
 //!
-//! ```ignore
+//! ```text
 //! let progress = Progress::new("basis");
 //! let callback = progress.basis_callback();
 //! compute_basis(&complex, &BasisRequest::pairs(100).with_progress(&callback))?;

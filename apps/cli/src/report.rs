@@ -1,7 +1,7 @@
 //! What a subcommand prints on stdout: aligned text lines for people, or (with `--json`) one
 //! JSON object for programs. Commands add each number once, with its text line and its key:
 //!
-//! ```ignore
+//! ```text
 //! let mut report = Report::new(args.json);
 //! report.line(format!("spline setup    {setup_ms:.3} ms"));
 //! report.set("setup_ms", setup_ms);
