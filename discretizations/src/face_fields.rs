@@ -3,8 +3,8 @@
 use crate::face_geometry::FaceGeometry;
 use sprs::CsMat;
 use tvf_core::discretization::{
-    check_face_vectors, check_length, DiscretizationError, FieldRotation, FieldSampling,
-    TangentProjection,
+    check_face_vectors, check_length, DiscretizationError, FaceFrames, FieldRotation,
+    FieldSampling, TangentProjection,
 };
 use tvf_core::geometry::dot;
 use tvf_core::{SurfacePoint, TriangleMesh};
@@ -15,8 +15,7 @@ use tvf_core::{SurfacePoint, TriangleMesh};
 /// each face); per-face vectors become fields by projection onto the face plane.
 #[derive(Debug, Clone)]
 pub struct FaceFields {
-    frames: Vec<[[f64; 3]; 2]>,
-    normals: Vec<[f64; 3]>,
+    frames: FaceFrames,
     mass: Vec<f64>,
     rotation: CsMat<f64>,
 }
@@ -37,8 +36,7 @@ impl FaceFields {
         let data = (0..face_count).flat_map(|_| [-1.0, 1.0]).collect();
         let rotation = CsMat::new((2 * face_count, 2 * face_count), indptr, indices, data);
         Self {
-            frames: geometry.frames.clone(),
-            normals: geometry.normals.clone(),
+            frames: geometry.face_frames(),
             mass,
             rotation,
         }
@@ -51,20 +49,12 @@ impl FaceFields {
 }
 
 impl FieldSampling for FaceFields {
-    fn face_count(&self) -> usize {
-        self.frames.len()
+    fn face_frames(&self) -> &FaceFrames {
+        &self.frames
     }
 
     fn field_dimension(&self) -> usize {
         2 * self.frames.len()
-    }
-
-    fn frame(&self, face: usize) -> [[f64; 3]; 2] {
-        self.frames[face]
-    }
-
-    fn normal(&self, face: usize) -> [f64; 3] {
-        self.normals[face]
     }
 
     fn centroid(&self, face: usize) -> SurfacePoint {
@@ -74,7 +64,7 @@ impl FieldSampling for FaceFields {
     /// `v = x[2t] e1 + x[2t+1] e2` anywhere in face `t`.
     fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
         let face = point.face;
-        let [e1, e2] = self.frames[face];
+        let [e1, e2] = self.frames.frame(face);
         vec![(2 * face, e1), (2 * face + 1, e2)]
     }
 
@@ -93,10 +83,10 @@ impl FieldSampling for FaceFields {
         let mut field = Vec::with_capacity(self.field_dimension());
         let mut normal_parts = Vec::with_capacity(self.face_count());
         for (t, &v) in vectors.iter().enumerate() {
-            let [e1, e2] = self.frames[t];
+            let [e1, e2] = self.frames.frame(t);
             field.push(dot(v, e1));
             field.push(dot(v, e2));
-            normal_parts.push(dot(v, self.normals[t]));
+            normal_parts.push(dot(v, self.frames.normal(t)));
         }
         Ok(TangentProjection {
             field,
@@ -112,6 +102,7 @@ impl FieldSampling for FaceFields {
         )?;
         Ok(self
             .frames
+            .frames()
             .iter()
             .zip(field.chunks_exact(2))
             .map(|([e1, e2], ab)| std::array::from_fn(|k| ab[0] * e1[k] + ab[1] * e2[k]))

@@ -2,7 +2,7 @@
 //! coordinates, computed once per mesh; each face as a [`PlanarTriangle`].
 
 use crate::planar_triangle::PlanarTriangle;
-use tvf_core::discretization::DiscretizationError;
+use tvf_core::discretization::{DiscretizationError, FaceFrames};
 use tvf_core::geometry::{cross, dot, normalize, sub};
 use tvf_core::TriangleMesh;
 
@@ -21,6 +21,11 @@ pub struct FaceGeometry {
 }
 
 impl FaceGeometry {
+    /// The frames and normals of every face, as a sampling holds them.
+    pub fn face_frames(&self) -> FaceFrames {
+        FaceFrames::new(self.frames.clone(), self.normals.clone())
+    }
+
     /// Computes the geometry of every face; fails on a face of zero or non-finite area.
     pub fn new(mesh: &TriangleMesh) -> Result<Self, DiscretizationError> {
         let face_count = mesh.face_count();

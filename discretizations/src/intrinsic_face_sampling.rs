@@ -7,8 +7,8 @@ use crate::intrinsic_input_faces::InputFaces;
 use crate::intrinsic_sampling::{apply_centroid_weights, centroid_weights};
 use crate::planar_triangle::PlanarTriangle;
 use tvf_core::discretization::{
-    check_face_vectors, check_length, DiscretizationError, FieldSampling, SamplingReproduction,
-    TangentProjection,
+    check_face_vectors, check_length, DiscretizationError, FaceFrames, FieldSampling,
+    SamplingReproduction, TangentProjection,
 };
 use tvf_core::{SurfacePoint, TriangleMesh};
 
@@ -57,20 +57,12 @@ impl IntrinsicFaceSampling {
 }
 
 impl FieldSampling for IntrinsicFaceSampling {
-    fn face_count(&self) -> usize {
-        self.faces.count()
+    fn face_frames(&self) -> &FaceFrames {
+        &self.faces.frames
     }
 
     fn field_dimension(&self) -> usize {
         2 * self.triangles.len()
-    }
-
-    fn frame(&self, face: usize) -> [[f64; 3]; 2] {
-        self.faces.frames[face]
-    }
-
-    fn normal(&self, face: usize) -> [f64; 3] {
-        self.faces.normals[face]
     }
 
     fn centroid(&self, face: usize) -> SurfacePoint {

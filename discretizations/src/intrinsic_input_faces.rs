@@ -4,7 +4,7 @@
 
 use crate::face_geometry::FaceGeometry;
 use crate::intrinsic_delaunay::IntrinsicInput;
-use tvf_core::discretization::DiscretizationError;
+use tvf_core::discretization::{DiscretizationError, FaceFrames};
 use tvf_core::geometry::{cross, dot, scale, sub};
 use tvf_core::TriangleMesh;
 
@@ -15,10 +15,8 @@ pub(crate) struct InputFaces {
     pub(crate) input: IntrinsicInput,
     faces: Vec<[usize; 3]>,
     positions: Vec<[f64; 3]>,
-    /// `[e1, e2]` of every input face (the convention of [`FaceGeometry`]).
-    pub(crate) frames: Vec<[[f64; 3]; 2]>,
-    /// The unit normal of every input face.
-    pub(crate) normals: Vec<[f64; 3]>,
+    /// `[e1, e2]` and the unit normal of every input face (the convention of [`FaceGeometry`]).
+    pub(crate) frames: FaceFrames,
     /// `∇λ_c` of the corners of every input face (3D, in the face plane, 1/length).
     gradients: Vec<[[f64; 3]; 3]>,
 }
@@ -47,15 +45,9 @@ impl InputFaces {
             input: input.clone(),
             faces: mesh.faces().to_vec(),
             positions: mesh.positions().to_vec(),
-            frames: geometry.frames,
-            normals: geometry.normals,
+            frames: geometry.face_frames(),
             gradients,
         })
-    }
-
-    /// Number of input faces.
-    pub(crate) fn count(&self) -> usize {
-        self.faces.len()
     }
 
     /// A displacement of barycentric coordinates of input face `f` as a 3D vector.
@@ -99,7 +91,7 @@ impl InputFaces {
     pub(crate) fn normal_parts(&self, vectors: &[[f64; 3]]) -> Vec<f64> {
         vectors
             .iter()
-            .zip(&self.normals)
+            .zip(self.frames.normals())
             .map(|(&v, &n)| dot(v, n))
             .collect()
     }

@@ -7,7 +7,7 @@ use crate::edge_averages::EdgeAverages;
 use crate::intrinsic_delaunay::IntrinsicInput;
 use crate::intrinsic_input_faces::InputFaces;
 use tvf_core::discretization::{
-    check_face_vectors, check_length, DiscretizationError, FieldSampling, NodeKind,
+    check_face_vectors, check_length, DiscretizationError, FaceFrames, FieldSampling, NodeKind,
     PointEvaluation, SamplingReproduction, TangentProjection,
 };
 use tvf_core::intrinsic::corner_cotangents;
@@ -114,20 +114,12 @@ fn barycentric_gram(lengths: [f64; 3]) -> [[f64; 3]; 3] {
 }
 
 impl FieldSampling for IntrinsicWhitneySampling {
-    fn face_count(&self) -> usize {
-        self.faces.count()
+    fn face_frames(&self) -> &FaceFrames {
+        &self.faces.frames
     }
 
     fn field_dimension(&self) -> usize {
         self.faces.input.triangulation.edge_count()
-    }
-
-    fn frame(&self, face: usize) -> [[f64; 3]; 2] {
-        self.faces.frames[face]
-    }
-
-    fn normal(&self, face: usize) -> [f64; 3] {
-        self.faces.normals[face]
     }
 
     fn centroid(&self, face: usize) -> SurfacePoint {

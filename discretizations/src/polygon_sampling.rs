@@ -5,8 +5,8 @@
 use crate::edge_averages::EdgeAverages;
 use crate::polygon_operators::PolygonOperators;
 use tvf_core::discretization::{
-    check_face_vectors, DiscretizationError, FieldSampling, PointEvaluation, SamplingReproduction,
-    TangentProjection,
+    check_face_vectors, DiscretizationError, FaceFrames, FieldSampling, PointEvaluation,
+    SamplingReproduction, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, normalize, scale, sub};
 use tvf_core::mesh::Mesh;
@@ -22,10 +22,9 @@ pub struct PolygonSampling {
     side_edges: Vec<Vec<usize>>,
     /// `U_f`'s columns, face by face.
     sharp: Vec<Vec<[f64; 3]>>,
-    /// `[e1, e2]` per face: the first side projected onto the plane, then `n × e1`.
-    frames: Vec<[[f64; 3]; 2]>,
-    /// Unit normal per face, along its vector area.
-    normals: Vec<[f64; 3]>,
+    /// `[e1, e2]` per face (the first side projected onto the plane, then `n × e1`) and the unit
+    /// normal along its vector area.
+    frames: FaceFrames,
     /// The mesh's edges `(a, b)`, `a < b`.
     edges: Vec<[usize; 2]>,
     positions: Vec<[f64; 3]>,
@@ -60,8 +59,7 @@ impl PolygonSampling {
                 })
                 .collect(),
             sharp: operators.iter().map(|o| o.sharp.clone()).collect(),
-            frames,
-            normals,
+            frames: FaceFrames::new(frames, normals),
             edges: mesh.topology().edges().to_vec(),
             positions: mesh.positions().to_vec(),
             fixed_edges,
@@ -70,20 +68,12 @@ impl PolygonSampling {
 }
 
 impl FieldSampling for PolygonSampling {
-    fn face_count(&self) -> usize {
-        self.sharp.len()
+    fn face_frames(&self) -> &FaceFrames {
+        &self.frames
     }
 
     fn field_dimension(&self) -> usize {
         self.edges.len()
-    }
-
-    fn frame(&self, face: usize) -> [[f64; 3]; 2] {
-        self.frames[face]
-    }
-
-    fn normal(&self, face: usize) -> [f64; 3] {
-        self.normals[face]
     }
 
     fn centroid(&self, face: usize) -> SurfacePoint {
@@ -117,7 +107,7 @@ impl FieldSampling for PolygonSampling {
         let mut averages = EdgeAverages::new(self.edges.len());
         let mut normal_parts = Vec::with_capacity(vectors.len());
         for (f, &v) in vectors.iter().enumerate() {
-            let n = self.normals[f];
+            let n = self.frames.normal(f);
             let normal_part = dot(v, n);
             let tangent = sub(v, scale(n, normal_part));
             normal_parts.push(normal_part);

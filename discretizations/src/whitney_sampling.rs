@@ -4,7 +4,7 @@
 use crate::edge_averages::EdgeAverages;
 use crate::face_geometry::FaceGeometry;
 use tvf_core::discretization::{
-    check_face_vectors, DiscretizationError, FieldSampling, TangentProjection,
+    check_face_vectors, DiscretizationError, FaceFrames, FieldSampling, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, scale, sub};
 use tvf_core::{SurfacePoint, TriangleMesh};
@@ -32,8 +32,7 @@ pub struct WhitneySampling {
     face_edges: Vec<[usize; 3]>,
     edges: Vec<[usize; 2]>,
     positions: Vec<[f64; 3]>,
-    frames: Vec<[[f64; 3]; 2]>,
-    normals: Vec<[f64; 3]>,
+    frames: FaceFrames,
     /// Edges whose value the boundary condition fixes to zero (`E` entries; all `false` for
     /// absolute forms).
     fixed_edges: Vec<bool>,
@@ -65,8 +64,7 @@ impl WhitneySampling {
             face_edges: mesh.face_edges().to_vec(),
             edges: mesh.edges().to_vec(),
             positions: mesh.positions().to_vec(),
-            frames: geometry.frames.clone(),
-            normals: geometry.normals.clone(),
+            frames: geometry.face_frames(),
             fixed_edges,
             barycentric_gradients,
         }
@@ -74,20 +72,12 @@ impl WhitneySampling {
 }
 
 impl FieldSampling for WhitneySampling {
-    fn face_count(&self) -> usize {
-        self.faces.len()
+    fn face_frames(&self) -> &FaceFrames {
+        &self.frames
     }
 
     fn field_dimension(&self) -> usize {
         self.edges.len()
-    }
-
-    fn frame(&self, face: usize) -> [[f64; 3]; 2] {
-        self.frames[face]
-    }
-
-    fn normal(&self, face: usize) -> [f64; 3] {
-        self.normals[face]
     }
 
     fn centroid(&self, face: usize) -> SurfacePoint {
@@ -126,7 +116,7 @@ impl FieldSampling for WhitneySampling {
         let field = averages.means(&self.fixed_edges);
         let normal_parts = vectors
             .iter()
-            .zip(&self.normals)
+            .zip(self.frames.normals())
             .map(|(&v, &n)| dot(v, n))
             .collect();
         Ok(TangentProjection {

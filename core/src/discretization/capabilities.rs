@@ -2,7 +2,7 @@
 //! for the one it uses, through [`super::HodgeComplex::sampling`],
 //! [`super::HodgeComplex::rotation`] and [`super::HodgeComplex::point_evaluation`].
 
-use super::DiscretizationError;
+use super::{DiscretizationError, FaceFrames};
 use crate::SurfacePoint;
 use sprs::CsMat;
 
@@ -48,20 +48,30 @@ pub enum SamplingReproduction {
 /// and weights over its corners), as a linear map, and its inverse on per-face vectors. It gives
 /// field I/O (one 3D vector per face), rendering, vector constraints and the editor.
 pub trait FieldSampling: Send + Sync {
+    /// The frame and unit normal of every face ([`FaceFrames`]: `F` entries), in which
+    /// [`FieldSampling::sample_frame_weights`] and [`FieldSampling::from_face_vectors`] read
+    /// per-face vectors.
+    fn face_frames(&self) -> &FaceFrames;
+
     /// Number of faces `F` of the mesh.
-    fn face_count(&self) -> usize;
+    fn face_count(&self) -> usize {
+        self.face_frames().len()
+    }
 
     /// Number of field coefficients `n1`.
     fn field_dimension(&self) -> usize;
 
     /// An orthonormal, positively oriented frame `[e1, e2]` of face `t`'s plane (`e2 = n × e1`;
-    /// for a triangle `e1 = normalize(p_{i1} − p_{i0})`, for a polygon the first side projected
-    /// onto the plane normal to its vector area).
-    fn frame(&self, face: usize) -> [[f64; 3]; 2];
+    /// [`FaceFrames`] states the conventions for triangles and polygons).
+    fn frame(&self, face: usize) -> [[f64; 3]; 2] {
+        self.face_frames().frame(face)
+    }
 
     /// The unit normal of face `t` (counter-clockwise orientation; for a polygon, along its vector
     /// area).
-    fn normal(&self, face: usize) -> [f64; 3];
+    fn normal(&self, face: usize) -> [f64; 3] {
+        self.face_frames().normal(face)
+    }
 
     /// The point of face `face` where [`FieldSampling::to_face_vectors`] samples: its corner
     /// average (for a triangle its centroid, barycentric `[1/3; 3]`).

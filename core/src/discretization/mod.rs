@@ -77,6 +77,7 @@
 mod capabilities;
 mod complex_parts;
 mod error;
+mod face_frames;
 mod hodge_complex;
 mod hodge_operators;
 mod linear_operator;
@@ -92,6 +93,7 @@ pub use capabilities::{
 };
 pub use complex_parts::ComplexParts;
 pub use error::DiscretizationError;
+pub use face_frames::FaceFrames;
 pub use hodge_complex::HodgeComplex;
 pub use hodge_operators::{all_sparse, EigenStiffness, Eigenproblem, HodgeOperators};
 pub use linear_operator::{Composition, Factor, LinearOperator};
