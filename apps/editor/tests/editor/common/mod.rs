@@ -11,6 +11,7 @@ use tvf_core::generate::{icosphere, perforated_plate};
 use tvf_core::SurfaceMesh;
 use tvf_design::ReducedBasis;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+use tvf_editor::server::ServerDeadlines;
 use tvf_editor::{Editor, EditorServer, EditorSetup};
 use tvf_spectral::{compute_basis, BasisRequest};
 
@@ -57,6 +58,15 @@ pub fn icosphere_server() -> EditorServer {
 
 /// [`icosphere_server`] with the catalog entry `id`.
 pub fn icosphere_server_for(id: &str) -> EditorServer {
+    icosphere_server_with(id, ServerDeadlines::default())
+}
+
+/// [`icosphere_server`] whose clients have `deadlines` to send their requests.
+pub fn icosphere_server_with_deadlines(deadlines: ServerDeadlines) -> EditorServer {
+    icosphere_server_with(DEFAULT_DISCRETIZATION, deadlines)
+}
+
+fn icosphere_server_with(id: &str, deadlines: ServerDeadlines) -> EditorServer {
     let mesh = SurfaceMesh::from(icosphere(3));
     let complex = catalog_entry(id)
         .expect("catalog id")
@@ -70,7 +80,7 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
         complex,
     })
     .expect("editor starts");
-    EditorServer::start(editor, 0).expect("server starts")
+    EditorServer::start_with_deadlines(editor, 0, deadlines).expect("server starts")
 }
 
 /// The editor on a generated pair of pants (`perforated_plate(2, 8)`: flat, genus 0, three
