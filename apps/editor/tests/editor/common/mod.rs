@@ -32,12 +32,14 @@ pub fn icosphere_basis_for(id: &str) -> ReducedBasis {
                 .expect("catalog id")
                 .build(&mesh)
                 .expect("icosphere operators");
-            // The complete basis by the dense eigensolvers (exact, about 2 s here), of which the
-            // first 100 columns are the 100 lowest eigenfields.
-            let spectral = compute_basis(complex.as_ref(), &BasisRequest::complete())
+            // The 100 lowest eigenfields by the sparse eigensolver, as `tvf edit` computes them
+            // (rather than the complete basis by the dense eigensolvers, truncated: the same
+            // eigenvalues to round-off, in less time); the first 100 columns in case a cluster
+            // of equal eigenvalues brings more.
+            let d = 100;
+            let spectral = compute_basis(complex.as_ref(), &BasisRequest::fields(d))
                 .expect("icosphere basis");
             let full = ReducedBasis::from_spectral(&spectral).expect("reduced basis");
-            let d = 100;
             let n = full.field_dimension();
             let rows = (0..n).flat_map(|r| full.row(r)[..d].to_vec()).collect();
             ReducedBasis::from_row_major(
