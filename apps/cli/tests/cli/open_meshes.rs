@@ -451,7 +451,7 @@ fn a_plate_with_the_raw_bunnys_loops_and_unreferenced_vertices_runs_through_ever
     let temp = tempfile::tempdir().unwrap();
     let dir = temp.path();
     let unreferenced = bunny_like_plate(&dir.join("plate.obj"));
-    let mesh = load_mesh(&dir.join("plate.obj"))
+    let mesh = load_mesh(dir.join("plate.obj"))
         .unwrap()
         .mesh
         .into_triangles()

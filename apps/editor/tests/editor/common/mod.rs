@@ -37,8 +37,8 @@ pub fn icosphere_basis_for(id: &str) -> ReducedBasis {
             // eigenvalues to round-off, in less time); the first 100 columns in case a cluster
             // of equal eigenvalues brings more.
             let d = 100;
-            let spectral = compute_basis(complex.as_ref(), &BasisRequest::fields(d))
-                .expect("icosphere basis");
+            let spectral =
+                compute_basis(complex.as_ref(), &BasisRequest::fields(d)).expect("icosphere basis");
             let full = ReducedBasis::from_spectral(&spectral).expect("reduced basis");
             let n = full.field_dimension();
             let rows = (0..n).flat_map(|r| full.row(r)[..d].to_vec()).collect();
