@@ -99,12 +99,33 @@ pub const HEAD_DEADLINE: Duration = Duration::from_secs(10);
 /// Time a client has to send its request body (after the head).
 pub const BODY_DEADLINE: Duration = Duration::from_secs(10);
 
+/// How long a client may take to send its request: the head from when the connection is
+/// taken up, the body from the end of the head; past either, the request is answered 408 and
+/// the connection closed. `tvf edit` uses the default ([`HEAD_DEADLINE`], [`BODY_DEADLINE`]);
+/// [`EditorServer::start_with_deadlines`] takes others (the tests wait out a shorter one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ServerDeadlines {
+    /// Time to send the request head.
+    pub head: Duration,
+    /// Time to send the request body, after the head.
+    pub body: Duration,
+}
+
+impl Default for ServerDeadlines {
+    fn default() -> Self {
+        Self {
+            head: HEAD_DEADLINE,
+            body: BODY_DEADLINE,
+        }
+    }
+}
+
 /// A running editor server; stops with [`EditorServer::shutdown`] (or runs until the process
 /// ends with [`EditorServer::join`]).
 ///
 /// One thread accepts connections and starts one thread per connection; each answers one
-/// request and closes. Heads and bodies are read against deadlines ([`HEAD_DEADLINE`],
-/// [`BODY_DEADLINE`]); connections still sending their head are at most
+/// request and closes. Heads and bodies are read against deadlines ([`ServerDeadlines`]);
+/// connections still sending their head are at most
 /// [`MAX_WAITING_CONNECTIONS`] (the longest waiting is closed for a new one), requests that
 /// passed the [`crate::access`] checks at most [`MAX_CONNECTIONS`], and uploads may not take the
 /// last [`RESERVED_CONNECTIONS`] of those: neither idle connections nor stalled uploads can keep
@@ -120,6 +141,7 @@ struct Shared {
     editor: Editor,
     mesh_payload: Vec<u8>,
     access: Access,
+    deadlines: ServerDeadlines,
     waiting: WaitingRoom,
     threads: AtomicUsize,
     connections: AtomicUsize,
@@ -127,8 +149,18 @@ struct Shared {
 }
 
 impl EditorServer {
-    /// Listens on `127.0.0.1:port` (`port` 0: chosen by the OS) and starts answering.
+    /// Listens on `127.0.0.1:port` (`port` 0: chosen by the OS) and starts answering, with the
+    /// default [`ServerDeadlines`].
     pub fn start(editor: Editor, port: u16) -> Result<Self, EditorError> {
+        Self::start_with_deadlines(editor, port, ServerDeadlines::default())
+    }
+
+    /// [`EditorServer::start`] with the request deadlines `deadlines`.
+    pub fn start_with_deadlines(
+        editor: Editor,
+        port: u16,
+        deadlines: ServerDeadlines,
+    ) -> Result<Self, EditorError> {
         let listener =
             TcpListener::bind(("127.0.0.1", port)).map_err(|source| EditorError::Io {
                 what: format!("listening on 127.0.0.1:{port}"),
@@ -142,6 +174,7 @@ impl EditorServer {
             mesh_payload: encode_mesh(editor.mesh())?,
             editor,
             access: Access::new(address.port()),
+            deadlines,
             waiting: WaitingRoom::new(MAX_WAITING_CONNECTIONS),
             threads: AtomicUsize::new(0),
             connections: AtomicUsize::new(0),
@@ -235,7 +268,7 @@ fn accept(listener: &TcpListener, shared: &Arc<Shared>, stop: &AtomicBool) {
 fn serve_connection(shared: &Shared, mut stream: TcpStream) {
     let _ = stream.set_nodelay(true);
     let ticket = shared.waiting.enter(&stream);
-    let head = read_head(&mut stream, Instant::now() + HEAD_DEADLINE);
+    let head = read_head(&mut stream, Instant::now() + shared.deadlines.head);
     drop(ticket);
     let answer = head.and_then(|(head, rest)| {
         shared.access.check(&head)?;
@@ -287,7 +320,7 @@ fn body(
     }
     let limit = MAX_CONNECTIONS - RESERVED_CONNECTIONS;
     let _slot = take_slot(&shared.uploads, limit, "too many uploads at once")?;
-    read_body(stream, rest, length, Instant::now() + BODY_DEADLINE)
+    read_body(stream, rest, length, Instant::now() + shared.deadlines.body)
 }
 
 fn respond(stream: &mut TcpStream, answer: Answer) {

@@ -1,7 +1,8 @@
 //! Meshes with boundary through the commands: a generated pair of pants (three boundary loops)
 //! with both boundary conditions, for the default finite-element entry and (Delaunay-flipped) for
-//! DEC, and the raw `bunny.obj` of `../shared/meshes` (five loops, unreferenced vertices) where it
-//! exists (under `CI=true` it must).
+//! DEC; a generated plate with five loops and unreferenced vertices; and the raw `bunny.obj` of
+//! `../shared/meshes` (five loops, unreferenced vertices) where it exists (under `CI=true` it
+//! must), every command on it sharing one basis file.
 
 use crate::common::{run_quiet, stdout_json, tvf, write_field};
 use serde_json::Value;
@@ -40,17 +41,29 @@ fn write_constraints(mesh: &TriangleMesh, path: &Path, curl_on_faces: bool) {
     std::fs::write(path, constraints).unwrap();
 }
 
+/// How [`every_command`] runs the commands that take a basis without needing its file.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Size {
+    /// A generated mesh of a few hundred faces: `spline` and `design --reduced` compute their
+    /// `k` eigenfields themselves, and the quick demo runs.
+    Small,
+    /// A real scan of tens of thousands of faces: `spline` and `design --reduced` read the file
+    /// `basis` wrote (one computed basis for every command), and the demo, which computes a
+    /// basis of its own and draws every figure, is left to a small mesh of the same kind.
+    Large,
+}
+
 /// basis, coefficients, decompose, filter, spline, design (reduced and full), render, analyze,
-/// compress, decompress, rate-distortion, export and the quick demo on `mesh` (the file `name` in
-/// `dir`) with catalog entry `discretization` and boundary condition `boundary`; `k`
-/// eigenfields.
+/// compress, decompress, rate-distortion, export and (on a [`Size::Small`] mesh) the quick demo
+/// on `mesh` (the file `name` in `dir`) with catalog entry `discretization` and boundary
+/// condition `boundary`; `k` eigenfields.
 fn every_command(
     dir: &Path,
     name: &str,
-    discretization: &str,
-    boundary: &str,
+    (discretization, boundary): (&str, &str),
     k: &str,
     harmonic: usize,
+    size: Size,
 ) {
     let b = ["--boundary", boundary, "--discretization", discretization];
     let boundary = format!("{discretization}-{boundary}");
@@ -113,6 +126,13 @@ fn every_command(
             "smooth.npy",
         ],
     );
+    // The reduced solves' basis: computed by each command, or the file of `basis` (which
+    // brings its entry and boundary condition).
+    let computed = [&["-k", k][..], &b].concat();
+    let basis_args = match size {
+        Size::Small => computed,
+        Size::Large => vec!["--basis", basis_file.as_str()],
+    };
     let spline = stdout_json(&run_quiet(
         dir,
         &[
@@ -121,13 +141,11 @@ fn every_command(
                 name,
                 "--constraints",
                 "c.json",
-                "-k",
-                k,
                 "-o",
                 "spline.npy",
                 "--json",
             ][..],
-            &b,
+            &basis_args,
         ]
         .concat(),
     ));
@@ -141,12 +159,10 @@ fn every_command(
                 "--constraints",
                 "c.json",
                 "--reduced",
-                "-k",
-                k,
                 "-o",
                 "r.npy",
             ][..],
-            &b,
+            &basis_args,
         ]
         .concat(),
     );
@@ -258,6 +274,9 @@ fn every_command(
         .concat(),
     );
     assert!(dir.join("spline.vtk").is_file());
+    if size == Size::Large {
+        return;
+    }
     // The demo's tour on the open mesh.
     let demo = format!("demo-{boundary}");
     run_quiet(
@@ -284,10 +303,10 @@ fn a_pair_of_pants_runs_through_every_command_with_both_boundary_conditions() {
         every_command(
             dir,
             "pants.obj",
-            "conforming-barycentric",
-            boundary,
+            ("conforming-barycentric", boundary),
             "30",
             2,
+            Size::Small,
         );
     }
     // A divergence on a boundary vertex cannot be prescribed where potentials are fixed.
@@ -319,7 +338,14 @@ fn dec_runs_through_every_command_on_a_delaunay_pair_of_pants_with_both_boundary
     write_field(&mesh, &dir.join("field.txt"));
     write_constraints(&mesh, &dir.join("c.json"), true);
     for boundary in ["tangential", "normal"] {
-        every_command(dir, "pants.obj", "dec-circumcentric", boundary, "30", 2);
+        every_command(
+            dir,
+            "pants.obj",
+            ("dec-circumcentric", boundary),
+            "30",
+            2,
+            Size::Small,
+        );
     }
     // The exported matrices say which nodes relative forms fix: boundary vertices and edges.
     run_quiet(
@@ -364,6 +390,9 @@ fn dec_runs_through_every_command_on_a_delaunay_pair_of_pants_with_both_boundary
     assert!(stderr.contains("lies on the boundary"), "{stderr}");
 }
 
+/// The raw `bunny.obj` (69,451 faces, five boundary loops, 1,113 unreferenced vertices) through
+/// every command that reads or writes a field on it, the reduced solves on the one basis file
+/// `basis` writes; the demo runs on [`bunny_like_plate`].
 #[test]
 fn the_raw_bunny_runs_through_every_command() {
     let Some(path) = shared_mesh("bunny.obj") else {
@@ -381,10 +410,65 @@ fn the_raw_bunny_runs_through_every_command() {
     every_command(
         dir,
         "bunny.obj",
-        "conforming-barycentric",
-        "tangential",
+        ("conforming-barycentric", "tangential"),
         "20",
         4,
+        Size::Large,
+    );
+}
+
+/// Writes a flat plate with four holes (five boundary loops, as the raw bunny has) to `path` as
+/// OBJ with an unreferenced vertex before every seventh vertex (scattered through the file, as
+/// in a raw scan, so that reading drops them and renumbers the rest); returns how many.
+fn bunny_like_plate(path: &Path) -> usize {
+    let mesh = perforated_plate(4, 8);
+    let mut text = String::new();
+    let mut file_vertex = Vec::with_capacity(mesh.vertex_count());
+    let mut written = 0;
+    let mut unreferenced = 0;
+    for (v, p) in mesh.positions().iter().enumerate() {
+        if v % 7 == 0 {
+            text += &format!("v {} {} 1\n", p[0] + 0.1, p[1] - 0.1);
+            written += 1;
+            unreferenced += 1;
+        }
+        text += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+        written += 1;
+        file_vertex.push(written);
+    }
+    for f in mesh.faces() {
+        let [a, b, c] = f.map(|v| file_vertex[v]);
+        text += &format!("f {a} {b} {c}\n");
+    }
+    std::fs::write(path, text).unwrap();
+    unreferenced
+}
+
+/// What the raw bunny runs, and the demo, on [`bunny_like_plate`]: each command computes its
+/// own basis.
+#[test]
+fn a_plate_with_the_raw_bunnys_loops_and_unreferenced_vertices_runs_through_every_command() {
+    let temp = tempfile::tempdir().unwrap();
+    let dir = temp.path();
+    let unreferenced = bunny_like_plate(&dir.join("plate.obj"));
+    let mesh = load_mesh(dir.join("plate.obj"))
+        .unwrap()
+        .mesh
+        .into_triangles()
+        .unwrap();
+    write_field(&mesh, &dir.join("field.txt"));
+    write_constraints(&mesh, &dir.join("c.json"), false);
+    let info = stdout_json(&run_quiet(dir, &["info", "plate.obj", "--json"]));
+    assert_eq!(info["unreferenced_vertices"], unreferenced, "{info}");
+    assert_eq!(info["boundary_loops"], 5);
+    assert_eq!(info["harmonic_dimension"]["tangential"], 4);
+    every_command(
+        dir,
+        "plate.obj",
+        ("conforming-barycentric", "tangential"),
+        "20",
+        4,
+        Size::Small,
     );
 }
 

@@ -4,12 +4,13 @@
 //! an edit whose field would not be finite is refused, and a bounded stress run keeps every
 //! answer correct.
 
-use crate::common::{error_message, icosphere_server, Client};
+use crate::common::{error_message, icosphere_server, icosphere_server_with_deadlines, Client};
 use serde_json::json;
 use std::io::{Read, Write};
 use std::net::{SocketAddr, TcpStream};
 use std::time::{Duration, Instant};
 use tvf_editor::decode_field_frame;
+use tvf_editor::server::ServerDeadlines;
 
 /// Sends `request` as raw bytes and returns (status, body) of the answer.
 fn raw(address: SocketAddr, request: &str) -> (u16, String) {
@@ -243,9 +244,17 @@ fn stalled_uploads(address: SocketAddr, token: &str, count: usize) -> Vec<TcpStr
         .collect()
 }
 
+/// The body deadline of [`stalled_uploads_do_not_block_ping_and_time_out`]'s server: long
+/// enough for its pings to be answered while the uploads still wait (each ping takes
+/// milliseconds), short enough not to be waited out for the default's 10 s.
+const STALLED_BODY_DEADLINE: Duration = Duration::from_secs(3);
+
 #[test]
 fn stalled_uploads_do_not_block_ping_and_time_out() {
-    let server = icosphere_server();
+    let server = icosphere_server_with_deadlines(ServerDeadlines {
+        body: STALLED_BODY_DEADLINE,
+        ..ServerDeadlines::default()
+    });
     let client = Client::new(&server);
     let started = Instant::now();
     let mut stalled = stalled_uploads(server.address(), server.token(), 8);
@@ -260,14 +269,32 @@ fn stalled_uploads_do_not_block_ping_and_time_out() {
             start.elapsed()
         );
     }
-    // The stalled uploads are answered 408 when their body deadline passes.
+    // The pings were answered while every upload still waited for its body: none of them has
+    // been answered yet.
+    for stream in &stalled {
+        stream.set_nonblocking(true).unwrap();
+        let mut byte = [0u8; 1];
+        let pending = stream.peek(&mut byte);
+        assert!(
+            matches!(&pending, Err(e) if e.kind() == std::io::ErrorKind::WouldBlock),
+            "an upload was answered before its deadline, after {:?}: {pending:?}",
+            started.elapsed()
+        );
+        stream.set_nonblocking(false).unwrap();
+    }
+    // The stalled uploads are answered 408 when their body deadline passes, not before.
     let mut answer = String::new();
     stalled[0]
         .set_read_timeout(Some(Duration::from_secs(30)))
         .unwrap();
     let _ = stalled[0].read_to_string(&mut answer);
     assert!(answer.starts_with("HTTP/1.1 408"), "{answer:?}");
-    assert!(started.elapsed() < Duration::from_secs(25));
+    let elapsed = started.elapsed();
+    assert!(elapsed >= STALLED_BODY_DEADLINE, "{elapsed:?}");
+    assert!(
+        elapsed < STALLED_BODY_DEADLINE + Duration::from_secs(15),
+        "{elapsed:?}"
+    );
     server.shutdown();
 }
 

@@ -11,6 +11,7 @@ use tvf_core::generate::{icosphere, perforated_plate};
 use tvf_core::SurfaceMesh;
 use tvf_design::ReducedBasis;
 use tvf_discretizations::{catalog_entry, DEFAULT_DISCRETIZATION};
+use tvf_editor::server::ServerDeadlines;
 use tvf_editor::{Editor, EditorServer, EditorSetup};
 use tvf_spectral::{compute_basis, BasisRequest};
 
@@ -31,12 +32,14 @@ pub fn icosphere_basis_for(id: &str) -> ReducedBasis {
                 .expect("catalog id")
                 .build(&mesh)
                 .expect("icosphere operators");
-            // The complete basis by the dense eigensolvers (exact, about 2 s here), of which the
-            // first 100 columns are the 100 lowest eigenfields.
-            let spectral = compute_basis(complex.as_ref(), &BasisRequest::complete())
-                .expect("icosphere basis");
-            let full = ReducedBasis::from_spectral(&spectral).expect("reduced basis");
+            // The 100 lowest eigenfields by the sparse eigensolver, as `tvf edit` computes them
+            // (rather than the complete basis by the dense eigensolvers, truncated: the same
+            // eigenvalues to round-off, in less time); the first 100 columns in case a cluster
+            // of equal eigenvalues brings more.
             let d = 100;
+            let spectral =
+                compute_basis(complex.as_ref(), &BasisRequest::fields(d)).expect("icosphere basis");
+            let full = ReducedBasis::from_spectral(&spectral).expect("reduced basis");
             let n = full.field_dimension();
             let rows = (0..n).flat_map(|r| full.row(r)[..d].to_vec()).collect();
             ReducedBasis::from_row_major(
@@ -57,6 +60,15 @@ pub fn icosphere_server() -> EditorServer {
 
 /// [`icosphere_server`] with the catalog entry `id`.
 pub fn icosphere_server_for(id: &str) -> EditorServer {
+    icosphere_server_with(id, ServerDeadlines::default())
+}
+
+/// [`icosphere_server`] whose clients have `deadlines` to send their requests.
+pub fn icosphere_server_with_deadlines(deadlines: ServerDeadlines) -> EditorServer {
+    icosphere_server_with(DEFAULT_DISCRETIZATION, deadlines)
+}
+
+fn icosphere_server_with(id: &str, deadlines: ServerDeadlines) -> EditorServer {
     let mesh = SurfaceMesh::from(icosphere(3));
     let complex = catalog_entry(id)
         .expect("catalog id")
@@ -70,7 +82,7 @@ pub fn icosphere_server_for(id: &str) -> EditorServer {
         complex,
     })
     .expect("editor starts");
-    EditorServer::start(editor, 0).expect("server starts")
+    EditorServer::start_with_deadlines(editor, 0, deadlines).expect("server starts")
 }
 
 /// The editor on a generated pair of pants (`perforated_plate(2, 8)`: flat, genus 0, three
