@@ -280,14 +280,16 @@ impl BasisFileBlocks {
         Ok(values)
     }
 
-    /// `U c` (`n1` values) summed field by field in basis order, as the loaded basis sums it
-    /// (`Σ_i c_i U[·, i]`, rows in chunks of [`ROW_CHUNK`], fields with `c_i = 0` skipped): the
-    /// fields of a chunk of basis indices formed from their stored columns (at most a block of
-    /// fields at a time), then added.
-    fn combine_fields(&self, c: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+    /// `U c` (`n1` values) for every `c` of `sets`, each summed field by field in basis order,
+    /// as the loaded basis sums it (`Σ_i c_i U[·, i]`, rows in chunks of [`ROW_CHUNK`], fields
+    /// with `c_i = 0` skipped): the fields of a chunk of basis indices formed from their stored
+    /// columns (at most a block of fields at a time), then added to every sum, so that the file
+    /// is read once however many sets there are (and each sum is the one set's alone, bit for
+    /// bit).
+    fn combine_fields(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
         let n1 = self.field_dimension();
-        let mut combined = vec![0.0; n1];
-        if n1 == 0 {
+        let mut combined = vec![vec![0.0; n1]; sets.len()];
+        if n1 == 0 || sets.is_empty() {
             return Ok(combined);
         }
         self.check_unchanged()?;
@@ -296,24 +298,26 @@ impl BasisFileBlocks {
         let mut fields = vec![0.0; n1 * per_chunk.min(self.len())];
         for first in (0..self.len()).step_by(per_chunk) {
             let chunk = first..(first + per_chunk).min(self.len());
-            if c[chunk.clone()].iter().all(|&x| x == 0.0) {
+            if sets.iter().all(|c| c[chunk.clone()].iter().all(|&x| x == 0.0)) {
                 continue;
             }
             let fields = &mut fields[..n1 * chunk.len()];
             self.form_fields(chunk.clone(), &mut buffers, fields)?;
-            let coefficients = &c[chunk];
-            combined
-                .par_chunks_mut(ROW_CHUNK)
-                .enumerate()
-                .for_each(|(block, out)| {
-                    let start = block * ROW_CHUNK;
-                    for (field, &c) in fields.chunks_exact(n1).zip(coefficients) {
-                        if c != 0.0 {
-                            let column = &field[start..start + out.len()];
-                            out.iter_mut().zip(column).for_each(|(o, x)| *o += c * x);
+            for (c, combined) in sets.iter().zip(&mut combined) {
+                let coefficients = &c[chunk.clone()];
+                combined
+                    .par_chunks_mut(ROW_CHUNK)
+                    .enumerate()
+                    .for_each(|(block, out)| {
+                        let start = block * ROW_CHUNK;
+                        for (field, &c) in fields.chunks_exact(n1).zip(coefficients) {
+                            if c != 0.0 {
+                                let column = &field[start..start + out.len()];
+                                out.iter_mut().zip(column).for_each(|(o, x)| *o += c * x);
+                            }
                         }
-                    }
-                });
+                    });
+            }
         }
         Ok(combined)
     }
@@ -431,8 +435,14 @@ impl FieldBasis for BasisFileBlocks {
     }
 
     fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
-        check_length("coefficients", self.len(), coefficients.len())?;
-        self.combine_fields(coefficients)
+        Ok(self.reconstruct_many(&[coefficients])?.remove(0))
+    }
+
+    fn reconstruct_many(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        for coefficients in sets {
+            check_length("coefficients", self.len(), coefficients.len())?;
+        }
+        self.combine_fields(sets)
     }
 
     fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
