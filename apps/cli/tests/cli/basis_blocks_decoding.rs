@@ -145,7 +145,7 @@ fn decompress_and_rate_distortion_read_a_basis_file_in_blocks() {
     let mut curves = Vec::new();
     for (basis, name) in [(&blocks, "blocks"), (&whole, "whole")] {
         let out = fx.path(&format!("{name}-rd"));
-        let args = ["--pairs", "5,20,50", "--bits", "8,16"];
+        let args = ["--pairs", "5,10,25", "--bits", "8,16"];
         let stderr = stderr_of(&run(&fx, "rate-distortion", &fx.field, basis, &args, &out, None));
         assert_eq!(stderr.contains("read in blocks"), name == "blocks", "{stderr}");
         curves.push(std::fs::read_to_string(out.join("rate_distortion.csv")).unwrap());
