@@ -5,9 +5,10 @@
 //! projection sums in another order). With a non-diagonal `M1` whose co-potentials do not fit one
 //! block (`$TVF_BASIS_BLOCK_BYTES` made small), `compress` and `decompress` load the basis whole
 //! instead, with a note, so that files made either way decode either way. Damaged basis files
-//! are refused naming the file, with nothing written.
+//! are refused naming the file, with nothing written (also by `edit`, which reads a basis file
+//! on demand).
 
-use super::common::{assert_success, tvf, write_field};
+use super::common::{assert_success, output_within, tvf, write_field};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 use tvf_core::generate::torus;
@@ -201,7 +202,7 @@ fn a_non_diagonal_mass_in_small_blocks_is_loaded_whole_for_the_basis_id() {
 }
 
 /// Cut short, or a payload bit flipped: `decompress` and `rate-distortion` refuse the basis file
-/// naming it and the problem, and write nothing.
+/// naming it and the problem, and write nothing; `edit` refuses it before serving.
 #[test]
 fn damaged_basis_files_are_refused_by_decompress_and_rate_distortion() {
     let fx = Fixture::new();
@@ -228,5 +229,11 @@ fn damaged_basis_files_are_refused_by_decompress_and_rate_distortion() {
             assert!(stderr.contains(&name) && stderr.contains(problem), "{command}: {stderr}");
             assert!(!out.exists(), "{command} wrote {}", out.display());
         }
+        let mut edit = tvf();
+        edit.arg("edit").arg(&fx.mesh).arg("--basis").arg(damaged);
+        let output = output_within(&mut edit, 120);
+        let stderr = String::from_utf8_lossy(&output.stderr).to_lowercase();
+        assert!(!output.status.success(), "edit: {stderr}");
+        assert!(stderr.contains(&name) && stderr.contains(problem), "edit: {stderr}");
     }
 }

@@ -2,8 +2,9 @@
 //! stored columns at a time, so that a basis larger than memory can project and synthesise
 //! fields (`tvf filter`, `tvf coefficients`, `tvf compress`), give the rows of `U` a spline's or
 //! soft design's constraints touch (`tvf spline`, `tvf design --reduced`) and every field once
-//! for the basis id of compressed files: only `n1`-vectors, the `d` eigenvalues, the requested
-//! rows and one block of columns (at most [`BLOCK_BYTES`], with its formed fields) are ever in
+//! for the basis id of compressed files (a row through a sparse operator reads only the stored
+//! entries it touches, a few reads per column, not a pass over the file): only `n1`-vectors, the
+//! `d` eigenvalues, the requested rows and one block of columns (at most [`BLOCK_BYTES`], with its formed fields) are ever in
 //! memory, never the `n1 × d` fields [`crate::load_basis`] forms.
 //!
 //! The projection goes through the stored eigenfunctions and the complex's sparse operators, as
@@ -370,6 +371,51 @@ impl BasisFileBlocks {
         Ok(())
     }
 
+    /// The values of `functionals` (none of them dense) on every stored column of `section`
+    /// (one vector per column, a value per functional), reading only the stored entries they
+    /// touch: nearby entries of a column in one read, so that a few rows cost a few reads per
+    /// column instead of a pass over the file. The same arithmetic as on a whole column, bit for
+    /// bit.
+    fn sparse_row_values(
+        &self,
+        section: Section,
+        functionals: &[RowFunctional],
+    ) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        if section.rows == 0 || section.count == 0 {
+            return Ok(Vec::new());
+        }
+        self.check_unchanged()?;
+        let mut needed: Vec<usize> = functionals.iter().flat_map(RowFunctional::entries).collect();
+        needed.sort_unstable();
+        needed.dedup();
+        let spans = entry_spans(&needed);
+        (0..section.count)
+            .into_par_iter()
+            .map(|column| {
+                let start = section.offset + (8 * section.rows * column) as u64;
+                let mut values = std::collections::HashMap::with_capacity(needed.len());
+                let mut bytes = Vec::new();
+                for &(low, high) in &spans {
+                    bytes.resize(8 * (high - low + 1), 0);
+                    self.file
+                        .read_exact_at(&mut bytes, start + 8 * low as u64)
+                        .map_err(|e| self.read_error(e.to_string()))?;
+                    for (j, b) in (low..=high).zip(bytes.chunks_exact(8)) {
+                        let value = f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+                        if !value.is_finite() {
+                            return Err(self.read_error("a stored value is no longer finite".into()));
+                        }
+                        values.insert(j, value);
+                    }
+                }
+                Ok(functionals
+                    .iter()
+                    .map(|f| f.apply_with(|j| values[&j]))
+                    .collect())
+            })
+            .collect()
+    }
+
     /// Per family (in stored section order), the basis index of each stored column.
     fn basis_indices(&self) -> [Vec<usize>; 3] {
         let mut indices = self.sections.map(|s| vec![0; s.count]);
@@ -465,11 +511,7 @@ impl FieldBasis for BasisFileBlocks {
             let functionals = self.row_functionals(family, rows);
             let section = self.sections[k];
             let mut first = 0;
-            self.for_each_block(section, |block| {
-                let values: Vec<Vec<f64>> = block
-                    .par_chunks_exact(section.rows)
-                    .map(|stored| functionals.iter().map(|f| f.apply(stored)).collect())
-                    .collect();
+            let mut store = |values: Vec<Vec<f64>>| {
                 for (j, column) in values.iter().enumerate() {
                     let i = indices[k][first + j];
                     for (row, &value) in out.iter_mut().zip(column) {
@@ -477,7 +519,19 @@ impl FieldBasis for BasisFileBlocks {
                     }
                 }
                 first += values.len();
-            })?;
+            };
+            if functionals.iter().any(|f| matches!(f, RowFunctional::Dense(_))) {
+                self.for_each_block(section, |block| {
+                    store(
+                        block
+                            .par_chunks_exact(section.rows)
+                            .map(|stored| functionals.iter().map(|f| f.apply(stored)).collect())
+                            .collect(),
+                    )
+                })?;
+            } else {
+                store(self.sparse_row_values(section, &functionals)?);
+            }
         }
         Ok(out)
     }
@@ -557,14 +611,47 @@ enum RowFunctional {
 impl RowFunctional {
     fn apply(&self, stored: &[f64]) -> f64 {
         match self {
-            Self::Sparse(entries, true) => entries.iter().map(|&(j, a)| a * stored[j]).sum(),
-            Self::Sparse(entries, false) => {
-                entries.iter().fold(0.0, |sum, &(j, a)| sum + a * stored[j])
-            }
             Self::Dense(w) => w.iter().zip(stored).map(|(a, b)| a * b).sum(),
-            Self::Entry(r) => stored[*r],
+            _ => self.apply_with(|j| stored[j]),
         }
     }
+
+    /// The functional of the stored column whose entry `j` is `stored(j)`, summed in the same
+    /// order whatever gives the entries.
+    fn apply_with(&self, stored: impl Fn(usize) -> f64) -> f64 {
+        match self {
+            Self::Sparse(entries, true) => entries.iter().map(|&(j, a)| a * stored(j)).sum(),
+            Self::Sparse(entries, false) => {
+                entries.iter().fold(0.0, |sum, &(j, a)| sum + a * stored(j))
+            }
+            Self::Dense(w) => w.iter().enumerate().map(|(j, a)| a * stored(j)).sum(),
+            Self::Entry(r) => stored(*r),
+        }
+    }
+
+    /// The stored entries a sparse functional reads (none for a dense one).
+    fn entries(&self) -> Vec<usize> {
+        match self {
+            Self::Sparse(entries, _) => entries.iter().map(|&(j, _)| j).collect(),
+            Self::Dense(_) => Vec::new(),
+            Self::Entry(r) => vec![*r],
+        }
+    }
+}
+
+/// Entries of a column closer than this many values are read together (512 bytes).
+const SPAN_GAP: usize = 64;
+
+/// The sorted entries `needed` grouped into inclusive spans `(low, high)` of nearby entries.
+fn entry_spans(needed: &[usize]) -> Vec<(usize, usize)> {
+    let mut spans: Vec<(usize, usize)> = Vec::new();
+    for &j in needed {
+        match spans.last_mut() {
+            Some((_, high)) if j <= *high + SPAN_GAP => *high = j,
+            _ => spans.push((j, j)),
+        }
+    }
+    spans
 }
 
 /// The entries of rows `rows` of `matrix`, by ascending column.
