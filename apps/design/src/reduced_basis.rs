@@ -56,7 +56,10 @@ struct OnDemandRows {
 impl std::fmt::Debug for OnDemandRows {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("OnDemandRows")
-            .field("read", &self.rows.iter().filter(|r| r.get().is_some()).count())
+            .field(
+                "read",
+                &self.rows.iter().filter(|r| r.get().is_some()).count(),
+            )
             .field("field_dimension", &self.rows.len())
             .field("len", &self.len)
             .finish()

@@ -11,7 +11,7 @@ use anyhow::{anyhow, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_spectral::{
-    check_computed_field, field_basis_id, decompress_with_progress, write_field_frames, BasisSize,
+    check_computed_field, decompress_with_progress, field_basis_id, write_field_frames, BasisSize,
     CompressedFields, FieldCodec,
 };
 

@@ -60,10 +60,10 @@ pub fn run(args: EditArgs, context: &RunContext) -> Result<()> {
     let (basis, complex) = match args.basis.options.basis.as_deref() {
         Some(path) if readable_in_blocks(path)? => {
             let blocks = open_basis_blocks(path, &mesh, complex)?;
-            let complex = args
-                .basis
-                .options
-                .discretization(context.catalog(), &mesh, &args.input)?;
+            let complex =
+                args.basis
+                    .options
+                    .discretization(context.catalog(), &mesh, &args.input)?;
             (ReducedBasis::on_demand(Arc::new(blocks))?, complex)
         }
         _ => {

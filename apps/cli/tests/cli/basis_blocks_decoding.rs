@@ -112,11 +112,9 @@ fn stderr_of(output: &Output) -> String {
 /// writes the fields, not the eigenfunctions.
 fn whole_copy(fx: &Fixture, eigenfunctions: &Path, name: &str) -> PathBuf {
     let mesh = load_mesh(&fx.mesh).unwrap().mesh.into_triangles().unwrap();
-    let complex = tvf_discretizations::Conforming::new(
-        &mesh,
-        tvf_discretizations::MassLumping::Barycentric,
-    )
-    .unwrap();
+    let complex =
+        tvf_discretizations::Conforming::new(&mesh, tvf_discretizations::MassLumping::Barycentric)
+            .unwrap();
     let key = tvf_spectral::BasisFileKey::new(&mesh, &complex);
     let basis = tvf_spectral::load_basis(eigenfunctions, &key, &complex).unwrap();
     let path = fx.path(name);
@@ -131,24 +129,51 @@ fn decompress_and_rate_distortion_read_a_basis_file_in_blocks() {
     let whole = whole_copy(&fx, &blocks, "whole.tvfb");
     let compressed = fx.path("frames.tvfc");
     let args = ["--pairs", "20", "--bits", "12"];
-    let stderr = stderr_of(&run(&fx, "compress", &fx.frames, &blocks, &args, &compressed, None));
+    let stderr = stderr_of(&run(
+        &fx,
+        "compress",
+        &fx.frames,
+        &blocks,
+        &args,
+        &compressed,
+        None,
+    ));
     assert!(stderr.contains("read in blocks"), "{stderr}");
     let mut decoded = Vec::new();
     for (basis, name) in [(&blocks, "blocks"), (&whole, "whole")] {
         let out = fx.path(&format!("{name}-decoded.npy"));
         let stderr = stderr_of(&run(&fx, "decompress", &compressed, basis, &[], &out, None));
-        assert_eq!(stderr.contains("read in blocks"), name == "blocks", "{stderr}");
+        assert_eq!(
+            stderr.contains("read in blocks"),
+            name == "blocks",
+            "{stderr}"
+        );
         decoded.push(read_face_vector_sequence(&out).unwrap());
     }
     assert_eq!(decoded[0].len(), 18);
-    assert_eq!(decoded[0], decoded[1], "decoded in blocks = loaded whole, bit for bit");
+    assert_eq!(
+        decoded[0], decoded[1],
+        "decoded in blocks = loaded whole, bit for bit"
+    );
 
     let mut curves = Vec::new();
     for (basis, name) in [(&blocks, "blocks"), (&whole, "whole")] {
         let out = fx.path(&format!("{name}-rd"));
         let args = ["--pairs", "5,10,25", "--bits", "8,16"];
-        let stderr = stderr_of(&run(&fx, "rate-distortion", &fx.field, basis, &args, &out, None));
-        assert_eq!(stderr.contains("read in blocks"), name == "blocks", "{stderr}");
+        let stderr = stderr_of(&run(
+            &fx,
+            "rate-distortion",
+            &fx.field,
+            basis,
+            &args,
+            &out,
+            None,
+        ));
+        assert_eq!(
+            stderr.contains("read in blocks"),
+            name == "blocks",
+            "{stderr}"
+        );
         curves.push(std::fs::read_to_string(out.join("rate_distortion.csv")).unwrap());
     }
     let rows = |csv: &str| -> Vec<Vec<String>> {
@@ -162,7 +187,10 @@ fn decompress_and_rate_distortion_read_a_basis_file_in_blocks() {
     for (found, expected) in found.iter().zip(&expected) {
         let last = found.len() - 1;
         assert_eq!(found[..last], expected[..last], "coding, pairs and sizes");
-        let (a, b): (f64, f64) = (found[last].parse().unwrap(), expected[last].parse().unwrap());
+        let (a, b): (f64, f64) = (
+            found[last].parse().unwrap(),
+            expected[last].parse().unwrap(),
+        );
         assert!((a - b).abs() <= 1e-12 * b, "error {a} against {b}");
     }
 }
@@ -180,22 +208,55 @@ fn a_non_diagonal_mass_in_small_blocks_is_loaded_whole_for_the_basis_id() {
         let compressed = fx.path("g.tvfc");
         let _ = std::fs::remove_file(&compressed);
         let args = ["--pairs", "20"];
-        let stderr =
-            stderr_of(&run(&fx, "compress", &fx.field, &basis, &args, &compressed, compress_blocks));
-        assert_eq!(stderr.contains("loaded whole"), compress_blocks.is_some(), "{stderr}");
+        let stderr = stderr_of(&run(
+            &fx,
+            "compress",
+            &fx.field,
+            &basis,
+            &args,
+            &compressed,
+            compress_blocks,
+        ));
+        assert_eq!(
+            stderr.contains("loaded whole"),
+            compress_blocks.is_some(),
+            "{stderr}"
+        );
         let out = fx.path("g.npy");
         let _ = std::fs::remove_file(&out);
-        let stderr =
-            stderr_of(&run(&fx, "decompress", &compressed, &basis, &[], &out, decompress_blocks));
-        assert_eq!(stderr.contains("loaded whole"), decompress_blocks.is_some(), "{stderr}");
+        let stderr = stderr_of(&run(
+            &fx,
+            "decompress",
+            &compressed,
+            &basis,
+            &[],
+            &out,
+            decompress_blocks,
+        ));
+        assert_eq!(
+            stderr.contains("loaded whole"),
+            decompress_blocks.is_some(),
+            "{stderr}"
+        );
         decoded.push(tvf_spectral::read_face_vectors(&out).unwrap());
     }
-    let scale = decoded[1].iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+    let scale = decoded[1]
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
     for (a, b) in decoded[0].iter().flatten().zip(decoded[1].iter().flatten()) {
         assert!((a - b).abs() <= 1e-13 * scale, "{a} against {b}");
     }
     // A block size that is not a number of bytes is refused, naming the variable.
-    let output = run(&fx, "compress", &fx.field, &basis, &["--pairs", "20"], &fx.path("x"), Some("lots"));
+    let output = run(
+        &fx,
+        "compress",
+        &fx.field,
+        &basis,
+        &["--pairs", "20"],
+        &fx.path("x"),
+        Some("lots"),
+    );
     assert!(!output.status.success());
     assert!(String::from_utf8_lossy(&output.stderr).contains("TVF_BASIS_BLOCK_BYTES"));
     assert!(!fx.path("x").exists());
@@ -208,7 +269,15 @@ fn damaged_basis_files_are_refused_by_decompress_and_rate_distortion() {
     let fx = Fixture::new();
     let basis = fx.basis("good.tvfb", &[]);
     let compressed = fx.path("c.tvfc");
-    stderr_of(&run(&fx, "compress", &fx.field, &basis, &["--pairs", "20"], &compressed, None));
+    stderr_of(&run(
+        &fx,
+        "compress",
+        &fx.field,
+        &basis,
+        &["--pairs", "20"],
+        &compressed,
+        None,
+    ));
     let bytes = std::fs::read(&basis).unwrap();
     let truncated = fx.path("truncated.tvfb");
     std::fs::write(&truncated, &bytes[..bytes.len() - 100]).unwrap();
@@ -226,7 +295,10 @@ fn damaged_basis_files_are_refused_by_decompress_and_rate_distortion() {
             let output = run(&fx, command, input, damaged, args, &out, None);
             let stderr = String::from_utf8_lossy(&output.stderr).to_lowercase();
             assert!(!output.status.success(), "{command}: {stderr}");
-            assert!(stderr.contains(&name) && stderr.contains(problem), "{command}: {stderr}");
+            assert!(
+                stderr.contains(&name) && stderr.contains(problem),
+                "{command}: {stderr}"
+            );
             assert!(!out.exists(), "{command} wrote {}", out.display());
         }
         let mut edit = tvf();
@@ -234,6 +306,9 @@ fn damaged_basis_files_are_refused_by_decompress_and_rate_distortion() {
         let output = output_within(&mut edit, 120);
         let stderr = String::from_utf8_lossy(&output.stderr).to_lowercase();
         assert!(!output.status.success(), "edit: {stderr}");
-        assert!(stderr.contains(&name) && stderr.contains(problem), "edit: {stderr}");
+        assert!(
+            stderr.contains(&name) && stderr.contains(problem),
+            "edit: {stderr}"
+        );
     }
 }

@@ -61,20 +61,33 @@ fn on_demand_equals_whole(id: &str, exact: bool) {
     save_computed_basis(&path, complex.as_ref(), &BasisRequest::fields(80), &key).unwrap();
     let whole = load_basis(&path, &key, complex.as_ref()).unwrap();
     let whole = editor(id, ReducedBasis::from_spectral(&whole).unwrap());
-    let blocks = BasisFileBlocks::open(&path, &key, complex).unwrap().unwrap();
+    let blocks = BasisFileBlocks::open(&path, &key, complex)
+        .unwrap()
+        .unwrap();
     let on_demand = editor(id, ReducedBasis::on_demand(Arc::new(blocks)).unwrap());
     for (step, op) in edits().iter().enumerate() {
         for editor in [&whole, &on_demand] {
             let op = EditOp::parse(op.to_string().as_bytes()).unwrap();
-            editor.edit(op).unwrap_or_else(|e| panic!("edit {step}: {e}"));
+            editor
+                .edit(op)
+                .unwrap_or_else(|e| panic!("edit {step}: {e}"));
         }
-        let (expected, found) = (whole.face_vectors().unwrap(), on_demand.face_vectors().unwrap());
+        let (expected, found) = (
+            whole.face_vectors().unwrap(),
+            on_demand.face_vectors().unwrap(),
+        );
         if exact {
             assert_eq!(found, expected, "field after edit {step}");
         } else {
-            let scale = expected.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+            let scale = expected
+                .iter()
+                .flatten()
+                .fold(0.0f64, |m, x| m.max(x.abs()));
             for (a, b) in found.iter().flatten().zip(expected.iter().flatten()) {
-                assert!((a - b).abs() <= 1e-6 * scale, "edit {step}: {a} against {b}");
+                assert!(
+                    (a - b).abs() <= 1e-6 * scale,
+                    "edit {step}: {a} against {b}"
+                );
             }
         }
     }

@@ -73,7 +73,10 @@ pub fn rate_distortion(
             Ok((file.to_bytes().len(), decoded))
         })
         .collect::<Result<Vec<_>, CompressionError>>()?;
-    let sets: Vec<&[f64]> = files.iter().map(|(_, decoded)| decoded.as_slice()).collect();
+    let sets: Vec<&[f64]> = files
+        .iter()
+        .map(|(_, decoded)| decoded.as_slice())
+        .collect();
     let decoded = basis.reconstruct_many(&sets)?;
     Ok(jobs
         .iter()

@@ -299,7 +299,10 @@ impl BasisFileBlocks {
         let mut fields = vec![0.0; n1 * per_chunk.min(self.len())];
         for first in (0..self.len()).step_by(per_chunk) {
             let chunk = first..(first + per_chunk).min(self.len());
-            if sets.iter().all(|c| c[chunk.clone()].iter().all(|&x| x == 0.0)) {
+            if sets
+                .iter()
+                .all(|c| c[chunk.clone()].iter().all(|&x| x == 0.0))
+            {
                 continue;
             }
             let fields = &mut fields[..n1 * chunk.len()];
@@ -385,7 +388,10 @@ impl BasisFileBlocks {
             return Ok(Vec::new());
         }
         self.check_unchanged()?;
-        let mut needed: Vec<usize> = functionals.iter().flat_map(RowFunctional::entries).collect();
+        let mut needed: Vec<usize> = functionals
+            .iter()
+            .flat_map(RowFunctional::entries)
+            .collect();
         needed.sort_unstable();
         needed.dedup();
         let spans = entry_spans(&needed);
@@ -403,7 +409,9 @@ impl BasisFileBlocks {
                     for (j, b) in (low..=high).zip(bytes.chunks_exact(8)) {
                         let value = f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
                         if !value.is_finite() {
-                            return Err(self.read_error("a stored value is no longer finite".into()));
+                            return Err(
+                                self.read_error("a stored value is no longer finite".into())
+                            );
                         }
                         values.insert(j, value);
                     }
@@ -520,7 +528,10 @@ impl FieldBasis for BasisFileBlocks {
                 }
                 first += values.len();
             };
-            if functionals.iter().any(|f| matches!(f, RowFunctional::Dense(_))) {
+            if functionals
+                .iter()
+                .any(|f| matches!(f, RowFunctional::Dense(_)))
+            {
                 self.for_each_block(section, |block| {
                     store(
                         block

@@ -78,7 +78,11 @@ fn decoding_in_blocks_equals_whole(
     let views: Vec<&[f64]> = sets.iter().map(Vec::as_slice).collect();
     let many = small.reconstruct_many(&views).unwrap();
     for ((set, found), expected) in sets.iter().zip(&many).zip(&grouped) {
-        assert_eq!(&small.reconstruct(set).unwrap(), found, "one pass, many sets");
+        assert_eq!(
+            &small.reconstruct(set).unwrap(),
+            found,
+            "one pass, many sets"
+        );
         if diagonal {
             assert_eq!(found, expected, "independent of the block size");
         } else {
@@ -116,7 +120,10 @@ fn rate_distortion_equals_whole(
             (expected.coding, expected.pairs, expected.bytes)
         );
         let error = (found.relative_error - expected.relative_error).abs();
-        assert!(error <= 1e-12 * expected.relative_error, "{found:?} {expected:?}");
+        assert!(
+            error <= 1e-12 * expected.relative_error,
+            "{found:?} {expected:?}"
+        );
     }
     // More pairs, smaller error (the curve is real, not constant).
     assert!(found[2].relative_error < found[0].relative_error);
