@@ -426,39 +426,25 @@ impl ReducedBasis {
     /// `x = U v` (`n1` values, multithreaded): one dot product per coefficient, or the
     /// synthesis of the basis the rows were read from.
     pub fn map(&self, coefficients: &[f64], field: &mut [f64]) -> Result<(), DesignError> {
-        match &self.fields {
-            ReducedFields::All(fields) => fields.map(coefficients, field),
-            ReducedFields::Sampled(sampled) => {
-                check_map(
-                    self.len(),
-                    self.field_dimension(),
-                    coefficients.len(),
-                    field.len(),
-                )?;
-                let mapped = sampled
-                    .basis
-                    .reconstruct(coefficients)
-                    .map_err(|e| DesignError::BadBasis(e.to_string()))?;
-                field.copy_from_slice(&mapped);
-                Ok(())
-            }
-            ReducedFields::OnDemand(on_demand) => {
-                check_map(
-                    self.len(),
-                    self.field_dimension(),
-                    coefficients.len(),
-                    field.len(),
-                )?;
-                let mut all = coefficients.to_vec();
-                all.resize(on_demand.basis.len(), 0.0);
-                let mapped = on_demand
-                    .basis
-                    .reconstruct(&all)
-                    .map_err(|e| DesignError::BadBasis(e.to_string()))?;
-                field.copy_from_slice(&mapped);
-                Ok(())
-            }
-        }
+        let basis = match &self.fields {
+            ReducedFields::All(fields) => return fields.map(coefficients, field),
+            ReducedFields::Sampled(sampled) => &sampled.basis,
+            ReducedFields::OnDemand(on_demand) => &on_demand.basis,
+        };
+        check_map(
+            self.len(),
+            self.field_dimension(),
+            coefficients.len(),
+            field.len(),
+        )?;
+        // The fields beyond the first `d` (a truncated basis read on demand) weigh zero.
+        let mut all = coefficients.to_vec();
+        all.resize(basis.len(), 0.0);
+        let mapped = basis
+            .reconstruct(&all)
+            .map_err(|e| DesignError::BadBasis(e.to_string()))?;
+        field.copy_from_slice(&mapped);
+        Ok(())
     }
 
     /// A single-precision copy of `U` for the fast map `x = U v` (each value rounded to nearest);

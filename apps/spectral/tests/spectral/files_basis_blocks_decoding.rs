@@ -6,6 +6,7 @@
 //! of other blocks of columns); a rate–distortion curve in blocks has the loaded basis's file
 //! sizes and its errors to `1e-12` relative (the projection `Uᵀ M1 v` sums in another order).
 
+use super::common::relative_difference;
 use std::path::Path;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::generate::icosphere;
@@ -15,17 +16,6 @@ use tvf_spectral::{
     save_computed_basis, BasisFileBlocks, BasisFileKey, BasisRequest, CoefficientCoding,
     FieldBasis, FieldCodec, FileStamp,
 };
-
-/// Largest difference of `a` and `b` relative to the largest magnitude of `b`.
-fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let worst = a
-        .iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    worst / scale
-}
 
 /// Frame `t` of a smooth time-dependent field (`n1` values).
 fn frame(n1: usize, t: usize) -> Vec<f64> {
