@@ -108,8 +108,6 @@ pub struct ResolvedBasis {
     pub discretization: BoxedComplex,
     /// The basis.
     pub basis: SpectralBasis,
-    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
-    pub mesh_fingerprint: u64,
 }
 
 impl BasisOptions {
@@ -141,7 +139,6 @@ impl BasisOptions {
         size: BasisSize,
         discretization: Option<BoxedComplex>,
     ) -> Result<ResolvedBasis> {
-        let mesh_fingerprint = mesh.fingerprint();
         if let Some(path) = &self.basis {
             let given = match &self.discretization.complex {
                 Some(_) => Some(self.discretization.build(catalog, mesh, input)?),
@@ -161,7 +158,6 @@ impl BasisOptions {
             return Ok(ResolvedBasis {
                 discretization: file.discretization,
                 basis: file.basis,
-                mesh_fingerprint,
             });
         }
         match size {
@@ -179,7 +175,6 @@ impl BasisOptions {
         Ok(ResolvedBasis {
             discretization,
             basis,
-            mesh_fingerprint,
         })
     }
 

@@ -1,6 +1,7 @@
 //! [`ReducedBasis`]: the eigenfields `U` stored row by row, with the eigenvalues, for the reduced
 //! solvers — every row, or only the rows the constraints touch with the map `x = U v` through a
-//! [`FieldBasis`] (a basis file read in blocks: a basis larger than memory); and
+//! [`FieldBasis`] (a basis file read in blocks: a basis larger than memory), read once up front
+//! or when a constraint first touches them (the interactive editor); and
 //! [`RowMajorFields`], the row-major `U` in `f64` or `f32` with the one multithreaded map
 //! `x = U v` both precisions share.
 
@@ -8,7 +9,8 @@ use crate::constraint::CompiledConstraint;
 use crate::error::DesignError;
 use rayon::prelude::*;
 use std::collections::HashMap;
-use std::sync::Arc;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::{Arc, OnceLock};
 use tvf_spectral::{FieldBasis, FieldFamily, SpectralBasis};
 
 /// Rows per parallel task in the maps `x = U v`.
@@ -35,6 +37,33 @@ enum ReducedFields {
     All(RowMajorFields<f64>),
     /// Some rows, and the basis they came from for `x = U v`.
     Sampled(SampledRows),
+    /// The rows read from a basis when a constraint first touches them.
+    OnDemand(OnDemandRows),
+}
+
+/// Rows of the first `len` fields of a basis, each read when a constraint first touches it
+/// ([`ReducedBasis::reduce_constraint`]) and kept.
+#[derive(Clone)]
+struct OnDemandRows {
+    /// One slot per field coefficient (`n1`), filled when the row is read (`len` values).
+    rows: Vec<OnceLock<Box<[f64]>>>,
+    /// The basis (`x = U v` is its synthesis).
+    basis: Arc<dyn FieldBasis>,
+    /// Fields used: the first `len` of `basis`.
+    len: usize,
+}
+
+impl std::fmt::Debug for OnDemandRows {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("OnDemandRows")
+            .field(
+                "read",
+                &self.rows.iter().filter(|r| r.get().is_some()).count(),
+            )
+            .field("field_dimension", &self.rows.len())
+            .field("len", &self.len)
+            .finish()
+    }
 }
 
 /// Rows of `U` at some field coefficients, with the basis that maps coefficients to fields.
@@ -154,6 +183,92 @@ impl ReducedBasis {
         Self::with_spectrum(fields, eigenvalues, harmonic)
     }
 
+    /// `basis` with no row read yet: each row is read when a constraint first touches it
+    /// ([`ReducedBasis::reduce_constraint`], through [`FieldBasis::rows`]: the whole basis's
+    /// rows bit for bit where the basis gives them so) and kept; `x = U v` is `basis`'s synthesis
+    /// and the single-precision copy ([`ReducedBasis::to_f32`]) is formed from one visit of its
+    /// fields. Memory: the rows read, not `U`.
+    pub fn on_demand(basis: Arc<dyn FieldBasis>) -> Result<Self, DesignError> {
+        let harmonic = harmonic_flags(basis.families());
+        let eigenvalues = basis.eigenvalues().to_vec();
+        let fields = ReducedFields::OnDemand(OnDemandRows {
+            rows: (0..basis.field_dimension())
+                .map(|_| OnceLock::new())
+                .collect(),
+            len: eigenvalues.len(),
+            basis,
+        });
+        Self::with_spectrum(fields, eigenvalues, harmonic)
+    }
+
+    /// The first `d` fields (`1 ≤ d ≤ len`): a row-major copy of an in-memory basis, the same
+    /// basis file read on demand, refused for a basis of some rows.
+    pub fn first_fields(&self, d: usize) -> Result<Self, DesignError> {
+        if d == 0 || d > self.len() {
+            return Err(DesignError::BadBasis(format!(
+                "{d} fields asked of a basis of {}",
+                self.len()
+            )));
+        }
+        let eigenvalues = self.eigenvalues[..d].to_vec();
+        let harmonic = self.harmonic[..d].to_vec();
+        match &self.fields {
+            ReducedFields::All(fields) => {
+                let n = fields.field_dimension;
+                let mut rows = Vec::with_capacity(n * d);
+                for r in 0..n {
+                    rows.extend_from_slice(&self.row(r)[..d]);
+                }
+                Self::from_row_major(rows, n, eigenvalues, harmonic)
+            }
+            ReducedFields::OnDemand(on_demand) => {
+                let rows = on_demand
+                    .rows
+                    .iter()
+                    .map(|row| match row.get() {
+                        Some(values) => OnceLock::from(Box::from(&values[..d])),
+                        None => OnceLock::new(),
+                    })
+                    .collect();
+                let fields = ReducedFields::OnDemand(OnDemandRows {
+                    rows,
+                    basis: on_demand.basis.clone(),
+                    len: d,
+                });
+                Self::with_spectrum(fields, eigenvalues, harmonic)
+            }
+            ReducedFields::Sampled(_) => Err(DesignError::BadBasis(
+                "a basis of the constraints' rows cannot be truncated".into(),
+            )),
+        }
+    }
+
+    /// Reads the rows `wanted` that a basis read on demand does not hold yet (nothing for the
+    /// other kinds).
+    fn read_missing_rows(&self, wanted: &[usize]) -> Result<(), DesignError> {
+        let ReducedFields::OnDemand(on_demand) = &self.fields else {
+            return Ok(());
+        };
+        let mut missing: Vec<usize> = wanted
+            .iter()
+            .copied()
+            .filter(|&j| on_demand.rows[j].get().is_none())
+            .collect();
+        missing.sort_unstable();
+        missing.dedup();
+        if missing.is_empty() {
+            return Ok(());
+        }
+        let rows = on_demand
+            .basis
+            .rows(&missing)
+            .map_err(|e| DesignError::BadBasis(e.to_string()))?;
+        for (&j, row) in missing.iter().zip(rows) {
+            let _ = on_demand.rows[j].set(Box::from(&row[..on_demand.len]));
+        }
+        Ok(())
+    }
+
     /// The field coefficients the rows of `constraints` touch, ascending, each once.
     pub fn touched_rows(constraints: &[CompiledConstraint]) -> Vec<usize> {
         let mut touched: Vec<usize> = constraints
@@ -211,6 +326,7 @@ impl ReducedBasis {
         match &self.fields {
             ReducedFields::All(fields) => fields.field_dimension,
             ReducedFields::Sampled(sampled) => sampled.basis.field_dimension(),
+            ReducedFields::OnDemand(on_demand) => on_demand.rows.len(),
         }
     }
 
@@ -228,7 +344,9 @@ impl ReducedBasis {
     ///
     /// # Panics
     /// If the basis holds only some rows ([`ReducedBasis::from_field_basis`]) and `r` is not one
-    /// of them (a programming error: [`ReducedBasis::reduce_constraint`] checks its rows).
+    /// of them, or reads rows on demand ([`ReducedBasis::on_demand`]) and no constraint touching
+    /// `r` was reduced yet (a programming error: [`ReducedBasis::reduce_constraint`] checks or
+    /// reads its rows).
     pub fn row(&self, r: usize) -> &[f64] {
         match &self.fields {
             ReducedFields::All(fields) => {
@@ -236,6 +354,9 @@ impl ReducedBasis {
                 &fields.rows[r * d..(r + 1) * d]
             }
             ReducedFields::Sampled(sampled) => &sampled.rows[sampled.index[&r]],
+            ReducedFields::OnDemand(on_demand) => on_demand.rows[r]
+                .get()
+                .unwrap_or_else(|| panic!("row {r} of the basis was not read")),
         }
     }
 
@@ -274,7 +395,8 @@ impl ReducedBasis {
     }
 
     /// The rows of `constraint` in reduced coordinates, `C̃_i U` (one `d`-vector per row);
-    /// fails if a row addresses a field coefficient `≥ n1`.
+    /// fails if a row addresses a field coefficient `≥ n1`. A basis read on demand reads the
+    /// rows it does not hold yet.
     pub fn reduce_constraint(
         &self,
         constraint: &CompiledConstraint,
@@ -296,33 +418,38 @@ impl ReducedBasis {
                 )));
             }
         }
+        let touched: Vec<usize> = constraint.rows.iter().flatten().map(|&(j, _)| j).collect();
+        self.read_missing_rows(&touched)?;
         Ok(constraint.rows.iter().map(|r| self.reduce_row(r)).collect())
     }
 
     /// `x = U v` (`n1` values, multithreaded): one dot product per coefficient, or the
     /// synthesis of the basis the rows were read from.
     pub fn map(&self, coefficients: &[f64], field: &mut [f64]) -> Result<(), DesignError> {
-        match &self.fields {
-            ReducedFields::All(fields) => fields.map(coefficients, field),
-            ReducedFields::Sampled(sampled) => {
-                check_map(
-                    self.len(),
-                    self.field_dimension(),
-                    coefficients.len(),
-                    field.len(),
-                )?;
-                let mapped = sampled
-                    .basis
-                    .reconstruct(coefficients)
-                    .map_err(|e| DesignError::BadBasis(e.to_string()))?;
-                field.copy_from_slice(&mapped);
-                Ok(())
-            }
-        }
+        let basis = match &self.fields {
+            ReducedFields::All(fields) => return fields.map(coefficients, field),
+            ReducedFields::Sampled(sampled) => &sampled.basis,
+            ReducedFields::OnDemand(on_demand) => &on_demand.basis,
+        };
+        check_map(
+            self.len(),
+            self.field_dimension(),
+            coefficients.len(),
+            field.len(),
+        )?;
+        // The fields beyond the first `d` (a truncated basis read on demand) weigh zero.
+        let mut all = coefficients.to_vec();
+        all.resize(basis.len(), 0.0);
+        let mapped = basis
+            .reconstruct(&all)
+            .map_err(|e| DesignError::BadBasis(e.to_string()))?;
+        field.copy_from_slice(&mapped);
+        Ok(())
     }
 
-    /// A single-precision copy of `U` for the fast map `x = U v`; refused for a basis that holds
-    /// only some rows.
+    /// A single-precision copy of `U` for the fast map `x = U v` (each value rounded to nearest);
+    /// of a basis read on demand, formed from one visit of its fields (one pass over a basis
+    /// file, which is not held in `f64`); refused for a basis that holds only some rows.
     pub fn to_f32(&self) -> Result<ReducedBasisF32, DesignError> {
         match &self.fields {
             ReducedFields::All(fields) => Ok(RowMajorFields {
@@ -333,6 +460,29 @@ impl ReducedBasis {
             ReducedFields::Sampled(_) => Err(DesignError::BadBasis(
                 "a basis of the constraints' rows has no row-major copy".into(),
             )),
+            ReducedFields::OnDemand(on_demand) => {
+                let (n, d) = (on_demand.rows.len(), on_demand.len);
+                // Fields are visited from several threads: each stores its column's bits.
+                let values: Vec<AtomicU32> = (0..n * d).map(|_| AtomicU32::new(0)).collect();
+                on_demand
+                    .basis
+                    .visit_fields(&|i, field| {
+                        if i < d {
+                            for (r, &x) in field.iter().enumerate() {
+                                values[r * d + i].store((x as f32).to_bits(), Ordering::Relaxed);
+                            }
+                        }
+                    })
+                    .map_err(|e| DesignError::BadBasis(e.to_string()))?;
+                Ok(RowMajorFields {
+                    rows: values
+                        .into_iter()
+                        .map(|v| f32::from_bits(v.into_inner()))
+                        .collect(),
+                    len: d,
+                    field_dimension: n,
+                })
+            }
         }
     }
 }
@@ -346,6 +496,11 @@ fn harmonic_flags(families: &[FieldFamily]) -> Vec<bool> {
 }
 
 impl<T: FieldScalar> RowMajorFields<T> {
+    /// The values, row by row (`n × d`).
+    pub fn values(&self) -> &[T] {
+        &self.rows
+    }
+
     /// Number of basis fields `d`.
     pub fn len(&self) -> usize {
         self.len

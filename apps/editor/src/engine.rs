@@ -173,19 +173,9 @@ fn fail(
     }
 }
 
-/// The first `d` fields of `basis` (a copy, row-major).
+/// The first `d` fields of `basis` ([`ReducedBasis::first_fields`]).
 fn truncate(basis: &ReducedBasis, d: usize) -> Result<ReducedBasis, EditorError> {
-    let n = basis.field_dimension();
-    let mut rows = Vec::with_capacity(n * d);
-    for r in 0..n {
-        rows.extend_from_slice(&basis.row(r)[..d]);
-    }
-    Ok(ReducedBasis::from_row_major(
-        rows,
-        n,
-        basis.eigenvalues()[..d].to_vec(),
-        basis.harmonic()[..d].to_vec(),
-    )?)
+    Ok(basis.first_fields(d)?)
 }
 
 fn build_session<'b>(
@@ -217,7 +207,10 @@ fn serve(
     inbox: &Receiver<Request>,
     started: &mut Option<Sender<Result<(), EditorError>>>,
 ) -> Served {
-    let mut mapper = FieldMapper::new(basis);
+    let mut mapper = match FieldMapper::new(basis) {
+        Ok(mapper) => mapper,
+        Err(error) => return Served::Failed(error.into(), rebuild.edit),
+    };
     let mut session = match open_session(state, basis, &mut mapper, rebuild, started) {
         Ok(session) => session,
         Err(failed) => return *failed,

@@ -10,7 +10,7 @@
 //! full-precision check and the `f32` field agree to `f32` rounding.
 
 use rayon::prelude::*;
-use tvf_design::{DesignError, ReducedBasis, SplineSession};
+use tvf_design::{DesignError, ReducedBasis, ReducedBasisF32, SplineSession};
 
 /// Rows of `U` per parallel task.
 const ROWS_PER_TASK: usize = 1024;
@@ -25,31 +25,22 @@ struct DragCache {
 
 /// `U` in single precision, row-major (`n1 × d`), with the drag cache.
 pub(crate) struct FieldMapper {
-    rows: Vec<f32>,
+    fields: ReducedBasisF32,
     d: usize,
     cache: Option<DragCache>,
 }
 
 impl FieldMapper {
-    /// An `f32` copy of `basis` (row-major).
-    pub(crate) fn new(basis: &ReducedBasis) -> Self {
-        let d = basis.len();
-        let n = basis.field_dimension();
-        let mut rows = vec![0.0f32; n * d];
-        rows.par_chunks_mut(d.max(1) * ROWS_PER_TASK)
-            .enumerate()
-            .for_each(|(block, out)| {
-                for (k, row) in out.chunks_mut(d.max(1)).enumerate() {
-                    for (o, &u) in row.iter_mut().zip(basis.row(block * ROWS_PER_TASK + k)) {
-                        *o = u as f32;
-                    }
-                }
-            });
-        Self {
-            rows,
+    /// An `f32` copy of `basis` (row-major, [`ReducedBasis::to_f32`]: of a basis file read on
+    /// demand, formed in one pass over the file).
+    pub(crate) fn new(basis: &ReducedBasis) -> Result<Self, DesignError> {
+        let fields = basis.to_f32()?;
+        let d = fields.len();
+        Ok(Self {
+            fields,
             d,
             cache: None,
-        }
+        })
     }
 
     /// `field = U v` (one pass over `U`); forgets the drag cache.
@@ -136,7 +127,7 @@ impl FieldMapper {
         let mut results = vec![[0.0f32; K]; n];
         results
             .par_chunks_mut(ROWS_PER_TASK)
-            .zip(self.rows.par_chunks(ROWS_PER_TASK * d))
+            .zip(self.fields.values().par_chunks(ROWS_PER_TASK * d))
             .for_each(|(out, block)| {
                 for (o, row) in out.iter_mut().zip(block.chunks_exact(d)) {
                     *o = dot_k(row, &inputs);

@@ -34,6 +34,14 @@ pub trait FieldBasis: Send + Sync {
     /// The field `U c` for coefficients `c` (`d` entries), `n1` entries.
     fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError>;
 
+    /// The fields `U c` of several coefficient vectors `sets` (`d` entries each), `n1` entries
+    /// each, equal bit for bit to [`FieldBasis::reconstruct`] of each: in parallel for a basis
+    /// in memory, in one pass over the file for a basis file read in blocks (so that decoding a
+    /// sequence or a rate–distortion curve reads the file once and holds one block).
+    fn reconstruct_many(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        sets.par_iter().map(|c| self.reconstruct(c)).collect()
+    }
+
     /// `M1` inner product `aᵀ M1 b` of two fields (`n1` entries each).
     fn inner_product(&self, a: &[f64], b: &[f64]) -> f64;
 

@@ -1,9 +1,8 @@
 //! `tvf compress`: a field, or a time-dependent sequence of fields, as the lowest `k` pairs of
 //! Fourier coefficients in a `.tvfc` file.
 
-use super::spectral_inputs::{read_frames, FieldArgs, ProjectionBasis};
+use super::spectral_inputs::{read_frames, FieldArgs};
 use crate::context::RunContext;
-use crate::progress::note;
 use crate::progress::Progress;
 use anyhow::Result;
 use clap::Args;
@@ -50,26 +49,10 @@ pub fn run(mut args: CompressArgs, context: &RunContext) -> Result<()> {
     let (frames, source) = read_frames(&field, inputs.fields()?)?;
     let (vertex_count, mesh_fingerprint) = (inputs.mesh.vertex_count(), inputs.mesh.fingerprint());
     // A `--basis` file of eigenfunctions is read in blocks, never loaded whole, unless its
-    // fields would not get the basis id of the loaded basis (a non-diagonal `M1` whose
-    // co-potentials do not fit one block), which `tvf decompress` checks.
-    let setup = match args
+    // fields would not get the basis id of the loaded basis, which `tvf decompress` checks.
+    let setup = args
         .inputs
-        .projection_basis(context.catalog(), inputs, size)?
-    {
-        ProjectionBasis::Blocks(blocks) if !blocks.forms_fields_as_loaded() => {
-            note(
-                "the basis has a non-diagonal M1 and more co-integrable fields than one block \
-                  holds: loaded whole, so that its id is the one `tvf decompress` checks",
-            );
-            let inputs = args.inputs.load(context.catalog())?;
-            ProjectionBasis::Whole(Box::new(args.inputs.setup(
-                context.catalog(),
-                inputs,
-                size,
-            )?))
-        }
-        setup => setup,
-    };
+        .identified_basis(context.catalog(), inputs, size)?;
     let basis = setup.basis();
     let coding = match args.bits {
         Some(bits) => CoefficientCoding::Quantized { bits },

@@ -1,6 +1,7 @@
-//! `tvf decompress`: the fields of a `.tvfc` file.
+//! `tvf decompress`: the fields of a `.tvfc` file (a `--basis` file of eigenfunctions read in
+//! blocks: the synthesis is the loaded basis's bit for bit where `M1` is diagonal).
 
-use super::spectral_inputs::inputs_for_mesh;
+use super::spectral_inputs::{identified_basis, inputs_for_mesh};
 use crate::basis_source::BasisSource;
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
@@ -10,7 +11,7 @@ use anyhow::{anyhow, Result};
 use clap::Args;
 use std::path::PathBuf;
 use tvf_spectral::{
-    basis_id, check_computed_field, decompress_with_progress, write_field_frames, BasisSize,
+    check_computed_field, decompress_with_progress, field_basis_id, write_field_frames, BasisSize,
     CompressedFields, FieldCodec,
 };
 
@@ -48,13 +49,22 @@ pub fn run(mut args: DecompressArgs, context: &RunContext) -> Result<()> {
     file.header
         .check_fits(&inputs.mesh, inputs.complex.as_ref())
         .map_err(|e| anyhow!("{}: {e}", compressed.display()))?;
-    // Without --basis or -k, compute the basis of as many pairs as the file keeps.
+    let mesh_fingerprint = inputs.mesh.fingerprint();
+    // Without --basis or -k, compute the basis of as many pairs as the file keeps. A `--basis`
+    // file of eigenfunctions is read in blocks (unless its fields would not get the loaded
+    // basis's id, which the file carries).
     let size = args
         .basis
         .size_or(BasisSize::Pairs(file.header.pairs as usize));
-    let setup = inputs.with_basis(context.catalog(), &args.input, &args.basis.options, size)?;
-    let id = basis_id(&setup.basis);
-    let codec = FieldCodec::for_file(&setup.basis, setup.mesh_fingerprint, id, &file.header)
+    let setup = identified_basis(
+        context.catalog(),
+        &args.input,
+        &args.basis.options,
+        inputs,
+        size,
+    )?;
+    let id = field_basis_id(setup.basis())?;
+    let codec = FieldCodec::for_file(setup.basis(), mesh_fingerprint, id, &file.header)
         .map_err(|e| anyhow::anyhow!("{}: {e}", compressed.display()))?;
     // A progress bar for sequences (plain lines off a terminal, nothing with `--quiet`).
     let count = file.frames.len();

@@ -1,11 +1,13 @@
 //! `tvf edit`: the interactive spline editor in the browser (a local server on 127.0.0.1).
 
+use super::spectral_inputs::{open_basis_blocks, readable_in_blocks};
 use crate::basis_source::BasisSource;
 use crate::context::RunContext;
 use crate::mesh_input::MeshInput;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::path::PathBuf;
+use std::sync::Arc;
 use tvf_core::discretization::HodgeOperators;
 use tvf_core::ValidationWarning;
 use tvf_design::ConstraintSet;
@@ -53,21 +55,36 @@ pub fn run(args: EditArgs, context: &RunContext) -> Result<()> {
         .as_deref()
         .map(|path| ConstraintSet::load_for(path, &mesh, complex.as_ref()))
         .transpose()?;
-    let computed_with = args.basis.options.basis.is_none().then_some(complex);
-    let resolved = args.basis.options.resolve_with(
-        context.catalog(),
-        &mesh,
-        &args.input,
-        args.basis.size(),
-        computed_with,
-    )?;
-    let basis = ReducedBasis::from_spectral(&resolved.basis)?;
+    // A basis file of eigenfunctions is read on demand (rows when constraints touch them, the
+    // editor's single-precision copy in one pass); any other basis is loaded and copied once.
+    let (basis, complex) = match args.basis.options.basis.as_deref() {
+        Some(path) if readable_in_blocks(path)? => {
+            let blocks = open_basis_blocks(path, &mesh, complex)?;
+            let complex =
+                args.basis
+                    .options
+                    .discretization(context.catalog(), &mesh, &args.input)?;
+            (ReducedBasis::on_demand(Arc::new(blocks))?, complex)
+        }
+        _ => {
+            let computed_with = args.basis.options.basis.is_none().then_some(complex);
+            let resolved = args.basis.options.resolve_with(
+                context.catalog(),
+                &mesh,
+                &args.input,
+                args.basis.size(),
+                computed_with,
+            )?;
+            let basis = ReducedBasis::from_spectral(&resolved.basis)?;
+            (basis, resolved.discretization)
+        }
+    };
     println!(
         "mesh            {} ({} faces), basis of {} fields, {}",
         args.input.label(),
         mesh.face_count(),
         basis.len(),
-        resolved.discretization.id()
+        complex.id()
     );
     // Vertex numbers in constraints count the referenced vertices only: say what was dropped.
     for warning in &loaded.report.warnings {
@@ -83,7 +100,7 @@ pub fn run(args: EditArgs, context: &RunContext) -> Result<()> {
         basis,
         constraints,
         basis_size: None,
-        complex: resolved.discretization,
+        complex,
     })
     .with_context(|| match &args.constraints {
         Some(path) => format!("starting the editor with {}", path.display()),

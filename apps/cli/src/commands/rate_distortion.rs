@@ -10,7 +10,7 @@ use clap::Args;
 use std::path::{Path, PathBuf};
 use tvf_figures::spectral_folders::write_rate_distortion_folder;
 use tvf_spectral::{
-    basis_id, rate_distortion, BasisSize, CoefficientCoding, FileStamp, RateDistortionReport,
+    field_basis_id, rate_distortion, BasisSize, CoefficientCoding, FileStamp, RateDistortionReport,
 };
 
 /// Arguments of `tvf rate-distortion`.
@@ -54,11 +54,17 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
     let size = args.inputs.basis.size_or(BasisSize::Pairs(largest));
     let inputs = args.inputs.load(context.catalog())?;
     let field = read_field(&field, inputs.fields()?)?;
-    let setup = args.inputs.setup(context.catalog(), inputs, size)?;
+    let (mesh_fingerprint, vertex_count) = (inputs.mesh.fingerprint(), inputs.mesh.vertex_count());
+    // A `--basis` file of eigenfunctions is read in blocks: every point projects once and
+    // synthesises its decoded field a block of columns at a time.
+    let setup = args
+        .inputs
+        .projection_basis(context.catalog(), inputs, size)?;
+    let basis = setup.basis();
     let stamp = FileStamp {
-        mesh_fingerprint: setup.mesh_fingerprint,
-        basis_id: basis_id(&setup.basis),
-        vertex_count: setup.mesh.vertex_count(),
+        mesh_fingerprint,
+        basis_id: field_basis_id(basis)?,
+        vertex_count,
     };
     let mut codings = vec![CoefficientCoding::Float64];
     codings.extend(
@@ -66,7 +72,7 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
             .iter()
             .map(|&bits| CoefficientCoding::Quantized { bits }),
     );
-    let points = rate_distortion(&setup.basis, &field, stamp, &args.ks, &codings)?;
+    let points = rate_distortion(basis, &field, stamp, &args.ks, &codings)?;
     let label = args.inputs.input.label();
     let mesh_name = Path::new(&label)
         .file_name()
@@ -83,7 +89,7 @@ pub fn run(mut args: RateDistortionArgs, context: &RunContext) -> Result<()> {
         .table_lines()
         .iter()
         .for_each(|line| report.line(line));
-    report.set("basis_fields", setup.basis.len());
+    report.set("basis_fields", basis.len());
     report.set("points", summary.points_json());
     summary
         .comparison_lines()

@@ -2,7 +2,8 @@
 //! share: their `MESH FIELD` and basis flags ([`FieldArgs`]); a mesh with its discretization, against which the other inputs are checked first
 //! ([`SpectralInputs`]), then its basis (a basis file checked to belong to the mesh, or a cached
 //! or computed basis, see [`crate::basis_source`]; for the commands that only project and
-//! synthesise, a basis file of eigenfunctions read in blocks: [`ProjectionBasis`]); field files
+//! synthesise, a basis file of eigenfunctions read in blocks: [`ProjectionBasis`], with blocks of
+//! at most `$TVF_BASIS_BLOCK_BYTES`); field files
 //! (one field, or a sequence of frames) read as tangent fields.
 
 use crate::basis_source::{BasisOptions, BasisSource};
@@ -84,28 +85,80 @@ impl FieldArgs {
     }
 
     /// The basis of a command that only projects fields on it and synthesises fields from it
-    /// (`filter`, `coefficients`): a `--basis` file in the eigenfunctions layout (format
-    /// version 3) is checked whole and then read a block of columns at a time, never loaded;
-    /// any other basis as [`FieldArgs::setup`] gives it.
+    /// ([`projection_basis`]).
     pub fn projection_basis(
         &self,
         catalog: &Catalog,
         inputs: SpectralInputs,
         size: BasisSize,
     ) -> Result<ProjectionBasis> {
-        let Some(path) = self.basis_file() else {
-            return Ok(ProjectionBasis::Whole(Box::new(
-                self.setup(catalog, inputs, size)?,
-            )));
-        };
-        if !readable_in_blocks(path)? {
-            return Ok(ProjectionBasis::Whole(Box::new(
-                self.setup(catalog, inputs, size)?,
-            )));
-        }
-        let blocks = open_basis_blocks(path, &inputs.mesh, inputs.complex)?;
-        Ok(ProjectionBasis::Blocks(Box::new(blocks)))
+        projection_basis(catalog, &self.input, &self.basis.options, inputs, size)
     }
+
+    /// The basis of a command that writes compressed files ([`identified_basis`]).
+    pub fn identified_basis(
+        &self,
+        catalog: &Catalog,
+        inputs: SpectralInputs,
+        size: BasisSize,
+    ) -> Result<ProjectionBasis> {
+        identified_basis(catalog, &self.input, &self.basis.options, inputs, size)
+    }
+}
+
+/// The basis of a command that only projects fields on it and synthesises fields from it
+/// (`filter`, `coefficients`, `rate-distortion`): a `--basis` file in the eigenfunctions layout
+/// (format version 3) is checked whole and then read a block of columns at a time, never
+/// loaded; any other basis as [`SpectralInputs::with_basis`] gives it.
+pub fn projection_basis(
+    catalog: &Catalog,
+    input: &MeshInput,
+    options: &BasisOptions,
+    inputs: SpectralInputs,
+    size: BasisSize,
+) -> Result<ProjectionBasis> {
+    match options.basis.as_deref() {
+        Some(path) if readable_in_blocks(path)? => {
+            let blocks = open_basis_blocks(path, &inputs.mesh, inputs.complex)?;
+            Ok(ProjectionBasis::Blocks(Box::new(blocks)))
+        }
+        _ => Ok(ProjectionBasis::Whole(Box::new(
+            inputs.with_basis(catalog, input, options, size)?,
+        ))),
+    }
+}
+
+/// The basis of a command whose compressed files carry the basis id (`compress`,
+/// `decompress`): [`projection_basis`], except that a file read in blocks whose fields would
+/// not get the id of the loaded basis (a non-diagonal `M1` whose co-potentials do not fit one
+/// block: [`BasisFileBlocks::forms_fields_as_loaded`]) is loaded whole instead, with a note, so
+/// that a file compressed in blocks decodes with the basis loaded whole and the other way round.
+pub fn identified_basis(
+    catalog: &Catalog,
+    input: &MeshInput,
+    options: &BasisOptions,
+    inputs: SpectralInputs,
+    size: BasisSize,
+) -> Result<ProjectionBasis> {
+    let path = match options.basis.as_deref() {
+        Some(path) if readable_in_blocks(path)? => path,
+        _ => return projection_basis(catalog, input, options, inputs, size),
+    };
+    let blocks = open_basis_blocks(path, &inputs.mesh, inputs.complex)?;
+    if blocks.forms_fields_as_loaded() {
+        return Ok(ProjectionBasis::Blocks(Box::new(blocks)));
+    }
+    note(
+        "the basis has a non-diagonal M1 and more co-integrable fields than one block holds: \
+         loaded whole, so that its id is the loaded basis's (the one compressed files carry)",
+    );
+    let inputs = SpectralInputs {
+        mesh: inputs.mesh,
+        complex: blocks.into_complex(),
+    };
+    Ok(ProjectionBasis::Whole(Box::new(
+        inputs.with_basis(catalog, input, options, size)?,
+    )))
 }
 
 /// Whether the basis file `path` is read in blocks ([`BasisFileBlocks`]): a file in the
@@ -128,8 +181,10 @@ pub fn open_basis_blocks(
     let key = BasisFileKey::new(mesh, complex.as_ref());
     let start = std::time::Instant::now();
     let id = complex.id().to_string();
+    let block_bytes = block_bytes()?;
     match BasisFileBlocks::open(path, &key, complex)? {
         Some(blocks) => {
+            let blocks = blocks.with_block_bytes(block_bytes);
             note(format!(
                 "using basis {} ({} fields, {id}, checked in {:.2} s, read in blocks)",
                 path.display(),
@@ -145,7 +200,28 @@ pub fn open_basis_blocks(
     }
 }
 
-/// A basis for projections and syntheses ([`FieldArgs::projection_basis`]).
+/// Environment variable setting the largest block, in bytes, in which a basis file is read
+/// (default [`tvf_spectral::BLOCK_BYTES`], 64 MiB; at least one stored column is read at a time
+/// whatever it says): less memory for slower reading, or the other way round.
+pub const BLOCK_BYTES_VARIABLE: &str = "TVF_BASIS_BLOCK_BYTES";
+
+/// The block size of [`BLOCK_BYTES_VARIABLE`], else the default; a value that is not a positive
+/// whole number of bytes is an error.
+fn block_bytes() -> Result<usize> {
+    let Some(raw) = std::env::var_os(BLOCK_BYTES_VARIABLE) else {
+        return Ok(tvf_spectral::BLOCK_BYTES);
+    };
+    let value = raw.to_string_lossy().into_owned();
+    match value.trim().parse::<usize>() {
+        Ok(bytes) if bytes > 0 => Ok(bytes),
+        _ => anyhow::bail!(
+            "environment variable {BLOCK_BYTES_VARIABLE} = '{value}': a positive number of \
+             bytes, e.g. 67108864"
+        ),
+    }
+}
+
+/// A basis for projections and syntheses ([`projection_basis`]).
 pub enum ProjectionBasis {
     /// A basis file read a block of columns at a time.
     Blocks(Box<BasisFileBlocks>),
@@ -179,18 +255,14 @@ impl ProjectionBasis {
     }
 }
 
-/// A mesh, its face fields and a basis that belongs to it.
+/// A basis that belongs to a mesh, with the mesh's discretization.
 pub struct SpectralSetup {
-    /// The mesh.
-    pub mesh: SurfaceMesh,
     /// The discretization the basis belongs to.
     pub complex: BoxedComplex,
     /// The basis (from `--basis`, the cache, or computed).
     pub basis: SpectralBasis,
     /// The discretization the basis was computed with (its id, as in basis files).
     pub discretization: String,
-    /// [`SurfaceMesh::fingerprint`](tvf_core::SurfaceMesh::fingerprint) of the mesh.
-    pub mesh_fingerprint: u64,
 }
 
 /// A mesh and the discretization its basis will have, before the basis is loaded or
@@ -235,9 +307,7 @@ impl SpectralInputs {
         Ok(SpectralSetup {
             discretization: resolved.discretization.id().to_string(),
             complex: resolved.discretization,
-            mesh_fingerprint: resolved.mesh_fingerprint,
             basis: resolved.basis,
-            mesh: self.mesh,
         })
     }
 }

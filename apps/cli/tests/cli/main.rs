@@ -4,6 +4,7 @@
 
 mod bad_input;
 mod basis;
+mod basis_blocks_decoding;
 mod cache_safety;
 mod check;
 mod clear_errors;

@@ -5,6 +5,7 @@
 mod browser;
 mod common;
 mod every_discretization;
+mod on_demand_basis;
 mod protocol;
 mod request_fuzz;
 mod security;

@@ -152,6 +152,11 @@ impl<'a> FieldCodec<'a> {
         Ok(codec)
     }
 
+    /// The basis the codec projects on and synthesises from.
+    pub fn basis(&self) -> &'a dyn FieldBasis {
+        self.basis
+    }
+
     /// The header of files this codec writes.
     pub fn header(&self) -> &TvfcHeader {
         &self.header
@@ -259,16 +264,20 @@ impl<'a> FieldCodec<'a> {
         })
     }
 
-    /// Decompresses every frame of a file made by this codec (frames in parallel).
+    /// Decompresses every frame of a file made by this codec (the syntheses through
+    /// [`FieldBasis::reconstruct_many`]: a basis file read in blocks is read once).
     pub fn decompress(&self, file: &CompressedFields) -> Result<Vec<Vec<f64>>, CompressionError> {
         if file.header != self.header {
             return Err(CompressionError::InvalidHeader(
                 "file header does not match the codec (use FieldCodec::for_file)".to_string(),
             ));
         }
-        file.frames
+        let coefficients = file
+            .frames
             .par_iter()
-            .map(|frame| self.decode(frame))
-            .collect()
+            .map(|frame| self.decode_coefficients(frame))
+            .collect::<Result<Vec<_>, _>>()?;
+        let sets: Vec<&[f64]> = coefficients.iter().map(Vec::as_slice).collect();
+        Ok(self.basis.reconstruct_many(&sets)?)
     }
 }

@@ -2,11 +2,11 @@
 //! for several numbers of pairs and coefficient codings. Every point is a real file: its size is
 //! the serialised `.tvfc` length and its error is measured on the decoded field.
 
-use crate::basis::SpectralBasis;
 use crate::codec::compress::FieldCodec;
 use crate::codec::compression_error::CompressionError;
 use crate::codec::sequence::relative_l2_error;
 use crate::formats::compressed_file::{CoefficientCoding, CompressedFields};
+use crate::FieldBasis;
 use rayon::prelude::*;
 
 /// One compressed file of the curve.
@@ -36,9 +36,12 @@ pub struct FileStamp {
 }
 
 /// Compresses `field` (`n1` pointwise coefficients) once for every `(pairs, coding)` combination
-/// and measures size and error; points in parallel, ordered by coding then pairs as given.
+/// and measures size and error; points in parallel, ordered by coding then pairs as given. The
+/// basis is any [`FieldBasis`]: a basis file read in blocks synthesises each point's decoded
+/// field in one pass over the file (its points equal the loaded basis's to round-off: the
+/// projection sums in another order).
 pub fn rate_distortion(
-    basis: &SpectralBasis,
+    basis: &dyn FieldBasis,
     field: &[f64],
     stamp: FileStamp,
     pairs: &[usize],
@@ -55,25 +58,38 @@ pub fn rate_distortion(
         .iter()
         .flat_map(|&coding| pairs.iter().map(move |&k| (coding, k)))
         .collect();
-    jobs.par_iter()
+    // Every point's file and decoded coefficients in parallel, then all decoded fields in one
+    // synthesis (one pass over a basis file read in blocks).
+    let files = jobs
+        .par_iter()
         .map(|&(coding, k)| {
             let codec = FieldCodec::new(basis, stamp.mesh_fingerprint, stamp.basis_id, k, coding)?;
             let frame = codec.encode_coefficients(&coefficients)?;
-            let decoded = codec.decode(&frame)?;
+            let decoded = codec.decode_coefficients(&frame)?;
             let file = CompressedFields {
                 header: *codec.header(),
                 frames: vec![frame],
             };
-            let bytes = file.to_bytes().len();
-            Ok(RatePoint {
-                coding,
-                pairs: k,
-                bytes,
-                bits_per_vertex: 8.0 * bytes as f64 / stamp.vertex_count.max(1) as f64,
-                relative_error: relative_l2_error(basis.field_mass(), field, &decoded),
-            })
+            Ok((file.to_bytes().len(), decoded))
         })
-        .collect()
+        .collect::<Result<Vec<_>, CompressionError>>()?;
+    let sets: Vec<&[f64]> = files
+        .iter()
+        .map(|(_, decoded)| decoded.as_slice())
+        .collect();
+    let decoded = basis.reconstruct_many(&sets)?;
+    Ok(jobs
+        .iter()
+        .zip(&files)
+        .zip(&decoded)
+        .map(|((&(coding, k), &(bytes, _)), decoded)| RatePoint {
+            coding,
+            pairs: k,
+            bytes,
+            bits_per_vertex: 8.0 * bytes as f64 / stamp.vertex_count.max(1) as f64,
+            relative_error: relative_l2_error(basis.field_mass(), field, decoded),
+        })
+        .collect())
 }
 
 /// For every `f64` point, the smallest quantised file with an error at most as large:

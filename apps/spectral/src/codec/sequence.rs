@@ -135,20 +135,29 @@ pub fn compress_with_progress(
     Ok((file, report))
 }
 
-/// Decodes every frame of `file` (made by `codec`, see [`FieldCodec::for_file`]) in parallel,
-/// calling `on_frame(done)` each time a frame has been decoded.
+/// Frames decoded together by [`decompress_with_progress`]: one synthesis
+/// ([`crate::FieldBasis::reconstruct_many`]) per group, so that a basis file read in blocks is
+/// read once per group, not once per frame, and progress is reported per group.
+const DECODE_GROUP: usize = 16;
+
+/// Decodes every frame of `file` (made by `codec`, see [`FieldCodec::for_file`]), a group of
+/// [`DECODE_GROUP`] frames at a time (each group's coefficients in parallel, then synthesised
+/// together), calling `on_frame(done)` after each group. Each field is the one
+/// [`FieldCodec::decode`] gives, bit for bit.
 pub fn decompress_with_progress(
     codec: &FieldCodec<'_>,
     file: &CompressedFields,
     on_frame: &(dyn Fn(usize) + Sync),
 ) -> Result<Vec<Vec<f64>>, CompressionError> {
-    let done = AtomicUsize::new(0);
-    file.frames
-        .par_iter()
-        .map(|payload| {
-            let field = codec.decode(payload)?;
-            on_frame(done.fetch_add(1, Ordering::Relaxed) + 1);
-            Ok(field)
-        })
-        .collect()
+    let mut fields = Vec::with_capacity(file.frames.len());
+    for group in file.frames.chunks(DECODE_GROUP) {
+        let coefficients = group
+            .par_iter()
+            .map(|payload| codec.decode_coefficients(payload))
+            .collect::<Result<Vec<_>, _>>()?;
+        let sets: Vec<&[f64]> = coefficients.iter().map(Vec::as_slice).collect();
+        fields.extend(codec.basis().reconstruct_many(&sets)?);
+        on_frame(fields.len());
+    }
+    Ok(fields)
 }

@@ -2,8 +2,9 @@
 //! stored columns at a time, so that a basis larger than memory can project and synthesise
 //! fields (`tvf filter`, `tvf coefficients`, `tvf compress`), give the rows of `U` a spline's or
 //! soft design's constraints touch (`tvf spline`, `tvf design --reduced`) and every field once
-//! for the basis id of compressed files: only `n1`-vectors, the `d` eigenvalues, the requested
-//! rows and one block of columns (at most [`BLOCK_BYTES`], with its formed fields) are ever in
+//! for the basis id of compressed files (a row through a sparse operator reads only the stored
+//! entries it touches, a few reads per column, not a pass over the file): only `n1`-vectors, the
+//! `d` eigenvalues, the requested rows and one block of columns (at most [`BLOCK_BYTES`], with its formed fields) are ever in
 //! memory, never the `n1 × d` fields [`crate::load_basis`] forms.
 //!
 //! The projection goes through the stored eigenfunctions and the complex's sparse operators, as
@@ -280,14 +281,16 @@ impl BasisFileBlocks {
         Ok(values)
     }
 
-    /// `U c` (`n1` values) summed field by field in basis order, as the loaded basis sums it
-    /// (`Σ_i c_i U[·, i]`, rows in chunks of [`ROW_CHUNK`], fields with `c_i = 0` skipped): the
-    /// fields of a chunk of basis indices formed from their stored columns (at most a block of
-    /// fields at a time), then added.
-    fn combine_fields(&self, c: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+    /// `U c` (`n1` values) for every `c` of `sets`, each summed field by field in basis order,
+    /// as the loaded basis sums it (`Σ_i c_i U[·, i]`, rows in chunks of [`ROW_CHUNK`], fields
+    /// with `c_i = 0` skipped): the fields of a chunk of basis indices formed from their stored
+    /// columns (at most a block of fields at a time), then added to every sum, so that the file
+    /// is read once however many sets there are (and each sum is the one set's alone, bit for
+    /// bit).
+    fn combine_fields(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
         let n1 = self.field_dimension();
-        let mut combined = vec![0.0; n1];
-        if n1 == 0 {
+        let mut combined = vec![vec![0.0; n1]; sets.len()];
+        if n1 == 0 || sets.is_empty() {
             return Ok(combined);
         }
         self.check_unchanged()?;
@@ -296,24 +299,29 @@ impl BasisFileBlocks {
         let mut fields = vec![0.0; n1 * per_chunk.min(self.len())];
         for first in (0..self.len()).step_by(per_chunk) {
             let chunk = first..(first + per_chunk).min(self.len());
-            if c[chunk.clone()].iter().all(|&x| x == 0.0) {
+            if sets
+                .iter()
+                .all(|c| c[chunk.clone()].iter().all(|&x| x == 0.0))
+            {
                 continue;
             }
             let fields = &mut fields[..n1 * chunk.len()];
             self.form_fields(chunk.clone(), &mut buffers, fields)?;
-            let coefficients = &c[chunk];
-            combined
-                .par_chunks_mut(ROW_CHUNK)
-                .enumerate()
-                .for_each(|(block, out)| {
-                    let start = block * ROW_CHUNK;
-                    for (field, &c) in fields.chunks_exact(n1).zip(coefficients) {
-                        if c != 0.0 {
-                            let column = &field[start..start + out.len()];
-                            out.iter_mut().zip(column).for_each(|(o, x)| *o += c * x);
+            for (c, combined) in sets.iter().zip(&mut combined) {
+                let coefficients = &c[chunk.clone()];
+                combined
+                    .par_chunks_mut(ROW_CHUNK)
+                    .enumerate()
+                    .for_each(|(block, out)| {
+                        let start = block * ROW_CHUNK;
+                        for (field, &c) in fields.chunks_exact(n1).zip(coefficients) {
+                            if c != 0.0 {
+                                let column = &field[start..start + out.len()];
+                                out.iter_mut().zip(column).for_each(|(o, x)| *o += c * x);
+                            }
                         }
-                    }
-                });
+                    });
+            }
         }
         Ok(combined)
     }
@@ -364,6 +372,56 @@ impl BasisFileBlocks {
                 });
         }
         Ok(())
+    }
+
+    /// The values of `functionals` (none of them dense) on every stored column of `section`
+    /// (one vector per column, a value per functional), reading only the stored entries they
+    /// touch: nearby entries of a column in one read, so that a few rows cost a few reads per
+    /// column instead of a pass over the file. The same arithmetic as on a whole column, bit for
+    /// bit.
+    fn sparse_row_values(
+        &self,
+        section: Section,
+        functionals: &[RowFunctional],
+    ) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        if section.rows == 0 || section.count == 0 {
+            return Ok(Vec::new());
+        }
+        self.check_unchanged()?;
+        let mut needed: Vec<usize> = functionals
+            .iter()
+            .flat_map(RowFunctional::entries)
+            .collect();
+        needed.sort_unstable();
+        needed.dedup();
+        let spans = entry_spans(&needed);
+        (0..section.count)
+            .into_par_iter()
+            .map(|column| {
+                let start = section.offset + (8 * section.rows * column) as u64;
+                let mut values = std::collections::HashMap::with_capacity(needed.len());
+                let mut bytes = Vec::new();
+                for &(low, high) in &spans {
+                    bytes.resize(8 * (high - low + 1), 0);
+                    self.file
+                        .read_exact_at(&mut bytes, start + 8 * low as u64)
+                        .map_err(|e| self.read_error(e.to_string()))?;
+                    for (j, b) in (low..=high).zip(bytes.chunks_exact(8)) {
+                        let value = f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+                        if !value.is_finite() {
+                            return Err(
+                                self.read_error("a stored value is no longer finite".into())
+                            );
+                        }
+                        values.insert(j, value);
+                    }
+                }
+                Ok(functionals
+                    .iter()
+                    .map(|f| f.apply_with(|j| values[&j]))
+                    .collect())
+            })
+            .collect()
     }
 
     /// Per family (in stored section order), the basis index of each stored column.
@@ -431,8 +489,14 @@ impl FieldBasis for BasisFileBlocks {
     }
 
     fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
-        check_length("coefficients", self.len(), coefficients.len())?;
-        self.combine_fields(coefficients)
+        Ok(self.reconstruct_many(&[coefficients])?.remove(0))
+    }
+
+    fn reconstruct_many(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        for coefficients in sets {
+            check_length("coefficients", self.len(), coefficients.len())?;
+        }
+        self.combine_fields(sets)
     }
 
     fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
@@ -455,11 +519,7 @@ impl FieldBasis for BasisFileBlocks {
             let functionals = self.row_functionals(family, rows);
             let section = self.sections[k];
             let mut first = 0;
-            self.for_each_block(section, |block| {
-                let values: Vec<Vec<f64>> = block
-                    .par_chunks_exact(section.rows)
-                    .map(|stored| functionals.iter().map(|f| f.apply(stored)).collect())
-                    .collect();
+            let mut store = |values: Vec<Vec<f64>>| {
                 for (j, column) in values.iter().enumerate() {
                     let i = indices[k][first + j];
                     for (row, &value) in out.iter_mut().zip(column) {
@@ -467,7 +527,22 @@ impl FieldBasis for BasisFileBlocks {
                     }
                 }
                 first += values.len();
-            })?;
+            };
+            if functionals
+                .iter()
+                .any(|f| matches!(f, RowFunctional::Dense(_)))
+            {
+                self.for_each_block(section, |block| {
+                    store(
+                        block
+                            .par_chunks_exact(section.rows)
+                            .map(|stored| functionals.iter().map(|f| f.apply(stored)).collect())
+                            .collect(),
+                    )
+                })?;
+            } else {
+                store(self.sparse_row_values(section, &functionals)?);
+            }
         }
         Ok(out)
     }
@@ -547,14 +622,47 @@ enum RowFunctional {
 impl RowFunctional {
     fn apply(&self, stored: &[f64]) -> f64 {
         match self {
-            Self::Sparse(entries, true) => entries.iter().map(|&(j, a)| a * stored[j]).sum(),
-            Self::Sparse(entries, false) => {
-                entries.iter().fold(0.0, |sum, &(j, a)| sum + a * stored[j])
-            }
             Self::Dense(w) => w.iter().zip(stored).map(|(a, b)| a * b).sum(),
-            Self::Entry(r) => stored[*r],
+            _ => self.apply_with(|j| stored[j]),
         }
     }
+
+    /// The functional of the stored column whose entry `j` is `stored(j)`, summed in the same
+    /// order whatever gives the entries.
+    fn apply_with(&self, stored: impl Fn(usize) -> f64) -> f64 {
+        match self {
+            Self::Sparse(entries, true) => entries.iter().map(|&(j, a)| a * stored(j)).sum(),
+            Self::Sparse(entries, false) => {
+                entries.iter().fold(0.0, |sum, &(j, a)| sum + a * stored(j))
+            }
+            Self::Dense(w) => w.iter().enumerate().map(|(j, a)| a * stored(j)).sum(),
+            Self::Entry(r) => stored(*r),
+        }
+    }
+
+    /// The stored entries a sparse functional reads (none for a dense one).
+    fn entries(&self) -> Vec<usize> {
+        match self {
+            Self::Sparse(entries, _) => entries.iter().map(|&(j, _)| j).collect(),
+            Self::Dense(_) => Vec::new(),
+            Self::Entry(r) => vec![*r],
+        }
+    }
+}
+
+/// Entries of a column closer than this many values are read together (512 bytes).
+const SPAN_GAP: usize = 64;
+
+/// The sorted entries `needed` grouped into inclusive spans `(low, high)` of nearby entries.
+fn entry_spans(needed: &[usize]) -> Vec<(usize, usize)> {
+    let mut spans: Vec<(usize, usize)> = Vec::new();
+    for &j in needed {
+        match spans.last_mut() {
+            Some((_, high)) if j <= *high + SPAN_GAP => *high = j,
+            _ => spans.push((j, j)),
+        }
+    }
+    spans
 }
 
 /// The entries of rows `rows` of `matrix`, by ascending column.

@@ -5,7 +5,7 @@
 //! non-diagonal `M1` to round-off: mass solves); a damaged file is refused before use, naming
 //! it; a file in the fields layout is left to the whole load.
 
-use super::common::reseal_payload;
+use super::common::{relative_difference, reseal_payload};
 use std::path::Path;
 use std::sync::Mutex;
 use tvf_core::discretization::HodgeOperators;
@@ -23,17 +23,6 @@ fn test_field(n1: usize) -> Vec<f64> {
     (0..n1)
         .map(|i| (0.37 * i as f64).sin() + 0.2 * (1.9 * i as f64).cos())
         .collect()
-}
-
-/// Largest difference of `a` and `b` relative to the largest magnitude of `b`.
-fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let worst = a
-        .iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    worst / scale
 }
 
 /// Saves the basis of `request` for `complex` to `path` (streamed where it can be) and checks

@@ -1,6 +1,7 @@
 //! Shared helpers of the basis file and basis store tests: a catalog complex with its field mass
 //! `M1` replaced, under the same id — what a changed assembly of a catalog entry looks like to
-//! basis files and the cache — and basis files rewritten as earlier format versions wrote them.
+//! basis files and the cache —, basis files rewritten as earlier format versions wrote them, and the
+//! largest relative difference of two results.
 
 use sprs::TriMat;
 use tvf_core::discretization::{ComplexParts, HodgeComplex, Mass};
@@ -106,4 +107,15 @@ pub fn downgrade(v3: &[u8], version: u32) -> Vec<u8> {
     out.extend_from_slice(&checksum.to_le_bytes());
     out.extend_from_slice(&v3[h..]);
     out
+}
+
+/// Largest difference of `a` and `b` relative to the largest magnitude of `b`.
+pub fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let worst = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    worst / scale
 }
