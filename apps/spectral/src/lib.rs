@@ -156,4 +156,7 @@ pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
 pub use resident_peak::ResidentPeak;
 /// The eigensolver's cost by phase, as [`BasisReport`] gives it.
-pub use tvf_solvers::{process_cpu_seconds, PhaseStatistics, SolverStatistics};
+pub use tvf_solvers::{
+    parse_byte_count, process_cpu_seconds, set_default_slice_memory, PhaseStatistics,
+    SolverStatistics,
+};
