@@ -239,7 +239,7 @@ mod tests {
         assert_eq!(interval_size_within(n, block, 96, full), 96);
         assert_eq!(interval_size_within(n, block, 96, usize::MAX), 96);
         let half = interval_size_within(n, block, 96, full / 2);
-        assert!(half < 96 && half >= 16, "{half}");
+        assert!((16..96).contains(&half), "{half}");
         assert!(slice_bytes(n, half, block) <= full / 2);
         assert!(slice_bytes(n, half + 1, block) > full / 2);
         assert_eq!(interval_size_within(n, block, 96, 1), 16);
