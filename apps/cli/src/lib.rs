@@ -116,6 +116,10 @@ pub fn run(catalog: Catalog) -> ExitCode {
         interrupt::end_quietly_on_closed_pipe();
     }
     progress::set_quiet(cli.quiet);
+    if let Err(message) = slice_memory_from_environment() {
+        eprintln!("error: {message}");
+        return ExitCode::FAILURE;
+    }
     let context = RunContext::new(catalog);
     let context = &context;
     let result = match cli.command {
@@ -150,6 +154,28 @@ pub fn run(catalog: Catalog) -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Environment variable with the memory the eigensolver's concurrent spectrum slices may take
+/// (bytes, e.g. `6G`; default a sixth of the physical memory, see
+/// `tvf_solvers::EigenOptions::slice_memory`).
+const SLICE_MEMORY_VARIABLE: &str = "TVF_SLICE_MEMORY";
+
+/// Makes [`SLICE_MEMORY_VARIABLE`], when set, the eigensolver's default budget; a value that is
+/// not a positive number of bytes is an error naming it.
+fn slice_memory_from_environment() -> Result<(), String> {
+    let Some(raw) = std::env::var_os(SLICE_MEMORY_VARIABLE) else {
+        return Ok(());
+    };
+    let value = raw.to_string_lossy();
+    let bytes = tvf_spectral::parse_byte_count(&value).ok_or_else(|| {
+        format!(
+            "environment variable {SLICE_MEMORY_VARIABLE} = '{value}': a positive number of \
+             bytes with an optional binary suffix, e.g. 6G, 512M or 1073741824"
+        )
+    })?;
+    tvf_spectral::set_default_slice_memory(Some(bytes));
+    Ok(())
 }
 
 /// For `--no-cache` or `--cache-dir` given to a subcommand that keeps no basis cache, a clear

@@ -155,5 +155,8 @@ pub use fourier::{reconstruct_with_rest, FourierAnalysis};
 pub use harmonic_fields::{harmonic_fields, HarmonicFields};
 pub use laplacian_apply::{apply_hodge_laplacian, eigen_residual, field_norm};
 pub use resident_peak::ResidentPeak;
+/// The memory budget of the eigensolver's concurrent slices (the command line's
+/// `TVF_SLICE_MEMORY`).
+pub use tvf_solvers::{parse_byte_count, set_default_slice_memory};
 /// The eigensolver's cost by phase, as [`BasisReport`] gives it.
 pub use tvf_solvers::{process_cpu_seconds, PhaseStatistics, SolverStatistics};

@@ -50,7 +50,10 @@
 //! ascending interval order, and each interval's vectors, once orthogonalised against the
 //! previous interval's and used for the next one's, are handed to the caller and their pages
 //! given back ([`super::interval_stream`]): then only the intervals being solved or waiting
-//! for an earlier one are in memory, never the whole `n × k`. Fresh memory is expensive: the kernel faults in and zeroes
+//! for an earlier one are in memory, never the whole `n × k`. The slices solved at the same
+//! time stay within [`EigenOptions::slice_memory`] ([`super::slice_memory`]): a job waits until
+//! its slice fits next to the running ones, and a pencil whose single slice would not fit gets
+//! smaller intervals. Fresh memory is expensive: the kernel faults in and zeroes
 //! every new page on first touch, many times slower than a second pass over it, which made the
 //! per-slice bases and a copy of every interval's vectors a visible share of the processor
 //! time (numbers in `docs/performance.md`).
@@ -65,6 +68,7 @@ use super::refinement::{
     field_residuals, refine_interval, FieldResidual, Refinement, RefinementSettings,
 };
 use super::shift_factor::ShiftFactor;
+use super::slice_memory::{default_slice_memory, interval_size_within, slice_bytes, MemoryGate};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::remove_mass_projection;
 use super::types::{
@@ -78,7 +82,7 @@ use faer::{Mat, MatMut, Par};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{mpsc, Mutex};
 
 /// Times an interval may be split after failing to converge.
@@ -137,13 +141,15 @@ pub fn lowest_eigenpairs_of(
 ) -> Result<EigenSolution, RequestError> {
     let mut statistics = SolverStatistics::default();
     let mut pairs: Vec<Option<(Vec<f64>, Mat<f64>)>> = vec![None; requests.len()];
+    let budget = options.slice_memory.unwrap_or_else(default_slice_memory);
 
     let clock = PhaseClock::start();
-    let plans = count_intervals(requests, options, &mut pairs)?;
+    let plans = count_intervals(requests, options, budget, &mut pairs)?;
     clock.stop(&mut statistics.counting);
 
     let clock = PhaseClock::start();
     let jobs = interval_jobs(requests, &plans, options.finished.is_some());
+    let gate = MemoryGate::new(budget, job_memory(requests, options, &plans, &jobs));
     // Each plan's eigenvectors are written by the jobs straight into their columns of one
     // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
     // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
@@ -178,8 +184,10 @@ pub fn lowest_eigenpairs_of(
             }
         })
         .collect();
-    let (intervals, streamed) = solve_intervals(requests, options, &plans, &jobs, &columns)?;
+    let (intervals, streamed) =
+        solve_intervals(requests, options, &plans, (&jobs, &gate), &columns)?;
     drop(files);
+    statistics.peak_slice_memory = gate.peak();
     for part in intervals.iter().flatten() {
         statistics.refined_pairs += part.refinement.refined;
         statistics.refinement.wall_seconds += part.refinement.wall_seconds;
@@ -258,10 +266,13 @@ fn fail(request: usize) -> impl Fn(SolverError) -> RequestError {
 
 /// Phase 1, counting: the requests with nothing to slice are answered in `pairs` (none wanted,
 /// or small enough for the dense solver); the others get a [`Plan`] whose boundaries are all
-/// counted (concurrently) and checked for monotone counts.
+/// counted (concurrently) and checked for monotone counts. Its intervals are of
+/// `EigenOptions::interval_size` eigenpairs, fewer where one slice of that size would not fit
+/// in `budget` bytes ([`interval_size_within`]).
 fn count_intervals(
     requests: &[EigenRequest<'_, '_>],
     options: &EigenOptions<'_>,
+    budget: usize,
     pairs: &mut [Option<(Vec<f64>, Mat<f64>)>],
 ) -> Result<Vec<Plan>, RequestError> {
     let mut plans: Vec<Plan> = Vec::new();
@@ -285,12 +296,8 @@ fn count_intervals(
         } else {
             let block = block_size(options, n);
             let top = top_shift(request, block).map_err(fail(r))?;
-            plans.push(Plan::new(
-                r,
-                pencil,
-                top,
-                options.interval_size.max(2 * block),
-            ));
+            let size = interval_size_within(n, block, options.interval_size, budget);
+            plans.push(Plan::new(r, pencil, top, size));
         }
     }
     count_boundaries(requests, &mut plans)?;
@@ -384,7 +391,28 @@ fn interval_jobs(
     jobs
 }
 
-/// Phase 2, solving: runs every job (`options.threads` at a time, see [`run_jobs`]), each
+/// The estimated work memory of each job's slice in bytes ([`slice_bytes`]), from its plan's
+/// largest interval, so that all jobs of a plan cost the same and [`MemoryGate`] keeps each
+/// plan's jobs in their order.
+fn job_memory(
+    requests: &[EigenRequest<'_, '_>],
+    options: &EigenOptions<'_>,
+    plans: &[Plan],
+    jobs: &[(usize, usize)],
+) -> Vec<usize> {
+    let plan_memory: Vec<usize> = plans
+        .iter()
+        .map(|plan| {
+            let n = requests[plan.request].pencil.dimension();
+            let widest = plan.counts.windows(2).map(|w| w[1] - w[0]).max();
+            slice_bytes(n, widest.unwrap_or(0), block_size(options, n))
+        })
+        .collect();
+    jobs.iter().map(|&(p, _)| plan_memory[p]).collect()
+}
+
+/// Phase 2, solving: runs every job (`options.threads` at a time, fewer while `gate` finds no
+/// room for another slice, see [`run_jobs`]), each
 /// writing its eigenvectors into its columns of its plan's memory `columns[p]` (reserved
 /// `n × k`, one per plan); returns the solved intervals of each plan (in no particular order).
 /// On success every column `0..k` of every plan was written; with
@@ -395,7 +423,7 @@ fn solve_intervals(
     requests: &[EigenRequest<'_, '_>],
     options: &EigenOptions<'_>,
     plans: &[Plan],
-    jobs: &[(usize, usize)],
+    (jobs, gate): (&[(usize, usize)], &MemoryGate),
     columns: &[RawColumns],
 ) -> Result<
     (
@@ -479,7 +507,7 @@ fn solve_intervals(
         unsafe { stream.job_done(job, parts) }.map_err(fail(plans[p].request))
     };
     let solved = run_jobs(
-        jobs.len(),
+        (jobs.len(), gate),
         options.threads,
         &solve_job,
         &mut on_message,
@@ -1067,25 +1095,24 @@ enum Message<T> {
     },
 }
 
-/// Runs `jobs` jobs, `threads` at a time as tasks of the current rayon pool, and returns their
-/// results in job order;
+/// Runs `jobs` jobs, `threads` at a time as tasks of the current rayon pool (a job starts only
+/// when `gate` admits it, see [`MemoryGate`]), and returns their results in job order;
 /// `on_message(job, locked, done)` is called on the calling thread for every progress report and
 /// completion, and `on_result(job, result)` with every successful result as it arrives. Stops
 /// at the first error (of a job or of `on_result`); if `on_message` unwinds, every job stops at
 /// its next report and the unwinding goes on once they have.
 fn run_jobs<T: Send>(
-    jobs: usize,
+    (jobs, gate): (usize, &MemoryGate),
     threads: usize,
     work: &Job<'_, T>,
     on_message: &mut dyn FnMut(usize, usize, bool),
     on_result: &mut dyn FnMut(usize, &T) -> Result<(), RequestError>,
 ) -> Result<Vec<T>, RequestError> {
-    let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
     let mut results: Vec<Option<Result<T, RequestError>>> = (0..jobs).map(|_| None).collect();
     std::thread::scope(|scope| {
         let (sender, receiver) = mpsc::channel::<Message<T>>();
-        let (next, failed) = (&next, &failed);
+        let failed = &failed;
         // The workers are tasks of rayon's pool, not threads of their own: a job's parallel
         // products then split by work stealing on the same threads (a thread outside the pool
         // would hand each of them to the pool and sleep until it is done, and the pool's
@@ -1094,24 +1121,24 @@ fn run_jobs<T: Send>(
             rayon::scope(|pool| {
                 for _ in 0..threads.clamp(1, jobs.max(1)) {
                     let sender = sender.clone();
-                    pool.spawn(move |_| loop {
-                        let job = next.fetch_add(1, Ordering::Relaxed);
-                        if job >= jobs || failed.load(Ordering::Relaxed) {
-                            break;
-                        }
-                        let report = |locked: usize, _solves: usize| {
-                            // The receiver outlives the workers unless the calling thread
-                            // unwound (its progress callback stopped the computation, e.g. on
-                            // Ctrl+C): then this job stops too, at its next report.
-                            if sender.send(Message::Progress { job, locked }).is_err() {
-                                std::panic::resume_unwind(Box::new(CallerGone));
+                    pool.spawn(move |_| {
+                        while let Some(admitted) = gate.admit(failed) {
+                            let job = admitted.job;
+                            let report = |locked: usize, _solves: usize| {
+                                // The receiver outlives the workers unless the calling thread
+                                // unwound (its progress callback stopped the computation, e.g. on
+                                // Ctrl+C): then this job stops too, at its next report.
+                                if sender.send(Message::Progress { job, locked }).is_err() {
+                                    std::panic::resume_unwind(Box::new(CallerGone));
+                                }
+                            };
+                            let result = work(job, &report);
+                            drop(admitted);
+                            if result.is_err() {
+                                failed.store(true, Ordering::Relaxed);
                             }
-                        };
-                        let result = work(job, &report);
-                        if result.is_err() {
-                            failed.store(true, Ordering::Relaxed);
+                            let _ = sender.send(Message::Done { job, result });
                         }
-                        let _ = sender.send(Message::Done { job, result });
                     });
                 }
             });
@@ -1170,6 +1197,7 @@ fn orthogonalize_neighbours(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::sync::atomic::AtomicUsize;
 
     /// When `on_message` unwinds, every job stops at its next report instead of running to its
     /// end (a Ctrl+C in Python once waited for every interval to finish).
@@ -1188,7 +1216,7 @@ mod tests {
         };
         let run = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             run_jobs(
-                4,
+                (4, &MemoryGate::new(usize::MAX, vec![0; 4])),
                 4,
                 &work,
                 &mut |_, _, _| std::panic::resume_unwind(Box::new(Stop)),

@@ -14,6 +14,7 @@ mod pencil;
 mod rayleigh_ritz;
 mod refinement;
 mod shift_factor;
+mod slice_memory;
 mod sparse_mass_products;
 mod sparse_summaries;
 mod spectrum_bound;
@@ -32,6 +33,7 @@ pub use interval_slicing::{lowest_eigenpairs_of, EigenRequest, EigenSolution, Re
 pub use lowest::lowest_eigenpairs;
 pub use mass::MassMatrix;
 pub use pencil::{Pencil, ShiftCount};
+pub use slice_memory::{default_slice_memory, parse_byte_count, set_default_slice_memory};
 pub use statistics::{process_cpu_seconds, Phase, PhaseStatistics, SolverStatistics};
 pub use tall_products::keep_columns;
 pub use types::{EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors};

@@ -72,6 +72,10 @@ pub struct SolverStatistics {
     /// Eigenpairs that were refined (the others met the target after the inverse-iteration step
     /// every interval makes on all its pairs, whose solves count in the solving phase).
     pub refined_pairs: usize,
+    /// The largest estimated work memory of the intervals solved at the same time, in bytes
+    /// (see [`super::EigenOptions::slice_memory`]; an estimate from the slices' sizes, not a
+    /// measurement).
+    pub peak_slice_memory: usize,
 }
 
 impl SolverStatistics {
@@ -132,6 +136,7 @@ impl AddAssign for SolverStatistics {
         self.solving += other.solving;
         self.refinement += other.refinement;
         self.refined_pairs += other.refined_pairs;
+        self.peak_slice_memory = self.peak_slice_memory.max(other.peak_slice_memory);
     }
 }
 

@@ -59,6 +59,15 @@ pub struct EigenOptions<'a> {
     /// upper end). Smaller intervals mean smaller Krylov bases (dense work grows with the square
     /// of the basis) but more factorizations and more work at interval ends. Default 96.
     pub interval_size: usize,
+    /// Bytes the work memory of the intervals solved at the same time (their Krylov bases,
+    /// locked vectors and operator buffers, `n` rows each) may take together: a job waits
+    /// until its slice fits next to the running ones, and where one slice alone would not
+    /// fit, the pencil's intervals are made smaller (see `slice_memory.rs`). `None` (the
+    /// default): [`crate::default_slice_memory`], a sixth of the physical memory unless the
+    /// process set another (the command line: `TVF_SLICE_MEMORY`, e.g. `4G`). Binds only on large meshes (a slice of 96 pairs of a million-face
+    /// co-potential pencil is 4.4 GB); the result does not depend on it unless it lowers the
+    /// interval size.
+    pub slice_memory: Option<usize>,
     /// Eigenpairs whose relative eigenfield residual `√(sᵀ A s / λ) / λ`,
     /// `s = M⁻¹(A x − λ M x)` (the residual of the Hodge–Laplacian eigenfield `D x/√λ` when
     /// `A = Dᵀ W D`), exceeds this and ten times its rounding floor (see
@@ -110,6 +119,7 @@ impl Default for EigenOptions<'_> {
             parallelism: Par::rayon(0),
             threads: rayon::current_num_threads(),
             interval_size: 96,
+            slice_memory: None,
             refinement_target: 1e-9,
             progress: None,
             finished: None,
@@ -128,6 +138,7 @@ impl fmt::Debug for EigenOptions<'_> {
             .field("parallelism", &self.parallelism)
             .field("threads", &self.threads)
             .field("interval_size", &self.interval_size)
+            .field("slice_memory", &self.slice_memory)
             .field("refinement_target", &self.refinement_target)
             .field("progress", &self.progress.map(|_| "callback"))
             .field("finished", &self.finished.map(|_| "sink"))

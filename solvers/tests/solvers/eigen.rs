@@ -189,6 +189,45 @@ fn interval_results_do_not_depend_on_the_thread_count() {
     assert_eq!(one.vectors, three.vectors);
 }
 
+/// A slice memory budget with room for one slice but not two runs the intervals one at a time
+/// and gives the same pairs bit for bit; one too small for a slice of the target size makes
+/// the intervals smaller (more factorizations), and the pairs still match the oracle.
+#[test]
+fn a_slice_memory_budget_changes_the_schedule_or_the_intervals_not_the_pairs() {
+    let a = grid_laplacian(40, 38, false);
+    let mass = irregular_masses(a.rows(), 7);
+    let run = |slice_memory| {
+        let options = EigenOptions {
+            interval_size: 30,
+            threads: 2,
+            slice_memory: Some(slice_memory),
+            ..Default::default()
+        };
+        lowest_eigenpairs(&a, &mass, 120, &options).unwrap()
+    };
+    let free = run(usize::MAX);
+    let two_slices = free.statistics.peak_slice_memory;
+    assert!(two_slices > 0, "{:?}", free.statistics);
+    let one_at_a_time = run(two_slices / 2);
+    assert_eq!(one_at_a_time.statistics.peak_slice_memory, two_slices / 2);
+    assert_eq!(free.values, one_at_a_time.values);
+    assert_eq!(free.vectors, one_at_a_time.vectors);
+    assert_eq!(
+        free.statistics.factorizations(),
+        one_at_a_time.statistics.factorizations()
+    );
+    let smaller = run(two_slices / 4);
+    check_against_oracle(&a, &mass, 120, &smaller);
+    // At least two blocks per interval: here more than the budget, so each slice runs alone.
+    assert!(smaller.statistics.peak_slice_memory < two_slices / 2);
+    assert!(
+        smaller.statistics.factorizations() > free.statistics.factorizations(),
+        "{:?} against {:?}",
+        smaller.statistics,
+        free.statistics
+    );
+}
+
 #[test]
 fn seeded_runs_are_deterministic_and_report_progress() {
     let a = grid_laplacian(30, 20, false);

@@ -219,6 +219,14 @@ const REFUSED: &[Refused] = &[
         code: 1,
         names: &["TVF_SEQUENTIAL_FLOP_LIMIT", "1e11x"],
     },
+    // A malformed memory budget of the eigensolver's slices: the variable and its value named.
+    Refused {
+        args: &["spline", "-k", "400"],
+        constraints: "c.json",
+        env: &[("TVF_SLICE_MEMORY", "4X")],
+        code: 1,
+        names: &["TVF_SLICE_MEMORY", "4X"],
+    },
 ];
 
 /// Every refused run exits with its code, names what is wrong, and writes no field.
