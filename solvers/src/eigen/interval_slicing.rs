@@ -150,40 +150,8 @@ pub fn lowest_eigenpairs_of(
     let clock = PhaseClock::start();
     let jobs = interval_jobs(requests, &plans, options.finished.is_some());
     let gate = MemoryGate::new(budget, job_memory(requests, options, &plans, &jobs));
-    // Each plan's eigenvectors are written by the jobs straight into their columns of one
-    // matrix, as each interval is refined: its memory is reserved here, untouched, and the jobs'
-    // own memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end.
-    // Streamed, they are in a mapped temporary file instead, where an interval that waits for
-    // an earlier one to be handed on can leave memory ([`FileBackedColumns`]).
     let streaming = options.finished.is_some();
-    let (mut eigenvectors, mut files): (Vec<Mat<f64>>, Vec<FileBackedColumns>) = (vec![], vec![]);
-    for plan in &plans {
-        let request = &requests[plan.request];
-        let (n, k) = (request.pencil.dimension(), request.count);
-        if streaming {
-            files.push(FileBackedColumns::new(n, k));
-        } else {
-            eigenvectors.push(reserve_on_huge_pages(n, k));
-        }
-    }
-    let columns: Vec<RawColumns> = plans
-        .iter()
-        .enumerate()
-        .map(|(p, plan)| {
-            let request = &requests[plan.request];
-            let (n, k) = (request.pencil.dimension(), request.count);
-            match streaming {
-                true => files[p].raw(k),
-                false => RawColumns {
-                    ptr: eigenvectors[p].as_ptr_mut(),
-                    rows: n,
-                    col_stride: eigenvectors[p].col_stride().unsigned_abs(),
-                    k,
-                    file: None,
-                },
-            }
-        })
-        .collect();
+    let (eigenvectors, files, columns) = eigenvector_storage(requests, &plans, streaming);
     let (intervals, streamed) =
         solve_intervals(requests, options, &plans, (&jobs, &gate), &columns)?;
     drop(files);
@@ -238,6 +206,49 @@ pub fn lowest_eigenpairs_of(
         pairs: results,
         statistics,
     })
+}
+
+/// Where each plan's eigenvectors go while its jobs refine them (`n × k` columns per plan): the
+/// jobs write straight into their columns of one matrix, reserved here untouched, and their own
+/// memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end. Streamed
+/// (`streaming`), they are in a mapped temporary file instead, where an interval that waits for
+/// an earlier one to be handed on can leave memory ([`FileBackedColumns`]). Returns the matrices
+/// (not streamed), the files (streamed) and the jobs' raw view of each plan's columns, which
+/// stays valid while the matrices or files live.
+fn eigenvector_storage(
+    requests: &[EigenRequest<'_, '_>],
+    plans: &[Plan],
+    streaming: bool,
+) -> (Vec<Mat<f64>>, Vec<FileBackedColumns>, Vec<RawColumns>) {
+    let (mut eigenvectors, mut files): (Vec<Mat<f64>>, Vec<FileBackedColumns>) = (vec![], vec![]);
+    for plan in plans {
+        let request = &requests[plan.request];
+        let (n, k) = (request.pencil.dimension(), request.count);
+        if streaming {
+            files.push(FileBackedColumns::new(n, k));
+        } else {
+            eigenvectors.push(reserve_on_huge_pages(n, k));
+        }
+    }
+    let columns = plans
+        .iter()
+        .enumerate()
+        .map(|(p, plan)| {
+            let request = &requests[plan.request];
+            let (n, k) = (request.pencil.dimension(), request.count);
+            match streaming {
+                true => files[p].raw(k),
+                false => RawColumns {
+                    ptr: eigenvectors[p].as_ptr_mut(),
+                    rows: n,
+                    col_stride: eigenvectors[p].col_stride().unsigned_abs(),
+                    k,
+                    file: None,
+                },
+            }
+        })
+        .collect();
+    (eigenvectors, files, columns)
 }
 
 /// `result` with its vectors handed to `sink` (request `request`, from column 0) and dropped.
