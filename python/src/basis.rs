@@ -9,8 +9,8 @@ use crate::progress::Progress;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tvf_core::discretization::HodgeOperators;
-use tvf_spectral::{compute_basis, BasisRequest};
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
+use tvf_spectral::{compute_basis, BasisRequest, SpectralBasis};
 
 /// The `k` lowest eigenfields of `L` (the complete basis if `k ≥ n1`), as a dict:
 /// `eigenvalues` (`k`), `families` (list of `harmonic`/`integrable`/`cointegrable`),
@@ -43,6 +43,18 @@ pub fn basis<'py>(
     })?;
     let basis = computed
         .map_err(|e| with_context(&format!("{}: cannot compute the basis", complex.label), &e))?;
+    let seconds = basis.report().map_or(0.0, |r| r.seconds);
+    basis_dict(py, c, &basis, seconds)
+}
+
+/// The dict `tvf.basis` returns for `basis`, a basis of `c` (see [`basis`]; `seconds` the time
+/// it took).
+pub fn basis_dict<'py>(
+    py: Python<'py>,
+    c: &dyn HodgeComplex,
+    basis: &SpectralBasis,
+    seconds: f64,
+) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     out.set_item("eigenvalues", basis.eigenvalues().to_vec().into_pyarray(py))?;
     let families: Vec<&str> = basis.families().iter().map(|f| f.name()).collect();
@@ -66,6 +78,6 @@ pub fn basis<'py>(
     };
     out.set_item("face_vectors", face_vectors)?;
     out.set_item("discretization", c.id())?;
-    out.set_item("seconds", basis.report().map_or(0.0, |r| r.seconds))?;
+    out.set_item("seconds", seconds)?;
     Ok(out)
 }

@@ -8,7 +8,7 @@ use crate::interrupt::detached;
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
-use tvf_core::discretization::HodgeOperators;
+use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::{
     basis_id, CoefficientCoding, CompressedFields, FieldCodec, FrequencyResponse, SpectralFilter,
@@ -21,22 +21,8 @@ pub fn from_face_vectors<'py>(
     complex: &Complex,
     vectors: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<(Bound<'py, PyAny>, f64)> {
-    let sampling = complex
-        .complex
-        .require_sampling()
-        .map_err(|e| from_error(&e))?;
-    let vectors = crate::arrays::numpy_to_vectors(&vectors)?;
-    if let Some(t) = vectors
-        .iter()
-        .position(|v| v.iter().any(|x| !x.is_finite()))
-    {
-        return Err(tvf_error(format!("field: non-finite vector at face {t}")));
-    }
-    let projection = sampling
-        .from_face_vectors(&vectors)
-        .map_err(|e| from_error(&e))?;
-    let normal = projection.max_normal_part();
-    Ok((projection.field.into_pyarray(py).into_any(), normal))
+    let (field, normal) = face_vectors_in(complex.complex.as_ref(), &vectors)?;
+    Ok((field.into_pyarray(py).into_any(), normal))
 }
 
 /// Field coefficients sampled at the face centroids (`F × 3`).
@@ -47,11 +33,38 @@ pub fn to_face_vectors<'py>(
     field: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let values = complex.field(&field)?;
-    let sampling = complex.complex.require_sampling();
-    let sampling = sampling.map_err(|e| from_error(&e))?;
-    let vectors = sampling
-        .to_face_vectors(&values)
+    face_vectors_out(py, complex.complex.as_ref(), &values)
+}
+
+/// Face vectors (`F × 3`, finite) of `complex`'s faces as its field coefficients (`n1`),
+/// projected onto the face planes, with the largest normal component dropped.
+pub fn face_vectors_in(
+    complex: &dyn HodgeComplex,
+    vectors: &PyReadonlyArray2<'_, f64>,
+) -> PyResult<(Vec<f64>, f64)> {
+    let sampling = complex.require_sampling().map_err(|e| from_error(&e))?;
+    let vectors = crate::arrays::numpy_to_vectors(vectors)?;
+    if let Some(t) = vectors
+        .iter()
+        .position(|v| v.iter().any(|x| !x.is_finite()))
+    {
+        return Err(tvf_error(format!("field: non-finite vector at face {t}")));
+    }
+    let projection = sampling
+        .from_face_vectors(&vectors)
         .map_err(|e| from_error(&e))?;
+    let normal = projection.max_normal_part();
+    Ok((projection.field, normal))
+}
+
+/// Field coefficients `field` (`n1`) of `complex` sampled at the face centroids (`F × 3`).
+pub fn face_vectors_out<'py>(
+    py: Python<'py>,
+    complex: &dyn HodgeComplex,
+    field: &[f64],
+) -> PyResult<Bound<'py, PyAny>> {
+    let sampling = complex.require_sampling().map_err(|e| from_error(&e))?;
+    let vectors = sampling.to_face_vectors(field).map_err(|e| from_error(&e))?;
     Ok(crate::arrays::vectors_to_numpy(py, &vectors))
 }
 

@@ -9,6 +9,7 @@ use pyo3::prelude::*;
 
 mod arrays;
 mod basis;
+mod basis_file;
 mod basis_parts;
 mod check;
 mod compare;
@@ -32,10 +33,12 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<mesh::Mesh>()?;
     m.add_class::<complex::Complex>()?;
     m.add_class::<linear_operator::Operator>()?;
+    m.add_class::<basis_file::BasisBlocks>()?;
     m.add_function(wrap_pyfunction!(mesh::read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(complex::discretizations, m)?)?;
     m.add_function(wrap_pyfunction!(operators::operators, m)?)?;
     m.add_function(wrap_pyfunction!(basis::basis, m)?)?;
+    m.add_function(wrap_pyfunction!(basis_file::basis_file_summary, m)?)?;
     m.add_function(wrap_pyfunction!(fields::from_face_vectors, m)?)?;
     m.add_function(wrap_pyfunction!(fields::to_face_vectors, m)?)?;
     m.add_function(wrap_pyfunction!(fields::decompose, m)?)?;

@@ -19,6 +19,7 @@ from ._native import TvfError
 from .mesh import Mesh, read_mesh
 from .complex import Complex, discretizations, operators, DEFAULT_DISCRETIZATION
 from .linear_operator import ComposedOperator
+from .basis_file import BasisFile
 from .spectral import Basis, basis, decompose, coefficients, filter, compress, decompress
 from .design import spline, design
 from .solvers import eigsh
@@ -34,6 +35,7 @@ __all__ = [
     "ComposedOperator",
     "DEFAULT_DISCRETIZATION",
     "Basis",
+    "BasisFile",
     "basis",
     "decompose",
     "coefficients",

@@ -9,6 +9,7 @@ import numpy as np
 from . import _native
 from ._arrays import float_array, integer
 from ._native import TvfError
+from .basis_file import BasisFile
 from .complex import Complex, as_complex
 
 
@@ -149,7 +150,10 @@ def coefficients(mesh, field, basis, boundary="tangential"):
 
     ``field``: ``(F, 3)`` or ``(n1,)``. Returns ``(c, relative_rest)``: ``c`` is ``(k,)`` in the
     order of ``basis.eigenvalues``; ``relative_rest = |v - U c| / |v|`` (``M1`` norms) is the
-    part the basis does not represent."""
+    part the basis does not represent. ``basis``: a :class:`Basis`, or a :class:`BasisFile`
+    (read in blocks: :meth:`BasisFile.coefficients`)."""
+    if isinstance(basis, BasisFile):
+        return basis.coefficients(mesh, field)
     complex_ = _complex_of(mesh, None, boundary, basis)
     values, _ = _field_in(complex_, field)
     c, rest = _native.coefficients(complex_._native, basis._parts(), values)
@@ -164,7 +168,10 @@ def filter(mesh, field, basis, integrable="identity", cointegrable="identity", h
     (``2 - exp(-T l)``), ``bandpass:lo=A,hi=B`` (frequencies ``sqrt(l)`` in ``[A, B]``),
     ``cutoff:f=F``, ``curve:f1=g1,f2=g2,...``. ``harmonic_gain`` scales the harmonic part,
     ``rest_gain`` the part outside the basis. Returns ``(filtered_field,
-    filtered_coefficients)``, the field in the form it was given."""
+    filtered_coefficients)``, the field in the form it was given. ``basis``: a :class:`Basis`,
+    or a :class:`BasisFile` (read in blocks: :meth:`BasisFile.filter`)."""
+    if isinstance(basis, BasisFile):
+        return basis.filter(mesh, field, integrable, cointegrable, harmonic_gain, rest_gain)
     complex_ = _complex_of(mesh, None, boundary, basis)
     values, as_vectors = _field_in(complex_, field)
     out, c = _native.filter(

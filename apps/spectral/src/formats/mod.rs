@@ -10,6 +10,7 @@ pub(crate) mod basis_file_complex;
 pub(crate) mod basis_file_error;
 pub(crate) mod basis_file_header;
 pub(crate) mod basis_file_mass;
+pub(crate) mod basis_file_spectrum;
 pub(crate) mod basis_id;
 pub(crate) mod basis_outputs;
 pub(crate) mod complex_folder;

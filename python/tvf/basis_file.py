@@ -1,0 +1,224 @@
+"""A basis file used where it lies: :class:`BasisFile` reads a ``.tvfb`` written by ``tvf basis``
+a block of stored columns at a time, as ``tvf filter --basis FILE`` does, so that a basis larger
+than memory can project, filter and synthesise fields."""
+
+import os
+
+import numpy as np
+
+from . import _native
+from ._arrays import float_array, integer
+from ._native import TvfError
+from .complex import Complex
+from .mesh import Mesh
+
+# The command line's variable for the block size (bytes), and its default (64 MiB).
+BLOCK_BYTES_VARIABLE = "TVF_BASIS_BLOCK_BYTES"
+DEFAULT_BLOCK_BYTES = 64 << 20
+
+
+class BasisFile:
+    """A Fourier basis in a ``.tvfb`` file (``tvf basis MESH -k K -o FILE``), read in blocks.
+
+    ``BasisFile(path, block_bytes=None)`` reads the file's header, eigenvalues and families only
+    (a few kilobytes, whatever the basis's size) and checks the file's size against its header.
+    The first use on a mesh checks the whole file as the command line's ``--basis`` does — the
+    mesh's fingerprint, the discretization's matrices (the file carries a hash of the five
+    matrices and the fixed nodes), the payload's checksum and every stored value, read through
+    once in blocks — and every use reads the stored eigenfunctions (potentials, co-potentials,
+    harmonic fields) a block at a time: memory holds one block (at most ``block_bytes``; default
+    ``$TVF_BASIS_BLOCK_BYTES``, else 64 MiB; at least one stored column) and a few fields,
+    never the ``n1 x k`` basis. A corrupt, truncated or mismatched file raises
+    :class:`tvf.TvfError` naming the file and the problem.
+
+    Metadata (no field read): ``path``, ``k`` (``len(f)``), ``eigenvalues`` (``(k,)``,
+    ascending), ``families`` (``(k,)`` str array), ``counts`` (fields per family),
+    ``discretization`` (the complex id), ``mesh_fingerprint`` (16 hex digits, as
+    ``Mesh.fingerprint``), ``face_count``, ``field_dimension`` (``n1``), ``potential_dimension``
+    and ``co_potential_dimension`` (``n0``, ``n2``), ``matrix_hash`` (hex per matrix),
+    ``version``, ``layout``, ``file_bytes``; :meth:`eigenvalues_of` per family.
+
+    Products, each a pass over the file (``mesh``: the :class:`Mesh` the basis was computed on,
+    or its :class:`Complex`; another mesh is refused): :meth:`coefficients`, :meth:`filter`,
+    :meth:`synthesize`, :meth:`fields` (some basis fields), :meth:`basis_id`.
+    :meth:`to_basis` loads the whole basis into memory (a :class:`tvf.Basis`, ``n1 x k`` and
+    ``F x 3 x k`` arrays). :func:`tvf.coefficients` and :func:`tvf.filter` take a ``BasisFile``
+    wherever they take a ``Basis``.
+
+    The products run without the GIL; Ctrl+C raises ``KeyboardInterrupt`` when the pass in
+    progress returns, as for the other field functions.
+    """
+
+    def __init__(self, path, block_bytes=None):
+        self.path = os.fspath(path)
+        summary = _native.basis_file_summary(self.path)
+        self.version = summary["version"]
+        self.layout = summary["layout"]
+        self.discretization = summary["discretization"]
+        self.mesh_fingerprint = summary["mesh_fingerprint"]
+        self.face_count = summary["face_count"]
+        self.field_dimension = summary["field_dimension"]
+        self.potential_dimension = summary["potential_dimension"]
+        self.co_potential_dimension = summary["co_potential_dimension"]
+        self.eigenvalues = np.asarray(summary["eigenvalues"])
+        self.families = np.array(summary["families"], dtype=str)
+        self.counts = dict(summary["counts"])
+        self.matrix_hash = summary["matrix_hash"]
+        self.file_bytes = summary["file_bytes"]
+        self.block_bytes = _block_bytes(block_bytes)
+        self._opened = None
+
+    @property
+    def k(self):
+        """Number of basis fields."""
+        return len(self.eigenvalues)
+
+    def __len__(self):
+        return self.k
+
+    def __repr__(self):
+        return (
+            f"BasisFile({self.path!r}: {self.k} fields of '{self.discretization}' on {self.face_count} faces, "
+            f"{self.file_bytes} bytes, blocks of {self.block_bytes} bytes)"
+        )
+
+    def eigenvalues_of(self, family):
+        """The eigenvalues of one family (``harmonic``, ``integrable`` or ``cointegrable``),
+        ascending."""
+        if family not in ("harmonic", "integrable", "cointegrable"):
+            raise TvfError(f"'{family}' is not a family: harmonic, integrable or cointegrable")
+        return self.eigenvalues[self.families == family]
+
+    def coefficients(self, mesh, field):
+        """``(c, relative_rest)`` as :func:`tvf.coefficients`: ``c = U^T M1 v`` (``(k,)``) of
+        ``field`` (``(F, 3)`` face vectors or ``(n1,)`` coefficients) and
+        ``|v - U c| / |v|`` (``M1`` norms); the numbers of ``tvf coefficients MESH FIELD
+        --basis FILE --json``."""
+        blocks = self._blocks(mesh)
+        values, _ = _field_in(blocks, field)
+        c, rest = blocks.coefficients(values)
+        return np.asarray(c), rest
+
+    def filter(self, mesh, field, integrable="identity", cointegrable="identity", harmonic_gain=1.0, rest_gain=1.0):
+        """A spectral filter, as :func:`tvf.filter` (the same response specs: ``identity``,
+        ``lowpass:t=T``, ``highpass:t=T``, ``bandpass:lo=A,hi=B``, ``cutoff:f=F``,
+        ``curve:F,G;F,G;...``) and ``tvf filter --basis FILE``. ``rest_gain=None`` takes the
+        command line's default for ``--rest`` (the filters' gain at the basis's highest
+        frequency); ``1.0``, the default here as in :func:`tvf.filter`, keeps the part outside
+        the basis. Returns ``(filtered_field, filtered_coefficients)``, the field in the form
+        it was given."""
+        blocks = self._blocks(mesh)
+        values, as_vectors = _field_in(blocks, field)
+        out, c, _ = blocks.filter(
+            values, str(integrable), str(cointegrable), float(harmonic_gain), None if rest_gain is None else float(rest_gain)
+        )
+        return _field_out(blocks, out, as_vectors), np.asarray(c)
+
+    def synthesize(self, mesh, coefficients, as_vectors=True):
+        """The field ``U c`` of coefficients ``c`` (``(k,)``), or the fields of the rows of a
+        ``(m, k)`` array, all in one pass over the file: ``(F, 3)`` face vectors (``(m, F,
+        3)``) with ``as_vectors`` on a complex with sampling, else ``(n1,)`` (``(m, n1)``)
+        coefficients."""
+        blocks = self._blocks(mesh)
+        array = float_array(coefficients, "coefficients")
+        if array.ndim not in (1, 2):
+            raise TvfError(f"coefficients: expected ({self.k},) or (m, {self.k}), got shape {array.shape}")
+        rows = np.asarray(blocks.synthesize(np.ascontiguousarray(np.atleast_2d(array))))
+        if as_vectors and blocks.has_sampling:
+            fields = [np.asarray(blocks.to_face_vectors(r)) for r in rows]
+            rows = np.stack(fields) if fields else np.zeros((0, self.face_count, 3))
+        return rows[0] if array.ndim == 1 else rows
+
+    def fields(self, mesh, indices):
+        """Basis fields ``indices`` (basis order) sampled at the face centroids: ``(F, 3,
+        len(indices))``, formed from the file in one pass (``to_basis().fields[..., indices]``
+        without loading the rest)."""
+        blocks = self._blocks(mesh)
+        chosen = [integer(i, "index") for i in np.atleast_1d(indices)]
+        if any(i < 0 for i in chosen):
+            raise TvfError(f"basis field {min(chosen)}: indices are ≥ 0")
+        return np.asarray(blocks.face_fields(chosen))
+
+    def basis_id(self, mesh):
+        """The basis id (16 hex digits) that :func:`tvf.compress` and ``tvf compress`` stamp
+        compressed files with, every field formed once from the file."""
+        return self._blocks(mesh).basis_id()
+
+    def to_basis(self, mesh):
+        """The whole basis **in memory**, a :class:`tvf.Basis` (``coefficients`` ``n1 x k``,
+        ``fields`` ``F x 3 x k``: ``8 (n1 + 3F) k`` bytes), read and checked as the command
+        line loads a basis file."""
+        from .spectral import Basis
+
+        raw = self._blocks(mesh).load()
+        return Basis(
+            eigenvalues=np.asarray(raw["eigenvalues"]),
+            families=np.array(raw["families"], dtype=str),
+            coefficients=np.asarray(raw["coefficients"]),
+            fields=None if raw["face_vectors"] is None else np.asarray(raw["face_vectors"]),
+            discretization=raw["discretization"],
+        )
+
+    def _blocks(self, mesh):
+        """The file opened (checked whole) for ``mesh``; kept for the next call on the same
+        mesh."""
+        if isinstance(mesh, Complex):
+            complex_, mesh = mesh, mesh.mesh
+        elif isinstance(mesh, Mesh):
+            complex_ = None
+        else:
+            raise TypeError(f"mesh: expected a tvf.Mesh or tvf.Complex, got {type(mesh).__name__}")
+        if self.matrix_hash is None or self.layout != "eigenfunctions":
+            raise TvfError(
+                f"{self.path}: the basis file was written by an earlier tvf (format version {self.version}, "
+                f"{self.layout} layout) and is not read in blocks: compute it again with `tvf basis`"
+            )
+        if self._opened is None or self._opened[0] != mesh.fingerprint:
+            self._opened = None
+            blocks = _native.BasisBlocks.open(self.path, mesh._native, self.block_bytes)
+            self._opened = (mesh.fingerprint, blocks)
+        blocks = self._opened[1]
+        if complex_ is not None and complex_.id != blocks.discretization:
+            raise TvfError(f"{self.path}: the basis belongs to '{blocks.discretization}', the discretization is '{complex_.id}'")
+        return blocks
+
+
+def _block_bytes(given):
+    """The block size: ``given``, else ``$TVF_BASIS_BLOCK_BYTES``, else 64 MiB."""
+    if given is not None:
+        value = integer(given, "block_bytes")
+        if value <= 0:
+            raise TvfError(f"block_bytes = {value}: a positive number of bytes, e.g. 67108864")
+        return value
+    raw = os.environ.get(BLOCK_BYTES_VARIABLE)
+    if raw is None:
+        return DEFAULT_BLOCK_BYTES
+    try:
+        value = int(raw.strip())
+    except ValueError:
+        value = 0
+    if value <= 0:
+        raise TvfError(f"environment variable {BLOCK_BYTES_VARIABLE} = '{raw}': a positive number of bytes, e.g. 67108864")
+    return value
+
+
+def _field_in(blocks, field, name="field"):
+    """``(coefficients, as_vectors)`` of a field of the basis's complex: ``(F, 3)`` converted
+    through its sampling, ``(n1,)`` taken as coefficients."""
+    array = float_array(field, name)
+    n1 = blocks.dimensions[1]
+    if array.ndim == 2 and array.shape[1] == 3:
+        if not blocks.has_sampling:
+            raise TvfError(f"{name}: the discretization '{blocks.discretization}' has no sampling; give {n1} coefficients")
+        coefficients, _normal = blocks.from_face_vectors(array)
+        return np.asarray(coefficients), True
+    if array.ndim == 1:
+        return array, False
+    raise TvfError(f"{name}: expected face vectors (F, 3) or {n1} coefficients, got shape {array.shape}")
+
+
+def _field_out(blocks, coefficients, as_vectors):
+    coefficients = np.asarray(coefficients)
+    if as_vectors:
+        return np.asarray(blocks.to_face_vectors(coefficients))
+    return coefficients
