@@ -1,0 +1,223 @@
+"""tvf.BasisFile: a .tvfb written by `tvf basis`, read in blocks — its metadata without the
+fields, coefficients and filters equal bit for bit to `tvf coefficients` / `tvf filter` on the
+same file (the same Rust block reader), equal to round-off to the in-memory tvf.Basis of the
+same mesh, results independent of the block size, and bad files refused naming the file."""
+
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import tvf
+from reference import torus, write_obj
+
+K = 60
+SEED = 5
+# A lowpass, a highpass and explicit harmonic and rest gains: every gain of the filter is used.
+FILTER = dict(integrable="lowpass:t=0.01", cointegrable="highpass:t=0.002", harmonic_gain=0.5, rest_gain=0.3)
+FILTER_FLAGS = ["--integrable", "lowpass:t=0.01", "--cointegrable", "highpass:t=0.002", "--harmonic", "0.5", "--rest", "0.3"]
+
+
+def run_cli(tvf_bin, cache, *args, block_bytes=None):
+    environment = {**os.environ, "XDG_CACHE_HOME": str(cache)}
+    environment.pop("TVF_BASIS_BLOCK_BYTES", None)
+    if block_bytes is not None:
+        environment["TVF_BASIS_BLOCK_BYTES"] = str(block_bytes)
+    result = subprocess.run([str(tvf_bin), *map(str, args)], capture_output=True, text=True, env=environment)
+    assert result.returncode == 0, f"tvf {' '.join(map(str, args))} failed: {result.stderr}"
+    return result
+
+
+@pytest.fixture(scope="module", params=["conforming-barycentric", "whitney-galerkin"])
+def saved(request, tvf_bin, tmp_path_factory):
+    """A genus-1 torus (two harmonic fields), its basis written by `tvf basis`, a field file,
+    and the in-memory basis of the same mesh and seed. `whitney-galerkin` has a sparse M1."""
+    folder = tmp_path_factory.mktemp("basis-file")
+    V, F = torus(n=16, m=8)
+    mesh = tvf.Mesh(V, F)
+    write_obj(folder / "torus.obj", mesh.positions, mesh.faces)
+    path = folder / "torus.tvfb"
+    cache = folder / "cache"
+    run_cli(tvf_bin, cache, "basis", folder / "torus.obj", "-k", K, "--seed", SEED, "--discretization", request.param, "-o", path)
+    field = np.random.default_rng(3).normal(size=(len(mesh.faces), 3))
+    np.save(folder / "field.npy", field)
+    complex_ = tvf.Complex(mesh, request.param)
+    return dict(
+        folder=folder, path=path, mesh=mesh, complex=complex_, field=field, cache=cache, tvf_bin=tvf_bin,
+        basis=tvf.basis(complex_, K, seed=SEED),
+    )
+
+
+def test_metadata_without_the_fields(saved):
+    mesh, basis = saved["mesh"], saved["basis"]
+    f = tvf.BasisFile(saved["path"])
+    assert len(f) == f.k == K
+    assert np.array_equal(f.eigenvalues, basis.eigenvalues)
+    assert list(f.families) == list(basis.families)
+    assert f.counts == {name: int(np.sum(basis.families == name)) for name in ("harmonic", "integrable", "cointegrable")}
+    assert f.counts["harmonic"] == 2
+    assert np.array_equal(f.eigenvalues_of("integrable"), basis.eigenvalues[basis.families == "integrable"])
+    assert f.discretization == basis.discretization == saved["complex"].id
+    assert f.mesh_fingerprint == mesh.fingerprint and f.face_count == len(mesh.faces)
+    n0, n1, n2 = saved["complex"].dimensions
+    assert (f.potential_dimension, f.field_dimension, f.co_potential_dimension) == (n0, n1, n2)
+    assert f.layout == "eigenfunctions" and f.version >= 3 and set(f.matrix_hash) >= {"d0", "M1"}
+    assert f.file_bytes == os.path.getsize(saved["path"])
+    with pytest.raises(tvf.TvfError, match="not a family"):
+        f.eigenvalues_of("harmonics")
+
+
+def cli_coefficients(saved, block_bytes):
+    out = run_cli(
+        saved["tvf_bin"], saved["cache"], "coefficients", saved["folder"] / "torus.obj", saved["folder"] / "field.npy",
+        "--basis", saved["path"], "--json", block_bytes=block_bytes,
+    )
+    report = json.loads(out.stdout)
+    return np.array([entry["coefficient"] for entry in report["coefficients"]]), report["relative_rest_norm"]
+
+
+def test_coefficients_equal_the_command_line_bit_for_bit_and_the_basis_in_memory(saved):
+    # A block of one stored column: every pass reads many blocks.
+    f = tvf.BasisFile(saved["path"], block_bytes=8)
+    c, rest = f.coefficients(saved["mesh"], saved["field"])
+    expected, expected_rest = cli_coefficients(saved, block_bytes=8)
+    assert np.array_equal(c, expected) and rest == expected_rest
+    in_memory, in_memory_rest = tvf.coefficients(saved["complex"], saved["field"], saved["basis"])
+    scale = np.max(np.abs(in_memory))
+    assert np.max(np.abs(c - in_memory)) <= 1e-12 * scale
+    assert abs(rest - in_memory_rest) <= 1e-12
+    # The module function takes the file wherever it takes a basis.
+    again, _ = tvf.coefficients(saved["mesh"], saved["field"], f)
+    assert np.array_equal(again, c)
+
+
+def test_filter_equals_the_command_line_bit_for_bit_and_the_basis_in_memory(saved):
+    folder = saved["folder"]
+    f = tvf.BasisFile(saved["path"], block_bytes=1000)
+    filtered, coefficients = f.filter(saved["mesh"], saved["field"], **FILTER)
+    run_cli(
+        saved["tvf_bin"], saved["cache"], "filter", folder / "torus.obj", folder / "field.npy", "--basis", saved["path"],
+        *FILTER_FLAGS, "-o", folder / "filtered.npy", block_bytes=1000,
+    )
+    assert np.array_equal(filtered, np.load(folder / "filtered.npy"))
+    in_memory, in_memory_coefficients = tvf.filter(saved["complex"], saved["field"], saved["basis"], **FILTER)
+    assert np.max(np.abs(filtered - in_memory)) <= 1e-12 * np.max(np.abs(in_memory))
+    assert np.max(np.abs(coefficients - in_memory_coefficients)) <= 1e-12 * np.max(np.abs(in_memory_coefficients))
+    # rest_gain=None: the command line's default --rest (the filters' gain at the top frequency).
+    default_rest, _ = f.filter(saved["mesh"], saved["field"], integrable="lowpass:t=0.01", cointegrable="lowpass:t=0.01", rest_gain=None)
+    run_cli(
+        saved["tvf_bin"], saved["cache"], "filter", folder / "torus.obj", folder / "field.npy", "--basis", saved["path"],
+        "--integrable", "lowpass:t=0.01", "--cointegrable", "lowpass:t=0.01", "-o", folder / "default.npy", block_bytes=1000,
+    )
+    assert np.array_equal(default_rest, np.load(folder / "default.npy"))
+    with pytest.raises(tvf.TvfError, match="--integrable lowpass:q=1"):
+        f.filter(saved["mesh"], saved["field"], integrable="lowpass:q=1")
+
+
+def test_results_do_not_depend_on_the_block_size(saved, monkeypatch):
+    """Bit for bit with a diagonal M1; with whitney-galerkin's sparse M1 the co-integrable fields
+    are formed by one mass solve per block of co-potentials, and a solve of another number of
+    columns rounds differently: equal to round-off."""
+    mesh, field = saved["mesh"], saved["field"]
+    exact = saved["complex"].masses["M1"]["storage"] == "diagonal"
+    whole = tvf.BasisFile(saved["path"])  # one block holds every stored column
+    assert whole.block_bytes == 64 << 20
+    monkeypatch.setenv("TVF_BASIS_BLOCK_BYTES", "8")
+    column = tvf.BasisFile(saved["path"])  # one stored column per block
+    assert column.block_bytes == 8
+    for method, args in [("coefficients", ()), ("filter", ()), ("synthesize", ())]:
+        if method == "synthesize":
+            c = np.random.default_rng(1).normal(size=(3, K))
+            a, b = whole.synthesize(mesh, c), column.synthesize(mesh, c)
+        else:
+            a, b = getattr(whole, method)(mesh, field), getattr(column, method)(mesh, field)
+        for x, y in zip(a, b):
+            if exact:
+                assert np.array_equal(x, y), method
+            else:
+                assert np.max(np.abs(np.subtract(x, y))) <= 1e-13 * np.max(np.abs(x)), method
+    monkeypatch.setenv("TVF_BASIS_BLOCK_BYTES", "lots")
+    with pytest.raises(tvf.TvfError, match="TVF_BASIS_BLOCK_BYTES"):
+        tvf.BasisFile(saved["path"])
+
+
+def test_synthesis_fields_and_the_materialised_basis(saved):
+    mesh, basis = saved["mesh"], saved["basis"]
+    f = tvf.BasisFile(saved["path"], block_bytes=4096)
+    loaded = f.to_basis(mesh)
+    assert np.array_equal(loaded.eigenvalues, basis.eigenvalues) and loaded.discretization == basis.discretization
+    assert np.max(np.abs(loaded.coefficients - basis.coefficients)) <= 1e-10 * np.max(np.abs(basis.coefficients))
+    c = np.random.default_rng(2).normal(size=(4, K))
+    many = f.synthesize(mesh, c, as_vectors=False)
+    assert many.shape == (4, saved["complex"].dimensions[1])
+    for row, coefficients in zip(many, c):
+        # One pass for several sets gives each set's own sum, bit for bit.
+        assert np.array_equal(row, f.synthesize(mesh, coefficients, as_vectors=False))
+    assert np.max(np.abs(many - c @ loaded.coefficients.T)) <= 1e-12 * np.max(np.abs(many))
+    vectors = f.synthesize(mesh, c[0])
+    assert vectors.shape == (len(mesh.faces), 3)
+    assert np.max(np.abs(vectors - loaded.fields @ c[0])) <= 1e-12 * np.max(np.abs(vectors))
+    chosen = f.fields(mesh, [0, 5, K - 1])
+    assert chosen.shape == (len(mesh.faces), 3, 3)
+    assert np.max(np.abs(chosen - loaded.fields[:, :, [0, 5, K - 1]])) <= 1e-13 * np.max(np.abs(chosen))
+    # Coefficients of a basis field: 1 at its own index.
+    projected, rest = f.coefficients(mesh, basis.coefficients[:, 7])
+    assert abs(projected[7] - 1) < 1e-9 and rest < 1e-9
+    assert len(f.basis_id(mesh)) == 16
+    with pytest.raises(tvf.TvfError, match="expected 60 per field"):
+        f.synthesize(mesh, np.ones(K + 1))
+    with pytest.raises(tvf.TvfError, match="the basis has 60 fields"):
+        f.fields(mesh, [K])
+
+
+def test_a_mismatched_mesh_or_discretization_is_refused_naming_the_file(saved):
+    f = tvf.BasisFile(saved["path"])
+    V, F = torus(n=18, m=8)
+    with pytest.raises(tvf.TvfError, match=r"torus\.tvfb: basis belongs to another mesh"):
+        f.coefficients(tvf.Mesh(V, F), np.ones((len(F), 3)))
+    other = "conforming-voronoi" if saved["complex"].id != "conforming-voronoi" else "whitney-galerkin"
+    with pytest.raises(tvf.TvfError, match=r"torus\.tvfb: the basis belongs to"):
+        f.coefficients(tvf.Complex(saved["mesh"], other), saved["field"])
+    with pytest.raises(TypeError, match="tvf.Mesh or tvf.Complex"):
+        f.coefficients("torus.obj", saved["field"])
+
+
+def test_truncated_flipped_and_foreign_files_are_refused_naming_the_file(saved, tmp_path):
+    data = saved["path"].read_bytes()
+    truncated = tmp_path / "truncated.tvfb"
+    truncated.write_bytes(data[:-100])
+    with pytest.raises(tvf.TvfError, match=r"truncated\.tvfb: truncated basis file"):
+        tvf.BasisFile(truncated)
+    # A flipped bit in the stored columns: the metadata still read, the first use refuses it.
+    flipped = tmp_path / "flipped.tvfb"
+    damaged = bytearray(data)
+    damaged[len(data) - 4096] ^= 0x10
+    flipped.write_bytes(bytes(damaged))
+    f = tvf.BasisFile(flipped)
+    with pytest.raises(tvf.TvfError, match=r"flipped\.tvfb: damaged basis file \(payload checksum mismatch\)"):
+        f.filter(saved["mesh"], saved["field"])
+    header = tmp_path / "header.tvfb"
+    damaged = bytearray(data)
+    damaged[40] ^= 0x01
+    header.write_bytes(bytes(damaged))
+    with pytest.raises(tvf.TvfError, match=r"header\.tvfb: "):
+        tvf.BasisFile(header)
+    foreign = tmp_path / "foreign.tvfb"
+    foreign.write_bytes(b"not a basis at all" * 10)
+    with pytest.raises(tvf.TvfError, match=r"foreign\.tvfb: not a tvf basis file"):
+        tvf.BasisFile(foreign)
+    with pytest.raises(tvf.TvfError, match=r"missing\.tvfb"):
+        tvf.BasisFile(tmp_path / "missing.tvfb")
+
+
+def test_a_file_changed_after_it_was_checked_is_refused(saved, tmp_path):
+    copy = tmp_path / "copy.tvfb"
+    copy.write_bytes(saved["path"].read_bytes())
+    f = tvf.BasisFile(copy)
+    f.coefficients(saved["mesh"], saved["field"])
+    with open(copy, "ab") as out:
+        out.write(b"\0" * 8)
+    with pytest.raises(tvf.TvfError, match=r"copy\.tvfb.*changed since it was checked"):
+        f.coefficients(saved["mesh"], saved["field"])
