@@ -20,8 +20,7 @@ use tvf_core::discretization::{BoundaryCondition, HodgeOperators, MatrixHash};
 use tvf_discretizations::builtin_catalog;
 use tvf_spectral::{
     basis_file_complex, field_basis_id, load_basis, read_basis_spectrum, BasisFileBlocks,
-    BasisFileKey, BasisFileLayout, FieldBasis, FourierAnalysis, FrequencyResponse,
-    SpectralFilter,
+    BasisFileKey, BasisFileLayout, FieldBasis, FourierAnalysis, FrequencyResponse, SpectralFilter,
 };
 
 /// What the basis file `path` says without its fields being read, as a dict: `version`,
@@ -239,8 +238,8 @@ impl BasisBlocks {
             harmonic_gain,
             rest_gain,
         };
-        let filtered = detached(py, || filter.apply(&self.blocks, &values))?
-            .map_err(|e| from_error(&e))?;
+        let filtered =
+            detached(py, || filter.apply(&self.blocks, &values))?.map_err(|e| from_error(&e))?;
         if let Some(i) = filtered.field.iter().position(|x| !x.is_finite()) {
             return Err(tvf_error(format!(
                 "the filtered field is not finite (coefficient {i}): the gains times the \
@@ -276,8 +275,8 @@ impl BasisBlocks {
             )));
         }
         let sets: Vec<&[f64]> = rows.iter().map(Vec::as_slice).collect();
-        let fields = detached(py, || self.blocks.reconstruct_many(&sets))?
-            .map_err(|e| from_error(&e))?;
+        let fields =
+            detached(py, || self.blocks.reconstruct_many(&sets))?.map_err(|e| from_error(&e))?;
         if let Some(i) = fields.iter().position(|f| f.iter().any(|x| !x.is_finite())) {
             return Err(tvf_error(format!(
                 "the synthesised field {i} is not finite: its coefficients overflow f64 \
@@ -362,5 +361,4 @@ impl BasisBlocks {
         }
         Ok(values)
     }
-
 }

@@ -64,7 +64,9 @@ pub fn face_vectors_out<'py>(
     field: &[f64],
 ) -> PyResult<Bound<'py, PyAny>> {
     let sampling = complex.require_sampling().map_err(|e| from_error(&e))?;
-    let vectors = sampling.to_face_vectors(field).map_err(|e| from_error(&e))?;
+    let vectors = sampling
+        .to_face_vectors(field)
+        .map_err(|e| from_error(&e))?;
     Ok(crate::arrays::vectors_to_numpy(py, &vectors))
 }
 

@@ -110,11 +110,11 @@ pub use formats::basis_file::{
     BasisFileLayout, StoredFieldMass, BASIS_FILE_MAGIC, BASIS_FILE_VERSION,
 };
 pub use formats::basis_file_blocks::{BasisFileBlocks, BLOCK_BYTES};
-pub use formats::basis_file_spectrum::{read_basis_spectrum, BasisFileSpectrum};
 pub use formats::basis_file_complex::{
     basis_file_complex, basis_file_complex_id, open_basis_file, open_basis_file_with,
     BasisFileUseError,
 };
+pub use formats::basis_file_spectrum::{read_basis_spectrum, BasisFileSpectrum};
 pub use formats::basis_id::{basis_id, field_basis_id};
 pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
 pub use formats::complex_folder::{

@@ -716,7 +716,10 @@ fn sections_of(header: &BasisFileHeader, body_start: u64, n0: usize, n2: usize) 
 }
 
 /// The families of the family `codes` (`d` bytes), their counts the header's.
-pub(super) fn families_of(codes: &[u8], header: &BasisFileHeader) -> Result<Vec<FieldFamily>, String> {
+pub(super) fn families_of(
+    codes: &[u8],
+    header: &BasisFileHeader,
+) -> Result<Vec<FieldFamily>, String> {
     let families = codes
         .iter()
         .map(|&code| {
