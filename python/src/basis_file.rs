@@ -172,7 +172,7 @@ impl BasisBlocks {
 
     /// Face vectors (`F × 3`) as field coefficients (`n1`), with the largest dropped normal
     /// component.
-    fn from_face_vectors<'py>(
+    fn field_of_face_vectors<'py>(
         &self,
         py: Python<'py>,
         vectors: PyReadonlyArray2<'py, f64>,
@@ -182,7 +182,7 @@ impl BasisBlocks {
     }
 
     /// Field coefficients (`n1`) sampled at the face centroids (`F × 3`).
-    fn to_face_vectors<'py>(
+    fn face_vectors_of_field<'py>(
         &self,
         py: Python<'py>,
         field: PyReadonlyArray1<'py, f64>,

@@ -125,7 +125,7 @@ class BasisFile:
             raise TvfError(f"coefficients: expected ({self.k},) or (m, {self.k}), got shape {array.shape}")
         rows = np.asarray(blocks.synthesize(np.ascontiguousarray(np.atleast_2d(array))))
         if as_vectors and blocks.has_sampling:
-            fields = [np.asarray(blocks.to_face_vectors(r)) for r in rows]
+            fields = [np.asarray(blocks.face_vectors_of_field(r)) for r in rows]
             rows = np.stack(fields) if fields else np.zeros((0, self.face_count, 3))
         return rows[0] if array.ndim == 1 else rows
 
@@ -210,7 +210,7 @@ def _field_in(blocks, field, name="field"):
     if array.ndim == 2 and array.shape[1] == 3:
         if not blocks.has_sampling:
             raise TvfError(f"{name}: the discretization '{blocks.discretization}' has no sampling; give {n1} coefficients")
-        coefficients, _normal = blocks.from_face_vectors(array)
+        coefficients, _normal = blocks.field_of_face_vectors(array)
         return np.asarray(coefficients), True
     if array.ndim == 1:
         return array, False
@@ -220,5 +220,5 @@ def _field_in(blocks, field, name="field"):
 def _field_out(blocks, coefficients, as_vectors):
     coefficients = np.asarray(coefficients)
     if as_vectors:
-        return np.asarray(blocks.to_face_vectors(coefficients))
+        return np.asarray(blocks.face_vectors_of_field(coefficients))
     return coefficients

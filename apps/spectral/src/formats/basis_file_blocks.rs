@@ -36,9 +36,10 @@
 //! checked with, and every value it reads for being finite (a file changed in place since is
 //! refused, naming it, where that shows).
 
-use super::basis_file::{check_file_size, family_code};
+use super::basis_file::check_file_size;
 use super::basis_file_header::read_header;
-use crate::basis::{check_eigenvalues, check_length};
+use super::basis_file_spectrum::{front_bytes, read_front};
+use crate::basis::check_length;
 use crate::eigenfunction_basis::field_of_stored_into;
 use crate::field_basis::check_rows;
 use crate::{
@@ -133,15 +134,8 @@ impl BasisFileBlocks {
         let d = header.field_count;
         let payload_end = size - 8;
         check_payload(&file, path, header_length, d, payload_end)?;
-        let mut front = vec![0u8; 8 * d + d.div_ceil(8) * 8];
-        file.read_exact_at(&mut front, header_length).map_err(io)?;
-        let eigenvalues: Vec<f64> = front[..8 * d]
-            .chunks_exact(8)
-            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-            .collect();
-        check_eigenvalues(&eigenvalues).map_err(|e| invalid(e.to_string()))?;
-        let families = families_of(&front[8 * d..8 * d + d], &header).map_err(invalid)?;
-        let body_start = header_length + front.len() as u64;
+        let (eigenvalues, families) = read_front(&file, path, &header, header_length)?;
+        let body_start = header_length + front_bytes(d);
         let sections = sections_of(
             &header,
             body_start,
@@ -715,39 +709,6 @@ fn sections_of(header: &BasisFileHeader, body_start: u64, n0: usize, n2: usize) 
     [integrable, cointegrable, harmonic]
 }
 
-/// The families of the family `codes` (`d` bytes), their counts the header's.
-pub(super) fn families_of(
-    codes: &[u8],
-    header: &BasisFileHeader,
-) -> Result<Vec<FieldFamily>, String> {
-    let families = codes
-        .iter()
-        .map(|&code| {
-            [
-                FieldFamily::Harmonic,
-                FieldFamily::Integrable,
-                FieldFamily::Cointegrable,
-            ]
-            .into_iter()
-            .find(|&f| family_code(f) == code)
-            .ok_or_else(|| format!("unknown family code {code}"))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let count = |family| families.iter().filter(|&&f| f == family).count();
-    if (
-        count(FieldFamily::Integrable),
-        count(FieldFamily::Cointegrable),
-        count(FieldFamily::Harmonic),
-    ) != (
-        header.integrable_count,
-        header.cointegrable_count,
-        header.harmonic_count,
-    ) {
-        return Err("family counts differ from the header".into());
-    }
-    Ok(families)
-}
-
 /// Checks the payload `[start, end)` of `file` (`d` eigenvalues and family codes, then stored
 /// columns) against the checksum stored at `end`, reading it once in blocks, and that every
 /// stored column value is finite.
@@ -762,7 +723,7 @@ fn check_payload(
         path: path.to_path_buf(),
         source,
     };
-    let body_start = start + (8 * d + d.div_ceil(8) * 8) as u64;
+    let body_start = start + front_bytes(d);
     let mut hash = Hash64::new();
     let mut block = vec![0u8; BLOCK_BYTES];
     let mut non_finite = None;
