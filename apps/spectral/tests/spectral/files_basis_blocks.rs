@@ -3,9 +3,10 @@
 //! bounded here), and do not depend on the block size (bit for bit); the fields visited, the
 //! basis id and the rows of `U` are the loaded basis's bit for bit (the co-integrable rows of a
 //! non-diagonal `M1` to round-off: mass solves); a damaged file is refused before use, naming
-//! it; a file in the fields layout is left to the whole load.
+//! it; a file in the fields layout is left to the whole load. The header, eigenvalues and
+//! families of a file read without its fields (`read_basis_spectrum`).
 
-use super::common::{relative_difference, reseal_payload};
+use super::common::{header_length, relative_difference, reseal_payload};
 use std::path::Path;
 use std::sync::Mutex;
 use tvf_core::discretization::HodgeOperators;
@@ -13,9 +14,9 @@ use tvf_core::generate::icosphere;
 use tvf_discretizations::{BoxedComplex, Conforming, MassLumping, WhitneyGalerkin};
 use tvf_spectral::{
     basis_id, compress_with_report, compute_eigenfunction_basis, field_basis_id, load_basis,
-    save_basis, save_computed_basis, BasisFileBlocks, BasisFileError, BasisFileKey, BasisRequest,
-    CoefficientCoding, FieldBasis, FieldCodec, FieldFamily, FourierAnalysis, FrequencyResponse,
-    SpectralBasis, SpectralFilter,
+    read_basis_spectrum, save_basis, save_computed_basis, BasisFileBlocks, BasisFileError,
+    BasisFileKey, BasisRequest, CoefficientCoding, FieldBasis, FieldCodec, FieldFamily,
+    FourierAnalysis, FrequencyResponse, SpectralBasis, SpectralFilter,
 };
 
 /// A smooth field with a part outside any truncated basis (`n1` values).
@@ -234,4 +235,43 @@ fn damaged_files_are_refused_before_blocks_are_read() {
     assert!(BasisFileBlocks::open(&fields, &key, complex())
         .unwrap()
         .is_none());
+}
+
+/// What a basis file says without its fields ([`read_basis_spectrum`]): the header, the
+/// eigenvalues and families of the file's basis, the file's size; a truncated file and one whose
+/// eigenvalues are damaged (resealed, so that only their order tells) refused naming the file.
+#[test]
+fn the_spectrum_of_a_basis_file_is_read_without_its_fields() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = icosphere(2);
+    let complex = Conforming::new(&mesh, MassLumping::Barycentric).unwrap();
+    let key = BasisFileKey::new(&mesh, &complex);
+    let path = dir.path().join("spectrum.tvfb");
+    save_computed_basis(&path, &complex, &BasisRequest::fields(30), &key).unwrap();
+    let whole = load_basis(&path, &key, &complex).unwrap();
+    let spectrum = read_basis_spectrum(&path).unwrap();
+    assert_eq!(spectrum.eigenvalues, whole.eigenvalues());
+    assert_eq!(spectrum.families, whole.families());
+    assert_eq!(spectrum.header.key, key);
+    assert_eq!(spectrum.header.field_count, 30);
+    let bytes = std::fs::read(&path).unwrap();
+    assert_eq!(spectrum.file_bytes, bytes.len() as u64);
+
+    std::fs::write(&path, &bytes[..bytes.len() - 8]).unwrap();
+    let error = read_basis_spectrum(&path).unwrap_err();
+    assert!(matches!(error, BasisFileError::Truncated { .. }), "{error}");
+    assert!(error.to_string().contains("spectrum.tvfb"), "{error}");
+    // The first eigenvalue made larger than the last: no longer ascending.
+    let header_length = header_length(&bytes);
+    let mut unordered = bytes.clone();
+    unordered[header_length..header_length + 8].copy_from_slice(&1e9f64.to_le_bytes());
+    reseal_payload(&mut unordered);
+    std::fs::write(&path, &unordered).unwrap();
+    let error = read_basis_spectrum(&path).unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .contains("spectrum.tvfb: invalid basis file"),
+        "{error}"
+    );
 }
