@@ -7,6 +7,7 @@
 
 use crate::arrays::face_fields_to_numpy;
 use crate::basis::basis_dict;
+use crate::design::{constraints_on, result, solve_reduced};
 use crate::errors::{from_error, tvf_error, with_context};
 use crate::fields::{face_vectors_in, face_vectors_out};
 use crate::interrupt::detached;
@@ -16,7 +17,10 @@ use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
+use std::sync::Arc;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators, MatrixHash};
+use tvf_core::SurfaceMesh;
+use tvf_design::ReducedBasis;
 use tvf_discretizations::builtin_catalog;
 use tvf_spectral::{
     basis_file_complex, field_basis_id, load_basis, read_basis_spectrum, BasisFileBlocks,
@@ -87,7 +91,9 @@ fn matrix_hash_dict<'py>(py: Python<'py>, hash: &MatrixHash) -> PyResult<Bound<'
 /// in blocks.
 #[pyclass(frozen, module = "tvf._native")]
 pub struct BasisBlocks {
-    blocks: BasisFileBlocks,
+    blocks: Arc<BasisFileBlocks>,
+    /// The mesh the file was checked against (constraints are compiled on it).
+    mesh: SurfaceMesh,
     path: PathBuf,
     /// The mesh and complex the file was checked against.
     key: BasisFileKey,
@@ -135,7 +141,8 @@ impl BasisBlocks {
             ))
         })?;
         Ok(Self {
-            blocks: blocks.with_block_bytes(block_bytes.max(1)),
+            blocks: Arc::new(blocks.with_block_bytes(block_bytes.max(1))),
+            mesh: mesh.mesh.clone(),
             path,
             key,
         })
@@ -199,7 +206,7 @@ impl BasisBlocks {
         field: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<(Bound<'py, PyAny>, f64)> {
         let values = self.field(&field)?;
-        let analysis = detached(py, || FourierAnalysis::new(&self.blocks, &values))?
+        let analysis = detached(py, || FourierAnalysis::new(&*self.blocks, &values))?
             .map_err(|e| from_error(&e))?;
         Ok((
             analysis.coefficients.into_pyarray(py).into_any(),
@@ -230,7 +237,7 @@ impl BasisBlocks {
             response("cointegrable", cointegrable)?,
         );
         let rest_gain = rest_gain.unwrap_or_else(|| {
-            SpectralFilter::continued_rest_gain(&integrable, &cointegrable, &self.blocks)
+            SpectralFilter::continued_rest_gain(&integrable, &cointegrable, &*self.blocks)
         });
         let filter = SpectralFilter {
             integrable,
@@ -239,7 +246,7 @@ impl BasisBlocks {
             rest_gain,
         };
         let filtered =
-            detached(py, || filter.apply(&self.blocks, &values))?.map_err(|e| from_error(&e))?;
+            detached(py, || filter.apply(&*self.blocks, &values))?.map_err(|e| from_error(&e))?;
         if let Some(i) = filtered.field.iter().position(|x| !x.is_finite()) {
             return Err(tvf_error(format!(
                 "the filtered field is not finite (coefficient {i}): the gains times the \
@@ -325,10 +332,32 @@ impl BasisBlocks {
         Ok(face_fields_to_numpy(py, &columns, sampling.face_count()))
     }
 
+    /// The spline (`soft` false) or the reduced soft design (`soft` true) of the constraints of
+    /// `constraints_json` (`origin` names them in messages) in this basis, as `tvf spline
+    /// --basis FILE` / `tvf design --reduced --basis FILE`: only the rows of `U` the
+    /// constraints touch are read. Dict `field` (`n1`), `residuals`.
+    fn reduced<'py>(
+        &self,
+        py: Python<'py>,
+        constraints_json: &str,
+        origin: &str,
+        soft: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let complex = self.blocks.complex().as_ref();
+        let (set, compiled) = constraints_on(&self.mesh, complex, constraints_json, origin)?;
+        let basis: Arc<dyn FieldBasis> = self.blocks.clone();
+        let field = detached(py, || {
+            let reduced = ReducedBasis::from_field_basis(basis, &compiled)?;
+            solve_reduced(complex, soft, &reduced, &set, &compiled)
+        })?
+        .map_err(|e| with_context(origin, &e))?;
+        result(py, field, &compiled, set.omega, origin)
+    }
+
     /// The basis id compressed files carry (16 hex digits): every field formed once from the
     /// file, a block at a time.
     fn basis_id(&self, py: Python<'_>) -> PyResult<String> {
-        let id = detached(py, || field_basis_id(&self.blocks))?.map_err(|e| from_error(&e))?;
+        let id = detached(py, || field_basis_id(&*self.blocks))?.map_err(|e| from_error(&e))?;
         Ok(format!("{id:016x}"))
     }
 

@@ -9,6 +9,8 @@ use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::Path;
+use tvf_core::discretization::HodgeComplex;
+use tvf_core::SurfaceMesh;
 use tvf_design::{
     checked_residuals, default_regularization, timed_reduced_design, timed_spline,
     CompiledConstraint, ConstraintResidual, ConstraintSet, DesignError, FullSoftDesign,
@@ -21,17 +23,27 @@ fn constraints(
     json: &str,
     origin: &str,
 ) -> PyResult<(ConstraintSet, Vec<CompiledConstraint>)> {
+    constraints_on(&complex.mesh, complex.complex.as_ref(), json, origin)
+}
+
+/// [`constraints`] on `complex` built on `mesh`.
+pub fn constraints_on(
+    mesh: &SurfaceMesh,
+    complex: &dyn HodgeComplex,
+    json: &str,
+    origin: &str,
+) -> PyResult<(ConstraintSet, Vec<CompiledConstraint>)> {
     let origin = Path::new(origin);
     let set = ConstraintSet::parse(json, origin).map_err(|e| from_error(&e))?;
     let compiled = set
-        .compile_for(origin, &complex.mesh, complex.complex.as_ref())
+        .compile_for(origin, mesh, complex)
         .map_err(|e| from_error(&e))?;
     Ok((set, compiled))
 }
 
 /// The field and its per-constraint residuals as a dict; a field with a non-finite coefficient
 /// is an error.
-fn result<'py>(
+pub fn result<'py>(
     py: Python<'py>,
     field: Vec<f64>,
     compiled: &[CompiledConstraint],
@@ -106,17 +118,27 @@ pub fn reduced<'py>(
         basis,
         constraints_json,
         origin,
-        |reduced, set, compiled| {
-            if !soft {
-                return Ok(timed_spline(reduced, set.omega, compiled)?.field);
-            }
-            let options = SoftOptions {
-                omega: set.omega,
-                regularization: default_regularization(c),
-            };
-            Ok(timed_reduced_design(reduced, options, compiled)?.field)
-        },
+        |reduced, set, compiled| solve_reduced(c, soft, reduced, set, compiled),
     )
+}
+
+/// The spline (`soft` false) or the reduced soft design of `complex` in `reduced` with the
+/// constraints `compiled` of `set`.
+pub fn solve_reduced(
+    complex: &dyn HodgeComplex,
+    soft: bool,
+    reduced: &ReducedBasis,
+    set: &ConstraintSet,
+    compiled: &[CompiledConstraint],
+) -> Result<Vec<f64>, DesignError> {
+    if !soft {
+        return Ok(timed_spline(reduced, set.omega, compiled)?.field);
+    }
+    let options = SoftOptions {
+        omega: set.omega,
+        regularization: default_regularization(complex),
+    };
+    Ok(timed_reduced_design(reduced, options, compiled)?.field)
 }
 
 /// A field solved by `solve` in the reduced basis `basis` with the constraints of

@@ -43,7 +43,8 @@ class BasisFile:
     :meth:`synthesize`, :meth:`fields` (some basis fields), :meth:`basis_id`.
     :meth:`to_basis` loads the whole basis into memory (a :class:`tvf.Basis`, ``n1 x k`` and
     ``F x 3 x k`` arrays). :func:`tvf.coefficients` and :func:`tvf.filter` take a ``BasisFile``
-    wherever they take a ``Basis``.
+    wherever they take a ``Basis``, and :func:`tvf.spline` and :func:`tvf.design` (reduced) take
+    it as ``basis=`` (only the rows of the basis the constraints touch are read).
 
     The products run without the GIL; Ctrl+C raises ``KeyboardInterrupt`` when the pass in
     progress returns, as for the other field functions.

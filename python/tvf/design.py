@@ -6,6 +6,7 @@ import numpy as np
 
 from . import _native
 from ._native import TvfError
+from .basis_file import BasisFile, _field_out as _file_field_out
 from .complex import as_complex
 from .spectral import _complex_of, _field_out, basis as compute_basis
 
@@ -33,7 +34,9 @@ def spline(mesh, constraints, k=None, basis=None, discretization=None, boundary=
     "a", "kind": "vector", "face": 12, "value": [1, 0, 0]}, ...]}``; kinds ``vector``,
     ``divergence``, ``curl``; locations ``face`` (+ ``barycentric``), ``vertex``, ``edge``;
     see the README's "Constraint files"), or its JSON text. ``origin`` names it in messages.
-    Give ``k`` (the basis is computed) or a :class:`tvf.Basis`. Conflicting or dependent
+    Give ``k`` (the basis is computed), a :class:`tvf.Basis`, or a :class:`tvf.BasisFile` (read
+    in blocks as ``tvf spline --basis FILE`` reads it: only the rows of the basis the constraints
+    touch are held). Conflicting or dependent
     constraints raise :class:`tvf.TvfError` naming them, as the command line does.
 
     Returns a dict: ``field`` (``(F, 3)`` face vectors, or coefficients without sampling),
@@ -54,9 +57,10 @@ def design(mesh, constraints, discretization=None, boundary="tangential", origin
       ``nonconforming-consistent``, a :meth:`Complex.from_matrices` complex with sparse masses)
       the system gets auxiliary unknowns (the divergence and curl at the nodes) so that it stays
       sparse.
-    - **reduced** (``k`` or a :class:`tvf.Basis` given; ``tvf design --reduced``): in the basis
-      of the ``k`` lowest eigenfields (computed with ``seed`` and ``progress`` as
-      :func:`tvf.basis`, or the basis given), a dense system of the basis size. Every complex.
+    - **reduced** (``k``, a :class:`tvf.Basis` or a :class:`tvf.BasisFile` given; ``tvf design
+      --reduced``): in the basis of the ``k`` lowest eigenfields (computed with ``seed`` and
+      ``progress`` as :func:`tvf.basis`, or the basis given; a basis file is read in blocks), a
+      dense system of the basis size. Every complex.
 
     ``constraints`` as for :func:`spline` (``weight`` > 0 per constraint, default 1). Returns
     the same dict as :func:`spline`."""
@@ -70,6 +74,12 @@ def design(mesh, constraints, discretization=None, boundary="tangential", origin
 def _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progress, origin, soft, intrinsic_delaunay=False):
     """The spline (``soft`` false) or reduced soft design in ``basis``, or in the basis of the
     ``k`` lowest eigenfields computed here."""
+    if isinstance(basis, BasisFile):
+        blocks = basis._blocks(mesh)
+        raw = blocks.reduced(_json(constraints), str(origin), soft)
+        coefficients = np.asarray(raw["field"])
+        field = _file_field_out(blocks, coefficients, blocks.has_sampling)
+        return {"field": field, "coefficients": coefficients, "residuals": dict(raw["residuals"])}
     if basis is None:
         complex_ = as_complex(mesh, discretization, boundary, intrinsic_delaunay=intrinsic_delaunay)
         basis = compute_basis(complex_, k, seed=seed, progress=progress)
