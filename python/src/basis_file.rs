@@ -7,6 +7,7 @@
 
 use crate::arrays::face_fields_to_numpy;
 use crate::basis::basis_dict;
+use crate::complex::checked_field;
 use crate::design::{constraints_on, result, solve_reduced};
 use crate::errors::{from_error, tvf_error, with_context};
 use crate::fields::{face_vectors_in, face_vectors_out};
@@ -374,20 +375,6 @@ impl BasisBlocks {
 impl BasisBlocks {
     /// A field's coefficients, checked: length `n1`, finite.
     fn field(&self, field: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
-        let values = field.as_slice()?.to_vec();
-        let n1 = self.blocks.field_dimension();
-        if values.len() != n1 {
-            return Err(tvf_error(format!(
-                "field: expected {n1} coefficients for '{}', got {}",
-                self.discretization(),
-                values.len()
-            )));
-        }
-        if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-            return Err(tvf_error(format!(
-                "field: non-finite value at coefficient {i}"
-            )));
-        }
-        Ok(values)
+        checked_field(self.blocks.complex().as_ref(), field)
     }
 }

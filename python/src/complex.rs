@@ -11,7 +11,7 @@ use crate::mesh::Mesh;
 use numpy::PyReadonlyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tvf_core::discretization::{BoundaryCondition, HodgeOperators, NodeKind};
+use tvf_core::discretization::{BoundaryCondition, HodgeComplex, HodgeOperators, NodeKind};
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::{
     builtin_catalog, catalog_entry, default_discretization, parse_intrinsic_delaunay,
@@ -283,26 +283,33 @@ pub fn discretizations(py: Python<'_>) -> PyResult<Vec<Bound<'_, PyDict>>> {
         .collect()
 }
 
+/// A field's coefficients for `complex`, checked: length `n1`, finite.
+pub fn checked_field(
+    complex: &dyn HodgeComplex,
+    field: &PyReadonlyArray1<'_, f64>,
+) -> PyResult<Vec<f64>> {
+    let values = field.as_slice()?.to_vec();
+    if values.len() != complex.field_dimension() {
+        return Err(tvf_error(format!(
+            "field: expected {} coefficients for '{}', got {}",
+            complex.field_dimension(),
+            complex.id(),
+            values.len()
+        )));
+    }
+    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+        return Err(tvf_error(format!(
+            "field: non-finite value at coefficient {i}"
+        )));
+    }
+    Ok(values)
+}
+
 /// What the field functions check before they run.
 impl Complex {
     /// A field's coefficients, checked: length `n1`, finite.
     pub fn field(&self, field: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
-        let values = field.as_slice()?.to_vec();
-        let complex = self.complex.as_ref();
-        if values.len() != complex.field_dimension() {
-            return Err(tvf_error(format!(
-                "field: expected {} coefficients for '{}', got {}",
-                complex.field_dimension(),
-                complex.id(),
-                values.len()
-            )));
-        }
-        if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-            return Err(tvf_error(format!(
-                "field: non-finite value at coefficient {i}"
-            )));
-        }
-        Ok(values)
+        checked_field(self.complex.as_ref(), field)
     }
 
     /// A basis given as Python's arrays, checked against this complex.

@@ -8,6 +8,7 @@ import numpy as np
 
 from . import _native
 from ._arrays import float_array, integer
+from ._fields import field_coefficients, field_in_form
 from ._native import TvfError
 from .complex import Complex
 from .mesh import Mesh
@@ -204,22 +205,11 @@ def _block_bytes(given):
 
 
 def _field_in(blocks, field, name="field"):
-    """``(coefficients, as_vectors)`` of a field of the basis's complex: ``(F, 3)`` converted
-    through its sampling, ``(n1,)`` taken as coefficients."""
-    array = float_array(field, name)
+    """``(coefficients, as_vectors)`` of a field of the basis's complex (see
+    :func:`field_coefficients`)."""
     n1 = blocks.dimensions[1]
-    if array.ndim == 2 and array.shape[1] == 3:
-        if not blocks.has_sampling:
-            raise TvfError(f"{name}: the discretization '{blocks.discretization}' has no sampling; give {n1} coefficients")
-        coefficients, _normal = blocks.field_of_face_vectors(array)
-        return np.asarray(coefficients), True
-    if array.ndim == 1:
-        return array, False
-    raise TvfError(f"{name}: expected face vectors (F, 3) or {n1} coefficients, got shape {array.shape}")
+    return field_coefficients(field, name, n1, blocks.has_sampling, blocks.discretization, blocks.field_of_face_vectors)
 
 
 def _field_out(blocks, coefficients, as_vectors):
-    coefficients = np.asarray(coefficients)
-    if as_vectors:
-        return np.asarray(blocks.face_vectors_of_field(coefficients))
-    return coefficients
+    return field_in_form(coefficients, as_vectors, blocks.face_vectors_of_field)

@@ -7,7 +7,8 @@ from typing import Optional
 import numpy as np
 
 from . import _native
-from ._arrays import float_array, integer
+from ._arrays import integer
+from ._fields import field_coefficients, field_in_form
 from ._native import TvfError
 from .basis_file import BasisFile
 from .complex import Complex, as_complex
@@ -78,23 +79,14 @@ def _complex_of(mesh, discretization, boundary, basis=None):
 def _field_in(complex_, field, name="field"):
     """``(coefficients, as_vectors)``: an ``(F, 3)`` field is converted through the sampling,
     an ``(n1,)`` one taken as coefficients."""
-    array = float_array(field, name)
-    n1 = complex_.dimensions[1]
-    if array.ndim == 2 and array.shape[1] == 3:
-        if not complex_.has_sampling:
-            raise TvfError(f"{name}: the discretization '{complex_.id}' has no sampling; give {n1} coefficients")
-        coefficients, _normal = _native.from_face_vectors(complex_._native, array)
-        return np.asarray(coefficients), True
-    if array.ndim == 1:
-        return array, False
-    raise TvfError(f"{name}: expected face vectors (F, 3) or {n1} coefficients, got shape {array.shape}")
+    return field_coefficients(
+        field, name, complex_.dimensions[1], complex_.has_sampling, complex_.id,
+        lambda array: _native.from_face_vectors(complex_._native, array),
+    )
 
 
 def _field_out(complex_, coefficients, as_vectors):
-    coefficients = np.asarray(coefficients)
-    if as_vectors:
-        return np.asarray(_native.to_face_vectors(complex_._native, coefficients))
-    return coefficients
+    return field_in_form(coefficients, as_vectors, lambda c: _native.to_face_vectors(complex_._native, c))
 
 
 def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=None, beta=None, *, intrinsic_delaunay=False):
