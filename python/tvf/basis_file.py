@@ -152,14 +152,7 @@ class BasisFile:
         line loads a basis file."""
         from .spectral import Basis
 
-        raw = self._blocks(mesh).load()
-        return Basis(
-            eigenvalues=np.asarray(raw["eigenvalues"]),
-            families=np.array(raw["families"], dtype=str),
-            coefficients=np.asarray(raw["coefficients"]),
-            fields=None if raw["face_vectors"] is None else np.asarray(raw["face_vectors"]),
-            discretization=raw["discretization"],
-        )
+        return Basis._of_native(self._blocks(mesh).load())
 
     def _blocks(self, mesh):
         """The file opened (checked whole) for ``mesh``; kept for the next call on the same

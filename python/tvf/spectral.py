@@ -50,6 +50,17 @@ class Basis:
     def __len__(self):
         return len(self.eigenvalues)
 
+    @classmethod
+    def _of_native(cls, raw):
+        """The basis of the dict the native code returns (``tvf._native.basis``)."""
+        return cls(
+            eigenvalues=np.asarray(raw["eigenvalues"]),
+            families=np.array(raw["families"], dtype=str),
+            coefficients=np.asarray(raw["coefficients"]),
+            fields=None if raw["face_vectors"] is None else np.asarray(raw["face_vectors"]),
+            discretization=raw["discretization"],
+        )
+
     def _parts(self):
         return (
             np.ascontiguousarray(self.eigenvalues, dtype=np.float64),
@@ -109,13 +120,7 @@ def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=
     if k < 0:
         raise TvfError(f"-k {k}: ask for at least one eigenfield")
     raw = _native.basis(complex_._native, k, integer(seed, "seed"), progress)
-    return Basis(
-        eigenvalues=np.asarray(raw["eigenvalues"]),
-        families=np.array(raw["families"], dtype=str),
-        coefficients=np.asarray(raw["coefficients"]),
-        fields=None if raw["face_vectors"] is None else np.asarray(raw["face_vectors"]),
-        discretization=raw["discretization"],
-    )
+    return Basis._of_native(raw)
 
 
 def decompose(mesh, field, discretization=None, boundary="tangential", beta=None, *, intrinsic_delaunay=False):
