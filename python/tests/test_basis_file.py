@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import tvf
-from reference import torus, write_obj
+from reference import icosphere, torus, write_obj
 
 K = 60
 SEED = 5
@@ -256,3 +256,29 @@ def test_spline_and_reduced_design_in_a_basis_file(saved, command):
         *flags, "--basis", saved["path"], "-o", out, block_bytes=4096,
     )
     assert np.array_equal(found["field"], np.load(out))
+
+
+def test_a_mesh_with_boundary_brings_its_boundary_condition_back(tvf_bin, tmp_path):
+    """On a mesh with boundary the file's id carries the condition (`…+normal`): the complex is
+    rebuilt with it, and coefficients equal `tvf coefficients --basis` bit for bit."""
+    V, F = icosphere(3)
+    # The faces above z = 0.6 removed: a sphere with a hole (one boundary loop).
+    kept = F[np.max(V[F][:, :, 2], axis=1) < 0.6]
+    mesh = tvf.Mesh(V, kept)
+    write_obj(tmp_path / "plate.obj", mesh.positions, mesh.faces)
+    path = tmp_path / "plate.tvfb"
+    cache = tmp_path / "cache"
+    run_cli(tvf_bin, cache, "basis", tmp_path / "plate.obj", "-k", 30, "--boundary", "normal", "-o", path)
+    f = tvf.BasisFile(path, block_bytes=64)
+    assert f.discretization == "conforming-barycentric+normal"
+    field = np.random.default_rng(4).normal(size=(len(mesh.faces), 3))
+    np.save(tmp_path / "field.npy", field)
+    c, rest = f.coefficients(mesh, field)
+    out = run_cli(tvf_bin, cache, "coefficients", tmp_path / "plate.obj", tmp_path / "field.npy", "--basis", path, "--json", block_bytes=64)
+    report = json.loads(out.stdout)
+    assert np.array_equal(c, [entry["coefficient"] for entry in report["coefficients"]])
+    assert rest == report["relative_rest_norm"]
+    in_memory, _ = tvf.coefficients(tvf.Complex(mesh, boundary="normal"), field, tvf.basis(mesh, 30, boundary="normal"))
+    assert np.max(np.abs(c - in_memory)) <= 1e-12 * np.max(np.abs(in_memory))
+    with pytest.raises(tvf.TvfError, match=r"plate\.tvfb: the basis belongs to 'conforming-barycentric\+normal'"):
+        f.coefficients(tvf.Complex(mesh), field)
