@@ -5,6 +5,7 @@ same mesh, results independent of the block size, and bad files refused naming t
 
 import json
 import os
+import pickle
 import subprocess
 
 import numpy as np
@@ -166,6 +167,9 @@ def test_synthesis_fields_and_the_materialised_basis(saved):
     projected, rest = f.coefficients(mesh, basis.coefficients[:, 7])
     assert abs(projected[7] - 1) < 1e-9 and rest < 1e-9
     assert len(f.basis_id(mesh)) == 16
+    # Pickled as its path: used again after unpickling, with the same results.
+    again = pickle.loads(pickle.dumps(f))
+    assert again.path == f.path and np.array_equal(again.synthesize(mesh, c[0]), vectors)
     with pytest.raises(tvf.TvfError, match="expected 60 per field"):
         f.synthesize(mesh, np.ones(K + 1))
     with pytest.raises(tvf.TvfError, match="the basis has 60 fields"):

@@ -47,7 +47,8 @@ class BasisFile:
     wherever they take a ``Basis``, and :func:`tvf.spline` and :func:`tvf.design` (reduced) take
     it as ``basis=`` (only the rows of the basis the constraints touch are read).
 
-    The products run without the GIL; Ctrl+C raises ``KeyboardInterrupt`` when the pass in
+    A ``BasisFile`` pickles as its path and metadata (the file is checked again where it is
+    next used). The products run without the GIL; Ctrl+C raises ``KeyboardInterrupt`` when the pass in
     progress returns, as for the other field functions.
     """
 
@@ -77,6 +78,13 @@ class BasisFile:
 
     def __len__(self):
         return self.k
+
+    def __getstate__(self):
+        # Pickled as its path and metadata (e.g. to send it to Dask workers that see the same
+        # file): the open file is not carried, it is checked again where it is next used.
+        state = dict(self.__dict__)
+        state["_opened"] = None
+        return state
 
     def __repr__(self):
         return (
