@@ -10,13 +10,13 @@ use crate::basis::basis_dict;
 use crate::complex::checked_field;
 use crate::design::{constraints_on, result, solve_reduced};
 use crate::errors::{from_error, tvf_error, with_context};
-use crate::fields::{face_vectors_in, face_vectors_out};
+use crate::fields::{compress_rows, decompress_rows, face_vectors_in, face_vectors_out};
 use crate::interrupt::detached;
 use crate::mesh::Mesh;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 use std::path::PathBuf;
 use std::sync::Arc;
 use tvf_core::discretization::{BoundaryCondition, HodgeOperators, MatrixHash};
@@ -362,6 +362,31 @@ impl BasisBlocks {
         Ok(format!("{id:016x}"))
     }
 
+    /// Fields (rows of `fields`, `n1` each) compressed into the bytes of a `.tvfc` file, as
+    /// `tvf compress MESH FIELD --basis FILE` writes it (see [`BasisBlocks::with_identified`]).
+    #[pyo3(signature = (fields, pairs, bits = None))]
+    fn compress<'py>(
+        &self,
+        py: Python<'py>,
+        fields: PyReadonlyArray2<'py, f64>,
+        pairs: usize,
+        bits: Option<u32>,
+    ) -> PyResult<Bound<'py, PyBytes>> {
+        let fingerprint = self.mesh.fingerprint();
+        self.with_identified(py, |basis, id| {
+            compress_rows(py, basis, (fingerprint, id), fields, pairs, bits)
+        })
+    }
+
+    /// The fields (`frames × n1`) of `.tvfc` bytes, checked against the mesh and the basis id,
+    /// as `tvf decompress MESH FILE.tvfc --basis FILE` reads them.
+    fn decompress<'py>(&self, py: Python<'py>, data: &[u8]) -> PyResult<Bound<'py, PyAny>> {
+        let fingerprint = self.mesh.fingerprint();
+        self.with_identified(py, |basis, id| {
+            decompress_rows(py, basis, (fingerprint, id), data)
+        })
+    }
+
     /// The whole basis loaded into memory (as `tvf.basis` returns it: `coefficients` `n1 × d`
     /// and `face_vectors` `F × 3 × d`), the file read and checked again.
     fn load<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -373,6 +398,27 @@ impl BasisBlocks {
 }
 
 impl BasisBlocks {
+    /// Runs `work` on the basis and the id compressed files carry, as `tvf compress` and `tvf
+    /// decompress` pick them: the file read in blocks, or — where its fields would not get the
+    /// loaded basis's id (a non-diagonal `M1` whose co-potentials do not fit one block:
+    /// [`BasisFileBlocks::forms_fields_as_loaded`]) — loaded whole, so that bytes compressed
+    /// here decode with the command line's basis and the other way round.
+    fn with_identified<R>(
+        &self,
+        py: Python<'_>,
+        work: impl FnOnce(&dyn FieldBasis, u64) -> PyResult<R>,
+    ) -> PyResult<R> {
+        if self.blocks.forms_fields_as_loaded() {
+            let id = detached(py, || field_basis_id(&*self.blocks))?.map_err(|e| from_error(&e))?;
+            return work(&*self.blocks, id);
+        }
+        let complex = self.blocks.complex().as_ref();
+        let basis = detached(py, || load_basis(&self.path, &self.key, complex))?
+            .map_err(|e| from_error(&e))?;
+        let id = detached(py, || field_basis_id(&basis))?.map_err(|e| from_error(&e))?;
+        work(&basis, id)
+    }
+
     /// A field's coefficients, checked: length `n1`, finite.
     fn field(&self, field: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
         checked_field(self.blocks.complex().as_ref(), field)

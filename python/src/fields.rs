@@ -11,7 +11,8 @@ use pyo3::types::{PyBytes, PyDict};
 use tvf_core::discretization::{HodgeComplex, HodgeOperators};
 use tvf_discretizations::HodgeDecomposer;
 use tvf_spectral::{
-    basis_id, CoefficientCoding, CompressedFields, FieldCodec, FrequencyResponse, SpectralFilter,
+    basis_id, CoefficientCoding, CompressedFields, FieldBasis, FieldCodec, FrequencyResponse,
+    SpectralFilter,
 };
 
 /// Face vectors (`F × 3`) as field coefficients, with the largest dropped normal component.
@@ -152,27 +153,6 @@ pub fn filter<'py>(
     ))
 }
 
-/// The codec of `pairs` pairs (`bits`: quantised, else 64-bit coefficients).
-fn codec<'b>(
-    complex: &Complex,
-    basis: &'b tvf_spectral::SpectralBasis,
-    pairs: usize,
-    bits: Option<u32>,
-) -> PyResult<FieldCodec<'b>> {
-    let coding = match bits {
-        Some(bits) => CoefficientCoding::Quantized { bits },
-        None => CoefficientCoding::Float64,
-    };
-    FieldCodec::new(
-        basis,
-        complex.mesh.fingerprint(),
-        basis_id(basis),
-        pairs,
-        coding,
-    )
-    .map_err(|e| from_error(&e))
-}
-
 /// Fields (rows of `fields`, `n1` each) compressed into the bytes of a `.tvfc` file.
 #[pyfunction]
 #[pyo3(signature = (complex, basis, fields, pairs, bits = None))]
@@ -184,27 +164,9 @@ pub fn compress<'py>(
     pairs: usize,
     bits: Option<u32>,
 ) -> PyResult<Bound<'py, PyBytes>> {
-    let c = complex.complex.as_ref();
     let basis = complex.basis(basis)?;
-    let codec = codec(complex, &basis, pairs, bits)?;
-    let view = fields.as_array();
-    if view.ncols() != c.field_dimension() {
-        return Err(tvf_error(format!(
-            "fields: expected {} coefficients per field, got {}",
-            c.field_dimension(),
-            view.ncols()
-        )));
-    }
-    let rows: Vec<Vec<f64>> = view.rows().into_iter().map(|r| r.to_vec()).collect();
-    if let Some(i) = rows.iter().position(|r| r.iter().any(|x| !x.is_finite())) {
-        return Err(tvf_error(format!(
-            "fields: field {i} has non-finite values"
-        )));
-    }
-    let file = py
-        .detach(|| codec.compress(&rows))
-        .map_err(|e| from_error(&e))?;
-    Ok(PyBytes::new(py, &file.to_bytes()))
+    let stamp = (complex.mesh.fingerprint(), basis_id(&basis));
+    compress_rows(py, &basis, stamp, fields, pairs, bits)
 }
 
 /// The fields of `.tvfc` bytes (one row each), checked against the mesh and the basis.
@@ -215,22 +177,61 @@ pub fn decompress<'py>(
     basis: BasisParts<'py>,
     data: &[u8],
 ) -> PyResult<Bound<'py, PyAny>> {
-    let c = complex.complex.as_ref();
     let basis = complex.basis(basis)?;
+    let stamp = (complex.mesh.fingerprint(), basis_id(&basis));
+    decompress_rows(py, &basis, stamp, data)
+}
+
+/// Fields (rows of `fields`, `n1` each, finite) compressed in `basis` into the bytes of a
+/// `.tvfc` file keeping `pairs` pairs (`bits`: quantised, else 64-bit coefficients), stamped
+/// with `(mesh fingerprint, basis id)`.
+pub fn compress_rows<'py>(
+    py: Python<'py>,
+    basis: &dyn FieldBasis,
+    (mesh_fingerprint, id): (u64, u64),
+    fields: PyReadonlyArray2<'py, f64>,
+    pairs: usize,
+    bits: Option<u32>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let coding = match bits {
+        Some(bits) => CoefficientCoding::Quantized { bits },
+        None => CoefficientCoding::Float64,
+    };
+    let codec =
+        FieldCodec::new(basis, mesh_fingerprint, id, pairs, coding).map_err(|e| from_error(&e))?;
+    let view = fields.as_array();
+    let n1 = basis.field_dimension();
+    if view.ncols() != n1 {
+        return Err(tvf_error(format!(
+            "fields: expected {n1} coefficients per field, got {}",
+            view.ncols()
+        )));
+    }
+    let rows: Vec<Vec<f64>> = view.rows().into_iter().map(|r| r.to_vec()).collect();
+    if let Some(i) = rows.iter().position(|r| r.iter().any(|x| !x.is_finite())) {
+        return Err(tvf_error(format!(
+            "fields: field {i} has non-finite values"
+        )));
+    }
+    let file = detached(py, || codec.compress(&rows))?.map_err(|e| from_error(&e))?;
+    Ok(PyBytes::new(py, &file.to_bytes()))
+}
+
+/// The fields (`frames × n1`) of `.tvfc` bytes decoded in `basis`, the file checked against
+/// `(mesh fingerprint, basis id)`.
+pub fn decompress_rows<'py>(
+    py: Python<'py>,
+    basis: &dyn FieldBasis,
+    (mesh_fingerprint, id): (u64, u64),
+    data: &[u8],
+) -> PyResult<Bound<'py, PyAny>> {
     let file = CompressedFields::from_bytes(data).map_err(|e| from_error(&e))?;
-    let codec = FieldCodec::for_file(
-        &basis,
-        complex.mesh.fingerprint(),
-        basis_id(&basis),
-        &file.header,
-    )
-    .map_err(|e| from_error(&e))?;
-    let fields = py
-        .detach(|| codec.decompress(&file))
+    let codec = FieldCodec::for_file(basis, mesh_fingerprint, id, &file.header)
         .map_err(|e| from_error(&e))?;
-    let n1 = c.field_dimension();
+    let fields = detached(py, || codec.decompress(&file))?.map_err(|e| from_error(&e))?;
     let flat: Vec<f64> = fields.concat();
-    let array = numpy::ndarray::Array2::from_shape_vec((fields.len(), n1), flat)
-        .map_err(|e| tvf_error(e.to_string()))?;
+    let array =
+        numpy::ndarray::Array2::from_shape_vec((fields.len(), basis.field_dimension()), flat)
+            .map_err(|e| tvf_error(e.to_string()))?;
     Ok(array.into_pyarray(py).into_any())
 }

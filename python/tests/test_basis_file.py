@@ -144,6 +144,51 @@ def test_results_do_not_depend_on_the_block_size(saved, monkeypatch):
         tvf.BasisFile(saved["path"])
 
 
+@pytest.mark.parametrize("block_bytes", [8, 64 << 20])
+def test_compression_equals_the_command_line_bit_for_bit(saved, block_bytes):
+    """`BasisFile.compress` writes the bytes `tvf compress --basis` writes at the same block size
+    (8 bytes: one stored column per block, so whitney-galerkin's sparse M1 takes the command
+    line's whole-basis fallback; 64 MiB: every family in one block, read in blocks), and both
+    decoders read each other's files: `tvf decompress` decodes Python's bytes bit for bit as
+    `BasisFile.decompress` does, and the in-memory `tvf.Basis`, whose id is the file's, decodes
+    them to round-off."""
+    folder = saved["folder"]
+    f = tvf.BasisFile(saved["path"], block_bytes=block_bytes)
+    data = f.compress(saved["mesh"], saved["field"], pairs=20)
+    assert data == tvf.compress(saved["mesh"], saved["field"], f, pairs=20)
+    out = folder / f"field-{block_bytes}.tvfc"
+    run_cli(
+        saved["tvf_bin"], saved["cache"], "compress", folder / "torus.obj", folder / "field.npy", "--basis", saved["path"],
+        "--pairs", 20, "-o", out, block_bytes=block_bytes,
+    )
+    assert data == out.read_bytes()
+    decoded = f.decompress(saved["mesh"], data)
+    assert decoded.shape == (1, len(saved["mesh"].faces), 3)
+    assert np.array_equal(decoded, tvf.decompress(saved["mesh"], data, f))
+    run_cli(
+        saved["tvf_bin"], saved["cache"], "decompress", folder / "torus.obj", out, "--basis", saved["path"],
+        "-o", folder / f"decoded-{block_bytes}.npy", block_bytes=block_bytes,
+    )
+    assert np.array_equal(decoded[0], np.load(folder / f"decoded-{block_bytes}.npy"))
+    in_memory = tvf.decompress(saved["complex"], data, saved["basis"])
+    assert np.max(np.abs(decoded - in_memory)) <= 1e-12 * np.max(np.abs(in_memory))
+    # A sequence of frames, quantised; the coefficients form.
+    frames = np.stack([saved["field"], 2.0 * saved["field"]])
+    quantised = f.compress(saved["mesh"], frames, pairs=20, bits=12)
+    rows = f.decompress(saved["mesh"], quantised, as_vectors=False)
+    assert rows.shape == (2, f.field_dimension)
+    assert np.max(np.abs(rows[1] - 2.0 * rows[0])) <= 1e-2 * np.max(np.abs(rows[1]))
+    with pytest.raises(tvf.TvfError, match="bits"):
+        f.compress(saved["mesh"], saved["field"], pairs=20, bits=40)
+
+
+def test_compressed_bytes_of_another_basis_are_refused(saved, tmp_path):
+    other = tvf.Mesh(*torus(n=12, m=8))
+    data = tvf.compress(other, np.ones((len(other.faces), 3)), tvf.basis(other, 10), pairs=3)
+    with pytest.raises(tvf.TvfError, match="mesh"):
+        tvf.BasisFile(saved["path"]).decompress(saved["mesh"], data)
+
+
 def test_synthesis_fields_and_the_materialised_basis(saved):
     mesh, basis = saved["mesh"], saved["basis"]
     f = tvf.BasisFile(saved["path"], block_bytes=4096)

@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _native
 from ._arrays import float_array, integer
-from ._fields import field_coefficients, field_in_form
+from ._fields import field_coefficients, field_in_form, field_rows, rows_in_form
 from ._native import TvfError
 from .complex import Complex
 from .mesh import Mesh
@@ -41,9 +41,11 @@ class BasisFile:
 
     Products, each a pass over the file (``mesh``: the :class:`Mesh` the basis was computed on,
     or its :class:`Complex`; another mesh is refused): :meth:`coefficients`, :meth:`filter`,
-    :meth:`synthesize`, :meth:`fields` (some basis fields), :meth:`basis_id`.
+    :meth:`synthesize`, :meth:`fields` (some basis fields), :meth:`compress`, :meth:`decompress`,
+    :meth:`basis_id`.
     :meth:`to_basis` loads the whole basis into memory (a :class:`tvf.Basis`, ``n1 x k`` and
-    ``F x 3 x k`` arrays). :func:`tvf.coefficients` and :func:`tvf.filter` take a ``BasisFile``
+    ``F x 3 x k`` arrays). :func:`tvf.coefficients`, :func:`tvf.filter`, :func:`tvf.compress` and
+    :func:`tvf.decompress` take a ``BasisFile``
     wherever they take a ``Basis``, and :func:`tvf.spline` and :func:`tvf.design` (reduced) take
     it as ``basis=`` (only the rows of the basis the constraints touch are read).
 
@@ -148,6 +150,26 @@ class BasisFile:
         if any(i < 0 for i in chosen):
             raise TvfError(f"basis field {min(chosen)}: indices are ≥ 0")
         return np.asarray(blocks.face_fields(chosen))
+
+    def compress(self, mesh, fields, pairs, bits=None):
+        """The bytes of a ``.tvfc`` file of ``fields`` (one ``(F, 3)`` / ``(n1,)`` field or a
+        sequence), as :func:`tvf.compress` and ``tvf compress MESH FIELD --basis FILE`` write
+        them: the lowest ``pairs`` pairs plus the harmonic fields, 64-bit (``bits=None``) or
+        quantised to ``bits`` bits. Read in blocks, except for a basis with a non-diagonal
+        ``M1`` whose co-potentials do not fit one block: loaded whole then, as the command line
+        does, so that the basis id the file carries is the loaded basis's."""
+        blocks = self._blocks(mesh)
+        rows = field_rows(fields, blocks.dimensions[1], self.face_count, blocks.has_sampling, lambda f: _field_in(blocks, f)[0])
+        return bytes(blocks.compress(rows, integer(pairs, "pairs"), None if bits is None else integer(bits, "bits")))
+
+    def decompress(self, mesh, data, as_vectors=True):
+        """The fields of ``.tvfc`` bytes compressed in this basis (by :meth:`compress`,
+        :func:`tvf.compress` with the loaded basis, or ``tvf compress``), checked against the
+        mesh and the basis id: ``(frames, F, 3)`` face vectors (``as_vectors``, with sampling)
+        or ``(frames, n1)`` coefficients. Read in blocks as :meth:`compress`."""
+        blocks = self._blocks(mesh)
+        rows = blocks.decompress(bytes(data))
+        return rows_in_form(rows, as_vectors, blocks.has_sampling, self.face_count, blocks.face_vectors_of_field)
 
     def basis_id(self, mesh):
         """The basis id (16 hex digits) that :func:`tvf.compress` and ``tvf compress`` stamp

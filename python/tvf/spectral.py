@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _native
 from ._arrays import integer
-from ._fields import field_coefficients, field_in_form
+from ._fields import field_coefficients, field_in_form, field_rows, rows_in_form
 from ._native import TvfError
 from .basis_file import BasisFile
 from .complex import Complex, as_complex
@@ -184,21 +184,22 @@ def compress(mesh, fields, basis, pairs, bits=None, boundary="tangential"):
 
     ``fields``: one field ``(F, 3)`` / ``(n1,)`` or a sequence of them. Returns the bytes of a
     ``.tvfc`` file (stamped with the mesh fingerprint and the basis id), readable by
-    :func:`decompress` and ``tvf decompress`` (with the same basis)."""
+    :func:`decompress` and ``tvf decompress`` (with the same basis). ``basis``: a
+    :class:`Basis`, or a :class:`BasisFile` (read in blocks: :meth:`BasisFile.compress`)."""
+    if isinstance(basis, BasisFile):
+        return basis.compress(mesh, fields, pairs, bits)
     complex_ = _complex_of(mesh, None, boundary, basis)
-    array = np.asarray(fields)
-    single = array.ndim == 1 or (array.ndim == 2 and array.shape[1] == 3 and complex_.has_sampling and array.shape[0] == complex_.mesh.faces.shape[0])
-    items = [array] if single else list(array)
-    rows = np.stack([_field_in(complex_, f)[0] for f in items]) if items else np.zeros((0, complex_.dimensions[1]))
-    return bytes(_native.compress(complex_._native, basis._parts(), np.ascontiguousarray(rows), int(pairs), None if bits is None else int(bits)))
+    rows = field_rows(fields, complex_.dimensions[1], len(complex_.mesh.faces), complex_.has_sampling, lambda f: _field_in(complex_, f)[0])
+    return bytes(_native.compress(complex_._native, basis._parts(), rows, int(pairs), None if bits is None else int(bits)))
 
 
 def decompress(mesh, data, basis, as_vectors=True, boundary="tangential"):
     """The fields of compressed bytes (from :func:`compress` or a ``.tvfc`` file), checked
     against the mesh and the basis. Returns ``(frames, F, 3)`` face vectors (``as_vectors``,
-    with sampling) or ``(frames, n1)`` coefficients."""
+    with sampling) or ``(frames, n1)`` coefficients. ``basis``: a :class:`Basis`, or a
+    :class:`BasisFile` (read in blocks: :meth:`BasisFile.decompress`)."""
+    if isinstance(basis, BasisFile):
+        return basis.decompress(mesh, data, as_vectors)
     complex_ = _complex_of(mesh, None, boundary, basis)
-    rows = np.asarray(_native.decompress(complex_._native, basis._parts(), bytes(data)))
-    if as_vectors and complex_.has_sampling:
-        return np.stack([_field_out(complex_, r, True) for r in rows]) if len(rows) else np.zeros((0, complex_.mesh.faces.shape[0], 3))
-    return rows
+    rows = _native.decompress(complex_._native, basis._parts(), bytes(data))
+    return rows_in_form(rows, as_vectors, complex_.has_sampling, len(complex_.mesh.faces), lambda r: _field_out(complex_, r, True))
