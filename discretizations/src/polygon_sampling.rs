@@ -2,7 +2,7 @@
 //! tangent vector per polygon (its sharp), per-face vectors turned into a 1-form (the flat), and
 //! 0- and 2-forms at points.
 
-use crate::edge_averages::EdgeAverages;
+use crate::edge_averages::edge_integrals;
 use crate::polygon_operators::PolygonOperators;
 use tvf_core::discretization::{
     check_face_vectors, DiscretizationError, FaceFrames, FieldSampling, PointEvaluation,
@@ -104,21 +104,20 @@ impl FieldSampling for PolygonSampling {
         vectors: &[[f64; 3]],
     ) -> Result<TangentProjection, DiscretizationError> {
         check_face_vectors(self.face_count(), vectors)?;
-        let mut averages = EdgeAverages::new(self.edges.len());
-        let mut normal_parts = Vec::with_capacity(vectors.len());
-        for (f, &v) in vectors.iter().enumerate() {
-            let n = self.frames.normal(f);
-            let normal_part = dot(v, n);
-            let tangent = sub(v, scale(n, normal_part));
-            normal_parts.push(normal_part);
-            for &e in &self.side_edges[f] {
-                let [a, b] = self.edges[e];
-                averages.add(e, dot(tangent, sub(self.positions[b], self.positions[a])));
-            }
-        }
-        let field = averages.means(&self.fixed_edges);
+        let normal_parts = self.frames.normal_parts(vectors);
+        let tangents = vectors
+            .iter()
+            .zip(self.frames.normals())
+            .zip(&normal_parts)
+            .map(|((&v, &n), &normal_part)| sub(v, scale(n, normal_part)));
+        let faces = self.side_edges.iter().map(Vec::as_slice);
         Ok(TangentProjection {
-            field,
+            field: edge_integrals(
+                &self.edges,
+                &self.positions,
+                &self.fixed_edges,
+                faces.zip(tangents),
+            ),
             normal_parts,
         })
     }

@@ -1,6 +1,8 @@
 //! The frame and unit normal of every face: the geometry a [`crate::discretization::FieldSampling`]
 //! reads its per-face vectors in.
 
+use crate::geometry::dot;
+
 /// An orthonormal, positively oriented frame `[e1, e2]` (`e2 = n × e1`) and the unit normal `n`
 /// of each of the mesh's `F` faces (counter-clockwise orientation; for a triangle
 /// `e1 = normalize(p_{i1} − p_{i0})`, for a polygon the first side projected onto the plane normal
@@ -51,5 +53,15 @@ impl FaceFrames {
     /// All normals, `F` entries.
     pub fn normals(&self) -> &[[f64; 3]] {
         &self.normals
+    }
+
+    /// The normal component `v_f · n_f` of every face's vector in `vectors` (one per face, as
+    /// the caller has checked): what projecting them onto the face planes drops.
+    pub fn normal_parts(&self, vectors: &[[f64; 3]]) -> Vec<f64> {
+        vectors
+            .iter()
+            .zip(&self.normals)
+            .map(|(&v, &n)| dot(v, n))
+            .collect()
     }
 }
