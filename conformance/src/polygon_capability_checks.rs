@@ -150,27 +150,19 @@ pub fn measure_polygon_sampling<H: HodgeComplex + ?Sized>(
         .zip(fixed)
         .filter(|(&x, &f)| f && x != 0.0)
         .count();
-    let FaceMeasures {
-        frames,
-        sharp,
-        spread,
-        tangent,
-        normal_parts,
-        largest,
-        fixed_violations: weight_violations,
-    } = measure_faces(complex, sampling, mesh, &flat, &random, &projection);
-    fixed_violations += weight_violations;
-    let spread = if largest > 0.0 {
-        spread / largest
+    let faces = measure_faces(complex, sampling, mesh, &flat, &random, &projection);
+    fixed_violations += faces.fixed_violations;
+    let spread = if faces.largest > 0.0 {
+        faces.spread / faces.largest
     } else {
-        spread
+        faces.spread
     };
     let measured = [
-        ("frames", frames, "largest deviation of a frame from orthonormal, tangent, positive, normal along the vector area"),
-        ("sharp_of_flat", sharp, "largest error of the sharp of a constant vector's 1-form against the vector projected onto the polygon's plane, over |v| max(1, κ/4)"),
+        ("frames", faces.frames, "largest deviation of a frame from orthonormal, tangent, positive, normal along the vector area"),
+        ("sharp_of_flat", faces.sharp, "largest error of the sharp of a constant vector's 1-form against the vector projected onto the polygon's plane, over |v| max(1, κ/4)"),
         ("one_vector_per_polygon", spread, "largest difference between the vectors sampled at two points of one polygon, over the largest sampled vector"),
-        ("tangent", tangent, "largest normal component of a sampled vector, over 1 + its length"),
-        ("normal_parts", normal_parts, "largest error of a reported normal part, over |v|"),
+        ("tangent", faces.tangent, "largest normal component of a sampled vector, over 1 + its length"),
+        ("normal_parts", faces.normal_parts, "largest error of a reported normal part, over |v|"),
     ];
     for (what, value, detail) in measured {
         outcomes.push(CheckOutcome::at_most(

@@ -7,8 +7,8 @@
 use crate::intrinsic_delaunay::IntrinsicInput;
 use crate::intrinsic_input_faces::InputFaces;
 use tvf_core::discretization::{
-    check_face_vectors, check_length, DiscretizationError, FaceFrames, FieldSampling, NodeKind,
-    PointEvaluation, SamplingReproduction, TangentProjection,
+    check_length, DiscretizationError, FaceFrames, FieldSampling, NodeKind, PointEvaluation,
+    SamplingReproduction, TangentProjection,
 };
 use tvf_core::intrinsic::IntrinsicTriangulation;
 use tvf_core::{SurfacePoint, TriangleMesh};
@@ -96,10 +96,6 @@ impl<R: IntrinsicReconstruction> FieldSampling for IntrinsicSampling<R> {
             .field_dimension(&self.faces.input.triangulation)
     }
 
-    fn centroid(&self, face: usize) -> SurfacePoint {
-        SurfacePoint::barycentric(face, [1.0 / 3.0; 3])
-    }
-
     fn reproduction(&self) -> SamplingReproduction {
         SamplingReproduction::Approximate
     }
@@ -137,18 +133,14 @@ impl<R: IntrinsicReconstruction> FieldSampling for IntrinsicSampling<R> {
             .collect())
     }
 
-    fn from_face_vectors(
-        &self,
-        vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError> {
-        check_face_vectors(self.face_count(), vectors)?;
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection {
         let displacements = self.faces.intrinsic_face_displacements(vectors);
-        Ok(TangentProjection {
+        TangentProjection {
             field: self
                 .reconstruction
                 .from_face_displacements(&self.faces.input.triangulation, &displacements),
             normal_parts: self.faces.frames.normal_parts(vectors),
-        })
+        }
     }
 }
 

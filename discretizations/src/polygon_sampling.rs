@@ -5,8 +5,7 @@
 use crate::edge_averages::edge_integrals;
 use crate::polygon_operators::PolygonOperators;
 use tvf_core::discretization::{
-    check_face_vectors, DiscretizationError, FaceFrames, FieldSampling, PointEvaluation,
-    SamplingReproduction, TangentProjection,
+    FaceFrames, FieldSampling, PointEvaluation, SamplingReproduction, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, normalize, scale, sub};
 use tvf_core::mesh::Mesh;
@@ -50,16 +49,18 @@ impl PolygonSampling {
             frames.push([e1, cross(n, e1)]);
             normals.push(n);
         }
+        let side_edges: Vec<Vec<usize>> = (0..faces.face_count())
+            .map(|f| {
+                (0..faces.corners(f).len())
+                    .map(|c| mesh.face_edge(f, c))
+                    .collect()
+            })
+            .collect();
+        let corner_counts = side_edges.iter().map(Vec::len).collect();
         Self {
-            side_edges: (0..faces.face_count())
-                .map(|f| {
-                    (0..faces.corners(f).len())
-                        .map(|c| mesh.face_edge(f, c))
-                        .collect()
-                })
-                .collect(),
+            side_edges,
             sharp: operators.iter().map(|o| o.sharp.clone()).collect(),
-            frames: FaceFrames::new(frames, normals),
+            frames: FaceFrames::of_polygons(frames, normals, corner_counts),
             edges: mesh.topology().edges().to_vec(),
             positions: mesh.positions().to_vec(),
             fixed_edges,
@@ -74,10 +75,6 @@ impl FieldSampling for PolygonSampling {
 
     fn field_dimension(&self) -> usize {
         self.edges.len()
-    }
-
-    fn centroid(&self, face: usize) -> SurfacePoint {
-        SurfacePoint::centroid(face, self.side_edges[face].len())
     }
 
     fn reproduction(&self) -> SamplingReproduction {
@@ -99,11 +96,7 @@ impl FieldSampling for PolygonSampling {
     /// dropped normal parts are returned), then `x_e` the average, over the faces of edge
     /// `e = (a, b)`, of `⟨v_f, p_b − p_a⟩`; 0 on fixed edges. On planar polygons the sharp gives
     /// the projected vectors back where they agree across edges.
-    fn from_face_vectors(
-        &self,
-        vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError> {
-        check_face_vectors(self.face_count(), vectors)?;
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection {
         let normal_parts = self.frames.normal_parts(vectors);
         let tangents = vectors
             .iter()
@@ -111,7 +104,7 @@ impl FieldSampling for PolygonSampling {
             .zip(&normal_parts)
             .map(|((&v, &n), &normal_part)| sub(v, scale(n, normal_part)));
         let faces = self.side_edges.iter().map(Vec::as_slice);
-        Ok(TangentProjection {
+        TangentProjection {
             field: edge_integrals(
                 &self.edges,
                 &self.positions,
@@ -119,7 +112,7 @@ impl FieldSampling for PolygonSampling {
                 faces.zip(tangents),
             ),
             normal_parts,
-        })
+        }
     }
 }
 

@@ -3,9 +3,7 @@
 
 use crate::edge_averages::edge_integrals;
 use crate::face_geometry::FaceGeometry;
-use tvf_core::discretization::{
-    check_face_vectors, DiscretizationError, FaceFrames, FieldSampling, TangentProjection,
-};
+use tvf_core::discretization::{FaceFrames, FieldSampling, TangentProjection};
 use tvf_core::geometry::{cross, scale, sub};
 use tvf_core::{SurfacePoint, TriangleMesh};
 
@@ -80,10 +78,6 @@ impl FieldSampling for WhitneySampling {
         self.edges.len()
     }
 
-    fn centroid(&self, face: usize) -> SurfacePoint {
-        SurfacePoint::barycentric(face, [1.0 / 3.0; 3])
-    }
-
     fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
         let (face, barycentric) = (point.face, point.triangle_coordinates());
         let corners = self.faces[face];
@@ -101,13 +95,9 @@ impl FieldSampling for WhitneySampling {
             .collect()
     }
 
-    fn from_face_vectors(
-        &self,
-        vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError> {
-        check_face_vectors(self.face_count(), vectors)?;
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection {
         let faces = self.face_edges.iter().map(|e| e.as_slice());
-        Ok(TangentProjection {
+        TangentProjection {
             field: edge_integrals(
                 &self.edges,
                 &self.positions,
@@ -115,6 +105,6 @@ impl FieldSampling for WhitneySampling {
                 faces.zip(vectors.iter().copied()),
             ),
             normal_parts: self.frames.normal_parts(vectors),
-        })
+        }
     }
 }
