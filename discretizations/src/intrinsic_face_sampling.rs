@@ -59,7 +59,7 @@ impl IntrinsicReconstruction for IntrinsicFaceVectors {
     }
 
     /// Each face's vector in its frame.
-    fn from_face_displacements(
+    fn field_of_displacements(
         &self,
         _: &IntrinsicTriangulation,
         displacements: &[[f64; 3]],

@@ -34,7 +34,7 @@ pub trait IntrinsicReconstruction: Send + Sync {
 
     /// The coefficients (`n1` entries) of the field closest to the vector `displacements[t]` in
     /// every intrinsic face `t` of `triangulation` (`F` intrinsic entries).
-    fn from_face_displacements(
+    fn field_of_displacements(
         &self,
         triangulation: &IntrinsicTriangulation,
         displacements: &[[f64; 3]],
@@ -54,7 +54,7 @@ pub trait IntrinsicReconstruction: Send + Sync {
 /// **Per-face vectors → field**: each input face's vector is projected onto its plane (the
 /// dropped normal parts are returned), carried into every intrinsic face that overlaps the face
 /// and averaged there weighted by the overlap areas (one tangent vector per intrinsic face), and
-/// turned into coefficients by [`IntrinsicReconstruction::from_face_displacements`]. On a flat
+/// turned into coefficients by [`IntrinsicReconstruction::field_of_displacements`]. On a flat
 /// part of the input a constant vector comes back exactly; across creases it is the area average
 /// (see [`SamplingReproduction::Approximate`]).
 #[derive(Debug, Clone)]
@@ -138,7 +138,7 @@ impl<R: IntrinsicReconstruction> FieldSampling for IntrinsicSampling<R> {
         TangentProjection {
             field: self
                 .reconstruction
-                .from_face_displacements(&self.faces.input.triangulation, &displacements),
+                .field_of_displacements(&self.faces.input.triangulation, &displacements),
             normal_parts: self.faces.frames.normal_parts(vectors),
         }
     }

@@ -95,7 +95,7 @@ impl IntrinsicReconstruction for IntrinsicWhitneyForms {
     }
 
     /// The de Rham map of the faces' vectors, 0 on fixed edges.
-    fn from_face_displacements(
+    fn field_of_displacements(
         &self,
         triangulation: &IntrinsicTriangulation,
         displacements: &[[f64; 3]],
