@@ -1,8 +1,9 @@
 //! The capability checks on polygon meshes (core: whatever a complex offers must behave), for
 //! discretizations whose sampling is one vector per polygon: what they state, measured
-//! ([`measure_polygon_sampling`], [`measure_polygon_point_evaluation`]) and asserted
-//! ([`check_polygon_sampling`], [`check_polygon_point_evaluation`]). A polygon's points are
-//! [`SurfacePoint`]s: the face and one weight per corner ([`polygon_points`]).
+//! ([`measure_polygon_capabilities`]: [`measure_polygon_sampling`],
+//! [`measure_polygon_point_evaluation`]) and asserted ([`check_polygon_capabilities`]). A
+//! polygon's points are [`SurfacePoint`]s: the face and one weight per corner
+//! ([`polygon_points`]).
 
 use crate::capability_checks::{frame_conditions, LinearProbe};
 use crate::check_outcome::{assert_outcomes, CheckOutcome};
@@ -10,7 +11,8 @@ use crate::corpus::CorpusMesh;
 use crate::decomposition_checks::random_field;
 use tvf_core::discretization::sparse::mul_vec;
 use tvf_core::discretization::{
-    FieldSampling, HodgeComplex, HodgeOperators, NodeKind, SamplingReproduction, TangentProjection,
+    FieldSampling, HodgeComplex, HodgeOperators, NodeKind, PointEvaluation, SamplingReproduction,
+    TangentProjection,
 };
 use tvf_core::geometry::{dot, norm, scale, sub};
 use tvf_core::{SurfaceMesh, SurfacePoint};
@@ -78,8 +80,8 @@ fn touches_fixed_nodes<H: HodgeComplex + ?Sized>(
     fixed_edge || fixed_vertex
 }
 
-/// Measures a sampling that states [`SamplingReproduction::LinearGradients`] on a polygon mesh
-/// (a complex without sampling gives no outcome), one outcome each:
+/// Measures `sampling`, `complex`'s, which states [`SamplingReproduction::LinearGradients`], on a
+/// polygon mesh, one outcome each:
 ///
 /// - `polygon_sampling:sizes`: one frame per face, the field dimension the complex's;
 /// - `polygon_sampling:frames`: every frame orthonormal, tangent, positive (`e1 × e2 = n`) and
@@ -102,12 +104,10 @@ fn touches_fixed_nodes<H: HodgeComplex + ?Sized>(
 ///   fixes, and `from_face_vectors` is 0 there (count of violations, expected 0).
 pub fn measure_polygon_sampling<H: HodgeComplex + ?Sized>(
     complex: &H,
+    sampling: &dyn FieldSampling,
     mesh: &SurfaceMesh,
 ) -> Vec<CheckOutcome> {
     const NAME: &str = "polygon_sampling";
-    let Some(sampling) = complex.sampling() else {
-        return Vec::new();
-    };
     let sizes_agree = sampling.face_count() == mesh.face_count()
         && sampling.field_dimension() == complex.field_dimension();
     let mut outcomes = vec![CheckOutcome::count(
@@ -150,27 +150,19 @@ pub fn measure_polygon_sampling<H: HodgeComplex + ?Sized>(
         .zip(fixed)
         .filter(|(&x, &f)| f && x != 0.0)
         .count();
-    let FaceMeasures {
-        frames,
-        sharp,
-        spread,
-        tangent,
-        normal_parts,
-        largest,
-        fixed_violations: weight_violations,
-    } = measure_faces(complex, sampling, mesh, &flat, &random, &projection);
-    fixed_violations += weight_violations;
-    let spread = if largest > 0.0 {
-        spread / largest
+    let faces = measure_faces(complex, sampling, mesh, &flat, &random, &projection);
+    fixed_violations += faces.fixed_violations;
+    let spread = if faces.largest > 0.0 {
+        faces.spread / faces.largest
     } else {
-        spread
+        faces.spread
     };
     let measured = [
-        ("frames", frames, "largest deviation of a frame from orthonormal, tangent, positive, normal along the vector area"),
-        ("sharp_of_flat", sharp, "largest error of the sharp of a constant vector's 1-form against the vector projected onto the polygon's plane, over |v| max(1, κ/4)"),
+        ("frames", faces.frames, "largest deviation of a frame from orthonormal, tangent, positive, normal along the vector area"),
+        ("sharp_of_flat", faces.sharp, "largest error of the sharp of a constant vector's 1-form against the vector projected onto the polygon's plane, over |v| max(1, κ/4)"),
         ("one_vector_per_polygon", spread, "largest difference between the vectors sampled at two points of one polygon, over the largest sampled vector"),
-        ("tangent", tangent, "largest normal component of a sampled vector, over 1 + its length"),
-        ("normal_parts", normal_parts, "largest error of a reported normal part, over |v|"),
+        ("tangent", faces.tangent, "largest normal component of a sampled vector, over 1 + its length"),
+        ("normal_parts", faces.normal_parts, "largest error of a reported normal part, over |v|"),
     ];
     for (what, value, detail) in measured {
         outcomes.push(CheckOutcome::at_most(
@@ -265,8 +257,8 @@ fn measure_faces<H: HodgeComplex + ?Sized>(
     }
 }
 
-/// Measures point evaluation on a polygon mesh (a complex without it gives no outcome), at every
-/// point of [`polygon_points`] of every face:
+/// Measures `evaluation`, `complex`'s point evaluation, on a polygon mesh at every point of
+/// [`polygon_points`] of every face:
 ///
 /// - `polygon_point_evaluation:weights`: the potential and co-potential weights sum to 1 (to
 ///   1e-14) and name nodes in range (violations, expected 0);
@@ -275,12 +267,10 @@ fn measure_faces<H: HodgeComplex + ?Sized>(
 ///   (at a corner, `φ` of the corner): the largest error over `max(1, max |φ|)`, limit 1e-12.
 pub fn measure_polygon_point_evaluation<H: HodgeComplex + ?Sized>(
     complex: &H,
+    evaluation: &dyn PointEvaluation,
     mesh: &SurfaceMesh,
 ) -> Vec<CheckOutcome> {
     const NAME: &str = "polygon_point_evaluation";
-    let Some(evaluation) = complex.point_evaluation() else {
-        return Vec::new();
-    };
     let probe = LinearProbe::on_potential_nodes(complex);
     let (mut bad_weights, mut error) = (0usize, 0.0f64);
     for f in 0..mesh.face_count() {
@@ -319,18 +309,27 @@ pub fn measure_polygon_point_evaluation<H: HodgeComplex + ?Sized>(
     ]
 }
 
-/// Asserts [`measure_polygon_sampling`] on a polygon corpus mesh.
-pub fn check_polygon_sampling<H: HodgeComplex + ?Sized>(
+/// The capability checks a complex's capabilities get on a polygon mesh: its sampling
+/// ([`measure_polygon_sampling`]) and its point evaluation ([`measure_polygon_point_evaluation`]);
+/// a capability the complex lacks gives no outcome.
+pub fn measure_polygon_capabilities<H: HodgeComplex + ?Sized>(
     complex: &H,
-    mesh: &CorpusMesh<SurfaceMesh>,
-) {
-    assert_outcomes(&measure_polygon_sampling(complex, &mesh.mesh));
+    mesh: &SurfaceMesh,
+) -> Vec<CheckOutcome> {
+    let mut outcomes = Vec::new();
+    if let Some(sampling) = complex.sampling() {
+        outcomes.extend(measure_polygon_sampling(complex, sampling, mesh));
+    }
+    if let Some(evaluation) = complex.point_evaluation() {
+        outcomes.extend(measure_polygon_point_evaluation(complex, evaluation, mesh));
+    }
+    outcomes
 }
 
-/// Asserts [`measure_polygon_point_evaluation`] on a polygon corpus mesh.
-pub fn check_polygon_point_evaluation<H: HodgeComplex + ?Sized>(
+/// Asserts [`measure_polygon_capabilities`] on a polygon corpus mesh.
+pub fn check_polygon_capabilities<H: HodgeComplex + ?Sized>(
     complex: &H,
     mesh: &CorpusMesh<SurfaceMesh>,
 ) {
-    assert_outcomes(&measure_polygon_point_evaluation(complex, &mesh.mesh));
+    assert_outcomes(&measure_polygon_capabilities(complex, &mesh.mesh));
 }

@@ -6,7 +6,7 @@
 
 use crate::corpus::DENSE_LIMIT;
 use crate::open_suite::{check_decomposition_and_spectrum, check_operator_algebra};
-use crate::polygon_capability_checks::{check_polygon_point_evaluation, check_polygon_sampling};
+use crate::polygon_capability_checks::check_polygon_capabilities;
 use crate::polygon_corpus::{open_polygon_corpus, polygon_corpus, PolygonCorpusMesh};
 use crate::polygon_operations::moved;
 use crate::property_runner::{run_polygon_property, PropertyRequest};
@@ -88,8 +88,7 @@ const MOTION_TRANSLATION: [f64; 3] = [3.0, -1.0, 2.0];
 /// The core checks on one polygon mesh.
 fn polygon_core_checks(complex: &dyn HodgeComplex, mesh: &PolygonCorpusMesh) {
     check_operator_algebra(complex, mesh);
-    check_polygon_sampling(complex, mesh);
-    check_polygon_point_evaluation(complex, mesh);
+    check_polygon_capabilities(complex, mesh);
     check_decomposition_and_spectrum(complex, mesh);
 }
 

@@ -12,9 +12,7 @@
 use crate::check_outcome::{CheckOutcome, CheckStatus, Comparison};
 use crate::check_report::{core_check_report, CheckReport};
 use crate::corpus::CorpusMesh;
-use crate::polygon_capability_checks::{
-    measure_polygon_point_evaluation, measure_polygon_sampling,
-};
+use crate::polygon_capability_checks::measure_polygon_capabilities;
 use crate::reference_report::{measure_reference, ReferenceCheck};
 use crate::strategies::{mesh_specs, polygon_mesh_specs, MeshNeeds, MeshSpec, PolygonMeshSpec};
 use proptest::strategy::BoxedStrategy;
@@ -59,9 +57,9 @@ pub fn check_mesh(
 }
 
 /// The core checks ([`core_check_report`]) and the capability checks on polygons
-/// ([`measure_polygon_sampling`], [`measure_polygon_point_evaluation`]) on the complex `builder`
-/// makes of `mesh`, a mesh of any faces; a refused mesh and a panic are reported as by
-/// [`check_mesh`]. (The reference checks are formulas on triangles and do not run here.)
+/// ([`measure_polygon_capabilities`]) on the complex `builder` makes of `mesh`, a mesh of any
+/// faces; a refused mesh and a panic are reported as by [`check_mesh`]. (The reference checks
+/// are formulas on triangles and do not run here.)
 pub fn check_polygon_mesh(builder: SurfaceBuilder, mesh: &SurfaceMesh) -> CheckReport {
     guarded(|| {
         let complex = match builder(mesh) {
@@ -71,10 +69,7 @@ pub fn check_polygon_mesh(builder: SurfaceBuilder, mesh: &SurfaceMesh) -> CheckR
         let mut report = core_check_report(complex.as_ref(), mesh);
         report
             .outcomes
-            .extend(measure_polygon_sampling(complex.as_ref(), mesh));
-        report
-            .outcomes
-            .extend(measure_polygon_point_evaluation(complex.as_ref(), mesh));
+            .extend(measure_polygon_capabilities(complex.as_ref(), mesh));
         report
     })
 }

@@ -1,6 +1,9 @@
 //! Edge values of a 1-form from per-face contributions: the mean over the faces that share an
 //! edge, zero on edges a boundary condition fixes. Used by every sampling that turns face
-//! vectors into edge integrals (Whitney, polygonal DEC's sharp, the intrinsic triangulation's).
+//! vectors into edge integrals (Whitney, polygonal DEC's sharp, the intrinsic triangulation's),
+//! and the de Rham map of face vectors on a mesh's edges written with them ([`edge_integrals`]).
+
+use tvf_core::geometry::{dot, sub};
 
 /// Sums and counts of the contributions to each edge (`E` of each).
 pub(crate) struct EdgeAverages {
@@ -39,4 +42,24 @@ impl EdgeAverages {
             })
             .collect()
     }
+}
+
+/// The de Rham map of one tangent vector per face on a mesh's edges (`E` values, units length ×
+/// field): `x_e` the mean, over the faces next to edge `e = (a, b)`, of `⟨v_f, p_b − p_a⟩`; 0 on
+/// the edges `fixed_edges` flags. `faces` gives each face's edges (in any order) with its vector
+/// `v_f`; `edges` are the mesh's edges `(a, b)` and `positions` its vertex positions.
+pub(crate) fn edge_integrals<'a>(
+    edges: &[[usize; 2]],
+    positions: &[[f64; 3]],
+    fixed_edges: &[bool],
+    faces: impl Iterator<Item = (&'a [usize], [f64; 3])>,
+) -> Vec<f64> {
+    let mut averages = EdgeAverages::new(edges.len());
+    for (face_edges, v) in faces {
+        for &e in face_edges {
+            let [a, b] = edges[e];
+            averages.add(e, dot(v, sub(positions[b], positions[a])));
+        }
+    }
+    averages.means(fixed_edges)
 }

@@ -3,8 +3,7 @@
 use crate::face_geometry::FaceGeometry;
 use sprs::CsMat;
 use tvf_core::discretization::{
-    check_face_vectors, check_length, DiscretizationError, FaceFrames, FieldRotation,
-    FieldSampling, TangentProjection,
+    check_length, DiscretizationError, FaceFrames, FieldRotation, FieldSampling, TangentProjection,
 };
 use tvf_core::geometry::dot;
 use tvf_core::{SurfacePoint, TriangleMesh};
@@ -57,10 +56,6 @@ impl FieldSampling for FaceFields {
         2 * self.frames.len()
     }
 
-    fn centroid(&self, face: usize) -> SurfacePoint {
-        SurfacePoint::barycentric(face, [1.0 / 3.0; 3])
-    }
-
     /// `v = x[2t] e1 + x[2t+1] e2` anywhere in face `t`.
     fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
         let face = point.face;
@@ -75,11 +70,7 @@ impl FieldSampling for FaceFields {
     }
 
     /// `(x[2t], x[2t+1]) = (v·e1, v·e2)`: the orthogonal projection onto the face plane.
-    fn from_face_vectors(
-        &self,
-        vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError> {
-        check_face_vectors(self.face_count(), vectors)?;
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection {
         let mut field = Vec::with_capacity(self.field_dimension());
         let mut normal_parts = Vec::with_capacity(self.face_count());
         for (t, &v) in vectors.iter().enumerate() {
@@ -88,10 +79,10 @@ impl FieldSampling for FaceFields {
             field.push(dot(v, e2));
             normal_parts.push(dot(v, self.frames.normal(t)));
         }
-        Ok(TangentProjection {
+        TangentProjection {
             field,
             normal_parts,
-        })
+        }
     }
 
     fn to_face_vectors(&self, field: &[f64]) -> Result<Vec<[f64; 3]>, DiscretizationError> {

@@ -86,13 +86,4 @@ impl InputFaces {
             })
             .collect()
     }
-
-    /// The normal component `v · n_f` of every input face's vector (`F` entries).
-    pub(crate) fn normal_parts(&self, vectors: &[[f64; 3]]) -> Vec<f64> {
-        vectors
-            .iter()
-            .zip(self.frames.normals())
-            .map(|(&v, &n)| dot(v, n))
-            .collect()
-    }
 }

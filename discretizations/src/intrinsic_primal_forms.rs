@@ -1,22 +1,21 @@
 //! [`IntrinsicPrimalFormComplex`]: primal forms on an intrinsic triangulation with masses chosen by
-//! a marker — the one type behind [`crate::IntrinsicDec`] and [`crate::IntrinsicWhitneyGalerkin`],
-//! as [`crate::PrimalFormComplex`] is behind DEC and Whitney forms on the input mesh.
+//! a marker (a [`SampledComplex`]) — the one type behind [`crate::IntrinsicDec`] and
+//! [`crate::IntrinsicWhitneyGalerkin`], as [`crate::PrimalFormComplex`] is behind DEC and Whitney
+//! forms on the input mesh.
 
 use crate::boundary_conditions::{
     component_boundary_loops, drop_columns, drop_rows, mesh_topology,
 };
 use crate::intrinsic_delaunay::IntrinsicInput;
 use crate::intrinsic_nodes::{intrinsic_boundary_nodes, node_spaces};
-use crate::intrinsic_sampling::{IntrinsicEvaluation, IntrinsicWhitneySampling};
+use crate::intrinsic_sampling::IntrinsicEvaluation;
+use crate::intrinsic_whitney_sampling::IntrinsicWhitneySampling;
+use crate::sampled_complex::SampledComplex;
 use sprs::CsMat;
-use std::marker::PhantomData;
-use std::sync::Arc;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
-    NodeKind, NodeSpace, PointEvaluation,
+    BoundaryCondition, ComplexParts, DiscretizationError, Mass, NodeKind, NodeSpace,
 };
-use tvf_core::intrinsic::IntrinsicTriangulation;
 use tvf_core::TriangleMesh;
 
 /// The complex of primal forms on an intrinsic triangulation,
@@ -42,13 +41,10 @@ use tvf_core::TriangleMesh;
 ///
 /// Sampling and point evaluation take points of the **input** faces ([`IntrinsicWhitneySampling`],
 /// [`IntrinsicEvaluation`]): field files hold one vector per input face.
-pub struct IntrinsicPrimalFormComplex<M> {
-    parts: ComplexParts,
-    sampling: IntrinsicWhitneySampling,
-    evaluation: IntrinsicEvaluation,
-    triangulation: Arc<IntrinsicTriangulation>,
-    masses: PhantomData<M>,
-}
+///
+/// [`IntrinsicTriangulation::edge_vertices`]: tvf_core::intrinsic::IntrinsicTriangulation::edge_vertices
+pub type IntrinsicPrimalFormComplex<M> =
+    SampledComplex<IntrinsicWhitneySampling, IntrinsicEvaluation, M>;
 
 impl<M> IntrinsicPrimalFormComplex<M> {
     /// Assembles the complex with id `id` on the intrinsic triangulation `input` of `mesh` with
@@ -66,31 +62,13 @@ impl<M> IntrinsicPrimalFormComplex<M> {
         let (d0, d1, nodes) = intrinsic_forms(mesh, input, boundary)?;
         let masses = masses(&nodes)?;
         let fixed_edges = nodes[1].dirichlet.clone();
-        Ok(Self {
-            parts: ComplexParts::new(id, d0, d1, masses, nodes, mesh_topology(mesh, boundary))?,
-            sampling: IntrinsicWhitneySampling::new(mesh, input, fixed_edges)?,
-            evaluation: IntrinsicEvaluation::new(input),
-            triangulation: input.triangulation.clone(),
-            masses: PhantomData,
-        })
-    }
-}
-
-impl<M: Send + Sync> HodgeComplex for IntrinsicPrimalFormComplex<M> {
-    fn parts(&self) -> &ComplexParts {
-        &self.parts
-    }
-
-    fn sampling(&self) -> Option<&dyn FieldSampling> {
-        Some(&self.sampling)
-    }
-
-    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
-        Some(&self.evaluation)
-    }
-
-    fn intrinsic_triangulation(&self) -> Option<&IntrinsicTriangulation> {
-        Some(&self.triangulation)
+        let parts = ComplexParts::new(id, d0, d1, masses, nodes, mesh_topology(mesh, boundary))?;
+        Ok(Self::from_intrinsic_parts(
+            parts,
+            IntrinsicWhitneySampling::new(mesh, input, fixed_edges)?,
+            IntrinsicEvaluation::new(input),
+            input.triangulation.clone(),
+        ))
     }
 }
 

@@ -1,129 +1,99 @@
 //! Fields and potentials of a complex on an intrinsic triangulation, seen on the input mesh:
-//! [`IntrinsicWhitneySampling`] (1-forms on intrinsic edges as tangent vectors at input points,
-//! and per-input-face vectors as 1-forms) and [`IntrinsicEvaluation`] (potentials and
-//! co-potentials at input points), both through the common subdivision.
+//! [`IntrinsicSampling`] (fields as tangent vectors at input points, and per-input-face vectors
+//! as fields, for any [`IntrinsicReconstruction`] of a field in an intrinsic face) and
+//! [`IntrinsicEvaluation`] (potentials and co-potentials at input points), both through the
+//! common subdivision.
 
-use crate::edge_averages::EdgeAverages;
 use crate::intrinsic_delaunay::IntrinsicInput;
 use crate::intrinsic_input_faces::InputFaces;
 use tvf_core::discretization::{
-    check_face_vectors, check_length, DiscretizationError, FaceFrames, FieldSampling, NodeKind,
-    PointEvaluation, SamplingReproduction, TangentProjection,
+    check_length, DiscretizationError, FaceFrames, FieldSampling, NodeKind, PointEvaluation,
+    SamplingReproduction, TangentProjection,
 };
-use tvf_core::intrinsic::corner_cotangents;
+use tvf_core::intrinsic::IntrinsicTriangulation;
 use tvf_core::{SurfacePoint, TriangleMesh};
 
-/// Whitney interpolation of 1-forms on the edges of an intrinsic triangulation, sampled at points
+/// What a field is inside the faces of an intrinsic triangulation, for [`IntrinsicSampling`]:
+/// the vectors of its coefficients at a point of an intrinsic face, and coefficients from one
+/// tangent vector per intrinsic face. A vector in intrinsic face `t` is given as a displacement
+/// of `t`'s barycentric coordinates (three numbers summing to 0), the form in which the common
+/// subdivision carries it to the input.
+pub trait IntrinsicReconstruction: Send + Sync {
+    /// Number of field coefficients `n1` on `triangulation`.
+    fn field_dimension(&self, triangulation: &IntrinsicTriangulation) -> usize;
+
+    /// The coefficients non-zero in intrinsic face `t` of `triangulation` with their vectors at
+    /// its point of barycentric coordinates `barycentric` (pointwise units): the field's vector
+    /// there is `Σ w_i x_i` over the returned `(i, w_i)`.
+    fn face_weights(
+        &self,
+        triangulation: &IntrinsicTriangulation,
+        t: usize,
+        barycentric: [f64; 3],
+    ) -> Vec<(usize, [f64; 3])>;
+
+    /// The coefficients (`n1` entries) of the field closest to the vector `displacements[t]` in
+    /// every intrinsic face `t` of `triangulation` (`F` intrinsic entries).
+    fn field_of_displacements(
+        &self,
+        triangulation: &IntrinsicTriangulation,
+        displacements: &[[f64; 3]],
+    ) -> Vec<f64>;
+}
+
+/// A field on an intrinsic triangulation, reconstructed in its faces by `R`, sampled at points
 /// of the **input** faces: `face_count()` is the input's, so a field file holds one 3D vector per
-/// input face, the field's value at the input face's centroid ([`FieldSampling::to_face_vectors`]).
+/// input face, the field's value at the input face's centroid
+/// ([`FieldSampling::to_face_vectors`]).
 ///
 /// **Sampling** at an input point: the point is mapped to the intrinsic face it lies in (through
-/// the cell of the common subdivision that contains it), the Whitney form of each side of that
-/// face, `W_jk = λ_j ∇λ_k − λ_k ∇λ_j`, is evaluated there from the edge lengths (the Gram
-/// matrix of the `∇λ` is `⟨∇λ_i, ∇λ_j⟩ = −cot θ_k / 2A`, `|∇λ_i|² = (cot θ_j + cot θ_k) / 2A`),
-/// and the vector is carried to the input face by the cell's isometry (lengths and angles kept).
+/// the cell of the common subdivision that contains it), the reconstruction's vectors are taken
+/// there ([`IntrinsicReconstruction::face_weights`]) and carried to the input face by the cell's
+/// isometry (lengths and angles kept).
 ///
-/// **Per-face vectors → 1-form** (the de Rham map): each input face's vector is projected onto its
-/// plane, carried into every intrinsic face that overlaps the face and averaged there weighted by
-/// the overlap areas (one tangent vector per intrinsic face); `x_e = ⟨u_t, p_k − p_j⟩` along each
-/// side, averaged over the edge's faces. On a flat part of the input a constant vector comes back
-/// exactly; across creases it is the area average (see [`SamplingReproduction::Approximate`]).
-///
-/// Edges fixed by the boundary condition (relative forms) have no Whitney form and get 0, as in
-/// [`crate::WhitneySampling`].
+/// **Per-face vectors → field**: each input face's vector is projected onto its plane (the
+/// dropped normal parts are returned), carried into every intrinsic face that overlaps the face
+/// and averaged there weighted by the overlap areas (one tangent vector per intrinsic face), and
+/// turned into coefficients by [`IntrinsicReconstruction::field_of_displacements`]. On a flat
+/// part of the input a constant vector comes back exactly; across creases it is the area average
+/// (see [`SamplingReproduction::Approximate`]).
 #[derive(Debug, Clone)]
-pub struct IntrinsicWhitneySampling {
+pub struct IntrinsicSampling<R> {
     faces: InputFaces,
-    /// `±1` per side of every intrinsic face: `+1` where it runs along its edge's reference
-    /// direction.
-    signs: Vec<[f64; 3]>,
-    fixed_edges: Vec<bool>,
+    reconstruction: R,
     /// [`FieldSampling::sample_weights`] at every input face's centroid, computed once: what
     /// [`FieldSampling::to_face_vectors`] applies to every field (a basis converts hundreds).
     centroid_weights: Vec<Vec<(usize, [f64; 3])>>,
 }
 
-impl IntrinsicWhitneySampling {
-    /// The sampling of 1-forms on the triangulation of `input` on the faces of `mesh`; the edges
-    /// flagged in `fixed_edges` (intrinsic `E` entries) are zero in every field. Fails on a
-    /// degenerate input face.
-    pub fn new(
+impl<R: IntrinsicReconstruction> IntrinsicSampling<R> {
+    /// The sampling of the fields `reconstruction` describes on the triangulation of `input`, on
+    /// the faces of `mesh`. Fails on a degenerate input face.
+    pub fn with_reconstruction(
         mesh: &TriangleMesh,
         input: &IntrinsicInput,
-        fixed_edges: Vec<bool>,
+        reconstruction: R,
     ) -> Result<Self, DiscretizationError> {
-        let tri = &input.triangulation;
-        let signs = (0..tri.face_count())
-            .map(|t| {
-                tri.face_edge_orientations(t)
-                    .map(|f| if f { 1.0 } else { -1.0 })
-            })
-            .collect();
         let mut sampling = Self {
             faces: InputFaces::new(mesh, input)?,
-            signs,
-            fixed_edges,
+            reconstruction,
             centroid_weights: Vec::new(),
         };
-        sampling.centroid_weights = centroid_weights(&sampling);
+        sampling.centroid_weights = (0..sampling.face_count())
+            .map(|f| sampling.sample_weights(&sampling.centroid(f)))
+            .collect();
         Ok(sampling)
     }
 }
 
-/// [`FieldSampling::sample_weights`] of `sampling` at the centroid of every input face.
-pub(crate) fn centroid_weights(sampling: &dyn FieldSampling) -> Vec<Vec<(usize, [f64; 3])>> {
-    (0..sampling.face_count())
-        .map(|f| sampling.sample_weights(&sampling.centroid(f)))
-        .collect()
-}
-
-/// The field `field` sampled at every input face's centroid by the precomputed `weights`
-/// ([`centroid_weights`]).
-pub(crate) fn apply_centroid_weights(
-    weights: &[Vec<(usize, [f64; 3])>],
-    field: &[f64],
-) -> Vec<[f64; 3]> {
-    weights
-        .iter()
-        .map(|weights| {
-            let mut v = [0.0; 3];
-            for &(i, w) in weights {
-                for k in 0..3 {
-                    v[k] += w[k] * field[i];
-                }
-            }
-            v
-        })
-        .collect()
-}
-
-/// `⟨∇λ_i, ∇λ_j⟩` of a triangle with side lengths `lengths` (`l_c` opposite corner `c`), from its
-/// cotangents and area (1/length²).
-fn barycentric_gram(lengths: [f64; 3]) -> [[f64; 3]; 3] {
-    let cot = corner_cotangents(lengths);
-    let two_area = 2.0 * tvf_core::intrinsic::triangle_area(lengths);
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
-            if i == j {
-                (cot[(i + 1) % 3] + cot[(i + 2) % 3]) / two_area
-            } else {
-                -cot[3 - i - j] / two_area
-            }
-        })
-    })
-}
-
-impl FieldSampling for IntrinsicWhitneySampling {
+impl<R: IntrinsicReconstruction> FieldSampling for IntrinsicSampling<R> {
     fn face_frames(&self) -> &FaceFrames {
         &self.faces.frames
     }
 
     fn field_dimension(&self) -> usize {
-        self.faces.input.triangulation.edge_count()
-    }
-
-    fn centroid(&self, face: usize) -> SurfacePoint {
-        SurfacePoint::barycentric(face, [1.0 / 3.0; 3])
+        self.reconstruction
+            .field_dimension(&self.faces.input.triangulation)
     }
 
     fn reproduction(&self) -> SamplingReproduction {
@@ -133,54 +103,44 @@ impl FieldSampling for IntrinsicWhitneySampling {
     fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
         let input = &self.faces.input;
         let (cell, q) = input.locate(point.face, point.triangle_coordinates());
-        let tri = &input.triangulation;
-        let t = q.face;
-        let b = q.barycentric;
-        let gram = barycentric_gram(tri.face_lengths(t));
-        let edges = tri.face_edges(t);
-        (0..3)
-            .filter(|&c| !self.fixed_edges[edges[c]])
-            .map(|c| {
-                let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-                let sign = self.signs[t][c];
-                let d: [f64; 3] =
-                    std::array::from_fn(|m| sign * (b[j] * gram[m][k] - b[k] * gram[m][j]));
+        self.reconstruction
+            .face_weights(&input.triangulation, q.face, q.barycentric)
+            .into_iter()
+            .map(|(i, d)| {
                 let on_input = input
                     .overlay
                     .to_input_displacement(cell, d)
                     .unwrap_or([0.0; 3]);
-                (edges[c], self.faces.input_vector(point.face, on_input))
+                (i, self.faces.input_vector(point.face, on_input))
             })
             .collect()
     }
 
     fn to_face_vectors(&self, field: &[f64]) -> Result<Vec<[f64; 3]>, DiscretizationError> {
         check_length("field coefficients", self.field_dimension(), field.len())?;
-        Ok(apply_centroid_weights(&self.centroid_weights, field))
+        Ok(self
+            .centroid_weights
+            .iter()
+            .map(|weights| {
+                let mut v = [0.0; 3];
+                for &(i, w) in weights {
+                    for k in 0..3 {
+                        v[k] += w[k] * field[i];
+                    }
+                }
+                v
+            })
+            .collect())
     }
 
-    fn from_face_vectors(
-        &self,
-        vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError> {
-        check_face_vectors(self.face_count(), vectors)?;
-        let tri = &self.faces.input.triangulation;
-        let face_vectors = self.faces.intrinsic_face_displacements(vectors);
-        let mut averages = EdgeAverages::new(tri.edge_count());
-        for (t, u) in face_vectors.iter().enumerate() {
-            let l2 = tri.face_lengths(t).map(|l| l * l);
-            for (c, e) in tri.face_edges(t).into_iter().enumerate() {
-                let (j, k) = ((c + 1) % 3, (c + 2) % 3);
-                // ⟨u, p_k − p_j⟩ with u = Σ u_m (p_m − p_j): |p_k − p_j|² = l_c², and
-                // ⟨p_c − p_j, p_k − p_j⟩ = (l_k² + l_c² − l_j²) / 2.
-                let along = u[k] * l2[c] + u[c] * (l2[k] + l2[c] - l2[j]) / 2.0;
-                averages.add(e, self.signs[t][c] * along);
-            }
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection {
+        let displacements = self.faces.intrinsic_face_displacements(vectors);
+        TangentProjection {
+            field: self
+                .reconstruction
+                .field_of_displacements(&self.faces.input.triangulation, &displacements),
+            normal_parts: self.faces.frames.normal_parts(vectors),
         }
-        Ok(TangentProjection {
-            field: averages.means(&self.fixed_edges),
-            normal_parts: self.faces.normal_parts(vectors),
-        })
     }
 }
 

@@ -140,6 +140,7 @@ mod intrinsic_nodes;
 mod intrinsic_primal_forms;
 mod intrinsic_sampling;
 mod intrinsic_whitney_galerkin;
+mod intrinsic_whitney_sampling;
 mod lagrange_p1;
 mod mass_lumping;
 mod matrix_complex;
@@ -154,6 +155,7 @@ mod polygon_operators;
 mod polygon_sampling;
 mod primal_form_complex;
 mod primal_forms;
+mod sampled_complex;
 mod whitney_galerkin;
 mod whitney_mass;
 mod whitney_sampling;
@@ -186,11 +188,12 @@ pub use intrinsic_delaunay::{
     intrinsic_entry_id, parse_intrinsic_delaunay, split_intrinsic_id, IntrinsicConstructor,
     IntrinsicDelaunay, IntrinsicInput,
 };
-pub use intrinsic_face_sampling::IntrinsicFaceSampling;
+pub use intrinsic_face_sampling::{IntrinsicFaceSampling, IntrinsicFaceVectors};
 pub use intrinsic_finite_element::{ElementFamily, IntrinsicFiniteElement};
 pub use intrinsic_primal_forms::IntrinsicPrimalFormComplex;
-pub use intrinsic_sampling::{IntrinsicEvaluation, IntrinsicWhitneySampling};
+pub use intrinsic_sampling::{IntrinsicEvaluation, IntrinsicReconstruction, IntrinsicSampling};
 pub use intrinsic_whitney_galerkin::IntrinsicWhitneyGalerkin;
+pub use intrinsic_whitney_sampling::{IntrinsicWhitneyForms, IntrinsicWhitneySampling};
 pub use lagrange_p1::LagrangeP1;
 pub use mass_lumping::MassLumping;
 pub use matrix_complex::{ComplexMatrices, MatrixComplex, MatrixSampling, COMPLEX_TOLERANCE};
@@ -204,6 +207,7 @@ pub use polygon_operators::PolygonOperators;
 pub use polygon_sampling::{PolygonEvaluation, PolygonSampling};
 pub use primal_form_complex::{inverse_face_areas, PrimalFormComplex};
 pub use primal_forms::{PrimalFormEvaluation, PrimalForms};
+pub use sampled_complex::SampledComplex;
 pub use whitney_galerkin::{GalerkinMasses, WhitneyGalerkin};
 pub use whitney_mass::whitney_mass;
 pub use whitney_sampling::WhitneySampling;

@@ -1,16 +1,12 @@
 //! [`PolygonDec`]: discrete exterior calculus on polygon meshes (de Goes, Butts, Desbrun 2020),
 //! catalog id `polygon-dec`.
 
-use crate::boundary_conditions::mesh_topology;
-use crate::complex_id::complex_id;
 use crate::polygon_operators::PolygonOperators;
 use crate::polygon_sampling::{PolygonEvaluation, PolygonSampling};
 use crate::primal_forms::PrimalForms;
+use crate::sampled_complex::SampledComplex;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
-    PointEvaluation,
-};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass};
 use tvf_core::mesh::Mesh;
 
 /// The default weight `β` of the stabilisation term of `M1` (de Goes et al. 2020 and Lagrange's
@@ -41,12 +37,7 @@ pub const DEFAULT_STABILISATION: f64 = 1.0;
 /// Point evaluation ([`PolygonEvaluation`]): a 0-form at a point is the point's corner weights
 /// applied to its corners' values (linear functions exactly); a 2-form is constant per face.
 /// There is no rotation `J` on 1-forms.
-#[derive(Debug, Clone)]
-pub struct PolygonDec {
-    parts: ComplexParts,
-    sampling: PolygonSampling,
-    evaluation: PolygonEvaluation,
-}
+pub type PolygonDec = SampledComplex<PolygonSampling, PolygonEvaluation>;
 
 impl PolygonDec {
     /// The complex of `mesh` with boundary condition `boundary` (absolute forms for
@@ -76,7 +67,8 @@ impl PolygonDec {
                 area: operators[face].area,
             });
         }
-        let PrimalForms { d0, d1, nodes } = PrimalForms::new(mesh, boundary);
+        let forms = PrimalForms::new(mesh, boundary);
+        let nodes = &forms.nodes;
         let masses = [
             Mass::diagonal_positive_on_used_nodes(
                 "M0 (polygon vertex areas ⋆0)",
@@ -94,19 +86,12 @@ impl PolygonDec {
             )?,
         ];
         let sampling = PolygonSampling::new(mesh, &operators, nodes[1].dirichlet.clone());
-        let id = polygon_dec_id(beta);
-        Ok(Self {
-            parts: ComplexParts::new(
-                complex_id(&id, mesh.topology(), boundary),
-                d0,
-                d1,
-                masses,
-                nodes,
-                mesh_topology(mesh, boundary),
-            )?,
+        let parts = forms.into_parts(&polygon_dec_id(beta), mesh, boundary, masses)?;
+        Ok(Self::from_parts(
+            parts,
             sampling,
-            evaluation: PolygonEvaluation::new(mesh),
-        })
+            PolygonEvaluation::new(mesh),
+        ))
     }
 }
 
@@ -154,18 +139,4 @@ fn one_form_inner_product<M: Mesh + ?Sized>(
     }
     let e = mesh.topology().edges().len();
     from_triplets(e, e, rows, cols, values)
-}
-
-impl HodgeComplex for PolygonDec {
-    fn parts(&self) -> &ComplexParts {
-        &self.parts
-    }
-
-    fn sampling(&self) -> Option<&dyn FieldSampling> {
-        Some(&self.sampling)
-    }
-
-    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
-        Some(&self.evaluation)
-    }
 }

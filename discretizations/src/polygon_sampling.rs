@@ -2,11 +2,10 @@
 //! tangent vector per polygon (its sharp), per-face vectors turned into a 1-form (the flat), and
 //! 0- and 2-forms at points.
 
-use crate::edge_averages::EdgeAverages;
+use crate::edge_averages::edge_integrals;
 use crate::polygon_operators::PolygonOperators;
 use tvf_core::discretization::{
-    check_face_vectors, DiscretizationError, FaceFrames, FieldSampling, PointEvaluation,
-    SamplingReproduction, TangentProjection,
+    FaceFrames, FieldSampling, PointEvaluation, SamplingReproduction, TangentProjection,
 };
 use tvf_core::geometry::{cross, dot, normalize, scale, sub};
 use tvf_core::mesh::Mesh;
@@ -50,16 +49,18 @@ impl PolygonSampling {
             frames.push([e1, cross(n, e1)]);
             normals.push(n);
         }
+        let side_edges: Vec<Vec<usize>> = (0..faces.face_count())
+            .map(|f| {
+                (0..faces.corners(f).len())
+                    .map(|c| mesh.face_edge(f, c))
+                    .collect()
+            })
+            .collect();
+        let corner_counts = side_edges.iter().map(Vec::len).collect();
         Self {
-            side_edges: (0..faces.face_count())
-                .map(|f| {
-                    (0..faces.corners(f).len())
-                        .map(|c| mesh.face_edge(f, c))
-                        .collect()
-                })
-                .collect(),
+            side_edges,
             sharp: operators.iter().map(|o| o.sharp.clone()).collect(),
-            frames: FaceFrames::new(frames, normals),
+            frames: FaceFrames::of_polygons(frames, normals, corner_counts),
             edges: mesh.topology().edges().to_vec(),
             positions: mesh.positions().to_vec(),
             fixed_edges,
@@ -74,10 +75,6 @@ impl FieldSampling for PolygonSampling {
 
     fn field_dimension(&self) -> usize {
         self.edges.len()
-    }
-
-    fn centroid(&self, face: usize) -> SurfacePoint {
-        SurfacePoint::centroid(face, self.side_edges[face].len())
     }
 
     fn reproduction(&self) -> SamplingReproduction {
@@ -99,28 +96,23 @@ impl FieldSampling for PolygonSampling {
     /// dropped normal parts are returned), then `x_e` the average, over the faces of edge
     /// `e = (a, b)`, of `⟨v_f, p_b − p_a⟩`; 0 on fixed edges. On planar polygons the sharp gives
     /// the projected vectors back where they agree across edges.
-    fn from_face_vectors(
-        &self,
-        vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError> {
-        check_face_vectors(self.face_count(), vectors)?;
-        let mut averages = EdgeAverages::new(self.edges.len());
-        let mut normal_parts = Vec::with_capacity(vectors.len());
-        for (f, &v) in vectors.iter().enumerate() {
-            let n = self.frames.normal(f);
-            let normal_part = dot(v, n);
-            let tangent = sub(v, scale(n, normal_part));
-            normal_parts.push(normal_part);
-            for &e in &self.side_edges[f] {
-                let [a, b] = self.edges[e];
-                averages.add(e, dot(tangent, sub(self.positions[b], self.positions[a])));
-            }
-        }
-        let field = averages.means(&self.fixed_edges);
-        Ok(TangentProjection {
-            field,
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection {
+        let normal_parts = self.frames.normal_parts(vectors);
+        let tangents = vectors
+            .iter()
+            .zip(self.frames.normals())
+            .zip(&normal_parts)
+            .map(|((&v, &n), &normal_part)| sub(v, scale(n, normal_part)));
+        let faces = self.side_edges.iter().map(Vec::as_slice);
+        TangentProjection {
+            field: edge_integrals(
+                &self.edges,
+                &self.positions,
+                &self.fixed_edges,
+                faces.zip(tangents),
+            ),
             normal_parts,
-        })
+        }
     }
 }
 

@@ -1,33 +1,23 @@
 //! [`PrimalFormComplex`]: a complex of primal forms ([`PrimalForms`]) with its three masses,
-//! Whitney sampling and point evaluation — the one type behind [`crate::DecComplex`] and
-//! [`crate::WhitneyGalerkin`], which differ only in the masses (the marker `M`). A crate of your
-//! own makes a DEC-like discretization the same way: a marker type of its own and
-//! [`PrimalFormComplex::assemble`] with its masses (the example crate `own-discretization` does,
-//! with a Hodge star of its own).
+//! Whitney sampling and point evaluation (a [`SampledComplex`]) — the one type behind
+//! [`crate::DecComplex`] and [`crate::WhitneyGalerkin`], which differ only in the masses (the
+//! marker `M`). A crate of your own makes a DEC-like discretization the same way: a marker type of
+//! its own and [`PrimalFormComplex::assemble`] with its masses (the example crate
+//! `own-discretization` does, with a Hodge star of its own).
 
-use crate::boundary_conditions::mesh_topology;
-use crate::complex_id::complex_id;
 use crate::face_geometry::FaceGeometry;
 use crate::primal_forms::{PrimalFormEvaluation, PrimalForms};
+use crate::sampled_complex::SampledComplex;
 use crate::whitney_sampling::WhitneySampling;
-use std::marker::PhantomData;
-use tvf_core::discretization::{
-    BoundaryCondition, ComplexParts, DiscretizationError, FieldSampling, HodgeComplex, Mass,
-    NodeSpace, PointEvaluation,
-};
+use tvf_core::discretization::{BoundaryCondition, DiscretizationError, Mass, NodeSpace};
 use tvf_core::TriangleMesh;
 
 /// The complex `0-forms (V) --d0--> 1-forms (E) --d1--> 2-forms (F)` of [`PrimalForms`] with
 /// masses chosen by the marker `M` ([`crate::HodgeStars`] for DEC, [`crate::GalerkinMasses`]
 /// for Whitney forms), sampled by Whitney interpolation ([`WhitneySampling`]); 0-forms are
-/// evaluated linearly, 2-forms constant per face. There is no rotation `J` on 1-forms.
-#[derive(Debug, Clone)]
-pub struct PrimalFormComplex<M> {
-    parts: ComplexParts,
-    sampling: WhitneySampling,
-    evaluation: PrimalFormEvaluation,
-    masses: PhantomData<M>,
-}
+/// evaluated linearly ([`PrimalFormEvaluation`]), 2-forms constant per face. There is no rotation
+/// `J` on 1-forms.
+pub type PrimalFormComplex<M> = SampledComplex<WhitneySampling, PrimalFormEvaluation, M>;
 
 impl<M> PrimalFormComplex<M> {
     /// Assembles the complex of `mesh` (face geometry `geometry`, [`FaceGeometry::new`]) with
@@ -36,7 +26,7 @@ impl<M> PrimalFormComplex<M> {
     /// [`HodgeComplex`] for their units) from the node spaces of the 0-, 1- and 2-forms
     /// ([`PrimalForms::nodes`]: use their `components` for
     /// [`Mass::diagonal_positive_on_used_nodes`]). Fails with the masses' error, or when
-    /// [`ComplexParts::new`] refuses the parts (shapes, `d1 d0 ≠ 0`).
+    /// [`PrimalForms::into_parts`] refuses the parts (shapes, `d1 d0 ≠ 0`).
     pub fn assemble(
         id: &str,
         mesh: &TriangleMesh,
@@ -44,22 +34,15 @@ impl<M> PrimalFormComplex<M> {
         boundary: BoundaryCondition,
         masses: impl FnOnce(&[NodeSpace; 3]) -> Result<[Mass; 3], DiscretizationError>,
     ) -> Result<Self, DiscretizationError> {
-        let PrimalForms { d0, d1, nodes } = PrimalForms::new(mesh, boundary);
-        let masses = masses(&nodes)?;
-        let sampling = WhitneySampling::new(mesh, geometry, nodes[1].dirichlet.clone());
-        Ok(Self {
-            parts: ComplexParts::new(
-                complex_id(id, mesh.topology(), boundary),
-                d0,
-                d1,
-                masses,
-                nodes,
-                mesh_topology(mesh, boundary),
-            )?,
+        let forms = PrimalForms::new(mesh, boundary);
+        let masses = masses(&forms.nodes)?;
+        let sampling = WhitneySampling::new(mesh, geometry, forms.nodes[1].dirichlet.clone());
+        let parts = forms.into_parts(id, mesh, boundary, masses)?;
+        Ok(Self::from_parts(
+            parts,
             sampling,
-            evaluation: PrimalFormEvaluation::new(mesh),
-            masses: PhantomData,
-        })
+            PrimalFormEvaluation::new(mesh),
+        ))
     }
 }
 
@@ -76,18 +59,4 @@ pub fn inverse_face_areas(
         geometry.areas.iter().map(|a| 1.0 / a).collect(),
         &face_nodes.components,
     )
-}
-
-impl<M: Send + Sync> HodgeComplex for PrimalFormComplex<M> {
-    fn parts(&self) -> &ComplexParts {
-        &self.parts
-    }
-
-    fn sampling(&self) -> Option<&dyn FieldSampling> {
-        Some(&self.sampling)
-    }
-
-    fn point_evaluation(&self) -> Option<&dyn PointEvaluation> {
-        Some(&self.evaluation)
-    }
 }

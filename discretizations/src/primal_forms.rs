@@ -6,11 +6,16 @@
 //! ([`crate::PolygonDec`]) shares the incidences and nodes.
 
 use crate::boundary_conditions::{
-    boundary_nodes, component_boundary_loops, drop_columns, drop_rows, with_dirichlet_boundary,
+    boundary_nodes, component_boundary_loops, drop_columns, drop_rows, mesh_topology,
+    with_dirichlet_boundary,
 };
+use crate::complex_id::complex_id;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
-use tvf_core::discretization::{BoundaryCondition, NodeKind, NodeSpace, PointEvaluation};
+use tvf_core::discretization::{
+    BoundaryCondition, ComplexParts, DiscretizationError, Mass, NodeKind, NodeSpace,
+    PointEvaluation,
+};
 use tvf_core::mesh::Mesh;
 use tvf_core::{SurfacePoint, TriangleMesh};
 
@@ -104,6 +109,27 @@ impl PrimalForms {
             d1,
             nodes: [potential_nodes, field_nodes, co_potential_nodes],
         }
+    }
+
+    /// These incidences and nodes with the masses `masses` (`[M0, M1, M2]`, `V × V`, `E × E`,
+    /// `F × F`) as the parts of the complex of `mesh` with boundary condition `boundary` (the one
+    /// they were made with) and catalog id `id` (`+{boundary}` appended on a mesh with boundary).
+    /// Fails when [`ComplexParts::new`] refuses them (shapes, `d1 d0 ≠ 0`).
+    pub fn into_parts<M: Mesh + ?Sized>(
+        self,
+        id: &str,
+        mesh: &M,
+        boundary: BoundaryCondition,
+        masses: [Mass; 3],
+    ) -> Result<ComplexParts, DiscretizationError> {
+        ComplexParts::new(
+            complex_id(id, mesh.topology(), boundary),
+            self.d0,
+            self.d1,
+            masses,
+            self.nodes,
+            mesh_topology(mesh, boundary),
+        )
     }
 }
 

@@ -1,12 +1,10 @@
 //! [`WhitneySampling`]: DEC 1-forms seen as tangent vectors through Whitney interpolation, and
 //! per-face vectors turned into 1-forms by the de Rham map.
 
-use crate::edge_averages::EdgeAverages;
+use crate::edge_averages::edge_integrals;
 use crate::face_geometry::FaceGeometry;
-use tvf_core::discretization::{
-    check_face_vectors, DiscretizationError, FaceFrames, FieldSampling, TangentProjection,
-};
-use tvf_core::geometry::{cross, dot, scale, sub};
+use tvf_core::discretization::{FaceFrames, FieldSampling, TangentProjection};
+use tvf_core::geometry::{cross, scale, sub};
 use tvf_core::{SurfacePoint, TriangleMesh};
 
 /// Whitney interpolation of 1-forms on edges.
@@ -80,10 +78,6 @@ impl FieldSampling for WhitneySampling {
         self.edges.len()
     }
 
-    fn centroid(&self, face: usize) -> SurfacePoint {
-        SurfacePoint::barycentric(face, [1.0 / 3.0; 3])
-    }
-
     fn sample_weights(&self, point: &SurfacePoint) -> Vec<(usize, [f64; 3])> {
         let (face, barycentric) = (point.face, point.triangle_coordinates());
         let corners = self.faces[face];
@@ -101,27 +95,16 @@ impl FieldSampling for WhitneySampling {
             .collect()
     }
 
-    fn from_face_vectors(
-        &self,
-        vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError> {
-        check_face_vectors(self.face_count(), vectors)?;
-        let mut averages = EdgeAverages::new(self.edges.len());
-        for (t, &v) in vectors.iter().enumerate() {
-            for &e in &self.face_edges[t] {
-                let [a, b] = self.edges[e];
-                averages.add(e, dot(v, sub(self.positions[b], self.positions[a])));
-            }
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection {
+        let faces = self.face_edges.iter().map(|e| e.as_slice());
+        TangentProjection {
+            field: edge_integrals(
+                &self.edges,
+                &self.positions,
+                &self.fixed_edges,
+                faces.zip(vectors.iter().copied()),
+            ),
+            normal_parts: self.frames.normal_parts(vectors),
         }
-        let field = averages.means(&self.fixed_edges);
-        let normal_parts = vectors
-            .iter()
-            .zip(self.frames.normals())
-            .map(|(&v, &n)| dot(v, n))
-            .collect();
-        Ok(TangentProjection {
-            field,
-            normal_parts,
-        })
     }
 }

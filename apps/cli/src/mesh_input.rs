@@ -52,6 +52,35 @@ pub struct MeshInput {
     original_vertex: std::sync::OnceLock<Vec<usize>>,
 }
 
+/// A mesh file or a built-in example, either optional: the mesh of a command that also runs
+/// without one (`tvf check` on generated meshes, `tvf compare --corpus`). The command states
+/// when `MESH` is required and what it is for with `mut_arg("mesh", …)`.
+#[derive(Args, Debug, Clone)]
+pub struct OptionalMeshInput {
+    /// Mesh file (.obj, .off or .ply).
+    #[arg(value_name = "MESH")]
+    pub mesh: Option<PathBuf>,
+    /// A built-in example mesh instead of a file.
+    #[arg(
+        long,
+        value_name = "NAME",
+        conflicts_with = "mesh",
+        value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
+    )]
+    pub example: Option<String>,
+}
+
+impl OptionalMeshInput {
+    /// The mesh given: the file `MESH`, else the example `--example`, else none.
+    pub fn input(&self) -> Option<MeshInput> {
+        match (&self.mesh, &self.example) {
+            (Some(path), _) => Some(MeshInput::file(path.clone())),
+            (None, Some(name)) => Some(MeshInput::example(name)),
+            (None, None) => None,
+        }
+    }
+}
+
 impl MeshInput {
     /// The mesh file `path`.
     pub fn file(path: PathBuf) -> Self {

@@ -74,8 +74,10 @@ pub trait FieldSampling: Send + Sync {
     }
 
     /// The point of face `face` where [`FieldSampling::to_face_vectors`] samples: its corner
-    /// average (for a triangle its centroid, barycentric `[1/3; 3]`).
-    fn centroid(&self, face: usize) -> SurfacePoint;
+    /// average (for a triangle its centroid, barycentric `[1/3; 3]`; [`FaceFrames::centroid`]).
+    fn centroid(&self, face: usize) -> SurfacePoint {
+        self.face_frames().centroid(face)
+    }
 
     /// What this sampling reproduces exactly ([`SamplingReproduction`]; the suite checks it).
     fn reproduction(&self) -> SamplingReproduction {
@@ -101,15 +103,24 @@ pub trait FieldSampling: Send + Sync {
             .collect()
     }
 
+    /// [`FieldSampling::from_face_vectors`] of `vectors`, which hold one vector per face (`F`
+    /// entries, checked by the caller): each vector projected onto its face plane and turned
+    /// into coefficients (each discretization documents how), with the dropped normal
+    /// components alongside.
+    fn project_face_vectors(&self, vectors: &[[f64; 3]]) -> TangentProjection;
+
     /// A field from one 3D vector per face (`F` entries): each vector is projected onto its face
-    /// plane and turned into coefficients (each discretization documents how); the dropped normal
-    /// components are returned alongside.
+    /// plane and turned into coefficients ([`FieldSampling::project_face_vectors`]); the dropped
+    /// normal components are returned alongside. Fails if `vectors` does not have `F` entries.
     // Named as the inverse of `to_face_vectors`; it needs `self` for the geometry.
     #[allow(clippy::wrong_self_convention)]
     fn from_face_vectors(
         &self,
         vectors: &[[f64; 3]],
-    ) -> Result<TangentProjection, DiscretizationError>;
+    ) -> Result<TangentProjection, DiscretizationError> {
+        check_face_vectors(self.face_count(), vectors)?;
+        Ok(self.project_face_vectors(vectors))
+    }
 
     /// One 3D vector per face (`F` entries): the field sampled at each face's centroid
     /// ([`FieldSampling::centroid`]).

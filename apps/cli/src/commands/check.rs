@@ -8,7 +8,7 @@
 
 use crate::context::RunContext;
 use crate::discretization_flags::DiscretizationFlags;
-use crate::mesh_input::MeshInput;
+use crate::mesh_input::OptionalMeshInput;
 use crate::progress::Progress;
 use crate::report::Report;
 use anyhow::{bail, Context, Result};
@@ -27,10 +27,13 @@ use tvf_conformance::property_runner::{
 };
 use tvf_conformance::reference_report::catalog_reference_checks;
 use tvf_core::discretization::HodgeComplex;
-use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::io::write_obj;
 use tvf_core::{SurfaceMesh, TriangleMesh};
 use tvf_discretizations::{Catalog, CatalogEntry, DEFAULT_DISCRETIZATION};
+
+/// `MESH`'s help text for `tvf check`.
+const MESH_HELP: &str = "Mesh file (.obj, .off or .ply) to check the discretization on; omit to \
+    check it on --cases generated meshes instead";
 
 /// Arguments of `tvf check`.
 #[derive(Args)]
@@ -40,20 +43,12 @@ use tvf_discretizations::{Catalog, CatalogEntry, DEFAULT_DISCRETIZATION};
     tvf check --discretization conforming-voronoi --cases 64 --seed 1\n  \
     tvf check --discretization whitney-galerkin --cases 16 -o minimal.obj --json\n  \
     tvf check quads.obj --discretization polygon-dec\n  \
-    tvf check --discretization polygon-dec --meshes polygons --cases 32")]
+    tvf check --discretization polygon-dec --meshes polygons --cases 32",
+    mut_arg("mesh", |arg| arg.help(MESH_HELP))
+)]
 pub struct CheckArgs {
-    /// Mesh file (.obj, .off or .ply) to check the discretization on; omit to check it on
-    /// --cases generated meshes instead.
-    #[arg(value_name = "MESH")]
-    mesh: Option<PathBuf>,
-    /// A built-in example mesh instead of a MESH file.
-    #[arg(
-        long,
-        value_name = "NAME",
-        conflicts_with = "mesh",
-        value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
-    )]
-    example: Option<String>,
+    #[command(flatten)]
+    mesh: OptionalMeshInput,
     #[command(flatten)]
     discretization: DiscretizationFlags,
     /// Without MESH: number of generated meshes (closed of genus 0–5 and with boundary, several
@@ -96,10 +91,9 @@ pub struct CheckArgs {
 pub fn run(args: CheckArgs, context: &RunContext) -> Result<()> {
     let catalog = context.catalog();
     let mut report = Report::new(args.json);
-    let input = match (&args.mesh, &args.example) {
-        (Some(path), _) => MeshInput::file(path.clone()),
-        (None, Some(name)) => MeshInput::example(name),
-        (None, None) => {
+    let input = match args.mesh.input() {
+        Some(input) => input,
+        None => {
             let id = args
                 .discretization
                 .requested_id()

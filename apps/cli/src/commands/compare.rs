@@ -11,16 +11,14 @@ use super::compare_entries::{build_entry, entry_names, measure_entry, reference_
 use super::compare_pictures::{write_pictures, PictureRequest};
 use crate::context::RunContext;
 use crate::discretization_flags::{with_intrinsic_suffix, IntrinsicDelaunayFlag};
-use crate::mesh_input::MeshInput;
+use crate::mesh_input::{MeshInput, OptionalMeshInput};
 use crate::output_rules::{check_output, commit, stage};
 use crate::picture_options::{parse_size, parse_view};
 use anyhow::{bail, Context, Result};
-use clap::builder::PossibleValuesParser;
 use clap::Args;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use tvf_core::discretization::BoundaryCondition;
-use tvf_core::generate::EXAMPLE_NAMES;
 use tvf_core::SurfaceMesh;
 use tvf_discretizations::parse_boundary_condition;
 use tvf_spectral::eigenspace_angles::DEFAULT_CLUSTER_TOLERANCE;
@@ -63,20 +61,14 @@ const INTRINSIC_DELAUNAY_HELP: &str = "Every catalog entry on the intrinsic Dela
 #[derive(Args)]
 #[command(
     after_help = AFTER_HELP,
-    mut_arg("intrinsic_delaunay", |arg| arg.help(INTRINSIC_DELAUNAY_HELP))
+    mut_arg("intrinsic_delaunay", |arg| arg.help(INTRINSIC_DELAUNAY_HELP)),
+    mut_arg("mesh", |arg| arg
+        .help("Mesh file (.obj, .off or .ply); omit with --example or --corpus")
+        .required_unless_present_any(["example", "corpus"]))
 )]
 pub struct CompareArgs {
-    /// Mesh file (.obj, .off or .ply); omit with --example or --corpus.
-    #[arg(value_name = "MESH", required_unless_present_any = ["example", "corpus"])]
-    mesh: Option<PathBuf>,
-    /// A built-in example mesh instead of a file.
-    #[arg(
-        long,
-        value_name = "NAME",
-        conflicts_with = "mesh",
-        value_parser = PossibleValuesParser::new(EXAMPLE_NAMES)
-    )]
-    example: Option<String>,
+    #[command(flatten)]
+    mesh: OptionalMeshInput,
     /// Split every polygon into triangles after loading (as for other commands' --triangulate).
     #[arg(long)]
     triangulate: bool,
@@ -150,11 +142,10 @@ pub struct CompareArgs {
 
 /// The one mesh of the arguments (a file or an example).
 fn mesh_input(args: &CompareArgs) -> MeshInput {
-    let mut input = match (&args.mesh, &args.example) {
-        (Some(path), _) => MeshInput::file(path.clone()),
-        (None, Some(name)) => MeshInput::example(name),
-        (None, None) => MeshInput::file(PathBuf::new()),
-    };
+    let mut input = args
+        .mesh
+        .input()
+        .unwrap_or_else(|| MeshInput::file(PathBuf::new()));
     input.triangulate = args.triangulate;
     input
 }
