@@ -423,8 +423,9 @@ mod tests {
             }
             let upper =
                 SparseColMat::try_new_from_triplets(n1 + n2, n1 + n2, &triplets).expect("valid");
-            let ldlt =
+            let mut ldlt =
                 SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::Amd).expect("factors");
+            ldlt.set_parallelism(faer::Par::Seq);
             let below = values.iter().filter(|&&v| v < sigma).count();
             assert_eq!(ldlt.inertia().negative, n1 + below, "σ = {sigma}");
             let full = |shifted: bool| {
