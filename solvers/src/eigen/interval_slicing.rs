@@ -445,15 +445,7 @@ fn solve_intervals(
     ),
     RequestError,
 > {
-    let settings = IntervalSettings {
-        tolerance: options.tolerance,
-        block_size: options.block_size,
-        max_restarts: options.max_restarts,
-        parallelism: options.parallelism,
-        refinement_target: options.refinement_target,
-        spare: gate.spare_threads(options.threads.min(rayon::current_num_threads())),
-        release_basis: false,
-    };
+    let settings = IntervalSettings::of(options, gate);
     let outputs = job_outputs(plans, jobs, columns);
     let mut stream = options.finished.map(|sink| {
         let streams = plans
@@ -896,6 +888,21 @@ struct IntervalSettings {
     /// second factorization would otherwise come on top of it), and the next slice takes
     /// fresh pages.
     release_basis: bool,
+}
+
+impl IntervalSettings {
+    /// The settings of `options` for jobs run through `gate` (`release_basis` set per job).
+    fn of(options: &EigenOptions<'_>, gate: &MemoryGate) -> Self {
+        Self {
+            tolerance: options.tolerance,
+            block_size: options.block_size,
+            max_restarts: options.max_restarts,
+            parallelism: options.parallelism,
+            refinement_target: options.refinement_target,
+            spare: gate.spare_threads(options.threads.min(rayon::current_num_threads())),
+            release_basis: false,
+        }
+    }
 }
 
 /// Solves `interval` into `out` (its eigenvalues) and `output` (its eigenvectors: the first
