@@ -126,7 +126,7 @@ fn operator_outcomes<H: HodgeComplex + ?Sized>(
     field: &[f64],
     parts: &HodgeParts,
 ) -> Vec<CheckOutcome> {
-    let checks: [(&LinearOperator, Vec<(&str, &[f64])>); 3] = [
+    let checks: [(&LinearOperator, Vec<NamedPart<'_>>); 3] = [
         (
             complex.co_potential_curl(),
             vec![
@@ -171,6 +171,9 @@ fn operator_outcomes<H: HodgeComplex + ?Sized>(
     }
     outcomes
 }
+
+/// A part of a decomposition with what the check of it is called.
+type NamedPart<'a> = (&'a str, &'a [f64]);
 
 /// Known parts: `v = d0 f − M1⁻¹ d1ᵀ g + h` (seeded random `f`, `g`; `h` the harmonic part of
 /// the random field's `parts`) is split back into exactly these parts.
