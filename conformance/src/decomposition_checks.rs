@@ -14,7 +14,12 @@ use tvf_discretizations::{HodgeDecomposer, HodgeParts};
 /// A seeded random field of the complex's space: `n1` coefficients uniform in `[−1, 1]`, zero
 /// on the Dirichlet field nodes (relative forms: boundary edges).
 pub fn random_field<H: HodgeComplex + ?Sized>(complex: &H, seed: u64) -> Vec<f64> {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    drawn_field(complex, &mut ChaCha8Rng::seed_from_u64(seed))
+}
+
+/// The next random field of `rng` ([`random_field`]'s draws): `n1` values, zero on the Dirichlet
+/// field nodes.
+fn drawn_field<H: HodgeComplex + ?Sized>(complex: &H, rng: &mut ChaCha8Rng) -> Vec<f64> {
     let fixed = &complex.field_nodes().dirichlet;
     (0..complex.field_dimension())
         .map(|i| {
@@ -403,20 +408,8 @@ pub fn harmonic_basis_by_blocks<H: HodgeComplex + ?Sized>(
 ) -> Vec<Vec<f64>> {
     let complex = decomposer.complex();
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let fixed = &complex.field_nodes().dirichlet;
     let random: Vec<Vec<f64>> = (0..complex.topology().harmonic_dimension)
-        .map(|_| {
-            (0..complex.field_dimension())
-                .map(|i| {
-                    let x = rng.random_range(-1.0..1.0);
-                    if fixed[i] {
-                        0.0
-                    } else {
-                        x
-                    }
-                })
-                .collect()
-        })
+        .map(|_| drawn_field(complex, &mut rng))
         .collect();
     let project = |fields: &[Vec<f64>]| {
         decomposer
