@@ -1,6 +1,7 @@
 //! Solves a singular Poisson system on the free nodes of a space, with the per-component constants
 //! in its kernel where the space has them.
 
+use faer::Mat;
 use sprs::CsMat;
 use tvf_core::discretization::sparse::from_triplets;
 use tvf_core::discretization::{Mass, NodeSpace, NO_COMPONENT};
@@ -77,19 +78,39 @@ impl PinnedPoisson {
     /// constants in the kernel); the result has zero mass-weighted mean on every such component
     /// and is zero on the nodes that are not free.
     pub fn solve(&self, rhs: &[f64]) -> Vec<f64> {
-        let reduced: Vec<f64> = rhs
-            .iter()
-            .zip(&self.pinned)
-            .map(|(&b, &p)| if p { 0.0 } else { b })
-            .collect();
-        let mut x = self.cholesky.solve(&reduced);
-        let (sums, weights) = self.component_means(&x);
-        for (xi, &c) in x.iter_mut().zip(&self.shifted) {
-            if c != NO_COMPONENT && weights[c] > 0.0 {
-                *xi -= sums[c] / weights[c];
-            }
-        }
-        x
+        let mut solutions = self.solve_many(&[rhs]);
+        solutions.pop().expect("one right-hand side, one solution")
+    }
+
+    /// [`Self::solve`] for several right-hand sides (each of length `n`) through one
+    /// multi-column solve of the factorization (reading the factor once for all of them); one
+    /// right-hand side gives the same bits as before this method existed (a one-column block).
+    pub fn solve_many(&self, rhs: &[&[f64]]) -> Vec<Vec<f64>> {
+        let n = self.pinned.len();
+        let mut block = Mat::from_fn(
+            n,
+            rhs.len(),
+            |i, j| {
+                if self.pinned[i] {
+                    0.0
+                } else {
+                    rhs[j][i]
+                }
+            },
+        );
+        self.cholesky.solve_in_place(block.as_mut());
+        (0..rhs.len())
+            .map(|j| {
+                let mut x: Vec<f64> = (0..n).map(|i| block[(i, j)]).collect();
+                let (sums, weights) = self.component_means(&x);
+                for (xi, &c) in x.iter_mut().zip(&self.shifted) {
+                    if c != NO_COMPONENT && weights[c] > 0.0 {
+                        *xi -= sums[c] / weights[c];
+                    }
+                }
+                x
+            })
+            .collect()
     }
 
     /// Per component with constants in the kernel: `Σ (M x)_i` and `Σ (M 1)_i` over its nodes
