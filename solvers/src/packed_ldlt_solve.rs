@@ -19,7 +19,7 @@ use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupe
 use faer::MatMut;
 
 use crate::kernel_dispatch::{fma_dispatch, multiply_add};
-use crate::packed_rows::{HalfRow, Row, HALF, WIDTH};
+use crate::packed_rows::{Row, WIDTH};
 
 /// Overwrites `rhs` (`n × r`) with the solution of `P L D Lᵀ Pᵀ X = rhs` for the supernodal
 /// factor (`symbolic`, `values`) and the fill-reducing permutation `perm` (`None`: identity;
@@ -44,24 +44,6 @@ pub(crate) fn solve_packed_rows(
     solve_rows(SupernodalLdltRef::new(symbolic, values), x);
 }
 
-/// [`solve_packed_rows`] of the two halves of a block of packed rows (`low`: columns
-/// `0..HALF`, `high`: columns `HALF..WIDTH`, each `n` rows in elimination order) on two threads
-/// of rayon's pool (`rayon::join`: the second half runs on an idle thread if there is one).
-/// Each column's arithmetic is that of [`solve_packed_rows`] (every update is per column, in
-/// the same order), so the solutions are bit-identical to it; each thread reads the whole
-/// factor, the pair half the right-hand sides each.
-pub(crate) fn solve_packed_halves(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
-    (low, high): (&mut [HalfRow], &mut [HalfRow]),
-) {
-    let factor = SupernodalLdltRef::new(symbolic, values);
-    rayon::join(
-        || solve_half_rows(factor, low),
-        || solve_half_rows(factor, high),
-    );
-}
-
 /// [`solve_packed`] with the portable loops whatever the CPU (to test them where FMA exists).
 #[cfg(test)]
 pub(crate) fn solve_packed_portable(
@@ -70,7 +52,7 @@ pub(crate) fn solve_packed_portable(
     perm: Option<PermRef<'_, usize>>,
     rhs: MatMut<'_, f64>,
 ) {
-    solve_packed_with(symbolic, values, perm, rhs, solve_rows_body::<false, WIDTH>);
+    solve_packed_with(symbolic, values, perm, rhs, solve_rows_body::<false>);
 }
 
 /// [`solve_packed`] with `solve` for the packed triangular solves.
@@ -128,33 +110,7 @@ fn solve_packed_with(
 
 /// `x ← (L D Lᵀ)⁻¹ x` on packed rows.
 fn solve_rows(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    fma_dispatch!(solve_rows_eight(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
-}
-
-/// `x ← (L D Lᵀ)⁻¹ x` on half rows.
-fn solve_half_rows(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [HalfRow]) {
-    fma_dispatch!(solve_rows_four(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [HalfRow]));
-}
-
-/// [`solve_rows_body`] on rows of [`WIDTH`] (the form [`fma_dispatch!`] compiles twice).
-#[inline(always)]
-fn solve_rows_eight<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    solve_rows_body::<FUSED, WIDTH>(factor, x);
-}
-
-/// [`solve_rows_body`] on half rows.
-#[inline(always)]
-fn solve_rows_four<const FUSED: bool>(
-    factor: SupernodalLdltRef<'_, usize, f64>,
-    x: &mut [HalfRow],
-) {
-    solve_rows_body::<FUSED, HALF>(factor, x);
-}
-
-/// [`forward_rows_body`] on rows of [`WIDTH`].
-#[inline(always)]
-fn forward_rows_eight<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    forward_rows_body::<FUSED, WIDTH>(factor, x);
+    fma_dispatch!(solve_rows_body(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
 }
 
 /// `bᵀ (L D Lᵀ)⁻¹ b` for each of the packed columns `b` of `x` (`n` rows in the factor's
@@ -167,7 +123,7 @@ pub(crate) fn inverse_energy_rows(
     x: &mut [Row],
 ) -> Row {
     let factor = SupernodalLdltRef::new(symbolic, values);
-    fma_dispatch!(forward_rows_eight(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
+    fma_dispatch!(forward_rows_body(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
     let mut energy = [0.0; WIDTH];
     for s in 0..factor.symbolic().n_supernodes() {
         let node = factor.supernode(s);
@@ -198,11 +154,8 @@ fn block_column<'a>(block: faer::MatRef<'a, f64>, c: usize) -> &'a [f64] {
 }
 
 #[inline(always)]
-fn solve_rows_body<const FUSED: bool, const W: usize>(
-    factor: SupernodalLdltRef<'_, usize, f64>,
-    x: &mut [[f64; W]],
-) {
-    forward_rows_body::<FUSED, W>(factor, x);
+fn solve_rows_body<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
+    forward_rows_body::<FUSED>(factor, x);
     // Backward: Lᵀ x = z, supernodes and groups of columns in reverse.
     for s in (0..factor.symbolic().n_supernodes()).rev() {
         let node = factor.supernode(s);
@@ -212,18 +165,10 @@ fn solve_rows_body<const FUSED: bool, const W: usize>(
         while end > 0 {
             let first = end.saturating_sub(GROUP);
             match end - first {
-                4 => {
-                    backward_group::<4, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
-                3 => {
-                    backward_group::<3, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
-                2 => {
-                    backward_group::<2, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
-                _ => {
-                    backward_group::<1, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
+                4 => backward_group::<4, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                3 => backward_group::<3, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                2 => backward_group::<2, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                _ => backward_group::<1, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
             }
             end = first;
         }
@@ -232,10 +177,7 @@ fn solve_rows_body<const FUSED: bool, const W: usize>(
 
 /// The forward pass and diagonal of [`solve_rows_body`]: `x ← D⁻¹ L⁻¹ x`.
 #[inline(always)]
-fn forward_rows_body<const FUSED: bool, const W: usize>(
-    factor: SupernodalLdltRef<'_, usize, f64>,
-    x: &mut [[f64; W]],
-) {
+fn forward_rows_body<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
     // Forward and diagonal: L D z = b, supernode by supernode, a group of columns at a time.
     for s in 0..factor.symbolic().n_supernodes() {
         let node = factor.supernode(s);
@@ -245,18 +187,10 @@ fn forward_rows_body<const FUSED: bool, const W: usize>(
         while first < size {
             let width = GROUP.min(size - first);
             match width {
-                4 => {
-                    forward_group::<4, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
-                3 => {
-                    forward_group::<3, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
-                2 => {
-                    forward_group::<2, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
-                _ => {
-                    forward_group::<1, FUSED, W>(ColumnGroup::new(block, start, pattern, first), x)
-                }
+                4 => forward_group::<4, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                3 => forward_group::<3, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                2 => forward_group::<2, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                _ => forward_group::<1, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
             }
             first += width;
         }
@@ -309,16 +243,13 @@ impl<'a, const K: usize> ColumnGroup<'a, K> {
 /// then every later row of the block loses `Σ_k L[row, first + k] · x[start + first + k]`, and
 /// the group's values are divided by their pivots.
 #[inline(always)]
-fn forward_group<const K: usize, const FUSED: bool, const W: usize>(
-    group: ColumnGroup<'_, K>,
-    x: &mut [[f64; W]],
-) {
+fn forward_group<const K: usize, const FUSED: bool>(group: ColumnGroup<'_, K>, x: &mut [Row]) {
     let unknown = group.unknown;
-    let mut values: [[f64; W]; K] = std::array::from_fn(|k| x[unknown + k]);
+    let mut values: [Row; K] = std::array::from_fn(|k| x[unknown + k]);
     for k in 0..K {
         for later in k + 1..K {
             let source = values[k];
-            subtract_scaled::<FUSED, W>(&mut values[later], group.triangle(later, k), &source);
+            subtract_scaled::<FUSED>(&mut values[later], group.triangle(later, k), &source);
         }
     }
     // The group's part of y is final: z = D⁻¹ y (D is on the diagonal of the block).
@@ -326,7 +257,7 @@ fn forward_group<const K: usize, const FUSED: bool, const W: usize>(
     for (target, l) in group.later_rows() {
         let mut sum = x[target];
         for k in 0..K {
-            subtract_scaled::<FUSED, W>(&mut sum, l[k], &values[k]);
+            subtract_scaled::<FUSED>(&mut sum, l[k], &values[k]);
         }
         x[target] = sum;
     }
@@ -340,12 +271,9 @@ fn forward_group<const K: usize, const FUSED: bool, const W: usize>(
 /// `Σ_row L[row, column] · x[row]` over the later rows of the block (every row read once for
 /// the whole group), then the triangle among them.
 #[inline(always)]
-fn backward_group<const K: usize, const FUSED: bool, const W: usize>(
-    group: ColumnGroup<'_, K>,
-    x: &mut [[f64; W]],
-) {
+fn backward_group<const K: usize, const FUSED: bool>(group: ColumnGroup<'_, K>, x: &mut [Row]) {
     let unknown = group.unknown;
-    let mut values: [[f64; W]; K] = std::array::from_fn(|k| x[unknown + k]);
+    let mut values: [Row; K] = std::array::from_fn(|k| x[unknown + k]);
     let triangle: [[f64; K]; K] = std::array::from_fn(|later| {
         std::array::from_fn(|k| {
             if later > k {
@@ -358,13 +286,13 @@ fn backward_group<const K: usize, const FUSED: bool, const W: usize>(
     for (source, l) in group.later_rows() {
         let source = x[source];
         for k in 0..K {
-            subtract_scaled::<FUSED, W>(&mut values[k], l[k], &source);
+            subtract_scaled::<FUSED>(&mut values[k], l[k], &source);
         }
     }
     for k in (0..K).rev() {
         for later in k + 1..K {
             let source = values[later];
-            subtract_scaled::<FUSED, W>(&mut values[k], triangle[later][k], &source);
+            subtract_scaled::<FUSED>(&mut values[k], triangle[later][k], &source);
         }
     }
     for (k, value) in values.iter().enumerate() {
@@ -374,12 +302,8 @@ fn backward_group<const K: usize, const FUSED: bool, const W: usize>(
 
 /// `target − l · source` row-wise, fused when `FUSED` (only in functions compiled with FMA).
 #[inline(always)]
-fn subtract_scaled<const FUSED: bool, const W: usize>(
-    target: &mut [f64; W],
-    l: f64,
-    source: &[f64; W],
-) {
-    for j in 0..W {
+fn subtract_scaled<const FUSED: bool>(target: &mut Row, l: f64, source: &Row) {
+    for j in 0..WIDTH {
         target[j] = multiply_add::<FUSED>(-l, source[j], target[j]);
     }
 }

@@ -10,12 +10,6 @@ pub(crate) const WIDTH: usize = 8;
 /// The values of up to [`WIDTH`] columns in one row (missing columns 0).
 pub(crate) type Row = [f64; WIDTH];
 
-/// Values per half row: a block of packed rows solved as two halves on two threads.
-pub(crate) const HALF: usize = WIDTH / 2;
-
-/// Half of a [`Row`]: columns `0..HALF` or `HALF..WIDTH`.
-pub(crate) type HalfRow = [f64; HALF];
-
 /// The values of a column with unit row stride (the blocks of the solver's loops are column-major
 /// with contiguous columns).
 pub(crate) fn contiguous(column: faer::ColRef<'_, f64>) -> &[f64] {
@@ -36,27 +30,6 @@ pub(crate) fn contiguous_columns_mut(block: faer::MatMut<'_, f64>) -> Vec<&mut [
                 .as_slice_mut()
         })
         .collect()
-}
-
-/// The two halves of the packed rows `rows` (columns `0..HALF` into `halves.0`, the rest into
-/// `halves.1`; resized to `rows.len()`).
-pub(crate) fn split_halves(rows: &[Row], halves: &mut (Vec<HalfRow>, Vec<HalfRow>)) {
-    halves.0.clear();
-    halves.1.clear();
-    halves
-        .0
-        .extend(rows.iter().map(|row| std::array::from_fn(|j| row[j])));
-    halves.1.extend(
-        rows.iter()
-            .map(|row| std::array::from_fn(|j| row[HALF + j])),
-    );
-}
-
-/// The inverse of [`split_halves`]: `rows[i]` ← `halves.0[i]` followed by `halves.1[i]`.
-pub(crate) fn merge_halves(halves: &(Vec<HalfRow>, Vec<HalfRow>), rows: &mut [Row]) {
-    for ((row, low), high) in rows.iter_mut().zip(&halves.0).zip(&halves.1) {
-        *row = std::array::from_fn(|j| if j < HALF { low[j] } else { high[j - HALF] });
-    }
 }
 
 /// Packs the equally long `columns` (at most [`WIDTH`]) into `rows` (one row per entry; missing

@@ -13,10 +13,8 @@
 
 use crate::error::SolverError;
 use crate::ordering::{inverse_permutation, is_permutation, nested_dissection, FillOrdering};
-use crate::packed_ldlt_solve::{
-    inverse_energy_rows, solve_packed, solve_packed_halves, solve_packed_rows,
-};
-use crate::packed_rows::{HalfRow, Row, HALF, WIDTH};
+use crate::packed_ldlt_solve::{inverse_energy_rows, solve_packed, solve_packed_rows};
+use crate::packed_rows::{Row, WIDTH};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::perm::PermRef;
@@ -477,41 +475,6 @@ impl SparseLdlt {
         }
     }
 
-    /// [`Self::solve_in_elimination_order`] of up to [`WIDTH`] right-hand sides on two
-    /// threads of rayon's pool: columns `0..4` and `4..8`, each half with the packed loops of
-    /// a single-threaded supernodal factor (bit-identical to the one-thread solve); other
-    /// factors, or more columns, solve as [`Self::solve_in_elimination_order`]. For a caller
-    /// with an idle thread: the solve is memory-bound, so the second thread's gain is the
-    /// memory bandwidth one more core draws (`docs/performance.md`).
-    ///
-    /// # Panics
-    /// If `rhs.nrows() != self.dimension()` (a programming error).
-    pub fn solve_in_elimination_order_in_halves(&self, mut rhs: MatMut<'_, f64>) {
-        if !self.solves_halves() || rhs.ncols() > WIDTH {
-            self.solve_in_elimination_order(rhs);
-            return;
-        }
-        let n = rhs.nrows();
-        let width = rhs.ncols();
-        let value = |i: usize, j: usize| if j < width { rhs[(i, j)] } else { 0.0 };
-        let mut low: Vec<HalfRow> = (0..n)
-            .map(|i| std::array::from_fn(|j| value(i, j)))
-            .collect();
-        let mut high: Vec<HalfRow> = (0..n)
-            .map(|i| std::array::from_fn(|j| value(i, HALF + j)))
-            .collect();
-        self.solve_halves_in_elimination_order((&mut low, &mut high));
-        for j in 0..width {
-            for i in 0..n {
-                rhs[(i, j)] = if j < HALF {
-                    low[i][j]
-                } else {
-                    high[i][j - HALF]
-                };
-            }
-        }
-    }
-
     /// [`Self::solve_in_elimination_order`] on packed rows: `rows` (`n` rows of [`WIDTH`]
     /// right-hand sides, in elimination order) is overwritten with the solutions. A caller that
     /// packs its block anyway (the Krylov expansion scales it by `M` while packing) saves the
@@ -529,33 +492,6 @@ impl SparseLdlt {
         for (i, row) in rows.iter_mut().enumerate() {
             *row = std::array::from_fn(|j| block[(i, j)]);
         }
-    }
-
-    /// Whether [`Self::solve_halves_in_elimination_order`] can solve with this factor (a
-    /// supernodal factor solved on one thread, which the packed loops handle).
-    pub(crate) fn solves_halves(&self) -> bool {
-        matches!(
-            (self.symbolic.raw(), self.parallelism.degree()),
-            (SymbolicCholeskyRaw::Supernodal(_), 1)
-        )
-    }
-
-    /// [`Self::solve_rows_in_elimination_order`] of a block of packed rows held as its two
-    /// halves (`low`: columns `0..HALF`, `high`: the rest; `n` rows each), solved on two
-    /// threads of rayon's pool with bit-identical results ([`solve_packed_halves`]).
-    ///
-    /// # Panics
-    /// If a half does not have [`Self::dimension`] rows, or the factor is not one
-    /// [`Self::solves_halves`] accepts (programming errors).
-    pub(crate) fn solve_halves_in_elimination_order(
-        &self,
-        (low, high): (&mut [HalfRow], &mut [HalfRow]),
-    ) {
-        assert_eq!(low.len(), high.len(), "halves of different lengths");
-        let symbolic = self
-            .packed_symbolic(low.len())
-            .expect("a factor that solves halves");
-        solve_packed_halves(symbolic, &self.values, (low, high));
     }
 
     /// `bᵀ A⁻¹ b` for each packed column `b` of `rows` (`n` rows in elimination order, as
@@ -775,40 +711,6 @@ mod tests {
                     ours <= 1e-12 && ours <= 4.0 * faers + 1e-15,
                     "{name} {ours:e}, faer {faers:e}"
                 );
-            }
-        }
-    }
-
-    /// The two halves of a block solved on two threads give the one-thread solve's values
-    /// bit for bit (each column's arithmetic is the same), for a full block of eight and a
-    /// partial one, on an indefinite matrix with both orderings.
-    #[test]
-    fn halves_on_two_threads_are_bit_identical_to_the_whole_block() {
-        let upper = shifted_grid(33, 0.53);
-        let n = upper.nrows();
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .expect("a pool");
-        for ordering in [FillOrdering::Amd, FillOrdering::NestedDissection] {
-            let mut ldlt = SparseLdlt::with_ordering(upper.as_ref(), ordering).expect("factors");
-            ldlt.set_parallelism(Par::Seq);
-            assert!(ldlt.solves_halves());
-            for width in [WIDTH, 5, 3] {
-                let rhs = Mat::from_fn(n, width, |i, j| ((i * 11 + j * 5) % 17) as f64 / 7.0 - 1.0);
-                let mut whole = rhs.clone();
-                ldlt.solve_in_elimination_order(whole.as_mut());
-                let mut halves = rhs.clone();
-                pool.install(|| ldlt.solve_in_elimination_order_in_halves(halves.as_mut()));
-                for j in 0..width {
-                    for i in 0..n {
-                        assert_eq!(
-                            whole[(i, j)].to_bits(),
-                            halves[(i, j)].to_bits(),
-                            "{ordering:?}, width {width}: ({i}, {j})"
-                        );
-                    }
-                }
             }
         }
     }

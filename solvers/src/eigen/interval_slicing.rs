@@ -68,9 +68,7 @@ use super::refinement::{
     field_residuals, refine_interval, FieldResidual, Refinement, RefinementSettings,
 };
 use super::shift_factor::ShiftFactor;
-use super::slice_memory::{
-    default_slice_memory, interval_size_within, slice_bytes, MemoryGate, SpareThreads,
-};
+use super::slice_memory::{default_slice_memory, interval_size_within, slice_bytes, MemoryGate};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
 use super::tall_products::remove_mass_projection;
 use super::types::{
@@ -445,7 +443,13 @@ fn solve_intervals(
     ),
     RequestError,
 > {
-    let settings = IntervalSettings::of(options, gate);
+    let settings = IntervalSettings {
+        tolerance: options.tolerance,
+        block_size: options.block_size,
+        max_restarts: options.max_restarts,
+        parallelism: options.parallelism,
+        refinement_target: options.refinement_target,
+    };
     let outputs = job_outputs(plans, jobs, columns);
     let mut stream = options.finished.map(|sink| {
         let streams = plans
@@ -478,10 +482,6 @@ fn solve_intervals(
             .take()
             .expect("every job runs once");
         let mut memory = slice_memory.take();
-        let settings = IntervalSettings {
-            release_basis: gate.over_half_the_budget(job),
-            ..settings.clone()
-        };
         let result = solve_job(
             &requests[plan.request],
             plan,
@@ -874,35 +874,13 @@ struct SolvedInterval {
 }
 
 /// The numeric settings of the intervals (the part of [`EigenOptions`] the worker threads see).
-#[derive(Clone)]
+#[derive(Clone, Copy)]
 struct IntervalSettings {
     tolerance: f64,
     block_size: usize,
     max_restarts: usize,
     parallelism: Par,
     refinement_target: f64,
-    /// Whether the jobs' threads have an idle one (then a job's solves split in two halves).
-    spare: SpareThreads,
-    /// Whether the job's slice takes more than half the memory budget: then its Krylov basis
-    /// is released once the slice is solved, before the refinement (whose trial vectors and
-    /// second factorization would otherwise come on top of it), and the next slice takes
-    /// fresh pages.
-    release_basis: bool,
-}
-
-impl IntervalSettings {
-    /// The settings of `options` for jobs run through `gate` (`release_basis` set per job).
-    fn of(options: &EigenOptions<'_>, gate: &MemoryGate) -> Self {
-        Self {
-            tolerance: options.tolerance,
-            block_size: options.block_size,
-            max_restarts: options.max_restarts,
-            parallelism: options.parallelism,
-            refinement_target: options.refinement_target,
-            spare: gate.spare_threads(options.threads.min(rayon::current_num_threads())),
-            release_basis: false,
-        }
-    }
 }
 
 /// Solves `interval` into `out` (its eigenvalues) and `output` (its eigenvectors: the first
@@ -933,7 +911,6 @@ fn solve_interval(
         0.5 * upper
     };
     let (factor, count) = pencil.factor(midpoint, Phase::Solving, Par::Seq)?;
-    factor.split_when_idle(&options.spare);
     let (sigma, nu) = (count.shift, count.below);
     if nu < nu_lower || nu > nu_upper || sigma >= upper {
         return Err(SolverError::NoConvergence {
@@ -945,9 +922,6 @@ fn solve_interval(
     let attempt = solve_at_shift(request, interval, options, memory, &factor, count, report);
     match attempt {
         Ok((mut values, (first, found))) => {
-            if options.release_basis {
-                memory.release_basis();
-            }
             let mut vectors = memory
                 .vectors(pencil.dimension(), first + found)
                 .subcols_mut(first, found);
@@ -956,10 +930,7 @@ fn solve_interval(
             let factor_at = |shift: f64| {
                 pencil
                     .factor(shift, Phase::Refinement, Par::Seq)
-                    .map(|(f, _)| {
-                        f.split_when_idle(&options.spare);
-                        f
-                    })
+                    .map(|(f, _)| f)
             };
             let refinement = refine_interval(
                 &pencil.operators(),

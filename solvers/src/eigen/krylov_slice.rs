@@ -29,7 +29,7 @@ use super::mass::Mass;
 use super::mass_orthogonal::{
     orthonormalize_block, project_out_after_known, random_orthonormal_block,
 };
-use super::shift_factor::{SaddleScratch, ShiftFactor, SolveBuffer};
+use super::shift_factor::{SaddleScratch, ShiftFactor};
 use super::symmetric_products::gather_times;
 use super::tall_products::{mass_inner, tall_times, tall_times_in_place};
 use crate::error::SolverError;
@@ -161,8 +161,8 @@ struct OperatorScratch {
     solution: Vec<Row>,
     /// `M OP U` for a sparse `M` (empty otherwise).
     weighted: Vec<Row>,
-    /// The saddle system of a mixed pencil, and the halves of a solve on two threads.
-    saddle: SolveBuffer,
+    /// The saddle system of a mixed pencil (empty otherwise).
+    saddle: Vec<Row>,
     /// The refined saddle solves of the inverse-iteration step (empty otherwise).
     refined: SaddleScratch,
 }
@@ -198,12 +198,6 @@ impl SliceMemory {
     /// The `n × columns` eigenvectors the last slice found ([`SliceOutcome`]).
     pub(crate) fn vectors(&mut self, n: usize, columns: usize) -> MatMut<'_, f64> {
         MatMut::from_column_major_slice_mut(&mut self.locked[..n * columns], n, columns)
-    }
-
-    /// Gives the Krylov basis's memory back to the system (the locked vectors stay); the next
-    /// [`Self::fit`] reserves it afresh.
-    pub(crate) fn release_basis(&mut self) {
-        self.basis = Vec::new();
     }
 
     /// Room for an `n × columns` basis (stale values: every column is written before it is

@@ -27,12 +27,10 @@
 //! the sparse mass in it, and the saddle positions. It is formed once per pencil.
 
 use super::mass::permuted;
-use super::slice_memory::SpareThreads;
 use super::stored_mass::StoredMass;
 use super::symmetric_products::{gather_times, Row};
 use crate::convert::ShiftedPattern;
 use crate::error::SolverError;
-use crate::packed_rows::{merge_halves, split_halves, HalfRow, HALF};
 use crate::sparse_ldlt::SparseLdlt;
 use faer::sparse::Triplet;
 use faer::sparse::{SparseColMat, SparseColMatRef};
@@ -129,42 +127,11 @@ pub(crate) struct ShiftFactor {
     /// The shift σ of the factored matrix.
     shift: f64,
     frame: std::sync::Arc<KrylovFrame>,
-    /// When set, [`Self::solve_rows`] solves a block as two halves on two threads while these
-    /// threads have an idle one (set once: a factorization shared by jobs is shared by jobs of
-    /// one gate).
-    spare: std::sync::OnceLock<SpareThreads>,
-}
-
-/// Buffers of [`ShiftFactor::solve_rows`] (resized as needed; of the whole rows and the
-/// halves only the pair in use is kept).
-#[derive(Default)]
-pub(crate) struct SolveBuffer {
-    /// The saddle system of a mixed pencil.
-    rows: Vec<Row>,
-    /// The two halves of the block (standard pencil) or of the saddle system (mixed pencil).
-    halves: (Vec<HalfRow>, Vec<HalfRow>),
 }
 
 impl ShiftFactor {
     pub(crate) fn new(ldlt: SparseLdlt, shift: f64, frame: std::sync::Arc<KrylovFrame>) -> Self {
-        Self {
-            ldlt,
-            shift,
-            frame,
-            spare: std::sync::OnceLock::new(),
-        }
-    }
-
-    /// Lets [`Self::solve_rows`] split its blocks into two halves solved on two threads
-    /// whenever `spare` has an idle thread (the results are bit-identical either way: see
-    /// `packed_ldlt_solve.rs`).
-    pub(crate) fn split_when_idle(&self, spare: &SpareThreads) {
-        let _ = self.spare.set(spare.clone());
-    }
-
-    /// Whether the next solve goes in two halves.
-    fn in_halves(&self) -> bool {
-        self.ldlt.solves_halves() && self.spare.get().is_some_and(SpareThreads::idle)
+        Self { ldlt, shift, frame }
     }
 
     /// Solves of the factorization per right-hand side of [`Self::solve_rows_refined`] (2 for
@@ -194,43 +161,16 @@ impl ShiftFactor {
     }
 
     /// Overwrites the packed rows `rows` (`n` rows, Krylov order) with `(A − σM)⁻¹ rows`;
-    /// `buffer` holds the saddle system of a mixed pencil and the halves of a split solve
-    /// (resized, contents unspecified).
-    pub(crate) fn solve_rows(&self, rows: &mut [Row], buffer: &mut SolveBuffer) {
-        let halves = self.in_halves();
+    /// `buffer` holds the saddle system of a mixed pencil (resized, contents unspecified).
+    pub(crate) fn solve_rows(&self, rows: &mut [Row], buffer: &mut Vec<Row>) {
         let Some(saddle) = &self.frame.saddle else {
-            if halves {
-                split_halves(rows, &mut buffer.halves);
-                let (low, high) = &mut buffer.halves;
-                self.ldlt.solve_halves_in_elimination_order((low, high));
-                merge_halves(&buffer.halves, rows);
-            } else {
-                self.ldlt.solve_rows_in_elimination_order(rows);
-            }
+            self.ldlt.solve_rows_in_elimination_order(rows);
             return;
         };
-        let total = self.ldlt.dimension();
-        if halves {
-            buffer.rows = Vec::new();
-            scatter_halves(rows, &saddle.positions, total, &mut buffer.halves);
-            let (low, high) = &mut buffer.halves;
-            self.ldlt.solve_halves_in_elimination_order((low, high));
-            for (row, &k) in rows.iter_mut().zip(&saddle.positions) {
-                *row = std::array::from_fn(|j| {
-                    if j < HALF {
-                        low[k][j]
-                    } else {
-                        high[k][j - HALF]
-                    }
-                });
-            }
-        } else {
-            buffer.halves = Default::default();
-            scatter(rows, &saddle.positions, total, &mut buffer.rows);
-            self.ldlt.solve_rows_in_elimination_order(&mut buffer.rows);
-            for (row, &k) in rows.iter_mut().zip(&saddle.positions) {
-                *row = buffer.rows[k];
-            }
+        scatter(rows, &saddle.positions, self.ldlt.dimension(), buffer);
+        self.ldlt.solve_rows_in_elimination_order(buffer);
+        for (row, &k) in rows.iter_mut().zip(&saddle.positions) {
+            *row = buffer[k];
         }
     }
 
@@ -310,23 +250,6 @@ fn scatter(rows: &[Row], positions: &[usize], total: usize, buffer: &mut Vec<Row
     }
 }
 
-/// [`scatter`] into the two halves of the rows (see [`split_halves`]).
-fn scatter_halves(
-    rows: &[Row],
-    positions: &[usize],
-    total: usize,
-    (low, high): &mut (Vec<HalfRow>, Vec<HalfRow>),
-) {
-    for half in [&mut *low, &mut *high] {
-        half.clear();
-        half.resize(total, [0.0; HALF]);
-    }
-    for (row, &k) in rows.iter().zip(positions) {
-        low[k] = std::array::from_fn(|j| row[j]);
-        high[k] = std::array::from_fn(|j| row[HALF + j]);
-    }
-}
-
 /// The upper triangle of `K(σ) = [[−W, d1ᵀ], [d1, −σN]]` for every σ (rows `0..n1` the `u`
 /// unknowns, `n1..n1 + n2` the `ψ` unknowns).
 pub(crate) fn saddle_pattern(
@@ -377,7 +300,6 @@ pub(crate) fn saddle_pattern(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::eigen::slice_memory::MemoryGate;
     use crate::ordering::FillOrdering;
     use faer::sparse::Triplet;
     use faer::Mat;
@@ -423,9 +345,8 @@ mod tests {
             }
             let upper =
                 SparseColMat::try_new_from_triplets(n1 + n2, n1 + n2, &triplets).expect("valid");
-            let mut ldlt =
+            let ldlt =
                 SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::Amd).expect("factors");
-            ldlt.set_parallelism(faer::Par::Seq);
             let below = values.iter().filter(|&&v| v < sigma).count();
             assert_eq!(ldlt.inertia().negative, n1 + below, "σ = {sigma}");
             let full = |shifted: bool| {
@@ -456,18 +377,7 @@ mod tests {
                 .iter()
                 .map(|&f| std::array::from_fn(|j| if j == 0 { b[f] } else { 0.0 }))
                 .collect();
-            let mut halves = rows.clone();
-            factor.solve_rows(&mut rows, &mut SolveBuffer::default());
-            // With an idle thread the block goes in two halves: the same values, bit for bit.
-            let gate = MemoryGate::new(1, Vec::new());
-            factor.split_when_idle(&gate.spare_threads(2));
-            assert!(factor.in_halves());
-            factor.solve_rows(&mut halves, &mut SolveBuffer::default());
-            assert!(rows
-                .iter()
-                .flatten()
-                .zip(halves.iter().flatten())
-                .all(|(a, b)| a.to_bits() == b.to_bits()));
+            factor.solve_rows(&mut rows, &mut Vec::new());
             let shifted = Mat::from_fn(n2, n2, |i, j| {
                 a[(i, j)] - if i == j { sigma * n[i] } else { 0.0 }
             });

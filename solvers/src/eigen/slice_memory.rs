@@ -20,7 +20,7 @@
 
 use crate::packed_rows::WIDTH;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::sync::{Condvar, Mutex, MutexGuard};
 use std::time::Duration;
 
 /// The process-wide default budget set by [`set_default_slice_memory`] (0: none set).
@@ -129,24 +129,6 @@ pub(crate) struct MemoryGate {
     costs: Vec<usize>,
     state: Mutex<GateState>,
     released: Condvar,
-    /// The number of jobs running (`GateState::running`, readable without the lock).
-    running: Arc<AtomicUsize>,
-}
-
-/// Whether the threads that run the jobs have an idle one: fewer jobs run than there are
-/// threads (the gate keeps a slice waiting, or the last jobs run). A running job's solves
-/// then split across two threads (`ShiftFactor::split_when_idle`).
-#[derive(Clone)]
-pub(crate) struct SpareThreads {
-    running: Arc<AtomicUsize>,
-    threads: usize,
-}
-
-impl SpareThreads {
-    /// Whether fewer jobs run than there are threads (never with one thread).
-    pub(crate) fn idle(&self) -> bool {
-        self.threads >= 2 && self.running.load(Ordering::Relaxed) < self.threads
-    }
 }
 
 struct GateState {
@@ -171,15 +153,6 @@ impl MemoryGate {
                 peak: 0,
             }),
             released: Condvar::new(),
-            running: Arc::new(AtomicUsize::new(0)),
-        }
-    }
-
-    /// Tells whether `threads` threads running this gate's jobs have an idle one.
-    pub(crate) fn spare_threads(&self, threads: usize) -> SpareThreads {
-        SpareThreads {
-            running: Arc::clone(&self.running),
-            threads,
         }
     }
 
@@ -201,7 +174,6 @@ impl MemoryGate {
                 state.started[job] = true;
                 state.in_use += self.costs[job];
                 state.running += 1;
-                self.running.store(state.running, Ordering::Relaxed);
                 state.peak = state.peak.max(state.in_use);
                 return Some(Admission { gate: self, job });
             }
@@ -224,15 +196,8 @@ impl MemoryGate {
         let mut state = self.lock();
         state.in_use -= self.costs[job];
         state.running -= 1;
-        self.running.store(state.running, Ordering::Relaxed);
         drop(state);
         self.released.notify_all();
-    }
-
-    /// Whether job `job`'s estimated memory is more than half the budget (two such slices
-    /// never run at the same time).
-    pub(crate) fn over_half_the_budget(&self, job: usize) -> bool {
-        self.costs[job] > self.budget / 2
     }
 
     /// The largest estimated memory of the jobs that ran at the same time, in bytes.
@@ -287,18 +252,10 @@ mod tests {
         let stop = AtomicBool::new(false);
         let gate = MemoryGate::new(10, vec![6, 6, 3, 20]);
         let job = |admitted: &Option<Admission<'_>>| admitted.as_ref().map(|a| a.job);
-        let spare = gate.spare_threads(2);
-        assert!(spare.idle(), "no job runs");
         let first = gate.admit(&stop);
         assert_eq!(job(&first), Some(0));
-        assert!(spare.idle(), "one job on two threads");
         let second = gate.admit(&stop);
         assert_eq!(job(&second), Some(2), "job 1 does not fit beside job 0");
-        assert!(!spare.idle(), "two jobs on two threads");
-        assert!(
-            !gate.spare_threads(1).idle(),
-            "one thread is never idle for another"
-        );
         drop((first, second));
         let third = gate.admit(&stop);
         assert_eq!(job(&third), Some(1));
@@ -308,7 +265,6 @@ mod tests {
         drop(alone);
         assert!(gate.admit(&stop).is_none());
         assert_eq!(gate.peak(), 20);
-        assert!(gate.over_half_the_budget(0) && !gate.over_half_the_budget(2));
         let stopped = MemoryGate::new(10, vec![1]);
         stop.store(true, Ordering::Relaxed);
         assert!(stopped.admit(&stop).is_none());
