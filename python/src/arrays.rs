@@ -107,3 +107,25 @@ pub fn numpy_to_vectors(array: &numpy::PyReadonlyArray2<'_, f64>) -> PyResult<Ve
         .map(|r| [r[0], r[1], r[2]])
         .collect())
 }
+
+/// The rows of `array` (`m × width`), each checked finite; `name` (the argument) and `width_is`
+/// (what `width` is) word the errors, e.g. `fields: expected 12 per field (the field dimension)`.
+pub fn checked_rows(
+    array: &numpy::PyReadonlyArray2<'_, f64>,
+    width: usize,
+    name: &str,
+    width_is: &str,
+) -> PyResult<Vec<Vec<f64>>> {
+    let view = array.as_array();
+    if view.ncols() != width {
+        return Err(tvf_error(format!(
+            "{name}: expected {width} per field ({width_is}), got {}",
+            view.ncols()
+        )));
+    }
+    let rows: Vec<Vec<f64>> = view.rows().into_iter().map(|r| r.to_vec()).collect();
+    if let Some(i) = rows.iter().position(|r| r.iter().any(|x| !x.is_finite())) {
+        return Err(tvf_error(format!("{name}: row {i} has non-finite values")));
+    }
+    Ok(rows)
+}

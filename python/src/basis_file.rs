@@ -5,7 +5,7 @@
 //! a block of stored columns at a time ([`BasisFileBlocks`]): projections, filters and
 //! syntheses hold one block (at most `block_bytes`), never the `n1 × d` fields.
 
-use crate::arrays::face_fields_to_numpy;
+use crate::arrays::{checked_rows, face_fields_to_numpy};
 use crate::basis::basis_dict;
 use crate::complex::checked_field;
 use crate::design::{constraints_on, result, solve_reduced};
@@ -268,20 +268,12 @@ impl BasisBlocks {
         py: Python<'py>,
         sets: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let view = sets.as_array();
-        let d = self.blocks.len();
-        if view.ncols() != d {
-            return Err(tvf_error(format!(
-                "coefficients: expected {d} per field (the basis's size), got {}",
-                view.ncols()
-            )));
-        }
-        let rows: Vec<Vec<f64>> = view.rows().into_iter().map(|r| r.to_vec()).collect();
-        if let Some(i) = rows.iter().position(|r| r.iter().any(|x| !x.is_finite())) {
-            return Err(tvf_error(format!(
-                "coefficients: row {i} has non-finite values"
-            )));
-        }
+        let rows = checked_rows(
+            &sets,
+            self.blocks.len(),
+            "coefficients",
+            "(the basis's size)",
+        )?;
         let sets: Vec<&[f64]> = rows.iter().map(Vec::as_slice).collect();
         let fields =
             detached(py, || self.blocks.reconstruct_many(&sets))?.map_err(|e| from_error(&e))?;

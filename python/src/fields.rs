@@ -1,6 +1,7 @@
 //! Field functions: the Hodge decomposition, Fourier coefficients, spectral filters and
 //! compression, on field coefficient vectors (`n1` entries; Python converts face vectors).
 
+use crate::arrays::checked_rows;
 use crate::basis_parts::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
@@ -199,20 +200,12 @@ pub fn compress_rows<'py>(
     };
     let codec =
         FieldCodec::new(basis, mesh_fingerprint, id, pairs, coding).map_err(|e| from_error(&e))?;
-    let view = fields.as_array();
-    let n1 = basis.field_dimension();
-    if view.ncols() != n1 {
-        return Err(tvf_error(format!(
-            "fields: expected {n1} coefficients per field, got {}",
-            view.ncols()
-        )));
-    }
-    let rows: Vec<Vec<f64>> = view.rows().into_iter().map(|r| r.to_vec()).collect();
-    if let Some(i) = rows.iter().position(|r| r.iter().any(|x| !x.is_finite())) {
-        return Err(tvf_error(format!(
-            "fields: field {i} has non-finite values"
-        )));
-    }
+    let rows = checked_rows(
+        &fields,
+        basis.field_dimension(),
+        "fields",
+        "the field dimension",
+    )?;
     let file = detached(py, || codec.compress(&rows))?.map_err(|e| from_error(&e))?;
     Ok(PyBytes::new(py, &file.to_bytes()))
 }
