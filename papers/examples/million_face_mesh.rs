@@ -18,7 +18,20 @@ fn main() -> ExitCode {
     let mut args = std::env::args().skip(1);
     let mut output = None;
     let mut faces = 1_000_000usize;
+    let usage = "usage: million_face_mesh [--faces N] OUTPUT.obj";
     while let Some(arg) = args.next() {
+        if arg == "-h" || arg == "--help" {
+            println!("{usage}");
+            return ExitCode::SUCCESS;
+        }
+        if arg.starts_with('-') && arg != "--faces" {
+            eprintln!("million_face_mesh: unknown option {arg}\n{usage}");
+            return ExitCode::FAILURE;
+        }
+        if output.is_some() && arg != "--faces" {
+            eprintln!("million_face_mesh: one output file only ({arg} is a second)\n{usage}");
+            return ExitCode::FAILURE;
+        }
         if arg == "--faces" {
             match args.next().and_then(|v| v.parse().ok()) {
                 Some(n) => faces = n,
@@ -32,7 +45,7 @@ fn main() -> ExitCode {
         }
     }
     let Some(output) = output else {
-        eprintln!("usage: million_face_mesh [--faces N] OUTPUT.obj");
+        eprintln!("{usage}");
         return ExitCode::FAILURE;
     };
     // Faces grow with the square of the resolution: start from the estimate and step up.

@@ -341,20 +341,39 @@ impl SparseLdlt {
             .factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
         let mut buffer = MemBuffer::try_new(req)
             .map_err(|_| SolverError::Factorization("out of memory".into()))?;
-        let result = self.symbolic.factorize_numeric_ldlt::<f64>(
-            &mut self.values,
-            upper,
-            Side::Upper,
-            LdltRegularization::default(),
-            par,
-            MemStack::new(&mut buffer),
-            Default::default(),
-        );
+        let (symbolic, values) = (&self.symbolic, &mut self.values);
+        let factorize = move || {
+            let values = values;
+            symbolic
+                .factorize_numeric_ldlt::<f64>(
+                    values,
+                    upper,
+                    Side::Upper,
+                    LdltRegularization::default(),
+                    par,
+                    MemStack::new(&mut buffer),
+                    Default::default(),
+                )
+                .map(drop)
+        };
+        let result = match par {
+            Par::Seq => on_own_thread(factorize),
+            // The parallel parts run on rayon's threads whatever thread starts them.
+            Par::Rayon(_) => factorize(),
+        };
         match result {
             Ok(_) => Ok(()),
-            Err(LdltError::ZeroPivot { index }) => Err(SolverError::Singular {
-                pivot: self.original_index(index),
-            }),
+            // faer numbers the failed pivot from one in its simplicial factorization and from
+            // zero in its supernodal one.
+            Err(LdltError::ZeroPivot { index }) => {
+                let index = match self.symbolic.raw() {
+                    SymbolicCholeskyRaw::Simplicial(_) => index.saturating_sub(1),
+                    SymbolicCholeskyRaw::Supernodal(_) => index,
+                };
+                Err(SolverError::Singular {
+                    pivot: self.original_index(index),
+                })
+            }
         }
     }
 
@@ -624,6 +643,22 @@ fn zeroed_by_all_threads(len: usize) -> Vec<f64> {
     values
 }
 
+/// Runs `work` on a thread of its own that ends with it, and returns its result (a panic goes
+/// on to the caller). Why: the dense kernels faer's supernodal factorization calls
+/// (`private-gemm-x86`) keep their packing buffers in thread-local memory of twice the
+/// last-level cache per thread (520 MB on a machine reporting 260 MB of L3), touched as far as
+/// the largest supernodes need and never given back while the thread lives; the eigensolver's
+/// sequential factorizations ran on rayon's threads, which live for the whole run, so at a
+/// million faces each of them kept hundreds of MB resident. A thread that ends gives its
+/// buffers back; starting it costs tens of microseconds against a factorization's milliseconds
+/// to seconds (measured in `docs/performance.md`).
+fn on_own_thread<T: Send>(work: impl FnOnce() -> T + Send) -> T {
+    std::thread::scope(|scope| match scope.spawn(work).join() {
+        Ok(value) => value,
+        Err(panic) => std::panic::resume_unwind(panic),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -754,5 +789,70 @@ mod tests {
                 "{parallelism:?}, packed rows: {packed_difference:e}"
             );
         }
+    }
+
+    /// A sequential factorization runs on a thread of its own: the same values as the first
+    /// one (the same arithmetic), its errors and a panic of the work reach the caller.
+    #[test]
+    fn sequential_refactorization_on_its_own_thread() {
+        let upper = shifted_grid(17, 0.47);
+        let mut ldlt = SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::NestedDissection)
+            .expect("factors");
+        ldlt.set_parallelism(Par::Seq);
+        let first = ldlt.values.clone();
+        ldlt.refactor(upper.as_ref()).expect("refactors");
+        assert_eq!(ldlt.values, first);
+
+        // A zero pivot, named by its row: an isolated row with a zero diagonal, in a small
+        // matrix (faer's simplicial factorization) and in the grid (supernodal or not).
+        let with_isolated_row = |matrix: &faer::sparse::SparseColMat<usize, f64>, row: usize| {
+            let mut triplets = Vec::new();
+            for j in 0..matrix.ncols() {
+                let column = matrix.as_ref().col_range(j);
+                let rows = &matrix.symbolic().row_idx()[column.clone()];
+                for (&i, &value) in rows.iter().zip(&matrix.val()[column]) {
+                    let value = if i == row || j == row { 0.0 } else { value };
+                    triplets.push(Triplet::new(i, j, value));
+                }
+            }
+            let n = matrix.nrows();
+            faer::sparse::SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
+                .expect("the same pattern")
+        };
+        let diagonal = |n: usize| {
+            let triplets: Vec<_> = (0..n).map(|i| Triplet::new(i, i, 1.0 + i as f64)).collect();
+            faer::sparse::SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &triplets)
+                .expect("a diagonal matrix")
+        };
+        let mut supernodal = Vec::new();
+        let cases = [
+            (diagonal(1), 0, FillOrdering::Amd),
+            (diagonal(3), 1, FillOrdering::Amd),
+            (upper.clone(), 100, FillOrdering::NestedDissection),
+        ];
+        for (matrix, row, ordering) in cases {
+            let mut factor = SparseLdlt::with_ordering(matrix.as_ref(), ordering).expect("factors");
+            factor.set_parallelism(Par::Seq);
+            supernodal.push(matches!(
+                factor.symbolic.raw(),
+                SymbolicCholeskyRaw::Supernodal(_)
+            ));
+            let singular = with_isolated_row(&matrix, row);
+            let refactored = factor.refactor(singular.as_ref());
+            assert!(
+                matches!(refactored, Err(SolverError::Singular { pivot }) if pivot == row),
+                "row {row} of {}: {refactored:?}",
+                matrix.nrows()
+            );
+        }
+        assert_eq!(
+            supernodal,
+            [false, false, true],
+            "both of faer's factorizations"
+        );
+
+        assert_eq!(on_own_thread(|| 6 * 7), 42);
+        let panicked = std::panic::catch_unwind(|| on_own_thread(|| panic!("inside")));
+        assert!(panicked.is_err());
     }
 }

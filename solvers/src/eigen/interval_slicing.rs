@@ -415,8 +415,7 @@ fn job_memory(
         .iter()
         .map(|plan| {
             let n = requests[plan.request].pencil.dimension();
-            let widest = plan.counts.windows(2).map(|w| w[1] - w[0]).max();
-            slice_bytes(n, widest.unwrap_or(0), block_size(options, n))
+            slice_bytes(n, plan.widest(), block_size(options, n))
         })
         .collect();
     jobs.iter().map(|&(p, _)| plan_memory[p]).collect()
@@ -473,6 +472,14 @@ fn solve_intervals(
                 .and(ParkedColumns::of(&columns[p], first, width))
         })
         .collect();
+    // Each plan's widest slice, which every slice memory serving the plan is reserved for.
+    let widest_slices: Vec<(usize, usize, usize)> = plans
+        .iter()
+        .map(|plan| {
+            let n = requests[plan.request].pencil.dimension();
+            (n, plan.widest(), block_size(options, n))
+        })
+        .collect();
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
         let plan = &plans[p];
@@ -482,6 +489,8 @@ fn solve_intervals(
             .take()
             .expect("every job runs once");
         let mut memory = slice_memory.take();
+        let (n, widest, block) = widest_slices[p];
+        memory.expect(n, widest, block);
         let result = solve_job(
             &requests[plan.request],
             plan,
@@ -806,6 +815,15 @@ impl Plan {
             counts,
             known,
         }
+    }
+
+    /// Eigenpairs of the widest interval (0 before the boundaries are counted).
+    fn widest(&self) -> usize {
+        self.counts
+            .windows(2)
+            .map(|w| w[1].saturating_sub(w[0]))
+            .max()
+            .unwrap_or(0)
     }
 
     /// Boundaries still to be counted.

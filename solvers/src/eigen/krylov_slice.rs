@@ -90,9 +90,10 @@ struct ColumnStore<'m> {
 }
 
 impl<'m> ColumnStore<'m> {
-    /// An empty store with room for `capacity` columns of `n` rows.
-    fn new(values: &'m mut Vec<f64>, n: usize, capacity: usize) -> Self {
-        fit_memory(values, n * capacity);
+    /// An empty store with room for `capacity` columns of `n` rows, reserved for `room`
+    /// columns if that is more (see [`fit_memory`]).
+    fn new(values: &'m mut Vec<f64>, n: usize, capacity: usize, room: usize) -> Self {
+        fit_memory(values, n * capacity, n * room);
         Self {
             values,
             n,
@@ -192,6 +193,28 @@ pub(crate) struct SliceMemory {
     /// Values of the locked vectors (column-major), sized by [`fit_memory`].
     locked: Vec<f64>,
     scratch: OperatorScratch,
+    /// The widest slice this memory is expected to serve ([`Self::expect`]).
+    expected: ExpectedSlice,
+}
+
+/// The widest slice a [`SliceMemory`] will serve: its dimension `n`, eigenpairs and block.
+#[derive(Default, Clone, Copy)]
+struct ExpectedSlice {
+    n: usize,
+    wanted: usize,
+    block: usize,
+}
+
+/// Columns of the Krylov basis of a slice that must find `wanted` eigenpairs in blocks of
+/// `block` vectors: `2·wanted + 4·block` expanded columns and three unexpanded blocks.
+pub(crate) fn basis_columns(wanted: usize, block: usize) -> usize {
+    2 * wanted + 4 * block + 3 * block
+}
+
+/// Columns of a slice's locked vectors: the `wanted` eigenpairs and up to two blocks of
+/// converged pairs just outside its interval.
+pub(crate) fn locked_columns(wanted: usize, block: usize) -> usize {
+    wanted + 2 * block
 }
 
 impl SliceMemory {
@@ -200,11 +223,36 @@ impl SliceMemory {
         MatMut::from_column_major_slice_mut(&mut self.locked[..n * columns], n, columns)
     }
 
+    /// Declares the widest slice this memory will serve (a pencil of dimension `n`, `wanted`
+    /// eigenpairs, blocks of `block`): from then on its memory is reserved for that slice
+    /// whenever it has to grow, so that the slices of one pencil, whose intervals differ in
+    /// width, reuse the memory a narrower one touched instead of each wider one reserving and
+    /// touching all of it afresh (see [`fit_memory`]).
+    pub(crate) fn expect(&mut self, n: usize, wanted: usize, block: usize) {
+        self.expected = ExpectedSlice { n, wanted, block };
+    }
+
+    /// The columns `columns(wanted, block)` of the expected slice if its dimension is `n`
+    /// (else 0: nothing reserved beyond what is asked for).
+    fn expected_columns(&self, n: usize, columns: fn(usize, usize) -> usize) -> usize {
+        let ExpectedSlice {
+            n: m,
+            wanted,
+            block,
+        } = self.expected;
+        if m == n {
+            columns(wanted, block)
+        } else {
+            0
+        }
+    }
+
     /// Room for an `n × columns` basis (stale values: every column is written before it is
     /// read; see [`fit_memory`]) and operator buffers of `n` rows.
     fn fit(&mut self, n: usize, columns: usize) {
         let len = n * columns;
-        fit_memory(&mut self.basis, len);
+        let room = n * self.expected_columns(n, basis_columns);
+        fit_memory(&mut self.basis, len, room);
         if self.basis.len() < len {
             self.basis.resize(len, 0.0);
         }
@@ -213,20 +261,25 @@ impl SliceMemory {
 }
 
 /// Makes `values` hold room for `len` values: memory that is too small is released and
-/// reserved afresh on huge pages; memory more than twice too large (a slice of the other,
-/// smaller pencil after the large one) is shrunk in place (glibc shrinks a large allocation
-/// with `mremap`, without moving it), so the pages it keeps are ones it has touched already
-/// (fresh pages cost a kernel fault and zeroing each, see `interval_slicing.rs`). Kept
-/// oversized, the memory of the large pencil's slices would stay for the small pencil's (GBs
-/// per thread at a million faces while the last intervals fill the eigenvectors, which raises
-/// the peak; numbers in `docs/performance.md`).
-fn fit_memory(values: &mut Vec<f64>, len: usize) {
+/// reserved afresh on huge pages, for `room` values if that is more (the widest slice expected,
+/// see [`SliceMemory::expect`]; reserved memory that is never touched costs no physical
+/// memory); memory more than twice too large for both (a slice of the other, smaller pencil
+/// after the large one) is shrunk in place (glibc shrinks a large allocation with `mremap`,
+/// without moving it), so the pages it keeps are ones it has touched already (fresh pages cost
+/// a kernel fault and zeroing each, see `interval_slicing.rs`). Kept oversized, the memory of
+/// the large pencil's slices would stay for the small pencil's (GBs per thread at a million
+/// faces while the last intervals fill the eigenvectors, which raises the peak; numbers in
+/// `docs/performance.md`). Reserved only for `len`, every slice wider than the one before
+/// touched its whole basis afresh (four Krylov bases of the `bunny-closed.obj` basis where two
+/// would do; measured in `docs/performance.md`).
+fn fit_memory(values: &mut Vec<f64>, len: usize, room: usize) {
+    let room = room.max(len);
     if values.capacity() < len {
         *values = Vec::new();
-        *values = reserve_values_on_huge_pages(len);
-    } else if values.capacity() > 2 * len {
+        *values = reserve_values_on_huge_pages(room);
+    } else if values.capacity() > 2 * room {
         values.truncate(len);
-        values.shrink_to(len);
+        values.shrink_to(room);
     }
 }
 
@@ -495,13 +548,15 @@ pub(crate) fn run_slice(
     }
     let columns = max_basis + 3 * block;
     memory.fit(n, columns);
+    let locked_room = memory.expected_columns(n, locked_columns);
     let SliceMemory {
         basis: values,
         locked: locked_memory,
         scratch,
+        ..
     } = memory;
     let mut basis = MatMut::from_column_major_slice_mut(&mut values[..n * columns], n, columns);
-    let mut locked = ColumnStore::new(locked_memory, n, wanted + 2 * block);
+    let mut locked = ColumnStore::new(locked_memory, n, locked_columns(wanted, block), locked_room);
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
     let mut krylov = KrylovSchur::start(basis.rb_mut(), start.as_ref());
 
@@ -1104,5 +1159,34 @@ mod tests {
                 assert!((norm - expected).abs() <= 1e-12 * expected, "r = {r}");
             }
         }
+    }
+
+    /// Memory expected for a pencil's widest slice is reserved for it at the first (narrower)
+    /// slice, so that a wider one reuses it; a slice of a much smaller pencil shrinks it, and
+    /// without an expectation only the asked-for room is reserved.
+    #[test]
+    fn slice_memory_is_reserved_for_the_widest_expected_slice() {
+        let (n, block) = (1000, 8);
+        let mut memory = SliceMemory::default();
+        memory.expect(n, 40, block);
+        memory.fit(n, basis_columns(30, block));
+        let reserved = memory.basis.capacity();
+        assert!(reserved >= n * basis_columns(40, block));
+        let start = memory.basis.as_ptr();
+        memory.fit(n, basis_columns(40, block));
+        assert_eq!(
+            memory.basis.as_ptr(),
+            start,
+            "the wider slice reuses the memory"
+        );
+        assert_eq!(memory.basis.capacity(), reserved);
+
+        memory.expect(n / 4, 40, block);
+        memory.fit(n / 4, basis_columns(40, block));
+        assert!(memory.basis.capacity() <= 2 * (n / 4) * basis_columns(40, block));
+
+        let mut unexpected = SliceMemory::default();
+        unexpected.fit(n, basis_columns(30, block));
+        assert!(unexpected.basis.capacity() < n * basis_columns(40, block));
     }
 }

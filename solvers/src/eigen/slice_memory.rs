@@ -18,6 +18,7 @@
 //! (bytes, with an optional binary suffix `K`, `M`, `G` or `T`) overrides it for the process
 //! ([`set_default_slice_memory`]).
 
+use super::krylov_slice::{basis_columns, locked_columns};
 use crate::packed_rows::WIDTH;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Condvar, Mutex, MutexGuard};
@@ -41,7 +42,7 @@ const FALLBACK_BUDGET: usize = 4 << 30;
 /// (`wanted + 2·block` columns) and the two packed operator buffers (`WIDTH` columns each), all
 /// of `n` rows of `f64`.
 pub(crate) fn slice_bytes(n: usize, wanted: usize, block: usize) -> usize {
-    let columns = (2 * wanted + 4 * block + 3 * block) + (wanted + 2 * block) + 2 * WIDTH;
+    let columns = basis_columns(wanted, block) + locked_columns(wanted, block) + 2 * WIDTH;
     n.saturating_mul(columns).saturating_mul(size_of::<f64>())
 }
 
