@@ -52,7 +52,7 @@ fn shows_passes(stderr: &str, passes: &[&str]) {
 fn passes_over_a_basis_file_show_their_progress_unless_quiet() {
     let dir = tempfile::tempdir().unwrap();
     let mesh = torus(1.0, 0.45, 24, 12).unwrap();
-    write_obj(&dir.path().join("torus.obj"), &mesh).unwrap();
+    write_obj(dir.path().join("torus.obj"), &mesh).unwrap();
     write_field_and_constraints(&mesh, dir.path());
     let basis = tvf()
         .current_dir(dir.path())
