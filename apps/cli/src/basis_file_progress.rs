@@ -3,7 +3,9 @@
 //! `edit`), shown as other long work is ([`Progress`]: a bar on a terminal, plain lines when
 //! stderr is redirected, nothing with `--quiet`): one task `basis file` per pass of more than one
 //! block (the check at opening, a projection, a synthesis, the fields of the basis id, the rows of
-//! `U`), in KiB of the file, or MiB for passes of 64 MiB or more.
+//! `U`), in KiB of the file, or MiB for passes of 64 MiB or more. Passes made on worker threads,
+//! several at once (`compress` projects its frames in parallel, each with a pass of its own),
+//! are not shown: the frames' own progress is.
 
 use crate::progress::{is_quiet, Progress};
 use std::sync::{Arc, Mutex};
@@ -20,6 +22,9 @@ pub fn basis_file_observer() -> Option<BlockObserver> {
     }
     let shown: Mutex<Option<Progress>> = Mutex::new(None);
     Some(Arc::new(move |p: BlockProgress| {
+        if rayon::current_thread_index().is_some() {
+            return;
+        }
         let Ok(mut shown) = shown.lock() else { return };
         if p.done_bytes == 0 {
             // A new pass: shown once its first block is read, if there are more to read.
