@@ -1,12 +1,16 @@
 """tvf.BasisFile: a .tvfb written by `tvf basis`, read in blocks — its metadata without the
 fields, coefficients and filters equal bit for bit to `tvf coefficients` / `tvf filter` on the
 same file (the same Rust block reader), equal to round-off to the in-memory tvf.Basis of the
-same mesh, results independent of the block size, and bad files refused naming the file."""
+same mesh, results independent of the block size, and bad files refused naming the file; every
+pass over the file reported to `progress=` up to its end, and stopped mid-pass by an exception
+of `progress` or by Ctrl+C."""
 
 import json
 import os
 import pickle
+import signal
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -448,3 +452,28 @@ def test_an_exception_of_progress_stops_the_pass_and_is_raised(saved, error):
     assert np.array_equal(c, expected[0]) and rest == expected[1]
     c, rest = checked.coefficients(mesh, field)
     assert np.array_equal(c, expected[0]) and rest == expected[1]
+
+
+def test_ctrl_c_mid_pass_raises_keyboard_interrupt(saved):
+    """A SIGINT arriving mid-pass (sent by the `progress` callable at the third block, which
+    then returns normally) raises `KeyboardInterrupt` by the next block at the latest: the pass
+    does not run to its end."""
+    if threading.current_thread() is not threading.main_thread():
+        pytest.skip("signals are handled on the main thread only")
+    mesh, field = saved["mesh"], saved["field"]
+    f = tvf.BasisFile(saved["path"], block_bytes=4096)
+    f.coefficients(mesh, field)
+    calls = []
+
+    def interrupting(stage, done, wanted):
+        calls.append((stage, done, wanted))
+        if len(calls) == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            f.synthesize(mesh, np.ones(K), progress=interrupting)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert 3 <= len(calls) <= 4 and calls[-1][1] < calls[-1][2], calls

@@ -49,9 +49,10 @@ pub struct BlockProgress {
     pub total_bytes: u64,
 }
 
-/// A callback for the progress of every pass over a basis file read in blocks, called on the
-/// thread that called the product (never from a worker thread), between blocks: it may unwind
-/// to stop the pass (the file and the blocks are left as they were).
+/// A callback for the progress of every pass over a basis file read in blocks, called between
+/// blocks on the thread that called the product (never from inside the blocks' parallel work;
+/// a product called from worker threads, several at once, reports from each): it may unwind to
+/// stop the pass (the file and the blocks are left as they were).
 pub type BlockObserver = Arc<dyn Fn(BlockProgress) + Send + Sync>;
 
 /// One pass in progress: reports its start on creation and each block on [`Self::advance`].
