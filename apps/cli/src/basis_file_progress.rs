@@ -1,11 +1,11 @@
 //! Progress of the passes over a basis file read in blocks (`--basis FILE` of `filter`,
-//! `coefficients`, `compress`, `decompress`, `rate-distortion`, `spline`, `design --reduced`,
-//! `edit`), shown as other long work is ([`Progress`]: a bar on a terminal, plain lines when
-//! stderr is redirected, nothing with `--quiet`): one task `basis file` per pass of more than one
-//! block (the check at opening, a projection, a synthesis, the fields of the basis id, the rows of
-//! `U`), in KiB of the file, or MiB for passes of 64 MiB or more. Passes made on worker threads,
-//! several at once (`compress` projects its frames in parallel, each with a pass of its own),
-//! are not shown: the frames' own progress is.
+//! `coefficients`, `compress`, `decompress`, `rate-distortion`, `spline`, `design --reduced`;
+//! of `edit`, the check at opening only), shown as other long work is ([`Progress`]: a bar on a
+//! terminal, plain lines when stderr is redirected, nothing with `--quiet`): one task `basis
+//! file` per pass of more than one block (the check at opening, a projection, a synthesis, the
+//! fields of the basis id, the rows of `U`), in KiB of the file, or MiB for passes of 64 MiB or
+//! more. Passes made on worker threads, several at once (`compress` projects its frames in
+//! parallel, each with a pass of its own), are not shown: the frames' own progress is.
 
 use crate::progress::{is_quiet, Progress};
 use std::sync::{Arc, Mutex};
