@@ -3,15 +3,19 @@
 //! without its fields; [`BasisBlocks`] is the file checked whole for one mesh (key, matrices,
 //! size, payload checksum, finite values: everything `tvf filter --basis` checks) and then used
 //! a block of stored columns at a time ([`BasisFileBlocks`]): projections, filters and
-//! syntheses hold one block (at most `block_bytes`), never the `n1 × d` fields.
+//! syntheses hold one block (at most `block_bytes`), never the `n1 × d` fields. Every pass over
+//! the file (the check at opening included) reports each block to the call's optional
+//! `progress(stage, done, wanted)` callable (bytes of the pass) and polls Ctrl+C there
+//! ([`block_observer`]), so that `KeyboardInterrupt` stops the pass at once.
 
 use crate::arrays::{checked_rows, face_fields_to_numpy};
 use crate::basis::basis_dict;
+use crate::block_observer::block_observer;
 use crate::complex::checked_field;
 use crate::design::{constraints_on, result, solve_reduced};
 use crate::errors::{from_error, tvf_error, with_context};
 use crate::fields::{compress_rows, decompress_rows, face_vectors_in, face_vectors_out};
-use crate::interrupt::detached;
+use crate::interrupt::{detached, interruptible, Interruption};
 use crate::mesh::Mesh;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
@@ -25,7 +29,8 @@ use tvf_design::ReducedBasis;
 use tvf_discretizations::builtin_catalog;
 use tvf_spectral::{
     basis_file_complex, field_basis_id, load_basis, read_basis_spectrum, BasisFileBlocks,
-    BasisFileKey, BasisFileLayout, FieldBasis, FourierAnalysis, FrequencyResponse, SpectralFilter,
+    BasisFileKey, BasisFileLayout, FieldBasis, FourierAnalysis, FrequencyResponse,
+    ObservedBasisFile, SpectralFilter,
 };
 
 /// What the basis file `path` says without its fields being read, as a dict: `version`,
@@ -106,10 +111,10 @@ impl BasisBlocks {
     /// discretization is rebuilt on the mesh from the id in the file (`entry`, `boundary`:
     /// refused if the file's differ), and the file is checked against the mesh's fingerprint
     /// and the complex's matrices, its size, payload checksum and values (read through once, in
-    /// blocks). Blocks of at most `block_bytes` (at least one stored column). Errors name the
-    /// file.
+    /// blocks: the pass `checking` reported to `progress`). Blocks of at most `block_bytes` (at
+    /// least one stored column). Errors name the file.
     #[staticmethod]
-    #[pyo3(signature = (path, mesh, block_bytes, entry = None, boundary = None))]
+    #[pyo3(signature = (path, mesh, block_bytes, entry = None, boundary = None, progress = None))]
     fn open(
         py: Python<'_>,
         path: PathBuf,
@@ -117,6 +122,7 @@ impl BasisBlocks {
         block_bytes: usize,
         entry: Option<&str>,
         boundary: Option<&str>,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Self> {
         let boundary = match boundary {
             None => None,
@@ -126,12 +132,15 @@ impl BasisBlocks {
                 ))
             })?),
         };
-        let opened = detached(py, || {
+        let interruption = Arc::new(Interruption::default());
+        let observer = block_observer(progress, interruption.clone());
+        let opened = interruptible(py, &interruption, || {
             let complex = basis_file_complex(builtin_catalog(), &path, &mesh.mesh, entry, boundary)
                 .map_err(|e| from_error(&e))?;
             let key = BasisFileKey::new(&mesh.mesh, complex.as_ref());
-            let blocks = BasisFileBlocks::open(&path, &key, complex).map_err(|e| from_error(&e))?;
-            Ok::<_, PyErr>((blocks, key))
+            let blocks = BasisFileBlocks::open_with_observer(&path, &key, complex, Some(observer))
+                .map_err(|e| from_error(&e))?;
+            Ok::<_, PyErr>((blocks.map(|b| b.with_observer(None)), key))
         })??;
         let (opened, key) = opened;
         let blocks = opened.ok_or_else(|| {
@@ -201,13 +210,16 @@ impl BasisBlocks {
 
     /// `(c, relative_rest)`: the Fourier coefficients `Uᵀ M1 v` (`d`) of the field `v` (`n1`)
     /// and `|v − U c| / |v|` (`M1` norms), one pass over the file for each.
+    #[pyo3(signature = (field, progress = None))]
     fn coefficients<'py>(
         &self,
         py: Python<'py>,
         field: PyReadonlyArray1<'py, f64>,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<(Bound<'py, PyAny>, f64)> {
         let values = self.field(&field)?;
-        let analysis = detached(py, || FourierAnalysis::new(&*self.blocks, &values))?
+        let (interruption, basis) = self.observed(progress);
+        let analysis = interruptible(py, &interruption, || FourierAnalysis::new(&basis, &values))?
             .map_err(|e| from_error(&e))?;
         Ok((
             analysis.coefficients.into_pyarray(py).into_any(),
@@ -218,7 +230,10 @@ impl BasisBlocks {
     /// The spectral filter of `tvf filter` (responses as its `--integrable`/`--cointegrable`
     /// specs; `rest_gain` `None`: the command line's default, the filters' gain at the basis's
     /// highest frequency): `(field, filtered_coefficients, rest_gain)`.
-    #[pyo3(signature = (field, integrable, cointegrable, harmonic_gain, rest_gain = None))]
+    #[pyo3(signature = (
+        field, integrable, cointegrable, harmonic_gain, rest_gain = None, progress = None
+    ))]
+    #[allow(clippy::too_many_arguments)]
     fn filter<'py>(
         &self,
         py: Python<'py>,
@@ -227,6 +242,7 @@ impl BasisBlocks {
         cointegrable: &str,
         harmonic_gain: f64,
         rest_gain: Option<f64>,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, f64)> {
         let values = self.field(&field)?;
         let response = |what: &str, spec: &str| -> PyResult<FrequencyResponse> {
@@ -246,8 +262,9 @@ impl BasisBlocks {
             harmonic_gain,
             rest_gain,
         };
-        let filtered =
-            detached(py, || filter.apply(&*self.blocks, &values))?.map_err(|e| from_error(&e))?;
+        let (interruption, basis) = self.observed(progress);
+        let filtered = interruptible(py, &interruption, || filter.apply(&basis, &values))?
+            .map_err(|e| from_error(&e))?;
         if let Some(i) = filtered.field.iter().position(|x| !x.is_finite()) {
             return Err(tvf_error(format!(
                 "the filtered field is not finite (coefficient {i}): the gains times the \
@@ -263,10 +280,12 @@ impl BasisBlocks {
 
     /// The fields `U c` (`m × n1`) of the rows `c` of `sets` (`m × d`), summed in basis order,
     /// all in one pass over the file.
+    #[pyo3(signature = (sets, progress = None))]
     fn synthesize<'py>(
         &self,
         py: Python<'py>,
         sets: PyReadonlyArray2<'py, f64>,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let rows = checked_rows(
             &sets,
@@ -275,8 +294,9 @@ impl BasisBlocks {
             "(the basis's size)",
         )?;
         let sets: Vec<&[f64]> = rows.iter().map(Vec::as_slice).collect();
-        let fields =
-            detached(py, || self.blocks.reconstruct_many(&sets))?.map_err(|e| from_error(&e))?;
+        let (interruption, basis) = self.observed(progress);
+        let fields = interruptible(py, &interruption, || basis.reconstruct_many(&sets))?
+            .map_err(|e| from_error(&e))?;
         if let Some(i) = fields.iter().position(|f| f.iter().any(|x| !x.is_finite())) {
             return Err(tvf_error(format!(
                 "the synthesised field {i} is not finite: its coefficients overflow f64 \
@@ -291,10 +311,12 @@ impl BasisBlocks {
 
     /// Basis fields `indices` sampled at the face centroids (`F × 3 × len(indices)`), formed
     /// from their stored columns in one pass over the file.
+    #[pyo3(signature = (indices, progress = None))]
     fn face_fields<'py>(
         &self,
         py: Python<'py>,
         indices: Vec<usize>,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let d = self.blocks.len();
         if let Some(&i) = indices.iter().find(|&&i| i >= d) {
@@ -312,11 +334,9 @@ impl BasisBlocks {
             .complex()
             .require_sampling()
             .map_err(|e| from_error(&e))?;
-        let columns = detached(py, || -> PyResult<Vec<Vec<[f64; 3]>>> {
-            let fields = self
-                .blocks
-                .reconstruct_many(&sets)
-                .map_err(|e| from_error(&e))?;
+        let (interruption, basis) = self.observed(progress);
+        let columns = interruptible(py, &interruption, || -> PyResult<Vec<Vec<[f64; 3]>>> {
+            let fields = basis.reconstruct_many(&sets).map_err(|e| from_error(&e))?;
             fields
                 .iter()
                 .map(|f| sampling.to_face_vectors(f).map_err(|e| from_error(&e)))
@@ -328,18 +348,22 @@ impl BasisBlocks {
     /// The spline (`soft` false) or the reduced soft design (`soft` true) of the constraints of
     /// `constraints_json` (`origin` names them in messages) in this basis, as `tvf spline
     /// --basis FILE` / `tvf design --reduced --basis FILE`: only the rows of `U` the
-    /// constraints touch are read. Dict `field` (`n1`), `residuals`.
+    /// constraints touch are read (the pass `rows`), and the field synthesised
+    /// (`synthesising`). Dict `field` (`n1`), `residuals`.
+    #[pyo3(signature = (constraints_json, origin, soft, progress = None))]
     fn reduced<'py>(
         &self,
         py: Python<'py>,
         constraints_json: &str,
         origin: &str,
         soft: bool,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let complex = self.blocks.complex().as_ref();
         let (set, compiled) = constraints_on(&self.mesh, complex, constraints_json, origin)?;
-        let basis: Arc<dyn FieldBasis> = self.blocks.clone();
-        let field = detached(py, || {
+        let (interruption, observed) = self.observed(progress);
+        let basis: Arc<dyn FieldBasis> = Arc::new(observed);
+        let field = interruptible(py, &interruption, || {
             let reduced = ReducedBasis::from_field_basis(basis, &compiled)?;
             solve_reduced(complex, soft, &reduced, &set, &compiled)
         })?
@@ -348,34 +372,52 @@ impl BasisBlocks {
     }
 
     /// The basis id compressed files carry (16 hex digits): every field formed once from the
-    /// file, a block at a time.
-    fn basis_id(&self, py: Python<'_>) -> PyResult<String> {
-        let id = detached(py, || field_basis_id(&*self.blocks))?.map_err(|e| from_error(&e))?;
+    /// file, a block at a time (the pass `fields`).
+    #[pyo3(signature = (progress = None))]
+    fn basis_id(&self, py: Python<'_>, progress: Option<Py<PyAny>>) -> PyResult<String> {
+        let (interruption, basis) = self.observed(progress);
+        let id = interruptible(py, &interruption, || field_basis_id(&basis))?
+            .map_err(|e| from_error(&e))?;
         Ok(format!("{id:016x}"))
     }
 
     /// Fields (rows of `fields`, `n1` each) compressed into the bytes of a `.tvfc` file, as
     /// `tvf compress MESH FIELD --basis FILE` writes it (see [`BasisBlocks::with_identified`]).
-    #[pyo3(signature = (fields, pairs, bits = None))]
+    #[pyo3(signature = (fields, pairs, bits = None, progress = None))]
     fn compress<'py>(
         &self,
         py: Python<'py>,
         fields: PyReadonlyArray2<'py, f64>,
         pairs: usize,
         bits: Option<u32>,
+        progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyBytes>> {
         let fingerprint = self.mesh.fingerprint();
-        self.with_identified(py, |basis, id| {
-            compress_rows(py, basis, (fingerprint, id), fields, pairs, bits)
+        self.with_identified(py, progress, |basis, id, interruption| {
+            compress_rows(
+                py,
+                basis,
+                (fingerprint, id),
+                fields,
+                pairs,
+                bits,
+                interruption,
+            )
         })
     }
 
     /// The fields (`frames × n1`) of `.tvfc` bytes, checked against the mesh and the basis id,
     /// as `tvf decompress MESH FILE.tvfc --basis FILE` reads them.
-    fn decompress<'py>(&self, py: Python<'py>, data: &[u8]) -> PyResult<Bound<'py, PyAny>> {
+    #[pyo3(signature = (data, progress = None))]
+    fn decompress<'py>(
+        &self,
+        py: Python<'py>,
+        data: &[u8],
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let fingerprint = self.mesh.fingerprint();
-        self.with_identified(py, |basis, id| {
-            decompress_rows(py, basis, (fingerprint, id), data)
+        self.with_identified(py, progress, |basis, id, interruption| {
+            decompress_rows(py, basis, (fingerprint, id), data, interruption)
         })
     }
 
@@ -394,21 +436,36 @@ impl BasisBlocks {
     /// decompress` pick them: the file read in blocks, or — where its fields would not get the
     /// loaded basis's id (a non-diagonal `M1` whose co-potentials do not fit one block:
     /// [`BasisFileBlocks::forms_fields_as_loaded`]) — loaded whole, so that bytes compressed
-    /// here decode with the command line's basis and the other way round.
+    /// here decode with the command line's basis and the other way round. Read in blocks, the
+    /// passes are reported to `progress` and `work` is given the [`Interruption`] they poll;
+    /// loaded whole, nothing is reported (`None`).
     fn with_identified<R>(
         &self,
         py: Python<'_>,
-        work: impl FnOnce(&dyn FieldBasis, u64) -> PyResult<R>,
+        progress: Option<Py<PyAny>>,
+        work: impl FnOnce(&dyn FieldBasis, u64, Option<&Interruption>) -> PyResult<R>,
     ) -> PyResult<R> {
         if self.blocks.forms_fields_as_loaded() {
-            let id = detached(py, || field_basis_id(&*self.blocks))?.map_err(|e| from_error(&e))?;
-            return work(&*self.blocks, id);
+            let (interruption, basis) = self.observed(progress);
+            let id = interruptible(py, &interruption, || field_basis_id(&basis))?
+                .map_err(|e| from_error(&e))?;
+            return work(&basis, id, Some(&interruption));
         }
         let complex = self.blocks.complex().as_ref();
         let basis = detached(py, || load_basis(&self.path, &self.key, complex))?
             .map_err(|e| from_error(&e))?;
         let id = detached(py, || field_basis_id(&basis))?.map_err(|e| from_error(&e))?;
-        work(&basis, id)
+        work(&basis, id, None)
+    }
+
+    /// The blocks for one call: each pass reported to the Python callable `progress` (if any)
+    /// and Ctrl+C polled at every block, through the [`Interruption`] returned (run the call
+    /// with [`interruptible`] and it).
+    fn observed(&self, progress: Option<Py<PyAny>>) -> (Arc<Interruption>, ObservedBasisFile) {
+        let interruption = Arc::new(Interruption::default());
+        let observer = block_observer(progress, interruption.clone());
+        let basis = ObservedBasisFile::new(self.blocks.clone(), Some(observer));
+        (interruption, basis)
     }
 
     /// A field's coefficients, checked: length `n1`, finite.

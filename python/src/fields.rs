@@ -5,7 +5,7 @@ use crate::arrays::checked_rows;
 use crate::basis_parts::BasisParts;
 use crate::complex::Complex;
 use crate::errors::{from_error, tvf_error, with_context};
-use crate::interrupt::detached;
+use crate::interrupt::{detached, interruptible, Interruption};
 use numpy::{IntoPyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
@@ -167,7 +167,7 @@ pub fn compress<'py>(
 ) -> PyResult<Bound<'py, PyBytes>> {
     let basis = complex.basis(basis)?;
     let stamp = (complex.mesh.fingerprint(), basis_id(&basis));
-    compress_rows(py, &basis, stamp, fields, pairs, bits)
+    compress_rows(py, &basis, stamp, fields, pairs, bits, None)
 }
 
 /// The fields of `.tvfc` bytes (one row each), checked against the mesh and the basis.
@@ -180,12 +180,14 @@ pub fn decompress<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let basis = complex.basis(basis)?;
     let stamp = (complex.mesh.fingerprint(), basis_id(&basis));
-    decompress_rows(py, &basis, stamp, data)
+    decompress_rows(py, &basis, stamp, data, None)
 }
 
 /// Fields (rows of `fields`, `n1` each, finite) compressed in `basis` into the bytes of a
 /// `.tvfc` file keeping `pairs` pairs (`bits`: quantised, else 64-bit coefficients), stamped
-/// with `(mesh fingerprint, basis id)`.
+/// with `(mesh fingerprint, basis id)`. With the `interruption` of a basis whose passes poll it
+/// (a basis file read in blocks), the fields are encoded in turn on the calling thread (each a
+/// pass over the file, where Ctrl+C is noticed); without, in parallel.
 pub fn compress_rows<'py>(
     py: Python<'py>,
     basis: &dyn FieldBasis,
@@ -193,6 +195,7 @@ pub fn compress_rows<'py>(
     fields: PyReadonlyArray2<'py, f64>,
     pairs: usize,
     bits: Option<u32>,
+    interruption: Option<&Interruption>,
 ) -> PyResult<Bound<'py, PyBytes>> {
     let coding = match bits {
         Some(bits) => CoefficientCoding::Quantized { bits },
@@ -206,22 +209,38 @@ pub fn compress_rows<'py>(
         "fields",
         "the field dimension",
     )?;
-    let file = detached(py, || codec.compress(&rows))?.map_err(|e| from_error(&e))?;
+    let file = match interruption {
+        Some(interruption) if !rows.is_empty() => interruptible(py, interruption, || {
+            let frames: Result<Vec<_>, _> = rows.iter().map(|row| codec.encode(row)).collect();
+            frames.map(|frames| CompressedFields {
+                header: *codec.header(),
+                frames,
+            })
+        })?,
+        _ => detached(py, || codec.compress(&rows))?,
+    }
+    .map_err(|e| from_error(&e))?;
     Ok(PyBytes::new(py, &file.to_bytes()))
 }
 
 /// The fields (`frames × n1`) of `.tvfc` bytes decoded in `basis`, the file checked against
-/// `(mesh fingerprint, basis id)`.
+/// `(mesh fingerprint, basis id)`; `interruption`: the one `basis`'s passes poll, if they do.
 pub fn decompress_rows<'py>(
     py: Python<'py>,
     basis: &dyn FieldBasis,
     (mesh_fingerprint, id): (u64, u64),
     data: &[u8],
+    interruption: Option<&Interruption>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let file = CompressedFields::from_bytes(data).map_err(|e| from_error(&e))?;
     let codec = FieldCodec::for_file(basis, mesh_fingerprint, id, &file.header)
         .map_err(|e| from_error(&e))?;
-    let fields = detached(py, || codec.decompress(&file))?.map_err(|e| from_error(&e))?;
+    let decompress = || codec.decompress(&file);
+    let fields = match interruption {
+        Some(interruption) => interruptible(py, interruption, decompress)?,
+        None => detached(py, decompress)?,
+    }
+    .map_err(|e| from_error(&e))?;
     let flat: Vec<f64> = fields.concat();
     let array =
         numpy::ndarray::Array2::from_shape_vec((fields.len(), basis.field_dimension()), flat)

@@ -11,6 +11,7 @@ mod arrays;
 mod basis;
 mod basis_file;
 mod basis_parts;
+mod block_observer;
 mod check;
 mod compare;
 mod complex;

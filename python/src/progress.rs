@@ -24,13 +24,31 @@ impl<'a> Progress<'a> {
     /// `KeyboardInterrupt`, or whatever the callback raises) stops the computation at once and
     /// is raised when it has unwound ([`Interruption::stop`]).
     pub fn report(&self, stage: &str, done: usize, wanted: usize) {
-        self.interruption.poll();
-        let Some(callback) = &self.callback else {
-            return;
-        };
-        let called = Python::attach(|py| callback.call1(py, (stage, done, wanted)).map(drop));
-        if let Err(error) = called {
-            self.interruption.stop(error);
-        }
+        let (done, wanted) = (done as u64, wanted as u64);
+        report_progress(
+            self.callback.as_ref(),
+            self.interruption,
+            stage,
+            done,
+            wanted,
+        );
+    }
+}
+
+/// [`Progress::report`] for a callback held elsewhere (`None`: only the signals are handled).
+pub fn report_progress(
+    callback: Option<&Py<PyAny>>,
+    interruption: &Interruption,
+    stage: &str,
+    done: u64,
+    wanted: u64,
+) {
+    interruption.poll();
+    let Some(callback) = callback else {
+        return;
+    };
+    let called = Python::attach(|py| callback.call1(py, (stage, done, wanted)).map(drop));
+    if let Err(error) = called {
+        interruption.stop(error);
     }
 }

@@ -1,12 +1,16 @@
 """tvf.BasisFile: a .tvfb written by `tvf basis`, read in blocks — its metadata without the
 fields, coefficients and filters equal bit for bit to `tvf coefficients` / `tvf filter` on the
 same file (the same Rust block reader), equal to round-off to the in-memory tvf.Basis of the
-same mesh, results independent of the block size, and bad files refused naming the file."""
+same mesh, results independent of the block size, and bad files refused naming the file; every
+pass over the file reported to `progress=` up to its end, and stopped mid-pass by an exception
+of `progress` or by Ctrl+C."""
 
 import json
 import os
 import pickle
+import signal
 import subprocess
+import threading
 
 import numpy as np
 import pytest
@@ -331,3 +335,145 @@ def test_a_mesh_with_boundary_brings_its_boundary_condition_back(tvf_bin, tmp_pa
     assert np.max(np.abs(c - in_memory)) <= 1e-12 * np.max(np.abs(in_memory))
     with pytest.raises(tvf.TvfError, match=r"plate\.tvfb: the basis belongs to 'conforming-barycentric\+normal'"):
         f.coefficients(tvf.Complex(mesh), field)
+
+
+class Recorder:
+    """A `progress(stage, done, wanted)` callable keeping its calls."""
+
+    def __init__(self):
+        self.calls = []
+
+    def __call__(self, stage, done, wanted):
+        self.calls.append((stage, done, wanted))
+
+    def passes(self):
+        """The calls split into passes (each starts at done 0), each checked: one stage and one
+        `wanted` throughout, `done` growing at every call up to `wanted`. The stages and the
+        number of blocks of each pass; the calls are then forgotten."""
+        passes = []
+        for stage, done, wanted in self.calls:
+            if done == 0:
+                passes.append([])
+            assert passes, f"a pass starts at done 0: {self.calls}"
+            passes[-1].append((stage, done, wanted))
+        found = []
+        for calls in passes:
+            stage, _, wanted = calls[0]
+            assert wanted > 0 and all(c[0] == stage and c[2] == wanted for c in calls), calls
+            assert all(b[1] > a[1] for a, b in zip(calls, calls[1:])), calls
+            assert calls[-1][1] == wanted, calls
+            found.append((stage, len(calls) - 1))
+        self.calls = []
+        return found
+
+
+def test_every_product_reports_each_pass_to_its_end(saved):
+    """Each product reports the passes it makes over the file, from 0 to their totals (bytes),
+    a call per block (blocks of 4 KiB: several per pass) — the check when the mesh first uses
+    the file included — and gives what it gives without a `progress` callable, bit for bit."""
+    mesh, field = saved["mesh"], saved["field"]
+    plain = tvf.BasisFile(saved["path"], block_bytes=4096)
+    f = tvf.BasisFile(saved["path"], block_bytes=4096)
+    heard = Recorder()
+
+    def stages(passes):
+        for stage, blocks in passes:
+            assert blocks >= (1 if stage == "checking" else 4), passes
+        return [stage for stage, _ in passes]
+
+    c, rest = f.coefficients(mesh, field, progress=heard)
+    assert stages(heard.passes()) == ["checking", "projecting", "synthesising"]
+    expected_c, expected_rest = plain.coefficients(mesh, field)
+    assert np.array_equal(c, expected_c) and rest == expected_rest
+    filtered, _ = f.filter(mesh, field, progress=heard, **FILTER)
+    assert stages(heard.passes()) == ["projecting", "synthesising", "synthesising"]
+    assert np.array_equal(filtered, plain.filter(mesh, field, **FILTER)[0])
+    sets = np.random.default_rng(4).normal(size=(3, K))
+    assert np.array_equal(f.synthesize(mesh, sets, progress=heard), plain.synthesize(mesh, sets))
+    assert stages(heard.passes()) == ["synthesising"]
+    assert np.array_equal(f.fields(mesh, [0, 5, K - 1], progress=heard), plain.fields(mesh, [0, 5, K - 1]))
+    assert stages(heard.passes()) == ["synthesising"]
+    assert f.basis_id(mesh, progress=heard) == plain.basis_id(mesh)
+    assert stages(heard.passes()) == ["fields"]
+    frames = np.stack([field, 2.0 * field])
+    data = f.compress(mesh, frames, pairs=20, progress=heard)
+    assert data == plain.compress(mesh, frames, pairs=20)
+    # A sparse M1 whose co-potentials do not fit a block of 4 KiB is loaded whole: no pass.
+    in_blocks = saved["complex"].id != "whitney-galerkin"
+    expected = ["fields", "projecting", "projecting"]
+    assert stages(heard.passes()) == (expected if in_blocks else [])
+    assert np.array_equal(f.decompress(mesh, data, progress=heard), plain.decompress(mesh, data))
+    assert stages(heard.passes()) == (["fields", "synthesising"] if in_blocks else [])
+    found = tvf.spline(mesh, CONSTRAINTS, basis=f, progress=heard)
+    assert stages(heard.passes()) == ["rows", "synthesising"]
+    assert np.array_equal(found["field"], tvf.spline(mesh, CONSTRAINTS, basis=plain)["field"])
+    found = tvf.design(mesh, CONSTRAINTS, basis=f, progress=heard)
+    assert stages(heard.passes())[0] == "rows"
+    assert np.array_equal(found["field"], tvf.design(mesh, CONSTRAINTS, basis=plain)["field"])
+
+
+class StopAt:
+    """A `progress` callable raising `error` at its `at`-th call of stage `stage`."""
+
+    def __init__(self, stage, at, error):
+        self.stage, self.at, self.error, self.calls = stage, at, error, 0
+
+    def __call__(self, stage, done, wanted):
+        if stage == self.stage:
+            self.calls += 1
+            if self.calls == self.at:
+                raise self.error
+
+
+@pytest.mark.parametrize("error", [KeyboardInterrupt, ValueError("enough")])
+def test_an_exception_of_progress_stops_the_pass_and_is_raised(saved, error):
+    """A `progress` callable raising mid-pass (at the third block: `KeyboardInterrupt`, as
+    Ctrl+C raises it at a block, or any other exception) stops the pass there — no further
+    call — and the exception propagates as it was raised; the file stays usable."""
+    mesh, field = saved["mesh"], saved["field"]
+    f = tvf.BasisFile(saved["path"], block_bytes=4096)
+    expected = f.coefficients(mesh, field)
+    expected_type = error if isinstance(error, type) else type(error)
+    for stage, call in [
+        ("projecting", lambda p: f.coefficients(mesh, field, progress=p)),
+        ("synthesising", lambda p: f.synthesize(mesh, np.ones(K), progress=p)),
+        ("fields", lambda p: f.basis_id(mesh, progress=p)),
+        ("rows", lambda p: tvf.spline(mesh, CONSTRAINTS, basis=f, progress=p)),
+    ]:
+        stop = StopAt(stage, 3, error)
+        with pytest.raises(expected_type):
+            call(stop)
+        assert stop.calls == 3, stage
+    checked = tvf.BasisFile(saved["path"], block_bytes=4096)
+    stop = StopAt("checking", 1, error)
+    with pytest.raises(expected_type):
+        checked.coefficients(mesh, field, progress=stop)
+    c, rest = f.coefficients(mesh, field)
+    assert np.array_equal(c, expected[0]) and rest == expected[1]
+    c, rest = checked.coefficients(mesh, field)
+    assert np.array_equal(c, expected[0]) and rest == expected[1]
+
+
+def test_ctrl_c_mid_pass_raises_keyboard_interrupt(saved):
+    """A SIGINT arriving mid-pass (sent by the `progress` callable at the third block, which
+    then returns normally) raises `KeyboardInterrupt` by the next block at the latest: the pass
+    does not run to its end."""
+    if threading.current_thread() is not threading.main_thread():
+        pytest.skip("signals are handled on the main thread only")
+    mesh, field = saved["mesh"], saved["field"]
+    f = tvf.BasisFile(saved["path"], block_bytes=4096)
+    f.coefficients(mesh, field)
+    calls = []
+
+    def interrupting(stage, done, wanted):
+        calls.append((stage, done, wanted))
+        if len(calls) == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            f.synthesize(mesh, np.ones(K), progress=interrupting)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    assert 3 <= len(calls) <= 4 and calls[-1][1] < calls[-1][2], calls

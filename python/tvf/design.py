@@ -36,7 +36,8 @@ def spline(mesh, constraints, k=None, basis=None, discretization=None, boundary=
     see the README's "Constraint files"), or its JSON text. ``origin`` names it in messages.
     Give ``k`` (the basis is computed), a :class:`tvf.Basis`, or a :class:`tvf.BasisFile` (read
     in blocks as ``tvf spline --basis FILE`` reads it: only the rows of the basis the constraints
-    touch are held). Conflicting or dependent
+    touch are held; ``progress`` then hears of its passes, ``rows`` and ``synthesising``, as
+    :class:`tvf.BasisFile`'s products do, Ctrl+C noticed at every block). Conflicting or dependent
     constraints raise :class:`tvf.TvfError` naming them, as the command line does.
 
     Returns a dict: ``field`` (``(F, 3)`` face vectors, or coefficients without sampling),
@@ -59,8 +60,9 @@ def design(mesh, constraints, discretization=None, boundary="tangential", origin
       sparse.
     - **reduced** (``k``, a :class:`tvf.Basis` or a :class:`tvf.BasisFile` given; ``tvf design
       --reduced``): in the basis of the ``k`` lowest eigenfields (computed with ``seed`` and
-      ``progress`` as :func:`tvf.basis`, or the basis given; a basis file is read in blocks), a
-      dense system of the basis size. Every complex.
+      ``progress`` as :func:`tvf.basis`, or the basis given; a basis file is read in blocks,
+      ``progress`` hearing of its passes as for :func:`spline`), a dense system of the basis
+      size. Every complex.
 
     ``constraints`` as for :func:`spline` (``weight`` > 0 per constraint, default 1). Returns
     the same dict as :func:`spline`."""
@@ -75,8 +77,8 @@ def _reduced(mesh, constraints, k, basis, discretization, boundary, seed, progre
     """The spline (``soft`` false) or reduced soft design in ``basis``, or in the basis of the
     ``k`` lowest eigenfields computed here."""
     if isinstance(basis, BasisFile):
-        blocks = basis._blocks(mesh)
-        raw = blocks.reduced(_json(constraints), str(origin), soft)
+        blocks = basis._blocks(mesh, progress)
+        raw = blocks.reduced(_json(constraints), str(origin), soft, progress)
         coefficients = np.asarray(raw["field"])
         field = _file_field_out(blocks, coefficients, blocks.has_sampling)
         return {"field": field, "coefficients": coefficients, "residuals": dict(raw["residuals"])}

@@ -14,6 +14,7 @@
 //! Exit codes: 0 success, 1 bad input or failed computation, 2 usage error (clap; an id that is
 //! not in the catalog is one).
 
+mod basis_file_progress;
 mod basis_source;
 mod commands;
 mod context;

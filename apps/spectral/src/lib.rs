@@ -117,6 +117,7 @@ pub use formats::basis_file_complex::{
 pub use formats::basis_file_spectrum::{read_basis_spectrum, BasisFileSpectrum};
 pub use formats::basis_id::{basis_id, field_basis_id};
 pub use formats::basis_outputs::{save_basis_outputs, BasisOutputError};
+pub use formats::block_progress::{BlockObserver, BlockPass, BlockProgress};
 pub use formats::complex_folder::{
     read_complex_folder, ComplexFolderError, COMPLEX_FOLDER_ID, MAX_INFO_BYTES,
 };
@@ -143,6 +144,7 @@ pub use formats::folder_file::{
 pub use formats::hodge_parts_folder::write_hodge_parts;
 pub use formats::npy::{NpyArray, NpyDtype, NpyError};
 pub use formats::numpy_export::{npy_bytes, write_sparse_npz, NpyData};
+pub use formats::observed_basis_file::ObservedBasisFile;
 pub use formats::sparse_file_read::{
     read_matrix_market, read_matrix_market_within, MatrixLimits, MIN_ENTRY_LINE_BYTES,
 };

@@ -59,7 +59,9 @@ pub fn run(args: EditArgs, context: &RunContext) -> Result<()> {
     // editor's single-precision copy in one pass); any other basis is loaded and copied once.
     let (basis, complex) = match args.basis.options.basis.as_deref() {
         Some(path) if readable_in_blocks(path)? => {
-            let blocks = open_basis_blocks(path, &mesh, complex)?;
+            // The check at opening shows its progress; the passes of the session (rows as
+            // constraints are added, the f32 copy) would print lines at every edit: not shown.
+            let blocks = open_basis_blocks(path, &mesh, complex)?.with_observer(None);
             let complex =
                 args.basis
                     .options

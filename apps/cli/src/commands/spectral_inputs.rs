@@ -6,6 +6,7 @@
 //! at most `$TVF_BASIS_BLOCK_BYTES`); field files
 //! (one field, or a sequence of frames) read as tangent fields.
 
+use crate::basis_file_progress::basis_file_observer;
 use crate::basis_source::{BasisOptions, BasisSource};
 use crate::mesh_input::MeshInput;
 use crate::output_rules::{check_file_output, check_output};
@@ -172,7 +173,8 @@ pub fn readable_in_blocks(path: &Path) -> Result<bool> {
 }
 
 /// The basis file `path` of `mesh` and `complex` (one [`readable_in_blocks`]), checked and
-/// opened to be read in blocks; noted on stderr.
+/// opened to be read in blocks; noted on stderr, and the progress of its passes shown there
+/// ([`basis_file_observer`]).
 pub fn open_basis_blocks(
     path: &Path,
     mesh: &SurfaceMesh,
@@ -182,7 +184,7 @@ pub fn open_basis_blocks(
     let start = std::time::Instant::now();
     let id = complex.id().to_string();
     let block_bytes = block_bytes()?;
-    match BasisFileBlocks::open(path, &key, complex)? {
+    match BasisFileBlocks::open_with_observer(path, &key, complex, basis_file_observer())? {
         Some(blocks) => {
             let blocks = blocks.with_block_bytes(block_bytes);
             note(format!(

@@ -5,6 +5,7 @@
 mod bad_input;
 mod basis;
 mod basis_blocks_decoding;
+mod basis_blocks_progress;
 mod cache_safety;
 mod check;
 mod clear_errors;

@@ -35,10 +35,16 @@
 //! Each product then checks that the file's size and modification time are still those it was
 //! checked with, and every value it reads for being finite (a file changed in place since is
 //! refused, naming it, where that shows).
+//!
+//! An optional [`BlockObserver`] ([`BasisFileBlocks::with_observer`],
+//! [`BasisFileBlocks::open_with_observer`] for the check at opening, or per product through an
+//! [`crate::ObservedBasisFile`]) is told, on the calling thread, the start of every pass over
+//! the file and each block of it ([`crate::BlockProgress`]); it changes nothing computed.
 
 use super::basis_file::check_file_size;
 use super::basis_file_header::read_header;
 use super::basis_file_spectrum::{front_bytes, read_front};
+use super::block_progress::{BlockObserver, BlockPass, PassProgress};
 use crate::basis::check_length;
 use crate::eigenfunction_basis::field_of_stored_into;
 use crate::field_basis::check_rows;
@@ -78,6 +84,8 @@ pub struct BasisFileBlocks {
     block_bytes: usize,
     /// Size and modification time of the file when it was checked.
     checked: (u64, Option<std::time::SystemTime>),
+    /// Told the progress of every pass over the file, if set.
+    observer: Option<BlockObserver>,
 }
 
 /// The stored columns of one family.
@@ -96,6 +104,18 @@ impl BasisFileBlocks {
         path: &Path,
         expected: &BasisFileKey,
         complex: BoxedComplex,
+    ) -> Result<Option<Self>, BasisFileError> {
+        Self::open_with_observer(path, expected, complex, None)
+    }
+
+    /// [`Self::open`], telling `observer` the progress of the check (the payload read through
+    /// once: [`BlockPass::Checking`]) and then of every pass of the blocks opened
+    /// ([`Self::with_observer`]).
+    pub fn open_with_observer(
+        path: &Path,
+        expected: &BasisFileKey,
+        complex: BoxedComplex,
+        observer: Option<BlockObserver>,
     ) -> Result<Option<Self>, BasisFileError> {
         let io = |source| BasisFileError::Io {
             path: path.to_path_buf(),
@@ -133,7 +153,12 @@ impl BasisFileBlocks {
         }
         let d = header.field_count;
         let payload_end = size - 8;
-        check_payload(&file, path, header_length, d, payload_end)?;
+        let mut checking = PassProgress::start(
+            observer.as_ref(),
+            BlockPass::Checking,
+            payload_end.saturating_sub(header_length),
+        );
+        check_payload(&file, path, header_length, d, payload_end, &mut checking)?;
         let (eigenvalues, families) = read_front(&file, path, &header, header_length)?;
         let body_start = header_length + front_bytes(d);
         let sections = sections_of(
@@ -161,6 +186,7 @@ impl BasisFileBlocks {
             sections,
             block_bytes: BLOCK_BYTES,
             checked: (size, metadata.modified().ok()),
+            observer,
         }))
     }
 
@@ -170,6 +196,14 @@ impl BasisFileBlocks {
     /// round-off (the tests bound the difference by `1e-13` relative).
     pub fn with_block_bytes(mut self, bytes: usize) -> Self {
         self.block_bytes = bytes;
+        self
+    }
+
+    /// The same basis telling `observer` (`None`: nobody) the progress of every pass over the
+    /// file, on the calling thread: its start and each block ([`crate::BlockProgress`]). The
+    /// results do not depend on it.
+    pub fn with_observer(mut self, observer: Option<BlockObserver>) -> Self {
+        self.observer = observer;
         self
     }
 
@@ -196,9 +230,14 @@ impl BasisFileBlocks {
 
     /// `Xᵀ x` for the stored columns `X` of `section` (`rows` each) and `x` (`rows` values),
     /// read a block at a time.
-    fn transpose_times(&self, section: Section, x: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+    fn transpose_times(
+        &self,
+        section: Section,
+        x: &[f64],
+        pass: &mut PassProgress,
+    ) -> Result<Vec<f64>, SpectralBasisError> {
         let mut products = Vec::with_capacity(section.count);
-        self.for_each_block(section, |block| {
+        self.for_each_block(section, pass, |block| {
             products.par_extend(
                 block
                     .par_chunks_exact(section.rows)
@@ -209,10 +248,12 @@ impl BasisFileBlocks {
     }
 
     /// Calls `visit` with the stored columns of `section` a block at a time, in order (each
-    /// block `rows × columns` values, column by column).
+    /// block `rows × columns` values, column by column), reporting each block to `pass` once
+    /// visited.
     fn for_each_block(
         &self,
         section: Section,
+        pass: &mut PassProgress,
         mut visit: impl FnMut(&[f64]),
     ) -> Result<(), SpectralBasisError> {
         if section.rows == 0 || section.count == 0 {
@@ -224,6 +265,7 @@ impl BasisFileBlocks {
         for first in (0..section.count).step_by(per_block) {
             let columns = per_block.min(section.count - first);
             visit(self.read_columns(section, first..first + columns, &mut buffers)?);
+            pass.advance((8 * section.rows * columns) as u64);
         }
         Ok(())
     }
@@ -283,7 +325,11 @@ impl BasisFileBlocks {
     /// columns (at most a block of fields at a time), then added to every sum, so that the file
     /// is read once however many sets there are (and each sum is the one set's alone, bit for
     /// bit).
-    fn combine_fields(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+    fn combine_fields(
+        &self,
+        sets: &[&[f64]],
+        observer: Option<&BlockObserver>,
+    ) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
         let n1 = self.field_dimension();
         let mut combined = vec![vec![0.0; n1]; sets.len()];
         if n1 == 0 || sets.is_empty() {
@@ -293,12 +339,15 @@ impl BasisFileBlocks {
         let per_chunk = (self.block_bytes / (8 * n1)).clamp(1, self.len().max(1));
         let mut buffers: [ReadBuffers; 3] = Default::default();
         let mut fields = vec![0.0; n1 * per_chunk.min(self.len())];
+        let mut pass = PassProgress::start(observer, BlockPass::Synthesising, self.stored_bytes());
         for first in (0..self.len()).step_by(per_chunk) {
             let chunk = first..(first + per_chunk).min(self.len());
+            let chunk_bytes = chunk.clone().map(|i| self.stored_column_bytes(i)).sum();
             if sets
                 .iter()
                 .all(|c| c[chunk.clone()].iter().all(|&x| x == 0.0))
             {
+                pass.advance(chunk_bytes);
                 continue;
             }
             let fields = &mut fields[..n1 * chunk.len()];
@@ -318,8 +367,22 @@ impl BasisFileBlocks {
                         }
                     });
             }
+            pass.advance(chunk_bytes);
         }
         Ok(combined)
+    }
+
+    /// Bytes of all the stored columns.
+    fn stored_bytes(&self) -> u64 {
+        self.sections
+            .iter()
+            .map(|s| (8 * s.rows * s.count) as u64)
+            .sum()
+    }
+
+    /// Bytes of the stored column of basis field `i`.
+    fn stored_column_bytes(&self, i: usize) -> u64 {
+        (8 * self.sections[section_index(self.families[i])].rows) as u64
     }
 
     /// The fields of the basis indices `chunk` (`n1` values each, column by column) into
@@ -374,11 +437,13 @@ impl BasisFileBlocks {
     /// (one vector per column, a value per functional), reading only the stored entries they
     /// touch: nearby entries of a column in one read, so that a few rows cost a few reads per
     /// column instead of a pass over the file. The same arithmetic as on a whole column, bit for
-    /// bit.
+    /// bit. The columns are taken a group at a time (a block's worth of columns, at least one
+    /// per thread), each group reported to `pass`.
     fn sparse_row_values(
         &self,
         section: Section,
         functionals: &[RowFunctional],
+        pass: &mut PassProgress,
     ) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
         if section.rows == 0 || section.count == 0 {
             return Ok(Vec::new());
@@ -391,13 +456,38 @@ impl BasisFileBlocks {
         needed.sort_unstable();
         needed.dedup();
         let spans = entry_spans(&needed);
-        (0..section.count)
+        let per_group = (self.block_bytes / (8 * section.rows))
+            .max(rayon::current_num_threads())
+            .clamp(1, section.count);
+        let mut out = Vec::with_capacity(section.count);
+        for first in (0..section.count).step_by(per_group) {
+            let group = first..(first + per_group).min(section.count);
+            let columns = group.len();
+            let values: Vec<Vec<f64>> =
+                self.sparse_group_values(section, functionals, &spans, &needed, group)?;
+            out.extend(values);
+            pass.advance((8 * section.rows * columns) as u64);
+        }
+        Ok(out)
+    }
+
+    /// [`Self::sparse_row_values`] of the stored columns `group` of `section`, the entries of
+    /// each read in `spans` (the `needed` entries grouped).
+    fn sparse_group_values(
+        &self,
+        section: Section,
+        functionals: &[RowFunctional],
+        spans: &[(usize, usize)],
+        needed: &[usize],
+        group: std::ops::Range<usize>,
+    ) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        group
             .into_par_iter()
             .map(|column| {
                 let start = section.offset + (8 * section.rows * column) as u64;
                 let mut values = std::collections::HashMap::with_capacity(needed.len());
                 let mut bytes = Vec::new();
-                for &(low, high) in &spans {
+                for &(low, high) in spans {
                     bytes.resize(8 * (high - low + 1), 0);
                     self.file
                         .read_exact_at(&mut bytes, start + 8 * low as u64)
@@ -450,67 +540,54 @@ impl BasisFileBlocks {
     }
 }
 
-impl FieldBasis for BasisFileBlocks {
-    fn len(&self) -> usize {
-        self.eigenvalues.len()
-    }
-
-    fn field_dimension(&self) -> usize {
-        self.complex.field_dimension()
-    }
-
-    fn eigenvalues(&self) -> &[f64] {
-        &self.eigenvalues
-    }
-
-    fn families(&self) -> &[FieldFamily] {
-        &self.families
-    }
-
-    fn coefficients(&self, field: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+/// The products of [`FieldBasis`], each telling `observer` the progress of its passes (the
+/// trait's methods pass the blocks' own observer; [`crate::ObservedBasisFile`] another).
+impl BasisFileBlocks {
+    /// [`FieldBasis::coefficients`]: one [`BlockPass::Projecting`] pass over the stored columns.
+    pub(crate) fn observed_coefficients(
+        &self,
+        field: &[f64],
+        observer: Option<&BlockObserver>,
+    ) -> Result<Vec<f64>, SpectralBasisError> {
         check_length("field", self.field_dimension(), field.len())?;
         let complex = &self.complex;
         let weighted = complex.m1().apply(field);
         let divergence = mul_transpose_vec(complex.d0(), &weighted);
         let curl: Vec<f64> = mul_vec(complex.d1(), field).iter().map(|x| -x).collect();
         let [integrable, cointegrable, harmonic] = self.sections;
+        let mut pass = PassProgress::start(observer, BlockPass::Projecting, self.stored_bytes());
         let products = [
-            self.transpose_times(integrable, &divergence)?,
-            self.transpose_times(cointegrable, &curl)?,
-            self.transpose_times(harmonic, &weighted)?,
+            self.transpose_times(integrable, &divergence, &mut pass)?,
+            self.transpose_times(cointegrable, &curl, &mut pass)?,
+            self.transpose_times(harmonic, &weighted, &mut pass)?,
         ];
         Ok((0..self.len())
             .map(|i| products[section_index(self.families[i])][self.slots[i]])
             .collect())
     }
 
-    fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
-        Ok(self.reconstruct_many(&[coefficients])?.remove(0))
-    }
-
-    fn reconstruct_many(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+    /// [`FieldBasis::reconstruct_many`]: one [`BlockPass::Synthesising`] pass.
+    pub(crate) fn observed_reconstruct_many(
+        &self,
+        sets: &[&[f64]],
+        observer: Option<&BlockObserver>,
+    ) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
         for coefficients in sets {
             check_length("coefficients", self.len(), coefficients.len())?;
         }
-        self.combine_fields(sets)
+        self.combine_fields(sets, observer)
     }
 
-    fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
-        let mass = self.complex.m1();
-        match mass.diagonal_values() {
-            Some(mass) => a.iter().zip(b).zip(mass).map(|((x, y), m)| x * m * y).sum(),
-            None => mass.inner(a, b),
-        }
-    }
-
-    fn field_mass(&self) -> &Mass {
-        self.complex.m1()
-    }
-
-    fn rows(&self, rows: &[usize]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+    /// [`FieldBasis::rows`]: one [`BlockPass::Rows`] pass.
+    pub(crate) fn observed_rows(
+        &self,
+        rows: &[usize],
+        observer: Option<&BlockObserver>,
+    ) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
         check_rows(rows, self.field_dimension())?;
         let mut out = vec![vec![0.0; self.len()]; rows.len()];
         let indices = self.basis_indices();
+        let mut pass = PassProgress::start(observer, BlockPass::Rows, self.stored_bytes());
         for (k, family) in FAMILIES.into_iter().enumerate() {
             let functionals = self.row_functionals(family, rows);
             let section = self.sections[k];
@@ -528,7 +605,7 @@ impl FieldBasis for BasisFileBlocks {
                 .iter()
                 .any(|f| matches!(f, RowFunctional::Dense(_)))
             {
-                self.for_each_block(section, |block| {
+                self.for_each_block(section, &mut pass, |block| {
                     store(
                         block
                             .par_chunks_exact(section.rows)
@@ -537,23 +614,26 @@ impl FieldBasis for BasisFileBlocks {
                     )
                 })?;
             } else {
-                store(self.sparse_row_values(section, &functionals)?);
+                store(self.sparse_row_values(section, &functionals, &mut pass)?);
             }
         }
         Ok(out)
     }
 
-    fn visit_fields(
+    /// [`FieldBasis::visit_fields`]: one [`BlockPass::Fields`] pass.
+    pub(crate) fn observed_visit_fields(
         &self,
         visit: &(dyn Fn(usize, &[f64]) + Sync),
+        observer: Option<&BlockObserver>,
     ) -> Result<(), SpectralBasisError> {
         let indices = self.basis_indices();
         let (d0, co_gradient) = (self.complex.d0(), self.complex.co_gradient());
         let n1 = self.field_dimension();
+        let mut pass = PassProgress::start(observer, BlockPass::Fields, self.stored_bytes());
         for (k, family) in FAMILIES.into_iter().enumerate() {
             let section = self.sections[k];
             let mut first = 0;
-            self.for_each_block(section, |block| {
+            self.for_each_block(section, &mut pass, |block| {
                 let columns = block.len() / section.rows;
                 let targets = &indices[k][first..first + columns];
                 if family == FieldFamily::Cointegrable && !co_gradient.is_sparse() {
@@ -579,6 +659,59 @@ impl FieldBasis for BasisFileBlocks {
             })?;
         }
         Ok(())
+    }
+}
+
+impl FieldBasis for BasisFileBlocks {
+    fn len(&self) -> usize {
+        self.eigenvalues.len()
+    }
+
+    fn field_dimension(&self) -> usize {
+        self.complex.field_dimension()
+    }
+
+    fn eigenvalues(&self) -> &[f64] {
+        &self.eigenvalues
+    }
+
+    fn families(&self) -> &[FieldFamily] {
+        &self.families
+    }
+
+    fn coefficients(&self, field: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        self.observed_coefficients(field, self.observer.as_ref())
+    }
+
+    fn reconstruct(&self, coefficients: &[f64]) -> Result<Vec<f64>, SpectralBasisError> {
+        Ok(self.reconstruct_many(&[coefficients])?.remove(0))
+    }
+
+    fn reconstruct_many(&self, sets: &[&[f64]]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        self.observed_reconstruct_many(sets, self.observer.as_ref())
+    }
+
+    fn inner_product(&self, a: &[f64], b: &[f64]) -> f64 {
+        let mass = self.complex.m1();
+        match mass.diagonal_values() {
+            Some(mass) => a.iter().zip(b).zip(mass).map(|((x, y), m)| x * m * y).sum(),
+            None => mass.inner(a, b),
+        }
+    }
+
+    fn field_mass(&self) -> &Mass {
+        self.complex.m1()
+    }
+
+    fn rows(&self, rows: &[usize]) -> Result<Vec<Vec<f64>>, SpectralBasisError> {
+        self.observed_rows(rows, self.observer.as_ref())
+    }
+
+    fn visit_fields(
+        &self,
+        visit: &(dyn Fn(usize, &[f64]) + Sync),
+    ) -> Result<(), SpectralBasisError> {
+        self.observed_visit_fields(visit, self.observer.as_ref())
     }
 }
 
@@ -712,14 +845,15 @@ fn sections_of(header: &BasisFileHeader, body_start: u64, n0: usize, n2: usize) 
 }
 
 /// Checks the payload `[start, end)` of `file` (`d` eigenvalues and family codes, then stored
-/// columns) against the checksum stored at `end`, reading it once in blocks, and that every
-/// stored column value is finite.
+/// columns) against the checksum stored at `end`, reading it once in blocks (each reported to
+/// `pass`), and that every stored column value is finite.
 fn check_payload(
     file: &File,
     path: &Path,
     start: u64,
     d: usize,
     end: u64,
+    pass: &mut PassProgress,
 ) -> Result<(), BasisFileError> {
     let io = |source| BasisFileError::Io {
         path: path.to_path_buf(),
@@ -743,6 +877,7 @@ fn check_payload(
                 .map(|word| (at + skip - body_start) / 8 + word as u64);
         }
         at += length as u64;
+        pass.advance(length as u64);
     }
     let mut stored = [0u8; 8];
     file.read_exact_at(&mut stored, end).map_err(io)?;

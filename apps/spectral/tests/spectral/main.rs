@@ -15,6 +15,7 @@ mod compress_entropy;
 mod files_basis;
 mod files_basis_blocks;
 mod files_basis_blocks_decoding;
+mod files_basis_blocks_progress;
 mod files_basis_matrices;
 mod files_basis_sparse_mass;
 mod files_basis_streamed;
