@@ -341,26 +341,15 @@ impl SparseLdlt {
             .factorize_numeric_ldlt_scratch::<f64>(par, Default::default());
         let mut buffer = MemBuffer::try_new(req)
             .map_err(|_| SolverError::Factorization("out of memory".into()))?;
-        let (symbolic, values) = (&self.symbolic, &mut self.values);
-        let factorize = move || {
-            let values = values;
-            symbolic
-                .factorize_numeric_ldlt::<f64>(
-                    values,
-                    upper,
-                    Side::Upper,
-                    LdltRegularization::default(),
-                    par,
-                    MemStack::new(&mut buffer),
-                    Default::default(),
-                )
-                .map(drop)
-        };
-        let result = match par {
-            Par::Seq => on_own_thread(factorize),
-            // The parallel parts run on rayon's threads whatever thread starts them.
-            Par::Rayon(_) => factorize(),
-        };
+        let result = self.symbolic.factorize_numeric_ldlt::<f64>(
+            &mut self.values,
+            upper,
+            Side::Upper,
+            LdltRegularization::default(),
+            par,
+            MemStack::new(&mut buffer),
+            Default::default(),
+        );
         match result {
             Ok(_) => Ok(()),
             // faer numbers the failed pivot from one in its simplicial factorization and from
@@ -643,22 +632,6 @@ fn zeroed_by_all_threads(len: usize) -> Vec<f64> {
     values
 }
 
-/// Runs `work` on a thread of its own that ends with it, and returns its result (a panic goes
-/// on to the caller). Why: the dense kernels faer's supernodal factorization calls
-/// (`private-gemm-x86`) keep their packing buffers in thread-local memory of twice the
-/// last-level cache per thread (520 MB on a machine reporting 260 MB of L3), touched as far as
-/// the largest supernodes need and never given back while the thread lives; the eigensolver's
-/// sequential factorizations ran on rayon's threads, which live for the whole run, so at a
-/// million faces each of them kept hundreds of MB resident. A thread that ends gives its
-/// buffers back; starting it costs tens of microseconds against a factorization's milliseconds
-/// to seconds (measured in `docs/performance.md`).
-fn on_own_thread<T: Send>(work: impl FnOnce() -> T + Send) -> T {
-    std::thread::scope(|scope| match scope.spawn(work).join() {
-        Ok(value) => value,
-        Err(panic) => std::panic::resume_unwind(panic),
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -791,10 +764,10 @@ mod tests {
         }
     }
 
-    /// A sequential factorization runs on a thread of its own: the same values as the first
-    /// one (the same arithmetic), its errors and a panic of the work reach the caller.
+    /// A refactorization gives the same values as the first factorization, and a zero pivot is
+    /// named by its row in faer's simplicial and supernodal factorizations alike.
     #[test]
-    fn sequential_refactorization_on_its_own_thread() {
+    fn refactorization_and_the_row_of_a_zero_pivot() {
         let upper = shifted_grid(17, 0.47);
         let mut ldlt = SparseLdlt::with_ordering(upper.as_ref(), FillOrdering::NestedDissection)
             .expect("factors");
@@ -850,9 +823,5 @@ mod tests {
             [false, false, true],
             "both of faer's factorizations"
         );
-
-        assert_eq!(on_own_thread(|| 6 * 7), 42);
-        let panicked = std::panic::catch_unwind(|| on_own_thread(|| panic!("inside")));
-        assert!(panicked.is_err());
     }
 }
