@@ -411,14 +411,27 @@ fn job_memory(
     plans: &[Plan],
     jobs: &[(usize, usize)],
 ) -> Vec<usize> {
-    let plan_memory: Vec<usize> = plans
+    let plan_memory: Vec<usize> = widest_slices(requests, options, plans)
+        .into_iter()
+        .map(|(n, wanted, block)| slice_bytes(n, wanted, block))
+        .collect();
+    jobs.iter().map(|&(p, _)| plan_memory[p]).collect()
+}
+
+/// Each plan's widest slice, `(n, eigenpairs, block)`: what its jobs' memory is estimated and
+/// reserved for.
+fn widest_slices(
+    requests: &[EigenRequest<'_, '_>],
+    options: &EigenOptions<'_>,
+    plans: &[Plan],
+) -> Vec<(usize, usize, usize)> {
+    plans
         .iter()
         .map(|plan| {
             let n = requests[plan.request].pencil.dimension();
-            slice_bytes(n, plan.widest(), block_size(options, n))
+            (n, plan.widest(), block_size(options, n))
         })
-        .collect();
-    jobs.iter().map(|&(p, _)| plan_memory[p]).collect()
+        .collect()
 }
 
 /// Phase 2, solving: runs every job (`options.threads` at a time, fewer while `gate` finds no
@@ -442,13 +455,7 @@ fn solve_intervals(
     ),
     RequestError,
 > {
-    let settings = IntervalSettings {
-        tolerance: options.tolerance,
-        block_size: options.block_size,
-        max_restarts: options.max_restarts,
-        parallelism: options.parallelism,
-        refinement_target: options.refinement_target,
-    };
+    let settings = IntervalSettings::of(options);
     let outputs = job_outputs(plans, jobs, columns);
     let mut stream = options.finished.map(|sink| {
         let streams = plans
@@ -472,14 +479,7 @@ fn solve_intervals(
                 .and(ParkedColumns::of(&columns[p], first, width))
         })
         .collect();
-    // Each plan's widest slice, which every slice memory serving the plan is reserved for.
-    let widest_slices: Vec<(usize, usize, usize)> = plans
-        .iter()
-        .map(|plan| {
-            let n = requests[plan.request].pencil.dimension();
-            (n, plan.widest(), block_size(options, n))
-        })
-        .collect();
+    let widest = widest_slices(requests, options, plans);
     let solve_job = |job: usize, report: &dyn Fn(usize, usize)| {
         let (p, i) = jobs[job];
         let plan = &plans[p];
@@ -489,8 +489,8 @@ fn solve_intervals(
             .take()
             .expect("every job runs once");
         let mut memory = slice_memory.take();
-        let (n, widest, block) = widest_slices[p];
-        memory.expect(n, widest, block);
+        let (n, wanted, block) = widest[p];
+        memory.expect(n, wanted, block);
         let result = solve_job(
             &requests[plan.request],
             plan,
@@ -899,6 +899,19 @@ struct IntervalSettings {
     max_restarts: usize,
     parallelism: Par,
     refinement_target: f64,
+}
+
+impl IntervalSettings {
+    /// The settings `options` give.
+    fn of(options: &EigenOptions<'_>) -> Self {
+        Self {
+            tolerance: options.tolerance,
+            block_size: options.block_size,
+            max_restarts: options.max_restarts,
+            parallelism: options.parallelism,
+            refinement_target: options.refinement_target,
+        }
+    }
 }
 
 /// Solves `interval` into `out` (its eigenvalues) and `output` (its eigenvectors: the first

@@ -90,10 +90,8 @@ struct ColumnStore<'m> {
 }
 
 impl<'m> ColumnStore<'m> {
-    /// An empty store with room for `capacity` columns of `n` rows, reserved for `room`
-    /// columns if that is more (see [`fit_memory`]).
-    fn new(values: &'m mut Vec<f64>, n: usize, capacity: usize, room: usize) -> Self {
-        fit_memory(values, n * capacity, n * room);
+    /// An empty store of columns of `n` rows in `values` (sized by [`SliceMemory::fit`]).
+    fn new(values: &'m mut Vec<f64>, n: usize) -> Self {
         Self {
             values,
             n,
@@ -223,6 +221,23 @@ impl SliceMemory {
         MatMut::from_column_major_slice_mut(&mut self.locked[..n * columns], n, columns)
     }
 
+    /// The `n × columns` Krylov basis, an empty store for `locked` locked vectors and the
+    /// operator buffers of a slice, in this memory fitted for them ([`Self::fit`]).
+    fn parts(
+        &mut self,
+        n: usize,
+        columns: usize,
+        locked: usize,
+    ) -> (MatMut<'_, f64>, ColumnStore<'_>, &mut OperatorScratch) {
+        self.fit(n, columns, locked);
+        let basis = MatMut::from_column_major_slice_mut(&mut self.basis[..n * columns], n, columns);
+        (
+            basis,
+            ColumnStore::new(&mut self.locked, n),
+            &mut self.scratch,
+        )
+    }
+
     /// Declares the widest slice this memory will serve (a pencil of dimension `n`, `wanted`
     /// eigenpairs, blocks of `block`): from then on its memory is reserved for that slice
     /// whenever it has to grow, so that the slices of one pencil, whose intervals differ in
@@ -248,11 +263,13 @@ impl SliceMemory {
     }
 
     /// Room for an `n × columns` basis (stale values: every column is written before it is
-    /// read; see [`fit_memory`]) and operator buffers of `n` rows.
-    fn fit(&mut self, n: usize, columns: usize) {
+    /// read; see [`fit_memory`]), `locked` locked vectors and operator buffers of `n` rows.
+    fn fit(&mut self, n: usize, columns: usize, locked: usize) {
         let len = n * columns;
         let room = n * self.expected_columns(n, basis_columns);
         fit_memory(&mut self.basis, len, room);
+        let locked_room = n * self.expected_columns(n, locked_columns);
+        fit_memory(&mut self.locked, n * locked, locked_room);
         if self.basis.len() < len {
             self.basis.resize(len, 0.0);
         }
@@ -547,16 +564,7 @@ pub(crate) fn run_slice(
         return Ok(SliceOutcome { columns: 0, solves });
     }
     let columns = max_basis + 3 * block;
-    memory.fit(n, columns);
-    let locked_room = memory.expected_columns(n, locked_columns);
-    let SliceMemory {
-        basis: values,
-        locked: locked_memory,
-        scratch,
-        ..
-    } = memory;
-    let mut basis = MatMut::from_column_major_slice_mut(&mut values[..n * columns], n, columns);
-    let mut locked = ColumnStore::new(locked_memory, n, locked_columns(wanted, block), locked_room);
+    let (mut basis, mut locked, scratch) = memory.parts(n, columns, locked_columns(wanted, block));
     let start = random_orthonormal_block(n, block, &[], mass, rng, par)?;
     let mut krylov = KrylovSchur::start(basis.rb_mut(), start.as_ref());
 
@@ -1169,11 +1177,11 @@ mod tests {
         let (n, block) = (1000, 8);
         let mut memory = SliceMemory::default();
         memory.expect(n, 40, block);
-        memory.fit(n, basis_columns(30, block));
+        memory.fit(n, basis_columns(30, block), locked_columns(30, block));
         let reserved = memory.basis.capacity();
         assert!(reserved >= n * basis_columns(40, block));
         let start = memory.basis.as_ptr();
-        memory.fit(n, basis_columns(40, block));
+        memory.fit(n, basis_columns(40, block), locked_columns(40, block));
         assert_eq!(
             memory.basis.as_ptr(),
             start,
@@ -1182,11 +1190,11 @@ mod tests {
         assert_eq!(memory.basis.capacity(), reserved);
 
         memory.expect(n / 4, 40, block);
-        memory.fit(n / 4, basis_columns(40, block));
+        memory.fit(n / 4, basis_columns(40, block), locked_columns(40, block));
         assert!(memory.basis.capacity() <= 2 * (n / 4) * basis_columns(40, block));
 
         let mut unexpected = SliceMemory::default();
-        unexpected.fit(n, basis_columns(30, block));
+        unexpected.fit(n, basis_columns(30, block), locked_columns(30, block));
         assert!(unexpected.basis.capacity() < n * basis_columns(40, block));
     }
 }
