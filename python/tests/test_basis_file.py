@@ -386,7 +386,8 @@ def test_every_product_reports_each_pass_to_its_end(saved):
     expected_c, expected_rest = plain.coefficients(mesh, field)
     assert np.array_equal(c, expected_c) and rest == expected_rest
     filtered, _ = f.filter(mesh, field, progress=heard, **FILTER)
-    assert stages(heard.passes()) == ["projecting", "synthesising", "synthesising"]
+    # The filter's two syntheses (the rest outside the basis, the output) share one pass.
+    assert stages(heard.passes()) == ["projecting", "synthesising"]
     assert np.array_equal(filtered, plain.filter(mesh, field, **FILTER)[0])
     sets = np.random.default_rng(4).normal(size=(3, K))
     assert np.array_equal(f.synthesize(mesh, sets, progress=heard), plain.synthesize(mesh, sets))

@@ -140,9 +140,6 @@ impl SpectralFilter {
             return Err(FilterError::NonFiniteField { index });
         }
         let coefficients = basis.coefficients(field)?;
-        let represented = basis.reconstruct(&coefficients)?;
-        let rest: Vec<f64> = field.iter().zip(&represented).map(|(v, u)| v - u).collect();
-        let rest_norm = basis.inner_product(&rest, &rest).max(0.0).sqrt();
         let gains = self.gains(basis);
         let filtered_coefficients: Vec<f64> = coefficients
             .iter()
@@ -154,7 +151,13 @@ impl SpectralFilter {
             .zip(&gains)
             .map(|(c, g)| (g - self.rest_gain) * c)
             .collect();
-        let mut output = basis.reconstruct(&delta)?;
+        // Both syntheses in one pass over the basis (one read of a basis file, not two).
+        let [represented, mut output]: [Vec<f64>; 2] = basis
+            .reconstruct_many(&[&coefficients, &delta])?
+            .try_into()
+            .expect("one synthesis per coefficient set");
+        let rest: Vec<f64> = field.iter().zip(&represented).map(|(v, u)| v - u).collect();
+        let rest_norm = basis.inner_product(&rest, &rest).max(0.0).sqrt();
         output
             .iter_mut()
             .zip(field)
