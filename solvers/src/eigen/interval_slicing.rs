@@ -953,9 +953,8 @@ fn solve_interval(
     let attempt = solve_at_shift(request, interval, options, memory, &factor, count, report);
     match attempt {
         Ok((mut values, (first, found))) => {
-            let mut vectors = memory
-                .vectors(pencil.dimension(), first + found)
-                .subcols_mut(first, found);
+            let (vectors, scratch) = memory.vectors_and_scratch(pencil.dimension(), first + found);
+            let mut vectors = vectors.subcols_mut(first, found);
             // Refined here, while the factorization is at hand, not in a later phase that
             // would have to keep every interval's factorization alive.
             let factor_at = |shift: f64| {
@@ -965,10 +964,10 @@ fn solve_interval(
             };
             let refinement = refine_interval(
                 &pencil.operators(),
-                &factor,
+                factor,
                 &factor_at,
                 &mut values,
-                vectors.rb_mut(),
+                (vectors.rb_mut(), scratch),
                 &RefinementSettings {
                     target: options.refinement_target,
                     floor: 1e-8 * pencil.mean_eigenvalue.abs(),

@@ -9,7 +9,7 @@ use crate::convert::upper_triangle_csc;
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
 use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::{Mat, MatRef, Par};
+use faer::{Mat, MatMut, MatRef, Par};
 
 /// The mass matrix of a pencil, as given by the caller.
 #[derive(Debug, Clone, Copy)]
@@ -34,13 +34,22 @@ pub(crate) enum Mass<'a> {
 impl Mass<'_> {
     /// `M x` (`n × s`) for the `n × s` block `x`.
     pub(crate) fn times(self, x: MatRef<'_, f64>) -> Mat<f64> {
+        let mut out = Mat::<f64>::zeros(x.nrows(), x.ncols());
+        self.times_into(x, out.as_mut());
+        out
+    }
+
+    /// `out ← M x` for the `n × s` blocks `x` and `out`.
+    pub(crate) fn times_into(self, x: MatRef<'_, f64>, mut out: MatMut<'_, f64>) {
         match self {
-            Mass::Diagonal(mass) => Mat::from_fn(x.nrows(), x.ncols(), |i, j| mass[i] * x[(i, j)]),
-            Mass::Sparse(m) => {
-                let mut out = Mat::<f64>::zeros(x.nrows(), x.ncols());
-                super::symmetric_products::symmetric_times(out.as_mut(), m, x, Par::Seq);
-                out
+            Mass::Diagonal(mass) => {
+                for j in 0..x.ncols() {
+                    for (i, m) in mass.iter().enumerate() {
+                        out[(i, j)] = m * x[(i, j)];
+                    }
+                }
             }
+            Mass::Sparse(m) => super::symmetric_products::symmetric_times(out, m, x, Par::Seq),
         }
     }
 

@@ -319,18 +319,21 @@ pub(crate) struct Refinement {
 /// the worst pair (if it does not cut that residual by a quarter ([`TRIAL_GAIN`]), no step will
 /// help any: the interval sits
 /// at the accuracy of its solves), then up to [`MAX_REFINEMENT_STEPS`] steps of
-/// [`refine_columns`], each on the pairs the previous step improved that still miss the target.
+/// [`refine_columns`], each on the pairs the previous step improved that still miss the target,
+/// then [`refine_stubborn_pairs`] after `factor` is released. `scratch` (`n × 2s` at least,
+/// stale values: the slice's idle Krylov basis) holds every `n`-row block the steps need.
 ///
 /// Errors: [`SolverError::NoConvergence`] if a step loses a vector.
 pub(crate) fn refine_interval(
     operators: &PencilOperators<'_>,
-    factor: &ShiftFactor,
+    factor: Arc<ShiftFactor>,
     factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
     values: &mut Vec<f64>,
-    mut vectors: MatMut<'_, f64>,
+    (mut vectors, mut scratch): (MatMut<'_, f64>, MatMut<'_, f64>),
     settings: &RefinementSettings,
 ) -> Result<Refinement, SolverError> {
     let clock = ThreadClock::start();
+    let solve_cost = factor.refined_solve_cost();
     let mut outcome = Refinement::default();
     let residual_of = |values: &[f64], vectors: MatRef<'_, f64>| {
         field_residuals(
@@ -353,7 +356,7 @@ pub(crate) fn refine_interval(
         outcome.solves += 1;
         if step_helps(
             operators,
-            factor,
+            &factor,
             vectors.rb(),
             worst,
             before[worst].residual,
@@ -362,8 +365,8 @@ pub(crate) fn refine_interval(
             for _ in 0..MAX_REFINEMENT_STEPS {
                 *values = refine_columns(
                     operators,
-                    factor,
-                    vectors.rb_mut(),
+                    &factor,
+                    (vectors.rb_mut(), scratch.rb_mut()),
                     &which,
                     settings.parallelism,
                 )?;
@@ -385,55 +388,79 @@ pub(crate) fn refine_interval(
             }
         }
     }
-    // Pairs still far above the target are at the accuracy of solves at the interval's shift
-    // (components along eigenvectors near the interval's ends are hardly damped by it, and the
-    // lowest pairs' eigenfields amplify them most): one step at a shift next to each of them.
+    // The interval's factorization is not needed any more: released before a near shift's
+    // is made, so that the two are never in memory together.
+    drop(factor);
+    refine_stubborn_pairs(
+        operators,
+        factor_at,
+        values,
+        (vectors, scratch),
+        &before,
+        settings,
+        &mut outcome,
+    );
+    // A mixed pencil's solves are refined once (two solves each).
+    outcome.solves *= solve_cost;
+    (outcome.wall_seconds, outcome.cpu_seconds) = clock.elapsed();
+    Ok(outcome)
+}
+
+/// The pairs of an interval whose residual `before` still misses [`NEAR_SHIFT_FACTOR`] times
+/// the target after the steps at the interval's shift (at most [`MAX_NEAR_SHIFT_PAIRS`], the
+/// worst first) are at the accuracy of solves at that shift: components along eigenvectors near
+/// the interval's ends are hardly damped by it, and the lowest pairs' eigenfields amplify them
+/// most. Each gets one step at a shift next to its eigenvalue ([`near_shift_steps`], in
+/// `scratch`, `n × s` at least), kept only if the worst residual improves; best effort: a failed
+/// factorization or a lost vector leaves the pairs as they are (their residuals are reported
+/// either way). Adds what it did to `outcome` (solves before the mixed pencil's factor 2).
+fn refine_stubborn_pairs(
+    operators: &PencilOperators<'_>,
+    factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
+    values: &mut Vec<f64>,
+    (mut vectors, scratch): (MatMut<'_, f64>, MatMut<'_, f64>),
+    before: &[FieldResidual],
+    settings: &RefinementSettings,
+    outcome: &mut Refinement,
+) {
     let mut stubborn: Vec<usize> = (0..before.len())
         .filter(|&j| before[j].misses(NEAR_SHIFT_FACTOR * settings.target))
         .collect();
     stubborn.sort_by(|&i, &j| before[j].residual.total_cmp(&before[i].residual));
     stubborn.truncate(MAX_NEAR_SHIFT_PAIRS);
-    if !stubborn.is_empty() {
-        outcome.solves += stubborn.len();
-        // Best effort: a failed factorization or a lost vector leaves the pairs as they are
-        // (their residuals are reported either way), and so does a result that is not better.
-        let stepped = near_shift_steps(
-            operators,
-            factor_at,
-            values,
-            vectors.rb(),
-            &stubborn,
-            settings,
-        );
-        let worst = |r: &[FieldResidual]| r.iter().map(|r| r.residual).fold(0.0, f64::max);
-        if let Some((new_values, new_vectors, after)) = stepped {
-            if after.iter().all(|r| r.residual.is_finite()) && worst(&after) < worst(&before) {
-                outcome.refined = outcome.refined.max(stubborn.len());
-                *values = new_values;
-                vectors.copy_from(&new_vectors);
-            }
-        }
+    if stubborn.is_empty() {
+        return;
     }
-    // A mixed pencil's solves are refined once (two solves each).
-    outcome.solves *= factor.refined_solve_cost();
-    (outcome.wall_seconds, outcome.cpu_seconds) = clock.elapsed();
-    Ok(outcome)
+    outcome.solves += stubborn.len();
+    let s = vectors.ncols();
+    let mut trial = scratch.subcols_mut(0, s);
+    trial.copy_from(vectors.rb());
+    let Some((new_values, after)) =
+        near_shift_steps(operators, factor_at, values, trial.rb_mut(), &stubborn, settings)
+    else {
+        return;
+    };
+    let worst = |r: &[FieldResidual]| r.iter().map(|r| r.residual).fold(0.0, f64::max);
+    if after.iter().all(|r| r.residual.is_finite()) && worst(&after) < worst(before) {
+        outcome.refined = outcome.refined.max(stubborn.len());
+        *values = new_values;
+        vectors.copy_from(trial.rb());
+    }
 }
 
-/// One inverse-iteration step for each column in `pairs` of the `n × s` eigenvectors
-/// `vectors`, at a shift of its own (`λ_j − gap/100`, `gap` the distance to the nearest
+/// One inverse-iteration step for each column in `pairs` of the `n × s` eigenvectors `trial`,
+/// in place, at a shift of its own (`λ_j − gap/100`, `gap` the distance to the nearest
 /// neighbouring eigenvalue or to 0), then the Rayleigh–Ritz on the span of all columns.
-/// Returns the new values, vectors and field residuals, or `None` if a factorization fails or
-/// a vector is lost.
+/// Returns the new values and field residuals, or `None` if a factorization fails or a vector
+/// is lost (`trial` then holds no useful values).
 fn near_shift_steps(
     operators: &PencilOperators<'_>,
     factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
     values: &[f64],
-    vectors: MatRef<'_, f64>,
+    mut trial: MatMut<'_, f64>,
     pairs: &[usize],
     settings: &RefinementSettings,
-) -> Option<(Vec<f64>, Mat<f64>, Vec<FieldResidual>)> {
-    let mut trial = vectors.to_owned();
+) -> Option<(Vec<f64>, Vec<FieldResidual>)> {
     for &j in pairs {
         let gap = [j.checked_sub(1), Some(j + 1)]
             .into_iter()
@@ -442,50 +469,57 @@ fn near_shift_steps(
             .map(|v| (v - values[j]).abs())
             .fold(values[j].abs(), f64::min);
         let near = factor_at(values[j] - 0.01 * gap).ok()?;
-        let mut z = operators.mass.times(trial.as_ref().subcols(j, 1));
+        let mut z = operators.mass.times(trial.rb().subcols(j, 1));
         near.solve_in_place(z.as_mut());
         let norm = mass_inner(z.as_ref(), operators.mass, z.as_ref(), Par::Seq)[(0, 0)].sqrt();
         if !(norm.is_finite() && norm > 0.0) {
             return None;
         }
-        trial.col_mut(j).copy_from(z.col(0) / norm);
+        trial.rb_mut().col_mut(j).copy_from(z.col(0) / norm);
     }
     let new_values = rayleigh_ritz(
         operators.stiffness,
         operators.mass,
-        trial.as_mut(),
+        trial.rb_mut(),
         settings.parallelism,
     )
     .ok()?;
     let residuals = field_residuals(
         operators,
         &new_values,
-        trial.as_ref(),
+        trial.rb(),
         settings.floor,
         settings.parallelism,
     );
-    Some((new_values, trial, residuals))
+    Some((new_values, residuals))
 }
 
 /// Refines the columns `which` of the `n × s` eigenvectors `vectors` (M-orthonormal, one
 /// interval's) with `factor = LDLᵀ(A − σM)`: `z = (A − σM)⁻¹ M x`, M-normalised, replaces `x`,
 /// and a Rayleigh–Ritz against `A` on the span of all `s` columns gives the new ascending values
-/// (returned) and M-orthonormal vectors (in place).
+/// (returned) and M-orthonormal vectors (in place). `scratch` (`n × 2·which.len()` at least, the
+/// idle Krylov basis of the slice) holds the selected columns and their steps, so that no
+/// `n`-row block is allocated (two of `n × s` at most: 2.1 GB for a co-potential interval at a
+/// million faces).
 ///
 /// Errors: [`SolverError::NoConvergence`] if the refined columns become dependent.
 pub(crate) fn refine_columns(
     operators: &PencilOperators<'_>,
     factor: &ShiftFactor,
-    mut vectors: MatMut<'_, f64>,
+    (mut vectors, scratch): (MatMut<'_, f64>, MatMut<'_, f64>),
     which: &[usize],
     par: Par,
 ) -> Result<Vec<f64>, SolverError> {
     let n = vectors.nrows();
     let mass = operators.mass;
-    let selected = Mat::from_fn(n, which.len(), |i, j| vectors[(i, which[j])]);
-    let mut z = mass.times(selected.as_ref());
-    factor.solve_in_place(z.as_mut());
-    let norms = mass_inner(z.as_ref(), mass, z.as_ref(), par);
+    let (mut selected, rest) = scratch.split_at_col_mut(which.len());
+    let mut z = rest.subcols_mut(0, which.len());
+    for (j, &column) in which.iter().enumerate() {
+        selected.rb_mut().col_mut(j).copy_from(vectors.rb().col(column));
+    }
+    mass.times_into(selected.rb(), z.rb_mut());
+    factor.solve_in_place(z.rb_mut());
+    let norms = mass_inner(z.rb(), mass, z.rb(), par);
     for (j, &column) in which.iter().enumerate() {
         let norm = norms[(j, j)].sqrt();
         if !(norm.is_finite() && norm > 0.0) {
@@ -497,7 +531,7 @@ pub(crate) fn refine_columns(
         let sign = if mass_inner(
             vectors.rb().subcols(column, 1),
             mass,
-            z.as_ref().subcols(j, 1),
+            z.rb().subcols(j, 1),
             Par::Seq,
         )[(0, 0)]
             < 0.0
