@@ -59,7 +59,9 @@
 //! time (numbers in `docs/performance.md`).
 
 use super::file_backed_columns::{FileBackedColumns, ParkedColumns};
-use super::interval_stream::{jobs_in_interval_order, IntervalStream, RawColumns, SolvedPart};
+use super::interval_stream::{
+    jobs_in_interval_order, remove_projection_by_chunks, IntervalStream, RawColumns, SolvedPart,
+};
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::mass::Mass;
 use super::pencil::{Pencil, ShiftCount};
@@ -70,7 +72,6 @@ use super::refinement::{
 use super::shift_factor::ShiftFactor;
 use super::slice_memory::{default_slice_memory, interval_size_within, slice_bytes, MemoryGate};
 use super::statistics::{Phase, PhaseClock, SolverStatistics};
-use super::tall_products::remove_mass_projection;
 use super::types::{
     EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors,
 };
@@ -1230,7 +1231,7 @@ fn orthogonalize_neighbours(
         let (before, after) = vectors.rb_mut().split_at_col_mut(middle);
         let earlier = before.rb().subcols(start, earlier);
         let current = after.subcols_mut(0, current.min(k - middle));
-        remove_mass_projection(current, earlier, mass, par);
+        remove_projection_by_chunks(current, earlier, mass, par, |_, _| {});
         start = middle;
     }
 }

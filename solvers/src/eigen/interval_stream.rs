@@ -21,6 +21,7 @@ use super::refinement::{field_residuals, FieldResidual};
 use super::tall_products::remove_mass_projection;
 use super::types::{EigenvectorSink, FinishedEigenvectors};
 use crate::error::SolverError;
+use faer::reborrow::ReborrowMut;
 use faer::{MatMut, MatRef, Par};
 use std::collections::HashMap;
 
@@ -207,8 +208,20 @@ impl PlanStream<'_> {
             if start < k {
                 let current = part.values.len().min(k - start);
                 let earlier = self.columns.columns(first, count);
-                let current = self.columns.columns_mut(start, current);
-                remove_mass_projection(current, earlier, self.mass(), par);
+                let columns = self.columns;
+                // Each chunk leaves memory again once orthogonalised (it waits on disk to be
+                // handed on), so that only the held part and one chunk are in memory.
+                remove_projection_by_chunks(
+                    columns.columns_mut(start, current),
+                    earlier,
+                    self.mass(),
+                    par,
+                    |offset, width| {
+                        if let Some(parked) = ParkedColumns::of(&columns, start + offset, width) {
+                            parked.park();
+                        }
+                    },
+                );
             }
             self.hand_on(first, count, sink, par)?;
         }
@@ -222,7 +235,7 @@ impl PlanStream<'_> {
     }
 
     /// Hands columns `first..first + count` (cut at `k`) to `sink` with their field residuals,
-    /// then releases their memory.
+    /// [`STREAM_COLUMNS`] at a time, each chunk's memory released right after it.
     unsafe fn hand_on(
         &mut self,
         first: usize,
@@ -235,25 +248,60 @@ impl PlanStream<'_> {
         if width == 0 {
             return Ok(());
         }
-        let vectors = self.columns.columns(first, width);
-        let values = &self.values[first..first + width];
         let floor = 1e-8 * self.pencil.mean_eigenvalue.abs();
-        self.residuals.extend(field_residuals(
-            &self.pencil.operators(),
-            values,
-            vectors,
-            floor,
-            par,
-        ));
-        sink(&FinishedEigenvectors {
-            request: self.request,
-            first,
-            values,
-            vectors,
-        })
-        .map_err(|reason| SolverError::Stopped { reason })?;
-        drop_columns(&self.columns, first, width);
+        for offset in (0..width).step_by(STREAM_COLUMNS) {
+            let (first, width) = (first + offset, STREAM_COLUMNS.min(width - offset));
+            let vectors = self.columns.columns(first, width);
+            let values = &self.values[first..first + width];
+            self.residuals.extend(field_residuals(
+                &self.pencil.operators(),
+                values,
+                vectors,
+                floor,
+                par,
+            ));
+            sink(&FinishedEigenvectors {
+                request: self.request,
+                first,
+                values,
+                vectors,
+            })
+            .map_err(|reason| SolverError::Stopped { reason })?;
+            drop_columns(&self.columns, first, width);
+        }
         Ok(())
+    }
+}
+
+/// Columns of an interval orthogonalised or handed on at a time (a multiple of the packed
+/// chunks of `field_residuals`, so that its columns are grouped as in one call): on the
+/// streamed path each chunk comes into memory, is worked on and leaves again, so that an
+/// interval being placed is not in memory whole beside the held one (two co-potential
+/// intervals of a million-face mesh were 2.0 GB of mapped file pages at the peak; measured in
+/// `docs/performance.md`).
+pub(super) const STREAM_COLUMNS: usize = 16;
+
+/// `current ← current − earlier (earlierᵀ M current)` ([`remove_mass_projection`]) on
+/// [`STREAM_COLUMNS`] columns of `current` at a time, calling `done(offset, width)` after each
+/// chunk. The whole-matrix assembly (`interval_slicing.rs`, `orthogonalize_neighbours`) takes
+/// the same chunks, so that both give the same vectors bit for bit.
+pub(super) fn remove_projection_by_chunks(
+    mut current: MatMut<'_, f64>,
+    earlier: MatRef<'_, f64>,
+    mass: Mass<'_>,
+    par: Par,
+    mut done: impl FnMut(usize, usize),
+) {
+    let count = current.ncols();
+    for offset in (0..count).step_by(STREAM_COLUMNS) {
+        let width = STREAM_COLUMNS.min(count - offset);
+        remove_mass_projection(
+            current.rb_mut().subcols_mut(offset, width),
+            earlier,
+            mass,
+            par,
+        );
+        done(offset, width);
     }
 }
 
