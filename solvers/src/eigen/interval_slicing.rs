@@ -36,8 +36,9 @@
 //!
 //! The result is complete by construction: interval `i` must return exactly its count, so the
 //! total is `ν(σ_top) ≥ k`, every eigenvalue below `σ_top`. Vectors of neighbouring intervals
-//! are M-orthogonalised against each other at the end (their eigenvalues differ by at least the
-//! distance across a boundary, but that can be small).
+//! are M-orthogonalised against each other (their eigenvalues differ by at least the distance
+//! across a boundary, but that can be small) and their field residuals taken as soon as both
+//! intervals are solved, while the other jobs run ([`super::interval_stream`]).
 //!
 //! Memory: each job writes its refined eigenvectors straight into its columns of the pencil's
 //! `n × k` result (reserved up front, so each column is touched once, by its job: the views over
@@ -59,11 +60,8 @@
 //! time (numbers in `docs/performance.md`).
 
 use super::file_backed_columns::{FileBackedColumns, ParkedColumns};
-use super::interval_stream::{
-    jobs_in_interval_order, remove_projection_by_chunks, IntervalStream, RawColumns, SolvedPart,
-};
+use super::interval_stream::{jobs_in_interval_order, IntervalStream, RawColumns, SolvedPart};
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
-use super::mass::Mass;
 use super::pencil::{Pencil, ShiftCount};
 use super::rayleigh_ritz::rayleigh_ritz;
 use super::refinement::{
@@ -153,7 +151,7 @@ pub fn lowest_eigenpairs_of(
     let gate = MemoryGate::new(budget, job_memory(requests, options, &plans, &jobs));
     let streaming = options.finished.is_some();
     let (eigenvectors, files, columns) = eigenvector_storage(requests, &plans, streaming);
-    let (intervals, streamed) =
+    let (intervals, assembled) =
         solve_intervals(requests, options, &plans, (&jobs, &gate), &columns)?;
     drop(files);
     statistics.peak_slice_memory = gate.peak();
@@ -163,24 +161,23 @@ pub fn lowest_eigenpairs_of(
         statistics.refinement.cpu_seconds += part.refinement.cpu_seconds;
     }
     let mut residuals: Vec<Option<Vec<FieldResidual>>> = vec![None; requests.len()];
-    match streamed {
-        Some(streamed) => {
-            for (plan, (values, field)) in plans.iter().zip(streamed) {
-                let request = &requests[plan.request];
-                let values = checked_values(plan, request, values).map_err(fail(plan.request))?;
-                let vectors = Mat::zeros(request.pencil.dimension(), 0);
-                pairs[plan.request] = Some((values, vectors));
-                residuals[plan.request] = Some(field);
+    let mut eigenvectors = eigenvectors.into_iter();
+    for (plan, (values, field)) in plans.iter().zip(assembled) {
+        let request = &requests[plan.request];
+        let values = checked_values(plan, request, values).map_err(fail(plan.request))?;
+        let (n, k) = (request.pencil.dimension(), request.count);
+        let vectors = match eigenvectors.next() {
+            Some(mut vectors) => {
+                // SAFETY: every job of the plan returned, and each wrote all the columns of
+                // its part of the reserved `n × k` (checked in `solve_job`); the parts cover
+                // columns `0..k`.
+                unsafe { vectors.set_dims(n, k) };
+                vectors
             }
-        }
-        None => {
-            for ((plan, parts), vectors) in plans.iter().zip(intervals).zip(eigenvectors) {
-                let request = &requests[plan.request];
-                let assembled = assemble_plan(plan, request, parts, vectors, options.parallelism)
-                    .map_err(fail(plan.request))?;
-                pairs[plan.request] = Some(assembled);
-            }
-        }
+            None => Mat::zeros(n, 0),
+        };
+        pairs[plan.request] = Some((values, vectors));
+        residuals[plan.request] = Some(field);
     }
     let mut results = Vec::with_capacity(requests.len());
     for (r, ((request, found), field)) in requests.iter().zip(pairs).zip(residuals).enumerate() {
@@ -439,9 +436,10 @@ fn widest_slices(
 /// room for another slice, see [`run_jobs`]), each
 /// writing its eigenvectors into its columns of its plan's memory `columns[p]` (reserved
 /// `n × k`, one per plan); returns the solved intervals of each plan (in no particular order).
-/// On success every column `0..k` of every plan was written; with
-/// [`EigenOptions::finished`], every column was handed to it instead (and released), and the
-/// second result holds each plan's eigenvalues and field residuals ([`IntervalStream`]).
+/// On success every column `0..k` of every plan was written and assembled (M-orthogonalised
+/// against its neighbours, [`IntervalStream`]); with [`EigenOptions::finished`], every column
+/// was handed to it instead (and released). The second result holds each plan's eigenvalues
+/// (all of them, in column order) and field residuals (of its first `k` columns).
 #[allow(clippy::type_complexity)]
 fn solve_intervals(
     requests: &[EigenRequest<'_, '_>],
@@ -452,20 +450,18 @@ fn solve_intervals(
 ) -> Result<
     (
         Vec<Vec<SolvedInterval>>,
-        Option<Vec<(Vec<f64>, Vec<FieldResidual>)>>,
+        Vec<(Vec<f64>, Vec<FieldResidual>)>,
     ),
     RequestError,
 > {
     let settings = IntervalSettings::of(options);
     let outputs = job_outputs(plans, jobs, columns);
-    let mut stream = options.finished.map(|sink| {
-        let streams = plans
-            .iter()
-            .zip(columns)
-            .map(|(plan, &columns)| (plan.request, requests[plan.request].pencil, columns))
-            .collect();
-        IntervalStream::new(streams, jobs, sink, options.parallelism)
-    });
+    let streams = plans
+        .iter()
+        .zip(columns)
+        .map(|(plan, &columns)| (plan.request, requests[plan.request].pencil, columns))
+        .collect();
+    let mut stream = IntervalStream::new(streams, jobs, options.finished, options.parallelism);
     let slice_memory = WorkspacePool::<SliceMemory>::new(jobs.len());
     // Streamed, each job's columns leave memory as it finishes, on the job's thread: the
     // calling thread places them only when its products get a worker of the pool the jobs
@@ -475,8 +471,8 @@ fn solve_intervals(
         .enumerate()
         .map(|(job, &(p, _))| {
             let (first, width) = job_columns(plans, columns, jobs, job);
-            stream
-                .as_ref()
+            options
+                .finished
                 .and(ParkedColumns::of(&columns[p], first, width))
         })
         .collect();
@@ -512,9 +508,6 @@ fn solve_intervals(
     let mut board = ProgressBoard::new(requests, plans, jobs, options.progress);
     let mut on_message = |job: usize, found: usize, done: bool| board.record(job, found, done);
     let mut on_result = |job: usize, parts: &Vec<SolvedInterval>| {
-        let Some(stream) = stream.as_mut() else {
-            return Ok(());
-        };
         let parts = parts
             .iter()
             .map(|part| SolvedPart {
@@ -538,7 +531,7 @@ fn solve_intervals(
     for (&(p, _), parts) in jobs.iter().zip(solved) {
         intervals[p].extend(parts);
     }
-    Ok((intervals, stream.map(IntervalStream::into_results)))
+    Ok((intervals, stream.into_results()))
 }
 
 /// The columns `(first, width)` of plan `p`'s eigenvectors that job `job = (p, i)` fills:
@@ -567,8 +560,8 @@ fn job_outputs<'m>(
         // SAFETY: the memory has room for `k` columns of `n` rows at its column stride
         // (reserved by the caller, and kept until the jobs are done); the views only write
         // (each job its own columns, all of them, checked in `solve_job` before the columns
-        // become part of a matrix with `set_dims` in `assemble_plan` or are handed on by the
-        // [`IntervalStream`]).
+        // become part of a matrix with `set_dims` in `lowest_eigenpairs_of` or are handed on by
+        // the [`IntervalStream`]).
         let mut rest = unsafe {
             MatMut::from_raw_parts_mut(raw.ptr, raw.rows, raw.k, 1, raw.col_stride as isize)
         };
@@ -682,30 +675,6 @@ impl<'r, 'p> ProgressBoard<'r, 'p> {
             solves: pencil_statistics.solves(),
         });
     }
-}
-
-/// Phase 3, assembly of one plan: its solved `parts` and the `n × k` matrix their jobs wrote
-/// (all columns, see [`solve_intervals`]); the vectors of neighbouring intervals are
-/// M-orthogonalised against each other, and the values checked against the plan's top count
-/// (all of them, ascending) before they are cut to the request's `k`.
-fn assemble_plan(
-    plan: &Plan,
-    request: &EigenRequest<'_, '_>,
-    mut parts: Vec<SolvedInterval>,
-    mut vectors: Mat<f64>,
-    par: Par,
-) -> Result<(Vec<f64>, Mat<f64>), SolverError> {
-    let (n, k) = (request.pencil.dimension(), request.count);
-    // SAFETY: every job of the plan returned, and each wrote all the columns of its part of
-    // the reserved `n × k` (checked in `solve_job`); the parts cover columns `0..k`.
-    unsafe { vectors.set_dims(n, k) };
-    parts.sort_by(|a, b| a.lower.total_cmp(&b.lower));
-    orthogonalize_neighbours(&parts, vectors.as_mut(), request.pencil.mass(), par);
-    let values: Vec<f64> = parts
-        .iter()
-        .flat_map(|part| part.values.iter().copied())
-        .collect();
-    Ok((checked_values(plan, request, values)?, vectors))
 }
 
 /// The eigenvalues of every interval of `plan` in order, checked against its top count (all of
@@ -1204,36 +1173,6 @@ fn run_jobs<T: Send>(
         return Err(error.clone());
     }
     Ok(results.into_iter().flatten().flatten().collect())
-}
-
-/// Restores M-orthogonality across interval boundaries: `X_i ← X_i − X_p (X_pᵀ M X_i)` with
-/// `p` the previous non-empty interval, on the columns of `vectors` (`n × k`) that `parts`
-/// (ascending) fill in order. Eigenvectors of different intervals are orthogonal
-/// only up to `residual·‖A‖ / gap`, and the gap across a boundary can be small (see
-/// `docs/performance.md` for the loss of orthogonality without this step).
-/// Intervals further apart are separated by at least an interval's width. Costs two
-/// `n × s × s` products per boundary; the change of each vector is of the size of that error,
-/// so residuals and in-interval orthonormality stay as they were.
-fn orthogonalize_neighbours(
-    parts: &[SolvedInterval],
-    mut vectors: MatMut<'_, f64>,
-    mass: Mass<'_>,
-    par: Par,
-) {
-    let k = vectors.ncols();
-    let mut start = 0;
-    for pair in parts.windows(2) {
-        let (earlier, current) = (pair[0].values.len(), pair[1].values.len());
-        let middle = start + earlier;
-        if middle >= k {
-            break;
-        }
-        let (before, after) = vectors.rb_mut().split_at_col_mut(middle);
-        let earlier = before.rb().subcols(start, earlier);
-        let current = after.subcols_mut(0, current.min(k - middle));
-        remove_projection_by_chunks(current, earlier, mass, par, |_, _| {});
-        start = middle;
-    }
 }
 
 #[cfg(test)]

@@ -1,18 +1,23 @@
-//! [`IntervalStream`]: the eigenvectors of solved intervals handed to the caller's sink
-//! ([`EigenOptions::finished`](super::types::EigenOptions::finished)) as soon as they are final,
-//! and their memory given back, so that a request's `n × k` eigenvectors are never all in memory.
+//! [`IntervalStream`]: the solved intervals of every plan assembled as their jobs finish, so
+//! that the assembly's work overlaps the jobs still running instead of following them all;
+//! with a sink ([`EigenOptions::finished`](super::types::EigenOptions::finished)) the final
+//! eigenvectors are handed to it and their memory given back, so that a request's `n × k`
+//! eigenvectors are never all in memory.
 //!
-//! A vector is final once it is M-orthogonalised against the previous interval (the assembly of
-//! `interval_slicing.rs`, `orthogonalize_neighbours`) and the next interval has been
-//! orthogonalised against it. So the intervals of a plan are taken in ascending order as their
-//! jobs finish (the jobs of a streamed call run in that order, see `interval_jobs`): each part
-//! (an interval, or a half of a split one) is orthogonalised against the part before it, which
-//! is then handed on. The same products on the same columns as the assembly of a whole matrix
-//! give the same vectors bit for bit. Every job's columns leave memory as the job finishes (on
-//! its own thread: the calling thread that places the intervals shares rayon's pool with the
-//! jobs, and its products can wait minutes for a free worker, so Done messages queue up), an
-//! interval waits on disk until it is placed, and handed-on columns are given back
-//! ([`super::file_backed_columns`]).
+//! A vector is final once it is M-orthogonalised against the previous interval and the next
+//! interval has been orthogonalised against it. So the intervals of a plan are taken in
+//! ascending order as their jobs finish (the jobs of a streamed call run in that order, see
+//! `interval_jobs`; otherwise an interval waits until the one before it is solved): each part
+//! (an interval, or a half of a split one) is orthogonalised against the part before it, whose
+//! field residuals are then taken and which is handed on. Without a sink the columns stay in
+//! the `n × k` matrix the jobs wrote (a mixed or sparse-mass pencil's eigenfields are formed by
+//! the caller from the whole result): on `bunny-closed.obj` with Galerkin masses the residuals
+//! of every pair after the last job were the slowest part of the end (measured in
+//! `docs/performance.md`). With a sink, every job's columns leave memory as the job finishes
+//! (on its own thread: the calling thread that places the intervals shares rayon's pool with
+//! the jobs, and its products can wait minutes for a free worker, so Done messages queue up),
+//! an interval waits on disk until it is placed, and handed-on columns are given back
+//! ([`super::file_backed_columns`]). Both give the same vectors bit for bit.
 
 use super::file_backed_columns::{drop_columns, ParkedColumns};
 use super::mass::Mass;
@@ -101,7 +106,9 @@ pub(crate) struct IntervalStream<'s> {
     plans: Vec<PlanStream<'s>>,
     /// Plan and interval of each job.
     jobs: &'s [(usize, usize)],
-    sink: &'s EigenvectorSink<'s>,
+    /// Where final columns go; `None`: they stay where the jobs wrote them (the whole
+    /// `n × k` result), and only their field residuals are taken.
+    sink: Option<&'s EigenvectorSink<'s>>,
     par: Par,
 }
 
@@ -111,7 +118,7 @@ impl<'s> IntervalStream<'s> {
     pub(crate) fn new(
         plans: Vec<(usize, &'s Pencil<'s>, RawColumns)>,
         jobs: &'s [(usize, usize)],
-        sink: &'s EigenvectorSink<'s>,
+        sink: Option<&'s EigenvectorSink<'s>>,
         par: Par,
     ) -> Self {
         let plans = plans
@@ -193,13 +200,13 @@ impl<'s> IntervalStream<'s> {
 }
 
 impl PlanStream<'_> {
-    /// Places `part` after the parts before it: orthogonalises it against the held part (as
-    /// `orthogonalize_neighbours` does, columns past `k` left out), which is then final and
+    /// Places `part` after the parts before it: orthogonalises it against the held part
+    /// ([`remove_projection_by_chunks`], columns past `k` left out), which is then final and
     /// handed on.
     unsafe fn place(
         &mut self,
         part: SolvedPart,
-        sink: &EigenvectorSink<'_>,
+        sink: Option<&EigenvectorSink<'_>>,
         par: Par,
     ) -> Result<(), SolverError> {
         let k = self.columns.k;
@@ -234,13 +241,14 @@ impl PlanStream<'_> {
         self.pencil.mass()
     }
 
-    /// Hands columns `first..first + count` (cut at `k`) to `sink` with their field residuals,
-    /// [`STREAM_COLUMNS`] at a time, each chunk's memory released right after it.
+    /// Takes the field residuals of columns `first..first + count` (cut at `k`) and hands them
+    /// to `sink`, [`STREAM_COLUMNS`] at a time, each chunk's memory released right after it
+    /// (without a sink they stay).
     unsafe fn hand_on(
         &mut self,
         first: usize,
         count: usize,
-        sink: &EigenvectorSink<'_>,
+        sink: Option<&EigenvectorSink<'_>>,
         par: Par,
     ) -> Result<(), SolverError> {
         let k = self.columns.k;
@@ -260,32 +268,38 @@ impl PlanStream<'_> {
                 floor,
                 par,
             ));
-            sink(&FinishedEigenvectors {
-                request: self.request,
-                first,
-                values,
-                vectors,
-            })
-            .map_err(|reason| SolverError::Stopped { reason })?;
-            drop_columns(&self.columns, first, width);
+            if let Some(sink) = sink {
+                sink(&FinishedEigenvectors {
+                    request: self.request,
+                    first,
+                    values,
+                    vectors,
+                })
+                .map_err(|reason| SolverError::Stopped { reason })?;
+                drop_columns(&self.columns, first, width);
+            }
         }
         Ok(())
     }
 }
 
 /// Columns of an interval orthogonalised or handed on at a time (a multiple of the packed
-/// chunks of `field_residuals`, so that its columns are grouped as in one call): on the
-/// streamed path each chunk comes into memory, is worked on and leaves again, so that an
-/// interval being placed is not in memory whole beside the held one (two co-potential
-/// intervals of a million-face mesh were 2.0 GB of mapped file pages at the peak; measured in
+/// chunks of `field_residuals`, so that its columns are grouped as in one call): with a sink
+/// each chunk comes into memory, is worked on and leaves again, so that an interval being
+/// placed is not in memory whole beside the held one (two co-potential intervals of a
+/// million-face mesh were 2.0 GB of mapped file pages at the peak; measured in
 /// `docs/performance.md`).
-pub(super) const STREAM_COLUMNS: usize = 16;
+const STREAM_COLUMNS: usize = 16;
 
 /// `current ← current − earlier (earlierᵀ M current)` ([`remove_mass_projection`]) on
 /// [`STREAM_COLUMNS`] columns of `current` at a time, calling `done(offset, width)` after each
-/// chunk. The whole-matrix assembly (`interval_slicing.rs`, `orthogonalize_neighbours`) takes
-/// the same chunks, so that both give the same vectors bit for bit.
-pub(super) fn remove_projection_by_chunks(
+/// chunk: M-orthogonality restored across an interval boundary. Eigenvectors of different
+/// intervals are orthogonal only up to `residual·‖A‖ / gap`, and the gap across a boundary can
+/// be small (see `docs/performance.md` for the loss of orthogonality without this step);
+/// intervals further apart are separated by at least an interval's width. Costs two
+/// `n × s × s` products per boundary; the change of each vector is of the size of that error,
+/// so residuals and in-interval orthonormality stay as they were.
+fn remove_projection_by_chunks(
     mut current: MatMut<'_, f64>,
     earlier: MatRef<'_, f64>,
     mass: Mass<'_>,
