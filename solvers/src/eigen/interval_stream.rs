@@ -22,7 +22,7 @@
 use super::file_backed_columns::{drop_columns, ParkedColumns};
 use super::mass::Mass;
 use super::pencil::Pencil;
-use super::refinement::{field_residuals, FieldResidual};
+use super::refinement::{field_residuals_reusing, FieldResidual};
 use super::tall_products::remove_mass_projection;
 use super::types::{EigenvectorSink, FinishedEigenvectors};
 use crate::error::SolverError;
@@ -176,7 +176,7 @@ impl<'s> IntervalStream<'s> {
         }
         if plan.next == plan.order.len() {
             if let Some((first, count)) = plan.held.take() {
-                plan.hand_on(first, count, sink, par)?;
+                plan.hand_on(first, count, sink)?;
             }
         }
         // The part held for the next one waits on disk too (placing faulted it back in).
@@ -230,7 +230,7 @@ impl PlanStream<'_> {
                     },
                 );
             }
-            self.hand_on(first, count, sink, par)?;
+            self.hand_on(first, count, sink)?;
         }
         self.held = Some((start, part.values.len()));
         self.values.extend(part.values);
@@ -249,7 +249,6 @@ impl PlanStream<'_> {
         first: usize,
         count: usize,
         sink: Option<&EigenvectorSink<'_>>,
-        par: Par,
     ) -> Result<(), SolverError> {
         let k = self.columns.k;
         let width = (first + count).min(k).saturating_sub(first);
@@ -257,16 +256,20 @@ impl PlanStream<'_> {
             return Ok(());
         }
         let floor = 1e-8 * self.pencil.mean_eigenvalue.abs();
+        // One set of residual buffers for the whole interval, on this thread: parallel
+        // residuals made fresh buffers per chunk and per thread (0.8 GB per chunk at a million
+        // faces) and waited for workers the jobs occupy.
+        let mut buffers = None;
         for offset in (0..width).step_by(STREAM_COLUMNS) {
             let (first, width) = (first + offset, STREAM_COLUMNS.min(width - offset));
             let vectors = self.columns.columns(first, width);
             let values = &self.values[first..first + width];
-            self.residuals.extend(field_residuals(
+            self.residuals.extend(field_residuals_reusing(
                 &self.pencil.operators(),
                 values,
                 vectors,
                 floor,
-                par,
+                &mut buffers,
             ));
             if let Some(sink) = sink {
                 sink(&FinishedEigenvectors {

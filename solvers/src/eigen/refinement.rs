@@ -30,7 +30,8 @@ use super::sparse_summaries::{diagonal_of, max_column_sum};
 use super::statistics::ThreadClock;
 use super::stiffness::Stiffness;
 use super::symmetric_products::{
-    gather_times, gather_times_and_magnitudes, map_column_chunks, Row, CHUNK,
+    gather_times, gather_times_and_magnitudes, map_column_chunks, map_column_chunks_reusing,
+    ChunkBuffers, Row, CHUNK,
 };
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
@@ -60,25 +61,46 @@ pub(crate) fn field_residuals(
     floor: f64,
     par: Par,
 ) -> Vec<FieldResidual> {
-    let pencil = match (operators.stiffness, operators.mass) {
-        (Stiffness::Sparse(a), Mass::Diagonal(mass)) => Some(ChunkPencil {
-            a,
-            mass,
-            inverse_mass: mass.iter().map(|m| m.recip()).collect(),
-            diagonal: diagonal_of(a),
-            norm_a: max_column_sum(a),
-            floor,
-        }),
-        _ => None,
-    };
+    let pencil = ChunkPencil::of(operators, floor);
     let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
-        let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
-        match &pencil {
-            Some(pencil) => diagonal_chunk_residuals(pencil, &lambda, width, x, work),
-            None => general_chunk_residuals(operators, &lambda, width, x, work, floor),
-        }
+        residuals_of_chunk(operators, pencil.as_ref(), (values, first, width), x, work, floor)
     });
     chunks.into_iter().flatten().collect()
+}
+
+/// [`field_residuals`] on the calling thread, in `buffers` (see
+/// [`map_column_chunks_reusing`]): for the narrow blocks of the interval stream, which pass
+/// over an interval a few columns at a time.
+pub(crate) fn field_residuals_reusing(
+    operators: &PencilOperators<'_>,
+    values: &[f64],
+    vectors: MatRef<'_, f64>,
+    floor: f64,
+    buffers: &mut Option<ChunkBuffers>,
+) -> Vec<FieldResidual> {
+    let pencil = ChunkPencil::of(operators, floor);
+    let chunks = map_column_chunks_reusing(vectors, buffers, |first, width, x, work| {
+        residuals_of_chunk(operators, pencil.as_ref(), (values, first, width), x, work, floor)
+    });
+    chunks.into_iter().flatten().collect()
+}
+
+/// The [`FieldResidual`]s of the packed chunk `x` (columns `first..first + width` of the
+/// vectors whose eigenvalues are `values`), through `pencil` where the pencil has a diagonal
+/// mass and a sparse stiffness, else through `operators`.
+fn residuals_of_chunk(
+    operators: &PencilOperators<'_>,
+    pencil: Option<&ChunkPencil<'_>>,
+    (values, first, width): (&[f64], usize, usize),
+    x: &[Row],
+    work: &mut [Vec<Row>; 3],
+    floor: f64,
+) -> Vec<FieldResidual> {
+    let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
+    match pencil {
+        Some(pencil) => diagonal_chunk_residuals(pencil, &lambda, width, x, work),
+        None => general_chunk_residuals(operators, &lambda, width, x, work, floor),
+    }
 }
 
 /// The [`FieldResidual`]s of one packed chunk `x` of a pencil with a sparse stiffness and a
@@ -111,6 +133,23 @@ struct ChunkPencil<'a> {
     norm_a: f64,
     /// Eigenvalues at most this have no eigenfield.
     floor: f64,
+}
+
+impl<'a> ChunkPencil<'a> {
+    /// For a pencil with a sparse stiffness and a diagonal mass; `None` for any other.
+    fn of(operators: &PencilOperators<'a>, floor: f64) -> Option<Self> {
+        match (operators.stiffness, operators.mass) {
+            (Stiffness::Sparse(a), Mass::Diagonal(mass)) => Some(ChunkPencil {
+                a,
+                mass,
+                inverse_mass: mass.iter().map(|m| m.recip()).collect(),
+                diagonal: diagonal_of(a),
+                norm_a: max_column_sum(a),
+                floor,
+            }),
+            _ => None,
+        }
+    }
 }
 
 /// The [`FieldResidual`]s of one packed chunk `x` (`n` rows, `width` columns used) with

@@ -91,7 +91,7 @@ pub(crate) struct ChunkBuffers {
     /// The current chunk, packed.
     packed: Vec<Row>,
     /// Work space for the caller (contents unspecified on entry).
-    pub work: [Vec<Row>; 3],
+    work: [Vec<Row>; 3],
 }
 
 impl ChunkBuffers {
@@ -129,6 +129,30 @@ pub(crate) fn map_column_chunks<T: Send>(
         let mut buffers = ChunkBuffers::new(n);
         (0..chunks).map(|chunk| one(&mut buffers, chunk)).collect()
     }
+}
+
+/// [`map_column_chunks`] on the calling thread alone, with the buffers `buffers` (made for `x`'s
+/// rows if they are missing or of another length, and left there for the next call): for
+/// callers that go through many narrow blocks of the same `n`, where fresh buffers per call
+/// would cost a fresh `4 × n × CHUNK` values each time.
+pub(crate) fn map_column_chunks_reusing<T>(
+    x: MatRef<'_, f64>,
+    buffers: &mut Option<ChunkBuffers>,
+    mut work: impl FnMut(usize, usize, &[Row], &mut [Vec<Row>; 3]) -> T,
+) -> Vec<T> {
+    let n = x.nrows();
+    let buffers = match buffers {
+        Some(b) if b.packed.len() == n => b,
+        _ => buffers.insert(ChunkBuffers::new(n)),
+    };
+    (0..x.ncols().div_ceil(CHUNK))
+        .map(|chunk| {
+            let first = chunk * CHUNK;
+            let width = CHUNK.min(x.ncols() - first);
+            pack_into(x, first, width, &mut buffers.packed);
+            work(first, width, &buffers.packed, &mut buffers.work)
+        })
+        .collect()
 }
 
 /// `out ← A x` for the `n × n` symmetric sparse `a` (full storage) and `x`, `out` of shape
