@@ -23,6 +23,7 @@ use super::file_backed_columns::{drop_columns, ParkedColumns};
 use super::mass::Mass;
 use super::pencil::Pencil;
 use super::refinement::{field_residuals_reusing, FieldResidual};
+use super::symmetric_products::CHUNK;
 use super::tall_products::remove_mass_projection;
 use super::types::{EigenvectorSink, FinishedEigenvectors};
 use crate::error::SolverError;
@@ -242,7 +243,7 @@ impl PlanStream<'_> {
     }
 
     /// Takes the field residuals of columns `first..first + count` (cut at `k`) and hands them
-    /// to `sink`, [`STREAM_COLUMNS`] at a time, each chunk's memory released right after it
+    /// to `sink`, [`stream_columns`] at a time, each chunk's memory released right after it
     /// (without a sink they stay).
     unsafe fn hand_on(
         &mut self,
@@ -260,8 +261,9 @@ impl PlanStream<'_> {
         // residuals made fresh buffers per chunk and per thread (0.8 GB per chunk at a million
         // faces) and waited for workers the jobs occupy.
         let mut buffers = None;
-        for offset in (0..width).step_by(STREAM_COLUMNS) {
-            let (first, width) = (first + offset, STREAM_COLUMNS.min(width - offset));
+        let step = stream_columns(self.columns.rows);
+        for offset in (0..width).step_by(step) {
+            let (first, width) = (first + offset, step.min(width - offset));
             let vectors = self.columns.columns(first, width);
             let values = &self.values[first..first + width];
             self.residuals.extend(field_residuals_reusing(
@@ -286,16 +288,23 @@ impl PlanStream<'_> {
     }
 }
 
-/// Columns of an interval orthogonalised or handed on at a time (a multiple of the packed
-/// chunks of `field_residuals`, so that its columns are grouped as in one call): with a sink
-/// each chunk comes into memory, is worked on and leaves again, so that an interval being
-/// placed is not in memory whole beside the held one (two co-potential intervals of a
+/// Bytes of an interval's columns orthogonalised or handed on at a time ([`stream_columns`]):
+/// with a sink each chunk comes into memory, is worked on and leaves again, so that an interval
+/// being placed is not in memory whole beside the held one (two co-potential intervals of a
 /// million-face mesh were 2.0 GB of mapped file pages at the peak; measured in
-/// `docs/performance.md`).
-const STREAM_COLUMNS: usize = 16;
+/// `docs/performance.md`). Smaller meshes take an interval in one chunk: each chunk reads the
+/// held interval again.
+const STREAM_BYTES: usize = 256 << 20;
+
+/// Columns of `n` rows taken at a time by the stream: [`STREAM_BYTES`] of them, in whole packed
+/// chunks of `field_residuals` (so that its columns are grouped as in one call), at least one.
+fn stream_columns(n: usize) -> usize {
+    let columns = STREAM_BYTES / (size_of::<f64>() * n.max(1));
+    (columns / CHUNK * CHUNK).max(CHUNK)
+}
 
 /// `current ← current − earlier (earlierᵀ M current)` ([`remove_mass_projection`]) on
-/// [`STREAM_COLUMNS`] columns of `current` at a time, calling `done(offset, width)` after each
+/// [`stream_columns`] columns of `current` at a time, calling `done(offset, width)` after each
 /// chunk: M-orthogonality restored across an interval boundary. Eigenvectors of different
 /// intervals are orthogonal only up to `residual·‖A‖ / gap`, and the gap across a boundary can
 /// be small (see `docs/performance.md` for the loss of orthogonality without this step);
@@ -310,8 +319,9 @@ fn remove_projection_by_chunks(
     mut done: impl FnMut(usize, usize),
 ) {
     let count = current.ncols();
-    for offset in (0..count).step_by(STREAM_COLUMNS) {
-        let width = STREAM_COLUMNS.min(count - offset);
+    let step = stream_columns(current.nrows());
+    for offset in (0..count).step_by(step) {
+        let width = step.min(count - offset);
         remove_mass_projection(
             current.rb_mut().subcols_mut(offset, width),
             earlier,
