@@ -63,7 +63,14 @@ pub(crate) fn field_residuals(
 ) -> Vec<FieldResidual> {
     let pencil = ChunkPencil::of(operators, floor);
     let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
-        residuals_of_chunk(operators, pencil.as_ref(), (values, first, width), x, work, floor)
+        residuals_of_chunk(
+            operators,
+            pencil.as_ref(),
+            (values, first, width),
+            x,
+            work,
+            floor,
+        )
     });
     chunks.into_iter().flatten().collect()
 }
@@ -80,7 +87,14 @@ pub(crate) fn field_residuals_reusing(
 ) -> Vec<FieldResidual> {
     let pencil = ChunkPencil::of(operators, floor);
     let chunks = map_column_chunks_reusing(vectors, buffers, |first, width, x, work| {
-        residuals_of_chunk(operators, pencil.as_ref(), (values, first, width), x, work, floor)
+        residuals_of_chunk(
+            operators,
+            pencil.as_ref(),
+            (values, first, width),
+            x,
+            work,
+            floor,
+        )
     });
     chunks.into_iter().flatten().collect()
 }
@@ -474,9 +488,14 @@ fn refine_stubborn_pairs(
     let s = vectors.ncols();
     let mut trial = scratch.subcols_mut(0, s);
     trial.copy_from(vectors.rb());
-    let Some((new_values, after)) =
-        near_shift_steps(operators, factor_at, values, trial.rb_mut(), &stubborn, settings)
-    else {
+    let Some((new_values, after)) = near_shift_steps(
+        operators,
+        factor_at,
+        values,
+        trial.rb_mut(),
+        &stubborn,
+        settings,
+    ) else {
         return;
     };
     let worst = |r: &[FieldResidual]| r.iter().map(|r| r.residual).fold(0.0, f64::max);
@@ -554,7 +573,10 @@ pub(crate) fn refine_columns(
     let (mut selected, rest) = scratch.split_at_col_mut(which.len());
     let mut z = rest.subcols_mut(0, which.len());
     for (j, &column) in which.iter().enumerate() {
-        selected.rb_mut().col_mut(j).copy_from(vectors.rb().col(column));
+        selected
+            .rb_mut()
+            .col_mut(j)
+            .copy_from(vectors.rb().col(column));
     }
     mass.times_into(selected.rb(), z.rb_mut());
     factor.solve_in_place(z.rb_mut());
