@@ -1069,10 +1069,12 @@ fn solve_at_shift(
     pencil.add_solves(Phase::Solving, solves);
     let outcome = outcome?;
     let operators = pencil.operators();
+    let (vectors, scratch) = memory.vectors_and_scratch(n, outcome.columns);
     let values = rayleigh_ritz(
         operators.stiffness,
         operators.mass,
-        memory.vectors(n, outcome.columns),
+        vectors,
+        scratch,
         options.parallelism,
     )?;
     // The values ascend, so the ones inside the interval are consecutive.

@@ -224,6 +224,7 @@ impl PlanStream<'_> {
                     earlier,
                     self.mass(),
                     par,
+                    stream_columns(columns.rows),
                     |offset, width| {
                         if let Some(parked) = ParkedColumns::of(&columns, start + offset, width) {
                             parked.park();
@@ -303,8 +304,8 @@ fn stream_columns(n: usize) -> usize {
     (columns / CHUNK * CHUNK).max(CHUNK)
 }
 
-/// `current ← current − earlier (earlierᵀ M current)` ([`remove_mass_projection`]) on
-/// [`stream_columns`] columns of `current` at a time, calling `done(offset, width)` after each
+/// `current ← current − earlier (earlierᵀ M current)` ([`remove_mass_projection`]) on `step`
+/// columns of `current` at a time ([`stream_columns`]), calling `done(offset, width)` after each
 /// chunk: M-orthogonality restored across an interval boundary. Eigenvectors of different
 /// intervals are orthogonal only up to `residual·‖A‖ / gap`, and the gap across a boundary can
 /// be small (see `docs/performance.md` for the loss of orthogonality without this step);
@@ -316,10 +317,10 @@ fn remove_projection_by_chunks(
     earlier: MatRef<'_, f64>,
     mass: Mass<'_>,
     par: Par,
+    step: usize,
     mut done: impl FnMut(usize, usize),
 ) {
     let count = current.ncols();
-    let step = stream_columns(current.nrows());
     for offset in (0..count).step_by(step) {
         let width = step.min(count - offset);
         remove_mass_projection(
@@ -343,4 +344,78 @@ pub(super) fn jobs_in_interval_order(jobs: &[(usize, usize)], p: usize) -> Vec<(
         .collect();
     order.sort_unstable();
     order
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::eigen::tall_products::mass_inner;
+    use faer::Mat;
+
+    /// The stream's chunks: whole packed chunks of at most [`STREAM_BYTES`], at least one.
+    #[test]
+    fn stream_chunks_are_whole_packed_chunks_within_the_byte_budget() {
+        for n in [1, 1000, 104_000, 510_838, 1_532_520, 50_000_000] {
+            let columns = stream_columns(n);
+            assert_eq!(columns % CHUNK, 0, "n = {n}");
+            assert!(columns >= CHUNK, "n = {n}");
+            assert!(
+                columns == CHUNK || columns * n * 8 <= STREAM_BYTES,
+                "n = {n}"
+            );
+        }
+        assert_eq!(stream_columns(1_532_520), 16);
+        assert!(stream_columns(104_000) >= 96 + 16);
+    }
+
+    /// Chunk by chunk, the projection is the one of all columns at once (to rounding), the
+    /// result is M-orthogonal to `earlier`, and every column is reported once, in order.
+    #[test]
+    fn a_projection_by_chunks_is_the_whole_projection() {
+        let (n, p, q) = (400, 12, 21);
+        let mass: Vec<f64> = (0..n).map(|i| 0.5 + (i % 7) as f64 / 7.0).collect();
+        let mass = Mass::Diagonal(&mass);
+        // M-orthonormal columns, as an interval's eigenvectors are (modified Gram–Schmidt).
+        let mut earlier = Mat::from_fn(n, p, |i, j| ((i * 17 + j * 31) % 53) as f64 / 26.0 - 1.0);
+        for j in 0..p {
+            for k in 0..j {
+                let c = mass_inner(
+                    earlier.col(k).as_mat(),
+                    mass,
+                    earlier.col(j).as_mat(),
+                    Par::Seq,
+                )[(0, 0)];
+                for i in 0..n {
+                    earlier[(i, j)] -= c * earlier[(i, k)];
+                }
+            }
+            let norm = mass_inner(
+                earlier.col(j).as_mat(),
+                mass,
+                earlier.col(j).as_mat(),
+                Par::Seq,
+            )[(0, 0)]
+                .sqrt();
+            for i in 0..n {
+                earlier[(i, j)] /= norm;
+            }
+        }
+        let current = Mat::from_fn(n, q, |i, j| ((i * 23 + j * 11) % 41) as f64 / 20.0 - 1.0);
+        let mut whole = current.clone();
+        remove_mass_projection(whole.as_mut(), earlier.as_ref(), mass, Par::Seq);
+        let mut chunked = current.clone();
+        let mut reported = Vec::new();
+        remove_projection_by_chunks(
+            chunked.as_mut(),
+            earlier.as_ref(),
+            mass,
+            Par::Seq,
+            CHUNK,
+            |offset, width| reported.push((offset, width)),
+        );
+        assert_eq!(reported, vec![(0, 8), (8, 8), (16, 5)]);
+        assert!((&chunked - &whole).norm_max() <= 1e-13 * whole.norm_max());
+        let overlap = mass_inner(earlier.as_ref(), mass, chunked.as_ref(), Par::Seq);
+        assert!(overlap.norm_max() <= 1e-12 * current.norm_max());
+    }
 }

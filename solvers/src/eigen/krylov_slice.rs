@@ -216,28 +216,24 @@ pub(crate) fn locked_columns(wanted: usize, block: usize) -> usize {
 }
 
 impl SliceMemory {
-    /// The `n × columns` eigenvectors the last slice found ([`SliceOutcome`]).
-    pub(crate) fn vectors(&mut self, n: usize, columns: usize) -> MatMut<'_, f64> {
-        MatMut::from_column_major_slice_mut(&mut self.locked[..n * columns], n, columns)
-    }
-
-    /// [`Self::vectors`] and, beside them, the slice's Krylov basis (idle once the slice is
-    /// done) as `n × 2·columns` scratch (stale values) for their refinement, grown only if the
-    /// basis was narrower (it holds `2·wanted + 7·block` columns, the locked vectors
-    /// `wanted + 2·block`, so it never is for the slice that found them).
+    /// The `n × columns` eigenvectors the last slice found ([`SliceOutcome`]) and, beside
+    /// them, the slice's Krylov basis (idle once the slice is
+    /// done) as scratch (stale values) for their Rayleigh–Ritz and refinement: all of it, at
+    /// least `2·n·columns` values (grown only if the basis was narrower: it holds
+    /// `2·wanted + 7·block` columns, the locked vectors `wanted + 2·block`, so it never is for
+    /// the slice that found them).
     pub(crate) fn vectors_and_scratch(
         &mut self,
         n: usize,
         columns: usize,
-    ) -> (MatMut<'_, f64>, MatMut<'_, f64>) {
+    ) -> (MatMut<'_, f64>, &mut [f64]) {
         let scratch_len = 2 * n * columns;
         if self.basis.len() < scratch_len {
             self.basis.resize(scratch_len, 0.0);
         }
-        let scratch = &mut self.basis[..scratch_len];
         (
             MatMut::from_column_major_slice_mut(&mut self.locked[..n * columns], n, columns),
-            MatMut::from_column_major_slice_mut(scratch, n, 2 * columns),
+            &mut self.basis,
         )
     }
 

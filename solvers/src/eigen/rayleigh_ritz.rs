@@ -25,13 +25,14 @@
 
 use super::mass::Mass;
 use super::stiffness::Stiffness;
-use super::symmetric_products::{pack, CHUNK};
+use super::symmetric_products::{pack_into, CHUNK};
 use super::tall_products::{mass_inner, tall_inner, tall_times_in_place};
 use crate::error::SolverError;
 use crate::symmetric_eigen::symmetric_eigen;
 use faer::reborrow::Reborrow;
 use faer::{Mat, MatMut, MatRef, Par};
 use rayon::prelude::*;
+use std::sync::{Mutex, PoisonError};
 
 /// Rayleigh–Ritz of the `n × s` block `x` (columns nearly M-orthonormal) for `A y = λ M y`,
 /// in place: `x` becomes the M-orthonormal Ritz vectors (spanning the same space), and no other
@@ -40,6 +41,11 @@ use rayon::prelude::*;
 ///
 /// - `a`: the `n × n` symmetric `A` (sparse, or the mixed operator).
 /// - `mass`: `M` (diagonal or sparse SPD).
+/// - `scratch`: idle memory (stale values; a finished slice's Krylov basis) for the `n`-row
+///   buffers of the product `A X`, [`GROUP_BUFFER_COLUMNS`] columns of `n` per group formed at
+///   the same time; groups that find none left allocate their own. At a million faces the
+///   allocated ones were 0.8 GB beside the slice's memory, at the peak of the run
+///   (`docs/performance.md`).
 ///
 /// Returns the `s` ascending Ritz values, in the order of the columns of `x`.
 ///
@@ -48,6 +54,7 @@ pub(crate) fn rayleigh_ritz(
     a: Stiffness<'_>,
     mass: Mass<'_>,
     x: MatMut<'_, f64>,
+    scratch: &mut [f64],
     par: Par,
 ) -> Result<Vec<f64>, SolverError> {
     let s = x.ncols();
@@ -70,7 +77,7 @@ pub(crate) fn rayleigh_ritz(
         l_inverse.as_mut(),
         Par::Seq,
     );
-    let t = &l_inverse * projected(a, x.rb(), par) * l_inverse.transpose();
+    let t = &l_inverse * projected(a, x.rb(), scratch, par) * l_inverse.transpose();
     let t = Mat::from_fn(s, s, |i, j| 0.5 * (t[(i, j)] + t[(j, i)]));
     let (values, w) = symmetric_eigen(t.as_ref())?;
     let rotation = l_inverse.transpose() * &w;
@@ -117,19 +124,44 @@ fn symmetric_from_upper(s: usize, blocks: Vec<(usize, Mat<f64>)>) -> Mat<f64> {
     t
 }
 
+/// Values of `n` rows one group of [`projected`] works in: its columns of `A Q`, the product
+/// of one packed chunk and the chunk itself.
+const GROUP_BUFFER_COLUMNS: usize = PROJECTED_COLUMNS + 2 * CHUNK;
+
 /// `Qᵀ A Q` (`s × s`) for the `n × s` block `q`, [`PROJECTED_COLUMNS`] columns of `A Q` at a
 /// time (gathered a packed chunk at a time), each projected onto the columns of `q` up to its
-/// own ([`symmetric_from_upper`]).
-fn projected(a: Stiffness<'_>, q: MatRef<'_, f64>, par: Par) -> Mat<f64> {
+/// own ([`symmetric_from_upper`]); each group's buffers are taken from `scratch` while it has
+/// room (see [`rayleigh_ritz`]).
+fn projected(a: Stiffness<'_>, q: MatRef<'_, f64>, scratch: &mut [f64], par: Par) -> Mat<f64> {
     let (n, s) = (q.nrows(), q.ncols());
     let groups: Vec<usize> = (0..s).step_by(PROJECTED_COLUMNS).collect();
+    let buffer_len = n * GROUP_BUFFER_COLUMNS;
+    let free: Vec<&mut [f64]> = if buffer_len == 0 {
+        Vec::new()
+    } else {
+        scratch.chunks_exact_mut(buffer_len).collect()
+    };
+    let free = Mutex::new(free);
     let one = |&first: &usize| {
         let width = PROJECTED_COLUMNS.min(s - first);
-        let mut aq = Mat::<f64>::zeros(n, width);
-        let (mut product, mut work) = (vec![[0.0; CHUNK]; n], Vec::new());
+        let mut taken = free.lock().unwrap_or_else(PoisonError::into_inner).pop();
+        let mut own = Vec::new();
+        let buffer: &mut [f64] = match taken.as_deref_mut() {
+            Some(buffer) => buffer,
+            None => {
+                own.resize(buffer_len, 0.0);
+                &mut own
+            }
+        };
+        let (aq, rest) = buffer.split_at_mut(n * PROJECTED_COLUMNS);
+        let (product, packed) = rest.split_at_mut(n * CHUNK);
+        let (product, packed) = (product.as_chunks_mut().0, packed.as_chunks_mut().0);
+        let mut aq = MatMut::from_column_major_slice_mut(&mut aq[..n * width], n, width);
+        let mut work = Vec::new();
         for offset in (0..width).step_by(CHUNK) {
             let chunk = CHUNK.min(width - offset);
-            a.times_rows(&pack(q, first + offset, chunk), &mut product, &mut work);
+            pack_into(q, first + offset, chunk, packed);
+            a.times_rows(packed, product, &mut work);
             for j in 0..chunk {
                 for (i, row) in product.iter().enumerate() {
                     aq[(i, offset + j)] = row[j];
@@ -137,7 +169,13 @@ fn projected(a: Stiffness<'_>, q: MatRef<'_, f64>, par: Par) -> Mat<f64> {
             }
         }
         let upper = q.subcols(0, first + width);
-        (first, tall_inner(upper, aq.as_ref(), Par::Seq))
+        let block = (first, tall_inner(upper, aq.rb(), Par::Seq));
+        if let Some(buffer) = taken {
+            free.lock()
+                .unwrap_or_else(PoisonError::into_inner)
+                .push(buffer);
+        }
+        block
     };
     // The last groups are the largest: started first, they do not end the parallel loop alone.
     let blocks: Vec<(usize, Mat<f64>)> = if par.degree() > 1 {

@@ -382,7 +382,7 @@ pub(crate) fn refine_interval(
     factor: Arc<ShiftFactor>,
     factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
     values: &mut Vec<f64>,
-    (mut vectors, mut scratch): (MatMut<'_, f64>, MatMut<'_, f64>),
+    (mut vectors, scratch): (MatMut<'_, f64>, &mut [f64]),
     settings: &RefinementSettings,
 ) -> Result<Refinement, SolverError> {
     let clock = ThreadClock::start();
@@ -419,7 +419,7 @@ pub(crate) fn refine_interval(
                 *values = refine_columns(
                     operators,
                     &factor,
-                    (vectors.rb_mut(), scratch.rb_mut()),
+                    (vectors.rb_mut(), &mut *scratch),
                     &which,
                     settings.parallelism,
                 )?;
@@ -471,7 +471,7 @@ fn refine_stubborn_pairs(
     operators: &PencilOperators<'_>,
     factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
     values: &mut Vec<f64>,
-    (mut vectors, scratch): (MatMut<'_, f64>, MatMut<'_, f64>),
+    (mut vectors, scratch): (MatMut<'_, f64>, &mut [f64]),
     before: &[FieldResidual],
     settings: &RefinementSettings,
     outcome: &mut Refinement,
@@ -485,14 +485,15 @@ fn refine_stubborn_pairs(
         return;
     }
     outcome.solves += stubborn.len();
-    let s = vectors.ncols();
-    let mut trial = scratch.subcols_mut(0, s);
+    let (n, s) = (vectors.nrows(), vectors.ncols());
+    let (trial, rest) = scratch.split_at_mut(n * s);
+    let mut trial = MatMut::from_column_major_slice_mut(trial, n, s);
     trial.copy_from(vectors.rb());
     let Some((new_values, after)) = near_shift_steps(
         operators,
         factor_at,
         values,
-        trial.rb_mut(),
+        (trial.rb_mut(), rest),
         &stubborn,
         settings,
     ) else {
@@ -515,7 +516,7 @@ fn near_shift_steps(
     operators: &PencilOperators<'_>,
     factor_at: &dyn Fn(f64) -> Result<Arc<ShiftFactor>, SolverError>,
     values: &[f64],
-    mut trial: MatMut<'_, f64>,
+    (mut trial, scratch): (MatMut<'_, f64>, &mut [f64]),
     pairs: &[usize],
     settings: &RefinementSettings,
 ) -> Option<(Vec<f64>, Vec<FieldResidual>)> {
@@ -539,6 +540,7 @@ fn near_shift_steps(
         operators.stiffness,
         operators.mass,
         trial.rb_mut(),
+        scratch,
         settings.parallelism,
     )
     .ok()?;
@@ -564,14 +566,15 @@ fn near_shift_steps(
 pub(crate) fn refine_columns(
     operators: &PencilOperators<'_>,
     factor: &ShiftFactor,
-    (mut vectors, scratch): (MatMut<'_, f64>, MatMut<'_, f64>),
+    (mut vectors, scratch): (MatMut<'_, f64>, &mut [f64]),
     which: &[usize],
     par: Par,
 ) -> Result<Vec<f64>, SolverError> {
-    let n = vectors.nrows();
+    let (n, w) = (vectors.nrows(), which.len());
     let mass = operators.mass;
-    let (mut selected, rest) = scratch.split_at_col_mut(which.len());
-    let mut z = rest.subcols_mut(0, which.len());
+    let (selected, rest) = scratch.split_at_mut(n * w);
+    let mut selected = MatMut::from_column_major_slice_mut(selected, n, w);
+    let mut z = MatMut::from_column_major_slice_mut(&mut rest[..n * w], n, w);
     for (j, &column) in which.iter().enumerate() {
         selected
             .rb_mut()
@@ -605,7 +608,7 @@ pub(crate) fn refine_columns(
             vectors[(i, column)] = sign * z[(i, j)] / norm;
         }
     }
-    rayleigh_ritz(operators.stiffness, mass, vectors, par)
+    rayleigh_ritz(operators.stiffness, mass, vectors, scratch, par)
 }
 
 /// Whether an inverse-iteration step with `factor` cuts the field residual `before` of column

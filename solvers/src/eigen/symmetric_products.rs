@@ -70,7 +70,7 @@ pub(crate) fn pack(x: MatRef<'_, f64>, first: usize, width: usize) -> Vec<Row> {
 }
 
 /// [`pack`] into `rows` (`n` rows, overwritten).
-fn pack_into(x: MatRef<'_, f64>, first: usize, width: usize, rows: &mut [Row]) {
+pub(crate) fn pack_into(x: MatRef<'_, f64>, first: usize, width: usize, rows: &mut [Row]) {
     // Row by row (each packed row written once, whole) when the columns are contiguous.
     let columns: Option<Vec<&[f64]>> = (0..width)
         .map(|j| x.col(first + j).try_as_col_major().map(|c| c.as_slice()))
