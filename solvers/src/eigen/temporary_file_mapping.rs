@@ -21,7 +21,12 @@ pub(crate) struct TemporaryFileMapping {
 
 impl TemporaryFileMapping {
     /// The mapping, or `None` where the file cannot be made, sized or mapped (no `O_TMPFILE`
-    /// support in the temporary folder's file system, no space, `bytes == 0`).
+    /// support in the temporary folder's file system, `bytes == 0`) or where its file system
+    /// has less than `bytes` free: a write into a shared mapping that finds no space is a
+    /// `SIGBUS`, which ends the process without a word (a million-face basis did so on a full
+    /// disk), so the eigenvectors stay in memory instead. Space taken by others while the
+    /// mapping is in use can still do that; the blocks are not reserved up front, because on a
+    /// `tmpfs` temporary folder reserving them would take the memory the file is there to save.
     pub(crate) fn new(bytes: usize) -> Option<Self> {
         if bytes == 0 {
             return None;
@@ -33,6 +38,9 @@ impl TemporaryFileMapping {
             .custom_flags(libc::O_TMPFILE)
             .open(std::env::temp_dir())
             .ok()?;
+        if free_bytes(&file)? < bytes as u128 {
+            return None;
+        }
         file.set_len(bytes as u64).ok()?;
         // SAFETY: a fresh shared mapping of the whole file, owned by the returned value and
         // unmapped when it is dropped.
@@ -62,6 +70,14 @@ impl TemporaryFileMapping {
     pub(crate) fn descriptor(&self) -> i32 {
         self.file.as_raw_fd()
     }
+}
+
+/// Bytes free for an unprivileged user on the file system of `file`, or `None` if unknown.
+fn free_bytes(file: &File) -> Option<u128> {
+    // SAFETY: `fstatvfs` fills the zeroed plain-data struct for a valid descriptor.
+    let mut stat: libc::statvfs = unsafe { std::mem::zeroed() };
+    let status = unsafe { libc::fstatvfs(file.as_raw_fd(), &mut stat) };
+    (status == 0).then(|| u128::from(stat.f_bavail) * u128::from(stat.f_frsize))
 }
 
 impl Drop for TemporaryFileMapping {
@@ -109,4 +125,19 @@ pub(crate) unsafe fn punch_out(descriptor: i32, start: usize, offset: usize, byt
         offset as i64,
         bytes as i64,
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A file larger than its file system's free space is not mapped (a sparse file of that
+    /// size could be: writing into it would end the process with `SIGBUS`); one that fits is.
+    #[test]
+    fn a_mapping_is_made_only_where_the_file_fits() {
+        let probe = TemporaryFileMapping::new(4096).expect("a small temporary file maps");
+        let free = free_bytes(&probe.file).expect("the temporary folder reports its free space");
+        let beyond = usize::try_from(free + (1 << 30)).expect("fits in usize");
+        assert!(TemporaryFileMapping::new(beyond).is_none());
+    }
 }
