@@ -61,18 +61,9 @@ pub(crate) fn field_residuals(
     floor: f64,
     par: Par,
 ) -> Vec<FieldResidual> {
-    let pencil = ChunkPencil::of(operators, floor);
-    let chunks = map_column_chunks(vectors, par, |first, width, x, work| {
-        residuals_of_chunk(
-            operators,
-            pencil.as_ref(),
-            (values, first, width),
-            x,
-            work,
-            floor,
-        )
-    });
-    chunks.into_iter().flatten().collect()
+    residuals_by_chunks(operators, values, floor, |chunk| {
+        map_column_chunks(vectors, par, chunk)
+    })
 }
 
 /// [`field_residuals`] on the calling thread, in `buffers` (see
@@ -85,8 +76,25 @@ pub(crate) fn field_residuals_reusing(
     floor: f64,
     buffers: &mut Option<ChunkBuffers>,
 ) -> Vec<FieldResidual> {
+    residuals_by_chunks(operators, values, floor, |chunk| {
+        map_column_chunks_reusing(vectors, buffers, chunk)
+    })
+}
+
+/// The residuals of one packed chunk: `(first column, width, rows, work buffers)`.
+type ChunkResiduals<'a> =
+    dyn Fn(usize, usize, &[Row], &mut [Vec<Row>; 3]) -> Vec<FieldResidual> + Sync + 'a;
+
+/// The field residuals of the vectors whose eigenvalues are `values`, from `map`, which runs
+/// [`residuals_of_chunk`] (given to it) on every packed chunk of them in column order.
+fn residuals_by_chunks(
+    operators: &PencilOperators<'_>,
+    values: &[f64],
+    floor: f64,
+    map: impl FnOnce(&ChunkResiduals<'_>) -> Vec<Vec<FieldResidual>>,
+) -> Vec<FieldResidual> {
     let pencil = ChunkPencil::of(operators, floor);
-    let chunks = map_column_chunks_reusing(vectors, buffers, |first, width, x, work| {
+    let chunk = |first: usize, width: usize, x: &[Row], work: &mut [Vec<Row>; 3]| {
         residuals_of_chunk(
             operators,
             pencil.as_ref(),
@@ -95,8 +103,8 @@ pub(crate) fn field_residuals_reusing(
             work,
             floor,
         )
-    });
-    chunks.into_iter().flatten().collect()
+    };
+    map(&chunk).into_iter().flatten().collect()
 }
 
 /// The [`FieldResidual`]s of the packed chunk `x` (columns `first..first + width` of the
