@@ -24,11 +24,12 @@ use super::mass::Mass;
 use super::pencil::Pencil;
 use super::refinement::{field_residuals_reusing, FieldResidual};
 use super::symmetric_products::CHUNK;
-use super::tall_products::remove_mass_projection;
+use super::tall_products::{mass_inner, remove_mass_projection};
 use super::types::{EigenvectorSink, FinishedEigenvectors};
 use crate::error::SolverError;
-use faer::reborrow::ReborrowMut;
-use faer::{MatMut, MatRef, Par};
+use faer::linalg::matmul::matmul;
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 use std::collections::HashMap;
 
 /// A plan's reserved `rows × k` eigenvector matrix, as the raw columns the jobs write.
@@ -217,18 +218,24 @@ impl PlanStream<'_> {
                 let current = part.values.len().min(k - start);
                 let earlier = self.columns.columns(first, count);
                 let columns = self.columns;
-                // Each chunk leaves memory again once orthogonalised (it waits on disk to be
-                // handed on), so that only the held part and one chunk are in memory.
+                // Each chunk of either part leaves memory again once used (the held part's
+                // chunks are read again from the page cache for the next chunk; the placed
+                // ones wait on disk to be handed on), so that two chunks are in memory at a
+                // time. The views stay valid: a parked page keeps its values.
+                let park = |first: usize, width: usize| {
+                    if let Some(parked) = ParkedColumns::of(&columns, first, width) {
+                        parked.park();
+                    }
+                };
                 remove_projection_by_chunks(
                     columns.columns_mut(start, current),
                     earlier,
                     self.mass(),
                     par,
                     stream_columns(columns.rows),
-                    |offset, width| {
-                        if let Some(parked) = ParkedColumns::of(&columns, start + offset, width) {
-                            parked.park();
-                        }
+                    |chunk| match chunk {
+                        Chunk::Earlier(offset, width) => park(first + offset, width),
+                        Chunk::Current(offset, width) => park(start + offset, width),
                     },
                 );
             }
@@ -290,11 +297,11 @@ impl PlanStream<'_> {
 }
 
 /// Bytes of an interval's columns orthogonalised or handed on at a time ([`stream_columns`]):
-/// with a sink each chunk comes into memory, is worked on and leaves again, so that an interval
-/// being placed is not in memory whole beside the held one (two co-potential intervals of a
-/// million-face mesh were 2.0 GB of mapped file pages at the peak; measured in
-/// `docs/performance.md`). Smaller meshes take an interval in one chunk: each chunk reads the
-/// held interval again.
+/// with a sink each chunk comes into memory, is worked on and leaves again, so that neither the
+/// interval being placed nor the held one is in memory whole (two co-potential intervals of a
+/// million-face mesh were 2.0 GB of mapped file pages at the peak, the held one whole beside a
+/// chunk 1.27 GB; measured in `docs/performance.md`). Smaller meshes take an interval in one
+/// chunk, computed as one product.
 const STREAM_BYTES: usize = 256 << 20;
 
 /// Columns of `n` rows taken at a time by the stream: [`STREAM_BYTES`] of them, in whole packed
@@ -304,32 +311,67 @@ fn stream_columns(n: usize) -> usize {
     (columns / CHUNK * CHUNK).max(CHUNK)
 }
 
+/// A chunk of columns [`remove_projection_by_chunks`] is done with for now: `(offset, width)`
+/// in the earlier part (it is read again for the next chunk of the current one) or in the
+/// current one (final).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Chunk {
+    Earlier(usize, usize),
+    Current(usize, usize),
+}
+
 /// `current ← current − earlier (earlierᵀ M current)` ([`remove_mass_projection`]) on `step`
-/// columns of `current` at a time ([`stream_columns`]), calling `done(offset, width)` after each
-/// chunk: M-orthogonality restored across an interval boundary. Eigenvectors of different
-/// intervals are orthogonal only up to `residual·‖A‖ / gap`, and the gap across a boundary can
-/// be small (see `docs/performance.md` for the loss of orthogonality without this step);
-/// intervals further apart are separated by at least an interval's width. Costs two
+/// columns of `current` at a time ([`stream_columns`]), calling `done` after each chunk of
+/// either part is used: M-orthogonality restored across an interval boundary. Eigenvectors of
+/// different intervals are orthogonal only up to `residual·‖A‖ / gap`, and the gap across a
+/// boundary can be small (see `docs/performance.md` for the loss of orthogonality without this
+/// step); intervals further apart are separated by at least an interval's width. Costs two
 /// `n × s × s` products per boundary; the change of each vector is of the size of that error,
 /// so residuals and in-interval orthonormality stay as they were.
+///
+/// An `earlier` wider than `step` is taken `step` columns at a time too, twice per chunk of
+/// `current` (the overlap `earlierᵀ M current` block by block, then the update), so that at
+/// most two chunks are in use at once; that reads `earlier` `2 ⌈r / step⌉` times instead of
+/// once (from the page cache, for a streamed interval) and sums the update in blocks (the same
+/// to rounding). An `earlier` of at most `step` columns is one product, as without chunks.
 fn remove_projection_by_chunks(
     mut current: MatMut<'_, f64>,
     earlier: MatRef<'_, f64>,
     mass: Mass<'_>,
     par: Par,
     step: usize,
-    mut done: impl FnMut(usize, usize),
+    mut done: impl FnMut(Chunk),
 ) {
-    let count = current.ncols();
-    for offset in (0..count).step_by(step) {
-        let width = step.min(count - offset);
-        remove_mass_projection(
-            current.rb_mut().subcols_mut(offset, width),
-            earlier,
-            mass,
-            par,
-        );
-        done(offset, width);
+    let (count, held) = (current.ncols(), earlier.ncols());
+    let blocks = |total: usize| {
+        (0..total)
+            .step_by(step)
+            .map(move |o| (o, step.min(total - o)))
+    };
+    for (offset, width) in blocks(count) {
+        let mut chunk = current.rb_mut().subcols_mut(offset, width);
+        if held <= step {
+            remove_mass_projection(chunk, earlier, mass, par);
+        } else {
+            let mut overlap = Mat::<f64>::zeros(held, width);
+            for (first, rows) in blocks(held) {
+                let block = mass_inner(earlier.subcols(first, rows), mass, chunk.rb(), par);
+                overlap.as_mut().subrows_mut(first, rows).copy_from(&block);
+                done(Chunk::Earlier(first, rows));
+            }
+            for (first, rows) in blocks(held) {
+                matmul(
+                    chunk.rb_mut(),
+                    Accum::Add,
+                    earlier.subcols(first, rows),
+                    overlap.as_ref().subrows(first, rows),
+                    -1.0,
+                    par,
+                );
+                done(Chunk::Earlier(first, rows));
+            }
+        }
+        done(Chunk::Current(offset, width));
     }
 }
 
@@ -349,8 +391,6 @@ pub(super) fn jobs_in_interval_order(jobs: &[(usize, usize)], p: usize) -> Vec<(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::eigen::tall_products::mass_inner;
-    use faer::Mat;
 
     /// The stream's chunks: whole packed chunks of at most [`STREAM_BYTES`], at least one.
     #[test]
@@ -411,11 +451,38 @@ mod tests {
             mass,
             Par::Seq,
             CHUNK,
-            |offset, width| reported.push((offset, width)),
+            |chunk| reported.push(chunk),
         );
-        assert_eq!(reported, vec![(0, 8), (8, 8), (16, 5)]);
+        // The 12 earlier columns in two blocks, twice for each chunk of the current ones.
+        let earlier_twice = [(0, 8), (8, 4), (0, 8), (8, 4)].map(|(o, w)| Chunk::Earlier(o, w));
+        let expected: Vec<Chunk> = [(0, 8), (8, 8), (16, 5)]
+            .into_iter()
+            .flat_map(|(o, w)| earlier_twice.into_iter().chain([Chunk::Current(o, w)]))
+            .collect();
+        assert_eq!(reported, expected);
         assert!((&chunked - &whole).norm_max() <= 1e-13 * whole.norm_max());
         let overlap = mass_inner(earlier.as_ref(), mass, chunked.as_ref(), Par::Seq);
         assert!(overlap.norm_max() <= 1e-12 * current.norm_max());
+        // An earlier part that fits in one chunk is one product, bit for bit.
+        let mut one_block = current.clone();
+        remove_projection_by_chunks(
+            one_block.as_mut(),
+            earlier.as_ref(),
+            mass,
+            Par::Seq,
+            16,
+            |_| {},
+        );
+        let mut whole_16 = current.clone();
+        for offset in [0, 16] {
+            let width = 16.min(q - offset);
+            remove_mass_projection(
+                whole_16.as_mut().subcols_mut(offset, width),
+                earlier.as_ref(),
+                mass,
+                Par::Seq,
+            );
+        }
+        assert_eq!(one_block, whole_16);
     }
 }
