@@ -331,9 +331,9 @@ enum Chunk {
 ///
 /// An `earlier` wider than `step` is taken `step` columns at a time too, twice per chunk of
 /// `current` (the overlap `earlierᵀ M current` block by block, then the update), so that at
-/// most two chunks are in use at once; that reads `earlier` `2 ⌈r / step⌉` times instead of
-/// once (from the page cache, for a streamed interval) and sums the update in blocks (the same
-/// to rounding). An `earlier` of at most `step` columns is one product, as without chunks.
+/// most two chunks are in use at once; for `s` columns of `current` that reads `earlier`
+/// `2 ⌈s / step⌉` times instead of once (from the page cache, for a streamed interval) and sums
+/// the update in blocks (the same to rounding). An `earlier` of at most `step` columns is one product, as without chunks.
 fn remove_projection_by_chunks(
     mut current: MatMut<'_, f64>,
     earlier: MatRef<'_, f64>,
