@@ -333,7 +333,8 @@ enum Chunk {
 /// `current` (the overlap `earlierᵀ M current` block by block, then the update), so that at
 /// most two chunks are in use at once; for `s` columns of `current` that reads `earlier`
 /// `2 ⌈s / step⌉` times instead of once (from the page cache, for a streamed interval) and sums
-/// the update in blocks (the same to rounding). An `earlier` of at most `step` columns is one product, as without chunks.
+/// the update in blocks (the same to rounding). An `earlier` of at most `step` columns is one
+/// product, as without chunks, and stays in memory (it is handed on next).
 fn remove_projection_by_chunks(
     mut current: MatMut<'_, f64>,
     earlier: MatRef<'_, f64>,
