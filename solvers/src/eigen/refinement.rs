@@ -21,6 +21,10 @@
 //! lowest pair of the first interval on kitten and hand: components along eigenvectors near the
 //! interval's far end are hardly damped at its midpoint, and the lowest eigenfields amplify them
 //! most) one step at a shift of its own, next to its eigenvalue (one more factorization).
+//! Both stop where they cannot cut the interval's worst residual by a quarter: at a million
+//! faces every interval has dozens of pairs at 1e-8–1e-7, within 20 % of each other, which the
+//! steps at the shift leave there (the accuracy of solves at that shift) and a step on one or
+//! two pairs cannot lower as a whole.
 
 use super::mass::{solve_mass_rows, Mass};
 use super::pencil::PencilOperators;
@@ -332,9 +336,12 @@ impl FieldResidual {
 }
 
 /// The trial step must bring the worst residual below this fraction of itself for the interval
-/// to be refined (a pair gets a further step only if the last one halved its residual). After the inverse-iteration step every interval takes, a further step gains
-/// about a factor 2 where it helps at all (hand: 1.38e-8 → 7.3e-9 for its lowest pair), so
-/// asking for a halving rejected steps that work; on meshes with slivers a step gains nothing.
+/// to be refined, each step the worst residual that misses the target for another to follow,
+/// and the pairs not stepped at a near shift must be below it times the worst (a pair gets a
+/// further step only if the last one halved its residual). After the inverse-iteration step
+/// every interval takes, a further step gains about a factor 2 where it helps at all (hand:
+/// 1.38e-8 → 7.3e-9 for its lowest pair), so asking for a halving rejected steps that work; on
+/// meshes with slivers a step gains nothing.
 const TRIAL_GAIN: f64 = 0.75;
 
 /// Pairs whose residual still exceeds this multiple of the target after the steps at the
@@ -380,7 +387,8 @@ pub(crate) struct Refinement {
 /// the worst pair (if it does not cut that residual by a quarter ([`TRIAL_GAIN`]), no step will
 /// help any: the interval sits
 /// at the accuracy of its solves), then up to [`MAX_REFINEMENT_STEPS`] steps of
-/// [`refine_columns`], each on the pairs the previous step improved that still miss the target,
+/// [`refine_columns`], each on the pairs the previous step halved that still miss the target,
+/// while the last step cut the worst residual that misses it by a quarter ([`TRIAL_GAIN`]),
 /// then [`refine_stubborn_pairs`] after `factor` is released. `scratch` (`n × 2s` at least,
 /// stale values: the slice's idle Krylov basis) holds every `n`-row block the steps need.
 ///
@@ -424,6 +432,7 @@ pub(crate) fn refine_interval(
             settings.floor,
         ) {
             for _ in 0..MAX_REFINEMENT_STEPS {
+                let worst_before = worst_missing(&before, settings.target);
                 *values = refine_columns(
                     operators,
                     &factor,
@@ -442,8 +451,12 @@ pub(crate) fn refine_interval(
                             && after[j].residual < 0.5 * before[j].residual
                     })
                     .collect();
+                // And only while the steps cut the worst residual that misses the target by a
+                // quarter: where they do not, the interval sits at the accuracy of solves at
+                // its shift (at a million faces, dozens of pairs at 1e-8–1e-7 each).
+                let gained = worst_missing(&after, settings.target) < TRIAL_GAIN * worst_before;
                 before = after;
-                if which.is_empty() {
+                if which.is_empty() || !gained {
                     break;
                 }
             }
@@ -467,12 +480,23 @@ pub(crate) fn refine_interval(
     Ok(outcome)
 }
 
+/// The largest of the `residuals` that miss `target` (see [`FieldResidual::misses`]), 0 if none
+/// does.
+fn worst_missing(residuals: &[FieldResidual], target: f64) -> f64 {
+    residuals
+        .iter()
+        .filter(|r| r.misses(target))
+        .map(|r| r.residual)
+        .fold(0.0, f64::max)
+}
+
 /// The pairs of an interval whose residual `before` still misses [`NEAR_SHIFT_FACTOR`] times
 /// the target after the steps at the interval's shift (at most [`MAX_NEAR_SHIFT_PAIRS`], the
 /// worst first) are at the accuracy of solves at that shift: components along eigenvectors near
 /// the interval's ends are hardly damped by it, and the lowest pairs' eigenfields amplify them
 /// most. Each gets one step at a shift next to its eigenvalue ([`near_shift_steps`], in
-/// `scratch`, `n × s` at least), kept only if the worst residual improves; best effort: a failed
+/// `scratch`, `n × s` at least), if the worst residual of the pairs not stepped is below
+/// [`TRIAL_GAIN`] times theirs, kept only if the worst residual improves; best effort: a failed
 /// factorization or a lost vector leaves the pairs as they are (their residuals are reported
 /// either way). Adds what it did to `outcome` (solves before the mixed pencil's factor 2).
 fn refine_stubborn_pairs(
@@ -489,8 +513,16 @@ fn refine_stubborn_pairs(
         .collect();
     stubborn.sort_by(|&i, &j| before[j].residual.total_cmp(&before[i].residual));
     stubborn.truncate(MAX_NEAR_SHIFT_PAIRS);
-    if stubborn.is_empty() {
-        return;
+    // The step is kept only if it lowers the interval's worst residual, and it cannot lower it
+    // below the worst of the pairs it does not step: not worth two factorizations unless that
+    // is a cut by a quarter (at a million faces dozens of pairs sit within 20 % of the worst).
+    let unstepped = (0..before.len())
+        .filter(|j| !stubborn.contains(j))
+        .map(|j| before[j].residual)
+        .fold(0.0, f64::max);
+    match stubborn.first() {
+        Some(&worst) if unstepped < TRIAL_GAIN * before[worst].residual => {}
+        _ => return,
     }
     outcome.solves += stubborn.len();
     let (n, s) = (vectors.nrows(), vectors.ncols());
