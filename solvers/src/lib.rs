@@ -47,6 +47,7 @@ mod kernel_dispatch;
 pub mod ordering;
 mod packed_ldlt_solve;
 mod packed_rows;
+mod packed_solve_split;
 mod process_clock;
 mod sparse_cholesky;
 mod sparse_ldlt;

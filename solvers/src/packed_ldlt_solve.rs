@@ -20,51 +20,65 @@ use faer::MatMut;
 
 use crate::kernel_dispatch::{fma_dispatch, multiply_add};
 use crate::packed_rows::{Row, WIDTH};
+use crate::packed_solve_split::{SolveSplit, NOT_KEPT};
 
 /// Overwrites `rhs` (`n × r`) with the solution of `P L D Lᵀ Pᵀ X = rhs` for the supernodal
 /// factor (`symbolic`, `values`) and the fill-reducing permutation `perm` (`None`: identity;
 /// faer's convention: row `i` of the permuted system is row `perm.forward[i]` of the original),
-/// [`WIDTH`] columns at a time.
+/// [`WIDTH`] columns at a time, on two threads where `split` (made for `symbolic`) is given.
 pub(crate) fn solve_packed(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
+    factor: PackedFactor<'_>,
     perm: Option<PermRef<'_, usize>>,
     rhs: MatMut<'_, f64>,
 ) {
-    solve_packed_with(symbolic, values, perm, rhs, solve_rows);
+    solve_packed_with(factor, perm, rhs, solve_rows);
 }
 
 /// Overwrites the packed rows `x` (`n` rows of up to [`WIDTH`] right-hand sides, in the
 /// factor's elimination order: no permutation) with the solution of `L D Lᵀ X = x`.
-pub(crate) fn solve_packed_rows(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
-    x: &mut [Row],
-) {
-    solve_rows(SupernodalLdltRef::new(symbolic, values), x);
+pub(crate) fn solve_packed_rows(factor: PackedFactor<'_>, x: &mut [Row]) {
+    solve_rows(factor, x);
+}
+
+/// A supernodal `LDLᵀ` factor as the packed solves take it: its symbolic part, its values and,
+/// if one was made for it, the split of its supernodes between two threads.
+#[derive(Clone, Copy)]
+pub(crate) struct PackedFactor<'a> {
+    pub symbolic: &'a SymbolicSupernodalCholesky<usize>,
+    pub values: &'a [f64],
+    pub split: Option<&'a SolveSplit>,
+}
+
+impl<'a> PackedFactor<'a> {
+    fn supernodal(self) -> SupernodalLdltRef<'a, usize, f64> {
+        SupernodalLdltRef::new(self.symbolic, self.values)
+    }
 }
 
 /// [`solve_packed`] with the portable loops whatever the CPU (to test them where FMA exists).
 #[cfg(test)]
 pub(crate) fn solve_packed_portable(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
+    factor: PackedFactor<'_>,
     perm: Option<PermRef<'_, usize>>,
     rhs: MatMut<'_, f64>,
 ) {
-    solve_packed_with(symbolic, values, perm, rhs, solve_rows_body::<false>);
+    solve_packed_with(factor, perm, rhs, |factor, x| {
+        let factor = factor.supernodal();
+        let n = factor.symbolic().n_supernodes();
+        forward_nodes_body::<false>(factor, 0..n, x, 0, None);
+        let end = x.len();
+        backward_nodes_body::<false>(factor, 0..n, x, 0, (&[], end));
+    });
 }
 
 /// [`solve_packed`] with `solve` for the packed triangular solves.
 fn solve_packed_with(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
+    factor: PackedFactor<'_>,
     perm: Option<PermRef<'_, usize>>,
     mut rhs: MatMut<'_, f64>,
-    solve: fn(SupernodalLdltRef<'_, usize, f64>, &mut [Row]),
+    solve: fn(PackedFactor<'_>, &mut [Row]),
 ) {
     let n = rhs.nrows();
-    let factor = SupernodalLdltRef::new(symbolic, values);
     let mut x: Vec<Row> = vec![[0.0; WIDTH]; n];
     let mut first = 0;
     while first < rhs.ncols() {
@@ -108,22 +122,122 @@ fn solve_packed_with(
     }
 }
 
-/// `x ← (L D Lᵀ)⁻¹ x` on packed rows.
-fn solve_rows(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    fma_dispatch!(solve_rows_body(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
+/// `x ← (L D Lᵀ)⁻¹ x` on packed rows: on two threads where the factor has a split, with the
+/// same operations in the same order as on one (the results are identical bit for bit).
+fn solve_rows(factor: PackedFactor<'_>, x: &mut [Row]) {
+    forward_rows(factor, x);
+    let supernodal = factor.supernodal();
+    let Some(split) = factor.split else {
+        let n = supernodal.symbolic().n_supernodes();
+        let end = x.len();
+        backward(supernodal, 0..n, x, 0, (&[], end));
+        return;
+    };
+    // The top last-to-first, then the two parts at once: each reads the top and writes only
+    // its own unknowns.
+    let [first, second, top] = split.parts_of(x);
+    let top_unknown = split.top_unknown();
+    let end = top_unknown + top.len();
+    backward(supernodal, split.top_nodes(), top, top_unknown, (&[], end));
+    let top = (&*top, top_unknown);
+    rayon::join(
+        || backward(supernodal, split.first_nodes(), first, 0, top),
+        || {
+            backward(
+                supernodal,
+                split.second_nodes(),
+                second,
+                split.second_unknown(),
+                top,
+            )
+        },
+    );
+}
+
+/// [`backward_nodes_body`] in its best compilation.
+fn backward(
+    factor: SupernodalLdltRef<'_, usize, f64>,
+    nodes: std::ops::Range<usize>,
+    part: &mut [Row],
+    offset: usize,
+    top: (&[Row], usize),
+) {
+    fma_dispatch!(backward_nodes_body(
+        factor: SupernodalLdltRef<'_, usize, f64>,
+        nodes: std::ops::Range<usize>,
+        part: &mut [Row],
+        offset: usize,
+        top: (&[Row], usize),
+    ));
+}
+
+/// `x ← D⁻¹ L⁻¹ x` on packed rows, on two threads where the factor has a split: the two parts
+/// at once, each leaving the rows of the top it updates for later ([`forward_tails_body`]
+/// replays those updates afterwards, the first part's before the second's, as one thread makes
+/// them), then the top.
+fn forward_rows(factor: PackedFactor<'_>, x: &mut [Row]) {
+    let supernodal = factor.supernodal();
+    let Some(split) = factor.split else {
+        let n = supernodal.symbolic().n_supernodes();
+        forward(supernodal, 0..n, x, 0, None);
+        return;
+    };
+    let mut kept = split.kept_buffer();
+    let [first_kept, second_kept] = split.kept_parts(&mut kept);
+    let [first, second, top] = split.parts_of(x);
+    rayon::join(
+        || forward(supernodal, split.first_nodes(), first, 0, Some(first_kept)),
+        || {
+            forward(
+                supernodal,
+                split.second_nodes(),
+                second,
+                split.second_unknown(),
+                Some(second_kept),
+            )
+        },
+    );
+    let (crossing, kept, offset) = (split.crossing(), kept.as_slice(), split.top_unknown());
+    fma_dispatch!(forward_tails_body(
+        supernodal: SupernodalLdltRef<'_, usize, f64>,
+        crossing: &[(usize, usize)],
+        kept: &[Row],
+        top: &mut [Row],
+        offset: usize,
+    ));
+    forward(
+        supernodal,
+        split.top_nodes(),
+        top,
+        split.top_unknown(),
+        None,
+    );
+}
+
+/// [`forward_nodes_body`] in its best compilation.
+fn forward(
+    factor: SupernodalLdltRef<'_, usize, f64>,
+    nodes: std::ops::Range<usize>,
+    part: &mut [Row],
+    offset: usize,
+    kept: Option<KeptValues<'_>>,
+) {
+    fma_dispatch!(forward_nodes_body(
+        factor: SupernodalLdltRef<'_, usize, f64>,
+        nodes: std::ops::Range<usize>,
+        part: &mut [Row],
+        offset: usize,
+        kept: Option<KeptValues<'_>>,
+    ));
 }
 
 /// `bᵀ (L D Lᵀ)⁻¹ b` for each of the packed columns `b` of `x` (`n` rows in the factor's
 /// elimination order; overwritten with `D⁻¹ L⁻¹ b`): the forward pass only, then
 /// `Σ_k D_k z_k²` with `z = D⁻¹ L⁻¹ b`. Half the memory traffic of a solve followed by a
 /// product, and for a positive definite factor a sum of positive terms.
-pub(crate) fn inverse_energy_rows(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    values: &[f64],
-    x: &mut [Row],
-) -> Row {
-    let factor = SupernodalLdltRef::new(symbolic, values);
-    fma_dispatch!(forward_rows_body(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]));
+pub(crate) fn inverse_energy_rows(factor: PackedFactor<'_>, x: &mut [Row]) -> Row {
+    forward_rows(factor, x);
+    let factor = factor.supernodal();
     let mut energy = [0.0; WIDTH];
     for s in 0..factor.symbolic().n_supernodes() {
         let node = factor.supernode(s);
@@ -153,52 +267,155 @@ fn block_column<'a>(block: faer::MatRef<'a, f64>, c: usize) -> &'a [f64] {
         .as_slice()
 }
 
-#[inline(always)]
-fn solve_rows_body<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    forward_rows_body::<FUSED>(factor, x);
-    // Backward: Lᵀ x = z, supernodes and groups of columns in reverse.
-    for s in (0..factor.symbolic().n_supernodes()).rev() {
-        let node = factor.supernode(s);
-        let (start, pattern, block) = (node.start(), node.pattern(), node.val());
-        let size = block.ncols();
-        let mut end = size;
-        while end > 0 {
-            let first = end.saturating_sub(GROUP);
-            match end - first {
-                4 => backward_group::<4, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
-                3 => backward_group::<3, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
-                2 => backward_group::<2, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
-                _ => backward_group::<1, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
-            }
-            end = first;
-        }
-    }
+/// The values of the supernodes of one part of a split whose later rows reach into the top,
+/// as the forward pass has them before the diagonal scaling (the top's updates from them are
+/// made afterwards): supernode `s` keeps its `size` rows from `rows[base[s] − first..]`
+/// (`base[s]` = [`NOT_KEPT`]: it reaches no top row).
+pub(crate) struct KeptValues<'a> {
+    pub base: &'a [usize],
+    pub first: usize,
+    pub rows: &'a mut [Row],
 }
 
-/// The forward pass and diagonal of [`solve_rows_body`]: `x ← D⁻¹ L⁻¹ x`.
+/// Forward substitution and diagonal scaling, `x ← D⁻¹ L⁻¹ x`, over the supernodes `nodes`
+/// (ascending) whose unknowns lie in `part` (unknowns `offset..offset + part.len()`), a group of
+/// columns at a time: later rows past the end of `part` (the top of a split) are skipped, the
+/// values they need kept in `kept`.
 #[inline(always)]
-fn forward_rows_body<const FUSED: bool>(factor: SupernodalLdltRef<'_, usize, f64>, x: &mut [Row]) {
-    // Forward and diagonal: L D z = b, supernode by supernode, a group of columns at a time.
-    for s in 0..factor.symbolic().n_supernodes() {
+fn forward_nodes_body<const FUSED: bool>(
+    factor: SupernodalLdltRef<'_, usize, f64>,
+    nodes: std::ops::Range<usize>,
+    part: &mut [Row],
+    offset: usize,
+    mut kept: Option<KeptValues<'_>>,
+) {
+    let end = offset + part.len();
+    for s in nodes {
         let node = factor.supernode(s);
         let (start, pattern, block) = (node.start(), node.pattern(), node.val());
+        let inside = &pattern[..pattern.partition_point(|&row| row < end)];
         let size = block.ncols();
+        let mut keep = kept.as_mut().and_then(|kept| {
+            let base = kept.base[s];
+            (base != NOT_KEPT).then(|| &mut kept.rows[base - kept.first..][..size])
+        });
         let mut first = 0;
         while first < size {
             let width = GROUP.min(size - first);
+            let keep = keep
+                .as_deref_mut()
+                .map(|rows| &mut rows[first..first + width]);
+            let x = (&mut *part, offset);
             match width {
-                4 => forward_group::<4, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
-                3 => forward_group::<3, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
-                2 => forward_group::<2, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
-                _ => forward_group::<1, FUSED>(ColumnGroup::new(block, start, pattern, first), x),
+                4 => forward_group::<4, FUSED>(
+                    ColumnGroup::new(block, start, inside, first),
+                    x,
+                    keep,
+                ),
+                3 => forward_group::<3, FUSED>(
+                    ColumnGroup::new(block, start, inside, first),
+                    x,
+                    keep,
+                ),
+                2 => forward_group::<2, FUSED>(
+                    ColumnGroup::new(block, start, inside, first),
+                    x,
+                    keep,
+                ),
+                _ => forward_group::<1, FUSED>(
+                    ColumnGroup::new(block, start, inside, first),
+                    x,
+                    keep,
+                ),
             }
             first += width;
         }
     }
 }
 
+/// The top's updates that [`forward_nodes_body`] left out: for each `(supernode, base)` of
+/// `crossing` (ascending), each later row of it in `top` (unknowns `offset..`) loses
+/// `Σ_k L[row, k] · y_k` with the values `y` kept from `kept[base..]`, group by group as the
+/// forward pass makes them.
+#[inline(always)]
+fn forward_tails_body<const FUSED: bool>(
+    factor: SupernodalLdltRef<'_, usize, f64>,
+    crossing: &[(usize, usize)],
+    kept: &[Row],
+    top: &mut [Row],
+    offset: usize,
+) {
+    for &(s, base) in crossing {
+        let node = factor.supernode(s);
+        let (pattern, block) = (node.pattern(), node.val());
+        let cut = pattern.partition_point(|&row| row < offset);
+        let size = block.ncols();
+        let mut first = 0;
+        while first < size {
+            let width = GROUP.min(size - first);
+            let values = &kept[base + first..base + first + width];
+            let x = (&mut *top, offset);
+            match width {
+                4 => update_later::<4, FUSED>(
+                    ColumnGroup::tail(block, pattern, cut, first),
+                    x,
+                    values,
+                ),
+                3 => update_later::<3, FUSED>(
+                    ColumnGroup::tail(block, pattern, cut, first),
+                    x,
+                    values,
+                ),
+                2 => update_later::<2, FUSED>(
+                    ColumnGroup::tail(block, pattern, cut, first),
+                    x,
+                    values,
+                ),
+                _ => update_later::<1, FUSED>(
+                    ColumnGroup::tail(block, pattern, cut, first),
+                    x,
+                    values,
+                ),
+            }
+            first += width;
+        }
+    }
+}
+
+/// Backward substitution, `x ← L⁻ᵀ x`, over the supernodes `nodes` (taken last to first) whose
+/// unknowns lie in `part` (unknowns `offset..offset + part.len()`); later rows past the end of
+/// `part` are read from `top` (its rows and the unknown of the first).
+#[inline(always)]
+fn backward_nodes_body<const FUSED: bool>(
+    factor: SupernodalLdltRef<'_, usize, f64>,
+    nodes: std::ops::Range<usize>,
+    part: &mut [Row],
+    offset: usize,
+    top: (&[Row], usize),
+) {
+    let end = offset + part.len();
+    for s in nodes.rev() {
+        let node = factor.supernode(s);
+        let (start, pattern, block) = (node.start(), node.pattern(), node.val());
+        let cut = pattern.partition_point(|&row| row < end);
+        let size = block.ncols();
+        let mut last = size;
+        while last > 0 {
+            let first = last.saturating_sub(GROUP);
+            let x = (&mut *part, offset);
+            match last - first {
+                4 => backward_group::<4, FUSED>(block, start, (pattern, cut), first, x, top),
+                3 => backward_group::<3, FUSED>(block, start, (pattern, cut), first, x, top),
+                2 => backward_group::<2, FUSED>(block, start, (pattern, cut), first, x, top),
+                _ => backward_group::<1, FUSED>(block, start, (pattern, cut), first, x, top),
+            }
+            last = first;
+        }
+    }
+}
+
 /// Columns `first..first + K` of a supernode (`block`: its `(size + pattern) × size` values,
-/// column-major; its unknowns start at `start`).
+/// column-major; its unknowns start at `start`) and the later rows they update or read.
 struct ColumnGroup<'a, const K: usize> {
     /// The group's columns of the block, whole.
     columns: [&'a [f64]; K],
@@ -206,12 +423,16 @@ struct ColumnGroup<'a, const K: usize> {
     first: usize,
     /// Unknown of the group's first column.
     unknown: usize,
-    /// Unknowns of the rows of the block after the group: the rest of the supernode's own
-    /// unknowns, then its pattern.
+    /// Position in the block's columns of the first later row.
+    below: usize,
+    /// Unknowns of the later rows: the rest of the supernode's own unknowns, then (part of) its
+    /// pattern.
     later: std::iter::Chain<std::ops::Range<usize>, std::iter::Copied<std::slice::Iter<'a, usize>>>,
 }
 
 impl<'a, const K: usize> ColumnGroup<'a, K> {
+    /// The group with the rest of its supernode's own rows and the rows `pattern` (the start of
+    /// the supernode's pattern, or all of it) for later rows.
     #[inline(always)]
     fn new(block: faer::MatRef<'a, f64>, start: usize, pattern: &'a [usize], first: usize) -> Self {
         let size = block.ncols();
@@ -219,7 +440,21 @@ impl<'a, const K: usize> ColumnGroup<'a, K> {
             columns: std::array::from_fn(|k| block_column(block, first + k)),
             first,
             unknown: start + first,
+            below: first + K,
             later: (start + first + K..start + size).chain(pattern.iter().copied()),
+        }
+    }
+
+    /// The group with the rows `pattern[cut..]` of its supernode's pattern alone for later rows.
+    #[inline(always)]
+    fn tail(block: faer::MatRef<'a, f64>, pattern: &'a [usize], cut: usize, first: usize) -> Self {
+        let size = block.ncols();
+        Self {
+            columns: std::array::from_fn(|k| block_column(block, first + k)),
+            first,
+            unknown: 0,
+            below: size + cut,
+            later: (0..0).chain(pattern[cut..].iter().copied()),
         }
     }
 
@@ -232,19 +467,24 @@ impl<'a, const K: usize> ColumnGroup<'a, K> {
     /// The later rows, each as its unknown and the group's `K` values of `L` on it.
     #[inline(always)]
     fn later_rows(self) -> impl Iterator<Item = (usize, [f64; K])> + 'a {
-        let below: [&[f64]; K] = std::array::from_fn(|k| &self.columns[k][self.first + K..]);
+        let below: [&[f64]; K] = std::array::from_fn(|k| &self.columns[k][self.below..]);
         self.later
             .enumerate()
             .map(move |(i, unknown)| (unknown, std::array::from_fn(|k| below[k][i])))
     }
 }
 
-/// Forward substitution of a group of `K` columns of a supernode: the triangle among them,
-/// then every later row of the block loses `Σ_k L[row, first + k] · x[start + first + k]`, and
-/// the group's values are divided by their pivots.
+/// Forward substitution of a group of `K` columns of a supernode in `x` (its rows, the first
+/// one unknown `offset`): the triangle among them, then every later row of `group` loses
+/// `Σ_k L[row, first + k] · y_k` ([`update_later`]), the values `y` go to `keep` if given, and
+/// are divided by their pivots.
 #[inline(always)]
-fn forward_group<const K: usize, const FUSED: bool>(group: ColumnGroup<'_, K>, x: &mut [Row]) {
-    let unknown = group.unknown;
+fn forward_group<const K: usize, const FUSED: bool>(
+    group: ColumnGroup<'_, K>,
+    (x, offset): (&mut [Row], usize),
+    keep: Option<&mut [Row]>,
+) {
+    let unknown = group.unknown - offset;
     let mut values: [Row; K] = std::array::from_fn(|k| x[unknown + k]);
     for k in 0..K {
         for later in k + 1..K {
@@ -252,41 +492,74 @@ fn forward_group<const K: usize, const FUSED: bool>(group: ColumnGroup<'_, K>, x
             subtract_scaled::<FUSED>(&mut values[later], group.triangle(later, k), &source);
         }
     }
+    if let Some(keep) = keep {
+        keep.copy_from_slice(&values);
+    }
     // The group's part of y is final: z = D⁻¹ y (D is on the diagonal of the block).
     let pivots: [f64; K] = std::array::from_fn(|k| group.triangle(k, k));
-    for (target, l) in group.later_rows() {
-        let mut sum = x[target];
-        for k in 0..K {
-            subtract_scaled::<FUSED>(&mut sum, l[k], &values[k]);
-        }
-        x[target] = sum;
-    }
+    update_later::<K, FUSED>(group, (&mut *x, offset), &values);
     for (k, value) in values.iter().enumerate() {
         let inverse = pivots[k].recip();
         x[unknown + k] = value.map(|v| v * inverse);
     }
 }
 
-/// Backward substitution of a group of `K` columns of a supernode: each loses
-/// `Σ_row L[row, column] · x[row]` over the later rows of the block (every row read once for
-/// the whole group), then the triangle among them.
+/// Every later row of `group` in `x` (its rows, the first one unknown `offset`) loses
+/// `Σ_k L[row, first + k] · values[k]`, the terms in the order of `k`.
 #[inline(always)]
-fn backward_group<const K: usize, const FUSED: bool>(group: ColumnGroup<'_, K>, x: &mut [Row]) {
-    let unknown = group.unknown;
+fn update_later<const K: usize, const FUSED: bool>(
+    group: ColumnGroup<'_, K>,
+    (x, offset): (&mut [Row], usize),
+    values: &[Row],
+) {
+    for (target, l) in group.later_rows() {
+        let target = &mut x[target - offset];
+        let mut sum = *target;
+        for k in 0..K {
+            subtract_scaled::<FUSED>(&mut sum, l[k], &values[k]);
+        }
+        *target = sum;
+    }
+}
+
+/// Backward substitution of columns `first..first + K` of a supernode (`block`, unknowns from
+/// `start`, `pattern` whose rows from `cut` on lie in `top`): each loses
+/// `Σ_row L[row, column] · x[row]` over the later rows of the block, those in `x` (its rows,
+/// the first one unknown `offset`) first, then those in `top` (the first one unknown
+/// `top_offset`), every row read once for the whole group; then the triangle among them.
+#[inline(always)]
+fn backward_group<const K: usize, const FUSED: bool>(
+    block: faer::MatRef<'_, f64>,
+    start: usize,
+    (pattern, cut): (&[usize], usize),
+    first: usize,
+    (x, offset): (&mut [Row], usize),
+    (top, top_offset): (&[Row], usize),
+) {
+    let inside = ColumnGroup::<K>::new(block, start, &pattern[..cut], first);
+    let unknown = inside.unknown - offset;
     let mut values: [Row; K] = std::array::from_fn(|k| x[unknown + k]);
     let triangle: [[f64; K]; K] = std::array::from_fn(|later| {
         std::array::from_fn(|k| {
             if later > k {
-                group.triangle(later, k)
+                inside.triangle(later, k)
             } else {
                 0.0
             }
         })
     });
-    for (source, l) in group.later_rows() {
-        let source = x[source];
+    for (source, l) in inside.later_rows() {
+        let source = x[source - offset];
         for k in 0..K {
             subtract_scaled::<FUSED>(&mut values[k], l[k], &source);
+        }
+    }
+    if cut < pattern.len() {
+        for (source, l) in ColumnGroup::<K>::tail(block, pattern, cut, first).later_rows() {
+            let source = top[source - top_offset];
+            for k in 0..K {
+                subtract_scaled::<FUSED>(&mut values[k], l[k], &source);
+            }
         }
     }
     for k in (0..K).rev() {

@@ -13,11 +13,15 @@
 
 use crate::error::SolverError;
 use crate::ordering::{inverse_permutation, is_permutation, nested_dissection, FillOrdering};
-use crate::packed_ldlt_solve::{inverse_energy_rows, solve_packed, solve_packed_rows};
+use crate::packed_ldlt_solve::{
+    inverse_energy_rows, solve_packed, solve_packed_rows, PackedFactor,
+};
 use crate::packed_rows::{Row, WIDTH};
+use crate::packed_solve_split::SolveSplit;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::{LdltError, LdltRegularization};
 use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
     SymbolicCholeskyRaw, SymmetricOrdering,
@@ -25,6 +29,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SparseColMatRef;
 use faer::{Conj, Mat, MatMut, Par, Side};
+use std::sync::OnceLock;
 
 /// Counts of negative, zero and positive pivots of an `LDLᵀ` factorization.
 ///
@@ -86,6 +91,9 @@ pub struct SparseLdlt {
     row_idx: Vec<usize>,
     parallelism: Par,
     ordering: FillOrdering,
+    /// The split of the packed solves between two threads, made on the first solve that
+    /// can use it (`None` inside: no useful split; see `packed_solve_split.rs`).
+    split: OnceLock<Option<SolveSplit>>,
 }
 
 impl SparseLdlt {
@@ -275,6 +283,7 @@ impl SparseLdlt {
             row_idx: upper.symbolic().row_idx().to_vec(),
             parallelism,
             ordering,
+            split: OnceLock::new(),
         };
         this.factor_numeric(upper)?;
         Ok(this)
@@ -460,8 +469,8 @@ impl SparseLdlt {
     /// # Panics
     /// If `rhs.nrows() != self.dimension()` (a programming error).
     pub fn solve_in_elimination_order(&self, mut rhs: MatMut<'_, f64>) {
-        if let Some(symbolic) = self.packed_symbolic(rhs.nrows()) {
-            solve_packed(symbolic, &self.values, None, rhs);
+        if let Some(factor) = self.packed_factor(rhs.nrows()) {
+            solve_packed(factor, None, rhs);
             return;
         }
         let Some(order) = self.elimination_order() else {
@@ -491,8 +500,8 @@ impl SparseLdlt {
     /// # Panics
     /// If `rows.len() != self.dimension()` (a programming error).
     pub(crate) fn solve_rows_in_elimination_order(&self, rows: &mut [Row]) {
-        if let Some(symbolic) = self.packed_symbolic(rows.len()) {
-            solve_packed_rows(symbolic, &self.values, rows);
+        if let Some(factor) = self.packed_factor(rows.len()) {
+            solve_packed_rows(factor, rows);
             return;
         }
         let mut block = Mat::from_fn(rows.len(), WIDTH, |i, j| rows[i][j]);
@@ -507,8 +516,8 @@ impl SparseLdlt {
     /// `A = L D Lᵀ` the factored matrix: on one thread the forward pass alone
     /// ([`inverse_energy_rows`]), otherwise a solve and the products.
     pub(crate) fn inverse_energy_rows_in_elimination_order(&self, rows: &mut [Row]) -> Row {
-        if let Some(symbolic) = self.packed_symbolic(rows.len()) {
-            return inverse_energy_rows(symbolic, &self.values, rows);
+        if let Some(factor) = self.packed_factor(rows.len()) {
+            return inverse_energy_rows(factor, rows);
         }
         let right = rows.to_vec();
         self.solve_rows_in_elimination_order(rows);
@@ -521,25 +530,32 @@ impl SparseLdlt {
         energy
     }
 
-    /// The symbolic part of a supernodal factor solved on one thread, which the packed loops
-    /// handle (`None`: another kind of factor or solve), after checking that right-hand sides of
-    /// `rows` rows fit.
+    /// A supernodal factor solved on one thread, which the packed loops handle (`None`:
+    /// another kind of factor or solve), after checking that right-hand sides of `rows` rows
+    /// fit.
     ///
     /// # Panics
     /// If `rows != self.dimension()` (a programming error).
-    fn packed_symbolic(
-        &self,
-        rows: usize,
-    ) -> Option<&faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize>>
-    {
+    fn packed_factor(&self, rows: usize) -> Option<PackedFactor<'_>> {
         assert_eq!(
             rows,
             self.dimension(),
             "right-hand side has the wrong number of rows"
         );
         match (self.symbolic.raw(), self.parallelism.degree()) {
-            (SymbolicCholeskyRaw::Supernodal(symbolic), 1) => Some(symbolic),
+            (SymbolicCholeskyRaw::Supernodal(symbolic), 1) => Some(self.packed(symbolic)),
             _ => None,
+        }
+    }
+
+    /// This factor's values on `symbolic` (its supernodal structure) for the packed loops, with
+    /// its split between two threads (made on first use: the packed loops give the same bits
+    /// with it, on one thread or two).
+    fn packed<'a>(&'a self, symbolic: &'a SymbolicSupernodalCholesky<usize>) -> PackedFactor<'a> {
+        PackedFactor {
+            symbolic,
+            values: &self.values,
+            split: self.split.get_or_init(|| SolveSplit::of(symbolic)).as_ref(),
         }
     }
 
@@ -564,7 +580,7 @@ impl SparseLdlt {
     fn solve_with(&self, rhs: MatMut<'_, f64>, par: Par) {
         if let (SymbolicCholeskyRaw::Supernodal(symbolic), 1) = (self.symbolic.raw(), par.degree())
         {
-            solve_packed(symbolic, &self.values, self.symbolic.perm(), rhs);
+            solve_packed(self.packed(symbolic), self.symbolic.perm(), rhs);
             return;
         }
         let req = self
@@ -668,6 +684,88 @@ mod tests {
     }
 
     #[test]
+    fn split_packed_solves_give_the_same_bits_as_one_thread() {
+        let upper = shifted_grid(70, 0.61);
+        let n = upper.nrows();
+        for ordering in [FillOrdering::Amd, FillOrdering::NestedDissection] {
+            let ldlt = SparseLdlt::with_ordering(upper.as_ref(), ordering).expect("factors");
+            let SymbolicCholeskyRaw::Supernodal(symbolic) = ldlt.symbolic.raw() else {
+                panic!("factors are supernodal");
+            };
+            let split = ldlt.packed(symbolic);
+            let whole = PackedFactor {
+                split: None,
+                ..split
+            };
+            let parts = split.split.expect("a 4900-unknown grid factor is split");
+            assert!(!parts.first_nodes().is_empty() && !parts.second_nodes().is_empty());
+            assert!(
+                !parts.crossing().is_empty(),
+                "{ordering:?}: the parts reach the top"
+            );
+            // 11 columns: a packed chunk of 8 and a partial one, through the permutation.
+            let rhs = Mat::from_fn(n, 11, |i, j| ((i * 13 + j * 7) % 23) as f64 / 11.0 - 1.0);
+            let (mut one, mut two) = (rhs.clone(), rhs.clone());
+            solve_packed(whole, ldlt.symbolic.perm(), one.as_mut());
+            solve_packed(split, ldlt.symbolic.perm(), two.as_mut());
+            let bits = |x: &Mat<f64>| -> Vec<u64> {
+                (0..x.ncols())
+                    .flat_map(|j| (0..x.nrows()).map(move |i| (i, j)))
+                    .map(|(i, j)| x[(i, j)].to_bits())
+                    .collect()
+            };
+            assert_eq!(bits(&one), bits(&two), "{ordering:?}: solutions differ");
+            // And it is a solution: a residual within 4× of faer's own solve's.
+            let mut reference = rhs.clone();
+            let req = ldlt.symbolic.solve_in_place_scratch::<f64>(11, Par::Seq);
+            let mut buffer = MemBuffer::new(req);
+            LdltRef::new(&ldlt.symbolic, &ldlt.values).solve_in_place_with_conj(
+                Conj::No,
+                reference.as_mut(),
+                Par::Seq,
+                MemStack::new(&mut buffer),
+            );
+            let full = upper.to_dense();
+            let full = Mat::from_fn(
+                n,
+                n,
+                |i, j| if i <= j { full[(i, j)] } else { full[(j, i)] },
+            );
+            let residual =
+                |x: &Mat<f64>| (&full * x - &rhs).norm_max() / (full.norm_max() * x.norm_max());
+            let (ours, faers) = (residual(&two), residual(&reference));
+            assert!(
+                ours <= 4.0 * faers + 1e-15,
+                "{ordering:?}: residual {ours:e}, faer {faers:e}"
+            );
+            // The forward pass alone (inverse energies) too.
+            let rows: Vec<Row> = (0..n)
+                .map(|i| std::array::from_fn(|j| ((i * 5 + j * 3) % 17) as f64 - 8.0))
+                .collect();
+            let (mut one, mut two) = (rows.clone(), rows);
+            let (e1, e2) = (
+                inverse_energy_rows(whole, &mut one),
+                inverse_energy_rows(split, &mut two),
+            );
+            assert_eq!(e1.map(f64::to_bits), e2.map(f64::to_bits));
+            assert!(one
+                .iter()
+                .zip(&two)
+                .all(|(a, b)| a.map(f64::to_bits) == b.map(f64::to_bits)));
+        }
+    }
+
+    #[test]
+    fn small_factors_are_not_split() {
+        let upper = shifted_grid(8, 0.61);
+        let ldlt = SparseLdlt::new(upper.as_ref()).expect("factors");
+        let SymbolicCholeskyRaw::Supernodal(symbolic) = ldlt.symbolic.raw() else {
+            panic!("factors are supernodal");
+        };
+        assert!(ldlt.packed(symbolic).split.is_none());
+    }
+
+    #[test]
     fn packed_solve_matches_faer_and_has_a_small_residual() {
         let upper = shifted_grid(37, 0.61);
         let n = upper.nrows();
@@ -692,8 +790,11 @@ mod tests {
                 panic!("factors are supernodal");
             };
             crate::packed_ldlt_solve::solve_packed_portable(
-                supernodal,
-                &ldlt.values,
+                PackedFactor {
+                    symbolic: supernodal,
+                    values: &ldlt.values,
+                    split: None,
+                },
                 ldlt.symbolic.perm(),
                 portable.as_mut(),
             );
