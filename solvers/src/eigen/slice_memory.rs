@@ -28,9 +28,9 @@ use std::time::Duration;
 static DEFAULT_BUDGET: AtomicUsize = AtomicUsize::new(0);
 
 /// The fraction of physical memory the concurrent slices may take by default (a sixth: on a
-/// 24 GiB machine 4 GiB, which at a million faces holds one co-potential slice beside a
-/// potential one; the factorizations, the mesh, the pencils and the eigenvectors in flight
-/// take about as much again).
+/// 24 GiB machine 4 GiB, which at a million faces holds one co-potential slice, about 4.1 GB,
+/// alone; the factorizations, the mesh, the pencils and the eigenvectors in flight take about
+/// as much again).
 const DEFAULT_SHARE_OF_MEMORY: usize = 6;
 
 /// The budget when the physical memory is unknown (no `/proc/meminfo`): 4 GiB.
