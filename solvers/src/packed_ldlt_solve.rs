@@ -12,6 +12,10 @@
 //! into the forward pass, the permutation is applied while packing, and the loops are compiled
 //! with and without AVX2 + FMA (chosen at run time, `kernel_dispatch.rs`). Groups of six or eight columns, and an
 //! AVX-512 build of the loops, were slower (timings in `docs/performance.md`).
+//!
+//! Where the factor's elimination tree splits into two independent parts, each pass runs them
+//! on two threads with the same operations in the same order as one thread
+//! (`packed_solve_split.rs`), so the solutions do not depend on it.
 
 use faer::perm::PermRef;
 use faer::reborrow::{Reborrow, ReborrowMut};
