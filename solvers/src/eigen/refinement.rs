@@ -495,8 +495,8 @@ fn worst_missing(residuals: &[FieldResidual], target: f64) -> f64 {
 /// worst first) are at the accuracy of solves at that shift: components along eigenvectors near
 /// the interval's ends are hardly damped by it, and the lowest pairs' eigenfields amplify them
 /// most. Each gets one step at a shift next to its eigenvalue ([`near_shift_steps`], in
-/// `scratch`, `n × s` at least), if the worst residual of the pairs not stepped is below
-/// [`TRIAL_GAIN`] times theirs, kept only if the worst residual improves; best effort: a failed
+/// `scratch`, `n × s` at least), if that can cut the interval's worst residual by a quarter
+/// ([`near_shift_can_cut`]), kept only if the worst residual improves; best effort: a failed
 /// factorization or a lost vector leaves the pairs as they are (their residuals are reported
 /// either way). Adds what it did to `outcome` (solves before the mixed pencil's factor 2).
 fn refine_stubborn_pairs(
@@ -513,16 +513,8 @@ fn refine_stubborn_pairs(
         .collect();
     stubborn.sort_by(|&i, &j| before[j].residual.total_cmp(&before[i].residual));
     stubborn.truncate(MAX_NEAR_SHIFT_PAIRS);
-    // The step is kept only if it lowers the interval's worst residual, and it cannot lower it
-    // below the worst of the pairs it does not step: not worth two factorizations unless that
-    // is a cut by a quarter (at a million faces dozens of pairs sit within 20 % of the worst).
-    let unstepped = (0..before.len())
-        .filter(|j| !stubborn.contains(j))
-        .map(|j| before[j].residual)
-        .fold(0.0, f64::max);
-    match stubborn.first() {
-        Some(&worst) if unstepped < TRIAL_GAIN * before[worst].residual => {}
-        _ => return,
+    if !near_shift_can_cut(before, &stubborn) {
+        return;
     }
     outcome.solves += stubborn.len();
     let (n, s) = (vectors.nrows(), vectors.ncols());
@@ -545,6 +537,21 @@ fn refine_stubborn_pairs(
         *values = new_values;
         vectors.copy_from(trial.rb());
     }
+}
+
+/// Whether steps on the pairs `stepped` (the worst first) can cut the worst of the `residuals`
+/// by a quarter ([`TRIAL_GAIN`]): a step is kept only if it lowers the interval's worst
+/// residual, and it cannot lower it below the worst of the pairs it does not step, so two
+/// factorizations are not spent unless those are below three quarters of it (at a million
+/// faces dozens of pairs sit within 20 % of the worst). `false` when nothing is stepped.
+fn near_shift_can_cut(residuals: &[FieldResidual], stepped: &[usize]) -> bool {
+    let unstepped = (0..residuals.len())
+        .filter(|j| !stepped.contains(j))
+        .map(|j| residuals[j].residual)
+        .fold(0.0, f64::max);
+    stepped
+        .first()
+        .is_some_and(|&worst| unstepped < TRIAL_GAIN * residuals[worst].residual)
 }
 
 /// One inverse-iteration step for each column in `pairs` of the `n × s` eigenvectors `trial`,
@@ -679,4 +686,44 @@ pub(crate) fn step_helps(
     after
         .first()
         .is_some_and(|r| r.residual < TRIAL_GAIN * before)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Residuals with rounding floors far below them.
+    fn residuals(values: &[f64]) -> Vec<FieldResidual> {
+        values
+            .iter()
+            .map(|&residual| FieldResidual {
+                residual,
+                floor: 1e-13,
+                relative: 0.0,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn near_shifts_are_taken_for_outlying_pairs_only() {
+        // One pair far above the rest (the lowest pair of hand's first interval).
+        let lone = residuals(&[2e-7, 3e-9, 1e-9, 4e-9]);
+        assert!(near_shift_can_cut(&lone, &[0]));
+        // Two outliers, both stepped.
+        let two = residuals(&[2e-7, 1e-9, 1.5e-7, 4e-9]);
+        assert!(near_shift_can_cut(&two, &[0, 2]));
+        // A crowd near the worst (a million faces): the third is at 0.81 of it.
+        let crowd = residuals(&[1.22e-7, 1.04e-7, 9.8e-8, 9.0e-8]);
+        assert!(!near_shift_can_cut(&crowd, &[0, 1]));
+        assert!(!near_shift_can_cut(&lone, &[]));
+    }
+
+    #[test]
+    fn the_worst_missing_residual_leaves_out_pairs_that_meet_the_target_or_their_floor() {
+        let mut mixed = residuals(&[5e-10, 3e-8, 2e-8]);
+        // Within ten times its rounding floor: no step could help it.
+        mixed[1].floor = 1e-8;
+        assert_eq!(worst_missing(&mixed, 1e-9), 2e-8);
+        assert_eq!(worst_missing(&residuals(&[5e-10]), 1e-9), 0.0);
+    }
 }
