@@ -683,6 +683,33 @@ mod tests {
             .expect("valid triplets")
     }
 
+    /// faer's own supernodal solve of `rhs` with `ldlt` (the reference of the packed solves).
+    fn faer_solution(ldlt: &SparseLdlt, rhs: &Mat<f64>) -> Mat<f64> {
+        let mut solution = rhs.clone();
+        let req = ldlt
+            .symbolic
+            .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq);
+        let mut buffer = MemBuffer::new(req);
+        LdltRef::new(&ldlt.symbolic, &ldlt.values).solve_in_place_with_conj(
+            Conj::No,
+            solution.as_mut(),
+            Par::Seq,
+            MemStack::new(&mut buffer),
+        );
+        solution
+    }
+
+    /// The dense symmetric matrix whose upper triangle is `upper`.
+    fn full_symmetric(upper: &faer::sparse::SparseColMat<usize, f64>) -> Mat<f64> {
+        let n = upper.nrows();
+        let upper = upper.to_dense();
+        Mat::from_fn(
+            n,
+            n,
+            |i, j| if i <= j { upper[(i, j)] } else { upper[(j, i)] },
+        )
+    }
+
     #[test]
     fn split_packed_solves_give_the_same_bits_as_one_thread() {
         let upper = shifted_grid(70, 0.61);
@@ -716,21 +743,8 @@ mod tests {
             };
             assert_eq!(bits(&one), bits(&two), "{ordering:?}: solutions differ");
             // And it is a solution: a residual within 4× of faer's own solve's.
-            let mut reference = rhs.clone();
-            let req = ldlt.symbolic.solve_in_place_scratch::<f64>(11, Par::Seq);
-            let mut buffer = MemBuffer::new(req);
-            LdltRef::new(&ldlt.symbolic, &ldlt.values).solve_in_place_with_conj(
-                Conj::No,
-                reference.as_mut(),
-                Par::Seq,
-                MemStack::new(&mut buffer),
-            );
-            let full = upper.to_dense();
-            let full = Mat::from_fn(
-                n,
-                n,
-                |i, j| if i <= j { full[(i, j)] } else { full[(j, i)] },
-            );
+            let reference = faer_solution(&ldlt, &rhs);
+            let full = full_symmetric(&upper);
             let residual =
                 |x: &Mat<f64>| (&full * x - &rhs).norm_max() / (full.norm_max() * x.norm_max());
             let (ours, faers) = (residual(&two), residual(&reference));
@@ -776,15 +790,7 @@ mod tests {
             let rhs = Mat::from_fn(n, 19, |i, j| ((i * 13 + j * 7) % 23) as f64 / 11.0 - 1.0);
             let mut packed = rhs.clone();
             ldlt.solve_with(packed.as_mut(), Par::Seq);
-            let mut reference = rhs.clone();
-            let req = ldlt.symbolic.solve_in_place_scratch::<f64>(19, Par::Seq);
-            let mut buffer = MemBuffer::new(req);
-            LdltRef::new(&ldlt.symbolic, &ldlt.values).solve_in_place_with_conj(
-                Conj::No,
-                reference.as_mut(),
-                Par::Seq,
-                MemStack::new(&mut buffer),
-            );
+            let reference = faer_solution(&ldlt, &rhs);
             let mut portable = rhs.clone();
             let SymbolicCholeskyRaw::Supernodal(supernodal) = ldlt.symbolic.raw() else {
                 panic!("factors are supernodal");
@@ -804,12 +810,7 @@ mod tests {
             // (no fused multiply–add), and on this indefinite matrix the forward difference
             // scales with its condition number (measured 1.8e-12 relative), so they are held to
             // the residual, as the others.
-            let full = upper.to_dense();
-            let full = Mat::from_fn(
-                n,
-                n,
-                |i, j| if i <= j { full[(i, j)] } else { full[(j, i)] },
-            );
+            let full = full_symmetric(&upper);
             let residual =
                 |x: &Mat<f64>| (&full * x - &rhs).norm_max() / (full.norm_max() * x.norm_max());
             let faers = residual(&reference);
