@@ -201,10 +201,10 @@ fn forward_rows(factor: PackedFactor<'_>, x: &mut [Row]) {
             )
         },
     );
-    let (crossing, kept, offset) = (split.crossing(), kept.as_slice(), split.top_unknown());
+    let (bases, kept, offset) = (split.kept_bases(), kept.as_slice(), split.top_unknown());
     fma_dispatch!(forward_tails_body(
         supernodal: SupernodalLdltRef<'_, usize, f64>,
-        crossing: &[(usize, usize)],
+        bases: &[usize],
         kept: &[Row],
         top: &mut [Row],
         offset: usize,
@@ -337,19 +337,23 @@ fn forward_nodes_body<const FUSED: bool>(
     }
 }
 
-/// The top's updates that [`forward_nodes_body`] left out: for each `(supernode, base)` of
-/// `crossing` (ascending), each later row of it in `top` (unknowns `offset..`) loses
-/// `Σ_k L[row, k] · y_k` with the values `y` kept from `kept[base..]`, group by group as the
-/// forward pass makes them.
+/// The top's updates that [`forward_nodes_body`] left out: for each supernode `s` below the top
+/// with values kept (`bases[s]` ≠ [`NOT_KEPT`]), in ascending order, each later row of it in
+/// `top` (unknowns `offset..`) loses `Σ_k L[row, k] · y_k` with the values `y` kept from
+/// `kept[bases[s]..]`, group by group as the forward pass makes them.
 #[inline(always)]
 fn forward_tails_body<const FUSED: bool>(
     factor: SupernodalLdltRef<'_, usize, f64>,
-    crossing: &[(usize, usize)],
+    bases: &[usize],
     kept: &[Row],
     top: &mut [Row],
     offset: usize,
 ) {
-    for &(s, base) in crossing {
+    let kept_nodes = bases
+        .iter()
+        .enumerate()
+        .filter(|&(_, &base)| base != NOT_KEPT);
+    for (s, &base) in kept_nodes {
         let node = factor.supernode(s);
         let (pattern, block) = (node.pattern(), node.val());
         let cut = pattern.partition_point(|&row| row < offset);

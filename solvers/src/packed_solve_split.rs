@@ -54,8 +54,6 @@ pub(crate) struct SolveSplit {
     top_unknown: usize,
     /// For each supernode below the top, where its kept values start ([`NOT_KEPT`]: none).
     base: Vec<usize>,
-    /// The supernodes below the top with pattern rows in it, ascending, with their `base`.
-    crossing: Vec<(usize, usize)>,
     /// Kept rows of the first part (those of the second follow).
     first_kept: usize,
     /// Kept rows of both parts.
@@ -133,7 +131,6 @@ impl SolveSplit {
             return None;
         }
         let mut base = vec![NOT_KEPT; top];
-        let mut crossing = Vec::new();
         let (mut kept, mut first_kept) = (0, 0);
         for (s, slot) in base.iter_mut().enumerate() {
             if s == second {
@@ -146,7 +143,6 @@ impl SolveSplit {
                 .is_some_and(|&r| r >= top_unknown)
             {
                 *slot = kept;
-                crossing.push((s, kept));
                 kept += begin(s + 1) - begin(s);
             }
         }
@@ -157,7 +153,6 @@ impl SolveSplit {
             second_unknown,
             top_unknown,
             base,
-            crossing,
             first_kept,
             kept,
         })
@@ -188,10 +183,10 @@ impl SolveSplit {
         self.top_unknown
     }
 
-    /// The supernodes below the top with pattern rows in it, ascending, with where their kept
-    /// values start.
-    pub(crate) fn crossing(&self) -> &[(usize, usize)] {
-        &self.crossing
+    /// For each supernode below the top, where its kept values start ([`NOT_KEPT`]: it has no
+    /// pattern row in the top).
+    pub(crate) fn kept_bases(&self) -> &[usize] {
+        &self.base
     }
 
     /// The packed rows `x` (all unknowns) as the first part's, the second part's and the top's.

@@ -651,6 +651,7 @@ fn zeroed_by_all_threads(len: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::packed_solve_split::NOT_KEPT;
     use faer::sparse::Triplet;
     use faer::Mat;
 
@@ -699,6 +700,14 @@ mod tests {
         solution
     }
 
+    /// The supernodal structure of `ldlt` (every factor here is supernodal).
+    fn supernodal_of(ldlt: &SparseLdlt) -> &SymbolicSupernodalCholesky<usize> {
+        let SymbolicCholeskyRaw::Supernodal(symbolic) = ldlt.symbolic.raw() else {
+            panic!("factors are supernodal");
+        };
+        symbolic
+    }
+
     /// The dense symmetric matrix whose upper triangle is `upper`.
     fn full_symmetric(upper: &faer::sparse::SparseColMat<usize, f64>) -> Mat<f64> {
         let n = upper.nrows();
@@ -716,10 +725,7 @@ mod tests {
         let n = upper.nrows();
         for ordering in [FillOrdering::Amd, FillOrdering::NestedDissection] {
             let ldlt = SparseLdlt::with_ordering(upper.as_ref(), ordering).expect("factors");
-            let SymbolicCholeskyRaw::Supernodal(symbolic) = ldlt.symbolic.raw() else {
-                panic!("factors are supernodal");
-            };
-            let split = ldlt.packed(symbolic);
+            let split = ldlt.packed(supernodal_of(&ldlt));
             let whole = PackedFactor {
                 split: None,
                 ..split
@@ -727,7 +733,7 @@ mod tests {
             let parts = split.split.expect("a 4900-unknown grid factor is split");
             assert!(!parts.first_nodes().is_empty() && !parts.second_nodes().is_empty());
             assert!(
-                !parts.crossing().is_empty(),
+                parts.kept_bases().iter().any(|&base| base != NOT_KEPT),
                 "{ordering:?}: the parts reach the top"
             );
             // 11 columns: a packed chunk of 8 and a partial one, through the permutation.
@@ -773,10 +779,7 @@ mod tests {
     fn small_factors_are_not_split() {
         let upper = shifted_grid(8, 0.61);
         let ldlt = SparseLdlt::new(upper.as_ref()).expect("factors");
-        let SymbolicCholeskyRaw::Supernodal(symbolic) = ldlt.symbolic.raw() else {
-            panic!("factors are supernodal");
-        };
-        assert!(ldlt.packed(symbolic).split.is_none());
+        assert!(ldlt.packed(supernodal_of(&ldlt)).split.is_none());
     }
 
     #[test]
@@ -792,12 +795,9 @@ mod tests {
             ldlt.solve_with(packed.as_mut(), Par::Seq);
             let reference = faer_solution(&ldlt, &rhs);
             let mut portable = rhs.clone();
-            let SymbolicCholeskyRaw::Supernodal(supernodal) = ldlt.symbolic.raw() else {
-                panic!("factors are supernodal");
-            };
             crate::packed_ldlt_solve::solve_packed_portable(
                 PackedFactor {
-                    symbolic: supernodal,
+                    symbolic: supernodal_of(&ldlt),
                     values: &ldlt.values,
                     split: None,
                 },
