@@ -105,8 +105,8 @@ impl FamilySplit {
 ///   Weyl's estimate `t ≈ 2πm / area` by secant steps and bisection, aiming at an excess of at
 ///   most `max(1, m/250)` eigenpairs and stopping early once the bracket around the `m`-th
 ///   eigenvalue is about one eigenvalue wide (Weyl), when a cluster straddles position `m`;
-///   each family's count below `t`. The upper bound of both spectra is estimated only if the
-///   search must bisect before any count has reached `m` (see [`PairCounter::threshold_for`]).
+///   each family's count below `t`. The upper bound of both spectra is estimated only where the
+///   search needs it (see [`PairCounter::threshold_for`]).
 /// - `MaxEigenvalue(bound)`: each family's count of non-zero eigenvalues below
 ///   `bound · (1 + 1e-9)` (one count).
 ///
