@@ -76,7 +76,8 @@ impl BasisReport {
         notes
     }
 
-    /// The cost of every phase, in order: counting (the threshold search), boundaries (inertia
+    /// The cost of every phase, in order: counting (the threshold search; its processor time is
+    /// the process's, the harmonic fields being computed beside it), boundaries (inertia
     /// counts at interval boundaries), solving, refinement, and `writing` (the caller's, e.g.
     /// saving the basis).
     pub fn phases(&self, writing: PhaseStatistics) -> [(&'static str, PhaseStatistics); 5] {
