@@ -423,8 +423,8 @@ mod tests {
             estimates.set(estimates.get() + 1);
             bound
         };
-        // For a unit length Weyl's shift lies above both spectra (below 4) for every m; for
-        // the second, it puts m = 420 at 4.
+        // For a unit area Weyl's shift lies above both spectra (below 4) for every m; the
+        // second area puts it inside them (m = 420 at 4).
         for (area, m) in [1.0, 660.0]
             .into_iter()
             .flat_map(|area| [1, 7, 100, 250, 418].map(|m| (area, m)))
@@ -472,9 +472,10 @@ mod tests {
 
     #[test]
     fn the_ceiling_is_estimated_where_the_search_bisects_without_an_upper_end() {
-        // Weyl's shift for a unit area far below the spectrum of a path with spacing 1/10:
+        // A start far below both spectra (their lowest eigenvalues are about 6e-3 and 2.5e-3):
         // counts of zero quadruple the shift, and from the seventh count on the search
-        // bisects, up to the ceiling while no count has reached m.
+        // bisects, up to the ceiling while no count has reached m; the ceiling is estimated
+        // once however often the bisection asks for it.
         let (a, b) = (path(40), path(63));
         let (pa, pb) = (a.pencil().unwrap(), b.pencil().unwrap());
         let counter = PairCounter {
