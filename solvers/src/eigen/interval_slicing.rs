@@ -718,7 +718,14 @@ fn finish_request(
     statistics.refinement.solves += pencil.statistics().refinement.solves;
     let field = field.unwrap_or_else(|| {
         let floor = 1e-8 * pencil.mean_eigenvalue.abs();
-        field_residuals(&pencil.operators(), &values, vectors.as_ref(), floor, par)
+        field_residuals(
+            &pencil.operators(),
+            &values,
+            vectors.as_ref(),
+            floor,
+            par,
+            &mut [],
+        )
     });
     Eigenpairs::new(
         pencil,

@@ -986,9 +986,15 @@ impl KrylovSchur {
         let (mv, mu) = (self.mv, self.mu);
         let p = keep.len();
         let y_keep = Mat::from_fn(mv, p, |i, j| y[(i, keep[j])]);
-        let u_old = basis.rb().subcols(mv, mu).to_owned();
         tall_times_in_place(basis.rb_mut().subcols_mut(0, mv), y_keep.as_ref(), par);
-        basis.rb_mut().subcols_mut(p, mu).copy_from(&u_old);
+        // `U` moved left column by column (`p ≤ mv`, so each column lands on one already moved
+        // or on `V`'s): no copy of it, `n × mu` fresh values per restart otherwise.
+        if p < mv {
+            for j in 0..mu {
+                let (left, right) = basis.rb_mut().split_at_col_mut(mv + j);
+                left.col_mut(p + j).copy_from(right.col(0));
+            }
+        }
         self.h = Mat::from_fn(p, p, |i, j| if i == j { theta[keep[i]] } else { 0.0 });
         self.g = Mat::from_fn(mu, p, |i, j| gy[(i, keep[j])]);
         self.mv = p;

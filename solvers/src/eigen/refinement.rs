@@ -35,7 +35,7 @@ use super::statistics::ThreadClock;
 use super::stiffness::Stiffness;
 use super::symmetric_products::{
     gather_times, gather_times_and_magnitudes, map_column_chunks, map_column_chunks_reusing,
-    ChunkBuffers, Row, CHUNK,
+    ChunkBuffers, ChunkWork, Row, CHUNK,
 };
 use super::tall_products::mass_inner;
 use crate::error::SolverError;
@@ -57,16 +57,18 @@ use std::sync::Arc;
 /// `M_ii` for the scale of `M` (`δs_i ≈ ε (|A| |x|)_i / M_ii`: within a small factor of the
 /// true `M⁻¹` for a mass matrix); for a mixed pencil `A_ii` is the estimate of
 /// [`super::mixed_operator::MixedOperator::diagonal_estimate`] and `‖A‖` the one the pencil
-/// made (see [`super::pencil::Pencil::mixed`]).
+/// made (see [`super::pencil::Pencil::mixed`]). `scratch` (stale values, e.g. a slice's idle
+/// Krylov basis) holds the chunks' buffers where it is long enough ([`map_column_chunks`]).
 pub(crate) fn field_residuals(
     operators: &PencilOperators<'_>,
     values: &[f64],
     vectors: MatRef<'_, f64>,
     floor: f64,
     par: Par,
+    scratch: &mut [f64],
 ) -> Vec<FieldResidual> {
     residuals_by_chunks(operators, values, floor, |chunk| {
-        map_column_chunks(vectors, par, chunk)
+        map_column_chunks(vectors, par, scratch, chunk)
     })
 }
 
@@ -87,7 +89,7 @@ pub(crate) fn field_residuals_reusing(
 
 /// The residuals of one packed chunk: `(first column, width, rows, work buffers)`.
 type ChunkResiduals<'a> =
-    dyn Fn(usize, usize, &[Row], &mut [Vec<Row>; 3]) -> Vec<FieldResidual> + Sync + 'a;
+    dyn Fn(usize, usize, &[Row], &mut ChunkWork<'_>) -> Vec<FieldResidual> + Sync + 'a;
 
 /// The field residuals of the vectors whose eigenvalues are `values`, from `map`, which runs
 /// [`residuals_of_chunk`] (given to it) on every packed chunk of them in column order.
@@ -98,7 +100,7 @@ fn residuals_by_chunks(
     map: impl FnOnce(&ChunkResiduals<'_>) -> Vec<Vec<FieldResidual>>,
 ) -> Vec<FieldResidual> {
     let pencil = ChunkPencil::of(operators, floor);
-    let chunk = |first: usize, width: usize, x: &[Row], work: &mut [Vec<Row>; 3]| {
+    let chunk = |first: usize, width: usize, x: &[Row], work: &mut ChunkWork<'_>| {
         residuals_of_chunk(
             operators,
             pencil.as_ref(),
@@ -119,7 +121,7 @@ fn residuals_of_chunk(
     pencil: Option<&ChunkPencil<'_>>,
     (values, first, width): (&[f64], usize, usize),
     x: &[Row],
-    work: &mut [Vec<Row>; 3],
+    work: &mut ChunkWork<'_>,
     floor: f64,
 ) -> Vec<FieldResidual> {
     let lambda: Row = std::array::from_fn(|j| if j < width { values[first + j] } else { 0.0 });
@@ -136,14 +138,14 @@ fn diagonal_chunk_residuals(
     lambda: &Row,
     width: usize,
     x: &[Row],
-    work: &mut [Vec<Row>; 3],
+    work: &mut ChunkWork<'_>,
 ) -> Vec<FieldResidual> {
     fma_dispatch!(chunk_residuals(
         pencil: &ChunkPencil<'_>,
         lambda: &Row,
         width: usize,
         x: &[Row],
-        work: &mut [Vec<Row>; 3],
+        work: &mut ChunkWork<'_>,
     ) -> Vec<FieldResidual>)
 }
 
@@ -187,11 +189,11 @@ fn chunk_residuals<const FUSED: bool>(
     lambda: &Row,
     width: usize,
     x: &[Row],
-    work: &mut [Vec<Row>; 3],
+    work: &mut ChunkWork<'_>,
 ) -> Vec<FieldResidual> {
     let n = x.len();
     let (mass, inverse_mass) = (pencil.mass, &pencil.inverse_mass);
-    let [ax, abs_ax, a_s] = work;
+    let [ax, abs_ax, a_s] = &mut work.rows;
     // A x and |A| |x| (for the floor) from one pass over A.
     gather_times_and_magnitudes(pencil.a, x, ax, abs_ax);
     // r = A x − λ M x (its norm), then s = M⁻¹ r, in place.
@@ -272,14 +274,16 @@ fn general_chunk_residuals(
     lambda: &Row,
     width: usize,
     x: &[Row],
-    work: &mut [Vec<Row>; 3],
+    work: &mut ChunkWork<'_>,
     floor: f64,
 ) -> Vec<FieldResidual> {
-    let [ax, abs_ax, a_s] = work;
-    let mut scratch = Vec::new();
+    let ChunkWork {
+        rows: [ax, abs_ax, a_s],
+        extra: scratch,
+    } = work;
     operators
         .stiffness
-        .times_rows_and_magnitudes(x, ax, abs_ax, &mut scratch);
+        .times_rows_and_magnitudes(x, ax, abs_ax, scratch);
     operators.mass.times_rows(x, a_s);
     // r = A x − λ M x (its norm), then s = M⁻¹ r.
     let (mut r2, mut x2) = ([0.0; CHUNK], [0.0; CHUNK]);
@@ -292,14 +296,14 @@ fn general_chunk_residuals(
     }
     let s = ax;
     match operators.mass_factor {
-        Some(factor) => solve_mass_rows(factor, s, &mut scratch),
+        Some(factor) => solve_mass_rows(factor, s, scratch),
         None => {
             for (row, m) in s.iter_mut().zip(operators.mass_diagonal) {
                 row.iter_mut().for_each(|v| *v /= m);
             }
         }
     }
-    let energy = operators.stiffness.energy_rows(s, a_s, &mut scratch);
+    let energy = operators.stiffness.energy_rows(s, a_s, scratch);
     let mut noise = [0.0; CHUNK];
     for i in 0..x.len() {
         let weight = operators.stiffness_diagonal[i].max(0.0);
@@ -404,16 +408,18 @@ pub(crate) fn refine_interval(
     let clock = ThreadClock::start();
     let solve_cost = factor.refined_solve_cost();
     let mut outcome = Refinement::default();
-    let residual_of = |values: &[f64], vectors: MatRef<'_, f64>| {
+    // The residuals' buffers are cut from `scratch`, idle between the steps.
+    let residual_of = |values: &[f64], vectors: MatRef<'_, f64>, scratch: &mut [f64]| {
         field_residuals(
             operators,
             values,
             vectors,
             settings.floor,
             settings.parallelism,
+            scratch,
         )
     };
-    let mut before = residual_of(values, vectors.rb());
+    let mut before = residual_of(values, vectors.rb(), scratch);
     let mut which: Vec<usize> = (0..before.len())
         .filter(|&j| before[j].misses(settings.target))
         .collect();
@@ -430,6 +436,7 @@ pub(crate) fn refine_interval(
             worst,
             before[worst].residual,
             settings.floor,
+            scratch,
         ) {
             for _ in 0..MAX_REFINEMENT_STEPS {
                 let worst_before = worst_missing(&before, settings.target);
@@ -442,7 +449,7 @@ pub(crate) fn refine_interval(
                 )?;
                 outcome.solves += which.len();
                 outcome.refined = outcome.refined.max(which.len());
-                let after = residual_of(values, vectors.rb());
+                let after = residual_of(values, vectors.rb(), scratch);
                 // Another step only for pairs still above the target that the last step
                 // improved: the others are at the rounding floor of their vectors.
                 which = (0..after.len())
@@ -597,6 +604,7 @@ fn near_shift_steps(
         trial.rb(),
         settings.floor,
         settings.parallelism,
+        scratch,
     );
     Some((new_values, residuals))
 }
@@ -661,7 +669,8 @@ pub(crate) fn refine_columns(
 /// Whether an inverse-iteration step with `factor` cuts the field residual `before` of column
 /// `column` of `vectors`: one solve and no Rayleigh–Ritz, to find out before refining a whole
 /// interval. On meshes with slivers the residual of every pair sits at the accuracy of the
-/// solves themselves, which no step improves.
+/// solves themselves, which no step improves. `scratch` (stale values) holds the residual's
+/// buffers where it is long enough.
 pub(crate) fn step_helps(
     operators: &PencilOperators<'_>,
     factor: &ShiftFactor,
@@ -669,6 +678,7 @@ pub(crate) fn step_helps(
     column: usize,
     before: f64,
     floor: f64,
+    scratch: &mut [f64],
 ) -> bool {
     let n = vectors.nrows();
     let mass = operators.mass;
@@ -682,7 +692,7 @@ pub(crate) fn step_helps(
     let mut az = Mat::<f64>::zeros(n, 1);
     operators.stiffness.times(az.as_mut(), z.as_ref(), Par::Seq);
     let rayleigh: f64 = (0..n).map(|i| z[(i, 0)] * az[(i, 0)]).sum();
-    let after = field_residuals(operators, &[rayleigh], z.as_ref(), floor, Par::Seq);
+    let after = field_residuals(operators, &[rayleigh], z.as_ref(), floor, Par::Seq, scratch);
     after
         .first()
         .is_some_and(|r| r.residual < TRIAL_GAIN * before)

@@ -85,50 +85,119 @@ pub(crate) fn pack_into(x: MatRef<'_, f64>, first: usize, width: usize, rows: &m
     }
 }
 
-/// The `n`-row buffers one worker of [`map_column_chunks`] reuses for all its chunks (fresh
-/// buffers per chunk were, on the bunny, gigabytes of zeroed memory per basis).
+/// The buffers a chunk's callback of [`map_column_chunks`] works in, contents unspecified on
+/// entry: three of `n` rows, and one the callback sizes as it needs (a mixed pencil's inner
+/// solves), kept from chunk to chunk.
+pub(crate) struct ChunkWork<'a> {
+    pub(crate) rows: [&'a mut [Row]; 3],
+    pub(crate) extra: &'a mut Vec<Row>,
+}
+
+/// One worker's buffers: the packed chunk (`n` rows) and its [`ChunkWork`].
+type ChunkSpace<'a> = (&'a mut [Row], ChunkWork<'a>);
+
+/// The `n`-row buffers of [`map_column_chunks_reusing`], kept by its caller from call to call
+/// (and of [`map_column_chunks`] when its scratch is too short).
 pub(crate) struct ChunkBuffers {
     /// The current chunk, packed.
     packed: Vec<Row>,
-    /// Work space for the caller (contents unspecified on entry).
-    work: [Vec<Row>; 3],
+    rows: [Vec<Row>; 3],
+    extra: Vec<Row>,
 }
 
 impl ChunkBuffers {
     fn new(n: usize) -> Self {
         Self {
             packed: vec![[0.0; CHUNK]; n],
-            work: std::array::from_fn(|_| vec![[0.0; CHUNK]; n]),
+            rows: std::array::from_fn(|_| vec![[0.0; CHUNK]; n]),
+            extra: Vec::new(),
         }
+    }
+
+    fn space(&mut self) -> ChunkSpace<'_> {
+        let [a, b, c] = &mut self.rows;
+        (
+            &mut self.packed,
+            ChunkWork {
+                rows: [a, b, c],
+                extra: &mut self.extra,
+            },
+        )
     }
 }
 
+/// One [`ChunkSpace`] of `n` rows per entry of `extras`, cut from `scratch`; `None` if it is
+/// too short (`4·n·CHUNK` values per space).
+fn spaces_in<'a>(
+    scratch: &'a mut [f64],
+    n: usize,
+    extras: &'a mut [Vec<Row>],
+) -> Option<Vec<ChunkSpace<'a>>> {
+    if scratch.len() < extras.len() * 4 * n * CHUNK {
+        return None;
+    }
+    let (mut rest, _) = scratch.as_chunks_mut::<CHUNK>();
+    let mut spaces = Vec::with_capacity(extras.len());
+    for extra in extras {
+        let (packed, tail) = std::mem::take(&mut rest).split_at_mut(n);
+        let (a, tail) = tail.split_at_mut(n);
+        let (b, tail) = tail.split_at_mut(n);
+        let (c, tail) = tail.split_at_mut(n);
+        rest = tail;
+        spaces.push((
+            packed,
+            ChunkWork {
+                rows: [a, b, c],
+                extra,
+            },
+        ));
+    }
+    Some(spaces)
+}
+
 /// Calls `work(first, width, rows, buffers)` for every chunk of [`CHUNK`] columns of `x`
-/// (`rows`: the chunk packed, `width` its columns; `buffers`: the worker's reused work space)
-/// and returns the results in column order; chunks run on rayon's threads when `par` allows
-/// more than one.
+/// (`rows`: the chunk packed, `width` its columns; `buffers`: the worker's work space) and
+/// returns the results in column order; when `par` allows more than one thread, the chunks are
+/// cut into that many runs of neighbouring chunks, which run on rayon's threads. Each run's
+/// buffers are cut from `scratch` (stale values, e.g. a slice's idle Krylov basis), or made
+/// afresh where it is too short: fresh buffers on every call were, at 253,440 faces, a third of
+/// the process's page faults (`docs/performance.md`).
 pub(crate) fn map_column_chunks<T: Send>(
     x: MatRef<'_, f64>,
     par: Par,
-    work: impl Fn(usize, usize, &[Row], &mut [Vec<Row>; 3]) -> T + Sync,
+    scratch: &mut [f64],
+    work: impl Fn(usize, usize, &[Row], &mut ChunkWork<'_>) -> T + Sync,
 ) -> Vec<T> {
-    let chunks = x.ncols().div_ceil(CHUNK);
-    let one = |buffers: &mut ChunkBuffers, chunk: usize| {
+    let (n, chunks) = (x.nrows(), x.ncols().div_ceil(CHUNK));
+    let runs = par.degree().clamp(1, chunks.max(1));
+    let one = |(packed, work_space): &mut ChunkSpace<'_>, chunk: usize| {
         let first = chunk * CHUNK;
         let width = CHUNK.min(x.ncols() - first);
-        pack_into(x, first, width, &mut buffers.packed);
-        work(first, width, &buffers.packed, &mut buffers.work)
+        pack_into(x, first, width, packed);
+        work(first, width, packed, work_space)
     };
-    let n = x.nrows();
-    if par.degree() > 1 {
-        (0..chunks)
-            .into_par_iter()
-            .map_init(|| ChunkBuffers::new(n), one)
-            .collect()
-    } else {
-        let mut buffers = ChunkBuffers::new(n);
-        (0..chunks).map(|chunk| one(&mut buffers, chunk)).collect()
+    let mut extras: Vec<Vec<Row>> = (0..runs).map(|_| Vec::new()).collect();
+    let mut owned: Vec<ChunkBuffers> = Vec::new();
+    let spaces = match spaces_in(scratch, n, &mut extras) {
+        Some(spaces) => spaces,
+        None => {
+            owned.extend((0..runs).map(|_| ChunkBuffers::new(n)));
+            owned.iter_mut().map(ChunkBuffers::space).collect()
+        }
+    };
+    let run_of = |r: usize| r * chunks / runs..(r + 1) * chunks / runs;
+    if runs == 1 {
+        let mut spaces = spaces;
+        return (0..chunks).map(|c| one(&mut spaces[0], c)).collect();
     }
+    spaces
+        .into_par_iter()
+        .enumerate()
+        .map(|(r, mut space)| run_of(r).map(|c| one(&mut space, c)).collect::<Vec<T>>())
+        .collect::<Vec<Vec<T>>>()
+        .into_iter()
+        .flatten()
+        .collect()
 }
 
 /// [`map_column_chunks`] on the calling thread alone, with the buffers `buffers` (made for `x`'s
@@ -138,19 +207,20 @@ pub(crate) fn map_column_chunks<T: Send>(
 pub(crate) fn map_column_chunks_reusing<T>(
     x: MatRef<'_, f64>,
     buffers: &mut Option<ChunkBuffers>,
-    mut work: impl FnMut(usize, usize, &[Row], &mut [Vec<Row>; 3]) -> T,
+    mut work: impl FnMut(usize, usize, &[Row], &mut ChunkWork<'_>) -> T,
 ) -> Vec<T> {
     let n = x.nrows();
     let buffers = match buffers {
         Some(b) if b.packed.len() == n => b,
         _ => buffers.insert(ChunkBuffers::new(n)),
     };
+    let (packed, mut work_space) = buffers.space();
     (0..x.ncols().div_ceil(CHUNK))
         .map(|chunk| {
             let first = chunk * CHUNK;
             let width = CHUNK.min(x.ncols() - first);
-            pack_into(x, first, width, &mut buffers.packed);
-            work(first, width, &buffers.packed, &mut buffers.work)
+            pack_into(x, first, width, packed);
+            work(first, width, packed, &mut work_space)
         })
         .collect()
 }
@@ -250,11 +320,16 @@ mod tests {
         }
         let magnitudes = Mat::from_fn(n, n, |i, j| dense[(i, j)].abs());
         let expected_magnitudes = &magnitudes * Mat::from_fn(n, 19, |i, j| x[(i, j)].abs());
-        let sums = map_column_chunks(x.as_ref(), Par::Seq, |first, width, rows, _work| {
-            let (mut out, mut magnitudes) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
-            gather_times_and_magnitudes(a.as_ref(), rows, &mut out, &mut magnitudes);
-            (first, width, out, magnitudes)
-        });
+        let sums = map_column_chunks(
+            x.as_ref(),
+            Par::Seq,
+            &mut [],
+            |first, width, rows, _work| {
+                let (mut out, mut magnitudes) = (vec![[0.0; CHUNK]; n], vec![[0.0; CHUNK]; n]);
+                gather_times_and_magnitudes(a.as_ref(), rows, &mut out, &mut magnitudes);
+                (first, width, out, magnitudes)
+            },
+        );
         assert_eq!(sums.len(), 3);
         for (first, width, out, magnitudes) in sums {
             for j in 0..width {
@@ -268,6 +343,48 @@ mod tests {
                 assert!(rows
                     .iter()
                     .all(|row| row[width..].iter().all(|&v| v == 0.0)));
+            }
+        }
+    }
+    #[test]
+    fn chunk_buffers_are_cut_from_scratch_that_has_room() {
+        let n = 300;
+        let a = symmetric(n);
+        let x = Mat::from_fn(n, 19, |i, j| ((i * 5 + j * 11) % 13) as f64 - 6.0);
+        let expected = a.to_dense() * &x;
+        for (par, runs) in [
+            (Par::Seq, 1),
+            (Par::Rayon(NonZeroUsize::new(2).expect("non-zero")), 2),
+        ] {
+            let room = runs * 4 * n * CHUNK;
+            for (len, cut) in [(room, true), (room - 1, false)] {
+                // Stale values: nothing may depend on them.
+                let mut scratch = vec![f64::NAN; len];
+                let range = scratch.as_ptr_range();
+                let (start, end) = (range.start as usize, range.end as usize);
+                let results =
+                    map_column_chunks(x.as_ref(), par, &mut scratch, |first, width, rows, work| {
+                        let [product, _, _] = &mut work.rows;
+                        gather_times(a.as_ref(), rows, product);
+                        let at = product.as_ptr() as usize;
+                        let columns: Vec<Vec<f64>> = (0..width)
+                            .map(|j| product.iter().map(|row| row[j]).collect())
+                            .collect();
+                        let padded = rows
+                            .iter()
+                            .all(|row| row[width..].iter().all(|&v| v == 0.0));
+                        (first, columns, padded, (start..end).contains(&at))
+                    });
+                assert_eq!(results.len(), 3);
+                for (first, columns, padded, in_scratch) in results {
+                    assert!(padded);
+                    assert_eq!(in_scratch, cut, "runs {runs}, scratch of {len} values");
+                    for (j, column) in columns.iter().enumerate() {
+                        for (i, value) in column.iter().enumerate() {
+                            assert!((value - expected[(i, first + j)]).abs() <= 1e-12);
+                        }
+                    }
+                }
             }
         }
     }
