@@ -186,10 +186,7 @@ pub(crate) fn map_column_chunks<T: Send>(
         }
     };
     let run_of = |r: usize| r * chunks / runs..(r + 1) * chunks / runs;
-    if runs == 1 {
-        let mut spaces = spaces;
-        return (0..chunks).map(|c| one(&mut spaces[0], c)).collect();
-    }
+    // One run (`Par::Seq`) stays on the calling thread: rayon runs a lone item inline.
     spaces
         .into_par_iter()
         .enumerate()
