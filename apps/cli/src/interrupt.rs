@@ -101,7 +101,11 @@ mod tests {
     fn the_console_handler_cleans_up_and_exits_130() {
         if let Some(temporary) = std::env::var_os(CHILD_VARIABLE) {
             assert!(super::console_events::install());
-            let _registration = tvf_core::io::temporaries::register(temporary.as_ref());
+            let temporary = std::path::PathBuf::from(temporary);
+            // Written by the parent: registered as it is.
+            let ((), _registration) =
+                tvf_core::io::temporaries::create_registered(|| Ok(()), |()| temporary.clone())
+                    .unwrap();
             // SAFETY: sending SIGINT to this very process, whose handler was just set.
             unsafe {
                 libc::kill(libc::getpid(), libc::SIGINT);

@@ -12,7 +12,7 @@
 use std::fs::File;
 use std::path::{Path, PathBuf};
 use tvf_core::io::temporaries::{
-    commit_uninterrupted, register, TEMPORARY_FOLDER_PREFIX, TEMPORARY_SUFFIX,
+    commit_uninterrupted, create_registered, TEMPORARY_FOLDER_PREFIX, TEMPORARY_SUFFIX,
 };
 
 /// What is under a cache file's name.
@@ -111,12 +111,16 @@ pub(crate) fn put_cache_file(
         .file_name()
         .ok_or_else(|| format!("{}: not a file name", path.display()))?;
     // Created with mode 0700 by an exclusive mkdir: nobody else can put anything inside.
-    let staging = tempfile::Builder::new()
-        .prefix(TEMPORARY_FOLDER_PREFIX)
-        .suffix(TEMPORARY_SUFFIX)
-        .tempdir_in(folder)
-        .map_err(|e| format!("{}: {e}", folder.display()))?;
-    let _registration = register(staging.path());
+    let (staging, _registration) = create_registered(
+        || {
+            tempfile::Builder::new()
+                .prefix(TEMPORARY_FOLDER_PREFIX)
+                .suffix(TEMPORARY_SUFFIX)
+                .tempdir_in(folder)
+        },
+        |s| s.path().to_path_buf(),
+    )
+    .map_err(|e| format!("{}: {e}", folder.display()))?;
     let staged = staging.path().join(name);
     write(&staged)?;
     commit_uninterrupted(|| std::fs::rename(&staged, path))

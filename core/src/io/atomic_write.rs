@@ -26,7 +26,7 @@ use std::path::Path;
 use super::early_writeback::EarlyWriteback;
 use super::output_path::through_links;
 use super::temporaries::{
-    commit_uninterrupted, register, sweep_stale_temporaries, TEMPORARY_FILE_PREFIX,
+    commit_uninterrupted, create_registered, sweep_stale_temporaries, TEMPORARY_FILE_PREFIX,
     TEMPORARY_SUFFIX,
 };
 use super::write_faults::apply_injected_fault;
@@ -82,8 +82,10 @@ pub fn write_atomically(
         // open(2) applies the umask to this mode, as it does for File::create.
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let mut temporary = builder.tempfile_in(directory)?;
-    let _registration = register(temporary.path());
+    let (mut temporary, _registration) = create_registered(
+        || builder.tempfile_in(directory),
+        |t| t.path().to_path_buf(),
+    )?;
     fill_and_flush(temporary.as_file_mut(), fill)?;
     apply_injected_fault(path)?;
     temporary.as_file().sync_all()?;

@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 use super::output_path::through_links;
 
 use super::temporaries::{
-    commit_uninterrupted, register, sweep_stale_temporaries, Registration, TEMPORARY_FOLDER_PREFIX,
-    TEMPORARY_SUFFIX,
+    commit_uninterrupted, create_registered, sweep_stale_temporaries, Registration,
+    TEMPORARY_FOLDER_PREFIX, TEMPORARY_SUFFIX,
 };
 
 /// A folder being written; see the [module](self).
@@ -56,8 +56,8 @@ impl StagedFolder {
             // mkdir(2) applies the umask, as for create_dir: an ordinary folder once renamed.
             builder.permissions(std::fs::Permissions::from_mode(0o777));
         }
-        let staging = builder.tempdir_in(parent)?;
-        let registration = register(staging.path());
+        let (staging, registration) =
+            create_registered(|| builder.tempdir_in(parent), |s| s.path().to_path_buf())?;
         Ok(Self {
             target: target.to_path_buf(),
             staging: Some(staging),
