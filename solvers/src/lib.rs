@@ -35,6 +35,7 @@
 // Index loops mirror the matrix formulas (L[i][k], x[i]) in the numeric kernels.
 #![allow(clippy::needless_range_loop)]
 
+mod calling_thread;
 pub mod convert;
 mod dense_cholesky;
 mod dense_eigen;

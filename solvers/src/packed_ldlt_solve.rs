@@ -17,6 +17,7 @@
 //! on two threads with the same operations in the same order as one thread
 //! (`packed_solve_split.rs`), so the solutions do not depend on it.
 
+use crate::calling_thread::join;
 use faer::perm::PermRef;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
@@ -144,7 +145,7 @@ fn solve_rows(factor: PackedFactor<'_>, x: &mut [Row]) {
     let end = top_unknown + top.len();
     backward(supernodal, split.top_nodes(), top, top_unknown, (&[], end));
     let top = (&*top, top_unknown);
-    rayon::join(
+    join(
         || backward(supernodal, split.first_nodes(), first, 0, top),
         || {
             backward(
@@ -189,7 +190,7 @@ fn forward_rows(factor: PackedFactor<'_>, x: &mut [Row]) {
     let mut kept = split.kept_buffer();
     let [first_kept, second_kept] = split.kept_parts(&mut kept);
     let [first, second, top] = split.parts_of(x);
-    rayon::join(
+    join(
         || forward(supernodal, split.first_nodes(), first, 0, Some(first_kept)),
         || {
             forward(

@@ -74,6 +74,7 @@ use super::types::{
     EigenOptions, EigenProgress, Eigenpairs, EigenvectorSink, FinishedEigenvectors,
 };
 use super::workspace_pool::WorkspacePool;
+use crate::calling_thread::on_calling_thread;
 use crate::error::SolverError;
 use crate::huge_pages::reserve_on_huge_pages;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -147,7 +148,7 @@ pub fn lowest_eigenpairs_of(
     clock.stop(&mut statistics.counting);
 
     let clock = PhaseClock::start();
-    let jobs = interval_jobs(requests, &plans, options.finished.is_some());
+    let jobs = interval_jobs(requests, &plans);
     let gate = MemoryGate::new(budget, job_memory(requests, options, &plans, &jobs));
     let streaming = options.finished.is_some();
     let (eigenvectors, files, columns) = eigenvector_storage(requests, &plans, streaming);
@@ -368,16 +369,10 @@ fn count_boundaries(
 }
 
 /// The jobs of phase 2: `(plan, interval)` for every interval that holds eigenvalues, the
-/// largest first (dimension × eigenpairs), so that the pool ends on small ones and no thread
-/// idles long while the last big interval finishes. With `in_column_order` (eigenvectors
-/// handed on as they become final, see [`IntervalStream`]) the plans of larger dimension first
-/// and each plan's intervals in ascending order, so that each finished interval soon becomes
-/// final and few wait in memory for an earlier one.
-fn interval_jobs(
-    requests: &[EigenRequest<'_, '_>],
-    plans: &[Plan],
-    in_column_order: bool,
-) -> Vec<(usize, usize)> {
+/// plans of larger dimension first and each plan's intervals in ascending order, so that each
+/// finished interval soon becomes final ([`IntervalStream`] places it and takes its residuals
+/// while the other jobs run) and few wait in memory for an earlier one.
+fn interval_jobs(requests: &[EigenRequest<'_, '_>], plans: &[Plan]) -> Vec<(usize, usize)> {
     let mut jobs: Vec<(usize, usize)> = plans
         .iter()
         .enumerate()
@@ -388,15 +383,7 @@ fn interval_jobs(
         })
         .collect();
     let dimension = |p: usize| requests[plans[p].request].pencil.dimension();
-    if in_column_order {
-        jobs.sort_by_key(|&(p, i)| (std::cmp::Reverse(dimension(p)), p, i));
-        return jobs;
-    }
-    let size = |&(p, i): &(usize, usize)| {
-        let plan = &plans[p];
-        dimension(p) * (plan.counts[i + 1] - plan.counts[i])
-    };
-    jobs.sort_by_key(|job| std::cmp::Reverse(size(job)));
+    jobs.sort_by_key(|&(p, i)| (std::cmp::Reverse(dimension(p)), p, i));
     jobs
 }
 
@@ -518,7 +505,8 @@ fn solve_intervals(
         let p = jobs[job].0;
         // SAFETY: the job has returned, so its view of its columns is gone; views of finished
         // jobs' columns live only inside the stream's calls.
-        unsafe { stream.job_done(job, parts) }.map_err(fail(plans[p].request))
+        // On this thread: the pool's threads are busy with the jobs (see `calling_thread.rs`).
+        on_calling_thread(|| unsafe { stream.job_done(job, parts) }).map_err(fail(plans[p].request))
     };
     let solved = run_jobs(
         (jobs.len(), gate),

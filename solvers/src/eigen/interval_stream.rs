@@ -6,28 +6,27 @@
 //!
 //! A vector is final once it is M-orthogonalised against the previous interval and the next
 //! interval has been orthogonalised against it. So the intervals of a plan are taken in
-//! ascending order as their jobs finish (the jobs of a streamed call run in that order, see
-//! `interval_jobs`; otherwise an interval waits until the one before it is solved): each part
-//! (an interval, or a half of a split one) is orthogonalised against the part before it, whose
-//! field residuals are then taken and which is handed on. Without a sink the columns stay in
-//! the `n × k` matrix the jobs wrote (a mixed or sparse-mass pencil's eigenfields are formed by
-//! the caller from the whole result): on `bunny-closed.obj` with Galerkin masses the residuals
-//! of every pair after the last job were the slowest part of the end (measured in
-//! `docs/performance.md`). With a sink, every job's columns leave memory as the job finishes
-//! (on its own thread: the calling thread that places the intervals shares rayon's pool with
-//! the jobs, and its products can wait minutes for a free worker, so Done messages queue up),
-//! an interval waits on disk until it is placed, and handed-on columns are given back
-//! ([`super::file_backed_columns`]). Both give the same vectors bit for bit.
+//! ascending order as their jobs finish (the jobs run in that order, see `interval_jobs`; an
+//! interval that finishes early waits until the one before it is solved): each part (an
+//! interval, or a half of a split one) is orthogonalised against the part before it, whose
+//! field residuals are then taken and which is handed on. The stream runs on the calling
+//! thread with its products kept there (`calling_thread.rs`): handed to rayon's pool, whose
+//! threads run the jobs, they waited for a free worker, and on `bunny-closed.obj` with Galerkin
+//! masses the whole stream piled up after the last job (measured in `docs/performance.md`).
+//! Without a sink the columns stay in the `n × k` matrix the jobs wrote (a mixed or sparse-mass
+//! pencil's eigenfields are formed by the caller from the whole result). With a sink, every
+//! job's columns leave memory as the job finishes (on the job's thread, so that they do not
+//! wait for the stream), an interval waits on disk until it is placed, and handed-on columns
+//! are given back ([`super::file_backed_columns`]). Both give the same vectors bit for bit.
 
 use super::file_backed_columns::{drop_columns, ParkedColumns};
 use super::mass::Mass;
 use super::pencil::Pencil;
 use super::refinement::{field_residuals_reusing, FieldResidual};
 use super::symmetric_products::CHUNK;
-use super::tall_products::{mass_inner, remove_mass_projection};
+use super::tall_products::{mass_inner, remove_mass_projection, tall_times};
 use super::types::{EigenvectorSink, FinishedEigenvectors};
 use crate::error::SolverError;
-use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, Mat, MatMut, MatRef, Par};
 use std::collections::HashMap;
@@ -361,7 +360,7 @@ fn remove_projection_by_chunks(
                 done(Chunk::Earlier(first, rows));
             }
             for (first, rows) in blocks(held) {
-                matmul(
+                tall_times(
                     chunk.rb_mut(),
                     Accum::Add,
                     earlier.subcols(first, rows),

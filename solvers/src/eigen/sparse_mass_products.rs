@@ -12,6 +12,7 @@
 use super::symmetric_products::{Row, CHUNK};
 use super::tall_kernels;
 use super::tall_products::{row_parts, tall_times, Sweep};
+use crate::calling_thread::join;
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::SparseColMatRef;
 use faer::{Accum, Mat, MatMut, MatRef, Par};
@@ -77,7 +78,7 @@ fn project_rows(
     if parts > 1 {
         let left_parts = parts / 2;
         let split = range.start + range.len() * left_parts / parts;
-        let (mut a, b) = rayon::join(
+        let (mut a, b) = join(
             || project_rows(z, m, project, with_gram, range.start..split, left_parts),
             || {
                 project_rows(

@@ -13,6 +13,7 @@ use super::mass::Mass;
 use super::sparse_mass_products::{sparse_mass_inner, sparse_sweep};
 use super::symmetric_products::{Row, CHUNK};
 use super::tall_kernels;
+use crate::calling_thread::join;
 use crate::packed_rows::{contiguous, contiguous_columns_mut, pack_columns};
 use faer::linalg::matmul::matmul;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -55,7 +56,7 @@ fn split_times(
     let split = lhs.nrows() * left_parts / parts;
     let (out_top, out_bottom) = out.split_at_row_mut(split);
     let (lhs_top, lhs_bottom) = lhs.split_at_row(split);
-    rayon::join(
+    join(
         || split_times(out_top, accum, lhs_top, rhs, alpha, left_parts),
         || {
             split_times(
@@ -111,7 +112,7 @@ fn in_place_parts(mut b: MatMut<'_, f64>, y: MatRef<'_, f64>, parts: usize) {
     let left_parts = parts / 2;
     let split = b.nrows() * left_parts / parts;
     let (top, bottom) = b.split_at_row_mut(split);
-    rayon::join(
+    join(
         || in_place_parts(top, y, left_parts),
         || in_place_parts(bottom, y, parts - left_parts),
     );
@@ -192,7 +193,7 @@ fn split_sweep(
     let left_parts = parts / 2;
     let split = z.nrows() * left_parts / parts;
     let (top, bottom) = z.split_at_row_mut(split);
-    let (mut a, b) = rayon::join(
+    let (mut a, b) = join(
         || {
             split_sweep(
                 top, first_row, subtract, project, mass, with_gram, left_parts,
@@ -409,7 +410,7 @@ pub(crate) fn remove_mass_projection(
     par: Par,
 ) {
     let overlap = mass_inner(b, mass, z.rb(), par);
-    matmul(z.rb_mut(), Accum::Add, b, overlap.as_ref(), -1.0, par);
+    tall_times(z.rb_mut(), Accum::Add, b, overlap.as_ref(), -1.0, par);
 }
 
 /// `Bᵀ Z` (`p × r`) for `B: n × p`, `Z: n × r`, rows split as in [`mass_inner`].
@@ -474,7 +475,7 @@ fn split_inner(
         }
         None => (None, None),
     };
-    let (mut top, bottom) = rayon::join(
+    let (mut top, bottom) = join(
         || split_inner(b_top, w_top, z_top, left_parts),
         || split_inner(b_bottom, w_bottom, z_bottom, parts - left_parts),
     );
