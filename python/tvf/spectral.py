@@ -113,7 +113,9 @@ def basis(mesh, k, discretization=None, boundary="tangential", seed=0, progress=
     spectrum-slicing eigensolver; the selection is provably the lowest ``k`` (inertia counts).
     Sparse masses work as diagonal ones: a sparse ``M0`` or ``M2^-1`` is the pencil's mass
     matrix, and with a sparse ``M1`` the co-exact stiffness ``d1 M1^-1 d1^T`` (dense) is never
-    formed (its shifts factor the sparse saddle matrix ``[[-M1, d1^T], [d1, -s M2^-1]]``). Signs of eigenfields are arbitrary; eigenfields of a repeated eigenvalue span its
+    formed (its shifts factor ``d1^T M2 d1 - s M1`` on the edges where ``M2^-1`` is diagonal, the
+    sparse saddle matrix ``[[-M1, d1^T], [d1, -s M2^-1]]`` otherwise). Signs of eigenfields are
+    arbitrary; eigenfields of a repeated eigenvalue span its
     eigenspace in an arbitrary orthonormal basis. Returns a :class:`Basis`."""
     complex_ = as_complex(mesh, discretization, boundary, beta, intrinsic_delaunay)
     k = integer(k, "k")

@@ -25,11 +25,11 @@ mod bench_runs;
 mod mesh_matrices;
 
 use bench_runs::{median, range, run_child, Timing};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::SparseColMat;
 use faer::Mat;
 use std::path::PathBuf;
 use std::time::Instant;
-use tvf_solvers::convert::{shifted_upper_triangle, ShiftedPattern};
+use tvf_solvers::convert::{edge_schur_pattern, shifted_upper_triangle};
 use tvf_solvers::{
     lowest_eigenpairs_of, process_cpu_seconds, EigenOptions, EigenRequest, Eigenpairs, MassMatrix,
     Pencil, SolverStatistics, SparseLdlt,
@@ -268,28 +268,12 @@ fn where_the_time_goes_lumped(cr: &mesh_matrices::StiffnessMass) {
     time_factor("Crouzeix–Raviart A − σM", &upper);
 }
 
-/// The same for the saddle matrix `K(σ)` of the mixed pencil.
+/// The same for the matrix the mixed pencil factors at a shift: `C(σ) = d1ᵀ N⁻¹ d1 − σW` on the
+/// edges (`N` the face areas).
 fn where_the_time_goes_galerkin(whitney: &mesh_matrices::Whitney) {
-    let sigma = SIGMA;
-    let (n1, n2) = (whitney.edges.len(), whitney.face_areas.len());
-    let total = n1 + n2;
-    let mut base = Vec::new();
-    for (value, (i, j)) in whitney.mass.iter() {
-        if i <= j {
-            base.push(Triplet::new(i, j, -*value));
-        }
-    }
-    for (value, (f, e)) in whitney.d1.iter() {
-        base.push(Triplet::new(e, n1 + f, *value));
-    }
-    let shift: Vec<Triplet<usize, usize, f64>> = (0..n2)
-        .map(|f| Triplet::new(n1 + f, n1 + f, whitney.face_areas[f]))
-        .collect();
-    let build = |t: &[Triplet<usize, usize, f64>]| {
-        SparseColMat::try_new_from_triplets(total, total, t).expect("valid")
-    };
-    let pattern = ShiftedPattern::new(&build(&base), &build(&shift)).expect("same size");
-    time_factor("Whitney saddle K(σ)", &pattern.at(sigma));
+    let pattern = edge_schur_pattern(&whitney.mass, &whitney.d1, &whitney.face_areas)
+        .expect("a valid mixed pencil");
+    time_factor("Whitney edge Schur complement C(σ)", &pattern.at(SIGMA));
 }
 
 fn time_factor(name: &str, upper: &SparseColMat<usize, f64>) {

@@ -82,6 +82,43 @@ fn csc_of_entries(
     Ok(SparseColMat::new(symbolic, values))
 }
 
+/// The upper triangle of `C(σ) = d1ᵀ N⁻¹ d1 − σW` for every σ (`n1 × n1`): the matrix a mixed
+/// pencil `(d1 W⁻¹ d1ᵀ, N)` with the diagonal mass `mass` (`N`, `n2` positive values) factors at
+/// a shift, for `d1` (`n2 × n1`) and `W` (`n1 × n1`, full or upper storage). Its pattern is that
+/// of `W` with `d1ᵀ d1` (edges of a common face), which for the Whitney 1-form mass adds nothing.
+///
+/// Errors: [`SolverError::NotSquare`], [`SolverError::DimensionMismatch`] (`d1` does not have
+/// `n1` columns or `mass` has not `n2` values), [`SolverError::NonFinite`].
+pub fn edge_schur_pattern(
+    w: &sprs::CsMat<f64>,
+    d1: &sprs::CsMat<f64>,
+    mass: &[f64],
+) -> Result<ShiftedPattern, SolverError> {
+    let n1 = square_dimension(w)?;
+    for (context, expected, actual) in [
+        ("columns of d1 (the rows of W)", n1, d1.cols()),
+        ("values of the mass (the rows of d1)", d1.rows(), mass.len()),
+    ] {
+        if expected != actual {
+            return Err(SolverError::DimensionMismatch {
+                context,
+                expected,
+                actual,
+            });
+        }
+    }
+    let mut weighted = sprs::TriMat::with_capacity((d1.rows(), n1), d1.nnz());
+    for (&value, (f, e)) in d1.iter() {
+        weighted.add_triplet(f, e, value / mass[f]);
+    }
+    let weighted: sprs::CsMat<f64> = weighted.to_csr();
+    let gram: sprs::CsMat<f64> = &d1.transpose_view().to_csr() * &weighted;
+    ShiftedPattern::new(
+        &upper_triangle_csc(&gram.to_csc())?,
+        &upper_triangle_csc(w)?,
+    )
+}
+
 /// `A − shift · diag(mass)` restricted to the upper triangle, as a faer CSC matrix.
 ///
 /// Every diagonal position is present in the result (added as an explicit entry if `matrix`

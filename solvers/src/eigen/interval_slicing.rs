@@ -3,8 +3,8 @@
 //! are solved concurrently.
 //!
 //! 1. *Counting.* The top shift `σ_top` with `ν(σ_top) ≥ k` (`ν(σ)`: negative pivots of an
-//!    `LDLᵀ` of `A − σM`, or of the saddle matrix of a mixed pencil less its `n1` negatives of
-//!    `−W`, the exact number of eigenvalues below σ; see [`Pencil`]) is given by the caller (who
+//!    `LDLᵀ` of `A − σM`, or for a mixed pencil those of its factored matrix less the ones that
+//!    are no eigenvalues, the exact number of eigenvalues below σ; see [`Pencil`]) is given by the caller (who
 //!    counted it already, e.g. to split a basis between two pencils) or found from Weyl's law for
 //!    surfaces (`ν` grows linearly in σ) anchored at the mean eigenvalue `trace(A)/trace(M)`.
 //!    `m = ⌈ν(σ_top)/interval_size⌉` intervals `(b_i, b_{i+1})`, `b_0 = −∞`, `b_m = σ_top`,

@@ -1,7 +1,7 @@
 //! One spectrum slice: block Krylov–Schur (thick-restart block Lanczos with full
 //! reorthogonalisation) on the shift-inverted operator `OP = (A − σM)⁻¹ M`, which is
 //! self-adjoint in the M inner product (`M` diagonal or sparse SPD; for a mixed pencil the
-//! solve goes through the saddle matrix, see `shift_factor.rs`). Eigenvalues λ of `(A, M)` near σ become the
+//! solve goes through a matrix on the edges or a saddle matrix, see `shift_factor.rs`). Eigenvalues λ of `(A, M)` near σ become the
 //! largest-magnitude eigenvalues `θ = 1/(λ − σ)` of `OP`.
 //!
 //! State (all M-orthonormal, mutually M-orthogonal):
@@ -43,7 +43,7 @@ use rand_chacha::ChaCha8Rng;
 
 /// What one slice must find.
 pub(crate) struct SliceProblem<'a> {
-    /// The factorization at σ (of `A − σM`, or of the saddle matrix of a mixed pencil).
+    /// The factorization at σ (of `A − σM`, or of a mixed pencil's matrix, see `shift_factor.rs`).
     pub factor: &'a ShiftFactor,
     /// `M`, rows in the pencil's input order.
     pub mass: Mass<'a>,
@@ -160,9 +160,9 @@ struct OperatorScratch {
     solution: Vec<Row>,
     /// `M OP U` for a sparse `M` (empty otherwise).
     weighted: Vec<Row>,
-    /// The saddle system of a mixed pencil (empty otherwise).
+    /// The edges' or the saddle system of a mixed pencil (empty otherwise).
     saddle: Vec<Row>,
-    /// The refined saddle solves of the inverse-iteration step (empty otherwise).
+    /// The refined solves of a mixed pencil's inverse-iteration step (empty otherwise).
     refined: SaddleScratch,
 }
 

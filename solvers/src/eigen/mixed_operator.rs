@@ -10,7 +10,7 @@ use super::symmetric_products::{gather_times, gather_times_and_magnitudes, Row};
 use crate::convert::{square_dimension, to_faer_csc, upper_triangle_csc};
 use crate::error::SolverError;
 use crate::sparse_ldlt::SparseLdlt;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
 use faer::Mat;
 
 /// `A = d1 W⁻¹ d1ᵀ` (`n2 × n2`, symmetric positive semidefinite), by its factors.
@@ -22,6 +22,39 @@ pub(crate) struct MixedOperator {
     by_edge: SparseColMat<usize, f64>,
     /// `d1ᵀ` (`n1 × n2`) with row `k` as in `by_edge`: column `f` gathers `(d1 u)_f`.
     by_face: SparseColMat<usize, f64>,
+    /// `d1` (`n2 × n1`) in the input order of both sides.
+    incidence: SparseColMat<usize, f64>,
+}
+
+/// `d1` stored for products both ways: `(by_edge, by_face)`, see [`ordered_incidence`].
+pub(crate) type IncidenceBothWays = (SparseColMat<usize, f64>, SparseColMat<usize, f64>);
+
+/// `d1` (`n2 × n1`) with its `n1` side renumbered by `position` (edge `e` becomes `position[e]`),
+/// stored twice: `(by_edge, by_face)`, `by_edge` (`n2 × n1`) whose column `position[e]` gathers
+/// `(d1ᵀ x)_e`, and `by_face` (`n1 × n2`) whose column `f` gathers `(d1 u)_f`.
+pub(crate) fn ordered_incidence(
+    incidence: SparseColMatRef<'_, usize, f64>,
+    position: &[usize],
+) -> Result<IncidenceBothWays, SolverError> {
+    let (n2, n1) = (incidence.nrows(), incidence.ncols());
+    let (col_ptr, row_idx) = (
+        incidence.symbolic().col_ptr(),
+        incidence.symbolic().row_idx(),
+    );
+    let mut by_edge = Vec::with_capacity(incidence.val().len());
+    let mut by_face = Vec::with_capacity(incidence.val().len());
+    for e in 0..n1 {
+        for p in col_ptr[e]..col_ptr[e + 1] {
+            let (f, v) = (row_idx[p], incidence.val()[p]);
+            by_edge.push(Triplet::new(f, position[e], v));
+            by_face.push(Triplet::new(position[e], f, v));
+        }
+    }
+    let build = |rows, cols, triplets: &[Triplet<usize, usize, f64>]| {
+        SparseColMat::try_new_from_triplets(rows, cols, triplets)
+            .map_err(|e| SolverError::Factorization(format!("{e:?}")))
+    };
+    Ok((build(n2, n1, &by_edge)?, build(n1, n2, &by_face)?))
 }
 
 impl MixedOperator {
@@ -47,34 +80,23 @@ impl MixedOperator {
             position[factor.original_index(k)] = k;
         }
         let incidence = to_faer_csc(d1)?;
-        let n2 = d1.rows();
-        let (col_ptr, row_idx) = (
-            incidence.symbolic().col_ptr(),
-            incidence.symbolic().row_idx(),
-        );
-        let mut by_edge = Vec::with_capacity(incidence.val().len());
-        let mut by_face = Vec::with_capacity(incidence.val().len());
-        for e in 0..n1 {
-            for p in col_ptr[e]..col_ptr[e + 1] {
-                let (f, v) = (row_idx[p], incidence.val()[p]);
-                by_edge.push(Triplet::new(f, position[e], v));
-                by_face.push(Triplet::new(position[e], f, v));
-            }
-        }
-        let build = |rows, cols, triplets: &[Triplet<usize, usize, f64>]| {
-            SparseColMat::try_new_from_triplets(rows, cols, triplets)
-                .map_err(|e| SolverError::Factorization(format!("{e:?}")))
-        };
+        let (by_edge, by_face) = ordered_incidence(incidence.as_ref(), &position)?;
         Ok(Self {
             w: factor,
-            by_edge: build(n2, n1, &by_edge)?,
-            by_face: build(n1, n2, &by_face)?,
+            by_edge,
+            by_face,
+            incidence,
         })
     }
 
     /// `n1`, the dimension of `W`.
     pub(crate) fn inner_dimension(&self) -> usize {
         self.by_edge.ncols()
+    }
+
+    /// `d1` (`n2 × n1`) in the input order of both sides.
+    pub(crate) fn incidence(&self) -> SparseColMatRef<'_, usize, f64> {
+        self.incidence.as_ref()
     }
 
     /// `n2`, the dimension of `A`.

@@ -1,6 +1,6 @@
 //! Generalized symmetric eigensolver for the lowest eigenpairs of `A x = λ M x`, for three
 //! kinds of pencils ([`Pencil`]): a diagonal mass, a sparse SPD mass, and the mixed pencils
-//! `d1 W⁻¹ d1ᵀ ψ = μ N ψ` solved through a saddle-point matrix.
+//! `d1 W⁻¹ d1ᵀ ψ = μ N ψ` solved through a matrix on the edges or a saddle-point matrix.
 
 mod file_backed_columns;
 mod interval_slicing;

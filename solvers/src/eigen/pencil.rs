@@ -11,11 +11,16 @@
 //!   shifts factor `A − σM` on the union of both patterns, and `M⁻¹` (refinement, eigenfield
 //!   residuals) is a sparse Cholesky factorization of `M`, made once;
 //! - **mixed** ([`Pencil::mixed`]): `A = d1 W⁻¹ d1ᵀ` (dense, never formed) with `W` sparse SPD,
-//!   mass `N` diagonal or sparse; shifts factor the saddle matrix
-//!   `K(σ) = [[−W, d1ᵀ], [d1, −σN]]`, whose inertia is `n1` negatives plus that of `A − σN`
-//!   (Sylvester's law, eliminating `−W` first), so the count below σ is
-//!   `negatives(K(σ)) − n1` whatever the elimination order; `A x` is `d1 (W⁻¹ (d1ᵀ x))` with a
-//!   sparse Cholesky factorization of `W`, made once.
+//!   mass `N` diagonal or sparse; `A x` is `d1 (W⁻¹ (d1ᵀ x))` with a sparse Cholesky
+//!   factorization of `W`, made once. Shifts factor (see `shift_factor.rs`):
+//!   - for a sparse `N`, the saddle matrix `K(σ) = [[−W, d1ᵀ], [d1, −σN]]`, whose inertia is
+//!     `n1` negatives plus that of `A − σN` (Sylvester's law, eliminating `−W` first), so the
+//!     count below σ is `negatives(K(σ)) − n1` whatever the elimination order;
+//!   - for a diagonal `N`, the edges' matrix `C(σ) = d1ᵀ N⁻¹ d1 − σW`. Its negatives at σ > 0
+//!     are the eigenvalues of `(d1ᵀ N⁻¹ d1, W)` below σ: the `n1 − r` of its kernel (`r` the
+//!     rank of `d1`) and the nonzero ones, which are those of `(A, N)`. The kernel of `A` has
+//!     dimension `n2 − r`, so the count below σ is `negatives(C(σ)) + n2 − n1`; below a shift
+//!     `≤ 0` there is none (`A` is semidefinite).
 
 use super::mass::{symmetric_full, Mass, MassMatrix};
 use super::mixed_operator::MixedOperator;
@@ -26,7 +31,8 @@ use super::statistics::{Phase, SolverStatistics};
 use super::stiffness::Stiffness;
 use super::stored_mass::{check_diagonal_mass, MassSolver, SparseMass, StoredMass};
 use crate::convert::{
-    shifted_upper_triangle, square_dimension, upper_triangle_csc, ShiftedPattern,
+    edge_schur_pattern, shifted_upper_triangle, square_dimension, upper_triangle_csc,
+    ShiftedPattern,
 };
 use crate::dense_eigen::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
 use crate::error::SolverError;
@@ -232,7 +238,10 @@ impl<'a> Pencil<'a> {
         let (n1, n2) = (operator.inner_dimension(), operator.dimension());
         let mass = StoredMass::new(mass, n2)?;
         let w_upper = upper_triangle_csc(w)?;
-        let shifted = saddle_pattern(&w_upper, d1, &mass, n1, n2)?;
+        let shifted = match &mass {
+            StoredMass::Diagonal(values) => edge_schur_pattern(w, d1, values)?,
+            StoredMass::Sparse(_) => saddle_pattern(&w_upper, d1, &mass, n1, n2)?,
+        };
         let diagonal = operator.diagonal_estimate(&diagonal_of(w_upper.as_ref()));
         let stiffness = Stiffness::Mixed(&operator);
         let norm = block_power_norm(stiffness, n2);
@@ -437,13 +446,30 @@ impl<'a> Pencil<'a> {
         }
     }
 
-    /// Negative pivots of the factored matrix that are not eigenvalues below the shift: `n1`
-    /// (those of `−W`) for a mixed pencil, 0 otherwise.
-    fn inertia_offset(&self) -> usize {
-        match &self.kind {
-            Kind::Mixed { operator, .. } => operator.inner_dimension(),
-            _ => 0,
-        }
+    /// The eigenvalues below `shift` from the `negative` pivots of the matrix factored there
+    /// (see the module documentation): all of them for `A − σM`; less the `n1` of `−W` for
+    /// `K(σ)`; plus `n2 − n1` for `C(σ)` at `σ > 0` (none below a shift `≤ 0`, where `C(σ)` is
+    /// positive semidefinite).
+    ///
+    /// Errors: [`SolverError::NoConvergence`] when the pivots are fewer than that structure
+    /// allows (the factorization lost accuracy).
+    fn eigenvalues_below(&self, negative: usize, shift: f64) -> Result<usize, SolverError> {
+        let Kind::Mixed { operator, mass, .. } = &self.kind else {
+            return Ok(negative);
+        };
+        let (n1, n2) = (operator.inner_dimension(), operator.dimension());
+        let count = match mass {
+            StoredMass::Sparse(_) => negative.checked_sub(n1),
+            StoredMass::Diagonal(_) if shift <= 0.0 => Some(0),
+            StoredMass::Diagonal(_) => (negative + n2).checked_sub(n1),
+        };
+        count.ok_or_else(|| SolverError::NoConvergence {
+            reason: format!(
+                "the matrix factored at {shift:e} has {negative} negative pivots, fewer than the \
+                 {n1} unknowns of W and the {n2} of the pencil allow: its factorization lost \
+                 accuracy"
+            ),
+        })
     }
 
     /// The frame of the Krylov vectors for the first factorization `ldlt` of the pencil.
@@ -457,12 +483,20 @@ impl<'a> Pencil<'a> {
                 shifted,
                 ..
             } => {
-                let sparse = match mass.view() {
-                    Mass::Sparse(m) => Some(m),
-                    Mass::Diagonal(_) => None,
-                };
                 let (base, shift_part) = shifted.parts();
                 let (base, shift_part) = (symmetric_full(&base)?, symmetric_full(&shift_part)?);
+                let sparse = match mass.view() {
+                    Mass::Sparse(m) => Some(m),
+                    Mass::Diagonal(values) => {
+                        // `C(σ) = base − σ W`: its shift part is `W`.
+                        return KrylovFrame::edge_schur(
+                            ldlt,
+                            operator.incidence(),
+                            values,
+                            shift_part.as_ref(),
+                        );
+                    }
+                };
                 KrylovFrame::saddle(
                     ldlt,
                     operator.inner_dimension(),
@@ -483,7 +517,6 @@ impl<'a> Pencil<'a> {
         parallelism: Par,
     ) -> Result<(Arc<ShiftFactor>, ShiftCount), SolverError> {
         let step = sigma.abs().max(1e-6 * self.scale);
-        let offset = self.inertia_offset();
         let mut shift = sigma;
         for attempt in 0..MAX_NUDGES {
             let upper = self.shifted(shift)?;
@@ -514,16 +547,7 @@ impl<'a> Pencil<'a> {
                 Ok(factor) => {
                     let inertia = factor.inertia();
                     if inertia.zero == 0 {
-                        let below = inertia.negative.checked_sub(offset).ok_or_else(|| {
-                            SolverError::NoConvergence {
-                                reason: format!(
-                                    "the saddle matrix at {shift:e} has {} negative pivots, \
-                                     fewer than the {offset} of −W: its factorization lost \
-                                     accuracy",
-                                    inertia.negative
-                                ),
-                            }
-                        })?;
+                        let below = self.eigenvalues_below(inertia.negative, shift)?;
                         let count = ShiftCount { shift, below };
                         self.counts
                             .lock()
