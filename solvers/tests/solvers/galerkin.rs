@@ -590,3 +590,41 @@ fn reported_residuals_of_a_mixed_pencil_are_those_of_the_returned_pairs() {
     }
     assert!(compared >= 140, "{compared} field residuals compared");
 }
+
+/// The co-exact Whitney pencil counts right at shifts below its smallest nonzero eigenvalue
+/// `λ₁` down to `1e-10 λ₁` and below 0: what lies below is the kernel of `A` alone. (Further
+/// down, about `1e-16` of the top of the spectrum, the pivots on the kernel of `d1` are
+/// rounding noise, in `C(σ)` as in the saddle matrix; see `pencil.rs`.)
+#[test]
+fn the_mixed_pencil_counts_right_below_its_smallest_nonzero_eigenvalue() {
+    let (positions, faces) = mesh_matrices::pillow(12, 10, 0.3, 3.0);
+    let whitney = mesh_matrices::whitney(&positions, &faces);
+    let (reference, _) = dense_generalized_eigen(
+        dense_mixed(&whitney.mass, &whitney.d1).as_ref(),
+        &whitney.face_areas,
+    )
+    .expect("dense");
+    let lambda1 = reference
+        .iter()
+        .copied()
+        .find(|&v| v > 1e-8 * reference[reference.len() - 1])
+        .expect("a nonzero eigenvalue");
+    let pencil = Pencil::mixed(
+        &whitney.mass,
+        &whitney.d1,
+        MassMatrix::Diagonal(&whitney.face_areas),
+    )
+    .expect("valid");
+    let shifts = (0..=10)
+        .map(|k| 0.5 * lambda1 * 10f64.powi(-k))
+        .chain([-lambda1]);
+    for t in shifts {
+        let count = pencil.count_below(t).expect("counts");
+        let expected = reference.iter().filter(|&&v| v < count.shift).count();
+        assert_eq!(
+            count.below, expected,
+            "count below {t:e} (at {:e})",
+            count.shift
+        );
+    }
+}
