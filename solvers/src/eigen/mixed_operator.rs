@@ -170,6 +170,49 @@ impl MixedOperator {
     }
 }
 
+/// A small mixed pencil's matrices for tests: `W` (`n1 × n1`, SPD, a banded diagonal with
+/// off-diagonal entries) and `d1` (`n2 × n1`, face `f` on the edges `s·f`, `s·f + 1` and
+/// `s·f + 3` modulo `n1` for the `stride` `s`), with `A = d1 W⁻¹ d1ᵀ` formed densely.
+#[cfg(test)]
+pub(crate) fn small_mixed_matrices(
+    n1: usize,
+    n2: usize,
+    stride: usize,
+) -> (sprs::CsMat<f64>, sprs::CsMat<f64>, Mat<f64>) {
+    let mut w = sprs::TriMat::new((n1, n1));
+    for i in 0..n1 {
+        w.add_triplet(i, i, 3.0 + i as f64 / 3.0);
+        if i + 2 < n1 {
+            w.add_triplet(i, i + 2, 0.7);
+            w.add_triplet(i + 2, i, 0.7);
+        }
+    }
+    let mut d1 = sprs::TriMat::new((n2, n1));
+    for f in 0..n2 {
+        for (e, sign) in [
+            (stride * f, 1.0),
+            (stride * f + 1, -1.0),
+            (stride * f + 3, 1.0),
+        ] {
+            d1.add_triplet(f, e % n1, sign);
+        }
+    }
+    let (w, d1) = (w.to_csc(), d1.to_csc());
+    let dense = |m: &sprs::CsMat<f64>| {
+        let mut d = Mat::<f64>::zeros(m.rows(), m.cols());
+        for (v, (i, j)) in m.iter() {
+            d[(i, j)] += *v;
+        }
+        d
+    };
+    let (wd, dd) = (dense(&w), dense(&d1));
+    let w_inverse = faer::linalg::solvers::DenseSolveCore::inverse(
+        &wd.as_ref().llt(faer::Side::Lower).expect("SPD"),
+    );
+    let a = &dd * &w_inverse * dd.transpose();
+    (w, d1, a)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -179,34 +222,8 @@ mod tests {
     #[test]
     fn operator_is_d1_w_inverse_d1_transposed() {
         let (n1, n2) = (7, 4);
-        let mut w = sprs::TriMat::new((n1, n1));
-        for i in 0..n1 {
-            w.add_triplet(i, i, 3.0 + i as f64 / 3.0);
-            if i + 2 < n1 {
-                w.add_triplet(i, i + 2, 0.7);
-                w.add_triplet(i + 2, i, 0.7);
-            }
-        }
-        let mut d1 = sprs::TriMat::new((n2, n1));
-        for f in 0..n2 {
-            for (e, sign) in [(f, 1.0), (f + 1, -1.0), (f + 3, 1.0)] {
-                d1.add_triplet(f, e % n1, sign);
-            }
-        }
-        let (w, d1) = (w.to_csc(), d1.to_csc());
+        let (w, d1, expected) = small_mixed_matrices(n1, n2, 1);
         let operator = MixedOperator::new(&w, &d1).expect("W is SPD");
-        let dense = |m: &sprs::CsMat<f64>| {
-            let mut d = Mat::<f64>::zeros(m.rows(), m.cols());
-            for (v, (i, j)) in m.iter() {
-                d[(i, j)] += *v;
-            }
-            d
-        };
-        let (wd, dd) = (dense(&w), dense(&d1));
-        let w_inverse = faer::linalg::solvers::DenseSolveCore::inverse(
-            &wd.as_ref().llt(faer::Side::Lower).expect("SPD"),
-        );
-        let expected = &dd * &w_inverse * dd.transpose();
         assert!((operator.dense() - &expected).norm_max() <= 1e-13 * expected.norm_max());
         let x: Vec<Row> = (0..n2)
             .map(|i| std::array::from_fn(|j| ((i * 3 + j) % 5) as f64 - 2.0))

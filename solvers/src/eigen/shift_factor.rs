@@ -485,44 +485,18 @@ mod tests {
     use faer::Mat;
 
     /// A mixed pencil with a diagonal mass factors `C(σ) = d1ᵀ N⁻¹ d1 − σW`: the count below σ
-    /// (`negatives(C(σ)) + n2 − n1`, none below a negative shift) is the dense one, and the plain,
-    /// the refined and the column solve through it solve `(A − σN) x = b`, for shifts in the
-    /// spectrum and one below it (`W` SPD with off-diagonal entries, `d1` of full row rank with more edges
-    /// than faces, like a mesh's).
+    /// (`negatives(C(σ)) + n2 − n1`, none below a negative shift) is the dense one, and the
+    /// plain, the refined and the column solve through it solve `(A − σN) x = b`, for shifts in
+    /// the spectrum and one below it (`d1` with more edges than faces, like a mesh's).
     #[test]
     fn edge_schur_counts_and_solves_the_reduced_system() {
         use super::super::mass::MassMatrix;
+        use super::super::mixed_operator::small_mixed_matrices;
         use super::super::pencil::Pencil;
         use super::super::statistics::Phase;
         let (n1, n2) = (11, 6);
-        let mut w = sprs::TriMat::new((n1, n1));
-        for i in 0..n1 {
-            w.add_triplet(i, i, 3.0 + i as f64 / 3.0);
-            if i + 2 < n1 {
-                w.add_triplet(i, i + 2, 0.7);
-                w.add_triplet(i + 2, i, 0.7);
-            }
-        }
-        let mut d1 = sprs::TriMat::new((n2, n1));
-        for f in 0..n2 {
-            for (e, sign) in [(2 * f, 1.0), (2 * f + 1, -1.0), (2 * f + 3, 1.0)] {
-                d1.add_triplet(f, e % n1, sign);
-            }
-        }
-        let (w, d1) = (w.to_csc(), d1.to_csc());
+        let (w, d1, a) = small_mixed_matrices(n1, n2, 2);
         let n: Vec<f64> = (0..n2).map(|f| 0.5 + f as f64 / 5.0).collect();
-        let dense = |m: &sprs::CsMat<f64>| {
-            let mut d = Mat::<f64>::zeros(m.rows(), m.cols());
-            for (v, (i, j)) in m.iter() {
-                d[(i, j)] += *v;
-            }
-            d
-        };
-        let (wd, dd) = (dense(&w), dense(&d1));
-        let w_inverse = faer::linalg::solvers::DenseSolveCore::inverse(
-            &wd.as_ref().llt(faer::Side::Lower).expect("SPD"),
-        );
-        let a = &dd * &w_inverse * dd.transpose();
         let (values, _) =
             crate::dense_eigen::dense_generalized_eigen(a.as_ref(), &n).expect("eigen");
         let pencil = Pencil::mixed(&w, &d1, MassMatrix::Diagonal(&n)).expect("a valid pencil");
