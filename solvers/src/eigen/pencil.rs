@@ -492,25 +492,22 @@ impl<'a> Pencil<'a> {
                 ..
             } => {
                 let (base, shift_part) = shifted.parts();
-                let (base, shift_part) = (symmetric_full(&base)?, symmetric_full(&shift_part)?);
-                let sparse = match mass.view() {
-                    Mass::Sparse(m) => Some(m),
-                    Mass::Diagonal(values) => {
-                        // `C(σ) = base − σ W`: its shift part is `W`.
-                        return KrylovFrame::edge_schur(
-                            ldlt,
-                            operator.incidence(),
-                            values,
-                            shift_part.as_ref(),
-                        );
-                    }
-                };
-                KrylovFrame::saddle(
-                    ldlt,
-                    operator.inner_dimension(),
-                    sparse,
-                    (base.as_ref(), shift_part.as_ref()),
-                )
+                let shift_part = symmetric_full(&shift_part)?;
+                match mass.view() {
+                    // `C(σ) = base − σ W`: its shift part is `W`.
+                    Mass::Diagonal(values) => KrylovFrame::edge_schur(
+                        ldlt,
+                        operator.incidence(),
+                        values,
+                        shift_part.as_ref(),
+                    ),
+                    Mass::Sparse(m) => KrylovFrame::saddle(
+                        ldlt,
+                        operator.inner_dimension(),
+                        Some(m),
+                        (symmetric_full(&base)?.as_ref(), shift_part.as_ref()),
+                    ),
+                }
             }
         }
     }

@@ -76,13 +76,32 @@ struct EdgeSchur {
     by_edge: SparseColMat<usize, f64>,
     /// `d1ᵀ` (`n1 × n2`, rows in elimination order): column `f` gathers `(d1 u)_f`.
     by_face: SparseColMat<usize, f64>,
-    /// `N`, the `n2` masses.
+    /// `N`, the `n2` masses (kept beside their inverses so that the refinement's residual
+    /// multiplies by `N` itself).
     mass: Vec<f64>,
     /// `N⁻¹`, the `n2` inverse masses.
     inverse_mass: Vec<f64>,
     /// `W` (`n1 × n1`, full symmetric storage, permuted to `C`'s elimination order), for the
     /// residuals of iterative refinement.
     w: SparseColMat<usize, f64>,
+}
+
+impl EdgeSchur {
+    /// Row `f` of `d1 u` for the packed edge rows `u` (`n1` rows, elimination order).
+    fn face_row_of_d1_times(&self, f: usize, u: &[Row]) -> Row {
+        let (col_ptr, row_idx, values) = (
+            self.by_face.symbolic().col_ptr(),
+            self.by_face.symbolic().row_idx(),
+            self.by_face.val(),
+        );
+        let mut sum = [0.0; 8];
+        for p in col_ptr[f]..col_ptr[f + 1] {
+            for (s, u) in sum.iter_mut().zip(&u[row_idx[p]]) {
+                *s += values[p] * u;
+            }
+        }
+        sum
+    }
 }
 
 /// The saddle system of a mixed pencil in its elimination order.
@@ -351,20 +370,9 @@ impl ShiftFactor {
             }
         }
         self.ldlt.solve_rows_in_elimination_order(buffer);
-        let (col_ptr, row_idx, values) = (
-            schur.by_face.symbolic().col_ptr(),
-            schur.by_face.symbolic().row_idx(),
-            schur.by_face.val(),
-        );
         let inverse_shift = self.shift.recip();
         for (f, (row, inverse)) in rows.iter_mut().zip(&schur.inverse_mass).enumerate() {
-            let mut d1u = [0.0; 8];
-            for p in col_ptr[f]..col_ptr[f + 1] {
-                let (v, u) = (values[p], &buffer[row_idx[p]]);
-                for (s, u) in d1u.iter_mut().zip(u) {
-                    *s += v * u;
-                }
-            }
+            let d1u = schur.face_row_of_d1_times(f, buffer);
             for (x, d) in row.iter_mut().zip(d1u) {
                 *x = (inverse * d - *x) * inverse_shift;
             }
@@ -393,19 +401,8 @@ impl ShiftFactor {
             *g = std::array::from_fn(|j| g[j] - d[j]);
         }
         // r = b − d1 u + σ N x, in place of b.
-        let (col_ptr, row_idx, values) = (
-            schur.by_face.symbolic().col_ptr(),
-            schur.by_face.symbolic().row_idx(),
-            schur.by_face.val(),
-        );
         for (f, (b, x)) in scratch.rhs.iter_mut().zip(rows.iter()).enumerate() {
-            let mut d1u = [0.0; 8];
-            for p in col_ptr[f]..col_ptr[f + 1] {
-                let (v, u) = (values[p], &scratch.solution[row_idx[p]]);
-                for (s, u) in d1u.iter_mut().zip(u) {
-                    *s += v * u;
-                }
-            }
+            let d1u = schur.face_row_of_d1_times(f, &scratch.solution);
             let weight = self.shift * schur.mass[f];
             *b = std::array::from_fn(|j| b[j] - d1u[j] + weight * x[j]);
         }
