@@ -57,6 +57,7 @@ mod symmetric_eigen;
 
 pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
+pub use eigen::streamed_eigenvectors_in_memory;
 pub use eigen::{
     default_slice_memory, keep_columns, lowest_eigenpairs, lowest_eigenpairs_of, parse_byte_count,
     process_cpu_seconds, set_default_slice_memory, EigenOptions, EigenProgress, EigenRequest,

@@ -11,12 +11,33 @@
 //! The file and its system calls are [`super::temporary_file_mapping`]'s, on Linux only;
 //! elsewhere, or where no temporary file can be made, the columns are anonymous memory
 //! ([`FileBackedColumns::in_memory`]) and parking does nothing. The tests run both on Linux.
+//!
+//! The file costs time where memory is plentiful: the writeback of a mapped range write-protects
+//! each of its 4 KiB pages, one cross-processor TLB flush per page, and the pages fault back in
+//! one by one when handed on. So a streamed call whose eigenvectors are small next to the slice
+//! budget keeps them in anonymous memory ([`streamed_eigenvectors_in_memory`]); measured in
+//! `docs/performance.md`.
 
 use super::interval_stream::RawColumns;
 #[cfg(target_os = "linux")]
 use super::temporary_file_mapping::{punch_out, write_back_and_release, TemporaryFileMapping};
 use crate::huge_pages::{release_pages, reserve_on_huge_pages};
 use faer::Mat;
+
+/// The share of the slice budget ([`EigenOptions::slice_memory`](super::EigenOptions)) that the
+/// eigenvectors of a streamed call may take in anonymous memory: one part in this many.
+const IN_MEMORY_SHARE: usize = 4;
+
+/// Whether the eigenvectors of a streamed call, `bytes` bytes for all its requests together,
+/// stay in anonymous memory ([`FileBackedColumns::in_memory`]) rather than in a temporary file:
+/// when they take at most a quarter of the slice budget `budget` (bytes). Then they add at most
+/// a quarter to the memory the slices may take, and the file's system calls, which cost more
+/// than the memory saves at that size, are skipped (`tvf basis hand.obj -k 1000`, 100 MB of
+/// eigenvectors: 0.88× the wall time). A million-face basis (8 GB of eigenvectors against the
+/// default 4 GiB budget) still goes through the file.
+pub fn streamed_eigenvectors_in_memory(bytes: usize, budget: usize) -> bool {
+    bytes <= budget / IN_MEMORY_SHARE
+}
 
 /// Room for `rows × columns` values: a mapped temporary file, or reserved anonymous memory.
 pub(crate) enum FileBackedColumns {
@@ -192,6 +213,26 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// At the default budget of a 24 GiB machine (4 GiB), the eigenvectors of `tvf basis
+    /// bunny-closed.obj -k 1000` (about 500 columns of 34,834 and of 104,499 rows) stay in
+    /// memory, those of the million-face basis (500 of 510,842 and of 1,532,520 rows) go to
+    /// the file; the bound itself is in memory.
+    #[test]
+    fn only_eigenvectors_small_next_to_the_slice_budget_stay_in_memory() {
+        let budget = 4 << 30;
+        let bytes = |rows: &[usize]| rows.iter().map(|n| n * 500 * 8).sum::<usize>();
+        assert!(streamed_eigenvectors_in_memory(
+            bytes(&[34_834, 104_499]),
+            budget
+        ));
+        assert!(!streamed_eigenvectors_in_memory(
+            bytes(&[510_842, 1_532_520]),
+            budget
+        ));
+        assert!(streamed_eigenvectors_in_memory(budget / 4, budget));
+        assert!(!streamed_eigenvectors_in_memory(budget / 4 + 1, budget));
     }
 
     #[test]

@@ -59,7 +59,9 @@
 //! per-slice bases and a copy of every interval's vectors a visible share of the processor
 //! time (numbers in `docs/performance.md`).
 
-use super::file_backed_columns::{FileBackedColumns, ParkedColumns};
+use super::file_backed_columns::{
+    streamed_eigenvectors_in_memory, FileBackedColumns, ParkedColumns,
+};
 use super::interval_stream::{jobs_in_interval_order, IntervalStream, RawColumns, SolvedPart};
 use super::krylov_slice::{run_slice, SliceMemory, SliceProblem, SliceSettings};
 use super::pencil::{Pencil, ShiftCount};
@@ -151,7 +153,7 @@ pub fn lowest_eigenpairs_of(
     let jobs = interval_jobs(requests, &plans);
     let gate = MemoryGate::new(budget, job_memory(requests, options, &plans, &jobs));
     let streaming = options.finished.is_some();
-    let (eigenvectors, files, columns) = eigenvector_storage(requests, &plans, streaming);
+    let (eigenvectors, files, columns) = eigenvector_storage(requests, &plans, streaming, budget);
     let (intervals, assembled) =
         solve_intervals(requests, options, &plans, (&jobs, &gate), &columns)?;
     drop(files);
@@ -211,19 +213,32 @@ pub fn lowest_eigenpairs_of(
 /// jobs write straight into their columns of one matrix, reserved here untouched, and their own
 /// memory is recycled ([`WorkspacePool`]), so no interval holds a copy until the end. Streamed
 /// (`streaming`), they are in a mapped temporary file instead, where an interval that waits for
-/// an earlier one to be handed on can leave memory ([`FileBackedColumns`]). Returns the matrices
-/// (not streamed), the files (streamed) and the jobs' raw view of each plan's columns, which
-/// stays valid while the matrices or files live.
+/// an earlier one to be handed on can leave memory ([`FileBackedColumns`]), unless all of them
+/// are small next to the slice budget `budget` ([`streamed_eigenvectors_in_memory`]): then in
+/// anonymous memory, whose pages are given back as they are handed on. Returns the matrices
+/// (not streamed), the files or memory (streamed) and the jobs' raw view of each plan's
+/// columns, which stays valid while the matrices or files live.
 fn eigenvector_storage(
     requests: &[EigenRequest<'_, '_>],
     plans: &[Plan],
     streaming: bool,
+    budget: usize,
 ) -> (Vec<Mat<f64>>, Vec<FileBackedColumns>, Vec<RawColumns>) {
     let (mut eigenvectors, mut files): (Vec<Mat<f64>>, Vec<FileBackedColumns>) = (vec![], vec![]);
+    let bytes = plans
+        .iter()
+        .map(|plan| {
+            let request = &requests[plan.request];
+            request.pencil.dimension() * request.count * std::mem::size_of::<f64>()
+        })
+        .sum();
+    let in_memory = streamed_eigenvectors_in_memory(bytes, budget);
     for plan in plans {
         let request = &requests[plan.request];
         let (n, k) = (request.pencil.dimension(), request.count);
-        if streaming {
+        if streaming && in_memory {
+            files.push(FileBackedColumns::in_memory(n, k));
+        } else if streaming {
             files.push(FileBackedColumns::new(n, k));
         } else {
             eigenvectors.push(reserve_on_huge_pages(n, k));

@@ -29,6 +29,7 @@ mod temporary_file_mapping;
 mod types;
 mod workspace_pool;
 
+pub use file_backed_columns::streamed_eigenvectors_in_memory;
 pub use interval_slicing::{lowest_eigenpairs_of, EigenRequest, EigenSolution, RequestError};
 pub use lowest::lowest_eigenpairs;
 pub use mass::MassMatrix;

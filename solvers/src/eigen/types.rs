@@ -66,7 +66,9 @@ pub struct EigenOptions<'a> {
     /// default): [`crate::default_slice_memory`], a sixth of the physical memory unless the
     /// process set another (the command line: `TVF_SLICE_MEMORY`, e.g. `4G`). Binds only on large meshes (a slice of 96 pairs of a million-face
     /// co-potential pencil is 4.4 GB); the result does not depend on it unless it lowers the
-    /// interval size.
+    /// interval size. With [`Self::finished`] it also decides where the eigenvectors wait to be
+    /// handed on: in memory when all of them take at most a quarter of it, else in a temporary
+    /// file ([`crate::streamed_eigenvectors_in_memory`]).
     pub slice_memory: Option<usize>,
     /// Eigenpairs whose relative eigenfield residual `√(sᵀ A s / λ) / λ`,
     /// `s = M⁻¹(A x − λ M x)` (the residual of the Hodge–Laplacian eigenfield `D x/√λ` when

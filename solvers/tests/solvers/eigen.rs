@@ -5,8 +5,9 @@ use faer::Mat;
 use std::cell::Cell;
 use tvf_solvers::convert::shifted_upper_triangle;
 use tvf_solvers::{
-    dense_generalized_eigen, lowest_eigenpairs, lowest_eigenpairs_of, EigenOptions, EigenRequest,
-    Eigenpairs, Pencil, SolverError, SparseLdlt,
+    default_slice_memory, dense_generalized_eigen, lowest_eigenpairs, lowest_eigenpairs_of,
+    streamed_eigenvectors_in_memory, EigenOptions, EigenRequest, Eigenpairs, Pencil, SolverError,
+    SparseLdlt,
 };
 
 fn dense(a: &sprs::CsMat<f64>) -> Mat<f64> {
@@ -406,7 +407,9 @@ fn a_progress_callback_that_unwinds_stops_the_solve() {
 /// different sizes and a dense-sized one in one call, intervals small enough for several per
 /// pencil (neighbours orthogonalised across the hand-over). Each column comes exactly once, in
 /// ascending order per request, and the result then holds no vectors but the same values and
-/// residuals. A sink that fails stops the computation with its message.
+/// residuals; so with the eigenvectors waiting in memory (small next to the slice budget) and
+/// in a temporary file (a budget too small for that). A sink that fails stops the computation
+/// with its message.
 #[test]
 fn eigenvectors_handed_on_as_they_finish_are_those_of_the_whole_result() {
     let big = grid_laplacian(40, 38, false);
@@ -459,31 +462,43 @@ fn eigenvectors_handed_on_as_they_finish_are_those_of_the_whole_result() {
         }
         Ok(())
     };
-    let streamed = solve(
-        &pencils(),
-        &EigenOptions {
-            finished: Some(&sink),
-            ..options
-        },
-    )
-    .unwrap();
-    let handed = handed.into_inner();
-    for (r, (pairs, streamed)) in whole.pairs.iter().zip(&streamed.pairs).enumerate() {
-        assert_eq!(streamed.vectors.ncols(), 0, "request {r}");
-        assert_eq!(streamed.values, pairs.values, "request {r}");
-        assert_eq!(
-            streamed.field_residuals, pairs.field_residuals,
-            "request {r}"
-        );
-        let columns: Vec<usize> = handed[r].iter().map(|(j, _)| *j).collect();
-        assert_eq!(
-            columns,
-            (0..pairs.values.len()).collect::<Vec<_>>(),
-            "request {r}"
-        );
-        for (j, bits) in &handed[r] {
-            let expected: Vec<u64> = pairs.vectors.col(*j).iter().map(|x| x.to_bits()).collect();
-            assert!(bits == &expected, "request {r}, column {j} differs");
+    // The eigenvectors of the two sliced requests wait in memory under the default budget, and
+    // in a temporary file under one that holds the whole call's slices but less than four times
+    // those eigenvectors.
+    let sliced_bytes = (big.rows() * wanted[0].0 + small.rows() * wanted[1].0) * 8;
+    let in_file = whole.statistics.peak_slice_memory;
+    assert!(streamed_eigenvectors_in_memory(
+        sliced_bytes,
+        default_slice_memory()
+    ));
+    assert!(!streamed_eigenvectors_in_memory(sliced_bytes, in_file));
+    for slice_memory in [None, Some(in_file)] {
+        let streamed = solve(
+            &pencils(),
+            &EigenOptions {
+                finished: Some(&sink),
+                slice_memory,
+                ..options
+            },
+        )
+        .unwrap();
+        let received = handed.replace(Handed::from(vec![Vec::new(); 3]));
+        for (r, (pairs, streamed)) in whole.pairs.iter().zip(&streamed.pairs).enumerate() {
+            let case = format!("request {r}, budget {slice_memory:?}");
+            assert_eq!(streamed.vectors.ncols(), 0, "{case}");
+            assert_eq!(streamed.values, pairs.values, "{case}");
+            assert_eq!(streamed.field_residuals, pairs.field_residuals, "{case}");
+            let columns: Vec<usize> = received[r].iter().map(|(j, _)| *j).collect();
+            assert_eq!(
+                columns,
+                (0..pairs.values.len()).collect::<Vec<_>>(),
+                "{case}"
+            );
+            for (j, bits) in &received[r] {
+                let expected: Vec<u64> =
+                    pairs.vectors.col(*j).iter().map(|x| x.to_bits()).collect();
+                assert!(bits == &expected, "{case}, column {j} differs");
+            }
         }
     }
     assert!(
