@@ -33,7 +33,7 @@ const IN_MEMORY_SHARE: usize = 4;
 /// when they take at most a quarter of the slice budget `budget` (bytes). Then they add at most
 /// a quarter to the memory the slices may take, and the file's system calls, which cost more
 /// than the memory saves at that size, are skipped (`tvf basis hand.obj -k 1000`, 100 MB of
-/// eigenvectors: 0.88× the wall time). A million-face basis (8 GB of eigenvectors against the
+/// eigenvectors: 0.86× the wall time). A million-face basis (8 GB of eigenvectors against the
 /// default 4 GiB budget) still goes through the file.
 pub fn streamed_eigenvectors_in_memory(bytes: usize, budget: usize) -> bool {
     bytes <= budget / IN_MEMORY_SHARE
