@@ -57,12 +57,11 @@ mod symmetric_eigen;
 
 pub use dense_cholesky::DenseCholesky;
 pub use dense_eigen::{dense_generalized_eigen, dense_generalized_eigen_with_mass};
-pub use eigen::streamed_eigenvectors_in_memory;
 pub use eigen::{
     default_slice_memory, keep_columns, lowest_eigenpairs, lowest_eigenpairs_of, parse_byte_count,
-    process_cpu_seconds, set_default_slice_memory, EigenOptions, EigenProgress, EigenRequest,
-    EigenSolution, Eigenpairs, EigenvectorSink, FinishedEigenvectors, MassMatrix, Pencil, Phase,
-    PhaseStatistics, RequestError, ShiftCount, SolverStatistics,
+    process_cpu_seconds, set_default_slice_memory, streamed_eigenvectors_in_memory, EigenOptions,
+    EigenProgress, EigenRequest, EigenSolution, Eigenpairs, EigenvectorSink, FinishedEigenvectors,
+    MassMatrix, Pencil, Phase, PhaseStatistics, RequestError, ShiftCount, SolverStatistics,
 };
 pub use error::SolverError;
 pub use factor_parallelism::{FactorParallelism, SEQUENTIAL_FLOP_LIMIT};

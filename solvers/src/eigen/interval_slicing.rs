@@ -232,11 +232,11 @@ fn eigenvector_storage(
             request.pencil.dimension() * request.count * std::mem::size_of::<f64>()
         })
         .sum();
-    let in_memory = streamed_eigenvectors_in_memory(bytes, budget);
+    let in_memory = streaming && streamed_eigenvectors_in_memory(bytes, budget);
     for plan in plans {
         let request = &requests[plan.request];
         let (n, k) = (request.pencil.dimension(), request.count);
-        if streaming && in_memory {
+        if in_memory {
             files.push(FileBackedColumns::in_memory(n, k));
         } else if streaming {
             files.push(FileBackedColumns::new(n, k));
